@@ -1,0 +1,391 @@
+"""Robust geometric predicates: a floating-point filter with an exact fallback.
+
+``orient2d(a, b, c)`` is positive when ``a, b, c`` turn counter-clockwise, negative when
+clockwise and zero when collinear. ``incircle(a, b, c, d)`` is positive when ``d`` lies
+strictly inside the circle through the counter-clockwise triangle ``a, b, c``. Both are
+*exact*: the fast filter answers when its error bound proves the sign, and otherwise the
+sign is computed with floating-point expansions (Shewchuk, "Adaptive Precision
+Floating-Point Arithmetic and Fast Robust Geometric Predicates", 1997). The exact code
+lives in separate, non-inlined functions so that the hot path stays small.
+
+Never compile these with ``fastmath``: the error-free transformations below depend on
+IEEE round-to-nearest and on the absence of fused multiply-add contraction.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ..config import NJIT
+
+_EPS = 2.0**-53
+_SPLITTER = 2.0**27 + 1.0
+_CCW_BOUND = (3.0 + 16.0 * _EPS) * _EPS
+_ICC_BOUND = (10.0 + 96.0 * _EPS) * _EPS
+
+
+@njit(**NJIT)
+def _two_sum(a, b):
+    x = a + b
+    bv = x - a
+    av = x - bv
+    return x, (a - av) + (b - bv)
+
+
+@njit(**NJIT)
+def _two_diff(a, b):
+    x = a - b
+    bv = a - x
+    av = x + bv
+    return x, (a - av) + (bv - b)
+
+
+@njit(**NJIT)
+def _split(a):
+    c = _SPLITTER * a
+    big = c - a
+    hi = c - big
+    return hi, a - hi
+
+
+@njit(**NJIT)
+def _two_product(a, b):
+    x = a * b
+    ahi, alo = _split(a)
+    bhi, blo = _split(b)
+    err = x - ahi * bhi
+    err -= alo * bhi
+    err -= ahi * blo
+    return x, alo * blo - err
+
+
+@njit(**NJIT)
+def _two_two_diff(a1, a0, b1, b0, out):
+    """Store the 4-component expansion ``(a1 + a0) - (b1 + b0)`` in ``out``."""
+    i, x0 = _two_diff(a0, b0)
+    j, r0 = _two_sum(a1, i)
+    i, x1 = _two_diff(r0, b1)
+    x3, x2 = _two_sum(j, i)
+    out[0] = x0
+    out[1] = x1
+    out[2] = x2
+    out[3] = x3
+    return 4
+
+
+@njit(**NJIT)
+def _expansion_sum(e, elen, f, flen, h):
+    """Exact sum of two nonoverlapping expansions into ``h``; returns its length.
+
+    Zero components are dropped. ``h`` needs room for ``elen + flen`` components.
+    """
+    if elen == 0:
+        for i in range(flen):
+            h[i] = f[i]
+        return flen
+    if flen == 0:
+        for i in range(elen):
+            h[i] = e[i]
+        return elen
+    ei = 0
+    fi = 0
+    enow = e[0]
+    fnow = f[0]
+    if (fnow > enow) == (fnow > -enow):
+        q = enow
+        ei += 1
+    else:
+        q = fnow
+        fi += 1
+    hlen = 0
+    if ei < elen and fi < flen:
+        enow = e[ei]
+        fnow = f[fi]
+        if (fnow > enow) == (fnow > -enow):
+            q, hh = _two_sum(enow, q)  # fast_two_sum is valid here but two_sum is safe
+            ei += 1
+        else:
+            q, hh = _two_sum(fnow, q)
+            fi += 1
+        if hh != 0.0:
+            h[hlen] = hh
+            hlen += 1
+        while ei < elen and fi < flen:
+            enow = e[ei]
+            fnow = f[fi]
+            if (fnow > enow) == (fnow > -enow):
+                q, hh = _two_sum(q, enow)
+                ei += 1
+            else:
+                q, hh = _two_sum(q, fnow)
+                fi += 1
+            if hh != 0.0:
+                h[hlen] = hh
+                hlen += 1
+    while ei < elen:
+        q, hh = _two_sum(q, e[ei])
+        ei += 1
+        if hh != 0.0:
+            h[hlen] = hh
+            hlen += 1
+    while fi < flen:
+        q, hh = _two_sum(q, f[fi])
+        fi += 1
+        if hh != 0.0:
+            h[hlen] = hh
+            hlen += 1
+    if q != 0.0 or hlen == 0:
+        h[hlen] = q
+        hlen += 1
+    return hlen
+
+
+@njit(**NJIT)
+def _scale_expansion(e, elen, b, h):
+    """Exact product of an expansion and a double into ``h`` (room for ``2 * elen``)."""
+    bhi, blo = _split(b)
+    hlen = 0
+    x = e[0] * b
+    ahi, alo = _split(e[0])
+    err = x - ahi * bhi
+    err -= alo * bhi
+    err -= ahi * blo
+    q = x
+    hh = alo * blo - err
+    if hh != 0.0:
+        h[hlen] = hh
+        hlen += 1
+    for i in range(1, elen):
+        enow = e[i]
+        p1 = enow * b
+        ahi, alo = _split(enow)
+        err = p1 - ahi * bhi
+        err -= alo * bhi
+        err -= ahi * blo
+        p0 = alo * blo - err
+        s, hh = _two_sum(q, p0)
+        if hh != 0.0:
+            h[hlen] = hh
+            hlen += 1
+        q = p1 + s
+        hh = s - (q - p1)
+        if hh != 0.0:
+            h[hlen] = hh
+            hlen += 1
+    if q != 0.0 or hlen == 0:
+        h[hlen] = q
+        hlen += 1
+    return hlen
+
+
+@njit(**NJIT)
+def _multiply(e, elen, f, flen, h, tmp, acc):
+    """Exact product of two expansions into ``h``; ``tmp``/``acc`` are scratch buffers."""
+    hlen = 0
+    for k in range(flen):
+        tlen = _scale_expansion(e, elen, f[k], tmp)
+        alen = _expansion_sum(h, hlen, tmp, tlen, acc)
+        for i in range(alen):
+            h[i] = acc[i]
+        hlen = alen
+    return hlen
+
+
+@njit(**NJIT)
+def _cross(ax, ay, bx, by, out):
+    """4-component expansion of ``ax * by - bx * ay``."""
+    p1, p0 = _two_product(ax, by)
+    q1, q0 = _two_product(bx, ay)
+    return _two_two_diff(p1, p0, q1, q0, out)
+
+
+@njit(**NJIT)
+def _orient_exact(ax, ay, bx, by, cx, cy):
+    """Exact sign of orient2d from the untranslated 3x3 determinant."""
+    t1 = np.zeros(4)
+    t2 = np.zeros(4)
+    t3 = np.zeros(4)
+    s = np.zeros(8)
+    r = np.zeros(12)
+    _cross(ax, ay, bx, by, t1)
+    _cross(bx, by, cx, cy, t2)
+    _cross(cx, cy, ax, ay, t3)
+    slen = _expansion_sum(t1, 4, t2, 4, s)
+    rlen = _expansion_sum(s, slen, t3, 4, r)
+    return r[rlen - 1]
+
+
+@njit(**NJIT)
+def orient2d(ax, ay, bx, by, cx, cy):
+    """Sign-exact orientation of ``a, b, c``: > 0 counter-clockwise, < 0 clockwise, 0 collinear."""
+    detleft = (ax - cx) * (by - cy)
+    detright = (ay - cy) * (bx - cx)
+    det = detleft - detright
+    detsum = abs(detleft) + abs(detright)
+    if abs(det) >= _CCW_BOUND * detsum:
+        return det
+    return _orient_exact(ax, ay, bx, by, cx, cy)
+
+
+@njit(**NJIT)
+def _orient3(p, plen, q, qlen, r, rlen, out, tmp):
+    """``out = p + q + r`` for expansions (used for the 3x3 minors of incircle)."""
+    tlen = _expansion_sum(p, plen, q, qlen, tmp)
+    return _expansion_sum(tmp, tlen, r, rlen, out)
+
+
+@njit(**NJIT)
+def _lift(x, y, out):
+    x1, x0 = _two_product(x, x)
+    y1, y0 = _two_product(y, y)
+    a = np.zeros(2)
+    b = np.zeros(2)
+    a[0] = x0
+    a[1] = x1
+    b[0] = y0
+    b[1] = y1
+    return _expansion_sum(a, 2, b, 2, out)
+
+
+@njit(**NJIT)
+def _incircle_translated_exact(adx, ady, bdx, bdy, cdx, cdy):
+    """Exact incircle when the coordinate differences to ``d`` are exact doubles."""
+    lift = np.zeros(4)
+    minor = np.zeros(4)
+    tmp = np.zeros(8)
+    acc = np.zeros(200)
+    prod = np.zeros(200)
+    total = np.zeros(200)
+    tlen = 0
+    for k in range(3):
+        if k == 0:
+            llen = _lift(adx, ady, lift)
+            _cross(bdx, bdy, cdx, cdy, minor)
+        elif k == 1:
+            llen = _lift(bdx, bdy, lift)
+            _cross(cdx, cdy, adx, ady, minor)
+        else:
+            llen = _lift(cdx, cdy, lift)
+            _cross(adx, ady, bdx, bdy, minor)
+        plen = _multiply(minor, 4, lift, llen, prod, tmp, acc)
+        nlen = _expansion_sum(total, tlen, prod, plen, acc)
+        for i in range(nlen):
+            total[i] = acc[i]
+        tlen = nlen
+    return total[tlen - 1]
+
+
+@njit(**NJIT)
+def _incircle_full_exact(ax, ay, bx, by, cx, cy, dx, dy):
+    """Exact incircle from the untranslated 4x4 lifted determinant.
+
+    Expanding along the lifted column gives
+    ``lift(a) o(b,c,d) - lift(b) o(a,c,d) + lift(c) o(a,b,d) - lift(d) o(a,b,c)`` where
+    ``o(p,q,r) = pq + qr + rp`` and ``pq = px * qy - qx * py``.
+    """
+    ab = np.zeros(4)
+    bc = np.zeros(4)
+    cd = np.zeros(4)
+    da = np.zeros(4)
+    ac = np.zeros(4)
+    ca = np.zeros(4)
+    bd = np.zeros(4)
+    db = np.zeros(4)
+    _cross(ax, ay, bx, by, ab)
+    _cross(bx, by, cx, cy, bc)
+    _cross(cx, cy, dx, dy, cd)
+    _cross(dx, dy, ax, ay, da)
+    _cross(ax, ay, cx, cy, ac)
+    _cross(bx, by, dx, dy, bd)
+    for i in range(4):
+        ca[i] = -ac[i]
+        db[i] = -bd[i]
+    tmp8 = np.zeros(8)
+    minor = np.zeros(12)
+    lift = np.zeros(4)
+    stmp = np.zeros(24)
+    acc = np.zeros(400)
+    prod = np.zeros(400)
+    total = np.zeros(400)
+    tlen = 0
+    for k in range(4):
+        if k == 0:
+            mlen = _orient3(bc, 4, cd, 4, db, 4, minor, tmp8)
+            llen = _lift(ax, ay, lift)
+            sign = 1.0
+        elif k == 1:
+            mlen = _orient3(ac, 4, cd, 4, da, 4, minor, tmp8)
+            llen = _lift(bx, by, lift)
+            sign = -1.0
+        elif k == 2:
+            mlen = _orient3(ab, 4, bd, 4, da, 4, minor, tmp8)
+            llen = _lift(cx, cy, lift)
+            sign = 1.0
+        else:
+            mlen = _orient3(ab, 4, bc, 4, ca, 4, minor, tmp8)
+            llen = _lift(dx, dy, lift)
+            sign = -1.0
+        for i in range(llen):
+            lift[i] = sign * lift[i]
+        plen = _multiply(minor, mlen, lift, llen, prod, stmp, acc)
+        nlen = _expansion_sum(total, tlen, prod, plen, acc)
+        for i in range(nlen):
+            total[i] = acc[i]
+        tlen = nlen
+    return total[tlen - 1]
+
+
+@njit(**NJIT)
+def _incircle_exact(ax, ay, bx, by, cx, cy, dx, dy):
+    adx, adxt = _two_diff(ax, dx)
+    ady, adyt = _two_diff(ay, dy)
+    bdx, bdxt = _two_diff(bx, dx)
+    bdy, bdyt = _two_diff(by, dy)
+    cdx, cdxt = _two_diff(cx, dx)
+    cdy, cdyt = _two_diff(cy, dy)
+    if adxt == 0.0 and adyt == 0.0 and bdxt == 0.0 and bdyt == 0.0 and cdxt == 0.0 and cdyt == 0.0:
+        return _incircle_translated_exact(adx, ady, bdx, bdy, cdx, cdy)
+    return _incircle_full_exact(ax, ay, bx, by, cx, cy, dx, dy)
+
+
+@njit(**NJIT)
+def incircle(ax, ay, bx, by, cx, cy, dx, dy):
+    """Sign-exact incircle test: > 0 when ``d`` is inside the circle of CCW ``a, b, c``."""
+    adx = ax - dx
+    ady = ay - dy
+    bdx = bx - dx
+    bdy = by - dy
+    cdx = cx - dx
+    cdy = cy - dy
+    bdxcdy = bdx * cdy
+    cdxbdy = cdx * bdy
+    alift = adx * adx + ady * ady
+    cdxady = cdx * ady
+    adxcdy = adx * cdy
+    blift = bdx * bdx + bdy * bdy
+    adxbdy = adx * bdy
+    bdxady = bdx * ady
+    clift = cdx * cdx + cdy * cdy
+    det = alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) + clift * (adxbdy - bdxady)
+    permanent = (
+        (abs(bdxcdy) + abs(cdxbdy)) * alift
+        + (abs(cdxady) + abs(adxcdy)) * blift
+        + (abs(adxbdy) + abs(bdxady)) * clift
+    )
+    if abs(det) > _ICC_BOUND * permanent:
+        return det
+    return _incircle_exact(ax, ay, bx, by, cx, cy, dx, dy)
+
+
+@njit(**NJIT)
+def circumcenter(ax, ay, bx, by, cx, cy):
+    """Circumcentre of a triangle, computed relative to ``a`` for precision."""
+    dx = bx - ax
+    dy = by - ay
+    ex = cx - ax
+    ey = cy - ay
+    bl = dx * dx + dy * dy
+    cl = ex * ex + ey * ey
+    d = 0.5 / (dx * ey - dy * ex)
+    return ax + (ey * bl - dy * cl) * d, ay + (dx * cl - ex * bl) * d
