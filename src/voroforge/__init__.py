@@ -1,0 +1,17 @@
+"""voroforge: robust Voronoi diagrams and parametric design with them.
+
+The core results are flat index arrays (Delaunator layout): ``triangles (t, 3)``
+counter-clockwise, ``halfedges (3 t,)`` with -1 on the hull, and ``hull``. Halfedge ``e``
+runs from ``triangles.flat[e]`` to ``triangles.flat[3 * (e // 3) + (e + 1) % 3]``; walk to
+the neighbouring triangle with ``halfedges[e] // 3``::
+
+    tri = vf.delaunay(points)
+    e = 4                        # edge 1 of triangle 1
+    twin = tri.halfedges[e]      # same edge seen from the other triangle, or -1
+    other = twin // 3 if twin >= 0 else None
+"""
+
+from .engine.delaunay import Triangulation, delaunay
+
+__all__ = ["Triangulation", "delaunay"]
+__version__ = "0.1.0"

@@ -389,3 +389,47 @@ def circumcenter(ax, ay, bx, by, cx, cy):
     cl = ex * ex + ey * ey
     d = 0.5 / (dx * ey - dy * ex)
     return ax + (ey * bl - dy * cl) * d, ay + (dx * cl - ex * bl) * d
+
+
+@njit(**NJIT)
+def orient2d_fast(ax, ay, bx, by, cx, cy):
+    """Filtered orient2d: the value when its sign is certain, else NaN (no exact fallback).
+
+    Kernels that run a fast pass first use this and redo the work with :func:`orient2d` when
+    they see a NaN, so that the large exact code stays out of their hot loop.
+    """
+    detleft = (ax - cx) * (by - cy)
+    detright = (ay - cy) * (bx - cx)
+    det = detleft - detright
+    if abs(det) >= _CCW_BOUND * (abs(detleft) + abs(detright)) and det != 0.0:
+        return det
+    return np.nan
+
+
+@njit(**NJIT)
+def incircle_fast(ax, ay, bx, by, cx, cy, dx, dy):
+    """Filtered incircle: the value when its sign is certain, else NaN (see orient2d_fast)."""
+    adx = ax - dx
+    ady = ay - dy
+    bdx = bx - dx
+    bdy = by - dy
+    cdx = cx - dx
+    cdy = cy - dy
+    bdxcdy = bdx * cdy
+    cdxbdy = cdx * bdy
+    alift = adx * adx + ady * ady
+    cdxady = cdx * ady
+    adxcdy = adx * cdy
+    blift = bdx * bdx + bdy * bdy
+    adxbdy = adx * bdy
+    bdxady = bdx * ady
+    clift = cdx * cdx + cdy * cdy
+    det = alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) + clift * (adxbdy - bdxady)
+    permanent = (
+        (abs(bdxcdy) + abs(cdxbdy)) * alift
+        + (abs(cdxady) + abs(adxcdy)) * blift
+        + (abs(adxbdy) + abs(bdxady)) * clift
+    )
+    if abs(det) > _ICC_BOUND * permanent:
+        return det
+    return np.nan

@@ -1,0 +1,44 @@
+"""Exact duplicate detection with an open-addressing hash table on the coordinate bits."""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ..config import NJIT
+
+
+@njit(**NJIT)
+def duplicate_of(xs, ys):
+    """For each point, -1 if its coordinates are new, else the index of their first occurrence.
+
+    ``-0.0`` and ``0.0`` count as equal. Expected O(n).
+    """
+    n = xs.shape[0]
+    out = np.full(n, -1, dtype=np.int64)
+    size = 1
+    while size < 2 * n:
+        size *= 2
+    mask = size - 1
+    table = np.full(size, -1, dtype=np.int64)
+    bx = np.zeros(1, dtype=np.float64)
+    for i in range(n):
+        x = xs[i] + 0.0
+        y = ys[i] + 0.0
+        bx[0] = x
+        hx = bx.view(np.uint64)[0]
+        bx[0] = y
+        hy = bx.view(np.uint64)[0]
+        h = (hx * np.uint64(0x9E3779B97F4A7C15)) ^ (hy * np.uint64(0xC2B2AE3D27D4EB4F))
+        h ^= h >> np.uint64(29)
+        slot = np.int64(h & np.uint64(mask))
+        while True:
+            j = table[slot]
+            if j == -1:
+                table[slot] = i
+                break
+            if xs[j] == x and ys[j] == y:
+                out[i] = j
+                break
+            slot = (slot + 1) & mask
+    return out

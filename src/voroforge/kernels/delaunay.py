@@ -1,0 +1,552 @@
+"""Sweep-hull Delaunay triangulation (after Delaunator) with exact predicates.
+
+Points are inserted in order of distance from the circumcentre of a seed triangle; each new
+point is joined to the hull edges it sees and the new edges are legalised with Lawson flips
+(exact ``incircle``, strict, so cocircular input terminates). A point that sees no hull edge
+(possible only when rounding of the sweep distances ties or inverts the order) is deferred and
+inserted afterwards by point location and a 1-to-3 or edge split, so no point is ever dropped.
+
+Layout (Delaunator): ``triangles`` is a flat array, halfedge ``e`` goes from ``triangles[e]``
+to ``triangles[_next(e)]`` and ``halfedges[e]`` is its twin or -1 on the hull. Triangles are
+counter-clockwise (positive signed area). All kernels take distinct points: the engine removes
+exact duplicates before calling them.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import literally, njit
+
+from ..config import NJIT
+from .predicates import circumcenter, incircle, incircle_fast, orient2d, orient2d_fast
+
+
+@njit(**NJIT)
+def _next(e):
+    return e - 2 if e % 3 == 2 else e + 1
+
+
+@njit(**NJIT)
+def _prev(e):
+    return e + 2 if e % 3 == 0 else e - 1
+
+
+@njit(**NJIT)
+def _link(he, a, b):
+    he[a] = b
+    if b != -1:
+        he[b] = a
+
+
+@njit(**NJIT)
+def _orient(exact, ax, ay, bx, by, cx, cy):
+    if exact:
+        return orient2d(ax, ay, bx, by, cx, cy)
+    return orient2d_fast(ax, ay, bx, by, cx, cy)
+
+
+@njit(**NJIT)
+def _incircle(exact, ax, ay, bx, by, cx, cy, dx, dy):
+    if exact:
+        return incircle(ax, ay, bx, by, cx, cy, dx, dy)
+    return incircle_fast(ax, ay, bx, by, cx, cy, dx, dy)
+
+
+@njit(**NJIT)
+def _add_triangle(tri, he, t, i0, i1, i2, a, b, c):
+    tri[t] = i0
+    tri[t + 1] = i1
+    tri[t + 2] = i2
+    _link(he, t, a)
+    _link(he, t + 1, b)
+    _link(he, t + 2, c)
+
+
+@njit(**NJIT)
+def _legalize(a, xs, ys, tri, he, hull_tri, stack, exact):
+    """Flip edges opposite the newest point until all are locally Delaunay.
+
+    ``a`` is a halfedge whose triangle's opposite corner is the new point. Whenever a flip moves
+    a hull halfedge to a new index, ``hull_tri`` (hull halfedge by start vertex) follows it.
+    Returns False when a fast (non-exact) predicate could not decide.
+    """
+    sp = 0
+    while True:
+        b = he[a]
+        if b == -1:
+            if sp == 0:
+                return True
+            sp -= 1
+            a = stack[sp]
+            continue
+        a0 = a - a % 3
+        b0 = b - b % 3
+        al = a0 + (a + 1) % 3
+        ar = a0 + (a + 2) % 3
+        bl = b0 + (b + 2) % 3
+        br = b0 + (b + 1) % 3
+        p0 = tri[ar]
+        pr = tri[a]
+        pl = tri[al]
+        p1 = tri[bl]
+        v = _incircle(exact, xs[pr], ys[pr], xs[pl], ys[pl], xs[p0], ys[p0], xs[p1], ys[p1])
+        if v != v:
+            return False
+        if v > 0.0:
+            tri[a] = p1
+            tri[b] = p0
+            hbl = he[bl]
+            har = he[ar]
+            _link(he, a, hbl)
+            if hbl == -1:
+                hull_tri[p1] = a
+            _link(he, b, har)
+            if har == -1:
+                hull_tri[p0] = b
+            _link(he, ar, bl)
+            if sp >= stack.shape[0]:
+                return True  # cannot happen: the stack is sized to the number of halfedges
+            stack[sp] = br
+            sp += 1
+        else:
+            if sp == 0:
+                return True
+            sp -= 1
+            a = stack[sp]
+
+
+@njit(**NJIT)
+def _pseudo_angle(dx, dy):
+    s = abs(dx) + abs(dy)
+    if s == 0.0:
+        return 0.0
+    p = dx / s
+    return (3.0 - p) / 4.0 if dy > 0.0 else (1.0 + p) / 4.0
+
+
+@njit(**NJIT)
+def _hash_key(x, y, cx, cy, size):
+    k = int(math.floor(_pseudo_angle(x - cx, y - cy) * size))
+    return k % size
+
+
+@njit(**NJIT)
+def _seed(xs, ys):
+    """Seed triangle: point nearest the bbox centre, its nearest neighbour, smallest circle."""
+    n = xs.shape[0]
+    minx = xs.min()
+    maxx = xs.max()
+    miny = ys.min()
+    maxy = ys.max()
+    mx = 0.5 * (minx + maxx)
+    my = 0.5 * (miny + maxy)
+    i0 = 0
+    best = np.inf
+    for i in range(n):
+        d = (xs[i] - mx) ** 2 + (ys[i] - my) ** 2
+        if d < best:
+            best = d
+            i0 = i
+    i1 = -1
+    best = np.inf
+    for i in range(n):
+        if i == i0:
+            continue
+        d = (xs[i] - xs[i0]) ** 2 + (ys[i] - ys[i0]) ** 2
+        if d < best:
+            best = d
+            i1 = i
+    i2 = -1
+    best = np.inf
+    for i in range(n):
+        if i == i0 or i == i1:
+            continue
+        if orient2d(xs[i0], ys[i0], xs[i1], ys[i1], xs[i], ys[i]) == 0.0:
+            continue
+        cx, cy = circumcenter(xs[i0], ys[i0], xs[i1], ys[i1], xs[i], ys[i])
+        r = (cx - xs[i0]) ** 2 + (cy - ys[i0]) ** 2
+        if not r < best and i2 != -1:
+            continue
+        best = r
+        i2 = i
+    if i2 == -1:
+        return i0, i1, -1
+    if orient2d(xs[i0], ys[i0], xs[i1], ys[i1], xs[i2], ys[i2]) < 0.0:
+        i1, i2 = i2, i1
+    return i0, i1, i2
+
+
+@njit(**NJIT)
+def _locate(xs, ys, tri, he, ntri, start, px, py):
+    """Visibility walk to the triangle containing ``p`` (in or on); brute force as a fallback."""
+    t = start
+    came = -1
+    for _ in range(4 * ntri + 16):
+        moved = False
+        for j in range(3):
+            e = 3 * t + (j + t) % 3
+            if e == came:
+                continue
+            a = tri[e]
+            b = tri[_next(e)]
+            if orient2d(xs[a], ys[a], xs[b], ys[b], px, py) < 0.0:
+                if he[e] == -1:
+                    break
+                came = he[e]
+                t = he[e] // 3
+                moved = True
+                break
+        if not moved:
+            if _contains(xs, ys, tri, t, px, py):
+                return t
+            break
+    for t in range(ntri):
+        if _contains(xs, ys, tri, t, px, py):
+            return t
+    return -1
+
+
+@njit(**NJIT)
+def _contains(xs, ys, tri, t, px, py):
+    for j in range(3):
+        a = tri[3 * t + j]
+        b = tri[3 * t + (j + 1) % 3]
+        if orient2d(xs[a], ys[a], xs[b], ys[b], px, py) < 0.0:
+            return False
+    return True
+
+
+@njit(**NJIT)
+def _insert_in_triangle(k, t, xs, ys, tri, he, hull_tri, stack, tcount):
+    """1-to-3 split of triangle ``t`` by point ``k`` strictly inside it."""
+    t0 = 3 * t
+    a = tri[t0]
+    b = tri[t0 + 1]
+    c = tri[t0 + 2]
+    h0 = he[t0]
+    h1 = he[t0 + 1]
+    h2 = he[t0 + 2]
+    t1 = tcount
+    t2 = tcount + 3
+    _add_triangle(tri, he, t0, a, b, k, h0, -1, -1)
+    _add_triangle(tri, he, t1, b, c, k, h1, -1, t0 + 1)
+    _add_triangle(tri, he, t2, c, a, k, h2, t0 + 2, t1 + 1)
+    if h0 == -1:
+        hull_tri[a] = t0
+    if h1 == -1:
+        hull_tri[b] = t1
+    if h2 == -1:
+        hull_tri[c] = t2
+    _legalize(t0, xs, ys, tri, he, hull_tri, stack, True)
+    _legalize(t1, xs, ys, tri, he, hull_tri, stack, True)
+    _legalize(t2, xs, ys, tri, he, hull_tri, stack, True)
+    return tcount + 6
+
+
+@njit(**NJIT)
+def _insert_on_edge(k, e, xs, ys, tri, he, hull_tri, hull_next, hull_prev, stack, tcount):
+    """Split halfedge ``e`` (and its twin, if any) at point ``k`` lying on it."""
+    a = tri[e]
+    b = tri[_next(e)]
+    c = tri[_prev(e)]
+    h_bc = he[_next(e)]
+    h_ca = he[_prev(e)]
+    f = he[e]
+    ta = e - e % 3
+    tb = tcount
+    tcount += 3
+    # (c, a, k) reuses the first triangle, (b, c, k) is new
+    _add_triangle(tri, he, ta, c, a, k, h_ca, -1, -1)
+    _add_triangle(tri, he, tb, b, c, k, h_bc, ta + 2, -1)
+    if h_ca == -1:
+        hull_tri[c] = ta
+    if h_bc == -1:
+        hull_tri[b] = tb
+    if f == -1:
+        hull_tri[a] = ta + 1
+        hull_tri[k] = tb + 2
+        hull_next[a] = k
+        hull_prev[k] = a
+        hull_next[k] = b
+        hull_prev[b] = k
+    else:
+        d = tri[_prev(f)]
+        h_ad = he[_next(f)]
+        h_db = he[_prev(f)]
+        tc = f - f % 3
+        td = tcount
+        tcount += 3
+        _add_triangle(tri, he, tc, a, d, k, h_ad, -1, ta + 1)
+        _add_triangle(tri, he, td, d, b, k, h_db, tb + 2, tc + 1)
+        if h_ad == -1:
+            hull_tri[a] = tc
+        if h_db == -1:
+            hull_tri[d] = td
+        _legalize(tc, xs, ys, tri, he, hull_tri, stack, True)
+        _legalize(td, xs, ys, tri, he, hull_tri, stack, True)
+    _legalize(ta, xs, ys, tri, he, hull_tri, stack, True)
+    _legalize(tb, xs, ys, tri, he, hull_tri, stack, True)
+    return tcount
+
+
+@njit(**NJIT)
+def _sweep(xs, ys, exact):
+    """Sweep points renumbered so that the seed is 0, 1, 2 and the rest follow in sweep order.
+
+    ``exact`` must be a compile-time literal: the fast variant carries no exact-arithmetic code
+    and gives up (``ok = False``) as soon as a filtered predicate cannot decide. Returns
+    ``(ok, tri, he, tcount, hull_tri, hull_next, hull_prev, hull_start, deferred)``.
+    """
+    literally(exact)
+    n = xs.shape[0]
+    max_tri = max(2 * n - 5, 1)
+    tri = np.full(3 * max_tri, -1, dtype=np.int32)
+    he = np.full(3 * max_tri, -1, dtype=np.int32)
+    stack = np.zeros(3 * max_tri + 16, dtype=np.int32)
+    hull_prev = np.zeros(n, dtype=np.int32)
+    hull_next = np.zeros(n, dtype=np.int32)
+    hull_tri = np.full(n, -1, dtype=np.int32)
+    hash_size = max(int(math.ceil(math.sqrt(n))), 1)
+    hull_hash = np.full(hash_size, -1, dtype=np.int32)
+    deferred = np.zeros(n, dtype=np.int32)
+    n_def = 0
+
+    cx, cy = circumcenter(xs[0], ys[0], xs[1], ys[1], xs[2], ys[2])
+    hull_next[0] = 1
+    hull_next[1] = 2
+    hull_next[2] = 0
+    hull_prev[0] = 2
+    hull_prev[1] = 0
+    hull_prev[2] = 1
+    hull_tri[0] = 0
+    hull_tri[1] = 1
+    hull_tri[2] = 2
+    for v in range(3):
+        hull_hash[_hash_key(xs[v], ys[v], cx, cy, hash_size)] = v
+    _add_triangle(tri, he, 0, 0, 1, 2, -1, -1, -1)
+    tcount = 3
+    hull_start = 0
+    ok = True
+
+    for k in range(3, n):
+        x = xs[k]
+        y = ys[k]
+        key = _hash_key(x, y, cx, cy, hash_size)
+        start = 0
+        for j in range(hash_size):
+            start = hull_hash[(key + j) % hash_size]
+            if start != -1 and start != hull_next[start]:
+                break
+        start = hull_prev[start]
+        e = start
+        while True:
+            q = hull_next[e]
+            o = _orient(exact, xs[e], ys[e], xs[q], ys[q], x, y)
+            if o != o:
+                return False, tri, he, tcount, hull_tri, hull_next, hull_prev, hull_start, deferred
+            if o < 0.0:
+                break
+            e = q
+            if e == start:
+                e = -1
+                break
+        if e == -1:
+            deferred[n_def] = k
+            n_def += 1
+            continue
+
+        q = hull_next[e]
+        t = tcount
+        _add_triangle(tri, he, t, e, k, q, -1, -1, hull_tri[e])
+        tcount += 3
+        hull_tri[e] = t
+        hull_tri[k] = t + 1
+        ok = _legalize(t + 2, xs, ys, tri, he, hull_tri, stack, exact)
+
+        nn = q
+        while ok:
+            q = hull_next[nn]
+            o = _orient(exact, xs[nn], ys[nn], xs[q], ys[q], x, y)
+            if o != o:
+                ok = False
+            if not o < 0.0:
+                break
+            t = tcount
+            _add_triangle(tri, he, t, nn, k, q, hull_tri[k], -1, hull_tri[nn])
+            tcount += 3
+            hull_tri[k] = t + 1
+            ok = _legalize(t + 2, xs, ys, tri, he, hull_tri, stack, exact)
+            hull_next[nn] = nn
+            nn = q
+
+        if e == start:
+            while ok:
+                q = hull_prev[e]
+                o = _orient(exact, xs[q], ys[q], xs[e], ys[e], x, y)
+                if o != o:
+                    ok = False
+                if not o < 0.0:
+                    break
+                t = tcount
+                _add_triangle(tri, he, t, q, k, e, -1, hull_tri[e], hull_tri[q])
+                tcount += 3
+                hull_tri[q] = t
+                ok = _legalize(t + 2, xs, ys, tri, he, hull_tri, stack, exact)
+                hull_next[e] = e
+                e = q
+        if not ok:
+            return False, tri, he, tcount, hull_tri, hull_next, hull_prev, hull_start, deferred
+
+        hull_start = e
+        hull_prev[k] = e
+        hull_next[e] = k
+        hull_prev[nn] = k
+        hull_next[k] = nn
+        hull_hash[_hash_key(x, y, cx, cy, hash_size)] = k
+        hull_hash[_hash_key(xs[e], ys[e], cx, cy, hash_size)] = e
+
+    return True, tri, he, tcount, hull_tri, hull_next, hull_prev, hull_start, deferred[:n_def]
+
+
+@njit(**NJIT)
+def _insert_deferred(xs, ys, tri, he, tcount, hull_tri, hull_next, hull_prev, deferred):
+    """Insert points the sweep could not attach to the hull (they lie inside or on it)."""
+    stack = np.zeros(tri.shape[0] + 16, dtype=np.int32)
+    for j in range(deferred.shape[0]):
+        k = deferred[j]
+        t = _locate(xs, ys, tri, he, tcount // 3, (tcount // 3) - 1, xs[k], ys[k])
+        if t == -1:
+            continue  # unreachable for distinct points inside the hull
+        zero = -1
+        nzero = 0
+        for m in range(3):
+            e = 3 * t + m
+            a = tri[e]
+            b = tri[_next(e)]
+            if orient2d(xs[a], ys[a], xs[b], ys[b], xs[k], ys[k]) == 0.0:
+                zero = e
+                nzero += 1
+        if nzero == 0:
+            tcount = _insert_in_triangle(k, t, xs, ys, tri, he, hull_tri, stack, tcount)
+        elif nzero == 1:
+            tcount = _insert_on_edge(
+                k, zero, xs, ys, tri, he, hull_tri, hull_next, hull_prev, stack, tcount
+            )
+        # nzero == 2 would mean a duplicate point, which the engine removes beforehand
+    return tcount
+
+
+@njit(**NJIT)
+def _hull_array(hull_next, start):
+    h = 1
+    v = hull_next[start]
+    while v != start:
+        h += 1
+        v = hull_next[v]
+    hull = np.zeros(h, dtype=np.int32)
+    v = start
+    for j in range(h):
+        hull[j] = v
+        v = hull_next[v]
+    return hull
+
+
+@njit(**NJIT)
+def _sweep_order(xs, ys, i0, i1, i2):
+    """Seed first, then the other points by distance from the seed's circumcentre.
+
+    A bucket sort on the squared distance (O(n) for spread-out input), exact within buckets.
+    """
+    n = xs.shape[0]
+    cx, cy = circumcenter(xs[i0], ys[i0], xs[i1], ys[i1], xs[i2], ys[i2])
+    d = np.zeros(n)
+    dmax = 0.0
+    for i in range(n):
+        v = (xs[i] - cx) ** 2 + (ys[i] - cy) ** 2
+        d[i] = v
+        if v > dmax:
+            dmax = v
+    d[i0] = -3.0
+    d[i1] = -2.0
+    d[i2] = -1.0
+    nb = n
+    counts = np.zeros(nb + 1, dtype=np.int64)
+    bucket = np.zeros(n, dtype=np.int64)
+    scale = (nb - 1) / dmax if dmax > 0.0 else 0.0
+    for i in range(n):
+        b = 0 if d[i] <= 0.0 else min(int(d[i] * scale), nb - 1)
+        bucket[i] = b
+        counts[b + 1] += 1
+    for b in range(nb):
+        counts[b + 1] += counts[b]
+    order = np.zeros(n, dtype=np.int64)
+    fill = counts[:-1].copy()
+    for i in range(n):
+        b = bucket[i]
+        order[fill[b]] = i
+        fill[b] += 1
+    for b in range(nb):
+        lo = counts[b]
+        hi = counts[b + 1]
+        if hi - lo > 32:
+            seg = order[lo:hi]
+            order[lo:hi] = seg[np.argsort(d[seg])]
+        else:
+            for i in range(lo + 1, hi):  # insertion sort, stable
+                v = order[i]
+                dv = d[v]
+                j = i - 1
+                while j >= lo and d[order[j]] > dv:
+                    order[j + 1] = order[j]
+                    j -= 1
+                order[j + 1] = v
+    return order
+
+
+@njit(**NJIT)
+def _gather(xs, ys, order):
+    n = order.shape[0]
+    sx = np.zeros(n)
+    sy = np.zeros(n)
+    for i in range(n):
+        sx[i] = xs[order[i]]
+        sy[i] = ys[order[i]]
+    return sx, sy
+
+
+@njit(**NJIT)
+def _relabel(tri, tcount, hull, order):
+    out = np.zeros(tcount, dtype=np.int32)
+    for j in range(tcount):
+        out[j] = order[tri[j]]
+    for j in range(hull.shape[0]):
+        hull[j] = order[hull[j]]
+    return out
+
+
+def triangulate(xs: np.ndarray, ys: np.ndarray):
+    """Delaunay triangulation of distinct points given as coordinate arrays.
+
+    Returns ``(triangles (3t,) int32, halfedges (3t,) int32, hull (h,) int32, ok)``; ``ok`` is
+    False when all points are collinear (no triangles; the caller builds the hull).
+    """
+    n = xs.shape[0]
+    empty = np.zeros(0, dtype=np.int32)
+    if n < 3:
+        return empty, empty, empty, False
+    i0, i1, i2 = _seed(xs, ys)
+    if i2 == -1:
+        return empty, empty, empty, False
+    order = _sweep_order(xs, ys, i0, i1, i2)
+    sx, sy = _gather(xs, ys, order)
+    res = _sweep(sx, sy, False)
+    if not res[0]:
+        res = _sweep(sx, sy, True)
+    _, tri, he, tcount, hull_tri, hull_next, hull_prev, hull_start, deferred = res
+    if deferred.shape[0]:
+        tcount = _insert_deferred(sx, sy, tri, he, tcount, hull_tri, hull_next, hull_prev, deferred)
+    hull = _hull_array(hull_next, hull_start)
+    tri_out = _relabel(tri, tcount, hull, order)
+    return tri_out, he[:tcount].copy(), hull, True
