@@ -12,6 +12,7 @@ the neighbouring triangle with ``halfedges[e] // 3``::
 """
 
 from .engine.delaunay import Triangulation, delaunay
+from .engine.voronoi import Diagram, Edges, voronoi
 
-__all__ = ["Triangulation", "delaunay"]
+__all__ = ["Diagram", "Edges", "Triangulation", "delaunay", "voronoi"]
 __version__ = "0.1.0"

@@ -7,20 +7,8 @@ from functools import cached_property
 import numpy as np
 
 from ..kernels.delaunay import triangulate
+from ._csr import csr_from_pairs
 from ._inputs import as_points, duplicate_map
-
-
-def _csr_from_pairs(n: int, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Symmetric CSR adjacency from undirected pairs (duplicates removed, rows sorted)."""
-    src = np.concatenate((a, b)).astype(np.int64)
-    dst = np.concatenate((b, a)).astype(np.int64)
-    if src.size:
-        key = np.unique(src * max(n, 1) + dst)
-        src = key // max(n, 1)
-        dst = key % max(n, 1)
-    indptr = np.zeros(n + 1, dtype=np.int64)
-    np.cumsum(np.bincount(src, minlength=n), out=indptr[1:])
-    return indptr, dst.astype(np.int32)
 
 
 class Triangulation:
@@ -81,10 +69,10 @@ class Triangulation:
         """
         n = len(self.points)
         if self.collinear:
-            return _csr_from_pairs(n, self.hull[:-1], self.hull[1:])
+            return csr_from_pairs(n, self.hull[:-1], self.hull[1:])
         flat = self.triangles.ravel()
         nxt = self.triangles[:, [1, 2, 0]].ravel()
-        return _csr_from_pairs(n, flat, nxt)
+        return csr_from_pairs(n, flat, nxt)
 
     @cached_property
     def edges(self) -> np.ndarray:

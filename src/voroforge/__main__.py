@@ -1,0 +1,7 @@
+"""``python -m voroforge``: the same as the ``voroforge`` command."""
+
+import sys
+
+from .cli import main
+
+sys.exit(main())

@@ -1,0 +1,124 @@
+"""The domain that cells are clipped to: a rectangle or any polygonal region with holes."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+
+@dataclass(frozen=True)
+class Domain:
+    """A validated clipping domain.
+
+    Attributes
+    ----------
+    geometry : shapely.Polygon or shapely.MultiPolygon
+        The region (a box polygon for rectangles).
+    bounds : tuple of 4 floats
+        ``(xmin, ymin, xmax, ymax)``.
+    is_rect : bool
+        True when the region is exactly its bounding box (cells need no polygon clipping).
+    """
+
+    geometry: shapely.Geometry
+    bounds: tuple[float, float, float, float]
+    is_rect: bool
+
+    @property
+    def area(self) -> float:
+        """Area of the region."""
+        if self.is_rect:
+            x0, y0, x1, y1 = self.bounds
+            return (x1 - x0) * (y1 - y0)
+        return float(shapely.area(self.geometry))
+
+
+def _rect(bounds) -> Domain:
+    x0, y0, x1, y1 = (float(v) for v in bounds)
+    return Domain(shapely.box(x0, y0, x1, y1), (x0, y0, x1, y1), True)
+
+
+def padded_bounds(sites: np.ndarray, pad: float = 0.1) -> tuple[float, float, float, float]:
+    """Bounding box of ``sites`` grown by ``pad`` of its size on every side.
+
+    A degenerate extent (one site, or sites on a vertical/horizontal line) is padded by
+    ``pad`` of the larger side, or by ``pad * max(1, |coordinate|)`` when both sides are 0.
+    """
+    if len(sites) == 0:
+        raise ValueError("boundary=None needs at least one site to define the domain's extent")
+    lo = sites.min(axis=0)
+    hi = sites.max(axis=0)
+    size = hi - lo
+    big = float(size.max())
+    if big == 0.0:
+        big = max(1.0, float(np.abs(lo).max()))
+    padx = pad * (size[0] if size[0] > 0 else big)
+    pady = pad * (size[1] if size[1] > 0 else big)
+    return (lo[0] - padx, lo[1] - pady, hi[0] + padx, hi[1] + pady)
+
+
+def make_domain(boundary, sites: np.ndarray) -> Domain:
+    """Validate ``boundary`` and return a :class:`Domain`.
+
+    Parameters
+    ----------
+    boundary : None, (xmin, ymin, xmax, ymax) or shapely Polygon/MultiPolygon
+        None means the sites' bounding box padded by 10%.
+    sites : (n, 2) float64
+        Used only when ``boundary`` is None.
+
+    Raises
+    ------
+    ValueError
+        For a malformed rectangle, an empty, invalid or non-polygonal geometry, naming why.
+    """
+    if boundary is None:
+        return _rect(padded_bounds(sites))
+    if isinstance(boundary, shapely.Geometry):
+        return _from_geometry(boundary)
+    try:
+        vals = np.asarray(boundary, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError(
+            "boundary must be None, (xmin, ymin, xmax, ymax) or a shapely Polygon/MultiPolygon;"
+            f" got {type(boundary).__name__}"
+        ) from None
+    if vals.shape != (4,):
+        raise ValueError(
+            f"boundary rectangle must be (xmin, ymin, xmax, ymax); got shape {vals.shape}"
+        )
+    if not np.isfinite(vals).all():
+        raise ValueError(f"boundary rectangle has non-finite values: {vals.tolist()}")
+    if not (vals[0] < vals[2] and vals[1] < vals[3]):
+        raise ValueError(
+            f"boundary rectangle needs xmin < xmax and ymin < ymax; got {vals.tolist()}"
+        )
+    return _rect(vals)
+
+
+def _from_geometry(geom: shapely.Geometry) -> Domain:
+    kind = shapely.get_type_id(geom)
+    if kind not in (3, 6):  # Polygon, MultiPolygon
+        raise ValueError(
+            f"boundary geometry must be a Polygon or MultiPolygon; got {geom.geom_type}"
+        )
+    if geom.is_empty:
+        raise ValueError("boundary geometry is empty")
+    if not shapely.is_valid(geom):
+        raise ValueError(f"boundary geometry is invalid: {shapely.is_valid_reason(geom)}")
+    coords = shapely.get_coordinates(geom)
+    if not np.isfinite(coords).all():
+        raise ValueError("boundary geometry has non-finite coordinates")
+    area = shapely.area(geom)
+    if not area > 0.0:
+        raise ValueError("boundary geometry has zero area")
+    bounds = tuple(float(v) for v in shapely.bounds(geom))
+    if kind == 3 and shapely.get_num_interior_rings(geom) == 0:
+        ring = shapely.get_coordinates(shapely.get_exterior_ring(geom))
+        xs = set(ring[:, 0].tolist())
+        ys = set(ring[:, 1].tolist())
+        if xs <= {bounds[0], bounds[2]} and ys <= {bounds[1], bounds[3]}:
+            return Domain(geom, bounds, True)
+    return Domain(geom, bounds, False)

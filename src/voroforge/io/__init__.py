@@ -1,0 +1,116 @@
+"""Writers and readers: SVG, PNG and GeoJSON out; CSV/TXT, NPY and GeoJSON in.
+
+All writers take a sequence of shapely polygons (``diagram.cells``), so they work on any
+polygon set, Delaunay triangles included (:func:`triangle_polygons`). :func:`write` picks
+the writer from the file suffix.
+
+Examples
+--------
+>>> import voroforge as vf
+>>> d = vf.voronoi(np.random.default_rng(0).random((50, 2)), (0, 0, 1, 1))  # doctest: +SKIP
+>>> vf.io.write(d.cells, "cells.svg", sites=d.sites, boundary=d.boundary)  # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import shapely
+
+from .geojson import feature_collection, write_geojson
+from .png import render_image, write_png
+from .readers import read_boundary, read_points
+from .svg import svg_string, write_svg
+
+__all__ = [
+    "FORMATS",
+    "feature_collection",
+    "read_boundary",
+    "read_points",
+    "render_image",
+    "svg_string",
+    "triangle_polygons",
+    "write",
+    "write_geojson",
+    "write_png",
+    "write_svg",
+]
+
+#: Output suffixes understood by :func:`write`, and the format each one means.
+FORMATS = {".svg": "svg", ".png": "png", ".geojson": "geojson", ".json": "geojson"}
+
+
+def output_format(path) -> str:
+    """Return ``"svg"``, ``"png"`` or ``"geojson"`` for ``path``'s suffix, or raise ``ValueError``."""
+    suffix = Path(path).suffix.lower()
+    try:
+        return FORMATS[suffix]
+    except KeyError:
+        raise ValueError(
+            f"{path}: unsupported output type {suffix or '(none)'!r}; "
+            f"use one of {', '.join(FORMATS)}"
+        ) from None
+
+
+def write(
+    geoms,
+    path,
+    *,
+    sites=None,
+    boundary=None,
+    properties=None,
+    size: int = 1024,
+    units: str | None = None,
+) -> Path:
+    """Write polygons to ``path`` in the format its suffix names (see :data:`FORMATS`).
+
+    Parameters
+    ----------
+    geoms : sequence of shapely Polygon or MultiPolygon
+        What to write, for example ``diagram.cells``.
+    path : str or Path
+        Output file; ``.svg``, ``.png``, ``.geojson`` or ``.json``.
+    sites : (n, 2) array_like, optional
+        Sites to draw (SVG, PNG) or to record per feature (GeoJSON).
+    boundary : shapely geometry or (xmin, ymin, xmax, ymax), optional
+        Outline to draw (SVG, PNG; GeoJSON ignores it).
+    properties : mapping of name to sequence, optional
+        Extra GeoJSON properties (other formats ignore them).
+    size : int
+        PNG size in pixels (longer side).
+    units : str, optional
+        SVG units, for example ``"mm"``.
+
+    Returns
+    -------
+    Path
+        The file written.
+    """
+    kind = output_format(path)
+    if kind == "svg":
+        return write_svg(geoms, path, sites=sites, boundary=boundary, units=units)
+    if kind == "png":
+        return write_png(geoms, path, sites=sites, boundary=boundary, size=size)
+    return write_geojson(geoms, path, sites=sites, properties=properties)
+
+
+def triangle_polygons(points, triangles) -> np.ndarray:
+    """Triangles as shapely polygons, ready for the writers.
+
+    Parameters
+    ----------
+    points : (n, 2) float64
+        Vertex coordinates (``tri.points``).
+    triangles : (t, 3) int
+        Vertex indices (``tri.triangles``).
+
+    Returns
+    -------
+    (t,) object array of shapely Polygon
+    """
+    pts = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    tris = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    if len(tris) == 0:
+        return np.zeros(0, dtype=object)
+    return shapely.polygons(pts[tris])

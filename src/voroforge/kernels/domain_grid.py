@@ -1,0 +1,88 @@
+"""A coarse grid that tells which convex cells can touch a polygon domain's boundary.
+
+Grid squares crossed by any boundary segment (with a one-square margin) are marked. A cell
+whose bounding box covers only unmarked squares contains no boundary point, so it lies wholly
+inside or wholly outside the domain, which one square's centre decides. Only the remaining
+cells need a polygon intersection.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+from ..config import NJIT, NJIT_PARALLEL
+
+
+@njit(**NJIT)
+def mark_segments(segs, x0, y0, h, gx, gy):
+    """Boolean (gy, gx) grid of squares that a segment ``(x1, y1, x2, y2)`` may touch."""
+    marked = np.zeros((gy, gx), dtype=np.bool_)
+    for s in range(segs.shape[0]):
+        ax = (segs[s, 0] - x0) / h
+        ay = (segs[s, 1] - y0) / h
+        bx = (segs[s, 2] - x0) / h
+        by = (segs[s, 3] - y0) / h
+        if ax > bx:
+            ax, bx = bx, ax
+            ay, by = by, ay
+        c0 = max(int(math.floor(ax)) - 1, 0)
+        c1 = min(int(math.floor(bx)) + 1, gx - 1)
+        for c in range(c0, c1 + 1):
+            # the segment's y-range over column c widened by one square on each side
+            lo = max(float(c - 1), ax)
+            hi = min(float(c + 2), bx)
+            if lo > hi:
+                continue
+            if bx > ax:
+                ya = ay + (by - ay) * ((lo - ax) / (bx - ax))
+                yb = ay + (by - ay) * ((hi - ax) / (bx - ax))
+            else:
+                ya = ay
+                yb = by
+            r0 = max(int(math.floor(min(ya, yb))) - 1, 0)
+            r1 = min(int(math.floor(max(ya, yb))) + 1, gy - 1)
+            for r in range(r0, r1 + 1):
+                marked[r, c] = True
+    return marked
+
+
+@njit(**NJIT_PARALLEL)
+def classify(coords, offsets, marked, inside, x0, y0, h):
+    """Per ring: 1 wholly inside, 0 wholly outside (or empty), 2 may cross the boundary."""
+    n = offsets.shape[0] - 1
+    gy, gx = marked.shape
+    status = np.zeros(n, dtype=np.int8)
+    for i in prange(n):
+        a = offsets[i]
+        b = offsets[i + 1]
+        if a == b:
+            continue
+        xmn = np.inf
+        xmx = -np.inf
+        ymn = np.inf
+        ymx = -np.inf
+        for k in range(a, b):
+            xmn = min(xmn, coords[k, 0])
+            xmx = max(xmx, coords[k, 0])
+            ymn = min(ymn, coords[k, 1])
+            ymx = max(ymx, coords[k, 1])
+        c0 = min(max(int(math.floor((xmn - x0) / h)), 0), gx - 1)
+        c1 = min(max(int(math.floor((xmx - x0) / h)), 0), gx - 1)
+        r0 = min(max(int(math.floor((ymn - y0) / h)), 0), gy - 1)
+        r1 = min(max(int(math.floor((ymx - y0) / h)), 0), gy - 1)
+        hit = False
+        for r in range(r0, r1 + 1):
+            for c in range(c0, c1 + 1):
+                if marked[r, c]:
+                    hit = True
+                    break
+            if hit:
+                break
+        if hit:
+            status[i] = 2
+        else:
+            status[i] = 1 if inside[r0, c0] else 0
+    return status

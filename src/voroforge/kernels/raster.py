@@ -1,0 +1,518 @@
+"""Raster Voronoi kernels: exact nearest site per pixel, and Jump Flooding.
+
+Sites arrive deduplicated (``xs, ys`` are first occurrences, in increasing input order), so
+"lowest position" equals "lowest input index" and every other site is a distinct one. Pixel
+centres arrive as ``pxs (w,)`` and ``pys (h,)``; the kernels never recompute them, so the
+engine, the kernels and any reference agree bit for bit.
+
+Metric codes: 0 Euclidean, 1 Manhattan, 2 Chebyshev. Comparisons use a *key* (squared
+distance for Euclidean, the distance itself otherwise) computed exactly as a brute-force
+``argmin`` over all sites would compute it.
+
+Exact method
+    A bucket grid over the sites; the image is cut into tiles. For a tile (the rectangle of its
+    pixel centres) ``u`` is the k-th smallest *largest* distance from a site to the rectangle
+    (k = 1, or 2 with F2). Every pixel's nearest (and second nearest) site lies within ``u`` of
+    the pixel, so only sites whose *smallest* distance to the rectangle is <= ``u`` can win.
+    Those candidates are collected from the grid and each pixel is brute-forced over them.
+    Tiles with too many candidates (e.g. far from a dense cluster) are split in four.
+Jump Flooding
+    Rong & Tan (2006): seed each site's pixel, then passes with steps N/2, ..., 1 (plus extra
+    refinement steps given by the caller); each pixel keeps the best of the sites held by its
+    9 neighbours at the current step, measured to the real site position.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+from ..config import NJIT, NJIT_PARALLEL
+
+_BIG = 1 << 62
+
+
+@njit(**NJIT)
+def _key(dx, dy, metric):
+    """Comparison key of offset ``(dx, dy)``: squared length (Euclidean) or the distance."""
+    if metric == 0:
+        return dx * dx + dy * dy
+    adx = abs(dx)
+    ady = abs(dy)
+    if metric == 1:
+        return adx + ady
+    return max(adx, ady)
+
+
+@njit(**NJIT)
+def _key_to_distance(key, metric):
+    """Distance from a comparison key."""
+    if metric == 0:
+        return math.sqrt(key)
+    return key
+
+
+@njit(**NJIT)
+def _rect_distances(sx, sy, tx0, tx1, ty0, ty1, metric):
+    """Smallest and largest distance from site ``(sx, sy)`` to the rectangle."""
+    ax = max(tx0 - sx, sx - tx1, 0.0)
+    ay = max(ty0 - sy, sy - ty1, 0.0)
+    bx = max(abs(sx - tx0), abs(sx - tx1))
+    by = max(abs(sy - ty0), abs(sy - ty1))
+    if metric == 0:
+        return math.sqrt(ax * ax + ay * ay), math.sqrt(bx * bx + by * by)
+    if metric == 1:
+        return ax + ay, bx + by
+    return max(ax, ay), max(bx, by)
+
+
+@njit(**NJIT)
+def _cell(v, origin, size, count):
+    """Grid cell index of coordinate ``v`` along one axis, clamped into ``[0, count)``."""
+    f = (v - origin) / size
+    if not f >= 0.0:  # also catches NaN
+        return 0
+    if f >= count - 1:
+        return count - 1
+    return int(f)
+
+
+@njit(**NJIT)
+def build_grid(xs, ys):
+    """Bucket grid over the sites, about two sites per bucket.
+
+    Returns
+    -------
+    gpar : (4,) float64
+        ``x0, y0, cell_width, cell_height``.
+    nx, ny : int
+        Grid size; bucket ``(i, j)`` is number ``j * nx + i``.
+    start : (nx * ny + 1,) int64
+        Sites of bucket ``b`` are ``start[b]:start[b + 1]`` in the arrays below.
+    gx, gy : (m,) float64
+        Site coordinates in bucket order.
+    gi : (m,) int64
+        Site positions (into ``xs``) in bucket order.
+    """
+    m = xs.shape[0]
+    x0 = xs.min()
+    x1 = xs.max()
+    y0 = ys.min()
+    y1 = ys.max()
+    ncell = max(1, m // 2)
+    width = x1 - x0
+    height = y1 - y0
+    if width <= 0.0 and height <= 0.0:
+        width = 1.0
+        height = 1.0
+    elif width <= 0.0:
+        width = height / ncell
+    elif height <= 0.0:
+        height = width / ncell
+    nx = int(math.sqrt(ncell * (width / height)))
+    nx = min(max(nx, 1), ncell)
+    ny = min(max(ncell // nx, 1), ncell)
+    cw = width / nx
+    ch = height / ny
+    gpar = np.array([x0, y0, cw, ch])
+    cells = np.zeros(m, dtype=np.int64)
+    start = np.zeros(nx * ny + 1, dtype=np.int64)
+    for s in range(m):
+        b = _cell(ys[s], y0, ch, ny) * nx + _cell(xs[s], x0, cw, nx)
+        cells[s] = b
+        start[b + 1] += 1
+    for b in range(nx * ny):
+        start[b + 1] += start[b]
+    fill = start[:-1].copy()
+    gx = np.zeros(m)
+    gy = np.zeros(m)
+    gi = np.zeros(m, dtype=np.int64)
+    for s in range(m):
+        k = fill[cells[s]]
+        fill[cells[s]] += 1
+        gx[k] = xs[s]
+        gy[k] = ys[s]
+        gi[k] = s
+    return gpar, nx, ny, start, gx, gy, gi
+
+
+@njit(**NJIT)
+def _upper_bound(rect, k, gpar, nx, ny, start, gx, gy, metric):
+    """k-th smallest (k = 1 or 2) largest-distance from a site to ``rect``; inf if < k sites.
+
+    Any value returned is a valid bound (it is some site's largest distance); the ring search
+    only makes it small.
+    """
+    tx0, tx1, ty0, ty1 = rect[0], rect[1], rect[2], rect[3]
+    x0, y0, cw, ch = gpar[0], gpar[1], gpar[2], gpar[3]
+    ci = _cell(0.5 * (tx0 + tx1), x0, cw, nx)
+    cj = _cell(0.5 * (ty0 + ty1), y0, ch, ny)
+    u1 = np.inf
+    u2 = np.inf
+    ring = 0
+    while True:
+        for j in range(max(cj - ring, 0), min(cj + ring, ny - 1) + 1):
+            edge_row = j == cj - ring or j == cj + ring
+            step = 1 if (edge_row or ring == 0) else 2 * ring
+            i = ci - ring
+            while i <= ci + ring:
+                if 0 <= i < nx:
+                    b = j * nx + i
+                    for s in range(start[b], start[b + 1]):
+                        far = _rect_distances(gx[s], gy[s], tx0, tx1, ty0, ty1, metric)[1]
+                        if far < u1:
+                            u2 = u1
+                            u1 = far
+                        elif far < u2:
+                            u2 = far
+                i += step
+        uk = u1 if k == 1 else u2
+        left = ci - ring <= 0
+        right = ci + ring >= nx - 1
+        low = cj - ring <= 0
+        high = cj + ring >= ny - 1
+        if left and right and low and high:
+            return uk
+        # Sites not yet visited lie outside the block of buckets searched so far, so at
+        # least this far (along one axis) from the rectangle.
+        lb = np.inf
+        if not left:
+            lb = min(lb, tx0 - (x0 + (ci - ring) * cw))
+        if not right:
+            lb = min(lb, x0 + (ci + ring + 1) * cw - tx1)
+        if not low:
+            lb = min(lb, ty0 - (y0 + (cj - ring) * ch))
+        if not high:
+            lb = min(lb, y0 + (cj + ring + 1) * ch - ty1)
+        if lb > uk:
+            return uk
+        ring += 1
+
+
+@njit(**NJIT)
+def _collect(rect, u, gpar, nx, ny, start, gx, gy, gi, metric, cx, cy, cid):
+    """Sites whose smallest distance to ``rect`` is <= ``u``; fills at most ``len(cx)``.
+
+    Returns the total count (which may exceed the buffers' length).
+    """
+    tx0, tx1, ty0, ty1 = rect[0], rect[1], rect[2], rect[3]
+    x0, y0, cw, ch = gpar[0], gpar[1], gpar[2], gpar[3]
+    if math.isfinite(u):
+        i0 = max(_cell(tx0 - u, x0, cw, nx) - 1, 0)
+        i1 = min(_cell(tx1 + u, x0, cw, nx) + 1, nx - 1)
+        j0 = max(_cell(ty0 - u, y0, ch, ny) - 1, 0)
+        j1 = min(_cell(ty1 + u, y0, ch, ny) + 1, ny - 1)
+    else:
+        i0, i1, j0, j1 = 0, nx - 1, 0, ny - 1
+    cap = cx.shape[0]
+    count = 0
+    for j in range(j0, j1 + 1):
+        for i in range(i0, i1 + 1):
+            b = j * nx + i
+            for s in range(start[b], start[b + 1]):
+                near = _rect_distances(gx[s], gy[s], tx0, tx1, ty0, ty1, metric)[0]
+                if near <= u:
+                    if count < cap:
+                        cx[count] = gx[s]
+                        cy[count] = gy[s]
+                        cid[count] = gi[s]
+                    count += 1
+    return count
+
+
+@njit(**NJIT)
+def _brute_tile(r0, r1, c0, c1, pxs, pys, cx, cy, cid, count, metric, want_f2, lab, d1, d2):
+    """Nearest (and second nearest) candidate of every pixel of a tile; ties -> lowest id."""
+    for r in range(r0, r1):
+        py = pys[r]
+        for c in range(c0, c1):
+            px = pxs[c]
+            b1 = np.inf
+            b2 = np.inf
+            i1 = _BIG
+            for t in range(count):
+                key = _key(px - cx[t], py - cy[t], metric)
+                if key < b1 or (key == b1 and cid[t] < i1):
+                    b2 = b1
+                    b1 = key
+                    i1 = cid[t]
+                elif key < b2:
+                    b2 = key
+            lab[r, c] = i1
+            d1[r, c] = _key_to_distance(b1, metric)
+            if want_f2:
+                d2[r, c] = _key_to_distance(b2, metric)
+
+
+@njit(**NJIT_PARALLEL)
+def exact_nearest(xs, ys, pxs, pys, metric, want_f2, tile, max_cand):
+    """Exact nearest site of every pixel centre.
+
+    Parameters
+    ----------
+    xs, ys : (m,) float64
+        Distinct sites, in increasing input order (m >= 1).
+    pxs : (w,) float64
+        Pixel-centre x of each column (increasing).
+    pys : (h,) float64
+        Pixel-centre y of each row (decreasing: row 0 at the top).
+    metric : int
+        0 Euclidean, 1 Manhattan, 2 Chebyshev.
+    want_f2 : bool
+        Also compute the distance to the second nearest site.
+    tile : (2,) int64
+        Initial tile size ``(rows, cols)`` in pixels.
+    max_cand : int
+        Tiles with more candidates than this are split (down to single pixels).
+
+    Returns
+    -------
+    lab : (h, w) int32
+        Position (into ``xs``) of the nearest site.
+    d1 : (h, w) float64
+        Distance to it.
+    d2 : (h, w) float64, or (0, 0) when ``want_f2`` is false
+        Distance to the second nearest site (inf when m == 1).
+    """
+    h = pys.shape[0]
+    w = pxs.shape[0]
+    m = xs.shape[0]
+    lab = np.zeros((h, w), dtype=np.int32)
+    d1 = np.zeros((h, w))
+    d2 = np.zeros((h, w)) if want_f2 else np.zeros((0, 0))
+    gpar, nx, ny, start, gx, gy, gi = build_grid(xs, ys)
+    scale = max(abs(pxs[0]), abs(pxs[-1]), abs(pys[0]), abs(pys[-1]))
+    scale = max(scale, np.abs(xs).max(), np.abs(ys).max())
+    slack = 1e-12 * scale + 1e-300  # absorbs rounding in the candidate test
+    k = 2 if want_f2 else 1
+    th, tw = tile[0], tile[1]
+    ntr = (h + th - 1) // th
+    ntc = (w + tw - 1) // tw
+    cap0 = min(m, max(4 * max_cand, 64))
+    for tr in prange(ntr):
+        cap = cap0
+        cx = np.zeros(cap)
+        cy = np.zeros(cap)
+        cid = np.zeros(cap, dtype=np.int64)
+        stack = np.zeros((256, 4), dtype=np.int64)
+        rect = np.zeros(4)
+        for tc in range(ntc):
+            stack[0, 0] = tr * th
+            stack[0, 1] = min(h, (tr + 1) * th)
+            stack[0, 2] = tc * tw
+            stack[0, 3] = min(w, (tc + 1) * tw)
+            top = 1
+            while top > 0:
+                top -= 1
+                r0, r1, c0, c1 = stack[top, 0], stack[top, 1], stack[top, 2], stack[top, 3]
+                rect[0] = pxs[c0]
+                rect[1] = pxs[c1 - 1]
+                rect[2] = pys[r1 - 1]
+                rect[3] = pys[r0]
+                u = _upper_bound(rect, k, gpar, nx, ny, start, gx, gy, metric)
+                u = u * (1.0 + 1e-12) + slack
+                count = _collect(rect, u, gpar, nx, ny, start, gx, gy, gi, metric, cx, cy, cid)
+                splittable = r1 - r0 > 1 or c1 - c0 > 1
+                if count > max_cand and splittable and top + 4 <= stack.shape[0]:
+                    rm = (r0 + r1 + 1) // 2 if r1 - r0 > 1 else r1
+                    cm = (c0 + c1 + 1) // 2 if c1 - c0 > 1 else c1
+                    for ra, rb in ((r0, rm), (rm, r1)):
+                        for ca, cb in ((c0, cm), (cm, c1)):
+                            if ra < rb and ca < cb:
+                                stack[top, 0] = ra
+                                stack[top, 1] = rb
+                                stack[top, 2] = ca
+                                stack[top, 3] = cb
+                                top += 1
+                    continue
+                if count > cap:
+                    cap = count
+                    cx = np.zeros(cap)
+                    cy = np.zeros(cap)
+                    cid = np.zeros(cap, dtype=np.int64)
+                    _collect(rect, u, gpar, nx, ny, start, gx, gy, gi, metric, cx, cy, cid)
+                _brute_tile(
+                    r0, r1, c0, c1, pxs, pys, cx, cy, cid, count, metric, want_f2, lab, d1, d2
+                )
+    return lab, d1, d2
+
+
+# ---------------------------------------------------------------------------------------
+# Jump Flooding
+# ---------------------------------------------------------------------------------------
+
+
+@njit(**NJIT)
+def _seed_index(v, origin, size, count):
+    """Pixel index along one axis holding coordinate ``v`` (clamped to the image)."""
+    f = (v - origin) / size
+    if not f >= 0.0:
+        return 0
+    if f >= count:
+        return count - 1
+    return int(f)
+
+
+@njit(**NJIT)
+def _jfa_seed(xs, ys, pxs, pys, geom, second):
+    """Seed each site at the pixel containing it (sites outside: nearest border pixel).
+
+    ``geom`` is ``(xmin, ymax, pixel_width, pixel_height)``. When two sites share a pixel
+    the nearer to its centre wins (ties: lower position); with ``second`` the runner-up is
+    kept in the second layer.
+    """
+    h = pys.shape[0]
+    w = pxs.shape[0]
+    a1 = np.full((h, w), -1, dtype=np.int32)
+    a2 = np.full((h, w) if second else (0, 0), -1, dtype=np.int32)
+    for s in range(xs.shape[0]):
+        c = _seed_index(xs[s], geom[0], geom[2], w)
+        r = _seed_index(geom[1] - ys[s], 0.0, geom[3], h)
+        d = _key(pxs[c] - xs[s], pys[r] - ys[s], 0)
+        old = a1[r, c]
+        if old < 0:
+            a1[r, c] = s
+        else:
+            dold = _key(pxs[c] - xs[old], pys[r] - ys[old], 0)
+            if d < dold:
+                a1[r, c] = s
+                if second:
+                    a2[r, c] = old
+            elif second:
+                o2 = a2[r, c]
+                if o2 < 0 or d < _key(pxs[c] - xs[o2], pys[r] - ys[o2], 0):
+                    a2[r, c] = s
+    return a1, a2
+
+
+@njit(**NJIT_PARALLEL)
+def _jfa_pass(src, dst, xs, ys, pxs, pys, step):
+    """One flooding pass: each pixel takes the nearest of its 9 neighbours' sites."""
+    h, w = src.shape
+    for r in prange(h):
+        py = pys[r]
+        for c in range(w):
+            px = pxs[c]
+            best = src[r, c]
+            bd = np.inf
+            if best >= 0:
+                bd = _key(px - xs[best], py - ys[best], 0)
+            for kr in range(3):
+                rr = r + (kr - 1) * step
+                if rr < 0 or rr >= h:
+                    continue
+                for kc in range(3):
+                    cc = c + (kc - 1) * step
+                    if cc < 0 or cc >= w or (kr == 1 and kc == 1):
+                        continue
+                    lab = src[rr, cc]
+                    if lab < 0 or lab == best:
+                        continue
+                    d = _key(px - xs[lab], py - ys[lab], 0)
+                    if d < bd or (d == bd and lab < best):
+                        best = lab
+                        bd = d
+            dst[r, c] = best
+
+
+@njit(**NJIT)
+def _offer(lab, d, l1, e1, l2, e2):
+    """Insert candidate ``(d, lab)`` into the ordered pair ``(e1, l1) <= (e2, l2)``."""
+    if lab < 0 or lab == l1 or lab == l2:
+        return l1, e1, l2, e2
+    if d < e1 or (d == e1 and lab < l1):
+        return lab, d, l1, e1
+    if d < e2 or (d == e2 and lab < l2):
+        return l1, e1, lab, d
+    return l1, e1, l2, e2
+
+
+@njit(**NJIT_PARALLEL)
+def _jfa2_pass(s1, s2, t1, t2, xs, ys, pxs, pys, step):
+    """Flooding pass keeping the two nearest distinct sites per pixel."""
+    h, w = s1.shape
+    for r in prange(h):
+        py = pys[r]
+        for c in range(w):
+            px = pxs[c]
+            l1 = -1
+            l2 = -1
+            e1 = np.inf
+            e2 = np.inf
+            for kr in range(3):
+                rr = r + (kr - 1) * step
+                if rr < 0 or rr >= h:
+                    continue
+                for kc in range(3):
+                    cc = c + (kc - 1) * step
+                    if cc < 0 or cc >= w:
+                        continue
+                    for lab in (s1[rr, cc], s2[rr, cc]):
+                        if lab >= 0 and lab != l1 and lab != l2:
+                            d = _key(px - xs[lab], py - ys[lab], 0)
+                            l1, e1, l2, e2 = _offer(lab, d, l1, e1, l2, e2)
+            t1[r, c] = l1
+            t2[r, c] = l2
+
+
+@njit(**NJIT_PARALLEL)
+def _jfa_distances(a, xs, ys, pxs, pys, out):
+    """Euclidean distance from each pixel centre to the site it holds (inf if none)."""
+    h, w = a.shape
+    for r in prange(h):
+        py = pys[r]
+        for c in range(w):
+            lab = a[r, c]
+            if lab < 0:
+                out[r, c] = np.inf
+            else:
+                out[r, c] = math.sqrt(_key(pxs[c] - xs[lab], pys[r] - ys[lab], 0))
+
+
+@njit(**NJIT)
+def jfa_nearest(xs, ys, pxs, pys, geom, steps, want_f2):
+    """Approximate nearest (and second nearest) site per pixel by Jump Flooding.
+
+    Parameters
+    ----------
+    xs, ys : (m,) float64
+        Distinct sites, in increasing input order (m >= 1).
+    pxs, pys : (w,), (h,) float64
+        Pixel centres (columns increasing, rows top to bottom).
+    geom : (4,) float64
+        ``xmin, ymax, pixel_width, pixel_height``.
+    steps : (p,) int64
+        Step of each pass, e.g. ``N/2, ..., 2, 1, 2, 1`` (JFA+2).
+    want_f2 : bool
+        Keep the two nearest sites per pixel (twice the work).
+
+    Returns
+    -------
+    lab : (h, w) int32
+        Position of the site found for each pixel.
+    d1 : (h, w) float64
+        Euclidean distance to it.
+    d2 : (h, w) float64, or (0, 0) when ``want_f2`` is false
+        Distance to the second site found (inf if none).
+    """
+    h = pys.shape[0]
+    w = pxs.shape[0]
+    a1, a2 = _jfa_seed(xs, ys, pxs, pys, geom, want_f2)
+    b1 = np.full((h, w), -1, dtype=np.int32)
+    b2 = np.full((h, w) if want_f2 else (0, 0), -1, dtype=np.int32)
+    for p in range(steps.shape[0]):
+        if want_f2:
+            _jfa2_pass(a1, a2, b1, b2, xs, ys, pxs, pys, steps[p])
+            a2, b2 = b2, a2
+        else:
+            _jfa_pass(a1, b1, xs, ys, pxs, pys, steps[p])
+        a1, b1 = b1, a1
+    d1 = np.zeros((h, w))
+    _jfa_distances(a1, xs, ys, pxs, pys, d1)
+    d2 = np.zeros((0, 0))
+    if want_f2:
+        d2 = np.zeros((h, w))
+        _jfa_distances(a2, xs, ys, pxs, pys, d2)
+    return a1, d1, d2
