@@ -13,51 +13,15 @@ import shapely
 
 from ..config import EDGE_LENGTH_RTOL
 from ..kernels.domain_grid import classify, mark_segments
+from ..kernels.rings import shared_edges
 from .domain import Domain
 
 
-def expand_to_sites(n, unique, coords, offsets, owner):
-    """Re-index kernel output (over distinct sites) to all ``n`` input sites."""
-    if len(unique) == n:
-        return coords, offsets, owner.astype(np.int64)
-    counts = np.zeros(n, dtype=np.int64)
-    counts[unique] = np.diff(offsets)
-    full = np.zeros(n + 1, dtype=np.int64)
-    np.cumsum(counts, out=full[1:])
-    own = owner.astype(np.int64)
-    mask = own >= 0
-    own[mask] = unique[own[mask]]
-    return coords, full, own
-
-
-def _close_rings(coords, offsets, cells):
-    """Closed-ring coordinates of the open rings of ``cells`` (non-empty), and ring lengths."""
-    starts = offsets[cells]
-    counts = offsets[cells + 1] - starts
-    total = int(counts.sum())
-    # positions of the open vertices inside the closed output
-    ring_start_out = np.zeros(len(cells) + 1, dtype=np.int64)
-    np.cumsum(counts + 1, out=ring_start_out[1:])
-    out = np.zeros((total + len(cells), 2))
-    ring_id = np.repeat(np.arange(len(cells)), counts)
-    local = np.arange(total) - np.repeat(np.cumsum(counts) - counts, counts)
-    out[ring_start_out[:-1][ring_id] + local] = coords[np.repeat(starts, counts) + local]
-    out[ring_start_out[1:] - 1] = coords[starts]
-    return out, counts + 1
-
-
-def rings_to_geoarrow(coords, offsets):
-    """GeoArrow multipolygon buffers for cells that are single open rings (or empty)."""
-    n = len(offsets) - 1
-    counts = np.diff(offsets)
-    nonempty = np.flatnonzero(counts > 0)
-    closed, lengths = _close_rings(coords, offsets, nonempty)
-    ring_offsets = np.zeros(len(nonempty) + 1, dtype=np.int64)
-    np.cumsum(lengths, out=ring_offsets[1:])
-    polygon_offsets = np.arange(len(nonempty) + 1, dtype=np.int64)
-    geom_offsets = np.zeros(n + 1, dtype=np.int64)
-    np.cumsum(counts > 0, out=geom_offsets[1:])
-    return closed, ring_offsets, polygon_offsets, geom_offsets
+def geom_offsets_for(n, ring_cell):
+    """Cell -> polygon offsets when every polygon is one ring and cell ``ring_cell[r]`` has ring r."""
+    geom = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(np.bincount(ring_cell, minlength=n), out=geom[1:])
+    return geom
 
 
 def _grid_for(dom: Domain, n_hint: int):
@@ -81,68 +45,63 @@ def _grid_for(dom: Domain, n_hint: int):
     return marked, inside, x0, y0, h
 
 
-def clip_to_polygon(dom: Domain, coords, offsets):
-    """Clip convex open rings to a polygonal domain; returns GeoArrow buffers for all cells."""
-    n = len(offsets) - 1
-    marked, inside, x0, y0, h = _grid_for(dom, n)
-    status = classify(coords, offsets, marked, inside, x0, y0, h)
+def clip_to_polygon(dom: Domain, coords, ring_offsets, ring_cell, n):
+    """Clip convex closed rings (one per non-empty cell) to a polygonal domain.
+
+    Rings that the grid proves wholly inside are kept as they are, wholly outside ones are
+    dropped, and only the rest go through a shapely intersection. Returns the GeoArrow
+    multipolygon buffers ``(coords, ring_offsets, polygon_offsets, geom_offsets)`` of all
+    ``n`` cells.
+    """
+    marked, inside, x0, y0, h = _grid_for(dom, len(ring_cell))
+    status = classify(coords, ring_offsets, marked, inside, x0, y0, h)
+    lengths = np.diff(ring_offsets)
     simple = np.flatnonzero(status == 1)
     hard = np.flatnonzero(status == 2)
-
-    # simple cells: closed rings
-    s_coords, s_len = _close_rings(coords, offsets, simple)
-    # hard cells: shapely intersection, oriented (exterior CCW) and exploded to buffers
+    s_len = lengths[simple]
+    s_coords = coords[np.repeat(status == 1, lengths)]
     if len(hard):
-        h_closed, h_len = _close_rings(coords, offsets, hard)
-        ring_off = np.zeros(len(hard) + 1, dtype=np.int64)
-        np.cumsum(h_len, out=ring_off[1:])
+        h_mask = np.repeat(status == 2, lengths)
+        h_off = np.zeros(len(hard) + 1, dtype=np.int64)
+        np.cumsum(lengths[hard], out=h_off[1:])
         convex = shapely.from_ragged_array(
-            shapely.GeometryType.POLYGON, h_closed, (ring_off, np.arange(len(hard) + 1))
+            shapely.GeometryType.POLYGON, coords[h_mask], (h_off, np.arange(len(hard) + 1))
         )
-        clipped = shapely.intersection(convex, dom.geometry)
-        clipped = _polygonal(clipped)
-        clipped = shapely.orient_polygons(clipped)
+        clipped = shapely.orient_polygons(_polygonal(shapely.intersection(convex, dom.geometry)))
         parts, idx = shapely.get_parts(clipped, return_index=True)
         keep = ~shapely.is_empty(parts)
         parts = parts[keep]
         idx = idx[keep]
-        multi = np.full(len(hard), shapely.MultiPolygon(), dtype=object)
-        cut = np.flatnonzero(np.diff(idx)) + 1
-        for group, k in zip(
-            np.split(parts, cut), idx[np.r_[0, cut]] if len(idx) else [], strict=True
-        ):
-            multi[k] = shapely.multipolygons(group)
-        _, c_coords, (c_ring, c_poly, c_geom) = shapely.to_ragged_array(multi)
+        _, c_coords, (c_ring, c_poly) = shapely.to_ragged_array(parts)
+        polys_per_hard = np.bincount(idx, minlength=len(hard))
     else:
         c_coords = np.zeros((0, 2))
         c_ring = np.zeros(1, dtype=np.int64)
         c_poly = np.zeros(1, dtype=np.int64)
-        c_geom = np.zeros(1, dtype=np.int64)
-    polys_per_hard = np.diff(c_geom)
+        polys_per_hard = np.zeros(0, dtype=np.int64)
     rings_per_poly = np.diff(c_poly)
     len_per_ring = np.diff(c_ring)
+    simple_cell = ring_cell[simple]
+    hard_cell = ring_cell[hard]
 
     # merge, ordered by cell id (stable: within one source items are already in cell order)
-    poly_cell = np.concatenate((simple, np.repeat(hard, polys_per_hard)))
+    poly_cell = np.concatenate((simple_cell, np.repeat(hard_cell, polys_per_hard)))
     poly_rings = np.concatenate((np.ones(len(simple), dtype=np.int64), rings_per_poly))
-    ring_cell = np.concatenate((simple, np.repeat(poly_cell[len(simple) :], rings_per_poly)))
+    hard_ring_cell = np.repeat(poly_cell[len(simple) :], rings_per_poly)
+    ring_cell_all = np.concatenate((simple_cell, hard_ring_cell))
     ring_len = np.concatenate((s_len, len_per_ring))
     coord_cell = np.concatenate(
-        (np.repeat(simple, s_len), np.repeat(ring_cell[len(simple) :], len_per_ring))
+        (np.repeat(simple_cell, s_len), np.repeat(hard_ring_cell, len_per_ring))
     )
     all_coords = np.concatenate((s_coords, c_coords))
-
     po = np.argsort(poly_cell, kind="stable")
-    ro = np.argsort(ring_cell, kind="stable")
+    ro = np.argsort(ring_cell_all, kind="stable")
     co = np.argsort(coord_cell, kind="stable")
-    out_coords = all_coords[co]
-    ring_offsets = np.zeros(len(ring_len) + 1, dtype=np.int64)
-    np.cumsum(ring_len[ro], out=ring_offsets[1:])
-    polygon_offsets = np.zeros(len(poly_rings) + 1, dtype=np.int64)
-    np.cumsum(poly_rings[po], out=polygon_offsets[1:])
-    geom_offsets = np.zeros(n + 1, dtype=np.int64)
-    np.cumsum(np.bincount(poly_cell, minlength=n), out=geom_offsets[1:])
-    return out_coords, ring_offsets, polygon_offsets, geom_offsets
+    out_ring = np.zeros(len(ring_len) + 1, dtype=np.int64)
+    np.cumsum(ring_len[ro], out=out_ring[1:])
+    out_poly = np.zeros(len(poly_rings) + 1, dtype=np.int64)
+    np.cumsum(poly_rings[po], out=out_poly[1:])
+    return all_coords[co], out_ring, out_poly, geom_offsets_for(n, poly_cell)
 
 
 def _polygonal(geoms):
@@ -157,31 +116,21 @@ def _polygonal(geoms):
     return out
 
 
-def shared_edges(dom: Domain, coords, offsets, owner):
+def domain_edges(dom: Domain, coords, ring_offsets, ring_cell, owner):
     """Unique shared edges ``(m, 2, 2)`` and their cell pairs ``(m, 2)``, clipped to the domain.
 
-    Each pair ``(i, j)`` with ``i < j`` is taken from cell ``i``'s ring. Edges shorter than
+    Each pair ``(i, j)`` with ``i < j`` is taken from cell ``i``'s ring. Edges not longer than
     ``EDGE_LENGTH_RTOL`` times the domain's size are point contacts and are left out.
     """
-    n = len(offsets) - 1
-    counts = np.diff(offsets)
-    cell = np.repeat(np.arange(n), counts)
-    k = np.arange(len(coords))
-    nxt = k + 1
-    last = offsets[1:][counts > 0] - 1
-    nxt[last] = offsets[:-1][counts > 0]
-    sel = np.flatnonzero(owner > cell)
-    a = coords[sel]
-    b = coords[nxt[sel]]
-    pairs = np.stack((cell[sel], owner[sel]), axis=1)
     x0, y0, x1, y1 = dom.bounds
     tol = EDGE_LENGTH_RTOL * max(x1 - x0, y1 - y0)
-    if not dom.is_rect and len(sel):
-        a, b, pairs = _clip_segments(dom, a, b, pairs)
+    seg, pairs = shared_edges(coords, ring_offsets, ring_cell, owner, tol)
+    if dom.is_rect or len(seg) == 0:
+        return seg, pairs
+    a, b, pairs = _clip_segments(dom, seg[:, 0], seg[:, 1], pairs)
     length = np.hypot(b[:, 0] - a[:, 0], b[:, 1] - a[:, 1])
     keep = length > tol
-    seg = np.stack((a[keep], b[keep]), axis=1)
-    return seg, pairs[keep].astype(np.int64)
+    return np.stack((a[keep], b[keep]), axis=1), pairs[keep]
 
 
 def _clip_segments(dom: Domain, a, b, pairs):

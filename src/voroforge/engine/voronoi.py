@@ -9,9 +9,9 @@ import numpy as np
 import shapely
 
 from ..kernels.cells import cells_from_neighbors, cells_from_triangulation
-from ..kernels.delaunay import triangulate
-from ..kernels.rings import area_centroid
-from ._assemble import clip_to_polygon, expand_to_sites, rings_to_geoarrow, shared_edges
+from ..kernels.delaunay import triangulate_sorted
+from ..kernels.rings import area_centroid, close_rings
+from ._assemble import clip_to_polygon, domain_edges, geom_offsets_for
 from ._csr import csr_from_pairs
 from ._inputs import as_points, duplicate_map
 from .domain import Domain, make_domain
@@ -163,14 +163,19 @@ def _collinear_neighbors(xs, ys):
 
 
 def _convex_cells(xs, ys, box, algorithm):
-    """Kernel dispatch: convex cells of distinct sites clipped to ``box``."""
+    """Kernel dispatch: convex cells of distinct sites clipped to ``box``.
+
+    Returns ``(coords, offsets, owner, order)``: the kernel may number the sites its own way;
+    kernel cell ``k`` belongs to site ``order[k]``.
+    """
     if algorithm == "delaunay":
-        tri, he, _, ok = triangulate(xs, ys)
+        order, sx, sy, tri, he, _, ok = triangulate_sorted(xs, ys)
         if ok:
-            coords, offsets, owner, _, _ = cells_from_triangulation(xs, ys, tri, he, box)
-            return coords, offsets, owner
+            coords, offsets, owner, _, _ = cells_from_triangulation(sx, sy, tri, he, box)
+            return coords, offsets, owner, order
         indptr, indices = _collinear_neighbors(xs, ys)
-        return cells_from_neighbors(xs, ys, indptr, indices.astype(np.int64), box)
+        cells = cells_from_neighbors(xs, ys, indptr, indices.astype(np.int64), box)
+        return (*cells, np.arange(len(xs)))
     raise ValueError(f"unknown algorithm {algorithm!r}; choose one of {', '.join(ALGORITHMS)}")
 
 
@@ -217,11 +222,18 @@ def voronoi(points, boundary=None, *, algorithm: str = "delaunay") -> Diagram:
     xs = np.ascontiguousarray(sub[:, 0])
     ys = np.ascontiguousarray(sub[:, 1])
     box = np.array(dom.bounds, dtype=np.float64)
-    coords, offsets, owner = _convex_cells(xs, ys, box, algorithm)
-    coords, offsets, owner = expand_to_sites(n, unique, coords, offsets, owner)
-    edges = Edges(*shared_edges(dom, coords, offsets, owner))
+    coords, offsets, owner, order = _convex_cells(xs, ys, box, algorithm)
+    perm = np.zeros(len(order), dtype=np.int64)
+    perm[order] = np.arange(len(order))
+    kmap = unique[order]  # kernel index -> input index
+    closed, lengths, own = close_rings(coords, offsets, owner, perm, kmap)
+    nonempty = lengths[1:] > lengths[:-1]
+    ring_offsets = np.concatenate(([0], lengths[1:][nonempty]))
+    ring_cell = unique[nonempty]
+    edges = Edges(*domain_edges(dom, closed, ring_offsets, ring_cell, own))
     if dom.is_rect:
-        buffers = rings_to_geoarrow(coords, offsets)
+        polys = np.arange(len(ring_cell) + 1, dtype=np.int64)
+        buffers = (closed, ring_offsets, polys, geom_offsets_for(n, ring_cell))
     else:
-        buffers = clip_to_polygon(dom, coords, offsets)
+        buffers = clip_to_polygon(dom, closed, ring_offsets, ring_cell, n)
     return Diagram(pts, dup, dom, buffers, edges, algorithm)

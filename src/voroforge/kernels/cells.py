@@ -23,7 +23,7 @@ import numpy as np
 from numba import njit, prange
 
 from ..config import NJIT, NJIT_PARALLEL
-from .predicates import circumcenter, incircle
+from .predicates import circumcenter, incircle, incircle_fast
 
 _CHUNK = 2048
 
@@ -51,32 +51,52 @@ def circumcenters(xs, ys, tri):
 
 
 @njit(**NJIT)
-def merge_cocircular(xs, ys, tri, he, cx, cy):
-    """Give triangles with the same circumcircle one circumcentre; return each one's class.
+def _quad(tri, e, f):
+    a = tri[e]
+    b = tri[e - e % 3 + (e + 1) % 3]
+    c = tri[e - e % 3 + (e + 2) % 3]
+    d = tri[f - f % 3 + (f + 2) % 3]
+    return a, b, c, d
 
-    Two triangles sharing an edge have the same circumcircle exactly when the fourth point is
-    on the first one's circle (exact incircle == 0). Classes are the connected components of
-    that relation; the centre of the class representative is copied to all its members.
-    """
+
+@njit(**NJIT)
+def _maybe_cocircular(xs, ys, tri, he):
+    """Interior halfedges whose quadrilateral the fast incircle filter cannot call."""
+    cnt = 0
+    for e in range(tri.shape[0]):
+        f = he[e]
+        if f > e:
+            a, b, c, d = _quad(tri, e, f)
+            v = incircle_fast(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c], xs[d], ys[d])
+            if v != v:
+                cnt += 1
+    out = np.zeros(cnt, dtype=np.int64)
+    cnt = 0
+    for e in range(tri.shape[0]):
+        f = he[e]
+        if f > e:
+            a, b, c, d = _quad(tri, e, f)
+            v = incircle_fast(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c], xs[d], ys[d])
+            if v != v:
+                out[cnt] = e
+                cnt += 1
+    return out
+
+
+@njit(**NJIT)
+def _merge_exact(xs, ys, tri, he, cand, cx, cy):
     t = tri.shape[0] // 3
     parent = np.arange(t)
     merged = False
-    for e in range(tri.shape[0]):
+    for k in range(cand.shape[0]):
+        e = cand[k]
         f = he[e]
-        if f <= e:
-            continue
-        a = tri[e]
-        b = tri[e - e % 3 + (e + 1) % 3]
-        c = tri[e - e % 3 + (e + 2) % 3]
-        d = tri[f - f % 3 + (f + 2) % 3]
+        a, b, c, d = _quad(tri, e, f)
         if incircle(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c], xs[d], ys[d]) == 0.0:
             ra = _find(parent, e // 3)
             rb = _find(parent, f // 3)
             if ra != rb:
-                if ra < rb:
-                    parent[rb] = ra
-                else:
-                    parent[ra] = rb
+                parent[max(ra, rb)] = min(ra, rb)
                 merged = True
     if merged:
         for k in range(t):
@@ -85,6 +105,20 @@ def merge_cocircular(xs, ys, tri, he, cx, cy):
             cx[k] = cx[r]
             cy[k] = cy[r]
     return parent
+
+
+def merge_cocircular(xs, ys, tri, he, cx, cy):
+    """Give triangles with the same circumcircle one circumcentre; return each one's class.
+
+    Two triangles sharing an edge have the same circumcircle exactly when the fourth point is
+    on the first one's circle (exact incircle == 0). Classes are the connected components of
+    that relation; the centre of the class representative is copied to all its members. A
+    filtered pass finds the few candidate edges, so the exact code runs only on those.
+    """
+    cand = _maybe_cocircular(xs, ys, tri, he)
+    if cand.shape[0] == 0:
+        return np.arange(tri.shape[0] // 3)
+    return _merge_exact(xs, ys, tri, he, cand, cx, cy)
 
 
 @njit(**NJIT)

@@ -526,19 +526,22 @@ def _relabel(tri, tcount, hull, order):
     return out
 
 
-def triangulate(xs: np.ndarray, ys: np.ndarray):
-    """Delaunay triangulation of distinct points given as coordinate arrays.
+def triangulate_sorted(xs: np.ndarray, ys: np.ndarray):
+    """Triangulate distinct points, returning the result in sweep order.
 
-    Returns ``(triangles (3t,) int32, halfedges (3t,) int32, hull (h,) int32, ok)``; ``ok`` is
-    False when all points are collinear (no triangles; the caller builds the hull).
+    Returns ``(order, sx, sy, tri, he, hull, ok)``: point ``k`` of the sweep-ordered arrays
+    ``sx, sy`` is input point ``order[k]``; ``tri`` (flat), ``he`` and ``hull`` use sweep
+    indices. Working in sweep order keeps each point's triangles close together in memory,
+    which matters for everything that walks around points afterwards. ``ok`` is False when
+    all points are collinear (then only ``order`` is meaningful).
     """
     n = xs.shape[0]
     empty = np.zeros(0, dtype=np.int32)
     if n < 3:
-        return empty, empty, empty, False
+        return np.arange(n), xs, ys, empty, empty, empty, False
     i0, i1, i2 = _seed(xs, ys)
     if i2 == -1:
-        return empty, empty, empty, False
+        return np.arange(n), xs, ys, empty, empty, empty, False
     order = _sweep_order(xs, ys, i0, i1, i2)
     sx, sy = _gather(xs, ys, order)
     res = _sweep(sx, sy, False)
@@ -548,5 +551,18 @@ def triangulate(xs: np.ndarray, ys: np.ndarray):
     if deferred.shape[0]:
         tcount = _insert_deferred(sx, sy, tri, he, tcount, hull_tri, hull_next, hull_prev, deferred)
     hull = _hull_array(hull_next, hull_start)
-    tri_out = _relabel(tri, tcount, hull, order)
-    return tri_out, he[:tcount].copy(), hull, True
+    return order, sx, sy, tri[:tcount], he[:tcount], hull, True
+
+
+def triangulate(xs: np.ndarray, ys: np.ndarray):
+    """Delaunay triangulation of distinct points given as coordinate arrays.
+
+    Returns ``(triangles (3t,) int32, halfedges (3t,) int32, hull (h,) int32, ok)`` in input
+    indices; ``ok`` is False when all points are collinear (no triangles; the caller builds
+    the hull).
+    """
+    order, _, _, tri, he, hull, ok = triangulate_sorted(xs, ys)
+    if not ok:
+        return tri, he, hull, False
+    tri_out = _relabel(tri, tri.shape[0], hull, order)
+    return tri_out, he.copy(), hull, True

@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit, prange
 
-from ..config import NJIT_PARALLEL
+from ..config import NJIT, NJIT_PARALLEL
 
 
 @njit(**NJIT_PARALLEL)
@@ -55,3 +57,72 @@ def area_centroid(coords, ring_offsets, polygon_offsets, geom_offsets):
             cen[g, 0] = ox + mx / (3.0 * a_tot)
             cen[g, 1] = oy + my / (3.0 * a_tot)
     return area, cen
+
+
+@njit(**NJIT_PARALLEL)
+def close_rings(coords, offsets, owner, perm, kmap):
+    """Reorder open convex rings and close them.
+
+    Ring ``k`` of the output is kernel ring ``perm[k]`` with its first vertex repeated at the
+    end. Owners are mapped through ``kmap`` (kernel index -> output site index); the closing
+    vertex gets owner -2. Returns ``(coords, ring_offsets over all k, owner)``; empty rings stay
+    empty (length 0).
+    """
+    m = perm.shape[0]
+    lengths = np.zeros(m + 1, dtype=np.int64)
+    for k in range(m):
+        c = offsets[perm[k] + 1] - offsets[perm[k]]
+        lengths[k + 1] = c + 1 if c > 0 else 0
+    for k in range(m):
+        lengths[k + 1] += lengths[k]
+    total = lengths[m]
+    out = np.zeros((total, 2))
+    own = np.full(total, -2, dtype=np.int64)
+    for k in prange(m):
+        a = offsets[perm[k]]
+        b = offsets[perm[k] + 1]
+        o = lengths[k]
+        for v in range(a, b):
+            out[o + v - a, 0] = coords[v, 0]
+            out[o + v - a, 1] = coords[v, 1]
+            w = owner[v]
+            own[o + v - a] = kmap[w] if w >= 0 else w
+        if b > a:
+            out[o + b - a, 0] = coords[a, 0]
+            out[o + b - a, 1] = coords[a, 1]
+    return out, lengths, own
+
+
+@njit(**NJIT)
+def shared_edges(coords, ring_offsets, ring_cell, owner, tol):
+    """Edges ``k -> k + 1`` of closed rings whose owner is a higher-numbered cell.
+
+    Returns ``(segments (m, 2, 2), pairs (m, 2))``; edges not longer than ``tol`` are skipped.
+    """
+    cnt = 0
+    for r in range(ring_cell.shape[0]):
+        c = ring_cell[r]
+        for k in range(ring_offsets[r], ring_offsets[r + 1] - 1):
+            if owner[k] > c:
+                dx = coords[k + 1, 0] - coords[k, 0]
+                dy = coords[k + 1, 1] - coords[k, 1]
+                if math.hypot(dx, dy) > tol:
+                    cnt += 1
+    seg = np.zeros((cnt, 2, 2))
+    pairs = np.zeros((cnt, 2), dtype=np.int64)
+    cnt = 0
+    for r in range(ring_cell.shape[0]):
+        c = ring_cell[r]
+        for k in range(ring_offsets[r], ring_offsets[r + 1] - 1):
+            if owner[k] > c:
+                dx = coords[k + 1, 0] - coords[k, 0]
+                dy = coords[k + 1, 1] - coords[k, 1]
+                if math.hypot(dx, dy) > tol:
+                    seg[cnt, 0, 0] = coords[k, 0]
+                    seg[cnt, 0, 1] = coords[k, 1]
+                    seg[cnt, 1, 0] = coords[k + 1, 0]
+                    seg[cnt, 1, 1] = coords[k + 1, 1]
+                    pairs[cnt, 0] = c
+                    pairs[cnt, 1] = owner[k]
+                    cnt += 1
+    return seg, pairs

@@ -1,0 +1,576 @@
+"""Fortune's sweep-line algorithm, returning the Delaunay dual of the Voronoi diagram it sweeps.
+
+Conventions. The sweep line ``y = L`` moves upward; sites are processed in ``(y, x)`` order.
+The beach line is the sequence of parabolic arcs, left to right; each arc is a node of a
+treap (random priorities, in-order = left to right, so its expected depth is O(log m)) and
+of a doubly linked list for O(1) neighbours. Breakpoints are never stored: the search for
+the arc above a new site evaluates them in floating point at the site's ``L``.
+
+Three consecutive arcs ``a, b, c`` (distinct sites ``a != c``) have converging breakpoints
+exactly when ``orient2d(a, b, c) > 0`` (exact); their circle event is keyed by the top of
+the circumcircle, ``cy + r``, in an indexed binary heap (one event per middle arc, removed
+when the triple changes). Site events come from the pre-sorted site order. When a circle
+event fires, arc ``b`` vanishes and the counter-clockwise triangle ``(a, b, c)`` is emitted:
+one Voronoi vertex, one Delaunay triangle.
+
+Halfedges are built during the sweep: every breakpoint carries an *edge record* (one per
+Delaunay edge). The first triangle closing an edge parks its halfedge in the record, the
+second links the pair; a third would be a topological error, which is counted (``bad``)
+and must stay zero. The sites of the lowest horizontal line start the beach line together
+(their breakpoints are vertical). Floating-point event order can only misplace events among
+(nearly) cocircular sites, so a final Lawson pass with the exact ``incircle`` makes the
+result exactly Delaunay; its flip count is ~0 on ordinary input.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..config import NJIT
+from .predicates import circumcenter, incircle, incircle_fast, orient2d
+
+# stats slots returned by the debug helper
+_S_FLIPS = 0
+_S_BAD = 1
+_S_MAX_BEACH = 2
+_S_CIRCLE = 3
+_S_TRI_SWEEP = 4
+_NSTATS = 5
+
+
+# ---------------------------------------------------------------------------------------------
+# site order
+# ---------------------------------------------------------------------------------------------
+
+
+@njit(**NJIT)
+def _site_order(xs, ys):
+    """Indices sorted by ``(y, x)``: a quicksort on ``y``, then runs of equal ``y`` by ``x``."""
+    order = np.argsort(ys)
+    n = order.shape[0]
+    i = 0
+    while i < n:
+        y = ys[order[i]]
+        j = i + 1
+        while j < n and ys[order[j]] == y:
+            j += 1
+        if j - i > 1:
+            seg = order[i:j].copy()
+            order[i:j] = seg[np.argsort(xs[seg])]
+        i = j
+    return order
+
+
+# ---------------------------------------------------------------------------------------------
+# geometry in floating point (only used to order events and locate arcs)
+# ---------------------------------------------------------------------------------------------
+
+
+@njit(**NJIT)
+def _breakpoint(px, py, qx, qy, sweep):
+    """x of the breakpoint between the arc of ``p`` (left) and the arc of ``q`` (right).
+
+    Both parabolas are taken at the sweep line ``y = sweep >= py, qy``. With
+    ``hp = sweep - py``, ``hq = sweep - qy``, ``dx = qx - px`` and ``a = qy - py`` the
+    offset ``u = x - px`` solves ``a u^2 - 2 hp dx u + hp (dx^2 - a hq) = 0`` and the
+    breakpoint is the root ``(hp dx - sqrt(hp hq |pq|^2)) / a``, evaluated in the form that
+    avoids cancellation.
+    """
+    if py == qy:
+        return 0.5 * (px + qx)
+    hp = sweep - py
+    if hp <= 0.0:
+        return px
+    hq = sweep - qy
+    if hq <= 0.0:
+        return qx
+    dx = qx - px
+    a = qy - py
+    s = math.sqrt(hp * hq * (dx * dx + a * a))
+    if dx > 0.0:
+        return px + hp * (dx * dx - hq * a) / (hp * dx + s)
+    return px + (hp * dx - s) / a
+
+
+@njit(**NJIT)
+def _event_y(ax, ay, bx, by, cx, cy):
+    """Top of the circumcircle of ``a, b, c`` (+inf when it does not fit in a double)."""
+    ox, oy = circumcenter(ax, ay, bx, by, cx, cy)
+    r = math.sqrt((bx - ox) * (bx - ox) + (by - oy) * (by - oy))
+    y = oy + r
+    if y != y or y == np.inf or y == -np.inf:
+        return np.inf
+    return y
+
+
+# ---------------------------------------------------------------------------------------------
+# indexed binary heap of circle events (one per middle arc; key[node] is its event y)
+# ---------------------------------------------------------------------------------------------
+
+
+@njit(**NJIT)
+def _sift_up(heap, hpos, key, i):
+    node = heap[i]
+    k = key[node]
+    while i > 0:
+        par = (i - 1) >> 1
+        pn = heap[par]
+        if key[pn] <= k:
+            break
+        heap[i] = pn
+        hpos[pn] = i
+        i = par
+    heap[i] = node
+    hpos[node] = i
+
+
+@njit(**NJIT)
+def _sift_down(heap, hpos, key, size, i):
+    node = heap[i]
+    k = key[node]
+    while True:
+        c = 2 * i + 1
+        if c >= size:
+            break
+        if c + 1 < size and key[heap[c + 1]] < key[heap[c]]:
+            c += 1
+        cn = heap[c]
+        if key[cn] >= k:
+            break
+        heap[i] = cn
+        hpos[cn] = i
+        i = c
+    heap[i] = node
+    hpos[node] = i
+
+
+@njit(**NJIT)
+def _heap_remove(heap, hpos, key, size, node):
+    """Remove ``node``'s event if it has one; returns the new heap size."""
+    i = hpos[node]
+    if i < 0:
+        return size
+    hpos[node] = -1
+    size -= 1
+    if i != size:
+        last = heap[size]
+        heap[i] = last
+        hpos[last] = i
+        _sift_down(heap, hpos, key, size, i)
+        if hpos[last] == i:
+            _sift_up(heap, hpos, key, i)
+    return size
+
+
+# ---------------------------------------------------------------------------------------------
+# beach line: treap with implicit (in-order) keys and parent pointers
+# ---------------------------------------------------------------------------------------------
+
+
+@njit(**NJIT)
+def _rotate_up(x, left, right, parent, root):
+    """Rotate ``x`` above its parent; returns the (possibly new) root."""
+    p = parent[x]
+    g = parent[p]
+    if left[p] == x:
+        b = right[x]
+        left[p] = b
+        right[x] = p
+    else:
+        b = left[x]
+        right[p] = b
+        left[x] = p
+    if b != -1:
+        parent[b] = p
+    parent[p] = x
+    parent[x] = g
+    if g == -1:
+        return x
+    if left[g] == p:
+        left[g] = x
+    else:
+        right[g] = x
+    return root
+
+
+@njit(**NJIT)
+def _insert_after(v, x, left, right, parent, tprio, root):
+    """Insert leaf ``x`` right after node ``v`` in order, then restore the heap on priorities."""
+    left[x] = -1
+    right[x] = -1
+    u = right[v]
+    if u == -1:
+        right[v] = x
+        parent[x] = v
+    else:
+        while left[u] != -1:
+            u = left[u]
+        left[u] = x
+        parent[x] = u
+    while parent[x] != -1 and tprio[x] < tprio[parent[x]]:
+        root = _rotate_up(x, left, right, parent, root)
+    return root
+
+
+@njit(**NJIT)
+def _delete(x, left, right, parent, tprio, root):
+    """Remove node ``x`` from the treap; returns the new root."""
+    while left[x] != -1 and right[x] != -1:
+        lc = left[x]
+        rc = right[x]
+        c = lc if tprio[lc] < tprio[rc] else rc
+        root = _rotate_up(c, left, right, parent, root)
+    c = left[x] if left[x] != -1 else right[x]
+    p = parent[x]
+    if c != -1:
+        parent[c] = p
+    if p == -1:
+        root = c
+    elif left[p] == x:
+        left[p] = c
+    else:
+        right[p] = c
+    left[x] = -1
+    right[x] = -1
+    parent[x] = -1
+    return root
+
+
+@njit(**NJIT)
+def _locate(root, sx, sweep, left, right, nxt, site, xs, ys):
+    """Leftmost arc whose right breakpoint is at or right of ``sx`` (lower-bound descent)."""
+    v = root
+    cand = -1
+    while v != -1:
+        w = nxt[v]
+        if w == -1:
+            cand = v
+            v = left[v]
+            continue
+        sv = site[v]
+        sw = site[w]
+        if sx > _breakpoint(xs[sv], ys[sv], xs[sw], ys[sw], sweep):
+            v = right[v]
+        else:
+            cand = v
+            v = left[v]
+    return cand
+
+
+# ---------------------------------------------------------------------------------------------
+# the sweep
+# ---------------------------------------------------------------------------------------------
+
+
+@njit(**NJIT)
+def _push_event(node, prv, nxt, site, xs, ys, key, heap, hpos, size):
+    """Schedule the circle event of the triple centred on ``node`` if its breakpoints converge."""
+    a = prv[node]
+    c = nxt[node]
+    if a == -1 or c == -1:
+        return size
+    sa = site[a]
+    sb = site[node]
+    sc = site[c]
+    if sa == sc:
+        return size
+    if orient2d(xs[sa], ys[sa], xs[sb], ys[sb], xs[sc], ys[sc]) <= 0.0:
+        return size
+    key[node] = _event_y(xs[sa], ys[sa], xs[sb], ys[sb], xs[sc], ys[sc])
+    heap[size] = node
+    _sift_up(heap, hpos, key, size)
+    return size + 1
+
+
+@njit(**NJIT)
+def _alloc(free, nfree, nnodes, tprio, hpos, rng):
+    """A fresh arc node (recycled when possible) with a new random treap priority."""
+    if nfree > 0:
+        nfree -= 1
+        w = free[nfree]
+    else:
+        w = nnodes
+        nnodes += 1
+    rng ^= rng << np.uint32(13)
+    rng ^= rng >> np.uint32(17)
+    rng ^= rng << np.uint32(5)
+    tprio[w] = rng
+    hpos[w] = -1
+    return w, nfree, nnodes, rng
+
+
+@njit(**NJIT)
+def _attach(rec_he, rec, h, he, stats):
+    """Give halfedge ``h`` to edge record ``rec``: park it, or link it with the parked twin."""
+    o = rec_he[rec]
+    if o == -1:
+        rec_he[rec] = h
+    elif o >= 0:
+        he[h] = o
+        he[o] = h
+        rec_he[rec] = -2
+    else:
+        stats[_S_BAD] += 1  # a third triangle on one Delaunay edge: never happens
+
+
+@njit(**NJIT)
+def _sweep(xs, ys, order, stats):
+    """Run Fortune's sweep; returns ``(tri (3t,), he (3t,))`` with halfedges linked."""
+    n = order.shape[0]
+    cap = 2 * n + 2
+    left = np.full(cap, -1, dtype=np.int32)
+    right = np.full(cap, -1, dtype=np.int32)
+    parent = np.full(cap, -1, dtype=np.int32)
+    prv = np.full(cap, -1, dtype=np.int32)
+    nxt = np.full(cap, -1, dtype=np.int32)
+    site = np.zeros(cap, dtype=np.int32)
+    edge = np.full(cap, -1, dtype=np.int32)
+    tprio = np.zeros(cap, dtype=np.uint32)
+    hpos = np.full(cap, -1, dtype=np.int32)
+    heap = np.zeros(cap, dtype=np.int32)
+    key = np.zeros(cap, dtype=np.float64)
+    free = np.zeros(cap, dtype=np.int32)
+    nfree = 0
+    nnodes = 0
+    tmax = max(2 * n - 4, 1)
+    tri = np.zeros(3 * tmax, dtype=np.int32)
+    he = np.full(3 * tmax, -1, dtype=np.int32)
+    rec_he = np.full(3 * n + 3, -1, dtype=np.int32)
+    nrec = 0
+    ntri = 0
+    size = 0
+    rng = np.uint32(2463534242)
+    root = -1
+    beach = 0
+
+    # the lowest sites: one arc each, left to right, separated by vertical breakpoints
+    y0 = ys[order[0]]
+    i = 0
+    last = -1
+    while i < n and ys[order[i]] == y0:
+        v, nfree, nnodes, rng = _alloc(free, nfree, nnodes, tprio, hpos, rng)
+        site[v] = order[i]
+        if last == -1:
+            root = v
+        else:
+            prv[v] = last
+            nxt[last] = v
+            edge[last] = nrec
+            nrec += 1
+            root = _insert_after(last, v, left, right, parent, tprio, root)
+        last = v
+        beach += 1
+        i += 1
+    stats[_S_MAX_BEACH] = beach
+
+    while True:
+        if size > 0 and (i >= n or key[heap[0]] <= ys[order[i]]):
+            # circle event: arc b vanishes, triangle (a, b, c) is born
+            b = heap[0]
+            size = _heap_remove(heap, hpos, key, size, b)
+            a = prv[b]
+            c = nxt[b]
+            t3 = 3 * ntri
+            tri[t3] = site[a]
+            tri[t3 + 1] = site[b]
+            tri[t3 + 2] = site[c]
+            ntri += 1
+            _attach(rec_he, edge[a], t3, he, stats)
+            _attach(rec_he, edge[b], t3 + 1, he, stats)
+            rec_he[nrec] = t3 + 2
+            edge[a] = nrec
+            nrec += 1
+            nxt[a] = c
+            prv[c] = a
+            root = _delete(b, left, right, parent, tprio, root)
+            free[nfree] = b
+            nfree += 1
+            beach -= 1
+            stats[_S_CIRCLE] += 1
+            size = _heap_remove(heap, hpos, key, size, a)
+            size = _heap_remove(heap, hpos, key, size, c)
+            size = _push_event(a, prv, nxt, site, xs, ys, key, heap, hpos, size)
+            size = _push_event(c, prv, nxt, site, xs, ys, key, heap, hpos, size)
+        elif i < n:
+            # site event: split the arc above the site into p, s, p
+            s = order[i]
+            i += 1
+            sx = xs[s]
+            v = _locate(root, sx, ys[s], left, right, nxt, site, xs, ys)
+            size = _heap_remove(heap, hpos, key, size, v)
+            ns, nfree, nnodes, rng = _alloc(free, nfree, nnodes, tprio, hpos, rng)
+            v2, nfree, nnodes, rng = _alloc(free, nfree, nnodes, tprio, hpos, rng)
+            site[ns] = s
+            site[v2] = site[v]
+            edge[v2] = edge[v]
+            edge[v] = nrec
+            edge[ns] = nrec
+            nrec += 1
+            after = nxt[v]
+            nxt[v] = ns
+            prv[ns] = v
+            nxt[ns] = v2
+            prv[v2] = ns
+            nxt[v2] = after
+            if after != -1:
+                prv[after] = v2
+            root = _insert_after(v, ns, left, right, parent, tprio, root)
+            root = _insert_after(ns, v2, left, right, parent, tprio, root)
+            beach += 2
+            if beach > stats[_S_MAX_BEACH]:
+                stats[_S_MAX_BEACH] = beach
+            size = _push_event(v, prv, nxt, site, xs, ys, key, heap, hpos, size)
+            size = _push_event(v2, prv, nxt, site, xs, ys, key, heap, hpos, size)
+        else:
+            break
+    stats[_S_TRI_SWEEP] = ntri
+    return tri[: 3 * ntri], he[: 3 * ntri]
+
+
+# ---------------------------------------------------------------------------------------------
+# exact Delaunay repair (Lawson flips)
+# ---------------------------------------------------------------------------------------------
+
+
+@njit(**NJIT)
+def _link(he, a, b):
+    he[a] = b
+    if b != -1:
+        he[b] = a
+
+
+@njit(**NJIT)
+def _legalize_all(xs, ys, tri, he, stats):
+    """Flip every edge whose opposite vertex lies strictly inside the neighbour's circumcircle.
+
+    A stack of halfedges to check (each at most once at a time); a flip re-queues the four
+    outer edges of its quadrilateral. Strict ``incircle`` makes cocircular input terminate.
+    """
+    m = tri.shape[0]
+    stack = np.zeros(m + 1, dtype=np.int32)
+    queued = np.zeros(m, dtype=np.uint8)
+    sp = 0
+    for e in range(m):
+        if he[e] > e:
+            stack[sp] = e
+            sp += 1
+            queued[e] = 1
+    limit = 10 * m + 1000  # a valid triangulation needs far fewer; guards a broken one
+    flips = 0
+    while sp > 0:
+        sp -= 1
+        a = stack[sp]
+        queued[a] = 0
+        b = he[a]
+        if b == -1:
+            continue
+        a0 = a - a % 3
+        b0 = b - b % 3
+        al = a0 + (a + 1) % 3
+        ar = a0 + (a + 2) % 3
+        bl = b0 + (b + 2) % 3
+        br = b0 + (b + 1) % 3
+        p0 = tri[ar]
+        pr = tri[a]
+        pl = tri[al]
+        p1 = tri[bl]
+        v = incircle_fast(xs[p0], ys[p0], xs[pr], ys[pr], xs[pl], ys[pl], xs[p1], ys[p1])
+        if v != v:
+            v = incircle(xs[p0], ys[p0], xs[pr], ys[pr], xs[pl], ys[pl], xs[p1], ys[p1])
+        if v <= 0.0 or flips >= limit:
+            continue
+        flips += 1
+        tri[a] = p1
+        tri[b] = p0
+        hbl = he[bl]
+        har = he[ar]
+        _link(he, a, hbl)
+        _link(he, b, har)
+        _link(he, ar, bl)
+        for k in range(4):
+            e = a if k == 0 else (al if k == 1 else (b if k == 2 else br))
+            if queued[e] == 0 and he[e] != -1:
+                queued[e] = 1
+                stack[sp] = e
+                sp += 1
+    stats[_S_FLIPS] = flips
+
+
+@njit(**NJIT)
+def _fortune(xs, ys, stats):
+    order = _site_order(xs, ys)
+    tri, he = _sweep(xs, ys, order, stats)
+    _legalize_all(xs, ys, tri, he, stats)
+    return tri, he
+
+
+def _prepare(points: np.ndarray) -> np.ndarray:
+    pts = np.ascontiguousarray(points, dtype=np.float64)
+    if pts.ndim != 2 or pts.shape[1] != 2:
+        raise ValueError(f"points must have shape (n, 2), got {pts.shape}")
+    return pts
+
+
+def fortune_debug(points: np.ndarray) -> dict:
+    """Run the sweep and return its triangles, halfedges and counters.
+
+    Parameters
+    ----------
+    points : (n, 2) float64
+        Distinct points.
+
+    Returns
+    -------
+    dict
+        ``triangles (t, 3) int32``, ``halfedges (3 t,) int32`` (Delaunator layout, -1 on the
+        hull), ``flips`` (Lawson flips after the sweep; ~0 on ordinary input), ``bad``
+        (edges claimed by a third triangle during the sweep; always 0), ``max_beach`` (most
+        arcs at once), ``circle_events`` and ``sweep_triangles``.
+    """
+    pts = _prepare(points)
+    stats = np.zeros(_NSTATS, dtype=np.int64)
+    if pts.shape[0] < 3:
+        tri = np.zeros(0, dtype=np.int32)
+        he = np.zeros(0, dtype=np.int32)
+    else:
+        tri, he = _fortune(pts[:, 0].copy(), pts[:, 1].copy(), stats)
+    return {
+        "triangles": tri.reshape(-1, 3),
+        "halfedges": he,
+        "flips": int(stats[_S_FLIPS]),
+        "bad": int(stats[_S_BAD]),
+        "max_beach": int(stats[_S_MAX_BEACH]),
+        "circle_events": int(stats[_S_CIRCLE]),
+        "sweep_triangles": int(stats[_S_TRI_SWEEP]),
+    }
+
+
+def fortune_triangles(points: np.ndarray) -> np.ndarray:
+    """Delaunay triangles of distinct points by Fortune's sweep (the dual of its Voronoi).
+
+    Parameters
+    ----------
+    points : (n, 2) float64
+        Distinct points (the engine removes exact duplicates first); ``n >= 0``.
+
+    Returns
+    -------
+    (t, 3) int32
+        Counter-clockwise triangles forming a Delaunay triangulation; ``(0, 3)`` when the
+        points are fewer than three or all collinear.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> fortune_triangles(np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])).tolist()
+    [[1, 0, 2]]
+    """
+    pts = _prepare(points)
+    if pts.shape[0] < 3:
+        return np.zeros((0, 3), dtype=np.int32)
+    stats = np.zeros(_NSTATS, dtype=np.int64)
+    tri, _ = _fortune(pts[:, 0].copy(), pts[:, 1].copy(), stats)
+    return tri.reshape(-1, 3)
