@@ -24,28 +24,76 @@ def geom_offsets_for(n, ring_cell):
     return geom
 
 
-def _grid_for(dom: Domain, n_hint: int):
+def domain_grid(dom: Domain, n_hint: int):
+    """Marked/inside grids over the domain's bounds, squares about half a cell wide."""
     x0, y0, x1, y1 = dom.bounds
     side = max(x1 - x0, y1 - y0)
-    g = int(min(max(np.sqrt(max(n_hint, 1)), 8), 2048))
+    g = int(min(max(2.0 * np.sqrt(max(n_hint, 1)), 8), 4096))
     h = side / g
     gx = int(np.ceil((x1 - x0) / h)) + 1
     gy = int(np.ceil((y1 - y0) / h)) + 1
     rings = shapely.get_rings(shapely.get_parts(dom.geometry))
     pts = [shapely.get_coordinates(r) for r in rings]
     segs = np.concatenate([np.hstack((p[:-1], p[1:])) for p in pts])
-    marked = mark_segments(np.ascontiguousarray(segs), x0, y0, h, gx, gy)
+    # segments on the bounding box cannot cut cells that are already clipped to the box
+    on_box = (
+        ((segs[:, 0] == x0) & (segs[:, 2] == x0))
+        | ((segs[:, 0] == x1) & (segs[:, 2] == x1))
+        | ((segs[:, 1] == y0) & (segs[:, 3] == y0))
+        | ((segs[:, 1] == y1) & (segs[:, 3] == y1))
+    )
+    segs = np.ascontiguousarray(segs[~on_box])
+    marked = mark_segments(segs, x0, y0, h, gx, gy)
     cx = x0 + (np.arange(gx) + 0.5) * h
     cy = y0 + (np.arange(gy) + 0.5) * h
-    xx, yy = np.meshgrid(cx, cy)
-    inside = np.zeros((gy, gx), dtype=np.bool_)
     free = ~marked
+    rows, cols = np.nonzero(free)
+    inside = np.zeros((gy, gx), dtype=np.bool_)
     shapely.prepare(dom.geometry)
-    inside[free] = shapely.contains_xy(dom.geometry, xx[free], yy[free])
+    inside[rows, cols] = shapely.contains_xy(dom.geometry, cx[cols], cy[rows])
     return marked, inside, x0, y0, h
 
 
-def clip_to_polygon(dom: Domain, coords, ring_offsets, ring_cell, n):
+def _intersect_local(dom: Domain, convex):
+    """``convex ∩ domain`` for many small convex polygons, each against a local domain piece.
+
+    Overlay cost grows with the size of both operands, so the domain is cut into tiles (each
+    grown by half a tile) and every polygon that fits inside one grown tile is intersected
+    with that tile's piece only.
+    """
+    out = np.empty(len(convex), dtype=object)  # noqa: TID251 - every slot is filled below
+    x0, y0, x1, y1 = dom.bounds
+    t = int(min(max(np.sqrt(len(convex)) / 2.0, 1.0), 256))
+    ts = max(x1 - x0, y1 - y0) / t
+    bx = shapely.bounds(convex)
+    mid_x = np.floor((0.5 * (bx[:, 0] + bx[:, 2]) - x0) / ts).astype(np.int64)
+    mid_y = np.floor((0.5 * (bx[:, 1] + bx[:, 3]) - y0) / ts).astype(np.int64)
+    lo_x = x0 + (mid_x - 0.5) * ts
+    lo_y = y0 + (mid_y - 0.5) * ts
+    fits = (
+        (bx[:, 0] >= lo_x)
+        & (bx[:, 1] >= lo_y)
+        & (bx[:, 2] <= lo_x + 2.0 * ts)
+        & (bx[:, 3] <= lo_y + 2.0 * ts)
+    )
+    rest = np.flatnonzero(~fits)
+    if len(rest):
+        out[rest] = shapely.intersection(convex[rest], dom.geometry)
+    tile = mid_y * (t + 2) + mid_x
+    idx = np.flatnonzero(fits)
+    order = idx[np.argsort(tile[idx], kind="stable")]
+    if len(order):
+        cuts = np.flatnonzero(np.diff(tile[order])) + 1
+        for group in np.split(order, cuts):
+            k = group[0]
+            piece = shapely.intersection(
+                dom.geometry, shapely.box(lo_x[k], lo_y[k], lo_x[k] + 2 * ts, lo_y[k] + 2 * ts)
+            )
+            out[group] = shapely.intersection(convex[group], piece)
+    return out
+
+
+def clip_to_polygon(dom: Domain, grid, coords, ring_offsets, ring_cell, n):
     """Clip convex closed rings (one per non-empty cell) to a polygonal domain.
 
     Rings that the grid proves wholly inside are kept as they are, wholly outside ones are
@@ -53,8 +101,7 @@ def clip_to_polygon(dom: Domain, coords, ring_offsets, ring_cell, n):
     multipolygon buffers ``(coords, ring_offsets, polygon_offsets, geom_offsets)`` of all
     ``n`` cells.
     """
-    marked, inside, x0, y0, h = _grid_for(dom, len(ring_cell))
-    status = classify(coords, ring_offsets, marked, inside, x0, y0, h)
+    status = classify(coords, ring_offsets, *grid)
     lengths = np.diff(ring_offsets)
     simple = np.flatnonzero(status == 1)
     hard = np.flatnonzero(status == 2)
@@ -67,7 +114,7 @@ def clip_to_polygon(dom: Domain, coords, ring_offsets, ring_cell, n):
         convex = shapely.from_ragged_array(
             shapely.GeometryType.POLYGON, coords[h_mask], (h_off, np.arange(len(hard) + 1))
         )
-        clipped = shapely.orient_polygons(_polygonal(shapely.intersection(convex, dom.geometry)))
+        clipped = shapely.orient_polygons(_polygonal(_intersect_local(dom, convex)))
         parts, idx = shapely.get_parts(clipped, return_index=True)
         keep = ~shapely.is_empty(parts)
         parts = parts[keep]
@@ -116,7 +163,7 @@ def _polygonal(geoms):
     return out
 
 
-def domain_edges(dom: Domain, coords, ring_offsets, ring_cell, owner):
+def domain_edges(dom: Domain, grid, coords, ring_offsets, ring_cell, owner):
     """Unique shared edges ``(m, 2, 2)`` and their cell pairs ``(m, 2)``, clipped to the domain.
 
     Each pair ``(i, j)`` with ``i < j`` is taken from cell ``i``'s ring. Edges not longer than
@@ -127,17 +174,16 @@ def domain_edges(dom: Domain, coords, ring_offsets, ring_cell, owner):
     seg, pairs = shared_edges(coords, ring_offsets, ring_cell, owner, tol)
     if dom.is_rect or len(seg) == 0:
         return seg, pairs
-    a, b, pairs = _clip_segments(dom, seg[:, 0], seg[:, 1], pairs)
+    a, b, pairs = _clip_segments(dom, grid, seg[:, 0], seg[:, 1], pairs)
     length = np.hypot(b[:, 0] - a[:, 0], b[:, 1] - a[:, 1])
     keep = length > tol
     return np.stack((a[keep], b[keep]), axis=1), pairs[keep]
 
 
-def _clip_segments(dom: Domain, a, b, pairs):
-    marked, inside, x0, y0, h = _grid_for(dom, len(a) // 3)
+def _clip_segments(dom: Domain, grid, a, b, pairs):
     two = np.ascontiguousarray(np.stack((a, b), axis=1).reshape(-1, 2))
     offs = np.arange(0, 2 * len(a) + 1, 2, dtype=np.int64)
-    status = classify(two, offs, marked, inside, x0, y0, h)
+    status = classify(two, offs, *grid)
     keep = status == 1
     hard = np.flatnonzero(status == 2)
     out_a = [a[keep]]
@@ -145,7 +191,7 @@ def _clip_segments(dom: Domain, a, b, pairs):
     out_p = [pairs[keep]]
     if len(hard):
         lines = shapely.linestrings(np.stack((a[hard], b[hard]), axis=1))
-        cut = shapely.intersection(lines, dom.geometry)
+        cut = _intersect_local(dom, lines)
         parts, idx = shapely.get_parts(cut, return_index=True)
         is_line = (shapely.get_type_id(parts) == 1) & ~shapely.is_empty(parts)
         parts = parts[is_line]

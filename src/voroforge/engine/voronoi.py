@@ -11,7 +11,7 @@ import shapely
 from ..kernels.cells import cells_from_neighbors, cells_from_triangulation
 from ..kernels.delaunay import triangulate_sorted
 from ..kernels.rings import area_centroid, close_rings
-from ._assemble import clip_to_polygon, domain_edges, geom_offsets_for
+from ._assemble import clip_to_polygon, domain_edges, domain_grid, geom_offsets_for
 from ._csr import csr_from_pairs
 from ._inputs import as_points, duplicate_map
 from .domain import Domain, make_domain
@@ -230,10 +230,11 @@ def voronoi(points, boundary=None, *, algorithm: str = "delaunay") -> Diagram:
     nonempty = lengths[1:] > lengths[:-1]
     ring_offsets = np.concatenate(([0], lengths[1:][nonempty]))
     ring_cell = unique[nonempty]
-    edges = Edges(*domain_edges(dom, closed, ring_offsets, ring_cell, own))
+    grid = None if dom.is_rect else domain_grid(dom, len(ring_cell))
+    edges = Edges(*domain_edges(dom, grid, closed, ring_offsets, ring_cell, own))
     if dom.is_rect:
         polys = np.arange(len(ring_cell) + 1, dtype=np.int64)
         buffers = (closed, ring_offsets, polys, geom_offsets_for(n, ring_cell))
     else:
-        buffers = clip_to_polygon(dom, closed, ring_offsets, ring_cell, n)
+        buffers = clip_to_polygon(dom, grid, closed, ring_offsets, ring_cell, n)
     return Diagram(pts, dup, dom, buffers, edges, algorithm)

@@ -42,6 +42,7 @@ def _link(he, a, b):
 
 @njit(**NJIT)
 def _orient(exact, ax, ay, bx, by, cx, cy):
+    literally(exact)
     if exact:
         return orient2d(ax, ay, bx, by, cx, cy)
     return orient2d_fast(ax, ay, bx, by, cx, cy)
@@ -49,6 +50,7 @@ def _orient(exact, ax, ay, bx, by, cx, cy):
 
 @njit(**NJIT)
 def _incircle(exact, ax, ay, bx, by, cx, cy, dx, dy):
+    literally(exact)
     if exact:
         return incircle(ax, ay, bx, by, cx, cy, dx, dy)
     return incircle_fast(ax, ay, bx, by, cx, cy, dx, dy)
@@ -72,6 +74,7 @@ def _legalize(a, xs, ys, tri, he, hull_tri, stack, exact):
     a hull halfedge to a new index, ``hull_tri`` (hull halfedge by start vertex) follows it.
     Returns False when a fast (non-exact) predicate could not decide.
     """
+    literally(exact)
     sp = 0
     while True:
         b = he[a]
@@ -292,7 +295,7 @@ def _insert_on_edge(k, e, xs, ys, tri, he, hull_tri, hull_next, hull_prev, stack
 
 
 @njit(**NJIT)
-def _sweep(xs, ys, exact):
+def _sweep_impl(xs, ys, exact):
     """Sweep points renumbered so that the seed is 0, 1, 2 and the rest follow in sweep order.
 
     ``exact`` must be a compile-time literal: the fast variant carries no exact-arithmetic code
@@ -408,6 +411,18 @@ def _sweep(xs, ys, exact):
         hull_hash[_hash_key(xs[e], ys[e], cx, cy, hash_size)] = e
 
     return True, tri, he, tcount, hull_tri, hull_next, hull_prev, hull_start, deferred[:n_def]
+
+
+@njit(**NJIT)
+def _sweep_fast(xs, ys):
+    """Sweep with filtered predicates only; gives up on the first undecidable one."""
+    return _sweep_impl(xs, ys, False)
+
+
+@njit(**NJIT)
+def _sweep_exact(xs, ys):
+    """Sweep with exact predicates."""
+    return _sweep_impl(xs, ys, True)
 
 
 @njit(**NJIT)
@@ -544,9 +559,9 @@ def triangulate_sorted(xs: np.ndarray, ys: np.ndarray):
         return np.arange(n), xs, ys, empty, empty, empty, False
     order = _sweep_order(xs, ys, i0, i1, i2)
     sx, sy = _gather(xs, ys, order)
-    res = _sweep(sx, sy, False)
+    res = _sweep_fast(sx, sy)
     if not res[0]:
-        res = _sweep(sx, sy, True)
+        res = _sweep_exact(sx, sy)
     _, tri, he, tcount, hull_tri, hull_next, hull_prev, hull_start, deferred = res
     if deferred.shape[0]:
         tcount = _insert_deferred(sx, sy, tri, he, tcount, hull_tri, hull_next, hull_prev, deferred)

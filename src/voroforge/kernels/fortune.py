@@ -30,7 +30,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
-from .predicates import circumcenter, incircle, incircle_fast, orient2d
+from .predicates import _CCW_BOUND, _cross, _expansion_sum, incircle, incircle_fast, orient2d
 
 # stats slots returned by the debug helper
 _S_FLIPS = 0
@@ -96,11 +96,56 @@ def _breakpoint(px, py, qx, qy, sweep):
 
 
 @njit(**NJIT)
-def _event_y(ax, ay, bx, by, cx, cy):
-    """Top of the circumcircle of ``a, b, c`` (+inf when it does not fit in a double)."""
-    ox, oy = circumcenter(ax, ay, bx, by, cx, cy)
-    r = math.sqrt((bx - ox) * (bx - ox) + (by - oy) * (by - oy))
-    y = oy + r
+def _det(ax, ay, bx, by, cx, cy):
+    """``orient2d(a, b, c)`` to full relative precision (its value, not only its sign).
+
+    The circumcentre of a nearly collinear triple divides by this determinant, so its
+    floating-point value must not be noise: when the filter cannot vouch for it, the exact
+    expansion is summed instead.
+    """
+    detleft = (ax - cx) * (by - cy)
+    detright = (ay - cy) * (bx - cx)
+    det = detleft - detright
+    if abs(det) >= _CCW_BOUND * (abs(detleft) + abs(detright)):
+        return det
+    t1 = np.zeros(4)
+    t2 = np.zeros(4)
+    t3 = np.zeros(4)
+    t12 = np.zeros(8)
+    tot = np.zeros(12)
+    _cross(ax, ay, bx, by, t1)
+    _cross(bx, by, cx, cy, t2)
+    _cross(cx, cy, ax, ay, t3)
+    n12 = _expansion_sum(t1, 4, t2, 4, t12)
+    m = _expansion_sum(t12, n12, t3, 4, tot)
+    v = 0.0
+    for k in range(m):  # smallest component first
+        v += tot[k]
+    return v
+
+
+@njit(**NJIT)
+def _event_y(ax, ay, bx, by, cx, cy, det):
+    """Top of the circumcircle of the counter-clockwise ``a, b, c`` (``det`` = their orient2d).
+
+    Computed relative to ``a``; when the centre lies below ``a`` the top is
+    ``ay + ux^2 / (r - uy)`` rather than ``ay + uy + r``, which would cancel catastrophically
+    for the huge circles of nearly collinear triples. +inf when it overflows.
+    """
+    dx = bx - ax
+    dy = by - ay
+    ex = cx - ax
+    ey = cy - ay
+    bl = dx * dx + dy * dy
+    cl = ex * ex + ey * ey
+    d = 0.5 / det
+    ux = (ey * bl - dy * cl) * d
+    uy = (dx * cl - ex * bl) * d
+    r = math.sqrt(ux * ux + uy * uy)
+    if uy >= 0.0:
+        y = ay + (uy + r)
+    else:
+        y = ay + ux * ux / (r - uy)
     if y != y or y == np.inf or y == -np.inf:
         return np.inf
     return y
@@ -277,9 +322,15 @@ def _push_event(node, prv, nxt, site, xs, ys, key, heap, hpos, size):
     sc = site[c]
     if sa == sc:
         return size
-    if orient2d(xs[sa], ys[sa], xs[sb], ys[sb], xs[sc], ys[sc]) <= 0.0:
+    ax = xs[sa]
+    ay = ys[sa]
+    bx = xs[sb]
+    by = ys[sb]
+    cx = xs[sc]
+    cy = ys[sc]
+    if orient2d(ax, ay, bx, by, cx, cy) <= 0.0:
         return size
-    key[node] = _event_y(xs[sa], ys[sa], xs[sb], ys[sb], xs[sc], ys[sc])
+    key[node] = _event_y(ax, ay, bx, by, cx, cy, _det(ax, ay, bx, by, cx, cy))
     heap[size] = node
     _sift_up(heap, hpos, key, size)
     return size + 1

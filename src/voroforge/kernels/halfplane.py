@@ -96,72 +96,52 @@ def _bucket_sort(xs, ys, x0, y0, hx, hy, nx, ny):
 
 
 @njit(**NJIT)
-def _push(wx, wy, wo, c, x, y, o):
-    """Append a vertex, merging it into the previous one when they coincide."""
-    if c > 0 and wx[c - 1] == x and wy[c - 1] == y:
-        wo[c - 1] = o  # the zero-length edge goes; the later edge keeps its owner
+def _push(px, py, po, c, x, y, o):
+    """Append vertex ``c`` (an absolute index), or merge it into vertex ``c - 1`` if equal.
+
+    Returns the index of the next free slot.
+    """
+    if px[c - 1] == x and py[c - 1] == y:
+        po[c - 1] = o  # the zero-length edge goes; the later edge keeps its owner
         return c
-    wx[c] = x
-    wy[c] = y
-    wo[c] = o
+    px[c] = x
+    py[c] = y
+    po[c] = o
     return c + 1
 
 
 @njit(**NJIT)
-def _close(wx, wy, c):
-    """Drop trailing vertices equal to the first one (zero-length closing edges)."""
-    while c > 1 and wx[c - 1] == wx[0] and wy[c - 1] == wy[0]:
-        c -= 1
-    return c
+def _cut(px, py, po, a, m, b, ss, j):
+    """Cut the polygon at ``a:a + m`` where its signed values ``ss`` are positive.
 
-
-@njit(**NJIT)
-def _cut(vx, vy, vo, m, wx, wy, wo, ss, qx, qy, j):
-    """Cut polygon ``v[:m]`` by the half-plane closer to the origin than to ``q``.
-
-    The result goes to ``w``; returns its length, or -1 when no vertex is cut away.
+    The result goes to ``b:``; returns its length and its squared radius (largest squared
+    vertex norm). ``px, py, po`` hold both polygons (``a`` and ``b`` are their offsets).
     """
-    h = 0.5 * (qx * qx + qy * qy)
-    cut = False
-    for k in range(m):
-        s = vx[k] * qx + vy[k] * qy - h
-        ss[k] = s
-        if s > 0.0:
-            cut = True
-    if not cut:
-        return -1
-    c = 0
+    c = b
+    px[b - 1] = np.nan  # so that the first vertex is never merged
     for k in range(m):
         kn = k + 1 if k + 1 < m else 0
         sa = ss[k]
         sb = ss[kn]
+        ax = px[a + k]
+        ay = py[a + k]
         if sa <= 0.0:
-            if sb <= 0.0:
-                c = _push(wx, wy, wo, c, vx[k], vy[k], vo[k])
-            elif sa == 0.0:
-                c = _push(wx, wy, wo, c, vx[k], vy[k], j)
-            else:  # leaving: keep the vertex, then the exit point starts the new edge
-                c = _push(wx, wy, wo, c, vx[k], vy[k], vo[k])
+            # a kept vertex on the line starts the new edge
+            c = _push(px, py, po, c, ax, ay, j if sa == 0.0 and sb > 0.0 else po[a + k])
+            if sa < 0.0 and sb > 0.0:  # leaving: the exit point starts the new edge
                 t = sa / (sa - sb)
-                x = vx[k] + t * (vx[kn] - vx[k])
-                y = vy[k] + t * (vy[kn] - vy[k])
-                c = _push(wx, wy, wo, c, x, y, j)
+                c = _push(px, py, po, c, ax + t * (px[a + kn] - ax), ay + t * (py[a + kn] - ay), j)
         elif sb < 0.0:  # entering: the entry point continues along the old edge
             t = sb / (sb - sa)
-            x = vx[kn] + t * (vx[k] - vx[kn])
-            y = vy[kn] + t * (vy[k] - vy[kn])
-            c = _push(wx, wy, wo, c, x, y, vo[k])
-    return _close(wx, wy, c)
-
-
-@njit(**NJIT)
-def _radius2(vx, vy, m):
+            bx = px[a + kn]
+            by = py[a + kn]
+            c = _push(px, py, po, c, bx + t * (ax - bx), by + t * (ay - by), po[a + k])
+    while c > b + 1 and px[c - 1] == px[b] and py[c - 1] == py[b]:
+        c -= 1  # trailing vertices equal to the first one
     r2 = 0.0
-    for k in range(m):
-        d = vx[k] * vx[k] + vy[k] * vy[k]
-        if d > r2:
-            r2 = d
-    return r2
+    for k in range(b, c):
+        r2 = max(r2, px[k] * px[k] + py[k] * py[k])
+    return c - b, r2
 
 
 @njit(**NJIT)
@@ -180,143 +160,117 @@ def _ring_gap(ix, iy, ring, fx0, fx1, fy0, fy1, hx, hy, nx, ny):
 
 
 @njit(**NJIT)
-def _cut_bucket(b, k, px, py, st, r2, m, a, bx, by, bo, ss):
-    """Cut the cell of sorted site ``k`` by every site of bucket ``b``.
+def _emit(px, py, po, a, m, sx, sy, box, ox, oy, oo):
+    """Write the cell at ``a:a + m`` around site ``(sx, sy)`` to ``ox, oy, oo``.
 
-    ``st = (start, sx, sy, sidx)``. Returns ``(m, a, r2)``: the new length (0 when the cell
-    vanished, -1 when the scratch is too small), the row holding it and the new radius.
+    Coordinates become absolute and vertices on box edges are snapped onto the box. Returns
+    the length written (0 when rounding left fewer than three distinct vertices).
     """
-    start, sx, sy, sidx = st
-    cap = bx.shape[1]
-    for t in range(start[b], start[b + 1]):
-        if t == k:
-            continue
-        qx = sx[t] - px
-        qy = sy[t] - py
-        if qx * qx + qy * qy > _REACH * r2:
-            continue
-        if 2 * m + 2 > cap:
-            return -1, a, r2
-        c = _cut(bx[a], by[a], bo[a], m, bx[1 - a], by[1 - a], bo[1 - a], ss, qx, qy, sidx[t])
-        if c < 0:
-            continue
-        a = 1 - a
-        m = c
-        if m < 3:
-            return 0, a, r2
-        r2 = _radius2(bx[a], by[a], m)
-    return m, a, r2
-
-
-@njit(**NJIT)
-def _build(k, st, grid, box, bx, by, bo, ss):
-    """Build the cell of sorted site ``k`` in scratch rows ``bx/by/bo``, relative to the site.
-
-    Returns ``(m, a)``: the vertex count (0 if empty, -1 if the scratch is too small) and the
-    scratch row that holds the polygon.
-    """
-    sx = st[1]
-    sy = st[2]
-    x0, y0, hx, hy, nx, ny = grid
-    px = sx[k]
-    py = sy[k]
-    xmin = box[0] - px
-    ymin = box[1] - py
-    xmax = box[2] - px
-    ymax = box[3] - py
-    a = 0
-    bx[0, 0], by[0, 0], bo[0, 0] = xmin, ymin, _BOTTOM
-    bx[0, 1], by[0, 1], bo[0, 1] = xmax, ymin, _RIGHT
-    bx[0, 2], by[0, 2], bo[0, 2] = xmax, ymax, _TOP
-    bx[0, 3], by[0, 3], bo[0, 3] = xmin, ymax, _LEFT
-    m = 4
-    r2 = _radius2(bx[0], by[0], m)
-    ix, iy = _bucket(px, py, x0, y0, hx, hy, nx, ny)
-    fx0 = px - (x0 + ix * hx)
-    fx1 = x0 + (ix + 1) * hx - px
-    fy0 = py - (y0 + iy * hy)
-    fy1 = y0 + (iy + 1) * hy - py
-    m, a, r2 = _cut_bucket(iy * nx + ix, k, px, py, st, r2, m, a, bx, by, bo, ss)
-    ring = 1
-    while m >= 3:
-        gap = _ring_gap(ix, iy, ring, fx0, fx1, fy0, fy1, hx, hy, nx, ny)
-        if gap < 0.0 or gap * gap > _REACH * r2:
-            break
-        for jy in range(max(iy - ring, 0), min(iy + ring, ny - 1) + 1):
-            edge_row = jy == iy - ring or jy == iy + ring
-            step = 1 if edge_row else 2 * ring
-            dy = max(y0 + jy * hy - py, py - (y0 + (jy + 1) * hy), 0.0)
-            for jx in range(ix - ring, ix + ring + 1, step):
-                if jx < 0 or jx >= nx:
-                    continue
-                dx = max(x0 + jx * hx - px, px - (x0 + (jx + 1) * hx), 0.0)
-                if dx * dx + dy * dy > _REACH * r2:
-                    continue
-                m, a, r2 = _cut_bucket(jy * nx + jx, k, px, py, st, r2, m, a, bx, by, bo, ss)
-                if m < 3:
-                    break
-            if m < 3:
-                break
-        ring += 1
-    if m < 0:
-        return -1, a
-    return (m if m >= 3 else 0), a
-
-
-@njit(**NJIT)
-def _emit(vx, vy, vo, m, px, py, box, ox, oy, oo):
-    """Write the cell in absolute coordinates, snapped onto the box; returns its length."""
     xmin, ymin, xmax, ymax = box[0], box[1], box[2], box[3]
     c = 0
-    for t in range(m):
-        x = min(max(vx[t] + px, xmin), xmax)
-        y = min(max(vy[t] + py, ymin), ymax)
-        o = vo[t]
-        op = vo[t - 1] if t > 0 else vo[m - 1]
-        for side in (o, op):
-            if side == _BOTTOM:
-                y = ymin
-            elif side == _RIGHT:
-                x = xmax
-            elif side == _TOP:
-                y = ymax
-            elif side == _LEFT:
-                x = xmin
-        c = _push(ox, oy, oo, c, x, y, o if o >= 0 else -1)
-    c = _close(ox, oy, c)
+    for t in range(a, a + m):
+        x = min(max(px[t] + sx, xmin), xmax)
+        y = min(max(py[t] + sy, ymin), ymax)
+        o = po[t]
+        op = po[t - 1] if t > a else po[a + m - 1]
+        if o == _BOTTOM or op == _BOTTOM:
+            y = ymin
+        if o == _TOP or op == _TOP:
+            y = ymax
+        if o == _LEFT or op == _LEFT:
+            x = xmin
+        if o == _RIGHT or op == _RIGHT:
+            x = xmax
+        o = max(o, -1)
+        if c > 0 and ox[c - 1] == x and oy[c - 1] == y:
+            oo[c - 1] = o
+        else:
+            ox[c] = x
+            oy[c] = y
+            oo[c] = o
+            c += 1
+    while c > 1 and ox[c - 1] == ox[0] and oy[c - 1] == oy[0]:
+        c -= 1
     return c if c >= 3 else 0
 
 
 @njit(**NJIT)
-def _cell(k, st, grid, box, scratch):
-    """Build and emit the cell of sorted site ``k``; returns ``(length, scratch)``.
+def _build(k, start, sx, sy, sidx, grid, box, scratch):
+    """Build the cell of sorted site ``k`` and write it to the output rows of ``scratch``.
 
-    ``scratch = (bx, by, bo, ss, ox, oy, oo)`` is replaced by a larger one when needed; the
-    emitted polygon is in ``ox, oy, oo``.
+    ``scratch = (px, py, po, ss, ox, oy, oo)`` from ``_scratch``: two polygons relative to
+    the site in ``px, py, po`` (at offsets 1 and ``cap + 2``), the signed values of a cut and
+    the output. Returns the emitted length (0 if the cell is empty), or -1 when the scratch
+    arrays are too small for this cell.
     """
-    bx, by, bo, ss, ox, oy, oo = scratch
-    while True:
-        m, a = _build(k, st, grid, box, bx, by, bo, ss)
-        if m >= 0:
-            break
-        cap = 2 * bx.shape[1]
-        bx = np.zeros((2, cap))
-        by = np.zeros((2, cap))
-        bo = np.zeros((2, cap), np.int64)
-        ss = np.zeros(cap)
-        ox = np.zeros(cap)
-        oy = np.zeros(cap)
-        oo = np.zeros(cap, np.int64)
-    c = _emit(bx[a], by[a], bo[a], m, st[1][k], st[2][k], box, ox, oy, oo)
-    return c, (bx, by, bo, ss, ox, oy, oo)
+    px, py, po, ss, ox, oy, oo = scratch
+    x0, y0, hx, hy, nx, ny = grid
+    cap = ss.shape[0]
+    cx = sx[k]
+    cy = sy[k]
+    a = 1
+    b = cap + 2
+    px[a], py[a], po[a] = box[0] - cx, box[1] - cy, _BOTTOM
+    px[a + 1], py[a + 1], po[a + 1] = box[2] - cx, box[1] - cy, _RIGHT
+    px[a + 2], py[a + 2], po[a + 2] = box[2] - cx, box[3] - cy, _TOP
+    px[a + 3], py[a + 3], po[a + 3] = box[0] - cx, box[3] - cy, _LEFT
+    m = 4
+    r2 = 0.0
+    for t in range(a, a + 4):
+        r2 = max(r2, px[t] * px[t] + py[t] * py[t])
+    ix, iy = _bucket(cx, cy, x0, y0, hx, hy, nx, ny)
+    fx0 = cx - (x0 + ix * hx)
+    fx1 = x0 + (ix + 1) * hx - cx
+    fy0 = cy - (y0 + iy * hy)
+    fy1 = y0 + (iy + 1) * hy - cy
+    ring = 0
+    while m >= 3:
+        if ring > 0:
+            gap = _ring_gap(ix, iy, ring, fx0, fx1, fy0, fy1, hx, hy, nx, ny)
+            if gap < 0.0 or gap * gap > _REACH * r2:
+                break
+        for jy in range(max(iy - ring, 0), min(iy + ring, ny - 1) + 1):
+            step = 1 if jy == iy - ring or jy == iy + ring else 2 * ring
+            dy = max(y0 + jy * hy - cy, cy - (y0 + (jy + 1) * hy), 0.0)
+            for jx in range(ix - ring, ix + ring + 1, step):
+                if jx < 0 or jx >= nx or m < 3:
+                    continue
+                dx = max(x0 + jx * hx - cx, cx - (x0 + (jx + 1) * hx), 0.0)
+                if dx * dx + dy * dy > _REACH * r2:
+                    continue
+                bucket = jy * nx + jx
+                for t in range(start[bucket], start[bucket + 1]):
+                    qx = sx[t] - cx
+                    qy = sy[t] - cy
+                    h = 0.5 * (qx * qx + qy * qy)
+                    if t == k or 2.0 * h > _REACH * r2:
+                        continue
+                    out = False
+                    for u in range(m):
+                        s = px[a + u] * qx + py[a + u] * qy - h
+                        ss[u] = s
+                        out |= s > 0.0
+                    if not out:
+                        continue
+                    if m + m // 2 + 2 > cap:  # each run of cut vertices adds at most one
+                        return -1
+                    m, r2 = _cut(px, py, po, a, m, b, ss, sidx[t])
+                    a, b = b, a
+                    if m < 3:
+                        break
+        ring += 1
+    if m < 3:
+        return 0
+    return _emit(px, py, po, a, m, cx, cy, box, ox, oy, oo)
 
 
 @njit(**NJIT)
 def _scratch(cap):
+    """Scratch arrays for ``_build``: two polygons, signed values and the output cell."""
     return (
-        np.zeros((2, cap)),
-        np.zeros((2, cap)),
-        np.zeros((2, cap), np.int64),
+        np.zeros(2 * cap + 2),
+        np.zeros(2 * cap + 2),
+        np.zeros(2 * cap + 2, np.int64),
         np.zeros(cap),
         np.zeros(cap),
         np.zeros(cap),
@@ -324,22 +278,33 @@ def _scratch(cap):
     )
 
 
+@njit(**NJIT)
+def _cell(k, start, sx, sy, sidx, grid, box, scratch):
+    """``_build`` with scratch arrays that grow as needed; returns ``(length, scratch)``."""
+    c = _build(k, start, sx, sy, sidx, grid, box, scratch)
+    while c < 0:
+        scratch = _scratch(2 * scratch[3].shape[0])
+        c = _build(k, start, sx, sy, sidx, grid, box, scratch)
+    return c, scratch
+
+
 @njit(**NJIT_PARALLEL)
-def _first_pass(st, grid, box, counts, where, slab_x, slab_y, slab_o, full):
+def _first_pass(start, sx, sy, sidx, grid, box, counts, where, slab_x, slab_y, slab_o, full):
     """Build every cell; store it in its chunk's slab, or mark the chunk full."""
-    n = st[1].shape[0]
-    sidx = st[3]
+    n = sx.shape[0]
     per = slab_x.shape[0] // full.shape[0]
     for ch in prange(full.shape[0]):
         scratch = _scratch(_CAP)
         pos = ch * per
         end = pos + per
         for k in range(ch * _CHUNK, min((ch + 1) * _CHUNK, n)):
-            c, scratch = _cell(k, st, grid, box, scratch)
+            c = _build(k, start, sx, sy, sidx, grid, box, scratch)
+            if c < 0:
+                c, scratch = _cell(k, start, sx, sy, sidx, grid, box, scratch)
             counts[sidx[k]] = c
             if full[ch] == 0 and pos + c <= end:
-                ox, oy, oo = scratch[4], scratch[5], scratch[6]
                 where[k] = pos
+                ox, oy, oo = scratch[4], scratch[5], scratch[6]
                 for t in range(c):
                     slab_x[pos + t] = ox[t]
                     slab_y[pos + t] = oy[t]
@@ -350,10 +315,11 @@ def _first_pass(st, grid, box, counts, where, slab_x, slab_y, slab_o, full):
 
 
 @njit(**NJIT_PARALLEL)
-def _second_pass(st, grid, box, offsets, where, slab_x, slab_y, slab_o, full, coords, owner):
+def _second_pass(
+    start, sx, sy, sidx, grid, box, offsets, where, slab_x, slab_y, slab_o, full, coords, owner
+):
     """Move every cell to its place in the output; rebuild the cells of full chunks."""
-    n = st[1].shape[0]
-    sidx = st[3]
+    n = sx.shape[0]
     for ch in prange(full.shape[0]):
         scratch = _scratch(_CAP if full[ch] else 1)
         for k in range(ch * _CHUNK, min((ch + 1) * _CHUNK, n)):
@@ -361,7 +327,7 @@ def _second_pass(st, grid, box, offsets, where, slab_x, slab_y, slab_o, full, co
             dst = offsets[i]
             c = offsets[i + 1] - dst
             if full[ch]:
-                c, scratch = _cell(k, st, grid, box, scratch)
+                c, scratch = _cell(k, start, sx, sy, sidx, grid, box, scratch)
                 ox, oy, oo = scratch[4], scratch[5], scratch[6]
                 for t in range(c):
                     coords[dst + t, 0] = ox[t]
@@ -411,7 +377,8 @@ def halfplane_cells(points, box):
     xs = np.ascontiguousarray(pts[:, 0])
     ys = np.ascontiguousarray(pts[:, 1])
     grid = _grid_shape(xs, ys)
-    st = _bucket_sort(xs, ys, *grid)
+    start, sx, sy, sidx = _bucket_sort(xs, ys, *grid)
+    st = (start, sx, sy, sidx, grid, boxa)
     nchunks = (n + _CHUNK - 1) // _CHUNK
     per = _SLAB * min(_CHUNK, n) + 16
     counts = np.zeros(n, np.int64)
@@ -420,11 +387,11 @@ def halfplane_cells(points, box):
     slab_y = np.zeros(nchunks * per)
     slab_o = np.zeros(nchunks * per, np.int64)
     full = np.zeros(nchunks, np.int8)
-    _first_pass(st, grid, boxa, counts, where, slab_x, slab_y, slab_o, full)
+    _first_pass(*st, counts, where, slab_x, slab_y, slab_o, full)
     offsets = np.zeros(n + 1, np.int64)
     np.cumsum(counts, out=offsets[1:])
     k = int(offsets[-1])
     coords = np.empty((k, 2))  # noqa: TID251 - every slot is written by _second_pass
     owner = np.empty(k, np.int32)  # noqa: TID251 - every slot is written by _second_pass
-    _second_pass(st, grid, boxa, offsets, where, slab_x, slab_y, slab_o, full, coords, owner)
+    _second_pass(*st, offsets, where, slab_x, slab_y, slab_o, full, coords, owner)
     return coords, offsets, owner

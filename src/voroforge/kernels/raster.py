@@ -342,6 +342,10 @@ def exact_nearest(xs, ys, pxs, pys, metric, want_f2, tile, max_cand):
 # ---------------------------------------------------------------------------------------
 # Jump Flooding
 # ---------------------------------------------------------------------------------------
+#
+# Labels hold site positions; position ``m`` (one past the last site) means "no site yet" and
+# the coordinate arrays carry an extra ``+inf`` entry for it, so its distance is inf and the
+# flooding passes need no branch for empty pixels.
 
 
 @njit(**NJIT)
@@ -356,105 +360,124 @@ def _seed_index(v, origin, size, count):
 
 
 @njit(**NJIT)
+def _d2(px, py, xs, ys, lab):
+    """Squared distance from ``(px, py)`` to site ``lab``."""
+    dx = px - xs[lab]
+    dy = py - ys[lab]
+    return dx * dx + dy * dy
+
+
+@njit(**NJIT)
 def _jfa_seed(xs, ys, pxs, pys, geom, second):
     """Seed each site at the pixel containing it (sites outside: nearest border pixel).
 
-    ``geom`` is ``(xmin, ymax, pixel_width, pixel_height)``. When two sites share a pixel
-    the nearer to its centre wins (ties: lower position); with ``second`` the runner-up is
-    kept in the second layer.
+    ``geom`` is ``(xmin, ymax, pixel_width, pixel_height)``; ``xs, ys`` end with the
+    sentinel. When two sites share a pixel the nearer to its centre wins (ties: lower
+    position); with ``second`` the runner-up is kept in the second layer.
     """
     h = pys.shape[0]
     w = pxs.shape[0]
-    a1 = np.full((h, w), -1, dtype=np.int32)
-    a2 = np.full((h, w) if second else (0, 0), -1, dtype=np.int32)
-    for s in range(xs.shape[0]):
+    m = xs.shape[0] - 1
+    a1 = np.full((h, w), m, dtype=np.int32)
+    a2 = np.full((h, w) if second else (0, 0), m, dtype=np.int32)
+    for s in range(m):
         c = _seed_index(xs[s], geom[0], geom[2], w)
         r = _seed_index(geom[1] - ys[s], 0.0, geom[3], h)
-        d = _key(pxs[c] - xs[s], pys[r] - ys[s], 0)
+        d = _d2(pxs[c], pys[r], xs, ys, s)
         old = a1[r, c]
-        if old < 0:
+        if d < _d2(pxs[c], pys[r], xs, ys, old):
             a1[r, c] = s
-        else:
-            dold = _key(pxs[c] - xs[old], pys[r] - ys[old], 0)
-            if d < dold:
-                a1[r, c] = s
-                if second:
-                    a2[r, c] = old
-            elif second:
-                o2 = a2[r, c]
-                if o2 < 0 or d < _key(pxs[c] - xs[o2], pys[r] - ys[o2], 0):
-                    a2[r, c] = s
+            if second:
+                a2[r, c] = old
+        elif second and d < _d2(pxs[c], pys[r], xs, ys, a2[r, c]):
+            a2[r, c] = s
     return a1, a2
+
+
+@njit(**NJIT)
+def _take(lab, px, py, xs, ys, best, bd):
+    """The better of ``(bd, best)`` and site ``lab`` (ties: lower position)."""
+    d = _d2(px, py, xs, ys, lab)
+    if d < bd or (d == bd and lab < best):
+        return lab, d
+    return best, bd
 
 
 @njit(**NJIT_PARALLEL)
 def _jfa_pass(src, dst, xs, ys, pxs, pys, step):
-    """One flooding pass: each pixel takes the nearest of its 9 neighbours' sites."""
+    """One flooding pass: each pixel takes the nearest of its 9 neighbours' sites.
+
+    Neighbours outside the image are replaced by the pixel itself (a no-op candidate), which
+    keeps the inner loop free of bounds tests.
+    """
     h, w = src.shape
-    for r in prange(h):
+    for row in prange(h):
+        r = np.int64(row)
         py = pys[r]
+        ru = r - step
+        if ru < 0:
+            ru = r
+        rd = r + step
+        if rd >= h:
+            rd = r
         for c in range(w):
             px = pxs[c]
+            cl = c - step
+            if cl < 0:
+                cl = c
+            cr = c + step
+            if cr >= w:
+                cr = c
             best = src[r, c]
-            bd = np.inf
-            if best >= 0:
-                bd = _key(px - xs[best], py - ys[best], 0)
-            for kr in range(3):
-                rr = r + (kr - 1) * step
-                if rr < 0 or rr >= h:
-                    continue
-                for kc in range(3):
-                    cc = c + (kc - 1) * step
-                    if cc < 0 or cc >= w or (kr == 1 and kc == 1):
-                        continue
-                    lab = src[rr, cc]
-                    if lab < 0 or lab == best:
-                        continue
-                    d = _key(px - xs[lab], py - ys[lab], 0)
-                    if d < bd or (d == bd and lab < best):
-                        best = lab
-                        bd = d
+            bd = _d2(px, py, xs, ys, best)
+            best, bd = _take(src[ru, cl], px, py, xs, ys, best, bd)
+            best, bd = _take(src[ru, c], px, py, xs, ys, best, bd)
+            best, bd = _take(src[ru, cr], px, py, xs, ys, best, bd)
+            best, bd = _take(src[r, cl], px, py, xs, ys, best, bd)
+            best, bd = _take(src[r, cr], px, py, xs, ys, best, bd)
+            best, bd = _take(src[rd, cl], px, py, xs, ys, best, bd)
+            best, bd = _take(src[rd, c], px, py, xs, ys, best, bd)
+            best, bd = _take(src[rd, cr], px, py, xs, ys, best, bd)
             dst[r, c] = best
 
 
 @njit(**NJIT)
-def _offer(lab, d, l1, e1, l2, e2):
-    """Insert candidate ``(d, lab)`` into the ordered pair ``(e1, l1) <= (e2, l2)``."""
-    if lab < 0 or lab == l1 or lab == l2:
-        return l1, e1, l2, e2
+def _offer(lab, px, py, xs, ys, top):
+    """Insert site ``lab`` into ``top = (l1, e1, l2, e2)``, the two nearest distinct sites."""
+    l1, e1, l2, e2 = top
+    if lab == l1 or lab == l2:
+        return top
+    d = _d2(px, py, xs, ys, lab)
     if d < e1 or (d == e1 and lab < l1):
         return lab, d, l1, e1
     if d < e2 or (d == e2 and lab < l2):
         return l1, e1, lab, d
-    return l1, e1, l2, e2
+    return top
 
 
 @njit(**NJIT_PARALLEL)
 def _jfa2_pass(s1, s2, t1, t2, xs, ys, pxs, pys, step):
-    """Flooding pass keeping the two nearest distinct sites per pixel."""
+    """Flooding pass keeping the two nearest distinct sites per pixel (18 candidates)."""
     h, w = s1.shape
-    for r in prange(h):
+    m = xs.shape[0] - 1
+    for row in prange(h):
+        r = np.int64(row)
         py = pys[r]
         for c in range(w):
             px = pxs[c]
-            l1 = -1
-            l2 = -1
-            e1 = np.inf
-            e2 = np.inf
-            for kr in range(3):
-                rr = r + (kr - 1) * step
+            top = (m, np.inf, m, np.inf)
+            for kr in range(-1, 2):
+                rr = r + kr * step
                 if rr < 0 or rr >= h:
                     continue
-                for kc in range(3):
-                    cc = c + (kc - 1) * step
+                for kc in range(-1, 2):
+                    cc = c + kc * step
                     if cc < 0 or cc >= w:
                         continue
-                    for lab in (s1[rr, cc], s2[rr, cc]):
-                        if lab >= 0 and lab != l1 and lab != l2:
-                            d = _key(px - xs[lab], py - ys[lab], 0)
-                            l1, e1, l2, e2 = _offer(lab, d, l1, e1, l2, e2)
-            t1[r, c] = l1
-            t2[r, c] = l2
+                    top = _offer(s1[rr, cc], px, py, xs, ys, top)
+                    top = _offer(s2[rr, cc], px, py, xs, ys, top)
+            t1[r, c] = top[0]
+            t2[r, c] = top[2]
 
 
 @njit(**NJIT_PARALLEL)
@@ -464,11 +487,7 @@ def _jfa_distances(a, xs, ys, pxs, pys, out):
     for r in prange(h):
         py = pys[r]
         for c in range(w):
-            lab = a[r, c]
-            if lab < 0:
-                out[r, c] = np.inf
-            else:
-                out[r, c] = math.sqrt(_key(pxs[c] - xs[lab], pys[r] - ys[lab], 0))
+            out[r, c] = math.sqrt(_d2(pxs[c], py, xs, ys, a[r, c]))
 
 
 @njit(**NJIT)
@@ -486,33 +505,38 @@ def jfa_nearest(xs, ys, pxs, pys, geom, steps, want_f2):
     steps : (p,) int64
         Step of each pass, e.g. ``N/2, ..., 2, 1, 2, 1`` (JFA+2).
     want_f2 : bool
-        Keep the two nearest sites per pixel (twice the work).
+        Keep the two nearest sites per pixel (about twice the work).
 
     Returns
     -------
     lab : (h, w) int32
-        Position of the site found for each pixel.
+        Position of the site found for each pixel (``m`` if none was found).
     d1 : (h, w) float64
-        Euclidean distance to it.
+        Euclidean distance to it (inf if none).
     d2 : (h, w) float64, or (0, 0) when ``want_f2`` is false
         Distance to the second site found (inf if none).
     """
     h = pys.shape[0]
     w = pxs.shape[0]
-    a1, a2 = _jfa_seed(xs, ys, pxs, pys, geom, want_f2)
-    b1 = np.full((h, w), -1, dtype=np.int32)
-    b2 = np.full((h, w) if want_f2 else (0, 0), -1, dtype=np.int32)
+    m = xs.shape[0]
+    sx = np.full(m + 1, np.inf)
+    sy = np.full(m + 1, np.inf)
+    sx[:m] = xs
+    sy[:m] = ys
+    a1, a2 = _jfa_seed(sx, sy, pxs, pys, geom, want_f2)
+    b1 = np.full((h, w), m, dtype=np.int32)
+    b2 = np.full((h, w) if want_f2 else (0, 0), m, dtype=np.int32)
     for p in range(steps.shape[0]):
         if want_f2:
-            _jfa2_pass(a1, a2, b1, b2, xs, ys, pxs, pys, steps[p])
+            _jfa2_pass(a1, a2, b1, b2, sx, sy, pxs, pys, steps[p])
             a2, b2 = b2, a2
         else:
-            _jfa_pass(a1, b1, xs, ys, pxs, pys, steps[p])
+            _jfa_pass(a1, b1, sx, sy, pxs, pys, steps[p])
         a1, b1 = b1, a1
     d1 = np.zeros((h, w))
-    _jfa_distances(a1, xs, ys, pxs, pys, d1)
+    _jfa_distances(a1, sx, sy, pxs, pys, d1)
     d2 = np.zeros((0, 0))
     if want_f2:
         d2 = np.zeros((h, w))
-        _jfa_distances(a2, xs, ys, pxs, pys, d2)
+        _jfa_distances(a2, sx, sy, pxs, pys, d2)
     return a1, d1, d2
