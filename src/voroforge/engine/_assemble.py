@@ -44,8 +44,10 @@ def domain_grid(dom: Domain, n_hint: int):
     )
     segs = np.ascontiguousarray(segs[~on_box])
     marked = mark_segments(segs, x0, y0, h, gx, gy)
-    cx = x0 + (np.arange(gx) + 0.5) * h
-    cy = y0 + (np.arange(gy) + 0.5) * h
+    # a free square's centre decides for the whole square; centres are pulled into the box
+    # because squares beyond it are only separated from the domain by skipped box segments
+    cx = np.clip(x0 + (np.arange(gx) + 0.5) * h, x0 + 0.25 * h, x1 - 0.25 * h)
+    cy = np.clip(y0 + (np.arange(gy) + 0.5) * h, y0 + 0.25 * h, y1 - 0.25 * h)
     free = ~marked
     rows, cols = np.nonzero(free)
     inside = np.zeros((gy, gx), dtype=np.bool_)

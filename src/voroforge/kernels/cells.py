@@ -188,18 +188,76 @@ def _dedupe_ring(qx, qy, qw, m):
 
 
 @njit(**NJIT)
-def _clip_box(px, py, pw, m, qx, qy, qw, box):
-    """Clip a convex polygon to the box with four half-plane cuts; the result ends in ``p``."""
-    m = _clip(px, py, pw, m, qx, qy, qw, -1.0, 0.0, -box[0], 0.0, 0.0, -1, 0, box[0])
-    m = _clip(qx, qy, qw, m, px, py, pw, 0.0, -1.0, -box[1], 0.0, 0.0, -1, 1, box[1])
-    m = _clip(px, py, pw, m, qx, qy, qw, 1.0, 0.0, box[2], 0.0, 0.0, -1, 0, box[2])
-    m = _clip(qx, qy, qw, m, px, py, pw, 0.0, 1.0, box[3], 0.0, 0.0, -1, 1, box[3])
-    return m
+def _box_crossing(a, b, xs, ys, side, box):
+    """Where the bisector of sites ``a`` and ``b`` crosses box side ``side`` (-1..-4).
+
+    Computed from the pair in a fixed order, so both cells of the pair get the same bits.
+    """
+    if a > b:
+        a, b = b, a
+    ax = xs[a]
+    ay = ys[a]
+    dx = xs[b] - ax
+    dy = ys[b] - ay
+    mx = ax + 0.5 * dx
+    my = ay + 0.5 * dy
+    if side == -1 or side == -3:
+        x = box[0] if side == -1 else box[2]
+        if dy == 0.0:
+            return np.nan, np.nan
+        return x, my - dx * (x - mx) / dy
+    y = box[1] if side == -2 else box[3]
+    if dx == 0.0:
+        return np.nan, np.nan
+    return mx - dy * (y - my) / dx, y
 
 
 @njit(**NJIT)
-def _cut_cell(i, xs, ys, nbrs, nn, box, px, py, pw, qx, qy, qw):
-    """Cell of site ``i`` as the box cut by the bisectors with ``nbrs[:nn]``; result in ``p``."""
+def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box):
+    """Replace computed vertices by values every cell sharing them computes identically.
+
+    A vertex between the bisectors with neighbours ``a`` then ``b`` is the circumcentre of
+    the Delaunay triangle ``(i, a, b)``; a vertex on a box side is the canonical crossing of
+    the bisector with that side; two box sides meet at an exact corner. Owners of box sides
+    (-1..-4) become -1.
+    """
+    for v in range(m):
+        a = pw[v - 1] if v > 0 else pw[m - 1]
+        b = pw[v]
+        if a >= 0 and b >= 0:
+            for k in range(nn):
+                if nbrs[k] == a:
+                    t = tris[k]
+                    if t >= 0:
+                        px[v] = cx[t]
+                        py[v] = cy[t]
+                    break
+        elif a >= 0 or b >= 0:
+            j = a if a >= 0 else b
+            side = b if a >= 0 else a
+            x, y = _box_crossing(i, j, xs, ys, side, box)
+            if x == x and box[0] <= x <= box[2] and box[1] <= y <= box[3]:
+                px[v] = x
+                py[v] = y
+        else:
+            vert = a if (a == -1 or a == -3) else b
+            horz = b if vert == a else a
+            if (vert == -1 or vert == -3) and (horz == -2 or horz == -4):
+                px[v] = box[0] if vert == -1 else box[2]
+                py[v] = box[1] if horz == -2 else box[3]
+    for v in range(m):
+        if pw[v] < 0:
+            pw[v] = -1
+    return _dedupe_ring(px, py, pw, m)
+
+
+@njit(**NJIT)
+def _cut_cell(i, xs, ys, nbrs, tris, nn, box, cx, cy, px, py, pw, qx, qy, qw):
+    """Cell of site ``i`` as the box cut by the bisectors with ``nbrs[:nn]``; result in ``p``.
+
+    ``tris[k]`` is the Delaunay triangle between neighbours ``k`` and ``k + 1`` (or -1); it
+    lets :func:`_canonical_vertices` make shared vertices bit-identical across cells.
+    """
     px[0] = box[0]
     py[0] = box[1]
     px[1] = box[2]
@@ -208,8 +266,10 @@ def _cut_cell(i, xs, ys, nbrs, nn, box, px, py, pw, qx, qy, qw):
     py[2] = box[3]
     px[3] = box[0]
     py[3] = box[3]
-    for k in range(4):
-        pw[k] = -1
+    pw[0] = -2  # bottom
+    pw[1] = -3  # right
+    pw[2] = -4  # top
+    pw[3] = -1  # left
     m = 4
     sx = xs[i]
     sy = ys[i]
@@ -225,57 +285,60 @@ def _cut_cell(i, xs, ys, nbrs, nn, box, px, py, pw, qx, qy, qw):
             py[v] = qy[v]
             pw[v] = qw[v]
         if m == 0:
-            break
-    return m
+            return 0
+    return _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box)
 
 
 @njit(**NJIT)
-def _cell(i, xs, ys, tri, he, cx, cy, cls, out, box, px, py, pw, qx, qy, qw, nbrs):
-    """Polygon of site ``i`` into ``p``; returns the vertex count."""
+def _cell(i, xs, ys, tri, he, cx, cy, cls, out, box, px, py, pw, qx, qy, qw, nbrs, cl, tb):
+    """Polygon of site ``i`` into ``p``; returns the vertex count.
+
+    A cell whose ring of circumcentres lies inside the box is that ring. Any other cell
+    (hull sites, cells reaching past the box) is cut out of the box by the bisectors of its
+    Delaunay neighbours: this never relies on far-away, ill-conditioned circumcentres of
+    nearly flat triangles.
+    """
     o0 = out[i]
     if o0 == -1:
         return 0
     hull = he[o0] == -1
     o = o0
     m = 0
-    inside = True
+    k = 0
+    inside = not hull
     while True:
         t = o // 3
         p = o - o % 3 + (o + 2) % 3  # previous halfedge: y -> i
         y = tri[p]
-        if hull:
-            nbrs[m] = tri[o - o % 3 + (o + 1) % 3]
-            m += 1
-        else:
-            if m > 0 and cls[t] == nbrs[m - 1]:
-                pw[m - 1] = y  # same circumcentre as the previous vertex: skip the 0-length edge
+        nbrs[k] = tri[o - o % 3 + (o + 1) % 3]
+        tb[k] = t
+        k += 1
+        if inside:
+            if m > 0 and cls[t] == cl[m - 1]:
+                pw[m - 1] = y  # same circumcentre as the previous vertex: no 0-length edge
             else:
-                px[m] = cx[t]
-                py[m] = cy[t]
-                pw[m] = y
-                nbrs[m] = cls[t]  # for interior sites nbrs holds each vertex's class
                 vx = cx[t]
                 vy = cy[t]
+                px[m] = vx
+                py[m] = vy
+                pw[m] = y
+                cl[m] = cls[t]
+                m += 1
                 if not (box[0] <= vx <= box[2] and box[1] <= vy <= box[3]):
                     inside = False
-                m += 1
         o = he[p]
         if o == -1:
-            if hull:
-                nbrs[m] = y
-                m += 1
+            nbrs[k] = y
+            tb[k] = -1
+            k += 1
             break
         if o == o0:
             break
-    if hull:
-        return _cut_cell(i, xs, ys, nbrs, m, box, px, py, pw, qx, qy, qw)
-    if m > 1 and nbrs[m - 1] == nbrs[0]:
+    if not inside:
+        return _cut_cell(i, xs, ys, nbrs, tb, k, box, cx, cy, px, py, pw, qx, qy, qw)
+    if m > 1 and cl[m - 1] == cl[0]:
         m -= 1
-    if m < 3:
-        return 0
-    if inside:
-        return m
-    return _clip_box(px, py, pw, m, qx, qy, qw, box)
+    return m if m >= 3 else 0
 
 
 @njit(**NJIT_PARALLEL)
@@ -291,9 +354,11 @@ def _count(xs, ys, tri, he, cx, cy, cls, out, box, cap):
         qy = np.zeros(cap)
         qw = np.zeros(cap, dtype=np.int64)
         nbrs = np.zeros(cap, dtype=np.int64)
+        cl = np.zeros(cap, dtype=np.int64)
+        tb = np.zeros(cap, dtype=np.int64)
         for i in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
             counts[i] = _cell(
-                i, xs, ys, tri, he, cx, cy, cls, out, box, px, py, pw, qx, qy, qw, nbrs
+                i, xs, ys, tri, he, cx, cy, cls, out, box, px, py, pw, qx, qy, qw, nbrs, cl, tb
             )
     return counts
 
@@ -310,8 +375,12 @@ def _fill(xs, ys, tri, he, cx, cy, cls, out, box, cap, offsets, coords, owner):
         qy = np.zeros(cap)
         qw = np.zeros(cap, dtype=np.int64)
         nbrs = np.zeros(cap, dtype=np.int64)
+        cl = np.zeros(cap, dtype=np.int64)
+        tb = np.zeros(cap, dtype=np.int64)
         for i in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
-            m = _cell(i, xs, ys, tri, he, cx, cy, cls, out, box, px, py, pw, qx, qy, qw, nbrs)
+            m = _cell(
+                i, xs, ys, tri, he, cx, cy, cls, out, box, px, py, pw, qx, qy, qw, nbrs, cl, tb
+            )
             base = offsets[i]
             for k in range(m):
                 coords[base + k, 0] = px[k]
@@ -360,9 +429,13 @@ def _cut_all(xs, ys, indptr, indices, box, cap, counts, offsets, coords, owner, 
         qx = np.zeros(cap)
         qy = np.zeros(cap)
         qw = np.zeros(cap, dtype=np.int64)
+        no_tris = np.full(cap, -1, dtype=np.int64)
+        none = np.zeros(0)
         for i in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
             nb = indices[indptr[i] : indptr[i + 1]]
-            m = _cut_cell(i, xs, ys, nb, nb.shape[0], box, px, py, pw, qx, qy, qw)
+            m = _cut_cell(
+                i, xs, ys, nb, no_tris, nb.shape[0], box, none, none, px, py, pw, qx, qy, qw
+            )
             if not fill:
                 counts[i] = m
                 continue
