@@ -212,8 +212,7 @@ def _delaunay(args: argparse.Namespace, stage: Stage) -> list[Path]:
 def _demo(args: argparse.Namespace, stage: Stage) -> list[Path]:
     from .demo import build_demo
 
-    stage("computing and writing the demo")
-    return build_demo(args.output)
+    return build_demo(args.output, progress=stage)
 
 
 _COMMANDS = {"voronoi": _voronoi, "delaunay": _delaunay, "demo": _demo}

@@ -11,7 +11,7 @@ __all__ = ["build_demo", "demo_domain", "demo_sites"]
 
 
 def demo_domain() -> shapely.Polygon:
-    """An irregular rounded outline inside ``[0, 100]²`` with a rounded-rectangle hole."""
+    """Return an irregular rounded outline inside ``[0, 100]²`` with a rounded-rectangle hole."""
     theta = np.linspace(0.0, 2.0 * np.pi, 240, endpoint=False)
     radius = 42.0 + 4.0 * np.sin(3.0 * theta) + 2.5 * np.cos(5.0 * theta + 0.7)
     outline = np.column_stack((50.0 + radius * np.cos(theta), 50.0 + radius * np.sin(theta)))
@@ -30,13 +30,15 @@ def demo_sites(domain: shapely.Geometry, n: int = 300, seed: int = 7) -> np.ndar
     return found[:n]
 
 
-def build_demo(out_dir) -> list[Path]:
+def build_demo(out_dir, *, progress=None) -> list[Path]:
     """Compute the demo diagram and write ``demo.svg``, ``demo.png`` and ``demo.geojson``.
 
     Parameters
     ----------
     out_dir : str or Path
         Folder for the files; created if missing.
+    progress : callable, optional
+        Called with the name of each stage (``"computing"``, ``"writing demo.svg"``, ...).
 
     Returns
     -------
@@ -47,13 +49,17 @@ def build_demo(out_dir) -> list[Path]:
 
     from .io import write_geojson, write_png, write_svg
 
+    stage = progress or (lambda name: None)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     domain = demo_domain()
     sites = demo_sites(domain)
+    stage(f"computing {len(sites)} Voronoi cells")
     d = vf.voronoi(sites, domain)
-    return [
-        write_svg(d.cells, out / "demo.svg", sites=d.sites, boundary=d.boundary),
-        write_png(d.cells, out / "demo.png", sites=d.sites, boundary=d.boundary),
-        write_geojson(d.cells, out / "demo.geojson", sites=d.sites),
-    ]
+    written = []
+    for name, writer in (("demo.svg", write_svg), ("demo.png", write_png)):
+        stage(f"writing {name}")
+        written.append(writer(d.cells, out / name, sites=d.sites, boundary=d.boundary))
+    stage("writing demo.geojson")
+    written.append(write_geojson(d.cells, out / "demo.geojson", sites=d.sites))
+    return written

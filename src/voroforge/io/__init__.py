@@ -42,7 +42,13 @@ FORMATS = {".svg": "svg", ".png": "png", ".geojson": "geojson", ".json": "geojso
 
 
 def output_format(path) -> str:
-    """Return ``"svg"``, ``"png"`` or ``"geojson"`` for ``path``'s suffix, or raise ``ValueError``."""
+    """Return the format (``"svg"``, ``"png"``, ``"geojson"``) of ``path``'s suffix.
+
+    Raises
+    ------
+    ValueError
+        For a suffix no writer knows.
+    """
     suffix = Path(path).suffix.lower()
     try:
         return FORMATS[suffix]

@@ -179,7 +179,7 @@ def read_points(path) -> np.ndarray:
     --------
     >>> import tempfile, pathlib
     >>> f = pathlib.Path(tempfile.mkdtemp()) / "pts.csv"
-    >>> _ = f.write_text("id,x,y\\na,0,1\\nb,2.5,3\\n")
+    >>> _ = f.write_text(chr(10).join(["id,x,y", "a,0,1", "b,2.5,3"]))
     >>> read_points(f).tolist()
     [[0.0, 1.0], [2.5, 3.0]]
     """

@@ -105,7 +105,7 @@ Transform = Callable[[np.ndarray], np.ndarray]
 
 
 def _polygons(geom) -> list:
-    """The polygon parts of a polygonal geometry (empty list for empty or non-polygonal)."""
+    """Return the polygon parts of a polygonal geometry (empty list for empty or non-polygonal)."""
     if geom is None or geom.is_empty:
         return []
     kind = geom.geom_type

@@ -25,7 +25,7 @@ _DEFAULT_PIXELS = 800.0
 
 
 def _colour(value) -> str:
-    """A colour for an SVG attribute: strings pass through, RGB triples become ``#rrggbb``."""
+    """Return an SVG colour: strings pass through, RGB triples become ``#rrggbb``."""
     if isinstance(value, str):
         return value
     r, g, b = (int(c) for c in list(value)[:3])

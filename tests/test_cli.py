@@ -1,0 +1,136 @@
+"""The command line: each command writes each format; bad input exits 2 with one clear line."""
+
+import json
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+import shapely
+from PIL import Image
+
+from voroforge.cli import _progress, main
+
+
+@pytest.fixture
+def points_csv(tmp_path):
+    rng = np.random.default_rng(11)
+    pts = rng.uniform(0, 50, size=(40, 2))
+    f = tmp_path / "pts.csv"
+    f.write_text("x,y\n" + "\n".join(f"{x!r},{y!r}" for x, y in pts.tolist()) + "\n")
+    return f
+
+
+def _run(capsys, *argv):
+    rc = main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return rc, out, err
+
+
+def test_voronoi_writes_every_format(tmp_path, points_csv, capsys):
+    outs = [tmp_path / "c.svg", tmp_path / "c.png", tmp_path / "c.geojson"]
+    argv = ["voronoi", points_csv, "--size", 200, "--boundary", "0,0,50,50"]
+    for o in outs:
+        argv += ["-o", o]
+    rc, out, err = _run(capsys, *argv)
+    assert rc == 0, err
+    assert out.split() == [str(o) for o in outs]  # only the written paths on stdout
+    assert err == ""
+    ET.parse(outs[0])
+    with Image.open(outs[1]) as img:
+        assert img.size == (200, 200)
+    feats = json.loads(outs[2].read_text())["features"]
+    assert len(feats) == 40
+    assert sum(f["properties"]["area"] for f in feats) == pytest.approx(2500.0)
+
+
+def test_voronoi_boundary_file(tmp_path, points_csv, capsys):
+    domain = shapely.box(0, 0, 50, 50).difference(shapely.box(20, 20, 30, 30))
+    bfile = tmp_path / "domain.geojson"
+    bfile.write_text(shapely.to_geojson(domain))
+    out = tmp_path / "cells.json"
+    rc, _, err = _run(capsys, "voronoi", points_csv, "-o", out, "--boundary", bfile)
+    assert rc == 0, err
+    feats = json.loads(out.read_text())["features"]
+    total = sum(f["properties"]["area"] for f in feats)
+    assert total == pytest.approx(domain.area)
+
+
+def test_delaunay_writes_triangles(tmp_path, points_csv, capsys):
+    svg, gj = tmp_path / "t.svg", tmp_path / "t.geojson"
+    rc, out, err = _run(capsys, "delaunay", points_csv, "-o", svg, "-o", gj)
+    assert rc == 0, err
+    feats = json.loads(gj.read_text())["features"]
+    assert all(len(f["properties"]["vertices"]) == 3 for f in feats)
+    ns = "{http://www.w3.org/2000/svg}"
+    paths = [p for p in ET.parse(svg).getroot().iter(ns + "path") if p.get("id")]
+    assert len(paths) == len(feats) > 40
+    pts = np.loadtxt(points_csv, delimiter=",", skiprows=1)
+    hull = shapely.MultiPoint(pts).convex_hull
+    assert sum(f["properties"]["area"] for f in feats) == pytest.approx(hull.area)
+
+
+def test_demo(tmp_path, capsys):
+    rc, out, err = _run(capsys, "demo", "-o", tmp_path / "demo")
+    assert rc == 0, err
+    names = [p.rsplit("/", 1)[-1] for p in out.split()]
+    assert names == ["demo.svg", "demo.png", "demo.geojson"]
+    feats = json.loads((tmp_path / "demo" / "demo.geojson").read_text())["features"]
+    assert len(feats) == 300
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["voronoi", "{tmp}/missing.csv", "-o", "{tmp}/x.svg"], "missing.csv: no such file"),
+        (["voronoi", "{pts}", "-o", "{tmp}/x.dxf"], "unsupported output type '.dxf'"),
+        (["voronoi", "{pts}", "-o", "{tmp}/x.svg", "--boundary", "1,2"], "not xmin,ymin,xmax,ymax"),
+        (["voronoi", "{bad}", "-o", "{tmp}/x.svg"], "line 3: 'oops' is not a number"),
+        (["voronoi", "{pts}", "-o", "{tmp}/no/such/dir/x.svg"], "x.svg"),
+        (["delaunay", "{pts}", "-o", "{tmp}/x.txt"], "unsupported output type '.txt'"),
+    ],
+)
+def test_bad_input_exits_2_with_one_line(tmp_path, points_csv, capsys, argv, message):
+    bad = tmp_path / "bad.csv"
+    bad.write_text("x,y\n1,2\n3,oops\n")
+    argv = [a.format(tmp=tmp_path, pts=points_csv, bad=bad) for a in argv]
+    rc, out, err = _run(capsys, *argv)
+    assert rc == 2
+    assert out == ""
+    assert err.startswith("voroforge: error: ") and message in err
+    assert err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_usage_errors_exit_2(capsys):
+    assert _run(capsys, "voronoi")[0] == 2
+    assert _run(capsys, "frobnicate")[0] == 2
+    for command in ("voronoi", "delaunay", "demo"):
+        rc, out, _ = _run(capsys, command, "--help")
+        assert rc == 0 and "examples:" in out
+    assert "--boundary" in _run(capsys, "voronoi", "--help")[1]
+
+
+def test_progress_context_is_quiet_when_disabled(capsys):
+    with _progress(False) as stage:
+        stage("reading")
+    with _progress(True) as stage:  # a real spinner; must not break on a non-terminal stream
+        stage("computing")
+    assert capsys.readouterr().out == ""
+
+
+def test_help_and_errors_via_subprocess(tmp_path):
+    run = [sys.executable, "-m", "voroforge"]
+    top = subprocess.run([*run, "--help"], capture_output=True, text=True, timeout=60)
+    assert top.returncode == 0
+    for word in ("voronoi", "delaunay", "demo", "examples:"):
+        assert word in top.stdout
+    bad = subprocess.run(
+        [*run, "voronoi", str(tmp_path / "nope.csv"), "-o", str(tmp_path / "x.svg")],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert bad.returncode == 2
+    assert bad.stdout == ""
+    assert bad.stderr.strip() == f"voroforge: error: {tmp_path / 'nope.csv'}: no such file"
