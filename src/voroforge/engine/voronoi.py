@@ -162,20 +162,20 @@ def _collinear_neighbors(xs, ys):
     return csr_from_pairs(len(xs), a, b)
 
 
-def _convex_cells(xs, ys, box, algorithm):
-    """Kernel dispatch: convex cells of distinct sites clipped to ``box``.
+def _closed_cells(xs, ys, box, algorithm, kmap):
+    """Kernel dispatch: closed convex rings of distinct sites clipped to ``box``.
 
-    Returns ``(coords, offsets, owner, order)``: the kernel may number the sites its own way;
-    kernel cell ``k`` belongs to site ``order[k]``.
+    Returns ``(coords, lengths, owner)`` with distinct site ``k``'s ring at
+    ``coords[lengths[k]:lengths[k + 1]]`` and owners mapped through ``kmap``.
     """
     if algorithm == "delaunay":
         order, sx, sy, tri, he, _, ok = triangulate_sorted(xs, ys)
         if ok:
-            coords, offsets, owner, _, _ = cells_from_triangulation(sx, sy, tri, he, box)
-            return coords, offsets, owner, order
+            return cells_from_triangulation(sx, sy, tri, he, box, order, kmap[order])
         indptr, indices = _collinear_neighbors(xs, ys)
-        cells = cells_from_neighbors(xs, ys, indptr, indices.astype(np.int64), box)
-        return (*cells, np.arange(len(xs)))
+        coords, offsets, owner = cells_from_neighbors(xs, ys, indptr, indices.astype(np.int64), box)
+        ident = np.arange(len(xs))
+        return close_rings(coords, offsets, owner, ident, kmap)
     raise ValueError(f"unknown algorithm {algorithm!r}; choose one of {', '.join(ALGORITHMS)}")
 
 
@@ -222,11 +222,7 @@ def voronoi(points, boundary=None, *, algorithm: str = "delaunay") -> Diagram:
     xs = np.ascontiguousarray(sub[:, 0])
     ys = np.ascontiguousarray(sub[:, 1])
     box = np.array(dom.bounds, dtype=np.float64)
-    coords, offsets, owner, order = _convex_cells(xs, ys, box, algorithm)
-    perm = np.zeros(len(order), dtype=np.int64)
-    perm[order] = np.arange(len(order))
-    kmap = unique[order]  # kernel index -> input index
-    closed, lengths, own = close_rings(coords, offsets, owner, perm, kmap)
+    closed, lengths, own = _closed_cells(xs, ys, box, algorithm, unique)
     nonempty = lengths[1:] > lengths[:-1]
     ring_offsets = np.concatenate(([0], lengths[1:][nonempty]))
     ring_cell = unique[nonempty]

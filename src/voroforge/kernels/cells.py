@@ -364,7 +364,8 @@ def _count(xs, ys, tri, he, cx, cy, cls, out, box, cap):
 
 
 @njit(**NJIT_PARALLEL)
-def _fill(xs, ys, tri, he, cx, cy, cls, out, box, cap, offsets, coords, owner):
+def _fill(xs, ys, tri, he, cx, cy, cls, out, box, cap, start, coords, owner, kmap):
+    """Write every cell as a closed ring at ``start[i]``; owners go through ``kmap``."""
     n = xs.shape[0]
     nchunks = (n + _CHUNK - 1) // _CHUNK
     for ch in prange(nchunks):
@@ -381,11 +382,17 @@ def _fill(xs, ys, tri, he, cx, cy, cls, out, box, cap, offsets, coords, owner):
             m = _cell(
                 i, xs, ys, tri, he, cx, cy, cls, out, box, px, py, pw, qx, qy, qw, nbrs, cl, tb
             )
-            base = offsets[i]
+            if m == 0:
+                continue
+            base = start[i]
             for k in range(m):
                 coords[base + k, 0] = px[k]
                 coords[base + k, 1] = py[k]
-                owner[base + k] = pw[k]
+                w = pw[k]
+                owner[base + k] = kmap[w] if w >= 0 else w
+            coords[base + m, 0] = px[0]
+            coords[base + m, 1] = py[0]
+            owner[base + m] = -2
 
 
 @njit(**NJIT)
@@ -396,11 +403,31 @@ def _max_degree(tri, n):
     return deg.max() if n > 0 else 0
 
 
-def cells_from_triangulation(xs, ys, tri, he, box):
-    """Clipped convex cells of distinct sites from their Delaunay triangulation (flat arrays).
+def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
+    """Clipped Voronoi cells of distinct sites from their Delaunay triangulation.
 
-    Returns ``(coords, offsets, owner, centers, cls)``; ``centers`` are the (merged)
-    circumcentres of the triangles and ``cls`` their cocircularity class.
+    Parameters
+    ----------
+    xs, ys : (u,) float64
+        Sites in the kernel's numbering (for locality, the sweep order of the triangulation).
+    tri, he : (3 t,) int32
+        Flat triangles and halfedges in that numbering.
+    box : (4,) float64
+        ``(xmin, ymin, xmax, ymax)`` every cell is clipped to.
+    order : (u,) int64
+        ``order[k]`` is the output position of kernel site ``k``.
+    kmap : (u,) int64
+        Output owner id of kernel site ``k``.
+
+    Returns
+    -------
+    coords : (K, 2) float64
+        Closed rings (last vertex repeats the first) in output order.
+    lengths : (u + 1,) int64
+        Output cell ``j`` is ``coords[lengths[j]:lengths[j + 1]]`` (empty when equal).
+    owner : (K,) int64
+        ``owner[v]`` is the site across the edge from vertex ``v`` to ``v + 1``, -1 on the box,
+        -2 on each closing vertex.
     """
     n = xs.shape[0]
     box = np.asarray(box, dtype=np.float64)
@@ -409,13 +436,16 @@ def cells_from_triangulation(xs, ys, tri, he, box):
     out = _outgoing(tri, he, n)
     cap = int(_max_degree(tri, n)) + 16
     counts = _count(xs, ys, tri, he, cx, cy, cls, out, box, cap)
-    offsets = np.zeros(n + 1, dtype=np.int64)
-    np.cumsum(counts, out=offsets[1:])
-    k = int(offsets[-1])
-    coords = np.zeros((k, 2))
-    owner = np.zeros(k, dtype=np.int32)
-    _fill(xs, ys, tri, he, cx, cy, cls, out, box, cap, offsets, coords, owner)
-    return coords, offsets, owner, np.stack((cx, cy), axis=1), cls
+    closed = np.where(counts > 0, counts + 1, 0)
+    lengths = np.zeros(n + 1, dtype=np.int64)
+    lengths[1:][order] = closed
+    np.cumsum(lengths, out=lengths)
+    start = lengths[:-1][order]
+    total = int(lengths[-1])
+    coords = np.zeros((total, 2))
+    owner = np.zeros(total, dtype=np.int64)
+    _fill(xs, ys, tri, he, cx, cy, cls, out, box, cap, start, coords, owner, kmap)
+    return coords, lengths, owner
 
 
 @njit(**NJIT_PARALLEL)
