@@ -37,17 +37,27 @@ def _find(parent, a):
 
 
 @njit(**NJIT_PARALLEL)
-def circumcenters(xs, ys, tri):
-    """Circumcentres of all triangles of a flat triangle array."""
+def circumcenters(xs, ys, tri, he):
+    """Circumcentres of all triangles, and a flag on each interior halfedge ``e < twin`` whose
+    quadrilateral the fast incircle filter cannot call (candidates for exact cocircularity)."""
     t = tri.shape[0] // 3
     cx = np.zeros(t)
     cy = np.zeros(t)
+    flag = np.zeros(tri.shape[0], dtype=np.uint8)
     for k in prange(t):
         a = tri[3 * k]
         b = tri[3 * k + 1]
         c = tri[3 * k + 2]
         cx[k], cy[k] = circumcenter(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c])
-    return cx, cy
+        for j in range(3):
+            e = 3 * k + j
+            f = he[e]
+            if f > e:
+                d = tri[f - f % 3 + (f + 2) % 3]
+                v = incircle_fast(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c], xs[d], ys[d])
+                if v != v:
+                    flag[e] = 1
+    return cx, cy, flag
 
 
 @njit(**NJIT)
@@ -57,30 +67,6 @@ def _quad(tri, e, f):
     c = tri[e - e % 3 + (e + 2) % 3]
     d = tri[f - f % 3 + (f + 2) % 3]
     return a, b, c, d
-
-
-@njit(**NJIT)
-def _maybe_cocircular(xs, ys, tri, he):
-    """Interior halfedges whose quadrilateral the fast incircle filter cannot call."""
-    cnt = 0
-    for e in range(tri.shape[0]):
-        f = he[e]
-        if f > e:
-            a, b, c, d = _quad(tri, e, f)
-            v = incircle_fast(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c], xs[d], ys[d])
-            if v != v:
-                cnt += 1
-    out = np.zeros(cnt, dtype=np.int64)
-    cnt = 0
-    for e in range(tri.shape[0]):
-        f = he[e]
-        if f > e:
-            a, b, c, d = _quad(tri, e, f)
-            v = incircle_fast(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c], xs[d], ys[d])
-            if v != v:
-                out[cnt] = e
-                cnt += 1
-    return out
 
 
 @njit(**NJIT)
@@ -107,15 +93,15 @@ def _merge_exact(xs, ys, tri, he, cand, cx, cy):
     return parent
 
 
-def merge_cocircular(xs, ys, tri, he, cx, cy):
+def merge_cocircular(xs, ys, tri, he, cx, cy, flag):
     """Give triangles with the same circumcircle one circumcentre; return each one's class.
 
     Two triangles sharing an edge have the same circumcircle exactly when the fourth point is
     on the first one's circle (exact incircle == 0). Classes are the connected components of
-    that relation; the centre of the class representative is copied to all its members. A
-    filtered pass finds the few candidate edges, so the exact code runs only on those.
+    that relation; the centre of the class representative is copied to all its members. The
+    exact code runs only on the halfedges flagged by :func:`circumcenters`.
     """
-    cand = _maybe_cocircular(xs, ys, tri, he)
+    cand = np.flatnonzero(flag)
     if cand.shape[0] == 0:
         return np.arange(tri.shape[0] // 3)
     return _merge_exact(xs, ys, tri, he, cand, cx, cy)
@@ -431,8 +417,8 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
     """
     n = xs.shape[0]
     box = np.asarray(box, dtype=np.float64)
-    cx, cy = circumcenters(xs, ys, tri)
-    cls = merge_cocircular(xs, ys, tri, he, cx, cy)
+    cx, cy, flag = circumcenters(xs, ys, tri, he)
+    cls = merge_cocircular(xs, ys, tri, he, cx, cy, flag)
     out = _outgoing(tri, he, n)
     cap = int(_max_degree(tri, n)) + 16
     counts = _count(xs, ys, tri, he, cx, cy, cls, out, box, cap)
