@@ -39,7 +39,8 @@ def _find(parent, a):
 @njit(**NJIT_PARALLEL)
 def circumcenters(xs, ys, tri, he):
     """Circumcentres of all triangles, and a flag on each interior halfedge ``e < twin`` whose
-    quadrilateral the fast incircle filter cannot call (candidates for exact cocircularity)."""
+    quadrilateral the fast incircle filter cannot call (candidates for exact cocircularity).
+    """
     t = tri.shape[0] // 3
     cx = np.zeros(t)
     cy = np.zeros(t)
@@ -108,15 +109,27 @@ def merge_cocircular(xs, ys, tri, he, cx, cy, flag):
 
 
 @njit(**NJIT)
-def _outgoing(tri, he, n):
-    """One outgoing halfedge per point; for hull points the outgoing hull halfedge."""
+def _outgoing(tri, he, cx, cy, box, n):
+    """Per point: one outgoing halfedge (the outgoing hull halfedge for hull points), its
+    degree, and whether its cell must be cut (hull point, or a circumcentre outside the box).
+    """
     out = np.full(n, -1, dtype=np.int64)
+    deg = np.zeros(n, dtype=np.int64)
+    cut = np.zeros(n, dtype=np.bool_)
     for e in range(tri.shape[0]):
-        out[tri[e]] = e
+        v = tri[e]
+        out[v] = e
+        deg[v] += 1
     for e in range(tri.shape[0]):
         if he[e] == -1:
             out[tri[e]] = e
-    return out
+            cut[tri[e]] = True
+    for t in range(tri.shape[0] // 3):
+        if not (box[0] <= cx[t] <= box[2] and box[1] <= cy[t] <= box[3]):
+            cut[tri[3 * t]] = True
+            cut[tri[3 * t + 1]] = True
+            cut[tri[3 * t + 2]] = True
+    return out, deg, cut
 
 
 @njit(**NJIT)
@@ -328,9 +341,15 @@ def _cell(i, xs, ys, tri, he, cx, cy, cls, out, box, px, py, pw, qx, qy, qw, nbr
 
 
 @njit(**NJIT_PARALLEL)
-def _count(xs, ys, tri, he, cx, cy, cls, out, box, cap):
+def _count(xs, ys, tri, he, cx, cy, cls, out, box, cap, deg, cut, merged):
+    """Vertex count of every cell. Without cocircular merges an uncut cell has one vertex
+    per incident triangle, so only cut cells need the full construction.
+    """
     n = xs.shape[0]
     counts = np.zeros(n, dtype=np.int64)
+    if not merged:
+        for i in prange(n):
+            counts[i] = deg[i] if deg[i] >= 3 else 0
     nchunks = (n + _CHUNK - 1) // _CHUNK
     for ch in prange(nchunks):
         px = np.zeros(cap)
@@ -343,6 +362,8 @@ def _count(xs, ys, tri, he, cx, cy, cls, out, box, cap):
         cl = np.zeros(cap, dtype=np.int64)
         tb = np.zeros(cap, dtype=np.int64)
         for i in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
+            if not merged and not cut[i]:
+                continue
             counts[i] = _cell(
                 i, xs, ys, tri, he, cx, cy, cls, out, box, px, py, pw, qx, qy, qw, nbrs, cl, tb
             )
@@ -381,14 +402,6 @@ def _fill(xs, ys, tri, he, cx, cy, cls, out, box, cap, start, coords, owner, kma
             owner[base + m] = -2
 
 
-@njit(**NJIT)
-def _max_degree(tri, n):
-    deg = np.zeros(n, dtype=np.int64)
-    for e in range(tri.shape[0]):
-        deg[tri[e]] += 1
-    return deg.max() if n > 0 else 0
-
-
 def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
     """Clipped Voronoi cells of distinct sites from their Delaunay triangulation.
 
@@ -419,9 +432,10 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
     box = np.asarray(box, dtype=np.float64)
     cx, cy, flag = circumcenters(xs, ys, tri, he)
     cls = merge_cocircular(xs, ys, tri, he, cx, cy, flag)
-    out = _outgoing(tri, he, n)
-    cap = int(_max_degree(tri, n)) + 16
-    counts = _count(xs, ys, tri, he, cx, cy, cls, out, box, cap)
+    out, deg, cut = _outgoing(tri, he, cx, cy, box, n)
+    cap = int(deg.max()) + 16
+    merged = bool(flag.any())
+    counts = _count(xs, ys, tri, he, cx, cy, cls, out, box, cap, deg, cut, merged)
     closed = np.where(counts > 0, counts + 1, 0)
     lengths = np.zeros(n + 1, dtype=np.int64)
     lengths[1:][order] = closed

@@ -2,12 +2,10 @@
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit, prange
 
-from ..config import NJIT, NJIT_PARALLEL
+from ..config import NJIT_PARALLEL
 
 
 @njit(**NJIT_PARALLEL)
@@ -93,36 +91,43 @@ def close_rings(coords, offsets, owner, perm, kmap):
     return out, lengths, own
 
 
-@njit(**NJIT)
+@njit(**NJIT_PARALLEL)
 def shared_edges(coords, ring_offsets, ring_cell, owner, tol):
     """Edges ``k -> k + 1`` of closed rings whose owner is a higher-numbered cell.
 
-    Returns ``(segments (m, 2, 2), pairs (m, 2))``; edges not longer than ``tol`` are skipped.
+    Returns ``(segments (m, 2, 2), pairs (m, 2))`` in ring order; edges not longer than
+    ``tol`` are skipped.
     """
-    cnt = 0
-    for r in range(ring_cell.shape[0]):
+    nr = ring_cell.shape[0]
+    tol2 = tol * tol
+    per = np.zeros(nr + 1, dtype=np.int64)
+    for r in prange(nr):
         c = ring_cell[r]
+        cnt = 0
         for k in range(ring_offsets[r], ring_offsets[r + 1] - 1):
             if owner[k] > c:
                 dx = coords[k + 1, 0] - coords[k, 0]
                 dy = coords[k + 1, 1] - coords[k, 1]
-                if math.hypot(dx, dy) > tol:
+                if dx * dx + dy * dy > tol2:
                     cnt += 1
-    seg = np.zeros((cnt, 2, 2))
-    pairs = np.zeros((cnt, 2), dtype=np.int64)
-    cnt = 0
-    for r in range(ring_cell.shape[0]):
+        per[r + 1] = cnt
+    for r in range(nr):
+        per[r + 1] += per[r]
+    seg = np.zeros((per[nr], 2, 2))
+    pairs = np.zeros((per[nr], 2), dtype=np.int64)
+    for r in prange(nr):
         c = ring_cell[r]
+        j = per[r]
         for k in range(ring_offsets[r], ring_offsets[r + 1] - 1):
             if owner[k] > c:
                 dx = coords[k + 1, 0] - coords[k, 0]
                 dy = coords[k + 1, 1] - coords[k, 1]
-                if math.hypot(dx, dy) > tol:
-                    seg[cnt, 0, 0] = coords[k, 0]
-                    seg[cnt, 0, 1] = coords[k, 1]
-                    seg[cnt, 1, 0] = coords[k + 1, 0]
-                    seg[cnt, 1, 1] = coords[k + 1, 1]
-                    pairs[cnt, 0] = c
-                    pairs[cnt, 1] = owner[k]
-                    cnt += 1
+                if dx * dx + dy * dy > tol2:
+                    seg[j, 0, 0] = coords[k, 0]
+                    seg[j, 0, 1] = coords[k, 1]
+                    seg[j, 1, 0] = coords[k + 1, 0]
+                    seg[j, 1, 1] = coords[k + 1, 1]
+                    pairs[j, 0] = c
+                    pairs[j, 1] = owner[k]
+                    j += 1
     return seg, pairs
