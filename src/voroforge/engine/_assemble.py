@@ -18,7 +18,7 @@ from .domain import Domain
 
 
 def geom_offsets_for(n, ring_cell):
-    """Cell -> polygon offsets when each polygon is one ring, ring r belonging to ``ring_cell[r]``."""
+    """Polygon offsets per cell when each polygon is one ring (ring r of ``ring_cell[r]``)."""
     geom = np.zeros(n + 1, dtype=np.int64)
     np.cumsum(np.bincount(ring_cell, minlength=n), out=geom[1:])
     return geom
