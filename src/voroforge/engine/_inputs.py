@@ -23,7 +23,10 @@ def as_points(points, *, name: str = "points") -> np.ndarray:
         A fresh array (the caller's data is never aliased, so it can never be mutated).
     """
     try:
-        arr = np.array(points, dtype=np.float64, copy=True)
+        raw = np.asarray(points)
+        if raw.dtype.kind == "c":
+            raise TypeError("complex values are not coordinates")
+        arr = np.array(raw, dtype=np.float64, copy=True)
     except (TypeError, ValueError) as exc:
         raise ValueError(
             f"{name} must be an (n, 2) array of real numbers; could not convert it ({exc})"
