@@ -8,7 +8,7 @@ import numpy as np
 
 from ..kernels.delaunay import triangulate
 from ._csr import csr_from_pairs
-from ._inputs import as_points, duplicate_map
+from ._inputs import as_points, duplicate_map, from_working, working_frame
 
 
 class Triangulation:
@@ -162,9 +162,12 @@ def delaunay(points) -> Triangulation:
     (3, True)
     """
     pts = as_points(points)
-    dup, unique = duplicate_map(pts)
-    all_unique = len(unique) == len(pts)
-    sub = pts if all_unique else pts[unique]
+    work, k = working_frame(pts)
+    if work is not pts:
+        pts = from_working(work, k)  # equal to the input unless it spans > 1e57 in magnitude
+    dup, unique = duplicate_map(work)
+    all_unique = len(unique) == len(work)
+    sub = work if all_unique else work[unique]
     tri, he, hull, ok = triangulate(
         np.ascontiguousarray(sub[:, 0]), np.ascontiguousarray(sub[:, 1])
     )
@@ -177,5 +180,5 @@ def delaunay(points) -> Triangulation:
     else:
         triangles = np.zeros((0, 3), dtype=np.int32)
         he = np.zeros(0, dtype=np.int32)
-        hull = _collinear_hull(pts, unique)
+        hull = _collinear_hull(work, unique)
     return Triangulation(pts, triangles, he, hull, dup)

@@ -34,6 +34,16 @@ class Domain:
             return (x1 - x0) * (y1 - y0)
         return float(shapely.area(self.geometry))
 
+    def scaled(self, k: int) -> Domain:
+        """The image under multiplication by ``2**k`` (exact, barring over/underflow)."""
+        if k == 0:
+            return self
+        b = np.ldexp(np.array(self.bounds, dtype=np.float64), k)
+        if self.is_rect:
+            return _rect(b)
+        geom = shapely.transform(self.geometry, lambda xy: np.ldexp(xy, k))
+        return Domain(geom, tuple(float(v) for v in b), False)
+
 
 def _rect(bounds) -> Domain:
     x0, y0, x1, y1 = (float(v) for v in bounds)

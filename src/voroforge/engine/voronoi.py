@@ -13,7 +13,7 @@ from ..kernels.delaunay import triangulate_sorted
 from ..kernels.rings import area_centroid, close_rings
 from ._assemble import clip_to_polygon, domain_edges, domain_grid, geom_offsets_for
 from ._csr import csr_from_pairs
-from ._inputs import as_points, duplicate_map
+from ._inputs import as_points, duplicate_map, from_working, working_frame
 from .domain import Domain, make_domain
 
 ALGORITHMS = ("delaunay",)
@@ -54,8 +54,9 @@ class Diagram:
         The construction method used.
     """
 
-    def __init__(self, sites, duplicate_of, domain: Domain, buffers, edges, algorithm):
+    def __init__(self, sites, duplicate_of, domain: Domain, buffers, edges, algorithm, k=0):
         self.sites = sites
+        self._k = k  # the working frame's scale exponent (areas are computed there)
         self.duplicate_of = duplicate_of
         self._domain = domain
         self._buffers = buffers
@@ -125,7 +126,12 @@ class Diagram:
     @cached_property
     def _area_centroid(self):
         coords, ring, poly, geom = self._buffers
-        return area_centroid(coords, ring, poly, geom)
+        k = self._k
+        if not k:
+            return area_centroid(coords, ring, poly, geom)
+        # at extreme scales squared coordinates leave the double range: work scaled
+        areas, centroids = area_centroid(np.ldexp(coords, k), ring, poly, geom)
+        return np.ldexp(areas, -2 * k), np.ldexp(centroids, -k)
 
     @property
     def areas(self) -> np.ndarray:
@@ -217,20 +223,28 @@ def voronoi(points, boundary=None, *, algorithm: str = "delaunay") -> Diagram:
     pts = as_points(points)
     dom = make_domain(boundary, pts)
     n = len(pts)
-    dup, unique = duplicate_map(pts)
-    sub = pts if len(unique) == n else pts[unique]
+    work, k = working_frame(pts, np.array(dom.bounds, dtype=np.float64))
+    if work is not pts:
+        pts = from_working(work, k)  # equal to the input unless it spans > 1e57 in magnitude
+    wdom = dom.scaled(k)  # everything below runs in the working frame
+    dup, unique = duplicate_map(work)
+    sub = work if len(unique) == n else work[unique]
     xs = np.ascontiguousarray(sub[:, 0])
     ys = np.ascontiguousarray(sub[:, 1])
-    box = np.array(dom.bounds, dtype=np.float64)
+    box = np.array(wdom.bounds, dtype=np.float64)
     closed, lengths, own = _closed_cells(xs, ys, box, algorithm, unique)
     nonempty = lengths[1:] > lengths[:-1]
     ring_offsets = np.concatenate(([0], lengths[1:][nonempty]))
     ring_cell = unique[nonempty]
-    grid = None if dom.is_rect else domain_grid(dom, len(ring_cell))
-    edges = Edges(*domain_edges(dom, grid, closed, ring_offsets, ring_cell, own))
-    if dom.is_rect:
+    grid = None if wdom.is_rect else domain_grid(wdom, len(ring_cell))
+    edge_coords, edge_pairs = domain_edges(wdom, grid, closed, ring_offsets, ring_cell, own)
+    if wdom.is_rect:
         polys = np.arange(len(ring_cell) + 1, dtype=np.int64)
         buffers = (closed, ring_offsets, polys, geom_offsets_for(n, ring_cell))
     else:
-        buffers = clip_to_polygon(dom, grid, closed, ring_offsets, ring_cell, n)
-    return Diagram(pts, dup, dom, buffers, edges, algorithm)
+        buffers = clip_to_polygon(wdom, grid, closed, ring_offsets, ring_cell, n)
+    if k:
+        buffers = (np.ldexp(buffers[0], -k), *buffers[1:])
+        edge_coords = np.ldexp(edge_coords, -k)
+    edges = Edges(edge_coords, edge_pairs)
+    return Diagram(pts, dup, dom, buffers, edges, algorithm, k)

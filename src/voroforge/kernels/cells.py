@@ -38,8 +38,10 @@ def _find(parent, a):
 
 @njit(**NJIT_PARALLEL)
 def circumcenters(xs, ys, tri, he):
-    """Circumcentres of all triangles, and a flag on each interior halfedge ``e < twin`` whose
-    quadrilateral the fast incircle filter cannot call (candidates for exact cocircularity).
+    """Circumcentres of all triangles, and flags on undecided interior halfedges.
+
+    A halfedge ``e < twin`` is flagged when the fast incircle filter cannot call its
+    quadrilateral; those are the candidates for exact cocircularity.
     """
     t = tri.shape[0] // 3
     cx = np.zeros(t)
@@ -49,7 +51,13 @@ def circumcenters(xs, ys, tri, he):
         a = tri[3 * k]
         b = tri[3 * k + 1]
         c = tri[3 * k + 2]
-        cx[k], cy[k] = circumcenter(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c])
+        ux, uy = circumcenter(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c])
+        if not (np.isfinite(ux) and np.isfinite(uy)):
+            # a sliver whose centre overflows: far outside any box, so its cells get cut
+            ux = np.inf
+            uy = np.inf
+        cx[k] = ux
+        cy[k] = uy
         for j in range(3):
             e = 3 * k + j
             f = he[e]
@@ -70,6 +78,26 @@ def _quad(tri, e, f):
     return a, b, c, d
 
 
+#: Circumcentres of two adjacent triangles closer than this (relative to their magnitude
+#: and the circumradius) are one vertex: floats cannot order a shorter Voronoi edge.
+_CC_MERGE_RTOL = 2.0**-46
+
+
+@njit(**NJIT)
+def _cc_close(xs, ys, a, cx, cy, t, u):
+    scale = abs(cx[t]) + abs(cy[t]) + abs(cx[t] - xs[a]) + abs(cy[t] - ys[a])
+    return abs(cx[t] - cx[u]) + abs(cy[t] - cy[u]) <= _CC_MERGE_RTOL * scale
+
+
+@njit(**NJIT_PARALLEL)
+def flag_close(xs, ys, tri, he, cx, cy, flag):
+    """Also flag interior halfedges whose two triangles have nearly equal circumcentres."""
+    for e in prange(tri.shape[0]):
+        f = he[e]
+        if f > e and flag[e] == 0 and _cc_close(xs, ys, tri[e], cx, cy, e // 3, f // 3):
+            flag[e] = 1
+
+
 @njit(**NJIT)
 def _merge_exact(xs, ys, tri, he, cand, cx, cy):
     t = tri.shape[0] // 3
@@ -79,7 +107,9 @@ def _merge_exact(xs, ys, tri, he, cand, cx, cy):
         e = cand[k]
         f = he[e]
         a, b, c, d = _quad(tri, e, f)
-        if incircle(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c], xs[d], ys[d]) == 0.0:
+        if _cc_close(xs, ys, a, cx, cy, e // 3, f // 3) or (
+            incircle(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c], xs[d], ys[d]) == 0.0
+        ):
             ra = _find(parent, e // 3)
             rb = _find(parent, f // 3)
             if ra != rb:
@@ -98,10 +128,13 @@ def merge_cocircular(xs, ys, tri, he, cx, cy, flag):
     """Give triangles with the same circumcircle one circumcentre; return each one's class.
 
     Two triangles sharing an edge have the same circumcircle exactly when the fourth point is
-    on the first one's circle (exact incircle == 0). Classes are the connected components of
+    on the first one's circle (exact incircle == 0); triangles whose computed centres agree
+    to ``_CC_MERGE_RTOL`` are merged too (a Voronoi edge that short is rounding noise, and
+    keeping it can fold the ring). Classes are the connected components of
     that relation; the centre of the class representative is copied to all its members. The
     exact code runs only on the halfedges flagged by :func:`circumcenters`.
     """
+    flag_close(xs, ys, tri, he, cx, cy, flag)
     cand = np.flatnonzero(flag)
     if cand.shape[0] == 0:
         return np.arange(tri.shape[0] // 3)
@@ -110,8 +143,10 @@ def merge_cocircular(xs, ys, tri, he, cx, cy, flag):
 
 @njit(**NJIT)
 def _outgoing(tri, he, cx, cy, box, n):
-    """Per point: one outgoing halfedge (the outgoing hull halfedge for hull points), its
-    degree, and whether its cell must be cut (hull point, or a circumcentre outside the box).
+    """Per point: one outgoing halfedge, its degree, and whether its cell must be cut.
+
+    Hull points get their outgoing hull halfedge. A cell is cut when its point is on the hull
+    or one of its circumcentres lies outside the box.
     """
     out = np.full(n, -1, dtype=np.int64)
     deg = np.zeros(n, dtype=np.int64)
@@ -212,42 +247,155 @@ def _box_crossing(a, b, xs, ys, side, box):
 
 
 @njit(**NJIT)
-def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box):
+def _index_of(nbrs, nn, a):
+    for k in range(nn):
+        if nbrs[k] == a:
+            return k
+    return -1
+
+
+@njit(**NJIT)
+def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, qx, qy, qw):
     """Replace computed vertices by values every cell sharing them computes identically.
 
     A vertex between the bisectors with neighbours ``a`` then ``b`` is the circumcentre of
-    the Delaunay triangle ``(i, a, b)``; a vertex on a box side is the canonical crossing of
-    the bisector with that side; two box sides meet at an exact corner. Owners of box sides
-    (-1..-4) become -1.
+    the Delaunay triangle ``(i, a, b)``. When ``a`` and ``b`` are not consecutive neighbours
+    the clip lost edges too short for floats to separate (neighbours whose bisectors coincide
+    in floating point); the chain of circumcentres between them is put back from the
+    triangulation. A vertex on a box side is the canonical crossing of the bisector with that
+    side; two box sides meet at an exact corner. Owners of box sides (-1..-4) become -1.
     """
+    cyclic = nn > 0 and tris[nn - 1] >= 0
+    out = 0
     for v in range(m):
         a = pw[v - 1] if v > 0 else pw[m - 1]
         b = pw[v]
+        x = px[v]
+        y = py[v]
         if a >= 0 and b >= 0:
-            for k in range(nn):
-                if nbrs[k] == a:
+            ka = _index_of(nbrs, nn, a)
+            kb = _index_of(nbrs, nn, b)
+            steps = -1
+            if ka >= 0 and kb >= 0:
+                steps = (kb - ka) % nn if cyclic else kb - ka
+            ok = steps >= 1 and out + steps + (m - v) <= qx.shape[0]
+            for s in range(max(steps, 0)):
+                if tris[(ka + s) % nn] < 0:
+                    ok = False
+            if ok and steps > 1:
+                # only a chain longer than rounding noise (near-cocircular neighbours give
+                # rounding-level chains whose order floats cannot be trusted with)
+                t0 = tris[ka]
+                t1 = tris[(ka + steps - 1) % nn]
+                span = abs(cx[t1] - cx[t0]) + abs(cy[t1] - cy[t0])
+                ok = span > 1e-9 * ((box[2] - box[0]) + (box[3] - box[1]))
+            if ok:
+                for s in range(steps):
+                    k = (ka + s) % nn
                     t = tris[k]
-                    if t >= 0:
-                        px[v] = cx[t]
-                        py[v] = cy[t]
-                    break
+                    qx[out] = cx[t]
+                    qy[out] = cy[t]
+                    qw[out] = nbrs[(k + 1) % nn] if s + 1 < steps else b
+                    out += 1
+                continue
         elif a >= 0 or b >= 0:
             j = a if a >= 0 else b
             side = b if a >= 0 else a
-            x, y = _box_crossing(i, j, xs, ys, side, box)
-            if x == x and box[0] <= x <= box[2] and box[1] <= y <= box[3]:
-                px[v] = x
-                py[v] = y
+            bx, by = _box_crossing(i, j, xs, ys, side, box)
+            if bx == bx and box[0] <= bx <= box[2] and box[1] <= by <= box[3]:
+                x = bx
+                y = by
         else:
             vert = a if (a == -1 or a == -3) else b
             horz = b if vert == a else a
             if (vert == -1 or vert == -3) and (horz == -2 or horz == -4):
-                px[v] = box[0] if vert == -1 else box[2]
-                py[v] = box[1] if horz == -2 else box[3]
+                x = box[0] if vert == -1 else box[2]
+                y = box[1] if horz == -2 else box[3]
+        qx[out] = x
+        qy[out] = y
+        qw[out] = b
+        out += 1
+    for v in range(out):
+        px[v] = qx[v]
+        py[v] = qy[v]
+        pw[v] = qw[v] if qw[v] >= 0 else -1
+    return _dedupe_ring(px, py, pw, out)
+
+
+@njit(**NJIT)
+def _nearest_label(xs, ys, x, y, b, nbrs, nn):
+    """The neighbour nearest to ``(x, y)``, starting from ``b``.
+
+    It moves only on a decisive comparison: the point must be clearly (1e-9 of the
+    coordinates' size) off the bisector of the two candidates.
+    """
+    x2 = 2.0 * x
+    y2 = 2.0 * y
+    for k in range(nn):
+        j = nbrs[k]
+        if j == b:
+            continue
+        # |P - s_j|^2 - |P - s_b|^2 = (s_j - s_b) . (s_j + s_b - 2P)
+        dx = xs[j] - xs[b]
+        dy = ys[j] - ys[b]
+        d = dx * (xs[j] + xs[b] - x2) + dy * (ys[j] + ys[b] - y2)
+        size = abs(xs[j]) + abs(xs[b]) + abs(x2) + abs(ys[j]) + abs(ys[b]) + abs(y2)
+        if d < -1e-9 * (abs(dx) + abs(dy)) * size:
+            b = j
+    return b
+
+
+@njit(**NJIT)
+def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw):
+    """Fix the owners of bisector edges that floats could not separate; result in ``p``.
+
+    Neighbours closer to each other than the float resolution of their bisectors (sites
+    1e-17 of the extent apart, say) cut the cell along the same float line, and the clip
+    labels the whole edge with whichever came last. Each end of the edge is given its
+    nearest neighbour; when the ends disagree, the Delaunay chain of circumcentres between
+    the two neighbours is inserted, so the edge is split where the true vertices are.
+    """
+    cyclic = nn > 0 and tris[nn - 1] >= 0
+    out = 0
     for v in range(m):
-        if pw[v] < 0:
-            pw[v] = -1
-    return _dedupe_ring(px, py, pw, m)
+        b = pw[v]
+        qx[out] = px[v]
+        qy[out] = py[v]
+        qw[out] = b
+        out += 1
+        if b < 0:
+            continue
+        w = v + 1 if v + 1 < m else 0
+        lp = _nearest_label(xs, ys, px[v], py[v], b, nbrs, nn)
+        lq = _nearest_label(xs, ys, px[w], py[w], b, nbrs, nn)
+        if lp == lq:
+            qw[out - 1] = lp
+            continue
+        kp = _index_of(nbrs, nn, lp)
+        kq = _index_of(nbrs, nn, lq)
+        steps = (kq - kp) % nn if cyclic else kq - kp
+        ok = steps >= 1 and out + steps + (m - v) <= qx.shape[0]
+        for s in range(max(steps, 0)):
+            if tris[(kp + s) % nn] < 0:
+                ok = False
+        if not ok:
+            qw[out - 1] = _nearest_label(
+                xs, ys, 0.5 * (px[v] + px[w]), 0.5 * (py[v] + py[w]), b, nbrs, nn
+            )
+            continue
+        qw[out - 1] = lp
+        for s in range(steps):
+            k = (kp + s) % nn
+            t = tris[k]
+            qx[out] = cx[t]
+            qy[out] = cy[t]
+            qw[out] = nbrs[(k + 1) % nn]
+            out += 1
+    for v in range(out):
+        px[v] = qx[v]
+        py[v] = qy[v]
+        pw[v] = qw[v]
+    return out
 
 
 @njit(**NJIT)
@@ -285,7 +433,8 @@ def _cut_cell(i, xs, ys, nbrs, tris, nn, box, cx, cy, px, py, pw, qx, qy, qw):
             pw[v] = qw[v]
         if m == 0:
             return 0
-    return _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box)
+    m = _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw)
+    return _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, qx, qy, qw)
 
 
 @njit(**NJIT)
@@ -342,8 +491,10 @@ def _cell(i, xs, ys, tri, he, cx, cy, cls, out, box, px, py, pw, qx, qy, qw, nbr
 
 @njit(**NJIT_PARALLEL)
 def _count(xs, ys, tri, he, cx, cy, cls, out, box, cap, deg, cut, merged):
-    """Vertex count of every cell. Without cocircular merges an uncut cell has one vertex
-    per incident triangle, so only cut cells need the full construction.
+    """Vertex count of every cell.
+
+    Without cocircular merges an uncut cell has one vertex per incident triangle, so only cut
+    cells need the full construction.
     """
     n = xs.shape[0]
     counts = np.zeros(n, dtype=np.int64)

@@ -8,6 +8,11 @@ sign is computed with floating-point expansions (Shewchuk, "Adaptive Precision
 Floating-Point Arithmetic and Fast Robust Geometric Predicates", 1997). The exact code
 lives in separate, non-inlined functions so that the hot path stays small.
 
+Like Shewchuk's, the arithmetic is exact only when no product underflows: every coordinate
+must be 0 or at least ``2**-188`` in magnitude, and below ``2**200``. The engine guarantees
+that by passing coordinates through ``engine._inputs.working_frame`` (an exact power-of-two
+scaling that rounds only values below ``1e-57`` of the extent).
+
 Never compile these with ``fastmath``: the error-free transformations below depend on
 IEEE round-to-nearest and on the absence of fused multiply-add contraction.
 """
@@ -380,15 +385,35 @@ def incircle(ax, ay, bx, by, cx, cy, dx, dy):
 
 @njit(**NJIT)
 def circumcenter(ax, ay, bx, by, cx, cy):
-    """Circumcentre of a triangle, computed relative to ``a`` for precision."""
-    dx = bx - ax
-    dy = by - ay
-    ex = cx - ax
-    ey = cy - ay
+    """Circumcentre of a triangle.
+
+    Computed relative to the vertex opposite the longest edge, so both of its edge vectors
+    are the short ones (a sliver with one tiny edge keeps its precision), and with the
+    adaptive :func:`orient2d` as the denominator when the float one cannot be trusted.
+    Exactly collinear points give non-finite coordinates.
+    """
+    la = (bx - cx) * (bx - cx) + (by - cy) * (by - cy)
+    lb = (cx - ax) * (cx - ax) + (cy - ay) * (cy - ay)
+    lc = (ax - bx) * (ax - bx) + (ay - by) * (ay - by)
+    if lb >= la and lb >= lc:
+        ox, oy, px, py, qx, qy = bx, by, cx, cy, ax, ay
+    elif lc >= la:
+        ox, oy, px, py, qx, qy = cx, cy, ax, ay, bx, by
+    else:
+        ox, oy, px, py, qx, qy = ax, ay, bx, by, cx, cy
+    dx = px - ox
+    dy = py - oy
+    ex = qx - ox
+    ey = qy - oy
     bl = dx * dx + dy * dy
     cl = ex * ex + ey * ey
-    d = 0.5 / (dx * ey - dy * ex)
-    return ax + (ey * bl - dy * cl) * d, ay + (dx * cl - ex * bl) * d
+    left = dx * ey
+    right = dy * ex
+    det = left - right
+    if not abs(det) >= 1e-8 * (abs(left) + abs(right)) or det == 0.0:
+        det = orient2d(ox, oy, px, py, qx, qy)
+    d = 0.5 / det
+    return ox + (ey * bl - dy * cl) * d, oy + (dx * cl - ex * bl) * d
 
 
 @njit(**NJIT)
