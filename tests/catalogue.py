@@ -1,0 +1,169 @@
+"""A named catalogue of degenerate and awkward inputs for the 2D engine.
+
+``CATALOGUE[name] = (points, boundary)`` where ``points`` is an ``(n, 2) float64`` array
+(n <= 500) and ``boundary`` is ``None``, an ``(xmin, ymin, xmax, ymax)`` tuple or a shapely
+Polygon/MultiPolygon, exactly what ``vf.voronoi`` accepts. Everything is deterministic.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from shapely.geometry import MultiPolygon, Polygon, box
+
+
+def _rng(k: int) -> np.random.Generator:
+    return np.random.default_rng(20240 + k)
+
+
+def _grid(nx: int, ny: int, step: float = 1.0, x0: float = 0.0, y0: float = 0.0) -> np.ndarray:
+    x, y = np.meshgrid(np.arange(nx) * step + x0, np.arange(ny) * step + y0)
+    return np.column_stack((x.ravel(), y.ravel()))
+
+
+def _hex(nx: int, ny: int) -> np.ndarray:
+    rows = []
+    for j in range(ny):
+        x = np.arange(nx) + (0.5 if j % 2 else 0.0)
+        rows.append(np.column_stack((x, np.full(nx, j * np.sqrt(3) / 2))))
+    return np.concatenate(rows)
+
+
+def _integer_circle(r: int) -> np.ndarray:
+    """Every integer point on the circle of radius ``r`` (exactly cocircular)."""
+    out = []
+    for x in range(-r, r + 1):
+        y2 = r * r - x * x
+        y = int(round(np.sqrt(y2)))
+        if y * y == y2:
+            out.append((x, y))
+            if y:
+                out.append((x, -y))
+    return np.array(out, dtype=np.float64)
+
+
+def _star(k: int = 7, r_out: float = 10.0, r_in: float = 4.0) -> Polygon:
+    ang = np.arange(2 * k) * np.pi / k
+    rad = np.where(np.arange(2 * k) % 2 == 0, r_out, r_in)
+    return Polygon(np.column_stack((rad * np.cos(ang), rad * np.sin(ang))))
+
+
+def _build() -> dict[str, tuple[np.ndarray, object]]:
+    c: dict[str, tuple[np.ndarray, object]] = {}
+    unit = (0.0, 0.0, 1.0, 1.0)
+
+    # tiny inputs
+    c["empty_with_box"] = (np.zeros((0, 2)), unit)
+    c["one_point"] = (np.array([[0.3, 0.4]]), unit)
+    c["two_points"] = (np.array([[0.2, 0.5], [0.8, 0.5]]), unit)
+    c["two_points_none"] = (np.array([[0.0, 0.0], [1.0, 2.0]]), None)
+    c["three_points"] = (np.array([[0.0, 0.0], [1.0, 0.0], [0.3, 0.9]]), None)
+    c["three_collinear"] = (np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]), (-1.0, -1.0, 3.0, 1.0))
+
+    # duplicates
+    r = _rng(1).random((60, 2))
+    c["duplicates"] = (np.concatenate((r, r[::3], r[5:9])), None)
+    base = _rng(2).random((20, 2))
+    trip = np.concatenate((base, base[:6], base[:6]))
+    c["duplicate_triples"] = (trip[_rng(3).permutation(len(trip))], None)
+    c["all_same"] = (np.tile([[0.5, 0.5]], (5, 1)), unit)
+    c["signed_zero"] = (
+        np.array([[0.0, 0.0], [-0.0, 0.0], [1.0, 0.0], [0.0, -0.0], [0.0, 1.0]]),
+        None,
+    )
+
+    # collinear
+    t = np.linspace(0.0, 10.0, 41)
+    c["collinear_horizontal"] = (np.column_stack((t, np.zeros_like(t))), (-1.0, -2.0, 11.0, 2.0))
+    c["collinear_vertical"] = (np.column_stack((np.full_like(t, 3.0), t)), (0.0, -1.0, 6.0, 11.0))
+    k = np.arange(30, dtype=np.float64)
+    c["collinear_diagonal"] = (np.column_stack((k, k))[_rng(4).permutation(30)], None)
+    c["collinear_diagonal_boxed"] = (np.column_stack((k, 2 * k)), (-5.0, -5.0, 35.0, 65.0))
+    s = _rng(5).random(40)
+    c["nearly_collinear"] = (np.column_stack((0.1 * s, 0.3 * s)), (-0.1, -0.1, 0.2, 0.4))
+    line = np.column_stack((np.linspace(0, 1, 120), np.zeros(120)))
+    c["line_plus_few"] = (np.concatenate((line, [[0.5, 0.3], [0.2, -0.4], [0.9, 0.05]])), None)
+
+    # cocircular structures
+    c["grid_20x20"] = (_grid(20, 20), None)
+    c["grid_shuffled"] = (_grid(12, 12)[_rng(6).permutation(144)], (-0.5, -0.5, 11.5, 11.5))
+    c["hex_grid"] = (_hex(15, 15), None)
+    ang = np.arange(64) * (2 * np.pi / 64)
+    c["circle_plus_centre"] = (
+        np.concatenate((np.column_stack((np.cos(ang), np.sin(ang))), [[0.0, 0.0]])),
+        None,
+    )
+    th = 0.3
+    rot = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]])
+    c["grid_rotated"] = (_grid(15, 15) @ rot.T, None)  # cocircular up to rounding
+    c["circle_integer"] = (np.concatenate((_integer_circle(65), [[0.0, 0.0]])), None)
+
+    # distributions and scales
+    g = _rng(7)
+    blobs = [g.normal(ctr, 0.02, size=(100, 2)) for ctr in ((0.2, 0.2), (0.8, 0.3), (0.5, 0.8))]
+    c["clustered"] = (np.concatenate(blobs), None)
+    c["utm_grid"] = (_grid(14, 14, 1.0, 500000.0, 4000000.0), None)
+    c["utm_random"] = (
+        np.array([500000.0, 4000000.0]) + _rng(8).random((200, 2)) * 14.0,
+        None,
+    )
+    far = _rng(17).normal(0, 1e-6, size=(120, 2))
+    c["far_clusters"] = (np.concatenate((far[:60], far[60:] + [1000.0, 300.0])), None)
+    c["tiny_scale"] = (_rng(9).random((150, 2)) * 1e-9, None)
+    c["huge_scale"] = (_rng(10).random((150, 2)) * 1e9, None)
+    # a near-duplicate 1e-60 from a site, so their bisectors coincide in floating point
+    near = _rng(20).random((40, 2)) * 100.0
+    c["near_duplicate_1e-60"] = (np.concatenate((near, near[:3] + [0.0, 1e-60])), None)
+
+    # sites and the domain
+    c["sites_outside"] = (_rng(11).random((60, 2)), (0.25, 0.25, 0.75, 0.75))
+    edge = np.linspace(0, 1, 6)
+    on_box = np.concatenate(
+        (
+            np.column_stack((edge, np.zeros(6))),
+            np.column_stack((edge, np.ones(6))),
+            np.column_stack((np.zeros(4), edge[1:-1])),
+            np.column_stack((np.ones(4), edge[1:-1])),
+            _rng(12).random((10, 2)) * 0.8 + 0.1,
+        )
+    )
+    c["sites_on_boundary"] = (on_box, unit)
+    ell = Polygon([(0, 0), (10, 0), (10, 4), (4, 4), (4, 10), (0, 10)])
+    c["concave_L"] = (_rng(13).random((80, 2)) * 10.0, ell)
+    star = _star()
+    c["concave_star"] = (_rng(14).uniform(-10, 10, size=(60, 2)), star)
+    hole_cell = box(0, 0, 4, 4).difference(box(1.2, 1.2, 1.6, 1.6))
+    c["hole_inside_one_cell"] = (
+        np.array([[1.0, 1.0], [3.0, 1.0], [1.0, 3.0], [3.0, 3.0]]),
+        hole_cell,
+    )
+    holes = Polygon(
+        [(0, 0), (10, 0), (10, 10), (0, 10)],
+        [[(2, 2), (4, 2), (4, 4), (2, 4)], [(6, 5), (8, 5), (7, 8)]],
+    )
+    inside_hole = np.array([[3.0, 3.0], [2.5, 3.5], [7.0, 6.0]])
+    c["holes_with_sites_inside"] = (
+        np.concatenate((_rng(15).random((50, 2)) * 10.0, inside_hole)),
+        holes,
+    )
+    on_hole = np.array([[2.0, 3.0], [3.0, 2.0], [4.0, 4.0], [7.0, 5.0], [6.5, 6.5], [1.0, 1.0]])
+    c["sites_on_hole_boundary"] = (np.concatenate((on_hole, _rng(18).random((30, 2)) * 10)), holes)
+    two = MultiPolygon([box(0, 0, 1, 1), box(2, 0, 3, 1)])
+    c["multipolygon"] = (_rng(16).random((40, 2)) * [3.0, 1.0], two)
+    c["multipolygon_one_site"] = (np.array([[1.5, 0.5]]), two)
+    return c
+
+
+CATALOGUE = _build()
+NAMES = list(CATALOGUE)
+
+
+def as_domain(boundary):
+    """The shapely domain for a catalogue boundary (``None`` stays ``None``)."""
+    if isinstance(boundary, tuple):
+        return box(*boundary)
+    return boundary
+
+
+def general_position(n: int, seed: int = 0) -> np.ndarray:
+    """Uniform random points: no four cocircular, no three collinear (for all practical seeds)."""
+    return np.random.default_rng(seed).random((n, 2))

@@ -1,0 +1,44 @@
+"""Shared fixtures: the algorithms every 2D diagram test runs over, and hypothesis profiles."""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, settings
+
+# The helper modules (reference, validate, catalogue) are imported by their plain names.
+sys.path.insert(0, str(Path(__file__).parent))
+
+#: Every ``algorithm=`` that must produce the same cells; engines add themselves here.
+ALGORITHMS = ["delaunay"]
+
+settings.register_profile(
+    "default",
+    deadline=None,
+    max_examples=30,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+settings.register_profile(
+    "ci",
+    deadline=None,
+    max_examples=30,
+    derandomize=True,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+# a longer bug hunt: pytest --hypothesis-profile=thorough
+settings.register_profile(
+    "thorough",
+    deadline=None,
+    max_examples=500,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+settings.load_profile("ci" if os.environ.get("CI") else "default")
+
+
+@pytest.fixture(params=ALGORITHMS)
+def algorithm(request) -> str:
+    """Name of a 2D Voronoi algorithm (``vf.voronoi(..., algorithm=...)``)."""
+    return request.param

@@ -1,0 +1,97 @@
+"""Bad input fails early with a ValueError that says what is wrong."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from shapely.geometry import LineString, MultiPolygon, Polygon
+
+import voroforge as vf
+
+GOOD = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
+
+BAD_POINTS = {
+    "nan": ([[0.0, 0.0], [np.nan, 1.0], [1.0, 1.0]], r"NaN"),
+    "inf": ([[0.0, 0.0], [1.0, np.inf], [1.0, 1.0]], r"(?i)inf"),
+    "minus_inf": (np.array([[0.0, -np.inf], [1.0, 2.0]]), r"(?i)inf"),
+    "three_columns": (np.zeros((4, 3)), r"(?i)shape|\(n, 2\)"),
+    "one_d": (np.arange(6.0), r"(?i)shape|\(n, 2\)"),
+    "three_d": (np.zeros((2, 2, 2)), r"(?i)shape|\(n, 2\)"),
+    "ragged": ([[0.0, 0.0], [1.0], [1.0, 1.0]], r"(?i)shape|\(n, 2\)|ragged|inhomogeneous"),
+    "strings": ([["a", "b"], ["c", "d"]], r"(?i)real|numeric|number|float|convert"),
+    "objects": ([[object(), 1.0]], r"(?i)real|numeric|number|float|convert"),
+    "complex": (np.array([[1 + 1j, 0], [0, 1]]), r"(?i)real|complex|numeric|number"),
+}
+
+
+@pytest.mark.parametrize("name", list(BAD_POINTS))
+@pytest.mark.parametrize("func", ["delaunay", "voronoi"])
+def test_bad_points(name, func):
+    pts, pattern = BAD_POINTS[name]
+    call = vf.delaunay if func == "delaunay" else vf.voronoi
+    with pytest.raises(ValueError, match=pattern):
+        call(pts)
+
+
+def test_nan_message_names_the_row():
+    pts = np.zeros((5, 2))
+    pts[3, 1] = np.nan
+    with pytest.raises(ValueError, match=r"3"):
+        vf.voronoi(pts)
+
+
+BOWTIE = Polygon([(0, 0), (1, 1), (1, 0), (0, 1)])
+
+BAD_BOUNDARIES = {
+    "bowtie": (BOWTIE, r"Self-intersection"),
+    "bowtie_in_multipolygon": (
+        MultiPolygon([Polygon([(5, 5), (6, 5), (6, 6)]), BOWTIE]),
+        r"(?i)self-intersection|invalid",
+    ),
+    "hole_outside_shell": (
+        Polygon([(0, 0), (1, 0), (1, 1), (0, 1)], [[(2, 2), (3, 2), (3, 3)]]),
+        r"(?i)hole|invalid",
+    ),
+    "empty_polygon": (Polygon(), r"(?i)empty"),
+    "empty_multipolygon": (MultiPolygon(), r"(?i)empty"),
+    "zero_area": (Polygon([(0, 0), (1, 0), (2, 0)]), r"(?i)area|invalid|empty|degenerate"),
+    "linestring": (LineString([(0, 0), (1, 1)]), r"(?i)polygon"),
+    "xmin_ge_xmax": ((1.0, 0.0, 1.0, 1.0), r"(?i)xmin"),
+    "xmin_gt_xmax": ((2.0, 0.0, 1.0, 1.0), r"(?i)xmin"),
+    "ymin_gt_ymax": ((0.0, 2.0, 1.0, 1.0), r"(?i)ymin"),
+    "nan_tuple": ((0.0, 0.0, np.nan, 1.0), r"(?i)finite|nan"),
+    "short_tuple": ((0.0, 0.0, 1.0), r"(?i)xmin|4|shape"),
+    "string": ("unit square", r"(?i)boundary"),
+}
+
+
+@pytest.mark.parametrize("name", list(BAD_BOUNDARIES))
+def test_bad_boundary(name):
+    boundary, pattern = BAD_BOUNDARIES[name]
+    with pytest.raises(ValueError, match=pattern):
+        vf.voronoi(GOOD, boundary)
+
+
+def test_no_extent_without_boundary():
+    with pytest.raises(ValueError, match=r"(?i)boundary|extent|site|empty|point"):
+        vf.voronoi(np.zeros((0, 2)))
+
+
+def test_unknown_algorithm():
+    with pytest.raises(ValueError, match=r"(?i)algorithm"):
+        vf.voronoi(GOOD, algorithm="no-such-thing")
+
+
+@pytest.mark.parametrize("xy", [[np.nan, 0.0], [[0.0, 0.0], [np.inf, 1.0]], [[0.0, 1.0, 2.0]]])
+def test_find_rejects_bad_queries(xy):
+    tri = vf.delaunay(GOOD)
+    with pytest.raises(ValueError):
+        tri.find(xy)
+
+
+def test_errors_do_not_mutate_input():
+    pts = np.array([[0.0, 0.0], [np.nan, 1.0], [1.0, 1.0]])
+    keep = pts.copy()
+    with pytest.raises(ValueError):
+        vf.voronoi(pts)
+    assert np.array_equal(pts, keep, equal_nan=True)

@@ -1,0 +1,435 @@
+"""Invariant checks run on every triangulation and diagram the tests build.
+
+``validate_triangulation`` and ``validate_diagram`` raise ``AssertionError`` with a message
+naming the broken invariant. They check properties any correct answer has (never a stored
+snapshot), so they can be applied to any input.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+
+import numpy as np
+import shapely
+from scipy.spatial import cKDTree
+
+from voroforge.kernels.predicates import incircle, orient2d
+
+from reference import exact_orient, first_occurrence
+
+_ICC_BOUND = (10.0 + 96.0 * 2.0**-53) * 2.0**-53
+#: Above this many points the empty-circle check only tests points near each circumcentre.
+EXHAUSTIVE_MAX = 2000
+
+
+# ---------------------------------------------------------------------------------------------
+# triangulations
+# ---------------------------------------------------------------------------------------------
+
+
+def _halfedge_ends(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    flat = triangles.ravel().astype(np.int64)
+    nxt = triangles[:, [1, 2, 0]].ravel().astype(np.int64)
+    return flat, nxt
+
+
+def _normalised(pts: np.ndarray) -> np.ndarray:
+    """``pts`` scaled by a power of two (exactly) so the largest magnitude is in [0.5, 1).
+
+    The float checks below then neither overflow nor underflow for inputs at any scale.
+    """
+    big = np.abs(pts).max(initial=0.0)
+    return np.ldexp(pts, -int(np.frexp(big)[1])) if big > 0 else pts
+
+
+def _all_collinear(pts: np.ndarray) -> bool:
+    """Exactly: do all the (unique) points lie on one line?"""
+    if len(pts) < 3:
+        return True
+    a = pts[0]
+    far = np.argmax(((pts - a) ** 2).sum(1))
+    b = pts[far]
+    return all(exact_orient(a, b, c) == 0 for c in pts)
+
+
+def _incircle_candidates(pts: np.ndarray, triangles: np.ndarray, cand: np.ndarray):
+    """(triangle, point) pairs whose incircle sign the float filter cannot prove <= 0.
+
+    Same filter and error bound as Shewchuk's (doubled for margin), evaluated with numpy:
+    everything else is certainly outside or on the circumcircle.
+    """
+    out_t, out_p = [], []
+    cx, cy = pts[cand, 0], pts[cand, 1]
+    block = max(1, 400_000 // max(len(cand), 1))
+    for s in range(0, len(triangles), block):
+        tri = triangles[s : s + block]
+        a, b, c = pts[tri[:, 0]], pts[tri[:, 1]], pts[tri[:, 2]]
+        adx = a[:, :1] - cx
+        ady = a[:, 1:] - cy
+        bdx = b[:, :1] - cx
+        bdy = b[:, 1:] - cy
+        cdx = c[:, :1] - cx
+        cdy = c[:, 1:] - cy
+        bc = bdx * cdy
+        cb = cdx * bdy
+        ca = cdx * ady
+        ac = adx * cdy
+        ab = adx * bdy
+        ba = bdx * ady
+        al = adx * adx + ady * ady
+        bl = bdx * bdx + bdy * bdy
+        cl = cdx * cdx + cdy * cdy
+        det = al * (bc - cb) + bl * (ca - ac) + cl * (ab - ba)
+        perm = (np.abs(bc) + np.abs(cb)) * al
+        perm += (np.abs(ca) + np.abs(ac)) * bl
+        perm += (np.abs(ab) + np.abs(ba)) * cl
+        unsure = det > -2.0 * _ICC_BOUND * perm
+        unsure &= cand[None, :] != tri[:, :1]
+        unsure &= cand[None, :] != tri[:, 1:2]
+        unsure &= cand[None, :] != tri[:, 2:3]
+        ti, pi = np.nonzero(unsure)
+        out_t.append(ti + s)
+        out_p.append(cand[pi])
+    if not out_t:
+        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+    return np.concatenate(out_t), np.concatenate(out_p)
+
+
+def _near_circumcentre_candidates(pts, triangles, cand):
+    """(triangle, point) pairs with the point near the circumcircle (KD-tree, padded radius)."""
+    tree = cKDTree(pts[cand])
+    p = pts[triangles]
+    a = p[:, 0]
+    d = p[:, 1] - a
+    e = p[:, 2] - a
+    bl = (d**2).sum(1)
+    cl = (e**2).sum(1)
+    den = 0.5 / (d[:, 0] * e[:, 1] - d[:, 1] * e[:, 0])
+    centre = (
+        a
+        + np.stack(((e[:, 1] * bl - d[:, 1] * cl), (d[:, 0] * cl - e[:, 0] * bl)), 1) * den[:, None]
+    )
+    r = np.sqrt(((p - centre[:, None, :]) ** 2).sum(-1)).max(1)
+    span = np.abs(p - centre[:, None, :]).max((1, 2)) + np.abs(centre).max(1)
+    pad = r * 1e-6 + span * 1e-9
+    lists = tree.query_ball_point(centre, r + pad)
+    ti = np.repeat(np.arange(len(triangles)), [len(x) for x in lists])
+    pi = cand[np.concatenate([np.asarray(x, dtype=np.int64) for x in lists])] if len(ti) else ti
+    keep = (pi != triangles[ti, 0]) & (pi != triangles[ti, 1]) & (pi != triangles[ti, 2])
+    return ti[keep], pi[keep]
+
+
+def check_empty_circumcircles(pts: np.ndarray, triangles: np.ndarray, cand: np.ndarray) -> None:
+    """No point of ``cand`` strictly inside any triangle's circumcircle (robust incircle)."""
+    if len(triangles) == 0 or len(cand) == 0:
+        return
+    if len(cand) <= EXHAUSTIVE_MAX:
+        ti, pi = _incircle_candidates(pts, triangles, cand)
+    else:
+        ti, pi = _near_circumcentre_candidates(pts, triangles, cand)
+    bad = []
+    for t, k in zip(ti.tolist(), pi.tolist(), strict=True):
+        a, b, c = triangles[t]
+        v = incircle(*pts[a], *pts[b], *pts[c], *pts[k])
+        if v > 0:
+            bad.append((t, k))
+            if len(bad) >= 5:
+                break
+    assert not bad, f"points inside circumcircles (triangle, point): {bad}"
+
+
+def validate_triangulation(tri) -> None:
+    """Assert every structural and Delaunay invariant of a :class:`Triangulation`."""
+    pts = np.asarray(tri.points, dtype=np.float64)
+    n = len(pts)
+    assert pts.shape == (n, 2)
+    pts = _normalised(pts)
+    dup = first_occurrence(pts)
+    assert np.array_equal(np.asarray(tri.duplicate_of), dup), "duplicate_of is wrong"
+    uniq = np.flatnonzero(dup < 0)
+    T = np.asarray(tri.triangles)
+    he = np.asarray(tri.halfedges)
+    hull = np.asarray(tri.hull).astype(np.int64)
+    assert T.ndim == 2 and T.shape[1] == 3, f"triangles shape {T.shape}"
+    assert np.issubdtype(T.dtype, np.integer) and np.issubdtype(he.dtype, np.integer)
+    t = len(T)
+    assert he.shape == (3 * t,), f"halfedges shape {he.shape} for {t} triangles"
+    assert len(set(hull.tolist())) == len(hull), "hull repeats a point"
+    assert np.all(dup[hull] < 0) if len(hull) else True, "hull uses a duplicate point"
+
+    if t == 0:
+        assert _all_collinear(pts[uniq]), "no triangles although the points are not collinear"
+        assert set(hull.tolist()) == set(uniq.tolist()), "collinear hull must list every point"
+        if len(hull) >= 2:
+            d = pts[hull[-1]] - pts[hull[0]]
+            proj = (pts[hull] - pts[hull[0]]) @ d
+            assert np.all(np.diff(proj) > 0), "collinear hull is not in order along the line"
+        return
+
+    assert T.min() >= 0 and T.max() < n, "triangle index out of range"
+    used = np.unique(T)
+    assert np.array_equal(used, uniq), (
+        f"triangles must use exactly the unique points: missing "
+        f"{np.setdiff1d(uniq, used)[:10]}, extra {np.setdiff1d(used, uniq)[:10]}"
+    )
+
+    # counter-clockwise, positive area (sign-exact)
+    bad = [
+        k for k, (a, b, c) in enumerate(T.tolist()) if not orient2d(*pts[a], *pts[b], *pts[c]) > 0
+    ]
+    assert not bad, f"triangles not strictly counter-clockwise: {bad[:10]}"
+
+    # halfedges
+    start, end = _halfedge_ends(T)
+    assert he.min() >= -1 and he.max() < 3 * t, "halfedge out of range"
+    inner = np.flatnonzero(he >= 0)
+    twin = he[inner].astype(np.int64)
+    assert np.all(twin != inner), "halfedge is its own twin"
+    assert np.array_equal(he[twin], inner), "halfedges not symmetric"
+    assert np.array_equal(start[twin], end[inner]) and np.array_equal(end[twin], start[inner]), (
+        "twin halfedges do not have reversed endpoints"
+    )
+    directed = start * n + end
+    assert len(np.unique(directed)) == 3 * t, "a directed edge appears twice (non-manifold)"
+    boundary = np.flatnonzero(he < 0)
+    reverse = set((end[boundary] * n + start[boundary]).tolist())
+    assert not reverse & set(directed.tolist()), "a hull halfedge has an unlinked twin"
+
+    # hull is the boundary cycle, counter-clockwise and convex
+    h = len(hull)
+    hull_edges = set((hull * n + np.roll(hull, -1)).tolist())
+    bnd_edges = set((start[boundary] * n + end[boundary]).tolist())
+    assert hull_edges == bnd_edges, "hull is not the cycle of boundary halfedges"
+    hp = pts[hull]
+    turns = [
+        orient2d(*hp[i - 1], *hp[i], *hp[(i + 1) % h]) for i in range(h)
+    ]  # >= 0: convex, collinear allowed
+    assert min(turns) >= 0, "hull is not convex and counter-clockwise"
+    x, y = hp[:, 0] - hp[0, 0], hp[:, 1] - hp[0, 1]
+    assert (x * np.roll(y, -1) - np.roll(x, -1) * y).sum() > 0, "hull is clockwise"
+
+    # counts: Euler V - E + F = 1 and t = 2 n' - 2 - h
+    nu = len(uniq)
+    edges = (3 * t + h) // 2
+    assert (3 * t + h) % 2 == 0
+    assert nu - edges + t == 1, f"Euler: V={nu} E={edges} F={t}"
+    assert t == 2 * nu - 2 - h, f"{t} triangles, expected 2*{nu}-2-{h}"
+
+    check_empty_circumcircles(pts, T.astype(np.int64), uniq)
+
+
+# ---------------------------------------------------------------------------------------------
+# diagrams
+# ---------------------------------------------------------------------------------------------
+
+
+def _csr_pairs(indptr, indices, n) -> set[tuple[int, int]]:
+    indptr = np.asarray(indptr)
+    indices = np.asarray(indices)
+    assert indptr.shape == (n + 1,), f"indptr shape {indptr.shape}"
+    assert indptr[0] == 0 and indptr[-1] == len(indices) and np.all(np.diff(indptr) >= 0)
+    src = np.repeat(np.arange(n), np.diff(indptr))
+    assert len(indices) == 0 or (indices.min() >= 0 and indices.max() < n)
+    assert np.all(src != indices), "a cell is its own neighbour"
+    directed = set(zip(src.tolist(), indices.tolist(), strict=True))
+    assert len(directed) == len(indices), "a neighbour is listed twice"
+    assert all((j, i) in directed for i, j in directed), "neighbours are not symmetric"
+    return {(i, j) for i, j in directed if i < j}
+
+
+def domain_scale(geom) -> float:
+    xmin, ymin, xmax, ymax = geom.bounds
+    return float(max(xmax - xmin, ymax - ymin))
+
+
+def overlay_frame(dom) -> tuple[np.ndarray, float]:
+    """Origin and snap grid for robust overlays of geometries in the domain ``dom``."""
+    origin = np.array(dom.centroid.coords[0]) if dom.area > 0 else np.zeros(2)
+    return origin, 1e-12 * domain_scale(dom)
+
+
+def symmetric_difference_areas(a, b, dom) -> np.ndarray:
+    """Area of ``a[i] ^ b[i]`` computed in the (centred, snap-rounded) frame of ``dom``.
+
+    Snapping moves each vertex by at most the grid, so the result is also returned less
+    ``4 * grid * perimeter`` (clamped at zero): what remains is a real difference.
+    """
+    origin, grid = overlay_frame(dom)
+    a = shapely.transform(np.asarray(a, dtype=object), lambda xy: xy - origin)
+    b = shapely.transform(np.asarray(b, dtype=object), lambda xy: xy - origin)
+    raw = shapely.area(shapely.symmetric_difference(a, b, grid_size=grid))
+    slack = 4 * grid * (shapely.length(a) + shapely.length(b))
+    return np.maximum(raw - slack, 0.0)
+
+
+def validate_diagram(d, points, domain=None, *, samples: int = 2000, seed: int = 0) -> None:
+    """Assert the invariants of a clipped Voronoi diagram ``d`` of ``points``.
+
+    Parameters
+    ----------
+    d : Diagram
+    points : (n, 2) array_like
+        The sites as given to ``vf.voronoi``.
+    domain : shapely geometry, optional
+        The expected domain; ``d.boundary`` is used (and compared with it) when given.
+    samples : int
+        Random points of the domain checked for nearest-site ownership.
+    """
+    pts = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    n = len(pts)
+    sites = np.asarray(d.sites)
+    if not np.array_equal(sites, pts):
+        # documented: only values below 2**-188 of the largest magnitude may be rounded
+        big = np.abs(pts).max(initial=0.0)
+        moved = sites != pts
+        assert np.all(np.abs(pts[moved]) < big * 2.0**-186), "sites differ from the input"
+        assert np.all(np.abs(sites - pts) <= big * 2.0**-238), "sites moved too far"
+        pts = sites
+    dom = d.boundary
+    assert dom is not None and not dom.is_empty and dom.is_valid
+    area = dom.area
+    scale = domain_scale(dom)
+    # absolute tolerance: relative to the domain's size, but never below a few ulps of its
+    # coordinates (at x = 4e6 one ulp is 1e-9)
+    tol = 1e-9 * scale + 8 * np.spacing(np.abs(dom.bounds).max())
+    if domain is not None:
+        diff = symmetric_difference_areas([dom], [domain], domain)[0]
+        assert diff <= 1e-12 * domain.area, f"boundary differs from the domain by area {diff}"
+
+    cells = np.asarray(d.cells, dtype=object)
+    assert cells.shape == (n,), f"cells shape {cells.shape}"
+    dup = first_occurrence(pts)
+    assert np.array_equal(np.asarray(d.duplicate_of), dup), "duplicate_of is wrong"
+    areas = np.asarray(d.areas, dtype=np.float64)
+    centroids = np.asarray(d.centroids, dtype=np.float64)
+    assert areas.shape == (n,) and centroids.shape == (n, 2)
+    if n == 0:
+        return
+
+    types = shapely.get_type_id(cells)
+    assert np.all(np.isin(types, [3, 6])), f"cells must be (Multi)Polygons, got types {set(types)}"
+    assert np.all(shapely.is_valid(cells)), (
+        f"invalid cells: {[shapely.is_valid_reason(c) for c in cells if not c.is_valid][:3]}"
+    )
+    empty = shapely.is_empty(cells)
+    assert np.all(empty[dup >= 0]), "duplicate sites must have empty cells"
+
+    # areas and centroids are those of the geometries
+    geom_area = shapely.area(cells)
+    assert np.allclose(areas, geom_area, rtol=1e-9, atol=1e-12 * area), "areas != cell areas"
+    assert np.all(areas[empty] == 0)
+    assert np.all(np.isnan(centroids[empty])), "empty cells must have NaN centroids"
+    ne = ~empty
+    cen = shapely.get_coordinates(shapely.centroid(cells[ne]))
+    assert np.allclose(centroids[ne], cen, rtol=0, atol=tol), "centroids != cell centroids"
+
+    # the cells tile the domain. Overlays run on copies moved to the domain's centre and
+    # snap-rounded to a grid far below the tolerances: GEOS's floating overlay can return
+    # nonsense for cells whose shared vertices differ in the last bit.
+    total = areas.sum()
+    assert abs(total - area) <= 1e-9 * area, f"areas sum to {total}, domain area {area}"
+    origin, grid = overlay_frame(dom)
+    loc = shapely.transform(cells, lambda xy: xy - origin)
+    dom_loc = shapely.transform(dom, lambda xy: xy - origin)
+    otol = 1e-9 * area + 4 * grid * (shapely.length(cells).sum() + dom.length)
+    union = shapely.union_all(loc[ne], grid_size=grid)
+    assert abs(union.area - area) <= otol, f"union area {union.area} != {area}"
+    outside = shapely.difference(union, dom_loc, grid_size=grid).area
+    assert outside <= otol, f"cells extend outside the domain by area {outside}"
+    tree = shapely.STRtree(cells)
+    ii, jj = tree.query(cells, predicate="intersects")
+    keep = ii < jj
+    ii, jj = ii[keep], jj[keep]
+    overlap = shapely.area(shapely.intersection(loc[ii], loc[jj], grid_size=grid))
+    worst = [(int(ii[k]), int(jj[k]), float(overlap[k])) for k in np.argsort(-overlap)[:3]]
+    assert overlap.sum() <= otol, f"cells overlap (i, j, area): {worst}"
+
+    # each site inside the domain lies in its own cell
+    site_geoms = shapely.points(pts)
+    inside = shapely.covers(dom, site_geoms) & (dup < 0)
+    far = ~shapely.dwithin(cells[inside], site_geoms[inside], tol)
+    assert not far.any(), f"sites not in their own cell: {np.flatnonzero(inside)[far][:10]}"
+
+    # random points belong to the cell of their nearest site
+    uniq = np.flatnonzero(dup < 0)
+    rng = np.random.default_rng(seed)
+    xmin, ymin, xmax, ymax = dom.bounds
+    q = rng.uniform((xmin, ymin), (xmax, ymax), size=(4 * samples, 2))
+    q = q[shapely.contains_xy(dom, q[:, 0], q[:, 1])][:samples]
+    if len(q):
+        k = min(3, len(uniq))
+        dist, idx = cKDTree(pts[uniq]).query(q, k=k)
+        dist = dist.reshape(len(q), k)
+        idx = uniq[idx.reshape(len(q), k)]
+        qg = shapely.points(q)
+        ok = shapely.covers(cells[idx[:, 0]], qg)
+        for r in np.flatnonzero(~ok):
+            ties = idx[r][dist[r] <= dist[r, 0] * (1 + 1e-9) + 1e-12 * scale]
+            if not any(cells[j].covers(qg[r]) or cells[j].distance(qg[r]) <= tol for j in ties):
+                raise AssertionError(
+                    f"sample {q[r].tolist()} is not in the cell of its nearest site {idx[r, 0]}"
+                )
+
+    # neighbours and edges
+    indptr, indices = d.neighbors
+    nb = _csr_pairs(indptr, indices, n)
+    coords, pairs = d.edges
+    coords = np.asarray(coords, dtype=np.float64)
+    pairs = np.asarray(pairs)
+    m = len(pairs)
+    assert coords.shape == (m, 2, 2) and pairs.shape == (m, 2), "edges have the wrong shape"
+    if m == 0:
+        assert not nb, "neighbours without edges"
+        return
+    assert pairs.min() >= 0 and pairs.max() < n and np.all(pairs[:, 0] != pairs[:, 1])
+    lo = np.minimum(pairs[:, 0], pairs[:, 1])
+    hi = np.maximum(pairs[:, 0], pairs[:, 1])
+    assert set(zip(lo.tolist(), hi.tolist(), strict=True)) == nb, "neighbors != edge pairs"
+    assert np.all(dup[pairs] < 0), "an edge belongs to a duplicate site"
+    length = np.hypot(*(coords[:, 1] - coords[:, 0]).T)
+    assert np.all(length > 0), "zero-length edge"
+    # on the bisector of its two sites
+    for end in (0, 1):
+        da = np.hypot(*(coords[:, end] - pts[pairs[:, 0]]).T)
+        db = np.hypot(*(coords[:, end] - pts[pairs[:, 1]]).T)
+        bad = np.abs(da - db) > 1e-9 * (da + db) + tol
+        assert not bad.any(), f"edges off the bisector: {np.flatnonzero(bad)[:10]}"
+    # on both cells' boundaries
+    t = np.linspace(0, 1, 5)
+    along = coords[:, :1] + t[None, :, None] * (coords[:, 1:] - coords[:, :1])
+    probe = shapely.points(along)
+    bounds = shapely.boundary(cells)
+    for side in (0, 1):
+        gap = shapely.distance(bounds[pairs[:, side]][:, None], probe).max(1)
+        bad = gap > tol
+        assert not bad.any(), f"edges not on the boundary of cell {side}: {np.flatnonzero(bad)[:5]}"
+    # each piece of shared boundary once
+    groups: dict[tuple[int, int], list[int]] = defaultdict(list)
+    for k, key in enumerate(zip(lo.tolist(), hi.tolist(), strict=True)):
+        groups[key].append(k)
+    for key, ks in groups.items():
+        if len(ks) > 1:
+            lines = shapely.linestrings(coords[ks])
+            merged = shapely.union_all(lines).length
+            assert merged >= length[ks].sum() * (1 - 1e-9), f"edges of pair {key} overlap"
+    # every shared boundary of positive length is an edge
+    # cells narrower than ``tol`` (sites closer than it) would all look adjacent: shrink it
+    uniq = np.flatnonzero(dup < 0)
+    if len(uniq) > 1:
+        spacing = cKDTree(pts[uniq]).query(pts[uniq], k=2)[0][:, 1].min()
+        near_tol = min(tol, 0.01 * spacing)
+    else:
+        near_tol = tol
+    near_i, near_j = tree.query(cells, predicate="dwithin", distance=near_tol)
+    keep = near_i < near_j
+    near_i, near_j = near_i[keep], near_j[keep]
+    missing = [
+        (i, j) for i, j in zip(near_i.tolist(), near_j.tolist(), strict=True) if (i, j) not in nb
+    ]
+    if missing:
+        a = np.array(missing)
+        shared = shapely.length(
+            shapely.intersection(bounds[a[:, 0]], shapely.buffer(cells[a[:, 1]], tol))
+        )
+        bad = shared > 1e-6 * scale
+        assert not bad.any(), f"cells share a boundary but are not neighbours: {a[bad][:5]}"
