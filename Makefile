@@ -12,7 +12,7 @@ help:
 	@echo "make test   - run the test suite"
 	@echo "make lint   - ruff check and format check"
 	@echo "make bench  - run benchmarks/bench_2d.py"
-	@echo "make clean  - remove out/ and caches (keeps $(VENV))"
+	@echo "make clean  - remove out/ and caches, numba's included (keeps $(VENV))"
 
 # The virtual environment, created once.
 $(BIN)/python:
@@ -51,5 +51,8 @@ format: $(VENV)/.installed-test
 bench: $(VENV)/.installed-bench
 	$(BIN)/python benchmarks/bench_2d.py
 
+# numba's cache checks only the file of the function it caches: after editing a kernel that
+# others call (predicates.py, say), clear it or the callers keep the old code.
 clean:
 	rm -rf out .pytest_cache .ruff_cache .hypothesis
+	find src -name '*.nbi' -delete -o -name '*.nbc' -delete
