@@ -12,7 +12,7 @@ import numpy as np
 import shapely
 
 from ..config import EDGE_LENGTH_RTOL
-from ..kernels.domain_grid import classify, mark_segments
+from ..kernels.domain_grid import classify, mark_segments, scanline_inside
 from ..kernels.rings import shared_edges
 from .domain import Domain
 
@@ -42,17 +42,14 @@ def domain_grid(dom: Domain, n_hint: int):
         | ((segs[:, 1] == y0) & (segs[:, 3] == y0))
         | ((segs[:, 1] == y1) & (segs[:, 3] == y1))
     )
+    all_segs = np.ascontiguousarray(segs)
     segs = np.ascontiguousarray(segs[~on_box])
     marked = mark_segments(segs, x0, y0, h, gx, gy)
     # a free square's centre decides for the whole square; centres are pulled into the box
     # because squares beyond it are only separated from the domain by skipped box segments
     cx = np.clip(x0 + (np.arange(gx) + 0.5) * h, x0 + 0.25 * h, x1 - 0.25 * h)
     cy = np.clip(y0 + (np.arange(gy) + 0.5) * h, y0 + 0.25 * h, y1 - 0.25 * h)
-    free = ~marked
-    rows, cols = np.nonzero(free)
-    inside = np.zeros((gy, gx), dtype=np.bool_)
-    shapely.prepare(dom.geometry)
-    inside[rows, cols] = shapely.contains_xy(dom.geometry, cx[cols], cy[rows])
+    inside = scanline_inside(all_segs, cx, cy, y0, h)  # even-odd over all rings
     return marked, inside, x0, y0, h
 
 
@@ -108,7 +105,6 @@ def clip_to_polygon(dom: Domain, grid, coords, ring_offsets, ring_cell, n):
     simple = np.flatnonzero(status == 1)
     hard = np.flatnonzero(status == 2)
     s_len = lengths[simple]
-    s_coords = coords[np.repeat(status == 1, lengths)]
     if len(hard):
         h_mask = np.repeat(status == 2, lengths)
         h_off = np.zeros(len(hard) + 1, dtype=np.int64)
@@ -139,18 +135,20 @@ def clip_to_polygon(dom: Domain, grid, coords, ring_offsets, ring_cell, n):
     hard_ring_cell = np.repeat(poly_cell[len(simple) :], rings_per_poly)
     ring_cell_all = np.concatenate((simple_cell, hard_ring_cell))
     ring_len = np.concatenate((s_len, len_per_ring))
-    coord_cell = np.concatenate(
-        (np.repeat(simple_cell, s_len), np.repeat(hard_ring_cell, len_per_ring))
-    )
-    all_coords = np.concatenate((s_coords, c_coords))
+    # each ring's start in ``source``: simple rings stay where they are in ``coords``
+    source = np.concatenate((coords, c_coords)) if len(c_coords) else coords
+    src_start = np.concatenate((ring_offsets[simple], len(coords) + c_ring[:-1]))
+    # two runs each already in cell order: the stable sorts are merges
     po = np.argsort(poly_cell, kind="stable")
     ro = np.argsort(ring_cell_all, kind="stable")
-    co = np.argsort(coord_cell, kind="stable")
     out_ring = np.zeros(len(ring_len) + 1, dtype=np.int64)
     np.cumsum(ring_len[ro], out=out_ring[1:])
+    # coordinates follow their rings: out position k of ring r reads src_start[r] + k - start
+    lens = ring_len[ro]
+    co = np.repeat(src_start[ro] - out_ring[:-1], lens) + np.arange(out_ring[-1])
     out_poly = np.zeros(len(poly_rings) + 1, dtype=np.int64)
     np.cumsum(poly_rings[po], out=out_poly[1:])
-    return all_coords[co], out_ring, out_poly, geom_offsets_for(n, poly_cell)
+    return source[co], out_ring, out_poly, geom_offsets_for(n, poly_cell)
 
 
 def _polygonal(geoms):
@@ -176,32 +174,33 @@ def domain_edges(dom: Domain, grid, coords, ring_offsets, ring_cell, owner):
     seg, pairs = shared_edges(coords, ring_offsets, ring_cell, owner, tol)
     if dom.is_rect or len(seg) == 0:
         return seg, pairs
-    a, b, pairs = _clip_segments(dom, grid, seg[:, 0], seg[:, 1], pairs)
-    length = np.hypot(b[:, 0] - a[:, 0], b[:, 1] - a[:, 1])
-    keep = length > tol
-    return np.stack((a[keep], b[keep]), axis=1), pairs[keep]
+    return _clip_segments(dom, grid, seg, pairs, tol)
 
 
-def _clip_segments(dom: Domain, grid, a, b, pairs):
-    two = np.ascontiguousarray(np.stack((a, b), axis=1).reshape(-1, 2))
-    offs = np.arange(0, 2 * len(a) + 1, 2, dtype=np.int64)
+def _clip_segments(dom: Domain, grid, seg, pairs, tol):
+    """Edges ``seg`` (m, 2, 2) cut to the domain: the grid keeps or drops most of them whole."""
+    two = seg.reshape(-1, 2)
+    offs = np.arange(0, 2 * len(seg) + 1, 2, dtype=np.int64)
     status = classify(two, offs, *grid)
-    keep = status == 1
     hard = np.flatnonzero(status == 2)
-    out_a = [a[keep]]
-    out_b = [b[keep]]
-    out_p = [pairs[keep]]
-    if len(hard):
-        lines = shapely.linestrings(np.stack((a[hard], b[hard]), axis=1))
-        cut = _intersect_local(dom, lines)
-        parts, idx = shapely.get_parts(cut, return_index=True)
-        is_line = (shapely.get_type_id(parts) == 1) & ~shapely.is_empty(parts)
-        parts = parts[is_line]
-        idx = idx[is_line]
-        # a straight segment intersected with a region gives straight pieces: keep end points
-        starts = shapely.get_coordinates(shapely.get_point(parts, 0))
-        ends = shapely.get_coordinates(shapely.get_point(parts, -1))
-        out_a.append(starts)
-        out_b.append(ends)
-        out_p.append(pairs[hard[idx]])
-    return np.concatenate(out_a), np.concatenate(out_b), np.concatenate(out_p)
+    keep = status == 1
+    if not len(hard):
+        return seg[keep], pairs[keep]
+    cut = _intersect_local(dom, shapely.linestrings(seg[hard]))
+    parts, idx = shapely.get_parts(cut, return_index=True)
+    is_line = (shapely.get_type_id(parts) == 1) & ~shapely.is_empty(parts)
+    parts = parts[is_line]
+    idx = idx[is_line]
+    # a straight segment intersected with a region gives straight pieces: keep end points
+    piece = np.stack(
+        (
+            shapely.get_coordinates(shapely.get_point(parts, 0)),
+            shapely.get_coordinates(shapely.get_point(parts, -1)),
+        ),
+        axis=1,
+    )
+    long = np.hypot(*(piece[:, 1] - piece[:, 0]).T) > tol
+    return (
+        np.concatenate((seg[keep], piece[long])),
+        np.concatenate((pairs[keep], pairs[hard[idx[long]]])),
+    )

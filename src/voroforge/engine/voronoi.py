@@ -111,16 +111,18 @@ class Diagram:
             poly_of_cell = np.zeros(n + 1, dtype=np.int64)
             np.cumsum(parts, out=poly_of_cell[1:])
             ring_of_cell = poly[poly_of_cell]
-            out = shapely.from_ragged_array(
+            return shapely.from_ragged_array(
                 shapely.GeometryType.POLYGON, coords, (ring, ring_of_cell)
             )
-        else:
-            out = shapely.from_ragged_array(
-                shapely.GeometryType.MULTIPOLYGON, coords, (ring, poly, geom)
-            )
-            single = np.flatnonzero(parts == 1)
-            out[single] = shapely.get_geometry(out[single], 0)
-            out[parts == 0] = shapely.Polygon()
+        # one Polygon per part, then the few split cells gathered into MultiPolygons
+        polys = shapely.from_ragged_array(shapely.GeometryType.POLYGON, coords, (ring, poly))
+        out = np.full(len(parts), shapely.Polygon(), dtype=object)
+        single = np.flatnonzero(parts == 1)
+        out[single] = polys[geom[single]]
+        multi = np.flatnonzero(parts > 1)
+        members = np.concatenate([np.arange(geom[i], geom[i + 1]) for i in multi])
+        owner = np.repeat(np.arange(len(multi)), parts[multi])
+        out[multi] = shapely.multipolygons(polys[members], indices=owner)
         return out
 
     @cached_property
