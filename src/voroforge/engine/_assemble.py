@@ -47,10 +47,21 @@ def domain_grid(dom: Domain, n_hint: int):
     marked = mark_segments(segs, x0, y0, h, gx, gy)
     # a free square's centre decides for the whole square; centres are pulled into the box
     # because squares beyond it are only separated from the domain by skipped box segments
-    cx = np.clip(x0 + (np.arange(gx) + 0.5) * h, x0 + 0.25 * h, x1 - 0.25 * h)
-    cy = np.clip(y0 + (np.arange(gy) + 0.5) * h, y0 + 0.25 * h, y1 - 0.25 * h)
+    cx = _centres(x0, x1, h, gx)
+    cy = _centres(y0, y1, h, gy)
     inside = scanline_inside(all_segs, cx, cy, y0, h)  # even-odd over all rings
     return marked, inside, x0, y0, h
+
+
+def _centres(lo, hi, h, count):
+    """Square centres along one axis, pulled inside ``[lo, hi]``.
+
+    Where the domain is thinner than half a square they all go to its middle.
+    """
+    mid = 0.5 * (lo + hi)
+    return np.clip(
+        lo + (np.arange(count) + 0.5) * h, min(lo + 0.25 * h, mid), max(hi - 0.25 * h, mid)
+    )
 
 
 def _intersect_local(dom: Domain, convex):

@@ -32,6 +32,10 @@ from numba import njit
 from ..config import NJIT
 from .predicates import _CCW_BOUND, _cross, _expansion_sum, incircle, incircle_fast, orient2d
 
+#: Small helpers of the sweep are inlined at the numba level: as separate functions every call
+#: would pay a reference-count round trip on each array argument.
+_INLINE = {**NJIT, "inline": "always"}
+
 # stats slots returned by the debug helper
 _S_FLIPS = 0
 _S_BAD = 1
@@ -71,7 +75,7 @@ def _site_order(xs, ys):
 
 @njit(**NJIT)
 def _breakpoint(px, py, qx, qy, sweep):
-    """x of the breakpoint between the arc of ``p`` (left) and the arc of ``q`` (right).
+    """X of the breakpoint between the arc of ``p`` (left) and the arc of ``q`` (right).
 
     Both parabolas are taken at the sweep line ``y = sweep >= py, qy``. With
     ``hp = sweep - py``, ``hq = sweep - qy``, ``dx = qx - px`` and ``a = qy - py`` the
@@ -93,6 +97,32 @@ def _breakpoint(px, py, qx, qy, sweep):
     if dx > 0.0:
         return px + hp * (dx * dx - hq * a) / (hp * dx + s)
     return px + (hp * dx - s) / a
+
+
+@njit(**_INLINE)
+def _right_of(sx, px, py, qx, qy, sweep):
+    """``sx > _breakpoint(px, py, qx, qy, sweep)`` without a square root or a division.
+
+    With ``u = sx - px`` the breakpoint is the root ``u*`` of
+    ``f(u) = a u^2 - 2 hp dx u + hp (dx^2 - a hq)`` named in :func:`_breakpoint`; the other
+    root lies beyond the vertex ``hp dx / a``, so the sign of ``f`` and the side of the
+    vertex decide.
+    """
+    if py == qy:
+        return sx > 0.5 * (px + qx)
+    hp = sweep - py
+    if hp <= 0.0:
+        return sx > px
+    hq = sweep - qy
+    if hq <= 0.0:
+        return sx > qx
+    u = sx - px
+    dx = qx - px
+    a = qy - py
+    f = (a * u - 2.0 * hp * dx) * u + hp * (dx * dx - a * hq)
+    if a > 0.0:
+        return a * u >= hp * dx or f < 0.0
+    return a * u < hp * dx and f < 0.0
 
 
 @njit(**NJIT)
@@ -124,7 +154,7 @@ def _det(ax, ay, bx, by, cx, cy):
     return v
 
 
-@njit(**NJIT)
+@njit(**_INLINE)
 def _event_y(ax, ay, bx, by, cx, cy, det):
     """Top of the circumcircle of the counter-clockwise ``a, b, c`` (``det`` = their orient2d).
 
@@ -156,7 +186,7 @@ def _event_y(ax, ay, bx, by, cx, cy, det):
 # ---------------------------------------------------------------------------------------------
 
 
-@njit(**NJIT)
+@njit(**_INLINE)
 def _sift_up(heap, hpos, key, i):
     node = heap[i]
     k = key[node]
@@ -172,7 +202,7 @@ def _sift_up(heap, hpos, key, i):
     hpos[node] = i
 
 
-@njit(**NJIT)
+@njit(**_INLINE)
 def _sift_down(heap, hpos, key, size, i):
     node = heap[i]
     k = key[node]
@@ -192,7 +222,7 @@ def _sift_down(heap, hpos, key, size, i):
     hpos[node] = i
 
 
-@njit(**NJIT)
+@njit(**_INLINE)
 def _heap_remove(heap, hpos, key, size, node):
     """Remove ``node``'s event if it has one; returns the new heap size."""
     i = hpos[node]
@@ -215,7 +245,7 @@ def _heap_remove(heap, hpos, key, size, node):
 # ---------------------------------------------------------------------------------------------
 
 
-@njit(**NJIT)
+@njit(**_INLINE)
 def _rotate_up(x, left, right, parent, root):
     """Rotate ``x`` above its parent; returns the (possibly new) root."""
     p = parent[x]
@@ -241,7 +271,7 @@ def _rotate_up(x, left, right, parent, root):
     return root
 
 
-@njit(**NJIT)
+@njit(**_INLINE)
 def _insert_after(v, x, left, right, parent, tprio, root):
     """Insert leaf ``x`` right after node ``v`` in order, then restore the heap on priorities."""
     left[x] = -1
@@ -260,7 +290,7 @@ def _insert_after(v, x, left, right, parent, tprio, root):
     return root
 
 
-@njit(**NJIT)
+@njit(**_INLINE)
 def _delete(x, left, right, parent, tprio, root):
     """Remove node ``x`` from the treap; returns the new root."""
     while left[x] != -1 and right[x] != -1:
@@ -284,7 +314,7 @@ def _delete(x, left, right, parent, tprio, root):
     return root
 
 
-@njit(**NJIT)
+@njit(**_INLINE)
 def _locate(root, sx, sweep, left, right, nxt, site, xs, ys):
     """Leftmost arc whose right breakpoint is at or right of ``sx`` (lower-bound descent)."""
     v = root
@@ -297,7 +327,7 @@ def _locate(root, sx, sweep, left, right, nxt, site, xs, ys):
             continue
         sv = site[v]
         sw = site[w]
-        if sx > _breakpoint(xs[sv], ys[sv], xs[sw], ys[sw], sweep):
+        if _right_of(sx, xs[sv], ys[sv], xs[sw], ys[sw], sweep):
             v = right[v]
         else:
             cand = v
@@ -310,7 +340,7 @@ def _locate(root, sx, sweep, left, right, nxt, site, xs, ys):
 # ---------------------------------------------------------------------------------------------
 
 
-@njit(**NJIT)
+@njit(**_INLINE)
 def _push_event(node, prv, nxt, site, xs, ys, key, heap, hpos, size):
     """Schedule the circle event of the triple centred on ``node`` if its breakpoints converge."""
     a = prv[node]
@@ -336,7 +366,7 @@ def _push_event(node, prv, nxt, site, xs, ys, key, heap, hpos, size):
     return size + 1
 
 
-@njit(**NJIT)
+@njit(**_INLINE)
 def _alloc(free, nfree, nnodes, tprio, hpos, rng):
     """A fresh arc node (recycled when possible) with a new random treap priority."""
     if nfree > 0:
@@ -345,15 +375,15 @@ def _alloc(free, nfree, nnodes, tprio, hpos, rng):
     else:
         w = nnodes
         nnodes += 1
-    rng ^= rng << np.uint32(13)
-    rng ^= rng >> np.uint32(17)
-    rng ^= rng << np.uint32(5)
-    tprio[w] = rng
+    rng ^= rng << np.uint64(13)
+    rng ^= rng >> np.uint64(7)
+    rng ^= rng << np.uint64(17)
+    tprio[w] = np.uint32(rng >> np.uint64(32))
     hpos[w] = -1
     return w, nfree, nnodes, rng
 
 
-@njit(**NJIT)
+@njit(**_INLINE)
 def _attach(rec_he, rec, h, he, stats):
     """Give halfedge ``h`` to edge record ``rec``: park it, or link it with the parked twin."""
     o = rec_he[rec]
@@ -393,7 +423,7 @@ def _sweep(xs, ys, order, stats):
     nrec = 0
     ntri = 0
     size = 0
-    rng = np.uint32(2463534242)
+    rng = np.uint64(88172645463325252)
     root = -1
     beach = 0
 
@@ -486,7 +516,7 @@ def _sweep(xs, ys, order, stats):
 # ---------------------------------------------------------------------------------------------
 
 
-@njit(**NJIT)
+@njit(**_INLINE)
 def _link(he, a, b):
     he[a] = b
     if b != -1:
@@ -565,6 +595,37 @@ def _prepare(points: np.ndarray) -> np.ndarray:
     return pts
 
 
+def _exact_shift(v: np.ndarray) -> float:
+    """A shift ``c`` with ``v - c`` exact for every value (0.0 when none is found).
+
+    Moving the points next to the origin changes no predicate (exact translation) but makes
+    the floating-point event keys resolve features far below the coordinates' own ulp.
+    """
+    lo = float(v.min())
+    hi = float(v.max())
+    for c in (0.5 * (lo + hi), lo, hi):
+        t = v - c
+        bv = v - t
+        err = (v - (t + bv)) + (bv - c)  # Knuth's two-diff error of v - c
+        if not np.any(err):
+            return c
+    return 0.0
+
+
+def _normalised(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Coordinate arrays translated and scaled by a power of two, both exactly."""
+    xs = pts[:, 0] - _exact_shift(pts[:, 0])
+    ys = pts[:, 1] - _exact_shift(pts[:, 1])
+    m = max(float(np.abs(xs).max()), float(np.abs(ys).max()))
+    if m > 0.0 and np.isfinite(m):
+        s = 2.0 ** -math.frexp(m)[1]
+        sx = xs * s
+        sy = ys * s
+        if np.array_equal(sx / s, xs) and np.array_equal(sy / s, ys):
+            xs, ys = sx, sy
+    return np.ascontiguousarray(xs), np.ascontiguousarray(ys)
+
+
 def fortune_debug(points: np.ndarray) -> dict:
     """Run the sweep and return its triangles, halfedges and counters.
 
@@ -587,7 +648,7 @@ def fortune_debug(points: np.ndarray) -> dict:
         tri = np.zeros(0, dtype=np.int32)
         he = np.zeros(0, dtype=np.int32)
     else:
-        tri, he = _fortune(pts[:, 0].copy(), pts[:, 1].copy(), stats)
+        tri, he = _fortune(*_normalised(pts), stats)
     return {
         "triangles": tri.reshape(-1, 3),
         "halfedges": he,
@@ -623,5 +684,5 @@ def fortune_triangles(points: np.ndarray) -> np.ndarray:
     if pts.shape[0] < 3:
         return np.zeros((0, 3), dtype=np.int32)
     stats = np.zeros(_NSTATS, dtype=np.int64)
-    tri, _ = _fortune(pts[:, 0].copy(), pts[:, 1].copy(), stats)
+    tri, _ = _fortune(*_normalised(pts), stats)
     return tri.reshape(-1, 3)

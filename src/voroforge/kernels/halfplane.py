@@ -160,17 +160,17 @@ def _ring_gap(ix, iy, ring, fx0, fx1, fy0, fy1, hx, hy, nx, ny):
 
 
 @njit(**NJIT)
-def _emit(px, py, po, a, m, sx, sy, box, ox, oy, oo):
-    """Write the cell at ``a:a + m`` around site ``(sx, sy)`` to ``ox, oy, oo``.
+def _emit(px, py, po, a, m, cx, cy, box, ox, oy, oo, pos):
+    """Write the cell at ``a:a + m`` around site ``(cx, cy)`` to ``ox, oy, oo`` from ``pos``.
 
     Coordinates become absolute and vertices on box edges are snapped onto the box. Returns
     the length written (0 when rounding left fewer than three distinct vertices).
     """
     xmin, ymin, xmax, ymax = box[0], box[1], box[2], box[3]
-    c = 0
+    c = pos
     for t in range(a, a + m):
-        x = min(max(px[t] + sx, xmin), xmax)
-        y = min(max(py[t] + sy, ymin), ymax)
+        x = min(max(px[t] + cx, xmin), xmax)
+        y = min(max(py[t] + cy, ymin), ymax)
         o = po[t]
         op = po[t - 1] if t > a else po[a + m - 1]
         if o == _BOTTOM or op == _BOTTOM:
@@ -182,91 +182,21 @@ def _emit(px, py, po, a, m, sx, sy, box, ox, oy, oo):
         if o == _RIGHT or op == _RIGHT:
             x = xmax
         o = max(o, -1)
-        if c > 0 and ox[c - 1] == x and oy[c - 1] == y:
+        if c > pos and ox[c - 1] == x and oy[c - 1] == y:
             oo[c - 1] = o
         else:
             ox[c] = x
             oy[c] = y
             oo[c] = o
             c += 1
-    while c > 1 and ox[c - 1] == ox[0] and oy[c - 1] == oy[0]:
+    while c > pos + 1 and ox[c - 1] == ox[pos] and oy[c - 1] == oy[pos]:
         c -= 1
-    return c if c >= 3 else 0
-
-
-@njit(**NJIT)
-def _build(k, start, sx, sy, sidx, grid, box, scratch):
-    """Build the cell of sorted site ``k`` and write it to the output rows of ``scratch``.
-
-    ``scratch = (px, py, po, ss, ox, oy, oo)`` from ``_scratch``: two polygons relative to
-    the site in ``px, py, po`` (at offsets 1 and ``cap + 2``), the signed values of a cut and
-    the output. Returns the emitted length (0 if the cell is empty), or -1 when the scratch
-    arrays are too small for this cell.
-    """
-    px, py, po, ss, ox, oy, oo = scratch
-    x0, y0, hx, hy, nx, ny = grid
-    cap = ss.shape[0]
-    cx = sx[k]
-    cy = sy[k]
-    a = 1
-    b = cap + 2
-    px[a], py[a], po[a] = box[0] - cx, box[1] - cy, _BOTTOM
-    px[a + 1], py[a + 1], po[a + 1] = box[2] - cx, box[1] - cy, _RIGHT
-    px[a + 2], py[a + 2], po[a + 2] = box[2] - cx, box[3] - cy, _TOP
-    px[a + 3], py[a + 3], po[a + 3] = box[0] - cx, box[3] - cy, _LEFT
-    m = 4
-    r2 = 0.0
-    for t in range(a, a + 4):
-        r2 = max(r2, px[t] * px[t] + py[t] * py[t])
-    ix, iy = _bucket(cx, cy, x0, y0, hx, hy, nx, ny)
-    fx0 = cx - (x0 + ix * hx)
-    fx1 = x0 + (ix + 1) * hx - cx
-    fy0 = cy - (y0 + iy * hy)
-    fy1 = y0 + (iy + 1) * hy - cy
-    ring = 0
-    while m >= 3:
-        if ring > 0:
-            gap = _ring_gap(ix, iy, ring, fx0, fx1, fy0, fy1, hx, hy, nx, ny)
-            if gap < 0.0 or gap * gap > _REACH * r2:
-                break
-        for jy in range(max(iy - ring, 0), min(iy + ring, ny - 1) + 1):
-            step = 1 if jy == iy - ring or jy == iy + ring else 2 * ring
-            dy = max(y0 + jy * hy - cy, cy - (y0 + (jy + 1) * hy), 0.0)
-            for jx in range(ix - ring, ix + ring + 1, step):
-                if jx < 0 or jx >= nx or m < 3:
-                    continue
-                dx = max(x0 + jx * hx - cx, cx - (x0 + (jx + 1) * hx), 0.0)
-                if dx * dx + dy * dy > _REACH * r2:
-                    continue
-                bucket = jy * nx + jx
-                for t in range(start[bucket], start[bucket + 1]):
-                    qx = sx[t] - cx
-                    qy = sy[t] - cy
-                    h = 0.5 * (qx * qx + qy * qy)
-                    if t == k or 2.0 * h > _REACH * r2:
-                        continue
-                    out = False
-                    for u in range(m):
-                        s = px[a + u] * qx + py[a + u] * qy - h
-                        ss[u] = s
-                        out |= s > 0.0
-                    if not out:
-                        continue
-                    if m + m // 2 + 2 > cap:  # each run of cut vertices adds at most one
-                        return -1
-                    m, r2 = _cut(px, py, po, a, m, b, ss, sidx[t])
-                    a, b = b, a
-                    if m < 3:
-                        break
-        ring += 1
-    if m < 3:
-        return 0
-    return _emit(px, py, po, a, m, cx, cy, box, ox, oy, oo)
+    return c - pos if c - pos >= 3 else 0
 
 
 @njit(**NJIT)
 def _scratch(cap):
-    """Scratch arrays for ``_build``: two polygons, signed values and the output cell."""
+    """Scratch arrays: two polygons (at offsets 1 and ``cap + 2``), signed values, a cell."""
     return (
         np.zeros(2 * cap + 2),
         np.zeros(2 * cap + 2),
@@ -279,66 +209,147 @@ def _scratch(cap):
 
 
 @njit(**NJIT)
-def _cell(k, start, sx, sy, sidx, grid, box, scratch):
-    """``_build`` with scratch arrays that grow as needed; returns ``(length, scratch)``."""
-    c = _build(k, start, sx, sy, sidx, grid, box, scratch)
-    while c < 0:
-        scratch = _scratch(2 * scratch[3].shape[0])
-        c = _build(k, start, sx, sy, sidx, grid, box, scratch)
-    return c, scratch
+def _cells(k0, k1, sites, grid, box, counts, where, dx, dy, do):
+    """Build the cells of sorted sites ``k0:k1`` and write them one after another to ``d``.
 
+    ``sites = (start, sx, sy, sidx)`` is the bucket grid. Sets ``counts[sidx[k]]`` to each
+    cell's length and ``where[k]`` to its position in ``dx, dy, do``. Cells that no longer
+    fit are only counted. Returns whether all of them fit.
 
-@njit(**NJIT_PARALLEL)
-def _first_pass(start, sx, sy, sidx, grid, box, counts, where, slab_x, slab_y, slab_o, full):
-    """Build every cell; store it in its chunk's slab, or mark the chunk full."""
-    n = sx.shape[0]
-    per = slab_x.shape[0] // full.shape[0]
-    for ch in prange(full.shape[0]):
-        scratch = _scratch(_CAP)
-        pos = ch * per
-        end = pos + per
-        for k in range(ch * _CHUNK, min((ch + 1) * _CHUNK, n)):
-            c = _build(k, start, sx, sy, sidx, grid, box, scratch)
-            if c < 0:
-                c, scratch = _cell(k, start, sx, sy, sidx, grid, box, scratch)
-            counts[sidx[k]] = c
-            if full[ch] == 0 and pos + c <= end:
-                where[k] = pos
-                ox, oy, oo = scratch[4], scratch[5], scratch[6]
-                for t in range(c):
-                    slab_x[pos + t] = ox[t]
-                    slab_y[pos + t] = oy[t]
-                    slab_o[pos + t] = oo[t]
-                pos += c
+    The whole loop lives in this one function: a call per cell would cost a dozen atomic
+    reference-count updates, more than the geometry of a typical cell.
+    """
+    start, sx, sy, sidx = sites
+    x0, y0, hx, hy, nx, ny = grid
+    cap = _CAP
+    px, py, po, ss, ox, oy, oo = _scratch(cap)
+    pos = 0
+    fits = True
+    k = k0
+    while k < k1:
+        cx = sx[k]
+        cy = sy[k]
+        # the box, relative to the site, as polygon a (polygon b receives the next cut)
+        a = 1
+        b = cap + 2
+        px[a], py[a], po[a] = box[0] - cx, box[1] - cy, _BOTTOM
+        px[a + 1], py[a + 1], po[a + 1] = box[2] - cx, box[1] - cy, _RIGHT
+        px[a + 2], py[a + 2], po[a + 2] = box[2] - cx, box[3] - cy, _TOP
+        px[a + 3], py[a + 3], po[a + 3] = box[0] - cx, box[3] - cy, _LEFT
+        m = 4
+        r2 = 0.0
+        for t in range(a, a + 4):
+            r2 = max(r2, px[t] * px[t] + py[t] * py[t])
+        ix, iy = _bucket(cx, cy, x0, y0, hx, hy, nx, ny)
+        fx0 = cx - (x0 + ix * hx)
+        fx1 = x0 + (ix + 1) * hx - cx
+        fy0 = cy - (y0 + iy * hy)
+        fy1 = y0 + (iy + 1) * hy - cy
+        ring = 0
+        grow = False
+        while m >= 3 and not grow:
+            if ring > 0:
+                gap = _ring_gap(ix, iy, ring, fx0, fx1, fy0, fy1, hx, hy, nx, ny)
+                if gap < 0.0 or gap * gap > _REACH * r2:
+                    break
+            for jy in range(max(iy - ring, 0), min(iy + ring, ny - 1) + 1):
+                step = 1 if jy == iy - ring or jy == iy + ring else 2 * ring
+                gy = max(y0 + jy * hy - cy, cy - (y0 + (jy + 1) * hy), 0.0)
+                for jx in range(ix - ring, ix + ring + 1, step):
+                    if jx < 0 or jx >= nx or m < 3 or grow:
+                        continue
+                    gx = max(x0 + jx * hx - cx, cx - (x0 + (jx + 1) * hx), 0.0)
+                    if gx * gx + gy * gy > _REACH * r2:
+                        continue
+                    bucket = jy * nx + jx
+                    for t in range(start[bucket], start[bucket + 1]):
+                        qx = sx[t] - cx
+                        qy = sy[t] - cy
+                        h = 0.5 * (qx * qx + qy * qy)
+                        if t == k or 2.0 * h > _REACH * r2:
+                            continue
+                        out = False
+                        for u in range(m):
+                            s = px[a + u] * qx + py[a + u] * qy - h
+                            ss[u] = s
+                            out |= s > 0.0
+                        if not out:
+                            continue
+                        if m + m // 2 + 2 > cap:  # each run of cut vertices adds at most one
+                            grow = True
+                            break
+                        m, r2 = _cut(px, py, po, a, m, b, ss, sidx[t])
+                        a, b = b, a
+                        if m < 3:
+                            break
+            ring += 1
+        if grow:  # rare: a cell with many vertices; start it again with more room
+            cap *= 2
+            px, py, po, ss, ox, oy, oo = _scratch(cap)
+            continue
+        c = 0
+        if m >= 3:
+            if fits and pos + m <= dx.shape[0]:
+                c = _emit(px, py, po, a, m, cx, cy, box, dx, dy, do, pos)
             else:
-                full[ch] = 1
+                fits = False
+                c = _emit(px, py, po, a, m, cx, cy, box, ox, oy, oo, 0)
+        counts[sidx[k]] = c
+        where[k] = pos
+        pos += c
+        k += 1
+    return fits
 
 
 @njit(**NJIT_PARALLEL)
-def _second_pass(
-    start, sx, sy, sidx, grid, box, offsets, where, slab_x, slab_y, slab_o, full, coords, owner
-):
-    """Move every cell to its place in the output; rebuild the cells of full chunks."""
-    n = sx.shape[0]
-    for ch in prange(full.shape[0]):
-        scratch = _scratch(_CAP if full[ch] else 1)
-        for k in range(ch * _CHUNK, min((ch + 1) * _CHUNK, n)):
+def _first_pass(sites, grid, box, counts, where, slab_x, slab_y, slab_o, fits):
+    """Build every cell into its chunk's slab; ``fits[ch]`` tells whether the slab held it."""
+    n = sites[1].shape[0]
+    per = slab_x.shape[0] // fits.shape[0]
+    for ch in prange(fits.shape[0]):
+        lo = ch * per
+        fits[ch] = _cells(
+            ch * _CHUNK,
+            min((ch + 1) * _CHUNK, n),
+            sites,
+            grid,
+            box,
+            counts,
+            where,
+            slab_x[lo : lo + per],
+            slab_y[lo : lo + per],
+            slab_o[lo : lo + per],
+        )
+
+
+@njit(**NJIT_PARALLEL)
+def _second_pass(sites, grid, box, counts, offsets, where, slab, fits, coords, owner):
+    """Copy every cell to its place in the output; rebuild the chunks that overflowed."""
+    sidx = sites[3]
+    n = sidx.shape[0]
+    slab_x, slab_y, slab_o = slab
+    per = slab_x.shape[0] // fits.shape[0]
+    for ch in prange(fits.shape[0]):
+        k0 = ch * _CHUNK
+        k1 = min((ch + 1) * _CHUNK, n)
+        lo = ch * per
+        xs, ys, os = slab_x[lo : lo + per], slab_y[lo : lo + per], slab_o[lo : lo + per]
+        if not fits[ch]:  # rebuild the chunk into buffers of the size now known
+            total = 0
+            for k in range(k0, k1):
+                total += counts[sidx[k]]
+            xs = np.zeros(total)
+            ys = np.zeros(total)
+            os = np.zeros(total, np.int64)
+            _cells(k0, k1, sites, grid, box, counts, where, xs, ys, os)
+        for k in range(k0, k1):
             i = sidx[k]
             dst = offsets[i]
-            c = offsets[i + 1] - dst
-            if full[ch]:
-                c, scratch = _cell(k, start, sx, sy, sidx, grid, box, scratch)
-                ox, oy, oo = scratch[4], scratch[5], scratch[6]
-                for t in range(c):
-                    coords[dst + t, 0] = ox[t]
-                    coords[dst + t, 1] = oy[t]
-                    owner[dst + t] = oo[t]
-            else:
-                src = where[k]
-                for t in range(c):
-                    coords[dst + t, 0] = slab_x[src + t]
-                    coords[dst + t, 1] = slab_y[src + t]
-                    owner[dst + t] = slab_o[src + t]
+            src = where[k]
+            for t in range(offsets[i + 1] - dst):
+                coords[dst + t, 0] = xs[src + t]
+                coords[dst + t, 1] = ys[src + t]
+                owner[dst + t] = os[src + t]
 
 
 def halfplane_cells(points, box):
@@ -377,8 +388,7 @@ def halfplane_cells(points, box):
     xs = np.ascontiguousarray(pts[:, 0])
     ys = np.ascontiguousarray(pts[:, 1])
     grid = _grid_shape(xs, ys)
-    start, sx, sy, sidx = _bucket_sort(xs, ys, *grid)
-    st = (start, sx, sy, sidx, grid, boxa)
+    sites = _bucket_sort(xs, ys, *grid)
     nchunks = (n + _CHUNK - 1) // _CHUNK
     per = _SLAB * min(_CHUNK, n) + 16
     counts = np.zeros(n, np.int64)
@@ -386,12 +396,13 @@ def halfplane_cells(points, box):
     slab_x = np.zeros(nchunks * per)
     slab_y = np.zeros(nchunks * per)
     slab_o = np.zeros(nchunks * per, np.int64)
-    full = np.zeros(nchunks, np.int8)
-    _first_pass(*st, counts, where, slab_x, slab_y, slab_o, full)
+    fits = np.zeros(nchunks, np.bool_)
+    _first_pass(sites, grid, boxa, counts, where, slab_x, slab_y, slab_o, fits)
     offsets = np.zeros(n + 1, np.int64)
     np.cumsum(counts, out=offsets[1:])
     k = int(offsets[-1])
     coords = np.empty((k, 2))  # noqa: TID251 - every slot is written by _second_pass
     owner = np.empty(k, np.int32)  # noqa: TID251 - every slot is written by _second_pass
-    _second_pass(*st, offsets, where, slab_x, slab_y, slab_o, full, coords, owner)
+    slab = (slab_x, slab_y, slab_o)
+    _second_pass(sites, grid, boxa, counts, offsets, where, slab, fits, coords, owner)
     return coords, offsets, owner

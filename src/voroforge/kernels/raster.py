@@ -455,27 +455,49 @@ def _offer(lab, px, py, xs, ys, top):
     return top
 
 
+@njit(**NJIT)
+def _offer_both(s1, s2, r, c, px, py, xs, ys, top):
+    """Offer both sites held by pixel ``(r, c)``."""
+    top = _offer(np.int64(s1[r, c]), px, py, xs, ys, top)
+    return _offer(np.int64(s2[r, c]), px, py, xs, ys, top)
+
+
 @njit(**NJIT_PARALLEL)
 def _jfa2_pass(s1, s2, t1, t2, xs, ys, pxs, pys, step):
-    """Flooding pass keeping the two nearest distinct sites per pixel (18 candidates)."""
+    """Flooding pass keeping the two nearest distinct sites per pixel (18 candidates).
+
+    As in :func:`_jfa_pass`, neighbours outside the image are replaced by the pixel itself.
+    """
     h, w = s1.shape
     m = xs.shape[0] - 1
     for row in prange(h):
         r = np.int64(row)
         py = pys[r]
+        ru = r - step
+        if ru < 0:
+            ru = r
+        rd = r + step
+        if rd >= h:
+            rd = r
         for c in range(w):
             px = pxs[c]
-            top = (m, np.inf, m, np.inf)
-            for kr in range(-1, 2):
-                rr = r + kr * step
-                if rr < 0 or rr >= h:
-                    continue
-                for kc in range(-1, 2):
-                    cc = c + kc * step
-                    if cc < 0 or cc >= w:
-                        continue
-                    top = _offer(s1[rr, cc], px, py, xs, ys, top)
-                    top = _offer(s2[rr, cc], px, py, xs, ys, top)
+            cl = c - step
+            if cl < 0:
+                cl = c
+            cr = c + step
+            if cr >= w:
+                cr = c
+            own = np.int64(s1[r, c])
+            top = (own, _d2(px, py, xs, ys, own), m, np.inf)
+            top = _offer(np.int64(s2[r, c]), px, py, xs, ys, top)
+            top = _offer_both(s1, s2, ru, cl, px, py, xs, ys, top)
+            top = _offer_both(s1, s2, ru, c, px, py, xs, ys, top)
+            top = _offer_both(s1, s2, ru, cr, px, py, xs, ys, top)
+            top = _offer_both(s1, s2, r, cl, px, py, xs, ys, top)
+            top = _offer_both(s1, s2, r, cr, px, py, xs, ys, top)
+            top = _offer_both(s1, s2, rd, cl, px, py, xs, ys, top)
+            top = _offer_both(s1, s2, rd, c, px, py, xs, ys, top)
+            top = _offer_both(s1, s2, rd, cr, px, py, xs, ys, top)
             t1[r, c] = top[0]
             t2[r, c] = top[2]
 
