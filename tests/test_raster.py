@@ -1,0 +1,356 @@
+"""vf.rasterize: exact labels/distances against brute force, JFA accuracy, PNG and CLI helpers."""
+
+import argparse
+import os
+import subprocess
+import sys
+import textwrap
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+from PIL import Image
+
+from voroforge.engine.raster import pixel_centers, rasterize
+from voroforge.io.raster_png import (
+    add_raster_parser,
+    colorize,
+    palette,
+    parse_size,
+    raster_command,
+    write_raster_png,
+)
+
+METRICS = ("euclidean", "manhattan", "chebyshev")
+
+
+def brute(points, bounds, shape, metric="euclidean"):
+    """Brute force: nearest site (argmin, ties -> lowest index), F1, and F2 (distinct sites)."""
+    pts = np.asarray(points, dtype=np.float64)
+    x, y = pixel_centers(bounds, shape)
+    xx, yy = np.meshgrid(x, y)
+    dx = xx[..., None] - pts[:, 0]
+    dy = yy[..., None] - pts[:, 1]
+    if metric == "euclidean":
+        key = dx**2 + dy**2
+    elif metric == "manhattan":
+        key = np.abs(dx) + np.abs(dy)
+    else:
+        key = np.maximum(np.abs(dx), np.abs(dy))
+    labels = key.argmin(axis=-1)
+    k1 = np.take_along_axis(key, labels[..., None], axis=-1)[..., 0]
+    # F2: smallest key over sites at a different position from the nearest one.
+    same = (pts[:, 0] == pts[labels][..., 0:1]) & (pts[:, 1] == pts[labels][..., 1:2])
+    k2 = np.where(same, np.inf, key).min(axis=-1)
+    if metric == "euclidean":
+        k1, k2 = np.sqrt(k1), np.sqrt(k2)
+    return labels, k1, k2
+
+
+def assert_matches_brute(points, bounds, shape, metric, f2=True):
+    r = rasterize(points, shape, bounds, metric=metric, f2=f2)
+    labels, d1, d2 = brute(points, r.bounds, shape, metric)
+    np.testing.assert_array_equal(r.labels, labels)
+    np.testing.assert_array_equal(r.distance, d1)
+    if f2:
+        np.testing.assert_array_equal(r.f2, d2)
+    return r
+
+
+@pytest.fixture
+def mixed_sites():
+    """200 sites with duplicates and a few outside the unit square."""
+    rng = np.random.default_rng(3)
+    pts = rng.random((200, 2))
+    pts[50] = pts[10]
+    pts[51] = pts[10]
+    pts[120] = pts[7]
+    pts[5] = [1.7, 0.4]
+    pts[6] = [-0.3, -0.2]
+    pts[199] = [0.5, 3.0]
+    return pts
+
+
+# --- exact method ----------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("metric", METRICS)
+def test_exact_equals_brute_force(mixed_sites, metric):
+    r = assert_matches_brute(mixed_sites, (0.0, 0.0, 1.0, 1.0), (48, 64), metric)
+    assert r.labels.dtype == np.int32 and r.distance.dtype == np.float64
+    assert r.shape == (48, 64) and r.method == "exact" and r.metric == metric
+    # duplicates never own pixels; the first occurrence does
+    assert not np.isin([50, 51, 120], r.labels).any()
+    assert np.all(r.f2 >= r.distance)
+    np.testing.assert_array_equal(r.edge, r.f2 - r.distance)
+
+
+@pytest.mark.parametrize("metric", METRICS)
+def test_exact_integer_grid_ties(metric):
+    # Sites on integers, pixel centres on half-integers: many exact ties between sites.
+    rng = np.random.default_rng(5)
+    pts = rng.integers(0, 12, size=(40, 2)).astype(float)
+    assert_matches_brute(pts, (0.0, 0.0, 12.0, 12.0), (12, 12), metric)
+    assert_matches_brute(pts[::-1], (0.0, 0.0, 12.0, 12.0), (24, 24), metric)
+
+
+@given(
+    st.lists(st.tuples(st.integers(-4, 12), st.integers(-4, 12)), min_size=1, max_size=30).map(
+        lambda v: np.array(v, dtype=float) / 2.0
+    ),
+    st.sampled_from(METRICS),
+)
+def test_exact_hypothesis_small_grids(points, metric):
+    assert_matches_brute(points, (0.0, 0.0, 4.0, 3.0), (9, 13), metric)
+
+
+def test_exact_clustered_far_from_image():
+    # A dense cluster far from most pixels: tiles get many candidates and are split.
+    rng = np.random.default_rng(8)
+    pts = np.concatenate([rng.normal(0.9, 0.004, (400, 2)), rng.random((5, 2))])
+    for metric in METRICS:
+        assert_matches_brute(pts, (0.0, 0.0, 1.0, 1.0), (40, 56), metric)
+
+
+def test_exact_sites_all_outside():
+    pts = np.array([[-1.0, 0.5], [2.0, 0.5], [0.5, 5.0], [-1.0, 0.5]])
+    assert_matches_brute(pts, (0.0, 0.0, 1.0, 1.0), (16, 20), "euclidean")
+
+
+def test_single_site_and_all_duplicates():
+    r = assert_matches_brute([[0.3, 0.6]], (0, 0, 1, 1), (7, 5), "euclidean", f2=False)
+    assert (r.labels == 0).all()
+    r = rasterize([[0.3, 0.6]] * 3, (7, 5), (0, 0, 1, 1), f2=True)
+    assert (r.labels == 0).all()
+    assert np.isinf(r.f2).all()  # no second distinct site
+    r = rasterize([[0.3, 0.6]] * 3, (7, 5), (0, 0, 1, 1), method="jfa", f2=True)
+    assert (r.labels == 0).all() and np.isinf(r.f2).all()
+
+
+def test_collinear_sites():
+    pts = np.stack([np.linspace(0, 1, 30), np.full(30, 0.5)], axis=1)
+    for metric in METRICS:
+        assert_matches_brute(pts, (0, 0, 1, 1), (20, 33), metric)
+    assert_matches_brute(pts[:, ::-1], (0, 0, 1, 1), (33, 20), "euclidean")
+
+
+def test_pixel_centre_convention():
+    # Left/right: bisector x = 0.5, pixel centres 0.05, 0.15, ..., 0.95.
+    r = rasterize([[0.3, 0.5], [0.7, 0.5]], (1, 10), (0.0, 0.0, 1.0, 1.0))
+    assert r.labels.tolist() == [[0] * 5 + [1] * 5]
+    np.testing.assert_allclose(r.distance[0, :3], [0.25, 0.15, 0.05])
+    np.testing.assert_allclose(r.x, np.arange(10) / 10 + 0.05)
+    # Top/bottom: row 0 is the top (largest y).
+    r = rasterize([[0.5, 0.9], [0.5, 0.1]], (4, 1), (0.0, 0.0, 1.0, 1.0))
+    assert r.labels[:, 0].tolist() == [0, 0, 1, 1]
+    np.testing.assert_allclose(r.y, [0.875, 0.625, 0.375, 0.125])
+    assert r.distance[0, 0] == abs(0.875 - 0.9)
+
+
+def test_ties_go_to_lowest_index():
+    # Pixel centre (0.5, 0.5) is equidistant from both sites, whichever order they come in.
+    a, b = [0.25, 0.5], [0.75, 0.5]
+    for pts, want in (([a, b], 0), ([b, a], 0)):
+        for method in ("exact", "jfa"):
+            r = rasterize(pts, (1, 1), (0.0, 0.0, 1.0, 1.0), method=method, f2=True)
+            assert r.labels[0, 0] == want
+            assert r.f2[0, 0] == r.distance[0, 0] == 0.25
+            assert r.edge[0, 0] == 0.0
+
+
+def test_scaling_by_two_is_exact(mixed_sites):
+    r1 = rasterize(mixed_sites, (30, 40), (0.0, 0.0, 1.0, 1.0), f2=True)
+    r2 = rasterize(mixed_sites * 1024.0, (30, 40), (0.0, 0.0, 1024.0, 1024.0), f2=True)
+    np.testing.assert_array_equal(r1.labels, r2.labels)
+    np.testing.assert_array_equal(r1.distance * 1024.0, r2.distance)
+    np.testing.assert_array_equal(r1.f2 * 1024.0, r2.f2)
+
+
+def test_large_offset_coordinates():
+    rng = np.random.default_rng(2)
+    pts = 4_000_000.0 + rng.random((60, 2)) * 100.0
+    assert_matches_brute(pts, None, (25, 30), "euclidean")
+
+
+def test_default_bounds_are_padded_bbox():
+    r = rasterize([[0.0, 0.0], [10.0, 5.0]], (4, 4))
+    assert r.bounds == (-1.0, -0.5, 11.0, 5.5)
+    r = rasterize([[2.0, 3.0]], (4, 4))
+    assert r.bounds == (1.0, 2.0, 3.0, 4.0)
+    r = rasterize([[0.0, 1.0], [4.0, 1.0]], (4, 4))  # zero height: padded like the width
+    assert r.bounds == (-0.4, 0.6, 4.4, 1.4)
+
+
+def test_inputs_not_mutated_and_results_read_only(mixed_sites):
+    before = mixed_sites.copy()
+    bounds = [0.0, 0.0, 1.0, 1.0]
+    r = rasterize(mixed_sites, (8, 8), bounds, method="jfa", f2=True)
+    np.testing.assert_array_equal(mixed_sites, before)
+    assert bounds == [0.0, 0.0, 1.0, 1.0]
+    for arr in (r.labels, r.distance, r.f2, r.edge):
+        assert not arr.flags.writeable
+    assert "RasterVoronoi" in repr(r)
+
+
+def test_edge_needs_f2():
+    r = rasterize([[0, 0], [1, 1]], (4, 4))
+    assert r.f2 is None
+    with pytest.raises(ValueError, match="f2=True"):
+        _ = r.edge
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"points": [[0, 0], [np.nan, 1]]}, "NaN"),
+        ({"points": [[0, 0], [np.inf, 1]]}, "infinite"),
+        ({"points": [[0, 0, 0]]}, "shape"),
+        ({"points": np.zeros((0, 2))}, "at least one"),
+        ({"shape": (0, 4)}, "positive ints"),
+        ({"shape": (4, -1)}, "positive ints"),
+        ({"shape": (4.0, 4)}, "positive ints"),
+        ({"shape": (True, 4)}, "positive ints"),
+        ({"shape": (4, 4, 4)}, "positive ints"),
+        ({"shape": 4}, "positive ints"),
+        ({"bounds": (0, 0, 1)}, "4 numbers"),
+        ({"bounds": (1, 0, 0, 1)}, "xmin < xmax"),
+        ({"bounds": (0, 1, 1, 1)}, "ymin < ymax"),
+        ({"bounds": (0, 0, np.nan, 1)}, "finite"),
+        ({"bounds": "abcd"}, "bounds"),
+        ({"method": "voronoi"}, "method"),
+        ({"metric": "cosine"}, "metric"),
+        ({"method": "jfa", "metric": "manhattan"}, "supports metric=.euclidean. only"),
+    ],
+)
+def test_validation(kwargs, match):
+    args = {"points": [[0.0, 0.0], [1.0, 1.0]], "shape": (4, 4), "bounds": None, **kwargs}
+    with pytest.raises(ValueError, match=match):
+        rasterize(args.pop("points"), args.pop("shape"), args.pop("bounds"), **args)
+
+
+# --- Jump Flooding ---------------------------------------------------------------------------
+
+
+def test_jfa_close_to_exact():
+    rng = np.random.default_rng(0)
+    pts = rng.random((1000, 2))
+    bounds = (0.0, 0.0, 1.0, 1.0)
+    ex = rasterize(pts, (512, 512), bounds, f2=True)
+    jf = rasterize(pts, (512, 512), bounds, method="jfa")
+    assert jf.method == "jfa" and jf.f2 is None
+    assert np.mean(jf.labels != ex.labels) < 0.01
+    # JFA distances are to real sites: never below the true F1, and only slightly above.
+    pixel = 1.0 / 512
+    assert np.all(jf.distance >= ex.distance)
+    assert np.max(jf.distance - ex.distance) < 2 * pixel
+    # where the labels agree the distances are identical
+    same = jf.labels == ex.labels
+    np.testing.assert_array_equal(jf.distance[same], ex.distance[same])
+    # the two-label variant is at least as good and approximates F2
+    jf2 = rasterize(pts, (512, 512), bounds, method="jfa", f2=True)
+    assert np.mean(jf2.labels != ex.labels) <= np.mean(jf.labels != ex.labels)
+    assert np.mean(np.abs(jf2.f2 - ex.f2) > 1e-12) < 0.02
+    assert np.all(jf2.f2 >= jf2.distance)
+
+
+def test_jfa_duplicates_outside_sites_and_rectangular_image(mixed_sites):
+    ex = rasterize(mixed_sites, (96, 160), (0.0, 0.0, 1.0, 1.0))
+    jf = rasterize(mixed_sites, (96, 160), (0.0, 0.0, 1.0, 1.0), method="jfa")
+    assert not np.isin([50, 51, 120], jf.labels).any()
+    assert np.mean(jf.labels != ex.labels) < 0.02
+    assert np.all(jf.distance >= ex.distance)
+
+
+def test_jfa_few_sites_is_exact():
+    pts = [[0.1, 0.2], [0.8, 0.7], [0.4, 0.9]]
+    ex = rasterize(pts, (50, 70), (0, 0, 1, 1))
+    jf = rasterize(pts, (50, 70), (0, 0, 1, 1), method="jfa")
+    np.testing.assert_array_equal(jf.labels, ex.labels)
+
+
+def test_kernels_run_without_jit(tmp_path):
+    # The kernels must stay plain Python too (coverage runs with NUMBA_DISABLE_JIT=1).
+    code = textwrap.dedent(
+        """
+        import numpy as np
+        from voroforge.engine.raster import rasterize
+        pts = np.random.default_rng(1).random((25, 2))
+        pts[3] = pts[2]
+        ex = rasterize(pts, (12, 10), (0, 0, 1, 1), f2=True)
+        ex2 = rasterize(pts, (12, 10), (0, 0, 1, 1), metric="chebyshev")
+        jf = rasterize(pts, (12, 10), (0, 0, 1, 1), method="jfa", f2=True)
+        np.save("out.npy", np.stack([ex.labels, ex2.labels, jf.labels]))
+        """
+    )
+    env = {**os.environ, "NUMBA_DISABLE_JIT": "1"}
+    subprocess.run([sys.executable, "-c", code], check=True, env=env, cwd=tmp_path, timeout=120)
+    got = np.load(tmp_path / "out.npy")
+    pts = np.random.default_rng(1).random((25, 2))
+    pts[3] = pts[2]
+    np.testing.assert_array_equal(got[0], brute(pts, (0, 0, 1, 1), (12, 10))[0])
+    np.testing.assert_array_equal(got[1], brute(pts, (0, 0, 1, 1), (12, 10), "chebyshev")[0])
+    assert got[2].shape == (12, 10)
+
+
+# --- PNG and CLI helpers ---------------------------------------------------------------------
+
+
+def test_write_png_fields(tmp_path, mixed_sites):
+    r = rasterize(mixed_sites, (30, 40), (0, 0, 1, 1), f2=True)
+    for field in ("labels", "f1", "f2", "edge"):
+        path = write_raster_png(r, tmp_path / f"{field}.png", field=field)
+        img = np.asarray(Image.open(path))
+        assert img.shape[:2] == (30, 40)
+    rgb = np.asarray(Image.open(tmp_path / "labels.png"))
+    np.testing.assert_array_equal(rgb, palette(200)[r.labels])
+    np.testing.assert_array_equal(colorize(r, seed=4), colorize(r, seed=4))
+    grey = colorize(r, field="f1")
+    assert grey.dtype == np.uint8 and grey.max() == 255
+    edge = colorize(r, field="edge")
+    assert edge.min() == 0  # on cell boundaries
+    with pytest.raises(ValueError, match="field"):
+        colorize(r, field="nope")
+    with pytest.raises(ValueError, match="f2=True"):
+        colorize(rasterize(mixed_sites, (4, 4)), field="edge")
+
+
+def test_palette_deterministic():
+    np.testing.assert_array_equal(palette(50, seed=1), palette(50, seed=1))
+    assert not np.array_equal(palette(50, seed=1), palette(50, seed=2))
+    assert palette(50).dtype == np.uint8 and palette(50).shape == (50, 3)
+
+
+def test_raster_command(tmp_path):
+    pts = np.random.default_rng(4).random((30, 2))
+    src = tmp_path / "pts.csv"
+    src.write_text("x,y\n" + "\n".join(f"{x!r},{y!r}" for x, y in pts.tolist()))
+    parser = argparse.ArgumentParser()
+    add_raster_parser(parser.add_subparsers(dest="command"))
+    out = tmp_path / "cells.png"
+    args = parser.parse_args(
+        [
+            "raster",
+            str(src),
+            "-o",
+            str(out),
+            "--size",
+            "40x30",
+            "--method",
+            "jfa",
+            "--field",
+            "edge",
+        ]
+    )
+    stages = []
+    written = args.func(args, stages.append)
+    assert written == [out] and stages
+    assert np.asarray(Image.open(out)).shape == (30, 40)
+    args = parser.parse_args(["raster", str(src), "-o", str(out), "--bounds=-1,-1,2,2"])
+    raster_command(args)
+    assert Image.open(out).size == (1024, 1024)
+    with pytest.raises(ValueError, match=".png"):
+        raster_command(parser.parse_args(["raster", str(src), "-o", str(tmp_path / "x.svg")]))
+    assert parse_size("64") == (64, 64) and parse_size("64x32") == (32, 64)
+    with pytest.raises(ValueError, match="size"):
+        parse_size("64x0")
