@@ -255,6 +255,40 @@ def _index_of(nbrs, nn, a):
 
 
 @njit(**NJIT)
+def _chain(nbrs, tris, nn, a, b):
+    """Where neighbour ``a`` is, and how many Delaunay triangles lead from it to ``b``.
+
+    Returns ``(ka, steps)`` in rotation order; ``steps`` is -1 when either is missing, ``b``
+    does not follow ``a``, or a triangle between them does not exist (past a hull end).
+    """
+    ka = _index_of(nbrs, nn, a)
+    kb = _index_of(nbrs, nn, b)
+    if ka < 0 or kb < 0:
+        return ka, -1
+    steps = (kb - ka) % nn if tris[nn - 1] >= 0 else kb - ka
+    for s in range(max(steps, 0)):
+        if tris[(ka + s) % nn] < 0:
+            return ka, -1
+    return ka, steps if steps >= 1 else -1
+
+
+@njit(**NJIT)
+def _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, qx, qy, qw, out):
+    """Write the circumcentres of the ``steps`` triangles after neighbour ``ka`` to ``q``.
+
+    Each is followed by the edge of the next neighbour; returns the new vertex count.
+    """
+    for s in range(steps):
+        k = (ka + s) % nn
+        t = tris[k]
+        qx[out] = cx[t]
+        qy[out] = cy[t]
+        qw[out] = nbrs[(k + 1) % nn]
+        out += 1
+    return out
+
+
+@njit(**NJIT)
 def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, qx, qy, qw):
     """Replace computed vertices by values every cell sharing them computes identically.
 
@@ -265,7 +299,6 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, q
     triangulation. A vertex on a box side is the canonical crossing of the bisector with that
     side; two box sides meet at an exact corner. Owners of box sides (-1..-4) become -1.
     """
-    cyclic = nn > 0 and tris[nn - 1] >= 0
     out = 0
     for v in range(m):
         a = pw[v - 1] if v > 0 else pw[m - 1]
@@ -273,15 +306,8 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, q
         x = px[v]
         y = py[v]
         if a >= 0 and b >= 0:
-            ka = _index_of(nbrs, nn, a)
-            kb = _index_of(nbrs, nn, b)
-            steps = -1
-            if ka >= 0 and kb >= 0:
-                steps = (kb - ka) % nn if cyclic else kb - ka
+            ka, steps = _chain(nbrs, tris, nn, a, b)
             ok = steps >= 1 and out + steps + (m - v) <= qx.shape[0]
-            for s in range(max(steps, 0)):
-                if tris[(ka + s) % nn] < 0:
-                    ok = False
             if ok and steps > 1:
                 # only a chain longer than rounding noise (near-cocircular neighbours give
                 # rounding-level chains whose order floats cannot be trusted with)
@@ -290,13 +316,7 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, q
                 span = abs(cx[t1] - cx[t0]) + abs(cy[t1] - cy[t0])
                 ok = span > 1e-9 * ((box[2] - box[0]) + (box[3] - box[1]))
             if ok:
-                for s in range(steps):
-                    k = (ka + s) % nn
-                    t = tris[k]
-                    qx[out] = cx[t]
-                    qy[out] = cy[t]
-                    qw[out] = nbrs[(k + 1) % nn] if s + 1 < steps else b
-                    out += 1
+                out = _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, qx, qy, qw, out)
                 continue
         elif a >= 0 or b >= 0:
             j = a if a >= 0 else b
@@ -355,7 +375,6 @@ def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw):
     nearest neighbour; when the ends disagree, the Delaunay chain of circumcentres between
     the two neighbours is inserted, so the edge is split where the true vertices are.
     """
-    cyclic = nn > 0 and tris[nn - 1] >= 0
     out = 0
     for v in range(m):
         b = pw[v]
@@ -371,26 +390,14 @@ def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw):
         if lp == lq:
             qw[out - 1] = lp
             continue
-        kp = _index_of(nbrs, nn, lp)
-        kq = _index_of(nbrs, nn, lq)
-        steps = (kq - kp) % nn if cyclic else kq - kp
-        ok = steps >= 1 and out + steps + (m - v) <= qx.shape[0]
-        for s in range(max(steps, 0)):
-            if tris[(kp + s) % nn] < 0:
-                ok = False
-        if not ok:
+        kp, steps = _chain(nbrs, tris, nn, lp, lq)
+        if not (steps >= 1 and out + steps + (m - v) <= qx.shape[0]):
             qw[out - 1] = _nearest_label(
                 xs, ys, 0.5 * (px[v] + px[w]), 0.5 * (py[v] + py[w]), b, nbrs, nn
             )
             continue
         qw[out - 1] = lp
-        for s in range(steps):
-            k = (kp + s) % nn
-            t = tris[k]
-            qx[out] = cx[t]
-            qy[out] = cy[t]
-            qw[out] = nbrs[(k + 1) % nn]
-            out += 1
+        out = _emit_chain(nbrs, tris, nn, kp, steps, cx, cy, qx, qy, qw, out)
     for v in range(out):
         px[v] = qx[v]
         py[v] = qy[v]
