@@ -355,8 +355,8 @@ def _incircle_exact(ax, ay, bx, by, cx, cy, dx, dy):
 
 
 @njit(**NJIT)
-def incircle(ax, ay, bx, by, cx, cy, dx, dy):
-    """Sign-exact incircle test: > 0 when ``d`` is inside the circle of CCW ``a, b, c``."""
+def _incircle_float(ax, ay, bx, by, cx, cy, dx, dy):
+    """The incircle determinant in floating point and its permanent (for the error bound)."""
     adx = ax - dx
     ady = ay - dy
     bdx = bx - dx
@@ -378,6 +378,13 @@ def incircle(ax, ay, bx, by, cx, cy, dx, dy):
         + (abs(cdxady) + abs(adxcdy)) * blift
         + (abs(adxbdy) + abs(bdxady)) * clift
     )
+    return det, permanent
+
+
+@njit(**NJIT)
+def incircle(ax, ay, bx, by, cx, cy, dx, dy):
+    """Sign-exact incircle test: > 0 when ``d`` is inside the circle of CCW ``a, b, c``."""
+    det, permanent = _incircle_float(ax, ay, bx, by, cx, cy, dx, dy)
     if abs(det) > _ICC_BOUND * permanent:
         return det
     return _incircle_exact(ax, ay, bx, by, cx, cy, dx, dy)
@@ -434,27 +441,7 @@ def orient2d_fast(ax, ay, bx, by, cx, cy):
 @njit(**NJIT)
 def incircle_fast(ax, ay, bx, by, cx, cy, dx, dy):
     """Filtered incircle: the value when its sign is certain, else NaN (see orient2d_fast)."""
-    adx = ax - dx
-    ady = ay - dy
-    bdx = bx - dx
-    bdy = by - dy
-    cdx = cx - dx
-    cdy = cy - dy
-    bdxcdy = bdx * cdy
-    cdxbdy = cdx * bdy
-    alift = adx * adx + ady * ady
-    cdxady = cdx * ady
-    adxcdy = adx * cdy
-    blift = bdx * bdx + bdy * bdy
-    adxbdy = adx * bdy
-    bdxady = bdx * ady
-    clift = cdx * cdx + cdy * cdy
-    det = alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) + clift * (adxbdy - bdxady)
-    permanent = (
-        (abs(bdxcdy) + abs(cdxbdy)) * alift
-        + (abs(cdxady) + abs(adxcdy)) * blift
-        + (abs(adxbdy) + abs(bdxady)) * clift
-    )
+    det, permanent = _incircle_float(ax, ay, bx, by, cx, cy, dx, dy)
     if abs(det) > _ICC_BOUND * permanent:
         return det
     return np.nan
