@@ -12,6 +12,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from PIL import Image
 
+import voroforge as vf
 from voroforge.engine.raster import pixel_centers, rasterize
 from voroforge.io.raster_png import (
     add_raster_parser,
@@ -176,8 +177,10 @@ def test_large_offset_coordinates():
 def test_default_bounds_are_padded_bbox():
     r = rasterize([[0.0, 0.0], [10.0, 5.0]], (4, 4))
     assert r.bounds == (-1.0, -0.5, 11.0, 5.5)
-    r = rasterize([[2.0, 3.0]], (4, 4))
-    assert r.bounds == (1.0, 2.0, 3.0, 4.0)
+    r = rasterize([[2.0, 3.0]], (4, 4))  # one site: 10% of max(1, |coordinate|), as voronoi
+    assert r.bounds == pytest.approx((1.7, 2.7, 2.3, 3.3), abs=1e-15)
+    for pts in ([[0.0, 0.0], [10.0, 5.0]], [[2.0, 3.0]], [[0.0, 1.0], [4.0, 1.0]]):
+        assert rasterize(pts, (2, 2)).bounds == vf.voronoi(pts).bounds
     r = rasterize([[0.0, 1.0], [4.0, 1.0]], (4, 4))  # zero height: padded like the width
     assert r.bounds == (-0.4, 0.6, 4.4, 1.4)
 

@@ -12,7 +12,16 @@ the neighbouring triangle with ``halfedges[e] // 3``::
 """
 
 from .engine.delaunay import Triangulation, delaunay
+from .engine.raster import RasterVoronoi, rasterize
 from .engine.voronoi import Diagram, Edges, voronoi
 
-__all__ = ["Diagram", "Edges", "Triangulation", "delaunay", "voronoi"]
+__all__ = [
+    "Diagram",
+    "Edges",
+    "RasterVoronoi",
+    "Triangulation",
+    "delaunay",
+    "rasterize",
+    "voronoi",
+]
 __version__ = "0.1.0"

@@ -10,6 +10,7 @@ import numpy as np
 
 from ..kernels.raster import exact_nearest, jfa_nearest
 from ._inputs import as_points, duplicate_map
+from .domain import padded_bounds
 
 METHODS = ("exact", "jfa")
 METRICS = ("euclidean", "manhattan", "chebyshev")
@@ -127,19 +128,9 @@ def _check_shape(shape) -> tuple[int, int]:
 
 def _check_bounds(bounds, pts: np.ndarray) -> tuple[float, float, float, float]:
     if bounds is None:
-        lo = pts.min(axis=0)
-        hi = pts.max(axis=0)
-        span = hi - lo
-        pads = []
-        for axis in (0, 1):
-            base = span[axis] if span[axis] > 0 else span[1 - axis]
-            pads.append(0.1 * base if base > 0 else 1.0)
-        return (
-            float(lo[0] - pads[0]),
-            float(lo[1] - pads[1]),
-            float(hi[0] + pads[0]),
-            float(hi[1] + pads[1]),
-        )
+        return tuple(float(v) for v in padded_bounds(pts))
+    if isinstance(bounds, (str, bytes)):
+        raise ValueError(f"bounds must be (xmin, ymin, xmax, ymax) numbers or None; got {bounds!r}")
     try:
         vals = tuple(float(v) for v in bounds)
     except (TypeError, ValueError):
@@ -207,7 +198,8 @@ def rasterize(
         ``(h, w)`` of the image, positive.
     bounds : tuple of 4 float, optional
         ``(xmin, ymin, xmax, ymax)`` covered by the image. Default: the sites' bounding box
-        padded by 10% on each side.
+        padded by 10% on each side, exactly as :func:`voroforge.voronoi` pads its default
+        domain (so the image and the diagram cover the same area).
     method : {"exact", "jfa"}
         ``"exact"``: the true nearest site of every pixel (identical to a brute-force argmin
         with ties to the lowest index), any metric. ``"jfa"``: Jump Flooding with JFA+2
