@@ -1,6 +1,5 @@
 """vf.rasterize: exact labels/distances against brute force, JFA accuracy, PNG and CLI helpers."""
 
-import argparse
 import os
 import subprocess
 import sys
@@ -14,14 +13,7 @@ from PIL import Image
 
 import voroforge as vf
 from voroforge.engine.raster import pixel_centers, rasterize
-from voroforge.io.raster_png import (
-    add_raster_parser,
-    colorize,
-    palette,
-    parse_size,
-    raster_command,
-    write_raster_png,
-)
+from voroforge.io.raster_png import cell_colors, colorize, label_adjacency, write_raster_png
 
 METRICS = ("euclidean", "manhattan", "chebyshev")
 
@@ -301,15 +293,18 @@ def test_kernels_run_without_jit(tmp_path):
 
 def test_write_png_fields(tmp_path, mixed_sites):
     r = rasterize(mixed_sites, (30, 40), (0, 0, 1, 1), f2=True)
-    for field in ("labels", "f1", "f2", "edge"):
+    for field in ("labels", "distance", "f2", "edge"):
         path = write_raster_png(r, tmp_path / f"{field}.png", field=field)
         img = np.asarray(Image.open(path))
         assert img.shape[:2] == (30, 40)
     rgb = np.asarray(Image.open(tmp_path / "labels.png"))
-    np.testing.assert_array_equal(rgb, palette(200)[r.labels])
-    np.testing.assert_array_equal(colorize(r, seed=4), colorize(r, seed=4))
-    grey = colorize(r, field="f1")
+    np.testing.assert_array_equal(rgb, cell_colors(r.labels)[r.labels])
+    grey = colorize(r, field="distance")
     assert grey.dtype == np.uint8 and grey.max() == 255
+    np.testing.assert_array_equal(np.asarray(Image.open(tmp_path / "distance.png")), grey)
+    # greyscale is monotone in the distance
+    order = np.argsort(r.distance, axis=None, kind="stable")
+    assert np.all(np.diff(grey.ravel()[order].astype(int)) >= 0)
     edge = colorize(r, field="edge")
     assert edge.min() == 0  # on cell boundaries
     with pytest.raises(ValueError, match="field"):
@@ -318,42 +313,57 @@ def test_write_png_fields(tmp_path, mixed_sites):
         colorize(rasterize(mixed_sites, (4, 4)), field="edge")
 
 
-def test_palette_deterministic():
-    np.testing.assert_array_equal(palette(50, seed=1), palette(50, seed=1))
-    assert not np.array_equal(palette(50, seed=1), palette(50, seed=2))
-    assert palette(50).dtype == np.uint8 and palette(50).shape == (50, 3)
+def brute_adjacency(labels):
+    """Set of unordered label pairs that touch (8-neighbourhood), by plain loops."""
+    h, w = labels.shape
+    out = set()
+    for r in range(h):
+        for c in range(w):
+            for dr, dc in ((0, 1), (1, 0), (1, 1), (1, -1)):
+                rr, cc = r + dr, c + dc
+                if 0 <= rr < h and 0 <= cc < w and labels[r, c] != labels[rr, cc]:
+                    a, b = sorted((int(labels[r, c]), int(labels[rr, cc])))
+                    out.add((a, b))
+    return out
 
 
-def test_raster_command(tmp_path):
-    pts = np.random.default_rng(4).random((30, 2))
-    src = tmp_path / "pts.csv"
-    src.write_text("x,y\n" + "\n".join(f"{x!r},{y!r}" for x, y in pts.tolist()))
-    parser = argparse.ArgumentParser()
-    add_raster_parser(parser.add_subparsers(dest="command"))
-    out = tmp_path / "cells.png"
-    args = parser.parse_args(
-        [
-            "raster",
-            str(src),
-            "-o",
-            str(out),
-            "--size",
-            "40x30",
-            "--method",
-            "jfa",
-            "--field",
-            "edge",
-        ]
-    )
-    stages = []
-    written = args.func(args, stages.append)
-    assert written == [out] and stages
-    assert np.asarray(Image.open(out)).shape == (30, 40)
-    args = parser.parse_args(["raster", str(src), "-o", str(out), "--bounds=-1,-1,2,2"])
-    raster_command(args)
-    assert Image.open(out).size == (1024, 1024)
-    with pytest.raises(ValueError, match=".png"):
-        raster_command(parser.parse_args(["raster", str(src), "-o", str(tmp_path / "x.svg")]))
-    assert parse_size("64") == (64, 64) and parse_size("64x32") == (32, 64)
-    with pytest.raises(ValueError, match="size"):
-        parse_size("64x0")
+def test_cell_colors_distinguish_neighbours(mixed_sites):
+    r = rasterize(mixed_sites, (60, 80), (0, 0, 1, 1))
+    n = int(r.labels.max()) + 1  # site 199 lies far outside and owns no pixel
+    indptr, indices = label_adjacency(r.labels, n)
+    got = {(i, int(j)) for i in range(n) for j in indices[indptr[i] : indptr[i + 1]] if i < j}
+    want = brute_adjacency(r.labels)
+    assert got == want and want
+    colors = cell_colors(r.labels)
+    assert colors.shape == (n, 3) and colors.dtype == np.uint8
+    for a, b in want:
+        assert not np.array_equal(colors[a], colors[b]), (a, b)
+    # deterministic; the seed changes the choice
+    np.testing.assert_array_equal(cell_colors(r.labels), colors)
+    assert not np.array_equal(cell_colors(r.labels, seed=1), colors)
+    # several colours in use, not just two
+    assert len(np.unique(colors[np.unique(r.labels)], axis=0)) >= 6
+
+
+@pytest.mark.parametrize("kind", ["random", "grid_with_duplicates"])
+def test_exact_labels_lie_in_their_voronoi_cells(kind):
+    import shapely
+
+    rng = np.random.default_rng(11)
+    if kind == "random":
+        pts = rng.random((80, 2))
+    else:  # integer grid: many pixel centres exactly on cell edges, plus duplicate sites
+        g = np.arange(6, dtype=float)
+        pts = np.stack(np.meshgrid(g, g), axis=-1).reshape(-1, 2)
+        pts = np.concatenate([pts, pts[[3, 17]]])
+    d = vf.voronoi(pts)
+    r = vf.rasterize(pts, (70, 90))
+    assert r.bounds == d.bounds
+    xx, yy = np.meshgrid(r.x, r.y)
+    cells = d.cells[r.labels.ravel()]
+    inside = shapely.intersects_xy(cells, xx.ravel(), yy.ravel())
+    # pixel centres on a cell edge (exact ties) may miss the float polygon by rounding
+    gap = shapely.distance(cells[~inside], shapely.points(xx.ravel()[~inside], yy.ravel()[~inside]))
+    assert np.all(gap <= 1e-12 * np.ptp(pts))
+    assert inside.mean() > 0.9
+    assert not np.isin(np.flatnonzero(d.duplicate_of >= 0), r.labels).any()

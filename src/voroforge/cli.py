@@ -16,6 +16,7 @@ examples:
   voroforge voronoi points.csv -o cells.svg  Voronoi cells of points.csv as SVG
   voroforge voronoi points.csv -o cells.geojson --boundary domain.geojson
   voroforge delaunay points.csv -o triangles.svg
+  voroforge raster points.csv -o cells.png --size 2048x2048 --method jfa
 
 Run 'voroforge COMMAND --help' for the options of one command.
 """
@@ -111,6 +112,10 @@ def _parser() -> argparse.ArgumentParser:
     demo.add_argument(
         "-o", "--output", metavar="DIR", default="out", help="output folder (default: out)"
     )
+
+    from .io.raster_png import add_raster_parser
+
+    add_raster_parser(commands, formatter_class=raw)
     return parser
 
 
@@ -216,6 +221,15 @@ def _demo(args: argparse.Namespace, stage: Stage) -> list[Path]:
 
 
 _COMMANDS = {"voronoi": _voronoi, "delaunay": _delaunay, "demo": _demo}
+
+
+def _raster(args: argparse.Namespace, stage: Stage) -> list[Path]:
+    from .io.raster_png import raster_command
+
+    return raster_command(args, stage)
+
+
+_COMMANDS["raster"] = _raster
 
 
 def _error(message: str) -> int:

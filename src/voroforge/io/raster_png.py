@@ -7,34 +7,101 @@ from pathlib import Path
 
 import numpy as np
 
-FIELDS = ("labels", "f1", "f2", "edge")
+FIELDS = ("labels", "distance", "f2", "edge")
+
+#: Twelve soft, clearly different colours (RGB); neighbouring cells never share one unless a
+#: cell touches twelve or more differently coloured cells.
+BASE_COLORS = np.array(
+    [
+        (141, 211, 199),
+        (255, 255, 179),
+        (190, 186, 218),
+        (251, 128, 114),
+        (128, 177, 211),
+        (253, 180, 98),
+        (179, 222, 105),
+        (252, 205, 229),
+        (217, 217, 217),
+        (188, 128, 189),
+        (204, 235, 197),
+        (255, 237, 111),
+    ],
+    dtype=np.uint8,
+)
 
 
-def palette(n: int, *, seed: int = 0) -> np.ndarray:
-    """Deterministic pleasant colours, one per site.
+def label_adjacency(labels: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Which labels touch in an image (4- and 8-neighbourhood).
 
     Parameters
     ----------
+    labels : (h, w) int
+        Label of each pixel, in ``[0, n)``.
     n : int
-        Number of colours.
+        Number of labels.
+
+    Returns
+    -------
+    indptr : (n + 1,) int64
+        CSR row pointers: the neighbours of label ``i`` are ``indices[indptr[i]:indptr[i + 1]]``.
+    indices : (k,) int64
+        Neighbouring labels, sorted within each row, each pair listed from both sides.
+    """
+    lab = np.asarray(labels, dtype=np.int64)
+    pairs = [
+        (lab[:, :-1], lab[:, 1:]),
+        (lab[:-1, :], lab[1:, :]),
+        (lab[:-1, :-1], lab[1:, 1:]),
+        (lab[:-1, 1:], lab[1:, :-1]),
+    ]
+    a = np.concatenate([p[0].ravel() for p in pairs])
+    b = np.concatenate([p[1].ravel() for p in pairs])
+    keep = a != b
+    a, b = a[keep], b[keep]
+    keys = np.unique(np.concatenate([a * n + b, b * n + a]))
+    rows, cols = keys // n, keys % n
+    indptr = np.zeros(n + 1, dtype=np.int64)
+    np.add.at(indptr, rows + 1, 1)
+    return np.cumsum(indptr), cols
+
+
+def cell_colors(labels, *, seed: int = 0) -> np.ndarray:
+    """One colour per label such that touching cells get different colours.
+
+    A greedy colouring over :data:`BASE_COLORS` in increasing label order: label ``i`` takes
+    the first colour, cycling from a start that depends on ``i`` and ``seed``, that no
+    already coloured neighbour uses (if all twelve are taken, the least used among them).
+    The result depends only on the image and ``seed``.
+
+    Parameters
+    ----------
+    labels : (h, w) int
+        Non-negative labels (site indices).
     seed : int
-        Seed of the random hues; the same seed always gives the same colours.
+        Shifts the colour choice; the same seed always gives the same colours.
 
     Returns
     -------
     (n, 3) uint8
-        RGB colours (random hue, moderate saturation, high value). Colour ``i`` depends
-        only on ``i`` and ``seed``, not on ``n``.
+        RGB colour of each label ``0 .. labels.max()``.
     """
-    u = np.random.default_rng(seed).random((n, 3))  # row i is the same for every n
-    hue = u[:, 0]
-    sat = 0.35 + 0.35 * u[:, 1]
-    val = 0.75 + 0.25 * u[:, 2]
-    # HSV -> RGB, vectorised.
-    k = (np.array([5.0, 3.0, 1.0])[None, :] + hue[:, None] * 6.0) % 6.0
-    ramp = np.clip(np.minimum(k, 4.0 - k), 0.0, 1.0)
-    rgb = val[:, None] * (1.0 - sat[:, None] * ramp)
-    return np.round(rgb * 255.0).astype(np.uint8)
+    lab = np.asarray(labels)
+    n = int(lab.max()) + 1 if lab.size else 0
+    k = len(BASE_COLORS)
+    indptr, indices = label_adjacency(lab, n)
+    choice = np.full(n, -1, dtype=np.int64)
+    ip, ix = indptr.tolist(), indices.tolist()
+    for i in range(n):
+        used = [0] * k
+        for j in ix[ip[i] : ip[i + 1]]:
+            c = choice[j]
+            if c >= 0:
+                used[c] += 1
+        first = (i * 5 + seed * 7) % k
+        order = [(first + t) % k for t in range(k)]
+        free = [c for c in order if used[c] == 0]
+        choice[i] = free[0] if free else min(order, key=lambda c: used[c])
+    return BASE_COLORS[choice]
 
 
 def colorize(result, *, field: str = "labels", seed: int = 0) -> np.ndarray:
@@ -44,11 +111,12 @@ def colorize(result, *, field: str = "labels", seed: int = 0) -> np.ndarray:
     ----------
     result : RasterVoronoi
         From :func:`voroforge.rasterize`.
-    field : {"labels", "f1", "f2", "edge"}
-        ``labels``: one colour per cell. ``f1``/``f2``/``edge``: greyscale, black at 0 and
-        white at the field's largest finite value (inf is white).
+    field : {"labels", "distance", "f2", "edge"}
+        ``labels``: one colour per cell (:func:`cell_colors`). ``distance`` (F1), ``f2`` and
+        ``edge`` (F2 - F1): greyscale, black at 0 and white at the field's largest finite value
+        (inf is white).
     seed : int
-        Palette seed for ``labels``.
+        Colour seed for ``labels``.
 
     Returns
     -------
@@ -63,16 +131,32 @@ def colorize(result, *, field: str = "labels", seed: int = 0) -> np.ndarray:
     if field not in FIELDS:
         raise ValueError(f"field must be one of {FIELDS}; got {field!r}")
     if field == "labels":
-        labels = np.asarray(result.labels)
-        n = int(labels.max()) + 1 if labels.size else 0
-        return palette(n, seed=seed)[labels]
-    if field in ("f2", "edge") and result.f2 is None:
-        raise ValueError(f"field {field!r} needs a result computed with rasterize(..., f2=True)")
-    values = {"f1": result.distance, "f2": result.f2, "edge": result.edge}[field]
+        return cell_colors(result.labels, seed=seed)[result.labels]
+    values = field_values(result, field)
     finite = np.isfinite(values)
     top = float(values[finite].max()) if finite.any() else 0.0
     scaled = np.ones(values.shape) if top <= 0.0 else np.where(finite, values / top, 1.0)
     return np.round(np.clip(scaled, 0.0, 1.0) * 255.0).astype(np.uint8)
+
+
+def field_values(result, field: str) -> np.ndarray:
+    """The raw array of one field: ``labels``, ``distance``, ``f2`` or ``edge``.
+
+    Raises
+    ------
+    ValueError
+        For an unknown field, or ``f2``/``edge`` on a result computed without ``f2=True``.
+    """
+    if field not in FIELDS:
+        raise ValueError(f"field must be one of {FIELDS}; got {field!r}")
+    if field in ("f2", "edge") and result.f2 is None:
+        raise ValueError(f"field {field!r} needs a result computed with rasterize(..., f2=True)")
+    return {
+        "labels": lambda: result.labels,
+        "distance": lambda: result.distance,
+        "f2": lambda: result.f2,
+        "edge": lambda: result.edge,
+    }[field]()
 
 
 def write_raster_png(result, path, *, field: str = "labels", seed: int = 0) -> Path:
@@ -84,7 +168,7 @@ def write_raster_png(result, path, *, field: str = "labels", seed: int = 0) -> P
         From :func:`voroforge.rasterize`; row 0 is the top of the image.
     path : str or os.PathLike
         Output file.
-    field : {"labels", "f1", "f2", "edge"}
+    field : {"labels", "distance", "f2", "edge"}
         What to draw; see :func:`colorize`.
     seed : int
         Palette seed for ``labels``.
@@ -106,9 +190,8 @@ def write_raster_png(result, path, *, field: str = "labels", seed: int = 0) -> P
     from PIL import Image
 
     img = colorize(result, field=field, seed=seed)
-    mode = "RGB" if img.ndim == 3 else "L"
     out = Path(path)
-    Image.fromarray(np.ascontiguousarray(img), mode=mode).save(out, format="PNG")
+    Image.fromarray(np.ascontiguousarray(img)).save(out, format="PNG")  # RGB or L from shape
     return out
 
 
@@ -150,13 +233,18 @@ RASTER_EPILOG = """\
 examples:
   voroforge raster points.csv -o cells.png --size 2048x2048
   voroforge raster points.npy -o cells.png --size 1920x1080 --method jfa
+  voroforge raster points.csv -o cells.png -o labels.npy --size 512
   voroforge raster points.csv -o noise.png --field edge --bounds 0,0,1,1
-  voroforge raster points.csv -o f1.png --field f1 --metric manhattan --bounds=-1,-1,1,1
+  voroforge raster points.csv -o f1.png --field distance --metric manhattan --bounds=-1,-1,1,1
 
---size is WIDTHxHEIGHT (one number for a square). --field labels colours each cell;
-f1, f2 and edge (f2 - f1, "cellular noise") are greyscale distance fields.
+--size is WIDTHxHEIGHT (one number for a square). --field labels colours each cell so
+that touching cells differ; distance (F1), f2 and edge (F2 - F1, "cellular noise") are
+greyscale, black at 0 and white at the largest value. A .npy output holds the field's
+raw values: (height, width) int32 site indices for labels, float64 distances otherwise.
 A bounding box with a negative first number needs the '=' form shown last.
 """
+
+OUTPUT_SUFFIXES = (".png", ".npy")
 
 
 def add_raster_parser(commands, **kwargs) -> argparse.ArgumentParser:
@@ -167,9 +255,9 @@ def add_raster_parser(commands, **kwargs) -> argparse.ArgumentParser:
     """
     p = commands.add_parser(
         "raster",
-        help="Voronoi diagram of a point file as a PNG image (labels or distance fields)",
+        help="Voronoi diagram of a point file as an image (labels or distance fields)",
         description="Nearest-site labels or distances at every pixel of POINTS' diagram, "
-        "written as a PNG.",
+        "written as a PNG image or a .npy array.",
         epilog=RASTER_EPILOG,
         **kwargs,
     )
@@ -178,7 +266,14 @@ def add_raster_parser(commands, **kwargs) -> argparse.ArgumentParser:
         metavar="POINTS",
         help="point file: .csv/.txt (x,y columns, header optional), .npy or .geojson/.json",
     )
-    p.add_argument("-o", "--output", metavar="OUT", required=True, help="output PNG file")
+    p.add_argument(
+        "-o",
+        "--output",
+        metavar="OUT",
+        action="append",
+        required=True,
+        help="output file: .png (image) or .npy (raw field); repeatable",
+    )
     p.add_argument(
         "--size", default="1024x1024", help="image size WIDTHxHEIGHT in pixels (default 1024x1024)"
     )
@@ -188,14 +283,19 @@ def add_raster_parser(commands, **kwargs) -> argparse.ArgumentParser:
         choices=("exact", "jfa"),
         help="exact nearest site (default) or Jump Flooding (euclidean only)",
     )
-    p.add_argument("--metric", default="euclidean", choices=("euclidean", "manhattan", "chebyshev"))
+    p.add_argument(
+        "--metric",
+        default="euclidean",
+        choices=("euclidean", "manhattan", "chebyshev"),
+        help="distance (default euclidean; others need --method exact)",
+    )
     p.add_argument(
         "--bounds",
         metavar="xmin,ymin,xmax,ymax",
         help="area covered by the image (default: the points' box padded 10%%)",
     )
     p.add_argument("--field", default="labels", choices=FIELDS, help="what to draw")
-    p.add_argument("--seed", type=int, default=0, help="palette seed for --field labels")
+    p.add_argument("--seed", type=int, default=0, help="colour seed for --field labels")
     p.set_defaults(func=raster_command)
     return p
 
@@ -203,7 +303,7 @@ def add_raster_parser(commands, **kwargs) -> argparse.ArgumentParser:
 def raster_command(args, stage=None) -> list[Path]:
     """Run ``voroforge raster`` from parsed arguments; returns the written paths.
 
-    ``args`` needs ``points, output, size, method, bounds, field`` (and optionally
+    ``args`` needs ``points, output (list), size, method, bounds, field`` (and optionally
     ``metric``, ``seed``), see :func:`add_raster_parser`. ``stage(name)`` is called with
     progress messages when given.
     """
@@ -211,9 +311,10 @@ def raster_command(args, stage=None) -> list[Path]:
     from .readers import read_points
 
     stage = stage or (lambda name: None)
-    out = Path(args.output)
-    if out.suffix.lower() != ".png":
-        raise ValueError(f"{out}: raster output must be a .png file")
+    outputs = [Path(o) for o in (args.output if isinstance(args.output, list) else [args.output])]
+    for out in outputs:
+        if out.suffix.lower() not in OUTPUT_SUFFIXES:
+            raise ValueError(f"{out}: raster output must be a .png or .npy file")
     shape = parse_size(str(args.size))
     bounds = parse_bounds(args.bounds)
     stage("reading")
@@ -227,5 +328,13 @@ def raster_command(args, stage=None) -> list[Path]:
         metric=getattr(args, "metric", "euclidean"),
         f2=args.field in ("f2", "edge"),
     )
-    stage(f"writing {out}")
-    return [write_raster_png(result, out, field=args.field, seed=getattr(args, "seed", 0))]
+    written = []
+    for out in outputs:
+        stage(f"writing {out}")
+        if out.suffix.lower() == ".npy":
+            np.save(out, np.asarray(field_values(result, args.field)))
+            written.append(out)
+        else:
+            seed = getattr(args, "seed", 0)
+            written.append(write_raster_png(result, out, field=args.field, seed=seed))
+    return written
