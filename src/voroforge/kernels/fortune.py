@@ -30,7 +30,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
-from .predicates import _CCW_BOUND, _cross, _expansion_sum, incircle, incircle_fast, orient2d
+from .predicates import incircle, incircle_fast, orient2d
 
 #: Small helpers of the sweep are inlined at the numba level: as separate functions every call
 #: would pay a reference-count round trip on each array argument.
@@ -123,35 +123,6 @@ def _right_of(sx, px, py, qx, qy, sweep):
     if a > 0.0:
         return a * u >= hp * dx or f < 0.0
     return a * u < hp * dx and f < 0.0
-
-
-@njit(**NJIT)
-def _det(ax, ay, bx, by, cx, cy):
-    """``orient2d(a, b, c)`` to full relative precision (its value, not only its sign).
-
-    The circumcentre of a nearly collinear triple divides by this determinant, so its
-    floating-point value must not be noise: when the filter cannot vouch for it, the exact
-    expansion is summed instead.
-    """
-    detleft = (ax - cx) * (by - cy)
-    detright = (ay - cy) * (bx - cx)
-    det = detleft - detright
-    if abs(det) >= _CCW_BOUND * (abs(detleft) + abs(detright)):
-        return det
-    t1 = np.zeros(4)
-    t2 = np.zeros(4)
-    t3 = np.zeros(4)
-    t12 = np.zeros(8)
-    tot = np.zeros(12)
-    _cross(ax, ay, bx, by, t1)
-    _cross(bx, by, cx, cy, t2)
-    _cross(cx, cy, ax, ay, t3)
-    n12 = _expansion_sum(t1, 4, t2, 4, t12)
-    m = _expansion_sum(t12, n12, t3, 4, tot)
-    v = 0.0
-    for k in range(m):  # smallest component first
-        v += tot[k]
-    return v
 
 
 @njit(**_INLINE)
@@ -358,9 +329,12 @@ def _push_event(node, prv, nxt, site, xs, ys, key, heap, hpos, size):
     by = ys[sb]
     cx = xs[sc]
     cy = ys[sc]
-    if orient2d(ax, ay, bx, by, cx, cy) <= 0.0:
+    # orient2d's value is the leading component of its exact expansion when the filter fails,
+    # so it is correct to full relative precision, which the circumcentre below needs
+    det = orient2d(ax, ay, bx, by, cx, cy)
+    if det <= 0.0:
         return size
-    key[node] = _event_y(ax, ay, bx, by, cx, cy, _det(ax, ay, bx, by, cx, cy))
+    key[node] = _event_y(ax, ay, bx, by, cx, cy, det)
     heap[size] = node
     _sift_up(heap, hpos, key, size)
     return size + 1
@@ -612,10 +586,10 @@ def _exact_shift(v: np.ndarray) -> float:
     return 0.0
 
 
-def _normalised(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _normalised(xs: np.ndarray, ys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Coordinate arrays translated and scaled by a power of two, both exactly."""
-    xs = pts[:, 0] - _exact_shift(pts[:, 0])
-    ys = pts[:, 1] - _exact_shift(pts[:, 1])
+    xs = xs - _exact_shift(xs)
+    ys = ys - _exact_shift(ys)
     m = max(float(np.abs(xs).max()), float(np.abs(ys).max()))
     if m > 0.0 and np.isfinite(m):
         s = 2.0 ** -math.frexp(m)[1]
@@ -624,6 +598,55 @@ def _normalised(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         if np.array_equal(sx / s, xs) and np.array_equal(sy / s, ys):
             xs, ys = sx, sy
     return np.ascontiguousarray(xs), np.ascontiguousarray(ys)
+
+
+@njit(**NJIT)
+def _fortune_sorted(xs, ys, stats):
+    """The sweep and its exact repair on sites already in ``(y, x)`` order."""
+    order = np.arange(xs.shape[0])
+    tri, he = _sweep(xs, ys, order, stats)
+    _legalize_all(xs, ys, tri, he, stats)
+    return tri, he
+
+
+def fortune_delaunay(xs: np.ndarray, ys: np.ndarray):
+    """Delaunay triangulation of distinct sites by the sweep, in sweep order.
+
+    The engine's entry point: it feeds the result to the same cell builder as the default
+    algorithm, so the Voronoi cells are the dual of the sweep's triangulation.
+
+    Parameters
+    ----------
+    xs, ys : (u,) float64
+        Distinct sites.
+
+    Returns
+    -------
+    order : (u,) int64
+        ``order[k]`` is the input index of sweep site ``k`` (sites sorted by ``(y, x)``).
+    sx, sy : (u,) float64
+        The sites in sweep order (``xs[order]``, ``ys[order]``).
+    tri, he : (3 t,) int32
+        Flat counter-clockwise triangles and their halfedges (-1 on the hull) in sweep
+        numbering (Delaunator layout).
+    ok : bool
+        False when there is no triangle (fewer than three sites, or all collinear).
+    """
+    n = xs.shape[0]
+    empty = np.zeros(0, dtype=np.int32)
+    if n < 3:
+        return np.arange(n), xs, ys, empty, empty, False
+    order = _site_order(xs, ys)
+    # interleaved like the default triangulation's output: the cell builder then sees the
+    # same array types (strided views) and numba compiles it once for both
+    sxy = np.empty((n, 2))
+    sxy[:, 0] = xs[order]
+    sxy[:, 1] = ys[order]
+    sx = sxy[:, 0]
+    sy = sxy[:, 1]
+    stats = np.zeros(_NSTATS, dtype=np.int64)
+    tri, he = _fortune_sorted(*_normalised(sx, sy), stats)
+    return order, sx, sy, tri, he, tri.shape[0] > 0
 
 
 def fortune_debug(points: np.ndarray) -> dict:
@@ -648,7 +671,7 @@ def fortune_debug(points: np.ndarray) -> dict:
         tri = np.zeros(0, dtype=np.int32)
         he = np.zeros(0, dtype=np.int32)
     else:
-        tri, he = _fortune(*_normalised(pts), stats)
+        tri, he = _fortune(*_normalised(pts[:, 0], pts[:, 1]), stats)
     return {
         "triangles": tri.reshape(-1, 3),
         "halfedges": he,
@@ -684,5 +707,5 @@ def fortune_triangles(points: np.ndarray) -> np.ndarray:
     if pts.shape[0] < 3:
         return np.zeros((0, 3), dtype=np.int32)
     stats = np.zeros(_NSTATS, dtype=np.int64)
-    tri, _ = _fortune(*_normalised(pts), stats)
+    tri, _ = _fortune(*_normalised(pts[:, 0], pts[:, 1]), stats)
     return tri.reshape(-1, 3)
