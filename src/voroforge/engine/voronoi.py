@@ -10,13 +10,14 @@ import shapely
 
 from ..kernels.cells import cells_from_neighbors, cells_from_triangulation
 from ..kernels.delaunay import triangulate_sorted
+from ..kernels.fortune import fortune_delaunay
 from ..kernels.rings import area_centroid, close_rings
 from ._assemble import clip_to_polygon, domain_edges, domain_grid, geom_offsets_for
 from ._csr import csr_from_pairs
 from ._inputs import as_points, duplicate_map, from_working, working_frame
 from .domain import Domain, make_domain
 
-ALGORITHMS = ("delaunay",)
+ALGORITHMS = ("delaunay", "fortune")
 
 
 class Edges(NamedTuple):
@@ -176,8 +177,12 @@ def _closed_cells(xs, ys, box, algorithm, kmap):
     Returns ``(coords, lengths, owner)`` with distinct site ``k``'s ring at
     ``coords[lengths[k]:lengths[k + 1]]`` and owners mapped through ``kmap``.
     """
-    if algorithm == "delaunay":
-        order, sx, sy, tri, he, _, ok = triangulate_sorted(xs, ys)
+    if algorithm in ("delaunay", "fortune"):
+        if algorithm == "fortune":
+            # the sweep's Delaunay dual, through the same cell builder as the default
+            order, sx, sy, tri, he, ok = fortune_delaunay(xs, ys)
+        else:
+            order, sx, sy, tri, he, _, ok = triangulate_sorted(xs, ys)
         if ok:
             return cells_from_triangulation(sx, sy, tri, he, box, order, kmap[order])
         indptr, indices = _collinear_neighbors(xs, ys)
@@ -199,8 +204,10 @@ def voronoi(points, boundary=None, *, algorithm: str = "delaunay") -> Diagram:
         The domain. None: the sites' bounding box padded by 10% on each side. Polygons may be
         concave, have holes and several parts. Sites may lie outside the domain: their cell is
         the part of the domain nearest to them (possibly empty).
-    algorithm : {"delaunay"}
-        Construction method; all methods give the same cells.
+    algorithm : {"delaunay", "fortune"}
+        Construction method; all methods give the same cells. "delaunay": sweep-hull
+        Delaunay triangulation, cells from its circumcentres. "fortune": Fortune's sweep line
+        (its Delaunay dual goes through the same cell builder).
 
     Returns
     -------

@@ -639,7 +639,7 @@ def fortune_delaunay(xs: np.ndarray, ys: np.ndarray):
     order = _site_order(xs, ys)
     # interleaved like the default triangulation's output: the cell builder then sees the
     # same array types (strided views) and numba compiles it once for both
-    sxy = np.empty((n, 2))
+    sxy = np.zeros((n, 2))
     sxy[:, 0] = xs[order]
     sxy[:, 1] = ys[order]
     sx = sxy[:, 0]
