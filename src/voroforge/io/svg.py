@@ -6,9 +6,11 @@ from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
 import numpy as np
+import shapely
 
 from .render import (
     PathContext,
+    RingContext,
     as_boundary,
     as_geometries,
     data_bounds,
@@ -18,7 +20,7 @@ from .render import (
     trace,
 )
 
-__all__ = ["svg_string", "write_svg"]
+__all__ = ["layers_string", "svg_string", "write_layers", "write_svg"]
 
 _UNITS = ("px", "mm", "cm", "in", "pt")
 _DEFAULT_PIXELS = 800.0
@@ -204,6 +206,193 @@ def write_svg(
         stroke_width=stroke_width,
         site_radius=site_radius,
         seed=seed,
+    )
+    path = Path(path)
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+# --- Fabrication layers (cut / score / engrave) -------------------------------------------
+
+#: Stroke colours of the conventional fabrication layers (laser software maps colours to jobs).
+LAYER_STROKES = {
+    "CUT": "#ff0000",
+    "SCORE": "#0000ff",
+    "ENGRAVE": "#000000",
+    "SITES": "#808080",
+    "BOUNDARY": "#ff00ff",
+    "MARK": "#ff8000",
+}
+_INKSCAPE = "http://www.inkscape.org/namespaces/inkscape"
+
+
+def _layer_id(name: str) -> str:
+    text = "".join(c if c.isalnum() or c in "-_" else "-" for c in str(name).strip())
+    if not text:
+        raise ValueError(f"invalid layer name {name!r}")
+    return text if not text[0].isdigit() else "layer-" + text
+
+
+def _draw_lines(geom, flip, digits) -> list[str]:
+    """Open paths for the LineString parts of ``geom``."""
+    out = []
+    for part in shapely.get_parts(geom):
+        kind = part.geom_type
+        if kind == "LineString" and not part.is_empty:
+            ctx = PathContext(digits)
+            xy = flip(np.asarray(part.coords)[:, :2])
+            ctx.move_to(float(xy[0, 0]), float(xy[0, 1]))
+            for x, y in xy[1:].tolist():
+                ctx.line_to(x, y)
+            out.append(str(ctx))
+        elif kind in ("MultiLineString", "GeometryCollection"):
+            out.extend(_draw_lines(part, flip, digits))
+    return out
+
+
+def layers_string(
+    layers: dict,
+    *,
+    units: str = "mm",
+    stroke_width: float = 0.01,
+    colours: dict | None = None,
+    fills: dict | None = None,
+    margin: float = 0.0,
+    bounds=None,
+) -> str:
+    """Render fabrication layers as an SVG document; see :func:`write_layers`.
+
+    Returns
+    -------
+    str
+        The SVG document.
+    """
+    if units not in _UNITS:
+        raise ValueError(f"units must be one of {', '.join(_UNITS)}; got {units!r}")
+    if not stroke_width > 0:
+        raise ValueError(f"stroke_width must be positive; got {stroke_width!r}")
+    if not margin >= 0:
+        raise ValueError(f"margin must be >= 0; got {margin!r}")
+    content = {str(name): as_geometries(geoms) for name, geoms in layers.items()}
+    ids = [_layer_id(name) for name in content]
+    if len(set(ids)) != len(ids):
+        raise ValueError(f"layer names collide: {', '.join(content)}")
+    if bounds is None:
+        every = [g for geoms in content.values() for g in geoms]
+        xmin, ymin, xmax, ymax = data_bounds(np.array(every, dtype=object).reshape(-1))
+    else:
+        xmin, ymin, xmax, ymax = (float(v) for v in bounds)
+    xmin, ymin, xmax, ymax = xmin - margin, ymin - margin, xmax + margin, ymax + margin
+    w, h = xmax - xmin, ymax - ymin
+    digits = digits_for(max(w, h))
+    suffix = "" if units == "px" else units
+
+    def num(v: float) -> str:
+        return format_number(v, digits)
+
+    def flip(xy: np.ndarray) -> np.ndarray:
+        return np.column_stack((xy[:, 0], -xy[:, 1]))
+
+    strokes = {**LAYER_STROKES, **{str(k).upper(): v for k, v in (colours or {}).items()}}
+    fill_of = {str(k).upper(): v for k, v in (fills or {}).items()}
+    out = [
+        '<?xml version="1.0" encoding="UTF-8"?>',
+        '<svg xmlns="http://www.w3.org/2000/svg" '
+        f'xmlns:inkscape="{_INKSCAPE}" version="1.1" '
+        f'width="{num(w)}{suffix}" height="{num(h)}{suffix}" '
+        f'viewBox="{num(xmin)} {num(-ymax)} {num(w)} {num(h)}">',
+    ]
+    for (name, geoms), ident in zip(content.items(), ids, strict=True):
+        stroke = _colour(strokes.get(name.upper(), "#000000"))
+        fill = fill_of.get(name.upper())
+        fill_attr = "none" if fill is None else _colour(fill)
+        out.append(
+            f'<g id={quoteattr(ident)} inkscape:groupmode="layer" '
+            f"inkscape:label={quoteattr(name)} fill={quoteattr(fill_attr)} "
+            f'fill-rule="evenodd" stroke={quoteattr(stroke)} '
+            f'stroke-width="{format_number(stroke_width, 6)}" '
+            'stroke-linejoin="round" stroke-linecap="round">'
+        )
+        for geom in geoms:
+            if geom.is_empty:
+                continue
+            ctx = RingContext()
+            trace(ctx, geom, flip)
+            for ring in ctx.rings:  # one closed path per ring
+                path = PathContext(digits)
+                path.move_to(*ring[0])
+                for x, y in ring[1:]:
+                    path.line_to(x, y)
+                path.close_path()
+                out.append(f'<path d="{path}"/>')
+            out.extend(f'<path d="{d}"/>' for d in _draw_lines(geom, flip, digits))
+            for pt in shapely.get_parts(geom):
+                if pt.geom_type == "Point":
+                    r = num(max(stroke_width, 0.5))
+                    out.append(f'<circle cx="{num(pt.x)}" cy="{num(-pt.y)}" r="{r}"/>')
+        out.append("</g>")
+    out.append("</svg>")
+    return "\n".join(out) + "\n"
+
+
+def write_layers(
+    path,
+    layers: dict,
+    *,
+    units: str = "mm",
+    stroke_width: float = 0.01,
+    colours: dict | None = None,
+    fills: dict | None = None,
+    margin: float = 0.0,
+    bounds=None,
+) -> Path:
+    """Write fabrication layers (cut, score, engrave, ...) to an SVG file for a laser cutter.
+
+    Each layer is an Inkscape layer ``<g id="CUT" inkscape:groupmode="layer">`` with a
+    hairline stroke in the layer's colour (red cut, blue score, black engrave by default) and
+    no fill. Every polygon ring is its own closed ``<path d="M...Z">``; lines are open paths,
+    points small circles. One data unit is one ``units`` unit: ``width="600mm"`` with a
+    ``viewBox`` in millimetres, y axis up (coordinates read back as ``(x, -y)``).
+
+    Parameters
+    ----------
+    path : str or Path
+        Output file.
+    layers : dict of str to sequence of shapely geometries
+        Layers in drawing order, for example ``{"CUT": [frame], "SCORE": edges}``.
+    units : {"mm", "cm", "in", "pt", "px"}
+        Unit of the data and of ``width``/``height``.
+    stroke_width : float
+        Stroke width in data units (0.01 mm: the hairline laser software expects).
+    colours : dict of str to colour, optional
+        Stroke colour per layer name, over :data:`LAYER_STROKES`.
+    fills : dict of str to colour, optional
+        Fill per layer (default none: cutters want outlines only).
+    margin : float
+        Space around the drawing in data units.
+    bounds : (xmin, ymin, xmax, ymax), optional
+        Page extent in data units (default: the geometry's bounds).
+
+    Returns
+    -------
+    Path
+        The file written.
+
+    Examples
+    --------
+    >>> import shapely, tempfile, pathlib
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "panel.svg"
+    >>> write_layers(out, {"CUT": [shapely.box(0, 0, 60, 40)]}).name
+    'panel.svg'
+    """
+    text = layers_string(
+        layers,
+        units=units,
+        stroke_width=stroke_width,
+        colours=colours,
+        fills=fills,
+        margin=margin,
+        bounds=bounds,
     )
     path = Path(path)
     path.write_text(text, encoding="utf-8")

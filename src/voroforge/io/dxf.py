@@ -1,0 +1,359 @@
+"""DXF output with ezdxf: closed LWPOLYLINEs on named layers, circular arcs as true bulges.
+
+Laser cutters and CNC software read a DXF polyline with *bulges* as straight segments and
+circular arcs. Shapely draws round buffers and fillets as many short chords; :func:`write_dxf`
+finds the runs of chords that lie on one circle and writes each run as one arc, so a
+filleted corner is a real arc in the cutter's software, not a fan of tiny lines.
+
+The file is deterministic: the same geometry gives the same bytes (fixed creation date, zero
+GUIDs, handles in writing order).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import shapely
+
+from .render import as_geometries
+
+__all__ = ["LAYER_COLOURS", "UNITS", "arc_runs", "ring_bulges", "write_dxf"]
+
+#: ``$INSUNITS`` codes of the unit names :func:`write_dxf` accepts.
+UNITS = {"unitless": 0, "in": 1, "ft": 2, "mm": 4, "cm": 5, "m": 6}
+
+#: AutoCAD colour index of the conventional fabrication layers (others get white/black, 7).
+LAYER_COLOURS = {
+    "CUT": 1,  # red
+    "SCORE": 5,  # blue
+    "ENGRAVE": 3,  # green
+    "SITES": 8,  # grey
+    "BOUNDARY": 6,  # magenta
+    "FRAME": 1,
+    "OPENINGS": 1,
+    "MARK": 2,  # yellow
+}
+
+
+def _turns(xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Chord lengths ``L[k] = |p[k+1] - p[k]|`` and signed turning angles at each vertex."""
+    d = np.roll(xy, -1, axis=0) - xy
+    length = np.hypot(d[:, 0], d[:, 1])
+    prev = np.roll(d, 1, axis=0)
+    cross = prev[:, 0] * d[:, 1] - prev[:, 1] * d[:, 0]
+    dot = prev[:, 0] * d[:, 0] + prev[:, 1] * d[:, 1]
+    return length, np.arctan2(cross, dot)
+
+
+def _circle(a, b, c) -> tuple[np.ndarray, float] | None:
+    """Centre and radius of the circle through three points (``None`` when collinear)."""
+    ax, ay = b[0] - a[0], b[1] - a[1]
+    bx, by = c[0] - a[0], c[1] - a[1]
+    den = 2.0 * (ax * by - ay * bx)
+    if den == 0.0:
+        return None
+    a2, b2 = ax * ax + ay * ay, bx * bx + by * by
+    ux = (by * a2 - ay * b2) / den
+    uy = (ax * b2 - bx * a2) / den
+    return np.array([a[0] + ux, a[1] + uy]), math.hypot(ux, uy)
+
+
+def arc_runs(
+    xy,
+    *,
+    tolerance: float = 1e-6,
+    max_step: float = math.radians(30.0),
+    min_segments: int = 3,
+) -> list[tuple[int, int, float]]:
+    """Find runs of chords of a closed ring that lie on one circular arc.
+
+    A run is at least ``min_segments`` chords of equal length with equal turning (same sign,
+    at most ``max_step`` per vertex) whose vertices all lie within ``tolerance`` of one
+    circle. The equal-turning test keeps regular polygons with coarse steps (hexagons,
+    squares) as polygons.
+
+    Parameters
+    ----------
+    xy : (n, 2) float64
+        Ring vertices without the closing repeat.
+    tolerance : float
+        Largest distance of a vertex from the fitted circle, in drawing units.
+    max_step : float
+        Largest turning angle per chord in radians (shapely's round buffers turn by
+        ``90° / quad_segs``: 11.25° by default).
+    min_segments : int
+        Fewest chords that make an arc.
+
+    Returns
+    -------
+    list of (start, count, sweep)
+        The arc starts at vertex ``start`` and spans ``count`` chords (it ends at vertex
+        ``(start + count) % n``); ``sweep`` is its signed angle in radians (positive:
+        counter-clockwise). Runs do not overlap and are sorted by ``start``.
+    """
+    xy = np.asarray(xy, dtype=np.float64).reshape(-1, 2)
+    n = len(xy)
+    if n < min_segments + 1:
+        return []
+    length, turn = _turns(xy)
+    scale = float(np.abs(xy).max()) if n else 1.0
+    tol = max(float(tolerance), 1e-11 * scale)
+    angle_tol = 1e-3
+    # Vertex k is inside an arc when the chords on both sides are equal and it turns a little.
+    ok = (np.abs(turn) > 1e-9) & (np.abs(turn) <= max_step * (1.0 + 1e-9))
+    ok &= np.abs(length - np.roll(length, 1)) <= 1e-3 * np.maximum(length, np.roll(length, 1))
+    # Consecutive inside vertices belong to the same arc when they turn alike.
+    same_next = ok & np.roll(ok, -1)
+    same_next &= np.abs(turn - np.roll(turn, -1)) <= angle_tol * np.maximum(np.abs(turn), 1e-3)
+    if ok.all() and same_next.all():
+        return _full_circle(xy, turn, tol)
+    # Start the scan after a vertex that does not continue to its successor.
+    breaks = np.flatnonzero(~same_next)
+    first = (int(breaks[0]) + 1) % n
+    runs: list[tuple[int, int, float]] = []
+    k = 0
+    while k < n:
+        v = (first + k) % n
+        if not ok[v]:
+            k += 1
+            continue
+        m = 1  # inside vertices in this run: v, v+1, ..., v+m-1
+        while k + m < n and same_next[(v + m - 1) % n]:
+            m += 1
+        count = m + 1  # chords from vertex v-1 to vertex v+m
+        if count >= min_segments:
+            start = (v - 1) % n
+            run = _fit(xy, start, count, turn[v], tol)
+            if run is not None:
+                runs.append(run)
+        k += m
+    runs.sort()
+    return _drop_overlaps(runs, n)
+
+
+def _fit(xy, start: int, count: int, step: float, tol: float) -> tuple[int, int, float] | None:
+    """Check that the ``count + 1`` vertices from ``start`` lie on one circle; return the run."""
+    n = len(xy)
+    idx = (start + np.arange(count + 1)) % n
+    pts = xy[idx]
+    circ = _circle(pts[0], pts[count // 2], pts[-1])
+    if circ is None:
+        return None
+    centre, radius = circ
+    if not math.isfinite(radius):
+        return None
+    dist = np.abs(np.hypot(pts[:, 0] - centre[0], pts[:, 1] - centre[1]) - radius)
+    if dist.max() > tol:
+        return None
+    sweep = float(np.sign(step)) * abs(float(step)) * count
+    # Refine the sweep from the centre (exact for the end points, sign from the turning).
+    a0 = math.atan2(pts[0, 1] - centre[1], pts[0, 0] - centre[0])
+    a1 = math.atan2(pts[-1, 1] - centre[1], pts[-1, 0] - centre[0])
+    exact = (a1 - a0) % (2.0 * math.pi)
+    if step < 0:
+        exact -= 2.0 * math.pi
+    if abs(exact - sweep) > 0.5 * abs(step) + 1e-6:
+        return None
+    return start, count, exact
+
+
+def _full_circle(xy, turn, tol) -> list[tuple[int, int, float]]:
+    """A ring that is all one circle: two half arcs (a bulge cannot close on itself)."""
+    n = len(xy)
+    half = n // 2
+    runs = []
+    for start, count in ((0, half), (half, n - half)):
+        run = _fit(xy, start, count, turn[(start + 1) % n], tol)
+        if run is None:
+            return []
+        runs.append(run)
+    return runs
+
+
+def _drop_overlaps(runs, n):
+    """Keep runs that do not share chords (they never should; a guard for odd input)."""
+    kept: list[tuple[int, int, float]] = []
+    used = np.zeros(n, dtype=bool)
+    for start, count, sweep in runs:
+        chords = (start + np.arange(count)) % n
+        if used[chords].any():
+            continue
+        used[chords] = True
+        kept.append((start, count, sweep))
+    return kept
+
+
+def ring_bulges(xy, **options) -> list[tuple[float, float, float]]:
+    """Vertices of a closed ring as ``(x, y, bulge)`` with arcs folded into bulges.
+
+    Parameters
+    ----------
+    xy : (n, 2) float64
+        Ring vertices without the closing repeat.
+    **options
+        Passed to :func:`arc_runs`; ``arcs=False`` keeps every chord.
+
+    Returns
+    -------
+    list of (x, y, bulge)
+        ``bulge = tan(sweep / 4)`` describes the segment from this vertex to the next
+        (0 for a straight segment, positive for a counter-clockwise arc).
+    """
+    arcs = options.pop("arcs", True)
+    xy = np.asarray(xy, dtype=np.float64).reshape(-1, 2)
+    n = len(xy)
+    runs = arc_runs(xy, **options) if arcs else []
+    if not runs:
+        return [(x, y, 0.0) for x, y in xy.tolist()]
+    skip = np.zeros(n, dtype=bool)
+    bulge = np.zeros(n)
+    for start, count, sweep in runs:
+        bulge[start] = math.tan(sweep / 4.0)
+        skip[(start + 1 + np.arange(count - 1)) % n] = True
+    return [(float(xy[i, 0]), float(xy[i, 1]), float(bulge[i])) for i in range(n) if not skip[i]]
+
+
+def _rings(geom):
+    """Closed rings (exteriors CCW, holes CW) and open lines of a geometry, as arrays."""
+    closed, open_ = [], []
+    if geom is None or geom.is_empty:
+        return closed, open_
+    kind = geom.geom_type
+    if kind == "Polygon":
+        poly = shapely.orient_polygons(geom) if hasattr(shapely, "orient_polygons") else geom
+        for ring in (poly.exterior, *poly.interiors):
+            xy = np.asarray(ring.coords)[:-1, :2]
+            if len(xy) >= 3:
+                closed.append(xy)
+    elif kind == "LinearRing":
+        closed.append(np.asarray(geom.coords)[:-1, :2])
+    elif kind == "LineString":
+        open_.append(np.asarray(geom.coords)[:, :2])
+    elif kind.startswith("Multi") or kind == "GeometryCollection":
+        for part in geom.geoms:
+            c, o = _rings(part)
+            closed += c
+            open_ += o
+    return closed, open_
+
+
+def write_dxf(
+    geoms=None,
+    path=None,
+    *,
+    layers: dict | None = None,
+    layer: str = "CUT",
+    units: str = "mm",
+    arcs: bool = True,
+    arc_tolerance: float = 1e-6,
+    max_arc_step: float = 30.0,
+    colours: dict | None = None,
+    version: str = "R2000",
+) -> Path:
+    """Write polygons as closed LWPOLYLINEs on named layers, with fillets as true arcs.
+
+    Every polygon ring (exterior and each hole) becomes one closed LWPOLYLINE on its layer.
+    Runs of at least three chords of equal length and equal turning that lie on one circle
+    (what shapely's round buffers and :func:`voroforge.design.cellops.fillet` produce) are
+    written as one arc each, through the vertex *bulge*. LineStrings become open
+    LWPOLYLINEs and points POINT entities.
+
+    Parameters
+    ----------
+    geoms : sequence of shapely geometries, optional
+        Geometry for the ``layer`` layer (default ``"CUT"``).
+    path : str or Path
+        Output file.
+    layers : dict of str to sequence of shapely geometries, optional
+        More layers, by name (``{"CUT": frame, "SCORE": edges, "ENGRAVE": labels}``).
+        Layer names are upper-cased; geometry for a name given twice is merged.
+    layer : str
+        Layer of ``geoms``.
+    units : {"mm", "cm", "m", "in", "ft", "unitless"}
+        Drawing units, written as ``$INSUNITS`` (1 data unit = 1 unit).
+    arcs : bool
+        Fold circular runs into arcs (``False`` writes every chord as a line).
+    arc_tolerance : float
+        Largest distance, in drawing units, of a vertex from the arc that replaces it.
+    max_arc_step : float
+        Largest turning per chord in degrees that still counts as part of an arc; coarser
+        polygons (hexagons turn 60°) stay polygons.
+    colours : dict of str to int, optional
+        AutoCAD colour index per layer, over :data:`LAYER_COLOURS`.
+    version : str
+        DXF version, ``"R2000"`` or newer (``"R2004"``, ``"R2007"``, ``"R2010"``, ``"R2013"``,
+        ``"R2018"``).
+
+    Returns
+    -------
+    Path
+        The file written.
+
+    Raises
+    ------
+    ValueError
+        For unknown units, an old DXF version, a bad layer name or a non-geometry.
+
+    Examples
+    --------
+    >>> import shapely, tempfile, pathlib
+    >>> part = shapely.box(0, 0, 40, 20).buffer(3, quad_segs=8)
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "part.dxf"
+    >>> write_dxf([part], out).name
+    'part.dxf'
+    """
+    import ezdxf
+
+    if path is None:
+        raise ValueError("write_dxf needs an output path")
+    if units not in UNITS:
+        raise ValueError(f"units must be one of {', '.join(UNITS)}; got {units!r}")
+    if version not in ("R2000", "R2004", "R2007", "R2010", "R2013", "R2018"):
+        raise ValueError(f"version must be R2000 or newer; got {version!r}")
+    if not arc_tolerance > 0:
+        raise ValueError(f"arc_tolerance must be positive; got {arc_tolerance!r}")
+    content: dict[str, list] = {}
+    if geoms is not None:
+        content.setdefault(_layer_name(layer), []).extend(as_geometries(geoms))
+    for name, value in (layers or {}).items():
+        content.setdefault(_layer_name(name), []).extend(as_geometries(value))
+    palette = {**LAYER_COLOURS, **{k.upper(): int(v) for k, v in (colours or {}).items()}}
+
+    options = {"tolerance": arc_tolerance, "max_step": math.radians(max_arc_step), "arcs": arcs}
+    saved = ezdxf.options.write_fixed_meta_data_for_testing
+    ezdxf.options.write_fixed_meta_data_for_testing = True
+    try:
+        doc = ezdxf.new(version, setup=False, units=UNITS[units])
+        doc.header["$MEASUREMENT"] = 0 if units in ("in", "ft") else 1
+        msp = doc.modelspace()
+        for name, items in content.items():
+            doc.layers.add(name, color=palette.get(name, 7))
+            attribs = {"layer": name}
+            for geom in items:
+                if geom.is_empty:
+                    continue
+                closed, open_ = _rings(geom)
+                for xy in closed:
+                    msp.add_lwpolyline(
+                        ring_bulges(xy, **options), format="xyb", close=True, dxfattribs=attribs
+                    )
+                for xy in open_:
+                    msp.add_lwpolyline(xy.tolist(), format="xy", close=False, dxfattribs=attribs)
+                for pt in shapely.get_parts(geom):
+                    if pt.geom_type == "Point":
+                        msp.add_point((pt.x, pt.y), dxfattribs=attribs)
+        path = Path(path)
+        doc.saveas(path)
+    finally:
+        ezdxf.options.write_fixed_meta_data_for_testing = saved
+    return path
+
+
+def _layer_name(name) -> str:
+    text = str(name).strip().upper()
+    bad = set('<>/\\":;?*|=`')
+    if not text or any(c in bad for c in text):
+        raise ValueError(f"invalid DXF layer name {name!r}")
+    return text
