@@ -204,3 +204,141 @@ def test_layered_svg_rejects_bad_options(tmp_path):
         write_layers(tmp_path / "x.svg", {"CUT": []}, units="parsec")
     with pytest.raises(ValueError, match="stroke_width"):
         write_layers(tmp_path / "x.svg", {"CUT": []}, stroke_width=0)
+
+
+# --- fabrication check ------------------------------------------------------------------
+
+from voroforge.design.fabrication import check, kerf  # noqa: E402
+
+
+def slot_panel(web, *, fillet=0.0, width=10.0):
+    """A 100 x 40 panel with two square-ish slots `web` apart and 5 mm from the edges."""
+    a = shapely.box(5, 5, 5 + width, 35)
+    b = shapely.box(5 + width + web, 5, 5 + 2 * width + web, 35)
+    if fillet:
+        a, b = (g.buffer(-fillet).buffer(fillet, quad_segs=8) for g in (a, b))
+    return shapely.box(0, 0, 100, 40), [a, b]
+
+
+def test_check_finds_thin_web_between_openings_at_the_right_place():
+    outline, holes = slot_panel(1.5)
+    report = check(openings=holes, boundary=outline, min_web=3.0)
+    assert not report.ok
+    (v,) = report.violations
+    assert v.kind == "web" and v.items == (0, 1)
+    assert v.value == pytest.approx(1.5) and v.limit == 3.0
+    assert v.location[0] == pytest.approx(15.75) and 5 <= v.location[1] <= 35
+    # The frame form gives the same answer.
+    frame = outline.difference(shapely.union_all(holes))
+    again = check(frame, min_web=3.0)
+    assert [(w.kind, round(w.value, 9)) for w in again.violations] == [("web", 1.5)]
+    assert "web" in report.table() and "1 violations" in report.table()
+
+
+def test_check_passes_a_good_panel():
+    outline, holes = slot_panel(4.0, fillet=2.5)
+    report = check(
+        openings=holes, boundary=outline, min_web=3.0, min_opening=5.0, min_inside_radius=2.0
+    )
+    assert report.ok, report.table()
+    assert "no violations" in report.table()
+
+
+def test_check_web_to_outline_and_overlap():
+    outline = shapely.box(0, 0, 50, 50)
+    near = shapely.box(1, 10, 20, 20)  # 1 mm from the left edge
+    over = shapely.box(40, 40, 55, 45)  # sticks out of the panel
+    report = check(openings=[near, over], boundary=outline, min_web=2.0)
+    webs = sorted((v.value, v.items) for v in report.violations if v.kind == "web")
+    assert webs == [(0.0, (1, -1)), (pytest.approx(1.0), (0, -1))]
+
+
+def test_check_small_opening_by_inscribed_circle():
+    outline = shapely.box(0, 0, 100, 100)
+    thin = shapely.box(10, 10, 60, 12)  # long but only 2 mm wide
+    big = shapely.Point(70, 70).buffer(10)
+    report = check(openings=[thin, big], boundary=outline, min_opening=3.0)
+    (v,) = report.violations
+    assert v.kind == "opening" and v.items == (0,)
+    assert v.value == pytest.approx(2.0, rel=1e-2)
+    assert thin.buffer(1e-6).contains(shapely.Point(v.location))
+
+
+def test_check_sharp_inside_corners_for_a_cnc_tool():
+    outline, holes = slot_panel(6.0)  # sharp rectangular slots
+    report = check(openings=holes, boundary=outline, min_inside_radius=3.0)
+    corners = [v for v in report.violations if v.kind == "corner"]
+    assert len(corners) == 8  # four corners per slot
+    expected_depth = 3.0 * (math.sqrt(2) - 1)  # tool of radius r in a 90 degree corner
+    for v in corners:
+        assert v.value == pytest.approx(expected_depth, rel=1e-2)
+        assert (
+            min(
+                shapely.Point(v.location).distance(shapely.Point(c))
+                for h in holes
+                for c in h.exterior.coords
+            )
+            < 1e-9
+        )
+    # Fillets at least as large as the tool pass; smaller ones do not.
+    _, rounded = slot_panel(6.0, fillet=3.0)
+    assert check(openings=rounded, boundary=outline, min_inside_radius=3.0).ok
+    _, small = slot_panel(6.0, fillet=1.0)
+    bad = check(openings=small, boundary=outline, min_inside_radius=3.0).violations
+    assert len(bad) == 8 and all(
+        v.value == pytest.approx(2 * (math.sqrt(2) - 1), rel=2e-2) for v in bad
+    )
+
+
+def test_check_notch_in_outline_is_a_corner():
+    outline = shapely.box(0, 0, 60, 40).difference(shapely.box(20, 30, 40, 41))  # notch
+    report = check(openings=[], boundary=outline, min_inside_radius=2.0)
+    assert sum(v.kind == "corner" and v.items == (-1,) for v in report.violations) == 2
+
+
+def test_check_finds_islands():
+    outline = shapely.box(0, 0, 100, 100)
+    ring = shapely.box(20, 20, 80, 80).difference(shapely.box(30, 30, 70, 70))  # a ring cut
+    report = check(openings=[ring], boundary=outline)
+    (v,) = report.violations
+    assert v.kind == "island" and v.value == pytest.approx(1600.0)
+    assert shapely.box(30, 30, 70, 70).contains(shapely.Point(v.location))
+
+
+def test_report_overlays(tmp_path):
+    outline, holes = slot_panel(1.0)
+    report = check(openings=holes, boundary=outline, min_web=3.0, min_inside_radius=1.0)
+    png = report.write_png(tmp_path / "r.png", size=200)
+    svg = report.write_svg(tmp_path / "r.svg")
+    from PIL import Image
+
+    with Image.open(png) as img:
+        px = np.asarray(img.convert("RGB")).reshape(-1, 3)
+    assert ((px[:, 0] > 180) & (px[:, 1] < 80)).any()  # red markers drawn
+    root = ET.parse(svg).getroot()
+    marks = [g for g in root.iter(SVG + "g") if g.get("id") == "MARK"]
+    assert len(marks[0].findall(SVG + "path")) == len(report.violations)
+
+
+def test_check_bad_arguments():
+    with pytest.raises(ValueError, match="min_web"):
+        check(shapely.box(0, 0, 1, 1), min_web=-1)
+    with pytest.raises(ValueError, match="boundary"):
+        check(openings=[shapely.box(0, 0, 1, 1)])
+    with pytest.raises(ValueError, match="either"):
+        check(shapely.box(0, 0, 1, 1), openings=[])
+
+
+def test_kerf_grows_parts_and_shrinks_holes():
+    outline, holes = slot_panel(5.0)
+    frame = outline.difference(shapely.union_all(holes))
+    cut = kerf(frame, 0.2)
+    assert cut.exterior.bounds == pytest.approx((-0.1, -0.1, 100.1, 40.1))
+    hole_boxes = sorted(shapely.Polygon(r).bounds for r in cut.interiors)
+    assert hole_boxes[0] == pytest.approx((5.1, 5.1, 14.9, 34.9))
+    shrunk = kerf(holes, 0.2, role="hole")
+    assert shrunk[0].bounds == pytest.approx((5.1, 5.1, 14.9, 34.9))
+    assert holes[0].bounds == (5.0, 5.0, 15.0, 35.0)  # input untouched
+    assert kerf(frame, 0.0) is frame
+    with pytest.raises(ValueError, match="kerf"):
+        kerf(frame, -1)

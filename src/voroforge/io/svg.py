@@ -234,16 +234,19 @@ def _layer_id(name: str) -> str:
 
 
 def _draw_lines(geom, flip, digits) -> list[str]:
-    """Open paths for the LineString parts of ``geom``."""
+    """Paths for the line parts of ``geom``: LineStrings open, LinearRings closed."""
     out = []
     for part in shapely.get_parts(geom):
         kind = part.geom_type
-        if kind == "LineString" and not part.is_empty:
+        if kind in ("LineString", "LinearRing") and not part.is_empty:
             ctx = PathContext(digits)
             xy = flip(np.asarray(part.coords)[:, :2])
+            closed = kind == "LinearRing"
             ctx.move_to(float(xy[0, 0]), float(xy[0, 1]))
-            for x, y in xy[1:].tolist():
+            for x, y in (xy[1:-1] if closed else xy[1:]).tolist():
                 ctx.line_to(x, y)
+            if closed:
+                ctx.close_path()
             out.append(str(ctx))
         elif kind in ("MultiLineString", "GeometryCollection"):
             out.extend(_draw_lines(part, flip, digits))
