@@ -17,6 +17,7 @@ examples:
   voroforge voronoi points.csv -o cells.geojson --boundary domain.geojson
   voroforge delaunay points.csv -o triangles.svg
   voroforge raster points.csv -o cells.png --size 2048x2048 --method jfa
+  voroforge explain fortune points.csv -o sweep.gif   animation of Fortune's sweep
 
 Run 'voroforge COMMAND --help' for the options of one command.
 """
@@ -116,6 +117,10 @@ def _parser() -> argparse.ArgumentParser:
     from .io.raster_png import add_raster_parser
 
     add_raster_parser(commands, formatter_class=raw)
+
+    from .explain.command import add_explain_parser
+
+    add_explain_parser(commands, formatter_class=raw)
     return parser
 
 
@@ -230,6 +235,15 @@ def _raster(args: argparse.Namespace, stage: Stage) -> list[Path]:
 
 
 _COMMANDS["raster"] = _raster
+
+
+def _explain(args: argparse.Namespace, stage: Stage) -> list[Path]:
+    from .explain.command import explain_command
+
+    return explain_command(args, stage)
+
+
+_COMMANDS["explain"] = _explain
 
 
 def _error(message: str) -> int:

@@ -1,0 +1,1 @@
+"""Teaching material: traced algorithms and animations of them (``voroforge explain``)."""
