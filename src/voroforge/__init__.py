@@ -12,15 +12,22 @@ the neighbouring triangle with ``halfedges[e] // 3``::
 """
 
 from .engine.delaunay import Triangulation, delaunay
+from .engine.lloyd import Relaxation, lloyd
+from .engine.power import PowerDiagram, power, power_fit
 from .engine.raster import RasterVoronoi, rasterize
 from .engine.voronoi import Diagram, Edges, voronoi
 
 __all__ = [
     "Diagram",
     "Edges",
+    "PowerDiagram",
     "RasterVoronoi",
+    "Relaxation",
     "Triangulation",
     "delaunay",
+    "lloyd",
+    "power",
+    "power_fit",
     "rasterize",
     "voronoi",
 ]

@@ -1,0 +1,358 @@
+"""Power (Laguerre) diagrams, :func:`power`, and capacity-constrained cells, :func:`power_fit`.
+
+Cell ``i`` of the power diagram of sites ``p`` with weights ``w`` is
+``{x : |x - p_i|^2 - w_i <= |x - p_j|^2 - w_j for all j}``. Its neighbours come from the
+regular triangulation, the lower convex hull of the lifted points ``(x, y, x^2 + y^2 - w)``
+(Qhull through ``scipy.spatial.ConvexHull``); each cell is the domain's bounding box cut by the
+power bisectors of those neighbours (``kernels/power.py``), then clipped to polygonal domains
+by the same code as :func:`voroforge.voronoi`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.linalg import spsolve
+from scipy.spatial import ConvexHull, QhullError
+
+from ..kernels.power import power_cells
+from ._assemble import clip_to_polygon, domain_edges, domain_grid, geom_offsets_for
+from ._csr import csr_from_pairs
+from ._inputs import as_points, duplicate_map
+from .domain import Domain, make_domain
+from .voronoi import Diagram, Edges, voronoi
+
+#: Up to this many sites every pair is a candidate neighbour (no triangulation needed).
+_ALL_PAIRS_MAX = 16
+
+
+class PowerDiagram(Diagram):
+    """A power (Laguerre) diagram: a :class:`~voroforge.Diagram` with the sites' weights.
+
+    Cells may be empty (a light site can be hidden by heavy neighbours) and a site need not
+    lie in its own cell.
+
+    Attributes
+    ----------
+    weights : (n,) float64
+        The weights the cells were built with (read-only), in squared coordinate units.
+    duplicate_of : (n,) int64
+        -1, or for sites at the same coordinates the index of the one that owns the cell (the
+        heaviest; the first among equal weights). Note that the owner may come later.
+    """
+
+    def __init__(self, sites, duplicate_of, domain, buffers, edges, weights, k=0):
+        super().__init__(sites, duplicate_of, domain, buffers, edges, "power", k)
+        self.weights = weights
+        weights.setflags(write=False)
+
+
+def _as_weights(weights, n: int, name: str = "weights") -> np.ndarray:
+    try:
+        raw = np.asarray(weights)
+        if raw.dtype.kind == "c":
+            raise TypeError("complex values")
+        w = np.array(raw, dtype=np.float64, copy=True)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be an (n,) array of real numbers ({exc})") from None
+    if w.shape != (n,):
+        raise ValueError(f"{name} must have shape ({n},) to match the points; got {w.shape}")
+    if not np.isfinite(w).all():
+        bad = int(np.flatnonzero(~np.isfinite(w))[0])
+        raise ValueError(f"{name} contains a non-finite value (first at index {bad}: {w[bad]})")
+    return w
+
+
+def _owners(pts: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """``duplicate_of`` for power cells: the heaviest copy of a site owns it (ties: first)."""
+    dup, _ = duplicate_map(pts)
+    if (dup < 0).all():
+        return dup
+    key = np.where(dup < 0, np.arange(len(pts)), dup)
+    order = np.lexsort((np.arange(len(pts)), -w, key))
+    first = np.ones(len(pts), dtype=bool)
+    first[1:] = key[order][1:] != key[order][:-1]
+    winner = np.zeros(len(pts), dtype=np.int64)
+    winner[key[order[first]]] = order[first]
+    own = winner[key]
+    return np.where(own == np.arange(len(pts)), -1, own)
+
+
+def _pairs_csr(n, a, b):
+    indptr, indices = csr_from_pairs(n, a, b)
+    return indptr, indices.astype(np.int64)
+
+
+def _neighbors(x, y, w, box, active):
+    """Candidate neighbours (CSR over all sites) and the mask of sites that can have a cell."""
+    n = len(x)
+    idx = np.flatnonzero(active)
+    m = len(idx)
+    if m <= _ALL_PAIRS_MAX:
+        a, b = np.triu_indices(m, 1)
+        return (*_pairs_csr(n, idx[a], idx[b]), active)
+    # lift in a frame centred on the box with unit size: well-conditioned for Qhull
+    cx = 0.5 * (box[0] + box[2])
+    cy = 0.5 * (box[1] + box[3])
+    s = max(box[2] - box[0], box[3] - box[1])
+    u = (x[idx] - cx) / s
+    v = (y[idx] - cy) / s
+    lift = np.column_stack((u, v, u * u + v * v - w[idx] / (s * s)))
+    try:
+        hull = ConvexHull(lift)
+    except QhullError:
+        span = np.column_stack((u - u[0], v - v[0]))
+        far = int(np.argmax(np.einsum("ij,ij->i", span, span)))
+        cross = span[:, 0] * span[far, 1] - span[:, 1] * span[far, 0]
+        if np.abs(cross).max() <= 1e-12 * float(span[far] @ span[far]):
+            return _collinear(n, idx, span, span[far], lift[:, 2], active)
+        hull = ConvexHull(lift, qhull_options="QJ")  # coplanar lift: one shared vertex
+    lower = hull.simplices[hull.equations[:, 2] < 0.0]
+    on_hull = np.zeros(n, dtype=bool)
+    on_hull[idx[lower.ravel()]] = True
+    a = idx[lower[:, [0, 1, 2]].ravel()]
+    b = idx[lower[:, [1, 2, 0]].ravel()]
+    lo = np.minimum(a, b)
+    hi = np.maximum(a, b)
+    key = np.unique(lo * n + hi)
+    return (*_pairs_csr(n, key // n, key % n), active & on_hull)
+
+
+def _collinear(n, idx, span, direction, z, active):
+    """Collinear sites: neighbours along the lower hull of ``(t, t^2 - w)`` (1D lift)."""
+    t = span @ (direction / np.sqrt(direction @ direction))
+    # z = u^2 + v^2 - w differs from t^2 - w by a constant on the line
+    order = np.argsort(t, kind="stable")
+    chain: list[int] = []
+    for k in order.tolist():
+        while len(chain) >= 2:
+            a, b = chain[-2], chain[-1]
+            cr = (t[b] - t[a]) * (z[k] - z[a]) - (z[b] - z[a]) * (t[k] - t[a])
+            if cr <= 0.0:
+                chain.pop()
+            else:
+                break
+        chain.append(k)
+    ch = idx[np.array(chain, dtype=np.int64)]
+    keep = np.zeros(n, dtype=bool)
+    keep[ch] = True
+    return (*_pairs_csr(n, ch[:-1], ch[1:]), active & keep)
+
+
+def _compute(pts: np.ndarray, w: np.ndarray, dom: Domain) -> PowerDiagram:
+    """Power diagram of validated input (no copies of ``pts``/``w`` are taken)."""
+    n = len(pts)
+    if n and (w == w[0]).all():
+        # equal weights: the ordinary Voronoi diagram, from the exact engine
+        d = voronoi(pts, dom.geometry if not dom.is_rect else dom.bounds)
+        return PowerDiagram(d.sites, d.duplicate_of, dom, d._buffers, d._edges, w, d._k)
+    dup = _owners(pts, w)
+    active = dup < 0
+    x = np.ascontiguousarray(pts[:, 0])
+    y = np.ascontiguousarray(pts[:, 1])
+    box = np.array(dom.bounds, dtype=np.float64)
+    indptr, indices, active = _neighbors(x, y, w, box, active)
+    closed, lengths, own = power_cells(x, y, w, indptr, indices, box, active)
+    nonempty = lengths[1:] > lengths[:-1]
+    ring_offsets = np.concatenate(([0], lengths[1:][nonempty]))
+    ring_cell = np.flatnonzero(nonempty)
+    grid = None if dom.is_rect else domain_grid(dom, len(ring_cell))
+    edge_coords, edge_pairs = domain_edges(dom, grid, closed, ring_offsets, ring_cell, own)
+    if dom.is_rect:
+        polys = np.arange(len(ring_cell) + 1, dtype=np.int64)
+        buffers = (closed, ring_offsets, polys, geom_offsets_for(n, ring_cell))
+    else:
+        buffers = clip_to_polygon(dom, grid, closed, ring_offsets, ring_cell, n)
+    return PowerDiagram(pts, dup, dom, buffers, Edges(edge_coords, edge_pairs), w)
+
+
+def power(points, weights, boundary=None) -> PowerDiagram:
+    """Power (Laguerre) diagram of weighted sites, every cell clipped to a domain.
+
+    Cell ``i`` holds the points ``x`` of the domain where ``|x - p_i|^2 - w_i`` is smallest.
+    Equal weights give exactly :func:`voroforge.voronoi`'s cells.
+
+    Parameters
+    ----------
+    points : (n, 2) array_like
+        Sites; never modified. Sites at the same coordinates: the heaviest owns the cell (the
+        first among equal weights), the others get empty cells and ``duplicate_of``.
+    weights : (n,) array_like
+        Weights in squared coordinate units (a weight ``r**2`` acts like a circle of radius
+        ``r``). Adding one constant to all weights changes nothing.
+    boundary : None, (xmin, ymin, xmax, ymax) or shapely Polygon/MultiPolygon, optional
+        The domain, as for :func:`voroforge.voronoi`.
+
+    Returns
+    -------
+    PowerDiagram
+        A :class:`~voroforge.Diagram` (cells in input order, possibly empty, with areas,
+        centroids, neighbours and unique edges) with ``.weights``.
+
+    Raises
+    ------
+    ValueError
+        Malformed points or weights (shape, NaN/inf), an invalid or empty boundary.
+
+    Notes
+    -----
+    Neighbours come from Qhull's lower hull of the lifted sites; the cells are cut in
+    floating point relative to each site (unequal weights do not use the exact predicates
+    of :func:`voroforge.voronoi`). Collinear sites are handled by a 1D lower hull.
+
+    Examples
+    --------
+    >>> import numpy as np, voroforge as vf
+    >>> pts = np.random.default_rng(1).random((50, 2))
+    >>> d = vf.power(pts, np.linspace(0, 0.01, 50), (0, 0, 1, 1))
+    >>> round(float(d.areas.sum()), 12)
+    1.0
+    """
+    pts = as_points(points)
+    w = _as_weights(weights, len(pts))
+    dom = make_domain(boundary, pts)
+    return _compute(pts, w, dom)
+
+
+def _hessian(d: PowerDiagram, pts: np.ndarray) -> sp.csr_matrix:
+    """``dA_i/dw_j``: the graph Laplacian with ``|edge_ij| / (2 |p_i - p_j|)`` off the diagonal."""
+    coords, pairs = d.edges
+    n = len(pts)
+    length = np.hypot(*(coords[:, 1] - coords[:, 0]).T)
+    a = pairs[:, 0]
+    b = pairs[:, 1]
+    c = length / (2.0 * np.hypot(*(pts[a] - pts[b]).T))
+    off = sp.coo_matrix((c, (a, b)), shape=(n, n)).tocsr()
+    off = off + off.T
+    deg = np.asarray(off.sum(axis=1)).ravel()
+    return (sp.diags(deg) - off).tocsc(), deg
+
+
+def _fit(pts, targets, dom, w0, tol, max_iter):
+    """Damped Newton on the concave dual; returns ``(diagram, weights, error, iterations)``."""
+    w = w0.copy()
+    d = _compute(pts, w, dom)
+    areas = d.areas
+    if (areas <= 0.0).any():
+        i = int(np.flatnonzero(areas <= 0.0)[0])
+        raise ValueError(
+            f"the cell of site {i} is empty for the starting weights: capacity fitting needs "
+            "every site's cell non-empty at the start (move the site into the domain)"
+        )
+    floor = 0.5 * min(float(targets.min()), float(areas.min()))
+    err = float(np.max(np.abs(areas - targets) / targets))
+    it = 0
+    while err > tol and it < max_iter:
+        it += 1
+        r = targets - areas
+        lap, deg = _hessian(d, pts)
+        shift = 1e-12 * float(deg.mean()) if len(deg) else 0.0
+        step = spsolve(lap + sp.identity(len(pts), format="csc") * shift, r)
+        norm = float(np.linalg.norm(r))
+        alpha = 1.0
+        for _ in range(40):
+            w_try = w + alpha * step
+            d_try = _compute(pts, w_try, dom)
+            a_try = d_try.areas
+            if a_try.min() >= floor and np.linalg.norm(targets - a_try) <= (1 - alpha / 2) * norm:
+                break
+            alpha *= 0.5
+        else:
+            break  # no progress possible at float precision
+        w, d, areas = w_try, d_try, a_try
+        err = float(np.max(np.abs(areas - targets) / targets))
+    return d, w, err, it
+
+
+def _targets(target_areas, n: int, dom: Domain) -> np.ndarray:
+    t = _as_weights(target_areas, n, "target_areas")
+    if not (t > 0.0).all():
+        i = int(np.flatnonzero(~(t > 0.0))[0])
+        raise ValueError(f"target_areas must be positive; index {i} is {t[i]}")
+    total = dom.area
+    if abs(t.sum() - total) > 1e-6 * total:
+        raise ValueError(
+            f"target_areas must sum to the domain's area {total!r}; they sum to {t.sum()!r}"
+        )
+    return t * (total / t.sum())
+
+
+def power_fit(
+    points,
+    target_areas,
+    boundary=None,
+    *,
+    tol: float = 1e-6,
+    max_iter: int = 100,
+    weights=None,
+) -> PowerDiagram:
+    """Weights that give every power cell a prescribed area (capacity-constrained cells).
+
+    Maximises the concave dual of the semi-discrete transport problem (Aurenhammer,
+    Hoffmann and Aronov 1998) with a damped Newton method: the Hessian is the sparse graph
+    Laplacian with entries ``|edge_ij| / (2 |p_i - p_j|)``, solved with
+    ``scipy.sparse.linalg.spsolve``; the step is halved until every cell keeps at least half
+    of the smallest area seen at the start and the area error shrinks.
+
+    Parameters
+    ----------
+    points : (n, 2) array_like
+        Distinct sites; each must have a non-empty cell for the starting weights (sites
+        inside the domain always do). Never modified.
+    target_areas : (n,) array_like
+        Positive areas that sum to the domain's area (to 1e-6 relative; they are rescaled to
+        sum exactly).
+    boundary : None, (xmin, ymin, xmax, ymax) or shapely Polygon/MultiPolygon, optional
+        The domain, as for :func:`voroforge.voronoi`.
+    tol : float
+        Stop when every ``|area_i - target_i| / target_i <= tol``.
+    max_iter : int
+        Most Newton steps.
+    weights : (n,) array_like, optional
+        Starting weights (default zeros: the Voronoi diagram); warm starts converge faster.
+
+    Returns
+    -------
+    PowerDiagram
+        The fitted diagram; ``.weights`` are the weights found.
+
+    Raises
+    ------
+    ValueError
+        Malformed input, duplicate sites, targets not positive or not summing to the domain's
+        area, or a site whose starting cell is empty.
+    RuntimeError
+        When the areas do not reach ``tol`` within ``max_iter`` steps.
+
+    Examples
+    --------
+    >>> import numpy as np, voroforge as vf
+    >>> pts = np.random.default_rng(2).random((40, 2))
+    >>> target = np.full(40, 1 / 40)
+    >>> d = vf.power_fit(pts, target, (0, 0, 1, 1))
+    >>> bool(np.all(np.abs(d.areas - target) <= 1e-6 * target))
+    True
+    """
+    pts = as_points(points)
+    n = len(pts)
+    dom = make_domain(boundary, pts)
+    t = _targets(target_areas, n, dom)
+    w0 = np.zeros(n) if weights is None else _as_weights(weights, n)
+    if not (tol > 0 and np.isfinite(tol)):
+        raise ValueError(f"tol must be a positive number; got {tol!r}")
+    if int(max_iter) < 0:
+        raise ValueError(f"max_iter must be >= 0; got {max_iter!r}")
+    dup, _ = duplicate_map(pts)
+    if (dup >= 0).any():
+        i = int(np.flatnonzero(dup >= 0)[0])
+        raise ValueError(
+            f"points has duplicate sites (rows {int(dup[i])} and {i}); capacity fitting "
+            "needs distinct sites"
+        )
+    d, _, err, it = _fit(pts, t, dom, w0, tol, int(max_iter))
+    if err > tol:
+        raise RuntimeError(
+            f"power_fit did not reach tol={tol:g} in {it} Newton steps (largest relative "
+            f"area error {err:.3g})"
+        )
+    return d

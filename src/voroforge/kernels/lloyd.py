@@ -1,0 +1,213 @@
+"""Moments of ragged cells for centroidal Voronoi relaxation.
+
+Cells come in the GeoArrow multipolygon layout (``coords``, ``ring_offsets``,
+``polygon_offsets``, ``geom_offsets``); the first ring of a polygon is its exterior, the rest
+are holes, and ring orientation does not matter. All moments of cell ``g`` are taken relative
+to ``origin[g]`` (its site), so the CVT energy ``∫ |x - z_g|^2`` needs no cancellation.
+
+Outputs per cell: ``mass`` (∫ρ), ``first (2,)`` (∫ρ (x - z)) and ``second`` (∫ρ |x - z|^2).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit, prange
+
+from ..config import NJIT, NJIT_PARALLEL
+
+
+@njit(**NJIT)
+def _ring_moments(coords, a, b, ox, oy):
+    """Signed area, first and second moments of the closed ring ``coords[a:b]``."""
+    m0 = 0.0
+    mx = 0.0
+    my = 0.0
+    m2 = 0.0
+    for k in range(a, b - 1):
+        x0 = coords[k, 0] - ox
+        y0 = coords[k, 1] - oy
+        x1 = coords[k + 1, 0] - ox
+        y1 = coords[k + 1, 1] - oy
+        cr = x0 * y1 - x1 * y0
+        m0 += cr
+        mx += (x0 + x1) * cr
+        my += (y0 + y1) * cr
+        m2 += (x0 * x0 + x0 * x1 + x1 * x1 + y0 * y0 + y0 * y1 + y1 * y1) * cr
+    return m0 / 2.0, mx / 6.0, my / 6.0, m2 / 12.0
+
+
+@njit(**NJIT_PARALLEL)
+def uniform_moments(
+    coords, ring_offsets, polygon_offsets, geom_offsets, origin, mass, first, second
+):
+    """Exact (closed-form) moments of unit density; writes into ``mass``, ``first``, ``second``."""
+    n = geom_offsets.shape[0] - 1
+    for g in prange(n):
+        ox = origin[g, 0]
+        oy = origin[g, 1]
+        s0 = 0.0
+        sx = 0.0
+        sy = 0.0
+        s2 = 0.0
+        for p in range(geom_offsets[g], geom_offsets[g + 1]):
+            for r in range(polygon_offsets[p], polygon_offsets[p + 1]):
+                a0, ax, ay, a2 = _ring_moments(coords, ring_offsets[r], ring_offsets[r + 1], ox, oy)
+                sign = 1.0 if a0 >= 0.0 else -1.0
+                if r != polygon_offsets[p]:
+                    sign = -sign  # holes subtract
+                s0 += sign * a0
+                sx += sign * ax
+                sy += sign * ay
+                s2 += sign * a2
+        mass[g] = s0
+        first[g, 0] = sx
+        first[g, 1] = sy
+        second[g] = s2
+
+
+@njit(**NJIT)
+def _clip_axis(px, py, m, qx, qy, axis, value, keep_below):
+    """Sutherland-Hodgman against one axis-parallel line (exact for moment integrals).
+
+    Keeps ``coord <= value`` (``keep_below``) or ``coord >= value`` of the open ring ``p``.
+    Non-convex rings may gain zero-width bridges along the line; their signed integrals are
+    still those of the clipped region.
+    """
+    out = 0
+    if m == 0:
+        return 0
+    sp = (px[m - 1] if axis == 0 else py[m - 1]) - value
+    if not keep_below:
+        sp = -sp
+    for k in range(m):
+        kp = k - 1 if k > 0 else m - 1
+        s = (px[k] if axis == 0 else py[k]) - value
+        if not keep_below:
+            s = -s
+        if (sp <= 0.0) != (s <= 0.0):
+            t = sp / (sp - s)
+            if axis == 0:
+                qx[out] = value
+                qy[out] = py[kp] + t * (py[k] - py[kp])
+            else:
+                qx[out] = px[kp] + t * (px[k] - px[kp])
+                qy[out] = value
+            out += 1
+        if s <= 0.0:
+            qx[out] = px[k]
+            qy[out] = py[k]
+            out += 1
+        sp = s
+    return out
+
+
+@njit(**NJIT)
+def _open_moments(px, py, m):
+    m0 = 0.0
+    mx = 0.0
+    my = 0.0
+    m2 = 0.0
+    for k in range(m):
+        kn = k + 1 if k + 1 < m else 0
+        x0 = px[k]
+        y0 = py[k]
+        x1 = px[kn]
+        y1 = py[kn]
+        cr = x0 * y1 - x1 * y0
+        m0 += cr
+        mx += (x0 + x1) * cr
+        my += (y0 + y1) * cr
+        m2 += (x0 * x0 + x0 * x1 + x1 * x1 + y0 * y0 + y0 * y1 + y1 * y1) * cr
+    return m0 / 2.0, mx / 6.0, my / 6.0, m2 / 12.0
+
+
+@njit(**NJIT_PARALLEL)
+def raster_moments(
+    coords, ring_offsets, polygon_offsets, geom_offsets, origin, raster, rbox, mass, first, second
+):
+    """Moments of a piecewise-constant density, integrated exactly over every cell.
+
+    ``raster (h, w)`` covers ``rbox = (xmin, ymin, xmax, ymax)``; row 0 is the top
+    (``y = ymax``), as in an image; outside the box the density is 0. Each ring is cut into
+    pixel rows, each row piece into pixels, and each pixel piece's moments are weighted by
+    that pixel's value.
+    """
+    n = geom_offsets.shape[0] - 1
+    h, w = raster.shape
+    dxp = (rbox[2] - rbox[0]) / w
+    dyp = (rbox[3] - rbox[1]) / h
+    for g in prange(n):
+        ox = origin[g, 0]
+        oy = origin[g, 1]
+        s0 = 0.0
+        sx = 0.0
+        sy = 0.0
+        s2 = 0.0
+        for p in range(geom_offsets[g], geom_offsets[g + 1]):
+            for r in range(polygon_offsets[p], polygon_offsets[p + 1]):
+                a = ring_offsets[r]
+                b = ring_offsets[r + 1] - 1  # open ring: drop the closing vertex
+                m = b - a
+                if m < 3:
+                    continue
+                # a cut at most doubles the vertex count (one crossing per edge)
+                rx = np.zeros(m)
+                ry = np.zeros(m)
+                t1x = np.zeros(2 * m)
+                t1y = np.zeros(2 * m)
+                t2x = np.zeros(4 * m)
+                t2y = np.zeros(4 * m)
+                t3x = np.zeros(8 * m)
+                t3y = np.zeros(8 * m)
+                t4x = np.zeros(16 * m)
+                t4y = np.zeros(16 * m)
+                ylo = np.inf
+                yhi = -np.inf
+                area2 = 0.0
+                for k in range(m):
+                    rx[k] = coords[a + k, 0] - ox
+                    ry[k] = coords[a + k, 1] - oy
+                    ylo = min(ylo, coords[a + k, 1])
+                    yhi = max(yhi, coords[a + k, 1])
+                for k in range(m):
+                    kn = k + 1 if k + 1 < m else 0
+                    area2 += rx[k] * ry[kn] - rx[kn] * ry[k]
+                sign = 1.0 if area2 >= 0.0 else -1.0
+                if r != polygon_offsets[p]:
+                    sign = -sign
+                r0 = max(int(np.floor((rbox[3] - yhi) / dyp)), 0)
+                r1 = min(int(np.floor((rbox[3] - ylo) / dyp)), h - 1)
+                for row in range(r0, r1 + 1):
+                    top = rbox[3] - row * dyp - oy
+                    bot = rbox[3] - (row + 1) * dyp - oy
+                    m1 = _clip_axis(rx, ry, m, t1x, t1y, 1, top, True)
+                    m2 = _clip_axis(t1x, t1y, m1, t2x, t2y, 1, bot, False)
+                    if m2 < 3:
+                        continue
+                    xlo = np.inf
+                    xhi = -np.inf
+                    for k in range(m2):
+                        xlo = min(xlo, t2x[k])
+                        xhi = max(xhi, t2x[k])
+                    c0 = max(int(np.floor((xlo + ox - rbox[0]) / dxp)), 0)
+                    c1 = min(int(np.floor((xhi + ox - rbox[0]) / dxp)), w - 1)
+                    for col in range(c0, c1 + 1):
+                        val = raster[row, col]
+                        if val == 0.0:
+                            continue
+                        left = rbox[0] + col * dxp - ox
+                        right = rbox[0] + (col + 1) * dxp - ox
+                        m3 = _clip_axis(t2x, t2y, m2, t3x, t3y, 0, right, True)
+                        m4 = _clip_axis(t3x, t3y, m3, t4x, t4y, 0, left, False)
+                        if m4 < 3:
+                            continue
+                        a0, ax, ay, a2 = _open_moments(t4x, t4y, m4)
+                        f = sign * val
+                        s0 += f * a0
+                        sx += f * ax
+                        sy += f * ay
+                        s2 += f * a2
+        mass[g] = s0
+        first[g, 0] = sx
+        first[g, 1] = sy
+        second[g] = s2

@@ -1,0 +1,276 @@
+"""Power (Laguerre) diagrams and capacity-constrained cells against brute-force references."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import shapely
+from hypothesis import given
+from hypothesis import strategies as st
+
+import voroforge as vf
+
+from reference import _clip_halfplane
+from validate import overlay_frame, symmetric_difference_areas
+
+HOLED = shapely.box(0, 0, 10, 10).difference(shapely.Point(5, 5).buffer(2.5, quad_segs=8))
+L_SHAPE = shapely.Polygon([(0, 0), (10, 0), (10, 4), (4, 4), (4, 10), (0, 10)])
+
+
+def brute_owner(points, weights):
+    """Index owning each site's coordinates: the heaviest copy, the first among equals."""
+    best: dict[tuple[float, float], int] = {}
+    for i, (x, y) in enumerate(points.tolist()):
+        key = (x + 0.0, y + 0.0)
+        if key not in best or weights[i] > weights[best[key]]:
+            best[key] = i
+    return np.array([best[(x + 0.0, y + 0.0)] for x, y in points.tolist()])
+
+
+def brute_power(points, weights, domain):
+    """Cell ``i`` = domain ∩ every half-plane ``|x-p_i|^2 - w_i <= |x-p_j|^2 - w_j``."""
+    pts = np.asarray(points, dtype=np.float64)
+    w = np.asarray(weights, dtype=np.float64)
+    owner = brute_owner(pts, w)
+    x0, y0, x1, y1 = domain.bounds
+    cells = []
+    for i in range(len(pts)):
+        if owner[i] != i:
+            cells.append(shapely.Polygon())
+            continue
+        p = pts[i]
+        poly = np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]]) - p
+        for j in np.flatnonzero(owner == np.arange(len(pts))):
+            if j == i or len(poly) == 0:
+                continue
+            d = pts[j] - p
+            poly = _clip_halfplane(poly, 2.0 * d, float(d @ d) + w[i] - w[j])
+        if len(poly) < 3:
+            cells.append(shapely.Polygon())
+            continue
+        cells.append(shapely.intersection(shapely.Polygon(poly + p).buffer(0), domain))
+    return np.array(cells, dtype=object)
+
+
+def power_dist(q, pts, w):
+    return ((q[:, None, :] - pts[None, :, :]) ** 2).sum(-1) - w[None, :]
+
+
+def check_power(d, pts, w, domain, *, samples=400, seed=0):
+    """Areas vs the brute force, tiling, no overlaps, samples in the power-nearest cell."""
+    pts = np.asarray(pts, dtype=np.float64)
+    w = np.asarray(w, dtype=np.float64)
+    area = domain.area
+    ref = brute_power(pts, w, domain)
+    assert np.allclose(d.areas, shapely.area(ref), rtol=0, atol=1e-9 * area)
+    assert abs(d.areas.sum() - area) <= 1e-9 * area
+    cells = np.asarray(d.cells, dtype=object)
+    assert np.all(shapely.is_valid(cells))
+    assert np.allclose(shapely.area(cells), d.areas, rtol=1e-9, atol=1e-12 * area)
+    # overlays snap-rounded in a centred frame (GEOS's float overlay misreads cells that
+    # share vertices bit for bit now and then)
+    origin, grid = overlay_frame(domain)
+    loc = shapely.transform(cells, lambda xy: xy - origin)
+    tree = shapely.STRtree(cells)
+    ii, jj = tree.query(cells, predicate="intersects")
+    keep = ii < jj
+    overlap = shapely.area(shapely.intersection(loc[ii[keep]], loc[jj[keep]], grid_size=grid))
+    assert overlap.sum() <= 1e-9 * area
+    assert symmetric_difference_areas(cells, ref, domain).max() <= 1e-9 * area
+    rng = np.random.default_rng(seed)
+    x0, y0, x1, y1 = domain.bounds
+    q = rng.uniform((x0, y0), (x1, y1), size=(samples, 2))
+    q = q[shapely.contains_xy(domain, q[:, 0], q[:, 1])]
+    pd = power_dist(q, pts, w)
+    best = pd.min(axis=1)
+    for k, j in enumerate(np.argmin(pd, axis=1)):
+        g = shapely.Point(q[k])
+        if not cells[j].covers(g) and cells[j].distance(g) > 1e-9 * np.sqrt(area):
+            ties = np.flatnonzero(pd[k] <= best[k] + 1e-9 * area)
+            assert any(cells[t].distance(g) <= 1e-9 * np.sqrt(area) for t in ties), (
+                f"sample {q[k]} not in the cell of its power-nearest site {j}"
+            )
+    # edges lie on the power bisector of their pair
+    coords, pairs = d.edges
+    for end in (0, 1):
+        x = coords[:, end]
+        a = ((x - pts[pairs[:, 0]]) ** 2).sum(1) - w[pairs[:, 0]]
+        b = ((x - pts[pairs[:, 1]]) ** 2).sum(1) - w[pairs[:, 1]]
+        assert np.allclose(a, b, rtol=0, atol=1e-9 * area)
+
+
+@pytest.mark.parametrize("domain", [shapely.box(0, 0, 10, 10), HOLED, L_SHAPE])
+@pytest.mark.parametrize("n", [5, 60])
+def test_random_against_brute_force(domain, n):
+    rng = np.random.default_rng(n)
+    pts = rng.uniform(0, 10, size=(n, 2))
+    w = rng.uniform(0, 4.0, size=n)
+    d = vf.power(pts, w, domain)
+    assert isinstance(d, vf.Diagram) and d.algorithm == "power"
+    assert np.array_equal(d.weights, w)
+    check_power(d, pts, w, domain)
+
+
+def test_weights_that_empty_cells():
+    rng = np.random.default_rng(7)
+    pts = rng.uniform(0, 10, size=(40, 2))
+    w = np.zeros(40)
+    w[:4] = 30.0  # four heavy sites swallow their light neighbours
+    d = vf.power(pts, w, (0, 0, 10, 10))
+    assert (d.areas == 0).sum() > 0
+    check_power(d, pts, w, shapely.box(0, 0, 10, 10))
+    assert np.all(shapely.is_empty(d.cells[d.areas == 0]))
+    # empty cells have no neighbours and no edges
+    indptr, _ = d.neighbors
+    assert np.all(np.diff(indptr)[d.areas == 0] == 0)
+
+
+def test_equal_weights_give_voronoi_exactly():
+    rng = np.random.default_rng(3)
+    pts = rng.random((300, 2))
+    for boundary in [(0, 0, 1, 1), shapely.Point(0.5, 0.5).buffer(0.6)]:
+        v = vf.voronoi(pts, boundary)
+        for c in (0.0, 2.5):
+            p = vf.power(pts, np.full(300, c), boundary)
+            for a, b in zip(v.to_geoarrow()[1], p.to_geoarrow()[1], strict=True):
+                assert np.array_equal(a, b)
+            assert np.array_equal(v.to_geoarrow()[0], p.to_geoarrow()[0])
+            assert np.array_equal(v.edges.pairs, p.edges.pairs)
+
+
+def test_nearly_equal_weights_match_voronoi_cells():
+    rng = np.random.default_rng(4)
+    pts = rng.random((200, 2))
+    w = np.zeros(200)
+    w[0] = 1e-300  # not all equal: takes the power path
+    p = vf.power(pts, w, (0, 0, 1, 1))
+    v = vf.voronoi(pts, (0, 0, 1, 1))
+    assert np.allclose(p.areas, v.areas, rtol=0, atol=1e-13)
+    assert np.max(shapely.area(shapely.symmetric_difference(p.cells, v.cells))) <= 1e-13
+
+
+def test_adding_a_constant_changes_nothing():
+    rng = np.random.default_rng(5)
+    pts = rng.random((80, 2))
+    w = rng.random(80) * 0.01
+    a = vf.power(pts, w, (0, 0, 1, 1))
+    b = vf.power(pts, w + 7.0, (0, 0, 1, 1))
+    assert np.allclose(a.areas, b.areas, rtol=0, atol=1e-12)
+
+
+def test_duplicates_heavier_wins_equal_first():
+    pts = np.array([[1.0, 1.0], [2.0, 3.0], [1.0, 1.0], [3.0, 1.5], [2.0, 3.0], [1.0, 1.0]])
+    w = np.array([0.1, 0.5, 0.3, 0.0, 0.5, 0.3])
+    d = vf.power(pts, w, (0, 0, 4, 4))
+    # (1, 1): rows 0, 2, 5 -> row 2 (heaviest, first of the two 0.3s); (2, 3): rows 1, 4 -> 1
+    assert d.duplicate_of.tolist() == [2, -1, -1, -1, 1, 2]
+    assert np.all(d.areas[[0, 4, 5]] == 0)
+    check_power(d, pts, w, shapely.box(0, 0, 4, 4))
+
+
+@pytest.mark.parametrize("n", [3, 30])
+def test_collinear(n):
+    t = np.linspace(0, 1, n)
+    pts = np.column_stack((0.2 + 0.6 * t, 0.1 + 0.7 * t))
+    w = np.random.default_rng(n).random(n) * 0.02
+    d = vf.power(pts, w, (0, 0, 1, 1))
+    check_power(d, pts, w, shapely.box(0, 0, 1, 1))
+    assert (d.areas > 0).sum() >= 2
+
+
+def test_coplanar_lift():
+    # weights |p|^2 lift every site to height 0: all power bisectors meet in one point
+    g = np.stack(np.meshgrid(np.arange(5.0), np.arange(5.0)), -1).reshape(-1, 2) + 0.5
+    w = (g**2).sum(1)
+    d = vf.power(g, w, (0, 0, 5, 5))
+    assert abs(d.areas.sum() - 25) <= 1e-9 * 25
+    check_power(d, g, w, shapely.box(0, 0, 5, 5))
+
+
+@pytest.mark.parametrize("n", [1, 2])
+def test_one_and_two_sites(n):
+    pts = np.array([[0.3, 0.4], [0.7, 0.5]])[:n]
+    w = np.array([0.0, 0.1])[:n]
+    d = vf.power(pts, w, (0, 0, 1, 1))
+    check_power(d, pts, w, shapely.box(0, 0, 1, 1))
+    if n == 1:
+        assert d.areas.tolist() == [1.0]
+
+
+def test_large_coordinates():
+    rng = np.random.default_rng(9)
+    pts = rng.random((50, 2)) * 100 + np.array([500000.0, 4000000.0])
+    w = rng.random(50) * 20
+    box = shapely.box(500000, 4000000, 500100, 4000100)
+    d = vf.power(pts, w, box)
+    check_power(d, pts, w, box)
+
+
+def test_input_not_mutated_and_errors():
+    pts = np.random.default_rng(1).random((10, 2))
+    w = np.arange(10.0) * 1e-3
+    p0, w0 = pts.copy(), w.copy()
+    vf.power(pts, w, (0, 0, 1, 1))
+    assert np.array_equal(pts, p0) and np.array_equal(w, w0)
+    with pytest.raises(ValueError, match="weights must have shape"):
+        vf.power(pts, w[:-1])
+    with pytest.raises(ValueError, match="non-finite"):
+        vf.power(pts, np.full(10, np.nan))
+    with pytest.raises(ValueError, match="NaN"):
+        vf.power(np.full((3, 2), np.nan), np.zeros(3))
+
+
+@given(
+    st.integers(2, 25),
+    st.integers(0, 2**32 - 1),
+    st.sampled_from([1e-4, 1e-2, 0.2]),
+)
+def test_property_random(n, seed, spread):
+    rng = np.random.default_rng(seed)
+    pts = np.round(rng.random((n, 2)), 3)  # rounding makes duplicates and collinear runs
+    w = rng.random(n) * spread
+    d = vf.power(pts, w, (0, 0, 1, 1))
+    check_power(d, pts, w, shapely.box(0, 0, 1, 1), samples=100, seed=seed)
+
+
+# ---------------------------------------------------------------- capacity-constrained cells
+
+
+@pytest.mark.parametrize("domain", [shapely.box(0, 0, 10, 10), HOLED, L_SHAPE])
+def test_power_fit_reaches_targets(domain):
+    rng = np.random.default_rng(11)
+    n = 80
+    pts = rng.uniform(0, 10, size=(4 * n, 2))
+    pts = pts[shapely.contains_xy(domain, pts[:, 0], pts[:, 1])][:n]
+    raw = rng.uniform(1, 4, size=n)
+    target = raw / raw.sum() * domain.area
+    d = vf.power_fit(pts, target, domain)
+    assert np.all(np.abs(d.areas - target) <= 1e-6 * target)
+    # the result is the power diagram of the weights it reports
+    check_power(d, pts, d.weights, domain, samples=200)
+    # warm start from the answer: no step needed
+    again = vf.power_fit(pts, target, domain, weights=d.weights, max_iter=0)
+    assert np.array_equal(again.areas, d.areas)
+
+
+def test_power_fit_10k_equal_areas():
+    pts = np.random.default_rng(12).random((10_000, 2))
+    target = np.full(10_000, 1e-4)
+    d = vf.power_fit(pts, target, (0, 0, 1, 1))
+    assert np.max(np.abs(d.areas - target) / target) <= 1e-6
+
+
+def test_power_fit_errors():
+    pts = np.random.default_rng(13).random((10, 2))
+    with pytest.raises(ValueError, match="sum to the domain"):
+        vf.power_fit(pts, np.full(10, 0.2), (0, 0, 1, 1))
+    with pytest.raises(ValueError, match="positive"):
+        vf.power_fit(pts, np.r_[-0.1, np.full(9, 1.1 / 9)], (0, 0, 1, 1))
+    dup = np.vstack((pts, pts[:1]))
+    with pytest.raises(ValueError, match="duplicate sites"):
+        vf.power_fit(dup, np.full(11, 1 / 11), (0, 0, 1, 1))
+    with pytest.raises(ValueError, match="shape"):
+        vf.power_fit(pts, np.full(9, 1 / 9), (0, 0, 1, 1))
+    skewed = np.r_[0.9, np.full(9, 0.1 / 9)]
+    with pytest.raises(RuntimeError, match="did not reach"):
+        vf.power_fit(pts, skewed, (0, 0, 1, 1), max_iter=1)
