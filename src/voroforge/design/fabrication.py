@@ -229,6 +229,7 @@ def check(
     min_opening: float | None = None,
     min_inside_radius: float | None = None,
     corner_tolerance: float = 0.02,
+    tolerance: float = 1e-6,
     islands: bool = True,
 ) -> Report:
     """Check a cut panel against fabrication limits.
@@ -262,6 +263,9 @@ def check(
         Limits in drawing units (mm).
     corner_tolerance : float
         Uncut material thinner than this is ignored (chord-vs-arc noise of fillets).
+    tolerance : float
+        Webs and openings within this of their limit pass (a web inset to exactly
+        ``min_web`` is not a violation because of rounding).
     islands : bool
         Look for loose parts.
 
@@ -279,6 +283,7 @@ def check(
     min_opening = _check_limit("min_opening", min_opening)
     min_inside_radius = _check_limit("min_inside_radius", min_inside_radius)
     corner_tolerance = _check_limit("corner_tolerance", corner_tolerance) or 0.0
+    tolerance = _check_limit("tolerance", tolerance) or 0.0
     if frame is not None and openings is not None:
         raise ValueError("give either frame or openings (with boundary), not both")
     if frame is not None:
@@ -297,9 +302,9 @@ def check(
 
     found: list[Violation] = []
     if min_web is not None and min_web > 0:
-        found += _webs(holes, outline, min_web)
+        found += _webs(holes, outline, min_web, tolerance)
     if min_opening is not None and min_opening > 0:
-        found += _openings(holes, min_opening)
+        found += _openings(holes, min_opening, tolerance)
     if min_inside_radius is not None and min_inside_radius > 0:
         found += _corners(holes, outline, min_inside_radius, corner_tolerance)
     if islands:
@@ -315,8 +320,9 @@ def check(
     return Report(found, limits, frame_geom, holes)
 
 
-def _webs(holes: np.ndarray, outline, min_web: float) -> list[Violation]:
+def _webs(holes: np.ndarray, outline, min_web: float, tol: float) -> list[Violation]:
     out = []
+    below = min_web - tol
     if len(holes) > 1:
         tree = shapely.STRtree(holes)
         left, right = tree.query(holes, predicate="dwithin", distance=min_web)
@@ -324,7 +330,7 @@ def _webs(holes: np.ndarray, outline, min_web: float) -> list[Violation]:
         left, right = left[keep], right[keep]
         if len(left):
             dist = shapely.distance(holes[left], holes[right])
-            close = dist < min_web
+            close = dist < below
             lines = shapely.shortest_line(holes[left[close]], holes[right[close]])
             mids = shapely.line_interpolate_point(lines, 0.5, normalized=True)
             for i, j, d, m in zip(
@@ -337,14 +343,14 @@ def _webs(holes: np.ndarray, outline, min_web: float) -> list[Violation]:
         # An opening reaching over the outline leaves no web at all.
         outside = ~shapely.covered_by(holes, outline)
         dist = np.where(outside, 0.0, dist)
-        for i in np.flatnonzero(dist < min_web).tolist():
+        for i in np.flatnonzero(dist < below).tolist():
             line = shapely.shortest_line(holes[i], rim)
             m = shapely.line_interpolate_point(line, 0.5, normalized=True)
             out.append(Violation("web", (m.x, m.y), float(dist[i]), min_web, (i, -1)))
     return out
 
 
-def _openings(holes: np.ndarray, min_opening: float) -> list[Violation]:
+def _openings(holes: np.ndarray, min_opening: float, tol: float) -> list[Violation]:
     if not len(holes):
         return []
     xmin, ymin, xmax, ymax = shapely.bounds(holes).T
@@ -356,7 +362,7 @@ def _openings(holes: np.ndarray, min_opening: float) -> list[Violation]:
     diameter = 2.0 * shapely.length(circles)
     centre = shapely.get_point(circles, 0)
     out = []
-    for i in np.flatnonzero(diameter < min_opening).tolist():
+    for i in np.flatnonzero(diameter < min_opening - tol).tolist():
         c = centre[i]
         out.append(Violation("opening", (c.x, c.y), float(diameter[i]), min_opening, (i,)))
     return out

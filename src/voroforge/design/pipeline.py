@@ -1,0 +1,651 @@
+"""Build a design file: boundary -> seeds -> relax -> Voronoi -> field -> cell ops -> files.
+
+:func:`compute` turns a validated :class:`~voroforge.design.schema.Design` into geometry
+(:class:`Result`); :func:`build` writes the files the design names (SVG/DXF layers, PNG
+preview, GeoJSON, GIF sweep, fabrication report); :func:`check_design` runs the fabrication
+check. Every random choice comes from the design's seed, and the writers are deterministic,
+so the same file and seed give byte-identical outputs.
+
+Examples
+--------
+>>> design = {
+...     "boundary": {"shape": "rectangle", "width": 120, "height": 80},
+...     "seeds": {"method": "poisson", "radius": 12},
+...     "cells": {"web": 3, "fillet": 1.5},
+... }
+>>> import tempfile
+>>> [p.name for p in build(design, tempfile.mkdtemp())]
+['design.svg', 'design.png']
+"""
+
+from __future__ import annotations
+
+import inspect
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import shapely
+
+from .schema import Design, DesignError, Graded, Issue, load
+
+__all__ = ["Result", "build", "check_design", "compute", "products", "render_preview"]
+
+Stage = Callable[[str], None]
+
+
+@dataclass
+class Result:
+    """The geometry of a built design.
+
+    Attributes
+    ----------
+    design : Design
+        The validated design.
+    boundary : shapely Polygon or MultiPolygon
+        The panel outline.
+    domain : shapely Polygon or MultiPolygon
+        Where the cells live (the boundary shrunk by ``boundary.margin``).
+    sites : (n, 2) float64
+        The Voronoi sites after relaxation.
+    raw : (m,) object array
+        The cells before cell operations (all recursion levels' leaves).
+    cells : (m,) object array
+        The cells after inset, scale, smooth and fillet (empty where they vanished).
+    mask : (m,) bool
+        Which cells are openings.
+    values : (m,) float64
+        The attractor field at each cell (0 without attractors).
+    level : (m,) int
+        Recursion level of each cell (0 without recursion).
+    openings : (k,) object array
+        The non-empty openings, cut from the boundary.
+    frame : shapely geometry
+        The boundary minus the openings.
+    extra : dict
+        Recursion levels (``"levels"``) and cached derived data.
+    """
+
+    design: Design
+    boundary: object
+    domain: object
+    sites: np.ndarray
+    raw: np.ndarray
+    cells: np.ndarray
+    mask: np.ndarray
+    values: np.ndarray
+    level: np.ndarray
+    openings: np.ndarray
+    frame: object
+    extra: dict = field(default_factory=dict)
+
+    @property
+    def edges(self):
+        """The unique edges of the raw cells (each shared edge once), computed on first use."""
+        if "edges" not in self.extra:
+            from . import cellops
+
+            self.extra["edges"] = cellops.edges_to_lines(cellops.explode(self.raw))
+        return self.extra["edges"]
+
+
+def _fail(key: str, message: str) -> DesignError:
+    return DesignError([Issue(key, None, message)])
+
+
+def _path(base: Path | None, name: str, key: str) -> Path:
+    p = Path(name)
+    if not p.is_absolute() and base is not None:
+        p = base / p
+    if not p.exists():
+        raise _fail(key, f"file not found: {p}")
+    return p
+
+
+# --- boundary and seeds -----------------------------------------------------------------
+
+
+def _boundary(design: Design, base: Path | None):
+    from . import boundary as bd
+
+    spec = design.boundary
+    if spec.shape == "rectangle":
+        geom = bd.rectangle(spec.width, spec.height, origin=spec.origin)
+    elif spec.shape == "circle":
+        geom = bd.circle(spec.radius, center=spec.center, segments=spec.segments)
+    elif spec.shape == "polygon":
+        geom = bd.polygon(spec.points, spec.holes)
+    else:
+        geom = bd.load(_path(base, spec.file, "boundary.file"))
+    if spec.corner_radius > 0:
+        r = spec.corner_radius
+        geom = geom.buffer(-r, join_style="mitre").buffer(r, quad_segs=16)
+        if geom.is_empty:
+            raise _fail("boundary.corner_radius", f"{r} is too large for the boundary")
+    domain = geom
+    if spec.margin > 0:
+        domain = geom.buffer(-spec.margin, join_style="mitre")
+        if domain.is_empty:
+            raise _fail("boundary.margin", f"{spec.margin} leaves nothing of the boundary")
+    return geom, domain
+
+
+def _field(design: Design):
+    """The combined attractor field, or ``None`` without attractors."""
+    if not design.attractors:
+        return None
+    from . import attractors as at
+
+    made = []
+    for a in design.attractors:
+        pts = np.asarray(a.points, dtype=np.float64)
+        options = {
+            "radius": a.radius,
+            "strength": a.strength,
+            "falloff": a.falloff,
+            "power": a.power,
+        }
+        if a.type == "point":
+            made.append(at.PointAttractor(pts, **options))
+        else:
+            made.append(at.CurveAttractor(pts, **options))
+    combined = at.combine(made, mode=design.field.combine)
+    if design.field.invert:
+        return at.Field(lambda xy: 1.0 - np.asarray(combined(xy), dtype=np.float64))
+    return combined
+
+
+def _seeds(design: Design, domain, field_fn, base: Path | None) -> np.ndarray:
+    from . import populate
+
+    s = design.seeds
+    seed = design.design.seed if s.seed is None else s.seed
+    if s.method == "random":
+        return populate.random(domain, s.count, seed=seed)
+    if s.method == "grid":
+        return populate.grid(domain, s.spacing, angle=s.angle, offset=s.offset)
+    if s.method == "hexgrid":
+        return populate.hexgrid(domain, s.spacing, angle=s.angle, offset=s.offset)
+    if s.method == "jittered":
+        return populate.jittered(domain, s.spacing, jitter=s.jitter, seed=seed, angle=s.angle)
+    if s.method == "poisson":
+        use = field_fn if s.use_field else None
+        if s.use_field and field_fn is None:
+            raise _fail("seeds.use_field", "needs at least one [[attractors]] table")
+        return populate.poisson(domain, s.radius, seed=seed, field=use, radius_max=s.radius_max)
+    if s.method == "density":
+        if field_fn is None:
+            raise _fail("seeds.method", "'density' needs at least one [[attractors]] table")
+        return populate.by_density(domain, s.count, field_fn, seed=seed)
+    pts = populate.from_file(_path(base, s.file, "seeds.file"))
+    inside = shapely.contains_xy(domain, pts[:, 0], pts[:, 1])
+    return pts[inside]
+
+
+def _relax(design: Design, points: np.ndarray, domain) -> np.ndarray:
+    r = design.relax
+    if r.iterations == 0 and r.tolerance is None:
+        return points
+    try:
+        from .relax import relax
+    except ImportError:  # the relax module is not there yet
+        raise _fail("relax", "relaxation is not available in this version") from None
+    iterations = r.iterations if r.iterations else 50
+    return relax(points, domain, iterations=iterations, tol=r.tolerance)
+
+
+# --- cells --------------------------------------------------------------------------------
+
+
+def _voronoi(design: Design, points: np.ndarray, domain) -> np.ndarray:
+    import voroforge as vf
+
+    algorithm = design.voronoi.algorithm
+    if not design.voronoi.periodic:
+        return np.asarray(vf.voronoi(points, domain, algorithm=algorithm).cells, dtype=object)
+    box = _tile(design, domain)
+    if "periodic" in inspect.signature(vf.voronoi).parameters:
+        d = vf.voronoi(points, box, algorithm=algorithm, periodic=True)
+        return np.asarray(d.cells, dtype=object)
+    # Without a periodic engine: the 3 x 3 copies of the sites, cells of the middle copy.
+    xmin, ymin, xmax, ymax = box
+    w, h = xmax - xmin, ymax - ymin
+    shifts = [(dx, dy) for dy in (0.0, -h, h) for dx in (0.0, -w, w)]
+    tiled = np.concatenate([points + s for s in shifts])
+    d = vf.voronoi(tiled, (xmin - w, ymin - h, xmax + w, ymax + h), algorithm=algorithm)
+    return np.asarray(d.cells, dtype=object)[: len(points)]
+
+
+def _tile(design: Design, domain) -> tuple[float, float, float, float]:
+    if (
+        design.boundary.shape != "rectangle"
+        or design.boundary.corner_radius
+        or design.boundary.margin
+    ):
+        raise _fail("voronoi.periodic", "a periodic tile needs a plain rectangle boundary")
+    return tuple(float(v) for v in domain.bounds)
+
+
+def _wrap(cells: np.ndarray, box) -> tuple[np.ndarray, np.ndarray]:
+    """Pieces of periodic cells inside the tile (every copy), and the cell each came from."""
+    xmin, ymin, xmax, ymax = box
+    w, h = xmax - xmin, ymax - ymin
+    rect = shapely.box(*box)
+    pieces, owner = [], []
+    for dy in (0.0, -h, h):
+        for dx in (0.0, -w, w):
+            moved = shapely.transform(cells, lambda xy, dx=dx, dy=dy: xy + (dx, dy))
+            cut = shapely.intersection(moved, rect)
+            keep = ~shapely.is_empty(cut) & (shapely.area(cut) > 0)
+            pieces.extend(cut[keep])
+            owner.extend(np.flatnonzero(keep).tolist())
+    return np.asarray(pieces, dtype=object), np.asarray(owner, dtype=np.int64)
+
+
+def _values(cells: np.ndarray, field_fn) -> np.ndarray:
+    if field_fn is None or not len(cells):
+        return np.zeros(len(cells))
+    live = ~shapely.is_empty(cells)
+    pts = shapely.point_on_surface(cells[live])
+    out = np.zeros(len(cells))
+    out[live] = np.asarray(field_fn(shapely.get_coordinates(pts)), dtype=np.float64)
+    return out
+
+
+def _graded(value: Graded, values: np.ndarray, key: str, has_field: bool):
+    if not value.graded:
+        return float(value.value)
+    if not has_field:
+        raise _fail(key, "near/far values need at least one [[attractors]] table")
+    return value.far + (value.near - value.far) * values
+
+
+def _recurse(design: Design, domain, points, field_fn, seed):
+    """Recursion levels -> (leaf cells, level per cell, sites of every level)."""
+    rec = design.recursion
+    try:
+        from .recursive import subdivide
+    except ImportError:
+        raise _fail("recursion", "recursive subdivision is not available in this version") from None
+    count_spec = rec.count
+    if count_spec.graded and field_fn is None:
+        raise _fail("recursion.count", "near/far values need at least one [[attractors]] table")
+
+    def count(cell) -> int:
+        if not count_spec.graded:
+            return max(1, int(round(count_spec.value)))
+        v = float(_values(np.asarray([cell], dtype=object), field_fn)[0])
+        return max(1, int(round(count_spec.far + (count_spec.near - count_spec.far) * v)))
+
+    select = None
+    if rec.probability < 1.0:
+        from . import cellops
+
+        def select(cells):  # noqa: F811 - a mask function for subdivide
+            n = len(cells)
+            # A fresh, reproducible draw per level, from the cells themselves.
+            level_seed = (seed * 7919 + n) % (2**32)
+            return cellops.random(n, rec.probability, seed=level_seed)
+
+    web = list(rec.web) if rec.web else 0.0
+    levels = subdivide(
+        domain, points, depth=rec.depth, count=count, seed=seed, select=select, web=web
+    )
+    return levels
+
+
+def _leaves(levels):
+    """Cells of every level that were not subdivided further, with their level."""
+    cells, depth = [], []
+    for i, lv in enumerate(levels):
+        lv_cells = np.asarray(lv.cells, dtype=object)
+        if i + 1 < len(levels):
+            parents = set(np.asarray(levels[i + 1].parent).tolist())
+            keep = [j for j in range(len(lv_cells)) if j not in parents]
+        else:
+            keep = list(range(len(lv_cells)))
+        cells.extend(lv_cells[keep])
+        depth.extend([lv.depth] * len(keep))
+    return np.asarray(cells, dtype=object), np.asarray(depth, dtype=np.int64)
+
+
+def _mask(design: Design, cells: np.ndarray, values: np.ndarray, seed: int) -> np.ndarray:
+    from . import cellops
+
+    o = design.openings
+    n = len(cells)
+    live = ~shapely.is_empty(cells) if n else np.zeros(0, dtype=bool)
+    if o.select == "all":
+        mask = np.ones(n, dtype=bool)
+    elif o.select == "area":
+        mask = cellops.by_area(cells, min=o.min_area, max=o.max_area)
+    elif o.select == "random":
+        mask = cellops.random(n, o.probability, seed=seed if o.seed is None else o.seed)
+    elif o.select == "every_kth":
+        mask = cellops.every_kth(n, o.k, start=o.start)
+    elif o.select == "largest":
+        mask = cellops.largest(cells, o.count)
+    else:
+        if not design.attractors:
+            raise _fail("openings.select", "'field' needs at least one [[attractors]] table")
+        mask = values >= o.threshold
+    mask = np.asarray(mask, dtype=bool) & live
+    return ~mask & live if o.invert else mask
+
+
+def _operate(
+    design: Design, cells: np.ndarray, values: np.ndarray, level: np.ndarray, has_field: bool
+):
+    from . import cellops
+
+    c = design.cells
+    out = cells
+    amount = c.inset_amount()
+    web_levels = list(design.recursion.web)
+    if amount is not None:
+        d = _graded(amount, values, "cells.web" if c.web is not None else "cells.inset", has_field)
+        out = cellops.inset(out, d, join=c.join)
+    elif web_levels:
+        widths = np.asarray([web_levels[min(k, len(web_levels) - 1)] for k in level], dtype=float)
+        out = cellops.inset(out, widths / 2.0, join=c.join)
+    if c.scale.graded or c.scale.value != 1.0:
+        factor = _graded(c.scale, values, "cells.scale", has_field)
+        if np.any(np.asarray(factor) < 0):
+            raise _fail("cells.scale", "scale factors must be >= 0")
+        out = cellops.scale(out, factor)
+    if c.smooth:
+        out = cellops.smooth(out, iterations=c.smooth)
+    if c.fillet.graded or c.fillet.value:
+        r = _graded(c.fillet, values, "cells.fillet", has_field)
+        if np.any(np.asarray(r) < 0):
+            raise _fail("cells.fillet", "fillet radii must be >= 0")
+        out = cellops.fillet(out, r)
+    if c.min_area > 0:
+        small = shapely.area(out) < c.min_area
+        out = np.where(small, shapely.Polygon(), out)
+    return np.asarray(out, dtype=object)
+
+
+def compute(design: Design, base: Path | None = None, *, progress: Stage | None = None) -> Result:
+    """Compute the geometry of a validated design.
+
+    Parameters
+    ----------
+    design : Design
+        From :func:`voroforge.design.schema.load`.
+    base : Path, optional
+        Folder that relative file names in the design are read from.
+    progress : callable, optional
+        Called with the name of each stage.
+
+    Returns
+    -------
+    Result
+
+    Raises
+    ------
+    DesignError
+        For a design that validates but cannot be built (a missing file, a field-driven
+        value without attractors, ...), naming the key.
+    """
+    stage = progress or (lambda name: None)
+    seed = design.design.seed
+    stage("boundary")
+    boundary, domain = _boundary(design, base)
+    field_fn = _field(design)
+    stage("seeds")
+    points = np.asarray(_seeds(design, domain, field_fn, base), dtype=np.float64).reshape(-1, 2)
+    if len(points) < 2:
+        raise _fail("seeds", f"only {len(points)} seeds fall inside the boundary; need 2 or more")
+    points = _relax(design, points, domain)
+    stage(f"{len(points)} Voronoi cells")
+    extra: dict = {}
+    if design.recursion.depth > 0:
+        if design.voronoi.periodic:
+            raise _fail("recursion.depth", "recursion and periodic tiles do not combine yet")
+        levels = _recurse(design, domain, points, field_fn, seed)
+        raw, level = _leaves(levels)
+        extra["levels"] = levels
+    else:
+        raw = _voronoi(design, points, domain)
+        level = np.zeros(len(raw), dtype=np.int64)
+    values = _values(raw, field_fn)
+    mask = _mask(design, raw, values, seed)
+    stage("cell operations")
+    cells = _operate(design, raw, values, level, field_fn is not None)
+    if design.voronoi.periodic:
+        box = _tile(design, domain)
+        cells, owner = _wrap(cells, box)
+        raw_w, _ = _wrap(raw, box)
+        raw, values, mask, level = raw_w, values[owner], mask[owner], level[owner]
+    chosen = cells[mask & ~shapely.is_empty(cells)] if len(cells) else cells
+    openings = np.asarray(chosen, dtype=object)
+    frame = boundary.difference(shapely.union_all(openings)) if len(openings) else boundary
+    return Result(
+        design, boundary, domain, points, raw, cells, mask, values, level, openings, frame, extra
+    )
+
+
+# --- outputs ------------------------------------------------------------------------------
+
+
+def products(result: Result, *, kerf: float = 0.0) -> dict[str, list]:
+    """The geometry of every product name, optionally kerf-compensated (polygons only)."""
+    from .fabrication import kerf as apply_kerf
+
+    frame = result.frame
+    openings = list(result.openings)
+    cells = [c for c in result.cells if not c.is_empty]
+    if kerf > 0:
+        frame = apply_kerf(frame, kerf, role="part")
+        openings = list(apply_kerf(openings, kerf, role="hole")) if openings else []
+        cells = list(apply_kerf(cells, kerf, role="part")) if cells else []
+    return {
+        "frame": [frame],
+        "openings": openings,
+        "cells": cells,
+        "edges": [result.edges],
+        "sites": [shapely.MultiPoint(result.sites)],
+        "boundary": [result.boundary],
+    }
+
+
+def _layers(result: Result, kerf: float) -> dict[str, list]:
+    made = products(result, kerf=kerf)
+    out = {}
+    for name, what in result.design.output.layers.items():
+        names = [what] if isinstance(what, str) else list(what)
+        out[name.upper()] = [g for n in names for g in made[n]]
+    return out
+
+
+def render_preview(result: Result, *, size: int = 1200):
+    """A PIL image of the design: openings in colour on the panel, or edges for line work."""
+    from ..io.png import render_image
+    from ..io.render import palette
+
+    layers = result.design.output.layers
+    first = next(iter(layers.values()), "frame")
+    first = first if isinstance(first, str) else first[0]
+    mode = result.design.output.png
+    if mode == "layers" and first == "edges":
+        xmin, ymin, xmax, ymax = result.boundary.bounds
+        width = max(xmax - xmin, ymax - ymin) / 900.0
+        lines = shapely.buffer(result.edges, width, quad_segs=2, cap_style="flat")
+        return render_image(
+            [lines], size=size, colors=[(25, 25, 35)], edge_width=0.0, boundary=result.boundary
+        )
+    if mode == "layers" and first in ("frame", "boundary"):
+        return render_image([result.frame], size=size, colors=[(52, 58, 70)], edge_width=0.6)
+    geoms = [result.frame, *result.openings]
+    colours = [(236, 236, 240)] + [
+        tuple(c) for c in palette(len(result.openings), result.design.design.seed).tolist()
+    ]
+    return render_image(geoms, size=size, colors=colours, edge_width=0.6)
+
+
+def _geojson(result: Result, path: Path) -> Path:
+    from ..io.geojson import write_geojson
+
+    what = result.design.output.geojson
+    if what == "cells":
+        keep = ~shapely.is_empty(result.cells)
+        geoms = result.cells[keep]
+        props = {
+            "area": shapely.area(geoms),
+            "field": result.values[keep],
+            "opening": result.mask[keep],
+            "level": result.level[keep],
+        }
+        return write_geojson(geoms, path, properties=props)
+    geoms = products(result)[what]
+    if what == "edges":
+        geoms = list(shapely.get_parts(result.edges))
+    return write_geojson(geoms, path)
+
+
+def build(
+    source,
+    out_dir=".",
+    *,
+    overrides: dict | None = None,
+    preview: bool = False,
+    progress: Stage | None = None,
+) -> list[Path]:
+    """Build a design file and write every output it names.
+
+    Parameters
+    ----------
+    source : str, Path, dict or Design
+        A TOML design file, its parsed mapping, or a validated design.
+    out_dir : str or Path
+        Output folder; created if missing.
+    overrides : dict, optional
+        ``{"seeds.count": 500, "cells.web": 2}`` (dotted keys, values or TOML strings).
+    preview : bool
+        Write only the PNG preview (at most 800 px).
+    progress : callable, optional
+        Called with the name of each stage.
+
+    Returns
+    -------
+    list of Path
+        The files written, in the order of ``output.formats``.
+
+    Raises
+    ------
+    DesignError
+        For a bad design file (each issue names key and line).
+    """
+    stage = progress or (lambda name: None)
+    if isinstance(source, Design):
+        design, base = source, None
+        if overrides:
+            design, base = load(design.model_dump(), overrides=overrides)
+    else:
+        design, base = load(source, overrides=overrides)
+    result = compute(design, base, progress=stage)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    o = design.output
+    stem = o.stem or design.design.name
+    written: list[Path] = []
+    if preview:
+        stage("writing preview")
+        path = out / f"{stem}.png"
+        render_preview(result, size=min(o.png_size, 800)).save(path, optimize=False)
+        return [path]
+    kerf = o.kerf
+    for fmt in o.formats:
+        path = out / f"{stem}.{fmt}"
+        stage(f"writing {path.name}")
+        if fmt == "svg":
+            from ..io.svg import write_layers
+
+            written.append(
+                write_layers(
+                    path,
+                    _layers(result, kerf),
+                    units=design.design.units,
+                    stroke_width=o.stroke_width,
+                    bounds=result.boundary.bounds,
+                )
+            )
+        elif fmt == "dxf":
+            from ..io.dxf import write_dxf
+
+            written.append(
+                write_dxf(
+                    None,
+                    path,
+                    layers=_layers(result, kerf),
+                    units=design.design.units,
+                    arc_tolerance=o.arc_tolerance,
+                )
+            )
+        elif fmt == "png":
+            render_preview(result, size=o.png_size).save(path)
+            written.append(path)
+        elif fmt == "geojson":
+            written.append(_geojson(result, path))
+        elif fmt == "gif":
+            written.append(_gif(design, base, path, stage))
+    if design.fabrication.report:
+        report = _report(result)
+        text = out / f"{stem}-check.txt"
+        text.write_text(report.table() + "\n", encoding="utf-8")
+        written.append(text)
+        written.append(report.write_png(out / f"{stem}-check.png", size=min(o.png_size, 1200)))
+    return written
+
+
+def _gif(design: Design, base: Path | None, path: Path, stage: Stage) -> Path:
+    from ..io.gif import write_gif
+
+    gif = design.output.gif
+    data = design.model_dump()
+    frames = []
+    values = gif.sweep()
+    unique = {}
+    for i, v in enumerate(values):
+        if v not in unique:
+            stage(f"gif frame {i + 1}/{len(values)}")
+            try:
+                d, _ = load(data, overrides={gif.key: v})
+            except DesignError as exc:
+                raise DesignError(
+                    [
+                        Issue("output.gif.key", None, f"{gif.key} = {v!r}: {it.message}")
+                        for it in exc.issues
+                    ]
+                ) from None
+            unique[v] = render_preview(compute(d, base), size=gif.size)
+        frames.append(unique[v])
+    return write_gif(frames, path, fps=gif.fps)
+
+
+def _report(result: Result):
+    from .fabrication import check
+
+    f = result.design.fabrication
+    return check(
+        openings=result.openings,
+        boundary=result.boundary,
+        min_web=f.min_web,
+        min_opening=f.min_opening,
+        min_inside_radius=f.tool_radius,
+        corner_tolerance=f.corner_tolerance,
+        islands=f.islands,
+    )
+
+
+def check_design(source, *, overrides: dict | None = None, progress: Stage | None = None):
+    """Build a design's geometry and run the fabrication check with its ``[fabrication]`` limits.
+
+    Returns
+    -------
+    voroforge.design.fabrication.Report
+    """
+    design, base = load(source, overrides=overrides)
+    return _report(compute(design, base, progress=progress))
