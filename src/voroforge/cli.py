@@ -121,7 +121,86 @@ def _parser() -> argparse.ArgumentParser:
     from .explain.command import add_explain_parser
 
     add_explain_parser(commands, formatter_class=raw)
+    _add_design_parsers(commands, raw)
     return parser
+
+
+_BUILD_EPILOG = """\
+Writes every output the design file names (output.formats) into DIR and prints the paths.
+Same file and seed -> byte-identical files.
+
+examples:
+  voroforge build examples/laser-panel.toml -o out
+  voroforge build panel.toml --set seeds.radius=25 --set cells.web=4
+  voroforge build panel.toml --preview          only the PNG preview, quickly
+"""
+
+_NEW_EPILOG = """\
+examples:
+  voroforge new                  writes design.toml
+  voroforge new panel.toml       then: voroforge build panel.toml -o out
+"""
+
+_CHECK_EPILOG = """\
+Checks the limits of the design's [fabrication] table: min_web, min_opening, tool_radius,
+and loose islands. Prints one row per violation with its location.
+
+examples:
+  voroforge check panel.toml
+  voroforge check panel.toml --strict --set fabrication.min_web=4
+"""
+
+
+def _add_design_parsers(commands, raw) -> None:
+    """The design-file commands: build, new, check."""
+    build = commands.add_parser(
+        "build",
+        help="build a TOML design file into SVG/DXF/PNG/GeoJSON/GIF",
+        description="Build DESIGN (a TOML design file) and write the files it names.",
+        epilog=_BUILD_EPILOG,
+        formatter_class=raw,
+    )
+    build.add_argument("design", metavar="DESIGN", help="design file (.toml)")
+    build.add_argument(
+        "-o", "--output", metavar="DIR", default="out", help="output folder (default: out)"
+    )
+    _add_set(build)
+    build.add_argument(
+        "--preview", action="store_true", help="write only the PNG preview (at most 800 px)"
+    )
+
+    new = commands.add_parser(
+        "new",
+        help="write a commented starter design file",
+        description="Write a commented starter design file to PATH (default design.toml).",
+        epilog=_NEW_EPILOG,
+        formatter_class=raw,
+    )
+    new.add_argument("path", metavar="PATH", nargs="?", default="design.toml")
+    new.add_argument("--force", action="store_true", help="overwrite an existing file")
+
+    check = commands.add_parser(
+        "check",
+        help="fabrication check of a design file (thin webs, small openings, corners)",
+        description="Build DESIGN's geometry and check it against its [fabrication] limits.",
+        epilog=_CHECK_EPILOG,
+        formatter_class=raw,
+    )
+    check.add_argument("design", metavar="DESIGN", help="design file (.toml)")
+    _add_set(check)
+    check.add_argument(
+        "--strict", action="store_true", help="exit with status 1 when there are violations"
+    )
+
+
+def _add_set(sub: argparse.ArgumentParser) -> None:
+    sub.add_argument(
+        "--set",
+        metavar="KEY=VALUE",
+        action="append",
+        default=[],
+        help="override a key of the design file, e.g. seeds.count=500 (repeatable)",
+    )
 
 
 def _add_outputs(sub: argparse.ArgumentParser) -> None:
@@ -246,8 +325,48 @@ def _explain(args: argparse.Namespace, stage: Stage) -> list[Path]:
 _COMMANDS["explain"] = _explain
 
 
+def _overrides(pairs: list[str]) -> dict:
+    out = {}
+    for pair in pairs:
+        key, sep, value = pair.partition("=")
+        if not sep or not key.strip():
+            raise ValueError(f"--set {pair!r}: expected KEY=VALUE, e.g. seeds.count=500")
+        out[key.strip()] = value.strip()
+    return out
+
+
+def _build(args: argparse.Namespace, stage: Stage) -> list[Path]:
+    from .design.pipeline import build
+
+    return build(
+        args.design,
+        args.output,
+        overrides=_overrides(args.set),
+        preview=args.preview,
+        progress=stage,
+    )
+
+
+def _new(args: argparse.Namespace, stage: Stage) -> list[Path]:
+    from .design.pipeline import write_starter
+
+    return [write_starter(args.path, overwrite=args.force)]
+
+
+def _check(args: argparse.Namespace, stage: Stage) -> int:
+    from .design.pipeline import check_design
+
+    report = check_design(args.design, overrides=_overrides(args.set), progress=stage)
+    print(report.table())
+    return 1 if (args.strict and not report.ok) else 0
+
+
+_COMMANDS.update({"build": _build, "new": _new, "check": _check})
+
+
 def _error(message: str) -> int:
-    print(f"{PROG}: error: {message}", file=sys.stderr)
+    for line in str(message).splitlines() or [""]:  # a design file may have several issues
+        print(f"{PROG}: error: {line}", file=sys.stderr)
     return 2
 
 
@@ -262,7 +381,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     Returns
     -------
     int
-        Exit status: 0 on success, 2 on bad arguments or input (message on stderr).
+        Exit status: 0 on success, 2 on bad arguments or input (message on stderr), 1 from
+        ``check --strict`` when the design breaks a fabrication limit.
     """
     try:
         args = _parser().parse_args(argv)
@@ -279,6 +399,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print(f"{PROG}: interrupted", file=sys.stderr)
         return 130
+    if isinstance(written, int):  # commands that print their own report return a status
+        return written
     for path in written:
         print(path)
     return 0

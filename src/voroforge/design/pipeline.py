@@ -30,7 +30,16 @@ import shapely
 
 from .schema import Design, DesignError, Graded, Issue, load
 
-__all__ = ["Result", "build", "check_design", "compute", "products", "render_preview"]
+__all__ = [
+    "STARTER",
+    "Result",
+    "build",
+    "check_design",
+    "compute",
+    "products",
+    "render_preview",
+    "write_starter",
+]
 
 Stage = Callable[[str], None]
 
@@ -649,3 +658,74 @@ def check_design(source, *, overrides: dict | None = None, progress: Stage | Non
     """
     design, base = load(source, overrides=overrides)
     return _report(compute(design, base, progress=progress))
+
+
+#: The commented starter design that ``voroforge new`` writes.
+STARTER = """\
+# A voroforge design file. Build it with:   voroforge build design.toml -o out
+# Check it for fabrication with:            voroforge check design.toml
+# Every key is documented in docs/design-files.md. Lengths are in [design] units (mm).
+
+[design]
+name = "my-panel"          # output files are my-panel.svg, my-panel.dxf, ...
+units = "mm"
+seed = 1                   # same seed -> same design, byte for byte
+
+[boundary]
+shape = "rectangle"        # rectangle | circle | polygon | file
+width = 300
+height = 200
+corner_radius = 8          # round the panel's outer corners
+margin = 10                # solid border between the outline and the pattern
+
+[seeds]
+method = "poisson"         # random | grid | hexgrid | jittered | poisson | density | file
+radius = 22                # Poisson-disk: minimum distance between seeds
+# radius_max = 45          # with use_field = true: spacing grows to this away from attractors
+# use_field = true
+
+[relax]
+iterations = 0             # Lloyd relaxation steps (more = more even cells)
+
+# Attractors make a field in [0, 1]: 1 at the attractor, 0 beyond its radius.
+# Any number can then be a range: web = { near = 6, far = 2 }.
+[[attractors]]
+type = "point"             # point | curve (points = a polyline)
+points = [[90, 70]]
+radius = 180
+falloff = "smoothstep"     # linear | smoothstep | gaussian | inverse_power
+
+[cells]
+web = { near = 6, far = 3 }  # width of material between openings
+fillet = 2                 # round every corner of the openings
+# scale = 1.0              # shrink/grow openings about their centroids
+# smooth = 0               # Chaikin smoothing passes for organic outlines
+
+[openings]
+select = "all"             # all | area | random | every_kth | largest | field
+
+[output]
+formats = ["svg", "dxf", "png"]
+layers = { CUT = "frame" }   # layer name -> frame | openings | cells | edges | sites | boundary
+kerf = 0.0                 # laser kerf: compensated on SVG/DXF export
+
+[fabrication]
+min_web = 3                # thinnest material between two cuts
+min_opening = 6            # smallest opening (inscribed circle diameter)
+tool_radius = 1.5          # CNC: smallest inside-corner radius the tool can cut
+"""
+
+
+def write_starter(path="design.toml", *, overwrite: bool = False) -> Path:
+    """Write the commented starter design (:data:`STARTER`) to ``path``.
+
+    Raises
+    ------
+    ValueError
+        When the file exists and ``overwrite`` is false.
+    """
+    path = Path(path)
+    if path.exists() and not overwrite:
+        raise ValueError(f"{path}: already exists (use --force to overwrite)")
+    path.write_text(STARTER, encoding="utf-8")
+    return path
