@@ -1,0 +1,550 @@
+"""Operations on cells: unique edges, inset/offset, fillet, scale, smooth, select, frame.
+
+Cells are an ``(n,)`` object array of shapely Polygons/MultiPolygons (``diagram.cells``),
+empty geometries allowed. Every operation returns a new ``(n,)`` array in the same order,
+so index ``i`` still means cell ``i``; a cell that vanishes (inset past its inscribed
+circle) becomes an empty Polygon. Per-cell parameters may be a scalar or an ``(n,)`` array
+(for example an attractor field sampled at the cell centroids and remapped).
+
+Examples
+--------
+>>> import numpy as np, voroforge as vf
+>>> d = vf.voronoi(np.random.default_rng(0).random((30, 2)) * 100, (0, 0, 100, 100))
+>>> holes = fillet(inset(d.cells, 1.5), 2.0)
+>>> part = frame(d.boundary, openings(holes, by_area(holes, min=20.0)))
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import shapely
+
+__all__ = [
+    "by_area",
+    "by_field",
+    "edges_to_lines",
+    "every_kth",
+    "explode",
+    "fillet",
+    "frame",
+    "inset",
+    "largest",
+    "offset",
+    "openings",
+    "random",
+    "scale",
+    "smooth",
+    "web",
+]
+
+_JOINS = {"round": "round", "mitre": "mitre", "miter": "mitre", "bevel": "bevel"}
+_EMPTY = shapely.Polygon()
+
+
+def as_cells(cells) -> np.ndarray:
+    """Cells as a new ``(n,)`` object array (accepts a Diagram, array or sequence).
+
+    ``None`` entries become empty Polygons. Raises ValueError for anything that is not a
+    shapely geometry.
+    """
+    if hasattr(cells, "cells") and hasattr(cells, "sites"):
+        cells = cells.cells
+    if isinstance(cells, shapely.Geometry):
+        raise ValueError("cells must be a sequence of geometries, not a single geometry")
+    arr = np.full(len(cells), None, dtype=object)
+    arr[:] = list(cells)
+    bad = [i for i, g in enumerate(arr) if g is not None and not isinstance(g, shapely.Geometry)]
+    if bad:
+        raise ValueError(f"cell {bad[0]} is not a shapely geometry ({type(arr[bad[0]]).__name__})")
+    arr[[g is None for g in arr]] = _EMPTY
+    return arr
+
+
+def _param(value, n: int, name: str, *, lo: float | None = 0.0) -> np.ndarray | float:
+    """A scalar or an (n,) array of finite numbers (>= lo when given)."""
+    arr = np.asarray(value, dtype=np.float64)
+    if arr.ndim == 0:
+        v = float(arr)
+        if not math.isfinite(v) or (lo is not None and v < lo):
+            bound = "" if lo is None else f" >= {lo}"
+            raise ValueError(f"{name} must be a finite number{bound}, got {value!r}")
+        return v
+    if arr.shape != (n,):
+        raise ValueError(f"{name} must be a number or one value per cell ({n},), got {arr.shape}")
+    if not np.isfinite(arr).all() or (lo is not None and (arr < lo).any()):
+        bound = "" if lo is None else f" >= {lo}"
+        raise ValueError(f"{name} values must be finite{bound}")
+    return arr
+
+
+def _join(join: str) -> str:
+    if join not in _JOINS:
+        raise ValueError(f"unknown join {join!r}; choose one of round, mitre, bevel")
+    return _JOINS[join]
+
+
+def _clean(geoms: np.ndarray) -> np.ndarray:
+    """Empty results as empty Polygons; keep only polygonal parts."""
+    out = np.asarray(geoms, dtype=object).copy()
+    empty = shapely.is_empty(out) | shapely.is_missing(out)
+    out[empty] = _EMPTY
+    return out
+
+
+# ----------------------------------------------------------------------------- edges
+
+
+def explode(cells, *, tol: float | None = None) -> np.ndarray:
+    """Unique edges of the cells: each shared edge once, plus the boundary pieces.
+
+    Ring segments of all cells are collected; vertices closer than ``tol`` are merged into
+    one (so rounding-level differences between neighbouring cells do not double an edge),
+    and segments are deduplicated as unordered pairs of merged vertices. A laser cutter
+    then passes over every line once.
+
+    Parameters
+    ----------
+    cells : Diagram or (n,) array of Polygon/MultiPolygon
+        The cells.
+    tol : float, optional
+        Vertex merge distance. Default: 1e-9 of the cells' bounding-box diagonal.
+
+    Returns
+    -------
+    (m, 2, 2) float64
+        Segment end points (merged vertices), in first-seen order; no zero-length segments.
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    arr = as_cells(cells)
+    rings = shapely.get_rings(shapely.get_parts(arr[~shapely.is_empty(arr)]))
+    if len(rings) == 0:
+        return np.zeros((0, 2, 2))
+    coords, ring_of = shapely.get_coordinates(rings, return_index=True)
+    verts, vid = np.unique(coords, axis=0, return_inverse=True)
+    vid = vid.ravel()
+    if tol is None:
+        lo, hi = verts.min(axis=0), verts.max(axis=0)
+        tol = 1e-9 * float(np.hypot(*(hi - lo)))
+    tol = float(tol)
+    if not (math.isfinite(tol) and tol >= 0):
+        raise ValueError(f"tol must be a finite number >= 0, got {tol!r}")
+    if tol > 0:
+        pairs = cKDTree(verts).query_pairs(tol, output_type="ndarray")
+        m = len(verts)
+        graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(m, m))
+        _, label = connected_components(graph, directed=False)
+        # each cluster is represented by its first vertex
+        _, rep = np.unique(label, return_index=True)
+        vid = label[vid]
+        verts = verts[rep]
+    same_ring = ring_of[1:] == ring_of[:-1]  # closed rings: consecutive pairs are segments
+    a = vid[:-1][same_ring]
+    b = vid[1:][same_ring]
+    keep = a != b
+    a, b = a[keep], b[keep]
+    key = np.stack((np.minimum(a, b), np.maximum(a, b)), axis=1)
+    _, first = np.unique(key, axis=0, return_index=True)
+    first = np.sort(first)
+    return np.ascontiguousarray(np.stack((verts[a[first]], verts[b[first]]), axis=1))
+
+
+def edges_to_lines(edges) -> shapely.MultiLineString:
+    """``(m, 2, 2)`` segments (from :func:`explode` or ``diagram.edges.coords``) as lines."""
+    arr = np.asarray(edges, dtype=np.float64)
+    if arr.ndim != 3 or arr.shape[1:] != (2, 2):
+        raise ValueError(f"edges must have shape (m, 2, 2), got {arr.shape}")
+    return shapely.multilinestrings(shapely.linestrings(arr))
+
+
+# ----------------------------------------------------------------------------- offsets
+
+
+def offset(
+    cells, distance, *, join: str = "mitre", mitre_limit: float = 5.0, resolution: int = 16
+) -> np.ndarray:
+    """Grow (distance > 0) or shrink (distance < 0) every cell.
+
+    Parameters
+    ----------
+    cells : Diagram or (n,) array of Polygon/MultiPolygon
+        The cells.
+    distance : float or (n,) array_like
+        Signed offset per cell.
+    join : {"mitre", "round", "bevel"}
+        Corner style of the offset outline.
+    mitre_limit : float
+        Longest mitre spike, as a multiple of ``|distance|`` (growing only).
+    resolution : int
+        Segments per quarter circle for round joins.
+
+    Returns
+    -------
+    (n,) object array
+        Offset cells; vanished cells are empty Polygons.
+    """
+    arr = as_cells(cells)
+    dist = _param(distance, len(arr), "distance", lo=None)
+    if int(resolution) != resolution or resolution < 1:
+        raise ValueError(f"resolution must be an integer >= 1, got {resolution!r}")
+    if not (math.isfinite(float(mitre_limit)) and mitre_limit >= 1.0):
+        raise ValueError(f"mitre_limit must be >= 1, got {mitre_limit!r}")
+    out = shapely.buffer(
+        arr, dist, quad_segs=int(resolution), join_style=_join(join), mitre_limit=mitre_limit
+    )
+    return _clean(out)
+
+
+def inset(
+    cells, distance, *, join: str = "mitre", mitre_limit: float = 5.0, resolution: int = 16
+) -> np.ndarray:
+    """Shrink every cell by ``distance`` (>= 0); cells thinner than that vanish (empty).
+
+    Every point of an inset cell is at least ``distance`` from the cell's outline: exactly
+    with ``join="mitre"`` (the inset of a convex cell is its exact parallel offset), and
+    up to the chord error ``distance * (1 - cos(pi / (4 * resolution)))`` of the rounded
+    concave corners with ``join="round"``.
+
+    Parameters
+    ----------
+    cells : Diagram or (n,) array of Polygon/MultiPolygon
+        The cells.
+    distance : float or (n,) array_like
+        Inset per cell (>= 0), for example half the web width.
+    join : {"mitre", "round"}
+        Corner style (concave corners of the cell are rounded with ``"round"``).
+    mitre_limit, resolution
+        As in :func:`offset`.
+
+    Returns
+    -------
+    (n,) object array
+    """
+    arr = as_cells(cells)
+    dist = _param(distance, len(arr), "distance", lo=0.0)
+    if _join(join) == "bevel":
+        raise ValueError("inset join must be mitre or round (bevel cuts closer than distance)")
+    return offset(arr, -dist, join=join, mitre_limit=mitre_limit, resolution=resolution)
+
+
+def web(cells, width, *, join: str = "mitre", resolution: int = 16) -> np.ndarray:
+    """Openings that leave webs of ``width`` between neighbouring cells (inset by width / 2).
+
+    Parameters
+    ----------
+    cells : Diagram or (n,) array of Polygon/MultiPolygon
+        The cells (a tiling).
+    width : float or (n,) array_like
+        Web width (>= 0).
+
+    Returns
+    -------
+    (n,) object array
+    """
+    arr = as_cells(cells)
+    w = _param(width, len(arr), "width", lo=0.0)
+    return inset(arr, w / 2.0, join=join, resolution=resolution)
+
+
+def fillet(cells, radius, *, resolution: int = 16) -> np.ndarray:
+    """Round the convex and concave corners of every cell with ``radius``.
+
+    An opening (shrink, then grow, round joins) rounds convex corners; a closing (grow, then
+    shrink) rounds concave ones. Parts narrower than ``2 * radius`` disappear, as they would
+    under a cutter of that radius.
+
+    Parameters
+    ----------
+    cells : Diagram or (n,) array of Polygon/MultiPolygon
+        The cells.
+    radius : float or (n,) array_like
+        Corner radius per cell (>= 0; 0 leaves the cell unchanged).
+    resolution : int
+        Segments per quarter circle of each rounded corner.
+
+    Returns
+    -------
+    (n,) object array
+    """
+    arr = as_cells(cells)
+    r = _param(radius, len(arr), "radius", lo=0.0)
+    if int(resolution) != resolution or resolution < 1:
+        raise ValueError(f"resolution must be an integer >= 1, got {resolution!r}")
+    q = int(resolution)
+    opened = shapely.buffer(shapely.buffer(arr, -r, quad_segs=q), r, quad_segs=q)
+    closed = shapely.buffer(shapely.buffer(opened, r, quad_segs=q), -r, quad_segs=q)
+    zero = np.asarray(r) == 0
+    out = np.where(zero, arr, closed) if np.ndim(r) else (arr.copy() if zero else closed)
+    return _clean(out)
+
+
+def scale(cells, factor, *, about="centroid", sites=None) -> np.ndarray:
+    """Scale every cell about its centroid, its site, or given points.
+
+    Parameters
+    ----------
+    cells : Diagram or (n,) array of Polygon/MultiPolygon
+        The cells. A Diagram also provides the sites for ``about="site"``.
+    factor : float or (n,) array_like
+        Scale factor per cell (>= 0; 0.5 halves every edge).
+    about : {"centroid", "site"} or (2,) or (n, 2) array_like
+        Centre of each scaling.
+    sites : (n, 2) array_like, optional
+        Sites for ``about="site"`` (taken from the Diagram when one is given).
+
+    Returns
+    -------
+    (n,) object array
+    """
+    if sites is None and hasattr(cells, "sites") and hasattr(cells, "cells"):
+        sites = cells.sites
+    arr = as_cells(cells)
+    n = len(arr)
+    f = np.broadcast_to(_param(factor, n, "factor", lo=0.0), (n,))
+    if isinstance(about, str):
+        if about == "centroid":
+            centre = shapely.get_coordinates(shapely.centroid(arr), include_z=False)
+            full = np.zeros((n, 2))
+            full[~shapely.is_empty(arr)] = centre
+            centre = full
+        elif about == "site":
+            if sites is None:
+                raise ValueError('about="site" needs sites= (or a Diagram as cells)')
+            centre = np.asarray(sites, dtype=np.float64)
+            if centre.shape != (n, 2):
+                raise ValueError(f"sites must have shape ({n}, 2), got {centre.shape}")
+        else:
+            raise ValueError(f"unknown about={about!r}; use 'centroid', 'site' or points")
+    else:
+        centre = np.asarray(about, dtype=np.float64)
+        if centre.shape == (2,):
+            centre = np.broadcast_to(centre, (n, 2))
+        if centre.shape != (n, 2) or not np.isfinite(centre).all():
+            raise ValueError(f"about must be (2,) or ({n}, 2) finite points")
+    coords, owner = shapely.get_coordinates(arr, return_index=True)
+    moved = centre[owner] + f[owner, None] * (coords - centre[owner])
+    out = shapely.set_coordinates(arr.copy(), moved)
+    out[(f == 0) & ~shapely.is_empty(arr)] = _EMPTY  # a point is not a cell
+    return _clean(out)
+
+
+def _chaikin(ring: np.ndarray, iterations: int, ratio: float) -> np.ndarray:
+    pts = ring[:-1]
+    for _ in range(iterations):
+        nxt = np.roll(pts, -1, axis=0)
+        q = (1.0 - ratio) * pts + ratio * nxt
+        r = ratio * pts + (1.0 - ratio) * nxt
+        pts = np.stack((q, r), axis=1).reshape(-1, 2)
+    return np.vstack((pts, pts[:1]))
+
+
+def smooth(cells, *, iterations: int = 2, ratio: float = 0.25) -> np.ndarray:
+    """Round every cell by Chaikin corner cutting (organic outlines, inside the cell).
+
+    Each iteration replaces every edge ``p -> q`` by the points at ``ratio`` and
+    ``1 - ratio`` along it; the limit is a quadratic B-spline inside the original outline.
+
+    Parameters
+    ----------
+    cells : Diagram or (n,) array of Polygon/MultiPolygon
+        The cells.
+    iterations : int
+        Corner-cutting rounds (each doubles the vertex count).
+    ratio : float in (0, 0.5]
+        Where each edge is cut (0.25: Chaikin's classic choice).
+
+    Returns
+    -------
+    (n,) object array
+    """
+    arr = as_cells(cells)
+    if int(iterations) != iterations or iterations < 0:
+        raise ValueError(f"iterations must be an integer >= 0, got {iterations!r}")
+    if not 0.0 < float(ratio) <= 0.5:
+        raise ValueError(f"ratio must be in (0, 0.5], got {ratio!r}")
+    out = arr.copy()
+    for i, g in enumerate(arr):
+        if g.is_empty or iterations == 0:
+            continue
+        polys = []
+        for part in shapely.get_parts(g):
+            if not isinstance(part, shapely.Polygon):
+                continue
+            shell = _chaikin(np.asarray(part.exterior.coords), int(iterations), float(ratio))
+            holes = [
+                _chaikin(np.asarray(h.coords), int(iterations), float(ratio))
+                for h in part.interiors
+            ]
+            polys.append(shapely.Polygon(shell, holes))
+        res = polys[0] if len(polys) == 1 else shapely.MultiPolygon(polys)
+        out[i] = res if res.is_valid else shapely.make_valid(res)
+    return _clean(out)
+
+
+# ----------------------------------------------------------------------------- selection
+
+
+def _n(cells_or_n) -> int:
+    if isinstance(cells_or_n, int | np.integer) and not isinstance(cells_or_n, bool):
+        if cells_or_n < 0:
+            raise ValueError(f"n must be >= 0, got {cells_or_n}")
+        return int(cells_or_n)
+    return len(as_cells(cells_or_n))
+
+
+def by_area(cells, min=None, max=None) -> np.ndarray:  # noqa: A002 - the contract's names
+    """Mask of cells with ``min <= area <= max`` (either bound optional); empty cells: False.
+
+    Returns
+    -------
+    (n,) bool
+    """
+    arr = as_cells(cells)
+    area = shapely.area(arr)
+    mask = ~shapely.is_empty(arr)
+    if min is not None:
+        mask &= area >= float(min)
+    if max is not None:
+        mask &= area <= float(max)
+    return mask
+
+
+def random(n, p, *, seed) -> np.ndarray:
+    """Mask choosing each cell independently with probability ``p`` (scalar or ``(n,)``).
+
+    Parameters
+    ----------
+    n : int or cells
+        Number of cells (or the cells).
+    p : float or (n,) array_like
+        Probability in [0, 1], for example an attractor field at the centroids.
+    seed : int
+        Random seed.
+
+    Returns
+    -------
+    (n,) bool
+    """
+    k = _n(n)
+    prob = _param(p, k, "p", lo=0.0)
+    if np.any(np.asarray(prob) > 1.0):
+        raise ValueError("p must be in [0, 1]")
+    return np.random.default_rng(seed).random(k) < prob
+
+
+def every_kth(n, k, *, start: int = 0) -> np.ndarray:
+    """Mask of cells ``start, start + k, start + 2k, ...``.
+
+    Returns
+    -------
+    (n,) bool
+    """
+    m = _n(n)
+    if int(k) != k or k < 1:
+        raise ValueError(f"k must be an integer >= 1, got {k!r}")
+    if int(start) != start or start < 0:
+        raise ValueError(f"start must be an integer >= 0, got {start!r}")
+    mask = np.zeros(m, dtype=bool)
+    mask[int(start) :: int(k)] = True
+    return mask
+
+
+def largest(cells, count) -> np.ndarray:
+    """Mask of the ``count`` largest cells by area (ties: lower index first).
+
+    Returns
+    -------
+    (n,) bool
+    """
+    arr = as_cells(cells)
+    if int(count) != count or count < 0:
+        raise ValueError(f"count must be an integer >= 0, got {count!r}")
+    order = np.argsort(-shapely.area(arr), kind="stable")
+    mask = np.zeros(len(arr), dtype=bool)
+    mask[order[: int(count)]] = True
+    return mask & ~shapely.is_empty(arr)
+
+
+def by_field(cells, field, threshold, *, above: bool = True) -> np.ndarray:
+    """Mask of cells whose field value (at a point inside the cell) passes ``threshold``.
+
+    Parameters
+    ----------
+    cells : Diagram or (n,) array of Polygon/MultiPolygon
+        The cells.
+    field : callable
+        ``field(xy (m, 2)) -> (m,)``, evaluated at each cell's centroid (or at a point
+        surely inside, for cells whose centroid is not).
+    threshold : float
+        Cut-off.
+    above : bool
+        True: select ``value >= threshold``; False: ``value < threshold``.
+
+    Returns
+    -------
+    (n,) bool
+    """
+    arr = as_cells(cells)
+    if not callable(field):
+        raise ValueError("field must be callable field(xy) -> values")
+    live = ~shapely.is_empty(arr)
+    pts = shapely.centroid(arr[live])
+    outside = ~shapely.contains(arr[live], pts)
+    pts[outside] = shapely.point_on_surface(arr[live][outside])
+    xy = shapely.get_coordinates(pts)
+    values = np.zeros(len(arr))
+    if len(xy):
+        values[live] = np.asarray(field(xy), dtype=np.float64)
+    mask = values >= float(threshold) if above else values < float(threshold)
+    return mask & live
+
+
+def openings(cells, mask) -> np.ndarray:
+    """The selected non-empty cells (the holes to cut).
+
+    Parameters
+    ----------
+    cells : Diagram or (n,) array of Polygon/MultiPolygon
+        The cells (usually inset and filleted).
+    mask : (n,) bool
+        Selection.
+
+    Returns
+    -------
+    (k,) object array
+    """
+    arr = as_cells(cells)
+    m = np.asarray(mask)
+    if m.shape != (len(arr),) or m.dtype != bool:
+        raise ValueError(f"mask must be a boolean array of shape ({len(arr)},)")
+    chosen = arr[m]
+    return chosen[~shapely.is_empty(chosen)]
+
+
+def frame(boundary, openings) -> shapely.Polygon | shapely.MultiPolygon:  # noqa: F811
+    """The part that is cut out: the boundary minus the union of the openings.
+
+    Parameters
+    ----------
+    boundary : shapely Polygon or MultiPolygon
+        The outline.
+    openings : sequence of Polygon/MultiPolygon
+        Holes to cut (parts outside the boundary are ignored).
+
+    Returns
+    -------
+    shapely.Polygon or shapely.MultiPolygon
+        With the openings as holes (a MultiPolygon if the openings cut it apart).
+    """
+    from .boundary import _polygonal_part, as_polygonal
+
+    geom = as_polygonal(boundary)
+    arr = as_cells(openings)
+    if len(arr) == 0:
+        return geom
+    holes = shapely.union_all(arr[~shapely.is_empty(arr)])
+    return _polygonal_part(shapely.difference(geom, holes))

@@ -1,0 +1,441 @@
+"""Seed points inside a boundary: random, grids, jittered grids, Poisson-disk, by density.
+
+Every function returns a new ``(n, 2)`` float64 array of points strictly inside the
+boundary (holes excluded). Randomness comes from ``numpy.random.default_rng(seed)``: the
+same arguments and seed give the same points.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import shapely
+from scipy.spatial import cKDTree
+
+from .boundary import as_polygonal
+
+__all__ = ["by_density", "from_file", "grid", "hexgrid", "jittered", "poisson", "random"]
+
+_MAX_ROUNDS = 1000  # rejection-sampling rounds before giving up
+
+
+def _boundary(boundary):
+    if isinstance(boundary, tuple | list) and len(boundary) == 4:
+        xmin, ymin, xmax, ymax = (float(v) for v in boundary)
+        if not (xmin < xmax and ymin < ymax):
+            raise ValueError(f"boundary box {boundary!r} needs xmin < xmax and ymin < ymax")
+        boundary = shapely.box(xmin, ymin, xmax, ymax)
+    geom = as_polygonal(boundary)
+    shapely.prepare(geom)
+    return geom
+
+
+def _count(count, name: str = "count") -> int:
+    if isinstance(count, bool) or int(count) != count or count < 0:
+        raise ValueError(f"{name} must be an integer >= 0, got {count!r}")
+    return int(count)
+
+
+def _positive(value, name: str) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    if not (math.isfinite(v) and v > 0):
+        raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
+    return v
+
+
+def _inside(geom, xy: np.ndarray) -> np.ndarray:
+    if len(xy) == 0:
+        return np.zeros(0, dtype=bool)
+    return shapely.contains_xy(geom, xy[:, 0], xy[:, 1])
+
+
+def _field_values(field, xy: np.ndarray) -> np.ndarray:
+    """Evaluate a user field at points; check the shape and clip to [0, 1]."""
+    if len(xy) == 0:
+        return np.zeros(0)
+    values = np.asarray(field(xy.copy()), dtype=np.float64)
+    if values.shape != (len(xy),):
+        raise ValueError(
+            f"field must return one value per point, shape ({len(xy)},), got {values.shape}"
+        )
+    if not np.isfinite(values).all():
+        raise ValueError("field returned NaN or infinite values")
+    return np.clip(values, 0.0, 1.0)
+
+
+def _uniform(geom, count: int, rng) -> np.ndarray:
+    """Exactly ``count`` uniform points inside ``geom`` by rejection from its bounding box."""
+    xmin, ymin, xmax, ymax = geom.bounds
+    ratio = geom.area / ((xmax - xmin) * (ymax - ymin))
+    out = []
+    have = 0
+    for _ in range(_MAX_ROUNDS):
+        if have >= count:
+            break
+        m = int((count - have) / ratio * 1.2) + 16
+        xy = rng.uniform((xmin, ymin), (xmax, ymax), size=(m, 2))
+        xy = xy[_inside(geom, xy)]
+        out.append(xy)
+        have += len(xy)
+    else:
+        raise ValueError("could not place the points: the boundary is too thin for sampling")
+    return np.concatenate(out)[:count] if out else np.zeros((0, 2))
+
+
+def random(boundary, count, *, seed) -> np.ndarray:
+    """``count`` uniformly random points inside the boundary.
+
+    Parameters
+    ----------
+    boundary : shapely Polygon/MultiPolygon or (xmin, ymin, xmax, ymax)
+        Where to put the points (holes respected).
+    count : int
+        Number of points.
+    seed : int
+        Random seed.
+
+    Returns
+    -------
+    (count, 2) float64
+
+    Examples
+    --------
+    >>> import shapely
+    >>> random(shapely.box(0, 0, 10, 10), 5, seed=1).shape
+    (5, 2)
+    """
+    geom = _boundary(boundary)
+    n = _count(count)
+    return np.ascontiguousarray(_uniform(geom, n, np.random.default_rng(seed)))
+
+
+def _lattice(geom, spacing: float, angle: float, offset, hexagonal: bool, margin: float = 0.0):
+    """Lattice points (square or hexagonal) covering ``geom``, rotated by ``angle`` degrees.
+
+    The lattice is anchored at the centre of the boundary's bounding box plus ``offset`` (so
+    symmetric boundaries get symmetric seeds) and ordered row by row.
+    """
+    off = np.asarray(offset, dtype=np.float64)
+    if off.shape != (2,) or not np.isfinite(off).all():
+        raise ValueError(f"offset must be two finite numbers, got {offset!r}")
+    ang = float(angle)
+    if not math.isfinite(ang):
+        raise ValueError(f"angle must be finite, got {angle!r}")
+    xmin, ymin, xmax, ymax = geom.bounds
+    centre = np.array([(xmin + xmax) / 2, (ymin + ymax) / 2]) + off
+    # radius of the bounding box around the anchor, plus one cell
+    reach = (
+        math.hypot(
+            max(abs(xmin - centre[0]), abs(xmax - centre[0])),
+            max(abs(ymin - centre[1]), abs(ymax - centre[1])),
+        )
+        + margin
+    )
+    dy = spacing * math.sqrt(3) / 2 if hexagonal else spacing
+    nx = int(math.ceil(reach / spacing)) + 1
+    ny = int(math.ceil(reach / dy)) + 1
+    if (2 * nx + 1) * (2 * ny + 1) > 50_000_000:
+        raise ValueError(f"spacing {spacing} is too small for this boundary (> 5e7 points)")
+    j, i = np.meshgrid(np.arange(-ny, ny + 1), np.arange(-nx, nx + 1), indexing="ij")
+    x = i * spacing + (0.5 * spacing * (j % 2) if hexagonal else 0.0)
+    y = j * dy
+    local = np.column_stack((x.ravel(), y.ravel()))
+    t = math.radians(ang)
+    rot = np.array([[math.cos(t), -math.sin(t)], [math.sin(t), math.cos(t)]])
+    return local @ rot.T + centre, rot
+
+
+def grid(boundary, spacing, *, angle=0.0, offset=(0.0, 0.0)) -> np.ndarray:
+    """Square-grid points inside the boundary.
+
+    Parameters
+    ----------
+    boundary : shapely Polygon/MultiPolygon or (xmin, ymin, xmax, ymax)
+        Where to put the points (holes respected).
+    spacing : float
+        Distance between neighbouring points.
+    angle : float
+        Rotation of the grid in degrees (counter-clockwise).
+    offset : (2,) float
+        Shift of the grid from its anchor, the centre of the boundary's bounding box.
+
+    Returns
+    -------
+    (n, 2) float64
+        Row by row.
+    """
+    geom = _boundary(boundary)
+    pts, _ = _lattice(geom, _positive(spacing, "spacing"), angle, offset, hexagonal=False)
+    return np.ascontiguousarray(pts[_inside(geom, pts)])
+
+
+def hexgrid(boundary, spacing, *, angle=0.0, offset=(0.0, 0.0)) -> np.ndarray:
+    """Hexagonal-grid points inside the boundary (their Voronoi cells are regular hexagons).
+
+    Parameters
+    ----------
+    boundary : shapely Polygon/MultiPolygon or (xmin, ymin, xmax, ymax)
+        Where to put the points (holes respected).
+    spacing : float
+        Distance between neighbouring points (rows are ``spacing * sqrt(3) / 2`` apart).
+    angle : float
+        Rotation in degrees (counter-clockwise).
+    offset : (2,) float
+        Shift of the grid from its anchor, the centre of the boundary's bounding box.
+
+    Returns
+    -------
+    (n, 2) float64
+        Row by row.
+    """
+    geom = _boundary(boundary)
+    pts, _ = _lattice(geom, _positive(spacing, "spacing"), angle, offset, hexagonal=True)
+    return np.ascontiguousarray(pts[_inside(geom, pts)])
+
+
+def jittered(boundary, spacing, *, jitter=0.5, seed, angle=0.0) -> np.ndarray:
+    """Square-grid points each moved randomly within its own grid cell.
+
+    Parameters
+    ----------
+    boundary : shapely Polygon/MultiPolygon or (xmin, ymin, xmax, ymax)
+        Where to put the points (holes respected).
+    spacing : float
+        Grid spacing.
+    jitter : float in [0, 1]
+        Each point moves uniformly within a square of side ``jitter * spacing`` around its
+        grid position (0: the plain grid; 1: stratified sampling, one point per grid cell).
+    seed : int
+        Random seed.
+    angle : float
+        Rotation of the grid in degrees.
+
+    Returns
+    -------
+    (n, 2) float64
+    """
+    geom = _boundary(boundary)
+    s = _positive(spacing, "spacing")
+    j = float(jitter)
+    if not 0.0 <= j <= 1.0:
+        raise ValueError(f"jitter must be in [0, 1], got {jitter!r}")
+    pts, rot = _lattice(geom, s, angle, (0.0, 0.0), hexagonal=False, margin=s)
+    rng = np.random.default_rng(seed)
+    shift = rng.uniform(-0.5, 0.5, size=pts.shape) * (j * s)
+    pts = pts + shift @ rot.T
+    return np.ascontiguousarray(pts[_inside(geom, pts)])
+
+
+def poisson(boundary, radius, *, seed, field=None, radius_max=None, k: int = 30) -> np.ndarray:
+    """Poisson-disk points (Bridson), optionally with a spacing that varies with a field.
+
+    No two points are closer than the local spacing, and the sampling is maximal in
+    practice: after Bridson's front stops, random probes look for any remaining gap (also in
+    separate parts of the boundary) and restart the front there.
+
+    Parameters
+    ----------
+    boundary : shapely Polygon/MultiPolygon or (xmin, ymin, xmax, ymax)
+        Where to put the points (holes respected).
+    radius : float
+        Minimum distance between points (where ``field`` is 1).
+    seed : int
+        Random seed.
+    field : callable, optional
+        ``field(xy (m, 2)) -> (m,)`` values in [0, 1] (for example an attractor). The local
+        spacing at ``p`` is ``r(p) = radius + (radius_max - radius) * (1 - field(p))``; two
+        points ``p, q`` are at least ``max(r(p), r(q))`` apart.
+    radius_max : float, optional
+        Spacing where ``field`` is 0 (required with ``field``; >= ``radius``).
+    k : int
+        Candidates tried around each active point before it retires (Bridson's k).
+
+    Returns
+    -------
+    (n, 2) float64
+        In the order they were placed.
+
+    Notes
+    -----
+    The background grid has cells of ``radius / sqrt(2)`` (the smallest spacing), so each
+    cell holds at most one point; a candidate is compared with the points in the grid window
+    that the largest spacing can reach.
+    """
+    geom = _boundary(boundary)
+    rmin = _positive(radius, "radius")
+    if int(k) != k or k < 1:
+        raise ValueError(f"k must be an integer >= 1, got {k!r}")
+    k = int(k)
+    if field is None:
+        if radius_max is not None and float(radius_max) != rmin:
+            raise ValueError("radius_max needs a field (the spacing varies with the field)")
+        rmax = rmin
+    else:
+        if not callable(field):
+            raise ValueError("field must be a callable field(xy) -> values in [0, 1]")
+        if radius_max is None:
+            raise ValueError("poisson with a field needs radius_max (the spacing where field=0)")
+        rmax = _positive(radius_max, "radius_max")
+        if rmax < rmin:
+            raise ValueError(f"radius_max ({rmax}) must be >= radius ({rmin})")
+    variable = field is not None and rmax > rmin
+
+    def spacing(xy):
+        if not variable:
+            return np.full(len(xy), rmin)
+        return rmin + (rmax - rmin) * (1.0 - _field_values(field, xy))
+
+    xmin, ymin, xmax, ymax = geom.bounds
+    cell = rmin / math.sqrt(2.0)
+    gw = int((xmax - xmin) / cell) + 1
+    gh = int((ymax - ymin) / cell) + 1
+    if gw * gh > 100_000_000:
+        raise ValueError(f"radius {rmin} is too small for this boundary (grid > 1e8 cells)")
+    reach = int(math.ceil(rmax / cell))
+    # padded grid of point indices (-1 = free) so windows never leave the array
+    owner = np.full((gh + 2 * reach, gw + 2 * reach), -1, dtype=np.int64)
+    store = {"p": np.zeros((1024, 2)), "r": np.zeros(1024), "n": 0}
+    rng = np.random.default_rng(seed)
+    win = np.arange(-reach, reach + 1)
+    wy, wx = (w.ravel() for w in np.meshgrid(win, win, indexing="ij"))
+
+    def cells_of(xy):
+        gy = ((xy[:, 1] - ymin) / cell).astype(np.int64) + reach
+        gx = ((xy[:, 0] - xmin) / cell).astype(np.int64) + reach
+        return gy, gx
+
+    def fits(cand: np.ndarray, rc: np.ndarray) -> np.ndarray:
+        """For each candidate (c, 2) with spacing rc: no point within the pair spacing."""
+        gy, gx = cells_of(cand)
+        idx = owner[gy[:, None] + wy, gx[:, None] + wx]  # (c, window)
+        taken = idx >= 0
+        safe = np.where(taken, idx, 0)
+        d2 = ((store["p"][safe] - cand[:, None, :]) ** 2).sum(axis=2)
+        need = np.maximum(store["r"][safe], rc[:, None])
+        return ~(taken & (d2 < need * need)).any(axis=1)
+
+    def add(p, r):
+        n = store["n"]
+        if n == len(store["r"]):
+            store["p"] = np.concatenate((store["p"], np.zeros_like(store["p"])))
+            store["r"] = np.concatenate((store["r"], np.zeros_like(store["r"])))
+        gy, gx = cells_of(p[None])
+        owner[gy[0], gx[0]] = n
+        store["p"][n] = p
+        store["r"][n] = r
+        store["n"] = n + 1
+        return n
+
+    def bridson(active: list[int]):
+        while active:
+            j = int(rng.integers(len(active)))
+            a = store["p"][active[j]]
+            ra = store["r"][active[j]]
+            # k candidates uniformly by area in the annulus [ra, 2 ra]
+            rr = ra * np.sqrt(rng.uniform(1.0, 4.0, size=k))
+            th = rng.uniform(0.0, 2.0 * math.pi, size=k)
+            cand = a + np.column_stack((rr * np.cos(th), rr * np.sin(th)))
+            inside = _inside(geom, cand)
+            placed = False
+            if inside.any():
+                cand = cand[inside]
+                rc = spacing(cand)
+                # the candidate must also respect the active point's own spacing
+                far = ((cand - a) ** 2).sum(axis=1) >= np.maximum(rc, ra) ** 2
+                cand, rc = cand[far], rc[far]
+                if len(cand):
+                    ok = np.flatnonzero(fits(cand, rc))
+                    if len(ok):
+                        active.append(add(cand[ok[0]], float(rc[ok[0]])))
+                        placed = True
+            if not placed:
+                active[j] = active[-1]
+                active.pop()
+
+    # gap filling: random probes; a probe farther than the pair spacing from every point
+    # starts a new front (the first probe starts the first front)
+    n_probe = int(min(200_000, max(64, 4 * geom.area / (rmin * rmin))))
+    for _ in range(_MAX_ROUNDS):
+        probes = _uniform(geom, n_probe, rng)
+        n = store["n"]
+        if n:
+            dist, idx = cKDTree(store["p"][:n]).query(probes, k=1)
+            rp = spacing(probes)
+            # pre-filter: only probes clear of their nearest point's spacing
+            keep = dist >= np.maximum(rp, store["r"][:n][idx])
+            probes = probes[keep]
+        if len(probes) == 0:
+            break
+        rp = spacing(probes)
+        ok = np.flatnonzero(fits(probes, rp))
+        if len(ok) == 0:
+            break
+        bridson([add(probes[ok[0]], float(rp[ok[0]]))])
+    return np.ascontiguousarray(store["p"][: store["n"]])
+
+
+def by_density(boundary, count, field, *, seed) -> np.ndarray:
+    """``count`` random points with a density proportional to ``field`` (rejection sampling).
+
+    Parameters
+    ----------
+    boundary : shapely Polygon/MultiPolygon or (xmin, ymin, xmax, ymax)
+        Where to put the points (holes respected).
+    count : int
+        Number of points.
+    field : callable
+        ``field(xy (m, 2)) -> (m,)`` values in [0, 1] (values outside are clipped); the
+        density of points is proportional to it.
+    seed : int
+        Random seed.
+
+    Returns
+    -------
+    (count, 2) float64
+
+    Notes
+    -----
+    A uniform point is kept with probability ``field(p) / fmax``, where ``fmax`` is the
+    largest field value seen in a first batch of 4096 uniform points (at least a little
+    above zero), so a field that is small everywhere still samples efficiently.
+    """
+    geom = _boundary(boundary)
+    n = _count(count)
+    if not callable(field):
+        raise ValueError("field must be a callable field(xy) -> values in [0, 1]")
+    rng = np.random.default_rng(seed)
+    if n == 0:
+        return np.zeros((0, 2))
+    probe = _uniform(geom, 4096, rng)
+    fmax = float(_field_values(field, probe).max())
+    if fmax <= 0.0:
+        raise ValueError("field is zero everywhere in the boundary: no density to sample")
+    out = []
+    have = 0
+    for _ in range(_MAX_ROUNDS):
+        if have >= n:
+            break
+        m = max(256, int((n - have) * 1.5))
+        xy = _uniform(geom, m, rng)
+        keep = rng.uniform(0.0, fmax, size=m) < _field_values(field, xy)
+        out.append(xy[keep])
+        have += int(keep.sum())
+    else:
+        raise ValueError("field is too small over the boundary to place the points")
+    return np.ascontiguousarray(np.concatenate(out)[:n])
+
+
+def from_file(path) -> np.ndarray:
+    """Read seed points from ``.csv``/``.txt``/``.npy``/``.geojson`` (``io.read_points``).
+
+    Returns
+    -------
+    (n, 2) float64
+    """
+    from ..io.readers import read_points
+
+    return read_points(path)
