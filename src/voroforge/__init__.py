@@ -12,12 +12,15 @@ the neighbouring triangle with ``halfedges[e] // 3``::
 """
 
 from .engine.delaunay import Triangulation, delaunay
+from .engine.describe import Description
+from .engine.interpolate import locate, natural_neighbor
 from .engine.lloyd import Relaxation, lloyd
 from .engine.power import PowerDiagram, power, power_fit
 from .engine.raster import RasterVoronoi, rasterize
 from .engine.voronoi import Diagram, Edges, voronoi
 
 __all__ = [
+    "Description",
     "Diagram",
     "Edges",
     "PowerDiagram",
@@ -26,6 +29,8 @@ __all__ = [
     "Triangulation",
     "delaunay",
     "lloyd",
+    "locate",
+    "natural_neighbor",
     "power",
     "power_fit",
     "rasterize",

@@ -11,13 +11,14 @@ import shapely
 from ..kernels.cells import cells_from_neighbors, cells_from_triangulation
 from ..kernels.delaunay import triangulate_sorted
 from ..kernels.fortune import fortune_delaunay
+from ..kernels.halfplane import halfplane_cells
 from ..kernels.rings import area_centroid, close_rings
 from ._assemble import clip_to_polygon, domain_edges, domain_grid, geom_offsets_for
 from ._csr import csr_from_pairs
 from ._inputs import as_points, duplicate_map, from_working, working_frame
 from .domain import Domain, make_domain
 
-ALGORITHMS = ("delaunay", "fortune")
+ALGORITHMS = ("delaunay", "fortune", "halfplane")
 
 
 class Edges(NamedTuple):
@@ -53,7 +54,14 @@ class Diagram:
         The domain's ``(xmin, ymin, xmax, ymax)``.
     algorithm : str
         The construction method used.
+    periodic : bool
+        True for a diagram on the torus (``voronoi(..., periodic=True)``).
+    wrapped : bool
+        True when periodic cells were cut into the box (``wrap=True``).
     """
+
+    periodic = False
+    wrapped = False
 
     def __init__(self, sites, duplicate_of, domain: Domain, buffers, edges, algorithm, k=0):
         self.sites = sites
@@ -163,6 +171,36 @@ class Diagram:
         coords = self._buffers[0]
         return np.unique(coords, axis=0) if len(coords) else np.zeros((0, 2))
 
+    def locate(self, xy):
+        """Index of the site whose cell contains each query point (its nearest site).
+
+        Parameters
+        ----------
+        xy : (2,) or (m, 2) array_like
+            Query points (anywhere; on a periodic diagram taken modulo the box).
+
+        Returns
+        -------
+        int or (m,) int64
+            Site index; duplicates map to the owning (first) site, ties between
+            equidistant sites go to the lowest index. See :func:`voroforge.locate`.
+        """
+        from .interpolate import locate_in_diagram
+
+        return locate_in_diagram(self, xy)
+
+    def describe(self):
+        """Structure report: counts, Euler's formula, unbounded and non-convex cells.
+
+        Returns
+        -------
+        voroforge.engine.describe.Description
+            See :func:`voroforge.engine.describe.describe`.
+        """
+        from .describe import describe
+
+        return describe(self)
+
 
 def _collinear_neighbors(xs, ys):
     order = np.lexsort((ys, xs))
@@ -189,10 +227,21 @@ def _closed_cells(xs, ys, box, algorithm, kmap):
         coords, offsets, owner = cells_from_neighbors(xs, ys, indptr, indices.astype(np.int64), box)
         ident = np.arange(len(xs))
         return close_rings(coords, offsets, owner, ident, kmap)
+    if algorithm == "halfplane":
+        # every cell on its own: the box cut by bisectors, finished with exact predicates
+        coords, offsets, owner = halfplane_cells(xs, ys, box)
+        return close_rings(coords, offsets, owner, np.arange(len(xs)), kmap)
     raise ValueError(f"unknown algorithm {algorithm!r}; choose one of {', '.join(ALGORITHMS)}")
 
 
-def voronoi(points, boundary=None, *, algorithm: str = "delaunay") -> Diagram:
+def voronoi(
+    points,
+    boundary=None,
+    *,
+    algorithm: str = "delaunay",
+    periodic: bool = False,
+    wrap: bool = False,
+) -> Diagram:
     """Voronoi diagram of 2D sites, every cell clipped to a domain.
 
     Parameters
@@ -204,10 +253,24 @@ def voronoi(points, boundary=None, *, algorithm: str = "delaunay") -> Diagram:
         The domain. None: the sites' bounding box padded by 10% on each side. Polygons may be
         concave, have holes and several parts. Sites may lie outside the domain: their cell is
         the part of the domain nearest to them (possibly empty).
-    algorithm : {"delaunay", "fortune"}
+    algorithm : {"delaunay", "fortune", "halfplane"}
         Construction method; all methods give the same cells. "delaunay": sweep-hull
         Delaunay triangulation, cells from its circumcentres. "fortune": Fortune's sweep line
-        (its Delaunay dual goes through the same cell builder).
+        (its Delaunay dual goes through the same cell builder). "halfplane": each cell on its
+        own as the box cut by nearby bisectors (voro++-style, in parallel).
+    periodic : bool
+        Diagram on the torus made by gluing opposite edges of ``boundary``, which must then
+        be a box ``(xmin, ymin, xmax, ymax)``; sites are taken modulo the box (``sites``
+        holds the wrapped values). Cells tile the torus and their areas sum to the box area.
+        Cell ``i`` is the unwrapped convex polygon around site ``i`` and may reach past the
+        box edges. ``edges`` lists each torus edge once, placed where it bounds the cell of
+        the lower index (of the two cells it separates) in that cell's unwrapped position;
+        a cell that borders its own image (one or two sites) has edges ``(i, i)`` and lists
+        itself among its ``neighbors``.
+    wrap : bool
+        With ``periodic=True``: cut every cell into the box instead (a cell that crosses an
+        edge becomes a MultiPolygon of its pieces, all inside the box) and report ``edges``
+        cut into the box too (an edge crossing the box edge appears as its two pieces).
 
     Returns
     -------
@@ -229,6 +292,12 @@ def voronoi(points, boundary=None, *, algorithm: str = "delaunay") -> Diagram:
     """
     if algorithm not in ALGORITHMS:
         raise ValueError(f"unknown algorithm {algorithm!r}; choose one of {', '.join(ALGORITHMS)}")
+    if periodic:
+        from .periodic import periodic_voronoi
+
+        return periodic_voronoi(points, boundary, algorithm=algorithm, wrap=wrap)
+    if wrap:
+        raise ValueError("wrap=True applies to periodic diagrams only; pass periodic=True")
     pts = as_points(points)
     dom = make_domain(boundary, pts)
     n = len(pts)

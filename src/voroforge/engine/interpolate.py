@@ -1,0 +1,237 @@
+"""Point queries on a set of sites: nearest site (:func:`locate`) and Sibson interpolation.
+
+:func:`locate` answers "which cell contains this point" for many points at once with a
+KD-tree (scipy's ``cKDTree``), and breaks ties between equidistant sites towards the lowest
+index, so the answer is deterministic. :func:`natural_neighbor` computes Sibson's
+natural-neighbour interpolant from the Bowyer-Watson cavity of each query point in the
+Delaunay triangulation (see :mod:`voroforge.kernels.natural`), never by rebuilding diagrams.
+"""
+
+from __future__ import annotations
+
+import weakref
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from ..kernels.natural import INSIDE, sibson
+from ._inputs import as_points
+from .delaunay import delaunay
+
+#: Candidates fetched per query before ties are settled exactly.
+_K = 4
+#: A candidate this close (relative) to the best distance may be tied after rounding.
+_TIE_RTOL = 1e-9
+
+
+class _Locator:
+    """A KD-tree over the distinct sites (first occurrences), optionally on a torus."""
+
+    def __init__(self, sites: np.ndarray, duplicate_of: np.ndarray, box=None):
+        self.owners = np.flatnonzero(duplicate_of < 0)
+        self.box = box
+        pts = sites[self.owners]
+        if box is None:
+            self.origin = np.zeros(2)
+            self.size = None
+            self.tree = cKDTree(pts)
+        else:
+            self.origin = np.array(box[:2], dtype=np.float64)
+            self.size = np.array([box[2] - box[0], box[3] - box[1]], dtype=np.float64)
+            rel = self._wrap(pts)
+            self.tree = cKDTree(rel, boxsize=self.size)
+        self.pts = pts
+
+    def _wrap(self, xy: np.ndarray) -> np.ndarray:
+        rel = np.mod(xy - self.origin, self.size)
+        rel[rel >= self.size] = 0.0  # np.mod can round up to the period itself
+        return rel
+
+    def _d2(self, q: np.ndarray, cand: np.ndarray) -> np.ndarray:
+        """Squared distances ``dx*dx + dy*dy`` from ``q (m, 2)`` to sites ``cand (m, k)``."""
+        diff = q[:, None, :] - self.pts[cand]
+        if self.size is not None:
+            diff = np.abs(diff)
+            diff = np.minimum(diff, self.size - diff)
+        return diff[..., 0] * diff[..., 0] + diff[..., 1] * diff[..., 1]
+
+    def query(self, q: np.ndarray) -> np.ndarray:
+        npts = len(self.pts)
+        k = min(_K, npts)
+        tq = q if self.size is None else self._wrap(q)
+        _, cand = self.tree.query(tq, k=k)
+        cand = cand.reshape(len(q), k)
+        d2 = self._d2(q, cand)
+        best = d2.min(axis=1)
+        tied = d2 == best[:, None]
+        # lowest input index among the exactly tied candidates
+        rank = np.where(tied, self.owners[cand], np.iinfo(np.int64).max)
+        out = rank.min(axis=1)
+        if k < npts:
+            # more ties may hide beyond the k-th candidate: settle those rows exhaustively
+            again = np.flatnonzero(d2[:, -1] <= best * (1.0 + _TIE_RTOL) + 1e-300)
+            if len(again):
+                radius = np.sqrt(best[again]) * (1.0 + _TIE_RTOL) + 1e-300
+                lists = self.tree.query_ball_point(tq[again], radius)
+                for row, members in zip(again, lists, strict=True):
+                    members = np.asarray(members, dtype=np.int64)
+                    dd = self._d2(q[row : row + 1], members[None, :])[0]
+                    out[row] = self.owners[members[dd == dd.min()]].min()
+        return out
+
+
+_CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _query_points(xy) -> tuple[np.ndarray, bool]:
+    arr = np.asarray(xy)
+    single = arr.ndim == 1
+    q = as_points(arr.reshape(1, -1) if single else arr, name="xy")
+    return q, single
+
+
+def _nearest(locator: _Locator, xy):
+    q, single = _query_points(xy)
+    if len(locator.pts) == 0:
+        raise ValueError("cannot locate points without sites")
+    out = locator.query(q) if len(q) else np.zeros(0, dtype=np.int64)
+    return int(out[0]) if single else out.astype(np.int64)
+
+
+def locate(points, xy) -> np.ndarray | int:
+    """Index of the nearest site to each query point (the Voronoi cell containing it).
+
+    Parameters
+    ----------
+    points : (n, 2) array_like
+        Sites. Duplicates are allowed: the first occurrence answers for all copies.
+    xy : (2,) or (m, 2) array_like
+        Query points, anywhere in the plane.
+
+    Returns
+    -------
+    int or (m,) int64
+        Index into ``points`` of the nearest site. Ties (equal float64 values of
+        ``(x - xi)**2 + (y - yi)**2``) go to the lowest index.
+
+    Raises
+    ------
+    ValueError
+        Malformed ``points`` or ``xy``, or no sites.
+
+    Examples
+    --------
+    >>> import voroforge as vf
+    >>> vf.locate([[0, 0], [2, 0]], [[0.4, 1.0], [1.0, 0.0], [5.0, 5.0]])
+    array([0, 0, 1])
+    """
+    pts = as_points(points)
+    dup = np.full(len(pts), -1, dtype=np.int64)
+    if len(pts):
+        from ._inputs import duplicate_map
+
+        dup = duplicate_map(pts)[0]
+    return _nearest(_Locator(pts, dup), xy)
+
+
+def locate_in_diagram(diagram, xy) -> np.ndarray | int:
+    """Nearest site of ``diagram`` for each query point; see :meth:`Diagram.locate`."""
+    loc = _CACHE.get(diagram)
+    if loc is None:
+        box = diagram.bounds if getattr(diagram, "periodic", False) else None
+        loc = _Locator(np.asarray(diagram.sites), np.asarray(diagram.duplicate_of), box)
+        _CACHE[diagram] = loc
+    return _nearest(loc, xy)
+
+
+def _as_values(values, n: int) -> tuple[np.ndarray, bool]:
+    try:
+        raw = np.asarray(values)
+        if raw.dtype.kind == "c":
+            raise TypeError("complex values are not supported")
+        vals = np.array(raw, dtype=np.float64, copy=True)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"values must be an (n,) or (n, k) real array ({exc})") from None
+    flat = vals.ndim == 1
+    if vals.ndim not in (1, 2) or len(vals) != n:
+        raise ValueError(
+            f"values must have shape ({n},) or ({n}, k) to match the points; got {vals.shape}"
+        )
+    return np.ascontiguousarray(vals.reshape(n, -1)), flat
+
+
+def natural_neighbor(points, values, query, *, extrapolate: str | None = None):
+    """Sibson natural-neighbour interpolation of values given at scattered sites.
+
+    The weight of site ``i`` at a query point ``q`` is the area that inserting ``q`` into the
+    Voronoi diagram steals from the cell of ``i``, divided by the area of ``q``'s new cell.
+    The interpolant is continuous, equals the data at the sites and reproduces linear
+    functions exactly (to rounding) inside the convex hull of the sites. On a hull edge it
+    is the linear interpolation between the edge's two end points (Sibson's limit there).
+
+    Parameters
+    ----------
+    points : (n, 2) array_like
+        Sites. Duplicates are allowed: the first occurrence's value is used.
+    values : (n,) or (n, k) array_like
+        Data at the sites (``k`` fields are interpolated with the same weights).
+    query : (2,) or (m, 2) array_like
+        Points to interpolate at.
+    extrapolate : {None, "nearest"}, optional
+        Outside the convex hull of the sites: None gives NaN, "nearest" the value of the
+        nearest site (ties to the lowest index). With fewer than three sites, or all sites
+        on a line, every query that is not exactly at a site counts as outside.
+
+    Returns
+    -------
+    float64 array
+        Shape ``(m,)`` or ``(m, k)`` (following ``values``); a single query point gives a
+        float (``values`` of shape ``(n,)``) or a ``(k,)`` array.
+
+    Raises
+    ------
+    ValueError
+        Malformed inputs, no sites, or an unknown ``extrapolate``.
+
+    Examples
+    --------
+    >>> import numpy as np, voroforge as vf
+    >>> pts = np.random.default_rng(0).random((200, 2))
+    >>> f = 3 * pts[:, 0] - 2 * pts[:, 1] + 1
+    >>> round(float(vf.natural_neighbor(pts, f, [0.5, 0.5])), 9)
+    1.5
+    """
+    if extrapolate not in (None, "nearest"):
+        raise ValueError(f"extrapolate must be None or 'nearest'; got {extrapolate!r}")
+    tri = delaunay(points)
+    pts = np.asarray(tri.points)
+    n = len(pts)
+    if n == 0:
+        raise ValueError("natural_neighbor needs at least one site")
+    vals, flat = _as_values(values, n)
+    q, single = _query_points(query)
+    loc = _Locator(pts, np.asarray(tri.duplicate_of))
+    nearest = loc.query(q) if len(q) else np.zeros(0, dtype=np.int64)
+    out = np.full((len(q), vals.shape[1]), np.nan)
+    if len(tri.triangles):
+        status = sibson(
+            np.ascontiguousarray(pts[:, 0]),
+            np.ascontiguousarray(pts[:, 1]),
+            np.ascontiguousarray(tri.triangles.ravel()),
+            np.asarray(tri.halfedges),
+            vals,
+            nearest,
+            np.ascontiguousarray(q[:, 0]),
+            np.ascontiguousarray(q[:, 1]),
+            out,
+        )
+    else:
+        at_site = (pts[nearest] == q).all(axis=1)
+        out[at_site] = vals[nearest[at_site]]
+        status = np.where(at_site, INSIDE, INSIDE + 1)
+    if extrapolate == "nearest":
+        miss = status != INSIDE
+        out[miss] = vals[nearest[miss]]
+    if flat:
+        out = out[:, 0]
+    return out[0] if single else out

@@ -1,0 +1,235 @@
+"""Periodic (toroidal) Voronoi diagrams: ``vf.voronoi(points, box, periodic=True)``.
+
+The diagram of sites on a torus is the ordinary diagram of the sites and all their
+periodic images, restricted to one copy. Only the images within a margin of the box are
+used; the margin is proved large enough afterwards: every vertex ``v`` of a kept cell with
+site ``p`` must have its empty disk (centre ``v``, radius ``|v - p|``) inside the region
+where every image was included. Then no left-out image could have cut the cell, so it is the
+torus cell. When the proof fails (few sites, large empty regions) the margin doubles and
+the diagram is computed again.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import shapely
+
+from ._inputs import as_points
+from .domain import make_domain
+from .voronoi import Diagram, Edges, voronoi
+
+#: Initial margin, in typical cell diameters ``sqrt(area / n)``.
+_MARGIN_CELLS = 3.0
+#: Relative slack in the margin proof (distances are rounded).
+_PROOF_RTOL = 1e-7
+_MAX_TRIES = 30
+
+
+def _box_of(boundary) -> tuple[float, float, float, float]:
+    if boundary is None or isinstance(boundary, shapely.Geometry):
+        raise ValueError(
+            "periodic=True needs boundary=(xmin, ymin, xmax, ymax), the box that tiles the "
+            f"plane; got {type(boundary).__name__}"
+        )
+    return make_domain(boundary, np.zeros((0, 2))).bounds
+
+
+def wrap_points(points: np.ndarray, box) -> np.ndarray:
+    """Sites taken modulo the box: each coordinate in ``[min, max)``.
+
+    Parameters
+    ----------
+    points : (n, 2) float64
+    box : (xmin, ymin, xmax, ymax)
+
+    Returns
+    -------
+    (n, 2) float64
+        A new array.
+    """
+    lo = np.array(box[:2], dtype=np.float64)
+    size = np.array([box[2] - box[0], box[3] - box[1]], dtype=np.float64)
+    out = lo + np.mod(points - lo, size)
+    hi = lo + size
+    out = np.where(out >= hi, lo, out)  # rounding can land on the upper edge
+    return np.where(out < lo, lo, out)
+
+
+def _images(sites: np.ndarray, box, margin: float):
+    """Sites first (copy 0), then every image inside the box grown by ``margin``.
+
+    Returns ``(ext (N, 2), source (N,) int64, shift (N, 2) int64)``.
+    """
+    x0, y0, x1, y1 = box
+    w = x1 - x0
+    h = y1 - y0
+    ax = int(np.ceil(margin / w))
+    ay = int(np.ceil(margin / h))
+    n = len(sites)
+    idx = np.arange(n)
+    ext = [sites]
+    source = [idx]
+    shift = [np.zeros((n, 2), dtype=np.int64)]
+    for a in range(-ax, ax + 1):
+        for b in range(-ay, ay + 1):
+            if a == 0 and b == 0:
+                continue
+            img = sites + np.array([a * w, b * h])
+            keep = (
+                (img[:, 0] >= x0 - margin)
+                & (img[:, 0] <= x1 + margin)
+                & (img[:, 1] >= y0 - margin)
+                & (img[:, 1] <= y1 + margin)
+            )
+            if keep.any():
+                ext.append(img[keep])
+                source.append(idx[keep])
+                shift.append(np.tile(np.array([a, b], dtype=np.int64), (int(keep.sum()), 1)))
+    return np.concatenate(ext), np.concatenate(source), np.concatenate(shift)
+
+
+def _proved(d: Diagram, cells: np.ndarray, box, margin: float) -> bool:
+    """True when every vertex of ``cells`` has its empty disk inside the complete region."""
+    coords, (ring, poly, geom) = d.to_geoarrow()
+    if not len(cells):
+        return True
+    per_cell = ring[poly[geom[cells + 1]]] - ring[poly[geom[cells]]]
+    if not per_cell.sum():
+        return True
+    first = ring[poly[geom[cells]]]
+    owner = np.repeat(cells, per_cell)
+    start = np.repeat(first - np.cumsum(np.concatenate(([0], per_cell[:-1]))), per_cell)
+    v = coords[np.arange(per_cell.sum()) + start]
+    r = np.hypot(*(v - d.sites[owner]).T)
+    x0, y0, x1, y1 = box
+    room = np.minimum.reduce(
+        [
+            v[:, 0] - (x0 - margin),
+            (x1 + margin) - v[:, 0],
+            v[:, 1] - (y0 - margin),
+            (y1 + margin) - v[:, 1],
+        ]
+    )
+    return bool((room >= r * (1.0 + _PROOF_RTOL)).all())
+
+
+def _gather(d: Diagram, source: np.ndarray, n: int, keep: np.ndarray):
+    """Buffers of ``n`` cells, cell ``i`` made of the pieces ``keep[source[keep] == i]``."""
+    keep = keep[np.argsort(source[keep], kind="stable")]
+    pieces = d.cells[keep]
+    owner = source[keep]
+    nonempty = ~shapely.is_empty(pieces)
+    pieces = pieces[nonempty]
+    owner = owner[nonempty]
+    counts = np.bincount(owner, minlength=n)
+    out = np.full(n, shapely.Polygon(), dtype=object)
+    single = counts[owner] == 1
+    out[owner[single]] = pieces[single]
+    multi = ~single
+    if multi.any():
+        groups = np.unique(owner[multi], return_inverse=True)
+        merged = shapely.multipolygons(pieces[multi], indices=groups[1])
+        bad = ~shapely.is_valid(merged)
+        # pieces of one cell that touch along an edge (a cell bordering its own image)
+        for j in np.flatnonzero(bad):
+            merged[j] = shapely.union_all(shapely.get_parts(merged[j]))
+        out[groups[0]] = merged
+    return _buffers(out)
+
+
+def _buffers(cells: np.ndarray):
+    """GeoArrow multipolygon buffers ``(coords, ring, poly, geom)`` of shapely cells."""
+    n = len(cells)
+    full = np.flatnonzero(~shapely.is_empty(cells))
+    counts = np.zeros(n, dtype=np.int64)
+    if not len(full):
+        z = np.zeros(1, dtype=np.int64)
+        return np.zeros((0, 2)), z, z.copy(), np.zeros(n + 1, dtype=np.int64)
+    kind, coords, offsets = shapely.to_ragged_array(cells[full])
+    if kind == shapely.GeometryType.POLYGON:
+        ring, poly = offsets
+        counts[full] = 1
+    else:
+        ring, poly, geom_full = offsets
+        counts[full] = np.diff(geom_full)
+    geom = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(counts, out=geom[1:])
+    return np.ascontiguousarray(coords), ring.astype(np.int64), poly.astype(np.int64), geom
+
+
+def _torus_edges(d: Diagram, source, shift, n: int, wrap: bool) -> Edges:
+    pairs = d.edges.pairs
+    coords = d.edges.coords
+    a = pairs[:, 0]
+    b = pairs[:, 1]
+    sa = source[a]
+    sb = source[b]
+    if wrap:
+        keep = np.ones(len(pairs), dtype=bool)
+    else:
+        # each torus edge once: where the lower-index cell is the original copy (a self
+        # edge, between a cell and its own image, where the image lies on the positive side)
+        lower_is_a = (sa < sb) | ((sa == sb) & _positive(shift[b] - shift[a]))
+        low = np.where(lower_is_a, a, b)
+        keep = low < n
+    lo = np.minimum(sa, sb)[keep]
+    hi = np.maximum(sa, sb)[keep]
+    return Edges(np.ascontiguousarray(coords[keep]), np.stack((lo, hi), axis=1).astype(np.int64))
+
+
+def _positive(s: np.ndarray) -> np.ndarray:
+    return (s[:, 0] > 0) | ((s[:, 0] == 0) & (s[:, 1] > 0))
+
+
+def periodic_voronoi(points, boundary, *, algorithm: str = "delaunay", wrap: bool = False):
+    """Voronoi diagram on the torus made by identifying opposite edges of ``boundary``.
+
+    See :func:`voroforge.voronoi` (``periodic=True``) for the public description.
+    """
+    box = _box_of(boundary)
+    pts = wrap_points(as_points(points), box)
+    n = len(pts)
+    x0, y0, x1, y1 = box
+    if n == 0:
+        d = voronoi(pts, box, algorithm=algorithm)
+        d.periodic = True
+        d.wrapped = wrap
+        return d
+    area = (x1 - x0) * (y1 - y0)
+    margin = _MARGIN_CELLS * np.sqrt(area / n)
+    for _ in range(_MAX_TRIES):
+        ext, source, shift = _images(pts, box, margin)
+        if wrap:
+            d = voronoi(ext, box, algorithm=algorithm)
+            owners = np.flatnonzero(d.duplicate_of < 0)
+        else:
+            grown = (x0 - margin, y0 - margin, x1 + margin, y1 + margin)
+            d = voronoi(ext, grown, algorithm=algorithm)
+            owners = np.flatnonzero(d.duplicate_of[:n] < 0)
+        if _proved(d, owners, box, margin):
+            break
+        margin *= 2.0
+    else:  # pragma: no cover - the margin reaches the box diagonal long before
+        raise RuntimeError("periodic diagram: could not prove the margin")
+    if wrap:
+        buffers = _gather(d, source, n, np.arange(len(ext)))
+    else:
+        coords, (ring, poly, geom) = d.to_geoarrow()
+        g = geom[: n + 1]
+        p = poly[: g[-1] + 1]
+        r = ring[: p[-1] + 1]
+        buffers = (coords[: r[-1]].copy(), r.copy(), p.copy(), g.copy())
+    edges = _torus_edges(d, source, shift, n, wrap)
+    dom = make_domain(box, pts)
+    out = Diagram(
+        np.ascontiguousarray(d.sites[:n]),
+        np.ascontiguousarray(d.duplicate_of[:n]),
+        dom,
+        buffers,
+        edges,
+        algorithm,
+        d._k,
+    )
+    out.periodic = True
+    out.wrapped = wrap
+    return out
