@@ -129,9 +129,12 @@ def lloyd(
     -----
     Lloyd's energy never increases (exactly so for uniform and raster densities; with a
     callable density up to the quadrature error). Sites outside the domain get the part of
-    the domain nearest to them and move to its centroid; a site whose cell is empty (an exact
-    duplicate: later copies get empty cells, or a site whose nearest part of the domain is
-    empty) has no centroid and stays where it is.
+    the domain nearest to them and move to its centroid; a site whose cell is empty has no
+    centroid and stays where it is for that iteration. Exact duplicates: the later copies
+    get empty cells, so they wait one iteration while the first copy moves to its centroid,
+    then they have cells of their own and the sites separate. The centroid of a cell cut by
+    a concave boundary can lie outside the domain (that site then gets the domain part
+    nearest to it, as any outside site).
 
     Examples
     --------
@@ -193,7 +196,7 @@ def _capacity(z, dom, integ, targets, iterations, stop):
     energy, elapsed, shifts = [], [], []
     z_new = np.zeros_like(z)
     for it in range(iterations + 1):
-        d, w, _, _ = _fit(z, targets, dom, w, 1e-9, 100)
+        d, w, _, _ = _fit(z.copy(), targets, dom, w, 1e-9, 100)
         mass, first, second = integ(d._buffers, z)
         energy.append(float(second.sum()))
         elapsed.append(time.perf_counter() - t0)
@@ -203,7 +206,7 @@ def _capacity(z, dom, integ, targets, iterations, stop):
         shifts.append(shift)
         z, z_new = z_new, z
         if stop is not None and shift <= stop:
-            d, w, _, _ = _fit(z, targets, dom, w, 1e-9, 100)
+            d, w, _, _ = _fit(z.copy(), targets, dom, w, 1e-9, 100)
             mass, first, second = integ(d._buffers, z)
             energy.append(float(second.sum()))
             elapsed.append(time.perf_counter() - t0)

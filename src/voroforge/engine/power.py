@@ -233,6 +233,11 @@ def _fit(pts, targets, dom, w0, tol, max_iter):
     w = w0.copy()
     d = _compute(pts, w, dom)
     areas = d.areas
+    if (areas <= 0.0).any() and w.any():
+        # the warm start empties a cell: start from the Voronoi diagram instead
+        w = np.zeros_like(w)
+        d = _compute(pts, w, dom)
+        areas = d.areas
     if (areas <= 0.0).any():
         i = int(np.flatnonzero(areas <= 0.0)[0])
         raise ValueError(
@@ -310,6 +315,7 @@ def power_fit(
         Most Newton steps.
     weights : (n,) array_like, optional
         Starting weights (default zeros: the Voronoi diagram); warm starts converge faster.
+        Starting weights that leave a cell empty are replaced by zeros.
 
     Returns
     -------

@@ -1,0 +1,258 @@
+"""Lloyd relaxation, the L-BFGS CVT solver and density-weighted cell moments."""
+
+from __future__ import annotations
+
+from math import factorial
+
+import numpy as np
+import pytest
+import shapely
+
+import voroforge as vf
+from voroforge.engine._integrate import RADON_NODES, RADON_WEIGHTS, Integrator
+
+SQUARE = shapely.box(0, 0, 1, 1)
+HOLED = shapely.box(0, 0, 1, 1).difference(shapely.Point(0.5, 0.5).buffer(0.25, quad_segs=6))
+L_SHAPE = shapely.Polygon([(0, 0), (1, 0), (1, 0.4), (0.4, 0.4), (0.4, 1), (0, 1)])
+TWO_PARTS = shapely.MultiPolygon([shapely.box(0, 0, 0.45, 1), shapely.box(0.55, 0, 1, 1)])
+
+
+def reference_moments(cells, sites):
+    """Mass, first and second moments of unit density, from GEOS triangles (independent)."""
+    n = len(cells)
+    mass = np.zeros(n)
+    first = np.zeros((n, 2))
+    second = np.zeros(n)
+    for i, cell in enumerate(cells):
+        if cell.is_empty:
+            continue
+        tris = shapely.get_parts(shapely.constrained_delaunay_triangles(cell))
+        for t in tris:
+            a, b, c = shapely.get_coordinates(t)[:3] - sites[i]
+            area = 0.5 * abs((b - a)[0] * (c - a)[1] - (b - a)[1] * (c - a)[0])
+            g = (a + b + c) / 3
+            mass[i] += area
+            first[i] += area * g
+            spread = ((a - g) ** 2 + (b - g) ** 2 + (c - g) ** 2).sum() / 12
+            second[i] += area * ((g**2).sum() + spread)
+    return mass, first, second
+
+
+@pytest.mark.parametrize("domain", [SQUARE, HOLED, L_SHAPE, TWO_PARTS])
+def test_uniform_moments_are_exact(domain):
+    rng = np.random.default_rng(0)
+    pts = rng.random((60, 2))
+    d = vf.voronoi(pts, domain)
+    mass, first, second = Integrator(None, 60)(d._buffers, pts)
+    ref = reference_moments(d.cells, pts)
+    assert np.allclose(mass, ref[0], rtol=0, atol=1e-14)
+    assert np.allclose(first, ref[1], rtol=0, atol=1e-14)
+    assert np.allclose(second, ref[2], rtol=0, atol=1e-14)
+    assert np.allclose(mass, d.areas, rtol=1e-12, atol=1e-15)
+
+
+@pytest.mark.parametrize("domain", [SQUARE, HOLED, L_SHAPE, TWO_PARTS])
+def test_energy_never_increases(domain):
+    pts = np.random.default_rng(1).random((150, 2))
+    r = vf.lloyd(pts, domain, iterations=25)
+    assert r.energy.shape == (26,) and r.shift.shape == (25,) and r.iterations == 25
+    assert np.all(np.diff(r.energy) <= 1e-15 * r.energy[0])
+    assert r.energy[-1] < 0.9 * r.energy[0]
+    assert np.array_equal(r.diagram.sites, r.points)
+    # the recorded energy is the energy of the returned diagram and points
+    _, _, second = Integrator(None, 150)(r.diagram._buffers, r.points)
+    assert second.sum() == pytest.approx(r.energy[-1], rel=1e-12)
+    if domain is SQUARE:  # centroids of cells cut by a concave boundary may lie outside it
+        assert np.all((r.points >= 0) & (r.points <= 1))
+
+
+def test_converged_sites_are_centroids():
+    pts = np.random.default_rng(2).random((40, 2))
+    r = vf.lloyd(pts, (0, 0, 1, 1), iterations=2000, tol=1e-10)
+    assert r.iterations < 2000 and r.shift[-1] <= 1e-10
+    assert np.max(np.hypot(*(r.diagram.centroids - r.points).T)) <= 1e-9
+
+
+def test_radon_rule_degree_five():
+    assert RADON_WEIGHTS.sum() == pytest.approx(1.0, abs=1e-15)
+    # reference triangle (0,0), (1,0), (0,1): ∫ x^p y^q = p! q! / (p + q + 2)!
+    x = RADON_NODES[:, 1]
+    y = RADON_NODES[:, 2]
+    for p in range(6):
+        for q in range(6 - p):
+            exact = factorial(p) * factorial(q) / factorial(p + q + 2)
+            approx = 0.5 * (RADON_WEIGHTS * x**p * y**q).sum()
+            assert approx == pytest.approx(exact, rel=1e-13, abs=1e-16), (p, q)
+
+
+@pytest.mark.parametrize("domain", [SQUARE, HOLED, L_SHAPE])
+def test_callable_density_linear_is_exact(domain):
+    pts = np.random.default_rng(3).random((50, 2))
+    d = vf.voronoi(pts, domain)
+    mass, first, _ = Integrator(lambda x, y: 1.0 + 2.0 * x + 0.5 * y, 50)(d._buffers, pts)
+    area = shapely.area(d.cells)
+    cen = np.array([c.centroid.coords[0] if not c.is_empty else (0, 0) for c in d.cells])
+    assert np.allclose(mass, area * (1 + 2 * cen[:, 0] + 0.5 * cen[:, 1]), rtol=1e-12)
+    # constant density: the same numbers as the closed form
+    m1, f1, s1 = (a.copy() for a in Integrator(None, 50)(d._buffers, pts))
+    m2, f2, s2 = Integrator(lambda x, y: np.ones_like(x), 50)(d._buffers, pts)
+    assert np.allclose(m1, m2, rtol=1e-12) and np.allclose(s1, s2, rtol=1e-12)
+    assert np.allclose(f1, f2, rtol=1e-10, atol=1e-16)
+
+
+def _pixel_reference(cells, sites, values, bounds):
+    """Σ over pixels of value × (mass, first moment) of cell ∩ pixel, from GEOS overlays."""
+    h, w = values.shape
+    x0, y0, x1, y1 = bounds
+    dx, dy = (x1 - x0) / w, (y1 - y0) / h
+    n = len(cells)
+    mass = np.zeros(n)
+    first = np.zeros((n, 2))
+    for r in range(h):
+        for c in range(w):
+            pix = shapely.box(x0 + c * dx, y1 - (r + 1) * dy, x0 + (c + 1) * dx, y1 - r * dy)
+            piece = shapely.intersection(cells, pix)
+            a = shapely.area(piece)
+            ok = a > 0
+            g = shapely.get_coordinates(shapely.centroid(piece[ok]))
+            mass[ok] += values[r, c] * a[ok]
+            first[ok] += values[r, c] * a[ok, None] * (g - sites[ok])
+    return mass, first
+
+
+@pytest.mark.parametrize("domain", [SQUARE, HOLED, L_SHAPE])
+def test_raster_density_exact_over_cells(domain):
+    rng = np.random.default_rng(4)
+    pts = rng.random((30, 2))
+    values = rng.uniform(0.0, 3.0, size=(7, 9))
+    values[2, 3] = 0.0
+    bounds = (-0.05, 0.1, 1.02, 0.93)  # not aligned with the domain; 0 outside
+    d = vf.voronoi(pts, domain)
+    mass, first, _ = Integrator((values, bounds), 30)(d._buffers, pts)
+    ref_mass, ref_first = _pixel_reference(d.cells, pts, values, bounds)
+    assert np.allclose(mass, ref_mass, rtol=1e-10, atol=1e-14)
+    assert np.allclose(first, ref_first, rtol=1e-9, atol=1e-14)
+
+
+def test_raster_density_relaxation_monotone_and_attracts_sites():
+    values = np.ones((20, 20))
+    values[:, 10:] = 9.0  # right half nine times denser
+    pts = np.random.default_rng(5).random((120, 2))
+    r = vf.lloyd(pts, (0, 0, 1, 1), iterations=30, density=(values, (0, 0, 1, 1)))
+    assert np.all(np.diff(r.energy) <= 1e-15 * r.energy[0])
+    # a CVT's site density goes as density**0.5: 3:1 here; 30 Lloyd steps get part way
+    assert (r.points[:, 0] > 0.5).sum() > 0.55 * len(pts) > (pts[:, 0] > 0.5).sum()
+
+
+def test_callable_density_attracts_sites():
+    pts = np.random.default_rng(6).random((100, 2))
+
+    def rho(x, y):
+        return np.exp(-20 * ((x - 0.3) ** 2 + (y - 0.3) ** 2))
+
+    r = vf.lloyd(pts, (0, 0, 1, 1), iterations=30, density=rho)
+    near = np.hypot(r.points[:, 0] - 0.3, r.points[:, 1] - 0.3) < 0.3
+    start = np.hypot(pts[:, 0] - 0.3, pts[:, 1] - 0.3) < 0.3
+    assert near.sum() > 1.5 * start.sum()
+    # decreasing up to the quadrature error
+    assert np.all(np.diff(r.energy) <= 1e-9 * r.energy[0])
+
+
+def test_gradient_matches_finite_differences():
+    pts = np.random.default_rng(7).random((25, 2))
+    integ = Integrator(None, 25)
+
+    def energy(z):
+        d = vf.voronoi(z, (0, 0, 1, 1))
+        return integ(d._buffers, z)[2].sum()
+
+    d = vf.voronoi(pts, (0, 0, 1, 1))
+    grad = -2.0 * integ(d._buffers, pts)[1].copy()
+    h = 1e-6
+    for i, k in [(0, 0), (3, 1), (11, 0), (24, 1)]:
+        zp = pts.copy()
+        zm = pts.copy()
+        zp[i, k] += h
+        zm[i, k] -= h
+        fd = (energy(zp) - energy(zm)) / (2 * h)
+        assert fd == pytest.approx(grad[i, k], rel=1e-5, abs=1e-11)
+
+
+def test_lbfgs_beats_lloyd_per_iteration():
+    pts = np.random.default_rng(8).random((300, 2))
+    lloyd = vf.lloyd(pts, (0, 0, 1, 1), iterations=60)
+    quasi = vf.lloyd(pts, (0, 0, 1, 1), iterations=60, method="lbfgs")
+    assert quasi.method == "lbfgs" and quasi.energy.shape == (quasi.iterations + 1,)
+    assert quasi.energy[-1] < lloyd.energy[-1]
+    assert np.all(np.diff(quasi.energy) <= 1e-15 * quasi.energy[0])
+    assert np.array_equal(quasi.diagram.sites, quasi.points)
+    _, _, second = Integrator(None, 300)(quasi.diagram._buffers, quasi.points)
+    assert second.sum() == pytest.approx(quasi.energy[-1], rel=1e-12)
+
+
+def test_lbfgs_on_holed_domain_with_density():
+    pts = np.random.default_rng(9).random((80, 2))
+    pts = pts[shapely.contains_xy(HOLED, pts[:, 0], pts[:, 1])]
+    r = vf.lloyd(pts, HOLED, iterations=30, method="lbfgs", density=lambda x, y: 1 + x)
+    assert r.energy[-1] < 0.8 * r.energy[0]
+
+
+def test_duplicates_and_outside_sites():
+    pts = np.array([[0.2, 0.2], [0.2, 0.2], [0.7, 0.6], [1.1, 0.5], [0.4, 0.8]])
+    one = vf.lloyd(pts, (0, 0, 1, 1), iterations=1)
+    # the later copy has an empty cell and stays put; the outside site moves into the box
+    assert np.array_equal(one.points[1], pts[1]) and not np.array_equal(one.points[0], pts[0])
+    assert 0 <= one.points[3, 0] <= 1
+    # once its twin has moved away the copy gets a cell of its own
+    r = vf.lloyd(pts, (0, 0, 1, 1), iterations=5)
+    assert np.all(r.diagram.duplicate_of == -1) and np.all(r.diagram.areas > 0)
+    assert np.all(np.diff(r.energy) <= 1e-15 * r.energy[0])
+
+
+def test_capacity_constrained_cvt():
+    rng = np.random.default_rng(10)
+    pts = rng.uniform(0.05, 0.95, size=(60, 2))
+    raw = np.where(pts[:, 0] < 0.5, 1.0, 3.0)
+    target = raw / raw.sum()
+    r = vf.lloyd(pts, (0, 0, 1, 1), iterations=15, areas=target)
+    assert isinstance(r.diagram, vf.PowerDiagram)
+    assert np.array_equal(r.weights, r.diagram.weights)
+    assert np.all(np.abs(r.diagram.areas - target) <= 1e-6 * target)
+    assert r.energy[-1] < r.energy[0]
+    # the sites ended near their power cells' centroids
+    assert r.shift[-1] < r.shift[0]
+
+
+def test_tol_and_zero_iterations():
+    pts = np.random.default_rng(11).random((30, 2))
+    r = vf.lloyd(pts, (0, 0, 1, 1), iterations=0)
+    assert r.iterations == 0 and r.energy.shape == (1,) and np.array_equal(r.points, pts)
+    r = vf.lloyd(pts, (0, 0, 1, 1), iterations=500, tol=1e-3)
+    assert r.iterations < 500 and r.shift[-1] <= 1e-3 and np.all(r.shift[:-1] > 1e-3)
+    q = vf.lloyd(pts, (0, 0, 1, 1), iterations=500, tol=1e-3, method="lbfgs")
+    assert q.iterations < 500
+
+
+def test_errors_and_input_untouched():
+    pts = np.random.default_rng(12).random((20, 2))
+    keep = pts.copy()
+    vf.lloyd(pts, iterations=3)
+    assert np.array_equal(pts, keep)
+    with pytest.raises(ValueError, match="unknown method"):
+        vf.lloyd(pts, method="newton")
+    with pytest.raises(ValueError, match="iterations"):
+        vf.lloyd(pts, iterations=-1)
+    with pytest.raises(ValueError, match="density must be"):
+        vf.lloyd(pts, density="dense")
+    with pytest.raises(ValueError, match="non-negative"):
+        vf.lloyd(pts, (0, 0, 1, 1), iterations=1, density=lambda x, y: x - 2)
+    with pytest.raises(ValueError, match="one value per point"):
+        vf.lloyd(pts, (0, 0, 1, 1), iterations=1, density=lambda x, y: np.ones(3))
+    with pytest.raises(ValueError, match="raster"):
+        vf.lloyd(pts, density=(np.ones(5), (0, 0, 1, 1)))
+    with pytest.raises(ValueError, match="bounds"):
+        vf.lloyd(pts, density=(np.ones((5, 5)), (1, 0, 0, 1)))
+    with pytest.raises(ValueError, match="method='lloyd'"):
+        vf.lloyd(pts, (0, 0, 1, 1), method="lbfgs", areas=np.full(20, 0.05))
+    with pytest.raises(ValueError, match="sum to the domain"):
+        vf.lloyd(pts, (0, 0, 1, 1), areas=np.full(20, 1.0))
