@@ -2,22 +2,26 @@
 
 This is the voro++ design in two dimensions. Every cell is built on its own, so cells are
 computed in parallel and the same structure carries over to 3D (a polyhedron instead of a
-polygon, the same grid and search):
+polygon, the same grid, search and exact finishing):
 
 1. The sites are counting-sorted into a uniform grid of buckets over their bounding box
    (about ``_PER_BUCKET`` sites per bucket, CSR layout: ``start`` and sorted coordinates).
 2. A cell starts as the box, in coordinates relative to its site (so 500000/4000000-style
    inputs keep their precision). Buckets are visited in square rings of growing distance
-   from the site's bucket, and the polygon is cut by the bisector of each site found there.
-3. The polygon lies within ``r`` (its largest vertex distance) of the site, and the bisector
-   of a site at distance ``d`` stays at least ``d / 2`` away, so only sites with
-   ``d < 2 r`` can cut. Once a ring is farther than ``2 r`` the cell is final.
+   from the site's bucket, and the cell is cut by the bisector of each site found there
+   (:func:`_plane_values`, :func:`_cut_by_plane`).
+3. The cell lies within ``r`` (:func:`_radius2`, its largest vertex distance) of the site,
+   and the bisector of a site at distance ``d`` stays at least ``d / 2`` away, so only sites
+   with ``d < 2 r`` can cut. Once a ring of buckets is farther than ``2 r`` the cut is final.
+4. Exact finishing (:func:`_settle`): the ring of neighbours is checked with the exact
+   ``orient2d``/``incircle`` against every site met within ``2 r`` (zero-length edges of
+   cocircular sites go, neighbours lost to coinciding float bisectors come back), and every
+   vertex is recomputed from its sites in index order: the circumcentre of the three
+   lowest-numbered sites on its circle, or the bisector's crossing with a box side
+   computed as the default algorithm computes it. Cells sharing a vertex get the same bits.
 
-The cut keeps the vertices with signed value ``p . q - |q|^2 / 2 <= 0`` (each value computed
-once), inserts the two crossing points and never stores two equal consecutive vertices, so
-the result stays a consistent ring without any tolerance. Output contract (shared with
-``cells.py``): ``coords (K, 2)`` counter-clockwise vertices per cell, ``offsets (n + 1,)``,
-``owner (K,)`` with the site across each edge, -1 on the box.
+Output contract (shared with ``cells.py``): ``coords (K, 2)`` counter-clockwise vertices per
+cell, ``offsets (n + 1,)``, ``owner (K,)`` with the site across each edge, -1 on the box.
 
 Output arrays are exact-size in one pass: chunks of cells are written to per-chunk slabs of
 fixed capacity and then copied into place; the rare chunk that overflows its slab is simply
@@ -26,10 +30,13 @@ recomputed straight into the output.
 
 from __future__ import annotations
 
+import numba
 import numpy as np
 from numba import njit, prange
 
-from ..config import NJIT, NJIT_PARALLEL
+from ..config import NJIT, NJIT_PARALLEL, PARALLEL_MIN_SITES
+from .cells import _box_crossing
+from .predicates import circumcenter, incircle, orient2d
 
 _PER_BUCKET = 2.0  # mean sites per grid bucket
 _CHUNK = 512  # cells per parallel work item
@@ -37,8 +44,14 @@ _SLAB = 7  # slab vertices per cell of a chunk (the mean over a diagram is below
 _CAP = 64  # initial per-cell scratch capacity (doubled when a cell needs more)
 _REACH = 4.0 * (1.0 + 1e-9)  # (2 r)^2 / r^2 with a margin against rounding in r
 
-# Box sides as internal owner codes, counter-clockwise from the bottom; all become -1.
-_BOTTOM, _RIGHT, _TOP, _LEFT = -1, -2, -3, -4
+_NEAR = 1e-7  # relative band around a vertex's circle where candidates get the exact test
+#: |d| (squared distance to a vertex's circle minus its radius squared) below which a site
+#: counts as on the circle: 2 r times the default algorithm's 2**-46 vertex merge tolerance
+_MERGE = 2.0**-45
+_MAX_FIX = 64  # rounds of exact repair per cell before the float cut is kept as it is
+
+# Box sides as internal owner codes (those of cells.py's box crossings); all become -1.
+_LEFT, _BOTTOM, _RIGHT, _TOP = -1, -2, -3, -4
 
 
 @njit(**NJIT)
@@ -95,6 +108,23 @@ def _bucket_sort(xs, ys, x0, y0, hx, hy, nx, ny):
     return start, sx, sy, sidx
 
 
+# ---------------------------------------------------------------------------------------------
+# generic cell operations: a convex cell, a plane that cuts it, its radius. The 3D kernel swaps
+# the polygon for a polyhedron and keeps the same three steps and the same search around them.
+# ---------------------------------------------------------------------------------------------
+
+
+@njit(**NJIT)
+def _plane_values(px, py, a, m, qx, qy, h, ss):
+    """Signed values ``p . q - h`` of the cell's vertices; whether any is positive (cut off)."""
+    out = False
+    for u in range(m):
+        s = px[a + u] * qx + py[a + u] * qy - h
+        ss[u] = s
+        out |= s > 0.0
+    return out
+
+
 @njit(**NJIT)
 def _push(px, py, po, c, x, y, o):
     """Append vertex ``c`` (an absolute index), or merge it into vertex ``c - 1`` if equal.
@@ -111,11 +141,11 @@ def _push(px, py, po, c, x, y, o):
 
 
 @njit(**NJIT)
-def _cut(px, py, po, a, m, b, ss, j):
-    """Cut the polygon at ``a:a + m`` where its signed values ``ss`` are positive.
+def _cut_by_plane(px, py, po, a, m, b, ss, j):
+    """Cut the cell at ``a:a + m`` where its plane values ``ss`` are positive.
 
-    The result goes to ``b:``; returns its length and its squared radius (largest squared
-    vertex norm). ``px, py, po`` hold both polygons (``a`` and ``b`` are their offsets).
+    The new face (edge) gets owner ``j``. The result goes to ``b:``; returns its length.
+    ``px, py, po`` hold both polygons (``a`` and ``b`` are their offsets).
     """
     c = b
     px[b - 1] = np.nan  # so that the first vertex is never merged
@@ -138,10 +168,16 @@ def _cut(px, py, po, a, m, b, ss, j):
             c = _push(px, py, po, c, bx + t * (ax - bx), by + t * (ay - by), po[a + k])
     while c > b + 1 and px[c - 1] == px[b] and py[c - 1] == py[b]:
         c -= 1  # trailing vertices equal to the first one
+    return c - b
+
+
+@njit(**NJIT)
+def _radius2(px, py, a, m):
+    """Largest squared distance of the cell's vertices from its site (the origin)."""
     r2 = 0.0
-    for k in range(b, c):
+    for k in range(a, a + m):
         r2 = max(r2, px[k] * px[k] + py[k] * py[k])
-    return c - b, r2
+    return r2
 
 
 @njit(**NJIT)
@@ -159,12 +195,207 @@ def _ring_gap(ix, iy, ring, fx0, fx1, fy0, fy1, hx, hy, nx, ny):
     return -1.0 if gap == np.inf else gap
 
 
+# ---------------------------------------------------------------------------------------------
+# exact finishing: the ring of neighbours is checked with exact predicates, then every vertex
+# is computed from its sites in a fixed order, so the cells sharing it agree bit for bit
+# ---------------------------------------------------------------------------------------------
+
+
+@njit(**NJIT)
+def _edge_ok(i, j, p, q, xs, ys):
+    """Whether neighbour ``j`` between ``p`` (before) and ``q`` (after) has an edge of length > 0.
+
+    Around site ``i`` counter-clockwise, ``p`` lies right of ``i -> j`` and ``q`` left of it;
+    the edge's ends are the circumcentres of ``(i, p, j)`` and ``(i, j, q)``, in that order
+    exactly when ``p`` is strictly outside the circle through ``i, j, q`` (exact predicates).
+    """
+    ix = xs[i]
+    iy = ys[i]
+    jx = xs[j]
+    jy = ys[j]
+    if orient2d(ix, iy, jx, jy, xs[p], ys[p]) >= 0.0:
+        return False
+    if orient2d(ix, iy, jx, jy, xs[q], ys[q]) <= 0.0:
+        return False
+    return incircle(ix, iy, jx, jy, xs[q], ys[q], xs[p], ys[p]) < 0.0
+
+
+@njit(**NJIT)
+def _vertex(a, b, c, xs, ys):
+    """Circumcentre of sites ``a, b, c`` computed in increasing index order (canonical bits)."""
+    if a > b:
+        a, b = b, a
+    if b > c:
+        b, c = c, b
+    if a > b:
+        a, b = b, a
+    return circumcenter(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c])
+
+
+@njit(**NJIT)
+def _remove(lab, m, u):
+    for k in range(u, m - 1):
+        lab[k] = lab[k + 1]
+    return m - 1
+
+
+@njit(**NJIT)
+def _drop_invalid(i, lab, m, xs, ys):
+    """Remove repeated labels and neighbours whose edge has no positive length."""
+    u = 0
+    while u < m and m >= 3:
+        j = lab[u]
+        p = lab[u - 1] if u > 0 else lab[m - 1]
+        q = lab[u + 1] if u + 1 < m else lab[0]
+        if j == p or (j >= 0 and p >= 0 and q >= 0 and p != q and not _edge_ok(i, j, p, q, xs, ys)):
+            m = _remove(lab, m, u)
+            u = max(u - 1, 0)
+            continue
+        u += 1
+    return m
+
+
+@njit(**NJIT)
+def _settle(i, lab, m, cand, nc, sidx, xs, ys, vx, vy):
+    """Make the ring of neighbour labels ``lab[:m]`` exactly right; returns its length.
+
+    Float cutting can keep an edge of zero length (cocircular sites), or lose a neighbour
+    whose bisector coincides with another one in floating point. Labels without a positive
+    edge are dropped (:func:`_edge_ok`); then each vertex between neighbours ``a, b`` is
+    checked against every candidate site: one strictly inside the circle through ``i, a, b``
+    is inserted between them (float filter, exact ``incircle`` near the circle). Candidates
+    exactly on the circle are cocircular: the vertex is then the circumcentre of the three
+    lowest-numbered sites on it, which every cell around the vertex finds the same.
+    Returns -1 when the ring cannot be settled (the caller keeps the float cut).
+    """
+    cap = lab.shape[0]
+    for _ in range(_MAX_FIX):
+        m = _drop_invalid(i, lab, m, xs, ys)
+        if m < 3:
+            return -1
+        inserted = False
+        for u in range(m):
+            a = lab[u - 1] if u > 0 else lab[m - 1]
+            b = lab[u]
+            if a < 0 or b < 0:
+                continue
+            ix = xs[i]
+            iy = ys[i]
+            if orient2d(ix, iy, xs[a], ys[a], xs[b], ys[b]) <= 0.0:
+                return -1
+            vx_, vy_ = _vertex(i, a, b, xs, ys)
+            r2 = (ix - vx_) * (ix - vx_) + (iy - vy_) * (iy - vy_)
+            tol = _NEAR * r2
+            # a site this close to the circle is on it: the edge it would add or keep is
+            # shorter than floats can order (the default algorithm merges such vertices too)
+            r = np.sqrt(r2)
+            merge = _MERGE * r * (abs(vx_) + abs(vy_) + r)
+            nxt = lab[u + 1] if u + 1 < m else lab[0]
+            prv = lab[u - 2] if u >= 2 else lab[u - 2 + m]
+            # the three lowest-numbered sites on the circle
+            t0 = min(i, a, b)
+            t2 = max(i, a, b)
+            t1 = i + a + b - t0 - t2
+            for c in range(nc):
+                x = sidx[cand[c]]
+                if x == a or x == b:
+                    continue
+                dx = xs[x] - vx_
+                dy = ys[x] - vy_
+                d = dx * dx + dy * dy - r2
+                if d > tol:
+                    continue
+                if abs(d) <= merge:
+                    if x == nxt or x == prv:
+                        # the edge of b (or a) between this vertex and x's is noise: drop it
+                        m = _remove(lab, m, u if x == nxt else (u - 1 if u > 0 else m - 1))
+                        inserted = True
+                        break
+                    s = 0.0
+                elif d < -tol:
+                    s = 1.0
+                else:
+                    s = incircle(ix, iy, xs[a], ys[a], xs[b], ys[b], xs[x], ys[x])
+                if s > 0.0:
+                    if m < cap and not _has(lab, m, x):
+                        for k in range(m, u, -1):
+                            lab[k] = lab[k - 1]
+                        lab[u] = x
+                        m += 1
+                        inserted = True
+                        break
+                elif s == 0.0:
+                    if x < t0:
+                        t0, t1, t2 = x, t0, t1
+                    elif x < t1:
+                        t1, t2 = x, t1
+                    elif x < t2:
+                        t2 = x
+            if inserted:
+                break
+            vx[u], vy[u] = circumcenter(xs[t0], ys[t0], xs[t1], ys[t1], xs[t2], ys[t2])
+        if not inserted:
+            return m
+    return -1
+
+
+@njit(**NJIT)
+def _has(lab, m, x):
+    for k in range(m):
+        if lab[k] == x:
+            return True
+    return False
+
+
+@njit(**NJIT)
+def _emit_exact(i, lab, m, vx, vy, xs, ys, box, ox, oy, oo, pos):
+    """Write the settled ring with canonical vertices from ``pos``; -1 when one is undefined.
+
+    Bisector-bisector vertices come from :func:`_settle`; a bisector meets a box side at the
+    crossing computed from the pair in index order (as the default algorithm does), and two
+    box sides meet at the exact corner.
+    """
+    c = pos
+    for u in range(m):
+        a = lab[u - 1] if u > 0 else lab[m - 1]
+        b = lab[u]
+        if a >= 0 and b >= 0:
+            x = vx[u]
+            y = vy[u]
+        elif a >= 0 or b >= 0:
+            j = a if a >= 0 else b
+            x, y = _box_crossing(i, j, xs, ys, b if a >= 0 else a, box)
+        else:
+            vert = a if (a == _LEFT or a == _RIGHT) else b
+            horz = b if vert == a else a
+            if not ((vert == _LEFT or vert == _RIGHT) and (horz == _BOTTOM or horz == _TOP)):
+                return -1
+            x = box[0] if vert == _LEFT else box[2]
+            y = box[1] if horz == _BOTTOM else box[3]
+        if not (np.isfinite(x) and np.isfinite(y)):
+            return -1
+        x = min(max(x, box[0]), box[2])
+        y = min(max(y, box[1]), box[3])
+        o = b if b >= 0 else -1
+        if c > pos and ox[c - 1] == x and oy[c - 1] == y:
+            oo[c - 1] = o
+        else:
+            ox[c] = x
+            oy[c] = y
+            oo[c] = o
+            c += 1
+    while c > pos + 1 and ox[c - 1] == ox[pos] and oy[c - 1] == oy[pos]:
+        c -= 1
+    return c - pos if c - pos >= 3 else 0
+
+
 @njit(**NJIT)
 def _emit(px, py, po, a, m, cx, cy, box, ox, oy, oo, pos):
-    """Write the cell at ``a:a + m`` around site ``(cx, cy)`` to ``ox, oy, oo`` from ``pos``.
+    """Write the float cell at ``a:a + m`` around site ``(cx, cy)`` to ``ox, oy, oo``.
 
-    Coordinates become absolute and vertices on box edges are snapped onto the box. Returns
-    the length written (0 when rounding left fewer than three distinct vertices).
+    The fallback when the exact ring cannot be settled. Coordinates become absolute and
+    vertices on box edges are snapped onto the box. Returns the length written (0 when
+    rounding left fewer than three distinct vertices).
     """
     xmin, ymin, xmax, ymax = box[0], box[1], box[2], box[3]
     c = pos
@@ -196,7 +427,11 @@ def _emit(px, py, po, a, m, cx, cy, box, ox, oy, oo, pos):
 
 @njit(**NJIT)
 def _scratch(cap):
-    """Scratch arrays: two polygons (at offsets 1 and ``cap + 2``), signed values, a cell."""
+    """Scratch arrays of one worker.
+
+    Two polygons (at offsets 1 and ``cap + 2``), plane values, an output cell, the label
+    ring, canonical vertices and the candidate list (``4 cap`` sites).
+    """
     return (
         np.zeros(2 * cap + 2),
         np.zeros(2 * cap + 2),
@@ -205,24 +440,30 @@ def _scratch(cap):
         np.zeros(cap),
         np.zeros(cap),
         np.zeros(cap, np.int64),
+        np.zeros(cap, np.int64),
+        np.zeros(cap),
+        np.zeros(cap),
+        np.zeros(4 * cap, np.int64),
     )
 
 
 @njit(**NJIT)
-def _cells(k0, k1, sites, grid, box, counts, where, dx, dy, do):
+def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
     """Build the cells of sorted sites ``k0:k1`` and write them one after another to ``d``.
 
-    ``sites = (start, sx, sy, sidx)`` is the bucket grid. Sets ``counts[sidx[k]]`` to each
-    cell's length and ``where[k]`` to its position in ``dx, dy, do``. Cells that no longer
-    fit are only counted. Returns whether all of them fit.
+    ``sites = (start, sx, sy, sidx)`` is the bucket grid, ``orig = (xs, ys)`` the sites by
+    index (for the exact predicates). Sets ``counts[sidx[k]]`` to each cell's length and
+    ``where[k]`` to its position in ``dx, dy, do``. Cells that no longer fit are only
+    counted. Returns whether all of them fit.
 
     The whole loop lives in this one function: a call per cell would cost a dozen atomic
     reference-count updates, more than the geometry of a typical cell.
     """
     start, sx, sy, sidx = sites
+    xs, ys = orig
     x0, y0, hx, hy, nx, ny = grid
     cap = _CAP
-    px, py, po, ss, ox, oy, oo = _scratch(cap)
+    px, py, po, ss, ox, oy, oo, lab, vx, vy, cand = _scratch(cap)
     pos = 0
     fits = True
     k = k0
@@ -237,9 +478,8 @@ def _cells(k0, k1, sites, grid, box, counts, where, dx, dy, do):
         px[a + 2], py[a + 2], po[a + 2] = box[2] - cx, box[3] - cy, _TOP
         px[a + 3], py[a + 3], po[a + 3] = box[0] - cx, box[3] - cy, _LEFT
         m = 4
-        r2 = 0.0
-        for t in range(a, a + 4):
-            r2 = max(r2, px[t] * px[t] + py[t] * py[t])
+        r2 = _radius2(px, py, a, m)
+        nc = 0
         ix, iy = _bucket(cx, cy, x0, y0, hx, hy, nx, ny)
         fx0 = cx - (x0 + ix * hx)
         fx1 = x0 + (ix + 1) * hx - cx
@@ -249,6 +489,7 @@ def _cells(k0, k1, sites, grid, box, counts, where, dx, dy, do):
         grow = False
         while m >= 3 and not grow:
             if ring > 0:
+                # voro++'s stop radius: a site farther than 2 r cannot cut the cell
                 gap = _ring_gap(ix, iy, ring, fx0, fx1, fy0, fy1, hx, hy, nx, ny)
                 if gap < 0.0 or gap * gap > _REACH * r2:
                     break
@@ -268,32 +509,45 @@ def _cells(k0, k1, sites, grid, box, counts, where, dx, dy, do):
                         h = 0.5 * (qx * qx + qy * qy)
                         if t == k or 2.0 * h > _REACH * r2:
                             continue
-                        out = False
-                        for u in range(m):
-                            s = px[a + u] * qx + py[a + u] * qy - h
-                            ss[u] = s
-                            out |= s > 0.0
-                        if not out:
+                        if nc == cand.shape[0]:
+                            grow = True
+                            break
+                        cand[nc] = t
+                        nc += 1
+                        if not _plane_values(px, py, a, m, qx, qy, h, ss):
                             continue
                         if m + m // 2 + 2 > cap:  # each run of cut vertices adds at most one
                             grow = True
                             break
-                        m, r2 = _cut(px, py, po, a, m, b, ss, sidx[t])
+                        m = _cut_by_plane(px, py, po, a, m, b, ss, sidx[t])
+                        r2 = _radius2(px, py, b, m)
                         a, b = b, a
                         if m < 3:
                             break
             ring += 1
         if grow:  # rare: a cell with many vertices; start it again with more room
             cap *= 2
-            px, py, po, ss, ox, oy, oo = _scratch(cap)
+            px, py, po, ss, ox, oy, oo, lab, vx, vy, cand = _scratch(cap)
             continue
         c = 0
         if m >= 3:
-            if fits and pos + m <= dx.shape[0]:
-                c = _emit(px, py, po, a, m, cx, cy, box, dx, dy, do, pos)
-            else:
+            for u in range(m):
+                lab[u] = po[a + u]
+            ms = _settle(sidx[k], lab, m, cand, nc, sidx, xs, ys, vx, vy)
+            direct = fits and pos + max(m, ms) <= dx.shape[0]
+            c = -1
+            if ms >= 3:
+                if direct:
+                    c = _emit_exact(sidx[k], lab, ms, vx, vy, xs, ys, box, dx, dy, do, pos)
+                else:
+                    c = _emit_exact(sidx[k], lab, ms, vx, vy, xs, ys, box, ox, oy, oo, 0)
+            if c < 0:
+                if direct:
+                    c = _emit(px, py, po, a, m, cx, cy, box, dx, dy, do, pos)
+                else:
+                    c = _emit(px, py, po, a, m, cx, cy, box, ox, oy, oo, 0)
+            if not direct:
                 fits = False
-                c = _emit(px, py, po, a, m, cx, cy, box, ox, oy, oo, 0)
         counts[sidx[k]] = c
         where[k] = pos
         pos += c
@@ -302,7 +556,7 @@ def _cells(k0, k1, sites, grid, box, counts, where, dx, dy, do):
 
 
 @njit(**NJIT_PARALLEL)
-def _first_pass(sites, grid, box, counts, where, slab_x, slab_y, slab_o, fits):
+def _first_pass(sites, orig, grid, box, counts, where, slab_x, slab_y, slab_o, fits):
     """Build every cell into its chunk's slab; ``fits[ch]`` tells whether the slab held it."""
     n = sites[1].shape[0]
     per = slab_x.shape[0] // fits.shape[0]
@@ -312,6 +566,7 @@ def _first_pass(sites, grid, box, counts, where, slab_x, slab_y, slab_o, fits):
             ch * _CHUNK,
             min((ch + 1) * _CHUNK, n),
             sites,
+            orig,
             grid,
             box,
             counts,
@@ -323,7 +578,7 @@ def _first_pass(sites, grid, box, counts, where, slab_x, slab_y, slab_o, fits):
 
 
 @njit(**NJIT_PARALLEL)
-def _second_pass(sites, grid, box, counts, offsets, where, slab, fits, coords, owner):
+def _second_pass(sites, orig, grid, box, counts, offsets, where, slab, fits, coords, owner):
     """Copy every cell to its place in the output; rebuild the chunks that overflowed."""
     sidx = sites[3]
     n = sidx.shape[0]
@@ -341,7 +596,7 @@ def _second_pass(sites, grid, box, counts, offsets, where, slab, fits, coords, o
             xs = np.zeros(total)
             ys = np.zeros(total)
             os = np.zeros(total, np.int64)
-            _cells(k0, k1, sites, grid, box, counts, where, xs, ys, os)
+            _cells(k0, k1, sites, orig, grid, box, counts, where, xs, ys, os)
         for k in range(k0, k1):
             i = sidx[k]
             dst = offsets[i]
@@ -352,14 +607,14 @@ def _second_pass(sites, grid, box, counts, offsets, where, slab, fits, coords, o
                 owner[dst + t] = os[src + t]
 
 
-def halfplane_cells(points, box):
-    """Voronoi cells of ``points`` clipped to ``box``, by half-plane cutting.
+def halfplane_cells(xs, ys, box):
+    """Voronoi cells of distinct sites clipped to ``box``, by half-plane cutting.
 
     Parameters
     ----------
-    points : (n, 2) float64
+    xs, ys : (n,) float64
         Distinct sites (the engine removes duplicates); they may lie outside the box.
-    box : tuple of 4 float
+    box : (4,) float64
         ``(xmin, ymin, xmax, ymax)``.
 
     Returns
@@ -375,20 +630,20 @@ def halfplane_cells(points, box):
     Examples
     --------
     >>> import numpy as np
-    >>> coords, offsets, owner = halfplane_cells(np.array([[0.25, 0.5], [0.75, 0.5]]),
-    ...                                          (0.0, 0.0, 1.0, 1.0))
-    >>> offsets.tolist(), owner[:4].tolist()
-    ([0, 4, 8], [-1, 1, -1, -1])
+    >>> coords, offsets, owner = halfplane_cells(np.array([0.25, 0.75]), np.array([0.5, 0.5]),
+    ...                                          np.array([0.0, 0.0, 1.0, 1.0]))
+    >>> offsets.tolist(), sorted(owner[:4].tolist())
+    ([0, 4, 8], [-1, -1, -1, 1])
     """
-    pts = np.ascontiguousarray(points, dtype=np.float64).reshape(-1, 2)
-    n = pts.shape[0]
+    xs = np.ascontiguousarray(xs, dtype=np.float64)
+    ys = np.ascontiguousarray(ys, dtype=np.float64)
+    n = xs.shape[0]
     if n == 0:
         return np.zeros((0, 2)), np.zeros(1, np.int64), np.zeros(0, np.int32)
-    boxa = np.asarray(box, dtype=np.float64).reshape(4)
-    xs = np.ascontiguousarray(pts[:, 0])
-    ys = np.ascontiguousarray(pts[:, 1])
+    boxa = np.ascontiguousarray(box, dtype=np.float64).reshape(4)
     grid = _grid_shape(xs, ys)
     sites = _bucket_sort(xs, ys, *grid)
+    orig = (xs, ys)
     nchunks = (n + _CHUNK - 1) // _CHUNK
     per = _SLAB * min(_CHUNK, n) + 16
     counts = np.zeros(n, np.int64)
@@ -397,12 +652,18 @@ def halfplane_cells(points, box):
     slab_y = np.zeros(nchunks * per)
     slab_o = np.zeros(nchunks * per, np.int64)
     fits = np.zeros(nchunks, np.bool_)
-    _first_pass(sites, grid, boxa, counts, where, slab_x, slab_y, slab_o, fits)
-    offsets = np.zeros(n + 1, np.int64)
-    np.cumsum(counts, out=offsets[1:])
-    k = int(offsets[-1])
-    coords = np.empty((k, 2))  # noqa: TID251 - every slot is written by _second_pass
-    owner = np.empty(k, np.int32)  # noqa: TID251 - every slot is written by _second_pass
-    slab = (slab_x, slab_y, slab_o)
-    _second_pass(sites, grid, boxa, counts, offsets, where, slab, fits, coords, owner)
+    threads = numba.get_num_threads()
+    if n < PARALLEL_MIN_SITES:
+        numba.set_num_threads(1)  # thread start-up costs more than small inputs take
+    try:
+        _first_pass(sites, orig, grid, boxa, counts, where, slab_x, slab_y, slab_o, fits)
+        offsets = np.zeros(n + 1, np.int64)
+        np.cumsum(counts, out=offsets[1:])
+        k = int(offsets[-1])
+        coords = np.empty((k, 2))  # noqa: TID251 - every slot is written by _second_pass
+        owner = np.empty(k, np.int32)  # noqa: TID251 - every slot is written by _second_pass
+        slab = (slab_x, slab_y, slab_o)
+        _second_pass(sites, orig, grid, boxa, counts, offsets, where, slab, fits, coords, owner)
+    finally:
+        numba.set_num_threads(threads)
     return coords, offsets, owner
