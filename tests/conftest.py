@@ -13,7 +13,7 @@ from hypothesis import HealthCheck, settings
 sys.path.insert(0, str(Path(__file__).parent))
 
 #: Every ``algorithm=`` that must produce the same cells; engines add themselves here.
-ALGORITHMS = ["delaunay", "fortune"]
+ALGORITHMS = ["delaunay", "fortune", "halfplane"]
 
 settings.register_profile(
     "default",
