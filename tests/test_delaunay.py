@@ -241,3 +241,46 @@ def test_neighbourhood_check_rejects_non_delaunay(monkeypatch):
     fake = _fake(tri, triangles=flipped, halfedges=_rebuild_halfedges(flipped))
     with pytest.raises(AssertionError, match="circumcircle"):
         validate_triangulation(fake)
+
+
+# --- the exact repair pass after the filtered sweep ------------------------------------------
+
+
+def _scramble(tri, rng, flips: int) -> np.ndarray:
+    """Apply random valid (convex-quad) flips: a valid, far from Delaunay triangulation."""
+    t = np.array(tri.triangles)
+    p = tri.points
+    for _ in range(flips):
+        he = _rebuild_halfedges(t)
+        inner = np.flatnonzero(he > np.arange(len(he)))
+        for e in rng.permutation(inner).tolist():
+            f = int(he[e])
+            a, b, c = t[e // 3, e % 3], t[e // 3, (e + 1) % 3], t[e // 3, (e + 2) % 3]
+            d = t[f // 3, (f + 2) % 3]
+            if orient2d(*p[a], *p[d], *p[c]) > 0 and orient2d(*p[d], *p[b], *p[c]) > 0:
+                t[e // 3] = (a, d, c)
+                t[f // 3] = (d, b, c)
+                break
+    return t
+
+
+@pytest.mark.parametrize("name", ["grid_shuffled", "circle_integer", "utm_grid", "general"])
+def test_repair_reaches_delaunay_from_any_triangulation(name):
+    """``_repair`` (exact Lawson flips from the suspect edges) fixes whatever the sweep left."""
+    from voroforge.kernels.delaunay import _repair, _suspect_edges
+
+    pts = general_position(80, 11) if name == "general" else CATALOGUE[name][0]
+    pts = np.asarray(pts, dtype=np.float64)[first_occurrence(pts) < 0]
+    tri = vf.delaunay(pts)
+    scrambled = _scramble(tri, np.random.default_rng(5), flips=2 * len(pts))
+    flat = scrambled.ravel().astype(np.int32)
+    he = _rebuild_halfedges(scrambled)
+    xs = np.ascontiguousarray(tri.points[:, 0])
+    ys = np.ascontiguousarray(tri.points[:, 1])
+    suspects = _suspect_edges(xs, ys, flat, he, len(flat))
+    assert len(suspects) > 0  # the scramble broke local Delaunayness somewhere
+    with pytest.raises(AssertionError, match="circumcircle"):
+        validate_triangulation(_fake(tri, triangles=scrambled, halfedges=he))
+    hull_tri = np.full(len(pts), -1, dtype=np.int32)
+    assert _repair(xs, ys, flat, he, hull_tri, suspects) > 0
+    validate_triangulation(_fake(tri, triangles=flat.reshape(-1, 3), halfedges=he))

@@ -1,10 +1,15 @@
 """Sweep-hull Delaunay triangulation (after Delaunator) with exact predicates.
 
 Points are inserted in order of distance from the circumcentre of a seed triangle; each new
-point is joined to the hull edges it sees and the new edges are legalised with Lawson flips
-(exact ``incircle``, strict, so cocircular input terminates). A point that sees no hull edge
-(possible only when rounding of the sweep distances ties or inverts the order) is deferred and
-inserted afterwards by point location and a 1-to-3 or edge split, so no point is ever dropped.
+point is joined to the hull edges it sees and the new edges are legalised with Lawson flips.
+Visibility uses the adaptive exact orientation, so the triangulation is always valid. Flips
+use the floating-point incircle filter alone, which keeps the large exact-arithmetic code out
+of the hot loop; when the filter could not decide some test (nearly or exactly cocircular
+points), one parallel pass lists every edge the filter cannot prove legal and exact Lawson
+flips from those (strict incircle, so cocircular input terminates) give the Delaunay
+triangulation. A point that sees no hull edge (possible only when rounding of the sweep
+distances ties or inverts the order) is deferred and inserted afterwards by point location
+and a 1-to-3 or edge split, so no point is ever dropped.
 
 Layout (Delaunator): ``triangles`` is a flat array, halfedge ``e`` goes from ``triangles[e]``
 to ``triangles[_next(e)]`` and ``halfedges[e]`` is its twin or -1 on the hull. Triangles are
@@ -41,15 +46,17 @@ def _link(he, a, b):
 
 
 @njit(**NJIT)
-def _orient(exact, ax, ay, bx, by, cx, cy):
-    literally(exact)
-    if exact:
+def _orient(ax, ay, bx, by, cx, cy):
+    """Filtered orientation, exact only when the filter cannot decide."""
+    o = orient2d_fast(ax, ay, bx, by, cx, cy)
+    if o != o:
         return orient2d(ax, ay, bx, by, cx, cy)
-    return orient2d_fast(ax, ay, bx, by, cx, cy)
+    return o
 
 
 @njit(**NJIT)
 def _incircle(exact, ax, ay, bx, by, cx, cy, dx, dy):
+    """Exact incircle, or the filtered one (NaN when undecided) in the sweep's fast mode."""
     literally(exact)
     if exact:
         return incircle(ax, ay, bx, by, cx, cy, dx, dy)
@@ -67,20 +74,50 @@ def _add_triangle(tri, he, t, i0, i1, i2, a, b, c):
 
 
 @njit(**NJIT)
+def _flip(a, b, tri, he, hull_tri):
+    """Flip the diagonal of the quad formed by twin halfedges ``a`` and ``b``.
+
+    Afterwards ``a``'s triangle is ``(p1, pl, p0)`` and ``b``'s is ``(p0, pr, p1)``, where
+    ``a`` ran ``pr -> pl``, ``p0`` was opposite ``a`` and ``p1`` opposite ``b``; the new
+    diagonal is the pair ``prev(a)``, ``prev(b)``.
+    """
+    a0 = a - a % 3
+    b0 = b - b % 3
+    ar = a0 + (a + 2) % 3
+    bl = b0 + (b + 2) % 3
+    p0 = tri[ar]
+    p1 = tri[bl]
+    tri[a] = p1
+    tri[b] = p0
+    hbl = he[bl]
+    har = he[ar]
+    _link(he, a, hbl)
+    if hbl == -1:
+        hull_tri[p1] = a
+    _link(he, b, har)
+    if har == -1:
+        hull_tri[p0] = b
+    _link(he, ar, bl)
+
+
+@njit(**NJIT)
 def _legalize(a, xs, ys, tri, he, hull_tri, stack, exact):
     """Flip edges opposite the newest point until all are locally Delaunay.
 
     ``a`` is a halfedge whose triangle's opposite corner is the new point. Whenever a flip moves
     a hull halfedge to a new index, ``hull_tri`` (hull halfedge by start vertex) follows it.
-    Returns False when a fast (non-exact) predicate could not decide.
+    With ``exact`` False an edge whose filtered incircle cannot decide is left unflipped
+    (always a valid triangulation) and the function returns False; :func:`_repair` then
+    settles such edges exactly after the sweep. Returns True when every test was decided.
     """
     literally(exact)
     sp = 0
+    decided = True
     while True:
         b = he[a]
         if b == -1:
             if sp == 0:
-                return True
+                return decided
             sp -= 1
             a = stack[sp]
             continue
@@ -95,9 +132,8 @@ def _legalize(a, xs, ys, tri, he, hull_tri, stack, exact):
         pl = tri[al]
         p1 = tri[bl]
         v = _incircle(exact, xs[pr], ys[pr], xs[pl], ys[pl], xs[p0], ys[p0], xs[p1], ys[p1])
-        if v != v:
-            return False
         if v > 0.0:
+            # the flip of _flip, written out: numba does not inline the call in this loop
             tri[a] = p1
             tri[b] = p0
             hbl = he[bl]
@@ -110,12 +146,14 @@ def _legalize(a, xs, ys, tri, he, hull_tri, stack, exact):
                 hull_tri[p0] = b
             _link(he, ar, bl)
             if sp >= stack.shape[0]:
-                return True  # cannot happen: the stack is sized to the number of halfedges
+                return decided  # cannot happen: the stack is sized to the number of halfedges
             stack[sp] = br
             sp += 1
         else:
+            if v != v:
+                decided = False  # undecided filter: left for _repair
             if sp == 0:
-                return True
+                return decided
             sp -= 1
             a = stack[sp]
 
@@ -310,14 +348,16 @@ def _insert_on_edge(k, e, xs, ys, tri, he, hull_tri, hull_next, hull_prev, stack
 
 
 @njit(**NJIT)
-def _sweep_impl(xs, ys, exact):
+def _sweep(xs, ys):
     """Sweep points renumbered so that the seed is 0, 1, 2 and the rest follow in sweep order.
 
-    ``exact`` must be a compile-time literal: the fast variant carries no exact-arithmetic code
-    and gives up (``ok = False``) as soon as a filtered predicate cannot decide. Returns
-    ``(ok, tri, he, tcount, hull_tri, hull_next, hull_prev, hull_start, deferred)``.
+    Hull visibility uses the exact (adaptive) orientation, so the triangulation is always
+    valid. Flips use the filtered incircle alone, which keeps the large exact-arithmetic code
+    out of the hot loop: an edge it cannot decide stays unflipped and :func:`_repair` makes
+    the result Delaunay afterwards. Returns ``(clean, tri, he, tcount, hull_tri, hull_next,
+    hull_prev, hull_start, deferred)``; ``clean`` is True when every incircle test was
+    decided, so the sweep did exactly what an exact one would have done.
     """
-    literally(exact)
     n = xs.shape[0]
     max_tri = max(2 * n - 5, 1)
     tri = np.full(3 * max_tri, -1, dtype=np.int32)
@@ -346,7 +386,7 @@ def _sweep_impl(xs, ys, exact):
     _add_triangle(tri, he, 0, 0, 1, 2, -1, -1, -1)
     tcount = 3
     hull_start = 0
-    ok = True
+    clean = True
 
     for k in range(3, n):
         x = xs[k]
@@ -361,10 +401,7 @@ def _sweep_impl(xs, ys, exact):
         e = start
         while True:
             q = hull_next[e]
-            o = _orient(exact, xs[e], ys[e], xs[q], ys[q], x, y)
-            if o != o:
-                return False, tri, he, tcount, hull_tri, hull_next, hull_prev, hull_start, deferred
-            if o < 0.0:
+            if _orient(xs[e], ys[e], xs[q], ys[q], x, y) < 0.0:
                 break
             e = q
             if e == start:
@@ -381,41 +418,33 @@ def _sweep_impl(xs, ys, exact):
         tcount += 3
         hull_tri[e] = t
         hull_tri[k] = t + 1
-        ok = _legalize(t + 2, xs, ys, tri, he, hull_tri, stack, exact)
+        clean &= _legalize(t + 2, xs, ys, tri, he, hull_tri, stack, False)
 
         nn = q
-        while ok:
+        while True:
             q = hull_next[nn]
-            o = _orient(exact, xs[nn], ys[nn], xs[q], ys[q], x, y)
-            if o != o:
-                ok = False
-            if not o < 0.0:
+            if not _orient(xs[nn], ys[nn], xs[q], ys[q], x, y) < 0.0:
                 break
             t = tcount
             _add_triangle(tri, he, t, nn, k, q, hull_tri[k], -1, hull_tri[nn])
             tcount += 3
             hull_tri[k] = t + 1
-            ok = _legalize(t + 2, xs, ys, tri, he, hull_tri, stack, exact)
+            clean &= _legalize(t + 2, xs, ys, tri, he, hull_tri, stack, False)
             hull_next[nn] = nn
             nn = q
 
         if e == start:
-            while ok:
+            while True:
                 q = hull_prev[e]
-                o = _orient(exact, xs[q], ys[q], xs[e], ys[e], x, y)
-                if o != o:
-                    ok = False
-                if not o < 0.0:
+                if not _orient(xs[q], ys[q], xs[e], ys[e], x, y) < 0.0:
                     break
                 t = tcount
                 _add_triangle(tri, he, t, q, k, e, -1, hull_tri[e], hull_tri[q])
                 tcount += 3
                 hull_tri[q] = t
-                ok = _legalize(t + 2, xs, ys, tri, he, hull_tri, stack, exact)
+                clean &= _legalize(t + 2, xs, ys, tri, he, hull_tri, stack, False)
                 hull_next[e] = e
                 e = q
-        if not ok:
-            return False, tri, he, tcount, hull_tri, hull_next, hull_prev, hull_start, deferred
 
         hull_start = e
         hull_prev[k] = e
@@ -425,19 +454,62 @@ def _sweep_impl(xs, ys, exact):
         hull_hash[_hash_key(x, y, cx, cy, hash_size)] = k
         hull_hash[_hash_key(xs[e], ys[e], cx, cy, hash_size)] = e
 
-    return True, tri, he, tcount, hull_tri, hull_next, hull_prev, hull_start, deferred[:n_def]
+    return clean, tri, he, tcount, hull_tri, hull_next, hull_prev, hull_start, deferred[:n_def]
+
+
+@njit(**NJIT_PARALLEL)
+def _suspect_edges(xs, ys, tri, he, tcount):
+    """Halfedges (one per interior edge) that the filtered incircle cannot prove legal."""
+    flag = np.zeros(tcount, dtype=np.bool_)
+    for e in prange(tcount):
+        f = he[e]
+        if f < e:
+            continue  # hull edge, or the twin handles it
+        p = tri[e]
+        q = tri[_next(e)]
+        r = tri[_prev(e)]
+        s = tri[_prev(f)]
+        v = incircle_fast(xs[p], ys[p], xs[q], ys[q], xs[r], ys[r], xs[s], ys[s])
+        if not v <= 0.0:  # illegal, or undecided
+            flag[e] = True
+    return np.flatnonzero(flag).astype(np.int32)
 
 
 @njit(**NJIT)
-def _sweep_fast(xs, ys):
-    """Sweep with filtered predicates only; gives up on the first undecidable one."""
-    return _sweep_impl(xs, ys, False)
+def _repair(xs, ys, tri, he, hull_tri, suspects):
+    """Lawson flips with exact incircle from the suspect edges until every edge is legal.
 
-
-@njit(**NJIT)
-def _sweep_exact(xs, ys):
-    """Sweep with exact predicates."""
-    return _sweep_impl(xs, ys, True)
+    Any triangulation reaches the Delaunay one this way; the sweep leaves only a few edges
+    that its filtered predicate could not settle. Returns the number of flips.
+    """
+    stack = np.zeros(suspects.shape[0] + tri.shape[0] + 16, dtype=np.int32)
+    sp = suspects.shape[0]
+    stack[:sp] = suspects
+    flips = 0
+    while sp > 0:
+        sp -= 1
+        a = stack[sp]
+        b = he[a]
+        if b == -1:
+            continue
+        pr = tri[a]
+        pl = tri[_next(a)]
+        p0 = tri[_prev(a)]
+        p1 = tri[_prev(b)]
+        if incircle(xs[pr], ys[pr], xs[pl], ys[pl], xs[p0], ys[p0], xs[p1], ys[p1]) > 0.0:
+            _flip(a, b, tri, he, hull_tri)
+            flips += 1
+            if sp + 4 > stack.shape[0]:
+                grown = np.zeros(2 * stack.shape[0], dtype=np.int32)
+                grown[:sp] = stack[:sp]
+                stack = grown
+            # the quad's four outer edges: a, next(a), b, next(b)
+            stack[sp] = a
+            stack[sp + 1] = _next(a)
+            stack[sp + 2] = b
+            stack[sp + 3] = _next(b)
+            sp += 4
+    return flips
 
 
 @njit(**NJIT)
@@ -547,10 +619,11 @@ def triangulate_sorted(xs: np.ndarray, ys: np.ndarray):
     sxy = _gather(xs, ys, order)
     sx = sxy[:, 0]  # strided views
     sy = sxy[:, 1]
-    res = _sweep_fast(sx, sy)
-    if not res[0]:
-        res = _sweep_exact(sx, sy)
-    _, tri, he, tcount, hull_tri, hull_next, hull_prev, hull_start, deferred = res
+    clean, tri, he, tcount, hull_tri, hull_next, hull_prev, hull_start, deferred = _sweep(sx, sy)
+    if not clean:
+        suspects = _suspect_edges(sx, sy, tri, he, tcount)
+        if suspects.shape[0]:
+            _repair(sx, sy, tri, he, hull_tri, suspects)
     if deferred.shape[0]:
         tcount = _insert_deferred(sx, sy, tri, he, tcount, hull_tri, hull_next, hull_prev, deferred)
     hull = _hull_array(hull_next, hull_start)
