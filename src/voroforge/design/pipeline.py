@@ -491,7 +491,8 @@ def render_preview(result: Result, *, size: int = 1200):
     colours = [(236, 236, 240)] + [
         tuple(c) for c in palette(len(result.openings), result.design.design.seed).tolist()
     ]
-    return render_image(geoms, size=size, colors=colours, edge_width=0.6)
+    sites = result.sites if result.design.output.png_sites else None
+    return render_image(geoms, size=size, colors=colours, edge_width=0.6, sites=sites)
 
 
 def _geojson(result: Result, path: Path) -> Path:
@@ -565,6 +566,8 @@ def build(
         path = out / f"{stem}.png"
         render_preview(result, size=min(o.png_size, 800)).save(path, optimize=False)
         return [path]
+    if "svg" in o.formats and design.design.units not in ("mm", "cm", "in"):
+        raise _fail("output.formats", f"svg needs units mm, cm or in; not {design.design.units!r}")
     kerf = o.kerf
     for fmt in o.formats:
         path = out / f"{stem}.{fmt}"

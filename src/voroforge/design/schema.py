@@ -327,6 +327,7 @@ class Output(_Model):
     kerf: NonNegFloat = 0.0
     png_size: Annotated[int, Field(ge=32, le=8192)] = 1200
     png: Literal["cells", "layers"] = "cells"
+    png_sites: bool = False
     geojson: Product = "cells"
     stroke_width: PositiveFloat = 0.01
     arc_tolerance: PositiveFloat = 1e-6
