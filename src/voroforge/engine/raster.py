@@ -147,18 +147,65 @@ def _check_bounds(bounds, pts: np.ndarray) -> tuple[float, float, float, float]:
     return vals
 
 
-def _jfa_steps(h: int, w: int) -> np.ndarray:
-    """JFA+2: steps N/2, ..., 2, 1 with N the power of two >= max(h, w), then 2, 1 again."""
+def _jfa_steps(h: int, w: int, reach: int | None = None) -> np.ndarray:
+    """JFA+2 steps: K, K/2, ..., 2, 1, then 2, 1 again.
+
+    ``K`` is N/2 with N the power of two >= max(h, w) (standard JFA), or, when ``reach`` is
+    given, the smallest power of two with ``2 K - 1 >= reach`` if that is smaller: the steps
+    K, ..., 1 can carry a seed ``2 K - 1`` pixels along each axis, so every pixel still
+    hears of its nearest site when all nearest sites lie within ``reach`` pixels.
+    """
     n = 1
     while n < max(h, w):
         n *= 2
+    k = max(n // 2, 1)
+    if reach is not None:
+        small = 1
+        while 2 * small - 1 < reach:
+            small *= 2
+        k = min(k, small)
     steps = []
-    k = n // 2
     while k >= 1:
         steps.append(k)
         k //= 2
     steps += [2, 1]
     return np.array(steps, dtype=np.int64)
+
+
+def _jfa_reach(xs: np.ndarray, ys: np.ndarray, geom: np.ndarray, shape) -> int:
+    """Upper bound, in pixels along an axis, on the offset from any pixel to its nearest seed.
+
+    Seeds of the sites inside the image are bucketed in a grid of ``b x b`` pixel buckets;
+    ``d`` dilations (Chebyshev) cover the grid from the occupied buckets. A pixel is then
+    within ``D = (d + 1) b`` pixels per axis of some site, so its nearest site is within the
+    distance ``E = D hypot(pw, ph)`` (pixel sizes ``pw, ph``), that is within
+    ``E / min(pw, ph)`` pixels per axis; 2 more absorb the rounding of seeds to pixels.
+    """
+    h, w = shape
+    b = max(1, -(-max(h, w) // 128))
+    gh, gw = -(-h // b), -(-w // b)
+    # Only sites inside the image count: a site outside is seeded on the border, possibly
+    # far from where it is. (The nearest site of a pixel may still be outside; its border
+    # seed is then no farther, per axis, than the site itself.)
+    fc = (xs - geom[0]) / geom[2]
+    fr = (geom[1] - ys) / geom[3]
+    inside = (fc >= 0) & (fc < w) & (fr >= 0) & (fr < h)
+    if not inside.any():
+        return max(h, w)
+    c = np.minimum(fc[inside].astype(np.int64), w - 1)
+    r = np.minimum(fr[inside].astype(np.int64), h - 1)
+    covered = np.zeros((gh, gw), dtype=bool)
+    covered[r // b, c // b] = True
+    d = 0
+    while not covered.all():
+        grown = np.pad(covered, 1)
+        covered = np.zeros_like(covered)
+        for dr in range(3):
+            for dc in range(3):
+                covered |= grown[dr : dr + gh, dc : dc + gw]
+        d += 1
+    pw, ph = geom[2], geom[3]
+    return math.ceil((d + 1) * b * math.hypot(pw, ph) / min(pw, ph)) + 2
 
 
 def _exact_tile(sites: np.ndarray, bounds, shape) -> np.ndarray:
@@ -203,8 +250,9 @@ def rasterize(
     method : {"exact", "jfa"}
         ``"exact"``: the true nearest site of every pixel (identical to a brute-force argmin
         with ties to the lowest index), any metric. ``"jfa"``: Jump Flooding with JFA+2
-        refinement, Euclidean only; a small share of pixels near cell edges may get a
-        neighbouring site, and sites outside ``bounds`` are seeded on the border pixel.
+        refinement, Euclidean only (the first step is cut to what the sites' spacing needs); a
+        small share of pixels near cell edges may get a neighbouring site, and sites outside
+        ``bounds`` are seeded on the border pixel.
     metric : {"euclidean", "manhattan", "chebyshev"}
         Distance used for the labels and distances.
     f2 : bool
@@ -263,7 +311,11 @@ def rasterize(
         )
     else:
         geom = np.array([box[0], box[3], (box[2] - box[0]) / w, (box[3] - box[1]) / h])
-        lab, d1, d2 = jfa_nearest(xs, ys, pxs, pys, geom, _jfa_steps(h, w), want_f2)
+        steps = _jfa_steps(h, w, _jfa_reach(xs, ys, geom, (h, w)))
+        lab, d1, d2 = jfa_nearest(xs, ys, pxs, pys, geom, steps, want_f2)
+        if (lab == len(xs)).any():  # cannot happen with a valid reach; stay safe anyway
+            steps = _jfa_steps(h, w)
+            lab, d1, d2 = jfa_nearest(xs, ys, pxs, pys, geom, steps, want_f2)
     if len(unique) < len(pts):
         lab = unique.astype(np.int32)[lab]
     return RasterVoronoi(lab, d1, d2 if want_f2 else None, box, method, metric)

@@ -397,6 +397,8 @@ def _jfa_seed(xs, ys, pxs, pys, geom, second):
 @njit(**NJIT)
 def _take(lab, px, py, xs, ys, best, bd):
     """The better of ``(bd, best)`` and site ``lab`` (ties: lower position)."""
+    if lab == best:  # the common case once cells have formed: no distance to compute
+        return best, bd
     d = _d2(px, py, xs, ys, lab)
     if d < bd or (d == bd and lab < best):
         return lab, d
