@@ -353,7 +353,10 @@ def _operate(
     amount = c.inset_amount()
     web_levels = list(design.recursion.web)
     if amount is not None:
-        d = _graded(amount, values, "cells.web" if c.web is not None else "cells.inset", has_field)
+        key = "cells.web" if c.web is not None else "cells.inset"
+        d = _graded(amount, values, key, has_field)
+        if np.any(np.asarray(d) < 0):
+            raise _fail(key, "must be >= 0 (use cells.scale > 1 to grow cells)")
         out = cellops.inset(out, d, join=c.join)
     elif web_levels:
         widths = np.asarray([web_levels[min(k, len(web_levels) - 1)] for k in level], dtype=float)
@@ -625,14 +628,14 @@ def _gif(design: Design, base: Path | None, path: Path, stage: Stage) -> Path:
             stage(f"gif frame {i + 1}/{len(values)}")
             try:
                 d, _ = load(data, overrides={gif.key: v})
+                unique[v] = render_preview(compute(d, base), size=gif.size)
             except DesignError as exc:
                 raise DesignError(
                     [
-                        Issue("output.gif.key", None, f"{gif.key} = {v!r}: {it.message}")
+                        Issue("output.gif.key", None, f"{gif.key} = {v!r}: {it.key}: {it.message}")
                         for it in exc.issues
                     ]
                 ) from None
-            unique[v] = render_preview(compute(d, base), size=gif.size)
         frames.append(unique[v])
     return write_gif(frames, path, fps=gif.fps)
 

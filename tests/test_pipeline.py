@@ -1,0 +1,271 @@
+"""The design pipeline: geometry invariants, outputs, kerf, fabrication, byte-identical builds."""
+
+import json
+import math
+import xml.etree.ElementTree as ET
+
+import ezdxf
+import numpy as np
+import pytest
+import shapely
+from PIL import Image
+
+from voroforge.design.fabrication import check
+from voroforge.design.pipeline import build, check_design, compute, products
+from voroforge.design.schema import DesignError, load
+
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+def panel(**changes):
+    """A small laser panel design as a dict; ``changes`` are dotted-key overrides."""
+    data = {
+        "design": {"name": "p", "seed": 5},
+        "boundary": {"shape": "rectangle", "width": 160, "height": 100, "margin": 5},
+        "seeds": {"method": "poisson", "radius": 18},
+        "cells": {"web": 3, "fillet": 1.5},
+        "output": {"formats": ["svg", "dxf", "png", "geojson"]},
+        "fabrication": {"min_web": 3, "min_opening": 4, "tool_radius": 1.0},
+    }
+    for key, value in changes.items():
+        *path, last = key.split(".")
+        node = data
+        for p in path:
+            node = node.setdefault(p, {})
+        node[last] = value
+    return data
+
+
+def result_of(data):
+    design, base = load(data)
+    return compute(design, base)
+
+
+def test_geometry_invariants():
+    r = result_of(panel())
+    n = len(r.sites)
+    assert n > 20 and len(r.raw) == n and len(r.cells) == n
+    # The raw cells tile the domain (boundary shrunk by the margin).
+    assert sum(c.area for c in r.raw) == pytest.approx(r.domain.area, rel=1e-9)
+    assert r.domain.area == pytest.approx(150 * 90)
+    # Openings sit inside their cells, at least web/2 from each cell's outline.
+    for raw, cell in zip(r.raw, r.cells, strict=True):
+        if cell.is_empty:
+            continue
+        assert raw.buffer(1e-9).contains(cell)
+        assert cell.distance(raw.exterior) >= 1.5 - 1e-6
+    # The frame is the boundary minus the openings, and nothing is thinner than the web.
+    assert r.frame.area == pytest.approx(r.boundary.area - sum(o.area for o in r.openings))
+    assert check(openings=r.openings, boundary=r.boundary, min_web=3.0).ok
+
+
+def test_outputs_read_back(tmp_path):
+    paths = build(panel(), tmp_path)
+    assert [p.name for p in paths] == ["p.svg", "p.dxf", "p.png", "p.geojson"]
+    r = result_of(panel())
+    rings = 1 + len(r.openings)  # the outline and one ring per opening
+    # DXF: closed LWPOLYLINEs on CUT, fillets as arcs.
+    doc = ezdxf.readfile(paths[1])
+    ents = list(doc.modelspace())
+    assert doc.header["$INSUNITS"] == 4
+    assert len(ents) == rings
+    assert all(e.dxftype() == "LWPOLYLINE" and e.closed and e.dxf.layer == "CUT" for e in ents)
+    areas = [shapely.Polygon(list(e.get_points("xy"))).area for e in ents]
+    holes = [e for e, a in zip(ents, areas, strict=True) if a < max(areas)]
+    bulges = [sum(1 for b in e.get_points("b") if b[0]) for e in holes]
+    assert all(b >= 3 for b in bulges)  # every filleted opening has its corners as arcs
+    # SVG: mm units, one closed path per ring on the CUT layer.
+    root = ET.parse(paths[0]).getroot()
+    assert root.get("width") == "160mm" and root.get("height") == "100mm"
+    paths_cut = [p.get("d") for p in root.iter(SVG + "path")]
+    assert len(paths_cut) == rings and all(d.endswith("Z") for d in paths_cut)
+    with Image.open(paths[2]) as img:
+        assert max(img.size) == 1200
+    feats = json.loads(paths[3].read_text())["features"]
+    live = [c for c in r.cells if not c.is_empty]
+    assert len(feats) == len(live)
+    assert sum(f["properties"]["area"] for f in feats) == pytest.approx(sum(c.area for c in live))
+
+
+def test_same_file_and_seed_give_identical_bytes(tmp_path):
+    a = build(panel(), tmp_path / "a")
+    b = build(panel(), tmp_path / "b")
+    for pa, pb in zip(a, b, strict=True):
+        assert pa.read_bytes() == pb.read_bytes(), pa.name
+    c = build(panel(**{"design.seed": 6}), tmp_path / "c")
+    assert c[0].read_bytes() != a[0].read_bytes()
+
+
+def test_overrides_in_build(tmp_path):
+    base = build(panel(), tmp_path / "a", overrides={"output.formats": '["geojson"]'})
+    denser = build(
+        panel(), tmp_path / "b", overrides={"output.formats": '["geojson"]', "seeds.radius": "12"}
+    )
+    n0 = len(json.loads(base[0].read_text())["features"])
+    n1 = len(json.loads(denser[0].read_text())["features"])
+    assert n1 > 1.5 * n0
+
+
+def test_kerf_applied_on_export_only(tmp_path):
+    plain = result_of(panel())
+    kerfed = products(plain, kerf=0.2)
+    assert kerfed["frame"][0].area > plain.frame.area
+    assert sum(o.area for o in kerfed["openings"]) < sum(o.area for o in plain.openings)
+    paths = build(panel(**{"output.kerf": 0.2, "output.formats": ["dxf"]}), tmp_path)
+    doc = ezdxf.readfile(paths[0])
+    outer = max(
+        doc.modelspace(),
+        key=lambda e: (
+            len(list(e.get_points("xy"))) and shapely.Polygon(list(e.get_points("xy"))).area
+        ),
+    )
+    xs = [p[0] for p in outer.get_points("xy")]
+    assert min(xs) == pytest.approx(-0.1) and max(xs) == pytest.approx(160.1)
+
+
+def test_fabrication_catches_a_too_thin_web(tmp_path):
+    bad = panel(**{"cells.web": 1.0})
+    report = check_design(bad)
+    webs = [v for v in report.violations if v.kind == "web"]
+    assert webs and all(v.value < 3.0 for v in webs)
+    assert min(v.value for v in webs) == pytest.approx(1.0, abs=0.05)
+    assert check_design(panel()).ok
+    # Small fillets with a big tool are flagged at the corners.
+    corners = check_design(panel(**{"fabrication.tool_radius": 4.0})).violations
+    assert any(v.kind == "corner" for v in corners)
+
+
+def test_report_files(tmp_path):
+    paths = build(panel(**{"fabrication.report": True, "cells.web": 1.0}), tmp_path)
+    names = [p.name for p in paths]
+    assert names[-2:] == ["p-check.txt", "p-check.png"]
+    assert "web" in (tmp_path / "p-check.txt").read_text()
+
+
+@pytest.mark.parametrize(
+    "changes",
+    [
+        {"seeds.method": "hexgrid", "seeds.spacing": 20, "seeds.radius": None},
+        {"seeds.method": "grid", "seeds.spacing": 20, "cells.smooth": 2, "cells.fillet": 0},
+        {
+            "seeds.method": "random",
+            "seeds.count": 40,
+            "openings.select": "random",
+            "openings.probability": 0.5,
+        },
+        {"openings.select": "largest", "openings.count": 5, "cells.scale": 0.8},
+        {
+            "boundary.shape": "circle",
+            "boundary.radius": 60,
+            "openings.select": "every_kth",
+            "openings.k": 2,
+        },
+    ],
+)
+def test_pipeline_variants(changes):
+    data = panel()
+    for key, value in changes.items():
+        section, name = key.split(".")
+        if value is None:
+            data[section].pop(name, None)
+        else:
+            data.setdefault(section, {})[name] = value
+    r = result_of(data)
+    assert len(r.openings) >= 1
+    assert all(r.boundary.buffer(1e-6).contains(o) for o in r.openings)
+    assert r.frame.area == pytest.approx(r.boundary.area - sum(o.area for o in r.openings))
+    sel = data["openings"].get("select") if "openings" in data else None
+    if sel == "largest":
+        assert len(r.openings) == 5
+
+
+def test_attractor_grading_follows_the_field():
+    data = panel(**{"cells.web": {"near": 8, "far": 2}, "seeds.radius": 14})
+    data["attractors"] = [{"points": [[0, 0]], "radius": 190, "falloff": "linear"}]
+    r = result_of(data)
+    # Inset distance from each opening to its cell outline follows the field value.
+    for raw, cell, v in zip(r.raw, r.cells, r.values, strict=True):
+        if cell.is_empty:
+            continue
+        expected = (2 + 6 * v) / 2
+        gap = cell.distance(raw.exterior)
+        assert gap == pytest.approx(expected, abs=0.05 + 1e-6)
+    assert r.values.min() < 0.2 and r.values.max() > 0.6
+
+
+def test_field_values_without_attractors_are_errors():
+    with pytest.raises(DesignError, match="cells.web: near/far values need"):
+        result_of(panel(**{"cells.web": {"near": 3, "far": 1}}))
+    with pytest.raises(DesignError, match="seeds.method"):
+        result_of(panel(**{"seeds.method": "density", "seeds.count": 10}))
+
+
+def test_periodic_tile_is_seamless():
+    data = panel(**{"voronoi.periodic": True, "boundary.margin": 0, "seeds.radius": 20})
+    r = result_of(data)
+    w, h = 160.0, 100.0
+    # The cut pattern on the left edge equals the right edge's: openings touching x=0 match
+    # openings touching x=w shifted by -w.
+    left = shapely.union_all([o for o in r.openings if o.bounds[0] <= 1e-9])
+    right = shapely.union_all([o for o in r.openings if o.bounds[2] >= w - 1e-9])
+    edge_l = left.intersection(shapely.LineString([(0, -1), (0, h + 1)]))
+    edge_r = shapely.affinity.translate(
+        right.intersection(shapely.LineString([(w, -1), (w, h + 1)])), -w, 0
+    )
+    assert edge_l.length > 0
+    assert edge_l.symmetric_difference(edge_r).length == pytest.approx(0.0, abs=1e-6)
+    assert sum(c.area for c in r.raw) == pytest.approx(w * h, rel=1e-9)
+
+
+def test_missing_files_and_bad_units(tmp_path):
+    data = panel(**{"boundary.shape": "file", "boundary.file": "nope.geojson"})
+    with pytest.raises(DesignError, match="boundary.file: file not found"):
+        result_of(data)
+    with pytest.raises(DesignError, match="svg needs units"):
+        build(panel(**{"design.units": "m"}), tmp_path)
+
+
+def test_preview_writes_only_a_small_png(tmp_path):
+    paths = build(panel(), tmp_path, preview=True)
+    assert [p.name for p in paths] == ["p.png"]
+    with Image.open(paths[0]) as img:
+        assert max(img.size) == 800
+
+
+def test_gif_sweep(tmp_path):
+    data = panel(**{"output.formats": ["gif"], "seeds.radius": 30})
+    data["output"]["gif"] = {"key": "cells.web", "values": [2, 4, 6], "size": 96}
+    (path,) = build(data, tmp_path)
+    with Image.open(path) as img:
+        assert img.n_frames == 4  # 2, 4, 6 and back to 4
+        frames = []
+        for i in range(img.n_frames):
+            img.seek(i)
+            frames.append(np.asarray(img.convert("L")))
+    assert not np.array_equal(frames[0], frames[2])
+    assert np.array_equal(frames[1], frames[3])
+    bad = panel(**{"output.formats": ["gif"]})
+    bad["output"]["gif"] = {"key": "cells.web", "values": [-1]}
+    with pytest.raises(DesignError, match="output.gif.key"):
+        build(bad, tmp_path)
+
+
+def test_input_dict_is_not_mutated(tmp_path):
+    data = panel()
+    before = json.dumps(data, sort_keys=True)
+    build(data, tmp_path, overrides={"seeds.radius": 25}, preview=True)
+    assert json.dumps(data, sort_keys=True) == before
+
+
+def test_edges_are_unique(tmp_path):
+    r = result_of(panel(**{"cells.web": 0, "cells.fillet": 0}))
+    segs = [
+        tuple(sorted(map(tuple, np.round(np.asarray(line.coords), 9))))
+        for line in shapely.get_parts(r.edges)
+    ]
+    assert len(segs) == len(set(segs))
+    total = sum(line.length for line in shapely.get_parts(r.edges))
+    perimeters = sum(c.length for c in r.raw)
+    # Every interior edge is shared by two cells; the outline once: 2 E - outline = perimeters.
+    assert 2 * total - r.domain.length == pytest.approx(perimeters, rel=1e-9)
+    assert math.isfinite(total)
