@@ -82,7 +82,41 @@ def _seed(xs, ys, tri, he, start, s, qx, qy):
 
 
 @njit(**NJIT)
-def sibson(xs, ys, tri, he, values, nearest, qx, qy, out):
+def _blend(px, py, xs, ys, values, grads, v, lam, sums, acc, xi):
+    """Accumulate site ``v`` with (unnormalised) Sibson weight ``lam``.
+
+    ``sums`` holds ``(sum lam, sum lam r, sum lam / r, sum lam r**2)`` with ``r = |q - v|``;
+    ``acc`` the weighted values, ``xi`` the ``lam / r`` weighted tangent-plane values.
+    """
+    dx = px - xs[v]
+    dy = py - ys[v]
+    r = np.sqrt(dx * dx + dy * dy)
+    sums[0] += lam
+    sums[1] += lam * r
+    sums[2] += lam / r
+    sums[3] += lam * r * r
+    for j in range(len(acc)):
+        acc[j] += lam * values[v, j]
+        xi[j] += lam / r * (values[v, j] + grads[v, j, 0] * dx + grads[v, j, 1] * dy)
+
+
+@njit(**NJIT)
+def _finish(sums, acc, xi, smooth, out, q):
+    total = sums[0]
+    for j in range(len(acc)):
+        z0 = acc[j] / total
+        if smooth:
+            # Sibson's Z1: blend that reproduces a + b.x + c |x|^2 given exact gradients
+            alpha = sums[1] / sums[2]
+            beta = sums[3] / total
+            z1 = xi[j] / sums[2]
+            out[q, j] = (alpha * z0 + beta * z1) / (alpha + beta)
+        else:
+            out[q, j] = z0
+
+
+@njit(**NJIT)
+def sibson(xs, ys, tri, he, values, grads, smooth, nearest, qx, qy, out):
     """Sibson interpolation of ``values`` at every query point.
 
     Parameters
@@ -95,6 +129,10 @@ def sibson(xs, ys, tri, he, values, nearest, qx, qy, out):
         Opposite halfedges, -1 on the hull.
     values : (n, k) float64
         Data values per site.
+    grads : (n, k, 2) float64
+        Gradients of the data at the sites (used when ``smooth``).
+    smooth : bool
+        Sibson's C1 interpolant ``Z1`` (Sibson 1980) instead of the plain ``Z0``.
     nearest : (m,) int64
         A nearest site of each query point (one that appears in the triangulation).
     qx, qy : (m,) float64
@@ -119,6 +157,8 @@ def sibson(xs, ys, tri, he, values, nearest, qx, qy, out):
     mark = np.full(t, -1, dtype=np.int64)  # 2 q: tested, outside; 2 q + 1: in the cavity
     cavity = np.zeros(max(t, 1), dtype=np.int64)
     acc = np.zeros(kdim)
+    xi = np.zeros(kdim)
+    sums = np.zeros(4)
     for q in range(nq):
         px = qx[q]
         py = qy[q]
@@ -177,12 +217,18 @@ def sibson(xs, ys, tri, he, values, nearest, qx, qy, out):
             if not 0.0 <= u <= 1.0:  # on the hull edge's line, beyond it: outside
                 status[q] = OUTSIDE
                 continue
-            for j in range(kdim):
-                out[q, j] = (1.0 - u) * values[a, j] + u * values[b, j]
+            sums[:] = 0.0
+            acc[:] = 0.0
+            xi[:] = 0.0
+            if u > 0.0:
+                _blend(px, py, xs, ys, values, grads, b, u, sums, acc, xi)
+            if u < 1.0:
+                _blend(px, py, xs, ys, values, grads, a, 1.0 - u, sums, acc, xi)
+            _finish(sums, acc, xi, smooth, out, q)
             continue
-        total = 0.0
-        for j in range(kdim):
-            acc[j] = 0.0
+        sums[:] = 0.0
+        acc[:] = 0.0
+        xi[:] = 0.0
         for i in range(size):
             k = cavity[i]
             cx = cc[k, 0]
@@ -213,10 +259,6 @@ def sibson(xs, ys, tri, he, values, nearest, qx, qy, out):
                     bx = nx - mx
                     by = ny - my
                     area += bx * ay - by * ax
-                area *= 0.5
-                total += area
-                for j in range(kdim):
-                    acc[j] += area * values[v, j]
-        for j in range(kdim):
-            out[q, j] = acc[j] / total
+                _blend(px, py, xs, ys, values, grads, v, 0.5 * area, sums, acc, xi)
+        _finish(sums, acc, xi, smooth, out, q)
     return status

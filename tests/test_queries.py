@@ -1,0 +1,292 @@
+"""Point queries: nearest site (vf.locate, Diagram.locate) and Sibson interpolation."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import shapely
+from hypothesis import given
+from hypothesis import strategies as st
+from scipy.interpolate import griddata
+
+import voroforge as vf
+
+from reference import brute_nearest
+
+# ---------------------------------------------------------------------------- locate
+
+
+def test_locate_matches_brute_force_with_ties_and_duplicates():
+    rng = np.random.default_rng(3)
+    grid = np.stack(np.meshgrid(np.arange(6.0), np.arange(5.0)), -1).reshape(-1, 2)
+    sites = np.concatenate((grid, rng.random((40, 2)) * 5, grid[:7]))  # duplicates at the end
+    sites = sites[rng.permutation(len(sites))]
+    # exact ties: midpoints between grid neighbours and centres of grid squares (4-way)
+    mids = np.concatenate((grid + [0.5, 0.0], grid + [0.5, 0.5], grid + [0.0, 0.5]))
+    queries = np.concatenate((mids, rng.random((3000, 2)) * 9 - 2))  # many outside the sites
+    got = vf.locate(sites, queries)
+    want, _ = brute_nearest(sites, queries)
+    assert got.dtype == np.int64 and got.shape == (len(queries),)
+    np.testing.assert_array_equal(got, want)
+    # a duplicated site answers with its first occurrence
+    dup = vf.delaunay(sites).duplicate_of
+    assert (dup[got] < 0).all()
+
+
+def test_locate_many_equidistant_sites_picks_lowest_index():
+    # 12 integer points exactly on the circle of radius 5, queried at its centre
+    ring = np.array(
+        [(x, y) for x in range(-5, 6) for y in range(-5, 6) if x * x + y * y == 25], dtype=float
+    )
+    sites = ring[np.random.default_rng(0).permutation(len(ring))]
+    assert vf.locate(sites, [0.0, 0.0]) == 0
+    far = np.concatenate((np.full((20, 2), 100.0) + np.arange(20)[:, None], sites))
+    assert vf.locate(far, [0.0, 0.0]) == 20
+
+
+def test_locate_single_point_and_errors():
+    pts = [[0.0, 0.0], [2.0, 0.0]]
+    out = vf.locate(pts, (1.5, 3.0))
+    assert isinstance(out, int) and out == 1
+    assert vf.locate(pts, np.zeros((0, 2))).shape == (0,)
+    with pytest.raises(ValueError, match="xy"):
+        vf.locate(pts, [[1.0, 2.0, 3.0]])
+    with pytest.raises(ValueError, match="NaN"):
+        vf.locate(pts, [np.nan, 1.0])
+    with pytest.raises(ValueError, match="without sites"):
+        vf.locate(np.zeros((0, 2)), [1.0, 1.0])
+
+
+def test_diagram_locate_agrees_with_cells():
+    rng = np.random.default_rng(5)
+    sites = rng.random((300, 2))
+    domain = shapely.box(0, 0, 1, 1).difference(shapely.Point(0.5, 0.5).buffer(0.2))
+    d = vf.voronoi(sites, domain)
+    q = rng.random((2000, 2))
+    idx = d.locate(q)
+    np.testing.assert_array_equal(idx, brute_nearest(sites, q)[0])
+    inside = shapely.contains_xy(domain, q[:, 0], q[:, 1])
+    pts = shapely.points(q[inside])
+    # the query point lies in the cell of the site returned
+    assert shapely.dwithin(d.cells[idx[inside]], pts, 1e-12).all()
+
+
+def test_diagram_locate_duplicates_map_to_owner():
+    sites = np.array([[0.2, 0.2], [0.8, 0.8], [0.2, 0.2], [0.8, 0.8]])
+    d = vf.voronoi(sites, (0, 0, 1, 1))
+    np.testing.assert_array_equal(d.locate([[0.1, 0.1], [0.9, 0.9], [0.2, 0.2]]), [0, 1, 0])
+
+
+# ---------------------------------------------------------------------- natural_neighbor
+
+
+def _inside_hull(sites, q, margin=1e-9):
+    hull = shapely.convex_hull(shapely.multipoints(sites))
+    inner = hull.buffer(-margin)
+    outer = hull.buffer(margin)
+    return (
+        shapely.contains_xy(inner, q[:, 0], q[:, 1]),
+        ~shapely.contains_xy(outer, q[:, 0], q[:, 1]),
+    )
+
+
+def test_linear_precision_random():
+    rng = np.random.default_rng(11)
+    sites = rng.random((400, 2)) * [3.0, 2.0] + [10.0, -5.0]
+    coef = np.array([[1.5, -2.0, 0.7], [-3.0, 0.25, 4.0]])
+    vals = np.stack([c[0] + c[1] * sites[:, 0] + c[2] * sites[:, 1] for c in coef], axis=1)
+    q = rng.random((5000, 2)) * [3.4, 2.4] + [9.8, -5.2]
+    out = vf.natural_neighbor(sites, vals, q)
+    assert out.shape == (len(q), 2)
+    inside, outside = _inside_hull(sites, q)
+    want = np.stack([c[0] + c[1] * q[:, 0] + c[2] * q[:, 1] for c in coef], axis=1)
+    assert inside.sum() > 3000 and outside.sum() > 300
+    np.testing.assert_allclose(out[inside], want[inside], rtol=0, atol=1e-11)
+    assert np.isnan(out[outside]).all()
+
+
+def test_linear_precision_on_cocircular_grid():
+    g = np.stack(np.meshgrid(np.arange(8.0), np.arange(7.0)), -1).reshape(-1, 2)
+    f = 2.0 - g[:, 0] + 3.0 * g[:, 1]
+    rng = np.random.default_rng(2)
+    # centres of grid squares (on four sites' circle), grid lines, random points
+    inner = g[(g[:, 0] < 7) & (g[:, 1] < 6)]
+    q = np.concatenate(
+        (inner + 0.5, inner + [0.5, 0.0], inner + [0.0, 0.25], rng.random((500, 2)) * 6)
+    )
+    out = vf.natural_neighbor(g, f, q)
+    np.testing.assert_allclose(out, 2.0 - q[:, 0] + 3.0 * q[:, 1], atol=1e-12)
+
+
+@given(st.integers(0, 2**32 - 1), st.integers(4, 60))
+def test_linear_precision_property(seed, n):
+    rng = np.random.default_rng(seed)
+    sites = rng.random((n, 2))
+    a, b, c = rng.normal(size=3)
+    q = rng.random((50, 2))
+    out = vf.natural_neighbor(sites, a + b * sites[:, 0] + c * sites[:, 1], q)
+    inside, outside = _inside_hull(sites, q, 1e-6)
+    np.testing.assert_allclose(out[inside], (a + b * q[:, 0] + c * q[:, 1])[inside], atol=1e-9)
+    assert np.isnan(out[outside]).all()
+
+
+def test_values_at_sites_duplicates_and_hull_edges():
+    sites = np.array([[0, 0], [4, 0], [4, 3], [0, 3], [1, 1], [3, 2], [1, 1]], dtype=float)
+    vals = np.array([1.0, 5.0, -2.0, 7.0, 3.0, 0.5, 99.0])
+    out = vf.natural_neighbor(sites, vals, sites)
+    # a duplicated site takes the first occurrence's value
+    np.testing.assert_array_equal(out, [1.0, 5.0, -2.0, 7.0, 3.0, 0.5, 3.0])
+    # on a hull edge: linear between its end points, and the limit from inside
+    edge = vf.natural_neighbor(sites, vals, [[1.0, 0.0], [4.0, 2.0]])
+    np.testing.assert_allclose(edge, [0.75 * 1.0 + 0.25 * 5.0, (5.0 - 2 * 2.0) / 3.0 + 0.0])
+    near = vf.natural_neighbor(sites, vals, [[1.0, 1e-7], [4.0 - 1e-7, 2.0]])
+    np.testing.assert_allclose(near, edge, atol=1e-5)
+    # on the hull edge's line but beyond it: outside
+    assert np.isnan(vf.natural_neighbor(sites, vals, [5.0, 0.0]))
+
+
+def test_extrapolate_nearest_and_single_query():
+    rng = np.random.default_rng(4)
+    sites = rng.random((50, 2))
+    vals = rng.random((50, 3))
+    q = np.array([[2.0, 2.0], [-1.0, 0.5], [0.5, 0.5]])
+    out = vf.natural_neighbor(sites, vals, q, extrapolate="nearest")
+    np.testing.assert_array_equal(out[:2], vals[vf.locate(sites, q[:2])])
+    np.testing.assert_array_equal(out[2], vf.natural_neighbor(sites, vals, q[2]))
+    assert vf.natural_neighbor(sites, vals, q[2]).shape == (3,)
+    assert isinstance(vf.natural_neighbor(sites, vals[:, 0], q[2]), float)
+
+
+def test_collinear_and_tiny_inputs():
+    line = np.array([[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]])
+    vals = np.array([1.0, 2.0, 3.0])
+    out = vf.natural_neighbor(line, vals, [[1.0, 1.0], [0.5, 0.5]])
+    assert out[0] == 2.0 and np.isnan(out[1])
+    out = vf.natural_neighbor(line, vals, [[0.5, 0.5]], extrapolate="nearest")
+    assert out[0] == 1.0
+    assert vf.natural_neighbor([[1.0, 1.0]], [4.0], [1.0, 1.0]) == 4.0
+
+
+def test_errors_and_inputs_untouched():
+    sites = np.random.default_rng(0).random((10, 2))
+    vals = np.arange(10.0)
+    keep = (sites.copy(), vals.copy())
+    with pytest.raises(ValueError, match="shape"):
+        vf.natural_neighbor(sites, vals[:9], [0.5, 0.5])
+    with pytest.raises(ValueError, match="extrapolate"):
+        vf.natural_neighbor(sites, vals, [0.5, 0.5], extrapolate="linear")
+    with pytest.raises(ValueError, match="at least one site"):
+        vf.natural_neighbor(np.zeros((0, 2)), np.zeros(0), [0.5, 0.5])
+    vf.natural_neighbor(sites, vals, [[0.5, 0.5]])
+    np.testing.assert_array_equal(sites, keep[0])
+    np.testing.assert_array_equal(vals, keep[1])
+
+
+def test_continuous():
+    rng = np.random.default_rng(8)
+    sites = rng.random((150, 2))
+    vals = rng.random(150)  # rough data: a discontinuity would show as a jump of ~0.5
+    t = np.linspace(0.0, 1.0, 20001)
+    for y in (0.31, 0.5, 0.77):
+        line = np.column_stack((0.1 + 0.8 * t, np.full_like(t, y)))
+        f = vf.natural_neighbor(sites, vals, line)
+        f = f[~np.isnan(f)]
+        assert len(f) > 15000
+        assert np.abs(np.diff(f)).max() < 0.02
+
+
+def _brute_sibson(sites, vals, q):
+    """Weights as differences of cell areas of two vf.voronoi diagrams (with and without q)."""
+    lo = sites.min(0)
+    hi = sites.max(0)
+    pad = 20 * (hi - lo).max()
+    box = (lo[0] - pad, lo[1] - pad, hi[0] + pad, hi[1] + pad)
+    before = vf.voronoi(sites, box).areas
+    d = vf.voronoi(np.concatenate((sites, [q])), box)
+    cell = d.cells[-1]
+    assert not shapely.intersects(cell, shapely.box(*box).exterior)  # not clipped
+    stolen = before - d.areas[:-1]
+    stolen[np.abs(stolen) < 1e-12 * d.areas[-1]] = 0.0
+    return stolen @ vals / d.areas[-1], np.count_nonzero(stolen)
+
+
+def test_matches_brute_force_area_differences():
+    rng = np.random.default_rng(21)
+    sites = rng.random((60, 2))
+    vals = rng.normal(size=60)
+    inside, _ = _inside_hull(sites, rng.random((30, 2)) * 0.6 + 0.2)
+    q = (rng.random((30, 2)) * 0.6 + 0.2)[inside]
+    got = vf.natural_neighbor(sites, vals, q)
+    for qi, g in zip(q, got, strict=True):
+        want, k = _brute_sibson(sites, vals, qi)
+        assert k >= 3
+        assert abs(g - want) < 1e-9
+
+
+def _franke(x, y):
+    return (
+        0.75 * np.exp(-((9 * x - 2) ** 2) / 4 - (9 * y - 2) ** 2 / 4)
+        + 0.75 * np.exp(-((9 * x + 1) ** 2) / 49 - (9 * y + 1) / 10)
+        + 0.5 * np.exp(-((9 * x - 7) ** 2) / 4 - (9 * y - 3) ** 2 / 4)
+        - 0.2 * np.exp(-((9 * x - 4) ** 2) - (9 * y - 7) ** 2)
+    )
+
+
+def test_franke_error_against_linear_griddata():
+    rng = np.random.default_rng(1)
+    sites = rng.random((500, 2))
+    vals = _franke(*sites.T)
+    g = np.linspace(0.0, 1.0, 101)
+    q = np.stack(np.meshgrid(g, g), -1).reshape(-1, 2)
+    z0 = vf.natural_neighbor(sites, vals, q)
+    z1 = vf.natural_neighbor(sites, vals, q, smooth=True)
+    lin = griddata(sites, vals, q, method="linear")
+    np.testing.assert_array_equal(np.isnan(z0), np.isnan(lin))
+    np.testing.assert_array_equal(np.isnan(z1), np.isnan(lin))
+    both = ~np.isnan(lin)
+    assert both.sum() > 8000
+    exact = _franke(*q[both].T)
+
+    def rms(f):
+        return np.sqrt(np.mean((f[both] - exact) ** 2))
+
+    # Z1 (smooth=True) is well below linear interpolation, Z0 about level with it
+    assert rms(z1) < 0.5 * rms(lin)
+    assert np.abs(z1[both] - exact).max() < np.abs(lin[both] - exact).max()
+    assert rms(z0) < 1.1 * rms(lin)
+
+
+def test_smooth_reproduces_linear_and_spherical_quadratics():
+    rng = np.random.default_rng(6)
+    sites = rng.random((300, 2))
+    q = rng.random((2000, 2)) * 0.8 + 0.1
+    lin = 0.5 + 2.0 * sites[:, 0] - 3.0 * sites[:, 1]
+    out = vf.natural_neighbor(sites, lin, q, smooth=True)
+    np.testing.assert_allclose(out, 0.5 + 2.0 * q[:, 0] - 3.0 * q[:, 1], atol=1e-10)
+    # Sibson's Z1 is exact for a + b.x + c |x|^2 when given the exact gradients
+    quad = 1.0 + sites[:, 0] - sites[:, 1] + 3.0 * (sites**2).sum(1)
+    grads = np.column_stack((1.0 + 6.0 * sites[:, 0], -1.0 + 6.0 * sites[:, 1]))
+    out = vf.natural_neighbor(sites, quad, q, smooth=True, gradients=grads)
+    np.testing.assert_allclose(out, 1.0 + q[:, 0] - q[:, 1] + 3.0 * (q**2).sum(1), atol=1e-10)
+    # ... which plain Sibson is not
+    z0 = vf.natural_neighbor(sites, quad, q)
+    assert np.abs(z0 - (1.0 + q[:, 0] - q[:, 1] + 3.0 * (q**2).sum(1))).max() > 1e-4
+
+
+def test_smooth_at_sites_continuity_and_errors():
+    rng = np.random.default_rng(9)
+    sites = rng.random((120, 2))
+    vals = rng.random((120, 2))
+    np.testing.assert_array_equal(vf.natural_neighbor(sites, vals, sites, smooth=True), vals)
+    shifted = sites + 1e-9
+    inside, _ = _inside_hull(sites, shifted, 1e-12)
+    near = vf.natural_neighbor(sites, vals, shifted[inside], smooth=True)
+    np.testing.assert_allclose(near, vals[inside], atol=1e-5)
+    t = np.linspace(0.0, 1.0, 20001)
+    line = np.column_stack((0.1 + 0.8 * t, np.full_like(t, 0.45)))
+    f = vf.natural_neighbor(sites, vals[:, 0], line, smooth=True)
+    assert np.abs(np.diff(f[~np.isnan(f)])).max() < 0.02
+    with pytest.raises(ValueError, match="gradients"):
+        vf.natural_neighbor(sites, vals, [0.5, 0.5], smooth=True, gradients=np.zeros((120, 2)))
+    with pytest.raises(ValueError, match="smooth=True"):
+        vf.natural_neighbor(sites, vals, [0.5, 0.5], gradients=np.zeros((120, 2, 2)))
