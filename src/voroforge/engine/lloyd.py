@@ -12,10 +12,9 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import minimize
 
 from ._inputs import as_points
-from ._integrate import Integrator
+from ._integrate import Integrator, serial_below
 from .domain import make_domain
 from .power import _fit, _targets
 from .voronoi import Diagram, voronoi
@@ -151,11 +150,17 @@ def lloyd(
     x0, y0, x1, y1 = dom.bounds
     stop = None if tol is None else float(tol) * max(x1 - x0, y1 - y0)
     integ = Integrator(density, len(z))
-    if method == "lbfgs":
-        return _lbfgs(z, dom, bnd, integ, int(iterations), stop)
-    if areas is not None:
-        targets = _targets(areas, len(z), dom)
-        return _capacity(z, dom, integ, targets, int(iterations), stop)
+    targets = None if areas is None else _targets(areas, len(z), dom)
+    with serial_below(len(z)):
+        if method == "lbfgs":
+            return _lbfgs(z, dom, bnd, integ, int(iterations), stop)
+        if targets is not None:
+            return _capacity(z, dom, integ, targets, int(iterations), stop)
+        return _lloyd(z, bnd, integ, int(iterations), stop)
+
+
+def _lloyd(z, bnd, integ, iterations, stop):
+    """Plain Lloyd steps: every site to its cell's (density-weighted) centroid."""
     t0 = time.perf_counter()
     energy, elapsed, shifts = [], [], []
     z_new = np.zeros_like(z)
@@ -223,61 +228,79 @@ def _capacity(z, dom, integ, targets, iterations, stop):
     )
 
 
-def _lbfgs(z, dom, bnd, integ, iterations, stop):
-    """Quasi-Newton CVT: scipy's L-BFGS-B on F(z) with ∂F/∂z_i = -2 ∫ρ (x - z_i)."""
+def _lbfgs(z, dom, bnd, integ, iterations, stop, memory=8):
+    """Quasi-Newton CVT (Liu et al. 2009): L-BFGS on ``F(z)``, ``∂F/∂z_i = -2 ∫ρ (x - z_i)``.
+
+    Two-loop recursion with the diagonal ``1 / (2 m_i)`` as the initial inverse Hessian (with
+    it the very first step is exactly a Lloyd step), Armijo backtracking from the full step,
+    and trial sites projected into the domain's bounding box. One diagram per evaluation.
+    """
     t0 = time.perf_counter()
     n = len(z)
-    cache = {}
+    lo = np.array(dom.bounds[:2])
+    hi = np.array(dom.bounds[2:])
 
-    def fun(x):
-        zz = x.reshape(n, 2)
+    def evaluate(zz):
         d = voronoi(zz, bnd)
-        _, first, second = integ(d._buffers, zz)
-        f = float(second.sum())
-        cache["last"] = (x.copy(), d, f)
-        return f, (-2.0 * first).ravel()
+        mass, first, second = integ(d._buffers, zz)
+        return d, float(second.sum()), -2.0 * first, mass.copy()
 
-    x0 = z.ravel().copy()
-    f0, _ = fun(x0)
-    energy, elapsed, shifts = [f0], [time.perf_counter() - t0], []
-    prev = [x0]
-
-    def callback(intermediate_result):
-        x = intermediate_result.x
-        energy.append(float(intermediate_result.fun))
+    d, f, g, mass = evaluate(z)
+    energy, elapsed, shifts = [f], [time.perf_counter() - t0], []
+    pairs: list[tuple[np.ndarray, np.ndarray, float]] = []
+    for _ in range(iterations):
+        if n == 0:
+            break
+        inv = np.where(mass > 0, 0.5 / np.where(mass > 0, mass, 1.0), 0.0)[:, None]
+        q = g.copy()
+        alphas = []
+        for s_k, y_k, rho in reversed(pairs):
+            a = rho * float((s_k * q).sum())
+            alphas.append(a)
+            q -= a * y_k
+        if pairs:
+            s_k, y_k, _ = pairs[-1]
+            # scale the diagonal so it matches the latest curvature along s_k
+            gamma = float((s_k * y_k).sum()) / float((y_k * inv * y_k).sum())
+            r = gamma * inv * q
+        else:
+            r = inv * q
+        for (s_k, y_k, rho), a in zip(pairs, reversed(alphas), strict=True):
+            b = rho * float((y_k * r).sum())
+            r += (a - b) * s_k
+        direction = -r
+        slope = float((g * direction).sum())
+        if not slope < 0.0:
+            pairs.clear()
+            direction = -inv * g
+            slope = float((g * direction).sum())
+            if not slope < 0.0:
+                break  # stationary: every cell's site is its centroid
+        step = 1.0
+        for _ls in range(30):
+            z_try = np.clip(z + step * direction, lo, hi)
+            d_try, f_try, g_try, m_try = evaluate(z_try)
+            if f_try <= f + 1e-4 * float((g * (z_try - z)).sum()):
+                break
+            step *= 0.5
+        else:
+            break  # no decrease at float precision
+        s_k = z_try - z
+        y_k = g_try - g
+        sy = float((s_k * y_k).sum())
+        if sy > 1e-12 * float(np.sqrt((s_k * s_k).sum() * (y_k * y_k).sum())):
+            pairs.append((s_k, y_k, 1.0 / sy))
+            if len(pairs) > memory:
+                pairs.pop(0)
+        shift = float(np.sqrt((s_k * s_k).sum(axis=1).max()))
+        z, d, f, g, mass = z_try, d_try, f_try, g_try, m_try
+        energy.append(f)
         elapsed.append(time.perf_counter() - t0)
-        step = (x - prev[0]).reshape(n, 2)
-        shift = float(np.sqrt((step * step).sum(axis=1).max())) if n else 0.0
         shifts.append(shift)
-        prev[0] = x.copy()
         if stop is not None and shift <= stop:
-            raise StopIteration
-
-    if iterations > 0 and n > 0:
-        x_lo, y_lo, x_hi, y_hi = dom.bounds
-        bounds = [(x_lo, x_hi), (y_lo, y_hi)] * n
-        minimize(
-            fun,
-            x0,
-            jac=True,
-            method="L-BFGS-B",
-            bounds=bounds,
-            callback=callback,
-            options={
-                "maxiter": iterations,
-                "maxfun": 20 * iterations + 20,
-                "ftol": 0.0,
-                "gtol": 0.0,
-                "maxcor": 10,
-            },
-        )
-    x_last = prev[0]
-    cx, d, _ = cache["last"]
-    if not np.array_equal(cx, x_last):
-        fun(x_last)
-        _, d, _ = cache["last"]
+            break
     return Relaxation(
-        x_last.reshape(n, 2).copy(),
+        z.copy(),
         d,
         np.array(energy),
         np.array(shifts),

@@ -19,6 +19,7 @@ from ..kernels.power import power_cells
 from ._assemble import clip_to_polygon, domain_edges, domain_grid, geom_offsets_for
 from ._csr import csr_from_pairs
 from ._inputs import as_points, duplicate_map
+from ._integrate import serial_below
 from .domain import Domain, make_domain
 from .voronoi import Diagram, Edges, voronoi
 
@@ -355,7 +356,8 @@ def power_fit(
             f"points has duplicate sites (rows {int(dup[i])} and {i}); capacity fitting "
             "needs distinct sites"
         )
-    d, _, err, it = _fit(pts, t, dom, w0, tol, int(max_iter))
+    with serial_below(n):
+        d, _, err, it = _fit(pts, t, dom, w0, tol, int(max_iter))
     if err > tol:
         raise RuntimeError(
             f"power_fit did not reach tol={tol:g} in {it} Newton steps (largest relative "
