@@ -6,4 +6,4 @@ subdivision (:mod:`recursive`). Units are millimetres by default; every function
 and takes its randomness from an explicit ``seed``.
 """
 
-from . import attractors, boundary, cellops, populate  # noqa: F401
+from . import attractors, boundary, cellops, populate, recursive, relax  # noqa: F401
