@@ -51,7 +51,7 @@ class _Locator:
         """Squared distances ``dx*dx + dy*dy`` from ``q (m, 2)`` to sites ``cand (m, k)``."""
         diff = q[:, None, :] - self.pts[cand]
         if self.size is not None:
-            diff = np.abs(diff)
+            diff = np.abs(diff) % self.size
             diff = np.minimum(diff, self.size - diff)
         return diff[..., 0] * diff[..., 0] + diff[..., 1] * diff[..., 1]
 

@@ -1,0 +1,202 @@
+"""Periodic diagrams: vf.voronoi(points, box, periodic=True, wrap=...)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import shapely
+from hypothesis import given
+from hypothesis import strategies as st
+
+import voroforge as vf
+from voroforge.io import write_png, write_svg
+
+BOX = (-1.0, 2.0, 2.0, 4.0)  # w = 3, h = 2
+W, H = 3.0, 2.0
+
+
+def _tiled(sites, reps):
+    """Sites replicated ``(2 reps + 1)**2`` times; the middle copy first."""
+    shifts = [(a, b) for a in range(-reps, reps + 1) for b in range(-reps, reps + 1)]
+    shifts.remove((0, 0))
+    shifts.insert(0, (0, 0))
+    return np.concatenate([sites + [a * W, b * H] for a, b in shifts])
+
+
+def _ring(cell):
+    """Exterior vertices of a polygon, sorted (order-insensitive comparison)."""
+    xy = shapely.get_coordinates(shapely.normalize(cell))[:-1]
+    return xy[np.lexsort(xy.T[::-1])]
+
+
+def _assert_same_cells(ours, ref, atol):
+    np.testing.assert_allclose(shapely.area(ours), shapely.area(ref), rtol=1e-11, atol=atol**2)
+    for a, b in zip(ours, ref, strict=True):
+        if a.is_empty:
+            assert b.is_empty
+            continue
+        ra, rb = _ring(a), _ring(b)
+        assert ra.shape == rb.shape
+        np.testing.assert_allclose(ra, rb, atol=atol)
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 5, 40])
+def test_middle_copy_of_tiled_sites(n):
+    sites = np.random.default_rng(n).random((n, 2)) * [W, H] + BOX[:2]
+    d = vf.voronoi(sites, BOX, periodic=True)
+    reps = 1 if n >= 40 else 3
+    big = (BOX[0] - reps * W, BOX[1] - reps * H, BOX[2] + reps * W, BOX[3] + reps * H)
+    ref = vf.voronoi(_tiled(sites, reps), big)
+    middle = ref.cells[:n]
+    # the reference's middle cells are not clipped by its box, so they are the torus cells
+    assert not shapely.intersects(middle, shapely.box(*big).exterior).any()
+    _assert_same_cells(d.cells, middle, 1e-12)
+    assert d.periodic and not d.wrapped
+    assert d.areas.sum() == pytest.approx(W * H, rel=1e-13)
+    # neighbours are those of the middle copy, taken modulo the tile
+    pairs = ref.edges.pairs
+    mid = (pairs < n).any(axis=1)
+    want = {tuple(sorted(p)) for p in (pairs[mid] % n).tolist()}
+    assert {tuple(p) for p in d.edges.pairs.tolist()} == want
+    indptr, nbrs = d.neighbors
+    for i in range(n):
+        got = set(nbrs[indptr[i] : indptr[i + 1]].tolist())
+        assert got == {b if a == i else a for a, b in want if i in (a, b)}
+
+
+def test_edges_counted_once_and_placed_at_lower_cell():
+    n = 60
+    sites = np.random.default_rng(7).random((n, 2)) * [W, H] + BOX[:2]
+    d = vf.voronoi(sites, BOX, periodic=True)
+    pairs = d.edges.pairs
+    # trivalent torus graph: V - E + F = 0 and 2 E = 3 V give E = 3 F
+    assert len(pairs) == 3 * n
+    cells = d.cells
+    for (i, _), seg in zip(pairs, d.edges.coords, strict=True):
+        assert shapely.dwithin(cells[i].exterior, shapely.points(seg), 1e-12).all()
+    # every cell's perimeter is made of its edges (each shared edge seen from both sides)
+    length = np.hypot(*(d.edges.coords[:, 1] - d.edges.coords[:, 0]).T)
+    per = np.bincount(pairs[:, 0], length, n) + np.bincount(pairs[:, 1], length, n)
+    np.testing.assert_allclose(per, shapely.length(cells), rtol=1e-12)
+
+
+def test_one_site_is_the_whole_tile_and_borders_itself():
+    d = vf.voronoi([[0.5, 3.5]], BOX, periodic=True)
+    cell = d.cells[0]
+    assert cell.area == pytest.approx(W * H, rel=1e-14)
+    np.testing.assert_allclose(cell.bounds, (0.5 - W / 2, 3.5 - H / 2, 0.5 + W / 2, 3.5 + H / 2))
+    # the left/right and the top/bottom sides are one torus edge each
+    assert d.edges.pairs.tolist() == [[0, 0], [0, 0]]
+    assert d.neighbors[1].tolist() == [0]
+    w = vf.voronoi([[0.5, 3.5]], BOX, periodic=True, wrap=True)
+    assert shapely.equals(w.cells[0], shapely.box(*BOX))
+
+
+@pytest.mark.parametrize("n", [1, 2, 7, 200])
+def test_wrap_cells_tile_the_box(n):
+    sites = np.random.default_rng(10 + n).random((n, 2)) * [W, H] + BOX[:2]
+    d = vf.voronoi(sites, BOX, periodic=True)
+    w = vf.voronoi(sites, BOX, periodic=True, wrap=True)
+    assert w.wrapped
+    box = shapely.box(*BOX)
+    cells = w.cells
+    assert shapely.is_valid(cells).all()
+    assert shapely.covered_by(cells, box.buffer(1e-12)).all()
+    assert w.areas.sum() == pytest.approx(W * H, rel=1e-13)
+    assert shapely.union_all(cells).area == pytest.approx(W * H, rel=1e-13)  # no overlaps
+    np.testing.assert_allclose(w.areas, d.areas, rtol=1e-11)
+    # each wrapped cell is its unwrapped cell folded into the box
+    for a, b in zip(d.cells, cells, strict=True):
+        folded = shapely.union_all(
+            [
+                shapely.affinity.translate(
+                    a.intersection(shapely.affinity.translate(box, i * W, j * H)), -i * W, -j * H
+                )
+                for i in (-1, 0, 1)
+                for j in (-1, 0, 1)
+            ]
+        )
+        assert folded.symmetric_difference(b).area < 1e-12
+    # edges cut into the box: the same total length as the torus edges
+    lw = np.hypot(*(w.edges.coords[:, 1] - w.edges.coords[:, 0]).T).sum()
+    ld = np.hypot(*(d.edges.coords[:, 1] - d.edges.coords[:, 0]).T).sum()
+    assert lw == pytest.approx(ld, rel=1e-12)
+    assert (
+        shapely.covered_by(shapely.points(w.edges.coords.reshape(-1, 2)), box.buffer(1e-12))
+    ).all()
+
+
+def test_crossing_cell_becomes_multipolygon():
+    rng = np.random.default_rng(3)
+    sites = np.concatenate(
+        ([[BOX[0] + 1e-3, BOX[1] + 1e-3]], rng.random((30, 2)) * [W, H] + BOX[:2])
+    )
+    w = vf.voronoi(sites, BOX, periodic=True, wrap=True)
+    assert w.cells[0].geom_type == "MultiPolygon"
+    assert len(w.cells[0].geoms) == 4  # the corner cell is cut into four pieces
+
+
+@given(st.integers(0, 2**32 - 1), st.floats(-50, 50), st.floats(-50, 50))
+def test_translation_modulo_the_box(seed, tx, ty):
+    n = 25
+    sites = np.random.default_rng(seed).random((n, 2)) * [W, H] + BOX[:2]
+    d = vf.voronoi(sites, BOX, periodic=True)
+    d2 = vf.voronoi(sites + [tx, ty], BOX, periodic=True)
+    # sites are taken modulo the box
+    lo = np.array(BOX[:2])
+    assert ((d2.sites >= lo) & (d2.sites < lo + [W, H])).all()
+    shift = d2.sites - d.sites
+    moved = shapely.transform(d.cells, lambda xy: xy)  # copies
+    moved = np.array([shapely.affinity.translate(c, *s) for c, s in zip(moved, shift, strict=True)])
+    np.testing.assert_allclose(d2.areas, d.areas, rtol=1e-9)
+    assert (shapely.hausdorff_distance(moved, d2.cells) < 1e-9).all()
+
+
+def test_inputs_validation_duplicates_and_wrapping():
+    with pytest.raises(ValueError, match="periodic=True needs boundary"):
+        vf.voronoi([[0.5, 0.5]], None, periodic=True)
+    with pytest.raises(ValueError, match="periodic=True needs boundary"):
+        vf.voronoi([[0.5, 0.5]], shapely.box(0, 0, 1, 1), periodic=True)
+    with pytest.raises(ValueError, match="wrap=True"):
+        vf.voronoi([[0.5, 0.5]], (0, 0, 1, 1), wrap=True)
+    with pytest.raises(ValueError, match="xmin < xmax"):
+        vf.voronoi([[0.5, 0.5]], (1, 0, 0, 1), periodic=True)
+    pts = np.array([[0.25, 0.5], [1.25, 0.5], [0.75, 1.5], [-0.25, 0.5]])
+    keep = pts.copy()
+    d = vf.voronoi(pts, (0, 0, 1, 1), periodic=True)
+    np.testing.assert_array_equal(pts, keep)
+    np.testing.assert_array_equal(d.duplicate_of, [-1, 0, -1, 2])
+    np.testing.assert_allclose(d.sites, [[0.25, 0.5], [0.25, 0.5], [0.75, 0.5], [0.75, 0.5]])
+    assert d.cells[1].is_empty and d.cells[3].is_empty
+    assert d.areas.sum() == pytest.approx(1.0, rel=1e-14)
+    empty = vf.voronoi(np.zeros((0, 2)), (0, 0, 1, 1), periodic=True)
+    assert len(empty) == 0 and empty.periodic
+
+
+def test_locate_and_describe_on_the_torus():
+    rng = np.random.default_rng(12)
+    sites = rng.random((50, 2)) * [W, H] + BOX[:2]
+    d = vf.voronoi(sites, BOX, periodic=True)
+    q = rng.random((500, 2)) * [3 * W, 3 * H] + [BOX[0] - W, BOX[1] - H]
+    diff = np.abs(q[:, None, :] - sites[None])
+    diff = np.minimum(diff % [W, H], [W, H] - diff % [W, H])
+    want = np.argmin((diff**2).sum(-1), axis=1)
+    np.testing.assert_array_equal(d.locate(q), want)
+    r = d.describe()
+    assert r.euler_ok and r.euler_expected == 0 and r.convex_ok
+    assert (r.vertices, r.edges, r.faces) == (100, 150, 50)
+    r1 = vf.voronoi([[0.0, 3.0]], BOX, periodic=True).describe()
+    assert (r1.vertices, r1.edges, r1.faces, r1.euler_ok) == (1, 2, 1, True)
+    rw = vf.voronoi(sites, BOX, periodic=True, wrap=True).describe()
+    assert rw.euler_ok and rw.euler_expected == 1 and rw.convex_ok
+
+
+def test_writers_accept_periodic_cells(tmp_path):
+    sites = np.random.default_rng(1).random((30, 2)) * [W, H] + BOX[:2]
+    for wrap in (False, True):
+        d = vf.voronoi(sites, BOX, periodic=True, wrap=wrap)
+        svg = tmp_path / f"p{wrap}.svg"
+        png = tmp_path / f"p{wrap}.png"
+        write_svg(d.cells, svg, sites=d.sites, boundary=d.boundary)
+        write_png(d.cells, png, sites=d.sites, boundary=d.boundary, size=200)
+        assert svg.stat().st_size > 0 and png.stat().st_size > 0
