@@ -6,6 +6,7 @@ import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+import pytest
 import shapely
 
 README = Path(__file__).resolve().parents[1] / "README.md"
@@ -26,10 +27,7 @@ def test_readme_design_pipeline_runs(tmp_path, monkeypatch, capsys):
     part, panel, holes, keep = (namespace[k] for k in ("part", "panel", "holes", "keep"))
     assert part.is_valid and part.within(panel.buffer(1e-9))
     openings = holes[keep]
-    assert (
-        part.area == shapely.area(panel) - shapely.area(openings).sum()
-        or abs(part.area - (panel.area - shapely.area(openings).sum())) < 1e-6 * panel.area
-    )
+    assert part.area == pytest.approx(panel.area - shapely.area(openings).sum(), rel=1e-9)
     assert 0.2 < part.area / panel.area < 0.9
     root = ET.parse(tmp_path / "panel.svg").getroot()
     assert root.get("width").endswith("mm")
