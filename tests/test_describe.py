@@ -1,0 +1,108 @@
+"""Diagram.describe(): counts, Euler's formula, unbounded cells and convexity."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import shapely
+from scipy.spatial import ConvexHull
+
+import voroforge as vf
+from voroforge.engine.voronoi import Diagram
+
+from catalogue import CATALOGUE, NAMES
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_catalogue_euler_and_convexity(name):
+    points, boundary = CATALOGUE[name]
+    d = vf.voronoi(points, boundary)
+    r = d.describe()
+    assert r.euler_ok, str(r)
+    assert r.convex_ok, str(r)
+    assert r.sites == len(points)
+    assert r.cells == int((d.areas > 0).sum())
+    assert r.voronoi_edges == len(d.edges.pairs)
+    if len(points):
+        geom = d.boundary
+        parts = shapely.get_parts(geom)
+        assert r.euler_expected == len(parts) - shapely.get_num_interior_rings(parts).sum()
+
+
+def test_two_by_two_grid_by_hand():
+    d = vf.voronoi([[0.25, 0.25], [0.75, 0.25], [0.25, 0.75], [0.75, 0.75]], (0, 0, 1, 1))
+    r = d.describe()
+    # centre + 4 edge midpoints + 4 corners; 4 inner + 8 boundary segments; 4 faces
+    assert (r.vertices, r.edges, r.faces, r.euler, r.euler_expected) == (9, 12, 4, 1, 1)
+    assert (r.voronoi_edges, r.unbounded, r.convex_checked, r.nonconvex) == (4, 4, 4, 0)
+    text = str(r)
+    assert "V - E + F = 1" in text and "OK" in text
+
+
+def test_random_box_counts_hull_sites():
+    pts = np.random.default_rng(4).random((300, 2))
+    r = vf.voronoi(pts, (0, 0, 1, 1)).describe()
+    assert r.unbounded == len(ConvexHull(pts).vertices)
+    assert r.convex_checked == 300 and r.convex_ok and r.euler_ok
+    assert r.mismatched_vertices == 0
+
+
+def test_collinear_sites_are_all_unbounded():
+    pts = np.column_stack((np.arange(6.0), np.zeros(6)))
+    r = vf.voronoi(pts, (-1, -1, 6, 1)).describe()
+    assert r.unbounded == 6 and r.euler_ok and r.faces == 6
+
+
+def test_domain_with_a_hole():
+    domain = shapely.box(0, 0, 10, 10).difference(shapely.box(4, 4, 6, 6))
+    pts = np.random.default_rng(2).random((80, 2)) * 10
+    r = vf.voronoi(pts, domain).describe()
+    assert r.euler_expected == 0 and r.euler_ok
+    assert r.convex_ok and 0 < r.convex_checked < r.cells
+    # one cell around the whole hole: the face is an annulus (counts 0)
+    one = vf.voronoi([[5.0, 2.0], [5.0, 8.5]], domain).describe()
+    assert one.euler_ok and one.euler_expected == 0
+
+
+def test_two_parts_and_hole_in_one_cell():
+    two = shapely.MultiPolygon([shapely.box(0, 0, 1, 1), shapely.box(2, 0, 3, 1)])
+    r = vf.voronoi(np.random.default_rng(1).random((30, 2)) * [3, 1], two).describe()
+    assert r.euler_expected == 2 and r.euler_ok
+    pts, hole_cell = CATALOGUE["hole_inside_one_cell"]
+    r = vf.voronoi(pts, hole_cell).describe()
+    assert r.holes == 1 and r.euler_ok
+
+
+def _rebuilt(d, coords):
+    c, (ring, poly, geom) = d.to_geoarrow()
+    bufs = (coords, ring.copy(), poly.copy(), geom.copy())
+    return Diagram(d.sites.copy(), d.duplicate_of.copy(), d._domain, bufs, d.edges, d.algorithm)
+
+
+def test_detects_a_t_junction_and_a_reflex_corner():
+    pts = np.random.default_rng(3).random((40, 2))
+    d = vf.voronoi(pts, (0, 0, 1, 1))
+    coords, (ring, poly, geom) = d.to_geoarrow()
+    # move one interior Voronoi vertex of one cell only: the neighbours no longer match it
+    inner = np.flatnonzero((coords > 0.05).all(1) & (coords < 0.95).all(1))
+    k = inner[0]
+    moved = coords.copy()
+    same = (coords == coords[k]).all(1)
+    first = np.flatnonzero(same)
+    cell_ring = np.searchsorted(ring, first[0], side="right") - 1
+    in_ring = (
+        same
+        & (np.arange(len(coords)) >= ring[cell_ring])
+        & (np.arange(len(coords)) < ring[cell_ring + 1])
+    )
+    moved[in_ring] += [3e-3, -2e-3]
+    r = _rebuilt(d, moved).describe()
+    assert not r.euler_ok
+    # push that vertex past the chord of its two ring neighbours: a reflex corner
+    ring_pts = coords[ring[cell_ring] : ring[cell_ring + 1] - 1]
+    j = int(np.flatnonzero((ring_pts == coords[k]).all(1))[0])
+    mid = 0.5 * (ring_pts[j - 1] + ring_pts[(j + 1) % len(ring_pts)])
+    dented = coords.copy()
+    dented[in_ring] = mid + 0.2 * (mid - coords[k])
+    r = _rebuilt(d, dented).describe()
+    assert not r.convex_ok and r.nonconvex >= 1
