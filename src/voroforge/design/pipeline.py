@@ -271,52 +271,54 @@ def _graded(value: Graded, values: np.ndarray, key: str, has_field: bool):
 
 
 def _recurse(design: Design, domain, points, field_fn, seed):
-    """Recursion levels -> (leaf cells, level per cell, sites of every level)."""
+    """Recursion levels -> (leaf cells, their openings, level per cell, the levels)."""
     rec = design.recursion
-    try:
-        from .recursive import subdivide
-    except ImportError:
-        raise _fail("recursion", "recursive subdivision is not available in this version") from None
+    from . import cellops
+    from .recursive import subdivide
+
     count_spec = rec.count
     if count_spec.graded and field_fn is None:
         raise _fail("recursion.count", "near/far values need at least one [[attractors]] table")
 
-    def count(cell) -> int:
+    def count(region) -> int:
         if not count_spec.graded:
-            return max(1, int(round(count_spec.value)))
-        v = float(_values(np.asarray([cell], dtype=object), field_fn)[0])
-        return max(1, int(round(count_spec.far + (count_spec.near - count_spec.far) * v)))
+            return max(0, int(round(count_spec.value)))
+        v = float(_values(np.asarray([region], dtype=object), field_fn)[0])
+        return max(0, int(round(count_spec.far + (count_spec.near - count_spec.far) * v)))
 
-    select = None
-    if rec.probability < 1.0:
-        from . import cellops
+    def select(level):
+        live = ~shapely.is_empty(np.asarray(level.openings, dtype=object))
+        if rec.probability >= 1.0:
+            return live
+        # A fresh, reproducible draw per level.
+        draw = cellops.random(len(level), rec.probability, seed=seed * 1009 + level.depth)
+        return np.asarray(draw, dtype=bool) & live
 
-        def select(cells):  # noqa: F811 - a mask function for subdivide
-            n = len(cells)
-            # A fresh, reproducible draw per level, from the cells themselves.
-            level_seed = (seed * 7919 + n) % (2**32)
-            return cellops.random(n, rec.probability, seed=level_seed)
-
-    web = list(rec.web) if rec.web else 0.0
+    webs = list(rec.web)
+    if len(webs) not in (0, 1, rec.depth + 1):
+        raise _fail("recursion.web", f"give one width or depth + 1 = {rec.depth + 1} widths")
+    web = webs if len(webs) > 1 else (webs[0] if webs else 0.0)
+    join = design.cells.join
     levels = subdivide(
-        domain, points, depth=rec.depth, count=count, seed=seed, select=select, web=web
+        domain, points, depth=rec.depth, count=count, seed=seed, select=select, web=web, join=join
     )
-    return levels
-
-
-def _leaves(levels):
-    """Cells of every level that were not subdivided further, with their level."""
-    cells, depth = [], []
+    cells, holes, depth = [], [], []
     for i, lv in enumerate(levels):
         lv_cells = np.asarray(lv.cells, dtype=object)
+        lv_open = np.asarray(lv.openings if lv.openings is not None else lv.cells, dtype=object)
+        split = set()
         if i + 1 < len(levels):
-            parents = set(np.asarray(levels[i + 1].parent).tolist())
-            keep = [j for j in range(len(lv_cells)) if j not in parents]
-        else:
-            keep = list(range(len(lv_cells)))
+            split = set(np.asarray(levels[i + 1].parent).tolist())
+        keep = [j for j in range(len(lv_cells)) if j not in split]
         cells.extend(lv_cells[keep])
+        holes.extend(lv_open[keep])
         depth.extend([lv.depth] * len(keep))
-    return np.asarray(cells, dtype=object), np.asarray(depth, dtype=np.int64)
+    return (
+        np.asarray(cells, dtype=object),
+        np.asarray(holes, dtype=object),
+        np.asarray(depth, dtype=np.int64),
+        levels,
+    )
 
 
 def _mask(design: Design, cells: np.ndarray, values: np.ndarray, seed: int) -> np.ndarray:
@@ -343,24 +345,18 @@ def _mask(design: Design, cells: np.ndarray, values: np.ndarray, seed: int) -> n
     return ~mask & live if o.invert else mask
 
 
-def _operate(
-    design: Design, cells: np.ndarray, values: np.ndarray, level: np.ndarray, has_field: bool
-):
+def _operate(design: Design, cells: np.ndarray, values: np.ndarray, has_field: bool):
     from . import cellops
 
     c = design.cells
     out = cells
     amount = c.inset_amount()
-    web_levels = list(design.recursion.web)
     if amount is not None:
         key = "cells.web" if c.web is not None else "cells.inset"
         d = _graded(amount, values, key, has_field)
         if np.any(np.asarray(d) < 0):
             raise _fail(key, "must be >= 0 (use cells.scale > 1 to grow cells)")
         out = cellops.inset(out, d, join=c.join)
-    elif web_levels:
-        widths = np.asarray([web_levels[min(k, len(web_levels) - 1)] for k in level], dtype=float)
-        out = cellops.inset(out, widths / 2.0, join=c.join)
     if c.scale.graded or c.scale.value != 1.0:
         factor = _graded(c.scale, values, "cells.scale", has_field)
         if np.any(np.asarray(factor) < 0):
@@ -373,9 +369,15 @@ def _operate(
         if np.any(np.asarray(r) < 0):
             raise _fail("cells.fillet", "fillet radii must be >= 0")
         out = cellops.fillet(out, r)
+    out = np.asarray(out, dtype=object)
     if c.min_area > 0:
-        small = shapely.area(out) < c.min_area
-        out = np.where(small, shapely.Polygon(), out)
+        out[shapely.area(out) < c.min_area] = shapely.Polygon()
+    if c.min_size > 0:  # openings narrower than min_size (inscribed circle) stay solid
+        live = np.flatnonzero(~shapely.is_empty(out))
+        if len(live):
+            circles = shapely.maximum_inscribed_circle(out[live], tolerance=c.min_size * 1e-3)
+            thin = 2.0 * shapely.length(circles) < c.min_size
+            out[live[thin]] = shapely.Polygon()
     return np.asarray(out, dtype=object)
 
 
@@ -416,16 +418,17 @@ def compute(design: Design, base: Path | None = None, *, progress: Stage | None 
     if design.recursion.depth > 0:
         if design.voronoi.periodic:
             raise _fail("recursion.depth", "recursion and periodic tiles do not combine yet")
-        levels = _recurse(design, domain, points, field_fn, seed)
-        raw, level = _leaves(levels)
-        extra["levels"] = levels
+        if design.cells.inset_amount() is not None:
+            raise _fail("cells.web", "with [recursion], give the webs as recursion.web")
+        raw, inset_cells, level, extra["levels"] = _recurse(design, domain, points, field_fn, seed)
     else:
         raw = _voronoi(design, points, domain)
+        inset_cells = raw
         level = np.zeros(len(raw), dtype=np.int64)
     values = _values(raw, field_fn)
     mask = _mask(design, raw, values, seed)
     stage("cell operations")
-    cells = _operate(design, raw, values, level, field_fn is not None)
+    cells = _operate(design, inset_cells, values, field_fn is not None)
     if design.voronoi.periodic:
         box = _tile(design, domain)
         cells, owner = _wrap(cells, box)

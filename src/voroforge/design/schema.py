@@ -223,6 +223,7 @@ class Cells(_Model):
     smooth: Annotated[int, Field(ge=0, le=8)] = 0
     fillet: Graded = Graded(value=0.0)
     min_area: NonNegFloat = 0.0
+    min_size: NonNegFloat = 0.0
 
     @model_validator(mode="after")
     def _one_of(self) -> Cells:
