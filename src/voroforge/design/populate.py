@@ -356,25 +356,27 @@ def poisson(boundary, radius, *, seed, field=None, radius_max=None, k: int = 30)
                 active[j] = active[-1]
                 active.pop()
 
-    # gap filling: random probes; a probe farther than the pair spacing from every point
-    # starts a new front (the first probe starts the first front)
+    # gap filling: random probes; every probe farther than the pair spacing from all points
+    # (checked one by one, so new fronts never conflict) starts a new front. The first
+    # round has no points yet: its first probe starts the first front.
     n_probe = int(min(200_000, max(64, 4 * geom.area / (rmin * rmin))))
     for _ in range(_MAX_ROUNDS):
         probes = _uniform(geom, n_probe, rng)
         n = store["n"]
         if n:
             dist, idx = cKDTree(store["p"][:n]).query(probes, k=1)
-            rp = spacing(probes)
             # pre-filter: only probes clear of their nearest point's spacing
-            keep = dist >= np.maximum(rp, store["r"][:n][idx])
+            keep = dist >= np.maximum(spacing(probes), store["r"][:n][idx])
             probes = probes[keep]
-        if len(probes) == 0:
+        else:
+            probes = probes[:1]
+        fronts = []
+        for probe, r in zip(probes, spacing(probes), strict=True):
+            if fits(probe[None], np.array([r]))[0]:
+                fronts.append(add(probe, float(r)))
+        if not fronts:
             break
-        rp = spacing(probes)
-        ok = np.flatnonzero(fits(probes, rp))
-        if len(ok) == 0:
-            break
-        bridson([add(probes[ok[0]], float(rp[ok[0]]))])
+        bridson(fronts)
     return np.ascontiguousarray(store["p"][: store["n"]])
 
 
