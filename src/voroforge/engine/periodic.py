@@ -93,24 +93,24 @@ def _proved(d: Diagram, cells: np.ndarray, box, margin: float) -> bool:
     coords, (ring, poly, geom) = d.to_geoarrow()
     if not len(cells):
         return True
-    per_cell = ring[poly[geom[cells + 1]]] - ring[poly[geom[cells]]]
-    if not per_cell.sum():
+    lo = ring[poly[geom[cells]]]
+    per_cell = ring[poly[geom[cells + 1]]] - lo
+    total = int(per_cell.sum())
+    if not total:
         return True
-    first = ring[poly[geom[cells]]]
-    owner = np.repeat(cells, per_cell)
-    start = np.repeat(first - np.cumsum(np.concatenate(([0], per_cell[:-1]))), per_cell)
-    v = coords[np.arange(per_cell.sum()) + start]
-    r = np.hypot(*(v - d.sites[owner]).T)
+    if len(cells) == len(geom) - 1 or (cells[-1] == len(cells) - 1 and lo[0] == 0):
+        v = coords[:total]  # the cells are a prefix of the buffers
+    else:
+        v = coords[np.repeat(lo - np.cumsum(per_cell) + per_cell, per_cell) + np.arange(total)]
     x0, y0, x1, y1 = box
-    room = np.minimum.reduce(
-        [
-            v[:, 0] - (x0 - margin),
-            (x1 + margin) - v[:, 0],
-            v[:, 1] - (y0 - margin),
-            (y1 + margin) - v[:, 1],
-        ]
+    room = np.minimum(
+        np.minimum(v[:, 0] - (x0 - margin), (x1 + margin) - v[:, 0]),
+        np.minimum(v[:, 1] - (y0 - margin), (y1 + margin) - v[:, 1]),
     )
-    return bool((room >= r * (1.0 + _PROOF_RTOL)).all())
+    owner = np.repeat(cells, per_cell)
+    diff = v - d.sites[owner]
+    r2 = diff[:, 0] * diff[:, 0] + diff[:, 1] * diff[:, 1]
+    return bool((room >= 0).all() and (room * room >= r2 * (1.0 + _PROOF_RTOL)).all())
 
 
 def _gather(d: Diagram, source: np.ndarray, n: int, keep: np.ndarray):
@@ -196,7 +196,11 @@ def periodic_voronoi(points, boundary, *, algorithm: str = "delaunay", wrap: boo
         d.wrapped = wrap
         return d
     area = (x1 - x0) * (y1 - y0)
-    margin = _MARGIN_CELLS * np.sqrt(area / n)
+    # a few typical cell sizes, and at least ~2.5 radii of the largest empty circle expected
+    # among n uniform sites (sqrt(area log n / (pi n))), so one pass is usually enough
+    margin = max(
+        _MARGIN_CELLS * np.sqrt(area / n), 2.5 * np.sqrt(area * np.log(n + 1) / (np.pi * n))
+    )
     for _ in range(_MAX_TRIES):
         ext, source, shift = _images(pts, box, margin)
         if wrap:
