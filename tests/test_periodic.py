@@ -200,3 +200,27 @@ def test_writers_accept_periodic_cells(tmp_path):
         write_svg(d.cells, svg, sites=d.sites, boundary=d.boundary)
         write_png(d.cells, png, sites=d.sites, boundary=d.boundary, size=200)
         assert svg.stat().st_size > 0 and png.stat().st_size > 0
+
+
+def test_margin_grows_until_proved(monkeypatch):
+    import voroforge.engine.periodic as per
+
+    calls = []
+    real = per._proved
+
+    def counting(*args):
+        ok = real(*args)
+        calls.append(ok)
+        return ok
+
+    monkeypatch.setattr(per, "_proved", counting)
+    # a tight cluster leaves most of the torus to a few huge cells
+    rng = np.random.default_rng(5)
+    sites = np.array(BOX[:2]) + [0.2, 0.3] + rng.random((60, 2)) * 0.1
+    d = vf.voronoi(sites, BOX, periodic=True)
+    assert calls[0] is False and calls[-1] is True
+    reps = 2
+    big = (BOX[0] - reps * W, BOX[1] - reps * H, BOX[2] + reps * W, BOX[3] + reps * H)
+    ref = vf.voronoi(_tiled(sites, reps), big)
+    assert not shapely.intersects(ref.cells[:60], shapely.box(*big).exterior).any()
+    _assert_same_cells(d.cells, ref.cells[:60], 1e-11)
