@@ -5,6 +5,7 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
+import ezdxf
 import numpy as np
 import pytest
 import shapely
@@ -75,9 +76,105 @@ def test_demo(tmp_path, capsys):
     rc, out, err = _run(capsys, "demo", "-o", tmp_path / "demo")
     assert rc == 0, err
     names = [p.rsplit("/", 1)[-1] for p in out.split()]
-    assert names == ["demo.svg", "demo.png", "demo.geojson"]
-    feats = json.loads((tmp_path / "demo" / "demo.geojson").read_text())["features"]
-    assert len(feats) == 300
+    assert names == ["laser-panel.svg", "laser-panel.dxf", "laser-panel.png"]
+    root = ET.parse(tmp_path / "demo" / "laser-panel.svg").getroot()
+    assert root.get("width") == "600mm" and root.get("height") == "400mm"
+    doc = ezdxf.readfile(tmp_path / "demo" / "laser-panel.dxf")
+    ents = list(doc.modelspace())
+    assert len(ents) > 50
+    assert all(e.dxftype() == "LWPOLYLINE" and e.closed and e.dxf.layer == "CUT" for e in ents)
+
+
+def test_demo_is_the_flagship_example():
+    from pathlib import Path
+
+    from voroforge.demo import FLAGSHIP
+
+    example = Path(__file__).resolve().parent.parent / "examples" / "laser-panel.toml"
+    assert FLAGSHIP == example.read_text()
+
+
+# --- design files: build / new / check ---------------------------------------------------
+
+PANEL = """\
+[design]
+name = "p"
+seed = 2
+
+[boundary]
+shape = "rectangle"
+width = 120
+height = 80
+margin = 4
+
+[seeds]
+method = "poisson"
+radius = 16
+
+[cells]
+web = 3
+fillet = 1
+
+[output]
+formats = ["svg", "dxf"]
+
+[fabrication]
+min_web = 2.5
+"""
+
+
+def test_build_writes_and_prints_paths(tmp_path, capsys):
+    f = tmp_path / "p.toml"
+    f.write_text(PANEL)
+    rc, out, err = _run(capsys, "build", f, "-o", tmp_path / "o")
+    assert rc == 0, err
+    assert out.split() == [str(tmp_path / "o" / "p.svg"), str(tmp_path / "o" / "p.dxf")]
+    first = (tmp_path / "o" / "p.dxf").read_bytes()
+    rc, out, _ = _run(capsys, "build", f, "-o", tmp_path / "o", "--set", "seeds.radius=10")
+    assert rc == 0
+    assert (tmp_path / "o" / "p.dxf").read_bytes() != first
+    rc, out, _ = _run(capsys, "build", f, "-o", tmp_path / "o", "--preview")
+    assert rc == 0 and out.split() == [str(tmp_path / "o" / "p.png")]
+
+
+def test_build_bad_design_exits_2_with_file_line_key(tmp_path, capsys):
+    f = tmp_path / "p.toml"
+    f.write_text(PANEL.replace("radius = 16", "radius = -16").replace("fillet = 1", "filet = 1"))
+    rc, out, err = _run(capsys, "build", f, "-o", tmp_path / "o")
+    assert rc == 2 and out == ""
+    lines = err.splitlines()
+    assert f"voroforge: error: {f}:13: seeds.radius: input should be greater than 0" in lines[0]
+    assert lines[1].startswith(f"voroforge: error: {f}:17: cells.filet: unknown key")
+    assert "did you mean 'fillet'?" in lines[1]
+    assert "Traceback" not in err
+    rc, _, err = _run(capsys, "build", f, "--set", "nonsense")
+    assert rc == 2 and "KEY=VALUE" in err
+    rc, _, err = _run(capsys, "build", tmp_path / "missing.toml")
+    assert rc == 2 and "missing.toml" in err
+
+
+def test_new_writes_a_starter_that_builds(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    rc, out, err = _run(capsys, "new")
+    assert rc == 0 and out.strip() == "design.toml"
+    assert (tmp_path / "design.toml").read_text().startswith("# A voroforge design file")
+    rc, _, err = _run(capsys, "new")
+    assert rc == 2 and "already exists" in err
+    rc, out, err = _run(
+        capsys, "build", "design.toml", "-o", "o", "--set", 'output.formats=["svg"]'
+    )
+    assert rc == 0, err
+
+
+def test_check_prints_table_and_strict_exit(tmp_path, capsys):
+    f = tmp_path / "p.toml"
+    f.write_text(PANEL)
+    rc, out, err = _run(capsys, "check", f, "--strict")
+    assert rc == 0 and "no violations" in out
+    rc, out, err = _run(capsys, "check", f, "--set", "cells.web=1")
+    assert rc == 0 and "web" in out and "violations" in out
+    rc, out, err = _run(capsys, "check", f, "--strict", "--set", "cells.web=1")
+    assert rc == 1 and out.splitlines()[0].split()[:3] == ["kind", "x", "y"]
 
 
 @pytest.mark.parametrize(
@@ -105,7 +202,7 @@ def test_bad_input_exits_2_with_one_line(tmp_path, points_csv, capsys, argv, mes
 def test_usage_errors_exit_2(capsys):
     assert _run(capsys, "voronoi")[0] == 2
     assert _run(capsys, "frobnicate")[0] == 2
-    for command in ("voronoi", "delaunay", "demo"):
+    for command in ("voronoi", "delaunay", "demo", "build", "new", "check"):
         rc, out, _ = _run(capsys, command, "--help")
         assert rc == 0 and "examples:" in out
     assert "--boundary" in _run(capsys, "voronoi", "--help")[1]

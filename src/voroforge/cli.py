@@ -12,7 +12,7 @@ PROG = "voroforge"
 
 _MAIN_EPILOG = """\
 examples:
-  voroforge demo -o out                      write out/demo.svg, demo.png, demo.geojson
+  voroforge demo -o out                      the flagship laser-cut panel: SVG, DXF, PNG
   voroforge voronoi points.csv -o cells.svg  Voronoi cells of points.csv as SVG
   voroforge voronoi points.csv -o cells.geojson --boundary domain.geojson
   voroforge delaunay points.csv -o triangles.svg
@@ -54,7 +54,7 @@ examples:
 
 _DEMO_EPILOG = """\
 examples:
-  voroforge demo               writes out/demo.svg, out/demo.png, out/demo.geojson
+  voroforge demo               writes out/laser-panel.svg, .dxf and .png
   voroforge demo -o /tmp/vf    the same files in /tmp/vf
 """
 
@@ -104,9 +104,9 @@ def _parser() -> argparse.ArgumentParser:
 
     demo = commands.add_parser(
         "demo",
-        help="write a demo diagram (SVG, PNG, GeoJSON)",
-        description="300 random sites in an outline with a hole: writes demo.svg, demo.png "
-        "and demo.geojson.",
+        help="build the flagship design: a laser-cut panel (SVG, DXF, PNG)",
+        description="Build the flagship design (examples/laser-panel.toml: a 600 x 400 mm "
+        "laser-cut panel, 3 mm webs, 2 mm fillets): writes laser-panel.svg, .dxf and .png.",
         epilog=_DEMO_EPILOG,
         formatter_class=raw,
     )

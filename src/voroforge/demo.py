@@ -1,65 +1,74 @@
-"""The demo: 300 random sites in an irregular outline with a hole, written as SVG, PNG, GeoJSON."""
+"""The demo: the flagship design, a 600 x 400 mm laser-cut panel, written as SVG, DXF and PNG.
+
+The design is ``examples/laser-panel.toml`` (kept here too, so the demo runs from an installed
+package); ``voroforge demo -o out`` builds it like ``voroforge build``.
+"""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-import numpy as np
-import shapely
+__all__ = ["FLAGSHIP", "build_demo"]
 
-__all__ = ["build_demo", "demo_domain", "demo_sites"]
+#: The flagship design file (identical to ``examples/laser-panel.toml``).
+FLAGSHIP = """\
+# Laser-cut decorative panel, 600 x 400 mm: 3 mm webs, 2 mm fillets on every opening.
+# The flagship example (`voroforge demo` builds it): SVG and DXF ready for a laser cutter.
+#   voroforge build examples/laser-panel.toml -o out
+#   voroforge check examples/laser-panel.toml
 
+[design]
+name = "laser-panel"
+description = "600 x 400 mm laser-cut Voronoi panel, 3 mm web, 2 mm fillets"
+units = "mm"
+seed = 7
 
-def demo_domain() -> shapely.Polygon:
-    """Return an irregular rounded outline inside ``[0, 100]²`` with a rounded-rectangle hole."""
-    theta = np.linspace(0.0, 2.0 * np.pi, 240, endpoint=False)
-    radius = 42.0 + 4.0 * np.sin(3.0 * theta) + 2.5 * np.cos(5.0 * theta + 0.7)
-    outline = np.column_stack((50.0 + radius * np.cos(theta), 50.0 + radius * np.sin(theta)))
-    hole = shapely.box(42.0, 40.0, 62.0, 54.0).buffer(5.0, quad_segs=8)
-    return shapely.Polygon(outline, [np.asarray(hole.exterior.coords)])
+[boundary]
+shape = "rectangle"
+width = 600
+height = 400
+corner_radius = 12         # rounded panel corners
+margin = 15                # solid border all round
 
+[seeds]
+method = "poisson"
+radius = 38                # about 150 openings
 
-def demo_sites(domain: shapely.Geometry, n: int = 300, seed: int = 7) -> np.ndarray:
-    """``n`` uniform random points inside ``domain`` (rejection sampling, reproducible)."""
-    rng = np.random.default_rng(seed)
-    xmin, ymin, xmax, ymax = domain.bounds
-    found = np.zeros((0, 2))
-    while len(found) < n:
-        cand = rng.uniform((xmin, ymin), (xmax, ymax), size=(2 * n, 2))
-        found = np.concatenate((found, cand[shapely.contains_xy(domain, cand[:, 0], cand[:, 1])]))
-    return found[:n]
+[cells]
+web = 3                    # 3 mm of material between openings
+fillet = 2                 # 2 mm radius on every corner: true arcs in the DXF
+
+[output]
+formats = ["svg", "dxf", "png"]
+layers = { CUT = "frame" }
+kerf = 0.15                # CO2 laser in 3 mm plywood
+png_size = 1000
+
+[fabrication]
+min_web = 2.5
+min_opening = 10
+tool_radius = 1.0
+"""
 
 
 def build_demo(out_dir, *, progress=None) -> list[Path]:
-    """Compute the demo diagram and write ``demo.svg``, ``demo.png`` and ``demo.geojson``.
+    """Build the flagship design and write ``laser-panel.svg``, ``.dxf`` and ``.png``.
 
     Parameters
     ----------
     out_dir : str or Path
         Folder for the files; created if missing.
     progress : callable, optional
-        Called with the name of each stage (``"computing"``, ``"writing demo.svg"``, ...).
+        Called with the name of each stage.
 
     Returns
     -------
     list of Path
-        The files written.
+        The files written (SVG with a CUT layer in mm, DXF with fillets as true arcs, PNG).
     """
-    import voroforge as vf
+    import tomllib
 
-    from .io import write_geojson, write_png, write_svg
+    from .design.pipeline import build
 
-    stage = progress or (lambda name: None)
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    domain = demo_domain()
-    sites = demo_sites(domain)
-    stage(f"computing {len(sites)} Voronoi cells")
-    d = vf.voronoi(sites, domain)
-    written = []
-    for name, writer in (("demo.svg", write_svg), ("demo.png", write_png)):
-        stage(f"writing {name}")
-        written.append(writer(d.cells, out / name, sites=d.sites, boundary=d.boundary))
-    stage("writing demo.geojson")
-    written.append(write_geojson(d.cells, out / "demo.geojson", sites=d.sites))
-    return written
+    design = tomllib.loads(FLAGSHIP)
+    return build(design, out_dir, progress=progress)
