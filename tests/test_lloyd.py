@@ -7,6 +7,8 @@ from math import factorial
 import numpy as np
 import pytest
 import shapely
+from hypothesis import given
+from hypothesis import strategies as st
 
 import voroforge as vf
 from voroforge.engine._integrate import RADON_NODES, RADON_WEIGHTS, Integrator
@@ -256,3 +258,46 @@ def test_errors_and_input_untouched():
         vf.lloyd(pts, (0, 0, 1, 1), method="lbfgs", areas=np.full(20, 0.05))
     with pytest.raises(ValueError, match="sum to the domain"):
         vf.lloyd(pts, (0, 0, 1, 1), areas=np.full(20, 1.0))
+
+
+class _Raster:
+    """A small raster object: ``values`` and ``bounds``."""
+
+    def __init__(self, values, bounds):
+        self.values = values
+        self.bounds = bounds
+
+
+def test_raster_object_and_lbfgs_with_raster():
+    values = np.linspace(1.0, 4.0, 12).reshape(3, 4)
+    pts = np.random.default_rng(13).random((40, 2))
+    a = vf.lloyd(pts, (0, 0, 1, 1), iterations=5, density=_Raster(values, (0, 0, 1, 1)))
+    b = vf.lloyd(pts, (0, 0, 1, 1), iterations=5, density=(values, (0, 0, 1, 1)))
+    assert np.array_equal(a.points, b.points)
+    q = vf.lloyd(pts, (0, 0, 1, 1), iterations=20, density=(values, (0, 0, 1, 1)), method="lbfgs")
+    assert np.all(np.diff(q.energy) <= 0) and q.energy[-1] < b.energy[-1]
+
+
+def test_capacity_cvt_on_a_disk():
+    disk = shapely.Point(0, 0).buffer(1.0, quad_segs=16)
+    rng = np.random.default_rng(14)
+    pts = rng.uniform(-0.6, 0.6, size=(50, 2))
+    target = np.full(50, disk.area / 50)
+    r = vf.lloyd(pts, disk, iterations=10, areas=target)
+    assert np.all(np.abs(r.diagram.areas - target) <= 1e-6 * target)
+    assert abs(r.diagram.areas.sum() - disk.area) <= 1e-9 * disk.area
+
+
+@given(
+    st.integers(1, 40),
+    st.integers(0, 2**32 - 1),
+    st.sampled_from([SQUARE, HOLED, L_SHAPE]),
+)
+def test_property_lloyd_monotone(n, seed, domain):
+    rng = np.random.default_rng(seed)
+    pts = np.round(rng.uniform(-0.1, 1.1, size=(n, 2)), 2)  # duplicates, outside sites
+    r = vf.lloyd(pts, domain, iterations=6)
+    assert np.all(np.diff(r.energy) <= 1e-14 * max(r.energy[0], 1e-300))
+    assert np.isfinite(r.points).all()
+    q = vf.lloyd(pts, domain, iterations=6, method="lbfgs")
+    assert np.all(np.diff(q.energy) <= 0)

@@ -274,3 +274,24 @@ def test_power_fit_errors():
     skewed = np.r_[0.9, np.full(9, 0.1 / 9)]
     with pytest.raises(RuntimeError, match="did not reach"):
         vf.power_fit(pts, skewed, (0, 0, 1, 1), max_iter=1)
+
+
+def test_scaling_and_translation():
+    rng = np.random.default_rng(15)
+    pts = rng.random((60, 2))
+    w = rng.random(60) * 0.01
+    base = vf.power(pts, w, (0, 0, 1, 1))
+    s = 2.0**20
+    shift = np.array([1e5, -3e4])
+    big = vf.power(pts * s + shift, w * s * s, tuple(np.r_[shift, shift + s]))
+    assert np.allclose(big.areas / (s * s), base.areas, rtol=0, atol=1e-10)
+
+
+def test_sites_outside_the_domain():
+    rng = np.random.default_rng(16)
+    pts = rng.uniform(-0.5, 1.5, size=(40, 2))
+    w = rng.random(40) * 0.05
+    d = vf.power(pts, w, (0, 0, 1, 1))
+    check_power(d, pts, w, shapely.box(0, 0, 1, 1))
+    d = vf.power(pts * 10, w * 100, L_SHAPE)
+    check_power(d, pts * 10, w * 100, L_SHAPE)
