@@ -418,6 +418,30 @@ def test_openings_and_frame_area(diagram):
     assert len(shapely.get_rings(fr)) > len(op)  # holes cut in (plus the plate's own)
 
 
+def test_frame_matches_geos_difference_in_awkward_cases():
+    ring = shapely.box(30, 30, 50, 50).difference(shapely.box(35, 35, 45, 45))
+    openings = [
+        shapely.box(5, 5, 10, 10),  # plain hole
+        shapely.box(8, 8, 12, 12),  # overlaps the first
+        shapely.box(20, 5, 25, 10),  # touches the next at an edge
+        shapely.box(25, 5, 28, 10),
+        shapely.box(-5, 20, 5, 25),  # crosses the outline
+        ring,  # an opening with an island
+        shapely.box(95, 95, 99, 99),  # outside
+        shapely.box(103, 5, 108, 10),  # in the second part
+        shapely.Polygon(),
+    ]
+    for outline in (
+        bd.rectangle(90, 90),
+        bd.union(bd.rectangle(90, 90), bd.rectangle(20, 20, origin=(100, 0))),
+    ):
+        got = co.frame(outline, openings)
+        want = outline.difference(shapely.union_all(openings))
+        assert got.is_valid
+        assert got.symmetric_difference(want).area < 1e-9
+        assert got.geom_type == want.geom_type
+
+
 @pytest.mark.parametrize(
     ("call", "match"),
     [

@@ -276,10 +276,26 @@ def fillet(cells, radius, *, resolution: int = 16) -> np.ndarray:
         raise ValueError(f"resolution must be an integer >= 1, got {resolution!r}")
     q = int(resolution)
     opened = shapely.buffer(shapely.buffer(arr, -r, quad_segs=q), r, quad_segs=q)
-    closed = shapely.buffer(shapely.buffer(opened, r, quad_segs=q), -r, quad_segs=q)
+    # a convex cell has no concave corner, so closing would change nothing: skip it there
+    closed = opened.copy()
+    concave = ~_is_convex(arr) & ~shapely.is_empty(opened)
+    if concave.any():
+        rc = r[concave] if np.ndim(r) else r
+        closed[concave] = shapely.buffer(
+            shapely.buffer(opened[concave], rc, quad_segs=q), -rc, quad_segs=q
+        )
     zero = np.asarray(r) == 0
     out = np.where(zero, arr, closed) if np.ndim(r) else (arr.copy() if zero else closed)
     return _clean(out)
+
+
+def _is_convex(cells: np.ndarray) -> np.ndarray:
+    """Mask of single convex polygons without holes (area equals the convex hull's)."""
+    single = shapely.get_type_id(cells) == 3
+    single &= shapely.get_num_interior_rings(cells) == 0
+    area = shapely.area(cells)
+    hull = shapely.area(shapely.convex_hull(cells))
+    return single & (hull - area <= 1e-12 * hull)
 
 
 def scale(cells, factor, *, about="centroid", sites=None) -> np.ndarray:
@@ -528,6 +544,9 @@ def openings(cells, mask) -> np.ndarray:
 def frame(boundary, openings) -> shapely.Polygon | shapely.MultiPolygon:  # noqa: F811
     """The part that is cut out: the boundary minus the union of the openings.
 
+    Openings that lie strictly inside the boundary and touch no other opening (the usual
+    case: insets of a tiling) become holes directly; the rest go through a GEOS difference.
+
     Parameters
     ----------
     boundary : shapely Polygon or MultiPolygon
@@ -544,7 +563,35 @@ def frame(boundary, openings) -> shapely.Polygon | shapely.MultiPolygon:  # noqa
 
     geom = as_polygonal(boundary)
     arr = as_cells(openings)
-    if len(arr) == 0:
+    parts = shapely.get_parts(arr[~shapely.is_empty(arr)])
+    if len(parts) == 0:
         return geom
-    holes = shapely.union_all(arr[~shapely.is_empty(arr)])
-    return _polygonal_part(shapely.difference(geom, holes))
+    shapely.prepare(geom)
+    simple = (shapely.get_type_id(parts) == 3) & (shapely.get_num_interior_rings(parts) == 0)
+    simple &= shapely.contains_properly(geom, parts)
+    if simple.any():
+        idx = np.flatnonzero(simple)
+        tree = shapely.STRtree(parts[idx])
+        a, b = tree.query(parts[idx], predicate="intersects")
+        touching = np.unique(np.concatenate((a[a != b], b[a != b])))
+        simple[idx[touching]] = False
+    pieces = list(shapely.get_parts(geom))
+    if simple.any():
+        holes = parts[simple]
+        if len(pieces) == 1:
+            owner = np.zeros(len(holes), dtype=np.int64)
+        else:
+            tree = shapely.STRtree(np.asarray(pieces, dtype=object))
+            hole_idx, piece_idx = tree.query(holes, predicate="within")
+            owner = np.full(len(holes), -1, dtype=np.int64)
+            owner[hole_idx] = piece_idx
+        rings = shapely.get_exterior_ring(holes)
+        for k, piece in enumerate(pieces):
+            mine = rings[owner == k]
+            if len(mine):
+                pieces[k] = shapely.Polygon(piece.exterior, [*piece.interiors, *mine])
+    result = pieces[0] if len(pieces) == 1 else shapely.MultiPolygon(pieces)
+    rest = parts[~simple]
+    if len(rest):
+        result = shapely.difference(result, shapely.union_all(rest))
+    return _polygonal_part(result)
