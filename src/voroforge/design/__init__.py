@@ -7,3 +7,6 @@ and takes its randomness from an explicit ``seed``.
 """
 
 from . import attractors, boundary, cellops, populate, recursive, relax  # noqa: F401
+
+# isort: split
+from . import fabrication, pipeline, schema  # noqa: F401  (design files and fabrication)

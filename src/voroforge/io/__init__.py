@@ -18,10 +18,12 @@ from pathlib import Path
 import numpy as np
 import shapely
 
+from .dxf import write_dxf  # ezdxf itself is imported on first use
 from .geojson import feature_collection, write_geojson
+from .gif import write_gif
 from .png import render_image, write_png
 from .readers import read_boundary, read_points
-from .svg import svg_string, write_svg
+from .svg import svg_string, write_layers, write_svg
 
 __all__ = [
     "FORMATS",
@@ -35,6 +37,9 @@ __all__ = [
     "write_geojson",
     "write_png",
     "write_svg",
+    "write_dxf",
+    "write_gif",
+    "write_layers",
 ]
 
 #: Output suffixes understood by :func:`write`, and the format each one means.
