@@ -430,7 +430,8 @@ def _scratch(cap):
     """Scratch arrays of one worker.
 
     Two polygons (at offsets 1 and ``cap + 2``), plane values, an output cell, the label
-    ring, canonical vertices and the candidate list (``4 cap`` sites).
+    ring, canonical vertices and the candidate list (``4 cap`` sites) with their squared
+    distances.
     """
     return (
         np.zeros(2 * cap + 2),
@@ -444,6 +445,7 @@ def _scratch(cap):
         np.zeros(cap),
         np.zeros(cap),
         np.zeros(4 * cap, np.int64),
+        np.zeros(4 * cap),
     )
 
 
@@ -463,7 +465,7 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
     xs, ys = orig
     x0, y0, hx, hy, nx, ny = grid
     cap = _CAP
-    px, py, po, ss, ox, oy, oo, lab, vx, vy, cand = _scratch(cap)
+    px, py, po, ss, ox, oy, oo, lab, vx, vy, cand, cd = _scratch(cap)
     pos = 0
     fits = True
     k = k0
@@ -493,11 +495,14 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
                 gap = _ring_gap(ix, iy, ring, fx0, fx1, fy0, fy1, hx, hy, nx, ny)
                 if gap < 0.0 or gap * gap > _REACH * r2:
                     break
+            # gather the ring's sites that can still cut, nearest first, then cut with them:
+            # near bisectors shrink the cell early, so far ones fail the cheap radius test
+            base = nc
             for jy in range(max(iy - ring, 0), min(iy + ring, ny - 1) + 1):
                 step = 1 if jy == iy - ring or jy == iy + ring else 2 * ring
                 gy = max(y0 + jy * hy - cy, cy - (y0 + (jy + 1) * hy), 0.0)
                 for jx in range(ix - ring, ix + ring + 1, step):
-                    if jx < 0 or jx >= nx or m < 3 or grow:
+                    if jx < 0 or jx >= nx or grow:
                         continue
                     gx = max(x0 + jx * hx - cx, cx - (x0 + (jx + 1) * hx), 0.0)
                     if gx * gx + gy * gy > _REACH * r2:
@@ -506,33 +511,54 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
                     for t in range(start[bucket], start[bucket + 1]):
                         qx = sx[t] - cx
                         qy = sy[t] - cy
-                        h = 0.5 * (qx * qx + qy * qy)
-                        if t == k or 2.0 * h > _REACH * r2:
+                        q2 = qx * qx + qy * qy
+                        if t == k or q2 > _REACH * r2:
                             continue
                         if nc == cand.shape[0]:
                             grow = True
                             break
-                        cand[nc] = t
+                        # insertion into the ring's part of the list, sorted by distance
+                        u = nc
+                        while u > base and cd[u - 1] > q2:
+                            cand[u] = cand[u - 1]
+                            cd[u] = cd[u - 1]
+                            u -= 1
+                        cand[u] = t
+                        cd[u] = q2
                         nc += 1
-                        if not _plane_values(px, py, a, m, qx, qy, h, ss):
-                            continue
-                        if m + m // 2 + 2 > cap:  # each run of cut vertices adds at most one
-                            grow = True
-                            break
-                        m = _cut_by_plane(px, py, po, a, m, b, ss, sidx[t])
-                        r2 = _radius2(px, py, b, m)
-                        a, b = b, a
-                        if m < 3:
-                            break
+            for c in range(base, nc):
+                if grow or m < 3 or cd[c] > _REACH * r2:
+                    break  # sorted: the rest are farther still
+                t = cand[c]
+                qx = sx[t] - cx
+                qy = sy[t] - cy
+                if not _plane_values(px, py, a, m, qx, qy, 0.5 * cd[c], ss):
+                    continue
+                if m + m // 2 + 2 > cap:  # each run of cut vertices adds at most one
+                    grow = True
+                    break
+                m = _cut_by_plane(px, py, po, a, m, b, ss, sidx[t])
+                r2 = _radius2(px, py, b, m)
+                a, b = b, a
             ring += 1
         if grow:  # rare: a cell with many vertices; start it again with more room
             cap *= 2
-            px, py, po, ss, ox, oy, oo, lab, vx, vy, cand = _scratch(cap)
+            px, py, po, ss, ox, oy, oo, lab, vx, vy, cand, cd = _scratch(cap)
             continue
         c = 0
         if m >= 3:
             for u in range(m):
                 lab[u] = po[a + u]
+            # only sites within 2 r of the final cell can matter to its vertices
+            keep = 0
+            for c in range(nc):
+                t = cand[c]
+                qx = sx[t] - cx
+                qy = sy[t] - cy
+                if qx * qx + qy * qy <= _REACH * r2:
+                    cand[keep] = t
+                    keep += 1
+            nc = keep
             ms = _settle(sidx[k], lab, m, cand, nc, sidx, xs, ys, vx, vy)
             direct = fits and pos + max(m, ms) <= dx.shape[0]
             c = -1
