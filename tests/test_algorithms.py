@@ -1,0 +1,194 @@
+"""The three 2D algorithms give the same diagram; kernel-level checks of the half-plane cells.
+
+``delaunay``, ``fortune`` and ``halfplane`` are compared with each other directly (areas,
+neighbour sets, edges, cell geometry) on the whole degenerate catalogue, random inputs and
+generated degenerate inputs; the half-plane kernel is checked for bit-identical shared
+vertices (what its canonical vertex computation promises) and for its stop radius.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+import voroforge as vf
+from voroforge.kernels.halfplane import _bucket_sort, _grid_shape, halfplane_cells
+
+from catalogue import CATALOGUE, NAMES, as_domain, general_position
+from validate import symmetric_difference_areas
+
+OTHERS = ["fortune", "halfplane"]
+
+
+def _pairs(d) -> set[tuple[int, int]]:
+    p = np.sort(np.asarray(d.edges.pairs), axis=1)
+    return set(map(tuple, p.tolist()))
+
+
+def _assert_same(a, b, boundary) -> None:
+    """Diagrams ``a`` and ``b`` of the same input have the same cells, neighbours and edges."""
+    n = len(a.sites)
+    assert len(b.sites) == n
+    assert np.array_equal(a.duplicate_of, b.duplicate_of)
+    dom = a.boundary
+    area = dom.area
+    np.testing.assert_allclose(b.areas, a.areas, rtol=1e-9, atol=1e-12 * area)
+    assert _pairs(a) == _pairs(b), "neighbour sets differ"
+    ia, xa = a.neighbors
+    ib, xb = b.neighbors
+    assert np.array_equal(ia, ib)
+    assert all(
+        set(xa[ia[k] : ia[k + 1]].tolist()) == set(xb[ib[k] : ib[k + 1]].tolist()) for k in range(n)
+    )
+    if n:
+        diff = symmetric_difference_areas(a.cells, b.cells, dom)
+        assert diff.max() <= 1e-9 * area, f"cells differ by area {diff.max()} (domain {area})"
+    # the same edges: one per pair and piece, of the same total length per pair
+    la = _lengths_by_pair(a)
+    lb = _lengths_by_pair(b)
+    assert la.keys() == lb.keys()
+    scale = max(dom.bounds[2] - dom.bounds[0], dom.bounds[3] - dom.bounds[1])
+    for key, length in la.items():
+        assert abs(lb[key] - length) <= 1e-9 * scale, f"edge {key}: {lb[key]} != {length}"
+
+
+def _lengths_by_pair(d) -> dict[tuple[int, int], float]:
+    coords = np.asarray(d.edges.coords)
+    length = np.hypot(*(coords[:, 1] - coords[:, 0]).T) if len(coords) else np.zeros(0)
+    out: dict[tuple[int, int], float] = {}
+    for (i, j), v in zip(np.sort(d.edges.pairs, axis=1).tolist(), length.tolist(), strict=True):
+        out[(i, j)] = out.get((i, j), 0.0) + v
+    return out
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_catalogue_same_cells(name):
+    """Every catalogue entry, every algorithm: the same diagram as the default."""
+    pts, boundary = CATALOGUE[name]
+    ref = vf.voronoi(pts, boundary)
+    for alg in OTHERS:
+        d = vf.voronoi(pts, boundary, algorithm=alg)
+        assert d.algorithm == alg
+        _assert_same(ref, d, as_domain(boundary))
+
+
+@pytest.mark.parametrize(
+    ("kind", "seed"),
+    [("uniform", 0), ("uniform", 1), ("clustered", 2), ("lattice", 3), ("outside", 4)],
+)
+def test_random_same_cells(kind, seed):
+    rng = np.random.default_rng(seed)
+    boundary = (0.0, 0.0, 1.0, 1.0)
+    if kind == "uniform":
+        pts = general_position(3000, seed)
+    elif kind == "clustered":
+        ctr = rng.random((8, 2))
+        pts = (ctr[rng.integers(0, 8, 2000)] + rng.normal(0, 0.01, (2000, 2))).clip(0, 1)
+    elif kind == "lattice":
+        # coarse lattice: cocircular squares, collinear rows and duplicates everywhere
+        pts = rng.integers(0, 40, (2500, 2)) / 39.0
+    else:
+        pts = rng.uniform(-0.5, 1.5, (1500, 2))
+    ref = vf.voronoi(pts, boundary)
+    for alg in OTHERS:
+        _assert_same(ref, vf.voronoi(pts, boundary, algorithm=alg), None)
+
+
+def test_large_parallel_same_cells():
+    """Above the parallel threshold the half-plane cells run in threads: still the same."""
+    pts = general_position(25000, 7)
+    ref = vf.voronoi(pts, (0.0, 0.0, 1.0, 1.0))
+    for alg in OTHERS:
+        d = vf.voronoi(pts, (0.0, 0.0, 1.0, 1.0), algorithm=alg)
+        np.testing.assert_allclose(d.areas, ref.areas, rtol=1e-9, atol=1e-15)
+        assert _pairs(d) == _pairs(ref)
+
+
+def _array(pairs) -> np.ndarray:
+    return np.array(pairs, dtype=np.float64).reshape(-1, 2)
+
+
+small = st.integers(0, 5)
+lattice_sets = st.lists(st.tuples(small, small), min_size=1, max_size=40).map(_array)
+
+
+@given(pts=lattice_sets, scale=st.sampled_from([1.0, 2.0**-30, 1e6]), pad=st.booleans())
+def test_generated_degenerate_same_cells(pts, scale, pad):
+    """Lattice inputs (duplicates, collinear, cocircular) at several scales: same diagram."""
+    pts = pts * scale + 500000.0 * (scale == 1e6)
+    boundary = None if pad else tuple(np.r_[pts.min(0) - scale, pts.max(0) + scale].tolist())
+    ref = vf.voronoi(pts, boundary)
+    for alg in OTHERS:
+        _assert_same(ref, vf.voronoi(pts, boundary, algorithm=alg), None)
+
+
+# --- half-plane kernel ------------------------------------------------------------------------
+
+
+def _edge_map(coords, offsets, owner):
+    """``(i, j) -> list of (start, end)`` vertex tuples of cell ``i``'s edges facing ``j``."""
+    out: dict[tuple[int, int], list] = {}
+    for i in range(len(offsets) - 1):
+        a, b = offsets[i], offsets[i + 1]
+        for k in range(a, b):
+            j = int(owner[k])
+            if j < 0:
+                continue
+            nxt = k + 1 if k + 1 < b else a
+            out.setdefault((i, j), []).append((tuple(coords[k]), tuple(coords[nxt])))
+    return out
+
+
+@pytest.mark.parametrize("name", ["uniform", "grid_20x20", "hex_grid", "circle_integer"])
+def test_halfplane_shared_vertices_bit_identical(name):
+    """Both cells of an edge compute its two ends with the same bits (canonical vertices)."""
+    if name == "uniform":
+        pts, box = general_position(800, 3), (0.0, 0.0, 1.0, 1.0)
+    else:
+        pts = CATALOGUE[name][0]
+        # a box through no Voronoi vertex: a vertex exactly on the box is computed as a box
+        # crossing by one cell and as a clamped circumcentre by the other (ulps apart)
+        lo, hi = pts.min(0), pts.max(0)
+        box = (*(lo - 0.3), *(hi + 0.3))
+    coords, offsets, owner = halfplane_cells(pts[:, 0], pts[:, 1], np.array(box))
+    edges = _edge_map(coords, offsets, owner)
+    assert edges
+    for (i, j), segs in edges.items():
+        twin = edges.get((j, i))
+        assert twin is not None, f"cell {i} faces {j} but not the other way round"
+        for s, e in segs:
+            assert (e, s) in twin, f"edge {i}|{j} ends differ between the two cells"
+    # exactly cocircular sites: no zero-length edge, no vertex repeated in a cell
+    for i in range(len(offsets) - 1):
+        ring = coords[offsets[i] : offsets[i + 1]]
+        assert len(np.unique(ring, axis=0)) == len(ring)
+
+
+def test_halfplane_grid_cells_are_squares():
+    """A unit grid: every interior cell is exactly the unit square around its site."""
+    g = np.stack(np.meshgrid(np.arange(10.0), np.arange(10.0)), -1).reshape(-1, 2)
+    coords, offsets, owner = halfplane_cells(g[:, 0], g[:, 1], np.array([-0.5, -0.5, 9.5, 9.5]))
+    assert np.all(np.diff(offsets) == 4)
+    for i, (x, y) in enumerate(g):
+        ring = coords[offsets[i] : offsets[i + 1]]
+        want = {(x - 0.5, y - 0.5), (x + 0.5, y - 0.5), (x + 0.5, y + 0.5), (x - 0.5, y + 0.5)}
+        assert set(map(tuple, ring.tolist())) == want
+
+
+def test_halfplane_grid_and_bucket_sort():
+    """Every site lands in the bucket that contains it; the CSR covers all sites once."""
+    rng = np.random.default_rng(5)
+    xs, ys = rng.random(1000) * 7.0, rng.random(1000) * 0.01  # a flat strip
+    grid = _grid_shape(xs, ys)
+    x0, y0, hx, hy, nx, ny = grid
+    start, sx, sy, sidx = _bucket_sort(xs, ys, *grid)
+    assert start[0] == 0 and start[-1] == 1000 and np.all(np.diff(start) >= 0)
+    assert sorted(sidx.tolist()) == list(range(1000))
+    assert np.array_equal(sx, xs[sidx]) and np.array_equal(sy, ys[sidx])
+    for b in range(nx * ny):
+        ix, iy = b % nx, b // nx
+        for t in range(start[b], start[b + 1]):
+            assert x0 + ix * hx <= sx[t] <= x0 + (ix + 1) * hx * (1 + 1e-12)
+            assert y0 + iy * hy <= sy[t] <= y0 + (iy + 1) * hy * (1 + 1e-12)
