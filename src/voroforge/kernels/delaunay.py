@@ -459,7 +459,10 @@ def _sweep(xs, ys):
 
 @njit(**NJIT_PARALLEL)
 def _suspect_edges(xs, ys, tri, he, tcount):
-    """Halfedges (one per interior edge) that the filtered incircle cannot prove legal."""
+    """Halfedges (one per interior edge) that are not locally Delaunay (exact incircle).
+
+    The filter settles most edges; the exact test runs, in parallel, only where it cannot.
+    """
     flag = np.zeros(tcount, dtype=np.bool_)
     for e in prange(tcount):
         f = he[e]
@@ -470,17 +473,19 @@ def _suspect_edges(xs, ys, tri, he, tcount):
         r = tri[_prev(e)]
         s = tri[_prev(f)]
         v = incircle_fast(xs[p], ys[p], xs[q], ys[q], xs[r], ys[r], xs[s], ys[s])
-        if not v <= 0.0:  # illegal, or undecided
+        if v != v:
+            v = incircle(xs[p], ys[p], xs[q], ys[q], xs[r], ys[r], xs[s], ys[s])
+        if v > 0.0:
             flag[e] = True
     return np.flatnonzero(flag).astype(np.int32)
 
 
 @njit(**NJIT)
 def _repair(xs, ys, tri, he, hull_tri, suspects):
-    """Lawson flips with exact incircle from the suspect edges until every edge is legal.
+    """Lawson flips with exact incircle from the given edges until every edge is legal.
 
-    Any triangulation reaches the Delaunay one this way; the sweep leaves only a few edges
-    that its filtered predicate could not settle. Returns the number of flips.
+    Any triangulation reaches the Delaunay one this way; started from all illegal edges
+    (:func:`_suspect_edges`) it ends Delaunay. Returns the number of flips.
     """
     stack = np.zeros(suspects.shape[0] + tri.shape[0] + 16, dtype=np.int32)
     sp = suspects.shape[0]

@@ -242,26 +242,32 @@ def _orient3(p, plen, q, qlen, r, rlen, out, tmp):
 
 @njit(**NJIT)
 def _lift(x, y, out):
+    """4-component expansion of ``x * x + y * y`` (Two-Two-Sum of the exact squares)."""
     x1, x0 = _two_product(x, x)
     y1, y0 = _two_product(y, y)
-    a = np.zeros(2)
-    b = np.zeros(2)
-    a[0] = x0
-    a[1] = x1
-    b[0] = y0
-    b[1] = y1
-    return _expansion_sum(a, 2, b, 2, out)
+    i, o0 = _two_sum(x0, y0)
+    j, r0 = _two_sum(x1, i)
+    i, o1 = _two_sum(r0, y1)
+    o3, o2 = _two_sum(j, i)
+    out[0] = o0
+    out[1] = o1
+    out[2] = o2
+    out[3] = o3
+    return 4
 
 
 @njit(**NJIT)
 def _incircle_translated_exact(adx, ady, bdx, bdy, cdx, cdy):
     """Exact incircle when the coordinate differences to ``d`` are exact doubles."""
-    lift = np.zeros(4)
-    minor = np.zeros(4)
-    tmp = np.zeros(8)
-    acc = np.zeros(200)
-    prod = np.zeros(200)
-    total = np.zeros(200)
+    # one allocation, carved into views: a product of 4- by 4-component expansions has at
+    # most 32 components, the sum of three at most 96
+    buf = np.zeros(16 + 3 * 128)
+    lift = buf[0:4]
+    minor = buf[4:8]
+    tmp = buf[8:16]
+    acc = buf[16:144]
+    prod = buf[144:272]
+    total = buf[272:400]
     tlen = 0
     for k in range(3):
         if k == 0:
@@ -289,14 +295,16 @@ def _incircle_full_exact(ax, ay, bx, by, cx, cy, dx, dy):
     ``lift(a) o(b,c,d) - lift(b) o(a,c,d) + lift(c) o(a,b,d) - lift(d) o(a,b,c)`` where
     ``o(p,q,r) = pq + qr + rp`` and ``pq = px * qy - qx * py``.
     """
-    ab = np.zeros(4)
-    bc = np.zeros(4)
-    cd = np.zeros(4)
-    da = np.zeros(4)
-    ac = np.zeros(4)
-    ca = np.zeros(4)
-    bd = np.zeros(4)
-    db = np.zeros(4)
+    # one allocation, carved into views (see the sizes below)
+    buf = np.zeros(32 + 8 + 12 + 4 + 24 + 3 * 400)
+    ab = buf[0:4]
+    bc = buf[4:8]
+    cd = buf[8:12]
+    da = buf[12:16]
+    ac = buf[16:20]
+    ca = buf[20:24]
+    bd = buf[24:28]
+    db = buf[28:32]
     _cross(ax, ay, bx, by, ab)
     _cross(bx, by, cx, cy, bc)
     _cross(cx, cy, dx, dy, cd)
@@ -306,13 +314,13 @@ def _incircle_full_exact(ax, ay, bx, by, cx, cy, dx, dy):
     for i in range(4):
         ca[i] = -ac[i]
         db[i] = -bd[i]
-    tmp8 = np.zeros(8)
-    minor = np.zeros(12)
-    lift = np.zeros(4)
-    stmp = np.zeros(24)
-    acc = np.zeros(400)
-    prod = np.zeros(400)
-    total = np.zeros(400)
+    tmp8 = buf[32:40]
+    minor = buf[40:52]  # sum of three 4-component expansions
+    lift = buf[52:56]
+    stmp = buf[56:80]  # a 12-component minor scaled by one double
+    acc = buf[80:480]  # products have at most 96 components, their sum at most 384
+    prod = buf[480:880]
+    total = buf[880:1280]
     tlen = 0
     for k in range(4):
         if k == 0:
