@@ -42,6 +42,15 @@ def test_locate_many_equidistant_sites_picks_lowest_index():
     assert vf.locate(sites, [0.0, 0.0]) == 0
     far = np.concatenate((np.full((20, 2), 100.0) + np.arange(20)[:, None], sites))
     assert vf.locate(far, [0.0, 0.0]) == 20
+    # 20 points on the circle of radius 25: more ties than the staged KD-tree queries fetch
+    big = np.array(
+        [(x, y) for x in range(-25, 26) for y in range(-25, 26) if x * x + y * y == 625], float
+    )
+    assert len(big) == 20
+    order = np.random.default_rng(1).permutation(20)
+    sites = np.concatenate((big[order], [[0.5, 100.0]]))
+    got = vf.locate(sites, [[0.0, 0.0], [0.0, 0.0], [0.0, 1.0]])
+    np.testing.assert_array_equal(got, [0, 0, brute_nearest(sites, [[0.0, 1.0]])[0][0]])
 
 
 def test_locate_single_point_and_errors():

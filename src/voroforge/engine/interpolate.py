@@ -18,8 +18,6 @@ from ..kernels.natural import INSIDE, sibson
 from ._inputs import as_points
 from .delaunay import delaunay
 
-#: Candidates fetched per query before ties are settled exactly.
-_K = 4
 #: A candidate this close (relative) to the best distance may be tied after rounding.
 _TIE_RTOL = 1e-9
 
@@ -55,28 +53,38 @@ class _Locator:
             diff = np.minimum(diff, self.size - diff)
         return diff[..., 0] * diff[..., 0] + diff[..., 1] * diff[..., 1]
 
-    def query(self, q: np.ndarray) -> np.ndarray:
+    def _settle(self, q, tq, rows, out, k):
+        """Lowest index among the exactly nearest sites for ``rows``, looking at ``k``."""
         npts = len(self.pts)
-        k = min(_K, npts)
-        tq = q if self.size is None else self._wrap(q)
-        _, cand = self.tree.query(tq, k=k)
-        cand = cand.reshape(len(q), k)
-        d2 = self._d2(q, cand)
+        k = min(k, npts)
+        _, cand = self.tree.query(tq[rows], k=k)
+        cand = cand.reshape(len(rows), k)
+        d2 = self._d2(q[rows], cand)
         best = d2.min(axis=1)
         tied = d2 == best[:, None]
-        # lowest input index among the exactly tied candidates
         rank = np.where(tied, self.owners[cand], np.iinfo(np.int64).max)
-        out = rank.min(axis=1)
-        if k < npts:
-            # more ties may hide beyond the k-th candidate: settle those rows exhaustively
-            again = np.flatnonzero(d2[:, -1] <= best * (1.0 + _TIE_RTOL) + 1e-300)
-            if len(again):
-                radius = np.sqrt(best[again]) * (1.0 + _TIE_RTOL) + 1e-300
-                lists = self.tree.query_ball_point(tq[again], radius)
-                for row, members in zip(again, lists, strict=True):
-                    members = np.asarray(members, dtype=np.int64)
-                    dd = self._d2(q[row : row + 1], members[None, :])[0]
-                    out[row] = self.owners[members[dd == dd.min()]].min()
+        out[rows] = rank.min(axis=1)
+        if k == npts:
+            return rows[:0], best[:0]
+        # a candidate this close to the best one may hide further ties beyond the k-th
+        again = d2[:, -1] <= best * (1.0 + _TIE_RTOL) + 1e-300
+        return rows[again], best[again]
+
+    def query(self, q: np.ndarray) -> np.ndarray:
+        tq = q if self.size is None else self._wrap(q)
+        out = np.zeros(len(q), dtype=np.int64)
+        rows = np.arange(len(q))
+        for k in (2, 16):
+            rows, best = self._settle(q, tq, rows, out, k)
+            if not len(rows):
+                return out
+        # more than 16 nearly equidistant sites: settle exhaustively
+        radius = np.sqrt(best) * (1.0 + _TIE_RTOL) + 1e-300
+        lists = self.tree.query_ball_point(tq[rows], radius)
+        for row, members in zip(rows, lists, strict=True):
+            members = np.asarray(members, dtype=np.int64)
+            dd = self._d2(q[row : row + 1], members[None, :])[0]
+            out[row] = self.owners[members[dd == dd.min()]].min()
         return out
 
 

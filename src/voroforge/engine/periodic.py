@@ -137,6 +137,28 @@ def _gather(d: Diagram, source: np.ndarray, n: int, keep: np.ndarray):
     return _buffers(out)
 
 
+def _gather_pieces(d: Diagram, source: np.ndarray, n: int):
+    """Buffers of ``n`` cells made of the non-empty cells of their copies, in copy order.
+
+    Every cell of ``d`` is one convex polygon (or empty), so each piece is one ring.
+    """
+    coords, (ring, poly, geom) = d.to_geoarrow()
+    parts = np.diff(geom)
+    full = np.flatnonzero(parts > 0)
+    order = full[np.argsort(source[full], kind="stable")]
+    first_ring = poly[geom[order]]
+    lo = ring[first_ring]
+    length = ring[first_ring + 1] - lo
+    total = int(length.sum())
+    take = np.repeat(lo - np.cumsum(length) + length, length) + np.arange(total)
+    new_ring = np.zeros(len(order) + 1, dtype=np.int64)
+    np.cumsum(length, out=new_ring[1:])
+    new_geom = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(np.bincount(source[order], minlength=n), out=new_geom[1:])
+    new_poly = np.arange(len(order) + 1, dtype=np.int64)
+    return np.ascontiguousarray(coords[take]), new_ring, new_poly, new_geom
+
+
 def _buffers(cells: np.ndarray):
     """GeoArrow multipolygon buffers ``(coords, ring, poly, geom)`` of shapely cells."""
     n = len(cells)
@@ -216,7 +238,12 @@ def periodic_voronoi(points, boundary, *, algorithm: str = "delaunay", wrap: boo
     else:  # pragma: no cover - the margin reaches the box diagonal long before
         raise RuntimeError("periodic diagram: could not prove the margin")
     if wrap:
-        buffers = _gather(d, source, n, np.arange(len(ext)))
+        pairs = d.edges.pairs
+        if (source[pairs[:, 0]] == source[pairs[:, 1]]).any():
+            # some cell borders its own image: unite its touching pieces (few sites)
+            buffers = _gather(d, source, n, np.arange(len(ext)))
+        else:
+            buffers = _gather_pieces(d, source, n)
     else:
         coords, (ring, poly, geom) = d.to_geoarrow()
         g = geom[: n + 1]
