@@ -211,3 +211,5 @@ def test_geojson_and_load_dispatch(tmp_path):
     assert g.area == pytest.approx(poly.area)
     svg = _svg(tmp_path, '<rect x="0" y="0" width="5" height="5"/>')
     assert bd.load(svg).area == pytest.approx(25)
+    with pytest.raises(ValueError, match="no options"):
+        bd.load(path, tolerance=0.1)

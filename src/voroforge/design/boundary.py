@@ -879,4 +879,6 @@ def load(path, **options):
             f"{path}: unsupported boundary file type {suffix or '(none)'!r}; "
             "use .geojson, .json, .svg or .dxf"
         )
+    if readers[suffix] is from_geojson and options:
+        raise ValueError(f"{path}: GeoJSON boundaries take no options ({', '.join(options)})")
     return readers[suffix](path, **options)
