@@ -436,10 +436,27 @@ def compute(design: Design, base: Path | None = None, *, progress: Stage | None 
         raw, values, mask, level = raw_w, values[owner], mask[owner], level[owner]
     chosen = cells[mask & ~shapely.is_empty(cells)] if len(cells) else cells
     openings = np.asarray(chosen, dtype=object)
-    frame = boundary.difference(shapely.union_all(openings)) if len(openings) else boundary
+    frame = _frame(boundary, openings)
     return Result(
         design, boundary, domain, points, raw, cells, mask, values, level, openings, frame, extra
     )
+
+
+def _frame(boundary, openings: np.ndarray):
+    """Boundary minus openings; disjoint holes strictly inside become holes directly (fast)."""
+    if not len(openings):
+        return boundary
+    simple = boundary.geom_type == "Polygon" and all(
+        o.geom_type == "Polygon" and not o.interiors for o in openings
+    )
+    if simple:
+        shapely.prepare(boundary)
+        if shapely.contains_properly(boundary, openings).all():
+            left, right = shapely.STRtree(openings).query(openings, predicate="intersects")
+            if (left == right).all():
+                rings = [*boundary.interiors, *(o.exterior for o in openings)]
+                return shapely.Polygon(boundary.exterior, rings)
+    return boundary.difference(shapely.union_all(openings))
 
 
 # --- outputs ------------------------------------------------------------------------------

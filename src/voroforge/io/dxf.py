@@ -37,14 +37,31 @@ LAYER_COLOURS = {
 }
 
 
-def _turns(xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Chord lengths ``L[k] = |p[k+1] - p[k]|`` and signed turning angles at each vertex."""
-    d = np.roll(xy, -1, axis=0) - xy
+def _features(xy: np.ndarray, ring_start: np.ndarray, ring_len: np.ndarray, max_step: float):
+    """Per-vertex arc features of closed rings stored one after another in ``xy``.
+
+    Returns chord lengths ``L[k] = |p[k+1] - p[k]|``, signed turning angles at each vertex,
+    ``ok`` (the vertex can be inside an arc: small turn, equal chords on both sides) and
+    ``same_next`` (it turns like its successor, so both belong to one arc).
+    """
+    n = len(xy)
+    idx = np.arange(n)
+    owner = np.repeat(np.arange(len(ring_len)), ring_len)
+    local = idx - ring_start[owner]
+    nxt = ring_start[owner] + (local + 1) % ring_len[owner]
+    prv = ring_start[owner] + (local - 1) % ring_len[owner]
+    d = xy[nxt] - xy
     length = np.hypot(d[:, 0], d[:, 1])
-    prev = np.roll(d, 1, axis=0)
+    prev = d[prv]
     cross = prev[:, 0] * d[:, 1] - prev[:, 1] * d[:, 0]
     dot = prev[:, 0] * d[:, 0] + prev[:, 1] * d[:, 1]
-    return length, np.arctan2(cross, dot)
+    turn = np.arctan2(cross, dot)
+    ok = (np.abs(turn) > 1e-9) & (np.abs(turn) <= max_step * (1.0 + 1e-9))
+    lp = length[prv]
+    ok &= np.abs(length - lp) <= 1e-3 * np.maximum(length, lp)
+    same_next = ok & ok[nxt]
+    same_next &= np.abs(turn - turn[nxt]) <= 1e-3 * np.maximum(np.abs(turn), 1e-3)
+    return length, turn, ok, same_next
 
 
 def _circle(a, b, c) -> tuple[np.ndarray, float] | None:
@@ -97,35 +114,38 @@ def arc_runs(
     n = len(xy)
     if n < min_segments + 1:
         return []
-    length, turn = _turns(xy)
-    scale = float(np.abs(xy).max()) if n else 1.0
-    tol = max(float(tolerance), 1e-11 * scale)
-    angle_tol = 1e-3
-    # Vertex k is inside an arc when the chords on both sides are equal and it turns a little.
-    ok = (np.abs(turn) > 1e-9) & (np.abs(turn) <= max_step * (1.0 + 1e-9))
-    ok &= np.abs(length - np.roll(length, 1)) <= 1e-3 * np.maximum(length, np.roll(length, 1))
-    # Consecutive inside vertices belong to the same arc when they turn alike.
-    same_next = ok & np.roll(ok, -1)
-    same_next &= np.abs(turn - np.roll(turn, -1)) <= angle_tol * np.maximum(np.abs(turn), 1e-3)
+    _, turn, ok, same_next = _features(xy, np.array([0]), np.array([n]), max_step)
+    return _scan(xy, turn, ok, same_next, _tolerance(xy, tolerance), min_segments)
+
+
+def _tolerance(xy: np.ndarray, tolerance: float) -> float:
+    scale = float(np.abs(xy).max()) if len(xy) else 1.0
+    return max(float(tolerance), 1e-11 * scale)
+
+
+def _scan(xy, turn, ok, same_next, tol: float, min_segments: int) -> list[tuple[int, int, float]]:
+    """Group the arc vertices of one ring into runs and keep those that fit a circle."""
+    n = len(xy)
     if ok.all() and same_next.all():
         return _full_circle(xy, turn, tol)
+    ok_l = ok.tolist()
+    same_l = same_next.tolist()
     # Start the scan after a vertex that does not continue to its successor.
-    breaks = np.flatnonzero(~same_next)
-    first = (int(breaks[0]) + 1) % n
+    first = (same_l.index(False) + 1) % n
     runs: list[tuple[int, int, float]] = []
     k = 0
     while k < n:
         v = (first + k) % n
-        if not ok[v]:
+        if not ok_l[v]:
             k += 1
             continue
         m = 1  # inside vertices in this run: v, v+1, ..., v+m-1
-        while k + m < n and same_next[(v + m - 1) % n]:
+        while k + m < n and same_l[(v + m - 1) % n]:
             m += 1
         count = m + 1  # chords from vertex v-1 to vertex v+m
         if count >= min_segments:
             start = (v - 1) % n
-            run = _fit(xy, start, count, turn[v], tol)
+            run = _fit(xy, start, count, float(turn[v]), tol)
             if run is not None:
                 runs.append(run)
         k += m
@@ -193,7 +213,8 @@ def ring_bulges(xy, **options) -> list[tuple[float, float, float]]:
     xy : (n, 2) float64
         Ring vertices without the closing repeat.
     **options
-        Passed to :func:`arc_runs`; ``arcs=False`` keeps every chord.
+        ``tolerance``, ``max_step``, ``min_segments`` as for :func:`arc_runs`;
+        ``arcs=False`` keeps every chord.
 
     Returns
     -------
@@ -201,18 +222,47 @@ def ring_bulges(xy, **options) -> list[tuple[float, float, float]]:
         ``bulge = tan(sweep / 4)`` describes the segment from this vertex to the next
         (0 for a straight segment, positive for a counter-clockwise arc).
     """
-    arcs = options.pop("arcs", True)
-    xy = np.asarray(xy, dtype=np.float64).reshape(-1, 2)
-    n = len(xy)
-    runs = arc_runs(xy, **options) if arcs else []
-    if not runs:
-        return [(x, y, 0.0) for x, y in xy.tolist()]
-    skip = np.zeros(n, dtype=bool)
-    bulge = np.zeros(n)
-    for start, count, sweep in runs:
-        bulge[start] = math.tan(sweep / 4.0)
-        skip[(start + 1 + np.arange(count - 1)) % n] = True
-    return [(float(xy[i, 0]), float(xy[i, 1]), float(bulge[i])) for i in range(n) if not skip[i]]
+    return _bulges_of_rings([np.asarray(xy, dtype=np.float64).reshape(-1, 2)], **options)[0]
+
+
+def _bulges_of_rings(
+    rings: list[np.ndarray],
+    *,
+    arcs: bool = True,
+    tolerance: float = 1e-6,
+    max_step: float = math.radians(30.0),
+    min_segments: int = 3,
+) -> list[list[tuple[float, float, float]]]:
+    """:func:`ring_bulges` for many rings, with the per-vertex work done in one pass."""
+    out: list = []
+    if not rings:
+        return out
+    lens = np.array([len(r) for r in rings], dtype=np.int64)
+    xy = np.concatenate(rings) if len(rings) > 1 else rings[0]
+    starts = np.concatenate(([0], np.cumsum(lens)[:-1]))
+    if arcs and len(xy):
+        _, turn, ok, same_next = _features(xy, starts, lens, max_step)
+        candidates = np.add.reduceat(ok.astype(np.int64), starts) >= min_segments - 1
+    else:
+        candidates = np.zeros(len(rings), dtype=bool)
+    for i, ring in enumerate(rings):
+        n = len(ring)
+        runs = []
+        if candidates[i] and n >= min_segments + 1:
+            sl = slice(starts[i], starts[i] + n)
+            runs = _scan(
+                ring, turn[sl], ok[sl], same_next[sl], _tolerance(ring, tolerance), min_segments
+            )
+        if not runs:
+            out.append(np.column_stack((ring, np.zeros(n))).tolist())
+            continue
+        skip = np.zeros(n, dtype=bool)
+        bulge = np.zeros(n)
+        for start, count, sweep in runs:
+            bulge[start] = math.tan(sweep / 4.0)
+            skip[(start + 1 + np.arange(count - 1)) % n] = True
+        out.append(np.column_stack((ring, bulge))[~skip].tolist())
+    return out
 
 
 def _rings(geom):
@@ -331,16 +381,18 @@ def write_dxf(
         for name, items in content.items():
             doc.layers.add(name, color=palette.get(name, 7))
             attribs = {"layer": name}
+            closed_all, open_all = [], []
             for geom in items:
-                if geom.is_empty:
-                    continue
                 closed, open_ = _rings(geom)
-                for xy in closed:
-                    msp.add_lwpolyline(
-                        ring_bulges(xy, **options), format="xyb", close=True, dxfattribs=attribs
-                    )
-                for xy in open_:
-                    msp.add_lwpolyline(xy.tolist(), format="xy", close=False, dxfattribs=attribs)
+                closed_all += closed
+                open_all += open_
+            for points in _bulges_of_rings(closed_all, **options):
+                msp.add_lwpolyline(points, format="xyb", close=True, dxfattribs=attribs)
+            for xy in open_all:
+                msp.add_lwpolyline(xy.tolist(), format="xy", close=False, dxfattribs=attribs)
+            for geom in items:
+                if "Point" not in geom.geom_type and geom.geom_type != "GeometryCollection":
+                    continue
                 for pt in shapely.get_parts(geom):
                     if pt.geom_type == "Point":
                         msp.add_point((pt.x, pt.y), dxfattribs=attribs)
