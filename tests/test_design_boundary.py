@@ -213,3 +213,45 @@ def test_geojson_and_load_dispatch(tmp_path):
     assert bd.load(svg).area == pytest.approx(25)
     with pytest.raises(ValueError, match="no options"):
         bd.load(path, tolerance=0.1)
+
+
+def test_path_syntax_corners():
+    # implicit lineto after a relative moveto, compact numbers and arc flags
+    (sq,) = bd.path_rings("m10 10 20 0 0 20-20 0z")
+    assert shapely.Polygon(sq).area == pytest.approx(400)
+    (arc,) = bd.path_rings("M0 0a25,25 0 1,0 50,0z", tolerance=1e-3)
+    (compact,) = bd.path_rings("M0 0a25 25 0 1050 0z", tolerance=1e-3)
+    assert np.array_equal(arc, compact)
+    assert shapely.Polygon(arc).area == pytest.approx(math.pi * 625 / 2, rel=1e-4)
+    (dots,) = bd.path_rings("M0,0L1.5.5.5-1z")  # "1.5.5" is 1.5 then .5
+    assert dots.tolist() == [[0, 0], [1.5, 0.5], [0.5, -1]]
+    with pytest.raises(ValueError, match="arc flag"):
+        bd.path_rings("M0 0 A 5 5 0 2 0 10 0")
+    with pytest.raises(ValueError, match="start with a command"):
+        bd.path_rings("10 10")
+
+
+def test_path_lines_keep_open_paths_open():
+    lines = bd.path_lines("M0 0 L10 0 L10 10 M20 0 h5 v5 z")
+    assert [ln.tolist() for ln in lines] == [
+        [[0, 0], [10, 0], [10, 10]],
+        [[20, 0], [25, 0], [25, 5], [20, 0]],
+    ]
+
+
+def test_curves_from_svg_drive_a_curve_attractor(tmp_path):
+    from voroforge.design.attractors import CurveAttractor
+
+    body = (
+        '<path d="M0 50 C50 0 150 100 200 50"/>'
+        '<line x1="0" y1="90" x2="200" y2="90"/>'
+        '<polyline points="0,10 100,10 100,0"/>'
+        '<circle cx="100" cy="50" r="5"/>'
+    )
+    curves = bd.curves_from_svg(_svg(tmp_path, body), tolerance=1e-3)
+    assert curves.geom_type == "MultiLineString" and len(curves.geoms) == 4
+    # flipped inside the 100-high viewBox: the line y=90 becomes y=10
+    assert shapely.Point(50, 10).distance(curves) == pytest.approx(0, abs=1e-9)
+    assert curves.geoms[3].length == pytest.approx(2 * math.pi * 5, rel=1e-4)
+    a = CurveAttractor(curves, radius=5.0, falloff="linear")
+    assert a(np.array([[50.0, 10.0], [50.0, 12.5]])) == pytest.approx([1.0, 0.5])

@@ -19,6 +19,7 @@ import shapely
 
 __all__ = [
     "circle",
+    "curves_from_svg",
     "from_dxf",
     "from_geojson",
     "from_svg",
@@ -400,9 +401,32 @@ def path_rings(d: str, *, tolerance: float = _DEFAULT_TOL) -> list[np.ndarray]:
     ValueError
         Malformed path data (position of the problem in the message).
     """
+    return [pts for pts, _ in _subpaths(d, tolerance) if len(pts) >= 3]
+
+
+def path_lines(d: str, *, tolerance: float = _DEFAULT_TOL) -> list[np.ndarray]:
+    """Flatten SVG path data into polylines, one per subpath (for curve attractors).
+
+    Subpaths closed with ``Z`` end with their first point repeated; open ones stay open.
+
+    Returns
+    -------
+    list of (k >= 2, 2) float64
+    """
+    out = []
+    for pts, closed in _subpaths(d, tolerance):
+        if closed and not (pts[0] == pts[-1]).all():
+            pts = np.vstack((pts, pts[:1]))
+        if len(pts) >= 2:
+            out.append(pts)
+    return out
+
+
+def _subpaths(d: str, tolerance) -> list[tuple[np.ndarray, bool]]:
+    """Parse path data into ``(points, closed)`` per subpath."""
     tol = _positive(tolerance, "tolerance")
     sc = _Scanner(d)
-    rings: list[np.ndarray] = []
+    rings: list[tuple[np.ndarray, bool]] = []
     current: list[np.ndarray] = []
     pos = np.zeros(2)
     start = np.zeros(2)
@@ -412,18 +436,16 @@ def path_rings(d: str, *, tolerance: float = _DEFAULT_TOL) -> list[np.ndarray]:
     if cmd is None and not sc.done():
         raise ValueError("path data must start with a command (M or m)")
 
-    def flush():
+    def flush(closed=False):
         if current:
-            pts = np.vstack(current)
-            if len(pts) >= 3:
-                rings.append(pts)
+            rings.append((np.vstack(current), closed))
             current.clear()
 
     while cmd is not None:
         upper = cmd.upper()
         rel = cmd.islower()
         if upper == "Z":
-            flush()
+            flush(closed=True)
             pos = start.copy()
             last_ctrl, last_cmd = None, "Z"
             cmd = sc.command()
@@ -596,6 +618,51 @@ def _element_rings(el, tol: float) -> list[np.ndarray]:
     return []
 
 
+def _element_lines(el, tol: float) -> list[np.ndarray]:
+    """Outlines of an element as polylines (closed shapes repeat their first point)."""
+    tag = _tag(el)
+    if tag == "path":
+        return path_lines(el.get("d", ""), tolerance=tol)
+    if tag == "line":
+        a = [_attr_float(el, k) for k in ("x1", "y1", "x2", "y2")]
+        return [np.array(a).reshape(2, 2)]
+    if tag == "polyline":
+        v = [float(a) for a in _NUMBER.findall(el.get("points", ""))]
+        return [np.array(v[: len(v) // 2 * 2]).reshape(-1, 2)] if len(v) >= 4 else []
+    return [np.vstack((r, r[:1])) for r in _element_rings(el, tol)]
+
+
+def _read_svg(p: Path, tol: float, flip_y: bool, reader) -> list[np.ndarray]:
+    """Every element's point lists (from ``reader(el, tol)``) in output coordinates."""
+    try:
+        root = ET.parse(p).getroot()
+    except ET.ParseError as exc:
+        raise ValueError(f"{p}: not a valid SVG/XML file ({exc})") from None
+    scale, box = _document_scale(root)
+    found_all: list[np.ndarray] = []
+
+    def walk(el, matrix):
+        tag = _tag(el)
+        if tag in _SKIP:
+            return
+        m = matrix @ _transform(el.get("transform"))
+        try:
+            found = reader(el, tol / max(scale * _matrix_scale(m), 1e-300))
+        except ValueError as exc:
+            raise ValueError(f"{p}: <{tag} id={el.get('id')!r}>: {exc}") from None
+        for r in found:
+            found_all.append(r @ m[:2, :2].T + m[:2, 2])
+        for child in el:
+            walk(child, m)
+
+    walk(root, np.eye(3))
+    out = [r * scale for r in found_all]
+    if flip_y and out:
+        top = (box[1] + box[3]) * scale if box is not None else max(r[:, 1].max() for r in out)
+        out = [np.column_stack((r[:, 0], top - r[:, 1])) for r in out]
+    return out
+
+
 def _document_scale(root) -> tuple[float, np.ndarray]:
     """Scale from user units to mm (1 when width has no physical unit) and the viewBox."""
     vb = root.get("viewBox")
@@ -647,38 +714,41 @@ def from_svg(path, *, tolerance: float = _DEFAULT_TOL, flip_y: bool = True):
     """
     p = _existing(path)
     tol = _positive(tolerance, "tolerance")
-    try:
-        root = ET.parse(p).getroot()
-    except ET.ParseError as exc:
-        raise ValueError(f"{p}: not a valid SVG/XML file ({exc})") from None
-    scale, box = _document_scale(root)
-    rings: list[np.ndarray] = []
-
-    def walk(el, matrix):
-        tag = _tag(el)
-        if tag in _SKIP:
-            return
-        m = matrix @ _transform(el.get("transform"))
-        try:
-            found = _element_rings(el, tol / max(scale * _matrix_scale(m), 1e-300))
-        except ValueError as exc:
-            raise ValueError(f"{p}: <{tag} id={el.get('id')!r}>: {exc}") from None
-        for r in found:
-            rings.append(r @ m[:2, :2].T + m[:2, 2])
-        for child in el:
-            walk(child, m)
-
-    walk(root, np.eye(3))
+    rings = _read_svg(p, tol, flip_y, _element_rings)
     if not rings:
         raise ValueError(f"{p}: no closed shapes (path, polygon, rect, circle, ellipse)")
-    rings = [r * scale for r in rings]
-    if flip_y:
-        top = (box[1] + box[3]) * scale if box is not None else max(r[:, 1].max() for r in rings)
-        rings = [np.column_stack((r[:, 0], top - r[:, 1])) for r in rings]
     out = even_odd(rings)
     if out.is_empty:
         raise ValueError(f"{p}: the shapes enclose no area")
     return as_polygonal(out, str(p))
+
+
+def curves_from_svg(path, *, tolerance: float = _DEFAULT_TOL, flip_y: bool = True):
+    """Read every outline of an SVG file as lines (for :class:`CurveAttractor`, say).
+
+    Open and closed ``<path>`` subpaths, ``<line>``, ``<polyline>``, ``<polygon>``,
+    ``<rect>``, ``<circle>`` and ``<ellipse>``, with transforms, units and the y flip of
+    :func:`from_svg`.
+
+    Parameters
+    ----------
+    path : str or Path
+        The SVG file.
+    tolerance : float
+        Largest distance between a curve and its polyline, in output units.
+    flip_y : bool
+        As in :func:`from_svg`.
+
+    Returns
+    -------
+    shapely.MultiLineString
+    """
+    p = _existing(path)
+    tol = _positive(tolerance, "tolerance")
+    lines = [ln for ln in _read_svg(p, tol, flip_y, _element_lines) if len(ln) >= 2]
+    if not lines:
+        raise ValueError(f"{p}: no curves (path, line, polyline, polygon, rect, circle, ellipse)")
+    return shapely.MultiLineString(lines)
 
 
 def _matrix_scale(m: np.ndarray) -> float:
