@@ -196,6 +196,16 @@ def test_dxf_negative_bulge_and_loose_lines(tmp_path):
         bd.from_dxf(path, layers=["LOOSE"], loose=False)
 
 
+def test_dxf_units_to_mm(tmp_path):
+    doc = ezdxf.new("R2000")
+    doc.header["$INSUNITS"] = 1  # inches
+    doc.modelspace().add_lwpolyline([(0, 0), (2, 0), (2, 1), (0, 1)], close=True)
+    path = tmp_path / "inch.dxf"
+    doc.saveas(path)
+    assert bd.from_dxf(path).bounds == pytest.approx((0, 0, 50.8, 25.4))
+    assert bd.from_dxf(path, to_mm=False).area == pytest.approx(2.0)
+
+
 def test_dxf_unreadable(tmp_path):
     path = tmp_path / "junk.dxf"
     path.write_text("this is not a dxf")

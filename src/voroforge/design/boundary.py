@@ -800,7 +800,18 @@ def _ocs_to_wcs(entity, pts: np.ndarray) -> np.ndarray:
     return wcs
 
 
-def from_dxf(path, *, tolerance: float = _DEFAULT_TOL, layers=None, loose: bool = True):
+#: $INSUNITS codes -> millimetres per drawing unit
+_DXF_MM = {1: 25.4, 2: 304.8, 4: 1.0, 5: 10.0, 6: 1000.0, 9: 0.0254, 10: 914.4, 13: 1e-3, 14: 100.0}
+
+
+def from_dxf(
+    path,
+    *,
+    tolerance: float = _DEFAULT_TOL,
+    layers=None,
+    loose: bool = True,
+    to_mm: bool = True,
+):
     """Read closed outlines from a DXF file as one boundary (even-odd nesting).
 
     Reads the modelspace: closed ``LWPOLYLINE`` and 2D ``POLYLINE`` (bulges flattened as true
@@ -814,16 +825,18 @@ def from_dxf(path, *, tolerance: float = _DEFAULT_TOL, layers=None, loose: bool 
     path : str or Path
         The DXF file.
     tolerance : float
-        Largest distance between a curve and its polyline, in drawing units.
+        Largest distance between a curve and its polyline, in output units.
     layers : sequence of str, optional
         Read only these layers (default: all).
     loose : bool
         Also assemble loose lines/arcs/open polylines into faces.
+    to_mm : bool
+        Scale to millimetres when the header's ``$INSUNITS`` names a unit (inches, feet,
+        cm, m, ...). False, or a unitless drawing: drawing units as they are.
 
     Returns
     -------
     shapely.Polygon or shapely.MultiPolygon
-        In drawing units (millimetres for a metric drawing).
 
     Raises
     ------
@@ -838,6 +851,8 @@ def from_dxf(path, *, tolerance: float = _DEFAULT_TOL, layers=None, loose: bool 
         doc = ezdxf.readfile(p)
     except (OSError, ezdxf.DXFError) as exc:
         raise ValueError(f"{p}: not a readable DXF file ({exc})") from None
+    factor = _DXF_MM.get(int(doc.header.get("$INSUNITS", 0)), 1.0) if to_mm else 1.0
+    tol = tol / factor  # flatten in drawing units
     wanted = None if layers is None else {str(name) for name in layers}
     rings: list[np.ndarray] = []
     lines: list[np.ndarray] = []
@@ -894,7 +909,7 @@ def from_dxf(path, *, tolerance: float = _DEFAULT_TOL, layers=None, loose: bool 
         rings.extend(np.asarray(f.exterior.coords) for f in faces)
     if not rings:
         raise ValueError(f"{p}: no closed outlines (closed LWPOLYLINE/POLYLINE, CIRCLE, ...)")
-    out = even_odd(rings)
+    out = even_odd([r * factor for r in rings] if factor != 1.0 else rings)
     if out.is_empty:
         raise ValueError(f"{p}: the outlines enclose no area")
     return as_polygonal(out, str(p))
