@@ -269,3 +269,52 @@ def test_edges_are_unique(tmp_path):
     # Every interior edge is shared by two cells; the outline once: 2 E - outline = perimeters.
     assert 2 * total - r.domain.length == pytest.approx(perimeters, rel=1e-9)
     assert math.isfinite(total)
+
+
+def test_build_time_errors_name_key_and_line(tmp_path):
+    text = (
+        "[boundary]\nshape = 'polygon'\npoints = [[0, 0], [10, 10], [0, 10], [10, 0]]\n\n"
+        "[seeds]\nmethod = 'random'\ncount = 5\n\n[cells]\nweb = { near = 3, far = 1 }\n"
+    )
+    f = tmp_path / "d.toml"
+    f.write_text(text)
+    with pytest.raises(DesignError) as info:
+        build(f, tmp_path)
+    (issue,) = info.value.issues
+    assert issue.key == "boundary" and issue.line == 1 and "invalid" in issue.message
+    f.write_text(
+        text.replace("[[0, 0], [10, 10], [0, 10], [10, 0]]", "[[0, 0], [10, 0], [10, 10]]")
+    )
+    with pytest.raises(DesignError) as info:
+        build(f, tmp_path)
+    (issue,) = info.value.issues
+    assert (issue.key, issue.line) == ("cells.web", 10)
+    assert str(info.value).startswith(f"{f}:10: cells.web: near/far values need")
+    with pytest.raises(DesignError, match=r"cells\.web: .*\(from --set\)"):
+        build(f, tmp_path, overrides={"cells.web": "{ near = 1, far = 2 }"})
+
+
+def test_relaxation_evens_out_cells():
+    r0 = result_of(panel(**{"seeds.method": "random", "seeds.count": 40}))
+    r1 = result_of(panel(**{"seeds.method": "random", "seeds.count": 40, "relax.iterations": 5}))
+    assert len(r1.sites) == len(r0.sites) == 40
+    spread = [np.std([c.area for c in r.raw]) / np.mean([c.area for c in r.raw]) for r in (r0, r1)]
+    assert spread[1] < 0.7 * spread[0]
+
+
+def test_periodic_fallback_matches_the_engine(monkeypatch):
+    import voroforge as vf
+
+    data = panel(**{"voronoi.periodic": True, "boundary.margin": 0, "seeds.radius": 22})
+    engine = result_of(data)
+    real = vf.voronoi
+
+    def no_periodic(points, boundary=None, *, algorithm="delaunay"):
+        return real(points, boundary, algorithm=algorithm)
+
+    monkeypatch.setattr(vf, "voronoi", no_periodic)
+    fallback = result_of(data)
+    assert len(fallback.raw) == len(engine.raw)
+    a = shapely.union_all(engine.openings)
+    b = shapely.union_all(fallback.openings)
+    assert a.symmetric_difference(b).area == pytest.approx(0.0, abs=1e-6 * a.area)

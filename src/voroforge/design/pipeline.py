@@ -22,13 +22,14 @@ from __future__ import annotations
 
 import inspect
 from collections.abc import Callable
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 import shapely
 
-from .schema import Design, DesignError, Graded, Issue, load
+from .schema import Design, DesignError, Graded, Issue, key_lines, load
 
 __all__ = [
     "STARTER",
@@ -381,6 +382,48 @@ def _operate(design: Design, cells: np.ndarray, values: np.ndarray, has_field: b
     return np.asarray(out, dtype=object)
 
 
+@contextmanager
+def _located(source, overrides: dict | None):
+    """Give build-time DesignErrors the design file's name and the lines of their keys."""
+    try:
+        yield
+    except DesignError as exc:
+        if not isinstance(source, str | Path) or exc.source is not None:
+            raise
+        try:
+            lines = key_lines(Path(source).read_text(encoding="utf-8"))
+        except OSError:
+            lines = {}
+        touched = {str(k) for k in (overrides or {})}
+        issues = []
+        for it in exc.issues:
+            path = tuple(int(p) if p.isdigit() else p for p in it.key.split(".") if p)
+            line = None
+            for n in range(len(path), 0, -1):
+                if path[:n] in lines:
+                    line = lines[path[:n]]
+                    break
+            if any(
+                it.key == t or it.key.startswith(t + ".") or t.startswith(it.key + ".")
+                for t in touched
+            ):
+                issues.append(Issue(it.key, None, it.message + " (from --set)"))
+            else:
+                issues.append(Issue(it.key, line, it.message))
+        raise DesignError(issues, str(source)) from None
+
+
+@contextmanager
+def _section(key: str):
+    """Turn a library ``ValueError`` raised while building ``key`` into a DesignError."""
+    try:
+        yield
+    except DesignError:
+        raise
+    except ValueError as exc:
+        raise _fail(key, str(exc)) from None
+
+
 def compute(design: Design, base: Path | None = None, *, progress: Stage | None = None) -> Result:
     """Compute the geometry of a validated design.
 
@@ -406,13 +449,18 @@ def compute(design: Design, base: Path | None = None, *, progress: Stage | None 
     stage = progress or (lambda name: None)
     seed = design.design.seed
     stage("boundary")
-    boundary, domain = _boundary(design, base)
-    field_fn = _field(design)
+    with _section("boundary.file" if design.boundary.shape == "file" else "boundary"):
+        boundary, domain = _boundary(design, base)
+    with _section("attractors"):
+        field_fn = _field(design)
     stage("seeds")
-    points = np.asarray(_seeds(design, domain, field_fn, base), dtype=np.float64).reshape(-1, 2)
+    with _section("seeds"):
+        points = _seeds(design, domain, field_fn, base)
+        points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
     if len(points) < 2:
         raise _fail("seeds", f"only {len(points)} seeds fall inside the boundary; need 2 or more")
-    points = _relax(design, points, domain)
+    with _section("relax"):
+        points = _relax(design, points, domain)
     stage(f"{len(points)} Voronoi cells")
     extra: dict = {}
     if design.recursion.depth > 0:
@@ -420,15 +468,21 @@ def compute(design: Design, base: Path | None = None, *, progress: Stage | None 
             raise _fail("recursion.depth", "recursion and periodic tiles do not combine yet")
         if design.cells.inset_amount() is not None:
             raise _fail("cells.web", "with [recursion], give the webs as recursion.web")
-        raw, inset_cells, level, extra["levels"] = _recurse(design, domain, points, field_fn, seed)
+        with _section("recursion"):
+            raw, inset_cells, level, extra["levels"] = _recurse(
+                design, domain, points, field_fn, seed
+            )
     else:
-        raw = _voronoi(design, points, domain)
+        with _section("voronoi"):
+            raw = _voronoi(design, points, domain)
         inset_cells = raw
         level = np.zeros(len(raw), dtype=np.int64)
     values = _values(raw, field_fn)
-    mask = _mask(design, raw, values, seed)
+    with _section("openings"):
+        mask = _mask(design, raw, values, seed)
     stage("cell operations")
-    cells = _operate(design, inset_cells, values, field_fn is not None)
+    with _section("cells"):
+        cells = _operate(design, inset_cells, values, field_fn is not None)
     if design.voronoi.periodic:
         box = _tile(design, domain)
         cells, owner = _wrap(cells, box)
@@ -578,7 +632,8 @@ def build(
             design, base = load(design.model_dump(), overrides=overrides)
     else:
         design, base = load(source, overrides=overrides)
-    result = compute(design, base, progress=stage)
+    with _located(source, overrides):
+        result = compute(design, base, progress=stage)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     o = design.output
@@ -683,7 +738,8 @@ def check_design(source, *, overrides: dict | None = None, progress: Stage | Non
     voroforge.design.fabrication.Report
     """
     design, base = load(source, overrides=overrides)
-    return _report(compute(design, base, progress=progress))
+    with _located(source, overrides):
+        return _report(compute(design, base, progress=progress))
 
 
 #: The commented starter design that ``voroforge new`` writes.
