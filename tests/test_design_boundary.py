@@ -202,8 +202,8 @@ def test_dxf_units_to_mm(tmp_path):
     doc.modelspace().add_lwpolyline([(0, 0), (2, 0), (2, 1), (0, 1)], close=True)
     path = tmp_path / "inch.dxf"
     doc.saveas(path)
-    assert bd.from_dxf(path).bounds == pytest.approx((0, 0, 50.8, 25.4))
-    assert bd.from_dxf(path, to_mm=False).area == pytest.approx(2.0)
+    assert bd.from_dxf(path, to_mm=True).bounds == pytest.approx((0, 0, 50.8, 25.4))
+    assert bd.from_dxf(path).area == pytest.approx(2.0)
 
 
 def test_dxf_unreadable(tmp_path):

@@ -810,7 +810,7 @@ def from_dxf(
     tolerance: float = _DEFAULT_TOL,
     layers=None,
     loose: bool = True,
-    to_mm: bool = True,
+    to_mm: bool = False,
 ):
     """Read closed outlines from a DXF file as one boundary (even-odd nesting).
 
@@ -831,8 +831,9 @@ def from_dxf(
     loose : bool
         Also assemble loose lines/arcs/open polylines into faces.
     to_mm : bool
-        Scale to millimetres when the header's ``$INSUNITS`` names a unit (inches, feet,
-        cm, m, ...). False, or a unitless drawing: drawing units as they are.
+        Scale to millimetres by the header's ``$INSUNITS`` (inches, feet, cm, m, ...;
+        unitless drawings stay as they are). Off by default: many programs (ezdxf's own
+        ``new()`` among them) write "metres" for drawings made in millimetres.
 
     Returns
     -------
