@@ -318,3 +318,15 @@ def test_periodic_fallback_matches_the_engine(monkeypatch):
     a = shapely.union_all(engine.openings)
     b = shapely.union_all(fallback.openings)
     assert a.symmetric_difference(b).area == pytest.approx(0.0, abs=1e-6 * a.area)
+
+
+def test_gif_of_a_moving_attractor(tmp_path):
+    data = panel(
+        **{"output.formats": ["gif"], "seeds.radius": 30, "cells.web": {"near": 8, "far": 2}}
+    )
+    data["attractors"] = [{"points": [[0, 0]], "radius": 120}]
+    path_values = [[[0, 0]], [[80, 50]], [[160, 100]]]
+    data["output"]["gif"] = {"key": "attractors.0.points", "values": path_values, "size": 80}
+    (path,) = build(data, tmp_path)
+    with Image.open(path) as img:
+        assert img.n_frames == 4

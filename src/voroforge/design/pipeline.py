@@ -699,11 +699,11 @@ def _gif(design: Design, base: Path | None, path: Path, stage: Stage) -> Path:
     values = gif.sweep()
     unique = {}
     for i, v in enumerate(values):
-        if v not in unique:
+        if repr(v) not in unique:
             stage(f"gif frame {i + 1}/{len(values)}")
             try:
                 d, _ = load(data, overrides={gif.key: v})
-                unique[v] = render_preview(compute(d, base), size=gif.size)
+                unique[repr(v)] = render_preview(compute(d, base), size=gif.size)
             except DesignError as exc:
                 raise DesignError(
                     [
@@ -711,7 +711,7 @@ def _gif(design: Design, base: Path | None, path: Path, stage: Stage) -> Path:
                         for it in exc.issues
                     ]
                 ) from None
-        frames.append(unique[v])
+        frames.append(unique[repr(v)])
     return write_gif(frames, path, fps=gif.fps)
 
 

@@ -293,7 +293,7 @@ class Gif(_Model):
     """``[output.gif]``: an animated sweep of one key."""
 
     key: str
-    values: list[float] | None = None
+    values: Annotated[list[Any], Field(min_length=1)] | None = None
     start: float | None = None
     stop: float | None = None
     frames: Annotated[int, Field(ge=2, le=200)] = 12
@@ -307,8 +307,8 @@ class Gif(_Model):
             raise _need("values", "give values = [...] or start and stop")
         return self
 
-    def sweep(self) -> list[float]:
-        """The values of the swept key, frame by frame."""
+    def sweep(self) -> list:
+        """The values of the swept key, frame by frame (numbers, or any TOML values)."""
         if self.values is not None:
             vals = list(self.values)
         else:
