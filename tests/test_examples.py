@@ -97,3 +97,24 @@ def test_service_areas_cover_the_district(tmp_path):
         pt = shapely.Point(s["geometry"]["coordinates"])
         assert shapely.geometry.shape(f["geometry"]).buffer(1e-6).contains(pt)
     assert 490_000 < cells[0].centroid.x < 520_000 and 4_170_000 < cells[0].centroid.y < 4_195_000
+
+
+def test_rebuild_in_a_fresh_process_is_byte_identical(tmp_path):
+    import os
+    import subprocess
+    import sys
+
+    design_file = ROOT / "examples" / "lamp-tile.toml"  # SVG, DXF, PNG and GIF
+    here = build(design_file, tmp_path / "a")
+    env = {**os.environ, "PYTHONHASHSEED": "12345"}
+    run = subprocess.run(
+        [sys.executable, "-m", "voroforge", "build", str(design_file), "-o", str(tmp_path / "b")],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env=env,
+    )
+    assert run.returncode == 0, run.stderr
+    assert [Path(p).name for p in run.stdout.split()] == [p.name for p in here]
+    for p in here:
+        assert (tmp_path / "b" / p.name).read_bytes() == p.read_bytes(), p.name
