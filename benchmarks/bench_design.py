@@ -3,6 +3,7 @@
 Run from the repository root::
 
     .venv/bin/python benchmarks/bench_design.py
+    .venv/bin/python benchmarks/bench_design.py --figures docs   # only the README figure
 
 Each line times ours and a plain reference in the same process (best of N, warm) and prints
 the ratio:
@@ -126,5 +127,46 @@ def main():
     )
 
 
+def figures(out_dir):
+    """The README's figure: the README example's panel and a 3-level recursive pattern."""
+    from PIL import Image
+
+    from voroforge.design import recursive, relax
+
+    panel = boundary.rectangle(600, 400).difference(boundary.circle(60, center=(450, 200)))
+    seeds = relax.relax(populate.hexgrid(panel, 30.0, angle=15.0), panel, iterations=5)
+    d = vf.voronoi(seeds, panel)
+    sun = attractors.PointAttractor([[150, 150]], radius=350.0)
+    web = attractors.remap(sun(d.centroids), 12.0, 3.0)
+    holes = cellops.fillet(cellops.inset(d.cells, web / 2), 3.0)
+    keep = cellops.by_area(holes, min=40.0)  # skip holes too small to cut
+    part = cellops.frame(panel, cellops.openings(holes, keep))
+    leaf = boundary.circle(200, center=(0, 0))
+    vein = attractors.CurveAttractor([[-200, -120], [0, 0], [150, 140]], radius=160.0)
+    levels = recursive.subdivide(
+        leaf,
+        14,
+        depth=2,
+        seed=4,
+        web=[10.0, 4.0, 1.6],
+        relax=3,
+        count=[recursive.count_by_field(vein, 3, 9), recursive.count_by_field(vein, 2, 7)],
+    )
+    pattern = cellops.frame(leaf, cellops.fillet(recursive.leaves(levels), 1.0))
+    left = vio.render_image([part], size=600, colors="#c9a26b")
+    right = vio.render_image([pattern], size=400, colors="#7a9a5a")
+    sheet = Image.new(
+        "RGB", (left.width + right.width + 30, max(left.height, right.height)), "white"
+    )
+    sheet.paste(left, (0, (sheet.height - left.height) // 2))
+    sheet.paste(right, (left.width + 30, (sheet.height - right.height) // 2))
+    path = Path(out_dir) / "design_pipeline.png"
+    sheet.save(path, format="PNG", optimize=True)
+    print(path, f"{path.stat().st_size / 1024:.0f} kB")
+
+
 if __name__ == "__main__":
-    main()
+    if len(sys.argv) == 3 and sys.argv[1] == "--figures":
+        figures(sys.argv[2])
+    else:
+        main()

@@ -397,7 +397,11 @@ def smooth(cells, *, iterations: int = 2, ratio: float = 0.25) -> np.ndarray:
             ]
             polys.append(shapely.Polygon(shell, holes))
         res = polys[0] if len(polys) == 1 else shapely.MultiPolygon(polys)
-        out[i] = res if res.is_valid else shapely.make_valid(res)
+        if not res.is_valid:
+            from .boundary import _polygonal_part
+
+            res = _polygonal_part(shapely.make_valid(res))
+        out[i] = res
     return _clean(out)
 
 
