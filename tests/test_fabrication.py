@@ -342,3 +342,45 @@ def test_kerf_grows_parts_and_shrinks_holes():
     assert kerf(frame, 0.0) is frame
     with pytest.raises(ValueError, match="kerf"):
         kerf(frame, -1)
+
+
+# --- properties -------------------------------------------------------------------------
+
+
+@given(gap=st.floats(0.1, 6.0), limit=st.floats(0.5, 5.0), height=st.floats(5.0, 30.0))
+def test_web_violation_iff_gap_below_limit(gap, limit, height):
+    outline = shapely.box(-50, -50, 100, 100)
+    a = shapely.box(0, 0, 10, height)
+    b = shapely.box(10 + gap, 0, 20 + gap, height)
+    report = check(openings=[a, b], boundary=outline, min_web=limit)
+    webs = [v for v in report.violations if v.kind == "web"]
+    if gap < limit - 1e-6:
+        assert len(webs) == 1 and webs[0].value == pytest.approx(gap)
+        assert 10 <= webs[0].location[0] <= 10 + gap
+    else:
+        assert not webs
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_filleted_voronoi_openings_round_trip_through_dxf(tmp_path, seed):
+    import voroforge as vf
+    from voroforge.design import cellops
+
+    rng = np.random.default_rng(seed)
+    d = vf.voronoi(rng.uniform(0, 200, (60, 2)), (0, 0, 200, 200))
+    holes = cellops.fillet(cellops.inset(d.cells, 1.5), 2.0)
+    holes = [h for h in holes if not h.is_empty]
+    out = write_dxf(holes, tmp_path / "v.dxf")
+    ents = list(ezdxf.readfile(out).modelspace())
+    assert len(ents) == sum(len(shapely.get_parts(h)) for h in holes)
+    arcs = 0
+    parts = [p for hole in holes for p in shapely.get_parts(hole)]
+    for e, h in zip(ents, parts, strict=True):
+        pts = list(e.get_points("xyb"))
+        arcs += sum(1 for p in pts if p[2])
+        rebuilt = flatten_lwpolyline(e)
+        # The arcs lie on the chords' circles: the outlines differ by at most a sagitta.
+        assert shapely.hausdorff_distance(rebuilt.exterior, h.exterior) < 0.01
+        assert bulge_ring_area(pts) == pytest.approx(h.area, rel=2e-3)
+        assert len(pts) < len(h.exterior.coords) - 1  # arcs replaced runs of chords
+    assert arcs >= 3 * len(ents)
