@@ -65,7 +65,9 @@ class Description:
         ``euler == euler_expected``.
     unbounded : int
         Cells that were unbounded before clipping: the distinct sites on the boundary of the
-        sites' convex hull (all distinct sites when they are collinear; 0 on a torus).
+        sites' convex hull, from their Delaunay triangulation (all distinct sites when they
+        are collinear; 0 on a torus). For a power diagram this counts the same sites,
+        although weights can hide a site that lies inside a hull edge.
     convex_checked : int
         Cells that must be convex: all non-empty cells when the domain is convex (a box),
         else those farther than ``100 * VERTEX_RTOL`` of the diagonal from its boundary

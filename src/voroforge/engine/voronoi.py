@@ -269,8 +269,9 @@ def voronoi(
         itself among its ``neighbors``.
     wrap : bool
         With ``periodic=True``: cut every cell into the box instead (a cell that crosses an
-        edge becomes a MultiPolygon of its pieces, all inside the box) and report ``edges``
-        cut into the box too (an edge crossing the box edge appears as its two pieces).
+        edge becomes a MultiPolygon of its pieces, all inside the box; pieces of a cell that
+        borders its own image are united) and report ``edges`` cut into the box too (an
+        edge crossing the box edge appears as its two pieces).
 
     Returns
     -------
