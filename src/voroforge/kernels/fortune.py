@@ -51,9 +51,8 @@ _NSTATS = 5
 
 
 @njit(**NJIT)
-def _site_order(xs, ys):
-    """Indices sorted by ``(y, x)``: a quicksort on ``y``, then runs of equal ``y`` by ``x``."""
-    order = np.argsort(ys)
+def _sort_ties(xs, ys, order):
+    """Within runs of equal ``y`` in ``order`` (sorted by ``y``), sort by ``x``, in place."""
     n = order.shape[0]
     i = 0
     while i < n:
@@ -65,6 +64,12 @@ def _site_order(xs, ys):
             seg = order[i:j].copy()
             order[i:j] = seg[np.argsort(xs[seg])]
         i = j
+
+
+def _site_order(xs, ys):
+    """Indices sorted by ``(y, x)``: numpy's (vectorised) argsort on ``y``, then the ties."""
+    order = np.argsort(ys)
+    _sort_ties(xs, ys, order)
     return order
 
 
@@ -286,7 +291,7 @@ def _delete(x, left, right, parent, tprio, root):
 
 
 @njit(**_INLINE)
-def _locate(root, sx, sweep, left, right, nxt, site, xs, ys):
+def _locate(root, sx, sweep, left, right, nxt, arcx, arcy):
     """Leftmost arc whose right breakpoint is at or right of ``sx`` (lower-bound descent)."""
     v = root
     cand = -1
@@ -296,9 +301,7 @@ def _locate(root, sx, sweep, left, right, nxt, site, xs, ys):
             cand = v
             v = left[v]
             continue
-        sv = site[v]
-        sw = site[w]
-        if _right_of(sx, xs[sv], ys[sv], xs[sw], ys[sw], sweep):
+        if _right_of(sx, arcx[v], arcy[v], arcx[w], arcy[w], sweep):
             v = right[v]
         else:
             cand = v
@@ -312,23 +315,20 @@ def _locate(root, sx, sweep, left, right, nxt, site, xs, ys):
 
 
 @njit(**_INLINE)
-def _push_event(node, prv, nxt, site, xs, ys, key, heap, hpos, size):
+def _push_event(node, prv, nxt, site, arcx, arcy, key, heap, hpos, size):
     """Schedule the circle event of the triple centred on ``node`` if its breakpoints converge."""
     a = prv[node]
     c = nxt[node]
     if a == -1 or c == -1:
         return size
-    sa = site[a]
-    sb = site[node]
-    sc = site[c]
-    if sa == sc:
+    if site[a] == site[c]:
         return size
-    ax = xs[sa]
-    ay = ys[sa]
-    bx = xs[sb]
-    by = ys[sb]
-    cx = xs[sc]
-    cy = ys[sc]
+    ax = arcx[a]
+    ay = arcy[a]
+    bx = arcx[node]
+    by = arcy[node]
+    cx = arcx[c]
+    cy = arcy[c]
     # orient2d's value is the leading component of its exact expansion when the filter fails,
     # so it is correct to full relative precision, which the circumcentre below needs
     det = orient2d(ax, ay, bx, by, cx, cy)
@@ -382,6 +382,8 @@ def _sweep(xs, ys, order, stats):
     prv = np.full(cap, -1, dtype=np.int32)
     nxt = np.full(cap, -1, dtype=np.int32)
     site = np.zeros(cap, dtype=np.int32)
+    arcx = np.zeros(cap)  # the arc's site coordinates, next to the tree (one load less)
+    arcy = np.zeros(cap)
     edge = np.full(cap, -1, dtype=np.int32)
     tprio = np.zeros(cap, dtype=np.uint32)
     hpos = np.full(cap, -1, dtype=np.int32)
@@ -408,6 +410,8 @@ def _sweep(xs, ys, order, stats):
     while i < n and ys[order[i]] == y0:
         v, nfree, nnodes, rng = _alloc(free, nfree, nnodes, tprio, hpos, rng)
         site[v] = order[i]
+        arcx[v] = xs[order[i]]
+        arcy[v] = ys[order[i]]
         if last == -1:
             root = v
         else:
@@ -447,19 +451,23 @@ def _sweep(xs, ys, order, stats):
             stats[_S_CIRCLE] += 1
             size = _heap_remove(heap, hpos, key, size, a)
             size = _heap_remove(heap, hpos, key, size, c)
-            size = _push_event(a, prv, nxt, site, xs, ys, key, heap, hpos, size)
-            size = _push_event(c, prv, nxt, site, xs, ys, key, heap, hpos, size)
+            size = _push_event(a, prv, nxt, site, arcx, arcy, key, heap, hpos, size)
+            size = _push_event(c, prv, nxt, site, arcx, arcy, key, heap, hpos, size)
         elif i < n:
             # site event: split the arc above the site into p, s, p
             s = order[i]
             i += 1
             sx = xs[s]
-            v = _locate(root, sx, ys[s], left, right, nxt, site, xs, ys)
+            v = _locate(root, sx, ys[s], left, right, nxt, arcx, arcy)
             size = _heap_remove(heap, hpos, key, size, v)
             ns, nfree, nnodes, rng = _alloc(free, nfree, nnodes, tprio, hpos, rng)
             v2, nfree, nnodes, rng = _alloc(free, nfree, nnodes, tprio, hpos, rng)
             site[ns] = s
             site[v2] = site[v]
+            arcx[ns] = sx
+            arcy[ns] = ys[s]
+            arcx[v2] = arcx[v]
+            arcy[v2] = arcy[v]
             edge[v2] = edge[v]
             edge[v] = nrec
             edge[ns] = nrec
@@ -477,8 +485,8 @@ def _sweep(xs, ys, order, stats):
             beach += 2
             if beach > stats[_S_MAX_BEACH]:
                 stats[_S_MAX_BEACH] = beach
-            size = _push_event(v, prv, nxt, site, xs, ys, key, heap, hpos, size)
-            size = _push_event(v2, prv, nxt, site, xs, ys, key, heap, hpos, size)
+            size = _push_event(v, prv, nxt, site, arcx, arcy, key, heap, hpos, size)
+            size = _push_event(v2, prv, nxt, site, arcx, arcy, key, heap, hpos, size)
         else:
             break
     stats[_S_TRI_SWEEP] = ntri
@@ -554,12 +562,13 @@ def _legalize_all(xs, ys, tri, he, stats):
     stats[_S_FLIPS] = flips
 
 
-@njit(**NJIT)
 def _fortune(xs, ys, stats):
+    """Triangles (input numbering) and halfedges of the sweep over ``xs, ys``."""
     order = _site_order(xs, ys)
-    tri, he = _sweep(xs, ys, order, stats)
-    _legalize_all(xs, ys, tri, he, stats)
-    return tri, he
+    tri, he = _fortune_sorted(
+        np.ascontiguousarray(xs[order]), np.ascontiguousarray(ys[order]), stats
+    )
+    return order[tri].astype(np.int32), he
 
 
 def _prepare(points: np.ndarray) -> np.ndarray:
