@@ -204,3 +204,14 @@ def test_starter_is_valid_and_commented(tmp_path):
         "fabrication",
     ):
         assert f"[{section}]" in STARTER or f"[[{section}]]" in STARTER
+
+
+def test_layer_product_errors_once_with_line(tmp_path):
+    text = GOOD + '\n[output]\nlayers = { CUT = "frme" }\nformats = ["svg", "pdf"]\n'
+    issues, _ = issues_of(tmp_path, text)
+    keys = [i[0] for i in issues]
+    assert keys.count("output.layers.CUT") == 1  # one message, not one per union branch
+    (layer,) = [i for i in issues if i[0] == "output.layers.CUT"]
+    assert layer[1] == line_of(text, "layers = {") and "'frame'" in layer[2]
+    (fmt,) = [i for i in issues if i[0] == "output.formats.1"]
+    assert fmt[1] == line_of(text, "formats = [") and "'pdf'" in fmt[2]

@@ -571,6 +571,8 @@ def _issues(exc: ValidationError, lines: dict[tuple, int]) -> list[Issue]:
                 else:
                     message += f"; known keys: {', '.join(model.model_fields)}"
         key = ".".join(str(p) for p in loc)
+        if any(it.key == key for it in out):
+            continue  # the other branches of a union say the same thing again
         out.append(Issue(key, _line_of(lines, loc), message))
     return out
 
