@@ -56,6 +56,11 @@ class Relaxation:
     method: str
     weights: np.ndarray | None = None
 
+    def __post_init__(self):
+        for arr in (self.points, self.energy, self.shift, self.elapsed, self.weights):
+            if arr is not None:
+                arr.setflags(write=False)
+
 
 def _check(iterations, tol, method, areas):
     if method not in METHODS:
@@ -187,11 +192,13 @@ def _lloyd(z, bnd, integ, iterations, stop):
 
 def _step(z, mass, first, out):
     """Centroids into ``out`` (sites with empty cells stay); returns the largest move."""
-    ok = mass > 0.0
-    move = np.zeros_like(z)
-    move[ok] = first[ok] / mass[ok, None]
+    if not len(z):
+        return 0.0
+    inv = np.divide(1.0, mass, out=np.zeros_like(mass), where=mass > 0.0)
+    move = np.multiply(first, inv[:, None], out=out)
+    dist2 = np.einsum("ij,ij->i", move, move)
     np.add(z, move, out=out)
-    return float(np.sqrt((move * move).sum(axis=1).max())) if len(z) else 0.0
+    return float(np.sqrt(dist2.max()))
 
 
 def _capacity(z, dom, integ, targets, iterations, stop):

@@ -215,8 +215,12 @@ def power(points, weights, boundary=None) -> PowerDiagram:
     return _compute(pts, w, dom)
 
 
-def _hessian(d: PowerDiagram, pts: np.ndarray) -> sp.csr_matrix:
-    """``dA_i/dw_j``: the graph Laplacian with ``|edge_ij| / (2 |p_i - p_j|)`` off the diagonal."""
+def _hessian(d: PowerDiagram, pts: np.ndarray) -> tuple[sp.csc_matrix, np.ndarray]:
+    """``dA_i/dw_j`` and its diagonal.
+
+    The graph Laplacian with ``-|edge_ij| / (2 |p_i - p_j|)`` off the diagonal (edges clipped
+    to the domain) and the row sums on it.
+    """
     coords, pairs = d.edges
     n = len(pts)
     length = np.hypot(*(coords[:, 1] - coords[:, 0]).T)
