@@ -102,8 +102,10 @@ def lloyd(
     density : None, callable, or raster, optional
         ``ρ >= 0``. None: uniform (exact closed-form moments). A vectorised callable
         ``rho(x, y)`` taking and returning arrays: integrated over each clipped cell with a
-        degree-5 triangle rule on a fan of each ring. A raster ``(values (h, w), (xmin, ymin,
-        xmax, ymax))`` (or an object with ``values``/``array`` and ``bounds``): row 0 is the top
+        degree-5 triangle rule on a fan of each ring (signed triangles, so for a non-convex
+        cell some nodes fall outside it: define ``rho`` on the whole bounding box). A raster
+        ``(values (h, w), (xmin, ymin, xmax, ymax))`` (or an object with ``values``/``array``
+        and ``bounds``): row 0 is the top
         (``y = ymax``), the density is 0 outside the box, and it is integrated exactly over
         each cell (cell ∩ pixel pieces), not by counting pixels.
     method : {"lloyd", "lbfgs"}
