@@ -224,3 +224,27 @@ def test_margin_grows_until_proved(monkeypatch):
     ref = vf.voronoi(_tiled(sites, reps), big)
     assert not shapely.intersects(ref.cells[:60], shapely.box(*big).exterior).any()
     _assert_same_cells(d.cells, ref.cells[:60], 1e-11)
+
+
+@pytest.mark.parametrize(
+    ("w", "n", "seed"), [(50.0, 1, 29), (10.0, 2, 1), (0.1, 3, 2), (50.0, 7, 3)]
+)
+def test_thin_boxes_against_tiled_reference(w, n, seed):
+    h = 1.0
+    sites = np.random.default_rng(seed).random((n, 2)) * [w, h]
+    d = vf.voronoi(sites, (0, 0, w, h), periodic=True)
+    rx = int(np.ceil(3 * max(w, h) / w))
+    ry = int(np.ceil(3 * max(w, h) / h))
+    shifts = [(a, b) for a in range(-rx, rx + 1) for b in range(-ry, ry + 1)]
+    shifts.remove((0, 0))
+    shifts.insert(0, (0, 0))
+    tiled = np.concatenate([sites + [a * w, b * h] for a, b in shifts])
+    ref = vf.voronoi(tiled, (-rx * w, -ry * h, (rx + 1) * w, (ry + 1) * h))
+    np.testing.assert_allclose(d.areas, ref.areas[:n], rtol=1e-10)
+    assert (shapely.hausdorff_distance(d.cells, ref.cells[:n]) < 1e-9 * max(w, h)).all()
+    wr = vf.voronoi(sites, (0, 0, w, h), periodic=True, wrap=True)
+    assert shapely.is_valid(wr.cells).all()
+    assert shapely.union_all(wr.cells).area == pytest.approx(w * h, rel=1e-10)
+    assert wr.areas.sum() == pytest.approx(w * h, rel=1e-10)
+    for r in (d.describe(), wr.describe()):
+        assert r.euler_ok, str(r)

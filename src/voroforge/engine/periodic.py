@@ -132,7 +132,7 @@ def _gather(d: Diagram, source: np.ndarray, n: int, keep: np.ndarray):
         bad = ~shapely.is_valid(merged)
         # pieces of one cell that touch along an edge (a cell bordering its own image)
         for j in np.flatnonzero(bad):
-            merged[j] = shapely.union_all(shapely.get_parts(merged[j]))
+            merged[j] = _without_slivers(shapely.union_all(shapely.get_parts(merged[j])))
         out[groups[0]] = merged
     return _buffers(out)
 
@@ -157,6 +157,22 @@ def _gather_pieces(d: Diagram, source: np.ndarray, n: int):
     np.cumsum(np.bincount(source[order], minlength=n), out=new_geom[1:])
     new_poly = np.arange(len(order) + 1, dtype=np.int64)
     return np.ascontiguousarray(coords[take]), new_ring, new_poly, new_geom
+
+
+def _without_slivers(geom, rtol: float = 1e-9):
+    """``geom`` without holes and parts smaller than ``rtol`` of its area.
+
+    Pieces of one cell meet along an edge computed in two positions, whose end points can
+    differ by rounding: their union can keep a sliver hole there.
+    """
+    tiny = rtol * geom.area
+    polys = []
+    for part in shapely.get_parts(geom):
+        if part.area <= tiny:
+            continue
+        holes = [r for r in part.interiors if shapely.Polygon(r).area > tiny]
+        polys.append(shapely.Polygon(part.exterior, holes))
+    return polys[0] if len(polys) == 1 else shapely.MultiPolygon(polys)
 
 
 def _buffers(cells: np.ndarray):
