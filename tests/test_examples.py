@@ -96,6 +96,9 @@ def test_service_areas_cover_the_district(tmp_path):
     for f, s in zip(feats, stations, strict=True):
         pt = shapely.Point(s["geometry"]["coordinates"])
         assert shapely.geometry.shape(f["geometry"]).buffer(1e-6).contains(pt)
+        assert f["properties"]["name"] == s["properties"]["name"]  # carried from the input
+        assert f["properties"]["site"] == s["geometry"]["coordinates"]
+        assert f["properties"]["area"] == pytest.approx(shapely.geometry.shape(f["geometry"]).area)
     assert 490_000 < cells[0].centroid.x < 520_000 and 4_170_000 < cells[0].centroid.y < 4_195_000
 
 

@@ -193,6 +193,34 @@ def _seeds(design: Design, domain, field_fn, base: Path | None) -> np.ndarray:
     return pts[inside]
 
 
+def _site_properties(design: Design, domain, base: Path | None):
+    """Points and properties of a GeoJSON seed file, for the seeds kept (or None)."""
+    import json
+
+    s = design.seeds
+    if s.method != "file" or Path(s.file).suffix.lower() not in (".geojson", ".json"):
+        return None
+    data = json.loads(_path(base, s.file, "seeds.file").read_text(encoding="utf-8"))
+    feats = data.get("features", []) if isinstance(data, dict) else []
+    xy, props = [], []
+    for f in feats:
+        geom = f.get("geometry") or {}
+        coords = geom.get("coordinates")
+        points = (
+            [coords]
+            if geom.get("type") == "Point"
+            else (coords if geom.get("type") == "MultiPoint" else [])
+        )
+        for c in points:
+            xy.append(c[:2])
+            props.append(dict(f.get("properties") or {}))
+    if not xy:
+        return None
+    xy = np.asarray(xy, dtype=np.float64)
+    inside = shapely.contains_xy(domain, xy[:, 0], xy[:, 1])
+    return xy[inside], [p for p, keep in zip(props, inside.tolist(), strict=True) if keep]
+
+
 def _relax(design: Design, points: np.ndarray, domain) -> np.ndarray:
     r = design.relax
     if r.iterations == 0 and r.tolerance is None:
@@ -459,10 +487,14 @@ def compute(design: Design, base: Path | None = None, *, progress: Stage | None 
         points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
     if len(points) < 2:
         raise _fail("seeds", f"only {len(points)} seeds fall inside the boundary; need 2 or more")
+    extra: dict = {}
+    with _section("seeds.file"):
+        given = _site_properties(design, domain, base)
+    if given is not None and given[0].shape == points.shape and np.array_equal(given[0], points):
+        extra["site_properties"] = given[1]
     with _section("relax"):
         points = _relax(design, points, domain)
     stage(f"{len(points)} Voronoi cells")
-    extra: dict = {}
     if design.recursion.depth > 0:
         if design.voronoi.periodic:
             raise _fail("recursion.depth", "recursion and periodic tiles do not combine yet")
@@ -580,12 +612,22 @@ def _geojson(result: Result, path: Path) -> Path:
         keep = ~shapely.is_empty(result.cells)
         geoms = result.cells[keep]
         props = {
-            "area": shapely.area(geoms),
+            "cell": np.flatnonzero(keep),
             "field": result.values[keep],
             "opening": result.mask[keep],
             "level": result.level[keep],
         }
-        return write_geojson(geoms, path, properties=props)
+        sites = None
+        one_to_one = len(result.cells) == len(result.sites) and not result.design.voronoi.periodic
+        if one_to_one and result.design.recursion.depth == 0:
+            sites = result.sites[keep]
+            given = result.extra.get("site_properties")
+            if given is not None:  # carry the seed file's properties (names, ids) over
+                kept = [given[i] for i in np.flatnonzero(keep)]
+                for name in sorted({k for p in kept for k in p}):
+                    key = name if name not in (*props, "index", "area", "site") else f"site_{name}"
+                    props[key] = [p.get(name) for p in kept]
+        return write_geojson(geoms, path, sites=sites, properties=props)
     geoms = products(result)[what]
     if what == "edges":
         geoms = list(shapely.get_parts(result.edges))
