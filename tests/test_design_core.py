@@ -140,6 +140,8 @@ def test_by_density_follows_the_field():
         (lambda: pop.random(shapely.Point(0, 0), 5, seed=0), "Polygon or MultiPolygon"),
         (lambda: pop.random((0, 0, 0, 1), 5, seed=0), "xmin < xmax"),
         (lambda: pop.grid(PLATE, 0.0), "spacing"),
+        (lambda: pop.grid(PLATE, 1e-4), "too small"),
+        (lambda: pop.poisson(PLATE, 1e-4, seed=0), "too small"),
         (lambda: pop.hexgrid(PLATE, float("nan")), "spacing"),
         (lambda: pop.jittered(PLATE, 5.0, jitter=1.5, seed=0), "jitter"),
         (lambda: pop.poisson(PLATE, -2.0, seed=0), "radius"),
@@ -276,6 +278,10 @@ def test_explode_each_edge_once(diagram):
     assert shapely.length(lines[~on_boundary]).sum() == pytest.approx(engine.sum(), rel=1e-9)
     ml = co.edges_to_lines(e)
     assert ml.geom_type == "MultiLineString" and len(ml.geoms) == len(e)
+    merged = co.edges_to_lines(e, merge=True)
+    assert len(merged.geoms) < len(e)
+    assert merged.length == pytest.approx(ml.length, rel=1e-12)
+    assert co.edges_to_lines(np.zeros((0, 2, 2))).is_empty
 
 
 def test_explode_merges_rounding_level_vertex_differences():

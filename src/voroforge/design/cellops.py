@@ -153,12 +153,34 @@ def explode(cells, *, tol: float | None = None) -> np.ndarray:
     return np.ascontiguousarray(np.stack((verts[a[first]], verts[b[first]]), axis=1))
 
 
-def edges_to_lines(edges) -> shapely.MultiLineString:
-    """``(m, 2, 2)`` segments (from :func:`explode` or ``diagram.edges.coords``) as lines."""
+def edges_to_lines(edges, *, merge: bool = False) -> shapely.MultiLineString:
+    """Segments (from :func:`explode` or ``diagram.edges.coords``) as a MultiLineString.
+
+    Parameters
+    ----------
+    edges : (m, 2, 2) array_like
+        Segment end points.
+    merge : bool
+        Join segments that meet end to end (where exactly two meet) into polylines, so a
+        cutter or plotter makes fewer, longer strokes (``shapely.line_merge``).
+
+    Returns
+    -------
+    shapely.MultiLineString
+        One line per segment, or the merged polylines.
+    """
     arr = np.asarray(edges, dtype=np.float64)
     if arr.ndim != 3 or arr.shape[1:] != (2, 2):
         raise ValueError(f"edges must have shape (m, 2, 2), got {arr.shape}")
-    return shapely.multilinestrings(shapely.linestrings(arr))
+    lines = (
+        shapely.multilinestrings(shapely.linestrings(arr))
+        if len(arr)
+        else (shapely.MultiLineString())
+    )
+    if not merge or lines.is_empty:
+        return lines
+    merged = shapely.line_merge(lines)
+    return merged if merged.geom_type == "MultiLineString" else shapely.MultiLineString([merged])
 
 
 # ----------------------------------------------------------------------------- offsets

@@ -138,8 +138,8 @@ def _lattice(geom, spacing: float, angle: float, offset, hexagonal: bool, margin
     dy = spacing * math.sqrt(3) / 2 if hexagonal else spacing
     nx = int(math.ceil(reach / spacing)) + 1
     ny = int(math.ceil(reach / dy)) + 1
-    if (2 * nx + 1) * (2 * ny + 1) > 50_000_000:
-        raise ValueError(f"spacing {spacing} is too small for this boundary (> 5e7 points)")
+    if (2 * nx + 1) * (2 * ny + 1) > 20_000_000:
+        raise ValueError(f"spacing {spacing} is too small for this boundary (> 2e7 points)")
     j, i = np.meshgrid(np.arange(-ny, ny + 1), np.arange(-nx, nx + 1), indexing="ij")
     x = i * spacing + (0.5 * spacing * (j % 2) if hexagonal else 0.0)
     y = j * dy
@@ -293,8 +293,8 @@ def poisson(boundary, radius, *, seed, field=None, radius_max=None, k: int = 30)
     cell = rmin / math.sqrt(2.0)
     gw = int((xmax - xmin) / cell) + 1
     gh = int((ymax - ymin) / cell) + 1
-    if gw * gh > 100_000_000:
-        raise ValueError(f"radius {rmin} is too small for this boundary (grid > 1e8 cells)")
+    if gw * gh > 20_000_000:
+        raise ValueError(f"radius {rmin} is too small for this boundary (grid > 2e7 cells)")
     reach = int(math.ceil(rmax / cell))
     # padded grid of point indices (-1 = free) so windows never leave the array
     owner = np.full((gh + 2 * reach, gw + 2 * reach), -1, dtype=np.int64)
