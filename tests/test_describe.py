@@ -35,6 +35,7 @@ def test_two_by_two_grid_by_hand():
     # centre + 4 edge midpoints + 4 corners; 4 inner + 8 boundary segments; 4 faces
     assert (r.vertices, r.edges, r.faces, r.euler, r.euler_expected) == (9, 12, 4, 1, 1)
     assert (r.voronoi_edges, r.unbounded, r.convex_checked, r.nonconvex) == (4, 4, 4, 0)
+    assert r.voronoi_vertices == 1  # the centre, shared by all four cells
     text = str(r)
     assert "V - E + F = 1" in text and "OK" in text
 
@@ -43,6 +44,9 @@ def test_random_box_counts_hull_sites():
     pts = np.random.default_rng(4).random((300, 2))
     r = vf.voronoi(pts, (0, 0, 1, 1)).describe()
     assert r.unbounded == len(ConvexHull(pts).vertices)
+    # Voronoi vertices: the circumcentres (distinct in general position) inside the box
+    cc = vf.delaunay(pts).circumcenters
+    assert r.voronoi_vertices == int(((cc > 0) & (cc < 1)).all(1).sum())
     assert r.convex_checked == 300 and r.convex_ok and r.euler_ok
     assert r.mismatched_vertices == 0
 

@@ -184,7 +184,7 @@ def test_locate_and_describe_on_the_torus():
     np.testing.assert_array_equal(d.locate(q), want)
     r = d.describe()
     assert r.euler_ok and r.euler_expected == 0 and r.convex_ok
-    assert (r.vertices, r.edges, r.faces) == (100, 150, 50)
+    assert (r.vertices, r.edges, r.faces, r.voronoi_vertices) == (100, 150, 50, 100)
     r1 = vf.voronoi([[0.0, 3.0]], BOX, periodic=True).describe()
     assert (r1.vertices, r1.edges, r1.faces, r1.euler_ok) == (1, 2, 1, True)
     rw = vf.voronoi(sites, BOX, periodic=True, wrap=True).describe()

@@ -57,6 +57,9 @@ class Description:
         ``F``: parts minus holes.
     voronoi_edges : int
         Shared edges between two cells (``len(d.edges.pairs)``).
+    voronoi_vertices : int
+        Vertices that at least three cells share: the Voronoi vertices inside the domain
+        (on a torus, all of them).
     euler : int
         ``V - E + F``.
     euler_expected : int
@@ -87,6 +90,7 @@ class Description:
     mismatched_vertices: int
     faces: int
     voronoi_edges: int
+    voronoi_vertices: int
     euler: int
     euler_expected: int
     euler_ok: bool
@@ -103,6 +107,7 @@ class Description:
                 f"({self.parts} polygon parts, {self.holes} holes)",
                 f"vertices V = {self.vertices}, edges E = {self.edges} "
                 f"({self.voronoi_edges} shared between two cells), faces F = {self.faces}",
+                f"Voronoi vertices (shared by three or more cells): {self.voronoi_vertices}",
                 f"vertex coordinates equal only to rounding: {self.mismatched_vertices}",
                 f"Euler: V - E + F = {self.euler}, domain characteristic "
                 f"{self.euler_expected}: {ok[self.euler_ok]}",
@@ -150,14 +155,15 @@ def _vertex_ids(pts: np.ndarray, tol: float, boxsize=None) -> tuple[np.ndarray, 
     return label[inv], int(m - count)
 
 
-def _counts(coords, ring, tol, boxsize=None, origin=None):
-    """``(V, E, mismatched)`` of the ring graph, vertices identified within ``tol``.
+def _counts(coords, ring, cell_of_ring, tol, boxsize=None, origin=None):
+    """``(V, E, mismatched, V3)`` of the ring graph, vertices identified within ``tol``.
 
     A vertex that is a straight angle in every ring that has it (the middle of an edge, or a
-    T-junction that rounding left on one side only) is not a vertex of the graph.
+    T-junction that rounding left on one side only) is not a vertex of the graph. ``V3``
+    counts the vertices that at least three cells share.
     """
     if len(coords) == 0:
-        return 0, 0, 0
+        return 0, 0, 0, 0
     idx, rid, nxt, corner = _ring_vertices(coords, ring, tol)
     pts = coords[idx]
     if boxsize is not None:
@@ -181,7 +187,10 @@ def _counts(coords, ring, tol, boxsize=None, origin=None):
     lo = np.minimum(va, vb)[sep]
     hi = np.maximum(va, vb)[sep]
     edges = np.unique(lo * (len(coords) + 1) + hi)
-    return len(np.unique(va)), len(edges), mismatched
+    cells = cell_of_ring[krid]
+    pairs = np.unique(va * (int(cells.max(initial=0)) + 1) + cells)
+    per_vertex = np.bincount(pairs // (int(cells.max(initial=0)) + 1))
+    return len(np.unique(va)), len(edges), mismatched, int((per_vertex >= 3).sum())
 
 
 def _domain_chi(geom) -> int:
@@ -260,14 +269,18 @@ def describe(d) -> Description:
     faces = parts - holes
     x0, y0, x1, y1 = d.bounds
     size = np.array([x1 - x0, y1 - y0])
+    cell_of_poly = np.repeat(np.arange(n), parts_per_cell)
+    cell_of_ring = cell_of_poly[np.repeat(np.arange(len(poly) - 1), np.diff(poly))]
     tol = VERTEX_RTOL * float(np.hypot(*size))
     if d.periodic and not d.wrapped:
-        vertices, _, mismatched = _counts(coords, ring, tol, size, np.array([x0, y0]))
+        vertices, _, mismatched, vor_vertices = _counts(
+            coords, ring, cell_of_ring, tol, size, np.array([x0, y0])
+        )
         edges = len(d.edges.pairs)
         faces = cells
         expected = 0
     else:
-        vertices, edges, mismatched = _counts(coords, ring, tol)
+        vertices, edges, mismatched, vor_vertices = _counts(coords, ring, cell_of_ring, tol)
         expected = 1 if d.periodic else _domain_chi(d.boundary)
     if cells == 0:
         expected = 0  # nothing is subdivided
@@ -304,6 +317,7 @@ def describe(d) -> Description:
         parts=parts,
         holes=holes,
         vertices=int(vertices),
+        voronoi_vertices=int(vor_vertices),
         edges=int(edges),
         mismatched_vertices=int(mismatched),
         faces=int(faces),
