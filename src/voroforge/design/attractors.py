@@ -36,6 +36,7 @@ __all__ = [
 FALLOFFS = ("linear", "smoothstep", "gaussian", "inverse_power")
 
 _GAUSS_A = 4.5  # exp(-4.5 t^2): sigma = radius / 3
+_CHUNK = 65536  # query points per batch for attractors with per-point radii
 _INV_EPS = 0.1  # softening of 1 / (eps + t)^p so the value at the attractor is finite
 
 
@@ -197,14 +198,15 @@ class PointAttractor(_Attractor):
         if uniform:  # monotone profile: the nearest point decides
             d = self._tree.query(xy, k=1, distance_upper_bound=self.radius[0])[0]
             return self._profile(np.minimum(d, self.radius[0]), self.radius[0], self.strength[0])
-        pairs = cKDTree(xy).sparse_distance_matrix(
-            self._tree, float(self.radius.max()), output_type="ndarray"
-        )
         out = np.zeros(len(xy))
-        if len(pairs):
-            j = pairs["j"]
-            v = self._profile(pairs["v"], self.radius[j], self.strength[j])
-            np.maximum.at(out, pairs["i"], v)
+        reach = float(self.radius.max())
+        for start in range(0, len(xy), _CHUNK):  # chunks bound the number of close pairs
+            part = xy[start : start + _CHUNK]
+            pairs = cKDTree(part).sparse_distance_matrix(self._tree, reach, output_type="ndarray")
+            if len(pairs):
+                j = pairs["j"]
+                v = self._profile(pairs["v"], self.radius[j], self.strength[j])
+                np.maximum.at(out, start + pairs["i"], v)
         return out
 
 

@@ -402,8 +402,9 @@ def by_density(boundary, count, field, *, seed) -> np.ndarray:
     Notes
     -----
     A uniform point is kept with probability ``field(p) / fmax``, where ``fmax`` is the
-    largest field value seen in a first batch of 4096 uniform points (at least a little
-    above zero), so a field that is small everywhere still samples efficiently.
+    largest field value seen so far (a first batch of 4096 uniform points, then every
+    batch), so a field that is small everywhere still samples efficiently. A peak narrower
+    than that sampling can find is flattened to the largest value seen.
     """
     geom = _boundary(boundary)
     n = _count(count)
@@ -423,7 +424,9 @@ def by_density(boundary, count, field, *, seed) -> np.ndarray:
             break
         m = max(256, int((n - have) * 1.5))
         xy = _uniform(geom, m, rng)
-        keep = rng.uniform(0.0, fmax, size=m) < _field_values(field, xy)
+        values = _field_values(field, xy)
+        keep = rng.uniform(0.0, fmax, size=m) < values
+        fmax = max(fmax, float(values.max()))  # a higher peak seen: accept less from now on
         out.append(xy[keep])
         have += int(keep.sum())
     else:
