@@ -384,3 +384,60 @@ def test_filleted_voronoi_openings_round_trip_through_dxf(tmp_path, seed):
         assert bulge_ring_area(pts) == pytest.approx(h.area, rel=2e-3)
         assert len(pts) < len(h.exterior.coords) - 1  # arcs replaced runs of chords
     assert arcs >= 3 * len(ents)
+
+
+def svg_path_area(d):
+    """Area enclosed by an SVG path of M/L/A/Z (circular arcs), y flipped back up.
+
+    A slow reference built from the SVG arc rules: the centre of an arc lies on the chord's
+    perpendicular bisector, on the side that the large-arc and sweep flags choose.
+    """
+    import re
+
+    tokens = re.findall(r"[MLAZ]|-?\d+(?:\.\d+)?(?:e-?\d+)?", d)
+    pts, i, area, cur = [], 0, 0.0, None
+    while i < len(tokens):
+        t = tokens[i]
+        if t in "ML":
+            x, y = float(tokens[i + 1]), -float(tokens[i + 2])
+            if cur is not None:
+                area += 0.5 * (cur[0] * y - x * cur[1])
+            cur = (x, y)
+            pts.append(cur)
+            i += 3
+        elif t == "A":
+            r = float(tokens[i + 1])
+            large, sweep = int(tokens[i + 4]), int(tokens[i + 5])
+            x, y = float(tokens[i + 6]), -float(tokens[i + 7])
+            chord = math.hypot(x - cur[0], y - cur[1])
+            theta = 2 * math.asin(min(1.0, chord / (2 * r)))
+            if large:
+                theta = 2 * math.pi - theta
+            ccw = sweep == 0  # SVG's y points down: sweep 0 is counter-clockwise in data
+            area += 0.5 * (cur[0] * y - x * cur[1])
+            area += (1 if ccw else -1) * 0.5 * r * r * (theta - math.sin(theta))
+            cur = (x, y)
+            i += 8
+        else:  # Z
+            x, y = pts[0]
+            area += 0.5 * (cur[0] * y - x * cur[1])
+            i += 1
+    return abs(area)
+
+
+def test_layered_svg_writes_fillets_as_true_arcs(tmp_path):
+    part = rounded_rect(120.0, 80.0, 6.0).difference(shapely.box(30, 20, 60, 50).buffer(4.0))
+    out = write_layers(tmp_path / "a.svg", {"CUT": [part]})
+    paths = [p.get("d") for p in ET.parse(out).getroot().iter(SVG + "path")]
+    assert len(paths) == 2 and all(d.count("A") == 4 for d in paths)
+    # (coordinates are written to about 1e-7 of the drawing's size, hence rel=1e-6)
+    outer, hole = sorted(paths, key=svg_path_area, reverse=True)
+    assert svg_path_area(outer) == pytest.approx(exact_rounded_rect_area(120, 80, 6), rel=1e-6)
+    exact_hole = 30 * 30 + 4 * 4 * 30 + math.pi * 16
+    assert svg_path_area(hole) == pytest.approx(exact_hole, rel=1e-6)
+    plain = write_layers(tmp_path / "b.svg", {"CUT": [part]}, arcs=False)
+    chords = [p.get("d") for p in ET.parse(plain).getroot().iter(SVG + "path")]
+    assert all("A" not in d for d in chords)
+    areas = sorted((svg_path_area(d) for d in chords), reverse=True)
+    assert areas[0] == pytest.approx(shapely.Polygon(part.exterior).area, rel=1e-6)
+    assert areas[1] == pytest.approx(shapely.Polygon(part.interiors[0]).area, rel=1e-6)

@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
 import numpy as np
 import shapely
 
+from .dxf import _bulges_of_rings
 from .render import (
     PathContext,
     RingContext,
@@ -253,6 +255,32 @@ def _draw_lines(geom, flip, digits) -> list[str]:
     return out
 
 
+def _arc_path(ring, num) -> str:
+    """SVG path data of a closed ring of ``(x, y, bulge)`` (data coordinates, y flipped here).
+
+    Straight segments become ``L``, bulged ones circular ``A`` arcs: a counter-clockwise arc
+    in data coordinates (bulge > 0) turns clockwise once y points down, so its sweep flag is 0.
+    """
+    parts = [f"M{num(ring[0][0])},{num(-ring[0][1])}"]
+    n = len(ring)
+    for i in range(n):
+        x0, y0, b = ring[i]
+        x1, y1, _ = ring[(i + 1) % n]
+        end = f"{num(x1)},{num(-y1)}"
+        if i == n - 1 and not b:
+            break  # Z draws the last straight segment
+        if not b:
+            parts.append("L" + end)
+            continue
+        theta = 4.0 * math.atan(abs(b))
+        chord = math.hypot(x1 - x0, y1 - y0)
+        r = num(chord / (2.0 * math.sin(theta / 2.0)))
+        large = 1 if theta > math.pi else 0
+        sweep = 0 if b > 0 else 1
+        parts.append(f"A{r},{r} 0 {large} {sweep} {end}")
+    return "".join(parts) + "Z"
+
+
 def layers_string(
     layers: dict,
     *,
@@ -262,6 +290,8 @@ def layers_string(
     fills: dict | None = None,
     margin: float = 0.0,
     bounds=None,
+    arcs: bool = True,
+    arc_tolerance: float = 1e-6,
 ) -> str:
     """Render fabrication layers as an SVG document; see :func:`write_layers`.
 
@@ -316,18 +346,19 @@ def layers_string(
             f'stroke-width="{format_number(stroke_width, 6)}" '
             'stroke-linejoin="round" stroke-linecap="round">'
         )
+        rings = []
         for geom in geoms:
             if geom.is_empty:
                 continue
             ctx = RingContext()
-            trace(ctx, geom, flip)
-            for ring in ctx.rings:  # one closed path per ring
-                path = PathContext(digits)
-                path.move_to(*ring[0])
-                for x, y in ring[1:]:
-                    path.line_to(x, y)
-                path.close_path()
-                out.append(f'<path d="{path}"/>')
+            trace(ctx, geom)
+            rings.extend(np.asarray(r, dtype=np.float64) for r in ctx.rings)
+        options = {"arcs": arcs, "tolerance": arc_tolerance}
+        for ring in _bulges_of_rings(rings, **options):  # one closed path per ring
+            out.append(f'<path d="{_arc_path(ring, num)}"/>')
+        for geom in geoms:
+            if geom.is_empty:
+                continue
             out.extend(f'<path d="{d}"/>' for d in _draw_lines(geom, flip, digits))
             for pt in shapely.get_parts(geom):
                 if pt.geom_type == "Point":
@@ -348,12 +379,15 @@ def write_layers(
     fills: dict | None = None,
     margin: float = 0.0,
     bounds=None,
+    arcs: bool = True,
+    arc_tolerance: float = 1e-6,
 ) -> Path:
     """Write fabrication layers (cut, score, engrave, ...) to an SVG file for a laser cutter.
 
     Each layer is an Inkscape layer ``<g id="CUT" inkscape:groupmode="layer">`` with a
     hairline stroke in the layer's colour (red cut, blue score, black engrave by default) and
-    no fill. Every polygon ring is its own closed ``<path d="M...Z">``; lines are open paths,
+    no fill. Every polygon ring is its own closed ``<path d="M...Z">`` (fillets as true
+    circular arcs); lines are open paths,
     points small circles. One data unit is one ``units`` unit: ``width="600mm"`` with a
     ``viewBox`` in millimetres, y axis up (coordinates read back as ``(x, -y)``).
 
@@ -375,6 +409,11 @@ def write_layers(
         Space around the drawing in data units.
     bounds : (xmin, ymin, xmax, ymax), optional
         Page extent in data units (default: the geometry's bounds).
+    arcs : bool
+        Write runs of chords that lie on one circle (fillets, round buffers) as true SVG arcs
+        (``A``), found as for DXF bulges (:func:`voroforge.io.dxf.arc_runs`).
+    arc_tolerance : float
+        Largest distance of a vertex from the arc that replaces it, in data units.
 
     Returns
     -------
@@ -396,6 +435,8 @@ def write_layers(
         fills=fills,
         margin=margin,
         bounds=bounds,
+        arcs=arcs,
+        arc_tolerance=arc_tolerance,
     )
     path = Path(path)
     path.write_text(text, encoding="utf-8")
