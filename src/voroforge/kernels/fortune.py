@@ -35,6 +35,8 @@ from .predicates import incircle, incircle_fast, orient2d
 #: Small helpers of the sweep are inlined at the numba level: as separate functions every call
 #: would pay a reference-count round trip on each array argument.
 _INLINE = {**NJIT, "inline": "always"}
+#: The sweep's event loop runs without numba's reference counting (see :func:`_sweep_loop`).
+_NO_NRT = {**NJIT, "_nrt": False}
 
 # stats slots returned by the debug helper
 _S_FLIPS = 0
@@ -390,12 +392,27 @@ def _sweep(xs, ys, order, stats):
     heap = np.zeros(cap, dtype=np.int32)
     key = np.zeros(cap, dtype=np.float64)
     free = np.zeros(cap, dtype=np.int32)
-    nfree = 0
-    nnodes = 0
     tmax = max(2 * n - 4, 1)
     tri = np.zeros(3 * tmax, dtype=np.int32)
     he = np.full(3 * tmax, -1, dtype=np.int32)
     rec_he = np.full(3 * n + 3, -1, dtype=np.int32)
+    tree = (left, right, parent, prv, nxt, site, edge, tprio, hpos, heap, free)
+    ntri = _sweep_loop(xs, ys, order, stats, tree, arcx, arcy, key, tri, he, rec_he)
+    return tri[: 3 * ntri], he[: 3 * ntri]
+
+
+@njit(**_NO_NRT)
+def _sweep_loop(xs, ys, order, stats, tree, arcx, arcy, key, tri, he, rec_he):
+    """The event loop over preallocated arrays; returns the number of triangles.
+
+    Compiled without reference counting: the small helpers inlined into the loop take a
+    dozen arrays each, and their atomic reference-count updates cost as much as the rest
+    of the sweep. Nothing here allocates, so nothing needs counting.
+    """
+    left, right, parent, prv, nxt, site, edge, tprio, hpos, heap, free = tree
+    n = order.shape[0]
+    nfree = 0
+    nnodes = 0
     nrec = 0
     ntri = 0
     size = 0
@@ -490,7 +507,7 @@ def _sweep(xs, ys, order, stats):
         else:
             break
     stats[_S_TRI_SWEEP] = ntri
-    return tri[: 3 * ntri], he[: 3 * ntri]
+    return ntri
 
 
 # ---------------------------------------------------------------------------------------------
