@@ -330,3 +330,32 @@ def test_gif_of_a_moving_attractor(tmp_path):
     (path,) = build(data, tmp_path)
     with Image.open(path) as img:
         assert img.n_frames == 4
+
+
+def test_curve_attractor_from_points_path_or_file(tmp_path):
+    def field_values(attractor, base=None):
+        data = panel(**{"cells.web": {"near": 6, "far": 1}})
+        data["attractors"] = [{"type": "curve", "radius": 40, "falloff": "linear", **attractor}]
+        design, _ = load(data)
+        r = compute(design, base)
+        return r.values
+
+    by_points = field_values({"points": [[0, 50], [160, 50]]})
+    by_path = field_values({"path": "M 0 50 L 160 50"})
+    np.testing.assert_allclose(by_path, by_points, atol=1e-12)
+    assert by_points.max() > 0.5 and by_points.min() < 0.2
+    (tmp_path / "c.geojson").write_text(
+        json.dumps({"type": "LineString", "coordinates": [[0, 50], [160, 50]]})
+    )
+    np.testing.assert_allclose(field_values({"file": "c.geojson"}, tmp_path), by_points, atol=1e-12)
+    with pytest.raises(DesignError, match="exactly one of points, path"):
+        load(
+            {
+                **panel(),
+                "attractors": [
+                    {"type": "curve", "radius": 4, "path": "M0 0L1 1", "points": [[0, 0], [1, 1]]}
+                ],
+            }
+        )
+    with pytest.raises(DesignError, match="attractors.0.file: file not found"):
+        field_values({"file": "missing.svg"}, tmp_path)

@@ -141,15 +141,36 @@ def _boundary(design: Design, base: Path | None):
     return geom, domain
 
 
-def _field(design: Design):
+def _curve(a, base: Path | None, key: str):
+    """The polyline(s) of a curve attractor: points, SVG path data or a file."""
+    from . import boundary as bd
+
+    if a.points is not None:
+        return np.asarray(a.points, dtype=np.float64)
+    if a.path is not None:
+        lines = bd.path_lines(a.path)
+        if not lines:
+            raise _fail(f"{key}.path", "the SVG path data draws nothing")
+        return shapely.MultiLineString([np.asarray(x)[:, :2] for x in lines])
+    path = _path(base, a.file, f"{key}.file")
+    if path.suffix.lower() == ".svg":
+        return bd.curves_from_svg(path)
+    geom = shapely.union_all(shapely.get_parts(shapely.from_geojson(path.read_text("utf-8"))))
+    lines = [g.boundary if g.geom_type.endswith("Polygon") else g for g in shapely.get_parts(geom)]
+    merged = shapely.union_all([g for g in lines if "LineString" in g.geom_type])
+    if merged.is_empty:
+        raise _fail(f"{key}.file", "no lines or polygons in the file")
+    return merged
+
+
+def _field(design: Design, base: Path | None = None):
     """The combined attractor field, or ``None`` without attractors."""
     if not design.attractors:
         return None
     from . import attractors as at
 
     made = []
-    for a in design.attractors:
-        pts = np.asarray(a.points, dtype=np.float64)
+    for i, a in enumerate(design.attractors):
         options = {
             "radius": a.radius,
             "strength": a.strength,
@@ -157,9 +178,9 @@ def _field(design: Design):
             "power": a.power,
         }
         if a.type == "point":
-            made.append(at.PointAttractor(pts, **options))
+            made.append(at.PointAttractor(np.asarray(a.points, dtype=np.float64), **options))
         else:
-            made.append(at.CurveAttractor(pts, **options))
+            made.append(at.CurveAttractor(_curve(a, base, f"attractors.{i}"), **options))
     combined = at.combine(made, mode=design.field.combine)
     if design.field.invert:
         return at.Field(lambda xy: 1.0 - np.asarray(combined(xy), dtype=np.float64))
@@ -480,7 +501,7 @@ def compute(design: Design, base: Path | None = None, *, progress: Stage | None 
     with _section("boundary.file" if design.boundary.shape == "file" else "boundary"):
         boundary, domain = _boundary(design, base)
     with _section("attractors"):
-        field_fn = _field(design)
+        field_fn = _field(design, base)
     stage("seeds")
     with _section("seeds"):
         points = _seeds(design, domain, field_fn, base)

@@ -193,7 +193,9 @@ class Attractor(_Model):
 
     type: Literal["point", "curve"] = "point"
     name: str | None = None
-    points: Annotated[list[Point], Field(min_length=1)]
+    points: Annotated[list[Point], Field(min_length=1)] | None = None
+    path: str | None = None
+    file: str | None = None
     radius: PositiveFloat
     strength: NonNegFloat = 1.0
     falloff: Literal["linear", "smoothstep", "gaussian", "inverse_power"] = "smoothstep"
@@ -201,7 +203,15 @@ class Attractor(_Model):
 
     @model_validator(mode="after")
     def _curve(self) -> Attractor:
-        if self.type == "curve" and len(self.points) < 2:
+        given = [k for k in ("points", "path", "file") if getattr(self, k) is not None]
+        if self.type == "point":
+            if given != ["points"]:
+                raise _need("points", "a point attractor needs points = [[x, y], ...] (only)")
+        elif len(given) != 1:
+            raise _need(
+                "points", "a curve needs exactly one of points, path (SVG path data) or file"
+            )
+        elif self.points is not None and len(self.points) < 2:
             raise _need("points", "a curve needs at least two points")
         return self
 
