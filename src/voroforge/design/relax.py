@@ -76,8 +76,9 @@ def relax(points, boundary, *, iterations: int = 0, tol=None, density=None) -> n
 def _engine(lloyd, pts, boundary, iterations, stop, density):
     rel_tol = None
     if stop is not None:
-        d = voroforge.voronoi(pts[:1], boundary)  # the domain as the engine sees it
-        x0, y0, x1, y1 = d.bounds
+        from ..engine.domain import make_domain
+
+        x0, y0, x1, y1 = make_domain(boundary, pts).bounds  # the domain as lloyd sees it
         rel_tol = stop / max(x1 - x0, y1 - y0)
     rho = None
     if density is not None:
