@@ -175,6 +175,13 @@ def test_check_prints_table_and_strict_exit(tmp_path, capsys):
     assert rc == 0 and "web" in out and "violations" in out
     rc, out, err = _run(capsys, "check", f, "--strict", "--set", "cells.web=1")
     assert rc == 1 and out.splitlines()[0].split()[:3] == ["kind", "x", "y"]
+    overlay = tmp_path / "check.png"
+    rc, out, err = _run(capsys, "check", f, "--set", "cells.web=1", "--overlay", overlay)
+    assert rc == 0 and overlay.exists()
+    with Image.open(overlay) as img:
+        assert img.format == "PNG"
+    rc, _, err = _run(capsys, "check", f, "--overlay", tmp_path / "x.pdf")
+    assert rc == 2 and "must be a .png or .svg" in err
 
 
 @pytest.mark.parametrize(

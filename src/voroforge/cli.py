@@ -148,6 +148,7 @@ and loose islands. Prints one row per violation with its location.
 examples:
   voroforge check panel.toml
   voroforge check panel.toml --strict --set fabrication.min_web=4
+  voroforge check panel.toml --overlay check.png   the panel with violations circled
 """
 
 
@@ -190,6 +191,11 @@ def _add_design_parsers(commands, raw) -> None:
     _add_set(check)
     check.add_argument(
         "--strict", action="store_true", help="exit with status 1 when there are violations"
+    )
+    check.add_argument(
+        "--overlay",
+        metavar="FILE",
+        help="also draw the panel with every violation circled (.png or .svg)",
     )
 
 
@@ -356,8 +362,13 @@ def _new(args: argparse.Namespace, stage: Stage) -> list[Path]:
 def _check(args: argparse.Namespace, stage: Stage) -> int:
     from .design.pipeline import check_design
 
+    if args.overlay and Path(args.overlay).suffix.lower() not in (".png", ".svg"):
+        raise ValueError(f"{args.overlay}: the overlay must be a .png or .svg file")
     report = check_design(args.design, overrides=_overrides(args.set), progress=stage)
     print(report.table())
+    if args.overlay:
+        suffix = Path(args.overlay).suffix.lower()
+        (report.write_png if suffix == ".png" else report.write_svg)(args.overlay)
     return 1 if (args.strict and not report.ok) else 0
 
 
