@@ -301,3 +301,29 @@ def test_property_lloyd_monotone(n, seed, domain):
     assert np.isfinite(r.points).all()
     q = vf.lloyd(pts, domain, iterations=6, method="lbfgs")
     assert np.all(np.diff(q.energy) <= 0)
+
+
+@pytest.mark.parametrize("domain", [HOLED, L_SHAPE])
+def test_capacity_cvt_on_concave_domains(domain):
+    rng = np.random.default_rng(17)
+    pts = rng.random((200, 2))
+    pts = pts[shapely.contains_xy(domain, pts[:, 0], pts[:, 1])][:60]
+    target = np.full(len(pts), domain.area / len(pts))
+    r = vf.lloyd(pts, domain, iterations=12, areas=target)
+    assert np.all(np.abs(r.diagram.areas - target) <= 1e-6 * target)
+    assert np.all(shapely.covers(domain, shapely.points(r.points)))
+    assert r.energy[-1] < r.energy[0]
+
+
+def test_capacity_cvt_pulls_outside_centroids_onto_the_domain():
+    u_shape = shapely.box(0, 0, 3, 3).difference(shapely.box(1, 1, 2, 3))
+    pts = np.array([[0.5, 2.5], [2.5, 0.5]])
+    # one site owns the whole U, whose centroid lies in the gap between the arms
+    one = vf.lloyd(pts[:1], u_shape, iterations=1)
+    assert one.points[0] == pytest.approx([1.5, 9.5 / 7])  # the U's centroid, in the gap
+    assert not u_shape.covers(shapely.Point(one.points[0]))
+    cap = vf.lloyd(pts[:1], u_shape, iterations=1, areas=[u_shape.area])
+    assert cap.points[0] == pytest.approx([1.5, 1.0])  # nearest boundary point
+    two = vf.lloyd(pts, u_shape, iterations=8, areas=[2.0, 5.0])
+    assert np.all(shapely.covers(u_shape, shapely.points(two.points)))
+    assert np.allclose(two.diagram.areas, [2.0, 5.0], rtol=1e-6)

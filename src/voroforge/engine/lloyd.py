@@ -12,6 +12,7 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
+import shapely
 
 from ._inputs import as_points
 from ._integrate import Integrator, serial_below
@@ -119,7 +120,8 @@ def lloyd(
         started, to 1e-9 relative) and moves the sites to the centroids of those power
         cells, so the final cells have the target areas and are as compact as the targets
         allow. The energy need not decrease monotonically in this mode. Needs distinct sites
-        and centroids that stay in the domain (true for convex domains).
+        whose Voronoi cells are non-empty at the start; a centroid outside a non-convex
+        domain is moved to the nearest point of the domain's boundary.
 
     Returns
     -------
@@ -216,7 +218,10 @@ def _capacity(z, dom, integ, targets, iterations, stop):
         elapsed.append(time.perf_counter() - t0)
         if it == iterations:
             break
-        shift = _step(z, mass, first, z_new)
+        _step(z, mass, first, z_new)
+        _into_domain(z_new, dom)
+        move = z_new - z
+        shift = float(np.sqrt(np.einsum("ij,ij->i", move, move).max()))
         shifts.append(shift)
         z, z_new = z_new, z
         if stop is not None and shift <= stop:
@@ -235,6 +240,18 @@ def _capacity(z, dom, integ, targets, iterations, stop):
         "lloyd",
         w.copy(),
     )
+
+
+def _into_domain(z, dom):
+    """Move sites outside the domain (in place) to the nearest point of its boundary."""
+    if dom.is_rect or not len(z):
+        return
+    outside = np.flatnonzero(~shapely.covers(dom.geometry, shapely.points(z)))
+    if len(outside):
+        edge = shapely.boundary(dom.geometry)
+        far = shapely.points(z[outside])
+        near = shapely.line_interpolate_point(edge, shapely.line_locate_point(edge, far))
+        z[outside] = shapely.get_coordinates(near)
 
 
 def _lbfgs(z, dom, bnd, integ, iterations, stop, memory=8):
