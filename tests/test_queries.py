@@ -2,6 +2,11 @@
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
+import textwrap
+
 import numpy as np
 import pytest
 import shapely
@@ -299,3 +304,27 @@ def test_smooth_at_sites_continuity_and_errors():
         vf.natural_neighbor(sites, vals, [0.5, 0.5], smooth=True, gradients=np.zeros((120, 2)))
     with pytest.raises(ValueError, match="smooth=True"):
         vf.natural_neighbor(sites, vals, [0.5, 0.5], gradients=np.zeros((120, 2, 2)))
+
+
+def test_sibson_kernel_runs_without_jit(tmp_path):
+    # the kernel must stay plain Python too (coverage runs with NUMBA_DISABLE_JIT=1)
+    code = textwrap.dedent(
+        """
+        import numpy as np
+        import voroforge as vf
+        rng = np.random.default_rng(0)
+        p = rng.random((40, 2))
+        q = rng.random((30, 2)) * 0.5 + 0.25
+        f = 1.0 + 2.0 * p[:, 0] - p[:, 1]
+        out = [vf.natural_neighbor(p, f, q), vf.natural_neighbor(p, f, q, smooth=True)]
+        np.save("out.npy", np.stack(out))
+        """
+    )
+    env = {**os.environ, "NUMBA_DISABLE_JIT": "1"}
+    subprocess.run([sys.executable, "-c", code], check=True, env=env, cwd=tmp_path, timeout=120)
+    got = np.load(tmp_path / "out.npy")
+    rng = np.random.default_rng(0)
+    rng.random((40, 2))  # the sites, drawn first above
+    q = rng.random((30, 2)) * 0.5 + 0.25
+    want = 1.0 + 2.0 * q[:, 0] - q[:, 1]
+    np.testing.assert_allclose(got, np.stack([want, want]), atol=1e-12)
