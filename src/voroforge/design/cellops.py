@@ -4,7 +4,9 @@ Cells are an ``(n,)`` object array of shapely Polygons/MultiPolygons (``diagram.
 empty geometries allowed. Every operation returns a new ``(n,)`` array in the same order,
 so index ``i`` still means cell ``i``; a cell that vanishes (inset past its inscribed
 circle) becomes an empty Polygon. Per-cell parameters may be a scalar or an ``(n,)`` array
-(for example an attractor field sampled at the cell centroids and remapped).
+(for example an attractor field sampled at the cell centroids and remapped). The shape
+operations (offset, inset, web, fillet, scale, smooth) also take a single geometry, such as
+a frame, and then return a single geometry.
 
 Examples
 --------
@@ -16,6 +18,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -60,6 +63,18 @@ def as_cells(cells) -> np.ndarray:
         raise ValueError(f"cell {bad[0]} is not a shapely geometry ({type(arr[bad[0]]).__name__})")
     arr[[g is None for g in arr]] = _EMPTY
     return arr
+
+
+def _single_ok(op):
+    """Let a per-cell operation take one geometry too (it then returns one geometry)."""
+
+    @functools.wraps(op)
+    def wrapper(cells, *args, **kwargs):
+        if isinstance(cells, shapely.Geometry):
+            return op([cells], *args, **kwargs)[0]
+        return op(cells, *args, **kwargs)
+
+    return wrapper
 
 
 def _param(value, n: int, name: str, *, lo: float | None = 0.0) -> np.ndarray | float:
@@ -186,6 +201,7 @@ def edges_to_lines(edges, *, merge: bool = False) -> shapely.MultiLineString:
 # ----------------------------------------------------------------------------- offsets
 
 
+@_single_ok
 def offset(
     cells, distance, *, join: str = "mitre", mitre_limit: float = 5.0, resolution: int = 16
 ) -> np.ndarray:
@@ -221,6 +237,7 @@ def offset(
     return _clean(out)
 
 
+@_single_ok
 def inset(
     cells, distance, *, join: str = "mitre", mitre_limit: float = 5.0, resolution: int = 16
 ) -> np.ndarray:
@@ -253,6 +270,7 @@ def inset(
     return offset(arr, -dist, join=join, mitre_limit=mitre_limit, resolution=resolution)
 
 
+@_single_ok
 def web(cells, width, *, join: str = "mitre", resolution: int = 16) -> np.ndarray:
     """Openings that leave webs of ``width`` between neighbouring cells (inset by width / 2).
 
@@ -272,6 +290,7 @@ def web(cells, width, *, join: str = "mitre", resolution: int = 16) -> np.ndarra
     return inset(arr, w / 2.0, join=join, resolution=resolution)
 
 
+@_single_ok
 def fillet(cells, radius, *, resolution: int = 16) -> np.ndarray:
     """Round the convex and concave corners of every cell with ``radius``.
 
@@ -320,6 +339,7 @@ def _is_convex(cells: np.ndarray) -> np.ndarray:
     return single & (hull - area <= 1e-12 * hull)
 
 
+@_single_ok
 def scale(cells, factor, *, about="centroid", sites=None) -> np.ndarray:
     """Scale every cell about its centroid, its site, or given points.
 
@@ -380,6 +400,7 @@ def _chaikin(ring: np.ndarray, iterations: int, ratio: float) -> np.ndarray:
     return np.vstack((pts, pts[:1]))
 
 
+@_single_ok
 def smooth(cells, *, iterations: int = 2, ratio: float = 0.25) -> np.ndarray:
     """Round every cell by Chaikin corner cutting (organic outlines, inside the cell).
 
