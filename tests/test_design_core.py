@@ -235,6 +235,22 @@ def test_combine_modes_and_remap():
     assert a.invert()(xy) == pytest.approx([0, 0.5, 1])
 
 
+@pytest.mark.skipif(not hasattr(vf, "power"), reason="engine without power diagrams")
+def test_power_weights_grow_cells_near_the_attractor():
+    box = bd.rectangle(100, 100)
+    pts = pop.jittered(box, 10.0, jitter=0.5, seed=3)
+    sun = at.PointAttractor([[50, 50]], radius=45.0)
+    w = at.power_weights(sun, pts, 0.0, 8.0)
+    assert w == pytest.approx(at.remap(sun(pts), 0.0, 8.0) ** 2)
+    near = sun(pts) > 0.5
+    plain = vf.voronoi(pts, box).areas
+    weighted = vf.power(pts, w, box).areas
+    assert weighted.sum() == pytest.approx(box.area)
+    # the heavy cells near the attractor take area from the light ones around them
+    assert weighted[near].sum() > plain[near].sum() * 1.03
+    assert np.corrcoef(w, weighted - plain)[0, 1] > 0.3
+
+
 @pytest.mark.parametrize(
     ("call", "match"),
     [
@@ -250,6 +266,7 @@ def test_combine_modes_and_remap():
         (lambda: at.combine([lambda xy: xy], mode="avg"), "unknown mode"),
         (lambda: at.falloff([0.5], "inverse_power", power=0), "power"),
         (lambda: at.remap([1], 0, 1, source=(1, 1)), "source"),
+        (lambda: at.power_weights(lambda xy: xy[:, 0], [[0, 0]], -1, 2), "radii"),
     ],
 )
 def test_attractor_bad_input(call, match):

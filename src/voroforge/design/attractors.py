@@ -29,6 +29,7 @@ __all__ = [
     "PointAttractor",
     "combine",
     "falloff",
+    "power_weights",
     "remap",
 ]
 
@@ -332,3 +333,40 @@ def remap(values, lo, hi, *, source=(0.0, 1.0)) -> np.ndarray:
     v = np.asarray(values, dtype=np.float64)
     t = np.clip((v - a) / (b - a), 0.0, 1.0)
     return lo + (hi - lo) * t
+
+
+def power_weights(field, points, lo, hi) -> np.ndarray:
+    """Power-diagram weights from a field: ``r_i**2`` with ``r_i = remap(field(p_i), lo, hi)``.
+
+    A weight ``r**2`` acts like a circle of radius ``r`` around its site in
+    ``voroforge.power``, so cells grow where the field maps to a larger ``r``.
+
+    Parameters
+    ----------
+    field : callable
+        ``field(xy (n, 2)) -> (n,)`` values in [0, 1].
+    points : (n, 2) array_like
+        The sites.
+    lo, hi : float
+        Radius where the field is 0 and where it is 1 (>= 0).
+
+    Returns
+    -------
+    (n,) float64
+
+    Examples
+    --------
+    >>> import numpy as np, voroforge as vf
+    >>> pts = np.random.default_rng(0).random((40, 2)) * 100
+    >>> sun = PointAttractor([[50, 50]], radius=40.0)
+    >>> d = vf.power(pts, power_weights(sun, pts, 0.0, 8.0), (0, 0, 100, 100))
+    """
+    if not callable(field):
+        raise ValueError("field must be callable field(xy) -> values in [0, 1]")
+    if not (float(lo) >= 0 and float(hi) >= 0):
+        raise ValueError(f"lo and hi are radii and must be >= 0, got {lo!r}, {hi!r}")
+    pts = _xy(points)
+    values = np.asarray(field(pts), dtype=np.float64)
+    if values.shape != (len(pts),):
+        raise ValueError(f"field returned shape {values.shape}, expected ({len(pts)},)")
+    return remap(values, lo, hi) ** 2
