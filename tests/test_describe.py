@@ -110,3 +110,16 @@ def test_detects_a_t_junction_and_a_reflex_corner():
     dented[in_ring] = mid + 0.2 * (mid - coords[k])
     r = _rebuilt(d, dented).describe()
     assert not r.convex_ok and r.nonconvex >= 1
+
+
+def test_large_diagram_counts_do_not_overflow():
+    # vertex and cell ids multiply into 64-bit keys: 60000 cells pass 2**31
+    n = 60000
+    pts = np.random.default_rng(9).random((n, 2))
+    r = vf.voronoi(pts, (0, 0, 1, 1)).describe()
+    assert r.euler_ok and r.convex_ok and r.cells == n
+    h = len(ConvexHull(pts).vertices)
+    assert r.unbounded == h
+    cc = vf.delaunay(pts).circumcenters  # 2n - 2 - h of them, distinct in general position
+    assert len(cc) == 2 * n - 2 - h
+    assert r.voronoi_vertices == int(((cc > 0) & (cc < 1)).all(1).sum())

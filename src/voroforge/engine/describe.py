@@ -119,11 +119,12 @@ class Description:
 
 
 def _ring_vertices(coords: np.ndarray, ring: np.ndarray, tol: float):
-    """Open ring vertices: ``(idx, rid, nxt, corner)``.
+    """Open ring vertices: ``(idx, rid, nxt, corner, cross)``.
 
     ``idx`` indexes ``coords`` (the closing repeat of each ring left out), ``rid`` is the
     ring, ``nxt`` the next vertex of the ring, ``corner`` False where the vertex lies within
-    ``tol`` of the chord between its two neighbours (a straight angle, or a near-duplicate).
+    ``tol`` of the chord between its two neighbours (a straight angle, or a near-duplicate),
+    ``cross`` the cross product of the edges into and out of the vertex.
     """
     lengths = np.diff(ring) - 1  # rings are closed: the last vertex repeats the first
     rid = np.repeat(np.arange(len(lengths)), lengths)
@@ -137,7 +138,7 @@ def _ring_vertices(coords: np.ndarray, ring: np.ndarray, tol: float):
     f = coords[nxt] - coords[idx]
     cross = e[:, 0] * f[:, 1] - e[:, 1] * f[:, 0]
     chord = np.hypot(*(e + f).T)
-    return idx, rid, nxt, np.abs(cross) > tol * chord
+    return idx, rid, nxt, np.abs(cross) > tol * chord, cross
 
 
 def _vertex_ids(pts: np.ndarray, tol: float, boxsize=None) -> tuple[np.ndarray, int]:
@@ -152,7 +153,7 @@ def _vertex_ids(pts: np.ndarray, tol: float, boxsize=None) -> tuple[np.ndarray, 
     pairs = cKDTree(uniq, boxsize=boxsize).query_pairs(tol, output_type="ndarray")
     graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(m, m))
     count, label = connected_components(graph, directed=False)
-    return label[inv], int(m - count)
+    return label[inv].astype(np.int64), int(m - count)
 
 
 def _counts(coords, ring, cell_of_ring, tol, boxsize=None, origin=None):
@@ -164,7 +165,7 @@ def _counts(coords, ring, cell_of_ring, tol, boxsize=None, origin=None):
     """
     if len(coords) == 0:
         return 0, 0, 0, 0
-    idx, rid, nxt, corner = _ring_vertices(coords, ring, tol)
+    idx, rid, nxt, corner, _ = _ring_vertices(coords, ring, tol)
     pts = coords[idx]
     if boxsize is not None:
         pts = np.mod(pts - origin, boxsize)
@@ -187,7 +188,7 @@ def _counts(coords, ring, cell_of_ring, tol, boxsize=None, origin=None):
     lo = np.minimum(va, vb)[sep]
     hi = np.maximum(va, vb)[sep]
     edges = np.unique(lo * (len(coords) + 1) + hi)
-    cells = cell_of_ring[krid]
+    cells = cell_of_ring[krid].astype(np.int64)
     pairs = np.unique(va * (int(cells.max(initial=0)) + 1) + cells)
     per_vertex = np.bincount(pairs // (int(cells.max(initial=0)) + 1))
     return len(np.unique(va)), len(edges), mismatched, int((per_vertex >= 3).sum())
@@ -206,23 +207,22 @@ def _nonconvex(coords, ring, poly, geom, cells, tol) -> int:
     """
     if not len(cells):
         return 0
-    bad = 0
-    first = poly[geom[cells]]
-    for i, r in zip(cells, first, strict=True):
-        parts = geom[i + 1] - geom[i]
-        rings = poly[geom[i + 1]] - poly[geom[i]]
-        if parts != 1 or rings != 1:
-            bad += 1
-            continue
-        p = coords[ring[r] : ring[r + 1] - 1]
-        e = np.roll(p, -1, axis=0) - p
-        f = np.roll(e, -1, axis=0)
-        cross = e[:, 0] * f[:, 1] - e[:, 1] * f[:, 0]
-        span = np.hypot(*(e + f).T)  # distance between the vertex's two neighbours
-        off = np.abs(cross) > tol * span
-        if (off & (cross < 0)).any() and (off & (cross > 0)).any():
-            bad += 1
-    return bad
+    parts = geom[cells + 1] - geom[cells]
+    rings = poly[geom[cells + 1]] - poly[geom[cells]]
+    simple = (parts == 1) & (rings == 1)
+    bad = int((~simple).sum())
+    r = poly[geom[cells[simple]]]
+    if not len(r):
+        return bad
+    lo = ring[r]
+    length = ring[r + 1] - lo
+    sub_ring = np.zeros(len(r) + 1, dtype=np.int64)
+    np.cumsum(length, out=sub_ring[1:])
+    take = np.repeat(lo - sub_ring[:-1], length) + np.arange(int(sub_ring[-1]))
+    _, rid, _, turns, cross = _ring_vertices(coords[take], sub_ring, tol)
+    left = np.bincount(rid, weights=turns & (cross > 0), minlength=len(r))
+    right = np.bincount(rid, weights=turns & (cross < 0), minlength=len(r))
+    return bad + int(((left > 0) & (right > 0)).sum())
 
 
 def _unbounded(d) -> int:
