@@ -121,7 +121,7 @@ def _open_moments(px, py, m):
     return m0 / 2.0, mx / 6.0, my / 6.0, m2 / 12.0
 
 
-@njit(**NJIT_PARALLEL)
+@njit(**NJIT)
 def raster_moments(
     coords, ring_offsets, polygon_offsets, geom_offsets, origin, raster, rbox, mass, first, second
 ):
@@ -136,7 +136,7 @@ def raster_moments(
     h, w = raster.shape
     dxp = (rbox[2] - rbox[0]) / w
     dyp = (rbox[3] - rbox[1]) / h
-    for g in prange(n):
+    for g in range(n):
         ox = origin[g, 0]
         oy = origin[g, 1]
         s0 = 0.0
