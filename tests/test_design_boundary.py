@@ -196,6 +196,23 @@ def test_dxf_negative_bulge_and_loose_lines(tmp_path):
         bd.from_dxf(path, layers=["LOOSE"], loose=False)
 
 
+def test_dxf_ellipse_and_closed_spline(tmp_path):
+    doc = ezdxf.new("R2000")
+    msp = doc.modelspace()
+    msp.add_ellipse((0, 0), major_axis=(30, 0), ratio=0.5)  # full ellipse 30 x 15
+    ring = [(200 + 40 * math.cos(t), 40 * math.sin(t)) for t in np.linspace(0, 2 * np.pi, 13)[:-1]]
+    spline = msp.add_spline(fit_points=[*ring, ring[0]])
+    spline.closed = True
+    path = tmp_path / "curves.dxf"
+    doc.saveas(path)
+    g = bd.from_dxf(path, tolerance=1e-3)
+    ellipse, spline = sorted(g.geoms, key=lambda p: p.centroid.x)
+    assert ellipse.area == pytest.approx(math.pi * 30 * 15, rel=1e-4)
+    # a spline through 12 points of a circle of radius 40 is that circle to within 0.5%
+    assert spline.area == pytest.approx(math.pi * 40**2, rel=5e-3)
+    assert spline.centroid.distance(shapely.Point(200, 0)) < 0.2  # not periodic at the seam
+
+
 def test_dxf_units_to_mm(tmp_path):
     doc = ezdxf.new("R2000")
     doc.header["$INSUNITS"] = 1  # inches

@@ -887,7 +887,8 @@ def from_dxf(
             rings.append(_ocs_to_wcs(e, pts))
         elif kind == "ELLIPSE":
             pts = np.array([tuple(v)[:2] for v in e.flattening(tol)], dtype=np.float64)
-            full = abs((e.dxf.end_param - e.dxf.start_param) % (2 * np.pi)) < 1e-12
+            span = (e.dxf.end_param - e.dxf.start_param) % (2 * np.pi)
+            full = min(span, 2 * np.pi - span) < 1e-9
             (rings if full else lines).append(pts)
         elif kind == "SPLINE":
             pts = np.array([tuple(v)[:2] for v in e.flattening(tol)], dtype=np.float64)
