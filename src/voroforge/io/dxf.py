@@ -123,16 +123,14 @@ def _tolerance(xy: np.ndarray, tolerance: float) -> float:
     return max(float(tolerance), 1e-11 * scale)
 
 
-def _scan(xy, turn, ok, same_next, tol: float, min_segments: int) -> list[tuple[int, int, float]]:
-    """Group the arc vertices of one ring into runs and keep those that fit a circle."""
-    n = len(xy)
-    if ok.all() and same_next.all():
-        return _full_circle(xy, turn, tol)
+def _candidates(ok, same_next, min_segments: int) -> list[tuple[int, int, int]]:
+    """Runs of arc vertices of one ring as ``(start, count, first inside vertex)``."""
+    n = len(ok)
     ok_l = ok.tolist()
     same_l = same_next.tolist()
     # Start the scan after a vertex that does not continue to its successor.
     first = (same_l.index(False) + 1) % n
-    runs: list[tuple[int, int, float]] = []
+    out = []
     k = 0
     while k < n:
         v = (first + k) % n
@@ -142,15 +140,72 @@ def _scan(xy, turn, ok, same_next, tol: float, min_segments: int) -> list[tuple[
         m = 1  # inside vertices in this run: v, v+1, ..., v+m-1
         while k + m < n and same_l[(v + m - 1) % n]:
             m += 1
-        count = m + 1  # chords from vertex v-1 to vertex v+m
-        if count >= min_segments:
-            start = (v - 1) % n
-            run = _fit(xy, start, count, float(turn[v]), tol)
-            if run is not None:
-                runs.append(run)
+        if m + 1 >= min_segments:  # chords from vertex v-1 to vertex v+m
+            out.append(((v - 1) % n, m + 1, v))
         k += m
-    runs.sort()
-    return _drop_overlaps(runs, n)
+    return out
+
+
+def _fit_many(xy, ring_start, ring_len, ring, start, count, step, tol):
+    """Vectorised circle check of many candidate runs; returns (accepted, exact sweeps).
+
+    Each run's circle goes through its first, middle and last vertex; every vertex must lie
+    within ``tol`` of it, and the sweep seen from the centre must match ``step * count``.
+    """
+    ring_start = np.asarray(ring_start)
+    ring_len = np.asarray(ring_len)
+
+    def at(r, j):
+        return xy[ring_start[r] + j % ring_len[r]]
+
+    p0, pm, p1 = at(ring, start), at(ring, start + count // 2), at(ring, start + count)
+    a = pm - p0
+    b = p1 - p0
+    den = 2.0 * (a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0])
+    a2 = (a * a).sum(axis=1)
+    b2 = (b * b).sum(axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ux = (b[:, 1] * a2 - a[:, 1] * b2) / den
+        uy = (a[:, 0] * b2 - b[:, 0] * a2) / den
+    centre = p0 + np.column_stack((ux, uy))
+    radius = np.hypot(ux, uy)
+    good = (den != 0) & np.isfinite(radius)
+    # Distances of every vertex of every run from its circle.
+    sizes = count + 1
+    run_of = np.repeat(np.arange(len(count)), sizes)
+    firsts = np.concatenate(([0], np.cumsum(sizes)[:-1]))
+    local = start[run_of] + np.arange(sizes.sum()) - firsts[run_of]
+    pts = at(ring[run_of], local)
+    with np.errstate(invalid="ignore"):
+        off = np.abs(np.hypot(*(pts - centre[run_of]).T) - radius[run_of])
+    worst = np.maximum.reduceat(np.where(np.isfinite(off), off, np.inf), firsts)
+    good &= worst <= tol[ring]
+    # The sweep from the centre (exact for the end points; direction from the turning).
+    a0 = np.arctan2(p0[:, 1] - centre[:, 1], p0[:, 0] - centre[:, 0])
+    a1 = np.arctan2(p1[:, 1] - centre[:, 1], p1[:, 0] - centre[:, 0])
+    exact = np.mod(a1 - a0, 2.0 * math.pi)
+    exact = np.where(step < 0, exact - 2.0 * math.pi, exact)
+    with np.errstate(invalid="ignore"):
+        good &= np.abs(exact - step * count) <= 0.5 * np.abs(step) + 1e-6
+    return good, exact
+
+
+def _scan(xy, turn, ok, same_next, tol: float, min_segments: int) -> list[tuple[int, int, float]]:
+    """Group the arc vertices of one ring into runs and keep those that fit a circle."""
+    n = len(xy)
+    if ok.all() and same_next.all():
+        return _full_circle(xy, turn, tol)
+    cand = _candidates(ok, same_next, min_segments)
+    if not cand:
+        return []
+    start, count, v = (np.array(c, dtype=np.int64) for c in zip(*cand, strict=True))
+    ring = np.zeros(len(start), dtype=np.int64)
+    good, exact = _fit_many(xy, [0], [n], ring, start, count, turn[v], np.array([tol]))
+    return [
+        (int(s), int(c), float(e))
+        for s, c, e, g in zip(start, count, exact, good, strict=True)
+        if g
+    ]
 
 
 def _fit(xy, start: int, count: int, step: float, tol: float) -> tuple[int, int, float] | None:
@@ -192,19 +247,6 @@ def _full_circle(xy, turn, tol) -> list[tuple[int, int, float]]:
     return runs
 
 
-def _drop_overlaps(runs, n):
-    """Keep runs that do not share chords (they never should; a guard for odd input)."""
-    kept: list[tuple[int, int, float]] = []
-    used = np.zeros(n, dtype=bool)
-    for start, count, sweep in runs:
-        chords = (start + np.arange(count)) % n
-        if used[chords].any():
-            continue
-        used[chords] = True
-        kept.append((start, count, sweep))
-    return kept
-
-
 def ring_bulges(xy, **options) -> list[tuple[float, float, float]]:
     """Vertices of a closed ring as ``(x, y, bulge)`` with arcs folded into bulges.
 
@@ -222,7 +264,8 @@ def ring_bulges(xy, **options) -> list[tuple[float, float, float]]:
         ``bulge = tan(sweep / 4)`` describes the segment from this vertex to the next
         (0 for a straight segment, positive for a counter-clockwise arc).
     """
-    return _bulges_of_rings([np.asarray(xy, dtype=np.float64).reshape(-1, 2)], **options)[0]
+    ring = np.asarray(xy, dtype=np.float64).reshape(-1, 2)
+    return [tuple(p) for p in _bulges_of_rings([ring], **options)[0].tolist()]
 
 
 def _bulges_of_rings(
@@ -232,8 +275,8 @@ def _bulges_of_rings(
     tolerance: float = 1e-6,
     max_step: float = math.radians(30.0),
     min_segments: int = 3,
-) -> list[list[tuple[float, float, float]]]:
-    """:func:`ring_bulges` for many rings, with the per-vertex work done in one pass."""
+) -> list[np.ndarray]:
+    """:func:`ring_bulges` for many rings (each an ``(k, 3)`` array of x, y, bulge)."""
     out: list = []
     if not rings:
         return out
@@ -245,23 +288,52 @@ def _bulges_of_rings(
         candidates = np.add.reduceat(ok.astype(np.int64), starts) >= min_segments - 1
     else:
         candidates = np.zeros(len(rings), dtype=bool)
-    for i, ring in enumerate(rings):
+    # Candidate runs of every ring, then one vectorised circle check for all of them.
+    runs_of: list[list] = [[] for _ in rings]
+    full: list[int] = []
+    cand_ring, cand_start, cand_count, cand_v = [], [], [], []
+    for i in np.flatnonzero(candidates).tolist():
+        n = len(rings[i])
+        if n < min_segments + 1:
+            continue
+        sl = slice(starts[i], starts[i] + n)
+        if ok[sl].all() and same_next[sl].all():
+            full.append(i)
+            continue
+        for start, count, v in _candidates(ok[sl], same_next[sl], min_segments):
+            cand_ring.append(i)
+            cand_start.append(start)
+            cand_count.append(count)
+            cand_v.append(starts[i] + v)
+    if cand_ring:
+        ring_ids = np.asarray(cand_ring, dtype=np.int64)
+        tol = np.array([_tolerance(r, tolerance) for r in rings])
+        good, exact = _fit_many(
+            xy,
+            starts,
+            lens,
+            ring_ids,
+            np.asarray(cand_start, dtype=np.int64),
+            np.asarray(cand_count, dtype=np.int64),
+            turn[np.asarray(cand_v, dtype=np.int64)],
+            tol,
+        )
+        for k in np.flatnonzero(good).tolist():
+            runs_of[cand_ring[k]].append((cand_start[k], cand_count[k], float(exact[k])))
+    for i in full:
+        sl = slice(starts[i], starts[i] + len(rings[i]))
+        runs_of[i] = _full_circle(rings[i], turn[sl], _tolerance(rings[i], tolerance))
+    for ring, runs in zip(rings, runs_of, strict=True):
         n = len(ring)
-        runs = []
-        if candidates[i] and n >= min_segments + 1:
-            sl = slice(starts[i], starts[i] + n)
-            runs = _scan(
-                ring, turn[sl], ok[sl], same_next[sl], _tolerance(ring, tolerance), min_segments
-            )
         if not runs:
-            out.append(np.column_stack((ring, np.zeros(n))).tolist())
+            out.append(np.column_stack((ring, np.zeros(n))))
             continue
         skip = np.zeros(n, dtype=bool)
         bulge = np.zeros(n)
         for start, count, sweep in runs:
             bulge[start] = math.tan(sweep / 4.0)
             skip[(start + 1 + np.arange(count - 1)) % n] = True
-        out.append(np.column_stack((ring, bulge))[~skip].tolist())
+        out.append(np.column_stack((ring, bulge))[~skip])
     return out
 
 
@@ -387,7 +459,7 @@ def write_dxf(
                 closed_all += closed
                 open_all += open_
             for points in _bulges_of_rings(closed_all, **options):
-                msp.add_lwpolyline(points, format="xyb", close=True, dxfattribs=attribs)
+                _add_closed(msp, points, attribs)
             for xy in open_all:
                 msp.add_lwpolyline(xy.tolist(), format="xy", close=False, dxfattribs=attribs)
             for geom in items:
@@ -401,6 +473,25 @@ def write_dxf(
     finally:
         ezdxf.options.write_fixed_meta_data_for_testing = saved
     return path
+
+
+def _add_closed(msp, points: np.ndarray, attribs: dict) -> None:
+    """Add a closed LWPOLYLINE of ``(k, 3)`` x, y, bulge rows.
+
+    ezdxf keeps LWPOLYLINE vertices as an ``(k, 5)`` float array (x, y, start width, end
+    width, bulge); filling it in one go is several times faster than appending point by
+    point. Any other layout (a future ezdxf) takes the public, slower way.
+    """
+    e = msp.add_lwpolyline([], close=True, dxfattribs=attribs)
+    store = getattr(e, "lwpoints", None)
+    values = getattr(store, "values", None)
+    if isinstance(values, np.ndarray) and values.ndim == 2 and values.shape[1] == 5:
+        block = np.zeros((len(points), 5))
+        block[:, :2] = points[:, :2]
+        block[:, 4] = points[:, 2]
+        store.values = block
+    else:  # pragma: no cover - depends on ezdxf internals
+        e.set_points(points.tolist(), format="xyb")
 
 
 def _layer_name(name) -> str:

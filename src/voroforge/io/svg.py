@@ -355,7 +355,7 @@ def layers_string(
             rings.extend(np.asarray(r, dtype=np.float64) for r in ctx.rings)
         options = {"arcs": arcs, "tolerance": arc_tolerance}
         for ring in _bulges_of_rings(rings, **options):  # one closed path per ring
-            out.append(f'<path d="{_arc_path(ring, num)}"/>')
+            out.append(f'<path d="{_arc_path(ring.tolist(), num)}"/>')
         for geom in geoms:
             if geom.is_empty:
                 continue
