@@ -17,7 +17,6 @@ from scipy.spatial import ConvexHull, QhullError
 
 from ..kernels.power import power_cells
 from ._assemble import clip_to_polygon, domain_edges, domain_grid, geom_offsets_for
-from ._csr import csr_from_pairs
 from ._inputs import as_points, duplicate_map
 from ._integrate import serial_below
 from .domain import Domain, make_domain
@@ -80,8 +79,14 @@ def _owners(pts: np.ndarray, w: np.ndarray) -> np.ndarray:
 
 
 def _pairs_csr(n, a, b):
-    indptr, indices = csr_from_pairs(n, a, b)
-    return indptr, indices.astype(np.int64)
+    """Symmetric CSR ``(indptr, indices int64)`` of distinct undirected pairs ``a < b``."""
+    a = np.asarray(a, dtype=np.int64)
+    b = np.asarray(b, dtype=np.int64)
+    key = np.concatenate((a * n + b, b * n + a))
+    key.sort()  # a plain sort: faster here than np.unique's hashing
+    indptr = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(np.bincount(key // n, minlength=n), out=indptr[1:])
+    return indptr, key % n
 
 
 def _neighbors(x, y, w, box, active):
@@ -113,9 +118,11 @@ def _neighbors(x, y, w, box, active):
     on_hull[idx[lower.ravel()]] = True
     a = idx[lower[:, [0, 1, 2]].ravel()]
     b = idx[lower[:, [1, 2, 0]].ravel()]
-    lo = np.minimum(a, b)
-    hi = np.maximum(a, b)
-    key = np.unique(lo * n + hi)
+    key = np.minimum(a, b) * n + np.maximum(a, b)
+    key.sort()
+    keep = np.ones(len(key), dtype=bool)
+    keep[1:] = key[1:] != key[:-1]
+    key = key[keep]
     return (*_pairs_csr(n, key // n, key % n), active & on_hull)
 
 
