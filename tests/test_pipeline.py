@@ -359,3 +359,20 @@ def test_curve_attractor_from_points_path_or_file(tmp_path):
         )
     with pytest.raises(DesignError, match="attractors.0.file: file not found"):
         field_values({"file": "missing.svg"}, tmp_path)
+
+
+def test_power_radius_grows_cells_near_the_attractor():
+    base = panel(**{"seeds.method": "hexgrid", "seeds.spacing": 14, "cells.fillet": 0})
+    base["attractors"] = [{"points": [[40, 50]], "radius": 80, "falloff": "linear"}]
+    plain = result_of(base)
+    weighted = result_of({**base, "voronoi": {"power_radius": {"near": 9, "far": 0}}})
+    assert len(weighted.raw) == len(plain.raw)
+    # Same sites; the cells still tile the domain, but cells near the attractor got bigger.
+    assert sum(c.area for c in weighted.raw) == pytest.approx(weighted.domain.area, rel=1e-6)
+    gain = shapely.area(weighted.raw) - shapely.area(plain.raw)
+    near = weighted.values > 0.6
+    far = weighted.values < 0.05
+    assert near.any() and far.any()
+    assert gain[near].mean() > 0 > gain[far].mean()
+    with pytest.raises(DesignError, match="voronoi.power_radius"):
+        result_of({**panel(), "voronoi": {"power_radius": {"near": 9, "far": 0}}})

@@ -257,10 +257,23 @@ def _relax(design: Design, points: np.ndarray, domain) -> np.ndarray:
 # --- cells --------------------------------------------------------------------------------
 
 
-def _voronoi(design: Design, points: np.ndarray, domain) -> np.ndarray:
+def _voronoi(design: Design, points: np.ndarray, domain, field_fn=None) -> np.ndarray:
     import voroforge as vf
 
     algorithm = design.voronoi.algorithm
+    radius = design.voronoi.power_radius
+    if radius is not None:  # power (Laguerre) cells: a site of weight r^2 acts like a disc
+        if not hasattr(vf, "power"):
+            raise _fail("voronoi.power_radius", "power diagrams are not available in this version")
+        values = np.zeros(len(points)) if field_fn is None else field_fn(points)
+        r = _graded(
+            radius,
+            np.asarray(values, dtype=np.float64),
+            "voronoi.power_radius",
+            field_fn is not None,
+        )
+        weights = np.broadcast_to(np.asarray(r, dtype=np.float64) ** 2, (len(points),))
+        return np.asarray(vf.power(points, weights, domain).cells, dtype=object)
     if not design.voronoi.periodic:
         return np.asarray(vf.voronoi(points, domain, algorithm=algorithm).cells, dtype=object)
     box = _tile(design, domain)
@@ -527,7 +540,7 @@ def compute(design: Design, base: Path | None = None, *, progress: Stage | None 
             )
     else:
         with _section("voronoi"):
-            raw = _voronoi(design, points, domain)
+            raw = _voronoi(design, points, domain, field_fn)
         inset_cells = raw
         level = np.zeros(len(raw), dtype=np.int64)
     values = _values(raw, field_fn)

@@ -186,6 +186,15 @@ class Voronoi(_Model):
 
     algorithm: Literal["delaunay", "fortune", "halfplane"] = "delaunay"
     periodic: bool = False
+    power_radius: Graded | None = None
+
+    @model_validator(mode="after")
+    def _power(self) -> Voronoi:
+        if self.power_radius is not None and self.periodic:
+            raise _need("power_radius", "power (weighted) cells and periodic tiles do not combine")
+        if self.power_radius is not None and self.power_radius.bounds()[0] < 0:
+            raise _need("power_radius", "must be >= 0")
+        return self
 
 
 class Attractor(_Model):
