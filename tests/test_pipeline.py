@@ -376,3 +376,24 @@ def test_power_radius_grows_cells_near_the_attractor():
     assert gain[near].mean() > 0 > gain[far].mean()
     with pytest.raises(DesignError, match="voronoi.power_radius"):
         result_of({**panel(), "voronoi": {"power_radius": {"near": 9, "far": 0}}})
+
+
+def test_several_polygons_as_one_boundary(tmp_path):
+    data = panel()
+    data["boundary"] = {
+        "shape": "polygons",
+        "parts": [
+            {
+                "points": [[0, 0], [60, 0], [60, 60], [0, 60]],
+                "holes": [[[20, 20], [40, 20], [40, 40]]],
+            },
+            {"points": [[80, 0], [140, 0], [110, 50]]},
+        ],
+    }
+    r = result_of(data)
+    assert r.boundary.geom_type == "MultiPolygon"
+    assert r.boundary.area == pytest.approx(3600 - 200 + 1500)
+    assert sum(c.area for c in r.raw) == pytest.approx(r.boundary.area, rel=1e-9)
+    paths = build(data, tmp_path, overrides={"output.formats": '["dxf"]'})
+    ents = list(ezdxf.readfile(paths[0]).modelspace())
+    assert len(ents) == 3 + len(r.openings)  # two outlines, one hole, the openings

@@ -126,6 +126,8 @@ def _boundary(design: Design, base: Path | None):
         geom = bd.circle(spec.radius, center=spec.center, segments=spec.segments)
     elif spec.shape == "polygon":
         geom = bd.polygon(spec.points, spec.holes)
+    elif spec.shape == "polygons":
+        geom = bd.union(*(bd.polygon(p.points, p.holes) for p in spec.parts))
     else:
         geom = bd.load(_path(base, spec.file, "boundary.file"))
     if spec.corner_radius > 0:

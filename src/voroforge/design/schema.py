@@ -104,10 +104,17 @@ class Info(_Model):
     seed: int = 0
 
 
+class Part(_Model):
+    """One polygon of ``boundary.parts``."""
+
+    points: Annotated[list[Point], Field(min_length=3)]
+    holes: list[list[Point]] = []
+
+
 class Boundary(_Model):
     """``[boundary]``: the outline the pattern fills."""
 
-    shape: Literal["rectangle", "circle", "polygon", "file"] = "rectangle"
+    shape: Literal["rectangle", "circle", "polygon", "polygons", "file"] = "rectangle"
     width: PositiveFloat | None = None
     height: PositiveFloat | None = None
     origin: Point = (0.0, 0.0)
@@ -116,6 +123,7 @@ class Boundary(_Model):
     segments: Annotated[int, Field(ge=8)] = 256
     points: list[Point] | None = None
     holes: list[list[Point]] = []
+    parts: list[Part] | None = None
     file: str | None = None
     corner_radius: NonNegFloat = 0.0
     margin: NonNegFloat = 0.0
@@ -126,6 +134,7 @@ class Boundary(_Model):
             "rectangle": ("width", "height"),
             "circle": ("radius",),
             "polygon": ("points",),
+            "polygons": ("parts",),
             "file": ("file",),
         }[self.shape]
         for name in need:
