@@ -295,3 +295,21 @@ def test_sites_outside_the_domain():
     check_power(d, pts, w, shapely.box(0, 0, 1, 1))
     d = vf.power(pts * 10, w * 100, L_SHAPE)
     check_power(d, pts * 10, w * 100, L_SHAPE)
+
+
+def test_locate_finds_the_power_nearest_site():
+    rng = np.random.default_rng(18)
+    pts = rng.random((80, 2))
+    pts[5] = pts[3]  # a duplicate: the heavier copy owns the cell
+    w = rng.random(80) * 0.02
+    d = vf.power(pts, w, (0, 0, 1, 1))
+    q = rng.uniform(-0.2, 1.2, size=(3000, 2))
+    pd = power_dist(q, pts, w)
+    got = d.locate(q)
+    assert np.array_equal(got, np.argmin(pd, axis=1))
+    assert d.locate(q[0]) == got[0]
+    # every located sample lies in (or on) that site's clipped cell
+    inside = shapely.contains_xy(shapely.box(0, 0, 1, 1), q[:, 0], q[:, 1])
+    cells = d.cells
+    far = [cells[j].distance(shapely.Point(x)) for x, j in zip(q[inside], got[inside], strict=True)]
+    assert max(far) <= 1e-12

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import spsolve
-from scipy.spatial import ConvexHull, QhullError
+from scipy.spatial import ConvexHull, QhullError, cKDTree
 
 from ..kernels.power import power_cells
 from ._assemble import clip_to_polygon, domain_edges, domain_grid, geom_offsets_for
@@ -45,6 +45,42 @@ class PowerDiagram(Diagram):
         super().__init__(sites, duplicate_of, domain, buffers, edges, "power", k)
         self.weights = weights
         weights.setflags(write=False)
+
+    def locate(self, xy):
+        """Index of the site with the smallest power distance ``|x - p_i|^2 - w_i``.
+
+        That is the site whose (unclipped) power cell contains ``x``. With ``c = max(w)``,
+        ``|x - p_i|^2 - w_i + c`` is the squared 3D distance from ``(x, 0)`` to
+        ``(p_i, sqrt(c - w_i))``, so one KD-tree query answers it.
+
+        Parameters
+        ----------
+        xy : (2,) or (m, 2) array_like
+            Query points, anywhere.
+
+        Returns
+        -------
+        int or (m,) int64
+            Site index (the owner for duplicated sites; exact ties go to the lowest index).
+        """
+        raw = np.asarray(xy, dtype=np.float64)
+        single = raw.shape == (2,)
+        q = as_points(raw.reshape(-1, 2) if single else raw, name="xy")
+        owners = np.flatnonzero(self.duplicate_of < 0)
+        if not len(owners):
+            raise ValueError("the diagram has no sites to locate")
+        w = self.weights[owners]
+        lift = np.column_stack((self.sites[owners], np.sqrt(w.max() - w)))
+        k = min(2, len(owners))
+        dist, idx = cKDTree(lift).query(np.column_stack((q, np.zeros(len(q)))), k=k)
+        dist = dist.reshape(len(q), k)
+        idx = idx.reshape(len(q), k)
+        best = idx[:, 0]
+        if k == 2:
+            tie = (dist[:, 1] == dist[:, 0]) & (idx[:, 1] < idx[:, 0])
+            best = np.where(tie, idx[:, 1], best)
+        out = owners[best]
+        return int(out[0]) if single else out
 
 
 def _as_weights(weights, n: int, name: str = "weights") -> np.ndarray:
