@@ -313,3 +313,14 @@ def test_locate_finds_the_power_nearest_site():
     cells = d.cells
     far = [cells[j].distance(shapely.Point(x)) for x, j in zip(q[inside], got[inside], strict=True)]
     assert max(far) <= 1e-12
+
+
+def test_power_fit_opens_cells_of_sites_outside_the_domain():
+    rng = np.random.default_rng(19)
+    pts = rng.uniform(-1, 11, size=(60, 2))  # some in the hole, some outside the square
+    assert (~shapely.contains_xy(HOLED, pts[:, 0], pts[:, 1])).sum() >= 10
+    assert (vf.voronoi(pts, HOLED).areas == 0).any()
+    target = np.full(60, HOLED.area / 60)
+    d = vf.power_fit(pts, target, HOLED)
+    assert np.all(np.abs(d.areas - target) <= 1e-6 * target)
+    check_power(d, pts, d.weights, HOLED, samples=200)

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 import scipy.sparse as sp
+import shapely
 from scipy.sparse.linalg import spsolve
 from scipy.spatial import ConvexHull, QhullError, cKDTree
 
@@ -276,6 +277,30 @@ def _hessian(d: PowerDiagram, pts: np.ndarray) -> tuple[sp.csc_matrix, np.ndarra
     return (sp.diags(deg) - off).tocsc(), deg
 
 
+def _seed_empty(pts, w, targets, dom, empty):
+    """Weights that let each site in ``empty`` win a little region at its nearest domain point.
+
+    At that point ``q`` site ``i`` beats the best other site ``j`` by a margin that moves
+    their power bisector about ``0.1 sqrt(target_i)`` past ``q``: a small cell opens there.
+    """
+    w = w.copy()
+    geom = dom.geometry
+    near = shapely.points(pts[empty])
+    out = ~shapely.covers(geom, near)
+    if out.any():
+        edge = shapely.boundary(geom)
+        near[out] = shapely.line_interpolate_point(edge, shapely.line_locate_point(edge, near[out]))
+    q = shapely.get_coordinates(near)
+    for k, i in enumerate(empty.tolist()):
+        pw = ((pts - q[k]) ** 2).sum(axis=1) - w
+        pw[i] = np.inf
+        j = int(np.argmin(pw))
+        # beat site j at q by a margin that moves their bisector ~0.1 sqrt(target) past q
+        margin = 0.2 * np.sqrt(float(targets[i])) * float(np.hypot(*(pts[i] - pts[j])))
+        w[i] = float(((pts[i] - q[k]) ** 2).sum()) - float(pw[j]) + margin
+    return w
+
+
 def _fit(pts, targets, dom, w0, tol, max_iter):
     """Damped Newton on the concave dual; returns ``(diagram, weights, error, iterations)``."""
     w = w0.copy()
@@ -286,11 +311,18 @@ def _fit(pts, targets, dom, w0, tol, max_iter):
         w = np.zeros_like(w)
         d = _compute(pts, w, dom)
         areas = d.areas
+    for _ in range(10):
+        empty = np.flatnonzero(areas <= 0.0)
+        if not len(empty):
+            break
+        w = _seed_empty(pts, w, targets, dom, empty)
+        d = _compute(pts, w, dom)
+        areas = d.areas
     if (areas <= 0.0).any():
         i = int(np.flatnonzero(areas <= 0.0)[0])
         raise ValueError(
-            f"the cell of site {i} is empty for the starting weights: capacity fitting needs "
-            "every site's cell non-empty at the start (move the site into the domain)"
+            f"the cell of site {i} stays empty: capacity fitting could not find starting "
+            "weights that give every site a cell (move the site closer to the domain)"
         )
     floor = 0.5 * min(float(targets.min()), float(areas.min()))
     err = float(np.max(np.abs(areas - targets) / targets))
@@ -350,8 +382,9 @@ def power_fit(
     Parameters
     ----------
     points : (n, 2) array_like
-        Distinct sites; each must have a non-empty cell for the starting weights (sites
-        inside the domain always do). Never modified.
+        Distinct sites, anywhere: a site whose starting cell is empty (outside the domain,
+        in a hole) first gets a weight that opens a small cell at the domain point nearest
+        to it. Never modified.
     target_areas : (n,) array_like
         Positive areas that sum to the domain's area (to 1e-6 relative; they are rescaled to
         sum exactly).
@@ -374,7 +407,7 @@ def power_fit(
     ------
     ValueError
         Malformed input, duplicate sites, targets not positive or not summing to the domain's
-        area, or a site whose starting cell is empty.
+        area, or a site whose cell cannot be opened.
     RuntimeError
         When the areas do not reach ``tol`` within ``max_iter`` steps.
 
