@@ -13,6 +13,8 @@ from hypothesis import strategies as st
 import voroforge as vf
 from voroforge.engine._integrate import RADON_NODES, RADON_WEIGHTS, Integrator
 
+from reference import brute_voronoi
+
 SQUARE = shapely.box(0, 0, 1, 1)
 HOLED = shapely.box(0, 0, 1, 1).difference(shapely.Point(0.5, 0.5).buffer(0.25, quad_segs=6))
 L_SHAPE = shapely.Polygon([(0, 0), (1, 0), (1, 0.4), (0.4, 0.4), (0.4, 1), (0, 1)])
@@ -327,3 +329,15 @@ def test_capacity_cvt_pulls_outside_centroids_onto_the_domain():
     two = vf.lloyd(pts, u_shape, iterations=8, areas=[2.0, 5.0])
     assert np.all(shapely.covers(u_shape, shapely.points(two.points)))
     assert np.allclose(two.diagram.areas, [2.0, 5.0], rtol=1e-6)
+
+
+@pytest.mark.parametrize("domain", [SQUARE, HOLED, L_SHAPE])
+def test_matches_a_brute_force_lloyd(domain):
+    pts = np.random.default_rng(20).random((30, 2))
+    z = pts.copy()
+    for _ in range(4):  # reference: half-plane cells, GEOS clip, GEOS centroids
+        cells = brute_voronoi(z, domain)
+        ok = ~shapely.is_empty(cells)
+        z[ok] = shapely.get_coordinates(shapely.centroid(cells[ok]))
+    r = vf.lloyd(pts, domain, iterations=4)
+    assert np.allclose(r.points, z, rtol=0, atol=1e-9)

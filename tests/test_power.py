@@ -324,3 +324,13 @@ def test_power_fit_opens_cells_of_sites_outside_the_domain():
     d = vf.power_fit(pts, target, HOLED)
     assert np.all(np.abs(d.areas - target) <= 1e-6 * target)
     check_power(d, pts, d.weights, HOLED, samples=200)
+
+
+@given(st.integers(3, 20), st.integers(0, 2**32 - 1))
+def test_property_polygon_domains(n, seed):
+    rng = np.random.default_rng(seed)
+    domain = [HOLED, L_SHAPE][seed % 2]
+    pts = rng.uniform(-1, 11, size=(n, 2))
+    w = rng.random(n) * 6.0
+    d = vf.power(pts, w, domain)
+    check_power(d, pts, w, domain, samples=100, seed=seed)
