@@ -441,3 +441,16 @@ def test_layered_svg_writes_fillets_as_true_arcs(tmp_path):
     areas = sorted((svg_path_area(d) for d in chords), reverse=True)
     assert areas[0] == pytest.approx(shapely.Polygon(part.exterior).area, rel=1e-6)
     assert areas[1] == pytest.approx(shapely.Polygon(part.interiors[0]).area, rel=1e-6)
+
+
+def test_inscribed_circles_match_known_shapes_and_the_polylabel_fallback(monkeypatch):
+    from voroforge.design import fabrication
+
+    shapes = [shapely.box(0, 0, 10, 4), shapely.Point(5, 5).buffer(3, quad_segs=64)]
+    centres, radii = fabrication.inscribed_circles(shapes)
+    assert radii == pytest.approx([2.0, 3.0], rel=2e-3)
+    assert centres[1] == pytest.approx([5, 5], abs=0.02)
+    monkeypatch.delattr(shapely, "maximum_inscribed_circle", raising=False)
+    c2, r2 = fabrication.inscribed_circles(shapes)
+    assert r2 == pytest.approx(radii, rel=5e-3)
+    assert c2[1] == pytest.approx([5, 5], abs=0.05)

@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 import shapely
 
-__all__ = ["KINDS", "Report", "Violation", "check", "kerf", "split_frame"]
+__all__ = ["KINDS", "Report", "Violation", "check", "inscribed_circles", "kerf", "split_frame"]
 
 #: Violation kinds, in the order a report lists them.
 KINDS = ("web", "opening", "corner", "island")
@@ -242,7 +242,7 @@ def check(
       ``min_web`` to the boundary's outline, at the middle of the thinnest spot
       (``shapely.shortest_line``).
     - **opening**: every opening whose largest inscribed circle has a diameter below
-      ``min_opening`` (``shapely.maximum_inscribed_circle``), at its centre.
+      ``min_opening`` (largest inscribed circle, :func:`inscribed_circles`), at its centre.
     - **corner**: where a round tool of radius ``min_inside_radius`` cannot reach: the parts
       of each opening outside ``opening.buffer(-r).buffer(r)`` (and, for the outline cut
       from outside, the parts of ``boundary.buffer(r).buffer(-r)`` outside the boundary)
@@ -350,21 +350,56 @@ def _webs(holes: np.ndarray, outline, min_web: float, tol: float) -> list[Violat
     return out
 
 
+def inscribed_circles(polygons, *, tolerance=None) -> tuple[np.ndarray, np.ndarray]:
+    """Centre and radius of the largest circle inside each polygon.
+
+    Uses ``shapely.maximum_inscribed_circle`` (shapely >= 2.1), else polylabel with the
+    distance to the outline.
+
+    Parameters
+    ----------
+    polygons : (n,) object array of Polygon/MultiPolygon
+        Non-empty polygons.
+    tolerance : float or (n,) array_like, optional
+        Precision of the search (default 1e-3 of each polygon's smaller box side).
+
+    Returns
+    -------
+    centres : (n, 2) float64
+    radii : (n,) float64
+    """
+    polys = np.asarray(polygons, dtype=object).reshape(-1)
+    if not len(polys):
+        return np.zeros((0, 2)), np.zeros(0)
+    if tolerance is None:
+        xmin, ymin, xmax, ymax = shapely.bounds(polys).T
+        tolerance = np.maximum(np.minimum(xmax - xmin, ymax - ymin) * 1e-3, 1e-9)
+    if hasattr(shapely, "maximum_inscribed_circle"):
+        circles = shapely.maximum_inscribed_circle(polys, tolerance=tolerance)
+        return shapely.get_coordinates(shapely.get_point(circles, 0)), shapely.length(circles)
+    from shapely.ops import polylabel  # shapely 2.0
+
+    tols = np.broadcast_to(np.asarray(tolerance, dtype=np.float64), (len(polys),))
+    centres, radii = [], []
+    for poly, t in zip(polys, tols, strict=True):
+        part = max(shapely.get_parts(poly), key=lambda g: g.area)
+        c = polylabel(part, tolerance=float(t))
+        centres.append((c.x, c.y))
+        radii.append(float(shapely.distance(c, part.boundary)))
+    return np.asarray(centres, dtype=np.float64), np.asarray(radii, dtype=np.float64)
+
+
 def _openings(holes: np.ndarray, min_opening: float, tol: float) -> list[Violation]:
     if not len(holes):
         return []
-    xmin, ymin, xmax, ymax = shapely.bounds(holes).T
-    # Cheap filter: an opening whose box is at least min_opening wide and tall may still be
-    # too thin, but one narrower than min_opening in either direction surely is.
-    size = np.minimum(xmax - xmin, ymax - ymin)
-    tol = np.maximum(size * 1e-3, 1e-6)
-    circles = shapely.maximum_inscribed_circle(holes, tolerance=tol)
-    diameter = 2.0 * shapely.length(circles)
-    centre = shapely.get_point(circles, 0)
+    centres, radii = inscribed_circles(holes)
+    diameter = 2.0 * radii
     out = []
     for i in np.flatnonzero(diameter < min_opening - tol).tolist():
-        c = centre[i]
-        out.append(Violation("opening", (c.x, c.y), float(diameter[i]), min_opening, (i,)))
+        x, y = centres[i]
+        out.append(
+            Violation("opening", (float(x), float(y)), float(diameter[i]), min_opening, (i,))
+        )
     return out
 
 
@@ -392,9 +427,9 @@ def _corners(holes: np.ndarray, outline, radius: float, tolerance: float) -> lis
         area_floor = (tolerance * 0.1) ** 2
         for i in np.flatnonzero(shapely.area(left) > area_floor).tolist():
             if reach[i].is_empty:  # the tool does not fit at all: value = largest radius that does
-                circle = shapely.maximum_inscribed_circle(holes[i])
-                c = shapely.get_point(circle, 0)
-                out.append(Violation("corner", (c.x, c.y), circle.length, radius, (i,)))
+                centres, radii = inscribed_circles([holes[i]])
+                x, y = centres[0]
+                out.append(Violation("corner", (float(x), float(y)), float(radii[0]), radius, (i,)))
                 continue
             for depth, xy, _ in _deepest(shapely.get_parts(left[i]), reach[i]):
                 if depth > tolerance:

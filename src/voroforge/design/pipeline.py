@@ -440,8 +440,10 @@ def _operate(design: Design, cells: np.ndarray, values: np.ndarray, has_field: b
     if c.min_size > 0:  # openings narrower than min_size (inscribed circle) stay solid
         live = np.flatnonzero(~shapely.is_empty(out))
         if len(live):
-            circles = shapely.maximum_inscribed_circle(out[live], tolerance=c.min_size * 1e-3)
-            thin = 2.0 * shapely.length(circles) < c.min_size
+            from .fabrication import inscribed_circles
+
+            _, radii = inscribed_circles(out[live], tolerance=c.min_size * 1e-3)
+            thin = 2.0 * radii < c.min_size
             out[live[thin]] = shapely.Polygon()
     return np.asarray(out, dtype=object)
 
