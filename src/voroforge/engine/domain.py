@@ -126,9 +126,10 @@ def _from_geometry(geom: shapely.Geometry) -> Domain:
         raise ValueError("boundary geometry has zero area")
     bounds = tuple(float(v) for v in shapely.bounds(geom))
     if kind == 3 and shapely.get_num_interior_rings(geom) == 0:
+        # exactly the box: the ring's vertices are its four corners, all of them (a right
+        # triangle with axis-aligned legs has corner vertices too, but only three)
         ring = shapely.get_coordinates(shapely.get_exterior_ring(geom))
-        xs = set(ring[:, 0].tolist())
-        ys = set(ring[:, 1].tolist())
-        if xs <= {bounds[0], bounds[2]} and ys <= {bounds[1], bounds[3]}:
+        corners = {(x, y) for x in (bounds[0], bounds[2]) for y in (bounds[1], bounds[3])}
+        if set(map(tuple, ring.tolist())) == corners:
             return Domain(geom, bounds, True)
     return Domain(geom, bounds, False)

@@ -314,6 +314,14 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, q
                 t0 = tris[ka]
                 t1 = tris[(ka + steps - 1) % nn]
                 span = abs(cx[t1] - cx[t0]) + abs(cy[t1] - cy[t0])
+                if span == 0.0:
+                    # exactly cocircular neighbours: one merged centre, which every cell
+                    # around it uses
+                    qx[out] = cx[t0]
+                    qy[out] = cy[t0]
+                    qw[out] = b
+                    out += 1
+                    continue
                 ok = span > 1e-9 * ((box[2] - box[0]) + (box[3] - box[1]))
             if ok:
                 out = _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, qx, qy, qw, out)
