@@ -153,6 +153,24 @@ def iteration_cost(n: int, rounds: int = 5):
     )
 
 
+def power_scale(n: int):
+    """``vf.power`` against ``vf.voronoi`` and Qhull's 3D hull alone (informational)."""
+    from scipy.spatial import ConvexHull
+
+    print(f"\n## vf.power vs vf.voronoi, {n} uniform sites, weights uniform in [0, 1e-6)")
+    pts = np.random.default_rng(0).random((n, 2))
+    w = np.random.default_rng(1).random(n) * 1e-6
+    vf.power(pts[:100], w[:100], (0, 0, 1, 1))  # warm up
+    lift = np.column_stack((pts - 0.5, ((pts - 0.5) ** 2).sum(axis=1) - w))
+    t_pow = best_of(lambda: vf.power(pts, w, (0, 0, 1, 1)), 3)
+    t_vor = best_of(lambda: vf.voronoi(pts, (0, 0, 1, 1)), 3)
+    t_hull = best_of(lambda: ConvexHull(lift), 3)
+    print_table(
+        ["vf.power", "vf.voronoi", "ratio", "Qhull 3D hull alone"],
+        [[f"{t_pow:.3f} s", f"{t_vor:.3f} s", f"{t_pow / t_vor:.2f}x", f"{t_hull:.3f} s"]],
+    )
+
+
 def power_fit_bench(n: int):
     print(f"\n## power_fit: {n} cells, equal and 1:4 target areas in the unit square")
     pts = np.random.default_rng(2).random((n, 2))
