@@ -24,10 +24,12 @@ circle event
 
 This module keeps the beach line as a plain Python list (clarity over speed: the
 production kernel uses a balanced tree) and records the state after every event so that
-:mod:`voroforge.explain.render` can draw any moment of the sweep. Orientation tests and
-circle centres are computed with exact rational arithmetic, so degenerate inputs (sites on
-one horizontal line, cocircular grids) are handled: they produce Voronoi vertices that
-coincide, and the zero-length edges between them are dropped from the final result.
+:mod:`voroforge.explain.render` can draw any moment of the sweep. Orientation tests, circle
+centres, the lowest points of circles and the choice of the arc above a new site are
+computed with exact rational arithmetic where floats could decide wrongly, so degenerate
+inputs (sites on one horizontal line, cocircular grids) and nearly degenerate ones are
+handled: degenerate input produces Voronoi vertices that coincide, and the zero-length edges
+between them are dropped from the final result.
 """
 
 from __future__ import annotations
@@ -104,8 +106,14 @@ def _orient(a, b, c) -> int:
     return (det > 0) - (det < 0)
 
 
-def _circumcentre(a, b, c) -> tuple[float, float]:
-    """Centre of the circle through three non-collinear points (exact, rounded once)."""
+def _circle(a, b, c) -> tuple[tuple[float, float], float, float]:
+    """Circle through three non-collinear points: centre, radius and its lowest y.
+
+    The centre and the squared radius are exact rationals, rounded once. The lowest point
+    ``cy - r`` is evaluated as ``(cy**2 - r**2) / (cy + r)`` when ``cy > 0``: for nearly
+    collinear sites the centre is far away and the plain difference would cancel, putting
+    the event at the wrong place in the queue.
+    """
     ax, ay, bx, by, cx, cy = (Fraction(v) for v in (*a, *b, *c))
     bx, by, cx, cy = bx - ax, by - ay, cx - ax, cy - ay
     d = 2 * (bx * cy - by * cx)
@@ -113,7 +121,14 @@ def _circumcentre(a, b, c) -> tuple[float, float]:
     c2 = cx * cx + cy * cy
     ux = (cy * b2 - by * c2) / d
     uy = (bx * c2 - cx * b2) / d
-    return float(ax + ux), float(ay + uy)
+    r2 = ux * ux + uy * uy
+    centre_y = ay + uy
+    radius = math.sqrt(float(r2))
+    if centre_y > 0:
+        low = float(centre_y * centre_y - r2) / (float(centre_y) + radius)
+    else:
+        low = float(centre_y) - radius
+    return (float(ax + ux), float(centre_y)), radius, low
 
 
 @dataclass(frozen=True)
@@ -370,8 +385,7 @@ class _Sweep:
         self.states: list[BeachState] = []
         self.queue: list = []
         self.counter = 0
-        scale = max(1.0, *(abs(v) for xy in self.p for v in xy))
-        self.tol = 1e-12 * scale
+        self.scale = max(1.0, *(abs(v) for xy in self.p for v in xy))
 
     # -- bookkeeping ----------------------------------------------------------------------
 
@@ -415,16 +429,56 @@ class _Sweep:
         a, b, c = self.arcs[k - 1].site, arc.site, self.arcs[k + 1].site
         if a == c or _orient(self.p[a], self.p[b], self.p[c]) >= 0:
             return  # breakpoints do not converge
-        centre = _circumcentre(self.p[a], self.p[b], self.p[c])
-        radius = math.dist(centre, self.p[b])
-        y = centre[1] - radius
-        if y > sweep + self.tol * max(1.0, radius):
-            return  # only rounding can put a converging triple's event above the sweep
+        centre, radius, y = _circle(self.p[a], self.p[b], self.p[c])
+        # A clockwise triple of consecutive arcs always converges, and while arc b has
+        # positive length its event lies ahead: a y above the sweep is only rounding.
         event = CircleEvent((a, b, c), centre, radius, min(y, sweep))
         arc.event = event
         self._push(event.y, centre[0], 1, event)
 
     # -- events ---------------------------------------------------------------------------
+
+    def _height(self, site, x, sweep) -> float:
+        """Float height of ``site``'s parabola above ``x`` (inf for a site on the sweep)."""
+        px, py = self.p[site]
+        if py <= sweep:
+            return math.inf
+        return float(parabola_y((px, py), x, sweep))
+
+    def _height_exact(self, site, x, sweep) -> Fraction:
+        """The same, exactly: ``((x - px)**2 + py**2 - l**2) / (2 (py - l))`` in rationals."""
+        px, py, x, sweep = (Fraction(v) for v in (*self.p[site], x, sweep))
+        return ((x - px) ** 2 + (py - sweep) * (py + sweep)) / (2 * (py - sweep))
+
+    def _locate(self, x, sweep) -> int:
+        """Index of the arc above ``x``: the arc of the lowest parabola there.
+
+        Heights are compared in floats, and exactly wherever two sites' heights are close, so
+        near-degenerate input cannot put a site under the wrong arc. Of several arcs of the
+        winning site, the one whose breakpoints bracket ``x`` is taken.
+        """
+        heights = [self._height(a.site, x, sweep) for a in self.arcs]
+        low = min(heights)
+        slack = 1e-9 * (abs(low) + self.scale)
+        near = [k for k, v in enumerate(heights) if v <= low + slack]
+        sites = {self.arcs[k].site for k in near}
+        if len(sites) > 1:
+            exact = {s: self._height_exact(s, x, sweep) for s in sites}
+            least = min(exact.values())
+            near = [k for k in near if exact[self.arcs[k].site] == least]
+        if len(near) == 1:
+            return near[0]
+
+        def gap(k):
+            lo = -math.inf
+            hi = math.inf
+            if k > 0:
+                lo = breakpoint_x(self.p[self.arcs[k - 1].site], self.p[self.arcs[k].site], sweep)
+            if k < len(self.arcs) - 1:
+                hi = breakpoint_x(self.p[self.arcs[k].site], self.p[self.arcs[k + 1].site], sweep)
+            return max(lo - x, x - hi, 0.0)
+
+        return min(near, key=gap)
 
     def _site_event(self, s):
         x, y = self.p[s]
@@ -437,12 +491,7 @@ class _Sweep:
             self.arcs.append(_Arc(s))
             self.starts.append(None)
             return
-        k = 0
-        while k < len(self.arcs) - 1:
-            bx = breakpoint_x(self.p[self.arcs[k].site], self.p[self.arcs[k + 1].site], y)
-            if x < bx:
-                break
-            k += 1
+        k = self._locate(x, y)
         split = self.arcs[k]
         if split.event is not None:
             split.event = None  # its neighbourhood changes: a false alarm now
