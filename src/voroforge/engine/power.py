@@ -166,7 +166,7 @@ def _neighbors(x, y, w, box, active):
 def _collinear(n, idx, span, direction, z, active):
     """Collinear sites: neighbours along the lower hull of ``(t, t^2 - w)`` (1D lift)."""
     t = span @ (direction / np.sqrt(direction @ direction))
-    # z = u^2 + v^2 - w differs from t^2 - w by a constant on the line
+    # on the line z = u^2 + v^2 - w is t^2 - w plus an affine function of t: same lower hull
     order = np.argsort(t, kind="stable")
     chain: list[int] = []
     for k in order.tolist():
