@@ -13,32 +13,9 @@ For every cell ``g`` with site ``z_g``: ``mass = ∫ρ``, ``first = ∫ρ (x - z
 
 from __future__ import annotations
 
-from contextlib import contextmanager
-
-import numba
 import numpy as np
 
-from ..config import PARALLEL_MIN_SITES
 from ..kernels.lloyd import raster_moments, uniform_moments
-
-
-@contextmanager
-def serial_below(n: int):
-    """Run numba's parallel kernels on one thread while ``n < PARALLEL_MIN_SITES``.
-
-    Iterative solvers call the engine hundreds of times on small inputs; there thread
-    start-up costs more than the work (and on a loaded machine far more).
-    """
-    if n >= PARALLEL_MIN_SITES:
-        yield
-        return
-    before = numba.get_num_threads()
-    numba.set_num_threads(1)
-    try:
-        yield
-    finally:
-        numba.set_num_threads(before)
-
 
 _S15 = np.sqrt(15.0)
 _A1 = (6.0 - _S15) / 21.0

@@ -9,6 +9,7 @@ import numpy as np
 from ..kernels.delaunay import triangulate
 from ._csr import csr_from_pairs
 from ._inputs import as_points, duplicate_map, from_working, working_frame
+from ._threads import serial_below
 
 
 class Triangulation:
@@ -168,9 +169,10 @@ def delaunay(points) -> Triangulation:
     dup, unique = duplicate_map(work)
     all_unique = len(unique) == len(work)
     sub = work if all_unique else work[unique]
-    tri, he, hull, ok = triangulate(
-        np.ascontiguousarray(sub[:, 0]), np.ascontiguousarray(sub[:, 1])
-    )
+    with serial_below(len(sub)):
+        tri, he, hull, ok = triangulate(
+            np.ascontiguousarray(sub[:, 0]), np.ascontiguousarray(sub[:, 1])
+        )
     if ok:
         triangles = tri.reshape(-1, 3)
         if not all_unique:

@@ -15,7 +15,8 @@ import numpy as np
 import shapely
 
 from ._inputs import as_points
-from ._integrate import Integrator, serial_below
+from ._integrate import Integrator
+from ._threads import serial_below
 from .domain import make_domain
 from .power import _fit, _targets
 from .voronoi import Diagram, voronoi

@@ -19,7 +19,7 @@ from scipy.spatial import ConvexHull, QhullError, cKDTree
 from ..kernels.power import power_cells
 from ._assemble import clip_to_polygon, domain_edges, domain_grid, geom_offsets_for
 from ._inputs import as_points, duplicate_map
-from ._integrate import serial_below
+from ._threads import serial_below
 from .domain import Domain, make_domain
 from .voronoi import Diagram, Edges, voronoi
 

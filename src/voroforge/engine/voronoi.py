@@ -16,6 +16,7 @@ from ..kernels.rings import area_centroid, close_rings
 from ._assemble import clip_to_polygon, domain_edges, domain_grid, geom_offsets_for
 from ._csr import csr_from_pairs
 from ._inputs import as_points, duplicate_map, from_working, working_frame
+from ._threads import serial_below
 from .domain import Domain, make_domain
 
 ALGORITHMS = ("delaunay", "fortune", "halfplane")
@@ -311,17 +312,18 @@ def voronoi(
     xs = np.ascontiguousarray(sub[:, 0])
     ys = np.ascontiguousarray(sub[:, 1])
     box = np.array(wdom.bounds, dtype=np.float64)
-    closed, lengths, own = _closed_cells(xs, ys, box, algorithm, unique)
-    nonempty = lengths[1:] > lengths[:-1]
-    ring_offsets = np.concatenate(([0], lengths[1:][nonempty]))
-    ring_cell = unique[nonempty]
-    grid = None if wdom.is_rect else domain_grid(wdom, len(ring_cell))
-    edge_coords, edge_pairs = domain_edges(wdom, grid, closed, ring_offsets, ring_cell, own)
-    if wdom.is_rect:
-        polys = np.arange(len(ring_cell) + 1, dtype=np.int64)
-        buffers = (closed, ring_offsets, polys, geom_offsets_for(n, ring_cell))
-    else:
-        buffers = clip_to_polygon(wdom, grid, closed, ring_offsets, ring_cell, n)
+    with serial_below(n):
+        closed, lengths, own = _closed_cells(xs, ys, box, algorithm, unique)
+        nonempty = lengths[1:] > lengths[:-1]
+        ring_offsets = np.concatenate(([0], lengths[1:][nonempty]))
+        ring_cell = unique[nonempty]
+        grid = None if wdom.is_rect else domain_grid(wdom, len(ring_cell))
+        edge_coords, edge_pairs = domain_edges(wdom, grid, closed, ring_offsets, ring_cell, own)
+        if wdom.is_rect:
+            polys = np.arange(len(ring_cell) + 1, dtype=np.int64)
+            buffers = (closed, ring_offsets, polys, geom_offsets_for(n, ring_cell))
+        else:
+            buffers = clip_to_polygon(wdom, grid, closed, ring_offsets, ring_cell, n)
     if k:
         buffers = (np.ldexp(buffers[0], -k), *buffers[1:])
         edge_coords = np.ldexp(edge_coords, -k)
