@@ -48,7 +48,10 @@ _NEAR = 1e-7  # relative band around a vertex's circle where candidates get the 
 #: |d| (squared distance to a vertex's circle minus its radius squared) below which a site
 #: counts as on the circle: 2 r times the default algorithm's 2**-46 vertex merge tolerance
 _MERGE = 2.0**-45
-_MAX_FIX = 64  # rounds of exact repair per cell before the float cut is kept as it is
+_MAX_FIX = 64
+#: Squared float edge length, relative to the squared cell radius, above which an edge is
+#: taken as it is (rounding moves vertices by ~1e-16 of the radius)
+_SURE = 1e-12  # rounds of exact repair per cell before the float cut is kept as it is
 
 # Box sides as internal owner codes (those of cells.py's box crossings); all become -1.
 _LEFT, _BOTTOM, _RIGHT, _TOP = -1, -2, -3, -4
@@ -116,13 +119,13 @@ def _bucket_sort(xs, ys, x0, y0, hx, hy, nx, ny):
 
 @njit(**NJIT)
 def _plane_values(px, py, a, m, qx, qy, h, ss):
-    """Signed values ``p . q - h`` of the cell's vertices; whether any is positive (cut off)."""
-    out = False
+    """Signed values ``p . q - h`` of the cell's vertices; returns the largest (> 0: a cut)."""
+    smax = -np.inf
     for u in range(m):
         s = px[a + u] * qx + py[a + u] * qy - h
         ss[u] = s
-        out |= s > 0.0
-    return out
+        smax = max(smax, s)
+    return smax
 
 
 @njit(**NJIT)
@@ -240,14 +243,19 @@ def _remove(lab, m, u):
 
 
 @njit(**NJIT)
-def _drop_invalid(i, lab, m, xs, ys):
-    """Remove repeated labels and neighbours whose edge has no positive length."""
+def _drop_invalid(i, lab, m, xs, ys, sure, trust):
+    """Remove repeated labels and neighbours whose edge has no positive length.
+
+    With ``trust``, labels whose float edge is long (``sure[u]``) are kept without the exact
+    test: the float cut is off by rounding only, so such an edge exists.
+    """
     u = 0
     while u < m and m >= 3:
         j = lab[u]
         p = lab[u - 1] if u > 0 else lab[m - 1]
         q = lab[u + 1] if u + 1 < m else lab[0]
-        if j == p or (j >= 0 and p >= 0 and q >= 0 and p != q and not _edge_ok(i, j, p, q, xs, ys)):
+        check = j >= 0 and p >= 0 and q >= 0 and p != q and not (trust and sure[u] > 0.0)
+        if j == p or (check and not _edge_ok(i, j, p, q, xs, ys)):
             m = _remove(lab, m, u)
             u = max(u - 1, 0)
             continue
@@ -256,7 +264,7 @@ def _drop_invalid(i, lab, m, xs, ys):
 
 
 @njit(**NJIT)
-def _settle(i, lab, m, cand, nc, sidx, xs, ys, vx, vy):
+def _settle(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy):
     """Make the ring of neighbour labels ``lab[:m]`` exactly right; returns its length.
 
     Float cutting can keep an edge of zero length (cocircular sites), or lose a neighbour
@@ -267,12 +275,18 @@ def _settle(i, lab, m, cand, nc, sidx, xs, ys, vx, vy):
     exactly on the circle are cocircular: the vertex is then the circumcentre of the three
     lowest-numbered sites on it, which every cell around the vertex finds the same.
     Returns -1 when the ring cannot be settled (the caller keeps the float cut).
+
+    ``sure[u]`` flags labels whose float edge is long; until the ring changes they skip the
+    exact tests (their edge and the orientation at its ends are beyond rounding).
     """
     cap = lab.shape[0]
+    trust = True
     for _ in range(_MAX_FIX):
-        m = _drop_invalid(i, lab, m, xs, ys)
+        m0 = m
+        m = _drop_invalid(i, lab, m, xs, ys, sure, trust)
         if m < 3:
             return -1
+        trust = trust and m == m0
         inserted = False
         for u in range(m):
             a = lab[u - 1] if u > 0 else lab[m - 1]
@@ -281,7 +295,8 @@ def _settle(i, lab, m, cand, nc, sidx, xs, ys, vx, vy):
                 continue
             ix = xs[i]
             iy = ys[i]
-            if orient2d(ix, iy, xs[a], ys[a], xs[b], ys[b]) <= 0.0:
+            both = trust and sure[u] > 0.0 and sure[u - 1 if u > 0 else m - 1] > 0.0
+            if not both and orient2d(ix, iy, xs[a], ys[a], xs[b], ys[b]) <= 0.0:
                 return -1
             vx_, vy_ = _vertex(i, a, b, xs, ys)
             r2 = (ix - vx_) * (ix - vx_) + (iy - vy_) * (iy - vy_)
@@ -333,9 +348,14 @@ def _settle(i, lab, m, cand, nc, sidx, xs, ys, vx, vy):
                         t2 = x
             if inserted:
                 break
-            vx[u], vy[u] = circumcenter(xs[t0], ys[t0], xs[t1], ys[t1], xs[t2], ys[t2])
+            if t0 + t1 + t2 == i + a + b and min(i, a, b) == t0 and max(i, a, b) == t2:
+                vx[u] = vx_  # no other site on the circle: the centre computed above
+                vy[u] = vy_
+            else:
+                vx[u], vy[u] = circumcenter(xs[t0], ys[t0], xs[t1], ys[t1], xs[t2], ys[t2])
         if not inserted:
             return m
+        trust = False  # the ring changed: every label gets the exact tests from now on
     return -1
 
 
@@ -430,8 +450,8 @@ def _scratch(cap):
     """Scratch arrays of one worker.
 
     Two polygons (at offsets 1 and ``cap + 2``), plane values, an output cell, the label
-    ring, canonical vertices and the candidate list (``4 cap`` sites) with their squared
-    distances.
+    ring, canonical vertices, the candidate list (``4 cap`` sites) with their squared
+    distances, and the watch list (sites that cut the cell or came near to).
     """
     return (
         np.zeros(2 * cap + 2),
@@ -446,6 +466,7 @@ def _scratch(cap):
         np.zeros(cap),
         np.zeros(4 * cap, np.int64),
         np.zeros(4 * cap),
+        np.zeros(4 * cap, np.int64),
     )
 
 
@@ -465,7 +486,7 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
     xs, ys = orig
     x0, y0, hx, hy, nx, ny = grid
     cap = _CAP
-    px, py, po, ss, ox, oy, oo, lab, vx, vy, cand, cd = _scratch(cap)
+    px, py, po, ss, ox, oy, oo, lab, vx, vy, cand, cd, watch = _scratch(cap)
     pos = 0
     fits = True
     k = k0
@@ -482,6 +503,7 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
         m = 4
         r2 = _radius2(px, py, a, m)
         nc = 0
+        nw = 0
         ix, iy = _bucket(cx, cy, x0, y0, hx, hy, nx, ny)
         fx0 = cx - (x0 + ix * hx)
         fx1 = x0 + (ix + 1) * hx - cx
@@ -532,7 +554,17 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
                 t = cand[c]
                 qx = sx[t] - cx
                 qy = sy[t] - cy
-                if not _plane_values(px, py, a, m, qx, qy, 0.5 * cd[c], ss):
+                smax = _plane_values(px, py, a, m, qx, qy, 0.5 * cd[c], ss)
+                if smax > -0.5 * _NEAR * r2:
+                    # it cuts, or passes within the verification band of a vertex's circle:
+                    # the only sites the exact finishing must look at (the others stay
+                    # clear of every later vertex, which lies inside today's cell)
+                    if nw == watch.shape[0]:
+                        grow = True
+                        break
+                    watch[nw] = t
+                    nw += 1
+                if smax <= 0.0:
                     continue
                 if m + m // 2 + 2 > cap:  # each run of cut vertices adds at most one
                     grow = True
@@ -543,23 +575,27 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
             ring += 1
         if grow:  # rare: a cell with many vertices; start it again with more room
             cap *= 2
-            px, py, po, ss, ox, oy, oo, lab, vx, vy, cand, cd = _scratch(cap)
+            px, py, po, ss, ox, oy, oo, lab, vx, vy, cand, cd, watch = _scratch(cap)
             continue
         c = 0
         if m >= 3:
             for u in range(m):
                 lab[u] = po[a + u]
+                # a long float edge is a true edge (rounding moves its ends by ulps only)
+                un = u + 1 if u + 1 < m else 0
+                ex = px[a + un] - px[a + u]
+                ey = py[a + un] - py[a + u]
+                ss[u] = 1.0 if ex * ex + ey * ey > _SURE * r2 else 0.0
             # only sites within 2 r of the final cell can matter to its vertices
             keep = 0
-            for c in range(nc):
-                t = cand[c]
+            for c in range(nw):
+                t = watch[c]
                 qx = sx[t] - cx
                 qy = sy[t] - cy
                 if qx * qx + qy * qy <= _REACH * r2:
-                    cand[keep] = t
+                    watch[keep] = t
                     keep += 1
-            nc = keep
-            ms = _settle(sidx[k], lab, m, cand, nc, sidx, xs, ys, vx, vy)
+            ms = _settle(sidx[k], lab, m, ss, watch, keep, sidx, xs, ys, vx, vy)
             direct = fits and pos + max(m, ms) <= dx.shape[0]
             c = -1
             if ms >= 3:
