@@ -272,11 +272,11 @@ def rasterize(
     Examples
     --------
     >>> import voroforge as vf
-    >>> r = vf.rasterize([[0.25, 0.5], [0.75, 0.5]], (2, 4), (0, 0, 1, 1))
+    >>> r = vf.rasterize([[0.25, 0.5], [0.75, 0.5]], (1, 4), (0, 0, 1, 1))
     >>> r.labels.tolist()
-    [[0, 0, 1, 1], [0, 0, 1, 1]]
-    >>> float(r.distance[0, 0])
-    0.25
+    [[0, 0, 1, 1]]
+    >>> r.distance.tolist()  # pixel centres at x = 0.125, 0.375, 0.625, 0.875 and y = 0.5
+    [[0.125, 0.125, 0.125, 0.125]]
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}; got {method!r}")
