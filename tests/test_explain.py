@@ -264,3 +264,12 @@ def test_cli_writes_gif(tmp_path, capsys):
     assert "frames" in capsys.readouterr().err
     assert main(["explain", "--help"]) == 0
     assert "fortune" in capsys.readouterr().out
+
+
+def test_docstring_examples():
+    import doctest
+
+    import voroforge.explain.fortune
+
+    result = doctest.testmod(voroforge.explain.fortune)
+    assert result.attempted > 0 and result.failed == 0

@@ -404,3 +404,14 @@ def test_jfa_first_step_reaches_every_nearest_site(kind, shape, bounds):
     assert offset.max() <= min(reach, 2 * k - 1)
     jf = rasterize(pts, shape, bounds, method="jfa")
     assert np.mean(jf.labels != ex.labels) < 0.01
+
+
+def test_docstring_examples():
+    import doctest
+
+    import voroforge.engine.raster
+    import voroforge.io.raster_png
+
+    for module in (voroforge.engine.raster, voroforge.io.raster_png):
+        result = doctest.testmod(module)
+        assert result.attempted > 0 and result.failed == 0, module.__name__
