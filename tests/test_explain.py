@@ -273,3 +273,14 @@ def test_docstring_examples():
 
     result = doctest.testmod(voroforge.explain.fortune)
     assert result.attempted > 0 and result.failed == 0
+
+
+@pytest.mark.parametrize("name", ["one_site", "horizontal_line", "cocircular_12_and_centre"])
+def test_frames_of_degenerate_inputs(name):
+    frames = render_frames(DEGENERATE[name], frames=6, size=96)
+    assert len(frames) == 6
+    rgb = [_rgb(f) for f in frames]
+    assert all(not np.array_equal(a, b) for a, b in pairwise(rgb))
+    # once the sweep has passed every site, every site is drawn as swept (black)
+    grey = np.all(rgb[-2] == COLORS["pending_site"], axis=-1)
+    assert not grey.any()
