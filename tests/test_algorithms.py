@@ -132,12 +132,13 @@ def _edge_map(coords, offsets, owner):
     out: dict[tuple[int, int], list] = {}
     for i in range(len(offsets) - 1):
         a, b = offsets[i], offsets[i + 1]
-        for k in range(a, b):
+        if b > a:
+            assert owner[b - 1] == -2 and tuple(coords[b - 1]) == tuple(coords[a]), "not closed"
+        for k in range(a, b - 1):
             j = int(owner[k])
             if j < 0:
                 continue
-            nxt = k + 1 if k + 1 < b else a
-            out.setdefault((i, j), []).append((tuple(coords[k]), tuple(coords[nxt])))
+            out.setdefault((i, j), []).append((tuple(coords[k]), tuple(coords[k + 1])))
     return out
 
 
@@ -162,7 +163,7 @@ def test_halfplane_shared_vertices_bit_identical(name):
             assert (e, s) in twin, f"edge {i}|{j} ends differ between the two cells"
     # exactly cocircular sites: no zero-length edge, no vertex repeated in a cell
     for i in range(len(offsets) - 1):
-        ring = coords[offsets[i] : offsets[i + 1]]
+        ring = coords[offsets[i] : offsets[i + 1] - 1]
         assert len(np.unique(ring, axis=0)) == len(ring)
 
 
@@ -170,9 +171,9 @@ def test_halfplane_grid_cells_are_squares():
     """A unit grid: every interior cell is exactly the unit square around its site."""
     g = np.stack(np.meshgrid(np.arange(10.0), np.arange(10.0)), -1).reshape(-1, 2)
     coords, offsets, owner = halfplane_cells(g[:, 0], g[:, 1], np.array([-0.5, -0.5, 9.5, 9.5]))
-    assert np.all(np.diff(offsets) == 4)
+    assert np.all(np.diff(offsets) == 5)  # closed rings
     for i, (x, y) in enumerate(g):
-        ring = coords[offsets[i] : offsets[i + 1]]
+        ring = coords[offsets[i] : offsets[i + 1] - 1]
         want = {(x - 0.5, y - 0.5), (x + 0.5, y - 0.5), (x + 0.5, y + 0.5), (x - 0.5, y + 0.5)}
         assert set(map(tuple, ring.tolist())) == want
 

@@ -230,8 +230,7 @@ def _closed_cells(xs, ys, box, algorithm, kmap):
         return close_rings(coords, offsets, owner, ident, kmap)
     if algorithm == "halfplane":
         # every cell on its own: the box cut by bisectors, finished with exact predicates
-        coords, offsets, owner = halfplane_cells(xs, ys, box)
-        return close_rings(coords, offsets, owner, np.arange(len(xs)), kmap)
+        return halfplane_cells(xs, ys, box, kmap)
     raise ValueError(f"unknown algorithm {algorithm!r}; choose one of {', '.join(ALGORITHMS)}")
 
 

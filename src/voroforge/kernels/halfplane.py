@@ -20,8 +20,9 @@ polygon, the same grid, search and exact finishing):
    lowest-numbered sites on its circle, or the bisector's crossing with a box side
    computed as the default algorithm computes it. Cells sharing a vertex get the same bits.
 
-Output contract (shared with ``cells.py``): ``coords (K, 2)`` counter-clockwise vertices per
-cell, ``offsets (n + 1,)``, ``owner (K,)`` with the site across each edge, -1 on the box.
+Output contract (that of ``cells.cells_from_triangulation``): closed counter-clockwise rings
+``coords (K, 2)``, ``offsets (n + 1,)``, ``owner (K,)`` with the site across each edge, -1 on
+the box, -2 on the closing vertex.
 
 Output arrays are exact-size in one pass: chunks of cells are written to per-chunk slabs of
 fixed capacity and then copied into place; the rare chunk that overflows its slab is simply
@@ -640,8 +641,12 @@ def _first_pass(sites, orig, grid, box, counts, where, slab_x, slab_y, slab_o, f
 
 
 @njit(**NJIT_PARALLEL)
-def _second_pass(sites, orig, grid, box, counts, offsets, where, slab, fits, coords, owner):
-    """Copy every cell to its place in the output; rebuild the chunks that overflowed."""
+def _second_pass(sites, orig, grid, box, counts, offsets, where, slab, fits, kmap, coords, owner):
+    """Copy every cell to its place in the output; rebuild the chunks that overflowed.
+
+    Rings are closed on the way (first vertex repeated, owner -2 there) and owners mapped
+    through ``kmap``.
+    """
     sidx = sites[3]
     n = sidx.shape[0]
     slab_x, slab_y, slab_o = slab
@@ -661,16 +666,25 @@ def _second_pass(sites, orig, grid, box, counts, offsets, where, slab, fits, coo
             _cells(k0, k1, sites, orig, grid, box, counts, where, xs, ys, os)
         for k in range(k0, k1):
             i = sidx[k]
+            m = counts[i]
+            if m == 0:
+                continue
             dst = offsets[i]
             src = where[k]
-            for t in range(offsets[i + 1] - dst):
+            for t in range(m):
                 coords[dst + t, 0] = xs[src + t]
                 coords[dst + t, 1] = ys[src + t]
-                owner[dst + t] = os[src + t]
+                o = os[src + t]
+                owner[dst + t] = kmap[o] if o >= 0 else -1
+            coords[dst + m, 0] = xs[src]
+            coords[dst + m, 1] = ys[src]
+            owner[dst + m] = -2
 
 
-def halfplane_cells(xs, ys, box):
+def halfplane_cells(xs, ys, box, kmap=None):
     """Voronoi cells of distinct sites clipped to ``box``, by half-plane cutting.
+
+    The output layout is that of ``cells.cells_from_triangulation`` (closed rings).
 
     Parameters
     ----------
@@ -678,30 +692,34 @@ def halfplane_cells(xs, ys, box):
         Distinct sites (the engine removes duplicates); they may lie outside the box.
     box : (4,) float64
         ``(xmin, ymin, xmax, ymax)``.
+    kmap : (n,) int64, optional
+        Output id of each site, used for the edge owners (default: the site's index).
 
     Returns
     -------
     coords : (K, 2) float64
-        Counter-clockwise vertices of every non-empty cell, no closing repeat, no
-        consecutive duplicates.
+        Closed counter-clockwise rings (last vertex repeats the first), no consecutive
+        duplicates otherwise.
     offsets : (n + 1,) int64
         Cell ``i`` is ``coords[offsets[i]:offsets[i + 1]]``; empty when it misses the box.
-    owner : (K,) int32
-        Site across the edge from vertex ``k`` to the next one, or -1 on the box boundary.
+    owner : (K,) int64
+        ``kmap`` of the site across the edge from vertex ``k`` to the next one, -1 on the
+        box boundary, -2 on each closing vertex.
 
     Examples
     --------
     >>> import numpy as np
     >>> coords, offsets, owner = halfplane_cells(np.array([0.25, 0.75]), np.array([0.5, 0.5]),
     ...                                          np.array([0.0, 0.0, 1.0, 1.0]))
-    >>> offsets.tolist(), sorted(owner[:4].tolist())
-    ([0, 4, 8], [-1, -1, -1, 1])
+    >>> offsets.tolist(), sorted(owner[:5].tolist())
+    ([0, 5, 10], [-2, -1, -1, -1, 1])
     """
     xs = np.ascontiguousarray(xs, dtype=np.float64)
     ys = np.ascontiguousarray(ys, dtype=np.float64)
     n = xs.shape[0]
+    kmap = np.arange(n) if kmap is None else np.ascontiguousarray(kmap, dtype=np.int64)
     if n == 0:
-        return np.zeros((0, 2)), np.zeros(1, np.int64), np.zeros(0, np.int32)
+        return np.zeros((0, 2)), np.zeros(1, np.int64), np.zeros(0, np.int64)
     boxa = np.ascontiguousarray(box, dtype=np.float64).reshape(4)
     grid = _grid_shape(xs, ys)
     sites = _bucket_sort(xs, ys, *grid)
@@ -720,12 +738,14 @@ def halfplane_cells(xs, ys, box):
     try:
         _first_pass(sites, orig, grid, boxa, counts, where, slab_x, slab_y, slab_o, fits)
         offsets = np.zeros(n + 1, np.int64)
-        np.cumsum(counts, out=offsets[1:])
+        np.cumsum(np.where(counts > 0, counts + 1, 0), out=offsets[1:])
         k = int(offsets[-1])
         coords = np.empty((k, 2))  # noqa: TID251 - every slot is written by _second_pass
-        owner = np.empty(k, np.int32)  # noqa: TID251 - every slot is written by _second_pass
+        owner = np.empty(k, np.int64)  # noqa: TID251 - every slot is written by _second_pass
         slab = (slab_x, slab_y, slab_o)
-        _second_pass(sites, orig, grid, boxa, counts, offsets, where, slab, fits, coords, owner)
+        _second_pass(
+            sites, orig, grid, boxa, counts, offsets, where, slab, fits, kmap, coords, owner
+        )
     finally:
         numba.set_num_threads(threads)
     return coords, offsets, owner
