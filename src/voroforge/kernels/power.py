@@ -81,7 +81,9 @@ def _cell(i, xs, ys, ws, indptr, indices, box, px, py, po, qx, qy, qo):
         j = indices[e]
         dx = xs[j] - ox
         dy = ys[j] - oy
-        c = dx * dx + dy * dy + ws[i] - ws[j]
+        # the weight difference first: |d|^2 + w_i would round |d|^2 away when the weights
+        # are large, and sites i and j would then see two different bisectors (a gap)
+        c = dx * dx + dy * dy + (ws[i] - ws[j])
         m = _clip(px, py, po, m, qx, qy, qo, dx, dy, c, ox, oy, j)
         for k in range(m):
             px[k] = qx[k]
