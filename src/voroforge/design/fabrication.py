@@ -459,13 +459,15 @@ def _islands(frame, outline) -> list[Violation]:
     return out
 
 
-def kerf(geoms, kerf: float, *, role: str = "part", quad_segs: int = 8):
+def kerf(geoms, kerf: float, *, role: str = "part", join: str = "mitre", quad_segs: int = 8):
     """Offset geometry by half the kerf so the cut edge lands on the design line.
 
     A part (``role="part"``, the frame) grows by ``kerf / 2``: its outline moves outward and
     its holes shrink (the beam runs inside each hole). Openings given on their own
-    (``role="hole"``) shrink by ``kerf / 2``. Outer corners get round tool-path arcs, which
-    still cut a sharp corner.
+    (``role="hole"``) shrink by ``kerf / 2``. Outer corners get mitred tool paths by default
+    (``join="mitre"``, limit 5): both a mitred and a round path still cut a sharp corner, but
+    only mitred joins keep the vertices of a polygonal arc (rounded corners, circles, fillets
+    of parts) on one circle, so the DXF writer can still write them as true arcs.
 
     Parameters
     ----------
@@ -475,6 +477,8 @@ def kerf(geoms, kerf: float, *, role: str = "part", quad_segs: int = 8):
         Width of the cut (the beam or tool diameter), >= 0.
     role : {"part", "hole"}
         Which side is material.
+    join : {"mitre", "round"}
+        Corner style of the offset at outer corners.
     quad_segs : int
         Segments per quarter circle of the round joins.
 
@@ -486,17 +490,20 @@ def kerf(geoms, kerf: float, *, role: str = "part", quad_segs: int = 8):
     Raises
     ------
     ValueError
-        For a negative kerf or an unknown role.
+        For a negative kerf, an unknown role or an unknown join.
     """
     k = float(kerf)
     if not math.isfinite(k) or k < 0:
         raise ValueError(f"kerf must be a non-negative number; got {kerf!r}")
     if role not in ("part", "hole"):
         raise ValueError(f"role must be 'part' or 'hole'; got {role!r}")
+    if join not in ("mitre", "round"):
+        raise ValueError(f"join must be 'mitre' or 'round'; got {join!r}")
     if k == 0:
         return geoms
     d = k / 2.0 if role == "part" else -k / 2.0
+    opts = {"quad_segs": quad_segs, "join_style": join, "mitre_limit": 5.0}
     if isinstance(geoms, shapely.Geometry):
-        return shapely.buffer(geoms, d, quad_segs=quad_segs)
+        return shapely.buffer(geoms, d, **opts)
     arr = np.asarray(list(geoms), dtype=object).reshape(-1)
-    return np.asarray(shapely.buffer(arr, d, quad_segs=quad_segs), dtype=object)
+    return np.asarray(shapely.buffer(arr, d, **opts), dtype=object)

@@ -523,8 +523,8 @@ def compute(design: Design, base: Path | None = None, *, progress: Stage | None 
     with _section("seeds"):
         points = _seeds(design, domain, field_fn, base)
         points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
-    if len(points) < 2:
-        raise _fail("seeds", f"only {len(points)} seeds fall inside the boundary; need 2 or more")
+    if len(points) < 1:
+        raise _fail("seeds", "no seeds fall inside the boundary; need 1 or more")
     extra: dict = {}
     with _section("seeds.file"):
         given = _site_properties(design, domain, base)
@@ -597,13 +597,15 @@ def products(result: Result, *, kerf: float = 0.0) -> dict[str, list]:
         frame = apply_kerf(frame, kerf, role="part")
         openings = list(apply_kerf(openings, kerf, role="hole")) if openings else []
         cells = list(apply_kerf(cells, kerf, role="part")) if cells else []
+    # The outline is the part's edge too: cut on a layer, it grows like the frame.
+    outline = apply_kerf(result.boundary, kerf, role="part") if kerf > 0 else result.boundary
     return {
         "frame": [frame],
         "openings": openings,
         "cells": cells,
         "edges": [result.edges],
         "sites": [shapely.MultiPoint(result.sites)],
-        "boundary": [result.boundary],
+        "boundary": [outline],
     }
 
 
@@ -739,7 +741,10 @@ def build(
                     _layers(result, kerf),
                     units=design.design.units,
                     stroke_width=o.stroke_width,
-                    bounds=result.boundary.bounds,
+                    # kerf-compensated parts reach kerf / 2 past the outline: keep them on the page
+                    bounds=tuple(
+                        np.add(result.boundary.bounds, np.multiply([-1, -1, 1, 1], kerf / 2))
+                    ),
                 )
             )
         elif fmt == "dxf":

@@ -1,0 +1,121 @@
+"""QA regressions for the design layer: bugs found by using it as designers and fabricators do."""
+
+import xml.etree.ElementTree as ET
+
+import ezdxf
+import numpy as np
+import pytest
+import shapely
+
+from voroforge.design.fabrication import kerf
+from voroforge.design.pipeline import build
+
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+def _dxf_rings(path):
+    """Layer, vertices (k, 2) and bulges (k,) of every LWPOLYLINE of a DXF file."""
+    out = []
+    for e in ezdxf.readfile(path).modelspace().query("LWPOLYLINE"):
+        xyb = np.asarray([p[:3] for p in e.get_points("xyb")], dtype=np.float64)
+        out.append((e.dxf.layer, xyb[:, :2], xyb[:, 2]))
+    return out
+
+
+def test_kerf_grows_the_outline_on_a_cut_layer(tmp_path):
+    # Cutting the openings and the outline (a common layer set-up): with a kerf the holes
+    # shrink by kerf/2 and the outline must grow by kerf/2, like the frame's outline does.
+    design = {
+        "boundary": {"width": 100, "height": 50},
+        "seeds": {"method": "grid", "spacing": 25},
+        "cells": {"web": 4},
+        "output": {
+            "formats": ["dxf", "svg"],
+            "kerf": 0.2,
+            "layers": {"CUT": ["openings", "boundary"], "SCORE": "frame"},
+        },
+    }
+    dxf, svg = build(design, tmp_path)
+    boxes = {layer: [] for layer in ("CUT", "SCORE")}
+    for layer, xy, _ in _dxf_rings(dxf):
+        boxes[layer].append(shapely.Polygon(xy).bounds)
+    outline = (-0.1, -0.1, 100.1, 50.1)
+    assert any(np.allclose(b, outline) for b in boxes["CUT"])
+    assert any(np.allclose(b, outline) for b in boxes["SCORE"])
+    assert not any(np.allclose(b, (0, 0, 100, 50)) for b in boxes["CUT"])
+    # The SVG page holds the compensated outline (it used to stick out of the viewBox).
+    root = ET.parse(svg).getroot()
+    x, y, w, h = map(float, root.get("viewBox").split())
+    assert (x, y, w, h) == pytest.approx((-0.1, -50.1, 100.2, 50.2))
+    assert root.get("width") == "100.2mm"
+    for p in root.iter(f"{SVG}path"):
+        nums = np.asarray(
+            [
+                float(t)
+                for t in p.get("d")
+                .replace("M", " ")
+                .replace("L", " ")
+                .replace("Z", " ")
+                .replace(",", " ")
+                .split()
+            ]
+        ).reshape(-1, 2)
+        assert (nums[:, 0] >= x - 1e-9).all() and (nums[:, 0] <= x + w + 1e-9).all()
+        assert (nums[:, 1] >= y - 1e-9).all() and (nums[:, 1] <= y + h + 1e-9).all()
+
+
+def test_kerf_keeps_rounded_corners_as_true_dxf_arcs(tmp_path):
+    # A panel with rounded corners and a kerf: the compensated corners are still circular
+    # arcs (bulges), not hundreds of short segments from round offset joins.
+    design = {
+        "boundary": {"width": 120, "height": 80, "corner_radius": 12},
+        "seeds": {"method": "grid", "spacing": 200},
+        "output": {"formats": ["dxf"], "kerf": 0.15, "layers": {"CUT": "boundary"}},
+    }
+    (dxf,) = build(design, tmp_path)
+    ((_, xy, bulge),) = _dxf_rings(dxf)
+    assert (np.abs(bulge) > 0).sum() >= 4  # one arc per corner at least
+    assert len(xy) < 40
+    assert shapely.Polygon(xy).bounds == pytest.approx((-0.075, -0.075, 120.075, 80.075))
+
+
+def test_kerf_mitre_is_exact_and_validates_join():
+    square = shapely.box(0, 0, 10, 10)
+    grown = kerf(square, 0.4)
+    assert grown.bounds == pytest.approx((-0.2, -0.2, 10.2, 10.2))
+    # A part's straight edges move by exactly kerf / 2; sharp corners stay sharp.
+    assert grown.area == pytest.approx(10.4**2)
+    assert kerf(square, 0.4, join="round").area < grown.area
+    disc = shapely.Point(0, 0).buffer(5, quad_segs=32)
+    radii = np.hypot(*shapely.get_coordinates(kerf(disc, 1.0)).T)
+    assert np.ptp(radii) < 1e-9  # all vertices on one circle: an arc for the DXF writer
+    with pytest.raises(ValueError, match="join"):
+        kerf(square, 0.4, join="bevel")
+
+
+@pytest.mark.parametrize(
+    "seeds", [{"method": "random", "count": 1}, {"method": "grid", "spacing": 500}]
+)
+def test_one_seed_gives_one_opening(tmp_path, seeds):
+    # count = 1 (allowed by the schema) or a lattice coarser than the panel: one cell, the
+    # whole domain; it used to be refused with "need 2 or more".
+    design = {
+        "boundary": {"width": 120, "height": 80},
+        "seeds": seeds,
+        "cells": {"web": 4},
+        "output": {"formats": ["dxf", "geojson"]},
+    }
+    dxf, _ = build(design, tmp_path)
+    rings = sorted(shapely.Polygon(xy).bounds for _, xy, _ in _dxf_rings(dxf))
+    assert np.allclose(rings, [(0, 0, 120, 80), (2, 2, 118, 78)])
+
+
+def test_no_seed_inside_is_a_design_error(tmp_path):
+    from voroforge.design.schema import DesignError
+
+    design = {
+        "boundary": {"width": 10, "height": 10},
+        "seeds": {"method": "grid", "spacing": 500, "offset": [100, 100]},
+    }
+    with pytest.raises(DesignError, match="seeds: no seeds"):
+        build(design, tmp_path)
