@@ -222,10 +222,27 @@ def test_geojson_empty_cells_and_properties(tmp_path):
 def test_write_dispatch_and_triangles(tmp_path):
     tris = io.triangle_polygons([[0, 0], [1, 0], [0, 1], [1, 1]], [[0, 1, 2], [1, 3, 2]])
     assert shapely.area(tris).tolist() == [0.5, 0.5]
-    for name in ("t.svg", "t.png", "t.geojson", "t.json"):
+    for name in ("t.svg", "t.png", "t.geojson", "t.json", "t.dxf"):
         assert io.write(tris, tmp_path / name, size=32).exists()
-    with pytest.raises(ValueError, match="unsupported output type '.dxf'"):
-        io.write(tris, tmp_path / "t.dxf")
+    with pytest.raises(ValueError, match="unsupported output type '.pdf'"):
+        io.write(tris, tmp_path / "t.pdf")
+
+
+def test_write_dxf_cells_boundary_sites(tmp_path):
+    import ezdxf
+
+    pts = np.array([[0.2, 0.3], [0.7, 0.6], [0.4, 0.8]])
+    d = vf.voronoi(pts, (0, 0, 1, 1))
+    path = io.write(d.cells, tmp_path / "c.dxf", sites=d.sites, boundary=d.bounds, units="mm")
+    doc = ezdxf.readfile(path)
+    msp = doc.modelspace()
+    cells = msp.query("LWPOLYLINE[layer=='CELLS']")
+    assert len(cells) == 3 and all(e.closed for e in cells)
+    areas = sorted(shapely.Polygon([p[:2] for p in e.get_points()]).area for e in cells)
+    assert np.allclose(areas, np.sort(d.areas), rtol=1e-12)
+    assert len(msp.query("LWPOLYLINE[layer=='BOUNDARY']")) == 1
+    assert len(msp.query("POINT[layer=='SITES']")) == 3
+    assert doc.header["$INSUNITS"] == 4  # millimetres
 
 
 # --- readers ------------------------------------------------------------------------------

@@ -28,7 +28,7 @@ _POINTS_HELP = (
 )
 
 _VORONOI_EPILOG = """\
-The output type follows each OUT's suffix: .svg, .png, .geojson or .json.
+The output type follows each OUT's suffix: .svg, .png, .geojson, .json or .dxf.
 Give -o several times to write several files from one computation.
 
 examples:
@@ -44,7 +44,7 @@ A boundary file is GeoJSON; all its Polygon/MultiPolygon features are united, ho
 """
 
 _DELAUNAY_EPILOG = """\
-The output type follows each OUT's suffix: .svg, .png, .geojson or .json.
+The output type follows each OUT's suffix: .svg, .png, .geojson, .json or .dxf.
 GeoJSON features are the triangles, with their vertex indices in "vertices".
 
 examples:
@@ -216,7 +216,7 @@ def _add_outputs(sub: argparse.ArgumentParser) -> None:
         metavar="OUT",
         action="append",
         required=True,
-        help="output file; .svg, .png, .geojson or .json (repeatable)",
+        help="output file; .svg, .png, .geojson, .json or .dxf (repeatable)",
     )
     sub.add_argument(
         "--size", type=int, default=1024, help="PNG size in pixels, longer side (default 1024)"

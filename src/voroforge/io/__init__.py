@@ -43,11 +43,17 @@ __all__ = [
 ]
 
 #: Output suffixes understood by :func:`write`, and the format each one means.
-FORMATS = {".svg": "svg", ".png": "png", ".geojson": "geojson", ".json": "geojson"}
+FORMATS = {
+    ".svg": "svg",
+    ".png": "png",
+    ".geojson": "geojson",
+    ".json": "geojson",
+    ".dxf": "dxf",
+}
 
 
 def output_format(path) -> str:
-    """Return the format (``"svg"``, ``"png"``, ``"geojson"``) of ``path``'s suffix.
+    """Return the format (``"svg"``, ``"png"``, ``"geojson"``, ``"dxf"``) of ``path``'s suffix.
 
     Raises
     ------
@@ -81,7 +87,8 @@ def write(
     geoms : sequence of shapely Polygon or MultiPolygon
         What to write, for example ``diagram.cells``.
     path : str or Path
-        Output file; ``.svg``, ``.png``, ``.geojson`` or ``.json``.
+        Output file; ``.svg``, ``.png``, ``.geojson``, ``.json`` or ``.dxf`` (closed
+        LWPOLYLINEs on layer CELLS, the boundary on BOUNDARY, sites as POINTs on SITES).
     sites : (n, 2) array_like, optional
         Sites to draw (SVG, PNG) or to record per feature (GeoJSON).
     boundary : shapely geometry or (xmin, ymin, xmax, ymax), optional
@@ -91,7 +98,7 @@ def write(
     size : int
         PNG size in pixels (longer side).
     units : str, optional
-        SVG units, for example ``"mm"``.
+        SVG and DXF units, for example ``"mm"`` (DXF without units: ``unitless``).
 
     Returns
     -------
@@ -103,6 +110,15 @@ def write(
         return write_svg(geoms, path, sites=sites, boundary=boundary, units=units)
     if kind == "png":
         return write_png(geoms, path, sites=sites, boundary=boundary, size=size)
+    if kind == "dxf":
+        layers = {}
+        if boundary is not None:
+            if isinstance(boundary, tuple | list):
+                boundary = shapely.box(*boundary)
+            layers["BOUNDARY"] = [boundary]
+        if sites is not None:
+            layers["SITES"] = [shapely.multipoints(np.asarray(sites, dtype=np.float64))]
+        return write_dxf(geoms, path, layer="CELLS", layers=layers, units=units or "unitless")
     return write_geojson(geoms, path, sites=sites, properties=properties)
 
 
