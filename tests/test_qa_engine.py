@@ -7,6 +7,7 @@ obvious reference (shapely half-planes, brute-force minima) rather than stored a
 from __future__ import annotations
 
 import numpy as np
+import pytest
 import shapely
 
 import voroforge as vf
@@ -55,3 +56,63 @@ def test_power_large_weights_leave_no_gap():
     ref = _power_cells_ref(pts[:2], w[:2], shapely.box(0, 0, 1, 1))
     assert np.allclose(d.areas[:2], shapely.area(ref), rtol=0, atol=1e-13)
     assert (d.areas[2:] == 0).all()
+
+
+def _fit_ok(pts, dom, bnd):
+    target = np.full(len(pts), dom.area / len(pts))
+    d = vf.power_fit(pts, target, bnd)
+    assert np.abs(d.areas - target).max() <= 1e-6 * target.min()
+    # the weights found give those areas in an independent power diagram
+    again = vf.power(pts, d.weights, bnd)
+    assert np.allclose(again.areas, d.areas, rtol=0, atol=1e-9 * dom.area)
+
+
+def test_power_fit_many_sites_outside_the_box():
+    # sites beyond a corner share the corner as nearest domain point: opening one cell
+    # there emptied another, ten rounds long ("the cell of site 2 stays empty")
+    pts = np.random.default_rng(8).random((50, 2)) * 3 - 1
+    _fit_ok(pts, shapely.box(0, 0, 1, 1), (0, 0, 1, 1))
+
+
+def test_power_fit_sites_in_the_notch_of_an_l_shape():
+    ell = shapely.Polygon([(0, 0), (1, 0), (1, 0.4), (0.4, 0.4), (0.4, 1), (0, 1)])
+    pts = np.random.default_rng(8).random((100, 2))  # a quarter of them in the notch
+    _fit_ok(pts, ell, ell)
+
+
+def test_power_fit_two_part_domain():
+    # the parts' areas do not match the number of sites in them: some cell must straddle
+    # the gap, where the Newton step from the Voronoi start stalled (RuntimeError)
+    mp = shapely.MultiPolygon(
+        [
+            shapely.box(0, 0, 0.4, 1),
+            shapely.box(0.6, 0, 1, 1).difference(shapely.box(0.7, 0.4, 0.9, 0.6)),
+        ]
+    )
+    pts = np.random.default_rng(8).random((100, 2))
+    _fit_ok(pts, mp, mp)
+
+
+def test_power_enormous_weight_range():
+    # Qhull failed on the lift of weights spanning 1e300 (QhullError, not a diagram)
+    rng = np.random.default_rng(0)
+    pts = rng.random((20, 2))
+    w = np.r_[rng.random(19) * 0.01, 1e300]
+    d = vf.power(pts, w, (0, 0, 1, 1))
+    assert d.areas[-1] == 1.0 and (d.areas[:-1] == 0).all()
+    # the sites a heavy one hides change nothing for the others
+    w = np.r_[rng.random(19) * 0.01, -50.0]
+    pts[-1] = [0.5, 0.5]
+    assert np.array_equal(
+        vf.power(pts, w, (0, 0, 1, 1)).areas[:-1], vf.power(pts[:-1], w[:-1], (0, 0, 1, 1)).areas
+    )
+
+
+@pytest.mark.parametrize(
+    ("kw", "word"),
+    [({"tol": "a"}, "tol"), ({"max_iter": 1.5}, "max_iter"), ({"max_iter": "x"}, "max_iter")],
+)
+def test_power_fit_option_errors(kw, word):
+    pts = np.random.default_rng(0).random((10, 2))
+    with pytest.raises(ValueError, match=word):
+        vf.power_fit(pts, np.full(10, 0.1), (0, 0, 1, 1), **kw)

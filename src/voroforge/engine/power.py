@@ -126,9 +126,31 @@ def _pairs_csr(n, a, b):
     return indptr, key % n
 
 
+def _may_win(x, y, w, box, active):
+    """``active`` without the sites that lose to one other site everywhere in the box.
+
+    Site ``i`` has no point of the box when its smallest power distance there exceeds the
+    largest power distance there of some site ``k``. Dropping such sites changes no cell,
+    and keeps Qhull's lift well scaled when the weights span many orders of magnitude.
+    """
+    if active.sum() < 2:
+        return active
+    near_x = np.maximum(np.maximum(box[0] - x, x - box[2]), 0.0)
+    near_y = np.maximum(np.maximum(box[1] - y, y - box[3]), 0.0)
+    far_x = np.maximum(x - box[0], box[2] - x)
+    far_y = np.maximum(y - box[1], box[3] - y)
+    near = near_x * near_x + near_y * near_y - w
+    far = far_x * far_x + far_y * far_y - w
+    best = float(far[active].min())
+    # generous slack for rounding: only clearly hidden sites are dropped
+    slack = 1e-9 * (float((far_x * far_x + far_y * far_y)[active].max()) + abs(best))
+    return active & (near <= best + slack)
+
+
 def _neighbors(x, y, w, box, active):
     """Candidate neighbours (CSR over all sites) and the mask of sites that can have a cell."""
     n = len(x)
+    active = _may_win(x, y, w, box, active)
     idx = np.flatnonzero(active)
     m = len(idx)
     if m <= _ALL_PAIRS_MAX:
@@ -140,7 +162,7 @@ def _neighbors(x, y, w, box, active):
     s = max(box[2] - box[0], box[3] - box[1])
     u = (x[idx] - cx) / s
     v = (y[idx] - cy) / s
-    lift = np.column_stack((u, v, u * u + v * v - w[idx] / (s * s)))
+    lift = np.column_stack((u, v, u * u + v * v - (w[idx] - w[idx].max()) / (s * s)))
     try:
         hull = ConvexHull(lift)
     except QhullError:
@@ -301,6 +323,30 @@ def _seed_empty(pts, w, targets, dom, empty):
     return w
 
 
+def _shrink_start(pts, dom):
+    """Weights whose power cells are the Voronoi cells of the sites shrunk towards the domain.
+
+    With ``c`` inside the domain and ``0 < s <= 1``, ``|x - p_i|^2 - (1 - s) |p_i - c|^2``
+    equals ``(1 - 1/s) |x - c|^2 + |x - c - s (p_i - c)|^2 / s``: the power diagram is the
+    Voronoi diagram of the points ``c + s (p_i - c)``. Halving ``s`` until all of them lie in
+    the domain gives every (distinct) site a cell of positive area, wherever the sites are.
+    """
+    from shapely.ops import polylabel
+
+    geom = dom.geometry
+    parts = shapely.get_parts(geom)
+    part = parts[int(np.argmax(shapely.area(parts)))]
+    c = np.array(polylabel(part, tolerance=1e-3 * np.sqrt(part.area)).coords[0])
+    q = pts - c
+    s = 1.0
+    for _ in range(80):
+        z = c + s * q
+        if shapely.contains_xy(geom, z[:, 0], z[:, 1]).all():
+            break
+        s *= 0.5
+    return (1.0 - s) * np.einsum("ij,ij->i", q, q)
+
+
 def _fit(pts, targets, dom, w0, tol, max_iter):
     """Damped Newton on the concave dual; returns ``(diagram, weights, error, iterations)``."""
     w = w0.copy()
@@ -316,6 +362,11 @@ def _fit(pts, targets, dom, w0, tol, max_iter):
         if not len(empty):
             break
         w = _seed_empty(pts, w, targets, dom, empty)
+        d = _compute(pts, w, dom)
+        areas = d.areas
+    if (areas <= 0.0).any():
+        # seeding one cell can empty another (sites sharing their nearest domain point)
+        w = _shrink_start(pts, dom)
         d = _compute(pts, w, dom)
         areas = d.areas
     if (areas <= 0.0).any():
@@ -384,7 +435,8 @@ def power_fit(
     points : (n, 2) array_like
         Distinct sites, anywhere: a site whose starting cell is empty (outside the domain,
         in a hole) first gets a weight that opens a small cell at the domain point nearest
-        to it. Never modified.
+        to it; if that fails, or Newton stalls, the fit starts again from the Voronoi cells
+        of the sites shrunk towards a point inside the domain. Never modified.
     target_areas : (n,) array_like
         Positive areas that sum to the domain's area (to 1e-6 relative; they are rescaled to
         sum exactly).
@@ -425,9 +477,11 @@ def power_fit(
     dom = make_domain(boundary, pts)
     t = _targets(target_areas, n, dom)
     w0 = np.zeros(n) if weights is None else _as_weights(weights, n)
-    if not (tol > 0 and np.isfinite(tol)):
+    if not (isinstance(tol, (int, float, np.number)) and tol > 0 and np.isfinite(tol)):
         raise ValueError(f"tol must be a positive number; got {tol!r}")
-    if int(max_iter) < 0:
+    if isinstance(max_iter, bool) or not isinstance(max_iter, (int, np.integer)):
+        raise ValueError(f"max_iter must be an integer; got {max_iter!r}")
+    if max_iter < 0:
         raise ValueError(f"max_iter must be >= 0; got {max_iter!r}")
     dup, _ = duplicate_map(pts)
     if (dup >= 0).any():
@@ -438,6 +492,12 @@ def power_fit(
         )
     with serial_below(n):
         d, _, err, it = _fit(pts, t, dom, w0, tol, int(max_iter))
+        if err > tol and n > 1:
+            # Newton stalled (e.g. cells that must straddle the gap of a MultiPolygon): start
+            # again from the shrunk sites, where every cell is open and reaches the interior
+            d2, _, err2, it2 = _fit(pts, t, dom, _shrink_start(pts, dom), tol, int(max_iter))
+            if err2 < err:
+                d, err, it = d2, err2, it2
     if err > tol:
         raise RuntimeError(
             f"power_fit did not reach tol={tol:g} in {it} Newton steps (largest relative "
