@@ -78,7 +78,8 @@ def test_demo(tmp_path, capsys):
     names = [p.rsplit("/", 1)[-1] for p in out.split()]
     assert names == ["laser-panel.svg", "laser-panel.dxf", "laser-panel.png"]
     root = ET.parse(tmp_path / "demo" / "laser-panel.svg").getroot()
-    assert root.get("width") == "600mm" and root.get("height") == "400mm"
+    # 600 x 400 mm panel cut with a 0.15 mm kerf: the page holds the compensated outline
+    assert root.get("width") == "600.15mm" and root.get("height") == "400.15mm"
     doc = ezdxf.readfile(tmp_path / "demo" / "laser-panel.dxf")
     ents = list(doc.modelspace())
     assert len(ents) > 50

@@ -119,3 +119,41 @@ def test_no_seed_inside_is_a_design_error(tmp_path):
     }
     with pytest.raises(DesignError, match="seeds: no seeds"):
         build(design, tmp_path)
+
+
+BASE = '[boundary]\nwidth = 100\nheight = 80\n[seeds]\nmethod = "random"\ncount = 20\n'
+
+
+@pytest.mark.parametrize(
+    "extra, where, message",
+    [
+        # a negative seed used to be reported as "seeds: expected non-negative integer"
+        ("[design]\nseed = -1\n", "8: design.seed", "greater than or equal to 0"),
+        (
+            "[openings]\nselect = 'random'\nprobability = 0.5\nseed = -2\n",
+            "10: openings.seed",
+            "greater than or equal to 0",
+        ),
+        # graded numbers of the wrong type: name what is expected
+        ("[cells]\nweb = true\n", "8: cells.web", "expected a number or { near = ..., far = ... }"),
+        ("[cells]\nfillet = [1, 2]\n", "8: cells.fillet", "expected a number or {"),
+        # a key given twice on the last line: tomllib says "at end of document", no line
+        ("[cells]\nweb = 1\nweb = 2", "9: (top level)", "TOML syntax: Cannot overwrite a value"),
+        # a bad GIF sweep value: the file and the line of output.gif.key, not "<design>"
+        (
+            "[output]\nformats = ['gif']\n[output.gif]\nkey = 'cells.web'\nvalues = [1, -2]\n",
+            "10: output.gif.key",
+            "cells.web = -2: cells.web: must be >= 0",
+        ),
+    ],
+)
+def test_design_errors_name_file_line_and_key(tmp_path, capsys, extra, where, message):
+    from voroforge.cli import main
+
+    path = tmp_path / "bad.toml"
+    path.write_text(BASE + extra, encoding="utf-8")
+    rc = main(["build", str(path), "-o", str(tmp_path / "out")])
+    err = capsys.readouterr().err
+    assert rc == 2
+    assert err.startswith(f"voroforge: error: {path}:{where}: "), err
+    assert message in err and "(from --set)" not in err and "Traceback" not in err

@@ -765,7 +765,8 @@ def build(
         elif fmt == "geojson":
             written.append(_geojson(result, path))
         elif fmt == "gif":
-            written.append(_gif(design, base, path, stage))
+            with _located(source, overrides):
+                written.append(_gif(design, base, path, stage))
     if design.fabrication.report:
         report = _report(result)
         text = out / f"{stem}-check.txt"
@@ -792,7 +793,12 @@ def _gif(design: Design, base: Path | None, path: Path, stage: Stage) -> Path:
             except DesignError as exc:
                 raise DesignError(
                     [
-                        Issue("output.gif.key", None, f"{gif.key} = {v!r}: {it.key}: {it.message}")
+                        Issue(
+                            "output.gif.key",
+                            None,
+                            f"{gif.key} = {v!r}: {it.key}: "
+                            + it.message.removesuffix(" (from --set)"),
+                        )
                         for it in exc.issues
                     ]
                 ) from None

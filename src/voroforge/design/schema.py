@@ -46,6 +46,8 @@ Product = Literal["frame", "openings", "cells", "edges", "sites", "boundary"]
 PositiveFloat = Annotated[float, Field(gt=0)]
 NonNegFloat = Annotated[float, Field(ge=0)]
 Point = tuple[float, float]
+#: Random seeds: numpy's generators take non-negative integers only.
+Seed = Annotated[int, Field(ge=0)]
 
 
 def _need(field: str, message: str) -> ValueError:
@@ -73,6 +75,8 @@ class Graded(_Model):
     def _from_number(cls, data: Any) -> Any:
         if isinstance(data, int | float) and not isinstance(data, bool):
             return {"value": data}
+        if not isinstance(data, dict | Graded):
+            raise ValueError(f"expected a number or {{ near = ..., far = ... }}; got {_show(data)}")
         return data
 
     @model_validator(mode="after")
@@ -101,7 +105,7 @@ class Info(_Model):
     name: str = "design"
     description: str = ""
     units: Literal["mm", "cm", "m", "in"] = "mm"
-    seed: int = 0
+    seed: Seed = 0
 
 
 class Part(_Model):
@@ -157,7 +161,7 @@ class Seeds(_Model):
     angle: float = 0.0
     offset: Point = (0.0, 0.0)
     file: str | None = None
-    seed: int | None = None
+    seed: Seed | None = None
     use_field: bool = False
 
     @model_validator(mode="after")
@@ -281,7 +285,7 @@ class Openings(_Model):
     count: Annotated[int, Field(ge=0)] | None = None
     threshold: float | None = None
     invert: bool = False
-    seed: int | None = None
+    seed: Seed | None = None
 
     @model_validator(mode="after")
     def _select_fields(self) -> Openings:
@@ -667,6 +671,33 @@ def _step(node, part: str, dotted: str, following: str):
     return node[part]
 
 
+def _error_line(text: str, error: str) -> int | None:
+    """The line of a TOML error that tomllib places "at end of document" (a key given twice).
+
+    The parser stops at the first error, so every prefix of the document that reaches the
+    bad line fails with the same message: bisect for the shortest one.
+    """
+    lines = text.splitlines()
+
+    def fails(n: int) -> bool:
+        try:
+            tomllib.loads("\n".join(lines[:n]))
+        except tomllib.TOMLDecodeError as exc:
+            return str(exc).split(" (at ")[0] == error.split(" (at ")[0]
+        return False
+
+    if not lines or not fails(len(lines)):
+        return None
+    lo, hi = 0, len(lines)  # fails(hi) holds, fails(lo) does not
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if fails(mid):
+            hi = mid
+        else:
+            lo = mid
+    return hi
+
+
 def load(source, *, overrides: dict | None = None) -> tuple[Design, Path | None]:
     """Read and validate a design.
 
@@ -705,8 +736,8 @@ def load(source, *, overrides: dict | None = None) -> tuple[Design, Path | None]
             data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
             m = re.search(r"\(at line (\d+), column (\d+)\)", str(exc))
-            line = int(m.group(1)) if m else None
-            message = re.sub(r"\s*\(at line \d+, column \d+\)", "", str(exc))
+            line = int(m.group(1)) if m else _error_line(text, str(exc))
+            message = re.sub(r"\s*\(at (line \d+, column \d+|end of document)\)", "", str(exc))
             raise DesignError([Issue("", line, f"TOML syntax: {message}")], name) from None
         lines = key_lines(text)
     data = apply_overrides(data, overrides)
