@@ -116,3 +116,19 @@ def test_power_fit_option_errors(kw, word):
     pts = np.random.default_rng(0).random((10, 2))
     with pytest.raises(ValueError, match=word):
         vf.power_fit(pts, np.full(10, 0.1), (0, 0, 1, 1), **kw)
+
+
+@pytest.mark.parametrize("k", [5, 10])
+def test_periodic_wrap_has_no_rounding_slivers(k):
+    # a grid whose cell edges fall on the box edges: 0.9 - 1 is not -0.1 in floats, so an
+    # image's cell crossed the edge by 1e-17 and each wrapped cell of the last column got a
+    # second, 1e-17-wide polygon part (describe(): Euler FAILED)
+    h = 1.0 / k
+    g = np.stack(np.meshgrid(np.arange(k) * h, np.arange(k) * h), -1).reshape(-1, 2) + h / 2
+    w = vf.voronoi(g, (0, 0, 1, 1), periodic=True, wrap=True)
+    assert all(len(shapely.get_parts(c)) == 1 for c in w.cells)
+    assert abs(w.areas.sum() - 1.0) <= 1e-14
+    assert w.describe().euler_ok
+    # the tiled reference: each site's cell is the h x h square around it
+    ref = shapely.box(*(g - h / 2).T, *(g + h / 2).T)
+    assert np.allclose(w.areas, shapely.area(ref), rtol=1e-12, atol=0)

@@ -137,14 +137,33 @@ def _gather(d: Diagram, source: np.ndarray, n: int, keep: np.ndarray):
     return _buffers(out)
 
 
-def _gather_pieces(d: Diagram, source: np.ndarray, n: int):
-    """Buffers of ``n`` cells made of the non-empty cells of their copies, in copy order.
+def _rounding(box) -> float:
+    """A length below which features in the box are rounding noise of its coordinates."""
+    x0, y0, x1, y1 = box
+    size = max(x1 - x0, y1 - y0)
+    return 64.0 * np.finfo(np.float64).eps * max(abs(x0), abs(y0), abs(x1), abs(y1), size)
+
+
+def _thick_pieces(d: Diagram, box, n: int) -> np.ndarray:
+    """Indices of the copies whose piece in the box is more than rounding noise.
+
+    An image whose cell passes the box edge only by the rounding of its site (``0.9 - 1`` is
+    not ``-0.1`` in floats) leaves a sliver a few ulps wide inside the box: no part of the
+    cell on the torus, but an extra polygon part. Original copies (``< n``) are kept.
+    """
+    x0, y0, x1, y1 = box
+    idx = np.arange(len(d.sites))
+    return idx[(idx < n) | (d.areas > _rounding(box) * max(x1 - x0, y1 - y0))]
+
+
+def _gather_pieces(d: Diagram, source: np.ndarray, n: int, keep: np.ndarray):
+    """Buffers of ``n`` cells made of the non-empty cells of copies ``keep``, in copy order.
 
     Every cell of ``d`` is one convex polygon (or empty), so each piece is one ring.
     """
     coords, (ring, poly, geom) = d.to_geoarrow()
     parts = np.diff(geom)
-    full = np.flatnonzero(parts > 0)
+    full = keep[parts[keep] > 0]
     order = full[np.argsort(source[full], kind="stable")]
     first_ring = poly[geom[order]]
     lo = ring[first_ring]
@@ -195,7 +214,7 @@ def _buffers(cells: np.ndarray):
     return np.ascontiguousarray(coords), ring.astype(np.int64), poly.astype(np.int64), geom
 
 
-def _torus_edges(d: Diagram, source, shift, n: int, wrap: bool) -> Edges:
+def _torus_edges(d: Diagram, source, shift, n: int, wrap: bool, box) -> Edges:
     pairs = d.edges.pairs
     coords = d.edges.coords
     a = pairs[:, 0]
@@ -203,7 +222,9 @@ def _torus_edges(d: Diagram, source, shift, n: int, wrap: bool) -> Edges:
     sa = source[a]
     sb = source[b]
     if wrap:
-        keep = np.ones(len(pairs), dtype=bool)
+        # edges of rounding slivers (see _thick_pieces) are a few ulps long
+        length = np.hypot(*(coords[:, 1] - coords[:, 0]).T)
+        keep = length > _rounding(box)
     else:
         # each torus edge once: where the lower-index cell is the original copy (a self
         # edge, between a cell and its own image, where the image lies on the positive side)
@@ -255,18 +276,19 @@ def periodic_voronoi(points, boundary, *, algorithm: str = "delaunay", wrap: boo
         raise RuntimeError("periodic diagram: could not prove the margin")
     if wrap:
         pairs = d.edges.pairs
+        keep = _thick_pieces(d, box, n)
         if (source[pairs[:, 0]] == source[pairs[:, 1]]).any():
             # some cell borders its own image: unite its touching pieces (few sites)
-            buffers = _gather(d, source, n, np.arange(len(ext)))
+            buffers = _gather(d, source, n, keep)
         else:
-            buffers = _gather_pieces(d, source, n)
+            buffers = _gather_pieces(d, source, n, keep)
     else:
         coords, (ring, poly, geom) = d.to_geoarrow()
         g = geom[: n + 1]
         p = poly[: g[-1] + 1]
         r = ring[: p[-1] + 1]
         buffers = (coords[: r[-1]].copy(), r.copy(), p.copy(), g.copy())
-    edges = _torus_edges(d, source, shift, n, wrap)
+    edges = _torus_edges(d, source, shift, n, wrap, box)
     dom = make_domain(box, pts)
     out = Diagram(
         np.ascontiguousarray(d.sites[:n]),
