@@ -132,3 +132,19 @@ def test_periodic_wrap_has_no_rounding_slivers(k):
     # the tiled reference: each site's cell is the h x h square around it
     ref = shapely.box(*(g - h / 2).T, *(g + h / 2).T)
     assert np.allclose(w.areas, shapely.area(ref), rtol=1e-12, atol=0)
+
+
+def test_lloyd_capacity_with_sites_outside_an_l_shape():
+    ell = shapely.Polygon([(0, 0), (1, 0), (1, 0.4), (0.4, 0.4), (0.4, 1), (0, 1)])
+    pts = np.random.default_rng(9).random((40, 2))  # some start in the notch
+    target = np.full(40, ell.area / 40)
+    r = vf.lloyd(pts, ell, iterations=3, areas=target)
+    assert np.abs(r.diagram.areas - target).max() <= 1e-6 * target.min()
+
+
+def test_lloyd_option_errors():
+    pts = np.random.default_rng(0).random((10, 2))
+    with pytest.raises(ValueError, match="tol"):
+        vf.lloyd(pts, (0, 0, 1, 1), tol="x")  # was a TypeError from np.isfinite
+    with pytest.raises(ValueError, match="duplicate"):  # was "the cell of site 10 stays empty"
+        vf.lloyd(np.vstack([pts, pts[:1]]), (0, 0, 1, 1), areas=np.full(11, 1 / 11))

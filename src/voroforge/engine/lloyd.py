@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from ._inputs import as_points
+from ._inputs import as_points, duplicate_map
 from ._integrate import Integrator
 from ._threads import serial_below
 from .domain import make_domain
@@ -71,7 +71,9 @@ def _check(iterations, tol, method, areas):
         raise ValueError(f"iterations must be an integer; got {iterations!r}")
     if iterations < 0:
         raise ValueError(f"iterations must be >= 0; got {iterations}")
-    if tol is not None and not (np.isfinite(tol) and tol >= 0):
+    if tol is not None and not (
+        isinstance(tol, (int, float, np.number)) and np.isfinite(tol) and tol >= 0
+    ):
         raise ValueError(f"tol must be None or a non-negative number; got {tol!r}")
     if areas is not None and method != "lloyd":
         raise ValueError("areas= (capacity-constrained CVT) works with method='lloyd' only")
@@ -120,9 +122,10 @@ def lloyd(
         domain's area. Every iteration refits power weights with :func:`power_fit` (warm
         started, to 1e-9 relative) and moves the sites to the centroids of those power
         cells, so the final cells have the target areas and are as compact as the targets
-        allow. The energy need not decrease monotonically in this mode. Needs distinct sites
-        whose Voronoi cells are non-empty at the start; a centroid outside a non-convex
-        domain is moved to the nearest point of the domain's boundary.
+        allow. The energy need not decrease monotonically in this mode. Needs distinct
+        sites (anywhere: empty starting cells are opened as in :func:`power_fit`); a
+        centroid outside a non-convex domain is moved to the nearest point of the domain's
+        boundary.
 
     Returns
     -------
@@ -161,6 +164,14 @@ def lloyd(
     stop = None if tol is None else float(tol) * max(x1 - x0, y1 - y0)
     integ = Integrator(density, len(z))
     targets = None if areas is None else _targets(areas, len(z), dom)
+    if targets is not None:
+        dup, _ = duplicate_map(z)
+        if (dup >= 0).any():
+            i = int(np.flatnonzero(dup >= 0)[0])
+            raise ValueError(
+                f"points has duplicate sites (rows {int(dup[i])} and {i}); areas= needs "
+                "distinct sites"
+            )
     with serial_below(len(z)):
         if method == "lbfgs":
             return _lbfgs(z, dom, bnd, integ, int(iterations), stop)
