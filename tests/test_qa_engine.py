@@ -148,3 +148,18 @@ def test_lloyd_option_errors():
         vf.lloyd(pts, (0, 0, 1, 1), tol="x")  # was a TypeError from np.isfinite
     with pytest.raises(ValueError, match="duplicate"):  # was "the cell of site 10 stays empty"
         vf.lloyd(np.vstack([pts, pts[:1]]), (0, 0, 1, 1), areas=np.full(11, 1 / 11))
+
+
+def test_power_locate_breaks_ties_towards_the_lowest_index():
+    # four or more sites at the same power distance (grid corners): only the two nearest
+    # in the KD-tree were compared, so the documented lowest-index rule failed
+    rng = np.random.default_rng(0)
+    grid = np.stack(np.meshgrid(np.arange(6.0), np.arange(6.0)), -1).reshape(-1, 2)
+    grid = grid[rng.permutation(len(grid))]
+    q = np.stack(np.meshgrid(np.arange(11) / 2, np.arange(11) / 2), -1).reshape(-1, 2)
+    d2 = ((q[:, None] - grid[None]) ** 2).sum(-1)
+    for w in (np.zeros(36), rng.integers(0, 3, 36).astype(float)):
+        pd = d2 - w
+        ref = [int(np.flatnonzero(row == row.min()).min()) for row in pd]
+        assert vf.power(grid, w).locate(q).tolist() == ref
+    assert np.array_equal(vf.power(grid, np.zeros(36)).locate(q), vf.locate(grid, q))

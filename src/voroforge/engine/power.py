@@ -71,16 +71,35 @@ class PowerDiagram(Diagram):
         if not len(owners):
             raise ValueError("the diagram has no sites to locate")
         w = self.weights[owners]
-        lift = np.column_stack((self.sites[owners], np.sqrt(w.max() - w)))
-        k = min(2, len(owners))
-        dist, idx = cKDTree(lift).query(np.column_stack((q, np.zeros(len(q)))), k=k)
-        dist = dist.reshape(len(q), k)
-        idx = idx.reshape(len(q), k)
-        best = idx[:, 0]
-        if k == 2:
-            tie = (dist[:, 1] == dist[:, 0]) & (idx[:, 1] < idx[:, 0])
-            best = np.where(tie, idx[:, 1], best)
-        out = owners[best]
+        sites = self.sites[owners]
+        top = float(w.max())
+        tree = cKDTree(np.column_stack((sites, np.sqrt(top - w))))
+        lifted = np.column_stack((q, np.zeros(len(q))))
+        m = len(owners)
+        out = np.zeros(len(q), dtype=np.int64)
+        rows = np.arange(len(q))
+        for k in (min(4, m), min(32, m), m):
+            # chunks keep the (rows, k) candidate arrays small when every site is needed
+            step = max(1, (1 << 22) // k)
+            again = []
+            for lo in range(0, len(rows), step):
+                r = rows[lo : lo + step]
+                dist, idx = tree.query(lifted[r], k=k)
+                dist = dist.reshape(len(r), k)
+                idx = idx.reshape(len(r), k)
+                # exact ties of the float64 power distance go to the lowest index
+                diff = q[r, None, :] - sites[idx]
+                pd = diff[..., 0] * diff[..., 0] + diff[..., 1] * diff[..., 1] - w[idx]
+                best = pd.min(axis=1)
+                rank = np.where(pd == best[:, None], owners[idx], np.iinfo(np.int64).max)
+                out[r] = rank.min(axis=1)
+                if k < m:
+                    # a site past the k-th could tie after rounding: look further for those
+                    near = dist[:, -1] ** 2 <= (best + top) + 1e-9 * (np.abs(best) + abs(top))
+                    again.append(r[near])
+            rows = np.concatenate(again) if again else rows[:0]
+            if not len(rows):
+                break
         return int(out[0]) if single else out
 
 
