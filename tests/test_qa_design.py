@@ -157,3 +157,24 @@ def test_design_errors_name_file_line_and_key(tmp_path, capsys, extra, where, me
     assert rc == 2
     assert err.startswith(f"voroforge: error: {path}:{where}: "), err
     assert message in err and "(from --set)" not in err and "Traceback" not in err
+
+
+def test_subdivide_does_not_launch_the_parallel_area_kernel_per_cell(monkeypatch):
+    # Recursion builds one small diagram per cell; Diagram.areas runs a numba parallel
+    # kernel whose thread wake-up cost ~10 ms a call on a busy machine (a depth-3 design
+    # took 15 s instead of 1 s). The tiling guard uses shapely's areas of the built cells.
+    import voroforge.engine.voronoi as engine
+    from voroforge.design import recursive
+
+    calls = []
+    real = engine.area_centroid
+    monkeypatch.setattr(engine, "area_centroid", lambda *a: calls.append(1) or real(*a))
+    box = shapely.box(0, 0, 100, 60)
+    levels = recursive.subdivide(box, 12, depth=2, count=3, seed=4, web=[2, 1, 0.5])
+    assert len(calls) == 0
+    # ... and the levels still tile: the leaves' cells cover each subdivided parent opening.
+    top = levels[0]
+    assert sum(c.area for c in top.cells) == pytest.approx(box.area, rel=1e-9)
+    assert sum(c.area for c in levels[1].cells) == pytest.approx(
+        sum(o.area for o in top.openings), rel=1e-9
+    )
