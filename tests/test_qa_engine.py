@@ -163,3 +163,16 @@ def test_power_locate_breaks_ties_towards_the_lowest_index():
         ref = [int(np.flatnonzero(row == row.min()).min()) for row in pd]
         assert vf.power(grid, w).locate(q).tolist() == ref
     assert np.array_equal(vf.power(grid, np.zeros(36)).locate(q), vf.locate(grid, q))
+
+
+def test_areas_and_centroids_are_read_only():
+    # they are cached: writing into d.areas changed every later d.areas of that diagram
+    pts = np.random.default_rng(0).random((30, 2))
+    for d in (
+        vf.voronoi(pts, (0, 0, 1, 1)),
+        vf.power(pts, np.linspace(0, 0.01, 30), (0, 0, 1, 1)),
+        vf.voronoi(pts, (0, 0, 1, 1), periodic=True),
+    ):
+        for arr in (d.areas, d.centroids):
+            with pytest.raises(ValueError, match="read-only"):
+                arr[0] = 5.0
