@@ -176,3 +176,14 @@ def test_areas_and_centroids_are_read_only():
         for arr in (d.areas, d.centroids):
             with pytest.raises(ValueError, match="read-only"):
                 arr[0] = 5.0
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf])
+def test_natural_neighbor_rejects_non_finite_values(bad):
+    # NaN/inf data were interpolated silently (NaN around that site, and with smooth=True
+    # in the gradients of its neighbours too)
+    pts = np.random.default_rng(0).random((20, 2))
+    vals = np.zeros((20, 2))
+    vals[7, 1] = bad
+    with pytest.raises(ValueError, match="values contains a non-finite value .*row 7"):
+        vf.natural_neighbor(pts, vals, [0.5, 0.5])

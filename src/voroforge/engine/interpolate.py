@@ -165,6 +165,9 @@ def _as_values(values, n: int) -> tuple[np.ndarray, bool]:
         raise ValueError(
             f"values must have shape ({n},) or ({n}, k) to match the points; got {vals.shape}"
         )
+    if not np.isfinite(vals).all():
+        bad = int(np.flatnonzero(~np.isfinite(vals.reshape(n, -1)).all(axis=1))[0])
+        raise ValueError(f"values contains a non-finite value (first at row {bad})")
     return np.ascontiguousarray(vals.reshape(n, -1)), flat
 
 
@@ -292,7 +295,8 @@ def natural_neighbor(
     Raises
     ------
     ValueError
-        Malformed inputs, no sites, or an unknown ``extrapolate``.
+        Malformed inputs (non-finite ``values`` included), no sites, or an unknown
+        ``extrapolate``.
 
     Examples
     --------
