@@ -178,3 +178,46 @@ def test_subdivide_does_not_launch_the_parallel_area_kernel_per_cell(monkeypatch
     assert sum(c.area for c in levels[1].cells) == pytest.approx(
         sum(o.area for o in top.openings), rel=1e-9
     )
+
+
+def test_geojson_output_keeps_the_input_crs(tmp_path):
+    # Projected (UTM) GeoJSON from QGIS carries a "crs" member; dropping it on output makes
+    # GIS tools read the service areas as lon/lat, thousands of km away from the input.
+    import json
+
+    crs = {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32633"}}
+    district = {
+        "type": "FeatureCollection",
+        "crs": crs,
+        "features": [
+            {
+                "type": "Feature",
+                "properties": {},
+                "geometry": {
+                    "type": "Polygon",
+                    "coordinates": [
+                        [[500000, 4100000], [510000, 4100000], [505000, 4108000], [500000, 4100000]]
+                    ],
+                },
+            }
+        ],
+    }
+    (tmp_path / "district.geojson").write_text(json.dumps(district))
+    design = tmp_path / "d.toml"
+    design.write_text(
+        '[design]\nunits = "m"\n[boundary]\nshape = "file"\nfile = "district.geojson"\n'
+        '[seeds]\ncount = 5\n[output]\nformats = ["geojson"]\n'
+    )
+    (out,) = build(design, tmp_path / "out")
+    data = json.loads(out.read_text())
+    assert data["crs"] == crs and len(data["features"]) == 5
+    # Without a crs in the input, none is written (RFC 7946: WGS 84).
+    (plain,) = build(
+        {
+            "boundary": {"width": 10, "height": 10},
+            "seeds": {"count": 3},
+            "output": {"formats": ["geojson"]},
+        },
+        tmp_path / "plain",
+    )
+    assert "crs" not in json.loads(plain.read_text())

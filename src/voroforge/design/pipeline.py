@@ -644,9 +644,32 @@ def render_preview(result: Result, *, size: int = 1200):
     return render_image(geoms, size=size, colors=colours, edge_width=0.6, sites=sites)
 
 
-def _geojson(result: Result, path: Path) -> Path:
+def _source_crs(result: Result, base: Path | None):
+    """The ``"crs"`` member of the boundary's or the seeds' GeoJSON file, or None.
+
+    QGIS writes one for projected data; copying it keeps the output where the input was.
+    """
+    import json
+
+    d = result.design
+    files = [d.boundary.file if d.boundary.shape == "file" else None]
+    files.append(d.seeds.file if d.seeds.method == "file" else None)
+    for name in files:
+        if not name or Path(name).suffix.lower() not in (".geojson", ".json"):
+            continue
+        try:
+            data = json.loads(_path(base, name, "").read_text(encoding="utf-8"))
+        except (OSError, ValueError, DesignError):
+            continue
+        if isinstance(data, dict) and isinstance(data.get("crs"), dict):
+            return data["crs"]
+    return None
+
+
+def _geojson(result: Result, path: Path, base: Path | None = None) -> Path:
     from ..io.geojson import write_geojson
 
+    crs = _source_crs(result, base)
     what = result.design.output.geojson
     if what == "cells":
         keep = ~shapely.is_empty(result.cells)
@@ -667,11 +690,11 @@ def _geojson(result: Result, path: Path) -> Path:
                 for name in sorted({k for p in kept for k in p}):
                     key = name if name not in (*props, "index", "area", "site") else f"site_{name}"
                     props[key] = [p.get(name) for p in kept]
-        return write_geojson(geoms, path, sites=sites, properties=props)
+        return write_geojson(geoms, path, sites=sites, properties=props, crs=crs)
     geoms = products(result)[what]
     if what == "edges":
         geoms = list(shapely.get_parts(result.edges))
-    return write_geojson(geoms, path)
+    return write_geojson(geoms, path, crs=crs)
 
 
 def build(
@@ -763,7 +786,7 @@ def build(
             render_preview(result, size=o.png_size).save(path)
             written.append(path)
         elif fmt == "geojson":
-            written.append(_geojson(result, path))
+            written.append(_geojson(result, path, base))
         elif fmt == "gif":
             with _located(source, overrides):
                 written.append(_gif(design, base, path, stage))

@@ -79,7 +79,7 @@ def feature_collection(geoms, *, sites=None, properties=None) -> dict:
     return {"type": "FeatureCollection", "features": features}
 
 
-def write_geojson(geoms, path, *, sites=None, properties=None) -> Path:
+def write_geojson(geoms, path, *, sites=None, properties=None, crs=None) -> Path:
     """Write polygons (for example ``diagram.cells``) as a GeoJSON FeatureCollection.
 
     Feature ``i`` is geometry ``i`` with properties ``{"index": i, "site": [x, y],
@@ -97,6 +97,10 @@ def write_geojson(geoms, path, *, sites=None, properties=None) -> Path:
         Site of each cell.
     properties : mapping of name to sequence, or sequence of dicts, optional
         Extra properties: columns of length ``n`` or one dict per feature.
+    crs : dict, optional
+        A legacy GeoJSON ``"crs"`` member (``{"type": "name", "properties": {"name":
+        "urn:ogc:def:crs:EPSG::32633"}}``) for coordinates that are not WGS 84 lon/lat, as
+        QGIS and GDAL read and write it; copied as given.
 
     Returns
     -------
@@ -114,7 +118,10 @@ def write_geojson(geoms, path, *, sites=None, properties=None) -> Path:
     collection = feature_collection(geoms, sites=sites, properties=properties)
     lines = [json.dumps(f, allow_nan=False, separators=(",", ":")) for f in collection["features"]]
     body = ",\n".join(lines)
-    text = '{"type":"FeatureCollection","features":[\n' + body + ("\n" if body else "") + "]}\n"
+    head = '{"type":"FeatureCollection",'
+    if crs is not None:
+        head += '"crs":' + json.dumps(crs, allow_nan=False, separators=(",", ":")) + ","
+    text = head + '"features":[\n' + body + ("\n" if body else "") + "]}\n"
     path = Path(path)
     path.write_text(text, encoding="utf-8")
     return path
