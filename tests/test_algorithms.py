@@ -182,7 +182,7 @@ def test_halfplane_grid_and_bucket_sort():
     """Every site lands in the bucket that contains it; the CSR covers all sites once."""
     rng = np.random.default_rng(5)
     xs, ys = rng.random(1000) * 7.0, rng.random(1000) * 0.01  # a flat strip
-    grid = _grid_shape(xs, ys)
+    grid = _grid_shape(xs, ys, 2.0)
     x0, y0, hx, hy, nx, ny = grid
     start, sx, sy, sidx = _bucket_sort(xs, ys, *grid)
     assert start[0] == 0 and start[-1] == 1000 and np.all(np.diff(start) >= 0)

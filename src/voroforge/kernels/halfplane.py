@@ -40,6 +40,7 @@ from .cells import _box_crossing
 from .predicates import circumcenter, incircle, orient2d
 
 _PER_BUCKET = 2.0  # mean sites per grid bucket
+_MAX_REFINE = 32.0  # most buckets per _PER_BUCKET sites that clustered input may get
 _CHUNK = 512  # cells per parallel work item
 _SLAB = 7  # slab vertices per cell of a chunk (the mean over a diagram is below 6)
 _CAP = 64  # initial per-cell scratch capacity (doubled when a cell needs more)
@@ -59,8 +60,11 @@ _LEFT, _BOTTOM, _RIGHT, _TOP = -1, -2, -3, -4
 
 
 @njit(**NJIT)
-def _grid_shape(xs, ys):
-    """Return ``(x0, y0, hx, hy, nx, ny)`` of a grid over the sites' bounding box."""
+def _grid_shape(xs, ys, per_bucket):
+    """Return ``(x0, y0, hx, hy, nx, ny)`` of a grid over the sites' bounding box.
+
+    About ``per_bucket`` sites per bucket on average.
+    """
     n = xs.shape[0]
     x0 = xs.min()
     y0 = ys.min()
@@ -71,7 +75,7 @@ def _grid_shape(xs, ys):
         span = max(abs(x0), abs(y0), 1.0)
     w = max(w, 1e-6 * span)
     h = max(h, 1e-6 * span)
-    nb = max(1.0, n / _PER_BUCKET)
+    nb = max(1.0, n / per_bucket)
     nx = int(min(max(np.sqrt(nb * w / h), 1.0), nb))
     ny = int(min(max(nb / nx, 1.0), nb))
     # a hair wider than the points so that int((x - x0) / hx) < nx for every site
@@ -681,6 +685,26 @@ def _second_pass(sites, orig, grid, box, counts, offsets, where, slab, fits, kma
             owner[dst + m] = -2
 
 
+def _adaptive_grid(xs, ys):
+    """The bucket grid and the sites sorted into it.
+
+    A uniform grid with ``_PER_BUCKET`` sites per bucket on average, refined when the sites
+    are clustered: if the median site shares its bucket with many more (the dense parts
+    hold most sites), the buckets shrink until it shares with about ``_PER_BUCKET``, up to
+    ``_MAX_REFINE`` times as many buckets. Sparse regions then scan more (empty) buckets,
+    but dense ones no longer test hundreds of sites per cell.
+    """
+    grid = _grid_shape(xs, ys, _PER_BUCKET)
+    sites = _bucket_sort(xs, ys, *grid)
+    occ = np.diff(sites[0])
+    median = float(np.median(np.repeat(occ, occ)))
+    if median > 2.0 * _PER_BUCKET:
+        refine = min(median / _PER_BUCKET, _MAX_REFINE)
+        grid = _grid_shape(xs, ys, _PER_BUCKET / refine)
+        sites = _bucket_sort(xs, ys, *grid)
+    return grid, sites
+
+
 def halfplane_cells(xs, ys, box, kmap=None):
     """Voronoi cells of distinct sites clipped to ``box``, by half-plane cutting.
 
@@ -721,8 +745,7 @@ def halfplane_cells(xs, ys, box, kmap=None):
     if n == 0:
         return np.zeros((0, 2)), np.zeros(1, np.int64), np.zeros(0, np.int64)
     boxa = np.ascontiguousarray(box, dtype=np.float64).reshape(4)
-    grid = _grid_shape(xs, ys)
-    sites = _bucket_sort(xs, ys, *grid)
+    grid, sites = _adaptive_grid(xs, ys)
     orig = (xs, ys)
     nchunks = (n + _CHUNK - 1) // _CHUNK
     per = _SLAB * min(_CHUNK, n) + 16
