@@ -14,7 +14,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import voroforge as vf
-from voroforge.kernels.halfplane import _bucket_sort, _grid_shape, halfplane_cells
+from voroforge.kernels.halfplane import _adaptive_grid, _bucket_sort, _grid_shape, halfplane_cells
 
 from catalogue import CATALOGUE, NAMES, as_domain, general_position
 from validate import symmetric_difference_areas
@@ -193,3 +193,22 @@ def test_halfplane_grid_and_bucket_sort():
         for t in range(start[b], start[b + 1]):
             assert x0 + ix * hx <= sx[t] <= x0 + (ix + 1) * hx * (1 + 1e-12)
             assert y0 + iy * hy <= sy[t] <= y0 + (iy + 1) * hy * (1 + 1e-12)
+
+
+def test_halfplane_grid_refines_for_clusters():
+    """Clustered sites get finer buckets (same cells, see the clustered comparison above)."""
+    rng = np.random.default_rng(9)
+    uniform = rng.random((4000, 2))
+    blobs = rng.random((4, 2))[rng.integers(0, 4, 4000)] + rng.normal(0, 0.002, (4000, 2))
+    (_, _, _, _, ux, uy), _ = _adaptive_grid(uniform[:, 0].copy(), uniform[:, 1].copy())
+    bx, by = blobs[:, 0].copy(), blobs[:, 1].copy()
+    (_, _, _, _, cx, cy), (start, _, _, _) = _adaptive_grid(bx, by)
+    assert ux * uy <= 2000
+    assert cx * cy >= 8 * ux * uy
+
+    def median_occupancy(start):
+        occ = np.diff(start)
+        return np.median(np.repeat(occ, occ))
+
+    coarse = _bucket_sort(bx, by, *_grid_shape(bx, by, 2.0))[0]
+    assert median_occupancy(start) <= median_occupancy(coarse) / 8
