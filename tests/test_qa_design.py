@@ -221,3 +221,25 @@ def test_geojson_output_keeps_the_input_crs(tmp_path):
         tmp_path / "plain",
     )
     assert "crs" not in json.loads(plain.read_text())
+
+
+def test_design_file_encodings(tmp_path, capsys):
+    from voroforge.cli import main
+
+    # Windows Notepad's UTF-8 with a BOM builds (tomllib alone says "Invalid statement"),
+    # and build-time errors still find their lines.
+    bom = tmp_path / "bom.toml"
+    bom.write_bytes(b"\xef\xbb\xbf" + BASE.encode() + b"[cells]\nweb = 2\n")
+    assert main(["build", str(bom), "-o", str(tmp_path / "o")]) == 0
+    bad = tmp_path / "bom2.toml"
+    bad.write_bytes(
+        b'\xef\xbb\xbf[boundary]\nshape = "file"\nfile = "none.svg"\n[seeds]\ncount = 3\n'
+    )
+    assert main(["build", str(bad)]) == 2
+    assert f"{bad}:3: boundary.file: file not found" in capsys.readouterr().err
+    # Latin-1 text: the file, the line and what to do, not a bare codec message.
+    latin = tmp_path / "latin.toml"
+    latin.write_bytes(BASE.encode() + b"# caf\xe9\n")
+    assert main(["build", str(latin)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"voroforge: error: {latin}:7: ") and "UTF-8" in err

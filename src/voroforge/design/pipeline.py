@@ -457,7 +457,7 @@ def _located(source, overrides: dict | None):
         if not isinstance(source, str | Path) or exc.source is not None:
             raise
         try:
-            lines = key_lines(Path(source).read_text(encoding="utf-8"))
+            lines = key_lines(Path(source).read_text(encoding="utf-8-sig"))
         except OSError:
             lines = {}
         touched = {str(k) for k in (overrides or {})}

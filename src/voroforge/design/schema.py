@@ -731,7 +731,13 @@ def load(source, *, overrides: dict | None = None) -> tuple[Design, Path | None]
         path = Path(source)
         name = str(path)
         base = path.resolve().parent
-        text = path.read_text(encoding="utf-8")
+        raw = path.read_bytes()
+        try:
+            text = raw.decode("utf-8-sig")  # a BOM (Windows Notepad) is not TOML's business
+        except UnicodeDecodeError as exc:
+            line = raw.count(b"\n", 0, exc.start) + 1
+            message = f"not UTF-8 text (byte 0x{raw[exc.start]:02x}); save the file as UTF-8"
+            raise DesignError([Issue("", line, message)], name) from None
         try:
             data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
