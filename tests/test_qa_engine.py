@@ -187,3 +187,23 @@ def test_natural_neighbor_rejects_non_finite_values(bad):
     vals[7, 1] = bad
     with pytest.raises(ValueError, match="values contains a non-finite value .*row 7"):
         vf.natural_neighbor(pts, vals, [0.5, 0.5])
+
+
+@pytest.mark.parametrize("scale", [1e-300, 1e-150, 1e150, 1e300])
+def test_queries_at_extreme_scales(scale):
+    # squared distances under/overflowed: locate tied everything (1e-300) or raised an
+    # IndexError (1e300); Sibson's incircle and areas gave NaN everywhere beyond 1e+-150
+    rng = np.random.default_rng(16)
+    pts = rng.random((30, 2))
+    q = rng.random((200, 2))
+    ref = np.argmin(((q[:, None] - pts[None]) ** 2).sum(-1), axis=1)
+    assert np.array_equal(vf.locate(pts * scale, q * scale), ref)
+    assert np.array_equal(vf.locate(pts, q), ref)
+    periodic = vf.voronoi(pts * scale, (0, 0, scale, scale), periodic=True)
+    assert np.array_equal(
+        periodic.locate(q * scale), vf.voronoi(pts, (0, 0, 1, 1), periodic=True).locate(q)
+    )
+    z = vf.natural_neighbor(pts * scale, 2 * pts[:, 0] - pts[:, 1], q * scale)
+    inside = np.isfinite(vf.natural_neighbor(pts, pts[:, 0], q))
+    assert np.array_equal(np.isfinite(z), inside) and inside.sum() > 100
+    assert np.allclose(z[inside], (2 * q[:, 0] - q[:, 1])[inside], rtol=0, atol=1e-12)

@@ -15,7 +15,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from ..kernels.natural import INSIDE, sibson
-from ._inputs import as_points
+from ._inputs import as_points, working_frame
 from .delaunay import delaunay
 
 #: A candidate this close (relative) to the best distance may be tied after rounding.
@@ -29,6 +29,12 @@ class _Locator:
         self.owners = np.flatnonzero(duplicate_of < 0)
         self.box = box
         pts = sites[self.owners]
+        # squared distances must stay normal doubles: at extreme scales (1e-300, 1e300) work
+        # on everything scaled by a power of two, which is exact and changes no comparison
+        self.k = working_frame(pts if box is None else np.vstack((pts, np.reshape(box, (2, 2)))))[1]
+        if self.k:
+            pts = np.ldexp(pts, self.k)
+            box = None if box is None else np.ldexp(np.asarray(box, dtype=np.float64), self.k)
         if box is None:
             self.origin = np.zeros(2)
             self.size = None
@@ -71,6 +77,7 @@ class _Locator:
         return rows[again], best[again]
 
     def query(self, q: np.ndarray) -> np.ndarray:
+        q = np.ldexp(q, self.k) if self.k else q
         tq = q if self.size is None else self._wrap(q)
         out = np.zeros(len(q), dtype=np.int64)
         rows = np.arange(len(q))
@@ -335,17 +342,21 @@ def natural_neighbor(
     nearest = loc.query(q) if len(q) else np.zeros(0, dtype=np.int64)
     out = np.full((len(q), vals.shape[1]), np.nan)
     if len(tri.triangles):
+        # the kernel's incircle and areas need degree-4 terms in the double range: at extreme
+        # scales it works on points, queries and gradients scaled by a power of two (exact)
+        work, k = working_frame(pts)
+        qk = np.ldexp(q, k) if k else q
         status = sibson(
-            np.ascontiguousarray(pts[:, 0]),
-            np.ascontiguousarray(pts[:, 1]),
+            np.ascontiguousarray(work[:, 0]),
+            np.ascontiguousarray(work[:, 1]),
             np.ascontiguousarray(tri.triangles.ravel()),
             np.asarray(tri.halfedges),
             vals,
-            grads,
+            np.ldexp(grads, -k) if k else grads,
             bool(smooth),
             nearest,
-            np.ascontiguousarray(q[:, 0]),
-            np.ascontiguousarray(q[:, 1]),
+            np.ascontiguousarray(qk[:, 0]),
+            np.ascontiguousarray(qk[:, 1]),
             out,
         )
     else:

@@ -108,7 +108,9 @@ def _proved(d: Diagram, cells: np.ndarray, box, margin: float) -> bool:
         np.minimum(v[:, 1] - (y0 - margin), (y1 + margin) - v[:, 1]),
     )
     owner = np.repeat(cells, per_cell)
-    diff = v - d.sites[owner]
+    side = max(x1 - x0, y1 - y0)  # squares in units of the box: no overflow at 1e300
+    room = room / side
+    diff = (v - d.sites[owner]) / side
     r2 = diff[:, 0] * diff[:, 0] + diff[:, 1] * diff[:, 1]
     return bool((room >= 0).all() and (room * room >= r2 * (1.0 + _PROOF_RTOL)).all())
 
@@ -254,10 +256,12 @@ def periodic_voronoi(points, boundary, *, algorithm: str = "delaunay", wrap: boo
         d.periodic = True
         d.wrapped = wrap
         return d
-    area = (x1 - x0) * (y1 - y0)
+    # the area in units of the longer side: (x1 - x0) * (y1 - y0) overflows at 1e300
+    side = max(x1 - x0, y1 - y0)
+    area = ((x1 - x0) / side) * ((y1 - y0) / side)
     # a few typical cell sizes, and at least ~2.5 radii of the largest empty circle expected
     # among n uniform sites (sqrt(area log n / (pi n))), so one pass is usually enough
-    margin = max(
+    margin = side * max(
         _MARGIN_CELLS * np.sqrt(area / n), 2.5 * np.sqrt(area * np.log(n + 1) / (np.pi * n))
     )
     for _ in range(_MAX_TRIES):
