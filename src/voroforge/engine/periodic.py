@@ -154,8 +154,29 @@ def _thick_pieces(d: Diagram, box, n: int) -> np.ndarray:
     cell on the torus, but an extra polygon part. Original copies (``< n``) are kept.
     """
     x0, y0, x1, y1 = box
-    idx = np.arange(len(d.sites))
-    return idx[(idx < n) | (d.areas > _rounding(box) * max(x1 - x0, y1 - y0))]
+    coords, (ring, poly, geom) = d.to_geoarrow()
+    img = np.arange(n, len(geom) - 1)
+    img = img[geom[img + 1] > geom[img]]
+    # shoelace of each image piece's (first, closed) ring, about its first vertex
+    lo = ring[poly[geom[img]]]
+    length = ring[poly[geom[img]] + 1] - lo - 1
+    k = (
+        np.repeat(lo, length)
+        + np.arange(int(length.sum()))
+        - np.repeat(np.cumsum(length) - length, length)
+    )
+    base = np.repeat(coords[lo], length, axis=0)
+    a = coords[k] - base
+    b = coords[k + 1] - base
+    area = 0.5 * np.abs(
+        np.bincount(
+            np.repeat(np.arange(len(img)), length),
+            a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0],
+            minlength=len(img),
+        )
+    )
+    thick = img[area > _rounding(box) * max(x1 - x0, y1 - y0)]
+    return np.concatenate((np.arange(n), thick))
 
 
 def _gather_pieces(d: Diagram, source: np.ndarray, n: int, keep: np.ndarray):
