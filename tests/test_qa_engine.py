@@ -203,6 +203,11 @@ def test_queries_at_extreme_scales(scale):
     assert np.array_equal(
         periodic.locate(q * scale), vf.voronoi(pts, (0, 0, 1, 1), periodic=True).locate(q)
     )
+    wrapped = vf.voronoi(pts * scale, (0, 0, scale, scale), periodic=True, wrap=True)
+    unit = vf.voronoi(pts, (0, 0, 1, 1), periodic=True, wrap=True)
+    assert shapely.get_num_geometries(wrapped.cells).tolist() == (
+        shapely.get_num_geometries(unit.cells).tolist()
+    )
     z = vf.natural_neighbor(pts * scale, 2 * pts[:, 0] - pts[:, 1], q * scale)
     inside = np.isfinite(vf.natural_neighbor(pts, pts[:, 0], q))
     assert np.array_equal(np.isfinite(z), inside) and inside.sum() > 100

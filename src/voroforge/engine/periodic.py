@@ -165,9 +165,10 @@ def _thick_pieces(d: Diagram, box, n: int) -> np.ndarray:
         + np.arange(int(length.sum()))
         - np.repeat(np.cumsum(length) - length, length)
     )
+    side = max(x1 - x0, y1 - y0)  # in box units: no under- or overflow at 1e+-300
     base = np.repeat(coords[lo], length, axis=0)
-    a = coords[k] - base
-    b = coords[k + 1] - base
+    a = (coords[k] - base) / side
+    b = (coords[k + 1] - base) / side
     area = 0.5 * np.abs(
         np.bincount(
             np.repeat(np.arange(len(img)), length),
@@ -175,7 +176,7 @@ def _thick_pieces(d: Diagram, box, n: int) -> np.ndarray:
             minlength=len(img),
         )
     )
-    thick = img[area > _rounding(box) * max(x1 - x0, y1 - y0)]
+    thick = img[area > _rounding(box) / side]
     return np.concatenate((np.arange(n), thick))
 
 
