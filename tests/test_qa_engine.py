@@ -212,3 +212,24 @@ def test_queries_at_extreme_scales(scale):
     inside = np.isfinite(vf.natural_neighbor(pts, pts[:, 0], q))
     assert np.array_equal(np.isfinite(z), inside) and inside.sum() > 100
     assert np.allclose(z[inside], (2 * q[:, 0] - q[:, 1])[inside], rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("scale", [1e-150, 1e150])
+@pytest.mark.parametrize("method", ["lloyd", "lbfgs"])
+def test_lloyd_at_extreme_scales(scale, method):
+    # cell moments grow with the 2nd-4th power of the size: at 1e150 they overflowed and the
+    # sites became NaN ("points contains NaN coordinates"), at 1e-150 they underflowed
+    pts = np.random.default_rng(19).random((40, 2))
+    ras = (np.random.default_rng(1).random((5, 6)), (0.1, -0.1, 0.9, 1.2))
+    for density, scaled in [
+        (None, None),
+        (lambda x, y: 1 + 3 * x, lambda x, y: 1 + 3 * x / scale),
+        (ras, (ras[0], tuple(np.array(ras[1]) * scale))),
+    ]:
+        unit = vf.lloyd(pts, (0, 0, 1, 1), iterations=4, method=method, density=density)
+        big = vf.lloyd(
+            pts * scale, (0, 0, scale, scale), iterations=4, method=method, density=scaled
+        )
+        assert np.allclose(big.points / scale, unit.points, rtol=0, atol=1e-12)
+        assert np.allclose(big.shift / scale, unit.shift, rtol=1e-12, atol=0)
+        assert np.allclose(big.diagram.areas / scale**2, unit.diagram.areas, rtol=1e-12, atol=0)

@@ -15,7 +15,7 @@ import numpy as np
 import shapely
 
 from ._inputs import as_points, duplicate_map
-from ._integrate import Integrator
+from ._integrate import Integrator, _raster
 from ._threads import serial_below
 from .domain import make_domain
 from .power import _fit, _targets
@@ -146,7 +146,9 @@ def lloyd(
     get empty cells, so they wait one iteration while the first copy moves to its centroid,
     then they have cells of their own and the sites separate. The centroid of a cell cut by
     a concave boundary can lie outside the domain (that site then gets the domain part
-    nearest to it, as any outside site).
+    nearest to it, as any outside site). Domains larger than about ``2**60`` or smaller than
+    ``2**-60`` are relaxed scaled by a power of two (exact); their energies, which grow with
+    the 4th power of the size, can then round to 0 or ``inf``.
 
     Examples
     --------
@@ -172,12 +174,70 @@ def lloyd(
                 f"points has duplicate sites (rows {int(dup[i])} and {i}); areas= needs "
                 "distinct sites"
             )
+    k = _size_exponent(dom)
+    if k:
+        return _rescaled(z, dom, k, iterations, tol, density, method, targets)
     with serial_below(len(z)):
         if method == "lbfgs":
             return _lbfgs(z, dom, bnd, integ, int(iterations), stop)
         if targets is not None:
             return _capacity(z, dom, integ, targets, int(iterations), stop)
         return _lloyd(z, bnd, integ, int(iterations), stop)
+
+
+def _size_exponent(dom) -> int:
+    """0, or ``k`` such that the domain scaled by ``2**k`` has a size near 1.
+
+    Masses, moments and energies grow with the 2nd to 4th power of the cells' size: beyond
+    about ``2**+-60`` they would leave the double range (energy ``inf``, centroids NaN).
+    """
+    x0, y0, x1, y1 = dom.bounds
+    e = int(np.frexp(max(x1 - x0, y1 - y0))[1])
+    return 0 if -60 <= e <= 60 else -e
+
+
+def _rescaled(z, dom, k, iterations, tol, density, method, targets):
+    """:func:`lloyd` on everything scaled by ``2**k`` (exact), mapped back."""
+    from .power import _compute
+
+    if callable(density) and _raster(density) is None:
+        func = density
+
+        def density(x, y):
+            return func(np.ldexp(x, -k), np.ldexp(y, -k))
+
+    elif density is not None:
+        values, box = _raster(density)
+        density = (values, np.ldexp(box, k))
+    sdom = dom.scaled(k)
+    r = lloyd(
+        np.ldexp(z, k),
+        sdom.bounds if sdom.is_rect else sdom.geometry,
+        iterations=iterations,
+        tol=tol,
+        density=density,
+        method=method,
+        areas=None if targets is None else np.ldexp(targets, 2 * k),
+    )
+    pts = np.ldexp(r.points, -k)
+    bnd = dom.bounds if dom.is_rect else dom.geometry
+    if r.weights is None:
+        w, d = None, voronoi(pts, bnd)
+    else:
+        w = np.ldexp(r.weights, -2 * k)
+        d = _compute(pts, w, dom)
+    with np.errstate(over="ignore", under="ignore"):
+        energy = np.ldexp(r.energy, -4 * k)  # 0 or inf where it leaves the double range
+    return Relaxation(
+        pts,
+        d,
+        energy,
+        np.ldexp(r.shift, -k),
+        np.array(r.elapsed),
+        r.iterations,
+        r.method,
+        w,
+    )
 
 
 def _lloyd(z, bnd, integ, iterations, stop):
