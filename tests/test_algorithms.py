@@ -76,7 +76,14 @@ def test_catalogue_same_cells(name):
 
 @pytest.mark.parametrize(
     ("kind", "seed"),
-    [("uniform", 0), ("uniform", 1), ("clustered", 2), ("lattice", 3), ("outside", 4)],
+    [
+        ("uniform", 0),
+        ("uniform", 1),
+        ("clustered", 2),
+        ("lattice", 3),
+        ("outside", 4),
+        ("big_box", 5),
+    ],
 )
 def test_random_same_cells(kind, seed):
     rng = np.random.default_rng(seed)
@@ -89,8 +96,13 @@ def test_random_same_cells(kind, seed):
     elif kind == "lattice":
         # coarse lattice: cocircular squares, collinear rows and duplicates everywhere
         pts = rng.integers(0, 40, (2500, 2)) / 39.0
-    else:
+    elif kind == "outside":
         pts = rng.uniform(-0.5, 1.5, (1500, 2))
+    else:
+        # hull cells reach 10 units past the sites: the half-plane search must stop by
+        # vertex distances, not by the (huge) cell radius
+        pts = rng.random((1500, 2))
+        boundary = (-10.0, -10.0, 11.0, 11.0)
     ref = vf.voronoi(pts, boundary)
     for alg in OTHERS:
         _assert_same(ref, vf.voronoi(pts, boundary, algorithm=alg), None)

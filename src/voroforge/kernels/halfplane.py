@@ -203,6 +203,47 @@ def _ring_gap(ix, iy, ring, fx0, fx1, fy0, fy1, hx, hy, nx, ny):
     return -1.0 if gap == np.inf else gap
 
 
+@njit(**NJIT)
+def _rect_dist2(x, y, x0, y0, x1, y1):
+    """Squared distance from ``(x, y)`` to the rectangle ``[x0, x1] x [y0, y1]`` (inf if empty)."""
+    if x0 >= x1 or y0 >= y1:
+        return np.inf
+    dx = max(x0 - x, 0.0, x - x1)
+    dy = max(y0 - y, 0.0, y - y1)
+    return dx * dx + dy * dy
+
+
+@njit(**NJIT)
+def _unscanned_clear(px, py, a, m, cx, cy, ix, iy, ring, grid):
+    """Whether no site in the buckets not yet scanned can cut the cell.
+
+    The scanned buckets form the square of rings ``< ring`` around the site's bucket; the
+    rest of the grid is four strips around it. A site ``q`` cuts only if some vertex ``v``
+    is nearer to ``q`` than to the site, so the cell is final once every vertex is farther
+    from all four strips than from the site (with the same margin as the radius bound).
+    """
+    x0, y0, hx, hy, nx, ny = grid
+    gx1 = x0 + nx * hx
+    gy1 = y0 + ny * hy
+    sx0 = max(x0 + (ix - ring + 1) * hx, x0)
+    sx1 = min(x0 + (ix + ring) * hx, gx1)
+    sy0 = max(y0 + (iy - ring + 1) * hy, y0)
+    sy1 = min(y0 + (iy + ring) * hy, gy1)
+    for u in range(a, a + m):
+        vx = px[u] + cx
+        vy = py[u] + cy
+        own = _REACH * 0.25 * (px[u] * px[u] + py[u] * py[u])  # |v - site|^2, with margin
+        if _rect_dist2(vx, vy, x0, y0, sx0, gy1) <= own:  # left strip
+            return False
+        if _rect_dist2(vx, vy, sx1, y0, gx1, gy1) <= own:  # right strip
+            return False
+        if _rect_dist2(vx, vy, sx0, y0, sx1, sy0) <= own:  # bottom strip
+            return False
+        if _rect_dist2(vx, vy, sx0, sy1, sx1, gy1) <= own:  # top strip
+            return False
+    return True
+
+
 # ---------------------------------------------------------------------------------------------
 # exact finishing: the ring of neighbours is checked with exact predicates, then every vertex
 # is computed from its sites in a fixed order, so the cells sharing it agree bit for bit
@@ -521,6 +562,10 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
                 # voro++'s stop radius: a site farther than 2 r cannot cut the cell
                 gap = _ring_gap(ix, iy, ring, fx0, fx1, fy0, fy1, hx, hy, nx, ny)
                 if gap < 0.0 or gap * gap > _REACH * r2:
+                    break
+                # a cell reaching far past the sites (a hull site in a big box) never meets
+                # that bound: ask each vertex whether the unscanned buckets come nearer
+                if _unscanned_clear(px, py, a, m, cx, cy, ix, iy, ring, grid):
                     break
             # gather the ring's sites that can still cut, nearest first, then cut with them:
             # near bisectors shrink the cell early, so far ones fail the cheap radius test
