@@ -233,3 +233,12 @@ def test_lloyd_at_extreme_scales(scale, method):
         assert np.allclose(big.points / scale, unit.points, rtol=0, atol=1e-12)
         assert np.allclose(big.shift / scale, unit.shift, rtol=1e-12, atol=0)
         assert np.allclose(big.diagram.areas / scale**2, unit.diagram.areas, rtol=1e-12, atol=0)
+
+
+def test_power_locate_names_a_bad_query():
+    d = vf.power(np.random.default_rng(0).random((10, 2)), np.arange(10) * 0.01, (0, 0, 1, 1))
+    with pytest.raises(ValueError, match="xy must be"):  # was numpy's bare message
+        d.locate("ab")
+    assert (
+        d.locate([0.5, 0.5]) == vf.power(d.sites, d.weights, (0, 0, 1, 1)).locate([[0.5, 0.5]])[0]
+    )

@@ -64,9 +64,9 @@ class PowerDiagram(Diagram):
         int or (m,) int64
             Site index (the owner for duplicated sites; exact ties go to the lowest index).
         """
-        raw = np.asarray(xy, dtype=np.float64)
-        single = raw.shape == (2,)
-        q = as_points(raw.reshape(-1, 2) if single else raw, name="xy")
+        from .interpolate import _query_points
+
+        q, single = _query_points(xy)
         owners = np.flatnonzero(self.duplicate_of < 0)
         if not len(owners):
             raise ValueError("the diagram has no sites to locate")
