@@ -129,6 +129,9 @@ def test_periodic_wrap_has_no_rounding_slivers(k):
     assert all(len(shapely.get_parts(c)) == 1 for c in w.cells)
     assert abs(w.areas.sum() - 1.0) <= 1e-14
     assert w.describe().euler_ok
+    # the seams inside the box, each once: k - 1 vertical and k - 1 horizontal lines
+    length = np.hypot(*(w.edges.coords[:, 1] - w.edges.coords[:, 0]).T)
+    assert length.min() > 0.5 * h and abs(length.sum() - 2 * (k - 1)) <= 1e-12
     # the tiled reference: each site's cell is the h x h square around it
     ref = shapely.box(*(g - h / 2).T, *(g + h / 2).T)
     assert np.allclose(w.areas, shapely.area(ref), rtol=1e-12, atol=0)

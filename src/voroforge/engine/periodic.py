@@ -238,7 +238,7 @@ def _buffers(cells: np.ndarray):
     return np.ascontiguousarray(coords), ring.astype(np.int64), poly.astype(np.int64), geom
 
 
-def _torus_edges(d: Diagram, source, shift, n: int, wrap: bool, box) -> Edges:
+def _torus_edges(d: Diagram, source, shift, n: int, wrap: bool, pieces=None) -> Edges:
     pairs = d.edges.pairs
     coords = d.edges.coords
     a = pairs[:, 0]
@@ -246,9 +246,10 @@ def _torus_edges(d: Diagram, source, shift, n: int, wrap: bool, box) -> Edges:
     sa = source[a]
     sb = source[b]
     if wrap:
-        # edges of rounding slivers (see _thick_pieces) are a few ulps long
-        length = np.hypot(*(coords[:, 1] - coords[:, 0]).T)
-        keep = length > _rounding(box)
+        # not the edges of rounding slivers (see _thick_pieces)
+        kept = np.zeros(len(d.sites), dtype=bool)
+        kept[pieces] = True
+        keep = kept[a] & kept[b]
     else:
         # each torus edge once: where the lower-index cell is the original copy (a self
         # edge, between a cell and its own image, where the image lies on the positive side)
@@ -314,7 +315,7 @@ def periodic_voronoi(points, boundary, *, algorithm: str = "delaunay", wrap: boo
         p = poly[: g[-1] + 1]
         r = ring[: p[-1] + 1]
         buffers = (coords[: r[-1]].copy(), r.copy(), p.copy(), g.copy())
-    edges = _torus_edges(d, source, shift, n, wrap, box)
+    edges = _torus_edges(d, source, shift, n, wrap, keep if wrap else None)
     dom = make_domain(box, pts)
     out = Diagram(
         np.ascontiguousarray(d.sites[:n]),
