@@ -225,6 +225,65 @@ def _collinear(n, idx, span, direction, z, active):
     return (*_pairs_csr(n, ch[:-1], ch[1:]), active & keep)
 
 
+def _share_vertices(closed, lengths, own, box, n):
+    """Give every cell the same bits for a vertex it shares with its neighbours (in place).
+
+    Each cell cuts its own ring, so the vertex where cells ``i``, ``j`` and ``k`` meet comes
+    out a few ulps apart in the three rings, and a union of the cells kept slivers between
+    them. A vertex is named by the sites whose bisectors make it (its edges' owners and its
+    cell; for a crossing of a bisector with the box, the box side instead of the third
+    site), and all rings take the coordinates that the first ring naming it has.
+    """
+    m = len(closed)
+    if not m:
+        return
+    cell = np.repeat(np.arange(n), np.diff(lengths))
+    start = np.repeat(lengths[:-1], np.diff(lengths))
+    nxt_owner = own  # edge from vertex k to k + 1 (-2 on the closing repeat)
+    prev = np.arange(m) - 1
+    first = np.arange(m) == start
+    size = np.repeat(np.diff(lengths), np.diff(lengths))
+    prev[first] = (start + size - 2)[first]  # the last open vertex precedes the first
+    prev_owner = own[prev]
+    is_open = own != -2
+    both = is_open & (nxt_owner >= 0) & (prev_owner >= 0) & (nxt_owner != prev_owner)
+    one = is_open & ((nxt_owner >= 0) != (prev_owner >= 0))
+    x0, y0, x1, y1 = box
+    xy = closed
+    side = np.select(
+        [xy[:, 0] == x0, xy[:, 1] == y0, xy[:, 0] == x1, xy[:, 1] == y1], [0, 1, 2, 3], -1
+    )
+    one &= side >= 0
+    # where several cells meet at one point (power-cocircular sites) a ring can have two
+    # vertices a few ulps apart, and their shared copies could swap them: leave those alone
+    nxt = np.arange(m) + 1
+    last_open = start + size - 2
+    nxt[np.arange(m) == last_open] = start[np.arange(m) == last_open]
+    nxt = np.minimum(nxt, m - 1)
+    near = 1e-9 * max(x1 - x0, y1 - y0)
+    gap = np.minimum(np.abs(xy - xy[prev]).max(axis=1), np.abs(xy - xy[nxt]).max(axis=1))
+    crowded = gap <= near
+    both &= ~crowded
+    one &= ~crowded
+    other = np.where(nxt_owner >= 0, nxt_owner, prev_owner)
+    third = np.where(both, np.maximum(nxt_owner, prev_owner), n + side)
+    second = np.where(both, np.minimum(nxt_owner, prev_owner), other)
+    trip = np.sort(np.stack((cell, second, third), axis=1), axis=1)
+    sel = np.flatnonzero(both | one)
+    if not len(sel):
+        return
+    base = n + 4
+    if base**3 < 2**62:
+        key = (trip[sel, 0] * base + trip[sel, 1]) * base + trip[sel, 2]
+        _, first_of, inverse = np.unique(key, return_index=True, return_inverse=True)
+    else:
+        _, first_of, inverse = np.unique(trip[sel], axis=0, return_index=True, return_inverse=True)
+    closed[sel] = closed[sel[first_of[inverse.ravel()]]]
+    # the closing repeat follows its ring's first vertex
+    last = lengths[1:][np.diff(lengths) > 0] - 1
+    closed[last] = closed[lengths[:-1][np.diff(lengths) > 0]]
+
+
 def _compute(pts: np.ndarray, w: np.ndarray, dom: Domain) -> PowerDiagram:
     """Power diagram of validated input (no copies of ``pts``/``w`` are taken)."""
     n = len(pts)
@@ -239,6 +298,7 @@ def _compute(pts: np.ndarray, w: np.ndarray, dom: Domain) -> PowerDiagram:
     box = np.array(dom.bounds, dtype=np.float64)
     indptr, indices, active = _neighbors(x, y, w, box, active)
     closed, lengths, own = power_cells(x, y, w, indptr, indices, box, active)
+    _share_vertices(closed, lengths, own, box, n)
     nonempty = lengths[1:] > lengths[:-1]
     ring_offsets = np.concatenate(([0], lengths[1:][nonempty]))
     ring_cell = np.flatnonzero(nonempty)

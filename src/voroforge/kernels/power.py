@@ -24,6 +24,21 @@ from ..config import NJIT, NJIT_PARALLEL
 
 
 @njit(**NJIT)
+def _crossing(ax, ay, sa, bx, by, sb):
+    """Where the segment ``a -> b`` meets the clip line (signed values ``sa``, ``sb``).
+
+    Interpolated from the endpoint nearer the line: ``a + 1.0 * (b - a)`` need not round to
+    ``b``, and a crossing at a box corner then landed just past it (a self-intersecting
+    spike in the ring).
+    """
+    if abs(sa) <= abs(sb):
+        t = sa / (sa - sb)
+        return ax + t * (bx - ax), ay + t * (by - ay)
+    t = sb / (sb - sa)
+    return bx + t * (ax - bx), by + t * (ay - by)
+
+
+@njit(**NJIT)
 def _clip(px, py, po, m, qx, qy, qo, dx, dy, c, ox, oy, j):
     """Keep the part of polygon ``p`` (``m`` vertices) where ``2 d.(x - o) <= c``; into ``q``."""
     out = 0
@@ -39,17 +54,13 @@ def _clip(px, py, po, m, qx, qy, qo, dx, dy, c, ox, oy, j):
         if s_prev <= 0.0:
             if s > 0.0:
                 # leaving: the crossing starts an edge on the clip line
-                t = s_prev / (s_prev - s)
-                qx[out] = px[kp] + t * (px[k] - px[kp])
-                qy[out] = py[kp] + t * (py[k] - py[kp])
+                qx[out], qy[out] = _crossing(px[kp], py[kp], s_prev, px[k], py[k], s)
                 qo[out] = j
                 out += 1
         else:
             if s <= 0.0:
                 # entering: the crossing continues the original edge
-                t = s_prev / (s_prev - s)
-                qx[out] = px[kp] + t * (px[k] - px[kp])
-                qy[out] = py[kp] + t * (py[k] - py[kp])
+                qx[out], qy[out] = _crossing(px[kp], py[kp], s_prev, px[k], py[k], s)
                 qo[out] = po[kp]
                 out += 1
         if s <= 0.0:
