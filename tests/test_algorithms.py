@@ -14,6 +14,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import voroforge as vf
+import voroforge.kernels.halfplane as hp
 from voroforge.kernels.halfplane import _adaptive_grid, _bucket_sort, _grid_shape, halfplane_cells
 
 from catalogue import CATALOGUE, NAMES, as_domain, general_position
@@ -224,3 +225,24 @@ def test_halfplane_grid_refines_for_clusters():
 
     coarse = _bucket_sort(bx, by, *_grid_shape(bx, by, 2.0))[0]
     assert median_occupancy(start) <= median_occupancy(coarse) / 4
+
+
+def test_halfplane_overflowing_chunks_rebuilt():
+    """Chunks whose cells outgrow the per-chunk slab are rebuilt: the cells stay the same."""
+    n = 2000
+    line = np.column_stack((np.linspace(0.0, 1.0, n), np.full(n, 0.5)))
+    pts = np.concatenate((line, np.random.default_rng(1).random((20, 2))))
+    xs, ys = pts[:, 0].copy(), pts[:, 1].copy()
+    # the first pass alone, to make sure this input does take the rebuild path
+    grid, sites = _adaptive_grid(xs, ys)
+    nchunks = -(-len(xs) // hp._CHUNK)
+    per = hp._SLAB * min(hp._CHUNK, len(xs)) + 16
+    fits = np.zeros(nchunks, np.bool_)
+    slabs = [np.zeros(nchunks * per), np.zeros(nchunks * per), np.zeros(nchunks * per, np.int64)]
+    counts = np.zeros(len(xs), np.int64)
+    where = np.zeros(len(xs), np.int64)
+    box = np.array([0.0, 0.0, 1.0, 1.0])
+    hp._first_pass(sites, (xs, ys), grid, box, counts, where, *slabs, fits)
+    assert not fits.all()
+    ref = vf.voronoi(pts, (0.0, 0.0, 1.0, 1.0))
+    _assert_same(ref, vf.voronoi(pts, (0.0, 0.0, 1.0, 1.0), algorithm="halfplane"), None)

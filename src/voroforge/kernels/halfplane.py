@@ -646,19 +646,19 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
                     watch[keep] = t
                     keep += 1
             ms = _settle(sidx[k], lab, m, ss, watch, keep, sidx, xs, ys, vx, vy)
-            direct = fits and pos + max(m, ms) <= dx.shape[0]
+            # emitted to scratch first: only then is the exact length known, and a rebuilt
+            # chunk's output (see _second_pass) has exactly the room the first pass counted
             c = -1
             if ms >= 3:
-                if direct:
-                    c = _emit_exact(sidx[k], lab, ms, vx, vy, xs, ys, box, dx, dy, do, pos)
-                else:
-                    c = _emit_exact(sidx[k], lab, ms, vx, vy, xs, ys, box, ox, oy, oo, 0)
+                c = _emit_exact(sidx[k], lab, ms, vx, vy, xs, ys, box, ox, oy, oo, 0)
             if c < 0:
-                if direct:
-                    c = _emit(px, py, po, a, m, cx, cy, box, dx, dy, do, pos)
-                else:
-                    c = _emit(px, py, po, a, m, cx, cy, box, ox, oy, oo, 0)
-            if not direct:
+                c = _emit(px, py, po, a, m, cx, cy, box, ox, oy, oo, 0)
+            if fits and pos + c <= dx.shape[0]:
+                for t in range(c):
+                    dx[pos + t] = ox[t]
+                    dy[pos + t] = oy[t]
+                    do[pos + t] = oo[t]
+            else:
                 fits = False
         counts[sidx[k]] = c
         where[k] = pos
@@ -690,44 +690,71 @@ def _first_pass(sites, orig, grid, box, counts, where, slab_x, slab_y, slab_o, f
 
 
 @njit(**NJIT_PARALLEL)
-def _second_pass(sites, orig, grid, box, counts, offsets, where, slab, fits, kmap, coords, owner):
-    """Copy every cell to its place in the output; rebuild the chunks that overflowed.
+def _second_pass(sidx, counts, offsets, where, slab, fits, over, obase, kmap, coords, owner):
+    """Copy every cell to its place in the output, closing rings and mapping owners.
 
-    Rings are closed on the way (first vertex repeated, owner -2 there) and owners mapped
-    through ``kmap``.
+    A chunk that fit its slab is read from there; the others were rebuilt into ``over`` (at
+    ``obase[ch]``). Rings are closed on the way (first vertex repeated, owner -2 there) and
+    owners mapped through ``kmap``.
     """
-    sidx = sites[3]
     n = sidx.shape[0]
     slab_x, slab_y, slab_o = slab
+    over_x, over_y, over_o = over
     per = slab_x.shape[0] // fits.shape[0]
     for ch in prange(fits.shape[0]):
         k0 = ch * _CHUNK
         k1 = min((ch + 1) * _CHUNK, n)
-        lo = ch * per
-        xs, ys, os = slab_x[lo : lo + per], slab_y[lo : lo + per], slab_o[lo : lo + per]
-        if not fits[ch]:  # rebuild the chunk into buffers of the size now known
-            total = 0
-            for k in range(k0, k1):
-                total += counts[sidx[k]]
-            xs = np.zeros(total)
-            ys = np.zeros(total)
-            os = np.zeros(total, np.int64)
-            _cells(k0, k1, sites, orig, grid, box, counts, where, xs, ys, os)
-        for k in range(k0, k1):
-            i = sidx[k]
-            m = counts[i]
-            if m == 0:
-                continue
-            dst = offsets[i]
-            src = where[k]
-            for t in range(m):
-                coords[dst + t, 0] = xs[src + t]
-                coords[dst + t, 1] = ys[src + t]
-                o = os[src + t]
-                owner[dst + t] = kmap[o] if o >= 0 else -1
-            coords[dst + m, 0] = xs[src]
-            coords[dst + m, 1] = ys[src]
-            owner[dst + m] = -2
+        if fits[ch]:
+            _copy_cells(
+                k0,
+                k1,
+                sidx,
+                counts,
+                offsets,
+                where,
+                ch * per,
+                slab_x,
+                slab_y,
+                slab_o,
+                kmap,
+                coords,
+                owner,
+            )
+        else:
+            _copy_cells(
+                k0,
+                k1,
+                sidx,
+                counts,
+                offsets,
+                where,
+                obase[ch],
+                over_x,
+                over_y,
+                over_o,
+                kmap,
+                coords,
+                owner,
+            )
+
+
+@njit(**NJIT)
+def _copy_cells(k0, k1, sidx, counts, offsets, where, base, xs, ys, os, kmap, coords, owner):
+    for k in range(k0, k1):
+        i = sidx[k]
+        m = counts[i]
+        if m == 0:
+            continue
+        dst = offsets[i]
+        src = base + where[k]
+        for t in range(m):
+            coords[dst + t, 0] = xs[src + t]
+            coords[dst + t, 1] = ys[src + t]
+            o = os[src + t]
+            owner[dst + t] = kmap[o] if o >= 0 else -1
+        coords[dst + m, 0] = xs[src]
+        coords[dst + m, 1] = ys[src]
+        owner[dst + m] = -2
 
 
 def _adaptive_grid(xs, ys):
@@ -805,15 +832,29 @@ def halfplane_cells(xs, ys, box, kmap=None):
         numba.set_num_threads(1)  # thread start-up costs more than small inputs take
     try:
         _first_pass(sites, orig, grid, boxa, counts, where, slab_x, slab_y, slab_o, fits)
+        # the rare chunks that overflowed their slab are built again, now that their size
+        # is known, one after another into one overflow buffer
+        sidx = sites[3]
+        obase = np.zeros(nchunks, np.int64)
+        total = 0
+        for ch in np.flatnonzero(~fits):
+            obase[ch] = total
+            total += int(counts[sidx[ch * _CHUNK : (ch + 1) * _CHUNK]].sum())
+        over = (np.zeros(total), np.zeros(total), np.zeros(total, np.int64))
+        for ch in np.flatnonzero(~fits):
+            k0 = ch * _CHUNK
+            k1 = min((ch + 1) * _CHUNK, n)
+            lo = obase[ch]
+            hi = lo + int(counts[sidx[k0:k1]].sum())
+            views = (over[0][lo:hi], over[1][lo:hi], over[2][lo:hi])
+            _cells(k0, k1, sites, orig, grid, boxa, counts, where, *views)
         offsets = np.zeros(n + 1, np.int64)
         np.cumsum(np.where(counts > 0, counts + 1, 0), out=offsets[1:])
         k = int(offsets[-1])
         coords = np.empty((k, 2))  # noqa: TID251 - every slot is written by _second_pass
         owner = np.empty(k, np.int64)  # noqa: TID251 - every slot is written by _second_pass
         slab = (slab_x, slab_y, slab_o)
-        _second_pass(
-            sites, orig, grid, boxa, counts, offsets, where, slab, fits, kmap, coords, owner
-        )
+        _second_pass(sidx, counts, offsets, where, slab, fits, over, obase, kmap, coords, owner)
     finally:
         numba.set_num_threads(threads)
     return coords, offsets, owner
