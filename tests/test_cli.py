@@ -189,7 +189,7 @@ def test_check_prints_table_and_strict_exit(tmp_path, capsys):
     ("argv", "message"),
     [
         (["voronoi", "{tmp}/missing.csv", "-o", "{tmp}/x.svg"], "missing.csv: no such file"),
-        (["voronoi", "{pts}", "-o", "{tmp}/x.dxf"], "unsupported output type '.dxf'"),
+        (["voronoi", "{pts}", "-o", "{tmp}/x.pdf"], "unsupported output type '.pdf'"),
         (["voronoi", "{pts}", "-o", "{tmp}/x.svg", "--boundary", "1,2"], "not xmin,ymin,xmax,ymax"),
         (["voronoi", "{bad}", "-o", "{tmp}/x.svg"], "line 3: 'oops' is not a number"),
         (["voronoi", "{pts}", "-o", "{tmp}/no/such/dir/x.svg"], "x.svg"),
