@@ -243,3 +243,30 @@ def test_design_file_encodings(tmp_path, capsys):
     assert main(["build", str(latin)]) == 2
     err = capsys.readouterr().err
     assert err.startswith(f"voroforge: error: {latin}:7: ") and "UTF-8" in err
+
+
+def test_jittered_seeds_follow_the_documented_offset():
+    # seeds.offset ("lattice shift") was silently ignored for method = "jittered".
+    from voroforge.design import populate
+    from voroforge.design.pipeline import compute
+    from voroforge.design.schema import load
+
+    box = shapely.box(0, 0, 100, 60)
+    plain = populate.grid(box, 10, offset=(3, 4))
+    still = populate.jittered(box, 10, jitter=0.0, seed=1, offset=(3, 4))
+    assert np.allclose(np.sort(still, axis=0), np.sort(plain, axis=0))
+    seeds = {"method": "jittered", "spacing": 10, "jitter": 0.0, "offset": [3, 4]}
+    design, base = load({"boundary": {"width": 100, "height": 60}, "seeds": seeds})
+    sites = compute(design, base).sites
+    assert np.allclose(np.sort(sites, axis=0), np.sort(plain, axis=0))
+
+
+def test_seed_file_errors_name_seeds_file(tmp_path):
+    from voroforge.design.schema import DesignError
+
+    (tmp_path / "pts.csv").write_text("10,10\n20,abc\n")
+    (tmp_path / "d.toml").write_text(
+        '[boundary]\nwidth = 60\nheight = 60\n[seeds]\nmethod = "file"\nfile = "pts.csv"\n'
+    )
+    with pytest.raises(DesignError, match=r"d\.toml:6: seeds\.file: .*'abc' is not a number"):
+        build(tmp_path / "d.toml", tmp_path / "out")

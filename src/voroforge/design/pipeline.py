@@ -201,7 +201,9 @@ def _seeds(design: Design, domain, field_fn, base: Path | None) -> np.ndarray:
     if s.method == "hexgrid":
         return populate.hexgrid(domain, s.spacing, angle=s.angle, offset=s.offset)
     if s.method == "jittered":
-        return populate.jittered(domain, s.spacing, jitter=s.jitter, seed=seed, angle=s.angle)
+        return populate.jittered(
+            domain, s.spacing, jitter=s.jitter, seed=seed, angle=s.angle, offset=s.offset
+        )
     if s.method == "poisson":
         use = field_fn if s.use_field else None
         if s.use_field and field_fn is None:
@@ -211,7 +213,8 @@ def _seeds(design: Design, domain, field_fn, base: Path | None) -> np.ndarray:
         if field_fn is None:
             raise _fail("seeds.method", "'density' needs at least one [[attractors]] table")
         return populate.by_density(domain, s.count, field_fn, seed=seed)
-    pts = populate.from_file(_path(base, s.file, "seeds.file"))
+    with _section("seeds.file"):
+        pts = populate.from_file(_path(base, s.file, "seeds.file"))
     inside = shapely.contains_xy(domain, pts[:, 0], pts[:, 1])
     return pts[inside]
 

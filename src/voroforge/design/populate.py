@@ -197,7 +197,7 @@ def hexgrid(boundary, spacing, *, angle=0.0, offset=(0.0, 0.0)) -> np.ndarray:
     return np.ascontiguousarray(pts[_inside(geom, pts)])
 
 
-def jittered(boundary, spacing, *, jitter=0.5, seed, angle=0.0) -> np.ndarray:
+def jittered(boundary, spacing, *, jitter=0.5, seed, angle=0.0, offset=(0.0, 0.0)) -> np.ndarray:
     """Square-grid points each moved randomly within its own grid cell.
 
     Parameters
@@ -213,6 +213,8 @@ def jittered(boundary, spacing, *, jitter=0.5, seed, angle=0.0) -> np.ndarray:
         Random seed.
     angle : float
         Rotation of the grid in degrees.
+    offset : (2,) float
+        Shift of the grid from the boundary's bounding-box centre (as for :func:`grid`).
 
     Returns
     -------
@@ -223,7 +225,7 @@ def jittered(boundary, spacing, *, jitter=0.5, seed, angle=0.0) -> np.ndarray:
     j = float(jitter)
     if not 0.0 <= j <= 1.0:
         raise ValueError(f"jitter must be in [0, 1], got {jitter!r}")
-    pts, rot = _lattice(geom, s, angle, (0.0, 0.0), hexagonal=False, margin=s)
+    pts, rot = _lattice(geom, s, angle, offset, hexagonal=False, margin=s)
     rng = np.random.default_rng(seed)
     shift = rng.uniform(-0.5, 0.5, size=pts.shape) * (j * s)
     pts = pts + shift @ rot.T
