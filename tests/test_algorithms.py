@@ -215,7 +215,7 @@ def test_halfplane_grid_refines_for_clusters():
     blobs = rng.random((4, 2))[rng.integers(0, 4, 4000)] + rng.normal(0, 0.002, (4000, 2))
     (_, _, _, _, ux, uy), _ = _adaptive_grid(uniform[:, 0].copy(), uniform[:, 1].copy())
     bx, by = blobs[:, 0].copy(), blobs[:, 1].copy()
-    (_, _, _, _, cx, cy), (start, _, _, _) = _adaptive_grid(bx, by)
+    (_, _, _, _, cx, cy), (start, *_) = _adaptive_grid(bx, by)
     assert ux * uy <= 2000
     assert cx * cy >= 8 * ux * uy
 

@@ -214,6 +214,20 @@ def _rect_dist2(x, y, x0, y0, x1, y1):
 
 
 @njit(**NJIT)
+def _rect_clear(px, py, a, m, cx, cy, bx0, by0, bx1, by1):
+    """Whether every vertex is farther from the rectangle than from its site (with margin).
+
+    Then no site in the rectangle can cut the cell, now or after later cuts (the cell only
+    shrinks, and the points nearer to such a site form a half-plane the cell misses).
+    """
+    for u in range(a, a + m):
+        own = _REACH * 0.25 * (px[u] * px[u] + py[u] * py[u])
+        if _rect_dist2(px[u] + cx, py[u] + cy, bx0, by0, bx1, by1) <= own:
+            return False
+    return True
+
+
+@njit(**NJIT)
 def _unscanned_clear(px, py, a, m, cx, cy, ix, iy, ring, grid):
     """Whether no site in the buckets not yet scanned can cut the cell.
 
@@ -528,7 +542,7 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
     The whole loop lives in this one function: a call per cell would cost a dozen atomic
     reference-count updates, more than the geometry of a typical cell.
     """
-    start, sx, sy, sidx = sites
+    start, sx, sy, sidx, rownext, bnext = sites
     xs, ys = orig
     x0, y0, hx, hy, nx, ny = grid
     cap = _CAP
@@ -570,17 +584,28 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
             # gather the ring's sites that can still cut, nearest first, then cut with them:
             # near bisectors shrink the cell early, so far ones fail the cheap radius test
             base = nc
-            for jy in range(max(iy - ring, 0), min(iy + ring, ny - 1) + 1):
-                step = 1 if jy == iy - ring or jy == iy + ring else 2 * ring
+            # rows, and on the ring's top and bottom rows runs of buckets, without any site
+            # are skipped (rownext, bnext): long thin cells cross many nearly empty rings
+            jy = rownext[max(iy - ring, 0)]
+            jend = min(iy + ring, ny - 1)
+            while jy <= jend:
+                edge_row = jy == iy - ring or jy == iy + ring
                 gy = max(y0 + jy * hy - cy, cy - (y0 + (jy + 1) * hy), 0.0)
-                for jx in range(ix - ring, ix + ring + 1, step):
-                    if jx < 0 or jx >= nx or grow:
-                        continue
-                    gx = max(x0 + jx * hx - cx, cx - (x0 + (jx + 1) * hx), 0.0)
-                    if gx * gx + gy * gy > _REACH * r2:
-                        continue
+                row = jy * (nx + 1)
+                jx = bnext[row + max(ix - ring, 0)] if edge_row else ix - ring
+                while jx <= ix + ring and jx < nx:
                     bucket = jy * nx + jx
-                    for t in range(start[bucket], start[bucket + 1]):
+                    gx = max(x0 + jx * hx - cx, cx - (x0 + (jx + 1) * hx), 0.0)
+                    scan = jx >= 0 and not grow and start[bucket] < start[bucket + 1]
+                    scan = scan and gx * gx + gy * gy <= _REACH * r2
+                    if scan and ring >= 2:
+                        # far rings: skip a bucket that no vertex is nearer to than its site
+                        bx = x0 + jx * hx
+                        by = y0 + jy * hy
+                        scan = not _rect_clear(px, py, a, m, cx, cy, bx, by, bx + hx, by + hy)
+                    t0 = start[bucket] if scan else 0
+                    t1 = start[bucket + 1] if scan else 0
+                    for t in range(t0, t1):
                         qx = sx[t] - cx
                         qy = sy[t] - cy
                         q2 = qx * qx + qy * qy
@@ -598,6 +623,8 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
                         cand[u] = t
                         cd[u] = q2
                         nc += 1
+                    jx = bnext[row + jx + 1] if edge_row else jx + 2 * ring
+                jy = rownext[jy + 1]
             for c in range(base, nc):
                 if grow or m < 3 or cd[c] > _REACH * r2:
                     break  # sorted: the rest are farther still
@@ -774,7 +801,17 @@ def _adaptive_grid(xs, ys):
         refine = min(median / _PER_BUCKET, _MAX_REFINE)
         grid = _grid_shape(xs, ys, _PER_BUCKET / refine)
         sites = _bucket_sort(xs, ys, *grid)
-    return grid, sites
+    nx, ny = grid[4], grid[5]
+    occ = np.diff(sites[0]).reshape(ny, nx)
+    # rownext[j]: first row >= j with a site; bnext[r (nx + 1) + i]: first column >= i of
+    # row r with a site (nx when none), so rings skip empty stretches in O(1)
+    rows = np.where(occ.sum(1) > 0, np.arange(ny), ny)
+    rownext = np.full(ny + 1, ny, dtype=np.int64)
+    rownext[:ny] = np.minimum.accumulate(rows[::-1])[::-1]
+    cols = np.where(occ > 0, np.arange(nx, dtype=np.int32), np.int32(nx))
+    bnext = np.full((ny, nx + 1), nx, dtype=np.int32)
+    bnext[:, :nx] = np.minimum.accumulate(cols[:, ::-1], axis=1)[:, ::-1]
+    return grid, (*sites, rownext, bnext.ravel())
 
 
 def halfplane_cells(xs, ys, box, kmap=None):
