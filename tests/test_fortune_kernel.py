@@ -200,3 +200,23 @@ def test_perturbed_grids():
     rng = np.random.default_rng(12)
     for eps in (1e-15, 1e-12, 1e-8):
         check(_grid(12, 12) + rng.uniform(-eps, eps, size=(144, 2)))
+
+
+def test_engine_entry_point_sweep_order():
+    """``fortune_delaunay`` (what vf.voronoi calls): sites in (y, x) order, triangles on them."""
+    from voroforge.kernels.fortune import fortune_delaunay
+
+    pts = np.concatenate((_grid(6, 6), np.random.default_rng(7).random((40, 2)) * 5))
+    xs, ys = pts[:, 0].copy(), pts[:, 1].copy()
+    order, sx, sy, tri, he, ok = fortune_delaunay(xs, ys)
+    assert ok
+    assert sorted(order.tolist()) == list(range(len(pts)))
+    key = list(zip(ys[order].tolist(), xs[order].tolist(), strict=True))
+    assert key == sorted(key)
+    assert np.array_equal(sx, xs[order]) and np.array_equal(sy, ys[order])
+    assert np.array_equal(xs, pts[:, 0]) and np.array_equal(ys, pts[:, 1])  # inputs untouched
+    mapped = order[tri.reshape(-1, 3)]
+    assert _triples(mapped) == _triples(fortune_triangles(pts))
+    assert brute_delaunay_ok(pts, mapped)
+    for few in (pts[:2], np.array([[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]])):
+        assert not fortune_delaunay(few[:, 0].copy(), few[:, 1].copy())[-1]
