@@ -270,3 +270,22 @@ def test_seed_file_errors_name_seeds_file(tmp_path):
     )
     with pytest.raises(DesignError, match=r"d\.toml:6: seeds\.file: .*'abc' is not a number"):
         build(tmp_path / "d.toml", tmp_path / "out")
+
+
+@pytest.mark.parametrize("units, width", [("mm", "0.01"), ("cm", "0.001"), ("in", "0.000394")])
+def test_svg_default_stroke_is_a_hairline_in_any_units(tmp_path, units, width):
+    # The default stroke was 0.01 *units*: 0.254 mm in an inch design, which laser drivers
+    # (hairline <= 0.001 in) engrave instead of cutting.
+    design = {
+        "design": {"units": units},
+        "boundary": {"width": 10, "height": 8},
+        "seeds": {"count": 4},
+        "output": {"formats": ["svg"]},
+    }
+    (svg,) = build(design, tmp_path)
+    root = ET.parse(svg).getroot()
+    assert root.get("width") == f"10{units}"
+    assert {g.get("stroke-width") for g in root.iter(f"{SVG}g")} == {width}
+    design["output"]["stroke_width"] = 0.2
+    (svg,) = build(design, tmp_path / "given")
+    assert {g.get("stroke-width") for g in ET.parse(svg).getroot().iter(f"{SVG}g")} == {"0.2"}

@@ -766,7 +766,7 @@ def build(
                     path,
                     _layers(result, kerf),
                     units=design.design.units,
-                    stroke_width=o.stroke_width,
+                    stroke_width=_stroke_width(design),
                     # kerf-compensated parts reach kerf / 2 past the outline: keep them on the page
                     bounds=tuple(
                         np.add(result.boundary.bounds, np.multiply([-1, -1, 1, 1], kerf / 2))
@@ -800,6 +800,20 @@ def build(
         written.append(text)
         written.append(report.write_png(out / f"{stem}-check.png", size=min(o.png_size, 1200)))
     return written
+
+
+#: Millimetres per design unit.
+_MM = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}
+
+
+def _stroke_width(design: Design) -> float:
+    """SVG stroke width in design units: as given, else a 0.01 mm laser hairline.
+
+    Laser drivers take only hairlines (about 0.001 in or less) as vector cuts, so the default
+    is 0.01 mm whatever the units (0.01 in would be engraved, not cut).
+    """
+    given = design.output.stroke_width
+    return given if given is not None else 0.01 / _MM[design.design.units]
 
 
 def _gif(design: Design, base: Path | None, path: Path, stage: Stage) -> Path:

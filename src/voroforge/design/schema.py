@@ -362,7 +362,7 @@ class Output(_Model):
     png: Literal["cells", "layers"] = "cells"
     png_sites: bool = False
     geojson: Product = "cells"
-    stroke_width: PositiveFloat = 0.01
+    stroke_width: PositiveFloat | None = None  # None: 0.01 mm in the design's units
     arc_tolerance: PositiveFloat = 1e-6
     gif: Gif | None = None
 
