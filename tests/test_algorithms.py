@@ -155,17 +155,20 @@ def _edge_map(coords, offsets, owner):
     return out
 
 
+@pytest.mark.parametrize("pad", [0.3, 0.5])
 @pytest.mark.parametrize("name", ["uniform", "grid_20x20", "hex_grid", "circle_integer"])
-def test_halfplane_shared_vertices_bit_identical(name):
-    """Both cells of an edge compute its two ends with the same bits (canonical vertices)."""
+def test_halfplane_shared_vertices_bit_identical(name, pad):
+    """Both cells of an edge compute its two ends with the same bits (canonical vertices).
+
+    With ``pad`` 0.5 the box passes through Voronoi vertices of the grids (vertices on the
+    box, where a box crossing and a circumcentre meet).
+    """
     if name == "uniform":
         pts, box = general_position(800, 3), (0.0, 0.0, 1.0, 1.0)
     else:
         pts = CATALOGUE[name][0]
-        # a box through no Voronoi vertex: a vertex exactly on the box is computed as a box
-        # crossing by one cell and as a clamped circumcentre by the other (ulps apart)
         lo, hi = pts.min(0), pts.max(0)
-        box = (*(lo - 0.3), *(hi + 0.3))
+        box = (*(lo - pad), *(hi + pad))
     coords, offsets, owner = halfplane_cells(pts[:, 0], pts[:, 1], np.array(box))
     edges = _edge_map(coords, offsets, owner)
     assert edges

@@ -428,12 +428,47 @@ def _has(lab, m, x):
 
 
 @njit(**NJIT)
-def _emit_exact(i, lab, m, vx, vy, xs, ys, box, ox, oy, oo, pos):
+def _snap_crossing(i, j, x, y, xs, ys, near, nn, sidx):
+    """The canonical vertex at box crossing ``(x, y)`` of the bisector of ``i, j``, if any.
+
+    When other sites are as far from the crossing as ``i`` and ``j`` (to the merge
+    tolerance), the crossing is a Voronoi vertex lying on the box: it becomes the
+    circumcentre of the three lowest-numbered of those sites, as in :func:`_settle`.
+    """
+    r2 = (xs[i] - x) * (xs[i] - x) + (ys[i] - y) * (ys[i] - y)
+    r = np.sqrt(r2)
+    merge = _MERGE * r * (abs(x) + abs(y) + r)
+    t0 = min(i, j)
+    t1 = max(i, j)
+    t2 = -1
+    for c in range(nn):
+        q = sidx[near[c]]
+        if q == i or q == j:
+            continue
+        dx = xs[q] - x
+        dy = ys[q] - y
+        if abs(dx * dx + dy * dy - r2) > merge:
+            continue
+        if q < t0:
+            t0, t1, t2 = q, t0, t1
+        elif q < t1:
+            t1, t2 = q, t1
+        elif t2 < 0 or q < t2:
+            t2 = q
+    if t2 < 0:
+        return x, y
+    return circumcenter(xs[t0], ys[t0], xs[t1], ys[t1], xs[t2], ys[t2])
+
+
+@njit(**NJIT)
+def _emit_exact(i, lab, m, vx, vy, xs, ys, box, near, nn, sidx, ox, oy, oo, pos):
     """Write the settled ring with canonical vertices from ``pos``; -1 when one is undefined.
 
     Bisector-bisector vertices come from :func:`_settle`; a bisector meets a box side at the
     crossing computed from the pair in index order (as the default algorithm does), and two
-    box sides meet at the exact corner.
+    box sides meet at the exact corner. A crossing that is also a Voronoi vertex (a site
+    among ``near[:nn]`` as far from it as the pair, to rounding) is that vertex's canonical
+    circumcentre instead, which the cells meeting there inside compute too.
     """
     c = pos
     for u in range(m):
@@ -445,6 +480,8 @@ def _emit_exact(i, lab, m, vx, vy, xs, ys, box, ox, oy, oo, pos):
         elif a >= 0 or b >= 0:
             j = a if a >= 0 else b
             x, y = _box_crossing(i, j, xs, ys, b if a >= 0 else a, box)
+            if np.isfinite(x) and np.isfinite(y):
+                x, y = _snap_crossing(i, j, x, y, xs, ys, near, nn, sidx)
         else:
             vert = a if (a == _LEFT or a == _RIGHT) else b
             horz = b if vert == a else a
@@ -677,7 +714,9 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
             # chunk's output (see _second_pass) has exactly the room the first pass counted
             c = -1
             if ms >= 3:
-                c = _emit_exact(sidx[k], lab, ms, vx, vy, xs, ys, box, ox, oy, oo, 0)
+                c = _emit_exact(
+                    sidx[k], lab, ms, vx, vy, xs, ys, box, watch, keep, sidx, ox, oy, oo, 0
+                )
             if c < 0:
                 c = _emit(px, py, po, a, m, cx, cy, box, ox, oy, oo, 0)
             if fits and pos + c <= dx.shape[0]:
