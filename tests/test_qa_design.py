@@ -289,3 +289,24 @@ def test_svg_default_stroke_is_a_hairline_in_any_units(tmp_path, units, width):
     design["output"]["stroke_width"] = 0.2
     (svg,) = build(design, tmp_path / "given")
     assert {g.get("stroke-width") for g in ET.parse(svg).getroot().iter(f"{SVG}g")} == {"0.2"}
+
+
+def test_corner_radius_of_half_the_side_makes_a_stadium(tmp_path):
+    # width 100, height 80, corner_radius 40: a pill shape, refused as "too large" because
+    # GEOS drops the degenerate core of the rounding; 40.1 is still refused.
+    from voroforge.design.pipeline import compute
+    from voroforge.design.schema import DesignError, load
+
+    for width in (100, 80):  # a stadium and a disc
+        b = {"width": width, "height": 80, "corner_radius": 40}
+        design, base = load({"boundary": b, "seeds": {"count": 5}})
+        outline = compute(design, base).boundary
+        assert outline.bounds == pytest.approx((0, 0, width, 80))
+        core = shapely.LineString([(40, 40), (width - 40, 40)]) if width > 80 else None
+        exact = (core if core is not None else shapely.Point(40, 40)).buffer(40, quad_segs=64)
+        assert outline.hausdorff_distance(exact) < 0.05  # 16 segments per quarter circle
+    with pytest.raises(DesignError, match="corner_radius: 40.1 is too large"):
+        load_and = load(
+            {"boundary": {"width": 100, "height": 80, "corner_radius": 40.1}, "seeds": {"count": 5}}
+        )
+        compute(*load_and)

@@ -132,9 +132,17 @@ def _boundary(design: Design, base: Path | None):
         geom = bd.load(_path(base, spec.file, "boundary.file"))
     if spec.corner_radius > 0:
         r = spec.corner_radius
-        geom = geom.buffer(-r, join_style="mitre").buffer(r, quad_segs=16)
+        core = geom.buffer(-r, join_style="mitre")
+        if core.is_empty:
+            # r = half the width (a stadium, a disc): the core is a segment or a point, which
+            # GEOS drops; 1e-4 r less keeps a sliver of it (and the outline inside the shape)
+            r = r * (1 - 1e-4)
+            core = geom.buffer(-r, join_style="mitre")
+        geom = core.buffer(r, quad_segs=16)
         if geom.is_empty:
-            raise _fail("boundary.corner_radius", f"{r} is too large for the boundary")
+            raise _fail(
+                "boundary.corner_radius", f"{spec.corner_radius} is too large for the boundary"
+            )
     domain = geom
     if spec.margin > 0:
         domain = geom.buffer(-spec.margin, join_style="mitre")
