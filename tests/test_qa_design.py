@@ -310,3 +310,34 @@ def test_corner_radius_of_half_the_side_makes_a_stadium(tmp_path):
             {"boundary": {"width": 100, "height": 80, "corner_radius": 40.1}, "seeds": {"count": 5}}
         )
         compute(*load_and)
+
+
+@pytest.mark.parametrize("units, size", [("mm", 609.6), ("cm", 60.96), ("in", 24.0)])
+def test_svg_files_are_read_in_the_design_units(tmp_path, units, size):
+    # An SVG with width="24in" is read in mm; in a cm or inch design it was used as if the
+    # mm numbers were design units (a 24 in panel came out 609.6 in wide).
+    from voroforge.design.pipeline import compute
+    from voroforge.design.schema import load
+
+    svg = (
+        '<svg xmlns="http://www.w3.org/2000/svg" width="24in" height="12in" '
+        'viewBox="0 0 24 12"><rect x="0" y="0" width="24" height="12"/>'
+        '<path d="M 2 6 L 22 6" fill="none"/></svg>'
+    )
+    (tmp_path / "panel.svg").write_text(svg)
+    design, base = load(
+        {
+            "design": {"units": units},
+            "boundary": {"shape": "file", "file": str(tmp_path / "panel.svg")},
+            "seeds": {"count": 4},
+            "attractors": [{"type": "curve", "file": str(tmp_path / "panel.svg"), "radius": 1}],
+            "cells": {"web": {"near": 0, "far": 0}},
+        }
+    )
+    r = compute(design, base)
+    assert r.boundary.bounds == pytest.approx((0, 0, size, size / 2))
+    # the curve attractor (the outline and the midline) is in the same units: field 1 on it
+    from voroforge.design.pipeline import _field
+
+    field = _field(design, base)
+    assert field(np.array([[size / 2, size / 4]]))[0] == pytest.approx(1.0)

@@ -116,6 +116,36 @@ def _path(base: Path | None, name: str, key: str) -> Path:
 # --- boundary and seeds -----------------------------------------------------------------
 
 
+def _file_boundary(path: Path, units: str):
+    """A boundary file in the design's units.
+
+    An SVG whose width has a physical unit (``width="24in"``) is read in mm, so it is scaled
+    to the design's units (a 24 in panel in an inch design was 609.6 in wide). Unitless
+    SVGs, DXF (coordinates as drawn) and GeoJSON are taken as they are.
+    """
+    from . import boundary as bd
+
+    geom = bd.load(path)
+    return _svg_in_units(geom, path, units) if path.suffix.lower() == ".svg" else geom
+
+
+def _svg_in_units(geom, path: Path, units: str):
+    """Geometry read from an SVG (in mm when its width has a unit) in the design's units."""
+    import xml.etree.ElementTree as ET
+
+    from shapely import affinity
+
+    from . import boundary as bd
+
+    if units == "mm":
+        return geom
+    m = bd._LENGTH.match(ET.parse(path).getroot().get("width") or "")
+    if not (m and m.group(2) in bd._MM_PER_UNIT):
+        return geom
+    factor = 1.0 / _MM[units]
+    return affinity.scale(geom, factor, factor, origin=(0.0, 0.0))
+
+
 def _boundary(design: Design, base: Path | None):
     from . import boundary as bd
 
@@ -129,7 +159,7 @@ def _boundary(design: Design, base: Path | None):
     elif spec.shape == "polygons":
         geom = bd.union(*(bd.polygon(p.points, p.holes) for p in spec.parts))
     else:
-        geom = bd.load(_path(base, spec.file, "boundary.file"))
+        geom = _file_boundary(_path(base, spec.file, "boundary.file"), design.design.units)
     if spec.corner_radius > 0:
         r = spec.corner_radius
         core = geom.buffer(-r, join_style="mitre")
@@ -151,7 +181,7 @@ def _boundary(design: Design, base: Path | None):
     return geom, domain
 
 
-def _curve(a, base: Path | None, key: str):
+def _curve(a, base: Path | None, key: str, units: str = "mm"):
     """The polyline(s) of a curve attractor: points, SVG path data or a file."""
     from . import boundary as bd
 
@@ -164,7 +194,7 @@ def _curve(a, base: Path | None, key: str):
         return shapely.MultiLineString([np.asarray(x)[:, :2] for x in lines])
     path = _path(base, a.file, f"{key}.file")
     if path.suffix.lower() == ".svg":
-        return bd.curves_from_svg(path)
+        return _svg_in_units(bd.curves_from_svg(path), path, units)
     geom = shapely.union_all(shapely.get_parts(shapely.from_geojson(path.read_text("utf-8"))))
     lines = [g.boundary if g.geom_type.endswith("Polygon") else g for g in shapely.get_parts(geom)]
     merged = shapely.union_all([g for g in lines if "LineString" in g.geom_type])
@@ -190,7 +220,11 @@ def _field(design: Design, base: Path | None = None):
         if a.type == "point":
             made.append(at.PointAttractor(np.asarray(a.points, dtype=np.float64), **options))
         else:
-            made.append(at.CurveAttractor(_curve(a, base, f"attractors.{i}"), **options))
+            made.append(
+                at.CurveAttractor(
+                    _curve(a, base, f"attractors.{i}", design.design.units), **options
+                )
+            )
     combined = at.combine(made, mode=design.field.combine)
     if design.field.invert:
         return at.Field(lambda xy: 1.0 - np.asarray(combined(xy), dtype=np.float64))
