@@ -280,6 +280,7 @@ def test_svg_default_stroke_is_a_hairline_in_any_units(tmp_path, units, width):
         "design": {"units": units},
         "boundary": {"width": 10, "height": 8},
         "seeds": {"count": 4},
+        "cells": {"web": 0.5},
         "output": {"formats": ["svg"]},
     }
     (svg,) = build(design, tmp_path)
@@ -341,3 +342,19 @@ def test_svg_files_are_read_in_the_design_units(tmp_path, units, size):
 
     field = _field(design, base)
     assert field(np.array([[size / 2, size / 4]]))[0] == pytest.approx(1.0)
+
+
+def test_build_warns_about_an_empty_cut_layer(tmp_path, capsys):
+    # No web: the openings tile the boundary, the frame is empty and the SVG/DXF cut
+    # nothing, silently. The CLI now says so (and still builds).
+    from voroforge.cli import main
+
+    path = tmp_path / "d.toml"
+    path.write_text(BASE + '[output]\nformats = ["svg"]\n')
+    assert main(["build", str(path), "-o", str(tmp_path / "o")]) == 0
+    err = capsys.readouterr().err
+    assert err.startswith(f"voroforge: warning: {path}: output.layers.CUT: the layer is empty")
+    assert "cells.web" in err
+    path.write_text(BASE + '[cells]\nweb = 2\n[output]\nformats = ["svg"]\n')
+    assert main(["build", str(path), "-o", str(tmp_path / "o")]) == 0
+    assert capsys.readouterr().err == ""

@@ -342,15 +342,25 @@ def _overrides(pairs: list[str]) -> dict:
 
 
 def _build(args: argparse.Namespace, stage: Stage) -> list[Path]:
-    from .design.pipeline import build
+    import warnings
 
-    return build(
-        args.design,
-        args.output,
-        overrides=_overrides(args.set),
-        preview=args.preview,
-        progress=stage,
-    )
+    from .design.pipeline import DesignWarning, build
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", DesignWarning)
+        written = build(
+            args.design,
+            args.output,
+            overrides=_overrides(args.set),
+            preview=args.preview,
+            progress=stage,
+        )
+    for w in caught:
+        if issubclass(w.category, DesignWarning):
+            print(f"{PROG}: warning: {args.design}: {w.message}", file=sys.stderr)
+        else:
+            warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+    return written
 
 
 def _new(args: argparse.Namespace, stage: Stage) -> list[Path]:

@@ -33,6 +33,7 @@ from .schema import Design, DesignError, Graded, Issue, key_lines, load
 
 __all__ = [
     "STARTER",
+    "DesignWarning",
     "Result",
     "build",
     "check_design",
@@ -43,6 +44,10 @@ __all__ = [
 ]
 
 Stage = Callable[[str], None]
+
+
+class DesignWarning(UserWarning):
+    """A design that builds but probably not as meant (``voroforge build`` prints it)."""
 
 
 @dataclass
@@ -797,6 +802,8 @@ def build(
     if "svg" in o.formats and design.design.units not in ("mm", "cm", "in"):
         raise _fail("output.formats", f"svg needs units mm, cm or in; not {design.design.units!r}")
     kerf = o.kerf
+    if "svg" in o.formats or "dxf" in o.formats:
+        _warn_empty_layers(result)
     for fmt in o.formats:
         path = out / f"{stem}.{fmt}"
         stage(f"writing {path.name}")
@@ -856,6 +863,27 @@ def _stroke_width(design: Design) -> float:
     """
     given = design.output.stroke_width
     return given if given is not None else 0.01 / _MM[design.design.units]
+
+
+def _warn_empty_layers(result: Result) -> None:
+    """Warn about SVG/DXF layers with nothing on them (a cut file that cuts nothing)."""
+    import warnings
+
+    made = products(result)
+    for name, what in result.design.output.layers.items():
+        names = [what] if isinstance(what, str) else list(what)
+        if all(g.is_empty for n in names for g in made[n]):
+            hint = ""
+            if "frame" in names and len(result.openings):
+                hint = (
+                    ": the openings fill the whole boundary (set cells.web or cells.inset, "
+                    "or draw the edges)"
+                )
+            warnings.warn(
+                f"output.layers.{name}: the layer is empty ({', '.join(names)}){hint}",
+                DesignWarning,
+                stacklevel=3,
+            )
 
 
 def _gif(design: Design, base: Path | None, path: Path, stage: Stage) -> Path:
