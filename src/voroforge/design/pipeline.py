@@ -23,7 +23,7 @@ from __future__ import annotations
 import inspect
 from collections.abc import Callable
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -605,6 +605,9 @@ def compute(design: Design, base: Path | None = None, *, progress: Stage | None 
         cells = _operate(design, inset_cells, values, field_fn is not None)
     if design.voronoi.periodic:
         box = _tile(design, domain)
+        # whole openings on the torus, for the fabrication check across the seams
+        extra["tile"] = box
+        extra["tile_openings"] = cells[mask & ~shapely.is_empty(cells)]
         cells, owner = _wrap(cells, box)
         raw_w, _ = _wrap(raw, box)
         raw, values, mask, level = raw_w, values[owner], mask[owner], level[owner]
@@ -917,18 +920,39 @@ def _gif(design: Design, base: Path | None, path: Path, stage: Stage) -> Path:
 
 
 def _report(result: Result):
-    from .fabrication import check
+    from .fabrication import Report, check
 
     f = result.design.fabrication
-    return check(
-        openings=result.openings,
-        boundary=result.boundary,
-        min_web=f.min_web,
-        min_opening=f.min_opening,
-        min_inside_radius=f.tool_radius,
-        corner_tolerance=f.corner_tolerance,
-        islands=f.islands,
-    )
+    limits = {
+        "min_web": f.min_web,
+        "min_opening": f.min_opening,
+        "min_inside_radius": f.tool_radius,
+        "corner_tolerance": f.corner_tolerance,
+        "islands": f.islands,
+    }
+    if "tile" not in result.extra:
+        return check(openings=result.openings, boundary=result.boundary, **limits)
+    # A periodic tile is cut as copies side by side: openings cut by the tile's edge continue
+    # in the next copy, so check the whole openings of 3 x 3 copies against each other (no
+    # outline in reach) and report what lies in the middle copy.
+    xmin, ymin, xmax, ymax = result.extra["tile"]
+    w, h = xmax - xmin, ymax - ymin
+    whole = result.extra["tile_openings"]
+    copies = [
+        shapely.transform(whole, lambda xy, dx=dx, dy=dy: xy + (dx, dy))
+        for dy in (0.0, -h, h)
+        for dx in (0.0, -w, w)
+    ]
+    holes = np.concatenate(copies) if len(whole) else whole
+    far = shapely.box(xmin - 2 * w, ymin - 2 * h, xmax + 2 * w, ymax + 2 * h)
+    tiled = check(openings=holes, boundary=far, **limits)
+    n = max(len(whole), 1)
+    kept = [
+        replace(v, items=tuple(i % n if i >= 0 else i for i in v.items))
+        for v in tiled.violations
+        if xmin <= v.location[0] < xmax and ymin <= v.location[1] < ymax
+    ]
+    return Report(kept, tiled.limits, result.frame, result.openings)
 
 
 def check_design(source, *, overrides: dict | None = None, progress: Stage | None = None):
