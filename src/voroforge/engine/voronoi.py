@@ -139,12 +139,13 @@ class Diagram:
     def _area_centroid(self):
         coords, ring, poly, geom = self._buffers
         k = self._k
-        if not k:
-            areas, centroids = area_centroid(coords, ring, poly, geom)
-        else:
-            # at extreme scales squared coordinates leave the double range: work scaled
-            areas, centroids = area_centroid(np.ldexp(coords, k), ring, poly, geom)
-            areas, centroids = np.ldexp(areas, -2 * k), np.ldexp(centroids, -k)
+        with serial_below(len(self.sites)):
+            if not k:
+                areas, centroids = area_centroid(coords, ring, poly, geom)
+            else:
+                # at extreme scales squared coordinates leave the double range: work scaled
+                areas, centroids = area_centroid(np.ldexp(coords, k), ring, poly, geom)
+                areas, centroids = np.ldexp(areas, -2 * k), np.ldexp(centroids, -k)
         # cached and shared by every caller: read-only, like the other results
         areas.setflags(write=False)
         centroids.setflags(write=False)
