@@ -382,3 +382,23 @@ def test_periodic_tile_check_looks_across_the_seams():
     # each neighbouring pair once: no two violations at the same spot
     spots = {(round(v.location[0], 6), round(v.location[1], 6)) for v in webs}
     assert len(spots) == len(webs)
+
+
+@pytest.mark.parametrize(
+    "extra, where, message",
+    [
+        # 'cut' and 'CUT' both became layer CUT: the frame was silently dropped
+        ('[output]\nlayers = { cut = "frame", CUT = "edges" }\n', "8: output.layers", "same layer"),
+        # a DXF-invalid name failed late with "invalid DXF layer name" and no file or key
+        ('[output]\nlayers = { "a/b" = "frame" }\n', "8: output.layers", "not a valid layer"),
+        ('[design]\nname = "out/panel"\n', "8: design.name", "without folders"),
+    ],
+)
+def test_layer_and_output_names_are_checked_up_front(tmp_path, capsys, extra, where, message):
+    from voroforge.cli import main
+
+    path = tmp_path / "bad.toml"
+    path.write_text(BASE + extra, encoding="utf-8")
+    assert main(["build", str(path), "-o", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"voroforge: error: {path}:{where}: ") and message in err, err

@@ -107,6 +107,12 @@ class Info(_Model):
     units: Literal["mm", "cm", "m", "in"] = "mm"
     seed: Seed = 0
 
+    @model_validator(mode="after")
+    def _name(self) -> Info:
+        if re.search(r"[\\/]", self.name) or not self.name.strip():
+            raise _need("name", "must be a file name without folders (it names the outputs)")
+        return self
+
 
 class Part(_Model):
     """One polygon of ``boundary.parts``."""
@@ -372,6 +378,16 @@ class Output(_Model):
             raise _need("gif", "formats includes 'gif': add an [output.gif] table")
         if re.search(r"[\\/]", self.stem or ""):
             raise _need("stem", "must be a file name without folders")
+        seen: dict[str, str] = {}
+        for name in self.layers:
+            key = name.strip().upper()  # SVG and DXF layers are upper-cased
+            if not key or any(c in '<>/\\":;?*|=`' for c in key):
+                raise _need(
+                    "layers", f'{name!r} is not a valid layer name (DXF forbids <>/\\":;?*|=`)'
+                )
+            if key in seen:
+                raise _need("layers", f"{seen[key]!r} and {name!r} are the same layer {key!r}")
+            seen[key] = name
         return self
 
 
