@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+from fractions import Fraction
+
 import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from voroforge.kernels.predicates import incircle, orient2d
+from voroforge.kernels.predicates import incircle, incircle_fast, orient2d
 
 from reference import exact_incircle, exact_orient
 
@@ -178,3 +180,52 @@ def test_lattice_hypothesis(abcd, offset):
     a, b, c, d = (p + offset for p in abcd)
     _check_orient([(a, b, c)])
     _check_incircle([(a, b, c, d)])
+
+
+def _tailed_near_cocircular(n: int, seed: int) -> np.ndarray:
+    """``(n, 8)`` nearly cocircular quadruples whose differences to ``d`` are mostly inexact.
+
+    Points of circles around (near) the origin, corners of grids with spacing ``2 / m``
+    straddling zero, and Pythagorean integer points moved by a non-exact shift; ``d`` moved
+    by a few ulps; scales ``2**-40 .. 2**40``. These reach incircle's adaptive stages
+    (the rounded-difference determinant, its first-order tail correction, the exact one).
+    """
+    rng = np.random.default_rng(seed)
+    k = n // 3
+    scale = 2.0 ** rng.integers(-40, 41, (k, 1))
+    centre = rng.uniform(-1, 1, (k, 2)) * rng.choice([0.0, 0.3, 1.0], (k, 1))
+    radius = rng.uniform(0.05, 3.0, (k, 1))
+    ang = rng.uniform(0, 2 * np.pi, (k, 4))
+    circ = np.zeros((k, 8))
+    circ[:, 0::2] = (centre[:, :1] + radius * np.cos(ang)) * scale
+    circ[:, 1::2] = (centre[:, 1:] + radius * np.sin(ang)) * scale
+    m = rng.choice([6, 10, 14, 632], (k, 1))
+    i, j = rng.integers(-3, 3, (2, k, 1))
+    x0, x1, y0, y1 = (2 * i + 1) / m, (2 * i + 3) / m, (2 * j + 1) / m, (2 * j + 3) / m
+    grid = np.hstack((x0, y0, x1, y0, x1, y1, x0, y1)) * 2.0 ** rng.integers(-40, 41, (k, 1))
+    pts = np.array([(5, 0), (0, 5), (-5, 0), (0, -5), (3, 4), (-3, 4), (3, -4), (-3, -4)])
+    pts = np.vstack((pts, pts[4:, ::-1]))
+    pick = np.array([rng.choice(len(pts), 4, replace=False) for _ in range(n - 2 * k)])
+    shift = rng.choice([0.1, 1 / 3, 0.7], (n - 2 * k, 1, 2))
+    pyth = ((pts[pick] + shift) * 2.0 ** rng.integers(-40, 41, (n - 2 * k, 1, 1))).reshape(-1, 8)
+    circ[:, 6:] = _ulp_nudge(circ[:, 6:], rng, 10)
+    grid[:, 6:] = _ulp_nudge(grid[:, 6:], rng, 1)  # often not at all: exactly cocircular
+    pyth[:, 6:] = _ulp_nudge(pyth[:, 6:], rng, 10)
+    return np.vstack((circ, grid, pyth))
+
+
+def test_incircle_adaptive_stages():
+    """Inexact differences: the stages between the float filter and the exact determinant."""
+    cases = _tailed_near_cocircular(4000, 11)
+    undecided = 0
+    for q in cases:
+        a, b, c, d = q[0:2], q[2:4], q[4:6], q[6:8]
+        diffs = [(a[0], d[0]), (a[1], d[1]), (b[0], d[0]), (b[1], d[1]), (c[0], d[0]), (c[1], d[1])]
+        tails = any(Fraction(float(u - v)) != Fraction(u) - Fraction(v) for u, v in diffs)
+        undecided += bool(tails and np.isnan(incircle_fast(*map(float, q))))
+    # the cases exercise the adaptive stages, not only the float filter
+    assert undecided > len(cases) // 3
+    _check_incircle([(q[0:2], q[2:4], q[4:6], q[6:8]) for q in cases])
+    # the raw determinant's sign (no reordering to counter-clockwise) agrees too
+    for q in cases[:300]:
+        assert _sgn(incircle(*map(float, q))) == exact_incircle(q[0:2], q[2:4], q[4:6], q[6:8])

@@ -28,6 +28,11 @@ _EPS = 2.0**-53
 _SPLITTER = 2.0**27 + 1.0
 _CCW_BOUND = (3.0 + 16.0 * _EPS) * _EPS
 _ICC_BOUND = (10.0 + 96.0 * _EPS) * _EPS
+# Shewchuk's stage B and C bounds for incircle (see ``_incircle_adapt``); stage C's is
+# padded from his 44 + 576 eps to leave room for the rounding of the bound itself.
+_ICC_BOUND_B = (4.0 + 48.0 * _EPS) * _EPS
+_ICC_BOUND_C = (48.0 + 1024.0 * _EPS) * _EPS * _EPS
+_RESULT_BOUND = (3.0 + 8.0 * _EPS) * _EPS
 
 
 @njit(**NJIT)
@@ -257,8 +262,27 @@ def _lift(x, y, out):
 
 
 @njit(**NJIT)
+def _drop_zeros(e, elen):
+    """Remove the zero components of ``e`` in place (keeping one if all are zero)."""
+    n = 0
+    for i in range(elen):
+        if e[i] != 0.0:
+            e[n] = e[i]
+            n += 1
+    if n == 0:
+        e[0] = 0.0
+        n = 1
+    return n
+
+
+@njit(**NJIT)
 def _incircle_translated_exact(adx, ady, bdx, bdy, cdx, cdy):
-    """Exact incircle when the coordinate differences to ``d`` are exact doubles."""
+    """Exact incircle of the differences ``adx = ax - dx`` etc. taken as exact doubles.
+
+    Returns ``(top, estimate, length)``: the most significant component of the exact
+    determinant (its sign is the determinant's), the floating-point sum of all components
+    and the number of components (for the estimate's error bound).
+    """
     # one allocation, carved into views: a product of 4- by 4-component expansions has at
     # most 32 components, the sum of three at most 96
     buf = np.zeros(16 + 3 * 128)
@@ -279,12 +303,19 @@ def _incircle_translated_exact(adx, ady, bdx, bdy, cdx, cdy):
         else:
             llen = _lift(cdx, cdy, lift)
             _cross(adx, ady, bdx, bdy, minor)
-        plen = _multiply(minor, 4, lift, llen, prod, tmp, acc)
+        # differences with few bits or zeros (grids, integers) leave zero components:
+        # dropping them makes the product much cheaper
+        mlen = _drop_zeros(minor, 4)
+        llen = _drop_zeros(lift, llen)
+        plen = _multiply(minor, mlen, lift, llen, prod, tmp, acc)
         nlen = _expansion_sum(total, tlen, prod, plen, acc)
         for i in range(nlen):
             total[i] = acc[i]
         tlen = nlen
-    return total[tlen - 1]
+    est = 0.0
+    for i in range(tlen):
+        est += total[i]
+    return total[tlen - 1], est, tlen
 
 
 @njit(**NJIT)
@@ -350,15 +381,55 @@ def _incircle_full_exact(ax, ay, bx, by, cx, cy, dx, dy):
 
 
 @njit(**NJIT)
-def _incircle_exact(ax, ay, bx, by, cx, cy, dx, dy):
+def _incircle_adapt(ax, ay, bx, by, cx, cy, dx, dy, permanent):
+    """Incircle after the float filter failed: Shewchuk's stages B and C, then exact.
+
+    ``permanent`` is :func:`_incircle_float`'s. Let ``D`` be the true determinant, ``adx``
+    etc. the rounded differences and ``adxt`` etc. their tails, ``|adxt| <= eps |adx|``.
+
+    * Stage B: ``B``, the determinant of the rounded differences, is computed exactly. Each
+      of its 12 degree-4 monomials moves by a relative ``(1 + eps)**4 - 1`` when the tails
+      are added, so ``|D - B| <= (4 + 48 eps) eps * permanent`` (the permanent's own 7
+      roundings included). With no tails ``B`` is ``D``. The estimate ``E`` (the float sum
+      of ``B``'s ``n`` components, nonoverlapping so their magnitudes add up to less than
+      ``2 |top|``) is within ``slack = (2 n + 4) eps |top|`` of ``B``.
+    * Stage C: ``E`` plus the first-order terms in the tails; what is left out is below
+      ``6 eps**2 * permanent``, and the rounding of the first-order terms below
+      ``34 eps**2 * permanent`` (bounded by Shewchuk's ``(44 + 576 eps) eps**2``, padded
+      here), plus ``slack`` and Shewchuk's ``(3 + 8 eps) eps |E|`` for the final sum.
+    * Otherwise the untranslated 4x4 determinant in expansion arithmetic decides.
+    """
     adx, adxt = _two_diff(ax, dx)
     ady, adyt = _two_diff(ay, dy)
     bdx, bdxt = _two_diff(bx, dx)
     bdy, bdyt = _two_diff(by, dy)
     cdx, cdxt = _two_diff(cx, dx)
     cdy, cdyt = _two_diff(cy, dy)
+    top, est, n = _incircle_translated_exact(adx, ady, bdx, bdy, cdx, cdy)
     if adxt == 0.0 and adyt == 0.0 and bdxt == 0.0 and bdyt == 0.0 and cdxt == 0.0 and cdyt == 0.0:
-        return _incircle_translated_exact(adx, ady, bdx, bdy, cdx, cdy)
+        return top
+    slack = (2.0 * n + 4.0) * _EPS * abs(top)
+    if abs(est) > _ICC_BOUND_B * permanent + slack:
+        return est
+    alift = adx * adx + ady * ady
+    blift = bdx * bdx + bdy * bdy
+    clift = cdx * cdx + cdy * cdy
+    det = est + (
+        (
+            alift * ((bdx * cdyt + cdy * bdxt) - (bdy * cdxt + cdx * bdyt))
+            + 2.0 * (adx * adxt + ady * adyt) * (bdx * cdy - bdy * cdx)
+        )
+        + (
+            blift * ((cdx * adyt + ady * cdxt) - (cdy * adxt + adx * cdyt))
+            + 2.0 * (bdx * bdxt + bdy * bdyt) * (cdx * ady - cdy * adx)
+        )
+        + (
+            clift * ((adx * bdyt + bdy * adxt) - (ady * bdxt + bdx * adyt))
+            + 2.0 * (cdx * cdxt + cdy * cdyt) * (adx * bdy - ady * bdx)
+        )
+    )
+    if abs(det) > _ICC_BOUND_C * permanent + _RESULT_BOUND * abs(est) + slack:
+        return det
     return _incircle_full_exact(ax, ay, bx, by, cx, cy, dx, dy)
 
 
@@ -395,7 +466,7 @@ def incircle(ax, ay, bx, by, cx, cy, dx, dy):
     det, permanent = _incircle_float(ax, ay, bx, by, cx, cy, dx, dy)
     if abs(det) > _ICC_BOUND * permanent:
         return det
-    return _incircle_exact(ax, ay, bx, by, cx, cy, dx, dy)
+    return _incircle_adapt(ax, ay, bx, by, cx, cy, dx, dy, permanent)
 
 
 @njit(**NJIT)
