@@ -276,6 +276,25 @@ def _drop_zeros(e, elen):
 
 
 @njit(**NJIT)
+def _grow(e, elen, b):
+    """Add the double ``b`` to the expansion ``e`` exactly, in place; returns the new length.
+
+    Zero components are dropped; ``e`` needs room for ``elen + 1`` components.
+    """
+    q = b
+    hlen = 0
+    for i in range(elen):
+        q, hh = _two_sum(q, e[i])
+        if hh != 0.0:
+            e[hlen] = hh  # hlen <= i: e[i] was read already
+            hlen += 1
+    if q != 0.0 or hlen == 0:
+        e[hlen] = q
+        hlen += 1
+    return hlen
+
+
+@njit(**NJIT)
 def _incircle_translated_exact(adx, ady, bdx, bdy, cdx, cdy):
     """Exact incircle of the differences ``adx = ax - dx`` etc. taken as exact doubles.
 
@@ -304,9 +323,18 @@ def _incircle_translated_exact(adx, ady, bdx, bdy, cdx, cdy):
             llen = _lift(cdx, cdy, lift)
             _cross(adx, ady, bdx, bdy, minor)
         # differences with few bits or zeros (grids, integers) leave zero components:
-        # dropping them makes the product much cheaper
+        # dropping them makes the product cheaper
         mlen = _drop_zeros(minor, 4)
         llen = _drop_zeros(lift, llen)
+        if mlen * llen <= 8:
+            # few components (grids, integers): add the exact partial products to the total
+            # one by one, cheaper than forming the product expansion and merging it
+            for i in range(mlen):
+                for j in range(llen):
+                    p1, p0 = _two_product(minor[i], lift[j])
+                    tlen = _grow(total, tlen, p0)
+                    tlen = _grow(total, tlen, p1)
+            continue
         plen = _multiply(minor, mlen, lift, llen, prod, tmp, acc)
         nlen = _expansion_sum(total, tlen, prod, plen, acc)
         for i in range(nlen):
