@@ -249,3 +249,59 @@ def test_halfplane_overflowing_chunks_rebuilt():
     assert not fits.all()
     ref = vf.voronoi(pts, (0.0, 0.0, 1.0, 1.0))
     _assert_same(ref, vf.voronoi(pts, (0.0, 0.0, 1.0, 1.0), algorithm="halfplane"), None)
+
+
+def _near_duplicate_grid(n, step, ulps, offset, direction):
+    """An ``n x n`` grid of spacing ``step`` at ``offset`` and a near-duplicate of three sites.
+
+    The first three sites are copied and moved ``ulps`` ulps along ``direction`` (each
+    coordinate by ``np.nextafter``): their bisector with the original is ill-conditioned.
+    Returns ``(points (n * n + 3, 2), box)``.
+    """
+    g = offset + step * np.array([(i, j) for i in range(n) for j in range(n)], dtype=float)
+    near = g[:3].copy()
+    for _ in range(ulps):
+        near = np.nextafter(near, near + np.asarray(direction, dtype=float))
+    box = (offset - 0.1, offset - 0.1, offset + 1.0, offset + 1.0)
+    return np.vstack([g, near]), box
+
+
+def _assert_halfplane_as_default(pts, box) -> None:
+    """Half-plane cells equal the default algorithm's and fit together (Euler, shared bits)."""
+    ref = vf.voronoi(pts, box, algorithm="delaunay")
+    got = vf.voronoi(pts, box, algorithm="halfplane")
+    area = ref.boundary.area
+    np.testing.assert_allclose(got.areas, ref.areas, rtol=0.0, atol=1e-9 * area)
+    assert _pairs(got) == _pairs(ref), "neighbour sets differ"
+    desc = got.describe()
+    assert desc.euler_ok, desc
+    assert desc.mismatched_vertices == 0, desc
+    assert desc.convex_ok, desc
+
+
+def test_halfplane_near_duplicate_sites_regression():
+    """Sites one ulp from others: the exact finishing kept wrong neighbours (Euler -1)."""
+    g = np.array([(i / 5, j / 5) for i in range(5) for j in range(5)])
+    box = (-0.1, -0.1, 1.0, 1.0)
+    # as reported; np.mod maps x = 1 back to 0, so these three are exact duplicates
+    _assert_halfplane_as_default(np.vstack([g, np.mod(g[:3] + [1, 0], 1)]), box)
+    # one ulp above three sites: failed before (neighbours lost, 9+ vertices not shared)
+    _assert_halfplane_as_default(np.vstack([g, np.nextafter(g[:3], g[:3] + [0.0, 1.0])]), box)
+
+
+def test_halfplane_near_duplicate_sites_variants():
+    """Near-duplicates 1..4 ulps apart in several directions, grids 4x4..6x6, two offsets.
+
+    At offset 500000 the grid spacing is a power of two so that the grid stays exactly
+    cocircular: a rounded grid (i / 5 + 500000) has true Voronoi edges of a few ulps, whose
+    neighbour pairs depend on each algorithm's merge tolerance (and ``describe`` counts
+    them as edges at its 1e-13 tolerance, below the coordinates' ulp: the default algorithm
+    fails Euler there too).
+    """
+    directions = [(1.0, 0.0), (0.0, 1.0), (1.0, 1.0), (-1.0, 1.0), (1.0, -1.0)]
+    for n in (4, 5, 6):
+        for ulps in (1, 2, 3, 4):
+            for offset, step in ((0.0, 1.0 / n), (0.0, 0.125), (500000.0, 0.125)):
+                for direction in directions:
+                    pts, box = _near_duplicate_grid(n, step, ulps, offset, direction)
+                    _assert_halfplane_as_default(pts, box)

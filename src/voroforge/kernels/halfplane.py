@@ -16,9 +16,13 @@ polygon, the same grid, search and exact finishing):
 4. Exact finishing (:func:`_settle`): the ring of neighbours is checked with the exact
    ``orient2d``/``incircle`` against every site met within ``2 r`` (zero-length edges of
    cocircular sites go, neighbours lost to coinciding float bisectors come back), and every
-   vertex is recomputed from its sites in index order: the circumcentre of the three
-   lowest-numbered sites on its circle, or the bisector's crossing with a box side
-   computed as the default algorithm computes it. Cells sharing a vertex get the same bits.
+   vertex is recomputed from its sites in index order: the circumcentre of the first
+   lowest-numbered triple of sites on its circle that is well-conditioned (not two sites a
+   few ulps apart, whose bisector can put the centre anywhere along it), or the bisector's
+   crossing with a box side computed as the default algorithm computes it. Cells sharing a
+   vertex get the same bits. A site counts as on a circle by rounding only if its own
+   vertices with the circle's sites are that vertex to rounding: near-duplicate sites make
+   a tiny incircle value but long edges.
 
 Output contract (that of ``cells.cells_from_triangulation``): closed counter-clockwise rings
 ``coords (K, 2)``, ``offsets (n + 1,)``, ``owner (K,)`` with the site across each edge, -1 on
@@ -50,10 +54,20 @@ _NEAR = 1e-7  # relative band around a vertex's circle where candidates get the 
 #: |d| (squared distance to a vertex's circle minus its radius squared) below which a site
 #: counts as on the circle: 2 r times the default algorithm's 2**-46 vertex merge tolerance
 _MERGE = 2.0**-45
-_MAX_FIX = 64
+_MAX_FIX = 64  # rounds of exact repair per cell before the float cut is kept as it is
 #: Squared float edge length, relative to the squared cell radius, above which an edge is
 #: taken as it is (rounding moves vertices by ~1e-16 of the radius)
-_SURE = 1e-12  # rounds of exact repair per cell before the float cut is kept as it is
+_SURE = 1e-12
+#: Vertices closer than this (L1, relative to their magnitude and the circle's size) are one
+#: vertex: the default algorithm's ``_CC_MERGE_RTOL``. A site within ``_MERGE`` of a circle
+#: joins its vertex only if the vertices it forms with the circle's sites are that close: a
+#: small ``d`` alone does not make a short edge when the site is a few ulps from another one
+#: (their bisector is ill-conditioned and its vertices can lie anywhere along it).
+_CC_RTOL = 2.0**-46
+_SNAP_RTOL = 2.0**-40
+#: Squared distance between two sites, relative to the squared radius, below which their
+#: triple is not a canonical vertex's (sites a few ulps apart: ill-conditioned)
+_PAIR_RTOL = 2.0**-40  # the same for box crossings (the crossing is computed another way)
 
 # Box sides as internal owner codes (those of cells.py's box crossings); all become -1.
 _LEFT, _BOTTOM, _RIGHT, _TOP = -1, -2, -3, -4
@@ -318,13 +332,14 @@ def _drop_invalid(i, lab, m, xs, ys, sure, trust):
         if j == p or (check and not _edge_ok(i, j, p, q, xs, ys)):
             m = _remove(lab, m, u)
             u = max(u - 1, 0)
+            trust = False  # sure[] is indexed by the ring as it was: no longer aligned
             continue
         u += 1
     return m
 
 
 @njit(**NJIT)
-def _settle(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy):
+def _settle(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on):
     """Make the ring of neighbour labels ``lab[:m]`` exactly right; returns its length.
 
     Float cutting can keep an edge of zero length (cocircular sites), or lose a neighbour
@@ -335,6 +350,12 @@ def _settle(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy):
     exactly on the circle are cocircular: the vertex is then the circumcentre of the three
     lowest-numbered sites on it, which every cell around the vertex finds the same.
     Returns -1 when the ring cannot be settled (the caller keeps the float cut).
+
+    A site within rounding of the circle is taken as on it (never inserted) only if its
+    vertices with the circle's sites are the vertex to rounding (:func:`_joins`); a site a
+    few ulps from ``i``, ``a`` or ``b`` gets the exact test. The canonical centre is that of
+    the first well-conditioned triple of the sites on the circle (:func:`_canonical`).
+    ``on`` is scratch for those sites (int64, any size).
 
     ``sure[u]`` flags labels whose float edge is long; until the ring changes they skip the
     exact tests (their edge and the orientation at its ends are beyond rounding).
@@ -367,10 +388,7 @@ def _settle(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy):
             merge = _MERGE * r * (abs(vx_) + abs(vy_) + r)
             nxt = lab[u + 1] if u + 1 < m else lab[0]
             prv = lab[u - 2] if u >= 2 else lab[u - 2 + m]
-            # the three lowest-numbered sites on the circle
-            t0 = min(i, a, b)
-            t2 = max(i, a, b)
-            t1 = i + a + b - t0 - t2
+            non = 0  # other sites on the circle, to rounding
             for c in range(nc):
                 x = sidx[cand[c]]
                 if x == a or x == b:
@@ -380,18 +398,31 @@ def _settle(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy):
                 d = dx * dx + dy * dy - r2
                 if d > tol:
                     continue
-                if abs(d) <= merge:
+                if abs(d) <= merge and _joins(i, a, b, x, vx_, vy_, xs, ys, _CC_RTOL):
                     if x == nxt or x == prv:
                         # the edge of b (or a) between this vertex and x's is noise: drop it
                         m = _remove(lab, m, u if x == nxt else (u - 1 if u > 0 else m - 1))
                         inserted = True
                         break
                     s = 0.0
-                elif d < -tol:
+                elif d < -tol and abs(d) > merge:
                     s = 1.0
                 else:
                     s = incircle(ix, iy, xs[a], ys[a], xs[b], ys[b], xs[x], ys[x])
                 if s > 0.0:
+                    # x strictly inside the circle and on the line through i and a (or b)
+                    # lies between them: a's bisector is beyond x's, so x replaces a
+                    ua = u - 1 if u > 0 else m - 1
+                    if orient2d(ix, iy, xs[a], ys[a], xs[x], ys[x]) == 0.0:
+                        if not _has(lab, m, x):
+                            lab[ua] = x
+                            inserted = True
+                            break
+                    if orient2d(ix, iy, xs[b], ys[b], xs[x], ys[x]) == 0.0:
+                        if not _has(lab, m, x):
+                            lab[u] = x
+                            inserted = True
+                            break
                     if m < cap and not _has(lab, m, x):
                         for k in range(m, u, -1):
                             lab[k] = lab[k - 1]
@@ -399,24 +430,102 @@ def _settle(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy):
                         m += 1
                         inserted = True
                         break
-                elif s == 0.0:
-                    if x < t0:
-                        t0, t1, t2 = x, t0, t1
-                    elif x < t1:
-                        t1, t2 = x, t1
-                    elif x < t2:
-                        t2 = x
+                elif (s == 0.0 or abs(d) <= merge) and non + 3 < on.shape[0]:
+                    on[non] = x  # on the circle, or off it by rounding only
+                    non += 1
             if inserted:
                 break
-            if t0 + t1 + t2 == i + a + b and min(i, a, b) == t0 and max(i, a, b) == t2:
+            if non == 0:
                 vx[u] = vx_  # no other site on the circle: the centre computed above
                 vy[u] = vy_
             else:
-                vx[u], vy[u] = circumcenter(xs[t0], ys[t0], xs[t1], ys[t1], xs[t2], ys[t2])
+                on[non] = i
+                on[non + 1] = a
+                on[non + 2] = b
+                vx[u], vy[u] = _canonical(on, non + 3, vx_, vy_, ix, iy, xs, ys)
         if not inserted:
             return m
         trust = False  # the ring changed: every label gets the exact tests from now on
     return -1
+
+
+@njit(**NJIT)
+def _close(x, y, px, py, sx, sy, rtol):
+    """Whether ``(px, py)`` is within ``rtol`` of vertex ``(x, y)`` of site ``(sx, sy)``.
+
+    L1 distance relative to the vertex's magnitude and its distance from the site (the
+    default algorithm's test for circumcentres that are one vertex).
+    """
+    scale = abs(x) + abs(y) + abs(x - sx) + abs(y - sy)
+    return abs(px - x) + abs(py - y) <= rtol * scale
+
+
+@njit(**NJIT)
+def _joins(i, a, b, x, vx, vy, xs, ys, rtol):
+    """Whether site ``x`` near the circle of ``i, a, b`` (centre ``vx, vy``) is on its vertex.
+
+    True when the circumcentres of ``x`` with ``i, a`` and with ``i, b`` both lie within
+    ``rtol`` of the vertex: the edges that ``x`` would add or shorten are then rounding
+    noise. A site a few ulps from ``i``, ``a`` or ``b`` fails: its triangle with that
+    site is ill-conditioned and its centre lies far along their bisector.
+    """
+    ix = xs[i]
+    iy = ys[i]
+    px, py = _vertex(i, a, x, xs, ys)
+    if not (np.isfinite(px) and np.isfinite(py)):
+        return False
+    if not _close(vx, vy, px, py, ix, iy, rtol):
+        return False
+    px, py = _vertex(i, x, b, xs, ys)
+    if not (np.isfinite(px) and np.isfinite(py)):
+        return False
+    return _close(vx, vy, px, py, ix, iy, rtol)
+
+
+@njit(**NJIT)
+def _canonical(on, k, vx, vy, sx, sy, xs, ys):
+    """The canonical centre of vertex ``(vx, vy)`` of site ``(sx, sy)``; sorts ``on[:k]``.
+
+    ``on[:k]`` are the sites on its circle to rounding (every cell around the vertex finds
+    the same ones). The centre is that of the first triple of them, in lexicographic order
+    of their numbers, whose circumcentre is the vertex to rounding: two sites a few ulps
+    apart make an ill-conditioned triple (its centre lies far along their bisector), which
+    is passed over. Without such a triple the vertex stays as it is.
+    """
+    r2 = (vx - sx) * (vx - sx) + (vy - sy) * (vy - sy)
+    for p in range(1, k):  # insertion sort of the few sites on the circle
+        x = on[p]
+        q = p
+        while q > 0 and on[q - 1] > x:
+            on[q] = on[q - 1]
+            q -= 1
+        on[q] = x
+    for p in range(k):
+        for q in range(p + 1, k):
+            for r in range(q + 1, k):
+                x0, x1, x2 = on[p], on[q], on[r]
+                if x0 == x1 or x1 == x2:
+                    continue
+                if _near_pair(x0, x1, r2, xs, ys) or _near_pair(x1, x2, r2, xs, ys):
+                    continue
+                if _near_pair(x0, x2, r2, xs, ys):
+                    continue
+                cx, cy = circumcenter(xs[x0], ys[x0], xs[x1], ys[x1], xs[x2], ys[x2])
+                if np.isfinite(cx) and np.isfinite(cy):
+                    if _close(vx, vy, cx, cy, sx, sy, _SNAP_RTOL):
+                        return cx, cy
+    return vx, vy
+
+
+@njit(**NJIT)
+def _near_pair(a, b, r2, xs, ys):
+    """Whether sites ``a, b`` are too close for a well-conditioned circumcentre.
+
+    ``r2`` is the squared radius of the circle they are on.
+    """
+    dx = xs[a] - xs[b]
+    dy = ys[a] - ys[b]
+    return dx * dx + dy * dy <= _PAIR_RTOL * r2
 
 
 @njit(**NJIT)
@@ -428,47 +537,44 @@ def _has(lab, m, x):
 
 
 @njit(**NJIT)
-def _snap_crossing(i, j, x, y, xs, ys, near, nn, sidx):
+def _snap_crossing(i, j, x, y, xs, ys, near, nn, sidx, on):
     """The canonical vertex at box crossing ``(x, y)`` of the bisector of ``i, j``, if any.
 
     When other sites are as far from the crossing as ``i`` and ``j`` (to the merge
     tolerance), the crossing is a Voronoi vertex lying on the box: it becomes the
-    circumcentre of the three lowest-numbered of those sites, as in :func:`_settle`.
+    canonical centre of those sites (:func:`_canonical`), as in :func:`_settle`. ``on`` is
+    scratch (int64, any size).
     """
     r2 = (xs[i] - x) * (xs[i] - x) + (ys[i] - y) * (ys[i] - y)
     r = np.sqrt(r2)
     merge = _MERGE * r * (abs(x) + abs(y) + r)
-    t0 = min(i, j)
-    t1 = max(i, j)
-    t2 = -1
+    on[0] = i
+    on[1] = j
+    k = 2
     for c in range(nn):
         q = sidx[near[c]]
         if q == i or q == j:
             continue
         dx = xs[q] - x
         dy = ys[q] - y
-        if abs(dx * dx + dy * dy - r2) > merge:
-            continue
-        if q < t0:
-            t0, t1, t2 = q, t0, t1
-        elif q < t1:
-            t1, t2 = q, t1
-        elif t2 < 0 or q < t2:
-            t2 = q
-    if t2 < 0:
+        if abs(dx * dx + dy * dy - r2) <= merge and k < on.shape[0]:
+            on[k] = q
+            k += 1
+    if k == 2:
         return x, y
-    return circumcenter(xs[t0], ys[t0], xs[t1], ys[t1], xs[t2], ys[t2])
+    return _canonical(on, k, x, y, xs[i], ys[i], xs, ys)
 
 
 @njit(**NJIT)
-def _emit_exact(i, lab, m, vx, vy, xs, ys, box, near, nn, sidx, ox, oy, oo, pos):
+def _emit_exact(i, lab, m, vx, vy, xs, ys, box, near, nn, sidx, ox, oy, oo, pos, on):
     """Write the settled ring with canonical vertices from ``pos``; -1 when one is undefined.
 
     Bisector-bisector vertices come from :func:`_settle`; a bisector meets a box side at the
     crossing computed from the pair in index order (as the default algorithm does), and two
     box sides meet at the exact corner. A crossing that is also a Voronoi vertex (a site
     among ``near[:nn]`` as far from it as the pair, to rounding) is that vertex's canonical
-    circumcentre instead, which the cells meeting there inside compute too.
+    circumcentre instead, which the cells meeting there inside compute too. ``on`` is
+    scratch (int64, any size).
     """
     c = pos
     for u in range(m):
@@ -481,7 +587,7 @@ def _emit_exact(i, lab, m, vx, vy, xs, ys, box, near, nn, sidx, ox, oy, oo, pos)
             j = a if a >= 0 else b
             x, y = _box_crossing(i, j, xs, ys, b if a >= 0 else a, box)
             if np.isfinite(x) and np.isfinite(y):
-                x, y = _snap_crossing(i, j, x, y, xs, ys, near, nn, sidx)
+                x, y = _snap_crossing(i, j, x, y, xs, ys, near, nn, sidx, on)
         else:
             vert = a if (a == _LEFT or a == _RIGHT) else b
             horz = b if vert == a else a
@@ -709,13 +815,14 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
                 if qx * qx + qy * qy <= _REACH * r2:
                     watch[keep] = t
                     keep += 1
-            ms = _settle(sidx[k], lab, m, ss, watch, keep, sidx, xs, ys, vx, vy)
+            # cand (the search's list) is free now: _settle's scratch for sites on a circle
+            ms = _settle(sidx[k], lab, m, ss, watch, keep, sidx, xs, ys, vx, vy, cand)
             # emitted to scratch first: only then is the exact length known, and a rebuilt
             # chunk's output (see _second_pass) has exactly the room the first pass counted
             c = -1
             if ms >= 3:
                 c = _emit_exact(
-                    sidx[k], lab, ms, vx, vy, xs, ys, box, watch, keep, sidx, ox, oy, oo, 0
+                    sidx[k], lab, ms, vx, vy, xs, ys, box, watch, keep, sidx, ox, oy, oo, 0, cand
                 )
             if c < 0:
                 c = _emit(px, py, po, a, m, cx, cy, box, ox, oy, oo, 0)
