@@ -58,6 +58,9 @@ _MAX_FIX = 64  # rounds of exact repair per cell before the float cut is kept as
 #: Squared float edge length, relative to the squared cell radius, above which an edge is
 #: taken as it is (rounding moves vertices by ~1e-16 of the radius)
 _SURE = 1e-12
+#: Squared sine of the angle between adjacent float edges below which neither is taken as
+#: it is (their crossing is ill-conditioned)
+_SURE_SIN2 = 1e-16
 #: Vertices closer than this (L1, relative to their magnitude and the circle's size) are one
 #: vertex: the default algorithm's ``_CC_MERGE_RTOL``. A site within ``_MERGE`` of a circle
 #: joins its vertex only if the vertices it forms with the circle's sites are that close: a
@@ -298,6 +301,27 @@ def _edge_ok(i, j, p, q, xs, ys):
 
 
 @njit(**NJIT)
+def _shadowed_at_box(i, j, k, side, xs, ys, box):
+    """Whether neighbour ``j`` between box side ``side`` and site ``k`` has no edge.
+
+    Only for ``k`` a few ulps from ``j`` (their bisectors with ``i`` are nearly parallel,
+    their crossing and the float cut are ill-conditioned): ``j``'s edge starts where its
+    bisector meets the side, and is empty when ``k`` is nearer there than ``j``, i.e.
+    ``|c - j|^2 - |c - k|^2 = (k - j) . (2 c - j - k) > 0`` (``k - j`` is exact).
+    """
+    dx = xs[k] - xs[j]
+    dy = ys[k] - ys[j]
+    ex = xs[j] - xs[i]
+    ey = ys[j] - ys[i]
+    if dx * dx + dy * dy > _PAIR_RTOL * (ex * ex + ey * ey):
+        return False
+    cx, cy = _box_crossing(i, j, xs, ys, side, box)
+    if not (np.isfinite(cx) and np.isfinite(cy)):
+        return False
+    return dx * (2.0 * cx - xs[j] - xs[k]) + dy * (2.0 * cy - ys[j] - ys[k]) > 0.0
+
+
+@njit(**NJIT)
 def _vertex(a, b, c, xs, ys):
     """Circumcentre of sites ``a, b, c`` computed in increasing index order (canonical bits)."""
     if a > b:
@@ -317,11 +341,13 @@ def _remove(lab, m, u):
 
 
 @njit(**NJIT)
-def _drop_invalid(i, lab, m, xs, ys, sure, trust):
+def _drop_invalid(i, lab, m, xs, ys, sure, trust, box):
     """Remove repeated labels and neighbours whose edge has no positive length.
 
     With ``trust``, labels whose float edge is long (``sure[u]``) are kept without the exact
-    test: the float cut is off by rounding only, so such an edge exists.
+    test: the float cut is off by rounding only, so such an edge exists. A label next to a
+    box side and to a site a few ulps from its own goes when the other one is nearer where
+    its bisector meets the box (:func:`_shadowed_at_box`).
     """
     u = 0
     while u < m and m >= 3:
@@ -329,7 +355,10 @@ def _drop_invalid(i, lab, m, xs, ys, sure, trust):
         p = lab[u - 1] if u > 0 else lab[m - 1]
         q = lab[u + 1] if u + 1 < m else lab[0]
         check = j >= 0 and p >= 0 and q >= 0 and p != q and not (trust and sure[u] > 0.0)
-        if j == p or (check and not _edge_ok(i, j, p, q, xs, ys)):
+        shadowed = j >= 0 and (p < 0) != (q < 0)
+        if shadowed:
+            shadowed = _shadowed_at_box(i, j, q if p < 0 else p, p if p < 0 else q, xs, ys, box)
+        if j == p or shadowed or (check and not _edge_ok(i, j, p, q, xs, ys)):
             m = _remove(lab, m, u)
             u = max(u - 1, 0)
             trust = False  # sure[] is indexed by the ring as it was: no longer aligned
@@ -339,7 +368,7 @@ def _drop_invalid(i, lab, m, xs, ys, sure, trust):
 
 
 @njit(**NJIT)
-def _settle(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on):
+def _settle(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box):
     """Make the ring of neighbour labels ``lab[:m]`` exactly right; returns its length.
 
     Float cutting can keep an edge of zero length (cocircular sites), or lose a neighbour
@@ -364,7 +393,7 @@ def _settle(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on):
     trust = True
     for _ in range(_MAX_FIX):
         m0 = m
-        m = _drop_invalid(i, lab, m, xs, ys, sure, trust)
+        m = _drop_invalid(i, lab, m, xs, ys, sure, trust, box)
         if m < 3:
             return -1
         trust = trust and m == m0
@@ -801,11 +830,21 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
         if m >= 3:
             for u in range(m):
                 lab[u] = po[a + u]
-                # a long float edge is a true edge (rounding moves its ends by ulps only)
                 un = u + 1 if u + 1 < m else 0
-                ex = px[a + un] - px[a + u]
-                ey = py[a + un] - py[a + u]
-                ss[u] = 1.0 if ex * ex + ey * ey > _SURE * r2 else 0.0
+                vx[u] = px[a + un] - px[a + u]  # edge vectors (vx, vy are free until _settle)
+                vy[u] = py[a + un] - py[a + u]
+            for u in range(m):
+                # a long float edge is a true edge (rounding moves its ends by ulps only),
+                # unless an end is where nearly parallel bisectors cross (sites a few ulps
+                # apart): that crossing can be anywhere along them, and so can the edge
+                un = u + 1 if u + 1 < m else 0
+                e2 = vx[u] * vx[u] + vy[u] * vy[u]
+                ss[u] = 1.0 if e2 > _SURE * r2 else 0.0
+                for w in (u - 1 if u > 0 else m - 1, un):
+                    f2 = vx[w] * vx[w] + vy[w] * vy[w]
+                    cr = vx[u] * vy[w] - vy[u] * vx[w]
+                    if cr * cr <= _SURE_SIN2 * e2 * f2:
+                        ss[u] = 0.0
             # only sites within 2 r of the final cell can matter to its vertices
             keep = 0
             for c in range(nw):
@@ -816,7 +855,7 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
                     watch[keep] = t
                     keep += 1
             # cand (the search's list) is free now: _settle's scratch for sites on a circle
-            ms = _settle(sidx[k], lab, m, ss, watch, keep, sidx, xs, ys, vx, vy, cand)
+            ms = _settle(sidx[k], lab, m, ss, watch, keep, sidx, xs, ys, vx, vy, cand, box)
             # emitted to scratch first: only then is the exact length known, and a rebuilt
             # chunk's output (see _second_pass) has exactly the room the first pass counted
             c = -1
