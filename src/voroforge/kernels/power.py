@@ -21,6 +21,7 @@ import numpy as np
 from numba import njit, prange
 
 from ..config import NJIT, NJIT_PARALLEL
+from .cells import _dedupe_ring
 
 
 @njit(**NJIT)
@@ -102,19 +103,8 @@ def _cell(i, xs, ys, ws, indptr, indices, box, px, py, po, qx, qy, qo):
             po[k] = qo[k]
         if m == 0:
             break
-    # drop repeated vertices (a clip line through a vertex)
-    r = 0
-    for k in range(m):
-        if r > 0 and px[k] == px[r - 1] and py[k] == py[r - 1]:
-            po[r - 1] = po[k]
-            continue
-        px[r] = px[k]
-        py[r] = py[k]
-        po[r] = po[k]
-        r += 1
-    while r > 1 and px[r - 1] == px[0] and py[r - 1] == py[0]:
-        r -= 1
-    if r < 3:
+    r = _dedupe_ring(px, py, po, m)  # repeated vertices: a clip line through a vertex
+    if r == 0:
         return 0
     area2 = 0.0
     for k in range(r):
