@@ -5,11 +5,12 @@ point is joined to the hull edges it sees and the new edges are legalised with L
 Visibility uses the adaptive exact orientation, so the triangulation is always valid. Flips
 use the floating-point incircle filter alone, which keeps the large exact-arithmetic code out
 of the hot loop; when the filter could not decide some test (nearly or exactly cocircular
-points), one parallel pass lists every edge the filter cannot prove legal and exact Lawson
-flips from those (strict incircle, so cocircular input terminates) give the Delaunay
-triangulation. A point that sees no hull edge (possible only when rounding of the sweep
-distances ties or inverts the order) is deferred and inserted afterwards by point location
-and a 1-to-3 or edge split, so no point is ever dropped.
+points), one parallel pass lists every edge that is not locally Delaunay (exact incircle
+where the filter cannot tell) and exact Lawson flips from those (strict incircle, so
+cocircular input terminates) give the Delaunay triangulation. A point that sees no hull
+edge (possible only when rounding of the sweep distances ties or inverts the order) is
+deferred and inserted afterwards by point location and a 1-to-3 or edge split, so no point
+is ever dropped.
 
 Layout (Delaunator): ``triangles`` is a flat array, halfedge ``e`` goes from ``triangles[e]``
 to ``triangles[_next(e)]`` and ``halfedges[e]`` is its twin or -1 on the hull. Triangles are
