@@ -35,11 +35,10 @@ recomputed straight into the output.
 
 from __future__ import annotations
 
-import numba
 import numpy as np
 from numba import njit, prange
 
-from ..config import NJIT, NJIT_PARALLEL, PARALLEL_MIN_SITES
+from ..config import NJIT, NJIT_PARALLEL
 from .cells import _box_crossing
 from .predicates import circumcenter, incircle, orient2d
 
@@ -1049,34 +1048,28 @@ def halfplane_cells(xs, ys, box, kmap=None):
     slab_y = np.zeros(nchunks * per)
     slab_o = np.zeros(nchunks * per, np.int64)
     fits = np.zeros(nchunks, np.bool_)
-    threads = numba.get_num_threads()
-    if n < PARALLEL_MIN_SITES:
-        numba.set_num_threads(1)  # thread start-up costs more than small inputs take
-    try:
-        _first_pass(sites, orig, grid, boxa, counts, where, slab_x, slab_y, slab_o, fits)
-        # the rare chunks that overflowed their slab are built again, now that their size
-        # is known, one after another into one overflow buffer
-        sidx = sites[3]
-        obase = np.zeros(nchunks, np.int64)
-        total = 0
-        for ch in np.flatnonzero(~fits):
-            obase[ch] = total
-            total += int(counts[sidx[ch * _CHUNK : (ch + 1) * _CHUNK]].sum())
-        over = (np.zeros(total), np.zeros(total), np.zeros(total, np.int64))
-        for ch in np.flatnonzero(~fits):
-            k0 = ch * _CHUNK
-            k1 = min((ch + 1) * _CHUNK, n)
-            lo = obase[ch]
-            hi = lo + int(counts[sidx[k0:k1]].sum())
-            views = (over[0][lo:hi], over[1][lo:hi], over[2][lo:hi])
-            _cells(k0, k1, sites, orig, grid, boxa, counts, where, *views)
-        offsets = np.zeros(n + 1, np.int64)
-        np.cumsum(np.where(counts > 0, counts + 1, 0), out=offsets[1:])
-        k = int(offsets[-1])
-        coords = np.empty((k, 2))  # noqa: TID251 - every slot is written by _second_pass
-        owner = np.empty(k, np.int64)  # noqa: TID251 - every slot is written by _second_pass
-        slab = (slab_x, slab_y, slab_o)
-        _second_pass(sidx, counts, offsets, where, slab, fits, over, obase, kmap, coords, owner)
-    finally:
-        numba.set_num_threads(threads)
+    _first_pass(sites, orig, grid, boxa, counts, where, slab_x, slab_y, slab_o, fits)
+    # the rare chunks that overflowed their slab are built again, now that their size
+    # is known, one after another into one overflow buffer
+    sidx = sites[3]
+    obase = np.zeros(nchunks, np.int64)
+    total = 0
+    for ch in np.flatnonzero(~fits):
+        obase[ch] = total
+        total += int(counts[sidx[ch * _CHUNK : (ch + 1) * _CHUNK]].sum())
+    over = (np.zeros(total), np.zeros(total), np.zeros(total, np.int64))
+    for ch in np.flatnonzero(~fits):
+        k0 = ch * _CHUNK
+        k1 = min((ch + 1) * _CHUNK, n)
+        lo = obase[ch]
+        hi = lo + int(counts[sidx[k0:k1]].sum())
+        views = (over[0][lo:hi], over[1][lo:hi], over[2][lo:hi])
+        _cells(k0, k1, sites, orig, grid, boxa, counts, where, *views)
+    offsets = np.zeros(n + 1, np.int64)
+    np.cumsum(np.where(counts > 0, counts + 1, 0), out=offsets[1:])
+    k = int(offsets[-1])
+    coords = np.empty((k, 2))  # noqa: TID251 - every slot is written by _second_pass
+    owner = np.empty(k, np.int64)  # noqa: TID251 - every slot is written by _second_pass
+    slab = (slab_x, slab_y, slab_o)
+    _second_pass(sidx, counts, offsets, where, slab, fits, over, obase, kmap, coords, owner)
     return coords, offsets, owner
