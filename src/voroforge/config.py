@@ -22,3 +22,15 @@ SNAP_RTOL = 4.0 * 2.0**-52
 
 #: Below this many sites the engine does not bother with threads.
 PARALLEL_MIN_SITES = int(os.environ.get("VOROFORGE_PARALLEL_MIN_SITES", "20000"))
+
+# ---------------------------------------------------------------------------------------------
+# Tolerances. Each literal tolerance of the package lives below, one line saying what it guards.
+# ---------------------------------------------------------------------------------------------
+
+# --- predicates, vertices, Delaunay-dual cells, power cells ----------------------------------
+
+# --- half-plane cells, bucket grid, raster ----------------------------------------------------
+
+# --- engine (inputs, domains, periodic, describe, interpolation, Lloyd) ------------------------
+
+# --- design layer and io ----------------------------------------------------------------------

@@ -1,0 +1,128 @@
+"""One convex cut: a ring against a half-space given by signed values at its vertices.
+
+Every cell builder in the package (Delaunay-dual hull cells, half-plane cells, power cells)
+cuts a convex ring by a line and keeps the side where the line's signed function is
+``<= 0``. The caller computes the signed values ``ss`` (one per vertex, in any frame it
+likes: relative to the cell's site, with or without weights), and :func:`cut_ring` does the
+rest the same way for all of them:
+
+- a vertex with ``s <= 0`` is kept as it is (a vertex exactly on the line is not moved, so no
+  near-duplicate is created there);
+- an edge that crosses the line gets one new vertex, interpolated from the endpoint
+  **nearer the line** (:func:`crossing`): ``a + 1.0 * (b - a)`` need not round to ``b``, and
+  a crossing next to a box corner then rounded past it, a self-intersecting spike;
+- owners are carried per edge: ``owner[k]`` labels the edge from vertex ``k`` to ``k + 1``;
+  the new edge along the line gets the caller's ``label``, the edge entering the kept side
+  keeps its old label;
+- consecutive equal vertices are merged (the later edge's owner is kept) and trailing
+  vertices equal to the first are dropped.
+
+The 3D cut of a polyhedron has the same shape: signed values per vertex, owners per face,
+a new face carrying the label.
+
+Source and destination are given as arrays plus offsets, so a caller may keep both rings in
+one buffer (the half-plane kernel does) or in two (the others do).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ..config import NJIT
+
+
+@njit(**NJIT)
+def plane_values(px, py, a, m, nx, ny, ox, oy, h, ss):
+    """Signed values ``n . (p - o) - h`` of vertices ``a:a + m`` into ``ss[:m]``.
+
+    Returns the largest value: the ring is cut exactly when it is positive.
+    """
+    smax = -np.inf
+    for u in range(m):
+        s = nx * (px[a + u] - ox) + ny * (py[a + u] - oy) - h
+        ss[u] = s
+        smax = max(smax, s)
+    return smax
+
+
+@njit(**NJIT)
+def crossing(ax, ay, sa, bx, by, sb):
+    """Where segment ``a -> b`` (signed values ``sa``, ``sb`` of opposite sign) meets the line.
+
+    Interpolated from the endpoint nearer the line, so a crossing near a vertex stays on the
+    segment's side of it.
+    """
+    if abs(sa) <= abs(sb):
+        t = sa / (sa - sb)
+        return ax + t * (bx - ax), ay + t * (by - ay)
+    t = sb / (sb - sa)
+    return bx + t * (ax - bx), by + t * (ay - by)
+
+
+@njit(**NJIT)
+def _push(qx, qy, qo, b, c, x, y, o):
+    """Append ``(x, y)`` with edge owner ``o`` at slot ``c`` of the ring starting at ``b``.
+
+    A vertex equal to the previous one is merged into it (the zero-length edge goes, the
+    later edge keeps its owner). Returns the next free slot.
+    """
+    if c > b and qx[c - 1] == x and qy[c - 1] == y:
+        qo[c - 1] = o
+        return c
+    qx[c] = x
+    qy[c] = y
+    qo[c] = o
+    return c + 1
+
+
+@njit(**NJIT)
+def cut_ring(px, py, po, a, m, ss, qx, qy, qo, b, label):
+    """Keep the part of ring ``p[a:a + m]`` where ``ss <= 0``; write it to ``q[b:]``.
+
+    ``ss[k]`` is the signed value of vertex ``a + k``. The new edge along the line gets owner
+    ``label``. Returns the vertex count of the result (0 when nothing is left; a result may
+    have fewer than 3 vertices when the ring only touches the line, and callers that need a
+    polygon test for that). ``q`` may be the same arrays as ``p`` when ``b >= a + m``.
+    The destination needs room for ``m + 1`` vertices.
+    """
+    c = b
+    for k in range(m):
+        kn = k + 1 if k + 1 < m else 0
+        sa = ss[k]
+        sb = ss[kn]
+        ax = px[a + k]
+        ay = py[a + k]
+        if sa <= 0.0:
+            # a kept vertex on the line starts the new edge when the next one is cut off
+            o = label if (sa == 0.0 and sb > 0.0) else po[a + k]
+            c = _push(qx, qy, qo, b, c, ax, ay, o)
+            if sa < 0.0 and sb > 0.0:  # leaving: the crossing starts the new edge
+                x, y = crossing(ax, ay, sa, px[a + kn], py[a + kn], sb)
+                c = _push(qx, qy, qo, b, c, x, y, label)
+        elif sb < 0.0:  # entering: the crossing continues the old edge
+            x, y = crossing(ax, ay, sa, px[a + kn], py[a + kn], sb)
+            c = _push(qx, qy, qo, b, c, x, y, po[a + k])
+    while c > b + 1 and qx[c - 1] == qx[b] and qy[c - 1] == qy[b]:
+        c -= 1  # trailing vertices equal to the first: the edge into the first keeps its owner
+    return c - b
+
+
+@njit(**NJIT)
+def dedupe_ring(qx, qy, qo, m):
+    """Drop consecutive equal vertices of ``q[:m]`` (keeping the later edge owner).
+
+    Returns the new count, 0 when fewer than 3 vertices are left.
+    """
+    out = 0
+    for k in range(m):
+        if out > 0 and qx[k] == qx[out - 1] and qy[k] == qy[out - 1]:
+            qo[out - 1] = qo[k]
+            continue
+        qx[out] = qx[k]
+        qy[out] = qy[k]
+        qo[out] = qo[k]
+        out += 1
+    while out > 1 and qx[out - 1] == qx[0] and qy[out - 1] == qy[0]:
+        out -= 1
+    return out if out >= 3 else 0
