@@ -25,7 +25,9 @@ __all__ = [
     "from_svg",
     "load",
     "polygon",
+    "polygonal_part",
     "rectangle",
+    "svg_in_mm",
     "union",
 ]
 
@@ -200,10 +202,10 @@ def union(*geoms):
     for i, g in enumerate(geoms):
         as_polygonal(g, f"geometry {i}")
     out = shapely.union_all(np.asarray(geoms, dtype=object))
-    return as_polygonal(_polygonal_part(out), "union")
+    return as_polygonal(polygonal_part(out), "union")
 
 
-def _polygonal_part(geom):
+def polygonal_part(geom):
     """The polygonal part of a GEOS result (drops stray lines/points of collections)."""
     if isinstance(geom, shapely.Polygon | shapely.MultiPolygon):
         return geom
@@ -242,11 +244,11 @@ def even_odd(rings) -> shapely.Polygon | shapely.MultiPolygon:
             continue
         poly = shapely.Polygon(arr)
         if not poly.is_valid:
-            poly = _polygonal_part(shapely.make_valid(poly))
+            poly = polygonal_part(shapely.make_valid(poly))
         if poly.is_empty or poly.area <= 0:
             continue
         result = shapely.symmetric_difference(result, poly)
-    result = _polygonal_part(result)
+    result = polygonal_part(result)
     return shapely.orient_polygons(result) if not result.is_empty else result
 
 
@@ -677,6 +679,24 @@ def _document_scale(root) -> tuple[float, np.ndarray]:
         mm = float(m.group(1)) * _MM_PER_UNIT[m.group(2)]
         return (mm / box[2] if box is not None else _MM_PER_UNIT[m.group(2)]), box
     return 1.0, box
+
+
+def svg_in_mm(path) -> bool:
+    """True when the SVG's root ``width`` has a physical unit, so :func:`from_svg` reads mm.
+
+    Parameters
+    ----------
+    path : str or Path
+        The SVG file.
+
+    Returns
+    -------
+    bool
+    """
+    import xml.etree.ElementTree as ET
+
+    m = _LENGTH.match(ET.parse(_existing(path)).getroot().get("width") or "")
+    return bool(m and m.group(2) in _MM_PER_UNIT)
 
 
 def from_svg(path, *, tolerance: float = _DEFAULT_TOL, flip_y: bool = True):

@@ -441,9 +441,9 @@ def smooth(cells, *, iterations: int = 2, ratio: float = 0.25) -> np.ndarray:
             polys.append(shapely.Polygon(shell, holes))
         res = polys[0] if len(polys) == 1 else shapely.MultiPolygon(polys)
         if not res.is_valid:
-            from .boundary import _polygonal_part
+            from .boundary import polygonal_part
 
-            res = _polygonal_part(shapely.make_valid(res))
+            res = polygonal_part(shapely.make_valid(res))
         out[i] = res
     return _clean(out)
 
@@ -606,7 +606,7 @@ def frame(boundary, openings) -> shapely.Polygon | shapely.MultiPolygon:  # noqa
     shapely.Polygon or shapely.MultiPolygon
         With the openings as holes (a MultiPolygon if the openings cut it apart).
     """
-    from .boundary import _polygonal_part, as_polygonal
+    from .boundary import polygonal_part, as_polygonal
 
     geom = as_polygonal(boundary)
     arr = as_cells(openings)
@@ -641,4 +641,4 @@ def frame(boundary, openings) -> shapely.Polygon | shapely.MultiPolygon:  # noqa
     rest = parts[~simple]
     if len(rest):
         result = shapely.difference(result, shapely.union_all(rest))
-    return _polygonal_part(result)
+    return polygonal_part(result)
