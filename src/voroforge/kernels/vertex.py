@@ -1,0 +1,237 @@
+"""One vertex rule: a Voronoi (or power) vertex is named by its owners and computed once.
+
+A vertex of a 2D diagram is where the cells of three sites meet; its *name* is that set of
+three owner sites. Every cell builder (Delaunay-dual cells, half-plane cells, power cells,
+the triangulation's ``circumcenters``) computes a vertex only from its name, through
+:func:`voronoi_vertex` or :func:`power_vertex`: the owners are put in their canonical order
+(lexicographic by coordinates, ``x`` then ``y``; the index breaks ties between equal
+points) and :func:`center` runs on them in that order. So every caller, whatever its own
+numbering of the sites or the order it meets the owners in, gets the same bits, and
+neighbouring cells share their vertices exactly.
+
+:func:`center` is the power centre of three weighted points; with zero or equal weights it
+is the circumcentre, bit for bit (the weight differences are exact zeros). It works relative
+to the point opposite the longest edge, so both edge vectors are the short ones (a sliver
+with one tiny edge keeps its precision), and uses the adaptive ``orient2d`` as denominator
+when the float one cannot be trusted.
+
+Where four or more sites are cocircular, several triples name one vertex;
+:func:`canonical_triple` picks the name (the first well-conditioned triple in canonical
+order), so every cell around the vertex uses the same one.
+
+A bisector's crossing with a side of the box is named by its pair and the side
+(:func:`box_crossing`, :func:`power_box_crossing`), computed from the pair in canonical order.
+
+3D extends this unchanged in shape: a vertex is named by its sorted owner quadruple and
+computed once, from that name, by one circumsphere (power-sphere) routine; the canonical
+choice among cospherical sites is the first well-conditioned quadruple.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ..config import NJIT, VERTEX_DET_RTOL, VERTEX_PAIR_RTOL, VERTEX_SNAP_RTOL
+from .predicates import orient2d
+
+
+@njit(**NJIT)
+def center_offset(ax, ay, aw, bx, by, bw, cx, cy, cw):
+    """Power centre of three weighted points as an origin point and an offset from it.
+
+    Returns ``(ox, oy, ux, uy)``: the origin is the point opposite the longest edge, and the
+    centre is ``(ox + ux, oy + uy)``. The offset is what a caller needing the circle itself
+    wants (with zero weights ``|u|`` is the circumradius; Fortune's sweep takes the circle's
+    top from it). Exactly collinear points give non-finite offsets.
+    """
+    la = (bx - cx) * (bx - cx) + (by - cy) * (by - cy)
+    lb = (cx - ax) * (cx - ax) + (cy - ay) * (cy - ay)
+    lc = (ax - bx) * (ax - bx) + (ay - by) * (ay - by)
+    if lb >= la and lb >= lc:
+        ox, oy, ow, px, py, pw, qx, qy, qw = bx, by, bw, cx, cy, cw, ax, ay, aw
+    elif lc >= la:
+        ox, oy, ow, px, py, pw, qx, qy, qw = cx, cy, cw, ax, ay, aw, bx, by, bw
+    else:
+        ox, oy, ow, px, py, pw, qx, qy, qw = ax, ay, aw, bx, by, bw, cx, cy, cw
+    dx = px - ox
+    dy = py - oy
+    ex = qx - ox
+    ey = qy - oy
+    # |u - d|^2 - w_p = |u|^2 - w_o  <=>  2 d.u = |d|^2 + (w_o - w_p); the weight
+    # difference is an exact 0 for equal weights, so this is then the circumcentre's bits
+    bl = dx * dx + dy * dy + (ow - pw)
+    cl = ex * ex + ey * ey + (ow - qw)
+    left = dx * ey
+    right = dy * ex
+    det = left - right
+    if not abs(det) >= VERTEX_DET_RTOL * (abs(left) + abs(right)) or det == 0.0:
+        det = orient2d(ox, oy, px, py, qx, qy)
+    d = 0.5 / det
+    return ox, oy, (ey * bl - dy * cl) * d, (dx * cl - ex * bl) * d
+
+
+@njit(**NJIT)
+def center(ax, ay, aw, bx, by, bw, cx, cy, cw):
+    """Power centre of weighted points ``a, b, c`` (the circumcentre for equal weights).
+
+    The point whose power distance ``|x - p|^2 - w`` is the same to all three. The result
+    depends on the argument order only through ties of edge lengths; callers that need
+    canonical bits use :func:`voronoi_vertex` / :func:`power_vertex`.
+    """
+    ox, oy, ux, uy = center_offset(ax, ay, aw, bx, by, bw, cx, cy, cw)
+    return ox + ux, oy + uy
+
+
+@njit(**NJIT)
+def circumcenter(ax, ay, bx, by, cx, cy):
+    """Circumcentre of a triangle: :func:`center` with zero weights."""
+    return center(ax, ay, 0.0, bx, by, 0.0, cx, cy, 0.0)
+
+
+@njit(**NJIT)
+def before(a, b, xs, ys):
+    """Whether site ``a`` comes before site ``b`` in canonical order (``x``, ``y``, index)."""
+    if xs[a] != xs[b]:
+        return xs[a] < xs[b]
+    if ys[a] != ys[b]:
+        return ys[a] < ys[b]
+    return a < b
+
+
+@njit(**NJIT)
+def sorted_triple(a, b, c, xs, ys):
+    """The owners ``a, b, c`` in canonical order (see :func:`before`)."""
+    if before(b, a, xs, ys):
+        a, b = b, a
+    if before(c, b, xs, ys):
+        b, c = c, b
+    if before(b, a, xs, ys):
+        a, b = b, a
+    return a, b, c
+
+
+@njit(**NJIT)
+def voronoi_vertex(a, b, c, xs, ys):
+    """The Voronoi vertex named by sites ``a, b, c``: the same bits in any argument order."""
+    a, b, c = sorted_triple(a, b, c, xs, ys)
+    return center(xs[a], ys[a], 0.0, xs[b], ys[b], 0.0, xs[c], ys[c], 0.0)
+
+
+@njit(**NJIT)
+def power_vertex(a, b, c, xs, ys, ws):
+    """The power vertex named by weighted sites ``a, b, c`` (any argument order)."""
+    a, b, c = sorted_triple(a, b, c, xs, ys)
+    return center(xs[a], ys[a], ws[a], xs[b], ys[b], ws[b], xs[c], ys[c], ws[c])
+
+
+@njit(**NJIT)
+def _side_crossing(ax, ay, dx, dy, t, side, box):
+    """Where the line through ``a + t d`` normal to ``d`` meets box side ``side`` (-1..-4).
+
+    Sides are -1 left, -2 bottom, -3 right, -4 top. NaN when the line is parallel to it.
+    """
+    mx = ax + t * dx
+    my = ay + t * dy
+    if side == -1 or side == -3:
+        x = box[0] if side == -1 else box[2]
+        if dy == 0.0:
+            return np.nan, np.nan
+        return x, my - dx * (x - mx) / dy
+    y = box[1] if side == -2 else box[3]
+    if dx == 0.0:
+        return np.nan, np.nan
+    return mx - dy * (y - my) / dx, y
+
+
+@njit(**NJIT)
+def box_crossing(a, b, xs, ys, side, box):
+    """Where the bisector of sites ``a`` and ``b`` crosses box side ``side`` (-1..-4).
+
+    Computed from the pair in canonical order, so both cells of the pair get the same bits;
+    NaN when the bisector is parallel to the side.
+    """
+    if before(b, a, xs, ys):
+        a, b = b, a
+    return _side_crossing(xs[a], ys[a], xs[b] - xs[a], ys[b] - ys[a], 0.5, side, box)
+
+
+@njit(**NJIT)
+def power_box_crossing(a, b, xs, ys, ws, side, box):
+    """Where the power bisector of ``a`` and ``b`` crosses box side ``side`` (-1..-4).
+
+    The bisector ``|x - a|^2 - w_a = |x - b|^2 - w_b`` passes through ``a + t (b - a)`` with
+    ``t = 1/2 + (w_a - w_b) / (2 |b - a|^2)``: for equal weights ``t`` is exactly 1/2 and
+    the result is :func:`box_crossing`'s, bit for bit.
+    """
+    if before(b, a, xs, ys):
+        a, b = b, a
+    dx = xs[b] - xs[a]
+    dy = ys[b] - ys[a]
+    t = 0.5 + 0.5 * (ws[a] - ws[b]) / (dx * dx + dy * dy)
+    return _side_crossing(xs[a], ys[a], dx, dy, t, side, box)
+
+
+@njit(**NJIT)
+def near_pair(a, b, r2, xs, ys):
+    """Whether sites ``a, b`` on a circle of squared radius ``r2`` are too close for a name.
+
+    Their triple's centre is then ill-conditioned (it lies far along their bisector).
+    """
+    dx = xs[a] - xs[b]
+    dy = ys[a] - ys[b]
+    return dx * dx + dy * dy <= VERTEX_PAIR_RTOL * r2
+
+
+@njit(**NJIT)
+def is_close(x, y, px, py, sx, sy, rtol):
+    """Whether ``(px, py)`` is within ``rtol`` of vertex ``(x, y)`` of site ``(sx, sy)``.
+
+    L1 distance relative to the vertex's magnitude and its distance from the site.
+    """
+    scale = abs(x) + abs(y) + abs(x - sx) + abs(y - sy)
+    return abs(px - x) + abs(py - y) <= rtol * scale
+
+
+@njit(**NJIT)
+def canonical_triple(on, k, vx, vy, sx, sy, xs, ys):
+    """The name of the vertex ``(vx, vy)`` where sites ``on[:k]`` are cocircular.
+
+    ``(sx, sy)`` is one site on the circle. Sorts ``on[:k]`` into canonical order (repeats
+    allowed) and returns the first triple of distinct sites, in lexicographic order of
+    that, that is well-conditioned (no two of its sites a few ulps apart, see
+    :func:`near_pair`) and whose centre is the vertex to rounding (``VERTEX_SNAP_RTOL``).
+    Returns ``(-1, -1, -1)`` when there is none (the vertex then keeps its coordinates).
+    """
+    r2 = (vx - sx) * (vx - sx) + (vy - sy) * (vy - sy)
+    for p in range(1, k):  # insertion sort: few sites are on one circle
+        x = on[p]
+        q = p
+        while q > 0 and before(x, on[q - 1], xs, ys):
+            on[q] = on[q - 1]
+            q -= 1
+        on[q] = x
+    for p in range(k):
+        for q in range(p + 1, k):
+            for r in range(q + 1, k):
+                x0, x1, x2 = on[p], on[q], on[r]
+                if x0 == x1 or x1 == x2:
+                    continue
+                if near_pair(x0, x1, r2, xs, ys) or near_pair(x1, x2, r2, xs, ys):
+                    continue
+                if near_pair(x0, x2, r2, xs, ys):
+                    continue
+                cx, cy = voronoi_vertex(x0, x1, x2, xs, ys)
+                if np.isfinite(cx) and np.isfinite(cy):
+                    if is_close(vx, vy, cx, cy, sx, sy, VERTEX_SNAP_RTOL):
+                        return x0, x1, x2
+    return -1, -1, -1
+
+
+@njit(**NJIT)
+def canonical_vertex(on, k, vx, vy, sx, sy, xs, ys):
+    """Coordinates of the vertex named by :func:`canonical_triple` (``(vx, vy)`` if none)."""
+    a, b, c = canonical_triple(on, k, vx, vy, sx, sy, xs, ys)
+    if a < 0:
+        return vx, vy
+    return voronoi_vertex(a, b, c, xs, ys)
