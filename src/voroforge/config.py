@@ -29,6 +29,16 @@ PARALLEL_MIN_SITES = int(os.environ.get("VOROFORGE_PARALLEL_MIN_SITES", "20000")
 
 # --- predicates, vertices, Delaunay-dual cells, power cells ----------------------------------
 
+#: Relative size of a centre's float denominator (to the sum of its two products) below
+#: which the adaptive orient2d replaces it (kernels/vertex.center)
+VERTEX_DET_RTOL = 1e-8
+#: Squared distance between two sites, relative to the squared radius of their circle,
+#: below which a triple holding both is not a vertex's name (ill-conditioned centre)
+VERTEX_PAIR_RTOL = 2.0**-40
+#: A cocircular triple names a vertex only if its centre is this close to the vertex (L1,
+#: relative to the vertex's magnitude and distance from its site; kernels/vertex)
+VERTEX_SNAP_RTOL = 2.0**-40
+
 # --- half-plane cells, bucket grid, raster ----------------------------------------------------
 
 # --- engine (inputs, domains, periodic, describe, interpolation, Lloyd) ------------------------
