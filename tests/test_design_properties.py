@@ -10,7 +10,8 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from voroforge.design import attractors as at
-from voroforge.design import boundary as bd
+from voroforge.io.readers.dxf import bulge_polyline
+from voroforge.io.readers.svg import svg_arc
 
 coord = st.floats(-100, 100, allow_nan=False)
 
@@ -34,7 +35,7 @@ def test_svg_circular_arc_lies_on_its_circle(x0, y0, x1, y1, grow, large, sweep,
     chord = np.linalg.norm(p1 - p0)
     assume(chord > 1e-3)
     r = grow * chord / 2
-    pts = np.vstack((p0, bd._svg_arc(p0, r, r, 0.0, int(large), int(sweep), p1, tol)))
+    pts = np.vstack((p0, svg_arc(p0, r, r, 0.0, int(large), int(sweep), p1, tol)))
     assert np.array_equal(pts[-1], p1)
     c = _circle_centre(pts[0], pts[len(pts) // 2], pts[-1])
     dist = np.linalg.norm(pts - c, axis=1)
@@ -62,7 +63,7 @@ def test_dxf_bulge_arc_has_the_included_angle(x0, y0, x1, y1, bulge):
     chord = np.linalg.norm(b - a)
     assume(chord > 1e-2)
     tol = 1e-3
-    pts = bd._bulge_polyline(np.array([a, b]), np.array([bulge, 0.0]), False, tol)
+    pts = bulge_polyline(np.array([a, b]), np.array([bulge, 0.0]), False, tol)
     assert np.array_equal(pts[0], a) and np.array_equal(pts[-1], b)
     theta = 4 * math.atan(bulge)
     r = chord / (2 * abs(math.sin(theta / 2)))

@@ -11,7 +11,8 @@ from ezdxf.math import bulge_to_arc
 from hypothesis import given
 from hypothesis import strategies as st
 
-from voroforge.io.dxf import arc_runs, ring_bulges, write_dxf
+from voroforge.io.arcs import arc_runs, ring_bulges
+from voroforge.io.dxf import write_dxf
 from voroforge.io.svg import write_layers
 
 SVG = "{http://www.w3.org/2000/svg}"
@@ -454,3 +455,45 @@ def test_inscribed_circles_match_known_shapes_and_the_polylabel_fallback(monkeyp
     c2, r2 = fabrication.inscribed_circles(shapes)
     assert r2 == pytest.approx(radii, rel=5e-3)
     assert c2[1] == pytest.approx([5, 5], abs=0.05)
+
+
+# --- folded from test_qa_design.py: bugs found by using the design layer as designers
+# and fabricators do
+
+
+def test_kerf_mitre_is_exact_and_validates_join():
+    square = shapely.box(0, 0, 10, 10)
+    grown = kerf(square, 0.4)
+    assert grown.bounds == pytest.approx((-0.2, -0.2, 10.2, 10.2))
+    # A part's straight edges move by exactly kerf / 2; sharp corners stay sharp.
+    assert grown.area == pytest.approx(10.4**2)
+    assert kerf(square, 0.4, join="round").area < grown.area
+    disc = shapely.Point(0, 0).buffer(5, quad_segs=32)
+    radii = np.hypot(*shapely.get_coordinates(kerf(disc, 1.0)).T)
+    assert np.ptp(radii) < 1e-9  # all vertices on one circle: an arc for the DXF writer
+    with pytest.raises(ValueError, match="join"):
+        kerf(square, 0.4, join="bevel")
+
+
+def test_periodic_tile_check_looks_across_the_seams():
+    # A tileable pattern is cut as copies side by side: openings cut by the tile's edge are
+    # not "0 mm from the outline" (29 false web violations on the lamp-tile example).
+    from voroforge.design.build import check_design
+
+    design = {
+        "design": {"seed": 3},
+        "boundary": {"width": 120, "height": 80},
+        "seeds": {"method": "poisson", "radius": 18},
+        "voronoi": {"periodic": True},
+        "cells": {"web": 3},
+        "fabrication": {"min_web": 2.5},
+    }
+    assert check_design(design).ok
+    report = check_design(design, overrides={"fabrication.min_web": 3.5})
+    webs = [v for v in report.violations if v.kind == "web"]
+    # webs are 3 mm (or a little more, across a vertex), never the seams' false 0
+    assert webs and all(3.0 - 1e-6 <= v.value < 3.5 for v in webs)
+    assert all(0 <= v.location[0] < 120 and 0 <= v.location[1] < 80 for v in webs)
+    # each neighbouring pair once: no two violations at the same spot
+    spots = {(round(v.location[0], 6), round(v.location[1], 6)) for v in webs}
+    assert len(spots) == len(webs)

@@ -9,7 +9,8 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 import shapely
 
-from .dxf import _bulges_of_rings
+from ..config import ARC_TOLERANCE
+from .arcs import bulges_of_rings
 from .render import (
     PathContext,
     RingContext,
@@ -291,7 +292,7 @@ def layers_string(
     margin: float = 0.0,
     bounds=None,
     arcs: bool = True,
-    arc_tolerance: float = 1e-6,
+    arc_tolerance: float = ARC_TOLERANCE,
 ) -> str:
     """Render fabrication layers as an SVG document; see :func:`write_layers`.
 
@@ -354,7 +355,7 @@ def layers_string(
             trace(ctx, geom)
             rings.extend(np.asarray(r, dtype=np.float64) for r in ctx.rings)
         options = {"arcs": arcs, "tolerance": arc_tolerance}
-        for ring in _bulges_of_rings(rings, **options):  # one closed path per ring
+        for ring in bulges_of_rings(rings, **options):  # one closed path per ring
             out.append(f'<path d="{_arc_path(ring.tolist(), num)}"/>')
         for geom in geoms:
             if geom.is_empty:
@@ -380,7 +381,7 @@ def write_layers(
     margin: float = 0.0,
     bounds=None,
     arcs: bool = True,
-    arc_tolerance: float = 1e-6,
+    arc_tolerance: float = ARC_TOLERANCE,
 ) -> Path:
     """Write fabrication layers (cut, score, engrave, ...) to an SVG file for a laser cutter.
 
@@ -411,7 +412,7 @@ def write_layers(
         Page extent in data units (default: the geometry's bounds).
     arcs : bool
         Write runs of chords that lie on one circle (fillets, round buffers) as true SVG arcs
-        (``A``), found as for DXF bulges (:func:`voroforge.io.dxf.arc_runs`).
+        (``A``), found as for DXF bulges (:func:`voroforge.io.arcs.arc_runs`).
     arc_tolerance : float
         Largest distance of a vertex from the arc that replaces it, in data units.
 

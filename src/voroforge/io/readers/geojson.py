@@ -1,0 +1,141 @@
+"""GeoJSON in: the points and the polygons of a file, with errors that name the file."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import shapely
+from shapely.geometry import shape
+
+from .files import existing_file
+
+__all__ = ["geometries", "load_json", "read_geojson_points", "read_geojson_polygons"]
+
+
+def load_json(path: Path):
+    """Parse a JSON file (UTF-8, BOM allowed).
+
+    Parameters
+    ----------
+    path : Path
+        An existing file.
+
+    Returns
+    -------
+    object
+        The parsed document.
+
+    Raises
+    ------
+    ValueError
+        Invalid JSON (with its line) or not a text file.
+    """
+    try:
+        return json.loads(path.read_text(encoding="utf-8-sig"))
+    except json.JSONDecodeError as exc:
+        raise ValueError(f"{path}: line {exc.lineno}: invalid JSON ({exc.msg})") from None
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{path}: not a text file ({exc.reason})") from None
+
+
+def geometries(obj) -> list[dict]:
+    """All geometry objects of a GeoJSON object (collections and features flattened).
+
+    Parameters
+    ----------
+    obj : object
+        A parsed GeoJSON document or any part of one.
+
+    Returns
+    -------
+    list of dict
+        Geometry objects (each with ``type`` and ``coordinates``), in document order.
+    """
+    if not isinstance(obj, dict):
+        return []
+    kind = obj.get("type")
+    if kind == "FeatureCollection":
+        return [g for f in obj.get("features") or [] for g in geometries(f)]
+    if kind == "Feature":
+        return geometries(obj.get("geometry"))
+    if kind == "GeometryCollection":
+        return [g for part in obj.get("geometries") or [] for g in geometries(part)]
+    return [obj] if isinstance(kind, str) and "coordinates" in obj else []
+
+
+def _found(geoms: list[dict]) -> str:
+    kinds = sorted({g["type"] for g in geoms})
+    return f" (found {', '.join(kinds)})" if kinds else ""
+
+
+def read_geojson_points(path) -> np.ndarray:
+    """The Point and MultiPoint coordinates of a GeoJSON file, in file order.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+
+    Returns
+    -------
+    (n, 2) float64
+
+    Raises
+    ------
+    ValueError
+        No points in the file, or coordinates that are not ``[x, y]`` numbers.
+    """
+    path = existing_file(path)
+    geoms = geometries(load_json(path))
+    coords: list = []
+    for g in geoms:
+        if g["type"] == "Point":
+            coords.append(g["coordinates"])
+        elif g["type"] == "MultiPoint":
+            coords.extend(g["coordinates"])
+    if not coords:
+        raise ValueError(f"{path}: no Point or MultiPoint geometries{_found(geoms)}")
+    try:
+        arr = np.array([c[:2] for c in coords], dtype=np.float64)
+    except (TypeError, ValueError, IndexError):
+        raise ValueError(f"{path}: point coordinates are not [x, y] numbers") from None
+    if arr.ndim != 2 or arr.shape[1] != 2:
+        raise ValueError(f"{path}: point coordinates are not [x, y] numbers")
+    return arr
+
+
+def read_geojson_polygons(path):
+    """The polygons of a GeoJSON file as one domain (features united, holes kept).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+
+    Returns
+    -------
+    shapely.Polygon or shapely.MultiPolygon
+
+    Raises
+    ------
+    ValueError
+        No polygons, malformed coordinates, or an invalid polygon among several.
+    """
+    path = existing_file(path)
+    geoms = geometries(load_json(path))
+    polygons = [g for g in geoms if g["type"] in ("Polygon", "MultiPolygon")]
+    if not polygons:
+        raise ValueError(f"{path}: no Polygon or MultiPolygon geometries{_found(geoms)}")
+    try:
+        shapes = [shape(g) for g in polygons]
+    except (TypeError, ValueError, IndexError, KeyError, shapely.errors.ShapelyError) as exc:
+        raise ValueError(f"{path}: malformed polygon coordinates ({exc})") from None
+    if len(shapes) == 1:
+        return shapes[0]
+    invalid = [i for i, s in enumerate(shapes) if not s.is_valid]
+    if invalid:
+        reason = shapely.is_valid_reason(shapes[invalid[0]])
+        raise ValueError(f"{path}: polygon {invalid[0]} is invalid ({reason})")
+    return shapely.union_all(shapes)

@@ -1,0 +1,127 @@
+"""Point files in: delimited text (CSV/TXT/XY) and NumPy ``.npy`` arrays.
+
+GeoJSON points are read by :mod:`.geojson`; :func:`voroforge.io.readers.read_points` picks
+the reader from the suffix.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .files import existing_file, parse_number
+
+__all__ = ["read_npy_points", "read_text_points"]
+
+_X_NAMES = ("x", "lon", "lng", "longitude", "easting")
+_Y_NAMES = ("y", "lat", "latitude", "northing")
+
+
+def _split(line: str, delimiter: str | None) -> list[str]:
+    parts = line.split(delimiter) if delimiter else line.split()
+    return [p.strip().strip("\"'").strip() for p in parts]
+
+
+def read_text_points(path) -> np.ndarray:
+    """Points from delimited text: commas, semicolons, tabs or spaces; optional header.
+
+    Parameters
+    ----------
+    path : str or Path
+        A text file with two numeric columns, or columns named ``x`` and ``y`` (also
+        ``lon``/``lat``, ``easting``/``northing``, ...) in a header row; ``#`` comments.
+
+    Returns
+    -------
+    (n, 2) float64
+        In file order.
+
+    Raises
+    ------
+    ValueError
+        Naming the file and the line: no points, missing columns, a non-numeric value.
+    """
+    path = existing_file(path)
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{path}: not a text file ({exc.reason})") from None
+    rows = [
+        (number, line.strip())
+        for number, line in enumerate(text.splitlines(), start=1)
+        if line.strip() and not line.lstrip().startswith("#")
+    ]
+    if not rows:
+        raise ValueError(f"{path}: no points (the file is empty)")
+    first = rows[0][1]
+    delimiter = next((d for d in (",", ";", "\t") if d in first), None)
+
+    columns = (0, 1)
+    head = _split(first, delimiter)
+    if any(parse_number(t) is None for t in head):  # a header row
+        names = [t.lower() for t in head]
+        xi = next((names.index(n) for n in _X_NAMES if n in names), None)
+        yi = next((names.index(n) for n in _Y_NAMES if n in names), None)
+        if xi is None or yi is None:
+            if len(names) == 2:
+                xi, yi = 0, 1
+            else:
+                raise ValueError(
+                    f"{path}: line {rows[0][0]}: header {head} has no columns named x and y"
+                )
+        columns = (xi, yi)
+        rows = rows[1:]
+        if not rows:
+            raise ValueError(f"{path}: no points (only a header row)")
+
+    need = max(columns) + 1
+    out = np.zeros((len(rows), 2), dtype=np.float64)
+    for k, (number, line) in enumerate(rows):
+        tokens = _split(line, delimiter)
+        if len(tokens) < need:
+            raise ValueError(
+                f"{path}: line {number}: expected at least {need} columns, got {len(tokens)}"
+            )
+        for j, c in enumerate(columns):
+            value = parse_number(tokens[c])
+            if value is None:
+                raise ValueError(f"{path}: line {number}: {tokens[c]!r} is not a number")
+            if not math.isfinite(value):
+                raise ValueError(f"{path}: line {number}: {tokens[c]!r} is not a finite number")
+            out[k, j] = value
+    return out
+
+
+def read_npy_points(path) -> np.ndarray:
+    """Points from a ``.npy`` file holding an ``(n, 2)`` numeric array.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file (no pickles).
+
+    Returns
+    -------
+    (n, 2) float64
+
+    Raises
+    ------
+    ValueError
+        Unreadable file, wrong shape, non-numeric dtype or a non-finite row.
+    """
+    path = existing_file(path)
+    try:
+        arr = np.load(path, allow_pickle=False)
+    except (ValueError, OSError) as exc:
+        raise ValueError(f"{path}: not a readable .npy array ({exc})") from None
+    if arr.ndim != 2 or arr.shape[1] != 2:
+        raise ValueError(f"{path}: expected an (n, 2) array, got shape {arr.shape}")
+    try:
+        arr = arr.astype(np.float64)
+    except (TypeError, ValueError):
+        raise ValueError(f"{path}: array of dtype {arr.dtype} is not numeric") from None
+    if not np.isfinite(arr).all():
+        row = int(np.flatnonzero(~np.isfinite(arr).all(axis=1))[0])
+        raise ValueError(f"{path}: row {row} is not finite: {arr[row].tolist()}")
+    return arr
