@@ -4,16 +4,17 @@ import tomllib
 
 import pytest
 
-from voroforge.design.pipeline import STARTER
-from voroforge.design.schema import (
-    Design,
+from voroforge.design.build import build, starter
+from voroforge.design.designfile import (
     DesignError,
-    Graded,
     apply_overrides,
     key_lines,
     load,
     parse_value,
 )
+from voroforge.design.schema import Design, Graded
+
+STARTER = starter()
 
 GOOD = """\
 [design]
@@ -215,3 +216,98 @@ def test_layer_product_errors_once_with_line(tmp_path):
     assert layer[1] == line_of(text, "layers = {") and "'frame'" in layer[2]
     (fmt,) = [i for i in issues if i[0] == "output.formats.1"]
     assert fmt[1] == line_of(text, "formats = [") and "'pdf'" in fmt[2]
+
+
+# --- folded from test_qa_design.py: bugs found by using the design layer as designers
+# and fabricators do
+
+
+BASE = '[boundary]\nwidth = 100\nheight = 80\n[seeds]\nmethod = "random"\ncount = 20\n'
+
+
+@pytest.mark.parametrize(
+    "extra, where, message",
+    [
+        # a negative seed used to be reported as "seeds: expected non-negative integer"
+        ("[design]\nseed = -1\n", "8: design.seed", "greater than or equal to 0"),
+        (
+            "[openings]\nselect = 'random'\nprobability = 0.5\nseed = -2\n",
+            "10: openings.seed",
+            "greater than or equal to 0",
+        ),
+        # graded numbers of the wrong type: name what is expected
+        ("[cells]\nweb = true\n", "8: cells.web", "expected a number or { near = ..., far = ... }"),
+        ("[cells]\nfillet = [1, 2]\n", "8: cells.fillet", "expected a number or {"),
+        # a key given twice on the last line: tomllib says "at end of document", no line
+        ("[cells]\nweb = 1\nweb = 2", "9: (top level)", "TOML syntax: Cannot overwrite a value"),
+        # a bad GIF sweep value: the file and the line of output.gif.key, not "<design>"
+        (
+            "[output]\nformats = ['gif']\n[output.gif]\nkey = 'cells.web'\nvalues = [1, -2]\n",
+            "10: output.gif.key",
+            "cells.web = -2: cells.web: must be >= 0",
+        ),
+    ],
+)
+def test_design_errors_name_file_line_and_key(tmp_path, capsys, extra, where, message):
+    from voroforge.cli import main
+
+    path = tmp_path / "bad.toml"
+    path.write_text(BASE + extra, encoding="utf-8")
+    rc = main(["build", str(path), "-o", str(tmp_path / "out")])
+    err = capsys.readouterr().err
+    assert rc == 2
+    assert err.startswith(f"voroforge: error: {path}:{where}: "), err
+    assert message in err and "(from --set)" not in err and "Traceback" not in err
+
+
+def test_design_file_encodings(tmp_path, capsys):
+    from voroforge.cli import main
+
+    # Windows Notepad's UTF-8 with a BOM builds (tomllib alone says "Invalid statement"),
+    # and build-time errors still find their lines.
+    bom = tmp_path / "bom.toml"
+    bom.write_bytes(b"\xef\xbb\xbf" + BASE.encode() + b"[cells]\nweb = 2\n")
+    assert main(["build", str(bom), "-o", str(tmp_path / "o")]) == 0
+    bad = tmp_path / "bom2.toml"
+    bad.write_bytes(
+        b'\xef\xbb\xbf[boundary]\nshape = "file"\nfile = "none.svg"\n[seeds]\ncount = 3\n'
+    )
+    assert main(["build", str(bad)]) == 2
+    assert f"{bad}:3: boundary.file: file not found" in capsys.readouterr().err
+    # Latin-1 text: the file, the line and what to do, not a bare codec message.
+    latin = tmp_path / "latin.toml"
+    latin.write_bytes(BASE.encode() + b"# caf\xe9\n")
+    assert main(["build", str(latin)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"voroforge: error: {latin}:7: ") and "UTF-8" in err
+
+
+def test_seed_file_errors_name_seeds_file(tmp_path):
+    from voroforge.design.designfile import DesignError
+
+    (tmp_path / "pts.csv").write_text("10,10\n20,abc\n")
+    (tmp_path / "d.toml").write_text(
+        '[boundary]\nwidth = 60\nheight = 60\n[seeds]\nmethod = "file"\nfile = "pts.csv"\n'
+    )
+    with pytest.raises(DesignError, match=r"d\.toml:6: seeds\.file: .*'abc' is not a number"):
+        build(tmp_path / "d.toml", tmp_path / "out")
+
+
+@pytest.mark.parametrize(
+    "extra, where, message",
+    [
+        # 'cut' and 'CUT' both became layer CUT: the frame was silently dropped
+        ('[output]\nlayers = { cut = "frame", CUT = "edges" }\n', "8: output.layers", "same layer"),
+        # a DXF-invalid name failed late with "invalid DXF layer name" and no file or key
+        ('[output]\nlayers = { "a/b" = "frame" }\n', "8: output.layers", "not a valid layer"),
+        ('[design]\nname = "out/panel"\n', "8: design.name", "without folders"),
+    ],
+)
+def test_layer_and_output_names_are_checked_up_front(tmp_path, capsys, extra, where, message):
+    from voroforge.cli import main
+
+    path = tmp_path / "bad.toml"
+    path.write_text(BASE + extra, encoding="utf-8")
+    assert main(["build", str(path), "-o", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"voroforge: error: {path}:{where}: ") and message in err, err

@@ -171,3 +171,28 @@ def test_relax_bad_input(kwargs, match):
         rl.relax(np.zeros((3, 2)), PANEL, **kwargs)
     with pytest.raises(ValueError, match="shape"):
         rl.relax(np.zeros((3, 3)), PANEL, iterations=1)
+
+
+# --- folded from test_qa_design.py: bugs found by using the design layer as designers
+# and fabricators do
+
+
+def test_subdivide_does_not_launch_the_parallel_area_kernel_per_cell(monkeypatch):
+    # Recursion builds one small diagram per cell; Diagram.areas runs a numba parallel
+    # kernel whose thread wake-up cost ~10 ms a call on a busy machine (a depth-3 design
+    # took 15 s instead of 1 s). The tiling guard uses shapely's areas of the built cells.
+    import voroforge.engine.voronoi as engine
+    from voroforge.design import recursive
+
+    calls = []
+    real = engine.area_centroid
+    monkeypatch.setattr(engine, "area_centroid", lambda *a: calls.append(1) or real(*a))
+    box = shapely.box(0, 0, 100, 60)
+    levels = recursive.subdivide(box, 12, depth=2, count=3, seed=4, web=[2, 1, 0.5])
+    assert len(calls) == 0
+    # ... and the levels still tile: the leaves' cells cover each subdivided parent opening.
+    top = levels[0]
+    assert sum(c.area for c in top.cells) == pytest.approx(box.area, rel=1e-9)
+    assert sum(c.area for c in levels[1].cells) == pytest.approx(
+        sum(o.area for o in top.openings), rel=1e-9
+    )

@@ -9,8 +9,8 @@ import pytest
 import shapely
 from PIL import Image
 
-from voroforge.design.pipeline import build, check_design
-from voroforge.design.schema import load
+from voroforge.design.build import build, check_design
+from voroforge.design.designfile import load
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = sorted((ROOT / "examples").glob("*.toml"))

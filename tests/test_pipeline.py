@@ -1,4 +1,4 @@
-"""The design pipeline: geometry invariants, outputs, kerf, fabrication, byte-identical builds."""
+"""Design files computed and built: geometry invariants, outputs, kerf, byte-identical builds."""
 
 import json
 import math
@@ -10,9 +10,10 @@ import pytest
 import shapely
 from PIL import Image
 
+from voroforge.design.build import build, check_design, products
+from voroforge.design.compute import compute
+from voroforge.design.designfile import DesignError, load
 from voroforge.design.fabrication import check
-from voroforge.design.pipeline import build, check_design, compute, products
-from voroforge.design.schema import DesignError, load
 
 SVG = "{http://www.w3.org/2000/svg}"
 
@@ -302,24 +303,6 @@ def test_relaxation_evens_out_cells():
     assert spread[1] < 0.7 * spread[0]
 
 
-def test_periodic_fallback_matches_the_engine(monkeypatch):
-    import voroforge as vf
-
-    data = panel(**{"voronoi.periodic": True, "boundary.margin": 0, "seeds.radius": 22})
-    engine = result_of(data)
-    real = vf.voronoi
-
-    def no_periodic(points, boundary=None, *, algorithm="delaunay"):
-        return real(points, boundary, algorithm=algorithm)
-
-    monkeypatch.setattr(vf, "voronoi", no_periodic)
-    fallback = result_of(data)
-    assert len(fallback.raw) == len(engine.raw)
-    a = shapely.union_all(engine.openings)
-    b = shapely.union_all(fallback.openings)
-    assert a.symmetric_difference(b).area == pytest.approx(0.0, abs=1e-6 * a.area)
-
-
 def test_gif_of_a_moving_attractor(tmp_path):
     data = panel(
         **{"output.formats": ["gif"], "seeds.radius": 30, "cells.web": {"near": 8, "far": 2}}
@@ -397,3 +380,251 @@ def test_several_polygons_as_one_boundary(tmp_path):
     paths = build(data, tmp_path, overrides={"output.formats": '["dxf"]'})
     ents = list(ezdxf.readfile(paths[0]).modelspace())
     assert len(ents) == 3 + len(r.openings)  # two outlines, one hole, the openings
+
+
+# --- folded from test_qa_design.py: bugs found by using the design layer as designers
+# and fabricators do
+
+
+BASE = '[boundary]\nwidth = 100\nheight = 80\n[seeds]\nmethod = "random"\ncount = 20\n'
+
+
+def _dxf_rings(path):
+    """Layer, vertices (k, 2) and bulges (k,) of every LWPOLYLINE of a DXF file."""
+    out = []
+    for e in ezdxf.readfile(path).modelspace().query("LWPOLYLINE"):
+        xyb = np.asarray([p[:3] for p in e.get_points("xyb")], dtype=np.float64)
+        out.append((e.dxf.layer, xyb[:, :2], xyb[:, 2]))
+    return out
+
+
+def test_kerf_keeps_rounded_corners_as_true_dxf_arcs(tmp_path):
+    # A panel with rounded corners and a kerf: the compensated corners are still circular
+    # arcs (bulges), not hundreds of short segments from round offset joins.
+    design = {
+        "boundary": {"width": 120, "height": 80, "corner_radius": 12},
+        "seeds": {"method": "grid", "spacing": 200},
+        "output": {"formats": ["dxf"], "kerf": 0.15, "layers": {"CUT": "boundary"}},
+    }
+    (dxf,) = build(design, tmp_path)
+    ((_, xy, bulge),) = _dxf_rings(dxf)
+    assert (np.abs(bulge) > 0).sum() >= 4  # one arc per corner at least
+    assert len(xy) < 40
+    assert shapely.Polygon(xy).bounds == pytest.approx((-0.075, -0.075, 120.075, 80.075))
+
+
+def test_kerf_grows_the_outline_on_a_cut_layer(tmp_path):
+    # Cutting the openings and the outline (a common layer set-up): with a kerf the holes
+    # shrink by kerf/2 and the outline must grow by kerf/2, like the frame's outline does.
+    design = {
+        "boundary": {"width": 100, "height": 50},
+        "seeds": {"method": "grid", "spacing": 25},
+        "cells": {"web": 4},
+        "output": {
+            "formats": ["dxf", "svg"],
+            "kerf": 0.2,
+            "layers": {"CUT": ["openings", "boundary"], "SCORE": "frame"},
+        },
+    }
+    dxf, svg = build(design, tmp_path)
+    boxes = {layer: [] for layer in ("CUT", "SCORE")}
+    for layer, xy, _ in _dxf_rings(dxf):
+        boxes[layer].append(shapely.Polygon(xy).bounds)
+    outline = (-0.1, -0.1, 100.1, 50.1)
+    assert any(np.allclose(b, outline) for b in boxes["CUT"])
+    assert any(np.allclose(b, outline) for b in boxes["SCORE"])
+    assert not any(np.allclose(b, (0, 0, 100, 50)) for b in boxes["CUT"])
+    # The SVG page holds the compensated outline (it used to stick out of the viewBox).
+    root = ET.parse(svg).getroot()
+    x, y, w, h = map(float, root.get("viewBox").split())
+    assert (x, y, w, h) == pytest.approx((-0.1, -50.1, 100.2, 50.2))
+    assert root.get("width") == "100.2mm"
+    for p in root.iter(f"{SVG}path"):
+        nums = np.asarray(
+            [
+                float(t)
+                for t in p.get("d")
+                .replace("M", " ")
+                .replace("L", " ")
+                .replace("Z", " ")
+                .replace(",", " ")
+                .split()
+            ]
+        ).reshape(-1, 2)
+        assert (nums[:, 0] >= x - 1e-9).all() and (nums[:, 0] <= x + w + 1e-9).all()
+        assert (nums[:, 1] >= y - 1e-9).all() and (nums[:, 1] <= y + h + 1e-9).all()
+
+
+@pytest.mark.parametrize(
+    "seeds", [{"method": "random", "count": 1}, {"method": "grid", "spacing": 500}]
+)
+def test_one_seed_gives_one_opening(tmp_path, seeds):
+    # count = 1 (allowed by the schema) or a lattice coarser than the panel: one cell, the
+    # whole domain; it used to be refused with "need 2 or more".
+    design = {
+        "boundary": {"width": 120, "height": 80},
+        "seeds": seeds,
+        "cells": {"web": 4},
+        "output": {"formats": ["dxf", "geojson"]},
+    }
+    dxf, _ = build(design, tmp_path)
+    rings = sorted(shapely.Polygon(xy).bounds for _, xy, _ in _dxf_rings(dxf))
+    assert np.allclose(rings, [(0, 0, 120, 80), (2, 2, 118, 78)])
+
+
+def test_no_seed_inside_is_a_design_error(tmp_path):
+    from voroforge.design.designfile import DesignError
+
+    design = {
+        "boundary": {"width": 10, "height": 10},
+        "seeds": {"method": "grid", "spacing": 500, "offset": [100, 100]},
+    }
+    with pytest.raises(DesignError, match="seeds: no seeds"):
+        build(design, tmp_path)
+
+
+def test_geojson_output_keeps_the_input_crs(tmp_path):
+    # Projected (UTM) GeoJSON from QGIS carries a "crs" member; dropping it on output makes
+    # GIS tools read the service areas as lon/lat, thousands of km away from the input.
+    import json
+
+    crs = {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32633"}}
+    district = {
+        "type": "FeatureCollection",
+        "crs": crs,
+        "features": [
+            {
+                "type": "Feature",
+                "properties": {},
+                "geometry": {
+                    "type": "Polygon",
+                    "coordinates": [
+                        [[500000, 4100000], [510000, 4100000], [505000, 4108000], [500000, 4100000]]
+                    ],
+                },
+            }
+        ],
+    }
+    (tmp_path / "district.geojson").write_text(json.dumps(district))
+    design = tmp_path / "d.toml"
+    design.write_text(
+        '[design]\nunits = "m"\n[boundary]\nshape = "file"\nfile = "district.geojson"\n'
+        '[seeds]\ncount = 5\n[output]\nformats = ["geojson"]\n'
+    )
+    (out,) = build(design, tmp_path / "out")
+    data = json.loads(out.read_text())
+    assert data["crs"] == crs and len(data["features"]) == 5
+    # Without a crs in the input, none is written (RFC 7946: WGS 84).
+    (plain,) = build(
+        {
+            "boundary": {"width": 10, "height": 10},
+            "seeds": {"count": 3},
+            "output": {"formats": ["geojson"]},
+        },
+        tmp_path / "plain",
+    )
+    assert "crs" not in json.loads(plain.read_text())
+
+
+def test_jittered_seeds_follow_the_documented_offset():
+    # seeds.offset ("lattice shift") was silently ignored for method = "jittered".
+    from voroforge.design import populate
+    from voroforge.design.compute import compute
+    from voroforge.design.designfile import load
+
+    box = shapely.box(0, 0, 100, 60)
+    plain = populate.grid(box, 10, offset=(3, 4))
+    still = populate.jittered(box, 10, jitter=0.0, seed=1, offset=(3, 4))
+    assert np.allclose(np.sort(still, axis=0), np.sort(plain, axis=0))
+    seeds = {"method": "jittered", "spacing": 10, "jitter": 0.0, "offset": [3, 4]}
+    design, base = load({"boundary": {"width": 100, "height": 60}, "seeds": seeds})
+    sites = compute(design, base).sites
+    assert np.allclose(np.sort(sites, axis=0), np.sort(plain, axis=0))
+
+
+@pytest.mark.parametrize("units, width", [("mm", "0.01"), ("cm", "0.001"), ("in", "0.000394")])
+def test_svg_default_stroke_is_a_hairline_in_any_units(tmp_path, units, width):
+    # The default stroke was 0.01 *units*: 0.254 mm in an inch design, which laser drivers
+    # (hairline <= 0.001 in) engrave instead of cutting.
+    design = {
+        "design": {"units": units},
+        "boundary": {"width": 10, "height": 8},
+        "seeds": {"count": 4},
+        "cells": {"web": 0.5},
+        "output": {"formats": ["svg"]},
+    }
+    (svg,) = build(design, tmp_path)
+    root = ET.parse(svg).getroot()
+    assert root.get("width") == f"10{units}"
+    assert {g.get("stroke-width") for g in root.iter(f"{SVG}g")} == {width}
+    design["output"]["stroke_width"] = 0.2
+    (svg,) = build(design, tmp_path / "given")
+    assert {g.get("stroke-width") for g in ET.parse(svg).getroot().iter(f"{SVG}g")} == {"0.2"}
+
+
+def test_corner_radius_of_half_the_side_makes_a_stadium(tmp_path):
+    # width 100, height 80, corner_radius 40: a pill shape, refused as "too large" because
+    # GEOS drops the degenerate core of the rounding; 40.1 is still refused.
+    from voroforge.design.compute import compute
+    from voroforge.design.designfile import DesignError, load
+
+    for width in (100, 80):  # a stadium and a disc
+        b = {"width": width, "height": 80, "corner_radius": 40}
+        design, base = load({"boundary": b, "seeds": {"count": 5}})
+        outline = compute(design, base).boundary
+        assert outline.bounds == pytest.approx((0, 0, width, 80))
+        core = shapely.LineString([(40, 40), (width - 40, 40)]) if width > 80 else None
+        exact = (core if core is not None else shapely.Point(40, 40)).buffer(40, quad_segs=64)
+        assert outline.hausdorff_distance(exact) < 0.05  # 16 segments per quarter circle
+    with pytest.raises(DesignError, match="corner_radius: 40.1 is too large"):
+        load_and = load(
+            {"boundary": {"width": 100, "height": 80, "corner_radius": 40.1}, "seeds": {"count": 5}}
+        )
+        compute(*load_and)
+
+
+@pytest.mark.parametrize("units, size", [("mm", 609.6), ("cm", 60.96), ("in", 24.0)])
+def test_svg_files_are_read_in_the_design_units(tmp_path, units, size):
+    # An SVG with width="24in" is read in mm; in a cm or inch design it was used as if the
+    # mm numbers were design units (a 24 in panel came out 609.6 in wide).
+    from voroforge.design.compute import compute
+    from voroforge.design.designfile import load
+
+    svg = (
+        '<svg xmlns="http://www.w3.org/2000/svg" width="24in" height="12in" '
+        'viewBox="0 0 24 12"><rect x="0" y="0" width="24" height="12"/>'
+        '<path d="M 2 6 L 22 6" fill="none"/></svg>'
+    )
+    (tmp_path / "panel.svg").write_text(svg)
+    design, base = load(
+        {
+            "design": {"units": units},
+            "boundary": {"shape": "file", "file": str(tmp_path / "panel.svg")},
+            "seeds": {"count": 4},
+            "attractors": [{"type": "curve", "file": str(tmp_path / "panel.svg"), "radius": 1}],
+            "cells": {"web": {"near": 0, "far": 0}},
+        }
+    )
+    r = compute(design, base)
+    assert r.boundary.bounds == pytest.approx((0, 0, size, size / 2))
+    # the curve attractor (the outline and the midline) is in the same units: field 1 on it
+    from voroforge.design.compute import _field
+
+    field = _field(design, base)
+    assert field(np.array([[size / 2, size / 4]]))[0] == pytest.approx(1.0)
+
+
+def test_build_warns_about_an_empty_cut_layer(tmp_path, capsys):
+    # No web: the openings tile the boundary, the frame is empty and the SVG/DXF cut
+    # nothing, silently. The CLI now says so (and still builds).
+    from voroforge.cli import main
+
+    path = tmp_path / "d.toml"
+    path.write_text(BASE + '[output]\nformats = ["svg"]\n')
+    assert main(["build", str(path), "-o", str(tmp_path / "o")]) == 0
+    err = capsys.readouterr().err
+    assert err.startswith(f"voroforge: warning: {path}: output.layers.CUT: the layer is empty")
+    assert "cells.web" in err
+    path.write_text(BASE + '[cells]\nweb = 2\n[output]\nformats = ["svg"]\n')
+    assert main(["build", str(path), "-o", str(tmp_path / "o")]) == 0
+    assert capsys.readouterr().err == ""

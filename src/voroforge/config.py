@@ -44,3 +44,49 @@ VERTEX_SNAP_RTOL = 2.0**-40
 # --- engine (inputs, domains, periodic, describe, interpolation, Lloyd) ------------------------
 
 # --- design layer and io ----------------------------------------------------------------------
+
+#: mm: default SVG stroke width of a design build, a laser hairline (drivers cut only
+#: hairlines, about 0.001 in or less, as vectors; 0.01 in would be engraved).
+HAIRLINE_MM = 0.01
+
+#: design.cellops.explode: vertices of neighbouring cells closer than this fraction of the
+#: cells' bounding-box diagonal are one vertex (rounding-level differences double no edge).
+EDGE_MERGE_RTOL = 1e-9
+
+#: design.cellops: a single polygon is convex when its hull's area exceeds its own by at most
+#: this fraction of the hull's (such cells are scaled and filleted on a fast path).
+CONVEX_AREA_RTOL = 1e-12
+
+#: design.compute: a corner_radius of half the boundary's width (a stadium, a disc) leaves a
+#: core GEOS drops; the radius is made this fraction smaller to keep a sliver of it.
+CORNER_RADIUS_SHRINK = 1e-4
+
+#: design.compute: cells.min_size measures openings' inscribed circles to this fraction of
+#: min_size.
+MIN_SIZE_RTOL = 1e-3
+
+#: design.recursive: cells tile their region when their areas sum to its area within this
+#: fraction (else they are cut to the region again).
+TILING_AREA_RTOL = 1e-9
+
+#: design.fabrication.check: webs and openings within this (drawing units) of their limit pass
+#: (a web inset to exactly min_web is no violation because of rounding).
+FAB_LIMIT_ATOL = 1e-6
+
+#: design.fabrication.check: uncut material thinner than this (drawing units) in a corner is
+#: ignored (chord-vs-arc noise of fillets); also the design files' default corner_tolerance.
+FAB_CORNER_TOLERANCE = 0.02
+
+#: design.fabrication: corner leftovers with area below (this x corner tolerance)^2 are noise.
+FAB_CORNER_AREA_RTOL = 0.1
+
+#: design.fabrication.inscribed_circles: default precision, this fraction of each polygon's
+#: smaller box side...
+INSCRIBED_RTOL = 1e-3
+
+#: ...and never below this (drawing units), nor a drawing's extent for marker sizes.
+INSCRIBED_FLOOR = 1e-9
+
+#: design.fabrication: a frame part touches the outline when nearer than this fraction of the
+#: outline's largest coordinate (at least 1); parts farther away are loose islands.
+ISLAND_TOUCH_RTOL = 1e-9

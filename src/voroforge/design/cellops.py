@@ -24,9 +24,12 @@ import math
 import numpy as np
 import shapely
 
+from .. import config
+
 __all__ = [
     "by_area",
     "by_field",
+    "clean",
     "edges_to_lines",
     "every_kth",
     "explode",
@@ -100,8 +103,17 @@ def _join(join: str) -> str:
     return _JOINS[join]
 
 
-def _clean(geoms: np.ndarray) -> np.ndarray:
-    """Empty results as empty Polygons; keep only polygonal parts."""
+def clean(geoms) -> np.ndarray:
+    """A copy of ``geoms`` with empty and missing results as empty Polygons.
+
+    Parameters
+    ----------
+    geoms : (n,) array_like of shapely geometries (or None)
+
+    Returns
+    -------
+    (n,) object array
+    """
     out = np.asarray(geoms, dtype=object).copy()
     empty = shapely.is_empty(out) | shapely.is_missing(out)
     out[empty] = _EMPTY
@@ -124,7 +136,8 @@ def explode(cells, *, tol: float | None = None) -> np.ndarray:
     cells : Diagram or (n,) array of Polygon/MultiPolygon
         The cells.
     tol : float, optional
-        Vertex merge distance. Default: 1e-9 of the cells' bounding-box diagonal.
+        Vertex merge distance. Default: ``config.EDGE_MERGE_RTOL`` (1e-9) of the cells'
+        bounding-box diagonal.
 
     Returns
     -------
@@ -144,7 +157,7 @@ def explode(cells, *, tol: float | None = None) -> np.ndarray:
     vid = vid.ravel()
     if tol is None:
         lo, hi = verts.min(axis=0), verts.max(axis=0)
-        tol = 1e-9 * float(np.hypot(*(hi - lo)))
+        tol = config.EDGE_MERGE_RTOL * float(np.hypot(*(hi - lo)))
     tol = float(tol)
     if not (math.isfinite(tol) and tol >= 0):
         raise ValueError(f"tol must be a finite number >= 0, got {tol!r}")
@@ -234,7 +247,7 @@ def offset(
     out = shapely.buffer(
         arr, dist, quad_segs=int(resolution), join_style=_join(join), mitre_limit=mitre_limit
     )
-    return _clean(out)
+    return clean(out)
 
 
 @_single_ok
@@ -327,7 +340,7 @@ def fillet(cells, radius, *, resolution: int = 16) -> np.ndarray:
         )
     zero = np.asarray(r) == 0
     out = np.where(zero, arr, closed) if np.ndim(r) else (arr.copy() if zero else closed)
-    return _clean(out)
+    return clean(out)
 
 
 def _is_convex(cells: np.ndarray) -> np.ndarray:
@@ -336,7 +349,7 @@ def _is_convex(cells: np.ndarray) -> np.ndarray:
     single &= shapely.get_num_interior_rings(cells) == 0
     area = shapely.area(cells)
     hull = shapely.area(shapely.convex_hull(cells))
-    return single & (hull - area <= 1e-12 * hull)
+    return single & (hull - area <= config.CONVEX_AREA_RTOL * hull)
 
 
 @_single_ok
@@ -387,7 +400,7 @@ def scale(cells, factor, *, about="centroid", sites=None) -> np.ndarray:
     moved = centre[owner] + f[owner, None] * (coords - centre[owner])
     out = shapely.set_coordinates(arr.copy(), moved)
     out[(f == 0) & ~shapely.is_empty(arr)] = _EMPTY  # a point is not a cell
-    return _clean(out)
+    return clean(out)
 
 
 def _chaikin(ring: np.ndarray, iterations: int, ratio: float) -> np.ndarray:
@@ -445,7 +458,7 @@ def smooth(cells, *, iterations: int = 2, ratio: float = 0.25) -> np.ndarray:
 
             res = polygonal_part(shapely.make_valid(res))
         out[i] = res
-    return _clean(out)
+    return clean(out)
 
 
 # ----------------------------------------------------------------------------- selection
@@ -606,7 +619,7 @@ def frame(boundary, openings) -> shapely.Polygon | shapely.MultiPolygon:  # noqa
     shapely.Polygon or shapely.MultiPolygon
         With the openings as holes (a MultiPolygon if the openings cut it apart).
     """
-    from .boundary import polygonal_part, as_polygonal
+    from .boundary import as_polygonal, polygonal_part
 
     geom = as_polygonal(boundary)
     arr = as_cells(openings)

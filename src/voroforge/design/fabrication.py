@@ -25,6 +25,8 @@ from pathlib import Path
 import numpy as np
 import shapely
 
+from .. import config
+
 __all__ = ["KINDS", "Report", "Violation", "check", "inscribed_circles", "kerf", "split_frame"]
 
 #: Violation kinds, in the order a report lists them.
@@ -170,7 +172,7 @@ def _marker_radius(frame, openings) -> float:
     if not parts:
         return 1.0
     xmin, ymin, xmax, ymax = shapely.total_bounds(np.asarray(parts, dtype=object))
-    return max(xmax - xmin, ymax - ymin, 1e-9) / 80.0
+    return max(xmax - xmin, ymax - ymin, config.INSCRIBED_FLOOR) / 80.0
 
 
 def _as_polygons(geoms, name: str) -> np.ndarray:
@@ -228,8 +230,8 @@ def check(
     min_web: float | None = None,
     min_opening: float | None = None,
     min_inside_radius: float | None = None,
-    corner_tolerance: float = 0.02,
-    tolerance: float = 1e-6,
+    corner_tolerance: float = config.FAB_CORNER_TOLERANCE,
+    tolerance: float = config.FAB_LIMIT_ATOL,
     islands: bool = True,
 ) -> Report:
     """Check a cut panel against fabrication limits.
@@ -373,7 +375,9 @@ def inscribed_circles(polygons, *, tolerance=None) -> tuple[np.ndarray, np.ndarr
         return np.zeros((0, 2)), np.zeros(0)
     if tolerance is None:
         xmin, ymin, xmax, ymax = shapely.bounds(polys).T
-        tolerance = np.maximum(np.minimum(xmax - xmin, ymax - ymin) * 1e-3, 1e-9)
+        tolerance = np.maximum(
+            np.minimum(xmax - xmin, ymax - ymin) * config.INSCRIBED_RTOL, config.INSCRIBED_FLOOR
+        )
     if hasattr(shapely, "maximum_inscribed_circle"):
         circles = shapely.maximum_inscribed_circle(polys, tolerance=tolerance)
         return shapely.get_coordinates(shapely.get_point(circles, 0)), shapely.length(circles)
@@ -424,7 +428,7 @@ def _corners(holes: np.ndarray, outline, radius: float, tolerance: float) -> lis
             shapely.buffer(holes, -radius, quad_segs=quad), radius, quad_segs=quad
         )
         left = shapely.difference(holes, reach)
-        area_floor = (tolerance * 0.1) ** 2
+        area_floor = (tolerance * config.FAB_CORNER_AREA_RTOL) ** 2
         for i in np.flatnonzero(shapely.area(left) > area_floor).tolist():
             if reach[i].is_empty:  # the tool does not fit at all: value = largest radius that does
                 centres, radii = inscribed_circles([holes[i]])
@@ -449,7 +453,7 @@ def _islands(frame, outline) -> list[Violation]:
         return []
     rim = outline.boundary
     out = []
-    tol = 1e-9 * max(1.0, float(np.abs(shapely.bounds(outline)).max()))
+    tol = config.ISLAND_TOUCH_RTOL * max(1.0, float(np.abs(shapely.bounds(outline)).max()))
     for part in shapely.get_parts(frame):
         if part.is_empty or part.geom_type != "Polygon":
             continue

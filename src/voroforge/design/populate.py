@@ -15,12 +15,28 @@ from scipy.spatial import cKDTree
 
 from .boundary import as_polygonal
 
-__all__ = ["by_density", "from_file", "grid", "hexgrid", "jittered", "poisson", "random"]
+__all__ = [
+    "as_region",
+    "by_density",
+    "from_file",
+    "grid",
+    "hexgrid",
+    "jittered",
+    "poisson",
+    "random",
+]
 
 _MAX_ROUNDS = 1000  # rejection-sampling rounds before giving up
 
 
-def _boundary(boundary):
+def as_region(boundary):
+    """A boundary (polygonal geometry or ``(xmin, ymin, xmax, ymax)``) as a prepared region.
+
+    Raises
+    ------
+    ValueError
+        For an empty box or geometry that is not polygonal.
+    """
     if isinstance(boundary, tuple | list) and len(boundary) == 4:
         xmin, ymin, xmax, ymax = (float(v) for v in boundary)
         if not (xmin < xmax and ymin < ymax):
@@ -108,7 +124,7 @@ def random(boundary, count, *, seed) -> np.ndarray:
     >>> random(shapely.box(0, 0, 10, 10), 5, seed=1).shape
     (5, 2)
     """
-    geom = _boundary(boundary)
+    geom = as_region(boundary)
     n = _count(count)
     return np.ascontiguousarray(_uniform(geom, n, np.random.default_rng(seed)))
 
@@ -168,7 +184,7 @@ def grid(boundary, spacing, *, angle=0.0, offset=(0.0, 0.0)) -> np.ndarray:
     (n, 2) float64
         Row by row.
     """
-    geom = _boundary(boundary)
+    geom = as_region(boundary)
     pts, _ = _lattice(geom, _positive(spacing, "spacing"), angle, offset, hexagonal=False)
     return np.ascontiguousarray(pts[_inside(geom, pts)])
 
@@ -192,7 +208,7 @@ def hexgrid(boundary, spacing, *, angle=0.0, offset=(0.0, 0.0)) -> np.ndarray:
     (n, 2) float64
         Row by row.
     """
-    geom = _boundary(boundary)
+    geom = as_region(boundary)
     pts, _ = _lattice(geom, _positive(spacing, "spacing"), angle, offset, hexagonal=True)
     return np.ascontiguousarray(pts[_inside(geom, pts)])
 
@@ -220,7 +236,7 @@ def jittered(boundary, spacing, *, jitter=0.5, seed, angle=0.0, offset=(0.0, 0.0
     -------
     (n, 2) float64
     """
-    geom = _boundary(boundary)
+    geom = as_region(boundary)
     s = _positive(spacing, "spacing")
     j = float(jitter)
     if not 0.0 <= j <= 1.0:
@@ -267,7 +283,7 @@ def poisson(boundary, radius, *, seed, field=None, radius_max=None, k: int = 30)
     cell holds at most one point; a candidate is compared with the points in the grid window
     that the largest spacing can reach.
     """
-    geom = _boundary(boundary)
+    geom = as_region(boundary)
     rmin = _positive(radius, "radius")
     if int(k) != k or k < 1:
         raise ValueError(f"k must be an integer >= 1, got {k!r}")
@@ -408,7 +424,7 @@ def by_density(boundary, count, field, *, seed) -> np.ndarray:
     batch), so a field that is small everywhere still samples efficiently. A peak narrower
     than that sampling can find is flattened to the largest value seen.
     """
-    geom = _boundary(boundary)
+    geom = as_region(boundary)
     n = _count(count)
     if not callable(field):
         raise ValueError("field must be a callable field(xy) -> values in [0, 1]")

@@ -24,6 +24,7 @@ import shapely
 
 import voroforge
 
+from .. import config
 from . import cellops, populate
 
 __all__ = ["Level", "count_by_area", "count_by_field", "leaves", "subdivide"]
@@ -162,10 +163,10 @@ def _clipped(diagram, region) -> np.ndarray:
     total = region.area
     # shapely's areas of the cells already built, not diagram.areas: that parallel kernel
     # costs a thread wake-up per call (~10 ms on a busy machine, x thousands of cells here).
-    if abs(float(shapely.area(cells).sum()) - total) <= 1e-9 * total:
+    if abs(float(shapely.area(cells).sum()) - total) <= config.TILING_AREA_RTOL * total:
         return cells
-    cells = cellops._clean(shapely.intersection(cells, region))
-    if abs(float(shapely.area(cells).sum()) - total) <= 1e-9 * total:
+    cells = cellops.clean(shapely.intersection(cells, region))
+    if abs(float(shapely.area(cells).sum()) - total) <= config.TILING_AREA_RTOL * total:
         return cells
     sites = shapely.points(diagram.sites)
     polys = shapely.get_parts(
@@ -174,7 +175,7 @@ def _clipped(diagram, region) -> np.ndarray:
     owner = np.array([np.flatnonzero(shapely.contains(p, sites))[0] for p in polys])
     out = np.full(len(sites), shapely.Polygon(), dtype=object)
     out[owner] = shapely.intersection(polys, region)
-    return cellops._clean(out)
+    return cellops.clean(out)
 
 
 def subdivide(
@@ -224,7 +225,7 @@ def subdivide(
     """
     from .relax import relax as lloyd
 
-    geom = populate._boundary(boundary)
+    geom = populate.as_region(boundary)
     if isinstance(depth, bool) or int(depth) != depth or depth < 0:
         raise ValueError(f"depth must be an integer >= 0, got {depth!r}")
     depth = int(depth)

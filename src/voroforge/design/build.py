@@ -1,0 +1,401 @@
+"""Build a design's outputs: SVG/DXF layers, PNG preview, GeoJSON, GIF sweep, check reports.
+
+:func:`build` computes a design (:func:`voroforge.design.compute.compute`) and writes the
+files it names; :func:`check_design` runs the fabrication check with the design's limits;
+:func:`write_starter` writes the commented starter design. The writers are deterministic,
+so the same file and seed give byte-identical outputs.
+
+Examples
+--------
+>>> design = {
+...     "boundary": {"shape": "rectangle", "width": 120, "height": 80},
+...     "seeds": {"method": "poisson", "radius": 12},
+...     "cells": {"web": 3, "fillet": 1.5},
+... }
+>>> import tempfile
+>>> [p.name for p in build(design, tempfile.mkdtemp())]
+['design.svg', 'design.png']
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+import shapely
+
+from .. import config
+from .compute import MM_PER_UNIT, Result, Stage, compute
+from .designfile import DesignError, Issue, find_file, load, located
+from .schema import Design
+
+__all__ = [
+    "DesignWarning",
+    "build",
+    "check_design",
+    "products",
+    "render_preview",
+    "starter",
+    "write_starter",
+]
+
+
+class DesignWarning(UserWarning):
+    """A design that builds but probably not as meant (``voroforge build`` prints it)."""
+
+
+# --- outputs ------------------------------------------------------------------------------
+
+
+def products(result: Result, *, kerf: float = 0.0) -> dict[str, list]:
+    """The geometry of every product name, optionally kerf-compensated (polygons only)."""
+    from .fabrication import kerf as apply_kerf
+
+    frame = result.frame
+    openings = list(result.openings)
+    cells = [c for c in result.cells if not c.is_empty]
+    if kerf > 0:
+        frame = apply_kerf(frame, kerf, role="part")
+        openings = list(apply_kerf(openings, kerf, role="hole")) if openings else []
+        cells = list(apply_kerf(cells, kerf, role="part")) if cells else []
+    # The outline is the part's edge too: cut on a layer, it grows like the frame.
+    outline = apply_kerf(result.boundary, kerf, role="part") if kerf > 0 else result.boundary
+    return {
+        "frame": [frame],
+        "openings": openings,
+        "cells": cells,
+        "edges": [result.edges],
+        "sites": [shapely.MultiPoint(result.sites)],
+        "boundary": [outline],
+    }
+
+
+def _layers(result: Result, kerf: float) -> dict[str, list]:
+    made = products(result, kerf=kerf)
+    out = {}
+    for name, what in result.design.output.layers.items():
+        names = [what] if isinstance(what, str) else list(what)
+        out[name.upper()] = [g for n in names for g in made[n]]
+    return out
+
+
+def render_preview(result: Result, *, size: int = 1200):
+    """A PIL image of the design: openings in colour on the panel, or edges for line work."""
+    from ..io.png import render_image
+    from ..io.render import palette
+
+    layers = result.design.output.layers
+    first = next(iter(layers.values()), "frame")
+    first = first if isinstance(first, str) else first[0]
+    mode = result.design.output.png
+    if mode == "layers" and first == "edges":
+        xmin, ymin, xmax, ymax = result.boundary.bounds
+        width = max(xmax - xmin, ymax - ymin) / 900.0
+        lines = shapely.buffer(result.edges, width, quad_segs=2, cap_style="flat")
+        return render_image(
+            [lines], size=size, colors=[(25, 25, 35)], edge_width=0.0, boundary=result.boundary
+        )
+    if mode == "layers" and first in ("frame", "boundary"):
+        return render_image([result.frame], size=size, colors=[(52, 58, 70)], edge_width=0.6)
+    geoms = [result.frame, *result.openings]
+    colours = [(236, 236, 240)] + [
+        tuple(c) for c in palette(len(result.openings), result.design.design.seed).tolist()
+    ]
+    sites = result.sites if result.design.output.png_sites else None
+    return render_image(geoms, size=size, colors=colours, edge_width=0.6, sites=sites)
+
+
+def _source_crs(result: Result, base: Path | None):
+    """The ``"crs"`` member of the boundary's or the seeds' GeoJSON file, or None.
+
+    QGIS writes one for projected data; copying it keeps the output where the input was.
+    """
+    import json
+
+    d = result.design
+    files = [d.boundary.file if d.boundary.shape == "file" else None]
+    files.append(d.seeds.file if d.seeds.method == "file" else None)
+    for name in files:
+        if not name or Path(name).suffix.lower() not in (".geojson", ".json"):
+            continue
+        try:
+            data = json.loads(find_file(base, name, "").read_text(encoding="utf-8"))
+        except (OSError, ValueError, DesignError):
+            continue
+        if isinstance(data, dict) and isinstance(data.get("crs"), dict):
+            return data["crs"]
+    return None
+
+
+def _geojson(result: Result, path: Path, base: Path | None = None) -> Path:
+    from ..io.geojson import write_geojson
+
+    crs = _source_crs(result, base)
+    what = result.design.output.geojson
+    if what == "cells":
+        keep = ~shapely.is_empty(result.cells)
+        geoms = result.cells[keep]
+        props = {
+            "cell": np.flatnonzero(keep),
+            "field": result.values[keep],
+            "opening": result.mask[keep],
+            "level": result.level[keep],
+        }
+        sites = None
+        one_to_one = len(result.cells) == len(result.sites) and not result.design.voronoi.periodic
+        if one_to_one and result.design.recursion.depth == 0:
+            sites = result.sites[keep]
+            given = result.extra.get("site_properties")
+            if given is not None:  # carry the seed file's properties (names, ids) over
+                kept = [given[i] for i in np.flatnonzero(keep)]
+                for name in sorted({k for p in kept for k in p}):
+                    key = name if name not in (*props, "index", "area", "site") else f"site_{name}"
+                    props[key] = [p.get(name) for p in kept]
+        return write_geojson(geoms, path, sites=sites, properties=props, crs=crs)
+    geoms = products(result)[what]
+    if what == "edges":
+        geoms = list(shapely.get_parts(result.edges))
+    return write_geojson(geoms, path, crs=crs)
+
+
+def build(
+    source,
+    out_dir=".",
+    *,
+    overrides: dict | None = None,
+    preview: bool = False,
+    progress: Stage | None = None,
+) -> list[Path]:
+    """Build a design file and write every output it names.
+
+    Parameters
+    ----------
+    source : str, Path, dict or Design
+        A TOML design file, its parsed mapping, or a validated design.
+    out_dir : str or Path
+        Output folder; created if missing.
+    overrides : dict, optional
+        ``{"seeds.count": 500, "cells.web": 2}`` (dotted keys, values or TOML strings).
+    preview : bool
+        Write only the PNG preview (at most 800 px).
+    progress : callable, optional
+        Called with the name of each stage.
+
+    Returns
+    -------
+    list of Path
+        The files written, in the order of ``output.formats``.
+
+    Raises
+    ------
+    DesignError
+        For a bad design file (each issue names key and line).
+    """
+    stage = progress or (lambda name: None)
+    if isinstance(source, Design):
+        design, base = source, None
+        if overrides:
+            design, base = load(design.model_dump(), overrides=overrides)
+    else:
+        design, base = load(source, overrides=overrides)
+    with located(source, overrides):
+        result = compute(design, base, progress=stage)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    o = design.output
+    stem = o.stem or design.design.name
+    written: list[Path] = []
+    if preview:
+        stage("writing preview")
+        path = out / f"{stem}.png"
+        render_preview(result, size=min(o.png_size, 800)).save(path, optimize=False)
+        return [path]
+    if "svg" in o.formats and design.design.units not in ("mm", "cm", "in"):
+        raise DesignError.at(
+            "output.formats", f"svg needs units mm, cm or in; not {design.design.units!r}"
+        )
+    kerf = o.kerf
+    if "svg" in o.formats or "dxf" in o.formats:
+        _warn_empty_layers(result)
+    for fmt in o.formats:
+        path = out / f"{stem}.{fmt}"
+        stage(f"writing {path.name}")
+        if fmt == "svg":
+            from ..io.svg import write_layers
+
+            written.append(
+                write_layers(
+                    path,
+                    _layers(result, kerf),
+                    units=design.design.units,
+                    stroke_width=_stroke_width(design),
+                    # kerf-compensated parts reach kerf / 2 past the outline: keep them on the page
+                    bounds=tuple(
+                        np.add(result.boundary.bounds, np.multiply([-1, -1, 1, 1], kerf / 2))
+                    ),
+                )
+            )
+        elif fmt == "dxf":
+            from ..io.dxf import write_dxf
+
+            written.append(
+                write_dxf(
+                    None,
+                    path,
+                    layers=_layers(result, kerf),
+                    units=design.design.units,
+                    arc_tolerance=o.arc_tolerance,
+                )
+            )
+        elif fmt == "png":
+            render_preview(result, size=o.png_size).save(path)
+            written.append(path)
+        elif fmt == "geojson":
+            written.append(_geojson(result, path, base))
+        elif fmt == "gif":
+            with located(source, overrides):
+                written.append(_gif(design, base, path, stage))
+    if design.fabrication.report:
+        report = _report(result)
+        text = out / f"{stem}-check.txt"
+        text.write_text(report.table() + "\n", encoding="utf-8")
+        written.append(text)
+        written.append(report.write_png(out / f"{stem}-check.png", size=min(o.png_size, 1200)))
+    return written
+
+
+def _stroke_width(design: Design) -> float:
+    """SVG stroke width in design units: as given, else a 0.01 mm laser hairline.
+
+    Laser drivers take only hairlines (about 0.001 in or less) as vector cuts, so the default
+    is 0.01 mm whatever the units (0.01 in would be engraved, not cut).
+    """
+    given = design.output.stroke_width
+    return given if given is not None else config.HAIRLINE_MM / MM_PER_UNIT[design.design.units]
+
+
+def _warn_empty_layers(result: Result) -> None:
+    """Warn about SVG/DXF layers with nothing on them (a cut file that cuts nothing)."""
+    import warnings
+
+    made = products(result)
+    for name, what in result.design.output.layers.items():
+        names = [what] if isinstance(what, str) else list(what)
+        if all(g.is_empty for n in names for g in made[n]):
+            hint = ""
+            if "frame" in names and len(result.openings):
+                hint = (
+                    ": the openings fill the whole boundary (set cells.web or cells.inset, "
+                    "or draw the edges)"
+                )
+            warnings.warn(
+                f"output.layers.{name}: the layer is empty ({', '.join(names)}){hint}",
+                DesignWarning,
+                stacklevel=3,
+            )
+
+
+def _gif(design: Design, base: Path | None, path: Path, stage: Stage) -> Path:
+    from ..io.gif import write_gif
+
+    gif = design.output.gif
+    data = design.model_dump()
+    frames = []
+    values = gif.sweep()
+    unique = {}
+    for i, v in enumerate(values):
+        if repr(v) not in unique:
+            stage(f"gif frame {i + 1}/{len(values)}")
+            try:
+                d, _ = load(data, overrides={gif.key: v})
+                unique[repr(v)] = render_preview(compute(d, base), size=gif.size)
+            except DesignError as exc:
+                raise DesignError(
+                    [
+                        Issue(
+                            "output.gif.key",
+                            None,
+                            f"{gif.key} = {v!r}: {it.key}: "
+                            + it.message.removesuffix(" (from --set)"),
+                        )
+                        for it in exc.issues
+                    ]
+                ) from None
+        frames.append(unique[repr(v)])
+    return write_gif(frames, path, fps=gif.fps)
+
+
+def _report(result: Result):
+    from .fabrication import Report, check
+
+    f = result.design.fabrication
+    limits = {
+        "min_web": f.min_web,
+        "min_opening": f.min_opening,
+        "min_inside_radius": f.tool_radius,
+        "corner_tolerance": f.corner_tolerance,
+        "islands": f.islands,
+    }
+    if "tile" not in result.extra:
+        return check(openings=result.openings, boundary=result.boundary, **limits)
+    # A periodic tile is cut as copies side by side: openings cut by the tile's edge continue
+    # in the next copy, so check the whole openings of 3 x 3 copies against each other (no
+    # outline in reach) and report what lies in the middle copy.
+    xmin, ymin, xmax, ymax = result.extra["tile"]
+    w, h = xmax - xmin, ymax - ymin
+    whole = result.extra["tile_openings"]
+    copies = [
+        shapely.transform(whole, lambda xy, dx=dx, dy=dy: xy + (dx, dy))
+        for dy in (0.0, -h, h)
+        for dx in (0.0, -w, w)
+    ]
+    holes = np.concatenate(copies) if len(whole) else whole
+    far = shapely.box(xmin - 2 * w, ymin - 2 * h, xmax + 2 * w, ymax + 2 * h)
+    tiled = check(openings=holes, boundary=far, **limits)
+    n = max(len(whole), 1)
+    kept = [
+        replace(v, items=tuple(i % n if i >= 0 else i for i in v.items))
+        for v in tiled.violations
+        if xmin <= v.location[0] < xmax and ymin <= v.location[1] < ymax
+    ]
+    return Report(kept, tiled.limits, result.frame, result.openings)
+
+
+def check_design(source, *, overrides: dict | None = None, progress: Stage | None = None):
+    """Build a design's geometry and run the fabrication check with its ``[fabrication]`` limits.
+
+    Returns
+    -------
+    voroforge.design.fabrication.Report
+    """
+    design, base = load(source, overrides=overrides)
+    with located(source, overrides):
+        return _report(compute(design, base, progress=progress))
+
+
+def starter() -> str:
+    """The commented starter design that ``voroforge new`` writes (package data).
+
+    Returns
+    -------
+    str
+        The TOML text of ``voroforge/design/data/starter.toml``.
+    """
+    return resources.files(__package__).joinpath("data", "starter.toml").read_text("utf-8")
+
+
+def write_starter(path="design.toml", *, overwrite: bool = False) -> Path:
+    """Write the commented starter design (:func:`starter`) to ``path``.
+
+    Raises
+    ------
+    ValueError
+        When the file exists and ``overwrite`` is false.
+    """
+    path = Path(path)
+    if path.exists() and not overwrite:
+        raise ValueError(f"{path}: already exists (use --force to overwrite)")
+    path.write_text(starter(), encoding="utf-8")
+    return path

@@ -1,0 +1,619 @@
+"""Compute a design: boundary -> seeds -> relax -> Voronoi -> field -> cell operations.
+
+:func:`compute` turns a validated :class:`~voroforge.design.schema.Design` into geometry
+(:class:`Result`) in memory and writes no files: it is what a build, a check, a GIF frame and
+an interactive editor call on every change. Every random choice comes from the design's
+seed, so the same design gives the same geometry. Writing outputs is
+:mod:`voroforge.design.build`'s business.
+
+Examples
+--------
+>>> from voroforge.design.designfile import load
+>>> design, base = load({
+...     "boundary": {"shape": "rectangle", "width": 120, "height": 80},
+...     "seeds": {"method": "poisson", "radius": 12},
+...     "cells": {"web": 3, "fillet": 1.5},
+... })
+>>> result = compute(design, base)
+>>> len(result.openings) == len(result.sites), result.frame.area < result.boundary.area
+(True, True)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import shapely
+
+from .. import config
+from .designfile import DesignError, find_file
+from .schema import Design, Graded
+
+__all__ = ["MM_PER_UNIT", "Result", "Stage", "compute"]
+
+#: Millimetres per design unit.
+MM_PER_UNIT = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}
+
+#: A progress callback: called with the name of each stage.
+Stage = Callable[[str], None]
+
+
+@dataclass
+class Result:
+    """The geometry of a built design.
+
+    Attributes
+    ----------
+    design : Design
+        The validated design.
+    boundary : shapely Polygon or MultiPolygon
+        The panel outline.
+    domain : shapely Polygon or MultiPolygon
+        Where the cells live (the boundary shrunk by ``boundary.margin``).
+    sites : (n, 2) float64
+        The Voronoi sites after relaxation.
+    raw : (m,) object array
+        The cells before cell operations (all recursion levels' leaves).
+    cells : (m,) object array
+        The cells after inset, scale, smooth and fillet (empty where they vanished).
+    mask : (m,) bool
+        Which cells are openings.
+    values : (m,) float64
+        The attractor field at each cell (0 without attractors).
+    level : (m,) int
+        Recursion level of each cell (0 without recursion).
+    openings : (k,) object array
+        The non-empty openings, cut from the boundary.
+    frame : shapely geometry
+        The boundary minus the openings.
+    extra : dict
+        Recursion levels (``"levels"``) and cached derived data.
+    diagram : Diagram or None
+        The engine's diagram of ``sites`` (Voronoi, power or periodic); None with recursion,
+        whose leaves come from one diagram per subdivided cell.
+    """
+
+    design: Design
+    boundary: object
+    domain: object
+    sites: np.ndarray
+    raw: np.ndarray
+    cells: np.ndarray
+    mask: np.ndarray
+    values: np.ndarray
+    level: np.ndarray
+    openings: np.ndarray
+    frame: object
+    extra: dict = field(default_factory=dict)
+    diagram: object = None
+
+    @property
+    def edges(self):
+        """The unique edges of the raw cells (each shared edge once), computed on first use.
+
+        The engine's exact shared edges (``Diagram.edges``) plus the domain's outline; with
+        recursion, the cells' ring segments merged where they meet (:func:`cellops.explode`).
+        """
+        if "edges" not in self.extra:
+            self.extra["edges"] = _edges(self)
+        return self.extra["edges"]
+
+
+def _edges(result: Result):
+    from . import cellops
+
+    d = result.diagram
+    if d is None:
+        return cellops.edges_to_lines(cellops.explode(result.raw))
+    if d.periodic:  # the edges between the pieces of the cells cut into the tile
+        import voroforge as vf
+
+        tile = result.extra["tile"]
+        d = vf.voronoi(d.sites, tile, algorithm=d.algorithm, periodic=True, wrap=True)
+    return cellops.edges_to_lines(np.concatenate((d.edges.coords, _outline(result.domain))))
+
+
+def _outline(geom) -> np.ndarray:
+    """(m, 2, 2) segments of every ring of a polygonal geometry, without zero-length ones."""
+    rings = shapely.get_rings(shapely.get_parts(geom))
+    coords, ring = shapely.get_coordinates(rings, return_index=True)
+    same = ring[1:] == ring[:-1]
+    seg = np.stack((coords[:-1][same], coords[1:][same]), axis=1)
+    return seg[(seg[:, 0] != seg[:, 1]).any(axis=1)]
+
+
+# --- boundary and seeds -----------------------------------------------------------------
+
+
+def _file_boundary(path: Path, units: str):
+    """A boundary file in the design's units.
+
+    An SVG whose width has a physical unit (``width="24in"``) is read in mm, so it is scaled
+    to the design's units (a 24 in panel in an inch design was 609.6 in wide). Unitless
+    SVGs, DXF (coordinates as drawn) and GeoJSON are taken as they are.
+    """
+    from . import boundary as bd
+
+    geom = bd.load(path)
+    return _svg_in_units(geom, path, units) if path.suffix.lower() == ".svg" else geom
+
+
+def _svg_in_units(geom, path: Path, units: str):
+    """Geometry read from an SVG (in mm when its width has a unit) in the design's units."""
+    from shapely import affinity
+
+    from . import boundary as bd
+
+    if units == "mm" or not bd.svg_in_mm(path):
+        return geom
+    factor = 1.0 / MM_PER_UNIT[units]
+    return affinity.scale(geom, factor, factor, origin=(0.0, 0.0))
+
+
+def _boundary(design: Design, base: Path | None):
+    from . import boundary as bd
+
+    spec = design.boundary
+    if spec.shape == "rectangle":
+        geom = bd.rectangle(spec.width, spec.height, origin=spec.origin)
+    elif spec.shape == "circle":
+        geom = bd.circle(spec.radius, center=spec.center, segments=spec.segments)
+    elif spec.shape == "polygon":
+        geom = bd.polygon(spec.points, spec.holes)
+    elif spec.shape == "polygons":
+        geom = bd.union(*(bd.polygon(p.points, p.holes) for p in spec.parts))
+    else:
+        geom = _file_boundary(find_file(base, spec.file, "boundary.file"), design.design.units)
+    if spec.corner_radius > 0:
+        r = spec.corner_radius
+        core = geom.buffer(-r, join_style="mitre")
+        if core.is_empty:
+            # r = half the width (a stadium, a disc): the core is a segment or a point, which
+            # GEOS drops; a slightly smaller r keeps a sliver of it (and the outline inside)
+            r = r * (1 - config.CORNER_RADIUS_SHRINK)
+            core = geom.buffer(-r, join_style="mitre")
+        geom = core.buffer(r, quad_segs=16)
+        if geom.is_empty:
+            raise DesignError.at(
+                "boundary.corner_radius", f"{spec.corner_radius} is too large for the boundary"
+            )
+    domain = geom
+    if spec.margin > 0:
+        domain = geom.buffer(-spec.margin, join_style="mitre")
+        if domain.is_empty:
+            raise DesignError.at("boundary.margin", f"{spec.margin} leaves nothing of the boundary")
+    return geom, domain
+
+
+def _curve(a, base: Path | None, key: str, units: str = "mm"):
+    """The polyline(s) of a curve attractor: points, SVG path data or a file."""
+    from . import boundary as bd
+
+    if a.points is not None:
+        return np.asarray(a.points, dtype=np.float64)
+    if a.path is not None:
+        lines = bd.path_lines(a.path)
+        if not lines:
+            raise DesignError.at(f"{key}.path", "the SVG path data draws nothing")
+        return shapely.MultiLineString([np.asarray(x)[:, :2] for x in lines])
+    path = find_file(base, a.file, f"{key}.file")
+    if path.suffix.lower() == ".svg":
+        return _svg_in_units(bd.curves_from_svg(path), path, units)
+    geom = shapely.union_all(shapely.get_parts(shapely.from_geojson(path.read_text("utf-8"))))
+    lines = [g.boundary if g.geom_type.endswith("Polygon") else g for g in shapely.get_parts(geom)]
+    merged = shapely.union_all([g for g in lines if "LineString" in g.geom_type])
+    if merged.is_empty:
+        raise DesignError.at(f"{key}.file", "no lines or polygons in the file")
+    return merged
+
+
+def _field(design: Design, base: Path | None = None):
+    """The combined attractor field, or ``None`` without attractors."""
+    if not design.attractors:
+        return None
+    from . import attractors as at
+
+    made = []
+    for i, a in enumerate(design.attractors):
+        options = {
+            "radius": a.radius,
+            "strength": a.strength,
+            "falloff": a.falloff,
+            "power": a.power,
+        }
+        if a.type == "point":
+            made.append(at.PointAttractor(np.asarray(a.points, dtype=np.float64), **options))
+        else:
+            made.append(
+                at.CurveAttractor(
+                    _curve(a, base, f"attractors.{i}", design.design.units), **options
+                )
+            )
+    combined = at.combine(made, mode=design.field.combine)
+    if design.field.invert:
+        return at.Field(lambda xy: 1.0 - np.asarray(combined(xy), dtype=np.float64))
+    return combined
+
+
+def _seeds(design: Design, domain, field_fn, base: Path | None) -> np.ndarray:
+    from . import populate
+
+    s = design.seeds
+    seed = design.design.seed if s.seed is None else s.seed
+    if s.method == "random":
+        return populate.random(domain, s.count, seed=seed)
+    if s.method == "grid":
+        return populate.grid(domain, s.spacing, angle=s.angle, offset=s.offset)
+    if s.method == "hexgrid":
+        return populate.hexgrid(domain, s.spacing, angle=s.angle, offset=s.offset)
+    if s.method == "jittered":
+        return populate.jittered(
+            domain, s.spacing, jitter=s.jitter, seed=seed, angle=s.angle, offset=s.offset
+        )
+    if s.method == "poisson":
+        use = field_fn if s.use_field else None
+        if s.use_field and field_fn is None:
+            raise DesignError.at("seeds.use_field", "needs at least one [[attractors]] table")
+        return populate.poisson(domain, s.radius, seed=seed, field=use, radius_max=s.radius_max)
+    if s.method == "density":
+        if field_fn is None:
+            raise DesignError.at(
+                "seeds.method", "'density' needs at least one [[attractors]] table"
+            )
+        return populate.by_density(domain, s.count, field_fn, seed=seed)
+    with _section("seeds.file"):
+        pts = populate.from_file(find_file(base, s.file, "seeds.file"))
+    inside = shapely.contains_xy(domain, pts[:, 0], pts[:, 1])
+    return pts[inside]
+
+
+def _site_properties(design: Design, domain, base: Path | None):
+    """Points and properties of a GeoJSON seed file, for the seeds kept (or None)."""
+    import json
+
+    s = design.seeds
+    if s.method != "file" or Path(s.file).suffix.lower() not in (".geojson", ".json"):
+        return None
+    data = json.loads(find_file(base, s.file, "seeds.file").read_text(encoding="utf-8"))
+    feats = data.get("features", []) if isinstance(data, dict) else []
+    xy, props = [], []
+    for f in feats:
+        geom = f.get("geometry") or {}
+        coords = geom.get("coordinates")
+        points = (
+            [coords]
+            if geom.get("type") == "Point"
+            else (coords if geom.get("type") == "MultiPoint" else [])
+        )
+        for c in points:
+            xy.append(c[:2])
+            props.append(dict(f.get("properties") or {}))
+    if not xy:
+        return None
+    xy = np.asarray(xy, dtype=np.float64)
+    inside = shapely.contains_xy(domain, xy[:, 0], xy[:, 1])
+    return xy[inside], [p for p, keep in zip(props, inside.tolist(), strict=True) if keep]
+
+
+def _relax(design: Design, points: np.ndarray, domain) -> np.ndarray:
+    r = design.relax
+    if r.iterations == 0 and r.tolerance is None:
+        return points
+    from .relax import relax
+
+    iterations = r.iterations if r.iterations else 50
+    return relax(points, domain, iterations=iterations, tol=r.tolerance)
+
+
+# --- cells --------------------------------------------------------------------------------
+
+
+def _voronoi(design: Design, points: np.ndarray, domain, field_fn=None):
+    """The diagram of the design's sites: Voronoi, power (Laguerre) or periodic on the tile."""
+    import voroforge as vf
+
+    algorithm = design.voronoi.algorithm
+    radius = design.voronoi.power_radius
+    if radius is not None:  # power (Laguerre) cells: a site of weight r^2 acts like a disc
+        values = np.zeros(len(points)) if field_fn is None else field_fn(points)
+        r = _graded(
+            radius,
+            np.asarray(values, dtype=np.float64),
+            "voronoi.power_radius",
+            field_fn is not None,
+        )
+        weights = np.broadcast_to(np.asarray(r, dtype=np.float64) ** 2, (len(points),))
+        return vf.power(points, weights, domain)
+    if not design.voronoi.periodic:
+        return vf.voronoi(points, domain, algorithm=algorithm)
+    return vf.voronoi(points, _tile(design, domain), algorithm=algorithm, periodic=True)
+
+
+def _tile(design: Design, domain) -> tuple[float, float, float, float]:
+    if (
+        design.boundary.shape != "rectangle"
+        or design.boundary.corner_radius
+        or design.boundary.margin
+    ):
+        raise DesignError.at("voronoi.periodic", "a periodic tile needs a plain rectangle boundary")
+    return tuple(float(v) for v in domain.bounds)
+
+
+def _wrap(cells: np.ndarray, box) -> tuple[np.ndarray, np.ndarray]:
+    """Pieces of periodic cells inside the tile (every copy), and the cell each came from."""
+    xmin, ymin, xmax, ymax = box
+    w, h = xmax - xmin, ymax - ymin
+    rect = shapely.box(*box)
+    pieces, owner = [], []
+    for dy in (0.0, -h, h):
+        for dx in (0.0, -w, w):
+            moved = shapely.transform(cells, lambda xy, dx=dx, dy=dy: xy + (dx, dy))
+            cut = shapely.intersection(moved, rect)
+            keep = ~shapely.is_empty(cut) & (shapely.area(cut) > 0)
+            pieces.extend(cut[keep])
+            owner.extend(np.flatnonzero(keep).tolist())
+    return np.asarray(pieces, dtype=object), np.asarray(owner, dtype=np.int64)
+
+
+def _values(cells: np.ndarray, field_fn) -> np.ndarray:
+    if field_fn is None or not len(cells):
+        return np.zeros(len(cells))
+    live = ~shapely.is_empty(cells)
+    pts = shapely.point_on_surface(cells[live])
+    out = np.zeros(len(cells))
+    out[live] = np.asarray(field_fn(shapely.get_coordinates(pts)), dtype=np.float64)
+    return out
+
+
+def _graded(value: Graded, values: np.ndarray, key: str, has_field: bool):
+    if not value.graded:
+        return float(value.value)
+    if not has_field:
+        raise DesignError.at(key, "near/far values need at least one [[attractors]] table")
+    return value.far + (value.near - value.far) * values
+
+
+def _recurse(design: Design, domain, points, field_fn, seed):
+    """Recursion levels -> (leaf cells, their openings, level per cell, the levels)."""
+    rec = design.recursion
+    from . import cellops
+    from .recursive import subdivide
+
+    count_spec = rec.count
+    if count_spec.graded and field_fn is None:
+        raise DesignError.at(
+            "recursion.count", "near/far values need at least one [[attractors]] table"
+        )
+
+    def count(region) -> int:
+        if not count_spec.graded:
+            return max(0, int(round(count_spec.value)))
+        v = float(_values(np.asarray([region], dtype=object), field_fn)[0])
+        return max(0, int(round(count_spec.far + (count_spec.near - count_spec.far) * v)))
+
+    def select(level):
+        live = ~shapely.is_empty(np.asarray(level.openings, dtype=object))
+        if rec.probability >= 1.0:
+            return live
+        # A fresh, reproducible draw per level.
+        draw = cellops.random(len(level), rec.probability, seed=seed * 1009 + level.depth)
+        return np.asarray(draw, dtype=bool) & live
+
+    webs = list(rec.web)
+    if len(webs) not in (0, 1, rec.depth + 1):
+        raise DesignError.at(
+            "recursion.web", f"give one width or depth + 1 = {rec.depth + 1} widths"
+        )
+    web = webs if len(webs) > 1 else (webs[0] if webs else 0.0)
+    join = design.cells.join
+    levels = subdivide(
+        domain, points, depth=rec.depth, count=count, seed=seed, select=select, web=web, join=join
+    )
+    cells, holes, depth = [], [], []
+    for i, lv in enumerate(levels):
+        lv_cells = np.asarray(lv.cells, dtype=object)
+        lv_open = np.asarray(lv.openings if lv.openings is not None else lv.cells, dtype=object)
+        split = set()
+        if i + 1 < len(levels):
+            split = set(np.asarray(levels[i + 1].parent).tolist())
+        keep = [j for j in range(len(lv_cells)) if j not in split]
+        cells.extend(lv_cells[keep])
+        holes.extend(lv_open[keep])
+        depth.extend([lv.depth] * len(keep))
+    return (
+        np.asarray(cells, dtype=object),
+        np.asarray(holes, dtype=object),
+        np.asarray(depth, dtype=np.int64),
+        levels,
+    )
+
+
+def _mask(design: Design, cells: np.ndarray, values: np.ndarray, seed: int) -> np.ndarray:
+    from . import cellops
+
+    o = design.openings
+    n = len(cells)
+    live = ~shapely.is_empty(cells) if n else np.zeros(0, dtype=bool)
+    if o.select == "all":
+        mask = np.ones(n, dtype=bool)
+    elif o.select == "area":
+        mask = cellops.by_area(cells, min=o.min_area, max=o.max_area)
+    elif o.select == "random":
+        mask = cellops.random(n, o.probability, seed=seed if o.seed is None else o.seed)
+    elif o.select == "every_kth":
+        mask = cellops.every_kth(n, o.k, start=o.start)
+    elif o.select == "largest":
+        mask = cellops.largest(cells, o.count)
+    else:
+        if not design.attractors:
+            raise DesignError.at(
+                "openings.select", "'field' needs at least one [[attractors]] table"
+            )
+        mask = values >= o.threshold
+    mask = np.asarray(mask, dtype=bool) & live
+    return ~mask & live if o.invert else mask
+
+
+def _operate(design: Design, cells: np.ndarray, values: np.ndarray, has_field: bool):
+    from . import cellops
+
+    c = design.cells
+    out = cells
+    amount = c.inset_amount()
+    if amount is not None:
+        key = "cells.web" if c.web is not None else "cells.inset"
+        d = _graded(amount, values, key, has_field)
+        if np.any(np.asarray(d) < 0):
+            raise DesignError.at(key, "must be >= 0 (use cells.scale > 1 to grow cells)")
+        out = cellops.inset(out, d, join=c.join)
+    if c.scale.graded or c.scale.value != 1.0:
+        factor = _graded(c.scale, values, "cells.scale", has_field)
+        if np.any(np.asarray(factor) < 0):
+            raise DesignError.at("cells.scale", "scale factors must be >= 0")
+        out = cellops.scale(out, factor)
+    if c.smooth:
+        out = cellops.smooth(out, iterations=c.smooth)
+    if c.fillet.graded or c.fillet.value:
+        r = _graded(c.fillet, values, "cells.fillet", has_field)
+        if np.any(np.asarray(r) < 0):
+            raise DesignError.at("cells.fillet", "fillet radii must be >= 0")
+        out = cellops.fillet(out, r)
+    out = np.asarray(out, dtype=object)
+    if c.min_area > 0:
+        out[shapely.area(out) < c.min_area] = shapely.Polygon()
+    if c.min_size > 0:  # openings narrower than min_size (inscribed circle) stay solid
+        live = np.flatnonzero(~shapely.is_empty(out))
+        if len(live):
+            from .fabrication import inscribed_circles
+
+            _, radii = inscribed_circles(out[live], tolerance=c.min_size * config.MIN_SIZE_RTOL)
+            thin = 2.0 * radii < c.min_size
+            out[live[thin]] = shapely.Polygon()
+    return np.asarray(out, dtype=object)
+
+
+@contextmanager
+def _section(key: str):
+    """Turn a library ``ValueError`` raised while building ``key`` into a DesignError."""
+    try:
+        yield
+    except DesignError:
+        raise
+    except ValueError as exc:
+        raise DesignError.at(key, str(exc)) from None
+
+
+def compute(design: Design, base: Path | None = None, *, progress: Stage | None = None) -> Result:
+    """Compute the geometry of a validated design.
+
+    Parameters
+    ----------
+    design : Design
+        From :func:`voroforge.design.schema.load`.
+    base : Path, optional
+        Folder that relative file names in the design are read from.
+    progress : callable, optional
+        Called with the name of each stage.
+
+    Returns
+    -------
+    Result
+
+    Raises
+    ------
+    DesignError
+        For a design that validates but cannot be built (a missing file, a field-driven
+        value without attractors, ...), naming the key.
+    """
+    stage = progress or (lambda name: None)
+    seed = design.design.seed
+    stage("boundary")
+    with _section("boundary.file" if design.boundary.shape == "file" else "boundary"):
+        boundary, domain = _boundary(design, base)
+    with _section("attractors"):
+        field_fn = _field(design, base)
+    stage("seeds")
+    with _section("seeds"):
+        points = _seeds(design, domain, field_fn, base)
+        points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    if len(points) < 1:
+        raise DesignError.at("seeds", "no seeds fall inside the boundary; need 1 or more")
+    extra: dict = {}
+    with _section("seeds.file"):
+        given = _site_properties(design, domain, base)
+    if given is not None and given[0].shape == points.shape and np.array_equal(given[0], points):
+        extra["site_properties"] = given[1]
+    with _section("relax"):
+        points = _relax(design, points, domain)
+    stage(f"{len(points)} Voronoi cells")
+    diagram = None
+    if design.recursion.depth > 0:
+        if design.voronoi.periodic:
+            raise DesignError.at(
+                "recursion.depth", "recursion and periodic tiles do not combine yet"
+            )
+        if design.cells.inset_amount() is not None:
+            raise DesignError.at("cells.web", "with [recursion], give the webs as recursion.web")
+        with _section("recursion"):
+            raw, inset_cells, level, extra["levels"] = _recurse(
+                design, domain, points, field_fn, seed
+            )
+    else:
+        with _section("voronoi"):
+            diagram = _voronoi(design, points, domain, field_fn)
+        raw = np.asarray(diagram.cells, dtype=object)
+        inset_cells = raw
+        level = np.zeros(len(raw), dtype=np.int64)
+    values = _values(raw, field_fn)
+    with _section("openings"):
+        mask = _mask(design, raw, values, seed)
+    stage("cell operations")
+    with _section("cells"):
+        cells = _operate(design, inset_cells, values, field_fn is not None)
+    if design.voronoi.periodic:
+        box = _tile(design, domain)
+        # whole openings on the torus, for the fabrication check across the seams
+        extra["tile"] = box
+        extra["tile_openings"] = cells[mask & ~shapely.is_empty(cells)]
+        cells, owner = _wrap(cells, box)
+        raw_w, _ = _wrap(raw, box)
+        raw, values, mask, level = raw_w, values[owner], mask[owner], level[owner]
+    chosen = cells[mask & ~shapely.is_empty(cells)] if len(cells) else cells
+    openings = np.asarray(chosen, dtype=object)
+    frame = _frame(boundary, openings)
+    return Result(
+        design,
+        boundary,
+        domain,
+        points,
+        raw,
+        cells,
+        mask,
+        values,
+        level,
+        openings,
+        frame,
+        extra,
+        diagram,
+    )
+
+
+def _frame(boundary, openings: np.ndarray):
+    """Boundary minus openings; disjoint holes strictly inside become holes directly (fast)."""
+    if not len(openings):
+        return boundary
+    simple = boundary.geom_type == "Polygon" and all(
+        o.geom_type == "Polygon" and not o.interiors for o in openings
+    )
+    if simple:
+        shapely.prepare(boundary)
+        if shapely.contains_properly(boundary, openings).all():
+            left, right = shapely.STRtree(openings).query(openings, predicate="intersects")
+            if (left == right).all():
+                rings = [*boundary.interiors, *(o.exterior for o in openings)]
+                return shapely.Polygon(boundary.exterior, rings)
+    return boundary.difference(shapely.union_all(openings))

@@ -1,0 +1,441 @@
+"""Design files: reading TOML, ``--set`` overrides, and error reports that point at lines.
+
+:func:`load` reads a TOML design, applies ``--set``-style overrides, validates it against
+:class:`~voroforge.design.schema.Design` and raises :class:`DesignError` with one
+:class:`Issue` per problem: the dotted key, the line of that key in the file and what was
+expected. Unknown keys are errors with a "did you mean" hint. tomllib keeps no positions, so
+:func:`key_lines` maps key paths back to lines, and :func:`located` gives errors raised while
+computing a design (a missing file, say) the file name and line of their key.
+"""
+
+from __future__ import annotations
+
+import difflib
+import re
+import tomllib
+import typing
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from pydantic import BaseModel, ValidationError
+
+from .schema import Design, short_repr
+
+__all__ = [
+    "DesignError",
+    "Issue",
+    "apply_overrides",
+    "find_file",
+    "key_lines",
+    "load",
+    "located",
+    "parse_value",
+]
+
+
+@dataclass(frozen=True)
+class Issue:
+    """One problem in a design file.
+
+    Attributes
+    ----------
+    key : str
+        Dotted key path (``"seeds.count"``, ``"attractors.1.radius"``).
+    line : int or None
+        1-based line of the key in the file (``None`` for dicts and ``--set`` values).
+    message : str
+        What is wrong and what was expected.
+    """
+
+    key: str
+    line: int | None
+    message: str
+
+
+class DesignError(ValueError):
+    """A design file that cannot be used; ``issues`` lists each problem.
+
+    ``str(error)`` is one line per issue, ``<file>:<line>: <key>: <message>``.
+    """
+
+    def __init__(self, issues: list[Issue], source: str | None = None):
+        self.issues = list(issues)
+        self.source = source
+        super().__init__(self.format())
+
+    @classmethod
+    def at(cls, key: str, message: str) -> DesignError:
+        """One issue at a dotted key, with no line yet (:func:`located` adds file and line)."""
+        return cls([Issue(key, None, message)])
+
+    def format(self) -> str:
+        """One line per issue: ``file:line: key: message``."""
+        lines = []
+        for it in self.issues:
+            where = self.source or "<design>"
+            if it.line is not None:
+                where += f":{it.line}"
+            lines.append(f"{where}: {it.key or '(top level)'}: {it.message}")
+        return "\n".join(lines)
+
+
+_HEADER = re.compile(r"^\s*(\[\[?)\s*([^\]]+?)\s*\]\]?\s*(#.*)?$")
+_KEY = re.compile(
+    r"""^\s*((?:[A-Za-z0-9_\-]+|"[^"]*"|'[^']*')(?:\s*\.\s*(?:[A-Za-z0-9_\-]+|"[^"]*"|'[^']*'))*)\s*="""
+)
+_INLINE_KEY = re.compile(r"[{,]\s*([A-Za-z0-9_\-]+)\s*=")
+
+
+def _split_key(text: str) -> tuple[str, ...]:
+    parts = re.findall(r"""[A-Za-z0-9_\-]+|"[^"]*"|'[^']*'""", text)
+    return tuple(p.strip("\"'") for p in parts)
+
+
+def key_lines(text: str) -> dict[tuple, int]:
+    """Map each key path of a TOML document to its 1-based line (tomllib has no positions).
+
+    Tables ``[a.b]``, arrays of tables ``[[a]]`` (path ``("a", index)``), dotted keys and
+    the keys of one-line inline tables are found; a path maps to the line where it starts.
+
+    Parameters
+    ----------
+    text : str
+        The TOML source.
+
+    Returns
+    -------
+    dict of tuple to int
+    """
+    lines: dict[tuple, int] = {}
+    arrays: dict[tuple, int] = {}
+    current: tuple = ()
+    depth = 0  # open brackets of a multi-line value
+    for number, raw in enumerate(text.splitlines(), start=1):
+        line = raw.strip()
+        if not line or line.startswith("#"):
+            continue
+        if depth == 0:
+            head = _HEADER.match(line)
+            if head and "=" not in line.split("]")[0]:
+                path = _split_key(head.group(2))
+                if head.group(1) == "[[":
+                    index = arrays.get(path, -1) + 1
+                    arrays[path] = index
+                    current = (*path, index)
+                else:
+                    # [a.b] below [[a]] belongs to the last a.
+                    for n in range(len(path), 0, -1):
+                        if path[:n] in arrays:
+                            path = (*path[:n], arrays[path[:n]], *path[n:])
+                            break
+                    current = path
+                lines.setdefault(current, number)
+                continue
+            key = _KEY.match(line)
+            if key:
+                path = (*current, *_split_key(key.group(1)))
+                lines.setdefault(path, number)
+                rest = line[key.end() :]
+                for inner in _INLINE_KEY.finditer(rest):
+                    lines.setdefault((*path, inner.group(1)), number)
+        depth += _bracket_balance(line)
+        depth = max(depth, 0)
+    return lines
+
+
+def _bracket_balance(line: str) -> int:
+    """Open minus closed brackets outside strings and comments (for multi-line arrays)."""
+    balance, quote = 0, None
+    for ch in line:
+        if quote:
+            if ch == quote:
+                quote = None
+            continue
+        if ch in "\"'":
+            quote = ch
+        elif ch == "#":
+            break
+        elif ch in "[{":
+            balance += 1
+        elif ch in "]}":
+            balance -= 1
+    return balance
+
+
+def _line_of(lines: dict[tuple, int], loc: tuple) -> int | None:
+    for n in range(len(loc), 0, -1):
+        if loc[:n] in lines:
+            return lines[loc[:n]]
+    return None
+
+
+def _model_at(loc: tuple) -> type[BaseModel] | None:
+    """The model class that holds the key at ``loc`` (for "did you mean" hints)."""
+    model: Any = Design
+    for part in loc:
+        if isinstance(part, int):
+            continue
+        if not (isinstance(model, type) and issubclass(model, BaseModel)):
+            return None
+        info = model.model_fields.get(part)
+        if info is None:
+            return None
+        model = _inner_model(info.annotation)
+    return model if isinstance(model, type) and issubclass(model, BaseModel) else None
+
+
+def _inner_model(annotation) -> Any:
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        return annotation
+    for arg in typing.get_args(annotation):
+        found = _inner_model(arg)
+        if found is not None:
+            return found
+    return None
+
+
+def _expected(error: dict) -> str:
+    kind = error["type"]
+    msg = error["msg"]
+    if kind == "extra_forbidden":
+        return "unknown key"
+    if kind == "missing":
+        return "required key is missing"
+    got = error.get("input")
+    if kind.startswith(
+        ("float", "int", "bool", "string", "literal", "greater", "less", "list", "tuple", "too_")
+    ):
+        return f"{msg[0].lower()}{msg[1:]}; got {short_repr(got)}"
+    return msg
+
+
+def _issues(exc: ValidationError, lines: dict[tuple, int]) -> list[Issue]:
+    out = []
+    for err in exc.errors():
+        loc = tuple(p for p in err["loc"] if not (isinstance(p, str) and "[" in p))
+        message = _expected(err)
+        text = err["msg"]
+        field = re.search(r"@(\w+)@ (.*)$", text)
+        if field:  # a model validator naming its field
+            loc = (*loc, field.group(1))
+            message = field.group(2)
+        elif text.startswith("Value error, "):
+            message = text[len("Value error, ") :]
+        if err["type"] == "extra_forbidden":
+            model = _model_at(loc[:-1])
+            if model is not None:
+                close = difflib.get_close_matches(str(loc[-1]), list(model.model_fields), n=1)
+                if close:
+                    message += f"; did you mean {close[0]!r}?"
+                else:
+                    message += f"; known keys: {', '.join(model.model_fields)}"
+        key = ".".join(str(p) for p in loc)
+        if any(it.key == key for it in out):
+            continue  # the other branches of a union say the same thing again
+        out.append(Issue(key, _line_of(lines, loc), message))
+    return out
+
+
+# --- loading ------------------------------------------------------------------------------
+
+
+def parse_value(text: str) -> Any:
+    """Read a ``--set`` value as TOML (``500``, ``true``, ``[1, 2]``, ``"x"``); else a string."""
+    try:
+        return tomllib.loads(f"v = {text}")["v"]
+    except tomllib.TOMLDecodeError:
+        return text
+
+
+def apply_overrides(data: dict, overrides: dict | None) -> dict:
+    """Return a copy of ``data`` with each ``"dotted.key": value`` set (list items by index).
+
+    Raises
+    ------
+    DesignError
+        When a path runs through a value that is not a table or list.
+    """
+    import copy
+
+    out = copy.deepcopy(data)
+    for dotted, value in (overrides or {}).items():
+        parts = [p for p in str(dotted).split(".") if p]
+        if not parts:
+            raise DesignError([Issue(str(dotted), None, "empty key in --set")], "--set")
+        node: Any = out
+        for i, part in enumerate(parts[:-1]):
+            node = _step(node, part, dotted, parts[i + 1])
+        last = parts[-1]
+        if isinstance(value, str):
+            value = parse_value(value)
+        if isinstance(node, list):
+            index = _index(node, last, dotted)
+            node[index] = value
+        elif isinstance(node, dict):
+            node[last] = value
+        else:
+            raise DesignError([Issue(dotted, None, "not a table")], "--set")
+    return out
+
+
+def _index(node: list, part: str, dotted: str) -> int:
+    if not part.lstrip("-").isdigit() or not -len(node) <= int(part) < len(node):
+        raise DesignError(
+            [Issue(dotted, None, f"{part!r} is not an index of a list of {len(node)}")], "--set"
+        )
+    return int(part)
+
+
+def _step(node, part: str, dotted: str, following: str):
+    if isinstance(node, list):
+        return node[_index(node, part, dotted)]
+    if not isinstance(node, dict):
+        raise DesignError(
+            [Issue(dotted, None, f"{part!r} is inside a value, not a table")], "--set"
+        )
+    if part not in node:
+        node[part] = [] if following.isdigit() else {}
+    return node[part]
+
+
+def _error_line(text: str, error: str) -> int | None:
+    """The line of a TOML error that tomllib places "at end of document" (a key given twice).
+
+    The parser stops at the first error, so every prefix of the document that reaches the
+    bad line fails with the same message: bisect for the shortest one.
+    """
+    lines = text.splitlines()
+
+    def fails(n: int) -> bool:
+        try:
+            tomllib.loads("\n".join(lines[:n]))
+        except tomllib.TOMLDecodeError as exc:
+            return str(exc).split(" (at ")[0] == error.split(" (at ")[0]
+        return False
+
+    if not lines or not fails(len(lines)):
+        return None
+    lo, hi = 0, len(lines)  # fails(hi) holds, fails(lo) does not
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if fails(mid):
+            hi = mid
+        else:
+            lo = mid
+    return hi
+
+
+def load(source, *, overrides: dict | None = None) -> tuple[Design, Path | None]:
+    """Read and validate a design.
+
+    Parameters
+    ----------
+    source : str, Path or dict
+        A TOML file, or the already parsed mapping.
+    overrides : dict, optional
+        ``{"seeds.count": 500, "cells.web": "3"}``; strings are read as TOML values.
+
+    Returns
+    -------
+    design : Design
+        The validated design.
+    base : Path or None
+        The file's folder (relative paths in the design are resolved against it).
+
+    Raises
+    ------
+    DesignError
+        For TOML syntax errors and every schema problem, with key and line.
+    FileNotFoundError
+        For a missing file.
+    """
+    lines: dict[tuple, int] = {}
+    name = None
+    base = None
+    if isinstance(source, dict):
+        data = source
+    else:
+        path = Path(source)
+        name = str(path)
+        base = path.resolve().parent
+        raw = path.read_bytes()
+        try:
+            text = raw.decode("utf-8-sig")  # a BOM (Windows Notepad) is not TOML's business
+        except UnicodeDecodeError as exc:
+            line = raw.count(b"\n", 0, exc.start) + 1
+            message = f"not UTF-8 text (byte 0x{raw[exc.start]:02x}); save the file as UTF-8"
+            raise DesignError([Issue("", line, message)], name) from None
+        try:
+            data = tomllib.loads(text)
+        except tomllib.TOMLDecodeError as exc:
+            m = re.search(r"\(at line (\d+), column (\d+)\)", str(exc))
+            line = int(m.group(1)) if m else _error_line(text, str(exc))
+            message = re.sub(r"\s*\(at (line \d+, column \d+|end of document)\)", "", str(exc))
+            raise DesignError([Issue("", line, f"TOML syntax: {message}")], name) from None
+        lines = key_lines(text)
+    data = apply_overrides(data, overrides)
+    try:
+        design = Design.model_validate(data)
+    except ValidationError as exc:
+        issues = _issues(exc, lines)
+        if overrides:
+            touched = {str(k) for k in overrides}
+            issues = [
+                Issue(
+                    i.key,
+                    None if i.key in touched else i.line,
+                    i.message + (" (from --set)" if i.key in touched else ""),
+                )
+                for i in issues
+            ]
+        raise DesignError(issues, name) from None
+    return design, base
+
+
+def find_file(base: Path | None, name: str, key: str) -> Path:
+    """The file a design names, relative to the design's folder ``base``.
+
+    Raises
+    ------
+    DesignError
+        At ``key`` when the file does not exist.
+    """
+    p = Path(name)
+    if not p.is_absolute() and base is not None:
+        p = base / p
+    if not p.exists():
+        raise DesignError.at(key, f"file not found: {p}")
+    return p
+
+
+@contextmanager
+def located(source, overrides: dict | None = None):
+    """Give DesignErrors raised inside the design file's name and the lines of their keys.
+
+    Errors about keys set by ``overrides`` get no line and say ``(from --set)`` instead.
+    Errors from a mapping or a validated design (no file) and errors that already name
+    their source pass unchanged.
+    """
+    try:
+        yield
+    except DesignError as exc:
+        if not isinstance(source, str | Path) or exc.source is not None:
+            raise
+        try:
+            lines = key_lines(Path(source).read_text(encoding="utf-8-sig"))
+        except OSError:
+            lines = {}
+        touched = {str(k) for k in (overrides or {})}
+        issues = []
+        for it in exc.issues:
+            path = tuple(int(p) if p.isdigit() else p for p in it.key.split(".") if p)
+            if any(
+                it.key == t or it.key.startswith(t + ".") or t.startswith(it.key + ".")
+                for t in touched
+            ):
+                issues.append(Issue(it.key, None, it.message + " (from --set)"))
+            else:
+                issues.append(Issue(it.key, _line_of(lines, path), it.message))
+        raise DesignError(issues, str(source)) from None
