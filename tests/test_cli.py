@@ -11,7 +11,8 @@ import pytest
 import shapely
 from PIL import Image
 
-from voroforge.cli import _progress, main
+from voroforge.cli import main
+from voroforge.cli.progress import progress
 
 
 @pytest.fixture
@@ -217,9 +218,9 @@ def test_usage_errors_exit_2(capsys):
 
 
 def test_progress_context_is_quiet_when_disabled(capsys):
-    with _progress(False) as stage:
+    with progress(False) as stage:
         stage("reading")
-    with _progress(True) as stage:  # a real spinner; must not break on a non-terminal stream
+    with progress(True) as stage:  # a real spinner; must not break on a non-terminal stream
         stage("computing")
     assert capsys.readouterr().out == ""
 
@@ -239,3 +240,28 @@ def test_help_and_errors_via_subprocess(tmp_path):
     assert bad.returncode == 2
     assert bad.stdout == ""
     assert bad.stderr.strip() == f"voroforge: error: {tmp_path / 'nope.csv'}: no such file"
+
+
+def test_cli_field_names_match_the_raster_writer():
+    # the raster command repeats the field names so that --help does not import numpy
+    from voroforge.cli.raster import FIELDS
+    from voroforge.io.raster_png import FIELDS as WRITER_FIELDS
+
+    assert FIELDS == WRITER_FIELDS
+
+
+def test_help_and_version_do_not_import_the_cli_commands_dependencies():
+    code = (
+        "import sys; from voroforge.cli import main\n"
+        "for argv in (['--version'], ['--help'], ['raster', '--help'], ['build', '--help']):\n"
+        "    try:\n"
+        "        main(argv)\n"
+        "    except SystemExit:\n"
+        "        pass\n"
+        "heavy = [m for m in ('rich', 'PIL', 'ezdxf', 'voroforge.io', 'voroforge.design')\n"
+        "         if m in sys.modules]\n"
+        "print(heavy)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip().splitlines()[-1] == "[]"

@@ -6,7 +6,7 @@ from PIL import Image
 
 import voroforge as vf
 from voroforge.cli import main
-from voroforge.io.raster_png import parse_bounds, parse_size
+from voroforge.cli.raster import parse_bounds, parse_size
 
 
 @pytest.fixture

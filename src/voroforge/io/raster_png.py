@@ -1,14 +1,17 @@
-"""PNG images of raster Voronoi results (pillow), and the ``voroforge raster`` command."""
+"""Raster Voronoi results to files: PNG images (pillow) and raw ``.npy`` fields."""
 
 from __future__ import annotations
 
-import argparse
 import colorsys
 from pathlib import Path
 
 import numpy as np
 
+#: Fields of a raster result that can be drawn or saved.
 FIELDS = ("labels", "distance", "f2", "edge")
+
+#: Suffixes :func:`write_raster` understands: an image, or the field's raw values.
+RASTER_SUFFIXES = (".png", ".npy")
 
 
 def _base_colors(k: int = 12) -> np.ndarray:
@@ -191,146 +194,36 @@ def write_raster_png(result, path, *, field: str = "labels", seed: int = 0) -> P
     return out
 
 
-# ---------------------------------------------------------------------------------------
-# Command line: parsing helpers only; the CLI module wires them in.
-# ---------------------------------------------------------------------------------------
+def write_raster(result, path, *, field: str = "labels", seed: int = 0) -> Path:
+    """Write one field of a raster result as a PNG image or a raw ``.npy`` array, by suffix.
 
+    Parameters
+    ----------
+    result : RasterVoronoi
+        From :func:`voroforge.rasterize`.
+    path : str or os.PathLike
+        ``.png`` (:func:`write_raster_png`) or ``.npy`` (the field's values: ``(h, w)`` int32
+        site indices for labels, float64 distances otherwise).
+    field : {"labels", "distance", "f2", "edge"}
+        What to write.
+    seed : int
+        Palette seed for a labels PNG.
 
-def parse_size(text: str) -> tuple[int, int]:
-    """``"WIDTHxHEIGHT"`` (or a single number for a square) -> ``(h, w)``."""
-    parts = text.lower().replace("*", "x").split("x")
-    try:
-        vals = [int(v) for v in parts]
-    except ValueError:
-        raise ValueError(
-            f"--size must look like 2048x1024 (width x height); got {text!r}"
-        ) from None
-    if len(vals) == 1:
-        vals = vals * 2
-    if len(vals) != 2 or min(vals) <= 0:
-        raise ValueError(f"--size must be two positive ints WIDTHxHEIGHT; got {text!r}")
-    return vals[1], vals[0]
+    Returns
+    -------
+    pathlib.Path
+        The path written.
 
-
-def parse_bounds(text: str | None) -> tuple[float, float, float, float] | None:
-    """``"xmin,ymin,xmax,ymax"`` -> tuple, or None."""
-    if text is None:
-        return None
-    try:
-        vals = tuple(float(v) for v in text.split(","))
-    except ValueError:
-        raise ValueError(f"--bounds must be xmin,ymin,xmax,ymax numbers; got {text!r}") from None
-    if len(vals) != 4:
-        raise ValueError(f"--bounds needs 4 numbers xmin,ymin,xmax,ymax; got {text!r}")
-    return vals
-
-
-RASTER_EPILOG = """\
-examples:
-  voroforge raster points.csv -o cells.png --size 2048x2048
-  voroforge raster points.npy -o cells.png --size 1920x1080 --method jfa
-  voroforge raster points.csv -o cells.png -o labels.npy --size 512
-  voroforge raster points.csv -o noise.png --field edge --bounds 0,0,1,1
-  voroforge raster points.csv -o f1.png --field distance --metric manhattan --bounds=-1,-1,1,1
-
---size is WIDTHxHEIGHT (one number for a square). --field labels colours each cell so
-that touching cells differ; distance (F1), f2 and edge (F2 - F1, "cellular noise") are
-greyscale, black at 0 and white at the largest value. A .npy output holds the field's
-raw values: (height, width) int32 site indices for labels, float64 distances otherwise.
-A bounding box with a negative first number needs the '=' form shown last.
-"""
-
-OUTPUT_SUFFIXES = (".png", ".npy")
-
-
-def add_raster_parser(commands, **kwargs) -> argparse.ArgumentParser:
-    """Add the ``raster`` subcommand to argparse ``commands`` (from ``add_subparsers``).
-
-    Extra keyword arguments (e.g. ``formatter_class``) go to ``add_parser``. The command's
-    ``func`` default is :func:`raster_command`.
+    Raises
+    ------
+    ValueError
+        For another suffix, an unknown field, or ``f2``/``edge`` without ``f2=True``.
     """
-    p = commands.add_parser(
-        "raster",
-        help="Voronoi diagram of a point file as an image (labels or distance fields)",
-        description="Nearest-site labels or distances at every pixel of POINTS' diagram, "
-        "written as a PNG image or a .npy array.",
-        epilog=RASTER_EPILOG,
-        **kwargs,
-    )
-    p.add_argument(
-        "points",
-        metavar="POINTS",
-        help="point file: .csv/.txt (x,y columns, header optional), .npy or .geojson/.json",
-    )
-    p.add_argument(
-        "-o",
-        "--output",
-        metavar="OUT",
-        action="append",
-        required=True,
-        help="output file: .png (image) or .npy (raw field); repeatable",
-    )
-    p.add_argument(
-        "--size", default="1024x1024", help="image size WIDTHxHEIGHT in pixels (default 1024x1024)"
-    )
-    p.add_argument(
-        "--method",
-        default="exact",
-        choices=("exact", "jfa"),
-        help="exact nearest site (default) or Jump Flooding (euclidean only)",
-    )
-    p.add_argument(
-        "--metric",
-        default="euclidean",
-        choices=("euclidean", "manhattan", "chebyshev"),
-        help="distance (default euclidean; others need --method exact)",
-    )
-    p.add_argument(
-        "--bounds",
-        metavar="xmin,ymin,xmax,ymax",
-        help="area covered by the image (default: the points' box padded 10%%)",
-    )
-    p.add_argument("--field", default="labels", choices=FIELDS, help="what to draw")
-    p.add_argument("--seed", type=int, default=0, help="colour seed for --field labels")
-    p.set_defaults(func=raster_command)
-    return p
-
-
-def raster_command(args, stage=None) -> list[Path]:
-    """Run ``voroforge raster`` from parsed arguments; returns the written paths.
-
-    ``args`` needs ``points, output (list), size, method, bounds, field`` (and optionally
-    ``metric``, ``seed``), see :func:`add_raster_parser`. ``stage(name)`` is called with
-    progress messages when given.
-    """
-    from ..engine.raster import rasterize
-    from .readers import read_points
-
-    stage = stage or (lambda name: None)
-    outputs = [Path(o) for o in (args.output if isinstance(args.output, list) else [args.output])]
-    for out in outputs:
-        if out.suffix.lower() not in OUTPUT_SUFFIXES:
-            raise ValueError(f"{out}: raster output must be a .png or .npy file")
-    shape = parse_size(str(args.size))
-    bounds = parse_bounds(args.bounds)
-    stage("reading")
-    pts = read_points(args.points)
-    stage(f"rasterising {len(pts)} sites at {shape[1]}x{shape[0]} ({args.method})")
-    result = rasterize(
-        pts,
-        shape,
-        bounds,
-        method=args.method,
-        metric=getattr(args, "metric", "euclidean"),
-        f2=args.field in ("f2", "edge"),
-    )
-    written = []
-    for out in outputs:
-        stage(f"writing {out}")
-        if out.suffix.lower() == ".npy":
-            np.save(out, np.asarray(field_values(result, args.field)))
-            written.append(out)
-        else:
-            seed = getattr(args, "seed", 0)
-            written.append(write_raster_png(result, out, field=args.field, seed=seed))
-    return written
+    out = Path(path)
+    suffix = out.suffix.lower()
+    if suffix not in RASTER_SUFFIXES:
+        raise ValueError(f"{out}: raster output must be a .png or .npy file")
+    if suffix == ".npy":
+        np.save(out, np.asarray(field_values(result, field)))
+        return out
+    return write_raster_png(result, out, field=field, seed=seed)

@@ -1,9 +1,13 @@
-"""The ``voroforge explain`` command: parsing and the call into :mod:`.render`."""
+"""``voroforge explain``: animations that show how an algorithm works."""
 
 from __future__ import annotations
 
 import argparse
 from pathlib import Path
+
+from .progress import Stage
+
+__all__ = ["EXPLAIN_EPILOG", "add_parser", "run_explain"]
 
 EXPLAIN_EPILOG = """\
 examples:
@@ -18,18 +22,27 @@ points (at most 2000).
 """
 
 
-def add_explain_parser(commands, **kwargs) -> argparse.ArgumentParser:
+def add_parser(commands, formatter_class) -> argparse.ArgumentParser:
     """Add ``explain fortune`` to argparse ``commands`` (from ``add_subparsers``).
 
-    Extra keyword arguments (e.g. ``formatter_class``) go to ``add_parser``; the command's
-    ``func`` default is :func:`explain_command`.
+    Parameters
+    ----------
+    commands : argparse subparsers action
+        Where to add it.
+    formatter_class : type
+        Help formatter of the subcommands.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        The ``explain`` parser (its ``run`` default is :func:`run_explain`).
     """
     p = commands.add_parser(
         "explain",
         help="animations that show how an algorithm works (GIF)",
         description="Animations for people learning the algorithms.",
         epilog=EXPLAIN_EPILOG,
-        **kwargs,
+        formatter_class=formatter_class,
     )
     which = p.add_subparsers(dest="algorithm", metavar="ALGORITHM", required=True)
     f = which.add_parser(
@@ -37,7 +50,7 @@ def add_explain_parser(commands, **kwargs) -> argparse.ArgumentParser:
         help="Fortune's sweep line, frame by frame",
         description="Animate Fortune's sweep over POINTS as a GIF.",
         epilog=EXPLAIN_EPILOG,
-        **kwargs,
+        formatter_class=formatter_class,
     )
     f.add_argument(
         "points",
@@ -50,15 +63,15 @@ def add_explain_parser(commands, **kwargs) -> argparse.ArgumentParser:
         "--size", type=int, default=480, help="pixels along the longer side (default 480)"
     )
     f.add_argument("--duration", type=int, default=80, help="milliseconds per frame (default 80)")
-    p.set_defaults(func=explain_command)
+    p.set_defaults(run=run_explain)
     return p
 
 
-def explain_command(args, stage=None) -> list[Path]:
+def run_explain(args: argparse.Namespace, stage: Stage | None = None) -> list[Path]:
     """Run ``voroforge explain fortune`` from parsed arguments; returns the written paths."""
+    from ..explain.fortune import trace
+    from ..explain.render import write_gif
     from ..io.readers import read_points
-    from .fortune import trace
-    from .render import write_gif
 
     stage = stage or (lambda name: None)
     out = Path(args.output)

@@ -1,0 +1,95 @@
+"""The ``voroforge`` command line: parse arguments, call the library, print what was written.
+
+One module per group of commands (:mod:`.diagram`: voronoi and delaunay, :mod:`.demo`,
+:mod:`.raster`, :mod:`.explain`, :mod:`.design`: build, new and check); each adds its
+parsers with a ``run`` default, and :func:`main` calls it. No geometry here: commands read
+with :mod:`voroforge.io`, compute with the library and write with :mod:`voroforge.io`.
+Nothing heavy is imported before a command runs, so ``--help`` and ``--version`` are quick.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Sequence
+
+from . import demo, design, diagram, explain, raster
+from .progress import progress
+
+__all__ = ["PROG", "main"]
+
+PROG = "voroforge"
+
+_MAIN_EPILOG = """\
+examples:
+  voroforge demo -o out                      the flagship laser-cut panel: SVG, DXF, PNG
+  voroforge voronoi points.csv -o cells.svg  Voronoi cells of points.csv as SVG
+  voroforge voronoi points.csv -o cells.geojson --boundary domain.geojson
+  voroforge delaunay points.csv -o triangles.svg
+  voroforge raster points.csv -o cells.png --size 2048x2048 --method jfa
+  voroforge explain fortune points.csv -o sweep.gif   animation of Fortune's sweep
+
+Run 'voroforge COMMAND --help' for the options of one command.
+"""
+
+
+def _parser() -> argparse.ArgumentParser:
+    from .. import __version__
+
+    raw = argparse.RawDescriptionHelpFormatter
+    parser = argparse.ArgumentParser(
+        prog=PROG,
+        description="Voronoi diagrams clipped to any domain, and Delaunay triangulations.",
+        epilog=_MAIN_EPILOG,
+        formatter_class=raw,
+    )
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+    diagram.add_parsers(commands, raw)
+    demo.add_parser(commands, raw)
+    raster.add_parser(commands, raw)
+    explain.add_parser(commands, raw)
+    design.add_parsers(commands, raw)
+    return parser
+
+
+def _error(message: str) -> int:
+    for line in str(message).splitlines() or [""]:  # a design file may have several issues
+        print(f"{PROG}: error: {line}", file=sys.stderr)
+    return 2
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Arguments without the program name (default: ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit status: 0 on success, 2 on bad arguments or input (message on stderr), 1 from
+        ``check --strict`` when the design breaks a fabrication limit.
+    """
+    try:
+        args = _parser().parse_args(argv)
+    except SystemExit as exc:  # --help, --version and argparse's own usage errors
+        return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
+    try:
+        with progress(sys.stderr.isatty()) as stage:
+            written = args.run(args, stage)
+    except ValueError as exc:
+        return _error(str(exc))
+    except OSError as exc:
+        where = f": {exc.filename}" if exc.filename else ""
+        return _error(f"{exc.strerror or exc}{where}")
+    except KeyboardInterrupt:
+        print(f"{PROG}: interrupted", file=sys.stderr)
+        return 130
+    if isinstance(written, int):  # commands that print their own report return a status
+        return written
+    for path in written:
+        print(path)
+    return 0

@@ -1,0 +1,157 @@
+"""``voroforge voronoi`` and ``voroforge delaunay``: a point file in, cells or triangles out."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from .progress import Stage
+
+__all__ = ["POINTS_HELP", "add_parsers", "run_delaunay", "run_voronoi"]
+
+#: Help text of a POINTS argument.
+POINTS_HELP = (
+    "point file: .csv/.txt (x,y columns, header optional), .npy (n x 2 array) "
+    "or .geojson/.json (Point/MultiPoint features)"
+)
+
+_VORONOI_EPILOG = """\
+The output type follows each OUT's suffix: .svg, .png, .geojson, .json or .dxf.
+Give -o several times to write several files from one computation.
+
+examples:
+  voroforge voronoi points.csv -o cells.svg
+  voroforge voronoi points.csv -o cells.png --size 2048
+  voroforge voronoi points.npy -o cells.geojson --boundary 0,0,100,50
+  voroforge voronoi points.csv -o cells.svg --units mm -o cells.geojson \\
+      --boundary outline.geojson
+  voroforge voronoi points.csv -o cells.svg --boundary=-10,-10,10,10
+
+A bounding box with a negative first number needs the '=' form shown last.
+A boundary file is GeoJSON; all its Polygon/MultiPolygon features are united, holes kept.
+"""
+
+_DELAUNAY_EPILOG = """\
+The output type follows each OUT's suffix: .svg, .png, .geojson, .json or .dxf.
+GeoJSON features are the triangles, with their vertex indices in "vertices".
+
+examples:
+  voroforge delaunay points.csv -o triangles.svg
+  voroforge delaunay points.npy -o triangles.geojson
+"""
+
+
+def _add_outputs(sub: argparse.ArgumentParser) -> None:
+    sub.add_argument(
+        "-o",
+        "--output",
+        metavar="OUT",
+        action="append",
+        required=True,
+        help="output file; .svg, .png, .geojson, .json or .dxf (repeatable)",
+    )
+    sub.add_argument(
+        "--size", type=int, default=1024, help="PNG size in pixels, longer side (default 1024)"
+    )
+    sub.add_argument(
+        "--units",
+        choices=("mm", "cm", "in", "pt", "px"),
+        help="SVG size units; with mm, 1 data unit = 1 mm",
+    )
+
+
+def add_parsers(commands, formatter_class) -> None:
+    """Add ``voronoi`` and ``delaunay`` to argparse ``commands`` (from ``add_subparsers``).
+
+    Parameters
+    ----------
+    commands : argparse subparsers action
+        Where to add them.
+    formatter_class : type
+        Help formatter of the subcommands.
+    """
+    vor = commands.add_parser(
+        "voronoi",
+        help="Voronoi cells of a point file, clipped to a boundary",
+        description="Compute the Voronoi cells of POINTS, clipped to a boundary, and write them.",
+        epilog=_VORONOI_EPILOG,
+        formatter_class=formatter_class,
+    )
+    vor.add_argument("points", metavar="POINTS", help=POINTS_HELP)
+    _add_outputs(vor)
+    vor.add_argument(
+        "--boundary",
+        metavar="FILE|xmin,ymin,xmax,ymax",
+        help="domain: a GeoJSON polygon file or a box (default: the points' box padded 10%%)",
+    )
+    vor.add_argument(
+        "--algorithm",
+        default="delaunay",
+        help="engine algorithm: delaunay (default), fortune or halfplane where available",
+    )
+    vor.set_defaults(run=run_voronoi)
+
+    tri = commands.add_parser(
+        "delaunay",
+        help="Delaunay triangles of a point file",
+        description="Compute the Delaunay triangulation of POINTS and write its triangles.",
+        epilog=_DELAUNAY_EPILOG,
+        formatter_class=formatter_class,
+    )
+    tri.add_argument("points", metavar="POINTS", help=POINTS_HELP)
+    _add_outputs(tri)
+    tri.set_defaults(run=run_delaunay)
+
+
+def run_voronoi(args: argparse.Namespace, stage: Stage) -> list[Path]:
+    """Run ``voroforge voronoi``; returns the files written."""
+    import voroforge as vf
+
+    from .. import io
+
+    for out in args.output:
+        io.output_format(out)
+    stage("reading")
+    points = io.read_points(args.points)
+    boundary = io.read_boundary(args.boundary) if args.boundary else None
+    stage(f"computing {len(points)} Voronoi cells")
+    d = vf.voronoi(points, boundary, algorithm=args.algorithm)
+    written = []
+    for out in args.output:
+        stage(f"writing {out}")
+        written.append(
+            io.write(
+                d.cells, out, sites=d.sites, boundary=d.boundary, size=args.size, units=args.units
+            )
+        )
+    return written
+
+
+def run_delaunay(args: argparse.Namespace, stage: Stage) -> list[Path]:
+    """Run ``voroforge delaunay``; returns the files written."""
+    import voroforge as vf
+
+    from .. import io
+
+    for out in args.output:
+        io.output_format(out)
+    stage("reading")
+    points = io.read_points(args.points)
+    stage(f"triangulating {len(points)} points")
+    tri = vf.delaunay(points)
+    polygons = io.triangle_polygons(tri.points, tri.triangles)
+    written = []
+    for out in args.output:
+        stage(f"writing {out}")
+        drawn = None if io.output_format(out) == "geojson" else tri.points
+        written.append(
+            io.write(
+                polygons,
+                out,
+                sites=drawn,
+                properties={"vertices": tri.triangles},
+                size=args.size,
+                units=args.units,
+            )
+        )
+    return written
