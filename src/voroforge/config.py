@@ -90,3 +90,38 @@ INSCRIBED_FLOOR = 1e-9
 #: design.fabrication: a frame part touches the outline when nearer than this fraction of the
 #: outline's largest coordinate (at least 1); parts farther away are loose islands.
 ISLAND_TOUCH_RTOL = 1e-9
+
+#: mm: default largest distance between a curve (SVG Bézier/arc, DXF bulge/circle) and the
+#: polyline a boundary reader flattens it to; well below laser and CNC resolution.
+CURVE_TOLERANCE = 0.01
+
+#: Floor on an SVG element's transform scale, so its flattening tolerance never divides by 0.
+SVG_MIN_SCALE = 1e-300
+
+#: Radians: a DXF ELLIPSE whose parameter span is within this of a full turn is closed.
+ELLIPSE_FULL_TURN_ATOL = 1e-9
+
+#: Default largest distance (drawing units) of a vertex from the circular arc that replaces
+#: its run of chords in DXF bulges and SVG ``A`` arcs.
+ARC_TOLERANCE = 1e-6
+
+#: Radians: a vertex turning less than this is straight, never inside an arc.
+ARC_MIN_TURN = 1e-9
+
+#: Relative slack on the largest turning per chord that still counts as part of an arc.
+ARC_STEP_RTOL = 1e-9
+
+#: Chords of one arc have equal length within this fraction of the longer one.
+ARC_CHORD_RTOL = 1e-3
+
+#: Neighbouring vertices of one arc turn equally within this fraction of the turn...
+ARC_TURN_RTOL = 1e-3
+
+#: ...or within this many radians for tiny turns (the floor of that fraction's scale).
+ARC_TURN_FLOOR = 1e-3
+
+#: Floor of the arc-fit tolerance relative to the ring's largest coordinate (float64 noise).
+ARC_FIT_RTOL = 1e-11
+
+#: Radians of slack (over half a step) between an arc's fitted sweep and its chords' turning.
+ARC_SWEEP_ATOL = 1e-6
