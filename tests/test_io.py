@@ -379,3 +379,44 @@ def test_read_boundary_needs_polygons(tmp_path):
     f.write_text(json.dumps({"type": "Point", "coordinates": [0, 0]}))
     with pytest.raises(ValueError, match="no Polygon or MultiPolygon geometries"):
         io.read_boundary(f)
+
+
+def test_read_boundary_dispatches_svg_and_dxf_by_suffix(tmp_path):
+    import ezdxf
+
+    from voroforge.design import boundary as bd
+    from voroforge.io.readers import read_dxf, read_svg
+
+    svg = tmp_path / "outline.svg"
+    svg.write_text(
+        '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">'
+        '<rect x="0" y="0" width="10" height="10"/><rect x="2" y="2" width="3" height="3"/></svg>'
+    )
+    g = io.read_boundary(svg)
+    assert g.area == pytest.approx(100 - 9)
+    assert g.equals(read_svg(svg)) and g.equals(bd.from_svg(svg))
+    assert io.read_boundary(str(svg), tolerance=0.5).area == pytest.approx(91)
+
+    doc = ezdxf.new()
+    doc.modelspace().add_lwpolyline([(0, 0), (4, 0), (4, 3), (0, 3)], close=True)
+    dxf = tmp_path / "outline.dxf"
+    doc.saveas(dxf)
+    d = io.read_boundary(dxf)
+    assert d.area == pytest.approx(12) and d.equals(read_dxf(dxf))
+
+    gj = tmp_path / "outline.geojson"
+    gj.write_text(shapely.to_geojson(shapely.box(0, 0, 1, 1)))
+    with pytest.raises(ValueError, match="GeoJSON boundaries take no options"):
+        io.read_boundary(gj, tolerance=0.1)
+    with pytest.raises(ValueError, match="is a directory"):
+        io.read_points(tmp_path)
+
+
+def test_io_does_not_import_the_design_layer():
+    import subprocess
+    import sys
+
+    code = "import sys, voroforge.io; print([m for m in sys.modules if 'design' in m])"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip().splitlines()[-1] == "[]"

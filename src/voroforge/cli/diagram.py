@@ -28,7 +28,8 @@ examples:
   voroforge voronoi points.csv -o cells.svg --boundary=-10,-10,10,10
 
 A bounding box with a negative first number needs the '=' form shown last.
-A boundary file is GeoJSON; all its Polygon/MultiPolygon features are united, holes kept.
+A GeoJSON boundary file's Polygon/MultiPolygon features are united, holes kept; an SVG
+file gives its filled shapes, a DXF file its closed outlines (nested ones are holes).
 """
 
 _DELAUNAY_EPILOG = """\
@@ -82,7 +83,7 @@ def add_parsers(commands, formatter_class) -> None:
     vor.add_argument(
         "--boundary",
         metavar="FILE|xmin,ymin,xmax,ymax",
-        help="domain: a GeoJSON polygon file or a box (default: the points' box padded 10%%)",
+        help="domain: a GeoJSON, SVG or DXF file, or a box (default: the points' box padded 10%%)",
     )
     vor.add_argument(
         "--algorithm",

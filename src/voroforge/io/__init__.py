@@ -1,8 +1,10 @@
-"""Writers and readers: SVG, PNG and GeoJSON out; CSV/TXT, NPY and GeoJSON in.
+"""Writers and readers: SVG, PNG, GeoJSON and DXF out; points and domains in.
 
 All writers take a sequence of shapely polygons (``diagram.cells``), so they work on any
 polygon set, Delaunay triangles included (:func:`triangle_polygons`). :func:`write` picks
-the writer from the file suffix.
+the writer from the file suffix. The readers live in :mod:`.readers` (CSV/TXT, NPY and
+GeoJSON points; GeoJSON, SVG and DXF domains), each dispatching on the suffix; the DXF and
+SVG layer writers share the arc fitting of :mod:`.arcs`.
 
 Examples
 --------
