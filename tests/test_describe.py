@@ -8,7 +8,7 @@ import shapely
 from scipy.spatial import ConvexHull
 
 import voroforge as vf
-from voroforge.engine.voronoi import Diagram
+from voroforge.engine.diagram import Diagram, domain_of
 
 from catalogue import CATALOGUE, NAMES
 
@@ -80,7 +80,7 @@ def test_two_parts_and_hole_in_one_cell():
 def _rebuilt(d, coords):
     c, (ring, poly, geom) = d.to_geoarrow()
     bufs = (coords, ring.copy(), poly.copy(), geom.copy())
-    return Diagram(d.sites.copy(), d.duplicate_of.copy(), d._domain, bufs, d.edges, d.algorithm)
+    return Diagram(d.sites.copy(), d.duplicate_of.copy(), domain_of(d), bufs, d.edges, d.algorithm)
 
 
 def test_detects_a_t_junction_and_a_reflex_corner():

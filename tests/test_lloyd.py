@@ -11,9 +11,10 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import voroforge as vf
-from voroforge.engine._integrate import RADON_NODES, RADON_WEIGHTS, Integrator
+from voroforge.engine.diagram import buffers
+from voroforge.engine.integrate import RADON_NODES, RADON_WEIGHTS, Integrator
 
-from reference import brute_voronoi
+from reference import brute_lloyd_step, pixel_density_moments, triangulated_moments
 
 SQUARE = shapely.box(0, 0, 1, 1)
 HOLED = shapely.box(0, 0, 1, 1).difference(shapely.Point(0.5, 0.5).buffer(0.25, quad_segs=6))
@@ -21,34 +22,13 @@ L_SHAPE = shapely.Polygon([(0, 0), (1, 0), (1, 0.4), (0.4, 0.4), (0.4, 1), (0, 1
 TWO_PARTS = shapely.MultiPolygon([shapely.box(0, 0, 0.45, 1), shapely.box(0.55, 0, 1, 1)])
 
 
-def reference_moments(cells, sites):
-    """Mass, first and second moments of unit density, from GEOS triangles (independent)."""
-    n = len(cells)
-    mass = np.zeros(n)
-    first = np.zeros((n, 2))
-    second = np.zeros(n)
-    for i, cell in enumerate(cells):
-        if cell.is_empty:
-            continue
-        tris = shapely.get_parts(shapely.constrained_delaunay_triangles(cell))
-        for t in tris:
-            a, b, c = shapely.get_coordinates(t)[:3] - sites[i]
-            area = 0.5 * abs((b - a)[0] * (c - a)[1] - (b - a)[1] * (c - a)[0])
-            g = (a + b + c) / 3
-            mass[i] += area
-            first[i] += area * g
-            spread = ((a - g) ** 2 + (b - g) ** 2 + (c - g) ** 2).sum() / 12
-            second[i] += area * ((g**2).sum() + spread)
-    return mass, first, second
-
-
 @pytest.mark.parametrize("domain", [SQUARE, HOLED, L_SHAPE, TWO_PARTS])
 def test_uniform_moments_are_exact(domain):
     rng = np.random.default_rng(0)
     pts = rng.random((60, 2))
     d = vf.voronoi(pts, domain)
-    mass, first, second = Integrator(None, 60)(d._buffers, pts)
-    ref = reference_moments(d.cells, pts)
+    mass, first, second = Integrator(None, 60)(buffers(d), pts)
+    ref = triangulated_moments(d.cells, pts)
     assert np.allclose(mass, ref[0], rtol=0, atol=1e-14)
     assert np.allclose(first, ref[1], rtol=0, atol=1e-14)
     assert np.allclose(second, ref[2], rtol=0, atol=1e-14)
@@ -64,7 +44,7 @@ def test_energy_never_increases(domain):
     assert r.energy[-1] < 0.9 * r.energy[0]
     assert np.array_equal(r.diagram.sites, r.points)
     # the recorded energy is the energy of the returned diagram and points
-    _, _, second = Integrator(None, 150)(r.diagram._buffers, r.points)
+    _, _, second = Integrator(None, 150)(buffers(r.diagram), r.points)
     assert second.sum() == pytest.approx(r.energy[-1], rel=1e-12)
     if domain is SQUARE:  # centroids of cells cut by a concave boundary may lie outside it
         assert np.all((r.points >= 0) & (r.points <= 1))
@@ -93,35 +73,15 @@ def test_radon_rule_degree_five():
 def test_callable_density_linear_is_exact(domain):
     pts = np.random.default_rng(3).random((50, 2))
     d = vf.voronoi(pts, domain)
-    mass, first, _ = Integrator(lambda x, y: 1.0 + 2.0 * x + 0.5 * y, 50)(d._buffers, pts)
+    mass, first, _ = Integrator(lambda x, y: 1.0 + 2.0 * x + 0.5 * y, 50)(buffers(d), pts)
     area = shapely.area(d.cells)
     cen = np.array([c.centroid.coords[0] if not c.is_empty else (0, 0) for c in d.cells])
     assert np.allclose(mass, area * (1 + 2 * cen[:, 0] + 0.5 * cen[:, 1]), rtol=1e-12)
     # constant density: the same numbers as the closed form
-    m1, f1, s1 = (a.copy() for a in Integrator(None, 50)(d._buffers, pts))
-    m2, f2, s2 = Integrator(lambda x, y: np.ones_like(x), 50)(d._buffers, pts)
+    m1, f1, s1 = (a.copy() for a in Integrator(None, 50)(buffers(d), pts))
+    m2, f2, s2 = Integrator(lambda x, y: np.ones_like(x), 50)(buffers(d), pts)
     assert np.allclose(m1, m2, rtol=1e-12) and np.allclose(s1, s2, rtol=1e-12)
     assert np.allclose(f1, f2, rtol=1e-10, atol=1e-16)
-
-
-def _pixel_reference(cells, sites, values, bounds):
-    """Σ over pixels of value × (mass, first moment) of cell ∩ pixel, from GEOS overlays."""
-    h, w = values.shape
-    x0, y0, x1, y1 = bounds
-    dx, dy = (x1 - x0) / w, (y1 - y0) / h
-    n = len(cells)
-    mass = np.zeros(n)
-    first = np.zeros((n, 2))
-    for r in range(h):
-        for c in range(w):
-            pix = shapely.box(x0 + c * dx, y1 - (r + 1) * dy, x0 + (c + 1) * dx, y1 - r * dy)
-            piece = shapely.intersection(cells, pix)
-            a = shapely.area(piece)
-            ok = a > 0
-            g = shapely.get_coordinates(shapely.centroid(piece[ok]))
-            mass[ok] += values[r, c] * a[ok]
-            first[ok] += values[r, c] * a[ok, None] * (g - sites[ok])
-    return mass, first
 
 
 @pytest.mark.parametrize("domain", [SQUARE, HOLED, L_SHAPE])
@@ -132,8 +92,8 @@ def test_raster_density_exact_over_cells(domain):
     values[2, 3] = 0.0
     bounds = (-0.05, 0.1, 1.02, 0.93)  # not aligned with the domain; 0 outside
     d = vf.voronoi(pts, domain)
-    mass, first, _ = Integrator((values, bounds), 30)(d._buffers, pts)
-    ref_mass, ref_first = _pixel_reference(d.cells, pts, values, bounds)
+    mass, first, _ = Integrator((values, bounds), 30)(buffers(d), pts)
+    ref_mass, ref_first = pixel_density_moments(d.cells, pts, values, bounds)
     assert np.allclose(mass, ref_mass, rtol=1e-10, atol=1e-14)
     assert np.allclose(first, ref_first, rtol=1e-9, atol=1e-14)
 
@@ -168,10 +128,10 @@ def test_gradient_matches_finite_differences():
 
     def energy(z):
         d = vf.voronoi(z, (0, 0, 1, 1))
-        return integ(d._buffers, z)[2].sum()
+        return integ(buffers(d), z)[2].sum()
 
     d = vf.voronoi(pts, (0, 0, 1, 1))
-    grad = -2.0 * integ(d._buffers, pts)[1].copy()
+    grad = -2.0 * integ(buffers(d), pts)[1].copy()
     h = 1e-6
     for i, k in [(0, 0), (3, 1), (11, 0), (24, 1)]:
         zp = pts.copy()
@@ -190,7 +150,7 @@ def test_lbfgs_beats_lloyd_per_iteration():
     assert quasi.energy[-1] < lloyd.energy[-1]
     assert np.all(np.diff(quasi.energy) <= 1e-15 * quasi.energy[0])
     assert np.array_equal(quasi.diagram.sites, quasi.points)
-    _, _, second = Integrator(None, 300)(quasi.diagram._buffers, quasi.points)
+    _, _, second = Integrator(None, 300)(buffers(quasi.diagram), quasi.points)
     assert second.sum() == pytest.approx(quasi.energy[-1], rel=1e-12)
 
 
@@ -336,8 +296,6 @@ def test_matches_a_brute_force_lloyd(domain):
     pts = np.random.default_rng(20).random((30, 2))
     z = pts.copy()
     for _ in range(4):  # reference: half-plane cells, GEOS clip, GEOS centroids
-        cells = brute_voronoi(z, domain)
-        ok = ~shapely.is_empty(cells)
-        z[ok] = shapely.get_coordinates(shapely.centroid(cells[ok]))
+        z = brute_lloyd_step(z, domain)
     r = vf.lloyd(pts, domain, iterations=4)
     assert np.allclose(r.points, z, rtol=0, atol=1e-9)

@@ -13,11 +13,12 @@ the neighbouring triangle with ``halfedges[e] // 3``::
 
 from .engine.delaunay import Triangulation, delaunay
 from .engine.describe import Description
+from .engine.diagram import Diagram, Edges
 from .engine.interpolate import locate, natural_neighbor
 from .engine.lloyd import Relaxation, lloyd
 from .engine.power import PowerDiagram, power, power_fit
 from .engine.raster import RasterVoronoi, rasterize
-from .engine.voronoi import Diagram, Edges, voronoi
+from .engine.voronoi import voronoi
 
 __all__ = [
     "Description",

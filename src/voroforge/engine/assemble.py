@@ -1,9 +1,11 @@
 """From convex cells (the kernels' output) to clipped cells in the GeoArrow multipolygon layout.
 
-The kernels return, per site, one open counter-clockwise ring clipped to the domain's bounding
-box, with the neighbour that owns each edge. This module expands those rings to all input
-sites (duplicates get empty cells), clips them to non-rectangular domains, and extracts the
-unique shared edges.
+The kernels return, per site, one closed counter-clockwise ring clipped to the domain's
+bounding box, with the neighbour that owns each edge. :func:`assemble` is the one routine that
+turns them into a diagram's buffers and edges for every construction (Voronoi, power,
+periodic): it expands the rings to all input sites (duplicates get empty cells), clips them
+to non-rectangular domains, and extracts the unique shared edges. :func:`from_shapely` and
+:func:`first_cells` build and cut buffers for the periodic diagrams.
 """
 
 from __future__ import annotations
@@ -14,7 +16,100 @@ import shapely
 from ..config import EDGE_LENGTH_RTOL
 from ..kernels.domain_grid import classify, mark_segments, scanline_inside
 from ..kernels.rings import shared_edges
+from .diagram import Edges
 from .domain import Domain
+
+
+def assemble(dom: Domain, closed, lengths, owner, n: int, cell_ids=None):
+    """Buffers and unique edges of ``n`` cells from closed convex rings clipped to the box.
+
+    Parameters
+    ----------
+    dom : Domain
+        The domain; rings are already clipped to its bounding box.
+    closed : (k, 2) float64
+        All rings, each closed (last vertex repeats the first).
+    lengths : (u + 1,) int64
+        Ring ``r`` is ``closed[lengths[r]:lengths[r + 1]]`` (empty for an empty cell).
+    owner : (k,) int64
+        The cell across the edge from each vertex to the next (negative: the domain's box;
+        -2 on the closing repeat).
+    n : int
+        Number of cells of the result.
+    cell_ids : (u,) int64, optional
+        The cell of each ring (default: ring ``r`` is cell ``r``).
+
+    Returns
+    -------
+    buffers : tuple
+        GeoArrow multipolygon buffers ``(coords, ring, poly, geom)`` of the ``n`` cells.
+    edges : Edges
+        Each shared edge once, clipped to the domain.
+    """
+    nonempty = lengths[1:] > lengths[:-1]
+    ring_offsets = np.concatenate(([0], lengths[1:][nonempty]))
+    ring_cell = np.flatnonzero(nonempty) if cell_ids is None else cell_ids[nonempty]
+    grid = None if dom.is_rect else domain_grid(dom, len(ring_cell))
+    edge_coords, edge_pairs = domain_edges(dom, grid, closed, ring_offsets, ring_cell, owner)
+    if dom.is_rect:
+        polys = np.arange(len(ring_cell) + 1, dtype=np.int64)
+        bufs = (closed, ring_offsets, polys, geom_offsets_for(n, ring_cell))
+    else:
+        bufs = clip_to_polygon(dom, grid, closed, ring_offsets, ring_cell, n)
+    return bufs, Edges(edge_coords, edge_pairs)
+
+
+def from_shapely(cells: np.ndarray):
+    """GeoArrow multipolygon buffers ``(coords, ring, poly, geom)`` of shapely cells.
+
+    Parameters
+    ----------
+    cells : (n,) object
+        Polygons, MultiPolygons or empty geometries.
+
+    Returns
+    -------
+    tuple
+        ``(coords (k, 2) float64, ring, poly, geom)`` with ``len(geom) == n + 1``.
+    """
+    n = len(cells)
+    full = np.flatnonzero(~shapely.is_empty(cells))
+    counts = np.zeros(n, dtype=np.int64)
+    if not len(full):
+        z = np.zeros(1, dtype=np.int64)
+        return np.zeros((0, 2)), z, z.copy(), np.zeros(n + 1, dtype=np.int64)
+    kind, coords, offsets = shapely.to_ragged_array(cells[full])
+    if kind == shapely.GeometryType.POLYGON:
+        ring, poly = offsets
+        counts[full] = 1
+    else:
+        ring, poly, geom_full = offsets
+        counts[full] = np.diff(geom_full)
+    geom = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(counts, out=geom[1:])
+    return np.ascontiguousarray(coords), ring.astype(np.int64), poly.astype(np.int64), geom
+
+
+def first_cells(bufs, n: int):
+    """Copies of the buffers of the first ``n`` cells of GeoArrow buffers ``bufs``.
+
+    Parameters
+    ----------
+    bufs : tuple
+        ``(coords, ring, poly, geom)``.
+    n : int
+        How many leading cells to keep.
+
+    Returns
+    -------
+    tuple
+        ``(coords, ring, poly, geom)`` of cells ``0 .. n - 1``, fresh arrays.
+    """
+    coords, ring, poly, geom = bufs
+    g = geom[: n + 1]
+    p = poly[: g[-1] + 1]
+    r = ring[: p[-1] + 1]
+    return coords[: r[-1]].copy(), r.copy(), p.copy(), g.copy()
 
 
 def geom_offsets_for(n, ring_cell):

@@ -7,9 +7,9 @@ from functools import cached_property
 import numpy as np
 
 from ..kernels.delaunay import triangulate
-from ._csr import csr_from_pairs
-from ._inputs import as_points, duplicate_map, from_working, working_frame
-from ._threads import serial_below
+from .csr import csr_from_pairs
+from .inputs import as_points, as_query, duplicate_map, from_working, working_frame
+from .threads import serial_below
 
 
 class Triangulation:
@@ -118,9 +118,7 @@ class Triangulation:
             Nearest point index (the first occurrence for duplicated points; ties between
             distinct points at equal distance go to either).
         """
-        arr = np.asarray(xy, dtype=np.float64)
-        single = arr.ndim == 1
-        q = as_points(arr.reshape(1, -1) if single else arr, name="xy")
+        q, single = as_query(xy)
         if len(self.points) == 0:
             raise ValueError("cannot find the nearest point of an empty triangulation")
         tree, owners = self._tree

@@ -29,8 +29,8 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-#: Vertices closer than this (relative to the domain's diagonal) are one vertex.
-VERTEX_RTOL = 1e-13
+from ..config import CONVEX_DOMAIN_RTOL, VERTEX_RTOL
+from .diagram import domain_of
 
 
 @dataclass(frozen=True)
@@ -287,10 +287,10 @@ def describe(d) -> Description:
     euler = vertices - edges + faces
     nonempty = np.flatnonzero(parts_per_cell > 0)
     geom_b = d.boundary
-    convex_domain = d.periodic or d._domain.is_rect
+    convex_domain = d.periodic or domain_of(d).is_rect
     if not convex_domain:
         hull = shapely.convex_hull(geom_b)
-        convex_domain = abs(hull.area - geom_b.area) <= 1e-12 * hull.area
+        convex_domain = abs(hull.area - geom_b.area) <= CONVEX_DOMAIN_RTOL * hull.area
     if convex_domain or not len(nonempty):
         checked = nonempty
     else:

@@ -1,4 +1,10 @@
-"""Input coercion and validation shared by the engine's public functions."""
+"""Input coercion and validation shared by the engine's public functions.
+
+Every public entry point turns user input into fresh contiguous float64 arrays here, with
+the same error messages everywhere: :func:`as_points` (any ``dim``), :func:`as_query`,
+:func:`as_weights`, :func:`as_values`; then :func:`duplicate_map` and the exact
+power-of-two :func:`working_frame`.
+"""
 
 from __future__ import annotations
 
@@ -7,19 +13,21 @@ import numpy as np
 from ..kernels.dedupe import duplicate_of
 
 
-def as_points(points, *, name: str = "points") -> np.ndarray:
-    """Return a new C-contiguous ``(n, 2) float64`` copy of ``points`` or raise ``ValueError``.
+def as_points(points, *, dim: int = 2, name: str = "points") -> np.ndarray:
+    """Return a new C-contiguous ``(n, dim) float64`` copy of ``points`` or raise ``ValueError``.
 
     Parameters
     ----------
-    points : (n, 2) array_like
-        Coordinates. Lists of pairs, tuples and arrays of any real dtype are accepted.
+    points : (n, dim) array_like
+        Coordinates. Lists of pairs (triples), tuples and arrays of any real dtype.
+    dim : int
+        Number of coordinates per point (2 or 3).
     name : str
         Name used in error messages.
 
     Returns
     -------
-    (n, 2) float64
+    (n, dim) float64
         A fresh array (the caller's data is never aliased, so it can never be mutated).
     """
     try:
@@ -29,12 +37,12 @@ def as_points(points, *, name: str = "points") -> np.ndarray:
         arr = np.array(raw, dtype=np.float64, copy=True)
     except (TypeError, ValueError) as exc:
         raise ValueError(
-            f"{name} must be an (n, 2) array of real numbers; could not convert it ({exc})"
+            f"{name} must be an (n, {dim}) array of real numbers; could not convert it ({exc})"
         ) from None
     if arr.ndim == 1 and arr.size == 0:
-        arr = arr.reshape(0, 2)
-    if arr.ndim != 2 or arr.shape[1] != 2:
-        raise ValueError(f"{name} must have shape (n, 2); got shape {arr.shape}")
+        arr = arr.reshape(0, dim)
+    if arr.ndim != 2 or arr.shape[1] != dim:
+        raise ValueError(f"{name} must have shape (n, {dim}); got shape {arr.shape}")
     finite = np.isfinite(arr)
     if not finite.all():
         bad = int(np.flatnonzero(~finite.all(axis=1))[0])
@@ -43,6 +51,98 @@ def as_points(points, *, name: str = "points") -> np.ndarray:
             f"{name} contains {kind} coordinates (first at row {bad}: {arr[bad].tolist()})"
         )
     return np.ascontiguousarray(arr)
+
+
+def as_query(xy, *, dim: int = 2, name: str = "xy") -> tuple[np.ndarray, bool]:
+    """Query points as ``(q (m, dim) float64, single)``; one point ``(dim,)`` gives ``m = 1``.
+
+    Parameters
+    ----------
+    xy : (dim,) or (m, dim) array_like
+        One query point or many.
+    dim : int
+        Number of coordinates per point.
+    name : str
+        Name used in error messages.
+
+    Returns
+    -------
+    q : (m, dim) float64
+        A fresh array.
+    single : bool
+        True when ``xy`` was one point (callers then return a scalar).
+    """
+    arr = np.asarray(xy)
+    single = arr.ndim == 1
+    return as_points(arr.reshape(1, -1) if single else arr, dim=dim, name=name), single
+
+
+def _real_copy(values, what: str) -> np.ndarray:
+    """A float64 copy of ``values`` (complex refused); ``what`` says why in the error."""
+    raw = np.asarray(values)
+    if raw.dtype.kind == "c":
+        raise TypeError(what)
+    return np.array(raw, dtype=np.float64, copy=True)
+
+
+def as_weights(weights, n: int, *, name: str = "weights") -> np.ndarray:
+    """Return a new ``(n,) float64`` copy of per-site values or raise ``ValueError``.
+
+    Parameters
+    ----------
+    weights : (n,) array_like
+        One finite real number per site (power weights, target areas).
+    n : int
+        Number of sites.
+    name : str
+        Name used in error messages.
+
+    Returns
+    -------
+    (n,) float64
+    """
+    try:
+        w = _real_copy(weights, "complex values")
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be an (n,) array of real numbers ({exc})") from None
+    if w.shape != (n,):
+        raise ValueError(f"{name} must have shape ({n},) to match the points; got {w.shape}")
+    if not np.isfinite(w).all():
+        bad = int(np.flatnonzero(~np.isfinite(w))[0])
+        raise ValueError(f"{name} contains a non-finite value (first at index {bad}: {w[bad]})")
+    return w
+
+
+def as_values(values, n: int) -> tuple[np.ndarray, bool]:
+    """Data at ``n`` sites as ``(vals (n, k) float64, flat)`` or raise ``ValueError``.
+
+    Parameters
+    ----------
+    values : (n,) or (n, k) array_like
+        Finite real data, one row per site.
+    n : int
+        Number of sites.
+
+    Returns
+    -------
+    vals : (n, k) float64
+        A fresh C-contiguous array (``k = 1`` for one field).
+    flat : bool
+        True when ``values`` was one-dimensional.
+    """
+    try:
+        vals = _real_copy(values, "complex values are not supported")
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"values must be an (n,) or (n, k) real array ({exc})") from None
+    flat = vals.ndim == 1
+    if vals.ndim not in (1, 2) or len(vals) != n:
+        raise ValueError(
+            f"values must have shape ({n},) or ({n}, k) to match the points; got {vals.shape}"
+        )
+    if not np.isfinite(vals).all():
+        bad = int(np.flatnonzero(~np.isfinite(vals.reshape(n, -1)).all(axis=1))[0])
+        raise ValueError(f"values contains a non-finite value (first at row {bad})")
+    return np.ascontiguousarray(vals.reshape(n, -1)), flat
 
 
 def duplicate_map(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

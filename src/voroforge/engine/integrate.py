@@ -37,7 +37,7 @@ RADON_WEIGHTS = np.array(
 )
 
 
-def _raster(density):
+def as_raster(density):
     """``(values (h, w) float64, box (4,) float64)`` from a raster spec, or None."""
     if isinstance(density, tuple) and len(density) == 2:
         values, bounds = density
@@ -80,7 +80,7 @@ class Integrator:
         self.raster = None
         self.func = None
         if density is not None:
-            ras = _raster(density)
+            ras = as_raster(density)
             if ras is not None:
                 self.kind = "raster"
                 self.raster = ras

@@ -14,12 +14,10 @@ import weakref
 import numpy as np
 from scipy.spatial import cKDTree
 
+from ..config import GRADIENT_FIT_FLOOR, GRADIENT_FIT_RTOL, LOCATE_TIE_ATOL, LOCATE_TIE_RTOL
 from ..kernels.natural import INSIDE, sibson
-from ._inputs import as_points, working_frame
 from .delaunay import delaunay
-
-#: A candidate this close (relative) to the best distance may be tied after rounding.
-_TIE_RTOL = 1e-9
+from .inputs import as_points, as_query, as_values, duplicate_map, working_frame
 
 
 class _Locator:
@@ -73,7 +71,7 @@ class _Locator:
         if k == npts:
             return rows[:0], best[:0]
         # a candidate this close to the best one may hide further ties beyond the k-th
-        again = d2[:, -1] <= best * (1.0 + _TIE_RTOL) + 1e-300
+        again = d2[:, -1] <= best * (1.0 + LOCATE_TIE_RTOL) + LOCATE_TIE_ATOL
         return rows[again], best[again]
 
     def query(self, q: np.ndarray) -> np.ndarray:
@@ -86,7 +84,7 @@ class _Locator:
             if not len(rows):
                 return out
         # more than 16 nearly equidistant sites: settle exhaustively
-        radius = np.sqrt(best) * (1.0 + _TIE_RTOL) + 1e-300
+        radius = np.sqrt(best) * (1.0 + LOCATE_TIE_RTOL) + LOCATE_TIE_ATOL
         lists = self.tree.query_ball_point(tq[rows], radius)
         for row, members in zip(rows, lists, strict=True):
             members = np.asarray(members, dtype=np.int64)
@@ -98,15 +96,8 @@ class _Locator:
 _CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
-def _query_points(xy) -> tuple[np.ndarray, bool]:
-    arr = np.asarray(xy)
-    single = arr.ndim == 1
-    q = as_points(arr.reshape(1, -1) if single else arr, name="xy")
-    return q, single
-
-
 def _nearest(locator: _Locator, xy):
-    q, single = _query_points(xy)
+    q, single = as_query(xy)
     if len(locator.pts) == 0:
         raise ValueError("cannot locate points without sites")
     out = locator.query(q) if len(q) else np.zeros(0, dtype=np.int64)
@@ -143,8 +134,6 @@ def locate(points, xy) -> np.ndarray | int:
     pts = as_points(points)
     dup = np.full(len(pts), -1, dtype=np.int64)
     if len(pts):
-        from ._inputs import duplicate_map
-
         dup = duplicate_map(pts)[0]
     return _nearest(_Locator(pts, dup), xy)
 
@@ -157,25 +146,6 @@ def locate_in_diagram(diagram, xy) -> np.ndarray | int:
         loc = _Locator(np.asarray(diagram.sites), np.asarray(diagram.duplicate_of), box)
         _CACHE[diagram] = loc
     return _nearest(loc, xy)
-
-
-def _as_values(values, n: int) -> tuple[np.ndarray, bool]:
-    try:
-        raw = np.asarray(values)
-        if raw.dtype.kind == "c":
-            raise TypeError("complex values are not supported")
-        vals = np.array(raw, dtype=np.float64, copy=True)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"values must be an (n,) or (n, k) real array ({exc})") from None
-    flat = vals.ndim == 1
-    if vals.ndim not in (1, 2) or len(vals) != n:
-        raise ValueError(
-            f"values must have shape ({n},) or ({n}, k) to match the points; got {vals.shape}"
-        )
-    if not np.isfinite(vals).all():
-        bad = int(np.flatnonzero(~np.isfinite(vals.reshape(n, -1)).all(axis=1))[0])
-        raise ValueError(f"values contains a non-finite value (first at row {bad})")
-    return np.ascontiguousarray(vals.reshape(n, -1)), flat
 
 
 def _two_ring(tri) -> tuple[np.ndarray, np.ndarray]:
@@ -200,7 +170,7 @@ def _fit(rows, w, rhs, owner, n):
     right = np.zeros((n, rows.shape[1], rhs.shape[1]))
     np.add.at(right, owner, wr[:, :, None] * rhs[:, None, :])
     eig = np.linalg.eigvalsh(normal)
-    ok = eig[:, 0] > 1e-9 * np.maximum(eig[:, -1], 1e-300)
+    ok = eig[:, 0] > GRADIENT_FIT_RTOL * np.maximum(eig[:, -1], GRADIENT_FIT_FLOOR)
     x = np.zeros_like(right)
     if ok.any():
         x[ok] = np.linalg.solve(normal[ok], right[ok])
@@ -320,8 +290,8 @@ def natural_neighbor(
     n = len(pts)
     if n == 0:
         raise ValueError("natural_neighbor needs at least one site")
-    vals, flat = _as_values(values, n)
-    q, single = _query_points(query)
+    vals, flat = as_values(values, n)
+    q, single = as_query(query)
     if gradients is not None and not smooth:
         raise ValueError("gradients= is used only with smooth=True")
     if smooth and len(tri.triangles):

@@ -14,12 +14,14 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from ._inputs import as_points, duplicate_map
-from ._integrate import Integrator, _raster
-from ._threads import serial_below
+from ..config import LBFGS_ARMIJO, LBFGS_CURVATURE_RTOL, LLOYD_REFIT_RTOL
+from .diagram import Diagram, buffers
 from .domain import make_domain
-from .power import _fit, _targets
-from .voronoi import Diagram, voronoi
+from .inputs import as_points, duplicate_map
+from .integrate import Integrator, as_raster
+from .planar import build
+from .power import as_targets, fit_weights, power_diagram
+from .threads import serial_below
 
 METHODS = ("lloyd", "lbfgs")
 
@@ -161,11 +163,10 @@ def lloyd(
     _check(iterations, tol, method, areas)
     z = as_points(points)
     dom = make_domain(boundary, z)
-    bnd = dom.bounds if dom.is_rect else dom.geometry
     x0, y0, x1, y1 = dom.bounds
     stop = None if tol is None else float(tol) * max(x1 - x0, y1 - y0)
     integ = Integrator(density, len(z))
-    targets = None if areas is None else _targets(areas, len(z), dom)
+    targets = None if areas is None else as_targets(areas, len(z), dom)
     if targets is not None:
         dup, _ = duplicate_map(z)
         if (dup >= 0).any():
@@ -179,10 +180,10 @@ def lloyd(
         return _rescaled(z, dom, k, iterations, tol, density, method, targets)
     with serial_below(len(z)):
         if method == "lbfgs":
-            return _lbfgs(z, dom, bnd, integ, int(iterations), stop)
+            return _lbfgs(z, dom, integ, int(iterations), stop)
         if targets is not None:
             return _capacity(z, dom, integ, targets, int(iterations), stop)
-        return _lloyd(z, bnd, integ, int(iterations), stop)
+        return _lloyd(z, dom, integ, int(iterations), stop)
 
 
 def _size_exponent(dom) -> int:
@@ -198,16 +199,14 @@ def _size_exponent(dom) -> int:
 
 def _rescaled(z, dom, k, iterations, tol, density, method, targets):
     """:func:`lloyd` on everything scaled by ``2**k`` (exact), mapped back."""
-    from .power import _compute
-
-    if callable(density) and _raster(density) is None:
+    if callable(density) and as_raster(density) is None:
         func = density
 
         def density(x, y):
             return func(np.ldexp(x, -k), np.ldexp(y, -k))
 
     elif density is not None:
-        values, box = _raster(density)
+        values, box = as_raster(density)
         density = (values, np.ldexp(box, k))
     sdom = dom.scaled(k)
     r = lloyd(
@@ -220,12 +219,11 @@ def _rescaled(z, dom, k, iterations, tol, density, method, targets):
         areas=None if targets is None else np.ldexp(targets, 2 * k),
     )
     pts = np.ldexp(r.points, -k)
-    bnd = dom.bounds if dom.is_rect else dom.geometry
     if r.weights is None:
-        w, d = None, voronoi(pts, bnd)
+        w, d = None, _voronoi(pts, _cell_domain(dom))
     else:
         w = np.ldexp(r.weights, -2 * k)
-        d = _compute(pts, w, dom)
+        d = power_diagram(pts, w, dom)
     with np.errstate(over="ignore", under="ignore"):
         energy = np.ldexp(r.energy, -4 * k)  # 0 or inf where it leaves the double range
     return Relaxation(
@@ -240,14 +238,28 @@ def _rescaled(z, dom, k, iterations, tol, density, method, targets):
     )
 
 
-def _lloyd(z, bnd, integ, iterations, stop):
+def _cell_domain(dom):
+    """The domain the relaxation's Voronoi diagrams are clipped to.
+
+    A rectangle as its bounds (the diagram's ``boundary`` is then that box), else the region.
+    """
+    return make_domain(dom.bounds, None) if dom.is_rect else dom
+
+
+def _voronoi(z, dom):
+    """Voronoi diagram of the current sites (a validated copy: ``z`` is reused in place)."""
+    return build(as_points(z), dom, "delaunay")
+
+
+def _lloyd(z, dom, integ, iterations, stop):
     """Plain Lloyd steps: every site to its cell's (density-weighted) centroid."""
     t0 = time.perf_counter()
+    dom = _cell_domain(dom)
     energy, elapsed, shifts = [], [], []
     z_new = np.zeros_like(z)
     for it in range(int(iterations) + 1):
-        d = voronoi(z, bnd)
-        mass, first, second = integ(d._buffers, z)
+        d = _voronoi(z, dom)
+        mass, first, second = integ(buffers(d), z)
         energy.append(float(second.sum()))
         elapsed.append(time.perf_counter() - t0)
         if it == iterations:
@@ -256,8 +268,8 @@ def _lloyd(z, bnd, integ, iterations, stop):
         shifts.append(shift)
         z, z_new = z_new, z
         if stop is not None and shift <= stop:
-            d = voronoi(z, bnd)
-            mass, first, second = integ(d._buffers, z)
+            d = _voronoi(z, dom)
+            mass, first, second = integ(buffers(d), z)
             energy.append(float(second.sum()))
             elapsed.append(time.perf_counter() - t0)
             break
@@ -284,8 +296,8 @@ def _capacity(z, dom, integ, targets, iterations, stop):
     energy, elapsed, shifts = [], [], []
     z_new = np.zeros_like(z)
     for it in range(iterations + 1):
-        d, w, _, _ = _fit(z.copy(), targets, dom, w, 1e-9, 100)
-        mass, first, second = integ(d._buffers, z)
+        d, w, _, _ = fit_weights(z.copy(), targets, dom, w, LLOYD_REFIT_RTOL, 100)
+        mass, first, second = integ(buffers(d), z)
         energy.append(float(second.sum()))
         elapsed.append(time.perf_counter() - t0)
         if it == iterations:
@@ -297,8 +309,8 @@ def _capacity(z, dom, integ, targets, iterations, stop):
         shifts.append(shift)
         z, z_new = z_new, z
         if stop is not None and shift <= stop:
-            d, w, _, _ = _fit(z.copy(), targets, dom, w, 1e-9, 100)
-            mass, first, second = integ(d._buffers, z)
+            d, w, _, _ = fit_weights(z.copy(), targets, dom, w, LLOYD_REFIT_RTOL, 100)
+            mass, first, second = integ(buffers(d), z)
             energy.append(float(second.sum()))
             elapsed.append(time.perf_counter() - t0)
             break
@@ -326,7 +338,7 @@ def _into_domain(z, dom):
         z[outside] = shapely.get_coordinates(near)
 
 
-def _lbfgs(z, dom, bnd, integ, iterations, stop, memory=8):
+def _lbfgs(z, dom, integ, iterations, stop, memory=8):
     """Quasi-Newton CVT (Liu et al. 2009): L-BFGS on ``F(z)``, ``∂F/∂z_i = -2 ∫ρ (x - z_i)``.
 
     Two-loop recursion with the diagonal ``1 / (2 m_i)`` as the initial inverse Hessian (with
@@ -337,10 +349,11 @@ def _lbfgs(z, dom, bnd, integ, iterations, stop, memory=8):
     n = len(z)
     lo = np.array(dom.bounds[:2])
     hi = np.array(dom.bounds[2:])
+    cdom = _cell_domain(dom)
 
     def evaluate(zz):
-        d = voronoi(zz, bnd)
-        mass, first, second = integ(d._buffers, zz)
+        d = _voronoi(zz, cdom)
+        mass, first, second = integ(buffers(d), zz)
         return d, float(second.sum()), -2.0 * first, mass.copy()
 
     d, f, g, mass = evaluate(z)
@@ -378,7 +391,7 @@ def _lbfgs(z, dom, bnd, integ, iterations, stop, memory=8):
         for _ls in range(30):
             z_try = np.clip(z + step * direction, lo, hi)
             d_try, f_try, g_try, m_try = evaluate(z_try)
-            if f_try <= f + 1e-4 * float((g * (z_try - z)).sum()):
+            if f_try <= f + LBFGS_ARMIJO * float((g * (z_try - z)).sum()):
                 break
             step *= 0.5
         else:
@@ -386,7 +399,7 @@ def _lbfgs(z, dom, bnd, integ, iterations, stop, memory=8):
         s_k = z_try - z
         y_k = g_try - g
         sy = float((s_k * y_k).sum())
-        if sy > 1e-12 * float(np.sqrt((s_k * s_k).sum() * (y_k * y_k).sum())):
+        if sy > LBFGS_CURVATURE_RTOL * float(np.sqrt((s_k * s_k).sum() * (y_k * y_k).sum())):
             pairs.append((s_k, y_k, 1.0 / sy))
             if len(pairs) > memory:
                 pairs.pop(0)

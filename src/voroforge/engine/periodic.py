@@ -14,24 +14,25 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
-from ._inputs import as_points
-from .domain import make_domain
-from .voronoi import Diagram, Edges, voronoi
+from ..config import PERIODIC_PROOF_RTOL, PERIODIC_SLIVER_RTOL, PERIODIC_SLIVER_ULPS
+from .assemble import first_cells, from_shapely
+from .diagram import Diagram, Edges, buffers, frame_exponent
+from .domain import Domain, make_domain
+from .inputs import as_points
+from .planar import build
 
 #: Initial margin, in typical cell diameters ``sqrt(area / n)``.
 _MARGIN_CELLS = 3.0
-#: Relative slack in the margin proof (distances are rounded).
-_PROOF_RTOL = 1e-7
 _MAX_TRIES = 30
 
 
-def _box_of(boundary) -> tuple[float, float, float, float]:
+def _tile_of(boundary) -> Domain:
     if boundary is None or isinstance(boundary, shapely.Geometry):
         raise ValueError(
             "periodic=True needs boundary=(xmin, ymin, xmax, ymax), the box that tiles the "
             f"plane; got {type(boundary).__name__}"
         )
-    return make_domain(boundary, np.zeros((0, 2))).bounds
+    return make_domain(boundary, np.zeros((0, 2)))
 
 
 def wrap_points(points: np.ndarray, box) -> np.ndarray:
@@ -112,7 +113,7 @@ def _proved(d: Diagram, cells: np.ndarray, box, margin: float) -> bool:
     room = room / side
     diff = (v - d.sites[owner]) / side
     r2 = diff[:, 0] * diff[:, 0] + diff[:, 1] * diff[:, 1]
-    return bool((room >= 0).all() and (room * room >= r2 * (1.0 + _PROOF_RTOL)).all())
+    return bool((room >= 0).all() and (room * room >= r2 * (1.0 + PERIODIC_PROOF_RTOL)).all())
 
 
 def _gather(d: Diagram, source: np.ndarray, n: int, keep: np.ndarray):
@@ -136,14 +137,15 @@ def _gather(d: Diagram, source: np.ndarray, n: int, keep: np.ndarray):
         for j in np.flatnonzero(bad):
             merged[j] = _without_slivers(shapely.union_all(shapely.get_parts(merged[j])))
         out[groups[0]] = merged
-    return _buffers(out)
+    return from_shapely(out)
 
 
 def _rounding(box) -> float:
     """A length below which features in the box are rounding noise of its coordinates."""
     x0, y0, x1, y1 = box
     size = max(x1 - x0, y1 - y0)
-    return 64.0 * np.finfo(np.float64).eps * max(abs(x0), abs(y0), abs(x1), abs(y1), size)
+    ulps = PERIODIC_SLIVER_ULPS * np.finfo(np.float64).eps
+    return ulps * max(abs(x0), abs(y0), abs(x1), abs(y1), size)
 
 
 def _thick_pieces(d: Diagram, box, n: int) -> np.ndarray:
@@ -202,7 +204,7 @@ def _gather_pieces(d: Diagram, source: np.ndarray, n: int, keep: np.ndarray):
     return np.ascontiguousarray(coords[take]), new_ring, new_poly, new_geom
 
 
-def _without_slivers(geom, rtol: float = 1e-9):
+def _without_slivers(geom, rtol: float = PERIODIC_SLIVER_RTOL):
     """``geom`` without holes and parts smaller than ``rtol`` of its area.
 
     Pieces of one cell meet along an edge computed in two positions, whose end points can
@@ -216,26 +218,6 @@ def _without_slivers(geom, rtol: float = 1e-9):
         holes = [r for r in part.interiors if shapely.Polygon(r).area > tiny]
         polys.append(shapely.Polygon(part.exterior, holes))
     return polys[0] if len(polys) == 1 else shapely.MultiPolygon(polys)
-
-
-def _buffers(cells: np.ndarray):
-    """GeoArrow multipolygon buffers ``(coords, ring, poly, geom)`` of shapely cells."""
-    n = len(cells)
-    full = np.flatnonzero(~shapely.is_empty(cells))
-    counts = np.zeros(n, dtype=np.int64)
-    if not len(full):
-        z = np.zeros(1, dtype=np.int64)
-        return np.zeros((0, 2)), z, z.copy(), np.zeros(n + 1, dtype=np.int64)
-    kind, coords, offsets = shapely.to_ragged_array(cells[full])
-    if kind == shapely.GeometryType.POLYGON:
-        ring, poly = offsets
-        counts[full] = 1
-    else:
-        ring, poly, geom_full = offsets
-        counts[full] = np.diff(geom_full)
-    geom = np.zeros(n + 1, dtype=np.int64)
-    np.cumsum(counts, out=geom[1:])
-    return np.ascontiguousarray(coords), ring.astype(np.int64), poly.astype(np.int64), geom
 
 
 def _torus_edges(d: Diagram, source, shift, n: int, wrap: bool, pieces=None) -> Edges:
@@ -270,12 +252,13 @@ def periodic_voronoi(points, boundary, *, algorithm: str = "delaunay", wrap: boo
 
     See :func:`voroforge.voronoi` (``periodic=True``) for the public description.
     """
-    box = _box_of(boundary)
+    tile = _tile_of(boundary)
+    box = tile.bounds
     pts = wrap_points(as_points(points), box)
     n = len(pts)
     x0, y0, x1, y1 = box
     if n == 0:
-        d = voronoi(pts, box, algorithm=algorithm)
+        d = build(pts, tile, algorithm)
         d.periodic = True
         d.wrapped = wrap
         return d
@@ -290,11 +273,11 @@ def periodic_voronoi(points, boundary, *, algorithm: str = "delaunay", wrap: boo
     for _ in range(_MAX_TRIES):
         ext, source, shift = _images(pts, box, margin)
         if wrap:
-            d = voronoi(ext, box, algorithm=algorithm)
+            d = build(ext, tile, algorithm)
             owners = np.flatnonzero(d.duplicate_of < 0)
         else:
-            grown = (x0 - margin, y0 - margin, x1 + margin, y1 + margin)
-            d = voronoi(ext, grown, algorithm=algorithm)
+            grown = make_domain((x0 - margin, y0 - margin, x1 + margin, y1 + margin), ext)
+            d = build(ext, grown, algorithm)
             owners = np.flatnonzero(d.duplicate_of[:n] < 0)
         if _proved(d, owners, box, margin):
             break
@@ -306,25 +289,20 @@ def periodic_voronoi(points, boundary, *, algorithm: str = "delaunay", wrap: boo
         keep = _thick_pieces(d, box, n)
         if (source[pairs[:, 0]] == source[pairs[:, 1]]).any():
             # some cell borders its own image: unite its touching pieces (few sites)
-            buffers = _gather(d, source, n, keep)
+            bufs = _gather(d, source, n, keep)
         else:
-            buffers = _gather_pieces(d, source, n, keep)
+            bufs = _gather_pieces(d, source, n, keep)
     else:
-        coords, (ring, poly, geom) = d.to_geoarrow()
-        g = geom[: n + 1]
-        p = poly[: g[-1] + 1]
-        r = ring[: p[-1] + 1]
-        buffers = (coords[: r[-1]].copy(), r.copy(), p.copy(), g.copy())
+        bufs = first_cells(buffers(d), n)
     edges = _torus_edges(d, source, shift, n, wrap, keep if wrap else None)
-    dom = make_domain(box, pts)
     out = Diagram(
         np.ascontiguousarray(d.sites[:n]),
         np.ascontiguousarray(d.duplicate_of[:n]),
-        dom,
-        buffers,
+        tile,
+        bufs,
         edges,
         algorithm,
-        d._k,
+        frame_exponent(d),
     )
     out.periodic = True
     out.wrapped = wrap

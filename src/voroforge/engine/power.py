@@ -16,12 +16,22 @@ import shapely
 from scipy.sparse.linalg import spsolve
 from scipy.spatial import ConvexHull, QhullError, cKDTree
 
+from ..config import (
+    POWER_FIT_DEFAULT_RTOL,
+    POWER_FIT_SUM_RTOL,
+    POWER_FLAT_RTOL,
+    POWER_HIDDEN_RTOL,
+    POWER_LABEL_RTOL,
+    POWER_NEWTON_SHIFT,
+    POWER_TIE_RTOL,
+)
 from ..kernels.power import power_cells
-from ._assemble import clip_to_polygon, domain_edges, domain_grid, geom_offsets_for
-from ._inputs import as_points, duplicate_map
-from ._threads import serial_below
+from .assemble import assemble
+from .diagram import Diagram, buffers, frame_exponent
 from .domain import Domain, make_domain
-from .voronoi import Diagram, Edges, voronoi
+from .inputs import as_points, as_query, as_weights, duplicate_map
+from .planar import build
+from .threads import serial_below
 
 #: Up to this many sites every pair is a candidate neighbour (no triangulation needed).
 _ALL_PAIRS_MAX = 16
@@ -64,9 +74,7 @@ class PowerDiagram(Diagram):
         int or (m,) int64
             Site index (the owner for duplicated sites; exact ties go to the lowest index).
         """
-        from .interpolate import _query_points
-
-        q, single = _query_points(xy)
+        q, single = as_query(xy)
         owners = np.flatnonzero(self.duplicate_of < 0)
         if not len(owners):
             raise ValueError("the diagram has no sites to locate")
@@ -95,28 +103,13 @@ class PowerDiagram(Diagram):
                 out[r] = rank.min(axis=1)
                 if k < m:
                     # a site past the k-th could tie after rounding: look further for those
-                    near = dist[:, -1] ** 2 <= (best + top) + 1e-9 * (np.abs(best) + abs(top))
+                    slack = POWER_TIE_RTOL * (np.abs(best) + abs(top))
+                    near = dist[:, -1] ** 2 <= (best + top) + slack
                     again.append(r[near])
             rows = np.concatenate(again) if again else rows[:0]
             if not len(rows):
                 break
         return int(out[0]) if single else out
-
-
-def _as_weights(weights, n: int, name: str = "weights") -> np.ndarray:
-    try:
-        raw = np.asarray(weights)
-        if raw.dtype.kind == "c":
-            raise TypeError("complex values")
-        w = np.array(raw, dtype=np.float64, copy=True)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be an (n,) array of real numbers ({exc})") from None
-    if w.shape != (n,):
-        raise ValueError(f"{name} must have shape ({n},) to match the points; got {w.shape}")
-    if not np.isfinite(w).all():
-        bad = int(np.flatnonzero(~np.isfinite(w))[0])
-        raise ValueError(f"{name} contains a non-finite value (first at index {bad}: {w[bad]})")
-    return w
 
 
 def _owners(pts: np.ndarray, w: np.ndarray) -> np.ndarray:
@@ -162,7 +155,7 @@ def _may_win(x, y, w, box, active):
     far = far_x * far_x + far_y * far_y - w
     best = float(far[active].min())
     # generous slack for rounding: only clearly hidden sites are dropped
-    slack = 1e-9 * (float((far_x * far_x + far_y * far_y)[active].max()) + abs(best))
+    slack = POWER_HIDDEN_RTOL * (float((far_x * far_x + far_y * far_y)[active].max()) + abs(best))
     return active & (near <= best + slack)
 
 
@@ -188,7 +181,7 @@ def _neighbors(x, y, w, box, active):
         span = np.column_stack((u - u[0], v - v[0]))
         far = int(np.argmax(np.einsum("ij,ij->i", span, span)))
         cross = span[:, 0] * span[far, 1] - span[:, 1] * span[far, 0]
-        if np.abs(cross).max() <= 1e-12 * float(span[far] @ span[far]):
+        if np.abs(cross).max() <= POWER_FLAT_RTOL * float(span[far] @ span[far]):
             return _collinear(n, idx, span, span[far], lift[:, 2], active)
         hull = ConvexHull(lift, qhull_options="QJ")  # coplanar lift: one shared vertex
     lower = hull.simplices[hull.equations[:, 2] < 0.0]
@@ -225,72 +218,27 @@ def _collinear(n, idx, span, direction, z, active):
     return (*_pairs_csr(n, ch[:-1], ch[1:]), active & keep)
 
 
-def _share_vertices(closed, lengths, own, box, n):
-    """Give every cell the same bits for a vertex it shares with its neighbours (in place).
+def power_diagram(pts: np.ndarray, w: np.ndarray, dom: Domain) -> PowerDiagram:
+    """Power diagram of validated input (no copies of ``pts``/``w`` are taken).
 
-    Each cell cuts its own ring, so the vertex where cells ``i``, ``j`` and ``k`` meet comes
-    out a few ulps apart in the three rings, and a union of the cells kept slivers between
-    them. A vertex is named by the sites whose bisectors make it (its edges' owners and its
-    cell; for a crossing of a bisector with the box, the box side instead of the third
-    site), and all rings take the coordinates that the first ring naming it has.
+    Parameters
+    ----------
+    pts : (n, 2) float64
+        Sites, as :func:`voroforge.engine.inputs.as_points` gives them.
+    w : (n,) float64
+        Weights, as :func:`voroforge.engine.inputs.as_weights` gives them.
+    dom : Domain
+        The domain.
+
+    Returns
+    -------
+    PowerDiagram
     """
-    m = len(closed)
-    if not m:
-        return
-    cell = np.repeat(np.arange(n), np.diff(lengths))
-    start = np.repeat(lengths[:-1], np.diff(lengths))
-    nxt_owner = own  # edge from vertex k to k + 1 (-2 on the closing repeat)
-    prev = np.arange(m) - 1
-    first = np.arange(m) == start
-    size = np.repeat(np.diff(lengths), np.diff(lengths))
-    prev[first] = (start + size - 2)[first]  # the last open vertex precedes the first
-    prev_owner = own[prev]
-    is_open = own != -2
-    both = is_open & (nxt_owner >= 0) & (prev_owner >= 0) & (nxt_owner != prev_owner)
-    one = is_open & ((nxt_owner >= 0) != (prev_owner >= 0))
-    x0, y0, x1, y1 = box
-    xy = closed
-    side = np.select(
-        [xy[:, 0] == x0, xy[:, 1] == y0, xy[:, 0] == x1, xy[:, 1] == y1], [0, 1, 2, 3], -1
-    )
-    one &= side >= 0
-    # where several cells meet at one point (power-cocircular sites) a ring can have two
-    # vertices a few ulps apart, and their shared copies could swap them: leave those alone
-    nxt = np.arange(m) + 1
-    last_open = start + size - 2
-    nxt[np.arange(m) == last_open] = start[np.arange(m) == last_open]
-    nxt = np.minimum(nxt, m - 1)
-    near = 1e-9 * max(x1 - x0, y1 - y0)
-    gap = np.minimum(np.abs(xy - xy[prev]).max(axis=1), np.abs(xy - xy[nxt]).max(axis=1))
-    crowded = gap <= near
-    both &= ~crowded
-    one &= ~crowded
-    other = np.where(nxt_owner >= 0, nxt_owner, prev_owner)
-    third = np.where(both, np.maximum(nxt_owner, prev_owner), n + side)
-    second = np.where(both, np.minimum(nxt_owner, prev_owner), other)
-    trip = np.sort(np.stack((cell, second, third), axis=1), axis=1)
-    sel = np.flatnonzero(both | one)
-    if not len(sel):
-        return
-    base = n + 4
-    if base**3 < 2**62:
-        key = (trip[sel, 0] * base + trip[sel, 1]) * base + trip[sel, 2]
-        _, first_of, inverse = np.unique(key, return_index=True, return_inverse=True)
-    else:
-        _, first_of, inverse = np.unique(trip[sel], axis=0, return_index=True, return_inverse=True)
-    closed[sel] = closed[sel[first_of[inverse.ravel()]]]
-    # the closing repeat follows its ring's first vertex
-    last = lengths[1:][np.diff(lengths) > 0] - 1
-    closed[last] = closed[lengths[:-1][np.diff(lengths) > 0]]
-
-
-def _compute(pts: np.ndarray, w: np.ndarray, dom: Domain) -> PowerDiagram:
-    """Power diagram of validated input (no copies of ``pts``/``w`` are taken)."""
     n = len(pts)
     if n and (w == w[0]).all():
         # equal weights: the ordinary Voronoi diagram, from the exact engine
-        d = voronoi(pts, dom.geometry if not dom.is_rect else dom.bounds)
-        return PowerDiagram(d.sites, d.duplicate_of, dom, d._buffers, d._edges, w, d._k)
+        d = build(pts, dom, "delaunay")
+        return PowerDiagram(d.sites, d.duplicate_of, dom, buffers(d), d.edges, w, frame_exponent(d))
     dup = _owners(pts, w)
     active = dup < 0
     x = np.ascontiguousarray(pts[:, 0])
@@ -298,18 +246,8 @@ def _compute(pts: np.ndarray, w: np.ndarray, dom: Domain) -> PowerDiagram:
     box = np.array(dom.bounds, dtype=np.float64)
     indptr, indices, active = _neighbors(x, y, w, box, active)
     closed, lengths, own = power_cells(x, y, w, indptr, indices, box, active)
-    _share_vertices(closed, lengths, own, box, n)
-    nonempty = lengths[1:] > lengths[:-1]
-    ring_offsets = np.concatenate(([0], lengths[1:][nonempty]))
-    ring_cell = np.flatnonzero(nonempty)
-    grid = None if dom.is_rect else domain_grid(dom, len(ring_cell))
-    edge_coords, edge_pairs = domain_edges(dom, grid, closed, ring_offsets, ring_cell, own)
-    if dom.is_rect:
-        polys = np.arange(len(ring_cell) + 1, dtype=np.int64)
-        buffers = (closed, ring_offsets, polys, geom_offsets_for(n, ring_cell))
-    else:
-        buffers = clip_to_polygon(dom, grid, closed, ring_offsets, ring_cell, n)
-    return PowerDiagram(pts, dup, dom, buffers, Edges(edge_coords, edge_pairs), w)
+    bufs, edges = assemble(dom, closed, lengths, own, n)
+    return PowerDiagram(pts, dup, dom, bufs, edges, w)
 
 
 def power(points, weights, boundary=None) -> PowerDiagram:
@@ -355,9 +293,9 @@ def power(points, weights, boundary=None) -> PowerDiagram:
     1.0
     """
     pts = as_points(points)
-    w = _as_weights(weights, len(pts))
+    w = as_weights(weights, len(pts))
     dom = make_domain(boundary, pts)
-    return _compute(pts, w, dom)
+    return power_diagram(pts, w, dom)
 
 
 def _hessian(d: PowerDiagram, pts: np.ndarray) -> tuple[sp.csc_matrix, np.ndarray]:
@@ -415,7 +353,7 @@ def _shrink_start(pts, dom):
     geom = dom.geometry
     parts = shapely.get_parts(geom)
     part = parts[int(np.argmax(shapely.area(parts)))]
-    c = np.array(polylabel(part, tolerance=1e-3 * np.sqrt(part.area)).coords[0])
+    c = np.array(polylabel(part, tolerance=POWER_LABEL_RTOL * np.sqrt(part.area)).coords[0])
     q = pts - c
     s = 1.0
     for _ in range(80):
@@ -426,27 +364,52 @@ def _shrink_start(pts, dom):
     return (1.0 - s) * np.einsum("ij,ij->i", q, q)
 
 
-def _fit(pts, targets, dom, w0, tol, max_iter):
-    """Damped Newton on the concave dual; returns ``(diagram, weights, error, iterations)``."""
+def fit_weights(pts, targets, dom, w0, tol, max_iter):
+    """Damped Newton on the concave dual: weights whose power cells have ``targets`` areas.
+
+    Parameters
+    ----------
+    pts : (n, 2) float64
+        Distinct validated sites.
+    targets : (n,) float64
+        Target areas from :func:`as_targets`.
+    dom : Domain
+        The domain.
+    w0 : (n,) float64
+        Starting weights (not modified).
+    tol : float
+        Largest relative area error to stop at.
+    max_iter : int
+        Most Newton steps.
+
+    Returns
+    -------
+    diagram : PowerDiagram
+    weights : (n,) float64
+    error : float
+        Largest relative area error reached.
+    iterations : int
+        Newton steps taken.
+    """
     w = w0.copy()
-    d = _compute(pts, w, dom)
+    d = power_diagram(pts, w, dom)
     areas = d.areas
     if (areas <= 0.0).any() and w.any():
         # the warm start empties a cell: start from the Voronoi diagram instead
         w = np.zeros_like(w)
-        d = _compute(pts, w, dom)
+        d = power_diagram(pts, w, dom)
         areas = d.areas
     for _ in range(10):
         empty = np.flatnonzero(areas <= 0.0)
         if not len(empty):
             break
         w = _seed_empty(pts, w, targets, dom, empty)
-        d = _compute(pts, w, dom)
+        d = power_diagram(pts, w, dom)
         areas = d.areas
     if (areas <= 0.0).any():
         # seeding one cell can empty another (sites sharing their nearest domain point)
         w = _shrink_start(pts, dom)
-        d = _compute(pts, w, dom)
+        d = power_diagram(pts, w, dom)
         areas = d.areas
     if (areas <= 0.0).any():
         i = int(np.flatnonzero(areas <= 0.0)[0])
@@ -461,13 +424,13 @@ def _fit(pts, targets, dom, w0, tol, max_iter):
         it += 1
         r = targets - areas
         lap, deg = _hessian(d, pts)
-        shift = 1e-12 * float(deg.mean()) if len(deg) else 0.0
+        shift = POWER_NEWTON_SHIFT * float(deg.mean()) if len(deg) else 0.0
         step = spsolve(lap + sp.identity(len(pts), format="csc") * shift, r)
         norm = float(np.linalg.norm(r))
         alpha = 1.0
         for _ in range(40):
             w_try = w + alpha * step
-            d_try = _compute(pts, w_try, dom)
+            d_try = power_diagram(pts, w_try, dom)
             a_try = d_try.areas
             if a_try.min() >= floor and np.linalg.norm(targets - a_try) <= (1 - alpha / 2) * norm:
                 break
@@ -479,13 +442,28 @@ def _fit(pts, targets, dom, w0, tol, max_iter):
     return d, w, err, it
 
 
-def _targets(target_areas, n: int, dom: Domain) -> np.ndarray:
-    t = _as_weights(target_areas, n, "target_areas")
+def as_targets(target_areas, n: int, dom: Domain) -> np.ndarray:
+    """Validated target areas, rescaled to sum exactly to the domain's area.
+
+    Parameters
+    ----------
+    target_areas : (n,) array_like
+        Positive areas summing to the domain's area (to ``POWER_FIT_SUM_RTOL``).
+    n : int
+        Number of sites.
+    dom : Domain
+        The domain.
+
+    Returns
+    -------
+    (n,) float64
+    """
+    t = as_weights(target_areas, n, name="target_areas")
     if not (t > 0.0).all():
         i = int(np.flatnonzero(~(t > 0.0))[0])
         raise ValueError(f"target_areas must be positive; index {i} is {t[i]}")
     total = dom.area
-    if abs(t.sum() - total) > 1e-6 * total:
+    if abs(t.sum() - total) > POWER_FIT_SUM_RTOL * total:
         raise ValueError(
             f"target_areas must sum to the domain's area {total!r}; they sum to {t.sum()!r}"
         )
@@ -497,7 +475,7 @@ def power_fit(
     target_areas,
     boundary=None,
     *,
-    tol: float = 1e-6,
+    tol: float = POWER_FIT_DEFAULT_RTOL,
     max_iter: int = 100,
     weights=None,
 ) -> PowerDiagram:
@@ -554,8 +532,8 @@ def power_fit(
     pts = as_points(points)
     n = len(pts)
     dom = make_domain(boundary, pts)
-    t = _targets(target_areas, n, dom)
-    w0 = np.zeros(n) if weights is None else _as_weights(weights, n)
+    t = as_targets(target_areas, n, dom)
+    w0 = np.zeros(n) if weights is None else as_weights(weights, n)
     if not (isinstance(tol, (int, float, np.number)) and tol > 0 and np.isfinite(tol)):
         raise ValueError(f"tol must be a positive number; got {tol!r}")
     if isinstance(max_iter, bool) or not isinstance(max_iter, (int, np.integer)):
@@ -570,11 +548,11 @@ def power_fit(
             "needs distinct sites"
         )
     with serial_below(n):
-        d, _, err, it = _fit(pts, t, dom, w0, tol, int(max_iter))
+        d, _, err, it = fit_weights(pts, t, dom, w0, tol, int(max_iter))
         if err > tol and n > 1:
             # Newton stalled (e.g. cells that must straddle the gap of a MultiPolygon): start
             # again from the shrunk sites, where every cell is open and reaches the interior
-            d2, _, err2, it2 = _fit(pts, t, dom, _shrink_start(pts, dom), tol, int(max_iter))
+            d2, _, err2, it2 = fit_weights(pts, t, dom, _shrink_start(pts, dom), tol, int(max_iter))
             if err2 < err:
                 d, err, it = d2, err2, it2
     if err > tol:

@@ -9,8 +9,8 @@ from functools import cached_property
 import numpy as np
 
 from ..kernels.raster import exact_nearest, jfa_nearest
-from ._inputs import as_points, duplicate_map
 from .domain import padded_bounds
+from .inputs import as_points, duplicate_map
 
 METHODS = ("exact", "jfa")
 METRICS = ("euclidean", "manhattan", "chebyshev")

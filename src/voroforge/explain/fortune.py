@@ -41,9 +41,9 @@ from fractions import Fraction
 
 import numpy as np
 
-from ..engine._inputs import as_points, duplicate_map
+from ..engine.diagram import Edges
 from ..engine.domain import padded_bounds
-from ..engine.voronoi import Edges
+from ..engine.inputs import as_points, duplicate_map
 
 __all__ = ["BeachState", "CircleEvent", "FortuneTrace", "breakpoint_x", "parabola_y", "trace"]
 

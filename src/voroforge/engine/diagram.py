@@ -1,0 +1,255 @@
+"""The result of a planar diagram: :class:`Diagram` (cells, areas, edges) and :class:`Edges`.
+
+Cells are GeoArrow multipolygon buffers ``(coords, ring, poly, geom)``; cell ``i`` belongs to
+site ``i``. The engine's modules build diagrams and read them through the small internal API
+at the end of this module (:func:`buffers`, :func:`frame_exponent`, :func:`domain_of`), never
+through a diagram's private attributes.
+"""
+
+from __future__ import annotations
+
+from functools import cached_property
+from typing import NamedTuple
+
+import numpy as np
+import shapely
+
+from ..kernels.rings import area_centroid
+from .csr import csr_from_pairs
+from .domain import Domain
+from .threads import serial_below
+
+
+class Edges(NamedTuple):
+    """Unique shared Voronoi edges: each edge between two cells appears once.
+
+    Attributes
+    ----------
+    coords : (m, 2, 2) float64
+        End points of each edge.
+    pairs : (m, 2) int64
+        The two cells ``(i, j)``, ``i < j``, that the edge separates.
+    """
+
+    coords: np.ndarray
+    pairs: np.ndarray
+
+
+class Diagram:
+    """A Voronoi diagram clipped to a domain; cell ``i`` belongs to site ``i``.
+
+    Cells are stored as GeoArrow multipolygon buffers (a clipped cell can gain holes or split
+    into parts); :attr:`cells` gives shapely geometries and :meth:`to_geoarrow` the buffers.
+
+    Attributes
+    ----------
+    sites : (n, 2) float64
+        The input sites, in input order (read-only copy).
+    duplicate_of : (n,) int64
+        -1, or the index of the earlier identical site that owns the cell (this one is empty).
+    boundary : shapely.Polygon or shapely.MultiPolygon
+        The domain the cells are clipped to.
+    bounds : tuple of 4 floats
+        The domain's ``(xmin, ymin, xmax, ymax)``.
+    algorithm : str
+        The construction method used.
+    periodic : bool
+        True for a diagram on the torus (``voronoi(..., periodic=True)``).
+    wrapped : bool
+        True when periodic cells were cut into the box (``wrap=True``).
+    """
+
+    periodic = False
+    wrapped = False
+
+    def __init__(self, sites, duplicate_of, domain: Domain, buffers, edges, algorithm, k=0):
+        self.sites = sites
+        self._k = k  # the working frame's scale exponent (areas are computed there)
+        self.duplicate_of = duplicate_of
+        self._domain = domain
+        self._buffers = buffers
+        self._edges = edges
+        self.algorithm = algorithm
+        for arr in (sites, duplicate_of, *buffers, *edges):
+            arr.setflags(write=False)
+
+    def __len__(self) -> int:
+        return len(self.sites)
+
+    def __repr__(self) -> str:
+        return (
+            f"Diagram(sites={len(self.sites)}, edges={len(self._edges.pairs)}, "
+            f"bounds={self.bounds}, algorithm={self.algorithm!r})"
+        )
+
+    @property
+    def boundary(self):
+        """The clipping domain as a shapely geometry."""
+        return self._domain.geometry
+
+    @property
+    def bounds(self) -> tuple[float, float, float, float]:
+        """``(xmin, ymin, xmax, ymax)`` of the domain."""
+        return self._domain.bounds
+
+    def to_geoarrow(self):
+        """Raw GeoArrow multipolygon buffers of the cells.
+
+        Returns
+        -------
+        coords : (k, 2) float64
+            All ring coordinates (rings closed: last == first).
+        offsets : tuple of 3 (·,) int64
+            ``(ring_offsets, polygon_offsets, geom_offsets)`` as in ``shapely.to_ragged_array``:
+            ring ``r`` is ``coords[ring_offsets[r]:ring_offsets[r+1]]``, polygon ``p`` has rings
+            ``polygon_offsets[p]:polygon_offsets[p+1]`` (the first is the exterior), cell ``i``
+            has polygons ``geom_offsets[i]:geom_offsets[i+1]``.
+        """
+        coords, ring, poly, geom = self._buffers
+        return coords, (ring, poly, geom)
+
+    @cached_property
+    def cells(self) -> np.ndarray:
+        """(n,) object array of shapely geometries: Polygon, or MultiPolygon for split cells."""
+        coords, ring, poly, geom = self._buffers
+        parts = np.diff(geom)
+        if (parts <= 1).all():
+            # every cell is one polygon (or empty): build Polygons directly
+            n = len(geom) - 1
+            poly_of_cell = np.zeros(n + 1, dtype=np.int64)
+            np.cumsum(parts, out=poly_of_cell[1:])
+            ring_of_cell = poly[poly_of_cell]
+            return shapely.from_ragged_array(
+                shapely.GeometryType.POLYGON, coords, (ring, ring_of_cell)
+            )
+        # one Polygon per part, then the few split cells gathered into MultiPolygons
+        polys = shapely.from_ragged_array(shapely.GeometryType.POLYGON, coords, (ring, poly))
+        out = np.full(len(parts), shapely.Polygon(), dtype=object)
+        single = np.flatnonzero(parts == 1)
+        out[single] = polys[geom[single]]
+        multi = np.flatnonzero(parts > 1)
+        members = np.concatenate([np.arange(geom[i], geom[i + 1]) for i in multi])
+        owner = np.repeat(np.arange(len(multi)), parts[multi])
+        out[multi] = shapely.multipolygons(polys[members], indices=owner)
+        return out
+
+    @cached_property
+    def _area_centroid(self):
+        coords, ring, poly, geom = self._buffers
+        k = self._k
+        with serial_below(len(self.sites)):
+            if not k:
+                areas, centroids = area_centroid(coords, ring, poly, geom)
+            else:
+                # at extreme scales squared coordinates leave the double range: work scaled
+                areas, centroids = area_centroid(np.ldexp(coords, k), ring, poly, geom)
+                areas, centroids = np.ldexp(areas, -2 * k), np.ldexp(centroids, -k)
+        # cached and shared by every caller: read-only, like the other results
+        areas.setflags(write=False)
+        centroids.setflags(write=False)
+        return areas, centroids
+
+    @property
+    def areas(self) -> np.ndarray:
+        """(n,) float64 cell areas."""
+        return self._area_centroid[0]
+
+    @property
+    def centroids(self) -> np.ndarray:
+        """(n, 2) float64 cell centroids (NaN for empty cells)."""
+        return self._area_centroid[1]
+
+    @property
+    def edges(self) -> Edges:
+        """Unique shared edges (each once) with the pair of cells they separate."""
+        return self._edges
+
+    @cached_property
+    def neighbors(self) -> tuple[np.ndarray, np.ndarray]:
+        """CSR ``(indptr, indices)`` of cells sharing an edge of positive length."""
+        pairs = self._edges.pairs
+        return csr_from_pairs(len(self.sites), pairs[:, 0], pairs[:, 1])
+
+    @cached_property
+    def vertices(self) -> np.ndarray:
+        """(v, 2) float64 distinct vertices of all cells."""
+        coords = self._buffers[0]
+        return np.unique(coords, axis=0) if len(coords) else np.zeros((0, 2))
+
+    def locate(self, xy):
+        """Index of the site whose cell contains each query point (its nearest site).
+
+        Parameters
+        ----------
+        xy : (2,) or (m, 2) array_like
+            Query points (anywhere; on a periodic diagram taken modulo the box).
+
+        Returns
+        -------
+        int or (m,) int64
+            Site index; duplicates map to the owning (first) site, ties between
+            equidistant sites go to the lowest index. See :func:`voroforge.locate`.
+        """
+        from .interpolate import locate_in_diagram
+
+        return locate_in_diagram(self, xy)
+
+    def describe(self):
+        """Structure report: counts, Euler's formula, unbounded and non-convex cells.
+
+        Returns
+        -------
+        voroforge.engine.describe.Description
+            See :func:`voroforge.engine.describe.describe`.
+        """
+        from .describe import describe
+
+        return describe(self)
+
+
+# --- internal API: how the engine's modules read a diagram they did not build ----------------
+
+
+def buffers(d: Diagram) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The cells' GeoArrow buffers ``(coords, ring, poly, geom)`` (read-only, not copied).
+
+    Parameters
+    ----------
+    d : Diagram
+
+    Returns
+    -------
+    coords : (k, 2) float64
+    ring, poly, geom : (·,) int64
+        Ring, polygon and cell offsets, as in :meth:`Diagram.to_geoarrow`.
+    """
+    return d._buffers
+
+
+def frame_exponent(d: Diagram) -> int:
+    """The working frame's exponent ``k`` of ``d``: its moments are computed at ``2**k``.
+
+    Parameters
+    ----------
+    d : Diagram
+
+    Returns
+    -------
+    int
+        0 for ordinary coordinates (see :func:`voroforge.engine.inputs.working_frame`).
+    """
+    return d._k
+
+
+def domain_of(d: Diagram) -> Domain:
+    """The validated :class:`~voroforge.engine.domain.Domain` the cells of ``d`` are clipped to.
+
+    Parameters
+    ----------
+    d : Diagram
+
+    Returns
+    -------
+    Domain
+    """
+    return d._domain

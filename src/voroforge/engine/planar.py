@@ -1,0 +1,103 @@
+"""The planar build behind :func:`voroforge.voronoi`: validated sites and domain in, a Diagram out.
+
+:func:`build` moves extreme magnitudes into the exact power-of-two working frame, maps exact
+duplicates to their first occurrence, dispatches to one of the cell kernels (Delaunay dual,
+Fortune's dual, half-planes), and assembles the clipped cells and edges
+(:func:`voroforge.engine.assemble.assemble`). :func:`voroforge.voronoi` and the periodic
+diagrams both call it, so neither needs the other.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..kernels.cells import cells_from_neighbors, cells_from_triangulation
+from ..kernels.delaunay import triangulate_sorted
+from ..kernels.fortune import fortune_delaunay
+from ..kernels.halfplane import halfplane_cells
+from ..kernels.rings import close_rings
+from .assemble import assemble
+from .csr import csr_from_pairs
+from .diagram import Diagram, Edges
+from .domain import Domain
+from .inputs import duplicate_map, from_working, working_frame
+from .threads import serial_below
+
+ALGORITHMS = ("delaunay", "fortune", "halfplane")
+
+
+def check_algorithm(algorithm: str) -> None:
+    """Raise ``ValueError`` unless ``algorithm`` is one of :data:`ALGORITHMS`.
+
+    Parameters
+    ----------
+    algorithm : str
+        The construction method asked for.
+    """
+    if algorithm not in ALGORITHMS:
+        raise ValueError(f"unknown algorithm {algorithm!r}; choose one of {', '.join(ALGORITHMS)}")
+
+
+def _collinear_neighbors(xs, ys):
+    order = np.lexsort((ys, xs))
+    a = order[:-1]
+    b = order[1:]
+    return csr_from_pairs(len(xs), a, b)
+
+
+def _closed_cells(xs, ys, box, algorithm, kmap):
+    """Kernel dispatch: closed convex rings of distinct sites clipped to ``box``.
+
+    Returns ``(coords, lengths, owner)`` with distinct site ``k``'s ring at
+    ``coords[lengths[k]:lengths[k + 1]]`` and owners mapped through ``kmap``.
+    """
+    if algorithm in ("delaunay", "fortune"):
+        if algorithm == "fortune":
+            # the sweep's Delaunay dual, through the same cell builder as the default
+            order, sx, sy, tri, he, ok = fortune_delaunay(xs, ys)
+        else:
+            order, sx, sy, tri, he, _, ok = triangulate_sorted(xs, ys)
+        if ok:
+            return cells_from_triangulation(sx, sy, tri, he, box, order, kmap[order])
+        indptr, indices = _collinear_neighbors(xs, ys)
+        coords, offsets, owner = cells_from_neighbors(xs, ys, indptr, indices.astype(np.int64), box)
+        ident = np.arange(len(xs))
+        return close_rings(coords, offsets, owner, ident, kmap)
+    # every cell on its own: the box cut by bisectors, finished with exact predicates
+    return halfplane_cells(xs, ys, box, kmap)
+
+
+def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
+    """Voronoi diagram of validated sites clipped to a validated domain.
+
+    Parameters
+    ----------
+    pts : (n, 2) float64
+        Sites, C-contiguous; the diagram keeps this array (read-only) unless the working
+        frame had to round it. Not modified.
+    dom : Domain
+        The domain.
+    algorithm : {"delaunay", "fortune", "halfplane"}
+        Construction method (already checked).
+
+    Returns
+    -------
+    Diagram
+    """
+    n = len(pts)
+    work, k = working_frame(pts, np.array(dom.bounds, dtype=np.float64))
+    if work is not pts:
+        pts = from_working(work, k)  # equal to the input unless it spans > 1e57 in magnitude
+    wdom = dom.scaled(k)  # everything below runs in the working frame
+    dup, unique = duplicate_map(work)
+    sub = work if len(unique) == n else work[unique]
+    xs = np.ascontiguousarray(sub[:, 0])
+    ys = np.ascontiguousarray(sub[:, 1])
+    box = np.array(wdom.bounds, dtype=np.float64)
+    with serial_below(n):
+        closed, lengths, own = _closed_cells(xs, ys, box, algorithm, unique)
+        bufs, edges = assemble(wdom, closed, lengths, own, n, unique)
+    if k:
+        bufs = (np.ldexp(bufs[0], -k), *bufs[1:])
+        edges = Edges(np.ldexp(edges.coords, -k), edges.pairs)
+    return Diagram(pts, dup, dom, bufs, edges, algorithm, k)
