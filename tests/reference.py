@@ -172,39 +172,259 @@ def brute_voronoi(points, domain) -> np.ndarray:
     pts = np.asarray(points, dtype=np.float64).reshape(-1, 2)
     dup = first_occurrence(pts)
     uniq = np.flatnonzero(dup < 0)
-    xmin, ymin, xmax, ymax = domain.bounds
     cells = np.full(len(pts), None, dtype=object)
     for i in range(len(pts)):
         if dup[i] >= 0:
             cells[i] = shapely.Polygon()
             continue
-        p = pts[i]
-        # Work in coordinates centred on the site so large offsets keep their precision.
-        box = (
-            np.array([[xmin, ymin], [xmax, ymin], [xmax, ymax], [xmin, ymax]], dtype=np.float64) - p
-        )
-        others = uniq[uniq != i]
-        q_all = pts[others] - p
-        order = np.argsort((q_all**2).sum(1), kind="stable")
-        poly = box
-        for j in order:
-            if len(poly) == 0:
-                break
-            q = q_all[j]
-            # The bisector is |q|/2 away from the site; once that exceeds the farthest
-            # vertex of the current (convex) polygon no later half-plane can cut it.
-            reach = np.sqrt((poly**2).sum(1).max())
-            if 0.5 * np.hypot(q[0], q[1]) > reach * (1 + 1e-12):
-                break
-            poly = _clip_halfplane(poly, q, 0.5 * float(q @ q))
-        if len(poly) < 3:
-            cells[i] = shapely.Polygon()
-            continue
-        region = shapely.Polygon(poly + p)
-        cells[i] = shapely.intersection(shapely.make_valid(region), domain)
+        cells[i] = _voronoi_cell(pts[i], pts[uniq[uniq != i]], domain)
     return cells
+
+
+def _voronoi_cell(p: np.ndarray, others: np.ndarray, domain):
+    """Cell of site ``p`` among the distinct sites ``others``, clipped to ``domain``."""
+    xmin, ymin, xmax, ymax = domain.bounds
+    # Work in coordinates centred on the site so large offsets keep their precision.
+    box = np.array([[xmin, ymin], [xmax, ymin], [xmax, ymax], [xmin, ymax]], dtype=np.float64) - p
+    q_all = others - p
+    order = np.argsort((q_all**2).sum(1), kind="stable")
+    poly = box
+    for j in order:
+        if len(poly) == 0:
+            break
+        q = q_all[j]
+        # The bisector is |q|/2 away from the site; once that exceeds the farthest
+        # vertex of the current (convex) polygon no later half-plane can cut it.
+        reach = np.sqrt((poly**2).sum(1).max())
+        if 0.5 * np.hypot(q[0], q[1]) > reach * (1 + 1e-12):
+            break
+        poly = _clip_halfplane(poly, q, 0.5 * float(q @ q))
+    if len(poly) < 3:
+        return shapely.Polygon()
+    region = shapely.Polygon(poly + p)
+    return shapely.intersection(shapely.make_valid(region), domain)
 
 
 def all_triples(n: int):
     """Every index triple ``i < j < k`` below ``n`` (for exhaustive tiny checks)."""
     return combinations(range(n), 3)
+
+
+# ---------------------------------------------------------------------------------------------
+# circumcentres
+# ---------------------------------------------------------------------------------------------
+
+
+def exact_circumcentre(a, b, c) -> tuple[float, float]:
+    """Circumcentre of ``a, b, c`` computed exactly with Fractions, rounded once at the end.
+
+    Each coordinate is the double nearest the true centre (Python rounds ``int / int``
+    correctly). Raises ``ZeroDivisionError`` for exactly collinear points.
+    """
+    ax, ay, bx, by, cx, cy = (_fr(v) for v in (*a, *b, *c))
+    dx, dy, ex, ey = bx - ax, by - ay, cx - ax, cy - ay
+    det = 2 * (dx * ey - dy * ex)
+    bl = dx * dx + dy * dy
+    cl = ex * ex + ey * ey
+    ux = ax + (ey * bl - dy * cl) / det
+    uy = ay + (dx * cl - ex * bl) / det
+    return float(ux), float(uy)
+
+
+# ---------------------------------------------------------------------------------------------
+# moments
+# ---------------------------------------------------------------------------------------------
+
+
+def exact_ring_moments(ring, origin=(0.0, 0.0)) -> tuple[Fraction, Fraction, Fraction, Fraction]:
+    """Signed area, first moments and polar second moment of a ring, exactly.
+
+    ``ring`` is a ``(k, 2)`` sequence of vertices, closed or not. Returns the Fractions
+    ``(∫1, ∫(x - ox), ∫(y - oy), ∫|x - o|^2)`` over the ring's interior, with the sign of its
+    orientation (positive counter-clockwise), from the shoelace formulas.
+    """
+    xy = np.asarray(ring, dtype=np.float64).reshape(-1, 2)
+    if len(xy) and np.array_equal(xy[0], xy[-1]):
+        xy = xy[:-1]
+    ox, oy = _fr(origin[0]), _fr(origin[1])
+    pts = [(_fr(x) - ox, _fr(y) - oy) for x, y in xy.tolist()]
+    m0 = mx = my = m2 = Fraction(0)
+    for k, (x0, y0) in enumerate(pts):
+        x1, y1 = pts[(k + 1) % len(pts)]
+        cr = x0 * y1 - x1 * y0
+        m0 += cr
+        mx += (x0 + x1) * cr
+        my += (y0 + y1) * cr
+        m2 += (x0 * x0 + x0 * x1 + x1 * x1 + y0 * y0 + y0 * y1 + y1 * y1) * cr
+    return m0 / 2, mx / 6, my / 6, m2 / 12
+
+
+def exact_polygon_moments(geom, origin=(0.0, 0.0)) -> tuple[Fraction, Fraction, Fraction, Fraction]:
+    """Area, first moments and polar second moment of a (Multi)Polygon about ``origin``.
+
+    Exteriors add and holes subtract whatever their orientation; exact Fractions of the
+    geometry's own (float) vertices.
+    """
+    total = [Fraction(0)] * 4
+    for part in shapely.get_parts(geom):
+        if part.is_empty:
+            continue
+        rings = [part.exterior, *part.interiors]
+        for r, ring in enumerate(rings):
+            mom = exact_ring_moments(np.asarray(ring.coords), origin)
+            sign = 1 if mom[0] >= 0 else -1
+            if r:
+                sign = -sign
+            total = [t + sign * m for t, m in zip(total, mom, strict=True)]
+    return tuple(total)
+
+
+def triangulated_moments(cells, sites) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Mass, first and second moments of unit density about each site, from GEOS triangles.
+
+    Independent of the shoelace formulas: each cell is cut into triangles by GEOS and the
+    moments of a triangle are those of its centroid plus its spread.
+    """
+    n = len(cells)
+    mass = np.zeros(n)
+    first = np.zeros((n, 2))
+    second = np.zeros(n)
+    for i, cell in enumerate(cells):
+        if cell.is_empty:
+            continue
+        tris = shapely.get_parts(shapely.constrained_delaunay_triangles(cell))
+        for t in tris:
+            a, b, c = shapely.get_coordinates(t)[:3] - sites[i]
+            area = 0.5 * abs((b - a)[0] * (c - a)[1] - (b - a)[1] * (c - a)[0])
+            g = (a + b + c) / 3
+            mass[i] += area
+            first[i] += area * g
+            spread = ((a - g) ** 2 + (b - g) ** 2 + (c - g) ** 2).sum() / 12
+            second[i] += area * ((g**2).sum() + spread)
+    return mass, first, second
+
+
+def pixel_density_moments(cells, sites, values, bounds) -> tuple[np.ndarray, np.ndarray]:
+    """Mass and first moment of a raster density over each cell, from GEOS overlays.
+
+    ``values`` is an ``(h, w)`` image covering ``bounds`` (row 0 at the top), 0 outside; the
+    sum over pixels of value × (area, first moment about the site) of cell ∩ pixel.
+    """
+    h, w = values.shape
+    x0, y0, x1, y1 = bounds
+    dx, dy = (x1 - x0) / w, (y1 - y0) / h
+    n = len(cells)
+    mass = np.zeros(n)
+    first = np.zeros((n, 2))
+    for r in range(h):
+        for c in range(w):
+            pix = shapely.box(x0 + c * dx, y1 - (r + 1) * dy, x0 + (c + 1) * dx, y1 - r * dy)
+            piece = shapely.intersection(cells, pix)
+            a = shapely.area(piece)
+            ok = a > 0
+            g = shapely.get_coordinates(shapely.centroid(piece[ok]))
+            mass[ok] += values[r, c] * a[ok]
+            first[ok] += values[r, c] * a[ok, None] * (g - sites[ok])
+    return mass, first
+
+
+def brute_lloyd_step(points, domain) -> np.ndarray:
+    """One Lloyd step: every site moves to the GEOS centroid of its :func:`brute_voronoi` cell.
+
+    Sites whose cell is empty (duplicates, sites whose cell misses the domain) stay put.
+    """
+    z = np.array(points, dtype=np.float64).reshape(-1, 2)
+    cells = brute_voronoi(z, domain)
+    ok = ~shapely.is_empty(cells)
+    z[ok] = shapely.get_coordinates(shapely.centroid(cells[ok]))
+    return z
+
+
+# ---------------------------------------------------------------------------------------------
+# power diagrams
+# ---------------------------------------------------------------------------------------------
+
+
+def power_owner(points, weights) -> np.ndarray:
+    """Index owning each site's coordinates: the heaviest copy, the first among equals."""
+    pts = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    best: dict[tuple[float, float], int] = {}
+    for i, (x, y) in enumerate(pts.tolist()):
+        key = (x + 0.0, y + 0.0)
+        if key not in best or weights[i] > weights[best[key]]:
+            best[key] = i
+    return np.array([best[(x + 0.0, y + 0.0)] for x, y in pts.tolist()], dtype=np.int64)
+
+
+def brute_power(points, weights, domain) -> np.ndarray:
+    """Power cells: cell ``i`` = domain ∩ every ``|x-p_i|^2 - w_i <= |x-p_j|^2 - w_j``.
+
+    One half-plane per other owning site, no early stop (weights break the distance bound
+    :func:`brute_voronoi` uses). Copies that :func:`power_owner` does not pick get an empty
+    polygon, like cells that no half-plane leaves anything of.
+
+    Returns
+    -------
+    (n,) object array of shapely geometries
+    """
+    pts = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    w = np.asarray(weights, dtype=np.float64)
+    owner = power_owner(pts, w)
+    x0, y0, x1, y1 = domain.bounds
+    cells = []
+    for i in range(len(pts)):
+        if owner[i] != i:
+            cells.append(shapely.Polygon())
+            continue
+        p = pts[i]
+        poly = np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]]) - p
+        for j in np.flatnonzero(owner == np.arange(len(pts))):
+            if j == i or len(poly) == 0:
+                continue
+            d = pts[j] - p
+            poly = _clip_halfplane(poly, 2.0 * d, float(d @ d) + w[i] - w[j])
+        if len(poly) < 3:
+            cells.append(shapely.Polygon())
+            continue
+        cells.append(shapely.intersection(shapely.Polygon(poly + p).buffer(0), domain))
+    return np.array(cells, dtype=object)
+
+
+# ---------------------------------------------------------------------------------------------
+# natural neighbours
+# ---------------------------------------------------------------------------------------------
+
+
+def brute_sibson(sites, queries, *, pad: float = 20.0) -> np.ndarray:
+    """Sibson coordinates by their definition: the area each cell loses to an inserted query.
+
+    For each query ``q`` the Voronoi cell of ``q`` among ``sites + [q]`` is built by brute
+    force, and weight ``i`` is the area it takes from site ``i``'s :func:`brute_voronoi`
+    cell, divided by its own area. Both diagrams are clipped to the sites' bounding box
+    padded by ``pad`` times its size; a query whose new cell reaches that box (outside the
+    convex hull) raises ``ValueError``. A query on a site gets weight 1 there.
+
+    Returns
+    -------
+    (m, n) float64
+        Row ``k`` holds the weights of query ``k``; each row sums to 1.
+    """
+    s = np.asarray(sites, dtype=np.float64).reshape(-1, 2)
+    q = np.asarray(queries, dtype=np.float64).reshape(-1, 2)
+    lo, hi = s.min(0), s.max(0)
+    margin = pad * (hi - lo).max()
+    box = shapely.box(lo[0] - margin, lo[1] - margin, hi[0] + margin, hi[1] + margin)
+    before = brute_voronoi(s, box)
+    out = np.zeros((len(q), len(s)))
+    for k, qk in enumerate(q):
+        hit = np.flatnonzero((s == qk).all(1))
+        if len(hit):
+            out[k, hit[0]] = 1.0
+            continue
+        cell = _voronoi_cell(qk, s[first_occurrence(s) < 0], box)
+        if shapely.intersects(cell, box.exterior):
+            raise ValueError(f"query {qk.tolist()} is outside the sites' convex hull")
+        stolen = shapely.area(shapely.intersection(before, cell))
+        stolen[stolen < 1e-12 * cell.area] = 0.0  # cells that only touch the new one
+        out[k] = stolen / stolen.sum()
+    return out

@@ -299,3 +299,43 @@ def test_matches_a_brute_force_lloyd(domain):
         z = brute_lloyd_step(z, domain)
     r = vf.lloyd(pts, domain, iterations=4)
     assert np.allclose(r.points, z, rtol=0, atol=1e-9)
+
+
+# --- regressions from the QA pass of issue 4 ------------------------------------------------
+
+
+def test_lloyd_capacity_with_sites_outside_an_l_shape():
+    ell = shapely.Polygon([(0, 0), (1, 0), (1, 0.4), (0.4, 0.4), (0.4, 1), (0, 1)])
+    pts = np.random.default_rng(9).random((40, 2))  # some start in the notch
+    target = np.full(40, ell.area / 40)
+    r = vf.lloyd(pts, ell, iterations=3, areas=target)
+    assert np.abs(r.diagram.areas - target).max() <= 1e-6 * target.min()
+
+
+def test_lloyd_option_errors():
+    pts = np.random.default_rng(0).random((10, 2))
+    with pytest.raises(ValueError, match="tol"):
+        vf.lloyd(pts, (0, 0, 1, 1), tol="x")  # was a TypeError from np.isfinite
+    with pytest.raises(ValueError, match="duplicate"):  # was "the cell of site 10 stays empty"
+        vf.lloyd(np.vstack([pts, pts[:1]]), (0, 0, 1, 1), areas=np.full(11, 1 / 11))
+
+
+@pytest.mark.parametrize("scale", [1e-150, 1e150])
+@pytest.mark.parametrize("method", ["lloyd", "lbfgs"])
+def test_lloyd_at_extreme_scales(scale, method):
+    # cell moments grow with the 2nd-4th power of the size: at 1e150 they overflowed and the
+    # sites became NaN ("points contains NaN coordinates"), at 1e-150 they underflowed
+    pts = np.random.default_rng(19).random((40, 2))
+    ras = (np.random.default_rng(1).random((5, 6)), (0.1, -0.1, 0.9, 1.2))
+    for density, scaled in [
+        (None, None),
+        (lambda x, y: 1 + 3 * x, lambda x, y: 1 + 3 * x / scale),
+        (ras, (ras[0], tuple(np.array(ras[1]) * scale))),
+    ]:
+        unit = vf.lloyd(pts, (0, 0, 1, 1), iterations=4, method=method, density=density)
+        big = vf.lloyd(
+            pts * scale, (0, 0, scale, scale), iterations=4, method=method, density=scaled
+        )
+        assert np.allclose(big.points / scale, unit.points, rtol=0, atol=1e-12)
+        assert np.allclose(big.shift / scale, unit.shift, rtol=1e-12, atol=0)
+        assert np.allclose(big.diagram.areas / scale**2, unit.diagram.areas, rtol=1e-12, atol=0)

@@ -10,46 +10,11 @@ from hypothesis import strategies as st
 
 import voroforge as vf
 
-from reference import _clip_halfplane
+from reference import brute_power
 from validate import overlay_frame, symmetric_difference_areas
 
 HOLED = shapely.box(0, 0, 10, 10).difference(shapely.Point(5, 5).buffer(2.5, quad_segs=8))
 L_SHAPE = shapely.Polygon([(0, 0), (10, 0), (10, 4), (4, 4), (4, 10), (0, 10)])
-
-
-def brute_owner(points, weights):
-    """Index owning each site's coordinates: the heaviest copy, the first among equals."""
-    best: dict[tuple[float, float], int] = {}
-    for i, (x, y) in enumerate(points.tolist()):
-        key = (x + 0.0, y + 0.0)
-        if key not in best or weights[i] > weights[best[key]]:
-            best[key] = i
-    return np.array([best[(x + 0.0, y + 0.0)] for x, y in points.tolist()])
-
-
-def brute_power(points, weights, domain):
-    """Cell ``i`` = domain ∩ every half-plane ``|x-p_i|^2 - w_i <= |x-p_j|^2 - w_j``."""
-    pts = np.asarray(points, dtype=np.float64)
-    w = np.asarray(weights, dtype=np.float64)
-    owner = brute_owner(pts, w)
-    x0, y0, x1, y1 = domain.bounds
-    cells = []
-    for i in range(len(pts)):
-        if owner[i] != i:
-            cells.append(shapely.Polygon())
-            continue
-        p = pts[i]
-        poly = np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]]) - p
-        for j in np.flatnonzero(owner == np.arange(len(pts))):
-            if j == i or len(poly) == 0:
-                continue
-            d = pts[j] - p
-            poly = _clip_halfplane(poly, 2.0 * d, float(d @ d) + w[i] - w[j])
-        if len(poly) < 3:
-            cells.append(shapely.Polygon())
-            continue
-        cells.append(shapely.intersection(shapely.Polygon(poly + p).buffer(0), domain))
-    return np.array(cells, dtype=object)
 
 
 def power_dist(q, pts, w):
@@ -334,3 +299,129 @@ def test_property_polygon_domains(n, seed):
     w = rng.random(n) * 6.0
     d = vf.power(pts, w, domain)
     check_power(d, pts, w, domain, samples=100, seed=seed)
+
+
+# --- regressions from the QA pass of issue 4 ------------------------------------------------
+
+
+def test_power_large_weights_leave_no_gap():
+    # |d|^2 + w_i was rounded at the scale of w (1e8) before w_j was subtracted, so two
+    # neighbours cut along bisectors 4e-9 apart and the cells missed part of the box
+    rng = np.random.default_rng(2)
+    pts = rng.random((80, 2))
+    w = np.r_[1e8, 1e8 - 0.01, rng.random(78)]
+    d = vf.power(pts, w, (0, 0, 1, 1))
+    assert abs(d.areas.sum() - 1.0) <= 1e-13
+    ref = brute_power(pts[:2], w[:2], shapely.box(0, 0, 1, 1))
+    assert np.allclose(d.areas[:2], shapely.area(ref), rtol=0, atol=1e-13)
+    assert (d.areas[2:] == 0).all()
+
+
+def _fit_ok(pts, dom, bnd):
+    target = np.full(len(pts), dom.area / len(pts))
+    d = vf.power_fit(pts, target, bnd)
+    assert np.abs(d.areas - target).max() <= 1e-6 * target.min()
+    # the weights found give those areas in an independent power diagram
+    again = vf.power(pts, d.weights, bnd)
+    assert np.allclose(again.areas, d.areas, rtol=0, atol=1e-9 * dom.area)
+
+
+def test_power_fit_many_sites_outside_the_box():
+    # sites beyond a corner share the corner as nearest domain point: opening one cell
+    # there emptied another, ten rounds long ("the cell of site 2 stays empty")
+    pts = np.random.default_rng(8).random((50, 2)) * 3 - 1
+    _fit_ok(pts, shapely.box(0, 0, 1, 1), (0, 0, 1, 1))
+
+
+def test_power_fit_sites_in_the_notch_of_an_l_shape():
+    ell = shapely.Polygon([(0, 0), (1, 0), (1, 0.4), (0.4, 0.4), (0.4, 1), (0, 1)])
+    pts = np.random.default_rng(8).random((100, 2))  # a quarter of them in the notch
+    _fit_ok(pts, ell, ell)
+
+
+def test_power_fit_two_part_domain():
+    # the parts' areas do not match the number of sites in them: some cell must straddle
+    # the gap, where the Newton step from the Voronoi start stalled (RuntimeError)
+    mp = shapely.MultiPolygon(
+        [
+            shapely.box(0, 0, 0.4, 1),
+            shapely.box(0.6, 0, 1, 1).difference(shapely.box(0.7, 0.4, 0.9, 0.6)),
+        ]
+    )
+    pts = np.random.default_rng(8).random((100, 2))
+    _fit_ok(pts, mp, mp)
+
+
+def test_power_enormous_weight_range():
+    # Qhull failed on the lift of weights spanning 1e300 (QhullError, not a diagram)
+    rng = np.random.default_rng(0)
+    pts = rng.random((20, 2))
+    w = np.r_[rng.random(19) * 0.01, 1e300]
+    d = vf.power(pts, w, (0, 0, 1, 1))
+    assert d.areas[-1] == 1.0 and (d.areas[:-1] == 0).all()
+    # the sites a heavy one hides change nothing for the others
+    w = np.r_[rng.random(19) * 0.01, -50.0]
+    pts[-1] = [0.5, 0.5]
+    assert np.array_equal(
+        vf.power(pts, w, (0, 0, 1, 1)).areas[:-1], vf.power(pts[:-1], w[:-1], (0, 0, 1, 1)).areas
+    )
+
+
+@pytest.mark.parametrize(
+    ("kw", "word"),
+    [({"tol": "a"}, "tol"), ({"max_iter": 1.5}, "max_iter"), ({"max_iter": "x"}, "max_iter")],
+)
+def test_power_fit_option_errors(kw, word):
+    pts = np.random.default_rng(0).random((10, 2))
+    with pytest.raises(ValueError, match=word):
+        vf.power_fit(pts, np.full(10, 0.1), (0, 0, 1, 1), **kw)
+
+
+def test_power_locate_breaks_ties_towards_the_lowest_index():
+    # four or more sites at the same power distance (grid corners): only the two nearest
+    # in the KD-tree were compared, so the documented lowest-index rule failed
+    rng = np.random.default_rng(0)
+    grid = np.stack(np.meshgrid(np.arange(6.0), np.arange(6.0)), -1).reshape(-1, 2)
+    grid = grid[rng.permutation(len(grid))]
+    q = np.stack(np.meshgrid(np.arange(11) / 2, np.arange(11) / 2), -1).reshape(-1, 2)
+    d2 = ((q[:, None] - grid[None]) ** 2).sum(-1)
+    for w in (np.zeros(36), rng.integers(0, 3, 36).astype(float)):
+        pd = d2 - w
+        ref = [int(np.flatnonzero(row == row.min()).min()) for row in pd]
+        assert vf.power(grid, w).locate(q).tolist() == ref
+    assert np.array_equal(vf.power(grid, np.zeros(36)).locate(q), vf.locate(grid, q))
+
+
+def test_power_locate_names_a_bad_query():
+    d = vf.power(np.random.default_rng(0).random((10, 2)), np.arange(10) * 0.01, (0, 0, 1, 1))
+    with pytest.raises(ValueError, match="xy must be"):  # was numpy's bare message
+        d.locate("ab")
+    assert (
+        d.locate([0.5, 0.5]) == vf.power(d.sites, d.weights, (0, 0, 1, 1)).locate([[0.5, 0.5]])[0]
+    )
+
+
+def test_power_cell_cut_through_a_box_corner_stays_simple():
+    # the bisector of sites 0 and 1 passes through the corner (-0.05, -0.05): the crossing
+    # a + 1.0 * (b - a) rounded past the corner and cell 1 got a self-intersecting spike
+    pts = np.array([[0.0, 1 / 12], [1 / 12, 0.0], [1 / 12, 1 / 6]])
+    w = np.array([0.002, 0.002, 0.0])
+    box = (-0.05, -0.05, 1.05, 1.05)
+    d = vf.power(pts, w, box)
+    assert shapely.is_valid(d.cells).all()
+    ref = brute_power(pts, w, shapely.box(*box))
+    assert np.allclose(d.areas, shapely.area(ref), rtol=0, atol=1e-14)
+
+
+@pytest.mark.parametrize("boundary", ["box", "holed"])
+def test_power_cells_share_their_vertices(boundary):
+    # every cell cut its own ring, so the vertex of three cells came out a few ulps apart in
+    # each: the union of the cells had dozens of sliver holes (41 for these 100 sites)
+    rng = np.random.default_rng(0)
+    pts = rng.random((100, 2))
+    box = shapely.box(0, 0, 1, 1)
+    dom = box if boundary == "box" else box.difference(shapely.Point(0.5, 0.5).buffer(0.2))
+    d = vf.power(pts, rng.random(100) * 1e-3, (0, 0, 1, 1) if boundary == "box" else dom)
+    union = shapely.union_all(d.cells)
+    assert union.geom_type == "Polygon" and len(union.interiors) == len(dom.interiors)
+    assert d.describe().mismatched_vertices == 0

@@ -15,7 +15,7 @@ from reference import exact_incircle, exact_orient
 
 
 def _sgn(v: float) -> int:
-    return (v > 0) - (v < 0)
+    return int(v > 0) - int(v < 0)  # int(): numpy bools do not subtract (JIT off)
 
 
 def _check_orient(cases) -> None:

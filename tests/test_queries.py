@@ -16,7 +16,7 @@ from scipy.interpolate import griddata
 
 import voroforge as vf
 
-from reference import brute_nearest
+from reference import brute_nearest, brute_sibson
 
 # ---------------------------------------------------------------------------- locate
 
@@ -209,21 +209,6 @@ def test_continuous():
         assert np.abs(np.diff(f)).max() < 0.02
 
 
-def _brute_sibson(sites, vals, q):
-    """Weights as differences of cell areas of two vf.voronoi diagrams (with and without q)."""
-    lo = sites.min(0)
-    hi = sites.max(0)
-    pad = 20 * (hi - lo).max()
-    box = (lo[0] - pad, lo[1] - pad, hi[0] + pad, hi[1] + pad)
-    before = vf.voronoi(sites, box).areas
-    d = vf.voronoi(np.concatenate((sites, [q])), box)
-    cell = d.cells[-1]
-    assert not shapely.intersects(cell, shapely.box(*box).exterior)  # not clipped
-    stolen = before - d.areas[:-1]
-    stolen[np.abs(stolen) < 1e-12 * d.areas[-1]] = 0.0
-    return stolen @ vals / d.areas[-1], np.count_nonzero(stolen)
-
-
 def test_matches_brute_force_area_differences():
     rng = np.random.default_rng(21)
     sites = rng.random((60, 2))
@@ -231,8 +216,9 @@ def test_matches_brute_force_area_differences():
     inside, _ = _inside_hull(sites, rng.random((30, 2)) * 0.6 + 0.2)
     q = (rng.random((30, 2)) * 0.6 + 0.2)[inside]
     got = vf.natural_neighbor(sites, vals, q)
-    for qi, g in zip(q, got, strict=True):
-        want, k = _brute_sibson(sites, vals, qi)
+    weights = brute_sibson(sites, q)  # area stolen from each cell, by brute force
+    for w, g in zip(weights, got, strict=True):
+        want, k = w @ vals, np.count_nonzero(w)
         assert k >= 3
         assert abs(g - want) < 1e-9
 
@@ -328,3 +314,42 @@ def test_sibson_kernel_runs_without_jit(tmp_path):
     q = rng.random((30, 2)) * 0.5 + 0.25
     want = 1.0 + 2.0 * q[:, 0] - q[:, 1]
     np.testing.assert_allclose(got, np.stack([want, want]), atol=1e-12)
+
+
+# --- regressions from the QA pass of issue 4 ------------------------------------------------
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf])
+def test_natural_neighbor_rejects_non_finite_values(bad):
+    # NaN/inf data were interpolated silently (NaN around that site, and with smooth=True
+    # in the gradients of its neighbours too)
+    pts = np.random.default_rng(0).random((20, 2))
+    vals = np.zeros((20, 2))
+    vals[7, 1] = bad
+    with pytest.raises(ValueError, match="values contains a non-finite value .*row 7"):
+        vf.natural_neighbor(pts, vals, [0.5, 0.5])
+
+
+@pytest.mark.parametrize("scale", [1e-300, 1e-150, 1e150, 1e300])
+def test_queries_at_extreme_scales(scale):
+    # squared distances under/overflowed: locate tied everything (1e-300) or raised an
+    # IndexError (1e300); Sibson's incircle and areas gave NaN everywhere beyond 1e+-150
+    rng = np.random.default_rng(16)
+    pts = rng.random((30, 2))
+    q = rng.random((200, 2))
+    ref = np.argmin(((q[:, None] - pts[None]) ** 2).sum(-1), axis=1)
+    assert np.array_equal(vf.locate(pts * scale, q * scale), ref)
+    assert np.array_equal(vf.locate(pts, q), ref)
+    periodic = vf.voronoi(pts * scale, (0, 0, scale, scale), periodic=True)
+    assert np.array_equal(
+        periodic.locate(q * scale), vf.voronoi(pts, (0, 0, 1, 1), periodic=True).locate(q)
+    )
+    wrapped = vf.voronoi(pts * scale, (0, 0, scale, scale), periodic=True, wrap=True)
+    unit = vf.voronoi(pts, (0, 0, 1, 1), periodic=True, wrap=True)
+    assert shapely.get_num_geometries(wrapped.cells).tolist() == (
+        shapely.get_num_geometries(unit.cells).tolist()
+    )
+    z = vf.natural_neighbor(pts * scale, 2 * pts[:, 0] - pts[:, 1], q * scale)
+    inside = np.isfinite(vf.natural_neighbor(pts, pts[:, 0], q))
+    assert np.array_equal(np.isfinite(z), inside) and inside.sum() > 100
+    assert np.allclose(z[inside], (2 * q[:, 0] - q[:, 1])[inside], rtol=0, atol=1e-12)
