@@ -34,8 +34,54 @@ VERTEX_PAIR_RTOL = 2.0**-40
 #: A cocircular triple names a vertex only if its centre is this close to the vertex (L1,
 #: relative to the vertex's magnitude and distance from its site; kernels/vertex)
 VERTEX_SNAP_RTOL = 2.0**-40
+#: Circumcentres of two adjacent triangles closer than this (L1, relative to their magnitude
+#: and the circumradius) are one vertex: floats cannot order a shorter Voronoi edge
+CC_MERGE_RTOL = 2.0**-46
+#: A chain of circumcentres shorter than this (relative to the box's width + height) is
+#: rounding noise, not put back into a cut cell (kernels/cells)
+CHAIN_SPAN_RTOL = 1e-9
+#: A point must be this far (relative to the coordinates' size) off the bisector of two
+#: neighbours for a cut cell's edge to be relabelled from one to the other (kernels/cells)
+RELABEL_RTOL = 1e-9
+#: Power-cell vertices closer than this (max-norm, relative to the box's larger side) to a
+#: ring neighbour keep their cut coordinates, and a vertex computed from its name replaces
+#: the cut one only within this distance (kernels/power)
+POWER_CROWDED_RTOL = 1e-9
 
 # --- half-plane cells, bucket grid, raster ----------------------------------------------------
+
+#: Smallest side of a bucket grid's box relative to its larger one (collinear sites still
+#: get a grid of positive area; kernels/grid.grid_shape)
+GRID_DEGENERATE_RTOL = 1e-6
+#: The bucket grid is this much (relative) wider than the sites, so every site's bucket
+#: index is below the bucket count without clamping (kernels/grid.grid_shape)
+GRID_WIDEN_RTOL = 1e-12
+#: Margin on the half-plane cell's stop radius (2 r) against rounding in its radius r
+HALFPLANE_REACH_RTOL = 1e-9
+#: Band around a vertex's circle (relative to its squared radius) inside which a candidate
+#: site is watched and gets the exact incircle test in the half-plane cell's finishing
+HALFPLANE_NEAR_RTOL = 1e-7
+#: |d| (squared distance to a vertex's circle minus its radius squared) below which a site
+#: counts as on the circle: 2 r times the default algorithm's 2**-46 vertex merge tolerance
+HALFPLANE_MERGE_RTOL = 2.0**-45
+#: A site within HALFPLANE_MERGE_RTOL of a circle joins its vertex only if the vertices it
+#: forms with the circle's sites are this close (L1, relative; the default's merge rule)
+HALFPLANE_JOIN_RTOL = 2.0**-46
+#: Squared float edge length, relative to the squared cell radius, above which a half-plane
+#: cell's edge is taken as it is (rounding moves vertices by ~1e-16 of the radius)
+HALFPLANE_SURE_RTOL = 1e-12
+#: Squared sine of the angle between adjacent float edges below which neither is taken as
+#: it is (their crossing is ill-conditioned)
+HALFPLANE_SURE_SIN2 = 1e-16
+#: Squared distance of two sites, relative to a neighbour's squared distance, below which
+#: the box crossing decides which of the two owns the edge at a box side (a few ulps apart)
+HALFPLANE_SHADOW_RTOL = 2.0**-40
+#: Relative widening of a raster tile's k-th nearest bound against rounding in it
+RASTER_BOUND_RTOL = 1e-12
+#: Absolute slack of that bound relative to the coordinates' magnitude (rounding in the
+#: candidate distances), and its floor for all-zero coordinates
+RASTER_SLACK_RTOL = 1e-12
+RASTER_SLACK_FLOOR = 1e-300
 
 # --- engine (inputs, domains, periodic, describe, interpolation, Lloyd) ------------------------
 

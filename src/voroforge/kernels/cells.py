@@ -22,8 +22,11 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ..config import NJIT, NJIT_PARALLEL
-from .predicates import circumcenter, incircle, incircle_fast
+from ..config import CC_MERGE_RTOL, CHAIN_SPAN_RTOL, NJIT, NJIT_PARALLEL, RELABEL_RTOL
+from .clip import dedupe_ring
+from .power import box_cell
+from .predicates import incircle, incircle_fast
+from .vertex import box_crossing, canonical_triple, voronoi_vertex
 
 _CHUNK = 2048
 
@@ -40,6 +43,8 @@ def _find(parent, a):
 def circumcenters(xs, ys, tri, he):
     """Circumcentres of all triangles, and flags on undecided interior halfedges.
 
+    Each is the Voronoi vertex named by the triangle's sites (``kernels/vertex``).
+
     A halfedge ``e < twin`` is flagged when the fast incircle filter cannot call its
     quadrilateral; those are the candidates for exact cocircularity.
     """
@@ -51,7 +56,7 @@ def circumcenters(xs, ys, tri, he):
         a = tri[3 * k]
         b = tri[3 * k + 1]
         c = tri[3 * k + 2]
-        ux, uy = circumcenter(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c])
+        ux, uy = voronoi_vertex(a, b, c, xs, ys)
         if not (np.isfinite(ux) and np.isfinite(uy)):
             # a sliver whose centre overflows: far outside any box, so its cells get cut
             ux = np.inf
@@ -78,15 +83,10 @@ def _quad(tri, e, f):
     return a, b, c, d
 
 
-#: Circumcentres of two adjacent triangles closer than this (relative to their magnitude
-#: and the circumradius) are one vertex: floats cannot order a shorter Voronoi edge.
-_CC_MERGE_RTOL = 2.0**-46
-
-
 @njit(**NJIT)
 def _cc_close(xs, ys, a, cx, cy, t, u):
     scale = abs(cx[t]) + abs(cy[t]) + abs(cx[t] - xs[a]) + abs(cy[t] - ys[a])
-    return abs(cx[t] - cx[u]) + abs(cy[t] - cy[u]) <= _CC_MERGE_RTOL * scale
+    return abs(cx[t] - cx[u]) + abs(cy[t] - cy[u]) <= CC_MERGE_RTOL * scale
 
 
 @njit(**NJIT_PARALLEL)
@@ -117,11 +117,48 @@ def _merge_exact(xs, ys, tri, he, cand, cx, cy):
                 merged = True
     if merged:
         for k in range(t):
-            r = _find(parent, k)
-            parent[k] = r
-            cx[k] = cx[r]
-            cy[k] = cy[r]
+            parent[k] = _find(parent, k)
+        _name_classes(xs, ys, tri, parent, cx, cy)
     return parent
+
+
+@njit(**NJIT)
+def _name_classes(xs, ys, tri, parent, cx, cy):
+    """Give every triangle of a class (``parent`` its root) the vertex of the class's name.
+
+    The name is the canonical triple of the class's sites (``kernels/vertex``), found near
+    the root's centre; without one the root's centre is used.
+    """
+    t = parent.shape[0]
+    size = np.zeros(t, dtype=np.int64)
+    for k in range(t):
+        size[parent[k]] += 1
+    order = np.argsort(parent, kind="mergesort")
+    seen = np.full(xs.shape[0], -1, dtype=np.int64)
+    on = np.zeros(3 * int(size.max()), dtype=np.int64)
+    s = 0
+    while s < t:
+        r = parent[order[s]]
+        e = s + size[r]
+        if size[r] > 1:
+            k = 0
+            for u in range(s, e):
+                for c in range(3):
+                    v = tri[3 * order[u] + c]
+                    if seen[v] != r:
+                        seen[v] = r
+                        on[k] = v
+                        k += 1
+            vx = cx[r]
+            vy = cy[r]
+            a0 = tri[3 * r]
+            a, b, c = canonical_triple(on, k, vx, vy, xs[a0], ys[a0], xs, ys)
+            if a >= 0:
+                vx, vy = voronoi_vertex(a, b, c, xs, ys)
+            for u in range(s, e):
+                cx[order[u]] = vx
+                cy[order[u]] = vy
+        s = e
 
 
 def merge_cocircular(xs, ys, tri, he, cx, cy, flag):
@@ -129,10 +166,11 @@ def merge_cocircular(xs, ys, tri, he, cx, cy, flag):
 
     Two triangles sharing an edge have the same circumcircle exactly when the fourth point is
     on the first one's circle (exact incircle == 0); triangles whose computed centres agree
-    to ``_CC_MERGE_RTOL`` are merged too (a Voronoi edge that short is rounding noise, and
-    keeping it can fold the ring). Classes are the connected components of
-    that relation; the centre of the class representative is copied to all its members. The
-    exact code runs only on the halfedges flagged by :func:`circumcenters`.
+    to ``CC_MERGE_RTOL`` are merged too (a Voronoi edge that short is rounding noise, and
+    keeping it can fold the ring). Classes are the connected components of that relation;
+    every member gets the vertex named by the class's canonical triple (the vertex rule of
+    ``kernels/vertex``, which the half-plane kernel follows too). The exact code runs only
+    on the halfedges flagged by :func:`circumcenters`.
     """
     flag_close(xs, ys, tri, he, cx, cy, flag)
     cand = np.flatnonzero(flag)
@@ -165,85 +203,6 @@ def _outgoing(tri, he, cx, cy, box, n):
             cut[tri[3 * t + 1]] = True
             cut[tri[3 * t + 2]] = True
     return out, deg, cut
-
-
-@njit(**NJIT)
-def _clip(px, py, pw, m, qx, qy, qw, nx, ny, c, ox, oy, w, axis, value):
-    """Clip polygon ``p`` (m vertices, edge owners ``pw``) to ``nx*(x-ox) + ny*(y-oy) <= c``.
-
-    The result goes to ``q``; returns its vertex count. New edges along the line get owner
-    ``w``. ``axis`` 0/1 marks a box line ``x = value`` / ``y = value``, whose crossings get that
-    coordinate exactly; ``axis`` -1 is a general line. Vertices on the line are kept as they
-    are, so no near-duplicate vertex is created there.
-    """
-    if m == 0:
-        return 0
-    out = 0
-    sk = nx * (px[0] - ox) + ny * (py[0] - oy) - c
-    for k in range(m):
-        nxt = k + 1 if k + 1 < m else 0
-        sn = nx * (px[nxt] - ox) + ny * (py[nxt] - oy) - c
-        if sk <= 0.0:
-            qx[out] = px[k]
-            qy[out] = py[k]
-            qw[out] = w if (sk == 0.0 and sn > 0.0) else pw[k]
-            out += 1
-            if sk < 0.0 and sn > 0.0:
-                t = sk / (sk - sn)
-                qx[out] = value if axis == 0 else px[k] + t * (px[nxt] - px[k])
-                qy[out] = value if axis == 1 else py[k] + t * (py[nxt] - py[k])
-                qw[out] = w
-                out += 1
-        elif sn < 0.0:
-            t = sk / (sk - sn)
-            qx[out] = value if axis == 0 else px[k] + t * (px[nxt] - px[k])
-            qy[out] = value if axis == 1 else py[k] + t * (py[nxt] - py[k])
-            qw[out] = pw[k]
-            out += 1
-        sk = sn
-    return _dedupe_ring(qx, qy, qw, out)
-
-
-@njit(**NJIT)
-def _dedupe_ring(qx, qy, qw, m):
-    """Drop consecutive equal vertices (keeping the later edge owner); < 3 vertices -> 0."""
-    out = 0
-    for k in range(m):
-        if out > 0 and qx[k] == qx[out - 1] and qy[k] == qy[out - 1]:
-            qw[out - 1] = qw[k]
-            continue
-        qx[out] = qx[k]
-        qy[out] = qy[k]
-        qw[out] = qw[k]
-        out += 1
-    while out > 1 and qx[out - 1] == qx[0] and qy[out - 1] == qy[0]:
-        out -= 1
-    return out if out >= 3 else 0
-
-
-@njit(**NJIT)
-def _box_crossing(a, b, xs, ys, side, box):
-    """Where the bisector of sites ``a`` and ``b`` crosses box side ``side`` (-1..-4).
-
-    Computed from the pair in a fixed order, so both cells of the pair get the same bits.
-    """
-    if a > b:
-        a, b = b, a
-    ax = xs[a]
-    ay = ys[a]
-    dx = xs[b] - ax
-    dy = ys[b] - ay
-    mx = ax + 0.5 * dx
-    my = ay + 0.5 * dy
-    if side == -1 or side == -3:
-        x = box[0] if side == -1 else box[2]
-        if dy == 0.0:
-            return np.nan, np.nan
-        return x, my - dx * (x - mx) / dy
-    y = box[1] if side == -2 else box[3]
-    if dx == 0.0:
-        return np.nan, np.nan
-    return mx - dy * (y - my) / dx, y
 
 
 @njit(**NJIT)
@@ -322,14 +281,14 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, q
                     qw[out] = b
                     out += 1
                     continue
-                ok = span > 1e-9 * ((box[2] - box[0]) + (box[3] - box[1]))
+                ok = span > CHAIN_SPAN_RTOL * ((box[2] - box[0]) + (box[3] - box[1]))
             if ok:
                 out = _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, qx, qy, qw, out)
                 continue
         elif a >= 0 or b >= 0:
             j = a if a >= 0 else b
             side = b if a >= 0 else a
-            bx, by = _box_crossing(i, j, xs, ys, side, box)
+            bx, by = box_crossing(i, j, xs, ys, side, box)
             if bx == bx and box[0] <= bx <= box[2] and box[1] <= by <= box[3]:
                 x = bx
                 y = by
@@ -347,15 +306,15 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, q
         px[v] = qx[v]
         py[v] = qy[v]
         pw[v] = qw[v] if qw[v] >= 0 else -1
-    return _dedupe_ring(px, py, pw, out)
+    return dedupe_ring(px, py, pw, out)
 
 
 @njit(**NJIT)
 def _nearest_label(xs, ys, x, y, b, nbrs, nn):
     """The neighbour nearest to ``(x, y)``, starting from ``b``.
 
-    It moves only on a decisive comparison: the point must be clearly (1e-9 of the
-    coordinates' size) off the bisector of the two candidates.
+    It moves only on a decisive comparison: the point must be clearly (``RELABEL_RTOL`` of
+    the coordinates' size) off the bisector of the two candidates.
     """
     x2 = 2.0 * x
     y2 = 2.0 * y
@@ -368,7 +327,7 @@ def _nearest_label(xs, ys, x, y, b, nbrs, nn):
         dy = ys[j] - ys[b]
         d = dx * (xs[j] + xs[b] - x2) + dy * (ys[j] + ys[b] - y2)
         size = abs(xs[j]) + abs(xs[b]) + abs(x2) + abs(ys[j]) + abs(ys[b]) + abs(y2)
-        if d < -1e-9 * (abs(dx) + abs(dy)) * size:
+        if d < -RELABEL_RTOL * (abs(dx) + abs(dy)) * size:
             b = j
     return b
 
@@ -414,46 +373,23 @@ def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw):
 
 
 @njit(**NJIT)
-def _cut_cell(i, xs, ys, nbrs, tris, nn, box, cx, cy, px, py, pw, qx, qy, qw):
+def _cut_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, px, py, pw, qx, qy, qw, ss):
     """Cell of site ``i`` as the box cut by the bisectors with ``nbrs[:nn]``; result in ``p``.
 
-    ``tris[k]`` is the Delaunay triangle between neighbours ``k`` and ``k + 1`` (or -1); it
-    lets :func:`_canonical_vertices` make shared vertices bit-identical across cells.
+    The cut is the power cell's (``kernels/power.box_cell``) with the zero weights ``ws``:
+    Voronoi is the equal-weight case. ``tris[k]`` is the Delaunay triangle between
+    neighbours ``k`` and ``k + 1`` (or -1); it lets :func:`_canonical_vertices` make shared
+    vertices bit-identical across cells. ``ss`` is scratch.
     """
-    px[0] = box[0]
-    py[0] = box[1]
-    px[1] = box[2]
-    py[1] = box[1]
-    px[2] = box[2]
-    py[2] = box[3]
-    px[3] = box[0]
-    py[3] = box[3]
-    pw[0] = -2  # bottom
-    pw[1] = -3  # right
-    pw[2] = -4  # top
-    pw[3] = -1  # left
-    m = 4
-    sx = xs[i]
-    sy = ys[i]
-    for k in range(nn):
-        j = nbrs[k]
-        dx = xs[j] - sx
-        dy = ys[j] - sy
-        # |v - s_i| <= |v - s_j|  <=>  dx * (vx - sx) + dy * (vy - sy) <= (dx^2 + dy^2) / 2
-        c = 0.5 * (dx * dx + dy * dy)
-        m = _clip(px, py, pw, m, qx, qy, qw, dx, dy, c, sx, sy, j, -1, 0.0)
-        for v in range(m):
-            px[v] = qx[v]
-            py[v] = qy[v]
-            pw[v] = qw[v]
-        if m == 0:
-            return 0
+    m = box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss)
+    if m == 0:
+        return 0
     m = _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw)
     return _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, qx, qy, qw)
 
 
 @njit(**NJIT)
-def _cell(i, xs, ys, tri, he, cx, cy, cls, out, box, px, py, pw, qx, qy, qw, nbrs, cl, tb):
+def _cell(i, xs, ys, ws, tri, he, cx, cy, cls, out, box, bufs, nbrs, cl, tb, ss):
     """Polygon of site ``i`` into ``p``; returns the vertex count.
 
     A cell whose ring of circumcentres lies inside the box is that ring. Any other cell
@@ -461,6 +397,7 @@ def _cell(i, xs, ys, tri, he, cx, cy, cls, out, box, px, py, pw, qx, qy, qw, nbr
     Delaunay neighbours: this never relies on far-away, ill-conditioned circumcentres of
     nearly flat triangles.
     """
+    px, py, pw, qx, qy, qw = bufs
     o0 = out[i]
     if o0 == -1:
         return 0
@@ -498,14 +435,14 @@ def _cell(i, xs, ys, tri, he, cx, cy, cls, out, box, px, py, pw, qx, qy, qw, nbr
         if o == o0:
             break
     if not inside:
-        return _cut_cell(i, xs, ys, nbrs, tb, k, box, cx, cy, px, py, pw, qx, qy, qw)
+        return _cut_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, px, py, pw, qx, qy, qw, ss)
     if m > 1 and cl[m - 1] == cl[0]:
         m -= 1
     return m if m >= 3 else 0
 
 
 @njit(**NJIT_PARALLEL)
-def _count(xs, ys, tri, he, cx, cy, cls, out, box, cap, deg, cut, merged):
+def _count(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, deg, cut, merged):
     """Vertex count of every cell.
 
     Without cocircular merges an uncut cell has one vertex per incident triangle, so only cut
@@ -527,17 +464,17 @@ def _count(xs, ys, tri, he, cx, cy, cls, out, box, cap, deg, cut, merged):
         nbrs = np.zeros(cap, dtype=np.int64)
         cl = np.zeros(cap, dtype=np.int64)
         tb = np.zeros(cap, dtype=np.int64)
+        ss = np.zeros(cap)
+        bufs = (px, py, pw, qx, qy, qw)
         for i in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
             if not merged and not cut[i]:
                 continue
-            counts[i] = _cell(
-                i, xs, ys, tri, he, cx, cy, cls, out, box, px, py, pw, qx, qy, qw, nbrs, cl, tb
-            )
+            counts[i] = _cell(i, xs, ys, ws, tri, he, cx, cy, cls, out, box, bufs, nbrs, cl, tb, ss)
     return counts
 
 
 @njit(**NJIT_PARALLEL)
-def _fill(xs, ys, tri, he, cx, cy, cls, out, box, cap, start, coords, owner, kmap):
+def _fill(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, start, coords, owner, kmap):
     """Write every cell as a closed ring at ``start[i]``; owners go through ``kmap``."""
     n = xs.shape[0]
     nchunks = (n + _CHUNK - 1) // _CHUNK
@@ -551,10 +488,10 @@ def _fill(xs, ys, tri, he, cx, cy, cls, out, box, cap, start, coords, owner, kma
         nbrs = np.zeros(cap, dtype=np.int64)
         cl = np.zeros(cap, dtype=np.int64)
         tb = np.zeros(cap, dtype=np.int64)
+        ss = np.zeros(cap)
+        bufs = (px, py, pw, qx, qy, qw)
         for i in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
-            m = _cell(
-                i, xs, ys, tri, he, cx, cy, cls, out, box, px, py, pw, qx, qy, qw, nbrs, cl, tb
-            )
+            m = _cell(i, xs, ys, ws, tri, he, cx, cy, cls, out, box, bufs, nbrs, cl, tb, ss)
             if m == 0:
                 continue
             base = start[i]
@@ -601,7 +538,8 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
     out, deg, cut = _outgoing(tri, he, cx, cy, box, n)
     cap = int(deg.max()) + 16
     merged = bool(flag.any())
-    counts = _count(xs, ys, tri, he, cx, cy, cls, out, box, cap, deg, cut, merged)
+    ws = np.zeros(n)
+    counts = _count(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, deg, cut, merged)
     closed = np.where(counts > 0, counts + 1, 0)
     lengths = np.zeros(n + 1, dtype=np.int64)
     lengths[1:][order] = closed
@@ -610,13 +548,15 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
     total = int(lengths[-1])
     coords = np.zeros((total, 2))
     owner = np.zeros(total, dtype=np.int64)
-    _fill(xs, ys, tri, he, cx, cy, cls, out, box, cap, start, coords, owner, kmap)
+    _fill(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, start, coords, owner, kmap)
     return coords, lengths, owner
 
 
 @njit(**NJIT_PARALLEL)
 def _cut_all(xs, ys, indptr, indices, box, cap, counts, offsets, coords, owner, fill):
+    """Cut cells of all sites from their neighbour lists (count pass, then ``fill`` pass)."""
     n = xs.shape[0]
+    ws = np.zeros(n)
     nchunks = (n + _CHUNK - 1) // _CHUNK
     for ch in prange(nchunks):
         px = np.zeros(cap)
@@ -627,10 +567,11 @@ def _cut_all(xs, ys, indptr, indices, box, cap, counts, offsets, coords, owner, 
         qw = np.zeros(cap, dtype=np.int64)
         no_tris = np.full(cap, -1, dtype=np.int64)
         none = np.zeros(0)
+        ss = np.zeros(cap)
         for i in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
             nb = indices[indptr[i] : indptr[i + 1]]
             m = _cut_cell(
-                i, xs, ys, nb, no_tris, nb.shape[0], box, none, none, px, py, pw, qx, qy, qw
+                i, xs, ys, ws, nb, no_tris, nb.shape[0], box, none, none, px, py, pw, qx, qy, qw, ss
             )
             if not fill:
                 counts[i] = m

@@ -26,7 +26,8 @@ import numpy as np
 from numba import literally, njit, prange
 
 from ..config import NJIT, NJIT_PARALLEL
-from .predicates import circumcenter, incircle, incircle_fast, orient2d, orient2d_fast
+from .predicates import incircle, incircle_fast, orient2d, orient2d_fast
+from .vertex import circumcenter
 
 
 @njit(**NJIT)

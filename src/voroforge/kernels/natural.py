@@ -22,7 +22,8 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
-from .predicates import circumcenter, incircle, orient2d
+from .predicates import incircle, orient2d
+from .vertex import circumcenter
 
 #: Query status codes returned by :func:`sibson`.
 INSIDE = 0

@@ -1,8 +1,16 @@
-"""Power (Laguerre) cells by half-plane clipping of a box.
+"""Power (Laguerre) cells by cutting a box with power bisectors; Voronoi is the equal-weight case.
 
 Cell ``i`` is ``{x : |x - p_i|^2 - w_i <= |x - p_j|^2 - w_j}`` for every neighbour ``j``. With
-``u = x - p_i`` and ``d = p_j - p_i`` the constraint reads ``2 d.u <= |d|^2 + w_i - w_j``, so
-every test is made relative to the cell's own site and large coordinates keep their precision.
+``u = x - p_i`` and ``d = p_j - p_i`` the constraint reads ``d.u <= (|d|^2 + w_i - w_j) / 2``,
+so every test is made relative to the cell's own site and large coordinates keep their
+precision. :func:`box_cell` makes that cut (through ``kernels/clip``); with equal weights its
+signed values are the Voronoi bisectors' bit for bit, and the Delaunay-dual cell builder
+(``kernels/cells``) uses it for the cells it cuts.
+
+After the cut every vertex is replaced by the one computed from its name
+(``kernels/vertex``): the power centre of the cell's site and its two edges' owners, or the
+power bisector's crossing with a box side. Neighbouring cells therefore share every vertex
+bit for bit.
 
 Output contract (the same closed-ring layout the Voronoi assembly consumes):
 
@@ -20,62 +28,19 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ..config import NJIT, NJIT_PARALLEL
-from .cells import _dedupe_ring
+from ..config import NJIT, NJIT_PARALLEL, POWER_CROWDED_RTOL
+from .clip import cut_ring, plane_values
+from .vertex import power_box_crossing, power_vertex
 
 
 @njit(**NJIT)
-def _crossing(ax, ay, sa, bx, by, sb):
-    """Where the segment ``a -> b`` meets the clip line (signed values ``sa``, ``sb``).
+def box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
+    """Box cut by the power bisectors of site ``i`` with ``nbrs[:nn]``; result in ``p``.
 
-    Interpolated from the endpoint nearer the line: ``a + 1.0 * (b - a)`` need not round to
-    ``b``, and a crossing at a box corner then landed just past it (a self-intersecting
-    spike in the ring).
+    Returns the vertex count (0 when less than a polygon is left). Edge owners are the
+    neighbours, and -1 (left), -2 (bottom), -3 (right), -4 (top) on the box sides. All
+    buffers need room for ``nn + 5`` vertices; ``q`` and ``ss`` are scratch.
     """
-    if abs(sa) <= abs(sb):
-        t = sa / (sa - sb)
-        return ax + t * (bx - ax), ay + t * (by - ay)
-    t = sb / (sb - sa)
-    return bx + t * (ax - bx), by + t * (ay - by)
-
-
-@njit(**NJIT)
-def _clip(px, py, po, m, qx, qy, qo, dx, dy, c, ox, oy, j):
-    """Keep the part of polygon ``p`` (``m`` vertices) where ``2 d.(x - o) <= c``; into ``q``."""
-    out = 0
-    if m == 0:
-        return 0
-    s_prev = 2.0 * (dx * (px[m - 1] - ox) + dy * (py[m - 1] - oy)) - c
-    for k in range(m):
-        if out + 2 > qx.shape[0]:
-            break  # never reached for convex input; guards the buffers against noise
-        # edge (k - 1) -> k, owner po[k - 1]
-        kp = k - 1 if k > 0 else m - 1
-        s = 2.0 * (dx * (px[k] - ox) + dy * (py[k] - oy)) - c
-        if s_prev <= 0.0:
-            if s > 0.0:
-                # leaving: the crossing starts an edge on the clip line
-                qx[out], qy[out] = _crossing(px[kp], py[kp], s_prev, px[k], py[k], s)
-                qo[out] = j
-                out += 1
-        else:
-            if s <= 0.0:
-                # entering: the crossing continues the original edge
-                qx[out], qy[out] = _crossing(px[kp], py[kp], s_prev, px[k], py[k], s)
-                qo[out] = po[kp]
-                out += 1
-        if s <= 0.0:
-            qx[out] = px[k]
-            qy[out] = py[k]
-            qo[out] = po[k]
-            out += 1
-        s_prev = s
-    return out
-
-
-@njit(**NJIT)
-def _cell(i, xs, ys, ws, indptr, indices, box, px, py, po, qx, qy, qo):
-    """Power cell of site ``i`` clipped to ``box``; returns its vertex count (in ``p``)."""
     px[0] = box[0]
     py[0] = box[1]
     px[1] = box[2]
@@ -84,35 +49,96 @@ def _cell(i, xs, ys, ws, indptr, indices, box, px, py, po, qx, qy, qo):
     py[2] = box[3]
     px[3] = box[0]
     py[3] = box[3]
-    for k in range(4):
-        po[k] = -1
+    pw[0] = -2  # bottom
+    pw[1] = -3  # right
+    pw[2] = -4  # top
+    pw[3] = -1  # left
     m = 4
-    ox = xs[i]
-    oy = ys[i]
-    for e in range(indptr[i], indptr[i + 1]):
-        j = indices[e]
-        dx = xs[j] - ox
-        dy = ys[j] - oy
+    sx = xs[i]
+    sy = ys[i]
+    swapped = False
+    for k in range(nn):
+        j = nbrs[k]
+        dx = xs[j] - sx
+        dy = ys[j] - sy
         # the weight difference first: |d|^2 + w_i would round |d|^2 away when the weights
         # are large, and sites i and j would then see two different bisectors (a gap)
-        c = dx * dx + dy * dy + (ws[i] - ws[j])
-        m = _clip(px, py, po, m, qx, qy, qo, dx, dy, c, ox, oy, j)
-        for k in range(m):
-            px[k] = qx[k]
-            py[k] = qy[k]
-            po[k] = qo[k]
-        if m == 0:
-            break
-    r = _dedupe_ring(px, py, po, m)  # repeated vertices: a clip line through a vertex
-    if r == 0:
+        h = 0.5 * (dx * dx + dy * dy + (ws[i] - ws[j]))
+        if plane_values(px, py, 0, m, dx, dy, sx, sy, h, ss) <= 0.0:
+            continue
+        m = cut_ring(px, py, pw, 0, m, ss, qx, qy, qw, 0, j)
+        if m < 3:
+            return 0
+        px, qx = qx, px
+        py, qy = qy, py
+        pw, qw = qw, pw
+        swapped = not swapped
+    if swapped:
+        for v in range(m):
+            qx[v] = px[v]
+            qy[v] = py[v]
+            qw[v] = pw[v]
+    return m
+
+
+@njit(**NJIT)
+def _named_vertices(i, xs, ys, ws, px, py, pw, m, box, qx, qy):
+    """Replace each vertex of ring ``p[:m]`` by the one computed from its name (in place).
+
+    A vertex between two bisector edges is the power vertex of ``i`` and their owners; one
+    between a bisector and a box side is the bisector's crossing with that side; box
+    corners are exact already. Where several cells meet at one point (power-cocircular
+    sites) a ring can have two vertices a few ulps apart that named copies could swap, and
+    an ill-conditioned name can be far from the cut: those vertices stay as cut.
+    """
+    near = POWER_CROWDED_RTOL * max(box[2] - box[0], box[3] - box[1])
+    for v in range(m):
+        vp = v - 1 if v > 0 else m - 1
+        vn = v + 1 if v + 1 < m else 0
+        x = px[v]
+        y = py[v]
+        gap = min(max(abs(x - px[vp]), abs(y - py[vp])), max(abs(x - px[vn]), abs(y - py[vn])))
+        a = pw[vp]
+        b = pw[v]
+        if gap <= near or a == b:
+            nx = x
+            ny = y
+        elif a >= 0 and b >= 0:
+            nx, ny = power_vertex(i, a, b, xs, ys, ws)
+        elif a >= 0 or b >= 0:
+            nx, ny = power_box_crossing(i, a if a >= 0 else b, xs, ys, ws, b if a >= 0 else a, box)
+        else:
+            nx = x
+            ny = y
+        if not (abs(nx - x) <= near and abs(ny - y) <= near):
+            nx = x  # NaN (bisector parallel to the side) or an ill-conditioned name
+            ny = y
+        qx[v] = nx
+        qy[v] = ny
+    for v in range(m):
+        px[v] = qx[v]
+        py[v] = qy[v]
+
+
+@njit(**NJIT)
+def _cell(i, xs, ys, ws, indptr, indices, box, px, py, po, qx, qy, qo, ss):
+    """Power cell of site ``i`` clipped to ``box``; returns its vertex count (in ``p``)."""
+    nb = indices[indptr[i] : indptr[i + 1]]
+    m = box_cell(i, xs, ys, ws, nb, nb.shape[0], box, px, py, po, qx, qy, qo, ss)
+    if m == 0:
         return 0
+    _named_vertices(i, xs, ys, ws, px, py, po, m, box, qx, qy)
+    ox = xs[i]
+    oy = ys[i]
     area2 = 0.0
-    for k in range(r):
-        kn = k + 1 if k + 1 < r else 0
+    for k in range(m):
+        kn = k + 1 if k + 1 < m else 0
         area2 += (px[k] - ox) * (py[kn] - oy) - (px[kn] - ox) * (py[k] - oy)
+        if po[k] < 0:
+            po[k] = -1
     if not area2 > 0.0:
         return 0
-    return r
+    return m
 
 
 @njit(**NJIT_PARALLEL)
@@ -129,6 +155,11 @@ def power_cells(xs, ys, ws, indptr, indices, box, active):
         ``(xmin, ymin, xmax, ymax)``.
     active : (n,) bool
         Sites whose cell is computed; the others get an empty cell.
+
+    Returns
+    -------
+    coords, lengths, owner
+        As in the module docstring.
     """
     n = xs.shape[0]
     cap = np.zeros(n + 1, dtype=np.int64)
@@ -148,7 +179,8 @@ def power_cells(xs, ys, ws, indptr, indices, box, active):
         qx = np.zeros(size)
         qy = np.zeros(size)
         qo = np.zeros(size, dtype=np.int64)
-        m = _cell(i, xs, ys, ws, indptr, indices, box, px, py, po, qx, qy, qo)
+        ss = np.zeros(size)
+        m = _cell(i, xs, ys, ws, indptr, indices, box, px, py, po, qx, qy, qo, ss)
         if m > 0:
             b = cap[i]
             for k in range(m):

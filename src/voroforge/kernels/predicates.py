@@ -4,9 +4,10 @@
 clockwise and zero when collinear. ``incircle(a, b, c, d)`` is positive when ``d`` lies
 strictly inside the circle through the counter-clockwise triangle ``a, b, c``. Both are
 *exact*: the fast filter answers when its error bound proves the sign, and otherwise the
-sign is computed with floating-point expansions (Shewchuk, "Adaptive Precision
-Floating-Point Arithmetic and Fast Robust Geometric Predicates", 1997). The exact code
-lives in separate, non-inlined functions so that the hot path stays small.
+sign is computed with floating-point expansions (``kernels/expansion``; Shewchuk, "Adaptive
+Precision Floating-Point Arithmetic and Fast Robust Geometric Predicates", 1997). The exact
+code lives in separate, non-inlined functions so that the hot path stays small. Circumcentres
+are in ``kernels/vertex`` (one routine for every vertex of every diagram).
 
 Like Shewchuk's, the arithmetic is exact only when no product underflows: every coordinate
 must be 0 or at least ``2**-188`` in magnitude, and below ``2**200``. The engine guarantees
@@ -23,9 +24,19 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
+from .expansion import (
+    cross,
+    drop_zeros,
+    expansion_sum,
+    grow,
+    multiply,
+    square_sum,
+    sum3,
+    two_diff,
+    two_product,
+)
 
 _EPS = 2.0**-53
-_SPLITTER = 2.0**27 + 1.0
 _CCW_BOUND = (3.0 + 16.0 * _EPS) * _EPS
 _ICC_BOUND = (10.0 + 96.0 * _EPS) * _EPS
 # Shewchuk's stage B and C bounds for incircle (see ``_incircle_adapt``); stage C's is
@@ -36,181 +47,6 @@ _RESULT_BOUND = (3.0 + 8.0 * _EPS) * _EPS
 
 
 @njit(**NJIT)
-def _two_sum(a, b):
-    x = a + b
-    bv = x - a
-    av = x - bv
-    return x, (a - av) + (b - bv)
-
-
-@njit(**NJIT)
-def _two_diff(a, b):
-    x = a - b
-    bv = a - x
-    av = x + bv
-    return x, (a - av) + (bv - b)
-
-
-@njit(**NJIT)
-def _split(a):
-    c = _SPLITTER * a
-    big = c - a
-    hi = c - big
-    return hi, a - hi
-
-
-@njit(**NJIT)
-def _two_product(a, b):
-    x = a * b
-    ahi, alo = _split(a)
-    bhi, blo = _split(b)
-    err = x - ahi * bhi
-    err -= alo * bhi
-    err -= ahi * blo
-    return x, alo * blo - err
-
-
-@njit(**NJIT)
-def _two_two_diff(a1, a0, b1, b0, out):
-    """Store the 4-component expansion ``(a1 + a0) - (b1 + b0)`` in ``out``."""
-    i, x0 = _two_diff(a0, b0)
-    j, r0 = _two_sum(a1, i)
-    i, x1 = _two_diff(r0, b1)
-    x3, x2 = _two_sum(j, i)
-    out[0] = x0
-    out[1] = x1
-    out[2] = x2
-    out[3] = x3
-    return 4
-
-
-@njit(**NJIT)
-def _expansion_sum(e, elen, f, flen, h):
-    """Exact sum of two nonoverlapping expansions into ``h``; returns its length.
-
-    Zero components are dropped. ``h`` needs room for ``elen + flen`` components.
-    """
-    if elen == 0:
-        for i in range(flen):
-            h[i] = f[i]
-        return flen
-    if flen == 0:
-        for i in range(elen):
-            h[i] = e[i]
-        return elen
-    ei = 0
-    fi = 0
-    enow = e[0]
-    fnow = f[0]
-    if (fnow > enow) == (fnow > -enow):
-        q = enow
-        ei += 1
-    else:
-        q = fnow
-        fi += 1
-    hlen = 0
-    if ei < elen and fi < flen:
-        enow = e[ei]
-        fnow = f[fi]
-        if (fnow > enow) == (fnow > -enow):
-            q, hh = _two_sum(enow, q)  # fast_two_sum is valid here but two_sum is safe
-            ei += 1
-        else:
-            q, hh = _two_sum(fnow, q)
-            fi += 1
-        if hh != 0.0:
-            h[hlen] = hh
-            hlen += 1
-        while ei < elen and fi < flen:
-            enow = e[ei]
-            fnow = f[fi]
-            if (fnow > enow) == (fnow > -enow):
-                q, hh = _two_sum(q, enow)
-                ei += 1
-            else:
-                q, hh = _two_sum(q, fnow)
-                fi += 1
-            if hh != 0.0:
-                h[hlen] = hh
-                hlen += 1
-    while ei < elen:
-        q, hh = _two_sum(q, e[ei])
-        ei += 1
-        if hh != 0.0:
-            h[hlen] = hh
-            hlen += 1
-    while fi < flen:
-        q, hh = _two_sum(q, f[fi])
-        fi += 1
-        if hh != 0.0:
-            h[hlen] = hh
-            hlen += 1
-    if q != 0.0 or hlen == 0:
-        h[hlen] = q
-        hlen += 1
-    return hlen
-
-
-@njit(**NJIT)
-def _scale_expansion(e, elen, b, h):
-    """Exact product of an expansion and a double into ``h`` (room for ``2 * elen``)."""
-    bhi, blo = _split(b)
-    hlen = 0
-    x = e[0] * b
-    ahi, alo = _split(e[0])
-    err = x - ahi * bhi
-    err -= alo * bhi
-    err -= ahi * blo
-    q = x
-    hh = alo * blo - err
-    if hh != 0.0:
-        h[hlen] = hh
-        hlen += 1
-    for i in range(1, elen):
-        enow = e[i]
-        p1 = enow * b
-        ahi, alo = _split(enow)
-        err = p1 - ahi * bhi
-        err -= alo * bhi
-        err -= ahi * blo
-        p0 = alo * blo - err
-        s, hh = _two_sum(q, p0)
-        if hh != 0.0:
-            h[hlen] = hh
-            hlen += 1
-        q = p1 + s
-        hh = s - (q - p1)
-        if hh != 0.0:
-            h[hlen] = hh
-            hlen += 1
-    if q != 0.0 or hlen == 0:
-        h[hlen] = q
-        hlen += 1
-    return hlen
-
-
-@njit(**NJIT)
-def _multiply(e, elen, f, flen, h, tmp, acc):
-    """Exact product of two expansions into ``h``; ``tmp``/``acc`` are scratch buffers."""
-    hlen = 0
-    for k in range(flen):
-        tlen = _scale_expansion(e, elen, f[k], tmp)
-        alen = _expansion_sum(h, hlen, tmp, tlen, acc)
-        for i in range(alen):
-            h[i] = acc[i]
-        hlen = alen
-    return hlen
-
-
-@njit(**NJIT)
-def _cross(ax, ay, bx, by, out):
-    """4-component expansion of ``ax * by - bx * ay``."""
-    p1, p0 = _two_product(ax, by)
-    q1, q0 = _two_product(bx, ay)
-    return _two_two_diff(p1, p0, q1, q0, out)
-
-
-@njit(**NJIT)
 def _orient_exact(ax, ay, bx, by, cx, cy):
     """Exact sign of orient2d from the untranslated 3x3 determinant."""
     t1 = np.zeros(4)
@@ -218,11 +54,11 @@ def _orient_exact(ax, ay, bx, by, cx, cy):
     t3 = np.zeros(4)
     s = np.zeros(8)
     r = np.zeros(12)
-    _cross(ax, ay, bx, by, t1)
-    _cross(bx, by, cx, cy, t2)
-    _cross(cx, cy, ax, ay, t3)
-    slen = _expansion_sum(t1, 4, t2, 4, s)
-    rlen = _expansion_sum(s, slen, t3, 4, r)
+    cross(ax, ay, bx, by, t1)
+    cross(bx, by, cx, cy, t2)
+    cross(cx, cy, ax, ay, t3)
+    slen = expansion_sum(t1, 4, t2, 4, s)
+    rlen = expansion_sum(s, slen, t3, 4, r)
     return r[rlen - 1]
 
 
@@ -236,62 +72,6 @@ def orient2d(ax, ay, bx, by, cx, cy):
     if abs(det) >= _CCW_BOUND * detsum:
         return det
     return _orient_exact(ax, ay, bx, by, cx, cy)
-
-
-@njit(**NJIT)
-def _orient3(p, plen, q, qlen, r, rlen, out, tmp):
-    """``out = p + q + r`` for expansions (used for the 3x3 minors of incircle)."""
-    tlen = _expansion_sum(p, plen, q, qlen, tmp)
-    return _expansion_sum(tmp, tlen, r, rlen, out)
-
-
-@njit(**NJIT)
-def _lift(x, y, out):
-    """4-component expansion of ``x * x + y * y`` (Two-Two-Sum of the exact squares)."""
-    x1, x0 = _two_product(x, x)
-    y1, y0 = _two_product(y, y)
-    i, o0 = _two_sum(x0, y0)
-    j, r0 = _two_sum(x1, i)
-    i, o1 = _two_sum(r0, y1)
-    o3, o2 = _two_sum(j, i)
-    out[0] = o0
-    out[1] = o1
-    out[2] = o2
-    out[3] = o3
-    return 4
-
-
-@njit(**NJIT)
-def _drop_zeros(e, elen):
-    """Remove the zero components of ``e`` in place (keeping one if all are zero)."""
-    n = 0
-    for i in range(elen):
-        if e[i] != 0.0:
-            e[n] = e[i]
-            n += 1
-    if n == 0:
-        e[0] = 0.0
-        n = 1
-    return n
-
-
-@njit(**NJIT)
-def _grow(e, elen, b):
-    """Add the double ``b`` to the expansion ``e`` exactly, in place; returns the new length.
-
-    Zero components are dropped; ``e`` needs room for ``elen + 1`` components.
-    """
-    q = b
-    hlen = 0
-    for i in range(elen):
-        q, hh = _two_sum(q, e[i])
-        if hh != 0.0:
-            e[hlen] = hh  # hlen <= i: e[i] was read already
-            hlen += 1
-    if q != 0.0 or hlen == 0:
-        e[hlen] = q
-        hlen += 1
-    return hlen
 
 
 @njit(**NJIT)
@@ -314,29 +94,29 @@ def _incircle_translated_exact(adx, ady, bdx, bdy, cdx, cdy):
     tlen = 0
     for k in range(3):
         if k == 0:
-            llen = _lift(adx, ady, lift)
-            _cross(bdx, bdy, cdx, cdy, minor)
+            llen = square_sum(adx, ady, lift)
+            cross(bdx, bdy, cdx, cdy, minor)
         elif k == 1:
-            llen = _lift(bdx, bdy, lift)
-            _cross(cdx, cdy, adx, ady, minor)
+            llen = square_sum(bdx, bdy, lift)
+            cross(cdx, cdy, adx, ady, minor)
         else:
-            llen = _lift(cdx, cdy, lift)
-            _cross(adx, ady, bdx, bdy, minor)
+            llen = square_sum(cdx, cdy, lift)
+            cross(adx, ady, bdx, bdy, minor)
         # differences with few bits or zeros (grids, integers) leave zero components:
         # dropping them makes the product cheaper
-        mlen = _drop_zeros(minor, 4)
-        llen = _drop_zeros(lift, llen)
+        mlen = drop_zeros(minor, 4)
+        llen = drop_zeros(lift, llen)
         if mlen * llen <= 8:
             # few components (grids, integers): add the exact partial products to the total
             # one by one, cheaper than forming the product expansion and merging it
             for i in range(mlen):
                 for j in range(llen):
-                    p1, p0 = _two_product(minor[i], lift[j])
-                    tlen = _grow(total, tlen, p0)
-                    tlen = _grow(total, tlen, p1)
+                    p1, p0 = two_product(minor[i], lift[j])
+                    tlen = grow(total, tlen, p0)
+                    tlen = grow(total, tlen, p1)
             continue
-        plen = _multiply(minor, mlen, lift, llen, prod, tmp, acc)
-        nlen = _expansion_sum(total, tlen, prod, plen, acc)
+        plen = multiply(minor, mlen, lift, llen, prod, tmp, acc)
+        nlen = expansion_sum(total, tlen, prod, plen, acc)
         for i in range(nlen):
             total[i] = acc[i]
         tlen = nlen
@@ -364,12 +144,12 @@ def _incircle_full_exact(ax, ay, bx, by, cx, cy, dx, dy):
     ca = buf[20:24]
     bd = buf[24:28]
     db = buf[28:32]
-    _cross(ax, ay, bx, by, ab)
-    _cross(bx, by, cx, cy, bc)
-    _cross(cx, cy, dx, dy, cd)
-    _cross(dx, dy, ax, ay, da)
-    _cross(ax, ay, cx, cy, ac)
-    _cross(bx, by, dx, dy, bd)
+    cross(ax, ay, bx, by, ab)
+    cross(bx, by, cx, cy, bc)
+    cross(cx, cy, dx, dy, cd)
+    cross(dx, dy, ax, ay, da)
+    cross(ax, ay, cx, cy, ac)
+    cross(bx, by, dx, dy, bd)
     for i in range(4):
         ca[i] = -ac[i]
         db[i] = -bd[i]
@@ -383,25 +163,25 @@ def _incircle_full_exact(ax, ay, bx, by, cx, cy, dx, dy):
     tlen = 0
     for k in range(4):
         if k == 0:
-            mlen = _orient3(bc, 4, cd, 4, db, 4, minor, tmp8)
-            llen = _lift(ax, ay, lift)
+            mlen = sum3(bc, 4, cd, 4, db, 4, minor, tmp8)
+            llen = square_sum(ax, ay, lift)
             sign = 1.0
         elif k == 1:
-            mlen = _orient3(ac, 4, cd, 4, da, 4, minor, tmp8)
-            llen = _lift(bx, by, lift)
+            mlen = sum3(ac, 4, cd, 4, da, 4, minor, tmp8)
+            llen = square_sum(bx, by, lift)
             sign = -1.0
         elif k == 2:
-            mlen = _orient3(ab, 4, bd, 4, da, 4, minor, tmp8)
-            llen = _lift(cx, cy, lift)
+            mlen = sum3(ab, 4, bd, 4, da, 4, minor, tmp8)
+            llen = square_sum(cx, cy, lift)
             sign = 1.0
         else:
-            mlen = _orient3(ab, 4, bc, 4, ca, 4, minor, tmp8)
-            llen = _lift(dx, dy, lift)
+            mlen = sum3(ab, 4, bc, 4, ca, 4, minor, tmp8)
+            llen = square_sum(dx, dy, lift)
             sign = -1.0
         for i in range(llen):
             lift[i] = sign * lift[i]
-        plen = _multiply(minor, mlen, lift, llen, prod, stmp, acc)
-        nlen = _expansion_sum(total, tlen, prod, plen, acc)
+        plen = multiply(minor, mlen, lift, llen, prod, stmp, acc)
+        nlen = expansion_sum(total, tlen, prod, plen, acc)
         for i in range(nlen):
             total[i] = acc[i]
         tlen = nlen
@@ -427,12 +207,12 @@ def _incircle_adapt(ax, ay, bx, by, cx, cy, dx, dy, permanent):
       here), plus ``slack`` and Shewchuk's ``(3 + 8 eps) eps |E|`` for the final sum.
     * Otherwise the untranslated 4x4 determinant in expansion arithmetic decides.
     """
-    adx, adxt = _two_diff(ax, dx)
-    ady, adyt = _two_diff(ay, dy)
-    bdx, bdxt = _two_diff(bx, dx)
-    bdy, bdyt = _two_diff(by, dy)
-    cdx, cdxt = _two_diff(cx, dx)
-    cdy, cdyt = _two_diff(cy, dy)
+    adx, adxt = two_diff(ax, dx)
+    ady, adyt = two_diff(ay, dy)
+    bdx, bdxt = two_diff(bx, dx)
+    bdy, bdyt = two_diff(by, dy)
+    cdx, cdxt = two_diff(cx, dx)
+    cdy, cdyt = two_diff(cy, dy)
     top, est, n = _incircle_translated_exact(adx, ady, bdx, bdy, cdx, cdy)
     if adxt == 0.0 and adyt == 0.0 and bdxt == 0.0 and bdyt == 0.0 and cdxt == 0.0 and cdyt == 0.0:
         return top
@@ -495,39 +275,6 @@ def incircle(ax, ay, bx, by, cx, cy, dx, dy):
     if abs(det) > _ICC_BOUND * permanent:
         return det
     return _incircle_adapt(ax, ay, bx, by, cx, cy, dx, dy, permanent)
-
-
-@njit(**NJIT)
-def circumcenter(ax, ay, bx, by, cx, cy):
-    """Circumcentre of a triangle.
-
-    Computed relative to the vertex opposite the longest edge, so both of its edge vectors
-    are the short ones (a sliver with one tiny edge keeps its precision), and with the
-    adaptive :func:`orient2d` as the denominator when the float one cannot be trusted.
-    Exactly collinear points give non-finite coordinates.
-    """
-    la = (bx - cx) * (bx - cx) + (by - cy) * (by - cy)
-    lb = (cx - ax) * (cx - ax) + (cy - ay) * (cy - ay)
-    lc = (ax - bx) * (ax - bx) + (ay - by) * (ay - by)
-    if lb >= la and lb >= lc:
-        ox, oy, px, py, qx, qy = bx, by, cx, cy, ax, ay
-    elif lc >= la:
-        ox, oy, px, py, qx, qy = cx, cy, ax, ay, bx, by
-    else:
-        ox, oy, px, py, qx, qy = ax, ay, bx, by, cx, cy
-    dx = px - ox
-    dy = py - oy
-    ex = qx - ox
-    ey = qy - oy
-    bl = dx * dx + dy * dy
-    cl = ex * ex + ey * ey
-    left = dx * ey
-    right = dy * ex
-    det = left - right
-    if not abs(det) >= 1e-8 * (abs(left) + abs(right)) or det == 0.0:
-        det = orient2d(ox, oy, px, py, qx, qy)
-    d = 0.5 / det
-    return ox + (ey * bl - dy * cl) * d, oy + (dx * cl - ex * bl) * d
 
 
 @njit(**NJIT)

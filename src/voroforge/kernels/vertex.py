@@ -102,10 +102,18 @@ def before(a, b, xs, ys):
 @njit(**NJIT)
 def sorted_triple(a, b, c, xs, ys):
     """The owners ``a, b, c`` in canonical order (see :func:`before`)."""
+    # one integer type for the swaps (a prange index is unsigned: mixed, numba unifies to float)
+    a = np.int64(a)
+    b = np.int64(b)
+    c = np.int64(c)
+    a = np.int64(a)
+    b = np.int64(b)
     if before(b, a, xs, ys):
         a, b = b, a
     if before(c, b, xs, ys):
         b, c = c, b
+    a = np.int64(a)
+    b = np.int64(b)
     if before(b, a, xs, ys):
         a, b = b, a
     return a, b, c
@@ -151,6 +159,8 @@ def box_crossing(a, b, xs, ys, side, box):
     Computed from the pair in canonical order, so both cells of the pair get the same bits;
     NaN when the bisector is parallel to the side.
     """
+    a = np.int64(a)
+    b = np.int64(b)
     if before(b, a, xs, ys):
         a, b = b, a
     return _side_crossing(xs[a], ys[a], xs[b] - xs[a], ys[b] - ys[a], 0.5, side, box)
@@ -164,6 +174,8 @@ def power_box_crossing(a, b, xs, ys, ws, side, box):
     ``t = 1/2 + (w_a - w_b) / (2 |b - a|^2)``: for equal weights ``t`` is exactly 1/2 and
     the result is :func:`box_crossing`'s, bit for bit.
     """
+    a = np.int64(a)
+    b = np.int64(b)
     if before(b, a, xs, ys):
         a, b = b, a
     dx = xs[b] - xs[a]

@@ -1,11 +1,13 @@
-"""Moments of ragged cells for centroidal Voronoi relaxation.
+"""Moments of rings and of ragged cells: areas, centroids, first and second moments.
 
 Cells come in the GeoArrow multipolygon layout (``coords``, ``ring_offsets``,
 ``polygon_offsets``, ``geom_offsets``); the first ring of a polygon is its exterior, the rest
-are holes, and ring orientation does not matter. All moments of cell ``g`` are taken relative
-to ``origin[g]`` (its site), so the CVT energy ``∫ |x - z_g|^2`` needs no cancellation.
+are holes, and ring orientation does not matter. One shoelace sum (:func:`ring_sums`) gives
+every moment; sums are taken relative to an origin (a cell's site or first vertex) so large
+coordinates keep their precision and the CVT energy ``∫ |x - z_g|^2`` needs no cancellation.
 
-Outputs per cell: ``mass`` (∫ρ), ``first (2,)`` (∫ρ (x - z)) and ``second`` (∫ρ |x - z|^2).
+Moment outputs per cell: ``mass`` (∫ρ), ``first (2,)`` (∫ρ (x - z)) and ``second``
+(∫ρ |x - z|^2).
 """
 
 from __future__ import annotations
@@ -17,23 +19,77 @@ from ..config import NJIT, NJIT_PARALLEL
 
 
 @njit(**NJIT)
-def _ring_moments(coords, a, b, ox, oy):
-    """Signed area, first and second moments of the closed ring ``coords[a:b]``."""
+def ring_sums(xs, ys, a, b, ox, oy, closed):
+    """Raw shoelace sums of the ring ``(xs, ys)[a:b]`` relative to ``(ox, oy)``.
+
+    Returns ``(2 A, 6 Mx, 6 My, 12 M2)``: twice the signed area, six times the first moments
+    and twelve times the polar second moment. ``closed``: the last vertex repeats the first
+    (else the edge back to ``a`` is added).
+    """
     m0 = 0.0
     mx = 0.0
     my = 0.0
     m2 = 0.0
-    for k in range(a, b - 1):
-        x0 = coords[k, 0] - ox
-        y0 = coords[k, 1] - oy
-        x1 = coords[k + 1, 0] - ox
-        y1 = coords[k + 1, 1] - oy
+    end = b - 1 if closed else b
+    for k in range(a, end):
+        kn = k + 1 if (closed or k + 1 < b) else a
+        x0 = xs[k] - ox
+        y0 = ys[k] - oy
+        x1 = xs[kn] - ox
+        y1 = ys[kn] - oy
         cr = x0 * y1 - x1 * y0
         m0 += cr
         mx += (x0 + x1) * cr
         my += (y0 + y1) * cr
         m2 += (x0 * x0 + x0 * x1 + x1 * x1 + y0 * y0 + y0 * y1 + y1 * y1) * cr
+    return m0, mx, my, m2
+
+
+@njit(**NJIT)
+def ring_moments(xs, ys, a, b, ox, oy, closed):
+    """Signed area, first and second moments of a ring (see :func:`ring_sums`)."""
+    m0, mx, my, m2 = ring_sums(xs, ys, a, b, ox, oy, closed)
     return m0 / 2.0, mx / 6.0, my / 6.0, m2 / 12.0
+
+
+@njit(**NJIT_PARALLEL)
+def area_centroid(coords, ring_offsets, polygon_offsets, geom_offsets):
+    """Area and area centroid of each geometry.
+
+    The first ring of every polygon is its exterior, the others are holes; ring orientation
+    does not matter. Sums are taken relative to the geometry's first vertex, so coordinates
+    like 500000/4000000 keep their precision. Empty geometries get area 0 and a NaN centroid.
+    """
+    n = geom_offsets.shape[0] - 1
+    xs = coords[:, 0]
+    ys = coords[:, 1]
+    area = np.zeros(n)
+    cen = np.full((n, 2), np.nan)
+    for g in prange(n):
+        p0 = geom_offsets[g]
+        p1 = geom_offsets[g + 1]
+        if p0 == p1:
+            continue
+        first = coords[ring_offsets[polygon_offsets[p0]]]
+        ox = first[0]
+        oy = first[1]
+        a_tot = 0.0
+        mx = 0.0
+        my = 0.0
+        for p in range(p0, p1):
+            for r in range(polygon_offsets[p], polygon_offsets[p + 1]):
+                a, sx, sy, _ = ring_sums(xs, ys, ring_offsets[r], ring_offsets[r + 1], ox, oy, True)
+                sign = 1.0 if a >= 0.0 else -1.0
+                if r != polygon_offsets[p]:
+                    sign = -sign  # holes subtract
+                a_tot += sign * a
+                mx += sign * sx
+                my += sign * sy
+        area[g] = 0.5 * a_tot
+        if a_tot != 0.0:
+            cen[g, 0] = ox + mx / (3.0 * a_tot)
+            cen[g, 1] = oy + my / (3.0 * a_tot)
+    return area, cen
 
 
 @njit(**NJIT_PARALLEL)
@@ -42,6 +98,8 @@ def uniform_moments(
 ):
     """Exact (closed-form) moments of unit density; writes into ``mass``, ``first``, ``second``."""
     n = geom_offsets.shape[0] - 1
+    xs = coords[:, 0]
+    ys = coords[:, 1]
     for g in prange(n):
         ox = origin[g, 0]
         oy = origin[g, 1]
@@ -51,7 +109,9 @@ def uniform_moments(
         s2 = 0.0
         for p in range(geom_offsets[g], geom_offsets[g + 1]):
             for r in range(polygon_offsets[p], polygon_offsets[p + 1]):
-                a0, ax, ay, a2 = _ring_moments(coords, ring_offsets[r], ring_offsets[r + 1], ox, oy)
+                a0, ax, ay, a2 = ring_moments(
+                    xs, ys, ring_offsets[r], ring_offsets[r + 1], ox, oy, True
+                )
                 sign = 1.0 if a0 >= 0.0 else -1.0
                 if r != polygon_offsets[p]:
                     sign = -sign  # holes subtract
@@ -99,26 +159,6 @@ def _clip_axis(px, py, m, qx, qy, axis, value, keep_below):
             out += 1
         sp = s
     return out
-
-
-@njit(**NJIT)
-def _open_moments(px, py, m):
-    m0 = 0.0
-    mx = 0.0
-    my = 0.0
-    m2 = 0.0
-    for k in range(m):
-        kn = k + 1 if k + 1 < m else 0
-        x0 = px[k]
-        y0 = py[k]
-        x1 = px[kn]
-        y1 = py[kn]
-        cr = x0 * y1 - x1 * y0
-        m0 += cr
-        mx += (x0 + x1) * cr
-        my += (y0 + y1) * cr
-        m2 += (x0 * x0 + x0 * x1 + x1 * x1 + y0 * y0 + y0 * y1 + y1 * y1) * cr
-    return m0 / 2.0, mx / 6.0, my / 6.0, m2 / 12.0
 
 
 @njit(**NJIT)
@@ -201,7 +241,7 @@ def raster_moments(
                         m4 = _clip_axis(t3x, t3y, m3, t4x, t4y, 0, left, False)
                         if m4 < 3:
                             continue
-                        a0, ax, ay, a2 = _open_moments(t4x, t4y, m4)
+                        a0, ax, ay, a2 = ring_moments(t4x, t4y, 0, m4, 0.0, 0.0, False)
                         f = sign * val
                         s0 += f * a0
                         sx += f * ax
