@@ -200,16 +200,10 @@ def union(*geoms):
 
 
 def from_svg(path, *, tolerance: float = CURVE_TOLERANCE, flip_y: bool = True):
-    """Read the filled shapes of an SVG file as one boundary (even-odd nesting).
+    """Read the filled shapes of an SVG file as one valid boundary (even-odd nesting).
 
-    Reads ``<path>`` (all commands, absolute and relative, curves and arcs flattened),
-    ``<polygon>``, ``<rect>`` (rounded corners too), ``<circle>`` and ``<ellipse>``;
-    ``transform`` attributes on elements and their ``<g>`` parents are applied. Each
-    subpath is a closed ring, and all rings of the file are combined by the even-odd rule,
-    so a shape drawn inside another is a hole. Ignored: ``<defs>``/``<clipPath>``/
-    ``<mask>``/``<symbol>`` content, ``<use>``, ``<polyline>``/``<line>`` (not closed), text,
-    CSS styles (fill rules and strokes: everything counts as a filled outline). The parser
-    is :func:`voroforge.io.readers.read_svg`.
+    The parser is :func:`voroforge.io.readers.read_svg` (paths with every command, polygons,
+    rects, circles, ellipses, transforms, units, y flipped up); this checks its result.
 
     Parameters
     ----------
@@ -218,15 +212,13 @@ def from_svg(path, *, tolerance: float = CURVE_TOLERANCE, flip_y: bool = True):
     tolerance : float
         Largest distance between a curve and its polyline, in output units.
     flip_y : bool
-        SVG's y axis points down. True (default): the result has y up with the bottom of the
-        ``viewBox`` (or the drawing's lowest point, without a viewBox) at y = 0, so it looks
-        the same as in a drawing program and ``voroforge.io.write_svg`` writes it back upright.
+        True (default): y up, the bottom of the ``viewBox`` at y = 0.
 
     Returns
     -------
     shapely.Polygon or shapely.MultiPolygon
-        In millimetres when the root ``width`` has a physical unit (``"600mm"``, ``"8in"``,
-        ``"96px"`` at 96 px per inch) and a ``viewBox``; otherwise 1 user unit = 1 mm.
+        In millimetres when the root ``width`` has a physical unit and a ``viewBox``
+        (see :func:`svg_in_mm`); otherwise 1 user unit = 1 mm.
 
     Raises
     ------
@@ -239,18 +231,8 @@ def from_svg(path, *, tolerance: float = CURVE_TOLERANCE, flip_y: bool = True):
 def curves_from_svg(path, *, tolerance: float = CURVE_TOLERANCE, flip_y: bool = True):
     """Read every outline of an SVG file as lines (for :class:`CurveAttractor`, say).
 
-    Open and closed ``<path>`` subpaths, ``<line>``, ``<polyline>``, ``<polygon>``,
-    ``<rect>``, ``<circle>`` and ``<ellipse>``, with transforms, units and the y flip of
-    :func:`from_svg` (:func:`voroforge.io.readers.read_svg_curves`).
-
-    Parameters
-    ----------
-    path : str or Path
-        The SVG file.
-    tolerance : float
-        Largest distance between a curve and its polyline, in output units.
-    flip_y : bool
-        As in :func:`from_svg`.
+    :func:`voroforge.io.readers.read_svg_curves`: open and closed outlines, with the
+    transforms, units and y flip of :func:`from_svg`.
 
     Returns
     -------
@@ -267,14 +249,11 @@ def from_dxf(
     loose: bool = True,
     to_mm: bool = False,
 ):
-    """Read closed outlines from a DXF file as one boundary (even-odd nesting).
+    """Read closed outlines from a DXF file as one valid boundary (even-odd nesting).
 
-    Reads the modelspace: closed ``LWPOLYLINE`` and 2D ``POLYLINE`` (bulges flattened as true
-    arcs), ``CIRCLE``, full ``ELLIPSE`` and closed ``SPLINE`` (flattened by ezdxf). With
-    ``loose=True`` the ``LINE`` and ``ARC`` entities and open polylines are joined into
-    closed faces as well (``shapely.polygonize``), as many drawings are made of loose
-    segments. Blocks (``INSERT``) and hatches are ignored. The parser is
-    :func:`voroforge.io.readers.read_dxf`.
+    The parser is :func:`voroforge.io.readers.read_dxf` (closed polylines with bulges as
+    true arcs, circles, ellipses, splines; loose lines and arcs joined into faces unless
+    ``loose=False``); this checks its result.
 
     Parameters
     ----------
@@ -287,9 +266,7 @@ def from_dxf(
     loose : bool
         Also assemble loose lines/arcs/open polylines into faces.
     to_mm : bool
-        Scale to millimetres by the header's ``$INSUNITS`` (inches, feet, cm, m, ...;
-        unitless drawings stay as they are). Off by default: many programs (ezdxf's own
-        ``new()`` among them) write "metres" for drawings made in millimetres.
+        Scale to millimetres by the header's ``$INSUNITS`` (off by default).
 
     Returns
     -------
