@@ -13,11 +13,16 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
-from voroforge.kernels.predicates import incircle, orient2d
+from reference import exact_circumcentre, exact_incircle, exact_orient, first_occurrence
 
-from reference import exact_orient, first_occurrence
-
-_ICC_BOUND = (10.0 + 96.0 * 2.0**-53) * 2.0**-53
+# Nothing here calls the engine's predicates or circumcentres: float filters with Shewchuk's
+# error bounds (doubled for margin) decide the clear cases and reference.py's exact rational
+# arithmetic the rest, so an error in the engine's own predicates cannot hide itself.
+_EPS = 2.0**-53
+_CCW_BOUND = (3.0 + 16.0 * _EPS) * _EPS
+_ICC_BOUND = (10.0 + 96.0 * _EPS) * _EPS
+#: Circumcentres: allowed error, in units of the conditioning bound of ``_circumcentre_tol``.
+CIRCUMCENTRE_ULPS = 16.0
 #: Above this many points the empty-circle check only tests points near each circumcentre.
 EXHAUSTIVE_MAX = 2000
 
@@ -50,6 +55,38 @@ def _all_collinear(pts: np.ndarray) -> bool:
     far = np.argmax(((pts - a) ** 2).sum(1))
     b = pts[far]
     return all(exact_orient(a, b, c) == 0 for c in pts)
+
+
+def orient_signs(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """Exact signs of ``orient(a[k], b[k], c[k])`` for ``(m, 2)`` arrays (+1 counter-clockwise).
+
+    A float filter settles the clear cases; the rest go to :func:`reference.exact_orient`.
+    """
+    a, b, c = (np.asarray(v, dtype=np.float64).reshape(-1, 2) for v in (a, b, c))
+    left = (a[:, 0] - c[:, 0]) * (b[:, 1] - c[:, 1])
+    right = (a[:, 1] - c[:, 1]) * (b[:, 0] - c[:, 0])
+    det = left - right
+    bound = 2.0 * _CCW_BOUND * (np.abs(left) + np.abs(right))
+    out = np.sign(det).astype(np.int64)
+    for k in np.flatnonzero(~(np.abs(det) > bound)):  # also NaN or inf: decide exactly
+        out[k] = exact_orient(a[k], b[k], c[k])
+    return out
+
+
+def _incircle_unsure(pts, tri, ti, pi):
+    """Of the (triangle, point) pairs, those the float incircle filter cannot prove <= 0."""
+    a, b, c = (pts[tri[ti, j]] for j in range(3))
+    d = pts[pi]
+    adx, ady = a[:, 0] - d[:, 0], a[:, 1] - d[:, 1]
+    bdx, bdy = b[:, 0] - d[:, 0], b[:, 1] - d[:, 1]
+    cdx, cdy = c[:, 0] - d[:, 0], c[:, 1] - d[:, 1]
+    bc, cb, ca, ac, ab, ba = bdx * cdy, cdx * bdy, cdx * ady, adx * cdy, adx * bdy, bdx * ady
+    al, bl, cl = adx * adx + ady * ady, bdx * bdx + bdy * bdy, cdx * cdx + cdy * cdy
+    det = al * (bc - cb) + bl * (ca - ac) + cl * (ab - ba)
+    perm = (np.abs(bc) + np.abs(cb)) * al + (np.abs(ca) + np.abs(ac)) * bl
+    perm += (np.abs(ab) + np.abs(ba)) * cl
+    unsure = ~(det <= -2.0 * _ICC_BOUND * perm)
+    return ti[unsure], pi[unsure]
 
 
 def _incircle_candidates(pts: np.ndarray, triangles: np.ndarray, cand: np.ndarray):
@@ -120,18 +157,18 @@ def _near_circumcentre_candidates(pts, triangles, cand):
 
 
 def check_empty_circumcircles(pts: np.ndarray, triangles: np.ndarray, cand: np.ndarray) -> None:
-    """No point of ``cand`` strictly inside any triangle's circumcircle (robust incircle)."""
+    """No point of ``cand`` strictly inside any triangle's circumcircle (exact incircle)."""
     if len(triangles) == 0 or len(cand) == 0:
         return
     if len(cand) <= EXHAUSTIVE_MAX:
         ti, pi = _incircle_candidates(pts, triangles, cand)
     else:
         ti, pi = _near_circumcentre_candidates(pts, triangles, cand)
+        ti, pi = _incircle_unsure(pts, triangles, ti, pi)
     bad = []
     for t, k in zip(ti.tolist(), pi.tolist(), strict=True):
         a, b, c = triangles[t]
-        v = incircle(*pts[a], *pts[b], *pts[c], *pts[k])
-        if v > 0:
+        if exact_incircle(pts[a], pts[b], pts[c], pts[k]) > 0:
             bad.append((t, k))
             if len(bad) >= 5:
                 break
@@ -174,10 +211,8 @@ def validate_triangulation(tri) -> None:
     )
 
     # counter-clockwise, positive area (sign-exact)
-    bad = [
-        k for k, (a, b, c) in enumerate(T.tolist()) if not orient2d(*pts[a], *pts[b], *pts[c]) > 0
-    ]
-    assert not bad, f"triangles not strictly counter-clockwise: {bad[:10]}"
+    bad = np.flatnonzero(orient_signs(pts[T[:, 0]], pts[T[:, 1]], pts[T[:, 2]]) <= 0)
+    assert not len(bad), f"triangles not strictly counter-clockwise: {bad[:10].tolist()}"
 
     # halfedges
     start, end = _halfedge_ends(T)
@@ -201,10 +236,8 @@ def validate_triangulation(tri) -> None:
     bnd_edges = set((start[boundary] * n + end[boundary]).tolist())
     assert hull_edges == bnd_edges, "hull is not the cycle of boundary halfedges"
     hp = pts[hull]
-    turns = [
-        orient2d(*hp[i - 1], *hp[i], *hp[(i + 1) % h]) for i in range(h)
-    ]  # >= 0: convex, collinear allowed
-    assert min(turns) >= 0, "hull is not convex and counter-clockwise"
+    turns = orient_signs(np.roll(hp, 1, axis=0), hp, np.roll(hp, -1, axis=0))
+    assert turns.min() >= 0, "hull is not convex and counter-clockwise"  # collinear allowed
     x, y = hp[:, 0] - hp[0, 0], hp[:, 1] - hp[0, 1]
     assert (x * np.roll(y, -1) - np.roll(x, -1) * y).sum() > 0, "hull is clockwise"
 
@@ -216,6 +249,62 @@ def validate_triangulation(tri) -> None:
     assert t == 2 * nu - 2 - h, f"{t} triangles, expected 2*{nu}-2-{h}"
 
     check_empty_circumcircles(pts, T.astype(np.int64), uniq)
+    if hasattr(tri, "circumcenters"):  # a real Triangulation (tests also validate plain records)
+        scale = np.abs(np.asarray(tri.points, dtype=np.float64)).max(initial=0.0)
+        shift = -int(np.frexp(scale)[1]) if scale > 0 else 0
+        check_circumcentres(pts, T.astype(np.int64), np.ldexp(np.asarray(tri.circumcenters), shift))
+
+
+def _circumcentre_tol(pts: np.ndarray, triangles: np.ndarray) -> np.ndarray:
+    """Error a float circumcentre may have, from the conditioning of each triangle.
+
+    With ``L`` the longest edge and ``D`` twice the area, the centre's offset from a corner
+    is ``N / (2 D)`` with ``|N| <= L^3``: rounding ``N`` costs ``eps L^3 / D`` and rounding
+    ``D`` (relative error ``eps L^2 / D``) as much again times ``R / L <= L^2 / D``; plus an
+    ulp of the coordinates themselves. ``CIRCUMCENTRE_ULPS`` times that.
+    """
+    p = pts[triangles]
+    edges = p - np.roll(p, -1, axis=1)
+    longest = np.sqrt((edges**2).sum(-1).max(1))
+    d, e = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
+    twice = np.abs(d[:, 0] * e[:, 1] - d[:, 1] * e[:, 0])
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        cond = longest**2 / twice
+        tol = CIRCUMCENTRE_ULPS * _EPS * longest * cond * (1.0 + cond)
+    return tol + 2.0 * np.spacing(np.abs(p).max((1, 2)))
+
+
+def check_circumcentres(pts: np.ndarray, triangles: np.ndarray, centres: np.ndarray) -> None:
+    """``centres[k]`` is the circumcentre of triangle ``k`` to within its conditioning.
+
+    The reference is reference.py's exact rational circumcentre, rounded once (an
+    independent formula), for every triangle up to ``EXHAUSTIVE_MAX`` of them; above that
+    a float formula of its own screens them and the exact one judges the suspects.
+    Triangles too ill-conditioned for any float centre (infinite bound) are not judged.
+    """
+    centres = np.asarray(centres, dtype=np.float64)
+    assert centres.shape == (len(triangles), 2), f"circumcenters shape {centres.shape}"
+    tol = _circumcentre_tol(pts, triangles)
+    judged = np.flatnonzero(np.isfinite(tol))
+    if len(triangles) > EXHAUSTIVE_MAX:
+        p = pts[triangles[judged]].astype(np.longdouble)
+        d, e = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+            den = 2 * (d[:, 0] * e[:, 1] - d[:, 1] * e[:, 0])
+            bl, cl = (d**2).sum(1), (e**2).sum(1)
+            ux = p[:, 0, 0] + (e[:, 1] * bl - d[:, 1] * cl) / den
+            uy = p[:, 0, 1] + (d[:, 0] * cl - e[:, 0] * bl) / den
+            err = np.maximum(np.abs(ux - centres[judged, 0]), np.abs(uy - centres[judged, 1]))
+        judged = judged[~(err <= 0.5 * tol[judged])]
+    bad = []
+    for k in judged.tolist():
+        a, b, c = pts[triangles[k]]
+        want = np.array(exact_circumcentre(a, b, c))
+        if not np.abs(centres[k] - want).max() <= tol[k]:
+            bad.append((k, centres[k].tolist(), want.tolist()))
+            if len(bad) >= 3:
+                break
+    assert not bad, f"circumcentres off (triangle, got, exact): {bad}"
 
 
 # ---------------------------------------------------------------------------------------------
@@ -356,6 +445,9 @@ def validate_diagram(d, points, domain=None, *, samples: int = 2000, seed: int =
     xmin, ymin, xmax, ymax = dom.bounds
     q = rng.uniform((xmin, ymin), (xmax, ymax), size=(4 * samples, 2))
     q = q[shapely.contains_xy(dom, q[:, 0], q[:, 1])][:samples]
+    # plus a point inside every cell, so the check runs however thin the domain is
+    q = np.concatenate((q, shapely.get_coordinates(shapely.point_on_surface(cells[ne]))))
+    assert len(q) > 0 or not ne.any(), "no sample points although some cells are not empty"
     if len(q):
         k = min(3, len(uniq))
         dist, idx = cKDTree(pts[uniq]).query(q, k=k)
@@ -380,11 +472,20 @@ def validate_diagram(d, points, domain=None, *, samples: int = 2000, seed: int =
     assert coords.shape == (m, 2, 2) and pairs.shape == (m, 2), "edges have the wrong shape"
     if m == 0:
         assert not nb, "neighbours without edges"
-        return
-    assert pairs.min() >= 0 and pairs.max() < n and np.all(pairs[:, 0] != pairs[:, 1])
+    else:
+        lo = np.minimum(pairs[:, 0], pairs[:, 1]).tolist()
+        hi = np.maximum(pairs[:, 0], pairs[:, 1]).tolist()
+        assert set(zip(lo, hi, strict=True)) == nb, "neighbors != edge pairs"
+        _check_edges(coords, pairs, cells, pts, dup, dom, tol)
+    _check_no_missing_neighbours(cells, pts, dup, nb, tree, tol, scale)
+
+
+def _check_edges(coords, pairs, cells, pts, dup, dom, tol) -> None:
+    """Edges: on their pair's bisector, on both cells' boundaries, once, ends at vertices."""
+    n = len(pts)
     lo = np.minimum(pairs[:, 0], pairs[:, 1])
     hi = np.maximum(pairs[:, 0], pairs[:, 1])
-    assert set(zip(lo.tolist(), hi.tolist(), strict=True)) == nb, "neighbors != edge pairs"
+    assert pairs.min() >= 0 and pairs.max() < n and np.all(pairs[:, 0] != pairs[:, 1])
     assert np.all(dup[pairs] < 0), "an edge belongs to a duplicate site"
     length = np.hypot(*(coords[:, 1] - coords[:, 0]).T)
     assert np.all(length > 0), "zero-length edge"
@@ -394,6 +495,20 @@ def validate_diagram(d, points, domain=None, *, samples: int = 2000, seed: int =
         db = np.hypot(*(coords[:, end] - pts[pairs[:, 1]]).T)
         bad = np.abs(da - db) > 1e-9 * (da + db) + tol
         assert not bad.any(), f"edges off the bisector: {np.flatnonzero(bad)[:10]}"
+    # an end away from the domain's boundary is a Voronoi vertex: no site is nearer than the
+    # edge's own two and a third is as near (a wrong circumcentre moves it off that circle)
+    uniq = np.flatnonzero(dup < 0)
+    if len(uniq) >= 3:
+        ends = coords.reshape(-1, 2)
+        inner = shapely.distance(dom.boundary, shapely.points(ends)) > tol
+        own = np.repeat(pairs, 2, axis=0)[inner]
+        x = ends[inner]
+        dist, _ = cKDTree(pts[uniq]).query(x, k=3)
+        dist = dist.reshape(len(x), 3)
+        mine = np.hypot(*(x - pts[own[:, 0]]).T)
+        slack = 1e-9 * (mine + dist[:, 2]) + tol
+        bad = ~(mine <= dist[:, 0] + slack) | ~(dist[:, 2] <= dist[:, 0] + slack)
+        assert not bad.any(), f"edge ends that are not Voronoi vertices: {x[bad][:5].tolist()}"
     # on both cells' boundaries
     t = np.linspace(0, 1, 5)
     along = coords[:, :1] + t[None, :, None] * (coords[:, 1:] - coords[:, :1])
@@ -412,7 +527,11 @@ def validate_diagram(d, points, domain=None, *, samples: int = 2000, seed: int =
             lines = shapely.linestrings(coords[ks])
             merged = shapely.union_all(lines).length
             assert merged >= length[ks].sum() * (1 - 1e-9), f"edges of pair {key} overlap"
-    # every shared boundary of positive length is an edge
+
+
+def _check_no_missing_neighbours(cells, pts, dup, nb, tree, tol, scale) -> None:
+    """Every shared boundary of positive length is an edge (and so a neighbour pair)."""
+    bounds = shapely.boundary(cells)
     # cells narrower than ``tol`` (sites closer than it) would all look adjacent: shrink it
     uniq = np.flatnonzero(dup < 0)
     if len(uniq) > 1:
