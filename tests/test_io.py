@@ -420,3 +420,14 @@ def test_io_does_not_import_the_design_layer():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip().splitlines()[-1] == "[]"
+
+
+def test_docstring_examples_of_readers_and_arcs():
+    import doctest
+
+    import voroforge.io.arcs
+    import voroforge.io.readers
+
+    for module in (voroforge.io.readers, voroforge.io.arcs):
+        result = doctest.testmod(module)
+        assert result.attempted > 0 and result.failed == 0, module.__name__

@@ -99,6 +99,15 @@ def arc_runs(
         The arc starts at vertex ``start`` and spans ``count`` chords (it ends at vertex
         ``(start + count) % n``); ``sweep`` is its signed angle in radians (positive:
         counter-clockwise). Runs do not overlap and are sorted by ``start``.
+
+    Examples
+    --------
+    A round buffer's 32 chords are two half circles (a bulge cannot close on itself):
+
+    >>> import shapely
+    >>> disc = np.asarray(shapely.Point(0, 0).buffer(1.0, quad_segs=8).exterior.coords)[:-1]
+    >>> [count for _, count, _ in arc_runs(disc)]
+    [16, 16]
     """
     xy = np.asarray(xy, dtype=np.float64).reshape(-1, 2)
     n = len(xy)
