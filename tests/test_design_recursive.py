@@ -181,7 +181,7 @@ def test_subdivide_does_not_launch_the_parallel_area_kernel_per_cell(monkeypatch
     # Recursion builds one small diagram per cell; Diagram.areas runs a numba parallel
     # kernel whose thread wake-up cost ~10 ms a call on a busy machine (a depth-3 design
     # took 15 s instead of 1 s). The tiling guard uses shapely's areas of the built cells.
-    import voroforge.engine.voronoi as engine
+    import voroforge.engine.diagram as engine
     from voroforge.design import recursive
 
     calls = []

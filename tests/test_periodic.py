@@ -248,3 +248,25 @@ def test_thin_boxes_against_tiled_reference(w, n, seed):
     assert wr.areas.sum() == pytest.approx(w * h, rel=1e-10)
     for r in (d.describe(), wr.describe()):
         assert r.euler_ok, str(r)
+
+
+# --- regressions from the QA pass of issue 4 ------------------------------------------------
+
+
+@pytest.mark.parametrize("k", [5, 10])
+def test_periodic_wrap_has_no_rounding_slivers(k):
+    # a grid whose cell edges fall on the box edges: 0.9 - 1 is not -0.1 in floats, so an
+    # image's cell crossed the edge by 1e-17 and each wrapped cell of the last column got a
+    # second, 1e-17-wide polygon part (describe(): Euler FAILED)
+    h = 1.0 / k
+    g = np.stack(np.meshgrid(np.arange(k) * h, np.arange(k) * h), -1).reshape(-1, 2) + h / 2
+    w = vf.voronoi(g, (0, 0, 1, 1), periodic=True, wrap=True)
+    assert all(len(shapely.get_parts(c)) == 1 for c in w.cells)
+    assert abs(w.areas.sum() - 1.0) <= 1e-14
+    assert w.describe().euler_ok
+    # the seams inside the box, each once: k - 1 vertical and k - 1 horizontal lines
+    length = np.hypot(*(w.edges.coords[:, 1] - w.edges.coords[:, 0]).T)
+    assert length.min() > 0.5 * h and abs(length.sum() - 2 * (k - 1)) <= 1e-12
+    # the tiled reference: each site's cell is the h x h square around it
+    ref = shapely.box(*(g - h / 2).T, *(g + h / 2).T)
+    assert np.allclose(w.areas, shapely.area(ref), rtol=1e-12, atol=0)

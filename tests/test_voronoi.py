@@ -379,3 +379,19 @@ def test_cocircular_cut_cells_share_merged_centres():
         v = v[(v[:, 0] != x0) & (v[:, 0] != x1) & (v[:, 1] != y0) & (v[:, 1] != y1)]
         close = cKDTree(v - v.mean(axis=0)).query_pairs(1e-3 * step)
         assert not close, trial  # interior vertices: one value each
+
+
+# --- regressions from the QA pass of issue 4 ------------------------------------------------
+
+
+def test_areas_and_centroids_are_read_only():
+    # they are cached: writing into d.areas changed every later d.areas of that diagram
+    pts = np.random.default_rng(0).random((30, 2))
+    for d in (
+        vf.voronoi(pts, (0, 0, 1, 1)),
+        vf.power(pts, np.linspace(0, 0.01, 30), (0, 0, 1, 1)),
+        vf.voronoi(pts, (0, 0, 1, 1), periodic=True),
+    ):
+        for arr in (d.areas, d.centroids):
+            with pytest.raises(ValueError, match="read-only"):
+                arr[0] = 5.0
