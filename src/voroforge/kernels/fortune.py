@@ -31,6 +31,7 @@ from numba import njit
 
 from ..config import NJIT
 from .predicates import incircle, incircle_fast, orient2d
+from .vertex import center_offset
 
 #: Small helpers of the sweep are inlined at the numba level: as separate functions every call
 #: would pay a reference-count round trip on each array argument.
@@ -133,27 +134,21 @@ def _right_of(sx, px, py, qx, qy, sweep):
 
 
 @njit(**_INLINE)
-def _event_y(ax, ay, bx, by, cx, cy, det):
-    """Top of the circumcircle of the counter-clockwise ``a, b, c`` (``det`` = their orient2d).
+def _event_y(ax, ay, bx, by, cx, cy):
+    """Top of the circumcircle of the counter-clockwise ``a, b, c``; +inf when it overflows.
 
-    Computed relative to ``a``; when the centre lies below ``a`` the top is
-    ``ay + ux^2 / (r - uy)`` rather than ``ay + uy + r``, which would cancel catastrophically
-    for the huge circles of nearly collinear triples. +inf when it overflows.
+    The circle comes from the one vertex routine (``kernels/vertex.center_offset``): its
+    centre as an offset ``u`` from the point opposite the longest edge, a point on the
+    circle. When the centre lies below that point the top is ``oy + ux^2 / (r - uy)``
+    rather than ``oy + uy + r``, which would cancel catastrophically for the huge circles of
+    nearly collinear triples.
     """
-    dx = bx - ax
-    dy = by - ay
-    ex = cx - ax
-    ey = cy - ay
-    bl = dx * dx + dy * dy
-    cl = ex * ex + ey * ey
-    d = 0.5 / det
-    ux = (ey * bl - dy * cl) * d
-    uy = (dx * cl - ex * bl) * d
+    _, oy, ux, uy = center_offset(ax, ay, 0.0, bx, by, 0.0, cx, cy, 0.0)
     r = math.sqrt(ux * ux + uy * uy)
     if uy >= 0.0:
-        y = ay + (uy + r)
+        y = oy + (uy + r)
     else:
-        y = ay + ux * ux / (r - uy)
+        y = oy + ux * ux / (r - uy)
     if y != y or y == np.inf or y == -np.inf:
         return np.inf
     return y
@@ -336,7 +331,7 @@ def _push_event(node, prv, nxt, site, arcx, arcy, key, heap, hpos, size):
     det = orient2d(ax, ay, bx, by, cx, cy)
     if det <= 0.0:
         return size
-    key[node] = _event_y(ax, ay, bx, by, cx, cy, det)
+    key[node] = _event_y(ax, ay, bx, by, cx, cy)
     heap[size] = node
     _sift_up(heap, hpos, key, size)
     return size + 1

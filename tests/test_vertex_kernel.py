@@ -1,0 +1,159 @@
+"""The vertex rule (kernels/vertex) tested on the kernel directly."""
+
+from __future__ import annotations
+
+import itertools
+from fractions import Fraction
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from voroforge.kernels.vertex import (
+    box_crossing,
+    canonical_triple,
+    canonical_vertex,
+    center,
+    circumcenter,
+    power_box_crossing,
+    power_vertex,
+    voronoi_vertex,
+)
+
+coord = st.floats(-1e3, 1e3, allow_nan=False, allow_infinity=False)
+
+
+def _exact_power_center(p, w):
+    """Exact power centre of three weighted points (Cramer's rule in Fractions)."""
+    (ax, ay), (bx, by), (cx, cy) = [(Fraction(x), Fraction(y)) for x, y in p]
+    wa, wb, wc = (Fraction(v) for v in w)
+    # 2 (b - a).x = |b|^2 - |a|^2 - (wb - wa), same for c
+    a11, a12 = 2 * (bx - ax), 2 * (by - ay)
+    a21, a22 = 2 * (cx - ax), 2 * (cy - ay)
+    r1 = bx * bx + by * by - ax * ax - ay * ay - (wb - wa)
+    r2 = cx * cx + cy * cy - ax * ax - ay * ay - (wc - wa)
+    det = a11 * a22 - a12 * a21
+    return (r1 * a22 - r2 * a12) / det, (a11 * r2 - a21 * r1) / det
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(coord, coord), min_size=3, max_size=3, unique=True))
+def test_vertex_bits_do_not_depend_on_argument_order(pts):
+    xs = np.array([p[0] for p in pts])
+    ys = np.array([p[1] for p in pts])
+    ws = np.array([0.5, -2.0, 3.0])
+    vor = {voronoi_vertex(a, b, c, xs, ys) for a, b, c in itertools.permutations(range(3))}
+    pw = {power_vertex(a, b, c, xs, ys, ws) for a, b, c in itertools.permutations(range(3))}
+    assert len(vor) == 1 or all(np.isnan(v).any() for v in vor)
+    assert len(pw) == 1 or all(np.isnan(v).any() for v in pw)
+
+
+def test_zero_or_equal_weights_give_the_circumcentre_bits():
+    rng = np.random.default_rng(1)
+    for p in rng.normal(size=(500, 6)) * 10.0 ** rng.integers(-5, 6, size=(500, 1)):
+        ax, ay, bx, by, cx, cy = p
+        c0 = circumcenter(ax, ay, bx, by, cx, cy)
+        w = float(rng.normal()) * 1e3
+        assert center(ax, ay, 0.0, bx, by, 0.0, cx, cy, 0.0) == c0
+        assert center(ax, ay, w, bx, by, w, cx, cy, w) == c0
+
+
+def test_circumcentre_against_exact_fractions():
+    rng = np.random.default_rng(2)
+    for p in rng.random((300, 3, 2)):
+        xs, ys = p[:, 0].copy(), p[:, 1].copy()
+        ex, ey = _exact_power_center(p, (0, 0, 0))
+        x, y = voronoi_vertex(0, 1, 2, xs, ys)
+        r = float(abs(ex - Fraction(p[0, 0])) + abs(ey - Fraction(p[0, 1])))
+        assert abs(Fraction(x) - ex) + abs(Fraction(y) - ey) <= 1e-13 * (r + 1.0)
+
+
+def test_near_degenerate_triples_keep_their_precision():
+    rng = np.random.default_rng(3)
+    for _ in range(200):
+        # slivers: a tiny edge, or a third point almost on the line of the other two
+        a = rng.random(2)
+        d = rng.normal(size=2)
+        h = 10.0 ** -rng.integers(4, 9)
+        if rng.random() < 0.5:
+            p = np.array([a, a + d, a + 0.5 * d + h * np.array([-d[1], d[0]])])
+        else:
+            p = np.array([a, a + h * d, a + rng.normal(size=2)])
+        xs, ys = p[:, 0].copy(), p[:, 1].copy()
+        ex, ey = _exact_power_center(p, (0, 0, 0))
+        x, y = voronoi_vertex(0, 1, 2, xs, ys)
+        r = float(abs(ex - Fraction(p[0, 0])) + abs(ey - Fraction(p[0, 1])))
+        longest = max(np.hypot(*(p[i] - p[j])) for i, j in ((0, 1), (1, 2), (2, 0)))
+        # a careful centre is off by a few ulps of the radius times the conditioning r / L
+        assert abs(Fraction(x) - ex) + abs(Fraction(y) - ey) <= 8 * 2.0**-52 * r * max(
+            1.0, r / longest
+        )
+
+
+def test_power_centre_against_exact_fractions():
+    rng = np.random.default_rng(4)
+    for _ in range(300):
+        p = rng.random((3, 2))
+        w = rng.random(3) * 0.1
+        ex, ey = _exact_power_center(p, w)
+        x, y = power_vertex(0, 1, 2, p[:, 0].copy(), p[:, 1].copy(), w)
+        scale = float(abs(ex) + abs(ey)) + 1.0
+        assert abs(Fraction(x) - ex) + abs(Fraction(y) - ey) <= 1e-12 * scale
+
+
+def test_box_crossing_is_canonical_and_equal_weights_match():
+    rng = np.random.default_rng(5)
+    box = np.array([-1.0, -1.0, 2.0, 2.0])
+    for _ in range(200):
+        xs, ys = rng.random(2), rng.random(2)
+        ws = np.full(2, float(rng.normal()))
+        for side in (-1, -2, -3, -4):
+            c = box_crossing(0, 1, xs, ys, side, box)
+            assert c == box_crossing(1, 0, xs, ys, side, box)
+            assert c == power_box_crossing(0, 1, xs, ys, ws, side, box)
+            assert c == power_box_crossing(1, 0, xs, ys, ws, side, box)
+            # on the bisector
+            d0 = (c[0] - xs[0]) ** 2 + (c[1] - ys[0]) ** 2
+            d1 = (c[0] - xs[1]) ** 2 + (c[1] - ys[1]) ** 2
+            assert abs(d0 - d1) <= 1e-9 * (d0 + d1)
+
+
+def test_power_box_crossing_is_on_the_power_bisector():
+    xs = np.array([0.0, 1.0])
+    ys = np.array([0.0, 0.0])
+    ws = np.array([0.25, 0.0])  # |x|^2 - 1/4 = |x - 1|^2  ->  x = 5/8
+    box = np.array([-1.0, -1.0, 2.0, 2.0])
+    assert power_box_crossing(0, 1, xs, ys, ws, -2, box) == (0.625, -1.0)
+    assert power_box_crossing(1, 0, xs, ys, ws, -4, box) == (0.625, 2.0)
+
+
+def test_canonical_triple_of_cocircular_sites_is_the_same_from_every_order():
+    # eight sites on the unit circle: every triple names the centre (to rounding)
+    t = np.arange(8) * np.pi / 4
+    xs, ys = np.cos(t), np.sin(t)
+    rng = np.random.default_rng(6)
+    for _ in range(20):
+        sub = rng.permutation(8)[: rng.integers(4, 9)].astype(np.int64)
+        vx, vy = voronoi_vertex(sub[0], sub[1], sub[2], xs, ys)
+        s = sub[0]
+        name = canonical_triple(sub.copy(), len(sub), vx, vy, xs[s], ys[s], xs, ys)
+        assert name[0] >= 0
+        # another order of the same sites, with repeats, another reference vertex and site
+        other = np.concatenate((rng.permutation(sub), sub[:2]))
+        wx, wy = voronoi_vertex(sub[-1], sub[-2], sub[-3], xs, ys)
+        s2 = sub[-1]
+        assert canonical_triple(other, len(other), wx, wy, xs[s2], ys[s2], xs, ys) == name
+        v = canonical_vertex(sub.copy(), len(sub), vx, vy, xs[s], ys[s], xs, ys)
+        assert v == voronoi_vertex(*name, xs, ys)
+
+
+def test_canonical_triple_skips_ill_conditioned_triples():
+    # sites 0 and 1 a few ulps apart on a circle: no name may hold both
+    xs = np.array([1.0, np.nextafter(1.0, 2.0), 0.0, -1.0])
+    ys = np.array([0.0, 0.0, 1.0, 0.0])
+    on = np.array([0, 1, 2, 3], dtype=np.int64)
+    a, b, c = canonical_triple(on, 4, 0.0, 0.0, 1.0, 0.0, xs, ys)
+    assert a >= 0
+    assert not {0, 1} <= {a, b, c}
+    none = canonical_triple(np.array([0, 1], dtype=np.int64), 2, 0.0, 0.0, 1.0, 0.0, xs, ys)
+    assert none == (-1, -1, -1)
