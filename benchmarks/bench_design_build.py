@@ -1,6 +1,6 @@
 """Design pipeline benchmark: a 2000-cell laser panel with inset, fillet and DXF export.
 
-Times ``voroforge.design.pipeline.build`` on a 1000 x 700 mm panel with 2000 random seeds,
+Times ``voroforge.design.build.build`` on a 1000 x 700 mm panel with 2000 random seeds,
 2 mm webs and 1 mm fillets, written as DXF (closed LWPOLYLINEs, fillets as bulge arcs),
 against a plain reference doing the same work with the usual tools: scipy's Voronoi
 (mirrored sites for bounded cells) clipped with shapely, the same shapely buffers for inset
@@ -25,7 +25,7 @@ import shapely
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "src"))
 
-from voroforge.design.pipeline import build  # noqa: E402
+from voroforge.design.build import build  # noqa: E402
 
 
 def design(cells: int) -> dict:

@@ -9,7 +9,7 @@ import shutil
 import tempfile
 from pathlib import Path
 
-from voroforge.design.pipeline import build
+from voroforge.design.build import build
 
 ROOT = Path(__file__).resolve().parent.parent
 SIZE = 560
@@ -19,8 +19,8 @@ def tiled(design: Path):
     """The periodic lamp tile's frame drawn 2 x 2 times side by side."""
     import shapely
 
-    from voroforge.design.pipeline import compute
-    from voroforge.design.schema import load
+    from voroforge.design.compute import compute
+    from voroforge.design.designfile import load
     from voroforge.io.png import render_image
 
     spec, base = load(design)

@@ -68,7 +68,7 @@ def build_demo(out_dir, *, progress=None) -> list[Path]:
     """
     import tomllib
 
-    from .design.pipeline import build
+    from .design.build import build
 
     design = tomllib.loads(FLAGSHIP)
     return build(design, out_dir, progress=progress)
