@@ -5,11 +5,12 @@ BIN := $(VENV)/bin
 PIP := $(BIN)/python -m pip install -q
 LINT_PATHS := $(wildcard src tests benchmarks)
 
-.PHONY: help run demo test lint format bench clean
+.PHONY: help run demo test coverage lint format bench clean
 
 help:
 	@echo "make run    - install into $(VENV) and write the demo to out/"
 	@echo "make test   - run the test suite"
+	@echo "make coverage - kernel and engine tests with the JIT off, line coverage of kernels/, engine/"
 	@echo "make lint   - ruff check and format check"
 	@echo "make bench  - run benchmarks/bench_2d.py"
 	@echo "make clean  - remove out/ and caches, numba's included (keeps $(VENV))"
@@ -40,6 +41,28 @@ demo: run
 
 test: $(VENV)/.installed-test
 	$(BIN)/python -m pytest
+
+# With NUMBA_DISABLE_JIT=1 the @njit kernels run as plain Python, so coverage.py sees their
+# lines. Pure-Python kernels are slow: only these test files run (small inputs; about ten
+# minutes on two cores), and the catalogue's 5000-point clusters are left out.
+COVERAGE_TESTS := tests/test_predicates.py tests/test_delaunay.py tests/test_fortune_kernel.py \
+	tests/test_clip_kernel.py tests/test_vertex_kernel.py tests/test_grid_kernel.py \
+	tests/test_cells_kernel.py tests/test_halfplane_kernel.py tests/test_moments_kernel.py \
+	tests/test_voronoi.py tests/test_power.py tests/test_queries.py tests/test_raster.py \
+	tests/test_periodic.py tests/test_lloyd.py tests/test_describe.py tests/test_errors.py
+COVERAGE_SKIP := far_clusters
+COVERAGE_DIR := build/coverage
+
+coverage: $(VENV)/.installed-test
+	@mkdir -p $(COVERAGE_DIR)
+	NUMBA_DISABLE_JIT=1 $(BIN)/python -m coverage run --data-file=$(COVERAGE_DIR)/.coverage \
+		-m pytest -q -p no:cacheprovider --hypothesis-profile=coverage -k 'not ($(COVERAGE_SKIP))' \
+		$(wildcard $(COVERAGE_TESTS))
+	@# both reports print; the target fails if either package is below 90%
+	$(BIN)/python -m coverage report --data-file=$(COVERAGE_DIR)/.coverage \
+		--include='src/voroforge/kernels/*' --fail-under=90; k=$$?; \
+	$(BIN)/python -m coverage report --data-file=$(COVERAGE_DIR)/.coverage \
+		--include='src/voroforge/engine/*' --fail-under=90 && exit $$k
 
 lint: $(VENV)/.installed-test
 	$(BIN)/ruff check $(LINT_PATHS)

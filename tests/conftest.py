@@ -35,6 +35,14 @@ settings.register_profile(
     max_examples=500,
     suppress_health_check=[HealthCheck.too_slow],
 )
+# `make coverage` runs the kernels as plain Python (NUMBA_DISABLE_JIT=1): fewer examples
+settings.register_profile(
+    "coverage",
+    deadline=None,
+    max_examples=5,
+    derandomize=True,
+    suppress_health_check=[HealthCheck.too_slow],
+)
 settings.load_profile("ci" if os.environ.get("CI") else "default")
 
 
