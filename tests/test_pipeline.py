@@ -272,6 +272,35 @@ def test_edges_are_unique(tmp_path):
     assert math.isfinite(total)
 
 
+@pytest.mark.parametrize(
+    "changes",
+    [
+        {},
+        {"boundary.shape": "circle", "boundary.radius": 60},
+        {"voronoi.power_radius": 4},
+        {"voronoi.periodic": True, "boundary.margin": 0},
+        {"recursion.depth": 1, "recursion.count": 3, "cells.web": None},
+    ],
+)
+def test_edges_are_the_engines_shared_edges_and_the_outline(changes):
+    # Result.edges takes Diagram.edges (exact, each once) plus the domain's outline; it is
+    # the same line work as every cell ring's segments merged where they meet (explode).
+    from voroforge.design import cellops
+
+    r = result_of(panel(**{"cells.fillet": 0, **changes}))
+    merged = cellops.edges_to_lines(cellops.explode(r.raw))
+    size = max(np.ptp(np.asarray(r.domain.bounds).reshape(2, 2), axis=0))
+    assert r.edges.length == pytest.approx(merged.length, rel=1e-12)
+    assert r.edges.hausdorff_distance(merged) < 1e-9 * size
+
+
+def test_compute_writes_no_files(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    r = result_of(panel(**{"output.formats": ["svg", "dxf", "png", "geojson"]}))
+    assert len(r.edges.geoms) and len(r.openings)
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_build_time_errors_name_key_and_line(tmp_path):
     text = (
         "[boundary]\nshape = 'polygon'\npoints = [[0, 0], [10, 10], [0, 10], [10, 0]]\n\n"

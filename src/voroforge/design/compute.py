@@ -513,7 +513,7 @@ def compute(design: Design, base: Path | None = None, *, progress: Stage | None 
     Parameters
     ----------
     design : Design
-        From :func:`voroforge.design.schema.load`.
+        From :func:`voroforge.design.designfile.load`.
     base : Path, optional
         Folder that relative file names in the design are read from.
     progress : callable, optional
