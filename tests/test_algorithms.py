@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 
 import voroforge as vf
 import voroforge.kernels.halfplane as hp
-from voroforge.kernels.halfplane import _adaptive_grid, _bucket_sort, _grid_shape, halfplane_cells
+from voroforge.kernels.halfplane import halfplane_cells
 
 from catalogue import CATALOGUE, NAMES, as_domain, general_position
 from validate import symmetric_difference_areas
@@ -194,42 +194,6 @@ def test_halfplane_grid_cells_are_squares():
         assert set(map(tuple, ring.tolist())) == want
 
 
-def test_halfplane_grid_and_bucket_sort():
-    """Every site lands in the bucket that contains it; the CSR covers all sites once."""
-    rng = np.random.default_rng(5)
-    xs, ys = rng.random(1000) * 7.0, rng.random(1000) * 0.01  # a flat strip
-    grid = _grid_shape(xs, ys, 2.0)
-    x0, y0, hx, hy, nx, ny = grid
-    start, sx, sy, sidx = _bucket_sort(xs, ys, *grid)
-    assert start[0] == 0 and start[-1] == 1000 and np.all(np.diff(start) >= 0)
-    assert sorted(sidx.tolist()) == list(range(1000))
-    assert np.array_equal(sx, xs[sidx]) and np.array_equal(sy, ys[sidx])
-    for b in range(nx * ny):
-        ix, iy = b % nx, b // nx
-        for t in range(start[b], start[b + 1]):
-            assert x0 + ix * hx <= sx[t] <= x0 + (ix + 1) * hx * (1 + 1e-12)
-            assert y0 + iy * hy <= sy[t] <= y0 + (iy + 1) * hy * (1 + 1e-12)
-
-
-def test_halfplane_grid_refines_for_clusters():
-    """Clustered sites get finer buckets (same cells, see the clustered comparison above)."""
-    rng = np.random.default_rng(9)
-    uniform = rng.random((4000, 2))
-    blobs = rng.random((4, 2))[rng.integers(0, 4, 4000)] + rng.normal(0, 0.002, (4000, 2))
-    (_, _, _, _, ux, uy), _ = _adaptive_grid(uniform[:, 0].copy(), uniform[:, 1].copy())
-    bx, by = blobs[:, 0].copy(), blobs[:, 1].copy()
-    (_, _, _, _, cx, cy), (start, *_) = _adaptive_grid(bx, by)
-    assert ux * uy <= 2000
-    assert cx * cy >= 8 * ux * uy
-
-    def median_occupancy(start):
-        occ = np.diff(start)
-        return np.median(np.repeat(occ, occ))
-
-    coarse = _bucket_sort(bx, by, *_grid_shape(bx, by, 2.0))[0]
-    assert median_occupancy(start) <= median_occupancy(coarse) / 4
-
-
 def test_halfplane_overflowing_chunks_rebuilt():
     """Chunks whose cells outgrow the per-chunk slab are rebuilt: the cells stay the same."""
     n = 2000
@@ -237,7 +201,7 @@ def test_halfplane_overflowing_chunks_rebuilt():
     pts = np.concatenate((line, np.random.default_rng(1).random((20, 2))))
     xs, ys = pts[:, 0].copy(), pts[:, 1].copy()
     # the first pass alone, to make sure this input does take the rebuild path
-    grid, sites = _adaptive_grid(xs, ys)
+    grid, sites = hp._search_grid(xs, ys)
     nchunks = -(-len(xs) // hp._CHUNK)
     per = hp._SLAB * min(hp._CHUNK, len(xs)) + 16
     fits = np.zeros(nchunks, np.bool_)

@@ -4,6 +4,10 @@ Grid squares crossed by any boundary segment (with a one-square margin) are mark
 whose bounding box covers only unmarked squares contains no boundary point, so it lies wholly
 inside or wholly outside the domain, which one square's centre decides. Only the remaining
 cells need a polygon intersection.
+
+The squares are indexed as the buckets of :mod:`.grid` (:func:`.grid.bucket_of`), but the
+grid holds segments, not points: a segment marks every square it may cross (with a margin),
+so there is no counting sort and no ring search here.
 """
 
 from __future__ import annotations
@@ -14,6 +18,7 @@ import numpy as np
 from numba import njit, prange
 
 from ..config import NJIT, NJIT_PARALLEL
+from .grid import bucket_of
 
 
 @njit(**NJIT)
@@ -69,10 +74,10 @@ def classify(coords, offsets, marked, inside, x0, y0, h):
             xmx = max(xmx, coords[k, 0])
             ymn = min(ymn, coords[k, 1])
             ymx = max(ymx, coords[k, 1])
-        c0 = min(max(int(math.floor((xmn - x0) / h)), 0), gx - 1)
-        c1 = min(max(int(math.floor((xmx - x0) / h)), 0), gx - 1)
-        r0 = min(max(int(math.floor((ymn - y0) / h)), 0), gy - 1)
-        r1 = min(max(int(math.floor((ymx - y0) / h)), 0), gy - 1)
+        c0 = bucket_of(xmn, x0, h, gx)
+        c1 = bucket_of(xmx, x0, h, gx)
+        r0 = bucket_of(ymn, y0, h, gy)
+        r1 = bucket_of(ymx, y0, h, gy)
         hit = False
         for r in range(r0, r1 + 1):
             for c in range(c0, c1 + 1):

@@ -10,12 +10,13 @@ distance for Euclidean, the distance itself otherwise) computed exactly as a bru
 ``argmin`` over all sites would compute it.
 
 Exact method
-    A bucket grid over the sites; the image is cut into tiles. For a tile (the rectangle of its
-    pixel centres) ``u`` is the k-th smallest *largest* distance from a site to the rectangle
-    (k = 1, or 2 with F2). Every pixel's nearest (and second nearest) site lies within ``u`` of
-    the pixel, so only sites whose *smallest* distance to the rectangle is <= ``u`` can win.
-    Those candidates are collected from the grid and each pixel is brute-forced over them.
-    Tiles with too many candidates (e.g. far from a dense cluster) are split in four.
+    The bucket grid of :mod:`.grid` over the sites; the image is cut into tiles. For a tile
+    (the rectangle of its pixel centres) ``u`` is the k-th smallest *largest* distance from a
+    site to the rectangle (k = 1, or 2 with F2), found by ring search with the grid's stop
+    test. Every pixel's nearest (and second nearest) site lies within ``u`` of the pixel, so
+    only sites whose *smallest* distance to the rectangle is <= ``u`` can win. Those
+    candidates are collected from the grid and each pixel is brute-forced over them. Tiles
+    with too many candidates (e.g. far from a dense cluster) are split in four.
 Jump Flooding
     Rong & Tan (2006): seed each site's pixel, then passes with steps N/2, ..., 1 (plus extra
     refinement steps given by the caller); each pixel keeps the best of the sites held by its
@@ -29,9 +30,11 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ..config import NJIT, NJIT_PARALLEL
+from ..config import NJIT, NJIT_PARALLEL, RASTER_BOUND_RTOL, RASTER_SLACK_FLOOR, RASTER_SLACK_RTOL
+from .grid import bucket_of, bucket_sort, grid_shape, ring_gap, ring_row, ring_rows
 
 _BIG = 1 << 62
+_PER_BUCKET = 2.0  # mean sites per bucket of the exact method's grid
 
 
 @njit(**NJIT)
@@ -69,141 +72,54 @@ def _rect_distances(sx, sy, tx0, tx1, ty0, ty1, metric):
 
 
 @njit(**NJIT)
-def _cell(v, origin, size, count):
-    """Grid cell index of coordinate ``v`` along one axis, clamped into ``[0, count)``."""
-    f = (v - origin) / size
-    if not f >= 0.0:  # also catches NaN
-        return 0
-    if f >= count - 1:
-        return count - 1
-    return int(f)
-
-
-@njit(**NJIT)
-def build_grid(xs, ys):
-    """Bucket grid over the sites, about two sites per bucket.
-
-    Returns
-    -------
-    gpar : (4,) float64
-        ``x0, y0, cell_width, cell_height``.
-    nx, ny : int
-        Grid size; bucket ``(i, j)`` is number ``j * nx + i``.
-    start : (nx * ny + 1,) int64
-        Sites of bucket ``b`` are ``start[b]:start[b + 1]`` in the arrays below.
-    gx, gy : (m,) float64
-        Site coordinates in bucket order.
-    gi : (m,) int64
-        Site positions (into ``xs``) in bucket order.
-    """
-    m = xs.shape[0]
-    x0 = xs.min()
-    x1 = xs.max()
-    y0 = ys.min()
-    y1 = ys.max()
-    ncell = max(1, m // 2)
-    width = x1 - x0
-    height = y1 - y0
-    if width <= 0.0 and height <= 0.0:
-        width = 1.0
-        height = 1.0
-    elif width <= 0.0:
-        width = height / ncell
-    elif height <= 0.0:
-        height = width / ncell
-    nx = int(math.sqrt(ncell * (width / height)))
-    nx = min(max(nx, 1), ncell)
-    ny = min(max(ncell // nx, 1), ncell)
-    cw = width / nx
-    ch = height / ny
-    gpar = np.array([x0, y0, cw, ch])
-    cells = np.zeros(m, dtype=np.int64)
-    start = np.zeros(nx * ny + 1, dtype=np.int64)
-    for s in range(m):
-        b = _cell(ys[s], y0, ch, ny) * nx + _cell(xs[s], x0, cw, nx)
-        cells[s] = b
-        start[b + 1] += 1
-    for b in range(nx * ny):
-        start[b + 1] += start[b]
-    fill = start[:-1].copy()
-    gx = np.zeros(m)
-    gy = np.zeros(m)
-    gi = np.zeros(m, dtype=np.int64)
-    for s in range(m):
-        k = fill[cells[s]]
-        fill[cells[s]] += 1
-        gx[k] = xs[s]
-        gy[k] = ys[s]
-        gi[k] = s
-    return gpar, nx, ny, start, gx, gy, gi
-
-
-@njit(**NJIT)
-def _upper_bound(rect, k, gpar, nx, ny, start, gx, gy, metric):
+def _upper_bound(rect, k, grid, start, gx, gy, metric):
     """k-th smallest (k = 1 or 2) largest-distance from a site to ``rect``; inf if < k sites.
 
     Any value returned is a valid bound (it is some site's largest distance); the ring search
-    only makes it small.
+    only makes it small, and stops once the unscanned sites lie farther than it
+    (:func:`.grid.ring_gap`).
     """
     tx0, tx1, ty0, ty1 = rect[0], rect[1], rect[2], rect[3]
-    x0, y0, cw, ch = gpar[0], gpar[1], gpar[2], gpar[3]
-    ci = _cell(0.5 * (tx0 + tx1), x0, cw, nx)
-    cj = _cell(0.5 * (ty0 + ty1), y0, ch, ny)
+    x0, y0, cw, ch, nx, ny = grid
+    ci = bucket_of(0.5 * (tx0 + tx1), x0, cw, nx)
+    cj = bucket_of(0.5 * (ty0 + ty1), y0, ch, ny)
     u1 = np.inf
     u2 = np.inf
     ring = 0
     while True:
-        for j in range(max(cj - ring, 0), min(cj + ring, ny - 1) + 1):
-            edge_row = j == cj - ring or j == cj + ring
-            step = 1 if (edge_row or ring == 0) else 2 * ring
-            i = ci - ring
-            while i <= ci + ring:
-                if 0 <= i < nx:
-                    b = j * nx + i
-                    for s in range(start[b], start[b + 1]):
-                        far = _rect_distances(gx[s], gy[s], tx0, tx1, ty0, ty1, metric)[1]
-                        if far < u1:
-                            u2 = u1
-                            u1 = far
-                        elif far < u2:
-                            u2 = far
-                i += step
+        j0, j1 = ring_rows(cj, ring, ny)
+        for j in range(j0, j1 + 1):
+            i0, i1, step = ring_row(ci, cj, ring, j, nx)
+            for i in range(i0, i1 + 1, step):
+                b = j * nx + i
+                for s in range(start[b], start[b + 1]):
+                    far = _rect_distances(gx[s], gy[s], tx0, tx1, ty0, ty1, metric)[1]
+                    if far < u1:
+                        u2 = u1
+                        u1 = far
+                    elif far < u2:
+                        u2 = far
         uk = u1 if k == 1 else u2
-        left = ci - ring <= 0
-        right = ci + ring >= nx - 1
-        low = cj - ring <= 0
-        high = cj + ring >= ny - 1
-        if left and right and low and high:
-            return uk
-        # Sites not yet visited lie outside the block of buckets searched so far, so at
-        # least this far (along one axis) from the rectangle.
-        lb = np.inf
-        if not left:
-            lb = min(lb, tx0 - (x0 + (ci - ring) * cw))
-        if not right:
-            lb = min(lb, x0 + (ci + ring + 1) * cw - tx1)
-        if not low:
-            lb = min(lb, ty0 - (y0 + (cj - ring) * ch))
-        if not high:
-            lb = min(lb, y0 + (cj + ring + 1) * ch - ty1)
-        if lb > uk:
+        # sites not yet visited lie outside the block of rings searched so far
+        lb = ring_gap(tx0, tx1, ty0, ty1, ci, cj, ring, grid)
+        if lb == np.inf or lb > uk:
             return uk
         ring += 1
 
 
 @njit(**NJIT)
-def _collect(rect, u, gpar, nx, ny, start, gx, gy, gi, metric, cx, cy, cid):
+def _collect(rect, u, grid, start, gx, gy, gi, metric, cx, cy, cid):
     """Sites whose smallest distance to ``rect`` is <= ``u``; fills at most ``len(cx)``.
 
     Returns the total count (which may exceed the buffers' length).
     """
     tx0, tx1, ty0, ty1 = rect[0], rect[1], rect[2], rect[3]
-    x0, y0, cw, ch = gpar[0], gpar[1], gpar[2], gpar[3]
+    x0, y0, cw, ch, nx, ny = grid
     if math.isfinite(u):
-        i0 = max(_cell(tx0 - u, x0, cw, nx) - 1, 0)
-        i1 = min(_cell(tx1 + u, x0, cw, nx) + 1, nx - 1)
-        j0 = max(_cell(ty0 - u, y0, ch, ny) - 1, 0)
-        j1 = min(_cell(ty1 + u, y0, ch, ny) + 1, ny - 1)
+        i0 = max(bucket_of(tx0 - u, x0, cw, nx) - 1, 0)
+        i1 = min(bucket_of(tx1 + u, x0, cw, nx) + 1, nx - 1)
+        j0 = max(bucket_of(ty0 - u, y0, ch, ny) - 1, 0)
+        j1 = min(bucket_of(ty1 + u, y0, ch, ny) + 1, ny - 1)
     else:
         i0, i1, j0, j1 = 0, nx - 1, 0, ny - 1
     cap = cx.shape[0]
@@ -282,10 +198,11 @@ def exact_nearest(xs, ys, pxs, pys, metric, want_f2, tile, max_cand):
     lab = np.zeros((h, w), dtype=np.int32)
     d1 = np.zeros((h, w))
     d2 = np.zeros((h, w)) if want_f2 else np.zeros((0, 0))
-    gpar, nx, ny, start, gx, gy, gi = build_grid(xs, ys)
+    grid = grid_shape(xs, ys, _PER_BUCKET)
+    start, gx, gy, gi = bucket_sort(xs, ys, grid)
     scale = max(abs(pxs[0]), abs(pxs[-1]), abs(pys[0]), abs(pys[-1]))
     scale = max(scale, np.abs(xs).max(), np.abs(ys).max())
-    slack = 1e-12 * scale + 1e-300  # absorbs rounding in the candidate test
+    slack = RASTER_SLACK_RTOL * scale + RASTER_SLACK_FLOOR  # rounding in the test
     k = 2 if want_f2 else 1
     th, tw = tile[0], tile[1]
     ntr = (h + th - 1) // th
@@ -311,9 +228,9 @@ def exact_nearest(xs, ys, pxs, pys, metric, want_f2, tile, max_cand):
                 rect[1] = pxs[c1 - 1]
                 rect[2] = pys[r1 - 1]
                 rect[3] = pys[r0]
-                u = _upper_bound(rect, k, gpar, nx, ny, start, gx, gy, metric)
-                u = u * (1.0 + 1e-12) + slack
-                count = _collect(rect, u, gpar, nx, ny, start, gx, gy, gi, metric, cx, cy, cid)
+                u = _upper_bound(rect, k, grid, start, gx, gy, metric)
+                u = u * (1.0 + RASTER_BOUND_RTOL) + slack
+                count = _collect(rect, u, grid, start, gx, gy, gi, metric, cx, cy, cid)
                 splittable = r1 - r0 > 1 or c1 - c0 > 1
                 if count > max_cand and splittable and top + 4 <= stack.shape[0]:
                     rm = (r0 + r1 + 1) // 2 if r1 - r0 > 1 else r1
@@ -332,7 +249,7 @@ def exact_nearest(xs, ys, pxs, pys, metric, want_f2, tile, max_cand):
                     cx = np.zeros(cap)
                     cy = np.zeros(cap)
                     cid = np.zeros(cap, dtype=np.int64)
-                    _collect(rect, u, gpar, nx, ny, start, gx, gy, gi, metric, cx, cy, cid)
+                    _collect(rect, u, grid, start, gx, gy, gi, metric, cx, cy, cid)
                 _brute_tile(
                     r0, r1, c0, c1, pxs, pys, cx, cy, cid, count, metric, want_f2, lab, d1, d2
                 )

@@ -1,0 +1,271 @@
+"""One bucket grid: sites counting-sorted into uniform buckets, ring search, stop test.
+
+Every kernel that looks for the sites near a point or a rectangle uses this grid: the
+half-plane cells (the sites that can cut a cell) and the exact raster (the sites that can
+be nearest to a tile of pixels). Three concepts:
+
+The grid
+    ``grid = (x0, y0, hx, hy, nx, ny)``: origin, bucket size and bucket count per axis over
+    the sites' bounding box (:func:`grid_shape`). Bucket ``(ix, iy)`` is number
+    ``iy * nx + ix``; along each axis a coordinate falls in bucket :func:`bucket_of`
+    (clamped, so points outside the box use the nearest bucket). :func:`counting_sort`
+    gives the CSR layout: the sites of bucket ``b`` are ``order[start[b]:start[b + 1]]``,
+    in increasing index (the sort is stable). :func:`adaptive_grid` refines the buckets for
+    clustered sites.
+Ring search
+    Ring ``r`` around bucket ``(ci, cj)`` is the set of buckets at Chebyshev distance ``r``
+    from it, clipped to the grid; rings ``0..r`` tile the block of buckets within ``r``.
+    Rows ``j`` of ring ``r`` are ``ring_rows``; the columns of row ``j`` are
+    ``range(i0, i1 + 1, step)`` with ``(i0, i1, step) = ring_row(...)`` (the whole run on
+    the ring's first and last rows, its two ends on the others).
+Stop test
+    Once the block of rings ``0..r`` is scanned, every unscanned site lies outside it:
+    :func:`ring_gap` is a lower bound on the distance from a rectangle inside the block to
+    any such site (``inf`` once the block covers the grid), :func:`outside_dist2` the exact
+    squared distance from a point to the unscanned part of the grid. A search stops when
+    the bound it is looking within (a cell's reach, a tile's k-th nearest) is below them.
+
+In 3D the same three concepts carry over axis by axis: a grid ``(x0, y0, z0, hx, hy, hz,
+nx, ny, nz)`` with bucket ``(iz * ny + iy) * nx + ix`` (:func:`bucket_of` and
+:func:`counting_sort` are already per axis and per key), shells of buckets at Chebyshev
+distance ``r`` instead of rings (their first and last layers whole, the others rings of
+2D), and the stop test with one more pair of sides (six slabs around the block instead of
+four strips). A tiled scale layer's halo is the same test: the sites of the neighbouring
+tiles within the gap of the tile's block.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ..config import GRID_DEGENERATE_RTOL, GRID_WIDEN_RTOL, NJIT
+
+
+@njit(**NJIT)
+def grid_shape(xs, ys, per_bucket):
+    """Uniform grid over the sites' bounding box, about ``per_bucket`` sites per bucket.
+
+    Parameters
+    ----------
+    xs, ys : (n,) float64
+        The sites (n >= 1).
+    per_bucket : float
+        Mean number of sites per bucket wanted.
+
+    Returns
+    -------
+    grid : tuple
+        ``(x0, y0, hx, hy, nx, ny)``: lower-left corner, bucket width and height, bucket
+        counts. The grid is a hair wider than the sites, so every site's bucket index is
+        below ``nx`` (``ny``) without clamping.
+    """
+    n = xs.shape[0]
+    x0 = xs.min()
+    y0 = ys.min()
+    w = xs.max() - x0
+    h = ys.max() - y0
+    span = max(w, h)
+    if span == 0.0:
+        span = max(abs(x0), abs(y0), 1.0)
+    w = max(w, GRID_DEGENERATE_RTOL * span)
+    h = max(h, GRID_DEGENERATE_RTOL * span)
+    nb = max(1.0, n / per_bucket)
+    nx = int(min(max(np.sqrt(nb * w / h), 1.0), nb))
+    ny = int(min(max(nb / nx, 1.0), nb))
+    hx = w * (1.0 + GRID_WIDEN_RTOL) / nx
+    hy = h * (1.0 + GRID_WIDEN_RTOL) / ny
+    return x0, y0, hx, hy, nx, ny
+
+
+@njit(**NJIT)
+def bucket_of(v, origin, size, count):
+    """Bucket index of coordinate ``v`` along one axis, clamped into ``[0, count)``.
+
+    NaN and values below the grid give 0, values past it ``count - 1``.
+    """
+    f = (v - origin) / size
+    if not f >= 0.0:  # also catches NaN
+        return 0
+    if f >= count - 1:
+        return count - 1
+    return int(f)
+
+
+@njit(**NJIT)
+def counting_sort(key, nb):
+    """Stable counting sort of ``key (n,)`` with values in ``[0, nb)``.
+
+    Returns ``start (nb + 1,)`` and ``order (n,)``: the items with key ``b`` are
+    ``order[start[b]:start[b + 1]]``, in increasing index. Any dimension: the key is the
+    flattened bucket number.
+    """
+    n = key.shape[0]
+    start = np.zeros(nb + 1, np.int64)
+    for i in range(n):
+        start[key[i] + 1] += 1
+    for b in range(nb):
+        start[b + 1] += start[b]
+    fill = start[:-1].copy()
+    order = np.zeros(n, np.int64)
+    for i in range(n):
+        order[fill[key[i]]] = i
+        fill[key[i]] += 1
+    return start, order
+
+
+@njit(**NJIT)
+def bucket_sort(xs, ys, grid):
+    """Sites sorted into the buckets of ``grid``.
+
+    Returns
+    -------
+    start : (nx * ny + 1,) int64
+        The sites of bucket ``b`` are ``start[b]:start[b + 1]`` in the arrays below.
+    sx, sy : (n,) float64
+        Site coordinates in bucket order.
+    sidx : (n,) int64
+        Index (into ``xs``) of each sorted site; increasing within a bucket.
+    """
+    x0, y0, hx, hy, nx, ny = grid
+    n = xs.shape[0]
+    key = np.zeros(n, np.int64)
+    for i in range(n):
+        key[i] = bucket_of(ys[i], y0, hy, ny) * nx + bucket_of(xs[i], x0, hx, nx)
+    start, sidx = counting_sort(key, nx * ny)
+    sx = np.zeros(n)
+    sy = np.zeros(n)
+    for t in range(n):
+        sx[t] = xs[sidx[t]]
+        sy[t] = ys[sidx[t]]
+    return start, sx, sy, sidx
+
+
+def adaptive_grid(xs, ys, per_bucket, max_refine):
+    """Bucket grid refined for clustered sites, and the sites sorted into it.
+
+    A uniform grid with ``per_bucket`` sites per bucket on average, refined when the sites
+    are clustered: if the median site shares its bucket with many more (the dense parts
+    hold most sites), the buckets shrink until it shares with about ``per_bucket``, up to
+    ``max_refine`` times as many buckets. Sparse regions then scan more (empty) buckets, but
+    dense ones no longer test hundreds of sites each.
+
+    Returns
+    -------
+    grid : tuple
+        ``(x0, y0, hx, hy, nx, ny)`` (see :func:`grid_shape`).
+    sites : tuple
+        ``(start, sx, sy, sidx)`` of :func:`bucket_sort`.
+    """
+    grid = grid_shape(xs, ys, per_bucket)
+    sites = bucket_sort(xs, ys, grid)
+    occ = np.diff(sites[0])
+    median = float(np.median(np.repeat(occ, occ)))
+    if median > 2.0 * per_bucket:
+        refine = min(median / per_bucket, max_refine)
+        grid = grid_shape(xs, ys, per_bucket / refine)
+        sites = bucket_sort(xs, ys, grid)
+    return grid, sites
+
+
+def skip_lists(start, nx, ny):
+    """Skip lists over empty buckets, so a ring search passes empty stretches in O(1).
+
+    Returns
+    -------
+    rownext : (ny + 1,) int64
+        ``rownext[j]``: the first row ``>= j`` holding a site (``ny`` when none).
+    bnext : (ny * (nx + 1),) int32
+        ``bnext[j * (nx + 1) + i]``: the first column ``>= i`` of row ``j`` holding a site
+        (``nx`` when none).
+    """
+    occ = np.diff(start).reshape(ny, nx)
+    rows = np.where(occ.sum(1) > 0, np.arange(ny), ny)
+    rownext = np.full(ny + 1, ny, dtype=np.int64)
+    rownext[:ny] = np.minimum.accumulate(rows[::-1])[::-1]
+    cols = np.where(occ > 0, np.arange(nx, dtype=np.int32), np.int32(nx))
+    bnext = np.full((ny, nx + 1), nx, dtype=np.int32)
+    bnext[:, :nx] = np.minimum.accumulate(cols[:, ::-1], axis=1)[:, ::-1]
+    return rownext, bnext.ravel()
+
+
+@njit(**NJIT)
+def ring_rows(cj, r, ny):
+    """First and last row (inclusive) of ring ``r`` around row ``cj``, clipped to the grid."""
+    return max(cj - r, 0), min(cj + r, ny - 1)
+
+
+@njit(**NJIT)
+def ring_row(ci, cj, r, j, nx):
+    """Columns of row ``j`` in ring ``r`` around bucket ``(ci, cj)``: ``(i0, i1, step)``.
+
+    The ring's buckets in that row are ``range(i0, i1 + 1, step)`` (empty when ``i0 > i1``):
+    the whole clipped run on the ring's first and last rows, its two ends on the others.
+    """
+    if j == cj - r or j == cj + r:
+        return max(ci - r, 0), min(ci + r, nx - 1), 1
+    i0 = ci - r if ci - r >= 0 else ci + r
+    i1 = ci + r if ci + r < nx else ci - r
+    return i0, i1, 2 * r
+
+
+@njit(**NJIT)
+def ring_gap(rx0, rx1, ry0, ry1, ci, cj, r, grid):
+    """Lower bound on the distance from rectangle ``[rx0, rx1] x [ry0, ry1]`` to unscanned sites.
+
+    The scanned buckets are the block of rings ``0..r`` around ``(ci, cj)`` and the rectangle
+    lies inside it (a point is a rectangle of no size). Every unscanned site lies beyond one
+    of the block's sides that are not on the grid's boundary, so at least this far along
+    that axis. ``inf`` when the block covers the grid (nothing left to scan); negative when
+    the rectangle reaches past the block.
+    """
+    x0, y0, hx, hy, nx, ny = grid
+    gap = np.inf
+    if ci - r > 0:
+        gap = min(gap, rx0 - (x0 + (ci - r) * hx))
+    if ci + r < nx - 1:
+        gap = min(gap, x0 + (ci + r + 1) * hx - rx1)
+    if cj - r > 0:
+        gap = min(gap, ry0 - (y0 + (cj - r) * hy))
+    if cj + r < ny - 1:
+        gap = min(gap, y0 + (cj + r + 1) * hy - ry1)
+    return gap
+
+
+@njit(**NJIT)
+def rect_dist2(x, y, x0, y0, x1, y1):
+    """Squared distance from ``(x, y)`` to the rectangle ``[x0, x1] x [y0, y1]`` (inf if empty)."""
+    if x0 >= x1 or y0 >= y1:
+        return np.inf
+    dx = max(x0 - x, 0.0, x - x1)
+    dy = max(y0 - y, 0.0, y - y1)
+    return dx * dx + dy * dy
+
+
+@njit(**NJIT)
+def block_box(ci, cj, r, grid):
+    """Rectangle ``(bx0, by0, bx1, by1)`` of the block of rings ``0..r``, clipped to the grid."""
+    x0, y0, hx, hy, nx, ny = grid
+    bx0 = max(x0 + (ci - r) * hx, x0)
+    bx1 = min(x0 + (ci + r + 1) * hx, x0 + nx * hx)
+    by0 = max(y0 + (cj - r) * hy, y0)
+    by1 = min(y0 + (cj + r + 1) * hy, y0 + ny * hy)
+    return bx0, by0, bx1, by1
+
+
+@njit(**NJIT)
+def outside_dist2(x, y, block, grid):
+    """Squared distance from ``(x, y)`` to the part of the grid outside ``block``.
+
+    ``block`` is :func:`block_box`'s rectangle; the rest of the grid is four strips around
+    it (left and right ones full height). ``inf`` when the block covers the grid. The point
+    may lie anywhere, inside the grid or not.
+    """
+    x0, y0, hx, hy, nx, ny = grid
+    bx0, by0, bx1, by1 = block
+    gx1 = x0 + nx * hx
+    gy1 = y0 + ny * hy
+    d = rect_dist2(x, y, x0, y0, bx0, gy1)  # left strip
+    d = min(d, rect_dist2(x, y, bx1, y0, gx1, gy1))  # right strip
+    d = min(d, rect_dist2(x, y, bx0, y0, bx1, by0))  # bottom strip
+    return min(d, rect_dist2(x, y, bx0, by1, bx1, gy1))  # top strip

@@ -1,0 +1,367 @@
+"""Exact finishing of a half-plane cell: its ring of neighbours made exact, then emitted.
+
+The float cut (:mod:`.halfplane`) leaves a ring of neighbour labels that is right up to
+rounding. This module makes it exactly right and writes the cell with vertices that every
+cell sharing them computes identically:
+
+1. :func:`settle_ring` checks the ring with the exact ``orient2d``/``incircle`` against every
+   site met within the cell's reach (zero-length edges of cocircular sites go, neighbours
+   lost to coinciding float bisectors come back) and names every vertex by its owners:
+   :func:`.vertex.voronoi_vertex` of the triple, or, where more sites are on the circle to
+   rounding, the triple :func:`.vertex.canonical_triple` picks. A site counts as on a circle
+   by rounding only if its own vertices with the circle's sites are that vertex to rounding
+   (:func:`_joins`): near-duplicate sites make a tiny incircle value but long edges.
+2. :func:`emit_exact` writes the ring: bisector-bisector vertices from step 1, a bisector's
+   crossing with a box side by :func:`.vertex.box_crossing` (or the canonical vertex there
+   when the crossing is one), box corners exactly.
+3. :func:`emit_float` writes the float cut as it is, the fallback when step 1 fails.
+
+Labels are site indices (``>= 0``) and box sides ``LEFT, BOTTOM, RIGHT, TOP`` (-1..-4, the
+side codes of :func:`.vertex.box_crossing`); all box sides are written as owner -1.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ..config import (
+    HALFPLANE_JOIN_RTOL,
+    HALFPLANE_MERGE_RTOL,
+    HALFPLANE_NEAR_RTOL,
+    HALFPLANE_SHADOW_RTOL,
+    NJIT,
+)
+from .predicates import incircle, orient2d
+from .vertex import box_crossing, canonical_vertex, is_close, voronoi_vertex
+
+#: Box sides as ring labels (those of :func:`.vertex.box_crossing`); all become owner -1.
+LEFT, BOTTOM, RIGHT, TOP = -1, -2, -3, -4
+_MAX_FIX = 64  # rounds of exact repair per cell before the float cut is kept as it is
+
+
+@njit(**NJIT)
+def _edge_ok(i, j, p, q, xs, ys):
+    """Whether neighbour ``j`` between ``p`` (before) and ``q`` (after) has an edge of length > 0.
+
+    Around site ``i`` counter-clockwise, ``p`` lies right of ``i -> j`` and ``q`` left of it;
+    the edge's ends are the circumcentres of ``(i, p, j)`` and ``(i, j, q)``, in that order
+    exactly when ``p`` is strictly outside the circle through ``i, j, q`` (exact predicates).
+    """
+    ix = xs[i]
+    iy = ys[i]
+    jx = xs[j]
+    jy = ys[j]
+    if orient2d(ix, iy, jx, jy, xs[p], ys[p]) >= 0.0:
+        return False
+    if orient2d(ix, iy, jx, jy, xs[q], ys[q]) <= 0.0:
+        return False
+    return incircle(ix, iy, jx, jy, xs[q], ys[q], xs[p], ys[p]) < 0.0
+
+
+@njit(**NJIT)
+def _shadowed_at_box(i, j, k, side, xs, ys, box):
+    """Whether neighbour ``j`` between box side ``side`` and site ``k`` has no edge.
+
+    Only for ``k`` a few ulps from ``j`` (their bisectors with ``i`` are nearly parallel,
+    their crossing and the float cut are ill-conditioned): ``j``'s edge starts where its
+    bisector meets the side, and is empty when ``k`` is nearer there than ``j``, i.e.
+    ``|c - j|^2 - |c - k|^2 = (k - j) . (2 c - j - k) > 0`` (``k - j`` is exact).
+    """
+    dx = xs[k] - xs[j]
+    dy = ys[k] - ys[j]
+    ex = xs[j] - xs[i]
+    ey = ys[j] - ys[i]
+    if dx * dx + dy * dy > HALFPLANE_SHADOW_RTOL * (ex * ex + ey * ey):
+        return False
+    cx, cy = box_crossing(i, j, xs, ys, side, box)
+    if not (np.isfinite(cx) and np.isfinite(cy)):
+        return False
+    return dx * (2.0 * cx - xs[j] - xs[k]) + dy * (2.0 * cy - ys[j] - ys[k]) > 0.0
+
+
+@njit(**NJIT)
+def _remove(lab, m, u):
+    for k in range(u, m - 1):
+        lab[k] = lab[k + 1]
+    return m - 1
+
+
+@njit(**NJIT)
+def _drop_invalid(i, lab, m, xs, ys, sure, trust, box):
+    """Remove repeated labels and neighbours whose edge has no positive length.
+
+    With ``trust``, labels whose float edge is long (``sure[u]``) are kept without the exact
+    test: the float cut is off by rounding only, so such an edge exists. A label next to a
+    box side and to a site a few ulps from its own goes when the other one is nearer where
+    its bisector meets the box (:func:`_shadowed_at_box`).
+    """
+    u = 0
+    while u < m and m >= 3:
+        j = lab[u]
+        p = lab[u - 1] if u > 0 else lab[m - 1]
+        q = lab[u + 1] if u + 1 < m else lab[0]
+        check = j >= 0 and p >= 0 and q >= 0 and p != q and not (trust and sure[u] > 0.0)
+        shadowed = j >= 0 and (p < 0) != (q < 0)
+        if shadowed:
+            shadowed = _shadowed_at_box(i, j, q if p < 0 else p, p if p < 0 else q, xs, ys, box)
+        if j == p or shadowed or (check and not _edge_ok(i, j, p, q, xs, ys)):
+            m = _remove(lab, m, u)
+            u = max(u - 1, 0)
+            trust = False  # sure[] is indexed by the ring as it was: no longer aligned
+            continue
+        u += 1
+    return m
+
+
+@njit(**NJIT)
+def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box):
+    """Make the ring of neighbour labels ``lab[:m]`` exactly right; returns its length.
+
+    Float cutting can keep an edge of zero length (cocircular sites), or lose a neighbour
+    whose bisector coincides with another one in floating point. Labels without a positive
+    edge are dropped (:func:`_edge_ok`); then each vertex between neighbours ``a, b`` is
+    checked against every candidate site: one strictly inside the circle through ``i, a, b``
+    is inserted between them (float filter, exact ``incircle`` near the circle). Candidates
+    exactly on the circle are cocircular: the vertex is then the one named by the canonical
+    triple of the sites on it, which every cell around the vertex finds the same.
+    Returns -1 when the ring cannot be settled (the caller keeps the float cut).
+
+    A site within rounding of the circle is taken as on it (never inserted) only if its
+    vertices with the circle's sites are the vertex to rounding (:func:`_joins`); a site a
+    few ulps from ``i``, ``a`` or ``b`` gets the exact test. The canonical centre is that of
+    the first well-conditioned triple of the sites on the circle
+    (:func:`.vertex.canonical_vertex`). ``on`` is scratch for those sites (int64, any size).
+
+    ``sure[u]`` flags labels whose float edge is long; until the ring changes they skip the
+    exact tests (their edge and the orientation at its ends are beyond rounding).
+    """
+    cap = lab.shape[0]
+    trust = True
+    for _ in range(_MAX_FIX):
+        m0 = m
+        m = _drop_invalid(i, lab, m, xs, ys, sure, trust, box)
+        if m < 3:
+            return -1
+        trust = trust and m == m0
+        inserted = False
+        for u in range(m):
+            a = lab[u - 1] if u > 0 else lab[m - 1]
+            b = lab[u]
+            if a < 0 or b < 0:
+                continue
+            ix = xs[i]
+            iy = ys[i]
+            both = trust and sure[u] > 0.0 and sure[u - 1 if u > 0 else m - 1] > 0.0
+            if not both and orient2d(ix, iy, xs[a], ys[a], xs[b], ys[b]) <= 0.0:
+                return -1
+            vx_, vy_ = voronoi_vertex(i, a, b, xs, ys)
+            r2 = (ix - vx_) * (ix - vx_) + (iy - vy_) * (iy - vy_)
+            tol = HALFPLANE_NEAR_RTOL * r2
+            # a site this close to the circle is on it: the edge it would add or keep is
+            # shorter than floats can order (the default algorithm merges such vertices too)
+            r = np.sqrt(r2)
+            merge = HALFPLANE_MERGE_RTOL * r * (abs(vx_) + abs(vy_) + r)
+            nxt = lab[u + 1] if u + 1 < m else lab[0]
+            prv = lab[u - 2] if u >= 2 else lab[u - 2 + m]
+            non = 0  # other sites on the circle, to rounding
+            for c in range(nc):
+                x = sidx[cand[c]]
+                if x == a or x == b:
+                    continue
+                dx = xs[x] - vx_
+                dy = ys[x] - vy_
+                d = dx * dx + dy * dy - r2
+                if d > tol:
+                    continue
+                if abs(d) <= merge and _joins(i, a, b, x, vx_, vy_, xs, ys, HALFPLANE_JOIN_RTOL):
+                    if x == nxt or x == prv:
+                        # the edge of b (or a) between this vertex and x's is noise: drop it
+                        m = _remove(lab, m, u if x == nxt else (u - 1 if u > 0 else m - 1))
+                        inserted = True
+                        break
+                    s = 0.0
+                elif d < -tol and abs(d) > merge:
+                    s = 1.0
+                else:
+                    s = incircle(ix, iy, xs[a], ys[a], xs[b], ys[b], xs[x], ys[x])
+                if s > 0.0:
+                    # x strictly inside the circle and on the line through i and a (or b)
+                    # lies between them: a's bisector is beyond x's, so x replaces a
+                    ua = u - 1 if u > 0 else m - 1
+                    if orient2d(ix, iy, xs[a], ys[a], xs[x], ys[x]) == 0.0:
+                        if not _has(lab, m, x):
+                            lab[ua] = x
+                            inserted = True
+                            break
+                    if orient2d(ix, iy, xs[b], ys[b], xs[x], ys[x]) == 0.0:
+                        if not _has(lab, m, x):
+                            lab[u] = x
+                            inserted = True
+                            break
+                    if m < cap and not _has(lab, m, x):
+                        for k in range(m, u, -1):
+                            lab[k] = lab[k - 1]
+                        lab[u] = x
+                        m += 1
+                        inserted = True
+                        break
+                elif (s == 0.0 or abs(d) <= merge) and non + 3 < on.shape[0]:
+                    on[non] = x  # on the circle, or off it by rounding only
+                    non += 1
+            if inserted:
+                break
+            if non == 0:
+                vx[u] = vx_  # no other site on the circle: the centre computed above
+                vy[u] = vy_
+            else:
+                on[non] = i
+                on[non + 1] = a
+                on[non + 2] = b
+                vx[u], vy[u] = canonical_vertex(on, non + 3, vx_, vy_, ix, iy, xs, ys)
+        if not inserted:
+            return m
+        trust = False  # the ring changed: every label gets the exact tests from now on
+    return -1
+
+
+@njit(**NJIT)
+def _joins(i, a, b, x, vx, vy, xs, ys, rtol):
+    """Whether site ``x`` near the circle of ``i, a, b`` (centre ``vx, vy``) is on its vertex.
+
+    True when the circumcentres of ``x`` with ``i, a`` and with ``i, b`` both lie within
+    ``rtol`` of the vertex: the edges that ``x`` would add or shorten are then rounding
+    noise. A site a few ulps from ``i``, ``a`` or ``b`` fails: its triangle with that
+    site is ill-conditioned and its centre lies far along their bisector.
+    """
+    ix = xs[i]
+    iy = ys[i]
+    px, py = voronoi_vertex(i, a, x, xs, ys)
+    if not (np.isfinite(px) and np.isfinite(py)):
+        return False
+    if not is_close(vx, vy, px, py, ix, iy, rtol):
+        return False
+    px, py = voronoi_vertex(i, x, b, xs, ys)
+    if not (np.isfinite(px) and np.isfinite(py)):
+        return False
+    return is_close(vx, vy, px, py, ix, iy, rtol)
+
+
+@njit(**NJIT)
+def _has(lab, m, x):
+    for k in range(m):
+        if lab[k] == x:
+            return True
+    return False
+
+
+@njit(**NJIT)
+def _snap_crossing(i, j, x, y, xs, ys, near, nn, sidx, on):
+    """The canonical vertex at box crossing ``(x, y)`` of the bisector of ``i, j``, if any.
+
+    When other sites are as far from the crossing as ``i`` and ``j`` (to the merge
+    tolerance), the crossing is a Voronoi vertex lying on the box: it becomes the
+    canonical centre of those sites (:func:`.vertex.canonical_vertex`), as in
+    :func:`settle_ring`. ``on`` is scratch (int64, any size).
+    """
+    r2 = (xs[i] - x) * (xs[i] - x) + (ys[i] - y) * (ys[i] - y)
+    r = np.sqrt(r2)
+    merge = HALFPLANE_MERGE_RTOL * r * (abs(x) + abs(y) + r)
+    on[0] = i
+    on[1] = j
+    k = 2
+    for c in range(nn):
+        q = sidx[near[c]]
+        if q == i or q == j:
+            continue
+        dx = xs[q] - x
+        dy = ys[q] - y
+        if abs(dx * dx + dy * dy - r2) <= merge and k < on.shape[0]:
+            on[k] = q
+            k += 1
+    if k == 2:
+        return x, y
+    return canonical_vertex(on, k, x, y, xs[i], ys[i], xs, ys)
+
+
+@njit(**NJIT)
+def emit_exact(i, lab, m, vx, vy, xs, ys, box, near, nn, sidx, ox, oy, oo, pos, on):
+    """Write the settled ring with canonical vertices from ``pos``; -1 when one is undefined.
+
+    Bisector-bisector vertices come from :func:`settle_ring`; a bisector meets a box side at
+    the crossing named by the pair and the side (:func:`.vertex.box_crossing`), and two
+    box sides meet at the exact corner. A crossing that is also a Voronoi vertex (a site
+    among ``near[:nn]`` as far from it as the pair, to rounding) is that vertex's canonical
+    circumcentre instead, which the cells meeting there inside compute too. ``on`` is
+    scratch (int64, any size).
+    """
+    c = pos
+    for u in range(m):
+        a = lab[u - 1] if u > 0 else lab[m - 1]
+        b = lab[u]
+        if a >= 0 and b >= 0:
+            x = vx[u]
+            y = vy[u]
+        elif a >= 0 or b >= 0:
+            j = a if a >= 0 else b
+            x, y = box_crossing(i, j, xs, ys, b if a >= 0 else a, box)
+            if np.isfinite(x) and np.isfinite(y):
+                x, y = _snap_crossing(i, j, x, y, xs, ys, near, nn, sidx, on)
+        else:
+            vert = a if (a == LEFT or a == RIGHT) else b
+            horz = b if vert == a else a
+            if not ((vert == LEFT or vert == RIGHT) and (horz == BOTTOM or horz == TOP)):
+                return -1
+            x = box[0] if vert == LEFT else box[2]
+            y = box[1] if horz == BOTTOM else box[3]
+        if not (np.isfinite(x) and np.isfinite(y)):
+            return -1
+        x = min(max(x, box[0]), box[2])
+        y = min(max(y, box[1]), box[3])
+        o = b if b >= 0 else -1
+        if c > pos and ox[c - 1] == x and oy[c - 1] == y:
+            oo[c - 1] = o
+        else:
+            ox[c] = x
+            oy[c] = y
+            oo[c] = o
+            c += 1
+    while c > pos + 1 and ox[c - 1] == ox[pos] and oy[c - 1] == oy[pos]:
+        c -= 1
+    return c - pos if c - pos >= 3 else 0
+
+
+@njit(**NJIT)
+def emit_float(px, py, po, a, m, cx, cy, box, ox, oy, oo, pos):
+    """Write the float cell at ``a:a + m`` around site ``(cx, cy)`` to ``ox, oy, oo``.
+
+    The fallback when the exact ring cannot be settled. Coordinates become absolute and
+    vertices on box edges are snapped onto the box. Returns the length written (0 when
+    rounding left fewer than three distinct vertices).
+    """
+    xmin, ymin, xmax, ymax = box[0], box[1], box[2], box[3]
+    c = pos
+    for t in range(a, a + m):
+        x = min(max(px[t] + cx, xmin), xmax)
+        y = min(max(py[t] + cy, ymin), ymax)
+        o = po[t]
+        op = po[t - 1] if t > a else po[a + m - 1]
+        if o == BOTTOM or op == BOTTOM:
+            y = ymin
+        if o == TOP or op == TOP:
+            y = ymax
+        if o == LEFT or op == LEFT:
+            x = xmin
+        if o == RIGHT or op == RIGHT:
+            x = xmax
+        o = max(o, -1)
+        if c > pos and ox[c - 1] == x and oy[c - 1] == y:
+            oo[c - 1] = o
+        else:
+            ox[c] = x
+            oy[c] = y
+            oo[c] = o
+            c += 1
+    while c > pos + 1 and ox[c - 1] == ox[pos] and oy[c - 1] == oy[pos]:
+        c -= 1
+    return c - pos if c - pos >= 3 else 0
