@@ -32,8 +32,8 @@ def assemble(dom: Domain, closed, lengths, owner, n: int, cell_ids=None):
     lengths : (u + 1,) int64
         Ring ``r`` is ``closed[lengths[r]:lengths[r + 1]]`` (empty for an empty cell).
     owner : (k,) int64
-        The cell across the edge from each vertex to the next (negative: the domain's box;
-        -2 on the closing repeat).
+        The cell across the edge from each vertex to the next (negative where no cell is:
+        the box, and -2 on the closing repeat).
     n : int
         Number of cells of the result.
     cell_ids : (u,) int64, optional
