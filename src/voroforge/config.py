@@ -47,6 +47,9 @@ RELABEL_RTOL = 1e-9
 #: ring neighbour keep their cut coordinates, and a vertex computed from its name replaces
 #: the cut one only within this distance (kernels/power)
 POWER_CROWDED_RTOL = 1e-9
+#: Relative size of a seed candidate's float orientation below which the sweep's seed
+#: search asks the exact orient2d (nearly collinear: never the smallest circle; delaunay)
+SEED_DET_RTOL = 1e-10
 
 # --- half-plane cells, bucket grid, raster ----------------------------------------------------
 

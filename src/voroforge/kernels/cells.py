@@ -99,7 +99,7 @@ def flag_close(xs, ys, tri, he, cx, cy, flag):
 
 
 @njit(**NJIT)
-def _merge_exact(xs, ys, tri, he, cand, cx, cy):
+def _merge_exact(xs, ys, tri, he, cand, cx, cy, near):
     t = tri.shape[0] // 3
     parent = np.arange(t)
     merged = False
@@ -107,7 +107,7 @@ def _merge_exact(xs, ys, tri, he, cand, cx, cy):
         e = cand[k]
         f = he[e]
         a, b, c, d = _quad(tri, e, f)
-        if _cc_close(xs, ys, a, cx, cy, e // 3, f // 3) or (
+        if (near and _cc_close(xs, ys, a, cx, cy, e // 3, f // 3)) or (
             incircle(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c], xs[d], ys[d]) == 0.0
         ):
             ra = _find(parent, e // 3)
@@ -176,7 +176,22 @@ def merge_cocircular(xs, ys, tri, he, cx, cy, flag):
     cand = np.flatnonzero(flag)
     if cand.shape[0] == 0:
         return np.arange(tri.shape[0] // 3)
-    return _merge_exact(xs, ys, tri, he, cand, cx, cy)
+    return _merge_exact(xs, ys, tri, he, cand, cx, cy, True)
+
+
+def triangle_centers(xs, ys, tri, he):
+    """Circumcentres of all triangles, named as the Voronoi vertices are.
+
+    Each is the vertex named by its triangle's sites, and exactly cocircular triangles
+    (exact ``incircle`` == 0) share the vertex of their canonical name, as in the cells. The
+    merge of merely close centres (``CC_MERGE_RTOL``) is left out: each centre stays its own
+    triangle's, to its conditioning. Returns ``(cx, cy)``.
+    """
+    cx, cy, flag = circumcenters(xs, ys, tri, he)
+    cand = np.flatnonzero(flag)
+    if cand.shape[0]:
+        _merge_exact(xs, ys, tri, he, cand, cx, cy, False)
+    return cx, cy
 
 
 @njit(**NJIT)

@@ -25,7 +25,7 @@ import math
 import numpy as np
 from numba import literally, njit, prange
 
-from ..config import NJIT, NJIT_PARALLEL
+from ..config import NJIT, NJIT_PARALLEL, SEED_DET_RTOL
 from .predicates import incircle, incircle_fast, orient2d, orient2d_fast
 from .vertex import circumcenter
 
@@ -216,7 +216,7 @@ def _seed(xs, ys):
         left = dx * ey
         right = dy * ex
         det = left - right
-        if not abs(det) > 1e-10 * (abs(left) + abs(right)):
+        if not abs(det) > SEED_DET_RTOL * (abs(left) + abs(right)):
             # nearly collinear: never the smallest circle unless nothing else is left
             if i2 != -1 or orient2d(x0, y0, xs[i1], ys[i1], xs[i], ys[i]) == 0.0:
                 continue
