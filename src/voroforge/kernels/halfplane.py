@@ -286,10 +286,10 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
             c = -1
             if ms >= 3:
                 c = emit_exact(
-                    sidx[k], lab, ms, vx, vy, xs, ys, box, watch, keep, sidx, ox, oy, oo, 0, cand
+                    sidx[k], lab, ms, vx, vy, xs, ys, box, watch, keep, sidx, ox, oy, oo, cand
                 )
             if c < 0:
-                c = emit_float(px, py, po, a, m, cx, cy, box, ox, oy, oo, 0)
+                c = emit_float(px, py, po, a, m, cx, cy, box, ox, oy, oo)
             if fits and pos + c <= dx.shape[0]:
                 for t in range(c):
                     dx[pos + t] = ox[t]

@@ -32,6 +32,7 @@ from ..config import (
     HALFPLANE_SHADOW_RTOL,
     NJIT,
 )
+from .clip import dedupe_ring
 from .predicates import incircle, orient2d
 from .vertex import box_crossing, canonical_vertex, is_close, voronoi_vertex
 
@@ -285,8 +286,8 @@ def _snap_crossing(i, j, x, y, xs, ys, near, nn, sidx, on):
 
 
 @njit(**NJIT)
-def emit_exact(i, lab, m, vx, vy, xs, ys, box, near, nn, sidx, ox, oy, oo, pos, on):
-    """Write the settled ring with canonical vertices from ``pos``; -1 when one is undefined.
+def emit_exact(i, lab, m, vx, vy, xs, ys, box, near, nn, sidx, ox, oy, oo, on):
+    """Write the settled ring with canonical vertices to ``o``; -1 when one is undefined.
 
     Bisector-bisector vertices come from :func:`settle_ring`; a bisector meets a box side at
     the crossing named by the pair and the side (:func:`.vertex.box_crossing`), and two
@@ -295,7 +296,6 @@ def emit_exact(i, lab, m, vx, vy, xs, ys, box, near, nn, sidx, ox, oy, oo, pos, 
     circumcentre instead, which the cells meeting there inside compute too. ``on`` is
     scratch (int64, any size).
     """
-    c = pos
     for u in range(m):
         a = lab[u - 1] if u > 0 else lab[m - 1]
         b = lab[u]
@@ -318,21 +318,14 @@ def emit_exact(i, lab, m, vx, vy, xs, ys, box, near, nn, sidx, ox, oy, oo, pos, 
             return -1
         x = min(max(x, box[0]), box[2])
         y = min(max(y, box[1]), box[3])
-        o = b if b >= 0 else -1
-        if c > pos and ox[c - 1] == x and oy[c - 1] == y:
-            oo[c - 1] = o
-        else:
-            ox[c] = x
-            oy[c] = y
-            oo[c] = o
-            c += 1
-    while c > pos + 1 and ox[c - 1] == ox[pos] and oy[c - 1] == oy[pos]:
-        c -= 1
-    return c - pos if c - pos >= 3 else 0
+        ox[u] = x
+        oy[u] = y
+        oo[u] = b if b >= 0 else -1
+    return dedupe_ring(ox, oy, oo, m)
 
 
 @njit(**NJIT)
-def emit_float(px, py, po, a, m, cx, cy, box, ox, oy, oo, pos):
+def emit_float(px, py, po, a, m, cx, cy, box, ox, oy, oo):
     """Write the float cell at ``a:a + m`` around site ``(cx, cy)`` to ``ox, oy, oo``.
 
     The fallback when the exact ring cannot be settled. Coordinates become absolute and
@@ -340,7 +333,6 @@ def emit_float(px, py, po, a, m, cx, cy, box, ox, oy, oo, pos):
     rounding left fewer than three distinct vertices).
     """
     xmin, ymin, xmax, ymax = box[0], box[1], box[2], box[3]
-    c = pos
     for t in range(a, a + m):
         x = min(max(px[t] + cx, xmin), xmax)
         y = min(max(py[t] + cy, ymin), ymax)
@@ -354,14 +346,7 @@ def emit_float(px, py, po, a, m, cx, cy, box, ox, oy, oo, pos):
             x = xmin
         if o == RIGHT or op == RIGHT:
             x = xmax
-        o = max(o, -1)
-        if c > pos and ox[c - 1] == x and oy[c - 1] == y:
-            oo[c - 1] = o
-        else:
-            ox[c] = x
-            oy[c] = y
-            oo[c] = o
-            c += 1
-    while c > pos + 1 and ox[c - 1] == ox[pos] and oy[c - 1] == oy[pos]:
-        c -= 1
-    return c - pos if c - pos >= 3 else 0
+        ox[t - a] = x
+        oy[t - a] = y
+        oo[t - a] = max(o, -1)
+    return dedupe_ring(ox, oy, oo, m)
