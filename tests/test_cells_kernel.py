@@ -84,10 +84,16 @@ def test_shared_vertices_are_bit_identical_between_neighbours():
 
 def test_triangulation_circumcenters_are_the_voronoi_vertices_bit_for_bit():
     rng = np.random.default_rng(2)
+    ring = [(5, 0), (4, 3), (3, 4), (0, 5), (-3, 4), (-4, 3), (-5, 0), (-4, -3), (-3, -4)]
+    ring += [(0, -5), (3, -4), (4, -3)]
+    # exactly cocircular sites (a grid of step 1/8, integer points on one circle): the
+    # triangles of a circle share its canonical vertex. Sites only within rounding of a
+    # circle (a grid of step 0.1) are merged by the cells but keep their own centres in
+    # the triangulation (each exact to its conditioning).
     for pts in (
         rng.random((300, 2)),
-        np.stack(np.meshgrid(np.arange(7.0), np.arange(5.0)), -1).reshape(-1, 2) * 0.1,
-        np.column_stack((np.cos(np.arange(12) * np.pi / 6), np.sin(np.arange(12) * np.pi / 6))),
+        np.stack(np.meshgrid(np.arange(7.0), np.arange(5.0)), -1).reshape(-1, 2) * 0.125,
+        np.array(ring, dtype=float),
     ):
         tri = vf.delaunay(pts)
         cc = tri.circumcenters

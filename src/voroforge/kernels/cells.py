@@ -26,7 +26,7 @@ from ..config import CC_MERGE_RTOL, CHAIN_SPAN_RTOL, NJIT, NJIT_PARALLEL, RELABE
 from .clip import dedupe_ring
 from .power import box_cell
 from .predicates import incircle, incircle_fast
-from .vertex import box_crossing, canonical_triple, voronoi_vertex
+from .vertex import box_crossing, canonical_triple_ranked, voronoi_vertex
 
 _CHUNK = 2048
 
@@ -99,7 +99,7 @@ def flag_close(xs, ys, tri, he, cx, cy, flag):
 
 
 @njit(**NJIT)
-def _merge_exact(xs, ys, tri, he, cand, cx, cy, near):
+def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank):
     t = tri.shape[0] // 3
     parent = np.arange(t)
     merged = False
@@ -118,16 +118,17 @@ def _merge_exact(xs, ys, tri, he, cand, cx, cy, near):
     if merged:
         for k in range(t):
             parent[k] = _find(parent, k)
-        _name_classes(xs, ys, tri, parent, cx, cy)
+        _name_classes(xs, ys, tri, parent, cx, cy, rank)
     return parent
 
 
 @njit(**NJIT)
-def _name_classes(xs, ys, tri, parent, cx, cy):
+def _name_classes(xs, ys, tri, parent, cx, cy, rank):
     """Give every triangle of a class (``parent`` its root) the vertex of the class's name.
 
-    The name is the canonical triple of the class's sites (``kernels/vertex``), found near
-    the root's centre; without one the root's centre is used.
+    The name is the canonical triple of the class's sites (``kernels/vertex``), numbered by
+    ``rank`` (their input indices), found near the root's centre; without one the root's
+    centre is used.
     """
     t = parent.shape[0]
     size = np.zeros(t, dtype=np.int64)
@@ -152,7 +153,7 @@ def _name_classes(xs, ys, tri, parent, cx, cy):
             vx = cx[r]
             vy = cy[r]
             a0 = tri[3 * r]
-            a, b, c = canonical_triple(on, k, vx, vy, xs[a0], ys[a0], xs, ys)
+            a, b, c = canonical_triple_ranked(on, k, rank, vx, vy, xs[a0], ys[a0], xs, ys)
             if a >= 0:
                 vx, vy = voronoi_vertex(a, b, c, xs, ys)
             for u in range(s, e):
@@ -161,7 +162,7 @@ def _name_classes(xs, ys, tri, parent, cx, cy):
         s = e
 
 
-def merge_cocircular(xs, ys, tri, he, cx, cy, flag):
+def merge_cocircular(xs, ys, tri, he, cx, cy, flag, rank):
     """Give triangles with the same circumcircle one circumcentre; return each one's class.
 
     Two triangles sharing an edge have the same circumcircle exactly when the fourth point is
@@ -170,13 +171,14 @@ def merge_cocircular(xs, ys, tri, he, cx, cy, flag):
     keeping it can fold the ring). Classes are the connected components of that relation;
     every member gets the vertex named by the class's canonical triple (the vertex rule of
     ``kernels/vertex``, which the half-plane kernel follows too). The exact code runs only
-    on the halfedges flagged by :func:`circumcenters`.
+    on the halfedges flagged by :func:`circumcenters`. ``rank[v]`` is site ``v``'s input
+    index (names are chosen in the input's numbering, as every algorithm does).
     """
     flag_close(xs, ys, tri, he, cx, cy, flag)
     cand = np.flatnonzero(flag)
     if cand.shape[0] == 0:
         return np.arange(tri.shape[0] // 3)
-    return _merge_exact(xs, ys, tri, he, cand, cx, cy, True)
+    return _merge_exact(xs, ys, tri, he, cand, cx, cy, True, rank)
 
 
 def triangle_centers(xs, ys, tri, he):
@@ -190,7 +192,7 @@ def triangle_centers(xs, ys, tri, he):
     cx, cy, flag = circumcenters(xs, ys, tri, he)
     cand = np.flatnonzero(flag)
     if cand.shape[0]:
-        _merge_exact(xs, ys, tri, he, cand, cx, cy, False)
+        _merge_exact(xs, ys, tri, he, cand, cx, cy, False, np.arange(xs.shape[0]))
     return cx, cy
 
 
@@ -549,7 +551,7 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
     n = xs.shape[0]
     box = np.asarray(box, dtype=np.float64)
     cx, cy, flag = circumcenters(xs, ys, tri, he)
-    cls = merge_cocircular(xs, ys, tri, he, cx, cy, flag)
+    cls = merge_cocircular(xs, ys, tri, he, cx, cy, flag, kmap)
     out, deg, cut = _outgoing(tri, he, cx, cy, box, n)
     cap = int(deg.max()) + 16
     merged = bool(flag.any())

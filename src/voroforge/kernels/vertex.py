@@ -16,8 +16,13 @@ with one tiny edge keeps its precision), and uses the adaptive ``orient2d`` as d
 when the float one cannot be trusted.
 
 Where four or more sites are cocircular, several triples name one vertex;
-:func:`canonical_triple` picks the name (the first well-conditioned triple in canonical
-order), so every cell around the vertex uses the same one.
+:func:`canonical_triple` picks the name (the first well-conditioned triple of the
+lowest-numbered sites, in the input's numbering), so every cell around the vertex uses the
+same one. The order of the computation and the choice of the name are kept apart on
+purpose: coordinates do not depend on any numbering (the Triangulation, the sweep-ordered
+Delaunay cells and the half-plane cells all get the same bits for a triple), while the
+lowest-numbered choice is the one that keeps the half-plane cells consistent around
+near-duplicate sites (measured: a coordinate-ordered choice broke Euler's formula there).
 
 A bisector's crossing with a side of the box is named by its pair and the side
 (:func:`box_crossing`, :func:`power_box_crossing`), computed from the pair in canonical order.
@@ -206,23 +211,15 @@ def is_close(x, y, px, py, sx, sy, rtol):
 
 
 @njit(**NJIT)
-def canonical_triple(on, k, vx, vy, sx, sy, xs, ys):
-    """The name of the vertex ``(vx, vy)`` where sites ``on[:k]`` are cocircular.
+def first_named(on, k, vx, vy, sx, sy, xs, ys):
+    """The first triple of ``on[:k]`` (already in name order) that names vertex ``(vx, vy)``.
 
-    ``(sx, sy)`` is one site on the circle. Sorts ``on[:k]`` into canonical order (repeats
-    allowed) and returns the first triple of distinct sites, in lexicographic order of
-    that, that is well-conditioned (no two of its sites a few ulps apart, see
-    :func:`near_pair`) and whose centre is the vertex to rounding (``VERTEX_SNAP_RTOL``).
-    Returns ``(-1, -1, -1)`` when there is none (the vertex then keeps its coordinates).
+    ``(sx, sy)`` is one site on the vertex's circle. Triples are tried in lexicographic
+    order of their positions in ``on``; repeats are skipped, and so are ill-conditioned
+    triples (two sites a few ulps apart, see :func:`near_pair`) and those whose centre is
+    not the vertex to rounding (``VERTEX_SNAP_RTOL``). ``(-1, -1, -1)`` when none names it.
     """
     r2 = (vx - sx) * (vx - sx) + (vy - sy) * (vy - sy)
-    for p in range(1, k):  # insertion sort: few sites are on one circle
-        x = on[p]
-        q = p
-        while q > 0 and before(x, on[q - 1], xs, ys):
-            on[q] = on[q - 1]
-            q -= 1
-        on[q] = x
     for p in range(k):
         for q in range(p + 1, k):
             for r in range(q + 1, k):
@@ -238,6 +235,37 @@ def canonical_triple(on, k, vx, vy, sx, sy, xs, ys):
                     if is_close(vx, vy, cx, cy, sx, sy, VERTEX_SNAP_RTOL):
                         return x0, x1, x2
     return -1, -1, -1
+
+
+@njit(**NJIT)
+def canonical_triple(on, k, vx, vy, sx, sy, xs, ys):
+    """The name of the vertex ``(vx, vy)`` where sites ``on[:k]`` are cocircular.
+
+    The first well-conditioned, lowest-numbered triple (:func:`first_named` after sorting
+    ``on[:k]`` by site number; repeats allowed). Callers numbering the sites as the input
+    does agree on it; one with its own numbering uses :func:`canonical_triple_ranked`.
+    """
+    for p in range(1, k):  # insertion sort: few sites are on one circle
+        x = on[p]
+        q = p
+        while q > 0 and x < on[q - 1]:
+            on[q] = on[q - 1]
+            q -= 1
+        on[q] = x
+    return first_named(on, k, vx, vy, sx, sy, xs, ys)
+
+
+@njit(**NJIT)
+def canonical_triple_ranked(on, k, rank, vx, vy, sx, sy, xs, ys):
+    """:func:`canonical_triple` with site ``v`` numbered ``rank[v]`` (its input index)."""
+    for p in range(1, k):
+        x = on[p]
+        q = p
+        while q > 0 and rank[x] < rank[on[q - 1]]:
+            on[q] = on[q - 1]
+            q -= 1
+        on[q] = x
+    return first_named(on, k, vx, vy, sx, sy, xs, ys)
 
 
 @njit(**NJIT)
