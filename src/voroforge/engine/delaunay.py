@@ -6,6 +6,7 @@ from functools import cached_property
 
 import numpy as np
 
+from ..kernels.cells import triangle_centers
 from ..kernels.delaunay import triangulate
 from .csr import csr_from_pairs
 from .inputs import as_points, as_query, duplicate_map, from_working, working_frame
@@ -85,17 +86,21 @@ class Triangulation:
 
     @cached_property
     def circumcenters(self) -> np.ndarray:
-        """(t, 2) float64 circumcentres of the triangles."""
-        p = self.points[self.triangles]
-        a = p[:, 0]
-        d = p[:, 1] - a
-        e = p[:, 2] - a
-        bl = (d**2).sum(1)
-        cl = (e**2).sum(1)
-        den = 0.5 / (d[:, 0] * e[:, 1] - d[:, 1] * e[:, 0])
-        cx = a[:, 0] + (e[:, 1] * bl - d[:, 1] * cl) * den
-        cy = a[:, 1] + (d[:, 0] * cl - e[:, 0] * bl) * den
-        return np.stack((cx, cy), axis=1)
+        """(t, 2) float64 circumcentres of the triangles: the Voronoi vertices, bit for bit.
+
+        Each is the vertex named by its triangle's sites (``kernels/vertex``); triangles with
+        one circumcircle (exactly cocircular sites) share the vertex of its canonical name,
+        as in :func:`voroforge.voronoi`'s cells. A triangle whose centre overflows gets
+        ``inf``. (Centres that the cells merge only because they lie within rounding of
+        each other stay each triangle's own here.)
+        """
+        work, k = working_frame(self.points)
+        xs = np.ascontiguousarray(work[:, 0])
+        ys = np.ascontiguousarray(work[:, 1])
+        tri = np.ascontiguousarray(self.triangles.ravel())
+        he = np.ascontiguousarray(self.halfedges)
+        cx, cy = triangle_centers(xs, ys, tri, he)
+        return from_working(np.stack((cx, cy), axis=1), k)
 
     @cached_property
     def _tree(self):

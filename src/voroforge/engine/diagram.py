@@ -14,7 +14,7 @@ from typing import NamedTuple
 import numpy as np
 import shapely
 
-from ..kernels.rings import area_centroid
+from ..kernels.moments import area_centroid
 from .csr import csr_from_pairs
 from .domain import Domain
 from .threads import serial_below

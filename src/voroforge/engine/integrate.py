@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..kernels.lloyd import raster_moments, uniform_moments
+from ..kernels.moments import raster_moments, uniform_moments
 
 _S15 = np.sqrt(15.0)
 _A1 = (6.0 - _S15) / 21.0
