@@ -382,7 +382,9 @@ def brute_power(points, weights, domain) -> np.ndarray:
             if j == i or len(poly) == 0:
                 continue
             d = pts[j] - p
-            poly = _clip_halfplane(poly, 2.0 * d, float(d @ d) + w[i] - w[j])
+            # the weight difference first: |d|^2 + w_i would round |d|^2 away when the
+            # weights are huge and nearly equal
+            poly = _clip_halfplane(poly, 2.0 * d, float(d @ d) + (w[i] - w[j]))
         if len(poly) < 3:
             cells.append(shapely.Polygon())
             continue
