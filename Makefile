@@ -80,5 +80,5 @@ bench: $(VENV)/.installed-bench
 # numba's cache checks only the file of the function it caches: after editing a kernel that
 # others call (predicates.py, say), clear it or the callers keep the old code.
 clean:
-	rm -rf out .pytest_cache .ruff_cache .hypothesis
+	rm -rf out .pytest_cache .ruff_cache .hypothesis build/coverage
 	find src -name '*.nbi' -delete -o -name '*.nbc' -delete

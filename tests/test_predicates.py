@@ -153,7 +153,7 @@ def test_symmetries():
 
 
 # The predicates are exact when nothing underflows: coordinates are 0 or at least 2**-188
-# in magnitude (and below 2**200). ``engine._inputs.working_frame`` puts every input there.
+# in magnitude (and below 2**200). ``engine.inputs.working_frame`` puts every input there.
 coord = st.floats(min_value=-1e6, max_value=1e6, allow_nan=False, allow_infinity=False).map(
     lambda v: v if abs(v) >= 2.0**-188 else 0.0
 )

@@ -209,3 +209,13 @@ ARC_FIT_RTOL = 1e-11
 
 #: Radians of slack (over half a step) between an arc's fitted sweep and its chords' turning.
 ARC_SWEEP_ATOL = 1e-6
+
+# --- explain (teaching tracers) -----------------------------------------------------------------
+
+#: Fortune tracer: edges shorter than this (relative to the box's size) are the zero-length
+#: edges between coinciding vertices of degenerate input, and are dropped.
+EXPLAIN_EDGE_RTOL = 1e-9
+
+#: Fortune tracer: arcs whose float heights are within this (relative) of the lowest are
+#: compared exactly, so near-degenerate input cannot put a site under the wrong arc.
+EXPLAIN_HEIGHT_RTOL = 1e-9

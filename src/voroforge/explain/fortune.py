@@ -41,6 +41,7 @@ from fractions import Fraction
 
 import numpy as np
 
+from ..config import EXPLAIN_EDGE_RTOL, EXPLAIN_HEIGHT_RTOL
 from ..engine.diagram import Edges
 from ..engine.domain import padded_bounds
 from ..engine.inputs import as_points, duplicate_map
@@ -237,7 +238,7 @@ class FortuneTrace:
                 hi = mid - 1
         return self.states[lo]
 
-    def edges(self, bounds=None, *, rtol: float = 1e-9) -> Edges:
+    def edges(self, bounds=None, *, rtol: float = EXPLAIN_EDGE_RTOL) -> Edges:
         """The final Voronoi edges, clipped to a box, in the layout of ``Diagram.edges``.
 
         Parameters
@@ -459,7 +460,7 @@ class _Sweep:
         """
         heights = [self._height(a.site, x, sweep) for a in self.arcs]
         low = min(heights)
-        slack = 1e-9 * (abs(low) + self.scale)
+        slack = EXPLAIN_HEIGHT_RTOL * (abs(low) + self.scale)
         near = [k for k, v in enumerate(heights) if v <= low + slack]
         sites = {self.arcs[k].site for k in near}
         if len(sites) > 1:

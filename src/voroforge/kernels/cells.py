@@ -458,6 +458,23 @@ def _cell(i, xs, ys, ws, tri, he, cx, cy, cls, out, box, bufs, nbrs, cl, tb, ss)
     return m if m >= 3 else 0
 
 
+@njit(**NJIT)
+def _scratch(cap):
+    """Per-chunk scratch of one cell: rings ``p``, ``q`` with owners, neighbour ring, values."""
+    bufs = (
+        np.zeros(cap),
+        np.zeros(cap),
+        np.zeros(cap, dtype=np.int64),
+        np.zeros(cap),
+        np.zeros(cap),
+        np.zeros(cap, dtype=np.int64),
+    )
+    nbrs = np.zeros(cap, dtype=np.int64)
+    cl = np.zeros(cap, dtype=np.int64)
+    tb = np.zeros(cap, dtype=np.int64)
+    return bufs, nbrs, cl, tb, np.zeros(cap)
+
+
 @njit(**NJIT_PARALLEL)
 def _count(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, deg, cut, merged):
     """Vertex count of every cell.
@@ -472,17 +489,7 @@ def _count(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, deg, cut, merged):
             counts[i] = deg[i] if deg[i] >= 3 else 0
     nchunks = (n + _CHUNK - 1) // _CHUNK
     for ch in prange(nchunks):
-        px = np.zeros(cap)
-        py = np.zeros(cap)
-        pw = np.zeros(cap, dtype=np.int64)
-        qx = np.zeros(cap)
-        qy = np.zeros(cap)
-        qw = np.zeros(cap, dtype=np.int64)
-        nbrs = np.zeros(cap, dtype=np.int64)
-        cl = np.zeros(cap, dtype=np.int64)
-        tb = np.zeros(cap, dtype=np.int64)
-        ss = np.zeros(cap)
-        bufs = (px, py, pw, qx, qy, qw)
+        bufs, nbrs, cl, tb, ss = _scratch(cap)
         for i in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
             if not merged and not cut[i]:
                 continue
@@ -496,17 +503,8 @@ def _fill(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, start, coords, owner,
     n = xs.shape[0]
     nchunks = (n + _CHUNK - 1) // _CHUNK
     for ch in prange(nchunks):
-        px = np.zeros(cap)
-        py = np.zeros(cap)
-        pw = np.zeros(cap, dtype=np.int64)
-        qx = np.zeros(cap)
-        qy = np.zeros(cap)
-        qw = np.zeros(cap, dtype=np.int64)
-        nbrs = np.zeros(cap, dtype=np.int64)
-        cl = np.zeros(cap, dtype=np.int64)
-        tb = np.zeros(cap, dtype=np.int64)
-        ss = np.zeros(cap)
-        bufs = (px, py, pw, qx, qy, qw)
+        bufs, nbrs, cl, tb, ss = _scratch(cap)
+        px, py, pw = bufs[0], bufs[1], bufs[2]
         for i in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
             m = _cell(i, xs, ys, ws, tri, he, cx, cy, cls, out, box, bufs, nbrs, cl, tb, ss)
             if m == 0:

@@ -11,7 +11,7 @@ are in ``kernels/vertex`` (one routine for every vertex of every diagram).
 
 Like Shewchuk's, the arithmetic is exact only when no product underflows: every coordinate
 must be 0 or at least ``2**-188`` in magnitude, and below ``2**200``. The engine guarantees
-that by passing coordinates through ``engine._inputs.working_frame`` (an exact power-of-two
+that by passing coordinates through ``engine.inputs.working_frame`` (an exact power-of-two
 scaling that rounds only values below ``1e-57`` of the extent).
 
 Never compile these with ``fastmath``: the error-free transformations below depend on
