@@ -26,7 +26,7 @@ from ..config import CC_MERGE_RTOL, CHAIN_SPAN_RTOL, NJIT, NJIT_PARALLEL, RELABE
 from .clip import dedupe_ring
 from .power import box_cell
 from .predicates import incircle, incircle_fast
-from .vertex import box_crossing, canonical_triple_ranked, voronoi_vertex
+from .vertex import box_crossing, canonical_vertex_ranked, voronoi_vertex
 
 _CHUNK = 2048
 
@@ -134,32 +134,38 @@ def _name_classes(xs, ys, tri, parent, cx, cy, rank):
     size = np.zeros(t, dtype=np.int64)
     for k in range(t):
         size[parent[k]] += 1
-    order = np.argsort(parent, kind="mergesort")
+    # members of every class of two or more, grouped by root in triangle order (a counting
+    # sort: linear, where a sort of all triangles cost more than the rest of the merge)
+    start = np.zeros(t + 1, dtype=np.int64)
+    for r in range(t):
+        start[r + 1] = start[r] + (size[r] if size[r] > 1 else 0)
+    fill = start[:-1].copy()
+    members = np.zeros(start[t], dtype=np.int64)
+    for k in range(t):
+        r = parent[k]
+        if size[r] > 1:
+            members[fill[r]] = k
+            fill[r] += 1
     seen = np.full(xs.shape[0], -1, dtype=np.int64)
     on = np.zeros(3 * int(size.max()), dtype=np.int64)
-    s = 0
-    while s < t:
-        r = parent[order[s]]
-        e = s + size[r]
-        if size[r] > 1:
-            k = 0
-            for u in range(s, e):
-                for c in range(3):
-                    v = tri[3 * order[u] + c]
-                    if seen[v] != r:
-                        seen[v] = r
-                        on[k] = v
-                        k += 1
-            vx = cx[r]
-            vy = cy[r]
-            a0 = tri[3 * r]
-            a, b, c = canonical_triple_ranked(on, k, rank, vx, vy, xs[a0], ys[a0], xs, ys)
-            if a >= 0:
-                vx, vy = voronoi_vertex(a, b, c, xs, ys)
-            for u in range(s, e):
-                cx[order[u]] = vx
-                cy[order[u]] = vy
-        s = e
+    for r in range(t):
+        if size[r] < 2:
+            continue
+        k = 0
+        for u in range(start[r], start[r + 1]):
+            for c in range(3):
+                v = tri[3 * members[u] + c]
+                if seen[v] != r:
+                    seen[v] = r
+                    on[k] = v
+                    k += 1
+        vx = cx[r]
+        vy = cy[r]
+        a0 = tri[3 * r]
+        _, vx, vy = canonical_vertex_ranked(on, k, rank, vx, vy, xs[a0], ys[a0], xs, ys)
+        for u in range(start[r], start[r + 1]):
+            cx[members[u]] = vx
+            cy[members[u]] = vy
 
 
 def merge_cocircular(xs, ys, tri, he, cx, cy, flag, rank):

@@ -211,13 +211,11 @@ def is_close(x, y, px, py, sx, sy, rtol):
 
 
 @njit(**NJIT)
-def first_named(on, k, vx, vy, sx, sy, xs, ys):
-    """The first triple of ``on[:k]`` (already in name order) that names vertex ``(vx, vy)``.
+def _named(on, k, vx, vy, sx, sy, xs, ys):
+    """:func:`first_named`, and the coordinates of the name's vertex (``(vx, vy)`` if none).
 
-    ``(sx, sy)`` is one site on the vertex's circle. Triples are tried in lexicographic
-    order of their positions in ``on``; repeats are skipped, and so are ill-conditioned
-    triples (two sites a few ulps apart, see :func:`near_pair`) and those whose centre is
-    not the vertex to rounding (``VERTEX_SNAP_RTOL``). ``(-1, -1, -1)`` when none names it.
+    The coordinates are those the test computed, so a caller needing them does not compute
+    the vertex twice.
     """
     r2 = (vx - sx) * (vx - sx) + (vy - sy) * (vy - sy)
     for p in range(k):
@@ -233,8 +231,43 @@ def first_named(on, k, vx, vy, sx, sy, xs, ys):
                 cx, cy = voronoi_vertex(x0, x1, x2, xs, ys)
                 if np.isfinite(cx) and np.isfinite(cy):
                     if is_close(vx, vy, cx, cy, sx, sy, VERTEX_SNAP_RTOL):
-                        return x0, x1, x2
-    return -1, -1, -1
+                        return x0, x1, x2, cx, cy
+    return -1, -1, -1, vx, vy
+
+
+@njit(**NJIT)
+def first_named(on, k, vx, vy, sx, sy, xs, ys):
+    """The first triple of ``on[:k]`` (already in name order) that names vertex ``(vx, vy)``.
+
+    ``(sx, sy)`` is one site on the vertex's circle. Triples are tried in lexicographic
+    order of their positions in ``on``; repeats are skipped, and so are ill-conditioned
+    triples (two sites a few ulps apart, see :func:`near_pair`) and those whose centre is
+    not the vertex to rounding (``VERTEX_SNAP_RTOL``). ``(-1, -1, -1)`` when none names it.
+    """
+    a, b, c, _, _ = _named(on, k, vx, vy, sx, sy, xs, ys)
+    return a, b, c
+
+
+@njit(**NJIT)
+def _sort_by_index(on, k):
+    for p in range(1, k):  # insertion sort: few sites are on one circle
+        x = on[p]
+        q = p
+        while q > 0 and x < on[q - 1]:
+            on[q] = on[q - 1]
+            q -= 1
+        on[q] = x
+
+
+@njit(**NJIT)
+def _sort_by_rank(on, k, rank):
+    for p in range(1, k):
+        x = on[p]
+        q = p
+        while q > 0 and rank[x] < rank[on[q - 1]]:
+            on[q] = on[q - 1]
+            q -= 1
+        on[q] = x
 
 
 @njit(**NJIT)
@@ -243,35 +276,26 @@ def canonical_triple(on, k, vx, vy, sx, sy, xs, ys):
 
     The first well-conditioned, lowest-numbered triple (:func:`first_named` after sorting
     ``on[:k]`` by site number; repeats allowed). Callers numbering the sites as the input
-    does agree on it; one with its own numbering uses :func:`canonical_triple_ranked`.
+    does agree on it; one with its own numbering uses :func:`canonical_vertex_ranked`.
     """
-    for p in range(1, k):  # insertion sort: few sites are on one circle
-        x = on[p]
-        q = p
-        while q > 0 and x < on[q - 1]:
-            on[q] = on[q - 1]
-            q -= 1
-        on[q] = x
-    return first_named(on, k, vx, vy, sx, sy, xs, ys)
-
-
-@njit(**NJIT)
-def canonical_triple_ranked(on, k, rank, vx, vy, sx, sy, xs, ys):
-    """:func:`canonical_triple` with site ``v`` numbered ``rank[v]`` (its input index)."""
-    for p in range(1, k):
-        x = on[p]
-        q = p
-        while q > 0 and rank[x] < rank[on[q - 1]]:
-            on[q] = on[q - 1]
-            q -= 1
-        on[q] = x
+    _sort_by_index(on, k)
     return first_named(on, k, vx, vy, sx, sy, xs, ys)
 
 
 @njit(**NJIT)
 def canonical_vertex(on, k, vx, vy, sx, sy, xs, ys):
     """Coordinates of the vertex named by :func:`canonical_triple` (``(vx, vy)`` if none)."""
-    a, b, c = canonical_triple(on, k, vx, vy, sx, sy, xs, ys)
-    if a < 0:
-        return vx, vy
-    return voronoi_vertex(a, b, c, xs, ys)
+    _sort_by_index(on, k)
+    _, _, _, x, y = _named(on, k, vx, vy, sx, sy, xs, ys)
+    return x, y
+
+
+@njit(**NJIT)
+def canonical_vertex_ranked(on, k, rank, vx, vy, sx, sy, xs, ys):
+    """:func:`canonical_vertex` with site ``v`` numbered ``rank[v]`` (its input index).
+
+    Returns ``(found, x, y)``: whether a triple names the vertex, and its coordinates.
+    """
+    _sort_by_rank(on, k, rank)
+    a, _, _, x, y = _named(on, k, vx, vy, sx, sy, xs, ys)
+    return a >= 0, x, y
