@@ -111,16 +111,12 @@ def sorted_triple(a, b, c, xs, ys):
     a = np.int64(a)
     b = np.int64(b)
     c = np.int64(c)
-    a = np.int64(a)
-    b = np.int64(b)
     if before(b, a, xs, ys):
         a, b = b, a
     if before(c, b, xs, ys):
         b, c = c, b
-    a = np.int64(a)
-    b = np.int64(b)
-    if before(b, a, xs, ys):
-        a, b = b, a
+        if before(b, a, xs, ys):
+            a, b = b, a
     return a, b, c
 
 
