@@ -26,8 +26,15 @@ $(VENV)/.installed-run: pyproject.toml | $(BIN)/python
 	$(PIP) -e .
 	@touch $@
 
+# The test extras and every optional subsystem; Debian's voro++ (3D reference) and chromium
+# (studio browser tests) where they are missing.
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 $(VENV)/.installed-test: pyproject.toml | $(BIN)/python
-	$(PIP) -e '.[test]'
+	@missing=""; command -v voro++ >/dev/null || missing="$$missing voro++"; \
+	command -v chromium >/dev/null || missing="$$missing chromium"; \
+	if [ -n "$$missing" ]; then \
+		$(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q $$missing; fi
+	$(PIP) -e '.[test,all]'
 	@touch $@
 
 $(VENV)/.installed-bench: pyproject.toml | $(BIN)/python

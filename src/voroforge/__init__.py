@@ -11,30 +11,57 @@ the neighbouring triangle with ``halfedges[e] // 3``::
     other = twin // 3 if twin >= 0 else None
 """
 
-from .engine.delaunay import Triangulation, delaunay
-from .engine.describe import Description
-from .engine.diagram import Diagram, Edges
-from .engine.interpolate import locate, natural_neighbor
-from .engine.lloyd import Relaxation, lloyd
-from .engine.power import PowerDiagram, power, power_fit
-from .engine.raster import RasterVoronoi, rasterize
-from .engine.voronoi import voronoi
+from __future__ import annotations
 
-__all__ = [
-    "Description",
-    "Diagram",
-    "Edges",
-    "PowerDiagram",
-    "RasterVoronoi",
-    "Relaxation",
-    "Triangulation",
-    "delaunay",
-    "lloyd",
-    "locate",
-    "natural_neighbor",
-    "power",
-    "power_fit",
-    "rasterize",
-    "voronoi",
-]
+import importlib
+from typing import TYPE_CHECKING, Any
+
 __version__ = "0.1.0"
+
+# Public name -> the module that defines it. Nothing is imported until a name is used, so
+# ``import voroforge`` (and the command line's --help/--version) does not load numpy or numba.
+# Add a line here for a new public name; subsystems (solid, surface, scale, studio) are
+# submodules, imported as ``from voroforge import solid``.
+_EXPORTS = {
+    "Description": ".engine.describe",
+    "Diagram": ".engine.diagram",
+    "Edges": ".engine.diagram",
+    "PowerDiagram": ".engine.power",
+    "RasterVoronoi": ".engine.raster",
+    "Relaxation": ".engine.lloyd",
+    "Triangulation": ".engine.delaunay",
+    "delaunay": ".engine.delaunay",
+    "lloyd": ".engine.lloyd",
+    "locate": ".engine.interpolate",
+    "natural_neighbor": ".engine.interpolate",
+    "power": ".engine.power",
+    "power_fit": ".engine.power",
+    "rasterize": ".engine.raster",
+    "voronoi": ".engine.voronoi",
+}
+
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name: str) -> Any:
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'voroforge' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module, __name__), name)
+    globals()[name] = value  # later look-ups skip this function
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_EXPORTS))
+
+
+if TYPE_CHECKING:  # for type checkers and editors: the same names, imported eagerly
+    from .engine.delaunay import Triangulation, delaunay  # noqa: F401
+    from .engine.describe import Description  # noqa: F401
+    from .engine.diagram import Diagram, Edges  # noqa: F401
+    from .engine.interpolate import locate, natural_neighbor  # noqa: F401
+    from .engine.lloyd import Relaxation, lloyd  # noqa: F401
+    from .engine.power import PowerDiagram, power, power_fit  # noqa: F401
+    from .engine.raster import RasterVoronoi, rasterize  # noqa: F401
+    from .engine.voronoi import voronoi  # noqa: F401
