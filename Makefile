@@ -5,7 +5,7 @@ BIN := $(VENV)/bin
 PIP := $(BIN)/python -m pip install -q
 LINT_PATHS := $(wildcard src tests benchmarks)
 
-.PHONY: help run demo test coverage lint format bench clean
+.PHONY: help run demo test coverage lint format bench docs clean
 
 help:
 	@echo "make run    - install into $(VENV) and write the demo to out/"
@@ -13,6 +13,7 @@ help:
 	@echo "make coverage - kernel and engine tests with the JIT off, line coverage of kernels/, engine/"
 	@echo "make lint   - ruff check and format check"
 	@echo "make bench  - run benchmarks/bench_2d.py"
+	@echo "make docs   - build the documentation site into build/docs (open build/docs/index.html)"
 	@echo "make clean  - remove out/ and caches, numba's included (keeps $(VENV))"
 
 # The virtual environment, created once.
@@ -34,7 +35,7 @@ $(VENV)/.installed-test: pyproject.toml | $(BIN)/python
 	command -v chromium >/dev/null || missing="$$missing chromium"; \
 	if [ -n "$$missing" ]; then \
 		$(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q $$missing; fi
-	$(PIP) -e '.[test,all]'
+	$(PIP) -e '.[test,all,docs]'
 	@touch $@
 
 $(VENV)/.installed-bench: pyproject.toml | $(BIN)/python
@@ -81,11 +82,16 @@ lint: $(VENV)/.installed-test
 format: $(VENV)/.installed-test
 	$(BIN)/ruff format $(LINT_PATHS)
 
+# Warnings are errors: tests/test_docs.py builds the same site in the suite.
+docs: $(VENV)/.installed-test
+	$(BIN)/python -m sphinx -W --keep-going -q -b html docs build/docs
+	@echo build/docs/index.html
+
 bench: $(VENV)/.installed-bench
 	$(BIN)/python benchmarks/bench_2d.py
 
 # numba's cache checks only the file of the function it caches: after editing a kernel that
 # others call (predicates.py, say), clear it or the callers keep the old code.
 clean:
-	rm -rf out .pytest_cache .ruff_cache .hypothesis build/coverage
+	rm -rf out .pytest_cache .ruff_cache .hypothesis build/coverage build/docs docs/_generated
 	find src -name '*.nbi' -delete -o -name '*.nbc' -delete
