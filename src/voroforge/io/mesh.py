@@ -1,0 +1,435 @@
+"""Triangle meshes in and out: STL, 3MF, OBJ, GLB, PLY and Rhino ``.3dm``.
+
+:func:`write` takes one ``trimesh.Trimesh`` or a sequence (or ``{name: mesh}`` mapping) of
+them and picks the format from the suffix; :func:`read` loads a file back as one mesh (all
+bodies concatenated) with its units in ``mesh.metadata["units"]``. Files are written
+atomically (a temporary file in the same folder, then renamed).
+
+Precision: 3MF and OBJ are written as text with 17 significant digits, PLY and ``.3dm``
+store float64 vertices, so those four reload bit for bit. STL and GLB hold float32 by
+definition; their reload equals the mesh rounded to float32.
+
+Units: 3MF records them (``unit="millimeter"`` ...), ``.3dm`` sets the model unit system;
+STL, OBJ, PLY and GLB carry none (their numbers are the design's, GLB is not rescaled to
+metres).
+
+Examples
+--------
+>>> import trimesh, tempfile, pathlib
+>>> out = pathlib.Path(tempfile.mkdtemp()) / "box.3mf"
+>>> write(trimesh.creation.box((10, 20, 30)), out, units="mm").name
+'box.3mf'
+>>> m = read(out)
+>>> round(float(m.volume), 9), m.metadata["units"], bool(m.is_volume)
+(6000.0, 'mm', True)
+"""
+
+from __future__ import annotations
+
+import io
+import os
+import tempfile
+import zipfile
+from pathlib import Path
+from xml.etree import ElementTree as ET
+
+import numpy as np
+
+__all__ = ["FORMATS", "UNITS", "read", "write", "write_curves_3dm"]
+
+#: Suffixes :func:`write` and :func:`read` understand.
+FORMATS = (".stl", ".3mf", ".obj", ".glb", ".ply", ".3dm")
+
+#: Accepted ``units`` and their 3MF names.
+UNITS = {
+    "um": "micron",
+    "mm": "millimeter",
+    "cm": "centimeter",
+    "m": "meter",
+    "in": "inch",
+    "ft": "foot",
+}
+_FROM_3MF = {v: k for k, v in UNITS.items()}
+
+_NS3MF = "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"
+_CT = (
+    '<?xml version="1.0" encoding="UTF-8"?>\n'
+    '<Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types">'
+    '<Default Extension="rels" '
+    'ContentType="application/vnd.openxmlformats-package.relationships+xml"/>'
+    '<Default Extension="model" '
+    'ContentType="application/vnd.ms-package.3dmanufacturing-3dmodel+xml"/>'
+    "</Types>"
+)
+_RELS = (
+    '<?xml version="1.0" encoding="UTF-8"?>\n'
+    '<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships">'
+    '<Relationship Target="/3D/3dmodel.model" Id="rel0" '
+    'Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/>'
+    "</Relationships>"
+)
+
+
+def _suffix(path) -> str:
+    s = Path(path).suffix.lower()
+    if s not in FORMATS:
+        raise ValueError(f"unknown mesh format {s or Path(path).name!r}; use one of {FORMATS}")
+    return s
+
+
+def _units(units: str) -> str:
+    if units not in UNITS:
+        raise ValueError(f"unknown units {units!r}; use one of {tuple(UNITS)}")
+    return units
+
+
+def _named(meshes) -> list[tuple[str, object]]:
+    """``(name, Trimesh)`` pairs from one mesh, a sequence or a mapping."""
+    import trimesh
+
+    if isinstance(meshes, trimesh.Trimesh):
+        items = [("body", meshes)]
+    elif isinstance(meshes, dict):
+        items = [(str(k), v) for k, v in meshes.items()]
+    else:
+        items = [(f"body{i}", m) for i, m in enumerate(meshes)]
+    if not items:
+        raise ValueError("nothing to write: no meshes given")
+    for name, m in items:
+        if not isinstance(m, trimesh.Trimesh):
+            raise ValueError(f"{name}: expected a trimesh.Trimesh, got {type(m).__name__}")
+        if len(m.faces) == 0:
+            raise ValueError(f"{name}: the mesh has no faces")
+        if not np.isfinite(m.vertices).all():
+            raise ValueError(f"{name}: the mesh has NaN or infinite vertices")
+    return items
+
+
+def _atomic(path: Path, data: bytes) -> Path:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path
+
+
+def _fmt(a: np.ndarray) -> np.ndarray:
+    """Shortest round-tripping decimal text of each float64."""
+    return np.array([repr(float(x)) for x in a.ravel()], dtype=object).reshape(a.shape)
+
+
+def _3mf_bytes(items, units: str) -> bytes:
+    parts = [
+        '<?xml version="1.0" encoding="UTF-8"?>\n',
+        f'<model unit="{UNITS[units]}" xml:lang="en-US" xmlns="{_NS3MF}"><resources>',
+    ]
+    for k, (name, m) in enumerate(items, start=1):
+        v = _fmt(np.asarray(m.vertices, dtype=np.float64))
+        f = np.asarray(m.faces, dtype=np.int64)
+        safe = name.replace("&", "&amp;").replace('"', "&quot;").replace("<", "&lt;")
+        parts.append(f'<object id="{k}" type="model" name="{safe}"><mesh><vertices>')
+        parts.extend(f'<vertex x="{a}" y="{b}" z="{c}"/>' for a, b, c in v)
+        parts.append("</vertices><triangles>")
+        parts.extend(f'<triangle v1="{a}" v2="{b}" v3="{c}"/>' for a, b, c in f.tolist())
+        parts.append("</triangles></mesh></object>")
+    parts.append("</resources><build>")
+    parts.extend(f'<item objectid="{k}"/>' for k in range(1, len(items) + 1))
+    parts.append("</build></model>")
+    buf = io.BytesIO()
+    with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as z:
+        z.writestr("[Content_Types].xml", _CT)
+        z.writestr("_rels/.rels", _RELS)
+        z.writestr("3D/3dmodel.model", "".join(parts).encode())
+    return buf.getvalue()
+
+
+def _ply_bytes(m) -> bytes:
+    """Binary little-endian PLY with float64 vertices (trimesh writes float32)."""
+    v = np.ascontiguousarray(m.vertices, dtype="<f8")
+    f = np.asarray(m.faces, dtype=np.int64)
+    if len(v) >= 2**31:
+        raise ValueError("PLY: too many vertices for int32 indices")
+    rec = np.zeros(len(f), dtype=[("n", "u1"), ("i", "<i4", (3,))])
+    rec["n"] = 3
+    rec["i"] = f
+    head = (
+        "ply\nformat binary_little_endian 1.0\ncomment voroforge\n"
+        f"element vertex {len(v)}\nproperty double x\nproperty double y\nproperty double z\n"
+        f"element face {len(f)}\nproperty list uchar int vertex_indices\nend_header\n"
+    )
+    return head.encode() + v.tobytes() + rec.tobytes()
+
+
+def _read_3mf(path: Path):
+    import trimesh
+
+    with zipfile.ZipFile(path) as z:
+        names = [n for n in z.namelist() if n.lower().endswith(".model")]
+        if not names:
+            raise ValueError(f"{path}: not a 3MF file (no .model part)")
+        root = ET.fromstring(z.read(names[0]))
+    ns = {"m": root.tag[1:].split("}")[0]} if root.tag.startswith("{") else {"m": ""}
+    units = _FROM_3MF.get(root.get("unit", "millimeter"), "mm")
+    verts, faces, n = [], [], 0
+    for obj in root.iter(f"{{{ns['m']}}}object"):
+        mesh = obj.find("m:mesh", ns)
+        if mesh is None:
+            continue
+        tri_tag = f"{{{ns['m']}}}triangle"
+        v = np.array(
+            [[float(e.get(c)) for c in "xyz"] for e in mesh.iter(f"{{{ns['m']}}}vertex")],
+            dtype=np.float64,
+        ).reshape(-1, 3)
+        f = np.array(
+            [[int(e.get(c)) for c in ("v1", "v2", "v3")] for e in mesh.iter(tri_tag)],
+            dtype=np.int64,
+        ).reshape(-1, 3)
+        verts.append(v)
+        faces.append(f + n)
+        n += len(v)
+    if not verts:
+        raise ValueError(f"{path}: the 3MF file holds no mesh objects")
+    m = trimesh.Trimesh(np.vstack(verts), np.vstack(faces), process=True)
+    m.metadata["units"] = units
+    return m
+
+
+def _3dm_file(units: str):
+    import rhino3dm
+
+    f = rhino3dm.File3dm()
+    f.Settings.ModelUnitSystem = {
+        "um": rhino3dm.UnitSystem.Microns,
+        "mm": rhino3dm.UnitSystem.Millimeters,
+        "cm": rhino3dm.UnitSystem.Centimeters,
+        "m": rhino3dm.UnitSystem.Meters,
+        "in": rhino3dm.UnitSystem.Inches,
+        "ft": rhino3dm.UnitSystem.Feet,
+    }[units]
+    return f
+
+
+def _layer(f, name: str) -> int:
+    import rhino3dm
+
+    for i in range(len(f.Layers)):
+        if f.Layers[i].Name == name:
+            return i
+    layer = rhino3dm.Layer()
+    layer.Name = name
+    return f.Layers.Add(layer)
+
+
+def _save_3dm(f, path: Path) -> Path:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".3dm", dir=path.parent)
+    os.close(fd)
+    try:
+        if not f.Write(tmp, 7):
+            raise ValueError(f"rhino3dm could not write {path}")
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path
+
+
+def _3dm_write(items, path: Path, units: str) -> Path:
+    import rhino3dm
+
+    f = _3dm_file(units)
+    for name, m in items:
+        rm = rhino3dm.Mesh()
+        add = rm.Vertices.AddPoint3d  # keeps float64 (``Add`` rounds to float32)
+        for x, y, z in np.asarray(m.vertices, dtype=np.float64).tolist():
+            add(x, y, z)
+        for a, b, c in np.asarray(m.faces, dtype=np.int64).tolist():
+            rm.Faces.AddFace(a, b, c)
+        attr = rhino3dm.ObjectAttributes()
+        attr.Name = name
+        attr.LayerIndex = _layer(f, name)
+        f.Objects.AddMesh(rm, attr)
+    return _save_3dm(f, path)
+
+
+def _3dm_read(path: Path):
+    import rhino3dm
+    import trimesh
+
+    f = rhino3dm.File3dm.Read(str(path))
+    if f is None:
+        raise ValueError(f"{path}: not a readable .3dm file")
+    verts, faces, n = [], [], 0
+    for obj in f.Objects:
+        g = obj.Geometry
+        if not isinstance(g, rhino3dm.Mesh):
+            continue
+        vs = g.Vertices
+        v = np.array([[p.X, p.Y, p.Z] for p in (vs.Point3dAt(i) for i in range(len(vs)))])
+        fs = g.Faces
+        tri = []
+        for i in range(len(fs)):
+            q = fs[i]
+            tri.append((q[0], q[1], q[2]))
+            if q[3] != q[2]:
+                tri.append((q[0], q[2], q[3]))
+        verts.append(v.reshape(-1, 3))
+        faces.append(np.array(tri, dtype=np.int64).reshape(-1, 3) + n)
+        n += len(v)
+    if not verts:
+        raise ValueError(f"{path}: the .3dm file holds no meshes")
+    m = trimesh.Trimesh(np.vstack(verts), np.vstack(faces), process=True)
+    units = {
+        rhino3dm.UnitSystem.Microns: "um",
+        rhino3dm.UnitSystem.Millimeters: "mm",
+        rhino3dm.UnitSystem.Centimeters: "cm",
+        rhino3dm.UnitSystem.Meters: "m",
+        rhino3dm.UnitSystem.Inches: "in",
+        rhino3dm.UnitSystem.Feet: "ft",
+    }.get(f.Settings.ModelUnitSystem)
+    m.metadata["units"] = units
+    return m
+
+
+def write(mesh_or_meshes, path, *, units: str = "mm") -> Path:
+    """Write one mesh or several to ``path``; the suffix picks the format.
+
+    Parameters
+    ----------
+    mesh_or_meshes : trimesh.Trimesh, sequence of them, or mapping name -> Trimesh
+        What to write. Several meshes become separate objects (3MF objects, OBJ ``o``
+        groups, GLB nodes, ``.3dm`` mesh objects on layers named after them); STL and PLY
+        hold one body, so several are concatenated.
+    path : str or Path
+        ``.stl`` (binary), ``.3mf``, ``.obj``, ``.glb``, ``.ply`` (binary) or ``.3dm``.
+    units : {"mm", "um", "cm", "m", "in", "ft"}
+        Recorded in 3MF and ``.3dm``; the other formats carry no units.
+
+    Returns
+    -------
+    Path
+        The file written.
+    """
+    import trimesh
+
+    path = Path(path)
+    kind = _suffix(path)
+    units = _units(units)
+    items = _named(mesh_or_meshes)
+    if kind == ".3mf":
+        return _atomic(path, _3mf_bytes(items, units))
+    if kind == ".3dm":
+        return _3dm_write(items, path, units)
+    if kind in (".stl", ".ply"):
+        m = items[0][1] if len(items) == 1 else trimesh.util.concatenate([m for _, m in items])
+        if kind == ".ply":
+            return _atomic(path, _ply_bytes(m))
+        return _atomic(path, m.export(file_type="stl"))
+    if kind == ".obj":
+        from trimesh.exchange.obj import export_obj
+
+        if len(items) == 1:
+            text = export_obj(items[0][1], include_normals=False, digits=17)
+        else:
+            scene = trimesh.Scene({name: m for name, m in items})
+            text = export_obj(scene, include_normals=False, digits=17)
+        return _atomic(path, text.encode())
+    scene = trimesh.Scene({name: m for name, m in items})
+    return _atomic(path, scene.export(file_type="glb"))
+
+
+def read(path):
+    """Read a mesh file back as one ``trimesh.Trimesh`` (bodies concatenated, vertices merged).
+
+    Parameters
+    ----------
+    path : str or Path
+        Any of :data:`FORMATS`.
+
+    Returns
+    -------
+    trimesh.Trimesh
+        With ``metadata["units"]`` set from 3MF and ``.3dm`` files (None for the others).
+    """
+    import trimesh
+
+    path = Path(path)
+    kind = _suffix(path)
+    if not path.is_file():
+        raise ValueError(f"{path}: no such file")
+    if kind == ".3mf":
+        return _read_3mf(path)
+    if kind == ".3dm":
+        return _3dm_read(path)
+    loaded = trimesh.load(path, file_type=kind[1:], force="mesh", process=True)
+    if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
+        raise ValueError(f"{path}: holds no triangles")
+    loaded.merge_vertices()
+    loaded.metadata["units"] = None
+    return loaded
+
+
+def write_curves_3dm(layers, path, *, units: str = "mm", z: float = 0.0) -> Path:
+    """Write 2D geometry as Rhino polylines on named layers (for Rhino/Grasshopper users).
+
+    Parameters
+    ----------
+    layers : mapping of layer name -> sequence of shapely geometries or (k, 2) arrays
+        Polygons contribute every ring (closed polylines), lines their paths; arrays are
+        polylines as given.
+    path : str or Path
+        Output ``.3dm`` file.
+    units : {"mm", "um", "cm", "m", "in", "ft"}
+        The model unit system.
+    z : float
+        Height of the curves.
+
+    Returns
+    -------
+    Path
+        The file written.
+    """
+    import rhino3dm
+    import shapely
+
+    path = Path(path)
+    if path.suffix.lower() != ".3dm":
+        raise ValueError(f"write_curves_3dm writes .3dm files, not {path.name!r}")
+    f = _3dm_file(_units(units))
+
+    def polylines(g):
+        if isinstance(g, np.ndarray):
+            yield np.asarray(g, dtype=np.float64)
+            return
+        for part in getattr(g, "geoms", [g]):
+            if part.is_empty:
+                continue
+            if part.geom_type == "Polygon":
+                yield np.asarray(part.exterior.coords)
+                for r in part.interiors:
+                    yield np.asarray(r.coords)
+            elif part.geom_type in ("LineString", "LinearRing"):
+                yield np.asarray(part.coords)
+            elif part.geom_type.startswith("Multi") or part.geom_type == "GeometryCollection":
+                yield from polylines(part)
+
+    for name, geoms in layers.items():
+        idx = _layer(f, str(name))
+        attr = rhino3dm.ObjectAttributes()
+        attr.LayerIndex = idx
+        if isinstance(geoms, shapely.Geometry | np.ndarray):
+            geoms = [geoms]
+        for g in geoms:
+            for xy in polylines(g):
+                if len(xy) < 2:
+                    continue
+                pl = rhino3dm.Point3dList()
+                for x, y in xy[:, :2].tolist():
+                    pl.Add(x, y, z)
+                f.Objects.AddPolyline(pl, attr)
+    return _save_3dm(f, path)

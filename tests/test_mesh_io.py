@@ -1,0 +1,101 @@
+"""Mesh files: every format reloads watertight with the same volume (io/mesh.py)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import shapely
+
+trimesh = pytest.importorskip("trimesh")
+
+from voroforge.io import mesh as mio  # noqa: E402
+
+FLOAT32 = (".stl", ".glb")  # formats that store float32 by definition
+
+
+def _sphere():
+    m = trimesh.creation.icosphere(2, radius=7.3)
+    m.apply_translation([1.1, 2.2, 3.3])
+    return m
+
+
+def _expected(m, ext):
+    if ext in FLOAT32:
+        return trimesh.Trimesh(m.vertices.astype(np.float32).astype(np.float64), m.faces)
+    return m
+
+
+@pytest.mark.parametrize("ext", mio.FORMATS)
+@pytest.mark.parametrize("several", [False, True])
+def test_round_trip_volume(tmp_path, ext, several):
+    a = _sphere()
+    b = trimesh.creation.box((2.0, 3.0, 4.0))
+    b.apply_translation([20.0, 0.0, 0.0])
+    what = [a, b] if several else a
+    r = mio.read(mio.write(what, tmp_path / f"m{ext}", units="mm"))
+    exp = _expected(trimesh.util.concatenate([a, b]) if several else a, ext)
+    assert r.is_volume
+    assert abs(r.volume - exp.volume) <= 1e-9 * abs(exp.volume)
+    assert len(r.vertices) == len(exp.vertices)
+    if ext not in FLOAT32:  # float64 formats: the vertices bit for bit
+        assert set(map(tuple, r.vertices)) == set(map(tuple, exp.vertices))
+
+
+@pytest.mark.parametrize("units", ["mm", "in", "m"])
+def test_units_recorded(tmp_path, units):
+    m = trimesh.creation.box((1, 1, 1))
+    assert mio.read(mio.write(m, tmp_path / "u.3mf", units=units)).metadata["units"] == units
+    assert mio.read(mio.write(m, tmp_path / "u.3dm", units=units)).metadata["units"] == units
+
+
+def test_3mf_is_a_3mf(tmp_path):
+    import zipfile
+
+    p = mio.write({"part one": trimesh.creation.box((1, 2, 3))}, tmp_path / "x.3mf")
+    with zipfile.ZipFile(p) as z:
+        names = set(z.namelist())
+        model = z.read("3D/3dmodel.model").decode()
+    assert {"[Content_Types].xml", "_rels/.rels", "3D/3dmodel.model"} <= names
+    assert 'unit="millimeter"' in model and 'name="part one"' in model
+
+
+def test_curves_on_layers(tmp_path):
+    import rhino3dm
+
+    sq = shapely.box(0, 0, 10, 10).difference(shapely.box(2, 2, 4, 4))
+    p = mio.write_curves_3dm(
+        {"CUT": [sq], "SCORE": [np.array([[0, 0], [5, 5]])]}, tmp_path / "c.3dm"
+    )
+    f = rhino3dm.File3dm.Read(str(p))
+    layers = {f.Layers[i].Name: i for i in range(len(f.Layers))}
+    assert set(layers) == {"CUT", "SCORE"}
+    per = {}
+    for o in f.Objects:
+        per.setdefault(o.Attributes.LayerIndex, []).append(o.Geometry)
+    assert len(per[layers["CUT"]]) == 2  # outline and hole
+    assert len(per[layers["SCORE"]]) == 1
+    assert f.Settings.ModelUnitSystem == rhino3dm.UnitSystem.Millimeters
+
+
+def test_bad_input(tmp_path):
+    m = trimesh.creation.box((1, 1, 1))
+    with pytest.raises(ValueError, match="unknown mesh format"):
+        mio.write(m, tmp_path / "x.step")
+    with pytest.raises(ValueError, match="unknown units"):
+        mio.write(m, tmp_path / "x.stl", units="furlong")
+    with pytest.raises(ValueError, match="no meshes"):
+        mio.write([], tmp_path / "x.stl")
+    with pytest.raises(ValueError, match="expected a trimesh"):
+        mio.write([np.zeros(3)], tmp_path / "x.stl")
+    with pytest.raises(ValueError, match="no such file"):
+        mio.read(tmp_path / "missing.stl")
+    bad = trimesh.Trimesh(
+        np.array([[0, 0, 0], [1, 0, 0], [np.nan, 1, 0]]), [[0, 1, 2]], process=False
+    )
+    with pytest.raises(ValueError, match="NaN"):
+        mio.write(bad, tmp_path / "x.obj")
+
+
+def test_atomic_no_leftovers(tmp_path):
+    mio.write(trimesh.creation.box((1, 1, 1)), tmp_path / "a.stl")
+    assert [p.name for p in tmp_path.iterdir()] == ["a.stl"]
