@@ -496,6 +496,31 @@ def _operate(design: Design, cells: np.ndarray, values: np.ndarray, has_field: b
     return np.asarray(out, dtype=object)
 
 
+def _operate_reusing(design, cells, values, has_field, reuse, extra):
+    """:func:`_operate`, redoing only cells whose raw geometry or value changed since ``reuse``.
+
+    Keys of the cells are their WKB (kept in ``extra["raw_wkb"]`` for the next call); only
+    plain diagrams (no recursion, no periodic wrap) are reused.
+    """
+    if design.recursion.depth > 0 or design.voronoi.periodic or not len(cells):
+        return _operate(design, cells, values, has_field)
+    keys = shapely.to_wkb(cells)
+    extra["raw_wkb"] = keys
+    old = reuse.extra.get("raw_wkb") if reuse is not None else None
+    if old is None or reuse.design.cells != design.cells or len(reuse.cells) != len(reuse.raw):
+        return _operate(design, cells, values, has_field)
+    n = min(len(old), len(cells))
+    same = np.zeros(len(cells), dtype=bool)
+    same[:n] = (keys[:n] == old[:n]) & (values[:n] == reuse.values[:n])
+    out = np.array(cells, dtype=object)
+    out[same] = reuse.cells[np.flatnonzero(same)]
+    redo = np.flatnonzero(~same)
+    if len(redo):
+        out[redo] = _operate(design, cells[redo], values[redo], has_field)
+    extra["redone"] = redo
+    return out
+
+
 @contextmanager
 def _section(key: str):
     """Turn a library ``ValueError`` raised while building ``key`` into a DesignError."""
@@ -507,7 +532,14 @@ def _section(key: str):
         raise DesignError.at(key, str(exc)) from None
 
 
-def compute(design: Design, base: Path | None = None, *, progress: Stage | None = None) -> Result:
+def compute(
+    design: Design,
+    base: Path | None = None,
+    *,
+    progress: Stage | None = None,
+    sites: np.ndarray | None = None,
+    reuse: Result | None = None,
+) -> Result:
     """Compute the geometry of a validated design.
 
     Parameters
@@ -518,6 +550,13 @@ def compute(design: Design, base: Path | None = None, *, progress: Stage | None 
         Folder that relative file names in the design are read from.
     progress : callable, optional
         Called with the name of each stage.
+    sites : (n, 2) array_like, optional
+        Use these sites as they are instead of the ``[seeds]`` and ``[relax]`` sections
+        (an editor's dragged seeds); the caller keeps them inside the boundary.
+    reuse : Result, optional
+        A previous result of a design with the same ``[cells]`` section: cells whose raw
+        geometry and field value are unchanged keep its operated cells (inset, fillet, ...
+        are per cell, so the geometry is the same as computed afresh, only faster).
 
     Returns
     -------
@@ -538,7 +577,12 @@ def compute(design: Design, base: Path | None = None, *, progress: Stage | None 
         field_fn = _field(design, base)
     stage("seeds")
     with _section("seeds"):
-        points = _seeds(design, domain, field_fn, base)
+        if sites is None:
+            points = _seeds(design, domain, field_fn, base)
+        else:
+            points = np.array(sites, dtype=np.float64)
+            if points.ndim != 2 or points.shape[1:] != (2,) or not np.isfinite(points).all():
+                raise ValueError(f"sites must be finite (n, 2) coordinates; got {points.shape}")
         points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
     if len(points) < 1:
         raise DesignError.at("seeds", "no seeds fall inside the boundary; need 1 or more")
@@ -547,8 +591,9 @@ def compute(design: Design, base: Path | None = None, *, progress: Stage | None 
         given = _site_properties(design, domain, base)
     if given is not None and given[0].shape == points.shape and np.array_equal(given[0], points):
         extra["site_properties"] = given[1]
-    with _section("relax"):
-        points = _relax(design, points, domain)
+    if sites is None:
+        with _section("relax"):
+            points = _relax(design, points, domain)
     stage(f"{len(points)} Voronoi cells")
     diagram = None
     if design.recursion.depth > 0:
@@ -573,7 +618,7 @@ def compute(design: Design, base: Path | None = None, *, progress: Stage | None 
         mask = _mask(design, raw, values, seed)
     stage("cell operations")
     with _section("cells"):
-        cells = _operate(design, inset_cells, values, field_fn is not None)
+        cells = _operate_reusing(design, inset_cells, values, field_fn is not None, reuse, extra)
     if design.voronoi.periodic:
         box = _tile(design, domain)
         # whole openings on the torus, for the fabrication check across the seams
@@ -584,7 +629,9 @@ def compute(design: Design, base: Path | None = None, *, progress: Stage | None 
         raw, values, mask, level = raw_w, values[owner], mask[owner], level[owner]
     chosen = cells[mask & ~shapely.is_empty(cells)] if len(cells) else cells
     openings = np.asarray(chosen, dtype=object)
-    frame = _frame(boundary, openings)
+    open_cells = np.flatnonzero(mask & ~shapely.is_empty(cells)) if len(cells) else mask[:0]
+    frame = _frame(boundary, openings, _fresh(reuse, boundary, extra, open_cells), extra)
+    extra["open_cells"] = open_cells
     return Result(
         design,
         boundary,
@@ -602,18 +649,37 @@ def compute(design: Design, base: Path | None = None, *, progress: Stage | None 
     )
 
 
-def _frame(boundary, openings: np.ndarray):
-    """Boundary minus openings; disjoint holes strictly inside become holes directly (fast)."""
+def _fresh(reuse, boundary, extra, open_cells):
+    """Which openings are new since ``reuse`` (whose frame took the fast path), or None (all)."""
+    redo = extra.get("redone")
+    if redo is None or not reuse.extra.get("frame_fast"):
+        return None
+    if not shapely.equals_exact(reuse.boundary, boundary, 0.0):
+        return None
+    return ~np.isin(open_cells, reuse.extra["open_cells"]) | np.isin(open_cells, redo)
+
+
+def _frame(boundary, openings: np.ndarray, fresh: np.ndarray | None = None, extra=None):
+    """Boundary minus openings; disjoint holes strictly inside become holes directly (fast).
+
+    ``fresh`` marks the openings to test (the others were tested by an earlier call and are
+    unchanged); ``extra["frame_fast"]`` records whether the fast path was taken.
+    """
     if not len(openings):
         return boundary
-    simple = boundary.geom_type == "Polygon" and all(
-        o.geom_type == "Polygon" and not o.interiors for o in openings
+    simple = (
+        boundary.geom_type == "Polygon"
+        and (shapely.get_type_id(openings) == 3).all()
+        and (shapely.get_num_interior_rings(openings) == 0).all()
     )
     if simple:
         shapely.prepare(boundary)
-        if shapely.contains_properly(boundary, openings).all():
-            left, right = shapely.STRtree(openings).query(openings, predicate="intersects")
-            if (left == right).all():
+        test = np.arange(len(openings)) if fresh is None else np.flatnonzero(fresh)
+        if shapely.contains_properly(boundary, openings[test]).all():
+            left, right = shapely.STRtree(openings).query(openings[test], predicate="intersects")
+            if (test[left] == right).all():
+                if extra is not None:
+                    extra["frame_fast"] = True
                 rings = [*boundary.interiors, *(o.exterior for o in openings)]
                 return shapely.Polygon(boundary.exterior, rings)
     return boundary.difference(shapely.union_all(openings))
