@@ -48,6 +48,55 @@ def test_vertex_bits_do_not_depend_on_argument_order(pts):
     assert len(pw) == 1 or all(np.isnan(v).any() for v in pw)
 
 
+def _bits(v):
+    return np.array(v, dtype=np.float64).view(np.int64).tolist()
+
+
+def _canonical_center(a, b, c, xs, ys, ws):
+    """The rule's definition: :func:`center` on the owners sorted by (x, y, index)."""
+    a, b, c = sorted((a, b, c), key=lambda i: (xs[i], ys[i], i))
+    return center(xs[a], ys[a], ws[a], xs[b], ys[b], ws[b], xs[c], ys[c], ws[c])
+
+
+def _triples_catalogue():
+    """Triples where an order-dependent shortcut would show: ties, zeros, slivers, extremes."""
+    rng = np.random.default_rng(11)
+    out = [rng.random((3, 2)) for _ in range(300)]
+    out += [rng.integers(-3, 4, size=(3, 2)).astype(float) for _ in range(400)]  # ties
+    out += [
+        np.array([[0.0, 0.0], [1.0, 0.0], [0.5, np.sqrt(3) / 2]]),  # near equilateral
+        np.array([[-0.0, 0.0], [-1.0, 2.0], [1.0, 2.0]]),  # centre on x = -0.0
+        np.array([[0.0, -0.0], [2.0, -1.0], [2.0, 1.0]]),  # centre on y = -0.0
+        np.array([[-0.0, -0.0], [-1.0, 1.0], [1.0, 1.0]]),  # right angle at -0.0
+        np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]),  # right isosceles
+        np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 1e-300]]),  # flat: huge centre
+        np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]),  # collinear
+        np.array([[1.0, 1.0], [1.0, 1.0], [3.0, 0.0]]),  # repeated site
+        np.array([[1e300, 0.0], [-1e300, 0.0], [0.0, 1e300]]),  # overflow
+        np.array([[1e-300, 0.0], [0.0, 1e-300], [-1e-300, 0.0]]),  # underflow
+    ]
+    for _ in range(200):  # slivers and near-collinear triples (the orient2d fallback)
+        a = rng.random(2)
+        d = rng.normal(size=2)
+        h = 10.0 ** -rng.integers(6, 17)
+        out.append(np.array([a, a + d, a + 0.5 * d + h * np.array([-d[1], d[0]])]))
+    return out
+
+
+def test_vertex_bits_are_those_of_the_sorted_owners_in_every_order():
+    # the shortcut that skips the sort must give the rule's bits exactly, sign of zero too
+    for p in _triples_catalogue():
+        xs, ys = p[:, 0].copy(), p[:, 1].copy()
+        zero = np.zeros(3)
+        ws = np.array([0.25, -1.0, 2.0])
+        ref = _bits(_canonical_center(0, 1, 2, xs, ys, zero))
+        pref = _bits(_canonical_center(0, 1, 2, xs, ys, ws))
+        for a, b, c in itertools.permutations(range(3)):
+            assert _bits(voronoi_vertex(a, b, c, xs, ys)) == ref, p
+            assert _bits(power_vertex(a, b, c, xs, ys, zero)) == ref, p
+            assert _bits(power_vertex(a, b, c, xs, ys, ws)) == pref, p
+
+
 def test_zero_or_equal_weights_give_the_circumcentre_bits():
     rng = np.random.default_rng(1)
     for p in rng.normal(size=(500, 6)) * 10.0 ** rng.integers(-5, 6, size=(500, 1)):

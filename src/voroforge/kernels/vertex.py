@@ -7,7 +7,9 @@ the triangulation's ``circumcenters``) computes a vertex only from its name, thr
 (lexicographic by coordinates, ``x`` then ``y``; the index breaks ties between equal
 points) and :func:`center` runs on them in that order. So every caller, whatever its own
 numbering of the sites or the order it meets the owners in, gets the same bits, and
-neighbouring cells share their vertices exactly.
+neighbouring cells share their vertices exactly. (The sort itself is skipped where the
+order provably cannot change a bit, which is almost everywhere: see
+:func:`_center_if_order_free`.)
 
 :func:`center` is the power centre of three weighted points; with zero or equal weights it
 is the circumcentre, bit for bit (the weight differences are exact zeros). It works relative
@@ -121,8 +123,60 @@ def sorted_triple(a, b, c, xs, ys):
 
 
 @njit(**NJIT)
+def _center_if_order_free(ax, ay, aw, bx, by, bw, cx, cy, cw):
+    """:func:`center` when its bits cannot depend on the argument order; else ``ok`` False.
+
+    Returns ``(x, y, ok)``. :func:`center` uses the order in two places only: the origin
+    when the longest edge is tied, and the ``orient2d`` fallback. Otherwise the origin is
+    the point opposite the strictly longest edge in every order, and the other two differ
+    between orders at most by a swap ``p <-> q``, which negates the determinant and both
+    numerators exactly (``fl(u) - fl(v) = -(fl(v) - fl(u))``): the quotients, and so the
+    centre, keep their bits. The exception is a numerator that cancels to an exact zero
+    (``+0`` in both orders, so the offset's sign of zero would follow the order); a zero
+    or non-finite offset is therefore not ``ok`` either. Callers then sort the owners.
+    """
+    la = (bx - cx) * (bx - cx) + (by - cy) * (by - cy)
+    lb = (cx - ax) * (cx - ax) + (cy - ay) * (cy - ay)
+    lc = (ax - bx) * (ax - bx) + (ay - by) * (ay - by)
+    # center_offset's choice, noting when the maximum is tied (then the order decides it)
+    if lb >= la and lb >= lc:
+        ox, oy, ow, px, py, pw, qx, qy, qw = bx, by, bw, cx, cy, cw, ax, ay, aw
+        tie = lb == la or lb == lc
+    elif lc >= la:
+        ox, oy, ow, px, py, pw, qx, qy, qw = cx, cy, cw, ax, ay, aw, bx, by, bw
+        tie = lc == la  # lc > lb here
+    else:
+        ox, oy, ow, px, py, pw, qx, qy, qw = ax, ay, aw, bx, by, bw, cx, cy, cw
+        tie = False  # la > lb and la > lc here
+    dx = px - ox
+    dy = py - oy
+    ex = qx - ox
+    ey = qy - oy
+    bl = dx * dx + dy * dy + (ow - pw)
+    cl = ex * ex + ey * ey + (ow - qw)
+    left = dx * ey
+    right = dy * ex
+    det = left - right
+    if tie or not abs(det) >= VERTEX_DET_RTOL * (abs(left) + abs(right)) or det == 0.0:
+        return 0.0, 0.0, False
+    d = 0.5 / det
+    ux = (ey * bl - dy * cl) * d
+    uy = (dx * cl - ex * bl) * d
+    if not (0.0 < abs(ux) < np.inf and 0.0 < abs(uy) < np.inf):
+        return 0.0, 0.0, False
+    return ox + ux, oy + uy, True
+
+
+@njit(**NJIT)
 def voronoi_vertex(a, b, c, xs, ys):
-    """The Voronoi vertex named by sites ``a, b, c``: the same bits in any argument order."""
+    """The Voronoi vertex named by sites ``a, b, c``: the same bits in any argument order.
+
+    That of :func:`center` on the owners in canonical order; they are sorted only where the
+    order could change a bit (:func:`_center_if_order_free`).
+    """
+    x, y, ok = _center_if_order_free(xs[a], ys[a], 0.0, xs[b], ys[b], 0.0, xs[c], ys[c], 0.0)
+    if ok:
+        return x, y
     a, b, c = sorted_triple(a, b, c, xs, ys)
     return center(xs[a], ys[a], 0.0, xs[b], ys[b], 0.0, xs[c], ys[c], 0.0)
 
@@ -130,6 +184,9 @@ def voronoi_vertex(a, b, c, xs, ys):
 @njit(**NJIT)
 def power_vertex(a, b, c, xs, ys, ws):
     """The power vertex named by weighted sites ``a, b, c`` (any argument order)."""
+    x, y, ok = _center_if_order_free(xs[a], ys[a], ws[a], xs[b], ys[b], ws[b], xs[c], ys[c], ws[c])
+    if ok:
+        return x, y
     a, b, c = sorted_triple(a, b, c, xs, ys)
     return center(xs[a], ys[a], ws[a], xs[b], ys[b], ws[b], xs[c], ys[c], ws[c])
 
