@@ -219,3 +219,87 @@ EXPLAIN_EDGE_RTOL = 1e-9
 #: Fortune tracer: arcs whose float heights are within this (relative) of the lowest are
 #: compared exactly, so near-degenerate input cannot put a site under the wrong arc.
 EXPLAIN_HEIGHT_RTOL = 1e-9
+
+# --- surface (Voronoi on curved surfaces, panels) --------------------------------------------
+
+#: Restricted Voronoi: at most this many grid buckets per site (the bucket side grows to fit;
+#: sites on a surface leave most buckets of the box empty).
+SURFACE_BUCKETS_PER_SITE = 8
+
+#: A cell boundary shorter than this (relative to the mesh's size) makes no neighbour.
+SURFACE_EDGE_RTOL = 1e-9
+
+# --- voronoi3d (3D cells, containers) -----------------------------------------------------------
+
+#: A cell vertex this close to a cutting plane (relative to |d| * cell radius + |offset|, the
+#: scale of the plane's float value) is on it: kept unmoved, and the plane joins its owners
+VORONOI3D_CUT_RTOL = 1e-12
+#: Relative slack of the 3D stop test and of the "plane beyond every vertex" skip (inclusive,
+#: so a site whose plane only touches the cell is still visited and named as an owner)
+VORONOI3D_STOP_RTOL = 1e-9
+#: Four owners name a vertex only if their planes' determinant exceeds this fraction of the
+#: product of the rows' lengths (co-spherical sites: the first independent quadruple names it)
+VORONOI3D_DET_RTOL = 1e-10
+#: Default container: the sites' bounding box padded by this fraction of its size per side
+VORONOI3D_PAD = 0.1
+#: Mesh containers: a closed mesh's volume against the cells' sum (relative), for the checks
+VORONOI3D_MESH_RTOL = 1e-9
+
+# --- solid (printable lattices, foams, shells) ---------------------------------------------
+
+#: Strut graph: nodes closer than this fraction of the bounding-box diagonal are one node
+SOLID_MERGE_TOL = 1e-9
+#: Mesh cells given as triangles: faces meeting at more than this angle (radians) keep their
+#: shared edge as a strut; flatter ones are one polygon and the edge is a diagonal
+SOLID_FEATURE_ANGLE = 1e-6
+#: Strut end rings sit at least this many radii from their node, and this factor beyond the
+#: distance at which another ring (or the node's sphere) could reach their plane
+SOLID_RING_MIN = 1.1
+SOLID_RING_SAFETY = 1.15
+#: A strut whose two end rings would need more than this fraction of its length joins its
+#: two nodes into one hull (short Voronoi edges: the node blob covers them)
+SOLID_RING_SPAN = 0.8
+#: Marching cubes: grid spacing as a fraction of the smallest radius/wall/thickness
+SOLID_VOXEL = 0.34
+
+# --- fabrication / plotter (paths for machines: io/plotter, io/labels) --------------------
+
+#: Path end points closer than this fraction of the drawing's size are one vertex when
+#: layers are deduplicated and lines merged (rounding between products of one layer)
+PLOTTER_MERGE_RTOL = 1e-9
+#: 2-opt candidate list: this many nearest path ends of each end
+PLOTTER_NEIGHBOURS = 10
+#: 2-opt stops after this many passes even if a move still shortens the tour
+PLOTTER_MAX_PASSES = 50
+
+# --- studio (the local editing page and the Jupyter widget) --------------------------------
+
+#: The most sites one edit may ask for (count, or estimated from a spacing/radius): a clear
+#: error on the page instead of a server busy for minutes
+STUDIO_MAX_SEEDS = 50_000
+#: Largest message the page may send (bytes); bigger ones are refused with an error
+STUDIO_MAX_MESSAGE = 64 * 1024
+#: Undo steps kept
+STUDIO_UNDO_DEPTH = 200
+#: Seconds without edits before the live fabrication check runs (dragging stays smooth)
+STUDIO_CHECK_DELAY = 0.12
+
+# --- scale (tiled Voronoi on dask.distributed) ------------------------------------------------
+
+#: First halo of a tile, in mean site spacings of the tile (sqrt(area / sites)): most cells of a
+#: Poisson tile are certified by it; the rest are recomputed with the halo their own bound asks.
+SCALE_HALO_SPACINGS = 3.0
+#: Relative slack on the certificate: a cell is final only when every site nearer than
+#: (2 + this) times its farthest vertex distance is loaded (the inequality is then strict).
+SCALE_CERT_RTOL = 1e-9
+#: Rounds of recomputation before a cell is reported uncertified (one is enough in exact
+#: arithmetic: a recomputed cell can only shrink, so its own bound covers it).
+SCALE_MAX_ROUNDS = 4
+#: Sites per tile when neither ``tiles`` nor ``tile_size`` is given.
+SCALE_TILE_SITES = 250_000
+#: Input rows per chunk read by one task (a .npy slice, Parquet row groups of a CSV).
+SCALE_CHUNK_ROWS = 1_000_000
+#: Sites sampled (over all chunks) to place the k-d tile splits.
+SCALE_SAMPLE_SITES = 200_000
+#: Bisection steps for a corner's inside radius in the fabrication check (radius / 2^steps)
+FAB_CORNER_BISECTIONS = 14

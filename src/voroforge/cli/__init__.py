@@ -13,7 +13,7 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from . import demo, design, diagram, explain, raster
+from . import demo, design, diagram, explain, raster, studio
 from .progress import progress
 
 __all__ = ["PROG", "main"]
@@ -50,6 +50,7 @@ def _parser() -> argparse.ArgumentParser:
     raster.add_parser(commands, raw)
     explain.add_parser(commands, raw)
     design.add_parsers(commands, raw)
+    studio.add_parser(commands, raw)
     return parser
 
 

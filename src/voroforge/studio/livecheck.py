@@ -1,0 +1,141 @@
+"""The fabrication check while editing: :func:`voroforge.design.fabrication.check`, per change.
+
+Every limit of ``check`` is a property of one opening (opening size, tool corners), of a
+pair of openings (the web between them) or of an opening and the outline (the web to the
+rim), plus the outline's own corners and loose islands. :class:`LiveCheck` keeps those
+results keyed by the openings' WKB and runs ``check`` only on openings that are new since
+the last call (and, for webs, on their neighbours within ``min_web``), so dragging one seed
+re-checks a handful of openings. The violations are the ones ``voroforge check`` reports
+for the same geometry (a test compares them), in the same order.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import shapely
+
+from ..design.fabrication import KINDS, Violation, check
+
+__all__ = ["LiveCheck", "limits_of"]
+
+
+def limits_of(design) -> dict:
+    """The ``check`` keywords of a design's ``[fabrication]`` table (as ``voroforge check``)."""
+    f = design.fabrication
+    return {
+        "min_web": f.min_web,
+        "min_opening": f.min_opening,
+        "min_inside_radius": f.tool_radius,
+        "corner_tolerance": f.corner_tolerance,
+        "islands": f.islands,
+    }
+
+
+class LiveCheck:
+    """Incremental fabrication check of successive results of one design being edited."""
+
+    def __init__(self) -> None:
+        self._key = None
+        self._single: dict[bytes, list[Violation]] = {}  # opening, corner, web to the rim
+        self._pairs: dict[tuple[bytes, bytes], Violation] = {}
+        self._outline: list[Violation] = []
+
+    def run(self, result) -> list[Violation]:
+        """The violations of ``result`` (a :class:`~voroforge.design.compute.Result`).
+
+        Returns
+        -------
+        list of Violation
+            Items index ``result.openings``, ordered as :func:`check` orders them.
+        """
+        limits = limits_of(result.design)
+        boundary = result.boundary
+        key = (tuple(sorted(limits.items())), shapely.to_wkb(boundary))
+        per = {k: v for k, v in limits.items() if k not in ("islands", "corner_tolerance")}
+        if key != self._key:
+            self._key = key
+            self._single.clear()
+            self._pairs.clear()
+            self._outline = []
+            if per.get("min_inside_radius"):
+                rim = check(
+                    openings=[],
+                    boundary=boundary,
+                    min_inside_radius=per["min_inside_radius"],
+                    corner_tolerance=limits["corner_tolerance"],
+                    islands=False,
+                )
+                self._outline = list(rim.violations)
+        holes = np.asarray(result.openings, dtype=object).reshape(-1)
+        if "tile" in result.extra:  # periodic tiles are checked across seams by build
+            holes = holes[:0]
+        wkb = list(shapely.to_wkb(holes)) if len(holes) else []
+        index = {w: i for i, w in enumerate(wkb)}
+        new = [i for i, w in enumerate(wkb) if w not in self._single]
+        if new:
+            self._check_new(holes, wkb, new, boundary, limits)
+        found: list[Violation] = []
+        for i, w in enumerate(wkb):
+            found += [_renumber(v, (i, *v.items[1:])) for v in self._single[w]]
+        for (a, b), v in list(self._pairs.items()):
+            if a in index and b in index:
+                i, j = sorted((index[a], index[b]))
+                found.append(_renumber(v, (i, j)))
+            else:
+                del self._pairs[(a, b)]
+        found += self._outline
+        if limits["islands"]:
+            found += _islands(result)
+        order = {k: i for i, k in enumerate(KINDS)}
+        worst_first = {"web": 1, "opening": 1, "corner": -1, "island": -1}
+        found.sort(key=lambda v: (order[v.kind], worst_first[v.kind] * v.value, v.location))
+        return found
+
+    def _check_new(self, holes, wkb, new, boundary, limits) -> None:
+        tol = limits["corner_tolerance"]
+        sub = holes[new]
+        for i in new:
+            self._single[wkb[i]] = []
+        one = check(
+            openings=sub,
+            boundary=boundary,
+            min_opening=limits["min_opening"],
+            min_inside_radius=limits["min_inside_radius"],
+            corner_tolerance=tol,
+            islands=False,
+        )
+        for v in one.violations:
+            if v.items and v.items[0] >= 0:
+                self._single[wkb[new[v.items[0]]]].append(v)
+        web = limits["min_web"]
+        if not web:
+            return
+        tree = shapely.STRtree(holes)
+        _, hits = tree.query(sub, predicate="dwithin", distance=web)
+        near = np.union1d(np.asarray(new), hits)
+        fresh = set(new)
+        webs = check(openings=holes[near], boundary=boundary, min_web=web, islands=False)
+        for v in webs.violations:
+            i, j = (int(near[k]) if k >= 0 else -1 for k in v.items)
+            if j < 0:
+                if i in fresh:
+                    self._single[wkb[i]].append(v)
+            elif i in fresh or j in fresh:
+                self._pairs[(wkb[i], wkb[j])] = v
+
+
+def _renumber(v: Violation, items: tuple[int, ...]) -> Violation:
+    return Violation(v.kind, v.location, v.value, v.limit, items)
+
+
+def _islands(result) -> list[Violation]:
+    """Loose parts of the frame; a one-part frame with the boundary's own rim has none."""
+    frame = result.frame
+    b = result.boundary
+    if (
+        frame.geom_type == "Polygon"
+        and b.geom_type == "Polygon"
+        and frame.exterior.equals_exact(b.exterior, 0.0)
+    ):
+        return []
+    return list(check(frame=frame, boundary=b).violations)

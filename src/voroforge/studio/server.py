@@ -1,0 +1,427 @@
+"""The studio's local web server: starlette + uvicorn, one WebSocket, static files.
+
+:func:`create_app` serves the page (``static/``, shipped with the package: no build step, no
+CDN) and ``/ws``, where the page sends JSON edits and gets binary geometry
+(:mod:`voroforge.studio.wire`) and JSON state back. :func:`serve` runs it with uvicorn.
+
+Safety: the server binds 127.0.0.1 unless told otherwise; requests must name an allowed
+host (DNS rebinding); a WebSocket whose ``Origin`` is another site is refused; messages
+above :data:`voroforge.config.STUDIO_MAX_MESSAGE` bytes, non-JSON, non-finite numbers and
+unknown ops get an error reply and the connection stays up; every edit is computed in a
+worker thread under one lock, so a closed tab or a flood of bad messages leaves the
+session as it was.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import base64
+import itertools
+import json
+import time
+from importlib import resources
+from urllib.parse import urlsplit
+
+import numpy as np
+
+from .. import config
+from . import wire
+from .session import Reply, Session
+
+__all__ = ["create_app", "geometry_message", "serve", "state_message"]
+
+LOCAL_HOSTS = ("127.0.0.1", "localhost", "::1", "[::1]")
+_KIND_COLOURS = {"web": "#e6194b", "opening": "#f58231", "corner": "#911eb4", "island": "#4363d8"}
+_KIND_TEXT = {  # the words of `voroforge check`'s table
+    "web": "web width between cuts",
+    "opening": "opening size (inscribed circle diameter)",
+    "corner": "material left in an inside corner by the tool",
+    "island": "loose part (area)",
+}
+
+
+def geometry_message(session: Session, changed, *, seq: int, boundary: bool, extra=None) -> bytes:
+    """The binary geometry message of the session's current result.
+
+    Parameters
+    ----------
+    session : Session
+    changed : (k,) int array or None
+        Cells that changed since the previous message (None: all, a full redraw).
+    seq : int
+        Message number.
+    boundary : bool
+        Include the boundary and domain rings.
+    extra : dict, optional
+        More header fields.
+
+    Returns
+    -------
+    bytes
+    """
+    r = session.result
+    n = len(r.raw)
+    idx = np.arange(n, dtype=np.int32) if changed is None else np.asarray(changed, np.int32)
+    rg, rr, rc = wire.rings(r.raw[idx])
+    cg, cr, cc = wire.rings(r.cells[idx])
+    arrays = {
+        "sites": r.sites.astype(np.float64).reshape(-1),
+        "mask": r.mask.astype(np.uint8),
+        "idx": idx,
+        "rg": rg,
+        "rr": rr,
+        "rc": rc.reshape(-1),
+        "cg": cg,
+        "cr": cr,
+        "cc": cc.reshape(-1),
+    }
+    if boundary:
+        for name, geom in (("b", r.boundary), ("d", r.domain)):
+            g, rr_, c = wire.rings(np.asarray([geom], dtype=object))
+            arrays[name + "g"], arrays[name + "r"], arrays[name + "c"] = g, rr_, c.reshape(-1)
+    header = {
+        "op": "geom",
+        "seq": seq,
+        "full": changed is None,
+        "n": n,
+        "bounds": [float(v) for v in r.boundary.bounds],
+        "compute_ms": round(session.compute_ms, 2),
+        "sites_edited": session.sites is not None,
+        "attractors": _attractors(session),
+        **(extra or {}),
+    }
+    return wire.pack(header, arrays)
+
+
+def _attractors(session: Session) -> list[dict]:
+    out = []
+    for a in session.design.attractors:
+        pts = [[float(x), float(y)] for x, y in (a.points or [])]
+        out.append({"type": a.type, "points": pts, "radius": float(a.radius), "name": a.name})
+    return out
+
+
+def state_message(session: Session) -> dict:
+    """The page's state besides geometry: inputs, undo/redo, file name, legend."""
+    return {
+        "op": "state",
+        "controls": session.controls(),
+        "can_undo": bool(session.history),
+        "can_redo": bool(session.future),
+        "file": session.path.name if session.path else "design.toml",
+        "folder": str(session.folder),
+        "name": session.design.design.name,
+        "units": session.design.design.units,
+        "legend": [
+            {"kind": k, "colour": c, "text": _KIND_TEXT[k]} for k, c in _KIND_COLOURS.items()
+        ],
+        "limits": {"max_seeds": session.max_seeds, "max_message": config.STUDIO_MAX_MESSAGE},
+    }
+
+
+def violations_message(session: Session, seq: int) -> dict:
+    """The live fabrication check's violations (at most 2000 listed)."""
+    vs = session.violations
+    counts = {k: 0 for k in _KIND_COLOURS}
+    for v in vs:
+        counts[v.kind] += 1
+    listed = [
+        {
+            "kind": v.kind,
+            "x": float(v.location[0]),
+            "y": float(v.location[1]),
+            "value": float(v.value),
+            "limit": float(v.limit),
+            "items": list(v.items),
+            "text": v.describe(),
+        }
+        for v in vs[:2000]
+    ]
+    return {
+        "op": "violations",
+        "seq": seq,
+        "list": listed,
+        "counts": counts,
+        "total": len(vs),
+        "check_ms": round(session.check_ms, 2),
+    }
+
+
+def _reject_constant(name: str):
+    raise ValueError(f"{name} is not a number the studio takes")
+
+
+class _Hub:
+    """The session, its lock and the open pages."""
+
+    def __init__(self, session: Session):
+        self.session = session
+        self.lock = asyncio.Lock()
+        self.clients: dict[int, object] = {}
+        self.ids = itertools.count(1)
+        self.seq = 0
+        self.sent_boundary = None
+        self.check_task: asyncio.Task | None = None
+        self.check_due = 0.0
+
+    async def send(self, ws, payload) -> bool:
+        try:
+            if isinstance(payload, bytes):
+                await ws.send_bytes(payload)
+            else:
+                await ws.send_text(json.dumps(payload, allow_nan=False))
+            return True
+        except Exception:  # a closed tab: forget it
+            for cid, other in list(self.clients.items()):
+                if other is ws:
+                    del self.clients[cid]
+            return False
+
+    async def broadcast(self, payload) -> None:
+        for ws in list(self.clients.values()):
+            await self.send(ws, payload)
+
+    def schedule_check(self) -> None:
+        """Run the fabrication check once edits pause (later edits push it back)."""
+        self.check_due = time.monotonic() + config.STUDIO_CHECK_DELAY
+        if self.check_task is None or self.check_task.done():
+            self.check_task = asyncio.get_running_loop().create_task(self._check_later())
+
+    async def _check_later(self) -> None:
+        while True:
+            wait = self.check_due - time.monotonic()
+            if wait > 0:
+                await asyncio.sleep(wait)
+                continue
+            async with self.lock:
+                if self.check_due - time.monotonic() > 0:
+                    continue
+                seq = self.seq
+                await asyncio.to_thread(self.session.check)
+                message = violations_message(self.session, seq)
+            await self.broadcast(message)
+            return
+
+
+def create_app(session: Session, *, hosts=LOCAL_HOSTS):
+    """The starlette application of a session.
+
+    Parameters
+    ----------
+    session : Session
+    hosts : sequence of str
+        Host names the server answers to (others get 400: DNS rebinding).
+
+    Returns
+    -------
+    starlette.applications.Starlette
+    """
+    from starlette.applications import Starlette
+    from starlette.middleware import Middleware
+    from starlette.middleware.trustedhost import TrustedHostMiddleware
+    from starlette.responses import HTMLResponse, Response
+    from starlette.routing import Mount, Route, WebSocketRoute
+    from starlette.staticfiles import StaticFiles
+    from starlette.websockets import WebSocket
+
+    hub = _Hub(session)
+    static = resources.files(__package__).joinpath("static")
+
+    async def index(request):
+        text = static.joinpath("index.html").read_text(encoding="utf-8")
+        return HTMLResponse(text, headers=_SECURITY_HEADERS)
+
+    async def health(request):
+        return Response("ok", media_type="text/plain")
+
+    async def favicon(request):
+        return Response(status_code=204)
+
+    async def socket(ws: WebSocket):
+        if not _same_origin(ws.headers.get("origin"), ws.headers.get("host", "")):
+            await ws.close(code=1008)
+            return
+        await ws.accept()
+        cid = next(hub.ids)
+        hub.clients[cid] = ws
+        try:
+            async with hub.lock:
+                hub.seq += 1
+                geom = geometry_message(session, None, seq=hub.seq, boundary=True)
+                state = {**state_message(session), "client": cid}
+            await hub.send(ws, state)
+            await hub.send(ws, geom)
+            hub.schedule_check()
+            while True:
+                event = await ws.receive()
+                if event["type"] == "websocket.disconnect":
+                    break
+                await _handle(hub, ws, cid, event)
+        except Exception:  # a dropped connection mid-send: the session is untouched
+            pass
+        finally:
+            hub.clients.pop(cid, None)
+
+    routes = [
+        Route("/", index),
+        Route("/health", health),
+        Route("/favicon.ico", favicon),
+        WebSocketRoute("/ws", socket),
+        Mount("/static", app=StaticFiles(directory=str(static)), name="static"),
+    ]
+    middleware = [Middleware(TrustedHostMiddleware, allowed_hosts=list(hosts))]
+    app = Starlette(routes=routes, middleware=middleware)
+    app.state.hub = hub
+    return app
+
+
+_SECURITY_HEADERS = {
+    "Content-Security-Policy": (
+        "default-src 'self'; connect-src 'self' ws: wss:; img-src 'self' data: blob:; "
+        "style-src 'self'; script-src 'self'; frame-ancestors 'none'"
+    ),
+    "X-Content-Type-Options": "nosniff",
+    "Referrer-Policy": "no-referrer",
+}
+
+
+def _same_origin(origin: str | None, host: str) -> bool:
+    """A WebSocket from a page of this server (or from no page at all, e.g. a script)."""
+    if origin is None:
+        return True
+    parts = urlsplit(origin)
+    return parts.scheme in ("http", "https") and parts.netloc.lower() == host.lower()
+
+
+async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
+    text = event.get("text")
+    mid = None
+    if text is None:
+        await hub.send(ws, _error_json("messages are JSON text", None, cid))
+        return
+    if len(text) > config.STUDIO_MAX_MESSAGE:
+        await hub.send(
+            ws,
+            _error_json(
+                f"message of {len(text)} bytes is over the limit of {config.STUDIO_MAX_MESSAGE}",
+                None,
+                cid,
+            ),
+        )
+        return
+    try:
+        msg = json.loads(text, parse_constant=_reject_constant)
+    except (ValueError, RecursionError) as exc:
+        await hub.send(ws, _error_json(f"not JSON: {str(exc)[:80]}", None, cid))
+        return
+    if isinstance(msg, dict):
+        mid = msg.get("id") if isinstance(msg.get("id"), int) else None
+    session = hub.session
+    async with hub.lock:
+        start = time.perf_counter()
+        reply: Reply = await asyncio.to_thread(session.apply, msg)
+        server_ms = (time.perf_counter() - start) * 1e3
+        if reply.kind == "update":
+            hub.seq += 1
+            bwkb = _boundary_key(session)
+            send_boundary = reply.changed is None or bwkb != hub.sent_boundary
+            hub.sent_boundary = bwkb
+            payload = geometry_message(
+                session,
+                reply.changed,
+                seq=hub.seq,
+                boundary=send_boundary,
+                extra={"reply_to": mid, "client": cid, "server_ms": round(server_ms, 2)},
+            )
+            state = state_message(session)
+    if reply.kind == "update":
+        await hub.broadcast(payload)
+        await hub.broadcast(state)
+        hub.schedule_check()
+        return
+    base = {"reply_to": mid, "client": cid}
+    if reply.kind == "error":
+        await hub.send(ws, {"op": "error", "issues": reply.issues, **base})
+    elif reply.kind == "file":
+        data = base64.b64encode(reply.data).decode("ascii")
+        await hub.send(
+            ws, {"op": "file", "name": reply.name, "mime": reply.mime, "data": data, **base}
+        )
+    elif reply.kind == "confirm":
+        await hub.send(ws, {"op": "confirm", "name": reply.name, "files": reply.files, **base})
+    elif reply.kind == "saved":
+        await hub.send(ws, {"op": "saved", "name": reply.name, "files": reply.files, **base})
+    else:
+        await hub.send(ws, {"op": "info", "note": reply.note, **base})
+
+
+def _boundary_key(session: Session) -> bytes:
+    import shapely
+
+    return shapely.to_wkb(session.result.domain)
+
+
+def _error_json(message: str, mid, cid) -> dict:
+    return {
+        "op": "error",
+        "issues": [{"key": "", "message": message}],
+        "reply_to": mid,
+        "client": cid,
+    }
+
+
+def serve(
+    source=None,
+    *,
+    host: str = "127.0.0.1",
+    port: int = 8765,
+    open_browser: bool = True,
+    session: Session | None = None,
+    log_level: str = "warning",
+) -> None:
+    """Run the studio for a design file until interrupted.
+
+    Parameters
+    ----------
+    source : str, Path, dict or None
+        The design (None: the starter design, saved into the current folder).
+    host : str
+        Address to bind; anything but a loopback address prints a warning.
+    port : int
+        TCP port (0: any free one).
+    open_browser : bool
+        Open the page in the default browser.
+    session : Session, optional
+        An existing session instead of ``source``.
+    log_level : str
+        uvicorn's log level.
+    """
+    import socket
+    import sys
+    import webbrowser
+
+    import uvicorn
+
+    session = session or Session(source)
+    hosts = list(LOCAL_HOSTS)
+    if host not in LOCAL_HOSTS:
+        print(
+            f"voroforge studio: warning: listening on {host}: anyone who can reach this "
+            "address can edit the design and write files into its folder",
+            file=sys.stderr,
+        )
+        hosts = ["*"] if host in ("0.0.0.0", "::") else [*hosts, host]
+    sock = socket.socket(socket.AF_INET6 if ":" in host else socket.AF_INET)
+    sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+    sock.bind((host, port))
+    port = sock.getsockname()[1]
+    shown = "127.0.0.1" if host in ("0.0.0.0", "::") else host
+    url = f"http://{'[' + shown + ']' if ':' in shown else shown}:{port}/"
+    print(f"voroforge studio: {url}  (Ctrl+C to stop)", flush=True)
+    if open_browser:
+        webbrowser.open(url)
+    app = create_app(session, hosts=hosts)
+    server = uvicorn.Server(
+        uvicorn.Config(app, log_level=log_level, ws_max_size=4 * config.STUDIO_MAX_MESSAGE)
+    )
+    server.run(sockets=[sock])

@@ -1,0 +1,430 @@
+"""One design being edited: its state, the edits, undo/redo, save and export.
+
+:class:`Session` holds the design file's mapping (``data``), the sites when they were edited
+by hand (``sites``; ``None`` while they come from ``[seeds]``), the last good
+:class:`~voroforge.design.compute.Result` and the undo history. :meth:`Session.apply` takes
+one message of the page (a ``dict``, already parsed) and returns a :class:`Reply`; the web
+server and the Jupyter widget only move those messages. Nothing here draws or clips: the
+geometry is :func:`voroforge.design.compute.compute`'s, reused per cell between edits.
+
+Saving writes the design as TOML into the design's own folder (never elsewhere, never over
+a file without ``overwrite``), with hand-edited sites in a ``<name>.seeds.csv`` beside it
+that ``[seeds] method = "file"`` reads back bit for bit; ``voroforge build`` of the saved
+file gives the files the page exports, byte for byte (exports go through the same
+:func:`voroforge.design.build.build`).
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import re
+import tempfile
+import time
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import shapely
+
+from .. import config
+from ..design.build import build, starter
+from ..design.compute import compute
+from ..design.designfile import DesignError, apply_overrides, load
+from .controls import controls
+from .livecheck import LiveCheck
+from .tomlfile import dumps, write_atomic
+
+__all__ = ["EXPORTS", "Reply", "Session"]
+
+#: What the page can export, and the MIME type of each.
+EXPORTS = {
+    "svg": "image/svg+xml",
+    "dxf": "application/dxf",
+    "png": "image/png",
+    "geojson": "application/geo+json",
+}
+
+_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9 _.+-]{0,120}\.toml$")
+#: Keys whose change means "new seeds" (hand-edited sites are dropped).
+_RESEED = ("seeds", "relax", "design.seed")
+
+
+@dataclass
+class Reply:
+    """What :meth:`Session.apply` answers.
+
+    ``kind`` is ``"update"`` (new geometry: ``changed`` cell indices or None for all),
+    ``"error"`` (``issues``: key and message each; the last good geometry stays),
+    ``"confirm"`` (a save would overwrite ``files``), ``"saved"``, ``"file"`` (an export:
+    ``name``, ``mime``, ``data``) or ``"info"``.
+    """
+
+    kind: str
+    issues: list[dict] = field(default_factory=list)
+    changed: np.ndarray | None = None
+    name: str = ""
+    mime: str = ""
+    data: bytes = b""
+    files: list[str] = field(default_factory=list)
+    note: str = ""
+
+
+class Session:
+    """A design being edited (see the module docstring).
+
+    Parameters
+    ----------
+    source : str, Path, dict or None
+        A TOML design file, a design mapping, or None for the starter design.
+    folder : str or Path, optional
+        Where saves go and relative file names are read from (default: the file's folder,
+        else the current folder).
+    max_seeds : int
+        The most sites an edit may ask for (a clear error above it).
+
+    Raises
+    ------
+    DesignError
+        When the design cannot be built at all (no last good drawing to keep).
+    """
+
+    def __init__(self, source=None, *, folder=None, max_seeds: int = config.STUDIO_MAX_SEEDS):
+        self.path: Path | None = None
+        if source is None:
+            data = tomllib.loads(starter())
+        elif isinstance(source, dict):
+            data = copy.deepcopy(source)
+        else:
+            self.path = Path(source).resolve()
+            data = tomllib.loads(self.path.read_text(encoding="utf-8-sig"))
+        if folder is None:
+            folder = self.path.parent if self.path is not None else Path.cwd()
+        self.folder = Path(folder).resolve()
+        self.max_seeds = int(max_seeds)
+        self.data: dict = data
+        self.sites: np.ndarray | None = None
+        self.history: list[tuple[dict, np.ndarray | None]] = []
+        self.future: list[tuple[dict, np.ndarray | None]] = []
+        self.result = None
+        self.design = None
+        self.live = LiveCheck()
+        self.compute_ms = 0.0
+        self.check_ms = 0.0
+        self.violations: list = []
+        self.design, self.result = self._compute(self.data, None, reuse=False)
+
+    # --- computing ---------------------------------------------------------------------
+
+    def _compute(self, data: dict, sites, *, reuse: bool = True):
+        design, _ = load(data)
+        self._guard(design)
+        limit = self.max_seeds
+
+        def stage(name: str) -> None:
+            head = name.split(" ", 1)[0]
+            if name.endswith("Voronoi cells") and head.isdigit() and int(head) > limit:
+                raise DesignError.at(
+                    "seeds", f"{head} seeds is more than the studio's limit of {limit}"
+                )
+
+        start = time.perf_counter()
+        previous = self.result if reuse else None
+        result = compute(design, self.folder, progress=stage, sites=sites, reuse=previous)
+        self.compute_ms = (time.perf_counter() - start) * 1e3
+        return design, result
+
+    def _guard(self, design) -> None:
+        """Refuse seed settings that would make far more sites than the limit (before sampling)."""
+        s = design.seeds
+        if s.count is not None and s.method in ("random", "density") and s.count > self.max_seeds:
+            raise DesignError.at(
+                "seeds.count", f"{s.count} is more than the studio's limit of {self.max_seeds}"
+            )
+        spacing = s.spacing if s.method in ("grid", "hexgrid", "jittered") else None
+        if s.method == "poisson":
+            spacing = s.radius * 0.8
+        if spacing and self.result is not None:
+            estimate = float(self.result.domain.area) / (spacing * spacing)
+            if estimate > 2 * self.max_seeds:
+                key = "seeds.radius" if s.method == "poisson" else "seeds.spacing"
+                raise DesignError.at(
+                    key, f"about {estimate:.0f} seeds, more than the limit of {self.max_seeds}"
+                )
+
+    def check(self) -> list:
+        """Run the live fabrication check of the current result (:class:`LiveCheck`)."""
+        start = time.perf_counter()
+        self.violations = self.live.run(self.result)
+        self.check_ms = (time.perf_counter() - start) * 1e3
+        return self.violations
+
+    def controls(self) -> list[dict]:
+        """The inputs of the current design (:func:`voroforge.studio.controls.controls`)."""
+        return controls(self.design)
+
+    # --- edits -------------------------------------------------------------------------
+
+    def _commit(self, data: dict, sites, *, remember: bool = True) -> Reply:
+        previous = self.result
+        try:
+            design, result = self._compute(data, sites)
+            if sites is not None:  # a new boundary: hand-placed sites outside it go
+                inside = shapely.contains_xy(result.domain, sites[:, 0], sites[:, 1])
+                if not inside.all():
+                    sites = sites[inside] if inside.any() else None
+                    design, result = self._compute(data, sites)
+        except DesignError as exc:
+            return _error(exc)
+        if remember:
+            self.history.append((self.data, self.sites))
+            del self.history[: -config.STUDIO_UNDO_DEPTH]
+            self.future.clear()
+        self.data, self.sites, self.design, self.result = data, sites, design, result
+        return Reply("update", changed=_changed(previous, result))
+
+    def _sites(self) -> np.ndarray:
+        return (self.result.sites if self.sites is None else self.sites).copy()
+
+    def _point(self, msg: dict) -> tuple[float, float]:
+        x, y = _number(msg.get("x"), "x"), _number(msg.get("y"), "y")
+        if not shapely.contains_xy(self.result.domain, x, y):
+            raise _Bad("", f"({x:g}, {y:g}) is outside the boundary")
+        return x, y
+
+    def _index(self, msg: dict, n: int, what: str = "i") -> int:
+        i = msg.get(what)
+        if not isinstance(i, int) or isinstance(i, bool) or not 0 <= i < n:
+            raise _Bad("", f"{what} must be an index below {n}; got {str(i)[:20]}")
+        return i
+
+    def apply(self, msg) -> Reply:
+        """Apply one message of the page.
+
+        Messages (``op`` and its fields): ``set`` (``key``, ``value``), ``move`` (``i``, ``x``,
+        ``y``, ``begin``), ``add`` (``x``, ``y``), ``remove`` (``i``), ``attractor`` (``a``,
+        ``p``, ``x``, ``y``, ``begin``), ``undo``, ``redo``, ``save`` (``name``,
+        ``overwrite``), ``export`` (``format``), ``reset_sites``.
+
+        Returns
+        -------
+        Reply
+            Errors for bad messages too: a message never raises.
+        """
+        try:
+            if not isinstance(msg, dict):
+                raise _Bad("", "a message is a JSON object with an 'op'")
+            op = msg.get("op")
+            handler = _OPS.get(op) if isinstance(op, str) else None
+            if handler is None:
+                raise _Bad("", f"unknown op {str(op)[:30]!r}")
+            return handler(self, msg)
+        except _Bad as exc:
+            return Reply("error", issues=[{"key": exc.key, "message": exc.message}])
+        except DesignError as exc:
+            return _error(exc)
+
+    def _op_set(self, msg: dict) -> Reply:
+        key = msg.get("key")
+        if not isinstance(key, str) or not re.fullmatch(r"[A-Za-z0-9_.]{1,80}", key):
+            raise _Bad("", "set needs a dotted key, e.g. seeds.count")
+        value = _plain(msg.get("value"), key)
+        data = apply_overrides(self.data, {key: value})
+        sites = self.sites
+        if any(key == k or key.startswith(k + ".") for k in _RESEED):
+            sites = None
+        reply = self._commit(data, sites)
+        if reply.kind == "error":
+            for it in reply.issues:
+                it.setdefault("key", key)
+                if not it["key"]:
+                    it["key"] = key
+        return reply
+
+    def _op_move(self, msg: dict) -> Reply:
+        sites = self._sites()
+        i = self._index(msg, len(sites))
+        sites[i] = self._point(msg)
+        return self._commit(self.data, sites, remember=bool(msg.get("begin", True)))
+
+    def _op_add(self, msg: dict) -> Reply:
+        sites = self._sites()
+        if len(sites) >= self.max_seeds:
+            raise _Bad("seeds", f"the studio's limit is {self.max_seeds} seeds")
+        return self._commit(self.data, np.vstack((sites, [self._point(msg)])))
+
+    def _op_remove(self, msg: dict) -> Reply:
+        sites = self._sites()
+        i = self._index(msg, len(sites))
+        if len(sites) <= 1:
+            raise _Bad("seeds", "the last seed cannot be removed")
+        return self._commit(self.data, np.delete(sites, i, axis=0))
+
+    def _op_attractor(self, msg: dict) -> Reply:
+        attractors = self.data.get("attractors") or []
+        a = self._index(msg, len(attractors), "a")
+        points = attractors[a].get("points")
+        if not isinstance(points, list) or not points:
+            raise _Bad(f"attractors.{a}", "this attractor has no points to drag")
+        p = self._index(msg, len(points), "p")
+        x, y = _number(msg.get("x"), "x"), _number(msg.get("y"), "y")
+        data = apply_overrides(self.data, {f"attractors.{a}.points.{p}": [x, y]})
+        return self._commit(data, self.sites, remember=bool(msg.get("begin", True)))
+
+    def _op_reset_sites(self, msg: dict) -> Reply:
+        return self._commit(self.data, None)
+
+    def _op_undo(self, msg: dict) -> Reply:
+        return self._travel(self.history, self.future, "nothing to undo")
+
+    def _op_redo(self, msg: dict) -> Reply:
+        return self._travel(self.future, self.history, "nothing to redo")
+
+    def _travel(self, source: list, target: list, empty: str) -> Reply:
+        if not source:
+            return Reply("info", note=empty)
+        data, sites = source[-1]
+        previous = self.result
+        try:
+            design, result = self._compute(data, sites)
+        except DesignError as exc:
+            return _error(exc)
+        source.pop()
+        target.append((self.data, self.sites))
+        self.data, self.sites, self.design, self.result = data, sites, design, result
+        return Reply("update", changed=_changed(previous, result))
+
+    # --- files -------------------------------------------------------------------------
+
+    def saved_data(self, seeds_file: str | None) -> tuple[dict, str | None]:
+        """The design mapping as saved, and the CSV text of hand-edited sites (or None)."""
+        data = copy.deepcopy(self.data)
+        if self.sites is None:
+            return data, None
+        data["seeds"] = {"method": "file", "file": seeds_file}
+        data.pop("relax", None)
+        lines = ["x,y", *(f"{float(x)!r},{float(y)!r}" for x, y in self.sites)]
+        return data, "\n".join(lines) + "\n"
+
+    def _op_save(self, msg: dict) -> Reply:
+        name = msg.get("name")
+        if not isinstance(name, str) or not _NAME.match(name) or ".." in name:
+            raise _Bad("save", "save as a plain file name ending in .toml, in the design's folder")
+        target = (self.folder / name).resolve()
+        if target.parent != self.folder:
+            raise _Bad("save", "saves go only into the design's folder")
+        csv_name = target.stem + ".seeds.csv"
+        data, csv = self.saved_data(csv_name)
+        text = dumps(data, comment="Saved by voroforge studio; build: voroforge build " + name)
+        files = {target: text}
+        if csv is not None:
+            files = {self.folder / csv_name: csv, target: text}
+        exists = [p.name for p in files if p.exists() or p.is_symlink()]
+        if exists and msg.get("overwrite") is not True:
+            return Reply("confirm", files=exists, name=name)
+        for p in files:
+            if p.is_symlink():
+                raise _Bad("save", f"{p.name} is a link; not writing through it")
+        for p, content in files.items():
+            write_atomic(p, content)
+        return Reply("saved", name=name, files=[p.name for p in files])
+
+    def _op_export(self, msg: dict) -> Reply:
+        fmt = msg.get("format")
+        if fmt not in EXPORTS:
+            raise _Bad("export", f"export as one of {', '.join(EXPORTS)}")
+        name, raw = self.export(fmt)
+        return Reply("file", name=name, mime=EXPORTS[fmt], data=raw)
+
+    def export(self, fmt: str) -> tuple[str, bytes]:
+        """Build the current design's ``fmt`` file as ``voroforge build`` would; (name, bytes)."""
+        with tempfile.TemporaryDirectory(prefix="voroforge-studio-") as tmp:
+            tmp = Path(tmp)
+            data, csv = self.saved_data("studio.seeds.csv")
+            _absolute_files(data, self.folder)
+            if csv is not None:
+                (tmp / "studio.seeds.csv").write_text(csv, encoding="utf-8")
+            data.setdefault("output", {})["formats"] = [fmt]
+            data.setdefault("fabrication", {})["report"] = False
+            (tmp / "studio.toml").write_text(dumps(data), encoding="utf-8")
+            written = build(tmp / "studio.toml", tmp / "out")
+            path = next(p for p in written if p.suffix == f".{fmt}")
+            return path.name, path.read_bytes()
+
+
+class _Bad(Exception):
+    def __init__(self, key: str, message: str):
+        super().__init__(message)
+        self.key, self.message = key, message
+
+
+def _error(exc: DesignError) -> Reply:
+    return Reply("error", issues=[{"key": it.key, "message": it.message} for it in exc.issues])
+
+
+def _number(value, name: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise _Bad("", f"{name} must be a number")
+    v = float(value)
+    if not math.isfinite(v) or abs(v) > 1e15:
+        raise _Bad("", f"{name} must be a finite number")
+    return v
+
+
+def _plain(value, key: str, depth: int = 0):
+    """A value a design file can hold (numbers, strings, booleans, lists, small tables)."""
+    if depth > 4:
+        raise _Bad(key, "value nested too deeply")
+    if isinstance(value, bool | str):
+        if isinstance(value, str) and len(value) > 1000:
+            raise _Bad(key, "text value too long")
+        return value
+    if isinstance(value, int | float):
+        if not math.isfinite(value):
+            raise _Bad(key, "must be a finite number")
+        return value
+    if isinstance(value, list) and len(value) <= 10000:
+        return [_plain(v, key, depth + 1) for v in value]
+    if isinstance(value, dict) and len(value) <= 50:
+        return {str(k): _plain(v, key, depth + 1) for k, v in value.items()}
+    raise _Bad(key, "expected a number, text, true/false, a list or a table")
+
+
+def _absolute_files(data: dict, folder: Path) -> None:
+    """Make the design's file names absolute (for a copy of the design written elsewhere)."""
+
+    def fix(table, key):
+        if isinstance(table, dict) and isinstance(table.get(key), str):
+            p = Path(table[key])
+            if not p.is_absolute():
+                table[key] = str(folder / p)
+
+    fix(data.get("boundary"), "file")
+    if (data.get("seeds") or {}).get("file") != "studio.seeds.csv":
+        fix(data.get("seeds"), "file")
+    for a in data.get("attractors") or []:
+        fix(a, "file")
+
+
+def _changed(previous, result) -> np.ndarray | None:
+    """Indices of the cells that differ from ``previous`` (None: redraw everything)."""
+    redo = result.extra.get("redone")
+    if previous is None or redo is None or len(previous.raw) != len(result.raw):
+        return None
+    moved = np.flatnonzero(previous.mask != result.mask)
+    return np.union1d(redo, moved).astype(np.int32)
+
+
+_OPS = {
+    "set": Session._op_set,
+    "move": Session._op_move,
+    "add": Session._op_add,
+    "remove": Session._op_remove,
+    "attractor": Session._op_attractor,
+    "reset_sites": Session._op_reset_sites,
+    "undo": Session._op_undo,
+    "redo": Session._op_redo,
+    "save": Session._op_save,
+    "export": Session._op_export,
+}

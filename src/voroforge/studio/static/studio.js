@@ -1,0 +1,493 @@
+/* voroforge studio: the page (and the Jupyter widget's view). Plain JavaScript, no build step.
+ *
+ * The server (or the widget's Python side) sends JSON state and binary geometry messages
+ * (see voroforge/studio/wire.py): a JSON header and flat typed arrays, rings as
+ * geometry -> ring -> coordinate offsets. Cells are kept as one Path2D each and only the
+ * changed ones are rebuilt; the canvas is redrawn once per animation frame.
+ */
+var VoroStudio = (function () {
+  "use strict";
+
+  var DTYPES = { f4: Float32Array, f8: Float64Array, i4: Int32Array, u1: Uint8Array };
+
+  function unpack(buf) {
+    var bytes = new Uint8Array(buf);
+    var magic = String.fromCharCode(bytes[0], bytes[1], bytes[2], bytes[3]);
+    if (magic !== "VFS1") throw new Error("not a studio message");
+    var len = new DataView(buf).getUint32(4, true);
+    var header = JSON.parse(new TextDecoder().decode(bytes.subarray(8, 8 + len)));
+    var off = 8 + len, arrays = {};
+    header.arrays.forEach(function (a) {
+      var T = DTYPES[a[1]];
+      arrays[a[0]] = new T(buf, off, a[2]);
+      var size = a[2] * T.BYTES_PER_ELEMENT;
+      off += size + ((8 - (size % 8)) % 8);
+    });
+    return { header: header, arrays: arrays };
+  }
+
+  function buildPath(g, r, c, k) {
+    var r0 = g[k], r1 = g[k + 1];
+    if (r1 <= r0) return null;
+    var p = new Path2D();
+    for (var j = r0; j < r1; j++) {
+      var s = r[j], e = r[j + 1];
+      if (e - s < 3) continue;
+      p.moveTo(c[2 * s], c[2 * s + 1]);
+      for (var t = s + 1; t < e - 1; t++) p.lineTo(c[2 * t], c[2 * t + 1]);
+      p.closePath();
+    }
+    return p;
+  }
+
+  function ringCoords(g, r, c, k) {
+    var out = [];
+    for (var j = g[k]; j < g[k + 1]; j++) {
+      var ring = [];
+      for (var t = r[j]; t < r[j + 1]; t++) ring.push([c[2 * t], c[2 * t + 1]]);
+      out.push(ring);
+    }
+    return out;
+  }
+
+  function colour(i) {
+    var h = (i * 137.508) % 360;
+    return "hsl(" + h.toFixed(1) + ",55%,72%)";
+  }
+
+  function el(tag, attrs, parent) {
+    var e = document.createElement(tag);
+    for (var k in attrs || {}) {
+      if (k === "text") e.textContent = attrs[k];
+      else e.setAttribute(k, attrs[k]);
+    }
+    if (parent) parent.appendChild(e);
+    return e;
+  }
+
+  function Studio(root, transport) {
+    this.root = root;
+    this.transport = transport;
+    this.canvas = root.querySelector("[data-role=canvas]");
+    this.ctx = this.canvas.getContext("2d");
+    this.panel = root.querySelector("[data-role=panel]");
+    this.statusEl = root.querySelector("[data-role=status]");
+    this.messageEl = root.querySelector("[data-role=message]");
+    this.legendEl = root.querySelector("[data-role=legend]");
+    this.raw = []; this.cells = []; this.mask = new Uint8Array(0);
+    this.rawData = []; this.sites = new Float64Array(0);
+    this.boundary = null; this.domain = null; this.bounds = [0, 0, 1, 1];
+    this.attractors = []; this.violations = []; this.legend = [];
+    this.state = null; this.header = null; this.n = 0;
+    this.nextId = 1; this.inflight = null; this.pending = null;
+    this.latencies = []; this.drag = null; this.dirty = false; this.frames = 0;
+    this.controlsKey = ""; this.inputs = {}; this.client = null;
+    this.lastDraw = 0; this.seq = 0; this.errors = {};
+    this.downloads = [];
+    this.bind();
+    this.resize();
+  }
+
+  Studio.prototype.send = function (msg, meta) {
+    msg.id = this.nextId++;
+    this.inflight = { id: msg.id, t0: (meta && meta.t0) || performance.now(), op: msg.op };
+    this.transport.send(JSON.stringify(msg));
+    return msg.id;
+  };
+
+  /* One message in flight; later edits of the same kind wait as one pending message. */
+  Studio.prototype.queue = function (msg) {
+    msg._t0 = performance.now();
+    if (this.inflight) {
+      if (this.pending && this.pending.op === msg.op && msg.op === "move" && this.pending.begin) msg.begin = true;
+      if (this.pending && this.pending.op === "attractor" && msg.op === "attractor" && this.pending.begin) msg.begin = true;
+      if (this.pending && this.pending.op !== msg.op) this.transportFlush();
+      this.pending = msg;
+      return;
+    }
+    var t0 = msg._t0; delete msg._t0;
+    this.send(msg, { t0: t0 });
+  };
+
+  Studio.prototype.transportFlush = function () {
+    var p = this.pending; this.pending = null;
+    if (p) { var t0 = p._t0; delete p._t0; this.send(p, { t0: t0 }); }
+  };
+
+  Studio.prototype.settle = function (replyTo) {
+    if (!this.inflight || this.inflight.id !== replyTo) return null;
+    var done = this.inflight;
+    this.inflight = null;
+    if (this.pending) this.transportFlush();
+    return done;
+  };
+
+  Studio.prototype.receive = function (data) {
+    if (data instanceof ArrayBuffer) return this.geometry(unpack(data));
+    var msg = typeof data === "string" ? JSON.parse(data) : data;
+    var mine = msg.client === undefined || msg.client === this.client;
+    if (msg.op === "state") {
+      if (msg.client !== undefined && this.client === null) this.client = msg.client;
+      this.state = msg; this.legend = msg.legend || [];
+      this.controlsPanel(); this.updateBar(); this.drawLegend();
+      return;
+    }
+    if (msg.op === "violations") {
+      this.violations = msg.list; this.violationCounts = msg.counts;
+      this.checkMs = msg.check_ms; this.violationTotal = msg.total;
+      this.drawLegend(); this.status(); this.invalidate();
+      return;
+    }
+    if (mine) this.settle(msg.reply_to);
+    if (msg.op === "error") {
+      if (!mine) return;
+      this.showErrors(msg.issues);
+    } else if (msg.op === "file" && mine) {
+      this.download(msg);
+    } else if (msg.op === "confirm" && mine) {
+      var ok = window.confirm("Overwrite " + msg.files.join(" and ") + " in the design's folder?");
+      if (ok) this.send({ op: "save", name: msg.name, overwrite: true });
+    } else if (msg.op === "saved" && mine) {
+      this.message("saved " + msg.files.join(", "), false);
+      this.saved = msg;
+    } else if (msg.op === "info" && mine) {
+      this.message(msg.note, false);
+    }
+  };
+
+  Studio.prototype.geometry = function (m) {
+    var h = m.header, a = m.arrays, t0 = performance.now();
+    var n = h.n, idx = a.idx;
+    if (h.full) { this.raw = new Array(n); this.cells = new Array(n); this.rawData = new Array(n); }
+    else if (this.raw.length !== n) { this.raw.length = n; this.cells.length = n; this.rawData.length = n; }
+    for (var k = 0; k < idx.length; k++) {
+      var i = idx[k];
+      this.raw[i] = buildPath(a.rg, a.rr, a.rc, k);
+      this.rawData[i] = a.rc.subarray(2 * a.rr[a.rg[k]], 2 * a.rr[a.rg[k + 1]]);
+      this.cells[i] = buildPath(a.cg, a.cr, a.cc, k);
+    }
+    this.mask = a.mask; this.sites = a.sites; this.n = n;
+    if (a.bg) { this.boundary = buildPath(a.bg, a.br, a.bc, 0); this.domain = buildPath(a.dg, a.dr, a.dc, 0); }
+    this.bounds = h.bounds; this.attractors = h.attractors; this.header = h; this.seq = h.seq;
+    this.parseMs = performance.now() - t0;
+    var mine = h.client === undefined || h.client === this.client;
+    var done = mine ? this.settle(h.reply_to) : null;
+    if (done) this.clearErrors();
+    this.paintNow();
+    if (done) {
+      var self = this, drawn = performance.now();
+      requestAnimationFrame(function () {
+        var ms = performance.now() - done.t0;
+        self.latencies.push({ op: done.op, ms: ms, compute_ms: h.compute_ms, server_ms: h.server_ms,
+          draw_ms: drawn - t0, n: n, changed: idx.length, full: h.full });
+        self.roundTrip = ms; self.status();
+      });
+    }
+    this.status(); this.updateBar();
+  };
+
+  /* --- drawing ------------------------------------------------------------------------ */
+
+  Studio.prototype.resize = function () {
+    var r = this.canvas.getBoundingClientRect(), dpr = window.devicePixelRatio || 1;
+    this.canvas.width = Math.max(1, Math.round(r.width * dpr));
+    this.canvas.height = Math.max(1, Math.round(r.height * dpr));
+    this.dpr = dpr; this.invalidate();
+  };
+
+  Studio.prototype.view = function () {
+    var b = this.bounds, W = this.canvas.width, H = this.canvas.height;
+    var w = Math.max(b[2] - b[0], 1e-9), hh = Math.max(b[3] - b[1], 1e-9), pad = 0.04;
+    var s = Math.min(W / (w * (1 + 2 * pad)), H / (hh * (1 + 2 * pad)));
+    var tx = (W - w * s) / 2 - b[0] * s, ty = (H + hh * s) / 2 + b[1] * s;
+    return { s: s, tx: tx, ty: ty };
+  };
+
+  Studio.prototype.toDesign = function (e) {
+    var r = this.canvas.getBoundingClientRect(), v = this.view();
+    var X = (e.clientX - r.left) * this.dpr, Y = (e.clientY - r.top) * this.dpr;
+    return [(X - v.tx) / v.s, (v.ty - Y) / v.s];
+  };
+
+  Studio.prototype.invalidate = function () {
+    if (this.dirty) return;
+    this.dirty = true;
+    var self = this;
+    requestAnimationFrame(function () { if (self.dirty) self.paintNow(); });
+  };
+
+  Studio.prototype.paintNow = function () {
+    this.dirty = false;
+    var t0 = performance.now(), ctx = this.ctx, v = this.view(), px = 1 / v.s, dpr = this.dpr;
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    ctx.fillStyle = "#f4f3ef"; ctx.fillRect(0, 0, this.canvas.width, this.canvas.height);
+    ctx.setTransform(v.s, 0, 0, -v.s, v.tx, v.ty);
+    if (this.boundary) { ctx.fillStyle = "#d2c4a5"; ctx.fill(this.boundary, "evenodd"); }
+    var n = this.n, mask = this.mask, i;
+    for (i = 0; i < n; i++) {
+      var c = this.cells[i];
+      if (c && mask[i]) { ctx.fillStyle = colour(i); ctx.fill(c, "evenodd"); }
+    }
+    ctx.lineWidth = 0.6 * px * dpr; ctx.strokeStyle = "rgba(60,50,40,0.22)";
+    for (i = 0; i < n; i++) { var r = this.raw[i]; if (r) ctx.stroke(r); }
+    if (this.boundary) { ctx.lineWidth = 1.2 * px * dpr; ctx.strokeStyle = "#3a3128"; ctx.stroke(this.boundary); }
+    if (this.domain) { ctx.setLineDash([4 * px * dpr, 4 * px * dpr]); ctx.lineWidth = 0.8 * px * dpr;
+      ctx.strokeStyle = "rgba(58,49,40,0.6)"; ctx.stroke(this.domain); ctx.setLineDash([]); }
+    var s = this.sites, dot = 1.6 * px * dpr, sp = new Path2D();
+    for (i = 0; i < s.length; i += 2) sp.rect(s[i] - dot, s[i + 1] - dot, 2 * dot, 2 * dot);
+    ctx.fillStyle = "#1d2330"; ctx.fill(sp);
+    if (this.drag && this.drag.kind === "site") {
+      var j = this.drag.i;
+      if (2 * j + 1 < s.length) { ctx.beginPath(); ctx.arc(s[2 * j], s[2 * j + 1], 5 * px * dpr, 0, 7);
+        ctx.strokeStyle = "#0a64d8"; ctx.lineWidth = 2 * px * dpr; ctx.stroke(); }
+    }
+    var self = this;
+    (this.attractors || []).forEach(function (a) {
+      ctx.strokeStyle = "rgba(220,120,0,0.8)"; ctx.lineWidth = 1.5 * px * dpr;
+      if (a.type === "curve" && a.points.length > 1) {
+        ctx.beginPath(); a.points.forEach(function (p, k) { k ? ctx.lineTo(p[0], p[1]) : ctx.moveTo(p[0], p[1]); });
+        ctx.stroke();
+      }
+      a.points.forEach(function (p) {
+        if (a.type === "point") { ctx.setLineDash([6 * px * dpr, 5 * px * dpr]); ctx.beginPath();
+          ctx.arc(p[0], p[1], a.radius, 0, 7); ctx.stroke(); ctx.setLineDash([]); }
+        ctx.beginPath(); ctx.arc(p[0], p[1], 7 * px * dpr, 0, 7);
+        ctx.fillStyle = "#ff8c00"; ctx.fill(); ctx.strokeStyle = "#5a3000"; ctx.stroke();
+      });
+    });
+    var colours = {};
+    this.legend.forEach(function (l) { colours[l.kind] = l.colour; });
+    ctx.lineWidth = 2.2 * px * dpr;
+    (this.violations || []).forEach(function (vi) {
+      ctx.beginPath(); ctx.arc(vi.x, vi.y, 9 * px * dpr, 0, 7);
+      ctx.strokeStyle = colours[vi.kind] || "#e6194b"; ctx.stroke();
+    });
+    this.drawMs = performance.now() - t0; this.frames++;
+  };
+
+  Studio.prototype.drawLegend = function () {
+    var L = this.legendEl; if (!L) return;
+    L.textContent = "";
+    var counts = this.violationCounts || {};
+    el("span", { text: this.violationTotal === undefined ? "checking… " : "check: " }, L);
+    this.legend.forEach(function (l) {
+      var item = el("span", { "data-kind": l.kind, "class": "item", title: l.text }, L);
+      var sw = el("span", { "class": "sw" }, item); sw.style.borderColor = l.colour;
+      el("span", { text: l.kind + " " + (counts[l.kind] || 0) }, item);
+    });
+  };
+
+  Studio.prototype.status = function () {
+    var h = this.header; if (!h || !this.statusEl) return;
+    var parts = [h.n + " cells", (this.sites.length / 2) + " seeds" + (h.sites_edited ? " (edited)" : ""),
+      "compute " + h.compute_ms.toFixed(1) + " ms"];
+    if (this.roundTrip !== undefined) parts.push("repaint " + this.roundTrip.toFixed(1) + " ms");
+    if (this.drawMs !== undefined) parts.push("draw " + this.drawMs.toFixed(1) + " ms");
+    if (this.violationTotal !== undefined) parts.push(this.violationTotal + " violations (check " + this.checkMs.toFixed(0) + " ms)");
+    this.statusEl.textContent = parts.join(" · ");
+  };
+
+  Studio.prototype.message = function (text, bad) {
+    if (!this.messageEl) return;
+    this.messageEl.textContent = text || "";
+    this.messageEl.style.color = bad ? "#b00020" : "#225522";
+  };
+
+  Studio.prototype.updateBar = function () {
+    var st = this.state; if (!st) return;
+    var q = function (sel) { return this.root.querySelector(sel); }.bind(this);
+    var u = q("[data-act=undo]"), r = q("[data-act=redo]"), f = q("[data-role=file]");
+    if (u) u.disabled = !st.can_undo;
+    if (r) r.disabled = !st.can_redo;
+    if (f) f.textContent = st.file + " — " + st.folder;
+  };
+
+  /* --- inputs from the schema ------------------------------------------------------------ */
+
+  Studio.prototype.controlsPanel = function () {
+    var ctl = this.state.controls, key = ctl.map(function (c) {
+      return c.key + ":" + (typeof c.value === "object" ? "g" : "n"); }).join(",");
+    var self = this;
+    if (key === this.controlsKey) {
+      ctl.forEach(function (c) { self.setInputs(c); });
+      return;
+    }
+    this.controlsKey = key; this.inputs = {};
+    this.panel.textContent = "";
+    var section = null;
+    ctl.forEach(function (c) {
+      var parts = c.key.split("."), sec = /^\d+$/.test(parts[1] || "") ? parts[0] + " " + parts[1] : parts[0];
+      if (sec !== section) { section = sec; el("h3", { text: sec }, self.panel); }
+      var box = el("div", { "class": "vf-ctl", "data-key": c.key }, self.panel);
+      var label = parts.slice(/^\d+$/.test(parts[1] || "") ? 2 : 1).join(".");
+      el("label", { text: label }, box);
+      var subs = typeof c.value === "object" && c.value !== null ? ["near", "far"] : [null];
+      var rows = subs.map(function (sub) {
+        var row = el("div", { "class": "vf-row" }, box);
+        if (sub) el("span", { text: sub }, row);
+        var range = el("input", { type: "range", min: c.min, max: c.max, step: c.step, "data-key": c.key + (sub ? "." + sub : "") }, row);
+        var num = el("input", { type: "number", step: c.step, "data-key": c.key + (sub ? "." + sub : "") }, row);
+        var send = function (from) {
+          var v = parseFloat(from.value);
+          if (!isFinite(v)) { self.showErrors([{ key: c.key, message: "not a number" }]); return; }
+          if (c.kind === "int") v = Math.round(v);
+          (from === range ? num : range).value = v;
+          var value = v;
+          if (sub) { value = {}; rows.forEach(function (rw) { value[rw.sub] = parseFloat(rw.num.value); }); }
+          self.queue({ op: "set", key: c.key, value: value });
+        };
+        range.addEventListener("input", function () { send(range); });
+        num.addEventListener("change", function () { send(num); });
+        return { sub: sub, range: range, num: num };
+      });
+      el("div", { "class": "vf-err" }, box);
+      self.inputs[c.key] = { box: box, rows: rows, spec: c };
+      self.setInputs(c);
+    });
+  };
+
+  Studio.prototype.setInputs = function (c) {
+    var ent = this.inputs[c.key]; if (!ent) return;
+    ent.rows.forEach(function (rw) {
+      var v = rw.sub ? c.value[rw.sub] : c.value;
+      if (document.activeElement !== rw.range && document.activeElement !== rw.num) {
+        if (v > parseFloat(rw.range.max)) rw.range.max = v;
+        rw.range.value = v; rw.num.value = v;
+      }
+    });
+  };
+
+  Studio.prototype.showErrors = function (issues) {
+    var self = this, loose = [];
+    issues.forEach(function (it) {
+      var ent = self.inputs[it.key];
+      if (!ent) {
+        var k = Object.keys(self.inputs).filter(function (x) { return it.key && it.key.indexOf(x) === 0; })[0];
+        ent = k ? self.inputs[k] : null;
+      }
+      if (ent) { ent.box.classList.add("vf-bad"); ent.box.querySelector(".vf-err").textContent = it.message;
+        self.errors[ent.spec.key] = it.message; }
+      loose.push((it.key ? it.key + ": " : "") + it.message);
+    });
+    this.message(loose.join("; "), true);
+  };
+
+  Studio.prototype.clearErrors = function () {
+    var self = this;
+    Object.keys(this.errors).forEach(function (k) {
+      var ent = self.inputs[k]; if (!ent) return;
+      ent.box.classList.remove("vf-bad"); ent.box.querySelector(".vf-err").textContent = "";
+    });
+    this.errors = {}; this.message("", false);
+  };
+
+  /* --- pointer and buttons ----------------------------------------------------------------- */
+
+  Studio.prototype.nearestSite = function (p, radiusPx) {
+    var s = this.sites, best = -1, bd = Infinity, v = this.view(), lim = radiusPx * this.dpr / v.s;
+    for (var i = 0; i < s.length; i += 2) {
+      var dx = s[i] - p[0], dy = s[i + 1] - p[1], d = dx * dx + dy * dy;
+      if (d < bd) { bd = d; best = i / 2; }
+    }
+    return bd <= lim * lim ? best : -1;
+  };
+
+  Studio.prototype.nearestHandle = function (p, radiusPx) {
+    var v = this.view(), lim = radiusPx * this.dpr / v.s, found = null;
+    (this.attractors || []).forEach(function (a, ai) {
+      a.points.forEach(function (q, pi) {
+        var d = Math.hypot(q[0] - p[0], q[1] - p[1]);
+        if (d <= lim && (!found || d < found.d)) found = { a: ai, p: pi, d: d };
+      });
+    });
+    return found;
+  };
+
+  Studio.prototype.bind = function () {
+    var self = this, cv = this.canvas;
+    cv.addEventListener("pointerdown", function (e) {
+      var p = self.toDesign(e), h = self.nearestHandle(p, 10);
+      cv.setPointerCapture && cv.setPointerCapture(e.pointerId);
+      if (h) { self.drag = { kind: "attractor", a: h.a, p: h.p, first: true }; return; }
+      var i = self.nearestSite(p, 8);
+      if (i >= 0 && e.shiftKey) { self.queue({ op: "remove", i: i }); self.drag = null; return; }
+      if (i >= 0) { self.drag = { kind: "site", i: i, first: true }; self.invalidate(); return; }
+      self.drag = { kind: "click", at: p, x: e.clientX, y: e.clientY };
+    });
+    cv.addEventListener("pointermove", function (e) {
+      var d = self.drag; if (!d) return;
+      var p = self.toDesign(e);
+      if (d.kind === "site") {
+        self.queue({ op: "move", i: d.i, x: p[0], y: p[1], begin: d.first }); d.first = false;
+      } else if (d.kind === "attractor") {
+        self.queue({ op: "attractor", a: d.a, p: d.p, x: p[0], y: p[1], begin: d.first }); d.first = false;
+      } else if (d.kind === "click" && Math.hypot(e.clientX - d.x, e.clientY - d.y) > 4) {
+        self.drag = null;
+      }
+    });
+    cv.addEventListener("pointerup", function (e) {
+      var d = self.drag; self.drag = null;
+      if (d && d.kind === "click" && !e.shiftKey) self.queue({ op: "add", x: d.at[0], y: d.at[1] });
+      self.invalidate();
+    });
+    window.addEventListener("resize", function () { self.resize(); });
+    window.addEventListener("keydown", function (e) {
+      if ((e.ctrlKey || e.metaKey) && (e.key === "z" || e.key === "Z")) {
+        e.preventDefault(); self.queue({ op: e.shiftKey ? "redo" : "undo" });
+      }
+    });
+    this.root.querySelectorAll("[data-act]").forEach(function (b) {
+      b.addEventListener("click", function () { self.action(b.getAttribute("data-act")); });
+    });
+  };
+
+  Studio.prototype.action = function (act) {
+    if (act === "undo" || act === "redo" || act === "reset_sites") return this.queue({ op: act });
+    if (act === "save") {
+      var name = window.prompt("Save as (a .toml file in " + (this.state ? this.state.folder : "the design's folder") + ")",
+        this.state ? this.state.file : "design.toml");
+      if (name) this.queue({ op: "save", name: name });
+      return;
+    }
+    if (act.indexOf("export-") === 0) return this.queue({ op: "export", format: act.slice(7) });
+  };
+
+  Studio.prototype.download = function (msg) {
+    var bin = atob(msg.data), bytes = new Uint8Array(bin.length);
+    for (var i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
+    var blob = new Blob([bytes], { type: msg.mime }), url = URL.createObjectURL(blob);
+    var a = el("a", { href: url, download: msg.name }, document.body);
+    a.click(); a.remove();
+    this.downloads.push({ name: msg.name, size: bytes.length });
+    setTimeout(function () { URL.revokeObjectURL(url); }, 30000);
+    this.message("exported " + msg.name, false);
+  };
+
+  /* For tests and scripts: a cell's rings as sent last, and a site's position. */
+  Studio.prototype.cellPath = function (i) {
+    return this.rawData[i] ? Array.prototype.slice.call(this.rawData[i]) : null;
+  };
+  Studio.prototype.site = function (i) { return [this.sites[2 * i], this.sites[2 * i + 1]]; };
+  Studio.prototype.toScreen = function (p) {
+    var r = this.canvas.getBoundingClientRect(), v = this.view();
+    return [r.left + (p[0] * v.s + v.tx) / this.dpr, r.top + (v.ty - p[1] * v.s) / this.dpr];
+  };
+
+  function connect(root) {
+    var proto = location.protocol === "https:" ? "wss:" : "ws:";
+    var ws = new WebSocket(proto + "//" + location.host + "/ws");
+    ws.binaryType = "arraybuffer";
+    var studio = new Studio(root, { send: function (t) { ws.send(t); } });
+    ws.onmessage = function (e) { studio.receive(e.data); };
+    ws.onclose = function () { studio.message("disconnected from the studio server", true); };
+    window.studio = studio;
+    return studio;
+  }
+
+  var api = { connect: connect, Studio: Studio, unpack: unpack, buildPath: buildPath, ringCoords: ringCoords };
+  if (typeof document !== "undefined") {
+    var auto = document.querySelector("[data-connect=ws]");
+    if (auto) api.instance = connect(auto);
+  }
+  return api;
+})();
