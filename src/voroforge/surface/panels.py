@@ -1,0 +1,525 @@
+"""Panels on a surface: polygons in space with planarity, planarisation, solids and openings.
+
+A :class:`Panels` holds shared vertices and, per panel, index rings (the exterior first,
+then holes). Morphed panels (:func:`voroforge.surface.morph`) carry UVs and follow the
+surface; Voronoi panels (:meth:`SurfaceVoronoi.panels`) are the cells' corner polygons with
+straight edges, corners shared between neighbours, so :meth:`Panels.planarize` moves each
+corner once for all the panels that meet there.
+
+Planar hexagons exist only where the Gaussian curvature is positive (or zero): in a region
+of negative curvature a planar hexagonal panel must be non-convex (Li, Liu & Wang 2015).
+:meth:`Panels.planarize` flags those panels and the ones it could not make planar.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import shapely
+
+__all__ = ["Panels", "Planarity", "PlanarizeReport"]
+
+
+@dataclass(frozen=True)
+class Planarity:
+    """Per panel: the largest distance of a vertex from the best-fit plane.
+
+    ``absolute`` in model units, ``relative`` divided by the panel's longest edge.
+    """
+
+    absolute: np.ndarray
+    relative: np.ndarray
+
+    def __iter__(self):
+        return iter((self.absolute, self.relative))
+
+
+@dataclass(frozen=True)
+class PlanarizeReport:
+    """What :meth:`Panels.planarize` reached.
+
+    Attributes
+    ----------
+    tolerance : float
+    iterations : int
+    planarity : Planarity
+        After planarising.
+    not_planar : (k,) int
+        Panels (positions) still above the tolerance.
+    negative_curvature : (m,) int
+        Panels over a region of negative Gaussian curvature (no convex planar hexagon fits
+        there; a planar panel there is non-convex or stays bent).
+    surface_distance : float
+        The largest distance of a moved vertex from the surface.
+    """
+
+    tolerance: float
+    iterations: int
+    planarity: Planarity
+    not_planar: np.ndarray
+    negative_curvature: np.ndarray
+    surface_distance: float
+
+    @property
+    def ok(self) -> bool:
+        """True when every panel is planar to the tolerance."""
+        return len(self.not_planar) == 0
+
+
+def _fit_planes(P: np.ndarray):
+    """Best-fit planes of ``(m, k, 3)`` point sets: centroids ``(m, 3)``, normals ``(m, 3)``."""
+    c = P.mean(axis=1)
+    _, _, wt = np.linalg.svd(P - c[:, None, :], full_matrices=False)
+    return c, wt[:, 2]
+
+
+def _plane_frames(P: np.ndarray):
+    """Centroid, two in-plane axes and the normal of each ``(m, k, 3)`` point set."""
+    c = P.mean(axis=1)
+    _, _, wt = np.linalg.svd(P - c[:, None, :], full_matrices=False)
+    return c, wt[:, 0], wt[:, 1], wt[:, 2]
+
+
+@dataclass(eq=False)
+class Panels:
+    """Polygons in space, each an exterior ring and optional holes over shared vertices.
+
+    Attributes
+    ----------
+    vertices : (V, 3) float64
+    rings : list of list of (k,) int arrays
+        Per panel, its rings as indices into ``vertices`` (exterior first).
+    ids : (n,) int
+        The label of each panel (design cell, Voronoi cell).
+    uv : (V, 2) float64 or None
+        UV coordinates of the vertices (morphed panels).
+    surface : Surface or None
+    report : PlanarizeReport or None
+        Set by :meth:`planarize`.
+    """
+
+    vertices: np.ndarray
+    rings: list
+    ids: np.ndarray
+    uv: np.ndarray | None = None
+    surface: object = None
+    report: PlanarizeReport | None = None
+    _cache: dict = field(default_factory=dict, repr=False)
+
+    # --- construction --------------------------------------------------------------------
+
+    @classmethod
+    def from_rings(cls, rings_uv, flat_uv, xyz, *, ids, surface) -> Panels:
+        """Panels from per-panel UV rings whose vertices (in order) are ``flat_uv``/``xyz``."""
+        rings, k = [], 0
+        for panel in rings_uv:
+            out = []
+            for r in panel:
+                out.append(np.arange(k, k + len(r)))
+                k += len(r)
+            rings.append(out)
+        return cls(np.asarray(xyz, float), rings, np.asarray(ids), np.asarray(flat_uv), surface)
+
+    @classmethod
+    def from_indexed(cls, vertices, exteriors, *, ids, surface=None) -> Panels:
+        """Panels from exterior index rings into ``vertices`` (only used vertices are kept)."""
+        used = np.unique(np.concatenate(exteriors)) if exteriors else np.zeros(0, int)
+        remap = np.full(len(vertices), -1, np.int64)
+        remap[used] = np.arange(len(used))
+        rings = [[remap[np.asarray(r)]] for r in exteriors]
+        return cls(np.asarray(vertices, float)[used], rings, np.asarray(ids), None, surface)
+
+    def _with(self, vertices=None, rings=None, uv=None, report=None) -> Panels:
+        return Panels(
+            self.vertices if vertices is None else vertices,
+            self.rings if rings is None else rings,
+            self.ids,
+            self.uv if uv is None and vertices is None else uv,
+            self.surface,
+            report,
+        )
+
+    def __len__(self) -> int:
+        return len(self.rings)
+
+    def polygon(self, i: int) -> list[np.ndarray]:
+        """Panel ``i``'s rings as ``(k, 3)`` point arrays (exterior first)."""
+        return [self.vertices[r] for r in self.rings[i]]
+
+    # --- measures ------------------------------------------------------------------------
+
+    def _groups(self):
+        """Exteriors grouped by vertex count: ``{k: (positions (m,), index (m, k))}``."""
+        if "groups" not in self._cache:
+            by: dict[int, list] = {}
+            for p, rings in enumerate(self.rings):
+                by.setdefault(len(rings[0]), []).append(p)
+            self._cache["groups"] = {
+                k: (np.asarray(ps), np.stack([self.rings[p][0] for p in ps]))
+                for k, ps in by.items()
+            }
+        return self._cache["groups"]
+
+    def _all_index(self, p: int) -> np.ndarray:
+        return np.concatenate(self.rings[p])
+
+    def planarity(self) -> Planarity:
+        """Per panel, the largest distance of a vertex from its best-fit (least-squares) plane.
+
+        Returns
+        -------
+        Planarity
+            ``absolute (n,)`` in model units and ``relative (n,)`` divided by the longest edge.
+        """
+        n = len(self)
+        ab = np.zeros(n)
+        rel = np.zeros(n)
+        for pos, idx in self._groups().values():
+            P = self.vertices[idx]
+            c, nrm = _fit_planes(P)
+            d = np.abs(np.einsum("mkj,mj->mk", P - c[:, None, :], nrm)).max(axis=1)
+            e = np.linalg.norm(np.roll(P, -1, axis=1) - P, axis=2).max(axis=1)
+            ab[pos] = d
+            rel[pos] = d / np.maximum(e, 1e-300)
+        for p in range(n):  # panels with holes: all their rings in one plane
+            if len(self.rings[p]) > 1:
+                P = self.vertices[self._all_index(p)][None]
+                c, nrm = _fit_planes(P)
+                ab[p] = np.abs((P[0] - c[0]) @ nrm[0]).max()
+                ext = self.vertices[self.rings[p][0]]
+                rel[p] = ab[p] / np.linalg.norm(np.roll(ext, -1, 0) - ext, axis=1).max()
+        return Planarity(ab, rel)
+
+    def areas(self) -> np.ndarray:
+        """(n,) panel areas.
+
+        On the surface for morphed panels (the UV area element integrated over the UV polygon,
+        exact where it is constant), else of the flat polygon.
+        """
+        out = np.zeros(len(self))
+        for p in range(len(self)):
+            if self.uv is not None and self.surface is not None:
+                tri = _triangles(self.uv, self.rings[p])
+                a, b, c = self.uv[tri[:, 0]], self.uv[tri[:, 1]], self.uv[tri[:, 2]]
+                auv = 0.5 * np.abs(np.cross(b - a, c - a))
+                # degree-2 rule on edge midpoints
+                mids = np.stack([(a + b) / 2, (b + c) / 2, (c + a) / 2], axis=1)
+                j = self.surface.area_element(mids[..., 0], mids[..., 1]).mean(axis=1)
+                out[p] = float(np.sum(auv * j))
+            else:
+                total = 0.0
+                for r, ring in enumerate(self.rings[p]):
+                    P = self.vertices[ring]
+                    vec = 0.5 * np.cross(P, np.roll(P, -1, axis=0)).sum(axis=0)
+                    total += np.linalg.norm(vec) * (1 if r == 0 else -1)
+                out[p] = total
+        return out
+
+    def centroids(self) -> np.ndarray:
+        """(n, 3) vertex centroids of the exteriors."""
+        return np.stack([self.vertices[r[0]].mean(axis=0) for r in self.rings])
+
+    def edge_lengths(self, p: int) -> list[np.ndarray]:
+        """Panel ``p``'s edge lengths per ring (edge ``k`` from vertex ``k`` to ``k + 1``)."""
+        return [np.linalg.norm(np.roll(P, -1, axis=0) - P, axis=1) for P in self.polygon(p)]
+
+    # --- planarize -----------------------------------------------------------------------
+
+    def planarize(
+        self,
+        tol: float,
+        *,
+        iterations: int = 2000,
+        surface_weight: float = 0.5,
+    ) -> Panels:
+        """Move vertices so every panel is planar to ``tol``, staying near the surface.
+
+        Alternating projections: each panel's vertices are projected onto its best-fit plane,
+        a vertex shared by several panels goes to the mean of its projections, and is pulled
+        towards the surface with a weight that fades to zero (so the last steps are planar
+        only). Stops when every panel is within ``tol / 2``.
+
+        Parameters
+        ----------
+        tol : float
+            Largest allowed distance from a panel's best-fit plane (model units).
+        iterations : int
+        surface_weight : float
+            Pull towards the surface at the start (0: none).
+
+        Returns
+        -------
+        Panels
+            With ``report`` (:class:`PlanarizeReport`): the panels still above ``tol`` and those
+            over negative Gaussian curvature (flagged, not failed silently).
+        """
+        tol = float(tol)
+        if not tol > 0:
+            raise ValueError(f"planarize tolerance must be positive; got {tol!r}")
+        if int(iterations) != iterations or iterations < 1:
+            raise ValueError(f"iterations must be a positive integer; got {iterations!r}")
+        S = self.surface
+        V = self.vertices.copy()
+        groups = list(self._groups().values())
+        holes = [p for p in range(len(self)) if len(self.rings[p]) > 1]
+        it = 0
+        for it in range(1, int(iterations) + 1):
+            acc = np.zeros_like(V)
+            cnt = np.zeros(len(V))
+            worst = 0.0
+            for _, idx in groups:
+                P = V[idx]
+                c, nrm = _fit_planes(P)
+                d = np.einsum("mkj,mj->mk", P - c[:, None, :], nrm)
+                worst = max(worst, float(np.abs(d).max()))
+                np.add.at(acc, idx, P - d[..., None] * nrm[:, None, :])
+                np.add.at(cnt, idx, 1.0)
+            for p in holes:
+                idx = self._all_index(p)
+                c, nrm = _fit_planes(V[idx][None])
+                d = (V[idx] - c[0]) @ nrm[0]
+                worst = max(worst, float(np.abs(d).max()))
+            if worst <= tol / 2:
+                break
+            moved = cnt > 0
+            V[moved] = acc[moved] / cnt[moved, None]
+            w = surface_weight * max(0.0, 1.0 - 2.0 * it / iterations)
+            if S is not None and w > 0:
+                V = V + w * (S.project(V) - V)
+        out = self._with(vertices=V)
+        plan = out.planarity()
+        bad = np.flatnonzero(plan.absolute > tol)
+        neg = np.zeros(0, np.int64)
+        dist = 0.0
+        if S is not None:
+            k = S.gaussian_curvature(out.centroids())
+            size = np.array([np.max(e) for e in (out.edge_lengths(p)[0] for p in range(len(out)))])
+            neg = np.flatnonzero(k * size**2 < -1e-6)
+            dist = float(np.linalg.norm(S.project(V) - V, axis=1).max())
+        out.report = PlanarizeReport(tol, it, plan, bad, neg, dist)
+        return out
+
+    # --- openings ------------------------------------------------------------------------
+
+    def openings(self, scale=0.6, *, attractors=None, radius: float | None = None) -> Panels:
+        """Cut an opening in every panel: its outline scaled about its centroid.
+
+        Parameters
+        ----------
+        scale : float or (near, far)
+            The opening's size as a fraction of the panel (0..1). ``(near, far)`` grades it by
+            distance to the nearest attractor: ``near`` at an attractor, ``far`` at ``radius``
+            and beyond (smoothstep in between).
+        attractors : (k, 3) array_like, optional
+        radius : float, optional
+
+        Returns
+        -------
+        Panels
+            Each panel with one more hole (morphed panels: scaled in UV and mapped, so the
+            opening lies on the surface; others in the panel's best-fit plane).
+        """
+        if np.ndim(scale) == 0:
+            s = np.full(len(self), float(scale))
+        else:
+            near, far = (float(x) for x in scale)
+            if attractors is None or radius is None:
+                raise ValueError("graded openings (near, far) need attractors and radius")
+            pts = np.asarray(attractors, float).reshape(-1, 3)
+            d = np.linalg.norm(self.centroids()[:, None, :] - pts[None], axis=2).min(axis=1)
+            x = np.clip(1.0 - d / float(radius), 0.0, 1.0)
+            s = far + (near - far) * (x * x * (3 - 2 * x))
+        if ((s <= 0) | (s >= 1)).any():
+            raise ValueError("opening scale must lie strictly between 0 and 1")
+        V = [self.vertices]
+        UV = [self.uv] if self.uv is not None else None
+        rings = []
+        k = len(self.vertices)
+        for p in range(len(self)):
+            ext = self.rings[p][0]
+            if UV is not None:
+                uv = self.uv[ext]
+                c = np.asarray(shapely.Polygon(uv).centroid.coords[0])
+                new_uv = c + s[p] * (uv - c)
+                xyz = self.surface.evaluate(new_uv[:, 0], new_uv[:, 1])
+                UV.append(new_uv)
+            else:
+                P = self.vertices[ext]
+                c, e1, e2, nrm = _plane_frames(P[None])
+                xy = np.stack([(P - c[0]) @ e1[0], (P - c[0]) @ e2[0]], axis=1)
+                g = np.asarray(shapely.Polygon(xy).centroid.coords[0])
+                xy = g + s[p] * (xy - g)
+                h = (P - c[0]) @ nrm[0]  # keep each vertex's height over the plane
+                xyz = c[0] + xy[:, :1] * e1[0] + xy[:, 1:] * e2[0] + s[p] * h[:, None] * nrm[0]
+            V.append(xyz)
+            rings.append([*self.rings[p], np.arange(k, k + len(ext))[::-1]])
+            k += len(ext)
+        uv = np.concatenate(UV) if UV is not None else None
+        return Panels(np.concatenate(V), rings, self.ids, uv, self.surface)
+
+    # --- solids --------------------------------------------------------------------------
+
+    def _normals(self, p: int, idx: np.ndarray) -> np.ndarray:
+        """Offset directions of panel ``p``'s vertices ``idx``.
+
+        The surface normal for morphed panels, the panel's plane normal otherwise (the side
+        its exterior turns counter-clockwise around).
+        """
+        P = self.vertices[self.rings[p][0]]
+        _, nrm = _fit_planes(P[None])
+        nrm = nrm[0]
+        if self.uv is not None and self.surface is not None:
+            fu, fv = self.surface.derivatives(self.uv[idx, 0], self.uv[idx, 1])
+            n = np.cross(fu, fv)
+            n /= np.linalg.norm(n, axis=1, keepdims=True)
+            return n
+        # orient like the ring (counter-clockwise seen from the normal's side)
+        vec = np.cross(P, np.roll(P, -1, axis=0)).sum(axis=0)
+        if vec @ nrm < 0:
+            nrm = -nrm
+        return np.broadcast_to(nrm, (len(idx), 3))
+
+    def _panel_solid(self, p: int, t: float):
+        import trimesh
+
+        idx = self._all_index(p)
+        local = {int(g): q for q, g in enumerate(idx)}
+        flat = self.uv
+        if flat is None:
+            P = self.vertices[self.rings[p][0]]
+            c, e1, e2, _ = _plane_frames(P[None])
+            flat = np.stack([(self.vertices - c[0]) @ e1[0], (self.vertices - c[0]) @ e2[0]], 1)
+        tri = _triangles(flat, self.rings[p])
+        tri = np.vectorize(local.get)(tri)
+        base = self.vertices[idx]
+        top = base + t * self._normals(p, idx)
+        m = len(idx)
+        faces = [tri[:, ::-1], tri + m]
+        k = 0
+        for ring in self.rings[p]:
+            r = np.arange(k, k + len(ring))
+            rn = np.roll(r, -1)
+            faces.append(np.stack([r, rn, rn + m], 1))
+            faces.append(np.stack([r, rn + m, r + m], 1))
+            k += len(ring)
+        mesh = trimesh.Trimesh(np.concatenate([base, top]), np.concatenate(faces), process=False)
+        if mesh.volume < 0:
+            mesh.invert()
+        return mesh
+
+    def thicken(self, t: float):
+        """Every panel as a solid of thickness ``t`` (offset along its normals).
+
+        Returns
+        -------
+        list of trimesh.Trimesh
+            One watertight solid per panel (holes kept), in panel order.
+        """
+        t = float(t)
+        if not t > 0:
+            raise ValueError(f"thickness must be positive; got {t!r}")
+        return [self._panel_solid(p, t) for p in range(len(self))]
+
+    def frame(self, width: float, *, depth: float | None = None):
+        """The frame along the panel edges: each panel's rim of ``width / 2`` as a solid.
+
+        Neighbouring rims meet along the shared edges, so the members are ``width`` wide.
+
+        Parameters
+        ----------
+        width : float
+            Full member width.
+        depth : float, optional
+            Member depth (default ``width``).
+
+        Returns
+        -------
+        list of trimesh.Trimesh
+            One watertight rim per panel.
+        """
+        width = float(width)
+        if not width > 0:
+            raise ValueError(f"frame width must be positive; got {width!r}")
+        depth = width if depth is None else float(depth)
+        rims = []
+        for p in range(len(self)):
+            ext = self.vertices[self.rings[p][0]]
+            c, e1, e2, _ = _plane_frames(ext[None])
+            xy = np.stack([(ext - c[0]) @ e1[0], (ext - c[0]) @ e2[0]], 1)
+            inner = shapely.Polygon(xy).buffer(-width / 2, join_style="mitre")
+            rings = [np.arange(len(ext))]
+            verts = [ext]
+            if not inner.is_empty and inner.geom_type == "Polygon":
+                ixy = np.asarray(shapely.orient_polygons(inner).exterior.coords)[:-1]
+                if _signed_area(xy) > 0:  # the hole turns against the exterior
+                    ixy = ixy[::-1]
+                verts.append(c[0] + ixy[:, :1] * e1[0] + ixy[:, 1:] * e2[0])
+                rings.append(np.arange(len(ext), len(ext) + len(ixy)))
+            # same exterior ring, same orientation: the rim's normal is the panel's
+            rim = Panels(np.concatenate(verts), [rings], self.ids[p : p + 1], None, None)
+            rims.append(rim._panel_solid(0, depth))
+        return rims
+
+    def to_trimesh(self):
+        """All panels triangulated into one mesh; ``face_attributes["panel"]`` the position."""
+        import trimesh
+
+        faces, owner = [], []
+        for p in range(len(self)):
+            flat = self.uv
+            if flat is None:
+                P = self.vertices[self.rings[p][0]]
+                c, e1, e2, _ = _plane_frames(P[None])
+                idx = self._all_index(p)
+                xy = np.zeros((len(self.vertices), 2))
+                xy[idx] = np.stack(
+                    [(self.vertices[idx] - c[0]) @ e1[0], (self.vertices[idx] - c[0]) @ e2[0]], 1
+                )
+                flat = xy
+            tri = _triangles(flat, self.rings[p])
+            faces.append(tri)
+            owner.append(np.full(len(tri), p))
+        m = trimesh.Trimesh(self.vertices.copy(), np.concatenate(faces), process=False)
+        m.face_attributes["panel"] = np.concatenate(owner)
+        return m
+
+    # --- flat -------------------------------------------------------------------------------
+
+    def unroll(self, **kwargs):
+        """Flatten every panel and lay them out on sheets (see :func:`voroforge.surface.unroll`)."""
+        from .unroll import unroll
+
+        return unroll(self, **kwargs)
+
+
+def _signed_area(xy: np.ndarray) -> float:
+    return 0.5 * float(np.sum(xy[:, 0] * np.roll(xy[:, 1], -1) - np.roll(xy[:, 0], -1) * xy[:, 1]))
+
+
+def _triangles(flat: np.ndarray, rings: list) -> np.ndarray:
+    """A constrained triangulation of a panel's rings in 2D coordinates ``flat[rings]``.
+
+    Returns ``(t, 3)`` indices into ``flat`` (the rings' own vertices only), turning the way
+    the exterior ring turns in ``flat`` (so caps and side walls of a solid agree).
+    """
+    ext = flat[rings[0]]
+    turn = np.sign(_signed_area(ext))
+    poly = shapely.Polygon(ext, [flat[r] for r in rings[1:]])
+    if not poly.is_valid:
+        poly = shapely.make_valid(poly)
+    tris = shapely.get_parts(shapely.constrained_delaunay_triangles(poly))
+    ids = np.concatenate(rings)
+    lookup = {(float(x), float(y)): int(i) for i, (x, y) in zip(ids, flat[ids], strict=True)}
+    out = []
+    for t in tris:
+        xy = np.asarray(t.exterior.coords)[:3]
+        try:
+            tri = [lookup[(float(x), float(y))] for x, y in xy]
+        except KeyError:
+            continue  # a vertex the repair made: skip that sliver
+        a, b, c = flat[tri[0]], flat[tri[1]], flat[tri[2]]
+        if ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])) * turn < 0:
+            tri = [tri[0], tri[2], tri[1]]
+        out.append(tri)
+    return np.asarray(out, dtype=np.int64).reshape(-1, 3)

@@ -1,0 +1,431 @@
+"""Voronoi diagrams restricted to a surface mesh, and centroidal ones (surface CVT).
+
+:func:`voronoi` cuts every triangle of the surface's mesh by the bisector planes of nearby
+sites (:func:`voroforge.kernels.surface.rvd`): cell ``i`` is the part of the surface nearer to
+site ``i`` than to any other in 3D distance (geogram's restricted Voronoi diagram). With
+``relax > 0`` the sites move to a centroidal Voronoi tessellation on the surface: Lloyd steps
+(cell centroid projected back onto the mesh) or L-BFGS on the CVT energy (Liu et al. 2009),
+which converges in far fewer steps and leaves fewer defects.
+
+Examples
+--------
+>>> from voroforge import surface
+>>> S = surface.sphere(1.0, subdivisions=3)
+>>> vd = surface.voronoi(S, 50, relax=10)
+>>> bool(abs(vd.areas.sum() - S.area) < 1e-9 * S.area)
+True
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .. import config
+from .shapes import Surface, _as3
+
+__all__ = ["SurfaceVoronoi", "voronoi"]
+
+
+def bucket_side(S: Surface, sites: np.ndarray) -> float:
+    """Side of the sites' bucket grid: their mean spacing on the surface.
+
+    Widened so the grid holds at most ``SURFACE_BUCKETS_PER_SITE`` buckets per site.
+    """
+    lo = np.minimum(S.vertices.min(axis=0), sites.min(axis=0))
+    hi = np.maximum(S.vertices.max(axis=0), sites.max(axis=0))
+    ext = np.maximum(hi - lo, 1e-300)
+    h = math.sqrt(S.area / len(sites))
+    limit = config.SURFACE_BUCKETS_PER_SITE * len(sites) + 64
+    while np.prod(np.floor(ext / h) + 1) > limit:
+        h *= 1.25
+    return h
+
+
+def _run(S: Surface, sites: np.ndarray, store: bool):
+    from ..kernels.surface import rvd
+
+    return rvd(S.vertices, S.faces, sites, bucket_side(S, sites), store)
+
+
+@dataclass(eq=False)
+class SurfaceVoronoi:
+    """A Voronoi diagram restricted to a surface mesh.
+
+    Attributes
+    ----------
+    surface : Surface
+    sites : (n, 3) float64
+        The sites (after relaxation).
+    areas : (n,) float64
+        Cell areas on the mesh (they sum to the mesh's area).
+    centroids : (n, 3) float64
+        Area centroids of the cells (in space, not projected; NaN for empty cells).
+    energy : float
+        The CVT energy ``sum_i ∫_{cell i} |x - s_i|^2 dA``.
+    history : list of float
+        The energy before each relaxation step (empty without ``relax``).
+    piece_cell, piece_tri, piece_area : (p,) arrays
+        Every piece of a triangle that lies in one cell: its cell, triangle and area.
+    """
+
+    surface: Surface
+    sites: np.ndarray
+    areas: np.ndarray
+    centroids: np.ndarray
+    energy: float
+    piece_cell: np.ndarray
+    piece_tri: np.ndarray
+    piece_area: np.ndarray
+    piece_offsets: np.ndarray
+    piece_coords: np.ndarray
+    piece_owners: np.ndarray
+    history: list = field(default_factory=list)
+    _cache: dict = field(default_factory=dict, repr=False)
+
+    def __len__(self) -> int:
+        return len(self.sites)
+
+    # --- topology ------------------------------------------------------------------------
+
+    def _keys(self):
+        """Symbolic names of every piece vertex and the boundary segments of every cell.
+
+        A piece vertex is named by its two edges' owners: a mesh vertex (two triangle edges),
+        a mesh edge and a site pair (a bisector crossing an edge), or a triangle and a site
+        triple (three cells meet); neighbouring pieces name a shared vertex alike.
+        """
+        if "keys" in self._cache:
+            return self._cache["keys"]
+        S = self.surface
+        _, face_edges, border = S.edges
+        off = self.piece_offsets
+        own = self.piece_owners
+        nq = len(own)
+        piece_of = np.repeat(np.arange(len(self.piece_cell)), np.diff(off))
+        cell = self.piece_cell[piece_of]
+        tri = self.piece_tri[piece_of]
+        pos = np.arange(nq)
+        prev = pos - 1
+        starts = off[:-1][piece_of]
+        ends = off[1:][piece_of]
+        prev = np.where(prev < starts, ends - 1, prev)
+        a = own[prev]
+        b = own[pos]
+        key = np.full((nq, 5), -1, np.int64)
+        both_edges = (a < 0) & (b < 0)
+        # corner shared by local edges ka and kb: edges k and k+1 share corner k+1
+        ka, kb = -1 - a, -1 - b
+        corner = np.where((ka + 1) % 3 == kb, kb, ka)
+        key[both_edges, 0] = 0
+        key[both_edges, 1] = S.faces[tri[both_edges], corner[both_edges] % 3]
+        one = (a < 0) ^ (b < 0)
+        e_local = np.where(a < 0, ka, kb)
+        j = np.where(a < 0, b, a)
+        key[one, 0] = 1
+        key[one, 1] = face_edges[tri[one], e_local[one] % 3]
+        key[one, 2] = np.minimum(cell[one], j[one])
+        key[one, 3] = np.maximum(cell[one], j[one])
+        sites3 = (a >= 0) & (b >= 0)
+        trip = np.sort(np.stack([cell, a, b], axis=1), axis=1)
+        key[sites3, 0] = 2
+        key[sites3, 1] = tri[sites3]
+        key[sites3, 2:5] = trip[sites3]
+        # a vertex inside one edge (both sides the same owner): unique to its piece
+        same = a == b
+        key[same, 0] = 3
+        key[same, 1] = pos[same]
+        uniq, vid = np.unique(key, axis=0, return_inverse=True)
+        vid = vid.ravel()
+        # boundary segments: bisector edges and edges on the mesh's border
+        nxt = pos + 1
+        nxt = np.where(nxt >= ends, starts, nxt)
+        edge_border = np.zeros(nq, bool)
+        neg = b < 0
+        edge_border[neg] = border[face_edges[tri[neg], (-1 - b[neg]) % 3]]
+        seg = (b >= 0) | edge_border
+        first = np.full(len(uniq), -1, np.int64)
+        first[vid[::-1]] = pos[::-1]
+        self._cache["keys"] = (uniq, vid, first, cell, seg, nxt, b)
+        return self._cache["keys"]
+
+    @property
+    def vertices(self) -> np.ndarray:
+        """(m, 3) float64: every distinct piece vertex (first occurrence's coordinates)."""
+        uniq, vid, first, *_ = self._keys()
+        return self.piece_coords[first]
+
+    @property
+    def neighbors(self) -> tuple[np.ndarray, np.ndarray]:
+        """CSR ``(indptr, indices)``: the cells sharing a boundary of positive length."""
+        if "neighbors" not in self._cache:
+            from ..engine.csr import csr_from_pairs
+
+            uniq, vid, first, cell, seg, nxt, b = self._keys()
+            m = b >= 0
+            p = self.piece_coords
+            length = np.linalg.norm(p[nxt[m]] - p[np.flatnonzero(m)], axis=1)
+            tol = config.SURFACE_EDGE_RTOL * self.surface.scale
+            i, j = cell[m][length > tol], b[m][length > tol]
+            self._cache["neighbors"] = csr_from_pairs(len(self.sites), i, j)
+        return self._cache["neighbors"]
+
+    def degree(self) -> np.ndarray:
+        """(n,) int: neighbours per cell (6 for a hexagon)."""
+        indptr, _ = self.neighbors
+        return np.diff(indptr)
+
+    def hexagon_fraction(self) -> float:
+        """The share of non-empty cells with exactly six neighbours."""
+        live = self.areas > 0
+        return float((self.degree()[live] == 6).mean())
+
+    @property
+    def cells(self) -> list[list[np.ndarray]]:
+        """Per cell, its boundary rings as ``(k, 3)`` arrays of points on the surface.
+
+        A cell that is a disc has one ring (counter-clockwise seen from the normals' side); a
+        cell around a handle or touching the mesh's border in two places has more.
+        """
+        if "cells" not in self._cache:
+            from ..kernels.surface import chain_rings
+
+            uniq, vid, first, cell, seg, nxt, b = self._keys()
+            s = np.flatnonzero(seg)
+            c, st, en = cell[s], vid[s], vid[nxt[s]]
+            order = np.lexsort((st, c))
+            rv, roff, coff = chain_rings(c[order], st[order], en[order], len(self.sites))
+            pts = self.piece_coords[first[rv]]
+            self._cache["ring_ids"] = (rv, roff, coff)
+            out = []
+            for i in range(len(self.sites)):
+                out.append([pts[roff[r] : roff[r + 1]] for r in range(coff[i], coff[i + 1])])
+            self._cache["cells"] = out
+        return self._cache["cells"]
+
+    def corners(self) -> list[np.ndarray]:
+        """Per cell, the ids (into :attr:`vertices`) of its corners in ring order.
+
+        Corners are where three cells meet, and on an open surface where a cell boundary meets
+        the border and the border's own vertices: the cell as a polygon of straight edges
+        (what a panel is made of).
+        """
+        self.cells  # noqa: B018 - builds the rings
+        uniq, *_ = self._keys()
+        rv, roff, coff = self._cache["ring_ids"]
+        kind = uniq[:, 0]
+        onborder = np.zeros(len(uniq), bool)
+        _, _, border = self.surface.edges
+        e, _, _ = self.surface.edges
+        bverts = np.zeros(len(self.surface.vertices), bool)
+        bverts[e[border].ravel()] = True
+        onborder[kind == 1] = border[uniq[kind == 1, 1]]
+        onborder[kind == 0] = bverts[uniq[kind == 0, 1]]
+        keep = (kind == 2) | onborder
+        out = []
+        for i in range(len(self.sites)):
+            if coff[i + 1] == coff[i]:
+                out.append(np.zeros(0, np.int64))
+                continue
+            # the longest ring is the outer one
+            r = max(range(coff[i], coff[i + 1]), key=lambda r: roff[r + 1] - roff[r])
+            ids = rv[roff[r] : roff[r + 1]]
+            out.append(ids[keep[ids]])
+        return out
+
+    def to_trimesh(self):
+        """The surface split into cells: a mesh whose ``face_attributes["cell"]`` is the cell id.
+
+        Each piece is fanned into triangles over its shared (named) vertices, so the cells join
+        without cracks.
+        """
+        import trimesh
+
+        uniq, vid, first, *_ = self._keys()
+        off = self.piece_offsets
+        tris, cells = [], []
+        for k in range(3, int(np.diff(off).max()) + 1):
+            sel = np.flatnonzero(np.diff(off) == k)
+            if not len(sel):
+                continue
+            base = off[sel]
+            for q in range(1, k - 1):
+                tris.append(np.stack([vid[base], vid[base + q], vid[base + q + 1]], axis=1))
+                cells.append(self.piece_cell[sel])
+        faces = np.concatenate(tris)
+        cell = np.concatenate(cells)
+        good = (
+            (faces[:, 0] != faces[:, 1])
+            & (faces[:, 1] != faces[:, 2])
+            & (faces[:, 0] != faces[:, 2])
+        )
+        m = trimesh.Trimesh(self.piece_coords[first], faces[good], process=False)
+        m.face_attributes["cell"] = cell[good]
+        return m
+
+    def panels(self):
+        """The cells as panels: polygons through their corners (see :meth:`corners`)."""
+        from .panels import Panels
+
+        verts = self.vertices
+        rings = self.corners()
+        ids = [i for i, r in enumerate(rings) if len(r) >= 3]
+        return Panels.from_indexed(
+            verts, [rings[i] for i in ids], ids=np.asarray(ids), surface=self.surface
+        )
+
+    def sample_check(self, count: int = 2000, *, seed: int = 0) -> float:
+        """Share of random surface points whose nearest site owns the piece they fall in.
+
+        A diagnostic for tests and users: 1.0 for a correct diagram (ties aside).
+        """
+        from scipy.spatial import cKDTree
+
+        S = self.surface
+        rng = np.random.default_rng(seed)
+        k = rng.choice(len(self.piece_area), size=count, p=self.piece_area / self.piece_area.sum())
+        ok = 0
+        d_owner = np.zeros(count)
+        pts = np.zeros((count, 3))
+        for q, p in enumerate(k):
+            ring = self.piece_coords[self.piece_offsets[p] : self.piece_offsets[p + 1]]
+            w = rng.random(len(ring)) ** 4
+            pts[q] = (w / w.sum()) @ ring
+            d_owner[q] = np.linalg.norm(pts[q] - self.sites[self.piece_cell[p]])
+        d, _ = cKDTree(self.sites).query(pts)
+        ok = d_owner <= d + 1e-12 * S.scale
+        return float(ok.mean())
+
+
+def _result(S: Surface, sites: np.ndarray, history: list, store: bool = True) -> SurfaceVoronoi:
+    mass, first, energy, pc, pt, pa, off, xyz, own = _run(S, sites, store)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cen = first / mass[:, None]
+    cen[mass == 0] = np.nan
+    return SurfaceVoronoi(
+        S, sites, mass, cen, math.fsum(energy), pc, pt, pa, off, xyz, own, history
+    )
+
+
+def _project_cells(S: Surface, points: np.ndarray, pc: np.ndarray, pt: np.ndarray) -> np.ndarray:
+    """Each cell's centroid to the nearest point of the triangles its cell covers."""
+    from ..kernels.surface import project_pieces
+
+    out = np.zeros_like(points)
+    project_pieces(S.vertices, S.faces, points, pc, pt, out)
+    return out
+
+
+def _lloyd(S: Surface, sites: np.ndarray, steps: int, history: list, progress) -> np.ndarray:
+    for k in range(steps):
+        mass, first, energy, pc, pt, pa, *_ = _run(S, sites, False)
+        history.append(math.fsum(energy))
+        live = mass > 0
+        cen = sites.copy()
+        cen[live] = first[live] / mass[live, None]
+        sites = _project_cells(S, cen, pc, pt)
+        if progress is not None:
+            progress(k + 1, steps)
+    return sites
+
+
+def _lbfgs(S: Surface, sites: np.ndarray, steps: int, history: list, progress) -> np.ndarray:
+    """L-BFGS on the CVT energy with sites free in space, projected onto the mesh at the end.
+
+    ``F(s) = sum_i ∫_{V_i} |x - s_i|^2 dA`` is C^2 where the diagram changes smoothly and its
+    gradient is ``2 (m_i s_i - ∫_{V_i} x dA)``; a minimum has every site at its cell's centroid.
+    """
+    from scipy.optimize import minimize
+
+    n = len(sites)
+    scale = S.area / n  # energy per cell ~ area * spacing^2: keep F and its gradient near 1
+    length = math.sqrt(scale)
+    x0 = sites / length
+    state = {"k": 0}
+
+    def f(x):
+        s = x.reshape(n, 3) * length
+        mass, first, energy, *_ = _run(S, s, False)
+        g = 2.0 * (mass[:, None] * s - first)
+        return math.fsum(energy) / (scale * length**2), (g / (scale * length)).ravel()
+
+    def step(xk):
+        state["k"] += 1
+        history.append(f(xk)[0] * scale * length**2)
+        if progress is not None:
+            progress(state["k"], steps)
+
+    res = minimize(
+        f,
+        x0.ravel(),
+        jac=True,
+        method="L-BFGS-B",
+        callback=step,
+        options={"maxiter": int(steps), "maxcor": 10, "gtol": 1e-12, "ftol": 1e-15},
+    )
+    out = res.x.reshape(n, 3) * length
+    # onto the surface, then one Lloyd step to settle the projection
+    mass, first, energy, pc, pt, *_ = _run(S, out, False)
+    return _project_cells(S, out, pc, pt)
+
+
+def voronoi(
+    S: Surface,
+    points_or_count,
+    *,
+    relax: int = 0,
+    method: str = "lbfgs",
+    seed: int = 0,
+    progress=None,
+) -> SurfaceVoronoi:
+    """The Voronoi diagram of sites restricted to a surface, optionally relaxed to a CVT.
+
+    Parameters
+    ----------
+    S : Surface
+    points_or_count : (n, 3) array_like or int
+        Sites in space (used as given: restricted cells are defined for any point; relaxing
+        moves them onto the surface), or a count of random sites on the surface.
+    relax : int
+        Relaxation iterations (0: the diagram of the given sites).
+    method : {"lbfgs", "lloyd"}
+        ``"lloyd"``: each site to its cell's centroid projected back onto the surface.
+        ``"lbfgs"``: quasi-Newton on the CVT energy (same fixed points, far fewer defects per
+        iteration), sites projected onto the surface at the end.
+    seed : int
+        Random seed for a site count.
+    progress : callable, optional
+        Called as ``progress(done, total)`` after each iteration.
+
+    Returns
+    -------
+    SurfaceVoronoi
+    """
+    if not isinstance(S, Surface):
+        raise ValueError(
+            f"voronoi needs a Surface (surface.cylinder(...), ...); got {type(S).__name__}"
+        )
+    if method not in ("lbfgs", "lloyd"):
+        raise ValueError(f"method must be 'lbfgs' or 'lloyd'; got {method!r}")
+    if int(relax) != relax or relax < 0:
+        raise ValueError(f"relax must be a non-negative integer; got {relax!r}")
+    if np.isscalar(points_or_count):
+        n = points_or_count
+        if isinstance(n, bool) or int(n) != n or n < 1:
+            raise ValueError(f"site count must be a positive integer; got {n!r}")
+        sites = S.sample(int(n), seed=seed)
+    else:
+        sites = _as3(points_or_count, "points")
+        if len(sites) < 1:
+            raise ValueError("voronoi needs at least one site")
+        if len(np.unique(sites, axis=0)) < len(sites):
+            raise ValueError("sites contain exact duplicates (their cells would coincide)")
+    history: list = []
+    if relax:
+        if len(sites) < 2:
+            raise ValueError("relaxing needs at least two sites")
+        run = _lbfgs if method == "lbfgs" else _lloyd
+        sites = run(S, sites, int(relax), history, progress)
+    return _result(S, np.ascontiguousarray(sites), history)
