@@ -259,8 +259,11 @@ SOLID_RING_SAFETY = 1.15
 #: A strut whose two end rings would need more than this fraction of its length joins its
 #: two nodes into one hull (short Voronoi edges: the node blob covers them)
 SOLID_RING_SPAN = 0.8
+#: The hull route gives up (and ``nodes="sphere"`` falls back to the implicit route) when nodes
+#: merged into one hull lie more than this many radii from their mean
+SOLID_HULL_SPREAD = 4.0
 #: Marching cubes: grid spacing as a fraction of the smallest radius/wall/thickness
-SOLID_VOXEL = 0.34
+SOLID_VOXEL = 0.4
 
 # --- fabrication / plotter (paths for machines: io/plotter, io/labels) --------------------
 

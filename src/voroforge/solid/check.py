@@ -1,0 +1,213 @@
+"""Print checks on a solid: thin struts, small pores, trapped voids, floating parts, overhangs.
+
+:func:`check` returns a :class:`Report` whose ``violations`` list has one entry per problem,
+each with its kind, location (x, y, z), measured value and the limit, like the 2D
+fabrication report. Struts and pores come from the builders' metadata (``lattice`` records
+its struts and radii, ``foam`` its bubbles, ``shell`` its openings); voids, parts and
+overhangs are measured on the mesh itself.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = ["Report", "Violation", "check"]
+
+
+@dataclass(frozen=True)
+class Violation:
+    """One problem: ``kind``, ``location`` (x, y, z), measured ``value`` and the ``limit``."""
+
+    kind: str
+    location: tuple[float, float, float]
+    value: float
+    limit: float
+
+    def __str__(self) -> str:
+        x, y, z = self.location
+        return (
+            f"{self.kind} at ({x:.4g}, {y:.4g}, {z:.4g}): {self.value:.4g} (limit {self.limit:.4g})"
+        )
+
+
+@dataclass
+class Report:
+    """The result of :func:`check`: ``violations`` and summary figures (``stats``)."""
+
+    violations: list[Violation] = field(default_factory=list)
+    stats: dict = field(default_factory=dict)
+
+    @property
+    def ok(self) -> bool:
+        """True when nothing is violated."""
+        return not self.violations
+
+    def by_kind(self) -> dict[str, int]:
+        """Number of violations of each kind."""
+        out: dict[str, int] = {}
+        for v in self.violations:
+            out[v.kind] = out.get(v.kind, 0) + 1
+        return out
+
+    def to_dict(self) -> dict:
+        """Plain data for JSON reports."""
+        return {
+            "ok": self.ok,
+            "stats": self.stats,
+            "violations": [
+                {"kind": v.kind, "location": list(v.location), "value": v.value, "limit": v.limit}
+                for v in self.violations
+            ],
+        }
+
+    def __str__(self) -> str:
+        head = "print check: ok" if self.ok else f"print check: {len(self.violations)} violations"
+        return "\n".join([head, *(f"  {v}" for v in self.violations[:50])])
+
+
+def _loc(p) -> tuple[float, float, float]:
+    return (float(p[0]), float(p[1]), float(p[2]))
+
+
+def _bodies(m):
+    """Connected components of the mesh with their signed volumes and centroids."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    f = np.asarray(m.faces)
+    nv = len(m.vertices)
+    rows = np.concatenate([f[:, 0], f[:, 1]])
+    cols = np.concatenate([f[:, 1], f[:, 2]])
+    g = coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(nv, nv))
+    n, lab = connected_components(g, directed=False)
+    flab = lab[f[:, 0]]
+    t = np.asarray(m.vertices)[f]
+    vol6 = np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2]))
+    vol = np.bincount(flab, vol6, minlength=n) / 6.0
+    cen = t.mean(axis=1)
+    area = 0.5 * np.linalg.norm(np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]), axis=1)
+    a = np.bincount(flab, area, minlength=n)
+    c = np.stack([np.bincount(flab, cen[:, i] * area, minlength=n) for i in range(3)], 1)
+    c /= np.maximum(a, 1e-300)[:, None]
+    lo = np.stack([np.full(n, np.inf)] * 3, 1)
+    hi = -lo
+    for i in range(3):
+        np.minimum.at(lo[:, i], flab, t[:, :, i].min(axis=1))
+        np.maximum.at(hi[:, i], flab, t[:, :, i].max(axis=1))
+    used = np.bincount(flab, minlength=n) > 0
+    return vol[used], c[used], lo[used], hi[used]
+
+
+def check(
+    m,
+    *,
+    min_strut: float | None = None,
+    min_pore: float | None = None,
+    max_overhang: float | None = 45.0,
+    min_overhang_area: float | None = None,
+) -> Report:
+    """Check a solid for printing.
+
+    Parameters
+    ----------
+    m : trimesh.Trimesh
+        A solid from :mod:`voroforge.solid` (or any closed mesh).
+    min_strut : float, optional
+        Smallest printable strut diameter: lattice struts thinner than this are reported
+        at their midpoint.
+    min_pore : float, optional
+        Smallest opening/pore diameter that drains (resin, powder): smaller foam bubbles and
+        shell openings are reported at their centre.
+    max_overhang : float or None
+        Largest overhang angle from the vertical (degrees) printable without supports:
+        downward-facing regions beyond it (off the build plate) are reported, one entry per
+        connected region at its area-weighted centre, the value its largest angle.
+    min_overhang_area : float, optional
+        Overhang regions smaller than this area are ignored (default: 1e-4 of the surface).
+
+    Returns
+    -------
+    Report
+        ``violations`` of kinds ``thin_strut``, ``small_pore``, ``trapped_void``,
+        ``floating_part``, ``overhang``; ``stats`` with ``watertight``, ``volume``,
+        ``bodies``, ``voids``.
+    """
+    import trimesh
+
+    if not isinstance(m, trimesh.Trimesh):
+        raise ValueError(f"check: expected a trimesh.Trimesh, got {type(m).__name__}")
+    out: list[Violation] = []
+    meta = m.metadata or {}
+    if min_strut is not None:
+        s = meta.get("struts")
+        if s is not None and len(s["a"]):
+            dia = 2.0 * np.minimum(s["ra"], s["rb"])
+            for i in np.flatnonzero(dia < min_strut):
+                mid = 0.5 * (s["a"][i] + s["b"][i])
+                out.append(Violation("thin_strut", _loc(mid), float(dia[i]), float(min_strut)))
+    if min_pore is not None:
+        p = meta.get("pores")
+        if p is not None and len(p["size"]):
+            for i in np.flatnonzero(np.asarray(p["size"]) < min_pore):
+                out.append(
+                    Violation("small_pore", _loc(p["centre"][i]), float(p["size"][i]), min_pore)
+                )
+    vol, cen, lo, hi = _bodies(m)
+    shells = vol > 0
+    voids = np.flatnonzero(~shells)
+    # a negative shell is a cavity; it is trapped when it lies inside a positive body
+    for i in voids:
+        out.append(Violation("trapped_void", _loc(cen[i]), float(-vol[i]), 0.0))
+    pos = np.flatnonzero(shells)
+    if len(pos) > 1:
+        main = pos[np.argmax(vol[pos])]
+        for i in pos:
+            if i != main:
+                out.append(Violation("floating_part", _loc(cen[i]), float(vol[i]), 0.0))
+    if max_overhang is not None:
+        out.extend(_overhangs(m, float(max_overhang), min_overhang_area))
+    stats = {
+        "watertight": bool(m.is_watertight),
+        "volume": float(vol.sum()),
+        "bodies": int(shells.sum()),
+        "voids": int(len(voids)),
+    }
+    return Report(out, stats)
+
+
+def _overhangs(m, max_angle: float, min_area):
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    n = np.asarray(m.face_normals)
+    down = -n[:, 2]
+    # the angle of the surface from the vertical; a face pointing straight down is 90 degrees
+    ang = np.degrees(np.arcsin(np.clip(down, -1.0, 1.0)))
+    t = np.asarray(m.triangles)
+    zmin = float(m.bounds[0, 2])
+    tol = 1e-6 * float(m.scale)
+    on_bed = t[:, :, 2].max(axis=1) <= zmin + tol
+    bad = (ang > max_angle) & ~on_bed
+    if not bad.any():
+        return []
+    idx = np.flatnonzero(bad)
+    adj = np.asarray(m.face_adjacency)
+    keep = bad[adj[:, 0]] & bad[adj[:, 1]]
+    nf = len(m.faces)
+    g = coo_matrix((np.ones(keep.sum()), (adj[keep, 0], adj[keep, 1])), shape=(nf, nf))
+    _, lab = connected_components(g, directed=False)
+    area = np.asarray(m.area_faces)
+    cen = np.asarray(m.triangles_center)
+    labs = lab[idx]
+    uniq, inv = np.unique(labs, return_inverse=True)
+    a = np.bincount(inv, area[idx])
+    c = np.stack([np.bincount(inv, cen[idx, i] * area[idx]) for i in range(3)], 1) / a[:, None]
+    worst = np.full(len(uniq), -np.inf)
+    np.maximum.at(worst, inv, ang[idx])
+    floor = (1e-4 * float(m.area)) if min_area is None else float(min_area)
+    return [
+        Violation("overhang", _loc(c[i]), float(worst[i]), max_angle)
+        for i in np.flatnonzero(a >= floor)
+    ]

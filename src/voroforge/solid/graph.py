@@ -1,0 +1,176 @@
+"""The strut graph of a cell complex: nodes (Voronoi vertices) and edges (cell edges).
+
+:func:`strut_graph` accepts what the solids are built from: a 3D Voronoi diagram
+(``vf.voronoi3d``: its shared ``vertices`` and face rings), a ``(nodes, edges)`` pair, one
+closed mesh or a list of them (convex cells as meshes: the feature edges between
+non-coplanar faces become struts, triangulation diagonals do not), and returns clean
+arrays: nodes closer than ``tol`` merged, each edge once, no loops.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
+
+from .. import config
+
+__all__ = ["Graph", "feature_edges", "strut_graph"]
+
+
+class Graph:
+    """Nodes ``(V, 3)`` float64 and edges ``(E, 2)`` int64 (``a < b``, each once)."""
+
+    def __init__(self, nodes: np.ndarray, edges: np.ndarray):
+        self.nodes = nodes
+        self.edges = edges
+
+    @property
+    def lengths(self) -> np.ndarray:
+        """Edge lengths ``(E,)``."""
+        return np.linalg.norm(self.nodes[self.edges[:, 1]] - self.nodes[self.edges[:, 0]], axis=1)
+
+    def degree(self) -> np.ndarray:
+        """Edges per node ``(V,)``."""
+        return np.bincount(self.edges.ravel(), minlength=len(self.nodes))
+
+    def __repr__(self) -> str:
+        return f"Graph({len(self.nodes)} nodes, {len(self.edges)} edges)"
+
+
+def feature_edges(mesh, *, angle: float = config.SOLID_FEATURE_ANGLE) -> np.ndarray:
+    """Edges of a triangle mesh between faces that meet at more than ``angle`` radians.
+
+    Parameters
+    ----------
+    mesh : trimesh.Trimesh
+        A closed mesh (convex cells triangulated, for example).
+    angle : float
+        Faces closer to coplanar than this are one polygon; their shared edge is a diagonal.
+
+    Returns
+    -------
+    (k, 2) int64
+        Vertex index pairs, sorted within each pair.
+    """
+    adj = mesh.face_adjacency_edges
+    sharp = mesh.face_adjacency_angles > angle
+    edges = np.sort(np.asarray(adj[sharp], dtype=np.int64), axis=1)
+    # boundary edges of an open mesh are features too
+    e = np.sort(mesh.edges, axis=1)
+    uniq, counts = np.unique(e, axis=0, return_counts=True)
+    edges = np.vstack([edges, uniq[counts == 1]])
+    return np.unique(edges, axis=0) if len(edges) else np.zeros((0, 2), np.int64)
+
+
+def _from_diagram(c):
+    """(nodes, edges) of a 3D diagram from its face rings (CSR into ``c.vertices``)."""
+    faces = c.faces
+    indptr = getattr(faces, "indptr", None)
+    indices = getattr(faces, "indices", None)
+    if indptr is None and isinstance(faces, tuple) and len(faces) >= 2:
+        indptr, indices = faces[0], faces[1]
+    if indptr is None:
+        raise ValueError("cells: a 3D diagram's faces need CSR indptr/indices")
+    indptr = np.asarray(indptr, dtype=np.int64)
+    indices = np.asarray(indices, dtype=np.int64)
+    nxt = np.arange(1, len(indices) + 1, dtype=np.int64)
+    lens = np.diff(indptr)
+    last = indptr[1:] - 1
+    nxt[last[lens > 0]] = indptr[:-1][lens > 0]
+    edges = np.stack([indices, indices[nxt]], axis=1)
+    return np.asarray(c.vertices, dtype=np.float64), edges
+
+
+def strut_graph(cells, *, tol: float | None = None) -> Graph:
+    """The clean strut graph of ``cells``.
+
+    Parameters
+    ----------
+    cells : Diagram3D, (nodes, edges), Graph, trimesh.Trimesh or sequence of Trimesh
+        What to take the edges of (see the module docstring).
+    tol : float, optional
+        Nodes closer than this merge (default: ``config.SOLID_MERGE_TOL`` times the
+        bounding-box diagonal).
+
+    Returns
+    -------
+    Graph
+    """
+    import trimesh
+
+    if isinstance(cells, Graph):
+        nodes, edges = cells.nodes, cells.edges
+    elif hasattr(cells, "vertices") and hasattr(cells, "faces") and hasattr(cells, "volumes"):
+        nodes, edges = _from_diagram(cells)
+    elif isinstance(cells, trimesh.Trimesh):
+        nodes, edges = np.asarray(cells.vertices), feature_edges(cells)
+    elif isinstance(cells, tuple) and len(cells) == 2 and not isinstance(cells[0], trimesh.Trimesh):
+        nodes, edges = cells
+    elif isinstance(cells, list | tuple) and all(isinstance(m, trimesh.Trimesh) for m in cells):
+        if not cells:
+            raise ValueError("cells: an empty list")
+        parts, n = [], 0
+        for m in cells:
+            parts.append(feature_edges(m) + n)
+            n += len(m.vertices)
+        nodes = np.vstack([np.asarray(m.vertices) for m in cells])
+        edges = np.vstack(parts)
+    else:
+        raise ValueError(
+            "cells: expected a 3D diagram, (nodes, edges), a Trimesh or a list of Trimesh, "
+            f"got {type(cells).__name__}"
+        )
+    nodes = np.array(nodes, dtype=np.float64)  # a copy: never the caller's array
+    edges = np.array(edges, dtype=np.int64).reshape(-1, 2)
+    if nodes.ndim != 2 or nodes.shape[1] != 3:
+        raise ValueError(f"nodes must be (V, 3), got shape {nodes.shape}")
+    if not np.isfinite(nodes).all():
+        raise ValueError("nodes contain NaN or infinite coordinates")
+    if len(edges) == 0:
+        raise ValueError("cells: no edges to build struts on")
+    if edges.min() < 0 or edges.max() >= len(nodes):
+        raise ValueError(f"edges index nodes outside 0..{len(nodes) - 1}")
+    span = float(np.linalg.norm(nodes.max(0) - nodes.min(0))) or 1.0
+    tol = config.SOLID_MERGE_TOL * span if tol is None else float(tol)
+    # merge near-coincident nodes (connected components of the < tol graph)
+    pairs = cKDTree(nodes).query_pairs(tol, output_type="ndarray")
+    if len(pairs):
+        n = len(nodes)
+        g = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+        _, label = connected_components(g, directed=False)
+    else:
+        label = np.arange(len(nodes))
+    used = np.unique(label[edges.ravel()])
+    remap = np.full(label.max() + 1, -1, dtype=np.int64)
+    remap[used] = np.arange(len(used))
+    first = np.full(label.max() + 1, -1, dtype=np.int64)
+    order = np.arange(len(nodes))[::-1]
+    first[label[order]] = order  # lowest original index per class
+    new_nodes = nodes[first[used]]
+    e = remap[label[edges]]
+    e = np.sort(e, axis=1)
+    e = e[e[:, 0] != e[:, 1]]
+    e = np.unique(e, axis=0)
+    return Graph(new_nodes, e)
+
+
+def cell_meshes(cells) -> list:
+    """Closed convex cell meshes from a 3D diagram (``to_trimesh(i)``) or a list of meshes."""
+    import trimesh
+
+    if isinstance(cells, trimesh.Trimesh):
+        return [cells]
+    if hasattr(cells, "to_trimesh") and hasattr(cells, "volumes"):
+        vol = np.asarray(cells.volumes)
+        return [cells.to_trimesh(i) for i in range(len(vol)) if vol[i] > 0]
+    if (
+        isinstance(cells, list | tuple)
+        and cells
+        and all(isinstance(m, trimesh.Trimesh) for m in cells)
+    ):
+        return list(cells)
+    raise ValueError(
+        f"cells: expected a 3D diagram or a list of closed Trimesh, got {type(cells).__name__}"
+    )
