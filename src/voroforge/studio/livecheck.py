@@ -6,7 +6,7 @@ rim), plus the outline's own corners and loose islands. :class:`LiveCheck` keeps
 results keyed by the openings' WKB and runs ``check`` only on openings that are new since
 the last call (and, for webs, on their neighbours within ``min_web``), so dragging one seed
 re-checks a handful of openings. The violations are the ones ``voroforge check`` reports
-for the same geometry (a test compares them), in the same order.
+for the same geometry (a test compares them), worst first.
 """
 
 from __future__ import annotations
@@ -86,9 +86,7 @@ class LiveCheck:
         found += self._outline
         if limits["islands"]:
             found += _islands(result)
-        order = {k: i for i, k in enumerate(KINDS)}
-        worst_first = {"web": 1, "opening": 1, "corner": -1, "island": -1}
-        found.sort(key=lambda v: (order[v.kind], worst_first[v.kind] * v.value, v.location))
+        found.sort(key=_order)
         return found
 
     def _check_new(self, holes, wkb, new, boundary, limits) -> None:
@@ -122,6 +120,13 @@ class LiveCheck:
                     self._single[wkb[i]].append(v)
             elif i in fresh or j in fresh:
                 self._pairs[(wkb[i], wkb[j])] = v
+
+
+def _order(v: Violation):
+    """Worst first: by severity where violations have one, then kind, value and place."""
+    severity = getattr(v, "severity", 0.0)
+    value = -v.value if v.kind == "island" else v.value
+    return (-severity, KINDS.index(v.kind), value, v.location)
 
 
 def _renumber(v: Violation, items: tuple[int, ...]) -> Violation:

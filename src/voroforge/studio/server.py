@@ -112,11 +112,22 @@ def state_message(session: Session) -> dict:
         "folder": str(session.folder),
         "name": session.design.design.name,
         "units": session.design.design.units,
-        "legend": [
-            {"kind": k, "colour": c, "text": _KIND_TEXT[k]} for k, c in _KIND_COLOURS.items()
-        ],
+        "legend": _legend(),
         "limits": {"max_seeds": session.max_seeds, "max_message": config.STUDIO_MAX_MESSAGE},
     }
+
+
+def _legend() -> list[dict]:
+    """Kinds with the marker shape and colour of ``voroforge check``'s overlays (where given)."""
+    from ..design import fabrication
+
+    styles = getattr(fabrication, "MARK_STYLES", {})
+    out = []
+    for kind in fabrication.KINDS:
+        shape, rgb = styles.get(kind, ("circle", None))
+        colour = "#" + "".join(f"{int(c):02x}" for c in rgb) if rgb else _KIND_COLOURS[kind]
+        out.append({"kind": kind, "shape": shape, "colour": colour, "text": _KIND_TEXT[kind]})
+    return out
 
 
 def violations_message(session: Session, seq: int) -> dict:

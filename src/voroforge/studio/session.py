@@ -224,6 +224,9 @@ class Session:
             return Reply("error", issues=[{"key": exc.key, "message": exc.message}])
         except DesignError as exc:
             return _error(exc)
+        except (TypeError, ValueError, KeyError, IndexError, OSError) as exc:
+            # a message the checks above let through: answer it, keep the session as it was
+            return Reply("error", issues=[{"key": "", "message": f"cannot apply: {exc}"[:300]}])
 
     def _op_set(self, msg: dict) -> Reply:
         key = msg.get("key")
@@ -332,7 +335,7 @@ class Session:
 
     def _op_export(self, msg: dict) -> Reply:
         fmt = msg.get("format")
-        if fmt not in EXPORTS:
+        if not isinstance(fmt, str) or fmt not in EXPORTS:
             raise _Bad("export", f"export as one of {', '.join(EXPORTS)}")
         name, raw = self.export(fmt)
         return Reply("file", name=name, mime=EXPORTS[fmt], data=raw)

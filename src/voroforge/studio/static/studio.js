@@ -55,6 +55,17 @@ var VoroStudio = (function () {
     return "hsl(" + h.toFixed(1) + ",55%,72%)";
   }
 
+  /* The marker shapes of `voroforge check`'s overlays. */
+  function marker(ctx, shape, x, y, r) {
+    ctx.beginPath();
+    if (shape === "square") ctx.rect(x - r * 0.8, y - r * 0.8, 1.6 * r, 1.6 * r);
+    else if (shape === "triangle") { ctx.moveTo(x, y + r); ctx.lineTo(x + 0.87 * r, y - 0.5 * r);
+      ctx.lineTo(x - 0.87 * r, y - 0.5 * r); ctx.closePath(); }
+    else if (shape === "diamond") { ctx.moveTo(x, y + r); ctx.lineTo(x + r, y); ctx.lineTo(x, y - r);
+      ctx.lineTo(x - r, y); ctx.closePath(); }
+    else ctx.arc(x, y, r, 0, 7);
+  }
+
   function el(tag, attrs, parent) {
     var e = document.createElement(tag);
     for (var k in attrs || {}) {
@@ -255,12 +266,14 @@ var VoroStudio = (function () {
         ctx.fillStyle = "#ff8c00"; ctx.fill(); ctx.strokeStyle = "#5a3000"; ctx.stroke();
       });
     });
-    var colours = {};
-    this.legend.forEach(function (l) { colours[l.kind] = l.colour; });
+    var styles = {};
+    this.legend.forEach(function (l) { styles[l.kind] = l; });
     ctx.lineWidth = 2.2 * px * dpr;
+    var R = 9 * px * dpr;
     (this.violations || []).forEach(function (vi) {
-      ctx.beginPath(); ctx.arc(vi.x, vi.y, 9 * px * dpr, 0, 7);
-      ctx.strokeStyle = colours[vi.kind] || "#e6194b"; ctx.stroke();
+      var st = styles[vi.kind] || { shape: "circle", colour: "#e6194b" };
+      marker(ctx, st.shape, vi.x, vi.y, R);
+      ctx.strokeStyle = st.colour; ctx.stroke();
     });
     this.drawMs = performance.now() - t0; this.frames++;
   };
@@ -272,7 +285,7 @@ var VoroStudio = (function () {
     el("span", { text: this.violationTotal === undefined ? "checking… " : "check: " }, L);
     this.legend.forEach(function (l) {
       var item = el("span", { "data-kind": l.kind, "class": "item", title: l.text }, L);
-      var sw = el("span", { "class": "sw" }, item); sw.style.borderColor = l.colour;
+      var sw = el("span", { "class": "sw sw-" + l.shape }, item); sw.style.borderColor = l.colour;
       el("span", { text: l.kind + " " + (counts[l.kind] || 0) }, item);
     });
   };

@@ -1,0 +1,459 @@
+"""The studio without a browser: sessions, incremental compute, live check, save, server safety."""
+
+from __future__ import annotations
+
+import json
+import os
+import random
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+pytest.importorskip("starlette")
+
+from voroforge.design.compute import compute  # noqa: E402
+from voroforge.design.designfile import load  # noqa: E402
+from voroforge.design.fabrication import check  # noqa: E402
+from voroforge.studio import tomlfile, wire  # noqa: E402
+from voroforge.studio.controls import controls  # noqa: E402
+from voroforge.studio.livecheck import LiveCheck, limits_of  # noqa: E402
+from voroforge.studio.session import Session  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+
+HOLED = {
+    "design": {"name": "holed", "seed": 3},
+    "boundary": {
+        "shape": "polygon",
+        "points": [[0, 0], [300, 0], [300, 200], [0, 200]],
+        "holes": [[[120, 70], [180, 70], [180, 130], [120, 130]]],
+    },
+    "seeds": {"method": "random", "count": 60},
+    "cells": {"web": 2.0, "fillet": 1.5},
+    "output": {"formats": ["svg", "dxf", "png"], "png_size": 200},
+    "fabrication": {"min_web": 2.5, "min_opening": 8, "tool_radius": 1.0},
+}
+
+
+@pytest.fixture
+def folder(tmp_path):
+    path = tmp_path / "holed.toml"
+    path.write_text(tomlfile.dumps(HOLED), encoding="utf-8")
+    return tmp_path
+
+
+def _wkb(geoms):
+    return list(shapely.to_wkb(np.asarray(geoms, dtype=object)))
+
+
+def _same_result(a, b):
+    assert np.array_equal(a.sites, b.sites)
+    assert _wkb(a.raw) == _wkb(b.raw)
+    assert _wkb(a.cells) == _wkb(b.cells)
+    assert np.array_equal(a.mask, b.mask)
+    assert shapely.to_wkb(a.frame) == shapely.to_wkb(b.frame)
+
+
+# --- incremental compute -------------------------------------------------------------------
+
+
+def test_reuse_gives_the_fresh_geometry_and_redoes_only_the_neighbourhood():
+    design, _ = load(HOLED)
+    first = compute(design)
+    sites = first.sites.copy()
+    sites[10] += (2.0, -1.5)
+    again = compute(design, sites=sites, reuse=first)
+    fresh = compute(design, sites=sites)
+    _same_result(again, fresh)
+    redone = again.extra["redone"]
+    assert 10 in redone and 0 < len(redone) < len(sites) // 4
+    # a changed [cells] section reuses nothing, and is still right
+    d2, _ = load({**HOLED, "cells": {"web": 3.0, "fillet": 1.0}})
+    _same_result(compute(d2, sites=sites, reuse=again), compute(d2, sites=sites))
+
+
+def test_reuse_with_attractor_values_and_a_changed_boundary():
+    data = {
+        **HOLED,
+        "attractors": [{"type": "point", "points": [[50, 50]], "radius": 150}],
+        "cells": {"web": {"near": 1, "far": 4}},
+    }
+    design, _ = load(data)
+    first = compute(design)
+    moved, _ = load(
+        {**data, "attractors": [{"type": "point", "points": [[60, 80]], "radius": 150}]}
+    )
+    _same_result(compute(moved, sites=first.sites, reuse=first), compute(moved, sites=first.sites))
+    margin, _ = load({**data, "boundary": {**data["boundary"], "margin": 6}})
+    inside = shapely.contains_xy(compute(margin).domain, *first.sites.T)
+    pts = first.sites[inside]
+    _same_result(compute(margin, sites=pts, reuse=first), compute(margin, sites=pts))
+
+
+def test_sites_must_be_finite_pairs():
+    design, _ = load(HOLED)
+    with pytest.raises(ValueError, match="sites"):
+        compute(design, sites=np.array([[1.0, np.nan]]))
+    with pytest.raises(ValueError, match="sites"):
+        compute(design, sites=np.zeros((3, 3)))
+
+
+# --- live fabrication check ----------------------------------------------------------------
+
+
+def _full_check(result):
+    lim = limits_of(result.design)
+    return check(openings=result.openings, boundary=result.boundary, **lim).violations
+
+
+def _key(vs):
+    """Violations as a sorted list (check's order is its own business; the set must match)."""
+    return sorted(
+        (v.kind, tuple(v.items), round(v.value, 9), tuple(np.round(v.location, 9)).__repr__())
+        for v in vs
+    )
+
+
+def test_live_check_equals_the_full_check_after_edits(folder):
+    s = Session(folder / "holed.toml")
+    assert _key(s.check()) == _key(_full_check(s.result))
+    rng = np.random.default_rng(1)
+    for _ in range(2):
+        i = int(rng.integers(len(s.result.sites)))
+        x, y = s.result.sites[i] + rng.normal(0, 4, 2)
+        if shapely.contains_xy(s.result.domain, x, y):
+            assert s.apply({"op": "move", "i": i, "x": float(x), "y": float(y)}).kind == "update"
+        assert _key(s.check()) == _key(_full_check(s.result))
+    # tighter limits: many webs, the same list as check()
+    assert s.apply({"op": "set", "key": "fabrication.min_web", "value": 4.5}).kind == "update"
+    live = s.check()
+    assert live and _key(live) == _key(_full_check(s.result))
+
+
+def test_live_check_reports_islands():
+    data = {
+        "boundary": {"shape": "rectangle", "width": 100, "height": 100},
+        "seeds": {"method": "grid", "spacing": 50},
+        "cells": {"scale": 1.0},
+        "openings": {"select": "every_kth", "k": 2},
+    }
+    design, _ = load(data)
+    r = compute(design)
+    live = LiveCheck().run(r)
+    assert _key(live) == _key(check(openings=r.openings, boundary=r.boundary).violations)
+
+
+# --- sessions ------------------------------------------------------------------------------
+
+
+def test_edits_undo_redo(folder):
+    s = Session(folder / "holed.toml")
+    n = len(s.result.sites)
+    x, y = s.result.sites[0]
+    assert s.apply({"op": "add", "x": 5.0, "y": 5.0}).kind == "update"
+    assert len(s.result.sites) == n + 1 and len(s.result.raw) == n + 1
+    assert s.apply({"op": "remove", "i": 0}).kind == "update"
+    assert len(s.result.sites) == n and not np.array_equal(s.result.sites[0], (x, y))
+    assert s.apply({"op": "undo"}).kind == "update"
+    assert len(s.result.sites) == n + 1
+    assert s.apply({"op": "undo"}).kind == "update"
+    assert s.sites is None and len(s.result.sites) == n
+    assert s.apply({"op": "undo"}).kind == "info"
+    assert s.apply({"op": "redo"}).kind == "update" and len(s.result.sites) == n + 1
+    r = s.apply({"op": "set", "key": "seeds.count", "value": 60})
+    assert r.kind == "update" and len(s.result.sites) == 60 and s.sites is None
+    assert not s.future
+
+
+def test_bad_values_keep_the_last_good_drawing_and_name_the_key(folder):
+    s = Session(folder / "holed.toml")
+    good = s.result
+    for key, value, words in [
+        ("seeds.count", -5, "greater than 0"),
+        ("cells.web", -1, ">= 0"),
+        ("seeds.count", 10**7, "limit"),
+        ("relax.iterations", 5000, "less than or equal"),
+        ("seeds.count", "many", "integer"),
+    ]:
+        r = s.apply({"op": "set", "key": key, "value": value})
+        assert r.kind == "error", (key, value)
+        assert r.issues[0]["key"] == key and words in r.issues[0]["message"], r.issues
+        assert s.result is good
+    assert s.apply({"op": "set", "key": "seeds.method", "value": "poisson"}).kind == "error"
+    r = s.apply({"op": "set", "key": "seeds", "value": {"method": "poisson", "radius": 0.001}})
+    assert r.kind == "error" and "limit" in r.issues[0]["message"]
+    assert s.result is good
+
+
+def test_malformed_messages_never_raise(folder):
+    s = Session(folder / "holed.toml")
+    good = s.result
+    rng = random.Random(5)
+    ops = ["move", "add", "remove", "set", "attractor", "save", "export", "undo", "nope", None, 3]
+    junk = [None, -1, 10**9, 1e308, "x", [], {}, [1, 2], True, "../../etc", float("nan")]
+    for _ in range(300):
+        msg = {"op": rng.choice(ops)}
+        for k in rng.sample(["i", "x", "y", "key", "value", "name", "format", "a", "p"], 3):
+            msg[k] = rng.choice(junk)
+        if rng.random() < 0.1:
+            msg = rng.choice(junk)
+        r = s.apply(msg)
+        assert r.kind in ("error", "info", "update", "confirm", "file"), msg
+    assert len(s.result.raw) >= 1
+    assert s.apply({"op": "move", "i": 0, "x": 1e9, "y": 0}).kind == "error"
+    del good
+
+
+def test_controls_cover_every_numeric_parameter():
+    design, _ = load(ROOT / "examples" / "facade-panel.toml")
+    keys = {c["key"]: c for c in controls(design)}
+    for key in ("seeds.radius", "seeds.radius_max", "attractors.0.radius", "attractors.0.strength"):
+        assert key in keys
+    assert keys["cells.web"]["kind"] == "graded" and keys["cells.web"]["value"] == {
+        "near": 8.0,
+        "far": 40.0,
+    }
+    assert keys["recursion.depth"]["max"] == 6 and keys["seeds.jitter"]["max"] == 1
+    assert keys["boundary.segments"]["min"] == 8
+    assert all(c["min"] < c["max"] for c in keys.values())
+    assert "design.units" not in keys and "fabrication.islands" not in keys
+
+
+# --- save and export -----------------------------------------------------------------------
+
+
+def test_save_rejects_paths_outside_the_folder(folder):
+    s = Session(folder / "holed.toml")
+    for name in [
+        "../x.toml",
+        "..\\x.toml",
+        "/tmp/x.toml",
+        "sub/x.toml",
+        "x.txt",
+        ".hidden.toml",
+        "a/../x.toml",
+        "",
+        5,
+        None,
+        "x" * 300 + ".toml",
+    ]:
+        r = s.apply({"op": "save", "name": name})
+        assert r.kind == "error", name
+    assert sorted(p.name for p in folder.iterdir()) == ["holed.toml"]
+    outside = folder.parent / f"outside-{os.getpid()}.toml"
+    (folder / "link.toml").symlink_to(outside)
+    r = s.apply({"op": "save", "name": "link.toml", "overwrite": True})
+    assert r.kind == "error" and not outside.exists()
+
+
+def test_save_confirms_before_overwriting(folder):
+    s = Session(folder / "holed.toml")
+    before = (folder / "holed.toml").read_bytes()
+    r = s.apply({"op": "save", "name": "holed.toml"})
+    assert r.kind == "confirm" and r.files == ["holed.toml"]
+    assert (folder / "holed.toml").read_bytes() == before
+    assert s.apply({"op": "save", "name": "holed.toml", "overwrite": True}).kind == "saved"
+    assert tomllib.loads((folder / "holed.toml").read_text()) == HOLED
+    assert not [p for p in folder.iterdir() if p.name.endswith(".tmp")]
+
+
+def test_saved_file_builds_to_the_exported_bytes(folder):
+    from voroforge.cli import main
+
+    s = Session(folder / "holed.toml")
+    x, y = s.result.sites[4]
+    assert s.apply({"op": "move", "i": 4, "x": float(x) + 1.25, "y": float(y)}).kind == "update"
+    assert s.apply({"op": "add", "x": 33.3, "y": 44.4}).kind == "update"
+    assert s.apply({"op": "set", "key": "cells.fillet", "value": 0.75}).kind == "update"
+    r = s.apply({"op": "save", "name": "edited.toml"})
+    assert r.kind == "saved" and r.files == ["edited.seeds.csv", "edited.toml"]
+    exported = {fmt: s.export(fmt) for fmt in ("svg", "dxf")}
+    out = folder / "out"
+    assert main(["build", str(folder / "edited.toml"), "-o", str(out)]) == 0
+    for fmt, (name, raw) in exported.items():
+        assert (out / name).read_bytes() == raw, fmt
+    # and the saved sites are the edited ones, bit for bit
+    design, base = load(folder / "edited.toml")
+    assert np.array_equal(compute(design, base).sites, s.result.sites)
+
+
+# --- TOML writer ---------------------------------------------------------------------------
+
+_scalars = st.one_of(
+    st.integers(-(2**62), 2**62),
+    st.floats(allow_nan=False, allow_infinity=False),
+    st.booleans(),
+    st.text(max_size=12),
+)
+_keys = st.text(min_size=1, max_size=8)
+_values = st.recursive(_scalars, lambda inner: st.lists(inner, max_size=4), max_leaves=8)
+_tables = st.dictionaries(_keys, _values, max_size=4)
+_docs = st.dictionaries(
+    _keys,
+    st.one_of(
+        _values,
+        _tables,
+        st.dictionaries(_keys, st.one_of(_values, _tables), max_size=3),
+        st.lists(_tables.filter(bool), min_size=1, max_size=3),
+    ),
+    max_size=5,
+)
+
+
+@settings(max_examples=20)
+@given(_docs)
+def test_toml_writer_round_trips(doc):
+    assert tomllib.loads(tomlfile.dumps(doc)) == doc
+
+
+def test_toml_writer_refuses_what_toml_cannot_hold():
+    for bad in ({"a": float("nan")}, {"a": None}, {"a": object()}):
+        with pytest.raises(ValueError):
+            tomlfile.dumps(bad)
+
+
+def test_examples_round_trip_through_the_writer():
+    for path in sorted((ROOT / "examples").glob("*.toml")):
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+        assert tomllib.loads(tomlfile.dumps(data)) == data, path.name
+
+
+# --- wire format ---------------------------------------------------------------------------
+
+
+def test_wire_rings_and_pack_round_trip():
+    geoms = np.asarray(
+        [
+            shapely.box(0, 0, 2, 1),
+            shapely.Polygon(),
+            shapely.box(0, 0, 4, 4).difference(shapely.box(1, 1, 2, 2)),
+            shapely.MultiPolygon([shapely.box(5, 5, 6, 6), shapely.box(7, 7, 8, 8)]),
+        ],
+        dtype=object,
+    )
+    g, r, c = wire.rings(geoms)
+    assert g.tolist() == [0, 1, 1, 3, 5]
+    assert np.diff(r).tolist() == [5, 5, 5, 5, 5]
+    header, arrays = wire.unpack(wire.pack({"op": "x"}, {"g": g, "r": r, "c": c.reshape(-1)}))
+    assert header["op"] == "x"
+    assert np.array_equal(arrays["g"], g) and np.array_equal(arrays["c"].reshape(-1, 2), c)
+    with pytest.raises(ValueError):
+        wire.unpack(b"nope")
+
+
+# --- the server ----------------------------------------------------------------------------
+
+
+@pytest.fixture
+def client(folder):
+    from starlette.testclient import TestClient
+
+    from voroforge.studio.server import create_app
+
+    app = create_app(Session(folder / "holed.toml"))
+    with TestClient(app, base_url="http://127.0.0.1:8765") as c:
+        yield c
+
+
+def _ws(client, origin=None):
+    headers = {"host": "127.0.0.1:8765"}
+    if origin:
+        headers["origin"] = origin
+    return client.websocket_connect("/ws", headers=headers)
+
+
+def _reply(ws):
+    """The next JSON reply, skipping the live check's broadcasts."""
+    while True:
+        msg = ws.receive_json()
+        if msg["op"] != "violations":
+            return msg
+
+
+def _greet(ws):
+    state = ws.receive_json()
+    geom = ws.receive_bytes()
+    return state, wire.unpack(geom)
+
+
+def test_page_and_static_files_are_served(client):
+    page = client.get("/")
+    assert page.status_code == 200 and "studio.js" in page.text
+    assert "default-src 'self'" in page.headers["content-security-policy"]
+    js = client.get("/static/studio.js")
+    assert js.status_code == 200 and "VoroStudio" in js.text
+    assert client.get("/static/../session.py").status_code == 404
+    assert client.get("/", headers={"host": "evil.example"}).status_code == 400
+
+
+def test_websocket_origin_is_checked(client):
+    from starlette.testclient import WebSocketDenialResponse
+    from starlette.websockets import WebSocketDisconnect
+
+    with pytest.raises((WebSocketDisconnect, WebSocketDenialResponse)):
+        with _ws(client, "http://evil.example") as ws:
+            ws.receive_json()
+    with _ws(client, "http://127.0.0.1:8765") as ws:
+        state, (header, arrays) = _greet(ws)
+        assert state["op"] == "state" and header["full"] and header["n"] == len(arrays["mask"])
+
+
+def test_websocket_edit_gives_a_patch(client):
+    with _ws(client) as ws:
+        _, (header, arrays) = _greet(ws)
+        sites = arrays["sites"].reshape(-1, 2)
+        ws.send_text(
+            json.dumps({"op": "move", "i": 2, "x": sites[2, 0] + 1, "y": sites[2, 1], "id": 7})
+        )
+        msg = ws.receive()
+        while "bytes" not in msg or msg["bytes"] is None:
+            msg = ws.receive()
+        h, a = wire.unpack(msg["bytes"])
+        assert h["reply_to"] == 7 and not h["full"] and 2 in a["idx"] and len(a["idx"]) < h["n"]
+
+
+def test_websocket_survives_malformed_messages(client):
+    rng = random.Random(11)
+    pieces = [
+        '{"op":',
+        "[]",
+        "null",
+        '{"op":"move","i":"a"}',
+        "NaN",
+        '{"op":"set","key":"x"}',
+        '{"op":"add","x":Infinity,"y":0}',
+        "\x00\x01",
+        '{"op":"save","name":"../a.toml"}',
+        '{"op":"export","format":"exe"}',
+        "[" * 5000,
+    ]
+    with _ws(client) as ws:
+        _greet(ws)
+        for k in range(300):
+            text = rng.choice(pieces) if k % 3 else "".join(rng.choices(pieces, k=3))
+            ws.send_text(text)
+            reply = _reply(ws)
+            assert reply["op"] in ("error", "info"), reply
+        ws.send_text("x" * 70_000)
+        assert "limit" in _reply(ws)["issues"][0]["message"]
+        ws.send_bytes(b"\x00" * 10)
+        assert _reply(ws)["op"] == "error"
+        ws.send_text(json.dumps({"op": "undo", "id": 1}))
+        assert _reply(ws)["op"] == "info"
+    # a closed tab leaves the server working for the next one
+    with _ws(client) as ws:
+        state, (header, _) = _greet(ws)
+        assert header["full"] and state["op"] == "state"
+
+
+def test_cli_studio_help_and_port_check(capsys):
+    from voroforge.cli import main
+
+    assert main(["studio", "--help"]) == 0
+    assert "--no-browser" in capsys.readouterr().out
+    assert main(["studio", "--port", "70000", "--no-browser"]) == 2
