@@ -270,9 +270,12 @@ def test_check_sharp_inside_corners_for_a_cnc_tool():
     report = check(openings=holes, boundary=outline, min_inside_radius=3.0)
     corners = [v for v in report.violations if v.kind == "corner"]
     assert len(corners) == 8  # four corners per slot
-    expected_depth = 3.0 * (math.sqrt(2) - 1)  # tool of radius r in a 90 degree corner
+    # the value is the corner's inside radius: a tool of radius t leaves t (sqrt 2 - 1) in a
+    # sharp 90 degree corner, so the largest tool within corner_tolerance 0.02 reaches is
+    tol = 0.02
     for v in corners:
-        assert v.value == pytest.approx(expected_depth, rel=1e-2)
+        assert v.value == pytest.approx(tol / (math.sqrt(2) - 1), rel=1e-2)
+        assert v.limit == 3.0 and 0 < v.severity <= 1
         assert (
             min(
                 shapely.Point(v.location).distance(shapely.Point(c))
@@ -286,8 +289,8 @@ def test_check_sharp_inside_corners_for_a_cnc_tool():
     assert check(openings=rounded, boundary=outline, min_inside_radius=3.0).ok
     _, small = slot_panel(6.0, fillet=1.0)
     bad = check(openings=small, boundary=outline, min_inside_radius=3.0).violations
-    assert len(bad) == 8 and all(
-        v.value == pytest.approx(2 * (math.sqrt(2) - 1), rel=2e-2) for v in bad
+    assert len(bad) == 8 and all(  # a 1 mm fillet: inside radius 1 (+ the tolerance's share)
+        v.value == pytest.approx(1.0 + tol / (math.sqrt(2) - 1), rel=2e-2) for v in bad
     )
 
 
@@ -317,8 +320,14 @@ def test_report_overlays(tmp_path):
         px = np.asarray(img.convert("RGB")).reshape(-1, 3)
     assert ((px[:, 0] > 180) & (px[:, 1] < 80)).any()  # red markers drawn
     root = ET.parse(svg).getroot()
-    marks = [g for g in root.iter(SVG + "g") if g.get("id") == "MARK"]
-    assert len(marks[0].findall(SVG + "path")) == len(report.violations)
+    counts = report.counts()
+    for kind in ("web", "corner"):  # one layer per kind, one marker (3 strokes) per violation
+        (layer,) = [g for g in root.iter(SVG + "g") if g.get("id") == kind.upper()]
+        assert len(layer.findall(SVG + "path")) == 3 * counts[kind] > 0
+        assert layer.get("vector-effect") == "non-scaling-stroke"
+    (legend,) = [g for g in root.iter(SVG + "g") if g.get("id") == "LEGEND"]
+    texts = [t.text for t in legend.iter(SVG + "text")]
+    assert any("web" in t for t in texts) and any("corner" in t for t in texts)
 
 
 def test_check_bad_arguments():

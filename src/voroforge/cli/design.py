@@ -28,12 +28,14 @@ examples:
 
 _CHECK_EPILOG = """\
 Checks the limits of the design's [fabrication] table: min_web, min_opening, tool_radius,
-and loose islands. Prints one row per violation with its location.
+and loose islands. Prints one row per violation with its location, worst first (the 50
+worst unless --all; a report = true build writes every row to DESIGN-check.txt).
 
 examples:
   voroforge check panel.toml
   voroforge check panel.toml --strict --set fabrication.min_web=4
-  voroforge check panel.toml --overlay check.png   the panel with violations circled
+  voroforge check panel.toml --all
+  voroforge check panel.toml --overlay check.svg   every violation marked, by kind
 """
 
 #: Suffixes ``check --overlay`` can draw.
@@ -99,6 +101,9 @@ def add_parsers(commands, formatter_class) -> None:
     _add_set(check)
     check.add_argument(
         "--strict", action="store_true", help="exit with status 1 when there are violations"
+    )
+    check.add_argument(
+        "--all", action="store_true", help="list every violation (default: the worst 50)"
     )
     check.add_argument(
         "--overlay",
@@ -173,7 +178,7 @@ def run_check(args: argparse.Namespace, stage: Stage) -> int:
     if args.overlay and suffix not in OVERLAY_SUFFIXES:
         raise ValueError(f"{args.overlay}: the overlay must be a .png or .svg file")
     report = check_design(args.design, overrides=overrides(args.set), progress=stage)
-    print(report.table())
+    print(report.table(max_rows=None if args.all else 50))
     if args.overlay:
         (report.write_png if suffix == ".png" else report.write_svg)(args.overlay)
     return 1 if (args.strict and not report.ok) else 0

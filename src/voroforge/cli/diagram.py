@@ -26,6 +26,10 @@ examples:
   voroforge voronoi points.csv -o cells.svg --units mm -o cells.geojson \\
       --boundary outline.geojson
   voroforge voronoi points.csv -o cells.svg --boundary=-10,-10,10,10
+  voroforge voronoi points.csv -o edges.dxf --edges   the edge network, each edge once
+
+A DXF of cells draws every shared edge once (a laser cuts it once); --edges writes the
+network as long strokes in pen-up order, for plotters.
 
 A bounding box with a negative first number needs the '=' form shown last.
 A GeoJSON boundary file's Polygon/MultiPolygon features are united, holes kept; an SVG
@@ -86,6 +90,12 @@ def add_parsers(commands, formatter_class) -> None:
         help="domain: a GeoJSON, SVG or DXF file, or a box (default: the points' box padded 10%%)",
     )
     vor.add_argument(
+        "--edges",
+        action="store_true",
+        help="write the unique edge network (each shared edge once, joined into long "
+        "strokes, ordered for short pen-up travel) instead of closed cells: .svg/.dxf/.geojson",
+    )
+    vor.add_argument(
         "--algorithm",
         default="delaunay",
         help="engine algorithm: delaunay (default), fortune or halfplane where available",
@@ -111,12 +121,16 @@ def run_voronoi(args: argparse.Namespace, stage: Stage) -> list[Path]:
     from .. import io
 
     for out in args.output:
-        io.output_format(out)
+        kind = io.output_format(out)
+        if args.edges and kind == "png":
+            raise ValueError(f"{out}: --edges writes .svg, .dxf or .geojson, not .png")
     stage("reading")
     points = io.read_points(args.points)
     boundary = io.read_boundary(args.boundary) if args.boundary else None
     stage(f"computing {len(points)} Voronoi cells")
     d = vf.voronoi(points, boundary, algorithm=args.algorithm)
+    if args.edges:
+        return _write_edges(d, args, stage)
     written = []
     for out in args.output:
         stage(f"writing {out}")
@@ -126,6 +140,33 @@ def run_voronoi(args: argparse.Namespace, stage: Stage) -> list[Path]:
             )
         )
     return written
+
+
+def _write_edges(d, args: argparse.Namespace, stage: Stage) -> list[Path]:
+    """The unique edge network of ``d`` and its outline, as merged, ordered strokes."""
+    from .. import io
+    from ..io.plotter import network_lines
+
+    lines = network_lines(d.edges.coords, d.boundary)
+    written = []
+    for out in args.output:
+        stage(f"writing {out}")
+        kind = io.output_format(out)
+        if kind == "svg":
+            written.append(
+                io.write_layers(out, {"EDGES": lines}, units=args.units or "px", merge=False)
+            )
+        elif kind == "dxf":
+            written.append(
+                io.write_dxf(None, out, layers={"EDGES": lines}, units=_dxf_units(args.units))
+            )
+        else:
+            written.append(io.write_geojson(lines, out))
+    return written
+
+
+def _dxf_units(units: str | None) -> str:
+    return units if units in ("mm", "cm", "in") else "unitless"
 
 
 def run_delaunay(args: argparse.Namespace, stage: Stage) -> list[Path]:

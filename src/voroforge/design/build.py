@@ -213,12 +213,16 @@ def build(
         render_preview(result, size=min(o.png_size, 800)).save(path, optimize=False)
         return [path]
     if "svg" in o.formats and design.design.units not in ("mm", "cm", "in"):
-        raise DesignError.at(
-            "output.formats", f"svg needs units mm, cm or in; not {design.design.units!r}"
-        )
+        with located(source, overrides):
+            raise DesignError.at(
+                "output.formats",
+                f"svg needs design.units mm, cm or in; not {design.design.units!r} "
+                "(drop svg, or draw in mm)",
+            )
     kerf = o.kerf
     if "svg" in o.formats or "dxf" in o.formats:
         _warn_empty_layers(result)
+        _warn_coincident_layers(_layers(result, kerf))
     for fmt in o.formats:
         path = out / f"{stem}.{fmt}"
         stage(f"writing {path.name}")
@@ -235,6 +239,8 @@ def build(
                     bounds=tuple(
                         np.add(result.boundary.bounds, np.multiply([-1, -1, 1, 1], kerf / 2))
                     ),
+                    order=o.order,
+                    merge=o.merge_lines,
                 )
             )
         elif fmt == "dxf":
@@ -247,6 +253,10 @@ def build(
                     layers=_layers(result, kerf),
                     units=design.design.units,
                     arc_tolerance=o.arc_tolerance,
+                    order=o.order,
+                    merge=o.merge_lines,
+                    point_marks=o.site_marks,
+                    point_radius=max(_stroke_width(design), 0.5),
                 )
             )
         elif fmt == "png":
@@ -260,7 +270,7 @@ def build(
     if design.fabrication.report:
         report = _report(result)
         text = out / f"{stem}-check.txt"
-        text.write_text(report.table() + "\n", encoding="utf-8")
+        text.write_text(report.table(max_rows=None) + "\n", encoding="utf-8")  # every row
         written.append(text)
         written.append(report.write_png(out / f"{stem}-check.png", size=min(o.png_size, 1200)))
     return written
@@ -295,6 +305,28 @@ def _warn_empty_layers(result: Result) -> None:
                 DesignWarning,
                 stacklevel=3,
             )
+
+
+def _warn_coincident_layers(layers: dict) -> None:
+    """Warn when two layers draw the same segment (the machine would pass over it twice).
+
+    Within a layer the writers draw every segment once (:mod:`voroforge.io.plotter`).
+    """
+    import warnings
+
+    from ..io.plotter import coincident_segments
+
+    names = list(layers)
+    for i, a in enumerate(names):
+        for b in names[i + 1 :]:
+            n = coincident_segments(layers[a], layers[b])
+            if n:
+                warnings.warn(
+                    f"output.layers: {a} and {b} share {n} segments, so they are cut or "
+                    "drawn twice (put the products on one layer, or use a kerf)",
+                    DesignWarning,
+                    stacklevel=3,
+                )
 
 
 def _gif(design: Design, base: Path | None, path: Path, stage: Stage) -> Path:
@@ -337,6 +369,11 @@ def _report(result: Result):
         "min_inside_radius": f.tool_radius,
         "corner_tolerance": f.corner_tolerance,
         "islands": f.islands,
+        "keys": {
+            "min_web": "fabrication.min_web",
+            "min_opening": "fabrication.min_opening",
+            "min_inside_radius": "fabrication.tool_radius",
+        },
     }
     if "tile" not in result.extra:
         return check(openings=result.openings, boundary=result.boundary, **limits)
@@ -360,7 +397,7 @@ def _report(result: Result):
         for v in tiled.violations
         if xmin <= v.location[0] < xmax and ymin <= v.location[1] < ymax
     ]
-    return Report(kept, tiled.limits, result.frame, result.openings)
+    return Report(kept, tiled.limits, result.frame, result.openings, tiled.keys)
 
 
 def check_design(source, *, overrides: dict | None = None, progress: Stage | None = None):

@@ -27,17 +27,37 @@ import shapely
 
 from .. import config
 
-__all__ = ["KINDS", "Report", "Violation", "check", "inscribed_circles", "kerf", "split_frame"]
+__all__ = [
+    "KINDS",
+    "MARK_STYLES",
+    "Report",
+    "Violation",
+    "check",
+    "inscribed_circles",
+    "kerf",
+    "split_frame",
+]
 
-#: Violation kinds, in the order a report lists them.
+#: Violation kinds (a report lists them by severity, worst first, whatever their kind).
 KINDS = ("web", "opening", "corner", "island")
 
 _UNITS = {
-    "web": "web width between cuts",
-    "opening": "opening size (inscribed circle diameter)",
-    "corner": "material left in an inside corner by the tool",
-    "island": "loose part (area)",
+    "web": "web width (mm)",
+    "opening": "opening: inscribed circle diameter (mm)",
+    "corner": "inside corner radius vs the tool radius (mm)",
+    "island": "loose part, falls out when cut (area, mm^2)",
 }
+
+#: How each kind is drawn on the overlays: marker shape and colour.
+MARK_STYLES = {
+    "web": ("circle", (220, 30, 30)),
+    "opening": ("square", (30, 90, 220)),
+    "corner": ("triangle", (235, 130, 0)),
+    "island": ("diamond", (170, 0, 170)),
+}
+
+#: The limit each kind is checked against, by its :func:`check` keyword.
+LIMIT_OF = {"web": "min_web", "opening": "min_opening", "corner": "min_inside_radius"}
 
 
 @dataclass(frozen=True)
@@ -52,7 +72,8 @@ class Violation:
         Where: the middle of the thinnest web, the centre of the small opening, the corner
         point the tool cannot reach, a point on the loose island.
     value : float
-        What was measured (web width, inscribed diameter, depth of uncut material, area).
+        What was measured, in the limit's quantity: web width, inscribed diameter, the inside
+        corner's radius (the largest tool radius that still reaches the corner), island area.
     limit : float
         The limit it breaks (``min_web``, ``min_opening``, ``min_inside_radius``, 0).
     items : tuple of int
@@ -65,10 +86,30 @@ class Violation:
     limit: float
     items: tuple[int, ...] = ()
 
+    @property
+    def severity(self) -> float:
+        """How badly the limit is broken, 0..1: the shortfall over the limit; 1 for an island.
+
+        A web of 0 (openings touching) and a corner no tool reaches are as bad as a loose
+        island; a web 10% under its limit is 0.1.
+        """
+        if self.kind == "island" or not self.limit > 0:
+            return 1.0
+        return float(min(1.0, max(0.0, (self.limit - self.value) / self.limit)))
+
     def describe(self) -> str:
         """One line: kind, where, value and limit."""
         x, y = self.location
         return f"{self.kind} at ({x:.3f}, {y:.3f}): {self.value:.3f} (limit {self.limit:g})"
+
+
+def _sort_key(v: Violation):
+    return (
+        -v.severity,
+        KINDS.index(v.kind),
+        v.value if v.kind != "island" else -v.value,
+        v.location,
+    )
 
 
 @dataclass(frozen=True)
@@ -78,19 +119,23 @@ class Report:
     Attributes
     ----------
     violations : list of Violation
-        Sorted by kind (:data:`KINDS` order), then by value, worst first.
+        Sorted by severity (:attr:`Violation.severity`), worst first, across kinds.
     limits : dict
         The limits checked (``None`` for a check that was not asked for).
     frame : shapely geometry
         The frame checked (boundary minus openings), for drawing.
     openings : (n,) object array of shapely Polygon
         The openings checked.
+    keys : dict
+        The name to print for each limit (a design file's key, ``fabrication.tool_radius``
+        for ``min_inside_radius``); limits not named print as they are.
     """
 
     violations: list[Violation]
     limits: dict = field(default_factory=dict)
     frame: object = None
     openings: object = None
+    keys: dict = field(default_factory=dict)
 
     @property
     def ok(self) -> bool:
@@ -101,32 +146,61 @@ class Report:
         """Number of violations per kind (every kind listed)."""
         return {k: sum(1 for v in self.violations if v.kind == k) for k in KINDS}
 
-    def table(self, *, max_rows: int = 50) -> str:
-        """The violations as a plain-text table (at most ``max_rows`` rows, then a count).
+    def table(self, *, max_rows: int | None = 50) -> str:
+        """The violations as a plain-text table, worst first.
+
+        Parameters
+        ----------
+        max_rows : int or None
+            At most this many rows, then a count of the rest; ``None`` lists every one.
 
         Returns
         -------
         str
-            A header, one row per violation and a summary line.
+            A header, one row per violation and a summary line naming the limits' keys.
         """
         lines = []
-        checked = ", ".join(f"{k}={v:g}" for k, v in self.limits.items() if v is not None)
+        name = {k: self.keys.get(k, k) for k in self.limits}
+        checked = ", ".join(f"{name[k]}={v:g}" for k, v in self.limits.items() if v is not None)
         if self.ok:
             return f"fabrication check: no violations ({checked or 'nothing checked'})"
         head = f"{'kind':<8} {'x':>12} {'y':>12} {'value':>10} {'limit':>8}  what"
         lines.append(head)
         lines.append("-" * len(head))
-        for v in self.violations[:max_rows]:
+        shown = self.violations if max_rows is None else self.violations[:max_rows]
+        for v in shown:
             x, y = v.location
             lines.append(
                 f"{v.kind:<8} {x:>12.3f} {y:>12.3f} {v.value:>10.3f} {v.limit:>8g}  "
                 f"{_UNITS[v.kind]}"
             )
-        if len(self.violations) > max_rows:
-            lines.append(f"... and {len(self.violations) - max_rows} more")
-        summary = ", ".join(f"{n} {k}" for k, n in self.counts().items() if n)
-        lines.append(f"{len(self.violations)} violations: {summary} ({checked})")
+        if len(shown) < len(self.violations):
+            lines.append(
+                f"... and {len(self.violations) - len(shown)} more (--all lists every one)"
+            )
+        counts = self.counts()
+        parts = []
+        for k, n in counts.items():
+            if n:
+                limit = LIMIT_OF.get(k)
+                parts.append(f"{n} {k} (< {name[limit]})" if limit in name else f"{n} {k}")
+        lines.append(f"{len(self.violations)} violations: {', '.join(parts)} ({checked})")
         return "\n".join(lines)
+
+    def legend(self) -> list[tuple[str, tuple[int, int, int], str]]:
+        """``(shape, colour, text)`` per kind found, as the overlays draw them."""
+        rows = []
+        for k, n in self.counts().items():
+            if n:
+                shape, colour = MARK_STYLES[k]
+                limit = LIMIT_OF.get(k)
+                what = f"{k}: {n}" + (
+                    f" < {self.keys.get(limit, limit)} {self.limits[limit]:g}"
+                    if self.limits.get(limit) is not None
+                    else ""
+                )
+                rows.append((shape, colour, what))
+        return rows
 
     def markers(self, radius: float | None = None) -> np.ndarray:
         """Circles around each violation, for drawing (object array of Polygon)."""
@@ -136,7 +210,11 @@ class Report:
         return np.asarray(shapely.buffer(pts, radius, quad_segs=8), dtype=object).reshape(-1)
 
     def write_png(self, path, *, size: int = 1024) -> Path:
-        """Draw the frame in grey and a red ring around every violation; write a PNG.
+        """Draw the frame in grey and a marker per violation, one shape and colour per kind.
+
+        Web: red circle, opening: blue square, corner: orange triangle, island: purple
+        diamond, each with a dot on the spot, at a fixed size in pixels (a 0.1 mm web shows
+        on a 2 m panel), and a legend with the counts. Worst violations are drawn last.
 
         Returns
         -------
@@ -145,16 +223,24 @@ class Report:
         """
         from ..io.png import write_png
 
-        rings = [
-            m.exterior.buffer(_marker_radius(self.frame, self.openings) * 0.25)
-            for m in self.markers()
-        ]
-        geoms = [self.frame, *rings]
-        colours = [(200, 200, 200)] + [(220, 30, 30)] * len(rings)
-        return write_png(geoms, path, size=size, colors=colours, edge_width=0.5)
+        marks = [(*v.location, *MARK_STYLES[v.kind]) for v in reversed(self.violations)]
+        return write_png(
+            [self.frame],
+            path,
+            size=size,
+            colors=[(200, 200, 200)],
+            edge_width=0.5,
+            marks=marks,
+            legend=self.legend(),
+        )
 
     def write_svg(self, path) -> Path:
-        """Write the frame (layer ``CUT``) and violation circles (layer ``MARK``) as mm SVG.
+        """Write the frame (layer ``CUT``) and the violations as an mm SVG.
+
+        One layer per kind found (``WEB``, ``OPENING``, ``CORNER``, ``ISLAND``), each marker
+        a shape of its own (circle, square, triangle, diamond) around a cross on the spot,
+        drawn with ``vector-effect="non-scaling-stroke"`` so the marks stay visible at any
+        zoom; a ``LEGEND`` layer names the kinds and their counts.
 
         Returns
         -------
@@ -163,8 +249,43 @@ class Report:
         """
         from ..io.svg import write_layers
 
-        layers = {"CUT": [self.frame], "MARK": [m.exterior for m in self.markers()]}
-        return write_layers(path, layers, colours={"MARK": "#ff8000"})
+        r = _marker_radius(self.frame, self.openings)
+        layers: dict = {"CUT": [self.frame]}
+        colours = {}
+        for kind in KINDS:
+            found = [v for v in self.violations if v.kind == kind]
+            if not found:
+                continue
+            shape, colour = MARK_STYLES[kind]
+            layers[kind.upper()] = [_mark_geometry(v.location, shape, r) for v in found]
+            colours[kind.upper()] = colour
+        return write_layers(
+            path,
+            layers,
+            colours=colours,
+            order="file",
+            merge=False,
+            legend=[(text, colour) for _, colour, text in self.legend()],
+            non_scaling=[k.upper() for k in KINDS],
+        )
+
+
+def _mark_geometry(xy, shape: str, r: float):
+    """A marker outline around ``xy`` plus a cross on the spot, as lines."""
+    x, y = xy
+    if shape == "circle":
+        t = np.linspace(0.0, 2 * np.pi, 33)
+        ring = np.column_stack((x + r * np.cos(t), y + r * np.sin(t)))
+    else:
+        unit = {
+            "square": [(-0.8, -0.8), (0.8, -0.8), (0.8, 0.8), (-0.8, 0.8)],
+            "triangle": [(0.0, 1.0), (0.95, -0.75), (-0.95, -0.75)],
+            "diamond": [(0.0, 1.1), (1.0, 0.0), (0.0, -1.1), (-1.0, 0.0)],
+        }[shape]
+        ring = np.array([(x + u * r, y + v * r) for u, v in [*unit, unit[0]]])
+    c = 0.3 * r
+    cross = [[(x - c, y), (x + c, y)], [(x, y - c), (x, y + c)]]
+    return shapely.MultiLineString([ring, *cross])
 
 
 def _marker_radius(frame, openings) -> float:
@@ -233,6 +354,7 @@ def check(
     corner_tolerance: float = config.FAB_CORNER_TOLERANCE,
     tolerance: float = config.FAB_LIMIT_ATOL,
     islands: bool = True,
+    keys: dict | None = None,
 ) -> Report:
     """Check a cut panel against fabrication limits.
 
@@ -248,8 +370,11 @@ def check(
     - **corner**: where a round tool of radius ``min_inside_radius`` cannot reach: the parts
       of each opening outside ``opening.buffer(-r).buffer(r)`` (and, for the outline cut
       from outside, the parts of ``boundary.buffer(r).buffer(-r)`` outside the boundary)
-      deeper than ``corner_tolerance``, at the deepest point; the value is that depth (for
-      an opening the tool cannot enter at all: the largest radius that fits, at its centre).
+      deeper than ``corner_tolerance``, at the deepest point. The value is the corner's
+      inside radius, in the limit's quantity: the largest tool radius that reaches that
+      corner to within ``corner_tolerance`` (found by bisection; 0 for a sharp corner, the
+      fillet's radius for a fillet); for an opening the tool cannot enter at all, the
+      largest radius that fits, at its centre.
     - **island**: frame parts that touch no outline of the boundary (they fall out when cut),
       at a point inside them; the value is their area.
 
@@ -270,11 +395,13 @@ def check(
         ``min_web`` is not a violation because of rounding).
     islands : bool
         Look for loose parts.
+    keys : dict, optional
+        Names to print for the limits (``{"min_inside_radius": "fabrication.tool_radius"}``).
 
     Returns
     -------
     Report
-        The violations, worst first within each kind.
+        The violations, worst first (by :attr:`Violation.severity`, across kinds).
 
     Raises
     ------
@@ -311,15 +438,13 @@ def check(
         found += _corners(holes, outline, min_inside_radius, corner_tolerance)
     if islands:
         found += _islands(frame_geom, outline)
-    order = {k: i for i, k in enumerate(KINDS)}
-    worst_first = {"web": 1, "opening": 1, "corner": -1, "island": -1}
-    found.sort(key=lambda v: (order[v.kind], worst_first[v.kind] * v.value, v.location))
+    found.sort(key=_sort_key)
     limits = {
         "min_web": min_web,
         "min_opening": min_opening,
         "min_inside_radius": min_inside_radius,
     }
-    return Report(found, limits, frame_geom, holes)
+    return Report(found, limits, frame_geom, holes, dict(keys or {}))
 
 
 def _webs(holes: np.ndarray, outline, min_web: float, tol: float) -> list[Violation]:
@@ -421,7 +546,8 @@ def _deepest(pieces: np.ndarray, reach) -> list[tuple[float, tuple[float, float]
 
 
 def _corners(holes: np.ndarray, outline, radius: float, tolerance: float) -> list[Violation]:
-    out = []
+    out: list[Violation] = []
+    spots: list[tuple[int, tuple[float, float]]] = []  # (opening or -1, deepest point)
     quad = 16
     if len(holes):
         reach = shapely.buffer(
@@ -437,15 +563,53 @@ def _corners(holes: np.ndarray, outline, radius: float, tolerance: float) -> lis
                 continue
             for depth, xy, _ in _deepest(shapely.get_parts(left[i]), reach[i]):
                 if depth > tolerance:
-                    out.append(Violation("corner", xy, depth, radius, (i,)))
+                    spots.append((i, xy))
     if not outline.is_empty:
         # The outline is cut from outside: the tool cannot enter concave notches of the part.
         closed = outline.buffer(radius, quad_segs=quad).buffer(-radius, quad_segs=quad)
         extra = shapely.get_parts(closed.difference(outline))
         for depth, xy, _ in _deepest(extra, outline.boundary):
             if depth > tolerance:
-                out.append(Violation("corner", xy, depth, radius, (-1,)))
+                spots.append((-1, xy))
+    if spots:
+        shapes = np.asarray([holes[i] if i >= 0 else outline for i, _ in spots], dtype=object)
+        xy = np.asarray([p for _, p in spots], dtype=np.float64)
+        inside = np.asarray([i >= 0 for i, _ in spots])
+        radii = _corner_radii(shapes, xy, inside, radius, tolerance, quad)
+        for (i, p), r in zip(spots, radii.tolist(), strict=True):
+            out.append(Violation("corner", p, r, radius, (i,)))
     return out
+
+
+def _corner_radii(shapes, xy, inside, radius: float, tolerance: float, quad: int) -> np.ndarray:
+    """The inside radius of each corner: the largest tool radius that reaches it.
+
+    Bisection on the tool radius ``t`` in ``[0, radius]``: a corner is reached when the
+    material a tool of radius ``t`` leaves near it (within ``2 radius``; the opening minus
+    its opening by ``t`` inside a hole, the closing by ``t`` minus the part outside the
+    outline) is no deeper than ``tolerance``.
+    """
+    lo = np.zeros(len(xy))
+    hi = np.full(len(xy), float(radius))
+    pts = shapely.points(xy)
+    near = shapely.buffer(pts, 2.0 * radius, quad_segs=quad)
+    rims = shapely.boundary(shapes)
+    for _ in range(config.FAB_CORNER_BISECTIONS):
+        t = 0.5 * (lo + hi)
+        grown = shapely.buffer(shapes, np.where(inside, -t, t), quad_segs=quad)
+        back = shapely.buffer(grown, np.where(inside, t, -t), quad_segs=quad)
+        left = np.where(inside, shapely.difference(shapes, back), shapely.difference(back, shapes))
+        left = shapely.intersection(left, near)
+        target = np.where(inside, back, rims)
+        coords, idx = shapely.get_coordinates(left, return_index=True)
+        depth = np.zeros(len(xy))
+        if len(coords):
+            d = shapely.distance(shapely.points(coords), target[idx])
+            np.maximum.at(depth, idx, np.nan_to_num(d, nan=np.inf))
+        ok = depth <= tolerance
+        lo = np.where(ok, t, lo)
+        hi = np.where(ok, hi, t)
+    return lo
 
 
 def _islands(frame, outline) -> list[Violation]:

@@ -367,6 +367,10 @@ class Output(_Model):
     stroke_width: PositiveFloat | None = None  # None: 0.01 mm in the design's units
     arc_tolerance: PositiveFloat = config.ARC_TOLERANCE
     gif: Gif | None = None
+    # paths for the machine (voroforge.io.plotter): pen-up travel order, merged strokes
+    order: Literal["travel", "file"] = "travel"
+    merge_lines: bool = True
+    site_marks: Literal["circle", "cross"] = "circle"
 
     @model_validator(mode="after")
     def _gif(self) -> Output:

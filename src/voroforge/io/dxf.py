@@ -20,6 +20,7 @@ import shapely
 
 from ..config import ARC_TOLERANCE
 from .arcs import bulges_of_rings
+from .plotter import layer_paths
 from .render import as_geometries
 
 __all__ = ["LAYER_COLOURS", "UNITS", "write_dxf"]
@@ -76,6 +77,11 @@ def write_dxf(
     max_arc_step: float = 30.0,
     colours: dict | None = None,
     version: str = "R2000",
+    order: str = "file",
+    dedupe: bool = True,
+    merge: bool = True,
+    point_marks: str = "circle",
+    point_radius: float = 0.5,
 ) -> Path:
     """Write polygons as closed LWPOLYLINEs on named layers, with fillets as true arcs.
 
@@ -110,6 +116,19 @@ def write_dxf(
     version : str
         DXF version, ``"R2000"`` or newer (``"R2004"``, ``"R2007"``, ``"R2010"``, ``"R2013"``,
         ``"R2018"``).
+    order : {"file", "travel"}
+        Path order within a layer: as given (rings, then lines), or ordered for short
+        travel between paths (:func:`voroforge.io.plotter.layer_paths`).
+    dedupe : bool
+        Every segment of a layer once: a ring repeating another is dropped, segments shared
+        with earlier geometry are cut out (neighbouring cells, frame and openings).
+    merge : bool
+        Join open line pieces into the fewest polylines, through junctions.
+    point_marks : {"circle", "cross", "none"}
+        What marks each point besides its POINT entity (laser software ignores POINTs):
+        a CIRCLE of ``point_radius`` or a cross of two LINEs of that half-length.
+    point_radius : float
+        Size of the point marks, in drawing units.
 
     Returns
     -------
@@ -139,6 +158,10 @@ def write_dxf(
         raise ValueError(f"version must be R2000 or newer; got {version!r}")
     if not arc_tolerance > 0:
         raise ValueError(f"arc_tolerance must be positive; got {arc_tolerance!r}")
+    if point_marks not in ("circle", "cross", "none"):
+        raise ValueError(f"point_marks must be 'circle', 'cross' or 'none'; got {point_marks!r}")
+    if not (math.isfinite(point_radius) and point_radius > 0):
+        raise ValueError(f"point_radius must be positive; got {point_radius!r}")
     content: dict[str, list] = {}
     if geoms is not None:
         content.setdefault(_layer_name(layer), []).extend(as_geometries(geoms))
@@ -156,26 +179,39 @@ def write_dxf(
         for name, items in content.items():
             doc.layers.add(name, color=palette.get(name, 7))
             attribs = {"layer": name}
-            closed_all, open_all = [], []
-            for geom in items:
-                closed, open_ = _rings(geom)
-                closed_all += closed
-                open_all += open_
-            for points in bulges_of_rings(closed_all, **options):
-                _add_closed(msp, points, attribs)
-            for xy in open_all:
-                msp.add_lwpolyline(xy.tolist(), format="xy", close=False, dxfattribs=attribs)
+            drawn = layer_paths(items, order=order, dedupe=dedupe, merge=merge)
+            fitted = iter(bulges_of_rings(drawn.rings(), **options))
+            for xy, closed in zip(drawn.paths, drawn.closed.tolist(), strict=True):
+                if closed:
+                    _add_closed(msp, next(fitted), attribs)
+                else:
+                    msp.add_lwpolyline(xy.tolist(), format="xy", close=False, dxfattribs=attribs)
             for geom in items:
                 if "Point" not in geom.geom_type and geom.geom_type != "GeometryCollection":
                     continue
                 for pt in shapely.get_parts(geom):
                     if pt.geom_type == "Point":
-                        msp.add_point((pt.x, pt.y), dxfattribs=attribs)
+                        _add_point(msp, pt.x, pt.y, point_marks, point_radius, attribs)
         path = Path(path)
-        doc.saveas(path)
+        tmp = path.with_name(f".{path.name}.tmp")
+        try:
+            doc.saveas(tmp)
+            tmp.replace(path)  # atomic: a reader never sees half a file
+        finally:
+            tmp.unlink(missing_ok=True)
     finally:
         ezdxf.options.write_fixed_meta_data_for_testing = saved
     return path
+
+
+def _add_point(msp, x: float, y: float, marks: str, r: float, attribs: dict) -> None:
+    """A POINT (for CAD) and a mark a laser cuts or engraves: a circle or a cross."""
+    msp.add_point((x, y), dxfattribs=attribs)
+    if marks == "circle":
+        msp.add_circle((x, y), r, dxfattribs=attribs)
+    elif marks == "cross":
+        msp.add_line((x - r, y), (x + r, y), dxfattribs=attribs)
+        msp.add_line((x, y - r), (x, y + r), dxfattribs=attribs)
 
 
 def _add_closed(msp, points: np.ndarray, attribs: dict) -> None:

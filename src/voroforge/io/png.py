@@ -53,6 +53,8 @@ def render_image(
     edge_width: float = 1.0,
     site_radius: float | None = None,
     supersample: int = 2,
+    marks=None,
+    legend=None,
 ) -> Image.Image:
     """Draw polygons (for example ``diagram.cells``) into a pillow image.
 
@@ -81,6 +83,11 @@ def render_image(
         Dot radius in pixels (default ``size / 400``, at least 1.5).
     supersample : int
         Draw this many times larger and shrink, for smooth edges (1 turns it off).
+    marks : sequence of (x, y, shape, colour), optional
+        Markers drawn on top at a fixed size in pixels (visible however small the spot):
+        ``shape`` is ``"circle"``, ``"square"``, ``"triangle"`` or ``"diamond"``.
+    legend : sequence of (shape, colour, text), optional
+        A key drawn in the top-left corner, one row per entry.
 
     Returns
     -------
@@ -141,9 +148,57 @@ def render_image(
         for x, y in to_pixels(pts).tolist():
             draw.ellipse((x - r, y - r, x + r, y + r), fill=edge)
 
+    r_mark = max(6.0, size / 90.0) * ss
+    for x, y, shape, colour in marks or []:
+        ((px, py),) = to_pixels(np.array([[x, y]], dtype=np.float64)).tolist()
+        _mark(draw, px, py, shape, r_mark, _rgb(colour), max(2, round(1.5 * ss)))
+    if legend:
+        _legend(draw, legend, r_mark, ss)
     if ss > 1:
         image = image.reduce(ss)
     return image
+
+
+#: Marker shapes of :func:`render_image` (``marks=``), as unit polygons (None: a circle).
+MARK_SHAPES = {
+    "circle": None,
+    "square": [(-0.8, -0.8), (0.8, -0.8), (0.8, 0.8), (-0.8, 0.8)],
+    "triangle": [(0.0, -1.0), (0.95, 0.75), (-0.95, 0.75)],
+    "diamond": [(0.0, -1.1), (1.0, 0.0), (0.0, 1.1), (-1.0, 0.0)],
+}
+
+
+def _mark(draw, x: float, y: float, shape: str, r: float, colour, width: int) -> None:
+    """An outlined marker with a dot at its centre, centred on pixel ``(x, y)``."""
+    if shape not in MARK_SHAPES:
+        raise ValueError(f"mark shape must be one of {', '.join(MARK_SHAPES)}; got {shape!r}")
+    unit = MARK_SHAPES[shape]
+    if unit is None:
+        draw.ellipse((x - r, y - r, x + r, y + r), outline=colour, width=width)
+    else:
+        pts = [(x + u * r, y + v * r) for u, v in unit]
+        draw.line([*pts, pts[0]], fill=colour, width=width, joint="curve")
+    d = max(1.0, r / 5.0)
+    draw.ellipse((x - d, y - d, x + d, y + d), fill=colour)
+
+
+def _legend(draw, rows, r: float, ss: int) -> None:
+    """A white box with one marker and its text per row, in the top-left corner."""
+    from PIL import ImageFont
+
+    try:
+        font = ImageFont.load_default(size=max(10, round(1.6 * r)))
+    except TypeError:  # pillow < 10.1: one bitmap size
+        font = ImageFont.load_default()
+    pad = r
+    step = 2.6 * r
+    widths = [draw.textlength(str(text), font=font) for _, _, text in rows]
+    box = (pad, pad, pad + 4 * r + max(widths) + pad, pad + step * len(rows) + pad * 0.6)
+    draw.rectangle(box, fill=(255, 255, 255), outline=(90, 90, 90), width=max(1, ss))
+    for k, (shape, colour, text) in enumerate(rows):
+        cy = pad + step * (k + 0.5) + pad * 0.3
+        _mark(draw, pad + 2 * r, cy, shape, r * 0.8, _rgb(colour), max(2, round(1.5 * ss)))
+        draw.text((pad + 3.6 * r, cy), str(text), fill=(20, 20, 20), font=font, anchor="lm")
 
 
 def _even_odd_mask(rings) -> tuple[tuple[int, int], Image.Image]:

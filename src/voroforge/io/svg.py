@@ -4,16 +4,16 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from xml.sax.saxutils import quoteattr
+from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 import shapely
 
 from ..config import ARC_TOLERANCE
 from .arcs import bulges_of_rings
+from .plotter import layer_paths
 from .render import (
     PathContext,
-    RingContext,
     as_boundary,
     as_geometries,
     data_bounds,
@@ -215,6 +215,21 @@ def write_svg(
     return path
 
 
+def _write_text(path: Path, text: str) -> Path:
+    """Write ``text`` to ``path`` atomically (temporary file in the same folder, renamed)."""
+    import os
+    import tempfile
+
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.replace(tmp, path)
+    finally:
+        Path(tmp).unlink(missing_ok=True)  # gone after the rename; left only by a failure
+    return path
+
+
 # --- Fabrication layers (cut / score / engrave) -------------------------------------------
 
 #: Stroke colours of the conventional fabrication layers (laser software maps colours to jobs).
@@ -236,24 +251,10 @@ def _layer_id(name: str) -> str:
     return text if not text[0].isdigit() else "layer-" + text
 
 
-def _draw_lines(geom, flip, digits) -> list[str]:
-    """Paths for the line parts of ``geom``: LineStrings open, LinearRings closed."""
-    out = []
-    for part in shapely.get_parts(geom):
-        kind = part.geom_type
-        if kind in ("LineString", "LinearRing") and not part.is_empty:
-            ctx = PathContext(digits)
-            xy = flip(np.asarray(part.coords)[:, :2])
-            closed = kind == "LinearRing"
-            ctx.move_to(float(xy[0, 0]), float(xy[0, 1]))
-            for x, y in (xy[1:-1] if closed else xy[1:]).tolist():
-                ctx.line_to(x, y)
-            if closed:
-                ctx.close_path()
-            out.append(str(ctx))
-        elif kind in ("MultiLineString", "GeometryCollection"):
-            out.extend(_draw_lines(part, flip, digits))
-    return out
+def _line_path(xy: np.ndarray, num) -> str:
+    """SVG path data of an open polyline (data coordinates, y flipped here)."""
+    pts = [f"{num(x)},{num(-y)}" for x, y in np.asarray(xy)[:, :2].tolist()]
+    return "M" + pts[0] + "".join("L" + p for p in pts[1:])
 
 
 def _arc_path(ring, num) -> str:
@@ -293,6 +294,12 @@ def layers_string(
     bounds=None,
     arcs: bool = True,
     arc_tolerance: float = ARC_TOLERANCE,
+    order: str = "file",
+    dedupe: bool = True,
+    merge: bool = True,
+    point_radius: float | None = None,
+    legend=None,
+    non_scaling=(),
 ) -> str:
     """Render fabrication layers as an SVG document; see :func:`write_layers`.
 
@@ -340,34 +347,61 @@ def layers_string(
         stroke = _colour(strokes.get(name.upper(), "#000000"))
         fill = fill_of.get(name.upper())
         fill_attr = "none" if fill is None else _colour(fill)
+        screen = name.upper() in {str(k).upper() for k in non_scaling}
+        width = (
+            '1.5" vector-effect="non-scaling-stroke' if screen else format_number(stroke_width, 6)
+        )
         out.append(
             f'<g id={quoteattr(ident)} inkscape:groupmode="layer" '
             f"inkscape:label={quoteattr(name)} fill={quoteattr(fill_attr)} "
             f'fill-rule="evenodd" stroke={quoteattr(stroke)} '
-            f'stroke-width="{format_number(stroke_width, 6)}" '
+            f'stroke-width="{width}" '
             'stroke-linejoin="round" stroke-linecap="round">'
         )
-        rings = []
-        for geom in geoms:
-            if geom.is_empty:
-                continue
-            ctx = RingContext()
-            trace(ctx, geom)
-            rings.extend(np.asarray(r, dtype=np.float64) for r in ctx.rings)
+        drawn = layer_paths(geoms, order=order, dedupe=dedupe, merge=merge)
         options = {"arcs": arcs, "tolerance": arc_tolerance}
-        for ring in bulges_of_rings(rings, **options):  # one closed path per ring
-            out.append(f'<path d="{_arc_path(ring.tolist(), num)}"/>')
+        fitted = iter(bulges_of_rings(drawn.rings(), **options))
+        for xy, closed in zip(drawn.paths, drawn.closed.tolist(), strict=True):
+            if closed:  # one closed path per ring, fillets as true arcs
+                out.append(f'<path d="{_arc_path(next(fitted).tolist(), num)}"/>')
+            else:
+                out.append(f'<path d="{_line_path(xy, num)}"/>')
+        r = num(max(stroke_width, 0.5) if point_radius is None else point_radius)
         for geom in geoms:
             if geom.is_empty:
                 continue
-            out.extend(f'<path d="{d}"/>' for d in _draw_lines(geom, flip, digits))
             for pt in shapely.get_parts(geom):
                 if pt.geom_type == "Point":
-                    r = num(max(stroke_width, 0.5))
                     out.append(f'<circle cx="{num(pt.x)}" cy="{num(-pt.y)}" r="{r}"/>')
         out.append("</g>")
+    if legend:
+        out.extend(_legend(legend, xmin, ymax, max(w, h), num))
     out.append("</svg>")
     return "\n".join(out) + "\n"
+
+
+def _legend(rows, xmin: float, ymax: float, span: float, num) -> list[str]:
+    """A ``LEGEND`` layer: one coloured line of text per row, top left."""
+    size = span / 45.0
+    out = [
+        '<g id="LEGEND" inkscape:groupmode="layer" inkscape:label="LEGEND" '
+        f'font-family="sans-serif" font-size="{num(size)}" stroke="none">'
+    ]
+    height = size * (1.4 * len(rows) + 0.8)
+    out.append(
+        f'<rect x="{num(xmin + size * 0.4)}" y="{num(-ymax + size * 0.4)}" '
+        f'width="{num(size * 16)}" height="{num(height)}" fill="#ffffff" '
+        'fill-opacity="0.85" stroke="#555555" stroke-width="1" '
+        'vector-effect="non-scaling-stroke"/>'
+    )
+    for k, (text, colour) in enumerate(rows):
+        y = -ymax + size * (0.4 + 1.4 * (k + 1))
+        out.append(
+            f'<text x="{num(xmin + size)}" y="{num(y)}" fill={quoteattr(_colour(colour))}>'
+            f"{escape(str(text))}</text>"
+        )
+    out.append("</g>")
+    return out
 
 
 def write_layers(
@@ -382,6 +416,12 @@ def write_layers(
     bounds=None,
     arcs: bool = True,
     arc_tolerance: float = ARC_TOLERANCE,
+    order: str = "file",
+    dedupe: bool = True,
+    merge: bool = True,
+    point_radius: float | None = None,
+    legend=None,
+    non_scaling=(),
 ) -> Path:
     """Write fabrication layers (cut, score, engrave, ...) to an SVG file for a laser cutter.
 
@@ -415,11 +455,26 @@ def write_layers(
         (``A``), found as for DXF bulges (:func:`voroforge.io.arcs.arc_runs`).
     arc_tolerance : float
         Largest distance of a vertex from the arc that replaces it, in data units.
+    order : {"file", "travel"}
+        Path order within a layer: as given (rings, then lines), or ordered for short pen-up
+        travel from the layer's top-left corner (:func:`voroforge.io.plotter.layer_paths`).
+    dedupe : bool
+        Draw every segment of a layer once: a ring that repeats another is dropped, segments
+        shared with earlier geometry are cut out (frame and openings, neighbouring cells).
+    merge : bool
+        Join open line pieces into the fewest strokes, through junctions.
+    point_radius : float, optional
+        Radius of the circles drawn for points (default ``max(stroke_width, 0.5)``).
+    legend : sequence of (text, colour), optional
+        A key drawn in the top-left corner on a ``LEGEND`` layer (for overlays, not cuts).
+    non_scaling : sequence of str
+        Layers drawn with ``vector-effect="non-scaling-stroke"`` at 1.5 screen pixels, so
+        their marks stay visible at any zoom (overlays).
 
     Returns
     -------
     Path
-        The file written.
+        The file written (atomically: a temporary file renamed into place).
 
     Examples
     --------
@@ -438,7 +493,11 @@ def write_layers(
         bounds=bounds,
         arcs=arcs,
         arc_tolerance=arc_tolerance,
+        order=order,
+        dedupe=dedupe,
+        merge=merge,
+        point_radius=point_radius,
+        legend=legend,
+        non_scaling=non_scaling,
     )
-    path = Path(path)
-    path.write_text(text, encoding="utf-8")
-    return path
+    return _write_text(Path(path), text)

@@ -1,0 +1,937 @@
+"""Paths for machines that draw or cut: no line twice, long strokes, short pen-up travel.
+
+A pen plotter or a laser follows the paths of a file one after another. Three things decide
+how well it does:
+
+- **No line twice.** When two products of one layer share an edge (the frame's holes and
+  the openings, neighbouring cells), the machine would pass over it twice: a laser burns
+  it twice, a plotter bleeds ink. :func:`layer_paths` keeps every segment once: a ring that
+  is another ring again (either direction, any start) is dropped; a ring that shares only
+  some segments with what came before keeps the rest as open runs.
+- **Long strokes.** Line work (the edge network) arrives as thousands of two-point
+  segments. :func:`merge_lines` joins them into trails *through junctions* (like vpype's
+  ``linemerge``, not only where exactly two segments meet): the fewest trails that cover
+  the network, one per pair of odd-degree vertices (Euler's theorem).
+- **Short pen-up travel.** :func:`order_paths` orders the paths by a greedy nearest-neighbour
+  tour from the pen's home, each path entered from its nearer end, then improves the tour
+  with 2-opt moves (reverse a run of paths and each path in it) on a nearest-neighbour
+  candidate list until no move shortens it.
+
+Examples
+--------
+>>> import numpy as np
+>>> segs = [np.array([[0, 0], [1, 0]]), np.array([[1, 0], [1, 1]]), np.array([[1, 0], [2, 0]])]
+>>> len(merge_lines(segs))  # a T-junction: two strokes, not three
+2
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from numba import njit
+
+from .. import config
+
+__all__ = [
+    "Paths",
+    "coincident_segments",
+    "layer_paths",
+    "merge_lines",
+    "network_lines",
+    "order_paths",
+    "segment_keys",
+    "travel",
+]
+
+ORDERS = ("travel", "file")
+
+
+@dataclass(frozen=True)
+class Paths:
+    """The paths of one layer, in drawing order.
+
+    Attributes
+    ----------
+    paths : list of (k, 2) float64
+        Vertices of each path. A closed ring does not repeat its first vertex.
+    closed : (n,) bool
+        Which paths are closed rings (drawn back to their first vertex).
+    """
+
+    paths: list
+    closed: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.paths)
+
+    def rings(self) -> list:
+        """The closed rings, in drawing order."""
+        return [p for p, c in zip(self.paths, self.closed.tolist(), strict=True) if c]
+
+    def lines(self) -> list:
+        """The open paths, in drawing order."""
+        return [p for p, c in zip(self.paths, self.closed.tolist(), strict=True) if not c]
+
+    def travel(self, start=None) -> tuple[float, float]:
+        """Pen-up and pen-down length of drawing the paths in order (see :func:`travel`)."""
+        return travel(_as_drawn(self), start=start)
+
+
+def _as_drawn(p: Paths) -> list:
+    return [np.vstack((x, x[:1])) if c else x for x, c in zip(p.paths, p.closed, strict=True)]
+
+
+# --- geometry in: rings and lines ----------------------------------------------------------
+
+
+def _collect(geoms) -> tuple[list, list]:
+    """Closed rings (without the closing vertex) and open lines of shapely geometries."""
+    rings, lines = [], []
+    if isinstance(geoms, shapely.Geometry):
+        geoms = [geoms]
+    for geom in geoms:
+        if geom is None or geom.is_empty:
+            continue
+        for part in shapely.get_parts(geom):
+            kind = part.geom_type
+            if kind == "Polygon":
+                if hasattr(shapely, "orient_polygons"):  # exteriors CCW, holes CW
+                    part = shapely.orient_polygons(part)
+                for ring in (part.exterior, *part.interiors):
+                    xy = np.asarray(ring.coords, dtype=np.float64)[:-1, :2]
+                    if len(xy) >= 3:
+                        rings.append(xy)
+            elif kind == "LinearRing":
+                xy = np.asarray(part.coords, dtype=np.float64)[:-1, :2]
+                if len(xy) >= 3:
+                    rings.append(xy)
+            elif kind == "LineString":
+                xy = np.asarray(part.coords, dtype=np.float64)[:, :2]
+                if len(xy) >= 2:
+                    lines.append(xy)
+            elif kind in ("MultiPolygon", "MultiLineString", "GeometryCollection"):
+                r, ln = _collect([part])
+                rings += r
+                lines += ln
+    return rings, lines
+
+
+def _tolerance(coords: np.ndarray, tolerance) -> float:
+    if tolerance is not None:
+        t = float(tolerance)
+        if not math.isfinite(t) or t < 0:
+            raise ValueError(f"tolerance must be a non-negative number; got {tolerance!r}")
+        return t
+    if not len(coords):
+        return 0.0
+    size = max(float(np.ptp(coords, axis=0).max()), float(np.abs(coords).max()))
+    return size * config.PLOTTER_MERGE_RTOL
+
+
+def _vertex_ids(coords: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray]:
+    """One id per coordinate row: rows closer than ``tol`` share an id; and the id's point."""
+    verts, inverse = np.unique(coords, axis=0, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    if tol > 0 and len(verts) > 1:
+        from scipy.sparse import coo_matrix
+        from scipy.sparse.csgraph import connected_components
+        from scipy.spatial import cKDTree
+
+        pairs = cKDTree(verts).query_pairs(tol, output_type="ndarray")
+        if len(pairs):
+            n = len(verts)
+            graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+            _, label = connected_components(graph, directed=False)
+            first = np.full(label.max() + 1, -1, dtype=np.int64)
+            for i in range(n - 1, -1, -1):
+                first[label[i]] = i
+            verts = verts[first]
+            inverse = label[inverse]
+    return inverse.astype(np.int64), verts
+
+
+def segment_keys(geoms, *, tolerance=None, points=None) -> np.ndarray:
+    """Every segment of the geometries as an unordered pair of snapped vertex ids.
+
+    Parameters
+    ----------
+    geoms : sequence of shapely geometries
+        Polygons (every ring), lines and rings.
+    tolerance : float, optional
+        Vertices closer than this are one (default ``config.PLOTTER_MERGE_RTOL`` of the size).
+    points : (m, 2) float64, optional
+        Snap against these vertices too (to compare two layers in one frame).
+
+    Returns
+    -------
+    (s, 2) int64
+        ``(low, high)`` vertex ids, one row per non-degenerate segment (duplicates kept).
+    """
+    rings, lines = _collect(geoms)
+    segs = [np.stack((r, np.roll(r, -1, axis=0)), axis=1) for r in rings]
+    segs += [np.stack((ln[:-1], ln[1:]), axis=1) for ln in lines]
+    if not segs:
+        return np.zeros((0, 2), dtype=np.int64)
+    arr = np.concatenate(segs)
+    coords = arr.reshape(-1, 2)
+    extra = np.zeros((0, 2)) if points is None else np.asarray(points, dtype=np.float64)
+    ids, _ = _vertex_ids(
+        np.vstack((coords, extra)), _tolerance(np.vstack((coords, extra)), tolerance)
+    )
+    ids = ids[: len(coords)].reshape(-1, 2)
+    ids = ids[ids[:, 0] != ids[:, 1]]
+    return np.sort(ids, axis=1)
+
+
+def coincident_segments(a, b, *, tolerance=None) -> int:
+    """How many segments of geometry ``a`` are also segments of geometry ``b``.
+
+    Parameters
+    ----------
+    a, b : sequence of shapely geometries
+        Two layers.
+    tolerance : float, optional
+        Vertex snap distance (default relative to the size).
+
+    Returns
+    -------
+    int
+        Segments of ``a`` (counted once each) that ``b`` draws too.
+    """
+    rings_a, lines_a = _collect(a)
+    rings_b, lines_b = _collect(b)
+    if not (rings_a or lines_a) or not (rings_b or lines_b):
+        return 0
+    both = list(a) + list(b) if not isinstance(a, shapely.Geometry) else [a, *b]
+    keys = segment_keys(both, tolerance=tolerance)
+    n_a = len(segment_keys(a, tolerance=tolerance))
+    ka = {tuple(k) for k in keys[:n_a].tolist()}
+    kb = {tuple(k) for k in keys[n_a:].tolist()}
+    return len(ka & kb)
+
+
+# --- no segment twice -----------------------------------------------------------------------
+
+
+def _ring_key(ids: np.ndarray) -> tuple:
+    """A ring's vertex cycle named independently of start and direction."""
+    k = int(np.argmin(ids))
+    fwd = np.roll(ids, -k)
+    back = np.roll(ids[::-1], -(len(ids) - 1 - k))
+    return tuple(min(fwd.tolist(), back.tolist()))
+
+
+def _dedupe(rings: list, lines: list, tol: float) -> tuple[list, list]:
+    """Drop repeated rings; cut segments already drawn out of later rings and lines."""
+    items = rings + lines
+    if not items:
+        return [], []
+    sizes = np.array([len(x) for x in items])
+    coords = np.concatenate(items)
+    ids, _ = _vertex_ids(coords, tol)
+    starts = np.concatenate(([0], np.cumsum(sizes)))
+    seen_rings: set = set()
+    seen: set = set()
+    out_rings, out_lines = [], []
+    for k, xy in enumerate(items):
+        vid = ids[starts[k] : starts[k + 1]]
+        ring = k < len(rings)
+        # consecutive vertices that snap together are one vertex
+        keep = np.ones(len(vid), dtype=bool)
+        keep[1:] = vid[1:] != vid[:-1]
+        if ring and len(vid) > 1 and vid[-1] == vid[0]:
+            keep[-1] = False
+        xy, vid = xy[keep], vid[keep]
+        if ring:
+            if len(vid) < 3:
+                continue
+            key = _ring_key(vid)
+            if key in seen_rings:
+                continue
+            seen_rings.add(key)
+            nxt = np.roll(vid, -1)
+        else:
+            if len(vid) < 2:
+                continue
+            nxt = vid[1:]
+        pairs = list(
+            zip(
+                np.minimum(vid[: len(nxt)], nxt).tolist(),
+                np.maximum(vid[: len(nxt)], nxt).tolist(),
+                strict=True,
+            )
+        )
+        new = np.array([p not in seen for p in pairs], dtype=bool)
+        # within one item a segment can repeat too (a line drawn back over itself)
+        for j, p in enumerate(pairs):
+            if new[j]:
+                if p in seen:
+                    new[j] = False
+                seen.add(p)
+        if ring and new.all():
+            out_rings.append(xy)
+            continue
+        m = len(pairs)
+        if not new.any():
+            continue
+        pts = np.vstack((xy, xy[:1])) if ring else xy
+        if ring:  # start the runs right after a segment that is dropped
+            s = int(np.flatnonzero(~new)[0]) + 1
+            order = (np.arange(m) + s) % m
+        else:
+            order = np.arange(m)
+        run: list[int] = []
+        for j in order.tolist():
+            if new[j]:
+                run.append(j)
+                continue
+            if run:
+                out_lines.append(_run_points(pts, run, ring, m))
+                run = []
+        if run:
+            out_lines.append(_run_points(pts, run, ring, m))
+    return out_rings, out_lines
+
+
+def _run_points(pts: np.ndarray, run: list, ring: bool, m: int) -> np.ndarray:
+    idx = [*run, (run[-1] + 1) % (m if ring else m + 1)]
+    if ring:
+        idx = [i % m for i in idx]
+        base = pts[:-1]
+        return base[idx]
+    return pts[idx]
+
+
+# --- long strokes ---------------------------------------------------------------------------
+
+
+def merge_lines(lines, *, tolerance=None) -> list:
+    """Join line pieces into the fewest trails that draw every segment once.
+
+    Segments are deduplicated (end points closer than ``tolerance`` are one vertex), then
+    each connected network is split into trails at its odd-degree vertices: odd vertices are
+    paired (nearest first) by virtual pen-up moves, an Euler circuit of the network plus
+    those moves is walked (Hierholzer), and the circuit is cut at the virtual moves. A network
+    with ``2k`` odd vertices gives ``k`` trails (one closed trail when ``k = 0``), the least
+    any pen can do.
+
+    Parameters
+    ----------
+    lines : sequence of (k, 2) array_like or shapely lines
+        The pieces: point arrays, LineStrings, MultiLineStrings.
+    tolerance : float, optional
+        End points closer than this are one vertex (default ``config.PLOTTER_MERGE_RTOL`` of
+        the drawing's size).
+
+    Returns
+    -------
+    list of (k, 2) float64
+        The trails; a closed trail repeats its first point at the end.
+    """
+    pieces = _as_point_lists(lines)
+    if not pieces:
+        return []
+    segs = np.concatenate([np.stack((p[:-1], p[1:]), axis=1) for p in pieces if len(p) >= 2])
+    coords = segs.reshape(-1, 2)
+    ids, verts = _vertex_ids(coords, _tolerance(coords, tolerance))
+    e = ids.reshape(-1, 2)
+    e = e[e[:, 0] != e[:, 1]]
+    if not len(e):
+        return []
+    e = np.unique(np.sort(e, axis=1), axis=0)
+    return [verts[t] for t in _trails(e, verts)]
+
+
+def _as_point_lists(lines) -> list:
+    if isinstance(lines, shapely.Geometry):
+        lines = [lines]
+    out = []
+    for item in lines:
+        if isinstance(item, shapely.Geometry):
+            rings, open_ = _collect([item])
+            out += [np.vstack((r, r[:1])) for r in rings] + open_
+        else:
+            arr = np.asarray(item, dtype=np.float64)
+            if arr.ndim != 2 or arr.shape[1] != 2:
+                raise ValueError(f"a line must be a (k, 2) array of points; got shape {arr.shape}")
+            if not np.isfinite(arr).all():
+                raise ValueError("line coordinates must be finite")
+            if len(arr) >= 2:
+                out.append(arr)
+    return out
+
+
+def _pair_odd(odd: np.ndarray, verts: np.ndarray) -> np.ndarray:
+    """Pair odd-degree vertices, nearest pairs first (greedy matching on a k-NN graph)."""
+    if not len(odd):
+        return np.zeros((0, 2), dtype=np.int64)
+    from scipy.spatial import cKDTree
+
+    pts = verts[odd]
+    k = min(len(odd), 9)
+    dist, nb = cKDTree(pts).query(pts, k=k)
+    dist, nb = np.asarray(dist).reshape(len(odd), k), np.asarray(nb).reshape(len(odd), k)
+    a = np.repeat(np.arange(len(odd)), k - 1)
+    b = nb[:, 1:].reshape(-1)
+    d = dist[:, 1:].reshape(-1)
+    order = np.lexsort((b, a, d))
+    used = np.zeros(len(odd), dtype=bool)
+    pairs = []
+    for i in order.tolist():
+        u, v = int(a[i]), int(b[i])
+        if not used[u] and not used[v] and u != v:
+            used[u] = used[v] = True
+            pairs.append((u, v))
+    rest = np.flatnonzero(~used)
+    if len(rest):  # leftovers: pair along a sweep in x
+        rest = rest[np.lexsort((pts[rest, 1], pts[rest, 0]))]
+        pairs += list(zip(rest[0::2].tolist(), rest[1::2].tolist(), strict=True))
+    return odd[np.asarray(pairs, dtype=np.int64).reshape(-1, 2)]
+
+
+def _trails(edges: np.ndarray, verts: np.ndarray) -> list:
+    """Vertex sequences of the trails covering ``edges`` (unique, undirected)."""
+    nv = len(verts)
+    deg = np.bincount(edges.reshape(-1), minlength=nv)
+    odd = np.flatnonzero(deg % 2 == 1)
+    virtual = _pair_odd(odd, verts)
+    both = np.vstack((edges, virtual)) if len(virtual) else edges
+    m = len(both)
+    real = np.arange(m) < len(edges)
+    # adjacency as CSR of (edge id) per vertex
+    ends = np.concatenate((both[:, 0], both[:, 1]))
+    eid = np.concatenate((np.arange(m), np.arange(m)))
+    order = np.argsort(ends, kind="stable")
+    adj = eid[order]
+    indptr = np.concatenate(([0], np.cumsum(np.bincount(ends, minlength=nv))))
+    circuits = _euler(both, adj, indptr, nv)
+    trails = []
+    for verts_seq, edge_seq in circuits:
+        # rotate the circuit to begin after a virtual move, then cut at each virtual move
+        vr = np.flatnonzero(~real[edge_seq])
+        if not len(vr):
+            trails.append(verts_seq)
+            continue
+        k = int(vr[0])
+        n = len(edge_seq)
+        vs = np.concatenate((verts_seq[k + 1 : -1], verts_seq[: k + 1], verts_seq[k + 1 : k + 2]))
+        es = np.concatenate((edge_seq[k + 1 :], edge_seq[: k + 1]))
+        assert len(es) == n
+        cur = [int(vs[0])]
+        for j in range(n):
+            if real[es[j]]:
+                cur.append(int(vs[j + 1]))
+            else:
+                if len(cur) >= 2:
+                    trails.append(np.asarray(cur, dtype=np.int64))
+                cur = [int(vs[j + 1])]
+        if len(cur) >= 2:
+            trails.append(np.asarray(cur, dtype=np.int64))
+    return trails
+
+
+def _euler(edges, adj, indptr, nv):
+    """Euler circuits (Hierholzer) of every component of an all-even multigraph."""
+    used = np.zeros(len(edges), dtype=bool)
+    ptr = indptr[:-1].copy()
+    out = []
+    a, b = edges[:, 0].tolist(), edges[:, 1].tolist()
+    adj_l, end_l = adj.tolist(), indptr[1:].tolist()
+    ptr_l = ptr.tolist()
+    used_l = used.tolist()
+    for s in range(nv):
+        if ptr_l[s] >= end_l[s]:
+            continue
+        # skip used edges at s
+        while ptr_l[s] < end_l[s] and used_l[adj_l[ptr_l[s]]]:
+            ptr_l[s] += 1
+        if ptr_l[s] >= end_l[s]:
+            continue
+        stack_v, stack_e = [s], [-1]
+        path_v, path_e = [], []
+        while stack_v:
+            v = stack_v[-1]
+            p = ptr_l[v]
+            while p < end_l[v] and used_l[adj_l[p]]:
+                p += 1
+            ptr_l[v] = p
+            if p == end_l[v]:
+                path_v.append(stack_v.pop())
+                path_e.append(stack_e.pop())
+            else:
+                e = adj_l[p]
+                used_l[e] = True
+                w = b[e] if a[e] == v else a[e]
+                stack_v.append(w)
+                stack_e.append(e)
+        # path_v is the circuit reversed; path_e[i] is the edge into path_v[i] (last is -1)
+        vs = np.asarray(path_v[::-1], dtype=np.int64)
+        es = np.asarray(path_e[::-1][1:], dtype=np.int64)
+        out.append((vs, es))
+    return out
+
+
+# --- short pen-up travel --------------------------------------------------------------------
+
+
+def travel(paths, *, start=None) -> tuple[float, float]:
+    """Pen-up and pen-down length of drawing ``paths`` in the given order and direction.
+
+    Parameters
+    ----------
+    paths : sequence of (k, 2) array_like
+        Each drawn from its first point to its last.
+    start : (float, float), optional
+        Where the pen starts (default: the first path's start, so no first move counts).
+
+    Returns
+    -------
+    up, down : float
+        Pen-up travel between paths (from ``start`` to the first) and drawn length.
+    """
+    pts = [np.asarray(p, dtype=np.float64).reshape(-1, 2) for p in paths]
+    pts = [p for p in pts if len(p)]
+    if not pts:
+        return 0.0, 0.0
+    down = float(sum(np.hypot(*np.diff(p, axis=0).T).sum() for p in pts))
+    heads = np.array([p[0] for p in pts])
+    tails = np.array([p[-1] for p in pts])
+    up = float(np.hypot(*(heads[1:] - tails[:-1]).T).sum())
+    if start is not None:
+        up += float(np.hypot(*(heads[0] - np.asarray(start, dtype=np.float64))))
+    return up, down
+
+
+def order_paths(
+    paths,
+    *,
+    start=None,
+    reverse: bool = True,
+    closed=None,
+    improve: bool = True,
+    neighbours: int = config.PLOTTER_NEIGHBOURS,
+    max_passes: int = config.PLOTTER_MAX_PASSES,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Order paths to make the pen-up travel between them short.
+
+    A greedy nearest-neighbour tour from ``start`` (each path entered at its nearer end when
+    ``reverse``), then 2-opt: a move reverses a run of consecutive paths (and each path's
+    direction), kept when it shortens the travel; candidates are the ``neighbours`` nearest
+    path ends of each end; passes repeat until none improves (at most ``max_passes``).
+
+    Parameters
+    ----------
+    paths : sequence of (k, 2) array_like
+        The paths (each at least one point).
+    start : (float, float), optional
+        The pen's home (default: the first path's first point).
+    reverse : bool
+        Allow drawing a path backwards.
+    closed : (n,) bool, optional
+        Closed rings (start = end; never reversed, as it would change nothing).
+    improve : bool
+        Run 2-opt after the greedy tour.
+    neighbours : int
+        Candidate list size of 2-opt.
+    max_passes : int
+        Most 2-opt passes.
+
+    Returns
+    -------
+    order : (n,) int64
+        Path indices in drawing order.
+    flipped : (n,) bool
+        Per position of ``order``: draw that path from its last point to its first.
+
+    Raises
+    ------
+    ValueError
+        For an empty path, non-finite coordinates or a bad option.
+    """
+    pts = [np.asarray(p, dtype=np.float64).reshape(-1, 2) for p in paths]
+    n = len(pts)
+    if any(len(p) == 0 for p in pts):
+        raise ValueError("every path needs at least one point")
+    if int(neighbours) < 1 or int(max_passes) < 0:
+        raise ValueError("neighbours must be >= 1 and max_passes >= 0")
+    if n == 0:
+        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=bool)
+    ports = np.zeros((2 * n, 2), dtype=np.float64)
+    ports[0::2] = [p[0] for p in pts]
+    ports[1::2] = [p[-1] for p in pts]
+    if not np.isfinite(ports).all():
+        raise ValueError("path coordinates must be finite")
+    home = ports[0] if start is None else np.asarray(start, dtype=np.float64).reshape(2)
+    if not np.isfinite(home).all():
+        raise ValueError(f"start must be a finite point; got {start!r}")
+    can_flip = np.full(n, bool(reverse))
+    if closed is not None:
+        can_flip &= ~np.asarray(closed, dtype=bool).reshape(n)
+    tour, flip = _nearest_tour(ports, can_flip, home)
+    if improve and n > 1:
+        from scipy.spatial import cKDTree
+
+        k = min(int(neighbours) + 1, 2 * n)
+        _, nb = cKDTree(ports).query(ports, k=k)
+        nb = np.ascontiguousarray(np.asarray(nb, dtype=np.int64).reshape(2 * n, k))
+        span = float(np.ptp(ports, axis=0).max()) + float(np.abs(ports).max())
+        _two_opt(ports, tour, flip, can_flip, nb, home, span * 1e-12, int(max_passes))
+    return tour.astype(np.int64), flip.astype(bool)
+
+
+@njit(**config.NJIT)
+def _nearest_tour(ports, can_flip, home):
+    """Greedy nearest-neighbour tour over path ends, with a bucket grid of the ends."""
+    n = len(ports) // 2
+    tour = np.zeros(n, dtype=np.int64)
+    flip = np.zeros(n, dtype=np.bool_)
+    xmin = min(ports[:, 0].min(), home[0])
+    ymin = min(ports[:, 1].min(), home[1])
+    xmax = max(ports[:, 0].max(), home[0])
+    ymax = max(ports[:, 1].max(), home[1])
+    side = max(1, int(math.sqrt(n / 2.0)))
+    h = max(xmax - xmin, ymax - ymin) / side
+    if not h > 0:
+        h = 1.0
+    gx = min(side, int((xmax - xmin) / h) + 1)
+    gy = min(side, int((ymax - ymin) / h) + 1)
+    m = len(ports)
+    bucket = np.zeros(m, dtype=np.int64)
+    for i in range(m):
+        cx = min(gx - 1, int((ports[i, 0] - xmin) / h))
+        cy = min(gy - 1, int((ports[i, 1] - ymin) / h))
+        bucket[i] = cy * gx + cx
+    count = np.zeros(gx * gy + 1, dtype=np.int64)
+    for i in range(m):
+        count[bucket[i] + 1] += 1
+    for b in range(gx * gy):
+        count[b + 1] += count[b]
+    fill = count[:-1].copy()
+    items = np.zeros(m, dtype=np.int64)
+    for i in range(m):
+        items[fill[bucket[i]]] = i
+        fill[bucket[i]] += 1
+    alive = np.ones(n, dtype=np.bool_)
+    left_in = np.zeros(gx * gy, dtype=np.int64)
+    for b in range(gx * gy):
+        left_in[b] = count[b + 1] - count[b]
+    x, y = home[0], home[1]
+    for step in range(n):
+        cx = min(gx - 1, max(0, int((x - xmin) / h)))
+        cy = min(gy - 1, max(0, int((y - ymin) / h)))
+        best = -1
+        best_d = np.inf
+        r = 0
+        while True:
+            for by in range(cy - r, cy + r + 1):
+                if by < 0 or by >= gy:
+                    continue
+                edge_row = by == cy - r or by == cy + r
+                bx = cx - r
+                while bx <= cx + r:
+                    if 0 <= bx < gx:
+                        b = by * gx + bx
+                        if left_in[b] > 0:
+                            for t in range(count[b], count[b + 1]):
+                                port = items[t]
+                                p = port // 2
+                                if not alive[p] or (port % 2 == 1 and not can_flip[p]):
+                                    continue
+                                d = (ports[port, 0] - x) ** 2 + (ports[port, 1] - y) ** 2
+                                if d < best_d or (d == best_d and port < best):
+                                    best_d = d
+                                    best = port
+                    if edge_row or r == 0:
+                        bx += 1
+                    else:
+                        bx += 2 * r
+            if best >= 0 and math.sqrt(best_d) <= r * h:
+                break
+            if r > gx + gy:
+                break
+            r += 1
+        p = best // 2
+        alive[p] = False
+        for port in (2 * p, 2 * p + 1):
+            cxp = min(gx - 1, int((ports[port, 0] - xmin) / h))
+            cyp = min(gy - 1, int((ports[port, 1] - ymin) / h))
+            left_in[cyp * gx + cxp] -= 1
+        tour[step] = p
+        flip[step] = best % 2 == 1
+        other = best + 1 if best % 2 == 0 else best - 1
+        x, y = ports[other, 0], ports[other, 1]
+    return tour, flip
+
+
+@njit(**config.NJIT)
+def _dist(ports, a, b):
+    return math.sqrt((ports[a, 0] - ports[b, 0]) ** 2 + (ports[a, 1] - ports[b, 1]) ** 2)
+
+
+@njit(**config.NJIT)
+def _two_opt(ports, tour, flip, can_flip, nb, home, eps, max_passes):
+    """2-opt on the tour of paths in place: a move reverses positions i+1..j.
+
+    Ports: ``2p`` is path p's first point, ``2p + 1`` its last. At position k the path is
+    entered at ``head(k)`` and left at ``tail(k)``; position -1 is the pen's home, and
+    nothing follows the last path (the tour is open).
+    """
+    n = len(tour)
+    pos = np.zeros(n, dtype=np.int64)
+    for k in range(n):
+        pos[tour[k]] = k
+    hx, hy = home[0], home[1]
+    for _ in range(max_passes):
+        improved = False
+        for k in range(n):
+            for side in range(2):  # 0: this position's tail, 1: its head
+                p = tour[k]
+                x = 2 * p + (1 - int(flip[k]) if side == 0 else int(flip[k]))
+                for c in range(nb.shape[1]):
+                    y = nb[x, c]
+                    q = y // 2
+                    if q == p:
+                        continue
+                    kq = pos[q]
+                    y_is_tail = (y % 2 == 1) != flip[kq]
+                    if side == 0 and y_is_tail:
+                        i, j = k, kq
+                    elif side == 1 and not y_is_tail:
+                        i, j = k - 1, kq - 1
+                    else:
+                        continue
+                    if i > j:
+                        i, j = j, i
+                    if i == j:
+                        continue
+                    # removed: (tail i, head i+1), (tail j, head j+1); added (tail i, tail j),
+                    # (head i+1, head j+1)
+                    hi1 = 2 * tour[i + 1] + int(flip[i + 1])
+                    tj = 2 * tour[j] + 1 - int(flip[j])
+                    if i >= 0:
+                        ti = 2 * tour[i] + 1 - int(flip[i])
+                        d_old = _dist(ports, ti, hi1)
+                        d_new = _dist(ports, ti, tj)
+                    else:
+                        d_old = math.sqrt((ports[hi1, 0] - hx) ** 2 + (ports[hi1, 1] - hy) ** 2)
+                        d_new = math.sqrt((ports[tj, 0] - hx) ** 2 + (ports[tj, 1] - hy) ** 2)
+                    if j + 1 < n:
+                        hj1 = 2 * tour[j + 1] + int(flip[j + 1])
+                        d_old += _dist(ports, tj, hj1)
+                        d_new += _dist(ports, hi1, hj1)
+                    if d_old - d_new <= eps:
+                        continue
+                    # closed rings cannot be reversed; a run with one reverses in place (its
+                    # head and tail are the same point, so the gain above still holds)
+                    a, b = i + 1, j
+                    while a < b:
+                        ta, fa = tour[a], flip[a]
+                        tour[a], flip[a] = tour[b], not flip[b]
+                        tour[b], flip[b] = ta, not fa
+                        pos[tour[a]] = a
+                        pos[tour[b]] = b
+                        a += 1
+                        b -= 1
+                    if a == b:
+                        flip[a] = not flip[a]
+                    improved = True
+                    p = tour[k]
+                    x = 2 * p + (1 - int(flip[k]) if side == 0 else int(flip[k]))
+        if not improved:
+            improved = _or_opt(ports, tour, flip, can_flip, pos, nb, home, eps)
+        if not improved:
+            break
+    for k in range(n):
+        if not can_flip[tour[k]]:
+            flip[k] = False
+    return tour, flip
+
+
+@njit(**config.NJIT)
+def _gap(ports, tour, flip, a, home):
+    """Travel from position ``a``'s tail to position ``a + 1``'s head (-1: home; n: none)."""
+    n = len(tour)
+    if a + 1 >= n:
+        return 0.0
+    h = 2 * tour[a + 1] + int(flip[a + 1])
+    if a < 0:
+        return math.sqrt((ports[h, 0] - home[0]) ** 2 + (ports[h, 1] - home[1]) ** 2)
+    return _dist(ports, 2 * tour[a] + 1 - int(flip[a]), h)
+
+
+@njit(**config.NJIT)
+def _port_gap(ports, tour, flip, a, port, home, into):
+    """Travel from position ``a``'s tail to ``port`` (into), or from ``port`` to its head.
+
+    Position -1 is home; past the last position nothing follows (0).
+    """
+    n = len(tour)
+    if into:
+        if a < 0:
+            return math.sqrt((ports[port, 0] - home[0]) ** 2 + (ports[port, 1] - home[1]) ** 2)
+        return _dist(ports, 2 * tour[a] + 1 - int(flip[a]), port)
+    if a >= n:
+        return 0.0
+    return _dist(ports, port, 2 * tour[a] + int(flip[a]))
+
+
+@njit(**config.NJIT)
+def _or_opt(ports, tour, flip, can_flip, pos, nb, home, eps):
+    """One pass of moves of a single path to a gap next to one of its near neighbours."""
+    n = len(tour)
+    improved = False
+    for p in range(n):
+        k = pos[p]
+        # what removing p from position k saves
+        before = _gap(ports, tour, flip, k - 1, home) + _gap(ports, tour, flip, k, home)
+        if k + 1 < n:
+            h_next = 2 * tour[k + 1] + int(flip[k + 1])
+            if k - 1 >= 0:
+                bridge = _dist(ports, 2 * tour[k - 1] + 1 - int(flip[k - 1]), h_next)
+            else:
+                bridge = math.sqrt(
+                    (ports[h_next, 0] - home[0]) ** 2 + (ports[h_next, 1] - home[1]) ** 2
+                )
+        else:
+            bridge = 0.0
+        saved = before - bridge
+        if saved <= eps:
+            continue
+        best = 0.0
+        best_gap = -2
+        best_flip = False
+        for side in range(2):
+            x = 2 * p + side
+            for c in range(nb.shape[1]):
+                q = nb[x, c] // 2
+                if q == p:
+                    continue
+                kq = pos[q]
+                for g in (kq - 1, kq):  # the gaps on either side of q
+                    if g == k or g == k - 1:
+                        continue
+                    for f in range(2):
+                        if f == 1 and not can_flip[p]:
+                            continue
+                        h = 2 * p + f
+                        t = 2 * p + 1 - f
+                        old = _gap(ports, tour, flip, g, home)
+                        add = _port_gap(ports, tour, flip, g, h, home, True)
+                        add += _port_gap(ports, tour, flip, g + 1, t, home, False)
+                        gain = saved - (add - old)
+                        if gain > best + eps:
+                            best = gain
+                            best_gap = g
+                            best_flip = f == 1
+        if best_gap == -2:
+            continue
+        # move p from position k into the gap after position best_gap
+        g = best_gap
+        if g > k:
+            for t in range(k, g):
+                tour[t] = tour[t + 1]
+                flip[t] = flip[t + 1]
+                pos[tour[t]] = t
+            tour[g] = p
+            flip[g] = best_flip
+            pos[p] = g
+        else:
+            for t in range(k, g + 1, -1):
+                tour[t] = tour[t - 1]
+                flip[t] = flip[t - 1]
+                pos[tour[t]] = t
+            tour[g + 1] = p
+            flip[g + 1] = best_flip
+            pos[p] = g + 1
+        improved = True
+    return improved
+
+
+# --- a layer, ready to write ------------------------------------------------------------------
+
+
+def layer_paths(
+    geoms,
+    *,
+    order: str = "travel",
+    merge: bool = True,
+    dedupe: bool = True,
+    tolerance=None,
+    start=None,
+) -> Paths:
+    """The paths a machine follows for one layer: each segment once, merged, ordered.
+
+    Parameters
+    ----------
+    geoms : sequence of shapely geometries
+        Everything on the layer: polygons (every ring is a closed path), lines, rings.
+        Points are not paths and are ignored.
+    order : {"travel", "file"}
+        ``"travel"``: short pen-up travel (:func:`order_paths`); ``"file"``: closed rings first,
+        then lines, in the order given.
+    merge : bool
+        Join open pieces into the fewest trails (:func:`merge_lines`).
+    dedupe : bool
+        Draw every segment once (repeated rings dropped, shared segments cut out).
+    tolerance : float, optional
+        Vertices closer than this are one (default ``config.PLOTTER_MERGE_RTOL`` of the size).
+    start : (float, float), optional
+        The pen's home for ``order="travel"`` (default: the top-left corner of the layer).
+
+    Returns
+    -------
+    Paths
+    """
+    if order not in ORDERS:
+        raise ValueError(f"order must be one of {', '.join(ORDERS)}; got {order!r}")
+    rings, lines = _collect(geoms)
+    everything = rings + lines
+    if not everything:
+        return Paths([], np.zeros(0, dtype=bool))
+    coords = np.concatenate(everything)
+    tol = _tolerance(coords, tolerance)
+    if dedupe:
+        rings, lines = _dedupe(rings, lines, tol)
+    if merge and lines:
+        lines = merge_lines(lines, tolerance=tol)
+    paths = rings + lines
+    closed = np.array([True] * len(rings) + [False] * len(lines), dtype=bool)
+    if order == "file" or len(paths) < 2:
+        return Paths(paths, closed)
+    if start is None:
+        start = (float(coords[:, 0].min()), float(coords[:, 1].max()))
+    drawn = [np.vstack((p, p[:1])) if c else p for p, c in zip(paths, closed, strict=True)]
+    tour, flip = order_paths(drawn, start=start, closed=closed)
+    out = [
+        paths[i][::-1] if f else paths[i] for i, f in zip(tour.tolist(), flip.tolist(), strict=True)
+    ]
+    return Paths(out, closed[tour])
+
+
+def network_lines(segments, outline=None, *, order: str = "travel") -> list:
+    """An edge network (and an outline) as the fewest strokes, ordered, each segment once.
+
+    Parameters
+    ----------
+    segments : (m, 2, 2) array_like
+        Edge end points (``diagram.edges.coords``).
+    outline : shapely geometry, optional
+        A polygon whose rings are drawn with the network (the diagram's boundary).
+    order : {"travel", "file"}
+        As in :func:`layer_paths`.
+
+    Returns
+    -------
+    list of shapely.LineString
+        Closed trails repeat their first point.
+    """
+    arr = np.asarray(segments, dtype=np.float64).reshape(-1, 2, 2)
+    geoms = [shapely.MultiLineString(list(arr))] if len(arr) else []
+    if outline is not None and not outline.is_empty:
+        geoms.append(shapely.boundary(outline))
+    drawn = layer_paths(geoms, order=order)
+    return [shapely.LineString(p) for p in _as_drawn(drawn)]
