@@ -38,6 +38,9 @@ _EXPORTS = {
     "power_fit": ".engine.power",
     "rasterize": ".engine.raster",
     "voronoi": ".engine.voronoi",
+    "voronoi3d": ".engine.voronoi3d",
+    "Convex": ".engine.containers",
+    "Diagram3D": ".engine.diagram3d",
 }
 
 __all__ = sorted(_EXPORTS)
@@ -65,3 +68,6 @@ if TYPE_CHECKING:  # for type checkers and editors: the same names, imported eag
     from .engine.power import PowerDiagram, power, power_fit  # noqa: F401
     from .engine.raster import RasterVoronoi, rasterize  # noqa: F401
     from .engine.voronoi import voronoi  # noqa: F401
+    from .engine.containers import Convex  # noqa: F401
+    from .engine.diagram3d import Diagram3D  # noqa: F401
+    from .engine.voronoi3d import voronoi3d  # noqa: F401

@@ -1,0 +1,324 @@
+"""The 3D build: sites and a container template in, per-cell polyhedra with shared vertices out.
+
+:func:`build_cells3d` runs the cell kernel in chunks (fixed per-cell slots; cells that do not
+fit run again alone with room to spare), then joins the vertices: a vertex is owned by the
+lowest site of its name, and every other cell that uses it finds it in that cell's list by
+name (:func:`_match`). A vertex not found there (only when two cells' float decisions
+disagreed on a nearly degenerate input) becomes its own vertex and is counted.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from ..config import NJIT
+from ..kernels.cells3d import OK, OVERFLOW, build_cells
+from ..kernels.grid3d import bucket_sort3d, grid3d_shape
+from .threads import serial_below
+
+CHUNK = 16384
+CAPS = (64, 40, 320, 1024, 512, 4096)
+BIG_CAPS_FACTOR = 16
+
+
+@dataclass
+class Cells3D:
+    """Per-cell results in kernel numbering (``cells`` are the site numbers built)."""
+
+    cells: np.ndarray  # (k,) site numbers
+    status: np.ndarray  # (k,)
+    volume: np.ndarray
+    centroid: np.ndarray
+    rad2: np.ndarray
+    voff: np.ndarray  # (k + 1,) per-cell vertex records
+    vname: np.ndarray  # (M, 4) keys
+    vglobal: np.ndarray  # (M,) global vertex id
+    vertices: np.ndarray  # (V, 3)
+    foff: np.ndarray  # (k + 1,) per-cell faces
+    flabel: np.ndarray  # (Fc,) kernel keys: site >= 0, wall -1 - w
+    farea: np.ndarray  # (Fc, 3) area vectors (outward of the cell)
+    roff: np.ndarray  # (Fc + 1,) rings
+    ring: np.ndarray  # (R,) global vertex ids
+    unmatched: int
+
+
+def _run(cells, P, W, start, SP, sidx, g, t, caps):
+    k = len(cells)
+    cv, cf, cr = caps[:3]
+    status = np.zeros(k, np.int64)
+    counts = np.zeros((k, 3), np.int64)
+    vol = np.zeros(k)
+    cen = np.zeros((k, 3))
+    rad2 = np.zeros(k)
+    onames = np.zeros((k * cv, 4), np.int64)
+    ovabs = np.zeros((k * cv, 3))
+    ofaces = np.zeros((k * cf, 2), np.int64)
+    oarea = np.zeros((k * cf, 3))
+    oring = np.zeros(k * cr, np.int64)
+    import numba
+
+    nth = max(1, min(numba.get_num_threads(), k // 64 or 1))
+    capa = np.array(caps, np.int64)
+
+    def part(a, b):
+        build_cells(
+            cells[a:b],
+            P,
+            W,
+            start,
+            SP,
+            sidx,
+            g,
+            t.TV,
+            t.TF,
+            t.TR,
+            t.WP,
+            capa,
+            1,
+            status[a:b],
+            counts[a:b],
+            vol[a:b],
+            cen[a:b],
+            rad2[a:b],
+            onames[a * cv : b * cv],
+            ovabs[a * cv : b * cv],
+            ofaces[a * cf : b * cf],
+            oarea[a * cf : b * cf],
+            oring[a * cr : b * cr],
+        )
+
+    if nth == 1:
+        part(0, k)
+    else:  # the kernel releases the GIL: one thread per slice of cells
+        from concurrent.futures import ThreadPoolExecutor
+
+        bounds = np.linspace(0, k, nth + 1).astype(int)
+        with ThreadPoolExecutor(nth) as ex:
+            list(ex.map(part, bounds[:-1], bounds[1:]))
+    vm = np.arange(cv)[None, :] < counts[:, :1]
+    fm = np.arange(cf)[None, :] < counts[:, 1:2]
+    rm = np.arange(cr)[None, :] < counts[:, 2:3]
+    return dict(
+        status=status,
+        counts=counts,
+        vol=vol,
+        cen=cen,
+        rad2=rad2,
+        names=onames[vm.ravel()],
+        vabs=ovabs[vm.ravel()],
+        faces=ofaces[fm.ravel()],
+        area=oarea[fm.ravel()],
+        ring=oring[rm.ravel()],
+    )
+
+
+def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
+    """Cells of sites ``cells`` (default all) of ``P (ns, 3)``, weights ``W``, template ``t``."""
+    ns = len(P)
+    cells = np.arange(ns) if cells is None else np.asarray(cells, np.int64)
+    g = grid3d_shape(P, 2.0)
+    start, SP, sidx = bucket_sort3d(P, g)
+    parts = []
+    with serial_below(len(cells)):
+        for c0 in range(0, len(cells), CHUNK):
+            chunk = cells[c0 : c0 + CHUNK]
+            parts.append(_run(chunk, P, W, start, SP, sidx, g, t, CAPS))
+            if progress is not None:
+                progress(min(c0 + CHUNK, len(cells)), len(cells))
+    # cells that did not fit: alone, with big slots
+    out = {key: [p[key] for p in parts] for key in parts[0]} if parts else None
+    if out is None:
+        return _empty(cells)
+    status = np.concatenate(out["status"])
+    over = np.flatnonzero(status == OVERFLOW)
+    counts = np.concatenate(out["counts"])
+    extra = {}
+    factor = BIG_CAPS_FACTOR
+    while len(over):
+        caps = tuple(c * factor for c in CAPS)
+        for c in over:
+            r = _run(cells[c : c + 1], P, W, start, SP, sidx, g, t, caps)
+            extra[int(c)] = r
+        still = [c for c in over if extra[int(c)]["status"][0] == OVERFLOW]
+        if factor >= 256 or not still:
+            break
+        over = np.array(still)
+        factor *= 4
+    # per cell arrays in order
+    vol = np.concatenate(out["vol"])
+    cen = np.concatenate(out["cen"])
+    rad2 = np.concatenate(out["rad2"])
+    names = np.concatenate(out["names"])
+    vabs = np.concatenate(out["vabs"])
+    faces = np.concatenate(out["faces"])
+    area = np.concatenate(out["area"])
+    ring = np.concatenate(out["ring"])
+    if extra:
+        # splice the re-run cells in: rebuild per-cell lists with the extra cells replaced
+        names, vabs, faces, area, ring, counts = _splice(
+            counts, names, vabs, faces, area, ring, extra
+        )
+        for c, r in extra.items():
+            status[c] = r["status"][0]
+            vol[c] = r["vol"][0]
+            cen[c] = r["cen"][0]
+            rad2[c] = r["rad2"][0]
+    voff = np.concatenate([[0], np.cumsum(counts[:, 0])])
+    foff = np.concatenate([[0], np.cumsum(counts[:, 1])])
+    flen = faces[:, 1]
+    roff = np.concatenate([[0], np.cumsum(flen)])
+    # global vertex ids
+    pos = np.full(ns, -1, np.int64)
+    pos[cells] = np.arange(len(cells))
+    vcellpos = np.repeat(np.arange(len(cells)), counts[:, 0])
+    gid, unmatched = _join(names, vcellpos, cells, pos, voff)
+    first = gid >= 0
+    vertices = np.zeros((0, 3))
+    if len(gid):
+        nvert = int(gid.max()) + 1
+        vertices = np.zeros((nvert, 3))
+        vertices[gid] = vabs  # every record of one id holds the same bits (or is its own id)
+    # rings in global ids
+    fcellpos = np.repeat(np.arange(len(cells)), counts[:, 1])
+    rcell = np.repeat(fcellpos, flen)
+    gring = gid[voff[rcell] + ring] if len(ring) else ring
+    del first
+    return Cells3D(
+        cells,
+        status,
+        vol,
+        cen,
+        rad2,
+        voff,
+        names,
+        gid,
+        vertices,
+        foff,
+        faces[:, 0],
+        area,
+        roff,
+        gring,
+        unmatched,
+    )
+
+
+def _empty(cells):
+    z = np.zeros(0, np.int64)
+    k = len(cells)
+    return Cells3D(
+        cells,
+        np.zeros(k, np.int64),
+        np.zeros(k),
+        np.full((k, 3), np.nan),
+        np.zeros(k),
+        np.zeros(k + 1, np.int64),
+        np.zeros((0, 4), np.int64),
+        z,
+        np.zeros((0, 3)),
+        np.zeros(k + 1, np.int64),
+        z,
+        np.zeros((0, 3)),
+        np.zeros(1, np.int64),
+        z,
+        0,
+    )
+
+
+def _splice(counts, names, vabs, faces, area, ring, extra):
+    voff = np.concatenate([[0], np.cumsum(counts[:, 0])])
+    foff = np.concatenate([[0], np.cumsum(counts[:, 1])])
+    roff = np.concatenate([[0], np.cumsum(counts[:, 2])])
+    pieces = {k: [] for k in ("names", "vabs", "faces", "area", "ring")}
+    prev = 0
+    counts = counts.copy()
+    for c in sorted(extra):
+        r = extra[c]
+        for key, arr, off in (
+            ("names", names, voff),
+            ("vabs", vabs, voff),
+            ("faces", faces, foff),
+            ("area", area, foff),
+            ("ring", ring, roff),
+        ):
+            pieces[key].append(arr[off[prev] : off[c]])
+            pieces[key].append(r[key if key != "vabs" else "vabs"])
+        counts[c] = r["counts"][0]
+        prev = c + 1
+    for key, arr, off in (
+        ("names", names, voff),
+        ("vabs", vabs, voff),
+        ("faces", faces, foff),
+        ("area", area, foff),
+        ("ring", ring, roff),
+    ):
+        pieces[key].append(arr[off[prev] :])
+    return (
+        *(np.concatenate(pieces[k]) for k in ("names", "vabs", "faces", "area", "ring")),
+        counts,
+    )
+
+
+@njit(**NJIT)
+def _match(names, vcellpos, cells, pos, voff, gid):
+    """Find each vertex record's owner record.
+
+    ``gid[r]``: -2 for a record owned by its own cell (numbered later); else the record index
+    in the owner cell with the same name, or -1 when there is none.
+    """
+    m = names.shape[0]
+    for r in range(m):
+        c = vcellpos[r]
+        owner = names[r, 0]
+        if owner == cells[c]:
+            gid[r] = -2
+            continue
+        p = pos[owner] if owner < pos.shape[0] else -1
+        gid[r] = -1
+        if p < 0:
+            continue
+        for q in range(voff[p], voff[p + 1]):
+            if (
+                names[q, 0] == names[r, 0]
+                and names[q, 1] == names[r, 1]
+                and names[q, 2] == names[r, 2]
+                and names[q, 3] == names[r, 3]
+            ):
+                gid[r] = q
+                break
+
+
+@njit(**NJIT)
+def _number(gid):
+    """Number owned records, then point matched records at their owner's number."""
+    m = gid.shape[0]
+    out = np.zeros(m, np.int64)
+    k = 0
+    for r in range(m):
+        if gid[r] == -2:
+            out[r] = k
+            k += 1
+    unmatched = 0
+    for r in range(m):
+        if gid[r] == -1:
+            out[r] = k
+            k += 1
+            unmatched += 1
+    for r in range(m):
+        if gid[r] >= 0:
+            out[r] = out[gid[r]]
+    return out, unmatched
+
+
+def _join(names, vcellpos, cells, pos, voff):
+    gid = np.zeros(len(names), np.int64)
+    if len(names) == 0:
+        return gid, 0
+    _match(names, vcellpos, cells, pos, voff, gid)
+    out, unmatched = _number(gid)
+    return out, int(unmatched)
+
+
+__all__ = ["Cells3D", "build_cells3d", "OK"]

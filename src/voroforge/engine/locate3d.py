@@ -1,0 +1,64 @@
+"""Nearest site of 3D queries (``Diagram3D.locate``): float search, exact ties."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+
+from .inputs import as_query
+
+
+def _exact_key(q, p, w):
+    d = sum((Fraction(float(a)) - Fraction(float(b))) ** 2 for a, b in zip(q, p, strict=False))
+    return d - Fraction(float(w))
+
+
+def locate3d(d, xyz):
+    """Index of the site whose cell holds each query (power distance with weights).
+
+    Near ties (float distances within 1e-9 relative) are decided with exact rational
+    arithmetic, so an exact tie goes to the lowest index.
+    """
+    q, single = as_query(xyz, dim=3)
+    sites = np.asarray(d.sites)
+    n = len(sites)
+    if n == 0:
+        raise ValueError("locate on an empty diagram")
+    w = np.zeros(n) if d.weights is None else np.asarray(d.weights)
+    live = np.flatnonzero(np.asarray(d.duplicate_of) < 0)
+    out = np.zeros(len(q), np.int64)
+    step = max(1, 2_000_000 // max(len(live), 1))
+    if d.weights is None and len(live) > 64:
+        from scipy.spatial import cKDTree
+
+        tree = cKDTree(sites[live])
+        kk = min(8, len(live))
+        dist, idx = tree.query(q, k=kk)
+        dist = dist.reshape(len(q), kk)
+        idx = idx.reshape(len(q), kk)
+        for r in range(len(q)):
+            near = dist[r] <= dist[r, 0] * (1 + 1e-9) + 1e-300
+            cand = live[idx[r][near]]
+            if near.all():  # many ties: fall back to a full scan of this query
+                d2 = ((sites[live] - q[r]) ** 2).sum(axis=1)
+                cand = live[d2 <= d2.min() * (1 + 1e-9) + 1e-300]
+            out[r] = _pick(q[r], cand, sites, w)
+    else:
+        for s in range(0, len(q), step):
+            qq = q[s : s + step]
+            dd = ((qq[:, None, :] - sites[live][None, :, :]) ** 2).sum(axis=2) - w[live][None, :]
+            best = dd.min(axis=1, keepdims=True)
+            for r in range(len(qq)):
+                near = dd[r] <= best[r, 0] + 1e-9 * (
+                    abs(best[r, 0]) + np.abs(qq[r]).max() ** 2 + 1e-300
+                )
+                out[s + r] = _pick(qq[r], live[near], sites, w)
+    return int(out[0]) if single else out
+
+
+def _pick(q, cand, sites, w):
+    if len(cand) == 1:
+        return int(cand[0])
+    keys = [(_exact_key(q, sites[c], w[c]), int(c)) for c in cand]
+    return min(keys)[1]

@@ -1,0 +1,220 @@
+"""``voronoi3d``: 3D Voronoi and power cells in a box, a convex solid or a closed mesh."""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+
+from .build3d import build_cells3d
+from .containers import Convex, Template, as_container, box_template
+from .diagram3d import Diagram3D
+from .inputs import as_points, as_weights, from_working, working_frame
+
+__all__ = ["voronoi3d", "Convex", "Diagram3D"]
+
+
+def duplicate_owner3d(pts: np.ndarray, w: np.ndarray | None) -> np.ndarray:
+    """``(n,)``: -1 for a site that owns its cell, else the site that owns it (equal point).
+
+    Among equal points the largest weight owns the cell (the others' power cells are empty),
+    ties to the lowest index.
+    """
+    n = len(pts)
+    dup = np.full(n, -1, np.int64)
+    if n < 2:
+        return dup
+    wk = np.zeros(n) if w is None else w
+    order = np.lexsort((np.arange(n), -wk, pts[:, 2], pts[:, 1], pts[:, 0]))
+    sp = pts[order]
+    same = np.r_[False, (sp[1:] == sp[:-1]).all(axis=1)]
+    head = order.copy()
+    for t in np.flatnonzero(same):  # runs are short; keep it obvious
+        head[t] = head[t - 1]
+    dup[order[same]] = head[same]
+    return dup
+
+
+def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=None) -> Diagram3D:
+    """3D Voronoi (or power) cells of ``points`` clipped to a container.
+
+    Parameters
+    ----------
+    points : (n, 3) array_like
+        The sites. Cell ``i`` belongs to ``points[i]``, always, in input order.
+    container : None, 6-tuple, Convex, trimesh.Trimesh, (vertices, faces) or path, optional
+        ``None``: the sites' bounding box padded 10% per side; ``(xmin, ymin, zmin, xmax,
+        ymax, zmax)``; :class:`Convex` (half-spaces or hull points); or a closed triangle
+        mesh (cells that reach its surface are cut by it).
+    weights : (n,) array_like, optional
+        Power (radical) diagram weights: cell ``i`` is where ``|x - p_i|^2 - w_i`` is least.
+    periodic : bool
+        The box is a 3-torus (box containers only; sites must lie in the box). Cells are
+        whole polyhedra around their sites and may reach past the box.
+    progress : callable, optional
+        ``progress(done, total)`` after each chunk of cells.
+
+    Returns
+    -------
+    Diagram3D
+
+    Examples
+    --------
+    >>> import numpy as np, voroforge as vf
+    >>> d = vf.voronoi3d(np.random.default_rng(0).random((50, 3)), (0, 0, 0, 1, 1, 1))
+    >>> round(float(d.volumes.sum()), 12)
+    1.0
+    """
+    pts = as_points(points, dim=3)
+    n = len(pts)
+    w = None if weights is None else as_weights(weights, n)
+    mesh = None
+    try:
+        t = as_container(container, pts)
+    except TypeError:
+        from .mesh3d import as_mesh_container
+
+        mesh, t = as_mesh_container(container)
+    if periodic and (t.kind != "box" or mesh is not None):
+        raise ValueError("periodic=True needs a box container (None or a 6-tuple)")
+    if n and mesh is None:
+        inside = _inside(pts, t)
+        if not inside.any():
+            raise ValueError("the container contains none of the sites")
+        if periodic and not inside.all():
+            bad = int(np.flatnonzero(~inside)[0])
+            raise ValueError(f"periodic sites must lie in the box (first outside: row {bad})")
+    dup = duplicate_owner3d(pts, w)
+    uniq = np.flatnonzero(dup < 0)
+    work, k = working_frame(pts, extra=t.bounds)
+    tw = t.scaled(k)
+    wk = None if w is None else np.ldexp(w, 2 * k)
+    P = np.ascontiguousarray(work[uniq])
+    W = np.zeros(len(uniq)) if wk is None else np.ascontiguousarray(wk[uniq])
+    u = len(uniq)
+    if u == 0:
+        return _assemble(pts, w, t, k, None, uniq, dup, None, periodic, mesh)
+    if periodic:
+        res, gmap = _periodic(P, W, tw, progress)
+    else:
+        res = build_cells3d(P, W, tw, cells=np.arange(u), progress=progress)
+        gmap = None
+    return _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh)
+
+
+def _inside(pts: np.ndarray, t: Template) -> np.ndarray:
+    WP = t.WP
+    s = pts @ WP[:, :3].T - WP[:, 3]
+    scale = np.abs(WP[:, 3]) + np.abs(pts).max() + 1e-300
+    return (s <= 1e-12 * scale).all(axis=1)
+
+
+def _periodic(P, W, t, progress):
+    """Cells of the torus: the sites plus enough images, then only the sites' cells."""
+    lo, hi = t.bounds
+    L = hi - lo
+    u = len(P)
+    margin = 2.5 * float(np.prod(L) / u) ** (1.0 / 3.0)
+    while True:
+        K = int(np.ceil(margin / L.min()))
+        imgs, origs, shifts = [P], [np.arange(u)], [np.zeros((u, 3), np.int64)]
+        for s in itertools.product(range(-K, K + 1), repeat=3):
+            if s == (0, 0, 0):
+                continue
+            q = P + np.array(s) * L
+            ok = ((q >= lo - margin) & (q <= hi + margin)).all(axis=1)
+            if ok.any():
+                imgs.append(q[ok])
+                origs.append(np.flatnonzero(ok))
+                shifts.append(np.tile(np.array(s, np.int64), (int(ok.sum()), 1)))
+        PP = np.ascontiguousarray(np.concatenate(imgs))
+        orig = np.concatenate(origs)
+        shift = np.concatenate(shifts)
+        big = box_template(lo - margin, hi + margin)
+        res = build_cells3d(
+            PP, np.ascontiguousarray(W[orig]), big, cells=np.arange(u), progress=progress
+        )
+        r = np.sqrt(res.rad2)[:, None]
+        ok = ((P - 2 * r >= lo - margin) & (P + 2 * r <= hi + margin)).all()
+        if ok and (res.status == 0).all():
+            return res, (orig, shift)
+        margin *= 2.0
+
+
+def _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh):
+    n = len(pts)
+    vol = np.zeros(n)
+    cen = np.full((n, 3), np.nan)
+    if res is None:
+        z = np.zeros(0, np.int64)
+        return Diagram3D(
+            sites=pts,
+            weights=w,
+            periodic=periodic,
+            container=t.kind,
+            walls=t.WP,
+            volumes=vol,
+            centroids=cen,
+            vertices=np.zeros((0, 3)),
+            cell_faces=np.zeros(n + 1, np.int64),
+            flabel=z,
+            farea=np.zeros((0, 3)),
+            roff=np.zeros(1, np.int64),
+            ring=z,
+            duplicate_of=dup,
+            unmatched=0,
+            container_volume=t.volume,
+        )
+    bad = np.flatnonzero((res.status != 0) & (res.status != 1))
+    if len(bad):
+        raise RuntimeError(
+            f"3D cell builder failed on site {int(uniq[bad[0]])} "
+            f"(status {int(res.status[bad[0]])}); please report this input"
+        )
+    scale3 = 3 * k
+    vol[uniq] = np.ldexp(res.volume, -scale3) if k else res.volume
+    cen[uniq] = from_working(res.centroid, k)
+    counts = np.zeros(n, np.int64)
+    counts[uniq] = np.diff(res.foff)
+    cell_faces = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
+    lab = res.flabel.copy()
+    site = lab >= 0
+    face_keep = shifts = None
+    if gmap is not None:
+        orig, shift = gmap
+        fs = shift[lab[site]]
+        shifts = np.zeros((len(lab), 3), np.int64)
+        shifts[site] = fs
+        lab[site] = orig[lab[site]]
+    lab[site] = uniq[lab[site]]
+    if gmap is not None:
+        owner = np.repeat(uniq, np.diff(res.foff))
+        pos = np.zeros(len(lab), bool)
+        s3 = shifts
+        lexpos = (s3[:, 0] > 0) | (
+            (s3[:, 0] == 0) & ((s3[:, 1] > 0) | ((s3[:, 1] == 0) & (s3[:, 2] > 0)))
+        )
+        pos[:] = lexpos
+        face_keep = (lab < 0) | (lab > owner) | ((lab == owner) & pos)
+    farea = np.ldexp(res.farea, -2 * k) if k else res.farea
+    return Diagram3D(
+        sites=pts,
+        weights=w,
+        periodic=periodic,
+        container=t.kind,
+        walls=t.WP,
+        volumes=vol,
+        centroids=cen,
+        vertices=from_working(res.vertices, k),
+        cell_faces=cell_faces,
+        flabel=lab,
+        farea=farea,
+        roff=res.roff,
+        ring=res.ring,
+        duplicate_of=dup,
+        unmatched=res.unmatched,
+        box=t.bounds,
+        container_volume=t.volume,
+        face_keep=face_keep,
+        shifts=shifts,
+    )

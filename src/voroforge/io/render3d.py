@@ -1,0 +1,182 @@
+"""A small software renderer for 3D previews: shaded meshes to PNG, no GPU, no display.
+
+:func:`render` draws closed meshes with flat Lambert shading under an orthographic camera.
+Faces are polygons (triangles or any convex ring, so Voronoi cells keep their faces whole and
+their edges can be drawn), back faces are culled and the rest painted far to near with
+pillow (the painter's algorithm: exact for convex, non-intersecting solids such as exploded
+cells, a close approximation otherwise), supersampled 2x for smooth edges. Used for the
+previews of 3D diagrams, solids and surfaces.
+
+Example::
+
+    from voroforge.io.render3d import render
+    render([mesh_a, (vertices, faces)], "out.png", size=(800, 600), view=(30, 25))
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+#: a qualitative palette (RGB 0..255) for meshes without a colour
+PALETTE = (
+    (78, 121, 167),
+    (242, 142, 43),
+    (225, 87, 89),
+    (118, 183, 178),
+    (89, 161, 79),
+    (237, 201, 72),
+    (176, 122, 161),
+    (255, 157, 167),
+    (156, 117, 95),
+    (186, 176, 172),
+)
+
+
+def _as_polys(mesh):
+    """``(vertices (k, 3), list of rings)`` from a trimesh or a ``(vertices, faces)`` pair."""
+    if hasattr(mesh, "vertices") and hasattr(mesh, "faces"):
+        v = np.asarray(mesh.vertices, np.float64)
+        f = np.asarray(mesh.faces, np.int64)
+        return v, list(f)
+    v, f = mesh
+    v = np.asarray(v, np.float64)
+    if v.ndim != 2 or v.shape[1] != 3:
+        raise ValueError(f"mesh vertices must have shape (k, 3); got {v.shape}")
+    rings = [np.asarray(r, np.int64) for r in f]
+    for r in rings:
+        if len(r) < 3 or r.min() < 0 or r.max() >= len(v):
+            raise ValueError("mesh faces must be rings of >= 3 valid vertex indices")
+    return v, rings
+
+
+def _rotation(view):
+    az, el = np.radians(view[0]), np.radians(view[1])
+    rz = np.array([[np.cos(az), -np.sin(az), 0], [np.sin(az), np.cos(az), 0], [0, 0, 1]])
+    # camera looks along -y' after tilting by the elevation: screen x = x', up = z'
+    rx = np.array([[1, 0, 0], [0, np.cos(el), -np.sin(el)], [0, np.sin(el), np.cos(el)]])
+    return rx @ rz
+
+
+def render(
+    meshes,
+    path,
+    *,
+    size=(800, 600),
+    view=(35.0, 25.0),
+    colors=None,
+    edges=True,
+    background=(255, 255, 255),
+    light=(-0.4, -0.8, 0.6),
+    edge_color=(40, 40, 40),
+):
+    """Render closed meshes to a PNG file (atomically written).
+
+    Parameters
+    ----------
+    meshes : sequence
+        ``trimesh.Trimesh`` objects and/or ``(vertices (k, 3), faces)`` pairs, faces as an
+        ``(m, 3)`` array or a list of rings (outward, counter-clockwise seen from outside).
+    path : str or Path
+        The PNG to write.
+    size : (int, int)
+        Width and height in pixels.
+    view : (float, float)
+        Azimuth about +z and elevation, degrees.
+    colors : sequence of RGB, optional
+        One colour per mesh (0..255 or 0..1 floats); default a repeating palette.
+    edges : bool
+        Draw face outlines (polygon edges, not triangulation edges of rings).
+    background, light, edge_color
+        Background RGB, light direction (world frame), outline RGB.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
+    from PIL import Image, ImageDraw
+
+    w, h = int(size[0]), int(size[1])
+    if w < 8 or h < 8:
+        raise ValueError(f"size must be at least 8x8 pixels; got {size}")
+    rot = _rotation(view)
+    L = np.asarray(light, np.float64)
+    L = L / np.linalg.norm(L)
+    polys = []  # (depth, screen points, rgb)
+    allpts = []
+    items = [_as_polys(m) for m in meshes]
+    for v, _ in items:
+        if len(v):
+            allpts.append(v @ rot.T)
+    if not allpts:
+        raise ValueError("nothing to render: no vertices")
+    pts = np.vstack(allpts)
+    lo = pts.min(axis=0)
+    hi = pts.max(axis=0)
+    ss = 2  # supersampling
+    W, H = w * ss, h * ss
+    span = max((hi[0] - lo[0]) / (0.9 * W), (hi[2] - lo[2]) / (0.9 * H), 1e-300)
+    cx = 0.5 * (lo[0] + hi[0])
+    cz = 0.5 * (lo[2] + hi[2])
+    for k, (v, rings) in enumerate(items):
+        if not len(v) or not rings:
+            continue
+        col = colors[k] if colors is not None else PALETTE[k % len(PALETTE)]
+        col = np.asarray(col, np.float64)
+        if col.max() <= 1.0:
+            col = col * 255.0
+        r = v @ rot.T
+        sx = (r[:, 0] - cx) / span + 0.5 * W
+        sy = 0.5 * H - (r[:, 2] - cz) / span
+        for ring in rings:
+            p = v[ring]
+            nrm = np.cross(p[1:-1] - p[0], p[2:] - p[0]).sum(axis=0)
+            nn = np.linalg.norm(nrm)
+            if nn == 0.0:
+                continue
+            nrm /= nn
+            if (rot @ nrm)[1] > 1e-12:  # faces away from the camera (which looks along +y')
+                continue
+            shade = 0.35 + 0.65 * max(0.0, float(nrm @ L))
+            rgb = tuple(int(min(255, c * shade + 20)) for c in col)
+            xy = list(zip(sx[ring], sy[ring], strict=True))
+            polys.append((float(r[ring, 1].mean()), xy, rgb))
+    img = Image.new("RGB", (W, H), tuple(int(c) for c in background))
+    draw = ImageDraw.Draw(img)
+    for _, xy, rgb in sorted(polys, key=lambda t: -t[0]):  # far (large y') first
+        draw.polygon(
+            xy, fill=rgb, outline=tuple(edge_color) if edges else None, width=ss if edges else 0
+        )
+    img = img.resize((w, h), Image.LANCZOS)
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(suffix=".png", dir=path.parent if str(path.parent) else ".")
+    os.close(fd)
+    try:
+        img.save(tmp, format="PNG", optimize=True)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+    return path
+
+
+def diagram_meshes(d, cells=None, *, explode=0.0):
+    """``(vertices, rings)`` of a Diagram3D's cells, pushed out from the centre by ``explode``.
+
+    ``explode`` is a fraction of each cell centroid's offset from the diagram's centre.
+    """
+    n = len(d)
+    cells = range(n) if cells is None else cells
+    cen = np.nanmean(np.asarray(d.centroids), axis=0)
+    out = []
+    for i in cells:
+        p = d.cell(i)
+        if not p.faces:
+            continue
+        shift = explode * (p.centroid - cen)
+        out.append((p.vertices + shift, p.faces))
+    return out

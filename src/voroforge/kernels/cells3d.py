@@ -1,0 +1,582 @@
+"""3D Voronoi / power cells one by one: the container cut by nearby bisector planes.
+
+For each cell (as voro++ does): start from the container polyhedron (relative to the site),
+visit the grid's shells of buckets around the site's bucket, nearest candidates of a shell
+first, cut by each candidate's power bisector (:func:`kernels.polyhedron.cut`), and stop once
+no unscanned site can reach the cell (:func:`kernels.grid3d.shell_gap` against twice the
+cell's radius, widened by the weights' spread). Then every vertex is named by its owners and
+recomputed from the name (:mod:`kernels.vertex3d`), so neighbouring cells share its bits;
+local vertices with the same name are merged, faces left with fewer than three vertices
+dropped, and the volume, centroid and face area vectors are taken from the named
+coordinates.
+
+Output slots are per cell with fixed capacities (``caps``); a cell that does not fit is
+reported (status ``OVERFLOW``) and the engine runs it again alone with room to spare.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ..config import NJIT, VORONOI3D_CUT_RTOL, VORONOI3D_STOP_RTOL
+from .grid3d import bucket3d, shell_buckets, shell_gap
+from .polyhedron import (
+    CUT_DONE,
+    CUT_EMPTY,
+    CUT_NONE,
+    CUT_OVERFLOW,
+    cut,
+    face_vector,
+    moments,
+    plane_values,
+)
+from .vertex3d import axis_snap, name_vertex
+
+OK = 0
+EMPTY = 1
+OVERFLOW = 2
+BROKEN = 3
+UNNAMED = 4
+
+MAX_OWNERS = 32
+
+
+@njit(**NJIT)
+def _radius2(V, nv):
+    r = 0.0
+    for v in range(nv):
+        r = max(r, V[v, 0] * V[v, 0] + V[v, 1] * V[v, 1] + V[v, 2] * V[v, 2])
+    return r
+
+
+@njit(**NJIT)
+def _scratch(vcap, fcap, rcap, ncand, nbuck):
+    V = np.zeros((vcap, 3))
+    F = np.zeros((fcap, 3), np.int64)
+    R = np.zeros(rcap, np.int64)
+    R2 = np.zeros(rcap, np.int64)
+    S = np.zeros(vcap)
+    work = np.zeros((max(vcap, rcap), 4), np.int64)
+    T = np.zeros((4 * vcap, 1), np.int64)  # the sites whose planes cut or touched the cell
+    OWN = np.zeros((vcap, max(MAX_OWNERS, vcap // 16)), np.int64)
+    cand = np.zeros(ncand, np.int64)
+    cd2 = np.zeros(ncand)
+    buck = np.zeros(nbuck, np.int64)
+    return V, F, R, R2, S, work, T, OWN, cand, cd2, buck
+
+
+@njit(**NJIT)
+def _cut_batch(
+    m, i, px, py, pz, wi, W, SP, sidx, cand, cd2, V, nv, F, nf, R, R2, S, work, T, nt, rmax2
+):
+    """Cut the cell by the ``m`` gathered candidates, nearest first.
+
+    Returns ``(status, nv, nf, nt, rmax2)``.
+    """
+    for a in range(1, m):  # insertion sort: batches are small
+        ta = cand[a]
+        da = cd2[a]
+        b = a - 1
+        while b >= 0 and cd2[b] > da:
+            cand[b + 1] = cand[b]
+            cd2[b + 1] = cd2[b]
+            b -= 1
+        cand[b + 1] = ta
+        cd2[b + 1] = da
+    for a in range(m):
+        t = cand[a]
+        j = sidx[t]
+        d2 = cd2[a]
+        dx = SP[t, 0] - px
+        dy = SP[t, 1] - py
+        dz = SP[t, 2] - pz
+        h = 0.5 * (d2 + (wi - W[j]))
+        if h > 0.0 and h * h > rmax2 * d2 * (1.0 + VORONOI3D_STOP_RTOL):
+            continue  # the plane passes beyond every vertex
+        tol = VORONOI3D_CUT_RTOL * (np.sqrt(d2 * rmax2) + abs(h))
+        smin, smax = plane_values(V, nv, dx, dy, dz, h, tol, S)
+        if smax == 0.0 or smax > 0.0:  # it cuts or touches: a possible owner of vertices
+            if nt >= T.shape[0]:
+                return OVERFLOW, 0, 0, 0, 0.0
+            T[nt, 0] = j
+            nt += 1
+        if smax <= 0.0:
+            continue
+        st, nv2, nf2 = cut(V, nv, F, nf, R, R2, S, work, j)
+        if st == CUT_EMPTY:
+            return EMPTY, 0, 0, 0, 0.0
+        if st != CUT_DONE:
+            return (OVERFLOW if st == CUT_OVERFLOW else BROKEN), 0, 0, 0, 0.0
+        nv = nv2
+        nf = nf2
+        rmax2 = _radius2(V, nv)
+    return OK, nv, nf, nt, rmax2
+
+
+@njit(**NJIT)
+def _one_cell(
+    i,
+    P,
+    W,
+    wmax,
+    start,
+    SP,
+    sidx,
+    g,
+    TV,
+    TF,
+    TR,
+    WP,
+    ns,
+    V,
+    F,
+    R,
+    R2,
+    S,
+    work,
+    T,
+    OWN,
+    cand,
+    cd2,
+    buck,
+):
+    """Cut cell ``i``; leaves it in ``(V, F, R)``. Returns ``(status, nv, nf, nt, rmax2)``."""
+    px = P[i, 0]
+    py = P[i, 1]
+    pz = P[i, 2]
+    wi = W[i]
+    ntv = TV.shape[0]
+    ntf = TF.shape[0]
+    if ntv > V.shape[0] or ntf > F.shape[0] or TR.shape[0] > R.shape[0]:
+        return OVERFLOW, 0, 0, 0, 0.0
+    for v in range(ntv):
+        V[v, 0] = TV[v, 0] - px
+        V[v, 1] = TV[v, 1] - py
+        V[v, 2] = TV[v, 2] - pz
+    for f in range(ntf):
+        F[f, 0] = TF[f, 0]
+        F[f, 1] = TF[f, 1]
+        F[f, 2] = TF[f, 2]
+    for t in range(TR.shape[0]):
+        R[t] = TR[t]
+    nv = ntv
+    nf = ntf
+    nt = 0
+    # the container's walls: are any of its vertices on the site's side only by rounding?
+    rmax2 = _radius2(V, nv)
+    ci, cj, ck = bucket3d(px, py, pz, g)
+    ncap = cand.shape[0]
+    st = OK
+    r = 0
+    while True:
+        nb = shell_buckets(ci, cj, ck, r, g, buck)
+        if nb == 0:
+            break
+        m = 0
+        for q in range(nb):
+            b = buck[q]
+            for t in range(start[b], start[b + 1]):
+                j = sidx[t]
+                if j == i:
+                    continue
+                dx = SP[t, 0] - px
+                dy = SP[t, 1] - py
+                dz = SP[t, 2] - pz
+                d2 = dx * dx + dy * dy + dz * dz
+                if d2 == 0.0:
+                    continue
+                cand[m] = t
+                cd2[m] = d2
+                m += 1
+                if m == ncap:  # a crowded shell: cut by what is gathered, then go on
+                    st, nv, nf, nt, rmax2 = _cut_batch(
+                        m,
+                        i,
+                        px,
+                        py,
+                        pz,
+                        wi,
+                        W,
+                        SP,
+                        sidx,
+                        cand,
+                        cd2,
+                        V,
+                        nv,
+                        F,
+                        nf,
+                        R,
+                        R2,
+                        S,
+                        work,
+                        T,
+                        nt,
+                        rmax2,
+                    )
+                    if st != OK:
+                        return st, 0, 0, 0, 0.0
+                    m = 0
+        st, nv, nf, nt, rmax2 = _cut_batch(
+            m,
+            i,
+            px,
+            py,
+            pz,
+            wi,
+            W,
+            SP,
+            sidx,
+            cand,
+            cd2,
+            V,
+            nv,
+            F,
+            nf,
+            R,
+            R2,
+            S,
+            work,
+            T,
+            nt,
+            rmax2,
+        )
+        if st != OK:
+            return st, 0, 0, 0, 0.0
+        gap = shell_gap(px, py, pz, ci, cj, ck, r, g)
+        if gap == np.inf:
+            break
+        lhs = gap * gap + wi - wmax
+        if lhs > 0.0 and lhs * lhs > 4.0 * gap * gap * rmax2 * (1.0 + VORONOI3D_STOP_RTOL):
+            break
+        r += 1
+    return OK, nv, nf, nt, rmax2
+
+
+@njit(**NJIT)
+def _mark_owners(V, nv, nx, ny, nz, h, tol, key, OWN, work):
+    """Add owner ``key`` to every vertex within ``tol`` of the plane ``n . v = h``.
+
+    Returns False when a vertex has more owners than ``OWN`` has room for.
+    """
+    ok = True
+    for v in range(nv):
+        s = nx * V[v, 0] + ny * V[v, 1] + nz * V[v, 2] - h
+        if abs(s) <= tol:
+            c = work[v, 0]
+            if c < OWN.shape[1]:
+                OWN[v, c] = key
+                work[v, 0] = c + 1
+            else:
+                ok = False
+    return ok
+
+
+@njit(**NJIT)
+def _name_cell(i, P, W, WP, ns, V, nv, F, nf, R, T, nt, OWN, work, vnames, vabs, vrel):
+    """Owners, names and named coordinates of the cell's vertices; returns status."""
+    for v in range(nv):
+        OWN[v, 0] = i
+        work[v, 0] = 1
+    nw = ns  # wall keys start at ns
+    for f in range(nf):
+        lab = F[f, 0]
+        key = lab if lab >= 0 else nw + (-1 - lab)
+        for k in range(F[f, 2]):
+            v = R[F[f, 1] + k]
+            c = work[v, 0]
+            if c < OWN.shape[1]:
+                OWN[v, c] = key
+                work[v, 0] = c + 1
+    # every plane that cut or touched the cell, and every wall: on it within tolerance?
+    px = P[i, 0]
+    py = P[i, 1]
+    pz = P[i, 2]
+    rmax2 = _radius2(V, nv)
+    for u in range(nt):
+        j = T[u, 0]
+        dx = P[j, 0] - px
+        dy = P[j, 1] - py
+        dz = P[j, 2] - pz
+        d2 = dx * dx + dy * dy + dz * dz
+        h = 0.5 * (d2 + (W[i] - W[j]))
+        tol = VORONOI3D_CUT_RTOL * (np.sqrt(d2 * rmax2) + abs(h))
+        if not _mark_owners(V, nv, dx, dy, dz, h, tol, j, OWN, work):
+            return OVERFLOW
+    for w in range(WP.shape[0]):
+        nx = WP[w, 0]
+        ny = WP[w, 1]
+        nz = WP[w, 2]
+        h = WP[w, 3] - (nx * px + ny * py + nz * pz)
+        nn = np.sqrt(nx * nx + ny * ny + nz * nz)
+        tol = VORONOI3D_CUT_RTOL * (nn * np.sqrt(rmax2) + abs(h))
+        if not _mark_owners(V, nv, nx, ny, nz, h, tol, nw + w, OWN, work):
+            return OVERFLOW
+    rows = np.zeros((3, 4))
+    y = np.zeros(3)
+    name = np.zeros(4, np.int64)
+    x = np.zeros(3)
+    keys = np.zeros(OWN.shape[1], np.int64)
+    for v in range(nv):
+        c = work[v, 0]
+        # sort and dedupe the owners
+        m = 0
+        for t in range(c):
+            keys[m] = OWN[v, t]
+            m += 1
+        for a in range(1, m):
+            ka = keys[a]
+            b = a - 1
+            while b >= 0 and keys[b] > ka:
+                keys[b + 1] = keys[b]
+                b -= 1
+            keys[b + 1] = ka
+        u = 0
+        for t in range(m):
+            if u == 0 or keys[t] != keys[u - 1]:
+                keys[u] = keys[t]
+                u += 1
+        if u < 4 or not name_vertex(keys, u, P, W, WP, ns, rows, y, name):
+            return UNNAMED
+        a = name[0]
+        for q in range(4):
+            vnames[v, q] = name[q]
+        for q in range(3):
+            x[q] = P[a, q] + y[q]
+        axis_snap(keys, u, ns, WP, x)
+        for q in range(3):
+            vabs[v, q] = x[q]
+            if x[q] == P[a, q] + y[q]:
+                vrel[v, q] = (P[a, q] - P[i, q]) + y[q]
+            else:  # snapped onto a wall
+                vrel[v, q] = x[q] - P[i, q]
+    return OK
+
+
+@njit(**NJIT)
+def _merge_named(nv, F, nf, R, vnames, vabs, vrel, remap):
+    """Merge local vertices with equal names, drop repeated ring entries and thin faces.
+
+    Returns ``(nv, nf, nr)``; rings are repacked from 0.
+    """
+    m = 0
+    for v in range(nv):
+        same = -1
+        for u in range(m):
+            if (
+                vnames[u, 0] == vnames[v, 0]
+                and vnames[u, 1] == vnames[v, 1]
+                and vnames[u, 2] == vnames[v, 2]
+                and vnames[u, 3] == vnames[v, 3]
+            ):
+                same = u
+                break
+        if same >= 0:
+            remap[v] = same
+            continue
+        remap[v] = m
+        if m != v:
+            for q in range(4):
+                vnames[m, q] = vnames[v, q]
+            for q in range(3):
+                vabs[m, q] = vabs[v, q]
+                vrel[m, q] = vrel[v, q]
+        m += 1
+    nr = 0
+    nf2 = 0
+    for f in range(nf):
+        st = F[f, 1]
+        ln = F[f, 2]
+        b = nr
+        for k in range(ln):
+            x = remap[R[st + k]]
+            if nr > b and R[nr - 1] == x:
+                continue
+            R[nr] = x
+            nr += 1
+        while nr - b > 1 and R[nr - 1] == R[b]:
+            nr -= 1
+        if nr - b >= 3:
+            F[nf2, 0] = F[f, 0]
+            F[nf2, 1] = b
+            F[nf2, 2] = nr - b
+            nf2 += 1
+        else:
+            nr = b
+    return m, nf2, nr
+
+
+@njit(**NJIT)
+def build_cells(
+    cells,
+    P,
+    W,
+    start,
+    SP,
+    sidx,
+    g,
+    TV,
+    TF,
+    TR,
+    WP,
+    caps,
+    nblocks,
+    status,
+    counts,
+    vol,
+    cen,
+    rad2,
+    onames,
+    ovabs,
+    ofaces,
+    oarea,
+    oring,
+):
+    """Build the cells ``cells (k,)`` (site numbers) in ``nblocks`` parallel blocks.
+
+    Per cell ``c`` (position in ``cells``), with ``caps = (cv, cf, cr, scratch_v, scratch_f,
+    scratch_r)``: vertex names ``onames[c * cv:...] (.., 4)`` and absolute coordinates
+    ``ovabs``; faces ``ofaces[c * cf:...] = (label, length)``, area vectors ``oarea`` (relative
+    frame, outward), rings ``oring[c * cr:...]`` of local vertex numbers; ``counts[c] = (nv,
+    nf, nr)``; ``vol``, ``cen`` (absolute), ``rad2`` (squared radius from the site).
+    """
+    k = cells.shape[0]
+    ns = P.shape[0]
+    cv = caps[0]
+    cf = caps[1]
+    cr = caps[2]
+    wmax = W.max() if W.shape[0] > 0 else 0.0
+    nbuck = int(g[6] * g[7] * g[8])
+    per = (k + nblocks - 1) // nblocks
+    for blk in range(nblocks):
+        lo = blk * per
+        hi = min(k, lo + per)
+        if lo >= hi:
+            continue
+        V, F, R, R2, S, work, T, OWN, cand, cd2, buck = _scratch(
+            caps[3], caps[4], caps[5], max(1024, min(ns, 1 << 16)), nbuck
+        )
+        vnames = np.zeros((caps[3], 4), np.int64)
+        vabs = np.zeros((caps[3], 3))
+        vrel = np.zeros((caps[3], 3))
+        remap = np.zeros(caps[3], np.int64)
+        for c in range(lo, hi):
+            i = cells[c]
+            st, nv, nf, nt, r2 = _one_cell(
+                i,
+                P,
+                W,
+                wmax,
+                start,
+                SP,
+                sidx,
+                g,
+                TV,
+                TF,
+                TR,
+                WP,
+                ns,
+                V,
+                F,
+                R,
+                R2,
+                S,
+                work,
+                T,
+                OWN,
+                cand,
+                cd2,
+                buck,
+            )
+            counts[c, 0] = 0
+            counts[c, 1] = 0
+            counts[c, 2] = 0
+            vol[c] = 0.0
+            cen[c, 0] = np.nan
+            cen[c, 1] = np.nan
+            cen[c, 2] = np.nan
+            rad2[c] = r2
+            if st != OK:
+                status[c] = st
+                continue
+            st = _name_cell(i, P, W, WP, ns, V, nv, F, nf, R, T, nt, OWN, work, vnames, vabs, vrel)
+            if st != OK:
+                status[c] = st
+                continue
+            nv, nf, nr = _merge_named(nv, F, nf, R, vnames, vabs, vrel, remap)
+            if nv > cv or nf > cf or nr > cr:
+                status[c] = OVERFLOW
+                continue
+            if nf < 4:
+                status[c] = EMPTY
+                continue
+            status[c] = OK
+            counts[c, 0] = nv
+            counts[c, 1] = nf
+            counts[c, 2] = nr
+            v0, mx, my, mz = moments(vrel, F, nf, R)
+            vol[c] = v0
+            if v0 > 0.0:
+                cen[c, 0] = P[i, 0] + mx / v0
+                cen[c, 1] = P[i, 1] + my / v0
+                cen[c, 2] = P[i, 2] + mz / v0
+            bv = c * cv
+            for v in range(nv):
+                for q in range(4):
+                    onames[bv + v, q] = vnames[v, q]
+                for q in range(3):
+                    ovabs[bv + v, q] = vabs[v, q]
+            bf = c * cf
+            br = c * cr
+            t = 0
+            for f in range(nf):
+                ofaces[bf + f, 0] = F[f, 0]
+                ofaces[bf + f, 1] = F[f, 2]
+                ax, ay, az = face_vector(vrel, R, F[f, 1], F[f, 2])
+                oarea[bf + f, 0] = ax
+                oarea[bf + f, 1] = ay
+                oarea[bf + f, 2] = az
+                for q in range(F[f, 2]):
+                    oring[br + t] = R[F[f, 1] + q]
+                    t += 1
+
+
+@njit(**NJIT)
+def container_cut(TV, TF, TR, nx, ny, nz, h, label, caps):
+    """Cut a container template by the half-space ``n . x <= h`` (absolute frame).
+
+    Returns ``(status, V, F, R)`` trimmed; used to build convex containers from a box.
+    """
+    V = np.zeros((caps, 3))
+    F = np.zeros((caps, 3), np.int64)
+    R = np.zeros(4 * caps, np.int64)
+    R2 = np.zeros(4 * caps, np.int64)
+    S = np.zeros(caps)
+    work = np.zeros((4 * caps, 4), np.int64)
+    nv = TV.shape[0]
+    nf = TF.shape[0]
+    V[:nv] = TV
+    F[:nf] = TF
+    R[: TR.shape[0]] = TR
+    scale = 0.0
+    for v in range(nv):
+        scale = max(scale, abs(TV[v, 0]) + abs(TV[v, 1]) + abs(TV[v, 2]))
+    nn = np.sqrt(nx * nx + ny * ny + nz * nz)
+    tol = VORONOI3D_CUT_RTOL * (nn * scale + abs(h))
+    plane_values(V, nv, nx, ny, nz, h, tol, S)
+    st, nv, nf = cut(V, nv, F, nf, R, R2, S, work, label)
+    if st == CUT_NONE:
+        return st, TV.copy(), TF.copy(), TR.copy()
+    nr = 0
+    for f in range(nf):
+        nr += F[f, 2]
+    # faces may not be packed from 0 in R after cut; repack
+    R3 = np.zeros(nr, np.int64)
+    t = 0
+    F3 = F[:nf].copy()
+    for f in range(nf):
+        for q in range(F[f, 2]):
+            R3[t + q] = R[F[f, 1] + q]
+        F3[f, 1] = t
+        t += F[f, 2]
+    return st, V[:nv].copy(), F3, R3

@@ -1,0 +1,115 @@
+"""The vertex rule in 3D: a vertex is named by its owner quadruple, computed from that name.
+
+Owners are keys: a site ``j`` is key ``j``, wall ``w`` of the container is key ``nsites + w``
+(so sites sort first). A vertex's owners are *every* site and wall it is equidistant from /
+lies on (the cell builder collects them: the faces around the vertex and the planes that only
+touch it), so every cell meeting at the vertex sees the same set. Its name is the first
+quadruple of that sorted set, in lexicographic order, whose planes are independent: for a
+cubic grid's 8 co-spherical sites the first four are coplanar and are skipped. The
+coordinates are solved from the name alone (relative to the name's lowest site), so every
+cell gets the same bits.
+
+The linear system: for the lowest site ``p0`` and each other owner a row ``r . y = t``,
+``r = p_j - p0``, ``t = (|r|^2 + w0 - w_j) / 2`` for a site (its power bisector), ``r = n``,
+``t = d - n . p0`` for a wall ``n . x <= d``; ``x = p0 + y`` by Cramer's rule. A coordinate on
+an axis-aligned wall is set to the wall's value exactly.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ..config import NJIT, VORONOI3D_DET_RTOL
+
+
+@njit(**NJIT)
+def _row(key, p0, P, W, WP, ns, out, k):
+    """Row ``k`` of the system for owner ``key`` into ``out[k] = (rx, ry, rz, t)``."""
+    if key < ns:
+        rx = P[key, 0] - P[p0, 0]
+        ry = P[key, 1] - P[p0, 1]
+        rz = P[key, 2] - P[p0, 2]
+        out[k, 0] = rx
+        out[k, 1] = ry
+        out[k, 2] = rz
+        out[k, 3] = 0.5 * ((rx * rx + ry * ry + rz * rz) + (W[p0] - W[key]))
+    else:
+        w = key - ns
+        out[k, 0] = WP[w, 0]
+        out[k, 1] = WP[w, 1]
+        out[k, 2] = WP[w, 2]
+        out[k, 3] = WP[w, 3] - (WP[w, 0] * P[p0, 0] + WP[w, 1] * P[p0, 1] + WP[w, 2] * P[p0, 2])
+
+
+@njit(**NJIT)
+def solve_name(a, b, c, d, P, W, WP, ns, rows, out):
+    """Coordinates of the vertex named ``(a, b, c, d)`` (``a`` a site).
+
+    Writes ``y`` (relative to site ``a``) into ``out[0:3]`` and returns True, or False when the
+    four planes are not independent (relative determinant below ``VORONOI3D_DET_RTOL``).
+    """
+    _row(b, a, P, W, WP, ns, rows, 0)
+    _row(c, a, P, W, WP, ns, rows, 1)
+    _row(d, a, P, W, WP, ns, rows, 2)
+    # cofactors: c0 = r1 x r2, c1 = r2 x r0, c2 = r0 x r1
+    c0x = rows[1, 1] * rows[2, 2] - rows[1, 2] * rows[2, 1]
+    c0y = rows[1, 2] * rows[2, 0] - rows[1, 0] * rows[2, 2]
+    c0z = rows[1, 0] * rows[2, 1] - rows[1, 1] * rows[2, 0]
+    c1x = rows[2, 1] * rows[0, 2] - rows[2, 2] * rows[0, 1]
+    c1y = rows[2, 2] * rows[0, 0] - rows[2, 0] * rows[0, 2]
+    c1z = rows[2, 0] * rows[0, 1] - rows[2, 1] * rows[0, 0]
+    c2x = rows[0, 1] * rows[1, 2] - rows[0, 2] * rows[1, 1]
+    c2y = rows[0, 2] * rows[1, 0] - rows[0, 0] * rows[1, 2]
+    c2z = rows[0, 0] * rows[1, 1] - rows[0, 1] * rows[1, 0]
+    det = rows[0, 0] * c0x + rows[0, 1] * c0y + rows[0, 2] * c0z
+    n0 = np.sqrt(rows[0, 0] ** 2 + rows[0, 1] ** 2 + rows[0, 2] ** 2)
+    n1 = np.sqrt(rows[1, 0] ** 2 + rows[1, 1] ** 2 + rows[1, 2] ** 2)
+    n2 = np.sqrt(rows[2, 0] ** 2 + rows[2, 1] ** 2 + rows[2, 2] ** 2)
+    if not abs(det) > VORONOI3D_DET_RTOL * n0 * n1 * n2:
+        return False
+    t0 = rows[0, 3]
+    t1 = rows[1, 3]
+    t2 = rows[2, 3]
+    out[0] = (t0 * c0x + t1 * c1x + t2 * c2x) / det
+    out[1] = (t0 * c0y + t1 * c1y + t2 * c2y) / det
+    out[2] = (t0 * c0z + t1 * c1z + t2 * c2z) / det
+    return True
+
+
+@njit(**NJIT)
+def axis_snap(keys, m, ns, WP, x):
+    """Put ``x`` (absolute, 3,) exactly on every axis-aligned wall among ``keys[:m]``."""
+    for t in range(m):
+        k = keys[t]
+        if k < ns:
+            continue
+        w = k - ns
+        for a in range(3):
+            b = (a + 1) % 3
+            c = (a + 2) % 3
+            if WP[w, b] == 0.0 and WP[w, c] == 0.0 and abs(WP[w, a]) == 1.0:
+                x[a] = WP[w, 3] * WP[w, a]
+
+
+@njit(**NJIT)
+def name_vertex(keys, m, P, W, WP, ns, rows, y, name):
+    """Name a vertex with sorted owner keys ``keys[:m]`` and solve its coordinates.
+
+    ``name (4,)`` receives the quadruple, ``y (3,)`` the coordinates relative to
+    ``name[0]``. Returns False when no quadruple of the owners is independent.
+    """
+    for i0 in range(m):
+        a = keys[i0]
+        if a >= ns:
+            break
+        for i1 in range(i0 + 1, m):
+            for i2 in range(i1 + 1, m):
+                for i3 in range(i2 + 1, m):
+                    if solve_name(a, keys[i1], keys[i2], keys[i3], P, W, WP, ns, rows, y):
+                        name[0] = a
+                        name[1] = keys[i1]
+                        name[2] = keys[i2]
+                        name[3] = keys[i3]
+                        return True
+    return False

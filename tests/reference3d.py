@@ -1,0 +1,115 @@
+"""Slow, obvious references for 3D Voronoi / power cells (tests only).
+
+``brute_cell`` intersects the container's half-spaces with the power bisector of the site
+and *every* other site (scipy's HalfspaceIntersection, Qhull), so no search, stop test or
+naming can hide an error; ``brute_volumes`` takes their hulls' volumes. ``voropp_cells``
+runs the voro++ command-line tool and reads its volumes and neighbour lists.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import tempfile
+
+import numpy as np
+
+VOROPP = shutil.which("voro++")
+
+
+def brute_cell(points, i, walls, weights=None):
+    """Vertices of cell ``i`` (power cell with ``weights``) in the region ``walls (W, 4)``.
+
+    Returns ``(k, 3)`` vertices, or ``None`` when the cell is empty.
+    """
+    from scipy.optimize import linprog
+    from scipy.spatial import HalfspaceIntersection
+
+    p = np.asarray(points, np.float64)
+    w = np.zeros(len(p)) if weights is None else np.asarray(weights, np.float64)
+    others = np.array([j for j in range(len(p)) if j != i and not (p[j] == p[i]).all()], int)
+    rows = [np.column_stack([walls[:, :3], -walls[:, 3]])]  # A x + b <= 0
+    if len(others):
+        d = p[others] - p[i]
+        h = 0.5 * ((p[others] ** 2).sum(1) - (p[i] ** 2).sum() - w[others] + w[i])
+        rows.append(np.column_stack([d, -h]))
+    hs = np.vstack(rows)
+    norm = np.linalg.norm(hs[:, :3], axis=1)
+    A = hs[:, :3] / norm[:, None]
+    b = -hs[:, 3] / norm
+    # Chebyshev centre: an interior point, or proof that the cell is empty
+    res = linprog(
+        [0, 0, 0, -1],
+        A_ub=np.column_stack([A, np.ones(len(A))]),
+        b_ub=b,
+        bounds=[(None, None)] * 3 + [(0, None)],
+        method="highs",
+    )
+    if res.status != 0 or res.x[3] <= 1e-12 * (np.abs(b).max() + 1):
+        return None
+    hi = HalfspaceIntersection(np.column_stack([A, -b]), res.x[:3])
+    return hi.intersections
+
+
+def brute_volumes(points, walls, weights=None):
+    """Volume of every cell by :func:`brute_cell` (0 for empty cells).
+
+    The input is moved to the origin and scaled to unit size first (Qhull's tolerances are
+    absolute); volumes are scaled back.
+    """
+    from scipy.spatial import ConvexHull
+
+    p = np.asarray(points, np.float64)
+    c = p.mean(axis=0)
+    s = float(np.abs(p - c).max()) or 1.0
+    p = (p - c) / s
+    walls = np.asarray(walls, np.float64).copy()
+    walls[:, 3] = (walls[:, 3] - walls[:, :3] @ c) / s
+    weights = None if weights is None else np.asarray(weights) / s**2
+    out = np.zeros(len(p))
+    for i in range(len(p)):
+        v = brute_cell(p, i, walls, weights)
+        if v is not None and len(v) >= 4:
+            out[i] = ConvexHull(v).volume * s**3
+    return out
+
+
+def voropp_cells(points, box):
+    """voro++ CLI on ``points`` in ``box = (xmin, ymin, zmin, xmax, ymax, zmax)``.
+
+    Returns ``(volumes (n,), neighbours: list of sorted int lists, walls as -1..-6)``.
+    """
+    pts = np.asarray(points, np.float64)
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "pts")
+        with open(path, "w") as fh:
+            for k, (x, y, z) in enumerate(pts):
+                fh.write(f"{k} {float(x)!r} {float(y)!r} {float(z)!r}\n")
+        x0, y0, z0, x1, y1, z1 = box
+        subprocess.run(
+            [
+                VOROPP,
+                "-o",
+                "-c",
+                "%i %v %n",
+                str(x0),
+                str(x1),
+                str(y0),
+                str(y1),
+                str(z0),
+                str(z1),
+                path,
+            ],
+            check=True,
+            capture_output=True,
+        )
+        vol = np.zeros(len(pts))
+        nbs = [[] for _ in range(len(pts))]
+        with open(path + ".vol") as fh:
+            for line in fh:
+                parts = line.split()
+                k = int(parts[0])
+                vol[k] = float(parts[1])
+                nbs[k] = sorted(int(v) for v in parts[2:])
+    return vol, nbs
