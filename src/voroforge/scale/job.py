@@ -1,0 +1,503 @@
+"""The driver of a tiled Voronoi job on dask.distributed: :func:`voronoi`.
+
+Steps, all as dask tasks on the client's workers: (1) every chunk reports its extent, its
+non-finite rows, a checksum and a sample; (2) the sample places a k-d tiling balanced by
+count; (3) every chunk is split by owning tile and each tile's pieces merged (the shuffle);
+(4) each tile runs with a halo of a few site spacings, certifies its cells and writes its
+partition file when all are final, else the driver sends the uncertified ones back with the
+pieces their discs reach (higher priority, so pending tiles finish first); (5) the driver
+writes the dataset's ``_metadata``/``_common_metadata`` and the job manifest.
+
+A partition file appears only complete (temp + rename); a rerun on the same input finds the
+manifest, checks the fingerprint (row count, per-chunk checksums, boundary, tiling) and
+computes only the tiles whose files are missing.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import operator
+import os
+import shutil
+import time
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .. import config
+from .sources import open_source
+from .tasks import chunk_split, chunk_stats, group_discs, merge_pieces, retry_tile, run_tile, take
+from .tiling import kd_tiling
+
+__all__ = ["MANIFEST", "ScaleResult", "voronoi"]
+
+#: The job manifest's file name inside the output folder.
+MANIFEST = "_voroforge_scale.json"
+_FORMAT = "voroforge-scale/1"
+
+
+@dataclass
+class ScaleResult:
+    """Summary of a tiled job.
+
+    Attributes
+    ----------
+    path : Path
+        The output folder (a Parquet dataset: one ``part-NNNNN.parquet`` per tile).
+    cells : int
+        Rows written (one per input site).
+    tiles : int
+        Number of tiles.
+    workers : int
+        Workers of the client.
+    uncertified : int
+        Cells that no round could certify (0 unless something is wrong; their ids are in
+        the tiles' info).
+    retried : int
+        Cells the first halo did not certify (recomputed with a wider one).
+    resumed : int
+        Tiles found finished on disk and not recomputed.
+    seconds : float
+        Wall time of the call.
+    dashboard : str or None
+        The dask dashboard's address.
+    tile_info : list of dict
+        Per tile: sites owned and loaded, first-round uncertified cells, rounds, seconds,
+        extent, file.
+    """
+
+    path: Path
+    cells: int
+    tiles: int
+    workers: int
+    uncertified: int
+    retried: int
+    resumed: int
+    seconds: float
+    dashboard: str | None = None
+    tile_info: list = field(default_factory=list, repr=False)
+
+
+@contextmanager
+def _client_for(client, workers):
+    """The given client, the current one, or a LocalCluster started for the call."""
+    if client is not None:
+        yield client
+        return
+    from distributed import Client, LocalCluster, default_client
+
+    try:
+        yield default_client()
+        return
+    except ValueError:
+        pass
+    import logging
+
+    n = workers or max(1, os.cpu_count() or 1)
+    with (
+        LocalCluster(
+            n_workers=n, threads_per_worker=1, processes=True, silence_logs=logging.ERROR
+        ) as cluster,
+        Client(cluster) as fresh,
+    ):
+        yield fresh
+
+
+def _ours(path: Path) -> bool:
+    """True when every entry of folder ``path`` is something a job writes."""
+    for p in path.iterdir():
+        name = p.name
+        if not (
+            name in (MANIFEST, "_metadata", "_common_metadata")
+            or (name.startswith("part-") and name.endswith(".parquet"))
+            or name.startswith("_points.tmp")
+            or (name.startswith(".") and name.endswith(".tmp"))
+        ):
+            return False
+    return True
+
+
+def _prepare_out(out: Path, overwrite: bool):
+    """Create ``out``; returns the manifest of an unfinished job there (to resume) or None."""
+    if out.exists():
+        manifest = out / MANIFEST
+        if out.is_dir() and manifest.is_file():
+            old = json.loads(manifest.read_text())
+            if not old.get("complete") and not overwrite:
+                return old
+        if not overwrite:
+            raise ValueError(f"{out} exists; pass overwrite=True (--overwrite) to replace it")
+        if out.is_dir():
+            if not _ours(out):
+                raise ValueError(f"{out} is a folder with other files; refusing to overwrite it")
+            shutil.rmtree(out)
+        else:
+            out.unlink()
+    out.mkdir(parents=True)
+    return None
+
+
+def _boundary_spec(boundary):
+    """``(engine boundary, manifest text)``, validated here (errors before any work)."""
+    import shapely
+
+    from ..engine.domain import make_domain
+
+    if boundary is None:
+        return None, None
+    dom = make_domain(boundary, np.zeros((1, 2)))
+    if isinstance(boundary, shapely.Geometry):
+        return boundary, shapely.to_wkb(boundary, hex=True)
+    return tuple(float(v) for v in dom.bounds), list(dom.bounds)
+
+
+def _tile_count(n, tiles, tile_size, workers):
+    if tiles is not None:
+        if int(tiles) < 1:
+            raise ValueError(f"tiles must be at least 1; got {tiles}")
+        return int(min(tiles, max(n, 1)))
+    if tile_size is not None:
+        if int(tile_size) < 1:
+            raise ValueError(f"tile_size must be at least 1; got {tile_size}")
+        return max(1, math.ceil(n / int(tile_size)))
+    return max(1, min(max(n // 1000, 1), max(math.ceil(n / config.SCALE_TILE_SITES), 2 * workers)))
+
+
+def _halo(rect, count, lo, hi):
+    """The first halo of a tile: a few mean site spacings of its finite part."""
+    x0, y0 = max(rect[0], lo[0]), max(rect[1], lo[1])
+    x1, y1 = min(rect[2], hi[0]), min(rect[3], hi[1])
+    area = max(x1 - x0, 0.0) * max(y1 - y0, 0.0)
+    if count == 0:
+        return 0.0
+    if area == 0.0:  # sites on a line: the spacing along it
+        area = max(x1 - x0, y1 - y0, 1e-300) ** 2 / count
+    return config.SCALE_HALO_SPACINGS * math.sqrt(area / count)
+
+
+def _grown(rect, h):
+    return (rect[0] - h, rect[1] - h, rect[2] + h, rect[3] + h)
+
+
+def _tile_done(path: Path):
+    """The info stored in a finished partition file, or None."""
+    if not path.is_file():
+        return None
+    import pyarrow.parquet as pq
+
+    try:
+        meta = pq.read_metadata(path).metadata or {}
+    except Exception:  # a damaged file is recomputed
+        return None
+    raw = meta.get(b"voroforge_tile")
+    return json.loads(raw) if raw else None
+
+
+def _bad_rows_error(stats):
+    rows = [r for s in stats for r in s["bad"]]
+    total = sum(s["bad_count"] for s in stats)
+    shown = ", ".join(str(r) for r in rows[:20])
+    more = f" (and {total - 20} more)" if total > 20 else ""
+    return ValueError(f"points contain NaN or infinite coordinates in {total} rows: {shown}{more}")
+
+
+def voronoi(
+    points,
+    boundary=None,
+    *,
+    out="cells.parquet",
+    tiles: int | None = None,
+    tile_size: int | None = None,
+    client=None,
+    workers: int | None = None,
+    crs=None,
+    overwrite: bool = False,
+    progress=None,
+    chunk_rows: int | None = None,
+) -> ScaleResult:
+    """Voronoi cells of many sites in tiles on dask.distributed, written as GeoParquet.
+
+    The cells are those of :func:`voroforge.voronoi` on all sites at once (see
+    ``docs/scale.md`` for exactly what "identical" means): each tile computes its own sites'
+    cells with a halo of neighbouring sites, and a cell is kept only when its certificate
+    holds (every site within twice its farthest vertex distance was loaded); the others are
+    recomputed with the sites their own bound asks for, until none is left.
+
+    Parameters
+    ----------
+    points : (n, 2) array_like, dask array, or path of a .npy (memory-mapped), .csv or .parquet
+        The sites. Files need ``x``/``y`` columns (or lon/lat, easting/northing); their other
+        columns are carried to the output as attributes. Rows are the ``site_id`` s.
+    boundary : None, (xmin, ymin, xmax, ymax) or shapely Polygon/MultiPolygon
+        The domain, as for :func:`voroforge.voronoi` (None: the sites' box padded by 10%).
+    out : str or Path
+        The output folder: a Parquet dataset with one GeoParquet 1.1 file per tile, a
+        ``_metadata`` summary and the job manifest.
+    tiles : int, optional
+        Number of tiles (default: about ``SCALE_TILE_SITES`` sites each, at least two per
+        worker).
+    tile_size : int, optional
+        Sites per tile instead of ``tiles`` (the CLI's ``--tile-size``).
+    client : distributed.Client, optional
+        Default: the current client, else a LocalCluster started for the call (one
+        single-threaded process per core, or ``workers``).
+    workers : int, optional
+        Workers of the LocalCluster started when there is no client.
+    crs : str, dict or None
+        Coordinate reference system written into the GeoParquet metadata (None: unknown).
+    overwrite : bool
+        Replace an existing ``out``. Without it an existing output is refused, except an
+        unfinished job on the same input, which is resumed.
+    progress : callable, optional
+        ``progress(done, total)`` after every finished tile.
+    chunk_rows : int, optional
+        Input rows read per task (default ``SCALE_CHUNK_ROWS``).
+
+    Returns
+    -------
+    ScaleResult
+
+    Raises
+    ------
+    ValueError
+        Bad points (shape, non-finite rows, with their row numbers), an invalid boundary, an
+        existing output without ``overwrite``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from voroforge import scale
+    >>> pts = np.random.default_rng(0).random((100_000, 2))
+    >>> res = scale.voronoi(pts, (0, 0, 1, 1), out="cells.parquet")  # doctest: +SKIP
+    >>> res.uncertified  # doctest: +SKIP
+    0
+    """
+    t_start = time.perf_counter()
+    out = Path(out)
+    eng_boundary, boundary_text = _boundary_spec(boundary)
+    crs_json = None
+    if crs is not None:
+        from ..io.parquet import _projjson
+
+        crs_json = _projjson(crs)
+    resume = _prepare_out(out, overwrite)
+    rows = int(chunk_rows or config.SCALE_CHUNK_ROWS)
+    if rows < 1:
+        raise ValueError(f"chunk_rows must be at least 1; got {chunk_rows}")
+    source = None
+    try:
+        source = open_source(points, out, rows)
+        with _client_for(client, workers) as cl:
+            result = _run(
+                cl,
+                source,
+                eng_boundary,
+                boundary_text,
+                crs_json,
+                out,
+                tiles,
+                tile_size,
+                resume,
+                progress,
+                overwrite,
+            )
+    finally:
+        for tmp in source.temporary if source is not None and source.temporary else []:
+            Path(tmp).unlink(missing_ok=True)
+        for stale in out.glob(".*.tmp") if out.is_dir() else []:
+            stale.unlink(missing_ok=True)
+    result.seconds = time.perf_counter() - t_start
+    return result
+
+
+def _run(
+    cl,
+    source,
+    eng_boundary,
+    boundary_text,
+    crs_json,
+    out,
+    tiles,
+    tile_size,
+    resume,
+    progress,
+    overwrite,
+):
+    from distributed import as_completed
+
+    from ..engine.domain import padded_bounds
+
+    nworkers = max(1, len(cl.scheduler_info(n_workers=-1)["workers"]))
+    blocks = cl.compute(source.blocks) if source.blocks else [None] * len(source.chunks)
+    share = max(1, math.ceil(config.SCALE_SAMPLE_SITES / max(len(source.chunks), 1)))
+    stats = cl.gather(
+        [
+            cl.submit(chunk_stats, c, b, share, i, pure=False)
+            for i, (c, b) in enumerate(zip(source.chunks, blocks, strict=True))
+        ]
+    )
+    if any(s["bad_count"] for s in stats):
+        raise _bad_rows_error(stats)
+    n = sum(s["n"] for s in stats)
+    if n == 0:
+        raise ValueError("no points: the input has no rows")
+    lo = np.min([s["lo"] for s in stats if s["lo"] is not None], axis=0)
+    hi = np.max([s["hi"] for s in stats if s["hi"] is not None], axis=0)
+    if eng_boundary is None:
+        eng_boundary = tuple(float(v) for v in padded_bounds(np.array([lo, hi])))
+    ntiles = _tile_count(n, tiles, tile_size, nworkers)
+    tiling = kd_tiling(np.concatenate([s["sample"] for s in stats]), ntiles)
+    ntiles = len(tiling)
+    fingerprint = {
+        "n": n,
+        "checksums": [s["checksum"] for s in stats],
+        "chunk_rows": [[c.start, c.stop] for c in source.chunks],
+        "boundary": boundary_text if boundary_text is not None else list(eng_boundary),
+        "tiling": tiling.to_json(),
+        "crs": crs_json,
+    }
+    if resume is not None and resume.get("fingerprint") != fingerprint:
+        raise ValueError(
+            f"{out} holds an unfinished job on other input or settings; pass overwrite=True"
+        )
+    manifest = {"format": _FORMAT, "complete": False, "fingerprint": fingerprint}
+    _write_json(out / MANIFEST, manifest)
+
+    # the shuffle: every chunk split by owning tile, each tile's pieces merged in row order
+    splits = [
+        cl.submit(chunk_split, c, b, tiling) for c, b in zip(source.chunks, blocks, strict=True)
+    ]
+    counts = np.array(cl.gather([cl.submit(operator.getitem, s, 0) for s in splits]))
+    owned = []
+    for t in range(ntiles):
+        parts = [cl.submit(take, s, t) for c, s in enumerate(splits) if counts[c, t]]
+        owned.append(cl.submit(merge_pieces, *parts))
+    del splits
+    per_tile = counts.sum(axis=0)
+
+    def spec(t):
+        name = f"part-{t:05d}.parquet"
+        h = _halo(tiling.rects[t], per_tile[t], lo, hi)
+        return {
+            "loaded": _grown(tiling.rects[t], h),
+            "lo": lo.tolist(),
+            "hi": hi.tolist(),
+            "boundary": eng_boundary,
+            "crs": crs_json,
+            "file": name,
+            "path": str(out / name),
+            "max_rounds": config.SCALE_MAX_ROUNDS,
+        }
+
+    infos = {}
+    resumed = 0
+    pending = as_completed()
+    tile_future = {}
+    specs = {}
+    for t in range(ntiles):
+        specs[t] = spec(t)
+        done = _tile_done(out / specs[t]["file"]) if resume is not None else None
+        if done is not None and done.get("rows") == int(per_tile[t]):
+            infos[t] = done
+            resumed += 1
+            continue
+        near = [u for u in tiling.touching(specs[t]["loaded"]) if u != t]
+        f = cl.submit(run_tile, t, specs[t], owned[t], *[owned[u] for u in near])
+        info = cl.submit(operator.getitem, f, 0)
+        tile_future[info.key] = f
+        pending.add(info)
+    if progress is not None:
+        progress(len(infos), ntiles)
+    for info_future in pending:
+        info = info_future.result()
+        t = info["tile"]
+        if "pending" in info:
+            _, xy_u, r_u = info["pending"]
+            boxes, _ = group_discs(xy_u, r_u)
+            reach = set()
+            for box in boxes:
+                reach.update(int(u) for u in tiling.touching(box))
+            reach.discard(t)
+            f = cl.submit(
+                retry_tile,
+                t,
+                specs[t],
+                tile_future.pop(info_future.key),
+                owned[t],
+                *[owned[u] for u in sorted(reach)],
+                priority=10,
+            )
+            nxt = cl.submit(operator.getitem, f, 0, priority=10)
+            tile_future[nxt.key] = f
+            pending.add(nxt)
+            continue
+        tile_future.pop(info_future.key, None)
+        infos[t] = info
+        if progress is not None:
+            progress(len(infos), ntiles)
+    del owned
+
+    tile_info = [infos[t] for t in range(ntiles)]
+    _write_dataset_metadata(out, tile_info)
+    manifest["complete"] = True
+    manifest["tiles"] = tile_info
+    _write_json(out / MANIFEST, manifest)
+    return ScaleResult(
+        path=out,
+        cells=int(sum(i["rows"] for i in tile_info)),
+        tiles=ntiles,
+        workers=nworkers,
+        uncertified=int(sum(i["uncertified"] for i in tile_info)),
+        retried=int(sum(i["first_uncertified"] for i in tile_info)),
+        resumed=resumed,
+        seconds=0.0,
+        dashboard=getattr(cl, "dashboard_link", None),
+        tile_info=tile_info,
+    )
+
+
+def _write_json(path: Path, obj) -> None:
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp.write_text(json.dumps(obj, indent=1, allow_nan=True))
+    os.replace(tmp, path)
+
+
+def _write_dataset_metadata(out: Path, tile_info) -> None:
+    """``_common_metadata`` (schema, geo of the whole dataset) and ``_metadata`` (row groups)."""
+    import pyarrow.parquet as pq
+
+    collected, types, extents = [], set(), []
+    schema = None
+    for info in tile_info:
+        md = pq.read_metadata(out / info["file"])
+        geo = json.loads(md.metadata[b"geo"])
+        types.update(geo["columns"]["geometry"]["geometry_types"])
+        if not any(np.isnan(info["extent"])):
+            extents.append(info["extent"])
+        if schema is None:
+            schema = pq.read_schema(out / info["file"])
+        md.set_file_path(info["file"])
+        collected.append(md)
+    meta = dict(schema.metadata or {})
+    geo = json.loads(meta[b"geo"])
+    col = geo["columns"]["geometry"]
+    col.pop("bbox", None)
+    if extents:
+        e = np.array(extents)
+        col["bbox"] = [
+            float(e[:, 0].min()),
+            float(e[:, 1].min()),
+            float(e[:, 2].max()),
+            float(e[:, 3].max()),
+        ]
+    col["geometry_types"] = sorted(types)
+    meta[b"geo"] = json.dumps(geo).encode()
+    meta.pop(b"voroforge_tile", None)
+    schema = schema.with_metadata(meta)
+    for name, mds in (("_common_metadata", None), ("_metadata", collected)):
+        tmp = out / f".{name}.{os.getpid()}.tmp"
+        pq.write_metadata(schema, tmp, metadata_collector=mds)
+        os.replace(tmp, out / name)

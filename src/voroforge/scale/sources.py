@@ -1,0 +1,210 @@
+"""Where the sites come from: row chunks that a worker can load by itself.
+
+Every input becomes a list of :class:`Chunk` s, each a row range ``[start, stop)`` of the
+input and a way to load it on any worker: a slice of a memory-mapped ``.npy`` file, Parquet
+row groups, or a block of a dask array. In-memory arrays are written once to a ``.npy`` file
+beside the output and CSV files are streamed into Parquet there, so a lost worker's chunks
+can always be loaded again (dask recomputes lost results from their recipe).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["Chunk", "Source", "open_source"]
+
+_X_NAMES = ("x", "lon", "lng", "longitude", "easting")
+_Y_NAMES = ("y", "lat", "latitude", "northing")
+
+
+@dataclass(frozen=True)
+class Chunk:
+    """Rows ``start:stop`` of the input, loadable on a worker by :meth:`load`.
+
+    Attributes
+    ----------
+    start, stop : int
+        The chunk's input rows.
+    kind : str
+        ``"npy"`` (``path``), ``"parquet"`` (``path``, ``groups``, ``xy`` column names) or
+        ``"dask"`` (the block is passed to :meth:`load` by the scheduler).
+    """
+
+    start: int
+    stop: int
+    kind: str
+    path: str = ""
+    groups: tuple = ()
+    xy: tuple = ("x", "y")
+
+    def load(self, block=None):
+        """``(xy (m, 2) float64, attributes pyarrow.Table or None)`` of the chunk's rows."""
+        if self.kind == "npy":
+            arr = np.load(self.path, mmap_mode="r")
+            return np.array(arr[self.start : self.stop], dtype=np.float64), None
+        if self.kind == "parquet":
+            import pyarrow.parquet as pq
+
+            table = pq.ParquetFile(self.path).read_row_groups(list(self.groups))
+            return _split_columns(table, self.xy)
+        xy = np.asarray(block, dtype=np.float64)
+        return np.ascontiguousarray(xy.reshape(-1, 2)), None
+
+
+def _split_columns(table, xy):
+    x = table.column(xy[0]).to_numpy(zero_copy_only=False).astype(np.float64, copy=False)
+    y = table.column(xy[1]).to_numpy(zero_copy_only=False).astype(np.float64, copy=False)
+    rest = [c for c in table.column_names if c not in xy]
+    attrs = table.select(rest) if rest else None
+    return np.column_stack((x, y)), attrs
+
+
+@dataclass
+class Source:
+    """The chunks of one input, and its dask blocks (``kind == "dask"``)."""
+
+    n: int
+    chunks: list
+    blocks: list | None = None
+    temporary: list | None = None
+    description: str = ""
+
+
+def _xy_names(names, where):
+    low = {c.lower(): c for c in names}
+    xs = [low[c] for c in _X_NAMES if c in low]
+    ys = [low[c] for c in _Y_NAMES if c in low]
+    if not xs or not ys:
+        raise ValueError(
+            f"{where}: no x/y columns (looked for {'/'.join(_X_NAMES)} and "
+            f"{'/'.join(_Y_NAMES)}; columns are {list(names)})"
+        )
+    return xs[0], ys[0]
+
+
+def _row_chunks(n, rows):
+    starts = list(range(0, n, rows)) or [0]
+    return [(a, min(a + rows, n)) for a in starts]
+
+
+def _npy_source(path: Path, rows: int, temporary=None) -> Source:
+    try:
+        arr = np.load(path, mmap_mode="r")
+    except (ValueError, OSError) as exc:
+        raise ValueError(f"{path}: not a readable .npy array ({exc})") from None
+    if arr.ndim != 2 or arr.shape[1] != 2:
+        raise ValueError(f"{path}: points must have shape (n, 2); got {arr.shape}")
+    if arr.dtype.kind not in "iuf":
+        raise ValueError(f"{path}: points must be real numbers; got dtype {arr.dtype}")
+    chunks = [Chunk(a, b, "npy", str(path)) for a, b in _row_chunks(len(arr), rows)]
+    return Source(len(arr), chunks, temporary=temporary, description=f"{path} ({len(arr)} rows)")
+
+
+def _parquet_source(path: Path, rows: int, temporary=None) -> Source:
+    import pyarrow.parquet as pq
+
+    try:
+        pf = pq.ParquetFile(path)
+    except Exception as exc:  # pyarrow raises its own error types for unreadable files
+        raise ValueError(f"{path}: not a readable Parquet file ({exc})") from None
+    xy = _xy_names(pf.schema_arrow.names, path)
+    chunks, start, group, acc = [], 0, [], 0
+    meta = pf.metadata
+    for g in range(meta.num_row_groups):
+        group.append(g)
+        acc += meta.row_group(g).num_rows
+        if acc >= rows or g == meta.num_row_groups - 1:
+            chunks.append(Chunk(start, start + acc, "parquet", str(path), tuple(group), xy))
+            start += acc
+            group, acc = [], 0
+    return Source(meta.num_rows, chunks, temporary=temporary, description=f"{path} ({start} rows)")
+
+
+def _csv_to_parquet(path: Path, dest: Path, rows: int) -> Path:
+    """Stream a CSV file into Parquet row groups of ``rows`` (bounded memory)."""
+    import pyarrow.csv as pacsv
+    import pyarrow.parquet as pq
+
+    try:
+        reader = pacsv.open_csv(
+            path,
+            read_options=pacsv.ReadOptions(block_size=1 << 24),
+            parse_options=pacsv.ParseOptions(delimiter=_sniff_delimiter(path)),
+        )
+    except Exception as exc:  # pyarrow.lib.ArrowInvalid and friends
+        raise ValueError(f"{path}: not a readable CSV file ({exc})") from None
+    _xy_names(reader.schema.names, path)
+    tmp = dest.with_name(dest.name + ".part")
+    with pq.ParquetWriter(tmp, reader.schema) as writer:
+        try:
+            for batch in reader:
+                writer.write_batch(batch, row_group_size=rows)
+        except Exception as exc:
+            raise ValueError(f"{path}: CSV parse error ({exc})") from None
+    tmp.replace(dest)
+    return dest
+
+
+def _sniff_delimiter(path: Path) -> str:
+    with open(path, encoding="utf-8-sig") as fh:
+        first = fh.readline()
+    return next((d for d in (",", ";", "\t") if d in first), ",")
+
+
+def open_source(points, work: Path, rows: int) -> Source:
+    """The chunks of ``points``.
+
+    Parameters
+    ----------
+    points : (n, 2) array_like, dask array, or str/Path of a .npy, .csv or .parquet file
+        The sites (files: ``x``/``y`` columns, the other columns are attributes).
+    work : Path
+        A folder for converted input (an in-memory array as ``.npy``, CSV as Parquet).
+    rows : int
+        Rows per chunk.
+
+    Returns
+    -------
+    Source
+    """
+    if isinstance(points, (str, Path)):
+        path = Path(points)
+        if not path.is_file():
+            raise ValueError(f"{path}: no such points file")
+        suffix = path.suffix.lower()
+        if suffix == ".npy":
+            return _npy_source(path, rows)
+        if suffix in (".parquet", ".pq", ".geoparquet"):
+            return _parquet_source(path, rows)
+        if suffix in (".csv", ".txt", ".tsv"):
+            dest = _csv_to_parquet(path, work / "_points.tmp.parquet", rows)
+            return _parquet_source(dest, rows, temporary=[dest])
+        raise ValueError(f"{path}: unknown points format {suffix!r} (use .npy, .csv or .parquet)")
+    if type(points).__module__.startswith("dask."):
+        arr = points
+        if arr.ndim != 2 or arr.shape[1] != 2:
+            raise ValueError(f"points must have shape (n, 2); got {arr.shape}")
+        arr = arr.rechunk({0: arr.chunks[0], 1: 2})
+        bounds = np.concatenate(([0], np.cumsum(arr.chunks[0])))
+        chunks = [
+            Chunk(int(a), int(b), "dask") for a, b in zip(bounds[:-1], bounds[1:], strict=True)
+        ]
+        blocks = list(arr.to_delayed()[:, 0])
+        return Source(int(bounds[-1]), chunks, blocks=blocks, description="dask array")
+    try:
+        raw = np.asarray(points)
+        if raw.dtype.kind not in "iuf":
+            raise TypeError(f"dtype {raw.dtype}")
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"points must be an (n, 2) array of real numbers ({exc})") from None
+    if raw.ndim != 2 or raw.shape[1] != 2:
+        raise ValueError(f"points must have shape (n, 2); got shape {raw.shape}")
+    dest = work / "_points.tmp.npy"
+    tmp = work / "_points.tmp.npy.part"
+    with open(tmp, "wb") as fh:
+        np.save(fh, np.ascontiguousarray(raw, dtype=np.float64))
+    tmp.replace(dest)
+    return _npy_source(dest, rows, temporary=[dest])

@@ -1,0 +1,371 @@
+"""What the workers run: chunk statistics, the split of chunks into tiles, and the tiles.
+
+A tile loads the sites of its halo-grown rectangle from its neighbours' pieces (sorted by
+input row, so the engine sees them in the global order), runs :func:`voroforge.voronoi` with
+the global domain, and keeps the cells of its own sites whose certificate holds: every site
+closer to the cell's site than ``2 R`` (``R`` its farthest vertex distance) is loaded. Then no
+missing site can reach the cell (a site at distance ``> 2 R`` has its bisector beyond the
+cell), so the cell, its neighbours and, by the vertex rule (a vertex is computed from its
+owner triple alone), its vertex bits are those of the single-process diagram. Cells that
+fail are recomputed with the sites of the disc of radius ``2 R``: a recomputed cell can only
+shrink, so that disc certifies it.
+"""
+
+from __future__ import annotations
+
+import time
+from contextlib import contextmanager
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..config import SCALE_CERT_RTOL
+
+__all__ = [
+    "Piece",
+    "chunk_split",
+    "chunk_stats",
+    "merge_pieces",
+    "radii",
+    "retry_tile",
+    "run_tile",
+    "take",
+]
+
+
+@dataclass
+class Piece:
+    """Sites with their input rows (increasing) and, for owned pieces, their attributes."""
+
+    ids: np.ndarray
+    xy: np.ndarray
+    attrs: object = None
+
+
+def _load(chunk, block):
+    xy, attrs = chunk.load(block)
+    return xy, attrs
+
+
+def chunk_stats(chunk, block, sample_size: int, seed: int):
+    """Counts, extent, non-finite rows, a checksum and a sample of one chunk."""
+    xy, _ = _load(chunk, block)
+    bad = np.flatnonzero(~np.isfinite(xy).all(axis=1))
+    good = xy if not len(bad) else np.delete(xy, bad, axis=0)
+    rng = np.random.default_rng(seed)
+    k = min(len(good), sample_size)
+    sample = good[rng.choice(len(good), size=k, replace=False)] if k else np.zeros((0, 2))
+    return {
+        "n": len(xy),
+        "bad": (chunk.start + bad[:20]).tolist(),
+        "bad_count": len(bad),
+        "lo": good.min(axis=0).tolist() if len(good) else None,
+        "hi": good.max(axis=0).tolist() if len(good) else None,
+        "checksum": [float(v).hex() for v in good.sum(axis=0)] if len(good) else None,
+        "sample": sample,
+    }
+
+
+def chunk_split(chunk, block, tiling):
+    """``(counts (t,), pieces)``: the chunk's sites split by owning tile (None when empty)."""
+    xy, attrs = _load(chunk, block)
+    tile = tiling.assign(xy)
+    order = np.argsort(tile, kind="stable")  # stable: rows stay increasing within a tile
+    counts = np.bincount(tile, minlength=len(tiling))
+    ends = np.cumsum(counts)
+    pieces = []
+    for t in range(len(tiling)):
+        if not counts[t]:
+            pieces.append(None)
+            continue
+        rows = order[ends[t] - counts[t] : ends[t]]
+        sub = None if attrs is None else attrs.take(rows)
+        pieces.append(Piece(chunk.start + rows, np.ascontiguousarray(xy[rows]), sub))
+    return counts, pieces
+
+
+def take(split, t):
+    """Tile ``t``'s piece of a :func:`chunk_split` result."""
+    return split[1][t]
+
+
+def merge_pieces(*pieces):
+    """One tile's owned sites: its pieces from every chunk, in chunk (= row) order."""
+    pieces = [p for p in pieces if p is not None]
+    if not pieces:
+        return Piece(np.zeros(0, np.int64), np.zeros((0, 2)), None)
+    attrs = None
+    if pieces[0].attrs is not None:
+        import pyarrow as pa
+
+        attrs = pa.concat_tables([p.attrs for p in pieces])
+    return Piece(
+        np.concatenate([p.ids for p in pieces]), np.concatenate([p.xy for p in pieces]), attrs
+    )
+
+
+def _gather(pieces, rect):
+    """Sites of ``pieces`` inside the closed ``rect``, sorted by input row."""
+    ids, xy = [], []
+    x0, y0, x1, y1 = rect
+    for p in pieces:
+        m = (p.xy[:, 0] >= x0) & (p.xy[:, 0] <= x1) & (p.xy[:, 1] >= y0) & (p.xy[:, 1] <= y1)
+        ids.append(p.ids[m])
+        xy.append(p.xy[m])
+    ids = np.concatenate(ids) if ids else np.zeros(0, np.int64)
+    xy = np.concatenate(xy) if xy else np.zeros((0, 2))
+    order = np.argsort(ids, kind="stable")
+    return ids[order], np.ascontiguousarray(xy[order])
+
+
+def radii(d, xy):
+    """Each cell's farthest vertex distance from its site (0 for an empty cell)."""
+    from ..engine.diagram import buffers
+
+    coords, ring, poly, geom = buffers(d)
+    start = ring[poly[geom]]
+    count = np.diff(start)
+    r2 = np.zeros(len(xy))
+    full = np.flatnonzero(count)
+    if len(full):
+        owner = np.repeat(np.arange(len(xy)), count)
+        dx = coords[: start[-1], 0] - xy[owner, 0]
+        dy = coords[: start[-1], 1] - xy[owner, 1]
+        r2[full] = np.maximum.reduceat(dx * dx + dy * dy, start[full])
+    return np.sqrt(r2)
+
+
+def _certified(xy, r, loaded):
+    """True where the disc of radius ``2 r`` (with slack) around ``xy`` lies in ``loaded``."""
+    reach = 2.0 * r * (1.0 + SCALE_CERT_RTOL)
+    x0, y0, x1, y1 = loaded
+    return (
+        (xy[:, 0] - reach > x0)
+        & (xy[:, 0] + reach < x1)
+        & (xy[:, 1] - reach > y0)
+        & (xy[:, 1] + reach < y1)
+    )
+
+
+def open_sides(rect, lo, hi):
+    """``rect`` with the sides beyond the sites' extent ``lo..hi`` opened to infinity."""
+    x0, y0, x1, y1 = (float(v) for v in rect)
+    inf = float("inf")
+    return (
+        -inf if x0 < lo[0] else x0,
+        -inf if y0 < lo[1] else y0,
+        inf if x1 > hi[0] else x1,
+        inf if y1 > hi[1] else y1,
+    )
+
+
+@contextmanager
+def _threads():
+    """Limit numba to the worker's threads (one thread per worker: one numba thread)."""
+    import numba
+
+    try:
+        from distributed import get_worker
+
+        want = int(get_worker().state.nthreads)
+    except (ImportError, ValueError, AttributeError):
+        want = numba.get_num_threads()
+    before = numba.get_num_threads()
+    numba.set_num_threads(max(1, min(want, numba.config.NUMBA_NUM_THREADS)))
+    try:
+        yield
+    finally:
+        numba.set_num_threads(before)
+
+
+def _compute(ids, xy, boundary, loaded, wanted, last=False):
+    """Cells of ``wanted`` (local rows) among sites ``xy``: certified table part + the rest.
+
+    With ``last`` the uncertified cells go into the table too (they are reported).
+    """
+    import voroforge as vf
+
+    from ..engine.diagram import buffers
+    from ..io.parquet import cells_table, neighbor_lists
+
+    d = vf.voronoi(xy, boundary)
+    r = radii(d, xy)
+    ok = _certified(xy[wanted], r[wanted], loaded)
+    keep = wanted if last else wanted[ok]
+    nb = neighbor_lists(d.edges.pairs, len(xy), cells=keep, ids=ids)
+    table, _, _ = cells_table(buffers(d), keep, ids[keep], nb)
+    bad = wanted[~ok]
+    return table, (ids[bad], xy[bad], r[bad])
+
+
+def run_tile(t, spec, own, *neighbours):
+    """First pass of tile ``t``: compute, certify, write when every cell is final.
+
+    Returns ``(info, partial)``: ``info`` a small dict (the driver reads only it); when cells
+    are left uncertified ``partial`` holds the certified table and ``info["pending"]`` the
+    others' ``(ids, xy, r)``.
+    """
+    t0 = time.perf_counter()
+    loaded = open_sides(spec["loaded"], spec["lo"], spec["hi"])
+    with _threads():
+        ids, xy = _gather([own, *neighbours], spec["loaded"])
+        wanted = np.flatnonzero(np.isin(ids, own.ids, assume_unique=True))
+        if len(own.ids) == 0:
+            table, pending = _compute_empty()
+        else:
+            table, pending = _compute(ids, xy, spec["boundary"], loaded, wanted)
+    info = {
+        "tile": t,
+        "loaded_sites": len(ids),
+        "owned": len(own.ids),
+        "first_uncertified": len(pending[0]),
+        "seconds": time.perf_counter() - t0,
+        "rounds": 0,
+    }
+    if len(pending[0]):
+        info["pending"] = pending
+        return info, table
+    return _finish(t, spec, [table], own, info), None
+
+
+def _compute_empty():
+    import pyarrow as pa  # noqa: F401 - the schema comes from cells_table on no cells
+
+    from ..io.parquet import cells_table
+
+    z = np.zeros(1, dtype=np.int64)
+    bufs = (np.zeros((0, 2)), z, z.copy(), z.copy())
+    table, _, _ = cells_table(bufs, np.zeros(0, np.int64), [], (z, np.zeros(0, np.int64)))
+    empty = np.zeros(0, np.int64)
+    return table, (empty, np.zeros((0, 2)), np.zeros(0))
+
+
+def group_discs(xy, r):
+    """Boxes of the discs ``(xy, 2 r)``, merged while they overlap: one recomputation each.
+
+    Returns ``(boxes (g, 4), member (k,) int64)``: disc ``i`` is recomputed in box
+    ``member[i]``, which contains it with a little more slack than the certificate asks.
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    reach = 2.0 * r * (1.0 + 4 * SCALE_CERT_RTOL) + 4 * np.spacing(np.abs(xy).max(axis=1) + r)
+    boxes = np.column_stack((xy - reach[:, None], xy + reach[:, None]))
+    member = np.arange(len(xy))
+    while len(boxes) > 1:
+        b = boxes
+        over = (
+            (b[:, None, 0] <= b[None, :, 2])
+            & (b[:, None, 2] >= b[None, :, 0])
+            & (b[:, None, 1] <= b[None, :, 3])
+            & (b[:, None, 3] >= b[None, :, 1])
+        )
+        i, j = np.nonzero(over)
+        k, label = connected_components(coo_matrix((np.ones(len(i)), (i, j)), shape=over.shape))
+        if k == len(b):
+            break
+        merged = np.zeros((k, 4))
+        merged[:, :2] = np.inf
+        merged[:, 2:] = -np.inf
+        np.minimum.at(merged[:, 0], label, b[:, 0])
+        np.minimum.at(merged[:, 1], label, b[:, 1])
+        np.maximum.at(merged[:, 2], label, b[:, 2])
+        np.maximum.at(merged[:, 3], label, b[:, 3])
+        boxes = merged
+        member = label[member]
+    return boxes, member
+
+
+def retry_tile(t, spec, first, own, *pieces):
+    """Recompute tile ``t``'s uncertified cells, each group with the sites its discs ask for.
+
+    ``first`` is the previous round's ``(info, partial)``; ``pieces`` the owned pieces of
+    every tile the discs reach. Returns ``(info, partial)`` like :func:`run_tile`.
+    """
+    t0 = time.perf_counter()
+    info, table = first
+    info = dict(info)
+    ids_u, xy_u, r_u = info.pop("pending")
+    boxes, member = group_discs(xy_u, r_u)
+    tables = [table]
+    left = ([], [], [])
+    with _threads():
+        for g, box in enumerate(boxes):
+            targets = ids_u[member == g]
+            ids, xy = _gather([own, *pieces], box)
+            wanted = np.flatnonzero(np.isin(ids, targets, assume_unique=True))
+            loaded = open_sides(box, spec["lo"], spec["hi"])
+            last = info["rounds"] + 1 >= spec["max_rounds"]
+            part, pending = _compute(ids, xy, spec["boundary"], loaded, wanted, last)
+            tables.append(part)
+            for acc, new in zip(left, pending, strict=True):
+                acc.append(new)
+    info["rounds"] += 1
+    info["seconds"] += time.perf_counter() - t0
+    remaining = tuple(np.concatenate(a) for a in left)
+    import pyarrow as pa
+
+    table = pa.concat_tables(tables)
+    if len(remaining[0]) and info["rounds"] < spec["max_rounds"]:
+        info["pending"] = remaining
+        return info, table
+    info["uncertified_ids"] = remaining[0].tolist()
+    return _finish(t, spec, [table], own, info), None
+
+
+def _finish(t, spec, tables, own, info):
+    """Sort the tile's cells by site, add the attributes and write its partition file."""
+    import pyarrow as pa
+
+    from ..io.parquet import geo_metadata, write_table
+
+    table = pa.concat_tables(tables) if len(tables) > 1 else tables[0]
+    table = table.take(np.argsort(table.column("site_id").to_numpy(), kind="stable"))
+    if len(table) != len(own.ids) or not np.array_equal(
+        table.column("site_id").to_numpy(), own.ids
+    ):
+        raise RuntimeError(f"tile {t}: cells do not match the tile's sites")  # a bug, not input
+    if own.attrs is not None:
+        for name in own.attrs.column_names:
+            table = table.append_column(name, own.attrs.column(name))
+    bbox = table.column("bbox").combine_chunks()
+    xs = [bbox.field(k).to_numpy(zero_copy_only=False) for k in ("xmin", "ymin", "xmax", "ymax")]
+    full = ~np.isnan(xs[0])
+    extent = (
+        [
+            float(xs[0][full].min()),
+            float(xs[1][full].min()),
+            float(xs[2][full].max()),
+            float(xs[3][full].max()),
+        ]
+        if full.any()
+        else [float("nan")] * 4
+    )
+    geoms = table.column("geometry")
+    types = _types(geoms)
+    bad = info.pop("uncertified_ids", [])
+    info = {**info, "rows": len(table), "extent": extent, "file": spec["file"]}
+    info["uncertified"] = len(bad)
+    info["uncertified_ids"] = bad[:100]
+    write_table(
+        table,
+        spec["path"],
+        geo_metadata(extent, types, spec["crs"]),
+        extra={"voroforge_tile": info},
+    )
+    return info
+
+
+def _types(geoms):
+    """Geometry types present in a WKB column (the type word after the byte-order byte)."""
+    import pyarrow as pa
+    import pyarrow.compute as pc
+
+    if len(geoms) == 0:
+        return []
+    head = pc.binary_slice(geoms, 1, 2) if hasattr(pc, "binary_slice") else None
+    if head is None:  # pragma: no cover - older pyarrow
+        kinds = {bytes(v.as_py())[1] for v in geoms}
+    else:
+        kinds = {v[0] for v in pc.unique(pa.chunked_array(head.chunks)).to_pylist()}
+    return [name for code, name in ((3, "Polygon"), (6, "MultiPolygon")) if code in kinds]
