@@ -2,11 +2,12 @@
 
 One row per cell: ``site_id`` (the input row), ``geometry`` (WKB Polygon, MultiPolygon for a
 cell the domain split, an empty Polygon for a duplicate or a site whose cell misses the
-domain; every ring starts at its lowest ``(x, y)`` vertex, so the bytes of a cell do not
-depend on how it was computed), ``area``, ``neighbors`` (a list of site ids) and ``bbox``
-(a struct of ``xmin, ymin, xmax, ymax``, the GeoParquet 1.1 covering that lets readers skip row groups),
-then any attribute columns. The WKB is written straight from the diagram's GeoArrow buffers
-by one compiled pass, without shapely objects. Files are written atomically (temp + rename).
+domain), ``area``, ``neighbors`` (a list of site ids) and ``bbox`` (a struct of ``xmin, ymin,
+xmax, ymax``: the GeoParquet 1.1 covering that lets readers skip row groups), then any
+attribute columns. Every ring starts at its lowest ``(x, y)`` vertex and areas are summed in
+that order, so a cell's bytes depend only on the cell, not on how it was computed. The WKB
+is written straight from the diagram's GeoArrow buffers by one compiled pass, without
+shapely objects. Files are written atomically (temp + rename).
 
 pyarrow is imported on first use (the ``scale`` extra); :func:`write_cells` is what
 ``voroforge voronoi -o cells.parquet`` calls.
