@@ -52,8 +52,8 @@ def brute_cell(points, i, walls, weights=None):
     return hi.intersections
 
 
-def brute_volumes(points, walls, weights=None):
-    """Volume of every cell by :func:`brute_cell` (0 for empty cells).
+def brute_volumes(points, walls, weights=None, cells=None):
+    """Volume of every cell (or of ``cells``) by :func:`brute_cell` (0 for empty cells).
 
     The input is moved to the origin and scaled to unit size first (Qhull's tolerances are
     absolute); volumes are scaled back.
@@ -67,12 +67,33 @@ def brute_volumes(points, walls, weights=None):
     walls = np.asarray(walls, np.float64).copy()
     walls[:, 3] = (walls[:, 3] - walls[:, :3] @ c) / s
     weights = None if weights is None else np.asarray(weights) / s**2
-    out = np.zeros(len(p))
-    for i in range(len(p)):
+    cells = range(len(p)) if cells is None else cells
+    out = np.zeros(len(cells))
+    for k, i in enumerate(cells):
         v = brute_cell(p, i, walls, weights)
         if v is not None and len(v) >= 4:
-            out[i] = ConvexHull(v).volume * s**3
+            out[k] = ConvexHull(v).volume * s**3
     return out
+
+
+def brute_periodic_volumes(points, L=1.0):
+    """Cells of the 3-torus ``[0, L)^3`` from the sites and their 26 images (n small)."""
+    p = np.asarray(points, np.float64)
+    shifts = np.array([(a, b, c) for a in (-1, 0, 1) for b in (-1, 0, 1) for c in (-1, 0, 1)])
+    shifts = shifts[np.argsort((shifts != 0).sum(1), kind="stable")]  # (0, 0, 0) first
+    allp = np.vstack([p + L * s for s in shifts])
+    walls = np.array(
+        [
+            [-1, 0, 0, L],
+            [1, 0, 0, 2 * L],
+            [0, -1, 0, L],
+            [0, 1, 0, 2 * L],
+            [0, 0, -1, L],
+            [0, 0, 1, 2 * L],
+        ],
+        np.float64,
+    )
+    return brute_volumes(allp, walls, cells=range(len(p)))
 
 
 def voropp_cells(points, box):

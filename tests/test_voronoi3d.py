@@ -7,7 +7,7 @@ import pytest
 
 import voroforge as vf
 from catalogue3d import CATALOGUE3D
-from reference3d import VOROPP, brute_volumes, voropp_cells
+from reference3d import VOROPP, brute_periodic_volumes, brute_volumes, voropp_cells
 
 BOX = (0.0, 0.0, 0.0, 1.0, 1.0, 1.0)
 
@@ -104,6 +104,29 @@ def check3d(d, volume=None, samples=300, seed=0):
     pairs = {(i, int(j)) for i in range(n) for j in idx[indptr[i] : indptr[i + 1]]}
     assert all((j, i) in pairs for i, j in pairs)
     return len(x)
+
+
+def check_periodic_faces(d):
+    """Torus cells: closed, Euler, and each face's twin (shifted by the image) in the other cell."""
+    cf, lab, farea, roff, ring = d.cell_face_table()
+    V = np.asarray(d.vertices)
+    sh = np.asarray(d.face_shifts)
+    owner = np.repeat(np.arange(len(d)), np.diff(cf))
+    table = {}
+    for f in range(len(lab)):
+        r = ring[roff[f] : roff[f + 1]]
+        key = (int(owner[f]), int(lab[f]), tuple(sh[f]))
+        table.setdefault(key, []).append(np.sort(V[r], axis=0))
+    for (i, j, s), polys in table.items():
+        twin = table.get((j, i, tuple(-np.array(s))))
+        assert twin is not None and len(twin) == len(polys)
+        for p in polys:  # the same polygon, moved by the image shift
+            assert any(
+                np.allclose(p, np.sort(q + np.array(s), axis=0) - 0, atol=1e-12)
+                or np.allclose(np.sort(p, axis=0), np.sort(q + np.array(s), axis=0), atol=1e-12)
+                for q in twin
+            )
+    assert d.describe()["euler_ok"]
 
 
 @pytest.mark.parametrize("name", sorted(CATALOGUE3D))
@@ -206,3 +229,139 @@ def test_against_voropp():
     for i in range(len(pts)):
         ours = sorted(lab[cf[i] : cf[i + 1]].tolist())
         assert ours == nbs[i], f"cell {i}: {ours} != voro++ {nbs[i]}"
+
+
+def test_power_cells_against_brute_force():
+    rng = np.random.default_rng(21)
+    pts = rng.random((60, 3))
+    w = 0.02 * rng.random(60)
+    w[5] = 0.3  # a heavy site swallows neighbours; some cells may be empty
+    d = vf.voronoi3d(pts, BOX, weights=w)
+    check3d(d, volume=1.0)
+    ref = brute_volumes(pts, np.asarray(d.walls), w)
+    np.testing.assert_allclose(d.volumes, ref, rtol=1e-9, atol=1e-13)
+    q = rng.random((100, 3))
+    pd = ((q[:, None] - pts[None]) ** 2).sum(-1) - w[None]
+    np.testing.assert_array_equal(d.locate(q), pd.argmin(1))
+    # equal weights are the Voronoi diagram, bit for bit
+    e = vf.voronoi3d(pts, BOX, weights=np.full(60, 0.25))
+    f = vf.voronoi3d(pts, BOX)
+    np.testing.assert_array_equal(e.vertices, f.vertices)
+
+
+def test_power_duplicates_heaviest_wins():
+    pts = np.array([[0.2, 0.2, 0.2], [0.2, 0.2, 0.2], [0.8, 0.7, 0.6]])
+    d = vf.voronoi3d(pts, BOX, weights=[0.0, 0.1, 0.0])
+    assert d.duplicate_of.tolist() == [1, -1, -1]
+    assert d.volumes[0] == 0 and d.volumes[1] > 0
+    check3d(d, volume=1.0)
+
+
+def test_convex_containers():
+    rng = np.random.default_rng(4)
+    # a regular octahedron |x| + |y| + |z| <= 1 by half-spaces, and a hull of points
+    signs = np.array([[a, b, c] for a in (-1, 1) for b in (-1, 1) for c in (-1, 1)], float)
+    octa = vf.Convex(np.column_stack([signs, np.ones(8)]))
+    assert abs(octa.volume - 4 / 3) < 1e-12
+    pts = rng.uniform(-0.5, 0.5, (120, 3))
+    pts = pts[np.abs(pts).sum(1) < 1]
+    d = vf.voronoi3d(pts, octa)
+    check3d(d, volume=4 / 3)
+    ref = brute_volumes(pts, np.asarray(d.walls))
+    np.testing.assert_allclose(d.volumes, ref, rtol=1e-9, atol=1e-13)
+    walls = d.faces.cells[d.faces.cells[:, 1] < 0, 1]
+    assert set((-1 - walls).tolist()) <= set(range(8))
+    # hull of a cube's corners and a tetrahedron: same as the box / the analytic volume
+    cube = vf.Convex(points=signs * 0.5 + 0.5)
+    assert len(cube.halfspaces) == 6
+    e = vf.voronoi3d(pts * 0.5 + 0.5, cube)
+    f = vf.voronoi3d(pts * 0.5 + 0.5, BOX)
+    np.testing.assert_allclose(e.volumes, f.volumes, rtol=1e-12, atol=1e-15)
+    tet = vf.Convex(points=[[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    inside = rng.dirichlet(np.ones(4), 50)[:, 1:]
+    t = vf.voronoi3d(inside, tet)
+    check3d(t, volume=1 / 6)
+
+
+def test_periodic_against_freud_and_images():
+    freud = pytest.importorskip("freud")
+    rng = np.random.default_rng(8)
+    pts = rng.random((300, 3))
+    d = vf.voronoi3d(pts, BOX, periodic=True)
+    assert abs(d.volumes.sum() - 1.0) < 1e-12
+    box = freud.box.Box.cube(1.0)
+    v = freud.locality.Voronoi().compute((box, pts - 0.5))
+    np.testing.assert_allclose(d.volumes, v.volumes, rtol=1e-5)  # freud works in float32
+    small = vf.voronoi3d(pts[:40], BOX, periodic=True)
+    ref = brute_periodic_volumes(pts[:40])
+    np.testing.assert_allclose(small.volumes, ref, rtol=1e-9)
+    check_periodic_faces(small)
+    # the torus has no walls; every face is shared, and neighbour sets match freud's
+    assert (d.faces.cells[:, 1] >= 0).all()
+    nl = v.nlist
+    ours = {
+        (i, int(j))
+        for i in range(300)
+        for j in d.neighbors[1][d.neighbors[0][i] : d.neighbors[0][i + 1]]
+    }
+    theirs = {
+        (int(i), int(j))
+        for i, j in zip(nl.query_point_indices, nl.point_indices, strict=True)
+        if i != j
+    }
+    # freud (float32) misses one direction of a few faces and drops tiny ones: every pair it
+    # lists is ours, and ours beyond its list are tiny faces
+    theirs |= {(j, i) for i, j in theirs}
+    assert theirs <= ours
+    cf, lab, farea, roff, ring = d.cell_face_table()
+    owner = np.repeat(np.arange(300), np.diff(cf))
+    area = {}
+    for f in range(len(lab)):
+        key = (int(owner[f]), int(lab[f]))
+        area[key] = area.get(key, 0.0) + float(np.linalg.norm(farea[f]))
+    assert max(area[p] for p in ours - theirs) < 1e-3 * max(area.values())
+    # each torus face is listed once: areas add up to half the per-cell total
+    cf, lab, farea, roff, ring = d.cell_face_table()
+    np.testing.assert_allclose(2 * d.face_areas.sum(), np.linalg.norm(farea, axis=1).sum())
+    # few sites: a cell touches its own images
+    e = vf.voronoi3d([[0.3, 0.4, 0.5]], BOX, periodic=True)
+    np.testing.assert_allclose(e.volumes, [1.0], rtol=1e-12)
+    assert len(e.faces) == 3
+
+
+def test_bad_input():
+    with pytest.raises(ValueError, match="shape"):
+        vf.voronoi3d(np.zeros((4, 2)))
+    with pytest.raises(ValueError, match="NaN"):
+        vf.voronoi3d([[0, 0, 0], [np.nan, 0, 0]])
+    with pytest.raises(ValueError, match="weights"):
+        vf.voronoi3d(np.random.default_rng(0).random((5, 3)), weights=[1, 2])
+    with pytest.raises(ValueError, match="none of the sites"):
+        vf.voronoi3d([[5, 5, 5]], BOX)
+    with pytest.raises(ValueError, match="xmin < xmax"):
+        vf.voronoi3d([[0.5, 0.5, 0.5]], (1, 0, 0, 0, 1, 1))
+    with pytest.raises(ValueError, match="periodic"):
+        vf.voronoi3d([[0.5, 0.5, 0.5], [1.5, 0.5, 0.5]], BOX, periodic=True)
+    with pytest.raises(ValueError, match="unbounded"):
+        vf.Convex([[1, 0, 0, 1], [0, 1, 0, 1], [0, 0, 1, 1], [-1, 0, 0, 1]])
+    with pytest.raises(ValueError, match="no common point"):
+        vf.Convex(
+            [[1, 0, 0, 0], [-1, 0, 0, -1], [0, 1, 0, 1], [0, 0, 1, 1], [0, -1, 0, 1], [0, 0, -1, 1]]
+        )
+    with pytest.raises(ValueError, match="no volume"):
+        vf.Convex(points=[[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]])
+    assert len(vf.voronoi3d(np.zeros((0, 3)))) == 0
+
+
+def test_render_png(tmp_path):
+    from PIL import Image
+
+    from voroforge.io.render3d import diagram_meshes, render
+
+    d = vf.voronoi3d(np.random.default_rng(0).random((20, 3)), BOX)
+    out = render(diagram_meshes(d, explode=0.2), tmp_path / "c.png", size=(120, 100))
+    img = np.asarray(Image.open(out))
+    assert img.shape == (100, 120, 3)
+    assert (img < 250).any(axis=2).mean() > 0.2  # cells cover a good part of the picture
+    with pytest.raises(ValueError):
+        render([], tmp_path / "x.png")
