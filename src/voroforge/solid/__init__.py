@@ -14,5 +14,6 @@ from .check import Report, Violation, check
 from .extrude import extrude
 from .foam import foam
 from .lattice import lattice
+from .shell import shell
 
-__all__ = ["Report", "Violation", "check", "extrude", "fields", "foam", "lattice"]
+__all__ = ["Report", "Violation", "check", "extrude", "fields", "foam", "lattice", "shell"]

@@ -1,0 +1,301 @@
+"""voroforge.solid: lattices, foams, shells, slabs and print checks (watertight, exact volumes)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import shapely
+
+trimesh = pytest.importorskip("trimesh")
+pytest.importorskip("manifold3d")
+pytest.importorskip("skimage")
+
+from reference_solid import box_cells, hull_volume  # noqa: E402
+from voroforge import config, solid  # noqa: E402
+from voroforge.io import mesh as mio  # noqa: E402
+from voroforge.solid import implicit  # noqa: E402
+from voroforge.solid.booleans import manifold_status  # noqa: E402
+from voroforge.solid.hulls import ring_area  # noqa: E402
+
+
+def _solid_ok(m):
+    assert m.is_volume
+    assert manifold_status(m) == "NoError"
+
+
+# --- lattice: the hull route, exact ------------------------------------------------------
+
+
+def test_single_strut_volume_is_analytic():
+    r, L, k = 0.5, 10.0, 8
+    m = solid.lattice((np.array([[0, 0, 0], [L, 0, 0.0]]), [[0, 1]]), radius=r, nodes="hull")
+    _solid_ok(m)
+    d = config.SOLID_RING_MIN * r  # a lone end: the ring sits at the minimum distance
+    area = ring_area(k) * r * r
+    expected = area * (L - 2 * d) + 2 * area * d / 3  # prism + two cones to the node points
+    assert abs(m.volume - expected) <= 1e-9 * expected
+
+
+def test_cube_cell_struts_analytic_and_nodes_independent():
+    L, r, k = 10.0, 0.5, 8
+    m = solid.lattice(trimesh.creation.box((L, L, L)), radius=r)
+    _solid_ok(m)
+    parts = m.metadata["parts"]
+    assert parts["method"] == "hull" and parts["merged"] == 0
+    assert len(m.metadata["struts"]["a"]) == 12
+    # right angles: cot(45 deg) = 1, ring at SAFETY * r from each corner
+    d = max(config.SOLID_RING_SAFETY, config.SOLID_RING_MIN) * r
+    struts = 12 * ring_area(k) * r * r * (L - 2 * d)
+    assert abs(parts["strut_volume"] - struts) <= 1e-9 * struts
+    # each corner blob is convex: its hull volume from Delaunay tetrahedra (no facets)
+    v = np.asarray(m.vertices)
+    corner = v[np.linalg.norm(v - [L / 2, L / 2, L / 2], axis=1) < d + 1.5 * r]
+    blob = hull_volume(corner)
+    assert abs(m.volume - (struts + 8 * blob)) <= 1e-6 * m.volume
+    assert abs(m.volume - (parts["hull_volume"] + parts["strut_volume"])) <= 1e-9 * m.volume
+
+
+@pytest.mark.parametrize("nodes", ["sphere", "hull"])
+def test_bcc_cells_hull_route(nodes):
+    g = np.mgrid[0:3, 0:3, 0:3].reshape(3, -1).T * 10.0 + 5.0
+    pts = np.vstack([g, g[(g < 25).all(axis=1)] + 5.0])
+    cells = box_cells(pts, (0, 0, 0, 30, 30, 30))
+    m = solid.lattice(cells, radius=0.4, nodes=nodes)
+    _solid_ok(m)
+    p = m.metadata["parts"]
+    assert abs(m.volume - (p["hull_volume"] + p["strut_volume"])) <= 1e-9 * m.volume
+
+
+def test_graded_radius_is_frustums():
+    f = solid.fields.point([[5, 5, 5]], radius=30.0, falloff="linear")
+    m = solid.lattice(trimesh.creation.box((10, 10, 10)), radius=(0.3, 0.9), field=f)
+    _solid_ok(m)
+    s = m.metadata["struts"]
+    r = np.concatenate([s["ra"], s["rb"]])
+    assert r.min() < r.max()  # graded
+    assert (s["ra"] != s["rb"]).any()  # frustums
+    p = m.metadata["parts"]
+    assert abs(m.volume - (p["hull_volume"] + p["strut_volume"])) <= 1e-9 * m.volume
+
+
+def test_random_cells_fall_back_to_the_implicit_route():
+    rng = np.random.default_rng(3)
+    cells = box_cells(rng.random((25, 3)) * 20, (0, 0, 0, 20, 20, 20))
+    m = solid.lattice(cells, radius=0.6, voxel=0.5, smoothing=0)
+    _solid_ok(m)
+    assert m.metadata["parts"]["method"] in ("hull", "implicit")
+    with pytest.raises(ValueError):
+        solid.lattice(cells, radius=0.6, nodes="hull")
+
+
+# --- lattice: the implicit route ---------------------------------------------------------
+
+
+def test_capsule_volume_close_to_analytic():
+    r, L = 1.0, 8.0
+    m = solid.lattice(
+        (np.array([[0, 0, 0], [L, 0, 0.0]]), [[0, 1]]),
+        radius=r,
+        nodes="smooth",
+        smoothing=0,
+        voxel=0.15,
+    )
+    _solid_ok(m)
+    exact = math.pi * r * r * L + 4 / 3 * math.pi * r**3
+    assert abs(m.volume - exact) / exact < 0.015
+
+
+def test_slabs_stitch_exactly(monkeypatch):
+    box = trimesh.creation.box((6, 6, 6))
+    one = solid.lattice(box, radius=0.6, nodes="smooth", smoothing=0, voxel=0.25)
+    monkeypatch.setattr(implicit, "_SLAB", 7)  # many slabs: every seam must close
+    many = solid.lattice(box, radius=0.6, nodes="smooth", smoothing=0, voxel=0.25)
+    _solid_ok(many)
+    # same triangles; vertices differ only by marching cubes' float32 rounding of positions
+    assert len(one.faces) == len(many.faces)
+    assert abs(one.volume - many.volume) <= 1e-6 * one.volume
+
+
+def test_container_trim_and_skin():
+    rng = np.random.default_rng(5)
+    cells = box_cells(rng.random((12, 3)) * 20, (0, 0, 0, 20, 20, 20))
+    c = trimesh.creation.icosphere(2, radius=8.0)
+    c.apply_translation([10, 10, 10])
+    m = solid.lattice(cells, radius=0.6, container=c, skin=1.0, voxel=0.4, smoothing=0)
+    _solid_ok(m)
+    # inside the container's bounds; skin volume about area * thickness
+    assert (m.bounds[0] >= c.bounds[0] - 0.5).all() and (m.bounds[1] <= c.bounds[1] + 0.5).all()
+    assert m.volume > 0.6 * c.area * 1.0
+
+
+# --- foam ----------------------------------------------------------------------------------
+
+
+def test_foam_single_and_two_cells_analytic():
+    m = solid.foam([trimesh.creation.box((1, 1, 1))], wall=0.2)
+    _solid_ok(m)
+    assert abs(m.volume - (1 - 0.8**3)) <= 1e-9
+    a = trimesh.creation.box((1, 1, 1))
+    b = a.copy()
+    b.apply_translation([1, 0, 0])
+    m2 = solid.foam([a, b], wall=0.2)
+    assert m2.is_volume
+    assert abs(m2.volume - (2 - 2 * 0.8**3)) <= 1e-9
+
+
+def test_foam_random_is_container_minus_bubbles():
+    rng = np.random.default_rng(0)
+    cells = box_cells(rng.random((30, 3)) * 10, (0, 0, 0, 10, 10, 10))
+    m = solid.foam(cells, wall=0.5)
+    _solid_ok(m)
+    bubbles = solid.foam.__globals__["bubbles"](cells, 0.5)
+    inner = sum(b.volume for b, _, _ in bubbles if b is not None)
+    assert abs(m.volume - (1000.0 - inner)) <= 1e-9 * 1000.0
+    rep = solid.check(m, max_overhang=None)
+    assert rep.by_kind()["trapped_void"] == sum(b is not None for b, _, _ in bubbles)
+
+
+# --- shell and extrude ---------------------------------------------------------------------
+
+
+def test_shell_with_openings():
+    surf = trimesh.creation.cylinder(radius=10.0, height=12.0, sections=48)
+    keep = surf.face_normals[:, 2] ** 2 < 0.5  # the open tube: no caps
+    tube = trimesh.Trimesh(surf.vertices, surf.faces[keep], process=True)
+    m = solid.shell(tube, thickness=1.0, openings=12, web=1.5, voxel=0.4, smoothing=2)
+    _solid_ok(m)
+    plain = 2 * math.pi * 10.0 * 12.0 * 1.0
+    assert 0.2 * plain < m.volume < 0.95 * plain  # openings removed material
+    assert len(m.metadata["pores"]["size"]) == 12
+
+
+def test_extrude_analytic_and_relief():
+    frame = shapely.box(0, 0, 10, 10).difference(shapely.box(2, 2, 8, 8))
+    m = solid.extrude(frame, 3.0)
+    _solid_ok(m)
+    assert abs(m.volume - 192.0) <= 1e-9 * 192.0
+    m2 = solid.extrude(frame, 3.0, relief=lambda xy: 0.1 * xy[:, 0])
+    _solid_ok(m2)
+    # the top is linear in x: volume = integral of (3 + x / 10) over the frame
+    cx = frame.centroid.x
+    assert abs(m2.volume - frame.area * (3.0 + 0.1 * cx)) <= 1e-9 * m2.volume
+    two = solid.extrude(shapely.MultiPolygon([shapely.box(0, 0, 1, 1), shapely.box(3, 0, 4, 1)]), 1)
+    assert two.is_volume and abs(two.volume - 2.0) < 1e-12
+    assert solid.check(two, max_overhang=None).by_kind() == {"floating_part": 1}
+
+
+def test_extrude_takes_a_design_results_frame():
+    from types import SimpleNamespace
+
+    rng = np.random.default_rng(2)
+    holes = [shapely.Point(p).buffer(1.5) for p in rng.random((6, 2)) * 30 + 5]
+    frame = shapely.box(0, 0, 40, 40).difference(shapely.union_all(holes))
+    m = solid.extrude(SimpleNamespace(frame=frame), 2.5)  # what design.compute returns
+    _solid_ok(m)
+    assert abs(m.volume - 2.5 * frame.area) <= 1e-9 * m.volume
+
+
+# --- checks --------------------------------------------------------------------------------
+
+
+def test_check_thin_strut_located():
+    f = solid.fields.point([[5, 5, 5]], radius=4.0, falloff="linear")
+    m = solid.lattice(trimesh.creation.box((10, 10, 10)), radius=(0.8, 0.2), field=f)
+    rep = solid.check(m, min_strut=1.0, max_overhang=None)
+    thin = [v for v in rep.violations if v.kind == "thin_strut"]
+    assert len(thin) == 3  # the three struts at the (5, 5, 5) corner
+    for v in thin:
+        assert np.linalg.norm(np.array(v.location) - 5) <= 5.0 + 1e-9
+        assert v.value < 1.0 and v.limit == 1.0
+
+
+def test_check_small_pore_and_trapped_void_located():
+    big = trimesh.creation.box((1, 1, 1))
+    small = trimesh.creation.box((0.3, 1, 1))
+    small.apply_translation([0.65, 0, 0])
+    m = solid.foam([big, small], wall=0.1)
+    rep = solid.check(m, min_pore=0.25, max_overhang=None)
+    pores = [v for v in rep.violations if v.kind == "small_pore"]
+    assert len(pores) == 1 and abs(pores[0].location[0] - 0.65) < 1e-9
+    assert abs(pores[0].value - 0.2) < 1e-9
+    voids = [v for v in rep.violations if v.kind == "trapped_void"]
+    assert len(voids) == 2
+    assert sorted(round(v.location[0], 9) for v in voids) == [0.0, 0.65]
+
+
+def test_check_clean_and_overhang():
+    rep = solid.check(trimesh.creation.box((1, 1, 1)))
+    assert rep.ok and rep.stats["bodies"] == 1  # the bottom lies on the bed
+    t = trimesh.creation.box((1, 1, 1))
+    t.apply_transform(trimesh.transformations.rotation_matrix(0.3, [1, 0, 0]))
+    rep = solid.check(t, max_overhang=45)
+    assert rep.by_kind().get("overhang", 0) >= 1
+    assert all(v.value > 45 for v in rep.violations)
+
+
+# --- files ---------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("ext", [".3mf", ".stl", ".obj", ".ply", ".glb", ".3dm"])
+def test_solids_round_trip(tmp_path, ext):
+    meshes = {
+        "lattice": solid.lattice(trimesh.creation.box((10, 10, 10)), radius=0.5),
+        "foam": solid.foam([trimesh.creation.box((1, 1, 1))], wall=0.2),
+        "slab": solid.extrude(shapely.box(0, 0, 4, 3).difference(shapely.box(1, 1, 2, 2)), 1.0),
+    }
+    for name, m in meshes.items():
+        back = mio.read(mio.write(m, tmp_path / f"{name}{ext}"))
+        assert back.is_volume, name
+        exp = m.volume
+        if ext in (".stl", ".glb"):
+            exp = trimesh.Trimesh(m.vertices.astype(np.float32).astype(float), m.faces).volume
+        assert abs(back.volume - exp) <= 1e-9 * abs(exp), name
+
+
+# --- fields and bad input ------------------------------------------------------------------
+
+
+def test_fields():
+    xyz = np.array([[0.0, 0, 0], [5, 0, 0], [0, 0, 20]])
+    assert solid.fields.point([[0, 0, 0]], radius=10, falloff="linear")(xyz).tolist() == [
+        1.0,
+        0.5,
+        0.0,
+    ]
+    c = solid.fields.curve(np.array([[0, 0, 0], [0, 0, 10.0]]), radius=10, falloff="linear")
+    assert np.allclose(c(xyz), [1.0, 0.5, 0.0])
+    p = solid.fields.plane((0, 0, 0), (0, 0, 2), radius=40, falloff="linear")
+    assert np.allclose(p(xyz), [1, 1, 0.5])
+    m = solid.fields.mesh(trimesh.creation.box((2, 2, 2)), radius=4, falloff="linear")
+    assert np.allclose(m(np.array([[0, 0, 0], [3, 0, 0]])), [0.75, 0.5])
+    both = solid.fields.combine([c, p], mode="min")
+    assert np.allclose(both(xyz), [1, 0.5, 0.0])
+    assert np.allclose(p.remap(2, 4)(xyz), [4, 4, 3])
+
+
+def test_bad_input():
+    box = trimesh.creation.box((1, 1, 1))
+    with pytest.raises(ValueError, match="radius"):
+        solid.lattice(box, radius=-1)
+    with pytest.raises(ValueError, match="nodes"):
+        solid.lattice(box, nodes="cubes")
+    with pytest.raises(ValueError, match="skin needs a container"):
+        solid.lattice(box, radius=0.1, skin=1.0)
+    with pytest.raises(ValueError, match="NaN"):
+        solid.lattice((np.array([[0, 0, 0], [np.nan, 0, 0]]), [[0, 1]]))
+    with pytest.raises(ValueError, match="edges index"):
+        solid.lattice((np.zeros((2, 3)), [[0, 5]]))
+    with pytest.raises(ValueError, match="expected"):
+        solid.lattice("cells")
+    with pytest.raises(ValueError, match="thickness"):
+        solid.extrude(shapely.box(0, 0, 1, 1), 0)
+    with pytest.raises(ValueError, match="wall"):
+        solid.foam([box], wall=-2)
+    with pytest.raises(ValueError, match="check"):
+        solid.check("mesh")
+    nodes = np.array([[0, 0, 0], [1, 0, 0.0]])
+    keep = nodes.copy()
+    solid.lattice((nodes, [[0, 1]]), radius=0.1)
+    assert (nodes == keep).all()  # never mutates the input
