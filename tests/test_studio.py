@@ -457,3 +457,28 @@ def test_cli_studio_help_and_port_check(capsys):
     assert main(["studio", "--help"]) == 0
     assert "--no-browser" in capsys.readouterr().out
     assert main(["studio", "--port", "70000", "--no-browser"]) == 2
+
+
+def test_widget_speaks_the_page_protocol_and_exposes_the_design():
+    pytest.importorskip("anywidget")
+    from voroforge.studio import widget
+
+    w = widget(HOLED)
+    sent = []
+    w.send = lambda content, buffers=None: sent.append((content, buffers))
+    w._on_msg(w, {"text": '{"op":"hello","id":1}'}, [])
+    ops = [c["op"] for c, _ in sent]
+    assert ops == ["state", "geom"]
+    header, arrays = wire.unpack(sent[1][1][0])
+    assert header["full"] and header["n"] == len(w.result.raw) == w.cells
+    x, y = w.sites[3]
+    sent.clear()
+    w._on_msg(w, {"text": json.dumps({"op": "move", "i": 3, "x": x + 1.0, "y": y, "id": 2})}, [])
+    header, arrays = wire.unpack(sent[-1][1][0])
+    assert not header["full"] and header["reply_to"] == 2 and 3 in arrays["idx"]
+    assert w.sites[3, 0] == x + 1.0 and w.design.cells.web.value == 2.0
+    assert w.apply({"op": "set", "key": "cells.web", "value": 3}).kind == "update"
+    assert w.design.cells.web.value == 3 and "web = 3" in w.toml
+    w._on_msg(w, {"text": "NaN"}, [])
+    assert sent[-1][0]["op"] == "error"
+    assert "VoroStudio" in w._esm and "export default" in w._esm

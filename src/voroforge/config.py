@@ -37,6 +37,9 @@ VERTEX_SNAP_RTOL = 2.0**-40
 #: Circumcentres of two adjacent triangles closer than this (L1, relative to their magnitude
 #: and the circumradius) are one vertex: floats cannot order a shorter Voronoi edge
 CC_MERGE_RTOL = 2.0**-46
+#: Rounds of merging swapped Voronoi vertices (a backwards edge) before the cells are built;
+#: each round merges, so this only bounds pathological input (kernels/cells._unfold)
+FOLD_MAX_ROUNDS = 64
 #: A chain of circumcentres shorter than this (relative to the box's width + height) is
 #: rounding noise, not put back into a cut cell (kernels/cells)
 CHAIN_SPAN_RTOL = 1e-9
@@ -79,6 +82,9 @@ HALFPLANE_SURE_SIN2 = 1e-16
 #: Squared distance of two sites, relative to a neighbour's squared distance, below which
 #: the box crossing decides which of the two owns the edge at a box side (a few ulps apart)
 HALFPLANE_SHADOW_RTOL = 2.0**-40
+#: Half-plane cells certify themselves: convex rings (exact test) whose areas sum to the
+#: box's within this fraction; otherwise the Delaunay dual builds the diagram (engine/planar)
+HALFPLANE_TILING_RTOL = 1e-9
 #: Relative widening of a raster tile's k-th nearest bound against rounding in it
 RASTER_BOUND_RTOL = 1e-12
 #: Absolute slack of that bound relative to the coordinates' magnitude (rounding in the
@@ -274,6 +280,8 @@ PLOTTER_MERGE_RTOL = 1e-9
 PLOTTER_NEIGHBOURS = 10
 #: 2-opt stops after this many passes even if a move still shortens the tour
 PLOTTER_MAX_PASSES = 50
+#: Or-opt moves a path at most this many positions along the tour (bounded shifts)
+PLOTTER_OR_WINDOW = 64
 
 # --- studio (the local editing page and the Jupyter widget) --------------------------------
 
@@ -285,7 +293,7 @@ STUDIO_MAX_MESSAGE = 64 * 1024
 #: Undo steps kept
 STUDIO_UNDO_DEPTH = 200
 #: Seconds without edits before the live fabrication check runs (dragging stays smooth)
-STUDIO_CHECK_DELAY = 0.12
+STUDIO_CHECK_DELAY = 0.35
 
 # --- scale (tiled Voronoi on dask.distributed) ------------------------------------------------
 

@@ -68,8 +68,8 @@ class Result:
         Recursion level of each cell (0 without recursion).
     openings : (k,) object array
         The non-empty openings, cut from the boundary.
-    frame : shapely geometry
-        The boundary minus the openings.
+    frame : shapely geometry or None
+        The boundary minus the openings (None from ``compute(..., frame=False)``).
     extra : dict
         Recursion levels (``"levels"``) and cached derived data.
     diagram : Diagram or None
@@ -129,7 +129,7 @@ def _outline(geom) -> np.ndarray:
 # --- boundary and seeds -----------------------------------------------------------------
 
 
-def _file_boundary(path: Path, units: str):
+def _file_boundary(path: Path, units: str, close_tolerance: float = 0.0):
     """A boundary file in the design's units.
 
     An SVG whose width has a physical unit (``width="24in"``) is read in mm, so it is scaled
@@ -138,7 +138,8 @@ def _file_boundary(path: Path, units: str):
     """
     from . import boundary as bd
 
-    geom = bd.load(path)
+    svg = path.suffix.lower() == ".svg"
+    geom = bd.load(path, close_tolerance=close_tolerance) if svg else bd.load(path)
     return _svg_in_units(geom, path, units) if path.suffix.lower() == ".svg" else geom
 
 
@@ -167,7 +168,9 @@ def _boundary(design: Design, base: Path | None):
     elif spec.shape == "polygons":
         geom = bd.union(*(bd.polygon(p.points, p.holes) for p in spec.parts))
     else:
-        geom = _file_boundary(find_file(base, spec.file, "boundary.file"), design.design.units)
+        geom = _file_boundary(
+            find_file(base, spec.file, "boundary.file"), design.design.units, spec.close_tolerance
+        )
     if spec.corner_radius > 0:
         r = spec.corner_radius
         core = geom.buffer(-r, join_style="mitre")
@@ -539,6 +542,7 @@ def compute(
     progress: Stage | None = None,
     sites: np.ndarray | None = None,
     reuse: Result | None = None,
+    frame: bool = True,
 ) -> Result:
     """Compute the geometry of a validated design.
 
@@ -557,6 +561,9 @@ def compute(
         A previous result of a design with the same ``[cells]`` section: cells whose raw
         geometry and field value are unchanged keep its operated cells (inset, fillet, ...
         are per cell, so the geometry is the same as computed afresh, only faster).
+    frame : bool
+        False leaves ``Result.frame`` None (an editor that draws the openings does not need
+        the boundary minus their union, the slowest step for cells without webs).
 
     Returns
     -------
@@ -630,7 +637,10 @@ def compute(
     chosen = cells[mask & ~shapely.is_empty(cells)] if len(cells) else cells
     openings = np.asarray(chosen, dtype=object)
     open_cells = np.flatnonzero(mask & ~shapely.is_empty(cells)) if len(cells) else mask[:0]
-    frame = _frame(boundary, openings, _fresh(reuse, boundary, extra, open_cells), extra)
+    if frame:
+        frame = _frame(boundary, openings, _fresh(reuse, boundary, extra, open_cells), extra)
+    else:
+        frame = None
     extra["open_cells"] = open_cells
     return Result(
         design,

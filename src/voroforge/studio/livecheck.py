@@ -18,6 +18,9 @@ from ..design.fabrication import KINDS, Violation, check
 
 __all__ = ["LiveCheck", "limits_of"]
 
+#: New openings checked per step (a newer edit can stop a long check between steps)
+_CHUNK = 64
+
 
 def limits_of(design) -> dict:
     """The ``check`` keywords of a design's ``[fabrication]`` table (as ``voroforge check``)."""
@@ -40,13 +43,20 @@ class LiveCheck:
         self._pairs: dict[tuple[bytes, bytes], Violation] = {}
         self._outline: list[Violation] = []
 
-    def run(self, result) -> list[Violation]:
+    def run(self, result, stale=None) -> list[Violation] | None:
         """The violations of ``result`` (a :class:`~voroforge.design.compute.Result`).
+
+        Parameters
+        ----------
+        result : Result
+        stale : callable, optional
+            Asked between chunks of new openings; when it returns true the run stops and
+            returns None (what was checked so far stays cached for the next run).
 
         Returns
         -------
-        list of Violation
-            Items index ``result.openings``, ordered as :func:`check` orders them.
+        list of Violation or None
+            Items index ``result.openings``, worst first.
         """
         limits = limits_of(result.design)
         boundary = result.boundary
@@ -72,8 +82,11 @@ class LiveCheck:
         wkb = list(shapely.to_wkb(holes)) if len(holes) else []
         index = {w: i for i, w in enumerate(wkb)}
         new = [i for i, w in enumerate(wkb) if w not in self._single]
-        if new:
-            self._check_new(holes, wkb, new, boundary, limits)
+        tree = shapely.STRtree(holes) if new and limits["min_web"] else None
+        for start in range(0, len(new), _CHUNK):
+            if stale is not None and stale():
+                return None
+            self._check_new(holes, wkb, new[start : start + _CHUNK], boundary, limits, tree)
         found: list[Violation] = []
         for i, w in enumerate(wkb):
             found += [_renumber(v, (i, *v.items[1:])) for v in self._single[w]]
@@ -89,7 +102,7 @@ class LiveCheck:
         found.sort(key=_order)
         return found
 
-    def _check_new(self, holes, wkb, new, boundary, limits) -> None:
+    def _check_new(self, holes, wkb, new, boundary, limits, tree) -> None:
         tol = limits["corner_tolerance"]
         sub = holes[new]
         for i in new:
@@ -108,7 +121,6 @@ class LiveCheck:
         web = limits["min_web"]
         if not web:
             return
-        tree = shapely.STRtree(holes)
         _, hits = tree.query(sub, predicate="dwithin", distance=web)
         near = np.union1d(np.asarray(new), hits)
         fresh = set(new)
@@ -135,8 +147,12 @@ def _renumber(v: Violation, items: tuple[int, ...]) -> Violation:
 
 def _islands(result) -> list[Violation]:
     """Loose parts of the frame; a one-part frame with the boundary's own rim has none."""
-    frame = result.frame
     b = result.boundary
+    frame = result.frame
+    if frame is None:  # computed without it: the same frame, from the public operation
+        from ..design.cellops import frame as cut
+
+        frame = cut(b, result.openings)
     if (
         frame.geom_type == "Polygon"
         and b.geom_type == "Polygon"

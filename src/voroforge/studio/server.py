@@ -205,12 +205,16 @@ class _Hub:
                 await asyncio.sleep(wait)
                 continue
             async with self.lock:
-                if self.check_due - time.monotonic() > 0:
-                    continue
-                seq = self.seq
-                await asyncio.to_thread(self.session.check)
-                message = violations_message(self.session, seq)
-            await self.broadcast(message)
+                seq, result = self.seq, self.session.result
+
+            # outside the lock: edits go on while a long check runs, and stop it
+            def stale(seq=seq) -> bool:
+                return self.seq != seq
+
+            found = await asyncio.to_thread(self.session.check, result, stale)
+            if found is None or self.seq != seq:
+                continue
+            await self.broadcast(violations_message(self.session, seq))
             return
 
 

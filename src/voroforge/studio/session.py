@@ -2,7 +2,8 @@
 
 :class:`Session` holds the design file's mapping (``data``), the sites when they were edited
 by hand (``sites``; ``None`` while they come from ``[seeds]``), the last good
-:class:`~voroforge.design.compute.Result` and the undo history. :meth:`Session.apply` takes
+:class:`~voroforge.design.compute.Result` (computed without its ``frame``, which the page
+does not draw; exports rebuild everything) and the undo history. :meth:`Session.apply` takes
 one message of the page (a ``dict``, already parsed) and returns a :class:`Reply`; the web
 server and the Jupyter widget only move those messages. Nothing here draws or clips: the
 geometry is :func:`voroforge.design.compute.compute`'s, reused per cell between edits.
@@ -131,7 +132,9 @@ class Session:
 
         start = time.perf_counter()
         previous = self.result if reuse else None
-        result = compute(design, self.folder, progress=stage, sites=sites, reuse=previous)
+        result = compute(
+            design, self.folder, progress=stage, sites=sites, reuse=previous, frame=False
+        )
         self.compute_ms = (time.perf_counter() - start) * 1e3
         return design, result
 
@@ -153,12 +156,17 @@ class Session:
                     key, f"about {estimate:.0f} seeds, more than the limit of {self.max_seeds}"
                 )
 
-    def check(self) -> list:
-        """Run the live fabrication check of the current result (:class:`LiveCheck`)."""
+    def check(self, result=None, stale=None) -> list | None:
+        """Run the live fabrication check (:class:`LiveCheck`) of ``result`` (default: current).
+
+        Returns None, keeping the previous violations, when ``stale()`` turns true first.
+        """
         start = time.perf_counter()
-        self.violations = self.live.run(self.result)
-        self.check_ms = (time.perf_counter() - start) * 1e3
-        return self.violations
+        found = self.live.run(self.result if result is None else result, stale)
+        if found is not None:
+            self.violations = found
+            self.check_ms = (time.perf_counter() - start) * 1e3
+        return found
 
     def controls(self) -> list[dict]:
         """The inputs of the current design (:func:`voroforge.studio.controls.controls`)."""

@@ -50,10 +50,10 @@ var VoroStudio = (function () {
     return out;
   }
 
-  function colour(i) {
-    var h = (i * 137.508) % 360;
-    return "hsl(" + h.toFixed(1) + ",55%,72%)";
-  }
+  /* Stable cell colours: cell i always gets the same one (the golden-angle hue walk). */
+  var PALETTE = [];
+  for (var q = 0; q < 24; q++) PALETTE.push("hsl(" + ((q * 137.508) % 360).toFixed(1) + ",55%,72%)");
+  function colourOf(i) { return (i * 7 + (i >> 5)) % PALETTE.length; }
 
   /* The marker shapes of `voroforge check`'s overlays. */
   function marker(ctx, shape, x, y, r) {
@@ -177,7 +177,7 @@ var VoroStudio = (function () {
       this.rawData[i] = a.rc.subarray(2 * a.rr[a.rg[k]], 2 * a.rr[a.rg[k + 1]]);
       this.cells[i] = buildPath(a.cg, a.cr, a.cc, k);
     }
-    this.mask = a.mask; this.sites = a.sites; this.n = n;
+    this.mask = a.mask; this.sites = a.sites; this.n = n; this.layers = null;
     if (a.bg) { this.boundary = buildPath(a.bg, a.br, a.bc, 0); this.domain = buildPath(a.dg, a.dr, a.dc, 0); }
     this.bounds = h.bounds; this.attractors = h.attractors; this.header = h; this.seq = h.seq;
     this.parseMs = performance.now() - t0;
@@ -198,6 +198,19 @@ var VoroStudio = (function () {
   };
 
   /* --- drawing ------------------------------------------------------------------------ */
+
+  /* The cells as a few combined paths (one per colour, one for all edges): a repaint is a
+     handful of fills whatever the cell count. Rebuilt when geometry arrives. */
+  Studio.prototype.rebuildLayers = function () {
+    var fills = PALETTE.map(function () { return new Path2D(); }), edges = new Path2D();
+    for (var i = 0; i < this.n; i++) {
+      var c = this.cells[i], r = this.raw[i];
+      if (c && this.mask[i]) fills[colourOf(i)].addPath(c);
+      if (r) edges.addPath(r);
+    }
+    this.layers = { fills: fills, edges: edges, sites: null };
+    return this.layers;
+  };
 
   Studio.prototype.resize = function () {
     var r = this.canvas.getBoundingClientRect(), dpr = window.devicePixelRatio || 1;
@@ -234,19 +247,19 @@ var VoroStudio = (function () {
     ctx.fillStyle = "#f4f3ef"; ctx.fillRect(0, 0, this.canvas.width, this.canvas.height);
     ctx.setTransform(v.s, 0, 0, -v.s, v.tx, v.ty);
     if (this.boundary) { ctx.fillStyle = "#d2c4a5"; ctx.fill(this.boundary, "evenodd"); }
-    var n = this.n, mask = this.mask, i;
-    for (i = 0; i < n; i++) {
-      var c = this.cells[i];
-      if (c && mask[i]) { ctx.fillStyle = colour(i); ctx.fill(c, "evenodd"); }
-    }
+    var L = this.layers || this.rebuildLayers(), i;
+    for (i = 0; i < PALETTE.length; i++) { ctx.fillStyle = PALETTE[i]; ctx.fill(L.fills[i], "evenodd"); }
     ctx.lineWidth = 0.6 * px * dpr; ctx.strokeStyle = "rgba(60,50,40,0.22)";
-    for (i = 0; i < n; i++) { var r = this.raw[i]; if (r) ctx.stroke(r); }
+    ctx.stroke(L.edges);
     if (this.boundary) { ctx.lineWidth = 1.2 * px * dpr; ctx.strokeStyle = "#3a3128"; ctx.stroke(this.boundary); }
     if (this.domain) { ctx.setLineDash([4 * px * dpr, 4 * px * dpr]); ctx.lineWidth = 0.8 * px * dpr;
       ctx.strokeStyle = "rgba(58,49,40,0.6)"; ctx.stroke(this.domain); ctx.setLineDash([]); }
-    var s = this.sites, dot = 1.6 * px * dpr, sp = new Path2D();
-    for (i = 0; i < s.length; i += 2) sp.rect(s[i] - dot, s[i + 1] - dot, 2 * dot, 2 * dot);
-    ctx.fillStyle = "#1d2330"; ctx.fill(sp);
+    var s = this.sites, dot = 1.6 * px * dpr;
+    if (!L.sites || L.dot !== dot) {
+      L.sites = new Path2D(); L.dot = dot;
+      for (i = 0; i < s.length; i += 2) L.sites.rect(s[i] - dot, s[i + 1] - dot, 2 * dot, 2 * dot);
+    }
+    ctx.fillStyle = "#1d2330"; ctx.fill(L.sites);
     if (this.drag && this.drag.kind === "site") {
       var j = this.drag.i;
       if (2 * j + 1 < s.length) { ctx.beginPath(); ctx.arc(s[2 * j], s[2 * j + 1], 5 * px * dpr, 0, 7);

@@ -1,0 +1,204 @@
+"""The studio as a Jupyter widget (anywidget): the page's editor in a notebook cell.
+
+:func:`widget` returns a :class:`StudioWidget` showing the design with the same drawing,
+dragging, sliders, live check, undo/redo, save and export as ``voroforge studio``; the
+page's messages go over the widget's comm instead of a WebSocket (same
+:class:`~voroforge.studio.session.Session`, same binary geometry). The current state is
+readable from Python at any time: ``w.design`` (the validated design), ``w.result`` (its
+geometry), ``w.sites``, ``w.toml`` (the design as it would be saved).
+
+Examples
+--------
+>>> from voroforge.studio import widget  # doctest: +SKIP
+>>> w = widget("examples/laser-panel.toml")  # doctest: +SKIP
+>>> w  # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import json
+import threading
+from importlib import resources
+
+import anywidget
+import traitlets
+
+from .. import config
+from .server import geometry_message, state_message, violations_message
+from .session import Session
+from .tomlfile import dumps
+
+__all__ = ["StudioWidget", "widget"]
+
+_STATIC = resources.files(__package__).joinpath("static")
+
+_GLUE = r"""
+export default {
+  render({ model, el }) {
+    const root = document.createElement("div");
+    root.className = "vf-studio vf-widget";
+    root.innerHTML = `
+      <header class="vf-bar"><strong class="vf-title">voroforge studio</strong>
+        <span class="vf-file" data-role="file"></span>
+        <button data-act="undo">Undo</button><button data-act="redo">Redo</button>
+        <button data-act="reset_sites">Reset seeds</button><button data-act="save">Save…</button>
+        <button data-act="export-svg">SVG</button><button data-act="export-dxf">DXF</button>
+        <button data-act="export-png">PNG</button></header>
+      <main class="vf-main"><div class="vf-canvas-wrap"><canvas data-role="canvas"></canvas>
+        <div class="vf-legend" data-role="legend"></div></div>
+        <aside class="vf-panel" data-role="panel"></aside></main>
+      <footer class="vf-status"><span data-role="status">starting…</span>
+        <span class="vf-message" data-role="message"></span></footer>`;
+    el.appendChild(root);
+    const studio = new VoroStudio.Studio(root, { send: (text) => model.send({ text }) });
+    model.on("msg:custom", (msg, buffers) => {
+      if (msg.op === "geom" && buffers && buffers.length) {
+        const v = buffers[0];
+        studio.receive(v.buffer.slice(v.byteOffset, v.byteOffset + v.byteLength));
+      } else {
+        studio.receive(msg);
+      }
+    });
+    requestAnimationFrame(() => { studio.resize(); model.send({ text: '{"op":"hello"}' }); });
+    return () => root.remove();
+  },
+};
+"""
+
+
+class StudioWidget(anywidget.AnyWidget):
+    """A live design editor in a notebook (see the module docstring)."""
+
+    _esm = traitlets.Unicode(_STATIC.joinpath("studio.js").read_text(encoding="utf-8") + _GLUE).tag(
+        sync=True
+    )
+    _css = traitlets.Unicode(
+        _STATIC.joinpath("studio.css").read_text(encoding="utf-8")
+        + ".vf-widget { height: 560px; }\n"
+    ).tag(sync=True)
+    #: Cells in the current drawing (updates after every edit).
+    cells = traitlets.Int(0).tag(sync=True)
+
+    def __init__(self, session: Session, **kwargs):
+        super().__init__(**kwargs)
+        self.session = session
+        self.cells = len(session.result.raw)
+        self._seq = 0
+        self._timer: threading.Timer | None = None
+        self._lock = threading.Lock()
+        self.on_msg(self._on_msg)
+
+    @property
+    def design(self):
+        """The current validated design (:class:`~voroforge.design.schema.Design`)."""
+        return self.session.design
+
+    @property
+    def result(self):
+        """The current geometry (:class:`~voroforge.design.compute.Result`, no ``frame``)."""
+        return self.session.result
+
+    @property
+    def sites(self):
+        """The current sites, (n, 2) float64 (a copy)."""
+        return self.session.result.sites.copy()
+
+    @property
+    def toml(self) -> str:
+        """The design as TOML, as *Save* writes it (hand-placed sites go to a CSV beside it)."""
+        data, _ = self.session.saved_data("design.seeds.csv")
+        return dumps(data)
+
+    def apply(self, msg: dict):
+        """Apply one edit from Python, as the page does (``{"op": "set", ...}``); the view follows.
+
+        Returns
+        -------
+        Reply
+        """
+        return self._apply(msg, None)
+
+    def _on_msg(self, _widget, content, _buffers) -> None:
+        text = content.get("text") if isinstance(content, dict) else None
+        if not isinstance(text, str) or len(text) > config.STUDIO_MAX_MESSAGE:
+            self.send({"op": "error", "issues": [{"key": "", "message": "bad message"}]})
+            return
+        try:
+            msg = json.loads(text, parse_constant=_reject)
+        except (ValueError, RecursionError):
+            self.send({"op": "error", "issues": [{"key": "", "message": "not JSON"}]})
+            return
+        mid = msg.get("id") if isinstance(msg, dict) else None
+        if isinstance(msg, dict) and msg.get("op") == "hello":
+            self._send_geometry(None, mid)
+            self._schedule_check()
+            return
+        self._apply(msg, mid)
+
+    def _apply(self, msg, mid):
+        import base64
+
+        with self._lock:
+            reply = self.session.apply(msg)
+        base = {"reply_to": mid}
+        if reply.kind == "update":
+            self._send_geometry(reply.changed, mid)
+            self._schedule_check()
+        elif reply.kind == "file":
+            data = base64.b64encode(reply.data).decode("ascii")
+            self.send({"op": "file", "name": reply.name, "mime": reply.mime, "data": data, **base})
+        elif reply.kind == "error":
+            self.send({"op": "error", "issues": reply.issues, **base})
+        elif reply.kind in ("confirm", "saved"):
+            self.send({"op": reply.kind, "name": reply.name, "files": reply.files, **base})
+        else:
+            self.send({"op": "info", "note": reply.note, **base})
+        return reply
+
+    def _send_geometry(self, changed, mid) -> None:
+        with self._lock:
+            self._seq += 1
+            payload = geometry_message(
+                self.session, changed, seq=self._seq, boundary=True, extra={"reply_to": mid}
+            )
+            state = state_message(self.session)
+        self.cells = len(self.session.result.raw)
+        self.send(state)
+        self.send({"op": "geom"}, buffers=[payload])
+
+    def _schedule_check(self) -> None:
+        if self._timer is not None:
+            self._timer.cancel()
+        seq = self._seq
+        self._timer = threading.Timer(config.STUDIO_CHECK_DELAY, self._check, args=(seq,))
+        self._timer.daemon = True
+        self._timer.start()
+
+    def _check(self, seq: int) -> None:
+        found = self.session.check(self.session.result, lambda: self._seq != seq)
+        if found is not None and self._seq == seq:
+            self.send(violations_message(self.session, seq))
+
+
+def _reject(name: str):
+    raise ValueError(f"{name} is not a number the studio takes")
+
+
+def widget(design=None, *, folder=None) -> StudioWidget:
+    """The studio editor as a notebook widget.
+
+    Parameters
+    ----------
+    design : str, Path, dict, Session or None
+        A TOML design file, a design mapping, an existing session, or None (the starter).
+    folder : str or Path, optional
+        Where *Save* writes (default: the design file's folder, else the current folder).
+
+    Returns
+    -------
+    StudioWidget
+        Display it (last expression of a cell); read ``w.design``, ``w.result``,
+        ``w.sites`` and ``w.toml`` from Python.
+    """
+    session = design if isinstance(design, Session) else Session(design, folder=folder)
+    return StudioWidget(session)

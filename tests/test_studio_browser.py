@@ -1,0 +1,342 @@
+"""The studio in a real browser: Playwright driving Debian's chromium.
+
+One browser for the module; each design gets its own server (a thread, a free port). The
+latency test prints the repaint times the page measured with ``performance.now()`` (from the
+pointer event to the frame after the new geometry is drawn); they are printed, not asserted.
+Set ``VOROFORGE_STUDIO_SHOTS=DIR`` to keep screenshots (the docs' pictures come from here).
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import socket
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+CHROMIUM = "/usr/bin/chromium"
+ARGS = (
+    "--headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+    "--disable-background-networking --disable-component-update --disable-sync"
+).split()
+
+pytest.importorskip("starlette")
+pytest.importorskip("uvicorn")
+sync_api = pytest.importorskip("playwright.sync_api", reason="PyPI playwright is not installed")
+pytestmark = pytest.mark.skipif(
+    not Path(CHROMIUM).exists(),
+    reason=f"Debian chromium is not installed at {CHROMIUM} (make test installs it with apt-get)",
+)
+
+ROOT = Path(__file__).resolve().parents[1]
+SHOTS = os.environ.get("VOROFORGE_STUDIO_SHOTS")
+
+
+class Served:
+    """A studio server for one session, in a thread on a free port."""
+
+    def __init__(self, session):
+        import uvicorn
+
+        from voroforge.studio.server import create_app
+
+        self.session = session
+        sock = socket.socket()
+        sock.bind(("127.0.0.1", 0))
+        self.url = f"http://127.0.0.1:{sock.getsockname()[1]}/"
+        self.server = uvicorn.Server(uvicorn.Config(create_app(session), log_level="warning"))
+        self.thread = threading.Thread(
+            target=self.server.run, kwargs={"sockets": [sock]}, daemon=True
+        )
+        self.thread.start()
+        deadline = time.monotonic() + 30
+        while not self.server.started and time.monotonic() < deadline:
+            time.sleep(0.02)
+
+    def stop(self):
+        self.server.should_exit = True
+        self.thread.join(10)
+
+
+@pytest.fixture(scope="module")
+def browser():
+    with sync_api.sync_playwright() as p:
+        b = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+        yield b
+        b.close()
+
+
+def _open(browser, session, size=(1280, 760)):
+    served = Served(session)
+    # bypass_csp: Playwright polls with eval, which the page's CSP (rightly) forbids
+    page = browser.new_page(
+        viewport={"width": size[0], "height": size[1]}, accept_downloads=True, bypass_csp=True
+    )
+    errors = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.goto(served.url)
+    page.wait_for_function("window.studio && window.studio.n > 0", timeout=60_000)
+    return served, page, errors
+
+
+def _idle(page, timeout=60_000):
+    page.wait_for_function("!studio.inflight && !studio.pending", timeout=timeout)
+
+
+def _shot(page, name):
+    if SHOTS:
+        Path(SHOTS).mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(Path(SHOTS) / name))
+
+
+@pytest.fixture(scope="module")
+def panel(browser, tmp_path_factory):
+    from voroforge.studio.session import Session
+
+    folder = tmp_path_factory.mktemp("studio")
+    shutil.copy(ROOT / "examples" / "laser-panel.toml", folder / "laser-panel.toml")
+    session = Session(folder / "laser-panel.toml")
+    served, page, errors = _open(browser, session)
+    yield page, session, folder
+    assert not errors, errors
+    page.close()
+    served.stop()
+
+
+def _drag(page, i, dx, dy, steps=8):
+    x, y = page.evaluate(f"studio.toScreen(studio.site({i}))")
+    page.mouse.move(x, y)
+    page.mouse.down()
+    for k in range(1, steps + 1):
+        page.mouse.move(x + dx * k / steps, y + dy * k / steps)
+        page.wait_for_timeout(15)
+    page.mouse.up()
+    _idle(page)
+    return x + dx, y + dy
+
+
+def _slide(page, key, value):
+    """Move a slider as a user does: set its value and fire 'input'."""
+    page.eval_on_selector(
+        f".vf-ctl[data-key='{key}'] input[type=range]",
+        "(e, v) => { e.value = v; e.dispatchEvent(new Event('input')); }",
+        value,
+    )
+
+
+def test_page_draws_the_design(panel):
+    page, session, _ = panel
+    assert page.evaluate("studio.n") == len(session.result.raw)
+    assert "cells" in page.inner_text("[data-role=status]")
+    page.wait_for_function("studio.violationTotal !== undefined", timeout=60_000)
+    legend = page.inner_text("[data-role=legend]")
+    assert all(kind in legend for kind in ("web", "opening", "corner", "island"))
+    # the canvas is drawn: many distinct colours
+    colours = page.evaluate(
+        """() => { const c = studio.canvas, d = c.getContext('2d')
+             .getImageData(0, 0, c.width, c.height).data, s = new Set();
+           for (let i = 0; i < d.length; i += 397) s.add(d[i] + ',' + d[i+1] + ',' + d[i+2]);
+           return s.size; }"""
+    )
+    assert colours > 20
+    keys = page.eval_on_selector_all(".vf-ctl", "els => els.map(e => e.dataset.key)")
+    assert {"seeds.radius", "cells.web", "cells.fillet", "fabrication.min_web"} <= set(keys)
+    _shot(page, "laser-panel.png")
+
+
+def test_drag_a_seed_changes_its_cell(panel):
+    page, session, _ = panel
+    before = page.evaluate("studio.cellPath(5)")
+    _drag(page, 5, 14, -9)
+    after = page.evaluate("studio.cellPath(5)")
+    assert after != before
+    assert session.sites is not None
+    assert np.allclose(page.evaluate("studio.site(5)"), session.result.sites[5])
+    assert page.evaluate("studio.latencies.filter(l => l.op === 'move' && !l.full).length") >= 1
+
+
+def test_add_and_remove_a_seed_then_undo(panel):
+    page, session, _ = panel
+    n = page.evaluate("studio.n")
+    # an empty spot: the middle between two neighbouring sites, far enough from both
+    spot = page.evaluate(
+        """() => { const s = studio.sites; let best = null;
+           for (let i = 0; i < s.length / 2; i++) for (let j = i + 1; j < s.length / 2; j++) {
+             const p = [(s[2*i] + s[2*j]) / 2, (s[2*i+1] + s[2*j+1]) / 2];
+             const q = studio.toScreen(p), a = studio.toScreen([s[2*i], s[2*i+1]]);
+             const d = Math.hypot(q[0] - a[0], q[1] - a[1]);
+             if (d > 20 && d < 40 && studio.nearestSite(p, 15) < 0) return q; }
+           return best; }"""
+    )
+    page.mouse.click(*spot)
+    _idle(page)
+    assert page.evaluate("studio.n") == n + 1
+    page.keyboard.down("Shift")
+    page.mouse.click(*spot)
+    page.keyboard.up("Shift")
+    _idle(page)
+    assert page.evaluate("studio.n") == n
+    page.click("[data-act=undo]")
+    _idle(page)
+    assert page.evaluate("studio.n") == n + 1
+    page.keyboard.press("Control+z")
+    _idle(page)
+    assert page.evaluate("studio.n") == n == len(session.result.raw)
+
+
+def test_slider_changes_the_cell_count_and_bad_values_show_the_error(panel):
+    page, session, _ = panel
+    n = page.evaluate("studio.n")
+    _slide(page, "seeds.radius", 25)
+    page.wait_for_function(f"studio.n !== {n}", timeout=60_000)
+    _idle(page)
+    assert page.evaluate("studio.n") == len(session.result.raw) > n
+    assert session.sites is None  # new seeds from [seeds]
+    good = page.evaluate("studio.n")
+    box = ".vf-ctl[data-key='cells.web'] input[type=number]"
+    page.fill(box, "-2")
+    page.press(box, "Enter")
+    page.wait_for_selector(".vf-ctl.vf-bad[data-key='cells.web']", timeout=30_000)
+    message = page.inner_text(".vf-ctl[data-key='cells.web'] .vf-err")
+    assert ">= 0" in message
+    assert page.evaluate("studio.n") == good  # the last good drawing stays
+
+
+def test_save_rebuild_and_export_are_byte_identical(panel):
+    from voroforge.cli import main
+
+    page, session, folder = panel
+    _drag(page, 2, -10, 6)
+    answers = iter([("accept", "studio-saved.toml"), ("accept", "studio-saved.toml"), ("no", "")])
+    asked = []
+
+    def on_dialog(d):
+        asked.append((d.type, d.message))
+        kind, text = next(answers)
+        d.accept(text) if kind == "accept" else d.dismiss()
+
+    page.on("dialog", on_dialog)
+    page.click("[data-act=save]")
+    page.wait_for_function("studio.saved && studio.saved.name === 'studio-saved.toml'")
+    assert (folder / "studio-saved.toml").exists() and (folder / "studio-saved.seeds.csv").exists()
+    # saving again asks before overwriting; saying no leaves the file alone
+    stamp = (folder / "studio-saved.toml").stat().st_mtime_ns
+    page.click("[data-act=save]")
+    page.wait_for_function("!studio.inflight")
+    deadline = time.monotonic() + 20
+    while len(asked) < 3 and time.monotonic() < deadline:
+        page.wait_for_timeout(50)
+    page.remove_listener("dialog", on_dialog)
+    assert [t for t, _ in asked] == ["prompt", "prompt", "confirm"] and "Overwrite" in asked[2][1]
+    assert (folder / "studio-saved.toml").stat().st_mtime_ns == stamp
+    with page.expect_download() as dl:
+        page.click("[data-act=export-dxf]")
+    exported = folder / "exported.dxf"
+    dl.value.save_as(exported)
+    assert main(["build", str(folder / "studio-saved.toml"), "-o", str(folder / "out")]) == 0
+    assert (folder / "out" / "laser-panel.dxf").read_bytes() == exported.read_bytes()
+
+
+# --- speed ---------------------------------------------------------------------------------
+
+HOLED_2000 = {
+    "design": {"name": "holed-2000", "seed": 1},
+    "boundary": {
+        "shape": "polygon",
+        "points": [[0, 0], [1000, 0], [1000, 700], [0, 700]],
+        "holes": [[[400, 250], [600, 250], [600, 450], [400, 450]]],
+    },
+    "seeds": {"method": "random", "count": 2000},
+    "cells": {"web": 2.0, "fillet": 1.5},
+}
+
+
+def _drag_latencies(page, moves, span=60):
+    i = page.evaluate("Math.floor(studio.n / 2)")
+    x, y = page.evaluate(f"studio.toScreen(studio.site({i}))")
+    page.evaluate("studio.latencies = []")
+    page.mouse.move(x, y)
+    page.mouse.down()
+    for k in range(1, moves + 1):
+        page.mouse.move(x + span * np.sin(k / 3.0) / 6, y + span * np.cos(k / 4.0) / 6)
+        _idle(page)
+    page.mouse.up()
+    return page.evaluate("studio.latencies.filter(l => l.op === 'move')")
+
+
+def _row(name, lat):
+    ms = np.array([entry["ms"] for entry in lat])
+    comp = np.array([entry["compute_ms"] for entry in lat])
+    draw = np.array([entry["draw_ms"] for entry in lat])
+    return (
+        f"| {name:<44} | {lat[0]['n']:>6} | {len(ms):>3} | {np.percentile(ms, 50):>7.1f} | "
+        f"{np.percentile(ms, 95):>7.1f} | {np.median(comp):>7.1f} | {np.median(draw):>6.1f} |"
+    )
+
+
+def test_latency_table(browser, tmp_path):
+    from voroforge.studio.session import Session
+
+    cases = [
+        ("seed drag, 2,000 cells, hole, inset + fillet", HOLED_2000, 12),
+        ("seed drag, 2,000 plain cells", {**HOLED_2000, "cells": {}}, 12),
+        (
+            "seed drag, 20,000 plain cells",
+            {**HOLED_2000, "cells": {}, "seeds": {"method": "random", "count": 20000}},
+            4,
+        ),
+    ]
+    rows = []
+    for name, data, moves in cases:
+        served, page, errors = _open(browser, Session(data, folder=tmp_path))
+        try:
+            lat = _drag_latencies(page, moves)
+            assert lat and all(not entry["full"] for entry in lat)
+            rows.append(_row(name, lat))
+            if name.startswith("seed drag, 2,000 cells"):
+                page.evaluate("studio.latencies = []")
+                for count in (1990, 2000, 2010):
+                    page.fill(".vf-ctl[data-key='seeds.count'] input[type=number]", str(count))
+                    page.press(".vf-ctl[data-key='seeds.count'] input[type=number]", "Enter")
+                    page.wait_for_function(f"studio.n === {count}", timeout=60_000)
+                    _idle(page)
+                lat = page.evaluate("studio.latencies.filter(l => l.op === 'set')")
+                rows.append(_row("slider: seeds.count (all seeds new), inset + fillet", lat))
+            assert not errors, errors
+        finally:
+            page.close()
+            served.stop()
+    head = (
+        "| case | cells | n | p50 ms | p95 ms | compute ms | draw ms |\n"
+        "|---|---|---|---|---|---|---|"
+    )
+    print("\nstudio repaint latency (pointer event -> frame after the redraw):")
+    print(head)
+    print("\n".join(rows))
+
+
+def test_facade_screenshot(browser, tmp_path):
+    from voroforge.studio.session import Session
+
+    shutil.copy(ROOT / "examples" / "facade-panel.toml", tmp_path / "facade-panel.toml")
+    served, page, errors = _open(browser, Session(tmp_path / "facade-panel.toml"))
+    try:
+        page.wait_for_function("studio.violationTotal !== undefined", timeout=60_000)
+        # drag the attractor: the field and the webs follow
+        a = page.evaluate("studio.toScreen(studio.attractors[0].points[0])")
+        page.mouse.move(*a)
+        page.mouse.down()
+        page.mouse.move(a[0] + 60, a[1] + 20, steps=4)
+        page.mouse.up()
+        _idle(page)
+        assert page.evaluate("studio.attractors[0].points[0][0]") > 300
+        page.wait_for_function("studio.violationTotal !== undefined")
+        _shot(page, "facade-panel.png")
+        assert not errors, errors
+    finally:
+        page.close()
+        served.stop()
