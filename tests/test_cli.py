@@ -186,6 +186,48 @@ def test_check_prints_table_and_strict_exit(tmp_path, capsys):
     assert rc == 2 and "must be a .png or .svg" in err
 
 
+def test_check_all_lists_every_row_worst_first_and_names_the_keys(tmp_path, capsys):
+    f = tmp_path / "p.toml"
+    f.write_text(PANEL)
+    sets = ["--set", "cells.web=0.5", "--set", "fabrication.tool_radius=2"]
+    rc, short, _ = _run(capsys, "check", f, *sets)
+    rc, full, _ = _run(capsys, "check", f, *sets, "--all")
+    total = int(full.splitlines()[-1].split()[0])
+    rows = [ln for ln in full.splitlines()[2:-1]]
+    assert len(rows) == total > 50 and "--all" in short and "more" not in full
+    assert "fabrication.tool_radius" in full.splitlines()[-1]
+    # worst first across kinds: relative shortfall of value against limit never increases
+    sev = [(float(r.split()[4]) - float(r.split()[3])) / float(r.split()[4]) for r in rows]
+    assert all(a >= b - 1e-9 for a, b in zip(sev, sev[1:], strict=False))
+
+
+def test_voronoi_edges_and_cells_dxf_cut_every_edge_once(tmp_path, points_csv, capsys):
+    from test_plotter import duplicate_segments
+
+    cells, edges, svg = tmp_path / "c.dxf", tmp_path / "e.dxf", tmp_path / "e.svg"
+    rc, _, err = _run(capsys, "voronoi", points_csv, "-o", cells, "--boundary", "0,0,50,50")
+    assert rc == 0, err
+    rc, _, err = _run(
+        capsys, "voronoi", points_csv, "-o", edges, "-o", svg, "--edges", "--boundary", "0,0,50,50"
+    )
+    assert rc == 0, err
+    assert duplicate_segments(cells) == 0 and duplicate_segments(edges) == 0
+    n_lines = len(ezdxf.readfile(edges).modelspace().query("LWPOLYLINE"))
+    assert 0 < n_lines < 60  # long strokes, not one polyline per edge
+    rc, _, err = _run(capsys, "voronoi", points_csv, "-o", tmp_path / "e.png", "--edges")
+    assert rc == 2 and "--edges" in err
+
+
+def test_svg_units_error_names_file_and_line(tmp_path, capsys):
+    f = tmp_path / "m.toml"
+    f.write_text(PANEL.replace("seed = 2", 'seed = 2\nunits = "m"', 1))
+    rc, _, err = _run(capsys, "build", f, "-o", tmp_path / "o")
+    line = f.read_text().splitlines().index('formats = ["svg", "dxf"]') + 1
+    assert rc == 2 and f"{f}:{line}: output.formats: svg needs design.units" in err
+    rc, _, err = _run(capsys, "build", f, "-o", tmp_path / "o", "--set", 'output.formats=["svg"]')
+    assert rc == 2 and "(from --set)" in err
+
+
 @pytest.mark.parametrize(
     ("argv", "message"),
     [

@@ -9,6 +9,7 @@ import pytest
 import shapely
 from PIL import Image
 
+from test_plotter import duplicate_segments
 from voroforge.design.build import build, check_design
 from voroforge.design.designfile import load
 
@@ -48,6 +49,8 @@ def test_example_builds_and_reads_back(tmp_path, design_file):
                 assert e.dxf.layer in layers
                 if e.dxftype() == "LWPOLYLINE" and design.output.layers.get(e.dxf.layer) != "edges":
                     assert e.closed
+            # no line is cut twice: zero duplicate (or overlapping) segments on every layer
+            assert duplicate_segments(path) == 0
         elif kind == ".svg":
             root = ET.parse(path).getroot()
             assert root.get("width").endswith(design.design.units)

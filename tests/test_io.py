@@ -444,3 +444,33 @@ def test_docstring_examples_of_readers_and_arcs():
     for module in (voroforge.io.readers, voroforge.io.arcs):
         result = doctest.testmod(module)
         assert result.attempted > 0 and result.failed == 0, module.__name__
+
+
+def test_open_svg_outline_is_an_error_naming_file_and_element(tmp_path):
+    from voroforge.io.readers.svg import read_svg
+
+    f = tmp_path / "open.svg"
+    f.write_text(
+        '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">'
+        '<path id="outline" d="M 0 0 L 100 0 L 100 100 L 0 100 L 0 0.5"/></svg>'
+    )
+    with pytest.raises(ValueError, match=r"open\.svg: <path id='outline'>: subpath 1 is open"):
+        read_svg(f)
+    with pytest.raises(ValueError, match="0.5 user units apart"):
+        read_svg(f, close_tolerance=0.1)
+    assert read_svg(f, close_tolerance=1.0).area == pytest.approx(10000.0)
+    assert read_svg(f, close_tolerance=None).area == pytest.approx(10000.0)  # as a fill
+    g = tmp_path / "closed.svg"
+    g.write_text(f.read_text().replace("0.5\"", "0.5 Z\""))
+    assert read_svg(g).area == pytest.approx(10000.0)
+    # from a design file: the key and the file's element
+    from voroforge.design.build import check_design
+    from voroforge.design.designfile import DesignError
+
+    design = tmp_path / "d.toml"
+    design.write_text(
+        '[boundary]\nshape = "file"\nfile = "open.svg"\n[seeds]\nmethod = "random"\ncount = 5\n'
+    )
+    with pytest.raises(DesignError, match=r"d\.toml:3: boundary\.file: .*<path id='outline'>"):
+        check_design(design)
+    check_design(design, overrides={"boundary.close_tolerance": 1})

@@ -204,3 +204,19 @@ def test_build_orders_plotter_lines_and_warns_about_coincident_layers(tmp_path):
     n_file = len(ezdxf.readfile(dxf2).modelspace().query("LWPOLYLINE[layer=='ENGRAVE']"))
     assert n_travel < n_file / 2  # merged strokes
     assert sorted(dxf_segments(dxf2)["ENGRAVE"]) == sorted(segs)  # the same lines
+
+
+def test_frame_and_openings_on_cut_give_no_duplicate_segments(tmp_path):
+    from voroforge.design.build import build
+
+    design = {
+        "boundary": {"shape": "rectangle", "width": 120, "height": 80},
+        "seeds": {"method": "poisson", "radius": 14},
+        "cells": {"web": 3, "fillet": 1},
+        "output": {"formats": ["dxf", "svg"], "layers": {"CUT": ["frame", "openings"]}},
+    }
+    dxf, svg = build(design, tmp_path)
+    assert duplicate_segments(dxf) == 0
+    arcs = ezdxf.readfile(dxf).modelspace().query("LWPOLYLINE")
+    assert all(e.closed for e in arcs)  # each ring once, kept whole (fillets as arcs)
+    assert svg.read_text().count("<path") == len(arcs)

@@ -16,6 +16,7 @@ from typing import Annotated, Any, Literal
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from .. import config
+from ..surface.schema import SurfaceSection
 
 __all__ = [
     "Attractor",
@@ -133,6 +134,8 @@ class Boundary(_Model):
     file: str | None = None
     corner_radius: NonNegFloat = 0.0
     margin: NonNegFloat = 0.0
+    # an SVG file's open subpaths are errors unless their ends are at most this far apart
+    close_tolerance: NonNegFloat = 0.0
 
     @model_validator(mode="after")
     def _shape_fields(self) -> Boundary:
@@ -417,6 +420,7 @@ class Design(_Model):
     recursion: Recursion = Recursion()
     output: Output = Output()
     fabrication: Fabrication = Fabrication()
+    surface: SurfaceSection | None = None  # voroforge.surface: the design on a curved surface
 
 
 def short_repr(value) -> str:

@@ -579,7 +579,10 @@ def order_paths(
         _, nb = cKDTree(ports).query(ports, k=k)
         nb = np.ascontiguousarray(np.asarray(nb, dtype=np.int64).reshape(2 * n, k))
         span = float(np.ptp(ports, axis=0).max()) + float(np.abs(ports).max())
-        _two_opt(ports, tour, flip, can_flip, nb, home, span * 1e-12, int(max_passes))
+        eps = span * 1e-12
+        _two_opt(
+            ports, tour, flip, can_flip, nb, home, eps, int(max_passes), config.PLOTTER_OR_WINDOW
+        )
     return tour.astype(np.int64), flip.astype(bool)
 
 
@@ -673,7 +676,7 @@ def _dist(ports, a, b):
 
 
 @njit(**config.NJIT)
-def _two_opt(ports, tour, flip, can_flip, nb, home, eps, max_passes):
+def _two_opt(ports, tour, flip, can_flip, nb, home, eps, max_passes, window):
     """2-opt on the tour of paths in place: a move reverses positions i+1..j.
 
     Ports: ``2p`` is path p's first point, ``2p + 1`` its last. At position k the path is
@@ -685,6 +688,7 @@ def _two_opt(ports, tour, flip, can_flip, nb, home, eps, max_passes):
     for k in range(n):
         pos[tour[k]] = k
     hx, hy = home[0], home[1]
+    or_rounds = 0
     for _ in range(max_passes):
         improved = False
         for k in range(n):
@@ -741,8 +745,9 @@ def _two_opt(ports, tour, flip, can_flip, nb, home, eps, max_passes):
                     improved = True
                     p = tour[k]
                     x = 2 * p + (1 - int(flip[k]) if side == 0 else int(flip[k]))
-        if not improved:
-            improved = _or_opt(ports, tour, flip, can_flip, pos, nb, home, eps)
+        if not improved and or_rounds < 2:  # Or-opt twice at most: its moves shift the tour
+            or_rounds += 1
+            improved = _or_opt(ports, tour, flip, can_flip, pos, nb, home, eps, window)
         if not improved:
             break
     for k in range(n):
@@ -780,8 +785,11 @@ def _port_gap(ports, tour, flip, a, port, home, into):
 
 
 @njit(**config.NJIT)
-def _or_opt(ports, tour, flip, can_flip, pos, nb, home, eps):
-    """One pass of moves of a single path to a gap next to one of its near neighbours."""
+def _or_opt(ports, tour, flip, can_flip, pos, nb, home, eps, window):
+    """One pass of moves of a single path to a gap next to one of its near neighbours.
+
+    Only gaps at most ``window`` positions away are tried, so a move shifts few entries.
+    """
     n = len(tour)
     improved = False
     for p in range(n):
@@ -812,7 +820,7 @@ def _or_opt(ports, tour, flip, can_flip, pos, nb, home, eps):
                     continue
                 kq = pos[q]
                 for g in (kq - 1, kq):  # the gaps on either side of q
-                    if g == k or g == k - 1:
+                    if g == k or g == k - 1 or abs(g - k) > window:
                         continue
                     for f in range(2):
                         if f == 1 and not can_flip[p]:

@@ -326,10 +326,23 @@ def _tag(el) -> str:
     return el.tag.rsplit("}", 1)[-1] if isinstance(el.tag, str) else ""
 
 
-def _element_rings(el, tol: float) -> list[np.ndarray]:
+def _element_rings(el, tol: float, close_tolerance: float | None = None) -> list[np.ndarray]:
     tag = _tag(el)
     if tag == "path":
-        return path_rings(el.get("d", ""), tolerance=tol)
+        if close_tolerance is None:  # every subpath closed, as a fill would close it
+            return path_rings(el.get("d", ""), tolerance=tol)
+        out = []
+        for k, (pts, closed) in enumerate(_subpaths(el.get("d", ""), tol)):
+            gap = float(np.hypot(*(pts[-1] - pts[0])))
+            if not closed and gap > close_tolerance:
+                raise ValueError(
+                    f"subpath {k + 1} is open: its ends are {gap:.6g} user units apart "
+                    f"(close it with Z, or allow gaps up to that with a closing tolerance; "
+                    f"now {close_tolerance:g})"
+                )
+            if len(pts) >= 3:
+                out.append(pts)
+        return out
     if tag == "polygon":
         v = [float(a) for a in _NUMBER.findall(el.get("points", ""))]
         return [np.array(v[: len(v) // 2 * 2]).reshape(-1, 2)] if len(v) >= 6 else []
@@ -442,7 +455,13 @@ def svg_in_mm(path) -> bool:
     return bool(m and m.group(2) in _MM_PER_UNIT)
 
 
-def read_svg(path, *, tolerance: float = CURVE_TOLERANCE, flip_y: bool = True):
+def read_svg(
+    path,
+    *,
+    tolerance: float = CURVE_TOLERANCE,
+    flip_y: bool = True,
+    close_tolerance: float | None = 0.0,
+):
     """Read the filled shapes of an SVG file as one boundary (even-odd nesting).
 
     Reads ``<path>`` (all commands, absolute and relative, curves and arcs flattened),
@@ -463,6 +482,10 @@ def read_svg(path, *, tolerance: float = CURVE_TOLERANCE, flip_y: bool = True):
         SVG's y axis points down. True (default): the result has y up with the bottom of the
         ``viewBox`` (or the drawing's lowest point, without a viewBox) at y = 0, so it looks
         the same as in a drawing program and ``voroforge.io.write_svg`` writes it back upright.
+    close_tolerance : float or None
+        A ``<path>`` subpath not closed with ``Z`` is an error naming the file and the element
+        unless its ends are at most this far apart (user units; 0: only ends that meet), as
+        an open DXF outline is. ``None`` closes every subpath as a fill would.
 
     Returns
     -------
@@ -473,11 +496,17 @@ def read_svg(path, *, tolerance: float = CURVE_TOLERANCE, flip_y: bool = True):
     Raises
     ------
     ValueError
-        Missing or unreadable file, malformed path data, or no closed shape with area.
+        Missing or unreadable file, malformed path data, an open outline, or no closed shape
+        with area.
     """
+    from functools import partial
+
     p = existing_file(path)
     tol = positive_number(tolerance, "tolerance")
-    rings = _read_svg(p, tol, flip_y, _element_rings)
+    if close_tolerance is not None and not float(close_tolerance) >= 0:
+        raise ValueError(f"close_tolerance must be >= 0 or None; got {close_tolerance!r}")
+    reader = partial(_element_rings, close_tolerance=close_tolerance)
+    rings = _read_svg(p, tol, flip_y, reader)
     if not rings:
         raise ValueError(f"{p}: no closed shapes (path, polygon, rect, circle, ellipse)")
     out = even_odd(rings)
