@@ -72,8 +72,26 @@ def products(result: Result, *, kerf: float = 0.0) -> dict[str, list]:
     }
 
 
+def _labels(result: Result) -> list:
+    """Each live cell's number (its index, as in GeoJSON ``cell``) as single-stroke text."""
+    from ..io.labels import cell_labels
+
+    cells = np.asarray(result.cells, dtype=object)
+    lines, _, _ = cell_labels(cells, max_height=result.design.output.label_height)
+    return [g for g in lines if not g.is_empty]
+
+
+def _uses(result: Result, product: str) -> bool:
+    for what in result.design.output.layers.values():
+        if product in ([what] if isinstance(what, str) else what):
+            return True
+    return False
+
+
 def _layers(result: Result, kerf: float) -> dict[str, list]:
     made = products(result, kerf=kerf)
+    if _uses(result, "labels"):
+        made["labels"] = _labels(result)
     out = {}
     for name, what in result.design.output.layers.items():
         names = [what] if isinstance(what, str) else list(what)
@@ -200,6 +218,13 @@ def build(
             design, base = load(design.model_dump(), overrides=overrides)
     else:
         design, base = load(source, overrides=overrides)
+    if design.surface is not None:  # onto a curved surface: voroforge.surface builds it
+        from ..surface.build import build_surface
+
+        out = Path(out_dir)
+        out.mkdir(parents=True, exist_ok=True)
+        with located(source, overrides):
+            return build_surface(design, base, out, stage, preview=preview)
     with located(source, overrides):
         result = compute(design, base, progress=stage)
     out = Path(out_dir)
@@ -267,12 +292,107 @@ def build(
         elif fmt == "gif":
             with located(source, overrides):
                 written.append(_gif(design, base, path, stage))
+    if _uses(result, "labels"):
+        written += _write_legend(result, out / f"{stem}-labels")
+    if o.pieces:
+        written += _write_pieces(result, out / f"{stem}-pieces", kerf, stage)
     if design.fabrication.report:
         report = _report(result)
         text = out / f"{stem}-check.txt"
         text.write_text(report.table(max_rows=None) + "\n", encoding="utf-8")  # every row
         written.append(text)
         written.append(report.write_png(out / f"{stem}-check.png", size=min(o.png_size, 1200)))
+    return written
+
+
+def _write_legend(result: Result, stem: Path) -> list[Path]:
+    """``-labels.csv`` and ``-labels.json``: each label's cell, place, height and area."""
+    import csv
+    import io
+    import json
+
+    from ..io.labels import cell_labels
+
+    cells = np.asarray(result.cells, dtype=object)
+    _, centres, heights = cell_labels(cells, max_height=result.design.output.label_height)
+    rows = []
+    for i in np.flatnonzero(heights > 0).tolist():
+        rows.append(
+            {
+                "label": str(i),
+                "cell": i,
+                "x": round(float(centres[i, 0]), 6),
+                "y": round(float(centres[i, 1]), 6),
+                "height": round(float(heights[i]), 6),
+                "area": round(float(cells[i].area), 6),
+                "opening": bool(result.mask[i]),
+                "level": int(result.level[i]),
+            }
+        )
+    buf = io.StringIO()
+    writer = csv.DictWriter(buf, fieldnames=list(rows[0]) if rows else ["label", "cell"])
+    writer.writeheader()
+    writer.writerows(rows)
+    paths = [stem.with_suffix(".csv"), stem.with_suffix(".json")]
+    paths[0].write_text(buf.getvalue(), encoding="utf-8")
+    paths[1].write_text(json.dumps(rows, indent=1) + "\n", encoding="utf-8")
+    return paths
+
+
+def _write_pieces(result: Result, stem: Path, kerf: float, stage: Stage) -> list[Path]:
+    """Every cell as its own closed part, laid out apart, with its number engraved."""
+    from ..io.labels import cell_labels
+    from .fabrication import kerf as apply_kerf
+    from .fabrication import pack_pieces
+
+    o = result.design.output
+    cells = np.asarray(result.cells, dtype=object)
+    live = np.flatnonzero(~shapely.is_empty(cells)) if len(cells) else np.zeros(0, dtype=int)
+    parts = cells[live]
+    labels, _, _ = cell_labels(parts, [str(i) for i in live], max_height=o.label_height)
+    if kerf > 0:
+        parts = apply_kerf(parts, kerf, role="part")
+    xmin, _, xmax, _ = result.boundary.bounds
+    gap = max(2.0 / MM_PER_UNIT[result.design.design.units], 2.0 * kerf)
+    shift = pack_pieces(parts, width=xmax - xmin, gap=gap)
+    moved = [
+        shapely.transform(g, lambda xy, d=d: xy + d) for g, d in zip(parts, shift, strict=True)
+    ]
+    text = [
+        shapely.transform(g, lambda xy, d=d: xy + d) for g, d in zip(labels, shift, strict=True)
+    ]
+    layers = {"CUT": moved, "ENGRAVE": [t for t in text if not t.is_empty]}
+    written = []
+    for fmt in ("svg", "dxf"):
+        if fmt not in o.formats:
+            continue
+        path = stem.with_suffix(f".{fmt}")
+        stage(f"writing {path.name}")
+        if fmt == "svg":
+            from ..io.svg import write_layers
+
+            written.append(
+                write_layers(
+                    path,
+                    layers,
+                    units=result.design.design.units,
+                    stroke_width=_stroke_width(result.design),
+                    order=o.order,
+                )
+            )
+        else:
+            from ..io.dxf import write_dxf
+
+            written.append(
+                write_dxf(
+                    None,
+                    path,
+                    layers=layers,
+                    units=result.design.design.units,
+                    arc_tolerance=o.arc_tolerance,
+                    order=o.order,
+                )
+            )
     return written
 
 
@@ -291,6 +411,7 @@ def _warn_empty_layers(result: Result) -> None:
     import warnings
 
     made = products(result)
+    made["labels"] = _labels(result) if _uses(result, "labels") else []
     for name, what in result.design.output.layers.items():
         names = [what] if isinstance(what, str) else list(what)
         if all(g.is_empty for n in names for g in made[n]):

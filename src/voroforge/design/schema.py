@@ -16,6 +16,7 @@ from typing import Annotated, Any, Literal
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from .. import config
+from ..studio.animation import AnimationSection
 from ..surface.schema import SurfaceSection
 
 __all__ = [
@@ -35,8 +36,8 @@ __all__ = [
 ]
 
 #: What an output layer can hold.
-PRODUCTS = ("frame", "openings", "cells", "edges", "sites", "boundary")
-Product = Literal["frame", "openings", "cells", "edges", "sites", "boundary"]
+PRODUCTS = ("frame", "openings", "cells", "edges", "sites", "boundary", "labels")
+Product = Literal["frame", "openings", "cells", "edges", "sites", "boundary", "labels"]
 
 PositiveFloat = Annotated[float, Field(gt=0)]
 NonNegFloat = Annotated[float, Field(ge=0)]
@@ -374,6 +375,9 @@ class Output(_Model):
     order: Literal["travel", "file"] = "travel"
     merge_lines: bool = True
     site_marks: Literal["circle", "cross"] = "circle"
+    # cell numbers as single-stroke text (voroforge.io.labels) and cut-apart pieces
+    label_height: PositiveFloat | None = None
+    pieces: bool = False
 
     @model_validator(mode="after")
     def _gif(self) -> Output:
@@ -420,6 +424,7 @@ class Design(_Model):
     recursion: Recursion = Recursion()
     output: Output = Output()
     fabrication: Fabrication = Fabrication()
+    animation: AnimationSection | None = None  # voroforge.studio.animation: keyframes to play
     surface: SurfaceSection | None = None  # voroforge.surface: the design on a curved surface
 
 

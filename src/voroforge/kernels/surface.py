@@ -258,8 +258,8 @@ def rvd(v, f, sites, h, store):
     Returns
     -------
     mass (n,), first (n, 3) (∫ x dA), energy (n,) (∫ |x - s|^2 dA), piece_cell (p,),
-    piece_tri (p,), piece_area (p,), offsets (p + 1,), coords (q, 3), owners (q,)
-    (the last two empty unless ``store``).
+    piece_tri (p,), piece_area (p,), offsets (p + 1,), coords (q, 3), codes (q,)
+    (the last two empty unless ``store``; see :func:`_store` for the codes).
 
     Candidates of a triangle: every site ``s`` with ``|s - c| <= R + U``, ``c`` the centroid,
     ``R`` the largest distance from it to a corner and ``U = min_a (r_a + l_a)`` a bound on the
@@ -383,11 +383,11 @@ def rvd(v, f, sites, h, store):
             pt[np_] = t
             pa[np_] = area
             if store:
-                nq = _store(qxyz, qown, nq, rx, ry, ro, m, frame)
+                nq = _store(qxyz, qown, nq, rx, ry, ro, m, frame, lab, cxx, cyy)
                 if nq < 0:
                     qxyz = _grow_xyz(qxyz)
                     qown = _grow_i(qown, qown.shape[0])
-                    nq = _store(qxyz, qown, -nq - 1, rx, ry, ro, m, frame)
+                    nq = _store(qxyz, qown, -nq - 1, rx, ry, ro, m, frame, lab, cxx, cyy)
             np_ += 1
             off[np_] = nq
     return (
@@ -411,8 +411,13 @@ def _grow_xyz(a):
 
 
 @njit(**NJIT)
-def _store(qxyz, qown, nq, rx, ry, ro, m, frame):
-    """Append a piece's vertices (mapped back to 3D) and owners; ``-1 - nq`` when full."""
+def _store(qxyz, qown, nq, rx, ry, ro, m, frame, lab, cxx, cyy):
+    """Append a piece's vertices (mapped back to 3D) and codes; ``-1 - nq`` when full.
+
+    The code of vertex ``k`` is ``4 * owner + corner + 1``: the owner of the edge from it to the
+    next vertex, and which triangle corner it is (exactly: a vertex on a cut line is kept
+    unmoved), ``-1`` for a cut vertex.
+    """
     if nq + m > qxyz.shape[0] or nq + m > qown.shape[0]:
         return -1 - nq
     ax, ay, az, e1x, e1y, e1z, e2x, e2y, e2z = frame
@@ -420,7 +425,14 @@ def _store(qxyz, qown, nq, rx, ry, ro, m, frame):
         qxyz[nq + k, 0] = ax + rx[k] * e1x + ry[k] * e2x
         qxyz[nq + k, 1] = ay + rx[k] * e1y + ry[k] * e2y
         qxyz[nq + k, 2] = az + rx[k] * e1z + ry[k] * e2z
-        qown[nq + k] = ro[k]
+        corner = -1
+        if ry[k] == 0.0 and rx[k] == 0.0:
+            corner = 0
+        elif ry[k] == 0.0 and rx[k] == lab:
+            corner = 1
+        elif rx[k] == cxx and ry[k] == cyy:
+            corner = 2
+        qown[nq + k] = 4 * ro[k] + corner + 1
     return nq + m
 
 

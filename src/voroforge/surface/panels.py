@@ -202,7 +202,8 @@ class Panels:
             if self.uv is not None and self.surface is not None:
                 tri = _triangles(self.uv, self.rings[p])
                 a, b, c = self.uv[tri[:, 0]], self.uv[tri[:, 1]], self.uv[tri[:, 2]]
-                auv = 0.5 * np.abs(np.cross(b - a, c - a))
+                d1, d2 = b - a, c - a
+                auv = 0.5 * np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
                 # degree-2 rule on edge midpoints
                 mids = np.stack([(a + b) / 2, (b + c) / 2, (c + a) / 2], axis=1)
                 j = self.surface.area_element(mids[..., 0], mids[..., 1]).mean(axis=1)

@@ -91,70 +91,80 @@ class SurfaceVoronoi:
     # --- topology ------------------------------------------------------------------------
 
     def _keys(self):
-        """Symbolic names of every piece vertex and the boundary segments of every cell.
+        """Names of every piece vertex, and each cell's boundary segments.
 
-        A piece vertex is named by its two edges' owners: a mesh vertex (two triangle edges),
-        a mesh edge and a site pair (a bisector crossing an edge), or a triangle and a site
-        triple (three cells meet); neighbouring pieces name a shared vertex alike.
+        A piece vertex is named from its two edges' owners: a mesh vertex (a triangle corner,
+        recognised exactly), a mesh edge and a site pair (a bisector crossing an edge), or a
+        triangle and a site triple (three cells meet); neighbouring pieces name a shared
+        vertex alike. A piece edge is on its cell's boundary when no piece of the same cell
+        has it reversed (that covers bisector edges, the mesh's border, and bisectors lying
+        exactly along a mesh edge).
         """
         if "keys" in self._cache:
             return self._cache["keys"]
         S = self.surface
-        _, face_edges, border = S.edges
+        n = len(self.sites)
+        _, face_edges, _ = S.edges
         off = self.piece_offsets
-        own = self.piece_owners
+        code = self.piece_owners
+        own = code >> 2
+        corner = (code & 3) - 1
         nq = len(own)
         piece_of = np.repeat(np.arange(len(self.piece_cell)), np.diff(off))
         cell = self.piece_cell[piece_of]
         tri = self.piece_tri[piece_of]
         pos = np.arange(nq)
-        prev = pos - 1
         starts = off[:-1][piece_of]
         ends = off[1:][piece_of]
-        prev = np.where(prev < starts, ends - 1, prev)
+        prev = np.where(pos - 1 < starts, ends - 1, pos - 1)
+        nxt = np.where(pos + 1 >= ends, starts, pos + 1)
         a = own[prev]
         b = own[pos]
-        key = np.full((nq, 5), -1, np.int64)
-        both_edges = (a < 0) & (b < 0)
-        # corner shared by local edges ka and kb: edges k and k+1 share corner k+1
-        ka, kb = -1 - a, -1 - b
-        corner = np.where((ka + 1) % 3 == kb, kb, ka)
-        key[both_edges, 0] = 0
-        key[both_edges, 1] = S.faces[tri[both_edges], corner[both_edges] % 3]
+        c0 = np.zeros(nq, np.int64)  # kind + 4 * (vertex, edge, triangle or position)
+        c1 = np.zeros(nq, np.int64)  # the sites, packed
         one = (a < 0) ^ (b < 0)
-        e_local = np.where(a < 0, ka, kb)
+        e_local = np.where(a < 0, -1 - a, -1 - b) % 3
         j = np.where(a < 0, b, a)
-        key[one, 0] = 1
-        key[one, 1] = face_edges[tri[one], e_local[one] % 3]
-        key[one, 2] = np.minimum(cell[one], j[one])
-        key[one, 3] = np.maximum(cell[one], j[one])
-        sites3 = (a >= 0) & (b >= 0)
+        lo, hi = np.minimum(cell, j), np.maximum(cell, j)
+        c0[one] = 1 + 4 * face_edges[tri[one], e_local[one]]
+        c1[one] = lo[one] * n + hi[one]
+        three = (a >= 0) & (b >= 0)
         trip = np.sort(np.stack([cell, a, b], axis=1), axis=1)
-        key[sites3, 0] = 2
-        key[sites3, 1] = tri[sites3]
-        key[sites3, 2:5] = trip[sites3]
-        # a vertex inside one edge (both sides the same owner): unique to its piece
-        same = a == b
-        key[same, 0] = 3
-        key[same, 1] = pos[same]
-        uniq, vid = np.unique(key, axis=0, return_inverse=True)
-        vid = vid.ravel()
-        # boundary segments: bisector edges and edges on the mesh's border
-        nxt = pos + 1
-        nxt = np.where(nxt >= ends, starts, nxt)
-        edge_border = np.zeros(nq, bool)
-        neg = b < 0
-        edge_border[neg] = border[face_edges[tri[neg], (-1 - b[neg]) % 3]]
-        seg = (b >= 0) | edge_border
-        first = np.full(len(uniq), -1, np.int64)
-        first[vid[::-1]] = pos[::-1]
-        self._cache["keys"] = (uniq, vid, first, cell, seg, nxt, b)
+        c0[three] = 2 + 4 * tri[three]
+        c1[three] = (trip[three, 0] * n + trip[three, 1]) * n + trip[three, 2]
+        odd = three & ((trip[:, 0] == trip[:, 1]) | (trip[:, 1] == trip[:, 2]))
+        c0[odd] = 3 + 4 * pos[odd]  # a vertex inside one edge: its piece's own
+        c1[odd] = 0
+        at = corner >= 0
+        c0[at] = 4 * S.faces[tri[at], corner[at]]
+        c1[at] = 0
+        order = np.lexsort((c1, c0))
+        new = np.ones(nq, bool)
+        new[1:] = (np.diff(c0[order]) != 0) | (np.diff(c1[order]) != 0)
+        vid = np.zeros(nq, np.int64)
+        vid[order] = np.cumsum(new) - 1
+        kind = np.zeros(new.sum(), np.int64)
+        first = np.zeros(new.sum(), np.int64)
+        kind[vid[order][new]] = c0[order][new] & 3
+        first[vid[order][new]] = order[new]
+        self._cache["prim"] = c0[first] >> 2
+        # directed piece edges; those not cancelled by a reversed copy in the same cell bound it
+        va, vb = vid[pos], vid[nxt]
+        real = va != vb
+        m = int(vid.max()) + 1 if nq else 1
+        fwd = (cell * m + va) * m + vb
+        rev = (cell * m + vb) * m + va
+        fr = np.sort(fwd[real])
+        k = np.searchsorted(fr, rev)
+        k = np.minimum(k, max(len(fr) - 1, 0))
+        seg = real & ~((fr[k] == rev) if len(fr) else np.zeros(nq, bool))
+        self._cache["keys"] = (kind, vid, first, cell, seg, nxt, m)
         return self._cache["keys"]
 
     @property
     def vertices(self) -> np.ndarray:
         """(m, 3) float64: every distinct piece vertex (first occurrence's coordinates)."""
-        uniq, vid, first, *_ = self._keys()
+        _, _, first, *_ = self._keys()
         return self.piece_coords[first]
 
     @property
@@ -163,13 +173,21 @@ class SurfaceVoronoi:
         if "neighbors" not in self._cache:
             from ..engine.csr import csr_from_pairs
 
-            uniq, vid, first, cell, seg, nxt, b = self._keys()
-            m = b >= 0
+            kind, vid, first, cell, seg, nxt, m = self._keys()
+            s = np.flatnonzero(seg)
             p = self.piece_coords
-            length = np.linalg.norm(p[nxt[m]] - p[np.flatnonzero(m)], axis=1)
-            tol = config.SURFACE_EDGE_RTOL * self.surface.scale
-            i, j = cell[m][length > tol], b[m][length > tol]
-            self._cache["neighbors"] = csr_from_pairs(len(self.sites), i, j)
+            length = np.linalg.norm(p[first[vid[nxt[s]]]] - p[first[vid[s]]], axis=1)
+            s = s[length > config.SURFACE_EDGE_RTOL * self.surface.scale]
+            # the cell on the other side has the same edge reversed
+            fwd = vid[s] * m + vid[nxt[s]]
+            rev = vid[nxt[s]] * m + vid[s]
+            order = np.argsort(fwd, kind="stable")
+            k = np.searchsorted(fwd[order], rev)
+            k = np.minimum(k, max(len(s) - 1, 0))
+            hit = fwd[order][k] == rev if len(s) else np.zeros(0, bool)
+            i, j = cell[s][hit], cell[s][order][k][hit]
+            keep = i != j
+            self._cache["neighbors"] = csr_from_pairs(len(self.sites), i[keep], j[keep])
         return self._cache["neighbors"]
 
     def degree(self) -> np.ndarray:
@@ -192,12 +210,29 @@ class SurfaceVoronoi:
         if "cells" not in self._cache:
             from ..kernels.surface import chain_rings
 
-            uniq, vid, first, cell, seg, nxt, b = self._keys()
+            kind, vid, first, cell, seg, nxt, _ = self._keys()
             s = np.flatnonzero(seg)
             c, st, en = cell[s], vid[s], vid[nxt[s]]
             order = np.lexsort((st, c))
             rv, roff, coff = chain_rings(c[order], st[order], en[order], len(self.sites))
             pts = self.piece_coords[first[rv]]
+            # a ring that encloses nothing (edges there and back, left where rounding put a
+            # vertex next to a bisector a hair off it) bounds nothing: drop it
+            keep = np.ones(len(roff) - 1, bool)
+            for r in range(len(keep)):
+                P = pts[roff[r] : roff[r + 1]]
+                vec = np.cross(P, np.roll(P, -1, axis=0)).sum(axis=0)
+                per = np.linalg.norm(np.roll(P, -1, axis=0) - P, axis=1).sum()
+                keep[r] = np.linalg.norm(vec) > config.SURFACE_EDGE_RTOL * per * per
+            if not keep.all():
+                lens = np.diff(roff)
+                owner = np.repeat(np.arange(len(self.sites)), np.diff(coff))
+                rv = rv[np.repeat(keep, lens)]
+                roff = np.concatenate([[0], np.cumsum(lens[keep])])
+                coff = np.concatenate(
+                    [[0], np.cumsum(np.bincount(owner[keep], minlength=len(self.sites)))]
+                )
+                pts = self.piece_coords[first[rv]]
             self._cache["ring_ids"] = (rv, roff, coff)
             out = []
             for i in range(len(self.sites)):
@@ -213,17 +248,21 @@ class SurfaceVoronoi:
         (what a panel is made of).
         """
         self.cells  # noqa: B018 - builds the rings
-        uniq, *_ = self._keys()
+        kind, *_ = self._keys()
         rv, roff, coff = self._cache["ring_ids"]
-        kind = uniq[:, 0]
-        onborder = np.zeros(len(uniq), bool)
-        _, _, border = self.surface.edges
-        e, _, _ = self.surface.edges
+        # a corner: three or more cells meet there, or it lies on the mesh's border
+        _, vid, first, cell, seg, nxt, _ = self._keys()
+        prim = self._cache["prim"]
+        sg = np.flatnonzero(seg)
+        pairs = np.unique(np.stack([vid[sg], cell[sg]], axis=1), axis=0)
+        cells_at = np.bincount(pairs[:, 0], minlength=len(kind))
+        e, _, border = self.surface.edges
         bverts = np.zeros(len(self.surface.vertices), bool)
         bverts[e[border].ravel()] = True
-        onborder[kind == 1] = border[uniq[kind == 1, 1]]
-        onborder[kind == 0] = bverts[uniq[kind == 0, 1]]
-        keep = (kind == 2) | onborder
+        on_border = np.zeros(len(kind), bool)
+        on_border[kind == 0] = bverts[prim[kind == 0]]
+        on_border[kind == 1] = border[prim[kind == 1]]
+        keep = (cells_at >= 3) | on_border
         out = []
         for i in range(len(self.sites)):
             if coff[i + 1] == coff[i]:

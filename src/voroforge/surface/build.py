@@ -1,0 +1,183 @@
+"""Build a design's ``[surface]`` section: panels on the surface, previews, solids, cut sheets.
+
+:func:`build_surface` is what ``voroforge build`` calls for a design file with a ``[surface]``
+table: ``output.formats`` picks the files (``png`` a shaded 3D preview, ``dxf``/``svg`` the
+unrolled, labelled cut sheets), ``surface.meshes`` the panel solids (3MF, OBJ, GLB, ...).
+Cut sheets use the first ``output.layers`` name for the outlines and a second one (if given,
+else ``LABELS``) for the labels.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from .schema import SurfaceSection
+
+__all__ = ["build_surface", "surface_of", "surface_panels"]
+
+
+def surface_of(sec: SurfaceSection, base: Path | None = None):
+    """The :class:`~voroforge.surface.Surface` a ``[surface]`` section describes."""
+    from . import shapes
+
+    res = sec.resolution
+    if sec.shape == "cylinder":
+        return shapes.cylinder(sec.radius, sec.height, resolution=res)
+    if sec.shape == "sphere_patch":
+        return shapes.sphere_patch(
+            sec.radius,
+            polar=tuple(math.radians(a) for a in sec.polar),
+            azimuth=tuple(math.radians(a) for a in sec.azimuth),
+            resolution=res,
+        )
+    if sec.shape == "sphere":
+        return shapes.sphere(sec.radius, subdivisions=4 if res is None else min(8, res))
+    if sec.shape == "saddle":
+        return shapes.saddle(sec.width, sec.depth, sec.rise, resolution=res)
+    if sec.shape == "torus":
+        return shapes.torus(sec.major, sec.minor, resolution=res)
+    from ..design.designfile import find_file
+
+    return shapes.mesh(find_file(base, sec.file, "surface.file"))
+
+
+def surface_panels(design, base: Path | None = None, *, progress=None):
+    """``(surface, panels, extra)`` of a design with a ``[surface]`` section (no files)."""
+    from .morph import morph
+    from .voronoi import voronoi
+
+    stage = progress or (lambda name: None)
+    sec = design.surface
+    S = surface_of(sec, base)
+    extra: dict = {}
+    if sec.mode == "morph":
+        from ..design.compute import compute
+
+        result = compute(design, base, progress=stage)
+        stage("morphing onto the surface")
+        panels = morph(result, S, what=sec.what)
+        extra["result"] = result
+    else:
+        n = sec.count or design.seeds.count
+        if n is None:
+            from ..design.designfile import DesignError
+
+            raise DesignError.at(
+                "surface.count", "mode = 'voronoi' needs surface.count or seeds.count"
+            )
+        relax = sec.relax if sec.relax is not None else design.relax.iterations
+        stage(f"surface Voronoi of {n} cells, {relax} relaxation steps")
+        vd = voronoi(S, n, relax=relax, method=sec.method, seed=design.design.seed)
+        extra["voronoi"] = vd
+        panels = vd.panels()
+    if sec.planarize is not None:
+        stage("planarizing")
+        panels = panels.planarize(sec.planarize)
+    if sec.openings is not None:
+        panels = panels.openings(sec.openings)
+    elif sec.openings_near is not None:
+        panels = panels.openings(
+            (sec.openings_near, sec.openings_far),
+            attractors=sec.attractors,
+            radius=sec.attractor_radius,
+        )
+    return S, panels, extra
+
+
+def _solids(sec: SurfaceSection, panels):
+    solids = []
+    if sec.thickness is not None:
+        solids += panels.thicken(sec.thickness)
+    if sec.frame is not None:
+        solids += panels.frame(sec.frame)
+    return solids
+
+
+def render_panels(panels, path, *, size=900, view=(35.0, 30.0), thickness=None):
+    """A shaded PNG of the panels (thin solids, one colour per panel) via ``io.render3d``."""
+    from ..io.render import palette
+    from ..io.render3d import render
+
+    cols = [tuple(int(c) for c in rgb) for rgb in palette(len(panels), 3).tolist()]
+    if all(len(r) == 1 for r in panels.rings) and panels.uv is None:
+        # plain polygons: each face drawn on both sides, outlines on
+        items = [(panels.vertices, [r[0], r[0][::-1]]) for r in panels.rings]
+        return render(items, path, size=(size, int(size * 0.75)), view=view, colors=cols)
+    span = float(np.linalg.norm(np.ptp(panels.vertices, axis=0)))
+    solids = panels.thicken(thickness or span * 0.004)
+    return render(solids, path, size=(size, int(size * 0.75)), view=view, colors=cols, edges=False)
+
+
+def build_surface(design, base, out: Path, stage, *, preview: bool = False) -> list[Path]:
+    """Write a ``[surface]`` design's outputs into ``out``; returns the paths in order."""
+    from ..design.designfile import DesignError
+
+    sec = design.surface
+    o = design.output
+    stem = o.stem or design.design.name
+    for fmt in o.formats:
+        if fmt in ("geojson", "gif"):
+            raise DesignError.at("output.formats", f"{fmt!r} is not written for a [surface] design")
+    S, panels, extra = surface_panels(design, base, progress=stage)
+    written: list[Path] = []
+    names = [k.upper() for k in o.layers] or ["CUT"]
+    cut = names[0]
+    label = names[1] if len(names) > 1 else "LABELS"
+    sheets = None
+    formats = ["png"] if preview else list(o.formats)
+    for fmt in formats:
+        path = out / f"{stem}.{fmt}"
+        stage(f"writing {path.name}")
+        if fmt == "png":
+            size = min(o.png_size, 800) if preview else o.png_size
+            written.append(render_panels(panels, path, size=size, view=sec.view))
+        else:
+            if sheets is None:
+                stage("unrolling")
+                sheets = panels.unroll(sheet=sec.sheet)
+            if fmt == "dxf":
+                written.append(
+                    sheets.write_dxf(path, layer=cut, label_layer=label, units=design.design.units)
+                )
+            else:
+                written.append(
+                    sheets.write_svg(path, layer=cut, label_layer=label, units=design.design.units)
+                )
+    if preview:
+        return written
+    if sec.unroll and sheets is None:
+        sheets = panels.unroll(sheet=sec.sheet)
+        written.append(
+            sheets.write_dxf(
+                out / f"{stem}-sheets.dxf", layer=cut, label_layer=label, units=design.design.units
+            )
+        )
+    if sec.meshes:
+        from ..io.mesh import write
+
+        solids = _solids(sec, panels) or panels.thicken(
+            float(np.linalg.norm(np.ptp(panels.vertices, axis=0))) * 0.004
+        )
+        for fmt in sec.meshes:
+            path = out / f"{stem}-panels.{fmt}"
+            stage(f"writing {path.name}")
+            written.append(write(solids, path, units=design.design.units))
+    if panels.report is not None:
+        rep = panels.report
+        text = out / f"{stem}-planarity.txt"
+        ab, rel = rep.planarity
+        bad = list(map(int, panels.ids[rep.not_planar]))
+        lines = [
+            f"planarize tolerance {rep.tolerance:g} {units}, {rep.iterations} iterations",
+            f"panels {len(panels)}; largest deviation {ab.max():.3g} ({rel.max():.3g} of an edge)",
+            f"not planar to tolerance: {len(rep.not_planar)} {bad}",
+            "over negative Gaussian curvature (no convex planar hexagons there): "
+            f"{len(rep.negative_curvature)}",
+            f"largest distance from the surface: {rep.surface_distance:.3g}",
+        ]
+        text.write_text("\n".join(lines) + "\n", encoding="utf-8")
+        written.append(text)
+    return written

@@ -1,0 +1,76 @@
+"""``[surface]``: a design built onto a curved surface (the design-file section's model).
+
+Two modes: ``"morph"`` lays the 2D design (boundary, seeds, cells, openings) into the
+surface's UV square (Grasshopper's Surface Morph); ``"voronoi"`` grows the cells on the surface
+itself (restricted Voronoi, relaxed to a surface CVT: ``seeds.count`` cells, ``relax.iterations``
+steps, unless ``count``/``relax`` are given here).
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+__all__ = ["SurfaceSection"]
+
+Positive = Annotated[float, Field(gt=0)]
+Fraction = Annotated[float, Field(gt=0, lt=1)]
+
+
+class SurfaceSection(BaseModel):
+    """``[surface]``: the surface, how the pattern gets onto it, and the panel products."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    shape: Literal["cylinder", "sphere_patch", "sphere", "saddle", "torus", "mesh"]
+    mode: Literal["morph", "voronoi"] = "morph"
+    radius: Positive | None = None
+    height: Positive | None = None
+    width: Positive | None = None
+    depth: Positive | None = None
+    rise: float = 0.0
+    major: Positive | None = None
+    minor: Positive | None = None
+    polar: tuple[float, float] = (0.0, 90.0)  # degrees from the top
+    azimuth: tuple[float, float] = (0.0, 360.0)  # degrees
+    resolution: Annotated[int, Field(ge=3, le=2000)] | None = None
+    file: str | None = None
+    what: Literal["panels", "cells", "openings", "frame"] = "panels"
+    count: Annotated[int, Field(gt=0)] | None = None
+    relax: Annotated[int, Field(ge=0, le=2000)] | None = None
+    method: Literal["lbfgs", "lloyd"] = "lbfgs"
+    planarize: Positive | None = None
+    openings: Fraction | None = None
+    openings_near: Fraction | None = None
+    openings_far: Fraction | None = None
+    attractors: list[tuple[float, float, float]] = []
+    attractor_radius: Positive | None = None
+    thickness: Positive | None = None
+    frame: Positive | None = None
+    unroll: bool = False
+    sheet: tuple[Positive, Positive] | None = None
+    meshes: list[Literal["3mf", "obj", "glb", "stl", "ply", "3dm"]] = []
+    view: tuple[float, float] = (35.0, 30.0)
+
+    @model_validator(mode="after")
+    def _shape_fields(self) -> SurfaceSection:
+        need = {
+            "cylinder": ("radius", "height"),
+            "sphere_patch": ("radius",),
+            "sphere": ("radius",),
+            "saddle": ("width",),
+            "torus": ("major", "minor"),
+            "mesh": ("file",),
+        }[self.shape]
+        for name in need:
+            if getattr(self, name) is None:
+                raise ValueError(f"@{name}@ shape = {self.shape!r} needs {name}")
+        if self.mode == "morph" and self.shape == "sphere":
+            raise ValueError("@shape@ morph needs a UV map: use sphere_patch, not sphere")
+        graded = (self.openings_near is None) + (self.openings_far is None)
+        if graded == 1:
+            raise ValueError("@openings_near@ give both openings_near and openings_far")
+        if graded == 0 and (not self.attractors or self.attractor_radius is None):
+            raise ValueError("@attractors@ graded openings need attractors and attractor_radius")
+        return self
