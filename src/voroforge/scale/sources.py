@@ -111,6 +111,12 @@ def _parquet_source(path: Path, rows: int, temporary=None) -> Source:
     except Exception as exc:  # pyarrow raises its own error types for unreadable files
         raise ValueError(f"{path}: not a readable Parquet file ({exc})") from None
     xy = _xy_names(pf.schema_arrow.names, path)
+    import pyarrow.types as pat
+
+    for name in xy:
+        kind = pf.schema_arrow.field(name).type
+        if not (pat.is_integer(kind) or pat.is_floating(kind)):
+            raise ValueError(f"{path}: column {name!r} is not numeric ({kind})")
     chunks, start, group, acc = [], 0, [], 0
     meta = pf.metadata
     for g in range(meta.num_row_groups):
