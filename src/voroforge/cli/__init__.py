@@ -14,6 +14,7 @@ import sys
 from collections.abc import Sequence
 
 from . import demo, design, diagram, explain, raster, studio
+from . import scale as scale_cmd
 from .progress import progress
 
 __all__ = ["PROG", "main"]
@@ -50,6 +51,7 @@ def _parser() -> argparse.ArgumentParser:
     raster.add_parser(commands, raw)
     explain.add_parser(commands, raw)
     design.add_parsers(commands, raw)
+    scale_cmd.add_parser(commands, raw)
     studio.add_parser(commands, raw)
     return parser
 
