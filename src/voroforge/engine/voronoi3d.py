@@ -77,6 +77,11 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
         mesh, t = as_mesh_container(container)
     if periodic and (t.kind != "box" or mesh is not None):
         raise ValueError("periodic=True needs a box container (None or a 6-tuple)")
+    if n and mesh is not None:
+        from .mesh3d import sites_inside
+
+        if not sites_inside(mesh, pts).any():
+            raise ValueError("the container mesh contains none of the sites")
     if n and mesh is None:
         inside = _inside(pts, t)
         if not inside.any():
@@ -99,7 +104,12 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
     else:
         res = build_cells3d(P, W, tw, cells=np.arange(u), progress=progress)
         gmap = None
-    return _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh)
+    d = _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh)
+    if mesh is not None:
+        from .mesh3d import cut_by_mesh
+
+        d = cut_by_mesh(d, mesh)
+    return d
 
 
 def _inside(pts: np.ndarray, t: Template) -> np.ndarray:

@@ -1,0 +1,130 @@
+"""3D cells in closed-mesh containers: torus (genus 1), L-bracket, a block with a through-hole."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import voroforge as vf
+
+trimesh = pytest.importorskip("trimesh")
+pytest.importorskip("manifold3d")
+
+
+def _box(lo, hi):
+    m = trimesh.creation.box(extents=np.subtract(hi, lo))
+    m.apply_translation(np.add(lo, hi) / 2)
+    return m
+
+
+def _bool(a, b, op):
+    import manifold3d as m3
+
+    def man(m):
+        return m3.Manifold(
+            m3.Mesh(
+                vert_properties=np.asarray(m.vertices, np.float32),
+                tri_verts=np.asarray(m.faces, np.uint32),
+            )
+        )
+
+    r = {"union": man(a) + man(b), "minus": man(a) - man(b)}[op].to_mesh()
+    return trimesh.Trimesh(
+        np.asarray(r.vert_properties)[:, :3], np.asarray(r.tri_verts), process=False
+    )
+
+
+def _torus():
+    return trimesh.creation.torus(
+        major_radius=1.0, minor_radius=0.4, major_sections=32, minor_sections=16
+    )
+
+
+def _lbracket():
+    return _bool(_box((0, 0, 0), (2, 0.5, 1)), _box((0, 0, 0), (0.5, 2, 1)), "union")
+
+
+def _holed():
+    cyl = trimesh.creation.cylinder(radius=0.3, height=3.0, sections=24)
+    return _bool(_box((-1, -1, -0.5), (1, 1, 0.5)), cyl, "minus")
+
+
+def _check_mesh_diagram(d, mesh, pts):
+    vol = abs(mesh.volume)
+    assert abs(d.volumes.sum() - vol) <= 1e-9 * vol
+    assert d.container == "mesh" and d.cut_cells is not None
+    box = vf.voronoi3d(pts, tuple(np.r_[mesh.bounds[0] - 0.1, mesh.bounds[1] + 0.1]))
+    cf, lab, farea, roff, ring = d.cell_face_table()
+    for i in range(len(d)):
+        if d.volumes[i] == 0:
+            continue
+        if not d.cut_cells[i]:  # untouched: the same convex cell as without the container
+            np.testing.assert_allclose(d.volumes[i], box.volumes[i], rtol=1e-12)
+            assert d.pieces[i] == 1
+            assert (lab[cf[i] : cf[i + 1]] >= 0).all()
+        else:
+            assert d.volumes[i] <= box.volumes[i] * (1 + 1e-9)
+            m = d.to_trimesh(i)
+            assert m.is_watertight
+            np.testing.assert_allclose(m.volume, d.volumes[i], rtol=1e-9)
+    # every wall triangle names a container triangle; areas of wall faces add to the surface
+    wall = lab < 0
+    assert (-1 - lab[wall] < len(mesh.faces)).all()
+    np.testing.assert_allclose(np.linalg.norm(farea[wall], axis=1).sum(), mesh.area, rtol=1e-9)
+    # sample points inside the mesh: the nearest site's cell is the one that holds them
+    rng = np.random.default_rng(0)
+    q = rng.uniform(mesh.bounds[0], mesh.bounds[1], (400, 3))
+    from voroforge.engine.mesh3d import as_mesh_container, sites_inside
+
+    mc, _ = as_mesh_container(mesh)
+    q = q[sites_inside(mc, q)]
+    near = ((q[:, None] - pts[None]) ** 2).sum(-1).argmin(1)
+    assert (d.volumes[near] > 0).all()
+    assert d.describe()["cut_cells"] == int(d.cut_cells.sum())
+
+
+@pytest.mark.parametrize("make", [_torus, _lbracket, _holed], ids=["torus", "lbracket", "holed"])
+def test_mesh_containers(make):
+    mesh = make()
+    rng = np.random.default_rng(1)
+    lo, hi = mesh.bounds
+    from voroforge.engine.mesh3d import as_mesh_container, sites_inside
+
+    q = rng.uniform(lo, hi, (3000, 3))
+    ins = sites_inside(as_mesh_container(mesh)[0], q)
+    pts = np.vstack([q[ins][:400], q[~ins][:20]])  # some sites outside own parts too
+    d = vf.voronoi3d(pts, mesh)
+    _check_mesh_diagram(d, mesh, pts)
+    assert d.cut_cells.sum() > 0 and (d.volumes[~d.cut_cells] > 0).any()
+    # the same container as (vertices, faces) and as a file
+    e = vf.voronoi3d(pts, (mesh.vertices, mesh.faces))
+    np.testing.assert_allclose(e.volumes, d.volumes, rtol=1e-12, atol=1e-15)
+
+
+def test_mesh_file_and_split_cells(tmp_path):
+    # a C shape: a site in the slot owns parts of both prongs
+    c = _bool(_box((0, 0, 0), (3, 3, 1)), _box((1, 1, -1), (4, 2, 2)), "minus")
+    path = tmp_path / "c.stl"
+    c.export(path)
+    pts = np.array(
+        [[0.5, 0.5, 0.5], [0.5, 2.5, 0.5], [2.5, 1.5, 0.5], [1.5, 0.5, 0.5], [1.5, 2.5, 0.5]]
+    )
+    d = vf.voronoi3d(pts, str(path))
+    assert abs(d.volumes.sum() - abs(c.volume)) <= 1e-9 * abs(c.volume)
+    assert d.pieces[2] == 2  # the slot site: a piece in each prong
+    assert (d.pieces[[0, 1, 3, 4]] == 1).all()
+
+
+def test_bad_meshes():
+    m = _torus()
+    with pytest.raises(ValueError, match="open"):
+        vf.voronoi3d([[1, 0, 0]], (m.vertices, m.faces[:-1]))
+    f = np.vstack([m.faces, m.faces[:1]])
+    with pytest.raises(ValueError, match="non-manifold|oriented"):
+        vf.voronoi3d([[1, 0, 0]], (m.vertices, f))
+    with pytest.raises(ValueError, match="none of the sites"):
+        vf.voronoi3d([[0, 0, 0]], m)  # the hole of the torus
+    with pytest.raises(ValueError, match="not found"):
+        vf.voronoi3d([[1, 0, 0]], "/nonexistent/mesh.stl")
+    with pytest.raises(ValueError, match="container must be"):
+        vf.voronoi3d([[1, 0, 0]], object())
