@@ -123,33 +123,72 @@ def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank):
 
 
 @njit(**NJIT)
+def _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy):
+    """Vertex of the class rooted at triangle ``r`` with sites ``on[:k]`` (see below)."""
+    a0 = tri[3 * r]
+    _, vx, vy = canonical_vertex_ranked(on, k, rank, cx[r], cy[r], xs[a0], ys[a0], xs, ys)
+    return vx, vy
+
+
+@njit(**NJIT)
 def _name_classes(xs, ys, tri, parent, cx, cy, rank):
     """Give every triangle of a class (``parent`` its root) the vertex of the class's name.
 
     The name is the canonical triple of the class's sites (``kernels/vertex``), numbered by
     ``rank`` (their input indices), found near the root's centre; without one the root's
-    centre is used.
+    centre is used. Classes of two triangles (four cocircular sites: every square of a grid)
+    are the common case and take a short path; larger ones are gathered by a counting sort.
     """
     t = parent.shape[0]
     size = np.zeros(t, dtype=np.int64)
+    other = np.zeros(t, dtype=np.int64)
     for k in range(t):
-        size[parent[k]] += 1
-    # members of every class of two or more, grouped by root in triangle order (a counting
-    # sort: linear, where a sort of all triangles cost more than the rest of the merge)
+        r = parent[k]
+        size[r] += 1
+        if k != r:
+            other[r] = k
+    on = np.zeros(max(6, 3 * int(size.max())), dtype=np.int64)
+    big = 0
+    for r in range(t):
+        if size[r] == 2:
+            # the root's three sites and the other triangle's new ones (one, when adjacent)
+            a = tri[3 * r]
+            b = tri[3 * r + 1]
+            c = tri[3 * r + 2]
+            on[0] = a
+            on[1] = b
+            on[2] = c
+            k = 3
+            u = other[r]
+            for j in range(3):
+                v = tri[3 * u + j]
+                if v != a and v != b and v != c and (k == 3 or v != on[3]):
+                    on[k] = v
+                    k += 1
+            vx, vy = _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy)
+            cx[r] = vx
+            cy[r] = vy
+            cx[u] = vx
+            cy[u] = vy
+        elif size[r] > 2:
+            big += 1
+    if big == 0:
+        return
+    # members of every class of three or more, grouped by root in triangle order (a
+    # counting sort: linear, where a sort of all triangles cost more than the rest)
     start = np.zeros(t + 1, dtype=np.int64)
     for r in range(t):
-        start[r + 1] = start[r] + (size[r] if size[r] > 1 else 0)
+        start[r + 1] = start[r] + (size[r] if size[r] > 2 else 0)
     fill = start[:-1].copy()
     members = np.zeros(start[t], dtype=np.int64)
     for k in range(t):
         r = parent[k]
-        if size[r] > 1:
+        if size[r] > 2:
             members[fill[r]] = k
             fill[r] += 1
     seen = np.full(xs.shape[0], -1, dtype=np.int64)
-    on = np.zeros(3 * int(size.max()), dtype=np.int64)
     for r in range(t):
-        if size[r] < 2:
+        if size[r] < 3:
             continue
         k = 0
         for u in range(start[r], start[r + 1]):
@@ -159,10 +198,7 @@ def _name_classes(xs, ys, tri, parent, cx, cy, rank):
                     seen[v] = r
                     on[k] = v
                     k += 1
-        vx = cx[r]
-        vy = cy[r]
-        a0 = tri[3 * r]
-        _, vx, vy = canonical_vertex_ranked(on, k, rank, vx, vy, xs[a0], ys[a0], xs, ys)
+        vx, vy = _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy)
         for u in range(start[r], start[r + 1]):
             cx[members[u]] = vx
             cy[members[u]] = vy
