@@ -172,7 +172,7 @@ def _geojson(result: Result, path: Path, base: Path | None = None) -> Path:
                     key = name if name not in (*props, "index", "area", "site") else f"site_{name}"
                     props[key] = [p.get(name) for p in kept]
         return write_geojson(geoms, path, sites=sites, properties=props, crs=crs)
-    geoms = products(result)[what]
+    geoms = _labels(result) if what == "labels" else products(result)[what]
     if what == "edges":
         geoms = list(shapely.get_parts(result.edges))
     return write_geojson(geoms, path, crs=crs)
@@ -218,6 +218,13 @@ def build(
             design, base = load(design.model_dump(), overrides=overrides)
     else:
         design, base = load(source, overrides=overrides)
+    if design.solid is not None:  # a printable 3D product: voroforge.solid builds it
+        from ..solid.build import build_solid
+
+        out = Path(out_dir)
+        out.mkdir(parents=True, exist_ok=True)
+        with located(source, overrides):
+            return build_solid(design, base, out, stage, preview_only=preview)
     if design.surface is not None:  # onto a curved surface: voroforge.surface builds it
         from ..surface.build import build_surface
 
@@ -529,6 +536,11 @@ def check_design(source, *, overrides: dict | None = None, progress: Stage | Non
     voroforge.design.fabrication.Report
     """
     design, base = load(source, overrides=overrides)
+    if design.solid is not None:  # print checks of a 3D product (voroforge.solid)
+        from ..solid.build import check_solid
+
+        with located(source, overrides):
+            return check_solid(design, base, progress)
     with located(source, overrides):
         return _report(compute(design, base, progress=progress))
 

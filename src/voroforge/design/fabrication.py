@@ -35,6 +35,7 @@ __all__ = [
     "check",
     "inscribed_circles",
     "kerf",
+    "pack_pieces",
     "split_frame",
 ]
 
@@ -675,3 +676,41 @@ def kerf(geoms, kerf: float, *, role: str = "part", join: str = "mitre", quad_se
         return shapely.buffer(geoms, d, **opts)
     arr = np.asarray(list(geoms), dtype=object).reshape(-1)
     return np.asarray(shapely.buffer(arr, d, **opts), dtype=object)
+
+
+def pack_pieces(pieces, *, width: float, gap: float) -> np.ndarray:
+    """Offsets that lay pieces out apart, in rows no wider than ``width`` (shelf packing).
+
+    Pieces are taken tallest first; each row is filled left to right with ``gap`` between
+    bounding boxes and between rows, rows stacked upwards from y = 0, x from 0.
+
+    Parameters
+    ----------
+    pieces : (n,) sequence of shapely geometries
+        Non-empty parts.
+    width : float
+        Sheet width (a piece wider than that gets a row of its own).
+    gap : float
+        Space between parts (at least the kerf, so neighbours do not share a cut).
+
+    Returns
+    -------
+    (n, 2) float64
+        Translation of each piece, in input order.
+    """
+    arr = np.asarray(pieces, dtype=object).reshape(-1)
+    if not (math.isfinite(width) and width > 0 and math.isfinite(gap) and gap >= 0):
+        raise ValueError(f"width must be > 0 and gap >= 0; got {width!r}, {gap!r}")
+    out = np.zeros((len(arr), 2))
+    if not len(arr):
+        return out
+    b = shapely.bounds(arr)
+    w, h = b[:, 2] - b[:, 0], b[:, 3] - b[:, 1]
+    x = y = row_h = 0.0
+    for i in np.lexsort((np.arange(len(arr)), -h)).tolist():
+        if x > 0 and x + w[i] > width:
+            x, y, row_h = 0.0, y + row_h + gap, 0.0
+        out[i] = (x - b[i, 0], y - b[i, 1])
+        x += w[i] + gap
+        row_h = max(row_h, h[i])
+    return out

@@ -18,6 +18,7 @@ from pydantic import BaseModel, ConfigDict, Field, model_validator
 from .. import config
 from ..studio.animation import AnimationSection
 from ..surface.schema import SurfaceSection
+from ..solid.schema import SolidSection, fill_2d
 
 __all__ = [
     "Attractor",
@@ -426,6 +427,12 @@ class Design(_Model):
     fabrication: Fabrication = Fabrication()
     animation: AnimationSection | None = None  # voroforge.studio.animation: keyframes to play
     surface: SurfaceSection | None = None  # voroforge.surface: the design on a curved surface
+    solid: SolidSection | None = None  # voroforge.solid: a printable 3D product
+
+    @model_validator(mode="before")
+    @classmethod
+    def _solid_2d(cls, data):
+        return fill_2d(data)  # 3D [solid] kinds need no [boundary]/[seeds]
 
 
 def short_repr(value) -> str:
