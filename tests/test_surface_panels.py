@@ -186,10 +186,10 @@ def test_solids_are_watertight_with_the_right_volume(sphere_panels):
     frames = planar.frame(0.04)
     assert all(f.is_volume for f in frames)
     assert all(f.volume < s.volume * 0.04 / t for f, s in zip(frames, solids, strict=True))
-    graded = planar.openings((0.2, 0.7), attractors=[[0, 0, 2.0]], radius=3.0)
+    graded = planar.openings((0.7, 0.2), attractors=[[0, 0, 2.0]], radius=3.0)
     holes = -graded.areas() + planar.areas()
     top = np.linalg.norm(graded.centroids() - [0, 0, 2.0], axis=1)
-    assert np.corrcoef(top, holes / planar.areas())[0, 1] < -0.9  # bigger near the attractor
+    assert np.corrcoef(top, holes / planar.areas())[0, 1] < -0.8  # bigger near the attractor
     assert all(s.is_volume for s in graded.thicken(t))
     cyl = surface.morph(
         [shapely.box(0.1, 0.1, 0.3, 0.4)], surface.cylinder(1, 1), bounds=(0, 0, 1, 1)

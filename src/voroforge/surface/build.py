@@ -118,6 +118,7 @@ def build_surface(design, base, out: Path, stage, *, preview: bool = False) -> l
     sec = design.surface
     o = design.output
     stem = o.stem or design.design.name
+    units = design.design.units
     for fmt in o.formats:
         if fmt in ("geojson", "gif"):
             raise DesignError.at("output.formats", f"{fmt!r} is not written for a [surface] design")

@@ -285,8 +285,9 @@ class Panels:
                 break
             moved = cnt > 0
             V[moved] = acc[moved] / cnt[moved, None]
+            # every few steps (projecting is the costly part), fading out by half-way
             w = surface_weight * max(0.0, 1.0 - 2.0 * it / iterations)
-            if S is not None and w > 0:
+            if S is not None and w > 0 and it % 5 == 1:
                 V = V + w * (S.project(V) - V)
         out = self._with(vertices=V)
         plan = out.planarity()
