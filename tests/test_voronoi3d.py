@@ -365,3 +365,32 @@ def test_render_png(tmp_path):
     assert (img < 250).any(axis=2).mean() > 0.2  # cells cover a good part of the picture
     with pytest.raises(ValueError):
         render([], tmp_path / "x.png")
+
+
+def test_cli_voronoi3d(tmp_path, capsys):
+    import pyarrow.parquet as pq
+    import trimesh
+
+    from voroforge.cli import main
+
+    pts = np.random.default_rng(0).random((40, 3))
+    src = tmp_path / "p.csv"
+    np.savetxt(src, pts, delimiter=",", header="x,y,z", comments="")
+    outs = [tmp_path / f"c.{s}" for s in ("csv", "parquet", "glb", "obj", "ply", "png")]
+    argv = ["voronoi3d", str(src), "--container", "0,0,0,1,1,1", "--size", "200x160"]
+    for o in outs:
+        argv += ["-o", str(o)]
+    assert main(argv) == 0
+    d = vf.voronoi3d(pts, BOX)
+    tab = pq.read_table(outs[1]).to_pydict()
+    np.testing.assert_allclose(tab["volume"], d.volumes, rtol=1e-15)
+    rows = outs[0].read_text().splitlines()
+    assert rows[0] == "id,volume,cx,cy,cz,neighbors" and len(rows) == 41
+    np.testing.assert_allclose(float(rows[1].split(",")[1]), d.volumes[0], rtol=1e-15)
+    scene = trimesh.load(outs[2])
+    assert len(scene.geometry) == 40
+    vol = sum(g.volume for g in scene.geometry.values())
+    np.testing.assert_allclose(vol, 1.0, rtol=1e-6)  # glb stores float32
+    assert main(["voronoi3d", str(src), "-o", str(tmp_path / "x.xyz")]) == 2
+    assert "unknown output suffix" in capsys.readouterr().err
+    assert main(["voronoi3d", str(src), "-o", str(outs[0]), "--container", "nope"]) == 2

@@ -88,8 +88,9 @@ def render(
         Azimuth about +z and elevation, degrees.
     colors : sequence of RGB, optional
         One colour per mesh (0..255 or 0..1 floats); default a repeating palette.
-    edges : bool
-        Draw face outlines (polygon edges, not triangulation edges of rings).
+    edges : bool or sequence of bool
+        Draw face outlines (polygon edges, not triangulation edges of rings); one flag per
+        mesh to outline some only (e.g. not the triangulated cells cut by a mesh).
     background, light, edge_color
         Background RGB, light direction (world frame), outline RGB.
 
@@ -125,6 +126,7 @@ def render(
     for k, (v, rings) in enumerate(items):
         if not len(v) or not rings:
             continue
+        outline = bool(edges if isinstance(edges, bool) else edges[k])
         col = colors[k] if colors is not None else PALETTE[k % len(PALETTE)]
         col = np.asarray(col, np.float64)
         if col.max() <= 1.0:
@@ -144,13 +146,11 @@ def render(
             shade = 0.35 + 0.65 * max(0.0, float(nrm @ L))
             rgb = tuple(int(min(255, c * shade + 20)) for c in col)
             xy = list(zip(sx[ring], sy[ring], strict=True))
-            polys.append((float(r[ring, 1].mean()), xy, rgb))
+            polys.append((float(r[ring, 1].mean()), xy, rgb, outline))
     img = Image.new("RGB", (W, H), tuple(int(c) for c in background))
     draw = ImageDraw.Draw(img)
-    for _, xy, rgb in sorted(polys, key=lambda t: -t[0]):  # far (large y') first
-        draw.polygon(
-            xy, fill=rgb, outline=tuple(edge_color) if edges else None, width=ss if edges else 0
-        )
+    for _, xy, rgb, outline in sorted(polys, key=lambda t: -t[0]):  # far (large y') first
+        draw.polygon(xy, fill=rgb, outline=tuple(edge_color) if outline else rgb, width=ss)
     img = img.resize((w, h), Image.LANCZOS)
     path = Path(path)
     fd, tmp = tempfile.mkstemp(suffix=".png", dir=path.parent if str(path.parent) else ".")
@@ -162,6 +162,17 @@ def render(
         if os.path.exists(tmp):
             os.unlink(tmp)
     return path
+
+
+def diagram_edges(d, cells=None):
+    """Outline flags for :func:`diagram_meshes`: off for cells a mesh container cut."""
+    cells = range(len(d)) if cells is None else cells
+    cut = d.cut_cells
+    return [
+        not (cut is not None and cut[i])
+        for i in cells
+        if d.cell_face_table()[0][i + 1] > d.cell_face_table()[0][i]
+    ]
 
 
 def diagram_meshes(d, cells=None, *, explode=0.0):

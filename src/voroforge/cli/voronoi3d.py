@@ -1,0 +1,236 @@
+"""``voroforge voronoi3d``: 3D Voronoi cells of a point file, as a table, meshes or a picture."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import tempfile
+from pathlib import Path
+
+from .progress import Stage
+
+__all__ = ["add_parser", "run_voronoi3d"]
+
+EPILOG = """\
+examples:
+  voroforge voronoi3d points.csv -o cells.csv                    volumes, centroids, neighbours
+  voroforge voronoi3d points.npy -o cells.parquet --container 0,0,0,1,1,1
+  voroforge voronoi3d points.csv -o cells.glb --container part.stl   cells cut by a mesh
+  voroforge voronoi3d points.csv -o cells.png --periodic --container 0,0,0,1,1,1
+
+POINTS is a .csv/.txt (three numeric columns, or columns named x, y, z in a header row) or
+an .npy (n, 3) array. OUT's suffix picks the format: .csv/.parquet (one row per cell: id,
+volume, centroid, neighbours; walls are -1 - w), .obj/.glb (one object per cell), .ply (all
+cells in one mesh, a 'cell' id per face) or .png (a shaded picture, cells exploded slightly).
+"""
+
+MESH_SUFFIXES = (".obj", ".glb", ".ply")
+
+
+def add_parser(commands, formatter_class) -> argparse.ArgumentParser:
+    """Add ``voronoi3d`` to argparse ``commands``; its ``run`` default is :func:`run_voronoi3d`."""
+    p = commands.add_parser(
+        "voronoi3d",
+        help="3D Voronoi cells of a point file in a box, convex hull or closed mesh",
+        description="3D Voronoi cells of POINTS, clipped to a box or a closed mesh.",
+        epilog=EPILOG,
+        formatter_class=formatter_class,
+    )
+    p.add_argument("points", metavar="POINTS", help="point file: .csv/.txt (x,y,z) or .npy")
+    p.add_argument(
+        "-o",
+        "--output",
+        metavar="OUT",
+        action="append",
+        required=True,
+        help="output: .csv, .parquet, .obj, .glb, .ply or .png; repeatable",
+    )
+    p.add_argument(
+        "--container",
+        metavar="FILE|BOX",
+        default=None,
+        help="xmin,ymin,zmin,xmax,ymax,zmax or a closed mesh file (.stl/.obj/.ply/.off/.3mf); "
+        "default: the points' bounding box padded 10%%",
+    )
+    p.add_argument("--periodic", action="store_true", help="the box is a 3-torus")
+    p.add_argument("--size", default="1000x800", help="PNG size WIDTHxHEIGHT (default 1000x800)")
+    p.add_argument("--explode", type=float, default=0.15, help="PNG: push cells apart (0.15)")
+    p.set_defaults(run=run_voronoi3d)
+    return p
+
+
+def read_points3d(path):
+    """``(n, 3)`` points from a .npy or a delimited text file (header with x, y, z optional)."""
+    import numpy as np
+
+    path = Path(path)
+    if not path.exists():
+        raise ValueError(f"point file not found: {path}")
+    if path.suffix.lower() == ".npy":
+        return np.load(path, allow_pickle=False)
+    text = path.read_text().splitlines()
+    rows = [ln.split("#")[0].strip() for ln in text]
+    rows = [r for r in rows if r]
+    if not rows:
+        raise ValueError(f"{path}: no points")
+    split = [r.replace(";", ",").replace("\t", ",").replace(" ", ",").split(",") for r in rows]
+    split = [[c for c in r if c != ""] for r in split]
+    cols = [0, 1, 2]
+    start = 0
+    try:
+        [float(v) for v in split[0]]
+    except ValueError:
+        head = [c.strip().lower() for c in split[0]]
+        if all(k in head for k in ("x", "y", "z")):
+            cols = [head.index("x"), head.index("y"), head.index("z")]
+        start = 1
+    out = []
+    for k, r in enumerate(split[start:], start=start):
+        try:
+            out.append([float(r[c]) for c in cols])
+        except (ValueError, IndexError):
+            raise ValueError(f"{path}: line {k + 1}: expected three numbers x, y, z") from None
+    return np.array(out, np.float64)
+
+
+def _container(text):
+    if text is None:
+        return None
+    parts = text.split(",")
+    if len(parts) == 6:
+        try:
+            return tuple(float(v) for v in parts)
+        except ValueError:
+            pass
+    if not os.path.exists(text):
+        raise ValueError(f"--container is neither 6 numbers nor an existing mesh file: {text!r}")
+    return text
+
+
+def _atomic(path: Path, write):
+    fd, tmp = tempfile.mkstemp(suffix=path.suffix, dir=path.parent)
+    os.close(fd)
+    try:
+        write(tmp)
+        mask = os.umask(0)
+        os.umask(mask)
+        os.chmod(tmp, 0o666 & ~mask)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+def _table(d):
+    import numpy as np
+
+    indptr, _ = d.neighbors
+    cf, lab, _, _, _ = d.cell_face_table()
+    nbs = [sorted(set(lab[cf[i] : cf[i + 1]].tolist())) for i in range(len(d))]
+    c = np.asarray(d.centroids)
+    del indptr
+    return {
+        "id": np.arange(len(d)),
+        "volume": np.asarray(d.volumes),
+        "cx": c[:, 0],
+        "cy": c[:, 1],
+        "cz": c[:, 2],
+        "neighbors": nbs,
+    }
+
+
+def write_outputs(d, outputs, *, size=(1000, 800), explode=0.15, stage=None):
+    """Write diagram ``d`` to each path of ``outputs`` by suffix; returns the paths."""
+    import numpy as np
+
+    written = []
+    for out in outputs:
+        path = Path(out)
+        suf = path.suffix.lower()
+        if not path.parent.exists():
+            raise ValueError(f"output folder does not exist: {path.parent}")
+        if stage:
+            stage(f"writing {path.name}")
+        if suf == ".csv":
+            t = _table(d)
+
+            def w(tmp, t=t):
+                with open(tmp, "w") as fh:
+                    fh.write("id,volume,cx,cy,cz,neighbors\n")
+                    for i in range(len(t["id"])):
+                        nb = " ".join(str(v) for v in t["neighbors"][i])
+                        fh.write(
+                            f"{i},{float(t['volume'][i])!r},{float(t['cx'][i])!r},{float(t['cy'][i])!r},"
+                            f"{float(t['cz'][i])!r},{nb}\n"
+                        )
+
+            _atomic(path, w)
+        elif suf == ".parquet":
+            import pyarrow as pa
+            import pyarrow.parquet as pq
+
+            t = _table(d)
+            tab = pa.table(
+                {
+                    k: (pa.array(v, pa.list_(pa.int64())) if k == "neighbors" else pa.array(v))
+                    for k, v in t.items()
+                }
+            )
+            _atomic(path, lambda tmp, tab=tab: pq.write_table(tab, tmp))
+        elif suf in MESH_SUFFIXES:
+            import trimesh
+
+            meshes = d.to_trimesh()
+            live = [(i, m) for i, m in enumerate(meshes) if len(m.faces)]
+            if suf == ".ply":
+                allm = trimesh.util.concatenate([m for _, m in live])
+                cell = np.concatenate([np.full(len(m.faces), i) for i, m in live])
+                allm.face_attributes["cell"] = cell
+
+                def w(tmp, allm=allm):
+                    allm.export(tmp, file_type="ply")
+            else:
+                scene = trimesh.Scene()
+                for i, m in live:
+                    scene.add_geometry(m, node_name=f"cell_{i}", geom_name=f"cell_{i}")
+
+                def w(tmp, scene=scene, suf=suf):
+                    scene.export(tmp, file_type=suf[1:])
+
+            _atomic(path, w)
+        elif suf == ".png":
+            from ..io.render3d import diagram_edges, diagram_meshes, render
+
+            meshes = diagram_meshes(d, explode=explode)
+            flags = diagram_edges(d)
+            _atomic(path, lambda tmp, m=meshes, f=flags: render(m, tmp, size=size, edges=f))
+        else:
+            raise ValueError(
+                f"unknown output suffix {suf!r}: use .csv, .parquet, .obj, .glb, .ply or .png"
+            )
+        written.append(str(path))
+    return written
+
+
+def run_voronoi3d(args, stage: Stage) -> list[str]:
+    """Compute and write the cells (the ``voronoi3d`` command)."""
+    from .. import voronoi3d
+    from .raster import parse_size
+
+    for out in args.output:
+        suf = Path(out).suffix.lower()
+        if suf not in (".csv", ".parquet", ".png") + MESH_SUFFIXES:
+            raise ValueError(
+                f"unknown output suffix {suf!r}: use .csv, .parquet, .obj, .glb, .ply or .png"
+            )
+    h, w = parse_size(args.size)
+    stage("reading points")
+    pts = read_points3d(args.points)
+    stage(f"computing {len(pts)} cells")
+    d = voronoi3d(
+        pts,
+        _container(args.container),
+        periodic=args.periodic,
+        progress=lambda done, total: stage(f"cells {done}/{total}"),
+    )
+    return write_outputs(d, args.output, size=(w, h), explode=args.explode, stage=stage)
