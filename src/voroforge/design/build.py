@@ -268,9 +268,7 @@ def build(
                     units=design.design.units,
                     stroke_width=_stroke_width(design),
                     # kerf-compensated parts reach kerf / 2 past the outline: keep them on the page
-                    bounds=tuple(
-                        np.add(result.boundary.bounds, np.multiply([-1, -1, 1, 1], kerf / 2))
-                    ),
+                    bounds=_page(result, kerf, source, overrides, base),
                     order=o.order,
                     merge=o.merge_lines,
                 )
@@ -310,6 +308,27 @@ def build(
         written.append(text)
         written.append(report.write_png(out / f"{stem}-check.png", size=min(o.png_size, 1200)))
     return written
+
+
+def _page(result: Result, kerf: float, source, overrides, base):
+    """The SVG page: the boundary's box (plus kerf / 2), or the source drawing's page."""
+    d = result.design
+    if d.output.page == "boundary":
+        # kerf-compensated parts reach kerf / 2 past the outline: keep them on the page
+        return tuple(np.add(result.boundary.bounds, np.multiply([-1, -1, 1, 1], kerf / 2)))
+    with located(source, overrides):
+        if d.boundary.shape != "file" or Path(d.boundary.file).suffix.lower() != ".svg":
+            raise DesignError.at("output.page", "'source' needs boundary.file to be an SVG")
+        from ..io.readers.svg import svg_in_mm, svg_page
+
+        path = find_file(base, d.boundary.file, "boundary.file")
+        try:
+            page = np.asarray(svg_page(path), dtype=np.float64)
+        except ValueError as exc:
+            raise DesignError.at("output.page", str(exc)) from None
+    if svg_in_mm(path):
+        page = page / MM_PER_UNIT[d.design.units]
+    return tuple(page.tolist())
 
 
 def _write_legend(result: Result, stem: Path) -> list[Path]:

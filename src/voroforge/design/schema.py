@@ -379,6 +379,8 @@ class Output(_Model):
     # cell numbers as single-stroke text (voroforge.io.labels) and cut-apart pieces
     label_height: PositiveFloat | None = None
     pieces: bool = False
+    # "source": the SVG page is the boundary file's page (same size and origin)
+    page: Literal["boundary", "source"] = "boundary"
 
     @model_validator(mode="after")
     def _gif(self) -> Output:

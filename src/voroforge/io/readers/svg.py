@@ -20,7 +20,15 @@ from .curves import arc_points, bezier_points
 from .files import existing_file, positive_number
 from .rings import even_odd
 
-__all__ = ["path_lines", "path_rings", "read_svg", "read_svg_curves", "svg_arc", "svg_in_mm"]
+__all__ = [
+    "path_lines",
+    "path_rings",
+    "read_svg",
+    "read_svg_curves",
+    "svg_arc",
+    "svg_in_mm",
+    "svg_page",
+]
 
 
 def svg_arc(p0, rx, ry, angle_deg, large, sweep, p1, tol) -> np.ndarray:
@@ -437,6 +445,31 @@ def _document_scale(root) -> tuple[float, np.ndarray]:
         mm = float(m.group(1)) * _MM_PER_UNIT[m.group(2)]
         return (mm / box[2] if box is not None else _MM_PER_UNIT[m.group(2)]), box
     return 1.0, box
+
+
+def svg_page(path) -> tuple[float, float, float, float]:
+    """The page (``viewBox``) of an SVG file in the coordinates :func:`read_svg` returns.
+
+    With ``flip_y=True`` the page's bottom is y = 0, so the page is
+    ``(vx, 0, vx + vw, vh)`` scaled to mm when the root width has a physical unit. Writing
+    an SVG with these bounds (``write_layers(..., bounds=page)``) gives a file that lies
+    exactly over the source drawing.
+
+    Raises
+    ------
+    ValueError
+        When the file has no usable ``viewBox``.
+    """
+    p = existing_file(path)
+    try:
+        root = ET.parse(p).getroot()
+    except ET.ParseError as exc:
+        raise ValueError(f"{p}: not a valid SVG/XML file ({exc})") from None
+    scale, box = _document_scale(root)
+    if box is None:
+        raise ValueError(f"{p}: no viewBox, so there is no page to keep")
+    vx, _, vw, vh = (float(v) for v in box)
+    return vx * scale, 0.0, (vx + vw) * scale, vh * scale
 
 
 def svg_in_mm(path) -> bool:
