@@ -482,3 +482,89 @@ def test_widget_speaks_the_page_protocol_and_exposes_the_design():
     w._on_msg(w, {"text": "NaN"}, [])
     assert sent[-1][0]["op"] == "error"
     assert "VoroStudio" in w._esm and "export default" in w._esm
+
+
+# --- animation -----------------------------------------------------------------------------
+
+ANIMATED = {
+    **HOLED,
+    "seeds": {"method": "random", "count": 40},
+    "attractors": [{"type": "point", "points": [[20, 20]], "radius": 120}],
+    "cells": {"web": {"near": 1, "far": 5}},
+    "fabrication": {},
+    "animation": {
+        "frames": 4,
+        "tracks": [
+            {"key": "attractors.0.points.0", "values": [[20, 20], [280, 180]]},
+            {"key": "seeds.count", "values": [40, 41]},
+        ],
+    },
+}
+
+
+def test_keyframes_interpolate_and_seeds_stay_coherent():
+    from voroforge.studio.animation import Track, frames, value_at
+
+    t = Track(key="a", values=[[0, 0], [10, 20], [0, 0]], times=[0, 0.25, 1])
+    assert value_at(t, 0.125) == [5.0, 10.0] and value_at(t, 1) == [0, 0]
+    assert value_at(Track(key="a", values=[1, 4]), 0.5) == 2  # integers stay integers
+    assert value_at(Track(key="a", values=["x", "y"]), 0.9) == "x"
+    results = list(frames(ANIMATED))
+    assert len(results) == 4
+    assert all(np.array_equal(r.sites, results[0].sites) for r in results)  # moved, not re-sampled
+    webs = [shapely.area(r.cells).sum() for r in results]
+    assert len(set(np.round(webs, 6))) == 4  # the pattern morphs
+    relaxed = list(frames({**ANIMATED, "animation": {**ANIMATED["animation"], "relax": 2}}))
+    assert len({len(r.sites) for r in relaxed}) == 1
+    assert not np.array_equal(relaxed[1].sites, relaxed[0].sites)
+
+
+def test_animation_errors_name_the_track():
+    from voroforge.design.designfile import DesignError
+    from voroforge.studio.animation import frames
+
+    bad = {**ANIMATED, "animation": {"tracks": [{"key": "cells.web", "values": [1, -4]}]}}
+    with pytest.raises(DesignError, match=r"animation\.tracks\.0"):
+        list(frames(bad))
+    with pytest.raises(DesignError, match="times"):
+        load(
+            {**ANIMATED, "animation": {"tracks": [{"key": "a", "values": [1, 2], "times": [0, 2]}]}}
+        )
+    with pytest.raises(DesignError, match=r"\[animation\]"):
+        list(frames(HOLED))
+
+
+def test_session_plays_frames_without_touching_the_design(folder):
+    s = Session(ANIMATED, folder=folder)
+    base = s.result.sites.copy()
+    data = s.data
+    for k in (1, 2, 3, 0):
+        r = s.apply({"op": "frame", "k": k})
+        assert r.kind == "update" and s.frame == k
+        assert np.array_equal(s.result.sites, base)
+    assert s.data is data and not s.history
+    assert s.apply({"op": "frame", "k": 9}).kind == "error"
+    assert (
+        s.apply({"op": "set", "key": "cells.web", "value": 2}).kind == "update" and s.frame is None
+    )
+
+
+def test_cli_animate_writes_gif_and_frames(tmp_path):
+    from PIL import Image
+
+    from voroforge.cli import main
+
+    path = tmp_path / "anim.toml"
+    path.write_text(tomlfile.dumps(ANIMATED), encoding="utf-8")
+    assert main(["animate", str(path), "-o", str(tmp_path / "a.gif"), "--size", "64"]) == 0
+    with Image.open(tmp_path / "a.gif") as im:
+        assert im.n_frames == 4
+    assert (
+        main(["animate", str(path), "-o", str(tmp_path / "f"), "--frames", "2", "--size", "48"])
+        == 0
+    )
+    assert sorted(p.name for p in (tmp_path / "f").iterdir()) == [
+        "frame-0001.png",
+        "frame-0002.png",
+    ]
+    assert main(["animate", str(path), "-o", str(tmp_path / "a.avi")]) == 2

@@ -1,4 +1,4 @@
-"""``voroforge studio``: edit a design live in the browser."""
+"""``voroforge studio`` (edit a design live in the browser) and ``voroforge animate``."""
 
 from __future__ import annotations
 
@@ -6,7 +6,18 @@ import argparse
 
 from .progress import Stage
 
-__all__ = ["add_parser", "run"]
+__all__ = ["add_parser", "run", "run_animate"]
+
+_ANIMATE_EPILOG = """\
+Plays the design's [animation] table (keyframes of any key, e.g. an attractor moving along
+a path) and writes the frames: the seeds of frame 0 stay (moved, not re-sampled), so the
+pattern morphs; cell colours are stable from frame to frame.
+
+examples:
+  voroforge animate examples/facade-panel.toml -o sun.gif
+  voroforge animate panel.toml -o frames/ --frames 60      PNG frames frame-0001.png ...
+  voroforge animate panel.toml -o sun.mp4 --fps 24         needs imageio-ffmpeg
+"""
 
 _EPILOG = """\
 Opens a local page (http://127.0.0.1:PORT/) that draws the design and redraws it as you
@@ -49,6 +60,22 @@ def add_parser(commands, formatter_class) -> None:
     p.add_argument("--no-browser", action="store_true", help="do not open a browser")
     p.set_defaults(run=run)
 
+    a = commands.add_parser(
+        "animate",
+        help="write the frames of a design's [animation] as a GIF, MP4 or PNG frames",
+        description="Play DESIGN's [animation] table and write the frames.",
+        epilog=_ANIMATE_EPILOG,
+        formatter_class=formatter_class,
+    )
+    a.add_argument("design", metavar="DESIGN", help="design file (.toml) with [animation]")
+    a.add_argument(
+        "-o", "--output", metavar="OUT", required=True, help="anim.gif, anim.mp4 or a folder"
+    )
+    a.add_argument("--frames", type=int, help="number of frames (default: animation.frames)")
+    a.add_argument("--fps", type=float, help="frames per second (default: animation.fps)")
+    a.add_argument("--size", type=int, default=480, help="frame size in pixels (default 480)")
+    a.set_defaults(run=run_animate)
+
 
 def run(args: argparse.Namespace, stage: Stage) -> int:
     """Run the studio until Ctrl+C; returns exit status 0."""
@@ -58,3 +85,57 @@ def run(args: argparse.Namespace, stage: Stage) -> int:
 
     serve(args.design, host=args.host, port=args.port, open_browser=not args.no_browser)
     return 0
+
+
+def run_animate(args: argparse.Namespace, stage: Stage) -> list:
+    """Run ``voroforge animate``; returns the files written."""
+    from pathlib import Path
+
+    out = Path(args.output)
+    suffix = out.suffix.lower()
+    if suffix not in ("", ".gif", ".mp4"):
+        raise ValueError(f"{out}: write a .gif, an .mp4 or a folder of PNG frames")
+    if args.frames is not None and not 2 <= args.frames <= 2000:
+        raise ValueError(f"--frames {args.frames}: expected 2 to 2000")
+    if args.fps is not None and not 0 < args.fps <= 60:
+        raise ValueError(f"--fps {args.fps}: expected more than 0, at most 60")
+    if not 32 <= args.size <= 4096:
+        raise ValueError(f"--size {args.size}: expected 32 to 4096")
+    if suffix == ".mp4":
+        try:
+            import imageio_ffmpeg  # noqa: F401
+        except ImportError:
+            raise ValueError(
+                "MP4 needs imageio-ffmpeg (pip install imageio-ffmpeg); "
+                "or write a .gif or a folder of PNG frames"
+            ) from None
+    from ..design.build import render_preview
+    from ..design.designfile import load, located
+    from ..studio.animation import frames
+
+    design, _ = load(args.design)
+    fps = args.fps or (design.animation.fps if design.animation else 12.0)
+    images = []
+    with located(args.design):
+        for k, result in enumerate(frames(args.design, count=args.frames)):
+            stage(f"frame {k + 1}")
+            images.append(render_preview(result, size=args.size))
+    if suffix == ".gif":
+        from ..io.gif import write_gif
+
+        return [write_gif(images, out, fps=fps)]
+    if suffix == ".mp4":
+        import imageio.v2 as imageio
+        import numpy as np
+
+        with imageio.get_writer(out, fps=fps, macro_block_size=1) as w:
+            for im in images:
+                w.append_data(np.asarray(im.convert("RGB")))
+        return [out]
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    for k, im in enumerate(images, start=1):
+        path = out / f"frame-{k:04d}.png"
+        im.save(path)
+        written.append(path)
+    return written

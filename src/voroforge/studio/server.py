@@ -114,7 +114,16 @@ def state_message(session: Session) -> dict:
         "units": session.design.design.units,
         "legend": _legend(),
         "limits": {"max_seeds": session.max_seeds, "max_message": config.STUDIO_MAX_MESSAGE},
+        "animation": _animation(session),
     }
+
+
+def _animation(session: Session) -> dict | None:
+    a = session.design.animation
+    if a is None:
+        return None
+    keys = [t.key for t in a.tracks]
+    return {"frames": a.frames, "fps": a.fps, "loop": a.loop, "frame": session.frame, "keys": keys}
 
 
 def _legend() -> list[dict]:

@@ -114,6 +114,8 @@ class Session:
         self.compute_ms = 0.0
         self.check_ms = 0.0
         self.violations: list = []
+        self.frame: int | None = None  # the animation frame shown (None: the design itself)
+        self._anim: dict | None = None
         self.design, self.result = self._compute(self.data, None, reuse=False)
 
     # --- computing ---------------------------------------------------------------------
@@ -190,6 +192,7 @@ class Session:
             del self.history[: -config.STUDIO_UNDO_DEPTH]
             self.future.clear()
         self.data, self.sites, self.design, self.result = data, sites, design, result
+        self.frame = None
         return Reply("update", changed=_changed(previous, result))
 
     def _sites(self) -> np.ndarray:
@@ -283,6 +286,49 @@ class Session:
         data = apply_overrides(self.data, {f"attractors.{a}.points.{p}": [x, y]})
         return self._commit(data, self.sites, remember=bool(msg.get("begin", True)))
 
+    def _op_frame(self, msg: dict) -> Reply:
+        """Show frame ``k`` of the design's ``[animation]`` (not an edit: no undo step).
+
+        The sites of frame 0 are kept for every frame (hand-edited ones if any); played in
+        order, ``animation.relax`` Lloyd steps move them from the previous frame.
+        """
+        from .animation import frame_design, named_error
+
+        section = self.design.animation
+        if section is None:
+            raise _Bad("animation", "the design has no [animation] table")
+        k = self._index(msg, section.frames, "k")
+        key = (id(self.data), id(self.sites))
+        if self._anim is None or self._anim["key"] != key:
+            sites = self.sites
+            if sites is None:
+                sites = compute(frame_design(self.data, section, 0), self.folder).sites
+            self._anim = {"key": key, "sites": {0: sites}}
+        known = self._anim["sites"]
+        sites = known.get(k)
+        if sites is None:
+            sites = known.get(k - 1, known[0])
+            if section.relax and (k - 1) in known:
+                from ..design.relax import relax
+
+                sites = relax(sites, self.result.domain, iterations=section.relax)
+            known[k] = sites
+        previous = self.result
+        start = time.perf_counter()
+        try:
+            result = compute(
+                frame_design(self.data, section, k),
+                self.folder,
+                sites=sites,
+                reuse=previous,
+                frame=False,
+            )
+        except DesignError as exc:
+            raise named_error(exc, section, k) from None
+        self.compute_ms = (time.perf_counter() - start) * 1e3
+        self.result, self.frame = result, k
+        return Reply("update", changed=_changed(previous, result))
+
     def _op_reset_sites(self, msg: dict) -> Reply:
         return self._commit(self.data, None)
 
@@ -304,6 +350,7 @@ class Session:
         source.pop()
         target.append((self.data, self.sites))
         self.data, self.sites, self.design, self.result = data, sites, design, result
+        self.frame = None
         return Reply("update", changed=_changed(previous, result))
 
     # --- files -------------------------------------------------------------------------
@@ -434,6 +481,7 @@ _OPS = {
     "remove": Session._op_remove,
     "attractor": Session._op_attractor,
     "reset_sites": Session._op_reset_sites,
+    "frame": Session._op_frame,
     "undo": Session._op_undo,
     "redo": Session._op_redo,
     "save": Session._op_save,

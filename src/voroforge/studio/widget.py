@@ -45,7 +45,10 @@ export default {
         <button data-act="export-svg">SVG</button><button data-act="export-dxf">DXF</button>
         <button data-act="export-png">PNG</button></header>
       <main class="vf-main"><div class="vf-canvas-wrap"><canvas data-role="canvas"></canvas>
-        <div class="vf-legend" data-role="legend"></div></div>
+        <div class="vf-legend" data-role="legend"></div>
+      <div class="vf-timeline" data-role="timeline" hidden><button data-act="play">Play</button>
+      <input type="range" min="0" max="1" step="1" value="0" data-role="scrub">
+      <span data-role="frame"></span></div></div>
         <aside class="vf-panel" data-role="panel"></aside></main>
       <footer class="vf-status"><span data-role="status">starting…</span>
         <span class="vf-message" data-role="message"></span></footer>`;

@@ -90,7 +90,7 @@ var VoroStudio = (function () {
     this.boundary = null; this.domain = null; this.bounds = [0, 0, 1, 1];
     this.attractors = []; this.violations = []; this.legend = [];
     this.state = null; this.header = null; this.n = 0;
-    this.nextId = 1; this.inflight = null; this.pending = null;
+    this.nextId = 1; this.inflight = null; this.waiting = [];
     this.latencies = []; this.drag = null; this.dirty = false; this.frames = 0;
     this.controlsKey = ""; this.inputs = {}; this.client = null;
     this.lastDraw = 0; this.seq = 0; this.errors = {};
@@ -106,30 +106,30 @@ var VoroStudio = (function () {
     return msg.id;
   };
 
-  /* One message in flight; later edits of the same kind wait as one pending message. */
+  /* One message in flight; the rest wait in order, and a run of the same edit (a drag, a
+     slider, the timeline) collapses to its latest value. */
+  function collapsible(a, b) {
+    if (a.op !== b.op) return false;
+    if (a.op === "move") return a.i === b.i;
+    if (a.op === "attractor") return a.a === b.a && a.p === b.p;
+    if (a.op === "set") return a.key === b.key;
+    return a.op === "frame";
+  }
+
   Studio.prototype.queue = function (msg) {
     msg._t0 = performance.now();
-    if (this.inflight) {
-      if (this.pending && this.pending.op === msg.op && msg.op === "move" && this.pending.begin) msg.begin = true;
-      if (this.pending && this.pending.op === "attractor" && msg.op === "attractor" && this.pending.begin) msg.begin = true;
-      if (this.pending && this.pending.op !== msg.op) this.transportFlush();
-      this.pending = msg;
-      return;
-    }
-    var t0 = msg._t0; delete msg._t0;
-    this.send(msg, { t0: t0 });
-  };
-
-  Studio.prototype.transportFlush = function () {
-    var p = this.pending; this.pending = null;
-    if (p) { var t0 = p._t0; delete p._t0; this.send(p, { t0: t0 }); }
+    if (!this.inflight) { var t0 = msg._t0; delete msg._t0; this.send(msg, { t0: t0 }); return; }
+    var w = this.waiting, last = w[w.length - 1];
+    if (last && collapsible(last, msg)) { if (last.begin) msg.begin = true; w[w.length - 1] = msg; }
+    else w.push(msg);
   };
 
   Studio.prototype.settle = function (replyTo) {
     if (!this.inflight || this.inflight.id !== replyTo) return null;
     var done = this.inflight;
     this.inflight = null;
-    if (this.pending) this.transportFlush();
+    var next = this.waiting.shift();
+    if (next) { var t0 = next._t0; delete next._t0; this.send(next, { t0: t0 }); }
     return done;
   };
 
@@ -140,7 +140,7 @@ var VoroStudio = (function () {
     if (msg.op === "state") {
       if (msg.client !== undefined && this.client === null) this.client = msg.client;
       this.state = msg; this.legend = msg.legend || [];
-      this.controlsPanel(); this.updateBar(); this.drawLegend();
+      this.controlsPanel(); this.updateBar(); this.drawLegend(); this.timeline();
       return;
     }
     if (msg.op === "violations") {
@@ -157,7 +157,7 @@ var VoroStudio = (function () {
       this.download(msg);
     } else if (msg.op === "confirm" && mine) {
       var ok = window.confirm("Overwrite " + msg.files.join(" and ") + " in the design's folder?");
-      if (ok) this.send({ op: "save", name: msg.name, overwrite: true });
+      if (ok) this.queue({ op: "save", name: msg.name, overwrite: true });
     } else if (msg.op === "saved" && mine) {
       this.message("saved " + msg.files.join(", "), false);
       this.saved = msg;
@@ -469,6 +469,7 @@ var VoroStudio = (function () {
 
   Studio.prototype.action = function (act) {
     if (act === "undo" || act === "redo" || act === "reset_sites") return this.queue({ op: act });
+    if (act === "play") return this.play();
     if (act === "save") {
       var name = window.prompt("Save as (a .toml file in " + (this.state ? this.state.folder : "the design's folder") + ")",
         this.state ? this.state.file : "design.toml");
@@ -476,6 +477,48 @@ var VoroStudio = (function () {
       return;
     }
     if (act.indexOf("export-") === 0) return this.queue({ op: "export", format: act.slice(7) });
+  };
+
+  /* --- animation: a timeline to scrub and play the design's [animation] frames ---------- */
+
+  Studio.prototype.timeline = function () {
+    var bar = this.root.querySelector("[data-role=timeline]"), a = this.state.animation;
+    if (!bar) return;
+    bar.hidden = !a;
+    if (!a) { this.playing = false; return; }
+    var scrub = bar.querySelector("[data-role=scrub]"), self = this;
+    scrub.max = a.frames - 1;
+    if (a.frame !== null && a.frame !== undefined) scrub.value = a.frame;
+    bar.querySelector("[data-role=frame]").textContent =
+      "frame " + (a.frame === null || a.frame === undefined ? "-" : a.frame + 1) + " / " + a.frames;
+    if (!scrub._bound) {
+      scrub._bound = true;
+      scrub.addEventListener("input", function () { self.playing = false; self.showFrame(parseInt(scrub.value, 10)); });
+    }
+  };
+
+  Studio.prototype.showFrame = function (k) {
+    this.frameShown = k;
+    this.queue({ op: "frame", k: k });
+  };
+
+  Studio.prototype.play = function () {
+    var a = this.state && this.state.animation, self = this;
+    if (!a) return;
+    this.playing = !this.playing;
+    var b = this.root.querySelector("[data-act=play]"); if (b) b.textContent = this.playing ? "Pause" : "Play";
+    if (!this.playing) return;
+    var k = this.frameShown === undefined ? -1 : this.frameShown;
+    this.framesPlayed = 0;
+    var step = function () {
+      if (!self.playing) return;
+      if (self.inflight) { setTimeout(step, 5); return; }
+      k = k + 1;
+      if (k >= a.frames) { if (!a.loop) { self.playing = false; if (b) b.textContent = "Play"; return; } k = 0; }
+      self.showFrame(k); self.framesPlayed++;
+      setTimeout(step, 1000 / a.fps);
+    };
+    step();
   };
 
   Studio.prototype.download = function (msg) {
