@@ -95,7 +95,7 @@ def geometry_message(session: Session, changed, *, seq: int, boundary: bool, ext
 
 def _attractors(session: Session) -> list[dict]:
     out = []
-    for a in session.design.attractors:
+    for a in session.result.design.attractors:  # an animation frame's, while playing
         pts = [[float(x), float(y)] for x, y in (a.points or [])]
         out.append({"type": a.type, "points": pts, "radius": float(a.radius), "name": a.name})
     return out
