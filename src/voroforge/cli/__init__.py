@@ -15,6 +15,7 @@ from collections.abc import Sequence
 
 from . import demo, design, diagram, explain, raster, studio
 from . import scale as scale_cmd
+from . import stipple as stipple_cmd
 from . import voronoi3d as voronoi3d_cmd
 from .progress import progress
 
@@ -55,6 +56,7 @@ def _parser() -> argparse.ArgumentParser:
     scale_cmd.add_parser(commands, raw)
     studio.add_parser(commands, raw)
     voronoi3d_cmd.add_parser(commands, raw)
+    stipple_cmd.add_parser(commands, raw)
     return parser
 
 
