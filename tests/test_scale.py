@@ -323,3 +323,21 @@ def test_killed_worker_still_identical(tmp_path):
     got = tiled_table(tmp_path / "run")
     diff = differences(got, single_process(pts, None, tmp_path / "ref.parquet"))
     assert all(not v for v in diff.values())
+
+
+def test_cli_voronoi_writes_geoparquet(tmp_path, capsys):
+    import geopandas as gpd
+
+    from voroforge.cli import main
+
+    pts = np.random.default_rng(15).random((200, 2))
+    np.save(tmp_path / "p.npy", pts)
+    out = tmp_path / "cells.parquet"
+    assert (
+        main(["voronoi", str(tmp_path / "p.npy"), "-o", str(out), "-o", str(tmp_path / "c.svg")])
+        == 0
+    )
+    g = gpd.read_parquet(out)
+    assert np.allclose(g.area.to_numpy(), vf.voronoi(pts).areas, rtol=1e-12)
+    assert main(["voronoi", str(tmp_path / "p.npy"), "-o", str(out), "--edges"]) == 2
+    assert "--edges" in capsys.readouterr().err

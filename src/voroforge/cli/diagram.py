@@ -16,8 +16,9 @@ POINTS_HELP = (
 )
 
 _VORONOI_EPILOG = """\
-The output type follows each OUT's suffix: .svg, .png, .geojson, .json or .dxf.
-Give -o several times to write several files from one computation.
+The output type follows each OUT's suffix: .svg, .png, .geojson, .json, .dxf or .parquet
+(GeoParquet: site_id, geometry, area, neighbors, bbox). Give -o several times to write
+several files from one computation.
 
 examples:
   voroforge voronoi points.csv -o cells.svg
@@ -121,9 +122,9 @@ def run_voronoi(args: argparse.Namespace, stage: Stage) -> list[Path]:
     from .. import io
 
     for out in args.output:
-        kind = io.output_format(out)
-        if args.edges and kind == "png":
-            raise ValueError(f"{out}: --edges writes .svg, .dxf or .geojson, not .png")
+        kind = "parquet" if _is_parquet(out) else io.output_format(out)
+        if args.edges and kind in ("png", "parquet"):
+            raise ValueError(f"{out}: --edges writes .svg, .dxf or .geojson, not .{kind}")
     stage("reading")
     points = io.read_points(args.points)
     boundary = io.read_boundary(args.boundary) if args.boundary else None
@@ -134,12 +135,21 @@ def run_voronoi(args: argparse.Namespace, stage: Stage) -> list[Path]:
     written = []
     for out in args.output:
         stage(f"writing {out}")
+        if _is_parquet(out):  # GeoParquet cells (voroforge.io.parquet, the scale extra)
+            from ..io.parquet import write_cells
+
+            written.append(write_cells(d, out))
+            continue
         written.append(
             io.write(
                 d.cells, out, sites=d.sites, boundary=d.boundary, size=args.size, units=args.units
             )
         )
     return written
+
+
+def _is_parquet(out) -> bool:
+    return str(out).lower().endswith((".parquet", ".geoparquet"))
 
 
 def _write_edges(d, args: argparse.Namespace, stage: Stage) -> list[Path]:

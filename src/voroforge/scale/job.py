@@ -64,6 +64,10 @@ class ScaleResult:
         Wall time of the call.
     dashboard : str or None
         The dask dashboard's address.
+    phases : dict
+        Seconds spent in each step: ``stats`` (extent, checks, sample), ``shuffle`` (split
+        and merge of the chunks by tile), ``tiles`` (compute, certify, write) and
+        ``metadata`` (``_metadata`` and the manifest).
     tile_info : list of dict
         Per tile: sites owned and loaded, first-round uncertified cells, rounds, seconds,
         extent, file.
@@ -78,6 +82,7 @@ class ScaleResult:
     resumed: int
     seconds: float
     dashboard: str | None = None
+    phases: dict = field(default_factory=dict)
     tile_info: list = field(default_factory=list, repr=False)
 
 
@@ -327,8 +332,17 @@ def _run(
     overwrite,
 ):
     from distributed import as_completed
+    from distributed import wait as distributed_wait
 
     from ..engine.domain import padded_bounds
+
+    clock = [time.perf_counter()]
+    phases = {}
+
+    def lap(name):
+        now = time.perf_counter()
+        phases[name] = now - clock[0]
+        clock[0] = now
 
     nworkers = max(1, len(cl.scheduler_info(n_workers=-1)["workers"]))
     blocks = cl.compute(source.blocks) if source.blocks else [None] * len(source.chunks)
@@ -365,6 +379,7 @@ def _run(
         )
     manifest = {"format": _FORMAT, "complete": False, "fingerprint": fingerprint}
     _write_json(out / MANIFEST, manifest)
+    lap("stats")
 
     # the shuffle: every chunk split by owning tile, each tile's pieces merged in row order
     splits = [
@@ -377,6 +392,8 @@ def _run(
         owned.append(cl.submit(merge_pieces, *parts))
     del splits
     per_tile = counts.sum(axis=0)
+    distributed_wait(owned)
+    lap("shuffle")
 
     def spec(t):
         name = f"part-{t:05d}.parquet"
@@ -439,12 +456,14 @@ def _run(
         if progress is not None:
             progress(len(infos), ntiles)
     del owned
+    lap("tiles")
 
     tile_info = [infos[t] for t in range(ntiles)]
     _write_dataset_metadata(out, tile_info)
     manifest["complete"] = True
     manifest["tiles"] = tile_info
     _write_json(out / MANIFEST, manifest)
+    lap("metadata")
     return ScaleResult(
         path=out,
         cells=int(sum(i["rows"] for i in tile_info)),
@@ -455,6 +474,7 @@ def _run(
         resumed=resumed,
         seconds=0.0,
         dashboard=getattr(cl, "dashboard_link", None),
+        phases=phases,
         tile_info=tile_info,
     )
 

@@ -1,0 +1,193 @@
+"""Tiled Voronoi on dask.distributed against one process, same cells, same GeoParquet.
+
+Run from the repository root::
+
+    .venv/bin/python benchmarks/bench_scale.py                       # 1e6 uniform
+    .venv/bin/python benchmarks/bench_scale.py --n 1e7 --workers 2   # the issue's figure
+    .venv/bin/python benchmarks/bench_scale.py --n 1e8 --only tiled  # the 1e8 run
+
+Each configuration runs in a fresh child process on the same fixed-seed points, saved once
+as a ``.npy`` file (memory-mapped by the workers):
+
+``single``  ``vf.voronoi`` on all points + ``io.parquet.write_cells``: one process.
+``serial``  ``scale.voronoi`` on a LocalCluster of 1 worker x 1 thread: the same tiles,
+            one after another in one process.
+``tiled``   ``scale.voronoi`` on a LocalCluster of ``--workers`` workers x 1 thread.
+
+Wall time (end to end: input read, tiles, files, metadata), cells per second, and the peak
+of the summed resident memory of the whole process tree (client, nannies, workers), sampled
+every 0.2 s. The machine is shared: read the ratios, not the seconds.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import shutil
+import subprocess
+import sys
+import tempfile
+import textwrap
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+
+from common import DISTRIBUTIONS, machine_info, print_table  # noqa: E402
+
+CHILD = textwrap.dedent(
+    """
+    import json, sys, threading, time
+    import numpy as np, psutil
+    what, pts_path, out, workers, tile_size = sys.argv[1:6]
+    workers = int(workers); tile_size = int(tile_size)
+    me = psutil.Process()
+    peak = [0]
+    stop = threading.Event()
+    def sample():
+        while not stop.is_set():
+            total = 0
+            for p in [me, *me.children(recursive=True)]:
+                try:
+                    total += p.memory_info().rss
+                except psutil.Error:
+                    pass
+            peak[0] = max(peak[0], total)
+            time.sleep(0.2)
+    threading.Thread(target=sample, daemon=True).start()
+    import voroforge as vf
+    from voroforge.io.parquet import write_cells
+    vf.voronoi(np.random.default_rng(0).random((100, 2)))  # kernels loaded, as in workers
+    info = {}
+    if what == "single":
+        t = time.perf_counter()
+        pts = np.load(pts_path)
+        bounds = (0.0, 0.0, 1.0, 1.0)
+        d = vf.voronoi(pts, bounds)
+        write_cells(d, out)
+        info["seconds"] = time.perf_counter() - t
+        info["tiles"] = 1
+    else:
+        import logging
+        from distributed import Client, LocalCluster
+        from voroforge import scale
+        with LocalCluster(n_workers=workers, threads_per_worker=1,
+                          silence_logs=logging.ERROR, dashboard_address=":0") as cl, \\
+             Client(cl) as c:
+            c.run(lambda: __import__("voroforge").voronoi(
+                __import__("numpy").random.default_rng(0).random((100, 2))))  # warm workers
+            t = time.perf_counter()
+            res = scale.voronoi(pts_path, (0.0, 0.0, 1.0, 1.0), out=out, client=c,
+                                tile_size=tile_size, overwrite=True)
+            info["seconds"] = time.perf_counter() - t
+            info.update(tiles=res.tiles, uncertified=res.uncertified, retried=res.retried,
+                        cells=res.cells)
+            info["phases"] = res.phases
+            info["tile_seconds"] = [i["seconds"] for i in res.tile_info]
+            info["tile_loaded"] = [i["loaded_sites"] for i in res.tile_info]
+            info["tile_owned"] = [i["owned"] for i in res.tile_info]
+    stop.set()
+    info["peak_rss"] = peak[0]
+    print("RESULT " + json.dumps(info))
+    """
+)
+
+
+def run_child(what, pts_path, out, workers, tile_size, timeout):
+    cmd = [sys.executable, "-c", CHILD, what, str(pts_path), str(out), str(workers), str(tile_size)]
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+    for line in proc.stdout.splitlines():
+        if line.startswith("RESULT "):
+            return json.loads(line[7:])
+    raise RuntimeError(f"{what} failed:\n{proc.stderr[-3000:]}")
+
+
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--n", type=float, default=1e6)
+    parser.add_argument("--dist", default="uniform", choices=sorted(DISTRIBUTIONS))
+    parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--tile-size", type=int, default=250_000)
+    parser.add_argument("--only", default="single,serial,tiled")
+    parser.add_argument("--timeout", type=float, default=3600)
+    parser.add_argument("--json", help="also write the results here")
+    args = parser.parse_args(argv)
+    n = int(args.n)
+    print(machine_info())
+    work = Path(tempfile.mkdtemp(prefix="bench_scale_"))
+    try:
+        import numpy as np
+
+        pts_path = work / "points.npy"
+        if n <= 2 * 10**7:
+            np.save(pts_path, DISTRIBUTIONS[args.dist](n))
+        else:  # written in slices: the generator would need the whole array at once
+            mm = np.lib.format.open_memmap(pts_path, mode="w+", dtype=np.float64, shape=(n, 2))
+            step = 10**7
+            for a in range(0, n, step):
+                mm[a : a + step] = DISTRIBUTIONS[args.dist](min(step, n - a), seed=a + 1)
+            mm.flush()
+            del mm
+        results = {}
+        for what in args.only.split(","):
+            workers = 1 if what == "serial" else args.workers
+            out = work / f"{what}.parquet"
+            t = time.perf_counter()
+            results[what] = run_child(what, pts_path, out, workers, args.tile_size, args.timeout)
+            results[what]["wall"] = time.perf_counter() - t
+            results[what]["workers"] = workers if what != "single" else 1
+            shutil.rmtree(out, ignore_errors=True) if out.is_dir() else out.unlink(missing_ok=True)
+        single = results.get("single", {}).get("seconds")
+        serial = results.get("serial", {}).get("seconds")
+        rows = []
+        for what, r in results.items():
+            rows.append(
+                [
+                    what,
+                    f"{n:.0e}",
+                    r.get("tiles", 1),
+                    r["workers"],
+                    f"{r['seconds']:.1f}",
+                    f"{n / r['seconds']:,.0f}",
+                    f"{single / r['seconds']:.2f}" if single else "-",
+                    f"{serial / r['seconds']:.2f}" if serial else "-",
+                    f"{r['peak_rss'] / 2**30:.2f}",
+                    r.get("uncertified", "-"),
+                    r.get("retried", "-"),
+                ]
+            )
+        print_table(
+            [
+                "run",
+                "n",
+                "tiles",
+                "workers",
+                "s",
+                "cells/s",
+                "single/run",
+                "serial/run",
+                "peak GiB",
+                "uncertified",
+                "retried",
+            ],
+            rows,
+            title=f"scale: {args.dist}, tile size {args.tile_size}",
+        )
+        for what, r in results.items():
+            if "tile_seconds" in r:
+                ts = np.array(r["tile_seconds"])
+                loaded = np.array(r["tile_loaded"]) / np.maximum(np.array(r["tile_owned"]), 1)
+                print(
+                    f"{what}: per tile {np.median(ts):.2f} s median, {ts.max():.2f} s max; "
+                    f"loaded/owned sites {np.median(loaded):.3f} median; phases "
+                    + ", ".join(f"{k} {v:.1f} s" for k, v in r["phases"].items())
+                )
+        if args.json:
+            Path(args.json).write_text(json.dumps(results, indent=1))
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()
