@@ -568,3 +568,29 @@ def test_cli_animate_writes_gif_and_frames(tmp_path):
         "frame-0002.png",
     ]
     assert main(["animate", str(path), "-o", str(tmp_path / "a.avi")]) == 2
+
+
+def test_cli_studio_serves_and_warns_off_loopback(folder):
+    import subprocess
+    import sys
+    import urllib.request
+
+    cmd = [sys.executable, "-m", "voroforge", "studio", str(folder / "holed.toml")]
+    proc = subprocess.Popen(
+        [*cmd, "--port", "0", "--no-browser", "--host", "0.0.0.0"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        line = proc.stdout.readline()
+        assert line.startswith("voroforge studio: http://127.0.0.1:"), line
+        url = line.split()[2]
+        with urllib.request.urlopen(url + "health", timeout=30) as r:
+            assert r.read() == b"ok"
+        with urllib.request.urlopen(url, timeout=30) as r:
+            assert b"studio.js" in r.read()
+    finally:
+        proc.terminate()
+        _, err = proc.communicate(timeout=30)
+    assert "warning: listening on 0.0.0.0" in err
