@@ -52,12 +52,15 @@ def main(quick: bool = False) -> None:
     print(f"{'scipy SphericalVoronoi 10k (areas), for scale':58s} {t_sv:8.3f}")
     S = surface.sphere(1.0, subdivisions=5)
     iters = 100
-    for method in ("lloyd", "lbfgs"):
-        t, vd = best(lambda m=method: surface.voronoi(S, 1000, relax=iters, method=m, seed=1), 1)
-        print(
-            f"{f'CVT {method} 1,000 cells x {iters} it, 20,480-triangle sphere':58s} {t:8.3f}  "
-            f"target <= 5 s; hexagons {vd.hexagon_fraction():.1%}"
+    for method, init in (("lloyd", "random"), ("lbfgs", "random"), ("lbfgs", "multilevel")):
+        t, vd = best(
+            lambda m=method, i=init: surface.voronoi(
+                S, 1000, relax=iters, method=m, init=i, seed=1
+            ),
+            1,
         )
+        label = f"CVT {method} ({init}) 1,000 cells x {iters} it, 20,480-tri sphere"
+        print(f"{label:58s} {t:8.3f}  target <= 5 s; hexagons {vd.hexagon_fraction():.1%}")
     U = surface.sphere_patch(1.0, polar=(0, np.pi), resolution=(160, 64))
     rng = np.random.default_rng(1)
     uv = rng.random((1000, 2))
@@ -73,11 +76,10 @@ def main(quick: bool = False) -> None:
         f"area spread {uvd.areas.std() / uvd.areas.mean():.2f}"
     )
     Tor = surface.torus(1.0, 0.4)
-    t, vd = best(lambda: surface.voronoi(Tor, 800, relax=iters, seed=1), 1)
-    print(
-        f"{f'CVT lbfgs 800 cells x {iters} it, torus R=1 r=0.4 ({len(Tor.faces)} tri)':58s} "
-        f"{t:8.3f}  hexagons {vd.hexagon_fraction():.1%}"
-    )
+    for init in ("random", "multilevel"):
+        t, vd = best(lambda i=init: surface.voronoi(Tor, 800, relax=iters, init=i, seed=1), 1)
+        label = f"CVT lbfgs ({init}) 800 cells x {iters} it, torus ({len(Tor.faces)} tri)"
+        print(f"{label:58s} {t:8.3f}  hexagons {vd.hexagon_fraction():.1%}")
 
 
 if __name__ == "__main__":

@@ -174,6 +174,18 @@ def test_lloyd_lowers_the_energy_and_lbfgs_goes_lower(sphere3):
     assert lb.hexagon_fraction() > lloyd.hexagon_fraction() - 0.1
 
 
+def test_multilevel_cvt_leaves_fewer_defects_than_random_starts():
+    # the full-size figures (1,000 cells, 100 steps: 94-95% hexagons) are benchmarks
+    S = surface.sphere(1.0, subdivisions=4)
+    ml = surface.voronoi(S, 300, relax=40, seed=3)
+    rnd = surface.voronoi(S, 300, relax=40, init="random", seed=3)
+    assert ml.hexagon_fraction() >= 0.85
+    assert ml.hexagon_fraction() > rnd.hexagon_fraction()
+    assert len(ml.history) == 40 and abs(ml.areas.sum() - S.area) <= 1e-9 * S.area
+    # Euler: on a closed sphere the degrees average 6 - 12 / n
+    assert ml.degree().sum() == 6 * 300 - 12
+
+
 def test_uv_lloyd_is_worse_than_surface_cvt_on_a_sphere_patch():
     S = surface.sphere_patch(1.0, polar=(0, np.pi), resolution=(48, 24))
     cvt = surface.voronoi(S, 120, relax=20)
@@ -196,6 +208,7 @@ def test_uv_lloyd_is_worse_than_surface_cvt_on_a_sphere_patch():
         (lambda S: surface.voronoi(S, [[0, 0]]), r"\(n, 3\)"),
         (lambda S: surface.voronoi(S, 5, relax=-1), "relax"),
         (lambda S: surface.voronoi(S, 5, method="newton"), "method"),
+        (lambda S: surface.voronoi(S, 50, relax=20, init="grid"), "init"),
         (lambda S: surface.Surface(np.zeros((3, 2)), [[0, 1, 2]]), "vertices"),
         (lambda S: surface.Surface(np.zeros((3, 3)), [[0, 1, 3]]), "do not exist"),
         (lambda S: surface.cylinder(-1, 2), "radius"),

@@ -31,6 +31,9 @@ VERTEX_DET_RTOL = 1e-8
 #: Squared distance between two sites, relative to the squared radius of their circle,
 #: below which a triple holding both is not a vertex's name (ill-conditioned centre)
 VERTEX_PAIR_RTOL = 2.0**-40
+#: Triples tried for a cocircular class's name before its reference centre is kept (the
+#: same bound for every caller, so names agree; caps the cubic search on huge classes)
+NAME_MAX_TRIES = 4096
 #: A cocircular triple names a vertex only if its centre is this close to the vertex (L1,
 #: relative to the vertex's magnitude and distance from its site; kernels/vertex)
 VERTEX_SNAP_RTOL = 2.0**-40
@@ -235,6 +238,10 @@ SURFACE_BUCKETS_PER_SITE = 8
 #: A cell boundary shorter than this (relative to the mesh's size) makes no neighbour.
 SURFACE_EDGE_RTOL = 1e-9
 
+#: Surface CVT from a site count: the share of the relaxation steps spent on the coarse level
+#: (a quarter of the sites) before the midpoints of its neighbour pairs are added.
+SURFACE_COARSE_SHARE = 0.3
+
 # --- voronoi3d (3D cells, containers) -----------------------------------------------------------
 
 #: A cell vertex this close to a cutting plane (relative to |d| * cell radius + |offset|, the
@@ -313,4 +320,4 @@ SCALE_CHUNK_ROWS = 1_000_000
 #: Sites sampled (over all chunks) to place the k-d tile splits.
 SCALE_SAMPLE_SITES = 200_000
 #: Bisection steps for a corner's inside radius in the fabrication check (radius / 2^steps)
-FAB_CORNER_BISECTIONS = 14
+FAB_CORNER_BISECTIONS = 10

