@@ -62,6 +62,34 @@ class Report:
             ],
         }
 
+    def table(self, max_rows: int | None = 50) -> str:
+        """The report as text: a summary line, then one row per violation (``max_rows``)."""
+        rows = self.violations if max_rows is None else self.violations[:max_rows]
+        st = self.stats
+        head = (
+            f"print check: {'ok' if self.ok else f'{len(self.violations)} violations'}"
+            f" ({st.get('bodies', '?')} bodies, {st.get('voids', '?')} voids, "
+            f"volume {st.get('volume', float('nan')):.6g})"
+        )
+        lines = [head]
+        if rows:
+            lines.append(f"{'kind':<14} {'x':>10} {'y':>10} {'z':>10} {'value':>10} {'limit':>8}")
+            for v in rows:
+                x, y, z = v.location
+                lines.append(
+                    f"{v.kind:<14} {x:>10.4g} {y:>10.4g} {z:>10.4g} "
+                    f"{v.value:>10.4g} {v.limit:>8.4g}"
+                )
+        if len(rows) < len(self.violations):
+            lines.append(f"... {len(self.violations) - len(rows)} more (--all shows every row)")
+        return "\n".join(lines)
+
+    def write_png(self, path, **kwargs):
+        """Overlays draw 2D reports; a solid's violations are 3D points (see :meth:`table`)."""
+        raise ValueError("--overlay draws 2D fabrication reports; a solid's report is the table")
+
+    write_svg = write_png
+
     def __str__(self) -> str:
         head = "print check: ok" if self.ok else f"print check: {len(self.violations)} violations"
         return "\n".join([head, *(f"  {v}" for v in self.violations[:50])])

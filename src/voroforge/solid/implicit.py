@@ -16,6 +16,7 @@ from .sdf import capsules_block, mesh_sdf_block
 __all__ = ["capsules_mesh", "march", "signed_volume"]
 
 _SLAB = 96  # z planes per slab
+_JITTER = np.sqrt([2.0, 3.0, 5.0]) * 1e-3
 
 
 def signed_volume(m) -> float:
@@ -48,7 +49,9 @@ def march(evaluate, lo, hi, h, *, smoothing: int = 0, progress=None):
     import trimesh
     from skimage.measure import marching_cubes
 
-    lo = np.asarray(lo, np.float64) - 2 * h
+    # a small irrational offset keeps samples off the axis-aligned planes of CAD meshes (a ray
+    # along a mesh face would make the inside parity ambiguous)
+    lo = np.asarray(lo, np.float64) - 2 * h - h * _JITTER
     hi = np.asarray(hi, np.float64) + 2 * h
     n = np.ceil((hi - lo) / h).astype(np.int64) + 1
     if n.prod() > 2e9:

@@ -137,5 +137,5 @@ def lattice(
         skin=skin,
         smooth=None if nodes == "smooth" else 0.0,
     )
-    m.metadata.update({**meta, "parts": {"method": "implicit"}})
+    m.metadata.update({**meta, "parts": {"method": "implicit"}, "skin": float(skin)})
     return m

@@ -1,0 +1,114 @@
+"""``[solid]``: a printable 3D product of a design file (the section's model).
+
+``kind = "lattice" | "foam" | "shell"`` build from 3D cells (``cells`` sites in the
+``container``, relaxed ``relax`` times, optionally subdivided); ``kind = "extrude"`` turns
+the file's 2D design into a slab. The 3D kinds need no ``[boundary]``/``[seeds]`` tables.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+__all__ = ["SolidField", "SolidSection", "fill_2d"]
+
+Positive = Annotated[float, Field(gt=0)]
+NonNeg = Annotated[float, Field(ge=0)]
+Size = Positive | tuple[Positive, Positive]
+
+
+class SolidField(BaseModel):
+    """``[[solid.fields]]``: a 3D attractor (point, curve, plane) grading the sizes."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    type: Literal["point", "curve", "plane"] = "point"
+    points: list[tuple[float, float, float]] | None = None
+    origin: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    normal: tuple[float, float, float] = (0.0, 0.0, 1.0)
+    radius: Positive
+    strength: NonNeg = 1.0
+    falloff: Literal["linear", "smoothstep", "gaussian", "inverse_power"] = "smoothstep"
+
+    @model_validator(mode="after")
+    def _pts(self) -> SolidField:
+        if self.type in ("point", "curve") and not self.points:
+            raise ValueError(f"a {self.type} field needs points = [[x, y, z], ...]")
+        return self
+
+
+class SolidSection(BaseModel):
+    """``[solid]``: what to build, from which cells, and the print limits."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    kind: Literal["lattice", "foam", "shell", "extrude"]
+    # cells (lattice, foam)
+    container: tuple[float, float, float, float, float, float] | str | None = None
+    cells: Annotated[int, Field(gt=0, le=200_000)] = 200
+    relax: Annotated[int, Field(ge=0, le=200)] = 0
+    seed: int = 0
+    subdivide: Annotated[int, Field(ge=0, le=3)] = 0
+    subdivide_count: Size = 4.0
+    # sizes
+    radius: Size = 0.8
+    nodes: Literal["sphere", "hull", "smooth"] = "sphere"
+    skin: NonNeg = 0.0
+    wall: Size = 1.2
+    thickness: Positive = 2.0
+    openings: Annotated[int, Field(ge=0)] = 60
+    web: Size = 1.5
+    rim: Positive | None = None
+    # shell surfaces: a mesh file, or a profile [[r, z], ...] revolved about z
+    surface: str | None = None
+    profile: list[tuple[float, float]] | None = None
+    sections: Annotated[int, Field(ge=8, le=1024)] = 96
+    fields: list[SolidField] = []
+    invert_field: bool = False
+    voxel: Positive | None = None
+    smoothing: Annotated[int, Field(ge=0, le=200)] = 10
+    # outputs and checks
+    formats: list[Literal["3mf", "stl", "obj", "glb", "ply", "3dm", "png"]] = ["3mf", "png"]
+    png_size: Annotated[int, Field(ge=64, le=4096)] = 900
+    view: tuple[float, float] = (35.0, 25.0)
+    min_strut: Positive | None = None
+    min_pore: Positive | None = None
+    max_overhang: Annotated[float, Field(gt=0, lt=90)] | None = None
+
+    @model_validator(mode="after")
+    def _kind(self) -> SolidSection:
+        if self.kind == "shell" and self.surface is None and self.profile is None:
+            raise ValueError("a shell needs surface = 'file.stl' or profile = [[r, z], ...]")
+        if self.kind in ("lattice", "foam") and self.container is None:
+            raise ValueError(
+                f"a {self.kind} needs container = [xmin, ymin, zmin, xmax, ymax, zmax] "
+                "or a mesh file"
+            )
+        if isinstance(self.container, tuple):
+            lo, hi = self.container[:3], self.container[3:]
+            if not all(b > a for a, b in zip(lo, hi, strict=True)):
+                raise ValueError("container box: each max must exceed its min")
+        if self.skin > 0 and not isinstance(self.container, str):
+            raise ValueError("skin lines a mesh container: give container = 'part.stl'")
+        return self
+
+
+#: A stand-in 2D design for the 3D kinds (their files have no [boundary]/[seeds]).
+_PLACEHOLDER = {
+    "boundary": {"shape": "rectangle", "width": 1.0, "height": 1.0},
+    "seeds": {"method": "random", "count": 4},
+}
+
+
+def fill_2d(data):
+    """Design-file data with the 2D tables a 3D ``[solid]`` does not use filled in."""
+    if not isinstance(data, dict):
+        return data
+    sol = data.get("solid")
+    kind = sol.get("kind") if isinstance(sol, dict) else getattr(sol, "kind", None)
+    if kind in ("lattice", "foam", "shell"):
+        missing = {k: v for k, v in _PLACEHOLDER.items() if k not in data}
+        if missing:
+            return {**data, **missing}
+    return data
