@@ -253,11 +253,8 @@ class Diagram3D:
             lab = self._flabel
             area = np.linalg.norm(self._farea, axis=1) if len(lab) else np.zeros(0)
             ok = (lab >= 0) & (area > 0) & (lab != owner)
-            pairs = (
-                np.unique(np.column_stack([owner[ok], lab[ok]]), axis=0)
-                if ok.any()
-                else np.zeros((0, 2), np.int64)
-            )
+            key = np.unique(owner[ok].astype(np.int64) * max(n, 1) + lab[ok])
+            pairs = np.column_stack([key // max(n, 1), key % max(n, 1)])
             indptr = np.zeros(n + 1, np.int64)
             np.add.at(indptr, pairs[:, 0] + 1, 1)
             self._cache["nb"] = (_ro(np.cumsum(indptr)), _ro(pairs[:, 1].astype(np.int64)))

@@ -40,6 +40,8 @@ BROKEN = 3
 UNNAMED = 4
 
 MAX_OWNERS = 32
+#: buckets visited in distance order before the shell-by-shell search takes over
+SEARCH_RADIUS = 3
 
 
 @njit(**NJIT)
@@ -115,6 +117,49 @@ def _cut_batch(
 
 
 @njit(**NJIT)
+def _far(g2, wi, wmax, rmax2):
+    """No site at squared distance >= ``g2`` can cut or touch a cell of squared radius ``rmax2``."""
+    lhs = g2 + wi - wmax
+    return lhs > 0.0 and lhs * lhs > 4.0 * g2 * rmax2 * (1.0 + VORONOI3D_STOP_RTOL)
+
+
+@njit(**NJIT)
+def _axis_gap(p, origin, size, b, off):
+    """Distance along one axis from coordinate ``p`` to bucket ``b`` (``off`` buckets away)."""
+    if off > 0:
+        return max(0.0, origin + b * size - p)
+    if off < 0:
+        return max(0.0, p - (origin + (b + 1) * size))
+    return 0.0
+
+
+@njit(**NJIT)
+def search_order(g, radius):
+    """Bucket offsets within Chebyshev ``radius``, by their least possible squared distance.
+
+    Rows ``(dx, dy, dz, lb, radius)``: ``lb`` is the smallest squared distance from any point
+    of a bucket to any point of the bucket ``(dx, dy, dz)`` away.
+    """
+    k = 2 * radius + 1
+    out = np.zeros((k * k * k, 5))
+    m = 0
+    for dz in range(-radius, radius + 1):
+        for dy in range(-radius, radius + 1):
+            for dx in range(-radius, radius + 1):
+                lx = max(abs(dx) - 1, 0) * g[3]
+                ly = max(abs(dy) - 1, 0) * g[4]
+                lz = max(abs(dz) - 1, 0) * g[5]
+                out[m, 0] = dx
+                out[m, 1] = dy
+                out[m, 2] = dz
+                out[m, 3] = lx * lx + ly * ly + lz * lz
+                out[m, 4] = radius
+                m += 1
+    idx = np.argsort(out[:, 3], kind="mergesort")
+    return out[idx].copy()
+
+
+@njit(**NJIT)
 def _one_cell(
     i,
     P,
@@ -124,6 +169,7 @@ def _one_cell(
     SP,
     sidx,
     g,
+    order,
     TV,
     TF,
     TR,
@@ -168,7 +214,162 @@ def _one_cell(
     ci, cj, ck = bucket3d(px, py, pz, g)
     ncap = cand.shape[0]
     st = OK
-    r = 0
+    # nearest buckets first, in the precomputed order of their least possible distance
+    nx = int(g[6])
+    ny = int(g[7])
+    nz = int(g[8])
+    done = False
+    m = 0
+    for o in range(order.shape[0]):
+        if m > 0 and order[o, 3] > 0.0:
+            # the 27 buckets around the site are gathered: cut by them, nearest first
+            st, nv, nf, nt, rmax2 = _cut_batch(
+                m,
+                i,
+                px,
+                py,
+                pz,
+                wi,
+                W,
+                SP,
+                sidx,
+                cand,
+                cd2,
+                V,
+                nv,
+                F,
+                nf,
+                R,
+                R2,
+                S,
+                work,
+                T,
+                nt,
+                rmax2,
+            )
+            if st != OK:
+                return st, 0, 0, 0, 0.0
+            m = 0
+        if _far(order[o, 3], wi, wmax, rmax2):
+            done = True
+            break
+        ox = int(order[o, 0])
+        oy = int(order[o, 1])
+        oz = int(order[o, 2])
+        bx = ci + ox
+        by = cj + oy
+        bz = ck + oz
+        if bx < 0 or by < 0 or bz < 0 or bx >= nx or by >= ny or bz >= nz:
+            continue
+        if order[o, 3] > 0.0:
+            gx = _axis_gap(px, g[0], g[3], bx, ox)
+            gy = _axis_gap(py, g[1], g[4], by, oy)
+            gz = _axis_gap(pz, g[2], g[5], bz, oz)
+            if _far(gx * gx + gy * gy + gz * gz, wi, wmax, rmax2):
+                continue
+        b = (bz * ny + by) * nx + bx
+        for t in range(start[b], start[b + 1]):
+            j = sidx[t]
+            if j == i:
+                continue
+            dx = SP[t, 0] - px
+            dy = SP[t, 1] - py
+            dz = SP[t, 2] - pz
+            d2 = dx * dx + dy * dy + dz * dz
+            if d2 == 0.0:
+                continue
+            cand[m] = t
+            cd2[m] = d2
+            m += 1
+            if m == ncap:
+                st, nv, nf, nt, rmax2 = _cut_batch(
+                    m,
+                    i,
+                    px,
+                    py,
+                    pz,
+                    wi,
+                    W,
+                    SP,
+                    sidx,
+                    cand,
+                    cd2,
+                    V,
+                    nv,
+                    F,
+                    nf,
+                    R,
+                    R2,
+                    S,
+                    work,
+                    T,
+                    nt,
+                    rmax2,
+                )
+                if st != OK:
+                    return st, 0, 0, 0, 0.0
+                m = 0
+        if m > 0 and order[o, 3] > 0.0:
+            st, nv, nf, nt, rmax2 = _cut_batch(
+                m,
+                i,
+                px,
+                py,
+                pz,
+                wi,
+                W,
+                SP,
+                sidx,
+                cand,
+                cd2,
+                V,
+                nv,
+                F,
+                nf,
+                R,
+                R2,
+                S,
+                work,
+                T,
+                nt,
+                rmax2,
+            )
+            if st != OK:
+                return st, 0, 0, 0, 0.0
+            m = 0
+    if m > 0:
+        st, nv, nf, nt, rmax2 = _cut_batch(
+            m,
+            i,
+            px,
+            py,
+            pz,
+            wi,
+            W,
+            SP,
+            sidx,
+            cand,
+            cd2,
+            V,
+            nv,
+            F,
+            nf,
+            R,
+            R2,
+            S,
+            work,
+            T,
+            nt,
+            rmax2,
+        )
+        if st != OK:
+            return st, 0, 0, 0, 0.0
+    if done:
+        return OK, nv, nf, nt, rmax2
+    reach = int(order[order.shape[0] - 1, 4]) if order.shape[0] else -1
+    if reach >= 0 and shell_gap(px, py, pz, ci, cj, ck, reach, g) == np.inf:
+        return OK, nv, nf, nt, rmax2
+    r = reach + 1
     while True:
         nb = shell_buckets(ci, cj, ck, r, g, buck)
         if nb == 0:
@@ -300,6 +501,8 @@ def _name_cell(i, P, W, WP, ns, V, nv, F, nf, R, T, nt, OWN, work, vnames, vabs,
         dz = P[j, 2] - pz
         d2 = dx * dx + dy * dy + dz * dz
         h = 0.5 * (d2 + (W[i] - W[j]))
+        if h > 0.0 and h * h > rmax2 * d2 * (1.0 + VORONOI3D_STOP_RTOL):
+            continue  # beyond every vertex of the finished cell
         tol = VORONOI3D_CUT_RTOL * (np.sqrt(d2 * rmax2) + abs(h))
         if not _mark_owners(V, nv, dx, dy, dz, h, tol, j, OWN, work):
             return OVERFLOW
@@ -448,6 +651,7 @@ def build_cells(
     wmax = W.max() if W.shape[0] > 0 else 0.0
     nbuck = int(g[6] * g[7] * g[8])
     per = (k + nblocks - 1) // nblocks
+    order = search_order(g, SEARCH_RADIUS)
     for blk in range(nblocks):
         lo = blk * per
         hi = min(k, lo + per)
@@ -471,6 +675,7 @@ def build_cells(
                 SP,
                 sidx,
                 g,
+                order,
                 TV,
                 TF,
                 TR,

@@ -1,0 +1,155 @@
+"""Benchmark of vf.voronoi3d against voro++ (CLI), freud (periodic) and Qhull, side by side.
+
+Usage::
+
+    .venv/bin/python benchmarks/bench_3d.py [--sizes 10000,100000,1000000] [--repeat 3]
+        [--no-freud] [--no-qhull] [--mesh 100000]
+
+For each size (uniform points in the unit box, fixed seed) it prints the best-of-``repeat``
+wall time of:
+
+* ``vf.voronoi3d(points, (0, 0, 0, 1, 1, 1))``: volumes, neighbours and faces (after a
+  warm-up call that also compiles), and its peak extra memory per cell (tracemalloc);
+* the voro++ command-line tool (``voro++ -o 0 1 0 1 0 1 file``: volumes, text I/O included;
+  the points file is written once, outside the timing);
+* ``vf.voronoi3d(..., periodic=True)`` and freud's ``locality.Voronoi`` (voro++ inside,
+  periodic);
+* scipy's ``Voronoi`` (Qhull: the raw unbounded diagram, no volumes, no clipping), up to 1e5.
+
+Ratios are ours / theirs (< 1: we are faster). With ``--mesh N`` it also times N sites in a
+torus container (20k triangles). The machine may be shared: compare ratios from
+one run, not absolute times across runs. The cost slope from the smallest to the largest
+size is printed (1.0 = linear).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import subprocess
+import tempfile
+import time
+import tracemalloc
+
+import numpy as np
+
+import voroforge as vf
+
+BOX = (0.0, 0.0, 0.0, 1.0, 1.0, 1.0)
+
+
+def best(fn, repeat):
+    t = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        t.append(time.perf_counter() - t0)
+    return min(t)
+
+
+def ours(p):
+    d = vf.voronoi3d(p, BOX)
+    d.neighbors  # noqa: B018 - the neighbour CSR and the unique faces are part of the work
+    d.faces  # noqa: B018
+    return d
+
+
+def voropp(p, repeat):
+    exe = shutil.which("voro++")
+    if exe is None:
+        return None
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "pts")
+        np.savetxt(
+            path, np.column_stack([np.arange(len(p)), p]), fmt=["%d", "%.17g", "%.17g", "%.17g"]
+        )
+        return best(
+            lambda: subprocess.run([exe, "-o", "0", "1", "0", "1", "0", "1", path], check=True),
+            repeat,
+        )
+
+
+def freud_time(p, repeat):
+    try:
+        import freud
+    except ImportError:
+        return None
+    box = freud.box.Box.cube(1.0)
+    q = p - 0.5
+    return best(lambda: freud.locality.Voronoi().compute((box, q)), repeat)
+
+
+def qhull_time(p, repeat):
+    from scipy.spatial import Voronoi
+
+    return best(lambda: Voronoi(p), repeat)
+
+
+def peak_per_cell(p):
+    tracemalloc.start()
+    ours(p)
+    _, peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    return peak / len(p)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--sizes", default="10000,100000,1000000")
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--no-freud", action="store_true")
+    ap.add_argument("--no-qhull", action="store_true")
+    ap.add_argument("--mesh", type=int, default=0)
+    args = ap.parse_args()
+    sizes = [int(s) for s in args.sizes.split(",")]
+    rng = np.random.default_rng(20240611)
+    ours(rng.random((2000, 3)))  # compile
+    vf.voronoi3d(rng.random((2000, 3)), BOX, periodic=True)
+    rows = []
+    print(
+        f"{'n':>9} {'ours s':>8} {'voro++ s':>9} {'ratio':>6} {'ours per s':>10} {'freud s':>8} "
+        f"{'ratio':>6} {'qhull s':>8} {'B/cell':>7}"
+    )
+    for n in sizes:
+        p = np.random.default_rng(n).random((n, 3))
+        t = best(lambda p=p: ours(p), args.repeat)
+        tv = voropp(p, args.repeat)
+        tp = best(lambda p=p: vf.voronoi3d(p, BOX, periodic=True), args.repeat)
+        tf = None if args.no_freud else freud_time(p, args.repeat)
+        tq = None if args.no_qhull or n > 100000 else qhull_time(p, 1 if n > 10000 else args.repeat)
+        mem = peak_per_cell(p) if n <= 1000000 else float("nan")
+        rows.append((n, t))
+
+        def f(x):
+            return f"{x:8.3f}" if x is not None else "       -"
+
+        rv = f"{t / tv:6.2f}" if tv else "     -"
+        rf = f"{tp / tf:6.2f}" if tf else "     -"
+        print(
+            f"{n:>9} {t:8.3f} {f(tv):>9} {rv} {n / t:10.0f} {f(tf)} {rf} {f(tq)} {mem:7.0f}"
+            f"   (periodic ours {tp:.3f} s)"
+        )
+    if len(rows) >= 2:
+        (n0, t0), (n1, t1) = rows[0], rows[-1]
+        print(
+            f"cost slope {np.log(t1 / t0) / np.log(n1 / n0):.2f} from {n0} to {n1} (1.0 = linear)"
+        )
+    if args.mesh:
+        import trimesh
+
+        knot = trimesh.creation.torus(
+            major_radius=1.0, minor_radius=0.35, major_sections=200, minor_sections=50
+        )
+        lo, hi = knot.bounds
+        p = np.random.default_rng(1).uniform(lo, hi, (args.mesh, 3))
+        vf.voronoi3d(p[:500], knot)
+        t = best(lambda: vf.voronoi3d(p, knot), 1)
+        print(
+            f"mesh container ({len(knot.faces)} triangles), {args.mesh} sites: {t:.2f} s, "
+            f"{args.mesh / t:.0f} cells/s"
+        )
+
+
+if __name__ == "__main__":
+    main()
