@@ -157,6 +157,9 @@ def render(
     os.close(fd)
     try:
         img.save(tmp, format="PNG", optimize=True)
+        mask = os.umask(0)
+        os.umask(mask)
+        os.chmod(tmp, 0o666 & ~mask)
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):
