@@ -80,7 +80,7 @@ def _components_min_trails(segs: list) -> int:
     return total
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=40, deadline=None)
 @given(st.lists(st.tuples(st.integers(0, 5), st.integers(0, 5), st.integers(0, 3)), max_size=40))
 def test_merged_strokes_cover_each_segment_once_with_the_euler_minimum(raw):
     steps = [(1, 0), (0, 1), (1, 1), (1, -1)]

@@ -111,9 +111,19 @@ def render_preview(result: Result, *, size: int = 1200):
     if mode == "layers" and first == "edges":
         xmin, ymin, xmax, ymax = result.boundary.bounds
         width = max(xmax - xmin, ymax - ymin) / 900.0
-        lines = shapely.buffer(result.edges, width, quad_segs=2, cap_style="flat")
+        lines = [shapely.buffer(result.edges, width, quad_segs=2, cap_style="flat")]
+        levels = result.extra.get("levels") or []
+        if len(levels) > 1:  # recursion: the first level's edges drawn heavier (the veins)
+            from . import cellops
+
+            top = cellops.edges_to_lines(cellops.explode(np.asarray(levels[0].cells)))
+            lines.append(shapely.buffer(top, 2.6 * width, quad_segs=2, cap_style="round"))
         return render_image(
-            [lines], size=size, colors=[(25, 25, 35)], edge_width=0.0, boundary=result.boundary
+            lines,
+            size=size,
+            colors=[(25, 25, 35)] * len(lines),
+            edge_width=0.0,
+            boundary=result.boundary,
         )
     if mode == "layers" and first in ("frame", "boundary"):
         return render_image([result.frame], size=size, colors=[(52, 58, 70)], edge_width=0.6)
