@@ -1,0 +1,69 @@
+"""[solid] design-file sections: voroforge build writes meshes and a preview, check runs."""
+
+from __future__ import annotations
+
+import pytest
+
+trimesh = pytest.importorskip("trimesh")
+pytest.importorskip("manifold3d")
+
+import numpy as np  # noqa: E402
+from PIL import Image  # noqa: E402
+
+from voroforge.design.build import build, check_design  # noqa: E402
+from voroforge.design.designfile import DesignError, load  # noqa: E402
+from voroforge.io.mesh import read  # noqa: E402
+
+FOAM = """
+[design]
+name = "tiny-foam"
+units = "mm"
+
+[solid]
+kind = "foam"
+container = [0, 0, 0, 20, 20, 20]
+cells = 10
+relax = 2
+wall = 1.0
+formats = ["png", "3mf", "stl"]
+min_pore = 50.0
+"""
+
+
+def test_build_foam_design(tmp_path):
+    src = tmp_path / "foam.toml"
+    src.write_text(FOAM)
+    paths = build(src, tmp_path / "out")
+    assert [p.suffix for p in paths] == [".png", ".3mf", ".stl"]
+    m = read(paths[1])
+    assert m.is_volume and m.metadata["units"] == "mm"
+    assert 0 < m.volume < 20**3
+    assert abs(read(paths[2]).volume - m.volume) < 1e-5 * m.volume  # STL: float32
+    im = Image.open(paths[0])
+    gray = np.asarray(im.convert("L"))
+    assert im.size[0] > 100 and len(np.unique(gray)) > 20  # shaded, not blank
+
+
+def test_check_design_reports_pores_and_voids(tmp_path):
+    src = tmp_path / "foam.toml"
+    src.write_text(FOAM)
+    rep = check_design(src)
+    kinds = rep.by_kind()
+    assert kinds["small_pore"] == kinds["trapped_void"] >= 5
+    text = rep.table(max_rows=None)
+    assert "small_pore" in text and "trapped_void" in text
+    with pytest.raises(ValueError, match="overlay"):
+        rep.write_png(tmp_path / "x.png")
+
+
+def test_solid_section_errors(tmp_path):
+    src = tmp_path / "bad.toml"
+    src.write_text(FOAM.replace("container = [0, 0, 0, 20, 20, 20]", ""))
+    with pytest.raises(DesignError, match="container"):
+        load(src)
+    src.write_text(FOAM.replace('kind = "foam"', 'kind = "sponge"'))
+    with pytest.raises(DesignError, match="kind"):
+        load(src)
+    src.write_text(FOAM.replace("[0, 0, 0, 20, 20, 20]", "[0, 0, 0, -1, 20, 20]"))
+    with pytest.raises(DesignError, match="max must exceed"):
+        load(src)
