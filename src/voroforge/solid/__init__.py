@@ -9,11 +9,11 @@ Every builder returns a watertight ``trimesh.Trimesh`` (``is_volume``) in the de
 
 from __future__ import annotations
 
-from . import fields
+from . import cells, fields
 from .check import Report, Violation, check
 from .extrude import extrude
 from .foam import foam
 from .lattice import lattice
 from .shell import shell
 
-__all__ = ["Report", "Violation", "check", "extrude", "fields", "foam", "lattice", "shell"]
+__all__ = ["Report", "Violation", "cells", "check", "extrude", "fields", "foam", "lattice", "shell"]
