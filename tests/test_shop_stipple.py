@@ -80,3 +80,24 @@ def test_cli_stipples_an_image_file(tmp_path, capsys):
     assert main(["stipple", "@nope", "-o", str(out)]) == 2
     assert main(["stipple", "@sphere", "-o", str(tmp_path / "x.png")]) == 2
     capsys.readouterr()
+
+
+def test_design_seeds_follow_an_image(tmp_path):
+    from PIL import Image
+
+    from voroforge.design.compute import compute
+    from voroforge.design.designfile import load
+
+    img = np.full((20, 40), 230, dtype=np.uint8)
+    img[:, :20] = 0  # the left half black
+    Image.fromarray(img).save(tmp_path / "half.png")
+    design, base = load(
+        {
+            "boundary": {"shape": "circle", "radius": 50},
+            "seeds": {"method": "image", "file": str(tmp_path / "half.png"), "count": 300},
+        }
+    )
+    r = compute(design, base)
+    assert len(r.sites) == 300
+    assert (r.sites[:, 0] < 0).mean() > 0.85  # darkness 1 against 0.1
+    assert np.hypot(*r.sites.T).max() <= 50

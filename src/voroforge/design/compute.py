@@ -268,6 +268,11 @@ def _seeds(design: Design, domain, field_fn, base: Path | None) -> np.ndarray:
                 "seeds.method", "'density' needs at least one [[attractors]] table"
             )
         return populate.by_density(domain, s.count, field_fn, seed=seed)
+    if s.method == "image":  # density from a greyscale image stretched over the domain's box
+        from .stipple import image_seeds
+
+        with _section("seeds.file"):
+            return image_seeds(find_file(base, s.file, "seeds.file"), domain, s.count, seed=seed)
     with _section("seeds.file"):
         pts = populate.from_file(find_file(base, s.file, "seeds.file"))
     inside = shapely.contains_xy(domain, pts[:, 0], pts[:, 1])

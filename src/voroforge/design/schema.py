@@ -157,9 +157,9 @@ class Boundary(_Model):
 class Seeds(_Model):
     """``[seeds]``: where the Voronoi sites go."""
 
-    method: Literal["random", "grid", "hexgrid", "jittered", "poisson", "density", "file"] = (
-        "random"
-    )
+    method: Literal[
+        "random", "grid", "hexgrid", "jittered", "poisson", "density", "file", "image"
+    ] = "random"
     count: Annotated[int, Field(gt=0)] | None = None
     spacing: PositiveFloat | None = None
     radius: PositiveFloat | None = None
@@ -181,6 +181,7 @@ class Seeds(_Model):
             "poisson": ("radius",),
             "density": ("count",),
             "file": ("file",),
+            "image": ("file", "count"),  # dots by an image's darkness (design/stipple.py)
         }[self.method]
         for name in need:
             if getattr(self, name) is None:

@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["demo_image", "grey_image", "stipple", "stipple_svg"]
+__all__ = ["demo_image", "grey_image", "image_seeds", "stipple", "stipple_svg"]
 
 
 def demo_image(size: int = 256) -> np.ndarray:
@@ -194,3 +194,56 @@ def stipple_svg(points, path, *, width: float, height: float, dot: float = 0.4, 
         bounds=(0.0, 0.0, float(width), float(height)),
         point_radius=dot,
     )
+
+
+def image_seeds(image, domain, count: int, *, seed: int = 0, gamma: float = 1.0) -> np.ndarray:
+    """``count`` seeds inside ``domain`` with a density that follows an image's darkness.
+
+    The image is stretched over the domain's bounding box (row 0 at the top); candidates are
+    drawn from the darkness ``(1 - grey) ** gamma`` and those outside the domain rejected,
+    until there are ``count``. This is ``seeds.method = "image"`` of a design file.
+
+    Parameters
+    ----------
+    image : str, Path or (h, w) array_like
+        See :func:`grey_image`.
+    domain : shapely Polygon or MultiPolygon
+        Where the seeds go.
+    count : int
+        Number of seeds.
+    seed : int
+        Random seed.
+    gamma : float
+        Exponent of the darkness.
+
+    Returns
+    -------
+    (count, 2) float64
+
+    Raises
+    ------
+    ValueError
+        For a white image, or when the dark parts miss the domain.
+    """
+    import shapely
+
+    grey = grey_image(image)
+    density = (1.0 - grey) ** float(gamma)
+    total = density.sum()
+    if not total > 0:
+        raise ValueError("the image is white everywhere: no density to place seeds by")
+    h, w = density.shape
+    xmin, ymin, xmax, ymax = domain.bounds
+    kx, ky = (xmax - xmin) / w, (ymax - ymin) / h
+    rng = np.random.default_rng(seed)
+    prob = (density / total).ravel()
+    out = np.zeros((0, 2))
+    for _ in range(64):
+        m = max(2 * (int(count) - len(out)), 16)
+        pick = rng.choice(h * w, size=m, p=prob)
+        col, row = pick % w, pick // w
+        xy = np.column_stack((xmin + (col + rng.random(m)) * kx, ymax - (row + rng.random(m)) * ky))
+        out = np.vstack((out, xy[shapely.contains_xy(domain, xy[:, 0], xy[:, 1])]))
+        if len(out) >= count:
+            return out[: int(count)]
+    raise ValueError("the image's dark parts hardly meet the boundary: too few seeds inside")
