@@ -41,6 +41,8 @@ _EXPORTS = {
     "voronoi3d": ".engine.voronoi3d",
     "Convex": ".engine.containers",
     "Diagram3D": ".engine.diagram3d",
+    "lloyd3d": ".engine.lloyd3d",
+    "Relaxation3D": ".engine.lloyd3d",
 }
 
 __all__ = sorted(_EXPORTS)
@@ -70,4 +72,5 @@ if TYPE_CHECKING:  # for type checkers and editors: the same names, imported eag
     from .engine.voronoi import voronoi  # noqa: F401
     from .engine.containers import Convex  # noqa: F401
     from .engine.diagram3d import Diagram3D  # noqa: F401
+    from .engine.lloyd3d import Relaxation3D, lloyd3d  # noqa: F401
     from .engine.voronoi3d import voronoi3d  # noqa: F401
