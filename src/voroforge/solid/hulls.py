@@ -256,11 +256,7 @@ def _assemble(
         except QhullError:
             failed[ed] = True
             continue
-        simp = hull.simplices.astype(np.int64)
-        tri = pts[simp]
-        nrm = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-        flip = np.einsum("ij,ij->i", nrm, hull.equations[:, :3]) < 0
-        simp[flip] = simp[flip][:, ::-1]
+        simp = _outward(hull, pts)
         n_in = len(inner)
         ring_of = np.full(len(pts), -1, dtype=np.int64)
         ring_of[n_in:] = np.repeat(np.arange(m), k)
@@ -298,17 +294,21 @@ def ring_area(k: int) -> float:
     return 0.5 * k * math.sin(2.0 * math.pi / k)
 
 
-def convex_mesh(points):
-    """The convex hull of ``points`` as an outward-oriented Trimesh (no repair passes)."""
-    import trimesh
-
-    pts = np.asarray(points, dtype=np.float64)
-    hull = ConvexHull(pts)
+def _outward(hull, pts) -> np.ndarray:
+    """Qhull's triangles, each turned to face along its facet's outward normal."""
     simp = hull.simplices.astype(np.int64)
     tri = pts[simp]
     nrm = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
     flip = np.einsum("ij,ij->i", nrm, hull.equations[:, :3]) < 0
     simp[flip] = simp[flip][:, ::-1]
-    m = trimesh.Trimesh(pts, simp, process=False)
+    return simp
+
+
+def convex_mesh(points):
+    """The convex hull of ``points`` as an outward-oriented Trimesh (no repair passes)."""
+    import trimesh
+
+    pts = np.asarray(points, dtype=np.float64)
+    m = trimesh.Trimesh(pts, _outward(ConvexHull(pts), pts), process=False)
     m.remove_unreferenced_vertices()
     return m
