@@ -570,27 +570,26 @@ def test_cli_animate_writes_gif_and_frames(tmp_path):
     assert main(["animate", str(path), "-o", str(tmp_path / "a.avi")]) == 2
 
 
-def test_cli_studio_serves_and_warns_off_loopback(folder):
-    import subprocess
-    import sys
-    import urllib.request
+def test_serve_listens_before_printing_and_warns_off_loopback(folder, monkeypatch, capsys):
+    import socket as socketlib
 
-    cmd = [sys.executable, "-m", "voroforge", "studio", str(folder / "holed.toml")]
-    proc = subprocess.Popen(
-        [*cmd, "--port", "0", "--no-browser", "--host", "0.0.0.0"],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    try:
-        line = proc.stdout.readline()
-        assert line.startswith("voroforge studio: http://127.0.0.1:"), line
-        url = line.split()[2]
-        with urllib.request.urlopen(url + "health", timeout=30) as r:
-            assert r.read() == b"ok"
-        with urllib.request.urlopen(url, timeout=30) as r:
-            assert b"studio.js" in r.read()
-    finally:
-        proc.terminate()
-        _, err = proc.communicate(timeout=30)
+    import uvicorn
+
+    from voroforge.studio.server import serve
+
+    seen = {}
+
+    def fake_run(self, sockets=None):
+        sock = sockets[0]
+        seen["app"] = self.config.app
+        seen["listening"] = sock.getsockopt(socketlib.SOL_SOCKET, socketlib.SO_ACCEPTCONN)
+        sock.close()
+
+    monkeypatch.setattr(uvicorn.Server, "run", fake_run)
+    serve(session=Session(folder / "holed.toml"), host="0.0.0.0", port=0, open_browser=False)
+    out, err = capsys.readouterr()
+    assert out.startswith("voroforge studio: http://127.0.0.1:") and seen["listening"] == 1
     assert "warning: listening on 0.0.0.0" in err
+    serve(session=Session(folder / "holed.toml"), port=0, open_browser=False)
+    out, err = capsys.readouterr()
+    assert "http://127.0.0.1:" in out and not err

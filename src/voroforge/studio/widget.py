@@ -89,6 +89,7 @@ class StudioWidget(anywidget.AnyWidget):
         self._seq = 0
         self._timer: threading.Timer | None = None
         self._lock = threading.Lock()
+        self._check_lock = threading.Lock()  # one live check at a time (timers may overlap)
         self.on_msg(self._on_msg)
 
     @property
@@ -178,7 +179,8 @@ class StudioWidget(anywidget.AnyWidget):
         self._timer.start()
 
     def _check(self, seq: int) -> None:
-        found = self.session.check(self.session.result, lambda: self._seq != seq)
+        with self._check_lock:
+            found = self.session.check(self.session.result, lambda: self._seq != seq)
         if found is not None and self._seq == seq:
             self.send(violations_message(self.session, seq))
 
