@@ -24,6 +24,7 @@ from numba import njit
 
 from ..config import NJIT
 from .clip import cut_ring, plane_values
+from .moments import ring_sums
 
 
 @njit(**NJIT)
@@ -257,30 +258,6 @@ def _cut_by_others(q, cand, m_c, sites, frame, rx, ry, ro, sx, sy, so, ss):
 
 
 @njit(**NJIT)
-def _ring_moments(rx, ry, m, ox, oy):
-    """Shoelace sums of ring ``(rx, ry)[:m]`` about ``(ox, oy)``.
-
-    Twice the area, six times the first moments, twelve times the polar second moment.
-    """
-    a2 = 0.0
-    mx = 0.0
-    my = 0.0
-    m2 = 0.0
-    for k in range(m):
-        kn = k + 1 if k + 1 < m else 0
-        x0 = rx[k] - ox
-        y0 = ry[k] - oy
-        x1 = rx[kn] - ox
-        y1 = ry[kn] - oy
-        c = x0 * y1 - x1 * y0
-        a2 += c
-        mx += (x0 + x1) * c
-        my += (y0 + y1) * c
-        m2 += (x0 * x0 + x0 * x1 + x1 * x1 + y0 * y0 + y0 * y1 + y1 * y1) * c
-    return a2, mx, my, m2
-
-
-@njit(**NJIT)
 def rvd(v, f, sites, h, store):
     """Cut every triangle of mesh ``(v, f)`` into the restricted cells of ``sites``.
 
@@ -402,7 +379,7 @@ def rvd(v, f, sites, h, store):
             ox = dsx * e1x + dsy * e1y + dsz * e1z
             oy = dsx * e2x + dsy * e2y + dsz * e2z
             hz = dsx * nx + dsy * ny + dsz * nz
-            a2, mx, my, m2 = _ring_moments(rx, ry, m, ox, oy)
+            a2, mx, my, m2 = ring_sums(rx, ry, 0, m, ox, oy, False)
             area = 0.5 * a2
             if area <= 0.0:
                 continue

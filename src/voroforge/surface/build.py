@@ -96,19 +96,25 @@ def _solids(sec: SurfaceSection, panels):
     return solids
 
 
-def render_panels(panels, path, *, size=900, view=(35.0, 30.0), thickness=None):
-    """A shaded PNG of the panels (thin solids, one colour per panel) via ``io.render3d``."""
+def render_panels(panels, path, *, size=900, view=(35.0, 30.0)):
+    """A shaded PNG of the panels (one colour per panel, both sides) via ``io.render3d``.
+
+    Plain polygons are drawn whole with their outlines; panels with holes are triangulated.
+    """
     from ..io.render import palette
     from ..io.render3d import render
 
     cols = [tuple(int(c) for c in rgb) for rgb in palette(len(panels), 3).tolist()]
     if all(len(r) == 1 for r in panels.rings) and panels.uv is None:
-        # plain polygons: each face drawn on both sides, outlines on
         items = [(panels.vertices, [r[0], r[0][::-1]]) for r in panels.rings]
         return render(items, path, size=(size, int(size * 0.75)), view=view, colors=cols)
-    span = float(np.linalg.norm(np.ptp(panels.vertices, axis=0)))
-    solids = panels.thicken(thickness or span * 0.004)
-    return render(solids, path, size=(size, int(size * 0.75)), view=view, colors=cols, edges=False)
+    m = panels.to_trimesh()
+    owner = m.face_attributes["panel"]
+    items = []
+    for p in range(len(panels)):
+        f = m.faces[owner == p]
+        items.append((m.vertices, [*f, *f[:, ::-1]]))
+    return render(items, path, size=(size, int(size * 0.75)), view=view, colors=cols, edges=False)
 
 
 def build_surface(design, base, out: Path, stage, *, preview: bool = False) -> list[Path]:
@@ -134,7 +140,12 @@ def build_surface(design, base, out: Path, stage, *, preview: bool = False) -> l
         stage(f"writing {path.name}")
         if fmt == "png":
             size = min(o.png_size, 800) if preview else o.png_size
-            written.append(render_panels(panels, path, size=size, view=sec.view))
+            shown = panels
+            if "result" in extra:  # a coarser morph draws the same at a fraction of the faces
+                from .morph import morph
+
+                shown = morph(extra["result"], S, what=sec.what, segment=1 / 64)
+            written.append(render_panels(shown, path, size=size, view=sec.view))
         else:
             if sheets is None:
                 stage("unrolling")

@@ -218,14 +218,15 @@ class SurfaceVoronoi:
             pts = self.piece_coords[first[rv]]
             # a ring that encloses nothing (edges there and back, left where rounding put a
             # vertex next to a bisector a hair off it) bounds nothing: drop it
-            keep = np.ones(len(roff) - 1, bool)
-            for r in range(len(keep)):
-                P = pts[roff[r] : roff[r + 1]]
-                vec = np.cross(P, np.roll(P, -1, axis=0)).sum(axis=0)
-                per = np.linalg.norm(np.roll(P, -1, axis=0) - P, axis=1).sum()
-                keep[r] = np.linalg.norm(vec) > config.SURFACE_EDGE_RTOL * per * per
+            lens = np.diff(roff)
+            keep = np.zeros(len(lens), bool)
+            if len(pts):
+                nxt_pt = np.arange(len(pts)) + 1
+                nxt_pt[roff[1:] - 1] = roff[:-1]
+                vec = np.add.reduceat(np.cross(pts, pts[nxt_pt]), roff[:-1], axis=0)
+                per = np.add.reduceat(np.linalg.norm(pts[nxt_pt] - pts, axis=1), roff[:-1])
+                keep = np.linalg.norm(vec, axis=1) > config.SURFACE_EDGE_RTOL * per * per
             if not keep.all():
-                lens = np.diff(roff)
                 owner = np.repeat(np.arange(len(self.sites)), np.diff(coff))
                 rv = rv[np.repeat(keep, lens)]
                 roff = np.concatenate([[0], np.cumsum(lens[keep])])
