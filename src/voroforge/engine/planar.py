@@ -11,7 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..config import HALFPLANE_TILING_RTOL
 from ..kernels.cells import cells_from_neighbors, cells_from_triangulation
+from ..kernels.clip import rings_convex
 from ..kernels.delaunay import triangulate_sorted
 from ..kernels.fortune import fortune_delaunay
 from ..kernels.halfplane import halfplane_cells
@@ -64,7 +66,35 @@ def _closed_cells(xs, ys, box, algorithm, kmap):
         ident = np.arange(len(xs))
         return close_rings(coords, offsets, owner, ident, kmap)
     # every cell on its own: the box cut by bisectors, finished with exact predicates
-    return halfplane_cells(xs, ys, box, kmap)
+    closed, lengths, owner = halfplane_cells(xs, ys, box, kmap)
+    if _certified(closed, lengths, box):
+        return closed, lengths, owner
+    # a cell the local finishing could not settle consistently (rounding-level vertices
+    # that fold its ring, or cells that do not tile the box): the Delaunay dual decides
+    # every vertex globally, and gives the answer every algorithm gives
+    return _closed_cells(xs, ys, box, "delaunay", kmap)
+
+
+def _certified(closed, lengths, box) -> bool:
+    """Whether closed rings are convex (exact test) and tile the box (areas to 1e-9).
+
+    Areas are summed per ring relative to its first vertex, so coordinates far from the
+    origin keep their precision.
+    """
+    if not rings_convex(closed, lengths).all():
+        return False
+    if len(closed) == 0:
+        return False
+    heads = np.minimum(lengths[:-1], len(closed) - 1)
+    first = np.repeat(closed[heads], np.diff(lengths), axis=0)
+    rel = closed - first
+    cross = rel[:-1, 0] * rel[1:, 1] - rel[1:, 0] * rel[:-1, 1]
+    keep = np.ones(len(rel) - 1, dtype=bool)
+    ends = lengths[1:-1] - 1
+    keep[ends[ends < len(keep)]] = False  # the step from one ring's last vertex to the next
+    area = 0.5 * float(cross[keep].sum())
+    want = (box[2] - box[0]) * (box[3] - box[1])
+    return abs(area - want) <= HALFPLANE_TILING_RTOL * want
 
 
 def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:

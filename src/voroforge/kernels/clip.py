@@ -30,6 +30,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
+from .predicates import orient2d
 
 
 @njit(**NJIT)
@@ -126,3 +127,54 @@ def dedupe_ring(qx, qy, qo, m):
     while out > 1 and qx[out - 1] == qx[0] and qy[out - 1] == qy[0]:
         out -= 1
     return out if out >= 3 else 0
+
+
+@njit(**NJIT)
+def _upper(x, y):
+    """Whether direction ``(x, y)`` has its angle in ``[0, pi)`` (exact: signs only)."""
+    return y > 0.0 or (y == 0.0 and x > 0.0)
+
+
+@njit(**NJIT)
+def ring_convex(xy, a, b):
+    """Whether the closed ring ``xy[a:b]`` (last vertex repeating the first) is convex.
+
+    Decided exactly on the float vertices: at least three distinct vertices, no zero edge,
+    every turn left or straight on (``orient2d >= 0``, no reversal), and the edge directions
+    wind once (counted by the turns from the lower to the upper half-plane of directions).
+    Such a ring is a simple convex polygon, so valid. Rounding may also leave a tiny
+    concavity in a valid ring; callers use this as a certificate, not as a validity test.
+    """
+    m = b - a - 1
+    if m < 3:
+        return False
+    wraps = 0
+    for k in range(m):
+        k0 = a + (k - 1 if k > 0 else m - 1)
+        k1 = a + k
+        k2 = a + (k + 1 if k + 1 < m else 0)
+        ex = xy[k1, 0] - xy[k0, 0]
+        ey = xy[k1, 1] - xy[k0, 1]
+        fx = xy[k2, 0] - xy[k1, 0]
+        fy = xy[k2, 1] - xy[k1, 1]
+        if (ex == 0.0 and ey == 0.0) or (fx == 0.0 and fy == 0.0):
+            return False
+        o = orient2d(xy[k0, 0], xy[k0, 1], xy[k1, 0], xy[k1, 1], xy[k2, 0], xy[k2, 1])
+        if o < 0.0:
+            return False
+        if o == 0.0 and (_upper(ex, ey) != _upper(fx, fy)):
+            return False  # straight on keeps the half; a reversal flips it
+        if not _upper(ex, ey) and _upper(fx, fy):
+            wraps += 1
+    return wraps == 1
+
+
+@njit(**NJIT)
+def rings_convex(xy, lengths):
+    """:func:`ring_convex` of every ring ``xy[lengths[i]:lengths[i + 1]]`` (empty ones pass)."""
+    n = lengths.shape[0] - 1
+    ok = np.ones(n, dtype=np.bool_)
+    for i in range(n):
+        if lengths[i + 1] > lengths[i]:
+            ok[i] = ring_convex(xy, lengths[i], lengths[i + 1])
+    return ok

@@ -299,3 +299,43 @@ def incircle_fast(ax, ay, bx, by, cx, cy, dx, dy):
     if abs(det) > _ICC_BOUND * permanent:
         return det
     return np.nan
+
+
+@njit(**NJIT)
+def _cross_diff_exact(ax, ay, bx, by, cx, cy, dx, dy):
+    """Exact sign of ``(bx - ax) (dy - cy) - (by - ay) (dx - cx)`` by expansions."""
+    p = np.zeros(2)
+    q = np.zeros(2)
+    h1 = np.zeros(8)
+    h2 = np.zeros(8)
+    tmp = np.zeros(8)
+    acc = np.zeros(16)
+    out = np.zeros(16)
+    p[1], p[0] = two_diff(bx, ax)
+    q[1], q[0] = two_diff(dy, cy)
+    l1 = multiply(p, 2, q, 2, h1, tmp, acc)
+    p[1], p[0] = two_diff(ay, by)  # the second product negated
+    q[1], q[0] = two_diff(dx, cx)
+    l2 = multiply(p, 2, q, 2, h2, tmp, acc)
+    n = expansion_sum(h1, l1, h2, l2, out)
+    return out[n - 1]
+
+
+@njit(**NJIT)
+def cross_diff(ax, ay, bx, by, cx, cy, dx, dy):
+    """Sign-exact cross product of the vectors ``b - a`` and ``d - c``.
+
+    Positive when ``d - c`` points to the left of ``b - a``. All eight values are floats; the
+    differences are not rounded first (a float filter, the exact expansion when it cannot
+    decide).
+    """
+    ux = bx - ax
+    uy = by - ay
+    vx = dx - cx
+    vy = dy - cy
+    left = ux * vy
+    right = uy * vx
+    det = left - right
+    if abs(det) >= 8.0 * _EPS * (abs(left) + abs(right)) and det == det:
+        return det
+    return _cross_diff_exact(ax, ay, bx, by, cx, cy, dx, dy)
