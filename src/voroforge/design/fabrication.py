@@ -252,7 +252,7 @@ class Report:
 
         r = _marker_radius(self.frame, self.openings)
         layers: dict = {"CUT": [self.frame]}
-        colours = {}
+        colours = {"CUT": "#8c8c8c"}  # an overlay: the panel in grey, visible at any zoom
         for kind in KINDS:
             found = [v for v in self.violations if v.kind == kind]
             if not found:
@@ -267,7 +267,7 @@ class Report:
             order="file",
             merge=False,
             legend=[(text, colour) for _, colour, text in self.legend()],
-            non_scaling=[k.upper() for k in KINDS],
+            non_scaling=["CUT", *(k.upper() for k in KINDS)],
         )
 
 

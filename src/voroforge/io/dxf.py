@@ -41,30 +41,6 @@ LAYER_COLOURS = {
 }
 
 
-def _rings(geom):
-    """Closed rings (exteriors CCW, holes CW) and open lines of a geometry, as arrays."""
-    closed, open_ = [], []
-    if geom is None or geom.is_empty:
-        return closed, open_
-    kind = geom.geom_type
-    if kind == "Polygon":
-        poly = shapely.orient_polygons(geom) if hasattr(shapely, "orient_polygons") else geom
-        for ring in (poly.exterior, *poly.interiors):
-            xy = np.asarray(ring.coords)[:-1, :2]
-            if len(xy) >= 3:
-                closed.append(xy)
-    elif kind == "LinearRing":
-        closed.append(np.asarray(geom.coords)[:-1, :2])
-    elif kind == "LineString":
-        open_.append(np.asarray(geom.coords)[:, :2])
-    elif kind.startswith("Multi") or kind == "GeometryCollection":
-        for part in geom.geoms:
-            c, o = _rings(part)
-            closed += c
-            open_ += o
-    return closed, open_
-
-
 def write_dxf(
     geoms=None,
     path=None,

@@ -390,7 +390,8 @@ def _legend(rows, xmin: float, ymax: float, span: float, num) -> list[str]:
     height = size * (1.4 * len(rows) + 0.8)
     out.append(
         f'<rect x="{num(xmin + size * 0.4)}" y="{num(-ymax + size * 0.4)}" '
-        f'width="{num(size * 16)}" height="{num(height)}" fill="#ffffff" '
+        f'width="{num(size * (0.62 * max(len(str(t)) for t, _ in rows) + 1.2))}" '
+        f'height="{num(height)}" fill="#ffffff" '
         'fill-opacity="0.85" stroke="#555555" stroke-width="1" '
         'vector-effect="non-scaling-stroke"/>'
     )
