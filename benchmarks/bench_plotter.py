@@ -132,6 +132,7 @@ def main() -> None:
             "ours",
             "ours/ref",
             "ours s",
+            "ours cpu s",
             "ref s",
         ],
         rows,
