@@ -44,6 +44,12 @@ $(VENV)/.installed-bench: pyproject.toml | $(BIN)/python
 
 run: $(VENV)/.installed-run
 	$(BIN)/voroforge demo -o out
+	@$(MAKE) --no-print-directory warmup
+
+# Compile and cache the kernels of every example's build, raster and explain (once; then
+# their first runs are warm). A failed step is reported; its command compiles on first use.
+warmup: $(VENV)/.installed-run
+	@$(BIN)/voroforge warmup || echo "warm-up: a step failed (see above); the rest is cached"
 
 demo: run
 

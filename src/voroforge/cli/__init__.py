@@ -17,6 +17,7 @@ from . import demo, design, diagram, explain, raster, studio
 from . import scale as scale_cmd
 from . import stipple as stipple_cmd
 from . import voronoi3d as voronoi3d_cmd
+from . import warmup as warmup_cmd
 from .progress import progress
 
 __all__ = ["PROG", "main"]
@@ -57,6 +58,7 @@ def _parser() -> argparse.ArgumentParser:
     studio.add_parser(commands, raw)
     voronoi3d_cmd.add_parser(commands, raw)
     stipple_cmd.add_parser(commands, raw)
+    warmup_cmd.add_parser(commands, raw)
     return parser
 
 

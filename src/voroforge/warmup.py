@@ -1,0 +1,189 @@
+"""Compile ahead of time: run every command a new user meets first, once, into a scratch folder.
+
+voroforge's kernels are numba functions compiled on their first call and cached on disk
+(``__pycache__`` beside the sources, or ``NUMBA_CACHE_DIR`` when set). A fresh install
+therefore pays the compile of a feature the first time it is used: seconds per feature,
+about a minute for everything. :func:`warm_up` pays it up front: it runs each example
+design's build, ``voroforge raster`` (exact and Jump Flooding) and ``voroforge explain``
+on small inputs, in this process, writing into a temporary folder it deletes. Afterwards
+every one of those first runs loads its kernels from the cache. ``make run`` calls it
+(``voroforge warmup``); a ``pip install`` user runs ``voroforge warmup`` once.
+
+The plan (:func:`plan`) is a list of command lines for :func:`voroforge.cli.main`, so the
+warm-up compiles exactly what those commands compile (numba caches per function and
+argument types, and the commands reach the same functions with the same types whatever
+the size of the input). A step that fails (an example needing an optional extra that is
+not installed, say) is reported and the others still run.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import tempfile
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+__all__ = ["Step", "example_designs", "plan", "run_plan", "warm_up"]
+
+#: Points of the raster and explain steps: enough for every code path, small enough to be
+#: instant once compiled.
+_POINTS = 40
+
+
+@dataclass(frozen=True)
+class Step:
+    """One warm-up command and what came of it.
+
+    Attributes
+    ----------
+    label : str
+        What it warms, e.g. ``"build laser-panel.toml"``.
+    argv : tuple of str
+        The command line given to :func:`voroforge.cli.main` (without the program name).
+    seconds : float
+        Wall time of the step (compile plus run); NaN before it ran.
+    error : str
+        Empty when the command succeeded, else its message (the last line of it).
+    """
+
+    label: str
+    argv: tuple[str, ...]
+    seconds: float = float("nan")
+    error: str = ""
+
+
+def example_designs(root: Path | None = None) -> list[Path]:
+    """The design files to warm: ``examples/*.toml`` of a source checkout, else the starter.
+
+    Parameters
+    ----------
+    root : Path, optional
+        Folder holding ``examples/`` (default: the checkout this package was installed
+        from in editable mode, if any).
+
+    Returns
+    -------
+    list of Path
+        Sorted example designs; the packaged starter design when there are none (an
+        installed wheel ships no examples).
+    """
+    if root is None:
+        root = Path(__file__).resolve().parents[2]
+    found = sorted((root / "examples").glob("*.toml"))
+    if found:
+        return found
+    return [Path(__file__).resolve().parent / "design" / "data" / "starter.toml"]
+
+
+def plan(designs: Sequence[Path], scratch: Path) -> list[Step]:
+    """The warm-up commands: each design's build, then raster and explain on small inputs.
+
+    Parameters
+    ----------
+    designs : sequence of Path
+        Design files to build (outputs go to ``scratch``).
+    scratch : Path
+        Folder for every output and for the small point file the steps read.
+
+    Returns
+    -------
+    list of Step
+        Not yet run.
+    """
+    pts = scratch / "warmup-points.csv"
+    steps = []
+    for d in designs:
+        out = scratch / d.stem
+        steps.append(Step(f"build {d.name}", ("build", str(d), "-o", str(out))))
+    for method in ("exact", "jfa"):
+        argv = ("raster", str(pts), "-o", str(scratch / f"raster-{method}.png"))
+        steps.append(
+            Step(f"raster --method {method}", (*argv, "--size", "64x64", "--method", method))
+        )
+    gif = str(scratch / "sweep.gif")
+    steps.append(
+        Step(
+            "explain fortune",
+            ("explain", "fortune", str(pts), "-o", gif, "--frames", "4", "--size", "64"),
+        )
+    )
+    return steps
+
+
+def _write_points(path: Path) -> None:
+    # a fixed, irregular set (no numpy needed to write it): a low-discrepancy sequence
+    lines = ["x,y"]
+    for k in range(1, _POINTS + 1):
+        lines.append(f"{(k * 0.6180339887498949) % 1.0:.12f},{(k * 0.7548776662466927) % 1.0:.12f}")
+    path.write_text("\n".join(lines) + "\n")
+
+
+def run_plan(steps: Sequence[Step], report: Callable[[str], None] | None = None) -> list[Step]:
+    """Run warm-up steps in this process, one after the other; never raises for a step.
+
+    Parameters
+    ----------
+    steps : sequence of Step
+        From :func:`plan` (the point file they read must exist).
+    report : callable, optional
+        Called with one line per finished step (progress), e.g. ``print``.
+
+    Returns
+    -------
+    list of Step
+        The steps with their times and errors filled in.
+    """
+    from .cli import main
+
+    done = []
+    for k, step in enumerate(steps, 1):
+        sink = io.StringIO()
+        t0 = time.perf_counter()
+        try:
+            with contextlib.redirect_stdout(sink), contextlib.redirect_stderr(sink):
+                rc = main(list(step.argv))
+            error = "" if rc == 0 else (sink.getvalue().strip().splitlines() or [f"exit {rc}"])[-1]
+        except SystemExit as exc:  # argparse
+            error = (
+                ""
+                if exc.code in (0, None)
+                else (sink.getvalue().strip().splitlines() or [f"exit {exc.code}"])[-1]
+            )
+        except Exception as exc:  # a warm-up reports a broken step and goes on
+            error = f"{type(exc).__name__}: {exc}"
+        dt = time.perf_counter() - t0
+        step = Step(step.label, step.argv, dt, error)
+        done.append(step)
+        if report is not None:
+            status = "ok" if not error else f"FAILED: {error}"
+            report(f"warm-up {k}/{len(steps)}: {step.label:<34} {dt:6.1f} s  {status}")
+    return done
+
+
+def warm_up(
+    designs: Sequence[Path] | None = None, report: Callable[[str], None] | None = None
+) -> list[Step]:
+    """Compile and cache every kernel the first commands of a new user need.
+
+    Parameters
+    ----------
+    designs : sequence of Path, optional
+        Design files whose builds to warm (default: :func:`example_designs`).
+    report : callable, optional
+        Progress: called with one line per step.
+
+    Returns
+    -------
+    list of Step
+        Every step with its wall time and error (empty when it succeeded). A second
+        call is quick: everything then loads from the cache.
+    """
+    if designs is None:
+        designs = example_designs()
+    with tempfile.TemporaryDirectory(prefix="voroforge-warmup-") as tmp:
+        scratch = Path(tmp)
+        _write_points(scratch / "warmup-points.csv")
+        return run_plan(plan([Path(d) for d in designs], scratch), report)

@@ -1,0 +1,67 @@
+"""First use: quick --version/--help, and the warm-up that compiles the kernels ahead."""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+from voroforge.warmup import Step, example_designs, plan, run_plan
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _modules_after(argv: list[str]) -> set[str]:
+    """Modules loaded by ``voroforge ARGV`` in a fresh interpreter (printed on exit)."""
+    code = (
+        "import sys\n"
+        "from voroforge.cli import main\n"
+        f"rc = main({argv!r})\n"
+        "print('MODULES', ' '.join(sorted(sys.modules)))\n"
+        "sys.exit(rc)\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=60, check=True
+    )
+    line = [x for x in done.stdout.splitlines() if x.startswith("MODULES ")][-1]
+    return set(line.split()[1:])  # not the help text, which may name numba
+
+
+def test_version_and_help_do_not_import_the_engine():
+    for argv in (["--version"], ["--help"], ["warmup", "--help"], ["warmup", "--list"]):
+        loaded = _modules_after(argv)
+        assert "voroforge.cli" in loaded  # the probe itself worked
+        heavy = {m for m in loaded if m.split(".")[0] in ("numpy", "numba", "shapely", "scipy")}
+        assert not heavy, (argv, sorted(heavy)[:5])
+        assert not any(m.startswith("voroforge.engine") for m in loaded), argv
+
+
+def test_the_plan_warms_every_example_raster_and_explain(tmp_path):
+    designs = example_designs(ROOT)
+    assert designs == sorted((ROOT / "examples").glob("*.toml")) and designs
+    steps = plan(designs, tmp_path)
+    built = [s.argv[1] for s in steps if s.argv[0] == "build"]
+    assert built == [str(d) for d in designs]
+    assert all(s.argv[s.argv.index("-o") + 1].startswith(str(tmp_path)) for s in steps)
+    assert {s.argv[0] for s in steps} == {"build", "raster", "explain"}
+    methods = {s.argv[s.argv.index("--method") + 1] for s in steps if s.argv[0] == "raster"}
+    assert methods == {"exact", "jfa"}
+    # without a checkout's examples/ (an installed wheel) the packaged starter is warmed
+    starter = example_designs(tmp_path)
+    assert [p.name for p in starter] == ["starter.toml"] and starter[0].is_file()
+
+
+def test_a_failing_step_is_reported_and_the_rest_still_run(tmp_path):
+    missing = tmp_path / "no-such-design.toml"
+    steps = [
+        Step("build missing", ("build", str(missing), "-o", str(tmp_path / "o"))),
+        Step("version", ("--version",)),
+    ]
+    lines: list[str] = []
+    done = run_plan(steps, report=lines.append)
+    assert [s.label for s in done] == ["build missing", "version"]
+    assert "no-such-design.toml" in done[0].error
+    assert done[1].error == ""
+    assert all(math.isfinite(s.seconds) and s.seconds >= 0 for s in done)
+    assert len(lines) == 2 and "FAILED" in lines[0] and lines[1].rstrip().endswith("ok")
