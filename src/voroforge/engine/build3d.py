@@ -14,12 +14,56 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from ..config import NJIT
+from ..config import GRID_DEGENERATE_RTOL, GRID_WIDEN_RTOL, NJIT
 from ..kernels.cells3d import OK, OVERFLOW, build_cells
-from ..kernels.grid3d import bucket_sort3d, grid3d_shape
 from .threads import serial_below
 
 CHUNK = 16384
+#: mean sites per bucket of the search grid
+PER_BUCKET = 2.0
+#: buckets visited in distance order before the shell-by-shell search takes over
+SEARCH_RADIUS = 3
+
+
+def grid3d_shape(P: np.ndarray, per_bucket: float) -> np.ndarray:
+    """The search grid ``(x0, y0, z0, hx, hy, hz, nx, ny, nz)`` over the sites (kernels/grid3d)."""
+    lo = P.min(axis=0)
+    ext = P.max(axis=0) - lo
+    span = float(ext.max())
+    if span == 0.0:
+        span = max(float(np.abs(lo).max()), 1.0)
+    ext = np.maximum(ext, GRID_DEGENERATE_RTOL * span)
+    nb = max(1.0, len(P) / per_bucket)
+    side = (float(np.prod(ext)) / nb) ** (1.0 / 3.0)
+    counts = np.minimum(np.maximum(ext / side, 1.0), 1024.0).astype(np.int64).astype(np.float64)
+    return np.concatenate([lo, ext * (1.0 + GRID_WIDEN_RTOL) / counts, counts])
+
+
+def bucket_sort3d(P: np.ndarray, g: np.ndarray):
+    """Sites by bucket: ``start (nb + 1,)``, ``SP`` in bucket order, ``sidx`` (stable)."""
+    n = np.asarray(g[6:9], np.int64)
+    idx = np.floor((P - g[:3]) / g[3:6])
+    idx = np.clip(np.nan_to_num(idx, nan=0.0), 0, n - 1).astype(np.int64)
+    key = (idx[:, 2] * n[1] + idx[:, 1]) * n[0] + idx[:, 0]
+    sidx = np.argsort(key, kind="stable")
+    start = np.zeros(int(np.prod(n)) + 1, np.int64)
+    np.cumsum(np.bincount(key, minlength=int(np.prod(n))), out=start[1:])
+    return start, np.ascontiguousarray(P[sidx]), sidx.astype(np.int64)
+
+
+def search_order(g: np.ndarray, radius: int) -> np.ndarray:
+    """Bucket offsets within Chebyshev ``radius`` by least possible squared distance.
+
+    Rows ``(dx, dy, dz, lb, radius)``; ``lb`` is the smallest squared distance between a
+    point of a bucket and a point of the bucket ``(dx, dy, dz)`` away.
+    """
+    r = np.arange(-radius, radius + 1)
+    d = np.stack(np.meshgrid(r, r, r, indexing="ij"), -1).reshape(-1, 3)[:, ::-1]
+    lb = ((np.maximum(np.abs(d) - 1, 0) * g[3:6]) ** 2).sum(axis=1)
+    out = np.column_stack([d, lb, np.full(len(d), radius)]).astype(np.float64)
+    return np.ascontiguousarray(out[np.argsort(lb, kind="stable")])
+
+
 CAPS = (64, 40, 320, 1024, 512, 4096)
 BIG_CAPS_FACTOR = 16
 
@@ -45,7 +89,7 @@ class Cells3D:
     unmatched: int
 
 
-def _run(cells, P, W, start, SP, sidx, g, t, caps):
+def _run(cells, P, W, start, SP, sidx, g, order, t, caps):
     k = len(cells)
     cv, cf, cr = caps[:3]
     status = np.zeros(k, np.int64)
@@ -72,6 +116,7 @@ def _run(cells, P, W, start, SP, sidx, g, t, caps):
             SP,
             sidx,
             g,
+            order,
             t.TV,
             t.TF,
             t.TR,
@@ -119,13 +164,14 @@ def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
     """Cells of sites ``cells`` (default all) of ``P (ns, 3)``, weights ``W``, template ``t``."""
     ns = len(P)
     cells = np.arange(ns) if cells is None else np.asarray(cells, np.int64)
-    g = grid3d_shape(P, 2.0)
+    g = grid3d_shape(P, PER_BUCKET)
     start, SP, sidx = bucket_sort3d(P, g)
+    order = search_order(g, SEARCH_RADIUS)
     parts = []
     with serial_below(len(cells)):
         for c0 in range(0, len(cells), CHUNK):
             chunk = cells[c0 : c0 + CHUNK]
-            parts.append(_run(chunk, P, W, start, SP, sidx, g, t, CAPS))
+            parts.append(_run(chunk, P, W, start, SP, sidx, g, order, t, CAPS))
             if progress is not None:
                 progress(min(c0 + CHUNK, len(cells)), len(cells))
     # cells that did not fit: alone, with big slots
@@ -140,7 +186,7 @@ def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
     while len(over):
         caps = tuple(c * factor for c in CAPS)
         for c in over:
-            r = _run(cells[c : c + 1], P, W, start, SP, sidx, g, t, caps)
+            r = _run(cells[c : c + 1], P, W, start, SP, sidx, g, order, t, caps)
             extra[int(c)] = r
         still = [c for c in over if extra[int(c)]["status"][0] == OVERFLOW]
         if factor >= 256 or not still:

@@ -40,8 +40,6 @@ BROKEN = 3
 UNNAMED = 4
 
 MAX_OWNERS = 32
-#: buckets visited in distance order before the shell-by-shell search takes over
-SEARCH_RADIUS = 3
 
 
 @njit(**NJIT)
@@ -131,32 +129,6 @@ def _axis_gap(p, origin, size, b, off):
     if off < 0:
         return max(0.0, p - (origin + (b + 1) * size))
     return 0.0
-
-
-@njit(**NJIT)
-def search_order(g, radius):
-    """Bucket offsets within Chebyshev ``radius``, by their least possible squared distance.
-
-    Rows ``(dx, dy, dz, lb, radius)``: ``lb`` is the smallest squared distance from any point
-    of a bucket to any point of the bucket ``(dx, dy, dz)`` away.
-    """
-    k = 2 * radius + 1
-    out = np.zeros((k * k * k, 5))
-    m = 0
-    for dz in range(-radius, radius + 1):
-        for dy in range(-radius, radius + 1):
-            for dx in range(-radius, radius + 1):
-                lx = max(abs(dx) - 1, 0) * g[3]
-                ly = max(abs(dy) - 1, 0) * g[4]
-                lz = max(abs(dz) - 1, 0) * g[5]
-                out[m, 0] = dx
-                out[m, 1] = dy
-                out[m, 2] = dz
-                out[m, 3] = lx * lx + ly * ly + lz * lz
-                out[m, 4] = radius
-                m += 1
-    idx = np.argsort(out[:, 3], kind="mergesort")
-    return out[idx].copy()
 
 
 @njit(**NJIT)
@@ -618,6 +590,7 @@ def build_cells(
     SP,
     sidx,
     g,
+    order,
     TV,
     TF,
     TR,
@@ -651,7 +624,6 @@ def build_cells(
     wmax = W.max() if W.shape[0] > 0 else 0.0
     nbuck = int(g[6] * g[7] * g[8])
     per = (k + nblocks - 1) // nblocks
-    order = search_order(g, SEARCH_RADIUS)
     for blk in range(nblocks):
         lo = blk * per
         hi = min(k, lo + per)

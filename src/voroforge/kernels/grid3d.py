@@ -2,7 +2,7 @@
 
 ``grid = (x0, y0, z0, hx, hy, hz, nx, ny, nz)`` as a float64 array (counts stored as
 floats); bucket ``(ix, iy, iz)`` is number ``(iz * ny + iy) * nx + ix``. Sites are sorted
-into buckets by :func:`kernels.grid.counting_sort` (stable: increasing index within a
+into buckets by ``engine.build3d.bucket_sort3d`` (numpy, stable: increasing index within a
 bucket). Shell ``r`` around a bucket is the set of buckets at Chebyshev distance ``r``; the
 stop test is :func:`shell_gap`, a lower bound on the distance from a point inside the block
 of shells ``0..r`` to any site outside it (six slabs instead of four strips).
@@ -13,34 +13,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import GRID_DEGENERATE_RTOL, GRID_WIDEN_RTOL, NJIT
-from .grid import bucket_of, counting_sort
-
-
-@njit(**NJIT)
-def grid3d_shape(P, per_bucket):
-    """Uniform 3D grid over the rows of ``P (n, 3)``, about ``per_bucket`` sites a bucket."""
-    n = P.shape[0]
-    lo = np.zeros(3)
-    ext = np.zeros(3)
-    for a in range(3):
-        lo[a] = P[:, a].min()
-        ext[a] = P[:, a].max() - lo[a]
-    span = max(ext[0], max(ext[1], ext[2]))
-    if span == 0.0:
-        span = max(max(abs(lo[0]), abs(lo[1])), max(abs(lo[2]), 1.0))
-    for a in range(3):
-        ext[a] = max(ext[a], GRID_DEGENERATE_RTOL * span)
-    nb = max(1.0, n / per_bucket)
-    vol = ext[0] * ext[1] * ext[2]
-    side = (vol / nb) ** (1.0 / 3.0)
-    g = np.zeros(9)
-    for a in range(3):
-        c = int(min(max(ext[a] / side, 1.0), 1024.0))
-        g[a] = lo[a]
-        g[3 + a] = ext[a] * (1.0 + GRID_WIDEN_RTOL) / c
-        g[6 + a] = c
-    return g
+from ..config import NJIT
+from .grid import bucket_of
 
 
 @njit(**NJIT)
@@ -50,26 +24,6 @@ def bucket3d(x, y, z, g):
     iy = bucket_of(y, g[1], g[4], int(g[7]))
     iz = bucket_of(z, g[2], g[5], int(g[8]))
     return ix, iy, iz
-
-
-@njit(**NJIT)
-def bucket_sort3d(P, g):
-    """Sites sorted into buckets: ``start (nb + 1,)``, ``SP (n, 3)`` in bucket order, ``sidx``."""
-    n = P.shape[0]
-    nx = int(g[6])
-    ny = int(g[7])
-    nz = int(g[8])
-    key = np.zeros(n, np.int64)
-    for i in range(n):
-        ix, iy, iz = bucket3d(P[i, 0], P[i, 1], P[i, 2], g)
-        key[i] = (iz * ny + iy) * nx + ix
-    start, sidx = counting_sort(key, nx * ny * nz)
-    SP = np.zeros((n, 3))
-    for t in range(n):
-        SP[t, 0] = P[sidx[t], 0]
-        SP[t, 1] = P[sidx[t], 1]
-        SP[t, 2] = P[sidx[t], 2]
-    return start, SP, sidx
 
 
 @njit(**NJIT)
