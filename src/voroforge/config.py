@@ -43,6 +43,9 @@ CC_MERGE_RTOL = 2.0**-46
 #: Rounds of merging swapped Voronoi vertices (a backwards edge) before the cells are built;
 #: each round merges, so this only bounds pathological input (kernels/cells._unfold)
 FOLD_MAX_ROUNDS = 64
+#: Only a Voronoi edge this many times shorter than its ends' rounding bounds can be a fold
+#: (a longer one that breaks a turn test is a straight angle rounded); kernels/cells._unfold
+FOLD_SPAN_ERRS = 4.0
 #: A chain of circumcentres shorter than this (relative to the box's width + height) is
 #: rounding noise, not put back into a cut cell (kernels/cells)
 CHAIN_SPAN_RTOL = 1e-9
@@ -276,7 +279,7 @@ SOLID_RING_SPAN = 0.8
 #: merged into one hull lie more than this many radii from their mean
 SOLID_HULL_SPREAD = 4.0
 #: Marching cubes: grid spacing as a fraction of the smallest radius/wall/thickness
-SOLID_VOXEL = 0.4
+SOLID_VOXEL = 0.5
 
 # --- fabrication / plotter (paths for machines: io/plotter, io/labels) --------------------
 

@@ -136,9 +136,15 @@ def preview(m, path, *, size=900, view=(35.0, 25.0), cut=None) -> Path:
     if cut is None:
         meta = m.metadata or {}
         cut = meta.get("kind") == "foam" or bool(meta.get("skin"))
+    from ..io.render3d import _rotation
+
     shown = _cutaway(m, view) if cut else m
-    # the painter's algorithm wants small faces: split long ones
-    v, f = trimesh.remesh.subdivide_to_size(shown.vertices, shown.faces, max_edge=shown.scale / 40)
+    # the painter's algorithm wants small faces: split long ones (few: CAD faces, cut planes)
+    v, f = trimesh.remesh.subdivide_to_size(shown.vertices, shown.faces, max_edge=shown.scale / 16)
+    # the renderer pays per face: drop the ones facing away before it sees them
+    t = v[f]
+    n = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
+    f = f[(n @ _rotation(view).T)[:, 1] <= 0]
     w = int(size)
     return render(
         [(v, f)], path, size=(w, int(w * 0.8)), view=view, edges=False, colors=[(196, 205, 214)]

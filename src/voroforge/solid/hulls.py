@@ -123,6 +123,15 @@ def hull_lattice(nodes, edges, r_node, *, segments=8, sphere=1, node_scale=1.0):
 
     for rounds in range(1, _MAX_ROUNDS + 1):
         label = _clusters(V, edges, short)
+        cnt = np.bincount(label)  # checked before the build: a percolating merge fails fast
+        if cnt.max() > 1:  # merged hulls must stay local (else the short edges percolate)
+            mean = np.stack([np.bincount(label, nodes[:, i]) / cnt for i in range(3)], axis=1)
+            spread = np.linalg.norm(nodes - mean[label], axis=1).max()
+            if spread > config.SOLID_HULL_SPREAD * r_node.max():
+                raise ValueError(
+                    f"lattice: short struts merge nodes up to {spread:.3g} apart "
+                    f"({spread / r_node.max():.1f} radii); the hull route needs cleaner cells"
+                )
         out = _assemble(
             nodes,
             edges,
@@ -145,15 +154,6 @@ def hull_lattice(nodes, edges, r_node, *, segments=8, sphere=1, node_scale=1.0):
         if isinstance(out, np.ndarray):  # failed edges: merge their nodes and retry
             short = short | out
             continue
-        cnt = np.bincount(label)
-        if cnt.max() > 1:  # merged hulls must stay local (else the short edges percolate)
-            mean = np.stack([np.bincount(label, nodes[:, i]) / cnt for i in range(3)], axis=1)
-            spread = np.linalg.norm(nodes - mean[label], axis=1).max()
-            if spread > config.SOLID_HULL_SPREAD * r_node.max():
-                raise ValueError(
-                    f"lattice: short struts merge nodes up to {spread:.3g} apart "
-                    f"({spread / r_node.max():.1f} radii); the hull route needs cleaner cells"
-                )
         verts, faces, hull_vol, d = out
         h = length - d[:E] - d[E:]
         ext = label[a] != label[b]

@@ -25,6 +25,15 @@ def signed_volume(m) -> float:
     return float(np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])).sum() / 6.0)
 
 
+def _inward(m) -> bool:
+    """Whether the faces point inwards: those at the highest vertex must face up (cheap)."""
+    v, f = np.asarray(m.vertices), np.asarray(m.faces)
+    top = int(np.argmax(v[:, 2]))
+    t = v[f[(f == top).any(axis=1)]]
+    n = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
+    return float(n[:, 2].sum()) < 0
+
+
 def march(evaluate, lo, hi, h, *, smoothing: int = 0, progress=None):
     """Mesh the zero level set of ``evaluate`` over the box ``lo..hi`` at spacing ``h``.
 
@@ -101,7 +110,7 @@ def march(evaluate, lo, hi, h, *, smoothing: int = 0, progress=None):
     f = f[(f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 0] != f[:, 2])]
     m = trimesh.Trimesh(v * h + lo, f, process=False)
     m.remove_unreferenced_vertices()
-    if signed_volume(m) < 0:  # orientation follows the field's sign convention: outward
+    if _inward(m):  # orientation follows the field's sign convention: make it outward
         m.invert()
     if smoothing:
         trimesh.smoothing.filter_taubin(m, iterations=int(smoothing))
