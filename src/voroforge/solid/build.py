@@ -123,6 +123,22 @@ def _cutaway(m, view):
     return from_manifold(to_manifold(m).trim_by_plane(tuple(d), float(d @ c)))
 
 
+_PREVIEW_FACES = 60_000  # the software renderer pays per face
+
+
+def _cluster(m, cell: float):
+    """Vertex-clustering decimation for previews: vertices snapped to ``cell`` and merged."""
+    import trimesh
+
+    key = np.floor(np.asarray(m.vertices) / cell).astype(np.int64)
+    _, inv, cnt = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+    inv = inv.reshape(-1)
+    v = np.stack([np.bincount(inv, m.vertices[:, i]) / cnt for i in range(3)], axis=1)
+    f = inv[np.asarray(m.faces)]
+    f = f[(f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 0] != f[:, 2])]
+    return trimesh.Trimesh(v, f, process=False)
+
+
 def preview(m, path, *, size=900, view=(35.0, 25.0), cut=None) -> Path:
     """A shaded PNG of a solid (software renderer, no GPU or display).
 
@@ -139,6 +155,10 @@ def preview(m, path, *, size=900, view=(35.0, 25.0), cut=None) -> Path:
     from ..io.render3d import _rotation
 
     shown = _cutaway(m, view) if cut else m
+    cell = shown.scale / 400.0
+    while len(shown.faces) > _PREVIEW_FACES and cell < shown.scale / 50:  # beyond the pixels
+        shown = _cluster(shown, cell)
+        cell *= 1.5
     # the painter's algorithm wants small faces: split long ones (few: CAD faces, cut planes)
     v, f = trimesh.remesh.subdivide_to_size(shown.vertices, shown.faces, max_edge=shown.scale / 16)
     # the renderer pays per face: drop the ones facing away before it sees them
