@@ -144,7 +144,7 @@ def build_surface(design, base, out: Path, stage, *, preview: bool = False) -> l
             if "result" in extra:  # a coarser morph draws the same at a fraction of the faces
                 from .morph import morph
 
-                shown = morph(extra["result"], S, what=sec.what, segment=1 / 64)
+                shown = morph(extra["result"], S, what=sec.what, segment=1 / 48, simplify=1e-3)
             written.append(render_panels(shown, path, size=size, view=sec.view))
         else:
             if sheets is None:

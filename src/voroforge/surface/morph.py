@@ -60,6 +60,7 @@ def morph(
     what: str = "panels",
     bounds=None,
     segment: float | None = None,
+    simplify: float = 0.0,
 ) -> Panels:
     """Map a 2D design (a design ``Result`` or shapely polygons) onto a surface through UV.
 
@@ -77,7 +78,11 @@ def morph(
         The design rectangle that becomes the UV square (default: the design's boundary, or
         the geometries' bounds).
     segment : float, optional
-        Longest UV edge after densifying (default 1/256: a ring follows the surface).
+        Longest edge after densifying, as a fraction of the design's larger side (default
+        1/256: a straight edge follows the surface).
+    simplify : float
+        Drop ring vertices within this distance (a fraction of the larger side) of the
+        simplified outline first (0: keep all; previews use a little).
 
     Returns
     -------
@@ -128,11 +133,15 @@ def morph(
     if not seg > 0:
         raise ValueError(f"segment must be positive; got {segment!r}")
     to_uv = np.array([1 / (x1 - x0), 1 / (y1 - y0)])
+    side = max(x1 - x0, y1 - y0)
+    if simplify < 0:
+        raise ValueError(f"simplify must be >= 0; got {simplify!r}")
     rings_uv = []
     for p in polys:
-        p = shapely.orient_polygons(p)
+        if simplify > 0:
+            p = shapely.simplify(p, simplify * side, preserve_topology=True)
+        p = shapely.orient_polygons(shapely.segmentize(p, seg * side))
         uvp = shapely.transform(p, lambda xy: (xy - (x0, y0)) * to_uv)
-        uvp = shapely.segmentize(uvp, seg)
         rings = [np.asarray(uvp.exterior.coords)[:-1]]
         rings += [np.asarray(r.coords)[:-1] for r in uvp.interiors]
         rings_uv.append(rings)
