@@ -67,3 +67,31 @@ def test_solid_section_errors(tmp_path):
     src.write_text(FOAM.replace("[0, 0, 0, 20, 20, 20]", "[0, 0, 0, -1, 20, 20]"))
     with pytest.raises(DesignError, match="max must exceed"):
         load(src)
+
+
+def test_recursive_subdivision_tiles_each_cell():
+    from voroforge import solid
+
+    cube = trimesh.creation.box((10, 10, 10))
+    leaves = solid.cells.subdivide([cube], 5, levels=2, seed=1)
+    assert 10 <= len(leaves) <= 25
+    assert abs(sum(c.volume for c in leaves) - 1000.0) <= 1e-9 * 1000.0
+    for c in leaves:
+        assert c.is_volume
+        assert (c.bounds[0] >= -5 - 1e-9).all() and (c.bounds[1] <= 5 + 1e-9).all()
+    f = solid.fields.plane((0, 0, 5), (0, 0, 1), radius=10, falloff="linear")
+    graded = solid.cells.subdivide([cube], (2, 8), field=f, seed=1)
+    assert 2 <= len(graded) <= 8
+    m = solid.lattice(leaves, radius=0.3, voxel=0.3, smoothing=0)
+    assert m.is_volume
+
+
+def test_relax_moves_sites_to_centroids():
+    import numpy as np
+
+    from voroforge import solid
+
+    p = np.random.default_rng(0).random((12, 3)) * 10
+    q = solid.cells.relax(p, (0, 0, 0, 10, 10, 10), iterations=3)
+    assert q.shape == p.shape and not np.shares_memory(p, q)
+    assert ((q > 0) & (q < 10)).all()
