@@ -296,19 +296,22 @@ def voronoi(
     try:
         source = open_source(points, out, rows)
         with _client_for(client, workers) as cl:
-            result = _run(
-                cl,
-                source,
-                eng_boundary,
-                boundary_text,
-                crs_json,
-                out,
-                tiles,
-                tile_size,
-                resume,
-                progress,
-                overwrite,
-            )
+            job = {
+                "boundary": eng_boundary,
+                "boundary_text": boundary_text,
+                "crs": crs_json,
+                "out": out,
+                "tiles": tiles,
+                "tile_size": tile_size,
+                "resume": resume,
+                "progress": progress,
+            }
+            result = _run(cl, source, job)
+    except ValueError:
+        # refused before any work was recorded: leave no folder that a rerun would refuse
+        if resume is None and not (out / MANIFEST).exists() and out.is_dir() and _ours(out):
+            shutil.rmtree(out, ignore_errors=True)
+        raise
     finally:
         for tmp in source.temporary if source is not None and source.temporary else []:
             Path(tmp).unlink(missing_ok=True)
@@ -318,23 +321,15 @@ def voronoi(
     return result
 
 
-def _run(
-    cl,
-    source,
-    eng_boundary,
-    boundary_text,
-    crs_json,
-    out,
-    tiles,
-    tile_size,
-    resume,
-    progress,
-    overwrite,
-):
+def _run(cl, source, job):
+    """The job's steps on client ``cl`` (``job``: the validated arguments of :func:`voronoi`)."""
     from distributed import as_completed
     from distributed import wait as distributed_wait
 
     from ..engine.domain import padded_bounds
+
+    eng_boundary, boundary_text, crs_json = job["boundary"], job["boundary_text"], job["crs"]
+    out, resume, progress = job["out"], job["resume"], job["progress"]
 
     clock = [time.perf_counter()]
     phases = {}
@@ -362,7 +357,7 @@ def _run(
     hi = np.max([s["hi"] for s in stats if s["hi"] is not None], axis=0)
     if eng_boundary is None:
         eng_boundary = tuple(float(v) for v in padded_bounds(np.array([lo, hi])))
-    ntiles = _tile_count(n, tiles, tile_size, nworkers)
+    ntiles = _tile_count(n, job["tiles"], job["tile_size"], nworkers)
     tiling = kd_tiling(np.concatenate([s["sample"] for s in stats]), ntiles)
     ntiles = len(tiling)
     fingerprint = {
