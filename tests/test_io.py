@@ -461,7 +461,7 @@ def test_open_svg_outline_is_an_error_naming_file_and_element(tmp_path):
     assert read_svg(f, close_tolerance=1.0).area == pytest.approx(10000.0)
     assert read_svg(f, close_tolerance=None).area == pytest.approx(10000.0)  # as a fill
     g = tmp_path / "closed.svg"
-    g.write_text(f.read_text().replace("0.5\"", "0.5 Z\""))
+    g.write_text(f.read_text().replace('0.5"', '0.5 Z"'))
     assert read_svg(g).area == pytest.approx(10000.0)
     # from a design file: the key and the file's element
     from voroforge.design.build import check_design
