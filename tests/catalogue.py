@@ -147,14 +147,86 @@ def _build() -> dict[str, tuple[np.ndarray, object]]:
     )
     on_hole = np.array([[2.0, 3.0], [3.0, 2.0], [4.0, 4.0], [7.0, 5.0], [6.5, 6.5], [1.0, 1.0]])
     c["sites_on_hole_boundary"] = (np.concatenate((on_hole, _rng(18).random((30, 2)) * 10)), holes)
+    _exactness_families(c)
     two = MultiPolygon([box(0, 0, 1, 1), box(2, 0, 3, 1)])
     c["multipolygon"] = (_rng(16).random((40, 2)) * [3.0, 1.0], two)
     c["multipolygon_one_site"] = (np.array([[1.5, 0.5]]), two)
     return c
 
 
+def _circle(n: int, r: float = 1.0, phase: float = 0.0) -> np.ndarray:
+    """``n`` float sites on a circle at the origin: cocircular up to rounding only."""
+    t = np.arange(n) * (2.0 * np.pi / n) + phase
+    return np.column_stack((r * np.cos(t), r * np.sin(t)))
+
+
+def _ulps(x: float, k: int) -> float:
+    """``x`` moved ``k`` ulps up."""
+    for _ in range(k):
+        x = float(np.nextafter(x, np.inf))
+    return x
+
+
+def _exactness_families(c: dict[str, tuple[np.ndarray, object]]) -> None:
+    """The classes of issue 15: one small family each (every algorithm runs on all of them).
+
+    - huge offsets: exact lattices far from the origin, where every site, box corner and
+      vertex is a float64 (tolerances relative to the magnitude merged whole cells);
+    - nearly cocircular floats: sites on circles (no centre), where rounded vertices folded
+      rings into self-intersecting cells;
+    - many neighbours of one cell (n sites on a line and one off it).
+
+    The classes still open are in :data:`OPEN` (mixed scales, sites a few ulps apart).
+    """
+    for off in (5e13, 1e15):
+        lat = _grid(4, 4, 1.0, off, off)
+        c[f"lattice_offset_{off:.0e}"] = (lat, (off - 0.5, off - 0.5, off + 3.5, off + 3.5))
+    lat = _grid(5, 3, 2.0, 2.5e14, -7.5e14)
+    c["lattice_offset_none"] = (lat, None)
+    c["float_circle_64"] = (_circle(64), None)
+    c["float_circle_257"] = (_circle(257), None)
+    c["float_circles_concentric"] = (np.concatenate((_circle(64), _circle(64, 0.5))), None)
+    t = np.linspace(0.0, 1.0, 200)
+    c["collinear_plus_one"] = (
+        np.concatenate((np.column_stack((t, np.zeros_like(t))), [[0.5, 0.1]])),
+        (-0.5, -0.5, 1.5, 1.5),  # tall enough for every line site to touch the off-line cell
+    )
+
+
+def _open_families() -> dict[str, tuple[np.ndarray, object]]:
+    """Issue 15's classes not yet right for every algorithm (``test_exactness`` xfails them).
+
+    - mixed scales: hull cells of the 1e-12 cluster are cut from a 1e6 box in floats, whose
+      crossings are 1e-10 off: folded rings;
+    - a distinct site a few ulps from others: its strip is narrower than the circumcentre's
+      rounding bound, so it merges away (an empty cell);
+    - near-duplicates a few ulps inside the box's sides: a strip along a side, folded;
+    - a float circle far from the origin (folded cells near its centre).
+    """
+    c: dict[str, tuple[np.ndarray, object]] = {}
+    g = _rng(30)
+    c["mixed_scales"] = (np.concatenate((g.random((50, 2)) * 1e-12, g.random((50, 2)) * 1e6)), None)
+    x = 0.3
+    diag = [[_ulps(x, k), _ulps(x, k)] for k in (0, 1, 6)]
+    c["ulp_diagonal"] = (np.concatenate((diag, _rng(31).random((20, 2)))), (0.0, 0.0, 1.0, 1.0))
+    lo, hi = 500000.0, 500001.0
+    side = np.array([[_ulps(lo, 2), 0.25], [_ulps(lo, 3), 0.25], [_ulps(lo, 1), 0.75]])
+    side = np.concatenate((side, [[-_ulps(-hi, 2), 0.5], [-_ulps(-hi, 1), 0.5]]))
+    inner = [lo, 0.0] + _rng(32).random((20, 2))
+    c["near_duplicates_at_box_sides"] = (
+        np.concatenate((side, inner, inner[:4] + [0.0, 2.0**-33])),
+        (lo, 0.0, hi, 1.0),
+    )
+    # a float circle far from the origin: its vertices spread over ~1e-8 (exactly), and
+    # the cut cells around the centre still fold for delaunay/fortune
+    c["float_circle_100_far"] = (_circle(100, 3.0) + [1e5, -2e5], None)
+    return c
+
+
 CATALOGUE = _build()
 NAMES = list(CATALOGUE)
+#: Issue 15's inputs not yet right everywhere (see :func:`_open_families`); not in NAMES.
+OPEN = _open_families()
 
 
 def as_domain(boundary):

@@ -22,11 +22,21 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ..config import CC_MERGE_RTOL, CHAIN_SPAN_RTOL, NJIT, NJIT_PARALLEL, RELABEL_RTOL
+from ..config import (
+    CC_MERGE_RTOL,
+    FOLD_MAX_ROUNDS,
+    FOLD_SPAN_ERRS,
+    NJIT,
+    NJIT_PARALLEL,
+    RELABEL_RTOL,
+    VERTEX_SNAP_RTOL,
+)
 from .clip import dedupe_ring
 from .power import box_cell
-from .predicates import incircle, incircle_fast
-from .vertex import box_crossing, canonical_vertex_ranked, voronoi_vertex
+from .predicates import cross_diff, incircle, incircle_fast
+from .vertex import box_crossing, canonical_vertex_ranked, voronoi_vertex, voronoi_vertex_error
+
+_U = 2.0**-53
 
 _CHUNK = 2048
 
@@ -83,23 +93,44 @@ def _quad(tri, e, f):
     return a, b, c, d
 
 
+@njit(**NJIT_PARALLEL)
+def center_errors(xs, ys, tri):
+    """The rounding-error bound of every triangle's centre (``vertex.center_error``)."""
+    t = tri.shape[0] // 3
+    err = np.zeros(t)
+    for k in prange(t):
+        err[k] = voronoi_vertex_error(tri[3 * k], tri[3 * k + 1], tri[3 * k + 2], xs, ys)
+    return err
+
+
 @njit(**NJIT)
-def _cc_close(xs, ys, a, cx, cy, t, u):
-    scale = abs(cx[t]) + abs(cy[t]) + abs(cx[t] - xs[a]) + abs(cy[t] - ys[a])
-    return abs(cx[t] - cx[u]) + abs(cy[t] - cy[u]) <= CC_MERGE_RTOL * scale
+def _cc_close(xs, ys, a, err, cx, cy, t, u):
+    """Whether the centres of triangles ``t``, ``u`` (site ``a`` on both) are one point.
+
+    They are when their distance is within both centres' rounding bounds
+    (``vertex.center_error``: floats cannot tell them apart) and within ``CC_MERGE_RTOL`` of
+    the circle's radius (a centre floats cannot place, a sliver's, merges with nothing by
+    distance alone; :func:`_unfold` merges it if it swaps with a neighbour). Both scale
+    with the local spacing: the coordinates' magnitude enters only through its ulps.
+    """
+    d = abs(cx[t] - cx[u]) + abs(cy[t] - cy[u])
+    if not d <= err[t] + err[u]:
+        return False
+    r = abs(cx[t] - xs[a]) + abs(cy[t] - ys[a])
+    return d <= CC_MERGE_RTOL * r + 4.0 * _U * (abs(cx[t]) + abs(cy[t]))
 
 
 @njit(**NJIT_PARALLEL)
-def flag_close(xs, ys, tri, he, cx, cy, flag):
-    """Also flag interior halfedges whose two triangles have nearly equal circumcentres."""
+def flag_close(xs, ys, tri, he, cx, cy, flag, err):
+    """Also flag interior halfedges whose two triangles have centres equal to rounding."""
     for e in prange(tri.shape[0]):
         f = he[e]
-        if f > e and flag[e] == 0 and _cc_close(xs, ys, tri[e], cx, cy, e // 3, f // 3):
+        if f > e and flag[e] == 0 and _cc_close(xs, ys, tri[e], err, cx, cy, e // 3, f // 3):
             flag[e] = 1
 
 
 @njit(**NJIT)
-def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank):
+def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank, err, box):
     t = tri.shape[0] // 3
     parent = np.arange(t)
     merged = False
@@ -107,7 +138,7 @@ def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank):
         e = cand[k]
         f = he[e]
         a, b, c, d = _quad(tri, e, f)
-        if (near and _cc_close(xs, ys, a, cx, cy, e // 3, f // 3)) or (
+        if (near and _cc_close(xs, ys, a, err, cx, cy, e // 3, f // 3)) or (
             incircle(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c], xs[d], ys[d]) == 0.0
         ):
             ra = _find(parent, e // 3)
@@ -118,8 +149,105 @@ def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank):
     if merged:
         for k in range(t):
             parent[k] = _find(parent, k)
-        _name_classes(xs, ys, tri, parent, cx, cy, rank)
+        _name_classes(xs, ys, tri, parent, cx, cy, rank, err)
+    if near:
+        _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err)
     return parent
+
+
+@njit(**NJIT)
+def _in_box(x, y, box):
+    return box[0] <= x <= box[2] and box[1] <= y <= box[3]
+
+
+@njit(**NJIT)
+def _next(e):
+    return e - 2 if e % 3 == 2 else e + 1
+
+
+@njit(**NJIT)
+def _fold_round(xs, ys, tri, he, parent, cx, cy, box, err):
+    """Merge the classes at both ends of every Voronoi edge that runs backwards; the count.
+
+    The Voronoi edge dual to Delaunay edge ``i -> j`` runs from the centre of the triangle
+    right of it to the centre of the one left of it, along ``j - i`` turned left, by the
+    empty-circle property (its exact length is >= 0). When the computed vertices run the
+    other way (decided exactly, :func:`.predicates.cross_diff`), rounding has swapped them:
+    their exact distance is below their rounding, and keeping both folds the ring.
+    """
+    merges = 0
+    for e in range(tri.shape[0]):
+        f = he[e]
+        if f < e:
+            continue
+        t = e // 3
+        u = f // 3
+        rt = _find(parent, t)
+        ru = _find(parent, u)
+        if rt == ru:
+            continue
+        if not (_in_box(cx[t], cy[t], box) and _in_box(cx[u], cy[u], box)):
+            continue  # a vertex outside the box is never output: its cells are cut
+        # only an edge within what rounding and naming can move its ends (the centres'
+        # bounds, and a class's snap to its name, VERTEX_SNAP_RTOL of the radius) can fold;
+        # a longer one that breaks a turn test is a straight angle rounded, left alone
+        d = abs(cx[t] - cx[u]) + abs(cy[t] - cy[u])
+        a = tri[e]
+        r = abs(cx[t] - xs[a]) + abs(cy[t] - ys[a])
+        if not d <= FOLD_SPAN_ERRS * (err[t] + err[u] + VERTEX_SNAP_RTOL * r):
+            continue
+        if _swapped(xs, ys, tri, e, f, cx[u], cy[u], cx[t], cy[t]):
+            parent[max(rt, ru)] = min(rt, ru)
+            merges += 1
+    return merges
+
+
+@njit(**NJIT)
+def _dot_sign(ax, ay, bx, by, cx, cy, dx, dy):
+    """Sign-exact ``(b - a) . (d - c)`` (the cross product with ``d - c`` turned right)."""
+    return -cross_diff(ax, ay, bx, by, cy, dx, dy, cx)
+
+
+@njit(**NJIT)
+def _swapped(xs, ys, tri, e, f, ux, uy, tx, ty):
+    """Whether the computed Voronoi edge ``u -> t`` dual to halfedge ``e`` cannot be right.
+
+    With ``i -> k`` the halfedge, ``q`` the third site of the triangle left of it and ``j``
+    that of the one right of it, the exact edge runs along ``k - i`` turned left (``q`` and
+    ``j`` are its next and previous neighbours around ``i``, in reverse around ``k``), so it
+    makes a left turn with the neighbouring edges of both cells: ``(j - i).e <= 0``,
+    ``(q - i).e >= 0``, ``(j - k).e <= 0``, ``(q - k).e >= 0``. A computed edge ``e`` that
+    breaks one (exact signs) has swapped or turned ends: rounding moved them by more than
+    their distance.
+    """
+    i = tri[e]
+    k = tri[_next(e)]
+    q = tri[_next(_next(e))]
+    j = tri[_next(_next(f))]
+    if cross_diff(xs[i], ys[i], xs[k], ys[k], ux, uy, tx, ty) < 0.0:
+        return True
+    if _dot_sign(xs[i], ys[i], xs[j], ys[j], ux, uy, tx, ty) > 0.0:
+        return True
+    if _dot_sign(xs[i], ys[i], xs[q], ys[q], ux, uy, tx, ty) < 0.0:
+        return True
+    if _dot_sign(xs[k], ys[k], xs[j], ys[j], ux, uy, tx, ty) > 0.0:
+        return True
+    return _dot_sign(xs[k], ys[k], xs[q], ys[q], ux, uy, tx, ty) < 0.0
+
+
+@njit(**NJIT)
+def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err):
+    """Merge swapped vertices (:func:`_fold_round`) until none is left; renames the classes.
+
+    Each round merges classes, so this ends; every merge is a pair of vertices closer than
+    their rounding, and the merged class gets its canonical vertex as any other.
+    """
+    for _ in range(FOLD_MAX_ROUNDS):
+        if _fold_round(xs, ys, tri, he, parent, cx, cy, box, err) == 0:
+            return
+        for k in range(parent.shape[0]):
+            parent[k] = _find(parent, k)
+        _name_classes(xs, ys, tri, parent, cx, cy, rank, err)
 
 
 @njit(**NJIT)
@@ -131,13 +259,15 @@ def _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy):
 
 
 @njit(**NJIT)
-def _name_classes(xs, ys, tri, parent, cx, cy, rank):
+def _name_classes(xs, ys, tri, parent, cx, cy, rank, err):
     """Give every triangle of a class (``parent`` its root) the vertex of the class's name.
 
     The name is the canonical triple of the class's sites (``kernels/vertex``), numbered by
     ``rank`` (their input indices), found near the root's centre; without one the root's
-    centre is used. Classes of two triangles (four cocircular sites: every square of a grid)
-    are the common case and take a short path; larger ones are gathered by a counting sort.
+    centre is used (for classes of three or more, the member centre with the smallest
+    rounding bound ``err`` is the reference). Classes of two triangles (four cocircular
+    sites: every square of a grid) are the common case and take a short path; larger ones
+    are gathered by a counting sort.
     """
     t = parent.shape[0]
     size = np.zeros(t, dtype=np.int64)
@@ -198,29 +328,36 @@ def _name_classes(xs, ys, tri, parent, cx, cy, rank):
                     seen[v] = r
                     on[k] = v
                     k += 1
-        vx, vy = _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy)
+        # the class's best-conditioned centre is the reference its name must match (the
+        # root's may be a sliver's, which no triple's centre is near)
+        best = r
+        if err.shape[0] > 0:
+            for u in range(start[r], start[r + 1]):
+                if err[members[u]] < err[best]:
+                    best = members[u]
+        vx, vy = _class_vertex(on, k, rank, best, xs, ys, tri, cx, cy)
         for u in range(start[r], start[r + 1]):
             cx[members[u]] = vx
             cy[members[u]] = vy
 
 
-def merge_cocircular(xs, ys, tri, he, cx, cy, flag, rank):
+def merge_cocircular(xs, ys, tri, he, cx, cy, flag, rank, box):
     """Give triangles with the same circumcircle one circumcentre; return each one's class.
 
     Two triangles sharing an edge have the same circumcircle exactly when the fourth point is
     on the first one's circle (exact incircle == 0); triangles whose computed centres agree
-    to ``CC_MERGE_RTOL`` are merged too (a Voronoi edge that short is rounding noise, and
-    keeping it can fold the ring). Classes are the connected components of that relation;
+    to their rounding bounds (:func:`_cc_close`) are merged too, and so are the ends of every
+    Voronoi edge that rounding turned the wrong way (:func:`_unfold`, exact signs: keeping
+    them would fold the ring). Classes are the connected components of that relation;
     every member gets the vertex named by the class's canonical triple (the vertex rule of
     ``kernels/vertex``, which the half-plane kernel follows too). The exact code runs only
     on the halfedges flagged by :func:`circumcenters`. ``rank[v]`` is site ``v``'s input
     index (names are chosen in the input's numbering, as every algorithm does).
     """
-    flag_close(xs, ys, tri, he, cx, cy, flag)
+    err = center_errors(xs, ys, tri)
+    flag_close(xs, ys, tri, he, cx, cy, flag, err)
     cand = np.flatnonzero(flag)
-    if cand.shape[0] == 0:
-        return np.arange(tri.shape[0] // 3)
-    return _merge_exact(xs, ys, tri, he, cand, cx, cy, True, rank)
+    return _merge_exact(xs, ys, tri, he, cand, cx, cy, True, rank, err, box)
 
 
 def triangle_centers(xs, ys, tri, he):
@@ -234,7 +371,8 @@ def triangle_centers(xs, ys, tri, he):
     cx, cy, flag = circumcenters(xs, ys, tri, he)
     cand = np.flatnonzero(flag)
     if cand.shape[0]:
-        _merge_exact(xs, ys, tri, he, cand, cx, cy, False, np.arange(xs.shape[0]))
+        err = np.zeros(0)
+        _merge_exact(xs, ys, tri, he, cand, cx, cy, False, np.arange(xs.shape[0]), err, err)
     return cx, cy
 
 
@@ -325,22 +463,8 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, q
         y = py[v]
         if a >= 0 and b >= 0:
             ka, steps = _chain(nbrs, tris, nn, a, b)
+            # the chain's vertices are in order: swapped ones were merged (cells._unfold)
             ok = steps >= 1 and out + steps + (m - v) <= qx.shape[0]
-            if ok and steps > 1:
-                # only a chain longer than rounding noise (near-cocircular neighbours give
-                # rounding-level chains whose order floats cannot be trusted with)
-                t0 = tris[ka]
-                t1 = tris[(ka + steps - 1) % nn]
-                span = abs(cx[t1] - cx[t0]) + abs(cy[t1] - cy[t0])
-                if span == 0.0:
-                    # exactly cocircular neighbours: one merged centre, which every cell
-                    # around it uses
-                    qx[out] = cx[t0]
-                    qy[out] = cy[t0]
-                    qw[out] = b
-                    out += 1
-                    continue
-                ok = span > CHAIN_SPAN_RTOL * ((box[2] - box[0]) + (box[3] - box[1]))
             if ok:
                 out = _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, qx, qy, qw, out)
                 continue
@@ -375,8 +499,6 @@ def _nearest_label(xs, ys, x, y, b, nbrs, nn):
     It moves only on a decisive comparison: the point must be clearly (``RELABEL_RTOL`` of
     the coordinates' size) off the bisector of the two candidates.
     """
-    x2 = 2.0 * x
-    y2 = 2.0 * y
     for k in range(nn):
         j = nbrs[k]
         if j == b:
@@ -384,9 +506,16 @@ def _nearest_label(xs, ys, x, y, b, nbrs, nn):
         # |P - s_j|^2 - |P - s_b|^2 = (s_j - s_b) . (s_j + s_b - 2P)
         dx = xs[j] - xs[b]
         dy = ys[j] - ys[b]
-        d = dx * (xs[j] + xs[b] - x2) + dy * (ys[j] + ys[b] - y2)
-        size = abs(xs[j]) + abs(xs[b]) + abs(x2) + abs(ys[j]) + abs(ys[b]) + abs(y2)
-        if d < -RELABEL_RTOL * (abs(dx) + abs(dy)) * size:
+        # in the frame of P: the local spacing, not the coordinates' magnitude, sets the
+        # tolerance; P's own representation error adds a few ulps of its magnitude
+        jx = xs[j] - x
+        jy = ys[j] - y
+        bx = xs[b] - x
+        by = ys[b] - y
+        d = dx * (jx + bx) + dy * (jy + by)
+        size = abs(jx) + abs(bx) + abs(jy) + abs(by)
+        tol = (RELABEL_RTOL * size + 16.0 * _U * (abs(x) + abs(y))) * (abs(dx) + abs(dy))
+        if d < -tol:
             b = j
     return b
 
@@ -591,10 +720,10 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
     n = xs.shape[0]
     box = np.asarray(box, dtype=np.float64)
     cx, cy, flag = circumcenters(xs, ys, tri, he)
-    cls = merge_cocircular(xs, ys, tri, he, cx, cy, flag, kmap)
+    cls = merge_cocircular(xs, ys, tri, he, cx, cy, flag, kmap, box)
     out, deg, cut = _outgoing(tri, he, cx, cy, box, n)
     cap = int(deg.max()) + 16
-    merged = bool(flag.any())
+    merged = bool(flag.any()) or bool((cls != np.arange(cls.shape[0])).any())
     ws = np.zeros(n)
     counts = _count(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, deg, cut, merged)
     closed = np.where(counts > 0, counts + 1, 0)

@@ -39,7 +39,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import NJIT, VERTEX_DET_RTOL, VERTEX_PAIR_RTOL, VERTEX_SNAP_RTOL
+from ..config import NAME_MAX_TRIES, NJIT, VERTEX_DET_RTOL, VERTEX_PAIR_RTOL, VERTEX_SNAP_RTOL
 from .predicates import orient2d
 
 
@@ -76,6 +76,61 @@ def center_offset(ax, ay, aw, bx, by, bw, cx, cy, cw):
         det = orient2d(ox, oy, px, py, qx, qy)
     d = 0.5 / det
     return ox, oy, (ey * bl - dy * cl) * d, (dx * cl - ex * bl) * d
+
+
+_U = 2.0**-53  # unit roundoff of float64
+
+
+@njit(**NJIT)
+def center_error(ax, ay, aw, bx, by, bw, cx, cy, cw):
+    """A bound on the L1 rounding error of :func:`center` (same arguments).
+
+    A first-order running error bound of :func:`center_offset`'s arithmetic, doubled to
+    cover the second-order terms: the exact power centre of the three (exact) inputs lies
+    within this L1 distance of the computed one. Infinite when the denominator cannot be
+    trusted to a factor of two (a sliver whose centre floats cannot place).
+    """
+    la = (bx - cx) * (bx - cx) + (by - cy) * (by - cy)
+    lb = (cx - ax) * (cx - ax) + (cy - ay) * (cy - ay)
+    lc = (ax - bx) * (ax - bx) + (ay - by) * (ay - by)
+    if lb >= la and lb >= lc:
+        ox, oy, ow, px, py, pw, qx, qy, qw = bx, by, bw, cx, cy, cw, ax, ay, aw
+    elif lc >= la:
+        ox, oy, ow, px, py, pw, qx, qy, qw = cx, cy, cw, ax, ay, aw, bx, by, bw
+    else:
+        ox, oy, ow, px, py, pw, qx, qy, qw = ax, ay, aw, bx, by, bw, cx, cy, cw
+    dx = px - ox
+    dy = py - oy
+    ex = qx - ox
+    ey = qy - oy
+    bl = dx * dx + dy * dy + (ow - pw)
+    cl = ex * ex + ey * ey + (ow - qw)
+    left = dx * ey
+    right = dy * ex
+    det = left - right
+    if not abs(det) >= VERTEX_DET_RTOL * (abs(left) + abs(right)) or det == 0.0:
+        det = orient2d(ox, oy, px, py, qx, qy)
+    ad = abs(det)
+    rel_det = 4.0 * _U * (abs(left) + abs(right)) / ad if ad > 0.0 else np.inf
+    if not rel_det < 0.5:
+        return np.inf
+    # |bl|, |cl| carry the weights' own magnitude: their rounding is relative to it
+    abl = dx * dx + dy * dy + abs(ow) + abs(pw)
+    acl = ex * ex + ey * ey + abs(ow) + abs(qw)
+    ux = (ey * bl - dy * cl) * (0.5 / det)
+    uy = (dx * cl - ex * bl) * (0.5 / det)
+    nx = 7.0 * _U * (abs(ey) * abl + abs(dy) * acl) * (0.5 / ad)
+    ny = 7.0 * _U * (abs(dx) * acl + abs(ex) * abl) * (0.5 / ad)
+    err = nx + ny + (abs(ux) + abs(uy)) * (2.0 * _U + rel_det)
+    err += _U * (abs(ox + ux) + abs(oy + uy))  # the final addition
+    return 2.0 * err + 4.0 * _U * _U * (abs(ox) + abs(oy))
+
+
+@njit(**NJIT)
+def voronoi_vertex_error(a, b, c, xs, ys):
+    """:func:`center_error` of :func:`voronoi_vertex` (same arguments, same order rule)."""
+    a, b, c = sorted_triple(a, b, c, xs, ys)
+    return center_error(xs[a], ys[a], 0.0, xs[b], ys[b], 0.0, xs[c], ys[c], 0.0)
 
 
 @njit(**NJIT)
@@ -257,10 +312,12 @@ def near_pair(a, b, r2, xs, ys):
 def is_close(x, y, px, py, sx, sy, rtol):
     """Whether ``(px, py)`` is within ``rtol`` of vertex ``(x, y)`` of site ``(sx, sy)``.
 
-    L1 distance relative to the vertex's magnitude and its distance from the site.
+    L1 distance relative to the vertex's distance from the site (the local spacing), plus a
+    few ulps of the vertex's magnitude (its representation error): a fixed fraction of the
+    magnitude would merge whole cells far from the origin.
     """
-    scale = abs(x) + abs(y) + abs(x - sx) + abs(y - sy)
-    return abs(px - x) + abs(py - y) <= rtol * scale
+    scale = abs(x - sx) + abs(y - sy)
+    return abs(px - x) + abs(py - y) <= rtol * scale + 16.0 * _U * (abs(x) + abs(y))
 
 
 @njit(**NJIT)
@@ -271,9 +328,13 @@ def _named(on, k, vx, vy, sx, sy, xs, ys):
     the vertex twice.
     """
     r2 = (vx - sx) * (vx - sx) + (vy - sy) * (vy - sy)
+    tries = 0
     for p in range(k):
         for q in range(p + 1, k):
             for r in range(q + 1, k):
+                tries += 1
+                if tries > NAME_MAX_TRIES:
+                    return -1, -1, -1, vx, vy  # the same bound for every caller
                 x0, x1, x2 = on[p], on[q], on[r]
                 if x0 == x1 or x1 == x2:
                     continue
