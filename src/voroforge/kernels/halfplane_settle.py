@@ -38,7 +38,19 @@ from .vertex import box_crossing, canonical_vertex, is_close, voronoi_vertex
 
 #: Box sides as ring labels (those of :func:`.vertex.box_crossing`); all become owner -1.
 LEFT, BOTTOM, RIGHT, TOP = -1, -2, -3, -4
+_U = 2.0**-53
 _MAX_FIX = 64  # rounds of exact repair per cell before the float cut is kept as it is
+
+
+@njit(**NJIT)
+def _merge_tol(r, vx, vy):
+    """|d| below which a site is on the circle of radius ``r`` about vertex ``(vx, vy)``.
+
+    Relative to the circle (the local spacing), plus the rounding of ``d`` that the
+    vertex's representation error (ulps of its magnitude) causes: never a fixed fraction
+    of the magnitude, which merged whole cells of lattices far from the origin.
+    """
+    return HALFPLANE_MERGE_RTOL * r * r + 16.0 * _U * r * (abs(vx) + abs(vy))
 
 
 @njit(**NJIT)
@@ -162,7 +174,7 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box):
             # a site this close to the circle is on it: the edge it would add or keep is
             # shorter than floats can order (the default algorithm merges such vertices too)
             r = np.sqrt(r2)
-            merge = HALFPLANE_MERGE_RTOL * r * (abs(vx_) + abs(vy_) + r)
+            merge = _merge_tol(r, vx_, vy_)
             nxt = lab[u + 1] if u + 1 < m else lab[0]
             prv = lab[u - 2] if u >= 2 else lab[u - 2 + m]
             non = 0  # other sites on the circle, to rounding
@@ -267,7 +279,7 @@ def _snap_crossing(i, j, x, y, xs, ys, near, nn, sidx, on):
     """
     r2 = (xs[i] - x) * (xs[i] - x) + (ys[i] - y) * (ys[i] - y)
     r = np.sqrt(r2)
-    merge = HALFPLANE_MERGE_RTOL * r * (abs(x) + abs(y) + r)
+    merge = _merge_tol(r, x, y)
     on[0] = i
     on[1] = j
     k = 2
