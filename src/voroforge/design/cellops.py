@@ -25,6 +25,7 @@ import numpy as np
 import shapely
 
 from .. import config
+from ..engine.csr import unique
 
 __all__ = [
     "by_area",
@@ -633,7 +634,7 @@ def frame(boundary, openings) -> shapely.Polygon | shapely.MultiPolygon:  # noqa
         idx = np.flatnonzero(simple)
         tree = shapely.STRtree(parts[idx])
         a, b = tree.query(parts[idx], predicate="intersects")
-        touching = np.unique(np.concatenate((a[a != b], b[a != b])))
+        touching = unique(np.concatenate((a[a != b], b[a != b])))
         simple[idx[touching]] = False
     pieces = list(shapely.get_parts(geom))
     if simple.any():

@@ -5,6 +5,21 @@ from __future__ import annotations
 import numpy as np
 
 
+def unique(values) -> np.ndarray:
+    """Sorted distinct values of a 1-D array: ``np.unique(values)``, by a sort.
+
+    numpy 2.3+ answers a plain ``np.unique`` of integers with a hash table that is 10-60x
+    slower than sorting for millions of keys (6e6 int64 keys: 19 s against 0.3 s with numpy
+    2.4.6 here), so the engine and the layers above use this for 1-D keys.
+    """
+    flat = np.sort(np.asarray(values).ravel())
+    if flat.size < 2:
+        return flat
+    keep = np.ones(flat.size, dtype=bool)
+    np.not_equal(flat[1:], flat[:-1], out=keep[1:])
+    return flat[keep]
+
+
 def csr_from_pairs(n: int, a, b) -> tuple[np.ndarray, np.ndarray]:
     """Symmetric CSR ``(indptr, indices)`` from undirected pairs; duplicates removed, rows sorted.
 
@@ -21,7 +36,7 @@ def csr_from_pairs(n: int, a, b) -> tuple[np.ndarray, np.ndarray]:
     dst = np.concatenate((b, a))
     m = max(n, 1)
     if src.size:
-        key = np.unique(src * m + dst)
+        key = unique(src * m + dst)
         src = key // m
         dst = key % m
     indptr = np.zeros(n + 1, dtype=np.int64)

@@ -30,6 +30,7 @@ import numpy as np
 import shapely
 
 from ..config import CONVEX_DOMAIN_RTOL, VERTEX_RTOL
+from .csr import unique
 from .diagram import domain_of
 
 
@@ -187,11 +188,11 @@ def _counts(coords, ring, cell_of_ring, tol, boxsize=None, origin=None):
     sep = va != vb
     lo = np.minimum(va, vb)[sep]
     hi = np.maximum(va, vb)[sep]
-    edges = np.unique(lo * (len(coords) + 1) + hi)
+    edges = unique(lo * (len(coords) + 1) + hi)
     cells = cell_of_ring[krid].astype(np.int64)
-    pairs = np.unique(va * (int(cells.max(initial=0)) + 1) + cells)
+    pairs = unique(va * (int(cells.max(initial=0)) + 1) + cells)
     per_vertex = np.bincount(pairs // (int(cells.max(initial=0)) + 1))
-    return len(np.unique(va)), len(edges), mismatched, int((per_vertex >= 3).sum())
+    return len(unique(va)), len(edges), mismatched, int((per_vertex >= 3).sum())
 
 
 def _domain_chi(geom) -> int:
@@ -237,7 +238,7 @@ def _unbounded(d) -> int:
     flat = np.asarray(tri.triangles).ravel()
     e = np.flatnonzero(he < 0)
     nxt = 3 * (e // 3) + (e % 3 + 1) % 3
-    return len(np.unique(np.concatenate((flat[e], flat[nxt]))))
+    return len(unique(np.concatenate((flat[e], flat[nxt]))))
 
 
 def describe(d) -> Description:

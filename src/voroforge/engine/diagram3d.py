@@ -23,6 +23,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .csr import unique
+
 
 def _ro(a):
     a = np.asarray(a)
@@ -167,7 +169,7 @@ class Diagram3D:
         i %= len(self)
         f0, f1 = self._cell_faces[i], self._cell_faces[i + 1]
         rings = [self._ring[self._roff[f] : self._roff[f + 1]] for f in range(f0, f1)]
-        ids = np.unique(np.concatenate(rings)) if rings else np.zeros(0, np.int64)
+        ids = unique(np.concatenate(rings)) if rings else np.zeros(0, np.int64)
         local = {int(v): k for k, v in enumerate(ids)}
         faces = [np.array([local[int(v)] for v in r], np.int64) for r in rings]
         return Polyhedron(
@@ -253,7 +255,7 @@ class Diagram3D:
             lab = self._flabel
             area = np.linalg.norm(self._farea, axis=1) if len(lab) else np.zeros(0)
             ok = (lab >= 0) & (area > 0) & (lab != owner)
-            key = np.unique(owner[ok].astype(np.int64) * max(n, 1) + lab[ok])
+            key = unique(owner[ok].astype(np.int64) * max(n, 1) + lab[ok])
             pairs = np.column_stack([key // max(n, 1), key % max(n, 1)])
             indptr = np.zeros(n + 1, np.int64)
             np.add.at(indptr, pairs[:, 0] + 1, 1)

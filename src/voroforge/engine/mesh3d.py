@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .containers import box_template
+from .csr import unique
 
 
 @dataclass(frozen=True)
@@ -212,7 +213,7 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None):
         if not cand[i]:
             continue
         rings = [ring[roff[f] : roff[f + 1]] for f in range(f0, f1)]
-        ids = np.unique(np.concatenate(rings))
+        ids = unique(np.concatenate(rings))
         loc = np.searchsorted(ids, np.concatenate(rings))
         tris, fid = [], []
         pos = 0

@@ -7,6 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..engine.csr import unique
+
 #: Fields of a raster result that can be drawn or saved.
 FIELDS = ("labels", "distance", "f2", "edge")
 
@@ -57,7 +59,7 @@ def label_adjacency(labels: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]
     b = np.concatenate([p[1].ravel() for p in pairs])
     keep = a != b
     a, b = a[keep], b[keep]
-    keys = np.unique(np.concatenate([a * n + b, b * n + a]))
+    keys = unique(np.concatenate([a * n + b, b * n + a]))
     rows, cols = keys // n, keys % n
     indptr = np.zeros(n + 1, dtype=np.int64)
     np.add.at(indptr, rows + 1, 1)
