@@ -5,7 +5,7 @@ BIN := $(VENV)/bin
 PIP := $(BIN)/python -m pip install -q
 LINT_PATHS := $(wildcard src tests benchmarks)
 
-.PHONY: help run demo test coverage lint format bench docs clean
+.PHONY: help run demo warmup test coverage lint format bench docs clean
 
 help:
 	@echo "make run    - install into $(VENV) and write the demo to out/"
