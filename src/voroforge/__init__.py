@@ -62,15 +62,15 @@ def __dir__() -> list[str]:
 
 
 if TYPE_CHECKING:  # for type checkers and editors: the same names, imported eagerly
+    from .engine.containers import Convex  # noqa: F401
     from .engine.delaunay import Triangulation, delaunay  # noqa: F401
     from .engine.describe import Description  # noqa: F401
     from .engine.diagram import Diagram, Edges  # noqa: F401
+    from .engine.diagram3d import Diagram3D  # noqa: F401
     from .engine.interpolate import locate, natural_neighbor  # noqa: F401
     from .engine.lloyd import Relaxation, lloyd  # noqa: F401
+    from .engine.lloyd3d import Relaxation3D, lloyd3d  # noqa: F401
     from .engine.power import PowerDiagram, power, power_fit  # noqa: F401
     from .engine.raster import RasterVoronoi, rasterize  # noqa: F401
     from .engine.voronoi import voronoi  # noqa: F401
-    from .engine.containers import Convex  # noqa: F401
-    from .engine.diagram3d import Diagram3D  # noqa: F401
-    from .engine.lloyd3d import Relaxation3D, lloyd3d  # noqa: F401
     from .engine.voronoi3d import voronoi3d  # noqa: F401

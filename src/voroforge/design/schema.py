@@ -16,9 +16,9 @@ from typing import Annotated, Any, Literal
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from .. import config
+from ..solid.schema import SolidSection, fill_2d
 from ..studio.animation import AnimationSection
 from ..surface.schema import SurfaceSection
-from ..solid.schema import SolidSection, fill_2d
 
 __all__ = [
     "Attractor",
