@@ -222,7 +222,7 @@ def test_missing_files_and_bad_units(tmp_path):
     data = panel(**{"boundary.shape": "file", "boundary.file": "nope.geojson"})
     with pytest.raises(DesignError, match="boundary.file: file not found"):
         result_of(data)
-    with pytest.raises(DesignError, match="svg needs units"):
+    with pytest.raises(DesignError, match="svg needs design.units"):
         build(panel(**{"design.units": "m"}), tmp_path)
 
 
@@ -619,18 +619,20 @@ def test_svg_files_are_read_in_the_design_units(tmp_path, units, size):
     from voroforge.design.compute import compute
     from voroforge.design.designfile import load
 
-    svg = (
+    head = (
         '<svg xmlns="http://www.w3.org/2000/svg" width="24in" height="12in" '
         'viewBox="0 0 24 12"><rect x="0" y="0" width="24" height="12"/>'
-        '<path d="M 2 6 L 22 6" fill="none"/></svg>'
     )
-    (tmp_path / "panel.svg").write_text(svg)
+    # the outline alone as the boundary (an open path there is an error), the outline and
+    # an open midline as the curve attractor
+    (tmp_path / "panel.svg").write_text(head + "</svg>")
+    (tmp_path / "curve.svg").write_text(head + '<path d="M 2 6 L 22 6" fill="none"/></svg>')
     design, base = load(
         {
             "design": {"units": units},
             "boundary": {"shape": "file", "file": str(tmp_path / "panel.svg")},
             "seeds": {"count": 4},
-            "attractors": [{"type": "curve", "file": str(tmp_path / "panel.svg"), "radius": 1}],
+            "attractors": [{"type": "curve", "file": str(tmp_path / "curve.svg"), "radius": 1}],
             "cells": {"web": {"near": 0, "far": 0}},
         }
     )
