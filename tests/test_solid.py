@@ -186,6 +186,29 @@ def test_extrude_analytic_and_relief():
     assert solid.check(two, max_overhang=None).by_kind() == {"floating_part": 1}
 
 
+def test_extrude_relief_follows_sharp_and_touching_outlines():
+    # a 20-spike star (spike angle about 6 degrees), a hole touching the outline at a point
+    # (inside one of its edges) and two holes touching each other at a vertex
+    ang = np.linspace(0, 2 * np.pi, 41)[:-1]
+    r = np.where(np.arange(40) % 2, 1.0, 10.0)
+    star = shapely.Polygon(np.c_[r * np.cos(ang), r * np.sin(ang)])
+    touch = shapely.Polygon(
+        [(0, 0), (4, 0), (4, 4), (0, 4)], [[(0, 2), (2, 1), (2, 3)]]
+    )  # valid: the hole meets the outline at (0, 2)
+    pair = shapely.Polygon(
+        [(0, 0), (4, 0), (4, 4), (0, 4)], [[(1, 1), (2, 2), (1, 3)], [(2, 2), (3, 1), (3, 3)]]
+    )
+    assert touch.is_valid and pair.is_valid
+    for g in (star, touch, pair):
+        _solid_ok(solid.extrude(g, 1.0))
+        assert abs(solid.extrude(g, 1.0).volume - g.area) <= 1e-12 * g.area
+        m = solid.extrude(g, 1.0, relief=lambda xy: 0.05 * xy[:, 1])
+        _solid_ok(m)
+        # the top is linear in y: the volume is exact only if the top tiles the outline
+        assert abs(m.volume - g.area * (1.0 + 0.05 * g.centroid.y)) <= 1e-9 * m.volume
+        assert len(m.faces) > 200  # the relief is followed by a fine top, not the bare outline
+
+
 def test_extrude_takes_a_design_results_frame():
     from types import SimpleNamespace
 
