@@ -30,6 +30,8 @@ from .session import Reply, Session
 
 __all__ = ["create_app", "geometry_message", "serve", "state_message"]
 
+#: Seconds after the last edit before a drag's provisional cells are settled (made exact)
+SETTLE_DELAY = 0.15
 LOCAL_HOSTS = ("127.0.0.1", "localhost", "::1", "[::1]")
 _KIND_COLOURS = {"web": "#e6194b", "opening": "#f58231", "corner": "#911eb4", "island": "#4363d8"}
 _KIND_TEXT = {  # the words of `voroforge check`'s table
@@ -40,7 +42,9 @@ _KIND_TEXT = {  # the words of `voroforge check`'s table
 }
 
 
-def geometry_message(session: Session, changed, *, seq: int, boundary: bool, extra=None) -> bytes:
+def geometry_message(
+    session: Session, changed, *, seq: int, boundary: bool, extra=None, sent=None
+) -> bytes:
     """The binary geometry message of the session's current result.
 
     Parameters
@@ -54,6 +58,10 @@ def geometry_message(session: Session, changed, *, seq: int, boundary: bool, ext
         Include the boundary and domain rings.
     extra : dict, optional
         More header fields.
+    sent : dict, optional
+        What the pages were sent last (updated here): with it, a patch carries only the
+        sites that moved (``si``, ``sv``) and the opening flags of its cells (``m``)
+        instead of every site and flag; cells whose flag changed are added to the patch.
 
     Returns
     -------
@@ -61,20 +69,30 @@ def geometry_message(session: Session, changed, *, seq: int, boundary: bool, ext
     """
     r = session.result
     n = len(r.raw)
-    idx = np.arange(n, dtype=np.int32) if changed is None else np.asarray(changed, np.int32)
+    mask = r.mask.astype(np.uint8)
+    sites = np.ascontiguousarray(r.sites, dtype=np.float64)
+    full = changed is None
+    patch = not full and sent is not None and sent.get("n") == n
+    if patch and sent.get("mask") is not None and len(sent["mask"]) == n:
+        flips = np.flatnonzero(sent["mask"] != mask)
+        changed = np.union1d(np.asarray(changed, np.int64), flips)
+    idx = np.arange(n, dtype=np.int32) if full else np.asarray(changed, np.int32)
     rg, rr, rc = wire.rings(r.raw[idx])
     cg, cr, cc = wire.rings(r.cells[idx])
-    arrays = {
-        "sites": r.sites.astype(np.float64).reshape(-1),
-        "mask": r.mask.astype(np.uint8),
-        "idx": idx,
-        "rg": rg,
-        "rr": rr,
-        "rc": rc.reshape(-1),
-        "cg": cg,
-        "cr": cr,
-        "cc": cc.reshape(-1),
-    }
+    arrays = {"idx": idx}
+    old_sites = sent.get("sites") if patch else None
+    if old_sites is not None and old_sites.shape == sites.shape:
+        moved = np.flatnonzero((old_sites != sites).any(axis=1)).astype(np.int32)
+        arrays["si"], arrays["sv"] = moved, sites[moved].reshape(-1)
+    else:
+        arrays["sites"] = sites.reshape(-1)
+    if full:
+        arrays["mask"] = mask
+    else:
+        arrays["m"] = mask[idx]
+    arrays.update(rg=rg, rr=rr, rc=rc.reshape(-1), cg=cg, cr=cr, cc=cc.reshape(-1))
+    if sent is not None:
+        sent.update(n=n, mask=mask, sites=sites.copy())
     if boundary:
         for name, geom in (("b", r.boundary), ("d", r.domain)):
             g, rr_, c = wire.rings(np.asarray([geom], dtype=object))
@@ -82,7 +100,7 @@ def geometry_message(session: Session, changed, *, seq: int, boundary: bool, ext
     header = {
         "op": "geom",
         "seq": seq,
-        "full": changed is None,
+        "full": full,
         "n": n,
         "bounds": [float(v) for v in r.boundary.bounds],
         "compute_ms": round(session.compute_ms, 2),
@@ -183,11 +201,16 @@ class _Hub:
         self.sent_boundary = None
         self.check_task: asyncio.Task | None = None
         self.check_due = 0.0
+        self.settle_due = 0.0
+        self.sent: dict = {}  # what the pages have (geometry_message patches against it)
+        self.state_text = ""  # the last state message sent (sent again only when it changes)
 
     async def send(self, ws, payload) -> bool:
         try:
             if isinstance(payload, bytes):
                 await ws.send_bytes(payload)
+            elif isinstance(payload, str):  # already JSON
+                await ws.send_text(payload)
             else:
                 await ws.send_text(json.dumps(payload, allow_nan=False))
             return True
@@ -201,20 +224,61 @@ class _Hub:
         for ws in list(self.clients.values()):
             await self.send(ws, payload)
 
+    async def broadcast_state(self, force: bool = False) -> None:
+        """Send the state message to every page, if it changed since the last one."""
+        text = json.dumps(state_message(self.session), allow_nan=False)
+        if force or text != self.state_text:
+            self.state_text = text
+            await self.broadcast(text)
+
     def schedule_check(self) -> None:
-        """Run the fabrication check once edits pause (later edits push it back)."""
-        self.check_due = time.monotonic() + config.STUDIO_CHECK_DELAY
+        """Settle a drag's result, then run the fabrication check, once edits pause.
+
+        Later edits push both back. Settling (:meth:`Session.settle`) swaps the drag's
+        provisional cells for the full computation's and sends the cells that differ.
+        """
+        now = time.monotonic()
+        self.settle_due = now + SETTLE_DELAY
+        self.check_due = now + config.STUDIO_CHECK_DELAY
         if self.check_task is None or self.check_task.done():
             self.check_task = asyncio.get_running_loop().create_task(self._check_later())
 
+    async def _settle(self) -> None:
+        payload = None
+        async with self.lock:
+            if not self.session.provisional or time.monotonic() < self.settle_due:
+                return
+            diff = await asyncio.to_thread(self.session.settle)
+            if diff is not None and len(diff):
+                self.seq += 1
+                payload = geometry_message(
+                    self.session,
+                    diff,
+                    seq=self.seq,
+                    boundary=False,
+                    extra={"settled": True},
+                    sent=self.sent,
+                )
+        if payload is not None:
+            await self.broadcast(payload)
+
     async def _check_later(self) -> None:
         while True:
+            if self.session.provisional:
+                wait = self.settle_due - time.monotonic()
+                if wait > 0:
+                    await asyncio.sleep(wait)
+                else:
+                    await self._settle()
+                continue
             wait = self.check_due - time.monotonic()
             if wait > 0:
                 await asyncio.sleep(wait)
                 continue
             async with self.lock:
                 seq, result = self.seq, self.session.result
+            if result.extra.get("provisional"):
+                continue
 
             # outside the lock: edits go on while a long check runs, and stop it
             def stale(seq=seq) -> bool:
@@ -271,7 +335,7 @@ def create_app(session: Session, *, hosts=LOCAL_HOSTS):
         try:
             async with hub.lock:
                 hub.seq += 1
-                geom = geometry_message(session, None, seq=hub.seq, boundary=True)
+                geom = geometry_message(session, None, seq=hub.seq, boundary=True, sent=hub.sent)
                 state = {**state_message(session), "client": cid}
             await hub.send(ws, state)
             await hub.send(ws, geom)
@@ -355,12 +419,16 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
                 reply.changed,
                 seq=hub.seq,
                 boundary=send_boundary,
-                extra={"reply_to": mid, "client": cid, "server_ms": round(server_ms, 2)},
+                extra={
+                    "reply_to": mid,
+                    "client": cid,
+                    "server_ms": round(server_ms, 2),
+                },
+                sent=hub.sent,
             )
-            state = state_message(session)
     if reply.kind == "update":
         await hub.broadcast(payload)
-        await hub.broadcast(state)
+        await hub.broadcast_state()
         hub.schedule_check()
         return
     base = {"reply_to": mid, "client": cid}

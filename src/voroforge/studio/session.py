@@ -116,6 +116,10 @@ class Session:
         self.violations: list = []
         self.frame: int | None = None  # the animation frame shown (None: the design itself)
         self._anim: dict | None = None
+        #: Seed drags update only the cells near the seed (:mod:`voroforge.studio.incremental`)
+        self.incremental = True
+        self.settle_ms = 0.0
+        self._field_cache = None
         self.design, self.result = self._compute(self.data, None, reuse=False)
 
     # --- computing ---------------------------------------------------------------------
@@ -138,6 +142,7 @@ class Session:
             design, self.folder, progress=stage, sites=sites, reuse=previous, frame=False
         )
         self.compute_ms = (time.perf_counter() - start) * 1e3
+        shapely.prepare(result.domain)  # every click and drag asks whether it is inside
         return design, result
 
     def _guard(self, design) -> None:
@@ -260,7 +265,76 @@ class Session:
         sites = self._sites()
         i = self._index(msg, len(sites))
         sites[i] = self._point(msg)
-        return self._commit(self.data, sites, remember=bool(msg.get("begin", True)))
+        remember = bool(msg.get("begin", True))
+        fast = self._move_fast(i, sites[i]) if self.frame is None else None
+        if fast is None:
+            return self._commit(self.data, sites, remember=remember)
+        result, changed = fast
+        if remember:
+            self.history.append((self.data, self.sites))
+            del self.history[: -config.STUDIO_UNDO_DEPTH]
+            self.future.clear()
+        self.sites, self.result = sites, result
+        return Reply("update", changed=changed)
+
+    def _move_fast(self, i: int, xy):
+        """:func:`voroforge.studio.incremental.move` of the current result, or None."""
+        from . import incremental
+
+        if not self.incremental or not incremental.eligible(self.result):
+            return None
+        start = time.perf_counter()
+        try:
+            fast = incremental.move(self.result, i, xy, self._field_fn())
+        except (ValueError, DesignError):  # anything unusual: the full compute decides
+            return None
+        if fast is not None:
+            self.compute_ms = (time.perf_counter() - start) * 1e3
+        return fast
+
+    def _field_fn(self):
+        """The current design's attractor field (cached per design), or None."""
+        from ..design.compute import _field
+
+        design = self.result.design
+        if self._field_cache is None or self._field_cache[0] is not design:
+            self._field_cache = (design, _field(design, self.folder))
+        return self._field_cache[1]
+
+    @property
+    def provisional(self) -> bool:
+        """Whether the current result came from a seed drag not yet :meth:`settle`-d."""
+        return bool(self.result.extra.get("provisional"))
+
+    def settle(self) -> np.ndarray | None:
+        """Replace a provisional result (a drag's) by the full computation's own.
+
+        Cells whose raw ring is byte-identical keep their operated cells (``compute``'s
+        ``reuse``), so this costs about one engine run. Returns the indices of the cells
+        whose drawing differs from the provisional one (often none), or None when there was
+        nothing to settle.
+        """
+        if not self.provisional:
+            return None
+        previous = self.result
+        start = time.perf_counter()
+        result = compute(
+            previous.design, self.folder, sites=self.sites, reuse=previous, frame=False
+        )
+        self.settle_ms = (time.perf_counter() - start) * 1e3
+        self.result = result
+        if len(result.raw) != len(previous.raw):
+            return np.arange(len(result.raw), dtype=np.int32)
+        same = (result.extra["raw_wkb"] == previous.extra["raw_wkb"]) & (
+            result.mask == previous.mask
+        )
+        redone = result.extra.get("redone")
+        if redone is not None and len(redone):
+            cells_same = shapely.to_wkb(result.cells[redone]) == shapely.to_wkb(
+                previous.cells[redone]
+            )
+            same[redone] &= cells_same
+        return np.flatnonzero(~same).astype(np.int32)
 
     def _op_add(self, msg: dict) -> Reply:
         sites = self._sites()

@@ -90,6 +90,7 @@ class StudioWidget(anywidget.AnyWidget):
         self._timer: threading.Timer | None = None
         self._lock = threading.Lock()
         self._check_lock = threading.Lock()  # one live check at a time (timers may overlap)
+        self._sent: dict = {}  # what the view has (patches are made against it)
         self.on_msg(self._on_msg)
 
     @property
@@ -99,7 +100,12 @@ class StudioWidget(anywidget.AnyWidget):
 
     @property
     def result(self):
-        """The current geometry (:class:`~voroforge.design.compute.Result`, no ``frame``)."""
+        """The current geometry (:class:`~voroforge.design.compute.Result`, no ``frame``).
+
+        Always the full computation's (a drag's provisional cells are settled first).
+        """
+        with self._lock:
+            self.session.settle()
         return self.session.result
 
     @property
@@ -163,7 +169,12 @@ class StudioWidget(anywidget.AnyWidget):
         with self._lock:
             self._seq += 1
             payload = geometry_message(
-                self.session, changed, seq=self._seq, boundary=True, extra={"reply_to": mid}
+                self.session,
+                changed,
+                seq=self._seq,
+                boundary=True,
+                extra={"reply_to": mid},
+                sent=self._sent,
             )
             state = state_message(self.session)
         self.cells = len(self.session.result.raw)
@@ -179,6 +190,11 @@ class StudioWidget(anywidget.AnyWidget):
         self._timer.start()
 
     def _check(self, seq: int) -> None:
+        with self._lock:
+            diff = self.session.settle() if self._seq == seq else None
+        if diff is not None and len(diff):
+            self._send_geometry(diff, None)
+            seq = self._seq
         with self._check_lock:
             found = self.session.check(self.session.result, lambda: self._seq != seq)
         if found is not None and self._seq == seq:

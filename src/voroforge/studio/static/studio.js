@@ -85,7 +85,8 @@ var VoroStudio = (function () {
     this.statusEl = root.querySelector("[data-role=status]");
     this.messageEl = root.querySelector("[data-role=message]");
     this.legendEl = root.querySelector("[data-role=legend]");
-    this.raw = []; this.cells = []; this.mask = new Uint8Array(0);
+    this.raw = []; this.cells = []; this.boxes = []; this.mask = new Uint8Array(0);
+    this.base = null; this.baseValid = false; this.pending = null; this.baseView = null;
     this.rawData = []; this.sites = new Float64Array(0);
     this.boundary = null; this.domain = null; this.bounds = [0, 0, 1, 1];
     this.attractors = []; this.violations = []; this.legend = [];
@@ -103,6 +104,7 @@ var VoroStudio = (function () {
     msg.id = this.nextId++;
     this.inflight = { id: msg.id, t0: (meta && meta.t0) || performance.now(), op: msg.op };
     this.transport.send(JSON.stringify(msg));
+    this.inflight.tsend = performance.now();
     return msg.id;
   };
 
@@ -134,7 +136,11 @@ var VoroStudio = (function () {
   };
 
   Studio.prototype.receive = function (data) {
-    if (data instanceof ArrayBuffer) return this.geometry(unpack(data));
+    if (data instanceof ArrayBuffer) {
+      var received = performance.now(), m = unpack(data);
+      m.received = received;
+      return this.geometry(m);
+    }
     var msg = typeof data === "string" ? JSON.parse(data) : data;
     var mine = msg.client === undefined || msg.client === this.client;
     if (msg.op === "state") {
@@ -166,31 +172,75 @@ var VoroStudio = (function () {
     }
   };
 
+  /* Bounding box (design units) of ring data [g, r, c] geometry k: [x0, y0, x1, y1] or null. */
+  function ringBox(g, r, c, k) {
+    var s = r[g[k]], e = r[g[k + 1]];
+    if (e <= s) return null;
+    var x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+    for (var t = s; t < e; t++) {
+      var x = c[2 * t], y = c[2 * t + 1];
+      if (x < x0) x0 = x; if (x > x1) x1 = x; if (y < y0) y0 = y; if (y > y1) y1 = y;
+    }
+    return [x0, y0, x1, y1];
+  }
+  function grow(box, b) {
+    if (!b) return box;
+    if (!box) return b.slice();
+    box[0] = Math.min(box[0], b[0]); box[1] = Math.min(box[1], b[1]);
+    box[2] = Math.max(box[2], b[2]); box[3] = Math.max(box[3], b[3]);
+    return box;
+  }
+
+  /* A geometry message: a full drawing, or a patch of the cells in `idx` (their rings, their
+     opening flags `m`, and the sites that moved `si`/`sv`). A patch only marks the box around
+     the old and new cells for repainting (see paintNow). */
   Studio.prototype.geometry = function (m) {
     var h = m.header, a = m.arrays, t0 = performance.now();
-    var n = h.n, idx = a.idx;
-    if (h.full) { this.raw = new Array(n); this.cells = new Array(n); this.rawData = new Array(n); }
-    else if (this.raw.length !== n) { this.raw.length = n; this.cells.length = n; this.rawData.length = n; }
-    for (var k = 0; k < idx.length; k++) {
-      var i = idx[k];
+    var n = h.n, idx = a.idx, k, i, region = null;
+    var full = h.full || this.raw.length !== n && !a.sites;
+    if (h.full) { this.raw = new Array(n); this.cells = new Array(n); this.rawData = new Array(n); this.boxes = new Array(n); }
+    else if (this.raw.length !== n) { this.raw.length = n; this.cells.length = n; this.rawData.length = n; this.boxes.length = n; }
+    for (k = 0; k < idx.length; k++) {
+      i = idx[k];
+      region = grow(region, this.boxes[i]);
       this.raw[i] = buildPath(a.rg, a.rr, a.rc, k);
       this.rawData[i] = a.rc.subarray(2 * a.rr[a.rg[k]], 2 * a.rr[a.rg[k + 1]]);
       this.cells[i] = buildPath(a.cg, a.cr, a.cc, k);
+      this.boxes[i] = ringBox(a.rg, a.rr, a.rc, k);
+      region = grow(region, this.boxes[i]);
     }
-    this.mask = a.mask; this.sites = a.sites; this.n = n; this.layers = null;
-    if (a.bg) { this.boundary = buildPath(a.bg, a.br, a.bc, 0); this.domain = buildPath(a.dg, a.dr, a.dc, 0); }
+    if (a.sites) { this.sites = new Float64Array(a.sites); full = full || !h.full && this.sitesN !== a.sites.length; }
+    else if (a.si) {
+      for (k = 0; k < a.si.length; k++) {
+        i = a.si[k];
+        var ox = this.sites[2 * i], oy = this.sites[2 * i + 1];
+        region = grow(region, [ox, oy, ox, oy]);
+        this.sites[2 * i] = a.sv[2 * k]; this.sites[2 * i + 1] = a.sv[2 * k + 1];
+        region = grow(region, [a.sv[2 * k], a.sv[2 * k + 1], a.sv[2 * k], a.sv[2 * k + 1]]);
+      }
+    }
+    this.sitesN = this.sites.length;
+    if (a.mask) this.mask = new Uint8Array(a.mask);
+    else for (k = 0; k < idx.length; k++) this.mask[idx[k]] = a.m[k];
+    this.n = n;
+    if (a.bg) { this.boundary = buildPath(a.bg, a.br, a.bc, 0); this.domain = buildPath(a.dg, a.dr, a.dc, 0); full = true; }
+    if (h.full || full) { this.baseValid = false; this.pending = null; }
+    else if (region) this.pending = grow(this.pending, region);
     this.bounds = h.bounds; this.attractors = h.attractors; this.header = h; this.seq = h.seq;
-    this.parseMs = performance.now() - t0;
+    var t1 = performance.now();
+    this.parseMs = t1 - t0;
     var mine = h.client === undefined || h.client === this.client;
     var done = mine ? this.settle(h.reply_to) : null;
     if (done) this.clearErrors();
     this.paintNow();
     if (done) {
-      var self = this, drawn = performance.now();
+      var self = this, drawn = performance.now(), recv = m.received || t0;
       requestAnimationFrame(function () {
-        var ms = performance.now() - done.t0;
+        var now = performance.now(), ms = now - done.t0;
         self.latencies.push({ op: done.op, ms: ms, compute_ms: h.compute_ms, server_ms: h.server_ms,
-          draw_ms: drawn - t0, n: n, changed: idx.length, full: h.full });
+          draw_ms: drawn - t0, parse_ms: t1 - t0, paint_ms: drawn - t1, frame_ms: now - drawn,
+          queue_ms: done.tsend - done.t0, wire_ms: recv - done.tsend - (h.server_ms || 0),
+          n: n, changed: idx.length, full: h.full });
         self.roundTrip = ms; self.status();
       });
     }
@@ -199,17 +249,60 @@ var VoroStudio = (function () {
 
   /* --- drawing ------------------------------------------------------------------------ */
 
-  /* The cells as a few combined paths (one per colour, one for all edges): a repaint is a
-     handful of fills whatever the cell count. Rebuilt when geometry arrives. */
-  Studio.prototype.rebuildLayers = function () {
-    var fills = PALETTE.map(function () { return new Path2D(); }), edges = new Path2D();
-    for (var i = 0; i < this.n; i++) {
-      var c = this.cells[i], r = this.raw[i];
-      if (c && this.mask[i]) fills[colourOf(i)].addPath(c);
-      if (r) edges.addPath(r);
+  /* The cells, their edges and the seeds are drawn into an offscreen canvas (the "base"): in
+     full as a few combined paths (one per colour, one for all edges) when a whole drawing
+     arrives, and after a patch only inside the box around the changed cells (the cells
+     meeting that box are drawn again, clipped to it). Each repaint copies the base and draws
+     the outlines, handles and check markers over it. */
+  Studio.prototype.renderBase = function (region) {
+    var W = this.canvas.width, H = this.canvas.height;
+    if (!this.base) { this.base = document.createElement("canvas"); }
+    if (this.base.width !== W || this.base.height !== H) { this.base.width = W; this.base.height = H; region = null; }
+    var b = this.base.getContext("2d"), v = this.view(), px = 1 / v.s, dpr = this.dpr, i;
+    var dot = 1.6 * px * dpr, lw = 0.6 * px * dpr, s = this.sites;
+    b.setTransform(1, 0, 0, 1, 0, 0);
+    b.save();
+    if (region) {
+      var pad = 3 * px * dpr + dot;
+      var r = [region[0] - pad, region[1] - pad, region[2] + pad, region[3] + pad];
+      var X0 = Math.floor(r[0] * v.s + v.tx), X1 = Math.ceil(r[2] * v.s + v.tx);
+      var Y0 = Math.floor(v.ty - r[3] * v.s), Y1 = Math.ceil(v.ty - r[1] * v.s);
+      b.beginPath(); b.rect(X0, Y0, X1 - X0, Y1 - Y0); b.clip();
+      b.fillStyle = "#f4f3ef"; b.fillRect(X0, Y0, X1 - X0, Y1 - Y0);
+    } else {
+      b.fillStyle = "#f4f3ef"; b.fillRect(0, 0, W, H);
     }
-    this.layers = { fills: fills, edges: edges, sites: null };
-    return this.layers;
+    b.setTransform(v.s, 0, 0, -v.s, v.tx, v.ty);
+    if (this.boundary) { b.fillStyle = "#d2c4a5"; b.fill(this.boundary, "evenodd"); }
+    if (!region) {
+      var fills = PALETTE.map(function () { return new Path2D(); }), edges = new Path2D(), dots = new Path2D();
+      for (i = 0; i < this.n; i++) {
+        var c = this.cells[i], rw = this.raw[i];
+        if (c && this.mask[i]) fills[colourOf(i)].addPath(c);
+        if (rw) edges.addPath(rw);
+      }
+      for (i = 0; i < PALETTE.length; i++) { b.fillStyle = PALETTE[i]; b.fill(fills[i], "evenodd"); }
+      b.lineWidth = lw; b.strokeStyle = "rgba(60,50,40,0.22)"; b.stroke(edges);
+      for (i = 0; i < s.length; i += 2) dots.rect(s[i] - dot, s[i + 1] - dot, 2 * dot, 2 * dot);
+      b.fillStyle = "#1d2330"; b.fill(dots);
+    } else {
+      var bx = this.boxes, near = new Path2D(), sd = new Path2D();
+      b.lineWidth = lw; b.strokeStyle = "rgba(60,50,40,0.22)";
+      for (i = 0; i < this.n; i++) {
+        var q = bx[i];
+        if (!q || q[0] > r[2] || q[2] < r[0] || q[1] > r[3] || q[3] < r[1]) continue;
+        if (this.cells[i] && this.mask[i]) { b.fillStyle = PALETTE[colourOf(i)]; b.fill(this.cells[i], "evenodd"); }
+        near.addPath(this.raw[i]);
+      }
+      b.stroke(near);
+      for (i = 0; i < s.length; i += 2) {
+        if (s[i] < r[0] || s[i] > r[2] || s[i + 1] < r[1] || s[i + 1] > r[3]) continue;
+        sd.rect(s[i] - dot, s[i + 1] - dot, 2 * dot, 2 * dot);
+      }
+      b.fillStyle = "#1d2330"; b.fill(sd);
+    }
+    b.restore();
+    this.baseValid = true; this.pending = null; this.baseView = [v.s, v.tx, v.ty, dot];
   };
 
   Studio.prototype.resize = function () {
@@ -243,23 +336,17 @@ var VoroStudio = (function () {
   Studio.prototype.paintNow = function () {
     this.dirty = false;
     var t0 = performance.now(), ctx = this.ctx, v = this.view(), px = 1 / v.s, dpr = this.dpr;
+    var bv = this.baseView;
+    if (!bv || bv[0] !== v.s || bv[1] !== v.tx || bv[2] !== v.ty) this.baseValid = false;
+    if (!this.baseValid) this.renderBase(null);
+    else if (this.pending) this.renderBase(this.pending);
     ctx.setTransform(1, 0, 0, 1, 0, 0);
-    ctx.fillStyle = "#f4f3ef"; ctx.fillRect(0, 0, this.canvas.width, this.canvas.height);
+    ctx.drawImage(this.base, 0, 0);
     ctx.setTransform(v.s, 0, 0, -v.s, v.tx, v.ty);
-    if (this.boundary) { ctx.fillStyle = "#d2c4a5"; ctx.fill(this.boundary, "evenodd"); }
-    var L = this.layers || this.rebuildLayers(), i;
-    for (i = 0; i < PALETTE.length; i++) { ctx.fillStyle = PALETTE[i]; ctx.fill(L.fills[i], "evenodd"); }
-    ctx.lineWidth = 0.6 * px * dpr; ctx.strokeStyle = "rgba(60,50,40,0.22)";
-    ctx.stroke(L.edges);
+    var i, s = this.sites;
     if (this.boundary) { ctx.lineWidth = 1.2 * px * dpr; ctx.strokeStyle = "#3a3128"; ctx.stroke(this.boundary); }
     if (this.domain) { ctx.setLineDash([4 * px * dpr, 4 * px * dpr]); ctx.lineWidth = 0.8 * px * dpr;
       ctx.strokeStyle = "rgba(58,49,40,0.6)"; ctx.stroke(this.domain); ctx.setLineDash([]); }
-    var s = this.sites, dot = 1.6 * px * dpr;
-    if (!L.sites || L.dot !== dot) {
-      L.sites = new Path2D(); L.dot = dot;
-      for (i = 0; i < s.length; i += 2) L.sites.rect(s[i] - dot, s[i + 1] - dot, 2 * dot, 2 * dot);
-    }
-    ctx.fillStyle = "#1d2330"; ctx.fill(L.sites);
     if (this.drag && this.drag.kind === "site") {
       var j = this.drag.i;
       if (2 * j + 1 < s.length) { ctx.beginPath(); ctx.arc(s[2 * j], s[2 * j + 1], 5 * px * dpr, 0, 7);

@@ -1,0 +1,184 @@
+"""A seed drag without recomputing the whole diagram: the cells near the seed, certified.
+
+Moving one site ``i`` from ``a`` to ``b`` changes only the cells that meet the region ``i``
+owned before or owns after. :func:`move` computes the diagram of the sites within a
+radius ``R`` of the move (``voroforge.voronoi`` on that window, the same domain, so the
+same engine and the same box) and keeps a window cell only where it is *certified*: for
+every vertex ``v`` of the cell, ``|v - c| + |v - s_j| < R`` (``c`` the window's centre).
+A site outside the window is then farther from ``v`` than ``s_j`` is, so it cannot cut
+the cell: the window cell is the whole diagram's cell, vertex for vertex (the engine makes
+vertices canonical; only the ring's first vertex may differ). The cells that can have
+changed are those whose old or new bounding box meets the bounding box of the old and new
+cell of ``i``; all of them must be certified, else the window grows (and after a few
+tries the caller recomputes everything).
+
+The result is marked ``extra["provisional"]``: its cells are the full diagram's point
+for point, but a ring may start at another vertex and the inset/fillet of such a cell was
+computed from that ring. :meth:`voroforge.studio.session.Session.settle` replaces it by
+:func:`voroforge.design.compute.compute`'s own result (reusing every cell whose raw ring
+is byte-identical) once the edits pause, so what the page shows at rest, what is checked,
+saved and exported is exactly the full computation.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import shapely
+
+from ..design import compute as dc
+from ..design.compute import Result
+
+__all__ = ["eligible", "move"]
+
+#: Window radius at the first try, in typical site spacings (sqrt(area / n)) beyond the move.
+START_SPACINGS = 4.0
+#: Tries (the radius doubles each time) before the caller falls back to a full compute.
+TRIES = 3
+
+
+def eligible(result: Result) -> bool:
+    """Whether :func:`move` can update ``result``: one plain Voronoi diagram, cell per site."""
+    d = result.design
+    return (
+        d.recursion.depth == 0
+        and not d.voronoi.periodic
+        and d.voronoi.power_radius is None
+        and len(result.raw) == len(result.sites) == len(result.cells)
+        and "raw_wkb" in result.extra
+    )
+
+
+def _bounds(result: Result) -> np.ndarray:
+    b = result.extra.get("raw_bounds")
+    if b is None:
+        b = shapely.bounds(result.raw)
+        result.extra["raw_bounds"] = b
+    return b
+
+
+def _overlap(boxes: np.ndarray, box) -> np.ndarray:
+    """Which (n, 4) boxes meet ``box`` (empty geometries have NaN bounds: never)."""
+    return (
+        (boxes[:, 0] <= box[2])
+        & (boxes[:, 2] >= box[0])
+        & (boxes[:, 1] <= box[3])
+        & (boxes[:, 3] >= box[1])
+    )
+
+
+def _same(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Elementwise: the same point set and rings (any first vertex, any part order)."""
+    return shapely.to_wkb(shapely.normalize(a)) == shapely.to_wkb(shapely.normalize(b))
+
+
+def move(result: Result, i: int, xy, field_fn=None) -> tuple[Result, np.ndarray] | None:
+    """``result`` with site ``i`` moved to ``xy``, recomputing only the cells near it.
+
+    Parameters
+    ----------
+    result : Result
+        The current geometry (:func:`eligible`); not modified.
+    i : int
+        The site that moves.
+    xy : (2,) float
+        Its new position (inside the domain).
+    field_fn : callable, optional
+        The design's attractor field (``compute._field``), for the changed cells' values.
+
+    Returns
+    -------
+    (Result, changed) or None
+        The new (provisional) result and the indices of the cells that changed (geometry or
+        opening mask); None when the window could not be certified (recompute in full).
+    """
+    import voroforge as vf
+
+    design = result.design
+    sites = np.array(result.sites, dtype=np.float64)
+    n = len(sites)
+    a = sites[i].copy()
+    b = np.asarray(xy, dtype=np.float64).reshape(2)
+    sites[i] = b
+    domain = result.domain
+    c = 0.5 * (a + b)
+    spacing = float(np.sqrt(domain.area / max(n, 1)))
+    radius = 0.5 * float(np.hypot(*(b - a))) + START_SPACINGS * spacing
+    old_boxes = _bounds(result)
+    dist = np.hypot(sites[:, 0] - c[0], sites[:, 1] - c[1])
+    for _ in range(TRIES):
+        window = np.flatnonzero(dist <= radius)
+        if len(window) > n // 2:
+            return None  # as dear as the whole diagram
+        local = vf.voronoi(sites[window], domain, algorithm=design.voronoi.algorithm)
+        cells = np.asarray(local.cells, dtype=object)
+        coords, owner = shapely.get_coordinates(cells, return_index=True)
+        own = sites[window][owner]
+        score = np.hypot(coords[:, 0] - c[0], coords[:, 1] - c[1]) + np.hypot(
+            coords[:, 0] - own[:, 0], coords[:, 1] - own[:, 1]
+        )
+        worst = np.full(len(window), np.inf)
+        seen = np.zeros(len(window), dtype=bool)
+        seen[owner] = True
+        worst[seen] = -np.inf
+        np.maximum.at(worst, owner, score)
+        certified = worst < radius * (1.0 - 1e-9)
+        pos = np.full(n, -1, dtype=np.int64)
+        pos[window] = np.arange(len(window))
+        k = pos[i]
+        new_boxes = shapely.bounds(cells)
+        if certified[k]:
+            ab = np.vstack((old_boxes[i], new_boxes[k]))
+            region = (
+                np.nanmin(ab[:, 0]),
+                np.nanmin(ab[:, 1]),
+                np.nanmax(ab[:, 2]),
+                np.nanmax(ab[:, 3]),
+            )
+            need = np.union1d(
+                np.flatnonzero(_overlap(old_boxes, region)),
+                window[_overlap(new_boxes, region)],
+            )
+            if (pos[need] >= 0).all() and certified[pos[need]].all():
+                break
+        radius *= 2.0
+    else:
+        return None
+    fresh = cells[pos[need]]
+    differ = ~_same(result.raw[need], fresh)
+    differ[need == i] = True  # the moved site's own cell (and site) always travels
+    redo = need[differ]
+    raw = result.raw.copy()
+    raw[redo] = fresh[differ]
+    values = result.values.copy()
+    if field_fn is not None and len(redo):
+        values[redo] = dc._values(raw[redo], field_fn)
+    mask = dc._mask(design, raw, values, design.design.seed)
+    out = result.cells.copy()
+    if len(redo):
+        out[redo] = dc._operate(design, raw[redo], values[redo], field_fn is not None)
+    live = ~shapely.is_empty(out)
+    open_cells = np.flatnonzero(mask & live)
+    extra = {k: v for k, v in result.extra.items() if k not in ("edges", "frame_fast")}
+    wkb = result.extra["raw_wkb"].copy()
+    wkb[redo] = shapely.to_wkb(raw[redo])
+    boxes = old_boxes.copy()
+    boxes[redo] = shapely.bounds(raw[redo])
+    extra.update(raw_wkb=wkb, raw_bounds=boxes, redone=redo, open_cells=open_cells)
+    extra["provisional"] = True
+    new = Result(
+        design,
+        result.boundary,
+        domain,
+        sites,
+        raw,
+        out,
+        mask,
+        values,
+        result.level,
+        np.asarray(out[open_cells], dtype=object),
+        None,
+        extra,
+        None,
+    )
+    changed = np.union1d(redo, np.flatnonzero(mask != result.mask)).astype(np.int32)
+    return new, changed
