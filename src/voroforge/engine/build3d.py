@@ -42,13 +42,30 @@ def grid3d_shape(P: np.ndarray, per_bucket: float) -> np.ndarray:
 def bucket_sort3d(P: np.ndarray, g: np.ndarray):
     """Sites by bucket: ``start (nb + 1,)``, ``SP`` in bucket order, ``sidx`` (stable)."""
     n = np.asarray(g[6:9], np.int64)
-    idx = np.floor((P - g[:3]) / g[3:6])
-    idx = np.clip(np.nan_to_num(idx, nan=0.0), 0, n - 1).astype(np.int64)
-    key = (idx[:, 2] * n[1] + idx[:, 1]) * n[0] + idx[:, 0]
+    key = bucket_keys3d(P, g)
     sidx = np.argsort(key, kind="stable")
     start = np.zeros(int(np.prod(n)) + 1, np.int64)
     np.cumsum(np.bincount(key, minlength=int(np.prod(n))), out=start[1:])
     return start, np.ascontiguousarray(P[sidx]), sidx.astype(np.int64)
+
+
+def bucket_keys3d(P: np.ndarray, g: np.ndarray) -> np.ndarray:
+    """Bucket number of each point of ``P`` in grid ``g`` (clamped into the grid)."""
+    n = np.asarray(g[6:9], np.int64)
+    idx = np.floor((P - g[:3]) / g[3:6])
+    idx = np.clip(np.nan_to_num(idx, nan=0.0), 0, n - 1).astype(np.int64)
+    return (idx[:, 2] * n[1] + idx[:, 1]) * n[0] + idx[:, 0]
+
+
+def _csr_take(lens: np.ndarray, take: np.ndarray) -> np.ndarray:
+    """Element indices of the runs ``take`` of a run-length layout ``lens``, in that order."""
+    off = np.concatenate([[0], np.cumsum(lens)])
+    ln = lens[take]
+    tot = int(ln.sum())
+    if tot == 0:
+        return np.zeros(0, np.int64)
+    firsts = np.concatenate([[0], np.cumsum(ln)[:-1]])
+    return np.repeat(off[take] - firsts, ln) + np.arange(tot)
 
 
 def search_order(g: np.ndarray, radius: int) -> np.ndarray:
@@ -167,6 +184,11 @@ def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
     g = grid3d_shape(P, PER_BUCKET)
     start, SP, sidx = bucket_sort3d(P, g)
     order = search_order(g, SEARCH_RADIUS)
+    # cells are built in bucket order (neighbouring cells read the same sites: 1.5x less
+    # time than input order on 1e5 uniform sites) and put back in the caller's order below
+    sort = np.argsort(bucket_keys3d(P[cells], g), kind="stable")
+    cells_in = cells
+    cells = cells[sort]
     parts = []
     with serial_below(len(cells)):
         for c0 in range(0, len(cells), CHUNK):
@@ -212,6 +234,21 @@ def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
             vol[c] = r["vol"][0]
             cen[c] = r["cen"][0]
             rad2[c] = r["rad2"][0]
+    # back to the caller's order: position sort[q] was built at q
+    back = np.zeros(len(cells), np.int64)
+    back[sort] = np.arange(len(cells))
+    names = names[_csr_take(counts[:, 0], back)]
+    vabs = vabs[_csr_take(counts[:, 0], back)]
+    fsel = _csr_take(counts[:, 1], back)
+    faces = faces[fsel]
+    area = area[fsel]
+    ring = ring[_csr_take(counts[:, 2], back)]
+    counts = counts[back]
+    status = status[back]
+    vol = vol[back]
+    cen = cen[back]
+    rad2 = rad2[back]
+    cells = cells_in
     voff = np.concatenate([[0], np.cumsum(counts[:, 0])])
     foff = np.concatenate([[0], np.cumsum(counts[:, 1])])
     flen = faces[:, 1]

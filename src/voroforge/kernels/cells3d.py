@@ -446,8 +446,14 @@ def _mark_owners(V, nv, nx, ny, nz, h, tol, key, OWN, work):
 
 
 @njit(**NJIT)
-def _name_cell(i, P, W, WP, ns, V, nv, F, nf, R, T, nt, OWN, work, vnames, vabs, vrel):
-    """Owners, names and named coordinates of the cell's vertices; returns status."""
+def _name_cell(
+    i, P, W, WP, ns, V, nv, F, nf, R, T, nt, OWN, work, vnames, vabs, vrel, rows, y, name, x, keys
+):
+    """Owners, names and named coordinates of the cell's vertices; returns status.
+
+    ``rows (3, 4)``, ``y (3,)``, ``name (4,)``, ``x (3,)`` and ``keys`` (``OWN``'s width) are
+    scratch.
+    """
     for v in range(nv):
         OWN[v, 0] = i
         work[v, 0] = 1
@@ -487,11 +493,6 @@ def _name_cell(i, P, W, WP, ns, V, nv, F, nf, R, T, nt, OWN, work, vnames, vabs,
         tol = VORONOI3D_CUT_RTOL * (nn * np.sqrt(rmax2) + abs(h))
         if not _mark_owners(V, nv, nx, ny, nz, h, tol, nw + w, OWN, work):
             return OVERFLOW
-    rows = np.zeros((3, 4))
-    y = np.zeros(3)
-    name = np.zeros(4, np.int64)
-    x = np.zeros(3)
-    keys = np.zeros(OWN.shape[1], np.int64)
     for v in range(nv):
         c = work[v, 0]
         # sort and dedupe the owners
@@ -636,6 +637,11 @@ def build_cells(
         vabs = np.zeros((caps[3], 3))
         vrel = np.zeros((caps[3], 3))
         remap = np.zeros(caps[3], np.int64)
+        rows = np.zeros((3, 4))
+        y = np.zeros(3)
+        name = np.zeros(4, np.int64)
+        x = np.zeros(3)
+        keys = np.zeros(OWN.shape[1], np.int64)
         for c in range(lo, hi):
             i = cells[c]
             st, nv, nf, nt, r2 = _one_cell(
@@ -676,7 +682,30 @@ def build_cells(
             if st != OK:
                 status[c] = st
                 continue
-            st = _name_cell(i, P, W, WP, ns, V, nv, F, nf, R, T, nt, OWN, work, vnames, vabs, vrel)
+            st = _name_cell(
+                i,
+                P,
+                W,
+                WP,
+                ns,
+                V,
+                nv,
+                F,
+                nf,
+                R,
+                T,
+                nt,
+                OWN,
+                work,
+                vnames,
+                vabs,
+                vrel,
+                rows,
+                y,
+                name,
+                x,
+                keys,
+            )
             if st != OK:
                 status[c] = st
                 continue
