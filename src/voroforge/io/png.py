@@ -209,9 +209,14 @@ def _even_odd_mask(rings) -> tuple[tuple[int, int], Image.Image]:
     size = (x1 - x0 + 1, y1 - y0 + 1)
     inside = np.zeros((size[1], size[0]), dtype=bool)
     for ring in rings:
-        single = Image.new("1", size, 0)
-        ImageDraw.Draw(single).polygon([(x - x0, y - y0) for x, y in ring], fill=1)
-        inside ^= np.array(single, dtype=bool)
+        # each ring is drawn into its own bounding box only: a cell's hole costs its own
+        # pixels, not the whole panel's
+        r = np.asarray(ring, dtype=np.float64)
+        rx0, ry0 = (int(v) for v in np.floor(r.min(axis=0)))
+        rx1, ry1 = (int(v) for v in np.ceil(r.max(axis=0)))
+        single = Image.new("1", (rx1 - rx0 + 1, ry1 - ry0 + 1), 0)
+        ImageDraw.Draw(single).polygon([(x - rx0, y - ry0) for x, y in r.tolist()], fill=1)
+        inside[ry0 - y0 : ry1 - y0 + 1, rx0 - x0 : rx1 - x0 + 1] ^= np.asarray(single, dtype=bool)
     return (x0, y0), Image.fromarray(inside.astype(np.uint8) * 255, "L")
 
 
