@@ -95,6 +95,109 @@ def test_reuse_with_attractor_values_and_a_changed_boundary():
     _same_result(compute(margin, sites=pts, reuse=first), compute(margin, sites=pts))
 
 
+def _normalized(geoms):
+    return list(shapely.to_wkb(shapely.normalize(np.asarray(geoms, dtype=object))))
+
+
+def _close(a, b, tol=1e-9):
+    """The same rings and vertices to ``tol`` (any first vertex, any part order)."""
+    a, b = shapely.normalize(a), shapely.normalize(b)
+    return bool(shapely.equals_exact(a, b, tolerance=tol).all())
+
+
+MANY = {**HOLED, "seeds": {"method": "random", "count": 200}}
+DRAGGED = {  # designs whose seed drags take the incremental path, one per kind of selection
+    "holed, inset + fillet": MANY,
+    "field-graded webs, field openings": {
+        **MANY,
+        "attractors": [{"type": "point", "points": [[60, 60]], "radius": 160}],
+        "cells": {"web": {"near": 1.0, "far": 3.0}},
+        "openings": {"select": "field", "threshold": 0.2},
+    },
+    "largest openings, margin": {
+        **MANY,
+        "boundary": {**HOLED["boundary"], "margin": 4},
+        "openings": {"select": "largest", "count": 30},
+        "cells": {"inset": 1.0},
+    },
+    "area window, plain cells": {
+        **MANY,
+        "cells": {},
+        "openings": {"select": "area", "min_area": 150},
+    },
+}
+
+
+@pytest.mark.parametrize("name", list(DRAGGED))
+def test_drag_recomputes_the_neighbourhood_and_settles_to_the_full_compute(name):
+    s = Session(DRAGGED[name])
+    rng = np.random.default_rng(len(name))
+    fast = tried = 0
+    for step in range(16):
+        before = s.result
+        n = len(before.sites)
+        i = int(rng.integers(n))
+        scale = 40.0 if step % 5 == 3 else 4.0  # now and then a long jump
+        x, y = before.sites[i] + rng.normal(0.0, scale, 2)
+        if not shapely.contains_xy(before.domain, x, y):
+            continue
+        reply = s.apply({"op": "move", "i": i, "x": float(x), "y": float(y), "begin": step == 0})
+        assert reply.kind == "update"
+        tried += 1
+        now = s.result
+        fast += s.provisional
+        full = compute(s.design, s.folder, sites=s.sites, frame=False)
+        # the cells are the full diagram's point for point (a ring may start elsewhere, and
+        # where GEOS cuts a cell with the domain's outline a vertex may be an ulp away)
+        assert _close(now.raw, full.raw)
+        assert np.array_equal(now.sites, full.sites) and np.array_equal(now.mask, full.mask)
+        assert np.allclose(now.values, full.values, rtol=1e-12, atol=1e-12)
+        gap = shapely.area(shapely.symmetric_difference(now.cells, full.cells))
+        assert (gap <= 1e-9 * (1.0 + shapely.area(full.cells))).all()
+        # what the page is sent: every cell that changed, nothing else changed
+        moved = np.flatnonzero(np.array(_normalized(before.raw)) != np.array(_normalized(now.raw)))
+        moved = np.union1d(moved, np.flatnonzero(before.mask != now.mask))
+        assert set(moved.tolist()) <= set(reply.changed.tolist())
+        others = np.setdiff1d(np.arange(n), reply.changed)
+        assert _wkb(before.raw[others]) == _wkb(now.raw[others])
+        assert _wkb(before.cells[others]) == _wkb(now.cells[others])
+        if step % 5 == 4 or step == 15:  # the edits pause: exactly the full computation
+            s.settle()
+            assert not s.provisional
+            settled = s.result
+            assert _wkb(settled.raw) == _wkb(full.raw)
+            assert _wkb(settled.cells) == _wkb(full.cells)
+            assert np.array_equal(settled.values, full.values)
+            assert np.array_equal(settled.mask, full.mask)
+            assert _wkb(settled.openings) == _wkb(full.openings)
+    assert fast >= 0.7 * tried > 8  # the drags took the incremental path
+    # undo from a provisional result is the full computation of the earlier sites
+    s.apply(
+        {"op": "move", "i": 0, "x": float(s.result.sites[0, 0]), "y": 1.0 + s.result.sites[0, 1]}
+    )
+    assert s.apply({"op": "undo"}).kind == "update" and not s.provisional
+    _same = compute(s.design, s.folder, sites=s.sites, frame=False)
+    assert _wkb(s.result.cells) == _wkb(_same.cells)
+
+
+def test_drag_onto_another_seed_and_across_the_panel():
+    from voroforge.studio import incremental
+
+    s = Session(HOLED)
+    other = s.result.sites[7].copy()
+    s.apply({"op": "move", "i": 3, "x": float(other[0]), "y": float(other[1])})  # a duplicate
+    full = compute(s.design, s.folder, sites=s.sites, frame=False)
+    assert _close(s.result.raw, full.raw)
+    assert shapely.is_empty(s.result.raw[[3, 7]]).sum() == 1  # the later copy has no cell
+    s.settle()
+    far = incremental.move(s.result, 5, (295.0, 195.0))  # a jump across the whole panel
+    if far is not None:
+        sites = s.result.sites.copy()
+        sites[5] = (295.0, 195.0)
+        full = compute(s.design, s.folder, sites=sites, frame=False)
+        assert _close(far[0].raw, full.raw)
+
+
 def test_sites_must_be_finite_pairs():
     design, _ = load(HOLED)
     with pytest.raises(ValueError, match="sites"):
@@ -339,6 +442,16 @@ def test_wire_rings_and_pack_round_trip():
     g, r, c = wire.rings(geoms)
     assert g.tolist() == [0, 1, 1, 3, 5]
     assert np.diff(r).tolist() == [5, 5, 5, 5, 5]
+    # against taking every geometry apart, on mixed cells
+    mixed = np.concatenate((geoms, compute(load(HOLED)[0]).cells, geoms[::-1]))
+    parts, part_of = shapely.get_parts(mixed, return_index=True)
+    ring_geoms, ring_of_part = shapely.get_rings(parts, return_index=True)
+    coords, coord_ring = shapely.get_coordinates(ring_geoms, return_index=True)
+    want_g = np.searchsorted(part_of[ring_of_part], np.arange(len(mixed) + 1))
+    want_r = np.searchsorted(coord_ring, np.arange(len(ring_geoms) + 1))
+    got_g, got_r, got_c = wire.rings(mixed)
+    assert np.array_equal(got_g, want_g) and np.array_equal(got_r, want_r)
+    assert np.array_equal(got_c, coords.astype(np.float32))
     header, arrays = wire.unpack(wire.pack({"op": "x"}, {"g": g, "r": r, "c": c.reshape(-1)}))
     assert header["op"] == "x"
     assert np.array_equal(arrays["g"], g) and np.array_equal(arrays["c"].reshape(-1, 2), c)

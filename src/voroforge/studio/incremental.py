@@ -1,23 +1,25 @@
 """A seed drag without recomputing the whole diagram: the cells near the seed, certified.
 
 Moving one site ``i`` from ``a`` to ``b`` changes only the cells that meet the region ``i``
-owned before or owns after. :func:`move` computes the diagram of the sites within a
-radius ``R`` of the move (``voroforge.voronoi`` on that window, the same domain, so the
-same engine and the same box) and keeps a window cell only where it is *certified*: for
-every vertex ``v`` of the cell, ``|v - c| + |v - s_j| < R`` (``c`` the window's centre).
-A site outside the window is then farther from ``v`` than ``s_j`` is, so it cannot cut
-the cell: the window cell is the whole diagram's cell, vertex for vertex (the engine makes
-vertices canonical; only the ring's first vertex may differ). The cells that can have
-changed are those whose old or new bounding box meets the bounding box of the old and new
-cell of ``i``; all of them must be certified, else the window grows (and after a few
-tries the caller recomputes everything).
+owned before or owns after. :func:`move` computes the diagram of the sites within a radius
+``R`` of the move (``voroforge.voronoi`` on that window, the same domain, so the same engine
+and the same box) and keeps a window cell only where it is *certified*: for every vertex
+``v`` of the cell, ``|v - c| + |v - s_j| < R`` (``c`` the window's centre). A site outside
+the window is then farther from ``v`` than ``s_j`` is, so it cannot cut the cell: the window
+cell is the whole diagram's cell, vertex for vertex (the engine makes Voronoi vertices
+canonical), except that the ring may start at another vertex and, where GEOS cuts the cell
+with the domain's outline, a vertex may lie an ulp or so away (the engine cuts against tiles
+of the domain, and the tiles of a window are other ones). The cells that can have changed
+are those whose old or new bounding box meets the bounding box of the old and new cell of
+``i``; all of them must be certified, else the window grows (and after a few tries the
+caller recomputes everything).
 
-The result is marked ``extra["provisional"]``: its cells are the full diagram's point
-for point, but a ring may start at another vertex and the inset/fillet of such a cell was
-computed from that ring. :meth:`voroforge.studio.session.Session.settle` replaces it by
-:func:`voroforge.design.compute.compute`'s own result (reusing every cell whose raw ring
-is byte-identical) once the edits pause, so what the page shows at rest, what is checked,
-saved and exported is exactly the full computation.
+The result is marked ``extra["provisional"]``: its cells are the full diagram's to rounding,
+and the inset/fillet of a cell whose ring differs was computed from that ring.
+:meth:`voroforge.studio.session.Session.settle` replaces it by
+:func:`voroforge.design.compute.compute`'s own result (reusing every cell whose raw ring is
+byte-identical) once the edits pause, so what the page shows at rest, what is checked, saved
+and exported is exactly the full computation.
 """
 
 from __future__ import annotations
@@ -54,6 +56,19 @@ def _bounds(result: Result) -> np.ndarray:
         b = shapely.bounds(result.raw)
         result.extra["raw_bounds"] = b
     return b
+
+
+#: ``[openings] select`` values whose flag of a cell depends on that cell only.
+_PER_CELL = ("all", "area", "field")
+
+
+def _live(result: Result) -> np.ndarray:
+    """Which operated cells are not empty (kept in ``extra["live"]``)."""
+    live = result.extra.get("live")
+    if live is None or len(live) != len(result.cells):
+        live = ~shapely.is_empty(result.cells)
+        result.extra["live"] = live
+    return live
 
 
 def _overlap(boxes: np.ndarray, box) -> np.ndarray:
@@ -152,18 +167,24 @@ def move(result: Result, i: int, xy, field_fn=None) -> tuple[Result, np.ndarray]
     values = result.values.copy()
     if field_fn is not None and len(redo):
         values[redo] = dc._values(raw[redo], field_fn)
-    mask = dc._mask(design, raw, values, design.design.seed)
+    seed = design.design.seed
+    if design.openings.select in _PER_CELL:  # a cell's flag depends on that cell alone
+        mask = result.mask.copy()
+        mask[redo] = dc._mask(design, raw[redo], values[redo], seed)
+    else:  # random, every_kth, largest: by index or rank, over all cells
+        mask = dc._mask(design, raw, values, seed)
     out = result.cells.copy()
+    live = _live(result).copy()
     if len(redo):
         out[redo] = dc._operate(design, raw[redo], values[redo], field_fn is not None)
-    live = ~shapely.is_empty(out)
+        live[redo] = ~shapely.is_empty(out[redo])
     open_cells = np.flatnonzero(mask & live)
     extra = {k: v for k, v in result.extra.items() if k not in ("edges", "frame_fast")}
     wkb = result.extra["raw_wkb"].copy()
     wkb[redo] = shapely.to_wkb(raw[redo])
     boxes = old_boxes.copy()
     boxes[redo] = shapely.bounds(raw[redo])
-    extra.update(raw_wkb=wkb, raw_bounds=boxes, redone=redo, open_cells=open_cells)
+    extra.update(raw_wkb=wkb, raw_bounds=boxes, redone=redo, open_cells=open_cells, live=live)
     extra["provisional"] = True
     new = Result(
         design,

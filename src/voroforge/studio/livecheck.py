@@ -19,7 +19,7 @@ from ..design.fabrication import KINDS, Violation, check
 __all__ = ["LiveCheck", "limits_of"]
 
 #: New openings checked per step (a newer edit can stop a long check between steps)
-_CHUNK = 64
+_CHUNK = 16
 
 
 def limits_of(design) -> dict:

@@ -31,7 +31,7 @@ from .session import Reply, Session
 __all__ = ["create_app", "geometry_message", "serve", "state_message"]
 
 #: Seconds after the last edit before a drag's provisional cells are settled (made exact)
-SETTLE_DELAY = 0.15
+SETTLE_DELAY = 0.25
 LOCAL_HOSTS = ("127.0.0.1", "localhost", "::1", "[::1]")
 _KIND_COLOURS = {"web": "#e6194b", "opening": "#f58231", "corner": "#911eb4", "island": "#4363d8"}
 _KIND_TEXT = {  # the words of `voroforge check`'s table
@@ -204,6 +204,7 @@ class _Hub:
         self.settle_due = 0.0
         self.sent: dict = {}  # what the pages have (geometry_message patches against it)
         self.state_text = ""  # the last state message sent (sent again only when it changes)
+        self.edits = 0  # messages received: a running check stops for a new one
 
     async def send(self, ws, payload) -> bool:
         try:
@@ -281,11 +282,14 @@ class _Hub:
                 continue
 
             # outside the lock: edits go on while a long check runs, and stop it
-            def stale(seq=seq) -> bool:
-                return self.seq != seq
+            edits = self.edits
+
+            def stale(seq=seq, edits=edits) -> bool:  # an edit arrived: it goes first
+                return self.seq != seq or self.edits != edits
 
             found = await asyncio.to_thread(self.session.check, result, stale)
             if found is None or self.seq != seq:
+                await asyncio.sleep(0.05)  # the edit that stopped it is being computed
                 continue
             await self.broadcast(violations_message(self.session, seq))
             return
@@ -336,6 +340,7 @@ def create_app(session: Session, *, hosts=LOCAL_HOSTS):
             async with hub.lock:
                 hub.seq += 1
                 geom = geometry_message(session, None, seq=hub.seq, boundary=True, sent=hub.sent)
+                hub.sent_boundary = _boundary_key(session)
                 state = {**state_message(session), "client": cid}
             await hub.send(ws, state)
             await hub.send(ws, geom)
@@ -405,6 +410,8 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
     if isinstance(msg, dict):
         mid = msg.get("id") if isinstance(msg.get("id"), int) else None
     session = hub.session
+    hub.edits += 1
+    received = time.perf_counter()
     async with hub.lock:
         start = time.perf_counter()
         reply: Reply = await asyncio.to_thread(session.apply, msg)
@@ -423,9 +430,11 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
                     "reply_to": mid,
                     "client": cid,
                     "server_ms": round(server_ms, 2),
+                    "wait_ms": round((start - received) * 1e3, 2),
                 },
                 sent=hub.sent,
             )
+            hub.encoded_ms = (time.perf_counter() - start) * 1e3 - server_ms
     if reply.kind == "update":
         await hub.broadcast(payload)
         await hub.broadcast_state()
@@ -513,8 +522,23 @@ def serve(
     print(f"voroforge studio: {url}  (Ctrl+C to stop)", flush=True)
     if open_browser:
         webbrowser.open(url)
-    app = create_app(session, hosts=hosts)
-    server = uvicorn.Server(
-        uvicorn.Config(app, log_level=log_level, ws_max_size=4 * config.STUDIO_MAX_MESSAGE)
-    )
+    server = uvicorn.Server(server_config(create_app(session, hosts=hosts), log_level=log_level))
     server.run(sockets=[sock])
+
+
+def server_config(app, *, log_level: str = "warning"):
+    """The uvicorn configuration the studio runs with (:func:`serve`, and the browser tests).
+
+    Returns
+    -------
+    uvicorn.Config
+    """
+    import uvicorn
+
+    return uvicorn.Config(
+        app,
+        log_level=log_level,
+        ws_max_size=4 * config.STUDIO_MAX_MESSAGE,
+        # geometry is binary floats that hardly compress: deflate would only cost time
+        ws_per_message_deflate=False,
+    )

@@ -45,13 +45,33 @@ def rings(geoms) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     n = len(geoms)
     if not n:
         return np.zeros(1, np.int32), np.zeros(1, np.int32), np.zeros((0, 2), np.float32)
-    parts, part_of = shapely.get_parts(geoms, return_index=True)
-    ring_geoms, ring_of_part = shapely.get_rings(parts, return_index=True)
-    coords, coord_ring = shapely.get_coordinates(ring_geoms, return_index=True)
-    ring_geom = part_of[ring_of_part]
-    geom_offsets = np.searchsorted(ring_geom, np.arange(n + 1)).astype(np.int32)
-    ring_offsets = np.searchsorted(coord_ring, np.arange(len(ring_geoms) + 1)).astype(np.int32)
-    return geom_offsets, ring_offsets, coords.astype(np.float32)
+    # A polygon without holes is one ring holding all its coordinates: no need to take it
+    # apart (cloning parts and rings costs far more than reading the coordinates).
+    counts = shapely.get_num_coordinates(geoms)
+    simple = (shapely.get_type_id(geoms) == 3) & (shapely.get_num_interior_rings(geoms) == 0)
+    hard = np.flatnonzero(~simple & (counts > 0))
+    per_geom = (counts > 0).astype(np.int64)
+    lengths = {}
+    if len(hard):
+        parts, part_of = shapely.get_parts(geoms[hard], return_index=True)
+        ring_geoms, ring_of_part = shapely.get_rings(parts, return_index=True)
+        ring_len = shapely.get_num_coordinates(ring_geoms)
+        owner = part_of[ring_of_part]
+        per_geom[hard] = np.bincount(owner, minlength=len(hard))
+        lengths = dict(
+            zip(hard.tolist(), np.split(ring_len, np.cumsum(per_geom[hard])[:-1]), strict=True)
+        )
+    geom_offsets = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(per_geom, out=geom_offsets[1:])
+    ring_len = np.zeros(int(geom_offsets[-1]), dtype=np.int64)
+    one = np.flatnonzero(simple & (counts > 0))
+    ring_len[geom_offsets[one]] = counts[one]
+    for k, ls in lengths.items():
+        ring_len[geom_offsets[k] : geom_offsets[k] + len(ls)] = ls
+    ring_offsets = np.zeros(len(ring_len) + 1, dtype=np.int64)
+    np.cumsum(ring_len, out=ring_offsets[1:])
+    coords = shapely.get_coordinates(geoms)
+    return geom_offsets.astype(np.int32), ring_offsets.astype(np.int32), coords.astype(np.float32)
 
 
 def pack(header: dict, arrays: dict[str, np.ndarray]) -> bytes:

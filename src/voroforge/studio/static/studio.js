@@ -26,15 +26,22 @@ var VoroStudio = (function () {
     return { header: header, arrays: arrays };
   }
 
-  function buildPath(g, r, c, k) {
+  /* One Path2D of geometry k; with `tol`, vertices closer than tol (in x and y) to the last
+     one drawn are skipped (a fillet's arcs have far more vertices than pixels). */
+  function buildPath(g, r, c, k, tol) {
     var r0 = g[k], r1 = g[k + 1];
     if (r1 <= r0) return null;
-    var p = new Path2D();
+    var p = new Path2D(), d = tol || 0;
     for (var j = r0; j < r1; j++) {
       var s = r[j], e = r[j + 1];
       if (e - s < 3) continue;
-      p.moveTo(c[2 * s], c[2 * s + 1]);
-      for (var t = s + 1; t < e - 1; t++) p.lineTo(c[2 * t], c[2 * t + 1]);
+      var lx = c[2 * s], ly = c[2 * s + 1];
+      p.moveTo(lx, ly);
+      for (var t = s + 1; t < e - 1; t++) {
+        var x = c[2 * t], y = c[2 * t + 1];
+        if (Math.abs(x - lx) < d && Math.abs(y - ly) < d) continue;
+        p.lineTo(x, y); lx = x; ly = y;
+      }
       p.closePath();
     }
     return p;
@@ -198,6 +205,8 @@ var VoroStudio = (function () {
     var h = m.header, a = m.arrays, t0 = performance.now();
     var n = h.n, idx = a.idx, k, i, region = null;
     var full = h.full || this.raw.length !== n && !a.sites;
+    this.bounds = h.bounds;
+    var tol = 0.5 / this.view().s;  // half a device pixel, in design units
     if (h.full) { this.raw = new Array(n); this.cells = new Array(n); this.rawData = new Array(n); this.boxes = new Array(n); }
     else if (this.raw.length !== n) { this.raw.length = n; this.cells.length = n; this.rawData.length = n; this.boxes.length = n; }
     for (k = 0; k < idx.length; k++) {
@@ -205,7 +214,7 @@ var VoroStudio = (function () {
       region = grow(region, this.boxes[i]);
       this.raw[i] = buildPath(a.rg, a.rr, a.rc, k);
       this.rawData[i] = a.rc.subarray(2 * a.rr[a.rg[k]], 2 * a.rr[a.rg[k + 1]]);
-      this.cells[i] = buildPath(a.cg, a.cr, a.cc, k);
+      this.cells[i] = buildPath(a.cg, a.cr, a.cc, k, tol);
       this.boxes[i] = ringBox(a.rg, a.rr, a.rc, k);
       region = grow(region, this.boxes[i]);
     }
@@ -237,7 +246,7 @@ var VoroStudio = (function () {
       var self = this, drawn = performance.now(), recv = m.received || t0;
       requestAnimationFrame(function () {
         var now = performance.now(), ms = now - done.t0;
-        self.latencies.push({ op: done.op, ms: ms, compute_ms: h.compute_ms, server_ms: h.server_ms,
+        self.latencies.push({ op: done.op, ms: ms, compute_ms: h.compute_ms, server_ms: h.server_ms, wait_ms: h.wait_ms,
           draw_ms: drawn - t0, parse_ms: t1 - t0, paint_ms: drawn - t1, frame_ms: now - drawn,
           queue_ms: done.tsend - done.t0, wire_ms: recv - done.tsend - (h.server_ms || 0),
           n: n, changed: idx.length, full: h.full });
