@@ -246,6 +246,15 @@ SURFACE_EDGE_RTOL = 1e-9
 #: (a quarter of the sites) before the midpoints of its neighbour pairs are added.
 SURFACE_COARSE_SHARE = 0.3
 
+#: Surface CVT by L-BFGS: steps kept in the two-loop recursion, and halvings of a step tried
+#: before a Lloyd step is taken instead.
+SURFACE_LBFGS_MEMORY = 10
+SURFACE_LBFGS_BACKTRACK = 8
+
+#: Restricted Voronoi: each site's list of nearest sites, from which a triangle's candidate
+#: sites are taken when the list provably holds them all (else a grid query).
+SURFACE_KNN = 8
+
 # --- voronoi3d (3D cells, containers) -----------------------------------------------------------
 
 #: A cell vertex this close to a cutting plane (relative to |d| * cell radius + |offset|, the

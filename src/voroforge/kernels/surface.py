@@ -2,19 +2,22 @@
 
 A site's restricted cell is the part of the surface nearer to it (3D distance) than to any
 other site, the way geogram's RVD defines it. Each triangle is handled on its own, in a 2D
-frame of its plane (``A`` at the origin, ``AB`` along ``x``, ``C`` above it): a bisector plane
-of two sites meets the plane in a line whose signed function is affine there, so the shared
-convex cut (:func:`voroforge.kernels.clip.cut_ring`, values per vertex from
+frame of its plane (``A`` at the origin, ``AB`` along ``x``, ``C`` above it; the frames are
+computed once per mesh by :func:`tri_frames`): a bisector plane of two sites meets the plane
+in a line whose signed function is affine there, so the shared convex cut
+(:func:`voroforge.kernels.clip.cut_ring`, values per vertex from
 :func:`~voroforge.kernels.clip.plane_values`) cuts the triangle exactly as it cuts 2D cells,
 owners carried per edge. A Voronoi cell is convex, so a triangle whose three corners have one
-nearest site lies in that cell whole (most triangles when the mesh is finer than the cells).
+nearest site lies in that cell whole (most triangles when the mesh is finer than the cells):
+its area, centroid and second moment come from the frames without any cut.
 
 Edge owners of a piece: ``j >= 0`` is the bisector with site ``j``; ``-1 - k`` is the
 triangle's edge ``k`` (from corner ``k`` to ``k + 1``). The caller names each piece vertex
 from its two edges' owners (mesh vertex, mesh edge x bisector, or three sites in a triangle).
 
-Candidates per triangle come from a bucket grid of the sites (shell search for each mesh
-vertex's nearest site, then a box query with a reach no owner of the triangle can exceed).
+Candidates per triangle come from the sites' bucket grid of :mod:`kernels.grid3d` (shell
+search for each mesh vertex's nearest site, started from a hint such as the previous
+relaxation step's answer, then a box query with a reach no owner of the triangle can exceed).
 """
 
 from __future__ import annotations
@@ -24,7 +27,12 @@ from numba import njit
 
 from ..config import NJIT
 from .clip import cut_ring, plane_values
+from .grid3d import bucket3d, shell_buckets, shell_gap
 from .moments import ring_sums
+
+#: columns of :func:`tri_frames`
+_E1, _E2, _N, _LAB, _CX, _CY, _AREA, _G, _J, _RAD, _LC = 0, 3, 6, 9, 10, 11, 12, 13, 16, 17, 18
+FRAME_COLUMNS = 21
 
 
 @njit(**NJIT)
@@ -48,140 +56,232 @@ def _grow_i(a, n):
 
 
 @njit(**NJIT)
-def site_grid(sites, lo, hi, h):
-    """Sites counting-sorted into cubic buckets of side ``h`` over the box ``lo..hi`` (CSR)."""
-    dims = np.zeros(3, np.int64)
-    for d in range(3):
-        dims[d] = max(1, int((hi[d] - lo[d]) / h) + 1)
-    nb = dims[0] * dims[1] * dims[2]
-    start = np.zeros(nb + 1, np.int64)
-    ids = np.zeros(sites.shape[0], np.int64)
-    for j in range(sites.shape[0]):
-        b = _bucket(sites[j, 0], sites[j, 1], sites[j, 2], lo, h, dims)
-        ids[j] = b
-        start[b + 1] += 1
-    for b in range(nb):
-        start[b + 1] += start[b]
-    fill = start[:-1].copy()
-    items = np.zeros(sites.shape[0], np.int64)
-    for j in range(sites.shape[0]):
-        items[fill[ids[j]]] = j
-        fill[ids[j]] += 1
-    return dims, start, items
+def tri_frames(v, f):
+    """Per triangle, what every relaxation step needs of it (one row of ``FRAME_COLUMNS``).
 
-
-@njit(**NJIT)
-def _cell(x, lo, h, n):
-    k = int(np.floor((x - lo) / h))
-    return min(max(k, 0), n - 1)
-
-
-@njit(**NJIT)
-def _bucket(x, y, z, lo, h, dims):
-    i = _cell(x, lo[0], h, dims[0])
-    j = _cell(y, lo[1], h, dims[1])
-    k = _cell(z, lo[2], h, dims[2])
-    return (i * dims[1] + j) * dims[2] + k
-
-
-@njit(**NJIT)
-def nearest_site(x, y, z, sites, lo, h, dims, start, items):
-    """The site nearest to ``(x, y, z)`` and its squared distance.
-
-    Shells of buckets outwards until no unscanned bucket can hold a nearer one (the stop test).
+    ``e1 (3)``, ``e2 (3)``, ``n (3)``: the plane's frame (``e1`` along ``AB``); ``|AB|`` and
+    ``C``'s frame coordinates; the area, centroid ``g (3)`` and ``J = ∫ |x - g|^2 dA``
+    (``A / 12`` times the corners' squared distances to ``g``); the largest distance from
+    ``g`` to a corner; per corner the longer of its two edges. A degenerate triangle has area
+    0 and is skipped by :func:`rvd`.
     """
-    ci = _cell(x, lo[0], h, dims[0])
-    cj = _cell(y, lo[1], h, dims[1])
-    ck = _cell(z, lo[2], h, dims[2])
-    best = -1
+    out = np.zeros((f.shape[0], FRAME_COLUMNS))
+    for t in range(f.shape[0]):
+        ia, ib, ic = f[t, 0], f[t, 1], f[t, 2]
+        ax, ay, az = v[ia, 0], v[ia, 1], v[ia, 2]
+        abx, aby, abz = v[ib, 0] - ax, v[ib, 1] - ay, v[ib, 2] - az
+        acx, acy, acz = v[ic, 0] - ax, v[ic, 1] - ay, v[ic, 2] - az
+        nx = aby * acz - abz * acy
+        ny = abz * acx - abx * acz
+        nz = abx * acy - aby * acx
+        nn = np.sqrt(nx * nx + ny * ny + nz * nz)
+        lab = np.sqrt(abx * abx + aby * aby + abz * abz)
+        if nn == 0.0 or lab == 0.0:
+            continue
+        nx /= nn
+        ny /= nn
+        nz /= nn
+        e1x, e1y, e1z = abx / lab, aby / lab, abz / lab
+        r = out[t]
+        r[0], r[1], r[2] = e1x, e1y, e1z
+        r[3] = ny * e1z - nz * e1y
+        r[4] = nz * e1x - nx * e1z
+        r[5] = nx * e1y - ny * e1x
+        r[6], r[7], r[8] = nx, ny, nz
+        r[_LAB] = lab
+        r[_CX] = acx * e1x + acy * e1y + acz * e1z
+        r[_CY] = acx * r[3] + acy * r[4] + acz * r[5]
+        area = 0.5 * lab * r[_CY]
+        r[_AREA] = area
+        gx = ax + (abx + acx) / 3.0
+        gy = ay + (aby + acy) / 3.0
+        gz = az + (abz + acz) / 3.0
+        r[13], r[14], r[15] = gx, gy, gz
+        j = 0.0
+        rad = 0.0
+        for k in range(3):
+            w = f[t, k]
+            d2 = (v[w, 0] - gx) ** 2 + (v[w, 1] - gy) ** 2 + (v[w, 2] - gz) ** 2
+            j += d2
+            rad = max(rad, np.sqrt(d2))
+        r[_J] = area * j / 12.0
+        r[_RAD] = rad
+        lbc = np.sqrt(
+            (v[ic, 0] - v[ib, 0]) ** 2 + (v[ic, 1] - v[ib, 1]) ** 2 + (v[ic, 2] - v[ib, 2]) ** 2
+        )
+        lac = np.sqrt(acx * acx + acy * acy + acz * acz)
+        r[_LC] = max(lab, lac)
+        r[_LC + 1] = max(lab, lbc)
+        r[_LC + 2] = max(lac, lbc)
+    return out
+
+
+@njit(**NJIT)
+def nearest_site(x, y, z, sites, start, sidx, g, best, buf):
+    """The site nearest to ``(x, y, z)`` (ties: the lower index) and its squared distance.
+
+    ``best``: a hint (a site index, or -1). With a hint, the sites nearer than it lie in the
+    box of half-side its distance around the point: that box is scanned when it spans few
+    buckets (the usual case when the hint is the last relaxation step's answer). Otherwise
+    shells of the grid ``g`` (:mod:`kernels.grid3d`; ``sidx`` the sites in bucket order,
+    ``start`` the buckets' CSR) outwards until :func:`~voroforge.kernels.grid3d.shell_gap`
+    shows no unscanned bucket can hold a nearer one, ``buf`` (room for every bucket)
+    holding a shell's buckets.
+    """
     bd = np.inf
-    rmax = max(dims[0], max(dims[1], dims[2]))
+    if best >= 0:
+        bd = (sites[best, 0] - x) ** 2 + (sites[best, 1] - y) ** 2 + (sites[best, 2] - z) ** 2
+        w = np.sqrt(bd) * (1.0 + 1e-12)
+        i0, j0, k0 = bucket3d(x - w, y - w, z - w, g)
+        i1, j1, k1 = bucket3d(x + w, y + w, z + w, g)
+        if (i1 - i0 + 1) * (j1 - j0 + 1) * (k1 - k0 + 1) <= 27:
+            nx = int(g[6])
+            ny = int(g[7])
+            for k in range(k0, k1 + 1):
+                for j in range(j0, j1 + 1):
+                    row = (k * ny + j) * nx
+                    for b in range(row + i0, row + i1 + 1):
+                        best, bd = _nearer(x, y, z, sites, start, sidx, b, best, bd)
+            return best, bd
+    ci, cj, ck = bucket3d(x, y, z, g)
+    rmax = max(int(g[6]), max(int(g[7]), int(g[8])))
     for r in range(rmax + 1):
-        for i in range(max(ci - r, 0), min(ci + r, dims[0] - 1) + 1):
-            ei = abs(i - ci) == r
-            for j in range(max(cj - r, 0), min(cj + r, dims[1] - 1) + 1):
-                ej = ei or abs(j - cj) == r
-                for k in range(max(ck - r, 0), min(ck + r, dims[2] - 1) + 1):
-                    if not (ej or abs(k - ck) == r):
-                        continue
-                    b = (i * dims[1] + j) * dims[2] + k
-                    for q in range(start[b], start[b + 1]):
-                        s = items[q]
-                        dx = sites[s, 0] - x
-                        dy = sites[s, 1] - y
-                        dz = sites[s, 2] - z
-                        dd = dx * dx + dy * dy + dz * dz
-                        if dd < bd or (dd == bd and s < best):
-                            bd = dd
-                            best = s
-        # a bucket of the next shell is at least r * h away (the point may sit anywhere in
-        # its own bucket, or outside the grid, which only makes the others farther)
-        if best >= 0 and bd <= (r * h) ** 2:
+        nb = _shell(ci, cj, ck, r, g, buf)
+        for u in range(nb):
+            best, bd = _nearer(x, y, z, sites, start, sidx, buf[u], best, bd)
+        gap = shell_gap(x, y, z, ci, cj, ck, r, g)
+        if best >= 0 and bd <= gap * gap:
             break
     return best, bd
 
 
 @njit(**NJIT)
-def _prepare(v, sites, h):
-    """The sites' grid over the box of mesh and sites, and each mesh vertex's nearest site."""
-    lo = np.zeros(3)
-    hi = np.zeros(3)
-    for d in range(3):
-        lo[d] = np.inf
-        hi[d] = -np.inf
-        for a in range(v.shape[0]):
-            lo[d] = min(lo[d], v[a, d])
-            hi[d] = max(hi[d], v[a, d])
-        for a in range(sites.shape[0]):
-            lo[d] = min(lo[d], sites[a, d])
-            hi[d] = max(hi[d], sites[a, d])
-    dims, start, items = site_grid(sites, lo, hi, h)
-    vnear = np.zeros(v.shape[0], np.int64)
-    vd = np.zeros(v.shape[0])
-    for a in range(v.shape[0]):
-        s, dd = nearest_site(v[a, 0], v[a, 1], v[a, 2], sites, lo, h, dims, start, items)
-        vnear[a] = s
-        vd[a] = np.sqrt(dd)
-    return lo, dims, start, items, vnear, vd
+def _nearer(x, y, z, sites, start, sidx, b, best, bd):
+    """``(best, bd)`` updated by the sites of bucket ``b`` (ties: the lower index)."""
+    for q in range(start[b], start[b + 1]):
+        s = sidx[q]
+        dd = (sites[s, 0] - x) ** 2 + (sites[s, 1] - y) ** 2 + (sites[s, 2] - z) ** 2
+        if dd < bd or (dd == bd and s < best):
+            bd = dd
+            best = s
+    return best, bd
 
 
 @njit(**NJIT)
-def _gather(gx, gy, gz, reach, sites, lo, h, dims, start, items, cand, cdist):
-    """Sites within ``reach`` of ``g``, nearest first, into ``cand``/``cdist`` (grown as needed).
+def _insert(cand, cdist, m, s, dd):
+    """Site ``s`` at squared distance ``dd`` into the list ``cand[:m]`` kept by (distance, index).
 
-    Returns the count and the (possibly new) arrays.
+    Writes slots ``0..m`` (the caller makes room).
     """
-    i0 = _cell(gx - reach, lo[0], h, dims[0])
-    i1 = _cell(gx + reach, lo[0], h, dims[0])
-    j0 = _cell(gy - reach, lo[1], h, dims[1])
-    j1 = _cell(gy + reach, lo[1], h, dims[1])
-    k0 = _cell(gz - reach, lo[2], h, dims[2])
-    k1 = _cell(gz + reach, lo[2], h, dims[2])
+    p = m
+    while p > 0 and (cdist[p - 1] > dd or (cdist[p - 1] == dd and cand[p - 1] > s)):
+        cand[p] = cand[p - 1]
+        cdist[p] = cdist[p - 1]
+        p -= 1
+    cand[p] = s
+    cdist[p] = dd
+
+
+@njit(**NJIT)
+def site_knn(sites, start, sidx, g, k):
+    """Each site's ``k`` nearest other sites, and a bound on the distance of all the others.
+
+    Returns ``nbr (n, k)`` (by distance, then index; -1 past the last when there are fewer)
+    and ``bound (n,)``: every site not listed for ``i`` is at least ``bound[i]`` from it
+    (the ``k + 1``-th distance, found by the same shell search and stop test as
+    :func:`nearest_site`; ``inf`` when every other site is listed).
+    """
+    n = sites.shape[0]
+    nbr = np.full((n, k), -1, np.int64)
+    bound = np.full(n, np.inf)
+    buf = np.zeros(int(g[6] * g[7] * g[8]), np.int64)  # any shell fits
+    cand = np.zeros(k + 2, np.int64)
+    cdist = np.zeros(k + 2)
+    rmax = max(int(g[6]), max(int(g[7]), int(g[8])))
+    for i in range(n):
+        x, y, z = sites[i, 0], sites[i, 1], sites[i, 2]
+        ci, cj, ck = bucket3d(x, y, z, g)
+        m = 0
+        for r in range(rmax + 1):
+            nb = _shell(ci, cj, ck, r, g, buf)
+            for u in range(nb):
+                b = buf[u]
+                for q in range(start[b], start[b + 1]):
+                    s = sidx[q]
+                    if s == i:
+                        continue
+                    dd = (sites[s, 0] - x) ** 2 + (sites[s, 1] - y) ** 2 + (sites[s, 2] - z) ** 2
+                    if m < k + 1:
+                        _insert(cand, cdist, m, s, dd)
+                        m += 1
+                    elif dd < cdist[k] or (dd == cdist[k] and s < cand[k]):
+                        _insert(cand, cdist, k, s, dd)
+            gap = shell_gap(x, y, z, ci, cj, ck, r, g)
+            if m == k + 1 and cdist[k] <= gap * gap:
+                break
+        for q in range(min(m, k)):
+            nbr[i, q] = cand[q]
+        if m == k + 1:
+            bound[i] = np.sqrt(cdist[k])
+    return nbr, bound
+
+
+@njit(**NJIT)
+def _shell(ci, cj, ck, r, g, buf):
+    """:func:`~voroforge.kernels.grid3d.shell_buckets` into ``buf``, which holds any shell."""
+    return shell_buckets(ci, cj, ck, r, g, buf)
+
+
+@njit(**NJIT)
+def _gather(gx, gy, gz, reach, sites, start, sidx, g, cand, cdist):
+    """Sites within ``reach`` of ``g``, nearest first, into ``cand``/``cdist``; their count.
+
+    The arrays hold a slot per site.
+    """
+    i0, j0, k0 = bucket3d(gx - reach, gy - reach, gz - reach, g)
+    i1, j1, k1 = bucket3d(gx + reach, gy + reach, gz + reach, g)
+    nx = int(g[6])
+    ny = int(g[7])
     m = 0
     r2 = reach * reach
-    for i in range(i0, i1 + 1):
+    for k in range(k0, k1 + 1):
         for j in range(j0, j1 + 1):
-            for k in range(k0, k1 + 1):
-                b = (i * dims[1] + j) * dims[2] + k
+            row = (k * ny + j) * nx
+            for b in range(row + i0, row + i1 + 1):
                 for q in range(start[b], start[b + 1]):
-                    s = items[q]
-                    dx = sites[s, 0] - gx
-                    dy = sites[s, 1] - gy
-                    dz = sites[s, 2] - gz
-                    dd = dx * dx + dy * dy + dz * dz
-                    if dd > r2:
-                        continue
-                    cand = _grow_i(cand, m)
-                    cdist = _grow_f(cdist, m)
-                    p = m
-                    while p > 0 and (cdist[p - 1] > dd or (cdist[p - 1] == dd and cand[p - 1] > s)):
-                        cand[p] = cand[p - 1]
-                        cdist[p] = cdist[p - 1]
-                        p -= 1
-                    cand[p] = s
-                    cdist[p] = dd
-                    m += 1
-    return m, cand, cdist
+                    s = sidx[q]
+                    dd = (sites[s, 0] - gx) ** 2 + (sites[s, 1] - gy) ** 2 + (sites[s, 2] - gz) ** 2
+                    if dd <= r2:
+                        _insert(cand, cdist, m, s, dd)
+                        m += 1
+    return m
+
+
+@njit(**NJIT)
+def _near_list(gx, gy, gz, reach, o, sites, nbr, bound, cand, cdist):
+    """:func:`_gather` from site ``o``'s neighbour list, or -1 when the list may miss one.
+
+    Every site within ``reach`` of ``g`` is within ``reach + |g - s_o|`` of ``s_o``: when that
+    is below ``bound[o]``, all of them are ``o`` or in ``o``'s list, and the result (the same
+    sites in the same order) is :func:`_gather`'s.
+    """
+    d0 = (sites[o, 0] - gx) ** 2 + (sites[o, 1] - gy) ** 2 + (sites[o, 2] - gz) ** 2
+    if not (reach + np.sqrt(d0)) * (1.0 + 1e-12) < bound[o]:
+        return -1
+    r2 = reach * reach
+    m = 0
+    if d0 <= r2:
+        _insert(cand, cdist, m, o, d0)
+        m += 1
+    for q in range(nbr.shape[1]):
+        s = nbr[o, q]
+        if s < 0:
+            break
+        dd = (sites[s, 0] - gx) ** 2 + (sites[s, 1] - gy) ** 2 + (sites[s, 2] - gz) ** 2
+        if dd <= r2:
+            _insert(cand, cdist, m, s, dd)
+            m += 1
+    return m
 
 
 @njit(**NJIT)
@@ -258,22 +358,30 @@ def _cut_by_others(q, cand, m_c, sites, frame, rx, ry, ro, sx, sy, so, ss):
 
 
 @njit(**NJIT)
-def rvd(v, f, sites, h, store):
+def rvd(v, f, tf, sites, start, sidx, g, hint, mode, knn):
     """Cut every triangle of mesh ``(v, f)`` into the restricted cells of ``sites``.
 
     Parameters
     ----------
     v : (V, 3) float64
     f : (F, 3) int64, triangles (any consistent orientation; degenerate ones are skipped)
+    tf : (F, FRAME_COLUMNS) float64, :func:`tri_frames` of the mesh
     sites : (n, 3) float64
-    h : float, bucket side of the site grid (about the sites' spacing)
-    store : bool, also return every piece's vertices (3D) and edge owners
+    start, sidx, g : the sites' bucket grid (:mod:`kernels.grid3d`'s layout, covering the
+        mesh and the sites; ``sidx`` the site numbers in bucket order)
+    hint : (V,) int64, a guess of each mesh vertex's nearest site (-1: none)
+    mode : 0 moments only, 1 also the pieces (cell, triangle, area), 2 also every piece's
+        vertices (3D) and edge owners
+    knn : int, length of each site's neighbour list (:func:`site_knn`): a triangle's
+        candidates come from a corner owner's list when it provably holds them all, else
+        from the grid (:func:`_gather`)
 
     Returns
     -------
     mass (n,), first (n, 3) (∫ x dA), energy (n,) (∫ |x - s|^2 dA), piece_cell (p,),
-    piece_tri (p,), piece_area (p,), offsets (p + 1,), coords (q, 3), codes (q,)
-    (the last two empty unless ``store``; see :func:`_store` for the codes).
+    piece_tri (p,), piece_area (p,), offsets (p + 1,), coords (q, 3), codes (q,) (see
+    :func:`_store` for the codes), vnear (V,) (each mesh vertex's nearest site: the next
+    call's hint).
 
     Candidates of a triangle: every site ``s`` with ``|s - c| <= R + U``, ``c`` the centroid,
     ``R`` the largest distance from it to a corner and ``U = min_a (r_a + l_a)`` a bound on the
@@ -281,22 +389,29 @@ def rvd(v, f, sites, h, store):
     distance, ``l_a`` its longer edge): no other site can own a point of the triangle.
     """
     n = sites.shape[0]
-    lo, dims, gstart, gitems, vnear, vd = _prepare(v, sites, h)
+    vnear = np.zeros(v.shape[0], np.int64)
+    vd = np.zeros(v.shape[0])
+    buf = np.zeros(int(g[6] * g[7] * g[8]), np.int64)  # any shell fits
+    for a in range(v.shape[0]):
+        s, dd = nearest_site(v[a, 0], v[a, 1], v[a, 2], sites, start, sidx, g, hint[a], buf)
+        vnear[a] = s
+        vd[a] = np.sqrt(dd)
+    nbr, bound = site_knn(sites, start, sidx, g, knn)
     mass = np.zeros(n)
     first = np.zeros((n, 3))
     energy = np.zeros(n)
-    cap = max(16, f.shape[0] + f.shape[0] // 2)
+    cap = max(16, f.shape[0] + f.shape[0] // 2) if mode > 0 else 1
     pc = np.zeros(cap, np.int64)
     pt = np.zeros(cap, np.int64)
     pa = np.zeros(cap)
     off = np.zeros(cap + 1, np.int64)
-    qcap = 4 * cap if store else 1
+    qcap = 4 * cap if mode > 1 else 1
     qxyz = np.zeros((qcap, 3))
     qown = np.zeros(qcap, np.int64)
     np_ = 0
     nq = 0
-    cand = np.zeros(64, np.int64)
-    cdist = np.zeros(64)
+    cand = np.zeros(n + 1, np.int64)
+    cdist = np.zeros(n + 1)
     rx = np.zeros(72)
     ry = np.zeros(72)
     ro = np.zeros(72, np.int64)
@@ -305,80 +420,76 @@ def rvd(v, f, sites, h, store):
     so = np.zeros(72, np.int64)
     ss = np.zeros(72)
     for t in range(f.shape[0]):
+        r = tf[t]
+        if r[_AREA] <= 0.0:
+            continue
         ia = f[t, 0]
         ib = f[t, 1]
         ic = f[t, 2]
         ax, ay, az = v[ia, 0], v[ia, 1], v[ia, 2]
-        abx, aby, abz = v[ib, 0] - ax, v[ib, 1] - ay, v[ib, 2] - az
-        acx, acy, acz = v[ic, 0] - ax, v[ic, 1] - ay, v[ic, 2] - az
-        nx = aby * acz - abz * acy
-        ny = abz * acx - abx * acz
-        nz = abx * acy - aby * acx
-        nn = np.sqrt(nx * nx + ny * ny + nz * nz)
-        lab = np.sqrt(abx * abx + aby * aby + abz * abz)
-        if nn == 0.0 or lab == 0.0:
+        frame = (ax, ay, az, r[0], r[1], r[2], r[3], r[4], r[5])
+        o = vnear[ia]
+        if o == vnear[ib] and o == vnear[ic]:
+            # a convex cell holds the triangle of its three corners whole
+            area = r[_AREA]
+            gx, gy, gz = r[13], r[14], r[15]
+            mass[o] += area
+            first[o, 0] += area * gx
+            first[o, 1] += area * gy
+            first[o, 2] += area * gz
+            dg = (gx - sites[o, 0]) ** 2 + (gy - sites[o, 1]) ** 2 + (gz - sites[o, 2]) ** 2
+            energy[o] += r[_J] + area * dg
+            if mode > 0:
+                if np_ + 1 >= pc.shape[0]:
+                    pc, pt, pa, off = _grow_pieces(pc, pt, pa, off)
+                pc[np_] = o
+                pt[np_] = t
+                pa[np_] = area
+                if mode > 1:
+                    rx[0], ry[0], ro[0] = 0.0, 0.0, -1
+                    rx[1], ry[1], ro[1] = r[_LAB], 0.0, -2
+                    rx[2], ry[2], ro[2] = r[_CX], r[_CY], -3
+                    if nq + 3 > qxyz.shape[0]:
+                        qxyz, qown = _room(qxyz, qown, nq + 3)
+                    nq = _store(qxyz, qown, nq, rx, ry, ro, 3, frame, r[_LAB], r[_CX], r[_CY])
+                np_ += 1
+                off[np_] = nq
             continue
-        nx /= nn
-        ny /= nn
-        nz /= nn
-        e1x, e1y, e1z = abx / lab, aby / lab, abz / lab
-        e2x = ny * e1z - nz * e1y
-        e2y = nz * e1x - nx * e1z
-        e2z = nx * e1y - ny * e1x
-        frame = (ax, ay, az, e1x, e1y, e1z, e2x, e2y, e2z)
-        # the triangle in its plane's frame
-        cxx = acx * e1x + acy * e1y + acz * e1z
-        cyy = acx * e2x + acy * e2y + acz * e2z
-        if vnear[ia] == vnear[ib] and vnear[ib] == vnear[ic]:
-            m_c = 1  # a convex cell holds the triangle of its three corners whole
-            cand[0] = vnear[ia]
-        else:
-            gx = ax + (abx + acx) / 3.0
-            gy = ay + (aby + acy) / 3.0
-            gz = az + (abz + acz) / 3.0
-            rad = 0.0
-            for k in range(3):
-                w = f[t, k]
-                rad = max(
-                    rad, np.sqrt((v[w, 0] - gx) ** 2 + (v[w, 1] - gy) ** 2 + (v[w, 2] - gz) ** 2)
-                )
-            lbc = np.sqrt(
-                (v[ic, 0] - v[ib, 0]) ** 2 + (v[ic, 1] - v[ib, 1]) ** 2 + (v[ic, 2] - v[ib, 2]) ** 2
+        reach = min(vd[ia] + r[_LC], min(vd[ib] + r[_LC + 1], vd[ic] + r[_LC + 2]))
+        reach = (reach + r[_RAD]) * (1.0 + 1e-12)
+        m_c = -1
+        for oc in range(3):
+            m_c = _near_list(
+                r[13], r[14], r[15], reach, vnear[f[t, oc]], sites, nbr, bound, cand, cdist
             )
-            lac = np.sqrt(acx * acx + acy * acy + acz * acz)
-            reach = min(vd[ia] + max(lab, lac), vd[ib] + max(lab, lbc), vd[ic] + max(lac, lbc))
-            reach = (reach + rad) * (1.0 + 1e-12)
-            m_c, cand, cdist = _gather(
-                gx, gy, gz, reach, sites, lo, h, dims, gstart, gitems, cand, cdist
-            )
-            m_c = _relevant(v, ia, ib, ic, vnear, sites, cand, m_c)
-            if m_c + 8 > rx.shape[0]:
-                rx = np.zeros(2 * m_c + 8)
-                ry = np.zeros(2 * m_c + 8)
-                ro = np.zeros(2 * m_c + 8, np.int64)
-                sx = np.zeros(2 * m_c + 8)
-                sy = np.zeros(2 * m_c + 8)
-                so = np.zeros(2 * m_c + 8, np.int64)
-                ss = np.zeros(2 * m_c + 8)
+            if m_c >= 0:
+                break
+        if m_c < 0:
+            m_c = _gather(r[13], r[14], r[15], reach, sites, start, sidx, g, cand, cdist)
+        m_c = _relevant(v, ia, ib, ic, vnear, sites, cand, m_c)
+        if m_c + 8 > rx.shape[0]:
+            rx = np.zeros(2 * m_c + 8)
+            ry = np.zeros(2 * m_c + 8)
+            ro = np.zeros(2 * m_c + 8, np.int64)
+            sx = np.zeros(2 * m_c + 8)
+            sy = np.zeros(2 * m_c + 8)
+            so = np.zeros(2 * m_c + 8, np.int64)
+            ss = np.zeros(2 * m_c + 8)
         for q in range(m_c):
             i = cand[q]
-            rx[0] = 0.0
-            ry[0] = 0.0
-            rx[1] = lab
-            ry[1] = 0.0
-            rx[2] = cxx
-            ry[2] = cyy
-            ro[0] = -1
-            ro[1] = -2
-            ro[2] = -3
-            m = _cut_by_others(q, cand, m_c, sites, frame, rx, ry, ro, sx, sy, so, ss)
+            rx[0], ry[0], ro[0] = 0.0, 0.0, -1
+            rx[1], ry[1], ro[1] = r[_LAB], 0.0, -2
+            rx[2], ry[2], ro[2] = r[_CX], r[_CY], -3
+            m = 3
+            if m_c > 1:
+                m = _cut_by_others(q, cand, m_c, sites, frame, rx, ry, ro, sx, sy, so, ss)
             if m < 3:
                 continue
             # area, centroid and ∫|x - s|^2 in the plane's frame (s projected, plus height^2)
             dsx, dsy, dsz = sites[i, 0] - ax, sites[i, 1] - ay, sites[i, 2] - az
-            ox = dsx * e1x + dsy * e1y + dsz * e1z
-            oy = dsx * e2x + dsy * e2y + dsz * e2z
-            hz = dsx * nx + dsy * ny + dsz * nz
+            ox = dsx * r[0] + dsy * r[1] + dsz * r[2]
+            oy = dsx * r[3] + dsy * r[4] + dsz * r[5]
+            hz = dsx * r[6] + dsy * r[7] + dsz * r[8]
             a2, mx, my, m2 = ring_sums(rx, ry, 0, m, ox, oy, False)
             area = 0.5 * a2
             if area <= 0.0:
@@ -386,23 +497,21 @@ def rvd(v, f, sites, h, store):
             cgx = ox + mx / 6.0 / area
             cgy = oy + my / 6.0 / area
             mass[i] += area
-            first[i, 0] += area * (ax + cgx * e1x + cgy * e2x)
-            first[i, 1] += area * (ay + cgx * e1y + cgy * e2y)
-            first[i, 2] += area * (az + cgx * e1z + cgy * e2z)
+            first[i, 0] += area * (ax + cgx * r[0] + cgy * r[3])
+            first[i, 1] += area * (ay + cgx * r[1] + cgy * r[4])
+            first[i, 2] += area * (az + cgx * r[2] + cgy * r[5])
             energy[i] += m2 / 12.0 + hz * hz * area
-            pc = _grow_i(pc, np_)
-            pt = _grow_i(pt, np_)
-            pa = _grow_f(pa, np_)
-            off = _grow_i(off, np_ + 1)
+            if mode == 0:
+                continue
+            if np_ + 1 >= pc.shape[0]:
+                pc, pt, pa, off = _grow_pieces(pc, pt, pa, off)
             pc[np_] = i
             pt[np_] = t
             pa[np_] = area
-            if store:
-                nq = _store(qxyz, qown, nq, rx, ry, ro, m, frame, lab, cxx, cyy)
-                if nq < 0:
-                    qxyz = _grow_xyz(qxyz)
-                    qown = _grow_i(qown, qown.shape[0])
-                    nq = _store(qxyz, qown, -nq - 1, rx, ry, ro, m, frame, lab, cxx, cyy)
+            if mode > 1:
+                if nq + m > qxyz.shape[0]:
+                    qxyz, qown = _room(qxyz, qown, nq + m)
+                nq = _store(qxyz, qown, nq, rx, ry, ro, m, frame, r[_LAB], r[_CX], r[_CY])
             np_ += 1
             off[np_] = nq
     return (
@@ -415,26 +524,40 @@ def rvd(v, f, sites, h, store):
         off[: np_ + 1].copy(),
         qxyz[:nq].copy(),
         qown[:nq].copy(),
+        vnear,
     )
 
 
 @njit(**NJIT)
-def _grow_xyz(a):
-    b = np.zeros((2 * a.shape[0] + 64, 3))
-    b[: a.shape[0]] = a
-    return b
+def _grow_pieces(pc, pt, pa, off):
+    """The piece arrays copied twice as long."""
+    return (
+        _grow_i(pc, pc.shape[0]),
+        _grow_i(pt, pt.shape[0]),
+        _grow_f(pa, pa.shape[0]),
+        _grow_i(off, off.shape[0]),
+    )
+
+
+@njit(**NJIT)
+def _room(qxyz, qown, need):
+    """The vertex arrays copied, with room for ``need`` vertices at least."""
+    size = 2 * need + 64
+    b = np.zeros((size, 3))
+    b[: qxyz.shape[0]] = qxyz
+    c = np.zeros(size, np.int64)
+    c[: qown.shape[0]] = qown
+    return b, c
 
 
 @njit(**NJIT)
 def _store(qxyz, qown, nq, rx, ry, ro, m, frame, lab, cxx, cyy):
-    """Append a piece's vertices (mapped back to 3D) and codes; ``-1 - nq`` when full.
+    """Append a piece's vertices (mapped back to 3D) and codes (room made by the caller).
 
     The code of vertex ``k`` is ``4 * owner + corner + 1``: the owner of the edge from it to the
     next vertex, and which triangle corner it is (exactly: a vertex on a cut line is kept
     unmoved), ``-1`` for a cut vertex.
     """
-    if nq + m > qxyz.shape[0] or nq + m > qown.shape[0]:
-        return -1 - nq
     ax, ay, az, e1x, e1y, e1z, e2x, e2y, e2z = frame
     for k in range(m):
         qxyz[nq + k, 0] = ax + rx[k] * e1x + ry[k] * e2x

@@ -93,7 +93,9 @@ class Surface:
     @property
     def area(self) -> float:
         """Total mesh area (exactly summed: ``math.fsum``)."""
-        return math.fsum(self.face_areas)
+        if "area" not in self._cache:
+            self._cache["area"] = math.fsum(self.face_areas)
+        return self._cache["area"]
 
     @property
     def scale(self) -> float:

@@ -29,13 +29,20 @@ from .shapes import Surface, _as3
 __all__ = ["SurfaceVoronoi", "voronoi"]
 
 
+def _box(S: Surface, sites: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The box of the mesh and the sites."""
+    if "box" not in S._cache:
+        S._cache["box"] = (S.vertices.min(axis=0), S.vertices.max(axis=0))
+    lo, hi = S._cache["box"]
+    return np.minimum(lo, sites.min(axis=0)), np.maximum(hi, sites.max(axis=0))
+
+
 def bucket_side(S: Surface, sites: np.ndarray) -> float:
     """Side of the sites' bucket grid: their mean spacing on the surface.
 
     Widened so the grid holds at most ``SURFACE_BUCKETS_PER_SITE`` buckets per site.
     """
-    lo = np.minimum(S.vertices.min(axis=0), sites.min(axis=0))
-    hi = np.maximum(S.vertices.max(axis=0), sites.max(axis=0))
+    lo, hi = _box(S, sites)
     ext = np.maximum(hi - lo, 1e-300)
     h = math.sqrt(S.area / len(sites))
     limit = config.SURFACE_BUCKETS_PER_SITE * len(sites) + 64
@@ -44,10 +51,36 @@ def bucket_side(S: Surface, sites: np.ndarray) -> float:
     return h
 
 
-def _run(S: Surface, sites: np.ndarray, store: bool):
-    from ..kernels.surface import rvd
+def _run(S: Surface, sites: np.ndarray, mode: int, hint: np.ndarray | None = None):
+    """:func:`voroforge.kernels.surface.rvd` of ``sites`` on ``S`` (``mode``: what to return).
 
-    return rvd(S.vertices, S.faces, sites, bucket_side(S, sites), store)
+    ``hint``: each mesh vertex's nearest site from a previous call (the last item returned),
+    the start of this call's nearest-site search.
+    """
+    from ..engine.build3d import bucket_sort3d
+    from ..kernels.surface import rvd, tri_frames
+
+    if "frames" not in S._cache:
+        S._cache["frames"] = tri_frames(S.vertices, S.faces)
+    h = bucket_side(S, sites)
+    lo, hi = _box(S, sites)
+    dims = np.floor(np.maximum(hi - lo, 0.0) / h) + 1
+    g = np.concatenate([lo, [h, h, h], dims])
+    start, _, sidx = bucket_sort3d(sites, g)
+    if hint is None or len(hint) != len(S.vertices) or (hint >= len(sites)).any():
+        hint = np.full(len(S.vertices), -1, np.int64)
+    return rvd(
+        S.vertices,
+        S.faces,
+        S._cache["frames"],
+        sites,
+        start,
+        sidx,
+        g,
+        hint,
+        mode,
+        config.SURFACE_KNN,
+    )
 
 
 @dataclass(eq=False)
@@ -340,7 +373,8 @@ class SurfaceVoronoi:
 
 
 def _result(S: Surface, sites: np.ndarray, history: list, store: bool = True) -> SurfaceVoronoi:
-    mass, first, energy, pc, pt, pa, off, xyz, own = _run(S, sites, store)
+    """The diagram of ``sites`` (with the piece vertices when ``store``)."""
+    mass, first, energy, pc, pt, pa, off, xyz, own, _ = _run(S, sites, 2 if store else 1)
     with np.errstate(invalid="ignore", divide="ignore"):
         cen = first / mass[:, None]
     cen[mass == 0] = np.nan
@@ -359,9 +393,10 @@ def _project_cells(S: Surface, points: np.ndarray, pc: np.ndarray, pt: np.ndarra
 
 
 def _lloyd(S: Surface, sites: np.ndarray, steps: int, history: list, progress) -> np.ndarray:
+    hint = None
     for k in range(steps):
-        mass, first, energy, pc, pt, pa, *_ = _run(S, sites, False)
-        history.append(math.fsum(energy))
+        mass, first, energy, pc, pt, pa, *_, hint = _run(S, sites, 1, hint)
+        history.append(float(energy.sum()))
         live = mass > 0
         cen = sites.copy()
         cen[live] = first[live] / mass[live, None]
@@ -376,40 +411,70 @@ def _lbfgs(S: Surface, sites: np.ndarray, steps: int, history: list, progress) -
 
     ``F(s) = sum_i ∫_{V_i} |x - s_i|^2 dA`` is C^2 where the diagram changes smoothly and its
     gradient is ``2 (m_i s_i - ∫_{V_i} x dA)``; a minimum has every site at its cell's centroid.
+    The two-loop recursion keeps the last ``SURFACE_LBFGS_MEMORY`` steps (scaled by the
+    newest pair's ``s.y / y.y``); the first step, and every step after a reset, uses the
+    diagonal ``1 / (2 m_i)`` instead (the energy's Hessian without the cells' coupling): a
+    Lloyd step. A backtracking (Armijo) line search tries the full step first, which is taken
+    nearly always: about one diagram per step. The nearest-site answers of each diagram start
+    the next one's search.
     """
-    from scipy.optimize import minimize
+    hint = None
 
-    n = len(sites)
-    scale = S.area / n  # energy per cell ~ area * spacing^2: keep F and its gradient near 1
-    length = math.sqrt(scale)
-    x0 = sites / length
-    state = {"k": 0}
+    def evaluate(s):
+        nonlocal hint
+        mass, first, energy, *_, hint = _run(S, s, 0, hint)
+        return float(energy.sum()), 2.0 * (mass[:, None] * s - first), mass
 
-    def f(x):
-        s = x.reshape(n, 3) * length
-        mass, first, energy, *_ = _run(S, s, False)
-        g = 2.0 * (mass[:, None] * s - first)
-        state["energy"] = math.fsum(energy)
-        return state["energy"] / (scale * length**2), (g / (scale * length)).ravel()
-
-    def step(xk):
-        state["k"] += 1
-        history.append(state["energy"])  # of the last evaluation: the accepted step's
+    x = np.array(sites, dtype=np.float64)
+    fx, g, mass = evaluate(x)
+    mem: list = []
+    for k in range(steps):
+        history.append(fx)
+        diag = 1.0 / (2.0 * np.maximum(mass, np.finfo(float).tiny))[:, None]
+        q = g.copy()
+        alphas = []
+        for sk, yk, rho in reversed(mem):
+            a = rho * np.vdot(sk, q)
+            alphas.append(a)
+            q -= a * yk
+        if mem:  # the usual scale of the newest pair
+            sk, yk, rho = mem[-1]
+            r = q / (rho * float(np.vdot(yk, yk)))
+        else:  # a Lloyd step
+            r = diag * q
+        for (sk, yk, rho), a in zip(mem, reversed(alphas), strict=True):
+            r += sk * (a - rho * np.vdot(yk, r))
+        p = -r
+        slope = float(np.vdot(g, p))
+        if not slope < 0.0:  # not a descent direction: forget and take a Lloyd step
+            mem.clear()
+            p = -diag * g
+            slope = float(np.vdot(g, p))
+            if not slope < 0.0:
+                break  # a stationary point
+        step = 1.0
+        for _ in range(config.SURFACE_LBFGS_BACKTRACK):
+            xn = x + step * p
+            fn, gn, mn = evaluate(xn)
+            if fn <= fx + 1e-4 * step * slope:
+                break
+            step *= 0.5
+        else:
+            mem.clear()  # no decrease along it: a Lloyd step, taken as it is
+            xn = x - diag * g
+            fn, gn, mn = evaluate(xn)
+        sk, yk = xn - x, gn - g
+        sy = float(np.vdot(sk, yk))
+        if sy > 1e-12 * float(np.linalg.norm(sk) * np.linalg.norm(yk)):
+            mem.append((sk, yk, 1.0 / sy))
+            if len(mem) > config.SURFACE_LBFGS_MEMORY:
+                mem.pop(0)
+        x, fx, g, mass = xn, fn, gn, mn
         if progress is not None:
-            progress(state["k"], steps)
-
-    res = minimize(
-        f,
-        x0.ravel(),
-        jac=True,
-        method="L-BFGS-B",
-        callback=step,
-        options={"maxiter": int(steps), "maxcor": 10, "gtol": 1e-12, "ftol": 1e-15},
-    )
-    out = res.x.reshape(n, 3) * length
-    # onto the surface, then one Lloyd step to settle the projection
-    mass, first, energy, pc, pt, *_ = _run(S, out, False)
-    return _project_cells(S, out, pc, pt)
+            progress(k + 1, steps)
+    # onto the surface: each site to the nearest point of the triangles its cell covers
+    _, _, _, pc, pt, *_ = _run(S, x, 1, hint)
+    return _project_cells(S, x, pc, pt)
 
 
 def voronoi(
