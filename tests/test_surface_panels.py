@@ -123,6 +123,12 @@ def test_planarize_reaches_the_tolerance_or_flags_and_flags_negative_curvature(s
     assert rep.surface_distance < 0.1  # near the surface
     # shared corners stay shared: the same vertex count
     assert len(out.vertices) == len(saddle_panels.vertices)
+    # border panels: their mesh-border runs left out, and no panel crosses itself or turns over
+    assert rep.dropped > 0 and len(rep.invalid) == 0
+    assert (
+        sum(len(r[0]) for r in out.rings)
+        == sum(len(r[0]) for r in saddle_panels.rings) - rep.dropped
+    )
     dome = surface.voronoi(surface.sphere_patch(2.0, polar=(0, 1.0)), 30, relax=10).panels()
     assert len(dome.planarize(0.001).report.negative_curvature) == 0
 
@@ -198,3 +204,30 @@ def test_solids_are_watertight_with_the_right_volume(sphere_panels):
     assert shell.is_volume
     # outward: a shell between r = 1 and 1.01
     assert np.hypot(shell.vertices[:, 0], shell.vertices[:, 1]).max() == pytest.approx(1.01)
+
+
+def test_outline_faults_find_bow_ties_and_turned_panels_and_planarize_warns():
+    from voroforge.surface.panels import PlanarizeWarning
+
+    square = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], float)
+    bow = square[[0, 1, 3, 2]]  # the same corners in crossing order
+    V = np.concatenate([square, bow + [3, 0, 0], square + [6, 0, 0]])
+    rings = [[np.arange(4)], [np.arange(4, 8)], [np.arange(8, 12)]]
+    P = surface.Panels(V, rings, np.array([10, 11, 12]))
+    crossed, flipped = P.outline_faults()
+    assert list(crossed) == [1] and len(flipped) == 0
+    # against normals that say the third should face down: turned over
+    ref = np.array([[0, 0, 1], [0, 0, 1], [0, 0, -1]], float)
+    crossed, flipped = P.outline_faults(ref)
+    assert list(crossed) == [1] and list(flipped) == [2]
+    # a hole outside its panel is no valid polygon either
+    holed = surface.Panels(
+        np.concatenate([square, square * 0.2 + [2, 2, 0]]),
+        [[np.arange(4), np.arange(4, 8)]],
+        np.array([5]),
+    )
+    assert list(holed.outline_faults()[0]) == [0]
+    with pytest.warns(PlanarizeWarning, match=r"panel ids \[11\]"):
+        out = P.planarize(1e-6)
+    assert list(out.report.self_intersecting) == [1] and not out.report.ok
+    assert list(out.report.invalid) == [1]

@@ -255,6 +255,10 @@ SURFACE_LBFGS_BACKTRACK = 8
 #: sites are taken when the list provably holds them all (else a grid query).
 SURFACE_KNN = 8
 
+#: Planarize: a vertex of one panel only (a mesh border's facets) where the outline turns by
+#: less than this many degrees is left out of the outline before planarising.
+SURFACE_STRAIGHT_DEG = 10.0
+
 # --- voronoi3d (3D cells, containers) -----------------------------------------------------------
 
 #: A cell vertex this close to a cutting plane (relative to |d| * cell radius + |offset|, the

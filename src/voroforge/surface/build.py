@@ -189,6 +189,10 @@ def build_surface(design, base, out: Path, stage, *, preview: bool = False) -> l
             "over negative Gaussian curvature (no convex planar hexagons there): "
             f"{len(rep.negative_curvature)}",
             f"largest distance from the surface: {rep.surface_distance:.3g}",
+            f"crossing themselves: {len(rep.self_intersecting)} "
+            f"{list(map(int, panels.ids[rep.self_intersecting]))}",
+            f"turned over: {len(rep.flipped)} {list(map(int, panels.ids[rep.flipped]))}",
+            f"border vertices left out of straight runs: {rep.dropped}",
         ]
         text.write_text("\n".join(lines) + "\n", encoding="utf-8")
         written.append(text)

@@ -18,7 +18,11 @@ from dataclasses import dataclass, field
 import numpy as np
 import shapely
 
-__all__ = ["Panels", "Planarity", "PlanarizeReport"]
+__all__ = ["Panels", "Planarity", "PlanarizeReport", "PlanarizeWarning"]
+
+
+class PlanarizeWarning(UserWarning):
+    """:meth:`Panels.planarize` left panels that cross themselves or turned over."""
 
 
 @dataclass(frozen=True)
@@ -52,6 +56,15 @@ class PlanarizeReport:
         there; a planar panel there is non-convex or stays bent).
     surface_distance : float
         The largest distance of a moved vertex from the surface.
+    self_intersecting : (k,) int
+        Panels (positions) whose outline, in its best-fit plane, crosses or touches itself
+        (a bow-tie), or whose holes leave it (not a valid polygon there).
+    flipped : (k,) int
+        Panels (positions) whose outline turned over: its orientation in the plane is the
+        reverse of the panel's before planarising.
+    dropped : int
+        Vertices of a single panel left out of its outline because they lay on a straight
+        run (a mesh border's facets, see :meth:`Panels.planarize`).
     """
 
     tolerance: float
@@ -60,11 +73,19 @@ class PlanarizeReport:
     not_planar: np.ndarray
     negative_curvature: np.ndarray
     surface_distance: float
+    self_intersecting: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
+    flipped: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
+    dropped: int = 0
 
     @property
     def ok(self) -> bool:
-        """True when every panel is planar to the tolerance."""
-        return len(self.not_planar) == 0
+        """True when every panel is planar to the tolerance, simple and not turned over."""
+        return not (len(self.not_planar) or len(self.self_intersecting) or len(self.flipped))
+
+    @property
+    def invalid(self) -> np.ndarray:
+        """Panels (positions) that are self-intersecting or flipped."""
+        return np.union1d(self.self_intersecting, self.flipped).astype(np.int64)
 
 
 def _fit_planes(P: np.ndarray):
@@ -260,24 +281,32 @@ class Panels:
             raise ValueError(f"planarize tolerance must be positive; got {tol!r}")
         if int(iterations) != iterations or iterations < 1:
             raise ValueError(f"iterations must be a positive integer; got {iterations!r}")
+        import warnings
+
+        from .. import config
+
         S = self.surface
         V = self.vertices.copy()
-        groups = list(self._groups().values())
-        holes = [p for p in range(len(self)) if len(self.rings[p]) > 1]
+        ref = self._vector_areas()
+        work, dropped = self._without_straight_runs(config.SURFACE_STRAIGHT_DEG)
+        groups = list(work._groups().values())
+        flat = [idx.ravel() for _, idx in groups]
+        cnt = np.bincount(np.concatenate(flat), minlength=len(V)).astype(float)
+        holes = [p for p in range(len(work)) if len(work.rings[p]) > 1]
         it = 0
         for it in range(1, int(iterations) + 1):
             acc = np.zeros_like(V)
-            cnt = np.zeros(len(V))
             worst = 0.0
-            for _, idx in groups:
+            for (_, idx), fl in zip(groups, flat, strict=True):
                 P = V[idx]
                 c, nrm = _fit_planes(P)
                 d = np.einsum("mkj,mj->mk", P - c[:, None, :], nrm)
                 worst = max(worst, float(np.abs(d).max()))
-                np.add.at(acc, idx, P - d[..., None] * nrm[:, None, :])
-                np.add.at(cnt, idx, 1.0)
+                proj = (P - d[..., None] * nrm[:, None, :]).reshape(-1, 3)
+                for j in range(3):
+                    acc[:, j] += np.bincount(fl, weights=proj[:, j], minlength=len(V))
             for p in holes:
-                idx = self._all_index(p)
+                idx = work._all_index(p)
                 c, nrm = _fit_planes(V[idx][None])
                 d = (V[idx] - c[0]) @ nrm[0]
                 worst = max(worst, float(np.abs(d).max()))
@@ -289,7 +318,7 @@ class Panels:
             w = surface_weight * max(0.0, 1.0 - 2.0 * it / iterations)
             if S is not None and w > 0 and it % 5 == 1:
                 V = V + w * (S.project(V) - V)
-        out = self._with(vertices=V)
+        out = work._with(vertices=V)
         plan = out.planarity()
         bad = np.flatnonzero(plan.absolute > tol)
         neg = np.zeros(0, np.int64)
@@ -299,8 +328,100 @@ class Panels:
             size = np.array([np.max(e) for e in (out.edge_lengths(p)[0] for p in range(len(out)))])
             neg = np.flatnonzero(k * size**2 < -1e-6)
             dist = float(np.linalg.norm(S.project(V) - V, axis=1).max())
-        out.report = PlanarizeReport(tol, it, plan, bad, neg, dist)
+        crossed, flipped = out.outline_faults(ref)
+        out.report = PlanarizeReport(tol, it, plan, bad, neg, dist, crossed, flipped, dropped)
+        if len(crossed) or len(flipped):
+            ids = list(map(int, out.ids[np.union1d(crossed, flipped)]))
+            warnings.warn(
+                f"planarize: {len(crossed)} panels cross themselves and {len(flipped)} turned "
+                f"over in their planes (panel ids {ids}); see report.self_intersecting and "
+                "report.flipped",
+                PlanarizeWarning,
+                stacklevel=2,
+            )
         return out
+
+    def _vector_areas(self) -> np.ndarray:
+        """(n, 3) each exterior's vector area (its normal times its area, for a planar one)."""
+        out = np.zeros((len(self), 3))
+        for p, rings in enumerate(self.rings):
+            P = self.vertices[rings[0]]
+            out[p] = 0.5 * np.cross(P, np.roll(P, -1, axis=0)).sum(axis=0)
+        return out
+
+    def _without_straight_runs(self, degrees: float) -> tuple[Panels, int]:
+        """The panels without their straight runs of unshared vertices, and how many went.
+
+        Left out: exterior vertices that only one panel uses where the outline turns by less
+        than ``degrees`` (a mesh border's facets). A run of such vertices is nearly
+        collinear: free to move, planarising makes it zigzag and the panel cross itself.
+        Panels with holes, and panels that would keep fewer than three vertices, stay whole.
+        """
+        V = self.vertices
+        used = np.bincount(
+            np.concatenate([np.concatenate(r) for r in self.rings]), minlength=len(V)
+        )
+        cos_max = np.cos(np.radians(degrees))
+        rings, dropped = [], 0
+        for panel in self.rings:
+            ext = np.asarray(panel[0])
+            if len(panel) > 1 or len(ext) < 4:
+                rings.append(panel)
+                continue
+            X = V[ext]
+            a = X - np.roll(X, 1, axis=0)
+            b = np.roll(X, -1, axis=0) - X
+            den = np.linalg.norm(a, axis=1) * np.linalg.norm(b, axis=1)
+            cos = np.einsum("ij,ij->i", a, b) / np.maximum(den, 1e-300)
+            drop = (used[ext] == 1) & (cos > cos_max) & (den > 0)
+            if (~drop).sum() < 3:
+                rings.append(panel)
+                continue
+            rings.append([ext[~drop]])
+            dropped += int(drop.sum())
+        if not dropped:
+            return self, 0
+        return self._with(rings=rings), dropped
+
+    def outline_faults(self, reference=None) -> tuple[np.ndarray, np.ndarray]:
+        """Panels whose outline is not a valid polygon in its best-fit plane, or turned over.
+
+        Parameters
+        ----------
+        reference : (n, 3) array_like, optional
+            Per panel the normal it should face (e.g. its vector area before a change); by
+            default the panel's own vector area, so nothing counts as turned over.
+
+        Returns
+        -------
+        self_intersecting : (k,) int
+            Panels (positions) whose rings, in the best-fit plane of all their vertices, do
+            not make a valid polygon (an outline crossing or touching itself, a hole outside).
+        flipped : (m,) int
+            Valid panels whose exterior winds against ``reference`` (signed area <= 0).
+        """
+        ref = self._vector_areas() if reference is None else np.asarray(reference, float)
+        crossed, flipped = [], []
+        for p, rings in enumerate(self.rings):
+            X = self.vertices[np.concatenate(rings)]
+            c = X.mean(axis=0)
+            _, _, wt = np.linalg.svd(X - c, full_matrices=False)
+            e1, nrm = wt[0], wt[2]
+            if nrm @ ref[p] < 0:
+                nrm = -nrm
+            e2 = np.cross(nrm, e1)
+            xy = [
+                np.stack([(self.vertices[r] - c) @ e1, (self.vertices[r] - c) @ e2], 1)
+                for r in rings
+            ]
+            poly = shapely.Polygon(xy[0], xy[1:]) if len(xy[0]) >= 3 else None
+            if poly is None or not poly.is_valid:
+                crossed.append(p)
+                continue
+            x, y = xy[0][:, 0], xy[0][:, 1]
+            if np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y) <= 0:
+                flipped.append(p)
+        return np.asarray(crossed, np.int64), np.asarray(flipped, np.int64)
 
     # --- openings ------------------------------------------------------------------------
 
