@@ -414,7 +414,11 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
     received = time.perf_counter()
     async with hub.lock:
         start = time.perf_counter()
-        reply: Reply = await asyncio.to_thread(session.apply, msg)
+        if isinstance(msg, dict) and msg.get("op") == "move" and session.incremental:
+            # a drag's step takes milliseconds: a hop to a worker thread would cost more
+            reply: Reply = session.apply(msg)
+        else:
+            reply = await asyncio.to_thread(session.apply, msg)
         server_ms = (time.perf_counter() - start) * 1e3
         if reply.kind == "update":
             hub.seq += 1

@@ -168,6 +168,8 @@ class Session:
 
         Returns None, keeping the previous violations, when ``stale()`` turns true first.
         """
+        if result is None:  # the current result, settled (a drag's cells made exact) first
+            self.settle()
         start = time.perf_counter()
         found = self.live.run(self.result if result is None else result, stale)
         if found is not None:
