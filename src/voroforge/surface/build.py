@@ -39,9 +39,59 @@ def surface_of(sec: SurfaceSection, base: Path | None = None):
         return shapes.saddle(sec.width, sec.depth, sec.rise, resolution=res)
     if sec.shape == "torus":
         return shapes.torus(sec.major, sec.minor, resolution=res)
+    if sec.shape == "parametric":
+        from .expr import parametric_map
+
+        return shapes.parametric(parametric_map(sec.x, sec.y, sec.z), resolution=res)
     from ..design.designfile import find_file
 
-    return shapes.mesh(find_file(base, sec.file, "surface.file"))
+    path = None if sec.file is None else find_file(base, sec.file, "surface.file")
+    if sec.shape == "heightfield":
+        w = sec.width
+        d = sec.depth if sec.depth is not None else w
+        z = np.asarray(sec.heights, float) if path is None else _height_samples(path, sec.rise)
+        return shapes.heightfield(z, (-w / 2, -d / 2, w / 2, d / 2))
+    return shapes.mesh(path)
+
+
+def _height_samples(path: Path, rise: float) -> np.ndarray:
+    """Height samples from a file: CSV/TXT or NPY in model units, an image's grey 0..1 * rise.
+
+    Row ``j`` of the result is at ``y = ymin + j dy``; an image's top row is its far edge
+    (``ymax``), as it looks from above.
+    """
+    from ..design.designfile import DesignError
+
+    ext = path.suffix.lower()
+    try:
+        if ext == ".npy":
+            z = np.load(path, allow_pickle=False)
+        elif ext in (".csv", ".txt"):
+            text = path.read_text(encoding="utf-8")
+            z = np.loadtxt(text.splitlines(), delimiter="," if "," in text else None, ndmin=2)
+        elif ext in (".png", ".jpg", ".jpeg", ".tif", ".tiff"):
+            from PIL import Image
+
+            with Image.open(path) as im:
+                grey = np.asarray(
+                    im.convert("I;16") if im.mode.startswith("I;16") else im.convert("L")
+                )
+            top = 65535.0 if grey.dtype == np.uint16 else 255.0
+            if not rise:
+                raise DesignError.at("surface.rise", "an image height field needs rise (its white)")
+            z = grey[::-1].astype(float) / top * rise
+        else:
+            raise DesignError.at(
+                "surface.file",
+                f"height samples must be .csv, .txt, .npy or an image; got {path.name}",
+            )
+    except (OSError, ValueError) as exc:
+        if isinstance(exc, DesignError):
+            raise
+        raise DesignError.at(
+            "surface.file", f"cannot read height samples from {path.name}: {exc}"
+        ) from None
+    return np.asarray(z, dtype=float)
 
 
 def surface_panels(design, base: Path | None = None, *, progress=None):

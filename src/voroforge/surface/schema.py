@@ -3,7 +3,9 @@
 Two modes: ``"morph"`` lays the 2D design (boundary, seeds, cells, openings) into the
 surface's UV square (Grasshopper's Surface Morph); ``"voronoi"`` grows the cells on the surface
 itself (restricted Voronoi, relaxed to a surface CVT: ``seeds.count`` cells, ``relax.iterations``
-steps, unless ``count``/``relax`` are given here).
+steps, unless ``count``/``relax`` are given here). Any surface of :mod:`voroforge.surface`:
+the analytic shapes, a height field (``heights`` inline or a ``file``), a parametric one
+(``x``, ``y``, ``z`` expressions in ``u, v``, see :mod:`voroforge.surface.expr`) or a mesh.
 """
 
 from __future__ import annotations
@@ -23,7 +25,9 @@ class SurfaceSection(BaseModel):
 
     model_config = ConfigDict(extra="forbid", frozen=True)
 
-    shape: Literal["cylinder", "sphere_patch", "sphere", "saddle", "torus", "mesh"]
+    shape: Literal[
+        "cylinder", "sphere_patch", "sphere", "saddle", "torus", "heightfield", "parametric", "mesh"
+    ]
     mode: Literal["morph", "voronoi"] = "morph"
     radius: Positive | None = None
     height: Positive | None = None
@@ -36,6 +40,10 @@ class SurfaceSection(BaseModel):
     azimuth: tuple[float, float] = (0.0, 360.0)  # degrees
     resolution: Annotated[int, Field(ge=3, le=2000)] | None = None
     file: str | None = None
+    heights: list[list[float]] | None = None
+    x: str | None = None
+    y: str | None = None
+    z: str | None = None
     what: Literal["panels", "cells", "openings", "frame"] = "panels"
     count: Annotated[int, Field(gt=0)] | None = None
     relax: Annotated[int, Field(ge=0, le=2000)] | None = None
@@ -61,11 +69,36 @@ class SurfaceSection(BaseModel):
             "sphere": ("radius",),
             "saddle": ("width",),
             "torus": ("major", "minor"),
+            "heightfield": ("width",),
+            "parametric": ("x", "y", "z"),
             "mesh": ("file",),
         }[self.shape]
         for name in need:
             if getattr(self, name) is None:
                 raise ValueError(f"@{name}@ shape = {self.shape!r} needs {name}")
+        if self.shape == "heightfield":
+            if (self.heights is None) == (self.file is None):
+                raise ValueError("@heights@ shape = 'heightfield' needs heights or file (one)")
+            if self.heights is not None:
+                rows = {len(r) for r in self.heights}
+                if len(self.heights) < 2 or len(rows) != 1 or min(rows) < 2:
+                    raise ValueError(
+                        "@heights@ heights must be rows of equal length, at least 2 x 2"
+                    )
+        elif self.heights is not None:
+            raise ValueError("@heights@ heights is for shape = 'heightfield'")
+        for name in ("x", "y", "z"):
+            text = getattr(self, name)
+            if text is None:
+                continue
+            if self.shape != "parametric":
+                raise ValueError(f"@{name}@ {name} is for shape = 'parametric'")
+            from .expr import compile_expression
+
+            try:
+                compile_expression(text)
+            except ValueError as exc:
+                raise ValueError(f"@{name}@ {exc}") from None
         if self.mode == "morph" and self.shape == "sphere":
             raise ValueError("@shape@ morph needs a UV map: use sphere_patch, not sphere")
         graded = (self.openings_near is None) + (self.openings_far is None)
