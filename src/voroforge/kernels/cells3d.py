@@ -20,6 +20,8 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT, VORONOI3D_CUT_RTOL, VORONOI3D_STOP_RTOL
+from .graph3d import GCUT_DONE, GCUT_EMPTY, from_rings, to_rings
+from .graph3d import cut as graph_cut
 from .grid3d import bucket3d, shell_buckets, shell_gap
 from .polyhedron import (
     CUT_DONE,
@@ -40,9 +42,14 @@ BROKEN = 3
 UNNAMED = 4
 
 MAX_OWNERS = 32
+#: small hot helpers are inlined into their callers (numba's own inliner): a call that
+#: passes arrays costs reference counting, and the search makes ~100 such calls per cell
+NJIT_INLINE = {**NJIT, "inline": "always"}
+#: most edges at one vertex of the vertex graph (more: the cell is built with face rings)
+GRAPH_DEGREE = 24
 
 
-@njit(**NJIT)
+@njit(**NJIT_INLINE)
 def _radius2(V, nv):
     r = 0.0
     for v in range(nv):
@@ -67,13 +74,41 @@ def _scratch(vcap, fcap, rcap, ncand, nbuck):
 
 
 @njit(**NJIT)
-def _cut_batch(
-    m, i, px, py, pz, wi, W, SP, sidx, cand, cd2, V, nv, F, nf, R, R2, S, work, T, nt, rmax2
-):
+def _graph_scratch(vcap):
+    """The vertex-graph arrays of :mod:`kernels.graph3d`: ``(DEG, ED, BK, LB, CP, seen)``."""
+    DEG = np.zeros(vcap, np.int64)
+    ED = np.zeros((vcap, GRAPH_DEGREE), np.int64)
+    BK = np.zeros((vcap, GRAPH_DEGREE), np.int64)
+    LB = np.zeros((vcap, GRAPH_DEGREE), np.int64)
+    CP = np.zeros((vcap, 3), np.int64)
+    seen = np.zeros((vcap, GRAPH_DEGREE), np.bool_)
+    return DEG, ED, BK, LB, CP, seen
+
+
+@njit(**NJIT_INLINE)
+def _values(V, nv, nx, ny, nz, h, tol, S):
+    """:func:`kernels.polyhedron.plane_values`, inlined here (it runs ~40 times per cell)."""
+    smax = -np.inf
+    for v in range(nv):
+        s = nx * V[v, 0] + ny * V[v, 1] + nz * V[v, 2] - h
+        if abs(s) <= tol:
+            s = 0.0
+        S[v] = s
+        if s > smax:
+            smax = s
+    return smax
+
+
+@njit(**NJIT)
+def _cut_batch(m, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2):
     """Cut the cell by the ``m`` gathered candidates, nearest first.
 
-    Returns ``(status, nv, nf, nt, rmax2)``.
+    ``C = (V, F, R, R2, S, work, T)`` holds the cell (face rings) and the planes that cut or
+    touched it; ``G`` its vertex graph when ``G[0]`` is non-empty (then the rings are read
+    off at the end). Returns ``(status, nv, nf, nt, rmax2)``.
     """
+    V, F, R, R2, S, work, T = C
+    graph = G[0].shape[0] > 0
     for a in range(1, m):  # insertion sort: batches are small
         ta = cand[a]
         da = cd2[a]
@@ -95,7 +130,7 @@ def _cut_batch(
         if h > 0.0 and h * h > rmax2 * d2 * (1.0 + VORONOI3D_STOP_RTOL):
             continue  # the plane passes beyond every vertex
         tol = VORONOI3D_CUT_RTOL * (np.sqrt(d2 * rmax2) + abs(h))
-        smin, smax = plane_values(V, nv, dx, dy, dz, h, tol, S)
+        smax = _values(V, nv, dx, dy, dz, h, tol, S)
         if smax == 0.0 or smax > 0.0:  # it cuts or touches: a possible owner of vertices
             if nt >= T.shape[0]:
                 return OVERFLOW, 0, 0, 0, 0.0
@@ -103,11 +138,19 @@ def _cut_batch(
             nt += 1
         if smax <= 0.0:
             continue
-        st, nv2, nf2 = cut(V, nv, F, nf, R, R2, S, work, j)
-        if st == CUT_EMPTY:
-            return EMPTY, 0, 0, 0, 0.0
-        if st != CUT_DONE:
-            return (OVERFLOW if st == CUT_OVERFLOW else BROKEN), 0, 0, 0, 0.0
+        if graph:
+            st, nv2 = graph_cut(V, nv, G[0], G[1], G[2], G[3], S, G[4], j)
+            if st == GCUT_EMPTY:
+                return EMPTY, 0, 0, 0, 0.0
+            if st != GCUT_DONE:
+                return BROKEN, 0, 0, 0, 0.0
+            nf2 = 0
+        else:
+            st, nv2, nf2 = cut(V, nv, F, nf, R, R2, S, work, j)
+            if st == CUT_EMPTY:
+                return EMPTY, 0, 0, 0, 0.0
+            if st != CUT_DONE:
+                return (OVERFLOW if st == CUT_OVERFLOW else BROKEN), 0, 0, 0, 0.0
         nv = nv2
         nf = nf2
         rmax2 = _radius2(V, nv)
@@ -115,13 +158,35 @@ def _cut_batch(
 
 
 @njit(**NJIT)
+def _gather(b, t, i, px, py, pz, start, SP, sidx, cand, cd2, m):
+    """Add the sites of bucket ``b`` from its ``t``-th on to the candidates, until full.
+
+    Returns ``(m, t)``: ``t < start[b + 1]`` when the candidate arrays filled up first.
+    """
+    ncap = cand.shape[0]
+    end = start[b + 1]
+    while t < end and m < ncap:
+        if sidx[t] != i:
+            dx = SP[t, 0] - px
+            dy = SP[t, 1] - py
+            dz = SP[t, 2] - pz
+            d2 = dx * dx + dy * dy + dz * dz
+            if d2 != 0.0:
+                cand[m] = t
+                cd2[m] = d2
+                m += 1
+        t += 1
+    return m, t
+
+
+@njit(**NJIT_INLINE)
 def _far(g2, wi, wmax, rmax2):
     """No site at squared distance >= ``g2`` can cut or touch a cell of squared radius ``rmax2``."""
     lhs = g2 + wi - wmax
     return lhs > 0.0 and lhs * lhs > 4.0 * g2 * rmax2 * (1.0 + VORONOI3D_STOP_RTOL)
 
 
-@njit(**NJIT)
+@njit(**NJIT_INLINE)
 def _axis_gap(p, origin, size, b, off):
     """Distance along one axis from coordinate ``p`` to bucket ``b`` (``off`` buckets away)."""
     if off > 0:
@@ -132,34 +197,14 @@ def _axis_gap(p, origin, size, b, off):
 
 
 @njit(**NJIT)
-def _one_cell(
-    i,
-    P,
-    W,
-    wmax,
-    start,
-    SP,
-    sidx,
-    g,
-    order,
-    TV,
-    TF,
-    TR,
-    WP,
-    ns,
-    V,
-    F,
-    R,
-    R2,
-    S,
-    work,
-    T,
-    OWN,
-    cand,
-    cd2,
-    buck,
-):
-    """Cut cell ``i``; leaves it in ``(V, F, R)``. Returns ``(status, nv, nf, nt, rmax2)``."""
+def _one_cell(i, P, W, wmax, start, SP, sidx, g, order, TV, TF, TR, TG, C, G, cand, cd2, buck):
+    """Cut cell ``i``; leaves it in ``C``'s ``(V, F, R)``. Returns ``(status, nv, nf, nt, rmax2)``.
+
+    With a vertex graph ``G`` (``G[0]`` non-empty) the cell starts from the template's graph
+    ``TG`` and is cut as a graph; its rings are read off at the end.
+    """
+    V, F, R, R2, S, work, T = C
+    graph = G[0].shape[0] > 0
     px = P[i, 0]
     py = P[i, 1]
     pz = P[i, 2]
@@ -172,19 +217,28 @@ def _one_cell(
         V[v, 0] = TV[v, 0] - px
         V[v, 1] = TV[v, 1] - py
         V[v, 2] = TV[v, 2] - pz
-    for f in range(ntf):
-        F[f, 0] = TF[f, 0]
-        F[f, 1] = TF[f, 1]
-        F[f, 2] = TF[f, 2]
-    for t in range(TR.shape[0]):
-        R[t] = TR[t]
+    if graph:
+        DEG, ED, BK, LB = G[0], G[1], G[2], G[3]
+        TDEG, TED, TBK, TLB = TG
+        for v in range(ntv):
+            d = TDEG[v]
+            DEG[v] = d
+            for k in range(d):
+                ED[v, k] = TED[v, k]
+                BK[v, k] = TBK[v, k]
+                LB[v, k] = TLB[v, k]
+    else:
+        for f in range(ntf):
+            F[f, 0] = TF[f, 0]
+            F[f, 1] = TF[f, 1]
+            F[f, 2] = TF[f, 2]
+        for t in range(TR.shape[0]):
+            R[t] = TR[t]
     nv = ntv
     nf = ntf
     nt = 0
-    # the container's walls: are any of its vertices on the site's side only by rounding?
     rmax2 = _radius2(V, nv)
     ci, cj, ck = bucket3d(px, py, pz, g)
-    ncap = cand.shape[0]
     st = OK
     # nearest buckets first, in the precomputed order of their least possible distance
     nx = int(g[6])
@@ -192,37 +246,17 @@ def _one_cell(
     nz = int(g[8])
     done = False
     m = 0
+    level = 0.0  # buckets of one least distance are gathered, then cut by, together
     for o in range(order.shape[0]):
-        if m > 0 and order[o, 3] > 0.0:
-            # the 27 buckets around the site are gathered: cut by them, nearest first
+        if m > 0 and order[o, 3] > level:
             st, nv, nf, nt, rmax2 = _cut_batch(
-                m,
-                i,
-                px,
-                py,
-                pz,
-                wi,
-                W,
-                SP,
-                sidx,
-                cand,
-                cd2,
-                V,
-                nv,
-                F,
-                nf,
-                R,
-                R2,
-                S,
-                work,
-                T,
-                nt,
-                rmax2,
+                m, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
             )
             if st != OK:
                 return st, 0, 0, 0, 0.0
             m = 0
-        if _far(order[o, 3], wi, wmax, rmax2):
+        level = order[o, 3]
+        if _far(level, wi, wmax, rmax2):
             done = True
             break
         ox = int(order[o, 0])
@@ -233,196 +267,64 @@ def _one_cell(
         bz = ck + oz
         if bx < 0 or by < 0 or bz < 0 or bx >= nx or by >= ny or bz >= nz:
             continue
-        if order[o, 3] > 0.0:
+        if level > 0.0:
             gx = _axis_gap(px, g[0], g[3], bx, ox)
             gy = _axis_gap(py, g[1], g[4], by, oy)
             gz = _axis_gap(pz, g[2], g[5], bz, oz)
             if _far(gx * gx + gy * gy + gz * gz, wi, wmax, rmax2):
                 continue
         b = (bz * ny + by) * nx + bx
-        for t in range(start[b], start[b + 1]):
-            j = sidx[t]
-            if j == i:
-                continue
-            dx = SP[t, 0] - px
-            dy = SP[t, 1] - py
-            dz = SP[t, 2] - pz
-            d2 = dx * dx + dy * dy + dz * dz
-            if d2 == 0.0:
-                continue
-            cand[m] = t
-            cd2[m] = d2
-            m += 1
-            if m == ncap:
-                st, nv, nf, nt, rmax2 = _cut_batch(
-                    m,
-                    i,
-                    px,
-                    py,
-                    pz,
-                    wi,
-                    W,
-                    SP,
-                    sidx,
-                    cand,
-                    cd2,
-                    V,
-                    nv,
-                    F,
-                    nf,
-                    R,
-                    R2,
-                    S,
-                    work,
-                    T,
-                    nt,
-                    rmax2,
-                )
-                if st != OK:
-                    return st, 0, 0, 0, 0.0
-                m = 0
-        if m > 0 and order[o, 3] > 0.0:
-            st, nv, nf, nt, rmax2 = _cut_batch(
-                m,
-                i,
-                px,
-                py,
-                pz,
-                wi,
-                W,
-                SP,
-                sidx,
-                cand,
-                cd2,
-                V,
-                nv,
-                F,
-                nf,
-                R,
-                R2,
-                S,
-                work,
-                T,
-                nt,
-                rmax2,
+        t = start[b]
+        while True:
+            m, t = _gather(b, t, i, px, py, pz, start, SP, sidx, cand, cd2, m)
+            if t == start[b + 1]:
+                break
+            st, nv, nf, nt, rmax2 = _cut_batch(  # a crowded neighbourhood: cut, go on
+                m, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
             )
             if st != OK:
                 return st, 0, 0, 0, 0.0
             m = 0
     if m > 0:
         st, nv, nf, nt, rmax2 = _cut_batch(
-            m,
-            i,
-            px,
-            py,
-            pz,
-            wi,
-            W,
-            SP,
-            sidx,
-            cand,
-            cd2,
-            V,
-            nv,
-            F,
-            nf,
-            R,
-            R2,
-            S,
-            work,
-            T,
-            nt,
-            rmax2,
+            m, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
         )
         if st != OK:
             return st, 0, 0, 0, 0.0
-    if done:
-        return OK, nv, nf, nt, rmax2
-    reach = int(order[order.shape[0] - 1, 4]) if order.shape[0] else -1
-    if reach >= 0 and shell_gap(px, py, pz, ci, cj, ck, reach, g) == np.inf:
-        return OK, nv, nf, nt, rmax2
-    r = reach + 1
-    while True:
+        m = 0
+    # beyond the ordered buckets: shell by shell while a site outside can still reach
+    r = int(order[order.shape[0] - 1, 4]) if order.shape[0] else -1
+    while not done:
+        gap = shell_gap(px, py, pz, ci, cj, ck, r, g) if r >= 0 else 0.0
+        if gap == np.inf or (r >= 0 and _far(gap * gap, wi, wmax, rmax2)):
+            break
+        r += 1
         nb = shell_buckets(ci, cj, ck, r, g, buck)
         if nb == 0:
             break
-        m = 0
         for q in range(nb):
             b = buck[q]
-            for t in range(start[b], start[b + 1]):
-                j = sidx[t]
-                if j == i:
-                    continue
-                dx = SP[t, 0] - px
-                dy = SP[t, 1] - py
-                dz = SP[t, 2] - pz
-                d2 = dx * dx + dy * dy + dz * dz
-                if d2 == 0.0:
-                    continue
-                cand[m] = t
-                cd2[m] = d2
-                m += 1
-                if m == ncap:  # a crowded shell: cut by what is gathered, then go on
-                    st, nv, nf, nt, rmax2 = _cut_batch(
-                        m,
-                        i,
-                        px,
-                        py,
-                        pz,
-                        wi,
-                        W,
-                        SP,
-                        sidx,
-                        cand,
-                        cd2,
-                        V,
-                        nv,
-                        F,
-                        nf,
-                        R,
-                        R2,
-                        S,
-                        work,
-                        T,
-                        nt,
-                        rmax2,
-                    )
-                    if st != OK:
-                        return st, 0, 0, 0, 0.0
-                    m = 0
+            t = start[b]
+            while True:
+                m, t = _gather(b, t, i, px, py, pz, start, SP, sidx, cand, cd2, m)
+                if t == start[b + 1]:
+                    break
+                st, nv, nf, nt, rmax2 = _cut_batch(  # a crowded shell: cut, go on
+                    m, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
+                )
+                if st != OK:
+                    return st, 0, 0, 0, 0.0
+                m = 0
         st, nv, nf, nt, rmax2 = _cut_batch(
-            m,
-            i,
-            px,
-            py,
-            pz,
-            wi,
-            W,
-            SP,
-            sidx,
-            cand,
-            cd2,
-            V,
-            nv,
-            F,
-            nf,
-            R,
-            R2,
-            S,
-            work,
-            T,
-            nt,
-            rmax2,
+            m, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
         )
         if st != OK:
             return st, 0, 0, 0, 0.0
-        gap = shell_gap(px, py, pz, ci, cj, ck, r, g)
-        if gap == np.inf:
-            break
-        lhs = gap * gap + wi - wmax
-        if lhs > 0.0 and lhs * lhs > 4.0 * gap * gap * rmax2 * (1.0 + VORONOI3D_STOP_RTOL):
-            break
-        r += 1
+        m = 0
+    if graph:
+        nf = to_rings(nv, G[0], G[1], G[2], G[3], F, R, G[5])
+        if nf < 0:
+            return BROKEN, 0, 0, 0, 0.0
     return OK, nv, nf, nt, rmax2
 
 
@@ -642,35 +544,39 @@ def build_cells(
         name = np.zeros(4, np.int64)
         x = np.zeros(3)
         keys = np.zeros(OWN.shape[1], np.int64)
+        C = (V, F, R, R2, S, work, T)
+        G = _graph_scratch(caps[3])
+        G0 = _graph_scratch(0)  # no graph: face rings
+        TDEG, TED, TBK, TLB, _, _ = _graph_scratch(max(TV.shape[0], 1))
+        if not from_rings(TV.shape[0], TF, TF.shape[0], TR, TDEG, TED, TBK, TLB):
+            G = G0
+        TG = (TDEG, TED, TBK, TLB)
         for c in range(lo, hi):
             i = cells[c]
             st, nv, nf, nt, r2 = _one_cell(
-                i,
-                P,
-                W,
-                wmax,
-                start,
-                SP,
-                sidx,
-                g,
-                order,
-                TV,
-                TF,
-                TR,
-                WP,
-                ns,
-                V,
-                F,
-                R,
-                R2,
-                S,
-                work,
-                T,
-                OWN,
-                cand,
-                cd2,
-                buck,
+                i, P, W, wmax, start, SP, sidx, g, order, TV, TF, TR, TG, C, G, cand, cd2, buck
             )
+            if st == BROKEN and G[0].shape[0] > 0:  # the graph could not: face rings
+                st, nv, nf, nt, r2 = _one_cell(
+                    i,
+                    P,
+                    W,
+                    wmax,
+                    start,
+                    SP,
+                    sidx,
+                    g,
+                    order,
+                    TV,
+                    TF,
+                    TR,
+                    TG,
+                    C,
+                    G0,
+                    cand,
+                    cd2,
+                    buck,
+                )
             counts[c, 0] = 0
             counts[c, 1] = 0
             counts[c, 2] = 0

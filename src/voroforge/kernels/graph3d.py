@@ -1,0 +1,387 @@
+"""The convex cut on a cell held as a vertex graph (voro++'s layout): cost of the cut part only.
+
+:mod:`kernels.polyhedron` rebuilds every face ring on each cut; the cell builder cuts a
+cell ~15 times, mostly near its end when each plane takes off one corner, so it keeps the
+cell here instead and cuts it in time proportional to what the plane removes. The rule is
+the same (signed values ``S`` per vertex, those within the caller's tolerance snapped to 0;
+``s <= 0`` kept unmoved, a crossing edge gets one vertex interpolated from the endpoint
+nearer the plane, the new face labelled by the caller) and so are the results; the face
+rings are read off at the end (:func:`to_rings`).
+
+Layout, for vertices ``0:nv`` (coordinates ``V (cap, 3)``, kept by the caller):
+
+``DEG (cap,)``
+    the vertex's degree;
+``ED (cap, D)``
+    its neighbours, counter-clockwise seen from outside the cell;
+``BK (cap, D)``
+    back pointers: ``ED[ED[v, k], BK[v, k]] == v``;
+``LB (cap, D)``
+    the label of the face whose outward (counter-clockwise) ring has the edge
+    ``v -> ED[v, k]``.
+
+Walking a face: after the edge ``v -> u`` (``u = ED[v, k]``, ``j = BK[v, k]``) comes
+``u -> ED[u, j - 1]`` (indices modulo the degree).
+
+Anything the cut cannot do simply (a degree above ``D``, a cap that is not one simple ring,
+as rounding on nearly degenerate input can make) is reported as ``GCUT_BROKEN``; the cell
+builder then builds that cell again with :func:`kernels.polyhedron.cut`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ..config import NJIT
+
+GCUT_NONE = 0
+GCUT_DONE = 1
+GCUT_EMPTY = 2
+GCUT_BROKEN = 3  # also: out of room; the caller falls back to the face-ring cut
+
+
+@njit(**NJIT)
+def from_rings(nv, F, nf, R, DEG, ED, BK, LB):
+    """Build the graph of polyhedron ``(nv, F, nf, R)`` (outward rings). Returns ok."""
+    D = ED.shape[1]
+    for v in range(nv):
+        DEG[v] = 0
+    # out-edges per vertex in any order, with the predecessor of v in that face
+    for f in range(nf):
+        st = F[f, 1]
+        ln = F[f, 2]
+        for k in range(ln):
+            v = R[st + k]
+            d = DEG[v]
+            if d >= D:
+                return False
+            ED[v, d] = R[st + (k + 1) % ln]
+            LB[v, d] = F[f, 0]
+            BK[v, d] = R[st + (k - 1 + ln) % ln]  # the predecessor, for the order below
+            DEG[v] = d + 1
+    # counter-clockwise order: the out-edge v -> a of face f (predecessor p) comes right
+    # before the out-edge v -> p
+    tmp_e = np.zeros(D, np.int64)
+    tmp_l = np.zeros(D, np.int64)
+    for v in range(nv):
+        d = DEG[v]
+        if d < 3:
+            return False
+        k = 0
+        for q in range(d):
+            tmp_e[q] = ED[v, k]
+            tmp_l[q] = LB[v, k]
+            p = BK[v, k]
+            nxt = -1
+            for r in range(d):
+                if ED[v, r] == p:
+                    nxt = r
+                    break
+            if nxt < 0:
+                return False
+            k = nxt
+        if k != 0:
+            return False
+        for q in range(d):
+            ED[v, q] = tmp_e[q]
+            LB[v, q] = tmp_l[q]
+    for v in range(nv):
+        for k in range(DEG[v]):
+            u = ED[v, k]
+            b = -1
+            for r in range(DEG[u]):
+                if ED[u, r] == v:
+                    b = r
+                    break
+            if b < 0:
+                return False
+            BK[v, k] = b
+    return True
+
+
+@njit(**{**NJIT, "inline": "always"})
+def _move(V, DEG, ED, BK, LB, a, b):
+    """Move vertex ``a`` to slot ``b`` (free), repointing its neighbours."""
+    V[b, 0] = V[a, 0]
+    V[b, 1] = V[a, 1]
+    V[b, 2] = V[a, 2]
+    d = DEG[a]
+    DEG[b] = d
+    for k in range(d):
+        u = ED[a, k]
+        ED[b, k] = u
+        BK[b, k] = BK[a, k]
+        LB[b, k] = LB[a, k]
+        ED[u, BK[a, k]] = b
+
+
+@njit(**NJIT)
+def cut(V, nv, DEG, ED, BK, LB, S, CP, label):
+    """Cut the cell by the plane whose values are ``S[:nv]``; keep ``s <= 0``.
+
+    ``CP (cap, 4) int64`` is scratch (the cap's ring). Returns ``(status, nv)``.
+    """
+    vcap = V.shape[0]
+    D = ED.shape[1]
+    ncap = CP.shape[0]
+    up = -1
+    down = False
+    for v in range(nv):
+        if S[v] > 0.0:
+            up = v
+        elif S[v] < 0.0:
+            down = True
+    if up < 0:
+        return GCUT_NONE, nv
+    if not down:
+        return GCUT_EMPTY, 0
+    # the boundary edges v -> u (v removed, u kept): one to start from, and their count
+    e0v = -1
+    e0k = -1
+    nbound = 0
+    for v in range(nv):
+        if S[v] > 0.0:
+            for k in range(DEG[v]):
+                if S[ED[v, k]] <= 0.0:
+                    if e0v < 0:
+                        e0v = v
+                        e0k = k
+                    nbound += 1
+    # trace the cap: CP[m] = (boundary vertex v, its index k, point, -)
+    m = 0
+    v = e0v
+    k = e0k
+    nb = 0
+    while True:
+        if m >= ncap:
+            return GCUT_BROKEN, nv
+        CP[m, 0] = v
+        CP[m, 1] = k
+        m += 1
+        # walk the face of v -> ED[v, k] backwards through removed vertices to its entry
+        # edge a -> b (a kept); the next boundary edge is b -> a
+        a = ED[v, (k + 1) % DEG[v]]
+        b = v
+        j = BK[v, (k + 1) % DEG[v]]  # index of b in a's list
+        steps = 0
+        while S[a] > 0.0:
+            # previous vertex before a in this face: ED[a, j + 1]
+            jj = (j + 1) % DEG[a]
+            na = ED[a, jj]
+            j = BK[a, jj]
+            b = a
+            a = na
+            steps += 1
+            if steps > nv:
+                return GCUT_BROKEN, nv
+        v = b
+        k = BK[a, j]  # ED[b, k] == a
+        nb += 1
+        if v == e0v and k == e0k:
+            break
+        if nb > nbound:
+            return GCUT_BROKEN, nv
+    if m != nbound:  # the cap is not one ring
+        return GCUT_BROKEN, nv
+    # cap points: a new vertex on each edge to a vertex below, the vertex itself if on
+    nv0 = nv
+    for q in range(m):
+        v = CP[q, 0]
+        k = CP[q, 1]
+        u = ED[v, k]
+        if S[u] == 0.0:
+            CP[q, 2] = u
+        else:
+            if nv >= vcap:
+                return GCUT_BROKEN, nv
+            x = nv
+            nv += 1
+            sv = S[v]
+            su = S[u]
+            a = u
+            b = v
+            sa = su
+            sb = sv
+            if abs(sa) > abs(sb):  # from the endpoint nearer the plane
+                a = v
+                b = u
+                sa = sv
+                sb = su
+            t = sa / (sa - sb)
+            V[x, 0] = V[a, 0] + t * (V[b, 0] - V[a, 0])
+            V[x, 1] = V[a, 1] + t * (V[b, 1] - V[a, 1])
+            V[x, 2] = V[a, 2] + t * (V[b, 2] - V[a, 2])
+            S[x] = 0.0
+            CP[q, 2] = x
+    # collapse repeats of an on-plane vertex (consecutive, cyclically)
+    w = 0
+    for q in range(m):
+        if w > 0 and CP[w - 1, 2] == CP[q, 2]:
+            continue
+        if w != q:
+            CP[w, 0] = CP[q, 0]
+            CP[w, 1] = CP[q, 1]
+            CP[w, 2] = CP[q, 2]
+        w += 1
+    while w > 1 and CP[w - 1, 2] == CP[0, 2]:
+        w -= 1
+    if w < 3:
+        return GCUT_BROKEN, nv0
+    # an on-plane vertex must appear once
+    for q in range(w):
+        c = CP[q, 2]
+        if c < nv0:
+            for r in range(q + 1, w):
+                if CP[r, 2] == c:
+                    return GCUT_BROKEN, nv0
+    # rewire. Per point q (prev p = q - 1, next n = q + 1) its list gets ... A, next, prev, B
+    # where the removed run lay; new vertices get [prev, u, next].
+    for q in range(w):
+        c = CP[q, 2]
+        cprev = CP[(q - 1 + w) % w, 2]
+        cnext = CP[(q + 1) % w, 2]
+        if c >= nv0:
+            v = CP[q, 0]
+            k = CP[q, 1]
+            u = ED[v, k]
+            j = BK[v, k]
+            DEG[c] = 3
+            ED[c, 0] = cprev
+            ED[c, 1] = u
+            ED[c, 2] = cnext
+            LB[c, 0] = LB[u, j]
+            LB[c, 1] = LB[v, k]
+            LB[c, 2] = label
+            ED[u, j] = c
+            BK[u, j] = 1
+            BK[c, 1] = j
+        else:
+            u = c
+            d = DEG[u]
+            # the removed run in u's list: find a kept neighbour, then the run after it
+            s0 = -1
+            for r in range(d):
+                if S[ED[u, r]] <= 0.0 and S[ED[u, (r + 1) % d]] > 0.0:
+                    if s0 >= 0:
+                        return GCUT_BROKEN, nv0  # two runs
+                    s0 = r
+            if s0 < 0:
+                return GCUT_BROKEN, nv0
+            # run is s0 + 1 .. s0 + t
+            t = 0
+            while S[ED[u, (s0 + 1 + t) % d]] > 0.0:
+                t += 1
+            A = ED[u, s0]
+            B = ED[u, (s0 + t + 1) % d]
+            lab_t = LB[u, (s0 + t) % d]  # face of u -> r_t: continues as u -> prev
+            # the new list, built in the free row nv: the kept entries from B round to A,
+            # then next and prev (each left out where it is A or B already)
+            nk = 0
+            kept = d - t
+            if kept + 2 > D:
+                return GCUT_BROKEN, nv0
+            if nv >= vcap:
+                return GCUT_BROKEN, nv0
+            tmp = nv
+            for r in range(kept):
+                src = (s0 + t + 1 + r) % d  # B first, A last
+                ED[tmp, nk] = ED[u, src]
+                LB[tmp, nk] = LB[u, src]
+                BK[tmp, nk] = BK[u, src]
+                nk += 1
+            # now after A (last written) come next then prev
+            if cnext == A:
+                LB[tmp, nk - 1] = label
+            else:
+                ED[tmp, nk] = cnext
+                LB[tmp, nk] = label
+                nk += 1
+            if cprev != B:
+                ED[tmp, nk] = cprev
+                LB[tmp, nk] = lab_t
+                nk += 1
+            if nk < 3:
+                return GCUT_BROKEN, nv0
+            for r in range(nk):
+                ED[u, r] = ED[tmp, r]
+                LB[u, r] = LB[tmp, r]
+                BK[u, r] = BK[tmp, r]
+            DEG[u] = nk
+            for r in range(kept):  # kept neighbours point back at their new index
+                BK[ED[u, r], BK[u, r]] = r
+    # back pointers along the cap (and duplicate-edge check)
+    for q in range(w):
+        c = CP[q, 2]
+        cn = CP[(q + 1) % w, 2]
+        a = -1
+        for r in range(DEG[c]):
+            if ED[c, r] == cn:
+                if a >= 0:
+                    return GCUT_BROKEN, nv0
+                a = r
+        b = -1
+        for r in range(DEG[cn]):
+            if ED[cn, r] == c:
+                if b >= 0:
+                    return GCUT_BROKEN, nv0
+                b = r
+        if a < 0 or b < 0:
+            return GCUT_BROKEN, nv0
+        BK[c, a] = b
+        BK[cn, b] = a
+    # drop the removed vertices: fill holes from the top
+    top = nv
+    v = 0
+    while v < top:
+        if S[v] > 0.0:
+            top -= 1
+            while top > v and S[top] > 0.0:
+                top -= 1
+            if top > v:
+                _move(V, DEG, ED, BK, LB, top, v)
+                S[v] = S[top]
+        v += 1
+    return GCUT_DONE, top
+
+
+@njit(**NJIT)
+def to_rings(nv, DEG, ED, BK, LB, F, R, seen):
+    """Face rings ``(F, R)`` of the graph (layout of :mod:`kernels.polyhedron`).
+
+    ``seen (cap, D) bool`` is scratch. Returns ``nf``, or -1 when ``F`` or ``R`` is too small.
+    """
+    fcap = F.shape[0]
+    rcap = R.shape[0]
+    for v in range(nv):
+        for k in range(DEG[v]):
+            seen[v, k] = False
+    nf = 0
+    nr = 0
+    for v0 in range(nv):
+        for k0 in range(DEG[v0]):
+            if seen[v0, k0]:
+                continue
+            if nf >= fcap:
+                return -1
+            F[nf, 0] = LB[v0, k0]
+            F[nf, 1] = nr
+            v = v0
+            k = k0
+            while True:
+                if nr >= rcap:
+                    return -1
+                seen[v, k] = True
+                R[nr] = v
+                nr += 1
+                u = ED[v, k]
+                j = BK[v, k]
+                k = (j - 1 + DEG[u]) % DEG[u]
+                v = u
+                if v == v0 and k == k0:
+                    break
+                if seen[v, k]:
+                    return -1
+            F[nf, 2] = nr - F[nf, 1]
+            nf += 1
+    return nf
