@@ -32,10 +32,11 @@ from ..design.compute import Result
 
 __all__ = ["eligible", "move"]
 
-#: Window radius at the first try, in typical site spacings (sqrt(area / n)) beyond the move.
+#: Window radius when the old cells give none, in site spacings (sqrt(area / n)) past the move.
 START_SPACINGS = 4.0
-#: Tries (the radius doubles each time) before the caller falls back to a full compute.
-TRIES = 3
+#: Tries (the radius grows by GROWTH each time) before the caller recomputes everything.
+TRIES = 4
+GROWTH = 1.5
 
 
 def eligible(result: Result) -> bool:
@@ -81,6 +82,27 @@ def _overlap(boxes: np.ndarray, box) -> np.ndarray:
     )
 
 
+def _first_radius(result: Result, boxes, i: int, a, b, c) -> float | None:
+    """A window radius that certifies the old cells near the move (the new ones are alike).
+
+    The cells whose old box meets the moved cell's box (grown to the new position) are the
+    ones the window must certify; their old vertices give the radius they would need.
+    """
+    box = boxes[i]
+    if not np.isfinite(box).all():
+        return None
+    region = (min(box[0], b[0]), min(box[1], b[1]), max(box[2], b[0]), max(box[3], b[1]))
+    near = np.flatnonzero(_overlap(boxes, region))
+    coords, owner = shapely.get_coordinates(result.raw[near], return_index=True)
+    if not len(coords):
+        return None
+    own = result.sites[near][owner]
+    score = np.hypot(coords[:, 0] - c[0], coords[:, 1] - c[1]) + np.hypot(
+        coords[:, 0] - own[:, 0], coords[:, 1] - own[:, 1]
+    )
+    return 1.25 * float(score.max()) + 0.5 * float(np.hypot(*(b - a)))
+
+
 def _same(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Elementwise: the same point set and rings (any first vertex, any part order)."""
     return shapely.to_wkb(shapely.normalize(a)) == shapely.to_wkb(shapely.normalize(b))
@@ -117,8 +139,10 @@ def move(result: Result, i: int, xy, field_fn=None) -> tuple[Result, np.ndarray]
     domain = result.domain
     c = 0.5 * (a + b)
     spacing = float(np.sqrt(domain.area / max(n, 1)))
-    radius = 0.5 * float(np.hypot(*(b - a))) + START_SPACINGS * spacing
     old_boxes = _bounds(result)
+    radius = _first_radius(result, old_boxes, i, a, b, c) or (
+        0.5 * float(np.hypot(*(b - a))) + START_SPACINGS * spacing
+    )
     dist = np.hypot(sites[:, 0] - c[0], sites[:, 1] - c[1])
     for _ in range(TRIES):
         window = np.flatnonzero(dist <= radius)
@@ -155,7 +179,7 @@ def move(result: Result, i: int, xy, field_fn=None) -> tuple[Result, np.ndarray]
             )
             if (pos[need] >= 0).all() and certified[pos[need]].all():
                 break
-        radius *= 2.0
+        radius *= GROWTH
     else:
         return None
     fresh = cells[pos[need]]

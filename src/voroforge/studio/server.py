@@ -86,7 +86,7 @@ def geometry_message(
         arrays["si"], arrays["sv"] = moved, sites[moved].reshape(-1)
     else:
         arrays["sites"] = sites.reshape(-1)
-    if full:
+    if full or not patch:  # the page's flags may be of another cell count: all of them
         arrays["mask"] = mask
     else:
         arrays["m"] = mask[idx]
