@@ -249,11 +249,17 @@ def _gather(gx, gy, gz, reach, sites, start, sidx, g, cand, cdist):
             row = (k * ny + j) * nx
             for b in range(row + i0, row + i1 + 1):
                 for q in range(start[b], start[b + 1]):
-                    s = sidx[q]
-                    dd = (sites[s, 0] - gx) ** 2 + (sites[s, 1] - gy) ** 2 + (sites[s, 2] - gz) ** 2
-                    if dd <= r2:
-                        _insert(cand, cdist, m, s, dd)
-                        m += 1
+                    m = _take(sidx[q], gx, gy, gz, r2, sites, cand, cdist, m)
+    return m
+
+
+@njit(**NJIT)
+def _take(s, gx, gy, gz, r2, sites, cand, cdist, m):
+    """Site ``s`` into the sorted list ``cand[:m]`` when within ``sqrt(r2)``; the new count."""
+    dd = (sites[s, 0] - gx) ** 2 + (sites[s, 1] - gy) ** 2 + (sites[s, 2] - gz) ** 2
+    if dd <= r2:
+        _insert(cand, cdist, m, s, dd)
+        m += 1
     return m
 
 
@@ -269,18 +275,11 @@ def _near_list(gx, gy, gz, reach, o, sites, nbr, bound, cand, cdist):
     if not (reach + np.sqrt(d0)) * (1.0 + 1e-12) < bound[o]:
         return -1
     r2 = reach * reach
-    m = 0
-    if d0 <= r2:
-        _insert(cand, cdist, m, o, d0)
-        m += 1
+    m = _take(o, gx, gy, gz, r2, sites, cand, cdist, 0)
     for q in range(nbr.shape[1]):
-        s = nbr[o, q]
-        if s < 0:
+        if nbr[o, q] < 0:
             break
-        dd = (sites[s, 0] - gx) ** 2 + (sites[s, 1] - gy) ** 2 + (sites[s, 2] - gz) ** 2
-        if dd <= r2:
-            _insert(cand, cdist, m, s, dd)
-            m += 1
+        m = _take(nbr[o, q], gx, gy, gz, r2, sites, cand, cdist, m)
     return m
 
 
@@ -430,77 +429,64 @@ def rvd(v, f, tf, sites, start, sidx, g, hint, mode, knn):
         frame = (ax, ay, az, r[0], r[1], r[2], r[3], r[4], r[5])
         o = vnear[ia]
         if o == vnear[ib] and o == vnear[ic]:
-            # a convex cell holds the triangle of its three corners whole
-            area = r[_AREA]
-            gx, gy, gz = r[13], r[14], r[15]
-            mass[o] += area
-            first[o, 0] += area * gx
-            first[o, 1] += area * gy
-            first[o, 2] += area * gz
-            dg = (gx - sites[o, 0]) ** 2 + (gy - sites[o, 1]) ** 2 + (gz - sites[o, 2]) ** 2
-            energy[o] += r[_J] + area * dg
-            if mode > 0:
-                if np_ + 1 >= pc.shape[0]:
-                    pc, pt, pa, off = _grow_pieces(pc, pt, pa, off)
-                pc[np_] = o
-                pt[np_] = t
-                pa[np_] = area
-                if mode > 1:
-                    rx[0], ry[0], ro[0] = 0.0, 0.0, -1
-                    rx[1], ry[1], ro[1] = r[_LAB], 0.0, -2
-                    rx[2], ry[2], ro[2] = r[_CX], r[_CY], -3
-                    if nq + 3 > qxyz.shape[0]:
-                        qxyz, qown = _room(qxyz, qown, nq + 3)
-                    nq = _store(qxyz, qown, nq, rx, ry, ro, 3, frame, r[_LAB], r[_CX], r[_CY])
-                np_ += 1
-                off[np_] = nq
-            continue
-        reach = min(vd[ia] + r[_LC], min(vd[ib] + r[_LC + 1], vd[ic] + r[_LC + 2]))
-        reach = (reach + r[_RAD]) * (1.0 + 1e-12)
-        m_c = -1
-        for oc in range(3):
-            m_c = _near_list(
-                r[13], r[14], r[15], reach, vnear[f[t, oc]], sites, nbr, bound, cand, cdist
-            )
-            if m_c >= 0:
-                break
-        if m_c < 0:
-            m_c = _gather(r[13], r[14], r[15], reach, sites, start, sidx, g, cand, cdist)
-        m_c = _relevant(v, ia, ib, ic, vnear, sites, cand, m_c)
-        if m_c + 8 > rx.shape[0]:
-            rx = np.zeros(2 * m_c + 8)
-            ry = np.zeros(2 * m_c + 8)
-            ro = np.zeros(2 * m_c + 8, np.int64)
-            sx = np.zeros(2 * m_c + 8)
-            sy = np.zeros(2 * m_c + 8)
-            so = np.zeros(2 * m_c + 8, np.int64)
-            ss = np.zeros(2 * m_c + 8)
+            m_c = 1  # a convex cell holds the triangle of its three corners whole
+            cand[0] = o
+        else:
+            reach = min(vd[ia] + r[_LC], min(vd[ib] + r[_LC + 1], vd[ic] + r[_LC + 2]))
+            reach = (reach + r[_RAD]) * (1.0 + 1e-12)
+            m_c = -1
+            for oc in range(3):
+                m_c = _near_list(
+                    r[13], r[14], r[15], reach, vnear[f[t, oc]], sites, nbr, bound, cand, cdist
+                )
+                if m_c >= 0:
+                    break
+            if m_c < 0:
+                m_c = _gather(r[13], r[14], r[15], reach, sites, start, sidx, g, cand, cdist)
+            m_c = _relevant(v, ia, ib, ic, vnear, sites, cand, m_c)
+            if m_c + 8 > rx.shape[0]:
+                rx = np.zeros(2 * m_c + 8)
+                ry = np.zeros(2 * m_c + 8)
+                ro = np.zeros(2 * m_c + 8, np.int64)
+                sx = np.zeros(2 * m_c + 8)
+                sy = np.zeros(2 * m_c + 8)
+                so = np.zeros(2 * m_c + 8, np.int64)
+                ss = np.zeros(2 * m_c + 8)
         for q in range(m_c):
             i = cand[q]
             rx[0], ry[0], ro[0] = 0.0, 0.0, -1
             rx[1], ry[1], ro[1] = r[_LAB], 0.0, -2
             rx[2], ry[2], ro[2] = r[_CX], r[_CY], -3
             m = 3
-            if m_c > 1:
+            if m_c == 1:  # the whole triangle: its moments from the frames
+                area = r[_AREA]
+                cx, cy, cz = r[13], r[14], r[15]
+                dg = (cx - sites[i, 0]) ** 2 + (cy - sites[i, 1]) ** 2 + (cz - sites[i, 2]) ** 2
+                en = r[_J] + area * dg
+            else:
                 m = _cut_by_others(q, cand, m_c, sites, frame, rx, ry, ro, sx, sy, so, ss)
-            if m < 3:
-                continue
-            # area, centroid and ∫|x - s|^2 in the plane's frame (s projected, plus height^2)
-            dsx, dsy, dsz = sites[i, 0] - ax, sites[i, 1] - ay, sites[i, 2] - az
-            ox = dsx * r[0] + dsy * r[1] + dsz * r[2]
-            oy = dsx * r[3] + dsy * r[4] + dsz * r[5]
-            hz = dsx * r[6] + dsy * r[7] + dsz * r[8]
-            a2, mx, my, m2 = ring_sums(rx, ry, 0, m, ox, oy, False)
-            area = 0.5 * a2
-            if area <= 0.0:
-                continue
-            cgx = ox + mx / 6.0 / area
-            cgy = oy + my / 6.0 / area
+                if m < 3:
+                    continue
+                # area, centroid, ∫|x - s|^2 in the plane's frame (s projected, plus height^2)
+                dsx, dsy, dsz = sites[i, 0] - ax, sites[i, 1] - ay, sites[i, 2] - az
+                ox = dsx * r[0] + dsy * r[1] + dsz * r[2]
+                oy = dsx * r[3] + dsy * r[4] + dsz * r[5]
+                hz = dsx * r[6] + dsy * r[7] + dsz * r[8]
+                a2, mx, my, m2 = ring_sums(rx, ry, 0, m, ox, oy, False)
+                area = 0.5 * a2
+                if area <= 0.0:
+                    continue
+                cgx = ox + mx / 6.0 / area
+                cgy = oy + my / 6.0 / area
+                cx = ax + cgx * r[0] + cgy * r[3]
+                cy = ay + cgx * r[1] + cgy * r[4]
+                cz = az + cgx * r[2] + cgy * r[5]
+                en = m2 / 12.0 + hz * hz * area
             mass[i] += area
-            first[i, 0] += area * (ax + cgx * r[0] + cgy * r[3])
-            first[i, 1] += area * (ay + cgx * r[1] + cgy * r[4])
-            first[i, 2] += area * (az + cgx * r[2] + cgy * r[5])
-            energy[i] += m2 / 12.0 + hz * hz * area
+            first[i, 0] += area * cx
+            first[i, 1] += area * cy
+            first[i, 2] += area * cz
+            energy[i] += en
             if mode == 0:
                 continue
             if np_ + 1 >= pc.shape[0]:
@@ -575,46 +561,53 @@ def _store(qxyz, qown, nq, rx, ry, ro, m, frame, lab, cxx, cyy):
 
 
 @njit(**NJIT)
-def _dot(ax, ay, az, bx, by, bz):
-    return ax * bx + ay * by + az * bz
+def _dots(ab, ac, px, py, pz, q):
+    """``(AB . (p - q), AC . (p - q))``."""
+    dx, dy, dz = px - q[0], py - q[1], pz - q[2]
+    return ab[0] * dx + ab[1] * dy + ab[2] * dz, ac[0] * dx + ac[1] * dy + ac[2] * dz
+
+
+@njit(**NJIT)
+def _along(q, d, t):
+    """The point ``q + t d``."""
+    return q[0] + t * d[0], q[1] + t * d[1], q[2] + t * d[2]
 
 
 @njit(**NJIT)
 def closest_on_triangle(px, py, pz, v, ia, ib, ic):
     """The point of triangle ``v[ia] v[ib] v[ic]`` nearest to ``p`` (Ericson's regions)."""
-    ax, ay, az = v[ia, 0], v[ia, 1], v[ia, 2]
-    abx, aby, abz = v[ib, 0] - ax, v[ib, 1] - ay, v[ib, 2] - az
-    acx, acy, acz = v[ic, 0] - ax, v[ic, 1] - ay, v[ic, 2] - az
-    d1 = _dot(abx, aby, abz, px - ax, py - ay, pz - az)
-    d2 = _dot(acx, acy, acz, px - ax, py - ay, pz - az)
+    a = (v[ia, 0], v[ia, 1], v[ia, 2])
+    b = (v[ib, 0], v[ib, 1], v[ib, 2])
+    c = (v[ic, 0], v[ic, 1], v[ic, 2])
+    ab = (b[0] - a[0], b[1] - a[1], b[2] - a[2])
+    ac = (c[0] - a[0], c[1] - a[1], c[2] - a[2])
+    d1, d2 = _dots(ab, ac, px, py, pz, a)
     if d1 <= 0.0 and d2 <= 0.0:
-        return ax, ay, az
-    bx, by, bz = v[ib, 0], v[ib, 1], v[ib, 2]
-    d3 = _dot(abx, aby, abz, px - bx, py - by, pz - bz)
-    d4 = _dot(acx, acy, acz, px - bx, py - by, pz - bz)
+        return a
+    d3, d4 = _dots(ab, ac, px, py, pz, b)
     if d3 >= 0.0 and d4 <= d3:
-        return bx, by, bz
+        return b
     vc = d1 * d4 - d3 * d2
     if vc <= 0.0 and d1 >= 0.0 and d3 <= 0.0:
-        t = d1 / (d1 - d3)
-        return ax + t * abx, ay + t * aby, az + t * abz
-    cx, cy, cz = v[ic, 0], v[ic, 1], v[ic, 2]
-    d5 = _dot(abx, aby, abz, px - cx, py - cy, pz - cz)
-    d6 = _dot(acx, acy, acz, px - cx, py - cy, pz - cz)
+        return _along(a, ab, d1 / (d1 - d3))
+    d5, d6 = _dots(ab, ac, px, py, pz, c)
     if d6 >= 0.0 and d5 <= d6:
-        return cx, cy, cz
+        return c
     vb = d5 * d2 - d1 * d6
     if vb <= 0.0 and d2 >= 0.0 and d6 <= 0.0:
-        t = d2 / (d2 - d6)
-        return ax + t * acx, ay + t * acy, az + t * acz
+        return _along(a, ac, d2 / (d2 - d6))
     va = d3 * d6 - d5 * d4
     if va <= 0.0 and (d4 - d3) >= 0.0 and (d5 - d6) >= 0.0:
-        t = (d4 - d3) / ((d4 - d3) + (d5 - d6))
-        return bx + t * (cx - bx), by + t * (cy - by), bz + t * (cz - bz)
+        bc = (c[0] - b[0], c[1] - b[1], c[2] - b[2])
+        return _along(b, bc, (d4 - d3) / ((d4 - d3) + (d5 - d6)))
     den = 1.0 / (va + vb + vc)
     s = vb * den
     t = vc * den
-    return ax + abx * s + acx * t, ay + aby * s + acy * t, az + abz * s + acz * t
+    return (
+        a[0] + ab[0] * s + ac[0] * t,
+        a[1] + ab[1] * s + ac[1] * t,
+        a[2] + ab[2] * s + ac[2] * t,
+    )
 
 
 @njit(**NJIT)

@@ -503,7 +503,7 @@ def voronoi(
         iteration), sites projected onto the surface at the end.
     init : {"multilevel", "random"}
         For a site count with ``relax >= 10``: ``"multilevel"`` relaxes a quarter of the
-        sites first (30% of the steps), adds the midpoints of their neighbour pairs and
+        sites first (40% of the steps), adds the midpoints of their neighbour pairs and
         relaxes all (the rest): 94% hexagons for 1,000 cells on a sphere in 100 steps, against
         86% from random sites. ``"random"``: random sites, all steps at full size.
     seed : int
