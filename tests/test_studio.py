@@ -180,6 +180,22 @@ def test_drag_recomputes_the_neighbourhood_and_settles_to_the_full_compute(name)
     assert _wkb(s.result.cells) == _wkb(_same.cells)
 
 
+def test_fabrication_limits_keep_the_cells():
+    s = Session(MANY)
+    s.apply({"op": "move", "i": 4, "x": float(s.result.sites[4, 0]) + 0.5, "y": 50.0})
+    before = s.result
+    reply = s.apply({"op": "set", "key": "fabrication.min_web", "value": 3.5})
+    assert reply.kind == "update" and len(reply.changed) == 0
+    assert s.result.raw is before.raw and s.result.design.fabrication.min_web == 3.5
+    s.settle()
+    full = compute(s.design, s.folder, sites=s.sites, frame=False)
+    assert _wkb(s.result.cells) == _wkb(full.cells) and s.result.design == full.design
+    # a geometry key is computed again
+    again = s.apply({"op": "set", "key": "cells.fillet", "value": 1.0})
+    assert again.kind == "update" and (again.changed is None or len(again.changed))
+    assert _wkb(s.result.cells) != _wkb(full.cells)
+
+
 def test_drag_onto_another_seed_and_across_the_panel():
     from voroforge.studio import incremental
 

@@ -18,6 +18,7 @@ file gives the files the page exports, byte for byte (exports go through the sam
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
 import re
 import tempfile
@@ -48,6 +49,8 @@ EXPORTS = {
 }
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9 _.+-]{0,120}\.toml$")
+#: Sections of a design that ``compute`` does not read (changing them keeps the cells).
+_NOT_GEOMETRY = ("fabrication", "output", "animation")
 #: Keys whose change means "new seeds" (hand-edited sites are dropped).
 _RESEED = ("seeds", "relax", "design.seed")
 
@@ -127,6 +130,11 @@ class Session:
     def _compute(self, data: dict, sites, *, reuse: bool = True):
         design, _ = load(data)
         self._guard(design)
+        if reuse and self._same_geometry(design, sites):
+            # only [fabrication], [output] or [animation] changed: the cells are the same
+            extra = {**self.result.extra, "redone": np.zeros(0, dtype=np.int64)}
+            self.compute_ms = 0.0
+            return design, dataclasses.replace(self.result, design=design, extra=extra)
         limit = self.max_seeds
 
         def stage(name: str) -> None:
@@ -144,6 +152,21 @@ class Session:
         self.compute_ms = (time.perf_counter() - start) * 1e3
         shapely.prepare(result.domain)  # every click and drag asks whether it is inside
         return design, result
+
+    def _same_geometry(self, design, sites) -> bool:
+        """Whether ``design`` with ``sites`` has the current result's geometry.
+
+        True when they differ from the current ones only in sections that
+        :func:`~voroforge.design.compute.compute` does not read (``[fabrication]``,
+        ``[output]``, ``[animation]``) and the sites are the same.
+        """
+        prev = self.design
+        if self.result is None or prev is None or self.frame is not None:
+            return False
+        if sites is not self.sites:
+            return False
+        keep = {k: getattr(prev, k) for k in _NOT_GEOMETRY if hasattr(prev, k)}
+        return design.model_copy(update=keep) == prev
 
     def _guard(self, design) -> None:
         """Refuse seed settings that would make far more sites than the limit (before sampling)."""
