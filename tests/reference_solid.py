@@ -41,3 +41,36 @@ def hull_volume(points) -> float:
     t = Delaunay(pts).simplices
     a, b, c, d = (pts[t[:, i]] for i in range(4))
     return float(np.abs(np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a)).sum() / 6.0)
+
+
+def winding_numbers(vertices, faces, points, chunk: int = 256) -> np.ndarray:
+    """Generalised winding number of a closed triangle mesh at each point (solid angles).
+
+    Van Oosterom and Strackee's formula per triangle, summed over all of them: 1 inside,
+    0 outside, 2 where two parts of a self-intersecting mesh overlap. Slow (points x faces).
+    """
+    v = np.asarray(vertices, dtype=np.float64)
+    t = v[np.asarray(faces)]
+    p = np.asarray(points, dtype=np.float64)
+    out = np.zeros(len(p))
+    for s in range(0, len(p), chunk):
+        q = p[s : s + chunk, None, None, :]
+        a, b, c = (t[None, :, i, :] - q[:, :, 0] for i in range(3))
+        la, lb, lc = (np.linalg.norm(x, axis=2) for x in (a, b, c))
+        det = np.einsum("pfk,pfk->pf", a, np.cross(b, c))
+        den = (
+            la * lb * lc
+            + np.einsum("pfk,pfk->pf", a, b) * lc
+            + np.einsum("pfk,pfk->pf", b, c) * la
+            + np.einsum("pfk,pfk->pf", c, a) * lb
+        )
+        out[s : s + chunk] = 2.0 * np.arctan2(det, den).sum(axis=1) / (4.0 * np.pi)
+    return out
+
+
+def segment_distance(points, a, b) -> np.ndarray:
+    """Distance from each point to the nearest of the segments ``a[i] -> b[i]`` (brute force)."""
+    p = np.asarray(points, dtype=np.float64)[:, None, :]
+    ab = (b - a)[None]
+    t = np.clip(np.einsum("psk,psk->ps", p - a[None], ab) / np.einsum("psk,psk->ps", ab, ab), 0, 1)
+    return np.linalg.norm(p - a[None] - t[..., None] * ab, axis=2).min(axis=1)
