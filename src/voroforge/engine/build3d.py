@@ -18,7 +18,8 @@ from ..config import GRID_DEGENERATE_RTOL, GRID_WIDEN_RTOL, NJIT
 from ..kernels.cells3d import OK, OVERFLOW, build_cells
 from .threads import serial_below
 
-CHUNK = 16384
+#: cells per call of the kernel (its fixed per-cell slots: ~7.7 KB a cell while it runs)
+CHUNK = 4096
 #: mean sites per bucket of the search grid
 PER_BUCKET = 2.0
 #: buckets visited in distance order before the shell-by-shell search takes over
@@ -94,9 +95,6 @@ class Cells3D:
     volume: np.ndarray
     centroid: np.ndarray
     rad2: np.ndarray
-    voff: np.ndarray  # (k + 1,) per-cell vertex records
-    vname: np.ndarray  # (M, 4) keys
-    vglobal: np.ndarray  # (M,) global vertex id
     vertices: np.ndarray  # (V, 3)
     foff: np.ndarray  # (k + 1,) per-cell faces
     flabel: np.ndarray  # (Fc,) kernel keys: site >= 0, wall -1 - w
@@ -106,7 +104,20 @@ class Cells3D:
     unmatched: int
 
 
-def _run(cells, P, W, start, SP, sidx, g, order, t, caps):
+def _slots(k, caps):
+    """Fixed per-cell output slots for ``k`` cells (reused from chunk to chunk)."""
+    cv, cf, cr = caps[:3]
+    return (
+        np.zeros((k * cv, 4), np.int64),
+        np.zeros((k * cv, 3)),
+        np.zeros((k * cf, 2), np.int64),
+        np.zeros((k * cf, 3)),
+        np.zeros(k * cr, np.int64),
+    )
+
+
+def _run(cells, P, W, start, SP, sidx, g, order, t, caps, pool, slots=None):
+    """Build ``cells`` into fixed per-cell slots (threads on slices), then pack the slots."""
     k = len(cells)
     cv, cf, cr = caps[:3]
     status = np.zeros(k, np.int64)
@@ -114,14 +125,7 @@ def _run(cells, P, W, start, SP, sidx, g, order, t, caps):
     vol = np.zeros(k)
     cen = np.zeros((k, 3))
     rad2 = np.zeros(k)
-    onames = np.zeros((k * cv, 4), np.int64)
-    ovabs = np.zeros((k * cv, 3))
-    ofaces = np.zeros((k * cf, 2), np.int64)
-    oarea = np.zeros((k * cf, 3))
-    oring = np.zeros(k * cr, np.int64)
-    import numba
-
-    nth = max(1, min(numba.get_num_threads(), k // 64 or 1))
+    onames, ovabs, ofaces, oarea, oring = _slots(k, caps) if slots is None else slots
     capa = np.array(caps, np.int64)
 
     def part(a, b):
@@ -152,136 +156,179 @@ def _run(cells, P, W, start, SP, sidx, g, order, t, caps):
             oring[a * cr : b * cr],
         )
 
+    nth = 1 if pool is None else max(1, min(pool._max_workers, k // 64 or 1))
     if nth == 1:
         part(0, k)
     else:  # the kernel releases the GIL: one thread per slice of cells
-        from concurrent.futures import ThreadPoolExecutor
-
         bounds = np.linspace(0, k, nth + 1).astype(int)
-        with ThreadPoolExecutor(nth) as ex:
-            list(ex.map(part, bounds[:-1], bounds[1:]))
-    vm = np.arange(cv)[None, :] < counts[:, :1]
-    fm = np.arange(cf)[None, :] < counts[:, 1:2]
-    rm = np.arange(cr)[None, :] < counts[:, 2:3]
+        list(pool.map(part, bounds[:-1], bounds[1:]))
+    tot = counts.sum(axis=0)
+    names = np.zeros((tot[0], 4), np.int64)
+    vabs = np.zeros((tot[0], 3))
+    faces = np.zeros((tot[1], 2), np.int64)
+    area = np.zeros((tot[1], 3))
+    ring = np.zeros(tot[2], np.int64)
+    _pack(counts, capa, onames, ovabs, ofaces, oarea, oring, names, vabs, faces, area, ring)
     return dict(
         status=status,
         counts=counts,
         vol=vol,
         cen=cen,
         rad2=rad2,
-        names=onames[vm.ravel()],
-        vabs=ovabs[vm.ravel()],
-        faces=ofaces[fm.ravel()],
-        area=oarea[fm.ravel()],
-        ring=oring[rm.ravel()],
+        names=names,
+        vabs=vabs,
+        faces=faces,
+        area=area,
+        ring=ring,
     )
+
+
+@njit(**NJIT)
+def _pack(counts, caps, onames, ovabs, ofaces, oarea, oring, names, vabs, faces, area, ring):
+    """Copy the used part of every cell's slots into the packed arrays, cell after cell."""
+    cv, cf, cr = caps[0], caps[1], caps[2]
+    v = 0
+    f = 0
+    r = 0
+    for c in range(counts.shape[0]):
+        for q in range(counts[c, 0]):
+            for a in range(4):
+                names[v, a] = onames[c * cv + q, a]
+            for a in range(3):
+                vabs[v, a] = ovabs[c * cv + q, a]
+            v += 1
+        for q in range(counts[c, 1]):
+            faces[f, 0] = ofaces[c * cf + q, 0]
+            faces[f, 1] = ofaces[c * cf + q, 1]
+            for a in range(3):
+                area[f, a] = oarea[c * cf + q, a]
+            f += 1
+        for q in range(counts[c, 2]):
+            ring[r] = oring[c * cr + q]
+            r += 1
+
+
+@njit(**NJIT)
+def _in_order(back, counts, faces, area, ring, gid, flabel, farea, flen, gring):
+    """Faces of the cells in the caller's order (``back[c]``: where cell ``c`` was built).
+
+    Rings come out in global vertex ids (``gid`` of the cell's vertex records).
+    """
+    k = counts.shape[0]
+    voff = np.zeros(k + 1, np.int64)
+    foff = np.zeros(k + 1, np.int64)
+    roff = np.zeros(k + 1, np.int64)
+    for c in range(k):
+        voff[c + 1] = voff[c] + counts[c, 0]
+        foff[c + 1] = foff[c] + counts[c, 1]
+        roff[c + 1] = roff[c] + counts[c, 2]
+    f2 = 0
+    r2 = 0
+    for c in range(k):
+        s = back[c]
+        r = roff[s]
+        for f in range(foff[s], foff[s + 1]):
+            flabel[f2] = faces[f, 0]
+            ln = faces[f, 1]
+            flen[f2] = ln
+            for a in range(3):
+                farea[f2, a] = area[f, a]
+            for _ in range(ln):
+                gring[r2] = gid[voff[s] + ring[r]]
+                r += 1
+                r2 += 1
+            f2 += 1
 
 
 def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
     """Cells of sites ``cells`` (default all) of ``P (ns, 3)``, weights ``W``, template ``t``."""
+    import numba
+
     ns = len(P)
     cells = np.arange(ns) if cells is None else np.asarray(cells, np.int64)
+    if len(cells) == 0:
+        return _empty(cells)
     g = grid3d_shape(P, PER_BUCKET)
     start, SP, sidx = bucket_sort3d(P, g)
     order = search_order(g, SEARCH_RADIUS)
     # cells are built in bucket order (neighbouring cells read the same sites: 1.5x less
-    # time than input order on 1e5 uniform sites) and put back in the caller's order below
+    # time than input order on 1e5 uniform sites); faces go back to the caller's order below
     sort = np.argsort(bucket_keys3d(P[cells], g), kind="stable")
-    cells_in = cells
-    cells = cells[sort]
+    built = cells[sort]
     parts = []
     with serial_below(len(cells)):
-        for c0 in range(0, len(cells), CHUNK):
-            chunk = cells[c0 : c0 + CHUNK]
-            parts.append(_run(chunk, P, W, start, SP, sidx, g, order, t, CAPS))
-            if progress is not None:
-                progress(min(c0 + CHUNK, len(cells)), len(cells))
+        nth = numba.get_num_threads()
+        pool = None
+        if nth > 1 and len(cells) >= 128:
+            from concurrent.futures import ThreadPoolExecutor
+
+            pool = ThreadPoolExecutor(nth)
+        slots = _slots(min(CHUNK, len(cells)), CAPS)
+        try:
+            for c0 in range(0, len(cells), CHUNK):
+                chunk = built[c0 : c0 + CHUNK]
+                parts.append(_run(chunk, P, W, start, SP, sidx, g, order, t, CAPS, pool, slots))
+                if progress is not None:
+                    progress(min(c0 + CHUNK, len(cells)), len(cells))
+        finally:
+            if pool is not None:
+                pool.shutdown()
+    del slots
+    out = {key: np.concatenate([p[key] for p in parts]) for key in parts[0]}
+    del parts
+    status = out["status"]
+    counts = out["counts"]
     # cells that did not fit: alone, with big slots
-    out = {key: [p[key] for p in parts] for key in parts[0]} if parts else None
-    if out is None:
-        return _empty(cells)
-    status = np.concatenate(out["status"])
     over = np.flatnonzero(status == OVERFLOW)
-    counts = np.concatenate(out["counts"])
     extra = {}
     factor = BIG_CAPS_FACTOR
     while len(over):
         caps = tuple(c * factor for c in CAPS)
         for c in over:
-            r = _run(cells[c : c + 1], P, W, start, SP, sidx, g, order, t, caps)
-            extra[int(c)] = r
+            extra[int(c)] = _run(built[c : c + 1], P, W, start, SP, sidx, g, order, t, caps, None)
         still = [c for c in over if extra[int(c)]["status"][0] == OVERFLOW]
         if factor >= 256 or not still:
             break
         over = np.array(still)
         factor *= 4
-    # per cell arrays in order
-    vol = np.concatenate(out["vol"])
-    cen = np.concatenate(out["cen"])
-    rad2 = np.concatenate(out["rad2"])
-    names = np.concatenate(out["names"])
-    vabs = np.concatenate(out["vabs"])
-    faces = np.concatenate(out["faces"])
-    area = np.concatenate(out["area"])
-    ring = np.concatenate(out["ring"])
+    names, vabs, faces, area, ring = (out[k] for k in ("names", "vabs", "faces", "area", "ring"))
     if extra:
-        # splice the re-run cells in: rebuild per-cell lists with the extra cells replaced
         names, vabs, faces, area, ring, counts = _splice(
             counts, names, vabs, faces, area, ring, extra
         )
         for c, r in extra.items():
-            status[c] = r["status"][0]
-            vol[c] = r["vol"][0]
-            cen[c] = r["cen"][0]
-            rad2[c] = r["rad2"][0]
-    # back to the caller's order: position sort[q] was built at q
+            for key in ("status", "vol", "cen", "rad2"):
+                out[key][c] = r[key][0]
+    # global vertex ids, by name, in the order the cells were built
+    voff = np.concatenate([[0], np.cumsum(counts[:, 0])])
+    pos = np.full(ns, -1, np.int64)
+    pos[built] = np.arange(len(built))
+    vcellpos = np.repeat(np.arange(len(built)), counts[:, 0])
+    gid, unmatched = _join(names, vcellpos, built, pos, voff)
+    del vcellpos, names
+    vertices = np.zeros((int(gid.max()) + 1 if len(gid) else 0, 3))
+    vertices[gid] = vabs  # every record of one id holds the same bits (or is its own id)
+    del vabs
+    # faces in the caller's order
     back = np.zeros(len(cells), np.int64)
     back[sort] = np.arange(len(cells))
-    names = names[_csr_take(counts[:, 0], back)]
-    vabs = vabs[_csr_take(counts[:, 0], back)]
-    fsel = _csr_take(counts[:, 1], back)
-    faces = faces[fsel]
-    area = area[fsel]
-    ring = ring[_csr_take(counts[:, 2], back)]
-    counts = counts[back]
-    status = status[back]
-    vol = vol[back]
-    cen = cen[back]
-    rad2 = rad2[back]
-    cells = cells_in
-    voff = np.concatenate([[0], np.cumsum(counts[:, 0])])
-    foff = np.concatenate([[0], np.cumsum(counts[:, 1])])
-    flen = faces[:, 1]
+    flabel = np.zeros(len(faces), np.int64)
+    farea = np.zeros((len(faces), 3))
+    flen = np.zeros(len(faces), np.int64)
+    gring = np.zeros(len(ring), np.int64)
+    _in_order(back, counts, faces, area, ring, gid, flabel, farea, flen, gring)
+    foff = np.concatenate([[0], np.cumsum(counts[back, 1])])
     roff = np.concatenate([[0], np.cumsum(flen)])
-    # global vertex ids
-    pos = np.full(ns, -1, np.int64)
-    pos[cells] = np.arange(len(cells))
-    vcellpos = np.repeat(np.arange(len(cells)), counts[:, 0])
-    gid, unmatched = _join(names, vcellpos, cells, pos, voff)
-    first = gid >= 0
-    vertices = np.zeros((0, 3))
-    if len(gid):
-        nvert = int(gid.max()) + 1
-        vertices = np.zeros((nvert, 3))
-        vertices[gid] = vabs  # every record of one id holds the same bits (or is its own id)
-    # rings in global ids
-    fcellpos = np.repeat(np.arange(len(cells)), counts[:, 1])
-    rcell = np.repeat(fcellpos, flen)
-    gring = gid[voff[rcell] + ring] if len(ring) else ring
-    del first
     return Cells3D(
         cells,
-        status,
-        vol,
-        cen,
-        rad2,
-        voff,
-        names,
-        gid,
+        out["status"][back],
+        out["vol"][back],
+        out["cen"][back],
+        out["rad2"][back],
         vertices,
         foff,
-        faces[:, 0],
-        area,
+        flabel,
+        farea,
         roff,
         gring,
         unmatched,
@@ -297,9 +344,6 @@ def _empty(cells):
         np.zeros(k),
         np.full((k, 3), np.nan),
         np.zeros(k),
-        np.zeros(k + 1, np.int64),
-        np.zeros((0, 4), np.int64),
-        z,
         np.zeros((0, 3)),
         np.zeros(k + 1, np.int64),
         z,
