@@ -206,7 +206,7 @@ var VoroStudio = (function () {
     var n = h.n, idx = a.idx, k, i, region = null;
     var full = h.full || this.raw.length !== n && !a.sites;
     this.bounds = h.bounds;
-    var tol = 0.5 / this.view().s;  // half a device pixel, in design units
+    var tol = 1.0 / this.view().s;  // a device pixel, in design units
     if (h.full) { this.raw = new Array(n); this.cells = new Array(n); this.rawData = new Array(n); this.boxes = new Array(n); }
     else if (this.raw.length !== n) { this.raw.length = n; this.cells.length = n; this.rawData.length = n; this.boxes.length = n; }
     for (k = 0; k < idx.length; k++) {
