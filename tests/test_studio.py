@@ -196,6 +196,19 @@ def test_fabrication_limits_keep_the_cells():
     assert _wkb(s.result.cells) != _wkb(full.cells)
 
 
+def test_a_settling_overtaken_by_an_edit_is_dropped():
+    s = Session(MANY)
+    x, y = s.result.sites[9]
+    s.apply({"op": "move", "i": 9, "x": float(x) + 0.5, "y": float(y)})
+    first = s.result
+    late = s.settle_compute(first)  # the server computes this while the next step arrives
+    s.apply({"op": "move", "i": 9, "x": float(x) + 1.0, "y": float(y)})
+    assert s.settle_finish(first, late) is None and s.provisional and s.result is not late
+    assert s.settle() is not None and not s.provisional
+    full = compute(s.design, s.folder, sites=s.sites, frame=False)
+    assert _wkb(s.result.cells) == _wkb(full.cells)
+
+
 def test_drag_onto_another_seed_and_across_the_panel():
     from voroforge.studio import incremental
 

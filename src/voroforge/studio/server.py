@@ -245,12 +245,19 @@ class _Hub:
             self.check_task = asyncio.get_running_loop().create_task(self._check_later())
 
     async def _settle(self) -> None:
-        payload = None
+        """Settle a drag's result; edits go on meanwhile (and make the settling moot)."""
         async with self.lock:
+            previous = self.session.result
             if not self.session.provisional or time.monotonic() < self.settle_due:
                 return
-            diff = await asyncio.to_thread(self.session.settle)
-            if diff is not None and len(diff):
+        result = await asyncio.to_thread(self.session.settle_compute, previous)
+        payload = None
+        async with self.lock:
+            diff = self.session.settle_finish(previous, result)
+            if diff is None:  # an edit came first: settle again once edits pause
+                self.settle_due = max(self.settle_due, time.monotonic() + SETTLE_DELAY)
+                return
+            if len(diff):
                 self.seq += 1
                 payload = geometry_message(
                     self.session,

@@ -337,16 +337,30 @@ class Session:
         Cells whose raw ring is byte-identical keep their operated cells (``compute``'s
         ``reuse``), so this costs about one engine run. Returns the indices of the cells
         whose drawing differs from the provisional one (often none), or None when there was
-        nothing to settle.
+        nothing to settle. :meth:`settle_compute` and :meth:`settle_finish` are the same in
+        two steps, for a server that computes while edits go on.
         """
         if not self.provisional:
             return None
         previous = self.result
+        return self.settle_finish(previous, self.settle_compute(previous))
+
+    def settle_compute(self, previous):
+        """The full computation of a provisional result ``previous`` (does not change self)."""
         start = time.perf_counter()
-        result = compute(
-            previous.design, self.folder, sites=self.sites, reuse=previous, frame=False
-        )
+        sites = previous.sites
+        result = compute(previous.design, self.folder, sites=sites, reuse=previous, frame=False)
         self.settle_ms = (time.perf_counter() - start) * 1e3
+        return result
+
+    def settle_finish(self, previous, result) -> np.ndarray | None:
+        """Put ``result`` (of :meth:`settle_compute`) in place of ``previous``.
+
+        Returns the cells whose drawing differs, or None when an edit replaced ``previous``
+        meanwhile (``result`` is then out of date and dropped).
+        """
+        if self.result is not previous:
+            return None
         self.result = result
         if len(result.raw) != len(previous.raw):
             return np.arange(len(result.raw), dtype=np.int32)
