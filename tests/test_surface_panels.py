@@ -207,8 +207,6 @@ def test_solids_are_watertight_with_the_right_volume(sphere_panels):
 
 
 def test_outline_faults_find_bow_ties_and_turned_panels_and_planarize_warns():
-    from voroforge.surface.panels import PlanarizeWarning
-
     square = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], float)
     bow = square[[0, 1, 3, 2]]  # the same corners in crossing order
     V = np.concatenate([square, bow + [3, 0, 0], square + [6, 0, 0]])
@@ -227,7 +225,7 @@ def test_outline_faults_find_bow_ties_and_turned_panels_and_planarize_warns():
         np.array([5]),
     )
     assert list(holed.outline_faults()[0]) == [0]
-    with pytest.warns(PlanarizeWarning, match=r"panel ids \[11\]"):
+    with pytest.warns(surface.PlanarizeWarning, match=r"panel ids \[11\]"):
         out = P.planarize(1e-6)
     assert list(out.report.self_intersecting) == [1] and not out.report.ok
     assert list(out.report.invalid) == [1]

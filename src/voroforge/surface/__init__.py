@@ -12,7 +12,7 @@ See ``docs/surface.md``.
 from __future__ import annotations
 
 from .morph import morph
-from .panels import Panels, Planarity, PlanarizeReport
+from .panels import Panels, Planarity, PlanarizeReport, PlanarizeWarning
 from .shapes import (
     Surface,
     cylinder,
@@ -32,6 +32,7 @@ __all__ = [
     "Panels",
     "Planarity",
     "PlanarizeReport",
+    "PlanarizeWarning",
     "Surface",
     "SurfaceVoronoi",
     "cylinder",
