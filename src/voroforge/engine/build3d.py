@@ -274,7 +274,9 @@ def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
             if pool is not None:
                 pool.shutdown()
     del slots
-    out = {key: np.concatenate([p[key] for p in parts]) for key in parts[0]}
+    out = {}
+    for key in list(parts[0]):  # one array at a time, freeing the parts as it goes
+        out[key] = np.concatenate([p.pop(key) for p in parts])
     del parts
     status = out["status"]
     counts = out["counts"]
@@ -291,7 +293,9 @@ def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
             break
         over = np.array(still)
         factor *= 4
-    names, vabs, faces, area, ring = (out[k] for k in ("names", "vabs", "faces", "area", "ring"))
+    names, vabs, faces, area, ring = (
+        out.pop(k) for k in ("names", "vabs", "faces", "area", "ring")
+    )
     if extra:
         names, vabs, faces, area, ring, counts = _splice(
             counts, names, vabs, faces, area, ring, extra
@@ -317,6 +321,7 @@ def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
     flen = np.zeros(len(faces), np.int64)
     gring = np.zeros(len(ring), np.int64)
     _in_order(back, counts, faces, area, ring, gid, flabel, farea, flen, gring)
+    del faces, area, ring, gid
     foff = np.concatenate([[0], np.cumsum(counts[back, 1])])
     roff = np.concatenate([[0], np.cumsum(flen)])
     return Cells3D(
