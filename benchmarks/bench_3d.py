@@ -3,13 +3,15 @@
 Usage::
 
     .venv/bin/python benchmarks/bench_3d.py [--sizes 10000,100000,1000000] [--repeat 3]
-        [--no-freud] [--no-qhull] [--mesh 100000]
+        [--no-freud] [--no-qhull] [--no-periodic] [--single] [--mesh 100000]
 
 For each size (uniform points in the unit box, fixed seed) it prints the best-of-``repeat``
 wall time of:
 
 * ``vf.voronoi3d(points, (0, 0, 0, 1, 1, 1))``: volumes, neighbours and faces (after a
-  warm-up call that also compiles), and its peak extra memory per cell (tracemalloc);
+  warm-up call that also compiles), with numba's threads and, with ``--single``, on one
+  thread; its peak extra memory per cell (tracemalloc: the arrays numpy allocates, which
+  are all the large ones) and the process's peak resident set size at the end;
 * the voro++ command-line tool (``voro++ -o 0 1 0 1 0 1 file``: volumes, text I/O included;
   the points file is written once, outside the timing);
 * ``vf.voronoi3d(..., periodic=True)`` and freud's ``locality.Voronoi`` (voro++ inside,
@@ -26,12 +28,14 @@ from __future__ import annotations
 
 import argparse
 import os
+import resource
 import shutil
 import subprocess
 import tempfile
 import time
 import tracemalloc
 
+import numba
 import numpy as np
 
 import voroforge as vf
@@ -100,6 +104,8 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--no-freud", action="store_true")
     ap.add_argument("--no-qhull", action="store_true")
+    ap.add_argument("--no-periodic", action="store_true")
+    ap.add_argument("--single", action="store_true", help="also time ours on one thread")
     ap.add_argument("--mesh", type=int, default=0)
     args = ap.parse_args()
     sizes = [int(s) for s in args.sizes.split(",")]
@@ -108,28 +114,39 @@ def main():
     vf.voronoi3d(rng.random((2000, 3)), BOX, periodic=True)
     rows = []
     print(
-        f"{'n':>9} {'ours s':>8} {'voro++ s':>9} {'ratio':>6} {'ours per s':>10} {'freud s':>8} "
-        f"{'ratio':>6} {'qhull s':>8} {'B/cell':>7}"
+        f"{'n':>9} {'ours s':>8} {'1 thr s':>8} {'voro++ s':>9} {'ratio':>6} {'cells/s':>9} "
+        f"{'periodic':>8} {'freud s':>8} {'ratio':>6} {'qhull s':>8} {'B/cell':>7}"
     )
+
+    def f(x):
+        return f"{x:8.3f}" if x is not None else "       -"
+
     for n in sizes:
         p = np.random.default_rng(n).random((n, 3))
         t = best(lambda p=p: ours(p), args.repeat)
+        t1 = None
+        if args.single:
+            before = numba.get_num_threads()
+            numba.set_num_threads(1)
+            t1 = best(lambda p=p: ours(p), args.repeat)
+            numba.set_num_threads(before)
         tv = voropp(p, args.repeat)
-        tp = best(lambda p=p: vf.voronoi3d(p, BOX, periodic=True), args.repeat)
+        tp = None
+        if not args.no_periodic:
+            tp = best(lambda p=p: vf.voronoi3d(p, BOX, periodic=True), args.repeat)
         tf = None if args.no_freud else freud_time(p, args.repeat)
         tq = None if args.no_qhull or n > 100000 else qhull_time(p, 1 if n > 10000 else args.repeat)
-        mem = peak_per_cell(p) if n <= 1000000 else float("nan")
+        mem = peak_per_cell(p)
         rows.append((n, t))
-
-        def f(x):
-            return f"{x:8.3f}" if x is not None else "       -"
-
         rv = f"{t / tv:6.2f}" if tv else "     -"
-        rf = f"{tp / tf:6.2f}" if tf else "     -"
+        rf = f"{tp / tf:6.2f}" if tf and tp else "     -"
         print(
-            f"{n:>9} {t:8.3f} {f(tv):>9} {rv} {n / t:10.0f} {f(tf)} {rf} {f(tq)} {mem:7.0f}"
-            f"   (periodic ours {tp:.3f} s)"
+            f"{n:>9} {t:8.3f} {f(t1)} {f(tv):>9} {rv} {n / t:9.0f} {f(tp)} {f(tf)} {rf} "
+            f"{f(tq)} {mem:7.0f}",
+            flush=True,
         )
+    rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    print(f"peak RSS of this process: {rss:.0f} MiB; load average {os.getloadavg()}")
     if len(rows) >= 2:
         (n0, t0), (n1, t1) = rows[0], rows[-1]
         print(
