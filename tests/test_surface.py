@@ -272,3 +272,25 @@ def test_mesh_surface_keeps_uvs_and_projects():
     assert np.abs(M.project(p) - p).max() < 1e-12
     with pytest.raises(ValueError, match="outside"):
         M.evaluate(np.array([1.5]), np.array([0.5]))
+
+
+def test_candidates_from_neighbour_lists_grid_and_any_hint_give_the_same_diagram(
+    sphere3, monkeypatch
+):
+    """The fast paths are exact: the same pieces, bit for bit, as the grid query alone."""
+    from voroforge import config
+    from voroforge.surface.voronoi import _run
+
+    for sites in (sphere3.sample(300, seed=4), sphere3.vertices[::7] * 1.3):
+        fast = _run(sphere3, sites, 2)
+        wrong = np.random.default_rng(1).integers(0, len(sites), len(sphere3.vertices))
+        hinted = _run(sphere3, sites, 2, wrong)  # a bad hint only slows the search
+        monkeypatch.setattr(config, "SURFACE_KNN", 0)  # no lists: nearly every triangle by grid
+        slow = _run(sphere3, sites, 2)
+        monkeypatch.undo()
+        for x, y, z in zip(fast, hinted, slow, strict=True):
+            assert np.array_equal(x, y) and np.array_equal(x, z)
+        assert np.array_equal(
+            fast[-1],
+            np.argmin(((sphere3.vertices[:, None] - sites[None]) ** 2).sum(axis=2), axis=1),
+        )
