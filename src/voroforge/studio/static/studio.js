@@ -29,9 +29,15 @@ var VoroStudio = (function () {
   /* One Path2D of geometry k; with `tol`, vertices closer than tol (in x and y) to the last
      one drawn are skipped (a fillet's arcs have far more vertices than pixels). */
   function buildPath(g, r, c, k, tol) {
-    var r0 = g[k], r1 = g[k + 1];
-    if (r1 <= r0) return null;
-    var p = new Path2D(), d = tol || 0;
+    if (g[k + 1] <= g[k]) return null;
+    var p = new Path2D();
+    addRings(p, g, r, c, k, tol);
+    return p;
+  }
+
+  /* Append the rings of geometry k to path p (see buildPath). */
+  function addRings(p, g, r, c, k, tol) {
+    var r0 = g[k], r1 = g[k + 1], d = tol || 0;
     for (var j = r0; j < r1; j++) {
       var s = r[j], e = r[j + 1];
       if (e - s < 3) continue;
@@ -44,7 +50,6 @@ var VoroStudio = (function () {
       }
       p.closePath();
     }
-    return p;
   }
 
   function ringCoords(g, r, c, k) {
@@ -206,15 +211,15 @@ var VoroStudio = (function () {
     var n = h.n, idx = a.idx, k, i, region = null;
     var full = h.full || this.raw.length !== n && !a.sites;
     this.bounds = h.bounds;
-    var tol = 1.0 / this.view().s;  // a device pixel, in design units
     if (h.full) { this.raw = new Array(n); this.cells = new Array(n); this.rawData = new Array(n); this.boxes = new Array(n); }
     else if (this.raw.length !== n) { this.raw.length = n; this.cells.length = n; this.rawData.length = n; this.boxes.length = n; }
     for (k = 0; k < idx.length; k++) {
       i = idx[k];
       region = grow(region, this.boxes[i]);
-      this.raw[i] = buildPath(a.rg, a.rr, a.rc, k);
+      // no Path2D per cell: the rings stay in the message's buffers until drawn
+      this.raw[i] = a.rg[k + 1] > a.rg[k] ? [a.rg, a.rr, a.rc, k] : null;
       this.rawData[i] = a.rc.subarray(2 * a.rr[a.rg[k]], 2 * a.rr[a.rg[k + 1]]);
-      this.cells[i] = buildPath(a.cg, a.cr, a.cc, k, tol);
+      this.cells[i] = a.cg[k + 1] > a.cg[k] ? [a.cg, a.cr, a.cc, k] : null;
       this.boxes[i] = ringBox(a.rg, a.rr, a.rc, k);
       region = grow(region, this.boxes[i]);
     }
@@ -268,7 +273,7 @@ var VoroStudio = (function () {
     if (!this.base) { this.base = document.createElement("canvas"); }
     if (this.base.width !== W || this.base.height !== H) { this.base.width = W; this.base.height = H; region = null; }
     var b = this.base.getContext("2d"), v = this.view(), px = 1 / v.s, dpr = this.dpr, i;
-    var dot = 1.6 * px * dpr, lw = 0.6 * px * dpr, s = this.sites;
+    var dot = 1.6 * px * dpr, lw = 0.6 * px * dpr, s = this.sites, tol = 1.0 / v.s;
     b.setTransform(1, 0, 0, 1, 0, 0);
     b.save();
     if (region) {
@@ -287,22 +292,24 @@ var VoroStudio = (function () {
       var fills = PALETTE.map(function () { return new Path2D(); }), edges = new Path2D(), dots = new Path2D();
       for (i = 0; i < this.n; i++) {
         var c = this.cells[i], rw = this.raw[i];
-        if (c && this.mask[i]) fills[colourOf(i)].addPath(c);
-        if (rw) edges.addPath(rw);
+        if (c && this.mask[i]) addRings(fills[colourOf(i)], c[0], c[1], c[2], c[3], tol);
+        if (rw) addRings(edges, rw[0], rw[1], rw[2], rw[3], 0);
       }
       for (i = 0; i < PALETTE.length; i++) { b.fillStyle = PALETTE[i]; b.fill(fills[i], "evenodd"); }
       b.lineWidth = lw; b.strokeStyle = "rgba(60,50,40,0.22)"; b.stroke(edges);
       for (i = 0; i < s.length; i += 2) dots.rect(s[i] - dot, s[i + 1] - dot, 2 * dot, 2 * dot);
       b.fillStyle = "#1d2330"; b.fill(dots);
     } else {
-      var bx = this.boxes, near = new Path2D(), sd = new Path2D();
-      b.lineWidth = lw; b.strokeStyle = "rgba(60,50,40,0.22)";
+      var bx = this.boxes, near = new Path2D(), sd = new Path2D(), cols = {};
       for (i = 0; i < this.n; i++) {
         var q = bx[i];
         if (!q || q[0] > r[2] || q[2] < r[0] || q[1] > r[3] || q[3] < r[1]) continue;
-        if (this.cells[i] && this.mask[i]) { b.fillStyle = PALETTE[colourOf(i)]; b.fill(this.cells[i], "evenodd"); }
-        near.addPath(this.raw[i]);
+        var cc = this.cells[i], rr = this.raw[i], col = colourOf(i);
+        if (cc && this.mask[i]) addRings(cols[col] || (cols[col] = new Path2D()), cc[0], cc[1], cc[2], cc[3], tol);
+        if (rr) addRings(near, rr[0], rr[1], rr[2], rr[3], 0);
       }
+      for (var key in cols) { b.fillStyle = PALETTE[key]; b.fill(cols[key], "evenodd"); }
+      b.lineWidth = lw; b.strokeStyle = "rgba(60,50,40,0.22)";
       b.stroke(near);
       for (i = 0; i < s.length; i += 2) {
         if (s[i] < r[0] || s[i] > r[2] || s[i + 1] < r[1] || s[i + 1] > r[3]) continue;
