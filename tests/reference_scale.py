@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import numpy as np
 import pyarrow.parquet as pq
-import shapely
 
 import voroforge as vf
 from voroforge.io.parquet import write_cells
@@ -44,19 +43,3 @@ def differences(got, ref):
         out.setdefault("bbox", set()).update(np.flatnonzero(bad).tolist())
     out["bbox"] = sorted(out["bbox"])
     return out
-
-
-def same_region(got, ref, rows, atol):
-    """True when cells ``rows`` of both tables match to ``atol`` (Hausdorff distance and area).
-
-    For polygon domains ``atol`` is a few ulps of the domain's size: the engine overlays cut
-    cells on local pieces of the domain, and where those pieces' edges were split the
-    crossing points can differ in their last bits.
-    """
-    a = shapely.from_wkb(got.column("geometry").take(rows).to_pylist())
-    b = shapely.from_wkb(ref.column("geometry").take(rows).to_pylist())
-    if not (shapely.is_empty(a) == shapely.is_empty(b)).all():
-        return False
-    full = ~shapely.is_empty(a)
-    near = shapely.hausdorff_distance(a[full], b[full]) <= atol
-    return bool(near.all())

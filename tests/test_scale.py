@@ -18,7 +18,7 @@ import pytest
 import shapely
 
 import voroforge as vf
-from reference_scale import differences, same_region, single_process, tiled_table
+from reference_scale import differences, single_process, tiled_table
 from voroforge import config, scale
 from voroforge.scale.tasks import _certified, open_sides, radii
 from voroforge.scale.tiling import kd_tiling
@@ -72,7 +72,8 @@ def test_catalogue_identical(tmp_path, client, name):
     assert all(not v for v in diff.values()), {k: len(v) for k, v in diff.items()}
 
 
-def test_polygon_with_holes(tmp_path, client):
+@pytest.mark.parametrize("curved", [False, True], ids=["straight", "curved-holes"])
+def test_polygon_with_holes(tmp_path, client, curved):
     rng = np.random.default_rng(2)
     pts = rng.random((8000, 2))
     outer = [(0, 0), (1, 0), (1, 1), (0.55, 0.62), (0, 1)]
@@ -81,15 +82,13 @@ def test_polygon_with_holes(tmp_path, client):
         [(0.7, 0.1), (0.9, 0.1), (0.8, 0.3)],
     ]
     dom = shapely.Polygon(outer, holes)
+    if curved:  # about 400 vertices: the engine cuts the domain into local pieces
+        dom = dom.difference(shapely.Point(0.3, 0.75).buffer(0.12, quad_segs=48))
+        dom = dom.difference(shapely.Point(0.75, 0.55).buffer(0.08, quad_segs=48))
     res, got, ref, diff = _identical(tmp_path, client, pts, dom, tile_size=1000)
-    assert res.uncertified == 0 and not diff["site_id"] and not diff["neighbors"]
-    # cells the polygon does not cut: identical bytes; cut ones: the same region
-    cut = sorted(set(diff["geometry"]) | set(diff["area"]) | set(diff["bbox"]))
-    assert len(cut) < 0.02 * len(pts)
-    assert same_region(got, ref, cut, atol=1e-14)
-    a = got.column("area").to_numpy()[cut]
-    b = ref.column("area").to_numpy()[cut]
-    assert np.abs(a - b).max() <= 1e-15 * dom.area
+    # cut cells too: the domain pieces they are intersected with follow from the domain alone
+    assert res.uncertified == 0
+    assert all(not v for v in diff.values()), {k: len(v) for k, v in diff.items()}
 
 
 def test_no_halo_still_identical(tmp_path, client, monkeypatch):

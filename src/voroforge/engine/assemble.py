@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
+from .. import config
 from ..config import EDGE_LENGTH_RTOL
 from ..kernels.domain_grid import classify, mark_segments, scanline_inside
 from ..kernels.rings import shared_edges
@@ -159,16 +160,25 @@ def _centres(lo, hi, h, count):
     )
 
 
+def _piece_tiles(dom: Domain) -> int:
+    """Tiles per side of the pieces :func:`_intersect_local` cuts the domain into."""
+    vertices = int(shapely.get_num_coordinates(dom.geometry))
+    return int(min(max(np.ceil(np.sqrt(vertices) / config.DOMAIN_PIECE_VERTICES), 1), 64))
+
+
 def _intersect_local(dom: Domain, convex):
     """``convex ∩ domain`` for many small convex polygons, each against a local domain piece.
 
     Overlay cost grows with the size of both operands, so the domain is cut into tiles (each
     grown by half a tile) and every polygon that fits inside one grown tile is intersected
-    with that tile's piece only.
+    with that tile's piece only. The tiles follow from the domain alone (its bounds and its
+    vertex count), never from the polygons: a cell gets the same piece, hence the same
+    crossing points bit for bit, whichever other cells are computed with it (the tiled
+    ``scale.voronoi`` relies on it).
     """
     out = np.empty(len(convex), dtype=object)  # noqa: TID251 - every slot is filled below
     x0, y0, x1, y1 = dom.bounds
-    t = int(min(max(np.sqrt(len(convex)) / 2.0, 1.0), 256))
+    t = _piece_tiles(dom)
     ts = max(x1 - x0, y1 - y0) / t
     bx = shapely.bounds(convex)
     mid_x = np.floor((0.5 * (bx[:, 0] + bx[:, 2]) - x0) / ts).astype(np.int64)

@@ -51,7 +51,8 @@ def _wkb_pass(
     ``bits`` is the ``uint64`` view of the coordinates ``xy``; one cell with one polygon is a WKB
     Polygon (type 3), with several a MultiPolygon (type 6), with none an empty Polygon.
     Little-endian throughout. Each closed ring is written from its lowest ``(x, y)``
-    vertex, in its own direction. ``bbox`` gets each cell's extent (NaN when empty) and
+    vertex, in its own direction; the polygons of a cell follow their outer rings' lowest
+    vertices, the holes of a polygon theirs. ``bbox`` gets each cell's extent (NaN when empty) and
     ``area`` its area: shoelace sums in that ring order relative to the cell's lowest vertex,
     scaled by a power of two (exact) so no magnitude overflows; exterior rings add, holes
     subtract, whatever their orientation. So area bits, too, depend only on the cell.
@@ -74,14 +75,15 @@ def _wkb_pass(
             _put_u32(out, pos + 1, 6 if multi else 3)
             _put_u32(out, pos + 5, (g1 - g0) if multi else (poly[g1] - poly[g0]))
         pos += header
-        for p in range(g0, g1):
+        parts = _canonical_order(xy, ring, poly, g0, g1)
+        for p in parts:
             if multi:
                 if fill:
                     out[pos] = 1
                     _put_u32(out, pos + 1, 3)
                     _put_u32(out, pos + 5, poly[p + 1] - poly[p])
                 pos += 9
-            for r in range(poly[p], poly[p + 1]):
+            for r in _ring_order(xy, ring, poly, p):
                 k0 = ring[r]
                 k1 = ring[r + 1]
                 if fill:
@@ -126,6 +128,60 @@ def _lowest(xy, k0, k1):  # pragma: no cover
 
 
 @njit(**NJIT)
+def _sorted_by_lowest(xy, ring, rings):  # pragma: no cover
+    """``rings`` (ring indices) sorted by their lowest ``(x, y)`` vertex (insertion sort)."""
+    keys = np.zeros((len(rings), 2))
+    for i in range(len(rings)):
+        r = rings[i]
+        m = _lowest(xy, ring[r], ring[r + 1] - 1)
+        keys[i, 0] = xy[m, 0]
+        keys[i, 1] = xy[m, 1]
+    out = rings.copy()
+    for i in range(1, len(out)):
+        j = i
+        while j > 0 and (
+            keys[j, 0] < keys[j - 1, 0]
+            or (keys[j, 0] == keys[j - 1, 0] and keys[j, 1] < keys[j - 1, 1])
+        ):
+            keys[j, 0], keys[j - 1, 0] = keys[j - 1, 0], keys[j, 0]
+            keys[j, 1], keys[j - 1, 1] = keys[j - 1, 1], keys[j, 1]
+            out[j], out[j - 1] = out[j - 1], out[j]
+            j -= 1
+    return out
+
+
+@njit(**NJIT)
+def _canonical_order(xy, ring, poly, g0, g1):  # pragma: no cover
+    """A cell's polygons ``g0..g1`` ordered by their outer ring's lowest vertex.
+
+    The bytes and the area sum then depend only on the cell, not on the order in which an
+    overlay happened to return its parts.
+    """
+    parts = np.arange(g0, g1)
+    if g1 - g0 < 2:
+        return parts
+    outer = np.zeros(g1 - g0, dtype=np.int64)
+    for i in range(g1 - g0):
+        outer[i] = poly[parts[i]]
+    order = _sorted_by_lowest(xy, ring, outer)
+    for i in range(g1 - g0):  # outer ring index -> its polygon
+        for q in range(g0, g1):
+            if poly[q] == order[i]:
+                parts[i] = q
+    return parts
+
+
+@njit(**NJIT)
+def _ring_order(xy, ring, poly, p):  # pragma: no cover
+    """Polygon ``p``'s rings: the outer one, then the holes by their lowest vertex."""
+    rings = np.arange(poly[p], poly[p + 1])
+    if len(rings) < 3:
+        return rings
+    rings[1:] = _sorted_by_lowest(xy, ring, rings[1:].copy())
+    return rings
+
+
+@njit(**NJIT)
 def _cell_area(xy, ring, poly, g0, g1):  # pragma: no cover
     """Area of one cell, from its canonical rings (see :func:`_wkb_pass`)."""
     o = _lowest(xy, ring[poly[g0]], ring[poly[g1]])
@@ -138,8 +194,8 @@ def _cell_area(xy, ring, poly, g0, g1):  # pragma: no cover
         return 0.0
     e = math.frexp(big)[1]
     total = 0.0
-    for p in range(g0, g1):
-        for r in range(poly[p], poly[p + 1]):
+    for p in _canonical_order(xy, ring, poly, g0, g1):
+        for r in _ring_order(xy, ring, poly, p):
             k0 = ring[r]
             span = ring[r + 1] - 1 - k0
             if span < 3:
