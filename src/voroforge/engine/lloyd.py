@@ -175,7 +175,7 @@ def lloyd(
                 f"points has duplicate sites (rows {int(dup[i])} and {i}); areas= needs "
                 "distinct sites"
             )
-    k = _size_exponent(dom)
+    k = size_exponent(dom)
     if k:
         return _rescaled(z, dom, k, iterations, tol, density, method, targets)
     with serial_below(len(z)):
@@ -186,7 +186,7 @@ def lloyd(
         return _lloyd(z, dom, integ, int(iterations), stop)
 
 
-def _size_exponent(dom) -> int:
+def size_exponent(dom) -> int:
     """0, or ``k`` such that the domain scaled by ``2**k`` has a size near 1.
 
     Masses, moments and energies grow with the 2nd to 4th power of the cells' size: beyond
@@ -220,7 +220,7 @@ def _rescaled(z, dom, k, iterations, tol, density, method, targets):
     )
     pts = np.ldexp(r.points, -k)
     if r.weights is None:
-        w, d = None, _voronoi(pts, _cell_domain(dom))
+        w, d = None, _voronoi(pts, cell_domain(dom))
     else:
         w = np.ldexp(r.weights, -2 * k)
         d = power_diagram(pts, w, dom)
@@ -238,7 +238,7 @@ def _rescaled(z, dom, k, iterations, tol, density, method, targets):
     )
 
 
-def _cell_domain(dom):
+def cell_domain(dom):
     """The domain the relaxation's Voronoi diagrams are clipped to.
 
     A rectangle as its bounds (the diagram's ``boundary`` is then that box), else the region.
@@ -254,7 +254,7 @@ def _voronoi(z, dom):
 def _lloyd(z, dom, integ, iterations, stop):
     """Plain Lloyd steps: every site to its cell's (density-weighted) centroid."""
     t0 = time.perf_counter()
-    dom = _cell_domain(dom)
+    dom = cell_domain(dom)
     energy, elapsed, shifts = [], [], []
     z_new = np.zeros_like(z)
     for it in range(int(iterations) + 1):
@@ -349,7 +349,7 @@ def _lbfgs(z, dom, integ, iterations, stop, memory=8):
     n = len(z)
     lo = np.array(dom.bounds[:2])
     hi = np.array(dom.bounds[2:])
-    cdom = _cell_domain(dom)
+    cdom = cell_domain(dom)
 
     def evaluate(zz):
         d = _voronoi(zz, cdom)

@@ -3,7 +3,8 @@
 :func:`voronoi` computes the cells of :func:`voroforge.voronoi` on inputs too big for one
 process, as tiles with certified halos on a dask.distributed cluster (the current client, or
 a LocalCluster started for the call), and writes one GeoParquet 1.1 partition per tile;
-:func:`read` reads them back with their spatial partitions. Imported only when used:
+:func:`read` reads them back with their spatial partitions; :func:`lloyd` relaxes sites
+(Lloyd's algorithm, :func:`voroforge.lloyd` in tiles). Imported only when used:
 ``import voroforge`` never imports dask.
 
 Examples
@@ -19,5 +20,6 @@ from __future__ import annotations
 
 from .dataset import partitions, read
 from .job import ScaleResult, voronoi
+from .lloyd import ScaleRelaxation, lloyd
 
-__all__ = ["ScaleResult", "partitions", "read", "voronoi"]
+__all__ = ["ScaleRelaxation", "ScaleResult", "lloyd", "partitions", "read", "voronoi"]
