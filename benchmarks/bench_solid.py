@@ -2,12 +2,15 @@
 
 The reference is what designers do today: every strut a cylinder, every node a sphere, all
 unioned with manifold3d (``Manifold.batch_boolean``). Ours: ``solid.lattice`` on the same
-cells (node hulls where the cells allow, else the implicit capsule union meshed by slabbed
-marching cubes). Both outputs are checked: watertight (``is_volume``) and manifold3d status.
+cells (node hulls, joints of several nodes where struts are too short for rings), and with
+``--implicit`` also the implicit route (the plain union of round struts and spherical nodes
+on a voxel grid, meshed by slabbed marching cubes). Every output is checked: watertight
+(``is_volume``) and manifold3d status.
 
 Run::
 
     python benchmarks/bench_solid.py            # 1,000 cells, ours best of 3, reference once
+    python benchmarks/bench_solid.py --implicit # also the implicit route, once
     python benchmarks/bench_solid.py --big      # also 10,000 cells (time and peak memory)
 
 The machine is shared and noisy: read the ratio, not the seconds.
@@ -16,6 +19,7 @@ The machine is shared and noisy: read the ratio, not the seconds.
 from __future__ import annotations
 
 import argparse
+import os
 import resource
 import subprocess
 import sys
@@ -40,7 +44,14 @@ def radius(n: int) -> float:
 def ours(c, r):
     from voroforge import solid
 
-    return solid.lattice(c, radius=r, smoothing=0)  # default voxel: 0.5 radius
+    return solid.lattice(c, radius=r)
+
+
+def implicit(m):
+    from voroforge.solid.implicit import capsules_mesh
+
+    # the same struts, round, spherical nodes (a plain union); default voxel: 0.5 radius
+    return capsules_mesh(m.metadata["struts"], smoothing=0, smooth=0.0)
 
 
 def reference(c, r, segments=8):
@@ -63,7 +74,9 @@ def reference(c, r, segments=8):
         parts.append(cyl.transform(m.tolist()))
     for p in g.nodes:
         parts.append(mf.Manifold.sphere(r, segments).translate(tuple(p)))
-    return mf.Manifold.batch_boolean(parts, mf.OpType.Add)
+    out = mf.Manifold.batch_boolean(parts, mf.OpType.Add)
+    out.num_tri()  # manifold3d is lazy: the union runs here, inside the timing
+    return out
 
 
 def verdict_ours(m):
@@ -81,22 +94,28 @@ def verdict_ref(man):
 
 
 def best(fn, repeat):
+    """Best wall seconds of ``repeat`` runs, the CPU seconds of that run, and its result."""
     times, out = [], None
     for _ in range(repeat):
-        t = time.perf_counter()
+        t, cpu = time.perf_counter(), time.process_time()
         out = fn()
-        times.append(time.perf_counter() - t)
-    return min(times), out
+        times.append((time.perf_counter() - t, time.process_time() - cpu))
+    wall, cpu = min(times)
+    return wall, cpu, out
 
 
 def big(n: int) -> None:
     """One run in this process; prints seconds and peak RSS (for the subprocess call)."""
     c = cells(n)
-    t = time.perf_counter()
+    t, cpu = time.perf_counter(), time.process_time()
     m = ours(c, radius(n))
-    dt = time.perf_counter() - t
+    dt, dcpu = time.perf_counter() - t, time.process_time() - cpu
     rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2
-    print(f"{n} {dt:.1f} {rss:.2f} {m.is_volume} {len(m.faces)}")
+    p = m.metadata["parts"]
+    load = os.getloadavg()[0]
+    print(
+        f"{n} {dt:.1f} {dcpu:.1f} {rss:.2f} {m.is_volume} {len(m.faces)} {p['joints']} {load:.1f}"
+    )
 
 
 def main() -> None:
@@ -105,6 +124,7 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--big", action="store_true", help="also 10,000 cells in a subprocess")
     ap.add_argument("--no-reference", action="store_true")
+    ap.add_argument("--implicit", action="store_true", help="also the implicit route, once")
     ap.add_argument("--_big", type=int, help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a._big:
@@ -113,27 +133,34 @@ def main() -> None:
     n, r = a.n, radius(a.n)
     c = cells(n)
     ours(cells(20), radius(20))  # compile
-    t_ours, m = best(lambda: ours(c, r), a.repeat)
-    ok, status = verdict_ours(m)
-    print(f"{'method':<34} {'cells':>6} {'seconds':>8} {'faces':>9} {'is_volume':>9} status")
-    print(
-        f"{'solid.lattice (' + m.metadata['parts']['method'] + ')':<34} {n:>6} {t_ours:>8.2f} "
-        f"{len(m.faces):>9} {ok!s:>9} {status}"
-    )
+    head = f"{'method':<36} {'cells':>6} {'wall s':>8} {'CPU s':>8} {'faces':>9} {'is_volume':>9}"
+    print(head + " status")
+
+    def row(name, wall, cpu, faces, ok, status):
+        print(f"{name:<36} {n:>6} {wall:>8.2f} {cpu:>8.2f} {faces:>9} {ok!s:>9} {status}")
+
+    t_ours, c_ours, m = best(lambda: ours(c, r), a.repeat)
+    row(f"solid.lattice ({m.metadata['parts']['method']})", t_ours, c_ours, len(m.faces),
+        *verdict_ours(m))  # fmt: skip
+    p = m.metadata["parts"]
+    print(f"  {p['merged']} nodes merged into {p['joints']} joints, {p['rounds']} rounds")
+    if a.implicit:
+        t_imp, c_imp, mi = best(lambda: implicit(m), 1)
+        row("implicit route (plain union)", t_imp, c_imp, len(mi.faces), *verdict_ours(mi))
     if not a.no_reference:
-        t_ref, man = best(lambda: reference(c, r), 1)
-        ok_r, status_r = verdict_ref(man)
-        print(
-            f"{'manifold3d union (cyl + spheres)':<34} {n:>6} {t_ref:>8.2f} "
-            f"{man.num_tri():>9} {ok_r!s:>9} {status_r}"
-        )
-        print(f"ratio ours / manifold3d: {t_ours / t_ref:.3f}")
+        t_ref, c_ref, man = best(lambda: reference(c, r), 1)
+        row("manifold3d union (cyl + spheres)", t_ref, c_ref, man.num_tri(), *verdict_ref(man))
+        print(f"ratio ours / manifold3d: wall {t_ours / t_ref:.3f}, CPU {c_ours / c_ref:.3f}")
+    print(f"load average: {os.getloadavg()[0]:.1f}")
     if a.big:
         out = subprocess.run(
             [sys.executable, __file__, "--_big", "10000"], capture_output=True, text=True
         )
-        nn, sec, gb, vol, faces = out.stdout.split()
-        print(f"10,000 cells: {sec} s, peak RSS {gb} GB, is_volume {vol}, {faces} faces")
+        nn, sec, cpu, gb, vol, faces, joints, load = out.stdout.split()
+        print(
+            f"10,000 cells: {sec} s ({cpu} s CPU), peak RSS {gb} GB, is_volume {vol}, "
+            f"{faces} faces, {joints} joints (load {load})"
+        )
 
 
 if __name__ == "__main__":

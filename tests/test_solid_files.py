@@ -95,3 +95,46 @@ def test_relax_moves_sites_to_centroids():
     q = solid.cells.relax(p, (0, 0, 0, 10, 10, 10), iterations=3)
     assert q.shape == p.shape and not np.shares_memory(p, q)
     assert ((q > 0) & (q < 10)).all()
+
+
+SLAB = """
+[design]
+name = "tiny-slab"
+units = "mm"
+seed = 4
+
+[boundary]
+shape = "rectangle"
+width = 60
+height = 40
+margin = 4
+
+[seeds]
+method = "random"
+count = 12
+
+[cells]
+web = 2
+
+[solid]
+kind = "extrude"
+thickness = 3
+formats = ["3mf", "png"]
+"""
+
+
+def test_build_extrude_design(tmp_path):
+    # kind = "extrude": the file's 2D design computed, its frame as a 3 mm slab
+    from voroforge.design.compute import compute
+
+    src = tmp_path / "slab.toml"
+    src.write_text(SLAB)
+    paths = build(src, tmp_path / "out")
+    assert [p.suffix for p in paths] == [".3mf", ".png"]
+    m = read(paths[0])
+    assert m.is_volume and m.metadata["units"] == "mm"
+    frame = compute(*load(src)).frame
+    assert frame.area < 60 * 40  # openings cut through
+    assert abs(m.volume - 3.0 * frame.area) <= 1e-9 * m.volume
+    assert np.allclose(m.bounds[:, 2], [0, 3])
+    assert np.allclose(m.bounds[:, :2], np.reshape(frame.bounds, (2, 2)), atol=1e-9)

@@ -123,7 +123,7 @@ def _cutaway(m, view):
     return from_manifold(to_manifold(m).trim_by_plane(tuple(d), float(d @ c)))
 
 
-_PREVIEW_FACES = 60_000  # the software renderer pays per face
+_PREVIEW_FACES = 30_000  # the software renderer pays per face (about 1 per 20 pixels)
 
 
 def _cluster(m, cell: float):
