@@ -47,10 +47,12 @@ def lattice(
         strut between two radii is a frustum.
     nodes : {"sphere", "hull", "smooth"}
         ``sphere``: each node the convex hull of its strut rings and a polygonal sphere of
-        ``node_scale * radius`` (exact polyhedral construction, fast). ``hull``: the rings'
-        hull alone (sharp, lightest). ``smooth``: an implicit surface (smooth minimum of
-        capsules) meshed by marching cubes and Taubin-smoothed (organic nodes; slower,
-        resolution ``voxel``).
+        ``node_scale * radius`` (exact polyhedral construction, fast); nodes joined by struts
+        too short for two rings share a joint (a manifold3d union of their hulls and the
+        short struts), as random Voronoi cells need. ``hull``: the rings' hull alone (sharp,
+        lightest). ``smooth``: an implicit surface (smooth minimum of capsules) meshed by
+        marching cubes and Taubin-smoothed (organic nodes; slower, resolution ``voxel``).
+        Skins always take the implicit route.
     field : callable, optional
         A 0..1 field (:mod:`voroforge.solid.fields`) grading ``radius=(far, near)``.
     container : Trimesh, optional
@@ -125,8 +127,8 @@ def lattice(
                 m = trim(m, container, skin=skin)
                 m.metadata.update({**meta, "parts": parts})
             return m
-    # implicit route: smooth nodes, or spheres (a plain union of capsules) where the cells
-    # have struts too short or too crowded for node hulls
+    # implicit route: smooth nodes and skins, or spheres (a plain union of capsules) where the
+    # hull route gives up (rings that cannot be placed even with joints)
     from .implicit import capsules_mesh
 
     m = capsules_mesh(
