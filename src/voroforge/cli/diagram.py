@@ -126,8 +126,14 @@ def run_voronoi(args: argparse.Namespace, stage: Stage) -> list[Path]:
         if args.edges and kind in ("png", "parquet"):
             raise ValueError(f"{out}: --edges writes .svg, .dxf or .geojson, not .{kind}")
     stage("reading")
-    points = io.read_points(args.points)
+    from ..io.readers import boundary_crs, read_point_table
+
+    # every input row keeps its place (row i is cell i; a site outside the domain gets an
+    # empty cell), its attributes and the boundary's CRS go to the GeoJSON/GeoParquet cells
+    points, attributes = read_point_table(args.points)
+    attributes = {(f"input_{k}" if k in _RESERVED else k): v for k, v in attributes.items()}
     boundary = io.read_boundary(args.boundary) if args.boundary else None
+    crs = boundary_crs(args.boundary) if args.boundary else None
     stage(f"computing {len(points)} Voronoi cells")
     d = vf.voronoi(points, boundary, algorithm=args.algorithm)
     if args.edges:
@@ -138,7 +144,14 @@ def run_voronoi(args: argparse.Namespace, stage: Stage) -> list[Path]:
         if _is_parquet(out):  # GeoParquet cells (voroforge.io.parquet, the scale extra)
             from ..io.parquet import write_cells
 
-            written.append(write_cells(d, out))
+            written.append(
+                write_cells(d, out, crs=_parquet_crs(crs), attributes=attributes or None)
+            )
+            continue
+        if io.output_format(out) == "geojson":
+            written.append(
+                io.write_geojson(d.cells, out, sites=d.sites, properties=attributes, crs=crs)
+            )
             continue
         written.append(
             io.write(
@@ -146,6 +159,18 @@ def run_voronoi(args: argparse.Namespace, stage: Stage) -> list[Path]:
             )
         )
     return written
+
+
+#: Columns the writers fill themselves: an input attribute of that name is kept as input_<name>.
+_RESERVED = {"index", "site", "area", "site_id", "geometry", "neighbors", "bbox"}
+
+
+def _parquet_crs(crs):
+    """A GeoJSON ``crs`` member's name (``urn:ogc:def:crs:EPSG::2056``) for GeoParquet."""
+    if not crs:
+        return None
+    name = (crs.get("properties") or {}).get("name")
+    return name if isinstance(name, str) else None
 
 
 def _is_parquet(out) -> bool:

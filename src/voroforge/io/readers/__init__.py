@@ -16,15 +16,22 @@ import shapely
 
 from .dxf import read_dxf
 from .files import existing_file, parse_number
-from .geojson import read_geojson_points, read_geojson_polygons
-from .points import read_npy_points, read_text_points
+from .geojson import (
+    geojson_crs,
+    read_geojson_point_table,
+    read_geojson_points,
+    read_geojson_polygons,
+)
+from .points import read_npy_points, read_text_point_table, read_text_points
 from .svg import read_svg, read_svg_curves
 
 __all__ = [
     "BOUNDARY_SUFFIXES",
     "POINT_SUFFIXES",
+    "boundary_crs",
     "read_boundary",
     "read_dxf",
+    "read_point_table",
     "read_points",
     "read_svg",
     "read_svg_curves",
@@ -49,6 +56,15 @@ _BOUNDARY_READERS = {
     ".dxf": read_dxf,
 }
 BOUNDARY_SUFFIXES = tuple(_BOUNDARY_READERS)
+
+#: Point readers that also return attribute columns.
+_TABLE_READERS = {
+    ".csv": read_text_point_table,
+    ".txt": read_text_point_table,
+    ".xy": read_text_point_table,
+    ".geojson": read_geojson_point_table,
+    ".json": read_geojson_point_table,
+}
 
 
 def read_points(path) -> np.ndarray:
@@ -95,6 +111,65 @@ def read_points(path) -> np.ndarray:
     if len(points) == 0:
         raise ValueError(f"{path}: no points")
     return np.ascontiguousarray(points, dtype=np.float64)
+
+
+def read_point_table(path) -> tuple[np.ndarray, dict]:
+    """Read points and their attributes: the other CSV columns, or GeoJSON properties.
+
+    Parameters
+    ----------
+    path : str or Path
+        As for :func:`read_points`.
+
+    Returns
+    -------
+    points : (n, 2) float64
+        As :func:`read_points` returns them, in file order (row ``i`` is site ``i``).
+    attributes : dict of name -> list
+        One column of length ``n`` per attribute (``.npy`` files have none).
+
+    Raises
+    ------
+    ValueError
+        As for :func:`read_points`.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> f = pathlib.Path(tempfile.mkdtemp()) / "trees.csv"
+    >>> _ = f.write_text(chr(10).join(["x,y,species,height", "0,1,oak,12.5", "2.5,3,elm,8"]))
+    >>> pts, attrs = read_point_table(f)
+    >>> attrs
+    {'species': ['oak', 'elm'], 'height': [12.5, 8.0]}
+    """
+    suffix = Path(path).suffix.lower()
+    reader = _TABLE_READERS.get(suffix)
+    if reader is None:
+        return read_points(path), {}
+    points, attrs = reader(existing_file(path))
+    if len(points) == 0:
+        raise ValueError(f"{path}: no points")
+    return np.ascontiguousarray(points, dtype=np.float64), attrs
+
+
+def boundary_crs(spec):
+    """The CRS a boundary file declares (a GeoJSON ``"crs"`` member), or None.
+
+    Parameters
+    ----------
+    spec : str, Path or anything :func:`read_boundary` takes
+
+    Returns
+    -------
+    dict or None
+        The member as written, ready for ``write_geojson(..., crs=...)``.
+    """
+    if spec is None or isinstance(spec, shapely.Geometry | tuple | list):
+        return None
+    path = Path(str(spec))
+    if not path.is_file() or path.suffix.lower() in (".svg", ".dxf"):
+        return None
+    return geojson_crs(path)
 
 
 def _parse_bbox(text: str) -> tuple[float, float, float, float] | None:

@@ -11,7 +11,14 @@ from shapely.geometry import shape
 
 from .files import existing_file
 
-__all__ = ["geometries", "load_json", "read_geojson_points", "read_geojson_polygons"]
+__all__ = [
+    "geojson_crs",
+    "geometries",
+    "load_json",
+    "read_geojson_point_table",
+    "read_geojson_points",
+    "read_geojson_polygons",
+]
 
 
 def load_json(path: Path):
@@ -70,6 +77,65 @@ def _found(geoms: list[dict]) -> str:
     return f" (found {', '.join(kinds)})" if kinds else ""
 
 
+def _point_features(obj, props=None):
+    """``(coordinates, properties)`` of every point, features' properties carried along."""
+    if not isinstance(obj, dict):
+        return
+    kind = obj.get("type")
+    if kind == "FeatureCollection":
+        for f in obj.get("features") or []:
+            yield from _point_features(f)
+    elif kind == "Feature":
+        yield from _point_features(obj.get("geometry"), obj.get("properties") or {})
+    elif kind == "GeometryCollection":
+        for part in obj.get("geometries") or []:
+            yield from _point_features(part, props)
+    elif kind == "Point":
+        yield obj.get("coordinates"), props or {}
+    elif kind == "MultiPoint":
+        for c in obj.get("coordinates") or []:
+            yield c, props or {}
+
+
+def read_geojson_point_table(path) -> tuple[np.ndarray, dict]:
+    """The points of a GeoJSON file and their features' properties, in file order.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+
+    Returns
+    -------
+    points : (n, 2) float64
+    attributes : dict of name -> list
+        One column per property name met (in first-seen order); ``None`` where a feature
+        lacks it. Every point of a MultiPoint gets its feature's properties.
+
+    Raises
+    ------
+    ValueError
+        No points in the file, or coordinates that are not ``[x, y]`` numbers.
+    """
+    path = existing_file(path)
+    doc = load_json(path)
+    rows = list(_point_features(doc))
+    if not rows:
+        raise ValueError(f"{path}: no Point or MultiPoint geometries{_found(geometries(doc))}")
+    try:
+        arr = np.array([c[:2] for c, _ in rows], dtype=np.float64)
+    except (TypeError, ValueError, IndexError):
+        raise ValueError(f"{path}: point coordinates are not [x, y] numbers") from None
+    if arr.ndim != 2 or arr.shape[1] != 2:
+        raise ValueError(f"{path}: point coordinates are not [x, y] numbers")
+    names: dict = {}
+    for _, props in rows:
+        for k in props:
+            names.setdefault(str(k), None)
+    attrs = {k: [props.get(k) for _, props in rows] for k in names}
+    return arr, attrs
+
+
 def read_geojson_points(path) -> np.ndarray:
     """The Point and MultiPoint coordinates of a GeoJSON file, in file order.
 
@@ -87,23 +153,24 @@ def read_geojson_points(path) -> np.ndarray:
     ValueError
         No points in the file, or coordinates that are not ``[x, y]`` numbers.
     """
-    path = existing_file(path)
-    geoms = geometries(load_json(path))
-    coords: list = []
-    for g in geoms:
-        if g["type"] == "Point":
-            coords.append(g["coordinates"])
-        elif g["type"] == "MultiPoint":
-            coords.extend(g["coordinates"])
-    if not coords:
-        raise ValueError(f"{path}: no Point or MultiPoint geometries{_found(geoms)}")
-    try:
-        arr = np.array([c[:2] for c in coords], dtype=np.float64)
-    except (TypeError, ValueError, IndexError):
-        raise ValueError(f"{path}: point coordinates are not [x, y] numbers") from None
-    if arr.ndim != 2 or arr.shape[1] != 2:
-        raise ValueError(f"{path}: point coordinates are not [x, y] numbers")
-    return arr
+    return read_geojson_point_table(path)[0]
+
+
+def geojson_crs(path):
+    """The legacy ``"crs"`` member of a GeoJSON file (QGIS, GDAL), or None.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+
+    Returns
+    -------
+    dict or None
+    """
+    doc = load_json(existing_file(path))
+    crs = doc.get("crs") if isinstance(doc, dict) else None
+    return crs if isinstance(crs, dict) else None
 
 
 def read_geojson_polygons(path):

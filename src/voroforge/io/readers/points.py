@@ -12,7 +12,7 @@ import numpy as np
 
 from .files import existing_file, parse_number
 
-__all__ = ["read_npy_points", "read_text_points"]
+__all__ = ["read_npy_points", "read_text_point_table", "read_text_points"]
 
 _X_NAMES = ("x", "lon", "lng", "longitude", "easting")
 _Y_NAMES = ("y", "lat", "latitude", "northing")
@@ -26,6 +26,8 @@ def _split(line: str, delimiter: str | None) -> list[str]:
 def read_text_points(path) -> np.ndarray:
     """Points from delimited text: commas, semicolons, tabs or spaces; optional header.
 
+    The points of :func:`read_text_point_table`.
+
     Parameters
     ----------
     path : str or Path
@@ -36,6 +38,31 @@ def read_text_points(path) -> np.ndarray:
     -------
     (n, 2) float64
         In file order.
+
+    Raises
+    ------
+    ValueError
+        Naming the file and the line: no points, missing columns, a non-numeric value.
+    """
+    return read_text_point_table(path)[0]
+
+
+def read_text_point_table(path) -> tuple[np.ndarray, dict]:
+    """Points from delimited text, and the header row's other columns as attributes.
+
+    Parameters
+    ----------
+    path : str or Path
+        As for :func:`read_text_points`.
+
+    Returns
+    -------
+    points : (n, 2) float64
+        In file order.
+    attributes : dict of name -> list
+        Every column besides x and y, by its header name (files without a header have
+        none): numbers where the whole column is numeric, else the text as written
+        (empty cells None).
 
     Raises
     ------
@@ -59,7 +86,8 @@ def read_text_points(path) -> np.ndarray:
 
     columns = (0, 1)
     head = _split(first, delimiter)
-    if any(parse_number(t) is None for t in head):  # a header row
+    header = any(parse_number(t) is None for t in head)
+    if header:
         names = [t.lower() for t in head]
         xi = next((names.index(n) for n in _X_NAMES if n in names), None)
         yi = next((names.index(n) for n in _Y_NAMES if n in names), None)
@@ -90,6 +118,25 @@ def read_text_points(path) -> np.ndarray:
             if not math.isfinite(value):
                 raise ValueError(f"{path}: line {number}: {tokens[c]!r} is not a finite number")
             out[k, j] = value
+    return out, _attributes(rows, head if header else [], columns, delimiter)
+
+
+def _attributes(rows, head, columns, delimiter) -> dict:
+    """The non-coordinate columns named in ``head``: numbers where all parse, else text."""
+    out = {}
+    for c, name in enumerate(head):
+        if c in columns:
+            continue
+        key = name or f"column_{c + 1}"
+        while key in out:
+            key += "_"
+        cells = []
+        for _, line in rows:
+            tokens = _split(line, delimiter)
+            cells.append(tokens[c] if c < len(tokens) and tokens[c] != "" else None)
+        numbers = [None if t is None else parse_number(t) for t in cells]
+        numeric = all(v is not None for v, t in zip(numbers, cells, strict=True) if t is not None)
+        out[key] = numbers if numeric else cells
     return out
 
 

@@ -1,0 +1,100 @@
+"""Input attributes and CRS carried to the cells (voroforge voronoi, the point readers)."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from voroforge.cli import main
+from voroforge.io.readers import boundary_crs, read_point_table
+
+CRS = {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::2056"}}
+
+
+def _boundary(tmp_path):
+    f = tmp_path / "bnd.geojson"
+    ring = [[0, 0], [1, 0], [1, 1], [0, 1], [0, 0]]
+    f.write_text(
+        json.dumps(
+            {
+                "type": "FeatureCollection",
+                "crs": CRS,
+                "features": [
+                    {
+                        "type": "Feature",
+                        "properties": {},
+                        "geometry": {"type": "Polygon", "coordinates": [ring]},
+                    }
+                ],
+            }
+        )
+    )
+    return f
+
+
+def test_csv_columns_become_attributes(tmp_path):
+    f = tmp_path / "trees.csv"
+    f.write_text("id;x;y;species;height;note\n7;0.1;0.1;oak;12.5;\n8;0.5;0.5;elm;8;old\n")
+    pts, attrs = read_point_table(f)
+    assert pts.tolist() == [[0.1, 0.1], [0.5, 0.5]]
+    assert attrs == {
+        "id": [7.0, 8.0],
+        "species": ["oak", "elm"],
+        "height": [12.5, 8.0],
+        "note": [None, "old"],
+    }
+    f2 = tmp_path / "bare.csv"
+    f2.write_text("0,1\n2,3\n")  # no header: no attributes
+    assert read_point_table(f2)[1] == {}
+
+
+def test_geojson_properties_follow_each_point(tmp_path):
+    f = tmp_path / "pts.geojson"
+    feats = [
+        {
+            "type": "Feature",
+            "properties": {"kind": "a"},
+            "geometry": {"type": "Point", "coordinates": [0.2, 0.2]},
+        },
+        {
+            "type": "Feature",
+            "properties": {"kind": "b", "n": 2},
+            "geometry": {"type": "MultiPoint", "coordinates": [[0.6, 0.6], [0.8, 0.3]]},
+        },
+    ]
+    f.write_text(json.dumps({"type": "FeatureCollection", "features": feats}))
+    pts, attrs = read_point_table(f)
+    assert len(pts) == 3
+    assert attrs == {"kind": ["a", "b", "b"], "n": [None, 2, 2]}
+
+
+def test_voronoi_cli_carries_rows_attributes_and_crs(tmp_path, capsys):
+    pts = tmp_path / "pts.csv"
+    pts.write_text("x,y,name,area\n0.1,0.1,oak,1\n0.5,0.5,elm,2\n9,9,outside,3\n0.3,0.8,fir,4\n")
+    bnd = _boundary(tmp_path)
+    assert boundary_crs(bnd) == CRS and boundary_crs("0,0,1,1") is None
+    out = tmp_path / "cells.geojson"
+    assert main(["voronoi", str(pts), "--boundary", str(bnd), "-o", str(out)]) == 0
+    doc = json.loads(out.read_text())
+    assert doc["crs"] == CRS
+    feats = doc["features"]
+    assert [f["properties"]["index"] for f in feats] == [0, 1, 2, 3]  # no renumbering
+    assert [f["properties"]["name"] for f in feats] == ["oak", "elm", "outside", "fir"]
+    assert feats[2]["geometry"] is None and feats[2]["properties"]["area"] == 0.0
+    # an input column named like a computed one is kept beside it
+    assert [f["properties"]["input_area"] for f in feats] == [1.0, 2.0, 3.0, 4.0]
+    assert abs(sum(f["properties"]["area"] for f in feats) - 1.0) < 1e-12
+
+
+def test_voronoi_cli_geoparquet_attributes_and_crs(tmp_path):
+    gpd = pytest.importorskip("geopandas")
+    pts = tmp_path / "pts.csv"
+    pts.write_text("x,y,name\n0.1,0.1,oak\n0.5,0.5,elm\n0.9,0.2,ash\n")
+    out = tmp_path / "cells.parquet"
+    assert main(["voronoi", str(pts), "--boundary", str(_boundary(tmp_path)), "-o", str(out)]) == 0
+    df = gpd.read_parquet(out)
+    assert df.crs.to_epsg() == 2056
+    assert df["name"].tolist() == ["oak", "elm", "ash"]
+    assert np.isclose(df["area"].sum(), 1.0)
