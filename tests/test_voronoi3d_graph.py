@@ -120,3 +120,26 @@ def test_graph_cut_matches_face_ring_cut():
             assert (a[2] == b[2]).all(), (seq, step, kind)
             checked += 1
     assert checked > 200
+
+
+def test_cells_that_fall_back_to_face_rings(monkeypatch):
+    """With room for only 3 edges a vertex, lattice cells fall back to the face-ring cut.
+
+    An FCC lattice's rhombic dodecahedra have vertices of degree 4 (every cell falls back),
+    a BCC lattice's cells meet planes through their vertices while they are cut (most fall
+    back). The cells must come out the same as with the graph: volumes, neighbours, vertices.
+    """
+    import voroforge as vf
+    from catalogue3d import _bcc, _fcc
+    from voroforge.engine import build3d
+
+    cases = [(_fcc(3) + 0.25, (0, 0, 0, 3, 3, 3)), (_bcc(3) + 0.25, (0, 0, 0, 3, 3, 3))]
+    for pts, box in cases:
+        a = vf.voronoi3d(pts, box)
+        monkeypatch.setattr(build3d, "CAPS", build3d.CAPS[:6] + (3,))
+        b = vf.voronoi3d(pts, box)
+        monkeypatch.undo()
+        assert np.abs(a.volumes - b.volumes).max() <= 1e-12 * a.volumes.max()
+        for x, y in zip(a.neighbors, b.neighbors, strict=True):
+            assert (x == y).all()
+        assert len(a.vertices) == len(b.vertices) and b.unmatched_vertices == 0

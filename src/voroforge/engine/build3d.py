@@ -82,7 +82,9 @@ def search_order(g: np.ndarray, radius: int) -> np.ndarray:
     return np.ascontiguousarray(out[np.argsort(lb, kind="stable")])
 
 
-CAPS = (64, 40, 320, 1024, 512, 4096)
+#: per-cell output slots (vertices, faces, ring entries), scratch (vertices, faces, ring
+#: entries) and the most edges at a vertex of the cell's graph (kernels/cells3d.build_cells)
+CAPS = (64, 40, 320, 1024, 512, 4096, 24)
 BIG_CAPS_FACTOR = 16
 
 
@@ -285,7 +287,7 @@ def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
     extra = {}
     factor = BIG_CAPS_FACTOR
     while len(over):
-        caps = tuple(c * factor for c in CAPS)
+        caps = tuple(c * factor for c in CAPS[:6]) + CAPS[6:]
         for c in over:
             extra[int(c)] = _run(built[c : c + 1], P, W, start, SP, sidx, g, order, t, caps, None)
         still = [c for c in over if extra[int(c)]["status"][0] == OVERFLOW]

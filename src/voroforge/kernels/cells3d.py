@@ -45,8 +45,6 @@ MAX_OWNERS = 32
 #: small hot helpers are inlined into their callers (numba's own inliner): a call that
 #: passes arrays costs reference counting, and the search makes ~100 such calls per cell
 NJIT_INLINE = {**NJIT, "inline": "always"}
-#: most edges at one vertex of the vertex graph (more: the cell is built with face rings)
-GRAPH_DEGREE = 24
 
 
 @njit(**NJIT_INLINE)
@@ -74,14 +72,17 @@ def _scratch(vcap, fcap, rcap, ncand, nbuck):
 
 
 @njit(**NJIT)
-def _graph_scratch(vcap):
-    """The vertex-graph arrays of :mod:`kernels.graph3d`: ``(DEG, ED, BK, LB, CP, seen)``."""
+def _graph_scratch(vcap, degree):
+    """The vertex-graph arrays of :mod:`kernels.graph3d`: ``(DEG, ED, BK, LB, CP, seen)``.
+
+    ``degree`` is the most edges a vertex may have (more: the cell is built with face rings).
+    """
     DEG = np.zeros(vcap, np.int64)
-    ED = np.zeros((vcap, GRAPH_DEGREE), np.int64)
-    BK = np.zeros((vcap, GRAPH_DEGREE), np.int64)
-    LB = np.zeros((vcap, GRAPH_DEGREE), np.int64)
+    ED = np.zeros((vcap, degree), np.int64)
+    BK = np.zeros((vcap, degree), np.int64)
+    LB = np.zeros((vcap, degree), np.int64)
     CP = np.zeros((vcap, 3), np.int64)
-    seen = np.zeros((vcap, GRAPH_DEGREE), np.bool_)
+    seen = np.zeros((vcap, degree), np.bool_)
     return DEG, ED, BK, LB, CP, seen
 
 
@@ -514,10 +515,11 @@ def build_cells(
     """Build the cells ``cells (k,)`` (site numbers) in ``nblocks`` parallel blocks.
 
     Per cell ``c`` (position in ``cells``), with ``caps = (cv, cf, cr, scratch_v, scratch_f,
-    scratch_r)``: vertex names ``onames[c * cv:...] (.., 4)`` and absolute coordinates
-    ``ovabs``; faces ``ofaces[c * cf:...] = (label, length)``, area vectors ``oarea`` (relative
-    frame, outward), rings ``oring[c * cr:...]`` of local vertex numbers; ``counts[c] = (nv,
-    nf, nr)``; ``vol``, ``cen`` (absolute), ``rad2`` (squared radius from the site).
+    scratch_r, graph_degree)``: vertex names ``onames[c * cv:...] (.., 4)`` and absolute
+    coordinates ``ovabs``; faces ``ofaces[c * cf:...] = (label, length)``, area vectors
+    ``oarea`` (relative frame, outward), rings ``oring[c * cr:...]`` of local vertex numbers;
+    ``counts[c] = (nv, nf, nr)``; ``vol``, ``cen`` (absolute), ``rad2`` (squared radius from
+    the site).
     """
     k = cells.shape[0]
     ns = P.shape[0]
@@ -545,9 +547,9 @@ def build_cells(
         x = np.zeros(3)
         keys = np.zeros(OWN.shape[1], np.int64)
         C = (V, F, R, R2, S, work, T)
-        G = _graph_scratch(caps[3])
-        G0 = _graph_scratch(0)  # no graph: face rings
-        TDEG, TED, TBK, TLB, _, _ = _graph_scratch(max(TV.shape[0], 1))
+        G = _graph_scratch(caps[3], caps[6])
+        G0 = _graph_scratch(0, 1)  # no graph: face rings
+        TDEG, TED, TBK, TLB, _, _ = _graph_scratch(max(TV.shape[0], 1), caps[6])
         if not from_rings(TV.shape[0], TF, TF.shape[0], TR, TDEG, TED, TBK, TLB):
             G = G0
         TG = (TDEG, TED, TBK, TLB)
