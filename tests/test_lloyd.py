@@ -339,3 +339,18 @@ def test_lloyd_at_extreme_scales(scale, method):
         assert np.allclose(big.points / scale, unit.points, rtol=0, atol=1e-12)
         assert np.allclose(big.shift / scale, unit.shift, rtol=1e-12, atol=0)
         assert np.allclose(big.diagram.areas / scale**2, unit.diagram.areas, rtol=1e-12, atol=0)
+
+
+def test_lloyd_on_3d_sites_is_lloyd3d():
+    p = np.random.default_rng(0).random((60, 3))
+    before = p.copy()
+    r = vf.lloyd(p, (0, 0, 0, 1, 1, 1), iterations=4)
+    ref = vf.lloyd3d(p, (0, 0, 0, 1, 1, 1), iterations=4, tol=0.0)
+    assert np.array_equal(r.points, ref.points) and r.iterations == 4
+    assert np.array_equal(p, before)
+    dense = vf.lloyd(p, (0, 0, 0, 1, 1, 1), iterations=3, density=lambda x, y, z: 1 + 9 * x)
+    assert dense.points[:, 0].mean() > r.points[:, 0].mean()  # pulled towards high density
+    with pytest.raises(ValueError, match="method='lloyd' only"):
+        vf.lloyd(p, (0, 0, 0, 1, 1, 1), method="lbfgs")
+    with pytest.raises(ValueError, match=r"rho\(x, y, z\)"):
+        vf.lloyd(p, (0, 0, 0, 1, 1, 1), density=(np.ones((2, 2)), (0, 0, 1, 1)))

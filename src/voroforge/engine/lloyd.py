@@ -95,11 +95,15 @@ def lloyd(
 
     Parameters
     ----------
-    points : (n, 2) array_like
-        Starting sites; never modified.
+    points : (n, 2) or (n, 3) array_like
+        Starting sites; never modified. Sites in 3D relax in a container with
+        :func:`voroforge.lloyd3d` (method ``"lloyd"``, uniform or callable
+        ``rho(x, y, z)`` density) and return its :class:`Relaxation3D`.
     boundary : None, (xmin, ymin, xmax, ymax) or shapely Polygon/MultiPolygon, optional
         The domain, fixed for the whole run (None: the starting sites' bounding box padded by
-        10%). Concave domains, holes and several parts are fine.
+        10%). Concave domains, holes and several parts are fine. In 3D a container as for
+        :func:`voroforge.voronoi3d` (a box ``(x0, y0, z0, x1, y1, z1)``, a Convex, a closed
+        mesh).
     iterations : int
         Most iterations (Lloyd steps, or L-BFGS iterations).
     tol : float, optional
@@ -161,6 +165,8 @@ def lloyd(
     True
     """
     _check(iterations, tol, method, areas)
+    if np.ndim(points) == 2 and np.shape(points)[1] == 3:
+        return _lloyd3d(points, boundary, iterations, tol, density, method, areas)
     z = as_points(points)
     dom = make_domain(boundary, z)
     x0, y0, x1, y1 = dom.bounds
@@ -184,6 +190,29 @@ def lloyd(
         if targets is not None:
             return _capacity(z, dom, integ, targets, int(iterations), stop)
         return _lloyd(z, dom, integ, int(iterations), stop)
+
+
+def _lloyd3d(points, container, iterations, tol, density, method, areas):
+    """:func:`lloyd` on 3D sites: :func:`voroforge.lloyd3d`, with the 2D call's options."""
+    from .lloyd3d import lloyd3d
+
+    if method != "lloyd" or areas is not None:
+        raise ValueError("3D sites relax with method='lloyd' only (no lbfgs, no areas=)")
+    rho = None
+    if density is not None:
+        if not callable(density):
+            raise ValueError("3D density must be a callable rho(x, y, z)")
+
+        def rho(xyz):
+            return density(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+
+    return lloyd3d(
+        points,
+        container,
+        iterations=int(iterations),
+        tol=0.0 if tol is None else float(tol),
+        density=rho,
+    )
 
 
 def size_exponent(dom) -> int:
