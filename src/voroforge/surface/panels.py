@@ -355,8 +355,12 @@ class Panels:
         Left out: exterior vertices that only one panel uses where the outline turns by less
         than ``degrees`` (a mesh border's facets). A run of such vertices is nearly
         collinear: free to move, planarising makes it zigzag and the panel cross itself.
-        Panels with holes, and panels that would keep fewer than three vertices, stay whole.
+        Panels with holes, and panels that would keep fewer than three vertices, stay whole;
+        so do morphed panels (UVs: each has its own densified vertices, which follow the
+        surface inside the panel as much as along a border).
         """
+        if self.uv is not None:
+            return self, 0
         V = self.vertices
         used = np.bincount(
             np.concatenate([np.concatenate(r) for r in self.rings]), minlength=len(V)
