@@ -50,3 +50,16 @@ settings.load_profile("ci" if os.environ.get("CI") else "default")
 def algorithm(request) -> str:
     """Name of a 2D Voronoi algorithm (``vf.voronoi(..., algorithm=...)``)."""
     return request.param
+
+
+@pytest.fixture(scope="module")
+def dask_client():
+    """An in-process LocalCluster of two single-threaded workers, one per test module."""
+    distributed = pytest.importorskip("distributed")
+    with (
+        distributed.LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=False, dashboard_address=":0"
+        ) as cluster,
+        distributed.Client(cluster) as c,
+    ):
+        yield c
