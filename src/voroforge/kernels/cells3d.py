@@ -181,6 +181,28 @@ def _gather(b, t, i, px, py, pz, start, SP, sidx, cand, cd2, m):
 
 
 @njit(**NJIT_INLINE)
+def _ordered_bucket(order, o, ci, cj, ck, px, py, pz, g, wi, wmax, rmax2):
+    """The bucket of ordered entry ``o`` around ``(ci, cj, ck)``, or -1 (outside, or too far)."""
+    ox = int(order[o, 0])
+    oy = int(order[o, 1])
+    oz = int(order[o, 2])
+    bx = ci + ox
+    by = cj + oy
+    bz = ck + oz
+    nx = int(g[6])
+    ny = int(g[7])
+    if bx < 0 or by < 0 or bz < 0 or bx >= nx or by >= ny or bz >= int(g[8]):
+        return -1
+    if order[o, 3] > 0.0:
+        gx = _axis_gap(px, g[0], g[3], bx, ox)
+        gy = _axis_gap(py, g[1], g[4], by, oy)
+        gz = _axis_gap(pz, g[2], g[5], bz, oz)
+        if _far(gx * gx + gy * gy + gz * gz, wi, wmax, rmax2):
+            return -1
+    return (bz * ny + by) * nx + bx
+
+
+@njit(**NJIT_INLINE)
 def _far(g2, wi, wmax, rmax2):
     """No site at squared distance >= ``g2`` can cut or touch a cell of squared radius ``rmax2``."""
     lhs = g2 + wi - wmax
@@ -242,86 +264,66 @@ def _one_cell(i, P, W, wmax, start, SP, sidx, g, order, TV, TF, TR, TG, C, G, ca
     ci, cj, ck = bucket3d(px, py, pz, g)
     st = OK
     # nearest buckets first, in the precomputed order of their least possible distance
-    nx = int(g[6])
-    ny = int(g[7])
-    nz = int(g[8])
-    done = False
     m = 0
     level = 0.0  # buckets of one least distance are gathered, then cut by, together
-    for o in range(order.shape[0]):
-        if m > 0 and order[o, 3] > level:
+    o = 0  # next entry of the ordered buckets; then shells r, r + 1, ... (buckets q of nb)
+    r = int(order[order.shape[0] - 1, 4]) if order.shape[0] else -1
+    q = 0
+    nb = 0
+    shells = False
+    rb = -1  # a crowded bucket to go on gathering from, at rt
+    rt = 0
+    while True:
+        flush = False
+        stop = False
+        b = -1
+        if rb >= 0:
+            b = rb
+            rb = -1
+        elif not shells:
+            if o == order.shape[0]:
+                shells = True
+                flush = True
+            elif m > 0 and order[o, 3] > level:
+                flush = True  # entry o is looked at again after the cut
+            else:
+                level = order[o, 3]
+                if _far(level, wi, wmax, rmax2):
+                    stop = True
+                    flush = True
+                else:
+                    b = _ordered_bucket(order, o, ci, cj, ck, px, py, pz, g, wi, wmax, rmax2)
+                    if b >= 0:
+                        rt = start[b]
+                o += 1
+        elif q < nb:
+            b = buck[q]
+            rt = start[b]
+            q += 1
+        else:  # a shell gathered (or none yet): cut by it, then the next shell if needed
+            flush = True
+            gap = shell_gap(px, py, pz, ci, cj, ck, r, g) if r >= 0 else 0.0
+            if gap == np.inf or (r >= 0 and _far(gap * gap, wi, wmax, rmax2)):
+                stop = True
+            else:
+                r += 1
+                nb = shell_buckets(ci, cj, ck, r, g, buck)
+                q = 0
+                stop = nb == 0
+        if b >= 0:
+            m, rt = _gather(b, rt, i, px, py, pz, start, SP, sidx, cand, cd2, m)
+            if rt < start[b + 1]:  # a crowded neighbourhood: cut by what is gathered, go on
+                rb = b
+                flush = True
+        if flush and m > 0:
             st, nv, nf, nt, rmax2 = _cut_batch(
                 m, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
             )
             if st != OK:
                 return st, 0, 0, 0, 0.0
             m = 0
-        level = order[o, 3]
-        if _far(level, wi, wmax, rmax2):
-            done = True
+        if stop:
             break
-        ox = int(order[o, 0])
-        oy = int(order[o, 1])
-        oz = int(order[o, 2])
-        bx = ci + ox
-        by = cj + oy
-        bz = ck + oz
-        if bx < 0 or by < 0 or bz < 0 or bx >= nx or by >= ny or bz >= nz:
-            continue
-        if level > 0.0:
-            gx = _axis_gap(px, g[0], g[3], bx, ox)
-            gy = _axis_gap(py, g[1], g[4], by, oy)
-            gz = _axis_gap(pz, g[2], g[5], bz, oz)
-            if _far(gx * gx + gy * gy + gz * gz, wi, wmax, rmax2):
-                continue
-        b = (bz * ny + by) * nx + bx
-        t = start[b]
-        while True:
-            m, t = _gather(b, t, i, px, py, pz, start, SP, sidx, cand, cd2, m)
-            if t == start[b + 1]:
-                break
-            st, nv, nf, nt, rmax2 = _cut_batch(  # a crowded neighbourhood: cut, go on
-                m, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
-            )
-            if st != OK:
-                return st, 0, 0, 0, 0.0
-            m = 0
-    if m > 0:
-        st, nv, nf, nt, rmax2 = _cut_batch(
-            m, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
-        )
-        if st != OK:
-            return st, 0, 0, 0, 0.0
-        m = 0
-    # beyond the ordered buckets: shell by shell while a site outside can still reach
-    r = int(order[order.shape[0] - 1, 4]) if order.shape[0] else -1
-    while not done:
-        gap = shell_gap(px, py, pz, ci, cj, ck, r, g) if r >= 0 else 0.0
-        if gap == np.inf or (r >= 0 and _far(gap * gap, wi, wmax, rmax2)):
-            break
-        r += 1
-        nb = shell_buckets(ci, cj, ck, r, g, buck)
-        if nb == 0:
-            break
-        for q in range(nb):
-            b = buck[q]
-            t = start[b]
-            while True:
-                m, t = _gather(b, t, i, px, py, pz, start, SP, sidx, cand, cd2, m)
-                if t == start[b + 1]:
-                    break
-                st, nv, nf, nt, rmax2 = _cut_batch(  # a crowded shell: cut, go on
-                    m, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
-                )
-                if st != OK:
-                    return st, 0, 0, 0, 0.0
-                m = 0
-        st, nv, nf, nt, rmax2 = _cut_batch(
-            m, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
-        )
-        if st != OK:
-            return st, 0, 0, 0, 0.0
-        m = 0
     if graph:
         nf = to_rings(nv, G[0], G[1], G[2], G[3], F, R, G[5])
         if nf < 0:

@@ -116,6 +116,18 @@ def _move(V, DEG, ED, BK, LB, a, b):
         ED[u, BK[a, k]] = b
 
 
+@njit(**{**NJIT, "inline": "always"})
+def _only_edge(DEG, ED, v, u):
+    """The index of ``u`` among ``v``'s neighbours; -1 if absent or there twice."""
+    a = -1
+    for r in range(DEG[v]):
+        if ED[v, r] == u:
+            if a >= 0:
+                return -1
+            a = r
+    return a
+
+
 @njit(**NJIT)
 def cut(V, nv, DEG, ED, BK, LB, S, CP, label):
     """Cut the cell by the plane whose values are ``S[:nv]``; keep ``s <= 0``.
@@ -314,18 +326,8 @@ def cut(V, nv, DEG, ED, BK, LB, S, CP, label):
     for q in range(w):
         c = CP[q, 2]
         cn = CP[(q + 1) % w, 2]
-        a = -1
-        for r in range(DEG[c]):
-            if ED[c, r] == cn:
-                if a >= 0:
-                    return GCUT_BROKEN, nv0
-                a = r
-        b = -1
-        for r in range(DEG[cn]):
-            if ED[cn, r] == c:
-                if b >= 0:
-                    return GCUT_BROKEN, nv0
-                b = r
+        a = _only_edge(DEG, ED, c, cn)
+        b = _only_edge(DEG, ED, cn, c)
         if a < 0 or b < 0:
             return GCUT_BROKEN, nv0
         BK[c, a] = b
