@@ -123,3 +123,23 @@ def test_large_diagram_counts_do_not_overflow():
     cc = vf.delaunay(pts).circumcenters  # 2n - 2 - h of them, distinct in general position
     assert len(cc) == 2 * n - 2 - h
     assert r.voronoi_vertices == int(((cc > 0) & (cc < 1)).all(1).sum())
+
+
+@pytest.mark.parametrize("algorithm", ["delaunay", "fortune", "halfplane"])
+def test_euler_on_parts_touching_at_points(algorithm):
+    # two squares meeting at a corner: one connected domain, chi = 1 (not parts - holes = 2);
+    # four squares round a square gap, each meeting the next at a corner: a ring, chi = 0
+    two = shapely.MultiPolygon([shapely.box(0, 0, 1, 1), shapely.box(1, 1, 2, 2)])
+    four = shapely.MultiPolygon(
+        [
+            shapely.box(0, 1, 1, 2),
+            shapely.box(1, 2, 2, 3),
+            shapely.box(2, 1, 3, 2),
+            shapely.box(1, 0, 2, 1),
+        ]
+    )
+    rng = np.random.default_rng(4)
+    for dom, chi, scale in ((two, 1, 2.0), (four, 0, 3.0)):
+        r = vf.voronoi(rng.random((60, 2)) * scale, dom, algorithm=algorithm).describe()
+        assert r.euler_expected == chi
+        assert r.euler_ok, (r.euler, r.euler_expected)

@@ -196,8 +196,24 @@ def _counts(coords, ring, cell_of_ring, tol, boxsize=None, origin=None):
 
 
 def _domain_chi(geom) -> int:
+    """Euler characteristic of a polygonal domain: parts minus holes, less the pinches.
+
+    The parts of a valid MultiPolygon meet at most at single points; ``k`` parts meeting at
+    one point join there (inclusion-exclusion: ``chi`` drops by ``k - 1``), so two squares
+    touching at a corner have ``chi = 1``, not 2.
+    """
     parts = shapely.get_parts(geom)
-    return int(len(parts) - shapely.get_num_interior_rings(parts).sum())
+    chi = int(len(parts) - shapely.get_num_interior_rings(parts).sum())
+    if len(parts) < 2:
+        return chi
+    tree = shapely.STRtree(parts)
+    i, j = tree.query(parts, predicate="intersects")
+    keep = i < j
+    meets: dict = {}
+    for a, b in zip(i[keep], j[keep], strict=True):
+        for xy in shapely.get_coordinates(shapely.intersection(parts[a], parts[b])):
+            meets.setdefault((float(xy[0]), float(xy[1])), set()).update((int(a), int(b)))
+    return chi - sum(len(k) - 1 for k in meets.values())
 
 
 def _nonconvex(coords, ring, poly, geom, cells, tol) -> int:
