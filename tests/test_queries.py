@@ -353,3 +353,26 @@ def test_queries_at_extreme_scales(scale):
     inside = np.isfinite(vf.natural_neighbor(pts, pts[:, 0], q))
     assert np.array_equal(np.isfinite(z), inside) and inside.sum() > 100
     assert np.allclose(z[inside], (2 * q[:, 0] - q[:, 1])[inside], rtol=0, atol=1e-12)
+
+
+def test_locate_far_queries_exactly_nearest():
+    # |q| >= 1e155: squared distances overflow in float64; the answer is still the nearest
+    # site, checked in exact rational arithmetic (lowest index on a tie)
+    from fractions import Fraction
+
+    rng = np.random.default_rng(12)
+    pts = rng.random((80, 2))
+    qs = [[1e155, 0.5], [-1e200, 1e200], [1e308, 1e308], [-1e308, -3e307], [3.0, 2e160]]
+    d = vf.voronoi(pts, (0, 0, 1, 1))
+
+    def exact(q):
+        qx, qy = (Fraction(v) for v in q)
+        d2 = [(qx - Fraction(x)) ** 2 + (qy - Fraction(y)) ** 2 for x, y in pts]
+        return min(range(len(pts)), key=lambda i: (d2[i], i))
+
+    want = [exact(q) for q in qs]
+    assert vf.locate(pts, qs).tolist() == want
+    assert d.locate(qs).tolist() == want
+    values = np.arange(80.0)
+    assert vf.natural_neighbor(pts, values, qs, extrapolate="nearest").tolist() == want
+    assert vf.locate(pts, [[0.25, 0.75], qs[0]]).tolist() == [vf.locate(pts, [0.25, 0.75]), want[0]]

@@ -120,6 +120,9 @@ CONVEX_DOMAIN_RTOL = 1e-12
 LOCATE_TIE_RTOL = 1e-9
 #: locate(): absolute floor added to tie thresholds so a zero distance still admits ties
 LOCATE_TIE_ATOL = 1e-300
+#: locate(): queries farther than this from the sites' box centre (per axis) are settled by
+#: |s|^2 - 2 q.s in a scaled frame, since their squared distances would overflow
+LOCATE_FAR = 1e150
 #: Sibson Z1 gradients: smallest/largest eigenvalue ratio for a well-posed least-squares fit
 GRADIENT_FIT_RTOL = 1e-9
 #: Sibson Z1 gradients: floor on the largest eigenvalue (an all-zero fit is never well-posed)

@@ -14,7 +14,13 @@ import weakref
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ..config import GRADIENT_FIT_FLOOR, GRADIENT_FIT_RTOL, LOCATE_TIE_ATOL, LOCATE_TIE_RTOL
+from ..config import (
+    GRADIENT_FIT_FLOOR,
+    GRADIENT_FIT_RTOL,
+    LOCATE_FAR,
+    LOCATE_TIE_ATOL,
+    LOCATE_TIE_RTOL,
+)
 from ..kernels.natural import INSIDE, sibson
 from .delaunay import delaunay
 from .inputs import as_points, as_query, as_values, duplicate_map, working_frame
@@ -74,8 +80,39 @@ class _Locator:
         again = d2[:, -1] <= best * (1.0 + LOCATE_TIE_RTOL) + LOCATE_TIE_ATOL
         return rows[again], best[again]
 
+    def _far(self, q: np.ndarray) -> np.ndarray:
+        """Nearest sites of queries so far away that squared distances would overflow.
+
+        ``|q - s|^2 = |q|^2 - 2 q.s + |s|^2``: the site minimising ``|s|^2 - 2 q.s`` wins,
+        evaluated with ``q`` scaled by a power of two to about 1 (exact), so nothing
+        overflows; ties go to the lowest index.
+        """
+        e = int(np.frexp(np.abs(q).max())[1])
+        qs = np.ldexp(q, -e)
+        ss = np.ldexp(np.einsum("ij,ij->i", self.pts, self.pts), -e)
+        out = np.zeros(len(q), dtype=np.int64)
+        step = max(1, 4_000_000 // max(len(self.pts), 1))
+        for a in range(0, len(q), step):
+            f = ss[None, :] - 2.0 * (qs[a : a + step] @ self.pts.T)
+            out[a : a + step] = self.owners[np.argmin(f, axis=1)]
+        return out
+
     def query(self, q: np.ndarray) -> np.ndarray:
         q = np.ldexp(q, self.k) if self.k else q
+        out = np.zeros(len(q), dtype=np.int64)
+        if self.size is None and len(self.pts):
+            # queries beyond ~1e150 of the sites: their squared distances overflow
+            centre = 0.5 * (self.pts.min(axis=0) + self.pts.max(axis=0))
+            far = (np.abs(q - centre) > LOCATE_FAR).any(axis=1)
+            if far.any():
+                out[far] = self._far(q[far])
+                near = np.flatnonzero(~far)
+                out[near] = self.query_near(q[near]) if len(near) else out[near]
+                return out
+        return self.query_near(q)
+
+    def query_near(self, q: np.ndarray) -> np.ndarray:
+        """:meth:`query` for queries whose squared distances to the sites stay finite."""
         tq = q if self.size is None else self._wrap(q)
         out = np.zeros(len(q), dtype=np.int64)
         rows = np.arange(len(q))
