@@ -18,7 +18,7 @@ from ..config import GRID_DEGENERATE_RTOL, GRID_WIDEN_RTOL, NJIT
 from ..kernels.cells3d import OK, OVERFLOW, build_cells
 from .threads import serial_below
 
-#: cells per call of the kernel (its fixed per-cell slots: ~7.7 KB a cell while it runs)
+#: cells per call of the kernel (its fixed per-cell slots: ~10 KB a cell while it runs)
 CHUNK = 4096
 #: mean sites per bucket of the search grid
 PER_BUCKET = 2.0
@@ -82,9 +82,10 @@ def search_order(g: np.ndarray, radius: int) -> np.ndarray:
     return np.ascontiguousarray(out[np.argsort(lb, kind="stable")])
 
 
-#: per-cell output slots (vertices, faces, ring entries), scratch (vertices, faces, ring
+#: per-cell output slots (vertices, faces, ring entries; a cell past them runs again alone,
+#: copying every packed array; 1e5 uniform cells reach 64 vertices), scratch (vertices, faces, ring
 #: entries) and the most edges at a vertex of the cell's graph (kernels/cells3d.build_cells)
-CAPS = (64, 40, 320, 1024, 512, 4096, 24)
+CAPS = (96, 48, 320, 1024, 512, 4096, 24)
 BIG_CAPS_FACTOR = 16
 
 
