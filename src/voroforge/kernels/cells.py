@@ -34,7 +34,7 @@ from ..config import (
 from .clip import dedupe_ring
 from .power import box_cell
 from .predicates import cross_diff, incircle, incircle_fast
-from .vertex import box_crossing, canonical_vertex_ranked, voronoi_vertex, voronoi_vertex_error
+from .vertex import box_crossing, canonical_vertex_ranked, voronoi_vertex_and_error
 
 _U = 2.0**-53
 
@@ -51,22 +51,26 @@ def _find(parent, a):
 
 @njit(**NJIT_PARALLEL)
 def circumcenters(xs, ys, tri, he):
-    """Circumcentres of all triangles, and flags on undecided interior halfedges.
+    """Circumcentres of all triangles, their rounding bounds, and flags on undecided edges.
 
-    Each is the Voronoi vertex named by the triangle's sites (``kernels/vertex``).
+    Each centre is the Voronoi vertex named by the triangle's sites (``kernels/vertex``),
+    computed together with its proven rounding-error bound (``vertex.center_error``, from
+    the same set-up: ``voronoi_vertex_and_error``).
 
     A halfedge ``e < twin`` is flagged when the fast incircle filter cannot call its
-    quadrilateral; those are the candidates for exact cocircularity.
+    quadrilateral; those are the candidates for exact cocircularity. Returns
+    ``(cx, cy, err, flag)``.
     """
     t = tri.shape[0] // 3
     cx = np.zeros(t)
     cy = np.zeros(t)
+    err = np.zeros(t)
     flag = np.zeros(tri.shape[0], dtype=np.uint8)
     for k in prange(t):
         a = tri[3 * k]
         b = tri[3 * k + 1]
         c = tri[3 * k + 2]
-        ux, uy = voronoi_vertex(a, b, c, xs, ys)
+        ux, uy, err[k] = voronoi_vertex_and_error(a, b, c, xs, ys)
         if not (np.isfinite(ux) and np.isfinite(uy)):
             # a sliver whose centre overflows: far outside any box, so its cells get cut
             ux = np.inf
@@ -81,7 +85,7 @@ def circumcenters(xs, ys, tri, he):
                 v = incircle_fast(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c], xs[d], ys[d])
                 if v != v:
                     flag[e] = 1
-    return cx, cy, flag
+    return cx, cy, err, flag
 
 
 @njit(**NJIT)
@@ -91,16 +95,6 @@ def _quad(tri, e, f):
     c = tri[e - e % 3 + (e + 2) % 3]
     d = tri[f - f % 3 + (f + 2) % 3]
     return a, b, c, d
-
-
-@njit(**NJIT_PARALLEL)
-def center_errors(xs, ys, tri):
-    """The rounding-error bound of every triangle's centre (``vertex.center_error``)."""
-    t = tri.shape[0] // 3
-    err = np.zeros(t)
-    for k in prange(t):
-        err[k] = voronoi_vertex_error(tri[3 * k], tri[3 * k + 1], tri[3 * k + 2], xs, ys)
-    return err
 
 
 @njit(**NJIT)
@@ -121,18 +115,35 @@ def _cc_close(xs, ys, a, err, cx, cy, t, u):
 
 
 @njit(**NJIT_PARALLEL)
-def flag_close(xs, ys, tri, he, cx, cy, flag, err):
-    """Also flag interior halfedges whose two triangles have centres equal to rounding."""
+def flag_close(xs, ys, tri, he, cx, cy, flag, err, box, fold):
+    """Also flag interior halfedges whose two triangles have centres equal to rounding.
+
+    On every other interior halfedge ``e < twin`` it marks in ``fold`` whether the Voronoi
+    edge between the two centres runs backwards (:func:`_folds`): the first round of
+    :func:`_unfold` takes that mark wherever naming left both centres as they are, so the
+    edges are scanned once, here.
+    """
     for e in prange(tri.shape[0]):
         f = he[e]
-        if f > e and flag[e] == 0 and _cc_close(xs, ys, tri[e], err, cx, cy, e // 3, f // 3):
+        if f < e or flag[e] != 0:
+            continue
+        t = e // 3
+        u = f // 3
+        # both tests need the edge within what rounding and naming move its ends (_short;
+        # _cc_close's bound is within it as FOLD_SPAN_ERRS >= 1): most edges end here
+        if not _short(xs, ys, tri[e], err, cx, cy, t, u):
+            continue
+        if _cc_close(xs, ys, tri[e], err, cx, cy, t, u):
             flag[e] = 1
+        elif _folds(xs, ys, tri, e, f, cx, cy, box, err):
+            fold[e] = 1
 
 
 @njit(**NJIT)
-def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank, err, box):
+def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank, err, box, fold):
     t = tri.shape[0] // 3
     parent = np.arange(t)
+    changed = np.zeros(t, dtype=np.uint8)
     merged = False
     for k in range(cand.shape[0]):
         e = cand[k]
@@ -149,9 +160,9 @@ def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank, err, box):
     if merged:
         for k in range(t):
             parent[k] = _find(parent, k)
-        _name_classes(xs, ys, tri, parent, cx, cy, rank, err)
+        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed)
     if near:
-        _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err)
+        _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, changed)
     return parent
 
 
@@ -166,8 +177,21 @@ def _next(e):
 
 
 @njit(**NJIT)
-def _fold_round(xs, ys, tri, he, parent, cx, cy, box, err):
-    """Merge the classes at both ends of every Voronoi edge that runs backwards; the count.
+def _short(xs, ys, a, err, cx, cy, t, u):
+    """Whether the Voronoi edge between the centres of ``t``, ``u`` (site ``a``) can fold.
+
+    Only an edge within what rounding and naming can move its ends (the centres' bounds,
+    and a class's snap to its name, ``VERTEX_SNAP_RTOL`` of the radius) can; a longer one
+    that breaks a turn test is a straight angle rounded, left alone.
+    """
+    d = abs(cx[t] - cx[u]) + abs(cy[t] - cy[u])
+    r = abs(cx[t] - xs[a]) + abs(cy[t] - ys[a])
+    return d <= FOLD_SPAN_ERRS * (err[t] + err[u] + VERTEX_SNAP_RTOL * r)
+
+
+@njit(**NJIT)
+def _folds(xs, ys, tri, e, f, cx, cy, box, err):
+    """Whether the Voronoi edge dual to halfedge ``e`` (``f`` its twin, ``e < f``) folds.
 
     The Voronoi edge dual to Delaunay edge ``i -> j`` runs from the centre of the triangle
     right of it to the centre of the one left of it, along ``j - i`` turned left, by the
@@ -175,30 +199,46 @@ def _fold_round(xs, ys, tri, he, parent, cx, cy, box, err):
     other way (decided exactly, :func:`.predicates.cross_diff`), rounding has swapped them:
     their exact distance is below their rounding, and keeping both folds the ring.
     """
+    t = e // 3
+    u = f // 3
+    if not _short(xs, ys, tri[e], err, cx, cy, t, u):
+        return False
+    if not (_in_box(cx[t], cy[t], box) and _in_box(cx[u], cy[u], box)):
+        return False  # a vertex outside the box is never output: its cells are cut
+    return _swapped(xs, ys, tri, e, f, cx[u], cy[u], cx[t], cy[t])
+
+
+@njit(**NJIT)
+def _link(parent, t, u):
+    """Join the classes of triangles ``t`` and ``u`` (the smaller root wins); 1 if they were two."""
+    rt = _find(parent, t)
+    ru = _find(parent, u)
+    if rt == ru:
+        return 0
+    parent[max(rt, ru)] = min(rt, ru)
+    return 1
+
+
+@njit(**NJIT)
+def _refold(xs, ys, tri, he, parent, cx, cy, box, err, changed):
+    """Join across every edge at a ``changed`` triangle that folds now; the number of joins."""
     merges = 0
-    for e in range(tri.shape[0]):
-        f = he[e]
-        if f < e:
+    for t in range(changed.shape[0]):
+        if changed[t] == 0:
             continue
-        t = e // 3
-        u = f // 3
-        rt = _find(parent, t)
-        ru = _find(parent, u)
-        if rt == ru:
-            continue
-        if not (_in_box(cx[t], cy[t], box) and _in_box(cx[u], cy[u], box)):
-            continue  # a vertex outside the box is never output: its cells are cut
-        # only an edge within what rounding and naming can move its ends (the centres'
-        # bounds, and a class's snap to its name, VERTEX_SNAP_RTOL of the radius) can fold;
-        # a longer one that breaks a turn test is a straight angle rounded, left alone
-        d = abs(cx[t] - cx[u]) + abs(cy[t] - cy[u])
-        a = tri[e]
-        r = abs(cx[t] - xs[a]) + abs(cy[t] - ys[a])
-        if not d <= FOLD_SPAN_ERRS * (err[t] + err[u] + VERTEX_SNAP_RTOL * r):
-            continue
-        if _swapped(xs, ys, tri, e, f, cx[u], cy[u], cx[t], cy[t]):
-            parent[max(rt, ru)] = min(rt, ru)
-            merges += 1
+        for j in range(3):
+            e = 3 * t + j
+            f = he[e]
+            if f < 0:
+                continue
+            lo = min(e, f)
+            hi = max(e, f)
+            if not _short(xs, ys, tri[lo], err, cx, cy, lo // 3, hi // 3):
+                continue  # the cheap test first: most edges are long
+            if _find(parent, lo // 3) == _find(parent, hi // 3):
+                continue
+            if _folds(xs, ys, tri, lo, hi, cx, cy, box, err):
+                merges += _link(parent, lo // 3, hi // 3)
     return merges
 
 
@@ -236,18 +276,45 @@ def _swapped(xs, ys, tri, e, f, ux, uy, tx, ty):
 
 
 @njit(**NJIT)
-def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err):
-    """Merge swapped vertices (:func:`_fold_round`) until none is left; renames the classes.
+def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, changed):
+    """Merge swapped vertices (:func:`_folds`) until none is left; renames the classes.
 
-    Each round merges classes, so this ends; every merge is a pair of vertices closer than
-    their rounding, and the merged class gets its canonical vertex as any other.
+    Each round joins the classes at both ends of every edge that folds, then names the
+    joined classes. The result of a round does not depend on the order of its joins (the
+    root of a class is its smallest triangle), so a round only tests the edges whose answer
+    can have changed: edges whose two centres kept their bits since the last test keep its
+    answer (a fold then was joined then). The first round takes :func:`flag_close`'s marks
+    (``fold``) where naming kept both centres (``changed`` is 0), and tests the flagged
+    ``cand`` edges and those at renamed centres; later rounds test the edges at centres the
+    last renaming changed. Each round merges classes, so this ends; every merge is a pair of
+    vertices closer than their rounding, and the merged class gets its canonical vertex as
+    any other.
     """
-    for _ in range(FOLD_MAX_ROUNDS):
-        if _fold_round(xs, ys, tri, he, parent, cx, cy, box, err) == 0:
+    merges = 0
+    for e in range(fold.shape[0]):
+        if fold[e] != 0:
+            f = he[e]
+            if changed[e // 3] == 0 and changed[f // 3] == 0:
+                merges += _link(parent, e // 3, f // 3)
+    for k in range(cand.shape[0]):
+        e = cand[k]
+        f = he[e]
+        if changed[e // 3] != 0 or changed[f // 3] != 0:
+            continue  # tested below
+        if _short(xs, ys, tri[e], err, cx, cy, e // 3, f // 3):
+            if _find(parent, e // 3) != _find(parent, f // 3):
+                if _folds(xs, ys, tri, e, f, cx, cy, box, err):
+                    merges += _link(parent, e // 3, f // 3)
+    merges += _refold(xs, ys, tri, he, parent, cx, cy, box, err, changed)
+    for it in range(FOLD_MAX_ROUNDS):
+        if it > 0:
+            merges = _refold(xs, ys, tri, he, parent, cx, cy, box, err, changed)
+        if merges == 0:
             return
         for k in range(parent.shape[0]):
             parent[k] = _find(parent, k)
-        _name_classes(xs, ys, tri, parent, cx, cy, rank, err)
+        changed[:] = 0
+        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed)
 
 
 @njit(**NJIT)
@@ -259,7 +326,16 @@ def _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy):
 
 
 @njit(**NJIT)
-def _name_classes(xs, ys, tri, parent, cx, cy, rank, err):
+def _set_vertex(cx, cy, k, vx, vy, changed):
+    """``(cx[k], cy[k]) = (vx, vy)``, noting in ``changed`` when the bits may differ."""
+    if not (cx[k] == vx and cy[k] == vy) or vx == 0.0 or vy == 0.0:
+        changed[k] = 1  # (a zero's sign is not seen by ==: counted as changed)
+    cx[k] = vx
+    cy[k] = vy
+
+
+@njit(**NJIT)
+def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed):
     """Give every triangle of a class (``parent`` its root) the vertex of the class's name.
 
     The name is the canonical triple of the class's sites (``kernels/vertex``), numbered by
@@ -267,7 +343,8 @@ def _name_classes(xs, ys, tri, parent, cx, cy, rank, err):
     centre is used (for classes of three or more, the member centre with the smallest
     rounding bound ``err`` is the reference). Classes of two triangles (four cocircular
     sites: every square of a grid) are the common case and take a short path; larger ones
-    are gathered by a counting sort.
+    are gathered by a counting sort. Triangles whose centre may have changed are marked
+    in ``changed``.
     """
     t = parent.shape[0]
     size = np.zeros(t, dtype=np.int64)
@@ -296,10 +373,8 @@ def _name_classes(xs, ys, tri, parent, cx, cy, rank, err):
                     on[k] = v
                     k += 1
             vx, vy = _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy)
-            cx[r] = vx
-            cy[r] = vy
-            cx[u] = vx
-            cy[u] = vy
+            _set_vertex(cx, cy, r, vx, vy, changed)
+            _set_vertex(cx, cy, u, vx, vy, changed)
         elif size[r] > 2:
             big += 1
     if big == 0:
@@ -337,11 +412,10 @@ def _name_classes(xs, ys, tri, parent, cx, cy, rank, err):
                     best = members[u]
         vx, vy = _class_vertex(on, k, rank, best, xs, ys, tri, cx, cy)
         for u in range(start[r], start[r + 1]):
-            cx[members[u]] = vx
-            cy[members[u]] = vy
+            _set_vertex(cx, cy, members[u], vx, vy, changed)
 
 
-def merge_cocircular(xs, ys, tri, he, cx, cy, flag, rank, box):
+def merge_cocircular(xs, ys, tri, he, cx, cy, err, flag, rank, box):
     """Give triangles with the same circumcircle one circumcentre; return each one's class.
 
     Two triangles sharing an edge have the same circumcircle exactly when the fourth point is
@@ -354,10 +428,10 @@ def merge_cocircular(xs, ys, tri, he, cx, cy, flag, rank, box):
     on the halfedges flagged by :func:`circumcenters`. ``rank[v]`` is site ``v``'s input
     index (names are chosen in the input's numbering, as every algorithm does).
     """
-    err = center_errors(xs, ys, tri)
-    flag_close(xs, ys, tri, he, cx, cy, flag, err)
+    fold = np.zeros(tri.shape[0], dtype=np.uint8)
+    flag_close(xs, ys, tri, he, cx, cy, flag, err, box, fold)
     cand = np.flatnonzero(flag)
-    return _merge_exact(xs, ys, tri, he, cand, cx, cy, True, rank, err, box)
+    return _merge_exact(xs, ys, tri, he, cand, cx, cy, True, rank, err, box, fold)
 
 
 def triangle_centers(xs, ys, tri, he):
@@ -368,11 +442,12 @@ def triangle_centers(xs, ys, tri, he):
     merge of merely close centres (``CC_MERGE_RTOL``) is left out: each centre stays its own
     triangle's, to its conditioning. Returns ``(cx, cy)``.
     """
-    cx, cy, flag = circumcenters(xs, ys, tri, he)
+    cx, cy, _, flag = circumcenters(xs, ys, tri, he)
     cand = np.flatnonzero(flag)
     if cand.shape[0]:
-        err = np.zeros(0)
-        _merge_exact(xs, ys, tri, he, cand, cx, cy, False, np.arange(xs.shape[0]), err, err)
+        none = np.zeros(0)
+        fold = np.zeros(0, dtype=np.uint8)
+        _merge_exact(xs, ys, tri, he, cand, cx, cy, False, np.arange(xs.shape[0]), none, none, fold)
     return cx, cy
 
 
@@ -719,8 +794,8 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
     """
     n = xs.shape[0]
     box = np.asarray(box, dtype=np.float64)
-    cx, cy, flag = circumcenters(xs, ys, tri, he)
-    cls = merge_cocircular(xs, ys, tri, he, cx, cy, flag, kmap, box)
+    cx, cy, err, flag = circumcenters(xs, ys, tri, he)
+    cls = merge_cocircular(xs, ys, tri, he, cx, cy, err, flag, kmap, box)
     out, deg, cut = _outgoing(tri, he, cx, cy, box, n)
     cap = int(deg.max()) + 16
     merged = bool(flag.any()) or bool((cls != np.arange(cls.shape[0])).any())

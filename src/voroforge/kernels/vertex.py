@@ -44,23 +44,29 @@ from .predicates import orient2d
 
 
 @njit(**NJIT)
-def center_offset(ax, ay, aw, bx, by, bw, cx, cy, cw):
-    """Power centre of three weighted points as an origin point and an offset from it.
+def _frame(ax, ay, aw, bx, by, bw, cx, cy, cw):
+    """The set-up shared by :func:`center_offset`, :func:`center_error` and the order test.
 
-    Returns ``(ox, oy, ux, uy)``: the origin is the point opposite the longest edge, and the
-    centre is ``(ox + ux, oy + uy)``. The offset is what a caller needing the circle itself
-    wants (with zero weights ``|u|`` is the circumradius; Fortune's sweep takes the circle's
-    top from it). Exactly collinear points give non-finite offsets.
+    The origin ``o`` is the point opposite the longest edge (the first such in argument
+    order); ``d = p - o`` and ``e = q - o`` are the two short edges, ``bl``, ``cl`` the
+    right-hand sides of ``2 d.u = |d|^2 + (w_o - w_p)`` (same for ``e``), ``left - right``
+    the float determinant. ``det`` is that determinant when it can be trusted, else the
+    adaptive ``orient2d`` (``trusted`` says which). ``tie`` is whether the longest edge was
+    tied, so that the argument order chose the origin.
+    Returns ``(ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det, trusted, tie)``.
     """
     la = (bx - cx) * (bx - cx) + (by - cy) * (by - cy)
     lb = (cx - ax) * (cx - ax) + (cy - ay) * (cy - ay)
     lc = (ax - bx) * (ax - bx) + (ay - by) * (ay - by)
     if lb >= la and lb >= lc:
         ox, oy, ow, px, py, pw, qx, qy, qw = bx, by, bw, cx, cy, cw, ax, ay, aw
+        tie = lb == la or lb == lc
     elif lc >= la:
         ox, oy, ow, px, py, pw, qx, qy, qw = cx, cy, cw, ax, ay, aw, bx, by, bw
+        tie = lc == la  # lc > lb here
     else:
         ox, oy, ow, px, py, pw, qx, qy, qw = ax, ay, aw, bx, by, bw, cx, cy, cw
+        tie = False  # la > lb and la > lc here
     dx = px - ox
     dy = py - oy
     ex = qx - ox
@@ -72,8 +78,24 @@ def center_offset(ax, ay, aw, bx, by, bw, cx, cy, cw):
     left = dx * ey
     right = dy * ex
     det = left - right
-    if not abs(det) >= VERTEX_DET_RTOL * (abs(left) + abs(right)) or det == 0.0:
+    trusted = abs(det) >= VERTEX_DET_RTOL * (abs(left) + abs(right)) and det != 0.0
+    if not trusted:
         det = orient2d(ox, oy, px, py, qx, qy)
+    return ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det, trusted, tie
+
+
+@njit(**NJIT)
+def center_offset(ax, ay, aw, bx, by, bw, cx, cy, cw):
+    """Power centre of three weighted points as an origin point and an offset from it.
+
+    Returns ``(ox, oy, ux, uy)``: the origin is the point opposite the longest edge, and the
+    centre is ``(ox + ux, oy + uy)``. The offset is what a caller needing the circle itself
+    wants (with zero weights ``|u|`` is the circumradius; Fortune's sweep takes the circle's
+    top from it). Exactly collinear points give non-finite offsets.
+    """
+    ox, oy, _, _, _, dx, dy, ex, ey, bl, cl, _, _, det, _, _ = _frame(
+        ax, ay, aw, bx, by, bw, cx, cy, cw
+    )
     d = 0.5 / det
     return ox, oy, (ey * bl - dy * cl) * d, (dx * cl - ex * bl) * d
 
@@ -82,34 +104,8 @@ _U = 2.0**-53  # unit roundoff of float64
 
 
 @njit(**NJIT)
-def center_error(ax, ay, aw, bx, by, bw, cx, cy, cw):
-    """A bound on the L1 rounding error of :func:`center` (same arguments).
-
-    A first-order running error bound of :func:`center_offset`'s arithmetic, doubled to
-    cover the second-order terms: the exact power centre of the three (exact) inputs lies
-    within this L1 distance of the computed one. Infinite when the denominator cannot be
-    trusted to a factor of two (a sliver whose centre floats cannot place).
-    """
-    la = (bx - cx) * (bx - cx) + (by - cy) * (by - cy)
-    lb = (cx - ax) * (cx - ax) + (cy - ay) * (cy - ay)
-    lc = (ax - bx) * (ax - bx) + (ay - by) * (ay - by)
-    if lb >= la and lb >= lc:
-        ox, oy, ow, px, py, pw, qx, qy, qw = bx, by, bw, cx, cy, cw, ax, ay, aw
-    elif lc >= la:
-        ox, oy, ow, px, py, pw, qx, qy, qw = cx, cy, cw, ax, ay, aw, bx, by, bw
-    else:
-        ox, oy, ow, px, py, pw, qx, qy, qw = ax, ay, aw, bx, by, bw, cx, cy, cw
-    dx = px - ox
-    dy = py - oy
-    ex = qx - ox
-    ey = qy - oy
-    bl = dx * dx + dy * dy + (ow - pw)
-    cl = ex * ex + ey * ey + (ow - qw)
-    left = dx * ey
-    right = dy * ex
-    det = left - right
-    if not abs(det) >= VERTEX_DET_RTOL * (abs(left) + abs(right)) or det == 0.0:
-        det = orient2d(ox, oy, px, py, qx, qy)
+def _error_of(ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det):
+    """:func:`center_error` from :func:`_frame`'s values (the offset recomputed from them)."""
     ad = abs(det)
     rel_det = 4.0 * _U * (abs(left) + abs(right)) / ad if ad > 0.0 else np.inf
     if not rel_det < 0.5:
@@ -127,10 +123,55 @@ def center_error(ax, ay, aw, bx, by, bw, cx, cy, cw):
 
 
 @njit(**NJIT)
+def center_error(ax, ay, aw, bx, by, bw, cx, cy, cw):
+    """A bound on the L1 rounding error of :func:`center` (same arguments).
+
+    A first-order running error bound of :func:`center_offset`'s arithmetic, doubled to
+    cover the second-order terms: the exact power centre of the three (exact) inputs lies
+    within this L1 distance of the computed one. Infinite when the denominator cannot be
+    trusted to a factor of two (a sliver whose centre floats cannot place).
+    """
+    ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det, _, _ = _frame(
+        ax, ay, aw, bx, by, bw, cx, cy, cw
+    )
+    return _error_of(ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det)
+
+
+@njit(**NJIT)
 def voronoi_vertex_error(a, b, c, xs, ys):
     """:func:`center_error` of :func:`voronoi_vertex` (same arguments, same order rule)."""
     a, b, c = sorted_triple(a, b, c, xs, ys)
     return center_error(xs[a], ys[a], 0.0, xs[b], ys[b], 0.0, xs[c], ys[c], 0.0)
+
+
+@njit(**NJIT)
+def voronoi_vertex_and_error(a, b, c, xs, ys):
+    """:func:`voronoi_vertex` and :func:`voronoi_vertex_error` of one triple, bit for bit.
+
+    Returns ``(x, y, err)`` from one :func:`_frame`. Where the centre's bits cannot depend on
+    the argument order (:func:`_center_if_order_free`) neither can the bound's: reordering
+    the owners only swaps ``p`` and ``q``, which swaps the terms of every sum in
+    :func:`_error_of` (addition is commutative in floats) and negates the determinant and
+    both numerators exactly. Elsewhere both come from the owners in canonical order.
+    """
+    ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det, trusted, tie = _frame(
+        xs[a], ys[a], 0.0, xs[b], ys[b], 0.0, xs[c], ys[c], 0.0
+    )
+    if trusted and not tie:
+        d = 0.5 / det
+        ux = (ey * bl - dy * cl) * d
+        uy = (dx * cl - ex * bl) * d
+        if 0.0 < abs(ux) < np.inf and 0.0 < abs(uy) < np.inf:
+            err = _error_of(ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det)
+            return ox + ux, oy + uy, err
+    a, b, c = sorted_triple(a, b, c, xs, ys)
+    ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det, _, _ = _frame(
+        xs[a], ys[a], 0.0, xs[b], ys[b], 0.0, xs[c], ys[c], 0.0
+    )
+    d = 0.5 / det
+    x = ox + (ey * bl - dy * cl) * d
+    y = oy + (dx * cl - ex * bl) * d
+    return x, y, _error_of(ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det)
 
 
 @njit(**NJIT)
@@ -190,29 +231,10 @@ def _center_if_order_free(ax, ay, aw, bx, by, bw, cx, cy, cw):
     (``+0`` in both orders, so the offset's sign of zero would follow the order); a zero
     or non-finite offset is therefore not ``ok`` either. Callers then sort the owners.
     """
-    la = (bx - cx) * (bx - cx) + (by - cy) * (by - cy)
-    lb = (cx - ax) * (cx - ax) + (cy - ay) * (cy - ay)
-    lc = (ax - bx) * (ax - bx) + (ay - by) * (ay - by)
-    # center_offset's choice, noting when the maximum is tied (then the order decides it)
-    if lb >= la and lb >= lc:
-        ox, oy, ow, px, py, pw, qx, qy, qw = bx, by, bw, cx, cy, cw, ax, ay, aw
-        tie = lb == la or lb == lc
-    elif lc >= la:
-        ox, oy, ow, px, py, pw, qx, qy, qw = cx, cy, cw, ax, ay, aw, bx, by, bw
-        tie = lc == la  # lc > lb here
-    else:
-        ox, oy, ow, px, py, pw, qx, qy, qw = ax, ay, aw, bx, by, bw, cx, cy, cw
-        tie = False  # la > lb and la > lc here
-    dx = px - ox
-    dy = py - oy
-    ex = qx - ox
-    ey = qy - oy
-    bl = dx * dx + dy * dy + (ow - pw)
-    cl = ex * ex + ey * ey + (ow - qw)
-    left = dx * ey
-    right = dy * ex
-    det = left - right
-    if tie or not abs(det) >= VERTEX_DET_RTOL * (abs(left) + abs(right)) or det == 0.0:
+    ox, oy, _, _, _, dx, dy, ex, ey, bl, cl, _, _, det, trusted, tie = _frame(
+        ax, ay, aw, bx, by, bw, cx, cy, cw
+    )
+    if tie or not trusted:
         return 0.0, 0.0, False
     d = 0.5 / det
     ux = (ey * bl - dy * cl) * d

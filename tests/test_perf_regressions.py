@@ -1,0 +1,185 @@
+"""The fast paths of the Delaunay-dual cells give the bits of the plain computations.
+
+Issue 10's win-back replaced two whole passes of ``kernels/cells`` by cheaper ones:
+
+- the centres' rounding bounds are computed with the centres, from one set-up
+  (``vertex.voronoi_vertex_and_error``), instead of a second pass over the triangles;
+- the fold rounds (``cells._unfold``) test only the Voronoi edges whose answer can have
+  changed, instead of every edge every round.
+
+Each is checked here against the plain version, bit for bit, on inputs where the merges
+and folds actually happen (float circles, lattices, near-cocircular classes).
+"""
+
+from __future__ import annotations
+
+import itertools
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+from voroforge.kernels import cells
+from voroforge.kernels.delaunay import triangulate_sorted
+from voroforge.kernels.predicates import incircle
+from voroforge.kernels.vertex import (
+    center_error,
+    center_offset,
+    voronoi_vertex,
+    voronoi_vertex_and_error,
+    voronoi_vertex_error,
+)
+
+from catalogue import CATALOGUE
+
+
+def _bits(*values):
+    return np.array(values, dtype=np.float64).tobytes()
+
+
+def _triples():
+    """Site sets with ties of edge lengths, exact lattices far out, slivers, float circles."""
+    rng = np.random.default_rng(3)
+    out = []
+    pts = rng.random((40, 2))
+    out.append((pts, [tuple(rng.choice(40, 3, replace=False)) for _ in range(60)]))
+    lat = np.array([(i, j) for i in range(4) for j in range(4)], dtype=np.float64)
+    for off in (0.0, 5e13, 1e15):
+        out.append((lat + off, list(itertools.combinations(range(16), 3))[::5]))
+    t = np.arange(64) * (2.0 * np.pi / 64)
+    circ = np.column_stack((np.cos(t), np.sin(t)))
+    out.append((circ, list(itertools.combinations(range(64), 3))[::97]))
+    sliver = np.array([[0.0, 0.0], [1.0, 1e-12], [2.0, 0.0], [1.0, 0.0], [0.5, 0.5]])
+    out.append((sliver, list(itertools.combinations(range(5), 3))))
+    return out
+
+
+def test_vertex_and_error_are_the_separate_routines_bit_for_bit():
+    n = 0
+    for pts, trips in _triples():
+        xs = np.ascontiguousarray(pts[:, 0])
+        ys = np.ascontiguousarray(pts[:, 1])
+        for trip in trips:
+            for a, b, c in itertools.permutations(trip):
+                x, y, err = voronoi_vertex_and_error(a, b, c, xs, ys)
+                assert _bits(x, y) == _bits(*voronoi_vertex(a, b, c, xs, ys))
+                assert _bits(err) == _bits(voronoi_vertex_error(a, b, c, xs, ys))
+                n += 1
+    assert n > 1000
+
+
+def _exact_center(p):
+    (ax, ay), (bx, by), (cx, cy) = [(Fraction(x), Fraction(y)) for x, y in p]
+    d = 2 * ((bx - ax) * (cy - ay) - (by - ay) * (cx - ax))
+    if d == 0:
+        return None  # exactly collinear: no centre
+    b2 = (bx - ax) ** 2 + (by - ay) ** 2
+    c2 = (cx - ax) ** 2 + (cy - ay) ** 2
+    ux = ((cy - ay) * b2 - (by - ay) * c2) / d
+    uy = ((bx - ax) * c2 - (cx - ax) * b2) / d
+    return ax + ux, ay + uy
+
+
+def test_center_error_bounds_the_exact_centre():
+    """The shared set-up keeps ``center_error`` a proven bound (exact centres, Fractions)."""
+    rng = np.random.default_rng(4)
+    checked = 0
+    for scale, off in ((1.0, 0.0), (1e-6, 1e6), (1e3, -1e12)):
+        for _ in range(200):
+            p = rng.random((3, 2)) * scale + off
+            args = (p[0, 0], p[0, 1], 0.0, p[1, 0], p[1, 1], 0.0, p[2, 0], p[2, 1], 0.0)
+            ox, oy, ux, uy = center_offset(*args)
+            err = center_error(*args)
+            exact = _exact_center(p)
+            if exact is None or not np.isfinite(err):
+                continue  # no centre, or one floats cannot place (an infinite bound)
+            dist = abs(Fraction(ox + ux) - exact[0]) + abs(Fraction(oy + uy) - exact[1])
+            assert dist <= Fraction(err)
+            checked += 1
+    assert checked > 500
+
+
+def _triangulation(pts):
+    xs = np.ascontiguousarray(pts[:, 0])
+    ys = np.ascontiguousarray(pts[:, 1])
+    order, sx, sy, tri, he, _, ok = triangulate_sorted(xs, ys)
+    assert ok
+    return np.ascontiguousarray(sx), np.ascontiguousarray(sy), tri, he, order
+
+
+def _plain_merge(sx, sy, tri, he, rank, box):
+    """The cocircular merge with every fold round over every edge (the rule as stated)."""
+    cx, cy, err, flag = cells.circumcenters(sx, sy, tri, he)
+    t = len(cx)
+    parent = np.arange(t)
+
+    def find(a):
+        while parent[a] != a:
+            a = parent[a]
+        return a
+
+    def link(a, b):
+        ra, rb = find(a), find(b)
+        if ra == rb:
+            return 0
+        parent[max(ra, rb)] = min(ra, rb)
+        return 1
+
+    edges = [(e, int(he[e])) for e in range(len(tri)) if he[e] > e]
+    merged = False
+    for e, f in edges:
+        q = [int(tri[e]), int(tri[e - e % 3 + (e + 1) % 3]), int(tri[e - e % 3 + (e + 2) % 3])]
+        d = int(tri[f - f % 3 + (f + 2) % 3])
+        close = cells._cc_close(sx, sy, q[0], err, cx, cy, e // 3, f // 3)
+        cocircular = flag[e] and incircle(*[v for s in (*q, d) for v in (sx[s], sy[s])]) == 0.0
+        if close or cocircular:
+            merged |= bool(link(e // 3, f // 3))
+    changed = np.zeros(t, dtype=np.uint8)
+
+    def rename():
+        parent[:] = [find(k) for k in range(t)]
+        cells._name_classes(sx, sy, tri, parent, cx, cy, rank, err, changed)
+
+    if merged:
+        rename()
+    rounds = 0
+    while True:
+        joins = sum(
+            link(e // 3, f // 3)
+            for e, f in edges
+            if find(e // 3) != find(f // 3) and cells._folds(sx, sy, tri, e, f, cx, cy, box, err)
+        )
+        if joins == 0:
+            return parent, cx, cy, rounds
+        rounds += 1
+        rename()
+
+
+FOLDING = ["float_circle_64", "float_circle_257", "float_circles_concentric"]
+
+
+@pytest.mark.parametrize("name", [*FOLDING, "lattice_offset_5e+13", "collinear_plus_one"])
+def test_fold_rounds_on_changed_edges_only_equal_full_rounds(name):
+    pts = CATALOGUE[name][0]
+    sx, sy, tri, he, order = _triangulation(pts)
+    lo = np.minimum(sx.min(), sy.min()) - 1.0
+    hi = np.maximum(sx.max(), sy.max()) + 1.0
+    box = np.array([lo, lo, hi, hi])
+    rank = order.astype(np.int64)
+    parent, px, py, rounds = _plain_merge(sx, sy, tri, he, rank, box)
+    cx, cy, err, flag = cells.circumcenters(sx, sy, tri, he)
+    cls = cells.merge_cocircular(sx, sy, tri, he, cx, cy, err, flag, rank, box)
+    assert np.array_equal(cls, parent)
+    assert _bits(*cx, *cy) == _bits(*px, *py)
+    if name in FOLDING:
+        assert len(np.unique(cls)) < len(cls)  # the classes merged: the test is not idle
+
+
+def test_some_input_needs_a_fold_round():
+    """At least one of the inputs above exercises a fold merge (else the test proves little)."""
+    total = 0
+    for name in FOLDING:
+        sx, sy, tri, he, order = _triangulation(CATALOGUE[name][0])
+        box = np.array([-2.0, -2.0, 2.0, 2.0])
+        total += _plain_merge(sx, sy, tri, he, order.astype(np.int64), box)[3]
+    assert total > 0
