@@ -95,3 +95,17 @@ def test_errors_do_not_mutate_input():
     with pytest.raises(ValueError):
         vf.voronoi(pts)
     assert np.array_equal(pts, keep, equal_nan=True)
+
+
+def test_picture_sizes_are_bounded_before_any_memory_is_taken(tmp_path, capsys):
+    # --size 100000 used to be killed for memory (24 GB); now a clear error, exit 2
+    from voroforge.cli import main
+
+    pts = tmp_path / "p.csv"
+    pts.write_text("0,0\n1,1\n0,1\n")
+    assert main(["voronoi", str(pts), "-o", str(tmp_path / "o.png"), "--size", "100000"]) == 2
+    err = capsys.readouterr().err
+    assert "too large" in err and "use at most 16384" in err
+    assert not (tmp_path / "o.png").exists()
+    with pytest.raises(ValueError, match="too large"):
+        vf.rasterize(np.random.default_rng(0).random((5, 2)), shape=(100_000, 100_000))

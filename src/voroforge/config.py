@@ -150,6 +150,11 @@ LBFGS_CURVATURE_RTOL = 1e-12
 
 # --- design layer and io ----------------------------------------------------------------------
 
+#: Largest picture the PNG writer and the rasteriser accept, in pixels (w x h, with the PNG
+#: writer's supersampling): 2**30 px is about 3 GB of RGB; beyond it a typo (--size 100000)
+#: would exhaust the machine's memory instead of failing with a clear error
+MAX_PIXELS = 2**30
+
 #: mm: default SVG stroke width of a design build, a laser hairline (drivers cut only
 #: hairlines, about 0.001 in or less, as vectors; 0.01 in would be engraved).
 HAIRLINE_MM = 0.01

@@ -8,6 +8,7 @@ from functools import cached_property
 
 import numpy as np
 
+from .. import config
 from ..kernels.raster import exact_nearest, jfa_nearest
 from .domain import padded_bounds
 from .inputs import as_points, duplicate_map
@@ -123,7 +124,12 @@ def _check_shape(shape) -> tuple[int, int]:
     )
     if not ok:
         raise ValueError(f"shape must be a pair (h, w) of positive ints; got {shape!r}")
-    return int(items[0]), int(items[1])
+    h, w = int(items[0]), int(items[1])
+    if h * w > config.MAX_PIXELS:
+        raise ValueError(
+            f"shape {h} x {w} is too large: {h * w:,} pixels, at most {config.MAX_PIXELS:,}"
+        )
+    return h, w
 
 
 def _check_bounds(bounds, pts: np.ndarray) -> tuple[float, float, float, float]:

@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
 from PIL import Image, ImageColor, ImageDraw
 
+from .. import config
 from .render import RingContext, as_boundary, as_geometries, data_bounds, palette, trace
 
 __all__ = ["render_image", "write_png"]
@@ -98,6 +100,12 @@ def render_image(
     if size < 8:
         raise ValueError(f"size must be at least 8 pixels; got {size}")
     ss = max(1, int(supersample))
+    if (size * ss) ** 2 > config.MAX_PIXELS:
+        most = math.isqrt(config.MAX_PIXELS) // ss
+        raise ValueError(
+            f"size {size} px is too large: {size} x {size} pixels drawn at {ss}x supersampling "
+            f"need about {3 * (size * ss) ** 2 / 2**30:.0f} GB; use at most {most}"
+        )
     cells = as_geometries(geoms)
     bound = as_boundary(boundary)
     pts = None if sites is None else np.asarray(sites, dtype=np.float64).reshape(-1, 2)
