@@ -109,3 +109,26 @@ def test_picture_sizes_are_bounded_before_any_memory_is_taken(tmp_path, capsys):
     assert not (tmp_path / "o.png").exists()
     with pytest.raises(ValueError, match="too large"):
         vf.rasterize(np.random.default_rng(0).random((5, 2)), shape=(100_000, 100_000))
+
+
+def test_poisson_refuses_a_runaway_count_up_front():
+    import shapely
+
+    from voroforge.design import populate
+
+    with pytest.raises(ValueError, match=r"about 2,680,000 points expected, at most 200,000"):
+        populate.poisson(shapely.box(0, 0, 100, 100), 0.05, seed=1)
+
+
+def test_text_points_and_boolean_seeds_are_refused(tmp_path):
+    with pytest.raises(ValueError, match="text and true/false are not coordinates"):
+        vf.voronoi([["0", "0"], ["1", "1"], ["0", "1"]])
+    from voroforge.design.designfile import DesignError, load
+
+    f = tmp_path / "d.toml"
+    f.write_text(
+        '[design]\nname = "x"\nseed = true\n[boundary]\nshape = "rectangle"\nwidth = 10\n'
+        'height = 10\n[seeds]\nmethod = "random"\ncount = 5\n'
+    )
+    with pytest.raises(DesignError, match=r"3.*design\.seed.*true/false"):
+        load(f)

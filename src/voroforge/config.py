@@ -154,6 +154,9 @@ LBFGS_CURVATURE_RTOL = 1e-12
 #: writer's supersampling): 2**30 px is about 3 GB of RGB; beyond it a typo (--size 100000)
 #: would exhaust the machine's memory instead of failing with a clear error
 MAX_PIXELS = 2**30
+#: Most points seeds.method = 'poisson' may place (about 0.67 area / radius^2 are expected;
+#: it is checked before sampling, which takes about a millisecond per point)
+POISSON_MAX_POINTS = 200_000
 
 #: mm: default SVG stroke width of a design build, a laser hairline (drivers cut only
 #: hairlines, about 0.001 in or less, as vectors; 0.01 in would be engraved).

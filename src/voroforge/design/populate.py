@@ -13,6 +13,7 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
+from .. import config
 from .boundary import as_polygonal
 
 __all__ = [
@@ -313,6 +314,14 @@ def poisson(boundary, radius, *, seed, field=None, radius_max=None, k: int = 30)
     gh = int((ymax - ymin) / cell) + 1
     if gw * gh > 20_000_000:
         raise ValueError(f"radius {rmin} is too small for this boundary (grid > 2e7 cells)")
+    # a maximal Poisson-disk sampling holds about 0.67 points per radius^2 (measured)
+    expected = 0.67 * geom.area / (rmin * rmin)
+    if expected > config.POISSON_MAX_POINTS:
+        raise ValueError(
+            f"radius {rmin:g} is too small for this boundary: about {expected:,.0f} points "
+            f"expected, at most {config.POISSON_MAX_POINTS:,} (use a larger radius, or "
+            "vf.voronoi on points of your own)"
+        )
     reach = int(math.ceil(rmax / cell))
     # padded grid of point indices (-1 = free) so windows never leave the array
     owner = np.full((gh + 2 * reach, gw + 2 * reach), -1, dtype=np.int64)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import re
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, model_validator
 
 from .. import config
 from ..solid.schema import SolidSection, fill_2d
@@ -43,8 +43,17 @@ Product = Literal["frame", "openings", "cells", "edges", "sites", "boundary", "l
 PositiveFloat = Annotated[float, Field(gt=0)]
 NonNegFloat = Annotated[float, Field(ge=0)]
 Point = tuple[float, float]
+
+
+def _not_bool(value: Any) -> Any:
+    """``seed = true`` is a typo, not the seed 1: refuse booleans where a number is meant."""
+    if isinstance(value, bool):
+        raise ValueError("expected a whole number >= 0, not true/false")
+    return value
+
+
 #: Random seeds: numpy's generators take non-negative integers only.
-Seed = Annotated[int, Field(ge=0)]
+Seed = Annotated[int, BeforeValidator(_not_bool), Field(ge=0)]
 
 
 def _need(field: str, message: str) -> ValueError:

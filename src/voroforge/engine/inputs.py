@@ -34,6 +34,10 @@ def as_points(points, *, dim: int = 2, name: str = "points") -> np.ndarray:
         raw = np.asarray(points)
         if raw.dtype.kind == "c":
             raise TypeError("complex values are not coordinates")
+        if raw.dtype.kind in "USb" or (
+            raw.dtype.kind == "O" and any(isinstance(v, str | bytes | bool) for v in raw.flat)
+        ):
+            raise TypeError("text and true/false are not coordinates (parse them first)")
         arr = np.array(raw, dtype=np.float64, copy=True)
     except (TypeError, ValueError) as exc:
         raise ValueError(
