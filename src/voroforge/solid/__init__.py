@@ -9,11 +9,42 @@ Every builder returns a watertight ``trimesh.Trimesh`` (``is_volume``) in the de
 
 from __future__ import annotations
 
-from . import cells, fields
-from .check import Report, Violation, check
-from .extrude import extrude
-from .foam import foam
-from .lattice import lattice
-from .shell import shell
+import importlib
+from typing import TYPE_CHECKING
 
 __all__ = ["Report", "Violation", "cells", "check", "extrude", "fields", "foam", "lattice", "shell"]
+
+# resolved on first use, so that ``voroforge.solid.schema`` (which every design file
+# validation imports) does not load trimesh, manifold3d and scipy.optimize
+_LAZY = {
+    "Report": ".check",
+    "Violation": ".check",
+    "check": ".check",
+    "extrude": ".extrude",
+    "foam": ".foam",
+    "lattice": ".lattice",
+    "shell": ".shell",
+}
+
+if TYPE_CHECKING:
+    from . import cells, fields
+    from .check import Report, Violation, check
+    from .extrude import extrude
+    from .foam import foam
+    from .lattice import lattice
+    from .shell import shell
+
+
+def __getattr__(name: str):
+    if name in ("cells", "fields"):
+        value = importlib.import_module(f".{name}", __name__)
+    elif name in _LAZY:
+        value = getattr(importlib.import_module(_LAZY[name], __name__), name)
+    else:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))
