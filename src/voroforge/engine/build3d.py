@@ -159,11 +159,13 @@ def _run(cells, P, W, start, SP, sidx, g, order, t, caps, pool, slots=None):
             oring[a * cr : b * cr],
         )
 
-    nth = 1 if pool is None else max(1, min(pool._max_workers, k // 64 or 1))
+    nth = 1 if pool is None else max(1, min(pool._max_workers, k // 512 or 1))
     if nth == 1:
         part(0, k)
-    else:  # the kernel releases the GIL: one thread per slice of cells
-        bounds = np.linspace(0, k, nth + 1).astype(int)
+    else:  # the kernel releases the GIL: threads take slices of cells as they come free
+        # (8 slices a thread: on a loaded machine one descheduled thread with half of the
+        # chunk made two threads slower than one, 12.1 s against 7.6 s on 1e5 cells)
+        bounds = np.linspace(0, k, 8 * nth + 1).astype(int)
         list(pool.map(part, bounds[:-1], bounds[1:]))
     tot = counts.sum(axis=0)
     names = np.zeros((tot[0], 4), np.int64)
