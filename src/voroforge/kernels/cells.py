@@ -743,15 +743,48 @@ def _count(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, deg, cut, merged):
     return counts
 
 
+@njit(**NJIT)
+def _write_ring(i, tri, he, cx, cy, out, base, coords, owner, kmap):
+    """The ring of uncut, unmerged cell ``i`` at ``coords[base:]``, closed (see :func:`_fill`)."""
+    o0 = out[i]
+    if o0 == -1:
+        return
+    o = o0
+    m = 0
+    while True:
+        p = o - o % 3 + (o + 2) % 3  # previous halfedge: y -> i
+        t = o // 3
+        coords[base + m, 0] = cx[t]
+        coords[base + m, 1] = cy[t]
+        owner[base + m] = kmap[tri[p]]
+        m += 1
+        o = he[p]
+        if o == o0 or o == -1:
+            break
+    if m < 3:
+        return  # (not reached for an interior site: its count is its degree, >= 3)
+    coords[base + m, 0] = cx[o0 // 3]
+    coords[base + m, 1] = cy[o0 // 3]
+    owner[base + m] = -2
+
+
 @njit(**NJIT_PARALLEL)
-def _fill(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, start, coords, owner, kmap):
-    """Write every cell as a closed ring at ``start[i]``; owners go through ``kmap``."""
+def _fill(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, start, coords, owner, kmap, cut, merged):
+    """Write every cell as a closed ring at ``start[i]``; owners go through ``kmap``.
+
+    Without cocircular merges an uncut cell is its ring of circumcentres, one per incident
+    triangle (what :func:`_cell` builds then, see :func:`_count`): it is written straight
+    from the halfedge walk.
+    """
     n = xs.shape[0]
     nchunks = (n + _CHUNK - 1) // _CHUNK
     for ch in prange(nchunks):
         bufs, nbrs, cl, tb, ss = _scratch(cap)
         px, py, pw = bufs[0], bufs[1], bufs[2]
         for i in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
+            if not merged and not cut[i]:
+                _write_ring(i, tri, he, cx, cy, out, start[i], coords, owner, kmap)
+                continue
             m = _cell(i, xs, ys, ws, tri, he, cx, cy, cls, out, box, bufs, nbrs, cl, tb, ss)
             if m == 0:
                 continue
@@ -809,7 +842,7 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
     total = int(lengths[-1])
     coords = np.zeros((total, 2))
     owner = np.zeros(total, dtype=np.int64)
-    _fill(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, start, coords, owner, kmap)
+    _fill(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, start, coords, owner, kmap, cut, merged)
     return coords, lengths, owner
 
 
