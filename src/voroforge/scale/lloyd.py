@@ -24,7 +24,17 @@ import numpy as np
 
 from .. import config
 from .job import _client_for, _halo, _tile_count
-from .tasks import Piece, _gather, _threads, group_discs, open_sides, radii, take
+from .tasks import (
+    Piece,
+    _certified,
+    _gather,
+    _threads,
+    group_discs,
+    open_sides,
+    radii,
+    split_by_tile,
+    take,
+)
 from .tiling import kd_tiling
 
 __all__ = ["ScaleRelaxation", "lloyd"]
@@ -78,15 +88,7 @@ def _moments(ids, xy, dom, loaded, wanted, last):
     d = build(as_points(xy), dom, "delaunay")
     mass, first, second = Integrator(None, len(xy))(buffers(d), xy)
     r = radii(d, xy)
-    x0, y0, x1, y1 = loaded
-    reach = 2.0 * r[wanted] * (1.0 + config.SCALE_CERT_RTOL)
-    w = xy[wanted]
-    ok = (
-        (w[:, 0] - reach > x0)
-        & (w[:, 0] + reach < x1)
-        & (w[:, 1] - reach > y0)
-        & (w[:, 1] + reach < y1)
-    )
+    ok = _certified(xy[wanted], r[wanted], loaded)
     if last:
         ok[:] = True
     keep = wanted[ok]
@@ -159,17 +161,7 @@ def lloyd_tile(t, spec, own, *neighbours):
 
 def split_piece(piece, tiling):
     """``(counts (t,), pieces)``: a tile's moved sites split by the tile owning them now."""
-    tile = tiling.assign(piece.xy) if len(piece.ids) else np.zeros(0, np.int64)
-    order = np.argsort(tile, kind="stable")
-    counts = np.bincount(tile, minlength=len(tiling))
-    ends = np.cumsum(counts)
-    out = []
-    for t in range(len(tiling)):
-        rows = order[ends[t] - counts[t] : ends[t]]
-        out.append(
-            Piece(piece.ids[rows], np.ascontiguousarray(piece.xy[rows])) if len(rows) else None
-        )
-    return counts, out
+    return split_by_tile(piece.ids, piece.xy, None, tiling)
 
 
 def merge_sorted(*pieces):

@@ -69,7 +69,12 @@ def chunk_stats(chunk, block, sample_size: int, seed: int):
 def chunk_split(chunk, block, tiling):
     """``(counts (t,), pieces)``: the chunk's sites split by owning tile (None when empty)."""
     xy, attrs = _load(chunk, block)
-    tile = tiling.assign(xy)
+    return split_by_tile(chunk.start + np.arange(len(xy)), xy, attrs, tiling)
+
+
+def split_by_tile(ids, xy, attrs, tiling):
+    """``(counts (t,), pieces)``: sites split by owning tile, keeping their order in each."""
+    tile = tiling.assign(xy) if len(xy) else np.zeros(0, np.int64)
     order = np.argsort(tile, kind="stable")  # stable: rows stay increasing within a tile
     counts = np.bincount(tile, minlength=len(tiling))
     ends = np.cumsum(counts)
@@ -80,7 +85,7 @@ def chunk_split(chunk, block, tiling):
             continue
         rows = order[ends[t] - counts[t] : ends[t]]
         sub = None if attrs is None else attrs.take(rows)
-        pieces.append(Piece(chunk.start + rows, np.ascontiguousarray(xy[rows]), sub))
+        pieces.append(Piece(ids[rows], np.ascontiguousarray(xy[rows]), sub))
     return counts, pieces
 
 
