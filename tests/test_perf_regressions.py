@@ -1,10 +1,10 @@
 """The fast paths of the Delaunay-dual cells give the bits of the plain computations.
 
-Issue 10's win-back replaced two whole passes of ``kernels/cells`` by cheaper ones:
+Issue 10's win-back replaced two whole passes of ``kernels/centers`` by cheaper ones:
 
 - the centres' rounding bounds are computed with the centres, from one set-up
   (``vertex.voronoi_vertex_and_error``), instead of a second pass over the triangles;
-- the fold rounds (``cells._unfold``) test only the Voronoi edges whose answer can have
+- the fold rounds (``centers._unfold``) test only the Voronoi edges whose answer can have
   changed, instead of every edge every round.
 
 Each is checked here against the plain version, bit for bit, on inputs where the merges
@@ -19,7 +19,7 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-from voroforge.kernels import cells
+from voroforge.kernels import centers
 from voroforge.kernels.delaunay import triangulate_sorted
 from voroforge.kernels.predicates import incircle
 from voroforge.kernels.vertex import (
@@ -109,7 +109,7 @@ def _triangulation(pts):
 
 def _plain_merge(sx, sy, tri, he, rank, box):
     """The cocircular merge with every fold round over every edge (the rule as stated)."""
-    cx, cy, err, flag = cells.circumcenters(sx, sy, tri, he)
+    cx, cy, err, flag = centers.circumcenters(sx, sy, tri, he)
     t = len(cx)
     parent = np.arange(t)
 
@@ -130,7 +130,7 @@ def _plain_merge(sx, sy, tri, he, rank, box):
     for e, f in edges:
         q = [int(tri[e]), int(tri[e - e % 3 + (e + 1) % 3]), int(tri[e - e % 3 + (e + 2) % 3])]
         d = int(tri[f - f % 3 + (f + 2) % 3])
-        close = cells._cc_close(sx, sy, q[0], err, cx, cy, e // 3, f // 3)
+        close = centers._cc_close(sx, sy, q[0], err, cx, cy, e // 3, f // 3)
         cocircular = flag[e] and incircle(*[v for s in (*q, d) for v in (sx[s], sy[s])]) == 0.0
         if close or cocircular:
             merged |= bool(link(e // 3, f // 3))
@@ -138,7 +138,7 @@ def _plain_merge(sx, sy, tri, he, rank, box):
 
     def rename():
         parent[:] = [find(k) for k in range(t)]
-        cells._name_classes(sx, sy, tri, parent, cx, cy, rank, err, changed)
+        centers._name_classes(sx, sy, tri, parent, cx, cy, rank, err, changed)
 
     if merged:
         rename()
@@ -147,7 +147,7 @@ def _plain_merge(sx, sy, tri, he, rank, box):
         joins = sum(
             link(e // 3, f // 3)
             for e, f in edges
-            if find(e // 3) != find(f // 3) and cells._folds(sx, sy, tri, e, f, cx, cy, box, err)
+            if find(e // 3) != find(f // 3) and centers._folds(sx, sy, tri, e, f, cx, cy, box, err)
         )
         if joins == 0:
             return parent, cx, cy, rounds
@@ -167,8 +167,8 @@ def test_fold_rounds_on_changed_edges_only_equal_full_rounds(name):
     box = np.array([lo, lo, hi, hi])
     rank = order.astype(np.int64)
     parent, px, py, rounds = _plain_merge(sx, sy, tri, he, rank, box)
-    cx, cy, err, flag = cells.circumcenters(sx, sy, tri, he)
-    cls = cells.merge_cocircular(sx, sy, tri, he, cx, cy, err, flag, rank, box)
+    cx, cy, err, flag = centers.circumcenters(sx, sy, tri, he)
+    cls = centers.merge_cocircular(sx, sy, tri, he, cx, cy, err, flag, rank, box)
     assert np.array_equal(cls, parent)
     assert _bits(*cx, *cy) == _bits(*px, *py)
     if name in FOLDING:

@@ -41,11 +41,11 @@ VERTEX_SNAP_RTOL = 2.0**-40
 #: and the circumradius) are one vertex: floats cannot order a shorter Voronoi edge
 CC_MERGE_RTOL = 2.0**-46
 #: Rounds of merging swapped Voronoi vertices (a backwards edge) before the cells are built;
-#: each round merges, so this only bounds pathological input (kernels/cells._unfold)
+#: each round merges, so this only bounds pathological input (kernels/centers._unfold)
 FOLD_MAX_ROUNDS = 64
 #: Only a Voronoi edge within this many times what rounding and naming move its ends (their
 #: error bounds + VERTEX_SNAP_RTOL of the radius) can be a fold: a longer one that breaks a
-#: turn test is a straight angle rounded (kernels/cells._unfold)
+#: turn test is a straight angle rounded (kernels/centers._unfold)
 FOLD_SPAN_ERRS = 4.0
 #: A chain of circumcentres shorter than this (relative to the box's width + height) is
 #: rounding noise, not put back into a cut cell (kernels/cells)

@@ -6,7 +6,7 @@ from functools import cached_property
 
 import numpy as np
 
-from ..kernels.cells import triangle_centers
+from ..kernels.centers import triangle_centers
 from ..kernels.delaunay import triangulate
 from .csr import csr_from_pairs
 from .inputs import as_points, as_query, duplicate_map, from_working, working_frame

@@ -1,0 +1,443 @@
+"""Voronoi vertices of a Delaunay triangulation: centres, and one vertex per cocircular class.
+
+The Delaunay-dual cells (``kernels/cells``) and ``Triangulation.circumcenters`` take their
+vertices from here:
+
+- :func:`circumcenters` computes each triangle's centre as the Voronoi vertex named by its
+  three sites (``kernels/vertex``), with its proven rounding bound, and flags the edges
+  whose incircle the fast filter cannot decide.
+- :func:`merge_cocircular` joins triangles into classes that must share one vertex: exactly
+  cocircular ones (exact ``incircle`` == 0), ones whose centres agree to their rounding
+  bounds, and the two ends of every Voronoi edge that rounding turned the wrong way (the
+  fold test). Every member of a class gets the vertex of the class's canonical name.
+- :func:`triangle_centers` is the same naming without the merge by distance, for
+  ``Triangulation.circumcenters``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit, prange
+
+from ..config import (
+    CC_MERGE_RTOL,
+    FOLD_MAX_ROUNDS,
+    FOLD_SPAN_ERRS,
+    NJIT,
+    NJIT_PARALLEL,
+    VERTEX_SNAP_RTOL,
+)
+from .predicates import cross_diff, incircle, incircle_fast
+from .vertex import canonical_vertex_ranked, voronoi_vertex_and_error
+
+_U = 2.0**-53
+
+
+@njit(**NJIT)
+def _find(parent, a):
+    while parent[a] != a:
+        parent[a] = parent[parent[a]]
+        a = parent[a]
+    return a
+
+
+@njit(**NJIT_PARALLEL)
+def circumcenters(xs, ys, tri, he):
+    """Circumcentres of all triangles, their rounding bounds, and flags on undecided edges.
+
+    Each centre is the Voronoi vertex named by the triangle's sites (``kernels/vertex``),
+    computed together with its proven rounding-error bound (``vertex.center_error``, from
+    the same set-up: ``voronoi_vertex_and_error``).
+
+    A halfedge ``e < twin`` is flagged when the fast incircle filter cannot call its
+    quadrilateral; those are the candidates for exact cocircularity. Returns
+    ``(cx, cy, err, flag)``.
+    """
+    t = tri.shape[0] // 3
+    cx = np.zeros(t)
+    cy = np.zeros(t)
+    err = np.zeros(t)
+    flag = np.zeros(tri.shape[0], dtype=np.uint8)
+    for k in prange(t):
+        a = tri[3 * k]
+        b = tri[3 * k + 1]
+        c = tri[3 * k + 2]
+        ux, uy, err[k] = voronoi_vertex_and_error(a, b, c, xs, ys)
+        if not (np.isfinite(ux) and np.isfinite(uy)):
+            # a sliver whose centre overflows: far outside any box, so its cells get cut
+            ux = np.inf
+            uy = np.inf
+        cx[k] = ux
+        cy[k] = uy
+        for j in range(3):
+            e = 3 * k + j
+            f = he[e]
+            if f > e:
+                d = tri[f - f % 3 + (f + 2) % 3]
+                v = incircle_fast(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c], xs[d], ys[d])
+                if v != v:
+                    flag[e] = 1
+    return cx, cy, err, flag
+
+
+@njit(**NJIT)
+def _quad(tri, e, f):
+    a = tri[e]
+    b = tri[e - e % 3 + (e + 1) % 3]
+    c = tri[e - e % 3 + (e + 2) % 3]
+    d = tri[f - f % 3 + (f + 2) % 3]
+    return a, b, c, d
+
+
+@njit(**NJIT)
+def _cc_close(xs, ys, a, err, cx, cy, t, u):
+    """Whether the centres of triangles ``t``, ``u`` (site ``a`` on both) are one point.
+
+    They are when their distance is within both centres' rounding bounds
+    (``vertex.center_error``: floats cannot tell them apart) and within ``CC_MERGE_RTOL`` of
+    the circle's radius (a centre floats cannot place, a sliver's, merges with nothing by
+    distance alone; :func:`_unfold` merges it if it swaps with a neighbour). Both scale
+    with the local spacing: the coordinates' magnitude enters only through its ulps.
+    """
+    d = abs(cx[t] - cx[u]) + abs(cy[t] - cy[u])
+    if not d <= err[t] + err[u]:
+        return False
+    r = abs(cx[t] - xs[a]) + abs(cy[t] - ys[a])
+    return d <= CC_MERGE_RTOL * r + 4.0 * _U * (abs(cx[t]) + abs(cy[t]))
+
+
+@njit(**NJIT_PARALLEL)
+def flag_close(xs, ys, tri, he, cx, cy, flag, err, box, fold):
+    """Also flag interior halfedges whose two triangles have centres equal to rounding.
+
+    On every other interior halfedge ``e < twin`` it marks in ``fold`` whether the Voronoi
+    edge between the two centres runs backwards (:func:`_folds`): the first round of
+    :func:`_unfold` takes that mark wherever naming left both centres as they are, so the
+    edges are scanned once, here.
+    """
+    for e in prange(tri.shape[0]):
+        f = he[e]
+        if f < e or flag[e] != 0:
+            continue
+        t = e // 3
+        u = f // 3
+        # both tests need the edge within what rounding and naming move its ends (_short;
+        # _cc_close's bound is within it as FOLD_SPAN_ERRS >= 1): most edges end here
+        if not _short(xs, ys, tri[e], err, cx, cy, t, u):
+            continue
+        if _cc_close(xs, ys, tri[e], err, cx, cy, t, u):
+            flag[e] = 1
+        elif _folds(xs, ys, tri, e, f, cx, cy, box, err):
+            fold[e] = 1
+
+
+@njit(**NJIT)
+def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank, err, box, fold):
+    t = tri.shape[0] // 3
+    parent = np.arange(t)
+    changed = np.zeros(t, dtype=np.uint8)
+    merged = False
+    for k in range(cand.shape[0]):
+        e = cand[k]
+        f = he[e]
+        a, b, c, d = _quad(tri, e, f)
+        if (near and _cc_close(xs, ys, a, err, cx, cy, e // 3, f // 3)) or (
+            incircle(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c], xs[d], ys[d]) == 0.0
+        ):
+            ra = _find(parent, e // 3)
+            rb = _find(parent, f // 3)
+            if ra != rb:
+                parent[max(ra, rb)] = min(ra, rb)
+                merged = True
+    if merged:
+        for k in range(t):
+            parent[k] = _find(parent, k)
+        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed)
+    if near:
+        _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, changed)
+    return parent
+
+
+@njit(**NJIT)
+def _in_box(x, y, box):
+    return box[0] <= x <= box[2] and box[1] <= y <= box[3]
+
+
+@njit(**NJIT)
+def _next(e):
+    return e - 2 if e % 3 == 2 else e + 1
+
+
+@njit(**NJIT)
+def _short(xs, ys, a, err, cx, cy, t, u):
+    """Whether the Voronoi edge between the centres of ``t``, ``u`` (site ``a``) can fold.
+
+    Only an edge within what rounding and naming can move its ends (the centres' bounds,
+    and a class's snap to its name, ``VERTEX_SNAP_RTOL`` of the radius) can; a longer one
+    that breaks a turn test is a straight angle rounded, left alone.
+    """
+    d = abs(cx[t] - cx[u]) + abs(cy[t] - cy[u])
+    r = abs(cx[t] - xs[a]) + abs(cy[t] - ys[a])
+    return d <= FOLD_SPAN_ERRS * (err[t] + err[u] + VERTEX_SNAP_RTOL * r)
+
+
+@njit(**NJIT)
+def _folds(xs, ys, tri, e, f, cx, cy, box, err):
+    """Whether the Voronoi edge dual to halfedge ``e`` (``f`` its twin, ``e < f``) folds.
+
+    The Voronoi edge dual to Delaunay edge ``i -> j`` runs from the centre of the triangle
+    right of it to the centre of the one left of it, along ``j - i`` turned left, by the
+    empty-circle property (its exact length is >= 0). When the computed vertices run the
+    other way (decided exactly, :func:`.predicates.cross_diff`), rounding has swapped them:
+    their exact distance is below their rounding, and keeping both folds the ring.
+    """
+    t = e // 3
+    u = f // 3
+    if not _short(xs, ys, tri[e], err, cx, cy, t, u):
+        return False
+    if not (_in_box(cx[t], cy[t], box) and _in_box(cx[u], cy[u], box)):
+        return False  # a vertex outside the box is never output: its cells are cut
+    return _swapped(xs, ys, tri, e, f, cx[u], cy[u], cx[t], cy[t])
+
+
+@njit(**NJIT)
+def _link(parent, t, u):
+    """Join the classes of triangles ``t`` and ``u`` (the smaller root wins); 1 if they were two."""
+    rt = _find(parent, t)
+    ru = _find(parent, u)
+    if rt == ru:
+        return 0
+    parent[max(rt, ru)] = min(rt, ru)
+    return 1
+
+
+@njit(**NJIT)
+def _refold(xs, ys, tri, he, parent, cx, cy, box, err, changed):
+    """Join across every edge at a ``changed`` triangle that folds now; the number of joins."""
+    merges = 0
+    for t in range(changed.shape[0]):
+        if changed[t] == 0:
+            continue
+        for j in range(3):
+            e = 3 * t + j
+            f = he[e]
+            if f < 0:
+                continue
+            lo = min(e, f)
+            hi = max(e, f)
+            if not _short(xs, ys, tri[lo], err, cx, cy, lo // 3, hi // 3):
+                continue  # the cheap test first: most edges are long
+            if _find(parent, lo // 3) == _find(parent, hi // 3):
+                continue
+            if _folds(xs, ys, tri, lo, hi, cx, cy, box, err):
+                merges += _link(parent, lo // 3, hi // 3)
+    return merges
+
+
+@njit(**NJIT)
+def _dot_sign(ax, ay, bx, by, cx, cy, dx, dy):
+    """Sign-exact ``(b - a) . (d - c)`` (the cross product with ``d - c`` turned right)."""
+    return -cross_diff(ax, ay, bx, by, cy, dx, dy, cx)
+
+
+@njit(**NJIT)
+def _swapped(xs, ys, tri, e, f, ux, uy, tx, ty):
+    """Whether the computed Voronoi edge ``u -> t`` dual to halfedge ``e`` cannot be right.
+
+    With ``i -> k`` the halfedge, ``q`` the third site of the triangle left of it and ``j``
+    that of the one right of it, the exact edge runs along ``k - i`` turned left (``q`` and
+    ``j`` are its next and previous neighbours around ``i``, in reverse around ``k``), so it
+    makes a left turn with the neighbouring edges of both cells: ``(j - i).e <= 0``,
+    ``(q - i).e >= 0``, ``(j - k).e <= 0``, ``(q - k).e >= 0``. A computed edge ``e`` that
+    breaks one (exact signs) has swapped or turned ends: rounding moved them by more than
+    their distance.
+    """
+    i = tri[e]
+    k = tri[_next(e)]
+    q = tri[_next(_next(e))]
+    j = tri[_next(_next(f))]
+    if cross_diff(xs[i], ys[i], xs[k], ys[k], ux, uy, tx, ty) < 0.0:
+        return True
+    if _dot_sign(xs[i], ys[i], xs[j], ys[j], ux, uy, tx, ty) > 0.0:
+        return True
+    if _dot_sign(xs[i], ys[i], xs[q], ys[q], ux, uy, tx, ty) < 0.0:
+        return True
+    if _dot_sign(xs[k], ys[k], xs[j], ys[j], ux, uy, tx, ty) > 0.0:
+        return True
+    return _dot_sign(xs[k], ys[k], xs[q], ys[q], ux, uy, tx, ty) < 0.0
+
+
+@njit(**NJIT)
+def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, changed):
+    """Merge swapped vertices (:func:`_folds`) until none is left; renames the classes.
+
+    Each round joins the classes at both ends of every edge that folds, then names the
+    joined classes. The result of a round does not depend on the order of its joins (the
+    root of a class is its smallest triangle), so a round only tests the edges whose answer
+    can have changed: edges whose two centres kept their bits since the last test keep its
+    answer (a fold then was joined then). The first round takes :func:`flag_close`'s marks
+    (``fold``) where naming kept both centres (``changed`` is 0), and tests the flagged
+    ``cand`` edges and those at renamed centres; later rounds test the edges at centres the
+    last renaming changed. Each round merges classes, so this ends; every merge is a pair of
+    vertices closer than their rounding, and the merged class gets its canonical vertex as
+    any other.
+    """
+    merges = 0
+    for e in range(fold.shape[0]):
+        if fold[e] != 0:
+            f = he[e]
+            if changed[e // 3] == 0 and changed[f // 3] == 0:
+                merges += _link(parent, e // 3, f // 3)
+    for k in range(cand.shape[0]):
+        e = cand[k]
+        f = he[e]
+        if changed[e // 3] != 0 or changed[f // 3] != 0:
+            continue  # tested below
+        if _short(xs, ys, tri[e], err, cx, cy, e // 3, f // 3):
+            if _find(parent, e // 3) != _find(parent, f // 3):
+                if _folds(xs, ys, tri, e, f, cx, cy, box, err):
+                    merges += _link(parent, e // 3, f // 3)
+    merges += _refold(xs, ys, tri, he, parent, cx, cy, box, err, changed)
+    for it in range(FOLD_MAX_ROUNDS):
+        if it > 0:
+            merges = _refold(xs, ys, tri, he, parent, cx, cy, box, err, changed)
+        if merges == 0:
+            return
+        for k in range(parent.shape[0]):
+            parent[k] = _find(parent, k)
+        changed[:] = 0
+        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed)
+
+
+@njit(**NJIT)
+def _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy):
+    """Vertex of the class rooted at triangle ``r`` with sites ``on[:k]`` (see below)."""
+    a0 = tri[3 * r]
+    _, vx, vy = canonical_vertex_ranked(on, k, rank, cx[r], cy[r], xs[a0], ys[a0], xs, ys)
+    return vx, vy
+
+
+@njit(**NJIT)
+def _set_vertex(cx, cy, k, vx, vy, changed):
+    """``(cx[k], cy[k]) = (vx, vy)``, noting in ``changed`` when the bits may differ."""
+    if not (cx[k] == vx and cy[k] == vy) or vx == 0.0 or vy == 0.0:
+        changed[k] = 1  # (a zero's sign is not seen by ==: counted as changed)
+    cx[k] = vx
+    cy[k] = vy
+
+
+@njit(**NJIT)
+def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed):
+    """Give every triangle of a class (``parent`` its root) the vertex of the class's name.
+
+    The name is the canonical triple of the class's sites (``kernels/vertex``), numbered by
+    ``rank`` (their input indices), found near the root's centre; without one the root's
+    centre is used (for classes of three or more, the member centre with the smallest
+    rounding bound ``err`` is the reference). Classes of two triangles (four cocircular
+    sites: every square of a grid) are the common case and take a short path; larger ones
+    are gathered by a counting sort. Triangles whose centre may have changed are marked
+    in ``changed``.
+    """
+    t = parent.shape[0]
+    size = np.zeros(t, dtype=np.int64)
+    other = np.zeros(t, dtype=np.int64)
+    for k in range(t):
+        r = parent[k]
+        size[r] += 1
+        if k != r:
+            other[r] = k
+    on = np.zeros(max(6, 3 * int(size.max())), dtype=np.int64)
+    big = 0
+    for r in range(t):
+        if size[r] == 2:
+            # the root's three sites and the other triangle's new ones (one, when adjacent)
+            a = tri[3 * r]
+            b = tri[3 * r + 1]
+            c = tri[3 * r + 2]
+            on[0] = a
+            on[1] = b
+            on[2] = c
+            k = 3
+            u = other[r]
+            for j in range(3):
+                v = tri[3 * u + j]
+                if v != a and v != b and v != c and (k == 3 or v != on[3]):
+                    on[k] = v
+                    k += 1
+            vx, vy = _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy)
+            _set_vertex(cx, cy, r, vx, vy, changed)
+            _set_vertex(cx, cy, u, vx, vy, changed)
+        elif size[r] > 2:
+            big += 1
+    if big == 0:
+        return
+    # members of every class of three or more, grouped by root in triangle order (a
+    # counting sort: linear, where a sort of all triangles cost more than the rest)
+    start = np.zeros(t + 1, dtype=np.int64)
+    for r in range(t):
+        start[r + 1] = start[r] + (size[r] if size[r] > 2 else 0)
+    fill = start[:-1].copy()
+    members = np.zeros(start[t], dtype=np.int64)
+    for k in range(t):
+        r = parent[k]
+        if size[r] > 2:
+            members[fill[r]] = k
+            fill[r] += 1
+    seen = np.full(xs.shape[0], -1, dtype=np.int64)
+    for r in range(t):
+        if size[r] < 3:
+            continue
+        k = 0
+        for u in range(start[r], start[r + 1]):
+            for c in range(3):
+                v = tri[3 * members[u] + c]
+                if seen[v] != r:
+                    seen[v] = r
+                    on[k] = v
+                    k += 1
+        # the class's best-conditioned centre is the reference its name must match (the
+        # root's may be a sliver's, which no triple's centre is near)
+        best = r
+        if err.shape[0] > 0:
+            for u in range(start[r], start[r + 1]):
+                if err[members[u]] < err[best]:
+                    best = members[u]
+        vx, vy = _class_vertex(on, k, rank, best, xs, ys, tri, cx, cy)
+        for u in range(start[r], start[r + 1]):
+            _set_vertex(cx, cy, members[u], vx, vy, changed)
+
+
+def merge_cocircular(xs, ys, tri, he, cx, cy, err, flag, rank, box):
+    """Give triangles with the same circumcircle one circumcentre; return each one's class.
+
+    Two triangles sharing an edge have the same circumcircle exactly when the fourth point is
+    on the first one's circle (exact incircle == 0); triangles whose computed centres agree
+    to their rounding bounds (:func:`_cc_close`) are merged too, and so are the ends of every
+    Voronoi edge that rounding turned the wrong way (:func:`_unfold`, exact signs: keeping
+    them would fold the ring). Classes are the connected components of that relation;
+    every member gets the vertex named by the class's canonical triple (the vertex rule of
+    ``kernels/vertex``, which the half-plane kernel follows too). The exact code runs only
+    on the halfedges flagged by :func:`circumcenters`. ``rank[v]`` is site ``v``'s input
+    index (names are chosen in the input's numbering, as every algorithm does).
+    """
+    fold = np.zeros(tri.shape[0], dtype=np.uint8)
+    flag_close(xs, ys, tri, he, cx, cy, flag, err, box, fold)
+    cand = np.flatnonzero(flag)
+    return _merge_exact(xs, ys, tri, he, cand, cx, cy, True, rank, err, box, fold)
+
+
+def triangle_centers(xs, ys, tri, he):
+    """Circumcentres of all triangles, named as the Voronoi vertices are.
+
+    Each is the vertex named by its triangle's sites, and exactly cocircular triangles
+    (exact ``incircle`` == 0) share the vertex of their canonical name, as in the cells. The
+    merge of merely close centres (``CC_MERGE_RTOL``) is left out: each centre stays its own
+    triangle's, to its conditioning. Returns ``(cx, cy)``.
+    """
+    cx, cy, _, flag = circumcenters(xs, ys, tri, he)
+    cand = np.flatnonzero(flag)
+    if cand.shape[0]:
+        none = np.zeros(0)
+        fold = np.zeros(0, dtype=np.uint8)
+        _merge_exact(xs, ys, tri, he, cand, cx, cy, False, np.arange(xs.shape[0]), none, none, fold)
+    return cx, cy
