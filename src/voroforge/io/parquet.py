@@ -41,6 +41,9 @@ GEOPARQUET_VERSION = "1.1.0"
 #: Rows per Parquet row group: small enough for the bbox statistics to prune reads.
 ROW_GROUP_SIZE = 65536
 
+#: The columns :func:`cells_table` makes, in order (attributes follow).
+CELL_COLUMNS = ("site_id", "geometry", "area", "neighbors", "bbox")
+
 
 @njit(**NJIT)
 def _wkb_pass(
@@ -459,13 +462,22 @@ def write_table(table, path, geo: dict, *, extra: dict | None = None) -> Path:
         meta[key.encode()] = json.dumps(value).encode()
     table = table.replace_schema_metadata(meta)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    # no dictionaries for the cell columns (all distinct values: pyarrow tries one for each
+    # column and gives up, which costs half the write); statistics where readers prune by
+    # them (site_id, area, the bbox covering) and on the attributes
+    names = table.column_names
+    attrs = [c for c in names if c not in CELL_COLUMNS]
+    stats = [c for c in names if c not in ("geometry", "neighbors", "bbox")]
+    if "bbox" in names:
+        stats += [f"bbox.{k}" for k in ("xmin", "ymin", "xmax", "ymax")]
     try:
         pq.write_table(
             table,
             tmp,
             row_group_size=ROW_GROUP_SIZE,
             compression="zstd",
-            write_statistics=True,
+            use_dictionary=attrs or False,
+            write_statistics=stats,
         )
         os.replace(tmp, path)
     finally:

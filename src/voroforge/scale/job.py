@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import json
 import math
-import operator
 import os
 import shutil
 import time
@@ -28,14 +27,17 @@ from pathlib import Path
 import numpy as np
 
 from .. import config
+from .buckets import Store, bucket_chunk
 from .sources import open_source
-from .tasks import chunk_split, chunk_stats, group_discs, merge_pieces, retry_tile, run_tile, take
+from .tasks import chunk_stats, run_tile
 from .tiling import kd_tiling
 
 __all__ = ["MANIFEST", "ScaleResult", "voronoi"]
 
 #: The job manifest's file name inside the output folder.
 MANIFEST = "_voroforge_scale.json"
+#: The folder of the bucket files (the shuffle) inside the output folder, removed at the end.
+SHUFFLE = "_shuffle"
 _FORMAT = "voroforge-scale/1"
 
 
@@ -119,6 +121,7 @@ def _ours(path: Path) -> bool:
             name in (MANIFEST, "_metadata", "_common_metadata")
             or (name.startswith("part-") and name.endswith(".parquet"))
             or name.startswith("_points.tmp")
+            or (name == SHUFFLE and p.is_dir())
             or (name.startswith(".") and name.endswith(".tmp"))
         ):
             return False
@@ -315,6 +318,8 @@ def voronoi(
     finally:
         for tmp in source.temporary if source is not None and source.temporary else []:
             Path(tmp).unlink(missing_ok=True)
+        if (out / SHUFFLE).is_dir():  # a rerun buckets the input again
+            shutil.rmtree(out / SHUFFLE, ignore_errors=True)
         for stale in out.glob(".*.tmp") if out.is_dir() else []:
             stale.unlink(missing_ok=True)
     result.seconds = time.perf_counter() - t_start
@@ -324,7 +329,6 @@ def voronoi(
 def _run(cl, source, job):
     """The job's steps on client ``cl`` (``job``: the validated arguments of :func:`voronoi`)."""
     from distributed import as_completed
-    from distributed import wait as distributed_wait
 
     from ..engine.domain import padded_bounds
 
@@ -376,18 +380,18 @@ def _run(cl, source, job):
     _write_json(out / MANIFEST, manifest)
     lap("stats")
 
-    # the shuffle: every chunk split by owning tile, each tile's pieces merged in row order
-    splits = [
-        cl.submit(chunk_split, c, b, tiling) for c, b in zip(source.chunks, blocks, strict=True)
-    ]
-    counts = np.array(cl.gather([cl.submit(operator.getitem, s, 0) for s in splits]))
-    owned = []
-    for t in range(ntiles):
-        parts = [cl.submit(take, s, t) for c, s in enumerate(splits) if counts[c, t]]
-        owned.append(cl.submit(merge_pieces, *parts))
-    del splits
-    per_tile = counts.sum(axis=0)
-    distributed_wait(owned)
+    # the shuffle, on disk: every chunk's sites bucketed by owning tile into one file
+    shuffle = out / SHUFFLE
+    shuffle.mkdir(exist_ok=True)
+    bucketed = cl.gather(
+        [
+            cl.submit(bucket_chunk, c, b, tiling, str(shuffle), i, pure=False)
+            for i, (c, b) in enumerate(zip(source.chunks, blocks, strict=True))
+        ]
+    )
+    del blocks
+    per_tile = np.sum(bucketed, axis=0)
+    store = Store(str(shuffle), len(source.chunks), ntiles, attrs=source.attributes)
     lap("shuffle")
 
     def spec(t):
@@ -406,51 +410,25 @@ def _run(cl, source, job):
 
     infos = {}
     resumed = 0
-    pending = as_completed()
-    tile_future = {}
-    specs = {}
+    futures = []
     for t in range(ntiles):
-        specs[t] = spec(t)
-        done = _tile_done(out / specs[t]["file"]) if resume is not None else None
+        s = spec(t)
+        done = _tile_done(out / s["file"]) if resume is not None else None
         if done is not None and done.get("rows") == int(per_tile[t]):
             infos[t] = done
             resumed += 1
             continue
-        near = [u for u in tiling.touching(specs[t]["loaded"]) if u != t]
-        f = cl.submit(run_tile, t, specs[t], owned[t], *[owned[u] for u in near])
-        info = cl.submit(operator.getitem, f, 0)
-        tile_future[info.key] = f
-        pending.add(info)
+        futures.append(cl.submit(run_tile, t, s, store, tiling, pure=False))
     if progress is not None:
         progress(len(infos), ntiles)
-    for info_future in pending:
-        info = info_future.result()
-        t = info["tile"]
-        if "pending" in info:
-            _, xy_u, r_u = info["pending"]
-            boxes, _ = group_discs(xy_u, r_u)
-            reach = set()
-            for box in boxes:
-                reach.update(int(u) for u in tiling.touching(box))
-            reach.discard(t)
-            f = cl.submit(
-                retry_tile,
-                t,
-                specs[t],
-                tile_future.pop(info_future.key),
-                owned[t],
-                *[owned[u] for u in sorted(reach)],
-                priority=10,
-            )
-            nxt = cl.submit(operator.getitem, f, 0, priority=10)
-            tile_future[nxt.key] = f
-            pending.add(nxt)
-            continue
-        tile_future.pop(info_future.key, None)
-        infos[t] = info
+    for f in as_completed(futures):
+        info = f.result()
+        infos[info["tile"]] = info
+        f.release()
         if progress is not None:
             progress(len(infos), ntiles)
-    del owned
+    del futures
+    shutil.rmtree(shuffle, ignore_errors=True)
     lap("tiles")
 
     tile_info = [infos[t] for t in range(ntiles)]

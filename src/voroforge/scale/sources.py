@@ -71,6 +71,7 @@ class Source:
     blocks: list | None = None
     temporary: list | None = None
     description: str = ""
+    attributes: bool = False
 
 
 def _xy_names(names, where):
@@ -126,7 +127,13 @@ def _parquet_source(path: Path, rows: int, temporary=None) -> Source:
             chunks.append(Chunk(start, start + acc, "parquet", str(path), tuple(group), xy))
             start += acc
             group, acc = [], 0
-    return Source(meta.num_rows, chunks, temporary=temporary, description=f"{path} ({start} rows)")
+    return Source(
+        meta.num_rows,
+        chunks,
+        temporary=temporary,
+        description=f"{path} ({start} rows)",
+        attributes=len(pf.schema_arrow.names) > 2,
+    )
 
 
 def _csv_to_parquet(path: Path, dest: Path, rows: int) -> Path:

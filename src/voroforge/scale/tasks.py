@@ -23,12 +23,10 @@ from ..config import SCALE_CERT_RTOL
 
 __all__ = [
     "Piece",
-    "chunk_split",
     "chunk_stats",
-    "merge_pieces",
     "radii",
-    "retry_tile",
     "run_tile",
+    "split_by_tile",
     "take",
 ]
 
@@ -66,12 +64,6 @@ def chunk_stats(chunk, block, sample_size: int, seed: int):
     }
 
 
-def chunk_split(chunk, block, tiling):
-    """``(counts (t,), pieces)``: the chunk's sites split by owning tile (None when empty)."""
-    xy, attrs = _load(chunk, block)
-    return split_by_tile(chunk.start + np.arange(len(xy)), xy, attrs, tiling)
-
-
 def split_by_tile(ids, xy, attrs, tiling):
     """``(counts (t,), pieces)``: sites split by owning tile, keeping their order in each."""
     tile = tiling.assign(xy) if len(xy) else np.zeros(0, np.int64)
@@ -92,21 +84,6 @@ def split_by_tile(ids, xy, attrs, tiling):
 def take(split, t):
     """Tile ``t``'s piece of a :func:`chunk_split` result."""
     return split[1][t]
-
-
-def merge_pieces(*pieces):
-    """One tile's owned sites: its pieces from every chunk, in chunk (= row) order."""
-    pieces = [p for p in pieces if p is not None]
-    if not pieces:
-        return Piece(np.zeros(0, np.int64), np.zeros((0, 2)), None)
-    attrs = None
-    if pieces[0].attrs is not None:
-        import pyarrow as pa
-
-        attrs = pa.concat_tables([p.attrs for p in pieces])
-    return Piece(
-        np.concatenate([p.ids for p in pieces]), np.concatenate([p.xy for p in pieces]), attrs
-    )
 
 
 def _gather(pieces, rect):
@@ -203,34 +180,84 @@ def _compute(ids, xy, boundary, loaded, wanted, last=False):
     return table, (ids[bad], xy[bad], r[bad])
 
 
-def run_tile(t, spec, own, *neighbours):
-    """First pass of tile ``t``: compute, certify, write when every cell is final.
+def run_tile(t, spec, store, tiling):
+    """Tile ``t``: read its sites and halo, compute, certify, recompute, write its file.
 
-    Returns ``(info, partial)``: ``info`` a small dict (the driver reads only it); when cells
-    are left uncertified ``partial`` holds the certified table and ``info["pending"]`` the
-    others' ``(ids, xy, r)``.
+    The tile reads its own sites and its neighbours' from the bucket files (``store``, a
+    :class:`~voroforge.scale.buckets.Store`), computes the cells of its own sites with the
+    sites of its loaded region ``spec["loaded"]``, and recomputes the cells whose certificate
+    fails, grouped where their discs overlap, with all the sites of their discs (read from
+    whichever tiles the discs reach), for up to ``spec["max_rounds"]`` rounds. Returns the
+    tile's info (a small dict; the file is written here).
     """
     t0 = time.perf_counter()
-    loaded = open_sides(spec["loaded"], spec["lo"], spec["hi"])
+    pieces = {}
+
+    def need(tiles):
+        missing = [int(u) for u in tiles if int(u) not in pieces]
+        if missing:
+            pieces.update({u: Piece(*p) for u, p in store.read(missing).items()})
+        return [pieces[int(u)] for u in tiles]
+
+    lo, hi, boundary = spec["lo"], spec["hi"], spec["boundary"]
     with _threads():
-        ids, xy = _gather([own, *neighbours], spec["loaded"])
-        wanted = np.flatnonzero(np.isin(ids, own.ids, assume_unique=True))
+        near = [t] + [int(u) for u in tiling.touching(spec["loaded"]) if u != t]
+        near_pieces = need(near)
+        own = near_pieces[0]
+        ids, xy, mine = _gather_marked(near_pieces, spec["loaded"])
+        loaded_sites = len(ids)
+        wanted = np.flatnonzero(mine)
         if len(own.ids) == 0:
             table, pending = _compute_empty()
         else:
-            table, pending = _compute(ids, xy, spec["boundary"], loaded, wanted)
+            loaded = open_sides(spec["loaded"], lo, hi)
+            table, pending = _compute(ids, xy, boundary, loaded, wanted)
+        del ids, xy, mine
+        tables = [table]
+        first = len(pending[0])
+        rounds = 0
+        while len(pending[0]) and rounds < spec["max_rounds"]:
+            rounds += 1
+            last = rounds >= spec["max_rounds"]
+            ids_u, xy_u, r_u = pending
+            boxes, member = group_discs(xy_u, r_u)
+            reach = [tiling.touching(box) for box in boxes]
+            need(np.unique(np.concatenate(reach)))
+            left = ([], [], [])
+            for g, box in enumerate(boxes):
+                ids_b, xy_b = _gather(need(reach[g]), box)
+                wanted = np.flatnonzero(np.isin(ids_b, ids_u[member == g], assume_unique=True))
+                part, more = _compute(ids_b, xy_b, boundary, open_sides(box, lo, hi), wanted, last)
+                tables.append(part)
+                for acc, new in zip(left, more, strict=True):
+                    acc.append(new)
+            pending = tuple(np.concatenate(a) for a in left)
     info = {
         "tile": t,
-        "loaded_sites": len(ids),
+        "loaded_sites": loaded_sites,
         "owned": len(own.ids),
-        "first_uncertified": len(pending[0]),
-        "seconds": time.perf_counter() - t0,
-        "rounds": 0,
+        "first_uncertified": first,
+        "rounds": rounds,
+        "uncertified_ids": pending[0].tolist() if len(pending[0]) else [],
     }
-    if len(pending[0]):
-        info["pending"] = pending
-        return info, table
-    return _finish(t, spec, [table], own, info), None
+    info["seconds"] = time.perf_counter() - t0  # stored in the file: compute only
+    info = _finish(t, spec, tables, Piece(own.ids, own.xy, store.attributes(t)), info)
+    info["seconds"] = time.perf_counter() - t0  # returned: with the write
+    return info
+
+
+def _gather_marked(pieces, rect):
+    """:func:`_gather` of ``pieces`` and a mask of the sites of the first (the tile's own)."""
+    ids, xy, mine = [], [], []
+    x0, y0, x1, y1 = rect
+    for k, p in enumerate(pieces):
+        m = (p.xy[:, 0] >= x0) & (p.xy[:, 0] <= x1) & (p.xy[:, 1] >= y0) & (p.xy[:, 1] <= y1)
+        ids.append(p.ids[m])
+        xy.append(p.xy[m])
+        mine.append(np.full(len(ids[-1]), k == 0))
+    ids = np.concatenate(ids)
+    order = np.argsort(ids, kind="stable")
+    return ids[order], np.ascontiguousarray(np.concatenate(xy)[order]), np.concatenate(mine)[order]
 
 
 def _compute_empty():
@@ -281,43 +308,6 @@ def group_discs(xy, r):
     return boxes, member
 
 
-def retry_tile(t, spec, first, own, *pieces):
-    """Recompute tile ``t``'s uncertified cells, each group with the sites its discs ask for.
-
-    ``first`` is the previous round's ``(info, partial)``; ``pieces`` the owned pieces of
-    every tile the discs reach. Returns ``(info, partial)`` like :func:`run_tile`.
-    """
-    t0 = time.perf_counter()
-    info, table = first
-    info = dict(info)
-    ids_u, xy_u, r_u = info.pop("pending")
-    boxes, member = group_discs(xy_u, r_u)
-    tables = [table]
-    left = ([], [], [])
-    with _threads():
-        for g, box in enumerate(boxes):
-            targets = ids_u[member == g]
-            ids, xy = _gather([own, *pieces], box)
-            wanted = np.flatnonzero(np.isin(ids, targets, assume_unique=True))
-            loaded = open_sides(box, spec["lo"], spec["hi"])
-            last = info["rounds"] + 1 >= spec["max_rounds"]
-            part, pending = _compute(ids, xy, spec["boundary"], loaded, wanted, last)
-            tables.append(part)
-            for acc, new in zip(left, pending, strict=True):
-                acc.append(new)
-    info["rounds"] += 1
-    info["seconds"] += time.perf_counter() - t0
-    remaining = tuple(np.concatenate(a) for a in left)
-    import pyarrow as pa
-
-    table = pa.concat_tables(tables)
-    if len(remaining[0]) and info["rounds"] < spec["max_rounds"]:
-        info["pending"] = remaining
-        return info, table
-    info["uncertified_ids"] = remaining[0].tolist()
-    return _finish(t, spec, [table], own, info), None
-
-
 def _finish(t, spec, tables, own, info):
     """Sort the tile's cells by site, add the attributes and write its partition file."""
     import pyarrow as pa
@@ -325,7 +315,9 @@ def _finish(t, spec, tables, own, info):
     from ..io.parquet import geo_metadata, write_table
 
     table = pa.concat_tables(tables) if len(tables) > 1 else tables[0]
-    table = table.take(np.argsort(table.column("site_id").to_numpy(), kind="stable"))
+    sid = table.column("site_id").to_numpy()
+    if len(sid) > 1 and not (sid[1:] > sid[:-1]).all():
+        table = table.take(np.argsort(sid, kind="stable"))
     if len(table) != len(own.ids) or not np.array_equal(
         table.column("site_id").to_numpy(), own.ids
     ):
