@@ -2,17 +2,18 @@
 
 Moving one site ``i`` from ``a`` to ``b`` changes only the cells that meet the region ``i``
 owned before or owns after. :func:`move` computes the diagram of the sites within a radius
-``R`` of the move (``voroforge.voronoi`` on that window, the same domain, so the same engine
-and the same box) and keeps a window cell only where it is *certified*: for every vertex
-``v`` of the cell, ``|v - c| + |v - s_j| < R`` (``c`` the window's centre). A site outside
-the window is then farther from ``v`` than ``s_j`` is, so it cannot cut the cell: the window
-cell is the whole diagram's cell, vertex for vertex (the engine makes Voronoi vertices
-canonical), except that the ring may start at another vertex and, where GEOS cuts the cell
-with the domain's outline, a vertex may lie an ulp or so away (the engine cuts against tiles
-of the domain, and the tiles of a window are other ones). The cells that can have changed
-are those whose old or new bounding box meets the bounding box of the old and new cell of
-``i``; all of them must be certified, else the window grows (and after a few tries the
-caller recomputes everything).
+``R`` of the move (``voroforge.voronoi`` on that window, clipped to the domain's bounding
+box, the box the engine clips every cell to first) and keeps a window cell only where it is
+*certified*: for every vertex ``v`` of the (convex) cell, ``|v - c| + |v - s_j| < R`` (``c``
+the window's centre). A site outside the window is then farther from every point of the
+cell than ``s_j`` is (the condition is convex in ``v``), so it cannot cut the cell: the
+window cell is the whole diagram's cell, vertex for vertex (the engine makes Voronoi
+vertices canonical), except that the ring may start at another vertex. A cell that crosses
+the outline or a hole of a polygonal domain is then cut by GEOS against the whole domain,
+where the engine cuts it against a local piece: such a vertex may lie an ulp or so away. The
+cells that can have changed are those whose old or new bounding box meets the bounding box
+of the old and new cell of ``i``; all of them must be certified, else the window grows (and
+after a few tries the caller recomputes everything).
 
 The result is marked ``extra["provisional"]``: its cells are the full diagram's to rounding,
 and the inset/fillet of a cell whose ring differs was computed from that ring.
@@ -108,6 +109,58 @@ def _same(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return shapely.to_wkb(shapely.normalize(a)) == shapely.to_wkb(shapely.normalize(b))
 
 
+def _frame_of(result: Result) -> tuple[tuple[float, float, float, float], bool]:
+    """The domain's bounding box and whether the domain is that box (cached in ``extra``)."""
+    known = result.extra.get("domain_box")
+    if known is None or known[0] is not result.domain:
+        box = tuple(float(v) for v in result.domain.bounds)
+        rect = bool(shapely.equals(result.domain, shapely.box(*box)))
+        known = (result.domain, box, rect)
+        result.extra["domain_box"] = known
+    return known[1], known[2]
+
+
+def _clip(cells: np.ndarray, domain) -> np.ndarray:
+    """Box-clipped convex cells cut to a polygonal ``domain`` (inside the box).
+
+    Cells the domain contains stay as they are; only those crossing its outline or holes
+    go through an overlay, oriented as the engine orients its cells (exterior CCW).
+    """
+    out = cells.copy()
+    if not len(cells):
+        return out
+    live = ~shapely.is_empty(cells)
+    cut = np.flatnonzero(live & ~shapely.contains_properly(domain, cells))
+    if len(cut):
+        pieces = shapely.intersection(cells[cut], domain)
+        bad = np.flatnonzero(~np.isin(shapely.get_type_id(pieces), (3, 6)))
+        for k in bad:  # a collection with stray lines or points: keep the polygons
+            polys = [g for g in shapely.get_parts(pieces[k]) if shapely.get_type_id(g) in (3, 6)]
+            pieces[k] = shapely.union_all(polys) if polys else shapely.Polygon()
+        out[cut] = shapely.orient_polygons(pieces)
+    return out
+
+
+def _worst(cells: np.ndarray, own: np.ndarray, c) -> np.ndarray:
+    """Per cell, the largest ``|v - c| + |v - own|`` over its vertices (-inf: no vertex)."""
+    coords, owner = shapely.get_coordinates(cells, return_index=True)
+    site = own[owner]
+    score = np.hypot(coords[:, 0] - c[0], coords[:, 1] - c[1]) + np.hypot(
+        coords[:, 0] - site[:, 0], coords[:, 1] - site[:, 1]
+    )
+    worst = np.full(len(cells), -np.inf)
+    np.maximum.at(worst, owner, score)
+    return worst
+
+
+def _window(sites: np.ndarray, window: np.ndarray, box, algorithm: str):
+    """Convex cells of the sites ``window``, clipped to the domain's bounding box."""
+    import voroforge as vf
+
+    local = vf.voronoi(sites[window], box, algorithm=algorithm)
+    return np.asarray(local.cells, dtype=object)
+
+
 def move(result: Result, i: int, xy, field_fn=None) -> tuple[Result, np.ndarray] | None:
     """``result`` with site ``i`` moved to ``xy``, recomputing only the cells near it.
 
@@ -128,8 +181,6 @@ def move(result: Result, i: int, xy, field_fn=None) -> tuple[Result, np.ndarray]
         The new (provisional) result and the indices of the cells that changed (geometry or
         opening mask); None when the window could not be certified (recompute in full).
     """
-    import voroforge as vf
-
     design = result.design
     sites = np.array(result.sites, dtype=np.float64)
     n = len(sites)
@@ -137,6 +188,7 @@ def move(result: Result, i: int, xy, field_fn=None) -> tuple[Result, np.ndarray]
     b = np.asarray(xy, dtype=np.float64).reshape(2)
     sites[i] = b
     domain = result.domain
+    box, rect = _frame_of(result)
     c = 0.5 * (a + b)
     spacing = float(np.sqrt(domain.area / max(n, 1)))
     old_boxes = _bounds(result)
@@ -148,18 +200,16 @@ def move(result: Result, i: int, xy, field_fn=None) -> tuple[Result, np.ndarray]
         window = np.flatnonzero(dist <= radius)
         if len(window) > n // 2:
             return None  # as dear as the whole diagram
-        local = vf.voronoi(sites[window], domain, algorithm=design.voronoi.algorithm)
-        cells = np.asarray(local.cells, dtype=object)
-        coords, owner = shapely.get_coordinates(cells, return_index=True)
-        own = sites[window][owner]
-        score = np.hypot(coords[:, 0] - c[0], coords[:, 1] - c[1]) + np.hypot(
-            coords[:, 0] - own[:, 0], coords[:, 1] - own[:, 1]
-        )
-        worst = np.full(len(window), np.inf)
-        seen = np.zeros(len(window), dtype=bool)
-        seen[owner] = True
-        worst[seen] = -np.inf
-        np.maximum.at(worst, owner, score)
+        cells = _window(sites, window, box, design.voronoi.algorithm)
+        worst = _worst(cells, sites[window], c)
+        cut = np.zeros(len(window), dtype=bool)
+        if not rect:
+            # A cell the domain cuts needs certifying only where it is inside the domain:
+            # cut the uncertified ones and score their pieces' vertices instead.
+            redo = np.flatnonzero(worst >= radius * (1.0 - 1e-9))
+            cells[redo] = _clip(cells[redo], domain)
+            worst[redo] = _worst(cells[redo], sites[window[redo]], c)
+            cut[redo] = True
         certified = worst < radius * (1.0 - 1e-9)
         pos = np.full(n, -1, dtype=np.int64)
         pos[window] = np.arange(len(window))
@@ -182,6 +232,9 @@ def move(result: Result, i: int, xy, field_fn=None) -> tuple[Result, np.ndarray]
         radius *= GROWTH
     else:
         return None
+    if not rect:
+        late = pos[need][~cut[pos[need]]]
+        cells[late] = _clip(cells[late], domain)
     fresh = cells[pos[need]]
     differ = ~_same(result.raw[need], fresh)
     differ[need == i] = True  # the moved site's own cell (and site) always travels

@@ -43,7 +43,7 @@ _KIND_TEXT = {  # the words of `voroforge check`'s table
 
 
 def geometry_message(
-    session: Session, changed, *, seq: int, boundary: bool, extra=None, sent=None
+    session: Session, changed, *, seq: int, boundary: bool, extra=None, sent=None, px=None
 ) -> bytes:
     """The binary geometry message of the session's current result.
 
@@ -62,11 +62,16 @@ def geometry_message(
         What the pages were sent last (updated here): with it, a patch carries only the
         sites that moved (``si``, ``sv``) and the opening flags of its cells (``m``)
         instead of every site and flag; cells whose flag changed are added to the patch.
+    px : float, optional
+        The pages' pixel size in design units: the operated cells (drawn only) leave out
+        vertices closer than about half a pixel to the one before (:func:`wire.rings`);
+        the raw cells travel whole.
 
     Returns
     -------
     bytes
     """
+    start = time.perf_counter()
     r = session.result
     n = len(r.raw)
     mask = r.mask.astype(np.uint8)
@@ -78,7 +83,7 @@ def geometry_message(
         changed = np.union1d(np.asarray(changed, np.int64), flips)
     idx = np.arange(n, dtype=np.int32) if full else np.asarray(changed, np.int32)
     rg, rr, rc = wire.rings(r.raw[idx])
-    cg, cr, cc = wire.rings(r.cells[idx])
+    cg, cr, cc = wire.rings(r.cells[idx], tol=0.5 * px if px else None)
     arrays = {"idx": idx}
     old_sites = sent.get("sites") if patch else None
     if old_sites is not None and old_sites.shape == sites.shape:
@@ -106,6 +111,7 @@ def geometry_message(
         "compute_ms": round(session.compute_ms, 2),
         "sites_edited": session.sites is not None,
         "attractors": _attractors(session),
+        "encode_ms": round((time.perf_counter() - start) * 1e3, 2),
         **(extra or {}),
     }
     return wire.pack(header, arrays)
@@ -205,6 +211,13 @@ class _Hub:
         self.sent: dict = {}  # what the pages have (geometry_message patches against it)
         self.state_text = ""  # the last state message sent (sent again only when it changes)
         self.edits = 0  # messages received: a running check stops for a new one
+        self.pixels: dict[int, float] = {}  # each page's pixel size in design units
+
+    @property
+    def px(self) -> float | None:
+        """The finest pixel size of the open pages (None before any page said)."""
+        live = [v for cid, v in self.pixels.items() if cid in self.clients]
+        return min(live) if live else None
 
     async def send(self, ws, payload) -> bool:
         try:
@@ -266,6 +279,7 @@ class _Hub:
                     boundary=False,
                     extra={"settled": True},
                     sent=self.sent,
+                    px=self.px,
                 )
         if payload is not None:
             await self.broadcast(payload)
@@ -346,8 +360,10 @@ def create_app(session: Session, *, hosts=LOCAL_HOSTS):
         try:
             async with hub.lock:
                 hub.seq += 1
-                geom = geometry_message(session, None, seq=hub.seq, boundary=True, sent=hub.sent)
-                hub.sent_boundary = _boundary_key(session)
+                geom = geometry_message(
+                    session, None, seq=hub.seq, boundary=True, sent=hub.sent, px=hub.px
+                )
+                hub.sent_boundary = boundary_key(session, hub.sent_boundary)
                 state = {**state_message(session), "client": cid}
             await hub.send(ws, state)
             await hub.send(ws, geom)
@@ -361,6 +377,7 @@ def create_app(session: Session, *, hosts=LOCAL_HOSTS):
             pass
         finally:
             hub.clients.pop(cid, None)
+            hub.pixels.pop(cid, None)
 
     routes = [
         Route("/", index),
@@ -416,6 +433,9 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
         return
     if isinstance(msg, dict):
         mid = msg.get("id") if isinstance(msg.get("id"), int) else None
+        if msg.get("op") == "view":
+            await _view(hub, ws, cid, msg, mid)
+            return
     session = hub.session
     hub.edits += 1
     received = time.perf_counter()
@@ -429,13 +449,15 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
         server_ms = (time.perf_counter() - start) * 1e3
         if reply.kind == "update":
             hub.seq += 1
-            bwkb = _boundary_key(session)
-            send_boundary = reply.changed is None or bwkb != hub.sent_boundary
-            hub.sent_boundary = bwkb
+            bkey = boundary_key(session, hub.sent_boundary)
+            known = hub.sent_boundary
+            send_boundary = reply.changed is None or known is None or bkey[1] != known[1]
+            hub.sent_boundary = bkey
             payload = geometry_message(
                 session,
                 reply.changed,
                 seq=hub.seq,
+                px=hub.px,
                 boundary=send_boundary,
                 extra={
                     "reply_to": mid,
@@ -445,7 +467,6 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
                 },
                 sent=hub.sent,
             )
-            hub.encoded_ms = (time.perf_counter() - start) * 1e3 - server_ms
     if reply.kind == "update":
         await hub.broadcast(payload)
         await hub.broadcast_state()
@@ -467,10 +488,39 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
         await hub.send(ws, {"op": "info", "note": reply.note, **base})
 
 
-def _boundary_key(session: Session) -> bytes:
+async def _view(hub: _Hub, ws, cid: int, msg: dict, mid) -> None:
+    """A page's pixel size (``px``, design units): cells are sent at that resolution.
+
+    When it is finer than what the page was sent (a larger window), the page gets the whole
+    drawing again.
+    """
+    px = msg.get("px")
+    if isinstance(px, bool) or not isinstance(px, int | float) or not 0 < px < 1e300:
+        await hub.send(ws, _error_json("view needs px, a positive number", mid, cid))
+        return
+    before = hub.px
+    hub.pixels[cid] = float(px)
+    if before is None or hub.px >= 0.9 * before:
+        return
+    async with hub.lock:
+        hub.seq += 1
+        payload = geometry_message(
+            hub.session, None, seq=hub.seq, boundary=True, sent=hub.sent, px=hub.px
+        )
+    await hub.broadcast(payload)
+
+
+def boundary_key(session: Session, known=None):
+    """``(domain, its WKB)`` of the session's result; ``known`` (an earlier key) when the same.
+
+    The domain object is compared first (a drag keeps it), its WKB only when it differs.
+    """
     import shapely
 
-    return shapely.to_wkb(session.result.domain)
+    domain = session.result.domain
+    if known is not None and known[0] is domain:
+        return known
+    return (domain, shapely.to_wkb(domain))
 
 
 def _error_json(message: str, mid, cid) -> dict:

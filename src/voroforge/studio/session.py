@@ -123,6 +123,7 @@ class Session:
         self.incremental = True
         self.settle_ms = 0.0
         self._field_cache = None
+        self._controls = None
         self.design, self.result = self._compute(self.data, None, reuse=False)
 
     # --- computing ---------------------------------------------------------------------
@@ -201,8 +202,13 @@ class Session:
         return found
 
     def controls(self) -> list[dict]:
-        """The inputs of the current design (:func:`voroforge.studio.controls.controls`)."""
-        return controls(self.design)
+        """The inputs of the current design (:func:`voroforge.studio.controls.controls`).
+
+        Kept per design (a drag changes sites, not the design): the same list until it changes.
+        """
+        if self._controls is None or self._controls[0] is not self.design:
+            self._controls = (self.design, controls(self.design))
+        return self._controls[1]
 
     # --- edits -------------------------------------------------------------------------
 

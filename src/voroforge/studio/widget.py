@@ -24,7 +24,7 @@ import anywidget
 import traitlets
 
 from .. import config
-from .server import geometry_message, state_message, violations_message
+from .server import boundary_key, geometry_message, state_message, violations_message
 from .session import Session
 from .tomlfile import dumps
 
@@ -72,9 +72,10 @@ export default {
 class StudioWidget(anywidget.AnyWidget):
     """A live design editor in a notebook (see the module docstring)."""
 
-    _esm = traitlets.Unicode(_STATIC.joinpath("studio.js").read_text(encoding="utf-8") + _GLUE).tag(
-        sync=True
-    )
+    _esm = traitlets.Unicode(
+        "".join(_STATIC.joinpath(f).read_text(encoding="utf-8") for f in ("raster.js", "studio.js"))
+        + _GLUE
+    ).tag(sync=True)
     _css = traitlets.Unicode(
         _STATIC.joinpath("studio.css").read_text(encoding="utf-8")
         + ".vf-widget { height: 560px; }\n"
@@ -91,6 +92,8 @@ class StudioWidget(anywidget.AnyWidget):
         self._lock = threading.Lock()
         self._check_lock = threading.Lock()  # one live check at a time (timers may overlap)
         self._sent: dict = {}  # what the view has (patches are made against it)
+        self._px: float | None = None  # the view's pixel size in design units
+        self._boundary = None  # (domain, WKB) last sent
         self.on_msg(self._on_msg)
 
     @property
@@ -143,6 +146,14 @@ class StudioWidget(anywidget.AnyWidget):
             self._send_geometry(None, mid)
             self._schedule_check()
             return
+        if isinstance(msg, dict) and msg.get("op") == "view":
+            px = msg.get("px")
+            if isinstance(px, int | float) and not isinstance(px, bool) and 0 < px < 1e300:
+                finer = self._px is not None and px < 0.9 * self._px
+                self._px = float(px)
+                if finer:
+                    self._send_geometry(None, None)
+            return
         self._apply(msg, mid)
 
     def _apply(self, msg, mid):
@@ -168,13 +179,17 @@ class StudioWidget(anywidget.AnyWidget):
     def _send_geometry(self, changed, mid) -> None:
         with self._lock:
             self._seq += 1
+            key = boundary_key(self.session, self._boundary)
+            boundary = changed is None or self._boundary is None or key[1] != self._boundary[1]
+            self._boundary = key
             payload = geometry_message(
                 self.session,
                 changed,
                 seq=self._seq,
-                boundary=True,
+                boundary=boundary,
                 extra={"reply_to": mid},
                 sent=self._sent,
+                px=self._px,
             )
             state = state_message(self.session)
         self.cells = len(self.session.result.raw)

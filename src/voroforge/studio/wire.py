@@ -25,12 +25,18 @@ MAGIC = b"VFS1"
 _DTYPES = {"f4": np.float32, "f8": np.float64, "i4": np.int32, "u1": np.uint8}
 
 
-def rings(geoms) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def rings(geoms, tol: float | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Flat ring buffers of polygonal geometries (empty ones have no rings).
 
     Parameters
     ----------
     geoms : (n,) object array of shapely Polygon/MultiPolygon
+    tol : float, optional
+        For drawing only: a vertex in the same ``tol``-square of a grid as the vertex before
+        it is left out (each kept vertex stands for a run of vertices less than
+        ``tol * sqrt(2)`` away from it; rings keep their first and last vertex and at least
+        four). A page passes half its pixel size: a fillet's arcs have far more vertices
+        than pixels.
 
     Returns
     -------
@@ -71,7 +77,35 @@ def rings(geoms) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     ring_offsets = np.zeros(len(ring_len) + 1, dtype=np.int64)
     np.cumsum(ring_len, out=ring_offsets[1:])
     coords = shapely.get_coordinates(geoms)
+    if tol is not None and tol > 0 and len(coords):
+        ring_offsets, coords = _thin(ring_offsets, coords, float(tol))
     return geom_offsets.astype(np.int32), ring_offsets.astype(np.int32), coords.astype(np.float32)
+
+
+def _thin(ring_offsets: np.ndarray, coords: np.ndarray, tol: float):
+    """Drop each vertex whose ``tol``-grid square is that of the vertex before it (see rings)."""
+    inv = 1.0 / tol
+    kx = np.floor(coords[:, 0] * inv)
+    ky = np.floor(coords[:, 1] * inv)
+    keep = np.ones(len(coords), dtype=bool)
+    np.not_equal(kx[1:], kx[:-1], out=keep[1:])
+    keep[1:] |= ky[1:] != ky[:-1]
+    starts, ends = ring_offsets[:-1], ring_offsets[1:]
+    full = ends > starts
+    keep[starts[full]] = True
+    keep[ends[full] - 1] = True
+    kept = np.add.reduceat(keep.astype(np.int64), starts[full]) if full.any() else keep[:0]
+    counts = np.zeros(len(starts), dtype=np.int64)
+    counts[full] = kept
+    few = np.flatnonzero(full & (counts < 4))  # a ring smaller than the grid: keep it whole
+    for j in few:
+        keep[starts[j] : ends[j]] = True
+        counts[j] = ends[j] - starts[j]
+    out = np.zeros(len(ring_offsets), dtype=np.int64)
+    np.cumsum(counts, out=out[1:])
+    # as one complex per row: boolean indexing of (n, 2) rows is far slower
+    pairs = np.ascontiguousarray(coords, dtype=np.float64).view(np.complex128)[:, 0]
+    return out, pairs[keep].view(np.float64).reshape(-1, 2)
 
 
 def pack(header: dict, arrays: dict[str, np.ndarray]) -> bytes:

@@ -63,19 +63,16 @@ var VoroStudio = (function () {
   }
 
   /* Stable cell colours: cell i always gets the same one (the golden-angle hue walk). */
-  var PALETTE = [];
-  for (var q = 0; q < 24; q++) PALETTE.push("hsl(" + ((q * 137.508) % 360).toFixed(1) + ",55%,72%)");
-  function colourOf(i) { return (i * 7 + (i >> 5)) % PALETTE.length; }
+  function colourOf(i) { return (i * 7 + (i >> 5)) % 24; }
 
-  /* The marker shapes of `voroforge check`'s overlays. */
+  /* The marker shapes of `voroforge check`'s overlays (added to the current path). */
   function marker(ctx, shape, x, y, r) {
-    ctx.beginPath();
     if (shape === "square") ctx.rect(x - r * 0.8, y - r * 0.8, 1.6 * r, 1.6 * r);
     else if (shape === "triangle") { ctx.moveTo(x, y + r); ctx.lineTo(x + 0.87 * r, y - 0.5 * r);
       ctx.lineTo(x - 0.87 * r, y - 0.5 * r); ctx.closePath(); }
     else if (shape === "diamond") { ctx.moveTo(x, y + r); ctx.lineTo(x + r, y); ctx.lineTo(x, y - r);
       ctx.lineTo(x - r, y); ctx.closePath(); }
-    else ctx.arc(x, y, r, 0, 7);
+    else { ctx.moveTo(x + r, y); ctx.arc(x, y, r, 0, 7); }
   }
 
   function el(tag, attrs, parent) {
@@ -93,12 +90,17 @@ var VoroStudio = (function () {
     this.transport = transport;
     this.canvas = root.querySelector("[data-role=canvas]");
     this.ctx = this.canvas.getContext("2d");
+    // the boundary, handles and check markers: a canvas over the cells, drawn on every repaint
+    this.overlay = document.createElement("canvas");
+    this.overlay.className = "vf-overlay";
+    this.canvas.parentNode.insertBefore(this.overlay, this.canvas.nextSibling);
+    this.octx = this.overlay.getContext("2d");
     this.panel = root.querySelector("[data-role=panel]");
     this.statusEl = root.querySelector("[data-role=status]");
     this.messageEl = root.querySelector("[data-role=message]");
     this.legendEl = root.querySelector("[data-role=legend]");
     this.raw = []; this.cells = []; this.boxes = []; this.mask = new Uint8Array(0);
-    this.base = null; this.baseValid = false; this.pending = null; this.baseView = null;
+    this.img = null; this.baseValid = false; this.pending = null; this.baseView = null; this.boundaryId = 0;
     this.rawData = []; this.sites = new Float64Array(0);
     this.boundary = null; this.domain = null; this.bounds = [0, 0, 1, 1];
     this.attractors = []; this.violations = []; this.legend = [];
@@ -130,8 +132,10 @@ var VoroStudio = (function () {
     return a.op === "frame";
   }
 
-  Studio.prototype.queue = function (msg) {
-    msg._t0 = performance.now();
+  /* `t0`: when the user acted (a pointer event's timeStamp), else now. */
+  Studio.prototype.queue = function (msg, t0) {
+    var now = performance.now();
+    msg._t0 = t0 !== undefined && t0 > 0 && t0 <= now ? t0 : now;
     if (!this.inflight) { var t0 = msg._t0; delete msg._t0; this.send(msg, { t0: t0 }); return; }
     var w = this.waiting, last = w[w.length - 1];
     if (last && collapsible(last, msg)) { if (last.begin) msg.begin = true; w[w.length - 1] = msg; }
@@ -150,7 +154,7 @@ var VoroStudio = (function () {
   Studio.prototype.receive = function (data) {
     if (data instanceof ArrayBuffer) {
       var received = performance.now(), m = unpack(data);
-      m.received = received;
+      m.received = received; m.bytes = data.byteLength;
       return this.geometry(m);
     }
     var msg = typeof data === "string" ? JSON.parse(data) : data;
@@ -237,10 +241,14 @@ var VoroStudio = (function () {
     if (a.mask) this.mask = new Uint8Array(a.mask);
     else for (k = 0; k < idx.length; k++) this.mask[idx[k]] = a.m[k];
     this.n = n;
-    if (a.bg) { this.boundary = buildPath(a.bg, a.br, a.bc, 0); this.domain = buildPath(a.dg, a.dr, a.dc, 0); full = true; }
+    if (a.bg) {
+      this.boundary = buildPath(a.bg, a.br, a.bc, 0); this.domain = buildPath(a.dg, a.dr, a.dc, 0);
+      this.boundaryId++; full = true;
+    }
     if (h.full || full) { this.baseValid = false; this.pending = null; }
     else if (region) this.pending = grow(this.pending, region);
     this.bounds = h.bounds; this.attractors = h.attractors; this.header = h; this.seq = h.seq;
+    this.reportView();
     var t1 = performance.now();
     this.parseMs = t1 - t0;
     var mine = h.client === undefined || h.client === this.client;
@@ -252,8 +260,9 @@ var VoroStudio = (function () {
       requestAnimationFrame(function () {
         var now = performance.now(), ms = now - done.t0;
         self.latencies.push({ op: done.op, ms: ms, compute_ms: h.compute_ms, server_ms: h.server_ms, wait_ms: h.wait_ms,
+          encode_ms: h.encode_ms, bytes: m.bytes,
           draw_ms: drawn - t0, parse_ms: t1 - t0, paint_ms: drawn - t1, frame_ms: now - drawn,
-          queue_ms: done.tsend - done.t0, wire_ms: recv - done.tsend - (h.server_ms || 0),
+          queue_ms: done.tsend - done.t0, wire_ms: recv - done.tsend - (h.server_ms || 0) - (h.encode_ms || 0),
           n: n, changed: idx.length, full: h.full });
         self.roundTrip = ms; self.status();
       });
@@ -263,69 +272,83 @@ var VoroStudio = (function () {
 
   /* --- drawing ------------------------------------------------------------------------ */
 
-  /* The cells, their edges and the seeds are drawn into an offscreen canvas (the "base"): in
-     full as a few combined paths (one per colour, one for all edges) when a whole drawing
-     arrives, and after a patch only inside the box around the changed cells (the cells
-     meeting that box are drawn again, clipped to it). Each repaint copies the base and draws
-     the outlines, handles and check markers over it. */
+  /* The cells, their outlines and the seeds are drawn by VoroRaster (raster.js) into the
+     pixels of an ImageData (the "base"), put on the canvas: in full when a whole drawing
+     arrives, and after a patch only inside the pixel box around the changed cells (the cells
+     meeting that box are drawn again, clipped to it, over the background's own pixels there).
+     The boundary, handles and check markers are drawn on a second canvas over it. */
+  var BG = "#f4f3ef", MATERIAL = "#d2c4a5", EDGE_RGB = [60, 50, 40], EDGE_ALPHA = 0.42;
+  var DOT = VoroRaster.rgba32(29, 35, 48), PALETTE32 = [];
+  for (var q2 = 0; q2 < 24; q2++) {
+    var rgb = VoroRaster.hslToRgb((q2 * 137.508) % 360, 0.55, 0.72);
+    PALETTE32.push(VoroRaster.rgba32(rgb[0], rgb[1], rgb[2]));
+  }
+
+  /* The background's pixels (page colour, the boundary's material), kept per view. */
+  Studio.prototype.background = function (W, H, v) {
+    var key = [W, H, v.s, v.tx, v.ty, this.boundaryId].join(",");
+    if (this.bgKey === key) return this.bg;
+    var cv = document.createElement("canvas"); cv.width = W; cv.height = H;
+    var b = cv.getContext("2d");
+    b.fillStyle = BG; b.fillRect(0, 0, W, H);
+    if (this.boundary) { b.setTransform(v.s, 0, 0, -v.s, v.tx, v.ty); b.fillStyle = MATERIAL; b.fill(this.boundary, "evenodd"); }
+    this.bg = new Uint32Array(b.getImageData(0, 0, W, H).data.buffer);
+    this.bgKey = key;
+    return this.bg;
+  };
+
   Studio.prototype.renderBase = function (region) {
-    var W = this.canvas.width, H = this.canvas.height;
-    if (!this.base) { this.base = document.createElement("canvas"); }
-    if (this.base.width !== W || this.base.height !== H) { this.base.width = W; this.base.height = H; region = null; }
-    var b = this.base.getContext("2d"), v = this.view(), px = 1 / v.s, dpr = this.dpr, i;
-    var dot = 1.6 * px * dpr, lw = 0.6 * px * dpr, s = this.sites, tol = 1.0 / v.s;
-    b.setTransform(1, 0, 0, 1, 0, 0);
-    b.save();
-    if (region) {
-      var pad = 3 * px * dpr + dot;
-      var r = [region[0] - pad, region[1] - pad, region[2] + pad, region[3] + pad];
-      var X0 = Math.floor(r[0] * v.s + v.tx), X1 = Math.ceil(r[2] * v.s + v.tx);
-      var Y0 = Math.floor(v.ty - r[3] * v.s), Y1 = Math.ceil(v.ty - r[1] * v.s);
-      b.beginPath(); b.rect(X0, Y0, X1 - X0, Y1 - Y0); b.clip();
-      b.fillStyle = "#f4f3ef"; b.fillRect(X0, Y0, X1 - X0, Y1 - Y0);
-    } else {
-      b.fillStyle = "#f4f3ef"; b.fillRect(0, 0, W, H);
+    var W = this.canvas.width, H = this.canvas.height, v = this.view(), i;
+    if (!this.img || this.img.width !== W || this.img.height !== H) {
+      this.img = this.ctx.createImageData(W, H);
+      this.px = new Uint32Array(this.img.data.buffer);
+      this.cov = new Uint8Array(W * H);
+      region = null;
     }
-    b.setTransform(v.s, 0, 0, -v.s, v.tx, v.ty);
-    if (this.boundary) { b.fillStyle = "#d2c4a5"; b.fill(this.boundary, "evenodd"); }
-    if (!region) {
-      var fills = PALETTE.map(function () { return new Path2D(); }), edges = new Path2D(), dots = new Path2D();
-      for (i = 0; i < this.n; i++) {
-        var c = this.cells[i], rw = this.raw[i];
-        if (c && this.mask[i]) addRings(fills[colourOf(i)], c[0], c[1], c[2], c[3], tol);
-        if (rw) addRings(edges, rw[0], rw[1], rw[2], rw[3], 0);
-      }
-      for (i = 0; i < PALETTE.length; i++) { b.fillStyle = PALETTE[i]; b.fill(fills[i], "evenodd"); }
-      b.lineWidth = lw; b.strokeStyle = "rgba(60,50,40,0.22)"; b.stroke(edges);
-      for (i = 0; i < s.length; i += 2) dots.rect(s[i] - dot, s[i + 1] - dot, 2 * dot, 2 * dot);
-      b.fillStyle = "#1d2330"; b.fill(dots);
+    var px = this.px, cov = this.cov, bg = this.background(W, H, v), dpr = this.dpr;
+    var h = Math.max(1, Math.round(1.2 * dpr)), tol = 0.5 * dpr, rect, r = null;
+    if (region) {
+      var pad = (h + 3) / v.s;
+      r = [region[0] - pad, region[1] - pad, region[2] + pad, region[3] + pad];
+      rect = [Math.max(0, Math.floor(r[0] * v.s + v.tx)), Math.max(0, Math.floor(v.ty - r[3] * v.s)),
+        Math.min(W, Math.ceil(r[2] * v.s + v.tx)), Math.min(H, Math.ceil(v.ty - r[1] * v.s))];
+      if (rect[2] <= rect[0] || rect[3] <= rect[1]) { this.pending = null; return; }
+      for (var y = rect[1]; y < rect[3]; y++) px.set(bg.subarray(y * W + rect[0], y * W + rect[2]), y * W + rect[0]);
     } else {
-      var bx = this.boxes, near = new Path2D(), sd = new Path2D(), cols = {};
-      for (i = 0; i < this.n; i++) {
+      rect = [0, 0, W, H];
+      px.set(bg);
+    }
+    var bx = this.boxes, n = this.n, R = VoroRaster;
+    for (i = 0; i < n; i++) {
+      if (r) {
         var q = bx[i];
         if (!q || q[0] > r[2] || q[2] < r[0] || q[1] > r[3] || q[3] < r[1]) continue;
-        var cc = this.cells[i], rr = this.raw[i], col = colourOf(i);
-        if (cc && this.mask[i]) addRings(cols[col] || (cols[col] = new Path2D()), cc[0], cc[1], cc[2], cc[3], tol);
-        if (rr) addRings(near, rr[0], rr[1], rr[2], rr[3], 0);
       }
-      for (var key in cols) { b.fillStyle = PALETTE[key]; b.fill(cols[key], "evenodd"); }
-      b.lineWidth = lw; b.strokeStyle = "rgba(60,50,40,0.22)";
-      b.stroke(near);
-      for (i = 0; i < s.length; i += 2) {
-        if (s[i] < r[0] || s[i] > r[2] || s[i + 1] < r[1] || s[i + 1] > r[3]) continue;
-        sd.rect(s[i] - dot, s[i + 1] - dot, 2 * dot, 2 * dot);
-      }
-      b.fillStyle = "#1d2330"; b.fill(sd);
+      var c = this.cells[i], rw = this.raw[i];
+      if (c && this.mask[i]) R.fillRings(px, W, rect, c[0], c[1], c[2], c[3], PALETTE32[colourOf(i)], v, tol);
+      if (rw) R.lineRings(cov, W, rect, rw[0], rw[1], rw[2], rw[3], v);
     }
-    b.restore();
-    this.baseValid = true; this.pending = null; this.baseView = [v.s, v.tx, v.ty, dot];
+    R.composite(px, cov, W, rect, EDGE_RGB, EDGE_ALPHA);
+    R.dots(px, W, rect, this.sites, v, h, DOT);
+    this.ctx.putImageData(this.img, 0, 0, rect[0], rect[1], rect[2] - rect[0], rect[3] - rect[1]);
+    this.baseValid = true; this.pending = null; this.baseView = [v.s, v.tx, v.ty];
   };
 
   Studio.prototype.resize = function () {
     var r = this.canvas.getBoundingClientRect(), dpr = window.devicePixelRatio || 1;
-    this.canvas.width = Math.max(1, Math.round(r.width * dpr));
-    this.canvas.height = Math.max(1, Math.round(r.height * dpr));
+    this.canvas.width = this.overlay.width = Math.max(1, Math.round(r.width * dpr));
+    this.canvas.height = this.overlay.height = Math.max(1, Math.round(r.height * dpr));
     this.dpr = dpr; this.invalidate();
+    if (this.header) this.reportView();
+  };
+
+  /* Tell the server our pixel size in design units (drawn cells need no finer vertices);
+     not a queued edit: no reply. */
+  Studio.prototype.reportView = function () {
+    var px = 1 / this.view().s;
+    if (this.sentPx && Math.abs(px - this.sentPx) < 0.05 * this.sentPx) return;
+    this.sentPx = px;
+    this.transport.send(JSON.stringify({ op: "view", px: px }));
   };
 
   Studio.prototype.view = function () {
@@ -356,8 +379,9 @@ var VoroStudio = (function () {
     if (!bv || bv[0] !== v.s || bv[1] !== v.tx || bv[2] !== v.ty) this.baseValid = false;
     if (!this.baseValid) this.renderBase(null);
     else if (this.pending) this.renderBase(this.pending);
+    ctx = this.octx;
     ctx.setTransform(1, 0, 0, 1, 0, 0);
-    ctx.drawImage(this.base, 0, 0);
+    ctx.clearRect(0, 0, this.overlay.width, this.overlay.height);
     ctx.setTransform(v.s, 0, 0, -v.s, v.tx, v.ty);
     var i, s = this.sites;
     if (this.boundary) { ctx.lineWidth = 1.2 * px * dpr; ctx.strokeStyle = "#3a3128"; ctx.stroke(this.boundary); }
@@ -382,13 +406,15 @@ var VoroStudio = (function () {
         ctx.fillStyle = "#ff8c00"; ctx.fill(); ctx.strokeStyle = "#5a3000"; ctx.stroke();
       });
     });
-    var styles = {};
+    var styles = {}, kinds = {};
     this.legend.forEach(function (l) { styles[l.kind] = l; });
     ctx.lineWidth = 2.2 * px * dpr;
     var R = 9 * px * dpr;
-    (this.violations || []).forEach(function (vi) {
-      var st = styles[vi.kind] || { shape: "circle", colour: "#e6194b" };
-      marker(ctx, st.shape, vi.x, vi.y, R);
+    (this.violations || []).forEach(function (vi) { (kinds[vi.kind] = kinds[vi.kind] || []).push(vi); });
+    Object.keys(kinds).forEach(function (kind) {  // one path per kind
+      var st = styles[kind] || { shape: "circle", colour: "#e6194b" };
+      ctx.beginPath();
+      kinds[kind].forEach(function (vi) { marker(ctx, st.shape, vi.x, vi.y, R); });
       ctx.strokeStyle = st.colour; ctx.stroke();
     });
     this.drawMs = performance.now() - t0; this.frames++;
@@ -456,17 +482,17 @@ var VoroStudio = (function () {
         if (sub) el("span", { text: sub }, row);
         var range = el("input", { type: "range", min: c.min, max: c.max, step: c.step, "data-key": c.key + (sub ? "." + sub : "") }, row);
         var num = el("input", { type: "number", step: c.step, "data-key": c.key + (sub ? "." + sub : "") }, row);
-        var send = function (from) {
+        var send = function (from, t0) {
           var v = parseFloat(from.value);
           if (!isFinite(v)) { self.showErrors([{ key: c.key, message: "not a number" }]); return; }
           if (c.kind === "int") v = Math.round(v);
           (from === range ? num : range).value = v;
           var value = v;
           if (sub) { value = {}; rows.forEach(function (rw) { value[rw.sub] = parseFloat(rw.num.value); }); }
-          self.queue({ op: "set", key: c.key, value: value });
+          self.queue({ op: "set", key: c.key, value: value }, t0);
         };
-        range.addEventListener("input", function () { send(range); });
-        num.addEventListener("change", function () { send(num); });
+        range.addEventListener("input", function (e) { send(range, e.timeStamp); });
+        num.addEventListener("change", function (e) { send(num, e.timeStamp); });
         return { sub: sub, range: range, num: num };
       });
       el("div", { "class": "vf-err" }, box);
@@ -543,13 +569,18 @@ var VoroStudio = (function () {
       if (i >= 0) { self.drag = { kind: "site", i: i, first: true }; self.invalidate(); return; }
       self.drag = { kind: "click", at: p, x: e.clientX, y: e.clientY };
     });
-    cv.addEventListener("pointermove", function (e) {
+    // pointerrawupdate (where the browser has it) comes as soon as the pointer moves; a
+    // pointermove waits for the next frame, a frame later on the screen
+    var moveEvent = "onpointerrawupdate" in window ? "pointerrawupdate" : "pointermove";
+    this.moveEvent = moveEvent;
+    cv.addEventListener(moveEvent, function (e) {
       var d = self.drag; if (!d) return;
       var p = self.toDesign(e);
       if (d.kind === "site") {
-        self.queue({ op: "move", i: d.i, x: p[0], y: p[1], begin: d.first }); d.first = false;
+        self.queue({ op: "move", i: d.i, x: p[0], y: p[1], begin: d.first }, e.timeStamp); d.first = false;
       } else if (d.kind === "attractor") {
-        self.queue({ op: "attractor", a: d.a, p: d.p, x: p[0], y: p[1], begin: d.first }); d.first = false;
+        self.queue({ op: "attractor", a: d.a, p: d.p, x: p[0], y: p[1], begin: d.first }, e.timeStamp);
+        d.first = false;
       } else if (d.kind === "click" && Math.hypot(e.clientX - d.x, e.clientY - d.y) > 4) {
         self.drag = null;
       }
@@ -656,7 +687,8 @@ var VoroStudio = (function () {
     return studio;
   }
 
-  var api = { connect: connect, Studio: Studio, unpack: unpack, buildPath: buildPath, ringCoords: ringCoords };
+  var api = { connect: connect, Studio: Studio, unpack: unpack, buildPath: buildPath, addRings: addRings,
+    ringCoords: ringCoords };
   if (typeof document !== "undefined") {
     var auto = document.querySelector("[data-connect=ws]");
     if (auto) api.instance = connect(auto);
