@@ -488,6 +488,22 @@ def test_wire_rings_and_pack_round_trip():
         wire.unpack(b"nope")
 
 
+def test_wire_rings_thinned_for_drawing_stay_within_the_tolerance():
+    cells = compute(load(HOLED)[0]).cells  # filleted: arcs with many vertices
+    cells = np.concatenate((cells, [shapely.box(0, 0, 0.01, 0.01), shapely.Polygon()]))
+    g0, r0, c0 = wire.rings(cells)
+    for tol in (0.05, 0.3, 1.0):
+        g, r, c = wire.rings(cells, tol=tol)
+        assert np.array_equal(g, g0) and len(r) == len(r0)  # every ring stays
+        assert len(c) < len(c0) and (np.diff(r) >= 4).all()
+        for j in range(len(r) - 1):
+            ring, full = c[r[j] : r[j + 1]], c0[r0[j] : r0[j + 1]]
+            assert (ring[0] == full[0]).all() and (ring[-1] == full[-1]).all()  # closed
+            gap = shapely.hausdorff_distance(shapely.LineString(ring), shapely.LineString(full))
+            assert gap <= tol * np.sqrt(2) + 1e-4, (tol, j, gap)
+    assert np.array_equal(wire.rings(cells, tol=None)[2], c0)
+
+
 def test_patches_carry_the_moved_sites_and_flags_only():
     from voroforge.studio.server import geometry_message
 
@@ -587,6 +603,31 @@ def test_websocket_edit_gives_a_patch(client):
         assert h["reply_to"] == 7 and not h["full"] and 2 in a["idx"] and len(a["idx"]) < h["n"]
 
 
+def _geom(ws):
+    msg = ws.receive()
+    while msg.get("bytes") is None:
+        msg = ws.receive()
+    return wire.unpack(msg["bytes"])
+
+
+def test_websocket_view_sets_the_drawing_resolution(client):
+    with _ws(client) as ws:
+        _greet(ws)
+        ws.send_text(json.dumps({"op": "view", "px": 2.0}))  # coarse pixels: no reply
+        ws.send_text(json.dumps({"op": "set", "key": "cells.fillet", "value": 2.5, "id": 3}))
+        h, coarse = _geom(ws)
+        assert h["reply_to"] == 3 and len(coarse["idx"]) == h["n"]  # every fillet changed
+        session = client.app.state.hub.session
+        _, _, exact = wire.rings(session.result.cells[coarse["idx"]])
+        assert 0 < len(coarse["cc"]) < 0.8 * exact.size  # fewer vertices than the fillets have
+        assert np.array_equal(
+            coarse["rc"].reshape(-1, 2), wire.rings(session.result.raw[coarse["idx"]])[2]
+        )
+        ws.send_text(json.dumps({"op": "view", "px": 0.01}))  # a finer page: all again
+        h, again = _geom(ws)
+        assert h["full"] and len(again["cc"]) // 2 == len(wire.rings(session.result.cells)[2])
+
+
 def test_websocket_survives_malformed_messages(client):
     rng = random.Random(11)
     pieces = [
@@ -600,6 +641,9 @@ def test_websocket_survives_malformed_messages(client):
         "\x00\x01",
         '{"op":"save","name":"../a.toml"}',
         '{"op":"export","format":"exe"}',
+        '{"op":"view","px":-1}',
+        '{"op":"view","px":"1"}',
+        '{"op":"view"}',
         "[" * 5000,
     ]
     with _ws(client) as ws:
@@ -646,7 +690,14 @@ def test_widget_speaks_the_page_protocol_and_exposes_the_design():
     w._on_msg(w, {"text": json.dumps({"op": "move", "i": 3, "x": x + 1.0, "y": y, "id": 2})}, [])
     header, arrays = wire.unpack(sent[-1][1][0])
     assert not header["full"] and header["reply_to"] == 2 and 3 in arrays["idx"]
+    assert "bg" not in arrays  # the boundary travels only when it changes
     assert w.sites[3, 0] == x + 1.0 and w.design.cells.web.value == 2.0
+    sent.clear()
+    w._on_msg(w, {"text": '{"op":"view","px":0.5}'}, [])
+    w._on_msg(w, {"text": '{"op":"view","px":0.6}'}, [])
+    assert not sent  # no reply; a finer view than before gets the whole drawing again
+    w._on_msg(w, {"text": '{"op":"view","px":0.1}'}, [])
+    assert wire.unpack(sent[-1][1][0])[0]["full"]
     assert w.apply({"op": "set", "key": "cells.web", "value": 3}).kind == "update"
     assert w.design.cells.web.value == 3 and "web = 3" in w.toml
     w._on_msg(w, {"text": "NaN"}, [])
@@ -738,6 +789,21 @@ def test_cli_animate_writes_gif_and_frames(tmp_path):
         "frame-0002.png",
     ]
     assert main(["animate", str(path), "-o", str(tmp_path / "a.avi")]) == 2
+
+
+def test_cli_animate_writes_mp4(tmp_path):
+    pytest.importorskip("imageio_ffmpeg", reason="MP4 needs imageio-ffmpeg (the studio extra)")
+    import imageio.v2 as imageio
+
+    from voroforge.cli import main
+
+    path = tmp_path / "anim.toml"
+    path.write_text(tomlfile.dumps(ANIMATED), encoding="utf-8")
+    assert main(["animate", str(path), "-o", str(tmp_path / "a.mp4"), "--size", "64"]) == 0
+    with imageio.get_reader(tmp_path / "a.mp4") as reader:
+        shown = [np.asarray(f, dtype=np.int16) for f in reader]
+    assert len(shown) == 4
+    assert all(np.abs(a - b).mean() > 0.5 for a, b in zip(shown, shown[1:], strict=False))
 
 
 def test_serve_listens_before_printing_and_warns_off_loopback(folder, monkeypatch, capsys):

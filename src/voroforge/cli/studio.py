@@ -130,7 +130,12 @@ def run_animate(args: argparse.Namespace, stage: Stage) -> list:
 
         with imageio.get_writer(out, fps=fps, macro_block_size=1) as w:
             for im in images:
-                w.append_data(np.asarray(im.convert("RGB")))
+                rgb = np.asarray(im.convert("RGB"))
+                # H.264 in yuv420p needs even sides: repeat the last row/column where odd
+                pad = ((0, rgb.shape[0] % 2), (0, rgb.shape[1] % 2), (0, 0))
+                w.append_data(np.pad(rgb, pad, mode="edge"))
+        if not out.exists() or out.stat().st_size == 0:
+            raise ValueError(f"{out}: ffmpeg wrote nothing (see its messages above)")
         return [out]
     out.mkdir(parents=True, exist_ok=True)
     written = []
