@@ -32,6 +32,7 @@ from .vertex import box_crossing
 _U = 2.0**-53
 
 _CHUNK = 2048
+_SPLICE_MIN = 48  # cut cells with more neighbours are built by _spliced_cell
 
 
 @njit(**NJIT)
@@ -61,22 +62,39 @@ def _outgoing(tri, he, cx, cy, box, n):
 
 
 @njit(**NJIT)
-def _index_of(nbrs, nn, a):
-    for k in range(nn):
+def _index_of(nbrs, nn, a, hint):
+    """Position of ``a`` in ``nbrs[:nn]``, searched outward from ``hint`` (-1 if absent).
+
+    Consecutive vertices of a ring have neighbours next to each other in rotation order, so
+    the search usually ends at once; a cell with many neighbours stays linear.
+    """
+    if nn == 0:
+        return -1
+    hint = min(max(hint, 0), nn - 1)
+    for d in range(nn // 2 + 1):
+        k = hint + d
+        if k >= nn:
+            k -= nn
+        if nbrs[k] == a:
+            return k
+        k = hint - d
+        if k < 0:
+            k += nn
         if nbrs[k] == a:
             return k
     return -1
 
 
 @njit(**NJIT)
-def _chain(nbrs, tris, nn, a, b):
+def _chain(nbrs, tris, nn, a, b, hint):
     """Where neighbour ``a`` is, and how many Delaunay triangles lead from it to ``b``.
 
     Returns ``(ka, steps)`` in rotation order; ``steps`` is -1 when either is missing, ``b``
     does not follow ``a``, or a triangle between them does not exist (past a hull end).
+    ``hint`` is where to start looking for ``a``.
     """
-    ka = _index_of(nbrs, nn, a)
-    kb = _index_of(nbrs, nn, b)
+    ka = _index_of(nbrs, nn, a, hint)
+    kb = _index_of(nbrs, nn, b, ka + 1)
     if ka < 0 or kb < 0:
         return ka, -1
     steps = (kb - ka) % nn if tris[nn - 1] >= 0 else kb - ka
@@ -114,13 +132,15 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, q
     side; two box sides meet at an exact corner. Owners of box sides (-1..-4) become -1.
     """
     out = 0
+    hint = 0
     for v in range(m):
         a = pw[v - 1] if v > 0 else pw[m - 1]
         b = pw[v]
         x = px[v]
         y = py[v]
         if a >= 0 and b >= 0:
-            ka, steps = _chain(nbrs, tris, nn, a, b)
+            ka, steps = _chain(nbrs, tris, nn, a, b, hint)
+            hint = max(ka, 0)
             # the chain's vertices are in order: swapped ones were merged (centers._unfold)
             ok = steps >= 1 and out + steps + (m - v) <= qx.shape[0]
             if ok:
@@ -203,7 +223,7 @@ def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw):
         if lp == lq:
             qw[out - 1] = lp
             continue
-        kp, steps = _chain(nbrs, tris, nn, lp, lq)
+        kp, steps = _chain(nbrs, tris, nn, lp, lq, 0)
         if not (steps >= 1 and out + steps + (m - v) <= qx.shape[0]):
             qw[out - 1] = _nearest_label(
                 xs, ys, 0.5 * (px[v] + px[w]), 0.5 * (py[v] + py[w]), b, nbrs, nn
@@ -235,7 +255,131 @@ def _cut_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, px, py, pw, qx, qy, qw
 
 
 @njit(**NJIT)
-def _cell(i, xs, ys, ws, tri, he, cx, cy, cls, out, box, bufs, nbrs, cl, tb, ss):
+def _safe_inside(t, cx, cy, err, box):
+    """Whether triangle ``t``'s centre lies inside ``box`` by more than its rounding bound."""
+    if t < 0:
+        return False
+    e = 4.0 * err[t] + 8.0 * _U * (abs(cx[t]) + abs(cy[t]))
+    return box[0] + e < cx[t] < box[2] - e and box[1] + e < cy[t] < box[3] - e
+
+
+@njit(**NJIT)
+def _interior(q, tris, nn, cx, cy, err, box):
+    """Whether neighbour ``q``'s edge runs between two centres safely inside the box.
+
+    Its two ends are the centres of the triangles before and after it in rotation order;
+    a hull site's first edge has no triangle before it (``tris[nn - 1] == -1``).
+    """
+    qp = q - 1 if q > 0 else nn - 1
+    return _safe_inside(tris[qp], cx, cy, err, box) and _safe_inside(tris[q], cx, cy, err, box)
+
+
+@njit(**NJIT)
+def _splice(px, py, pw, m, nbrs, tris, nn, cx, cy, err, box, qx, qy, qw):
+    """Put the runs of interior edges back into ring ``p``, cut by the other neighbours only.
+
+    ``p[:m]`` is the box cut by the neighbours whose edges are not interior
+    (:func:`_interior`). Between the edges of neighbours ``a`` and ``c`` that bound a run of
+    interior edges, that ring has whatever the missing neighbours would have cut away; the
+    run's edges replace it, starting and ending at the run's centres. Result in ``q``;
+    returns its vertex count, or -1 when the ring does not have the expected edges (the
+    caller then cuts by every neighbour).
+    """
+    v0 = -1
+    for v in range(m):
+        if pw[v] >= 0:
+            k = _index_of(nbrs, nn, pw[v], 0)
+            if k >= 0 and _interior((k + 1) % nn, tris, nn, cx, cy, err, box):
+                v0 = v
+                break
+    if v0 < 0:
+        return -1
+    out = 0
+    v = v0
+    first = True
+    pend = False
+    ox = 0.0
+    oy = 0.0
+    hint = 0
+    while True:
+        if not first and v == v0:
+            if pend:
+                qx[0] = ox
+                qy[0] = oy
+            break
+        first = False
+        if out >= qx.shape[0]:
+            return -1
+        o = pw[v]
+        qx[out] = ox if pend else px[v]
+        qy[out] = oy if pend else py[v]
+        qw[out] = o
+        out += 1
+        pend = False
+        k = _index_of(nbrs, nn, o, hint) if o >= 0 else -1
+        if k < 0 or not _interior((k + 1) % nn, tris, nn, cx, cy, err, box):
+            v = v + 1 if v + 1 < m else 0
+            continue
+        hint = k
+        q = (k + 1) % nn
+        while _interior(q, tris, nn, cx, cy, err, box):
+            t = tris[q - 1 if q > 0 else nn - 1]
+            if out >= qx.shape[0] or q == k:
+                return -1
+            qx[out] = cx[t]
+            qy[out] = cy[t]
+            qw[out] = nbrs[q]
+            out += 1
+            q = (q + 1) % nn
+        t = tris[q - 1 if q > 0 else nn - 1]
+        ox = cx[t]
+        oy = cy[t]
+        pend = True
+        target = nbrs[q]
+        v = v + 1 if v + 1 < m else 0
+        while pw[v] != target:
+            if v == v0:
+                return -1
+            v = v + 1 if v + 1 < m else 0
+    return out
+
+
+@njit(**NJIT)
+def _spliced_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, err, bufs, gl, ss):
+    """A cut cell with many neighbours in linear time; -1 when it must be cut the usual way.
+
+    Cutting the box by ``nn`` bisectors one after another costs ``nn`` times the ring, and
+    the ring grows with every edge inside the box: quadratic for a site with thousands of
+    neighbours (sites on a line and one off it). Edges whose two ends are centres safely
+    inside the box are final Voronoi edges, so only the other neighbours cut the box (their
+    ring stays small: a convex cell crosses the box's sides a few times only), and the runs
+    of interior edges are spliced back in rotation order (:func:`_splice`).
+    """
+    px, py, pw, qx, qy, qw = bufs
+    ng = 0
+    for q in range(nn):
+        if not _interior(q, tris, nn, cx, cy, err, box):
+            gl[ng] = nbrs[q]
+            ng += 1
+    if ng == 0 or ng == nn:
+        return -1
+    m = box_cell(i, xs, ys, ws, gl, ng, box, px, py, pw, qx, qy, qw, ss)
+    if m == 0:
+        return -1
+    # (no _relabel_edges: its nearest-neighbour test would see the spliced-out neighbours'
+    # territory; a many-neighbour cell whose cut needs relabelling fails the splice instead)
+    m = _splice(px, py, pw, m, nbrs, tris, nn, cx, cy, err, box, qx, qy, qw)
+    if m < 3:
+        return -1
+    for v in range(m):
+        px[v] = qx[v]
+        py[v] = qy[v]
+        pw[v] = qw[v]
+    return _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, qx, qy, qw)
+
+
+@njit(**NJIT)
+def _cell(i, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, bufs, nbrs, cl, tb, ss):
     """Polygon of site ``i`` into ``p``; returns the vertex count.
 
     A cell whose ring of circumcentres lies inside the box is that ring. Any other cell
@@ -281,6 +425,10 @@ def _cell(i, xs, ys, ws, tri, he, cx, cy, cls, out, box, bufs, nbrs, cl, tb, ss)
         if o == o0:
             break
     if not inside:
+        if k > _SPLICE_MIN:
+            m = _spliced_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, err, bufs, cl, ss)
+            if m >= 0:
+                return m
         return _cut_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, px, py, pw, qx, qy, qw, ss)
     if m > 1 and cl[m - 1] == cl[0]:
         m -= 1
@@ -305,7 +453,7 @@ def _scratch(cap):
 
 
 @njit(**NJIT_PARALLEL)
-def _count(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, deg, cut, merged):
+def _count(xs, ys, ws, tri, he, cx, cy, err, cls, out, box, cap, deg, cut, merged):
     """Vertex count of every cell.
 
     Without cocircular merges an uncut cell has one vertex per incident triangle, so only cut
@@ -322,7 +470,9 @@ def _count(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, deg, cut, merged):
         for i in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
             if not merged and not cut[i]:
                 continue
-            counts[i] = _cell(i, xs, ys, ws, tri, he, cx, cy, cls, out, box, bufs, nbrs, cl, tb, ss)
+            counts[i] = _cell(
+                i, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, bufs, nbrs, cl, tb, ss
+            )
     return counts
 
 
@@ -352,7 +502,9 @@ def _write_ring(i, tri, he, cx, cy, out, base, coords, owner, kmap):
 
 
 @njit(**NJIT_PARALLEL)
-def _fill(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, start, coords, owner, kmap, cut, merged):
+def _fill(
+    xs, ys, ws, tri, he, cx, cy, err, cls, out, box, cap, start, coords, owner, kmap, cut, merged
+):
     """Write every cell as a closed ring at ``start[i]``; owners go through ``kmap``.
 
     Without cocircular merges an uncut cell is its ring of circumcentres, one per incident
@@ -368,7 +520,7 @@ def _fill(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, start, coords, owner,
             if not merged and not cut[i]:
                 _write_ring(i, tri, he, cx, cy, out, start[i], coords, owner, kmap)
                 continue
-            m = _cell(i, xs, ys, ws, tri, he, cx, cy, cls, out, box, bufs, nbrs, cl, tb, ss)
+            m = _cell(i, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, bufs, nbrs, cl, tb, ss)
             if m == 0:
                 continue
             base = start[i]
@@ -416,7 +568,7 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
     cap = int(deg.max()) + 16
     merged = bool(flag.any()) or bool((cls != np.arange(cls.shape[0])).any())
     ws = np.zeros(n)
-    counts = _count(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, deg, cut, merged)
+    counts = _count(xs, ys, ws, tri, he, cx, cy, err, cls, out, box, cap, deg, cut, merged)
     closed = np.where(counts > 0, counts + 1, 0)
     lengths = np.zeros(n + 1, dtype=np.int64)
     lengths[1:][order] = closed
@@ -425,7 +577,8 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
     total = int(lengths[-1])
     coords = np.zeros((total, 2))
     owner = np.zeros(total, dtype=np.int64)
-    _fill(xs, ys, ws, tri, he, cx, cy, cls, out, box, cap, start, coords, owner, kmap, cut, merged)
+    args = (cls, out, box, cap, start, coords, owner, kmap, cut, merged)
+    _fill(xs, ys, ws, tri, he, cx, cy, err, *args)
     return coords, lengths, owner
 
 
