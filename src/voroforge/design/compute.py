@@ -504,7 +504,30 @@ def _operate(design: Design, cells: np.ndarray, values: np.ndarray, has_field: b
     return np.asarray(out, dtype=object)
 
 
-def _operate_reusing(design, cells, values, has_field, reuse, extra):
+#: Fewest cells per thread when ``compute(workers=...)`` splits the cell operations.
+_CELLS_PER_WORKER = 256
+
+
+def _operate_split(design, cells, values, has_field, workers: int):
+    """:func:`_operate` over up to ``workers`` threads (GEOS runs without the GIL).
+
+    Every operation is per cell, so the cells are the same bytes as from one call.
+    """
+    k = min(int(workers), len(cells) // _CELLS_PER_WORKER)
+    if k < 2:
+        return _operate(design, cells, values, has_field)
+    from concurrent.futures import ThreadPoolExecutor
+
+    parts = np.array_split(np.arange(len(cells)), k)
+    with ThreadPoolExecutor(k) as pool:
+        done = list(pool.map(lambda p: _operate(design, cells[p], values[p], has_field), parts))
+    out = np.empty(len(cells), dtype=object)  # noqa: TID251 - every slot is filled below
+    for p, part in zip(parts, done, strict=True):
+        out[p] = part
+    return out
+
+
+def _operate_reusing(design, cells, values, has_field, reuse, extra, workers: int = 1):
     """:func:`_operate`, redoing only cells whose raw geometry or value changed since ``reuse``.
 
     Keys of the cells are their WKB (kept in ``extra["raw_wkb"]`` for the next call); only
@@ -516,7 +539,7 @@ def _operate_reusing(design, cells, values, has_field, reuse, extra):
     extra["raw_wkb"] = keys
     old = reuse.extra.get("raw_wkb") if reuse is not None else None
     if old is None or reuse.design.cells != design.cells or len(reuse.cells) != len(reuse.raw):
-        return _operate(design, cells, values, has_field)
+        return _operate_split(design, cells, values, has_field, workers)
     n = min(len(old), len(cells))
     same = np.zeros(len(cells), dtype=bool)
     same[:n] = (keys[:n] == old[:n]) & (values[:n] == reuse.values[:n])
@@ -524,7 +547,7 @@ def _operate_reusing(design, cells, values, has_field, reuse, extra):
     out[same] = reuse.cells[np.flatnonzero(same)]
     redo = np.flatnonzero(~same)
     if len(redo):
-        out[redo] = _operate(design, cells[redo], values[redo], has_field)
+        out[redo] = _operate_split(design, cells[redo], values[redo], has_field, workers)
     extra["redone"] = redo
     return out
 
@@ -548,6 +571,7 @@ def compute(
     sites: np.ndarray | None = None,
     reuse: Result | None = None,
     frame: bool = True,
+    workers: int = 1,
 ) -> Result:
     """Compute the geometry of a validated design.
 
@@ -569,6 +593,9 @@ def compute(
     frame : bool
         False leaves ``Result.frame`` None (an editor that draws the openings does not need
         the boundary minus their union, the slowest step for cells without webs).
+    workers : int
+        Threads for the cell operations (inset, fillet, ...) of many cells; the result is
+        the same (an editor on a multi-core machine passes its core count).
 
     Returns
     -------
@@ -630,7 +657,9 @@ def compute(
         mask = _mask(design, raw, values, seed)
     stage("cell operations")
     with _section("cells"):
-        cells = _operate_reusing(design, inset_cells, values, field_fn is not None, reuse, extra)
+        cells = _operate_reusing(
+            design, inset_cells, values, field_fn is not None, reuse, extra, workers
+        )
     if design.voronoi.periodic:
         box = _tile(design, domain)
         # whole openings on the torus, for the fabrication check across the seams
