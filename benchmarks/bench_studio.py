@@ -1,17 +1,19 @@
-"""Studio benchmark: one seed-drag step, incremental against the full recompute.
+"""Studio benchmark: what the server does per edit, in CPU time and wall time.
 
-For a 2000-cell panel clipped to a polygon with a hole (2 mm webs, 1.5 mm fillets) and for
-plain cells (2000 and 20000), times what the studio server does for one step of a seed
-drag: ``Session.apply({"op": "move", ...})`` on the incremental path
-(:mod:`voroforge.studio.incremental`: a window diagram around the seed, the changed cells'
-inset and fillet) against the same step computed in full
-(``voroforge.design.compute.compute`` with the previous result to reuse, which is what the
-studio did before), plus the binary patch for the page. Both run in one process, warm,
-on the same steps, best of N; the ratio is what to read (the machine may be shared).
-Also prints the full recompute of a slider that makes all new seeds. Run from the
-repository root:
+For a 2000-cell panel clipped to a polygon with a hole (2 mm webs, 1.5 mm fillets), for
+plain cells (2000 and 20000) and for two sliders that make new seeds (``seeds.count``,
+whose random stream keeps the first seeds, and ``design.seed``: all 2000 new), times one edit
+as the studio server handles it: ``Session.apply`` (a seed drag on the incremental path of
+:mod:`voroforge.studio.incremental`, or a full recompute) plus the binary message for the
+page (``geometry_message``, cells at the page's pixel size). A seed drag is also timed on
+the full-recompute path (``Session.incremental = False``: ``compute`` with the previous
+result to reuse), for the ratio, and the sliders with the cell operations in one thread
+(``Session.workers = 1``). CPU time (``time.process_time``, all threads) is what to
+read on a shared machine; wall time is printed beside it. Median and best over the steps.
+The page's side (parse, draw, frame) is measured in the browser by
+``tests/test_studio_browser.py::test_latency_table``. Run from the repository root:
 
-    NUMBA_NUM_THREADS=1 .venv/bin/python benchmarks/bench_studio.py [--repeat K] [--steps S]
+    NUMBA_NUM_THREADS=1 .venv/bin/python benchmarks/bench_studio.py [--steps S]
 """
 
 from __future__ import annotations
@@ -39,54 +41,88 @@ HOLED = {
     "seeds": {"method": "random", "count": 2000},
     "cells": {"web": 2.0, "fillet": 1.5},
 }
+PLAIN = {**HOLED, "cells": {}}
 CASES = {
     "2,000 cells, hole, inset + fillet": HOLED,
-    "2,000 plain cells": {**HOLED, "cells": {}},
-    "20,000 plain cells": {**HOLED, "cells": {}, "seeds": {"method": "random", "count": 20000}},
+    "2,000 plain cells": PLAIN,
+    "20,000 plain cells": {**PLAIN, "seeds": {"method": "random", "count": 20000}},
 }
+#: A page 960 pixels wide showing the 1000-unit panel (its `view` message)
+PX = 1000 / 960
 
 
-def drag(session: Session, steps: int, incremental: bool) -> float:
-    """Seconds per drag step (best over the steps' runs is taken by the caller)."""
+def _timed(session: Session, msg: dict, sent: dict) -> tuple[float, float, float]:
+    """(cpu ms, wall ms, message KiB) of one edit and its message."""
+    c0, w0 = time.process_time(), time.perf_counter()
+    reply = session.apply(msg)
+    assert reply.kind == "update", reply
+    payload = geometry_message(session, reply.changed, seq=1, boundary=False, sent=sent, px=PX)
+    cpu, wall = time.process_time() - c0, time.perf_counter() - w0
+    return cpu * 1e3, wall * 1e3, len(payload) / 1024
+
+
+def drag(session: Session, steps: int, incremental: bool) -> np.ndarray:
+    """(steps, 3) timings of a seed drag (see _timed)."""
     session.incremental = incremental
     i = len(session.result.sites) // 2
     sent: dict = {}
-    geometry_message(session, None, seq=0, boundary=True, sent=sent)
+    geometry_message(session, None, seq=0, boundary=True, sent=sent, px=PX)
     x0, y0 = session._sites()[i]
-    start = time.perf_counter()
+    out = []
     for k in range(steps):
         x, y = x0 + 3.0 * np.sin(k / 3.0), y0 + 3.0 * np.cos(k / 4.0)
-        reply = session.apply({"op": "move", "i": i, "x": float(x), "y": float(y)})
-        assert reply.kind == "update", reply
-        geometry_message(session, reply.changed, seq=k + 1, boundary=False, sent=sent)
-    return (time.perf_counter() - start) / steps
+        out.append(_timed(session, {"op": "move", "i": i, "x": float(x), "y": float(y)}, sent))
+    return np.array(out)
+
+
+#: Slider values: seeds.count (the random stream keeps its first seeds: the cells near the
+#: added or dropped ones change) and design.seed (every seed new)
+SLIDERS = {
+    "seeds.count": [1990, 2010, 1995, 2005, 2000, 1985, 2015, 2001],
+    "design.seed": [2, 3, 4, 5, 6, 7, 8, 9],
+}
+
+
+def slider(session: Session, steps: int, key: str) -> np.ndarray:
+    """(steps, 3) timings of a slider that makes new seeds (see SLIDERS)."""
+    sent: dict = {}
+    geometry_message(session, None, seq=0, boundary=True, sent=sent, px=PX)
+    values = SLIDERS[key] * (1 + steps // 8)
+    return np.array(
+        [_timed(session, {"op": "set", "key": key, "value": v}, sent) for v in values[:steps]]
+    )
+
+
+def _row(name: str, t: np.ndarray) -> str:
+    cpu, wall = t[:, 0], t[:, 1]
+    return (
+        f"| {name} | {np.median(cpu):.1f} | {cpu.min():.1f} | {np.median(wall):.1f} "
+        f"| {np.median(t[:, 2]):.1f} |"
+    )
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--repeat", type=int, default=3)
-    ap.add_argument("--steps", type=int, default=10)
+    ap.add_argument("--steps", type=int, default=20)
     args = ap.parse_args(argv)
-    print(f"python {sys.version.split()[0]}, load {os.getloadavg()[0]:.1f}, best of {args.repeat}")
-    print("| case | drag step, incremental ms | drag step, full recompute ms | ratio |")
-    print("|---|---|---|---|")
-    slider = None
+    print(f"python {sys.version.split()[0]}, {os.cpu_count()} CPUs, load {os.getloadavg()[0]:.1f}")
+    print("| edit | CPU ms median | CPU ms best | wall ms median | message KiB |")
+    print("|---|---|---|---|---|")
     for name, data in CASES.items():
         session = Session(data)
-        session.apply({"op": "move", "i": 0, "x": float(session.result.sites[0, 0]), "y": 10.0})
-        drag(session, 2, True)  # warm both paths
+        drag(session, 3, True)  # warm both paths
         drag(session, 2, False)
-        fast = min(drag(session, args.steps, True) for _ in range(args.repeat))
-        full = min(drag(session, max(2, args.steps // 3), False) for _ in range(args.repeat))
-        print(f"| {name} | {fast * 1e3:.1f} | {full * 1e3:.1f} | {full / fast:.1f}x |")
-        if data is HOLED:
-            times = []
-            for count in (1990, 2010, 1995, 2005, 2000)[: max(2, args.repeat)]:
-                start = time.perf_counter()
-                session.apply({"op": "set", "key": "seeds.count", "value": count})
-                times.append(time.perf_counter() - start)
-            slider = min(times)
-    print(f"\nseeds.count slider (all 2,000 seeds new, inset + fillet): {slider * 1e3:.1f} ms")
+        print(_row(f"seed drag, {name}", drag(session, args.steps, True)), flush=True)
+        full = drag(session, max(3, args.steps // 4), False)
+        print(_row(f"seed drag, {name}, full recompute", full), flush=True)
+        if data in (HOLED, PLAIN):
+            for key in SLIDERS:
+                session = Session(data)
+                slider(session, 2, key)
+                steps = max(4, args.steps // 2)
+                print(_row(f"{key} slider, {name}", slider(session, steps, key)), flush=True)
+                session.workers = 1
+                print(_row(f"{key} slider, {name}, 1 thread", slider(session, 4, key)), flush=True)
     return 0
 
 

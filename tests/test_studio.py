@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 pytest.importorskip("starlette")
 
 from voroforge.design.compute import compute  # noqa: E402
-from voroforge.design.designfile import load  # noqa: E402
+from voroforge.design.designfile import DesignError, load  # noqa: E402
 from voroforge.design.fabrication import check  # noqa: E402
 from voroforge.studio import tomlfile, wire  # noqa: E402
 from voroforge.studio.controls import controls  # noqa: E402
@@ -178,6 +178,16 @@ def test_drag_recomputes_the_neighbourhood_and_settles_to_the_full_compute(name)
     assert s.apply({"op": "undo"}).kind == "update" and not s.provisional
     _same = compute(s.design, s.folder, sites=s.sites, frame=False)
     assert _wkb(s.result.cells) == _wkb(_same.cells)
+
+
+def test_compute_workers_give_the_same_cells():
+    design, _ = load({**HOLED, "seeds": {"method": "random", "count": 700}})
+    one = compute(design, frame=False)
+    three = compute(design, frame=False, workers=3)  # the studio passes its core count
+    assert _wkb(one.cells) == _wkb(three.cells) and len(one.cells) >= 3 * 200
+    bad, _ = load({**HOLED, "seeds": {"method": "random", "count": 700}, "cells": {"web": -1}})
+    with pytest.raises(DesignError, match="cells"):
+        compute(bad, workers=3)
 
 
 def test_fabrication_limits_keep_the_cells():

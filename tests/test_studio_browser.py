@@ -296,16 +296,26 @@ HEAD = (
 )
 
 
-def _slider_latencies(page, counts):
+def _slider_latencies(page, key, values):
+    """Type each value into the slider's number box (Enter), wait for the new drawing."""
     page.evaluate("studio.latencies = []")
-    box = ".vf-ctl[data-key='seeds.count'] input[type=number]"
-    for count in counts:
-        page.fill(box, str(count))
+    box = f".vf-ctl[data-key='{key}'] input[type=number]"
+    for value in values:
+        seq = page.evaluate("studio.seq")
+        page.fill(box, str(value))
         page.press(box, "Enter")
-        page.wait_for_function(f"studio.n === {count}", timeout=60_000)
+        page.wait_for_function(f"studio.seq > {seq}", timeout=60_000)
         _idle(page)
         page.wait_for_timeout(40)  # the latency is recorded on the frame after the redraw
     return page.evaluate("studio.latencies.filter(l => l.op === 'set')")
+
+
+#: Sliders that make new seeds: seeds.count keeps the random stream's first seeds (the cells
+#: near added or dropped ones change), design.seed makes every seed new.
+SLIDERS = {
+    "seeds.count": (1990, 2010, 1995, 2005, 2000, 1985, 2015, 2001),
+    "design.seed": (2, 3, 4, 5, 6, 7, 8, 9),
+}
 
 
 def test_latency_table(browser, tmp_path):
@@ -324,19 +334,20 @@ def test_latency_table(browser, tmp_path):
     if full:
         cases.append(("seed drag, 2,000 plain cells", plain, 30))
         cases.append(("seed drag, 20,000 plain cells", big, 15))
-        cases.append(("slider: seeds.count, 2,000, inset + fillet", HOLED_2000, 0))
-        cases.append(("slider: seeds.count, 2,000 plain cells", plain, 0))
+        for key in SLIDERS:
+            cases.append((f"slider {key}, 2,000 cells, inset + fillet", HOLED_2000, key))
+            cases.append((f"slider {key}, 2,000 plain cells", plain, key))
     rows = []
     for _ in range(rounds):
         for name, data, moves in cases:
             served, page, errors = _open(browser, Session(data, folder=tmp_path))
             try:
-                if moves:
+                if isinstance(moves, int):
                     lat = _drag_latencies(page, moves)
                     assert lat and all(not entry["full"] for entry in lat)
                 else:
-                    lat = _slider_latencies(page, (1990, 2010, 1995, 2005, 2000, 1985, 2015, 2001))
-                    assert lat and all(entry["full"] for entry in lat)
+                    lat = _slider_latencies(page, moves, SLIDERS[moves])
+                    assert len(lat) == len(SLIDERS[moves])
                 rows.append(_row(name, lat))
                 if os.environ.get("VOROFORGE_STUDIO_DEBUG"):
                     print(name, *sorted(lat, key=lambda e: -e["ms"])[:3], sep="\n")

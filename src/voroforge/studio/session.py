@@ -20,6 +20,7 @@ from __future__ import annotations
 import copy
 import dataclasses
 import math
+import os
 import re
 import tempfile
 import time
@@ -124,6 +125,8 @@ class Session:
         self.settle_ms = 0.0
         self._field_cache = None
         self._controls = None
+        #: Threads for the cell operations of a full recompute (the same cells as one)
+        self.workers = max(1, min(4, os.cpu_count() or 1))
         self.design, self.result = self._compute(self.data, None, reuse=False)
 
     # --- computing ---------------------------------------------------------------------
@@ -148,7 +151,13 @@ class Session:
         start = time.perf_counter()
         previous = self.result if reuse else None
         result = compute(
-            design, self.folder, progress=stage, sites=sites, reuse=previous, frame=False
+            design,
+            self.folder,
+            progress=stage,
+            sites=sites,
+            reuse=previous,
+            frame=False,
+            workers=self.workers,
         )
         self.compute_ms = (time.perf_counter() - start) * 1e3
         shapely.prepare(result.domain)  # every click and drag asks whether it is inside
@@ -355,7 +364,14 @@ class Session:
         """The full computation of a provisional result ``previous`` (does not change self)."""
         start = time.perf_counter()
         sites = previous.sites
-        result = compute(previous.design, self.folder, sites=sites, reuse=previous, frame=False)
+        result = compute(
+            previous.design,
+            self.folder,
+            sites=sites,
+            reuse=previous,
+            frame=False,
+            workers=self.workers,
+        )
         self.settle_ms = (time.perf_counter() - start) * 1e3
         return result
 

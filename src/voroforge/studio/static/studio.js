@@ -166,7 +166,7 @@ var VoroStudio = (function () {
       return;
     }
     if (msg.op === "violations") {
-      this.violations = msg.list; this.violationCounts = msg.counts;
+      this.violations = msg.list; this.violationCounts = msg.counts; this.violationsId = (this.violationsId || 0) + 1;
       this.checkMs = msg.check_ms; this.violationTotal = msg.total;
       this.drawLegend(); this.status(); this.invalidate();
       return;
@@ -374,24 +374,41 @@ var VoroStudio = (function () {
 
   Studio.prototype.paintNow = function () {
     this.dirty = false;
-    var t0 = performance.now(), ctx = this.ctx, v = this.view(), px = 1 / v.s, dpr = this.dpr;
+    var t0 = performance.now(), v = this.view();
     var bv = this.baseView;
     if (!bv || bv[0] !== v.s || bv[1] !== v.tx || bv[2] !== v.ty) this.baseValid = false;
     if (!this.baseValid) this.renderBase(null);
     else if (this.pending) this.renderBase(this.pending);
-    ctx = this.octx;
+    this.placeHandle(v);
+    // the overlay is drawn again only when what it shows changed (a canvas that changes is
+    // composited again: a frame's cost even when the drawing is the same)
+    var key = [v.s, v.tx, v.ty, this.boundaryId, this.violationsId, JSON.stringify(this.attractors)].join("|");
+    if (key !== this.overlayKey) { this.overlayKey = key; this.paintOverlay(v); }
+    this.drawMs = performance.now() - t0; this.frames++;
+  };
+
+  /* The ring around the seed being dragged: an element moved over the canvas. */
+  Studio.prototype.placeHandle = function (v) {
+    var s = this.sites, d = this.drag, hd = this.handle;
+    if (!hd) {
+      hd = this.handle = document.createElement("div");
+      hd.className = "vf-handle";
+      this.overlay.parentNode.appendChild(hd);
+    }
+    if (!d || d.kind !== "site" || 2 * d.i + 1 >= s.length) { hd.style.display = "none"; return; }
+    var x = (s[2 * d.i] * v.s + v.tx) / this.dpr, y = (v.ty - s[2 * d.i + 1] * v.s) / this.dpr;
+    hd.style.display = "block";
+    hd.style.transform = "translate(" + x.toFixed(1) + "px," + y.toFixed(1) + "px)";
+  };
+
+  Studio.prototype.paintOverlay = function (v) {
+    var ctx = this.octx, px = 1 / v.s, dpr = this.dpr;
     ctx.setTransform(1, 0, 0, 1, 0, 0);
     ctx.clearRect(0, 0, this.overlay.width, this.overlay.height);
     ctx.setTransform(v.s, 0, 0, -v.s, v.tx, v.ty);
-    var i, s = this.sites;
     if (this.boundary) { ctx.lineWidth = 1.2 * px * dpr; ctx.strokeStyle = "#3a3128"; ctx.stroke(this.boundary); }
     if (this.domain) { ctx.setLineDash([4 * px * dpr, 4 * px * dpr]); ctx.lineWidth = 0.8 * px * dpr;
       ctx.strokeStyle = "rgba(58,49,40,0.6)"; ctx.stroke(this.domain); ctx.setLineDash([]); }
-    if (this.drag && this.drag.kind === "site") {
-      var j = this.drag.i;
-      if (2 * j + 1 < s.length) { ctx.beginPath(); ctx.arc(s[2 * j], s[2 * j + 1], 5 * px * dpr, 0, 7);
-        ctx.strokeStyle = "#0a64d8"; ctx.lineWidth = 2 * px * dpr; ctx.stroke(); }
-    }
     var self = this;
     (this.attractors || []).forEach(function (a) {
       ctx.strokeStyle = "rgba(220,120,0,0.8)"; ctx.lineWidth = 1.5 * px * dpr;
@@ -417,7 +434,6 @@ var VoroStudio = (function () {
       kinds[kind].forEach(function (vi) { marker(ctx, st.shape, vi.x, vi.y, R); });
       ctx.strokeStyle = st.colour; ctx.stroke();
     });
-    this.drawMs = performance.now() - t0; this.frames++;
   };
 
   Studio.prototype.drawLegend = function () {
