@@ -65,3 +65,16 @@ def test_a_failing_step_is_reported_and_the_rest_still_run(tmp_path):
     assert done[1].error == ""
     assert all(math.isfinite(s.seconds) and s.seconds >= 0 for s in done)
     assert len(lines) == 2 and "FAILED" in lines[0] and lines[1].rstrip().endswith("ok")
+
+
+def test_a_2d_build_loads_only_what_it_needs(tmp_path):
+    # a first build pays every import: a laser panel (Poisson seeds, fillets, SVG + DXF +
+    # PNG) needs no KD-tree, sparse graphs, mesh stack, 3D or studio code
+    loaded = _modules_after(
+        ["build", str(ROOT / "examples" / "laser-panel.toml"), "-o", str(tmp_path)]
+    )
+    assert "ezdxf" in loaded and "voroforge.design.compute" in loaded  # the build ran
+    unwanted = ("scipy.spatial", "scipy.sparse", "trimesh", "manifold3d", "skimage", "starlette")
+    assert not {m for m in loaded if m.startswith(unwanted)}
+    for sub in ("solid.build", "surface.build", "studio.server", "engine.voronoi3d", "scale"):
+        assert f"voroforge.{sub}" not in loaded, sub

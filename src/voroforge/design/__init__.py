@@ -8,9 +8,56 @@ and takes its randomness from an explicit ``seed``.
 Design files: :mod:`schema` (the models), :mod:`designfile` (reading TOML, overrides, errors
 with file and line), :mod:`compute` (a design to geometry, in memory), :mod:`build` (the
 files a design names, check reports, the starter design), :mod:`fabrication` (checks, kerf).
+
+The submodules are imported on first use (``voroforge.design.populate`` or ``from
+voroforge.design import populate``), so a build loads only what its design needs.
 """
 
-from . import attractors, boundary, cellops, populate, recursive, relax  # noqa: F401
+from __future__ import annotations
 
-# isort: split
-from . import build, compute, designfile, fabrication, schema  # noqa: F401  (design files)
+import importlib
+from typing import TYPE_CHECKING, Any
+
+_SUBMODULES = (
+    "attractors",
+    "boundary",
+    "build",
+    "cellops",
+    "compute",
+    "designfile",
+    "fabrication",
+    "populate",
+    "recursive",
+    "relax",
+    "schema",
+    "stipple",
+)
+
+__all__ = list(_SUBMODULES)
+
+
+def __getattr__(name: str) -> Any:
+    if name not in _SUBMODULES:
+        raise AttributeError(f"module 'voroforge.design' has no attribute {name!r}")
+    return importlib.import_module(f".{name}", __name__)  # binds itself in this namespace
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_SUBMODULES))
+
+
+if TYPE_CHECKING:  # for type checkers and editors: the same names, imported eagerly
+    from . import (  # noqa: F401
+        attractors,
+        boundary,
+        build,
+        cellops,
+        compute,
+        designfile,
+        fabrication,
+        populate,
+        recursive,
+        relax,
+        schema,
+        stipple,
+    )

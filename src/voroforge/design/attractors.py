@@ -20,7 +20,6 @@ import math
 
 import numpy as np
 import shapely
-from scipy.spatial import cKDTree
 
 __all__ = [
     "FALLOFFS",
@@ -38,6 +37,7 @@ FALLOFFS = ("linear", "smoothstep", "gaussian", "inverse_power")
 
 _GAUSS_A = 4.5  # exp(-4.5 t^2): sigma = radius / 3
 _CHUNK = 65536  # query points per batch for attractors with per-point radii
+_BRUTE = 64  # up to this many attractor points, distances by numpy (no KD-tree to import)
 _INV_EPS = 0.1  # softening of 1 / (eps + t)^p so the value at the attractor is finite
 
 
@@ -186,24 +186,52 @@ class PointAttractor(_Attractor):
         self.points = pts
         self.points.setflags(write=False)
         super().__init__(len(pts), radius, strength, falloff, power)
-        self._tree = cKDTree(pts)
+        self._tree = None
+        if len(pts) > _BRUTE:  # many points: a KD-tree (scipy is imported only then)
+            from scipy.spatial import cKDTree
+
+            self._tree = cKDTree(pts)
+
+    def _distances(self, xy: np.ndarray) -> np.ndarray:
+        """(m, k) distances from ``xy`` to every attractor point (few points only)."""
+        dx = xy[:, 0, None] - self.points[None, :, 0]
+        dy = xy[:, 1, None] - self.points[None, :, 1]
+        return np.sqrt(dx * dx + dy * dy)
+
+    def _nearest(self, xy: np.ndarray) -> np.ndarray:
+        if self._tree is not None:
+            return self._tree.query(xy, k=1)[0]
+        out = np.zeros(len(xy))
+        step = max(1, _CHUNK // len(self.points))
+        for start in range(0, len(xy), step):
+            out[start : start + step] = self._distances(xy[start : start + step]).min(axis=1)
+        return out
 
     def distance(self, xy) -> np.ndarray:
         """Distance from each point of ``xy (m, 2)`` to the nearest attractor point."""
-        return self._tree.query(_xy(xy), k=1)[0]
+        return self._nearest(_xy(xy))
 
     def _values(self, xy: np.ndarray) -> np.ndarray:
         uniform = (self.radius == self.radius[0]).all() and (
             self.strength == self.strength[0]
         ).all()
         if uniform:  # monotone profile: the nearest point decides
-            d = self._tree.query(xy, k=1, distance_upper_bound=self.radius[0])[0]
+            d = self._nearest(xy)
             return self._profile(np.minimum(d, self.radius[0]), self.radius[0], self.strength[0])
         out = np.zeros(len(xy))
+        if self._tree is None:  # every pair; the profile is 0 beyond each point's radius
+            step = max(1, _CHUNK // len(self.points))
+            for start in range(0, len(xy), step):
+                d = self._distances(xy[start : start + step])
+                v = self._profile(d, self.radius[None, :], self.strength[None, :])
+                out[start : start + step] = np.maximum(v.max(axis=1), 0.0)
+            return out
         reach = float(self.radius.max())
         for start in range(0, len(xy), _CHUNK):  # chunks bound the number of close pairs
             part = xy[start : start + _CHUNK]
-            pairs = cKDTree(part).sparse_distance_matrix(self._tree, reach, output_type="ndarray")
+            pairs = type(self._tree)(part).sparse_distance_matrix(
+                self._tree, reach, output_type="ndarray"
+            )
             if len(pairs):
                 j = pairs["j"]
                 v = self._profile(pairs["v"], self.radius[j], self.strength[j])

@@ -111,17 +111,19 @@ def render_preview(result: Result, *, size: int = 1200):
     if mode == "layers" and first == "edges":
         xmin, ymin, xmax, ymax = result.boundary.bounds
         width = max(xmax - xmin, ymax - ymin) / 900.0
-        lines = [shapely.buffer(result.edges, width, quad_segs=2, cap_style="flat")]
+        # each segment buffered on its own: one buffer of the whole network unions it
+        # (0.4 s for 3000 segments, 0.015 s this way); the pieces overlap in one colour
+        lines = list(shapely.buffer(shapely.get_parts(result.edges), width, quad_segs=2))
         levels = result.extra.get("levels") or []
         if len(levels) > 1:  # recursion: the first level's edges drawn heavier (the veins)
             from . import cellops
 
             top = cellops.edges_to_lines(cellops.explode(np.asarray(levels[0].cells)))
-            lines.append(shapely.buffer(top, 2.6 * width, quad_segs=2, cap_style="round"))
+            lines += list(shapely.buffer(shapely.get_parts(top), 2.6 * width, quad_segs=2))
         return render_image(
             lines,
             size=size,
-            colors=[(25, 25, 35)] * len(lines),
+            colors=(25, 25, 35),
             edge_width=0.0,
             boundary=result.boundary,
         )

@@ -145,9 +145,7 @@ def explode(cells, *, tol: float | None = None) -> np.ndarray:
     (m, 2, 2) float64
         Segment end points (merged vertices), in first-seen order; no zero-length segments.
     """
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-    from scipy.spatial import cKDTree
+    from ..io.snap import close_pairs, cluster_labels
 
     arr = as_cells(cells)
     rings = shapely.get_rings(shapely.get_parts(arr[~shapely.is_empty(arr)]))
@@ -163,10 +161,7 @@ def explode(cells, *, tol: float | None = None) -> np.ndarray:
     if not (math.isfinite(tol) and tol >= 0):
         raise ValueError(f"tol must be a finite number >= 0, got {tol!r}")
     if tol > 0:
-        pairs = cKDTree(verts).query_pairs(tol, output_type="ndarray")
-        m = len(verts)
-        graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(m, m))
-        _, label = connected_components(graph, directed=False)
+        label = cluster_labels(len(verts), close_pairs(verts, tol))
         # each cluster is represented by its first vertex
         _, rep = np.unique(label, return_index=True)
         vid = label[vid]

@@ -35,6 +35,7 @@ import shapely
 
 from .. import config
 from ..kernels.plotter import nearest_tour, two_opt
+from .snap import close_pairs, cluster_labels, nearest
 
 __all__ = [
     "Paths",
@@ -143,18 +144,11 @@ def _vertex_ids(coords: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray]
     inverse = np.zeros(len(coords), dtype=np.int64)
     inverse[order] = np.cumsum(head) - 1
     if tol > 0 and len(verts) > 1:
-        from scipy.sparse import coo_matrix
-        from scipy.sparse.csgraph import connected_components
-        from scipy.spatial import cKDTree
-
-        pairs = cKDTree(verts).query_pairs(tol, output_type="ndarray")
+        pairs = close_pairs(verts, tol)
         if len(pairs):
-            n = len(verts)
-            graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
-            _, label = connected_components(graph, directed=False)
-            first = np.full(label.max() + 1, -1, dtype=np.int64)
-            for i in range(n - 1, -1, -1):
-                first[label[i]] = i
+            label = cluster_labels(len(verts), pairs)
+            # each cluster is represented by its lowest vertex (labels follow those)
+            first = np.unique(label, return_index=True)[1]
             verts = verts[first]
             inverse = label[inverse]
     return inverse.astype(np.int64), verts
@@ -373,12 +367,11 @@ def _pair_odd(odd: np.ndarray, verts: np.ndarray) -> np.ndarray:
     """Pair odd-degree vertices, nearest pairs first (greedy matching on a k-NN graph)."""
     if not len(odd):
         return np.zeros((0, 2), dtype=np.int64)
-    from scipy.spatial import cKDTree
-
     pts = verts[odd]
     k = min(len(odd), 9)
-    dist, nb = cKDTree(pts).query(pts, k=k)
-    dist, nb = np.asarray(dist).reshape(len(odd), k), np.asarray(nb).reshape(len(odd), k)
+    nb = nearest(pts, k)
+    gap = pts[nb] - pts[:, None, :]
+    dist = gap[..., 0] * gap[..., 0] + gap[..., 1] * gap[..., 1]  # squared: same order
     a = np.repeat(np.arange(len(odd)), k - 1)
     b = nb[:, 1:].reshape(-1)
     d = dist[:, 1:].reshape(-1)
@@ -577,11 +570,8 @@ def order_paths(
         can_flip &= ~np.asarray(closed, dtype=bool).reshape(n)
     tour, flip = nearest_tour(ports, can_flip, home)
     if improve and n > 1:
-        from scipy.spatial import cKDTree
-
         k = min(int(neighbours) + 1, 2 * n)
-        _, nb = cKDTree(ports).query(ports, k=k)
-        nb = np.ascontiguousarray(np.asarray(nb, dtype=np.int64).reshape(2 * n, k))
+        nb = np.ascontiguousarray(nearest(ports, k))
         span = float(np.ptp(ports, axis=0).max()) + float(np.abs(ports).max())
         eps = span * 1e-12
         two_opt(

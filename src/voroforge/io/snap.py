@@ -1,0 +1,183 @@
+"""Near points without a KD-tree: pairs within a tolerance, their clusters, k nearest.
+
+The writers snap vertices that rounding left a hair apart (:func:`close_pairs`,
+:func:`cluster_labels`) and order paths with a candidate list of near path ends
+(:func:`nearest`). These are small jobs; doing them with numpy keeps ``scipy.spatial`` and
+``scipy.sparse`` (about a quarter of a second to import) out of a design build. Large
+inputs of :func:`nearest` still go to scipy's ``cKDTree``, imported then.
+
+Examples
+--------
+>>> import numpy as np
+>>> pts = np.array([[0.0, 0.0], [1e-12, 0.0], [1.0, 0.0], [1.0, 1e-12]])
+>>> close_pairs(pts, 1e-9).tolist()
+[[0, 1], [2, 3]]
+>>> cluster_labels(4, close_pairs(pts, 1e-9)).tolist()
+[0, 0, 1, 1]
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["close_pairs", "cluster_labels", "nearest"]
+
+#: Grid cells per axis beyond which :func:`close_pairs` asks scipy (keys would overflow).
+_MAX_CELLS = 2**30
+#: Points up to which :func:`nearest` compares every pair (above: a KD-tree).
+NEAREST_BRUTE = 2048
+_BLOCK = 1 << 20  # distances per chunk
+
+
+def _check(points) -> np.ndarray:
+    pts = np.ascontiguousarray(points, dtype=np.float64)
+    if pts.ndim != 2 or pts.shape[1] != 2:
+        raise ValueError(f"points must have shape (n, 2), got {pts.shape}")
+    if not np.isfinite(pts).all():
+        raise ValueError("points contain NaN or infinite coordinates")
+    return pts
+
+
+def close_pairs(points, tol: float) -> np.ndarray:
+    """Every pair of points at distance ``<= tol``, as ``(i, j)`` rows with ``i < j``.
+
+    Parameters
+    ----------
+    points : (n, 2) float64
+    tol : float
+        Distance (>= 0; 0 gives no pairs).
+
+    Returns
+    -------
+    (p, 2) int64
+        Sorted by ``i`` then ``j``.
+
+    Notes
+    -----
+    The points are hashed into square cells of side ``tol`` (a little more, so rounding
+    cannot put two points within ``tol`` two cells apart); a pair within ``tol`` lies in one
+    cell or two neighbouring ones, so each point looks at its own cell and four of its
+    neighbours (the other four see it). Exact distances decide. When the extent is more
+    than 2**30 cells, scipy's ``cKDTree.query_pairs`` does it.
+    """
+    pts = _check(points)
+    tol = float(tol)
+    if not (math.isfinite(tol) and tol >= 0):
+        raise ValueError(f"tol must be a finite number >= 0, got {tol!r}")
+    n = len(pts)
+    if n < 2 or tol == 0:
+        return np.zeros((0, 2), dtype=np.int64)
+    lo = pts.min(axis=0)
+    cell = tol * (1.0 + 1e-5)
+    span = (pts.max(axis=0) - lo) / cell
+    if not (span.max() < _MAX_CELLS):
+        from scipy.spatial import cKDTree
+
+        pairs = cKDTree(pts).query_pairs(tol, output_type="ndarray").astype(np.int64)
+        pairs = np.sort(pairs, axis=1).reshape(-1, 2)
+        return pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]
+    k = np.floor((pts - lo) / cell).astype(np.int64) + 1  # >= 1: a row below stays apart
+    ny = int(k[:, 1].max()) + 2
+    key = k[:, 0] * ny + k[:, 1]
+    order = np.argsort(key, kind="stable")
+    skey = key[order]
+    found = []
+    for dx, dy in ((0, 0), (0, 1), (1, -1), (1, 0), (1, 1)):
+        q = key + (dx * ny + dy)
+        first = np.searchsorted(skey, q, side="left")
+        count = np.searchsorted(skey, q, side="right") - first
+        total = int(count.sum())
+        if not total:
+            continue
+        i = np.repeat(np.arange(n), count)
+        offset = np.arange(total) - np.repeat(np.cumsum(count) - count, count)
+        j = order[np.repeat(first, count) + offset]
+        if dx == 0 and dy == 0:
+            keep = i < j
+            i, j = i[keep], j[keep]
+        d = pts[i] - pts[j]
+        near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] <= tol * tol
+        found.append(np.stack((i[near], j[near]), axis=1))
+    if not found:
+        return np.zeros((0, 2), dtype=np.int64)
+    pairs = np.sort(np.concatenate(found), axis=1)
+    return pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]
+
+
+def cluster_labels(n: int, pairs) -> np.ndarray:
+    """Connected components of ``n`` points joined by ``pairs``.
+
+    Parameters
+    ----------
+    n : int
+        Number of points.
+    pairs : (p, 2) int array_like
+        Joined points.
+
+    Returns
+    -------
+    (n,) int64
+        Component of each point, numbered ``0, 1, ...`` in the order of each component's
+        lowest point (scipy's ``connected_components`` numbering for undirected graphs).
+    """
+    label = np.arange(n, dtype=np.int64)
+    pairs = np.asarray(pairs, dtype=np.int64).reshape(-1, 2)
+    if len(pairs):
+        a, b = pairs[:, 0], pairs[:, 1]
+        while True:  # each point takes the lowest label of its pairs, then jumps pointers
+            low = np.minimum(label[a], label[b])
+            new = label.copy()
+            np.minimum.at(new, a, low)
+            np.minimum.at(new, b, low)
+            new = new[new]
+            if np.array_equal(new, label):
+                break
+            label = new
+    return np.unique(label, return_inverse=True)[1].astype(np.int64)
+
+
+def nearest(points, k: int) -> np.ndarray:
+    """The ``k`` nearest points of each point (itself included), nearest first.
+
+    Parameters
+    ----------
+    points : (n, 2) float64
+    k : int
+        How many (1 <= k <= n).
+
+    Returns
+    -------
+    (n, k) int64
+        Indices. Up to NEAREST_BRUTE points every pair is compared and equal distances
+        come in increasing index (the k-th place among equal distances is numpy's
+        ``argpartition`` choice); beyond, scipy's ``cKDTree.query`` answers.
+    """
+    pts = _check(points)
+    n = len(pts)
+    k = int(k)
+    if not 1 <= k <= max(n, 1):
+        raise ValueError(f"k must be in [1, {n}], got {k}")
+    if n > NEAREST_BRUTE:
+        from scipy.spatial import cKDTree
+
+        _, nb = cKDTree(pts).query(pts, k=k)
+        return np.asarray(nb, dtype=np.int64).reshape(n, k)
+    out = np.zeros((n, k), dtype=np.int64)
+    step = max(1, _BLOCK // max(n, 1))
+    for s in range(0, n, step):
+        p = pts[s : s + step]
+        dx = p[:, 0, None] - pts[None, :, 0]
+        dy = p[:, 1, None] - pts[None, :, 1]
+        d2 = dx * dx + dy * dy
+        idx = (
+            np.argpartition(d2, k - 1, axis=1)[:, :k]
+            if k < n
+            else np.tile(np.arange(n), (len(p), 1))
+        )
+        near = np.take_along_axis(d2, idx, axis=1)
+        # nearest first; equal distances by increasing index
+        rank = np.lexsort((idx, near), axis=1)
+        out[s : s + step] = np.take_along_axis(idx, rank, axis=1)
+    return out
