@@ -44,6 +44,7 @@ CHILD = textwrap.dedent(
     workers = int(workers); tile_size = int(tile_size)
     me = psutil.Process()
     peak = [0]
+    cpu = {}  # pid -> last (user + system) seconds seen
     stop = threading.Event()
     def sample():
         while not stop.is_set():
@@ -51,36 +52,55 @@ CHILD = textwrap.dedent(
             for p in [me, *me.children(recursive=True)]:
                 try:
                     total += p.memory_info().rss
+                    c = p.cpu_times()
+                    cpu[p.pid] = c.user + c.system
                 except psutil.Error:
                     pass
             peak[0] = max(peak[0], total)
             time.sleep(0.2)
+    def cpu_now():
+        sample_once = {}
+        for p in [me, *me.children(recursive=True)]:
+            try:
+                c = p.cpu_times()
+                sample_once[p.pid] = c.user + c.system
+            except psutil.Error:
+                pass
+        return sample_once
     threading.Thread(target=sample, daemon=True).start()
     import voroforge as vf
     from voroforge.io.parquet import write_cells
     vf.voronoi(np.random.default_rng(0).random((100, 2)))  # kernels loaded, as in workers
     info = {}
     if what == "single":
+        write_cells(vf.voronoi(np.random.default_rng(0).random((100, 2))), out + ".warm")
+        c0 = cpu_now()
         t = time.perf_counter()
         pts = np.load(pts_path)
         bounds = (0.0, 0.0, 1.0, 1.0)
         d = vf.voronoi(pts, bounds)
         write_cells(d, out)
         info["seconds"] = time.perf_counter() - t
+        c1 = cpu_now()
+        info["cpu_driver"] = c1[me.pid] - c0[me.pid]
+        info["cpu_workers"] = 0.0
         info["tiles"] = 1
     else:
-        import logging
-        from distributed import Client, LocalCluster
+        from distributed import Client
         from voroforge import scale
-        with LocalCluster(n_workers=workers, threads_per_worker=1,
-                          silence_logs=logging.ERROR, dashboard_address=":0") as cl, \\
-             Client(cl) as c:
-            c.run(lambda: __import__("voroforge").voronoi(
-                __import__("numpy").random.default_rng(0).random((100, 2))))  # warm workers
+        with scale.local_cluster(workers, dashboard_address=":0") as cl, Client(cl) as c:
+            # warm: every kernel of a tile loaded in every worker, as in the one-process run
+            warm = np.random.default_rng(0).random((4000, 2))
+            scale.voronoi(warm, (0.0, 0.0, 1.0, 1.0), out=out + ".warm", client=c,
+                          tiles=2 * workers)
+            c0 = cpu_now()
             t = time.perf_counter()
             res = scale.voronoi(pts_path, (0.0, 0.0, 1.0, 1.0), out=out, client=c,
                                 tile_size=tile_size, overwrite=True)
             info["seconds"] = time.perf_counter() - t
+            c1 = cpu_now()
+            info["cpu_driver"] = c1[me.pid] - c0[me.pid]
+            info["cpu_workers"] = sum(v - c0.get(k, 0.0) for k, v in c1.items() if k != me.pid)
             info.update(tiles=res.tiles, uncertified=res.uncertified, retried=res.retried,
                         cells=res.cells)
             info["phases"] = res.phases
@@ -137,7 +157,8 @@ def main(argv=None) -> None:
             results[what] = run_child(what, pts_path, out, workers, args.tile_size, args.timeout)
             results[what]["wall"] = time.perf_counter() - t
             results[what]["workers"] = workers if what != "single" else 1
-            shutil.rmtree(out, ignore_errors=True) if out.is_dir() else out.unlink(missing_ok=True)
+            for p in (out, Path(f"{out}.warm")):
+                shutil.rmtree(p, ignore_errors=True) if p.is_dir() else p.unlink(missing_ok=True)
         single = results.get("single", {}).get("seconds")
         serial = results.get("serial", {}).get("seconds")
         rows = []
@@ -153,6 +174,8 @@ def main(argv=None) -> None:
                     f"{single / r['seconds']:.2f}" if single else "-",
                     f"{serial / r['seconds']:.2f}" if serial else "-",
                     f"{r['peak_rss'] / 2**30:.2f}",
+                    f"{r['cpu_driver']:.1f}",
+                    f"{r['cpu_workers']:.1f}",
                     r.get("uncertified", "-"),
                     r.get("retried", "-"),
                 ]
@@ -168,6 +191,8 @@ def main(argv=None) -> None:
                 "single/run",
                 "serial/run",
                 "peak GiB",
+                "cpu driver",
+                "cpu workers",
                 "uncertified",
                 "retried",
             ],

@@ -69,11 +69,10 @@ def _bar(done: int, total: int, width: int = 24) -> str:
 
 def run(args: argparse.Namespace, stage: Stage) -> list[Path]:
     """Run ``voroforge scale``; returns the output folder."""
-    import logging
-
-    from distributed import Client, LocalCluster
+    from distributed import Client
 
     from .. import io, scale
+    from ..scale.cluster import local_cluster
 
     if args.workers is not None and args.workers < 1:
         raise ValueError(f"--workers must be at least 1; got {args.workers}")
@@ -85,9 +84,7 @@ def run(args: argparse.Namespace, stage: Stage) -> list[Path]:
         cluster = None
         client = Client(args.scheduler)
     else:
-        cluster = LocalCluster(
-            n_workers=args.workers, threads_per_worker=1, silence_logs=logging.ERROR
-        )
+        cluster = local_cluster(args.workers)
         client = Client(cluster)
     try:
         print(f"dask dashboard: {client.dashboard_link}", file=sys.stderr)

@@ -268,8 +268,61 @@ def cell_wkb(buffers, cells=None):
     return data, offsets, bbox, area
 
 
+@njit(**NJIT)
+def _pairs_csr(a, b, n):  # pragma: no cover
+    """Symmetric CSR ``(indptr, values)`` of pairs: each row sorted, without repeats."""
+    start = np.zeros(n + 1, dtype=np.int64)
+    for k in range(len(a)):
+        start[a[k] + 1] += 1
+        start[b[k] + 1] += 1
+    for i in range(n):
+        start[i + 1] += start[i]
+    pos = start[:-1].copy()
+    raw = np.zeros(2 * len(a), dtype=np.int64)
+    for k in range(len(a)):
+        raw[pos[a[k]]] = b[k]
+        pos[a[k]] += 1
+        raw[pos[b[k]]] = a[k]
+        pos[b[k]] += 1
+    indptr = np.zeros(n + 1, dtype=np.int64)
+    out = 0
+    for i in range(n):
+        k0 = start[i]
+        k1 = start[i + 1]
+        if k1 - k0 > 16:
+            raw[k0:k1] = np.sort(raw[k0:k1])
+        else:  # the usual few neighbours: insertion sort
+            for j in range(k0 + 1, k1):
+                v = raw[j]
+                q = j
+                while q > k0 and raw[q - 1] > v:
+                    raw[q] = raw[q - 1]
+                    q -= 1
+                raw[q] = v
+        for j in range(k0, k1):
+            if j == k0 or raw[j] != raw[j - 1]:
+                raw[out] = raw[j]
+                out += 1
+        indptr[i + 1] = out
+    return indptr, raw[:out]
+
+
+@njit(**NJIT)
+def _csr_rows(indptr, values, rows):  # pragma: no cover
+    """The CSR rows ``rows`` of ``(indptr, values)``, in that order."""
+    offsets = np.zeros(len(rows) + 1, dtype=np.int64)
+    for i in range(len(rows)):
+        offsets[i + 1] = offsets[i] + indptr[rows[i] + 1] - indptr[rows[i]]
+    out = np.zeros(offsets[-1], dtype=np.int64)
+    for i in range(len(rows)):
+        k0 = indptr[rows[i]]
+        for j in range(offsets[i + 1] - offsets[i]):
+            out[offsets[i] + j] = values[k0 + j]
+    return offsets, out
+
+
 def neighbor_lists(pairs, n: int, cells=None, ids=None):
-    """Neighbour lists of ``cells`` from unique edge pairs, as CSR ``(offsets, values)``.
+    """Neighbour lists of ``cells`` from edge pairs, as CSR ``(offsets, values)``.
 
     Parameters
     ----------
@@ -289,26 +342,13 @@ def neighbor_lists(pairs, n: int, cells=None, ids=None):
     values : (·,) int64
         Sorted, distinct neighbours of each wanted cell.
     """
-    a = np.asarray(pairs[:, 0], dtype=np.int64)
-    b = np.asarray(pairs[:, 1], dtype=np.int64)
-    m = max(n, 1)
-    key = np.concatenate((a * m + b, b * m + a))
-    key.sort()  # a sort, not np.unique: numpy 2.4's hashing unique is far slower here
-    if len(key):
-        key = key[np.concatenate(([True], key[1:] != key[:-1]))]
-    src = key // m
-    dst = key % m
-    indptr = np.zeros(n + 1, dtype=np.int64)
-    np.cumsum(np.bincount(src, minlength=n), out=indptr[1:])
+    a = np.ascontiguousarray(pairs[:, 0], dtype=np.int64)
+    b = np.ascontiguousarray(pairs[:, 1], dtype=np.int64)
+    indptr, dst = _pairs_csr(a, b, n)
     if cells is None:
         offsets, values = indptr, dst
     else:
-        cells = np.asarray(cells, dtype=np.int64)
-        lengths = indptr[cells + 1] - indptr[cells]
-        offsets = np.zeros(len(cells) + 1, dtype=np.int64)
-        np.cumsum(lengths, out=offsets[1:])
-        take = np.repeat(indptr[cells] - offsets[:-1], lengths) + np.arange(offsets[-1])
-        values = dst[take]
+        offsets, values = _csr_rows(indptr, dst, np.ascontiguousarray(cells, dtype=np.int64))
     if ids is not None:
         values = np.asarray(ids, dtype=np.int64)[values]
     return offsets, values

@@ -18,8 +18,17 @@ Examples
 
 from __future__ import annotations
 
+from .cluster import local_cluster
 from .dataset import partitions, read
 from .job import ScaleResult, voronoi
 from .lloyd import ScaleRelaxation, lloyd
 
-__all__ = ["ScaleRelaxation", "ScaleResult", "lloyd", "partitions", "read", "voronoi"]
+__all__ = [
+    "ScaleRelaxation",
+    "ScaleResult",
+    "local_cluster",
+    "lloyd",
+    "partitions",
+    "read",
+    "voronoi",
+]

@@ -94,22 +94,16 @@ def _client_for(client, workers):
     if client is not None:
         yield client
         return
-    from distributed import Client, LocalCluster, default_client
+    from distributed import Client, default_client
+
+    from .cluster import local_cluster
 
     try:
         yield default_client()
         return
     except ValueError:
         pass
-    import logging
-
-    n = workers or max(1, os.cpu_count() or 1)
-    with (
-        LocalCluster(
-            n_workers=n, threads_per_worker=1, processes=True, silence_logs=logging.ERROR
-        ) as cluster,
-        Client(cluster) as fresh,
-    ):
+    with local_cluster(workers) as cluster, Client(cluster) as fresh:
         yield fresh
 
 

@@ -18,8 +18,9 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
-from ..config import SCALE_CERT_RTOL
+from ..config import NJIT, SCALE_CERT_RTOL
 
 __all__ = [
     "Piece",
@@ -105,16 +106,22 @@ def radii(d, xy):
     from ..engine.diagram import buffers
 
     coords, ring, poly, geom = buffers(d)
-    start = ring[poly[geom]]
-    count = np.diff(start)
-    r2 = np.zeros(len(xy))
-    full = np.flatnonzero(count)
-    if len(full):
-        owner = np.repeat(np.arange(len(xy)), count)
-        dx = coords[: start[-1], 0] - xy[owner, 0]
-        dy = coords[: start[-1], 1] - xy[owner, 1]
-        r2[full] = np.maximum.reduceat(dx * dx + dy * dy, start[full])
-    return np.sqrt(r2)
+    start = np.ascontiguousarray(ring[poly[geom]], dtype=np.int64)
+    return _farthest(np.ascontiguousarray(coords, dtype=np.float64), start, xy)
+
+
+@njit(**NJIT)
+def _farthest(coords, start, xy):  # pragma: no cover
+    """``max |coords[k] - xy[i]|`` over cell ``i``'s vertices ``start[i]:start[i + 1]``."""
+    r = np.zeros(len(start) - 1)
+    for i in range(len(start) - 1):
+        best = 0.0
+        for k in range(start[i], start[i + 1]):
+            dx = coords[k, 0] - xy[i, 0]
+            dy = coords[k, 1] - xy[i, 1]
+            best = max(best, dx * dx + dy * dy)
+        r[i] = np.sqrt(best)
+    return r
 
 
 def _certified(xy, r, loaded):

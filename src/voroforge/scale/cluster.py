@@ -1,0 +1,50 @@
+"""The LocalCluster a tiled job starts when it is given no client.
+
+One single-threaded worker process per core (a tile is one numba thread: processes, not
+threads, keep the tiles from sharing a GIL), with dask's per-process housekeeping slowed
+down: the workers' statistical profiler (a thread that takes the GIL every 10 ms to sample
+the stack) is off, and the event loops' health tick and the system monitor run less often.
+On a small machine these run on the same cores as the tiles. :func:`voroforge.scale.voronoi`,
+``voroforge scale`` and ``benchmarks/bench_scale.py`` use it; a cluster of your own keeps
+its settings.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+
+__all__ = ["CLUSTER_CONFIG", "local_cluster"]
+
+#: dask settings under which :func:`local_cluster` starts its scheduler and workers.
+CLUSTER_CONFIG = {
+    "distributed.worker.profile.enabled": False,
+    "distributed.admin.tick.interval": "500ms",
+    "distributed.admin.system-monitor.interval": "2s",
+}
+
+
+def local_cluster(workers: int | None = None, **kwargs):
+    """A ``distributed.LocalCluster`` of ``workers`` single-threaded processes.
+
+    Parameters
+    ----------
+    workers : int, optional
+        Worker processes (default: one per core).
+    **kwargs
+        Passed to ``LocalCluster`` (e.g. ``dashboard_address``, ``memory_limit``).
+
+    Returns
+    -------
+    distributed.LocalCluster
+        Close it (or use it as a context manager) when done.
+    """
+    import dask
+    from distributed import LocalCluster
+
+    if workers is not None and int(workers) < 1:
+        raise ValueError(f"workers must be at least 1; got {workers}")
+    n = int(workers) if workers is not None else max(1, os.cpu_count() or 1)
+    options = {"silence_logs": logging.ERROR, **kwargs}
+    with dask.config.set(CLUSTER_CONFIG):
+        return LocalCluster(n_workers=n, threads_per_worker=1, processes=True, **options)
