@@ -167,7 +167,7 @@ var VoroStudio = (function () {
     }
     if (msg.op === "violations") {
       this.violations = msg.list; this.violationCounts = msg.counts; this.violationsId = (this.violationsId || 0) + 1;
-      this.checkMs = msg.check_ms; this.violationTotal = msg.total;
+      this.checkMs = msg.check_ms; this.violationTotal = msg.total; this.violationSeq = msg.seq;
       this.drawLegend(); this.status(); this.invalidate();
       return;
     }
@@ -259,7 +259,8 @@ var VoroStudio = (function () {
       var self = this, drawn = performance.now(), recv = m.received || t0;
       requestAnimationFrame(function () {
         var now = performance.now(), ms = now - done.t0;
-        self.latencies.push({ op: done.op, ms: ms, compute_ms: h.compute_ms, server_ms: h.server_ms, wait_ms: h.wait_ms,
+        self.latencies.push({ op: done.op, ms: ms, drawn: drawn - done.t0, compute_ms: h.compute_ms,
+          server_ms: h.server_ms, wait_ms: h.wait_ms,
           encode_ms: h.encode_ms, bytes: m.bytes,
           draw_ms: drawn - t0, parse_ms: t1 - t0, paint_ms: drawn - t1, frame_ms: now - drawn,
           queue_ms: done.tsend - done.t0, wire_ms: recv - done.tsend - (h.server_ms || 0) - (h.encode_ms || 0),
