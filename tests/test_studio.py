@@ -332,6 +332,33 @@ def test_bad_values_keep_the_last_good_drawing_and_name_the_key(folder):
     assert s.result is good
 
 
+def test_dragging_an_attractor_point_or_a_curve_handle(folder):
+    curve = {
+        **HOLED,
+        "attractors": [
+            {"type": "curve", "points": [[10, 10], [150, 190], [290, 10]], "radius": 60},
+            {"type": "point", "points": [[250, 150]], "radius": 50},
+        ],
+        "cells": {"web": {"near": 1, "far": 4}},
+    }
+    s = Session(curve, folder=folder)
+    before = _wkb(s.result.cells)
+    r = s.apply({"op": "attractor", "a": 0, "p": 1, "x": 150.0, "y": 20.0, "begin": True})
+    assert r.kind == "update" and s.design.attractors[0].points[1] == (150.0, 20.0)
+    assert s.data["attractors"][0]["points"][0] == [10, 10]  # the other handles stay
+    moved = _wkb(s.result.cells)
+    assert moved != before
+    full = compute(s.design, s.folder, frame=False)
+    assert moved == _wkb(full.cells)  # the same as building the edited design
+    r = s.apply({"op": "attractor", "a": 1, "p": 0, "x": 20.0, "y": 20.0})
+    assert r.kind == "update" and s.design.attractors[1].points[0] == (20.0, 20.0)
+    for bad in ({"a": 2, "p": 0}, {"a": 0, "p": 3}, {"a": 0, "p": 0, "x": "far"}):
+        assert s.apply({"op": "attractor", "x": 1.0, "y": 1.0, **bad}).kind == "error"
+    s.apply({"op": "undo"})
+    s.apply({"op": "undo"})
+    assert _wkb(s.result.cells) == before
+
+
 def test_malformed_messages_never_raise(folder):
     s = Session(folder / "holed.toml")
     good = s.result
