@@ -78,32 +78,18 @@ def _wkb_pass(
             _put_u32(out, pos + 1, 6 if multi else 3)
             _put_u32(out, pos + 5, (g1 - g0) if multi else (poly[g1] - poly[g0]))
         pos += header
-        parts = _canonical_order(xy, ring, poly, g0, g1)
-        for p in parts:
-            if multi:
-                if fill:
-                    out[pos] = 1
-                    _put_u32(out, pos + 1, 3)
-                    _put_u32(out, pos + 5, poly[p + 1] - poly[p])
-                pos += 9
-            for r in _ring_order(xy, ring, poly, p):
-                k0 = ring[r]
-                k1 = ring[r + 1]
-                if fill:
-                    _put_u32(out, pos, k1 - k0)
-                pos += 4
-                if fill:
-                    # canonical start: the lowest (x, y) vertex, so a ring's bytes do not
-                    # depend on where the cell builder happened to start it
-                    m = _lowest(xy, k0, k1 - 1)
-                    span = k1 - 1 - k0
-                    for j in range(span + 1):
-                        k = k0 + (m - k0 + j) % span if span > 0 else k0
-                        _put_u64(out, pos, bits[k, 0])
-                        _put_u64(out, pos + 8, bits[k, 1])
-                        pos += 16
-                else:
-                    pos += 16 * (k1 - k0)
+        if g1 - g0 == 1 and poly[g0 + 1] - poly[g0] == 1:  # the usual cell: one ring
+            pos = _put_ring(xy, bits, ring, poly[g0], out, pos, fill)
+        else:
+            for p in _canonical_order(xy, ring, poly, g0, g1):
+                if multi:
+                    if fill:
+                        out[pos] = 1
+                        _put_u32(out, pos + 1, 3)
+                        _put_u32(out, pos + 5, poly[p + 1] - poly[p])
+                    pos += 9
+                for r in _ring_order(xy, ring, poly, p):
+                    pos = _put_ring(xy, bits, ring, r, out, pos, fill)
         if fill:
             if g1 == g0:
                 area[c] = 0.0
@@ -117,6 +103,28 @@ def _wkb_pass(
                     bbox[c, 2] = max(bbox[c, 2], xy[k, 0])
                     bbox[c, 3] = max(bbox[c, 3], xy[k, 1])
     offsets[len(cells)] = pos
+    return pos
+
+
+@njit(**NJIT)
+def _put_ring(xy, bits, ring, r, out, pos, fill):  # pragma: no cover
+    """Write ring ``r`` (count, then its closed vertices from the lowest); the new ``pos``."""
+    k0 = ring[r]
+    k1 = ring[r + 1]
+    if fill:
+        _put_u32(out, pos, k1 - k0)
+    pos += 4
+    if not fill:
+        return pos + 16 * (k1 - k0)
+    # canonical start: the lowest (x, y) vertex, so a ring's bytes do not depend on where
+    # the cell builder happened to start it
+    m = _lowest(xy, k0, k1 - 1)
+    span = k1 - 1 - k0
+    for j in range(span + 1):
+        k = k0 + (m - k0 + j) % span if span > 0 else k0
+        _put_u64(out, pos, bits[k, 0])
+        _put_u64(out, pos + 8, bits[k, 1])
+        pos += 16
     return pos
 
 
@@ -196,6 +204,11 @@ def _cell_area(xy, ring, poly, g0, g1):  # pragma: no cover
     if big == 0.0:
         return 0.0
     e = math.frexp(big)[1]
+    if g1 - g0 == 1 and poly[g0 + 1] - poly[g0] == 1:  # one ring: no ordering to do
+        k0 = ring[poly[g0]]
+        span = ring[poly[g0] + 1] - 1 - k0
+        total = abs(_ring_sum(xy, k0, span, ox, oy, e)) if span >= 3 else 0.0
+        return math.ldexp(0.5 * total, 2 * e)
     total = 0.0
     for p in _canonical_order(xy, ring, poly, g0, g1):
         for r in _ring_order(xy, ring, poly, p):
@@ -203,18 +216,28 @@ def _cell_area(xy, ring, poly, g0, g1):  # pragma: no cover
             span = ring[r + 1] - 1 - k0
             if span < 3:
                 continue
-            m = _lowest(xy, k0, k0 + span)
-            a = 0.0
-            for j in range(span):
-                u = k0 + (m - k0 + j) % span
-                v = k0 + (m - k0 + j + 1) % span
-                x0 = math.ldexp(xy[u, 0] - ox, -e)
-                y0 = math.ldexp(xy[u, 1] - oy, -e)
-                x1 = math.ldexp(xy[v, 0] - ox, -e)
-                y1 = math.ldexp(xy[v, 1] - oy, -e)
-                a += x0 * y1 - x1 * y0
+            a = _ring_sum(xy, k0, span, ox, oy, e)
             total += abs(a) if r == poly[p] else -abs(a)
     return math.ldexp(0.5 * total, 2 * e)
+
+
+@njit(**NJIT)
+def _ring_sum(xy, k0, span, ox, oy, e):  # pragma: no cover
+    """Twice the signed area of the ring ``xy[k0:k0 + span]`` (closed), from its lowest vertex.
+
+    Relative to ``(ox, oy)`` and scaled by ``2**-e`` (exact).
+    """
+    m = _lowest(xy, k0, k0 + span)
+    a = 0.0
+    for j in range(span):
+        u = k0 + (m - k0 + j) % span
+        v = k0 + (m - k0 + j + 1) % span
+        x0 = math.ldexp(xy[u, 0] - ox, -e)
+        y0 = math.ldexp(xy[u, 1] - oy, -e)
+        x1 = math.ldexp(xy[v, 0] - ox, -e)
+        y1 = math.ldexp(xy[v, 1] - oy, -e)
+        a += x0 * y1 - x1 * y0
+    return a
 
 
 @njit(**NJIT)
