@@ -441,7 +441,7 @@ def test_saved_file_builds_to_the_exported_bytes(folder):
     assert s.apply({"op": "set", "key": "cells.fillet", "value": 0.75}).kind == "update"
     r = s.apply({"op": "save", "name": "edited.toml"})
     assert r.kind == "saved" and r.files == ["edited.seeds.csv", "edited.toml"]
-    exported = {fmt: s.export(fmt) for fmt in ("svg", "dxf")}
+    exported = {fmt: s.export(fmt) for fmt in ("svg", "dxf", "png")}
     out = folder / "out"
     assert main(["build", str(folder / "edited.toml"), "-o", str(out)]) == 0
     for fmt, (name, raw) in exported.items():
