@@ -18,6 +18,7 @@ vertices; a failure pushes the ring out or merges the nodes, and tries again.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 from scipy.sparse import coo_matrix
@@ -25,6 +26,7 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import ConvexHull, QhullError
 
 from .. import config
+from .conflicts import conflicts
 
 __all__ = ["hull_lattice"]
 
@@ -104,7 +106,6 @@ class _Geo:
         )
         self.d_push = np.zeros(2 * self.E)  # ends pushed out by conflicts in their joint
         self.cache: dict = {}
-        self.clear: set = set()  # piece pairs already found apart (see _conflicts)
 
 
 def hull_lattice(nodes, edges, r_node, *, segments=8, sphere=1, node_scale=1.0):
@@ -239,41 +240,141 @@ def _place_rings(g, vs, ces):
     return out_dd, [bool(ok[s_]) or len(c) == 0 for s_, c in enumerate(ces)]
 
 
-def _node_piece(g, v, ce, dd, coarse=False):
-    """Node ``v``'s convex hull: its sphere and its external ends' rings ``ce`` at ``dd``.
+class _Piece(NamedTuple):
+    """A node's convex hull: its sphere points, then its external ends' rings (``k`` each)."""
 
-    Returns ``(pts, simp, on_ring, n_in, dd, eq, volume)`` or ``(None, failed_ends)``.
+    pts: np.ndarray
+    simp: np.ndarray  # outward triangles
+    on_ring: np.ndarray  # triangles of ring faces (removed: the prisms start there)
+    n_in: int  # sphere points
+    dd: np.ndarray  # ring distances of the external ends
+    eq: np.ndarray  # facet planes (outward unit normal, offset) per triangle
+    volume: float
+    R: float  # farthest point from the node
+    lo: np.ndarray  # bounding box
+    hi: np.ndarray
+
+
+_EMPTY = _Piece(
+    np.zeros((0, 3)), np.zeros((0, 3), np.int64), np.zeros(0, bool), 0, np.zeros(0),
+    np.zeros((0, 4)), 0.0, 0.0, np.zeros(3), np.zeros(3),
+)  # fmt: skip
+
+
+def _node_pieces(g, vs, ces, dds, coarse):
+    """Convex hulls of nodes ``vs``: each its sphere and its external ends' rings.
+
+    ``ces``/``dds``: per node its external ends and their ring distances; ``coarse``: per
+    node whether it takes the joint sphere. The points are made and the hulls checked for all
+    nodes at once; only Qhull runs per node. Returns per node a :class:`_Piece`, or
+    ``(None, failed_ends)`` when a ring did not come back as a face of the hull.
     """
     k = g.k
-    inner = g.nodes[v] + g.sphere_r[v] * (g.unit_joint if coarse else g.unit)
-    m = len(ce)
-    if m == 0 and not g.has_sphere:
-        return (np.zeros((0, 3)), np.zeros((0, 3), np.int64), None, 0, None, None, 0.0)
-    pts = inner
-    if m:
+    vs = np.asarray(vs, dtype=np.int64)
+    S = len(vs)
+    m = np.array([len(c) for c in ces], dtype=np.int64)
+    coarse = np.asarray(coarse, dtype=bool)
+    n_in = np.where(coarse, len(g.unit_joint), len(g.unit))
+    empty = (m == 0) & (not g.has_sphere)
+    n_in[empty] = 0
+    npts = n_in + m * k
+    start = np.concatenate([[0], np.cumsum(npts)])
+    pts = np.zeros((int(start[-1]), 3))
+    # sphere points
+    for unit, sel in ((g.unit_joint, coarse & ~empty), (g.unit, ~coarse & ~empty)):
+        w = np.flatnonzero(sel)
+        if len(w):
+            blk = start[w][:, None] + np.arange(len(unit))[None, :]
+            v = vs[w]
+            pts[blk] = g.nodes[v][:, None, :] + g.sphere_r[v][:, None, None] * unit[None]
+    # rings, in each node's end order
+    ce = np.concatenate([np.asarray(c, dtype=np.int64) for c in ces]) if S else np.zeros(0, int)
+    if len(ce):
+        dd = np.concatenate(dds)
+        owner = np.repeat(np.arange(S), m)
         ed = g.end_edge[ce]
-        offs = g.r_node[v] * (
-            g.cs[None, :, None] * g.p[ed][:, None, :] + g.sn[None, :, None] * g.q[ed][:, None, :]
+        v = vs[owner]
+        off = g.cs[None, :, None] * g.p[ed][:, None, :] + g.sn[None, :, None] * g.q[ed][:, None, :]
+        ring = (
+            g.nodes[v][:, None, :]
+            + dd[:, None, None] * g.end_dir[ce][:, None, :]
+            + g.r_node[v][:, None, None] * off
         )
-        rings = g.nodes[v] + dd[:, None, None] * g.end_dir[ce][:, None, :] + offs
-        pts = np.vstack([inner, rings.reshape(-1, 3)])
-    try:
-        hull = ConvexHull(pts)
-    except QhullError:
-        return (None, ce)
-    simp = _outward(hull, pts)
-    n_in = len(inner)
-    ring_of = np.full(len(pts), -1, dtype=np.int64)
-    ring_of[n_in:] = np.repeat(np.arange(m), k)
+        slot = np.arange(len(ce)) - np.repeat(np.cumsum(m) - m, m)  # end within its node
+        first = start[owner] + n_in[owner] + slot * k
+        rows = first[:, None] + np.arange(k)[None, :]
+        pts[rows] = ring
+    ring_of = np.full(len(pts), -1, dtype=np.int64)  # global end slot of each ring point
+    if len(ce):
+        ring_of[rows] = np.arange(len(ce))[:, None]
+    # Qhull per node: the only loop
+    simps, eqs, vols, tcount = [], [], np.zeros(S), np.zeros(S, dtype=np.int64)
+    qfail = np.zeros(S, dtype=bool)
+    for s_ in range(S):
+        if empty[s_]:
+            continue
+        try:
+            hull = ConvexHull(pts[start[s_] : start[s_ + 1]])
+        except QhullError:
+            qfail[s_] = True
+            continue
+        simps.append(hull.simplices + start[s_])
+        eqs.append(hull.equations)
+        vols[s_] = hull.volume
+        tcount[s_] = len(hull.simplices)
+    simp = np.vstack(simps).astype(np.int64) if simps else np.zeros((0, 3), np.int64)
+    eq = np.vstack(eqs) if eqs else np.zeros((0, 4))
+    tstart = np.concatenate([[0], np.cumsum(tcount)])
+    # outward orientation (Qhull's triangles come in either order)
+    tri = pts[simp]
+    nrm = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    flip = np.einsum("ij,ij->i", nrm, eq[:, :3]) < 0
+    simp[flip] = simp[flip][:, ::-1]
+    # each ring a face: exactly k - 2 triangles over its own points, every ring point used
     ro = ring_of[simp]
     on_ring = (ro[:, 0] >= 0) & (ro[:, 0] == ro[:, 1]) & (ro[:, 1] == ro[:, 2])
-    if m:
-        per_ring = np.bincount(ro[on_ring, 0], minlength=m)
-        used = np.zeros(len(pts), dtype=bool)
-        used[simp[~on_ring].ravel()] = True
-        if (per_ring != k - 2).any() or not used[n_in:].all():
-            return (None, ce)
-    return (pts, simp, on_ring, n_in, dd, hull.equations, float(hull.volume))
+    per_ring = np.bincount(ro[on_ring, 0], minlength=len(ce))
+    used = np.zeros(len(pts), dtype=bool)
+    used[simp[~on_ring].ravel()] = True
+    bad_end = per_ring != k - 2
+    if len(ce):
+        bad_end |= ~used[rows].all(axis=1)
+    bad = qfail.copy()
+    if len(ce):
+        bad |= np.bincount(owner, bad_end, minlength=S) > 0
+    # bounds per node (segments of pts; an empty node's segment borrows a neighbour's row)
+    cut = np.minimum(start[:-1], max(len(pts) - 1, 0))
+    if len(pts):
+        lo = np.minimum.reduceat(pts, cut)
+        hi = np.maximum.reduceat(pts, cut)
+        rad = np.sqrt(np.maximum.reduceat(((pts - g.nodes[np.repeat(vs, npts)]) ** 2).sum(1), cut))
+    simp_local = simp - np.repeat(start[:-1], tcount)[:, None]
+    out: list = []
+    e0 = 0
+    for s_ in range(S):
+        e1 = e0 + int(m[s_])
+        if bad[s_]:
+            out.append((None, ce[e0:e1]))
+        elif empty[s_]:
+            out.append(_EMPTY)
+        else:
+            t0, t1 = tstart[s_], tstart[s_ + 1]
+            out.append(
+                _Piece(
+                    pts[start[s_] : start[s_ + 1]],
+                    simp_local[t0:t1],
+                    on_ring[t0:t1],
+                    int(n_in[s_]),
+                    dds[s_],
+                    eq[t0:t1],
+                    float(vols[s_]),
+                    float(rad[s_]),
+                    lo[s_],
+                    hi[s_],
+                )  # fmt: skip
+            )
+        e0 = e1
+    return out
 
 
 def _assemble(g, label):
@@ -304,8 +405,18 @@ def _assemble(g, label):
     if todo:
         dds, oks = _place_rings(g, todo, [keys[v][1] for v in todo])
         for v, dd, ok in zip(todo, dds, oks, strict=True):
-            key, ce = keys[v]
-            g.cache[key] = _node_piece(g, v, ce, dd, key[1]) if ok else (None, dd)
+            if not ok:
+                g.cache[keys[v][0]] = (None, dd)
+        hv = [v for v, ok in zip(todo, oks, strict=True) if ok]
+        built = _node_pieces(
+            g,
+            hv,
+            [keys[v][1] for v in hv],
+            [dds[i] for i, ok in enumerate(oks) if ok],
+            [keys[v][0][1] for v in hv],
+        )
+        for v, pc in zip(hv, built, strict=True):
+            g.cache[keys[v][0]] = pc
     for v in range(g.V):
         key, ce = keys[v]
         out = g.cache[key]
@@ -314,10 +425,10 @@ def _assemble(g, label):
             continue
         pieces[v] = out
         if len(ce):
-            d[ce] = out[4]
+            d[ce] = out.dd
     if fail:
         return None, np.vstack(fail)
-    pairs, pushed = _conflicts(g, label, pieces, d)
+    pairs, pushed = conflicts(g, label, pieces, d)
     if len(pairs) or pushed:
         return None, pairs
     # joints of several nodes: manifold3d unions of their hulls and inner struts
@@ -328,7 +439,8 @@ def _assemble(g, label):
     hull_vol = 0.0
     ring_k = np.arange(k)
     for v in np.flatnonzero(cnt[label] == 1):
-        pts, simp, on_ring, n_in, _, _, vol = pieces[v]
+        pc = pieces[v]
+        pts, simp, on_ring, n_in, vol = pc.pts, pc.simp, pc.on_ring, pc.n_in, pc.volume
         ce = ext_sorted[ext_start[v] : ext_start[v + 1]]
         hull_vol += vol
         verts.append(pts)
@@ -343,23 +455,21 @@ def _assemble(g, label):
         ie_lab = label[a[inner_e]]
         io = np.argsort(ie_lab, kind="stable")
         ie_start = np.concatenate([[0], np.cumsum(np.bincount(ie_lab, minlength=len(cnt)))])
-        fail = []
-        for c in multi:
-            cn = members[start[c] : start[c + 1]]
-            ie = inner_e[io[ie_start[c] : ie_start[c + 1]]]
-            ce = np.concatenate([ext_sorted[ext_start[v] : ext_start[v + 1]] for v in cn])
-            out = _joint(g, cn, ie, ce, pieces)
-            if out[0] is None:
-                fail.append(edges[g.end_edge[out[1]]])
-                continue
-            jv, jf, jring, vol = out
-            hull_vol += vol
-            verts.append(jv)
-            faces.append(jf + base)
-            ring_idx[ce] = jring + base
-            base += len(jv)
-        if fail:
-            return None, np.vstack(fail)
+        groups = [
+            (members[start[c] : start[c + 1]], inner_e[io[ie_start[c] : ie_start[c + 1]]])
+            for c in multi
+        ]
+        cn_all = np.concatenate([cn for cn, _ in groups])
+        ce = np.concatenate([ext_sorted[ext_start[v] : ext_start[v + 1]] for v in cn_all])
+        out = _joints(g, groups, ce, pieces)
+        if out[0] is None:
+            return None, edges[g.end_edge[out[1]]]
+        jv, jf, jring, vol = out
+        hull_vol += vol
+        verts.append(jv)
+        faces.append(jf + base)
+        ring_idx[ce] = jring + base
+        base += len(jv)
     # struts: prisms between the two rings of each external edge
     ext_e = np.flatnonzero(ext_edge)
     ra = ring_idx[ext_e]
@@ -373,59 +483,57 @@ def _assemble(g, label):
     return all_v, all_f, hull_vol, d, len(multi)
 
 
-def _joint(g, cn, ie, ce, pieces):
-    """The union of a joint's node hulls and inner struts, ring faces removed.
+def _joints(g, groups, ce, pieces):
+    """The union of each joint's node hulls and inner struts, ring faces removed.
 
+    ``groups``: per joint its nodes and inner edges; ``ce``: the joints' external ends in the
+    order of their nodes. Each joint is one manifold3d batch union (one union of all joints
+    costs twice as much: it unions large composed meshes); pieces of different joints never
+    touch (the conflict pass), so their meshes are concatenated (manifold3d's ``compose``
+    costs a third of the unions) and checked at once.
     Returns ``(verts, faces, ring_index (len(ce), k), volume)``, or ``(None, bad_ends)``
-    when a ring face did not come through the union intact.
+    when a ring face did not come through its union intact.
     """
     import manifold3d as mf
 
     k = g.k
-    parts = []
-    rings = []
-    for v in cn:
-        pts, simp, _, n_in, _, _, _ = pieces[v]
-        if len(simp) == 0:
-            continue
-        used = np.unique(simp)
-        remap = np.full(len(pts), -1, dtype=np.int64)
-        remap[used] = np.arange(len(used))
-        mesh = mf.Mesh64(
-            vert_properties=np.ascontiguousarray(pts[used]),
-            tri_verts=np.ascontiguousarray(remap[simp], dtype=np.uint64),
-        )
-        parts.append(mf.Manifold(mesh))
-        if len(pts) > n_in:
-            rings.append(pts[n_in:].reshape(-1, k, 3))
-    nodes = g.nodes
-    for e in ie:
-        ea, eb = g.edges[e]
-        # an inner strut from inside one node's sphere to inside the other's (none where
-        # the spheres already cover it: fewer coincident faces for the union)
-        s0, s1 = 0.5 * g.sphere_r[ea], 0.5 * g.sphere_r[eb]
-        if g.length[e] <= s0 + s1:
-            continue
-        off = g.cs[:, None] * g.p[e][None, :] + g.sn[:, None] * g.q[e][None, :]
-        ring = np.vstack(
-            [
-                nodes[ea] + s0 * g.u[e] + g.r_node[ea] * off,
-                nodes[eb] - s1 * g.u[e] + g.r_node[eb] * off,
-            ]
-        )
-        parts.append(mf.Manifold.hull_points(ring))
-    union = mf.Manifold.batch_boolean(parts, mf.OpType.Add)
-    out = union.to_mesh64()
-    verts = np.asarray(out.vert_properties, dtype=np.float64)[:, :3]
-    tris = np.asarray(out.tri_verts, dtype=np.int64)
-    vol = float(union.volume())
+    # every joint node's hull as a compact mesh (its unused inner sphere points dropped), made
+    # for all nodes at once
+    cn_all = np.concatenate([cn for cn, _ in groups])
+    pcs = [pieces[v] for v in cn_all]
+    npts = np.array([len(pc.pts) for pc in pcs])
+    ntri = np.array([len(pc.simp) for pc in pcs])
+    p0 = np.concatenate([[0], np.cumsum(npts)])
+    P = np.vstack([pc.pts for pc in pcs])
+    T = np.vstack([pc.simp for pc in pcs]) + np.repeat(p0[:-1], ntri)[:, None]
+    used = np.zeros(len(P), dtype=bool)
+    used[T.ravel()] = True
+    newid = np.cumsum(used) - 1
+    c0 = np.concatenate([[0], np.cumsum(used)])[p0]  # compact start of each node
+    T = (newid[T] - np.repeat(c0[:-1], ntri)[:, None]).astype(np.uint64)
+    P = P[used]
+    t0 = np.concatenate([[0], np.cumsum(ntri)])
+    rings = np.vstack([pc.pts[pc.n_in :] for pc in pcs])
+    unions = []
+    vol = 0.0
+    at = 0
+    for cn, ie in groups:
+        parts = []
+        for x in range(at, at + len(cn)):
+            if ntri[x]:
+                mesh = mf.Mesh64(P[c0[x] : c0[x + 1]], T[t0[x] : t0[x + 1]])
+                parts.append(mf.Manifold(mesh))
+        at += len(cn)
+        parts.extend(_inner_struts(g, ie))
+        union = mf.Manifold.batch_boolean(parts, mf.OpType.Add)
+        out = union.to_mesh64()
+        unions.append((np.asarray(out.vert_properties)[:, :3], np.asarray(out.tri_verts)))
+        vol += union.volume()
+    nv = np.cumsum([0] + [len(v) for v, _ in unions])
+    verts = np.vstack([v for v, _ in unions]).astype(np.float64, copy=False)
+    tris = np.vstack([t.astype(np.int64) + o for (_, t), o in zip(unions, nv, strict=False)])
     # the rings' vertices must come back bit for bit, their faces as whole polygons
-    ring_pts = np.vstack(rings).reshape(-1, 3)
-    allv = np.vstack([verts, ring_pts])
-    _, first, inv = np.unique(allv, axis=0, return_index=True, return_inverse=True)
-    inv = inv.ravel()
-    ridx = first[inv[len(verts) :]]
-    ridx = np.where(ridx < len(verts), ridx, -1).reshape(-1, k)
+    ridx = _find_rows(verts, rings).reshape(-1, k)
     m = len(ce)
     bad = (ridx < 0).any(axis=1)
     owner = np.full(len(verts), -1, dtype=np.int64)
@@ -444,207 +552,37 @@ def _joint(g, cn, ie, ce, pieces):
     return verts, tris[~cap], ridx, vol
 
 
-def _seg_dist(p1, q1, p2, q2) -> np.ndarray:
-    """Distances between segments ``p1 q1`` and ``p2 q2`` (rows; points allowed)."""
-    d1, d2, r = q1 - p1, q2 - p2, p1 - p2
-    a = np.einsum("ij,ij->i", d1, d1)
-    e = np.einsum("ij,ij->i", d2, d2)
-    f = np.einsum("ij,ij->i", d2, r)
-    c = np.einsum("ij,ij->i", d1, r)
-    bb = np.einsum("ij,ij->i", d1, d2)
-    tiny = 1e-300
-    den = a * e - bb * bb
-    with np.errstate(divide="ignore", invalid="ignore"):
-        s = np.where(
-            den > 1e-14 * a * e, np.clip((bb * f - c * e) / np.maximum(den, tiny), 0, 1), 0.0
-        )
-        t = (bb * s + f) / np.maximum(e, tiny)
-        s = np.where(t < 0, np.clip(-c / np.maximum(a, tiny), 0, 1), s)
-        s = np.where(t > 1, np.clip((bb - c) / np.maximum(a, tiny), 0, 1), s)
-        t = np.clip(t, 0, 1)
-        # a point as the first segment: s = 0 and t the projection; as the second: t = 0
-        pt1, pt2 = a <= tiny, e <= tiny
-        s = np.where(pt1, 0.0, np.where(pt2, np.clip(-c / np.maximum(a, tiny), 0, 1), s))
-        t = np.where(pt2, 0.0, np.where(pt1, np.clip(f / np.maximum(e, tiny), 0, 1), t))
-    return np.linalg.norm(p1 + s[:, None] * d1 - p2 - t[:, None] * d2, axis=1)
+def _inner_struts(g, ie):
+    """Manifolds of the inner struts ``ie`` of joints.
 
-
-def _box_pairs(lo, hi) -> np.ndarray:
-    """Index pairs ``(i < j)`` of overlapping axis-aligned boxes (uniform-grid buckets)."""
-    n = len(lo)
-    ext = (hi - lo).max(axis=1)
-    cell = max(2.0 * float(np.median(ext)), 1e-300)
-    o = lo.min(axis=0)
-    c0 = np.floor((lo - o) / cell).astype(np.int64)
-    c1 = np.floor((hi - o) / cell).astype(np.int64)
-    nx = c1 - c0 + 1
-    cnt = nx.prod(axis=1)
-    owner = np.repeat(np.arange(n), cnt)
-    local = np.arange(int(cnt.sum())) - np.repeat(np.cumsum(cnt) - cnt, cnt)
-    nxo = nx[owner]
-    ix = c0[owner, 0] + local % nxo[:, 0]
-    iy = c0[owner, 1] + (local // nxo[:, 0]) % nxo[:, 1]
-    iz = c0[owner, 2] + local // (nxo[:, 0] * nxo[:, 1])
-    dim = c1.max(axis=0) + 1
-    key = (iz * dim[1] + iy) * dim[0] + ix
-    order = np.argsort(key, kind="stable")
-    key, owner = key[order], owner[order]
-    new = np.concatenate([[True], key[1:] != key[:-1]])
-    gid = np.cumsum(new) - 1
-    gend = np.flatnonzero(np.concatenate([new[1:], [True]])) + 1
-    m = gend[gid] - np.arange(len(key)) - 1
-    i = np.repeat(np.arange(len(key)), m)
-    j = i + 1 + (np.arange(int(m.sum())) - np.repeat(np.cumsum(m) - m, m))
-    pi, pj = owner[i], owner[j]
-    pi, pj = np.minimum(pi, pj), np.maximum(pi, pj)
-    keep = pi != pj
-    pk = np.unique(pi[keep] * n + pj[keep])
-    pi, pj = pk // n, pk % n
-    over = ((lo[pi] <= hi[pj]) & (lo[pj] <= hi[pi])).all(axis=1)
-    return np.stack([pi[over], pj[over]], axis=1)
-
-
-def _conflicts(g, label, pieces, d) -> np.ndarray:
-    """Node pairs that must share a joint: pieces of different joints that may touch.
-
-    The pieces are the node hulls, the strut prisms between the rings, and the inner struts
-    of joints. Candidates come from box overlaps; a pair is clear when a cheap sufficient test
-    separates it (capsule distances, bounding balls, a hull facet with the other piece
-    wholly outside). Legitimate contacts are exempt: a prism with its own two hulls (it
-    starts on their ring faces), prisms leaving one hull (extrusions of two faces of a convex
-    body), and the pieces of one joint (their union is taken).
+    Prisms from inside one node's sphere to inside the other's (none where the spheres
+    already cover the strut: fewer coincident faces for the union).
     """
-    E = g.E
-    a, b = g.edges[:, 0], g.edges[:, 1]
-    ext = label[a] != label[b]
-    r_min = float(g.r_node.min())
-    margin = 1e-3 * r_min
-    hv = np.array([v for v in range(g.V) if pieces[v] is not None and len(pieces[v][1])])
-    pe = np.flatnonzero(ext)
-    fe = np.flatnonzero(~ext)
-    h = g.length[pe] - d[pe] - d[pe + E]
-    too_short = h <= 0.01 * g.length[pe]
-    if too_short.any():
-        return g.edges[pe[too_short]], False
-    nh, npr = len(hv), len(pe)
-    kind = np.concatenate([np.zeros(nh, int), np.ones(npr, int), np.full(len(fe), 2)])
-    A = np.vstack([g.nodes[hv], g.nodes[a[pe]] + d[pe, None] * g.u[pe], g.nodes[a[fe]]])
-    B = np.vstack([g.nodes[hv], g.nodes[b[pe]] - d[pe + E, None] * g.u[pe], g.nodes[b[fe]]])
-    ee = np.concatenate([pe, fe])
-    rho_e = np.maximum(g.r_node[a[ee]], g.r_node[b[ee]])
-    R = np.array([np.linalg.norm(pieces[v][0] - g.nodes[v], axis=1).max() for v in hv])
-    rho = np.concatenate([R.reshape(-1), rho_e])
-    n1 = np.concatenate([hv, a[ee]]).astype(np.int64)
-    n2 = np.concatenate([hv, b[ee]]).astype(np.int64)
-    lo = np.minimum(A, B) - rho[:, None] - margin
-    hi = np.maximum(A, B) + rho[:, None] + margin
-    if nh:
-        hb = np.array([pieces[v][0].min(axis=0) for v in hv])
-        ht = np.array([pieces[v][0].max(axis=0) for v in hv])
-        lo[:nh], hi[:nh] = hb - margin, ht + margin
-    pairs = _box_pairs(lo, hi)
-    if len(pairs) == 0:
-        return np.zeros((0, 2), np.int64), False
-    i, j = pairs[:, 0], pairs[:, 1]  # i < j: kinds ordered hull < prism < inner strut
-    ki, kj = kind[i], kind[j]
-    share = (n1[i] == n1[j]) | (n1[i] == n2[j]) | (n2[i] == n1[j]) | (n2[i] == n2[j])
-    same_joint = (ki != 1) & (kj != 1) & (label[n1[i]] == label[n1[j]])
-    # a prism may touch what it shares a node with only when that is a hull or a prism leaving
-    # it (an inner strut at the same node is tested)
-    exempt = same_joint | (share & (ki != 2) & (kj != 2) & ((ki == 1) | (kj == 1)))
-    i, j, ki, kj = i[~exempt], j[~exempt], ki[~exempt], kj[~exempt]
-    dist = _seg_dist(A[i], B[i], A[j], B[j])
-    clear = dist > rho[i] + rho[j] + margin
-    # what the capsules do not clear: two convex polytopes, separated when a facet of one
-    # has all the other's vertices outside (a sufficient test, tight for these shapes)
-    memo: dict = {}
+    import manifold3d as mf
 
-    def sig(t):  # what a piece's polytope depends on (pairs found clear stay clear)
-        if t < nh:
-            return id(pieces[hv[t]])
-        if t < nh + npr:
-            e = pe[t - nh]
-            return (e, float(d[e]), float(d[e + E]))
-        return (fe[t - nh - npr],)
-
-    for t in np.flatnonzero(~clear):
-        key = (sig(i[t]), sig(j[t]))
-        if key in g.clear:
-            clear[t] = True
-            continue
-        vi, qi = _polytope(g, pieces, hv, pe, fe, d, i[t], memo)
-        vj, qj = _polytope(g, pieces, hv, pe, fe, d, j[t], memo)
-        if ((vj @ qi[:, :3].T + qi[:, 3]) > margin).all(axis=0).any():
-            clear[t] = True
-        elif ((vi @ qj[:, :3].T + qj[:, 3]) > margin).all(axis=0).any():
-            clear[t] = True
-        if clear[t]:
-            g.clear.add(key)
-    i, j = i[~clear], j[~clear]
-    # a prism that meets another piece of a joint it leaves: push its ring out past that
-    # piece (a ring face beyond which the piece lies wholly behind) if the strut is long
-    # enough; anything else joins the pieces' nodes into one joint
-    join = []
-    pushed = False
-    for x, y in zip(i.tolist(), j.tolist(), strict=True):
-        done = False
-        for s_, o_ in ((x, y), (y, x)):
-            if kind[s_] != 1:
-                continue
-            e = pe[s_ - nh]
-            for end, node in ((e, a[e]), (e + E, b[e])):
-                if label[node] not in (label[n1[o_]], label[n2[o_]]):
-                    continue
-                vo, _ = _polytope(g, pieces, hv, pe, fe, d, o_, memo)
-                reach = float(((vo - g.nodes[node]) @ g.end_dir[end]).max())
-                new = reach + 0.05 * g.r_node[node]
-                far = (end + E) % (2 * E)
-                if new <= g.length[e] - d[far] - 0.02 * g.length[e]:
-                    g.d_push[end] = max(g.d_push[end], new)
-                    pushed = done = True
-                    break
-            if done:
-                break
-        if not done:
-            join.append((n1[x], n1[y]))
-            join.append((n1[x], n2[x]))
-            join.append((n1[y], n2[y]))
-    return np.array(join, dtype=np.int64).reshape(-1, 2), pushed
+    ea, eb = g.edges[ie, 0], g.edges[ie, 1]
+    s0, s1 = 0.5 * g.sphere_r[ea], 0.5 * g.sphere_r[eb]
+    keep = g.length[ie] > s0 + s1
+    ie, ea, eb, s0, s1 = ie[keep], ea[keep], eb[keep], s0[keep], s1[keep]
+    off = g.cs[None, :, None] * g.p[ie][:, None, :] + g.sn[None, :, None] * g.q[ie][:, None, :]
+    u = g.u[ie][:, None, :]
+    r0 = g.nodes[ea][:, None, :] + s0[:, None, None] * u + g.r_node[ea][:, None, None] * off
+    r1 = g.nodes[eb][:, None, :] - s1[:, None, None] * u + g.r_node[eb][:, None, None] * off
+    return [mf.Manifold.hull_points(np.vstack([x, y])) for x, y in zip(r0, r1, strict=True)]
 
 
-def _polytope(g, pieces, hv, pe, fe, d, t, memo):
-    """Vertices and facet planes ``(n, offset)``, outward unit ``n``, of conflict piece ``t``."""
-    hit = memo.get(t)
-    if hit is not None:
-        return hit
-    memo[t] = out = _polytope_of(g, pieces, hv, pe, fe, d, t)
-    return out
-
-
-def _polytope_of(g, pieces, hv, pe, fe, d, t):
-    nh, npr = len(hv), len(pe)
-    if t < nh:
-        pc = pieces[hv[t]]
-        return pc[0], pc[5]
-    e = pe[t - nh] if t < nh + npr else fe[t - nh - npr]
-    ea, eb = g.edges[e]
-    u = g.u[e]
-    if t < nh + npr:
-        A, B = g.nodes[ea] + d[e] * u, g.nodes[eb] - d[e + g.E] * u
-    else:
-        A, B = g.nodes[ea], g.nodes[eb]
-    off = g.cs[:, None] * g.p[e][None, :] + g.sn[:, None] * g.q[e][None, :]
-    ra, rb = A + g.r_node[ea] * off, B + g.r_node[eb] * off
-    n = np.cross(np.roll(ra, -1, axis=0) - ra, rb - ra)
-    n /= np.linalg.norm(n, axis=1, keepdims=True)
-    n *= np.sign(np.einsum("ij,ij->i", n, ra - A))[:, None]
-    eq = np.vstack(
-        [
-            np.column_stack([n, -np.einsum("ij,ij->i", n, ra)]),
-            [[*(-u), u @ A], [*u, -(u @ B)]],
-        ]
-    )
-    return np.vstack([ra, rb]), eq
+def _find_rows(table, rows) -> np.ndarray:
+    """Index in ``table`` of each of ``rows`` found bit for bit (first match), else -1."""
+    allv = np.vstack([table, rows])
+    key = np.ascontiguousarray(allv).view(np.dtype((np.void, 24))).ravel()
+    order = np.argsort(key, kind="stable")
+    sk = key[order]
+    new = np.concatenate([[True], sk[1:] != sk[:-1]])
+    first = order[np.flatnonzero(new)][np.cumsum(new) - 1]  # first original index per group
+    hit = np.zeros(len(allv), dtype=np.int64)
+    hit[order] = first
+    out = hit[len(table) :]
+    return np.where(out < len(table), out, -1)
 
 
 def ring_area(k: int) -> float:
