@@ -6,6 +6,8 @@ import json
 
 import numpy as np
 import pytest
+import shapely
+import shapely.geometry
 
 from voroforge.cli import main
 from voroforge.io.readers import boundary_crs, read_point_table
@@ -98,3 +100,43 @@ def test_voronoi_cli_geoparquet_attributes_and_crs(tmp_path):
     assert df.crs.to_epsg() == 2056
     assert df["name"].tolist() == ["oak", "elm", "ash"]
     assert np.isclose(df["area"].sum(), 1.0)
+
+
+@pytest.mark.parametrize("relax", [0, 3])
+def test_design_file_seeds_keep_rows_columns_and_crs(tmp_path, relax):
+    from voroforge.design.build import build
+
+    pts = tmp_path / "trees.csv"
+    rows = ["x,y,name,area,cell", "0.1,0.1,oak,1,a", "0.5,0.5,elm,2,b", "9,9,far,3,c"]
+    rows += ["0.3,0.8,fir,4,d", "0.8,0.3,ash,5,e"]
+    pts.write_text("\n".join(rows) + "\n")
+    _boundary(tmp_path)
+    design = tmp_path / "d.toml"
+    design.write_text(
+        'boundary = { shape = "file", file = "bnd.geojson" }\n'
+        'seeds = { method = "file", file = "trees.csv" }\n'
+        f"relax = {{ iterations = {relax} }}\n"
+        'output = { formats = ["geojson"] }\n'
+    )
+    (gj,) = build(design, tmp_path / "out")
+    doc = json.loads(gj.read_text())
+    assert doc["crs"] == CRS  # the boundary file's
+    props = [f["properties"] for f in doc["features"]]
+    assert [p["index"] for p in props] == [0, 1, 2, 3, 4]  # one feature per row, in order
+    assert [p["name"] for p in props] == ["oak", "elm", "far", "fir", "ash"]
+    # columns named like computed properties are kept beside them
+    assert [p["input_area"] for p in props] == [1.0, 2.0, 3.0, 4.0, 5.0]
+    assert [p["input_cell"] for p in props] == ["a", "b", "c", "d", "e"]
+    assert [p["cell"] for p in props] == [0, 1, None, 2, 3]
+    far = doc["features"][2]
+    assert far["geometry"] is None and far["properties"]["site"] == [9.0, 9.0]
+    assert far["properties"]["area"] == 0.0 and far["properties"]["opening"] is None
+    cells = [shapely.geometry.shape(f["geometry"]) for f in doc["features"] if f["geometry"]]
+    assert sum(c.area for c in cells) == pytest.approx(1.0, rel=1e-9)
+    for f in doc["features"]:  # each row's cell holds that row's site (moved by relax)
+        if f["geometry"]:
+            cell = shapely.geometry.shape(f["geometry"]).buffer(1e-9)
+            assert cell.contains(shapely.Point(f["properties"]["site"]))
+    moved = [p["site"] for p in props if p["cell"] is not None]
+    original = [[0.1, 0.1], [0.5, 0.5], [0.3, 0.8], [0.8, 0.3]]
+    assert (moved == original) == (relax == 0)

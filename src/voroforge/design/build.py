@@ -142,7 +142,7 @@ def _source_crs(result: Result, base: Path | None):
 
     QGIS writes one for projected data; copying it keeps the output where the input was.
     """
-    import json
+    from ..io.readers.geojson import geojson_crs
 
     d = result.design
     files = [d.boundary.file if d.boundary.shape == "file" else None]
@@ -151,11 +151,11 @@ def _source_crs(result: Result, base: Path | None):
         if not name or Path(name).suffix.lower() not in (".geojson", ".json"):
             continue
         try:
-            data = json.loads(find_file(base, name, "").read_text(encoding="utf-8"))
+            crs = geojson_crs(find_file(base, name, ""))
         except (OSError, ValueError, DesignError):
             continue
-        if isinstance(data, dict) and isinstance(data.get("crs"), dict):
-            return data["crs"]
+        if crs is not None:
+            return crs
     return None
 
 
@@ -165,6 +165,11 @@ def _geojson(result: Result, path: Path, base: Path | None = None) -> Path:
     crs = _source_crs(result, base)
     what = result.design.output.geojson
     if what == "cells":
+        one_to_one = len(result.cells) == len(result.sites) and not result.design.voronoi.periodic
+        one_to_one = one_to_one and result.design.recursion.depth == 0
+        table = result.extra.get("seed_table")
+        if one_to_one and table is not None:
+            return _geojson_rows(result, table, path, crs)
         keep = ~shapely.is_empty(result.cells)
         geoms = result.cells[keep]
         props = {
@@ -173,21 +178,43 @@ def _geojson(result: Result, path: Path, base: Path | None = None) -> Path:
             "opening": result.mask[keep],
             "level": result.level[keep],
         }
-        sites = None
-        one_to_one = len(result.cells) == len(result.sites) and not result.design.voronoi.periodic
-        if one_to_one and result.design.recursion.depth == 0:
-            sites = result.sites[keep]
-            given = result.extra.get("site_properties")
-            if given is not None:  # carry the seed file's properties (names, ids) over
-                kept = [given[i] for i in np.flatnonzero(keep)]
-                for name in sorted({k for p in kept for k in p}):
-                    key = name if name not in (*props, "index", "area", "site") else f"site_{name}"
-                    props[key] = [p.get(name) for p in kept]
+        sites = result.sites[keep] if one_to_one else None
         return write_geojson(geoms, path, sites=sites, properties=props, crs=crs)
     geoms = _labels(result) if what == "labels" else products(result)[what]
     if what == "edges":
         geoms = list(shapely.get_parts(result.edges))
     return write_geojson(geoms, path, crs=crs)
+
+
+#: Properties the GeoJSON cells carry themselves; a seed-file column of that name is kept as
+#: ``input_<name>`` (as ``voroforge voronoi`` does).
+_COMPUTED = ("index", "site", "area", "cell", "field", "opening", "level")
+
+
+def _geojson_rows(result: Result, table, path: Path, crs) -> Path:
+    """One feature per row of the seed file, in file order, with every column of the row.
+
+    Feature ``i`` is row ``i`` (its ``index``): the cell of that row's site, or a ``null``
+    geometry for a row outside the boundary (or whose cell vanished), so the output joins
+    back to the input by row number.
+    """
+    from ..io.geojson import write_geojson
+
+    n = len(table.points)
+    geoms = np.full(n, shapely.Polygon(), dtype=object)
+    geoms[table.rows] = result.cells
+    sites = table.points.copy()
+    sites[table.rows] = result.sites  # moved by [relax]; rows outside keep their own point
+    cell = np.full(n, None, dtype=object)
+    cell[table.rows] = np.arange(len(table.rows))
+    props: dict = {"cell": cell}
+    for name, values in (("field", result.values), ("opening", result.mask)):
+        column = np.full(n, None, dtype=object)
+        column[table.rows] = values.tolist()
+        props[name] = column
+    for name, column in table.attributes.items():
+        props[f"input_{name}" if name in _COMPUTED else name] = column
+    return write_geojson(geoms, path, sites=sites, properties=props, crs=crs)
 
 
 def build(

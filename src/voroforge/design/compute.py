@@ -33,7 +33,7 @@ from .. import config
 from .designfile import DesignError, find_file
 from .schema import Design, Graded
 
-__all__ = ["MM_PER_UNIT", "Result", "Stage", "compute"]
+__all__ = ["MM_PER_UNIT", "Result", "SeedTable", "Stage", "compute"]
 
 #: Millimetres per design unit.
 MM_PER_UNIT = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}
@@ -71,7 +71,8 @@ class Result:
     frame : shapely geometry or None
         The boundary minus the openings (None from ``compute(..., frame=False)``).
     extra : dict
-        Recursion levels (``"levels"``) and cached derived data.
+        Recursion levels (``"levels"``), the seed file's rows (``"seed_table"``, a
+        :class:`SeedTable`, for ``seeds.method = "file"``) and cached derived data.
     diagram : Diagram or None
         The engine's diagram of ``sites`` (Voronoi, power or periodic); None with recursion,
         whose leaves come from one diagram per subdivided cell.
@@ -273,38 +274,36 @@ def _seeds(design: Design, domain, field_fn, base: Path | None) -> np.ndarray:
 
         with _section("seeds.file"):
             return image_seeds(find_file(base, s.file, "seeds.file"), domain, s.count, seed=seed)
+    return _file_seeds(design, domain, base)[0]
+
+
+@dataclass(frozen=True)
+class SeedTable:
+    """The rows of a ``seeds.method = "file"`` file, for outputs that join back to it.
+
+    Attributes
+    ----------
+    points : (r, 2) float64
+        Every row's point, in file order (row ``i`` of the file is ``points[i]``).
+    rows : (n,) int64
+        The file row of each site (the rows inside the boundary, in file order).
+    attributes : dict of name -> list
+        Every other CSV column or GeoJSON property, one value per file row.
+    """
+
+    points: np.ndarray
+    rows: np.ndarray
+    attributes: dict
+
+
+def _file_seeds(design: Design, domain, base: Path | None) -> tuple[np.ndarray, SeedTable]:
+    """The seed file's points inside the domain, and the whole file as a :class:`SeedTable`."""
+    from ..io.readers import read_point_table
+
     with _section("seeds.file"):
-        pts = populate.from_file(find_file(base, s.file, "seeds.file"))
-    inside = shapely.contains_xy(domain, pts[:, 0], pts[:, 1])
-    return pts[inside]
-
-
-def _site_properties(design: Design, domain, base: Path | None):
-    """Points and properties of a GeoJSON seed file, for the seeds kept (or None)."""
-    import json
-
-    s = design.seeds
-    if s.method != "file" or Path(s.file).suffix.lower() not in (".geojson", ".json"):
-        return None
-    data = json.loads(find_file(base, s.file, "seeds.file").read_text(encoding="utf-8"))
-    feats = data.get("features", []) if isinstance(data, dict) else []
-    xy, props = [], []
-    for f in feats:
-        geom = f.get("geometry") or {}
-        coords = geom.get("coordinates")
-        points = (
-            [coords]
-            if geom.get("type") == "Point"
-            else (coords if geom.get("type") == "MultiPoint" else [])
-        )
-        for c in points:
-            xy.append(c[:2])
-            props.append(dict(f.get("properties") or {}))
-    if not xy:
-        return None
-    xy = np.asarray(xy, dtype=np.float64)
-    inside = shapely.contains_xy(domain, xy[:, 0], xy[:, 1])
-    return xy[inside], [p for p, keep in zip(props, inside.tolist(), strict=True) if keep]
+        pts, attributes = read_point_table(find_file(base, design.seeds.file, "seeds.file"))
+    rows = np.flatnonzero(shapely.contains_xy(domain, pts[:, 0], pts[:, 1]))
+    return pts[rows], SeedTable(pts, rows, attributes)
 
 
 def _relax(design: Design, points: np.ndarray, domain) -> np.ndarray:
@@ -615,8 +614,11 @@ def compute(
     with _section("attractors"):
         field_fn = _field(design, base)
     stage("seeds")
+    extra: dict = {}
     with _section("seeds"):
-        if sites is None:
+        if sites is None and design.seeds.method == "file":  # rows kept for the outputs
+            points, extra["seed_table"] = _file_seeds(design, domain, base)
+        elif sites is None:
             points = _seeds(design, domain, field_fn, base)
         else:
             points = np.array(sites, dtype=np.float64)
@@ -625,11 +627,6 @@ def compute(
         points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
     if len(points) < 1:
         raise DesignError.at("seeds", "no seeds fall inside the boundary; need 1 or more")
-    extra: dict = {}
-    with _section("seeds.file"):
-        given = _site_properties(design, domain, base)
-    if given is not None and given[0].shape == points.shape and np.array_equal(given[0], points):
-        extra["site_properties"] = given[1]
     if sites is None:
         with _section("relax"):
             points = _relax(design, points, domain)
