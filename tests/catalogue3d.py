@@ -18,6 +18,22 @@ def _sphere(n, seed=3):
     return v / np.linalg.norm(v, axis=1)[:, None]
 
 
+def _sphere_exact(n, seed=3):
+    """``n`` points exactly on one sphere: integer solutions of x^2 + y^2 + z^2 = 693^2,
+    scaled by 2^-9 (exact), so every vertex at the centre is exactly co-spherical."""
+    r = 693
+    x, y = np.meshgrid(np.arange(-r, r + 1), np.arange(-r, r + 1), indexing="ij")
+    z2 = r * r - x * x - y * y
+    ok = z2 >= 0
+    z = np.sqrt(np.where(ok, z2, 0)).round().astype(np.int64)
+    ok &= z * z == z2
+    pts = np.column_stack([x[ok], y[ok], z[ok]])
+    pts = np.vstack([pts, pts * [1, 1, -1]])
+    pts = np.unique(pts, axis=0)
+    pick = np.random.default_rng(seed).choice(len(pts), n, replace=False)
+    return pts[pick] / 512.0
+
+
 def _bcc(k):
     g = _grid(k)
     return np.vstack([g, g[(g < k - 1).all(axis=1)] + 0.5])
@@ -34,13 +50,19 @@ def _fcc(k):
 _rng = np.random.default_rng(12)
 _rand = _rng.random((40, 3))
 
+#: inputs whose exact diagram has distinct vertices closer than 1e-9 of its size
+NEAR = {"sphere_rounded"}
+
 CATALOGUE3D = {
     "cubic_grid": (_grid(4), None),  # 8 co-spherical sites at every interior vertex
     "cubic_grid_tight": (_grid(3) + 0.5, (0, 0, 0, 3, 3, 3)),  # vertices on the walls
     "bcc": (_bcc(3), (-0.25, -0.25, -0.25, 2.25, 2.25, 2.25)),
     "fcc": (_fcc(2), None),
-    "sphere": (_sphere(30), (-1.5, -1.5, -1.5, 1.5, 1.5, 1.5)),
-    "sphere_centre": (np.vstack([_sphere(30), [[0, 0, 0]]]), (-1.5, -1.5, -1.5, 1.5, 1.5, 1.5)),
+    # exactly co-spherical (integer points of one sphere), with and without the centre
+    "sphere": (_sphere_exact(30), (-2, -2, -2, 2, 2, 2)),
+    "sphere_centre": (np.vstack([_sphere_exact(30), [[0, 0, 0]]]), (-2, -2, -2, 2, 2, 2)),
+    # rounded onto the unit sphere: distinct vertices ~1e-16 apart near the centre (NEAR)
+    "sphere_rounded": (_sphere(30), (-1.5, -1.5, -1.5, 1.5, 1.5, 1.5)),
     "coplanar": (np.column_stack([_rand[:, :2], np.zeros(40)]), None),
     "collinear": (np.column_stack([np.linspace(0, 1, 7), np.zeros(7), np.zeros(7)]), None),
     "duplicates": (np.vstack([_rand[:20], _rand[:5], _rand[3:4]]), (0, 0, 0, 1, 1, 1)),

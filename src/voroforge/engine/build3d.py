@@ -58,7 +58,7 @@ def bucket_keys3d(P: np.ndarray, g: np.ndarray) -> np.ndarray:
     return (idx[:, 2] * n[1] + idx[:, 1]) * n[0] + idx[:, 0]
 
 
-def _csr_take(lens: np.ndarray, take: np.ndarray) -> np.ndarray:
+def csr_take(lens: np.ndarray, take: np.ndarray) -> np.ndarray:
     """Element indices of the runs ``take`` of a run-length layout ``lens``, in that order."""
     off = np.concatenate([[0], np.cumsum(lens)])
     ln = lens[take]
@@ -82,16 +82,24 @@ def search_order(g: np.ndarray, radius: int) -> np.ndarray:
     return np.ascontiguousarray(out[np.argsort(lb, kind="stable")])
 
 
-#: per-cell output slots (vertices, faces, ring entries; a cell past them runs again alone,
-#: copying every packed array; 1e5 uniform cells reach 64 vertices), scratch (vertices, faces, ring
-#: entries) and the most edges at a vertex of the cell's graph (kernels/cells3d.build_cells)
+#: per-cell output slots (vertices, faces, ring entries; a cell past them runs again alone;
+#: 1e5 uniform cells reach 64 vertices), scratch (vertices, faces, ring entries) and the most
+#: edges at a vertex of the cell's graph (kernels/cells3d.build_cells)
 CAPS = (96, 48, 320, 1024, 512, 4096, 24)
 BIG_CAPS_FACTOR = 16
+#: the vertex table's largest load before it doubles
+TABLE_LOAD = 0.7
 
 
 @dataclass
 class Cells3D:
-    """Per-cell results in kernel numbering (``cells`` are the site numbers built)."""
+    """Per-cell results of :func:`build_cells3d`.
+
+    Per-cell arrays (``status``, ``volume``, ``centroid``, ``rad2``) follow ``cells`` (the
+    caller's order); the face table is in *build* order: cell ``cells[c]``'s faces are
+    ``cell_faces[pos[c]]:cell_faces[pos[c] + 1]``, face ``f``'s ring
+    ``ring[roff[f]:roff[f + 1]]`` (global vertex numbers, outward).
+    """
 
     cells: np.ndarray  # (k,) site numbers
     status: np.ndarray  # (k,)
@@ -99,10 +107,10 @@ class Cells3D:
     centroid: np.ndarray
     rad2: np.ndarray
     vertices: np.ndarray  # (V, 3)
-    foff: np.ndarray  # (k + 1,) per-cell faces
-    flabel: np.ndarray  # (Fc,) kernel keys: site >= 0, wall -1 - w
-    farea: np.ndarray  # (Fc, 3) area vectors (outward of the cell)
-    roff: np.ndarray  # (Fc + 1,) rings
+    pos: np.ndarray  # (k,) build position of each cell
+    cell_faces: np.ndarray  # (k + 1,) face offsets, build order
+    flabel: np.ndarray  # (Fc,) int32 kernel keys: site >= 0, wall -1 - w
+    roff: np.ndarray  # (Fc + 1,) ring offsets
     ring: np.ndarray  # (R,) global vertex ids
     unmatched: int
 
@@ -111,16 +119,15 @@ def _slots(k, caps):
     """Fixed per-cell output slots for ``k`` cells (reused from chunk to chunk)."""
     cv, cf, cr = caps[:3]
     return (
-        np.zeros((k * cv, 4), np.int64),
+        np.zeros(k * cv, np.uint8),
         np.zeros((k * cv, 3)),
-        np.zeros((k * cf, 2), np.int64),
-        np.zeros((k * cf, 3)),
-        np.zeros(k * cr, np.int64),
+        np.zeros((k * cf, 2), np.int32),
+        np.zeros(k * cr, np.int32),
     )
 
 
 def _run(cells, P, W, start, SP, sidx, g, order, t, caps, pool, slots=None):
-    """Build ``cells`` into fixed per-cell slots (threads on slices), then pack the slots."""
+    """Build ``cells`` into fixed per-cell slots (threads on slices of the cells)."""
     k = len(cells)
     cv, cf, cr = caps[:3]
     status = np.zeros(k, np.int64)
@@ -128,7 +135,7 @@ def _run(cells, P, W, start, SP, sidx, g, order, t, caps, pool, slots=None):
     vol = np.zeros(k)
     cen = np.zeros((k, 3))
     rad2 = np.zeros(k)
-    onames, ovabs, ofaces, oarea, oring = _slots(k, caps) if slots is None else slots
+    osite, ovabs, ofaces, oring = _slots(k, caps) if slots is None else slots
     capa = np.array(caps, np.int64)
 
     def part(a, b):
@@ -152,10 +159,9 @@ def _run(cells, P, W, start, SP, sidx, g, order, t, caps, pool, slots=None):
             vol[a:b],
             cen[a:b],
             rad2[a:b],
-            onames[a * cv : b * cv],
+            osite[a * cv : b * cv],
             ovabs[a * cv : b * cv],
             ofaces[a * cf : b * cf],
-            oarea[a * cf : b * cf],
             oring[a * cr : b * cr],
         )
 
@@ -167,186 +173,293 @@ def _run(cells, P, W, start, SP, sidx, g, order, t, caps, pool, slots=None):
         # chunk made two threads slower than one, 12.1 s against 7.6 s on 1e5 cells)
         bounds = np.linspace(0, k, 8 * nth + 1).astype(int)
         list(pool.map(part, bounds[:-1], bounds[1:]))
-    tot = counts.sum(axis=0)
-    names = np.zeros((tot[0], 4), np.int64)
-    vabs = np.zeros((tot[0], 3))
-    faces = np.zeros((tot[1], 2), np.int64)
-    area = np.zeros((tot[1], 3))
-    ring = np.zeros(tot[2], np.int64)
-    _pack(counts, capa, onames, ovabs, ofaces, oarea, oring, names, vabs, faces, area, ring)
-    return dict(
-        status=status,
-        counts=counts,
-        vol=vol,
-        cen=cen,
-        rad2=rad2,
-        names=names,
-        vabs=vabs,
-        faces=faces,
-        area=area,
-        ring=ring,
-    )
+    return status, counts, vol, cen, rad2, (osite, ovabs, ofaces, oring), capa
 
 
 @njit(**NJIT)
-def _pack(counts, caps, onames, ovabs, ofaces, oarea, oring, names, vabs, faces, area, ring):
-    """Copy the used part of every cell's slots into the packed arrays, cell after cell."""
-    cv, cf, cr = caps[0], caps[1], caps[2]
-    v = 0
-    f = 0
-    r = 0
-    for c in range(counts.shape[0]):
-        for q in range(counts[c, 0]):
-            for a in range(4):
-                names[v, a] = onames[c * cv + q, a]
-            for a in range(3):
-                vabs[v, a] = ovabs[c * cv + q, a]
-            v += 1
-        for q in range(counts[c, 1]):
-            faces[f, 0] = ofaces[c * cf + q, 0]
-            faces[f, 1] = ofaces[c * cf + q, 1]
-            for a in range(3):
-                area[f, a] = oarea[c * cf + q, a]
-            f += 1
-        for q in range(counts[c, 2]):
-            ring[r] = oring[c * cr + q]
-            r += 1
+def _hash3(bits, r, mask):
+    """Slot of the vertex whose coordinates' bits are ``bits[r]`` in a table of ``mask + 1``."""
+    h = np.uint64(0x9E3779B97F4A7C15)
+    for q in range(3):
+        h ^= np.uint64(bits[r, q])
+        h *= np.uint64(0xBF58476D1CE4E5B9)
+        h ^= h >> np.uint64(31)
+    return np.int64(h & np.uint64(mask))
 
 
 @njit(**NJIT)
-def _in_order(back, counts, faces, area, ring, gid, flabel, farea, flen, gring):
-    """Faces of the cells in the caller's order (``back[c]``: where cell ``c`` was built).
+def _join(c0, status, counts, caps, osite, ovabs, vbits, ofaces, oring, out, table, refs, want, gl):
+    """Append the cells ``c0, c0 + 1, ...`` of a chunk to the outputs; vertices by coordinates.
 
-    Rings come out in global vertex ids (``gid`` of the cell's vertex records).
+    ``out = (verts, flabel, roff, ring, sizes)`` with ``sizes = [nvert, nface, nring]``: each
+    vertex record is looked up in ``table`` (open addressing on its coordinates' bits; the
+    slots hold vertex numbers, -1 free) and appended when new. Stops before a cell that
+    does not fit (an output or the table is full: returns its number and 1) or that
+    overflowed its slots (2); returns ``(k, 0)`` when done.
     """
+    verts, flabel, roff, ring, sizes = out
+    cv, cf, cr = caps[0], caps[1], caps[2]
+    mask = table.shape[0] - 1
+    nvert = sizes[0]
+    nface = sizes[1]
+    nring = sizes[2]
     k = counts.shape[0]
-    voff = np.zeros(k + 1, np.int64)
-    foff = np.zeros(k + 1, np.int64)
-    roff = np.zeros(k + 1, np.int64)
-    for c in range(k):
-        voff[c + 1] = voff[c] + counts[c, 0]
-        foff[c + 1] = foff[c] + counts[c, 1]
-        roff[c + 1] = roff[c] + counts[c, 2]
-    f2 = 0
-    r2 = 0
-    for c in range(k):
-        s = back[c]
-        r = roff[s]
-        for f in range(foff[s], foff[s + 1]):
-            flabel[f2] = faces[f, 0]
-            ln = faces[f, 1]
-            flen[f2] = ln
-            for a in range(3):
-                farea[f2, a] = area[f, a]
-            for _ in range(ln):
-                gring[r2] = gid[voff[s] + ring[r]]
-                r += 1
-                r2 += 1
-            f2 += 1
+    for c in range(c0, k):
+        if status[c] == OVERFLOW:
+            sizes[0] = nvert
+            sizes[1] = nface
+            sizes[2] = nring
+            return c, 2
+        nv = counts[c, 0]
+        nf = counts[c, 1]
+        nr = counts[c, 2]
+        if (
+            nvert + nv > verts.shape[0]
+            or (nvert + nv) > TABLE_LOAD * table.shape[0]
+            or nface + nf > flabel.shape[0]
+            or nring + nr > ring.shape[0]
+        ):
+            sizes[0] = nvert
+            sizes[1] = nface
+            sizes[2] = nring
+            return c, 1
+        for v in range(nv):
+            r = c * cv + v
+            h = _hash3(vbits, r, mask)
+            while True:
+                gv = table[h]
+                if gv < 0:
+                    table[h] = nvert
+                    verts[nvert, 0] = ovabs[r, 0]
+                    verts[nvert, 1] = ovabs[r, 1]
+                    verts[nvert, 2] = ovabs[r, 2]
+                    refs[nvert] = 1
+                    want[nvert] = osite[r]
+                    gl[v] = nvert
+                    nvert += 1
+                    break
+                if (
+                    verts[gv, 0] == ovabs[r, 0]
+                    and verts[gv, 1] == ovabs[r, 1]
+                    and verts[gv, 2] == ovabs[r, 2]
+                ):
+                    if refs[gv] < 255:
+                        refs[gv] += 1
+                    gl[v] = gv
+                    break
+                h = (h + 1) & mask
+        for f in range(nf):
+            flabel[nface] = ofaces[c * cf + f, 0]
+            roff[nface + 1] = roff[nface] + ofaces[c * cf + f, 1]
+            nface += 1
+        for q in range(nr):
+            ring[nring] = gl[oring[c * cr + q]]
+            nring += 1
+    sizes[0] = nvert
+    sizes[1] = nface
+    sizes[2] = nring
+    return k, 0
+
+
+@njit(**NJIT)
+def _rehash(verts, nvert, table):
+    """Fill an empty (all -1) ``table`` with vertices ``0:nvert``."""
+    mask = table.shape[0] - 1
+    bits = verts.view(np.int64)
+    for g in range(nvert):
+        h = _hash3(bits, g, mask)
+        while table[h] >= 0:
+            h = (h + 1) & mask
+        table[h] = g
+
+
+class _Out:
+    """The growing outputs of the join (numpy arrays, resized in place)."""
+
+    def __init__(self, k):
+        # typical sizes per uniform cell: 6.8 vertices, 15.5 faces, 81 ring entries
+        self.verts = np.zeros((max(16, 7 * k), 3))
+        self.refs = np.zeros(len(self.verts), np.uint8)
+        self.want = np.zeros(len(self.verts), np.uint8)
+        self.flabel = np.zeros(max(16, 16 * k), np.int32)
+        self.roff = np.zeros(len(self.flabel) + 1, _itype(84 * k))
+        self.ring = np.zeros(max(64, 84 * k), _itype(7 * k))
+        self.sizes = np.zeros(3, np.int64)
+        self.table = np.full(_table_size(len(self.verts)), -1, self.ring.dtype)
+
+    def tuple(self):
+        return (self.verts, self.flabel, self.roff, self.ring, self.sizes)
+
+    def grow(self, nv, nf, nr):
+        """Room for ``nv`` vertices, ``nf`` faces and ``nr`` ring entries more (by half)."""
+        nvert, nface, nring = (int(x) for x in self.sizes)
+        if nvert + nv > len(self.verts):
+            m = int(1.5 * len(self.verts)) + nv
+            self.verts.resize((m, 3), refcheck=False)
+            self.refs.resize(m, refcheck=False)
+            self.want.resize(m, refcheck=False)
+        if nvert + nv > TABLE_LOAD * len(self.table):
+            size = _table_size(int(1.5 * (nvert + nv)))
+            if self.ring.dtype == np.int32 and size > 2**31 - 1:
+                self.ring = self.ring.astype(np.int64)
+            self.table = np.full(size, -1, self.ring.dtype)
+            _rehash(self.verts, nvert, self.table)
+        if nface + nf > len(self.flabel):
+            m = int(1.5 * len(self.flabel)) + nf
+            self.flabel.resize(m, refcheck=False)
+            self.roff.resize(m + 1, refcheck=False)
+        if nring + nr > len(self.ring):
+            m = int(1.5 * len(self.ring)) + nr
+            if self.roff.dtype == np.int32 and m > 2**31 - 1:
+                self.roff = self.roff.astype(np.int64)
+            self.ring.resize(m, refcheck=False)
+
+    def add(self, status, counts, slots, caps):
+        """Join one chunk's cells; returns those that overflowed their slots."""
+        osite, ovabs, ofaces, oring = slots
+        gl = np.zeros(int(caps[0]), self.ring.dtype)
+        c = 0
+        over = []
+        while c < len(counts):
+            c, why = _join(
+                c,
+                status,
+                counts,
+                caps,
+                osite,
+                ovabs,
+                ovabs.view(np.int64),
+                ofaces,
+                oring,
+                self.tuple(),
+                self.table,
+                self.refs,
+                self.want,
+                gl,
+            )
+            if why == 1:
+                self.grow(*(int(x) for x in counts[c]))
+            elif why == 2:
+                over.append(c)
+                c += 1
+        return over
+
+    def finish(self):
+        """Trim every output to its size (in place); returns the arrays and the unmatched."""
+        nvert, nface, nring = (int(x) for x in self.sizes)
+        self.table = None
+        unmatched = int(np.count_nonzero(self.refs[:nvert] < self.want[:nvert]))
+        self.refs = self.want = None
+        self.verts.resize((nvert, 3), refcheck=False)
+        self.flabel.resize(nface, refcheck=False)
+        self.roff.resize(nface + 1, refcheck=False)
+        self.ring.resize(nring, refcheck=False)
+        return self.verts, self.flabel, self.roff, self.ring, unmatched
+
+
+def _itype(most):
+    """int32 for indices up to ``most`` (with room), else int64."""
+    return np.int32 if most < 2**30 else np.int64
+
+
+def _table_size(nvert):
+    return 1 << int(np.ceil(np.log2(max(nvert, 8) / TABLE_LOAD)))
 
 
 def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
-    """Cells of sites ``cells`` (default all) of ``P (ns, 3)``, weights ``W``, template ``t``."""
+    """Cells of sites ``cells`` (default all) of ``P (ns, 3)``, weights ``W``, template ``t``.
+
+    Chunks of cells are built in bucket order into per-cell slots (threads), and each chunk
+    is joined at once into the growing outputs (:func:`_join`); a cell that overflowed its
+    slots is built again alone with big slots and joined in its place.
+    """
     import numba
 
     ns = len(P)
     cells = np.arange(ns) if cells is None else np.asarray(cells, np.int64)
-    if len(cells) == 0:
+    k = len(cells)
+    if k == 0:
         return _empty(cells)
     g = grid3d_shape(P, PER_BUCKET)
     start, SP, sidx = bucket_sort3d(P, g)
     order = search_order(g, SEARCH_RADIUS)
     # cells are built in bucket order (neighbouring cells read the same sites: 1.5x less
-    # time than input order on 1e5 uniform sites); faces go back to the caller's order below
+    # time than input order on 1e5 uniform sites); the face table stays in that order
     sort = np.argsort(bucket_keys3d(P[cells], g), kind="stable")
     built = cells[sort]
-    parts = []
-    with serial_below(len(cells)):
+    status = np.zeros(k, np.int64)
+    vol = np.zeros(k)
+    cen = np.zeros((k, 3))
+    rad2 = np.zeros(k)
+    nfaces = np.zeros(k, np.int64)
+    out = _Out(k)
+    with serial_below(k):
         nth = numba.get_num_threads()
         pool = None
-        if nth > 1 and len(cells) >= 128:
+        if nth > 1 and k >= 128:
             from concurrent.futures import ThreadPoolExecutor
 
             pool = ThreadPoolExecutor(nth)
-        slots = _slots(min(CHUNK, len(cells)), CAPS)
+        slots = _slots(min(CHUNK, k), CAPS)
         try:
-            for c0 in range(0, len(cells), CHUNK):
+            for c0 in range(0, k, CHUNK):
                 chunk = built[c0 : c0 + CHUNK]
-                parts.append(_run(chunk, P, W, start, SP, sidx, g, order, t, CAPS, pool, slots))
+                st, counts, v, c, r2, sl, capa = _run(
+                    chunk, P, W, start, SP, sidx, g, order, t, CAPS, pool, slots
+                )
+                over = out.add(st, counts, sl, capa)
+                for q in over:  # cells past their slots: alone, with big slots, in order
+                    st[q], counts[q], v[q], c[q], r2[q] = _big(
+                        chunk[q], P, W, start, SP, sidx, g, order, t, out
+                    )
+                sl_ = slice(c0, c0 + len(chunk))
+                status[sl_], vol[sl_], cen[sl_], rad2[sl_] = st, v, c, r2
+                nfaces[sl_] = counts[:, 1]
                 if progress is not None:
-                    progress(min(c0 + CHUNK, len(cells)), len(cells))
+                    progress(min(c0 + CHUNK, k), k)
         finally:
             if pool is not None:
                 pool.shutdown()
     del slots
-    out = {}
-    for key in list(parts[0]):  # one array at a time, freeing the parts as it goes
-        out[key] = np.concatenate([p.pop(key) for p in parts])
-    del parts
-    status = out["status"]
-    counts = out["counts"]
-    # cells that did not fit: alone, with big slots
-    over = np.flatnonzero(status == OVERFLOW)
-    extra = {}
-    factor = BIG_CAPS_FACTOR
-    while len(over):
-        caps = tuple(c * factor for c in CAPS[:6]) + CAPS[6:]
-        for c in over:
-            extra[int(c)] = _run(built[c : c + 1], P, W, start, SP, sidx, g, order, t, caps, None)
-        still = [c for c in over if extra[int(c)]["status"][0] == OVERFLOW]
-        if factor >= 256 or not still:
-            break
-        over = np.array(still)
-        factor *= 4
-    names, vabs, faces, area, ring = (
-        out.pop(k) for k in ("names", "vabs", "faces", "area", "ring")
-    )
-    if extra:
-        names, vabs, faces, area, ring, counts = _splice(
-            counts, names, vabs, faces, area, ring, extra
-        )
-        for c, r in extra.items():
-            for key in ("status", "vol", "cen", "rad2"):
-                out[key][c] = r[key][0]
-    # global vertex ids, by name, in the order the cells were built
-    voff = np.concatenate([[0], np.cumsum(counts[:, 0])])
-    pos = np.full(ns, -1, np.int64)
-    pos[built] = np.arange(len(built))
-    vcellpos = np.repeat(np.arange(len(built)), counts[:, 0])
-    gid, unmatched = _join(names, vcellpos, built, pos, voff)
-    del vcellpos, names
-    vertices = np.zeros((int(gid.max()) + 1 if len(gid) else 0, 3))
-    vertices[gid] = vabs  # every record of one id holds the same bits (or is its own id)
-    del vabs
-    # faces in the caller's order
-    back = np.zeros(len(cells), np.int64)
-    back[sort] = np.arange(len(cells))
-    flabel = np.zeros(len(faces), np.int64)
-    farea = np.zeros((len(faces), 3))
-    flen = np.zeros(len(faces), np.int64)
-    gring = np.zeros(len(ring), np.int64)
-    _in_order(back, counts, faces, area, ring, gid, flabel, farea, flen, gring)
-    del faces, area, ring, gid
-    foff = np.concatenate([[0], np.cumsum(counts[back, 1])])
-    roff = np.concatenate([[0], np.cumsum(flen)])
+    vertices, flabel, roff, ring, unmatched = out.finish()
+    pos = np.zeros(k, np.int64)
+    pos[sort] = np.arange(k)
+    cell_faces = np.zeros(k + 1, np.int64)
+    np.cumsum(nfaces, out=cell_faces[1:])
     return Cells3D(
         cells,
-        out["status"][back],
-        out["vol"][back],
-        out["cen"][back],
-        out["rad2"][back],
+        status[pos],
+        vol[pos],
+        cen[pos],
+        rad2[pos],
         vertices,
-        foff,
+        pos,
+        cell_faces,
         flabel,
-        farea,
         roff,
-        gring,
+        ring,
         unmatched,
     )
 
 
+def _big(i, P, W, start, SP, sidx, g, order, t, out):
+    """Build cell ``i`` alone with big slots (growing them until it fits) and join it."""
+    factor = BIG_CAPS_FACTOR
+    while True:
+        caps = tuple(c * factor for c in CAPS[:6]) + CAPS[6:]
+        st, counts, v, c, r2, sl, capa = _run(
+            np.array([i]), P, W, start, SP, sidx, g, order, t, caps, None
+        )
+        if st[0] != OVERFLOW or factor >= 256:
+            break
+        factor *= 4
+    if st[0] == OVERFLOW:
+        raise RuntimeError(f"3D cell {int(i)} has more than {caps[0]} vertices")
+    out.add(st, counts, sl, capa)
+    return st[0], counts[0], v[0], c[0], r2[0]
+
+
 def _empty(cells):
-    z = np.zeros(0, np.int64)
     k = len(cells)
     return Cells3D(
         cells,
@@ -355,107 +468,13 @@ def _empty(cells):
         np.full((k, 3), np.nan),
         np.zeros(k),
         np.zeros((0, 3)),
+        np.arange(k),
         np.zeros(k + 1, np.int64),
-        z,
-        np.zeros((0, 3)),
-        np.zeros(1, np.int64),
-        z,
+        np.zeros(0, np.int32),
+        np.zeros(1, np.int32),
+        np.zeros(0, np.int32),
         0,
     )
-
-
-def _splice(counts, names, vabs, faces, area, ring, extra):
-    voff = np.concatenate([[0], np.cumsum(counts[:, 0])])
-    foff = np.concatenate([[0], np.cumsum(counts[:, 1])])
-    roff = np.concatenate([[0], np.cumsum(counts[:, 2])])
-    pieces = {k: [] for k in ("names", "vabs", "faces", "area", "ring")}
-    prev = 0
-    counts = counts.copy()
-    for c in sorted(extra):
-        r = extra[c]
-        for key, arr, off in (
-            ("names", names, voff),
-            ("vabs", vabs, voff),
-            ("faces", faces, foff),
-            ("area", area, foff),
-            ("ring", ring, roff),
-        ):
-            pieces[key].append(arr[off[prev] : off[c]])
-            pieces[key].append(r[key if key != "vabs" else "vabs"])
-        counts[c] = r["counts"][0]
-        prev = c + 1
-    for key, arr, off in (
-        ("names", names, voff),
-        ("vabs", vabs, voff),
-        ("faces", faces, foff),
-        ("area", area, foff),
-        ("ring", ring, roff),
-    ):
-        pieces[key].append(arr[off[prev] :])
-    return (
-        *(np.concatenate(pieces[k]) for k in ("names", "vabs", "faces", "area", "ring")),
-        counts,
-    )
-
-
-@njit(**NJIT)
-def _match(names, vcellpos, cells, pos, voff, gid):
-    """Find each vertex record's owner record.
-
-    ``gid[r]``: -2 for a record owned by its own cell (numbered later); else the record index
-    in the owner cell with the same name, or -1 when there is none.
-    """
-    m = names.shape[0]
-    for r in range(m):
-        c = vcellpos[r]
-        owner = names[r, 0]
-        if owner == cells[c]:
-            gid[r] = -2
-            continue
-        p = pos[owner] if owner < pos.shape[0] else -1
-        gid[r] = -1
-        if p < 0:
-            continue
-        for q in range(voff[p], voff[p + 1]):
-            if (
-                names[q, 0] == names[r, 0]
-                and names[q, 1] == names[r, 1]
-                and names[q, 2] == names[r, 2]
-                and names[q, 3] == names[r, 3]
-            ):
-                gid[r] = q
-                break
-
-
-@njit(**NJIT)
-def _number(gid):
-    """Number owned records, then point matched records at their owner's number."""
-    m = gid.shape[0]
-    out = np.zeros(m, np.int64)
-    k = 0
-    for r in range(m):
-        if gid[r] == -2:
-            out[r] = k
-            k += 1
-    unmatched = 0
-    for r in range(m):
-        if gid[r] == -1:
-            out[r] = k
-            k += 1
-            unmatched += 1
-    for r in range(m):
-        if gid[r] >= 0:
-            out[r] = out[gid[r]]
-    return out, unmatched
-
-
-def _join(names, vcellpos, cells, pos, voff):
-    gid = np.zeros(len(names), np.int64)
-    if len(names) == 0:
-        return gid, 0
-    _match(names, vcellpos, cells, pos, voff, gid)
-    out, unmatched = _number(gid)
-    return out, int(unmatched)
 
 
 __all__ = ["Cells3D", "build_cells3d", "OK"]

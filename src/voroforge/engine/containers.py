@@ -190,6 +190,18 @@ def _convex_template(hs: np.ndarray) -> Template:
     return Template(TV, TF, TR, hs.copy(), "convex", float(vol), np.array([TV.min(0), TV.max(0)]))
 
 
+def _few_bits(x: np.ndarray) -> np.ndarray:
+    """``x > 0`` rounded up to 4 significant bits.
+
+    The default box's pad: the walls of dyadic input (grids, lattices) are then exact, so
+    the co-spherical and mirror-symmetric vertices the walls make are exact too (with
+    ``lo - 0.15`` they would be off by a rounding, and the exact predicates would keep the
+    tiny faces that rounding makes).
+    """
+    m, e = np.frexp(x)
+    return np.ldexp(np.ceil(m * 16.0) / 16.0, e)
+
+
 def as_container(container, pts: np.ndarray) -> Template:
     """The template of a user's container (``None``, a 6-tuple, :class:`Convex`); mesh: None."""
     from ..config import VORONOI3D_PAD
@@ -204,7 +216,8 @@ def as_container(container, pts: np.ndarray) -> Template:
         if big == 0.0:
             big = max(float(np.abs(lo).max()), 1.0)
         span = np.maximum(span, big)  # flat input: pad every axis by the largest extent
-        return box_template(lo - VORONOI3D_PAD * span, hi + VORONOI3D_PAD * span)
+        pad = _few_bits(VORONOI3D_PAD * span)
+        return box_template(lo - pad, hi + pad)
     if isinstance(container, Convex):
         return container._template
     if isinstance(container, (tuple, list, np.ndarray)) and np.asarray(

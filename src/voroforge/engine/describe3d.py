@@ -11,7 +11,8 @@ def describe3d(d) -> dict:
     Returns a dict: ``vertices``, ``edges`` (unique undirected edges), ``faces`` (unique),
     ``cells`` (non-empty), ``euler_ok`` (every non-empty cell has ``V - E + F = 2``),
     ``euler_failures`` (cell numbers), ``convex`` (every face's vertices on the inner side of
-    every other face of its cell, to 1e-9 of the cell's size), ``cut_cells`` (cells cut by a
+    every other face of its cell, to 1e-9 of the cell's size; faces smaller than
+    that squared are left out), ``cut_cells`` (cells cut by a
     mesh container, else 0), ``unmatched_vertices``, ``volume`` and ``container_volume``.
     """
     cf, lab, farea, roff, ring = d.cell_face_table()
@@ -40,8 +41,8 @@ def describe3d(d) -> dict:
             for f in range(f0, f1):
                 a = farea[f]
                 na = np.linalg.norm(a)
-                if na == 0:
-                    continue
+                if na <= (1e-9 * size) ** 2:
+                    continue  # a face below the doubles' resolution has no normal to test
                 p0 = d.vertices[ring[roff[f]]]
                 if ((V - p0) @ (a / na)).max() > 1e-9 * size:
                     nonconvex.append(i)

@@ -3,12 +3,17 @@
 Layout (all arrays read-only):
 
 - ``vertices (V, 3)``: every Voronoi vertex once; cells that meet at a vertex share its bits.
-- per cell ``i``: faces ``cell_faces[i]:cell_faces[i + 1]`` of the per-cell face table, each
-  with a ring of vertex numbers (outward, counter-clockwise seen from outside), the
-  neighbour across it (a site, or ``-1 - w`` for container wall ``w``) and its area vector.
+- per cell ``i``: faces ``cell_faces[i]:cell_faces[i + 1]`` of the per-cell face table
+  (:meth:`Diagram3D.cell_face_table`), each with a ring of vertex numbers (outward,
+  counter-clockwise seen from outside), the neighbour across it (a site, or ``-1 - w`` for
+  container wall ``w``) and its area vector.
 - ``faces``: each face once (:class:`Faces3D`): a cell face of ``i`` with site ``j > i``, and
   every wall face; its ring as seen from ``cells[:, 0]`` and its normal pointing to
   ``cells[:, 1]``.
+
+Storage: the per-cell face table is kept in the order the cells were built (bucket order,
+``int32`` labels and rings); area vectors are computed when asked for, never stored with the
+table. Everything public is in the caller's order.
 
 Example: walk the faces of cell 0::
 
@@ -22,7 +27,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
+from ..config import NJIT
 from .csr import unique
 
 
@@ -77,7 +84,7 @@ class Diagram3D:
     volumes : (n,) float64
     centroids : (n, 3) float64
         NaN for empty cells.
-    neighbors : tuple of (n + 1,) and (k,) int64
+    neighbors : tuple of (n + 1,) int64 and (k,) int32
         CSR ``(indptr, indices)`` of the cells sharing a face of positive area, sorted.
     vertices : (V, 3) float64
     faces : Faces3D
@@ -107,7 +114,6 @@ class Diagram3D:
         vertices,
         cell_faces,
         flabel,
-        farea,
         roff,
         ring,
         duplicate_of,
@@ -118,6 +124,7 @@ class Diagram3D:
         container_volume=None,
         face_keep=None,
         shifts=None,
+        pos=None,
     ):
         self.sites = _ro(sites)
         self.weights = None if weights is None else _ro(weights)
@@ -127,11 +134,13 @@ class Diagram3D:
         self.volumes = _ro(volumes)
         self.centroids = _ro(centroids)
         self.vertices = _ro(vertices)
+        # the per-cell face table, in build order: cell i's faces are
+        # cell_faces[pos[i]]:cell_faces[pos[i] + 1] (pos None: the caller's order)
         self._cell_faces = _ro(cell_faces)
         self._flabel = _ro(flabel)
-        self._farea = _ro(farea)
         self._roff = _ro(roff)
         self._ring = _ro(ring)
+        self._pos = None if pos is None else _ro(np.asarray(pos, np.int64))
         self.duplicate_of = _ro(duplicate_of)
         self.unmatched_vertices = int(unmatched)
         self.box = box
@@ -152,14 +161,29 @@ class Diagram3D:
             f"{len(self.faces)} faces, container={self.container}, periodic={self.periodic})"
         )
 
+    def _positions(self):
+        return np.arange(len(self), dtype=np.int64) if self._pos is None else self._pos
+
     def cell_face_table(self):
         """Per-cell faces: ``(cell_faces (n + 1,), labels, area_vectors, ring_offsets, rings)``.
 
         Faces of cell ``i`` are ``cell_faces[i]:cell_faces[i + 1]``; face ``f``'s ring is
-        ``rings[ring_offsets[f]:ring_offsets[f + 1]]`` (outward). The internal layout other
-        modules (solids, surfaces) use instead of private attributes.
+        ``rings[ring_offsets[f]:ring_offsets[f + 1]]`` (outward), its area vector (outward,
+        length = area) ``area_vectors[f]``. The internal layout other modules (solids,
+        surfaces) use instead of private attributes; built on first use (a copy in the
+        caller's order, with the area vectors).
         """
-        return self._cell_faces, self._flabel, self._farea, self._roff, self._ring
+        if "table" not in self._cache:
+            if self._pos is None:
+                cf, lab, roff, ring = self._cell_faces, self._flabel, self._roff, self._ring
+            else:
+                cf, lab, roff, ring = _in_caller_order(
+                    self._pos, self._cell_faces, self._flabel, self._roff, self._ring
+                )
+            area = np.zeros((len(lab), 3))
+            _face_vectors(np.asarray(self.vertices), roff, ring, area)
+            self._cache["table"] = tuple(_ro(a) for a in (cf, lab, area, roff, ring))
+        return self._cache["table"]
 
     def cell(self, i: int) -> Polyhedron:
         """Cell ``i`` as a :class:`Polyhedron` (outward faces, neighbours per face)."""
@@ -167,15 +191,19 @@ class Diagram3D:
         if not -len(self) <= i < len(self):
             raise IndexError(f"cell {i} out of range for {len(self)} cells")
         i %= len(self)
-        f0, f1 = self._cell_faces[i], self._cell_faces[i + 1]
-        rings = [self._ring[self._roff[f] : self._roff[f + 1]] for f in range(f0, f1)]
+        p = i if self._pos is None else int(self._pos[i])
+        f0, f1 = self._cell_faces[p], self._cell_faces[p + 1]
+        rings = [
+            np.asarray(self._ring[self._roff[f] : self._roff[f + 1]], np.int64)
+            for f in range(f0, f1)
+        ]
         ids = unique(np.concatenate(rings)) if rings else np.zeros(0, np.int64)
         local = {int(v): k for k, v in enumerate(ids)}
         faces = [np.array([local[int(v)] for v in r], np.int64) for r in rings]
         return Polyhedron(
             self.vertices[ids],
             faces,
-            np.array(self._flabel[f0:f1]),
+            np.array(self._flabel[f0:f1], np.int64),
             ids,
             float(self.volumes[i]),
             np.array(self.centroids[i]),
@@ -202,33 +230,24 @@ class Diagram3D:
     # --- unique faces ---------------------------------------------------------------------
     def _unique(self):
         if "unique" not in self._cache:
-            n = len(self)
-            cf = self._cell_faces
-            owner = np.repeat(np.arange(n), np.diff(cf))
-            lab = self._flabel
-            keep = (lab < 0) | (lab > owner) if self._face_keep is None else self._face_keep
-            sel = np.flatnonzero(keep)
-            lens = np.diff(self._roff)[sel]
-            indptr = np.concatenate([[0], np.cumsum(lens)]).astype(np.int64)
-            idx = (
-                (
-                    np.repeat(self._roff[sel], lens)
-                    + np.arange(int(indptr[-1]))
-                    - np.repeat(indptr[:-1], lens)
-                )
-                if len(sel)
-                else np.zeros(0, np.int64)
+            keep = self._face_keep
+            use = keep is not None
+            indptr, indices, cells = _unique_faces(
+                self._positions(),
+                self._cell_faces,
+                self._flabel,
+                self._roff,
+                self._ring,
+                np.asarray(keep if use else np.zeros(0, bool)),
+                use,
             )
-            faces = Faces3D(
-                _ro(indptr),
-                _ro(self._ring[idx]),
-                _ro(np.column_stack([owner[sel], lab[sel]]).astype(np.int64)),
-            )
-            av = self._farea[sel]
-            area = np.linalg.norm(av, axis=1) if len(sel) else np.zeros(0)
+            faces = Faces3D(_ro(indptr), _ro(indices), _ro(cells))
+            av = np.zeros((len(cells), 3))
+            _face_vectors(np.asarray(self.vertices), indptr, indices, av)
+            area = np.sqrt((av * av).sum(axis=1))
             with np.errstate(invalid="ignore", divide="ignore"):
-                normals = av / area[:, None]
-            self._cache["unique"] = (faces, _ro(area), _ro(normals))
+                av /= area[:, None]
+            self._cache["unique"] = (faces, _ro(area), _ro(av))
         return self._cache["unique"]
 
     @property
@@ -250,16 +269,15 @@ class Diagram3D:
     def neighbors(self):
         """CSR ``(indptr, indices)``: the cells sharing a face of positive area, sorted."""
         if "nb" not in self._cache:
-            n = len(self)
-            owner = np.repeat(np.arange(n), np.diff(self._cell_faces))
-            lab = self._flabel
-            area = np.linalg.norm(self._farea, axis=1) if len(lab) else np.zeros(0)
-            ok = (lab >= 0) & (area > 0) & (lab != owner)
-            key = unique(owner[ok].astype(np.int64) * max(n, 1) + lab[ok])
-            pairs = np.column_stack([key // max(n, 1), key % max(n, 1)])
-            indptr = np.zeros(n + 1, np.int64)
-            np.add.at(indptr, pairs[:, 0] + 1, 1)
-            self._cache["nb"] = (_ro(np.cumsum(indptr)), _ro(pairs[:, 1].astype(np.int64)))
+            indptr, indices = _neighbors(
+                self._positions(),
+                self._cell_faces,
+                self._flabel,
+                self._roff,
+                self._ring,
+                np.asarray(self.vertices),
+            )
+            self._cache["nb"] = (_ro(indptr), _ro(indices))
         return self._cache["nb"]
 
     # --- queries --------------------------------------------------------------------------
@@ -283,3 +301,137 @@ class Diagram3D:
         from .describe3d import describe3d
 
         return describe3d(self)
+
+
+# --- kernels over the face table (private) ------------------------------------------------
+
+
+@njit(**NJIT)
+def _face_vectors(V, roff, ring, out):
+    """Area vectors of the rings ``ring[roff[f]:roff[f + 1]]`` (outward: length = area).
+
+    Fanned from each ring's first vertex, in coordinates relative to it (far from the
+    origin, e.g. UTM, the products stay accurate).
+    """
+    for f in range(out.shape[0]):
+        a = roff[f]
+        b = roff[f + 1]
+        v0 = ring[a]
+        ax = 0.0
+        ay = 0.0
+        az = 0.0
+        for q in range(a + 1, b - 1):
+            u = ring[q]
+            w = ring[q + 1]
+            ux = V[u, 0] - V[v0, 0]
+            uy = V[u, 1] - V[v0, 1]
+            uz = V[u, 2] - V[v0, 2]
+            wx = V[w, 0] - V[v0, 0]
+            wy = V[w, 1] - V[v0, 1]
+            wz = V[w, 2] - V[v0, 2]
+            ax += uy * wz - uz * wy
+            ay += uz * wx - ux * wz
+            az += ux * wy - uy * wx
+        out[f, 0] = 0.5 * ax
+        out[f, 1] = 0.5 * ay
+        out[f, 2] = 0.5 * az
+
+
+@njit(**NJIT)
+def _in_caller_order(pos, cf, lab, roff, ring):
+    """The face table with cell ``i``'s faces at ``i`` (a copy)."""
+    n = pos.shape[0]
+    cf2 = np.zeros(n + 1, np.int64)
+    for i in range(n):
+        cf2[i + 1] = cf2[i] + cf[pos[i] + 1] - cf[pos[i]]
+    lab2 = np.zeros(lab.shape[0], lab.dtype)
+    roff2 = np.zeros(roff.shape[0], roff.dtype)
+    ring2 = np.zeros(ring.shape[0], ring.dtype)
+    f2 = 0
+    for i in range(n):
+        p = pos[i]
+        for f in range(cf[p], cf[p + 1]):
+            lab2[f2] = lab[f]
+            r0 = roff2[f2]
+            for q in range(roff[f], roff[f + 1]):
+                ring2[r0 + q - roff[f]] = ring[q]
+            roff2[f2 + 1] = r0 + roff[f + 1] - roff[f]
+            f2 += 1
+    return cf2, lab2, roff2, ring2
+
+
+@njit(**NJIT)
+def _unique_faces(pos, cf, lab, roff, ring, keep, use_keep):
+    """Each face once, in the caller's cell order: ``(indptr, indices, cells (m, 2))``.
+
+    A face of cell ``i`` is kept when its label is a wall or a site ``> i`` (or, with
+    ``use_keep``, where ``keep`` (build order) says so: periodic images).
+    """
+    n = pos.shape[0]
+    m = 0
+    nr = 0
+    for i in range(n):
+        p = pos[i]
+        for f in range(cf[p], cf[p + 1]):
+            if (use_keep and keep[f]) or (not use_keep and (lab[f] < 0 or lab[f] > i)):
+                m += 1
+                nr += roff[f + 1] - roff[f]
+    indptr = np.zeros(m + 1, np.int64)
+    indices = np.zeros(nr, ring.dtype)
+    cells = np.zeros((m, 2), lab.dtype)
+    k = 0
+    r = 0
+    for i in range(n):
+        p = pos[i]
+        for f in range(cf[p], cf[p + 1]):
+            if (use_keep and keep[f]) or (not use_keep and (lab[f] < 0 or lab[f] > i)):
+                cells[k, 0] = i
+                cells[k, 1] = lab[f]
+                for q in range(roff[f], roff[f + 1]):
+                    indices[r] = ring[q]
+                    r += 1
+                k += 1
+                indptr[k] = r
+    return indptr, indices, cells
+
+
+@njit(**NJIT)
+def _neighbors(pos, cf, lab, roff, ring, V):
+    """CSR of each cell's neighbours across faces of nonzero area (sorted, once each)."""
+    n = pos.shape[0]
+    indptr = np.zeros(n + 1, np.int64)
+    one = np.zeros((1, 3))
+    tmp = np.zeros(64, lab.dtype)
+    indices = np.zeros(0, lab.dtype)
+    for sweep in range(2):
+        if sweep == 1:
+            for i in range(n):
+                indptr[i + 1] += indptr[i]
+            indices = np.zeros(indptr[n], lab.dtype)
+        for i in range(n):
+            p = pos[i]
+            c = 0
+            for f in range(cf[p], cf[p + 1]):
+                j = lab[f]
+                if j < 0 or j == i:
+                    continue
+                _face_vectors(V, roff[f : f + 2], ring, one)
+                if one[0, 0] == 0.0 and one[0, 1] == 0.0 and one[0, 2] == 0.0:
+                    continue
+                if c == tmp.shape[0]:
+                    tmp2 = np.zeros(2 * c, lab.dtype)
+                    tmp2[:c] = tmp
+                    tmp = tmp2
+                tmp[c] = j
+                c += 1
+            tmp[:c].sort()
+            u = 0
+            for q in range(c):
+                if u == 0 or tmp[q] != tmp[u - 1]:
+                    tmp[u] = tmp[q]
+                    u += 1
+            if sweep == 0:
+                indptr[i + 1] = u
+            else:
+                indices[indptr[i] : indptr[i] + u] = tmp[:u]
+    return indptr, indices

@@ -197,7 +197,7 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None):
     pieces = np.where(keep, 1, 0).astype(np.int64)
     cut = np.zeros(n, bool)
     # new per-cell face table
-    new_lab, new_area, new_rings, counts = [], [], [], np.zeros(n, np.int64)
+    new_lab, new_rings, counts = [], [], np.zeros(n, np.int64)
     extra_v = [verts]
     nvert = len(verts)
     todo = np.flatnonzero(cand)
@@ -207,7 +207,6 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None):
             for f in range(f0, f1):
                 new_rings.append(ring[roff[f] : roff[f + 1]])
             new_lab.append(lab[f0:f1])
-            new_area.append(farea[f0:f1])
             counts[i] = f1 - f0
             continue
         if not cand[i]:
@@ -236,7 +235,6 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None):
         fromcell = ofid >= len(F)
         labels = np.where(fromcell, lab[f0 + np.where(fromcell, ofid - len(F), 0)], -1 - ofid)
         a, b, c = ov[ot[:, 0]], ov[ot[:, 1]], ov[ot[:, 2]]
-        av = 0.5 * np.cross(b - a, c - a)
         det = np.einsum("ij,ij->i", a, np.cross(b, c))
         cut[i] = True
         vol[i] = det.sum() / 6.0
@@ -245,7 +243,6 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None):
         for t in ot:
             new_rings.append(t + nvert)
         new_lab.append(labels)
-        new_area.append(av)
         counts[i] = len(ot)
         extra_v.append(ov)
         nvert += len(ov)
@@ -256,7 +253,6 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None):
     roff2 = np.concatenate([[0], np.cumsum(lens)]).astype(np.int64)
     ring2 = np.concatenate(new_rings).astype(np.int64) if new_rings else np.zeros(0, np.int64)
     lab2 = np.concatenate(new_lab).astype(np.int64) if new_lab else np.zeros(0, np.int64)
-    area2 = np.concatenate(new_area) if new_area else np.zeros((0, 3))
     allv = np.vstack(extra_v)
     used = np.zeros(len(allv), bool)
     used[ring2] = True
@@ -272,7 +268,6 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None):
         vertices=allv[used],
         cell_faces=cell_faces,
         flabel=lab2,
-        farea=area2,
         roff=roff2,
         ring=remap[ring2],
         duplicate_of=d.duplicate_of,

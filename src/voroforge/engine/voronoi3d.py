@@ -6,7 +6,7 @@ import itertools
 
 import numpy as np
 
-from .build3d import build_cells3d
+from .build3d import build_cells3d, csr_take
 from .containers import Convex, Template, as_container, box_template
 from .diagram3d import Diagram3D
 from .inputs import as_points, as_weights, from_working, working_frame
@@ -168,7 +168,6 @@ def _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh):
             vertices=np.zeros((0, 3)),
             cell_faces=np.zeros(n + 1, np.int64),
             flabel=z,
-            farea=np.zeros((0, 3)),
             roff=np.zeros(1, np.int64),
             ring=z,
             duplicate_of=dup,
@@ -184,29 +183,35 @@ def _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh):
     scale3 = 3 * k
     vol[uniq] = np.ldexp(res.volume, -scale3) if k else res.volume
     cen[uniq] = from_working(res.centroid, k)
-    counts = np.zeros(n, np.int64)
-    counts[uniq] = np.diff(res.foff)
-    cell_faces = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
-    lab = res.flabel.copy()
-    site = lab >= 0
+    u = len(uniq)
+    # the face table stays in build order; duplicates point at an empty slot after the last
+    cell_faces = np.append(res.cell_faces, res.cell_faces[-1])
+    pos = np.full(n, u, np.int64)
+    pos[uniq] = res.pos
+    lab = res.flabel
     face_keep = shifts = None
     if gmap is not None:
         orig, shift = gmap
-        fs = shift[lab[site]]
+        lab = lab.copy()
+        site = lab >= 0
         shifts = np.zeros((len(lab), 3), np.int64)
-        shifts[site] = fs
+        shifts[site] = shift[lab[site]]
         lab[site] = orig[lab[site]]
-    lab[site] = uniq[lab[site]]
-    if gmap is not None:
-        owner = np.repeat(uniq, np.diff(res.foff))
-        pos = np.zeros(len(lab), bool)
+        lab[site] = uniq[lab[site]]
+        at = np.zeros(u, np.int64)
+        at[res.pos] = np.arange(u)
+        owner = np.repeat(uniq[at], np.diff(res.cell_faces))
         s3 = shifts
         lexpos = (s3[:, 0] > 0) | (
             (s3[:, 0] == 0) & ((s3[:, 1] > 0) | ((s3[:, 1] == 0) & (s3[:, 2] > 0)))
         )
-        pos[:] = lexpos
-        face_keep = (lab < 0) | (lab > owner) | ((lab == owner) & pos)
-    farea = np.ldexp(res.farea, -2 * k) if k else res.farea
+        face_keep = (lab < 0) | (lab > owner) | ((lab == owner) & lexpos)
+        # the public per-face shifts follow cell_face_table (the caller's order)
+        shifts = shifts[csr_take(np.diff(cell_faces), pos)]
+    elif u != n:  # site labels from the unique sites' numbers to the input's
+        lab = lab.copy()
+        site = lab >= 0
+        lab[site] = uniq[lab[site]]
     return Diagram3D(
         sites=pts,
         weights=w,
@@ -218,7 +223,6 @@ def _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh):
         vertices=from_working(res.vertices, k),
         cell_faces=cell_faces,
         flabel=lab,
-        farea=farea,
         roff=res.roff,
         ring=res.ring,
         duplicate_of=dup,
@@ -227,4 +231,5 @@ def _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh):
         container_volume=t.volume,
         face_keep=face_keep,
         shifts=shifts,
+        pos=pos,
     )

@@ -29,10 +29,10 @@ from .polyhedron import (
     CUT_NONE,
     CUT_OVERFLOW,
     cut,
-    face_vector,
     moments,
     plane_values,
 )
+from .predicates3d import bisector_side, scratch
 from .vertex3d import axis_snap, name_vertex
 
 OK = 0
@@ -73,9 +73,10 @@ def _scratch(vcap, fcap, rcap, ncand, nbuck):
 
 @njit(**NJIT)
 def _graph_scratch(vcap, degree):
-    """The vertex-graph arrays of :mod:`kernels.graph3d`: ``(DEG, ED, BK, LB, CP, seen)``.
+    """The vertex-graph arrays of :mod:`kernels.graph3d`: ``(DEG, ED, BK, LB, CP, seen, FL)``.
 
     ``degree`` is the most edges a vertex may have (more: the cell is built with face rings).
+    ``FL`` flags the vertices found exactly on a plane (more owners than their faces).
     """
     DEG = np.zeros(vcap, np.int64)
     ED = np.zeros((vcap, degree), np.int64)
@@ -83,17 +84,100 @@ def _graph_scratch(vcap, degree):
     LB = np.zeros((vcap, degree), np.int64)
     CP = np.zeros((vcap, 3), np.int64)
     seen = np.zeros((vcap, degree), np.bool_)
-    return DEG, ED, BK, LB, CP, seen
+    FL = np.zeros(vcap, np.bool_)
+    return DEG, ED, BK, LB, CP, seen, FL
 
 
 @njit(**NJIT_INLINE)
-def _values(V, nv, nx, ny, nz, h, tol, S):
-    """:func:`kernels.polyhedron.plane_values`, inlined here (it runs ~40 times per cell)."""
+def _key(lab, ns):
+    """The owner key of a face label: a site, or ``ns + w`` for wall ``w`` (label ``-1 - w``)."""
+    return lab if lab >= 0 else ns + (-1 - lab)
+
+
+@njit(**NJIT)
+def _graph_side(i, v, j, DEG, LB, ns, P, W, WP, X):
+    """Exact side of graph vertex ``v`` of cell ``i`` against key ``j`` (see ``bisector_side``).
+
+    The vertex is where the planes of its faces meet: the first independent triple of its
+    face labels defines it. Returns 2 when none is independent.
+    """
+    d = DEG[v]
+    for a in range(d):
+        for b in range(a + 1, d):
+            for c in range(b + 1, d):
+                r = bisector_side(
+                    i,
+                    _key(LB[v, a], ns),
+                    _key(LB[v, b], ns),
+                    _key(LB[v, c], ns),
+                    j,
+                    P,
+                    W,
+                    WP,
+                    ns,
+                    X[0],
+                    X[1],
+                )
+                if r != 2:
+                    return r
+    return 2
+
+
+@njit(**NJIT)
+def _ring_side(i, v, j, C, nf, ns, P, W, WP, X):
+    """:func:`_graph_side` for a cell held as face rings (the fallback): its faces at ``v``."""
+    F = C[1]
+    R = C[2]
+    labs = C[5][:, 3]  # work's last column: free until the cut
+    m = 0
+    for f in range(nf):
+        for k in range(F[f, 2]):
+            if R[F[f, 1] + k] == v:
+                if m < labs.shape[0]:
+                    labs[m] = _key(F[f, 0], ns)
+                    m += 1
+                break
+    for a in range(m):
+        for b in range(a + 1, m):
+            for c in range(b + 1, m):
+                r = bisector_side(i, labs[a], labs[b], labs[c], j, P, W, WP, ns, X[0], X[1])
+                if r != 2:
+                    return r
+    return 2
+
+
+#: the value given to a vertex within the filter's band that is exactly off the plane and
+#: whose float value has the wrong sign: the cut then treats it as just off (no new vertex
+#: is moved by more than the float error)
+_TINY = 1e-300
+
+
+@njit(**NJIT)
+def _values(V, nv, nx, ny, nz, h, tol, S, i, j, C, nf, G, P, W, WP, X):
+    """Signed values ``n . v - h`` of the cell's vertices against site ``j``'s plane.
+
+    A value within ``tol`` of 0 (the float filter's band) is decided exactly on the
+    vertex's owners, the planes of its faces (:func:`_graph_side`, :func:`_ring_side`): 0
+    when the vertex is on the plane (in a graph it is flagged: it may have more owners than
+    faces), else the float value if its sign is right, or a tiny value of the right sign.
+    Returns the largest value.
+    """
     smax = -np.inf
+    graph = G[0].shape[0] > 0
+    ns = P.shape[0]
     for v in range(nv):
         s = nx * V[v, 0] + ny * V[v, 1] + nz * V[v, 2] - h
         if abs(s) <= tol:
-            s = 0.0
+            if graph:
+                side = _graph_side(i, v, j, G[0], G[3], ns, P, W, WP, X)
+            else:
+                side = _ring_side(i, v, j, C, nf, ns, P, W, WP, X)
+            if side == 0 or side == 2:
+                s = 0.0
+                if graph:
+                    G[6][v] = True
+            elif s == 0.0 or (s > 0.0) != (side > 0):
+                s = side * _TINY
         S[v] = s
         if s > smax:
             smax = s
@@ -101,12 +185,13 @@ def _values(V, nv, nx, ny, nz, h, tol, S):
 
 
 @njit(**NJIT)
-def _cut_batch(m, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2):
-    """Cut the cell by the ``m`` gathered candidates, nearest first.
+def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2):
+    """Cut cell ``i`` by the ``m`` gathered candidates, nearest first.
 
     ``C = (V, F, R, R2, S, work, T)`` holds the cell (face rings) and the planes that cut or
     touched it; ``G`` its vertex graph when ``G[0]`` is non-empty (then the rings are read
-    off at the end). Returns ``(status, nv, nf, nt, rmax2)``.
+    off at the end). ``X`` is the exact predicates' scratch. Returns
+    ``(status, nv, nf, nt, rmax2)``.
     """
     V, F, R, R2, S, work, T = C
     graph = G[0].shape[0] > 0
@@ -131,7 +216,7 @@ def _cut_batch(m, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax
         if h > 0.0 and h * h > rmax2 * d2 * (1.0 + VORONOI3D_STOP_RTOL):
             continue  # the plane passes beyond every vertex
         tol = VORONOI3D_CUT_RTOL * (np.sqrt(d2 * rmax2) + abs(h))
-        smax = _values(V, nv, dx, dy, dz, h, tol, S)
+        smax = _values(V, nv, dx, dy, dz, h, tol, S, i, j, C, nf, G, P, W, WP, X)
         if smax == 0.0 or smax > 0.0:  # it cuts or touches: a possible owner of vertices
             if nt >= T.shape[0]:
                 return OVERFLOW, 0, 0, 0, 0.0
@@ -140,7 +225,7 @@ def _cut_batch(m, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax
         if smax <= 0.0:
             continue
         if graph:
-            st, nv2 = graph_cut(V, nv, G[0], G[1], G[2], G[3], S, G[4], j)
+            st, nv2 = graph_cut(V, nv, G[0], G[1], G[2], G[3], G[6], S, G[4], j)
             if st == GCUT_EMPTY:
                 return EMPTY, 0, 0, 0, 0.0
             if st != GCUT_DONE:
@@ -220,7 +305,9 @@ def _axis_gap(p, origin, size, b, off):
 
 
 @njit(**NJIT)
-def _one_cell(i, P, W, wmax, start, SP, sidx, g, order, TV, TF, TR, TG, C, G, cand, cd2, buck):
+def _one_cell(
+    i, P, W, WP, X, wmax, start, SP, sidx, g, order, TV, TF, TR, TG, C, G, cand, cd2, buck
+):
     """Cut cell ``i``; leaves it in ``C``'s ``(V, F, R)``. Returns ``(status, nv, nf, nt, rmax2)``.
 
     With a vertex graph ``G`` (``G[0]`` non-empty) the cell starts from the template's graph
@@ -244,6 +331,7 @@ def _one_cell(i, P, W, wmax, start, SP, sidx, g, order, TV, TF, TR, TG, C, G, ca
         DEG, ED, BK, LB = G[0], G[1], G[2], G[3]
         TDEG, TED, TBK, TLB = TG
         for v in range(ntv):
+            G[6][v] = False
             d = TDEG[v]
             DEG[v] = d
             for k in range(d):
@@ -317,7 +405,7 @@ def _one_cell(i, P, W, wmax, start, SP, sidx, g, order, TV, TF, TR, TG, C, G, ca
                 flush = True
         if flush and m > 0:
             st, nv, nf, nt, rmax2 = _cut_batch(
-                m, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
+                m, i, P, WP, X, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
             )
             if st != OK:
                 return st, 0, 0, 0, 0.0
@@ -332,15 +420,34 @@ def _one_cell(i, P, W, wmax, start, SP, sidx, g, order, TV, TF, TR, TG, C, G, ca
 
 
 @njit(**NJIT)
-def _mark_owners(V, nv, nx, ny, nz, h, tol, key, OWN, work):
-    """Add owner ``key`` to every vertex within ``tol`` of the plane ``n . v = h``.
+def _on_plane(i, v, key, OWN, work, nfo, P, W, WP, ns, X):
+    """Whether vertex ``v`` of cell ``i`` lies exactly on the plane of ``key``.
 
+    The vertex is defined by the first independent triple of its ``nfo[v]`` face owners
+    (``OWN[v, 1:]``, after ``i``); without one the float filter's answer (yes) stands.
+    """
+    m = nfo[v]
+    for a in range(1, m):
+        for b in range(a + 1, m):
+            for c in range(b + 1, m):
+                r = bisector_side(i, OWN[v, a], OWN[v, b], OWN[v, c], key, P, W, WP, ns, X[0], X[1])
+                if r != 2:
+                    return r == 0
+    return True
+
+
+@njit(**NJIT)
+def _mark_owners(i, V, nv, nx, ny, nz, h, tol, key, OWN, work, nfo, todo, nd, P, W, WP, ns, X):
+    """Add owner ``key`` to every vertex of ``todo[:nd]`` on the plane ``n . v = h``.
+
+    ``tol`` is the float filter; candidates within it are decided exactly (:func:`_on_plane`).
     Returns False when a vertex has more owners than ``OWN`` has room for.
     """
     ok = True
-    for v in range(nv):
+    for t in range(nd):
+        v = todo[t]
         s = nx * V[v, 0] + ny * V[v, 1] + nz * V[v, 2] - h
-        if abs(s) <= tol:
+        if abs(s) <= tol and _on_plane(i, v, key, OWN, work, nfo, P, W, WP, ns, X):
             c = work[v, 0]
             if c < OWN.shape[1]:
                 OWN[v, c] = key
@@ -352,52 +459,106 @@ def _mark_owners(V, nv, nx, ny, nz, h, tol, key, OWN, work):
 
 @njit(**NJIT)
 def _name_cell(
-    i, P, W, WP, ns, V, nv, F, nf, R, T, nt, OWN, work, vnames, vabs, vrel, rows, y, name, x, keys
+    i,
+    P,
+    W,
+    WP,
+    ns,
+    V,
+    nv,
+    F,
+    nf,
+    R,
+    T,
+    nt,
+    OWN,
+    work,
+    vnames,
+    vabs,
+    vrel,
+    rows,
+    y,
+    name,
+    x,
+    keys,
+    G,
+    X,
 ):
     """Owners, names and named coordinates of the cell's vertices; returns status.
 
-    ``rows (3, 4)``, ``y (3,)``, ``name (4,)``, ``x (3,)`` and ``keys`` (``OWN``'s width) are
-    scratch.
+    A vertex's owners are ``i``, the owners of its faces, and every other plane it lies on
+    exactly. With a vertex graph ``G`` only the flagged vertices (found on a plane during the
+    cut) can have those, so only they are tested against the planes that touched the cell
+    and the walls; without one (face rings) every vertex is. ``rows (3, 4)``, ``y (3,)``,
+    ``name (4,)``, ``x (3,)`` and ``keys`` (``OWN``'s width) are scratch; ``X`` the exact
+    predicates'.
     """
+    graph = G[0].shape[0] > 0
+    nfo = work[:, 1]
+    todo = work[:, 2]
     for v in range(nv):
         OWN[v, 0] = i
         work[v, 0] = 1
-    nw = ns  # wall keys start at ns
-    for f in range(nf):
-        lab = F[f, 0]
-        key = lab if lab >= 0 else nw + (-1 - lab)
-        for k in range(F[f, 2]):
-            v = R[F[f, 1] + k]
-            c = work[v, 0]
-            if c < OWN.shape[1]:
-                OWN[v, c] = key
-                work[v, 0] = c + 1
-    # every plane that cut or touched the cell, and every wall: on it within tolerance?
+    if graph:
+        DEG = G[0]
+        LB = G[3]
+        FL = G[6]
+        nd = 0
+        for v in range(nv):
+            c = 1
+            for k in range(DEG[v]):
+                if c < OWN.shape[1]:
+                    OWN[v, c] = _key(LB[v, k], ns)
+                    c += 1
+            work[v, 0] = c
+            if FL[v]:
+                todo[nd] = v
+                nd += 1
+    else:
+        for f in range(nf):
+            key = _key(F[f, 0], ns)
+            for k in range(F[f, 2]):
+                v = R[F[f, 1] + k]
+                c = work[v, 0]
+                if c < OWN.shape[1]:
+                    OWN[v, c] = key
+                    work[v, 0] = c + 1
+        nd = nv
+        for v in range(nv):
+            todo[v] = v
+    for v in range(nv):
+        nfo[v] = work[v, 0]
+    # every plane that cut or touched the cell, and every wall: on it exactly?
     px = P[i, 0]
     py = P[i, 1]
     pz = P[i, 2]
     rmax2 = _radius2(V, nv)
-    for u in range(nt):
-        j = T[u, 0]
-        dx = P[j, 0] - px
-        dy = P[j, 1] - py
-        dz = P[j, 2] - pz
-        d2 = dx * dx + dy * dy + dz * dz
-        h = 0.5 * (d2 + (W[i] - W[j]))
-        if h > 0.0 and h * h > rmax2 * d2 * (1.0 + VORONOI3D_STOP_RTOL):
-            continue  # beyond every vertex of the finished cell
-        tol = VORONOI3D_CUT_RTOL * (np.sqrt(d2 * rmax2) + abs(h))
-        if not _mark_owners(V, nv, dx, dy, dz, h, tol, j, OWN, work):
-            return OVERFLOW
-    for w in range(WP.shape[0]):
-        nx = WP[w, 0]
-        ny = WP[w, 1]
-        nz = WP[w, 2]
-        h = WP[w, 3] - (nx * px + ny * py + nz * pz)
-        nn = np.sqrt(nx * nx + ny * ny + nz * nz)
-        tol = VORONOI3D_CUT_RTOL * (nn * np.sqrt(rmax2) + abs(h))
-        if not _mark_owners(V, nv, nx, ny, nz, h, tol, nw + w, OWN, work):
-            return OVERFLOW
+    if nd > 0:
+        for u in range(nt):
+            j = T[u, 0]
+            dx = P[j, 0] - px
+            dy = P[j, 1] - py
+            dz = P[j, 2] - pz
+            d2 = dx * dx + dy * dy + dz * dz
+            h = 0.5 * (d2 + (W[i] - W[j]))
+            if h > 0.0 and h * h > rmax2 * d2 * (1.0 + VORONOI3D_STOP_RTOL):
+                continue  # beyond every vertex of the finished cell
+            tol = VORONOI3D_CUT_RTOL * (np.sqrt(d2 * rmax2) + abs(h))
+            if not _mark_owners(
+                i, V, nv, dx, dy, dz, h, tol, j, OWN, work, nfo, todo, nd, P, W, WP, ns, X
+            ):
+                return OVERFLOW
+        for w in range(WP.shape[0]):
+            nx = WP[w, 0]
+            ny = WP[w, 1]
+            nz = WP[w, 2]
+            h = WP[w, 3] - (nx * px + ny * py + nz * pz)
+            nn = np.sqrt(nx * nx + ny * ny + nz * nz)
+            tol = VORONOI3D_CUT_RTOL * (nn * np.sqrt(rmax2) + abs(h))
+            if not _mark_owners(
+                i, V, nv, nx, ny, nz, h, tol, ns + w, OWN, work, nfo, todo, nd, P, W, WP, ns, X
+            ):
+                return OVERFLOW
     for v in range(nv):
         c = work[v, 0]
         # sort and dedupe the owners
@@ -422,6 +583,10 @@ def _name_cell(
         a = name[0]
         for q in range(4):
             vnames[v, q] = name[q]
+        nsite = 0
+        for t in range(u):
+            nsite += keys[t] < ns
+        vnames[v, 4] = nsite
         for q in range(3):
             x[q] = P[a, q] + y[q]
         axis_snap(keys, u, ns, WP, x)
@@ -436,9 +601,11 @@ def _name_cell(
 
 @njit(**NJIT)
 def _merge_named(nv, F, nf, R, vnames, vabs, vrel, remap):
-    """Merge local vertices with equal names, drop repeated ring entries and thin faces.
+    """Merge local vertices with equal names or coordinates; drop repeats and thin faces.
 
-    Returns ``(nv, nf, nr)``; rings are repacked from 0.
+    Equal coordinates under different names: exactly distinct vertices closer than the
+    doubles can tell (points rounded onto a sphere); they are one vertex here and in the
+    join (which is by coordinates). Returns ``(nv, nf, nr)``; rings are repacked from 0.
     """
     m = 0
     for v in range(nv):
@@ -449,6 +616,8 @@ def _merge_named(nv, F, nf, R, vnames, vabs, vrel, remap):
                 and vnames[u, 1] == vnames[v, 1]
                 and vnames[u, 2] == vnames[v, 2]
                 and vnames[u, 3] == vnames[v, 3]
+            ) or (
+                vabs[u, 0] == vabs[v, 0] and vabs[u, 1] == vabs[v, 1] and vabs[u, 2] == vabs[v, 2]
             ):
                 same = u
                 break
@@ -457,7 +626,7 @@ def _merge_named(nv, F, nf, R, vnames, vabs, vrel, remap):
             continue
         remap[v] = m
         if m != v:
-            for q in range(4):
+            for q in range(5):
                 vnames[m, q] = vnames[v, q]
             for q in range(3):
                 vabs[m, q] = vabs[v, q]
@@ -508,20 +677,19 @@ def build_cells(
     vol,
     cen,
     rad2,
-    onames,
+    osite,
     ovabs,
     ofaces,
-    oarea,
     oring,
 ):
     """Build the cells ``cells (k,)`` (site numbers) in ``nblocks`` parallel blocks.
 
     Per cell ``c`` (position in ``cells``), with ``caps = (cv, cf, cr, scratch_v, scratch_f,
-    scratch_r, graph_degree)``: vertex names ``onames[c * cv:...] (.., 4)`` and absolute
-    coordinates ``ovabs``; faces ``ofaces[c * cf:...] = (label, length)``, area vectors
-    ``oarea`` (relative frame, outward), rings ``oring[c * cr:...]`` of local vertex numbers;
-    ``counts[c] = (nv, nf, nr)``; ``vol``, ``cen`` (absolute), ``rad2`` (squared radius from
-    the site).
+    scratch_r, graph_degree)``: its vertices' absolute coordinates ``ovabs[c * cv:...]`` and
+    their numbers of owner sites ``osite`` (the cells that share the vertex); faces
+    ``ofaces[c * cf:...] = (label, length)`` and their rings ``oring[c * cr:...]`` of local
+    vertex numbers (outward); ``counts[c] = (nv, nf, nr)``; ``vol``, ``cen`` (absolute),
+    ``rad2`` (squared radius from the site).
     """
     k = cells.shape[0]
     ns = P.shape[0]
@@ -539,7 +707,7 @@ def build_cells(
         V, F, R, R2, S, work, T, OWN, cand, cd2, buck = _scratch(
             caps[3], caps[4], caps[5], max(1024, min(ns, 1 << 16)), nbuck
         )
-        vnames = np.zeros((caps[3], 4), np.int64)
+        vnames = np.zeros((caps[3], 5), np.int64)
         vabs = np.zeros((caps[3], 3))
         vrel = np.zeros((caps[3], 3))
         remap = np.zeros(caps[3], np.int64)
@@ -551,20 +719,44 @@ def build_cells(
         C = (V, F, R, R2, S, work, T)
         G = _graph_scratch(caps[3], caps[6])
         G0 = _graph_scratch(0, 1)  # no graph: face rings
-        TDEG, TED, TBK, TLB, _, _ = _graph_scratch(max(TV.shape[0], 1), caps[6])
+        TDEG, TED, TBK, TLB, _, _, _ = _graph_scratch(max(TV.shape[0], 1), caps[6])
+        X = (np.zeros((2, 4, 4)), scratch())
         if not from_rings(TV.shape[0], TF, TF.shape[0], TR, TDEG, TED, TBK, TLB):
             G = G0
         TG = (TDEG, TED, TBK, TLB)
         for c in range(lo, hi):
             i = cells[c]
             st, nv, nf, nt, r2 = _one_cell(
-                i, P, W, wmax, start, SP, sidx, g, order, TV, TF, TR, TG, C, G, cand, cd2, buck
+                i,
+                P,
+                W,
+                WP,
+                X,
+                wmax,
+                start,
+                SP,
+                sidx,
+                g,
+                order,
+                TV,
+                TF,
+                TR,
+                TG,
+                C,
+                G,
+                cand,
+                cd2,
+                buck,
             )
+            Gu = G
             if st == BROKEN and G[0].shape[0] > 0:  # the graph could not: face rings
+                Gu = G0
                 st, nv, nf, nt, r2 = _one_cell(
                     i,
                     P,
                     W,
+                    WP,
+                    X,
                     wmax,
                     start,
                     SP,
@@ -615,6 +807,8 @@ def build_cells(
                 name,
                 x,
                 keys,
+                Gu,
+                X,
             )
             if st != OK:
                 status[c] = st
@@ -638,20 +832,15 @@ def build_cells(
                 cen[c, 2] = P[i, 2] + mz / v0
             bv = c * cv
             for v in range(nv):
-                for q in range(4):
-                    onames[bv + v, q] = vnames[v, q]
+                osite[bv + v] = min(vnames[v, 4], 255)
                 for q in range(3):
-                    ovabs[bv + v, q] = vabs[v, q]
+                    ovabs[bv + v, q] = vabs[v, q] + 0.0  # one zero: -0.0 + 0.0 == +0.0
             bf = c * cf
             br = c * cr
             t = 0
             for f in range(nf):
                 ofaces[bf + f, 0] = F[f, 0]
                 ofaces[bf + f, 1] = F[f, 2]
-                ax, ay, az = face_vector(vrel, R, F[f, 1], F[f, 2])
-                oarea[bf + f, 0] = ax
-                oarea[bf + f, 1] = ay
-                oarea[bf + f, 2] = az
                 for q in range(F[f, 2]):
                     oring[br + t] = R[F[f, 1] + q]
                     t += 1

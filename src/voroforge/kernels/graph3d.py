@@ -101,11 +101,12 @@ def from_rings(nv, F, nf, R, DEG, ED, BK, LB):
 
 
 @njit(**{**NJIT, "inline": "always"})
-def _move(V, DEG, ED, BK, LB, a, b):
+def _move(V, DEG, ED, BK, LB, FL, a, b):
     """Move vertex ``a`` to slot ``b`` (free), repointing its neighbours."""
     V[b, 0] = V[a, 0]
     V[b, 1] = V[a, 1]
     V[b, 2] = V[a, 2]
+    FL[b] = FL[a]
     d = DEG[a]
     DEG[b] = d
     for k in range(d):
@@ -129,10 +130,13 @@ def _only_edge(DEG, ED, v, u):
 
 
 @njit(**NJIT)
-def cut(V, nv, DEG, ED, BK, LB, S, CP, label):
+def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
     """Cut the cell by the plane whose values are ``S[:nv]``; keep ``s <= 0``.
 
-    ``CP (cap, 4) int64`` is scratch (the cap's ring). Returns ``(status, nv)``.
+    ``FL (cap,)`` flags vertices that may lie on planes other than their faces' (the
+    caller's mark); a new vertex on an edge is flagged when both ends are (the edge may lie
+    in such a plane). ``CP (cap, 4) int64`` is scratch (the cap's ring). Returns
+    ``(status, nv)``.
     """
     vcap = V.shape[0]
     D = ED.shape[1]
@@ -225,6 +229,7 @@ def cut(V, nv, DEG, ED, BK, LB, S, CP, label):
             V[x, 1] = V[a, 1] + t * (V[b, 1] - V[a, 1])
             V[x, 2] = V[a, 2] + t * (V[b, 2] - V[a, 2])
             S[x] = 0.0
+            FL[x] = FL[u] and FL[v]
             CP[q, 2] = x
     # collapse repeats of an on-plane vertex (consecutive, cyclically)
     w = 0
@@ -341,7 +346,7 @@ def cut(V, nv, DEG, ED, BK, LB, S, CP, label):
             while top > v and S[top] > 0.0:
                 top -= 1
             if top > v:
-                _move(V, DEG, ED, BK, LB, top, v)
+                _move(V, DEG, ED, BK, LB, FL, top, v)
                 S[v] = S[top]
         v += 1
     return GCUT_DONE, top
