@@ -569,6 +569,41 @@ def test_patches_carry_the_moved_sites_and_flags_only():
         assert np.array_equal(page_mask, s.result.mask.astype(np.uint8))
 
 
+def _page_cells(arrays, prefix):
+    """Per cell of a geometry message: its flat float32 coordinates (the page's rawData)."""
+    g, r, c = arrays[prefix + "g"], arrays[prefix + "r"], arrays[prefix + "c"]
+    return [c[2 * r[g[k]] : 2 * r[g[k + 1]]].copy() for k in range(len(g) - 1)]
+
+
+def test_a_count_slider_patches_only_the_cells_that_changed():
+    from voroforge.studio.server import geometry_message
+
+    s = Session({**HOLED, "seeds": {"method": "random", "count": 150}})
+    sent: dict = {}
+    h, a = wire.unpack(geometry_message(s, None, seq=1, boundary=True, sent=sent))
+    raw, cells = _page_cells(a, "r"), _page_cells(a, "c")
+    mask, sites = a["mask"].copy(), a["sites"].copy()
+    for count in (160, 140, 141, 150):
+        reply = s.apply({"op": "set", "key": "seeds.count", "value": count})
+        assert reply.kind == "update" and reply.changed is not None
+        h, a = wire.unpack(geometry_message(s, reply.changed, seq=2, boundary=False, sent=sent))
+        assert not h["full"] and h["n"] == count and len(a["idx"]) < count
+        if count == 141:  # one more seed: its cell and its neighbours
+            assert 140 in a["idx"] and len(a["idx"]) <= 12
+        del raw[count:], cells[count:]  # the page drops the cells past the count...
+        raw += [None] * (count - len(raw))
+        cells += [None] * (count - len(cells))
+        for k, (rc, cc) in enumerate(zip(_page_cells(a, "r"), _page_cells(a, "c"), strict=True)):
+            raw[a["idx"][k]], cells[a["idx"][k]] = rc, cc  # ...and patches the changed ones
+        mask, sites = a["mask"], a["sites"]
+        _, whole = wire.unpack(geometry_message(s, None, seq=3, boundary=False))
+        assert all(np.array_equal(x, y) for x, y in zip(raw, _page_cells(whole, "r"), strict=True))
+        assert all(
+            np.array_equal(x, y) for x, y in zip(cells, _page_cells(whole, "c"), strict=True)
+        )
+        assert np.array_equal(mask, whole["mask"]) and np.array_equal(sites, whole["sites"])
+
+
 # --- the server ----------------------------------------------------------------------------
 
 

@@ -134,6 +134,17 @@ def _slide(page, key, value):
     )
 
 
+def _patched_is_whole(page):
+    """Whether the canvas, patched edit by edit, has the pixels of a whole redraw."""
+    return page.evaluate(
+        """() => { const s = studio, c = s.ctx, W = s.canvas.width, H = s.canvas.height;
+             s.paintNow(); const a = c.getImageData(0, 0, W, H).data;
+             s.baseValid = false; s.paintNow(); const b = c.getImageData(0, 0, W, H).data;
+             let diff = 0; for (let i = 0; i < a.length; i++) if (a[i] !== b[i]) diff++;
+             return diff; }"""
+    )
+
+
 def test_page_draws_the_design(panel):
     page, session, _ = panel
     assert page.evaluate("studio.n") == len(session.result.raw)
@@ -159,6 +170,7 @@ def test_drag_a_seed_changes_its_cell(panel):
     _drag(page, 5, 14, -9)
     after = page.evaluate("studio.cellPath(5)")
     assert after != before
+    assert _patched_is_whole(page) == 0
     assert session.sites is not None
     assert np.allclose(page.evaluate("studio.site(5)"), session.result.sites[5])
     assert page.evaluate("studio.latencies.filter(l => l.op === 'move' && !l.full).length") >= 1
@@ -193,6 +205,7 @@ def test_add_and_remove_a_seed_then_undo(panel):
     page.keyboard.press("Control+z")
     _idle(page)
     assert page.evaluate("studio.n") == n == len(session.result.raw)
+    assert _patched_is_whole(page) == 0
 
 
 def test_slider_changes_the_cell_count_and_bad_values_show_the_error(panel):
@@ -203,6 +216,7 @@ def test_slider_changes_the_cell_count_and_bad_values_show_the_error(panel):
     _idle(page)
     assert page.evaluate("studio.n") == len(session.result.raw) > n
     assert session.sites is None  # new seeds from [seeds]
+    assert _patched_is_whole(page) == 0
     good = page.evaluate("studio.n")
     box = ".vf-ctl[data-key='cells.web'] input[type=number]"
     page.fill(box, "-2")

@@ -601,12 +601,20 @@ def _absolute_files(data: dict, folder: Path) -> None:
 
 
 def _changed(previous, result) -> np.ndarray | None:
-    """Indices of the cells that differ from ``previous`` (None: redraw everything)."""
+    """Indices of the cells that differ from ``previous`` (None: redraw everything).
+
+    ``compute``'s reuse compares cell ``i`` with the previous cell ``i``, so with another cell
+    count (a count slider: the random stream keeps its first seeds) the cells past the old
+    count are new and the others changed only where ``redone`` or their flag says.
+    """
     redo = result.extra.get("redone")
-    if previous is None or redo is None or len(previous.raw) != len(result.raw):
+    if previous is None or redo is None:
         return None
-    moved = np.flatnonzero(previous.mask != result.mask)
-    return np.union1d(redo, moved).astype(np.int32)
+    n0, n1 = len(previous.raw), len(result.raw)
+    m = min(n0, n1)
+    flipped = np.flatnonzero(previous.mask[:m] != result.mask[:m])
+    out = np.union1d(np.union1d(redo, flipped), np.arange(n0, n1))
+    return out[out < n1].astype(np.int32)
 
 
 _OPS = {

@@ -212,32 +212,44 @@ var VoroStudio = (function () {
      the old and new cells for repainting (see paintNow). */
   Studio.prototype.geometry = function (m) {
     var h = m.header, a = m.arrays, t0 = performance.now();
-    var n = h.n, idx = a.idx, k, i, region = null;
-    var full = h.full || this.raw.length !== n && !a.sites;
+    var n = h.n, idx = a.idx, k, i, boxes = [], old = this.raw.length;
+    var full = h.full || old !== n && !a.sites;
     this.bounds = h.bounds;
     if (h.full) { this.raw = new Array(n); this.cells = new Array(n); this.rawData = new Array(n); this.boxes = new Array(n); }
-    else if (this.raw.length !== n) { this.raw.length = n; this.cells.length = n; this.rawData.length = n; this.boxes.length = n; }
+    else if (old !== n) {  // cells past the new count are gone: repaint where they were
+      for (i = n; i < old; i++) if (this.boxes[i]) boxes.push(this.boxes[i]);
+      this.raw.length = n; this.cells.length = n; this.rawData.length = n; this.boxes.length = n;
+    }
     for (k = 0; k < idx.length; k++) {
       i = idx[k];
-      region = grow(region, this.boxes[i]);
+      var was = this.boxes[i];
       // no Path2D per cell: the rings stay in the message's buffers until drawn
       this.raw[i] = a.rg[k + 1] > a.rg[k] ? [a.rg, a.rr, a.rc, k] : null;
       this.rawData[i] = a.rc.subarray(2 * a.rr[a.rg[k]], 2 * a.rr[a.rg[k + 1]]);
       this.cells[i] = a.cg[k + 1] > a.cg[k] ? [a.cg, a.cr, a.cc, k] : null;
       this.boxes[i] = ringBox(a.rg, a.rr, a.rc, k);
-      region = grow(region, this.boxes[i]);
+      var box = grow(was ? was.slice() : null, this.boxes[i]);
+      if (box) boxes.push(box);
     }
-    if (a.sites) { this.sites = new Float64Array(a.sites); full = full || !h.full && this.sitesN !== a.sites.length; }
-    else if (a.si) {
+    var dot = function (x, y) { boxes.push([x, y, x, y]); };
+    if (a.sites) {  // all the sites: repaint the dots that moved, came or went
+      var before = this.sites, now = a.sites, L = Math.max(before.length, now.length);
+      if (!full && !h.full) {
+        for (k = 0; k < L; k += 2) {
+          if (before[k] === now[k] && before[k + 1] === now[k + 1]) continue;
+          if (k < before.length) dot(before[k], before[k + 1]);
+          if (k < now.length) dot(now[k], now[k + 1]);
+        }
+      }
+      this.sites = new Float64Array(now);
+    } else if (a.si) {
       for (k = 0; k < a.si.length; k++) {
         i = a.si[k];
-        var ox = this.sites[2 * i], oy = this.sites[2 * i + 1];
-        region = grow(region, [ox, oy, ox, oy]);
+        dot(this.sites[2 * i], this.sites[2 * i + 1]);
         this.sites[2 * i] = a.sv[2 * k]; this.sites[2 * i + 1] = a.sv[2 * k + 1];
-        region = grow(region, [a.sv[2 * k], a.sv[2 * k + 1], a.sv[2 * k], a.sv[2 * k + 1]]);
+        dot(a.sv[2 * k], a.sv[2 * k + 1]);
       }
     }
-    this.sitesN = this.sites.length;
     if (a.mask) this.mask = new Uint8Array(a.mask);
     else for (k = 0; k < idx.length; k++) this.mask[idx[k]] = a.m[k];
     this.n = n;
@@ -246,7 +258,7 @@ var VoroStudio = (function () {
       this.boundaryId++; full = true;
     }
     if (h.full || full) { this.baseValid = false; this.pending = null; }
-    else if (region) this.pending = grow(this.pending, region);
+    else if (boxes.length) this.pending = (this.pending || []).concat(boxes);
     this.bounds = h.bounds; this.attractors = h.attractors; this.header = h; this.seq = h.seq;
     this.reportView();
     var t1 = performance.now();
@@ -298,6 +310,19 @@ var VoroStudio = (function () {
     return this.bg;
   };
 
+  /* Repaint the boxes of changed cells and dots: each box on its own (a few scattered changes
+     repaint a few small patches), or everything when they cover much of the canvas. */
+  Studio.prototype.renderPending = function (v) {
+    var list = this.pending, area = 0, k, b;
+    this.pending = null;
+    for (k = 0; k < list.length; k++) {
+      b = list[k];
+      area += ((b[2] - b[0]) * v.s + 16) * ((b[3] - b[1]) * v.s + 16);
+    }
+    if (list.length > 400 || area > 0.5 * this.canvas.width * this.canvas.height) { this.renderBase(null); return; }
+    for (k = 0; k < list.length; k++) this.renderBase(list[k]);
+  };
+
   Studio.prototype.renderBase = function (region) {
     var W = this.canvas.width, H = this.canvas.height, v = this.view(), i;
     if (!this.img || this.img.width !== W || this.img.height !== H) {
@@ -313,7 +338,7 @@ var VoroStudio = (function () {
       r = [region[0] - pad, region[1] - pad, region[2] + pad, region[3] + pad];
       rect = [Math.max(0, Math.floor(r[0] * v.s + v.tx)), Math.max(0, Math.floor(v.ty - r[3] * v.s)),
         Math.min(W, Math.ceil(r[2] * v.s + v.tx)), Math.min(H, Math.ceil(v.ty - r[1] * v.s))];
-      if (rect[2] <= rect[0] || rect[3] <= rect[1]) { this.pending = null; return; }
+      if (rect[2] <= rect[0] || rect[3] <= rect[1]) return;
       for (var y = rect[1]; y < rect[3]; y++) px.set(bg.subarray(y * W + rect[0], y * W + rect[2]), y * W + rect[0]);
     } else {
       rect = [0, 0, W, H];
@@ -332,7 +357,8 @@ var VoroStudio = (function () {
     R.composite(px, cov, W, rect, EDGE_RGB, EDGE_ALPHA);
     R.dots(px, W, rect, this.sites, v, h, DOT);
     this.ctx.putImageData(this.img, 0, 0, rect[0], rect[1], rect[2] - rect[0], rect[3] - rect[1]);
-    this.baseValid = true; this.pending = null; this.baseView = [v.s, v.tx, v.ty];
+    this.baseValid = true; this.baseView = [v.s, v.tx, v.ty];
+    if (!region) this.pending = null;
   };
 
   Studio.prototype.resize = function () {
@@ -379,7 +405,7 @@ var VoroStudio = (function () {
     var bv = this.baseView;
     if (!bv || bv[0] !== v.s || bv[1] !== v.tx || bv[2] !== v.ty) this.baseValid = false;
     if (!this.baseValid) this.renderBase(null);
-    else if (this.pending) this.renderBase(this.pending);
+    else if (this.pending) this.renderPending(v);
     this.placeHandle(v);
     // the overlay is drawn again only when what it shows changed (a canvas that changes is
     // composited again: a frame's cost even when the drawing is the same)
