@@ -313,38 +313,52 @@ var VoroStudio = (function () {
   /* Repaint the boxes of changed cells and dots: each box on its own (a few scattered changes
      repaint a few small patches), or everything when they cover much of the canvas. */
   Studio.prototype.renderPending = function (v) {
-    var list = this.pending, area = 0, k, b;
+    var list = this.pending, W = this.canvas.width, H = this.canvas.height, k, rects = [], sum = 0;
     this.pending = null;
-    for (k = 0; k < list.length; k++) {
-      b = list[k];
-      area += ((b[2] - b[0]) * v.s + 16) * ((b[3] - b[1]) * v.s + 16);
+    if (!this.img || this.img.width !== W || this.img.height !== H) { this.renderBase(); return; }
+    var U = [W, H, 0, 0], pad = (this.dotHalf() + 3) / v.s;
+    for (k = 0; k < list.length && k <= 400; k++) {
+      var b = list[k], r = [b[0] - pad, b[1] - pad, b[2] + pad, b[3] + pad];
+      var rect = [Math.max(0, Math.floor(r[0] * v.s + v.tx)), Math.max(0, Math.floor(v.ty - r[3] * v.s)),
+        Math.min(W, Math.ceil(r[2] * v.s + v.tx)), Math.min(H, Math.ceil(v.ty - r[1] * v.s))];
+      if (rect[2] <= rect[0] || rect[3] <= rect[1]) continue;
+      rects.push([rect, r]);
+      sum += (rect[2] - rect[0]) * (rect[3] - rect[1]);
+      U = [Math.min(U[0], rect[0]), Math.min(U[1], rect[1]), Math.max(U[2], rect[2]), Math.max(U[3], rect[3])];
     }
-    if (list.length > 400 || area > 0.5 * this.canvas.width * this.canvas.height) { this.renderBase(null); return; }
-    for (k = 0; k < list.length; k++) this.renderBase(list[k]);
+    if (list.length > 400 || sum > 0.5 * W * H) { this.renderBase(); return; }
+    if (!rects.length) return;
+    var whole = (U[2] - U[0]) * (U[3] - U[1]);
+    if (whole <= 2 * sum + 4096) {  // near one another (a drag): one box around them all
+      rects = [[U, [(U[0] - v.tx) / v.s, (v.ty - U[3]) / v.s, (U[2] - v.tx) / v.s, (v.ty - U[1]) / v.s]]];
+    }
+    for (k = 0; k < rects.length; k++) this.paintRect(rects[k][0], rects[k][1], v);
+    this.ctx.putImageData(this.img, 0, 0, U[0], U[1], U[2] - U[0], U[3] - U[1]);
   };
 
-  Studio.prototype.renderBase = function (region) {
-    var W = this.canvas.width, H = this.canvas.height, v = this.view(), i;
+  /* Half the side of a seed's dot, in pixels. */
+  Studio.prototype.dotHalf = function () { return Math.max(1, Math.round(1.2 * this.dpr)); };
+
+  /* Everything, into the pixels and onto the canvas. */
+  Studio.prototype.renderBase = function () {
+    var W = this.canvas.width, H = this.canvas.height, v = this.view();
     if (!this.img || this.img.width !== W || this.img.height !== H) {
       this.img = this.ctx.createImageData(W, H);
       this.px = new Uint32Array(this.img.data.buffer);
       this.cov = new Uint8Array(W * H);
-      region = null;
     }
-    var px = this.px, cov = this.cov, bg = this.background(W, H, v), dpr = this.dpr;
-    var h = Math.max(1, Math.round(1.2 * dpr)), tol = 0.5 * dpr, rect, r = null;
-    if (region) {
-      var pad = (h + 3) / v.s;
-      r = [region[0] - pad, region[1] - pad, region[2] + pad, region[3] + pad];
-      rect = [Math.max(0, Math.floor(r[0] * v.s + v.tx)), Math.max(0, Math.floor(v.ty - r[3] * v.s)),
-        Math.min(W, Math.ceil(r[2] * v.s + v.tx)), Math.min(H, Math.ceil(v.ty - r[1] * v.s))];
-      if (rect[2] <= rect[0] || rect[3] <= rect[1]) return;
-      for (var y = rect[1]; y < rect[3]; y++) px.set(bg.subarray(y * W + rect[0], y * W + rect[2]), y * W + rect[0]);
-    } else {
-      rect = [0, 0, W, H];
-      px.set(bg);
-    }
-    var bx = this.boxes, n = this.n, R = VoroRaster;
+    this.paintRect([0, 0, W, H], null, v);
+    this.ctx.putImageData(this.img, 0, 0);
+    this.baseValid = true; this.baseView = [v.s, v.tx, v.ty]; this.pending = null;
+  };
+
+  /* The pixels of rect = [X0, Y0, X1, Y1): the background, then the cells meeting the design
+     box r (null: all), their outlines and the seeds, clipped to rect. */
+  Studio.prototype.paintRect = function (rect, r, v) {
+    var W = this.canvas.width, px = this.px, cov = this.cov, bg = this.background(W, this.canvas.height, v);
+    var h = this.dotHalf(), tol = 0.5 * this.dpr, i, bx = this.boxes, n = this.n, R = VoroRaster;
+    if (r) for (var y = rect[1]; y < rect[3]; y++) px.set(bg.subarray(y * W + rect[0], y * W + rect[2]), y * W + rect[0]);
+    else px.set(bg);
     for (i = 0; i < n; i++) {
       if (r) {
         var q = bx[i];
@@ -356,9 +370,6 @@ var VoroStudio = (function () {
     }
     R.composite(px, cov, W, rect, EDGE_RGB, EDGE_ALPHA);
     R.dots(px, W, rect, this.sites, v, h, DOT);
-    this.ctx.putImageData(this.img, 0, 0, rect[0], rect[1], rect[2] - rect[0], rect[3] - rect[1]);
-    this.baseValid = true; this.baseView = [v.s, v.tx, v.ty];
-    if (!region) this.pending = null;
   };
 
   Studio.prototype.resize = function () {
@@ -404,7 +415,7 @@ var VoroStudio = (function () {
     var t0 = performance.now(), v = this.view();
     var bv = this.baseView;
     if (!bv || bv[0] !== v.s || bv[1] !== v.tx || bv[2] !== v.ty) this.baseValid = false;
-    if (!this.baseValid) this.renderBase(null);
+    if (!this.baseValid) this.renderBase();
     else if (this.pending) this.renderPending(v);
     this.placeHandle(v);
     // the overlay is drawn again only when what it shows changed (a canvas that changes is
