@@ -125,6 +125,11 @@ DRAGGED = {  # designs whose seed drags take the incremental path, one per kind 
         "cells": {},
         "openings": {"select": "area", "min_area": 150},
     },
+    "circle with a curved outline, fillet": {  # cells cut by a 256-gon: GEOS, not the engine
+        **MANY,
+        "boundary": {"shape": "circle", "radius": 110, "center": [150, 100]},
+        "cells": {"fillet": 2.0},
+    },
 }
 
 
