@@ -115,6 +115,7 @@ def _frame_of(result: Result) -> tuple[tuple[float, float, float, float], bool]:
     if known is None or known[0] is not result.domain:
         box = tuple(float(v) for v in result.domain.bounds)
         rect = bool(shapely.equals(result.domain, shapely.box(*box)))
+        shapely.prepare(result.domain)  # containment tests of every drag step
         known = (result.domain, box, rect)
         result.extra["domain_box"] = known
     return known[1], known[2]
