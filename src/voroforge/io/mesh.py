@@ -125,9 +125,16 @@ def _atomic(path: Path, data: bytes) -> Path:
     return path
 
 
-def _fmt(a: np.ndarray) -> np.ndarray:
-    """Shortest round-tripping decimal text of each float64."""
-    return np.array([repr(float(x)) for x in a.ravel()], dtype=object).reshape(a.shape)
+_ZIP_DATE = (1980, 1, 1, 0, 0, 0)
+
+
+def _xml_rows(fmt: str, a: np.ndarray) -> str:
+    """``fmt`` filled with each row's three values, joined; floats as ``repr`` gives them.
+
+    ``repr`` is the shortest text that reads back bit for bit; formatting Python scalars
+    from ``tolist`` through a C-level ``map`` costs half the per-element loop.
+    """
+    return "".join(map(fmt.format, *a.T.tolist()))
 
 
 def _3mf_bytes(items, units: str) -> bytes:
@@ -136,22 +143,28 @@ def _3mf_bytes(items, units: str) -> bytes:
         f'<model unit="{UNITS[units]}" xml:lang="en-US" xmlns="{_NS3MF}"><resources>',
     ]
     for k, (name, m) in enumerate(items, start=1):
-        v = _fmt(np.asarray(m.vertices, dtype=np.float64))
-        f = np.asarray(m.faces, dtype=np.int64)
+        v = np.asarray(m.vertices, dtype=np.float64).reshape(-1, 3)
+        f = np.asarray(m.faces, dtype=np.int64).reshape(-1, 3)
         safe = name.replace("&", "&amp;").replace('"', "&quot;").replace("<", "&lt;")
         parts.append(f'<object id="{k}" type="model" name="{safe}"><mesh><vertices>')
-        parts.extend(f'<vertex x="{a}" y="{b}" z="{c}"/>' for a, b, c in v)
+        parts.append(_xml_rows('<vertex x="{!r}" y="{!r}" z="{!r}"/>', v))
         parts.append("</vertices><triangles>")
-        parts.extend(f'<triangle v1="{a}" v2="{b}" v3="{c}"/>' for a, b, c in f.tolist())
+        parts.append(_xml_rows('<triangle v1="{}" v2="{}" v3="{}"/>', f))
         parts.append("</triangles></mesh></object>")
     parts.append("</resources><build>")
     parts.extend(f'<item objectid="{k}"/>' for k in range(1, len(items) + 1))
     parts.append("</build></model>")
     buf = io.BytesIO()
     with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as z:
-        z.writestr("[Content_Types].xml", _CT)
-        z.writestr("_rels/.rels", _RELS)
-        z.writestr("3D/3dmodel.model", "".join(parts).encode())
+        for name, data in (
+            ("[Content_Types].xml", _CT),
+            ("_rels/.rels", _RELS),
+            ("3D/3dmodel.model", "".join(parts).encode()),
+        ):
+            # a fixed date: the same mesh gives the same file byte for byte
+            info = zipfile.ZipInfo(name, _ZIP_DATE)
+            info.external_attr = 0o600 << 16  # what writestr gives a name
+            z.writestr(info, data, zipfile.ZIP_DEFLATED)
     return buf.getvalue()
 
 

@@ -40,8 +40,7 @@ def _as_polys(mesh):
     """``(vertices (k, 3), list of rings)`` from a trimesh or a ``(vertices, faces)`` pair."""
     if hasattr(mesh, "vertices") and hasattr(mesh, "faces"):
         v = np.asarray(mesh.vertices, np.float64)
-        f = np.asarray(mesh.faces, np.int64)
-        return v, list(f)
+        return v, np.asarray(mesh.faces, np.int64).reshape(-1, 3)
     v, f = mesh
     v = np.asarray(v, np.float64)
     if v.ndim != 2 or v.shape[1] != 3:
@@ -51,6 +50,18 @@ def _as_polys(mesh):
         if len(r) < 3 or r.min() < 0 or r.max() >= len(v):
             raise ValueError("mesh faces must be rings of >= 3 valid vertex indices")
     return v, rings
+
+
+def _by_length(rings):
+    """``(indices, (n, l) ring array)`` per ring length (triangle meshes: one group)."""
+    if isinstance(rings, np.ndarray):
+        return [(np.arange(len(rings)), rings)]
+    lens = np.array([len(r) for r in rings])
+    out = []
+    for n in np.unique(lens):
+        idx = np.flatnonzero(lens == n)
+        out.append((idx, np.array([rings[i] for i in idx], dtype=np.int64).reshape(len(idx), n)))
+    return out
 
 
 def _rotation(view):
@@ -107,7 +118,6 @@ def render(
     rot = _rotation(view)
     L = np.asarray(light, np.float64)
     L = L / np.linalg.norm(L)
-    polys = []  # (depth, screen points, rgb)
     allpts = []
     items = [_as_polys(m) for m in meshes]
     for v, _ in items:
@@ -123,8 +133,9 @@ def render(
     span = max((hi[0] - lo[0]) / (0.9 * W), (hi[2] - lo[2]) / (0.9 * H), 1e-300)
     cx = 0.5 * (lo[0] + hi[0])
     cz = 0.5 * (lo[2] + hi[2])
+    keys, faces = [], []  # (depth, mesh, face) per visible face; its (flat xy, rgb, outline)
     for k, (v, rings) in enumerate(items):
-        if not len(v) or not rings:
+        if not len(v) or not len(rings):
             continue
         outline = bool(edges if isinstance(edges, bool) else edges[k])
         col = colors[k] if colors is not None else PALETTE[k % len(PALETTE)]
@@ -132,25 +143,30 @@ def render(
         if col.max() <= 1.0:
             col = col * 255.0
         r = v @ rot.T
-        sx = (r[:, 0] - cx) / span + 0.5 * W
-        sy = 0.5 * H - (r[:, 2] - cz) / span
-        for ring in rings:
-            p = v[ring]
-            nrm = np.cross(p[1:-1] - p[0], p[2:] - p[0]).sum(axis=0)
-            nn = np.linalg.norm(nrm)
-            if nn == 0.0:
-                continue
-            nrm /= nn
-            if (rot @ nrm)[1] > 1e-12:  # faces away from the camera (which looks along +y')
-                continue
-            shade = 0.35 + 0.65 * max(0.0, float(nrm @ L))
-            rgb = tuple(int(min(255, c * shade + 20)) for c in col)
-            xy = list(zip(sx[ring], sy[ring], strict=True))
-            polys.append((float(r[ring, 1].mean()), xy, rgb, outline))
+        sxy = np.column_stack([(r[:, 0] - cx) / span + 0.5 * W, 0.5 * H - (r[:, 2] - cz) / span])
+        for idx, R in _by_length(rings):
+            p = v[R]  # (n, l, 3): all faces of one length at once
+            nrm = np.cross(p[:, 1:-1] - p[:, :1], p[:, 2:] - p[:, :1]).sum(axis=1)
+            nn = np.linalg.norm(nrm, axis=1)
+            ok = nn != 0.0
+            nrm = nrm[ok] / nn[ok, None]
+            idx, R = idx[ok], R[ok]
+            front = (nrm @ rot.T)[:, 1] <= 1e-12  # faces away from the camera (along +y') go
+            nrm, idx, R = nrm[front], idx[front], R[front]
+            shade = 0.35 + 0.65 * np.maximum(0.0, nrm @ L)
+            rgb = np.minimum(255.0, col[None, :] * shade[:, None] + 20.0).astype(np.int64)
+            keys.append((r[R, 1].mean(axis=1), np.full(len(idx), k), idx))
+            xy = sxy[R].reshape(len(R), 2 * R.shape[1]).tolist()
+            faces.extend(zip(xy, map(tuple, rgb.tolist()), [outline] * len(R), strict=True))
     img = Image.new("RGB", (W, H), tuple(int(c) for c in background))
     draw = ImageDraw.Draw(img)
-    for _, xy, rgb, outline in sorted(polys, key=lambda t: -t[0]):  # far (large y') first
-        draw.polygon(xy, fill=rgb, outline=tuple(edge_color) if outline else rgb, width=ss)
+    if keys:
+        depth, mesh_k, face_k = (np.concatenate(x) for x in zip(*keys, strict=True))
+        order = np.lexsort((face_k, mesh_k, -depth))  # far (large y') first, then input order
+        ec = tuple(edge_color)
+        for i in order.tolist():
+            xy, rgb, outline = faces[i]
+            draw.polygon(xy, fill=rgb, outline=ec if outline else rgb, width=ss)
     img = img.resize((w, h), Image.LANCZOS)
     path = Path(path)
     fd, tmp = tempfile.mkstemp(suffix=".png", dir=path.parent if str(path.parent) else ".")
