@@ -3,13 +3,15 @@
 :func:`create_app` serves the page (``static/``, shipped with the package: no build step, no
 CDN) and ``/ws``, where the page sends JSON edits and gets binary geometry
 (:mod:`voroforge.studio.wire`) and JSON state back. :func:`serve` runs it with uvicorn.
+Besides the session's edits the page sends ``{"op": "view", "px": ...}``, its pixel size in
+design units: the drawn cells travel at that resolution (:func:`geometry_message`).
 
 Safety: the server binds 127.0.0.1 unless told otherwise; requests must name an allowed
 host (DNS rebinding); a WebSocket whose ``Origin`` is another site is refused; messages
 above :data:`voroforge.config.STUDIO_MAX_MESSAGE` bytes, non-JSON, non-finite numbers and
-unknown ops get an error reply and the connection stays up; every edit is computed in a
-worker thread under one lock, so a closed tab or a flood of bad messages leaves the
-session as it was.
+unknown ops get an error reply and the connection stays up; every edit is computed under
+one lock (a seed drag's step in the event loop, it takes milliseconds; anything else in a
+worker thread), so a closed tab or a flood of bad messages leaves the session as it was.
 """
 
 from __future__ import annotations

@@ -2,8 +2,9 @@
  *
  * The server (or the widget's Python side) sends JSON state and binary geometry messages
  * (see voroforge/studio/wire.py): a JSON header and flat typed arrays, rings as
- * geometry -> ring -> coordinate offsets. Cells are kept as one Path2D each and only the
- * changed ones are rebuilt; the canvas is redrawn once per animation frame.
+ * geometry -> ring -> coordinate offsets. Each cell keeps a reference into its message's
+ * buffers; a whole drawing or the boxes of the changed cells are rasterised into pixels by
+ * VoroRaster (raster.js, loaded first). The page tells the server its pixel size ("view").
  */
 var VoroStudio = (function () {
   "use strict";
