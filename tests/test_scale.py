@@ -131,6 +131,44 @@ def test_kd_tiling_balances_and_partitions():
     assert kd_tiling(pts, 1).assign(pts).max() == 0
 
 
+def test_bucket_files_hold_each_tiles_loaded_sites(tmp_path):
+    """Every tile reads back exactly its own sites and the others' sites in its loaded box."""
+    from voroforge.scale.buckets import Store, bucket_chunk, halo_sources
+    from voroforge.scale.job import _grown
+    from voroforge.scale.sources import open_source
+
+    rng = np.random.default_rng(16)
+    pts = np.vstack([rng.random((3000, 2)), rng.normal(0.3, 0.02, (1000, 2))])
+    pts[::97] = pts[5]  # duplicates
+    names = np.array([f"s{i}" for i in range(len(pts))])
+    pq.write_table(
+        pa.table({"x": pts[:, 0], "y": pts[:, 1], "name": names}),
+        tmp_path / "p.parquet",
+        row_group_size=700,
+    )
+    src = open_source(tmp_path / "p.parquet", tmp_path, 1400)
+    til = kd_tiling(pts[::3], 9)
+    halos = rng.random(9) * 0.05
+    loaded = np.array([_grown(r, h) for r, h in zip(til.rects, halos, strict=True)])
+    (tmp_path / "b").mkdir()
+    counts = sum(
+        bucket_chunk(c, None, til, loaded, halo_sources(til, loaded), str(tmp_path / "b"), i)
+        for i, c in enumerate(src.chunks)
+    )
+    store = Store(str(tmp_path / "b"), len(src.chunks), len(til), attrs=True)
+    owner = til.assign(pts)
+    for t in range(len(til)):
+        (ids, xy), (hids, hxy) = store.loaded(t)
+        x0, y0, x1, y1 = loaded[t]
+        inside = (pts[:, 0] >= x0) & (pts[:, 0] <= x1) & (pts[:, 1] >= y0) & (pts[:, 1] <= y1)
+        assert ids.tolist() == np.flatnonzero(owner == t).tolist()
+        assert sorted(hids.tolist()) == np.flatnonzero(inside & (owner != t)).tolist()
+        assert np.array_equal(xy, pts[ids]) and np.array_equal(hxy, pts[hids])
+        assert counts[:, t].tolist() == [len(ids), len(hids)]
+        assert store.owned([t])[t][0].tolist() == ids.tolist()
+        assert store.attributes(t).column("name").to_pylist() == names[ids].tolist()
+
+
 def test_sources_npy_csv_parquet_dask_and_attributes(tmp_path, client):
     rng = np.random.default_rng(7)
     pts = rng.random((2500, 2))

@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import config
-from .buckets import Store, bucket_chunk
+from .buckets import Store, bucket_chunk, halo_sources
 from .sources import open_source
 from .tasks import chunk_stats, run_tile
 from .tiling import kd_tiling
@@ -66,6 +66,9 @@ class ScaleResult:
         Wall time of the call.
     dashboard : str or None
         The dask dashboard's address.
+    halo_copies : int
+        Sites copied into other tiles' halos by the shuffle (the bucket files hold
+        ``cells + halo_copies`` records of 24 bytes).
     phases : dict
         Seconds spent in each step: ``stats`` (extent, checks, sample), ``shuffle`` (split
         and merge of the chunks by tile), ``tiles`` (compute, certify, write) and
@@ -84,6 +87,7 @@ class ScaleResult:
     resumed: int
     seconds: float
     dashboard: str | None = None
+    halo_copies: int = 0
     phases: dict = field(default_factory=dict)
     tile_info: list = field(default_factory=list, repr=False)
 
@@ -356,8 +360,15 @@ def _run(cl, source, job):
     if eng_boundary is None:
         eng_boundary = tuple(float(v) for v in padded_bounds(np.array([lo, hi])))
     ntiles = _tile_count(n, job["tiles"], job["tile_size"], nworkers)
-    tiling = kd_tiling(np.concatenate([s["sample"] for s in stats]), ntiles)
+    sample = np.concatenate([s["sample"] for s in stats])
+    tiling = kd_tiling(sample, ntiles)
     ntiles = len(tiling)
+    # each tile's halo, from its share of the sample (it only sets how many cells need a
+    # second round; the certificate decides what is final)
+    share = np.bincount(tiling.assign(sample), minlength=ntiles) * (n / max(len(sample), 1))
+    loaded = np.array(
+        [_grown(r, _halo(r, max(c, 1.0), lo, hi)) for r, c in zip(tiling.rects, share, strict=True)]
+    ).reshape(-1, 4)
     fingerprint = {
         "n": n,
         "checksums": [s["checksum"] for s in stats],
@@ -374,25 +385,25 @@ def _run(cl, source, job):
     _write_json(out / MANIFEST, manifest)
     lap("stats")
 
-    # the shuffle, on disk: every chunk's sites bucketed by owning tile into one file
+    # the shuffle, on disk: every chunk's sites bucketed by tile, with the halo copies
     shuffle = out / SHUFFLE
     shuffle.mkdir(exist_ok=True)
+    sources = halo_sources(tiling, loaded)
     bucketed = cl.gather(
         [
-            cl.submit(bucket_chunk, c, b, tiling, str(shuffle), i, pure=False)
+            cl.submit(bucket_chunk, c, b, tiling, loaded, sources, str(shuffle), i, pure=False)
             for i, (c, b) in enumerate(zip(source.chunks, blocks, strict=True))
         ]
     )
     del blocks
-    per_tile = np.sum(bucketed, axis=0)
+    per_tile, halo_sites = np.sum(bucketed, axis=0)
     store = Store(str(shuffle), len(source.chunks), ntiles, attrs=source.attributes)
     lap("shuffle")
 
     def spec(t):
         name = f"part-{t:05d}.parquet"
-        h = _halo(tiling.rects[t], per_tile[t], lo, hi)
         return {
-            "loaded": _grown(tiling.rects[t], h),
+            "loaded": tuple(float(v) for v in loaded[t]),
             "lo": lo.tolist(),
             "hi": hi.tolist(),
             "boundary": eng_boundary,
@@ -441,6 +452,7 @@ def _run(cl, source, job):
         resumed=resumed,
         seconds=0.0,
         dashboard=getattr(cl, "dashboard_link", None),
+        halo_copies=int(halo_sites.sum()),
         phases=phases,
         tile_info=tile_info,
     )

@@ -190,49 +190,47 @@ def _compute(ids, xy, boundary, loaded, wanted, last=False):
 def run_tile(t, spec, store, tiling):
     """Tile ``t``: read its sites and halo, compute, certify, recompute, write its file.
 
-    The tile reads its own sites and its neighbours' from the bucket files (``store``, a
-    :class:`~voroforge.scale.buckets.Store`), computes the cells of its own sites with the
-    sites of its loaded region ``spec["loaded"]``, and recomputes the cells whose certificate
-    fails, grouped where their discs overlap, with all the sites of their discs (read from
-    whichever tiles the discs reach), for up to ``spec["max_rounds"]`` rounds. Returns the
-    tile's info (a small dict; the file is written here).
+    The tile reads the sites of its loaded region ``spec["loaded"]`` (its own and the halo
+    copies the bucket tasks made) from the bucket files (``store``, a
+    :class:`~voroforge.scale.buckets.Store`), computes its own sites' cells, and recomputes
+    the cells whose certificate fails, grouped where their discs overlap, with all the sites
+    of their discs (read from the tiles the discs reach), for up to ``spec["max_rounds"]``
+    rounds. Writes the tile's file; returns its info (a small dict).
     """
     t0 = time.perf_counter()
-    pieces = {}
-
-    def need(tiles):
-        missing = [int(u) for u in tiles if int(u) not in pieces]
-        if missing:
-            pieces.update({u: Piece(*p) for u, p in store.read(missing).items()})
-        return [pieces[int(u)] for u in tiles]
-
     lo, hi, boundary = spec["lo"], spec["hi"], spec["boundary"]
     with _threads():
-        near = [t] + [int(u) for u in tiling.touching(spec["loaded"]) if u != t]
-        near_pieces = need(near)
-        own = near_pieces[0]
-        ids, xy, mine = _gather_marked(near_pieces, spec["loaded"])
+        (own_ids, own_xy), (halo_ids, halo_xy) = store.loaded(t)
+        own = Piece(own_ids, own_xy)
+        ids = np.concatenate((own_ids, halo_ids))
+        order = np.argsort(ids, kind="stable")
+        ids = ids[order]
+        xy = np.concatenate((own_xy, halo_xy))[order]
+        wanted = np.flatnonzero(order < len(own_ids))
         loaded_sites = len(ids)
-        wanted = np.flatnonzero(mine)
+        del halo_ids, halo_xy, order
         if len(own.ids) == 0:
             table, pending = _compute_empty()
         else:
             loaded = open_sides(spec["loaded"], lo, hi)
             table, pending = _compute(ids, xy, boundary, loaded, wanted)
-        del ids, xy, mine
+        del ids, xy
         tables = [table]
         first = len(pending[0])
         rounds = 0
+        pieces = {t: own}
         while len(pending[0]) and rounds < spec["max_rounds"]:
             rounds += 1
             last = rounds >= spec["max_rounds"]
             ids_u, xy_u, r_u = pending
             boxes, member = group_discs(xy_u, r_u)
             reach = [tiling.touching(box) for box in boxes]
-            need(np.unique(np.concatenate(reach)))
+            missing = {int(u) for r in reach for u in r} - pieces.keys()
+            if missing:
+                pieces.update({u: Piece(*p) for u, p in store.owned(missing).items()})
             left = ([], [], [])
             for g, box in enumerate(boxes):
-                ids_b, xy_b = _gather(need(reach[g]), box)
+                ids_b, xy_b = _gather([pieces[int(u)] for u in reach[g]], box)
                 wanted = np.flatnonzero(np.isin(ids_b, ids_u[member == g], assume_unique=True))
                 part, more = _compute(ids_b, xy_b, boundary, open_sides(box, lo, hi), wanted, last)
                 tables.append(part)
@@ -251,20 +249,6 @@ def run_tile(t, spec, store, tiling):
     info = _finish(t, spec, tables, Piece(own.ids, own.xy, store.attributes(t)), info)
     info["seconds"] = time.perf_counter() - t0  # returned: with the write
     return info
-
-
-def _gather_marked(pieces, rect):
-    """:func:`_gather` of ``pieces`` and a mask of the sites of the first (the tile's own)."""
-    ids, xy, mine = [], [], []
-    x0, y0, x1, y1 = rect
-    for k, p in enumerate(pieces):
-        m = (p.xy[:, 0] >= x0) & (p.xy[:, 0] <= x1) & (p.xy[:, 1] >= y0) & (p.xy[:, 1] <= y1)
-        ids.append(p.ids[m])
-        xy.append(p.xy[m])
-        mine.append(np.full(len(ids[-1]), k == 0))
-    ids = np.concatenate(ids)
-    order = np.argsort(ids, kind="stable")
-    return ids[order], np.ascontiguousarray(np.concatenate(xy)[order]), np.concatenate(mine)[order]
 
 
 def _compute_empty():
