@@ -1,6 +1,7 @@
 """Rebuild the README gallery: one small PNG per example in docs/gallery/.
 
-Run from the repository root:  .venv/bin/python examples/gallery.py
+Run from the repository root:  .venv/bin/python examples/gallery.py [NAME ...]
+(names of examples to rebuild, e.g. ``leaf-venation``; default: all of them).
 """
 
 from __future__ import annotations
@@ -38,12 +39,14 @@ def tiled(design: Path):
     return render_image([frame], size=SIZE, colors=[(52, 58, 70)], edge_width=0.0)
 
 
-def main() -> None:
-    """Build every example as a small PNG into docs/gallery/."""
+def main(names=()) -> None:
+    """Build every example (or those named) as a small PNG into docs/gallery/."""
     out = ROOT / "docs" / "gallery"
     out.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory() as tmp:
         for design in sorted((ROOT / "examples").glob("*.toml")):
+            if names and design.stem not in names:
+                continue
             overrides = {
                 "output.formats": '["png"]',
                 "output.png_size": SIZE,
@@ -59,4 +62,6 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    main()
+    import sys
+
+    main(sys.argv[1:])

@@ -69,6 +69,8 @@ def products(result: Result, *, kerf: float = 0.0) -> dict[str, list]:
         "edges": [result.edges],
         "sites": [shapely.MultiPoint(result.sites)],
         "boundary": [outline],
+        # seeds.method = "curves": the cell edges along the seed curves (veins, seams)
+        "curves": [result.extra["curve_edges"]] if "curve_edges" in result.extra else [],
     }
 
 
@@ -99,6 +101,31 @@ def _layers(result: Result, kerf: float) -> dict[str, list]:
     return out
 
 
+def _tapered(result: Result, lines, width: float) -> list:
+    """Lines cut in short pieces, each buffered by 3 to 8 ``width`` as the field rises.
+
+    Without attractors every piece gets 3 ``width``. With a curve attractor on a leaf's
+    midrib, the midrib is drawn thickest and the veins thin out towards the margin.
+    """
+    pieces = shapely.get_parts(shapely.segmentize(lines, 6.0 * width))
+    segs = []
+    for line in pieces:
+        xy = shapely.get_coordinates(line)
+        segs += [shapely.LineString(xy[i : i + 2]) for i in range(len(xy) - 1)]
+    if not segs:
+        return []
+    segs = np.asarray(segs, dtype=object)
+    mids = shapely.get_coordinates(shapely.centroid(segs))
+    from .compute import _field
+
+    try:  # inline attractors; one read from a file is not found without the design's folder
+        field_fn = _field(result.design)
+    except (ValueError, OSError):
+        field_fn = None
+    values = np.full(len(segs), 0.4) if field_fn is None else np.clip(field_fn(mids), 0, 1)
+    return list(shapely.buffer(segs, width * (1.6 + 3.4 * values), quad_segs=2))
+
+
 def render_preview(result: Result, *, size: int = 1200):
     """A PIL image of the design: openings in colour on the panel, or edges for line work."""
     from ..io.png import render_image
@@ -114,16 +141,30 @@ def render_preview(result: Result, *, size: int = 1200):
         # each segment buffered on its own: one buffer of the whole network unions it
         # (0.4 s for 3000 segments, 0.015 s this way); the pieces overlap in one colour
         lines = list(shapely.buffer(shapely.get_parts(result.edges), width, quad_segs=2))
+        ink = (25, 25, 35)
+        traced = "curve_edges" in result.extra
+        # a hierarchy (traced curves, recursion) reads by weight and tone: finest lightest
+        colours = [(120, 124, 132) if traced else ink] * len(lines)
         levels = result.extra.get("levels") or []
-        if len(levels) > 1:  # recursion: the first level's edges drawn heavier (the veins)
+        if len(levels) > 1:  # recursion: the first level's edges drawn heavier
             from . import cellops
 
             top = cellops.edges_to_lines(cellops.explode(np.asarray(levels[0].cells)))
-            lines += list(shapely.buffer(shapely.get_parts(top), 2.6 * width, quad_segs=2))
+            heavy = list(
+                shapely.buffer(
+                    shapely.get_parts(top), (1.4 if traced else 2.6) * width, quad_segs=2
+                )
+            )
+            lines += heavy
+            colours += [(70, 74, 84) if traced else ink] * len(heavy)
+        if traced:  # the cell edges along the seed curves (veins) heaviest, tapering
+            veins = _tapered(result, result.extra["curve_edges"], width)
+            lines += veins
+            colours += [ink] * len(veins)
         return render_image(
             lines,
             size=size,
-            colors=(25, 25, 35),
+            colors=colours,
             edge_width=0.0,
             boundary=result.boundary,
         )

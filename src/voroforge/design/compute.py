@@ -71,8 +71,10 @@ class Result:
     frame : shapely geometry or None
         The boundary minus the openings (None from ``compute(..., frame=False)``).
     extra : dict
-        Recursion levels (``"levels"``), the seed file's rows (``"seed_table"``, a
-        :class:`SeedTable`, for ``seeds.method = "file"``) and cached derived data.
+        Recursion levels (``"levels"``), the cell edges along the seed curves
+        (``"curve_edges"``, for ``seeds.method = "curves"``), the seed file's rows
+        (``"seed_table"``, a :class:`SeedTable`, for ``seeds.method = "file"``) and cached
+        derived data.
     diagram : Diagram or None
         The engine's diagram of ``sites`` (Voronoi, power or periodic); None with recursion,
         whose leaves come from one diagram per subdivided cell.
@@ -197,7 +199,7 @@ def _curve(a, base: Path | None, key: str, units: str = "mm"):
     """The polyline(s) of a curve attractor: points, SVG path data or a file."""
     from . import boundary as bd
 
-    if a.points is not None:
+    if getattr(a, "points", None) is not None:
         return np.asarray(a.points, dtype=np.float64)
     if a.path is not None:
         lines = bd.path_lines(a.path)
@@ -213,6 +215,29 @@ def _curve(a, base: Path | None, key: str, units: str = "mm"):
     if merged.is_empty:
         raise DesignError.at(f"{key}.file", "no lines or polygons in the file")
     return merged
+
+
+def _seed_curves(design: Design, base: Path | None):
+    """The curves of ``seeds.method = "curves"`` as shapely lines."""
+    s = design.seeds
+    if s.curves is not None:
+        return shapely.MultiLineString([np.asarray(c, dtype=np.float64) for c in s.curves])
+    with _section("seeds.path" if s.path is not None else "seeds.file"):
+        got = _curve(s, base, "seeds", design.design.units)
+    if isinstance(got, np.ndarray):
+        return shapely.MultiLineString([got])
+    return got
+
+
+def _curve_edges(design: Design, points: np.ndarray, domain, diagram, base: Path | None):
+    """The cell edges that trace the seed curves (``populate.crossing_edges``)."""
+    import voroforge as vf
+
+    from .populate import crossing_edges
+
+    if diagram is None:  # recursion: level 0 is the diagram of the same sites
+        diagram = vf.voronoi(points, domain)
+    return crossing_edges(diagram, _seed_curves(design, base))
 
 
 def _field(design: Design, base: Path | None = None):
@@ -269,6 +294,15 @@ def _seeds(design: Design, domain, field_fn, base: Path | None) -> np.ndarray:
                 "seeds.method", "'density' needs at least one [[attractors]] table"
             )
         return populate.by_density(domain, s.count, field_fn, seed=seed)
+    if s.method == "curves":  # mirrored pairs along curves (+ an optional Poisson fill)
+        return populate.along_curves(
+            domain,
+            _seed_curves(design, base),
+            s.spacing,
+            distance=s.distance,
+            radius=s.radius,
+            seed=seed,
+        )
     if s.method == "image":  # density from a greyscale image stretched over the domain's box
         from .stipple import image_seeds
 
@@ -402,12 +436,22 @@ def _recurse(design: Design, domain, points, field_fn, seed):
         v = float(_values(np.asarray([region], dtype=object), field_fn)[0])
         return max(0, int(round(count_spec.far + (count_spec.near - count_spec.far) * v)))
 
+    prob_spec = rec.probability
+    if prob_spec.graded and field_fn is None:
+        raise DesignError.at(
+            "recursion.probability", "near/far values need at least one [[attractors]] table"
+        )
+
     def select(level):
         live = ~shapely.is_empty(np.asarray(level.openings, dtype=object))
-        if rec.probability >= 1.0:
+        if not prob_spec.graded and prob_spec.value >= 1.0:
             return live
+        prob = prob_spec.value
+        if prob_spec.graded:  # each cell's chance from the field at the cell
+            values = _values(np.asarray(level.cells, dtype=object), field_fn)
+            prob = np.clip(prob_spec.far + (prob_spec.near - prob_spec.far) * values, 0.0, 1.0)
         # A fresh, reproducible draw per level.
-        draw = cellops.random(len(level), rec.probability, seed=seed * 1009 + level.depth)
+        draw = cellops.random(len(level), prob, seed=seed * 1009 + level.depth)
         return np.asarray(draw, dtype=bool) & live
 
     webs = list(rec.web)
@@ -649,6 +693,8 @@ def compute(
         raw = np.asarray(diagram.cells, dtype=object)
         inset_cells = raw
         level = np.zeros(len(raw), dtype=np.int64)
+    if design.seeds.method == "curves" and sites is None:
+        extra["curve_edges"] = _curve_edges(design, points, domain, diagram, base)
     values = _values(raw, field_fn)
     with _section("openings"):
         mask = _mask(design, raw, values, seed)

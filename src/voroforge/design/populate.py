@@ -1,4 +1,4 @@
-"""Seed points inside a boundary: random, grids, jittered grids, Poisson-disk, by density.
+"""Seed points inside a boundary: random, grids, Poisson-disk, by density, along curves.
 
 Every function returns a new ``(n, 2)`` float64 array of points strictly inside the
 boundary (holes excluded). Randomness comes from ``numpy.random.default_rng(seed)``: the
@@ -16,8 +16,10 @@ from .. import config
 from .boundary import as_polygonal
 
 __all__ = [
+    "along_curves",
     "as_region",
     "by_density",
+    "crossing_edges",
     "from_file",
     "grid",
     "hexgrid",
@@ -483,3 +485,134 @@ def from_file(path) -> np.ndarray:
     from ..io.readers import read_points
 
     return read_points(path)
+
+
+def _as_lines(curves) -> list:
+    """Curves as a list of shapely LineStrings (polylines, LineStrings or MultiLineStrings)."""
+    if isinstance(curves, shapely.Geometry):
+        parts = list(shapely.get_parts(curves))
+    else:
+        parts = []
+        for c in curves:
+            if isinstance(c, shapely.Geometry):
+                parts += list(shapely.get_parts(c))
+                continue
+            arr = np.asarray(c, dtype=np.float64)
+            if arr.ndim != 2 or arr.shape[1] != 2 or len(arr) < 2:
+                raise ValueError(f"a curve must be a (k >= 2, 2) polyline, got shape {arr.shape}")
+            if not np.isfinite(arr).all():
+                raise ValueError("curve coordinates must be finite")
+            parts.append(shapely.LineString(arr))
+    lines = []
+    for g in parts:
+        if g.geom_type == "LinearRing":
+            g = shapely.LineString(g.coords)
+        if g.geom_type != "LineString":
+            raise ValueError(f"curves must be lines, got a {g.geom_type}")
+        if g.length > 0:
+            lines.append(g)
+    if not lines:
+        raise ValueError("no curve of positive length")
+    return lines
+
+
+def along_curves(boundary, curves, spacing, *, distance=None, radius=None, seed=0) -> np.ndarray:
+    """Sites in mirrored pairs along curves, so that cell edges trace the curves.
+
+    Each curve gets a site on either side every ``spacing`` along it, at ``distance`` from
+    it along the normal: the two sites of a pair are mirror images, so the edge between
+    their cells lies on the curve's tangent there, and their cells' edges follow the curve
+    as a chain (veins in a leaf, a seam, a crease). A site closer than ``distance`` to
+    another curve (near a junction) is left out, so curves that meet join in a small knot
+    of cells. The rest of the boundary can be filled with Poisson-disk sites of ``radius``,
+    none nearer to a curve than ``distance + radius / 2``.
+
+    Parameters
+    ----------
+    boundary : shapely Polygon/MultiPolygon or (xmin, ymin, xmax, ymax)
+        Where the sites go (sites outside are left out).
+    curves : sequence of (k, 2) polylines, or shapely lines
+        The curves to trace.
+    spacing : float
+        Distance between pairs along a curve (> 0).
+    distance : float, optional
+        Distance of each site from its curve (default ``spacing / 2``).
+    radius : float, optional
+        Poisson-disk spacing of the sites filling the rest (default: no fill).
+    seed : int
+        Random seed of the fill.
+
+    Returns
+    -------
+    (n, 2) float64
+        The pairs (curve by curve, in order along each curve), then the fill.
+
+    Examples
+    --------
+    >>> import voroforge as vf
+    >>> pts = along_curves((0, 0, 100, 50), [[(0, 25), (100, 25)]], 10.0, radius=10.0)
+    >>> d = vf.voronoi(pts, (0, 0, 100, 50))
+    >>> on_line = [bool(abs(c[:, 1] - 25).max() < 1e-9) for c in d.edges.coords]
+    >>> sum(on_line) >= 9  # the cells meet along y = 25
+    True
+    """
+    geom = as_region(boundary)
+    step = _positive(spacing, "spacing")
+    dist = step / 2.0 if distance is None else _positive(distance, "distance")
+    lines = _as_lines(curves)
+    pairs = []
+    for k, line in enumerate(lines):
+        n = max(1, int(round(line.length / step)))
+        at = (np.arange(n) + 0.5) * (line.length / n)
+        eps = min(step, line.length) * 1e-3
+        ahead = shapely.get_coordinates(shapely.line_interpolate_point(line, at + eps))
+        behind = shapely.get_coordinates(shapely.line_interpolate_point(line, at - eps))
+        on = shapely.get_coordinates(shapely.line_interpolate_point(line, at))
+        tangent = ahead - behind
+        tangent /= np.hypot(tangent[:, 0], tangent[:, 1])[:, None]
+        normal = np.column_stack((-tangent[:, 1], tangent[:, 0]))
+        sides = np.vstack((on + dist * normal, on - dist * normal))
+        if len(lines) > 1:  # a site in another curve's band would pull that curve's edges
+            others = shapely.MultiLineString([g for j, g in enumerate(lines) if j != k])
+            sides = sides[shapely.distance(others, shapely.points(sides)) >= dist * (1 - 1e-9)]
+        pairs.append(sides)
+    sites = np.vstack(pairs)
+    sites = sites[_inside(geom, sites)]
+    if radius is not None:
+        fill = poisson(geom, radius, seed=seed)
+        network = shapely.MultiLineString(lines)
+        far = shapely.distance(network, shapely.points(fill)) >= dist + float(radius) / 2.0
+        sites = np.vstack((sites, fill[far]))
+    return np.ascontiguousarray(sites, dtype=np.float64)
+
+
+def crossing_edges(diagram, curves) -> shapely.MultiLineString:
+    """The edges of a diagram between two sites on opposite sides of a curve, merged.
+
+    With sites from :func:`along_curves` these edges follow the curves as unbroken chains
+    (where pairs were left out near junctions, the edges between the nearest sites on either
+    side carry the chain through): the veins of a leaf, drawn from the cells' own edges.
+
+    Parameters
+    ----------
+    diagram : Diagram
+        A diagram (its ``sites`` and ``edges``).
+    curves : sequence of polylines or shapely lines
+        As for :func:`along_curves`.
+
+    Returns
+    -------
+    shapely.MultiLineString
+        The chains (``shapely.line_merge`` of the edges).
+    """
+    network = shapely.MultiLineString(_as_lines(curves))
+    shapely.prepare(network)
+    e = diagram.edges
+    if not len(e.pairs):
+        return shapely.MultiLineString()
+    sites = np.asarray(diagram.sites, dtype=np.float64)
+    links = shapely.linestrings(np.stack((sites[e.pairs[:, 0]], sites[e.pairs[:, 1]]), axis=1))
+    cross = shapely.intersects(network, links)
+    segs = shapely.linestrings(np.asarray(e.coords)[cross])
+    merged = shapely.line_merge(shapely.MultiLineString(list(segs)))
+    return merged if merged.geom_type == "MultiLineString" else shapely.MultiLineString([merged])

@@ -38,7 +38,7 @@ __all__ = [
 
 #: What an output layer can hold.
 PRODUCTS = ("frame", "openings", "cells", "edges", "sites", "boundary", "labels")
-Product = Literal["frame", "openings", "cells", "edges", "sites", "boundary", "labels"]
+Product = Literal["frame", "openings", "cells", "edges", "sites", "boundary", "labels", "curves"]
 
 PositiveFloat = Annotated[float, Field(gt=0)]
 NonNegFloat = Annotated[float, Field(ge=0)]
@@ -167,7 +167,7 @@ class Seeds(_Model):
     """``[seeds]``: where the Voronoi sites go."""
 
     method: Literal[
-        "random", "grid", "hexgrid", "jittered", "poisson", "density", "file", "image"
+        "random", "grid", "hexgrid", "jittered", "poisson", "density", "file", "image", "curves"
     ] = "random"
     count: Annotated[int, Field(gt=0)] | None = None
     spacing: PositiveFloat | None = None
@@ -179,6 +179,10 @@ class Seeds(_Model):
     file: str | None = None
     seed: Seed | None = None
     use_field: bool = False
+    # method = "curves": the curves the cell edges trace (polylines, SVG path data or file)
+    curves: list[Annotated[list[Point], Field(min_length=2)]] | None = None
+    path: str | None = None
+    distance: PositiveFloat | None = None  # of each site from its curve (spacing / 2)
 
     @model_validator(mode="after")
     def _method_fields(self) -> Seeds:
@@ -191,10 +195,19 @@ class Seeds(_Model):
             "density": ("count",),
             "file": ("file",),
             "image": ("file", "count"),  # dots by an image's darkness (design/stipple.py)
+            "curves": ("spacing",),  # pairs mirrored along curves (populate.along_curves)
         }[self.method]
         for name in need:
             if getattr(self, name) is None:
                 raise _need(name, f"method = {self.method!r} needs {name}")
+        if self.method == "curves":
+            given = [k for k in ("curves", "path", "file") if getattr(self, k) is not None]
+            if len(given) != 1:
+                raise _need(
+                    "curves",
+                    "method = 'curves' needs exactly one of curves = [[[x, y], ...], ...], "
+                    "path (SVG path data) or file (SVG or GeoJSON lines)",
+                )
         if (
             self.radius_max is not None
             and self.radius is not None
@@ -327,7 +340,8 @@ class Recursion(_Model):
 
     depth: Annotated[int, Field(ge=0, le=6)] = 0
     count: Graded = Graded(value=6.0)
-    probability: Annotated[float, Field(ge=0, le=1)] = 1.0
+    # a number, or { near = 1, far = 0.5 }: the chance that a cell is subdivided, by the field
+    probability: Graded = Graded(value=1.0)
     web: list[NonNegFloat] = []
 
     @model_validator(mode="before")
@@ -336,6 +350,13 @@ class Recursion(_Model):
         if isinstance(data, dict) and isinstance(data.get("web"), int | float):
             return {**data, "web": [data["web"]]}
         return data
+
+    @model_validator(mode="after")
+    def _probability(self) -> Recursion:
+        lo, hi = self.probability.bounds()
+        if lo < 0 or hi > 1:
+            raise _need("probability", "must be between 0 and 1")
+        return self
 
 
 class Gif(_Model):
