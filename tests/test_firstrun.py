@@ -64,6 +64,7 @@ def test_a_failing_step_is_reported_and_the_rest_still_run(tmp_path):
     assert "no-such-design.toml" in done[0].error
     assert done[1].error == ""
     assert all(math.isfinite(s.seconds) and s.seconds >= 0 for s in done)
+    assert all(math.isfinite(s.cpu) and s.cpu >= 0 for s in done)
     assert len(lines) == 2 and "FAILED" in lines[0] and lines[1].rstrip().endswith("ok")
 
 

@@ -47,12 +47,16 @@ class Step:
         Wall time of the step (compile plus run); NaN before it ran.
     error : str
         Empty when the command succeeded, else its message (the last line of it).
+    cpu : float
+        CPU time of this process during the step (numba compiles in this process, so this is
+        the compile's cost whatever the machine's load); NaN before it ran.
     """
 
     label: str
     argv: tuple[str, ...]
     seconds: float = float("nan")
     error: str = ""
+    cpu: float = float("nan")
 
 
 def example_designs(root: Path | None = None) -> list[Path]:
@@ -160,6 +164,7 @@ def run_plan(steps: Sequence[Step], report: Callable[[str], None] | None = None)
     for k, step in enumerate(steps, 1):
         sink = io.StringIO()
         t0 = time.perf_counter()
+        c0 = time.process_time()
         try:
             with contextlib.redirect_stdout(sink), contextlib.redirect_stderr(sink):
                 rc = main(list(step.argv))
@@ -173,11 +178,14 @@ def run_plan(steps: Sequence[Step], report: Callable[[str], None] | None = None)
         except Exception as exc:  # a warm-up reports a broken step and goes on
             error = f"{type(exc).__name__}: {exc}"
         dt = time.perf_counter() - t0
-        step = Step(step.label, step.argv, dt, error)
+        step = Step(step.label, step.argv, dt, error, time.process_time() - c0)
         done.append(step)
         if report is not None:
             status = "ok" if not error else f"FAILED: {error}"
-            report(f"warm-up {k}/{len(steps)}: {step.label:<34} {dt:6.1f} s  {status}")
+            report(
+                f"warm-up {k}/{len(steps)}: {step.label:<34} {dt:6.1f} s "
+                f"({step.cpu:5.1f} s CPU)  {status}"
+            )
     return done
 
 

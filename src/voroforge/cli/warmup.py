@@ -61,8 +61,11 @@ def run_warmup(args: argparse.Namespace, stage=None) -> int:
         return 0
     steps = warm_up(designs, report=lambda line: print(line, file=sys.stderr, flush=True))
     total = sum(s.seconds for s in steps)
+    cpu = sum(s.cpu for s in steps)
     failed = [s for s in steps if s.error]
     print(
-        f"warm-up: {len(steps) - len(failed)}/{len(steps)} steps in {total:.1f} s", file=sys.stderr
+        f"warm-up: {len(steps) - len(failed)}/{len(steps)} steps in {total:.1f} s "
+        f"({cpu:.1f} s CPU)",
+        file=sys.stderr,
     )
     return 1 if failed else 0
