@@ -15,6 +15,7 @@ from hypothesis import strategies as st
 
 import voroforge as vf
 import voroforge.kernels.halfplane as hp
+from voroforge.engine.planar import _closed_cells, _splice
 from voroforge.kernels.halfplane import halfplane_cells
 
 from catalogue import CATALOGUE, NAMES, as_domain, general_position
@@ -169,7 +170,8 @@ def test_halfplane_shared_vertices_bit_identical(name, pad):
         pts = CATALOGUE[name][0]
         lo, hi = pts.min(0), pts.max(0)
         box = (*(lo - pad), *(hi + pad))
-    coords, offsets, owner = halfplane_cells(pts[:, 0], pts[:, 1], np.array(box))
+    coords, offsets, owner, hard = halfplane_cells(pts[:, 0], pts[:, 1], np.array(box))
+    assert not hard.any()
     edges = _edge_map(coords, offsets, owner)
     assert edges
     for (i, j), segs in edges.items():
@@ -186,7 +188,10 @@ def test_halfplane_shared_vertices_bit_identical(name, pad):
 def test_halfplane_grid_cells_are_squares():
     """A unit grid: every interior cell is exactly the unit square around its site."""
     g = np.stack(np.meshgrid(np.arange(10.0), np.arange(10.0)), -1).reshape(-1, 2)
-    coords, offsets, owner = halfplane_cells(g[:, 0], g[:, 1], np.array([-0.5, -0.5, 9.5, 9.5]))
+    coords, offsets, owner, hard = halfplane_cells(
+        g[:, 0], g[:, 1], np.array([-0.5, -0.5, 9.5, 9.5])
+    )
+    assert not hard.any()
     assert np.all(np.diff(offsets) == 5)  # closed rings
     for i, (x, y) in enumerate(g):
         ring = coords[offsets[i] : offsets[i + 1] - 1]
@@ -198,18 +203,20 @@ def test_halfplane_overflowing_chunks_rebuilt():
     """Chunks whose cells outgrow the per-chunk slab are rebuilt: the cells stay the same."""
     n = 2000
     line = np.column_stack((np.linspace(0.0, 1.0, n), np.full(n, 0.5)))
-    pts = np.concatenate((line, np.random.default_rng(1).random((20, 2))))
+    pts = np.concatenate((line, np.random.default_rng(1).random((80, 2))))
     xs, ys = pts[:, 0].copy(), pts[:, 1].copy()
     # the first pass alone, to make sure this input does take the rebuild path
-    grid, sites = hp._search_grid(xs, ys)
+    grid, sites, tree = hp._search_grid(xs, ys)
     nchunks = -(-len(xs) // hp._CHUNK)
     per = hp._SLAB * min(hp._CHUNK, len(xs)) + 16
     fits = np.zeros(nchunks, np.bool_)
-    slabs = [np.zeros(nchunks * per), np.zeros(nchunks * per), np.zeros(nchunks * per, np.int64)]
+    slabs = (np.zeros(nchunks * per), np.zeros(nchunks * per), np.zeros(nchunks * per, np.int64))
     counts = np.zeros(len(xs), np.int64)
     where = np.zeros(len(xs), np.int64)
     box = np.array([0.0, 0.0, 1.0, 1.0])
-    hp._first_pass(sites, (xs, ys), grid, box, counts, where, *slabs, fits)
+    hard = np.zeros(len(xs), np.bool_)
+    # (a budget that builds the cells with hundreds of line neighbours here, not the dual)
+    hp._first_pass(sites, (xs, ys), grid, tree, box, 10**7, counts, where, hard, slabs, fits)
     assert not fits.all()
     ref = vf.voronoi(pts, (0.0, 0.0, 1.0, 1.0))
     _assert_same(ref, vf.voronoi(pts, (0.0, 0.0, 1.0, 1.0), algorithm="halfplane"), None)
@@ -291,3 +298,38 @@ def test_halfplane_near_duplicate_sites_open_variants():
         if (ulps, offset, direction) in _NEAR_DUPLICATE_OPEN:
             pts, box = _near_duplicate_grid(n, step, ulps, offset, direction)
             _assert_halfplane_as_default(pts, box)
+
+
+def test_halfplane_tight_clusters_use_kd_buckets():
+    """Three clusters of sd 1e-3 in a 10 x 9 domain: k-d buckets, the default's cells."""
+    g = np.random.default_rng(9)
+    centres = np.array([[2.0, 2.0], [7.5, 3.0], [4.5, 7.0]])
+    pts = centres[g.integers(0, 3, 1500)] + g.normal(0.0, 1e-3, (1500, 2))
+    tree = hp._search_grid(pts[:, 0].copy(), pts[:, 1].copy())[2]
+    assert len(tree[0]) > 1  # the uniform grid would put hundreds of sites in a bucket
+    box = (0.0, 0.0, 10.0, 9.0)
+    _assert_same(vf.voronoi(pts, box), vf.voronoi(pts, box, algorithm="halfplane"), None)
+
+
+def test_halfplane_hard_cells_come_from_the_dual():
+    """Cells past the work budget are left to the Delaunay dual and spliced in."""
+    pts, boundary = CATALOGUE["collinear_plus_one"]
+    xs, ys = pts[:, 0].copy(), pts[:, 1].copy()
+    box = np.array(boundary, dtype=float)
+    closed, lengths, owner, hard = halfplane_cells(xs, ys, box, budget=2000)
+    assert hard[len(pts) - 1] and not hard.all()  # the cell with 200 neighbours
+    assert np.all(np.diff(lengths)[hard] == 0)
+    dual = _closed_cells(xs, ys, box, "delaunay", np.arange(len(pts)))
+    coords, offsets, own = _splice(closed, lengths, owner, dual, hard)
+    for k in range(len(pts)):
+        src = dual if hard[k] else (closed, lengths, owner)
+        a, b = src[1][k], src[1][k + 1]
+        assert np.array_equal(coords[offsets[k] : offsets[k + 1]], src[0][a:b])
+        assert np.array_equal(own[offsets[k] : offsets[k + 1]], src[2][a:b])
+    ref = vf.voronoi(pts, boundary)
+    _assert_same(ref, vf.voronoi(pts, boundary, algorithm="halfplane"), as_domain(boundary))
+    # sites on one circle: every cell's vertex circle holds all sites, the sample is hard
+    t = np.arange(600) * (2.0 * np.pi / 600)
+    box = np.array([-2.0, -2.0, 2.0, 2.0])
+    *_, hard = halfplane_cells(np.cos(t), np.sin(t), box, budget=2000)
+    assert hard.all()

@@ -16,10 +16,14 @@ from hypothesis import strategies as st
 from voroforge.kernels.grid import (
     adaptive_grid,
     block_box,
+    box_dist2,
     bucket_of,
     bucket_sort,
     counting_sort,
     grid_shape,
+    heap_pop,
+    heap_push,
+    kd_buckets,
     outside_dist2,
     rect_dist2,
     ring_gap,
@@ -245,3 +249,55 @@ def test_rect_dist2():
     assert rect_dist2(0.5, 0.5, 0.0, 0.0, 1.0, 1.0) == 0.0
     assert rect_dist2(2.0, 3.0, 0.0, 0.0, 1.0, 1.0) == 1.0 + 4.0
     assert rect_dist2(0.0, 0.0, 1.0, 1.0, 1.0, 2.0) == np.inf  # empty
+
+
+@pytest.mark.parametrize("kind", ["uniform", "clustered", "line", "dups_x"])
+def test_kd_buckets_partition_and_boxes(kind):
+    """k-d buckets: a permutation; nested ranges; tight boxes; at most ``leaf`` per bucket."""
+    g = np.random.default_rng(4)
+    n = 777
+    if kind == "uniform":
+        xs, ys = g.random(n), g.random(n)
+    elif kind == "clustered":
+        xs, ys = (g.normal(0.0, 1e-3, (2, n)) + g.integers(0, 3, n) * 5.0).astype(float)
+    elif kind == "line":
+        xs, ys = np.linspace(0.0, 1.0, n), np.zeros(n)
+    else:  # many equal x: the median split must still halve
+        xs, ys = np.round(g.random(n) * 3), g.random(n)
+    (lo, hi, left, boxes), (sx, sy, sidx) = kd_buckets(xs, ys, 8)
+    assert sorted(sidx.tolist()) == list(range(n))
+    assert np.array_equal(sx, xs[sidx]) and np.array_equal(sy, ys[sidx])
+    assert lo[0] == 0 and hi[0] == n
+    for v in range(len(lo)):
+        s = slice(lo[v], hi[v])
+        assert boxes[v].tolist() == [sx[s].min(), sy[s].min(), sx[s].max(), sy[s].max()]
+        if left[v] < 0:
+            assert 1 <= hi[v] - lo[v] <= 8
+        else:
+            c = left[v]
+            assert (lo[c], hi[c], lo[c + 1], hi[c + 1]) == (lo[v], lo[c + 1], hi[c], hi[v])
+            assert abs((hi[c] - lo[c]) - (hi[c + 1] - lo[c + 1])) <= 1
+
+
+@given(st.lists(st.floats(-1e6, 1e6), min_size=1, max_size=60))
+def test_heap_pops_in_order(keys):
+    hk = np.zeros(64)
+    hv = np.zeros(64, np.int64)
+    size = 0
+    for i, k in enumerate(keys):
+        size = heap_push(hk, hv, size, k, i)
+    out = []
+    while size:
+        k, v, size = heap_pop(hk, hv, size)
+        assert keys[v] == k
+        out.append(k)
+    assert out == sorted(keys)
+
+
+def test_box_dist2_flat_boxes():
+    """Flat and point boxes (a k-d bucket of collinear sites) are boxes, not empty."""
+    boxes = np.array([[0.0, 0.0, 1.0, 0.0], [2.0, 3.0, 2.0, 3.0], [0.0, 0.0, 1.0, 1.0]])
+    assert box_dist2(0.5, 2.0, boxes, 0) == 4.0
+    assert box_dist2(0.5, -1.0, boxes, 0) == 1.0
+    assert box_dist2(2.0, 0.0, boxes, 1) == 9.0
+    assert box_dist2(0.5, 0.5, boxes, 2) == 0.0

@@ -25,9 +25,10 @@ BOX = (-0.25, -0.25, 1.25, 1.25)
 
 def _cells(pts, box=BOX):
     """Half-plane cells as (rings without the closing vertex, owners) per site."""
-    coords, offsets, owner = halfplane_cells(
+    coords, offsets, owner, hard = halfplane_cells(
         np.ascontiguousarray(pts[:, 0]), np.ascontiguousarray(pts[:, 1]), np.array(box)
     )
+    assert not hard.any()
     n = len(pts)
     assert offsets.shape == (n + 1,) and offsets[0] == 0 and offsets[-1] == len(coords)
     rings, owners = [], []

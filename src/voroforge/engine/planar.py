@@ -66,13 +66,32 @@ def _closed_cells(xs, ys, box, algorithm, kmap):
         ident = np.arange(len(xs))
         return close_rings(coords, offsets, owner, ident, kmap)
     # every cell on its own: the box cut by bisectors, finished with exact predicates
-    closed, lengths, owner = halfplane_cells(xs, ys, box, kmap)
+    closed, lengths, owner, hard = halfplane_cells(xs, ys, box, kmap)
+    if hard.any():
+        # cells whose neighbours are not local (sites on one circle, a site with thousands
+        # of neighbours): the Delaunay dual builds them in O(n log n) for the whole diagram
+        dual = _closed_cells(xs, ys, box, "delaunay", kmap)
+        if hard.all():
+            return dual
+        closed, lengths, owner = _splice(closed, lengths, owner, dual, hard)
     if _certified(closed, lengths, box):
         return closed, lengths, owner
     # a cell the local finishing could not settle consistently (rounding-level vertices
     # that fold its ring, or cells that do not tile the box): the Delaunay dual decides
     # every vertex globally, and gives the answer every algorithm gives
     return _closed_cells(xs, ys, box, "delaunay", kmap)
+
+
+def _splice(closed, lengths, owner, dual, take):
+    """Closed rings with cell ``k`` from ``dual`` where ``take[k]``, else from ``closed``."""
+    dclosed, dlengths, downer = dual
+    size = np.where(take, np.diff(dlengths), np.diff(lengths))
+    out = np.zeros_like(lengths)
+    np.cumsum(size, out=out[1:])
+    src = np.where(take, dlengths[:-1] + len(closed), lengths[:-1])
+    idx = np.repeat(src - out[:-1], size) + np.arange(int(out[-1]))
+    coords = np.concatenate((closed, dclosed))[idx]
+    return coords, out, np.concatenate((owner, downer))[idx]
 
 
 def _certified(closed, lengths, box) -> bool:

@@ -269,3 +269,170 @@ def outside_dist2(x, y, block, grid):
     d = min(d, rect_dist2(x, y, bx1, y0, gx1, gy1))  # right strip
     d = min(d, rect_dist2(x, y, bx0, y0, bx1, by0))  # bottom strip
     return min(d, rect_dist2(x, y, bx0, by1, bx1, gy1))  # top strip
+
+
+# -- k-d buckets: the grid's adaptive form, for clustered sites ---------------------------
+#
+# A uniform grid fits uniform sites; three tight clusters in a wide domain put thousands of
+# sites in one bucket, and every cell there scans them all. The k-d buckets split the sites
+# at the median along the longer side of their box until at most ``leaf`` remain, so each
+# bucket holds a few sites at any density. The search around a point visits buckets
+# nearest first (a heap keyed by the squared distance to each bucket's tight box), with
+# the same stop test as the ring search: a bucket farther than the search's bound, and
+# everything after it, is skipped.
+
+
+@njit(**NJIT)
+def _select(key, other, perm, lo, hi, kth):
+    """Reorder ``lo:hi`` of ``key``, ``other``, ``perm`` so ``key[kth]`` is its ``kth`` smallest.
+
+    Keys before it are no larger, keys after it no smaller (Hoare's quickselect); the
+    three arrays move together.
+    """
+    while hi - lo > 1:
+        mid = (lo + hi - 1) // 2
+        a = key[lo]
+        b = key[mid]
+        c = key[hi - 1]
+        pivot = max(min(a, b), min(max(a, b), c))
+        i = lo
+        j = hi - 1
+        while i <= j:
+            while key[i] < pivot:
+                i += 1
+            while key[j] > pivot:
+                j -= 1
+            if i <= j:
+                key[i], key[j] = key[j], key[i]
+                other[i], other[j] = other[j], other[i]
+                perm[i], perm[j] = perm[j], perm[i]
+                i += 1
+                j -= 1
+        if kth <= j:
+            hi = j + 1
+        elif kth >= i:
+            lo = i
+        else:
+            return
+
+
+@njit(**NJIT)
+def _tight_box(sx, sy, lo, hi, boxes, node):
+    x0 = np.inf
+    y0 = np.inf
+    x1 = -np.inf
+    y1 = -np.inf
+    for t in range(lo, hi):
+        x0 = min(x0, sx[t])
+        x1 = max(x1, sx[t])
+        y0 = min(y0, sy[t])
+        y1 = max(y1, sy[t])
+    boxes[node, 0] = x0
+    boxes[node, 1] = y0
+    boxes[node, 2] = x1
+    boxes[node, 3] = y1
+
+
+@njit(**NJIT)
+def kd_buckets(xs, ys, leaf):
+    """Sites split into k-d buckets of at most ``leaf`` sites (``leaf >= 2``).
+
+    Returns
+    -------
+    tree : tuple
+        ``(lo, hi, left, boxes)``: node ``v`` holds the sorted sites ``lo[v]:hi[v]``, its
+        children are ``left[v]`` and ``left[v] + 1`` (``left[v] == -1`` for a bucket), and
+        ``boxes[v] = (x0, y0, x1, y1)`` is the tight box of its sites. Node 0 is the root.
+    sites : tuple
+        ``(sx, sy, sidx)``: coordinates in bucket order and the index of each sorted site.
+    """
+    n = xs.shape[0]
+    half = (leaf + 1) // 2
+    cap = 2 * (n // half + 1) + 1
+    lo = np.zeros(cap, np.int64)
+    hi = np.zeros(cap, np.int64)
+    left = np.full(cap, -1, np.int64)
+    boxes = np.zeros((cap, 4))
+    perm = np.arange(n)
+    sx = xs.copy()
+    sy = ys.copy()
+    hi[0] = n
+    _tight_box(sx, sy, 0, n, boxes, 0)
+    stack = np.zeros(128, np.int64)
+    top = 1
+    count = 1
+    while top > 0:
+        top -= 1
+        v = stack[top]
+        a = lo[v]
+        b = hi[v]
+        if b - a <= leaf:
+            continue
+        mid = (a + b) // 2
+        if boxes[v, 2] - boxes[v, 0] >= boxes[v, 3] - boxes[v, 1]:
+            _select(sx, sy, perm, a, b, mid)
+        else:
+            _select(sy, sx, perm, a, b, mid)
+        c = count
+        count += 2
+        left[v] = c
+        lo[c] = a
+        hi[c] = mid
+        lo[c + 1] = mid
+        hi[c + 1] = b
+        _tight_box(sx, sy, a, mid, boxes, c)
+        _tight_box(sx, sy, mid, b, boxes, c + 1)
+        stack[top] = c
+        stack[top + 1] = c + 1
+        top += 2
+    return (lo[:count], hi[:count], left[:count], boxes[:count]), (sx, sy, perm)
+
+
+@njit(**NJIT)
+def heap_push(hk, hv, size, key, val):
+    """Push ``(key, val)`` on the binary min-heap ``hk[:size], hv[:size]``; returns the size."""
+    u = size
+    while u > 0:
+        p = (u - 1) // 2
+        if hk[p] <= key:
+            break
+        hk[u] = hk[p]
+        hv[u] = hv[p]
+        u = p
+    hk[u] = key
+    hv[u] = val
+    return size + 1
+
+
+@njit(**NJIT)
+def heap_pop(hk, hv, size):
+    """Remove the smallest entry of the heap; returns ``(key, val, new size)``."""
+    key = hk[0]
+    val = hv[0]
+    size -= 1
+    lk = hk[size]
+    lv = hv[size]
+    u = 0
+    while True:
+        c = 2 * u + 1
+        if c >= size:
+            break
+        if c + 1 < size and hk[c + 1] < hk[c]:
+            c += 1
+        if hk[c] >= lk:
+            break
+        hk[u] = hk[c]
+        hv[u] = hv[c]
+        u = c
+    if size > 0:
+        hk[u] = lk
+        hv[u] = lv
+    return key, val, size
+
+
+@njit(**NJIT)
+def box_dist2(x, y, boxes, v):
+    """Squared distance from ``(x, y)`` to the closed box ``boxes[v]`` (0 inside; may be flat)."""
+    dx = max(boxes[v, 0] - x, 0.0, x - boxes[v, 2])
+    dy = max(boxes[v, 1] - y, 0.0, y - boxes[v, 3])
+    return dx * dx + dy * dy

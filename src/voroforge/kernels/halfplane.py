@@ -46,7 +46,11 @@ from .clip import cut_ring, plane_values
 from .grid import (
     adaptive_grid,
     block_box,
+    box_dist2,
     bucket_of,
+    heap_pop,
+    heap_push,
+    kd_buckets,
     outside_dist2,
     rect_dist2,
     ring_gap,
@@ -61,6 +65,11 @@ _MAX_REFINE = 32.0  # most buckets per _PER_BUCKET sites that clustered input ma
 _CHUNK = 512  # cells per parallel work item
 _SLAB = 7  # slab vertices per cell of a chunk (the mean over a diagram is below 6)
 _CAP = 64  # initial per-cell scratch capacity (doubled when a cell needs more)
+_HARD_CAP = 1024  # a cell needing more scratch than this is hard (see _cells)
+_BUDGET = 20000  # vertices and sites one cell's search and settling may visit before it is hard
+_PROBE = 64  # cells tried first: when most of them are hard, the Delaunay dual builds all
+_KD_LEAF = 8  # sites per k-d bucket
+_KD_CROWDED = 4.0  # k-d buckets when the median site shares its grid bucket with more
 _REACH = 4.0 * (1.0 + HALFPLANE_REACH_RTOL)  # (2 r)^2 / r^2 with a margin against rounding
 
 
@@ -104,12 +113,23 @@ def _unscanned_clear(px, py, a, m, cx, cy, block, grid):
 
 
 @njit(**NJIT)
+def _node_clear(px, py, a, m, cx, cy, boxes, v):
+    """:func:`_rect_clear` for a k-d bucket's tight box (which may be flat or a point)."""
+    for u in range(a, a + m):
+        own = _REACH * 0.25 * (px[u] * px[u] + py[u] * py[u])
+        if box_dist2(px[u] + cx, py[u] + cy, boxes, v) <= own:
+            return False
+    return True
+
+
+@njit(**NJIT)
 def _scratch(cap):
     """Scratch arrays of one worker.
 
     Two polygons (at offsets 1 and ``cap + 2``), plane values, an output cell, the label
     ring, canonical vertices, the candidate list (``4 cap`` sites) with their squared
-    distances, and the watch list (sites that cut the cell or came near to).
+    distances, the watch list (sites that cut the cell or came near to), and the k-d
+    search's heap (``8 cap`` buckets with their squared distances).
     """
     return (
         np.zeros(2 * cap + 2),
@@ -125,17 +145,76 @@ def _scratch(cap):
         np.zeros(4 * cap, np.int64),
         np.zeros(4 * cap),
         np.zeros(4 * cap, np.int64),
+        np.zeros(8 * cap),
+        np.zeros(8 * cap, np.int64),
     )
 
 
+@njit(inline="always", **NJIT)
+def _insert(cand, cd, base, nc, t, q2):
+    """Insert site ``t`` at squared distance ``q2`` into ``cand[base:nc]`` (sorted); shifts."""
+    u = nc
+    while u > base and cd[u - 1] > q2:
+        cand[u] = cand[u - 1]
+        cd[u] = cd[u - 1]
+        u -= 1
+    cand[u] = t
+    cd[u] = q2
+    return nc - u
+
+
+@njit(inline="always", **NJIT)
+def _cut_batch(base, nc, cand, cd, sx, sy, sidx, cx, cy, poly, a, b, m, r2, watch, nw, cap):
+    """Cut the cell by the candidates ``cand[base:nc]`` (nearest first).
+
+    ``poly = (px, py, po, ss)``: the cell is polygon ``a`` (``m`` vertices, squared radius
+    ``r2``); each cut writes polygon ``b`` and the two swap. Sites that cut, or pass within
+    the verification band of a vertex's circle, join the watch list (the only sites the
+    exact finishing must look at: the others stay clear of every later vertex, which lies
+    inside today's cell). Returns ``(a, b, m, r2, nw, grow, work)``; ``grow`` when a list
+    or the polygon ran out of room, ``work`` the vertices visited.
+    """
+    px, py, po, ss = poly
+    grow = False
+    work = 0
+    for c in range(base, nc):
+        if m < 3 or cd[c] > _REACH * r2:
+            break  # sorted: the rest are farther still
+        t = cand[c]
+        qx = sx[t] - cx
+        qy = sy[t] - cy
+        smax = plane_values(px, py, a, m, qx, qy, 0.0, 0.0, 0.5 * cd[c], ss)
+        work += m
+        if smax > -0.5 * HALFPLANE_NEAR_RTOL * r2:
+            if nw == watch.shape[0]:
+                grow = True
+                break
+            watch[nw] = t
+            nw += 1
+        if smax <= 0.0:
+            continue
+        if m + m // 2 + 2 > cap:  # each run of cut vertices adds at most one
+            grow = True
+            break
+        m = cut_ring(px, py, po, a, m, ss, px, py, po, b, sidx[t])
+        work += m
+        r2 = _radius2(px, py, b, m)
+        a, b = b, a
+    return a, b, m, r2, nw, grow, work
+
+
 @njit(**NJIT)
-def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
+def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx, dy, do):
     """Build the cells of sorted sites ``k0:k1`` and write them one after another to ``d``.
 
-    ``sites = (start, sx, sy, sidx)`` is the bucket grid, ``orig = (xs, ys)`` the sites by
-    index (for the exact predicates). Sets ``counts[sidx[k]]`` to each cell's length and
-    ``where[k]`` to its position in ``dx, dy, do``. Cells that no longer fit are only
-    counted. Returns whether all of them fit.
+    ``sites = (start, sx, sy, sidx, rownext, bnext)`` are the sorted sites, ``orig = (xs,
+    ys)`` the sites by index (for the exact predicates). With a k-d ``tree``
+    (:func:`.grid.kd_buckets`, non-empty) its buckets are searched, otherwise the bucket
+    ``grid``. Sets ``counts[sidx[k]]`` to each cell's length and ``where[k]`` to its
+    position in ``dx, dy, do``. Cells that no longer fit are only counted. A cell whose
+    search visits more than ``budget`` vertices and sites, or grows past ``_HARD_CAP``
+    vertices, is left empty and flagged in ``hard`` (its neighbours are not local: sites on
+    one circle, a site with thousands of neighbours). Returns whether all cells fit.
 
     The whole loop lives in this one function: a call per cell would cost a dozen atomic
     reference-count updates, more than the geometry of a typical cell.
@@ -143,8 +222,11 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
     start, sx, sy, sidx, rownext, bnext = sites
     xs, ys = orig
     x0, y0, hx, hy, nx, ny = grid
+    tlo, thi, tleft, tboxes = tree
+    use_tree = tlo.shape[0] > 0
     cap = _CAP
-    px, py, po, ss, ox, oy, oo, lab, vx, vy, cand, cd, watch = _scratch(cap)
+    scratch = _scratch(cap)
+    px, py, po, ss, ox, oy, oo, lab, vx, vy, cand, cd, watch, hk, hv = scratch
     pos = 0
     fits = True
     k = k0
@@ -162,141 +244,128 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
         r2 = _radius2(px, py, a, m)
         nc = 0
         nw = 0
-        ix = bucket_of(cx, x0, hx, nx)
-        iy = bucket_of(cy, y0, hy, ny)
-        ring = 0
+        work = 0
         grow = False
-        while m >= 3 and not grow:
-            if ring > 0:
-                # voro++'s stop radius: a site farther than 2 r cannot cut the cell
-                gap = ring_gap(cx, cx, cy, cy, ix, iy, ring - 1, grid)
-                if gap * gap > _REACH * r2:
-                    break
-                # a cell reaching far past the sites (a hull site in a big box) never meets
-                # that bound: ask each vertex whether the unscanned buckets come nearer
-                block = block_box(ix, iy, ring - 1, grid)
-                if _unscanned_clear(px, py, a, m, cx, cy, block, grid):
-                    break
-            # gather the ring's sites that can still cut, nearest first, then cut with them:
-            # near bisectors shrink the cell early, so far ones fail the cheap radius test
-            base = nc
-            # rows, and on the ring's top and bottom rows runs of buckets, without any site
-            # are skipped (rownext, bnext): long thin cells cross many nearly empty rings
-            j0, j1 = ring_rows(iy, ring, ny)
-            jy = rownext[j0]
-            while jy <= j1:
-                i0, i1, step = ring_row(ix, iy, ring, jy, nx)
-                edge_row = step == 1
-                gy = max(y0 + jy * hy - cy, cy - (y0 + (jy + 1) * hy), 0.0)
-                row = jy * (nx + 1)
-                jx = bnext[row + i0] if edge_row else i0
-                while jx <= i1:
-                    bucket = jy * nx + jx
-                    gx = max(x0 + jx * hx - cx, cx - (x0 + (jx + 1) * hx), 0.0)
-                    scan = not grow and start[bucket] < start[bucket + 1]
-                    scan = scan and gx * gx + gy * gy <= _REACH * r2
-                    if scan and ring >= 2:
-                        # far rings: skip a bucket that no vertex is nearer to than its site
-                        bx = x0 + jx * hx
-                        by = y0 + jy * hy
-                        scan = not _rect_clear(px, py, a, m, cx, cy, bx, by, bx + hx, by + hy)
-                    t0 = start[bucket] if scan else 0
-                    t1 = start[bucket + 1] if scan else 0
-                    for t in range(t0, t1):
-                        qx = sx[t] - cx
-                        qy = sy[t] - cy
-                        q2 = qx * qx + qy * qy
-                        if t == k or q2 > _REACH * r2:
-                            continue
-                        if nc == cand.shape[0]:
-                            grow = True
-                            break
-                        # insertion into the ring's part of the list, sorted by distance
-                        u = nc
-                        while u > base and cd[u - 1] > q2:
-                            cand[u] = cand[u - 1]
-                            cd[u] = cd[u - 1]
-                            u -= 1
-                        cand[u] = t
-                        cd[u] = q2
-                        nc += 1
-                    jx = bnext[row + jx + 1] if edge_row else jx + step
-                jy = rownext[jy + 1]
-            for c in range(base, nc):
-                if grow or m < 3 or cd[c] > _REACH * r2:
-                    break  # sorted: the rest are farther still
-                t = cand[c]
-                qx = sx[t] - cx
-                qy = sy[t] - cy
-                smax = plane_values(px, py, a, m, qx, qy, 0.0, 0.0, 0.5 * cd[c], ss)
-                if smax > -0.5 * HALFPLANE_NEAR_RTOL * r2:
-                    # it cuts, or passes within the verification band of a vertex's circle:
-                    # the only sites the exact finishing must look at (the others stay
-                    # clear of every later vertex, which lies inside today's cell)
-                    if nw == watch.shape[0]:
+        poly = (px, py, po, ss)
+        if use_tree:
+            hs = heap_push(hk, hv, 0, box_dist2(cx, cy, tboxes, 0), 0)
+            while m >= 3 and not grow and hs > 0 and work <= budget:
+                key, v, hs = heap_pop(hk, hv, hs)
+                if key > _REACH * r2:
+                    break  # every bucket left is farther still
+                work += m
+                if key > 0.0 and _node_clear(px, py, a, m, cx, cy, tboxes, v):
+                    continue
+                if tleft[v] >= 0:
+                    if hs + 2 > hk.shape[0]:
                         grow = True
                         break
-                    watch[nw] = t
-                    nw += 1
-                if smax <= 0.0:
+                    c = tleft[v]
+                    hs = heap_push(hk, hv, hs, box_dist2(cx, cy, tboxes, c), c)
+                    hs = heap_push(hk, hv, hs, box_dist2(cx, cy, tboxes, c + 1), c + 1)
                     continue
-                if m + m // 2 + 2 > cap:  # each run of cut vertices adds at most one
-                    grow = True
+                base = nc
+                for t in range(tlo[v], thi[v]):
+                    qx = sx[t] - cx
+                    qy = sy[t] - cy
+                    q2 = qx * qx + qy * qy
+                    if t == k or q2 > _REACH * r2:
+                        continue
+                    if nc == cand.shape[0]:
+                        grow = True
+                        break
+                    work += _insert(cand, cd, base, nc, t, q2)
+                    nc += 1
+                if grow:
                     break
-                m = cut_ring(px, py, po, a, m, ss, px, py, po, b, sidx[t])
-                r2 = _radius2(px, py, b, m)
-                a, b = b, a
-            ring += 1
-        if grow:  # rare: a cell with many vertices; start it again with more room
+                a, b, m, r2, nw, grow, w = _cut_batch(
+                    base, nc, cand, cd, sx, sy, sidx, cx, cy, poly, a, b, m, r2, watch, nw, cap
+                )
+                work += w
+        else:
+            ix = bucket_of(cx, x0, hx, nx)
+            iy = bucket_of(cy, y0, hy, ny)
+            ring = 0
+            while m >= 3 and not grow and work <= budget:
+                if ring > 0:
+                    # voro++'s stop radius: a site farther than 2 r cannot cut the cell
+                    gap = ring_gap(cx, cx, cy, cy, ix, iy, ring - 1, grid)
+                    if gap * gap > _REACH * r2:
+                        break
+                    # a cell reaching far past the sites (a hull site in a big box) never
+                    # meets that bound: ask each vertex whether the unscanned buckets come
+                    # nearer
+                    block = block_box(ix, iy, ring - 1, grid)
+                    if _unscanned_clear(px, py, a, m, cx, cy, block, grid):
+                        break
+                # gather the ring's sites that can still cut, nearest first, then cut with
+                # them: near bisectors shrink the cell early, so far ones fail the cheap
+                # radius test
+                base = nc
+                # rows, and on the ring's top and bottom rows runs of buckets, without any
+                # site are skipped (rownext, bnext): long thin cells cross many nearly empty
+                # rings
+                j0, j1 = ring_rows(iy, ring, ny)
+                jy = rownext[j0]
+                while jy <= j1:
+                    i0, i1, step = ring_row(ix, iy, ring, jy, nx)
+                    edge_row = step == 1
+                    gy = max(y0 + jy * hy - cy, cy - (y0 + (jy + 1) * hy), 0.0)
+                    row = jy * (nx + 1)
+                    jx = bnext[row + i0] if edge_row else i0
+                    while jx <= i1:
+                        bucket = jy * nx + jx
+                        gx = max(x0 + jx * hx - cx, cx - (x0 + (jx + 1) * hx), 0.0)
+                        scan = not grow and start[bucket] < start[bucket + 1]
+                        scan = scan and gx * gx + gy * gy <= _REACH * r2
+                        if scan and ring >= 2:
+                            # far rings: skip a bucket that no vertex is nearer to than its
+                            # site
+                            bx = x0 + jx * hx
+                            by = y0 + jy * hy
+                            scan = not _rect_clear(px, py, a, m, cx, cy, bx, by, bx + hx, by + hy)
+                            work += m
+                        t0 = start[bucket] if scan else 0
+                        t1 = start[bucket + 1] if scan else 0
+                        for t in range(t0, t1):
+                            qx = sx[t] - cx
+                            qy = sy[t] - cy
+                            q2 = qx * qx + qy * qy
+                            work += 1
+                            if t == k or q2 > _REACH * r2:
+                                continue
+                            if nc == cand.shape[0]:
+                                grow = True
+                                break
+                            work += _insert(cand, cd, base, nc, t, q2)
+                            nc += 1
+                        jx = bnext[row + jx + 1] if edge_row else jx + step
+                    jy = rownext[jy + 1]
+                if not grow:
+                    a, b, m, r2, nw, grow, w = _cut_batch(
+                        base, nc, cand, cd, sx, sy, sidx, cx, cy, poly, a, b, m, r2, watch, nw, cap
+                    )
+                    work += w
+                ring += 1
+        if grow and 2 * cap <= _HARD_CAP:  # many vertices: build it again with more room
             cap *= 2
-            px, py, po, ss, ox, oy, oo, lab, vx, vy, cand, cd, watch = _scratch(cap)
+            scratch = _scratch(cap)
+            px, py, po, ss, ox, oy, oo, lab, vx, vy, cand, cd, watch, hk, hv = scratch
             continue
         c = 0
-        if m >= 3:
-            for u in range(m):
-                lab[u] = po[a + u]
-                un = u + 1 if u + 1 < m else 0
-                vx[u] = px[a + un] - px[a + u]  # edge vectors (vx, vy are free until settle_ring)
-                vy[u] = py[a + un] - py[a + u]
-            for u in range(m):
-                # a long float edge is a true edge (rounding moves its ends by ulps only),
-                # unless an end is where nearly parallel bisectors cross (sites a few ulps
-                # apart): that crossing can be anywhere along them, and so can the edge
-                un = u + 1 if u + 1 < m else 0
-                e2 = vx[u] * vx[u] + vy[u] * vy[u]
-                ss[u] = 1.0 if e2 > HALFPLANE_SURE_RTOL * r2 else 0.0
-                for w in (u - 1 if u > 0 else m - 1, un):
-                    f2 = vx[w] * vx[w] + vy[w] * vy[w]
-                    cr = vx[u] * vy[w] - vy[u] * vx[w]
-                    if cr * cr <= HALFPLANE_SURE_SIN2 * e2 * f2:
-                        ss[u] = 0.0
-            # only sites within 2 r of the final cell can matter to its vertices
-            keep = 0
-            for c in range(nw):
-                t = watch[c]
-                qx = sx[t] - cx
-                qy = sy[t] - cy
-                if qx * qx + qy * qy <= _REACH * r2:
-                    watch[keep] = t
-                    keep += 1
-            # cand (the search's list) is free now: settle_ring's scratch for sites on a circle
-            ms = settle_ring(sidx[k], lab, m, ss, watch, keep, sidx, xs, ys, vx, vy, cand, box)
-            # emitted to scratch first: only then is the exact length known, and a rebuilt
-            # chunk's output (see _second_pass) has exactly the room the first pass counted
-            c = -1
-            if ms >= 3:
-                c = emit_exact(
-                    sidx[k], lab, ms, vx, vy, xs, ys, box, watch, keep, sidx, ox, oy, oo, cand
-                )
-            if c < 0:
-                c = emit_float(px, py, po, a, m, cx, cy, box, ox, oy, oo)
-            if fits and pos + c <= dx.shape[0]:
-                for t in range(c):
-                    dx[pos + t] = ox[t]
-                    dy[pos + t] = oy[t]
-                    do[pos + t] = oo[t]
-            else:
-                fits = False
+        if m >= 3 and not grow and work <= budget:
+            left = budget - work
+            c = _finish(k, sx, sy, sidx, xs, ys, box, px, py, po, a, m, r2, scratch, nw, left)
+        if grow or work > budget or c == -2:
+            c = 0
+            hard[sidx[k]] = True
+        elif fits and pos + c <= dx.shape[0]:
+            for t in range(c):
+                dx[pos + t] = ox[t]
+                dy[pos + t] = oy[t]
+                do[pos + t] = oo[t]
+        else:
+            fits = False
         counts[sidx[k]] = c
         where[k] = pos
         pos += c
@@ -304,9 +373,60 @@ def _cells(k0, k1, sites, orig, grid, box, counts, where, dx, dy, do):
     return fits
 
 
+@njit(inline="always", **NJIT)
+def _finish(k, sx, sy, sidx, xs, ys, box, px, py, po, a, m, r2, scratch, nw, budget):
+    """Settle the float cell (polygon ``a``) exactly and emit it to the scratch output.
+
+    Returns the emitted length, or -2 when settling would visit more than ``budget``
+    vertex-site pairs (the cell is then hard, see :func:`_cells`).
+    """
+    _, _, _, ss, ox, oy, oo, lab, vx, vy, cand, _, watch, _, _ = scratch
+    cx = sx[k]
+    cy = sy[k]
+    for u in range(m):
+        lab[u] = po[a + u]
+        un = u + 1 if u + 1 < m else 0
+        vx[u] = px[a + un] - px[a + u]  # edge vectors (vx, vy are free until settle_ring)
+        vy[u] = py[a + un] - py[a + u]
+    for u in range(m):
+        # a long float edge is a true edge (rounding moves its ends by ulps only), unless an
+        # end is where nearly parallel bisectors cross (sites a few ulps apart): that
+        # crossing can be anywhere along them, and so can the edge
+        un = u + 1 if u + 1 < m else 0
+        e2 = vx[u] * vx[u] + vy[u] * vy[u]
+        ss[u] = 1.0 if e2 > HALFPLANE_SURE_RTOL * r2 else 0.0
+        for w in (u - 1 if u > 0 else m - 1, un):
+            f2 = vx[w] * vx[w] + vy[w] * vy[w]
+            cr = vx[u] * vy[w] - vy[u] * vx[w]
+            if cr * cr <= HALFPLANE_SURE_SIN2 * e2 * f2:
+                ss[u] = 0.0
+    # only sites within 2 r of the final cell can matter to its vertices
+    keep = 0
+    for c in range(nw):
+        t = watch[c]
+        qx = sx[t] - cx
+        qy = sy[t] - cy
+        if qx * qx + qy * qy <= _REACH * r2:
+            watch[keep] = t
+            keep += 1
+    if m * keep > budget:
+        return -2
+    # cand (the search's list) is free now: settle_ring's scratch for sites on a circle
+    ms = settle_ring(sidx[k], lab, m, ss, watch, keep, sidx, xs, ys, vx, vy, cand, box)
+    # emitted to scratch first: only then is the exact length known, and a rebuilt chunk's
+    # output (see _second_pass) has exactly the room the first pass counted
+    c = -1
+    if ms >= 3:
+        c = emit_exact(sidx[k], lab, ms, vx, vy, xs, ys, box, watch, keep, sidx, ox, oy, oo, cand)
+    if c < 0:
+        c = emit_float(px, py, po, a, m, cx, cy, box, ox, oy, oo)
+    return c
+
+
 @njit(**NJIT_PARALLEL)
-def _first_pass(sites, orig, grid, box, counts, where, slab_x, slab_y, slab_o, fits):
+def _first_pass(sites, orig, grid, tree, box, budget, counts, where, hard, slabs, fits):
     """Build every cell into its chunk's slab; ``fits[ch]`` tells whether the slab held it."""
+    slab_x, slab_y, slab_o = slabs
     n = sites[1].shape[0]
     per = slab_x.shape[0] // fits.shape[0]
     for ch in prange(fits.shape[0]):
@@ -317,9 +437,12 @@ def _first_pass(sites, orig, grid, box, counts, where, slab_x, slab_y, slab_o, f
             sites,
             orig,
             grid,
+            tree,
             box,
+            budget,
             counts,
             where,
+            hard,
             slab_x[lo : lo + per],
             slab_y[lo : lo + per],
             slab_o[lo : lo + per],
@@ -395,20 +518,54 @@ def _copy_cells(k0, k1, sidx, counts, offsets, where, base, xs, ys, os, kmap, co
 
 
 def _search_grid(xs, ys):
-    """The bucket grid of the sites and its skip lists: ``grid`` and ``(*sites, rownext, bnext)``.
+    """The search structure of the sites: ``grid``, ``(*sites, rownext, bnext)`` and ``tree``.
 
     :func:`.grid.adaptive_grid` with ``_PER_BUCKET`` sites per bucket, refined up to
-    ``_MAX_REFINE`` times for clustered sites.
+    ``_MAX_REFINE`` times for clustered sites, and its skip lists. When the median site
+    still shares its bucket with more than ``_KD_CROWDED`` times that many (tight clusters
+    in a wide domain), the sites go into k-d buckets instead (:func:`.grid.kd_buckets`),
+    which hold a few sites at any density; ``tree`` is empty otherwise.
     """
     grid, sites = adaptive_grid(xs, ys, _PER_BUCKET, _MAX_REFINE)
+    occ = np.diff(sites[0])
+    median = float(np.median(np.repeat(occ, occ)))
+    if median > _KD_CROWDED * _PER_BUCKET:
+        tree, (sx, sy, sidx) = kd_buckets(xs, ys, _KD_LEAF)
+        none = np.zeros(1, np.int64)
+        return grid, (none, sx, sy, sidx, none, np.zeros(1, np.int32)), tree
     rownext, bnext = skip_lists(sites[0], grid[4], grid[5])
-    return grid, (*sites, rownext, bnext)
+    empty = np.zeros(0, np.int64)
+    return grid, (*sites, rownext, bnext), (empty, empty, empty, np.zeros((0, 4)))
 
 
-def halfplane_cells(xs, ys, box, kmap=None):
+def _probe_hard(sites, orig, grid, tree, box, budget):
+    """Whether most of ``_PROBE`` cells spread over the sites are hard (see :func:`_cells`).
+
+    Then the cells' neighbours are not local (most sites on one circle, say) and the
+    Delaunay dual builds every cell in ``O(n log n)``; trying each cell first would cost
+    the budget ``n`` times.
+    """
+    n = sites[1].shape[0]
+    if n <= 4 * _PROBE:
+        return False
+    runs = 8
+    counts = np.zeros(n, np.int64)
+    where = np.zeros(n, np.int64)
+    hard = np.zeros(n, np.bool_)
+    per = _SLAB * _PROBE + 16
+    out = (np.zeros(per), np.zeros(per), np.zeros(per, np.int64))
+    for r in range(runs):
+        k0 = (r * n) // runs
+        k1 = k0 + _PROBE // runs
+        _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, *out)
+    return int(hard.sum()) > _PROBE // 2
+
+
+def halfplane_cells(xs, ys, box, kmap=None, budget=_BUDGET):
     """Voronoi cells of distinct sites clipped to ``box``, by half-plane cutting.
 
-    The output layout is that of ``cells.cells_from_triangulation`` (closed rings).
+    The output layout is that of ``cells.cells_from_triangulation`` (closed rings), plus
+    the cells left to the caller.
 
     Parameters
     ----------
@@ -418,6 +575,8 @@ def halfplane_cells(xs, ys, box, kmap=None):
         ``(xmin, ymin, xmax, ymax)``.
     kmap : (n,) int64, optional
         Output id of each site, used for the edge owners (default: the site's index).
+    budget : int, optional
+        Most vertices and sites one cell's search and settling may visit.
 
     Returns
     -------
@@ -429,33 +588,41 @@ def halfplane_cells(xs, ys, box, kmap=None):
     owner : (K,) int64
         ``kmap`` of the site across the edge from vertex ``k`` to the next one, -1 on the
         box boundary, -2 on each closing vertex.
+    hard : (n,) bool
+        Cells not built (left empty) because their neighbours are not local: more than
+        ``budget`` work, or more vertices than the scratch holds (sites on one circle, a
+        site with thousands of neighbours). The caller takes them from the Delaunay dual.
+        All true when most of a sample of cells is hard (nothing is built then).
 
     Examples
     --------
     >>> import numpy as np
-    >>> coords, offsets, owner = halfplane_cells(np.array([0.25, 0.75]), np.array([0.5, 0.5]),
-    ...                                          np.array([0.0, 0.0, 1.0, 1.0]))
-    >>> offsets.tolist(), sorted(owner[:5].tolist())
-    ([0, 5, 10], [-2, -1, -1, -1, 1])
+    >>> coords, offsets, owner, hard = halfplane_cells(
+    ...     np.array([0.25, 0.75]), np.array([0.5, 0.5]), np.array([0.0, 0.0, 1.0, 1.0])
+    ... )
+    >>> offsets.tolist(), sorted(owner[:5].tolist()), hard.any()
+    ([0, 5, 10], [-2, -1, -1, -1, 1], False)
     """
     xs = np.ascontiguousarray(xs, dtype=np.float64)
     ys = np.ascontiguousarray(ys, dtype=np.float64)
     n = xs.shape[0]
     kmap = np.arange(n) if kmap is None else np.ascontiguousarray(kmap, dtype=np.int64)
+    hard = np.zeros(n, np.bool_)
     if n == 0:
-        return np.zeros((0, 2)), np.zeros(1, np.int64), np.zeros(0, np.int64)
+        return np.zeros((0, 2)), np.zeros(1, np.int64), np.zeros(0, np.int64), hard
     boxa = np.ascontiguousarray(box, dtype=np.float64).reshape(4)
-    grid, sites = _search_grid(xs, ys)
+    grid, sites, tree = _search_grid(xs, ys)
     orig = (xs, ys)
+    if _probe_hard(sites, orig, grid, tree, boxa, budget):
+        hard[:] = True
+        return np.zeros((0, 2)), np.zeros(n + 1, np.int64), np.zeros(0, np.int64), hard
     nchunks = (n + _CHUNK - 1) // _CHUNK
     per = _SLAB * min(_CHUNK, n) + 16
     counts = np.zeros(n, np.int64)
     where = np.zeros(n, np.int64)
-    slab_x = np.zeros(nchunks * per)
-    slab_y = np.zeros(nchunks * per)
-    slab_o = np.zeros(nchunks * per, np.int64)
+    slabs = (np.zeros(nchunks * per), np.zeros(nchunks * per), np.zeros(nchunks * per, np.int64))
     fits = np.zeros(nchunks, np.bool_)
-    _first_pass(sites, orig, grid, boxa, counts, where, slab_x, slab_y, slab_o, fits)
+    _first_pass(sites, orig, grid, tree, boxa, budget, counts, where, hard, slabs, fits)
     # the rare chunks that overflowed their slab are built again, now that their size
     # is known, one after another into one overflow buffer
     sidx = sites[3]
@@ -471,12 +638,11 @@ def halfplane_cells(xs, ys, box, kmap=None):
         lo = obase[ch]
         hi = lo + int(counts[sidx[k0:k1]].sum())
         views = (over[0][lo:hi], over[1][lo:hi], over[2][lo:hi])
-        _cells(k0, k1, sites, orig, grid, boxa, counts, where, *views)
+        _cells(k0, k1, sites, orig, grid, tree, boxa, budget, counts, where, hard, *views)
     offsets = np.zeros(n + 1, np.int64)
     np.cumsum(np.where(counts > 0, counts + 1, 0), out=offsets[1:])
     k = int(offsets[-1])
     coords = np.empty((k, 2))  # noqa: TID251 - every slot is written by _second_pass
     owner = np.empty(k, np.int64)  # noqa: TID251 - every slot is written by _second_pass
-    slab = (slab_x, slab_y, slab_o)
-    _second_pass(sidx, counts, offsets, where, slab, fits, over, obase, kmap, coords, owner)
-    return coords, offsets, owner
+    _second_pass(sidx, counts, offsets, where, slabs, fits, over, obase, kmap, coords, owner)
+    return coords, offsets, owner, hard
