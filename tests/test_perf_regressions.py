@@ -138,7 +138,7 @@ def _plain_merge(sx, sy, tri, he, rank, box):
 
     def rename():
         parent[:] = [find(k) for k in range(t)]
-        centers._name_classes(sx, sy, tri, parent, cx, cy, rank, err, changed)
+        centers._name_classes(sx, sy, tri, parent, cx, cy, rank, err, changed, False)
 
     if merged:
         rename()
@@ -183,3 +183,73 @@ def test_some_input_needs_a_fold_round():
         box = np.array([-2.0, -2.0, 2.0, 2.0])
         total += _plain_merge(sx, sy, tri, he, order.astype(np.int64), box)[3]
     assert total > 0
+
+
+def _pair_inputs():
+    """Inputs whose cocircular classes are mostly two triangles (four sites on a circle)."""
+    rng = np.random.default_rng(11)
+    k = 24
+    ax = (np.arange(k) + 0.5) / k
+    grid = np.column_stack([a.ravel() for a in np.meshgrid(ax, ax)])
+    yield grid
+    yield grid[rng.permutation(len(grid))]  # names follow the input's numbering
+    lattice = np.column_stack([a.ravel() for a in np.meshgrid(np.arange(12.0), np.arange(12.0))])
+    yield lattice[rng.permutation(len(lattice))] + 5e13
+    # rectangles of random sides: every 2x2 block is exactly cocircular
+    xs = np.cumsum(rng.random(16) + 0.1)
+    ys = np.cumsum(rng.random(16) + 0.1)
+    yield np.column_stack([a.ravel() for a in np.meshgrid(xs, ys)])[rng.permutation(256)]
+    for name in ("lattice_offset_5e+13", *FOLDING):
+        yield CATALOGUE[name][0]
+
+
+def _joined(sx, sy, tri, he, cx, cy, err, flag):
+    """Classes after the exact merge and before any naming (compressed parents)."""
+    box = np.array([-np.inf, -np.inf, np.inf, np.inf])
+    fold = np.zeros(len(tri), dtype=np.uint8)
+    centers.flag_close(sx, sy, tri, he, cx, cy, flag, err, box, fold)
+    parent = np.arange(len(cx))
+
+    def find(a):
+        while parent[a] != a:
+            a = parent[a]
+        return a
+
+    for e in np.flatnonzero(flag):
+        f = int(he[e])
+        a, b, c, d = (int(v) for v in centers._quad(tri, e, f))
+        close = centers._cc_close(sx, sy, a, err, cx, cy, e // 3, f // 3)
+        if close or incircle(sx[a], sy[a], sx[b], sy[b], sx[c], sy[c], sx[d], sy[d]) == 0.0:
+            ra, rb = find(e // 3), find(f // 3)
+            parent[max(ra, rb)] = min(ra, rb)
+    parent[:] = [find(k) for k in range(len(cx))]
+    return parent
+
+
+def test_pair_classes_named_from_own_centres_equal_the_full_search():
+    """``_name_pairs`` (the first naming: a class of two reuses a triangle's centre when
+    its triple is the name) gives the bits and change marks of the full search."""
+    kinds = {"root": 0, "other": 0, "neither": 0}
+    for pts in _pair_inputs():
+        sx, sy, tri, he, order = _triangulation(pts)
+        rank = order.astype(np.int64)
+        cx, cy, err, flag = centers.circumcenters(sx, sy, tri, he)
+        parent = _joined(sx, sy, tri, he, cx, cy, err, flag)
+        out = []
+        for own in (True, False):
+            ox, oy, changed = cx.copy(), cy.copy(), np.zeros(len(cx), dtype=np.uint8)
+            centers._name_classes(sx, sy, tri, parent, ox, oy, rank, err, changed, own)
+            out.append(_bits(*ox, *oy) + changed.tobytes())
+        assert out[0] == out[1]
+        size = np.bincount(parent, minlength=len(parent))
+        for r in np.flatnonzero(size == 2):
+            u = int(np.flatnonzero(parent == r)[1])
+            sites = set(tri[3 * r : 3 * r + 3]) | set(tri[3 * u : 3 * u + 3])
+            first = set(sorted(sites, key=lambda v: rank[v])[:3])
+            if first == set(tri[3 * r : 3 * r + 3]):
+                kinds["root"] += 1
+            elif first == set(tri[3 * u : 3 * u + 3]):
+                kinds["other"] += 1
+            else:
+                kinds["neither"] += 1
+    assert min(kinds.values()) > 50, kinds  # every branch of the short path is exercised

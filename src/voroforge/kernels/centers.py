@@ -28,7 +28,13 @@ from ..config import (
     VERTEX_SNAP_RTOL,
 )
 from .predicates import cross_diff, incircle, incircle_fast
-from .vertex import canonical_vertex_ranked, voronoi_vertex_and_error
+from .vertex import (
+    canonical_vertex_ranked,
+    is_close,
+    near_pair,
+    voronoi_vertex,
+    voronoi_vertex_and_error,
+)
 
 _U = 2.0**-53
 
@@ -136,6 +142,7 @@ def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank, err, box, fold):
     t = tri.shape[0] // 3
     parent = np.arange(t)
     changed = np.zeros(t, dtype=np.uint8)
+    joined = np.zeros(cand.shape[0], dtype=np.uint8)
     merged = False
     for k in range(cand.shape[0]):
         e = cand[k]
@@ -144,6 +151,7 @@ def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank, err, box, fold):
         if (near and _cc_close(xs, ys, a, err, cx, cy, e // 3, f // 3)) or (
             incircle(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c], xs[d], ys[d]) == 0.0
         ):
+            joined[k] = 1
             ra = _find(parent, e // 3)
             rb = _find(parent, f // 3)
             if ra != rb:
@@ -152,9 +160,10 @@ def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank, err, box, fold):
     if merged:
         for k in range(t):
             parent[k] = _find(parent, k)
-        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed)
+        # the centres are still the triangles' own here: classes of two may reuse them
+        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, True)
     if near:
-        _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, changed)
+        _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined, changed)
     return parent
 
 
@@ -225,6 +234,8 @@ def _refold(xs, ys, tri, he, parent, cx, cy, box, err, changed):
                 continue
             lo = min(e, f)
             hi = max(e, f)
+            if parent[lo // 3] == parent[hi // 3]:
+                continue  # one class (a shared parent is a shared root)
             if not _short(xs, ys, tri[lo], err, cx, cy, lo // 3, hi // 3):
                 continue  # the cheap test first: most edges are long
             if _find(parent, lo // 3) == _find(parent, hi // 3):
@@ -268,7 +279,7 @@ def _swapped(xs, ys, tri, e, f, ux, uy, tx, ty):
 
 
 @njit(**NJIT)
-def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, changed):
+def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined, changed):
     """Merge swapped vertices (:func:`_folds`) until none is left; renames the classes.
 
     Each round joins the classes at both ends of every edge that folds, then names the
@@ -277,10 +288,11 @@ def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, changed
     can have changed: edges whose two centres kept their bits since the last test keep its
     answer (a fold then was joined then). The first round takes :func:`flag_close`'s marks
     (``fold``) where naming kept both centres (``changed`` is 0), and tests the flagged
-    ``cand`` edges and those at renamed centres; later rounds test the edges at centres the
-    last renaming changed. Each round merges classes, so this ends; every merge is a pair of
-    vertices closer than their rounding, and the merged class gets its canonical vertex as
-    any other.
+    ``cand`` edges and those at renamed centres (a ``cand`` edge ``joined`` by the exact
+    merge has both ends in one class for good, and is skipped); later rounds test the edges
+    at centres the last renaming changed. Each round merges classes, so this ends; every
+    merge is a pair of vertices closer than their rounding, and the merged class gets its
+    canonical vertex as any other.
     """
     merges = 0
     for e in range(fold.shape[0]):
@@ -289,6 +301,8 @@ def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, changed
             if changed[e // 3] == 0 and changed[f // 3] == 0:
                 merges += _link(parent, e // 3, f // 3)
     for k in range(cand.shape[0]):
+        if joined[k] != 0:
+            continue  # one class already
         e = cand[k]
         f = he[e]
         if changed[e // 3] != 0 or changed[f // 3] != 0:
@@ -306,7 +320,7 @@ def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, changed
         for k in range(parent.shape[0]):
             parent[k] = _find(parent, k)
         changed[:] = 0
-        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed)
+        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, False)
 
 
 @njit(**NJIT)
@@ -315,6 +329,84 @@ def _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy):
     a0 = tri[3 * r]
     _, vx, vy = canonical_vertex_ranked(on, k, rank, cx[r], cy[r], xs[a0], ys[a0], xs, ys)
     return vx, vy
+
+
+@njit(**NJIT)
+def _name_pairs(xs, ys, tri, size, other, cx, cy, rank, changed):
+    """:func:`_name_classes` for the classes of two triangles, while every centre is its own.
+
+    Such a class (root ``r``, other member ``u``) has the root's three sites and, when the two
+    share an edge, the one ``u`` adds. The name search (:func:`.vertex.first_named`) tries the
+    three lowest-ranked of the four first, so that triple is tested here without the
+    search: when it is one of the two triangles, its vertex is that triangle's centre, which
+    :func:`circumcenters` computed by the same rule (same bits,
+    ``vertex.voronoi_vertex_and_error``); else it is computed (``vertex.voronoi_vertex``: any
+    argument order). Then the name's tests (no close pair, finite, near the root's centre).
+    A class whose first triple fails one, or whose triangles do not share an edge, takes the
+    full search (:func:`_class_vertex`), which tries the others.
+    """
+    on = np.zeros(6, dtype=np.int64)
+    for r in range(size.shape[0]):
+        if size[r] != 2:
+            continue
+        u = other[r]
+        a = tri[3 * r]
+        b = tri[3 * r + 1]
+        c = tri[3 * r + 2]
+        u0 = tri[3 * u]
+        u1 = tri[3 * u + 1]
+        u2 = tri[3 * u + 2]
+        new0 = u0 != a and u0 != b and u0 != c
+        new1 = u1 != a and u1 != b and u1 != c
+        new2 = u2 != a and u2 != b and u2 != c
+        found = False
+        wx = 0.0
+        wy = 0.0
+        if int(new0) + int(new1) + int(new2) == 1:
+            d = u0 if new0 else (u1 if new1 else u2)
+            # the highest-ranked site is the one the first triple leaves out
+            top = a
+            rt = rank[a]
+            if rank[b] > rt:
+                top = b
+                rt = rank[b]
+            if rank[c] > rt:
+                top = c
+                rt = rank[c]
+            if rank[d] > rt:
+                top = d
+            p = a if top != a else d
+            q = b if top != b else d
+            w = c if top != c else d
+            if top == d:
+                wx = cx[r]  # the first triple is r's
+                wy = cy[r]
+            elif top != u0 and top != u1 and top != u2:
+                wx = cx[u]  # the first triple is u's
+                wy = cy[u]
+            else:
+                wx, wy = voronoi_vertex(p, q, w, xs, ys)
+            if np.isfinite(wx) and np.isfinite(wy):
+                sx = xs[a]
+                sy = ys[a]
+                vx = cx[r]
+                vy = cy[r]
+                r2 = (vx - sx) * (vx - sx) + (vy - sy) * (vy - sy)
+                near = near_pair(p, q, r2, xs, ys) or near_pair(q, w, r2, xs, ys)
+                if not (near or near_pair(p, w, r2, xs, ys)):
+                    found = is_close(vx, vy, wx, wy, sx, sy, VERTEX_SNAP_RTOL)
+        if not found:
+            on[0] = a
+            on[1] = b
+            on[2] = c
+            k = 3
+            for v in (u0, u1, u2):
+                if v != a and v != b and v != c:
+                    on[k] = v
+                    k += 1
+            wx, wy = _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy)
+        _set_vertex(cx, cy, r, wx, wy, changed)
+        _set_vertex(cx, cy, u, wx, wy, changed)
 
 
 @njit(**NJIT)
@@ -327,7 +419,7 @@ def _set_vertex(cx, cy, k, vx, vy, changed):
 
 
 @njit(**NJIT)
-def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed):
+def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, own):
     """Give every triangle of a class (``parent`` its root) the vertex of the class's name.
 
     The name is the canonical triple of the class's sites (``kernels/vertex``), numbered by
@@ -336,19 +428,28 @@ def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed):
     rounding bound ``err`` is the reference). Classes of two triangles (four cocircular
     sites: every square of a grid) are the common case and take a short path; larger ones
     are gathered by a counting sort. Triangles whose centre may have changed are marked
-    in ``changed``.
+    in ``changed``. ``own`` says that every centre is still its triangle's own (the first
+    naming), which lets a class of two reuse one (:func:`_name_pairs`).
     """
     t = parent.shape[0]
     size = np.zeros(t, dtype=np.int64)
     other = np.zeros(t, dtype=np.int64)
+    most = 0
     for k in range(t):
         r = parent[k]
         size[r] += 1
+        most = max(most, size[r])
         if k != r:
             other[r] = k
-    on = np.zeros(max(6, 3 * int(size.max())), dtype=np.int64)
+    if own:
+        _name_pairs(xs, ys, tri, size, other, cx, cy, rank, changed)
+        if most <= 2:
+            return
+    on = np.zeros(max(6, 3 * most), dtype=np.int64)
     big = 0
     for r in range(t):
+        if size[r] == 2 and own:
+            continue  # named above
         if size[r] == 2:
             # the root's three sites and the other triangle's new ones (one, when adjacent)
             a = tri[3 * r]
