@@ -98,7 +98,8 @@ class Cells3D:
     Per-cell arrays (``status``, ``volume``, ``centroid``, ``rad2``) follow ``cells`` (the
     caller's order); the face table is in *build* order: cell ``cells[c]``'s faces are
     ``cell_faces[pos[c]]:cell_faces[pos[c] + 1]``, face ``f``'s ring
-    ``ring[roff[f]:roff[f + 1]]`` (global vertex numbers, outward).
+    ``ring[roff[f]:roff[f + 1]]`` (outward) of indices into the cell's vertices
+    ``vid[voff[pos[c]]:voff[pos[c] + 1]]`` (global vertex numbers).
     """
 
     cells: np.ndarray  # (k,) site numbers
@@ -111,7 +112,9 @@ class Cells3D:
     cell_faces: np.ndarray  # (k + 1,) face offsets, build order
     flabel: np.ndarray  # (Fc,) int32 kernel keys: site >= 0, wall -1 - w
     roff: np.ndarray  # (Fc + 1,) ring offsets
-    ring: np.ndarray  # (R,) global vertex ids
+    ring: np.ndarray  # (R,) uint8/uint16 indices into the cell's vertex list
+    voff: np.ndarray  # (k + 1,) vertex-list offsets, build order
+    vid: np.ndarray  # (sum of nv,) global vertex ids of each cell's vertices
     unmatched: int
 
 
@@ -191,38 +194,44 @@ def _hash3(bits, r, mask):
 def _join(c0, status, counts, caps, osite, ovabs, vbits, ofaces, oring, out, table, refs, want, gl):
     """Append the cells ``c0, c0 + 1, ...`` of a chunk to the outputs; vertices by coordinates.
 
-    ``out = (verts, flabel, roff, ring, sizes)`` with ``sizes = [nvert, nface, nring]``: each
-    vertex record is looked up in ``table`` (open addressing on its coordinates' bits; the
-    slots hold vertex numbers, -1 free) and appended when new. Stops before a cell that
-    does not fit (an output or the table is full: returns its number and 1) or that
-    overflowed its slots (2); returns ``(k, 0)`` when done.
+    ``out = (verts, flabel, roff, ring, vid, sizes)`` with ``sizes = [nvert, nface, nring,
+    nvid]``: each vertex record is looked up in ``table`` (open addressing on its
+    coordinates' bits; the slots hold vertex numbers, -1 free) and appended when new; the
+    cell's list of vertex numbers goes to ``vid`` and its rings stay local. Stops before a
+    cell that does not fit (an output or the table is full: returns its number and 1), that
+    overflowed its slots (2) or whose local numbers need a wider ring type (3); returns
+    ``(k, 0)`` when done.
     """
-    verts, flabel, roff, ring, sizes = out
+    verts, flabel, roff, ring, vid, sizes = out
     cv, cf, cr = caps[0], caps[1], caps[2]
     mask = table.shape[0] - 1
     nvert = sizes[0]
     nface = sizes[1]
     nring = sizes[2]
+    nvid = sizes[3]
     k = counts.shape[0]
-    for c in range(c0, k):
+    widest = np.iinfo(ring.dtype).max
+    why = 0
+    c = c0
+    while c < k:
         if status[c] == OVERFLOW:
-            sizes[0] = nvert
-            sizes[1] = nface
-            sizes[2] = nring
-            return c, 2
+            why = 2
+            break
         nv = counts[c, 0]
         nf = counts[c, 1]
         nr = counts[c, 2]
+        if nv > widest + 1:
+            why = 3
+            break
         if (
             nvert + nv > verts.shape[0]
             or (nvert + nv) > TABLE_LOAD * table.shape[0]
             or nface + nf > flabel.shape[0]
             or nring + nr > ring.shape[0]
+            or nvid + nv > vid.shape[0]
         ):
-            sizes[0] = nvert
-            sizes[1] = nface
-            sizes[2] = nring
-            return c, 1
+            why = 1
+            break
         for v in range(nv):
             r = c * cv + v
             h = _hash3(vbits, r, mask)
@@ -235,7 +244,7 @@ def _join(c0, status, counts, caps, osite, ovabs, vbits, ofaces, oring, out, tab
                     verts[nvert, 2] = ovabs[r, 2]
                     refs[nvert] = 1
                     want[nvert] = osite[r]
-                    gl[v] = nvert
+                    vid[nvid + v] = nvert
                     nvert += 1
                     break
                 if (
@@ -245,20 +254,23 @@ def _join(c0, status, counts, caps, osite, ovabs, vbits, ofaces, oring, out, tab
                 ):
                     if refs[gv] < 255:
                         refs[gv] += 1
-                    gl[v] = gv
+                    vid[nvid + v] = gv
                     break
                 h = (h + 1) & mask
+        nvid += nv
         for f in range(nf):
             flabel[nface] = ofaces[c * cf + f, 0]
             roff[nface + 1] = roff[nface] + ofaces[c * cf + f, 1]
             nface += 1
         for q in range(nr):
-            ring[nring] = gl[oring[c * cr + q]]
+            ring[nring] = oring[c * cr + q]
             nring += 1
+        c += 1
     sizes[0] = nvert
     sizes[1] = nface
     sizes[2] = nring
-    return k, 0
+    sizes[3] = nvid
+    return c, why
 
 
 @njit(**NJIT)
@@ -277,22 +289,23 @@ class _Out:
     """The growing outputs of the join (numpy arrays, resized in place)."""
 
     def __init__(self, k):
-        # typical sizes per uniform cell: 6.8 vertices, 15.5 faces, 81 ring entries
+        # typical sizes per uniform cell: 6.8 vertices (27 per cell), 15.5 faces, 81 ring entries
         self.verts = np.zeros((max(16, 7 * k), 3))
         self.refs = np.zeros(len(self.verts), np.uint8)
         self.want = np.zeros(len(self.verts), np.uint8)
         self.flabel = np.zeros(max(16, 16 * k), np.int32)
         self.roff = np.zeros(len(self.flabel) + 1, _itype(84 * k))
-        self.ring = np.zeros(max(64, 84 * k), _itype(7 * k))
-        self.sizes = np.zeros(3, np.int64)
-        self.table = np.full(_table_size(len(self.verts)), -1, self.ring.dtype)
+        self.ring = np.zeros(max(64, 84 * k), np.uint8)
+        self.vid = np.zeros(max(64, 28 * k), _itype(7 * k))
+        self.sizes = np.zeros(4, np.int64)
+        self.table = np.full(_table_size(len(self.verts)), -1, self.vid.dtype)
 
     def tuple(self):
-        return (self.verts, self.flabel, self.roff, self.ring, self.sizes)
+        return (self.verts, self.flabel, self.roff, self.ring, self.vid, self.sizes)
 
     def grow(self, nv, nf, nr):
         """Room for ``nv`` vertices, ``nf`` faces and ``nr`` ring entries more (by half)."""
-        nvert, nface, nring = (int(x) for x in self.sizes)
+        nvert, nface, nring, nvid = (int(x) for x in self.sizes)
         if nvert + nv > len(self.verts):
             m = int(1.5 * len(self.verts)) + nv
             self.verts.resize((m, 3), refcheck=False)
@@ -300,9 +313,9 @@ class _Out:
             self.want.resize(m, refcheck=False)
         if nvert + nv > TABLE_LOAD * len(self.table):
             size = _table_size(int(1.5 * (nvert + nv)))
-            if self.ring.dtype == np.int32 and size > 2**31 - 1:
-                self.ring = self.ring.astype(np.int64)
-            self.table = np.full(size, -1, self.ring.dtype)
+            if self.vid.dtype == np.int32 and size > 2**31 - 1:
+                self.vid = self.vid.astype(np.int64)
+            self.table = np.full(size, -1, self.vid.dtype)
             _rehash(self.verts, nvert, self.table)
         if nface + nf > len(self.flabel):
             m = int(1.5 * len(self.flabel)) + nf
@@ -313,11 +326,13 @@ class _Out:
             if self.roff.dtype == np.int32 and m > 2**31 - 1:
                 self.roff = self.roff.astype(np.int64)
             self.ring.resize(m, refcheck=False)
+        if nvid + nv > len(self.vid):
+            self.vid.resize(int(1.5 * len(self.vid)) + nv, refcheck=False)
 
     def add(self, status, counts, slots, caps):
         """Join one chunk's cells; returns those that overflowed their slots."""
         osite, ovabs, ofaces, oring = slots
-        gl = np.zeros(int(caps[0]), self.ring.dtype)
+        gl = np.zeros(1, self.vid.dtype)
         c = 0
         over = []
         while c < len(counts):
@@ -342,11 +357,13 @@ class _Out:
             elif why == 2:
                 over.append(c)
                 c += 1
+            elif why == 3:  # a cell of more than 256 vertices: wider local numbers
+                self.ring = self.ring.astype(np.uint16 if counts[c, 0] <= 65536 else np.int32)
         return over
 
     def finish(self):
         """Trim every output to its size (in place); returns the arrays and the unmatched."""
-        nvert, nface, nring = (int(x) for x in self.sizes)
+        nvert, nface, nring, nvid = (int(x) for x in self.sizes)
         self.table = None
         unmatched = int(np.count_nonzero(self.refs[:nvert] < self.want[:nvert]))
         self.refs = self.want = None
@@ -354,7 +371,8 @@ class _Out:
         self.flabel.resize(nface, refcheck=False)
         self.roff.resize(nface + 1, refcheck=False)
         self.ring.resize(nring, refcheck=False)
-        return self.verts, self.flabel, self.roff, self.ring, unmatched
+        self.vid.resize(nvid, refcheck=False)
+        return self.verts, self.flabel, self.roff, self.ring, self.vid, unmatched
 
 
 def _itype(most):
@@ -392,6 +410,7 @@ def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
     cen = np.zeros((k, 3))
     rad2 = np.zeros(k)
     nfaces = np.zeros(k, np.int64)
+    nverts = np.zeros(k, np.int64)
     out = _Out(k)
     with serial_below(k):
         nth = numba.get_num_threads()
@@ -415,17 +434,20 @@ def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
                 sl_ = slice(c0, c0 + len(chunk))
                 status[sl_], vol[sl_], cen[sl_], rad2[sl_] = st, v, c, r2
                 nfaces[sl_] = counts[:, 1]
+                nverts[sl_] = counts[:, 0]
                 if progress is not None:
                     progress(min(c0 + CHUNK, k), k)
         finally:
             if pool is not None:
                 pool.shutdown()
     del slots
-    vertices, flabel, roff, ring, unmatched = out.finish()
+    vertices, flabel, roff, ring, vid, unmatched = out.finish()
     pos = np.zeros(k, np.int64)
     pos[sort] = np.arange(k)
     cell_faces = np.zeros(k + 1, np.int64)
     np.cumsum(nfaces, out=cell_faces[1:])
+    voff = np.zeros(k + 1, np.int64)
+    np.cumsum(nverts, out=voff[1:])
     return Cells3D(
         cells,
         status[pos],
@@ -438,6 +460,8 @@ def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
         flabel,
         roff,
         ring,
+        voff,
+        vid,
         unmatched,
     )
 
@@ -472,6 +496,8 @@ def _empty(cells):
         np.zeros(k + 1, np.int64),
         np.zeros(0, np.int32),
         np.zeros(1, np.int32),
+        np.zeros(0, np.uint8),
+        np.zeros(k + 1, np.int64),
         np.zeros(0, np.int32),
         0,
     )

@@ -11,9 +11,10 @@ Layout (all arrays read-only):
   every wall face; its ring as seen from ``cells[:, 0]`` and its normal pointing to
   ``cells[:, 1]``.
 
-Storage: the per-cell face table is kept in the order the cells were built (bucket order,
-``int32`` labels and rings); area vectors are computed when asked for, never stored with the
-table. Everything public is in the caller's order.
+Storage: the per-cell face table is kept in the order the cells were built (bucket order):
+``int32`` labels and ring offsets, rings of ``uint8`` indices into the cell's own list of
+vertex numbers; area vectors are computed when asked for, never stored with the table.
+Everything public is in the caller's order.
 
 Example: walk the faces of cell 0::
 
@@ -125,6 +126,8 @@ class Diagram3D:
         face_keep=None,
         shifts=None,
         pos=None,
+        vid=None,
+        voff=None,
     ):
         self.sites = _ro(sites)
         self.weights = None if weights is None else _ro(weights)
@@ -136,11 +139,18 @@ class Diagram3D:
         self.vertices = _ro(vertices)
         # the per-cell face table, in build order: cell i's faces are
         # cell_faces[pos[i]]:cell_faces[pos[i] + 1] (pos None: the caller's order)
+        # (pos None: the caller's order); ring entries are local to the cell: cell position p's
+        # vertex r is vid[voff[p] + r] (without vid: rings hold vertex numbers)
         self._cell_faces = _ro(cell_faces)
         self._flabel = _ro(flabel)
         self._roff = _ro(roff)
         self._ring = _ro(ring)
         self._pos = None if pos is None else _ro(np.asarray(pos, np.int64))
+        if vid is None:
+            vid = np.arange(len(vertices), dtype=np.int64)
+            voff = np.zeros(len(cell_faces), np.int64)
+        self._vid = _ro(vid)
+        self._voff = _ro(voff)
         self.duplicate_of = _ro(duplicate_of)
         self.unmatched_vertices = int(unmatched)
         self.box = box
@@ -174,12 +184,15 @@ class Diagram3D:
         caller's order, with the area vectors).
         """
         if "table" not in self._cache:
-            if self._pos is None:
-                cf, lab, roff, ring = self._cell_faces, self._flabel, self._roff, self._ring
-            else:
-                cf, lab, roff, ring = _in_caller_order(
-                    self._pos, self._cell_faces, self._flabel, self._roff, self._ring
-                )
+            cf, lab, roff, ring = _in_caller_order(
+                self._positions(),
+                self._cell_faces,
+                self._flabel,
+                self._roff,
+                self._ring,
+                self._voff,
+                self._vid,
+            )
             area = np.zeros((len(lab), 3))
             _face_vectors(np.asarray(self.vertices), roff, ring, area)
             self._cache["table"] = tuple(_ro(a) for a in (cf, lab, area, roff, ring))
@@ -194,7 +207,9 @@ class Diagram3D:
         p = i if self._pos is None else int(self._pos[i])
         f0, f1 = self._cell_faces[p], self._cell_faces[p + 1]
         rings = [
-            np.asarray(self._ring[self._roff[f] : self._roff[f + 1]], np.int64)
+            self._vid[
+                self._voff[p] + np.asarray(self._ring[self._roff[f] : self._roff[f + 1]], np.int64)
+            ]
             for f in range(f0, f1)
         ]
         ids = unique(np.concatenate(rings)) if rings else np.zeros(0, np.int64)
@@ -238,32 +253,40 @@ class Diagram3D:
                 self._flabel,
                 self._roff,
                 self._ring,
+                self._voff,
+                self._vid,
                 np.asarray(keep if use else np.zeros(0, bool)),
                 use,
             )
-            faces = Faces3D(_ro(indptr), _ro(indices), _ro(cells))
-            av = np.zeros((len(cells), 3))
-            _face_vectors(np.asarray(self.vertices), indptr, indices, av)
+            self._cache["unique"] = Faces3D(_ro(indptr), _ro(indices), _ro(cells))
+        return self._cache["unique"]
+
+    def _areas(self):
+        """Areas and unit normals of the unique faces (computed on first use)."""
+        if "areas" not in self._cache:
+            faces = self.faces
+            av = np.zeros((len(faces), 3))
+            _face_vectors(np.asarray(self.vertices), faces.indptr, faces.indices, av)
             area = np.sqrt((av * av).sum(axis=1))
             with np.errstate(invalid="ignore", divide="ignore"):
                 av /= area[:, None]
-            self._cache["unique"] = (faces, _ro(area), _ro(av))
-        return self._cache["unique"]
+            self._cache["areas"] = (_ro(area), _ro(av))
+        return self._cache["areas"]
 
     @property
     def faces(self) -> Faces3D:
         """Each face once: CSR rings into ``vertices`` and ``cells (m, 2)``."""
-        return self._unique()[0]
+        return self._unique()
 
     @property
     def face_areas(self) -> np.ndarray:
-        """Areas of the unique faces, ``(m,)``."""
-        return self._unique()[1]
+        """Areas of the unique faces, ``(m,)`` (computed on first use)."""
+        return self._areas()[0]
 
     @property
     def face_normals(self) -> np.ndarray:
         """Unit normals of the unique faces, from ``faces.cells[:, 0]`` to ``[:, 1]``."""
-        return self._unique()[2]
+        return self._areas()[1]
 
     @property
     def neighbors(self):
@@ -275,6 +298,8 @@ class Diagram3D:
                 self._flabel,
                 self._roff,
                 self._ring,
+                self._voff,
+                self._vid,
                 np.asarray(self.vertices),
             )
             self._cache["nb"] = (_ro(indptr), _ro(indices))
@@ -338,57 +363,82 @@ def _face_vectors(V, roff, ring, out):
 
 
 @njit(**NJIT)
-def _in_caller_order(pos, cf, lab, roff, ring):
-    """The face table with cell ``i``'s faces at ``i`` (a copy)."""
+def _in_caller_order(pos, cf, lab, roff, ring, voff, vid):
+    """The face table with cell ``i``'s faces at ``i`` and rings of vertex numbers (a copy)."""
     n = pos.shape[0]
     cf2 = np.zeros(n + 1, np.int64)
     for i in range(n):
         cf2[i + 1] = cf2[i] + cf[pos[i] + 1] - cf[pos[i]]
-    lab2 = np.zeros(lab.shape[0], lab.dtype)
-    roff2 = np.zeros(roff.shape[0], roff.dtype)
-    ring2 = np.zeros(ring.shape[0], ring.dtype)
+    lab2 = np.zeros(cf2[n], lab.dtype)
+    roff2 = np.zeros(cf2[n] + 1, np.int64)
+    nr = 0
+    for i in range(n):
+        p = pos[i]
+        nr += roff[cf[p + 1]] - roff[cf[p]]
+    ring2 = np.zeros(nr, vid.dtype)
     f2 = 0
     for i in range(n):
         p = pos[i]
+        base = voff[p]
         for f in range(cf[p], cf[p + 1]):
             lab2[f2] = lab[f]
             r0 = roff2[f2]
             for q in range(roff[f], roff[f + 1]):
-                ring2[r0 + q - roff[f]] = ring[q]
+                ring2[r0 + q - roff[f]] = vid[base + ring[q]]
             roff2[f2 + 1] = r0 + roff[f + 1] - roff[f]
             f2 += 1
     return cf2, lab2, roff2, ring2
 
 
 @njit(**NJIT)
-def _unique_faces(pos, cf, lab, roff, ring, keep, use_keep):
+def _cells_at(pos, npos):
+    """The cell built at each of ``npos`` positions (``pos``'s inverse; unused: -1)."""
+    at = np.full(npos, -1, np.int64)
+    for i in range(pos.shape[0]):
+        at[pos[i]] = i
+    return at
+
+
+@njit(**NJIT)
+def _unique_faces(pos, cf, lab, roff, ring, voff, vid, keep, use_keep):
     """Each face once, in the caller's cell order: ``(indptr, indices, cells (m, 2))``.
 
     A face of cell ``i`` is kept when its label is a wall or a site ``> i`` (or, with
-    ``use_keep``, where ``keep`` (build order) says so: periodic images).
+    ``use_keep``, where ``keep`` (build order) says so: periodic images). The table is read
+    in build order (neighbouring cells, near vertices) and written in the caller's.
     """
     n = pos.shape[0]
-    m = 0
-    nr = 0
-    for i in range(n):
-        p = pos[i]
+    at = _cells_at(pos, cf.shape[0] - 1)
+    nf = np.zeros(n + 1, np.int64)  # kept faces of cell i, then their offsets
+    nr = np.zeros(n + 1, np.int64)  # their ring entries
+    for p in range(cf.shape[0] - 1):
+        i = at[p]
+        if i < 0:
+            continue
         for f in range(cf[p], cf[p + 1]):
             if (use_keep and keep[f]) or (not use_keep and (lab[f] < 0 or lab[f] > i)):
-                m += 1
-                nr += roff[f + 1] - roff[f]
-    indptr = np.zeros(m + 1, np.int64)
-    indices = np.zeros(nr, ring.dtype)
-    cells = np.zeros((m, 2), lab.dtype)
-    k = 0
-    r = 0
+                nf[i + 1] += 1
+                nr[i + 1] += roff[f + 1] - roff[f]
     for i in range(n):
-        p = pos[i]
+        nf[i + 1] += nf[i]
+        nr[i + 1] += nr[i]
+    m = nf[n]
+    indptr = np.zeros(m + 1, roff.dtype)  # unique rings are half of the per-cell ones
+    indices = np.zeros(nr[n], vid.dtype)
+    cells = np.zeros((m, 2), lab.dtype)
+    for p in range(cf.shape[0] - 1):
+        i = at[p]
+        if i < 0:
+            continue
+        k = nf[i]
+        r = nr[i]
+        base = voff[p]
         for f in range(cf[p], cf[p + 1]):
             if (use_keep and keep[f]) or (not use_keep and (lab[f] < 0 or lab[f] > i)):
                 cells[k, 0] = i
                 cells[k, 1] = lab[f]
                 for q in range(roff[f], roff[f + 1]):
-                    indices[r] = ring[q]
+                    indices[r] = vid[base + ring[q]]
                     r += 1
                 k += 1
                 indptr[k] = r
@@ -396,42 +446,69 @@ def _unique_faces(pos, cf, lab, roff, ring, keep, use_keep):
 
 
 @njit(**NJIT)
-def _neighbors(pos, cf, lab, roff, ring, V):
-    """CSR of each cell's neighbours across faces of nonzero area (sorted, once each)."""
+def _flat(V, roff, ring, base, vid, f):
+    """Whether face ``f``'s area vector is exactly zero (the fan of :func:`_face_vectors`)."""
+    a = roff[f]
+    b = roff[f + 1]
+    v0 = vid[base + ring[a]]
+    ax = 0.0
+    ay = 0.0
+    az = 0.0
+    for q in range(a + 1, b - 1):
+        u = vid[base + ring[q]]
+        w = vid[base + ring[q + 1]]
+        ux = V[u, 0] - V[v0, 0]
+        uy = V[u, 1] - V[v0, 1]
+        uz = V[u, 2] - V[v0, 2]
+        wx = V[w, 0] - V[v0, 0]
+        wy = V[w, 1] - V[v0, 1]
+        wz = V[w, 2] - V[v0, 2]
+        ax += uy * wz - uz * wy
+        ay += uz * wx - ux * wz
+        az += ux * wy - uy * wx
+    return ax == 0.0 and ay == 0.0 and az == 0.0
+
+
+@njit(**NJIT)
+def _neighbors(pos, cf, lab, roff, ring, voff, vid, V):
+    """CSR of each cell's neighbours across faces of nonzero area (sorted, once each).
+
+    Read in build order; the rows are the caller's cells.
+    """
     n = pos.shape[0]
+    at = _cells_at(pos, cf.shape[0] - 1)
     indptr = np.zeros(n + 1, np.int64)
-    one = np.zeros((1, 3))
-    tmp = np.zeros(64, lab.dtype)
+    most = 0
+    for p in range(cf.shape[0] - 1):
+        most = max(most, cf[p + 1] - cf[p])
+    tmp = np.zeros(most, lab.dtype)
     indices = np.zeros(0, lab.dtype)
     for sweep in range(2):
         if sweep == 1:
             for i in range(n):
                 indptr[i + 1] += indptr[i]
             indices = np.zeros(indptr[n], lab.dtype)
-        for i in range(n):
-            p = pos[i]
+        for p in range(cf.shape[0] - 1):
+            i = at[p]
+            if i < 0:
+                continue
             c = 0
             for f in range(cf[p], cf[p + 1]):
                 j = lab[f]
-                if j < 0 or j == i:
+                if j < 0 or j == i or _flat(V, roff, ring, voff[p], vid, f):
                     continue
-                _face_vectors(V, roff[f : f + 2], ring, one)
-                if one[0, 0] == 0.0 and one[0, 1] == 0.0 and one[0, 2] == 0.0:
+                b = c - 1  # insertion sort, dropping repeats
+                while b >= 0 and tmp[b] > j:
+                    b -= 1
+                if b >= 0 and tmp[b] == j:
                     continue
-                if c == tmp.shape[0]:
-                    tmp2 = np.zeros(2 * c, lab.dtype)
-                    tmp2[:c] = tmp
-                    tmp = tmp2
-                tmp[c] = j
+                for q in range(c, b + 1, -1):
+                    tmp[q] = tmp[q - 1]
+                tmp[b + 1] = j
                 c += 1
-            tmp[:c].sort()
-            u = 0
-            for q in range(c):
-                if u == 0 or tmp[q] != tmp[u - 1]:
-                    tmp[u] = tmp[q]
-                    u += 1
             if sweep == 0:
-                indptr[i + 1] = u
+                indptr[i + 1] = c
             else:
-                indices[indptr[i] : indptr[i] + u] = tmp[:u]
+                for q in range(c):
+                    indices[indptr[i] + q] = tmp[q]
     return indptr, indices

@@ -186,6 +186,7 @@ def _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh):
     u = len(uniq)
     # the face table stays in build order; duplicates point at an empty slot after the last
     cell_faces = np.append(res.cell_faces, res.cell_faces[-1])
+    voff = np.append(res.voff, res.voff[-1])
     pos = np.full(n, u, np.int64)
     pos[uniq] = res.pos
     lab = res.flabel
@@ -232,4 +233,6 @@ def _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh):
         face_keep=face_keep,
         shifts=shifts,
         pos=pos,
+        vid=res.vid,
+        voff=voff,
     )
