@@ -331,7 +331,7 @@ def _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy):
     return vx, vy
 
 
-@njit(**NJIT)
+@njit(**NJIT_PARALLEL)
 def _name_pairs(xs, ys, tri, size, other, cx, cy, rank, changed):
     """:func:`_name_classes` for the classes of two triangles, while every centre is its own.
 
@@ -343,10 +343,10 @@ def _name_pairs(xs, ys, tri, size, other, cx, cy, rank, changed):
     ``vertex.voronoi_vertex_and_error``); else it is computed (``vertex.voronoi_vertex``: any
     argument order). Then the name's tests (no close pair, finite, near the root's centre).
     A class whose first triple fails one, or whose triangles do not share an edge, takes the
-    full search (:func:`_class_vertex`), which tries the others.
+    full search (:func:`_class_vertex`), which tries the others. Each class reads and writes
+    only its own two triangles' entries, so the classes are named in parallel.
     """
-    on = np.zeros(6, dtype=np.int64)
-    for r in range(size.shape[0]):
+    for r in prange(size.shape[0]):
         if size[r] != 2:
             continue
         u = other[r]
@@ -396,6 +396,7 @@ def _name_pairs(xs, ys, tri, size, other, cx, cy, rank, changed):
                 if not (near or near_pair(p, w, r2, xs, ys)):
                     found = is_close(vx, vy, wx, wy, sx, sy, VERTEX_SNAP_RTOL)
         if not found:
+            on = np.zeros(6, dtype=np.int64)
             on[0] = a
             on[1] = b
             on[2] = c
