@@ -97,7 +97,7 @@ def bucket_chunk(chunk, block, tiling, loaded, sources, folder: str, index: int)
     np.cumsum(hcounts, out=hstarts[1:])
     # tile u: owned block at starts[u] + hstarts[u], its halo block right after it
     rec = np.zeros(len(xy) + len(dest), dtype=RECORD)
-    at = np.arange(len(xy)) + np.repeat(hstarts[:-1], counts)
+    at = np.arange(len(xy)) + hstarts[tile[order]]
     rec["id"][at] = chunk.start + order
     rec["x"][at] = xs
     rec["y"][at] = ys

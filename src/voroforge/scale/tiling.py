@@ -11,8 +11,23 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
+
+from ..config import NJIT
 
 __all__ = ["Tiling", "kd_tiling"]
+
+
+@njit(**NJIT)
+def _descend(xy, axis, value, left, right):  # pragma: no cover
+    """The leaf (tile) of each point: down the tree from the root, left when below."""
+    out = np.zeros(len(xy), dtype=np.int64)
+    for i in range(len(xy)):
+        k = 0
+        while k >= 0:
+            k = left[k] if xy[i, axis[k]] < value[k] else right[k]
+        out[i] = -1 - k
+    return out
 
 
 @dataclass(frozen=True)
@@ -40,17 +55,10 @@ class Tiling:
 
     def assign(self, xy: np.ndarray) -> np.ndarray:
         """The tile owning each point of ``xy`` ``(n, 2)``, as ``(n,) int64``."""
-        n = len(xy)
+        xy = np.ascontiguousarray(xy, dtype=np.float64).reshape(-1, 2)
         if len(self.axis) == 0:
-            return np.zeros(n, dtype=np.int64)
-        node = np.zeros(n, dtype=np.int64)
-        live = np.arange(n)
-        while len(live):
-            k = node[live]
-            go_left = xy[live, self.axis[k]] < self.value[k]
-            node[live] = np.where(go_left, self.left[k], self.right[k])
-            live = live[node[live] >= 0]
-        return -1 - node
+            return np.zeros(len(xy), dtype=np.int64)
+        return _descend(xy, self.axis, self.value, self.left, self.right)
 
     def touching(self, rect) -> np.ndarray:
         """Tiles whose closed rectangle meets the closed rectangle ``rect``."""
