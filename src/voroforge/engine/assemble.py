@@ -13,7 +13,6 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
-from .. import config
 from ..config import EDGE_LENGTH_RTOL
 from ..kernels.domain_grid import classify, mark_segments, scanline_inside
 from ..kernels.rings import shared_edges
@@ -50,13 +49,18 @@ def assemble(dom: Domain, closed, lengths, owner, n: int, cell_ids=None):
     nonempty = lengths[1:] > lengths[:-1]
     ring_offsets = np.concatenate(([0], lengths[1:][nonempty]))
     ring_cell = np.flatnonzero(nonempty) if cell_ids is None else cell_ids[nonempty]
-    grid = None if dom.is_rect else domain_grid(dom, len(ring_cell))
-    edge_coords, edge_pairs = domain_edges(dom, grid, closed, ring_offsets, ring_cell, owner)
+    grid = pieces = None
+    if not dom.is_rect:
+        grid = domain_grid(dom, len(ring_cell))
+        pieces = _Pieces(dom, closed, ring_offsets, ring_cell, n)
+    edge_coords, edge_pairs = domain_edges(
+        dom, grid, pieces, closed, ring_offsets, ring_cell, owner
+    )
     if dom.is_rect:
         polys = np.arange(len(ring_cell) + 1, dtype=np.int64)
         bufs = (closed, ring_offsets, polys, geom_offsets_for(n, ring_cell))
     else:
-        bufs = clip_to_polygon(dom, grid, closed, ring_offsets, ring_cell, n)
+        bufs = clip_to_polygon(dom, grid, pieces, closed, ring_offsets, ring_cell, n)
     return bufs, Edges(edge_coords, edge_pairs)
 
 
@@ -160,55 +164,59 @@ def _centres(lo, hi, h, count):
     )
 
 
-def _piece_tiles(dom: Domain) -> int:
-    """Tiles per side of the pieces :func:`_intersect_local` cuts the domain into."""
-    vertices = int(shapely.get_num_coordinates(dom.geometry))
-    return int(min(max(np.ceil(np.sqrt(vertices) / config.DOMAIN_PIECE_VERTICES), 1), 64))
+_PIECE_SMALL = 256  # a domain with at most this many vertices is intersected whole
 
 
-def _intersect_local(dom: Domain, convex):
-    """``convex ∩ domain`` for many small convex polygons, each against a local domain piece.
+class _Pieces:
+    """The domain cut to each cell's box: what a cell, or an edge of it, is intersected with.
 
-    Overlay cost grows with the size of both operands, so the domain is cut into tiles (each
-    grown by half a tile) and every polygon that fits inside one grown tile is intersected
-    with that tile's piece only. The tiles follow from the domain alone (its bounds and its
-    vertex count), never from the polygons: a cell gets the same piece, hence the same
-    crossing points bit for bit, whichever other cells are computed with it (the tiled
-    ``scale.voronoi`` relies on it).
+    Overlay cost grows with the size of both operands, so a cell meeting the domain's
+    boundary is intersected with the domain cut to the cell's bounding box (GEOS's
+    rectangle clip, linear in the domain's vertices and tens of times cheaper than an
+    overlay; when its result is not valid, the overlay makes it), and an edge with the
+    piece of its lower-numbered cell, whose box holds it. A piece depends on the domain
+    and the cell's convex ring alone, never on the other cells: a cell gets the same
+    crossing points bit for bit whichever other cells are computed with it (the tiled
+    ``scale.voronoi`` relies on it). A domain of ``N`` vertices thus costs ``N`` per cell
+    on its boundary (about the square root of the cells), not ``N`` per overlay of a
+    large piece.
     """
-    out = np.empty(len(convex), dtype=object)  # noqa: TID251 - every slot is filled below
-    x0, y0, x1, y1 = dom.bounds
-    t = _piece_tiles(dom)
-    ts = max(x1 - x0, y1 - y0) / t
-    bx = shapely.bounds(convex)
-    mid_x = np.floor((0.5 * (bx[:, 0] + bx[:, 2]) - x0) / ts).astype(np.int64)
-    mid_y = np.floor((0.5 * (bx[:, 1] + bx[:, 3]) - y0) / ts).astype(np.int64)
-    lo_x = x0 + (mid_x - 0.5) * ts
-    lo_y = y0 + (mid_y - 0.5) * ts
-    fits = (
-        (bx[:, 0] >= lo_x)
-        & (bx[:, 1] >= lo_y)
-        & (bx[:, 2] <= lo_x + 2.0 * ts)
-        & (bx[:, 3] <= lo_y + 2.0 * ts)
-    )
-    rest = np.flatnonzero(~fits)
-    if len(rest):
-        out[rest] = shapely.intersection(convex[rest], dom.geometry)
-    tile = mid_y * (t + 2) + mid_x
-    idx = np.flatnonzero(fits)
-    order = idx[np.argsort(tile[idx], kind="stable")]
-    if len(order):
-        cuts = np.flatnonzero(np.diff(tile[order])) + 1
-        for group in np.split(order, cuts):
-            k = group[0]
-            piece = shapely.intersection(
-                dom.geometry, shapely.box(lo_x[k], lo_y[k], lo_x[k] + 2 * ts, lo_y[k] + 2 * ts)
-            )
-            out[group] = shapely.intersection(convex[group], piece)
-    return out
+
+    def __init__(self, dom: Domain, closed, ring_offsets, ring_cell, n: int):
+        self.geometry = dom.geometry
+        self.whole = int(shapely.get_num_coordinates(dom.geometry)) <= _PIECE_SMALL
+        self.bounds = np.zeros((n, 4))
+        if len(ring_cell):
+            starts = ring_offsets[:-1]
+            self.bounds[ring_cell, 0] = np.minimum.reduceat(closed[:, 0], starts)
+            self.bounds[ring_cell, 1] = np.minimum.reduceat(closed[:, 1], starts)
+            self.bounds[ring_cell, 2] = np.maximum.reduceat(closed[:, 0], starts)
+            self.bounds[ring_cell, 3] = np.maximum.reduceat(closed[:, 1], starts)
+        self.cache: dict[int, object] = {}
+
+    def piece(self, cell: int):
+        got = self.cache.get(cell)
+        if got is None:
+            x0, y0, x1, y1 = self.bounds[cell]
+            got = shapely.clip_by_rect(self.geometry, x0, y0, x1, y1)
+            if not shapely.is_valid(got):
+                got = shapely.intersection(self.geometry, shapely.box(x0, y0, x1, y1))
+            self.cache[cell] = got
+        return got
+
+    def intersect(self, geoms, cells):
+        """``geoms[k] ∩ domain`` for geometries inside the boxes of cells ``cells[k]``."""
+        if self.whole:
+            return shapely.intersection(geoms, self.geometry)
+        out = np.empty(len(geoms), dtype=object)  # noqa: TID251 - every slot is filled below
+        order = np.argsort(cells, kind="stable")
+        cuts = np.flatnonzero(np.diff(cells[order])) + 1
+        for group in np.split(order, cuts) if len(order) else []:
+            out[group] = shapely.intersection(geoms[group], self.piece(int(cells[group[0]])))
+        return out
 
 
-def clip_to_polygon(dom: Domain, grid, coords, ring_offsets, ring_cell, n):
+def clip_to_polygon(dom: Domain, grid, pieces, coords, ring_offsets, ring_cell, n):
     """Clip convex closed rings (one per non-empty cell) to a polygonal domain.
 
     Rings that the grid proves wholly inside are kept as they are, wholly outside ones are
@@ -228,7 +236,7 @@ def clip_to_polygon(dom: Domain, grid, coords, ring_offsets, ring_cell, n):
         convex = shapely.from_ragged_array(
             shapely.GeometryType.POLYGON, coords[h_mask], (h_off, np.arange(len(hard) + 1))
         )
-        clipped = shapely.orient_polygons(_polygonal(_intersect_local(dom, convex)))
+        clipped = shapely.orient_polygons(_polygonal(pieces.intersect(convex, ring_cell[hard])))
         parts, idx = shapely.get_parts(clipped, return_index=True)
         keep = ~shapely.is_empty(parts)
         parts = parts[keep]
@@ -279,7 +287,7 @@ def _polygonal(geoms):
     return out
 
 
-def domain_edges(dom: Domain, grid, coords, ring_offsets, ring_cell, owner):
+def domain_edges(dom: Domain, grid, pieces, coords, ring_offsets, ring_cell, owner):
     """Unique shared edges ``(m, 2, 2)`` and their cell pairs ``(m, 2)``, clipped to the domain.
 
     Each pair ``(i, j)`` with ``i < j`` is taken from cell ``i``'s ring. Edges not longer than
@@ -290,10 +298,10 @@ def domain_edges(dom: Domain, grid, coords, ring_offsets, ring_cell, owner):
     seg, pairs = shared_edges(coords, ring_offsets, ring_cell, owner, tol)
     if dom.is_rect or len(seg) == 0:
         return seg, pairs
-    return _clip_segments(dom, grid, seg, pairs, tol)
+    return _clip_segments(grid, pieces, seg, pairs, tol)
 
 
-def _clip_segments(dom: Domain, grid, seg, pairs, tol):
+def _clip_segments(grid, pieces, seg, pairs, tol):
     """Edges ``seg`` (m, 2, 2) cut to the domain: the grid keeps or drops most of them whole."""
     two = seg.reshape(-1, 2)
     offs = np.arange(0, 2 * len(seg) + 1, 2, dtype=np.int64)
@@ -302,7 +310,7 @@ def _clip_segments(dom: Domain, grid, seg, pairs, tol):
     keep = status == 1
     if not len(hard):
         return seg[keep], pairs[keep]
-    cut = _intersect_local(dom, shapely.linestrings(seg[hard]))
+    cut = pieces.intersect(shapely.linestrings(seg[hard]), pairs[hard].min(axis=1))
     parts, idx = shapely.get_parts(cut, return_index=True)
     is_line = (shapely.get_type_id(parts) == 1) & ~shapely.is_empty(parts)
     parts = parts[is_line]
