@@ -31,6 +31,7 @@ from .conflicts import conflicts
 __all__ = ["hull_lattice"]
 
 _MAX_ROUNDS = 12
+_BLOCK = 1 << 18  # triangles per block of the node hulls' checks
 
 
 def _unit_sphere(level: int) -> np.ndarray:
@@ -325,17 +326,23 @@ def _node_pieces(g, vs, ces, dds, coarse):
     simp = np.vstack(simps).astype(np.int64) if simps else np.zeros((0, 3), np.int64)
     eq = np.vstack(eqs) if eqs else np.zeros((0, 4))
     tstart = np.concatenate([[0], np.cumsum(tcount)])
-    # outward orientation (Qhull's triangles come in either order)
-    tri = pts[simp]
-    nrm = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    flip = np.einsum("ij,ij->i", nrm, eq[:, :3]) < 0
-    simp[flip] = simp[flip][:, ::-1]
-    # each ring a face: exactly k - 2 triangles over its own points, every ring point used
-    ro = ring_of[simp]
-    on_ring = (ro[:, 0] >= 0) & (ro[:, 0] == ro[:, 1]) & (ro[:, 1] == ro[:, 2])
-    per_ring = np.bincount(ro[on_ring, 0], minlength=len(ce))
+    # outward orientation (Qhull's triangles come in either order), and the ring faces: in
+    # blocks of triangles (bounded temporaries)
+    on_ring = np.zeros(len(simp), dtype=bool)
+    per_ring = np.zeros(len(ce), dtype=np.int64)
     used = np.zeros(len(pts), dtype=bool)
-    used[simp[~on_ring].ravel()] = True
+    for b0 in range(0, len(simp), _BLOCK):
+        sb = simp[b0 : b0 + _BLOCK]
+        p0, p1, p2 = pts[sb[:, 0]], pts[sb[:, 1]], pts[sb[:, 2]]
+        nrm = np.cross(p1 - p0, p2 - p0)
+        flip = np.einsum("ij,ij->i", nrm, eq[b0 : b0 + _BLOCK, :3]) < 0
+        sb[flip] = sb[flip][:, ::-1]
+        # each ring a face: exactly k - 2 triangles over its own points, every ring point used
+        ro = ring_of[sb]
+        onr = (ro[:, 0] >= 0) & (ro[:, 0] == ro[:, 1]) & (ro[:, 1] == ro[:, 2])
+        on_ring[b0 : b0 + _BLOCK] = onr
+        per_ring += np.bincount(ro[onr, 0], minlength=len(ce))
+        used[sb[~onr].ravel()] = True
     bad_end = per_ring != k - 2
     if len(ce):
         bad_end |= ~used[rows].all(axis=1)
@@ -348,7 +355,7 @@ def _node_pieces(g, vs, ces, dds, coarse):
         lo = np.minimum.reduceat(pts, cut)
         hi = np.maximum.reduceat(pts, cut)
         rad = np.sqrt(np.maximum.reduceat(((pts - g.nodes[np.repeat(vs, npts)]) ** 2).sum(1), cut))
-    simp_local = simp - np.repeat(start[:-1], tcount)[:, None]
+    simp -= np.repeat(start[:-1], tcount)[:, None]  # local to each node
     out: list = []
     e0 = 0
     for s_ in range(S):
@@ -362,7 +369,7 @@ def _node_pieces(g, vs, ces, dds, coarse):
             out.append(
                 _Piece(
                     pts[start[s_] : start[s_ + 1]],
-                    simp_local[t0:t1],
+                    simp[t0:t1],
                     on_ring[t0:t1],
                     int(n_in[s_]),
                     dds[s_],
@@ -480,7 +487,11 @@ def _assemble(g, label):
     t2 = np.stack([ra, rb1, rb], axis=-1).reshape(-1, 3)
     all_v = np.vstack(verts) if verts else np.zeros((0, 3))
     all_f = np.vstack([*faces, t1, t2]) if faces else np.zeros((0, 3), np.int64)
-    return all_v, all_f, hull_vol, d, len(multi)
+    # drop the sphere points no hull triangle uses
+    used = np.zeros(len(all_v), dtype=bool)
+    used[all_f.ravel()] = True
+    all_f = (np.cumsum(used) - 1)[all_f]
+    return all_v[used], all_f, hull_vol, d, len(multi)
 
 
 def _joints(g, groups, ce, pieces):
@@ -527,11 +538,15 @@ def _joints(g, groups, ce, pieces):
         parts.extend(_inner_struts(g, ie))
         union = mf.Manifold.batch_boolean(parts, mf.OpType.Add)
         out = union.to_mesh64()
-        unions.append((np.asarray(out.vert_properties)[:, :3], np.asarray(out.tri_verts)))
+        # copies: the manifold and its mesh (several arrays per triangle) go at once
+        v = np.array(np.asarray(out.vert_properties)[:, :3], dtype=np.float64)
+        unions.append((v, np.array(out.tri_verts, dtype=np.int64)))
         vol += union.volume()
+        del union, out
     nv = np.cumsum([0] + [len(v) for v, _ in unions])
-    verts = np.vstack([v for v, _ in unions]).astype(np.float64, copy=False)
-    tris = np.vstack([t.astype(np.int64) + o for (_, t), o in zip(unions, nv, strict=False)])
+    verts = np.vstack([v for v, _ in unions])
+    tris = np.vstack([t + o for (_, t), o in zip(unions, nv, strict=False)])
+    del unions
     # the rings' vertices must come back bit for bit, their faces as whole polygons
     ridx = _find_rows(verts, rings).reshape(-1, k)
     m = len(ce)
@@ -571,18 +586,32 @@ def _inner_struts(g, ie):
     return [mf.Manifold.hull_points(np.vstack([x, y])) for x, y in zip(r0, r1, strict=True)]
 
 
+def _row_hash(a) -> np.ndarray:
+    """A 64-bit hash of each row's three float64 bit patterns (wrapping multiply-xor)."""
+    u = np.ascontiguousarray(a, dtype=np.float64).view(np.uint64).reshape(-1, 3)
+    with np.errstate(over="ignore"):
+        h = u[:, 0] * np.uint64(0x9E3779B97F4A7C15)
+        h ^= u[:, 1] * np.uint64(0xC2B2AE3D27D4EB4F)
+        h ^= u[:, 2] * np.uint64(0x165667B19E3779F9)
+    return h
+
+
 def _find_rows(table, rows) -> np.ndarray:
-    """Index in ``table`` of each of ``rows`` found bit for bit (first match), else -1."""
-    allv = np.vstack([table, rows])
-    key = np.ascontiguousarray(allv).view(np.dtype((np.void, 24))).ravel()
-    order = np.argsort(key, kind="stable")
-    sk = key[order]
-    new = np.concatenate([[True], sk[1:] != sk[:-1]])
-    first = order[np.flatnonzero(new)][np.cumsum(new) - 1]  # first original index per group
-    hit = np.zeros(len(allv), dtype=np.int64)
-    hit[order] = first
-    out = hit[len(table) :]
-    return np.where(out < len(table), out, -1)
+    """Index in ``table`` of each of ``rows`` found bit for bit (first match), else -1.
+
+    Rows are looked up by hash (sorted, stable: the first of equal hashes comes first) and
+    the candidate is then compared exactly, so a collision can only report a miss.
+    """
+    ht = _row_hash(table)
+    order = np.argsort(ht, kind="stable")
+    hs = ht[order]
+    hr = _row_hash(rows)
+    pos = np.minimum(np.searchsorted(hs, hr), max(len(hs) - 1, 0))
+    if len(hs) == 0:
+        return np.full(len(rows), -1, dtype=np.int64)
+    cand = order[pos]
+    ok = (hs[pos] == hr) & (table[cand] == rows).all(axis=1)
+    return np.where(ok, cand, -1)
 
 
 def ring_area(k: int) -> float:

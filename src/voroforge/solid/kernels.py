@@ -11,43 +11,76 @@ __all__ = ["box_pairs", "separated"]
 
 
 @njit(**config.NJIT)
-def _sweep(lo, hi, order, out_i, out_j, fill):
-    """Sweep along x over boxes sorted by ``lo[:, 0]``; count (or write) overlapping pairs."""
-    n = order.shape[0]
+def _grid_pairs(lo, hi, o, h, dim, start, members, out_i, out_j, fill):
+    """Count (or write) the overlapping pairs, bucket by bucket.
+
+    A pair is reported only in the bucket holding the larger of its two low corners: once.
+    """
     m = 0
-    for s in range(n):
-        i = order[s]
-        for t in range(s + 1, n):
-            j = order[t]
-            if lo[j, 0] > hi[i, 0]:
-                break
-            if lo[j, 1] > hi[i, 1] or lo[i, 1] > hi[j, 1]:
-                continue
-            if lo[j, 2] > hi[i, 2] or lo[i, 2] > hi[j, 2]:
-                continue
-            if fill:
-                out_i[m] = min(i, j)
-                out_j[m] = max(i, j)
-            m += 1
+    nb = start.shape[0] - 1
+    for cell in range(nb):
+        s0, s1 = start[cell], start[cell + 1]
+        for a in range(s0, s1):
+            i = members[a]
+            for b in range(a + 1, s1):
+                j = members[b]
+                if lo[j, 0] > hi[i, 0] or lo[i, 0] > hi[j, 0]:
+                    continue
+                if lo[j, 1] > hi[i, 1] or lo[i, 1] > hi[j, 1]:
+                    continue
+                if lo[j, 2] > hi[i, 2] or lo[i, 2] > hi[j, 2]:
+                    continue
+                key = 0
+                for c in range(2, -1, -1):
+                    t = int(np.floor((max(lo[i, c], lo[j, c]) - o[c]) / h))
+                    t = min(max(t, 0), dim[c] - 1)
+                    key = key * dim[c] + t
+                if key != cell:
+                    continue
+                if fill:
+                    out_i[m] = min(i, j)
+                    out_j[m] = max(i, j)
+                m += 1
     return m
 
 
 def box_pairs(lo, hi) -> np.ndarray:
     """Index pairs ``(i < j)`` of overlapping closed axis-aligned boxes, sorted.
 
-    Sweep and prune along x (boxes sorted by their low x, each compared with the boxes that
-    start before it ends), then y and z.
+    Boxes go into the buckets of a uniform grid (twice the median box size) they overlap;
+    pairs are tested within buckets and each reported once, in the bucket of the larger of
+    their low corners.
     """
     lo = np.ascontiguousarray(lo, dtype=np.float64)
     hi = np.ascontiguousarray(hi, dtype=np.float64)
-    order = np.argsort(lo[:, 0], kind="stable")
+    n = len(lo)
+    if n < 2:
+        return np.zeros((0, 2), dtype=np.int64)
+    h = max(2.0 * float(np.median((hi - lo).max(axis=1))), 1e-300)
+    o = lo.min(axis=0)
+    c0 = np.floor((lo - o) / h).astype(np.int64)
+    c1 = np.floor((hi - o) / h).astype(np.int64)
+    dim = c1.max(axis=0) + 1
+    nx = c1 - c0 + 1
+    cnt = nx.prod(axis=1)
+    owner = np.repeat(np.arange(n), cnt)
+    local = np.arange(int(cnt.sum())) - np.repeat(np.cumsum(cnt) - cnt, cnt)
+    nxo = nx[owner]
+    ix = c0[owner, 0] + local % nxo[:, 0]
+    iy = c0[owner, 1] + (local // nxo[:, 0]) % nxo[:, 1]
+    iz = c0[owner, 2] + local // (nxo[:, 0] * nxo[:, 1])
+    key = (iz * dim[1] + iy) * dim[0] + ix
+    order = np.argsort(key, kind="stable")
+    members = owner[order]
+    start = np.searchsorted(key[order], np.arange(int(dim.prod()) + 1))
     z = np.zeros(0, dtype=np.int64)
-    m = _sweep(lo, hi, order, z, z, False)
+    args = (lo, hi, o, h, dim.astype(np.int64), start.astype(np.int64), members)
+    m = _grid_pairs(*args, z, z, False)
     pi = np.zeros(m, dtype=np.int64)
     pj = np.zeros(m, dtype=np.int64)
-    _sweep(lo, hi, order, pi, pj, True)
-    o = np.lexsort((pj, pi))
-    return np.stack([pi[o], pj[o]], axis=1)
+    _grid_pairs(*args, pi, pj, True)
+    o_ = np.lexsort((pj, pi))
+    return np.stack([pi[o_], pj[o_]], axis=1)
 
 
 @njit(**config.NJIT)

@@ -16,8 +16,7 @@ NODES = ("sphere", "hull", "smooth")
 def _finish(verts, faces, meta):
     import trimesh
 
-    m = trimesh.Trimesh(verts, faces, process=False)
-    m.remove_unreferenced_vertices()
+    m = trimesh.Trimesh(verts, faces, process=False)  # every vertex used (hull_lattice)
     m.metadata.update(meta)
     return m
 
