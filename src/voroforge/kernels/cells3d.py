@@ -152,21 +152,38 @@ def _ring_side(i, v, j, C, nf, ns, P, W, WP, X):
 _TINY = 1e-300
 
 
-@njit(**NJIT)
-def _values(V, nv, nx, ny, nz, h, tol, S, i, j, C, nf, G, P, W, WP, X):
-    """Signed values ``n . v - h`` of the cell's vertices against site ``j``'s plane.
+@njit(**NJIT_INLINE)
+def _values(V, nv, nx, ny, nz, h, tol, S):
+    """Signed values ``n . v - h`` of the cell's vertices (the float filter; inlined).
 
-    A value within ``tol`` of 0 (the float filter's band) is decided exactly on the
-    vertex's owners, the planes of its faces (:func:`_graph_side`, :func:`_ring_side`): 0
-    when the vertex is on the plane (in a graph it is flagged: it may have more owners than
-    faces), else the float value if its sign is right, or a tiny value of the right sign.
-    Returns the largest value.
+    Returns ``(smax, near)``: the largest value and whether one is within ``tol`` of 0 (then
+    :func:`_resolve` decides those exactly).
+    """
+    smax = -np.inf
+    near = False
+    for v in range(nv):
+        s = nx * V[v, 0] + ny * V[v, 1] + nz * V[v, 2] - h
+        near |= abs(s) <= tol
+        S[v] = s
+        if s > smax:
+            smax = s
+    return smax, near
+
+
+@njit(**NJIT)
+def _resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X):
+    """Decide the values within ``tol`` of 0 exactly, on the vertices' owners.
+
+    The owners are the planes of the vertex's faces (:func:`_graph_side`,
+    :func:`_ring_side`): 0 when the vertex is on ``j``'s plane (in a graph it is flagged: it
+    may have more owners than faces), else the float value if its sign is right, or a tiny
+    value of the right sign. Returns the new largest value.
     """
     smax = -np.inf
     graph = G[0].shape[0] > 0
     ns = P.shape[0]
     for v in range(nv):
-        s = nx * V[v, 0] + ny * V[v, 1] + nz * V[v, 2] - h
+        s = S[v]
         if abs(s) <= tol:
             if graph:
                 side = _graph_side(i, v, j, G[0], G[3], ns, P, W, WP, X)
@@ -178,13 +195,13 @@ def _values(V, nv, nx, ny, nz, h, tol, S, i, j, C, nf, G, P, W, WP, X):
                     G[6][v] = True
             elif s == 0.0 or (s > 0.0) != (side > 0):
                 s = side * _TINY
-        S[v] = s
+            S[v] = s
         if s > smax:
             smax = s
     return smax
 
 
-@njit(**NJIT)
+@njit(**NJIT_INLINE)
 def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2):
     """Cut cell ``i`` by the ``m`` gathered candidates, nearest first.
 
@@ -216,7 +233,10 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv,
         if h > 0.0 and h * h > rmax2 * d2 * (1.0 + VORONOI3D_STOP_RTOL):
             continue  # the plane passes beyond every vertex
         tol = VORONOI3D_CUT_RTOL * (np.sqrt(d2 * rmax2) + abs(h))
-        smax = _values(V, nv, dx, dy, dz, h, tol, S, i, j, C, nf, G, P, W, WP, X)
+        smax, near = _values(V, nv, dx, dy, dz, h, tol, S)
+        if near:
+            X[2][0] = True
+            smax = _resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X)
         if smax == 0.0 or smax > 0.0:  # it cuts or touches: a possible owner of vertices
             if nt >= T.shape[0]:
                 return OVERFLOW, 0, 0, 0, 0.0
@@ -243,7 +263,7 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv,
     return OK, nv, nf, nt, rmax2
 
 
-@njit(**NJIT)
+@njit(**NJIT_INLINE)
 def _gather(b, t, i, px, py, pz, start, SP, sidx, cand, cd2, m):
     """Add the sites of bucket ``b`` from its ``t``-th on to the candidates, until full.
 
@@ -720,12 +740,14 @@ def build_cells(
         G = _graph_scratch(caps[3], caps[6])
         G0 = _graph_scratch(0, 1)  # no graph: face rings
         TDEG, TED, TBK, TLB, _, _, _ = _graph_scratch(max(TV.shape[0], 1), caps[6])
-        X = (np.zeros((2, 4, 4)), scratch())
+        # the exact predicates' scratch, and whether the cell needed them
+        X = (np.zeros((2, 4, 4)), scratch(), np.zeros(1, np.bool_))
         if not from_rings(TV.shape[0], TF, TF.shape[0], TR, TDEG, TED, TBK, TLB):
             G = G0
         TG = (TDEG, TED, TBK, TLB)
         for c in range(lo, hi):
             i = cells[c]
+            X[2][0] = False
             st, nv, nf, nt, r2 = _one_cell(
                 i,
                 P,
@@ -813,7 +835,12 @@ def build_cells(
             if st != OK:
                 status[c] = st
                 continue
-            nv, nf, nr = _merge_named(nv, F, nf, R, vnames, vabs, vrel, remap)
+            if X[2][0] or Gu[0].shape[0] == 0:
+                nv, nf, nr = _merge_named(nv, F, nf, R, vnames, vabs, vrel, remap)
+            else:  # no vertex came within the filter's band of a plane: all are distinct
+                nr = 0
+                for f in range(nf):
+                    nr += F[f, 2]
             if nv > cv or nf > cf or nr > cr:
                 status[c] = OVERFLOW
                 continue

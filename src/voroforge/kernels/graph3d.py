@@ -129,7 +129,7 @@ def _only_edge(DEG, ED, v, u):
     return a
 
 
-@njit(**NJIT)
+@njit(**{**NJIT, "inline": "always"})
 def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
     """Cut the cell by the plane whose values are ``S[:nv]``; keep ``s <= 0``.
 
