@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 import shapely
@@ -425,3 +427,48 @@ def test_power_cells_share_their_vertices(boundary):
     union = shapely.union_all(d.cells)
     assert union.geom_type == "Polygon" and len(union.interiors) == len(dom.interiors)
     assert d.describe().mismatched_vertices == 0
+
+
+@pytest.mark.parametrize(
+    ("parts", "pts", "share"),
+    [
+        ("side", [[0.5, 0.5], [2.5, 0.5]], [0.7, 0.1]),
+        ("side", [[0.5, 0.5], [2.5, 0.5]], [0.1, 0.7]),
+        ("above", [[0.5, 0.5], [0.5, 2.0]], [0.9, 0.1]),
+        ("side", [[0.5, 0.5], [1.5, 0.5]], [0.6, 0.4]),  # a site in the gap
+    ],
+)
+def test_power_fit_cells_straddle_a_gap(parts, pts, share):
+    """One site per part, targets a cell can only meet across the gap: no warning, converged."""
+    from shapely.geometry import MultiPolygon, box
+
+    other = box(2, 0, 3, 1) if parts == "side" else box(0, 1.5, 1, 2.5)
+    dom = MultiPolygon([box(0, 0, 1, 1), other])
+    target = np.array(share) / sum(share) * dom.area
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        d = vf.power_fit(np.array(pts, dtype=float), target, dom)
+    assert np.all(np.abs(d.areas - target) <= 1e-6 * target)
+    assert d.areas.sum() == pytest.approx(dom.area, rel=1e-12)
+
+
+@pytest.mark.parametrize("ulps", [1, 3])
+@pytest.mark.parametrize("off", [0.0, 1000.5])
+def test_power_fit_sites_ulps_apart(ulps, off):
+    """Distinct sites a few ulps apart get their own area (Jacobi or two-level steps)."""
+    x = off + 0.3
+    y = x
+    for _ in range(ulps):
+        y = np.nextafter(y, np.inf)
+    pts = np.array([[x, x], [y, y], [off + 0.7, off + 0.7]])
+    d = vf.power_fit(pts, np.full(3, 1 / 3), (off, off, off + 1, off + 1))
+    assert np.all(np.abs(d.areas - 1 / 3) <= 1e-6 / 3)
+
+
+def test_power_fit_too_close_for_float_weights_says_so():
+    """Many sites and twins one ulp apart: float64 weights cannot place their bisector."""
+    g = np.random.default_rng(3)
+    pts = g.random((50, 2))
+    pts = np.concatenate((pts, np.nextafter(pts[:5], 2)))
+    with pytest.raises(RuntimeError, match="too close for float64 weights"):
+        vf.power_fit(pts, np.full(55, 1 / 55), (0, 0, 1, 1))

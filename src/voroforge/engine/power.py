@@ -10,10 +10,13 @@ by the same code as :func:`voroforge.voronoi`.
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import scipy.sparse as sp
 import shapely
-from scipy.sparse.linalg import spsolve
+from scipy.sparse.csgraph import connected_components
+from scipy.sparse.linalg import MatrixRankWarning, spsolve
 from scipy.spatial import ConvexHull, QhullError, cKDTree
 
 from ..config import (
@@ -424,22 +427,151 @@ def fit_weights(pts, targets, dom, w0, tol, max_iter):
         it += 1
         r = targets - areas
         lap, deg = _hessian(d, pts)
-        shift = POWER_NEWTON_SHIFT * float(deg.mean()) if len(deg) else 0.0
-        step = spsolve(lap + sp.identity(len(pts), format="csc") * shift, r)
-        norm = float(np.linalg.norm(r))
-        alpha = 1.0
-        for _ in range(40):
-            w_try = w + alpha * step
-            d_try = power_diagram(pts, w_try, dom)
-            a_try = d_try.areas
-            if a_try.min() >= floor and np.linalg.norm(targets - a_try) <= (1 - alpha / 2) * norm:
+        ncomp, labels = connected_components(lap, directed=False)
+        if ncomp > 1:
+            # cells in separate groups (no edge between them inside the domain: their
+            # bisectors lie in the gap of a MultiPolygon): the areas do not depend on how
+            # the groups' weights differ until a bisector reaches the other side, so the
+            # Hessian is singular there; move the neediest group across first
+            got = _bridge(pts, w, targets, areas, dom, labels, ncomp, floor)
+            if got is None:
                 break
-            alpha *= 0.5
-        else:
+            w, d, areas = got
+            err = float(np.max(np.abs(areas - targets) / targets))
+            continue
+        norm = float(np.linalg.norm(r))
+        got = None
+        for step in _steps(lap, deg, r):
+            got = _line_search(pts, w, step, targets, dom, floor, norm)
+            if got is not None:
+                break
+        if got is None:
             break  # no progress possible at float precision
-        w, d, areas = w_try, d_try, a_try
+        w, d, areas = got
         err = float(np.max(np.abs(areas - targets) / targets))
     return d, w, err, it
+
+
+def _steps(lap, deg, r):
+    """Newton's step, then the diagonal (Jacobi) step when Newton's gives no progress.
+
+    The Hessian is shifted by ``POWER_NEWTON_SHIFT`` of each row's own degree (a site a few
+    ulps from another has a row ``1e16`` times its neighbours'; one shift for all rows
+    would swamp theirs). When rows differ that much, elimination keeps the large entries
+    and loses the small ones to rounding: the diagonal step, exact per row, moves each
+    near pair's bisector and Newton takes over again.
+    """
+    shift = POWER_NEWTON_SHIFT * np.maximum(deg, deg.max() * 1e-300)
+    step = _solve(lap + sp.diags(shift, format="csc"), r)
+    if step is not None:
+        yield step
+    step = _two_level(lap, r, shift)
+    if step is not None:
+        yield step
+    yield r / np.maximum(deg, np.finfo(float).tiny)
+
+
+def _solve(a, r):
+    """``a^-1 r`` by sparse LU, or None when ``a`` is singular to working precision."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", MatrixRankWarning)
+        x = spsolve(a, r)
+    return x if np.all(np.isfinite(x)) else None
+
+
+def _two_level(lap, r, shift):
+    """Newton's step solved in two levels when some edges are far stiffer than the rest.
+
+    Sites a few ulps apart give Hessian entries ``1e16`` times the others'. Their groups
+    (joined by stiff edges) first move as one site, on the Hessian summed over each group
+    (stiff entries cancel there exactly); then each group's stiff Laplacian spreads what is
+    left of the residual inside it. Each level is well conditioned, unlike the whole.
+    """
+    off = sp.triu(-lap, k=1).tocoo()
+    if not len(off.data):
+        return None
+    stiff = off.data > 1e8 * float(np.median(off.data))
+    if not stiff.any():
+        return None
+    n = lap.shape[0]
+    a, b, c = off.row[stiff], off.col[stiff], off.data[stiff]
+    ls = sp.coo_matrix((c, (a, b)), shape=(n, n)).tocsr()
+    ls = ls + ls.T
+    m, group = connected_components(ls, directed=False)
+    p = sp.csr_matrix((np.ones(n), (np.arange(n), group)), shape=(n, m))
+    coarse = (p.T @ lap @ p).tocsc()
+    sc = _solve(coarse + sp.diags(p.T @ shift, format="csc"), p.T @ r)
+    if sc is None:
+        return None
+    step = sc[group]
+    # what the coarse step leaves, from edge differences (stiff ones are zero exactly)
+    d = off.data * (step[off.row] - step[off.col])
+    rest = (
+        r
+        - np.bincount(off.row, weights=d, minlength=n)
+        + np.bincount(off.col, weights=d, minlength=n)
+    )
+    stiff_lap = sp.diags(np.asarray(ls.sum(axis=1)).ravel()) - ls
+    fine = _solve(
+        (stiff_lap + sp.diags(shift)).tocsc(), np.where(np.bincount(group)[group] > 1, rest, 0.0)
+    )
+    return None if fine is None else step + fine
+
+
+def _line_search(pts, w, step, targets, dom, floor, norm):
+    """Halve ``step`` until the cells keep ``floor`` and the area error shrinks; or None."""
+    alpha = 1.0
+    for _ in range(40):
+        w_try = w + alpha * step
+        d_try = power_diagram(pts, w_try, dom)
+        a_try = d_try.areas
+        if a_try.min() >= floor and np.linalg.norm(targets - a_try) <= (1 - alpha / 2) * norm:
+            return w_try, d_try, a_try
+        alpha *= 0.5
+    return None
+
+
+def _bridge(pts, w, targets, areas, dom, labels, ncomp, floor):
+    """Raise the weights of the group of cells short of most area until it gains some.
+
+    ``labels`` are the groups of the cells' edge graph. The group's bisectors with the
+    others move by ``dw / (2 |p_i - p_j|)``: the raise doubles from a tiny fraction of the
+    domain's squared size until the group's area grows, then is halved back while it still
+    does, so the front just crosses the gap. Returns ``(w, diagram, areas)`` or None.
+    """
+    need = np.bincount(labels, weights=targets - areas, minlength=ncomp)
+    g = int(np.argmax(need))
+    if not need[g] > 0.0:
+        return None
+    mask = labels == g
+    have = float(areas[mask].sum())
+    x0, y0, x1, y1 = dom.bounds
+    dw = 1e-12 * ((x1 - x0) ** 2 + (y1 - y0) ** 2)
+    best = None
+    for _ in range(200):
+        w_try = w + dw * mask
+        d_try = power_diagram(pts, w_try, dom)
+        a_try = d_try.areas
+        if a_try.min() >= floor and a_try[mask].sum() > have:
+            best = (w_try, d_try, a_try)
+            break
+        if a_try.min() < floor:
+            return None  # a cell of another group empties before this one gains
+        dw *= 2.0
+    if best is None:
+        return None
+    for _ in range(60):  # back to the smallest raise that still gains (within 1%)
+        dw *= 0.5
+        w_try = w + dw * mask
+        d_try = power_diagram(pts, w_try, dom)
+        a_try = d_try.areas
+        if not (a_try.min() >= floor and a_try[mask].sum() > have):
+            break
+        best = (w_try, d_try, a_try)
+        gain = a_try[mask].sum() - have
+        if gain <= 0.01 * need[g]:
+            break
+    return best
 
 
 def as_targets(target_areas, n: int, dom: Domain) -> np.ndarray:
@@ -558,6 +690,30 @@ def power_fit(
     if err > tol:
         raise RuntimeError(
             f"power_fit did not reach tol={tol:g} in {it} Newton steps (largest relative "
-            f"area error {err:.3g})"
+            f"area error {err:.3g}){_near_pairs_note(pts, dom)}"
         )
     return d
+
+
+def _near_pairs_note(pts, dom) -> str:
+    """A note naming sites too close for float64 weights to place their bisector, if any.
+
+    The bisector of sites ``d`` apart moves by ``dw / (2 d)``: with weights of size ``w``
+    its position is only known to ``ulp(w) / (2 d)``. Sites a few ulps apart with other
+    cells needing weights of any size cannot reach a small tolerance.
+    """
+    from scipy.spatial import cKDTree
+
+    if len(pts) < 2:
+        return ""
+    dist, idx = cKDTree(pts).query(pts, k=2)
+    x0, y0, x1, y1 = dom.bounds
+    size = max(x1 - x0, y1 - y0)
+    close = np.flatnonzero(dist[:, 1] < 1e-9 * size)
+    if not len(close):
+        return ""
+    i = int(close[0])
+    return (
+        f"; sites {i} and {int(idx[i, 1])} are {dist[i, 1]:.3g} apart, too close for "
+        "float64 weights to place their bisector (merge them or move them apart)"
+    )
