@@ -274,6 +274,41 @@ def _join(c0, status, counts, caps, osite, ovabs, vbits, ofaces, oring, out, tab
 
 
 @njit(**NJIT)
+def duplicate_owners(P, W):
+    """``(n,)``: -1 for a site that owns its cell, else the equal site that owns it.
+
+    Among equal points (``+0.0 == -0.0``) the largest weight owns the cell, ties to the
+    lowest index. One pass over a hash table of the coordinates' bits.
+    """
+    n = P.shape[0]
+    Q = P + 0.0  # one zero
+    bits = Q.view(np.int64)
+    size = 1 << int(np.ceil(np.log2(max(n, 4) / TABLE_LOAD)))
+    mask = size - 1
+    table = np.full(size, -1, np.int64)
+    head = np.zeros(n, np.int64)  # the slot of each point's coordinates
+    for i in range(n):
+        h = _hash3(bits, i, mask)
+        while True:
+            o = table[h]
+            if o < 0:
+                table[h] = i
+                break
+            if Q[o, 0] == Q[i, 0] and Q[o, 1] == Q[i, 1] and Q[o, 2] == Q[i, 2]:
+                if W[i] > W[o]:
+                    table[h] = i
+                break
+            h = (h + 1) & mask
+        head[i] = h
+    dup = np.full(n, -1, np.int64)
+    for i in range(n):
+        o = table[head[i]]
+        if o != i:
+            dup[i] = o
+    return dup
+
+
+@njit(**NJIT)
 def _rehash(verts, nvert, table):
     """Fill an empty (all -1) ``table`` with vertices ``0:nvert``."""
     mask = table.shape[0] - 1
@@ -503,4 +538,4 @@ def _empty(cells):
     )
 
 
-__all__ = ["Cells3D", "build_cells3d", "OK"]
+__all__ = ["Cells3D", "build_cells3d", "duplicate_owners", "OK"]

@@ -6,7 +6,7 @@ import itertools
 
 import numpy as np
 
-from .build3d import build_cells3d, csr_take
+from .build3d import build_cells3d, csr_take, duplicate_owners
 from .containers import Convex, Template, as_container, box_template
 from .diagram3d import Diagram3D
 from .inputs import as_points, as_weights, from_working, working_frame
@@ -20,19 +20,10 @@ def duplicate_owner3d(pts: np.ndarray, w: np.ndarray | None) -> np.ndarray:
     Among equal points the largest weight owns the cell (the others' power cells are empty),
     ties to the lowest index.
     """
-    n = len(pts)
-    dup = np.full(n, -1, np.int64)
-    if n < 2:
-        return dup
-    wk = np.zeros(n) if w is None else w
-    order = np.lexsort((np.arange(n), -wk, pts[:, 2], pts[:, 1], pts[:, 0]))
-    sp = pts[order]
-    same = np.r_[False, (sp[1:] == sp[:-1]).all(axis=1)]
-    head = order.copy()
-    for t in np.flatnonzero(same):  # runs are short; keep it obvious
-        head[t] = head[t - 1]
-    dup[order[same]] = head[same]
-    return dup
+    if len(pts) < 2:
+        return np.full(len(pts), -1, np.int64)
+    wk = np.zeros(len(pts)) if w is None else np.ascontiguousarray(w, np.float64)
+    return duplicate_owners(np.ascontiguousarray(pts, np.float64), wk)
 
 
 def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=None) -> Diagram3D:
@@ -114,8 +105,11 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
 
 def _inside(pts: np.ndarray, t: Template) -> np.ndarray:
     WP = t.WP
-    s = pts @ WP[:, :3].T - WP[:, 3]
     scale = np.abs(WP[:, 3]) + np.abs(pts).max() + 1e-300
+    if t.kind == "box":  # the same test, without the (n, 6) products
+        lo, hi = t.bounds
+        return ((pts >= lo - 1e-12 * scale[0::2]) & (pts <= hi + 1e-12 * scale[1::2])).all(axis=1)
+    s = pts @ WP[:, :3].T - WP[:, 3]
     return (s <= 1e-12 * scale).all(axis=1)
 
 
