@@ -144,3 +144,24 @@ def test_cells_that_fall_back_to_face_rings(monkeypatch):
         for x, y in zip(a.neighbors, b.neighbors, strict=True):
             assert (x == y).all()
         assert len(a.vertices) == len(b.vertices) and b.unmatched_vertices == 0
+
+
+def test_cells_past_their_slots_are_built_again_in_place(monkeypatch):
+    """With per-cell slots for 12 vertices most cells overflow and are built again alone;
+    the face table must stay in build order and the diagram be the same."""
+    import voroforge as vf
+    from voroforge.engine import build3d
+
+    pts = np.random.default_rng(4).random((300, 3))
+    a = vf.voronoi3d(pts, (0, 0, 0, 1, 1, 1))
+    monkeypatch.setattr(build3d, "CAPS", (12, 8, 40) + build3d.CAPS[3:])
+    b = vf.voronoi3d(pts, (0, 0, 0, 1, 1, 1))
+    monkeypatch.undo()
+    assert (a.volumes == b.volumes).all()
+    assert (a.vertices == b.vertices).all()
+    for x, y in zip(a.neighbors, b.neighbors, strict=True):
+        assert (x == y).all()
+    for k in (0, 57, 299):
+        pa, pb = a.cell(k), b.cell(k)
+        assert [r.tolist() for r in pa.faces] == [r.tolist() for r in pb.faces]
+        assert (pa.neighbors == pb.neighbors).all()

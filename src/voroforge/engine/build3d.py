@@ -364,12 +364,14 @@ class _Out:
         if nvid + nv > len(self.vid):
             self.vid.resize(int(1.5 * len(self.vid)) + nv, refcheck=False)
 
-    def add(self, status, counts, slots, caps):
-        """Join one chunk's cells; returns those that overflowed their slots."""
+    def add(self, status, counts, slots, caps, big=None):
+        """Join one chunk's cells in order.
+
+        ``big(c)`` builds a cell that overflowed its slots again and joins it in its place.
+        """
         osite, ovabs, ofaces, oring = slots
         gl = np.zeros(1, self.vid.dtype)
         c = 0
-        over = []
         while c < len(counts):
             c, why = _join(
                 c,
@@ -390,11 +392,12 @@ class _Out:
             if why == 1:
                 self.grow(*(int(x) for x in counts[c]))
             elif why == 2:
-                over.append(c)
+                if big is None:
+                    raise RuntimeError("a 3D cell overflowed its biggest slots")
+                big(c)
                 c += 1
             elif why == 3:  # a cell of more than 256 vertices: wider local numbers
                 self.ring = self.ring.astype(np.uint16 if counts[c, 0] <= 65536 else np.int32)
-        return over
 
     def finish(self):
         """Trim every output to its size (in place); returns the arrays and the unmatched."""
@@ -461,11 +464,14 @@ def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
                 st, counts, v, c, r2, sl, capa = _run(
                     chunk, P, W, start, SP, sidx, g, order, t, CAPS, pool, slots
                 )
-                over = out.add(st, counts, sl, capa)
-                for q in over:  # cells past their slots: alone, with big slots, in order
+
+                def big(q, chunk=chunk, st=st, counts=counts, v=v, c=c, r2=r2):
+                    # a cell past its slots: alone, with big slots, joined in its place
                     st[q], counts[q], v[q], c[q], r2[q] = _big(
                         chunk[q], P, W, start, SP, sidx, g, order, t, out
                     )
+
+                out.add(st, counts, sl, capa, big)
                 sl_ = slice(c0, c0 + len(chunk))
                 status[sl_], vol[sl_], cen[sl_], rad2[sl_] = st, v, c, r2
                 nfaces[sl_] = counts[:, 1]
