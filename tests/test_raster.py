@@ -249,6 +249,17 @@ def test_jfa_close_to_exact():
     assert np.all(jf2.f2 >= jf2.distance)
 
 
+@pytest.mark.parametrize(("n", "size"), [(3000, 256), (2000, 280), (1500, 300)])
+def test_jfa_dense_sites_close_to_exact(n, size):
+    """20-60 pixels per site: sites sharing a pixel are seeded next to it, not lost."""
+    pts = np.random.default_rng(n).random((n, 2))
+    ex = rasterize(pts, (size, size), (0.0, 0.0, 1.0, 1.0))
+    jf = rasterize(pts, (size, size), (0.0, 0.0, 1.0, 1.0), method="jfa")
+    assert np.mean(jf.labels != ex.labels) <= 0.005
+    assert set(np.unique(jf.labels)) == set(np.unique(ex.labels))  # no cell lost
+    assert np.all(jf.distance >= ex.distance)
+
+
 def test_jfa_duplicates_outside_sites_and_rectangular_image(mixed_sites):
     ex = rasterize(mixed_sites, (96, 160), (0.0, 0.0, 1.0, 1.0))
     jf = rasterize(mixed_sites, (96, 160), (0.0, 0.0, 1.0, 1.0), method="jfa")

@@ -265,6 +265,9 @@ def exact_nearest(xs, ys, pxs, pys, metric, want_f2, tile, max_cand):
 # flooding passes need no branch for empty pixels.
 
 
+_SEED_REACH = 3  # pixels around its own a site that lost its pixel may be seeded at
+
+
 @njit(**NJIT)
 def _seed_index(v, origin, size, count):
     """Pixel index along one axis holding coordinate ``v`` (clamped to the image)."""
@@ -290,13 +293,18 @@ def _jfa_seed(xs, ys, pxs, pys, geom, second):
 
     ``geom`` is ``(xmin, ymax, pixel_width, pixel_height)``; ``xs, ys`` end with the
     sentinel. When two sites share a pixel the nearer to its centre wins (ties: lower
-    position); with ``second`` the runner-up is kept in the second layer.
+    position); with ``second`` the runner-up is kept in the second layer. A site that lost
+    its pixel is seeded at the free pixel nearest to it within ``_SEED_REACH`` pixels:
+    labels carry the site, not the pixel, so a seed one pixel off is as good, and dense
+    sites (a few dozen pixels each) no longer lose whole cells to a neighbour.
     """
     h = pys.shape[0]
     w = pxs.shape[0]
     m = xs.shape[0] - 1
     a1 = np.full((h, w), m, dtype=np.int32)
     a2 = np.full((h, w) if second else (0, 0), m, dtype=np.int32)
+    lost = np.zeros(m, dtype=np.int64)
+    nl = 0
     for s in range(m):
         c = _seed_index(xs[s], geom[0], geom[2], w)
         r = _seed_index(geom[1] - ys[s], 0.0, geom[3], h)
@@ -304,10 +312,31 @@ def _jfa_seed(xs, ys, pxs, pys, geom, second):
         old = a1[r, c]
         if d < _d2(pxs[c], pys[r], xs, ys, old):
             a1[r, c] = s
+            if old < m:
+                lost[nl] = old
+                nl += 1
             if second:
                 a2[r, c] = old
-        elif second and d < _d2(pxs[c], pys[r], xs, ys, a2[r, c]):
-            a2[r, c] = s
+        else:
+            lost[nl] = s
+            nl += 1
+            if second and d < _d2(pxs[c], pys[r], xs, ys, a2[r, c]):
+                a2[r, c] = s
+    for k in range(nl):
+        s = lost[k]
+        c0 = _seed_index(xs[s], geom[0], geom[2], w)
+        r0 = _seed_index(geom[1] - ys[s], 0.0, geom[3], h)
+        best = -1
+        bd = np.inf
+        for r in range(max(r0 - _SEED_REACH, 0), min(r0 + _SEED_REACH + 1, h)):
+            for c in range(max(c0 - _SEED_REACH, 0), min(c0 + _SEED_REACH + 1, w)):
+                if a1[r, c] == m:
+                    d = _d2(pxs[c], pys[r], xs, ys, s)
+                    if d < bd:
+                        bd = d
+                        best = r * w + c
+        if best >= 0:
+            a1[best // w, best % w] = s
     return a1, a2
 
 
