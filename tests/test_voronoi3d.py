@@ -226,6 +226,39 @@ def test_metamorphic_translate_scale():
         np.testing.assert_allclose(e.volumes / s**3, d.volumes, rtol=1e-8 if t else 1e-11)
 
 
+UTM = np.array([500000.0, 4000000.0, 100.0])
+
+
+@pytest.mark.parametrize("name", ["cubic_grid_tight", "bcc", "fcc", "sphere_centre"])
+@pytest.mark.parametrize("how", ["utm", "2^-30", "2^30", "1e-9", "1e9"])
+def test_degenerate_catalogue_at_offsets_and_scales(name, how):
+    """The co-spherical lattices far from the origin and at extreme scales.
+
+    An exact transform (UTM-like offsets of these dyadic lattices, powers of two) keeps every
+    co-spherical vertex exact: the same combinatorics as at the origin. Scaling by 1e-9 or
+    1e9 rounds the sites, so the exact diagram may split those vertices into vertices closer
+    than the doubles can tell: the invariants still hold and the volumes follow.
+    """
+    pts, box = CATALOGUE3D[name]
+    box = np.asarray(box if box is not None else [*pts.min(0) - 0.5, *pts.max(0) + 0.5], float)
+    if how == "utm":
+        f = lambda x: x + np.tile(UTM, len(x) // 3)  # noqa: E731
+        scale = 1.0
+    else:
+        scale = {"2^-30": 2.0**-30, "2^30": 2.0**30, "1e-9": 1e-9, "1e9": 1e9}[how]
+        f = lambda x: x * scale  # noqa: E731
+    d = vf.voronoi3d(pts, tuple(box))
+    e = vf.voronoi3d(f(pts.ravel()).reshape(-1, 3), tuple(f(box)))
+    exact = how in ("utm", "2^-30", "2^30")
+    check3d(e, near=not exact)
+    assert e.describe()["euler_ok"] and e.unmatched_vertices == 0
+    np.testing.assert_allclose(e.volumes / scale**3, d.volumes, rtol=1e-12 if exact else 1e-9)
+    if exact:
+        assert len(e.vertices) == len(d.vertices) and len(e.faces) == len(d.faces)
+        for x, y in zip(e.neighbors, d.neighbors, strict=True):
+            assert (x == y).all()
+
+
 @pytest.mark.skipif(VOROPP is None, reason="voro++ CLI not installed")
 def test_against_voropp():
     rng = np.random.default_rng(11)
