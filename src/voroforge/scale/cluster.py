@@ -2,7 +2,8 @@
 
 One single-threaded worker process per core (a tile is one numba thread: processes, not
 threads, keep the tiles from sharing a GIL), with dask's per-process housekeeping slowed
-down: the workers' statistical profiler (a thread that takes the GIL every 10 ms to sample
+down and glibc's allocator left to reuse memory (see ``CLUSTER_CONFIG``): the workers'
+statistical profiler (a thread that takes the GIL every 10 ms to sample
 the stack) is off, and the event loops' health tick and the system monitor run less often.
 On a small machine these run on the same cores as the tiles. :func:`voroforge.scale.voronoi`,
 ``voroforge scale`` and ``benchmarks/bench_scale.py`` use it; a cluster of your own keeps
@@ -18,6 +19,12 @@ __all__ = ["CLUSTER_CONFIG", "local_cluster"]
 
 #: dask settings under which :func:`local_cluster` starts its scheduler and workers.
 CLUSTER_CONFIG = {
+    # dask starts workers with MALLOC_TRIM_THRESHOLD_=65536, which also fixes glibc's mmap
+    # threshold at 128 KiB: every array of a tile is then mapped and unmapped, and its pages
+    # faulted in and zeroed again (30% more CPU per tile, measured). These two are the
+    # values glibc's own adaptive thresholds reach (32 MiB, twice that to trim).
+    "distributed.nanny.pre-spawn-environ.MALLOC_MMAP_THRESHOLD_": 32 * 2**20,
+    "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": 64 * 2**20,
     "distributed.worker.profile.enabled": False,
     "distributed.admin.tick.interval": "500ms",
     "distributed.admin.system-monitor.interval": "2s",
