@@ -2,11 +2,12 @@
 
 Steps, all as dask tasks on the client's workers: (1) every chunk reports its extent, its
 non-finite rows, a checksum and a sample; (2) the sample places a k-d tiling balanced by
-count; (3) every chunk is split by owning tile and each tile's pieces merged (the shuffle);
-(4) each tile runs with a halo of a few site spacings, certifies its cells and writes its
-partition file when all are final, else the driver sends the uncertified ones back with the
-pieces their discs reach (higher priority, so pending tiles finish first); (5) the driver
-writes the dataset's ``_metadata``/``_common_metadata`` and the job manifest.
+count, and each tile's halo of a few site spacings; (3) every chunk writes its sites
+bucketed by tile, with the halo copies, to one file (the shuffle, on disk:
+:mod:`~voroforge.scale.buckets`); (4) each tile reads its loaded sites, certifies its cells,
+recomputes the uncertified ones with the sites their discs reach and writes its partition
+file; (5) the driver writes the dataset's ``_metadata``/``_common_metadata`` and the job
+manifest. Between tasks the driver only collects small results.
 
 A partition file appears only complete (temp + rename); a rerun on the same input finds the
 manifest, checks the fingerprint (row count, per-chunk checksums, boundary, tiling) and

@@ -1,7 +1,7 @@
-"""What the workers run: chunk statistics, the split of chunks into tiles, and the tiles.
+"""What the workers run: chunk statistics and the tiles (the buckets: :mod:`.buckets`).
 
-A tile loads the sites of its halo-grown rectangle from its neighbours' pieces (sorted by
-input row, so the engine sees them in the global order), runs :func:`voroforge.voronoi` with
+A tile loads the sites of its halo-grown rectangle from the bucket files (sorted by input
+row, so the engine sees them in the global order), runs :func:`voroforge.voronoi` with
 the global domain, and keeps the cells of its own sites whose certificate holds: every site
 closer to the cell's site than ``2 R`` (``R`` its farthest vertex distance) is loaded. Then no
 missing site can reach the cell (a site at distance ``> 2 R`` has its bisector beyond the
