@@ -8,7 +8,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
-from voroforge.io.snap import NEAREST_BRUTE, close_pairs, cluster_labels, nearest
+from voroforge.io.snap import NEAREST_BRUTE, close_pairs, cluster_labels, nearest, nearest_to
 
 
 def _scipy_pairs(pts, tol):
@@ -76,3 +76,20 @@ def test_nearest_gives_the_k_nearest_distances(n):
     assert all(len(set(row)) == k for row in nb.tolist())  # k different points
     with pytest.raises(ValueError, match="k must be"):
         nearest(pts, n + 1)
+
+
+@pytest.mark.parametrize("m", [1, 300])
+def test_nearest_to_matches_a_kd_tree(m, monkeypatch):
+    import voroforge.io.snap as snap
+
+    rng = np.random.default_rng(m)
+    pts = rng.random((m, 2))
+    q = np.vstack((rng.random((500, 2)), pts[:3]))
+    want_d, _ = cKDTree(pts).query(q, k=1)
+    for budget in (snap.NEAREST_TO_BRUTE, 0):  # every pair, then the KD-tree route
+        monkeypatch.setattr(snap, "NEAREST_TO_BRUTE", budget)
+        d, i = nearest_to(pts, q)
+        np.testing.assert_allclose(d, want_d, rtol=0, atol=1e-15)
+        np.testing.assert_allclose(np.hypot(*(pts[i] - q).T), want_d, rtol=0, atol=1e-15)
+    with pytest.raises(ValueError, match="at least one"):
+        nearest_to(np.zeros((0, 2)), q)

@@ -13,6 +13,7 @@ import numpy as np
 import shapely
 
 from .. import config
+from ..io.snap import nearest_to
 from .boundary import as_polygonal
 
 __all__ = [
@@ -336,17 +337,10 @@ def poisson(boundary, radius, *, seed, field=None, radius_max=None, k: int = 30)
         gx = ((xy[:, 0] - xmin) / cell).astype(np.int64) + reach
         return gy, gx
 
-    short = np.arange(-min(reach, 2), min(reach, 2) + 1)  # covers the distance rmin
-    near = tuple(w.ravel() for w in np.meshgrid(short, short, indexing="ij"))
-
-    def fits(cand: np.ndarray, rc: np.ndarray, window=(wy, wx)) -> np.ndarray:
-        """For each candidate (c, 2) with spacing rc: no point within the pair spacing.
-
-        With a smaller ``window`` only the points in it are looked at: a False is then a
-        true conflict, a True still has to pass the whole window.
-        """
+    def fits(cand: np.ndarray, rc: np.ndarray) -> np.ndarray:
+        """For each candidate (c, 2) with spacing rc: no point within the pair spacing."""
         gy, gx = cells_of(cand)
-        idx = owner[gy[:, None] + window[0], gx[:, None] + window[1]]  # (c, window)
+        idx = owner[gy[:, None] + wy, gx[:, None] + wx]  # (c, window)
         taken = idx >= 0
         safe = np.where(taken, idx, 0)
         d2 = ((store["p"][safe] - cand[:, None, :]) ** 2).sum(axis=2)
@@ -397,17 +391,12 @@ def poisson(boundary, radius, *, seed, field=None, radius_max=None, k: int = 30)
     n_probe = int(min(200_000, max(64, 4 * geom.area / (rmin * rmin))))
     for _ in range(_MAX_ROUNDS):
         probes = _uniform(geom, n_probe, rng)
-        if store["n"]:
-            # pre-filter on the grid: only probes clear of every point now (points are only
-            # added, so a probe refused here would be refused below too)
-            rp = spacing(probes)
-            keep = np.ones(len(probes), dtype=bool)
-            for window in (near, (wy, wx)):  # the near cells refuse most probes cheaply
-                left = np.flatnonzero(keep)
-                step = max(1, 1_000_000 // len(window[0]))  # bounds the (probes, window) arrays
-                for i in range(0, len(left), step):
-                    part = left[i : i + step]
-                    keep[part] = fits(probes[part], rp[part], window)
+        n = store["n"]
+        if n:
+            # pre-filter: only probes clear of their nearest point's spacing (numpy for a
+            # few hundred thousand pairs, so small designs need no scipy; a KD-tree beyond)
+            dist, idx = nearest_to(store["p"][:n], probes)
+            keep = dist >= np.maximum(spacing(probes), store["r"][:n][idx])
             probes = probes[keep]
         else:
             probes = probes[:1]

@@ -22,12 +22,14 @@ import math
 
 import numpy as np
 
-__all__ = ["close_pairs", "cluster_labels", "nearest"]
+__all__ = ["close_pairs", "cluster_labels", "nearest", "nearest_to"]
 
 #: Grid cells per axis beyond which :func:`close_pairs` asks scipy (keys would overflow).
 _MAX_CELLS = 2**30
 #: Points up to which :func:`nearest` compares every pair (above: a KD-tree).
 NEAREST_BRUTE = 2048
+#: Point-query pairs up to which :func:`nearest_to` compares every pair (above: a KD-tree).
+NEAREST_TO_BRUTE = 300_000
 _BLOCK = 1 << 20  # distances per chunk
 
 
@@ -181,3 +183,41 @@ def nearest(points, k: int) -> np.ndarray:
         rank = np.lexsort((idx, near), axis=1)
         out[s : s + step] = np.take_along_axis(idx, rank, axis=1)
     return out
+
+
+def nearest_to(points, queries) -> tuple[np.ndarray, np.ndarray]:
+    """The nearest of ``points`` to each query, and its distance.
+
+    Parameters
+    ----------
+    points : (n, 2) float64
+        At least one point.
+    queries : (m, 2) float64
+
+    Returns
+    -------
+    distance : (m,) float64
+    index : (m,) int64
+        Equal distances go to the lowest index when every pair is compared (up to
+        NEAREST_TO_BRUTE pairs); beyond, scipy's ``cKDTree.query`` answers.
+    """
+    pts = _check(points)
+    q = _check(queries)
+    if not len(pts):
+        raise ValueError("nearest_to needs at least one point")
+    if len(pts) * len(q) > NEAREST_TO_BRUTE:
+        from scipy.spatial import cKDTree
+
+        dist, idx = cKDTree(pts).query(q, k=1)
+        return np.asarray(dist, dtype=np.float64), np.asarray(idx, dtype=np.int64)
+    dist = np.zeros(len(q))
+    idx = np.zeros(len(q), dtype=np.int64)
+    step = max(1, _BLOCK // len(pts))
+    for s in range(0, len(q), step):
+        dx = q[s : s + step, 0, None] - pts[None, :, 0]
+        dy = q[s : s + step, 1, None] - pts[None, :, 1]
+        d2 = dx * dx + dy * dy
+        best = d2.argmin(axis=1)  # the first of equal minima
+        idx[s : s + step] = best
+        dist[s : s + step] = np.sqrt(np.take_along_axis(d2, best[:, None], axis=1)[:, 0])
+    return dist, idx
