@@ -195,6 +195,37 @@ def test_compute_workers_give_the_same_cells():
         compute(bad, workers=3)
 
 
+@pytest.mark.parametrize("name", ["holed, inset + fillet", "field-graded webs, field openings"])
+def test_count_steps_recompute_only_the_cells_near_the_added_or_dropped_seeds(name):
+    s = Session({**DRAGGED[name], "seeds": {"method": "random", "count": 600}})
+    fast = 0
+    for count in (603, 598, 599, 640, 639, 560):
+        before = s.result
+        reply = s.apply({"op": "set", "key": "seeds.count", "value": count})
+        assert reply.kind == "update" and s.sites is None  # the seeds still come from [seeds]
+        fast += s.provisional
+        now = s.result
+        full = compute(s.design, s.folder, frame=False)
+        assert len(now.raw) == count and np.array_equal(now.sites, full.sites)
+        assert _close(now.raw, full.raw) and np.array_equal(now.mask, full.mask)
+        gap = shapely.area(shapely.symmetric_difference(now.cells, full.cells))
+        assert (gap <= 1e-9 * (1.0 + shapely.area(full.cells))).all()
+        m = min(len(before.raw), count)  # the page is sent every cell that changed
+        moved = np.flatnonzero(np.array(_normalized(before.raw[:m])) != _normalized(now.raw[:m]))
+        assert set(moved.tolist()) | set(range(m, count)) <= set(reply.changed.tolist())
+        s.settle()
+        assert _wkb(s.result.cells) == _wkb(full.cells) and _wkb(s.result.raw) == _wkb(full.raw)
+    assert fast >= 4  # the small steps took the incremental path (560: 79 dropped, in full)
+    # every seed new, or more than the seeds changed: the full computation
+    assert s.apply({"op": "set", "key": "design.seed", "value": 9}).kind == "update"
+    assert not s.provisional
+    s.apply({"op": "set", "key": "seeds.count", "value": 561})
+    assert s.provisional
+    s.apply({"op": "set", "key": "cells.fillet", "value": 0.5})
+    assert not s.provisional
+    assert s.apply({"op": "undo"}).kind == "update" and len(s.result.raw) == 561
+
+
 def test_fabrication_limits_keep_the_cells():
     s = Session(MANY)
     s.apply({"op": "move", "i": 4, "x": float(s.result.sites[4, 0]) + 0.5, "y": 50.0})

@@ -182,102 +182,234 @@ def move(result: Result, i: int, xy, field_fn=None) -> tuple[Result, np.ndarray]
         The new (provisional) result and the indices of the cells that changed (geometry or
         opening mask); None when the window could not be certified (recompute in full).
     """
-    design = result.design
     sites = np.array(result.sites, dtype=np.float64)
-    n = len(sites)
-    a = sites[i].copy()
-    b = np.asarray(xy, dtype=np.float64).reshape(2)
-    sites[i] = b
+    sites[i] = np.asarray(xy, dtype=np.float64).reshape(2)
+    return update(result, sites, field_fn)
+
+
+#: At most this many changed sites (moved, added or removed), and this share of them, for
+#: :func:`update`; more is cheaper as a whole new diagram.
+MAX_CHANGES = 256
+MAX_SHARE = 0.1
+
+
+def _changes(old: np.ndarray, new: np.ndarray):
+    """Sites that moved (index < both counts), were added (new tail) or removed (old tail)."""
+    m = min(len(old), len(new))
+    moved = np.flatnonzero((old[:m] != new[:m]).any(axis=1))
+    return moved, np.arange(m, len(new)), np.arange(m, len(old))
+
+
+def _resized(arr: np.ndarray, n: int, fill) -> np.ndarray:
+    """A copy of ``arr`` with ``n`` rows: cut, or grown with ``fill``."""
+    if n <= len(arr):
+        return arr[:n].copy()
+    extra = np.empty((n - len(arr), *arr.shape[1:]), dtype=arr.dtype)  # noqa: TID251
+    extra[...] = fill
+    return np.concatenate((arr, extra))
+
+
+def update(
+    result: Result, sites, field_fn=None, *, design=None
+) -> tuple[Result, np.ndarray] | None:
+    """``result`` with new ``sites``, recomputing only the cells near the sites that changed.
+
+    The sites are compared with ``result.sites`` index by index: sites that moved, sites
+    appended (a larger count of a random seed stream, which keeps its first seeds) and
+    sites dropped from the end. Each change gets a window (see the module docstring); the
+    windows' sites go through one diagram, and a cell is certified by any window whose
+    condition it meets (every site within that window's radius is among the sites).
+
+    Parameters
+    ----------
+    result : Result
+        The current geometry (:func:`eligible`); not modified.
+    sites : (m, 2) array_like
+        The new sites (inside the domain).
+    field_fn : callable, optional
+        The design's attractor field, for the changed cells' values.
+    design : Design, optional
+        The new design when it differs from ``result.design`` only in how the sites were
+        made (``[seeds]``, ``[relax]``, ``design.seed``); the opening flags follow it.
+
+    Returns
+    -------
+    (Result, changed) or None
+        As :func:`move`; None also when too many sites changed.
+    """
+    design = result.design if design is None else design
+    old = result.sites
+    sites = np.array(sites, dtype=np.float64).reshape(-1, 2)
+    n0, n = len(old), len(sites)
+    moved, added, removed = _changes(old, sites)
+    k_changes = len(moved) + len(added) + len(removed)
+    if not k_changes or k_changes > min(MAX_CHANGES, MAX_SHARE * max(n, n0)) or not n:
+        return None if k_changes else (result, np.zeros(0, dtype=np.int32))
     domain = result.domain
     box, rect = _frame_of(result)
-    c = 0.5 * (a + b)
     spacing = float(np.sqrt(domain.area / max(n, 1)))
     old_boxes = _bounds(result)
-    radius = _first_radius(result, old_boxes, i, a, b, c) or (
-        0.5 * float(np.hypot(*(b - a))) + START_SPACINGS * spacing
+    # one window per change: its centre, a first radius, and the region it can change
+    centres, radii, regions = [], [], []
+    for i in moved:
+        a, b = old[i], sites[i]
+        c = 0.5 * (a + b)
+        r = _first_radius(result, old_boxes, i, a, b, c)
+        centres.append(c)
+        radii.append(r or 0.5 * float(np.hypot(*(b - a))) + START_SPACINGS * spacing)
+        regions.append((i, old_boxes[i], b))
+    for i in added:  # the old cell it falls in gives the first radius, as for a move
+        p = sites[i]
+        j = int(np.argmin(np.hypot(old[:, 0] - p[0], old[:, 1] - p[1])))
+        centres.append(p)
+        radii.append(_first_radius(result, old_boxes, j, p, p, p) or START_SPACINGS * spacing)
+        regions.append((i, None, p))
+    for i in removed:
+        c = old[i]
+        r = _first_radius(result, old_boxes, i, c, c, c)
+        centres.append(c)
+        radii.append(r or START_SPACINGS * spacing)
+        regions.append((None, old_boxes[i], c))
+    centres = np.array(centres)
+    radii = np.array(radii)
+    dist = np.hypot(
+        sites[:, 0][:, None] - centres[:, 0][None, :], sites[:, 1][:, None] - centres[:, 1][None, :]
     )
-    dist = np.hypot(sites[:, 0] - c[0], sites[:, 1] - c[1])
     for _ in range(TRIES):
-        window = np.flatnonzero(dist <= radius)
-        if len(window) > n // 2:
-            return None  # as dear as the whole diagram
+        window = np.flatnonzero((dist <= radii).any(axis=1))
+        if len(window) > n // 2:  # the whole diagram against the box: every cell is exact
+            window = np.arange(n)
         cells = _window(sites, window, box, design.voronoi.algorithm)
-        worst = _worst(cells, sites[window], c)
         cut = np.zeros(len(window), dtype=bool)
-        if not rect:
+        if len(window) == n:
+            ok = np.ones(n, dtype=bool)
+        else:
+            ok = _certified(cells, sites[window], centres, radii)
+        if not rect and len(window) < n:
             # A cell the domain cuts needs certifying only where it is inside the domain:
             # cut the uncertified ones and score their pieces' vertices instead.
-            redo = np.flatnonzero(worst >= radius * (1.0 - 1e-9))
+            redo = np.flatnonzero(~ok)
             cells[redo] = _clip(cells[redo], domain)
-            worst[redo] = _worst(cells[redo], sites[window[redo]], c)
+            ok[redo] = _certified(cells[redo], sites[window[redo]], centres, radii)
             cut[redo] = True
-        certified = worst < radius * (1.0 - 1e-9)
         pos = np.full(n, -1, dtype=np.int64)
         pos[window] = np.arange(len(window))
-        k = pos[i]
         new_boxes = shapely.bounds(cells)
-        if certified[k]:
-            ab = np.vstack((old_boxes[i], new_boxes[k]))
-            region = (
-                np.nanmin(ab[:, 0]),
-                np.nanmin(ab[:, 1]),
-                np.nanmax(ab[:, 2]),
-                np.nanmax(ab[:, 3]),
-            )
-            need = np.union1d(
-                np.flatnonzero(_overlap(old_boxes, region)),
-                window[_overlap(new_boxes, region)],
-            )
-            if (pos[need] >= 0).all() and certified[pos[need]].all():
-                break
-        radius *= GROWTH
+        need = _needed(regions, pos, ok, old_boxes, new_boxes, window, n)
+        if need is not None:
+            break
+        radii = radii * GROWTH
     else:
         return None
     if not rect:
         late = pos[need][~cut[pos[need]]]
         cells[late] = _clip(cells[late], domain)
-    fresh = cells[pos[need]]
-    differ = ~_same(result.raw[need], fresh)
-    differ[need == i] = True  # the moved site's own cell (and site) always travels
+    return _assemble(result, design, sites, need, cells[pos[need]], field_fn, n0)
+
+
+def _certified(cells, own, centres, radii) -> np.ndarray:
+    """Per cell: whether some window's condition holds at every vertex (see the module)."""
+    coords, owner = shapely.get_coordinates(cells, return_index=True)
+    ok = np.ones(len(cells), dtype=bool)
+    if not len(coords):
+        return ok
+    site = own[owner]
+    to_site = np.hypot(coords[:, 0] - site[:, 0], coords[:, 1] - site[:, 1])
+    ok[:] = False
+    seen = np.zeros(len(cells), dtype=bool)
+    seen[owner] = True
+    ok[~seen] = True  # no vertex: nothing to prove
+    for c, r in zip(centres, radii, strict=True):
+        score = np.hypot(coords[:, 0] - c[0], coords[:, 1] - c[1]) + to_site
+        worst = np.full(len(cells), -np.inf)
+        np.maximum.at(worst, owner, score)
+        ok |= seen & (worst < r * (1.0 - 1e-9))
+    return ok
+
+
+def _needed(regions, pos, ok, old_boxes, new_boxes, window, n):
+    """The cells that can have changed, or None when one of them is not certified yet.
+
+    For each change, the cells whose old or new box meets the box of its site's old and new
+    cell (and its old and new position) must be certified window cells.
+    """
+    need = []
+    for i, old_box, point in regions:
+        parts = [np.array([point[0], point[1], point[0], point[1]])]
+        if old_box is not None and np.isfinite(old_box).all():
+            parts.append(old_box)
+        if i is not None:
+            k = pos[i]
+            if k < 0 or not ok[k]:
+                return None
+            if np.isfinite(new_boxes[k]).all():
+                parts.append(new_boxes[k])
+        ab = np.vstack(parts)
+        region = (ab[:, 0].min(), ab[:, 1].min(), ab[:, 2].max(), ab[:, 3].max())
+        olds = np.flatnonzero(_overlap(old_boxes, region))
+        need.append(olds[olds < n])
+        need.append(window[_overlap(new_boxes, region)])
+    need = np.unique(np.concatenate(need))
+    if (pos[need] < 0).any() or not ok[pos[need]].all():
+        return None
+    return need
+
+
+def _assemble(result: Result, design, sites, need, fresh, field_fn, n0):
+    """The provisional result: ``result``'s cells with the ``need`` ones from ``fresh``."""
+    n = len(sites)
+    if n > n0 and not np.isin(np.arange(n0, n), need).all():
+        return None  # every new site's cell must be among the computed ones
+    empty = shapely.Polygon()
+    old_raw = _resized(result.raw, n, empty)
+    differ = np.ones(len(need), dtype=bool)
+    kept = need < n0
+    differ[kept] = ~_same(old_raw[need[kept]], fresh[kept])
+    changed_site = np.zeros(n, dtype=bool)
+    m = min(n, n0)
+    changed_site[:m] = (result.sites[:m] != sites[:m]).any(axis=1)
+    differ |= changed_site[need]  # a moved site's own cell (and site) always travels
     redo = need[differ]
-    raw = result.raw.copy()
+    raw = old_raw
     raw[redo] = fresh[differ]
-    values = result.values.copy()
+    values = _resized(result.values, n, 0.0)
     if field_fn is not None and len(redo):
         values[redo] = dc._values(raw[redo], field_fn)
     seed = design.design.seed
-    if design.openings.select in _PER_CELL:  # a cell's flag depends on that cell alone
-        mask = result.mask.copy()
+    old_mask = _resized(result.mask, n, False)
+    if design.openings.select in _PER_CELL and design.design.seed == result.design.design.seed:
+        mask = old_mask.copy()
         mask[redo] = dc._mask(design, raw[redo], values[redo], seed)
     else:  # random, every_kth, largest: by index or rank, over all cells
         mask = dc._mask(design, raw, values, seed)
-    out = result.cells.copy()
-    live = _live(result).copy()
+    out = _resized(result.cells, n, empty)
+    live = _resized(_live(result), n, False)
     if len(redo):
         out[redo] = dc._operate(design, raw[redo], values[redo], field_fn is not None)
         live[redo] = ~shapely.is_empty(out[redo])
     open_cells = np.flatnonzero(mask & live)
     extra = {k: v for k, v in result.extra.items() if k not in ("edges", "frame_fast")}
-    wkb = result.extra["raw_wkb"].copy()
+    wkb = _resized(result.extra["raw_wkb"], n, b"")
     wkb[redo] = shapely.to_wkb(raw[redo])
-    boxes = old_boxes.copy()
+    boxes = _resized(_bounds(result), n, np.nan)
     boxes[redo] = shapely.bounds(raw[redo])
     extra.update(raw_wkb=wkb, raw_bounds=boxes, redone=redo, open_cells=open_cells, live=live)
     extra["provisional"] = True
     new = Result(
         design,
         result.boundary,
-        domain,
+        result.domain,
         sites,
         raw,
         out,
         mask,
         values,
-        result.level,
+        np.zeros(n, dtype=result.level.dtype),
         np.asarray(out[open_cells], dtype=object),
         None,
         extra,
         None,
     )
-    changed = np.union1d(redo, np.flatnonzero(mask != result.mask)).astype(np.int32)
+    flipped = np.flatnonzero(mask[:m] != result.mask[:m])
+    changed = np.union1d(np.union1d(redo, flipped), np.arange(n0, n)).astype(np.int32)
     return new, changed

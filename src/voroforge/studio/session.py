@@ -293,6 +293,9 @@ class Session:
         sites = self.sites
         if any(key == k or key.startswith(k + ".") for k in _RESEED):
             sites = None
+            fast = self._reseed_fast(data) if self.frame is None else None
+            if fast is not None:
+                return fast
         reply = self._commit(data, sites)
         if reply.kind == "error":
             for it in reply.issues:
@@ -300,6 +303,51 @@ class Session:
                 if not it["key"]:
                     it["key"] = key
         return reply
+
+    def _reseed_fast(self, data: dict) -> Reply | None:
+        """New seeds from ``[seeds]`` with only the cells near the changed ones recomputed.
+
+        A random seed stream keeps its first seeds, so a ``seeds.count`` step adds or drops
+        a few sites at the end (:func:`voroforge.studio.incremental.update`; provisional,
+        settled like a drag). None when the design changed in more than how its seeds are
+        made, when the seeds are relaxed (every site moves) or when too many sites changed:
+        the caller recomputes in full (and reports any error).
+        """
+        from ..design import compute as dc
+        from . import incremental
+
+        if not self.incremental or not incremental.eligible(self.result):
+            return None
+        try:
+            design, _ = load(data)
+            self._guard(design)
+        except DesignError:
+            return None
+        prev = self.result.design
+        if design.relax.iterations or design.relax.tolerance is not None:
+            return None
+        keep = {"seeds": prev.seeds, "relax": prev.relax}
+        keep["design"] = design.design.model_copy(update={"seed": prev.design.seed})
+        if design.model_copy(update=keep) != prev:
+            return None  # more than the seeds changed: the full computation
+        start = time.perf_counter()
+        field_fn = self._field_fn()
+        try:
+            points = dc._seeds(design, self.result.domain, field_fn, self.folder)
+        except (DesignError, ValueError, OSError):
+            return None
+        if not 1 <= len(points) <= self.max_seeds:
+            return None
+        fast = incremental.update(self.result, points, field_fn, design=design)
+        if fast is None:
+            return None
+        self.compute_ms = (time.perf_counter() - start) * 1e3
+        self.history.append((self.data, self.sites))
+        del self.history[: -config.STUDIO_UNDO_DEPTH]
+        self.future.clear()
+        self.data, self.sites, self.design, self.result = data, None, design, fast[0]
+        self.frame = None
+        return Reply("update", changed=fast[1])
 
     def _op_move(self, msg: dict) -> Reply:
         sites = self._sites()
