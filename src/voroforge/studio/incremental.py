@@ -15,6 +15,12 @@ cells that can have changed are those whose old or new bounding box meets the bo
 of the old and new cell of ``i``; all of them must be certified, else the window grows (and
 after a few tries the caller recomputes everything).
 
+:func:`update` does the same for many changed sites at once (sites moved, appended or
+dropped from the end, as a ``seeds.count`` step of a random seed stream does): a window per
+change, one diagram of their sites, a cell certified by any window whose condition it meets.
+When the windows hold more than half the sites, the whole diagram is computed against the
+box (every cell exact, only the cut ones through GEOS).
+
 The result is marked ``extra["provisional"]``: its cells are the full diagram's to rounding,
 and the inset/fillet of a cell whose ring differs was computed from that ring.
 :meth:`voroforge.studio.session.Session.settle` replaces it by
@@ -31,7 +37,7 @@ import shapely
 from ..design import compute as dc
 from ..design.compute import Result
 
-__all__ = ["eligible", "move"]
+__all__ = ["eligible", "move", "update"]
 
 #: Window radius when the old cells give none, in site spacings (sqrt(area / n)) past the move.
 START_SPACINGS = 4.0
