@@ -106,7 +106,8 @@ class _Geo:
             self.end_node, self.end_dir, r_node[self.end_node], self.sphere_r, self.V
         )
         self.d_push = np.zeros(2 * self.E)  # ends pushed out by conflicts in their joint
-        self.cache: dict = {}
+        self.piece: list = [None] * self.V  # each node's latest hull (see _assemble)
+        self.built = None  # what the hulls were built from
 
 
 def hull_lattice(nodes, edges, r_node, *, segments=8, sphere=1, node_scale=1.0):
@@ -399,40 +400,40 @@ def _assemble(g, label):
     d = g.d_end.copy()
     pieces = [None] * g.V
     fail: list[np.ndarray] = []
-    # node hulls, cached by what they depend on: the external ends and their pushes
-    keys, todo = [], []
-    for v in range(g.V):
-        ce = ext_sorted[ext_start[v] : ext_start[v + 1]]
-        far = (ce + E) % (2 * E)
-        coarse = bool(cnt[label[v]] > 1)
-        key = (v, coarse, ce.tobytes(), g.d_push[ce].tobytes(), g.d_push[far].tobytes())
-        keys.append((key, ce))
-        if key not in g.cache:
-            todo.append(v)
-    if todo:
-        dds, oks = _place_rings(g, todo, [keys[v][1] for v in todo])
-        for v, dd, ok in zip(todo, dds, oks, strict=True):
-            if not ok:
-                g.cache[keys[v][0]] = (None, dd)
-        hv = [v for v, ok in zip(todo, oks, strict=True) if ok]
-        built = _node_pieces(
-            g,
-            hv,
-            [keys[v][1] for v in hv],
-            [dds[i] for i, ok in enumerate(oks) if ok],
-            [keys[v][0][1] for v in hv],
+    # node hulls, rebuilt where what they depend on changed: their external ends, the pushes
+    # of those ends (near and far) and the sphere (coarse in joints)
+    far_all = (np.arange(2 * E) + E) % (2 * E)
+    coarse = cnt[label] > 1
+    push, push_far = g.d_push, g.d_push[far_all]
+    if g.built is None:
+        todo = np.arange(g.V)
+    else:
+        p_ext, p_push, p_far, p_coarse = g.built
+        moved = (external != p_ext) | (
+            (external | p_ext) & ((push != p_push) | (push_far != p_far))
         )
-        for v, pc in zip(hv, built, strict=True):
-            g.cache[keys[v][0]] = pc
+        todo = np.flatnonzero((coarse != p_coarse) | (np.bincount(g.end_node, moved, g.V) > 0))
+    g.built = (external, push.copy(), push_far, coarse)
+    if len(todo):
+        ces = [ext_sorted[ext_start[v] : ext_start[v + 1]] for v in todo]
+        dds, oks = _place_rings(g, todo, ces)
+        hv = [i for i, ok in enumerate(oks) if ok]
+        built = _node_pieces(
+            g, todo[hv], [ces[i] for i in hv], [dds[i] for i in hv], coarse[todo[hv]]
+        )
+        for i, ok in enumerate(oks):
+            if not ok:
+                g.piece[todo[i]] = (None, dds[i])
+        for i, pc in zip(hv, built, strict=True):
+            g.piece[todo[i]] = pc
     for v in range(g.V):
-        key, ce = keys[v]
-        out = g.cache[key]
+        out = g.piece[v]
         if out[0] is None:
             fail.append(edges[g.end_edge[out[1]]])
             continue
         pieces[v] = out
-        if len(ce):
-            d[ce] = out.dd
+        if len(out.dd):
+            d[ext_sorted[ext_start[v] : ext_start[v + 1]]] = out.dd
     if fail:
         return None, np.vstack(fail)
     pairs, pushed = conflicts(g, label, pieces, d)

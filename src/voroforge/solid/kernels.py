@@ -47,7 +47,8 @@ def _grid_pairs(lo, hi, o, h, dim, start, members, out_i, out_j, fill):
 def box_pairs(lo, hi) -> np.ndarray:
     """Index pairs ``(i < j)`` of overlapping closed axis-aligned boxes, sorted.
 
-    Boxes go into the buckets of a uniform grid (twice the median box size) they overlap;
+    Boxes go into the buckets of a uniform grid (twice the median box size, at most 128 a
+    side) they overlap;
     pairs are tested within buckets and each reported once, in the bucket of the larger of
     their low corners.
     """
@@ -56,8 +57,10 @@ def box_pairs(lo, hi) -> np.ndarray:
     n = len(lo)
     if n < 2:
         return np.zeros((0, 2), dtype=np.int64)
-    h = max(2.0 * float(np.median((hi - lo).max(axis=1))), 1e-300)
     o = lo.min(axis=0)
+    span = float((hi.max(axis=0) - o).max())
+    # twice the median box, at most 128 buckets a side (points and tiny boxes: 1 if all equal)
+    h = max(2.0 * float(np.median((hi - lo).max(axis=1))), span / 128.0) or 1.0
     c0 = np.floor((lo - o) / h).astype(np.int64)
     c1 = np.floor((hi - o) / h).astype(np.int64)
     dim = c1.max(axis=0) + 1
