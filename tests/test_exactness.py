@@ -21,7 +21,7 @@ import voroforge as vf
 from voroforge.kernels.clip import rings_convex
 from voroforge.kernels.predicates import cross_diff
 
-from catalogue import CATALOGUE, OPEN
+from catalogue import CATALOGUE, FEW_ULPS, OPEN
 
 ALGS = ["delaunay", "fortune", "halfplane"]
 FAMILIES = [
@@ -102,10 +102,31 @@ def test_open_families_valid(name):
         assert own[d.duplicate_of < 0].all(), alg
 
 
-@pytest.mark.xfail(strict=False, reason="open: mixed scales (catalogue.OPEN)")
+@pytest.mark.parametrize("name", list(FEW_ULPS))
+def test_few_ulps_families(name):
+    """Mixed scales, sites a few ulps apart: valid cells tiling the box, each distinct site
+    in its own cell (none unresolved), the same diagram from every algorithm."""
+    from test_algorithms import _assert_same
+
+    pts, boundary = FEW_ULPS[name]
+    ref = None
+    for alg in ALGS:
+        d = vf.voronoi(pts, boundary, algorithm=alg)
+        cells = np.asarray(d.cells, dtype=object)
+        assert shapely.is_valid(cells).all(), alg
+        assert d.areas.sum() == pytest.approx(d.boundary.area, rel=1e-9), alg
+        own = shapely.intersects(cells, shapely.points(pts))
+        assert own[d.duplicate_of < 0].all(), alg
+        assert not len(d.unresolved), alg
+        if ref is None:
+            ref = d
+        else:
+            _assert_same(ref, d, d.boundary)
+
+
 def test_mixed_scales_samples_in_nearest_cell():
     """Samples in a 1e-12 cluster beside a 1e6 one fall in their nearest site's cell."""
-    pts, _ = OPEN["mixed_scales"]
+    pts, _ = FEW_ULPS["mixed_scales"]
     q = np.random.default_rng(5).random((400, 2)) * 1e-12
     d2 = ((q[:, None, :] - pts[None, :, :]) ** 2).sum(-1)
     order = np.sort(d2, axis=1)
@@ -116,6 +137,48 @@ def test_mixed_scales_samples_in_nearest_cell():
         cells = np.asarray(d.cells, dtype=object)
         inside = shapely.intersects(cells[near], shapely.points(q))
         assert inside[clear].all(), f"{alg}: {int((~inside[clear]).sum())} samples outside"
+
+
+def _walk(x, k, direction):
+    for _ in range(k):
+        x = np.nextafter(x, x + direction)
+    return x
+
+
+@pytest.mark.parametrize(
+    ("gaps", "direction", "off", "seed"),
+    [
+        ((1, 6), (1.0, 1.0), 0.3, 20),
+        ((1, 2), (1.0, 0.0), 0.3, 60),
+        ((2, 5), (-1.0, 1.0), 500000.25, 20),
+        ((1, 1), (0.0, 1.0), 500000.25, 60),
+    ],
+)
+def test_sites_ulps_apart_own_a_cell_or_are_flagged(gaps, direction, off, seed):
+    """Three sites ``gaps`` ulps apart along ``direction`` among random ones, every algorithm.
+
+    Every cell is valid and they tile the box; a distinct site without a cell is listed in
+    ``Diagram.unresolved`` (the same sites for every algorithm), never silently empty.
+    """
+    d = np.array(direction)
+    base = np.array([off, off])
+    p1 = _walk(base.copy(), gaps[0], d)
+    p2 = _walk(p1.copy(), gaps[1], d)
+    g = np.random.default_rng(seed)
+    pts = np.concatenate(([base, p1, p2], off - 0.3 + g.random((seed, 2))))
+    box = (off - 0.3, off - 0.3, off + 0.7, off + 0.7)
+    flagged = set()
+    for alg in ALGS:
+        dg = vf.voronoi(pts, box, algorithm=alg)
+        cells = np.asarray(dg.cells, dtype=object)
+        assert shapely.is_valid(cells).all(), alg
+        assert dg.areas.sum() == pytest.approx(dg.boundary.area, rel=1e-9), alg
+        own = shapely.intersects(cells, shapely.points(pts))
+        missing = set(np.flatnonzero(~own & (dg.duplicate_of < 0)).tolist())
+        assert missing == set(dg.unresolved.tolist()), alg
+        assert np.all(dg.areas[dg.unresolved] == 0.0)
+        flagged.add(tuple(sorted(missing)))
+    assert len(flagged) == 1  # one answer for all algorithms
 
 
 def _exact_cross(a, b, c, d):

@@ -57,12 +57,19 @@ class Diagram:
         True for a diagram on the torus (``voronoi(..., periodic=True)``).
     wrapped : bool
         True when periodic cells were cut into the box (``wrap=True``).
+    unresolved : (m,) int64
+        Distinct sites inside the domain's box whose cell is empty because float64 cannot
+        represent it: a site a few ulps from others whose cell is a strip narrower than
+        the coordinates' spacing. Usually empty; such a site is not a duplicate
+        (``duplicate_of == -1``) but has no cell.
     """
 
     periodic = False
     wrapped = False
 
-    def __init__(self, sites, duplicate_of, domain: Domain, buffers, edges, algorithm, k=0):
+    def __init__(
+        self, sites, duplicate_of, domain: Domain, buffers, edges, algorithm, k=0, unresolved=None
+    ):
         self.sites = sites
         self._k = k  # the working frame's scale exponent (areas are computed there)
         self.duplicate_of = duplicate_of
@@ -70,7 +77,8 @@ class Diagram:
         self._buffers = buffers
         self._edges = edges
         self.algorithm = algorithm
-        for arr in (sites, duplicate_of, *buffers, *edges):
+        self.unresolved = np.zeros(0, np.int64) if unresolved is None else unresolved
+        for arr in (sites, duplicate_of, self.unresolved, *buffers, *edges):
             arr.setflags(write=False)
 
     def __len__(self) -> int:

@@ -60,7 +60,17 @@ def _closed_cells(xs, ys, box, algorithm, kmap):
         else:
             order, sx, sy, tri, he, _, ok = triangulate_sorted(xs, ys)
         if ok:
-            return cells_from_triangulation(sx, sy, tri, he, box, order, kmap[order])
+            cells = cells_from_triangulation(sx, sy, tri, he, box, order, kmap[order])
+            if len(_lost(xs, ys, box, cells[1])):
+                # a distinct site whose cell merged away: its strip is narrower than the
+                # centres' rounding bounds (sites a few ulps apart). The half-plane cells
+                # decide each ring with exact predicates and keep it where floats can
+                # represent it; they replace the dual's when they tile the box.
+                got = halfplane_cells(xs, ys, box, kmap)
+                if not got[3].any() and _certified(*got[:2], box):
+                    if len(_lost(xs, ys, box, got[1])) < len(_lost(xs, ys, box, cells[1])):
+                        return got[:3]
+            return cells
         indptr, indices = _collinear_neighbors(xs, ys)
         coords, offsets, owner = cells_from_neighbors(xs, ys, indptr, indices.astype(np.int64), box)
         ident = np.arange(len(xs))
@@ -80,6 +90,12 @@ def _closed_cells(xs, ys, box, algorithm, kmap):
     # that fold its ring, or cells that do not tile the box): the Delaunay dual decides
     # every vertex globally, and gives the answer every algorithm gives
     return _closed_cells(xs, ys, box, "delaunay", kmap)
+
+
+def _lost(xs, ys, box, lengths):
+    """Distinct sites strictly inside ``box`` whose ring is empty (they own a cell)."""
+    inside = (box[0] < xs) & (xs < box[2]) & (box[1] < ys) & (ys < box[3])
+    return np.flatnonzero(inside & (np.diff(lengths) == 0))
 
 
 def _splice(closed, lengths, owner, dual, take):
@@ -146,7 +162,9 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
     with serial_below(n):
         closed, lengths, own = _closed_cells(xs, ys, box, algorithm, unique)
         bufs, edges = assemble(wdom, closed, lengths, own, n, unique)
+    # sites every construction leaves without a cell: floats cannot represent it
+    unresolved = unique[_lost(xs, ys, box, lengths)].astype(np.int64)
     if k:
         bufs = (np.ldexp(bufs[0], -k), *bufs[1:])
         edges = Edges(np.ldexp(edges.coords, -k), edges.pairs)
-    return Diagram(pts, dup, dom, bufs, edges, algorithm, k)
+    return Diagram(pts, dup, dom, bufs, edges, algorithm, k, unresolved)
