@@ -27,7 +27,7 @@ __all__ = ["close_pairs", "cluster_labels", "nearest", "nearest_to"]
 #: Grid cells per axis beyond which :func:`close_pairs` asks scipy (keys would overflow).
 _MAX_CELLS = 2**30
 #: Points up to which :func:`nearest` compares every pair (above: a KD-tree).
-NEAREST_BRUTE = 2048
+NEAREST_BRUTE = 1024
 #: Point-query pairs up to which :func:`nearest_to` compares every pair (above: a KD-tree).
 NEAREST_TO_BRUTE = 300_000
 _BLOCK = 1 << 20  # distances per chunk
