@@ -5,6 +5,7 @@ Run from the repository root::
     .venv/bin/python benchmarks/bench_scale.py                       # 1e6 uniform
     .venv/bin/python benchmarks/bench_scale.py --n 1e7 --workers 2   # the issue's figure
     .venv/bin/python benchmarks/bench_scale.py --n 1e8 --only tiled  # the 1e8 run
+    .venv/bin/python benchmarks/bench_scale.py --identity --tile-size 1000   # 1e6 identity
 
 Each configuration runs in a fresh child process on the same fixed-seed points, saved once
 as a ``.npy`` file (memory-mapped by the workers):
@@ -114,6 +115,87 @@ CHILD = textwrap.dedent(
 )
 
 
+IDENTITY = textwrap.dedent(
+    """
+    import json, sys, time
+    import numpy as np, pyarrow.parquet as pq
+    sys.path.insert(0, sys.argv[5])
+    from common import polygon_with_holes
+    import voroforge as vf
+    from distributed import Client
+    from voroforge import scale
+    from voroforge.io.parquet import write_cells
+    pts_path, boundary, out, tile_size = sys.argv[1:5]
+    pts = np.load(pts_path)
+    dom = polygon_with_holes() if boundary == "polygon" else None
+    t = time.perf_counter()
+    with scale.local_cluster(2) as cl, Client(cl) as c:
+        res = scale.voronoi(pts_path, dom, out=out + ".tiled", client=c,
+                            tile_size=int(tile_size), overwrite=True)
+    tiled_s = time.perf_counter() - t
+    write_cells(vf.voronoi(pts, dom), out + ".single")
+    got = pq.read_table(out + ".tiled").sort_by("site_id")
+    ref = pq.read_table(out + ".single")
+    diff = {}
+    for col in ("site_id", "geometry", "neighbors"):
+        a, b = got.column(col).combine_chunks(), ref.column(col).combine_chunks()
+        diff[col] = 0 if a.equals(b) else sum(
+            x != y for x, y in zip(a.to_pylist(), b.to_pylist()))
+    def bits(table, col, field=None):
+        arr = table.column(col).combine_chunks()
+        arr = arr.field(field) if field else arr
+        return arr.to_numpy(zero_copy_only=False).view(np.int64)
+    diff["area"] = int((bits(got, "area") != bits(ref, "area")).sum())
+    diff["bbox"] = int(sum((bits(got, "bbox", f) != bits(ref, "bbox", f)).sum()
+                           for f in ("xmin", "ymin", "xmax", "ymax")))
+    print("RESULT " + json.dumps({"tiles": res.tiles, "retried": res.retried,
+          "uncertified": res.uncertified, "cells": res.cells, "rows": ref.num_rows,
+          "seconds": tiled_s, "diff": diff}))
+    """
+)
+
+
+def identity(args) -> None:
+    """The 1e6 identity checks: uniform, clustered, grid, polygon with holes, bit for bit."""
+    import numpy as np
+
+    n = int(args.n)
+    print(machine_info())
+    rows = []
+    for name in ("uniform", "clustered", "grid", "polygon"):
+        work = Path(tempfile.mkdtemp(prefix="bench_scale_id_"))
+        try:
+            pts = DISTRIBUTIONS["uniform" if name == "polygon" else name](n)
+            np.save(work / "points.npy", pts)
+            boundary = "polygon" if name == "polygon" else "none"
+            cmd = [sys.executable, "-c", IDENTITY, str(work / "points.npy"), boundary]
+            cmd += [str(work / "out"), str(args.tile_size), str(HERE)]
+            proc = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
+            line = [x for x in proc.stdout.splitlines() if x.startswith("RESULT ")]
+            if not line:
+                raise RuntimeError(f"{name} failed:\n{proc.stderr[-3000:]}")
+            r = json.loads(line[0][7:])
+            same = all(v == 0 for v in r["diff"].values()) and r["cells"] == r["rows"]
+            rows.append(
+                [
+                    name,
+                    f"{len(pts):,}",
+                    r["tiles"],
+                    r["retried"],
+                    r["uncertified"],
+                    f"{r['seconds']:.1f}",
+                    "identical" if same else json.dumps(r["diff"]),
+                ]
+            )
+        finally:
+            shutil.rmtree(work, ignore_errors=True)
+    print_table(
+        ["input", "sites", "tiles", "recomputed", "uncertified", "tiled s", "against one process"],
+        rows,
+        title=f"scale identity, tile size {args.tile_size}, 2 workers",
+    )
+
+
 def run_child(what, pts_path, out, workers, tile_size, timeout):
     cmd = [sys.executable, "-c", CHILD, what, str(pts_path), str(out), str(workers), str(tile_size)]
     proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
@@ -132,7 +214,16 @@ def main(argv=None) -> None:
     parser.add_argument("--only", default="single,serial,tiled")
     parser.add_argument("--timeout", type=float, default=3600)
     parser.add_argument("--json", help="also write the results here")
+    parser.add_argument(
+        "--identity",
+        action="store_true",
+        help="check the tiled output against one process, bit for bit (uniform, clustered, "
+        "grid, polygon with holes) instead of timing",
+    )
     args = parser.parse_args(argv)
+    if args.identity:
+        identity(args)
+        return
     n = int(args.n)
     print(machine_info())
     work = Path(tempfile.mkdtemp(prefix="bench_scale_"))
