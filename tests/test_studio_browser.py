@@ -367,6 +367,7 @@ def test_latency_table(browser, tmp_path):
                     lat = _slider_latencies(page, moves, SLIDERS[moves])
                     assert len(lat) == len(SLIDERS[moves])
                 rows.append(_row(name, lat))
+                assert _patched_is_whole(page) == 0
                 if os.environ.get("VOROFORGE_STUDIO_DEBUG"):
                     print(name, *sorted(lat, key=lambda e: -e["ms"])[:3], sep="\n")
                 assert not errors, errors
@@ -380,6 +381,28 @@ def test_latency_table(browser, tmp_path):
     )
     print(HEAD)
     print("\n".join(rows))
+
+
+def test_scattered_patches_repaint_exactly(browser, tmp_path):
+    """Count steps change cells all over the panel: many small repaints, the same pixels."""
+    from voroforge.studio.session import Session
+
+    data = {**HOLED_2000, "cells": {}, "seeds": {"method": "random", "count": 800}}
+    served, page, errors = _open(browser, Session(data, folder=tmp_path))
+    try:
+        page.evaluate(
+            """() => { const s = studio, paint = s.paintRect.bind(s); s.tiled = 0;
+                 s.paintRect = function (rect, r, v, cand) { if (cand) s.tiled++;
+                   return paint(rect, r, v, cand); }; }"""
+        )
+        lat = _slider_latencies(page, "seeds.count", (812, 806))
+        assert len(lat) == 2 and not any(entry["full"] for entry in lat)
+        assert page.evaluate("studio.tiled") > 3  # the scattered boxes took the tiled path
+        assert _patched_is_whole(page) == 0
+        assert not errors, errors
+    finally:
+        page.close()
+        served.stop()
 
 
 def test_facade_screenshot(browser, tmp_path):

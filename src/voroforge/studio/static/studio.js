@@ -323,7 +323,7 @@ var VoroStudio = (function () {
       var rect = [Math.max(0, Math.floor(r[0] * v.s + v.tx)), Math.max(0, Math.floor(v.ty - r[3] * v.s)),
         Math.min(W, Math.ceil(r[2] * v.s + v.tx)), Math.min(H, Math.ceil(v.ty - r[1] * v.s))];
       if (rect[2] <= rect[0] || rect[3] <= rect[1]) continue;
-      rects.push([rect, r]);
+      rects.push([rect, this.designBox(rect, v)]);
       sum += (rect[2] - rect[0]) * (rect[3] - rect[1]);
       U = [Math.min(U[0], rect[0]), Math.min(U[1], rect[1]), Math.max(U[2], rect[2]), Math.max(U[3], rect[3])];
     }
@@ -331,10 +331,53 @@ var VoroStudio = (function () {
     if (!rects.length) return;
     var whole = (U[2] - U[0]) * (U[3] - U[1]);
     if (whole <= 2 * sum + 4096) {  // near one another (a drag): one box around them all
-      rects = [[U, [(U[0] - v.tx) / v.s, (v.ty - U[3]) / v.s, (U[2] - v.tx) / v.s, (v.ty - U[1]) / v.s]]];
+      rects = [[U, this.designBox(U, v)]];
     }
-    for (k = 0; k < rects.length; k++) this.paintRect(rects[k][0], rects[k][1], v);
+    var grid = rects.length > 3 ? this.buckets(v) : null;
+    for (k = 0; k < rects.length; k++) {
+      this.paintRect(rects[k][0], rects[k][1], v, grid ? this.near(grid, rects[k][0]) : null);
+    }
     this.ctx.putImageData(this.img, 0, 0, U[0], U[1], U[2] - U[0], U[3] - U[1]);
+  };
+
+  /* Cells and sites by 64-pixel tile, for many small repaints (each looks at its tiles only). */
+  var TILE = 64;
+  Studio.prototype.buckets = function (v) {
+    var gw = Math.ceil(this.canvas.width / TILE), gh = Math.ceil(this.canvas.height / TILE);
+    var cells = [], sites = [], i, q, x, y, s = this.sites;
+    for (i = 0; i < gw * gh; i++) { cells.push([]); sites.push([]); }
+    var tx = function (X) { return Math.max(0, Math.min(gw - 1, Math.floor((X * v.s + v.tx) / TILE))); };
+    var ty = function (Y) { return Math.max(0, Math.min(gh - 1, Math.floor((v.ty - Y * v.s) / TILE))); };
+    for (i = 0; i < this.n; i++) {
+      q = this.boxes[i];
+      if (!q) continue;
+      for (y = ty(q[3]); y <= ty(q[1]); y++) for (x = tx(q[0]); x <= tx(q[2]); x++) cells[y * gw + x].push(i);
+    }
+    for (i = 0; 2 * i < s.length; i++) sites[ty(s[2 * i + 1]) * gw + tx(s[2 * i])].push(i);
+    return { gw: gw, gh: gh, cells: cells, sites: sites, stamp: new Int32Array(this.n), round: 0 };
+  };
+
+  /* The cells (once each) and sites in the tiles that meet pixel rect, sorted. */
+  Studio.prototype.near = function (grid, rect) {
+    var out = [], pts = [], x, y, k, t, i, gw = grid.gw;
+    var x0 = Math.max(0, Math.floor((rect[0] - 8) / TILE)), x1 = Math.min(gw - 1, Math.floor((rect[2] + 8) / TILE));
+    var y0 = Math.max(0, Math.floor((rect[1] - 8) / TILE)), y1 = Math.min(grid.gh - 1, Math.floor((rect[3] + 8) / TILE));
+    grid.round++;
+    for (y = y0; y <= y1; y++) for (x = x0; x <= x1; x++) {
+      t = grid.cells[y * gw + x];
+      for (k = 0; k < t.length; k++) { i = t[k]; if (grid.stamp[i] !== grid.round) { grid.stamp[i] = grid.round; out.push(i); } }
+      t = grid.sites[y * gw + x];
+      for (k = 0; k < t.length; k++) pts.push(t[k]);
+    }
+    out.sort(function (a, b) { return a - b; });  // the same drawing order as a whole redraw
+    return { cells: out, sites: pts };
+  };
+
+  /* The design box of the cells that can touch pixel rect (their fills and, a pixel and a
+     half beyond, their outlines' anti-aliasing). */
+  Studio.prototype.designBox = function (rect, v) {
+    var m = 1.5;
+    return [(rect[0] - m - v.tx) / v.s, (v.ty - rect[3] - m) / v.s, (rect[2] + m - v.tx) / v.s, (v.ty - rect[1] + m) / v.s];
   };
 
   /* Half the side of a seed's dot, in pixels. */
@@ -355,12 +398,14 @@ var VoroStudio = (function () {
 
   /* The pixels of rect = [X0, Y0, X1, Y1): the background, then the cells meeting the design
      box r (null: all), their outlines and the seeds, clipped to rect. */
-  Studio.prototype.paintRect = function (rect, r, v) {
+  Studio.prototype.paintRect = function (rect, r, v, cand) {
     var W = this.canvas.width, px = this.px, cov = this.cov, bg = this.background(W, this.canvas.height, v);
-    var h = this.dotHalf(), tol = 0.5 * this.dpr, i, bx = this.boxes, n = this.n, R = VoroRaster;
+    var h = this.dotHalf(), tol = 0.5 * this.dpr, i, j, bx = this.boxes, R = VoroRaster;
+    var n = cand ? cand.cells.length : this.n;
     if (r) for (var y = rect[1]; y < rect[3]; y++) px.set(bg.subarray(y * W + rect[0], y * W + rect[2]), y * W + rect[0]);
     else px.set(bg);
-    for (i = 0; i < n; i++) {
+    for (j = 0; j < n; j++) {
+      i = cand ? cand.cells[j] : j;
       if (r) {
         var q = bx[i];
         if (!q || q[0] > r[2] || q[2] < r[0] || q[1] > r[3] || q[3] < r[1]) continue;
@@ -370,7 +415,10 @@ var VoroStudio = (function () {
       if (rw) R.lineRings(cov, W, rect, rw[0], rw[1], rw[2], rw[3], v);
     }
     R.composite(px, cov, W, rect, EDGE_RGB, EDGE_ALPHA);
-    R.dots(px, W, rect, this.sites, v, h, DOT);
+    if (!cand) { R.dots(px, W, rect, this.sites, v, h, DOT); return; }
+    var s = this.sites, pts = new Float64Array(2 * cand.sites.length);
+    for (j = 0; j < cand.sites.length; j++) { pts[2 * j] = s[2 * cand.sites[j]]; pts[2 * j + 1] = s[2 * cand.sites[j] + 1]; }
+    R.dots(px, W, rect, pts, v, h, DOT);
   };
 
   Studio.prototype.resize = function () {
