@@ -96,8 +96,8 @@ def kernel(args) -> None:
         cases = {
             "cells kernel": (_kernel_call(base, p), _kernel_call(vf, p)),
             "vf.voronoi": (
-                lambda: base.voronoi(p, BOX),
-                lambda: vf.voronoi(p, BOX),
+                lambda p=p: base.voronoi(p, BOX),
+                lambda p=p: vf.voronoi(p, BOX),
             ),
         }
         for what, (fa, fb) in cases.items():
@@ -122,7 +122,8 @@ def kernel(args) -> None:
 
 
 def _skeleton(line: str) -> str:
-    return NUMBER.sub("#", line)
+    """The line without its numbers and with runs of blanks as one (columns move with widths)."""
+    return " ".join(NUMBER.sub("#", line).split())
 
 
 def scripts(args) -> None:
@@ -133,6 +134,12 @@ def scripts(args) -> None:
     outputs: dict[str, dict[str, list[list[str]]]] = {}
     for s, script in enumerate(args.script):
         outputs[script] = {"A": [], "B": []}
+        if args.report:  # the outputs of an earlier run, from --out
+            for r in range(args.rounds):
+                for name in ("A", "B"):
+                    text = (out / f"{s}-{name}-{r}.txt").read_text()
+                    outputs[script][name].append(text.splitlines())
+            continue
         for r in range(args.rounds):
             order = ("A", "B") if r % 2 == 0 else ("B", "A")
             for name in order:
@@ -175,7 +182,7 @@ def scripts(args) -> None:
             b_vals = [NUMBER.findall(run[j]) if j < len(run) else [] for run in runs["B"]]
             if all(v == a_vals[0] for v in a_vals + b_vals):
                 continue  # nothing measured on this line (sizes, versions, labels)
-            label = NUMBER.sub("#", line).strip()[:70]
+            label = _skeleton(line)[:70]
             a_txt = " / ".join(" ".join(v) for v in a_vals)
             b_txt = " / ".join(" ".join(v) for v in b_vals)
             print(f"{label}\n    A: {a_txt}\n    B: {b_txt}")
@@ -196,6 +203,7 @@ def main() -> None:
     s.add_argument("--rounds", type=int, default=2)
     s.add_argument("--out", default="/tmp/ab-trees", help="folder for the raw outputs")
     s.add_argument("--cache-prefix", default="/tmp/nb-ab-", help="NUMBA_CACHE_DIR per tree")
+    s.add_argument("--report", action="store_true", help="only compare the outputs in --out")
     args = ap.parse_args()
     print(command_line())
     print(machine_info())
