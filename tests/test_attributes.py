@@ -140,3 +140,32 @@ def test_design_file_seeds_keep_rows_columns_and_crs(tmp_path, relax):
     moved = [p["site"] for p in props if p["cell"] is not None]
     original = [[0.1, 0.1], [0.5, 0.5], [0.3, 0.8], [0.8, 0.3]]
     assert (moved == original) == (relax == 0)
+
+
+def test_design_geoparquet_has_the_geojson_rows(tmp_path):
+    gpd = pytest.importorskip("geopandas")
+    from voroforge.design.build import build
+
+    (tmp_path / "trees.csv").write_text(
+        "x,y,name,area\n0.1,0.1,oak,1\n9,9,far,2\n0.6,0.5,elm,3\n0.3,0.8,fir,4\n"
+    )
+    _boundary(tmp_path)
+    design = tmp_path / "d.toml"
+    design.write_text(
+        'boundary = { shape = "file", file = "bnd.geojson" }\n'
+        'seeds = { method = "file", file = "trees.csv" }\n'
+        'output = { formats = ["geojson", "parquet"] }\n'
+    )
+    gj, pq = build(design, tmp_path / "out")
+    df = gpd.read_parquet(pq)
+    feats = json.loads(gj.read_text())["features"]
+    assert df.crs.to_epsg() == 2056  # the boundary file's CRS, as PROJJSON
+    assert df["index"].tolist() == [f["properties"]["index"] for f in feats] == [0, 1, 2, 3]
+    assert df["name"].tolist() == ["oak", "far", "elm", "fir"]
+    assert df["input_area"].tolist() == [1.0, 2.0, 3.0, 4.0]
+    assert df.geometry.isna().tolist() == [False, True, False, False]  # the row outside
+    for f, (_, row) in zip(feats, df.iterrows(), strict=True):
+        assert row["area"] == pytest.approx(f["properties"]["area"], abs=1e-12)
+        if f["geometry"]:
+            assert shapely.geometry.shape(f["geometry"]).equals_exact(row.geometry, 1e-12)
+    assert np.isclose(df["area"].sum(), 1.0)

@@ -27,7 +27,7 @@ import numpy as np
 import shapely
 
 from .. import config
-from .compute import MM_PER_UNIT, Result, Stage, compute
+from .compute import MM_PER_UNIT, Result, Stage, _section, compute
 from .designfile import DesignError, Issue, find_file, load, located
 from .schema import Design
 
@@ -205,21 +205,10 @@ def _geojson(result: Result, path: Path, base: Path | None = None) -> Path:
 
     crs = _source_crs(result, base)
     what = result.design.output.geojson
-    if what == "cells":
-        one_to_one = len(result.cells) == len(result.sites) and not result.design.voronoi.periodic
-        one_to_one = one_to_one and result.design.recursion.depth == 0
-        table = result.extra.get("seed_table")
-        if one_to_one and table is not None:
-            return _geojson_rows(result, table, path, crs)
-        keep = ~shapely.is_empty(result.cells)
-        geoms = result.cells[keep]
-        props = {
-            "cell": np.flatnonzero(keep),
-            "field": result.values[keep],
-            "opening": result.mask[keep],
-            "level": result.level[keep],
-        }
-        sites = result.sites[keep] if one_to_one else None
+    if what == "cells":  # the rows of design.features (one per seed-file row for file seeds)
+        from .features import cell_features
+
+        geoms, sites, props = cell_features(result)
         return write_geojson(geoms, path, sites=sites, properties=props, crs=crs)
     geoms = _labels(result) if what == "labels" else products(result)[what]
     if what == "edges":
@@ -227,35 +216,14 @@ def _geojson(result: Result, path: Path, base: Path | None = None) -> Path:
     return write_geojson(geoms, path, crs=crs)
 
 
-#: Properties the GeoJSON cells carry themselves; a seed-file column of that name is kept as
-#: ``input_<name>`` (as ``voroforge voronoi`` does).
-_COMPUTED = ("index", "site", "area", "cell", "field", "opening", "level")
+def _parquet(result: Result, path: Path, base: Path | None = None) -> Path:
+    """The GeoJSON cells' rows as GeoParquet, the source file's CRS included."""
+    from .features import cell_features, write_parquet
 
-
-def _geojson_rows(result: Result, table, path: Path, crs) -> Path:
-    """One feature per row of the seed file, in file order, with every column of the row.
-
-    Feature ``i`` is row ``i`` (its ``index``): the cell of that row's site, or a ``null``
-    geometry for a row outside the boundary (or whose cell vanished), so the output joins
-    back to the input by row number.
-    """
-    from ..io.geojson import write_geojson
-
-    n = len(table.points)
-    geoms = np.full(n, shapely.Polygon(), dtype=object)
-    geoms[table.rows] = result.cells
-    sites = table.points.copy()
-    sites[table.rows] = result.sites  # moved by [relax]; rows outside keep their own point
-    cell = np.full(n, None, dtype=object)
-    cell[table.rows] = np.arange(len(table.rows))
-    props: dict = {"cell": cell}
-    for name, values in (("field", result.values), ("opening", result.mask)):
-        column = np.full(n, None, dtype=object)
-        column[table.rows] = values.tolist()
-        props[name] = column
-    for name, column in table.attributes.items():
-        props[f"input_{name}" if name in _COMPUTED else name] = column
-    return write_geojson(geoms, path, sites=sites, properties=props, crs=crs)
+    member = _source_crs(result, base)
+    crs = (member.get("properties") or {}).get("name") if member else None
+    geoms, sites, props = cell_features(result)
+    return write_parquet(geoms, path, sites=sites, properties=props, crs=crs)
 
 
 def build(
@@ -374,6 +342,9 @@ def build(
             written.append(path)
         elif fmt == "geojson":
             written.append(_geojson(result, path, base))
+        elif fmt == "parquet":
+            with located(source, overrides), _section("output.formats"):
+                written.append(_parquet(result, path, base))
         elif fmt == "gif":
             with located(source, overrides):
                 written.append(_gif(design, base, path, stage))

@@ -393,7 +393,7 @@ class Output(_Model):
     """``[output]``: files to write and what goes on each layer."""
 
     stem: str | None = None
-    formats: list[Literal["svg", "dxf", "png", "geojson", "gif"]] = ["svg", "png"]
+    formats: list[Literal["svg", "dxf", "png", "geojson", "gif", "parquet"]] = ["svg", "png"]
     layers: dict[str, Product | list[Product]] = {"CUT": "frame"}
     kerf: NonNegFloat = 0.0
     png_size: Annotated[int, Field(ge=32, le=8192)] = 1200
