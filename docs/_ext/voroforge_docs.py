@@ -17,11 +17,70 @@ DOCS = Path(__file__).resolve().parents[1]
 ROOT = DOCS.parent
 OUT = DOCS / "_generated"
 
-#: Design-layer entry points, documented beside the engine.
+#: Design-layer entry points, documented beside the engine: the design-file functions, then
+#: the steps a Python user composes (the Grasshopper components of grasshopper.md).
 DESIGN_API = {
     "voroforge.design.build": ["build", "check_design"],
     "voroforge.design.compute": ["compute"],
     "voroforge.design.designfile": ["load"],
+    "voroforge.design.populate": [
+        "random",
+        "grid",
+        "hexgrid",
+        "jittered",
+        "poisson",
+        "by_density",
+        "along_curves",
+        "crossing_edges",
+        "from_file",
+    ],
+    "voroforge.design.attractors": [
+        "PointAttractor",
+        "CurveAttractor",
+        "Field",
+        "combine",
+        "falloff",
+        "remap",
+        "power_weights",
+    ],
+    "voroforge.design.relax": ["relax"],
+    "voroforge.design.cellops": [
+        "inset",
+        "web",
+        "offset",
+        "scale",
+        "smooth",
+        "fillet",
+        "clean",
+        "explode",
+        "edges_to_lines",
+        "frame",
+        "openings",
+        "by_area",
+        "by_field",
+        "random",
+        "every_kth",
+        "largest",
+    ],
+    "voroforge.design.recursive": ["subdivide", "Level", "count_by_area", "count_by_field"],
+    "voroforge.design.fabrication": ["check", "Report", "Violation", "kerf", "pack_pieces"],
+    "voroforge.design.stipple": ["stipple", "stipple_svg", "image_seeds"],
+}
+#: Files in and out, for machines and for GIS.
+IO_API = {
+    "voroforge.io": [
+        "write",
+        "write_svg",
+        "write_layers",
+        "write_dxf",
+        "write_png",
+        "write_geojson",
+        "write_gif",
+        "read_points",
+        "read_boundary",
+    ],
+    "voroforge.io.readers": ["read_point_table", "read_svg", "read_svg_curves", "read_dxf"],
+    "voroforge.io.plotter": ["layer_paths", "merge_lines", "order_paths", "travel", "Paths"],
 }
 #: Optional subsystems: documented when their package exists.
 SUBSYSTEMS = {
@@ -88,6 +147,9 @@ def api_page() -> str:
     lines += _table("voroforge", sorted(voroforge._EXPORTS))
     lines += ["## Design files and the design layer", ""]
     for module, names in DESIGN_API.items():
+        lines += _table(module, names)
+    lines += ["## Files in and out: `voroforge.io`", ""]
+    for module, names in IO_API.items():
         lines += _table(module, names)
     for module, title in SUBSYSTEMS.items():
         package = ROOT / "src" / Path(*module.split("."))
