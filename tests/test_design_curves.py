@@ -139,3 +139,25 @@ def test_leaf_example_traces_its_midrib_and_veins(tmp_path):
     assert r.level.max() == 1 and (r.level == 1).sum() > len(r.extra["levels"][0])
     out = build(path, tmp_path)
     assert [p.suffix for p in out] == [".svg", ".png"]
+
+
+def test_curves_from_an_svg_file_and_inline_polylines_agree(tmp_path):
+    # a designer's SVG (y down, mm) and the same line given inline (y up) trace the same edges
+    (tmp_path / "veins.svg").write_text(
+        '<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="60mm" '
+        'viewBox="0 0 100 60"><path d="M 0 20 L 100 40" fill="none" stroke="black"/></svg>'
+    )
+    head = '[boundary]\nwidth = 100\nheight = 60\n[seeds]\nmethod = "curves"\nspacing = 6\n'
+    traced = []
+    for extra in ('file = "veins.svg"\n', "curves = [[[0, 40], [100, 20]]]\n"):
+        f = tmp_path / "d.toml"
+        f.write_text(head + extra + "radius = 7\n[output]\nlayers = { ENGRAVE = 'curves' }\n")
+        design, base = load(f)
+        traced.append(compute(design, base).extra["curve_edges"])
+    line = shapely.LineString([(0, 40), (100, 20)])
+    for t in traced:
+        assert t.length == pytest.approx(line.length, rel=1e-6)
+        assert t.hausdorff_distance(line) < 1e-6
+    assert traced[0].equals_exact(traced[1], 1e-6)
+    out = build(tmp_path / "d.toml", tmp_path / "out")  # the curves product as a layer
+    assert "ENGRAVE" in out[0].read_text()
