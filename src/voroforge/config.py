@@ -37,6 +37,9 @@ NAME_MAX_TRIES = 4096
 #: A cocircular triple names a vertex only if its centre is this close to the vertex (L1,
 #: relative to the vertex's magnitude and distance from its site; kernels/vertex)
 VERTEX_SNAP_RTOL = 2.0**-40
+#: A centre whose rounding bound exceeds this fraction of its own magnitude is computed from
+#: exact expansions (a sliver's: sites on a circle, sites a few ulps apart; kernels/vertex)
+VERTEX_REFINE_RTOL = 2.0**-30
 #: Circumcentres of two adjacent triangles closer than this (L1, relative to their magnitude
 #: and the circumradius) are one vertex: floats cannot order a shorter Voronoi edge
 CC_MERGE_RTOL = 2.0**-46
