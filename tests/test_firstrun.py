@@ -7,6 +7,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 from voroforge.warmup import Step, example_designs, plan, run_plan
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -79,3 +81,22 @@ def test_a_2d_build_loads_only_what_it_needs(tmp_path):
     assert not {m for m in loaded if m.startswith(unwanted)}
     for sub in ("solid.build", "surface.build", "studio.server", "engine.voronoi3d", "scale"):
         assert f"voroforge.{sub}" not in loaded, sub
+
+
+def test_first_runs_are_timed_in_fresh_processes(tmp_path):
+    from voroforge.warmup import time_first_runs
+
+    steps = [
+        Step("version", ("--version",)),
+        Step("build missing", ("build", str(tmp_path / "none.toml"), "-o", str(tmp_path))),
+    ]
+    lines: list[str] = []
+    done = time_first_runs(steps, report=lines.append, repeat=2)
+    assert [s.label for s in done] == ["version", "build missing"]
+    assert done[0].error == "" and "none.toml" in done[1].error
+    # a fresh interpreter: measurable wall and CPU time, the CPU within the wall (one thread)
+    assert all(0 < s.cpu and 0 < s.seconds for s in done)
+    assert done[0].cpu <= done[0].seconds * 1.5 + 0.05
+    assert len(lines) == 2 and "wall" in lines[0] and "FAILED" in lines[1]
+    with pytest.raises(ValueError, match="repeat"):
+        time_first_runs(steps, repeat=0)

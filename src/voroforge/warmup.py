@@ -26,7 +26,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["Step", "example_designs", "plan", "run_plan", "warm_up"]
+__all__ = ["Step", "example_designs", "plan", "run_plan", "time_first_runs", "warm_up"]
 
 #: Points of the raster and explain steps: enough for every code path, small enough to be
 #: instant once compiled.
@@ -189,8 +189,66 @@ def run_plan(steps: Sequence[Step], report: Callable[[str], None] | None = None)
     return done
 
 
+def time_first_runs(
+    steps: Sequence[Step], report: Callable[[str], None] | None = None, *, repeat: int = 1
+) -> list[Step]:
+    """Run each step's command in a fresh interpreter, as a user's first run would be.
+
+    Each command runs as ``python -m voroforge ARGV`` in a new process (every import and
+    every cached kernel load paid again), ``repeat`` times; the least wall and CPU time
+    are kept. Run it after :func:`run_plan`, so that nothing is left to compile.
+
+    Parameters
+    ----------
+    steps : sequence of Step
+        From :func:`plan` (the point file they read must exist).
+    report : callable, optional
+        Called with one line per finished step.
+    repeat : int
+        Runs per step (>= 1).
+
+    Returns
+    -------
+    list of Step
+        ``seconds`` is the wall time and ``cpu`` the user + system time of the child
+        process; ``error`` the last line of its error output if it failed.
+    """
+    import resource
+    import subprocess
+    import sys
+
+    if int(repeat) < 1:
+        raise ValueError(f"repeat must be >= 1, got {repeat!r}")
+    done = []
+    for k, step in enumerate(steps, 1):
+        walls, cpus, error = [], [], ""
+        for _ in range(int(repeat)):
+            before = resource.getrusage(resource.RUSAGE_CHILDREN)
+            t0 = time.perf_counter()
+            run = subprocess.run(
+                [sys.executable, "-m", "voroforge", *step.argv], capture_output=True, text=True
+            )
+            walls.append(time.perf_counter() - t0)
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)
+            cpus.append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
+            if run.returncode:
+                error = (run.stderr.strip().splitlines() or [f"exit {run.returncode}"])[-1]
+        step = Step(step.label, step.argv, min(walls), error, min(cpus))
+        done.append(step)
+        if report is not None:
+            status = "ok" if not error else f"FAILED: {error}"
+            report(
+                f"first run {k}/{len(steps)}: {step.label:<34} {step.seconds:5.2f} s wall "
+                f"{step.cpu:5.2f} s CPU  {status}"
+            )
+    return done
+
+
 def warm_up(
-    designs: Sequence[Path] | None = None, report: Callable[[str], None] | None = None
+    designs: Sequence[Path] | None = None,
+    report: Callable[[str], None] | None = None,
+    *,
+    timed: int = 0,
 ) -> list[Step]:
     """Compile and cache every kernel the first commands of a new user need.
 
@@ -200,16 +258,24 @@ def warm_up(
         Design files whose builds to warm (default: :func:`example_designs`).
     report : callable, optional
         Progress: called with one line per step.
+    timed : int
+        After warming, run every step again this many times in fresh interpreters
+        (:func:`time_first_runs`): what a user's first run costs now.
 
     Returns
     -------
     list of Step
-        Every step with its wall time and error (empty when it succeeded). A second
-        call is quick: everything then loads from the cache.
+        Every step with its wall time and error (empty when it succeeded), then, with
+        ``timed``, the timed first runs. A second call is quick: everything then loads
+        from the cache.
     """
     if designs is None:
         designs = example_designs()
     with tempfile.TemporaryDirectory(prefix="voroforge-warmup-") as tmp:
         scratch = Path(tmp)
         _write_points(scratch / "warmup-points.csv")
-        return run_plan(plan([Path(d) for d in designs], scratch), report)
+        steps = plan([Path(d) for d in designs], scratch)
+        done = run_plan(steps, report)
+        if timed:
+            done += time_first_runs(steps, report, repeat=timed)
+        return done
