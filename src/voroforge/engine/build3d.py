@@ -452,35 +452,50 @@ def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
     out = _Out(k)
     with serial_below(k):
         nth = numba.get_num_threads()
-        pool = None
+        pool = joiner = None
         if nth > 1 and k >= 128:
             from concurrent.futures import ThreadPoolExecutor
 
             pool = ThreadPoolExecutor(nth)
-        slots = _slots(min(CHUNK, k), CAPS)
-        try:
-            for c0 in range(0, k, CHUNK):
-                chunk = built[c0 : c0 + CHUNK]
-                st, counts, v, c, r2, sl, capa = _run(
-                    chunk, P, W, start, SP, sidx, g, order, t, CAPS, pool, slots
+            # one more thread joins chunk c while the pool builds chunk c + 1 (two sets of
+            # slots); the joins run in order
+            joiner = ThreadPoolExecutor(1)
+        slots = [_slots(min(CHUNK, k), CAPS) for _ in range(2 if joiner else 1)]
+        pending = []
+
+        def join(c0, chunk, st, counts, v, c, r2, sl, capa):
+            def big(q):
+                # a cell past its slots: alone, with big slots, joined in its place
+                st[q], counts[q], v[q], c[q], r2[q] = _big(
+                    chunk[q], P, W, start, SP, sidx, g, order, t, out
                 )
 
-                def big(q, chunk=chunk, st=st, counts=counts, v=v, c=c, r2=r2):
-                    # a cell past its slots: alone, with big slots, joined in its place
-                    st[q], counts[q], v[q], c[q], r2[q] = _big(
-                        chunk[q], P, W, start, SP, sidx, g, order, t, out
-                    )
+            out.add(st, counts, sl, capa, big)
+            sl_ = slice(c0, c0 + len(chunk))
+            status[sl_], vol[sl_], cen[sl_], rad2[sl_] = st, v, c, r2
+            nfaces[sl_] = counts[:, 1]
+            nverts[sl_] = counts[:, 0]
+            if progress is not None:
+                progress(min(c0 + CHUNK, k), k)
 
-                out.add(st, counts, sl, capa, big)
-                sl_ = slice(c0, c0 + len(chunk))
-                status[sl_], vol[sl_], cen[sl_], rad2[sl_] = st, v, c, r2
-                nfaces[sl_] = counts[:, 1]
-                nverts[sl_] = counts[:, 0]
-                if progress is not None:
-                    progress(min(c0 + CHUNK, k), k)
+        try:
+            for q, c0 in enumerate(range(0, k, CHUNK)):
+                if len(pending) >= len(slots):
+                    pending.pop(0).result()  # the join that used these slots is done
+                chunk = built[c0 : c0 + CHUNK]
+                res = _run(
+                    chunk, P, W, start, SP, sidx, g, order, t, CAPS, pool, slots[q % len(slots)]
+                )
+                if joiner is None:
+                    join(c0, chunk, *res)
+                else:
+                    pending.append(joiner.submit(join, c0, chunk, *res))
+            for f in pending:
+                f.result()
         finally:
-            if pool is not None:
-                pool.shutdown()
+            for ex in (pool, joiner):
+                if ex is not None:
+                    ex.shutdown()
     del slots
     vertices, flabel, roff, ring, vid, unmatched = out.finish()
     pos = np.zeros(k, np.int64)

@@ -78,10 +78,10 @@ def _graph_scratch(vcap, degree):
     ``degree`` is the most edges a vertex may have (more: the cell is built with face rings).
     ``FL`` flags the vertices found exactly on a plane (more owners than their faces).
     """
-    DEG = np.zeros(vcap, np.int64)
-    ED = np.zeros((vcap, degree), np.int64)
-    BK = np.zeros((vcap, degree), np.int64)
-    LB = np.zeros((vcap, degree), np.int64)
+    DEG = np.zeros(vcap, np.int32)
+    ED = np.zeros((vcap, degree), np.int32)
+    BK = np.zeros((vcap, degree), np.int32)
+    LB = np.zeros((vcap, degree), np.int32)
     CP = np.zeros((vcap, 3), np.int64)
     seen = np.zeros((vcap, degree), np.bool_)
     FL = np.zeros(vcap, np.bool_)
