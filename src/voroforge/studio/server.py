@@ -212,6 +212,7 @@ class _Hub:
         self.settle_due = 0.0
         self.sent: dict = {}  # what the pages have (geometry_message patches against it)
         self.state_text = ""  # the last state message sent (sent again only when it changes)
+        self.state_key = None  # what that message was built from
         self.edits = 0  # messages received: a running check stops for a new one
         self.pixels: dict[int, float] = {}  # each page's pixel size in design units
 
@@ -241,8 +242,18 @@ class _Hub:
             await self.send(ws, payload)
 
     async def broadcast_state(self, force: bool = False) -> None:
-        """Send the state message to every page, if it changed since the last one."""
-        text = json.dumps(state_message(self.session), allow_nan=False)
+        """Send the state message to every page, if it changed since the last one.
+
+        What it holds follows from the design, the undo and redo depths, the frame shown
+        and the file: while those stay (a drag's steps), it is not even built again.
+        """
+        s = self.session
+        key = (len(s.history), len(s.future), s.frame, s.path)
+        same = self.state_key is not None and self.state_key[0] is s.design
+        if not force and same and self.state_key[1] == key:
+            return
+        self.state_key = (s.design, key)  # the design itself: an id could be reused
+        text = json.dumps(state_message(s), allow_nan=False)
         if force or text != self.state_text:
             self.state_text = text
             await self.broadcast(text)
