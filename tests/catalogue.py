@@ -187,6 +187,10 @@ def _exactness_families(c: dict[str, tuple[np.ndarray, object]]) -> None:
     c["float_circle_64"] = (_circle(64), None)
     c["float_circle_257"] = (_circle(257), None)
     c["float_circles_concentric"] = (np.concatenate((_circle(64), _circle(64, 0.5))), None)
+    # small float circles off the origin: rounding swaps some centres (the fold merge runs;
+    # at the origin the exact sliver centres keep their order and nothing folds any more)
+    c["float_circle_64_small_off"] = (_circle(64, 1e-3) + [1.0, 1.0], None)
+    c["float_circle_128_tiny_off"] = (_circle(128, 1e-4) + [0.7, 0.3], None)
     t = np.linspace(0.0, 1.0, 200)
     c["collinear_plus_one"] = (
         np.concatenate((np.column_stack((t, np.zeros_like(t))), [[0.5, 0.1]])),

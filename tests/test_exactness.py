@@ -31,6 +31,8 @@ FAMILIES = [
     "float_circle_64",
     "float_circle_257",
     "float_circles_concentric",
+    "float_circle_64_small_off",
+    "float_circle_128_tiny_off",
     "collinear_plus_one",
 ]
 
@@ -87,6 +89,29 @@ def test_float_circles_valid(n):
             assert shapely.is_valid(cells).all(), (n, alg)
             assert d.areas.sum() == pytest.approx(d.boundary.area, rel=1e-9)
             assert shapely.intersects(cells, shapely.points(pts)).all()
+
+
+def test_sliver_centres_exact_to_their_own_ulps():
+    """Sliver centres (neighbouring sites of a float circle) from exact expansions."""
+    from voroforge.kernels.expansion import exact_circumcenter
+
+    pts = _circle(4000)
+    for i in range(0, 4000, 97):
+        a, b, c = pts[i], pts[(i + 1) % 4000], pts[(i + 2) % 4000]
+        x, y = exact_circumcenter(*a, *b, *c)
+        f = [Fraction(v) for v in (*a, *b, *c)]
+        dx, dy, ex, ey = f[2] - f[0], f[3] - f[1], f[4] - f[0], f[5] - f[1]
+        den = 2 * (dx * ey - dy * ex)
+        wx = f[0] + (ey * (dx * dx + dy * dy) - dy * (ex * ex + ey * ey)) / den
+        wy = f[1] + (dx * (ex * ex + ey * ey) - ex * (dx * dx + dy * dy)) / den
+        for got, want in ((x, wx), (y, wy)):
+            assert abs(Fraction(got) - want) <= 4 * 2.0**-53 * abs(want)
+
+
+def test_float_circle_4000_valid():
+    """4,000 float sites on the unit circle: the default's cells were folded (730 of them)."""
+    d = vf.voronoi(_circle(4000))
+    assert shapely.is_valid(np.asarray(d.cells, dtype=object)).sum() >= 3999
 
 
 @pytest.mark.xfail(strict=False, reason="open: not yet right on every algorithm (catalogue.OPEN)")

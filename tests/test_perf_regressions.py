@@ -155,7 +155,8 @@ def _plain_merge(sx, sy, tri, he, rank, box):
         rename()
 
 
-FOLDING = ["float_circle_64", "float_circle_257", "float_circles_concentric"]
+# (float circles at the origin no longer fold: their sliver centres are exact to ulps)
+FOLDING = ["float_circle_64_small_off", "float_circle_128_tiny_off", "float_circles_concentric"]
 
 
 @pytest.mark.parametrize("name", [*FOLDING, "lattice_offset_5e+13", "collinear_plus_one"])

@@ -39,7 +39,15 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import NAME_MAX_TRIES, NJIT, VERTEX_DET_RTOL, VERTEX_PAIR_RTOL, VERTEX_SNAP_RTOL
+from ..config import (
+    NAME_MAX_TRIES,
+    NJIT,
+    VERTEX_DET_RTOL,
+    VERTEX_PAIR_RTOL,
+    VERTEX_REFINE_RTOL,
+    VERTEX_SNAP_RTOL,
+)
+from .expansion import exact_circumcenter
 from .predicates import orient2d
 
 
@@ -139,9 +147,12 @@ def center_error(ax, ay, aw, bx, by, bw, cx, cy, cw):
 
 @njit(**NJIT)
 def voronoi_vertex_error(a, b, c, xs, ys):
-    """:func:`center_error` of :func:`voronoi_vertex` (same arguments, same order rule)."""
-    a, b, c = sorted_triple(a, b, c, xs, ys)
-    return center_error(xs[a], ys[a], 0.0, xs[b], ys[b], 0.0, xs[c], ys[c], 0.0)
+    """A bound on the L1 rounding error of :func:`voronoi_vertex` (same arguments).
+
+    :func:`center_error` of the owners in canonical order, or, for a centre computed from
+    exact expansions, a few ulps of its own magnitude (:func:`voronoi_vertex_and_error`).
+    """
+    return voronoi_vertex_and_error(a, b, c, xs, ys)[2]
 
 
 @njit(**NJIT)
@@ -163,7 +174,10 @@ def voronoi_vertex_and_error(a, b, c, xs, ys):
         uy = (dx * cl - ex * bl) * d
         if 0.0 < abs(ux) < np.inf and 0.0 < abs(uy) < np.inf:
             err = _error_of(ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det)
-            return ox + ux, oy + uy, err
+            x = ox + ux
+            y = oy + uy
+            if not err > VERTEX_REFINE_RTOL * (abs(x) + abs(y)):
+                return x, y, err
     a, b, c = sorted_triple(a, b, c, xs, ys)
     ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det, _, _ = _frame(
         xs[a], ys[a], 0.0, xs[b], ys[b], 0.0, xs[c], ys[c], 0.0
@@ -171,7 +185,14 @@ def voronoi_vertex_and_error(a, b, c, xs, ys):
     d = 0.5 / det
     x = ox + (ey * bl - dy * cl) * d
     y = oy + (dx * cl - ex * bl) * d
-    return x, y, _error_of(ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det)
+    err = _error_of(ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det)
+    if err > VERTEX_REFINE_RTOL * (abs(x) + abs(y)) and det != 0.0:
+        # a sliver: the float formula loses the centre to cancellation; the exact one
+        # keeps it to a few ulps of its own magnitude (``expansion.exact_circumcenter``)
+        rx, ry = exact_circumcenter(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c])
+        if np.isfinite(rx) and np.isfinite(ry):
+            return rx, ry, 8.0 * _U * (abs(rx) + abs(ry))
+    return x, y, err
 
 
 @njit(**NJIT)
@@ -249,13 +270,12 @@ def voronoi_vertex(a, b, c, xs, ys):
     """The Voronoi vertex named by sites ``a, b, c``: the same bits in any argument order.
 
     That of :func:`center` on the owners in canonical order; they are sorted only where the
-    order could change a bit (:func:`_center_if_order_free`).
+    order could change a bit (:func:`_center_if_order_free`). A sliver's centre, which the
+    float formula loses to cancellation, is computed from exact expansions
+    (:func:`voronoi_vertex_and_error`), the same bits as there.
     """
-    x, y, ok = _center_if_order_free(xs[a], ys[a], 0.0, xs[b], ys[b], 0.0, xs[c], ys[c], 0.0)
-    if ok:
-        return x, y
-    a, b, c = sorted_triple(a, b, c, xs, ys)
-    return center(xs[a], ys[a], 0.0, xs[b], ys[b], 0.0, xs[c], ys[c], 0.0)
+    x, y, _ = voronoi_vertex_and_error(a, b, c, xs, ys)
+    return x, y
 
 
 @njit(**NJIT)
