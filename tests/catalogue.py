@@ -242,7 +242,10 @@ def _open_families() -> dict[str, tuple[np.ndarray, object]]:
 
 
 CATALOGUE = _build()
-NAMES = list(CATALOGUE)
+#: Families every NAMES-parametrized test runs on: all but the small float circles off the
+#: origin, whose features are below describe()'s vertex tolerance (1e-13 of the domain's
+#: diagonal); test_exactness checks them on every algorithm, test_perf_regressions folds them.
+NAMES = [n for n in CATALOGUE if not n.endswith("_off")]
 #: Issue 15's mixed scales and sites a few ulps apart (see :func:`_few_ulps_families`).
 FEW_ULPS = _few_ulps_families()
 #: Issue 15's inputs not yet right everywhere (see :func:`_open_families`); not in NAMES.
