@@ -186,6 +186,30 @@ def test_png_colours_are_deterministic():
         io.render_image(geoms, colors=["red", "blue"])
 
 
+def test_png_lines_are_stroked_to_their_width_over_the_cells():
+    # a 2-unit wide red line across a blue box: red exactly within 1 unit of the line
+    box = shapely.box(0, 0, 100, 50)
+    line = shapely.LineString([(10, 25), (90, 25)])
+    img = io.render_image(
+        [box], size=400, colors=["#0000ff"], lines=[(line, 2.0, "#ff0000")], supersample=1
+    )
+    a = np.asarray(img.convert("RGB")).astype(int)
+    h, w, _ = a.shape
+    red = (a[:, :, 0] > 200) & (a[:, :, 2] < 60)
+    rows = np.flatnonzero(red[:, w // 2])
+    px_per_unit = (w - 2 * max(4, round(400 * 0.02))) / 100
+    assert abs(len(rows) - 2 * px_per_unit) <= 1.5  # the stroke's width, in pixels
+    assert abs(rows.mean() - (h - 1) / 2) <= 1.0  # centred on y = 25
+    assert tuple(a[h // 2, int(w * 0.05)]) == (0, 0, 255)  # the box beyond the line's end
+    for bad, match in (
+        ([(line, -1.0, "red")], "width"),
+        ([(line, 1.0)], "triples"),
+        ([([(0, 0), (1, 1)], 1.0, "red")], "shapely geometry"),
+    ):
+        with pytest.raises(ValueError, match=match):
+            io.render_image([box], lines=bad)
+
+
 # --- GeoJSON ------------------------------------------------------------------------------
 
 

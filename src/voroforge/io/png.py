@@ -57,6 +57,7 @@ def render_image(
     supersample: int = 2,
     marks=None,
     legend=None,
+    lines=None,
 ) -> Image.Image:
     """Draw polygons (for example ``diagram.cells``) into a pillow image.
 
@@ -90,6 +91,10 @@ def render_image(
         ``shape`` is ``"circle"``, ``"square"``, ``"triangle"`` or ``"diamond"``.
     legend : sequence of (shape, colour, text), optional
         A key drawn in the top-left corner, one row per entry.
+    lines : sequence of (geometry, width, colour), optional
+        Line work drawn over the cells, in order: every line of each geometry (LineString,
+        MultiLineString, LinearRing or polygon outlines) stroked ``width`` wide in data
+        units, with round joins and ends.
 
     Returns
     -------
@@ -112,7 +117,11 @@ def render_image(
     fills = _cell_colours(colors, len(cells), seed)
     edge = _rgb(edge_color)
 
-    xmin, ymin, xmax, ymax = data_bounds(cells, pts, bound)
+    strokes = _strokes(lines)
+    drawn = cells
+    if strokes:
+        drawn = np.concatenate((cells, np.asarray([g for g, _, _ in strokes], dtype=object)))
+    xmin, ymin, xmax, ymax = data_bounds(drawn, pts, bound)
     w, h = xmax - xmin, ymax - ymin
     margin = max(4, round(size * 0.02))
     longer = size - 2 * margin
@@ -146,6 +155,8 @@ def render_image(
     line_w = max(1, round(edge_width * ss))
     for ring in outlines:
         draw.line([*ring, ring[0]], fill=edge, width=line_w, joint="curve")
+    for geom, width, colour in strokes:
+        _stroke(draw, geom, width * scale, colour, to_pixels)
     if bound is not None:
         ctx = RingContext()
         trace(ctx, bound, to_pixels)
@@ -165,6 +176,44 @@ def render_image(
     if ss > 1:
         image = image.reduce(ss)
     return image
+
+
+def _strokes(lines) -> list:
+    """``render_image``'s ``lines`` checked: (geometry, width >= 0, RGB) per entry."""
+    import shapely
+
+    out = []
+    for entry in lines or []:
+        try:
+            geom, width, colour = entry
+        except (TypeError, ValueError):
+            raise ValueError("lines must be (geometry, width, colour) triples") from None
+        if not isinstance(geom, shapely.Geometry):
+            raise ValueError(f"a line must be a shapely geometry, got {type(geom).__name__}")
+        w = float(width)
+        if not (math.isfinite(w) and w >= 0):
+            raise ValueError(f"a line width must be a finite number >= 0, got {width!r}")
+        if not geom.is_empty:
+            out.append((geom, w, _rgb(colour)))
+    return out
+
+
+def _stroke(draw, geom, width_px: float, colour, to_pixels) -> None:
+    """Every line of ``geom`` drawn ``width_px`` wide, round joins and (wide lines) ends."""
+    import shapely
+
+    if geom.geom_type.endswith("Polygon"):
+        geom = geom.boundary
+    w = max(1, round(width_px))
+    r = (w - 1) / 2.0  # the cap's disc as wide as the line pillow draws
+    for part in shapely.get_parts(geom):
+        xy = to_pixels(shapely.get_coordinates(part))
+        if len(xy) < 2:
+            continue
+        draw.line([tuple(p) for p in xy.tolist()], fill=colour, width=w, joint="curve")
+        if w >= 3:  # round ends, so pieces of one line join without notches
+            for x, y in (xy[0], xy[-1]):
+                draw.ellipse((x - r, y - r, x + r, y + r), fill=colour)
 
 
 #: Marker shapes of :func:`render_image` (``marks=``), as unit polygons (None: a circle).
