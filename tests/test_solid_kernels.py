@@ -86,6 +86,21 @@ def test_find_rows_is_bit_exact_and_first():
     assert _find_rows(np.zeros((0, 3)), rows).tolist() == [-1] * 5
 
 
+def test_find_rows_survives_hash_collisions(monkeypatch):
+    # every row hashing alike: the lookup must still find the first exact match (a collision
+    # taken for a miss once made joints of 3,000 cells fail their ring check)
+    from voroforge.solid import hulls
+
+    rng = np.random.default_rng(1)
+    table = rng.random((50, 3))
+    table[30] = table[4]
+    rows = np.vstack([table[[4, 49, 0]], [[2.0, 2.0, 2.0]]])
+    want = _find_rows(table, rows).tolist()
+    assert want == [4, 49, 0, -1]
+    monkeypatch.setattr(hulls, "_row_hash", lambda a: np.zeros(len(a), dtype=np.uint64))
+    assert hulls._find_rows(table, rows).tolist() == want
+
+
 def test_preview_paints_near_over_far_and_culls_back_faces(tmp_path):
     from PIL import Image
 

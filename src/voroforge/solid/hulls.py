@@ -587,32 +587,50 @@ def _inner_struts(g, ie):
     return [mf.Manifold.hull_points(np.vstack([x, y])) for x, y in zip(r0, r1, strict=True)]
 
 
+def _mix(x):
+    """splitmix64's finaliser: every input bit moves every output bit (uint64, in place)."""
+    x ^= x >> np.uint64(30)
+    x *= np.uint64(0xBF58476D1CE4E5B9)
+    x ^= x >> np.uint64(27)
+    x *= np.uint64(0x94D049BB133111EB)
+    x ^= x >> np.uint64(31)
+    return x
+
+
 def _row_hash(a) -> np.ndarray:
-    """A 64-bit hash of each row's three float64 bit patterns (wrapping multiply-xor)."""
+    """A 64-bit hash of each row's three float64 bit patterns."""
     u = np.ascontiguousarray(a, dtype=np.float64).view(np.uint64).reshape(-1, 3)
     with np.errstate(over="ignore"):
-        h = u[:, 0] * np.uint64(0x9E3779B97F4A7C15)
-        h ^= u[:, 1] * np.uint64(0xC2B2AE3D27D4EB4F)
-        h ^= u[:, 2] * np.uint64(0x165667B19E3779F9)
-    return h
+        h = _mix(u[:, 0].copy())
+        h = _mix(h ^ u[:, 1])
+        return _mix(h ^ u[:, 2])
 
 
 def _find_rows(table, rows) -> np.ndarray:
     """Index in ``table`` of each of ``rows`` found bit for bit (first match), else -1.
 
-    Rows are looked up by hash (sorted, stable: the first of equal hashes comes first) and
-    the candidate is then compared exactly, so a collision can only report a miss.
+    Rows are looked up by a 64-bit hash (sorted stably: equal hashes keep the table's
+    order) and compared exactly; the rare run of equal hashes is searched in full.
     """
+    out = np.full(len(rows), -1, dtype=np.int64)
+    if len(table) == 0 or len(rows) == 0:
+        return out
     ht = _row_hash(table)
     order = np.argsort(ht, kind="stable")
     hs = ht[order]
     hr = _row_hash(rows)
-    pos = np.minimum(np.searchsorted(hs, hr), max(len(hs) - 1, 0))
-    if len(hs) == 0:
-        return np.full(len(rows), -1, dtype=np.int64)
-    cand = order[pos]
-    ok = (hs[pos] == hr) & (table[cand] == rows).all(axis=1)
-    return np.where(ok, cand, -1)
+    lo = np.searchsorted(hs, hr, side="left")
+    hi = np.searchsorted(hs, hr, side="right")
+    one = hi - lo == 1
+    cand = order[np.minimum(lo, len(hs) - 1)]
+    ok = one & (table[cand] == rows).all(axis=1)
+    out[ok] = cand[ok]
+    for q in np.flatnonzero(hi - lo > 1):  # equal hashes: the first exact match
+        for c in order[lo[q] : hi[q]]:
+            if (table[c] == rows[q]).all():
+                out[q] = c
+                break
+    return out
 
 
 def ring_area(k: int) -> float:
