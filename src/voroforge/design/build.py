@@ -49,29 +49,42 @@ class DesignWarning(UserWarning):
 # --- outputs ------------------------------------------------------------------------------
 
 
-def products(result: Result, *, kerf: float = 0.0) -> dict[str, list]:
-    """The geometry of every product name, optionally kerf-compensated (polygons only)."""
+#: The product names of ``output.layers`` (``labels`` is made by :func:`_labels`).
+PRODUCTS = ("frame", "openings", "cells", "edges", "sites", "boundary", "curves")
+
+
+def products(result: Result, *, kerf: float = 0.0, names=PRODUCTS) -> dict[str, list]:
+    """The geometry of the named products, optionally kerf-compensated (polygons only).
+
+    Only the products named are made (the unique edges, say, cost a pass over every cell).
+    """
     from .fabrication import kerf as apply_kerf
 
-    frame = result.frame
-    openings = list(result.openings)
-    cells = [c for c in result.cells if not c.is_empty]
-    if kerf > 0:
-        frame = apply_kerf(frame, kerf, role="part")
-        openings = list(apply_kerf(openings, kerf, role="hole")) if openings else []
-        cells = list(apply_kerf(cells, kerf, role="part")) if cells else []
-    # The outline is the part's edge too: cut on a layer, it grows like the frame.
-    outline = apply_kerf(result.boundary, kerf, role="part") if kerf > 0 else result.boundary
-    return {
-        "frame": [frame],
+    def frame():
+        return [apply_kerf(result.frame, kerf, role="part") if kerf > 0 else result.frame]
+
+    def openings():
+        holes = list(result.openings)
+        return list(apply_kerf(holes, kerf, role="hole")) if kerf > 0 and holes else holes
+
+    def cells():
+        live = [c for c in result.cells if not c.is_empty]
+        return list(apply_kerf(live, kerf, role="part")) if kerf > 0 and live else live
+
+    def boundary():  # the outline is the part's edge too: cut on a layer, it grows like the frame
+        return [apply_kerf(result.boundary, kerf, role="part") if kerf > 0 else result.boundary]
+
+    made = {
+        "frame": frame,
         "openings": openings,
         "cells": cells,
-        "edges": [result.edges],
-        "sites": [shapely.MultiPoint(result.sites)],
-        "boundary": [outline],
+        "edges": lambda: [result.edges],
+        "sites": lambda: [shapely.MultiPoint(result.sites)],
+        "boundary": boundary,
         # seeds.method = "curves": the cell edges along the seed curves (veins, seams)
-        "curves": [result.extra["curve_edges"]] if "curve_edges" in result.extra else [],
+        "curves": lambda: [result.extra["curve_edges"]] if "curve_edges" in result.extra else [],
     }
+    return {name: made[name]() for name in names}
 
 
 def _labels(result: Result) -> list:
@@ -91,13 +104,22 @@ def _uses(result: Result, product: str) -> bool:
 
 
 def _layers(result: Result, kerf: float) -> dict[str, list]:
-    made = products(result, kerf=kerf)
-    if _uses(result, "labels"):
+    """Layer name -> geometry of ``output.layers`` (made once, then reused by every writer)."""
+    layers = result.design.output.layers
+    # keyed by what decides it: an editor may reuse a result's extra with other [output] keys
+    spec = tuple((k, v if isinstance(v, str) else tuple(v)) for k, v in layers.items())
+    key = ("layers", float(kerf), spec, result.design.output.label_height)
+    if key in result.extra:
+        return result.extra[key]
+    wanted = {n for what in layers.values() for n in ([what] if isinstance(what, str) else what)}
+    made = products(result, kerf=kerf, names=[n for n in PRODUCTS if n in wanted])
+    if "labels" in wanted:
         made["labels"] = _labels(result)
     out = {}
-    for name, what in result.design.output.layers.items():
+    for name, what in layers.items():
         names = [what] if isinstance(what, str) else list(what)
         out[name.upper()] = [g for n in names for g in made[n]]
+    result.extra[key] = out
     return out
 
 
@@ -196,7 +218,7 @@ def _geojson(result: Result, path: Path, base: Path | None = None) -> Path:
 
         geoms, sites, props = cell_features(result)
         return write_geojson(geoms, path, sites=sites, properties=props, crs=crs)
-    geoms = _labels(result) if what == "labels" else products(result)[what]
+    geoms = _labels(result) if what == "labels" else products(result, names=[what])[what]
     if what == "edges":
         geoms = list(shapely.get_parts(result.edges))
     return write_geojson(geoms, path, crs=crs)
@@ -473,11 +495,10 @@ def _warn_empty_layers(result: Result) -> None:
     """Warn about SVG/DXF layers with nothing on them (a cut file that cuts nothing)."""
     import warnings
 
-    made = products(result)
-    made["labels"] = _labels(result) if _uses(result, "labels") else []
+    made = _layers(result, 0.0)
     for name, what in result.design.output.layers.items():
         names = [what] if isinstance(what, str) else list(what)
-        if all(g.is_empty for n in names for g in made[n]):
+        if all(g.is_empty for g in made[name.upper()]):
             hint = ""
             if "frame" in names and len(result.openings):
                 hint = (

@@ -62,7 +62,8 @@ def _seed_rows(result, table) -> tuple[np.ndarray, np.ndarray, dict]:
     cell = np.full(n, None, dtype=object)
     cell[table.rows] = np.arange(len(table.rows))
     props: dict = {"cell": cell}
-    for name, values in (("field", result.values), ("opening", result.mask)):
+    columns = (("field", result.values), ("opening", result.mask), ("level", result.level))
+    for name, values in columns:
         column = np.full(n, None, dtype=object)
         column[table.rows] = values.tolist()
         props[name] = column
