@@ -299,16 +299,40 @@ def group_discs(xy, r):
     return boxes, member
 
 
-def _finish(t, spec, tables, own, info):
-    """Sort the tile's cells by site, add the attributes and write its partition file."""
+def _merged(tables):
+    """The tables of a tile's rounds as one, sorted by ``site_id``.
+
+    The first round's table is sorted and holds nearly every cell; the few recomputed rows
+    are slotted in between slices of it (zero-copy) rather than sorting the whole table.
+    """
     import pyarrow as pa
 
+    first = tables[0]
+    rest = pa.concat_tables(tables[1:]) if len(tables) > 1 else first.slice(0, 0)
+    if len(rest) > 1:
+        rest = rest.take(np.argsort(rest.column("site_id").to_numpy(), kind="stable"))
+    a = first.column("site_id").to_numpy()
+    b = rest.column("site_id").to_numpy()
+    if not len(b):
+        return first
+    if len(b) > 1000:  # many recomputations (tiny tiles): one sort
+        both = pa.concat_tables([first, rest])
+        return both.take(np.argsort(np.concatenate((a, b)), kind="stable"))
+    at = np.searchsorted(a, b)
+    parts, prev = [], 0
+    for j, k in enumerate(at):
+        parts.append(first.slice(prev, int(k) - prev))
+        parts.append(rest.slice(j, 1))
+        prev = int(k)
+    parts.append(first.slice(prev))
+    return pa.concat_tables([p for p in parts if len(p)])
+
+
+def _finish(t, spec, tables, own, info):
+    """Sort the tile's cells by site, add the attributes and write its partition file."""
     from ..io.parquet import geo_metadata, write_table
 
-    table = pa.concat_tables(tables) if len(tables) > 1 else tables[0]
-    sid = table.column("site_id").to_numpy()
-    if len(sid) > 1 and not (sid[1:] > sid[:-1]).all():
-        table = table.take(np.argsort(sid, kind="stable"))
+    table = _merged(tables)
     if len(table) != len(own.ids) or not np.array_equal(
         table.column("site_id").to_numpy(), own.ids
     ):
