@@ -425,14 +425,18 @@ def _run(cl, source, job):
             resumed += 1
             continue
         futures.append(cl.submit(run_tile, t, s, store, tiling, pure=False))
-    if progress is not None:
-        progress(len(infos), ntiles)
-    for f in as_completed(futures):
-        info = f.result()
-        infos[info["tile"]] = info
-        f.release()
+    try:
         if progress is not None:
             progress(len(infos), ntiles)
+        for f in as_completed(futures):
+            info = f.result()
+            infos[info["tile"]] = info
+            f.release()
+            if progress is not None:
+                progress(len(infos), ntiles)
+    except BaseException:
+        cl.cancel(futures)  # an interrupted job leaves no queued tiles behind on the cluster
+        raise
     del futures
     shutil.rmtree(shuffle, ignore_errors=True)
     lap("tiles")
