@@ -281,8 +281,9 @@ SURFACE_STRAIGHT_DEG = 10.0
 
 # --- voronoi3d (3D cells, containers) -----------------------------------------------------------
 
-#: A cell vertex this close to a cutting plane (relative to |d| * cell radius + |offset|, the
-#: scale of the plane's float value) is on it: kept unmoved, and the plane joins its owners
+#: The 3D cut's float filter: a vertex's value against a bisector plane farther from 0 than
+#: this (relative to |d| * cell radius + |offset|, the scale of the value) is trusted; one
+#: within it is decided exactly (kernels/predicates3d) on the vertex's owners
 VORONOI3D_CUT_RTOL = 1e-12
 #: Relative slack of the 3D stop test and of the "plane beyond every vertex" skip (inclusive,
 #: so a site whose plane only touches the cell is still visited and named as an owner)
