@@ -216,6 +216,14 @@ def test_count_steps_recompute_only_the_cells_near_the_added_or_dropped_seeds(na
         s.settle()
         assert _wkb(s.result.cells) == _wkb(full.cells) and _wkb(s.result.raw) == _wkb(full.raw)
     assert fast >= 4  # the small steps took the incremental path (560: 79 dropped, in full)
+    # hand-moved seeds, then a count step: the seeds come from [seeds] again
+    x, y = s.result.sites[7]
+    s.apply({"op": "move", "i": 7, "x": float(x) + 2.0, "y": float(y)})
+    assert s.sites is not None
+    s.apply({"op": "set", "key": "seeds.count", "value": 562})
+    assert s.sites is None and s.provisional
+    full = compute(s.design, s.folder, frame=False)
+    assert np.array_equal(s.result.sites, full.sites) and _close(s.result.raw, full.raw)
     # every seed new, or more than the seeds changed: the full computation
     assert s.apply({"op": "set", "key": "design.seed", "value": 9}).kind == "update"
     assert not s.provisional
