@@ -89,9 +89,17 @@ def _idle(page, timeout=60_000):
 
 
 def _shot(page, name):
+    """Keep a screenshot (``VOROFORGE_STUDIO_SHOTS``), in 256 colours as the docs hold them."""
     if SHOTS:
+        from PIL import Image
+
         Path(SHOTS).mkdir(parents=True, exist_ok=True)
-        page.screenshot(path=str(Path(SHOTS) / name))
+        path = Path(SHOTS) / name
+        page.screenshot(path=str(path))
+        with Image.open(path) as im:
+            rgb = im.convert("RGB")
+        quantized = rgb.quantize(256, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
+        quantized.save(path, optimize=True)
 
 
 @pytest.fixture(scope="module")
