@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import argparse
 import gc
+import hashlib
 import os
 import re
 import subprocess
@@ -53,8 +54,13 @@ NUMBER = re.compile(r"-?\d+(?:\.\d+)?(?:e[-+]?\d+)?")
 
 def _import_base(tree: Path):
     """The package of ``tree`` imported as ``vfbase`` (a link to ``tree/src/voroforge``)."""
-    link_dir = Path(tempfile.mkdtemp(prefix="vf-ab-"))
-    (link_dir / "vfbase").symlink_to((tree / "src" / "voroforge").resolve())
+    target = (tree / "src" / "voroforge").resolve()
+    # one folder per tree, kept: numba's cache is keyed by the source path
+    tag = hashlib.sha1(str(target).encode()).hexdigest()[:12]
+    link_dir = Path(tempfile.gettempdir()) / f"vf-ab-{tag}"
+    link_dir.mkdir(exist_ok=True)
+    if not (link_dir / "vfbase").exists():
+        (link_dir / "vfbase").symlink_to(target)
     sys.path.insert(0, str(link_dir))
     import vfbase
 
