@@ -99,3 +99,56 @@ def test_bad_input(tmp_path):
 def test_atomic_no_leftovers(tmp_path):
     mio.write(trimesh.creation.box((1, 1, 1)), tmp_path / "a.stl")
     assert [p.name for p in tmp_path.iterdir()] == ["a.stl"]
+
+
+def _zip3mf(path, model: str):
+    import zipfile
+
+    with zipfile.ZipFile(path, "w") as z:
+        z.writestr("[Content_Types].xml", mio._CT)
+        z.writestr("_rels/.rels", mio._RELS)
+        z.writestr("3D/3dmodel.model", model)
+    return path
+
+
+def test_3mf_fast_reader_agrees_with_the_xml_parser(tmp_path):
+    a, b = _sphere(), trimesh.creation.box((2.0, 3.0, 4.0))
+    data = mio._3mf_bytes([("a", a), ("b", b)], "mm")
+    import io
+    import zipfile
+
+    model = zipfile.ZipFile(io.BytesIO(data)).read("3D/3dmodel.model")
+    fast, slow = mio._3mf_meshes_fast(model), mio._3mf_meshes_xml(model)
+    assert len(fast) == len(slow) == 2
+    for (v1, f1), (v2, f2) in zip(fast, slow, strict=True):
+        assert v1.tobytes() == v2.tobytes() and (f1 == f2).all()
+    assert (fast[0][0] == a.vertices).all() and (fast[1][1] == b.faces).all()
+    # same file byte for byte when written twice
+    assert mio._3mf_bytes([("a", a)], "mm") == mio._3mf_bytes([("a", a)], "mm")
+
+
+@pytest.mark.parametrize(
+    ("vertex", "fast"),
+    [
+        ("<m:vertex z='{z}' y='{y}' x='{x}'/>", False),  # other order, single quotes: XML
+        ('<m:vertex x="{x}" y="{y}" z="{z}" />', True),  # the common layout, prefixed
+    ],
+)
+def test_3mf_other_layouts_read(tmp_path, vertex, fast):
+    box = trimesh.creation.box((1.0, 2.0, 3.0))
+    verts = "".join(vertex.format(x=x, y=y, z=z) for x, y, z in box.vertices.tolist())
+    tris = "".join(f'<m:triangle v1="{a}" v2="{b}" v3="{c}"/>' for a, b, c in box.faces)
+    model = (
+        '<?xml version="1.0"?><m:model unit="centimeter" xmlns:m="'
+        + mio._NS3MF
+        + '"><m:resources><m:object id="1" type="model"><m:mesh><m:vertices>'
+        + verts
+        + "</m:vertices><m:triangles>"
+        + tris
+        + '</m:triangles></m:mesh></m:object></m:resources><m:build><m:item objectid="1"/>'
+        + "</m:build></m:model>"
+    )
+    assert (mio._3mf_meshes_fast(model.encode()) is not None) == fast
+    m = mio.read(_zip3mf(tmp_path / "x.3mf", model))
+    assert m.is_volume and m.metadata["units"] == "cm"
+    assert abs(m.volume - 6.0) <= 1e-12

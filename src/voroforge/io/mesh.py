@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import io
 import os
+import re
 import tempfile
 import zipfile
 from pathlib import Path
@@ -185,6 +186,59 @@ def _ply_bytes(m) -> bytes:
     return head.encode() + v.tobytes() + rec.tobytes()
 
 
+_RE_OBJECT = re.compile(rb"<(?:[\w.-]+:)?object[\s>]")
+_RE_VERTEX = re.compile(rb'<(?:[\w.-]+:)?vertex\s+x="([^"]*)"\s+y="([^"]*)"\s+z="([^"]*)"\s*/>')
+_RE_TRIANGLE = re.compile(rb'<(?:[\w.-]+:)?triangle\s+v1="(\d+)"\s+v2="(\d+)"\s+v3="(\d+)"[^>]*/>')
+_RE_TAG = re.compile(rb"<(?:[\w.-]+:)?(vertex|triangle)[\s/>]")
+
+
+def _3mf_meshes_fast(data: bytes):
+    """Each object's ``(vertices, faces)`` by regular expressions, or None.
+
+    The common layout (``x y z`` and ``v1 v2 v3`` in that order, double quotes, as this
+    module and most slicers write it) converted by numpy in C; any element the patterns miss
+    (counted against every vertex and triangle tag) sends the file to the XML parser.
+    """
+    out = []
+    for seg in _RE_OBJECT.split(data)[1:]:
+        vm = _RE_VERTEX.findall(seg)
+        tm = _RE_TRIANGLE.findall(seg)
+        tags = _RE_TAG.findall(seg)
+        if len(vm) + len(tm) != len(tags) or tags.count(b"vertex") != len(vm):
+            return None
+        if not vm:
+            continue
+        try:
+            v = np.array(vm, dtype=np.bytes_).astype(np.float64).reshape(-1, 3)
+            f = np.array(tm, dtype=np.bytes_).astype(np.int64).reshape(-1, 3)
+        except ValueError:
+            return None
+        out.append((v, f))
+    return out
+
+
+def _3mf_meshes_xml(data: bytes):
+    """Each object's ``(vertices, faces)`` through ElementTree (any valid layout)."""
+    root = ET.fromstring(data)
+    ns = root.tag[1:].split("}")[0] if root.tag.startswith("{") else ""
+    out = []
+    for obj in root.iter(f"{{{ns}}}object"):
+        mesh = obj.find(f"{{{ns}}}mesh")
+        if mesh is None:
+            continue
+        v = np.array(
+            [[float(e.get(c)) for c in "xyz"] for e in mesh.iter(f"{{{ns}}}vertex")],
+            dtype=np.float64,
+        ).reshape(-1, 3)
+        f = np.array(
+            [[int(e.get(c)) for c in ("v1", "v2", "v3")] for e in mesh.iter(f"{{{ns}}}triangle")],
+            dtype=np.int64,
+        ).reshape(-1, 3)
+        if len(v):
+            out.append((v, f))
+    return out
+
+
 def _read_3mf(path: Path):
     import trimesh
 
@@ -192,29 +246,21 @@ def _read_3mf(path: Path):
         names = [n for n in z.namelist() if n.lower().endswith(".model")]
         if not names:
             raise ValueError(f"{path}: not a 3MF file (no .model part)")
-        root = ET.fromstring(z.read(names[0]))
-    ns = {"m": root.tag[1:].split("}")[0]} if root.tag.startswith("{") else {"m": ""}
-    units = _FROM_3MF.get(root.get("unit", "millimeter"), "mm")
-    verts, faces, n = [], [], 0
-    for obj in root.iter(f"{{{ns['m']}}}object"):
-        mesh = obj.find("m:mesh", ns)
-        if mesh is None:
-            continue
-        tri_tag = f"{{{ns['m']}}}triangle"
-        v = np.array(
-            [[float(e.get(c)) for c in "xyz"] for e in mesh.iter(f"{{{ns['m']}}}vertex")],
-            dtype=np.float64,
-        ).reshape(-1, 3)
-        f = np.array(
-            [[int(e.get(c)) for c in ("v1", "v2", "v3")] for e in mesh.iter(tri_tag)],
-            dtype=np.int64,
-        ).reshape(-1, 3)
-        verts.append(v)
-        faces.append(f + n)
-        n += len(v)
-    if not verts:
+        data = z.read(names[0])
+    head = re.search(rb"<(?:[\w.-]+:)?model\b[^>]*>", data)
+    unit = re.search(rb'\sunit="([^"]*)"', head.group(0)) if head else None
+    units = _FROM_3MF.get(unit.group(1).decode() if unit else "millimeter", "mm")
+    meshes = _3mf_meshes_fast(data)
+    if meshes is None:
+        meshes = _3mf_meshes_xml(data)
+    if not meshes:
         raise ValueError(f"{path}: the 3MF file holds no mesh objects")
-    m = trimesh.Trimesh(np.vstack(verts), np.vstack(faces), process=True)
+    offsets = np.cumsum([0] + [len(v) for v, _ in meshes])
+    m = trimesh.Trimesh(
+        np.vstack([v for v, _ in meshes]),
+        np.vstack([f + o for (_, f), o in zip(meshes, offsets, strict=False)]),
+        process=True,
+    )
     m.metadata["units"] = units
     return m
 
