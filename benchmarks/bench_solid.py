@@ -113,9 +113,8 @@ def big(n: int) -> None:
     rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2
     p = m.metadata["parts"]
     load = os.getloadavg()[0]
-    print(
-        f"{n} {dt:.1f} {dcpu:.1f} {rss:.2f} {m.is_volume} {len(m.faces)} {p['joints']} {load:.1f}"
-    )
+    joints = f"{p['method']}:{p.get('joints', '-')}"  # the route that ran (hull: its joints)
+    print(f"{n} {dt:.1f} {dcpu:.1f} {rss:.2f} {m.is_volume} {len(m.faces)} {joints} {load:.1f}")
 
 
 def main() -> None:
@@ -159,7 +158,7 @@ def main() -> None:
         nn, sec, cpu, gb, vol, faces, joints, load = out.stdout.split()
         print(
             f"10,000 cells: {sec} s ({cpu} s CPU), peak RSS {gb} GB, is_volume {vol}, "
-            f"{faces} faces, {joints} joints (load {load})"
+            f"{faces} faces, route:joints {joints} (load {load})"
         )
 
 
