@@ -526,9 +526,10 @@ def _joints(g, groups, ce, pieces):
     P = P[used]
     t0 = np.concatenate([[0], np.cumsum(ntri)])
     rings = np.vstack([pc.pts[pc.n_in :] for pc in pcs])
+    struts = _inner_struts(g, np.concatenate([ie for _, ie in groups]))
     unions = []
     vol = 0.0
-    at = 0
+    at = st = 0
     for cn, ie in groups:
         parts = []
         for x in range(at, at + len(cn)):
@@ -536,7 +537,8 @@ def _joints(g, groups, ce, pieces):
                 mesh = mf.Mesh64(P[c0[x] : c0[x + 1]], T[t0[x] : t0[x + 1]])
                 parts.append(mf.Manifold(mesh))
         at += len(cn)
-        parts.extend(_inner_struts(g, ie))
+        parts.extend(x for x in struts[st : st + len(ie)] if x is not None)
+        st += len(ie)
         union = mf.Manifold.batch_boolean(parts, mf.OpType.Add)
         out = union.to_mesh64()
         # copies: the manifold and its mesh (several arrays per triangle) go at once
@@ -569,22 +571,22 @@ def _joints(g, groups, ce, pieces):
 
 
 def _inner_struts(g, ie):
-    """Manifolds of the inner struts ``ie`` of joints.
+    """Manifolds of the inner struts ``ie`` of joints (None where a strut is left out).
 
-    Prisms from inside one node's sphere to inside the other's (none where the spheres
-    already cover the strut: fewer coincident faces for the union).
+    Prisms from inside one node's sphere to inside the other's; none where the spheres
+    already cover the strut (fewer coincident faces for the union).
     """
     import manifold3d as mf
 
     ea, eb = g.edges[ie, 0], g.edges[ie, 1]
     s0, s1 = 0.5 * g.sphere_r[ea], 0.5 * g.sphere_r[eb]
-    keep = g.length[ie] > s0 + s1
-    ie, ea, eb, s0, s1 = ie[keep], ea[keep], eb[keep], s0[keep], s1[keep]
     off = g.cs[None, :, None] * g.p[ie][:, None, :] + g.sn[None, :, None] * g.q[ie][:, None, :]
     u = g.u[ie][:, None, :]
     r0 = g.nodes[ea][:, None, :] + s0[:, None, None] * u + g.r_node[ea][:, None, None] * off
     r1 = g.nodes[eb][:, None, :] - s1[:, None, None] * u + g.r_node[eb][:, None, None] * off
-    return [mf.Manifold.hull_points(np.vstack([x, y])) for x, y in zip(r0, r1, strict=True)]
+    pts = np.concatenate([r0, r1], axis=1)
+    keep = (g.length[ie] > s0 + s1).tolist()
+    return [mf.Manifold.hull_points(x) if ok else None for x, ok in zip(pts, keep, strict=True)]
 
 
 def _mix(x):
