@@ -125,11 +125,11 @@ IDENTITY = textwrap.dedent(
     from distributed import Client
     from voroforge import scale
     from voroforge.io.parquet import write_cells
-    pts_path, boundary, out, tile_size = sys.argv[1:5]
+    pts_path, boundary, out, tile_size, _, workers = sys.argv[1:7]
     pts = np.load(pts_path)
     dom = polygon_with_holes() if boundary == "polygon" else None
     t = time.perf_counter()
-    with scale.local_cluster(2) as cl, Client(cl) as c:
+    with scale.local_cluster(int(workers)) as cl, Client(cl) as c:
         res = scale.voronoi(pts_path, dom, out=out + ".tiled", client=c,
                             tile_size=int(tile_size), overwrite=True)
     tiled_s = time.perf_counter() - t
@@ -169,7 +169,7 @@ def identity(args) -> None:
             np.save(work / "points.npy", pts)
             boundary = "polygon" if name == "polygon" else "none"
             cmd = [sys.executable, "-c", IDENTITY, str(work / "points.npy"), boundary]
-            cmd += [str(work / "out"), str(args.tile_size), str(HERE)]
+            cmd += [str(work / "out"), str(args.tile_size), str(HERE), str(args.workers)]
             proc = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
             line = [x for x in proc.stdout.splitlines() if x.startswith("RESULT ")]
             if not line:
@@ -192,7 +192,7 @@ def identity(args) -> None:
     print_table(
         ["input", "sites", "tiles", "recomputed", "uncertified", "tiled s", "against one process"],
         rows,
-        title=f"scale identity, tile size {args.tile_size}, 2 workers",
+        title=f"scale identity, tile size {args.tile_size}, {args.workers} workers",
     )
 
 
