@@ -53,9 +53,23 @@ def _bits(v):
 
 
 def _canonical_center(a, b, c, xs, ys, ws):
-    """The rule's definition: :func:`center` on the owners sorted by (x, y, index)."""
+    """The rule's definition: :func:`center` on the owners sorted by (x, y, index).
+
+    With equal weights, a centre whose rounding bound exceeds ``VERTEX_REFINE_RTOL`` of its
+    magnitude is the exact expansions' (a sliver's), when that is finite.
+    """
+    from voroforge.config import VERTEX_REFINE_RTOL
+    from voroforge.kernels.expansion import exact_circumcenter
+    from voroforge.kernels.vertex import center_error
+
     a, b, c = sorted((a, b, c), key=lambda i: (xs[i], ys[i], i))
-    return center(xs[a], ys[a], ws[a], xs[b], ys[b], ws[b], xs[c], ys[c], ws[c])
+    args = (xs[a], ys[a], ws[a], xs[b], ys[b], ws[b], xs[c], ys[c], ws[c])
+    x, y = center(*args)
+    if ws[a] == ws[b] == ws[c] and center_error(*args) > VERTEX_REFINE_RTOL * (abs(x) + abs(y)):
+        rx, ry = exact_circumcenter(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c])
+        if np.isfinite(rx) and np.isfinite(ry):
+            return rx, ry
+    return x, y
 
 
 def _triples_catalogue():

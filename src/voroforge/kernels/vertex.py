@@ -280,7 +280,12 @@ def voronoi_vertex(a, b, c, xs, ys):
 
 @njit(**NJIT)
 def power_vertex(a, b, c, xs, ys, ws):
-    """The power vertex named by weighted sites ``a, b, c`` (any argument order)."""
+    """The power vertex named by weighted sites ``a, b, c`` (any argument order).
+
+    With equal weights it is :func:`voronoi_vertex`, bit for bit (slivers included).
+    """
+    if ws[a] == ws[b] and ws[b] == ws[c]:
+        return voronoi_vertex(a, b, c, xs, ys)
     x, y, ok = _center_if_order_free(xs[a], ys[a], ws[a], xs[b], ys[b], ws[b], xs[c], ys[c], ws[c])
     if ok:
         return x, y
