@@ -108,6 +108,7 @@ class _Geo:
         self.d_push = np.zeros(2 * self.E)  # ends pushed out by conflicts in their joint
         self.piece: list = [None] * self.V  # each node's latest hull (see _assemble)
         self.built = None  # what the hulls were built from
+        self.pockets = (0, 0.0)  # cavities of the joints' unions filled, their volume
 
 
 def hull_lattice(nodes, edges, r_node, *, segments=8, sphere=1, node_scale=1.0):
@@ -136,7 +137,9 @@ def hull_lattice(nodes, edges, r_node, *, segments=8, sphere=1, node_scale=1.0):
     parts : dict
         ``hull_volume`` (node hulls and joint unions, ring faces included), ``strut_volume``
         (analytic prisms between the rings), ``merged`` (nodes that joined another node's
-        joint), ``joints`` (joints of several nodes, each a manifold3d union), ``rounds``.
+        joint), ``joints`` (joints of several nodes, each a manifold3d union), ``rounds``,
+        ``pockets`` and ``pocket_volume`` (cavities smaller than a strut's diameter that the
+        joints' unions enclosed, filled).
     """
     g = _Geo(nodes, edges, r_node, int(segments), sphere, node_scale)
     E = g.E
@@ -161,6 +164,8 @@ def hull_lattice(nodes, edges, r_node, *, segments=8, sphere=1, node_scale=1.0):
             "merged": int(g.V - len(np.unique(label))),
             "joints": n_joints,
             "rounds": rounds,
+            "pockets": g.pockets[0],
+            "pocket_volume": g.pockets[1],
         }
         return verts, faces, parts
     raise ValueError(
@@ -550,6 +555,9 @@ def _joints(g, groups, ce, pieces):
     verts = np.vstack([v for v, _ in unions])
     tris = np.vstack([t + o for (_, t), o in zip(unions, nv, strict=False)])
     del unions
+    tris, filled, count = _fill_pockets(verts, tris, 2.0 * float(g.r_node.min()))
+    vol += filled
+    g.pockets = (count, filled)
     # the rings' vertices must come back bit for bit, their faces as whole polygons
     ridx = _find_rows(verts, rings).reshape(-1, k)
     m = len(ce)
@@ -568,6 +576,35 @@ def _joints(g, groups, ce, pieces):
     if bad.any():
         return None, ce[bad]
     return verts, tris[~cap], ridx, vol
+
+
+def _fill_pockets(verts, tris, size):
+    """Drop the union's closed cavities smaller than ``size``: ``(tris, volume, count)``.
+
+    Convex parts that overlap can enclose tiny pockets (a few faces, a fraction of a strut
+    across): sealed voids no printer resolves that ``check`` would list as trapped. A cavity
+    is a connected shell of negative volume; its volume is added back to the solid's.
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    if len(tris) == 0:
+        return tris, 0.0, 0
+    nv = len(verts)
+    g = coo_matrix(
+        (np.ones(2 * len(tris)), (tris[:, :2].ravel(), tris[:, 1:].ravel())), shape=(nv, nv)
+    )
+    n, lab = connected_components(g, directed=False)
+    fl = lab[tris[:, 0]]
+    t = verts[tris]
+    vol = np.bincount(fl, np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])), n) / 6.0
+    lo = np.full((n, 3), np.inf)
+    hi = np.full((n, 3), -np.inf)
+    for i in range(3):
+        np.minimum.at(lo[:, i], fl, t[:, :, i].min(axis=1))
+        np.maximum.at(hi[:, i], fl, t[:, :, i].max(axis=1))
+    pocket = (vol < 0) & ((hi - lo).max(axis=1) < size)
+    return tris[~pocket[fl]], float(-vol[pocket].sum()), int(pocket.sum())
 
 
 def _inner_struts(g, ie):
