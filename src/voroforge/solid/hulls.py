@@ -591,8 +591,10 @@ def _fill_pockets(verts, tris, size):
     if len(tris) == 0:
         return tris, 0.0, 0
     nv = len(verts)
+    ij = tris.astype(np.int32)  # the vertex graph in int32 and bytes: bounded memory
     g = coo_matrix(
-        (np.ones(2 * len(tris)), (tris[:, :2].ravel(), tris[:, 1:].ravel())), shape=(nv, nv)
+        (np.ones(2 * len(ij), dtype=np.int8), (ij[:, :2].ravel(), ij[:, 1:].ravel())),
+        shape=(nv, nv),
     )
     n, lab = connected_components(g, directed=False)
     fl = lab[tris[:, 0]]
