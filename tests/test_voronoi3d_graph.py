@@ -147,14 +147,17 @@ def test_cells_that_fall_back_to_face_rings(monkeypatch):
 
 
 def test_cells_past_their_slots_are_built_again_in_place(monkeypatch):
-    """With per-cell slots for 12 vertices most cells overflow and are built again alone;
-    the face table must stay in build order and the diagram be the same."""
+    """Cells past their slots are built again alone and joined in their place.
+
+    With slots for 28 vertices and 16 faces, 51 of these 300 cells overflow; the face table
+    must stay in build order and the diagram be the same.
+    """
     import voroforge as vf
     from voroforge.engine import build3d
 
     pts = np.random.default_rng(4).random((300, 3))
     a = vf.voronoi3d(pts, (0, 0, 0, 1, 1, 1))
-    monkeypatch.setattr(build3d, "CAPS", (12, 8, 40) + build3d.CAPS[3:])
+    monkeypatch.setattr(build3d, "CAPS", (28, 16, 100) + build3d.CAPS[3:])
     b = vf.voronoi3d(pts, (0, 0, 0, 1, 1, 1))
     monkeypatch.undo()
     assert (a.volumes == b.volumes).all()

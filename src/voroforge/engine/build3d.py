@@ -86,7 +86,7 @@ def search_order(g: np.ndarray, radius: int) -> np.ndarray:
 #: 1e5 uniform cells reach 64 vertices), scratch (vertices, faces, ring entries) and the most
 #: edges at a vertex of the cell's graph (kernels/cells3d.build_cells)
 CAPS = (96, 48, 320, 1024, 512, 4096, 24)
-BIG_CAPS_FACTOR = 16
+BIG_CAPS_FACTOR = 4
 #: the vertex table's largest load before it doubles
 TABLE_LOAD = 0.7
 

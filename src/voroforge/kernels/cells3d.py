@@ -64,7 +64,7 @@ def _scratch(vcap, fcap, rcap, ncand, nbuck):
     S = np.zeros(vcap)
     work = np.zeros((max(vcap, rcap), 4), np.int64)
     T = np.zeros((4 * vcap, 1), np.int64)  # the sites whose planes cut or touched the cell
-    OWN = np.zeros((vcap, max(MAX_OWNERS, vcap // 16)), np.int64)
+    OWN = np.zeros((vcap, max(MAX_OWNERS, vcap // 16)), np.int32)
     cand = np.zeros(ncand, np.int64)
     cd2 = np.zeros(ncand)
     buck = np.zeros(nbuck, np.int64)
