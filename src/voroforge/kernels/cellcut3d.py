@@ -1,0 +1,430 @@
+"""One 3D cell: the container cut by the bisector planes of nearby sites, nearest first.
+
+The search and cut half of the cell builder (:mod:`kernels.cells3d` names the vertices and
+writes the slots). :func:`_one_cell` starts from the container polyhedron (relative to the
+site), visits the buckets in the precomputed order of their least possible distance and
+then shell by shell (:mod:`kernels.grid3d`), gathers the candidates of one distance, cuts by
+them nearest first (:func:`_cut_batch`), and stops once no unscanned site can reach the cell
+(:func:`_far`: twice the cell's radius, widened by the weights' spread).
+
+The cell is held as a vertex graph (:mod:`kernels.graph3d`) when the template has one,
+else (and as the fallback the caller runs when the graph reports ``BROKEN``) as face rings
+cut by :func:`kernels.polyhedron.cut`. Vertex values farther from a plane than the float
+filter's band are trusted; those within it are decided exactly on the vertex's owners
+(:func:`_resolve`, :func:`kernels.predicates3d.bisector_side`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ..config import NJIT, VORONOI3D_CUT_RTOL, VORONOI3D_STOP_RTOL
+from .graph3d import GCUT_DONE, GCUT_EMPTY, to_rings
+from .graph3d import cut as graph_cut
+from .grid3d import bucket3d, shell_buckets, shell_gap
+from .polyhedron import CUT_DONE, CUT_EMPTY, CUT_OVERFLOW, cut
+from .predicates3d import bisector_side
+
+OK = 0
+EMPTY = 1
+OVERFLOW = 2
+BROKEN = 3
+UNNAMED = 4
+
+MAX_OWNERS = 32
+#: small hot helpers are inlined into their callers (numba's own inliner): a call that
+#: passes arrays costs reference counting, and the search makes ~100 such calls per cell
+NJIT_INLINE = {**NJIT, "inline": "always"}
+
+
+@njit(**NJIT_INLINE)
+def _radius2(V, nv):
+    r = 0.0
+    for v in range(nv):
+        r = max(r, V[v, 0] * V[v, 0] + V[v, 1] * V[v, 1] + V[v, 2] * V[v, 2])
+    return r
+
+
+@njit(**NJIT)
+def _scratch(vcap, fcap, rcap, ncand, nbuck):
+    V = np.zeros((vcap, 3))
+    F = np.zeros((fcap, 3), np.int64)
+    R = np.zeros(rcap, np.int64)
+    R2 = np.zeros(rcap, np.int64)
+    S = np.zeros(vcap)
+    work = np.zeros((max(vcap, rcap), 4), np.int64)
+    T = np.zeros((4 * vcap, 1), np.int64)  # the sites whose planes cut or touched the cell
+    OWN = np.zeros((vcap, max(MAX_OWNERS, vcap // 16)), np.int32)
+    cand = np.zeros(ncand, np.int64)
+    cd2 = np.zeros(ncand)
+    buck = np.zeros(nbuck, np.int64)
+    return V, F, R, R2, S, work, T, OWN, cand, cd2, buck
+
+
+@njit(**NJIT)
+def _graph_scratch(vcap, degree):
+    """The vertex-graph arrays of :mod:`kernels.graph3d`: ``(DEG, ED, BK, LB, CP, seen, FL)``.
+
+    ``degree`` is the most edges a vertex may have (more: the cell is built with face rings).
+    ``FL`` flags the vertices found exactly on a plane (more owners than their faces).
+    """
+    DEG = np.zeros(vcap, np.int32)
+    ED = np.zeros((vcap, degree), np.int32)
+    BK = np.zeros((vcap, degree), np.int32)
+    LB = np.zeros((vcap, degree), np.int32)
+    CP = np.zeros((vcap, 3), np.int64)
+    seen = np.zeros((vcap, degree), np.bool_)
+    FL = np.zeros(vcap, np.bool_)
+    return DEG, ED, BK, LB, CP, seen, FL
+
+
+@njit(**NJIT_INLINE)
+def _key(lab, ns):
+    """The owner key of a face label: a site, or ``ns + w`` for wall ``w`` (label ``-1 - w``)."""
+    return lab if lab >= 0 else ns + (-1 - lab)
+
+
+@njit(**NJIT)
+def _graph_side(i, v, j, DEG, LB, ns, P, W, WP, X):
+    """Exact side of graph vertex ``v`` of cell ``i`` against key ``j`` (see ``bisector_side``).
+
+    The vertex is where the planes of its faces meet: the first independent triple of its
+    face labels defines it. Returns 2 when none is independent.
+    """
+    d = DEG[v]
+    for a in range(d):
+        for b in range(a + 1, d):
+            for c in range(b + 1, d):
+                r = bisector_side(
+                    i,
+                    _key(LB[v, a], ns),
+                    _key(LB[v, b], ns),
+                    _key(LB[v, c], ns),
+                    j,
+                    P,
+                    W,
+                    WP,
+                    ns,
+                    X[0],
+                    X[1],
+                )
+                if r != 2:
+                    return r
+    return 2
+
+
+@njit(**NJIT)
+def _ring_side(i, v, j, C, nf, ns, P, W, WP, X):
+    """:func:`_graph_side` for a cell held as face rings (the fallback): its faces at ``v``."""
+    F = C[1]
+    R = C[2]
+    labs = C[5][:, 3]  # work's last column: free until the cut
+    m = 0
+    for f in range(nf):
+        for k in range(F[f, 2]):
+            if R[F[f, 1] + k] == v:
+                if m < labs.shape[0]:
+                    labs[m] = _key(F[f, 0], ns)
+                    m += 1
+                break
+    for a in range(m):
+        for b in range(a + 1, m):
+            for c in range(b + 1, m):
+                r = bisector_side(i, labs[a], labs[b], labs[c], j, P, W, WP, ns, X[0], X[1])
+                if r != 2:
+                    return r
+    return 2
+
+
+#: the value given to a vertex within the filter's band that is exactly off the plane and
+#: whose float value has the wrong sign: the cut then treats it as just off (no new vertex
+#: is moved by more than the float error)
+_TINY = 1e-300
+
+
+@njit(**NJIT_INLINE)
+def _values(V, nv, nx, ny, nz, h, tol, S):
+    """Signed values ``n . v - h`` of the cell's vertices (the float filter; inlined).
+
+    Returns ``(smax, near)``: the largest value and whether one is within ``tol`` of 0 (then
+    :func:`_resolve` decides those exactly).
+    """
+    smax = -np.inf
+    near = False
+    for v in range(nv):
+        s = nx * V[v, 0] + ny * V[v, 1] + nz * V[v, 2] - h
+        near |= abs(s) <= tol
+        S[v] = s
+        if s > smax:
+            smax = s
+    return smax, near
+
+
+@njit(**NJIT)
+def _resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X):
+    """Decide the values within ``tol`` of 0 exactly, on the vertices' owners.
+
+    The owners are the planes of the vertex's faces (:func:`_graph_side`,
+    :func:`_ring_side`): 0 when the vertex is on ``j``'s plane (in a graph it is flagged: it
+    may have more owners than faces), else the float value if its sign is right, or a tiny
+    value of the right sign. Returns the new largest value.
+    """
+    smax = -np.inf
+    graph = G[0].shape[0] > 0
+    ns = P.shape[0]
+    for v in range(nv):
+        s = S[v]
+        if abs(s) <= tol:
+            if graph:
+                side = _graph_side(i, v, j, G[0], G[3], ns, P, W, WP, X)
+            else:
+                side = _ring_side(i, v, j, C, nf, ns, P, W, WP, X)
+            if side == 0 or side == 2:
+                s = 0.0
+                if graph:
+                    G[6][v] = True
+            elif s == 0.0 or (s > 0.0) != (side > 0):
+                s = side * _TINY
+            S[v] = s
+        if s > smax:
+            smax = s
+    return smax
+
+
+@njit(**NJIT_INLINE)
+def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2):
+    """Cut cell ``i`` by the ``m`` gathered candidates, nearest first.
+
+    ``C = (V, F, R, R2, S, work, T)`` holds the cell (face rings) and the planes that cut or
+    touched it; ``G`` its vertex graph when ``G[0]`` is non-empty (then the rings are read
+    off at the end). ``X`` is the exact predicates' scratch. Returns
+    ``(status, nv, nf, nt, rmax2)``.
+    """
+    V, F, R, R2, S, work, T = C
+    graph = G[0].shape[0] > 0
+    for a in range(1, m):  # insertion sort: batches are small
+        ta = cand[a]
+        da = cd2[a]
+        b = a - 1
+        while b >= 0 and cd2[b] > da:
+            cand[b + 1] = cand[b]
+            cd2[b + 1] = cd2[b]
+            b -= 1
+        cand[b + 1] = ta
+        cd2[b + 1] = da
+    for a in range(m):
+        t = cand[a]
+        j = sidx[t]
+        d2 = cd2[a]
+        dx = SP[t, 0] - px
+        dy = SP[t, 1] - py
+        dz = SP[t, 2] - pz
+        h = 0.5 * (d2 + (wi - W[j]))
+        if h > 0.0 and h * h > rmax2 * d2 * (1.0 + VORONOI3D_STOP_RTOL):
+            continue  # the plane passes beyond every vertex
+        tol = VORONOI3D_CUT_RTOL * (np.sqrt(d2 * rmax2) + abs(h))
+        smax, near = _values(V, nv, dx, dy, dz, h, tol, S)
+        if near:
+            X[2][0] = True
+            smax = _resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X)
+        if smax == 0.0 or smax > 0.0:  # it cuts or touches: a possible owner of vertices
+            if nt >= T.shape[0]:
+                return OVERFLOW, 0, 0, 0, 0.0
+            T[nt, 0] = j
+            nt += 1
+        if smax <= 0.0:
+            continue
+        if graph:
+            st, nv2 = graph_cut(V, nv, G[0], G[1], G[2], G[3], G[6], S, G[4], j)
+            if st == GCUT_EMPTY:
+                return EMPTY, 0, 0, 0, 0.0
+            if st != GCUT_DONE:
+                return BROKEN, 0, 0, 0, 0.0
+            nf2 = 0
+        else:
+            st, nv2, nf2 = cut(V, nv, F, nf, R, R2, S, work, j)
+            if st == CUT_EMPTY:
+                return EMPTY, 0, 0, 0, 0.0
+            if st != CUT_DONE:
+                return (OVERFLOW if st == CUT_OVERFLOW else BROKEN), 0, 0, 0, 0.0
+        nv = nv2
+        nf = nf2
+        rmax2 = _radius2(V, nv)
+    return OK, nv, nf, nt, rmax2
+
+
+@njit(**NJIT_INLINE)
+def _gather(b, t, i, px, py, pz, start, SP, sidx, cand, cd2, m):
+    """Add the sites of bucket ``b`` from its ``t``-th on to the candidates, until full.
+
+    Returns ``(m, t)``: ``t < start[b + 1]`` when the candidate arrays filled up first.
+    """
+    ncap = cand.shape[0]
+    end = start[b + 1]
+    while t < end and m < ncap:
+        if sidx[t] != i:
+            dx = SP[t, 0] - px
+            dy = SP[t, 1] - py
+            dz = SP[t, 2] - pz
+            d2 = dx * dx + dy * dy + dz * dz
+            if d2 != 0.0:
+                cand[m] = t
+                cd2[m] = d2
+                m += 1
+        t += 1
+    return m, t
+
+
+@njit(**NJIT_INLINE)
+def _ordered_bucket(order, o, ci, cj, ck, px, py, pz, g, wi, wmax, rmax2):
+    """The bucket of ordered entry ``o`` around ``(ci, cj, ck)``, or -1 (outside, or too far)."""
+    ox = int(order[o, 0])
+    oy = int(order[o, 1])
+    oz = int(order[o, 2])
+    bx = ci + ox
+    by = cj + oy
+    bz = ck + oz
+    nx = int(g[6])
+    ny = int(g[7])
+    if bx < 0 or by < 0 or bz < 0 or bx >= nx or by >= ny or bz >= int(g[8]):
+        return -1
+    if order[o, 3] > 0.0:
+        gx = _axis_gap(px, g[0], g[3], bx, ox)
+        gy = _axis_gap(py, g[1], g[4], by, oy)
+        gz = _axis_gap(pz, g[2], g[5], bz, oz)
+        if _far(gx * gx + gy * gy + gz * gz, wi, wmax, rmax2):
+            return -1
+    return (bz * ny + by) * nx + bx
+
+
+@njit(**NJIT_INLINE)
+def _far(g2, wi, wmax, rmax2):
+    """No site at squared distance >= ``g2`` can cut or touch a cell of squared radius ``rmax2``."""
+    lhs = g2 + wi - wmax
+    return lhs > 0.0 and lhs * lhs > 4.0 * g2 * rmax2 * (1.0 + VORONOI3D_STOP_RTOL)
+
+
+@njit(**NJIT_INLINE)
+def _axis_gap(p, origin, size, b, off):
+    """Distance along one axis from coordinate ``p`` to bucket ``b`` (``off`` buckets away)."""
+    if off > 0:
+        return max(0.0, origin + b * size - p)
+    if off < 0:
+        return max(0.0, p - (origin + (b + 1) * size))
+    return 0.0
+
+
+@njit(**NJIT)
+def _one_cell(
+    i, P, W, WP, X, wmax, start, SP, sidx, g, order, TV, TF, TR, TG, C, G, cand, cd2, buck
+):
+    """Cut cell ``i``; leaves it in ``C``'s ``(V, F, R)``. Returns ``(status, nv, nf, nt, rmax2)``.
+
+    With a vertex graph ``G`` (``G[0]`` non-empty) the cell starts from the template's graph
+    ``TG`` and is cut as a graph; its rings are read off at the end.
+    """
+    V, F, R, R2, S, work, T = C
+    graph = G[0].shape[0] > 0
+    px = P[i, 0]
+    py = P[i, 1]
+    pz = P[i, 2]
+    wi = W[i]
+    ntv = TV.shape[0]
+    ntf = TF.shape[0]
+    if ntv > V.shape[0] or ntf > F.shape[0] or TR.shape[0] > R.shape[0]:
+        return OVERFLOW, 0, 0, 0, 0.0
+    for v in range(ntv):
+        V[v, 0] = TV[v, 0] - px
+        V[v, 1] = TV[v, 1] - py
+        V[v, 2] = TV[v, 2] - pz
+    if graph:
+        DEG, ED, BK, LB = G[0], G[1], G[2], G[3]
+        TDEG, TED, TBK, TLB = TG
+        for v in range(ntv):
+            G[6][v] = False
+            d = TDEG[v]
+            DEG[v] = d
+            for k in range(d):
+                ED[v, k] = TED[v, k]
+                BK[v, k] = TBK[v, k]
+                LB[v, k] = TLB[v, k]
+    else:
+        for f in range(ntf):
+            F[f, 0] = TF[f, 0]
+            F[f, 1] = TF[f, 1]
+            F[f, 2] = TF[f, 2]
+        for t in range(TR.shape[0]):
+            R[t] = TR[t]
+    nv = ntv
+    nf = ntf
+    nt = 0
+    rmax2 = _radius2(V, nv)
+    ci, cj, ck = bucket3d(px, py, pz, g)
+    st = OK
+    # nearest buckets first, in the precomputed order of their least possible distance
+    m = 0
+    level = 0.0  # buckets of one least distance are gathered, then cut by, together
+    o = 0  # next entry of the ordered buckets; then shells r, r + 1, ... (buckets q of nb)
+    r = int(order[order.shape[0] - 1, 4]) if order.shape[0] else -1
+    q = 0
+    nb = 0
+    shells = False
+    rb = -1  # a crowded bucket to go on gathering from, at rt
+    rt = 0
+    while True:
+        flush = False
+        stop = False
+        b = -1
+        if rb >= 0:
+            b = rb
+            rb = -1
+        elif not shells:
+            if o == order.shape[0]:
+                shells = True
+                flush = True
+            elif m > 0 and order[o, 3] > level:
+                flush = True  # entry o is looked at again after the cut
+            else:
+                level = order[o, 3]
+                if _far(level, wi, wmax, rmax2):
+                    stop = True
+                    flush = True
+                else:
+                    b = _ordered_bucket(order, o, ci, cj, ck, px, py, pz, g, wi, wmax, rmax2)
+                    if b >= 0:
+                        rt = start[b]
+                o += 1
+        elif q < nb:
+            b = buck[q]
+            rt = start[b]
+            q += 1
+        else:  # a shell gathered (or none yet): cut by it, then the next shell if needed
+            flush = True
+            gap = shell_gap(px, py, pz, ci, cj, ck, r, g) if r >= 0 else 0.0
+            if gap == np.inf or (r >= 0 and _far(gap * gap, wi, wmax, rmax2)):
+                stop = True
+            else:
+                r += 1
+                nb = shell_buckets(ci, cj, ck, r, g, buck)
+                q = 0
+                stop = nb == 0
+        if b >= 0:
+            m, rt = _gather(b, rt, i, px, py, pz, start, SP, sidx, cand, cd2, m)
+            if rt < start[b + 1]:  # a crowded neighbourhood: cut by what is gathered, go on
+                rb = b
+                flush = True
+        if flush and m > 0:
+            st, nv, nf, nt, rmax2 = _cut_batch(
+                m, i, P, WP, X, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
+            )
+            if st != OK:
+                return st, 0, 0, 0, 0.0
+            m = 0
+        if stop:
+            break
+    if graph:
+        nf = to_rings(nv, G[0], G[1], G[2], G[3], F, R, G[5])
+        if nf < 0:
+            return BROKEN, 0, 0, 0, 0.0
+    return OK, nv, nf, nt, rmax2
