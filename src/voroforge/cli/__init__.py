@@ -1,9 +1,12 @@
 """The ``voroforge`` command line: parse arguments, call the library, print what was written.
 
 One module per group of commands (:mod:`.diagram`: voronoi and delaunay, :mod:`.demo`,
-:mod:`.raster`, :mod:`.explain`, :mod:`.design`: build, new and check); each adds its
-parsers with a ``run`` default, and :func:`main` calls it. No geometry here: commands read
-with :mod:`voroforge.io`, compute with the library and write with :mod:`voroforge.io`.
+:mod:`.raster`, :mod:`.explain`, :mod:`.design`: build, new and check, ...). Each has
+``add_parser(commands, formatter_class)`` (``add_parsers`` for several commands): it adds
+its subcommands to ``commands``, the action of ``add_subparsers``, with that help
+formatter, each with a ``run(args, stage)`` default, and :func:`main` calls it. No geometry
+here: commands read with :mod:`voroforge.io`, compute with the library and write with
+:mod:`voroforge.io`.
 Nothing heavy is imported before a command runs, so ``--help`` and ``--version`` are quick.
 """
 

@@ -17,15 +17,7 @@ examples:
 
 
 def add_parser(commands, formatter_class) -> None:
-    """Add ``demo`` to argparse ``commands`` (from ``add_subparsers``).
-
-    Parameters
-    ----------
-    commands : argparse subparsers action
-        Where to add it.
-    formatter_class : type
-        Help formatter of the subcommand.
-    """
+    """Add ``demo`` to ``commands`` (see :mod:`voroforge.cli`)."""
     demo = commands.add_parser(
         "demo",
         help="build the flagship design: a laser-cut panel (SVG, DXF, PNG)",

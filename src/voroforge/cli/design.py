@@ -53,15 +53,7 @@ def _add_set(sub: argparse.ArgumentParser) -> None:
 
 
 def add_parsers(commands, formatter_class) -> None:
-    """Add ``build``, ``new`` and ``check`` to argparse ``commands``.
-
-    Parameters
-    ----------
-    commands : argparse subparsers action
-        Where to add them.
-    formatter_class : type
-        Help formatter of the subcommands.
-    """
+    """Add ``build``, ``new`` and ``check`` to ``commands`` (see :mod:`voroforge.cli`)."""
     build = commands.add_parser(
         "build",
         help="build a TOML design file into SVG/DXF/PNG/GeoJSON/GIF",

@@ -67,15 +67,7 @@ def _add_outputs(sub: argparse.ArgumentParser) -> None:
 
 
 def add_parsers(commands, formatter_class) -> None:
-    """Add ``voronoi`` and ``delaunay`` to argparse ``commands`` (from ``add_subparsers``).
-
-    Parameters
-    ----------
-    commands : argparse subparsers action
-        Where to add them.
-    formatter_class : type
-        Help formatter of the subcommands.
-    """
+    """Add ``voronoi`` and ``delaunay`` to ``commands`` (see :mod:`voroforge.cli`)."""
     vor = commands.add_parser(
         "voronoi",
         help="Voronoi cells of a point file, clipped to a boundary",

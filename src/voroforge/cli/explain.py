@@ -23,14 +23,7 @@ points (at most 2000).
 
 
 def add_parser(commands, formatter_class) -> argparse.ArgumentParser:
-    """Add ``explain fortune`` to argparse ``commands`` (from ``add_subparsers``).
-
-    Parameters
-    ----------
-    commands : argparse subparsers action
-        Where to add it.
-    formatter_class : type
-        Help formatter of the subcommands.
+    """Add ``explain fortune`` to ``commands`` (see :mod:`voroforge.cli`).
 
     Returns
     -------

@@ -90,14 +90,7 @@ def parse_bounds(text: str | None) -> tuple[float, float, float, float] | None:
 
 
 def add_parser(commands, formatter_class) -> argparse.ArgumentParser:
-    """Add ``raster`` to argparse ``commands`` (from ``add_subparsers``).
-
-    Parameters
-    ----------
-    commands : argparse subparsers action
-        Where to add it.
-    formatter_class : type
-        Help formatter of the subcommand.
+    """Add ``raster`` to ``commands`` (see :mod:`voroforge.cli`).
 
     Returns
     -------

@@ -28,15 +28,7 @@ examples:
 
 
 def add_parser(commands, formatter_class) -> None:
-    """Add ``scale`` to argparse ``commands`` (from ``add_subparsers``).
-
-    Parameters
-    ----------
-    commands : argparse subparsers action
-        Where to add it.
-    formatter_class : type
-        Help formatter of the subcommand.
-    """
+    """Add ``scale`` to ``commands`` (see :mod:`voroforge.cli`)."""
     sub = commands.add_parser(
         "scale",
         help="Voronoi cells of millions of points in tiles on dask.distributed, GeoParquet out",

@@ -21,7 +21,7 @@ examples:
 
 
 def add_parser(commands, formatter_class) -> None:
-    """Add ``stipple`` to argparse ``commands``."""
+    """Add ``stipple`` to ``commands`` (see :mod:`voroforge.cli`)."""
     sub = commands.add_parser(
         "stipple",
         help="weighted Voronoi stippling of an image (plotter-ready SVG of dots)",

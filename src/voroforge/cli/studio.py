@@ -34,15 +34,7 @@ examples:
 
 
 def add_parser(commands, formatter_class) -> None:
-    """Add ``studio`` to argparse ``commands``.
-
-    Parameters
-    ----------
-    commands : argparse subparsers action
-        Where to add it.
-    formatter_class : type
-        Help formatter of the subcommand.
-    """
+    """Add ``studio`` to ``commands`` (see :mod:`voroforge.cli`)."""
     p = commands.add_parser(
         "studio",
         help="edit a design live in the browser (drag seeds, sliders, live checks)",

@@ -21,15 +21,7 @@ explain load their compiled kernels from numba's cache instead of compiling them
 
 
 def add_parser(commands, formatter_class) -> None:
-    """Add ``warmup`` to argparse ``commands`` (from ``add_subparsers``).
-
-    Parameters
-    ----------
-    commands : argparse subparsers action
-        Where to add it.
-    formatter_class : type
-        Help formatter of the subcommand.
-    """
+    """Add ``warmup`` to ``commands`` (see :mod:`voroforge.cli`)."""
     p = commands.add_parser(
         "warmup",
         help="compile and cache the kernels of the first commands (run once after install)",

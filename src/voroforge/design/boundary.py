@@ -65,6 +65,7 @@ def as_polygonal(geom, name: str = "boundary"):
     Returns
     -------
     shapely.Polygon or shapely.MultiPolygon
+        ``geom`` itself, unchanged.
 
     Raises
     ------
@@ -202,28 +203,9 @@ def union(*geoms):
 def from_svg(path, *, tolerance: float = CURVE_TOLERANCE, flip_y: bool = True):
     """Read the filled shapes of an SVG file as one valid boundary (even-odd nesting).
 
-    The parser is :func:`voroforge.io.readers.read_svg` (paths with every command, polygons,
-    rects, circles, ellipses, transforms, units, y flipped up); this checks its result.
-
-    Parameters
-    ----------
-    path : str or Path
-        The SVG file.
-    tolerance : float
-        Largest distance between a curve and its polyline, in output units.
-    flip_y : bool
-        True (default): y up, the bottom of the ``viewBox`` at y = 0.
-
-    Returns
-    -------
-    shapely.Polygon or shapely.MultiPolygon
-        In millimetres when the root ``width`` has a physical unit and a ``viewBox``
-        (see :func:`svg_in_mm`); otherwise 1 user unit = 1 mm.
-
-    Raises
-    ------
-    ValueError
-        Missing or unreadable file, malformed path data, or no closed shape with area.
+    :func:`voroforge.io.readers.read_svg` parses the file (paths with every command,
+    polygons, rects, circles, ellipses, transforms, units, y flipped up; its parameters and
+    its millimetre rule); this checks the result with :func:`as_polygonal`.
     """
     return as_polygonal(read_svg(path, tolerance=tolerance, flip_y=flip_y), str(Path(path)))
 
@@ -251,47 +233,20 @@ def from_dxf(
 ):
     """Read closed outlines from a DXF file as one valid boundary (even-odd nesting).
 
-    The parser is :func:`voroforge.io.readers.read_dxf` (closed polylines with bulges as
+    :func:`voroforge.io.readers.read_dxf` parses the file (closed polylines with bulges as
     true arcs, circles, ellipses, splines; loose lines and arcs joined into faces unless
-    ``loose=False``); this checks its result.
-
-    Parameters
-    ----------
-    path : str or Path
-        The DXF file.
-    tolerance : float
-        Largest distance between a curve and its polyline, in output units.
-    layers : sequence of str, optional
-        Read only these layers (default: all).
-    loose : bool
-        Also assemble loose lines/arcs/open polylines into faces.
-    to_mm : bool
-        Scale to millimetres by the header's ``$INSUNITS`` (off by default).
-
-    Returns
-    -------
-    shapely.Polygon or shapely.MultiPolygon
-
-    Raises
-    ------
-    ValueError
-        Missing or unreadable file, or no closed outline.
+    ``loose=False``; ``layers`` and ``to_mm`` as there); this checks the result with
+    :func:`as_polygonal`.
     """
     geom = read_dxf(path, tolerance=tolerance, layers=layers, loose=loose, to_mm=to_mm)
     return as_polygonal(geom, str(Path(path)))
 
 
 def from_geojson(path):
-    """Read the polygons of a GeoJSON file (features united, holes kept).
+    """Read the polygons of a GeoJSON file (features united, holes kept), checked.
 
-    Parameters
-    ----------
-    path : str or Path
-        A ``.geojson`` / ``.json`` file with Polygon or MultiPolygon geometries.
-
-    Returns
-    -------
-    shapely.Polygon or shapely.MultiPolygon
+    :func:`voroforge.io.readers.read_geojson_polygons` reads a ``.geojson`` / ``.json`` file
+    with Polygon or MultiPolygon geometries; this checks the result with :func:`as_polygonal`.
     """
     return as_polygonal(read_geojson_polygons(path), str(Path(path)))
 
