@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import tempfile
 from pathlib import Path
 
 from .progress import Stage
@@ -28,7 +27,7 @@ MESH_SUFFIXES = (".obj", ".glb", ".ply")
 
 
 def add_parser(commands, formatter_class) -> argparse.ArgumentParser:
-    """Add ``voronoi3d`` to argparse ``commands``; its ``run`` default is :func:`run_voronoi3d`."""
+    """Add ``voronoi3d`` to ``commands`` (see :mod:`voroforge.cli`): :func:`run_voronoi3d`."""
     p = commands.add_parser(
         "voronoi3d",
         help="3D Voronoi cells of a point file in a box, convex hull or closed mesh",
@@ -107,20 +106,6 @@ def _container(text):
     return text
 
 
-def _atomic(path: Path, write):
-    fd, tmp = tempfile.mkstemp(suffix=path.suffix, dir=path.parent)
-    os.close(fd)
-    try:
-        write(tmp)
-        mask = os.umask(0)
-        os.umask(mask)
-        os.chmod(tmp, 0o666 & ~mask)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-
-
 def _table(d):
     import numpy as np
 
@@ -143,6 +128,8 @@ def write_outputs(d, outputs, *, size=(1000, 800), explode=0.15, stage=None):
     """Write diagram ``d`` to each path of ``outputs`` by suffix; returns the paths."""
     import numpy as np
 
+    from ..io.atomic import write_atomically
+
     written = []
     for out in outputs:
         path = Path(out)
@@ -164,7 +151,7 @@ def write_outputs(d, outputs, *, size=(1000, 800), explode=0.15, stage=None):
                             f"{float(t['cz'][i])!r},{nb}\n"
                         )
 
-            _atomic(path, w)
+            write_atomically(path, w)
         elif suf == ".parquet":
             import pyarrow as pa
             import pyarrow.parquet as pq
@@ -176,7 +163,7 @@ def write_outputs(d, outputs, *, size=(1000, 800), explode=0.15, stage=None):
                     for k, v in t.items()
                 }
             )
-            _atomic(path, lambda tmp, tab=tab: pq.write_table(tab, tmp))
+            write_atomically(path, lambda tmp, tab=tab: pq.write_table(tab, tmp))
         elif suf in MESH_SUFFIXES:
             import trimesh
 
@@ -197,13 +184,15 @@ def write_outputs(d, outputs, *, size=(1000, 800), explode=0.15, stage=None):
                 def w(tmp, scene=scene, suf=suf):
                     scene.export(tmp, file_type=suf[1:])
 
-            _atomic(path, w)
+            write_atomically(path, w)
         elif suf == ".png":
             from ..io.render3d import diagram_edges, diagram_meshes, render
 
             meshes = diagram_meshes(d, explode=explode)
             flags = diagram_edges(d)
-            _atomic(path, lambda tmp, m=meshes, f=flags: render(m, tmp, size=size, edges=f))
+            write_atomically(
+                path, lambda tmp, m=meshes, f=flags: render(m, tmp, size=size, edges=f)
+            )
         else:
             raise ValueError(
                 f"unknown output suffix {suf!r}: use .csv, .parquet, .obj, .glb, .ply or .png"

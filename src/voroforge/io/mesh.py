@@ -27,14 +27,14 @@ Examples
 from __future__ import annotations
 
 import io
-import os
 import re
-import tempfile
 import zipfile
 from pathlib import Path
 from xml.etree import ElementTree as ET
 
 import numpy as np
+
+from .atomic import write_atomically, write_bytes
 
 __all__ = ["FORMATS", "UNITS", "read", "write", "write_curves_3dm"]
 
@@ -106,24 +106,9 @@ def _named(meshes) -> list[tuple[str, object]]:
     return items
 
 
-def _umask_mode() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return 0o666 & ~mask
-
-
 def _atomic(path: Path, data: bytes) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        os.chmod(tmp, _umask_mode())  # mkstemp makes 0600; a normal file follows the umask
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
+    return write_bytes(path, data)
 
 
 _ZIP_DATE = (1980, 1, 1, 0, 0, 0)
@@ -293,17 +278,12 @@ def _layer(f, name: str) -> int:
 
 def _save_3dm(f, path: Path) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".3dm", dir=path.parent)
-    os.close(fd)
-    try:
+
+    def write(tmp):
         if not f.Write(tmp, 7):
             raise ValueError(f"rhino3dm could not write {path}")
-        os.chmod(tmp, _umask_mode())
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
+
+    return write_atomically(path, write, suffix=".3dm")
 
 
 def _3dm_write(items, path: Path, units: str) -> Path:

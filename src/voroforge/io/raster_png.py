@@ -129,11 +129,9 @@ def colorize(result, *, field: str = "labels", seed: int = 0) -> np.ndarray:
     ValueError
         For an unknown field, or ``f2``/``edge`` on a result computed without ``f2=True``.
     """
-    if field not in FIELDS:
-        raise ValueError(f"field must be one of {FIELDS}; got {field!r}")
+    values = field_values(result, field)  # checks the field
     if field == "labels":
-        return cell_colors(result.labels, seed=seed)[result.labels]
-    values = field_values(result, field)
+        return cell_colors(values, seed=seed)[values]
     finite = np.isfinite(values)
     top = float(values[finite].max()) if finite.any() else 0.0
     scaled = np.ones(values.shape) if top <= 0.0 else np.where(finite, values / top, 1.0)

@@ -15,11 +15,9 @@ Example::
 
 from __future__ import annotations
 
-import os
-import tempfile
-from pathlib import Path
-
 import numpy as np
+
+from .atomic import write_atomically
 
 #: a qualitative palette (RGB 0..255) for meshes without a colour
 PALETTE = (
@@ -168,19 +166,7 @@ def render(
             xy, rgb, outline = faces[i]
             draw.polygon(xy, fill=rgb, outline=ec if outline else rgb, width=ss)
     img = img.resize((w, h), Image.LANCZOS)
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(suffix=".png", dir=path.parent if str(path.parent) else ".")
-    os.close(fd)
-    try:
-        img.save(tmp, format="PNG", optimize=True)
-        mask = os.umask(0)
-        os.umask(mask)
-        os.chmod(tmp, 0o666 & ~mask)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-    return path
+    return write_atomically(path, lambda tmp: img.save(tmp, format="PNG", optimize=True))
 
 
 def diagram_edges(d, cells=None):

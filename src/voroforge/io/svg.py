@@ -216,18 +216,10 @@ def write_svg(
 
 
 def _write_text(path: Path, text: str) -> Path:
-    """Write ``text`` to ``path`` atomically (temporary file in the same folder, renamed)."""
-    import os
-    import tempfile
+    """Write ``text`` to ``path`` atomically (:func:`voroforge.io.atomic.write_atomically`)."""
+    from .atomic import write_atomically
 
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    finally:
-        Path(tmp).unlink(missing_ok=True)  # gone after the rename; left only by a failure
-    return path
+    return write_atomically(path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
 
 
 # --- Fabrication layers (cut / score / engrave) -------------------------------------------
