@@ -11,6 +11,16 @@ Two modes, both alternating the trees so that load changes hit them alike:
     the figure is the best over ``--repeat`` rounds, as CPU time of the process (use
     ``NUMBA_NUM_THREADS=1`` for a single-thread figure) and as wall time.
 
+``calls``
+    One process, both trees, like ``kernel``: the calls the benchmark scripts time
+    (``bench_2d``: ``vf.voronoi`` and ``.cells`` on uniform/clustered/grid, the polygon with
+    holes, ``vf.delaunay``; ``bench_algorithms``: the three algorithms; ``bench_design_build``:
+    the 2000-cell DXF panel; ``bench_lloyd``: 200 Lloyd steps, L-BFGS, one step at 1e5,
+    ``power_fit``), each on the same fixed-seed input in both trees, A and B alternated,
+    best of ``--repeat``, CPU and wall. While A runs, ``sys.modules["voroforge"]`` is A's
+    package, so A's own ``import voroforge`` inside functions (its design pipeline) reaches
+    A's engine, not B's. Ends with a Markdown table and the ratios past ``--flag``.
+
 ``scripts``
     Runs benchmark scripts of both trees in fresh subprocesses, each tree its own copy of the
     script with ``PYTHONPATH=<tree>/src`` and its own ``NUMBA_CACHE_DIR``, alternating
@@ -22,6 +32,7 @@ Run from the repository root::
 
     git worktree add /tmp/base 00169d7
     NUMBA_NUM_THREADS=1 .venv/bin/python benchmarks/ab_trees.py kernel --base /tmp/base
+    NUMBA_NUM_THREADS=1 .venv/bin/python benchmarks/ab_trees.py calls --base /tmp/base --repeat 5
     .venv/bin/python benchmarks/ab_trees.py scripts --base /tmp/base --rounds 2 \\
         --script "bench_algorithms.py --sizes 1e5 --repeat 5"
 """
@@ -29,6 +40,7 @@ Run from the repository root::
 from __future__ import annotations
 
 import argparse
+import contextlib
 import gc
 import hashlib
 import os
@@ -46,7 +58,13 @@ ROOT = HERE.parent
 sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(ROOT / "src"))
 
-from common import DISTRIBUTIONS, command_line, machine_info  # noqa: E402
+from common import (  # noqa: E402
+    DISTRIBUTIONS,
+    command_line,
+    machine_info,
+    polygon_with_holes,
+    uniform,
+)
 
 BOX = (0.0, 0.0, 1.0, 1.0)
 NUMBER = re.compile(r"-?\d+(?:\.\d+)?(?:e[-+]?\d+)?")
@@ -127,6 +145,181 @@ def kernel(args) -> None:
     print(f"load average after: {os.getloadavg()[0]:.2f}")
 
 
+@contextlib.contextmanager
+def _as_voroforge(pkg):
+    """``import voroforge`` gives ``pkg`` inside the block (A's function-level imports)."""
+    saved = sys.modules.get("voroforge")
+    sys.modules["voroforge"] = pkg
+    try:
+        yield
+    finally:
+        if saved is not None:
+            sys.modules["voroforge"] = saved
+
+
+def _design_build(pkg, out: Path):
+    """``build`` of the 2000-cell panel of ``bench_design_build`` with ``pkg``'s design layer."""
+    from importlib import import_module
+
+    try:
+        build = import_module(pkg.__name__ + ".design.build").build
+    except ImportError:  # before the architecture step
+        build = import_module(pkg.__name__ + ".design.pipeline").build
+    spec = {
+        "design": {"name": "bench", "seed": 1},
+        "boundary": {"shape": "rectangle", "width": 1000, "height": 700},
+        "seeds": {"method": "random", "count": 2000},
+        "cells": {"web": 2, "fillet": 1},
+        "output": {"formats": ["dxf"]},
+    }
+    return lambda: build(spec, out)
+
+
+def _call_cases(vf, n: int, big: bool):
+    """(benchmark, line, function of the package) for every timed call."""
+    p = {d: DISTRIBUTIONS[d](n) for d in ("uniform", "clustered", "grid")}
+    holes = polygon_with_holes()
+    lloyd_pts = np.random.default_rng(0).random((1000, 2))
+    step_pts = np.random.default_rng(1).random((n, 2))
+    fit_pts = np.random.default_rng(2).random((10_000, 2))
+    equal = np.full(len(fit_pts), 1.0 / len(fit_pts))
+    by_x = 1.0 + 3.0 * (fit_pts[:, 0] > 0.5)
+    by_x /= by_x.sum()
+    tag = f"{n:g}"
+    cases = []
+    for d, q in p.items():
+        cases.append(("bench_2d", f"vf.voronoi {d} {tag}", lambda m, q=q: m.voronoi(q, BOX)))
+        cases.append(
+            ("bench_2d", f"vf.voronoi +cells {d} {tag}", lambda m, q=q: m.voronoi(q, BOX).cells)
+        )
+    for d in ("uniform", "grid"):
+        cases.append(("bench_2d", f"vf.delaunay {d} {tag}", lambda m, q=p[d]: m.delaunay(q)))
+    cases.append(
+        (
+            "bench_2d",
+            f"vf.voronoi holes +cells uniform {tag}",
+            lambda m: m.voronoi(p["uniform"], holes).cells,
+        )
+    )
+    if big:
+        u6 = uniform(1_000_000)
+        cases.append(("bench_2d", "vf.voronoi uniform 1e6", lambda m: m.voronoi(u6, BOX)))
+    for alg in ("fortune", "halfplane"):
+        cases.append(
+            (
+                "bench_algorithms",
+                f"vf.voronoi {alg} uniform {tag}",
+                lambda m, a=alg: m.voronoi(p["uniform"], BOX, algorithm=a),
+            )
+        )
+    cases.append(("bench_design_build", "build, 2000 cells, DXF", None))
+    cases += [
+        (
+            "bench_lloyd",
+            "vf.lloyd 1000 sites, 200 steps",
+            lambda m: m.lloyd(lloyd_pts, BOX, iterations=200),
+        ),
+        (
+            "bench_lloyd",
+            "vf.lloyd lbfgs 1000 sites, 33 steps",
+            lambda m: m.lloyd(lloyd_pts, BOX, iterations=33, method="lbfgs"),
+        ),
+        (
+            "bench_lloyd",
+            f"vf.lloyd 1 step, {tag} sites",
+            lambda m: m.lloyd(step_pts, BOX, iterations=1),
+        ),
+        ("bench_lloyd", "vf.power_fit 10k equal", lambda m: m.power_fit(fit_pts, equal, BOX)),
+        ("bench_lloyd", "vf.power_fit 10k 1:4 by x", lambda m: m.power_fit(fit_pts, by_x, BOX)),
+    ]
+    return cases
+
+
+def _profile(line: str, fa, fb, top: int) -> None:
+    """cProfile of three calls of each tree: the ``top`` functions by own time."""
+    import cProfile
+    import io
+    import pstats
+
+    for name, f in (("A", fa), ("B", fb)):
+        prof = cProfile.Profile()
+        prof.enable()
+        for _ in range(3):
+            f()
+        prof.disable()
+        text = io.StringIO()
+        pstats.Stats(prof, stream=text).sort_stats("tottime").print_stats(top)
+        body = text.getvalue().split("ncalls", 1)[-1]
+        print(f"--- profile {name}, {line} (3 calls, by own time)\n   ncalls{body}", flush=True)
+
+
+def calls(args) -> None:
+    import voroforge as vf
+
+    base = _import_base(args.base)
+    print(f"A = {args.base} ({base.__file__}), B = {ROOT} ({vf.__file__})")
+    only = args.only.split(",") if args.only else None
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for bench, line, fn in _call_cases(vf, args.n, args.big):
+            if only and not any(o in bench or o in line for o in only):
+                continue
+            if fn is None:  # the design build: each tree its own function and folder
+                (Path(tmp) / "A").mkdir(exist_ok=True)
+                (Path(tmp) / "B").mkdir(exist_ok=True)
+                ba, bb = _design_build(base, Path(tmp) / "A"), _design_build(vf, Path(tmp) / "B")
+
+                def fa(ba=ba):
+                    with _as_voroforge(base):
+                        ba()
+
+                fb = bb
+            else:
+
+                def fa(fn=fn):
+                    with _as_voroforge(base):
+                        fn(base)
+
+                def fb(fn=fn):
+                    fn(vf)
+
+            fa()
+            fb()  # warm: compiled or loaded from the cache
+            best = {"A": [np.inf, np.inf], "B": [np.inf, np.inf]}
+            for r in range(args.repeat):
+                pair = (("A", fa), ("B", fb)) if r % 2 == 0 else (("B", fb), ("A", fa))
+                for name, f in pair:
+                    cpu, wall = _timed(f)
+                    best[name][0] = min(best[name][0], cpu)
+                    best[name][1] = min(best[name][1], wall)
+            (ca, wa), (cb, wb) = best["A"], best["B"]
+            rows.append((bench, line, ca, cb, wa, wb))
+            if args.profile and cb / ca > args.flag:
+                _profile(line, fa, fb, args.profile)
+            print(
+                f"{bench:>18} | {line:<38}: CPU A {ca * 1e3:8.1f} ms  B {cb * 1e3:8.1f} ms  "
+                f"B/A {cb / ca:5.2f} | wall B/A {wb / wa:5.2f}  (load {os.getloadavg()[0]:.2f})",
+                flush=True,
+            )
+    print(
+        f"\nbest of {args.repeat}, A and B alternated; load average after: "
+        f"{os.getloadavg()[0]:.2f}\n"
+    )
+    print("| benchmark | line | A CPU ms | B CPU ms | B/A CPU | B/A wall |")
+    print("|---|---|---|---|---|---|")
+    for bench, line, ca, cb, wa, wb in rows:
+        mark = " **" if cb / ca > args.flag else ""
+        print(
+            f"| {bench} | {line} | {ca * 1e3:.1f} | {cb * 1e3:.1f} | {cb / ca:.2f}{mark} | "
+            f"{wb / wa:.2f} |"
+        )
+    worse = [(b, ln, cb / ca) for b, ln, ca, cb, _, _ in rows if cb / ca > args.flag]
+    print(
+        f"\nCPU ratios past {args.flag}: "
+        + (", ".join(f"{b}: {ln} {r:.2f}" for b, ln, r in worse) or "none")
+    )
+
+
 def _skeleton(line: str) -> str:
     """The line without its numbers and with runs of blanks as one (columns move with widths)."""
     return " ".join(NUMBER.sub("#", line).split())
@@ -203,6 +396,14 @@ def main() -> None:
     k.add_argument("--n", type=int, default=100_000)
     k.add_argument("--dists", default="uniform,clustered,grid")
     k.add_argument("--repeat", type=int, default=7, help="rounds; best of these per tree")
+    c = sub.add_parser("calls", help="the benchmark scripts' calls, both trees in one process")
+    c.add_argument("--base", type=Path, default=Path("/tmp/base"), help="the other checkout (A)")
+    c.add_argument("--n", type=int, default=100_000)
+    c.add_argument("--repeat", type=int, default=5, help="rounds; best of these per tree")
+    c.add_argument("--big", action="store_true", help="also vf.voronoi on 1e6 uniform points")
+    c.add_argument("--only", default="", help="comma-separated parts of benchmark or line names")
+    c.add_argument("--flag", type=float, default=1.10, help="list CPU ratios B/A past this")
+    c.add_argument("--profile", type=int, default=0, help="profile flagged cases: top N lines")
     s = sub.add_parser("scripts", help="benchmark scripts of both trees, alternated processes")
     s.add_argument("--base", type=Path, default=Path("/tmp/base"), help="the other checkout (A)")
     s.add_argument("--script", action="append", required=True, help="script and its arguments")
@@ -213,7 +414,7 @@ def main() -> None:
     args = ap.parse_args()
     print(command_line())
     print(machine_info())
-    {"kernel": kernel, "scripts": scripts}[args.mode](args)
+    {"kernel": kernel, "calls": calls, "scripts": scripts}[args.mode](args)
 
 
 if __name__ == "__main__":
