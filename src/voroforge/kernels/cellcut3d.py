@@ -255,25 +255,33 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv,
 
 
 @njit(**NJIT_INLINE)
-def _gather(b, t, i, px, py, pz, start, SP, sidx, cand, cd2, m):
+def _gather(b, t, i, px, py, pz, wi, W, start, SP, sidx, cand, cd2, m, mg, rmax2):
     """Add the sites of bucket ``b`` from its ``t``-th on to the candidates, until full.
 
-    Returns ``(m, t)``: ``t < start[b + 1]`` when the candidate arrays filled up first.
+    A site whose plane passes beyond every vertex of the cell as it is now (``rmax2``) is
+    counted (``mg``: the candidates a batch holds, for when it is full) but not kept: the
+    cell only shrinks, so :func:`_cut_batch` would skip it at its turn (the test here has
+    twice the slack of that one, so rounding in the cell's radius cannot tell them apart).
+    Returns ``(m, mg, t)``: ``t < start[b + 1]`` when the batch filled up first.
     """
     ncap = cand.shape[0]
     end = start[b + 1]
-    while t < end and m < ncap:
+    reach = rmax2 * (1.0 + 2.0 * VORONOI3D_STOP_RTOL)
+    while t < end and mg < ncap:
         if sidx[t] != i:
             dx = SP[t, 0] - px
             dy = SP[t, 1] - py
             dz = SP[t, 2] - pz
             d2 = dx * dx + dy * dy + dz * dz
             if d2 != 0.0:
-                cand[m] = t
-                cd2[m] = d2
-                m += 1
+                mg += 1
+                h = 0.5 * (d2 + (wi - W[sidx[t]]))
+                if not (h > 0.0 and h * h > reach * d2):
+                    cand[m] = t
+                    cd2[m] = d2
+                    m += 1
         t += 1
-    return m, t
+    return m, mg, t
 
 
 @njit(**NJIT_INLINE)
@@ -363,7 +371,8 @@ def _one_cell(
     ci, cj, ck = bucket3d(px, py, pz, g)
     st = OK
     # nearest buckets first, in the precomputed order of their least possible distance
-    m = 0
+    m = 0  # candidates kept, and gathered (kept or not: a batch is full at ncap of them)
+    mg = 0
     level = 0.0  # buckets of one least distance are gathered, then cut by, together
     o = 0  # next entry of the ordered buckets; then shells r, r + 1, ... (buckets q of nb)
     r = int(order[order.shape[0] - 1, 4]) if order.shape[0] else -1
@@ -383,7 +392,7 @@ def _one_cell(
             if o == order.shape[0]:
                 shells = True
                 flush = True
-            elif m > 0 and order[o, 3] > level:
+            elif mg > 0 and order[o, 3] > level:
                 flush = True  # entry o is looked at again after the cut
             else:
                 level = order[o, 3]
@@ -410,17 +419,21 @@ def _one_cell(
                 q = 0
                 stop = nb == 0
         if b >= 0:
-            m, rt = _gather(b, rt, i, px, py, pz, start, SP, sidx, cand, cd2, m)
+            m, mg, rt = _gather(
+                b, rt, i, px, py, pz, wi, W, start, SP, sidx, cand, cd2, m, mg, rmax2
+            )
             if rt < start[b + 1]:  # a crowded neighbourhood: cut by what is gathered, go on
                 rb = b
                 flush = True
-        if flush and m > 0:
-            st, nv, nf, nt, rmax2 = _cut_batch(
-                m, i, P, WP, X, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
-            )
-            if st != OK:
-                return st, 0, 0, 0, 0.0
+        if flush:
+            if m > 0:
+                st, nv, nf, nt, rmax2 = _cut_batch(
+                    m, i, P, WP, X, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
+                )
+                if st != OK:
+                    return st, 0, 0, 0, 0.0
             m = 0
+            mg = 0
         if stop:
             break
     if graph:

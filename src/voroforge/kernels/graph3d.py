@@ -101,6 +101,19 @@ def from_rings(nv, F, nf, R, DEG, ED, BK, LB):
 
 
 @njit(**{**NJIT, "inline": "always"})
+def _next(k, d):
+    """``(k + 1) % d`` for ``0 <= k < d``, without a division (the cut's hot walks)."""
+    k += 1
+    return k if k < d else 0
+
+
+@njit(**{**NJIT, "inline": "always"})
+def _prev(k, d):
+    """``(k - 1) % d`` for ``0 <= k < d``, without a division."""
+    return k - 1 if k > 0 else d - 1
+
+
+@njit(**{**NJIT, "inline": "always"})
 def _move(V, DEG, ED, BK, LB, FL, a, b):
     """Move vertex ``a`` to slot ``b`` (free), repointing its neighbours."""
     V[b, 0] = V[a, 0]
@@ -177,13 +190,14 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
         m += 1
         # walk the face of v -> ED[v, k] backwards through removed vertices to its entry
         # edge a -> b (a kept); the next boundary edge is b -> a
-        a = ED[v, (k + 1) % DEG[v]]
+        k1 = _next(k, DEG[v])
+        a = ED[v, k1]
         b = v
-        j = BK[v, (k + 1) % DEG[v]]  # index of b in a's list
+        j = BK[v, k1]  # index of b in a's list
         steps = 0
         while S[a] > 0.0:
             # previous vertex before a in this face: ED[a, j + 1]
-            jj = (j + 1) % DEG[a]
+            jj = _next(j, DEG[a])
             na = ED[a, jj]
             j = BK[a, jj]
             b = a
@@ -256,8 +270,8 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
     # where the removed run lay; new vertices get [prev, u, next].
     for q in range(w):
         c = CP[q, 2]
-        cprev = CP[(q - 1 + w) % w, 2]
-        cnext = CP[(q + 1) % w, 2]
+        cprev = CP[_prev(q, w), 2]
+        cnext = CP[_next(q, w), 2]
         if c >= nv0:
             v = CP[q, 0]
             k = CP[q, 1]
@@ -330,7 +344,7 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
     # back pointers along the cap (and duplicate-edge check)
     for q in range(w):
         c = CP[q, 2]
-        cn = CP[(q + 1) % w, 2]
+        cn = CP[_next(q, w), 2]
         a = _only_edge(DEG, ED, c, cn)
         b = _only_edge(DEG, ED, cn, c)
         if a < 0 or b < 0:
@@ -383,7 +397,7 @@ def to_rings(nv, DEG, ED, BK, LB, F, R, seen):
                 nr += 1
                 u = ED[v, k]
                 j = BK[v, k]
-                k = (j - 1 + DEG[u]) % DEG[u]
+                k = _prev(j, DEG[u])
                 v = u
                 if v == v0 and k == k0:
                     break
