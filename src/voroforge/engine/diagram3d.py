@@ -483,6 +483,7 @@ def _neighbors(pos, cf, lab, roff, ring, voff, vid, V):
         most = max(most, cf[p + 1] - cf[p])
     tmp = np.zeros(most, lab.dtype)
     indices = np.zeros(0, lab.dtype)
+    flat = np.zeros(lab.shape[0], np.bool_)  # the first sweep's _flat, read by the second
     for sweep in range(2):
         if sweep == 1:
             for i in range(n):
@@ -495,7 +496,11 @@ def _neighbors(pos, cf, lab, roff, ring, voff, vid, V):
             c = 0
             for f in range(cf[p], cf[p + 1]):
                 j = lab[f]
-                if j < 0 or j == i or _flat(V, roff, ring, voff[p], vid, f):
+                if j < 0 or j == i:
+                    continue
+                if sweep == 0:
+                    flat[f] = _flat(V, roff, ring, voff[p], vid, f)
+                if flat[f]:
                     continue
                 b = c - 1  # insertion sort, dropping repeats
                 while b >= 0 and tmp[b] > j:
