@@ -4,15 +4,16 @@ Usage::
 
     .venv/bin/python benchmarks/bench_3d.py [--sizes 10000,100000,1000000] [--repeat 3]
         [--no-freud] [--no-qhull] [--no-periodic] [--single] [--mesh 100000]
+    .venv/bin/python benchmarks/bench_3d.py --huge 10000000   # volumes + neighbours only
 
 For each size (uniform points in the unit box, fixed seed) it prints the best-of-``repeat``
-wall time of:
+wall and CPU (user + system seconds of the process, voro++ as a child process) of:
 
 * ``vf.voronoi3d(points, (0, 0, 0, 1, 1, 1))``: volumes, neighbours and faces (after a
   warm-up call that also compiles), with numba's threads and, with ``--single``, on one
-  thread (also as user CPU seconds against voro++'s, which a loaded machine disturbs
-  less); its peak extra memory per cell (tracemalloc: the arrays numpy allocates, which
-  are all the large ones) and the process's peak resident set size at the end;
+  thread; the CPU ratio against voro++ is the figure a loaded machine disturbs least. Its
+  peak memory per cell is measured in a fresh process (peak resident set size during the
+  call, less the resident size before it, the points included, divided by the cells);
 * the voro++ command-line tool (``voro++ -o 0 1 0 1 0 1 file``: volumes, text I/O included;
   the points file is written once, outside the timing);
 * ``vf.voronoi3d(..., periodic=True)`` and freud's ``locality.Voronoi`` (voro++ inside,
@@ -20,10 +21,10 @@ wall time of:
 * scipy's ``Voronoi`` (Qhull: the raw unbounded diagram, no volumes, no clipping), up to 1e5.
 
 Ours and the reference take turns, ``repeat`` times, and the best of each counts.
-Ratios are ours / theirs (< 1: we are faster). With ``--mesh N`` it also times N sites in a
-torus container (20k triangles). The machine may be shared: compare ratios from
-one run, not absolute times across runs. The cost slope from the smallest to the largest
-size is printed (1.0 = linear).
+Ratios are ours / theirs (< 1: we are faster). With ``--mesh N`` it also times N sites,
+uniform in its bounding box, in a torus container (20k triangles). The machine may be
+shared: compare ratios from one run, not absolute times across runs. The cost slope from
+the smallest to the largest size is printed (1.0 = linear).
 """
 
 from __future__ import annotations
@@ -33,9 +34,9 @@ import os
 import resource
 import shutil
 import subprocess
+import sys
 import tempfile
 import time
-import tracemalloc
 
 import numba
 import numpy as np
@@ -63,7 +64,10 @@ def timed(fn):
     wall = time.perf_counter() - t0
     c1 = resource.getrusage(resource.RUSAGE_SELF)
     k1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    cpu = (c1.ru_utime - c0.ru_utime) + (k1.ru_utime - k0.ru_utime)
+    cpu = sum(
+        (getattr(c1, a) - getattr(c0, a)) + (getattr(k1, a) - getattr(k0, a))
+        for a in ("ru_utime", "ru_stime")
+    )
     return wall, cpu
 
 
@@ -114,12 +118,59 @@ def qhull_time(p, repeat):
     return best(lambda: Voronoi(p), repeat)
 
 
-def peak_per_cell(p):
-    tracemalloc.start()
-    ours(p)
-    _, peak = tracemalloc.get_traced_memory()
-    tracemalloc.stop()
-    return peak / len(p)
+def _status_kib(field):
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith(field + ":"):
+                return int(line.split()[1])
+    return 0
+
+
+def peak_per_cell(n, faces=True):
+    """Peak extra resident bytes per cell of one call on ``n`` sites, in a fresh process."""
+    code = (
+        "import sys, numpy as np, voroforge as vf; sys.path.insert(0, sys.argv[1]);"
+        "import bench_3d as b; b.child_peak(int(sys.argv[2]), sys.argv[3] == '1')"
+    )
+    here = os.path.dirname(os.path.abspath(__file__))
+    out = subprocess.run(
+        [sys.executable, "-c", code, here, str(n), "1" if faces else "0"],
+        check=True,
+        capture_output=True,
+        text=True,
+    ).stdout
+    return float(out.split()[-1])
+
+
+def child_peak(n, faces):
+    """(In the child) peak resident growth per cell of ``vf.voronoi3d`` on ``n`` sites."""
+    ours(np.random.default_rng(0).random((2000, 3)))  # compile or load the kernels
+    before = _status_kib("VmRSS")
+    p = np.random.default_rng(n).random((n, 3))
+    try:  # reset the peak to the present size (Linux)
+        with open("/proc/self/clear_refs", "w") as f:
+            f.write("5")
+    except OSError:
+        pass
+    d = vf.voronoi3d(p, BOX)
+    d.neighbors  # noqa: B018
+    if faces:
+        d.faces  # noqa: B018
+    peak = _status_kib("VmHWM")
+    print((peak - before) * 1024 / n)
+
+
+def huge(n):
+    """One call on ``n`` uniform sites, volumes + neighbours: wall, CPU, peak RSS."""
+    p = np.random.default_rng(n).random((n, 3))
+    w, c = timed(lambda: vf.voronoi3d(p, BOX).neighbors)
+    rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    print(
+        f"{n} cells, volumes + neighbours: {w:.1f} s wall, {c:.1f} s CPU, {n / w:.0f} cells/s; "
+        f"peak RSS of the process {rss:.0f} MiB ({rss * 2**20 / n:.0f} B/cell); "
+        f"load average {os.getloadavg()}",
+        flush=True,
+    )
 
 
 def main():
@@ -131,20 +182,26 @@ def main():
     ap.add_argument("--no-periodic", action="store_true")
     ap.add_argument("--single", action="store_true", help="also time ours on one thread")
     ap.add_argument("--mesh", type=int, default=0)
+    ap.add_argument("--huge", type=float, default=0, help="only one call at this size")
     args = ap.parse_args()
+    if args.huge:
+        ours(np.random.default_rng(0).random((2000, 3)))  # compile
+        huge(int(args.huge))
+        return
     sizes = [int(s) for s in args.sizes.split(",")]
     rng = np.random.default_rng(20240611)
     ours(rng.random((2000, 3)))  # compile
     vf.voronoi3d(rng.random((2000, 3)), BOX, periodic=True)
     rows = []
     print(
-        "wall seconds, best of the repeats with the tools taking turns; ratio = ours / theirs "
-        "(CPU: user seconds, voro++ as a child process)"
+        "wall seconds, best of the repeats with the tools taking turns; ratio = ours / theirs; "
+        "CPU: user + system seconds, voro++ as a child process; B/cell: peak RSS growth of a "
+        "fresh process"
     )
     print(
-        f"{'n':>9} {'ours s':>8} {'1 thr s':>8} {'voro++ s':>9} {'ratio':>6} {'1thr':>6} "
-        f"{'CPU r':>6} {'cells/s':>9} {'periodic':>8} {'freud s':>8} {'ratio':>6} "
-        f"{'qhull s':>8} {'B/cell':>7}"
+        f"{'n':>9} {'ours s':>8} {'CPU s':>8} {'1 thr s':>8} {'voro++ s':>9} {'CPU s':>8} "
+        f"{'ratio':>6} {'CPU r':>6} {'1thr r':>6} {'cells/s':>9} {'periodic':>8} {'CPU s':>8} "
+        f"{'freud s':>8} {'CPU s':>8} {'CPU r':>6} {'qhull s':>8} {'B/cell':>7}"
     )
 
     def f(x):
@@ -164,7 +221,7 @@ def main():
     for n in sizes:
         p = np.random.default_rng(n).random((n, 3))
         with tempfile.TemporaryDirectory() as tmp:
-            (t, _), (t1, c1), (tv, cv) = alternated(
+            (t, c), (t1, c1), (tv, cv) = alternated(
                 [
                     lambda p=p: ours(p),
                     (lambda p=p: single(p)) if args.single else None,
@@ -172,9 +229,9 @@ def main():
                 ],
                 args.repeat,
             )
-        tp = tf = None
+        tp = tf = cp = cf = None
         if not args.no_periodic:
-            (tp, _), (tf, _) = alternated(
+            (tp, cp), (tf, cf) = alternated(
                 [
                     lambda p=p: vf.voronoi3d(p, BOX, periodic=True),
                     None if args.no_freud else freud_call(p),
@@ -182,19 +239,21 @@ def main():
                 args.repeat,
             )
         tq = None if args.no_qhull or n > 100000 else qhull_time(p, 1 if n > 10000 else args.repeat)
-        mem = peak_per_cell(p)
-        rows.append((n, t))
+        mem = peak_per_cell(n)
+        rows.append((n, t, c))
         print(
-            f"{n:>9} {t:8.3f} {f(t1)} {f(tv):>9} {ratio(t, tv)} {ratio(t1, tv)} "
-            f"{ratio(c1, cv)} {n / t:9.0f} {f(tp)} {f(tf)} {ratio(tp, tf)} {f(tq)} {mem:7.0f}",
+            f"{n:>9} {t:8.3f} {f(c)} {f(t1)} {f(tv):>9} {f(cv)} {ratio(t, tv)} {ratio(c, cv)} "
+            f"{ratio(c1, cv)} {n / t:9.0f} {f(tp)} {f(cp)} {f(tf)} {f(cf)} {ratio(cp, cf)} "
+            f"{f(tq)} {mem:7.0f}",
             flush=True,
         )
     rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     print(f"peak RSS of this process: {rss:.0f} MiB; load average {os.getloadavg()}")
     if len(rows) >= 2:
-        (n0, t0), (n1, t1) = rows[0], rows[-1]
+        (n0, t0, c0), (n1, t1, c1) = rows[0], rows[-1]
         print(
-            f"cost slope {np.log(t1 / t0) / np.log(n1 / n0):.2f} from {n0} to {n1} (1.0 = linear)"
+            f"cost slope {np.log(t1 / t0) / np.log(n1 / n0):.2f} (wall), "
+            f"{np.log(c1 / c0) / np.log(n1 / n0):.2f} (CPU) from {n0} to {n1} (1.0 = linear)"
         )
     if args.mesh:
         import trimesh
@@ -205,10 +264,13 @@ def main():
         lo, hi = knot.bounds
         p = np.random.default_rng(1).uniform(lo, hi, (args.mesh, 3))
         vf.voronoi3d(p[:500], knot)
-        t = best(lambda: vf.voronoi3d(p, knot), 1)
+        res = []
+        ((t, c),) = alternated([lambda: res.append(vf.voronoi3d(p, knot))], args.repeat)
+        inside = int(np.count_nonzero(res[-1].volumes > 0))
         print(
-            f"mesh container ({len(knot.faces)} triangles), {args.mesh} sites: {t:.2f} s, "
-            f"{args.mesh / t:.0f} cells/s"
+            f"mesh container ({len(knot.faces)} triangles), {args.mesh} sites in its bounding "
+            f"box ({inside} cells inside): {t:.2f} s wall, {c:.2f} s CPU, "
+            f"{args.mesh / t:.0f} cells/s (wall), {args.mesh / c:.0f} cells/s (CPU)"
         )
 
 
