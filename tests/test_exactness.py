@@ -33,6 +33,10 @@ FAMILIES = [
     "float_circles_concentric",
     "float_circle_64_small_off",
     "float_circle_128_tiny_off",
+    "float_circle_100_far",
+    "float_circle_257_far",
+    "float_circle_500_far",
+    "float_circle_100_milli_far",
     "collinear_plus_one",
 ]
 

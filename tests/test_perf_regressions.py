@@ -169,7 +169,7 @@ def test_fold_rounds_on_changed_edges_only_equal_full_rounds(name):
     rank = order.astype(np.int64)
     parent, px, py, rounds = _plain_merge(sx, sy, tri, he, rank, box)
     cx, cy, err, flag = centers.circumcenters(sx, sy, tri, he)
-    cls = centers.merge_cocircular(sx, sy, tri, he, cx, cy, err, flag, rank, box)
+    cls, _ = centers.merge_cocircular(sx, sy, tri, he, cx, cy, err, flag, rank, box)
     assert np.array_equal(cls, parent)
     assert _bits(*cx, *cy) == _bits(*px, *py)
     if name in FOLDING:
@@ -208,7 +208,8 @@ def _joined(sx, sy, tri, he, cx, cy, err, flag):
     """Classes after the exact merge and before any naming (compressed parents)."""
     box = np.array([-np.inf, -np.inf, np.inf, np.inf])
     fold = np.zeros(len(tri), dtype=np.uint8)
-    centers.flag_close(sx, sy, tri, he, cx, cy, flag, err, box, fold)
+    near = np.zeros(len(cx), dtype=np.uint8)
+    centers.flag_close(sx, sy, tri, he, cx, cy, flag, err, box, fold, near)
     parent = np.arange(len(cx))
 
     def find(a):

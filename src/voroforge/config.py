@@ -50,6 +50,11 @@ FOLD_MAX_ROUNDS = 64
 #: error bounds + VERTEX_SNAP_RTOL of the radius) can be a fold: a longer one that breaks a
 #: turn test is a straight angle rounded (kernels/centers._unfold)
 FOLD_SPAN_ERRS = 4.0
+#: A cell's vertex that rounding left a right turn, on the line of its neighbours to
+#: rounding, joins the nearer neighbour when within this many times what rounding and
+#: naming moved the three (a nearly cocircular cluster far from the origin, whose exact
+#: spread follows the input's rounding; kernels/cells._straight_fold)
+FOLD_REACH_ERRS = 64.0
 #: A chain of circumcentres shorter than this (relative to the box's width + height) is
 #: rounding noise, not put back into a cut cell (kernels/cells)
 CHAIN_SPAN_RTOL = 1e-9

@@ -113,24 +113,31 @@ def _cc_close(xs, ys, a, err, cx, cy, t, u):
 
 
 @njit(**NJIT_PARALLEL)
-def flag_close(xs, ys, tri, he, cx, cy, flag, err, box, fold):
+def flag_close(xs, ys, tri, he, cx, cy, flag, err, box, fold, near):
     """Also flag interior halfedges whose two triangles have centres equal to rounding.
 
     On every other interior halfedge ``e < twin`` it marks in ``fold`` whether the Voronoi
     edge between the two centres runs backwards (:func:`_folds`): the first round of
     :func:`_unfold` takes that mark wherever naming left both centres as they are, so the
-    edges are scanned once, here.
+    edges are scanned once, here. Both triangles of a flagged or short edge are marked in
+    ``near`` (their vertices are the only ones rounding can fold a cell's ring at).
     """
     for e in prange(tri.shape[0]):
         f = he[e]
-        if f < e or flag[e] != 0:
+        if f < e:
             continue
         t = e // 3
         u = f // 3
+        if flag[e] != 0:
+            near[t] = 1
+            near[u] = 1
+            continue
         # both tests need the edge within what rounding and naming move its ends (_short;
         # _cc_close's bound is within it as FOLD_SPAN_ERRS >= 1): most edges end here
         if not _short(xs, ys, tri[e], err, cx, cy, t, u):
             continue
+        near[t] = 1
+        near[u] = 1
         if _cc_close(xs, ys, tri[e], err, cx, cy, t, u):
             flag[e] = 1
         elif _folds(xs, ys, tri, e, f, cx, cy, box, err):
@@ -188,6 +195,15 @@ def _short(xs, ys, a, err, cx, cy, t, u):
     d = abs(cx[t] - cx[u]) + abs(cy[t] - cy[u])
     r = abs(cx[t] - xs[a]) + abs(cy[t] - ys[a])
     return d <= FOLD_SPAN_ERRS * (err[t] + err[u] + VERTEX_SNAP_RTOL * r)
+
+
+@njit(**NJIT)
+def short_edge(xs, ys, a, err, cx, cy, t, u):
+    """Whether the centres of triangles ``t``, ``u`` (site ``a`` on both) may be one vertex.
+
+    Within what rounding and naming move them (:func:`_short`): the edges a fold may contract.
+    """
+    return _short(xs, ys, a, err, cx, cy, t, u)
 
 
 @njit(**NJIT)
@@ -521,11 +537,27 @@ def merge_cocircular(xs, ys, tri, he, cx, cy, err, flag, rank, box):
     ``kernels/vertex``, which the half-plane kernel follows too). The exact code runs only
     on the halfedges flagged by :func:`circumcenters`. ``rank[v]`` is site ``v``'s input
     index (names are chosen in the input's numbering, as every algorithm does).
+
+    Returns ``(cls, near)``: each triangle's class (its root) and whether it is in a class
+    of two or more or on a Voronoi edge that rounding could turn (flagged or short): the
+    triangles whose centres can fold a cell's ring (``kernels/cells`` checks those cells).
     """
     fold = np.zeros(tri.shape[0], dtype=np.uint8)
-    flag_close(xs, ys, tri, he, cx, cy, flag, err, box, fold)
+    near = np.zeros(tri.shape[0] // 3, dtype=np.uint8)
+    flag_close(xs, ys, tri, he, cx, cy, flag, err, box, fold, near)
     cand = np.flatnonzero(flag)
-    return _merge_exact(xs, ys, tri, he, cand, cx, cy, True, rank, err, box, fold)
+    cls = _merge_exact(xs, ys, tri, he, cand, cx, cy, True, rank, err, box, fold)
+    _mark_classes(cls, near)
+    return cls, near
+
+
+@njit(**NJIT)
+def _mark_classes(cls, near):
+    """Mark in ``near`` every triangle of a class of two or more (members and roots)."""
+    for t in range(cls.shape[0]):
+        if cls[t] != t:
+            near[t] = 1
+            near[cls[t]] = 1
 
 
 def triangle_centers(xs, ys, tri, he):
@@ -543,3 +575,30 @@ def triangle_centers(xs, ys, tri, he):
         fold = np.zeros(0, dtype=np.uint8)
         _merge_exact(xs, ys, tri, he, cand, cx, cy, False, np.arange(xs.shape[0]), none, none, fold)
     return cx, cy
+
+
+@njit(**NJIT)
+def contract(xs, ys, tri, he, parent, cx, cy, rank, box, err, pa, pb):
+    """Join the classes of triangles ``pa[k]`` and ``pb[k]``, name them, unfold; joins made.
+
+    The cells' fold test (``kernels/cells._fold_pairs``) finds rings that rounding folded
+    across edges that are not neighbours (the pairwise test of :func:`_folds` sees only one
+    edge at a time) and gives the short Voronoi edges around the fold: their ends are one
+    vertex to rounding. ``parent`` (compressed, as :func:`merge_cocircular` returns it) is
+    updated in place; every member of a joined class gets the class's named vertex, and the
+    edges at renamed centres are tested for swaps again (:func:`_unfold`).
+    """
+    merges = 0
+    for k in range(pa.shape[0]):
+        merges += _link(parent, pa[k], pb[k])
+    if merges == 0:
+        return 0
+    for k in range(parent.shape[0]):
+        parent[k] = _find(parent, k)
+    changed = np.zeros(parent.shape[0], dtype=np.uint8)
+    _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, False)
+    fold = np.zeros(tri.shape[0], dtype=np.uint8)
+    cand = np.zeros(0, dtype=np.int64)
+    joined = np.zeros(0, dtype=np.uint8)
+    _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined, changed)
+    return merges
