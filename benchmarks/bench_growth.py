@@ -16,10 +16,10 @@ Families (``--families``, all by default):
     ``0.9 n`` sites on the unit circle and ``0.1 n`` uniform in the unit disc.
 
 ``vf.voronoi(p, box, algorithm=a)`` for ``a`` in ``delaunay``, ``fortune``, ``halfplane``,
-best of ``--repeat`` wall-clock runs, the algorithms alternated within each repeat; a case
-that took longer than ``--cutoff`` seconds is not run at the next size. Prints the seconds,
-the ratio to the default at the same size and the growth exponent (slope of log t against
-log n over the sizes measured: n log n shows as about 1.1, n^2 as 2).
+best of ``--repeat`` wall-clock runs (process CPU with ``--cpu``), the algorithms alternated
+within each repeat; a case that took longer than ``--cutoff`` seconds is not run at the next
+size. Prints the seconds, the ratio to the default at the same size and the growth exponent
+(slope of log t against log n over the sizes measured: n log n shows as about 1.1, n^2 as 2).
 
 Run ``python benchmarks/bench_growth.py --help`` for the options.
 """
@@ -96,7 +96,7 @@ def growth_exponent(sizes: list[int], times: list[float]) -> float:
     return float(np.polyfit(np.log(n), np.log(t), 1)[0])
 
 
-def run_family(name: str, sizes: list[int], algorithms, repeat: int, cutoff: float):
+def run_family(name: str, sizes: list[int], algorithms, repeat: int, cutoff: float, cpu=False):
     make = FAMILIES[name]
     warm, wbox = make(200)
     for alg in algorithms:  # compile or load numba's cache outside the timings
@@ -111,9 +111,10 @@ def run_family(name: str, sizes: list[int], algorithms, repeat: int, cutoff: flo
                 if alg not in live:
                     continue
                 gc.collect()
-                t0 = time.perf_counter()
+                clock = time.process_time if cpu else time.perf_counter
+                t0 = clock()
                 vf.voronoi(pts, box, algorithm=alg)
-                best[alg] = min(best[alg], time.perf_counter() - t0)
+                best[alg] = min(best[alg], clock() - t0)
         for alg in algorithms:
             if alg in live:
                 times[alg].append(best[alg])
@@ -133,13 +134,14 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--algorithms", default=",".join(ALGORITHMS))
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--cutoff", type=float, default=60.0, help="skip larger sizes past this")
+    ap.add_argument("--cpu", action="store_true", help="time process CPU (all threads), not wall")
     args = ap.parse_args(argv)
     sizes = parse_sizes(args.sizes)
     algorithms = [a for a in args.algorithms.split(",") if a]
     print(command_line())
     print(machine_info())
     for name in args.families.split(","):
-        times = run_family(name, sizes, algorithms, args.repeat, args.cutoff)
+        times = run_family(name, sizes, algorithms, args.repeat, args.cutoff, args.cpu)
         rows = []
         for alg in algorithms:
             ts = times[alg]

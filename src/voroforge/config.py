@@ -54,7 +54,10 @@ FOLD_SPAN_ERRS = 4.0
 #: rounding, joins the nearer neighbour when within this many times what rounding and
 #: naming moved the three (a nearly cocircular cluster far from the origin, whose exact
 #: spread follows the input's rounding; kernels/cells._straight_fold)
-FOLD_REACH_ERRS = 64.0
+FOLD_REACH_ERRS = 256.0
+#: ... and never further than this of the vertex's distance from its site (a class's naming
+#: move grows with every join: it must not carry vertices across the sites' spacing)
+FOLD_REACH_RTOL = 2.0**-10
 #: A chain of circumcentres shorter than this (relative to the box's width + height) is
 #: rounding noise, not put back into a cut cell (kernels/cells)
 CHAIN_SPAN_RTOL = 1e-9

@@ -26,6 +26,7 @@ from numba import njit, prange
 from ..config import (
     FOLD_MAX_ROUNDS,
     FOLD_REACH_ERRS,
+    FOLD_REACH_RTOL,
     FOLD_SPAN_ERRS,
     NJIT,
     NJIT_PARALLEL,
@@ -704,12 +705,15 @@ def _one_vertex(i, xs, ys, tri, err, cx, cy, t, u):
     """Whether the vertices of triangles ``t``, ``u`` (site ``i`` on both) are one to rounding.
 
     They are within what rounding and naming move them (:func:`.centers.short_edge`), or
-    within ``FOLD_SPAN_ERRS`` times the proven distance of each from its exact centre.
+    within ``FOLD_SPAN_ERRS`` times the proven distance of each from its exact centre (and
+    ``FOLD_REACH_RTOL`` of their distance from the site).
     """
+    d = abs(cx[t] - cx[u]) + abs(cy[t] - cy[u])
+    if not d <= FOLD_REACH_RTOL * (abs(cx[t] - xs[i]) + abs(cy[t] - ys[i])):
+        return False  # (a centre's bound may reach 2**-30 of its magnitude: not the spacing)
     if short_edge(xs, ys, i, err, cx, cy, t, u):
         return True
     bound = _moved(t, xs, ys, tri, err, cx, cy) + _moved(u, xs, ys, tri, err, cx, cy)
-    d = abs(cx[t] - cx[u]) + abs(cy[t] - cy[u])
     return d <= FOLD_SPAN_ERRS * bound < np.inf
 
 
@@ -734,6 +738,7 @@ def _fold_pairs(sites, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, 
     pb = np.zeros(total, dtype=np.int64)
     fan = np.zeros(tri.shape[0] // 3 + 1, dtype=np.int64)
     tk = np.zeros(most, dtype=np.int64)
+    mv = np.zeros(most)
     used = np.zeros(most, dtype=np.uint8)
     np_ = 0
     for s in range(sites.shape[0]):
@@ -747,11 +752,19 @@ def _fold_pairs(sites, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, 
         for k in range(m):
             tk[k] = -1
             used[k] = 0
+            mv[k] = 8.0 * _U * (abs(coords[b + k, 0]) + abs(coords[b + k, 1]))  # a crossing
             for d in range(nf):
                 t = fan[(h + d) % nf]
                 if cx[t] == coords[b + k, 0] and cy[t] == coords[b + k, 1]:
                     tk[k] = t
                     h = (h + d) % nf
+                    # the most any member of its class in the fan moved (they follow it)
+                    mv[k] = _moved(t, xs, ys, tri, err, cx, cy)
+                    for d2 in range(1, nf):
+                        u = fan[(h + d2) % nf]
+                        if cls[u] != cls[t]:
+                            break
+                        mv[k] = max(mv[k], _moved(u, xs, ys, tri, err, cx, cy))
                     break
         for k in range(m):
             kp = k - 1 if k > 0 else m - 1
@@ -791,7 +804,7 @@ def _fold_pairs(sites, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, 
                     if j == k:
                         break
             if np_ == before:
-                e = _straight_fold(i, xs, ys, tri, err, cx, cy, cls, coords, b, tk, kp, k, kn)
+                e = _straight_fold(xs[i], ys[i], cls, coords, b, tk, mv, kp, k, kn)
                 if e >= 0 and used[e] == 0:
                     used[e] = 1
                     en = e + 1 if e + 1 < m else 0
@@ -802,7 +815,7 @@ def _fold_pairs(sites, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, 
 
 
 @njit(**NJIT)
-def _straight_fold(i, xs, ys, tri, err, cx, cy, cls, coords, b, tk, kp, k, kn):
+def _straight_fold(sx, sy, cls, coords, b, tk, mv, kp, k, kn):
     """The edge to contract at a bad turn ``kp -> k -> kn`` whose edges are not short; -1.
 
     The exact turn is left, so a computed right turn puts vertex ``k`` within what rounding
@@ -818,13 +831,7 @@ def _straight_fold(i, xs, ys, tri, err, cx, cy, cls, coords, b, tk, kp, k, kn):
     px, py = coords[b + kp, 0], coords[b + kp, 1]
     vx, vy = coords[b + k, 0], coords[b + k, 1]
     qx, qy = coords[b + kn, 0], coords[b + kn, 1]
-    moved = _moved(t, xs, ys, tri, err, cx, cy)
-    for j in (kp, kn):
-        u = tk[j]
-        if u >= 0:
-            moved += _moved(u, xs, ys, tri, err, cx, cy)
-        else:
-            moved += 8.0 * _U * (abs(coords[b + j, 0]) + abs(coords[b + j, 1]))
+    moved = mv[kp] + mv[k] + mv[kn]
     ex = qx - px
     ey = qy - py
     base = np.sqrt(ex * ex + ey * ey)
@@ -833,7 +840,9 @@ def _straight_fold(i, xs, ys, tri, err, cx, cy, cls, coords, b, tk, kp, k, kn):
         return -1
     dp = abs(vx - px) + abs(vy - py) if tk[kp] >= 0 and cls[tk[kp]] != cls[t] else np.inf
     dq = abs(vx - qx) + abs(vy - qy) if tk[kn] >= 0 and cls[tk[kn]] != cls[t] else np.inf
-    reach = FOLD_REACH_ERRS * moved
+    # never further than FOLD_REACH_RTOL of the cell's size: a class's naming move grows
+    # with every join, and must not carry a vertex across the sites' spacing
+    reach = min(FOLD_REACH_ERRS * moved, FOLD_REACH_RTOL * (abs(vx - sx) + abs(vy - sy)))
     if dp <= dq and dp <= reach:
         return kp  # the edge kp -> k
     if dq < dp and dq <= reach:
