@@ -112,11 +112,6 @@ RASTER_SLACK_FLOOR = 1e-300
 
 # --- engine (inputs, domains, periodic, describe, interpolation, Lloyd) ------------------------
 
-#: Cut cells are intersected with local pieces of a polygonal domain: a grid of about
-#: sqrt(domain vertices) / this tiles per side (1 to 64), fixed by the domain alone so a cell
-#: gets the same piece, hence the same bits, in the tiled scale layer and in one process.
-DOMAIN_PIECE_VERTICES = 4.0
-
 #: Periodic margin proof: relative slack on the squared empty-disk radius (rounded distances)
 PERIODIC_PROOF_RTOL = 1e-7
 #: Periodic wrap: ulps of the box's magnitude below which an image's piece is a rounding sliver
