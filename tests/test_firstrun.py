@@ -76,8 +76,11 @@ def test_a_2d_build_loads_only_what_it_needs(tmp_path):
     loaded = _modules_after(
         ["build", str(ROOT / "examples" / "laser-panel.toml"), "-o", str(tmp_path)]
     )
-    assert "ezdxf" in loaded and "voroforge.design.compute" in loaded  # the build ran
+    assert "voroforge.io.dxf" in loaded and "voroforge.design.compute" in loaded  # it ran
+    assert (tmp_path / "laser-panel.dxf").is_file()
+    # the R2000 DXF is written without ezdxf (0.2-0.3 s to import)
     unwanted = ("scipy.spatial", "scipy.sparse", "trimesh", "manifold3d", "skimage", "starlette")
+    unwanted += ("ezdxf",)
     assert not {m for m in loaded if m.startswith(unwanted)}
     for sub in ("solid.build", "surface.build", "studio.server", "engine.voronoi3d", "scale"):
         assert f"voroforge.{sub}" not in loaded, sub
@@ -100,3 +103,63 @@ def test_first_runs_are_timed_in_fresh_processes(tmp_path):
     assert len(lines) == 2 and "wall" in lines[0] and "FAILED" in lines[1]
     with pytest.raises(ValueError, match="repeat"):
         time_first_runs(steps, repeat=0)
+
+
+def test_the_stored_dxf_skeleton_is_what_ezdxf_writes():
+    from voroforge.io._dxf_r2000 import TEMPLATE
+    from voroforge.io.dxf import dxf_skeleton
+
+    assert TEMPLATE == dxf_skeleton()
+
+
+def _dxf_cases():
+    import numpy as np
+    import shapely
+
+    pts = np.random.default_rng(1).random((30, 2)) * 100
+    lines = [shapely.LineString([(0, 0), (1, 1), (2, 0.5)])]
+    lines.append(shapely.MultiLineString([[(5, 5), (6, 7)], [(6, 7), (8, 1)]]))
+    holed = shapely.box(50, 0, 60, 10).difference(shapely.box(52, 2, 55, 5))
+    return {
+        "fillets": ([shapely.box(0, 0, 40, 20).buffer(3, quad_segs=8), holed], {}),
+        "layers": (
+            [shapely.box(0, 0, 4, 2)],
+            {"layers": {"ENGRAVE": lines, "SITES": [shapely.MultiPoint(pts)]}, "units": "in"},
+        ),
+        "crosses": (
+            [],
+            {
+                "layers": {"sites": [shapely.MultiPoint(pts[:5]), shapely.Point(1e-7, -3.3)]},
+                "point_marks": "cross",
+                "point_radius": 1,
+            },
+        ),
+        "no marks": (
+            None,
+            {
+                "layers": {"A": [shapely.Point(1, 2)], "b": [shapely.box(0, 0, 1, 1)]},
+                "point_marks": "none",
+                "units": "unitless",
+            },
+        ),
+        "travel": (
+            [shapely.box(i, 0, i + 0.5, 0.5) for i in range(40)],
+            {"order": "travel", "colours": {"CUT": 3}},
+        ),
+        "chords": ([shapely.Point(0, 0).buffer(5)], {"arcs": False, "units": "cm"}),
+        "raw": (
+            [shapely.Point(*p).buffer(1.5) for p in pts],
+            {"layers": {"EDGES": [shapely.LineString(pts)]}, "merge": False, "dedupe": False},
+        ),
+    }
+
+
+@pytest.mark.parametrize("case", list(_dxf_cases()))
+def test_the_direct_r2000_writer_writes_ezdxf_s_bytes(tmp_path, monkeypatch, case):
+    from voroforge.io import dxf
+
+    geoms, options = _dxf_cases()[case]
+    direct = dxf.write_dxf(geoms, tmp_path / "direct.dxf", **options)
+    monkeypatch.setattr(dxf, "_skeleton_holds", lambda content: False)
+    through = dxf.write_dxf(geoms, tmp_path / "ezdxf.dxf", **options)
+    assert direct.read_bytes() == through.read_bytes()

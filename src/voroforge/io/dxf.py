@@ -8,6 +8,13 @@ tiny lines.
 
 The file is deterministic: the same geometry gives the same bytes (fixed creation date, zero
 GUIDs, handles in writing order).
+
+The default DXF version, R2000, is written without importing ezdxf (0.2-0.3 s of a first
+``voroforge build``): the document skeleton ezdxf writes for an empty drawing is kept in
+:mod:`voroforge.io._dxf_r2000` (:func:`dxf_skeleton` makes it again from ezdxf), and the
+layers and entities are filled in as ezdxf would write them, byte for byte
+(``tests/test_firstrun.py`` compares the two writers). Other versions, and layer names the
+skeleton already holds or that are not ASCII, go through ezdxf.
 """
 
 from __future__ import annotations
@@ -20,10 +27,11 @@ import shapely
 
 from ..config import ARC_TOLERANCE
 from .arcs import bulges_of_rings
+from .atomic import write_atomically
 from .plotter import layer_paths
 from .render import as_geometries
 
-__all__ = ["LAYER_COLOURS", "UNITS", "write_dxf"]
+__all__ = ["LAYER_COLOURS", "UNITS", "dxf_skeleton", "write_dxf"]
 
 #: ``$INSUNITS`` codes of the unit names :func:`write_dxf` accepts.
 UNITS = {"unitless": 0, "in": 1, "ft": 2, "mm": 4, "cm": 5, "m": 6}
@@ -124,8 +132,6 @@ def write_dxf(
     >>> write_dxf([part], out).name
     'part.dxf'
     """
-    import ezdxf
-
     if path is None:
         raise ValueError("write_dxf needs an output path")
     if units not in UNITS:
@@ -146,6 +152,180 @@ def write_dxf(
     palette = {**LAYER_COLOURS, **{k.upper(): int(v) for k, v in (colours or {}).items()}}
 
     options = {"tolerance": arc_tolerance, "max_step": math.radians(max_arc_step), "arcs": arcs}
+    drawing = {
+        "units": units,
+        "options": options,
+        "order": order,
+        "dedupe": dedupe,
+        "merge": merge,
+        "point_marks": point_marks,
+        "point_radius": point_radius,
+    }
+    if version == "R2000" and _skeleton_holds(content):
+        text = _r2000_text(content, palette, **drawing)
+        return write_atomically(path, lambda tmp: _write_text(tmp, text), suffix=".tmp")
+    return _write_ezdxf(content, palette, Path(path), version, **drawing)
+
+
+def _write_text(path: str, text: str) -> None:
+    # as ezdxf saves R2000: text mode (the platform's line ends), the drawing's code page
+    with open(path, "w", encoding="cp1252") as fp:
+        fp.write(text)
+
+
+def _skeleton_holds(content: dict) -> bool:
+    """Whether the stored R2000 skeleton can take these layers (else ezdxf writes the file).
+
+    The skeleton already has layers ``0`` and ``Defpoints``; ezdxf writes names outside ASCII
+    in the code page with escapes, which the direct writer leaves to it.
+    """
+    return all(name.isascii() and name not in ("0", "DEFPOINTS") for name in content)
+
+
+def _r2000_text(
+    content: dict, palette: dict, *, units, options, order, dedupe, merge, point_marks, point_radius
+) -> str:
+    """The R2000 DXF text ezdxf would write for these layers, without ezdxf.
+
+    Handles are given in ezdxf's order: from 0x2F on, each layer's table record, then its
+    entities; after them the three objects ezdxf adds when it saves (two APPIDs and its
+    ``WRITTEN_BY_EZDXF`` variable); ``$HANDSEED`` is the next one.
+    """
+    from ._dxf_r2000 import FIRST_HANDLE, TEMPLATE
+
+    handle = FIRST_HANDLE
+    layer_rows: list[str] = []
+    out: list[str] = []
+    for name, items in content.items():
+        layer_rows.append(
+            f"  0\nLAYER\n  5\n{handle:X}\n330\n1\n100\nAcDbSymbolTableRecord\n100\n"
+            f"AcDbLayerTableRecord\n  2\n{name}\n 70\n0\n 62\n{palette.get(name, 7)}\n"
+            "  6\nContinuous\n370\n-3\n390\n13\n"
+        )
+        handle += 1
+        head = f"330\n17\n100\nAcDbEntity\n  8\n{name}\n"
+        drawn = layer_paths(items, order=order, dedupe=dedupe, merge=merge)
+        fitted = iter(bulges_of_rings(drawn.rings(), **options))
+        for xy, closed in zip(drawn.paths, drawn.closed.tolist(), strict=True):
+            rows = next(fitted).tolist() if closed else [(x, y, 0.0) for x, y in xy.tolist()]
+            out.append(
+                f"  0\nLWPOLYLINE\n  5\n{handle:X}\n{head}100\nAcDbPolyline\n"
+                f" 90\n{len(rows)}\n 70\n{1 if closed else 0}\n"
+            )
+            out.extend(
+                f" 10\n{x!r}\n 20\n{y!r}\n 42\n{b!r}\n" if b else f" 10\n{x!r}\n 20\n{y!r}\n"
+                for x, y, b in rows
+            )
+            handle += 1
+        for geom in items:
+            if "Point" not in geom.geom_type and geom.geom_type != "GeometryCollection":
+                continue
+            for pt in shapely.get_parts(geom):
+                if pt.geom_type != "Point":
+                    continue
+                x, y, r = float(pt.x), float(pt.y), float(point_radius)
+                out.append(
+                    f"  0\nPOINT\n  5\n{handle:X}\n{head}100\nAcDbPoint\n"
+                    f" 10\n{x!r}\n 20\n{y!r}\n 30\n0.0\n"
+                )
+                handle += 1
+                if point_marks == "circle":
+                    out.append(
+                        f"  0\nCIRCLE\n  5\n{handle:X}\n{head}100\nAcDbCircle\n"
+                        f" 10\n{x!r}\n 20\n{y!r}\n 30\n0.0\n 40\n{r!r}\n"
+                    )
+                    handle += 1
+                elif point_marks == "cross":
+                    for (x0, y0), (x1, y1) in (((x - r, y), (x + r, y)), ((x, y - r), (x, y + r))):
+                        out.append(
+                            f"  0\nLINE\n  5\n{handle:X}\n{head}100\nAcDbLine\n"
+                            f" 10\n{x0!r}\n 20\n{y0!r}\n 30\n0.0\n"
+                            f" 11\n{x1!r}\n 21\n{y1!r}\n 31\n0.0\n"
+                        )
+                        handle += 1
+    fields = {
+        "~INSUNITS~": str(UNITS[units]),
+        "~MEASUREMENT~": "0" if units in ("in", "ft") else "1",
+        "~NLAYERS~": str(2 + len(content)),
+        "~LAYERS~": "".join(layer_rows),
+        "~ENTITIES~": "".join(out),
+        "~APPID1~": f"{handle:X}",
+        "~APPID2~": f"{handle + 1:X}",
+        "~WRITTEN~": f"{handle + 2:X}",
+        "~HANDSEED~": f"{handle + 3:X}",
+    }
+    parts = TEMPLATE.split("~")
+    # the template alternates text and field names: "...~FIELD~..."
+    return "".join(fields[f"~{p}~"] if k % 2 else p for k, p in enumerate(parts))
+
+
+def dxf_skeleton() -> str:
+    """The R2000 skeleton of :mod:`voroforge.io._dxf_r2000`, made again with ezdxf.
+
+    ezdxf writes an empty drawing with one layer; the parts that vary (units, the layer
+    table, the entities, the handles given after them) become ``~FIELD~`` marks.
+    ``tests/test_firstrun.py`` checks that the stored copy is what the installed ezdxf
+    writes.
+    """
+    import io
+
+    import ezdxf
+
+    saved = ezdxf.options.write_fixed_meta_data_for_testing
+    ezdxf.options.write_fixed_meta_data_for_testing = True
+    try:
+        doc = ezdxf.new("R2000", setup=False, units=4)
+        doc.header["$MEASUREMENT"] = 1
+        doc.layers.add("VOROFORGE", color=7)
+        stream = io.StringIO()
+        doc.write(stream)
+    finally:
+        ezdxf.options.write_fixed_meta_data_for_testing = saved
+    text = stream.getvalue()
+    if "~" in text:
+        raise ValueError("ezdxf's skeleton holds '~', which marks the fields")
+    layer = (
+        "  0\nLAYER\n  5\n2F\n330\n1\n100\nAcDbSymbolTableRecord\n100\nAcDbLayerTableRecord\n"
+        "  2\nVOROFORGE\n 70\n0\n 62\n7\n  6\nContinuous\n370\n-3\n390\n13\n"
+    )
+    for old, new in (
+        ("$INSUNITS\n 70\n4\n", "$INSUNITS\n 70\n~INSUNITS~\n"),
+        ("$MEASUREMENT\n 70\n1\n", "$MEASUREMENT\n 70\n~MEASUREMENT~\n"),
+        ("$HANDSEED\n  5\n33\n", "$HANDSEED\n  5\n~HANDSEED~\n"),
+        (
+            "  2\nLAYER\n  5\n1\n330\n0\n100\nAcDbSymbolTable\n 70\n3\n",
+            "  2\nLAYER\n  5\n1\n330\n0\n100\nAcDbSymbolTable\n 70\n~NLAYERS~\n",
+        ),
+        (layer, "~LAYERS~"),
+        ("  2\nENTITIES\n  0\nENDSEC\n", "  2\nENTITIES\n~ENTITIES~  0\nENDSEC\n"),
+        ("APPID\n  5\n30\n", "APPID\n  5\n~APPID1~\n"),
+        ("APPID\n  5\n31\n", "APPID\n  5\n~APPID2~\n"),
+        ("WRITTEN_BY_EZDXF\n350\n32\n", "WRITTEN_BY_EZDXF\n350\n~WRITTEN~\n"),
+        ("DICTIONARYVAR\n  5\n32\n", "DICTIONARYVAR\n  5\n~WRITTEN~\n"),
+    ):
+        if text.count(old) != 1:
+            raise ValueError(f"ezdxf's skeleton changed: {old!r} is not there once")
+        text = text.replace(old, new)
+    return text
+
+
+def _write_ezdxf(
+    content: dict,
+    palette: dict,
+    path: Path,
+    version: str,
+    *,
+    units,
+    options,
+    order,
+    dedupe,
+    merge,
+    point_marks,
+    point_radius,
+) -> Path:
+    """Write the layers with ezdxf (any version from R2000 on)."""
+    import ezdxf
+
     saved = ezdxf.options.write_fixed_meta_data_for_testing
     ezdxf.options.write_fixed_meta_data_for_testing = True
     try:
@@ -168,7 +348,6 @@ def write_dxf(
                 for pt in shapely.get_parts(geom):
                     if pt.geom_type == "Point":
                         _add_point(msp, pt.x, pt.y, point_marks, point_radius, attribs)
-        path = Path(path)
         tmp = path.with_name(f".{path.name}.tmp")
         try:
             doc.saveas(tmp)

@@ -141,7 +141,9 @@ def _3mf_bytes(items, units: str) -> bytes:
     parts.extend(f'<item objectid="{k}"/>' for k in range(1, len(items) + 1))
     parts.append("</build></model>")
     buf = io.BytesIO()
-    with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as z:
+    # deflate level 1: 4x faster than the default 6 on a 500k-triangle lattice (0.34 s vs
+    # 1.35 s), for a file about 20% larger
+    with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED, compresslevel=1) as z:
         for name, data in (
             ("[Content_Types].xml", _CT),
             ("_rels/.rels", _RELS),
@@ -150,7 +152,7 @@ def _3mf_bytes(items, units: str) -> bytes:
             # a fixed date: the same mesh gives the same file byte for byte
             info = zipfile.ZipInfo(name, _ZIP_DATE)
             info.external_attr = 0o600 << 16  # what writestr gives a name
-            z.writestr(info, data, zipfile.ZIP_DEFLATED)
+            z.writestr(info, data, zipfile.ZIP_DEFLATED, compresslevel=1)
     return buf.getvalue()
 
 

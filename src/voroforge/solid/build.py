@@ -69,19 +69,20 @@ def _revolve(profile, sections: int):
 
 def make_solid(design, base=None, stage=None):
     """The solid a design's ``[solid]`` section describes (a watertight Trimesh)."""
-    from . import extrude, foam, lattice, shell
-
+    # each kind imports only its own builder
     stage = stage or (lambda name: None)
     s = design.solid
     f = _field(s)
     if s.kind == "extrude":
         from ..design.compute import compute
+        from .extrude import extrude
 
         result = compute(design, base, progress=stage)
         stage("extruding")
         return extrude(result, s.thickness)
     if s.kind == "shell":
         from ..io.mesh import read
+        from .shell import shell
 
         surf = read(_path(base, s.surface)) if s.surface else _revolve(s.profile, s.sections)
         stage(f"shell with {s.openings} openings")
@@ -98,6 +99,8 @@ def make_solid(design, base=None, stage=None):
         )
     cells, mesh = _cells(s, base, stage)
     if s.kind == "lattice":
+        from .lattice import lattice
+
         stage("lattice")
         return lattice(
             cells,
@@ -109,6 +112,8 @@ def make_solid(design, base=None, stage=None):
             voxel=s.voxel,
             smoothing=s.smoothing,
         )
+    from .foam import foam
+
     stage("foam")
     return foam(cells, s.wall, field=f)
 

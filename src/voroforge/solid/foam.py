@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import linprog
 from scipy.spatial import HalfspaceIntersection, QhullError
 
 from .fields import as_size
@@ -26,6 +25,8 @@ def _planes(cell) -> tuple[np.ndarray, np.ndarray]:
 
 def _chebyshev(a: np.ndarray, c: np.ndarray):
     """Centre and radius of the largest ball inside ``a x <= c`` (None when empty)."""
+    from scipy.optimize import linprog  # only for cells whose centroid is not inside
+
     norm = np.linalg.norm(a, axis=1)
     res = linprog(
         [0, 0, 0, -1],
