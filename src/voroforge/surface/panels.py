@@ -530,10 +530,11 @@ class Panels:
             faces.append(np.stack([r, rn, rn + m], 1))
             faces.append(np.stack([r, rn + m, r + m], 1))
             k += len(ring)
-        mesh = trimesh.Trimesh(np.concatenate([base, top]), np.concatenate(faces), process=False)
-        if mesh.volume < 0:
-            mesh.invert()
-        return mesh
+        verts, faces = np.concatenate([base, top]), np.concatenate(faces)
+        a, b, c = (verts[faces[:, k]] for k in range(3))
+        if np.einsum("ij,ij->", a, np.cross(b, c)) < 0:  # 6 x the signed volume (trimesh's
+            faces = faces[:, ::-1]  # mass properties cost 20x more)
+        return trimesh.Trimesh(verts, faces, process=False)
 
     def thicken(self, t: float):
         """Every panel as a solid of thickness ``t`` (offset along its normals).
