@@ -163,3 +163,18 @@ def test_the_direct_r2000_writer_writes_ezdxf_s_bytes(tmp_path, monkeypatch, cas
     monkeypatch.setattr(dxf, "_skeleton_holds", lambda content: False)
     through = dxf.write_dxf(geoms, tmp_path / "ezdxf.dxf", **options)
     assert direct.read_bytes() == through.read_bytes()
+
+
+def test_unrolled_sheets_write_ezdxf_s_bytes_without_ezdxf(tmp_path, monkeypatch):
+    import ezdxf
+
+    from voroforge import surface
+
+    S = surface.saddle(2.0, 2.0, 0.3)
+    panels = surface.voronoi(S, 12, relax=2, seed=1).panels()
+    sheets = panels.unroll(sheet=(3.0, 1.5))
+    direct = sheets.write_dxf(tmp_path / "direct.dxf", units="m").read_bytes()
+    monkeypatch.setattr(ezdxf.options, "write_fixed_meta_data_for_testing", True)
+    through = sheets._write_dxf_ezdxf(tmp_path / "ezdxf.dxf", "CUT", "LABELS", "m").read_bytes()
+    assert direct == through
+    assert direct.count(b"\nTEXT\n") == len(panels)

@@ -31,7 +31,7 @@ from .atomic import write_atomically
 from .plotter import layer_paths
 from .render import as_geometries
 
-__all__ = ["LAYER_COLOURS", "UNITS", "dxf_skeleton", "write_dxf"]
+__all__ = ["LAYER_COLOURS", "UNITS", "R2000", "dxf_skeleton", "write_dxf"]
 
 #: ``$INSUNITS`` codes of the unit names :func:`write_dxf` accepts.
 UNITS = {"unitless": 0, "in": 1, "ft": 2, "mm": 4, "cm": 5, "m": 6}
@@ -185,38 +185,15 @@ def _skeleton_holds(content: dict) -> bool:
 def _r2000_text(
     content: dict, palette: dict, *, units, options, order, dedupe, merge, point_marks, point_radius
 ) -> str:
-    """The R2000 DXF text ezdxf would write for these layers, without ezdxf.
-
-    Handles are given in ezdxf's order: from 0x2F on, each layer's table record, then its
-    entities; after them the three objects ezdxf adds when it saves (two APPIDs and its
-    ``WRITTEN_BY_EZDXF`` variable); ``$HANDSEED`` is the next one.
-    """
-    from ._dxf_r2000 import FIRST_HANDLE, TEMPLATE
-
-    handle = FIRST_HANDLE
-    layer_rows: list[str] = []
-    out: list[str] = []
+    """The R2000 DXF text ezdxf would write for these layers, without ezdxf."""
+    doc = R2000()
     for name, items in content.items():
-        layer_rows.append(
-            f"  0\nLAYER\n  5\n{handle:X}\n330\n1\n100\nAcDbSymbolTableRecord\n100\n"
-            f"AcDbLayerTableRecord\n  2\n{name}\n 70\n0\n 62\n{palette.get(name, 7)}\n"
-            "  6\nContinuous\n370\n-3\n390\n13\n"
-        )
-        handle += 1
-        head = f"330\n17\n100\nAcDbEntity\n  8\n{name}\n"
+        doc.layer(name, palette.get(name, 7))
         drawn = layer_paths(items, order=order, dedupe=dedupe, merge=merge)
         fitted = iter(bulges_of_rings(drawn.rings(), **options))
         for xy, closed in zip(drawn.paths, drawn.closed.tolist(), strict=True):
             rows = next(fitted).tolist() if closed else [(x, y, 0.0) for x, y in xy.tolist()]
-            out.append(
-                f"  0\nLWPOLYLINE\n  5\n{handle:X}\n{head}100\nAcDbPolyline\n"
-                f" 90\n{len(rows)}\n 70\n{1 if closed else 0}\n"
-            )
-            out.extend(
-                f" 10\n{x!r}\n 20\n{y!r}\n 42\n{b!r}\n" if b else f" 10\n{x!r}\n 20\n{y!r}\n"
-                for x, y, b in rows
-            )
-            handle += 1
+            doc.lwpolyline(name, rows, closed)
         for geom in items:
             if "Point" not in geom.geom_type and geom.geom_type != "GeometryCollection":
                 continue
@@ -224,39 +201,109 @@ def _r2000_text(
                 if pt.geom_type != "Point":
                     continue
                 x, y, r = float(pt.x), float(pt.y), float(point_radius)
-                out.append(
-                    f"  0\nPOINT\n  5\n{handle:X}\n{head}100\nAcDbPoint\n"
-                    f" 10\n{x!r}\n 20\n{y!r}\n 30\n0.0\n"
-                )
-                handle += 1
+                doc.point(name, x, y)
                 if point_marks == "circle":
-                    out.append(
-                        f"  0\nCIRCLE\n  5\n{handle:X}\n{head}100\nAcDbCircle\n"
-                        f" 10\n{x!r}\n 20\n{y!r}\n 30\n0.0\n 40\n{r!r}\n"
-                    )
-                    handle += 1
+                    doc.circle(name, x, y, r)
                 elif point_marks == "cross":
-                    for (x0, y0), (x1, y1) in (((x - r, y), (x + r, y)), ((x, y - r), (x, y + r))):
-                        out.append(
-                            f"  0\nLINE\n  5\n{handle:X}\n{head}100\nAcDbLine\n"
-                            f" 10\n{x0!r}\n 20\n{y0!r}\n 30\n0.0\n"
-                            f" 11\n{x1!r}\n 21\n{y1!r}\n 31\n0.0\n"
-                        )
-                        handle += 1
-    fields = {
-        "~INSUNITS~": str(UNITS[units]),
-        "~MEASUREMENT~": "0" if units in ("in", "ft") else "1",
-        "~NLAYERS~": str(2 + len(content)),
-        "~LAYERS~": "".join(layer_rows),
-        "~ENTITIES~": "".join(out),
-        "~APPID1~": f"{handle:X}",
-        "~APPID2~": f"{handle + 1:X}",
-        "~WRITTEN~": f"{handle + 2:X}",
-        "~HANDSEED~": f"{handle + 3:X}",
-    }
-    parts = TEMPLATE.split("~")
-    # the template alternates text and field names: "...~FIELD~..."
-    return "".join(fields[f"~{p}~"] if k % 2 else p for k, p in enumerate(parts))
+                    doc.line(name, x - r, y, x + r, y)
+                    doc.line(name, x, y - r, x, y + r)
+    return doc.document(units)
+
+
+class R2000:
+    """An R2000 DXF document written as ezdxf writes it, without importing ezdxf.
+
+    Layers and entities get handles in the order they are added, from 0x2F on (ezdxf's
+    first free handle in a new drawing); after them come the three objects ezdxf adds when
+    it saves (two APPIDs and its ``WRITTEN_BY_EZDXF`` variable), and ``$HANDSEED`` is the
+    next one. Coordinates are written as ``repr`` gives them, as ezdxf does. Layer names
+    must be ASCII and neither ``0`` nor ``DEFPOINTS`` (the skeleton's own layers).
+    """
+
+    def __init__(self) -> None:
+        from ._dxf_r2000 import FIRST_HANDLE
+
+        self._handle = FIRST_HANDLE
+        self._layers: list[str] = []
+        self._entities: list[str] = []
+
+    def _next(self) -> str:
+        h = self._handle
+        self._handle += 1
+        return f"{h:X}"
+
+    def layer(self, name: str, colour: int = 7) -> None:
+        """Add a layer table record (continuous line type, ``colour`` an AutoCAD index)."""
+        self._layers.append(
+            f"  0\nLAYER\n  5\n{self._next()}\n330\n1\n100\nAcDbSymbolTableRecord\n100\n"
+            f"AcDbLayerTableRecord\n  2\n{name}\n 70\n0\n 62\n{int(colour)}\n"
+            "  6\nContinuous\n370\n-3\n390\n13\n"
+        )
+
+    def _head(self, kind: str, layer: str) -> str:
+        return f"  0\n{kind}\n  5\n{self._next()}\n330\n17\n100\nAcDbEntity\n  8\n{layer}\n"
+
+    def lwpolyline(self, layer: str, rows, closed: bool) -> None:
+        """An LWPOLYLINE of ``(x, y, bulge)`` rows (Python floats; zero bulges left out)."""
+        out = [
+            self._head("LWPOLYLINE", layer),
+            f"100\nAcDbPolyline\n 90\n{len(rows)}\n 70\n{1 if closed else 0}\n",
+        ]
+        out.extend(
+            f" 10\n{x!r}\n 20\n{y!r}\n 42\n{b!r}\n" if b else f" 10\n{x!r}\n 20\n{y!r}\n"
+            for x, y, b in rows
+        )
+        self._entities.append("".join(out))
+
+    def point(self, layer: str, x: float, y: float) -> None:
+        """A POINT."""
+        self._entities.append(
+            f"{self._head('POINT', layer)}100\nAcDbPoint\n 10\n{x!r}\n 20\n{y!r}\n 30\n0.0\n"
+        )
+
+    def circle(self, layer: str, x: float, y: float, r: float) -> None:
+        """A CIRCLE."""
+        self._entities.append(
+            f"{self._head('CIRCLE', layer)}100\nAcDbCircle\n"
+            f" 10\n{x!r}\n 20\n{y!r}\n 30\n0.0\n 40\n{r!r}\n"
+        )
+
+    def line(self, layer: str, x0: float, y0: float, x1: float, y1: float) -> None:
+        """A LINE."""
+        self._entities.append(
+            f"{self._head('LINE', layer)}100\nAcDbLine\n 10\n{x0!r}\n 20\n{y0!r}\n 30\n0.0\n"
+            f" 11\n{x1!r}\n 21\n{y1!r}\n 31\n0.0\n"
+        )
+
+    def text(self, layer: str, text: str, x: float, y: float, height: float) -> None:
+        """A one-line TEXT centred on ``(x, y)`` (ezdxf's ``MIDDLE_CENTER`` placement)."""
+        self._entities.append(
+            f"{self._head('TEXT', layer)}100\nAcDbText\n 10\n{x!r}\n 20\n{y!r}\n 30\n0.0\n"
+            f" 40\n{height!r}\n  1\n{text}\n 72\n1\n 11\n{x!r}\n 21\n{y!r}\n 31\n0.0\n"
+            "100\nAcDbText\n 73\n2\n"
+        )
+
+    def document(self, units: str, measurement: int | None = None) -> str:
+        """The whole file: ``$INSUNITS`` from ``units``, ``$MEASUREMENT`` 0 for in/ft."""
+        from ._dxf_r2000 import TEMPLATE
+
+        if measurement is None:
+            measurement = 0 if units in ("in", "ft") else 1
+        h = self._handle
+        fields = {
+            "INSUNITS": str(UNITS[units]),
+            "MEASUREMENT": str(int(measurement)),
+            "NLAYERS": str(2 + len(self._layers)),
+            "LAYERS": "".join(self._layers),
+            "ENTITIES": "".join(self._entities),
+            "APPID1": f"{h:X}",
+            "APPID2": f"{h + 1:X}",
+            "WRITTEN": f"{h + 2:X}",
+            "HANDSEED": f"{h + 3:X}",
+        }
+        # the skeleton alternates text and field names: "...~FIELD~..."
+        parts = TEMPLATE.split("~")
+        return "".join(fields[part] if k % 2 else part for k, part in enumerate(parts))
 
 
 def dxf_skeleton() -> str:

@@ -121,20 +121,45 @@ class CutSheets:
         return k * (self.size[0] + 2 * self.gap)
 
     def write_dxf(self, path, *, layer: str = "CUT", label_layer: str = "LABELS", units="mm"):
-        """Sheets side by side in one DXF: closed outlines on ``layer``, labels as TEXT.
+        """Sheets side by side in one DXF R2000: closed outlines on ``layer``, labels as TEXT.
 
-        Returns the path (written atomically).
+        Written without ezdxf (:class:`voroforge.io.dxf.R2000`, the bytes ezdxf writes with
+        its fixed test metadata) unless a name needs ezdxf's escapes. Returns the path
+        (written atomically).
         """
+        from ..io.dxf import R2000, UNITS
+
+        if units not in UNITS:
+            raise ValueError(f"units must be one of {sorted(UNITS)}; got {units!r}")
+        cut, lab = layer.upper(), label_layer.upper()
+        names = [cut, lab, *(p.label for p in self.parts)]
+        if cut == lab or not all(n.isascii() and "\n" not in n for n in names):
+            return self._write_dxf_ezdxf(path, cut, lab, units)
+        if {cut, lab} & {"0", "DEFPOINTS"}:
+            return self._write_dxf_ezdxf(path, cut, lab, units)
+        doc = R2000()
+        doc.layer(cut, 1)
+        doc.layer(lab, 3)
+        for part in self.parts:
+            dx = self._offset(part.sheet)
+            for ring in part.rings:
+                rows = [(float(x + dx), float(y), 0.0) for x, y in ring]
+                doc.lwpolyline(cut, rows, closed=True)
+            x, y = part.label_at
+            doc.text(lab, part.label, float(x + dx), float(y), float(part.label_height))
+        text = doc.document(units)
+        return _atomic(path, lambda f: f.write(text), text=True)
+
+    def _write_dxf_ezdxf(self, path, cut: str, lab: str, units: str):
         import ezdxf
 
         from ..io.dxf import UNITS
 
-        if units not in UNITS:
-            raise ValueError(f"units must be one of {sorted(UNITS)}; got {units!r}")
         doc = ezdxf.new("R2000")
         doc.header["$INSUNITS"] = UNITS[units]
-        doc.layers.add(layer.upper(), color=1)
-        doc.layers.add(label_layer.upper(), color=3)
+        doc.header["$MEASUREMENT"] = 0 if units in ("in", "ft") else 1
+        doc.layers.add(cut, color=1)
+        doc.layers.add(lab, color=3)
         msp = doc.modelspace()
         for part in self.parts:
             dx = self._offset(part.sheet)
@@ -142,15 +167,17 @@ class CutSheets:
                 msp.add_lwpolyline(
                     [(float(x + dx), float(y)) for x, y in ring],
                     close=True,
-                    dxfattribs={"layer": layer.upper()},
+                    dxfattribs={"layer": cut},
                 )
             x, y = part.label_at
             t = msp.add_text(
                 part.label,
-                height=part.label_height,
-                dxfattribs={"layer": label_layer.upper()},
+                height=float(part.label_height),
+                dxfattribs={"layer": lab},
             )
-            t.set_placement((x + dx, y), align=ezdxf.enums.TextEntityAlignment.MIDDLE_CENTER)
+            t.set_placement(
+                (float(x + dx), float(y)), align=ezdxf.enums.TextEntityAlignment.MIDDLE_CENTER
+            )
         return _atomic(path, lambda f: doc.write(f), text=True)
 
     def write_svg(self, path, *, layer: str = "CUT", label_layer: str = "LABELS", units="mm"):
