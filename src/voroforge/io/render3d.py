@@ -166,7 +166,9 @@ def render(
             xy, rgb, outline = faces[i]
             draw.polygon(xy, fill=rgb, outline=ec if outline else rgb, width=ss)
     img = img.resize((w, h), Image.LANCZOS)
-    return write_atomically(path, lambda tmp: img.save(tmp, format="PNG", optimize=True))
+    # zlib level 3: as small as optimize=True on these renders, in a sixth of the time
+    # (0.03 s vs 0.2 s for a 900 x 720 preview)
+    return write_atomically(path, lambda tmp: img.save(tmp, format="PNG", compress_level=3))
 
 
 def diagram_edges(d, cells=None):
