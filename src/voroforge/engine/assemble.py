@@ -185,6 +185,10 @@ class _Pieces:
     def __init__(self, dom: Domain, closed, ring_offsets, ring_cell, n: int):
         self.geometry = dom.geometry
         self.whole = int(shapely.get_num_coordinates(dom.geometry)) <= _PIECE_SMALL
+        # a prepared copy (the caller's geometry is left as it is) for the exact predicates
+        # that settle most geometries without an overlay
+        self.prepared = shapely.from_wkb(shapely.to_wkb(dom.geometry))
+        shapely.prepare(self.prepared)
         self.bounds = np.zeros((n, 4))
         if len(ring_cell):
             starts = ring_offsets[:-1]
@@ -204,12 +208,23 @@ class _Pieces:
             self.cache[cell] = got
         return got
 
-    def intersect(self, geoms, cells):
-        """``geoms[k] ∩ domain`` for geometries inside the boxes of cells ``cells[k]``."""
-        if self.whole:
-            return shapely.intersection(geoms, self.geometry)
+    def intersect(self, geoms, cells, empty):
+        """``geoms[k] ∩ domain`` for geometries inside the boxes of cells ``cells[k]``.
+
+        A geometry in the domain's interior is its own intersection and one disjoint from it
+        has ``empty`` (exact predicates on the prepared domain, several times cheaper than an
+        overlay); only the rest, which meet the domain's boundary, are overlaid.
+        """
         out = np.empty(len(geoms), dtype=object)  # noqa: TID251 - every slot is filled below
-        order = np.argsort(cells, kind="stable")
+        inside = shapely.contains_properly(self.prepared, geoms)
+        outside = shapely.disjoint(self.prepared, geoms)
+        out[inside] = geoms[inside]
+        out[outside] = empty
+        rest = np.flatnonzero(~(inside | outside))
+        if self.whole:
+            out[rest] = shapely.intersection(geoms[rest], self.geometry)
+            return out
+        order = rest[np.argsort(cells[rest], kind="stable")]
         cuts = np.flatnonzero(np.diff(cells[order])) + 1
         for group in np.split(order, cuts) if len(order) else []:
             out[group] = shapely.intersection(geoms[group], self.piece(int(cells[group[0]])))
@@ -236,7 +251,8 @@ def clip_to_polygon(dom: Domain, grid, pieces, coords, ring_offsets, ring_cell, 
         convex = shapely.from_ragged_array(
             shapely.GeometryType.POLYGON, coords[h_mask], (h_off, np.arange(len(hard) + 1))
         )
-        clipped = shapely.orient_polygons(_polygonal(pieces.intersect(convex, ring_cell[hard])))
+        cut = pieces.intersect(convex, ring_cell[hard], shapely.Polygon())
+        clipped = shapely.orient_polygons(_polygonal(cut))
         parts, idx = shapely.get_parts(clipped, return_index=True)
         keep = ~shapely.is_empty(parts)
         parts = parts[keep]
@@ -310,7 +326,8 @@ def _clip_segments(grid, pieces, seg, pairs, tol):
     keep = status == 1
     if not len(hard):
         return seg[keep], pairs[keep]
-    cut = pieces.intersect(shapely.linestrings(seg[hard]), pairs[hard].min(axis=1))
+    lines = shapely.linestrings(seg[hard])
+    cut = pieces.intersect(lines, pairs[hard].min(axis=1), shapely.LineString())
     parts, idx = shapely.get_parts(cut, return_index=True)
     is_line = (shapely.get_type_id(parts) == 1) & ~shapely.is_empty(parts)
     parts = parts[is_line]
