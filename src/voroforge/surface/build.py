@@ -158,12 +158,11 @@ def render_panels(panels, path, *, size=900, view=(35.0, 30.0)):
     if all(len(r) == 1 for r in panels.rings) and panels.uv is None:
         items = [(panels.vertices, [r[0], r[0][::-1]]) for r in panels.rings]
         return render(items, path, size=(size, int(size * 0.75)), view=view, colors=cols)
-    m = panels.to_trimesh()
-    owner = m.face_attributes["panel"]
+    faces, owner = panels.triangulate()  # no trimesh import for a preview
     items = []
     for p in range(len(panels)):
-        f = m.faces[owner == p]
-        items.append((m.vertices, [*f, *f[:, ::-1]]))
+        f = faces[owner == p]
+        items.append((panels.vertices, [*f, *f[:, ::-1]]))
     return render(items, path, size=(size, int(size * 0.75)), view=view, colors=cols, edges=False)
 
 

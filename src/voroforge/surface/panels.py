@@ -599,6 +599,16 @@ class Panels:
         """All panels triangulated into one mesh; ``face_attributes["panel"]`` the position."""
         import trimesh
 
+        faces, owner = self.triangulate()
+        m = trimesh.Trimesh(self.vertices.copy(), faces, process=False)
+        m.face_attributes["panel"] = owner
+        return m
+
+    def triangulate(self) -> tuple[np.ndarray, np.ndarray]:
+        """All panels triangulated: ``(faces (t, 3) into vertices, owner (t,) panel position)``.
+
+        What :meth:`to_trimesh` holds, without importing trimesh.
+        """
         faces, owner = [], []
         for p in range(len(self)):
             flat = self.uv
@@ -614,9 +624,9 @@ class Panels:
             tri = _triangles(flat, self.rings[p])
             faces.append(tri)
             owner.append(np.full(len(tri), p))
-        m = trimesh.Trimesh(self.vertices.copy(), np.concatenate(faces), process=False)
-        m.face_attributes["panel"] = np.concatenate(owner)
-        return m
+        if not faces:
+            return np.zeros((0, 3), np.int64), np.zeros(0, np.int64)
+        return np.concatenate(faces), np.concatenate(owner)
 
     # --- flat -------------------------------------------------------------------------------
 
