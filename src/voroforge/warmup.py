@@ -211,7 +211,9 @@ def time_first_runs(
     -------
     list of Step
         ``seconds`` is the wall time and ``cpu`` the user + system time of the child
-        process; ``error`` the last line of its error output if it failed.
+        process; ``error`` the last line of its error output if it failed. Each report
+        line also gives the machine's load average: on a busy machine the wall time
+        exceeds the CPU time.
     """
     import resource
     import subprocess
@@ -239,9 +241,19 @@ def time_first_runs(
             status = "ok" if not error else f"FAILED: {error}"
             report(
                 f"first run {k}/{len(steps)}: {step.label:<34} {step.seconds:5.2f} s wall "
-                f"{step.cpu:5.2f} s CPU  {status}"
+                f"{step.cpu:5.2f} s CPU  load {_load()}  {status}"
             )
     return done
+
+
+def _load() -> str:
+    """The 1-minute load average (wall times mean little without it), or ``?``."""
+    import os
+
+    try:
+        return f"{os.getloadavg()[0]:.1f}"
+    except (AttributeError, OSError):  # not on Windows
+        return "?"
 
 
 def warm_up(
