@@ -128,3 +128,23 @@ def test_bad_meshes():
         vf.voronoi3d([[1, 0, 0]], "/nonexistent/mesh.stl")
     with pytest.raises(ValueError, match="container must be"):
         vf.voronoi3d([[1, 0, 0]], object())
+
+
+def test_container_parts_wholly_inside_a_cell():
+    # three separate bodies: a slab, a cube floating inside one cell alone and another in a
+    # cell that also reaches the slab. Cells are cut in batches of cells that do not touch;
+    # a part of the container that touches no face of its cell cannot be told apart in a
+    # batch, so that batch is halved until it can (the island sites come first, so they
+    # share their batches with slab cells)
+    slab = _box((0, 0, 0), (4, 4, 1))
+    alone = _box((1.4, 1.4, 1.9), (1.6, 1.6, 2.1))
+    shared = _box((2.4, 2.4, 1.6), (2.6, 2.6, 1.8))
+    mesh = trimesh.util.concatenate([slab, alone, shared])
+    g = np.arange(0.25, 4.0, 0.5)
+    pts = np.array([[1.5, 1.5, 2.0], [2.5, 2.5, 1.25]] + [[x, y, 0.5] for x in g for y in g])
+    d = vf.voronoi3d(pts, mesh)
+    _check_mesh_diagram(d, mesh, pts)
+    np.testing.assert_allclose(d.volumes[0], 0.008, rtol=1e-9)
+    assert d.pieces[0] == 1 and d.pieces[1] == 2
+    assert d.cut_cells[:2].all()
+    assert len(d.to_trimesh(1).split(only_watertight=False)) == 2

@@ -3,11 +3,15 @@
 Only cells that can reach the surface are cut: a cell whose ball around its site (radius: its
 farthest vertex) holds no point of any triangle is wholly inside or wholly outside, decided
 by exact ray parity at its centroid (:mod:`kernels.inside3d`), and kept untouched (convex,
-named vertices) or emptied. A cell that may reach the surface is intersected with the mesh by
-manifold3d (double precision); its faces become the result's triangles, labelled with the
-cell face they came from (a site or a box wall) or ``-1 - t`` for container triangle ``t``,
-and its new vertices are its own (not shared with the neighbour across a cut face). Cells
-that the container splits report their number of pieces.
+named vertices) or emptied. The cells that may reach the surface are intersected with the
+mesh by manifold3d (double precision) in a few batches of cells that share no vertex (a
+greedy colouring), one boolean per batch: each boolean costs about the container's size
+plus the batch's, so cutting cells one at a time would pay the container once per cell.
+The result's triangles are labelled with the cell face they came from (a site or a box
+wall) or ``-1 - t`` for container triangle ``t``; its connected components tell the cells
+apart (a component without a cell face, a closed part of the container inside a cell, makes
+the batch split in halves). A cut cell's new vertices are its own (not shared with the
+neighbour across a cut face). Cells that the container splits report their number of pieces.
 """
 
 from __future__ import annotations
@@ -132,7 +136,7 @@ def _seg_dist(p, a, b):
 
 
 def _point_triangle_distance(p, tri):
-    """Distance from point ``p (3,)`` to each triangle ``tri (m, 3, 3)``."""
+    """Distance from points ``p`` ((3,) or one per triangle) to triangles ``tri (m, 3, 3)``."""
     a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
     n = np.cross(b - a, c - a)
     nn = np.maximum((n * n).sum(1), 1e-300)
@@ -154,106 +158,97 @@ def sites_inside(mesh: MeshContainer, pts: np.ndarray) -> np.ndarray:
     return inside_mesh(np.ascontiguousarray(pts, np.float64), V, F, g, start, items)
 
 
-def cut_by_mesh(d, mesh: MeshContainer, progress=None):
-    """Cut a box diagram ``d`` (Diagram3D in the mesh's box) by ``mesh``; a new Diagram3D."""
+_PAIRS = 1 << 20  # (site, triangle) distance pairs evaluated at once
+
+
+def _near_surface(sites, reach, live, tri, slack):
+    """``(n,) bool``: cells whose ball (site, reach) holds a point of some triangle."""
     from scipy.spatial import cKDTree
 
+    cen_t = tri.mean(axis=1)
+    rt = float(np.linalg.norm(tri - cen_t[:, None], axis=2).max())
+    idx = np.flatnonzero(live)
+    lists = cKDTree(cen_t).query_ball_point(sites[idx], reach[idx] * (1 + 1e-9) + rt + slack)
+    lens = np.fromiter((len(x) for x in lists), np.int64, len(lists))
+    near = np.zeros(len(sites), bool)
+    if not lens.sum():
+        return near
+    flat = np.fromiter((t for x in lists for t in x), np.int64, int(lens.sum()))
+    owner = np.repeat(idx, lens)
+    for lo in range(0, len(flat), _PAIRS):
+        o, t = owner[lo : lo + _PAIRS], flat[lo : lo + _PAIRS]
+        d = _point_triangle_distance(sites[o], tri[t])
+        near[o[d <= reach[o] * (1 + 1e-9) + slack]] = True
+    return near
+
+
+def cut_by_mesh(d, mesh: MeshContainer, progress=None):
+    """Cut a box diagram ``d`` (Diagram3D in the mesh's box) by ``mesh``; a new Diagram3D."""
     from ..kernels.inside3d import inside_mesh, yz_grid
     from .diagram3d import Diagram3D
 
     n = len(d)
     V, F = mesh.vertices, mesh.faces
-    cf, lab, farea, roff, ring = d.cell_face_table()
-    tri = V[F]
-    cen_t = tri.mean(axis=1)
-    rt = float(np.linalg.norm(tri - cen_t[:, None], axis=2).max())
-    tree = cKDTree(cen_t)
+    cf, lab, _, roff, ring = d.cell_face_table()
     sites = np.asarray(d.sites)
     verts = np.asarray(d.vertices)
-    live = np.diff(cf) > 0
-    # reach of each cell from its site
+    nface = np.diff(cf)
+    live = nface > 0
+    # the reach of each cell from its site: its farthest vertex
     reach = np.zeros(n)
-    owner_r = np.repeat(np.repeat(np.arange(n), np.diff(cf)), np.diff(roff))
     if len(ring):
-        dist = np.linalg.norm(verts[ring] - sites[owner_r], axis=1)
-        np.maximum.at(reach, owner_r, dist)
-    # triangles whose centroid is within reach + rt, then their true distance to the site
+        owner_r = np.repeat(np.repeat(np.arange(n), nface), np.diff(roff))
+        np.maximum.at(reach, owner_r, np.linalg.norm(verts[ring] - sites[owner_r], axis=1))
     slack = 1e-9 * float(np.abs(V).max())
-    cand = np.zeros(n, bool)
-    idx = np.flatnonzero(live)
-    lists = tree.query_ball_point(sites[idx], reach[idx] * (1 + 1e-9) + rt + slack)
-    for i, lst in zip(idx, lists, strict=True):
-        if lst:
-            ts = np.asarray(lst)
-            pd = _point_triangle_distance(sites[i], tri[ts])
-            cand[i] = bool((pd <= reach[i] * (1 + 1e-9) + slack).any())
+    cand = _near_surface(sites, reach, live, V[F], slack)
     g, start, items = yz_grid(V, F, int(max(1, min(512, np.sqrt(len(F) / 4)))))
     q = np.nan_to_num(np.asarray(d.centroids))
     ins = inside_mesh(np.ascontiguousarray(q), V, F, g, start, items)
     keep = live & ~cand & ins
-    contM = _manifold(V, F, np.arange(len(F)))
+    whole = _manifold(V, F, np.arange(len(F)))
     vol = np.where(keep, d.volumes, 0.0)
     cen = np.where(keep[:, None], d.centroids, np.nan)
     pieces = np.where(keep, 1, 0).astype(np.int64)
     cut = np.zeros(n, bool)
-    # new per-cell face table
-    new_lab, new_rings, counts = [], [], np.zeros(n, np.int64)
-    extra_v = [verts]
+    counts = np.where(keep, nface, 0).astype(np.int64)
+    face_owner = np.repeat(np.arange(n), nface)
+    cut_tris, cut_labels, cut_verts = {}, {}, []
     nvert = len(verts)
     todo = np.flatnonzero(cand)
-    for k, i in enumerate(range(n)):
-        f0, f1 = cf[i], cf[i + 1]
-        if keep[i]:
-            for f in range(f0, f1):
-                new_rings.append(ring[roff[f] : roff[f + 1]])
-            new_lab.append(lab[f0:f1])
-            counts[i] = f1 - f0
-            continue
-        if not cand[i]:
-            continue
-        rings = [ring[roff[f] : roff[f + 1]] for f in range(f0, f1)]
-        ids = unique(np.concatenate(rings))
-        loc = np.searchsorted(ids, np.concatenate(rings))
-        tris, fid = [], []
-        pos = 0
-        for fi, r in enumerate(rings):
-            lr = loc[pos : pos + len(r)]
-            pos += len(r)
-            for t in range(1, len(r) - 1):
-                tris.append((lr[0], lr[t], lr[t + 1]))
-                fid.append(fi)
-        cellM = _manifold(verts[ids], np.array(tris), np.array(fid) + len(F))
-        res = cellM ^ contM
-        v = res.volume()
-        if v <= 0.0:
-            continue
-        out = res.to_mesh64()
-        ov = np.asarray(out.vert_properties)[:, :3]
-        ot = np.asarray(out.tri_verts, np.int64)
-        ofid = np.asarray(out.face_id, np.int64)
-        # face ids: container triangle t is t, cell face f is len(F) + f
-        fromcell = ofid >= len(F)
-        labels = np.where(fromcell, lab[f0 + np.where(fromcell, ofid - len(F), 0)], -1 - ofid)
-        a, b, c = ov[ot[:, 0]], ov[ot[:, 1]], ov[ot[:, 2]]
-        det = np.einsum("ij,ij->i", a, np.cross(b, c))
-        cut[i] = True
-        vol[i] = det.sum() / 6.0
-        cen[i] = (det[:, None] * (a + b + c)).sum(axis=0) / 24.0 / vol[i]
-        pieces[i] = len(res.decompose())
-        for t in ot:
-            new_rings.append(t + nvert)
-        new_lab.append(labels)
-        counts[i] = len(ot)
-        extra_v.append(ov)
+    done = 0
+    for batch in _apart(todo, cf, roff, ring):
+        ov, res = _cut_split(batch, (cf, roff, ring, verts, lab, face_owner, len(F), whole))
+        for i, (ot, labels, v, ce, npc) in res.items():
+            cut[i] = True
+            vol[i], cen[i], pieces[i] = v, ce, npc
+            cut_tris[i] = ot + nvert
+            cut_labels[i] = labels
+            counts[i] = len(ot)
+        cut_verts.append(ov)
         nvert += len(ov)
-        if progress is not None and k % 256 == 0:
-            progress(int(np.searchsorted(todo, i)), len(todo))
+        done += len(batch)
+        if progress is not None:
+            progress(done, len(todo))
+    # the new face table, in cell order: kept cells' faces as they were, cut cells' triangles
     cell_faces = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
-    lens = np.array([len(r) for r in new_rings], np.int64)
+    lens = np.full(int(cell_faces[-1]), 3, np.int64)
+    lab2 = np.zeros(len(lens), np.int64)
+    kept = np.flatnonzero(keep[face_owner])  # old faces kept, in cell order
+    dest = cell_faces[face_owner[kept]] + (kept - cf[face_owner[kept]])
+    klen = np.diff(roff)[kept]
+    lens[dest] = klen
+    lab2[dest] = lab[kept]
     roff2 = np.concatenate([[0], np.cumsum(lens)]).astype(np.int64)
-    ring2 = np.concatenate(new_rings).astype(np.int64) if new_rings else np.zeros(0, np.int64)
-    lab2 = np.concatenate(new_lab).astype(np.int64) if new_lab else np.zeros(0, np.int64)
-    allv = np.vstack(extra_v)
+    ring2 = np.zeros(int(roff2[-1]), np.int64)
+    if len(kept):
+        step = np.repeat(roff[kept] - roff2[dest], klen)
+        at = np.repeat(roff2[dest], klen) + _ranks(klen)
+        ring2[at] = ring[at + step]
+    for i, ot in cut_tris.items():
+        s0 = roff2[cell_faces[i]]
+        ring2[s0 : s0 + 3 * len(ot)] = ot.reshape(-1)
+        lab2[cell_faces[i] : cell_faces[i + 1]] = cut_labels[i]
+    allv = np.vstack([verts, *cut_verts])
     used = np.zeros(len(allv), bool)
     used[ring2] = True
     remap = np.cumsum(used) - 1
@@ -277,3 +272,110 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None):
         cut_cells=cut,
         container_volume=mesh.volume,
     )
+
+
+def _apart(cells, cf, roff, ring):
+    """Split ``cells`` into batches of cells that share no vertex (greedy, in order)."""
+    batches, used = [], []
+    for i in cells:
+        vs = set(ring[roff[cf[i]] : roff[cf[i + 1]]].tolist())
+        for b, u in zip(batches, used, strict=True):
+            if u.isdisjoint(vs):
+                b.append(i)
+                u |= vs
+                break
+        else:
+            batches.append([i])
+            used.append(vs)
+    return batches
+
+
+def _cut_batch(batch, cf, roff, ring, verts, lab, face_owner, nF, container):
+    """Cells ``batch`` (no two touching) ∩ ``container`` (a Manifold), in one boolean.
+
+    ``(vertices, {cell: (triangles, labels, volume, centroid, pieces)})`` with the cells that
+    keep some volume, or None when a result triangle came from the piece's box or a closed
+    part of the container lies in a cell without touching its faces (then the caller cuts
+    the cells one at a time with the whole container).
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    vs, ts, fs, base = [], [], [], 0
+    for i in batch:
+        f0, f1 = cf[i], cf[i + 1]
+        r0, r1 = roff[f0], roff[f1]
+        flat = ring[r0:r1]
+        ids = unique(flat)
+        loc = np.searchsorted(ids, flat)
+        lens = np.diff(roff[f0 : f1 + 1])
+        first = np.repeat(roff[f0:f1] - r0, lens - 2)
+        step = _ranks(lens - 2) + 1
+        ts.append(np.stack([loc[first], loc[first + step], loc[first + step + 1]], 1) + base)
+        fs.append(np.repeat(np.arange(f0, f1), lens - 2) + nF)
+        vs.append(verts[ids])
+        base += len(ids)
+    m = _manifold(np.vstack(vs), np.vstack(ts), np.concatenate(fs)) ^ container
+    out = m.to_mesh64()
+    ofid = np.asarray(out.face_id, np.int64)
+    ov = np.array(np.asarray(out.vert_properties)[:, :3], np.float64)
+    ot = np.asarray(out.tri_verts, np.int64).reshape(-1, 3)
+    if not len(ot):
+        return ov, {}
+    fromcell = ofid >= nF
+    gface = np.where(fromcell, ofid - nF, 0)
+    tcell = np.where(fromcell, face_owner[gface], -1)
+    # connected components of the result: each lies in one cell
+    e = np.concatenate([ot[:, [0, 1]], ot[:, [1, 2]]])
+    g = coo_matrix((np.ones(len(e)), (e[:, 0], e[:, 1])), shape=(len(ov), len(ov)))
+    ncomp, comp = connected_components(g, directed=False)
+    tcomp = comp[ot[:, 0]]
+    ccell = np.full(ncomp, batch[0] if len(batch) == 1 else -1, np.int64)
+    ccell[tcomp[fromcell]] = tcell[fromcell]
+    if (ccell[tcomp] < 0).any():
+        return None
+    tcell = ccell[tcomp]
+    labels = np.where(fromcell, lab[gface], -1 - ofid)
+    a, b, c = ov[ot[:, 0]], ov[ot[:, 1]], ov[ot[:, 2]]
+    det = np.einsum("ij,ij->i", a, np.cross(b, c))
+    order = np.argsort(tcell, kind="stable")
+    cells_sorted = tcell[order]
+    starts = np.flatnonzero(np.r_[True, cells_sorted[1:] != cells_sorted[:-1]])
+    res = {}
+    for s0, s1 in zip(starts, np.r_[starts[1:], len(order)], strict=True):
+        sel = order[s0:s1]
+        v = det[sel].sum() / 6.0
+        if v <= 0.0:
+            continue
+        ce = (det[sel, None] * (a[sel] + b[sel] + c[sel])).sum(axis=0) / 24.0 / v
+        npc = len(np.unique(tcomp[sel]))
+        res[int(cells_sorted[s0])] = (ot[sel], labels[sel], v, ce, npc)
+    return ov, res
+
+
+def _cut_split(batch, args):
+    """``_cut_batch``, halving the batch where a result cannot be told apart by cells."""
+    got = _cut_batch(batch, *args)
+    if got is not None:
+        return got
+    if len(batch) == 1:  # unreachable: a lone cell owns every component
+        raise RuntimeError("manifold3d's result could not be assigned to the cell")
+    h = len(batch) // 2
+    return _merge([_cut_split(batch[:h], args), _cut_split(batch[h:], args)])
+
+
+def _merge(got):
+    """One ``(vertices, results)`` from several, triangle indices shifted."""
+    vs, res, base = [], {}, 0
+    for ov, r in got:
+        for i, (ot, labels, v, ce, npc) in r.items():
+            res[i] = (ot + base, labels, v, ce, npc)
+        vs.append(ov)
+        base += len(ov)
+    return (np.vstack(vs) if vs else np.zeros((0, 3))), res
+
+
+def _ranks(lens):
+    """``0 .. len - 1`` for each run length in ``lens``, concatenated."""
+    total = int(lens.sum())
+    return np.arange(total) - np.repeat(np.cumsum(lens) - lens, lens)
