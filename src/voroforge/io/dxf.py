@@ -1,4 +1,4 @@
-"""DXF output with ezdxf: closed LWPOLYLINEs on named layers, circular arcs as true bulges.
+"""DXF output: closed LWPOLYLINEs on named layers, circular arcs as true bulges.
 
 Laser cutters and CNC software read a DXF polyline with *bulges* as straight segments and
 circular arcs. Shapely draws round buffers and fillets as many short chords; :func:`write_dxf`
