@@ -106,10 +106,9 @@ def test_first_runs_are_timed_in_fresh_processes(tmp_path):
 
 
 def test_the_stored_dxf_skeleton_is_what_ezdxf_writes():
-    from voroforge.io._dxf_r2000 import TEMPLATE
-    from voroforge.io.dxf import dxf_skeleton
+    from voroforge.io.dxf import dxf_skeleton, stored_skeleton
 
-    assert TEMPLATE == dxf_skeleton()
+    assert stored_skeleton() == dxf_skeleton()
 
 
 def _dxf_cases():

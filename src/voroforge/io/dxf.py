@@ -10,8 +10,8 @@ The file is deterministic: the same geometry gives the same bytes (fixed creatio
 GUIDs, handles in writing order).
 
 The default DXF version, R2000, is written without importing ezdxf (0.2-0.3 s of a first
-``voroforge build``): the document skeleton ezdxf writes for an empty drawing is kept in
-:mod:`voroforge.io._dxf_r2000` (:func:`dxf_skeleton` makes it again from ezdxf), and the
+``voroforge build``): the document skeleton ezdxf writes for an empty drawing is kept as
+package data, ``io/data/r2000.dxf`` (:func:`dxf_skeleton` makes it again from ezdxf), and the
 layers and entities are filled in as ezdxf would write them, byte for byte
 (``tests/test_firstrun.py`` compares the two writers). Other versions, and layer names the
 skeleton already holds or that are not ASCII, go through ezdxf.
@@ -32,6 +32,17 @@ from .plotter import layer_paths
 from .render import as_geometries
 
 __all__ = ["LAYER_COLOURS", "UNITS", "R2000", "dxf_skeleton", "write_dxf"]
+
+#: The handle of the first layer added to the R2000 skeleton (ezdxf's next free handle).
+FIRST_HANDLE = 0x2F
+
+
+def stored_skeleton() -> str:
+    """The R2000 skeleton stored as package data (``~FIELD~`` marks what a drawing fills in)."""
+    from importlib.resources import files
+
+    return files("voroforge.io").joinpath("data", "r2000.dxf").read_text(encoding="ascii")
+
 
 #: ``$INSUNITS`` codes of the unit names :func:`write_dxf` accepts.
 UNITS = {"unitless": 0, "in": 1, "ft": 2, "mm": 4, "cm": 5, "m": 6}
@@ -221,8 +232,6 @@ class R2000:
     """
 
     def __init__(self) -> None:
-        from ._dxf_r2000 import FIRST_HANDLE
-
         self._handle = FIRST_HANDLE
         self._layers: list[str] = []
         self._entities: list[str] = []
@@ -285,8 +294,6 @@ class R2000:
 
     def document(self, units: str, measurement: int | None = None) -> str:
         """The whole file: ``$INSUNITS`` from ``units``, ``$MEASUREMENT`` 0 for in/ft."""
-        from ._dxf_r2000 import TEMPLATE
-
         if measurement is None:
             measurement = 0 if units in ("in", "ft") else 1
         h = self._handle
@@ -302,12 +309,12 @@ class R2000:
             "HANDSEED": f"{h + 3:X}",
         }
         # the skeleton alternates text and field names: "...~FIELD~..."
-        parts = TEMPLATE.split("~")
+        parts = stored_skeleton().split("~")
         return "".join(fields[part] if k % 2 else part for k, part in enumerate(parts))
 
 
 def dxf_skeleton() -> str:
-    """The R2000 skeleton of :mod:`voroforge.io._dxf_r2000`, made again with ezdxf.
+    """The R2000 skeleton of ``io/data/r2000.dxf``, made again with ezdxf.
 
     ezdxf writes an empty drawing with one layer; the parts that vary (units, the layer
     table, the entities, the handles given after them) become ``~FIELD~`` marks.
