@@ -56,7 +56,8 @@ def main(names=()) -> None:
             if design.stem == "lamp-tile":
                 tiled(design).save(target)  # 2 x 2 copies: the seams do not show
             else:
-                (png,) = build(design, tmp, overrides=overrides)
+                # solid designs also write their mesh: the preview is the PNG
+                (png,) = [p for p in build(design, tmp, overrides=overrides) if p.suffix == ".png"]
                 shutil.copyfile(png, target)
             print(target.relative_to(ROOT), f"{target.stat().st_size // 1024} kB")
 
