@@ -195,7 +195,7 @@ def _exactness_families(c: dict[str, tuple[np.ndarray, object]]) -> None:
     c["float_circle_128_tiny_off"] = (_circle(128, 1e-4) + [0.7, 0.3], None)
     # float circles far from the origin: the exact vertices near the centre are spaced like
     # the ulps there, so rounding folded rings across edges that are not neighbours (the
-    # cells' exact convexity test contracts the fold, kernels/cells._fold_pairs)
+    # cells' exact convexity test contracts the fold, kernels/folds.fold_pairs)
     c["float_circle_100_far"] = (_circle(100, 3.0) + [1e5, -2e5], None)
     c["float_circle_257_far"] = (_circle(257, 10.0) + [-3e6, 1e6], None)
     c["float_circle_500_far"] = (_circle(500, 2.0) + [1e4, 1e4], None)

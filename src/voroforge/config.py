@@ -53,7 +53,7 @@ FOLD_SPAN_ERRS = 4.0
 #: A cell's vertex that rounding left a right turn, on the line of its neighbours to
 #: rounding, joins the nearer neighbour when within this many times what rounding and
 #: naming moved the three (a nearly cocircular cluster far from the origin, whose exact
-#: spread follows the input's rounding; kernels/cells._straight_fold)
+#: spread follows the input's rounding; kernels/folds._straight_fold)
 FOLD_REACH_ERRS = 256.0
 #: ... and never further than this of the vertex's distance from its site (a class's naming
 #: move grows with every join: it must not carry vertices across the sites' spacing)

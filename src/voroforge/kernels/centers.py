@@ -581,7 +581,7 @@ def triangle_centers(xs, ys, tri, he):
 def contract(xs, ys, tri, he, parent, cx, cy, rank, box, err, pa, pb):
     """Join the classes of triangles ``pa[k]`` and ``pb[k]``, name them, unfold; joins made.
 
-    The cells' fold test (``kernels/cells._fold_pairs``) finds rings that rounding folded
+    The cells' fold test (``kernels/folds.fold_pairs``) finds rings that rounding folded
     across edges that are not neighbours (the pairwise test of :func:`_folds` sees only one
     edge at a time) and gives the short Voronoi edges around the fold: their ends are one
     vertex to rounding. ``parent`` (compressed, as :func:`merge_cocircular` returns it) is
