@@ -294,9 +294,10 @@ def _cut_batch(batch, cf, roff, ring, verts, lab, face_owner, nF, container):
     """Cells ``batch`` (no two touching) ∩ ``container`` (a Manifold), in one boolean.
 
     ``(vertices, {cell: (triangles, labels, volume, centroid, pieces)})`` with the cells that
-    keep some volume, or None when a result triangle came from the piece's box or a closed
-    part of the container lies in a cell without touching its faces (then the caller cuts
-    the cells one at a time with the whole container).
+    keep some volume, or None when a connected component of the result cannot be given to
+    one cell: a closed part of the container inside a cell that touches none of its faces,
+    or faces of two cells in one component (cells that touch without sharing a named
+    vertex); the caller then halves the batch.
     """
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
@@ -332,7 +333,7 @@ def _cut_batch(batch, cf, roff, ring, verts, lab, face_owner, nF, container):
     tcomp = comp[ot[:, 0]]
     ccell = np.full(ncomp, batch[0] if len(batch) == 1 else -1, np.int64)
     ccell[tcomp[fromcell]] = tcell[fromcell]
-    if (ccell[tcomp] < 0).any():
+    if (ccell[tcomp] < 0).any() or (ccell[tcomp[fromcell]] != tcell[fromcell]).any():
         return None
     tcell = ccell[tcomp]
     labels = np.where(fromcell, lab[gface], -1 - ofid)
