@@ -502,6 +502,19 @@ def _write_ring(i, tri, he, cx, cy, out, base, coords, owner, kmap):
     owner[base + m] = -2
 
 
+@njit(**NJIT)
+def _put_ring(base, m, px, py, pw, coords, owner, kmap):
+    """Write a built cell's ``m`` vertices at ``base`` as a closed ring, owners through ``kmap``."""
+    for k in range(m):
+        coords[base + k, 0] = px[k]
+        coords[base + k, 1] = py[k]
+        w = pw[k]
+        owner[base + k] = kmap[w] if w >= 0 else w
+    coords[base + m, 0] = px[0]
+    coords[base + m, 1] = py[0]
+    owner[base + m] = -2
+
+
 @njit(**NJIT_PARALLEL)
 def _fill(
     xs, ys, ws, tri, he, cx, cy, err, cls, out, box, cap, start, coords, owner, kmap, cut, merged
@@ -524,15 +537,7 @@ def _fill(
             m = _cell(i, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, bufs, nbrs, cl, tb, ss)
             if m == 0:
                 continue
-            base = start[i]
-            for k in range(m):
-                coords[base + k, 0] = px[k]
-                coords[base + k, 1] = py[k]
-                w = pw[k]
-                owner[base + k] = kmap[w] if w >= 0 else w
-            coords[base + m, 0] = px[0]
-            coords[base + m, 1] = py[0]
-            owner[base + m] = -2
+            _put_ring(start[i], m, px, py, pw, coords, owner, kmap)
 
 
 def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
@@ -652,15 +657,7 @@ def _some(
                 continue
             if m == 0:
                 continue
-            base = start[s]
-            for k in range(m):
-                coords[base + k, 0] = px[k]
-                coords[base + k, 1] = py[k]
-                w = pw[k]
-                owner[base + k] = kmap[w] if w >= 0 else w
-            coords[base + m, 0] = px[0]
-            coords[base + m, 1] = py[0]
-            owner[base + m] = -2
+            _put_ring(start[s], m, px, py, pw, coords, owner, kmap)
 
 
 @njit(**NJIT_PARALLEL)
