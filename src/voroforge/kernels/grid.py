@@ -287,13 +287,17 @@ def _select(key, other, perm, lo, hi, kth):
     """Reorder ``lo:hi`` of ``key``, ``other``, ``perm`` so ``key[kth]`` is its ``kth`` smallest.
 
     Keys before it are no larger, keys after it no smaller (Hoare's quickselect); the
-    three arrays move together.
+    three arrays move together. The pivot is the median of three keys a third of the range
+    apart from a start that a hash of the range picks: the ends and the middle, the usual
+    choice, make it quadratic on a sorted run whose smallest key is last, which the median
+    splits of sites on a line produce at every level (7.1 s for 3e5 sites on a line + 1).
     """
     while hi - lo > 1:
-        mid = (lo + hi - 1) // 2
-        a = key[lo]
-        b = key[mid]
-        c = key[hi - 1]
+        span = hi - lo
+        h = (lo * 2654435761 + span * 40503) % span
+        a = key[lo + h]
+        b = key[lo + (h + span // 3) % span]
+        c = key[lo + (h + 2 * (span // 3)) % span]
         pivot = max(min(a, b), min(max(a, b), c))
         i = lo
         j = hi - 1

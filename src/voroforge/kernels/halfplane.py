@@ -71,7 +71,6 @@ _BUDGET = 20000  # vertices and sites one cell's search and settling may visit b
 _PROBE = 64  # cells tried first: when most of them are hard, the Delaunay dual builds all
 _KD_LEAF = 8  # sites per k-d bucket
 _KD_CROWDED = 4.0  # k-d buckets when the median site shares its grid bucket with more
-_KD_MIX_SEED = 15  # the fixed order the sites enter the k-d split in (see _search_grid)
 _REACH = 4.0 * (1.0 + HALFPLANE_REACH_RTOL)  # (2 r)^2 / r^2 with a margin against rounding
 
 
@@ -549,12 +548,7 @@ def _search_grid(xs, ys):
     occ = np.diff(sites[0])
     median = float(np.median(np.repeat(occ, occ)))
     if median > _KD_CROWDED * _PER_BUCKET:
-        # in a fixed scrambled order: the tree's quickselect (median of three) is quadratic
-        # on a sorted run with its smallest key last, which the median splits of n sites on
-        # a line and one off it make at every level (7.1 s at 3e5 sites, 0.03 s scrambled)
-        mix = np.random.default_rng(_KD_MIX_SEED).permutation(xs.shape[0])
-        tree, (sx, sy, sidx) = kd_buckets(xs[mix], ys[mix], _KD_LEAF)
-        sidx = mix[sidx]
+        tree, (sx, sy, sidx) = kd_buckets(xs, ys, _KD_LEAF)
         none = np.zeros(1, np.int64)
         return grid, (none, sx, sy, sidx, none, np.zeros(1, np.int32)), tree
     rownext, bnext = skip_lists(sites[0], grid[4], grid[5])
