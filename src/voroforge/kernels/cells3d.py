@@ -318,7 +318,13 @@ def build_cells(
     cf = caps[1]
     cr = caps[2]
     wmax = W.max() if W.shape[0] > 0 else 0.0
-    nbuck = int(g[6] * g[7] * g[8])
+    # the most buckets one shell holds (kernels.grid3d.shell_buckets): full rows on the
+    # two z-planes and two y-rows, two ends of every other row; not the whole grid, which
+    # at 1e7 cells made every block's scratch fault in hundreds of megabytes
+    nx = int(g[6])
+    ny = int(g[7])
+    nz = int(g[8])
+    nbuck = min(nx * ny * nz, 2 * (nx * ny + nx * nz + ny * nz))
     per = (k + nblocks - 1) // nblocks
     for blk in range(nblocks):
         lo = blk * per
