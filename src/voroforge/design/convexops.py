@@ -1,0 +1,301 @@
+"""Inset and fillet of convex cells, computed directly and vectorised over all cells.
+
+A Voronoi cell that the domain boundary does not cut is a convex polygon, and for a convex
+polygon both operations have closed forms that GEOS's general buffer does not exploit:
+
+- **inset** by ``d``: the intersection of the cell's half-planes, each moved inward by
+  ``d``. Its vertices are the crossings of the moved lines of consecutive edges; an edge
+  whose moved segment has negative length has vanished (it can never come back, because
+  the other edges only shrink faster once a neighbour is gone), so it is dropped and its
+  neighbours are crossed directly, until no edge vanishes. A cell vanishes when fewer than
+  three edges remain or two consecutive ones turn by half a turn or more.
+- **fillet** (opening) by ``r``: the inset by ``r`` grown back by ``r``, i.e. every edge
+  back in place and every corner of the inset replaced by a circular arc of radius ``r``
+  tangent to both edges. The arc is sampled the way GEOS samples a round join
+  (``round(sweep / (pi / 2 / quad_segs))`` equal chords, at least one), so runs of chords
+  are recognised as arcs by :mod:`voroforge.io.arcs` for the DXF and SVG writers.
+
+Cells are passed around as flat rings: ``xy (N, 2)`` counter-clockwise vertices without the
+closing point and ``start (m + 1,)`` offsets. Rings go back to shapely clockwise, as GEOS
+returns the shells of a buffer. Cells that are not single convex polygons without holes
+(the pieces the boundary cuts), and the rare ones whose moved lines cross at a near-parallel
+angle, are left to GEOS by the callers in :mod:`voroforge.design.cellops`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import shapely
+
+__all__ = ["convex_rings", "fillet_rings", "inset_rings", "polygons", "take"]
+
+#: Turn (radians) below which a vertex counts as straight and is dropped.
+STRAIGHT_TURN = 1e-9
+#: Turn below which the moved lines of two edges made neighbours by a dropped edge are
+#: too close to parallel to cross accurately (the cell goes to GEOS).
+PARALLEL_TURN = 1e-7
+#: Edges shorter than this fraction of the cell's size merge their end points.
+SHORT_EDGE_RTOL = 1e-10
+#: A corner whose sweep is below this gets one point, as GEOS's offset curve does
+#: (``OFFSET_SEGMENT_SEPARATION_FACTOR``).
+ARC_SEPARATION = 1e-3
+
+
+def _ring_index(start: np.ndarray):
+    """Owner ring, next and previous vertex of every vertex of flat rings."""
+    count = np.diff(start)
+    owner = np.repeat(np.arange(len(count)), count)
+    idx = np.arange(start[-1])
+    nxt = idx + 1
+    last = start[1:][count > 0] - 1
+    nxt[last] = start[:-1][count > 0]
+    prv = idx - 1
+    prv[start[:-1][count > 0]] = last
+    return owner, nxt, prv
+
+
+def _kept_counts(keep: np.ndarray, start: np.ndarray) -> np.ndarray:
+    c = np.concatenate(([0], np.cumsum(keep, dtype=np.int64)))
+    return c[start[1:]] - c[start[:-1]]
+
+
+def take(xy: np.ndarray, start: np.ndarray, keep: np.ndarray):
+    """The flat rings ``keep`` (an ``(m,)`` mask) of ``xy, start``."""
+    count = np.diff(start)
+    owner = np.repeat(np.arange(len(count)), count)
+    return xy[keep[owner]], np.concatenate(([0], np.cumsum(count[keep])))
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1]
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+
+
+def convex_rings(cells: np.ndarray):
+    """The cells that are single convex polygons, as flat counter-clockwise rings.
+
+    Parameters
+    ----------
+    cells : (n,) object array of shapely geometries
+
+    Returns
+    -------
+    mask : (n,) bool
+        Cells taken (non-empty single Polygons without holes, every turn to the same side).
+    xy : (N, 2) float64
+        Their vertices, counter-clockwise, straight vertices and repeated points dropped.
+    start : (mask.sum() + 1,) int64
+        Ring offsets into ``xy``.
+    """
+    cells = np.asarray(cells, dtype=object)
+    mask = (shapely.get_type_id(cells) == 3) & ~shapely.is_empty(cells)
+    mask &= shapely.get_num_interior_rings(cells) == 0
+    idx = np.flatnonzero(mask)
+    xy, owner = shapely.get_coordinates(cells[idx], return_index=True)  # the shells only
+    count = np.bincount(owner, minlength=len(idx))
+    start = np.concatenate(([0], np.cumsum(count)))
+    keep = np.ones(len(xy), dtype=bool)
+    keep[start[1:][count > 0] - 1] = False  # the closing point
+    xy, start = xy[keep], np.concatenate(([0], np.cumsum(_kept_counts(keep, start))))
+    # orientation: signed area by the shoelace sum of each ring
+    owner, nxt, prv = _ring_index(start)
+    twice = np.bincount(owner, _cross(xy, xy[nxt]), minlength=len(idx))
+    flip = twice < 0
+    if flip.any():  # reverse those rings in place
+        local = np.arange(len(xy)) - start[owner]
+        rev = np.where(flip[owner], start[owner + 1] - 1 - local, np.arange(len(xy)))
+        xy = xy[rev]
+    ok = twice != 0
+    for _ in range(len(xy) + 1):  # drop repeated points and straight vertices
+        owner, nxt, prv = _ring_index(start)
+        e_in = xy - xy[prv]
+        e_out = xy[nxt] - xy
+        l_in = np.hypot(e_in[:, 0], e_in[:, 1])
+        l_out = np.hypot(e_out[:, 0], e_out[:, 1])
+        cross = _cross(e_in, e_out)
+        dot = _dot(e_in, e_out)
+        repeat = l_in == 0.0
+        straight = (np.abs(cross) <= STRAIGHT_TURN * l_in * l_out) & (dot > 0)
+        drop = repeat | straight
+        # of two neighbouring straight vertices drop only the first, then look again
+        drop &= ~(drop[prv] & (np.arange(len(xy)) != prv))
+        if not drop.any():
+            break
+        keep = ~drop
+        xy, start = xy[keep], np.concatenate(([0], np.cumsum(_kept_counts(keep, start))))
+    turn = np.arctan2(cross, dot)  # of the last round, which dropped nothing
+    count = np.diff(start)
+    ok &= count >= 3
+    ok &= np.bincount(owner, turn <= 0, minlength=len(count)) == 0
+    total = np.bincount(owner, turn, minlength=len(count))
+    ok &= np.abs(total - 2.0 * math.pi) <= 1e-6  # once round: a simple convex ring
+    mask[idx[~ok]] = False
+    return mask, np.ascontiguousarray(xy[ok[owner]]), np.concatenate(([0], np.cumsum(count[ok])))
+
+
+def inset_rings(xy: np.ndarray, start: np.ndarray, distance):
+    """Move every edge of convex rings inward by ``distance`` (per ring or scalar, >= 0).
+
+    Parameters
+    ----------
+    xy, start
+        Counter-clockwise convex rings (from :func:`convex_rings`).
+    distance : float or (m,) array_like
+        Inset of each ring.
+
+    Returns
+    -------
+    xy : (K, 2) float64
+        The inset rings (counter-clockwise; an emptied ring has no vertices).
+    start : (m + 1,) int64
+        Their offsets.
+    normal : (K, 2) float64
+        Inward unit normal of the edge that starts at each vertex (for :func:`fillet_rings`).
+    hard : (m,) bool
+        Rings whose moved lines met too close to parallel to cross accurately (left to GEOS).
+    """
+    m = len(start) - 1
+    d = np.broadcast_to(np.asarray(distance, dtype=np.float64), (m,))
+    owner, nxt, prv = _ring_index(start)
+    e = xy[nxt] - xy
+    length = np.hypot(e[:, 0], e[:, 1])
+    tangent = e / length[:, None]
+    normal = np.stack((-tangent[:, 1], tangent[:, 0]), axis=1)
+    size = np.zeros(m)
+    live = np.diff(start) > 0
+    if live.any():
+        lo = np.minimum.reduceat(xy, start[:-1][live])
+        hi = np.maximum.reduceat(xy, start[:-1][live])
+        size[live] = np.max(hi - lo, axis=1)
+    # the moved line of edge k: points q = base + s * tangent, base = xy + d * normal
+    base = xy + d[owner, None] * normal
+    # first round: neighbours share the vertex, the crossing is xy + d (n_p + n_k) / (1 + c)
+    n_p = normal[prv]
+    cos = _dot(n_p, normal)
+    vert = xy + d[owner, None] * (n_p + normal) / (1.0 + cos)[:, None]
+    hard = np.zeros(m, dtype=bool)
+    empty = np.zeros(m, dtype=bool)
+    first_prv = prv
+    alive = np.ones(len(xy), dtype=bool)
+    for _ in range(len(xy) + 1):
+        # the moved segment of edge k runs from vert[k] to vert[next live edge]
+        seg = _dot(vert[nxt] - vert, tangent)
+        gone = alive & (seg <= SHORT_EDGE_RTOL * size[owner])
+        # a ring whose every edge went is empty; otherwise drop and cross the neighbours
+        if not gone.any():
+            break
+        alive &= ~gone
+        left = np.bincount(owner, alive, minlength=m)
+        empty |= left < 3
+        alive &= ~empty[owner]
+        # relink the live edges of each ring and cross each with its live predecessor
+        live_idx = np.flatnonzero(alive)
+        sub_start = np.concatenate(([0], np.cumsum(np.bincount(owner[live_idx], minlength=m))))
+        _, s_nxt, s_prv = _ring_index(sub_start)
+        nxt = np.arange(len(xy))
+        nxt[live_idx] = live_idx[s_nxt]
+        pair_p = np.arange(len(xy))
+        pair_p[live_idx] = live_idx[s_prv]
+        p = pair_p[live_idx]
+        k = live_idx
+        moved = p != first_prv[k]  # only edges with a new predecessor cross anew
+        p, k = p[moved], k[moved]
+        sin = _cross(normal[p], normal[k])
+        cos = _dot(normal[p], normal[k])
+        turn = np.arctan2(sin, cos)
+        # half a turn or more between consecutive live edges: nothing is left
+        bad = (turn <= 0.0) | (turn >= math.pi)
+        empty[np.unique(owner[k[bad]])] = True
+        near = ~bad & (turn < PARALLEL_TURN)
+        hard[np.unique(owner[k[near]])] = True
+        fresh = ~bad & ~near
+        kk, pp = k[fresh], p[fresh]
+        # cross the moved line of k (base[k] + s tangent[k]) with that of p
+        den = _cross(normal[pp], normal[kk])  # normal_p . tangent_k
+        s = _dot(base[pp] - base[kk], normal[pp]) / den
+        vert[kk] = base[kk] + s[:, None] * tangent[kk]
+        alive &= ~(empty | hard)[owner]
+    keep = alive & ~(empty | hard)[owner]
+    counts = np.bincount(owner[keep], minlength=m)
+    out_start = np.concatenate(([0], np.cumsum(counts)))
+    return vert[keep], out_start, normal[keep], hard
+
+
+def fillet_rings(xy: np.ndarray, start: np.ndarray, radius, quad_segs: int):
+    """Open convex rings by ``radius``: inset by it, then every corner an arc of it.
+
+    Parameters
+    ----------
+    xy, start
+        Counter-clockwise convex rings (from :func:`convex_rings`).
+    radius : float or (m,) array_like
+        Fillet radius of each ring (> 0).
+    quad_segs : int
+        Chords per quarter circle.
+
+    Returns
+    -------
+    xy : (K, 2) float64
+        The filleted rings, counter-clockwise (an emptied ring has no vertices).
+    start : (m + 1,) int64
+        Their offsets.
+    hard : (m,) bool
+        As for :func:`inset_rings`.
+    """
+    m = len(start) - 1
+    r = np.broadcast_to(np.asarray(radius, dtype=np.float64), (m,))
+    core, cstart, normal, hard = inset_rings(xy, start, r)
+    owner, nxt, prv = _ring_index(cstart)
+    n_in = normal[prv]  # inward normals of the edges before and after each corner
+    turn = np.arctan2(_cross(n_in, normal), _dot(n_in, normal))
+    quantum = math.pi / 2.0 / int(quad_segs)
+    chords = np.maximum((turn / quantum + 0.5).astype(np.int64), 1)
+    chords[turn < ARC_SEPARATION] = 0  # one point where the two ends nearly meet
+    # corner k: chords[k] + 1 points at angles a0 + j * turn / chords from its centre
+    npts = chords + 1
+    npts[chords == 0] = 1
+    first = np.cumsum(npts) - npts
+    ang = np.arange(first[-1] + npts[-1] if len(npts) else 0, dtype=np.float64)
+    ang -= np.repeat(first, npts)
+    ang *= np.repeat(turn / np.maximum(chords, 1), npts)
+    ang += np.repeat(np.arctan2(-n_in[:, 1], -n_in[:, 0]), npts)
+    pts = np.repeat(core, npts, axis=0)
+    rr = np.repeat(r[owner], npts) if np.ndim(radius) else float(radius)
+    pts[:, 0] += rr * np.cos(ang)
+    pts[:, 1] += rr * np.sin(ang)
+    counts = np.bincount(owner, npts, minlength=m).astype(np.int64)
+    return pts, np.concatenate(([0], np.cumsum(counts))), hard
+
+
+def polygons(xy: np.ndarray, start: np.ndarray) -> np.ndarray:
+    """Flat counter-clockwise rings as shapely Polygons with clockwise shells (as GEOS buffers).
+
+    Returns
+    -------
+    (m,) object array
+        Empty Polygons for rings without vertices.
+    """
+    m = len(start) - 1
+    out = np.full(m, shapely.Polygon(), dtype=object)
+    count = np.diff(start)
+    live = count >= 3
+    if not live.any():
+        return out
+    if not (live | (count == 0)).all():
+        xy, start = take(xy, start, live | (count == 0))
+        count = np.diff(start)
+    # the whole flat array backwards: every ring clockwise, the rings in reverse order; an
+    # emptied cell has no ring
+    back = count[::-1]
+    ring = np.concatenate(([0], np.cumsum(back[back > 0])))
+    polys = shapely.from_ragged_array(
+        shapely.GeometryType.POLYGON,
+        np.ascontiguousarray(xy[::-1]),
+        (ring, np.concatenate(([0], np.cumsum(back > 0)))),
+    )
+    return polys[::-1]  # GEOS closes each ring
