@@ -579,9 +579,10 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
     cx, cy, err, flag = circumcenters(xs, ys, tri, he)
     cls, near = merge_cocircular(xs, ys, tri, he, cx, cy, err, flag, kmap, box)
     merged = bool(flag.any()) or bool((cls != np.arange(cls.shape[0])).any())
-    # only cells with a vertex of a merged class or of a short edge can fold (most inputs:
-    # none); once a fold is contracted, every cell is checked, and then each round builds
-    # and checks again only the cells whose vertices it changed
+    # only cells with a vertex of a short edge (for its ends' rounding bounds and naming
+    # moves) or of an undecided one can fold (most inputs, exact grids too: none); once a
+    # fold is contracted, every cell is checked, and then each round builds and checks
+    # again only the cells whose vertices it changed
     risk = risky_sites(tri, near, n)
     out, cells = _build(xs, ys, tri, he, cx, cy, err, cls, box, order, kmap, merged)
     bad = np.zeros(n, dtype=np.bool_)

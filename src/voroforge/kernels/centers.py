@@ -119,8 +119,9 @@ def flag_close(xs, ys, tri, he, cx, cy, flag, err, box, fold, near):
     On every other interior halfedge ``e < twin`` it marks in ``fold`` whether the Voronoi
     edge between the two centres runs backwards (:func:`_folds`): the first round of
     :func:`_unfold` takes that mark wherever naming left both centres as they are, so the
-    edges are scanned once, here. Both triangles of a flagged or short edge are marked in
-    ``near`` (their vertices are the only ones rounding can fold a cell's ring at).
+    edges are scanned once, here. Both triangles of a short edge are marked in ``near``
+    (their vertices are among the only ones rounding can fold a cell's ring at; flagged
+    edges and merged classes are marked after the merge, :func:`_mark_risky`).
     """
     for e in prange(tri.shape[0]):
         f = he[e]
@@ -129,8 +130,6 @@ def flag_close(xs, ys, tri, he, cx, cy, flag, err, box, fold, near):
         t = e // 3
         u = f // 3
         if flag[e] != 0:
-            near[t] = 1
-            near[u] = 1
             continue
         # both tests need the edge within what rounding and naming move its ends (_short;
         # _cc_close's bound is within it as FOLD_SPAN_ERRS >= 1): most edges end here
@@ -538,26 +537,62 @@ def merge_cocircular(xs, ys, tri, he, cx, cy, err, flag, rank, box):
     on the halfedges flagged by :func:`circumcenters`. ``rank[v]`` is site ``v``'s input
     index (names are chosen in the input's numbering, as every algorithm does).
 
-    Returns ``(cls, near)``: each triangle's class (its root) and whether it is in a class
-    of two or more or on a Voronoi edge that rounding could turn (flagged or short): the
-    triangles whose centres can fold a cell's ring (``kernels/cells`` checks those cells).
+    Returns ``(cls, near)``: each triangle's class (its root) and whether it is on a
+    Voronoi edge that rounding could turn: short for its ends' rounding bounds and naming
+    moves, or flagged and not joined (:func:`_mark_risky`). Those are the triangles whose
+    centres can fold a cell's ring (``kernels/cells`` checks those cells).
     """
     fold = np.zeros(tri.shape[0], dtype=np.uint8)
     near = np.zeros(tri.shape[0] // 3, dtype=np.uint8)
     flag_close(xs, ys, tri, he, cx, cy, flag, err, box, fold, near)
     cand = np.flatnonzero(flag)
+    own_x = cx.copy()
+    own_y = cy.copy()
     cls = _merge_exact(xs, ys, tri, he, cand, cx, cy, True, rank, err, box, fold)
-    _mark_classes(cls, near)
+    _mark_risky(xs, ys, tri, he, cls, cx, cy, own_x, own_y, err, flag, near)
     return cls, near
 
 
 @njit(**NJIT)
-def _mark_classes(cls, near):
-    """Mark in ``near`` every triangle of a class of two or more (members and roots)."""
-    for t in range(cls.shape[0]):
+def _mark_risky(xs, ys, tri, he, cls, cx, cy, own_x, own_y, err, flag, near):
+    """Mark in ``near`` both triangles of every edge between two classes that can fold.
+
+    Within a class every triangle has the one named vertex (no edge). Between two classes,
+    an edge :func:`flag_close` could not decide (flagged, not joined) is marked; so is one at
+    a class of two or more whose vertices are within ``FOLD_SPAN_ERRS`` times their proven
+    distance from their triangles' exact centres (rounding bound plus the naming move, as
+    ``folds._moved``; ``own_x, own_y`` are the centres before naming) and the snap
+    tolerance: the short-edge test of :func:`_short` with the naming moves added. Edges
+    between two single triangles kept their centres: :func:`flag_close` marked the short
+    ones. A class whose vertex is far from every other vertex (an exact grid's squares)
+    cannot fold a ring, so its cells are not checked.
+    """
+    t_count = cls.shape[0]
+    multi = np.zeros(t_count, dtype=np.uint8)
+    for t in range(t_count):
         if cls[t] != t:
+            multi[cls[t]] = 1
+    for e in range(tri.shape[0]):
+        f = he[e]
+        if f < e:
+            continue
+        t = e // 3
+        u = f // 3
+        if cls[t] == cls[u]:
+            continue
+        if flag[e] != 0:
             near[t] = 1
-            near[cls[t]] = 1
+            near[u] = 1
+            continue
+        if multi[cls[t]] == 0 and multi[cls[u]] == 0:
+            continue
+        d = abs(cx[t] - cx[u]) + abs(cy[t] - cy[u])
+        r = abs(cx[t] - xs[tri[e]]) + abs(cy[t] - ys[tri[e]])
+        mt = err[t] + abs(cx[t] - own_x[t]) + abs(cy[t] - own_y[t])
+        mu = err[u] + abs(cx[u] - own_x[u]) + abs(cy[u] - own_y[u])
+        if not d > FOLD_SPAN_ERRS * (mt + mu + VERTEX_SNAP_RTOL * r):
+            near[t] = 1  # (also where a bound is not finite)
+            near[u] = 1
 
 
 def triangle_centers(xs, ys, tri, he):

@@ -7,8 +7,8 @@ the ulps there) round across each other. This module finds those rings and the p
 triangles whose classes must join (:func:`.centers.contract` joins them, and the cells are
 built again):
 
-- :func:`risky_sites`: the only sites whose rings can fold (a vertex of a merged class or of a
-  short edge); most inputs have none.
+- :func:`risky_sites`: the only sites whose rings can fold (a vertex of a short or undecided
+  edge, :func:`.centers.merge_cocircular`); most inputs have none.
 - :func:`folded_rings`: which of those rings fail the exact convexity test.
 - :func:`fold_pairs`: for each folded ring, the pairs of triangles to join (the run of edges
   through a bad turn whose ends are one vertex to rounding, or, at a straight angle rounded
