@@ -204,12 +204,12 @@ def _call_cases(vf, n: int, big: bool):
     if big:
         u6 = uniform(1_000_000)
         cases.append(("bench_2d", "vf.voronoi uniform 1e6", lambda m: m.voronoi(u6, BOX)))
-    for alg in ("fortune", "halfplane"):
+    for alg, d in (("fortune", "uniform"), ("halfplane", "uniform"), ("halfplane", "grid")):
         cases.append(
             (
                 "bench_algorithms",
-                f"vf.voronoi {alg} uniform {tag}",
-                lambda m, a=alg: m.voronoi(p["uniform"], BOX, algorithm=a),
+                f"vf.voronoi {alg} {d} {tag}",
+                lambda m, a=alg, q=p[d]: m.voronoi(q, BOX, algorithm=a),
             )
         )
     cases.append(("bench_design_build", "build, 2000 cells, DXF", None))
