@@ -13,7 +13,10 @@ read on a shared machine; wall time is printed beside it. Median and best over t
 The page's side (parse, draw, frame) is measured in the browser by
 ``tests/test_studio_browser.py::test_latency_table``. Run from the repository root:
 
-    NUMBA_NUM_THREADS=1 .venv/bin/python benchmarks/bench_studio.py [--steps S]
+    NUMBA_NUM_THREADS=1 .venv/bin/python benchmarks/bench_studio.py [--steps S] [--split]
+
+``--split`` prints only where a ``design.seed`` step of the holed panel goes (the cell
+operations ``cellops.inset`` and ``cellops.fillet`` against the whole step, one thread).
 """
 
 from __future__ import annotations
@@ -93,6 +96,40 @@ def slider(session: Session, steps: int, key: str) -> np.ndarray:
     )
 
 
+def split(steps: int) -> None:
+    """Where a design.seed step of the holed panel goes: the cell operations and the rest."""
+    from voroforge.design import cellops
+
+    spent: dict[str, float] = {}
+
+    def timed(name, fn):
+        def run(*args, **kwargs):
+            c0 = time.process_time()
+            try:
+                return fn(*args, **kwargs)
+            finally:
+                spent[name] = spent.get(name, 0.0) + time.process_time() - c0
+
+        return run
+
+    saved = {k: getattr(cellops, k) for k in ("inset", "fillet")}
+    for k, fn in saved.items():
+        setattr(cellops, k, timed(k, fn))
+    try:
+        session = Session(HOLED)
+        session.workers = 1
+        slider(session, 2, "design.seed")
+        spent.clear()
+        t = slider(session, steps, "design.seed")
+    finally:
+        for k, fn in saved.items():
+            setattr(cellops, k, fn)
+    total = t[:, 0].sum()
+    print(f"design.seed, holed 2000, 1 thread, {steps} steps: {total / steps:.1f} ms CPU per step")
+    for k, v in spent.items():
+        print(f"  cellops.{k}: {v * 1e3 / steps:.1f} ms ({100 * v * 1e3 / total:.0f}%)")
+
+
 def _row(name: str, t: np.ndarray) -> str:
     cpu, wall = t[:, 0], t[:, 1]
     return (
@@ -104,8 +141,14 @@ def _row(name: str, t: np.ndarray) -> str:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--steps", type=int, default=20)
+    ap.add_argument(
+        "--split", action="store_true", help="only the design.seed step's cell operations"
+    )
     args = ap.parse_args(argv)
     print(f"python {sys.version.split()[0]}, {os.cpu_count()} CPUs, load {os.getloadavg()[0]:.1f}")
+    if args.split:
+        split(args.steps)
+        return 0
     print("| edit | CPU ms median | CPU ms best | wall ms median | message KiB |")
     print("|---|---|---|---|---|")
     for name, data in CASES.items():

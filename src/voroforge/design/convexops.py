@@ -272,6 +272,12 @@ def fillet_rings(xy: np.ndarray, start: np.ndarray, radius, quad_segs: int):
     return pts, np.concatenate(([0], np.cumsum(counts))), hard
 
 
+def _backwards(xy: np.ndarray) -> np.ndarray:
+    """The rows of ``xy`` in reverse order (as complex numbers: a reversed 2D copy is slow)."""
+    pairs = np.ascontiguousarray(xy, dtype=np.float64).view(np.complex128)[::-1, 0]
+    return pairs.copy().view(np.float64).reshape(-1, 2)
+
+
 def polygons(xy: np.ndarray, start: np.ndarray) -> np.ndarray:
     """Flat counter-clockwise rings as shapely Polygons with clockwise shells (as GEOS buffers).
 
@@ -295,7 +301,7 @@ def polygons(xy: np.ndarray, start: np.ndarray) -> np.ndarray:
     ring = np.concatenate(([0], np.cumsum(back[back > 0])))
     polys = shapely.from_ragged_array(
         shapely.GeometryType.POLYGON,
-        np.ascontiguousarray(xy[::-1]),
+        _backwards(xy),
         (ring, np.concatenate(([0], np.cumsum(back > 0)))),
     )
     return polys[::-1]  # GEOS closes each ring

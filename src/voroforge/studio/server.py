@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import asyncio
 import base64
+import gc
 import itertools
 import json
 import time
@@ -329,8 +330,23 @@ class _Hub:
             return
 
 
+def _freeze_heap() -> None:
+    """Leave the objects alive now (modules, compiled kernels, the first result) out of GC.
+
+    A full collection walks every tracked object: ~150,000 after the imports, ~80 ms (170 ms
+    on a loaded machine), and one came every ~15 slider steps that make all cells anew, in
+    the middle of an edit (the p95 of the latency table). Frozen, a full collection walks
+    only what was made since: under a millisecond.
+    """
+    gc.collect()
+    gc.freeze()
+
+
 def create_app(session: Session, *, hosts=LOCAL_HOSTS):
     """The starlette application of a session.
+
+    The process's objects alive at this point are frozen out of the garbage collector
+    (``gc.freeze``): a full collection of them would stall an edit by ~80 ms.
 
     Parameters
     ----------
@@ -350,6 +366,7 @@ def create_app(session: Session, *, hosts=LOCAL_HOSTS):
     from starlette.staticfiles import StaticFiles
     from starlette.websockets import WebSocket
 
+    _freeze_heap()
     hub = _Hub(session)
     static = resources.files(__package__).joinpath("static")
 
