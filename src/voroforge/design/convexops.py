@@ -176,43 +176,58 @@ def inset_rings(xy: np.ndarray, start: np.ndarray, distance):
     base = xy + d[owner, None] * normal
     # first round: neighbours share the vertex, the crossing is xy + d (n_p + n_k) / (1 + c)
     n_p = normal[prv]
-    cos = _dot(n_p, normal)
-    vert = xy + d[owner, None] * (n_p + normal) / (1.0 + cos)[:, None]
+    vert = xy + d[owner, None] * (n_p + normal) / (1.0 + _dot(n_p, normal))[:, None]
+    # the moved segment of edge k runs from vert[k] to vert[k + 1]
+    gone = _dot(vert[nxt] - vert, tangent) <= SHORT_EDGE_RTOL * size[owner]
+    keep = np.ones(len(xy), dtype=bool)
     hard = np.zeros(m, dtype=bool)
+    if gone.any():  # drop edges until none vanishes, in the rings that lost one only
+        rings = np.unique(owner[gone])
+        lost_edge = np.zeros(m, dtype=bool)
+        lost_edge[rings] = True
+        idx = np.flatnonzero(lost_edge[owner])
+        sub = np.concatenate(([0], np.cumsum(np.diff(start)[rings])))
+        alive, vert[idx], lost, hard[rings] = _drop(
+            sub, normal[idx], tangent[idx], base[idx], vert[idx], gone[idx], size[rings]
+        )
+        keep[idx] = alive & ~(lost | hard[rings])[np.repeat(np.arange(len(rings)), np.diff(sub))]
+    counts = np.bincount(owner[keep], minlength=m)
+    out_start = np.concatenate(([0], np.cumsum(counts)))
+    return vert[keep], out_start, normal[keep], hard
+
+
+def _drop(start, normal, tangent, base, vert, gone, size):
+    """Drop vanished edges of rings and cross their live neighbours, until none vanishes.
+
+    Returns the live edges, the crossings (``vert``, updated), and per ring whether it
+    emptied and whether two moved lines met too close to parallel (``hard``).
+    """
+    m = len(start) - 1
+    owner, nxt, first_prv = _ring_index(start)
     empty = np.zeros(m, dtype=bool)
-    first_prv = prv
-    alive = np.ones(len(xy), dtype=bool)
-    for _ in range(len(xy) + 1):
-        # the moved segment of edge k runs from vert[k] to vert[next live edge]
-        seg = _dot(vert[nxt] - vert, tangent)
-        gone = alive & (seg <= SHORT_EDGE_RTOL * size[owner])
-        # a ring whose every edge went is empty; otherwise drop and cross the neighbours
+    hard = np.zeros(m, dtype=bool)
+    alive = np.ones(len(vert), dtype=bool)
+    for _ in range(len(vert) + 1):
         if not gone.any():
             break
         alive &= ~gone
-        left = np.bincount(owner, alive, minlength=m)
-        empty |= left < 3
+        empty |= np.bincount(owner, alive, minlength=m) < 3
         alive &= ~empty[owner]
         # relink the live edges of each ring and cross each with its live predecessor
         live_idx = np.flatnonzero(alive)
         sub_start = np.concatenate(([0], np.cumsum(np.bincount(owner[live_idx], minlength=m))))
         _, s_nxt, s_prv = _ring_index(sub_start)
-        nxt = np.arange(len(xy))
+        nxt = np.arange(len(vert))
         nxt[live_idx] = live_idx[s_nxt]
-        pair_p = np.arange(len(xy))
-        pair_p[live_idx] = live_idx[s_prv]
-        p = pair_p[live_idx]
-        k = live_idx
+        p, k = live_idx[s_prv], live_idx
         moved = p != first_prv[k]  # only edges with a new predecessor cross anew
         p, k = p[moved], k[moved]
-        sin = _cross(normal[p], normal[k])
-        cos = _dot(normal[p], normal[k])
-        turn = np.arctan2(sin, cos)
+        turn = np.arctan2(_cross(normal[p], normal[k]), _dot(normal[p], normal[k]))
         # half a turn or more between consecutive live edges: nothing is left
         bad = (turn <= 0.0) | (turn >= math.pi)
-        empty[np.unique(owner[k[bad]])] = True
+        empty[owner[k[bad]]] = True
         near = ~bad & (turn < PARALLEL_TURN)
-        hard[np.unique(owner[k[near]])] = True
+        hard[owner[k[near]]] = True
         fresh = ~bad & ~near
         kk, pp = k[fresh], p[fresh]
         # cross the moved line of k (base[k] + s tangent[k]) with that of p
@@ -220,10 +235,8 @@ def inset_rings(xy: np.ndarray, start: np.ndarray, distance):
         s = _dot(base[pp] - base[kk], normal[pp]) / den
         vert[kk] = base[kk] + s[:, None] * tangent[kk]
         alive &= ~(empty | hard)[owner]
-    keep = alive & ~(empty | hard)[owner]
-    counts = np.bincount(owner[keep], minlength=m)
-    out_start = np.concatenate(([0], np.cumsum(counts)))
-    return vert[keep], out_start, normal[keep], hard
+        gone = alive & (_dot(vert[nxt] - vert, tangent) <= SHORT_EDGE_RTOL * size[owner])
+    return alive, vert, empty, hard
 
 
 def fillet_rings(xy: np.ndarray, start: np.ndarray, radius, quad_segs: int):
