@@ -16,7 +16,7 @@ from ..kernels.cells import cells_from_neighbors, cells_from_triangulation
 from ..kernels.clip import rings_convex
 from ..kernels.delaunay import triangulate_sorted
 from ..kernels.fortune import fortune_delaunay
-from ..kernels.halfplane import halfplane_cells
+from ..kernels.halfplane import halfplane_cells, rings_area
 from ..kernels.rings import close_rings
 from .assemble import assemble
 from .csr import csr_from_pairs
@@ -123,14 +123,7 @@ def _certified(closed, lengths, box) -> bool:
         return False
     if len(closed) == 0:
         return False
-    heads = np.minimum(lengths[:-1], len(closed) - 1)
-    first = np.repeat(closed[heads], np.diff(lengths), axis=0)
-    rel = closed - first
-    cross = rel[:-1, 0] * rel[1:, 1] - rel[1:, 0] * rel[:-1, 1]
-    keep = np.ones(len(rel) - 1, dtype=bool)
-    ends = lengths[1:-1] - 1
-    keep[ends[ends < len(keep)]] = False  # the step from one ring's last vertex to the next
-    area = 0.5 * float(cross[keep].sum())
+    area = rings_area(closed, lengths)
     want = (box[2] - box[0]) * (box[3] - box[1])
     return abs(area - want) <= HALFPLANE_TILING_RTOL * want
 
