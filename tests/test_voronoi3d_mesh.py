@@ -148,3 +148,49 @@ def test_container_parts_wholly_inside_a_cell():
     assert d.pieces[0] == 1 and d.pieces[1] == 2
     assert d.cut_cells[:2].all()
     assert len(d.to_trimesh(1).split(only_watertight=False)) == 2
+
+
+def _point_triangle_distance(p, tri):
+    """Reference: distance from points ``p`` (one per triangle) to triangles ``tri (m, 3, 3)``."""
+
+    def seg(p, a, b):
+        ab = b - a
+        t = np.clip(((p - a) * ab).sum(1) / np.maximum((ab * ab).sum(1), 1e-300), 0.0, 1.0)
+        return np.linalg.norm(p - (a + t[:, None] * ab), axis=1)
+
+    a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
+    n = np.cross(b - a, c - a)
+    nn = np.maximum((n * n).sum(1), 1e-300)
+    h = ((p - a) * n).sum(1) / nn
+    q = p - h[:, None] * n
+    inside = np.ones(len(tri), bool)
+    for u, v in ((a, b), (b, c), (c, a)):
+        inside &= (np.cross(v - u, q - u) * n).sum(1) >= 0
+    d = np.minimum(np.minimum(seg(p, a, b), seg(p, b, c)), seg(p, c, a))
+    return np.where(inside, np.abs(h) * np.sqrt(nn), d)
+
+
+def test_touching_cells_against_references():
+    # the cells the cut skips must lie on one side of the surface (all their vertices agree),
+    # and every cell called touching has a triangle within its farthest vertex from its site
+    from voroforge.engine.mesh3d import _touching, as_mesh_container, sites_inside
+
+    mesh = _torus()
+    mc, t = as_mesh_container(mesh)
+    pts = np.random.default_rng(3).uniform(mesh.bounds[0], mesh.bounds[1], (300, 3))
+    d = vf.voronoi3d(pts, tuple(np.r_[t.bounds[0], t.bounds[1]]))
+    cf, lab, farea, roff, ring = d.cell_face_table()
+    V = np.asarray(d.vertices)
+    tri = mc.vertices[mc.faces]
+    live = np.diff(cf) > 0
+    touch = _touching(cf, roff, ring, V, farea, live, tri, 1e-9)
+    assert 0 < touch.sum() < live.sum()
+    for i in np.flatnonzero(live):
+        vs = np.unique(ring[roff[cf[i]] : roff[cf[i + 1]]])
+        side = sites_inside(mc, V[vs])
+        if not touch[i]:
+            assert side.all() or not side.any()
+        else:
+            reach = np.linalg.norm(V[vs] - pts[i], axis=1).max()
+            dist = _point_triangle_distance(np.repeat(pts[i : i + 1], len(tri), 0), tri)
+            assert dist.min() <= reach * (1 + 1e-9)

@@ -1,12 +1,13 @@
 """Mesh containers: cells built in the mesh's (padded) bounding box, then cut by the mesh.
 
-Only cells that can reach the surface are cut: a cell whose ball around its site (radius: its
-farthest vertex) holds no point of any triangle is wholly inside or wholly outside, decided
-by exact ray parity at its centroid (:mod:`kernels.inside3d`), and kept untouched (convex,
-named vertices) or emptied. The cells that may reach the surface are intersected with the
-mesh by manifold3d (double precision) in a few batches of cells that share no vertex (a
-greedy colouring), one boolean per batch: each boolean costs about the container's size
-plus the batch's, so cutting cells one at a time would pay the container once per cell.
+Only cells that the surface meets are cut: a cell that no triangle meets (each triangle
+clipped by the cell's face planes moved out by a 1e-9 slack, :mod:`kernels.meshclip3d`) is
+wholly inside or wholly outside, decided by exact ray parity at its centroid
+(:mod:`kernels.inside3d`), and kept untouched (convex, named vertices) or emptied. The cells
+that the surface meets are intersected with the mesh by manifold3d (double precision) in a
+few batches of cells that share no vertex (a greedy colouring), one boolean per batch: each
+boolean costs about the container's size plus the batch's, so cutting cells one at a time
+would pay the container once per cell.
 The result's triangles are labelled with the cell face they came from (a site or a box
 wall) or ``-1 - t`` for container triangle ``t``; its connected components tell the cells
 apart (a component without a cell face, a closed part of the container inside a cell, makes
@@ -129,26 +130,6 @@ def _manifold(V, F, face_id):
     return m3.Manifold(mesh)
 
 
-def _seg_dist(p, a, b):
-    ab = b - a
-    t = np.clip(((p - a) * ab).sum(1) / np.maximum((ab * ab).sum(1), 1e-300), 0.0, 1.0)
-    return np.linalg.norm(p - (a + t[:, None] * ab), axis=1)
-
-
-def _point_triangle_distance(p, tri):
-    """Distance from points ``p`` ((3,) or one per triangle) to triangles ``tri (m, 3, 3)``."""
-    a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
-    n = np.cross(b - a, c - a)
-    nn = np.maximum((n * n).sum(1), 1e-300)
-    h = ((p - a) * n).sum(1) / nn
-    q = p - h[:, None] * n  # projection onto the plane
-    inside = np.ones(len(tri), bool)
-    for u, v in ((a, b), (b, c), (c, a)):
-        inside &= (np.cross(v - u, q - u) * n).sum(1) >= 0
-    d = np.minimum(np.minimum(_seg_dist(p, a, b), _seg_dist(p, b, c)), _seg_dist(p, c, a))
-    return np.where(inside, np.abs(h) * np.sqrt(nn), d)
-
-
 def sites_inside(mesh: MeshContainer, pts: np.ndarray) -> np.ndarray:
     """``(n,) bool``: which points lie inside the mesh (exact ray parity)."""
     from ..kernels.inside3d import inside_mesh, yz_grid
@@ -158,49 +139,51 @@ def sites_inside(mesh: MeshContainer, pts: np.ndarray) -> np.ndarray:
     return inside_mesh(np.ascontiguousarray(pts, np.float64), V, F, g, start, items)
 
 
-_PAIRS = 1 << 20  # (site, triangle) distance pairs evaluated at once
+def _touching(cf, roff, ring, verts, farea, live, tri, tol):
+    """``(n,) bool``: cells that some triangle of ``tri`` meets (each grown by ``tol``)."""
+    from ..kernels.meshclip3d import touching_cells, tri_grid
+    from .threads import serial_below
 
-
-def _near_surface(sites, reach, live, tri, slack):
-    """``(n,) bool``: cells whose ball (site, reach) holds a point of some triangle."""
-    from scipy.spatial import cKDTree
-
-    cen_t = tri.mean(axis=1)
-    rt = float(np.linalg.norm(tri - cen_t[:, None], axis=2).max())
-    idx = np.flatnonzero(live)
-    lists = cKDTree(cen_t).query_ball_point(sites[idx], reach[idx] * (1 + 1e-9) + rt + slack)
-    lens = np.fromiter((len(x) for x in lists), np.int64, len(lists))
-    near = np.zeros(len(sites), bool)
-    if not lens.sum():
-        return near
-    flat = np.fromiter((t for x in lists for t in x), np.int64, int(lens.sum()))
-    owner = np.repeat(idx, lens)
-    for lo in range(0, len(flat), _PAIRS):
-        o, t = owner[lo : lo + _PAIRS], flat[lo : lo + _PAIRS]
-        d = _point_triangle_distance(sites[o], tri[t])
-        near[o[d <= reach[o] * (1 + 1e-9) + slack]] = True
-    return near
+    lo = tri.min(axis=(0, 1)) - tol
+    hi = tri.max(axis=(0, 1)) + tol
+    # buckets about the size of a triangle's box, at most ~8 per triangle
+    ext = (tri.max(axis=1) - tri.min(axis=1)).max(axis=1)
+    h = max(float(np.median(ext)), float((np.prod(hi - lo) / (8.0 * len(tri))) ** (1 / 3)))
+    dims = np.maximum(1, np.ceil((hi - lo) / h)).astype(np.int64)
+    T = np.ascontiguousarray(tri, np.float64)
+    start, items = tri_grid(T, lo, h, dims)
+    with serial_below(int(live.sum())):
+        return touching_cells(
+            cf,
+            roff,
+            ring,
+            verts,
+            np.ascontiguousarray(farea),
+            live,
+            T,
+            lo,
+            h,
+            dims,
+            start,
+            items,
+            tol,
+        )
 
 
 def cut_by_mesh(d, mesh: MeshContainer, progress=None):
     """Cut a box diagram ``d`` (Diagram3D in the mesh's box) by ``mesh``; a new Diagram3D."""
     from ..kernels.inside3d import inside_mesh, yz_grid
+    from ..kernels.meshclip3d import copy_runs
     from .diagram3d import Diagram3D
 
     n = len(d)
     V, F = mesh.vertices, mesh.faces
-    cf, lab, _, roff, ring = d.cell_face_table()
-    sites = np.asarray(d.sites)
+    cf, lab, farea, roff, ring = d.cell_face_table()
     verts = np.asarray(d.vertices)
     nface = np.diff(cf)
     live = nface > 0
-    # the reach of each cell from its site: its farthest vertex
-    reach = np.zeros(n)
-    if len(ring):
-        owner_r = np.repeat(np.repeat(np.arange(n), nface), np.diff(roff))
-        np.maximum.at(reach, owner_r, np.linalg.norm(verts[ring] - sites[owner_r], axis=1))
     slack = 1e-9 * float(np.abs(V).max())
-    cand = _near_surface(sites, reach, live, V[F], slack)
+    cand = _touching(cf, roff, ring, verts, farea, live, V[F], slack)
     g, start, items = yz_grid(V, F, int(max(1, min(512, np.sqrt(len(F) / 4)))))
     q = np.nan_to_num(np.asarray(d.centroids))
     ins = inside_mesh(np.ascontiguousarray(q), V, F, g, start, items)
@@ -211,20 +194,16 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None):
     pieces = np.where(keep, 1, 0).astype(np.int64)
     cut = np.zeros(n, bool)
     counts = np.where(keep, nface, 0).astype(np.int64)
-    face_owner = np.repeat(np.arange(n), nface)
-    cut_tris, cut_labels, cut_verts = {}, {}, []
     nvert = len(verts)
     todo = np.flatnonzero(cand)
     done = 0
+    parts = []  # (vertices, cells, triangles per cell, triangles, labels) per batch
     for batch in _apart(todo, cf, roff, ring):
-        ov, res = _cut_split(batch, (cf, roff, ring, verts, lab, face_owner, len(F), whole))
-        for i, (ot, labels, v, ce, npc) in res.items():
-            cut[i] = True
-            vol[i], cen[i], pieces[i] = v, ce, npc
-            cut_tris[i] = ot + nvert
-            cut_labels[i] = labels
-            counts[i] = len(ot)
-        cut_verts.append(ov)
+        r = _cut_split(np.asarray(batch, np.int64), (cf, roff, ring, verts, lab, len(F), whole))
+        ov, cells, ntri, ot, labels, v, ce, npc = r
+        cut[cells] = True
+        vol[cells], cen[cells], pieces[cells], counts[cells] = v, ce, npc, ntri
+        parts.append((ov, cells, ntri, ot + nvert, labels))
         nvert += len(ov)
         done += len(batch)
         if progress is not None:
@@ -233,21 +212,23 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None):
     cell_faces = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
     lens = np.full(int(cell_faces[-1]), 3, np.int64)
     lab2 = np.zeros(len(lens), np.int64)
-    kept = np.flatnonzero(keep[face_owner])  # old faces kept, in cell order
-    dest = cell_faces[face_owner[kept]] + (kept - cf[face_owner[kept]])
+    kept = np.flatnonzero(np.repeat(keep, nface))  # old faces kept, in cell order
+    kown = np.repeat(np.arange(n), nface)[kept]
+    dest = cell_faces[kown] + (kept - cf[kown])
     klen = np.diff(roff)[kept]
     lens[dest] = klen
     lab2[dest] = lab[kept]
     roff2 = np.concatenate([[0], np.cumsum(lens)]).astype(np.int64)
     ring2 = np.zeros(int(roff2[-1]), np.int64)
-    if len(kept):
-        step = np.repeat(roff[kept] - roff2[dest], klen)
-        at = np.repeat(roff2[dest], klen) + _ranks(klen)
-        ring2[at] = ring[at + step]
-    for i, ot in cut_tris.items():
-        s0 = roff2[cell_faces[i]]
-        ring2[s0 : s0 + 3 * len(ot)] = ot.reshape(-1)
-        lab2[cell_faces[i] : cell_faces[i + 1]] = cut_labels[i]
+    kc = np.flatnonzero(keep)  # each kept cell's rings: one block, copied whole
+    copy_runs(ring, roff[cf[kc]], roff[cf[kc + 1]], ring2, roff2[cell_faces[kc]])
+    if parts:  # cut cells: their triangles, in the order _cut_batch sorted them
+        cells = np.concatenate([p[1] for p in parts])
+        ntri = np.concatenate([p[2] for p in parts])
+        tdest = np.repeat(cell_faces[cells], ntri) + _ranks(ntri)
+        lab2[tdest] = np.concatenate([p[4] for p in parts])
+        ring2[roff2[tdest][:, None] + np.arange(3)] = np.concatenate([p[3] for p in parts])
+    cut_verts = [p[0] for p in parts]
     allv = np.vstack([verts, *cut_verts])
     used = np.zeros(len(allv), bool)
     used[ring2] = True
@@ -290,42 +271,40 @@ def _apart(cells, cf, roff, ring):
     return batches
 
 
-def _cut_batch(batch, cf, roff, ring, verts, lab, face_owner, nF, container):
+def _cut_batch(batch, cf, roff, ring, verts, lab, nF, container):
     """Cells ``batch`` (no two touching) ∩ ``container`` (a Manifold), in one boolean.
 
-    ``(vertices, {cell: (triangles, labels, volume, centroid, pieces)})`` with the cells that
-    keep some volume, or None when a connected component of the result cannot be given to
-    one cell: a closed part of the container inside a cell that touches none of its faces,
-    or faces of two cells in one component (cells that touch without sharing a named
-    vertex); the caller then halves the batch.
+    ``(vertices, cells, ntri, triangles, labels, volumes, centroids, pieces)`` for the cells
+    that keep some volume (``cells`` ascending, their ``ntri`` triangles one cell after
+    another), or None when a connected component of the result cannot be given to one
+    cell: a closed part of the container inside a cell that touches none of its faces, or
+    faces of two cells in one component (cells that touch without sharing a named vertex);
+    the caller then halves the batch.
     """
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
 
-    vs, ts, fs, base = [], [], [], 0
-    for i in batch:
-        f0, f1 = cf[i], cf[i + 1]
-        r0, r1 = roff[f0], roff[f1]
-        flat = ring[r0:r1]
-        ids = unique(flat)
-        loc = np.searchsorted(ids, flat)
-        lens = np.diff(roff[f0 : f1 + 1])
-        first = np.repeat(roff[f0:f1] - r0, lens - 2)
-        step = _ranks(lens - 2) + 1
-        ts.append(np.stack([loc[first], loc[first + step], loc[first + step + 1]], 1) + base)
-        fs.append(np.repeat(np.arange(f0, f1), lens - 2) + nF)
-        vs.append(verts[ids])
-        base += len(ids)
-    m = _manifold(np.vstack(vs), np.vstack(ts), np.concatenate(fs)) ^ container
-    out = m.to_mesh64()
+    nf = cf[batch + 1] - cf[batch]
+    fidx = np.repeat(cf[batch], nf) + _ranks(nf)  # the batch's faces
+    lens = roff[fidx + 1] - roff[fidx]
+    flat = ring[np.repeat(roff[fidx], lens) + _ranks(lens)]
+    ids = unique(flat)  # the cells share no vertex: one vertex list for the batch
+    loc = np.searchsorted(ids, flat)
+    first = np.repeat(np.cumsum(lens) - lens, lens - 2)  # fans from each face's first vertex
+    step = _ranks(lens - 2) + 1
+    ts = np.stack([loc[first], loc[first + step], loc[first + step + 1]], 1)
+    fs = np.repeat(fidx, lens - 2) + nF
+    face_owner = np.repeat(batch, nf)  # the owner of each batch face, by position
+    out = (_manifold(verts[ids], ts, fs) ^ container).to_mesh64()
     ofid = np.asarray(out.face_id, np.int64)
     ov = np.array(np.asarray(out.vert_properties)[:, :3], np.float64)
     ot = np.asarray(out.tri_verts, np.int64).reshape(-1, 3)
+    empty = np.zeros(0, np.int64)
     if not len(ot):
-        return ov, {}
+        return ov, empty, empty, ot, empty, np.zeros(0), np.zeros((0, 3)), empty
     fromcell = ofid >= nF
     gface = np.where(fromcell, ofid - nF, 0)
-    tcell = np.where(fromcell, face_owner[gface], -1)
+    tcell = np.where(fromcell, face_owner[np.searchsorted(fidx, gface)], -1)
     # connected components of the result: each lies in one cell
     e = np.concatenate([ot[:, [0, 1]], ot[:, [1, 2]]])
     g = coo_matrix((np.ones(len(e)), (e[:, 0], e[:, 1])), shape=(len(ov), len(ov)))
@@ -340,18 +319,21 @@ def _cut_batch(batch, cf, roff, ring, verts, lab, face_owner, nF, container):
     a, b, c = ov[ot[:, 0]], ov[ot[:, 1]], ov[ot[:, 2]]
     det = np.einsum("ij,ij->i", a, np.cross(b, c))
     order = np.argsort(tcell, kind="stable")
-    cells_sorted = tcell[order]
-    starts = np.flatnonzero(np.r_[True, cells_sorted[1:] != cells_sorted[:-1]])
-    res = {}
-    for s0, s1 in zip(starts, np.r_[starts[1:], len(order)], strict=True):
-        sel = order[s0:s1]
-        v = det[sel].sum() / 6.0
-        if v <= 0.0:
-            continue
-        ce = (det[sel, None] * (a[sel] + b[sel] + c[sel])).sum(axis=0) / 24.0 / v
-        npc = len(np.unique(tcomp[sel]))
-        res[int(cells_sorted[s0])] = (ot[sel], labels[sel], v, ce, npc)
-    return ov, res
+    cs = tcell[order]
+    starts = np.flatnonzero(np.r_[True, cs[1:] != cs[:-1]])
+    cells = cs[starts]
+    ntri = np.diff(np.r_[starts, len(order)])
+    v = np.add.reduceat(det[order], starts) / 6.0
+    mom = np.add.reduceat(det[order, None] * (a + b + c)[order], starts) / 24.0
+    # pieces: distinct components per cell (components are sorted by cell with it)
+    pc = unique(cs * ncomp + tcomp[order]) // ncomp
+    npc = np.diff(np.searchsorted(pc, np.r_[cells, cells[-1] + 1]))
+    ok = v > 0.0
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ce = mom / v[:, None]
+    tok = np.repeat(ok, ntri)
+    sel = order[tok]
+    return ov, cells[ok], ntri[ok], ot[sel], labels[sel], v[ok], ce[ok], npc[ok]
 
 
 def _cut_split(batch, args):
@@ -366,14 +348,16 @@ def _cut_split(batch, args):
 
 
 def _merge(got):
-    """One ``(vertices, results)`` from several, triangle indices shifted."""
-    vs, res, base = [], {}, 0
-    for ov, r in got:
-        for i, (ot, labels, v, ce, npc) in r.items():
-            res[i] = (ot + base, labels, v, ce, npc)
-        vs.append(ov)
-        base += len(ov)
-    return (np.vstack(vs) if vs else np.zeros((0, 3))), res
+    """One result of ``_cut_batch`` from several, triangle indices shifted."""
+    base = np.cumsum([0] + [len(r[0]) for r in got])
+    ov = np.vstack([r[0] for r in got])
+    ot = np.concatenate([r[3] + b for r, b in zip(got, base, strict=False)])
+    return (
+        ov,
+        np.concatenate([r[1] for r in got]),
+        np.concatenate([r[2] for r in got]),
+        ot,
+    ) + tuple(np.concatenate([r[k] for r in got]) for k in range(4, 8))
 
 
 def _ranks(lens):

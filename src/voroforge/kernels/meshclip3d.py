@@ -1,0 +1,160 @@
+"""Convex cells against a closed triangle mesh: which cells the mesh's surface meets.
+
+A convex cell (the intersection of its faces' half-spaces) that no triangle of a closed
+surface meets lies wholly on one side of it. :func:`touching_cells` tells, for each cell,
+whether some triangle meets the cell grown by ``tol``: the triangle is clipped by each face
+plane moved out by ``tol`` (Sutherland-Hodgman on a convex polygon) and meets the cell when
+something is left. Growing the cell makes the answer conservative: rounding in the clip
+(far below ``tol``) can only call a cell touching that misses the surface by less than
+``tol``, never the other way. Triangles are bucketed on a uniform grid by their boxes;
+each cell tests the triangles of the buckets its box overlaps.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit, prange
+
+from ..config import NJIT, NJIT_PARALLEL
+
+
+@njit(**NJIT)
+def tri_grid(T, lo, h, dims):
+    """Bucket triangles ``T (m, 3, 3)`` by their boxes on a grid: ``(start, items)`` CSR."""
+    nx, ny, nz = dims[0], dims[1], dims[2]
+    nb = nx * ny * nz
+    count = np.zeros(nb + 1, np.int64)
+    for rnd in range(2):
+        if rnd == 1:
+            for k in range(nb):
+                count[k + 1] += count[k]
+            items = np.zeros(count[nb], np.int64)
+            fill = count[:-1].copy()
+        for t in range(T.shape[0]):
+            a0 = np.zeros(3, np.int64)
+            a1 = np.zeros(3, np.int64)
+            for c in range(3):
+                x0 = min(T[t, 0, c], min(T[t, 1, c], T[t, 2, c]))
+                x1 = max(T[t, 0, c], max(T[t, 1, c], T[t, 2, c]))
+                a0[c] = min(dims[c] - 1, max(0, int((x0 - lo[c]) / h)))
+                a1[c] = min(dims[c] - 1, max(0, int((x1 - lo[c]) / h)))
+            for i in range(a0[0], a1[0] + 1):
+                for j in range(a0[1], a1[1] + 1):
+                    for k in range(a0[2], a1[2] + 1):
+                        b = (i * ny + j) * nz + k
+                        if rnd == 0:
+                            count[b + 1] += 1
+                        else:
+                            items[fill[b]] = t
+                            fill[b] += 1
+    return count, items
+
+
+@njit(**NJIT)
+def _meets(T, t, cell_lo, cell_hi, f0, f1, farea, fpt, tol, buf_a, buf_b):
+    """Whether triangle ``t`` meets the cell (faces ``f0:f1``) grown by ``tol``."""
+    for c in range(3):
+        x0 = min(T[t, 0, c], min(T[t, 1, c], T[t, 2, c]))
+        x1 = max(T[t, 0, c], max(T[t, 1, c], T[t, 2, c]))
+        if x1 < cell_lo[c] or x0 > cell_hi[c]:
+            return False
+    for k in range(3):
+        for c in range(3):
+            buf_a[k, c] = T[t, k, c]
+    m = 3
+    src = buf_a
+    dst = buf_b
+    for f in range(f0, f1):
+        nx = farea[f, 0]
+        ny = farea[f, 1]
+        nz = farea[f, 2]
+        nn = np.sqrt(nx * nx + ny * ny + nz * nz)
+        if nn == 0.0:
+            continue
+        off = nx * fpt[f, 0] + ny * fpt[f, 1] + nz * fpt[f, 2] + tol * nn
+        k = 0
+        sp = nx * src[m - 1, 0] + ny * src[m - 1, 1] + nz * src[m - 1, 2] - off
+        for q in range(m):
+            sq = nx * src[q, 0] + ny * src[q, 1] + nz * src[q, 2] - off
+            if (sp <= 0.0) != (sq <= 0.0):  # the edge crosses the plane
+                p = q - 1 if q > 0 else m - 1
+                r = sp / (sp - sq)
+                for c in range(3):
+                    dst[k, c] = src[p, c] + r * (src[q, c] - src[p, c])
+                k += 1
+            if sq <= 0.0:
+                for c in range(3):
+                    dst[k, c] = src[q, c]
+                k += 1
+            sp = sq
+        if k == 0:
+            return False
+        m = k
+        src, dst = dst, src
+    return True
+
+
+@njit(**NJIT_PARALLEL)
+def touching_cells(cf, roff, ring, verts, farea, live, T, lo, h, dims, start, items, tol):
+    """``(n,) bool``: the cells that some triangle of ``T (m, 3, 3)`` meets.
+
+    Cells as :meth:`Diagram3D.cell_face_table` gives them (faces ``cf``, rings
+    ``roff``/``ring`` into ``verts``, outward area vectors ``farea``), each grown by ``tol``;
+    ``live`` marks the cells to test; triangles bucketed by :func:`tri_grid`.
+    """
+    n = cf.shape[0] - 1
+    out = np.zeros(n, np.bool_)
+    nf = farea.shape[0]
+    fpt = np.zeros((nf, 3))
+    for f in prange(nf):
+        v = ring[roff[f]]
+        for c in range(3):
+            fpt[f, c] = verts[v, c]
+    ny, nz = dims[1], dims[2]
+    for i in prange(n):
+        if not live[i]:
+            continue
+        f0, f1 = cf[i], cf[i + 1]
+        cell_lo = np.full(3, np.inf)
+        cell_hi = np.full(3, -np.inf)
+        for s in range(roff[f0], roff[f1]):
+            v = ring[s]
+            for c in range(3):
+                cell_lo[c] = min(cell_lo[c], verts[v, c])
+                cell_hi[c] = max(cell_hi[c], verts[v, c])
+        a0 = np.zeros(3, np.int64)
+        a1 = np.zeros(3, np.int64)
+        for c in range(3):
+            cell_lo[c] -= tol
+            cell_hi[c] += tol
+            a0[c] = min(dims[c] - 1, max(0, int((cell_lo[c] - lo[c]) / h)))
+            a1[c] = min(dims[c] - 1, max(0, int((cell_hi[c] - lo[c]) / h)))
+        buf_a = np.zeros((3 + f1 - f0, 3))
+        buf_b = np.zeros((3 + f1 - f0, 3))
+        hit = False
+        for a in range(a0[0], a1[0] + 1):
+            for b in range(a0[1], a1[1] + 1):
+                for k in range(a0[2], a1[2] + 1):
+                    bk = (a * ny + b) * nz + k
+                    for s in range(start[bk], start[bk + 1]):
+                        t = items[s]
+                        if _meets(T, t, cell_lo, cell_hi, f0, f1, farea, fpt, tol, buf_a, buf_b):
+                            hit = True
+                            break
+                    if hit:
+                        break
+                if hit:
+                    break
+            if hit:
+                break
+        out[i] = hit
+    return out
+
+
+@njit(**NJIT)
+def copy_runs(src, s0, s1, dst, d0):
+    """``dst[d0[k]:d0[k] + s1[k] - s0[k]] = src[s0[k]:s1[k]]`` for each run ``k``."""
+    for k in range(s0.shape[0]):
+        o = d0[k] - s0[k]
+        for j in range(s0[k], s1[k]):
+            dst[j + o] = src[j]
