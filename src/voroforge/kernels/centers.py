@@ -546,6 +546,10 @@ def merge_cocircular(xs, ys, tri, he, cx, cy, err, flag, rank, box):
     near = np.zeros(tri.shape[0] // 3, dtype=np.uint8)
     flag_close(xs, ys, tri, he, cx, cy, flag, err, box, fold, near)
     cand = np.flatnonzero(flag)
+    if cand.shape[0] == 0 and not fold.any():
+        # nothing to merge or unfold (most uniform inputs): every triangle is its own class,
+        # and flag_close marked the short edges
+        return np.arange(tri.shape[0] // 3), near
     own_x = cx.copy()
     own_y = cy.copy()
     cls = _merge_exact(xs, ys, tri, he, cand, cx, cy, True, rank, err, box, fold)
