@@ -194,3 +194,26 @@ def test_touching_cells_against_references():
             reach = np.linalg.norm(V[vs] - pts[i], axis=1).max()
             dist = _point_triangle_distance(np.repeat(pts[i : i + 1], len(tri), 0), tri)
             assert dist.min() <= reach * (1 + 1e-9)
+
+
+def test_batches_share_no_vertex():
+    # the greedy colouring (first fit, in order) against the plain set version
+    from voroforge.engine.mesh3d import _apart
+
+    pts = np.random.default_rng(4).random((200, 3))
+    d = vf.voronoi3d(pts, (0, 0, 0, 1, 1, 1))
+    cf, _, _, roff, ring = d.cell_face_table()
+    cells = np.arange(0, 200, 2)
+    got = _apart(cells, cf, roff, ring, len(d.vertices))
+    batches, used = [], []
+    for i in cells:
+        vs = set(ring[roff[cf[i]] : roff[cf[i + 1]]].tolist())
+        for b, u in zip(batches, used, strict=True):
+            if u.isdisjoint(vs):
+                b.append(i)
+                u |= vs
+                break
+        else:
+            batches.append([i])
+            used.append(vs)
+    assert [b.tolist() for b in got] == batches

@@ -198,8 +198,8 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None):
     todo = np.flatnonzero(cand)
     done = 0
     parts = []  # (vertices, cells, triangles per cell, triangles, labels) per batch
-    for batch in _apart(todo, cf, roff, ring):
-        r = _cut_split(np.asarray(batch, np.int64), (cf, roff, ring, verts, lab, len(F), whole))
+    for batch in _apart(todo, cf, roff, ring, len(verts)):
+        r = _cut_split(batch, (cf, roff, ring, verts, lab, len(F), whole))
         ov, cells, ntri, ot, labels, v, ce, npc = r
         cut[cells] = True
         vol[cells], cen[cells], pieces[cells], counts[cells] = v, ce, npc, ntri
@@ -255,20 +255,14 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None):
     )
 
 
-def _apart(cells, cf, roff, ring):
+def _apart(cells, cf, roff, ring, nvert):
     """Split ``cells`` into batches of cells that share no vertex (greedy, in order)."""
-    batches, used = [], []
-    for i in cells:
-        vs = set(ring[roff[cf[i]] : roff[cf[i + 1]]].tolist())
-        for b, u in zip(batches, used, strict=True):
-            if u.isdisjoint(vs):
-                b.append(i)
-                u |= vs
-                break
-        else:
-            batches.append([i])
-            used.append(vs)
-    return batches
+    from ..kernels.meshclip3d import colour_cells
+
+    col = colour_cells(np.asarray(cells, np.int64), cf, roff, ring, nvert)
+    order = np.argsort(col, kind="stable")
+    cuts = np.flatnonzero(np.diff(col[order])) + 1
+    return np.split(cells[order], cuts) if len(cells) else []
 
 
 def _cut_batch(batch, cf, roff, ring, verts, lab, nF, container):

@@ -158,3 +158,29 @@ def copy_runs(src, s0, s1, dst, d0):
         o = d0[k] - s0[k]
         for j in range(s0[k], s1[k]):
             dst[j + o] = src[j]
+
+
+@njit(**NJIT)
+def colour_cells(cells, cf, roff, ring, nvert):
+    """Greedy first-fit colours: no two cells of one colour share a vertex.
+
+    Cells in order take the lowest colour that none of their vertices holds yet; after 63
+    colours a cell gets one of its own (``63 + its position``), which only costs batches.
+    """
+    used = np.zeros(nvert, np.int64)  # bit k: a cell of colour k holds the vertex
+    out = np.zeros(cells.shape[0], np.int64)
+    for q in range(cells.shape[0]):
+        i = cells[q]
+        mask = 0
+        for s in range(roff[cf[i]], roff[cf[i + 1]]):
+            mask |= used[ring[s]]
+        k = 0
+        while k < 63 and (mask >> k) & 1:
+            k += 1
+        if k == 63:
+            out[q] = 63 + q
+            continue
+        out[q] = k
+        for s in range(roff[cf[i]], roff[cf[i + 1]]):
+            used[ring[s]] |= np.int64(1) << k
+    return out
