@@ -17,12 +17,12 @@ from pathlib import Path
 
 __all__ = ["dumps", "write_atomic"]
 
-_BARE = re.compile(r"^[A-Za-z0-9_-]+$")
+_BARE = re.compile(r"[A-Za-z0-9_-]+")
 
 
 def _key(k) -> str:
     k = str(k)
-    return k if _BARE.match(k) else _string(k)
+    return k if _BARE.fullmatch(k) else _string(k)  # fullmatch: "$" passes a final newline
 
 
 def _string(s: str) -> str:
