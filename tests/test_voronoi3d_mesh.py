@@ -115,6 +115,21 @@ def test_mesh_file_and_split_cells(tmp_path):
     assert (d.pieces[[0, 1, 3, 4]] == 1).all()
 
 
+def test_cell_faces_on_the_container_surface_are_walls():
+    # sites mirrored across the cube's sides: bisector planes lie in the container's faces,
+    # where the boolean keeps the cells' faces; they are walls (the outer sites' cells are
+    # empty), so the wall areas add up to the surface and no cell names an empty neighbour
+    mesh = _box((0, 0, 0), (1, 1, 1))
+    g = np.arange(-0.25, 1.3, 0.5)
+    pts = np.stack(np.meshgrid(g, g, g, indexing="ij"), -1).reshape(-1, 3)
+    d = vf.voronoi3d(pts, mesh)
+    _check_mesh_diagram(d, mesh, pts)
+    np.testing.assert_allclose(d.volumes[d.volumes > 0], 0.125, rtol=1e-12)
+    indptr, indices = d.neighbors
+    assert (d.volumes[indices] > 0).all()
+    assert (np.diff(indptr)[d.volumes > 0] == 3).all()  # each octant cube: three inner faces
+
+
 def test_bad_meshes():
     m = _torus()
     with pytest.raises(ValueError, match="open"):

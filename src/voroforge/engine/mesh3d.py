@@ -233,6 +233,12 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None):
     used = np.zeros(len(allv), bool)
     used[ring2] = True
     remap = np.cumsum(used) - 1
+    if parts:  # cut cells' triangles facing an emptied cell: walls the boolean mislabelled
+        tl = lab2[tdest]
+        nb = np.maximum(tl, 0)
+        odd = (tl >= 0) & ~keep[nb] & ~cut[nb]
+        if odd.any():
+            _coplanar_walls(mesh, allv, ring2, roff2, tdest[odd], lab2, slack)
     return Diagram3D(
         sites=d.sites,
         weights=d.weights,
@@ -253,6 +259,51 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None):
         cut_cells=cut,
         container_volume=mesh.volume,
     )
+
+
+def _coplanar_walls(mesh, verts, ring, roff, faces, lab, tol):
+    """Walls that the boolean labelled as cell faces: ``lab`` corrected in place.
+
+    Where a cell's face lies in the plane of a container triangle (sites mirrored exactly
+    across a flat side of the container), manifold3d keeps the cell's face there, labelled
+    with the neighbour across it, although that neighbour's cell is wholly outside the
+    container. ``faces`` are the cut cells' triangles labelled with such an emptied cell:
+    each lies on the container's surface, and becomes a wall of the container triangle it
+    lies on (in its plane within ``tol``, facing the same way, its centroid inside it).
+    Not covered: a face in a container triangle's plane whose neighbour keeps volume
+    elsewhere (a container with a step in that plane); telling those apart would take an
+    area comparison over every cut face, about a tenth of a mesh run. Returns how many
+    triangles were relabelled.
+    """
+    from scipy.spatial import cKDTree
+
+    t3 = verts[ring[roff[faces][:, None] + np.arange(3)]]
+    area = np.cross(t3[:, 1] - t3[:, 0], t3[:, 2] - t3[:, 0])
+    size = np.linalg.norm(area, axis=1)
+    ok = size > 0
+    faces, t3, area, size = faces[ok], t3[ok], area[ok], size[ok]
+    tri = mesh.vertices[mesh.faces]
+    tn = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    tn /= np.linalg.norm(tn, axis=1, keepdims=True)
+    tc = tri.mean(axis=1)
+    reach = float(np.sqrt(((tri - tc[:, None]) ** 2).sum(-1)).max())
+    cen = t3.mean(axis=1)
+    nrm = area / size[:, None]
+    moved = 0
+    for k, near in enumerate(cKDTree(tc).query_ball_point(cen, reach + tol)):
+        for t in near:
+            a, b, c = tri[t]
+            if abs(tn[t] @ (cen[k] - a)) > tol or tn[t] @ nrm[k] < 1.0 - 1e-9:
+                continue
+            inside = all(
+                np.cross(q - p, cen[k] - p) @ tn[t] >= -tol * np.linalg.norm(q - p)
+                for p, q in ((a, b), (b, c), (c, a))
+            )
+            if inside:
+                lab[faces[k]] = -1 - t
+                moved += 1
+                break
+    return moved
 
 
 def _apart(cells, cf, roff, ring, nvert):
