@@ -16,7 +16,8 @@ from ..kernels.cells import cells_from_neighbors, cells_from_triangulation
 from ..kernels.clip import rings_convex
 from ..kernels.delaunay import triangulate_sorted
 from ..kernels.fortune import fortune_delaunay
-from ..kernels.halfplane import halfplane_cells, rings_area
+from ..kernels.halfplane import halfplane_cells
+from ..kernels.moments import rings_area
 from ..kernels.rings import close_rings
 from .assemble import assemble
 from .csr import csr_from_pairs
@@ -123,7 +124,7 @@ def _certified(closed, lengths, box) -> bool:
         return False
     if len(closed) == 0:
         return False
-    area = rings_area(closed, lengths)
+    area = rings_area(closed[:, 0], closed[:, 1], lengths)
     want = (box[2] - box[0]) * (box[3] - box[1])
     return abs(area - want) <= HALFPLANE_TILING_RTOL * want
 

@@ -535,40 +535,6 @@ def _copy_cells(k0, k1, sidx, counts, offsets, where, base, xs, ys, os, kmap, co
         owner[dst + m] = -2
 
 
-@njit(**NJIT)
-def rings_area(xy, lengths):
-    """Sum of the areas of the closed rings ``xy[lengths[i]:lengths[i + 1]]`` (signed).
-
-    Each ring's area is summed relative to its first vertex, so coordinates far from the
-    origin keep their precision, and the rings' areas are added with Neumaier's
-    compensation (a million small cells sum to the box's area to a few ulps). The engine
-    compares it with the box's area to certify that the cells tile the box.
-    """
-    total = 0.0
-    comp = 0.0
-    for i in range(lengths.shape[0] - 1):
-        a = lengths[i]
-        b = lengths[i + 1]
-        if b - a < 2:
-            continue
-        x0 = xy[a, 0]
-        y0 = xy[a, 1]
-        ring = 0.0
-        for k in range(a, b - 1):
-            ux = xy[k, 0] - x0
-            uy = xy[k, 1] - y0
-            vx = xy[k + 1, 0] - x0
-            vy = xy[k + 1, 1] - y0
-            ring += ux * vy - vx * uy
-        t = total + ring
-        if abs(total) >= abs(ring):
-            comp += (total - t) + ring
-        else:
-            comp += (ring - t) + total
-        total = t
-    return 0.5 * (total + comp)
-
-
 def _median_occupancy(occ):
     """``np.median(np.repeat(occ, occ))`` without the repeat: the site-weighted median count."""
     weight = np.bincount(occ, weights=occ)  # sites in buckets of each occupancy
