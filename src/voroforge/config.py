@@ -176,6 +176,19 @@ EDGE_MERGE_RTOL = 1e-9
 #: this fraction of the hull's (such cells are scaled and filleted on a fast path).
 CONVEX_AREA_RTOL = 1e-12
 
+#: design.convexops: a turn (radians) below this makes a vertex straight; it is dropped.
+CONVEX_STRAIGHT_TURN = 1e-9
+#: design.convexops: moved lines of two edges made neighbours by a dropped edge turning less
+#: than this (radians) are too close to parallel to cross accurately (the cell goes to GEOS).
+CONVEX_PARALLEL_TURN = 1e-7
+#: design.convexops: an edge shorter than this fraction of its cell's size merges its ends.
+CONVEX_SHORT_EDGE_RTOL = 1e-10
+#: design.convexops: a corner sweeping less than this (radians) gets one point, as GEOS's
+#: offset curve does (OFFSET_SEGMENT_SEPARATION_FACTOR).
+CONVEX_ARC_SEPARATION = 1e-3
+#: design.convexops: a ring whose turns add up to 2 pi within this (radians) is simple.
+CONVEX_FULL_TURN_TOL = 1e-6
+
 #: design.compute: a corner_radius of half the boundary's width (a stadium, a disc) leaves a
 #: core GEOS drops; the radius is made this fraction smaller to keep a sliver of it.
 CORNER_RADIUS_SHRINK = 1e-4
@@ -296,6 +309,12 @@ VORONOI3D_STOP_RTOL = 1e-9
 VORONOI3D_DET_RTOL = 1e-10
 #: Default container: the sites' bounding box padded by this fraction of its size per side
 VORONOI3D_PAD = 0.1
+#: Mesh containers: the touch test's slack (cell planes moved out) and the tolerance of a
+#: face lying in a container triangle's plane, relative to the mesh's largest coordinate
+VORONOI3D_MESH_SLACK_RTOL = 1e-9
+#: Mesh containers: a face and a container triangle face the same way when the cosine of
+#: their normals is within this of 1
+VORONOI3D_MESH_FACING = 1e-9
 #: Mesh containers: a closed mesh's volume against the cells' sum (relative), for the checks
 VORONOI3D_MESH_RTOL = 1e-9
 

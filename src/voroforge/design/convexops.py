@@ -29,18 +29,15 @@ import math
 import numpy as np
 import shapely
 
-__all__ = ["convex_rings", "fillet_rings", "inset_rings", "polygons", "take"]
+from ..config import (
+    CONVEX_ARC_SEPARATION,
+    CONVEX_FULL_TURN_TOL,
+    CONVEX_PARALLEL_TURN,
+    CONVEX_SHORT_EDGE_RTOL,
+    CONVEX_STRAIGHT_TURN,
+)
 
-#: Turn (radians) below which a vertex counts as straight and is dropped.
-STRAIGHT_TURN = 1e-9
-#: Turn below which the moved lines of two edges made neighbours by a dropped edge are
-#: too close to parallel to cross accurately (the cell goes to GEOS).
-PARALLEL_TURN = 1e-7
-#: Edges shorter than this fraction of the cell's size merge their end points.
-SHORT_EDGE_RTOL = 1e-10
-#: A corner whose sweep is below this gets one point, as GEOS's offset curve does
-#: (``OFFSET_SEGMENT_SEPARATION_FACTOR``).
-ARC_SEPARATION = 1e-3
+__all__ = ["convex_rings", "fillet_rings", "inset_rings", "polygons", "take"]
 
 
 def _ring_index(start: np.ndarray):
@@ -120,7 +117,7 @@ def convex_rings(cells: np.ndarray):
         cross = _cross(e_in, e_out)
         dot = _dot(e_in, e_out)
         repeat = l_in == 0.0
-        straight = (np.abs(cross) <= STRAIGHT_TURN * l_in * l_out) & (dot > 0)
+        straight = (np.abs(cross) <= CONVEX_STRAIGHT_TURN * l_in * l_out) & (dot > 0)
         drop = repeat | straight
         # of two neighbouring straight vertices drop only the first, then look again
         drop &= ~(drop[prv] & (np.arange(len(xy)) != prv))
@@ -133,7 +130,7 @@ def convex_rings(cells: np.ndarray):
     ok &= count >= 3
     ok &= np.bincount(owner, turn <= 0, minlength=len(count)) == 0
     total = np.bincount(owner, turn, minlength=len(count))
-    ok &= np.abs(total - 2.0 * math.pi) <= 1e-6  # once round: a simple convex ring
+    ok &= np.abs(total - 2.0 * math.pi) <= CONVEX_FULL_TURN_TOL  # once round: a simple convex ring
     mask[idx[~ok]] = False
     return mask, np.ascontiguousarray(xy[ok[owner]]), np.concatenate(([0], np.cumsum(count[ok])))
 
@@ -178,7 +175,7 @@ def inset_rings(xy: np.ndarray, start: np.ndarray, distance):
     n_p = normal[prv]
     vert = xy + d[owner, None] * (n_p + normal) / (1.0 + _dot(n_p, normal))[:, None]
     # the moved segment of edge k runs from vert[k] to vert[k + 1]
-    gone = _dot(vert[nxt] - vert, tangent) <= SHORT_EDGE_RTOL * size[owner]
+    gone = _dot(vert[nxt] - vert, tangent) <= CONVEX_SHORT_EDGE_RTOL * size[owner]
     keep = np.ones(len(xy), dtype=bool)
     hard = np.zeros(m, dtype=bool)
     if gone.any():  # drop edges until none vanishes, in the rings that lost one only
@@ -226,7 +223,7 @@ def _drop(start, normal, tangent, base, vert, gone, size):
         # half a turn or more between consecutive live edges: nothing is left
         bad = (turn <= 0.0) | (turn >= math.pi)
         empty[owner[k[bad]]] = True
-        near = ~bad & (turn < PARALLEL_TURN)
+        near = ~bad & (turn < CONVEX_PARALLEL_TURN)
         hard[owner[k[near]]] = True
         fresh = ~bad & ~near
         kk, pp = k[fresh], p[fresh]
@@ -235,7 +232,7 @@ def _drop(start, normal, tangent, base, vert, gone, size):
         s = _dot(base[pp] - base[kk], normal[pp]) / den
         vert[kk] = base[kk] + s[:, None] * tangent[kk]
         alive &= ~(empty | hard)[owner]
-        gone = alive & (_dot(vert[nxt] - vert, tangent) <= SHORT_EDGE_RTOL * size[owner])
+        gone = alive & (_dot(vert[nxt] - vert, tangent) <= CONVEX_SHORT_EDGE_RTOL * size[owner])
     return alive, vert, empty, hard
 
 
@@ -268,7 +265,7 @@ def fillet_rings(xy: np.ndarray, start: np.ndarray, radius, quad_segs: int):
     turn = np.arctan2(_cross(n_in, normal), _dot(n_in, normal))
     quantum = math.pi / 2.0 / int(quad_segs)
     chords = np.maximum((turn / quantum + 0.5).astype(np.int64), 1)
-    chords[turn < ARC_SEPARATION] = 0  # one point where the two ends nearly meet
+    chords[turn < CONVEX_ARC_SEPARATION] = 0  # one point where the two ends nearly meet
     # corner k: chords[k] + 1 points at angles a0 + j * turn / chords from its centre
     npts = chords + 1
     npts[chords == 0] = 1

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..config import VORONOI3D_MESH_FACING, VORONOI3D_MESH_SLACK_RTOL
 from .containers import box_template
 from .csr import unique
 
@@ -182,7 +183,7 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None):
     verts = np.asarray(d.vertices)
     nface = np.diff(cf)
     live = nface > 0
-    slack = 1e-9 * float(np.abs(V).max())
+    slack = VORONOI3D_MESH_SLACK_RTOL * float(np.abs(V).max())
     cand = _touching(cf, roff, ring, verts, farea, live, V[F], slack)
     g, start, items = yz_grid(V, F, int(max(1, min(512, np.sqrt(len(F) / 4)))))
     q = np.nan_to_num(np.asarray(d.centroids))
@@ -293,7 +294,7 @@ def _coplanar_walls(mesh, verts, ring, roff, faces, lab, tol):
     for k, near in enumerate(cKDTree(tc).query_ball_point(cen, reach + tol)):
         for t in near:
             a, b, c = tri[t]
-            if abs(tn[t] @ (cen[k] - a)) > tol or tn[t] @ nrm[k] < 1.0 - 1e-9:
+            if abs(tn[t] @ (cen[k] - a)) > tol or tn[t] @ nrm[k] < 1.0 - VORONOI3D_MESH_FACING:
                 continue
             inside = all(
                 np.cross(q - p, cen[k] - p) @ tn[t] >= -tol * np.linalg.norm(q - p)
