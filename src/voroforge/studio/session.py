@@ -20,7 +20,6 @@ from __future__ import annotations
 import copy
 import dataclasses
 import math
-import os
 import re
 import tempfile
 import time
@@ -125,8 +124,12 @@ class Session:
         self.settle_ms = 0.0
         self._field_cache = None
         self._controls = None
-        #: Threads for the cell operations of a full recompute (the same cells as one)
-        self.workers = max(1, min(4, os.cpu_count() or 1))
+        #: Threads for the cell operations of a full recompute (the same cells with any).
+        #: One: the convex cells' inset and fillet are numpy over small arrays that hold the
+        #: GIL, so a second thread mostly waits for it, and takes a core from the browser
+        #: (design.seed, holed 2000-cell panel, load 3.3: 46-67 ms wall with one, 94-120
+        #: with two; 36-40 against 44-59 ms CPU).
+        self.workers = 1
         self.design, self.result = self._compute(self.data, None, reuse=False)
 
     # --- computing ---------------------------------------------------------------------
