@@ -232,3 +232,28 @@ def test_batches_share_no_vertex():
             batches.append([i])
             used.append(vs)
     assert [b.tolist() for b in got] == batches
+
+
+@pytest.mark.parametrize("make", [_torus, _holed], ids=["torus", "holed"])
+def test_cells_that_cannot_reach_the_mesh_are_not_built(make, monkeypatch):
+    # sites outside whose cells cannot meet the surface are skipped (reaching_sites); the
+    # result is the same as building every cell, and no skipped site owns any volume
+    import voroforge.engine.mesh3d as m3d
+
+    mesh = make()
+    mc, _ = m3d.as_mesh_container(mesh)
+    lo, hi = mesh.bounds
+    pts = np.random.default_rng(7).uniform(lo - 0.5, hi + 0.5, (1500, 3))
+    reach = m3d.reaching_sites(mc, pts, m3d.sites_inside(mc, pts))
+    d = vf.voronoi3d(pts, mesh)
+    monkeypatch.setattr(m3d, "reaching_sites", lambda mesh, pts, inside: np.ones(len(pts), bool))
+    full = vf.voronoi3d(pts, mesh)
+    assert 0 < reach.sum() < len(pts)
+    assert (full.volumes[~reach] == 0).all()
+    np.testing.assert_array_equal(d.volumes, full.volumes)
+    np.testing.assert_array_equal(d.pieces, full.pieces)
+    np.testing.assert_array_equal(d.cut_cells, full.cut_cells)
+    a, b = d.cell_face_table(), full.cell_face_table()
+    for x, y in zip(a, b, strict=True):
+        np.testing.assert_array_equal(x, y)
+    assert d.unmatched_vertices == 0

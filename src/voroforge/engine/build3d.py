@@ -116,6 +116,10 @@ class Cells3D:
     voff: np.ndarray  # (k + 1,) vertex-list offsets, build order
     vid: np.ndarray  # (sum of nv,) global vertex ids of each cell's vertices
     unmatched: int
+    #: with ``build_cells3d(..., short=True)``: ``(V,) bool``, the vertices referenced by fewer
+    #: built cells than they have owner sites (``unmatched`` counts them; in a build of some
+    #: cells only, also the vertices shared with cells not built)
+    short: np.ndarray | None = None
 
 
 def _slots(k, caps):
@@ -403,7 +407,8 @@ class _Out:
         """Trim every output to its size (in place); returns the arrays and the unmatched."""
         nvert, nface, nring, nvid = (int(x) for x in self.sizes)
         self.table = None
-        unmatched = int(np.count_nonzero(self.refs[:nvert] < self.want[:nvert]))
+        self.short = self.refs[:nvert] < self.want[:nvert]
+        unmatched = int(np.count_nonzero(self.short))
         self.refs = self.want = None
         self.verts.resize((nvert, 3), refcheck=False)
         self.flabel.resize(nface, refcheck=False)
@@ -422,12 +427,13 @@ def _table_size(nvert):
     return 1 << int(np.ceil(np.log2(max(nvert, 8) / TABLE_LOAD)))
 
 
-def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
+def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
     """Cells of sites ``cells`` (default all) of ``P (ns, 3)``, weights ``W``, template ``t``.
 
     Chunks of cells are built in bucket order into per-cell slots (threads), and each chunk
     is joined at once into the growing outputs (:func:`_join`); a cell that overflowed its
-    slots is built again alone with big slots and joined in its place.
+    slots is built again alone with big slots and joined in its place. ``short``: keep the
+    per-vertex mask behind ``unmatched`` (:attr:`Cells3D.short`).
     """
     import numba
 
@@ -498,6 +504,8 @@ def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
                     ex.shutdown()
     del slots
     vertices, flabel, roff, ring, vid, unmatched = out.finish()
+    vshort = out.short if short else None
+    out.short = None
     pos = np.zeros(k, np.int64)
     pos[sort] = np.arange(k)
     cell_faces = np.zeros(k + 1, np.int64)
@@ -519,6 +527,7 @@ def build_cells3d(P, W, t, cells=None, progress=None) -> Cells3D:
         voff,
         vid,
         unmatched,
+        vshort,
     )
 
 

@@ -71,7 +71,8 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
     if n and mesh is not None:
         from .mesh3d import sites_inside
 
-        if not sites_inside(mesh, pts).any():
+        ins = sites_inside(mesh, pts)
+        if not ins.any():
             raise ValueError("the container mesh contains none of the sites")
     if n and mesh is None:
         inside = _inside(pts, t)
@@ -92,6 +93,14 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
         return _assemble(pts, w, t, k, None, uniq, dup, None, periodic, mesh)
     if periodic:
         res, gmap = _periodic(P, W, tw, progress)
+    elif mesh is not None:  # only the cells that can reach the mesh (unweighted: all)
+        from .mesh3d import reaching_sites
+
+        build = np.arange(u)
+        if w is None:
+            build = np.flatnonzero(reaching_sites(mesh, pts, ins)[uniq])
+        res = build_cells3d(P, W, tw, cells=build, progress=progress, short=True)
+        gmap = None
     else:
         res = build_cells3d(P, W, tw, cells=np.arange(u), progress=progress)
         gmap = None
@@ -99,7 +108,7 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
     if mesh is not None:
         from .mesh3d import cut_by_mesh
 
-        d = cut_by_mesh(d, mesh)
+        d = cut_by_mesh(d, mesh, short=res.short)
     return d
 
 
@@ -170,21 +179,23 @@ def _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh):
             unmatched=0,
             container_volume=t.volume,
         )
+    built = uniq[res.cells]  # all unique sites, or (mesh containers) those that reach it
     bad = np.flatnonzero((res.status != 0) & (res.status != 1))
     if len(bad):
         raise RuntimeError(
-            f"3D cell builder failed on site {int(uniq[bad[0]])} "
+            f"3D cell builder failed on site {int(built[bad[0]])} "
             f"(status {int(res.status[bad[0]])}); please report this input"
         )
     scale3 = 3 * k
-    vol[uniq] = np.ldexp(res.volume, -scale3) if k else res.volume
-    cen[uniq] = from_working(res.centroid, k)
+    vol[built] = np.ldexp(res.volume, -scale3) if k else res.volume
+    cen[built] = from_working(res.centroid, k)
     u = len(uniq)
-    # the face table stays in build order; duplicates point at an empty slot after the last
+    # the face table stays in build order; duplicates (and cells not built) point at an
+    # empty slot after the last
     cell_faces = np.append(res.cell_faces, res.cell_faces[-1])
     voff = np.append(res.voff, res.voff[-1])
-    pos = np.full(n, u, np.int64)
-    pos[uniq] = res.pos
+    pos = np.full(n, len(built), np.int64)
+    pos[built] = res.pos
     lab = res.flabel
     face_keep = shifts = None
     if gmap is not None:
