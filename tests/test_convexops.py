@@ -239,3 +239,38 @@ def test_a_cell_gets_the_same_bytes_in_any_batch():
     for part in (slice(0, 31), slice(31, 90), slice(5, 6)):
         alone = cellops.fillet(cellops.inset(cells[part], 0.4), 0.8)
         assert list(shapely.to_wkb(alone)) == list(shapely.to_wkb(whole[part]))
+
+
+def _mixed_cells():
+    """Voronoi cells in a star (convex and cut ones) and the named degenerate cells."""
+    t = np.linspace(0.0, 2.0 * math.pi, 11)[:-1]
+    rad = np.where(np.arange(10) % 2, 40.0, 100.0)
+    star = shapely.Polygon(np.stack((rad * np.cos(t), rad * np.sin(t)), axis=1))
+    pts = np.random.default_rng(5).uniform(-100, 100, (300, 2))
+    pts = pts[shapely.contains_xy(star, pts[:, 0], pts[:, 1])]
+    cells = np.asarray(vf.voronoi(pts, star).cells, dtype=object)
+    return np.concatenate((cells, _degenerate_cells()[1], [shapely.Polygon()]))
+
+
+@pytest.mark.parametrize("d", [0.0, 0.3, 1.0, 4.0])
+def test_reconvex_is_convex_rings_of_the_polygons(d):
+    """Flat rings passed on (no polygons in between) are what the shapely round trip gives."""
+    _, xy, start = convexops.convex_rings(_mixed_cells())
+    xy, start, _, _ = convexops.inset_rings(xy, start, d)
+    for rings in ((xy, start), convexops.fillet_rings(xy, start, 1.5, Q)[:2]):
+        want = convexops.convex_rings(convexops.polygons(*rings))
+        got = convexops.reconvex(*rings)
+        assert (got[0] == want[0]).all()
+        assert got[1].tobytes() == want[1].tobytes() and (got[2] == want[2]).all()
+
+
+def test_inset_fillet_is_the_two_calls_byte_for_byte():
+    cells = _mixed_cells()
+    rng = np.random.default_rng(2)
+    n = len(cells)
+    per_cell = (rng.uniform(0, 3, n), np.where(rng.random(n) < 0.3, 0.0, rng.uniform(0.2, 2, n)))
+    for d, r in [(1.0, 1.5), (0.0, 1.5), (1.0, 0.0), (6.0, 3.0), per_cell]:
+        for join in ("mitre", "round"):
+            two = cellops.fillet(cellops.inset(cells, d, join=join), r)
+            one = cellops.inset_fillet(cells, d, r, join=join)
+            assert list(shapely.to_wkb(one)) == list(shapely.to_wkb(two)), (d, r, join)

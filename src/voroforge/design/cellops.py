@@ -38,6 +38,7 @@ __all__ = [
     "fillet",
     "frame",
     "inset",
+    "inset_fillet",
     "largest",
     "offset",
     "openings",
@@ -362,6 +363,60 @@ def fillet(cells, radius, *, resolution: int = 16) -> np.ndarray:
     if rest.any():
         out[rest] = _fillet_geos(arr[rest], radius[rest], q)
     return clean(out)
+
+
+def inset_fillet(
+    cells, distance, radius, *, join: str = "mitre", resolution: int = 16
+) -> np.ndarray:
+    """``fillet(inset(cells, distance, join=join), radius, resolution=resolution)``, faster.
+
+    The same geometry, byte for byte: a convex cell's inset goes on to its fillet as the
+    flat rings of :mod:`voroforge.design.convexops` (:func:`~.convexops.reconvex`), without
+    shapely polygons made in between and read back; every other cell takes the two calls.
+
+    Parameters
+    ----------
+    cells : (n,) array of Polygon/MultiPolygon
+    distance, radius : float or (n,) array_like
+        As for :func:`inset` and :func:`fillet`.
+    join, resolution
+        As for :func:`inset` and :func:`fillet`.
+
+    Returns
+    -------
+    (n,) object array
+    """
+    arr = as_cells(cells)
+    n = len(arr)
+    dist = _param(distance, n, "distance", lo=0.0)
+    if _join(join) == "bevel":
+        raise ValueError("inset join must be mitre or round (bevel cuts closer than distance)")
+    r = _param(radius, n, "radius", lo=0.0)
+    if int(resolution) != resolution or resolution < 1:
+        raise ValueError(f"resolution must be an integer >= 1, got {resolution!r}")
+    q = int(resolution)
+    radius = np.broadcast_to(np.asarray(r, dtype=np.float64), (n,))
+    out = np.full(n, _EMPTY, dtype=object)
+    done = np.zeros(n, dtype=bool)
+    mask, xy, start = convexops.convex_rings(arr)
+    if mask.any():
+        idx = np.flatnonzero(mask)
+        xy, start, _, hard = convexops.inset_rings(xy, start, dist[mask] if np.ndim(dist) else dist)
+        ok, xy, start = convexops.reconvex(xy, start)  # an emptied or hard ring is not ok
+        sel = idx[ok]
+        pos = radius[sel] > 0  # a zero radius leaves the inset as it is: the two calls
+        if not pos.all():
+            xy, start = convexops.take(xy, start, pos)
+            sel = sel[pos]
+        if len(sel):
+            xy, start, hard = convexops.fillet_rings(xy, start, radius[sel], q)
+            out[sel] = convexops.polygons(xy, start)
+            done[sel[~hard]] = True
+    rest = np.flatnonzero(~done)
+    if len(rest):
+        d = dist[rest] if np.ndim(dist) else dist
+        out[rest] = fillet(inset(arr[rest], d, join=join), radius[rest], resolution=q)
+    return out
 
 
 def _fillet_geos(arr: np.ndarray, r: np.ndarray, q: int) -> np.ndarray:

@@ -515,24 +515,28 @@ def _operate(design: Design, cells: np.ndarray, values: np.ndarray, has_field: b
     c = design.cells
     out = cells
     amount = c.inset_amount()
+    scaled = c.scale.graded or c.scale.value != 1.0
+    filleted = c.fillet.graded or c.fillet.value
     if amount is not None:
         key = "cells.web" if c.web is not None else "cells.inset"
         d = _graded(amount, values, key, has_field)
         if np.any(np.asarray(d) < 0):
             raise DesignError.at(key, "must be >= 0 (use cells.scale > 1 to grow cells)")
-        out = cellops.inset(out, d, join=c.join)
-    if c.scale.graded or c.scale.value != 1.0:
+        if filleted and not scaled and not c.smooth:  # the same cells, in one pass
+            r = _fillet_radii(c, values, has_field)
+            out = cellops.inset_fillet(out, d, r, join=c.join)
+            filleted = False
+        else:
+            out = cellops.inset(out, d, join=c.join)
+    if scaled:
         factor = _graded(c.scale, values, "cells.scale", has_field)
         if np.any(np.asarray(factor) < 0):
             raise DesignError.at("cells.scale", "scale factors must be >= 0")
         out = cellops.scale(out, factor)
     if c.smooth:
         out = cellops.smooth(out, iterations=c.smooth)
-    if c.fillet.graded or c.fillet.value:
-        r = _graded(c.fillet, values, "cells.fillet", has_field)
-        if np.any(np.asarray(r) < 0):
-            raise DesignError.at("cells.fillet", "fillet radii must be >= 0")
-        out = cellops.fillet(out, r)
+    if filleted:
+        out = cellops.fillet(out, _fillet_radii(c, values, has_field))
     out = np.asarray(out, dtype=object)
     if c.min_area > 0:
         out[shapely.area(out) < c.min_area] = shapely.Polygon()
@@ -545,6 +549,13 @@ def _operate(design: Design, cells: np.ndarray, values: np.ndarray, has_field: b
             thin = 2.0 * radii < c.min_size
             out[live[thin]] = shapely.Polygon()
     return np.asarray(out, dtype=object)
+
+
+def _fillet_radii(c, values: np.ndarray, has_field: bool):
+    r = _graded(c.fillet, values, "cells.fillet", has_field)
+    if np.any(np.asarray(r) < 0):
+        raise DesignError.at("cells.fillet", "fillet radii must be >= 0")
+    return r
 
 
 #: Fewest cells per thread when ``compute(workers=...)`` splits the cell operations.

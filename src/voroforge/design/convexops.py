@@ -37,7 +37,7 @@ from ..config import (
     CONVEX_STRAIGHT_TURN,
 )
 
-__all__ = ["convex_rings", "fillet_rings", "inset_rings", "polygons", "take"]
+__all__ = ["convex_rings", "fillet_rings", "inset_rings", "polygons", "reconvex", "take"]
 
 
 def _ring_index(start: np.ndarray):
@@ -94,14 +94,69 @@ def convex_rings(cells: np.ndarray):
     mask &= shapely.get_num_interior_rings(cells) == 0
     idx = np.flatnonzero(mask)
     xy, owner = shapely.get_coordinates(cells[idx], return_index=True)  # the shells only
-    count = np.bincount(owner, minlength=len(idx))
+    ok, xy, start = _convex(xy, np.bincount(owner, minlength=len(idx)))
+    mask[idx[~ok]] = False
+    return mask, xy, start
+
+
+def reconvex(xy: np.ndarray, start: np.ndarray):
+    """:func:`convex_rings` of ``polygons(xy, start)``, without making the polygons.
+
+    The flat rings of :func:`inset_rings` or :func:`fillet_rings` go on to the next operation
+    as the shapely round trip would give them (the same bytes): each ring as GEOS would hold
+    it (clockwise, closed), then the same clean-up and convexity test.
+
+    Returns
+    -------
+    ok : (m,) bool
+        Rings taken (a ring :func:`polygons` leaves empty is not).
+    xy, start
+        The taken rings, as :func:`convex_rings` returns them.
+    """
+    count = np.diff(start)
+    live = count >= 3
+    if not live.all():
+        xy, start = take(xy, start, live)
+        count = np.diff(start)
+    # each ring clockwise, as polygons() hands it to GEOS
+    owner = np.repeat(np.arange(len(count)), count)
+    rev = start[owner + 1] - 1 - (np.arange(len(xy)) - start[owner])
+    cw = _rows(xy, rev)
+    # and closed, as GEOS closes it: its first point again, unless the last one is that
+    first, last = cw[start[:-1]], cw[start[1:] - 1]
+    open_ = (first[:, 0] != last[:, 0]) | (first[:, 1] != last[:, 1])
+    shift = np.concatenate(([0], np.cumsum(open_)))
+    closed = np.zeros((len(xy) + int(shift[-1]), 2))
+    closed[np.arange(len(xy)) + shift[owner]] = cw
+    closed[start[1:][open_] + shift[1:][open_] - 1] = first[open_]
+    ok_live, xy, start = _convex(closed, count + open_)
+    ok = np.zeros(len(live), dtype=bool)
+    ok[live] = ok_live
+    return ok, xy, start
+
+
+def _rows(xy: np.ndarray, index: np.ndarray) -> np.ndarray:
+    """``xy[index]`` for (N, 2) float64 rows (as complex numbers: row indexing is slow)."""
+    pairs = np.ascontiguousarray(xy, dtype=np.float64).view(np.complex128)[:, 0]
+    return pairs[index].view(np.float64).reshape(-1, 2)
+
+
+def _convex(xy: np.ndarray, count: np.ndarray):
+    """The convexity test and clean-up of :func:`convex_rings` on closed rings as GEOS holds them.
+
+    Returns
+    -------
+    ok : (len(count),) bool
+    xy, start
+        The rings taken.
+    """
     start = np.concatenate(([0], np.cumsum(count)))
     keep = np.ones(len(xy), dtype=bool)
     keep[start[1:][count > 0] - 1] = False  # the closing point
     xy, start = xy[keep], np.concatenate(([0], np.cumsum(_kept_counts(keep, start))))
     # orientation: signed area by the shoelace sum of each ring
     owner, nxt, prv = _ring_index(start)
-    twice = np.bincount(owner, _cross(xy, xy[nxt]), minlength=len(idx))
+    twice = np.bincount(owner, _cross(xy, xy[nxt]), minlength=len(count))
     flip = twice < 0
     if flip.any():  # reverse those rings in place
         local = np.arange(len(xy)) - start[owner]
@@ -131,8 +186,7 @@ def convex_rings(cells: np.ndarray):
     ok &= np.bincount(owner, turn <= 0, minlength=len(count)) == 0
     total = np.bincount(owner, turn, minlength=len(count))
     ok &= np.abs(total - 2.0 * math.pi) <= CONVEX_FULL_TURN_TOL  # once round: a simple convex ring
-    mask[idx[~ok]] = False
-    return mask, np.ascontiguousarray(xy[ok[owner]]), np.concatenate(([0], np.cumsum(count[ok])))
+    return ok, np.ascontiguousarray(xy[ok[owner]]), np.concatenate(([0], np.cumsum(count[ok])))
 
 
 def inset_rings(xy: np.ndarray, start: np.ndarray, distance):
