@@ -119,17 +119,36 @@ def make_solid(design, base=None, stage=None):
     return foam(cells, s.wall, field=f)
 
 
-def _cutaway(m, view):
-    """The half of ``m`` away from the camera (closed voids and skins show their inside)."""
+_PREVIEW_FACES = 30_000  # more triangles than this are simplified before drawing
+_PREVIEW_FACES_MAX = 120_000  # the software renderer pays per face (~1 s per 70k at 900 px)
+
+
+def _shown(m, view, cut: bool):
+    """The mesh a preview draws: ``m`` simplified, and cut when ``cut``.
+
+    The cut keeps the half away from the camera (closed voids and skins show their inside).
+    Both go through one manifold3d object: a big mesh is simplified by edge collapse
+    (``SOLID_PREVIEW_SIMPLIFY`` of its size: under a pixel, where clustering vertices on a
+    grid crumpled thin struts), then trimmed by the plane through its centre. A mesh that
+    manifold3d refuses is drawn as it is.
+    """
+    from ..config import SOLID_PREVIEW_SIMPLIFY
     from ..io.render3d import _rotation
     from .booleans import from_manifold, to_manifold
 
-    d = _rotation(view).T @ np.array([0.0, 1.0, 0.0])  # the camera looks along d
-    c = m.bounds.mean(axis=0)
-    return from_manifold(to_manifold(m).trim_by_plane(tuple(d), float(d @ c)))
-
-
-_PREVIEW_FACES = 30_000  # the software renderer pays per face (about 1 per 20 pixels)
+    big = len(m.faces) > _PREVIEW_FACES
+    if not (cut or big):
+        return m
+    man = to_manifold(m)
+    if str(man.status()).split(".")[-1] != "NoError":
+        return m
+    if big:
+        man = man.simplify(float(m.scale) * SOLID_PREVIEW_SIMPLIFY)
+    if cut:
+        d = _rotation(view).T @ np.array([0.0, 1.0, 0.0])  # the camera looks along d
+        c = m.bounds.mean(axis=0)
+        man = man.trim_by_plane(tuple(d), float(d @ c))
+    return from_manifold(man)
 
 
 def _cluster(m, cell: float):
@@ -160,9 +179,9 @@ def preview(m, path, *, size=900, view=(35.0, 25.0), cut=None) -> Path:
         cut = meta.get("kind") == "foam" or bool(meta.get("skin"))
     from ..io.render3d import _rotation
 
-    shown = _cutaway(m, view) if cut else m
+    shown = _shown(m, view, cut)
     cell = shown.scale / 400.0
-    while len(shown.faces) > _PREVIEW_FACES and cell < shown.scale / 50:  # beyond the pixels
+    while len(shown.faces) > _PREVIEW_FACES_MAX and cell < shown.scale / 50:  # beyond the pixels
         shown = _cluster(shown, cell)
         cell *= 1.5
     # the painter's algorithm wants small faces: split long ones (few: CAD faces, cut planes)
