@@ -20,7 +20,7 @@
 var VoroRaster = (function () {
   "use strict";
 
-  var edges = new Float64Array(4096), xs = new Float64Array(256);
+  var edges = new Float64Array(4096), xs = new Float64Array(4096), counts = new Int32Array(512), per = 8;
 
   /* Pixel colour as the little-endian uint32 an ImageData's Uint32Array view holds. */
   function rgba32(r, g, b) { return ((255 << 24) | (b << 16) | (g << 8) | r) >>> 0; }
@@ -38,7 +38,9 @@ var VoroRaster = (function () {
   }
 
   /* Fill geometry k of (g, r, c) with `colour` into px (width W), inside the pixel rectangle
-     rect = [X0, Y0, X1, Y1) (even-odd rule, pixel centres). */
+     rect = [X0, Y0, X1, Y1) (even-odd rule, pixel centres). Edge by edge: each edge puts its
+     crossings with the pixel rows it spans into those rows' lists (a few per row), so the
+     work is the edges plus the crossings, not every edge for every row. */
   function fillRings(px, W, rect, g, r, c, k, colour, v, tol) {
     var ne = 0, ymin = Infinity, ymax = -Infinity, s = v.s, tx = v.tx, ty = v.ty;
     for (var j = g[k]; j < g[k + 1]; j++) {
@@ -55,24 +57,38 @@ var VoroRaster = (function () {
       }
     }
     var y0 = Math.max(rect[1], Math.ceil(ymin - 0.5)), y1 = Math.min(rect[3], Math.ceil(ymax - 0.5));
-    var X0 = rect[0], X1 = rect[2];
-    for (var row = y0; row < y1; row++) {
-      var yc = row + 0.5, nx = 0;
-      for (var e = 0; e < ne; e++) {
-        var ey0 = edges[4 * e + 1], ey1 = edges[4 * e + 3];
-        if ((ey0 <= yc) !== (ey1 <= yc)) {
-          var ex0 = edges[4 * e];
-          if (nx >= xs.length) { var grown = new Float64Array(xs.length * 2); grown.set(xs); xs = grown; }
-          xs[nx++] = ex0 + (yc - ey0) * (edges[4 * e + 2] - ex0) / (ey1 - ey0);
+    var rows = y1 - y0;
+    if (rows <= 0 || ne === 0) return;
+    if (rows > counts.length) counts = new Int32Array(2 * rows);
+    for (;;) {  // until every row's crossings fit in `per` slots
+      if (rows * per > xs.length) xs = new Float64Array(2 * rows * per);
+      counts.fill(0, 0, rows);
+      var full = false;
+      for (var e = 0; e < ne && !full; e++) {
+        var ex0 = edges[4 * e], ey0 = edges[4 * e + 1], ex1 = edges[4 * e + 2], ey1 = edges[4 * e + 3];
+        // the rows whose centre yc has (ey0 <= yc) !== (ey1 <= yc)
+        var lo = ey0 < ey1 ? ey0 : ey1, hi = ey0 < ey1 ? ey1 : ey0;
+        var ra = Math.max(y0, Math.ceil(lo - 0.5)), rb = Math.min(y1, Math.ceil(hi - 0.5));
+        for (var row = ra; row < rb; row++) {
+          var q = row - y0, n = counts[q];
+          if (n === per) { full = true; break; }
+          xs[q * per + n] = ex0 + (row + 0.5 - ey0) * (ex1 - ex0) / (ey1 - ey0);
+          counts[q] = n + 1;
         }
       }
-      for (var p = 1; p < nx; p++) {  // insertion sort: a handful of crossings per row
-        var q = xs[p], m = p - 1;
-        while (m >= 0 && xs[m] > q) { xs[m + 1] = xs[m]; m--; }
-        xs[m + 1] = q;
+      if (!full) break;
+      per *= 2;
+    }
+    var X0 = rect[0], X1 = rect[2];
+    for (var q2 = 0; q2 < rows; q2++) {
+      var nx = counts[q2], o = q2 * per;
+      for (var p = o + 1; p < o + nx; p++) {  // insertion sort: a handful of crossings per row
+        var z0 = xs[p], m = p - 1;
+        while (m >= o && xs[m] > z0) { xs[m + 1] = xs[m]; m--; }
+        xs[m + 1] = z0;
       }
-      var base = row * W;
-      for (var z = 0; z + 1 < nx; z += 2) {
+      var base = (y0 + q2) * W;
+      for (var z = o; z + 1 < o + nx; z += 2) {
         var L = Math.max(X0, Math.ceil(xs[z] - 0.5)), R = Math.min(X1, Math.ceil(xs[z + 1] - 0.5));
         if (R - L > 48) px.fill(colour, base + L, base + R);
         else for (var u = base + L, ue = base + R; u < ue; u++) px[u] = colour;
