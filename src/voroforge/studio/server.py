@@ -21,11 +21,13 @@ import base64
 import gc
 import itertools
 import json
+import operator
 import time
 from importlib import resources
 from urllib.parse import urlsplit
 
 import numpy as np
+import shapely
 
 from .. import config
 from . import wire
@@ -68,7 +70,8 @@ def geometry_message(
     px : float, optional
         The pages' pixel size in design units: the operated cells (drawn only) leave out
         vertices closer than about half a pixel to the one before (:func:`wire.rings`);
-        the raw cells travel whole.
+        the raw cells travel whole. Operated cells that are their raw cells (a design
+        without web, fillet, ...) are not sent again: the header says ``cells_raw``.
 
     Returns
     -------
@@ -85,8 +88,12 @@ def geometry_message(
         flips = np.flatnonzero(sent["mask"] != mask)
         changed = np.union1d(np.asarray(changed, np.int64), flips)
     idx = np.arange(n, dtype=np.int32) if full else np.asarray(changed, np.int32)
-    rg, rr, rc = wire.rings(r.raw[idx])
-    cg, cr, cc = wire.rings(r.cells[idx], tol=0.5 * px if px else None)
+    raw, cells = r.raw[idx], r.cells[idx]
+    rg, rr, rc = wire.rings(raw)
+    # cells without operations (no web, no fillet) are their raw cells: sent once
+    cells_raw = _same_geoms(cells, raw)
+    if not cells_raw:
+        cg, cr, cc = wire.rings(cells, tol=0.5 * px if px else None)
     arrays = {"idx": idx}
     old_sites = sent.get("sites") if patch else None
     if old_sites is not None and old_sites.shape == sites.shape:
@@ -98,7 +105,9 @@ def geometry_message(
         arrays["mask"] = mask
     else:
         arrays["m"] = mask[idx]
-    arrays.update(rg=rg, rr=rr, rc=rc.reshape(-1), cg=cg, cr=cr, cc=cc.reshape(-1))
+    arrays.update(rg=rg, rr=rr, rc=rc.reshape(-1))
+    if not cells_raw:
+        arrays.update(cg=cg, cr=cr, cc=cc.reshape(-1))
     if sent is not None:
         sent.update(n=n, mask=mask, sites=sites.copy())
     if boundary:
@@ -111,6 +120,7 @@ def geometry_message(
         "full": full,
         "n": n,
         "bounds": [float(v) for v in r.boundary.bounds],
+        "cells_raw": cells_raw,
         "compute_ms": round(session.compute_ms, 2),
         "sites_edited": session.sites is not None,
         "attractors": _attractors(session),
@@ -118,6 +128,17 @@ def geometry_message(
         **(extra or {}),
     }
     return wire.pack(header, arrays)
+
+
+def _same_geoms(a: np.ndarray, b: np.ndarray) -> bool:
+    """Whether geometries ``a`` are ``b`` (the same objects, or the same WKB where not)."""
+    same = np.fromiter(map(operator.is_, a, b), dtype=bool, count=len(a))
+    rest = np.flatnonzero(~same)
+    if not len(rest):
+        return True
+    if len(rest) > len(a) // 8 + 8:  # an operated cell is a new object: not worth comparing
+        return False
+    return bool((shapely.to_wkb(a[rest]) == shapely.to_wkb(b[rest])).all())
 
 
 def _attractors(session: Session) -> list[dict]:
@@ -545,8 +566,6 @@ def boundary_key(session: Session, known=None):
 
     The domain object is compared first (a drag keeps it), its WKB only when it differs.
     """
-    import shapely
-
     domain = session.result.domain
     if known is not None and known[0] is domain:
         return known

@@ -227,7 +227,8 @@ var VoroStudio = (function () {
       // no Path2D per cell: the rings stay in the message's buffers until drawn
       this.raw[i] = a.rg[k + 1] > a.rg[k] ? [a.rg, a.rr, a.rc, k] : null;
       this.rawData[i] = a.rc.subarray(2 * a.rr[a.rg[k]], 2 * a.rr[a.rg[k + 1]]);
-      this.cells[i] = a.cg[k + 1] > a.cg[k] ? [a.cg, a.cr, a.cc, k] : null;
+      if (h.cells_raw) this.cells[i] = this.raw[i];  // cells without operations: the raw rings
+      else this.cells[i] = a.cg[k + 1] > a.cg[k] ? [a.cg, a.cr, a.cc, k] : null;
       this.boxes[i] = ringBox(a.rg, a.rr, a.rc, k);
       var box = grow(was ? was.slice() : null, this.boxes[i]);
       if (box) boxes.push(box);
