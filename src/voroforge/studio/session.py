@@ -124,6 +124,7 @@ class Session:
         self.settle_ms = 0.0
         self._field_cache = None
         self._controls = None
+        self._seeded = None  # (data, design, seeds) of the last _reseed_fast, for _compute
         #: Threads for the cell operations of a full recompute (the same cells with any).
         #: One: the convex cells' inset and fillet are numpy over small arrays that hold the
         #: GIL, so a second thread mostly waits for it, and takes a core from the browser
@@ -135,8 +136,12 @@ class Session:
     # --- computing ---------------------------------------------------------------------
 
     def _compute(self, data: dict, sites, *, reuse: bool = True):
-        design, _ = load(data)
-        self._guard(design)
+        seeded, self._seeded = self._seeded, None
+        if sites is None and seeded is not None and seeded[0] is data:
+            design, seeds = seeded[1], seeded[2]  # what _reseed_fast loaded and sampled
+        else:
+            design, seeds = load(data)[0], None
+            self._guard(design)
         if reuse and self._same_geometry(design, sites):
             # only [fabrication], [output] or [animation] changed: the cells are the same
             extra = {**self.result.extra, "redone": np.zeros(0, dtype=np.int64)}
@@ -157,7 +162,7 @@ class Session:
             design,
             self.folder,
             progress=stage,
-            sites=sites,
+            sites=sites if seeds is None else seeds,
             reuse=previous,
             frame=False,
             workers=self.workers,
@@ -341,9 +346,14 @@ class Session:
             return None
         if not 1 <= len(points) <= self.max_seeds:
             return None
+        if design.seeds.method not in ("file", "curves"):
+            # the full computation that follows a None takes these seeds as they are (the
+            # same ones: no relax; a file's rows and curves' edges come only from [seeds])
+            self._seeded = (data, design, points)
         fast = incremental.update(self.result, points, field_fn, design=design)
         if fast is None:
             return None
+        self._seeded = None
         self.compute_ms = (time.perf_counter() - start) * 1e3
         self.history.append((self.data, self.sites))
         del self.history[: -config.STUDIO_UNDO_DEPTH]
