@@ -136,9 +136,18 @@ def reconvex(xy: np.ndarray, start: np.ndarray):
 
 
 def _rows(xy: np.ndarray, index: np.ndarray) -> np.ndarray:
-    """``xy[index]`` for (N, 2) float64 rows (as complex numbers: row indexing is slow)."""
+    """``xy[index]`` (integer or boolean) of (N, 2) float64 rows, as complex numbers.
+
+    The same values; indexing rows of two floats is several times slower.
+    """
     pairs = np.ascontiguousarray(xy, dtype=np.float64).view(np.complex128)[:, 0]
     return pairs[index].view(np.float64).reshape(-1, 2)
+
+
+def _repeat_rows(xy: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """``np.repeat(xy, counts, axis=0)`` of (N, 2) float64 rows, as complex numbers."""
+    pairs = np.ascontiguousarray(xy, dtype=np.float64).view(np.complex128)[:, 0]
+    return np.repeat(pairs, counts).view(np.float64).reshape(-1, 2)
 
 
 def _convex(xy: np.ndarray, count: np.ndarray):
@@ -153,20 +162,20 @@ def _convex(xy: np.ndarray, count: np.ndarray):
     start = np.concatenate(([0], np.cumsum(count)))
     keep = np.ones(len(xy), dtype=bool)
     keep[start[1:][count > 0] - 1] = False  # the closing point
-    xy, start = xy[keep], np.concatenate(([0], np.cumsum(_kept_counts(keep, start))))
+    xy, start = _rows(xy, keep), np.concatenate(([0], np.cumsum(_kept_counts(keep, start))))
     # orientation: signed area by the shoelace sum of each ring
     owner, nxt, prv = _ring_index(start)
-    twice = np.bincount(owner, _cross(xy, xy[nxt]), minlength=len(count))
+    twice = np.bincount(owner, _cross(xy, _rows(xy, nxt)), minlength=len(count))
     flip = twice < 0
     if flip.any():  # reverse those rings in place
         local = np.arange(len(xy)) - start[owner]
         rev = np.where(flip[owner], start[owner + 1] - 1 - local, np.arange(len(xy)))
-        xy = xy[rev]
+        xy = _rows(xy, rev)
     ok = twice != 0
     for _ in range(len(xy) + 1):  # drop repeated points and straight vertices
         owner, nxt, prv = _ring_index(start)
-        e_in = xy - xy[prv]
-        e_out = xy[nxt] - xy
+        e_in = xy - _rows(xy, prv)
+        e_out = _rows(xy, nxt) - xy
         l_in = np.hypot(e_in[:, 0], e_in[:, 1])
         l_out = np.hypot(e_out[:, 0], e_out[:, 1])
         cross = _cross(e_in, e_out)
@@ -179,14 +188,14 @@ def _convex(xy: np.ndarray, count: np.ndarray):
         if not drop.any():
             break
         keep = ~drop
-        xy, start = xy[keep], np.concatenate(([0], np.cumsum(_kept_counts(keep, start))))
+        xy, start = _rows(xy, keep), np.concatenate(([0], np.cumsum(_kept_counts(keep, start))))
     turn = np.arctan2(cross, dot)  # of the last round, which dropped nothing
     count = np.diff(start)
     ok &= count >= 3
     ok &= np.bincount(owner, turn <= 0, minlength=len(count)) == 0
     total = np.bincount(owner, turn, minlength=len(count))
     ok &= np.abs(total - 2.0 * math.pi) <= CONVEX_FULL_TURN_TOL  # once round: a simple convex ring
-    return ok, np.ascontiguousarray(xy[ok[owner]]), np.concatenate(([0], np.cumsum(count[ok])))
+    return ok, _rows(xy, ok[owner]), np.concatenate(([0], np.cumsum(count[ok])))
 
 
 def inset_rings(xy: np.ndarray, start: np.ndarray, distance):
@@ -213,7 +222,7 @@ def inset_rings(xy: np.ndarray, start: np.ndarray, distance):
     m = len(start) - 1
     d = np.broadcast_to(np.asarray(distance, dtype=np.float64), (m,))
     owner, nxt, prv = _ring_index(start)
-    e = xy[nxt] - xy
+    e = _rows(xy, nxt) - xy
     length = np.hypot(e[:, 0], e[:, 1])
     tangent = e / length[:, None]
     normal = np.stack((-tangent[:, 1], tangent[:, 0]), axis=1)
@@ -224,12 +233,13 @@ def inset_rings(xy: np.ndarray, start: np.ndarray, distance):
         hi = np.maximum.reduceat(xy, start[:-1][live])
         size[live] = np.max(hi - lo, axis=1)
     # the moved line of edge k: points q = base + s * tangent, base = xy + d * normal
-    base = xy + d[owner, None] * normal
+    dk = d[0] if m and (d == d[0]).all() else d[owner, None]  # one distance: the same products
+    base = xy + dk * normal
     # first round: neighbours share the vertex, the crossing is xy + d (n_p + n_k) / (1 + c)
-    n_p = normal[prv]
-    vert = xy + d[owner, None] * (n_p + normal) / (1.0 + _dot(n_p, normal))[:, None]
+    n_p = _rows(normal, prv)
+    vert = xy + dk * (n_p + normal) / (1.0 + _dot(n_p, normal))[:, None]
     # the moved segment of edge k runs from vert[k] to vert[k + 1]
-    gone = _dot(vert[nxt] - vert, tangent) <= CONVEX_SHORT_EDGE_RTOL * size[owner]
+    gone = _dot(_rows(vert, nxt) - vert, tangent) <= CONVEX_SHORT_EDGE_RTOL * size[owner]
     keep = np.ones(len(xy), dtype=bool)
     hard = np.zeros(m, dtype=bool)
     if gone.any():  # drop edges until none vanishes, in the rings that lost one only
@@ -244,7 +254,7 @@ def inset_rings(xy: np.ndarray, start: np.ndarray, distance):
         keep[idx] = alive & ~(lost | hard[rings])[np.repeat(np.arange(len(rings)), np.diff(sub))]
     counts = np.bincount(owner[keep], minlength=m)
     out_start = np.concatenate(([0], np.cumsum(counts)))
-    return vert[keep], out_start, normal[keep], hard
+    return _rows(vert, keep), out_start, _rows(normal, keep), hard
 
 
 def _drop(start, normal, tangent, base, vert, gone, size):
@@ -315,7 +325,7 @@ def fillet_rings(xy: np.ndarray, start: np.ndarray, radius, quad_segs: int):
     r = np.broadcast_to(np.asarray(radius, dtype=np.float64), (m,))
     core, cstart, normal, hard = inset_rings(xy, start, r)
     owner, nxt, prv = _ring_index(cstart)
-    n_in = normal[prv]  # inward normals of the edges before and after each corner
+    n_in = _rows(normal, prv)  # inward normals of the edges before and after each corner
     turn = np.arctan2(_cross(n_in, normal), _dot(n_in, normal))
     quantum = math.pi / 2.0 / int(quad_segs)
     chords = np.maximum((turn / quantum + 0.5).astype(np.int64), 1)
@@ -328,8 +338,11 @@ def fillet_rings(xy: np.ndarray, start: np.ndarray, radius, quad_segs: int):
     ang -= np.repeat(first, npts)
     ang *= np.repeat(turn / np.maximum(chords, 1), npts)
     ang += np.repeat(np.arctan2(-n_in[:, 1], -n_in[:, 0]), npts)
-    pts = np.repeat(core, npts, axis=0)
-    rr = np.repeat(r[owner], npts) if np.ndim(radius) else float(radius)
+    pts = _repeat_rows(core, npts)
+    if not np.ndim(radius) or (m and (r == r[0]).all()):  # one radius: the same products
+        rr = float(r[0]) if m else 0.0
+    else:
+        rr = np.repeat(r[owner], npts)
     pts[:, 0] += rr * np.cos(ang)
     pts[:, 1] += rr * np.sin(ang)
     counts = np.bincount(owner, npts, minlength=m).astype(np.int64)
