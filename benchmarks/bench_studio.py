@@ -16,7 +16,11 @@ The page's side (parse, draw, frame) is measured in the browser by
     NUMBA_NUM_THREADS=1 .venv/bin/python benchmarks/bench_studio.py [--steps S] [--split]
 
 ``--split`` prints only where a ``design.seed`` step of the holed panel goes (the cell
-operations ``cellops.inset`` and ``cellops.fillet`` against the whole step, one thread).
+operations ``cellops.inset``, ``cellops.fillet`` and ``cellops.inset_fillet`` against the
+whole step, one thread; ``inset_fillet``'s time includes the two on the cells it leaves to
+them). Memory is kept for reuse as the server keeps it
+(``server._keep_heap``: big numpy arrays are not page-faulted in anew every step);
+``--system-malloc`` leaves glibc's default.
 """
 
 from __future__ import annotations
@@ -31,7 +35,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "src"))
 
-from voroforge.studio.server import geometry_message  # noqa: E402
+from voroforge.studio.server import _keep_heap, geometry_message  # noqa: E402
 from voroforge.studio.session import Session  # noqa: E402
 
 HOLED = {
@@ -112,7 +116,7 @@ def split(steps: int) -> None:
 
         return run
 
-    saved = {k: getattr(cellops, k) for k in ("inset", "fillet")}
+    saved = {k: getattr(cellops, k) for k in ("inset", "fillet", "inset_fillet")}
     for k, fn in saved.items():
         setattr(cellops, k, timed(k, fn))
     try:
@@ -144,7 +148,12 @@ def main(argv=None) -> int:
     ap.add_argument(
         "--split", action="store_true", help="only the design.seed step's cell operations"
     )
+    ap.add_argument(
+        "--system-malloc", action="store_true", help="glibc's default (not the server's)"
+    )
     args = ap.parse_args(argv)
+    if not args.system_malloc:
+        _keep_heap()
     print(f"python {sys.version.split()[0]}, {os.cpu_count()} CPUs, load {os.getloadavg()[0]:.1f}")
     if args.split:
         split(args.steps)
