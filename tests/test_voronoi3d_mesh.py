@@ -257,3 +257,49 @@ def test_cells_that_cannot_reach_the_mesh_are_not_built(make, monkeypatch):
     for x, y in zip(a, b, strict=True):
         np.testing.assert_array_equal(x, y)
     assert d.unmatched_vertices == 0
+
+
+def _wall_areas(d):
+    """``{(cell, label): area}`` of a diagram's faces, summed per cell and label."""
+    cf, lab, farea, _, _ = d.cell_face_table()
+    own = np.repeat(np.arange(len(d)), np.diff(cf))
+    out: dict = {}
+    for c, la, a in zip(own, lab, np.linalg.norm(farea, axis=1), strict=True):
+        out[(int(c), int(la))] = out.get((int(c), int(la)), 0.0) + a
+    return out
+
+
+@pytest.mark.parametrize("make", [_torus, _lbracket, _holed], ids=["torus", "lbracket", "holed"])
+def test_convex_cuts_against_manifold(make, monkeypatch):
+    # cells that meet the surface only where it is convex from their side are cut by their
+    # own planes (kernels/meshclip3d.convex_cells); manifold3d's boolean gives the same
+    # volumes (to the rounding of its absolute coordinates), pieces and walls
+    import voroforge.engine.mesh3d as m3d
+
+    mesh = make()
+    lo, hi = mesh.bounds
+    pts = np.random.default_rng(11).uniform(lo - 0.2, hi + 0.2, (800, 3))
+    calls = []
+    real = m3d._convex_part
+
+    def spy(todo, *args):
+        got = real(todo, *args)
+        calls.append(0 if got is None else len(got[0][1]))
+        return got
+
+    monkeypatch.setattr(m3d, "_convex_part", spy)
+    d = vf.voronoi3d(pts, mesh)
+    monkeypatch.setattr(m3d, "_convex_part", lambda *a: None)
+    ref = vf.voronoi3d(pts, mesh)
+    assert 0 < calls[0] < d.cut_cells.sum() + 1
+    scale = np.median(ref.volumes[ref.volumes > 0])
+    np.testing.assert_allclose(d.volumes, ref.volumes, rtol=1e-9, atol=1e-11 * scale)
+    np.testing.assert_array_equal(d.pieces, ref.pieces)
+    np.testing.assert_array_equal(d.cut_cells, ref.cut_cells)
+    a, b = _wall_areas(d), _wall_areas(ref)
+    big = {k for k, v in b.items() if v > 1e-9 * mesh.area}
+    assert big <= set(a) and {k for k, v in a.items() if v > 1e-9 * mesh.area} <= set(b)
+    for k in big:
+        assert abs(a[k] - b[k]) <= 1e-8 * mesh.area
+    for i in np.flatnonzero(d.cut_cells)[:60]:
+        assert d.to_trimesh(i).is_watertight

@@ -216,10 +216,9 @@ def _split4(V, F):
     return V, F
 
 
-def _touching(cf, roff, ring, verts, farea, live, tri, tol):
-    """``(n,) bool``: cells that some triangle of ``tri`` meets (each grown by ``tol``)."""
-    from ..kernels.meshclip3d import touching_cells, tri_grid
-    from .threads import serial_below
+def _tri_buckets(tri, tol):
+    """Triangles ``tri (m, 3, 3)`` on a bucket grid: ``(T, lo, h, dims, start, items)``."""
+    from ..kernels.meshclip3d import tri_grid
 
     lo = tri.min(axis=(0, 1)) - tol
     hi = tri.max(axis=(0, 1)) + tol
@@ -229,6 +228,15 @@ def _touching(cf, roff, ring, verts, farea, live, tri, tol):
     dims = np.maximum(1, np.ceil((hi - lo) / h)).astype(np.int64)
     T = np.ascontiguousarray(tri, np.float64)
     start, items = tri_grid(T, lo, h, dims)
+    return T, lo, h, dims, start, items
+
+
+def _touching(cf, roff, ring, verts, farea, live, tri, tol, grid=None):
+    """``(n,) bool``: cells that some triangle of ``tri`` meets (each grown by ``tol``)."""
+    from ..kernels.meshclip3d import touching_cells
+    from .threads import serial_below
+
+    T, lo, h, dims, start, items = _tri_buckets(tri, tol) if grid is None else grid
     with serial_below(int(live.sum())):
         return touching_cells(
             cf,
@@ -245,6 +253,66 @@ def _touching(cf, roff, ring, verts, farea, live, tri, tol):
             items,
             tol,
         )
+
+
+def _convex_part(todo, cf, lab, farea, roff, ring, verts, grid, tol):
+    """The cells of ``todo`` that :func:`kernels.meshclip3d.convex_cells` cuts itself.
+
+    ``(part, volumes, centroids)`` for those cells (a part as :func:`cut_by_mesh` collects
+    them: vertices, cells, faces per cell, flat rings into the vertices, ring lengths,
+    labels), or None when it cut none.
+    """
+    from ..kernels import meshclip3d as mc
+    from .threads import serial_below
+
+    T, lo, h, dims, start, items = grid
+    k = len(todo)
+    if not k:
+        return None
+    tn = np.cross(T[:, 1] - T[:, 0], T[:, 2] - T[:, 0])
+    tn /= np.linalg.norm(tn, axis=1)[:, None]
+    to = np.einsum("ij,ij->i", tn, T[:, 0])
+    oV = np.zeros((k * mc.CC_OUT_V, 3))
+    oF = np.zeros((k * mc.CC_OUT_F, 2), np.int64)
+    oR = np.zeros(k * mc.CC_OUT_R, np.int64)
+    counts = np.zeros((k, 3), np.int64)
+    vol = np.zeros(k)
+    cen = np.zeros((k, 3))
+    with serial_below(k):
+        mc.convex_cells(
+            np.asarray(todo, np.int64),
+            cf,
+            roff,
+            ring,
+            verts,
+            np.asarray(lab, np.int64),
+            np.ascontiguousarray(farea),
+            T,
+            tn,
+            to,
+            lo,
+            h,
+            dims,
+            start,
+            items,
+            tol,
+            oV,
+            oF,
+            oR,
+            counts,
+            vol,
+            cen,
+        )
+    ok = np.flatnonzero(counts[:, 0] > 0)
+    if not len(ok):
+        return None
+    nv, nf, nr = counts[ok, 0], counts[ok, 1], counts[ok, 2]
+    vi = np.repeat(ok * mc.CC_OUT_V, nv) + _ranks(nv)
+    fi = np.repeat(ok * mc.CC_OUT_F, nf) + _ranks(nf)
+    ri = np.repeat(ok * mc.CC_OUT_R, nr) + _ranks(nr)
+    vbase = np.repeat(np.cumsum(nv) - nv, nr)  # each cell's first row in the vertices
+    part = (oV[vi], todo[ok], nf, oR[ri] + vbase, oF[fi, 1], oF[fi, 0])
+    return part, vol[ok], cen[ok]
 
 
 def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
@@ -266,7 +334,8 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     nface = np.diff(cf)
     live = nface > 0
     slack = VORONOI3D_MESH_SLACK_RTOL * float(np.abs(V).max())
-    cand = _touching(cf, roff, ring, verts, farea, live, V[F], slack)
+    grid = _tri_buckets(V[F], slack)
+    cand = _touching(cf, roff, ring, verts, farea, live, V[F], slack, grid)
     g, start, items = yz_grid(V, F, int(max(1, min(512, np.sqrt(len(F) / 4)))))
     test = np.flatnonzero(live & ~cand)  # the others: no parity needed
     ins = np.zeros(n, bool)
@@ -281,21 +350,32 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     counts = np.where(keep, nface, 0).astype(np.int64)
     nvert = len(verts)
     todo = np.flatnonzero(cand)
+    # (vertices, cells, faces per cell, flat rings (global vertex numbers), ring lengths,
+    # labels) per part: the cells cut here, then manifold3d's batches
+    parts = []
+    got = _convex_part(todo, cf, lab, farea, roff, ring, verts, grid, slack)
+    if got is not None:
+        part, v, ce = got
+        cells = part[1]
+        cut[cells] = True
+        vol[cells], cen[cells], pieces[cells], counts[cells] = v, ce, 1, part[2]
+        parts.append(part[:3] + (part[3] + nvert,) + part[4:])
+        nvert += len(part[0])
+        todo = np.setdiff1d(todo, cells, assume_unique=True)
     done = 0
-    parts = []  # (vertices, cells, triangles per cell, triangles, labels) per batch
     for batch in _apart(todo, cf, roff, ring, len(verts)):
         r = _cut_split(batch, (cf, roff, ring, verts, lab, len(F), whole))
         ov, cells, ntri, ot, labels, v, ce, npc = r
         cut[cells] = True
         vol[cells], cen[cells], pieces[cells], counts[cells] = v, ce, npc, ntri
-        parts.append((ov, cells, ntri, ot + nvert, labels))
+        parts.append((ov, cells, ntri, ot.reshape(-1) + nvert, np.full(len(ot), 3), labels))
         nvert += len(ov)
         done += len(batch)
         if progress is not None:
             progress(done, len(todo))
-    # the new face table, in cell order: kept cells' faces as they were, cut cells' triangles
+    # the new face table, in cell order: kept cells' faces as they were, cut cells' faces
     cell_faces = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
-    lens = np.full(int(cell_faces[-1]), 3, np.int64)
+    lens = np.zeros(int(cell_faces[-1]), np.int64)
     lab2 = np.zeros(len(lens), np.int64)
     kept = np.flatnonzero(np.repeat(keep, nface))  # old faces kept, in cell order
     kown = np.repeat(np.arange(n), nface)[kept]
@@ -303,16 +383,21 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     klen = np.diff(roff)[kept]
     lens[dest] = klen
     lab2[dest] = lab[kept]
+    if parts:  # cut cells: their faces, in the order their part lists them
+        cells = np.concatenate([p[1] for p in parts])
+        nfc = np.concatenate([p[2] for p in parts])
+        tdest = np.repeat(cell_faces[cells], nfc) + _ranks(nfc)
+        flens = np.concatenate([p[4] for p in parts])
+        lens[tdest] = flens
+        lab2[tdest] = np.concatenate([p[5] for p in parts])
     roff2 = np.concatenate([[0], np.cumsum(lens)]).astype(np.int64)
     ring2 = np.zeros(int(roff2[-1]), np.int64)
     kc = np.flatnonzero(keep)  # each kept cell's rings: one block, copied whole
     copy_runs(ring, roff[cf[kc]], roff[cf[kc + 1]], ring2, roff2[cell_faces[kc]])
-    if parts:  # cut cells: their triangles, in the order _cut_batch sorted them
-        cells = np.concatenate([p[1] for p in parts])
-        ntri = np.concatenate([p[2] for p in parts])
-        tdest = np.repeat(cell_faces[cells], ntri) + _ranks(ntri)
-        lab2[tdest] = np.concatenate([p[4] for p in parts])
-        ring2[roff2[tdest][:, None] + np.arange(3)] = np.concatenate([p[3] for p in parts])
+    if parts:
+        ring2[np.repeat(roff2[tdest], flens) + _ranks(flens)] = np.concatenate(
+            [p[3] for p in parts]
+        )
     cut_verts = [p[0] for p in parts]
     allv = np.vstack([verts, *cut_verts])
     used = np.zeros(len(allv), bool)
