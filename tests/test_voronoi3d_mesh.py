@@ -303,3 +303,19 @@ def test_convex_cuts_against_manifold(make, monkeypatch):
         assert abs(a[k] - b[k]) <= 1e-8 * mesh.area
     for i in np.flatnonzero(d.cut_cells)[:60]:
         assert d.to_trimesh(i).is_watertight
+
+
+def test_mesh_container_far_from_the_origin():
+    # a UTM-like offset: the same cells, translated (the convex cuts' tolerances follow the
+    # mesh's size, above the rounding of coordinates near 4e6)
+    mesh = _torus()
+    lo, hi = mesh.bounds
+    pts = np.random.default_rng(12).uniform(lo, hi, (400, 3))
+    shift = np.array([500000.0, 4000000.0, 100.0])
+    d = vf.voronoi3d(pts, mesh)
+    far = mesh.copy()
+    far.apply_translation(shift)
+    e = vf.voronoi3d(pts + shift, far)
+    assert abs(e.volumes.sum() - abs(mesh.volume)) <= 1e-9 * abs(mesh.volume)
+    np.testing.assert_allclose(e.volumes, d.volumes, rtol=1e-6, atol=1e-9 * abs(mesh.volume))
+    np.testing.assert_array_equal(e.pieces, d.pieces)

@@ -270,8 +270,10 @@ def _convex_part(todo, cf, lab, farea, roff, ring, verts, grid, tol):
     if not k:
         return None
     tn = np.cross(T[:, 1] - T[:, 0], T[:, 2] - T[:, 0])
-    tn /= np.linalg.norm(tn, axis=1)[:, None]
-    to = np.einsum("ij,ij->i", tn, T[:, 0])
+    size = np.linalg.norm(tn, axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):  # a needle: no plane, NaN offset
+        tn = np.where(size[:, None] > 0, tn / size[:, None], 0.0)
+        to = np.where(size > 0, np.einsum("ij,ij->i", tn, T[:, 0]), np.nan)
     oV = np.zeros((k * mc.CC_OUT_V, 3))
     oF = np.zeros((k * mc.CC_OUT_F, 2), np.int64)
     oR = np.zeros(k * mc.CC_OUT_R, np.int64)
@@ -333,16 +335,22 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     verts = np.asarray(d.vertices)
     nface = np.diff(cf)
     live = nface > 0
-    slack = VORONOI3D_MESH_SLACK_RTOL * float(np.abs(V).max())
-    grid = _tri_buckets(V[F], slack)
-    cand = _touching(cf, roff, ring, verts, farea, live, V[F], slack, grid)
+    # the cut works relative to an origin that the subtraction moves exactly (Sterbenz):
+    # far from the origin (UTM-like), manifold3d in absolute coordinates lost up to a
+    # quarter of the volume
+    o = _exact_origin(V, verts)
+    Vl, vl = V - o, verts - o
+    big = 1e-14 * float(np.abs(V).max())  # the rounding of coordinates, with room
+    slack = VORONOI3D_MESH_SLACK_RTOL * float(np.abs(Vl).max()) + big
+    grid = _tri_buckets(Vl[F], slack)
+    cand = _touching(cf, roff, ring, vl, farea, live, Vl[F], slack, grid)
     g, start, items = yz_grid(V, F, int(max(1, min(512, np.sqrt(len(F) / 4)))))
     test = np.flatnonzero(live & ~cand)  # the others: no parity needed
     ins = np.zeros(n, bool)
     q = np.ascontiguousarray(np.asarray(d.centroids)[test])
     ins[test] = inside_mesh(q, V, F, g, start, items)
     keep = live & ~cand & ins
-    whole = _manifold(V, F, np.arange(len(F)))
+    whole = _manifold(Vl, F, np.arange(len(F)))
     vol = np.where(keep, d.volumes, 0.0)
     cen = np.where(keep[:, None], d.centroids, np.nan)
     pieces = np.where(keep, 1, 0).astype(np.int64)
@@ -353,22 +361,26 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     # (vertices, cells, faces per cell, flat rings (global vertex numbers), ring lengths,
     # labels) per part: the cells cut here, then manifold3d's batches
     parts = []
-    got = _convex_part(todo, cf, lab, farea, roff, ring, verts, grid, slack)
+    # its decisions (coplanar, inside a half-space) within 1e-9 of the mesh's size, above
+    # the rounding of coordinates far from the origin
+    ext = float((V.max(axis=0) - V.min(axis=0)).max())
+    tol = VORONOI3D_MESH_SLACK_RTOL * ext + big
+    got = _convex_part(todo, cf, lab, farea, roff, ring, vl, grid, tol)
     if got is not None:
         part, v, ce = got
         cells = part[1]
         cut[cells] = True
-        vol[cells], cen[cells], pieces[cells], counts[cells] = v, ce, 1, part[2]
-        parts.append(part[:3] + (part[3] + nvert,) + part[4:])
+        vol[cells], cen[cells], pieces[cells], counts[cells] = v, ce + o, 1, part[2]
+        parts.append((part[0] + o,) + part[1:3] + (part[3] + nvert,) + part[4:])
         nvert += len(part[0])
         todo = np.setdiff1d(todo, cells, assume_unique=True)
     done = 0
     for batch in _apart(todo, cf, roff, ring, len(verts)):
-        r = _cut_split(batch, (cf, roff, ring, verts, lab, len(F), whole))
+        r = _cut_split(batch, (cf, roff, ring, vl, lab, len(F), whole))
         ov, cells, ntri, ot, labels, v, ce, npc = r
         cut[cells] = True
-        vol[cells], cen[cells], pieces[cells], counts[cells] = v, ce, npc, ntri
-        parts.append((ov, cells, ntri, ot.reshape(-1) + nvert, np.full(len(ot), 3), labels))
+        vol[cells], cen[cells], pieces[cells], counts[cells] = v, ce + o, npc, ntri
+        parts.append((ov + o, cells, ntri, ot.reshape(-1) + nvert, np.full(len(ot), 3), labels))
         nvert += len(ov)
         done += len(batch)
         if progress is not None:
@@ -432,6 +444,18 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
         cut_cells=cut,
         container_volume=mesh.volume,
     )
+
+
+def _exact_origin(*arrays):
+    """``(3,)``: per axis, a value whose subtraction from every coordinate is exact.
+
+    The least coordinate where all lie in ``[a, 2a]`` (``a > 0``), the greatest where all
+    lie in ``[2b, b]`` (``b < 0``), else 0 (Sterbenz: ``x - y`` is exact for ``y / 2 <= x
+    <= 2 y``).
+    """
+    lo = np.min([a.min(axis=0) for a in arrays], axis=0)
+    hi = np.max([a.max(axis=0) for a in arrays], axis=0)
+    return np.where((lo > 0) & (hi <= 2 * lo), lo, np.where((hi < 0) & (lo >= 2 * hi), hi, 0.0))
 
 
 def _coplanar_walls(mesh, verts, ring, roff, faces, lab, tol):

@@ -385,7 +385,7 @@ def _convex_cell(
                     m, src = _clip_tri(T, t, f0, f1, farea, fpt, tol, buf_a, buf_b)
                     if m == 0:
                         continue
-                    if k == ids.shape[0]:
+                    if k == ids.shape[0] or not np.isfinite(TO[t]):  # no room, no plane
                         return 0, 0, 0, 0.0, 0.0, 0.0, 0.0
                     ids[k] = t
                     pm[k] = m
@@ -472,7 +472,11 @@ def _convex_cell(
         if grp[a] != a:
             continue
         t = ids[a]
-        h0 = TO[t] - (TN[t, 0] * o0 + TN[t, 1] * o1 + TN[t, 2] * o2)
+        h0 = (
+            TN[t, 0] * (T[t, 0, 0] - o0)
+            + TN[t, 1] * (T[t, 0, 1] - o1)
+            + TN[t, 2] * (T[t, 0, 2] - o2)
+        )
         plane_values(V, nv, TN[t, 0], TN[t, 1], TN[t, 2], h0, tol, S)
         st, nv, nf = cut(V, nv, F, nf, R, R2, S, work, GROUP - a)
         if st != CUT_NONE and st != CUT_DONE:
@@ -488,7 +492,11 @@ def _convex_cell(
             if grp[a] != a:
                 continue
             t = ids[a]
-            h0 = TO[t] - (TN[t, 0] * o0 + TN[t, 1] * o1 + TN[t, 2] * o2)
+            h0 = (
+                TN[t, 0] * (T[t, 0, 0] - o0)
+                + TN[t, 1] * (T[t, 0, 1] - o1)
+                + TN[t, 2] * (T[t, 0, 2] - o2)
+            )
             allon = True
             for s in range(F[f, 1], F[f, 1] + F[f, 2]):
                 v = R[s]
