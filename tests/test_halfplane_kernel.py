@@ -14,10 +14,12 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+import voroforge as vf
 from voroforge.kernels.cells import cells_from_triangulation
 from voroforge.kernels.delaunay import triangulate_sorted
 from voroforge.kernels.halfplane import halfplane_cells
 
+from catalogue import CATALOGUE
 from reference import brute_voronoi
 
 BOX = (-0.25, -0.25, 1.25, 1.25)
@@ -198,3 +200,25 @@ def test_vertices_bit_identical_to_default_algorithm(kind):
     rings, _ = _cells(pts)
     ref = _default_cells(pts)
     assert _vertex_bits(rings) == _vertex_bits(ref)
+
+
+def test_sites_on_one_circle_are_hard_by_their_settling():
+    """Float sites on a circle: every cell's centre vertex has all sites on its circle to
+    rounding, and naming it would try thousands of exact centres. The settling's own work
+    count (not the search's, which visits only the n sites) makes such a cell hard."""
+    t = np.arange(150) * (2.0 * np.pi / 150)
+    *_, hard = halfplane_cells(np.cos(t), np.sin(t), np.array([-1.2, -1.2, 1.2, 1.2]))
+    assert hard.sum() >= 140  # (150 sites: too few for the sample that sends all to the dual)
+
+
+@pytest.mark.parametrize("name", ["float_circle_64_small_off", "float_circle_100_far"])
+def test_spliced_cells_share_their_seams_with_the_dual(name):
+    """Hard cells come from the dual; their neighbours whose shared edge the two
+    constructions named differently come from it too, so the cells are the default's."""
+    pts, boundary = CATALOGUE[name]
+    ref = vf.voronoi(pts, boundary)
+    got = vf.voronoi(pts, boundary, algorithm="halfplane")
+    for a, b in zip(ref.cells, got.cells, strict=True):
+        assert set(map(tuple, shapely.get_coordinates(a).tolist())) == set(
+            map(tuple, shapely.get_coordinates(b).tolist())
+        )

@@ -84,7 +84,19 @@ def _closed_cells(xs, ys, box, algorithm, kmap):
         dual = _closed_cells(xs, ys, box, "delaunay", kmap)
         if hard.all():
             return dual
-        closed, lengths, owner = _splice(closed, lengths, owner, dual, hard)
+        # a cell beside a dual cell must share their edge bit for bit; where the two
+        # constructions named a degenerate vertex differently (float circles), the cell
+        # comes from the dual too, until every seam agrees
+        take = hard.copy()
+        while True:
+            spliced = _splice(closed, lengths, owner, dual, take)
+            bad = _seams(*spliced, take, kmap)
+            if not bad.any():
+                break
+            take |= bad
+        if take.all():
+            return dual
+        closed, lengths, owner = spliced
     if _certified(closed, lengths, box):
         return closed, lengths, owner
     # a cell the local finishing could not settle consistently (rounding-level vertices
@@ -112,6 +124,35 @@ def _splice(closed, lengths, owner, dual, take):
     idx = np.repeat(src - out[:-1], size) + np.arange(int(out[-1]))
     coords = np.concatenate((closed, dclosed))[idx]
     return coords, out, np.concatenate((owner, downer))[idx]
+
+
+def _seams(closed, lengths, owner, take, kmap):
+    """Cells not in ``take`` whose edge with a ``take`` cell is not that cell's edge reversed.
+
+    ``owner`` holds ``kmap`` ids. Only edges between a cell in ``take`` and one outside it
+    are compared (bit for bit, ends swapped); either side's edge without its twin marks the
+    cell outside ``take``.
+    """
+    n = len(take)
+    inv = np.full(int(kmap.max()) + 1 if n else 0, -1, np.int64)
+    inv[kmap] = np.arange(n)
+    size = np.diff(lengths)
+    cell = np.repeat(np.arange(n), size)
+    e = np.flatnonzero(owner >= 0)  # site edges (the closing vertex has -2, the box -1)
+    nbr = inv[owner[e]]
+    e, nbr, cell = e[nbr >= 0], nbr[nbr >= 0], cell[e[nbr >= 0]]
+    seam = take[cell] != take[nbr]
+    e, nbr, cell = e[seam], nbr[seam], cell[seam]
+    bad = np.zeros(n, np.bool_)
+    if len(e) == 0:
+        return bad
+    bits = closed.view(np.int64)
+    ends = (*bits[e].T.tolist(), *bits[e + 1].T.tolist())
+    mine = set(zip(cell.tolist(), nbr.tolist(), *ends, strict=True))
+    for c, j, x0, y0, x1, y1 in mine:
+        if (j, c, x1, y1, x0, y0) not in mine:
+            bad[j if take[c] else c] = True
+    return bad
 
 
 def _certified(closed, lengths, box) -> bool:

@@ -366,7 +366,9 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
         c = 0
         if m >= 3 and not grow and work <= budget:
             left = budget - work
-            c = _finish(k, sx, sy, sidx, xs, ys, box, px, py, po, a, m, r2, scratch, nw, left)
+            c = _finish(
+                k, sx, sy, sidx, xs, ys, box, px, py, po, a, m, r2, scratch, nw, left, budget
+            )
         # a site in the box always has a cell: one cut away to nothing lost it to the float
         # cut's rounding (a 1e-12 cluster beside a 1e6 one: the crossings far out round by
         # more than the cell's width near its site), and the dual builds it
@@ -392,11 +394,12 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
 
 
 @njit(inline="always", **NJIT)
-def _finish(k, sx, sy, sidx, xs, ys, box, px, py, po, a, m, r2, scratch, nw, budget):
+def _finish(k, sx, sy, sidx, xs, ys, box, px, py, po, a, m, r2, scratch, nw, left, budget):
     """Settle the float cell (polygon ``a``) exactly and emit it to the scratch output.
 
-    Returns the emitted length, or -2 when settling would visit more than ``budget``
-    vertex-site pairs (the cell is then hard, see :func:`_cells`).
+    Returns the emitted length, or -2 when settling would visit more than ``left`` (what
+    the search left of the budget) vertex-site pairs, or cost more than ``budget`` work
+    units (:func:`.halfplane_settle.settle_ring`): the cell is then hard, see :func:`_cells`.
     """
     _, _, _, ss, ox, oy, oo, lab, vx, vy, cand, _, watch, _, _ = scratch
     cx = sx[k]
@@ -427,10 +430,15 @@ def _finish(k, sx, sy, sidx, xs, ys, box, px, py, po, a, m, r2, scratch, nw, bud
         if qx * qx + qy * qy <= _REACH * r2:
             watch[keep] = t
             keep += 1
-    if m * keep > budget:
+    if m * keep > left:
         return -2
-    # cand (the search's list) is free now: settle_ring's scratch for sites on a circle
-    ms = settle_ring(sidx[k], lab, m, ss, watch, keep, sidx, xs, ys, vx, vy, cand, box)
+    # cand (the search's list) is free now: settle_ring's scratch for sites on a circle.
+    # Settling has a budget of its own, counted in its exact tests and named vertices: a
+    # cell whose vertices have many sites on their circles to rounding (sites on one
+    # circle) is hard however few sites its search visited
+    ms, _ = settle_ring(sidx[k], lab, m, ss, watch, keep, sidx, xs, ys, vx, vy, cand, box, budget)
+    if ms == -2:
+        return -2
     # emitted to scratch first: only then is the exact length known, and a rebuilt chunk's
     # output (see _second_pass) has exactly the room the first pass counted
     c = -1

@@ -30,6 +30,7 @@ from ..config import (
     HALFPLANE_MERGE_RTOL,
     HALFPLANE_NEAR_RTOL,
     HALFPLANE_SHADOW_RTOL,
+    NAME_MAX_TRIES,
     NJIT,
 )
 from .clip import dedupe_ring
@@ -40,6 +41,11 @@ from .vertex import box_crossing, canonical_vertex, is_close, voronoi_vertex
 LEFT, BOTTOM, RIGHT, TOP = -1, -2, -3, -4
 _U = 2.0**-53
 _MAX_FIX = 64  # rounds of exact repair per cell before the float cut is kept as it is
+# Work units of the settling, in the search's unit (a vertex or a site visited, ~1-2 ns):
+_W_TEST = 8  # a filtered exact test (incircle, orient2d: ~10-20 ns)
+_W_VERTEX = 32  # a vertex from its name (voronoi_vertex: ~30-50 ns)
+_W_EXACT = 1024  # one from exact expansions (~5-10 us; a centre near the origin, see below)
+_SLOW_RTOL = 2.0**-20  # centres nearer the origin than this of their scale take that path
 
 
 @njit(**NJIT)
@@ -128,8 +134,15 @@ def _drop_invalid(i, lab, m, xs, ys, sure, trust, box):
 
 
 @njit(**NJIT)
-def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box):
-    """Make the ring of neighbour labels ``lab[:m]`` exactly right; returns its length.
+def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget):
+    """Make the ring of neighbour labels ``lab[:m]`` exactly right.
+
+    Returns ``(length, work)``: the settled ring's length, and the work units it cost
+    (``_W_TEST`` an exact test, ``_W_VERTEX`` a vertex computed from its name, one a
+    candidate looked at). The length is -2, and the ring unsettled, as soon as the work
+    would pass ``budget``: the cell's vertices have many sites on their circles to rounding
+    (sites on one circle), whose names alone cost up to ``NAME_MAX_TRIES`` vertices each,
+    and the caller leaves the cell to the Delaunay dual.
 
     Float cutting can keep an edge of zero length (cocircular sites), or lose a neighbour
     whose bisector coincides with another one in floating point. Labels without a positive
@@ -151,11 +164,13 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box):
     """
     cap = lab.shape[0]
     trust = True
+    work = 0
     for _ in range(_MAX_FIX):
         m0 = m
         m = _drop_invalid(i, lab, m, xs, ys, sure, trust, box)
+        work += _W_TEST * m
         if m < 3:
-            return -1
+            return -1, work
         trust = trust and m == m0
         inserted = False
         for u in range(m):
@@ -167,7 +182,10 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box):
             iy = ys[i]
             both = trust and sure[u] > 0.0 and sure[u - 1 if u > 0 else m - 1] > 0.0
             if not both and orient2d(ix, iy, xs[a], ys[a], xs[b], ys[b]) <= 0.0:
-                return -1
+                return -1, work
+            work += _W_VERTEX + nc
+            if work > budget:
+                return -2, work
             vx_, vy_ = voronoi_vertex(i, a, b, xs, ys)
             r2 = (ix - vx_) * (ix - vx_) + (iy - vy_) * (iy - vy_)
             tol = HALFPLANE_NEAR_RTOL * r2
@@ -178,6 +196,7 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box):
             nxt = lab[u + 1] if u + 1 < m else lab[0]
             prv = lab[u - 2] if u >= 2 else lab[u - 2 + m]
             non = 0  # other sites on the circle, to rounding
+            charged = False
             for c in range(nc):
                 x = sidx[cand[c]]
                 if x == a or x == b:
@@ -187,6 +206,14 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box):
                 d = dx * dx + dy * dy - r2
                 if d > tol:
                     continue
+                if not charged and d >= -tol:
+                    # the first site near the circle: charge all of them at once, so a
+                    # vertex with hundreds (sites on one circle) stops before the first
+                    # exact test (random sites never get here: none is near)
+                    work += _near_cost(a, b, c, cand, nc, sidx, xs, ys, vx_, vy_, r2, tol, merge)
+                    charged = True
+                    if work > budget:
+                        return -2, work
                 if abs(d) <= merge and _joins(i, a, b, x, vx_, vy_, xs, ys, HALFPLANE_JOIN_RTOL):
                     if x == nxt or x == prv:
                         # the edge of b (or a) between this vertex and x's is noise: drop it
@@ -228,14 +255,56 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box):
                 vx[u] = vx_  # no other site on the circle: the centre computed above
                 vy[u] = vy_
             else:
+                # the name is searched among the triples of the non + 3 sites on the circle
+                k = non + 3
+                tries = min(k * (k - 1) * (k - 2) // 6, NAME_MAX_TRIES)
+                work += tries * _vertex_cost(vx_, vy_, r, ix, iy)
+                if work > budget:
+                    return -2, work
                 on[non] = i
                 on[non + 1] = a
                 on[non + 2] = b
                 vx[u], vy[u] = canonical_vertex(on, non + 3, vx_, vy_, ix, iy, xs, ys)
         if not inserted:
-            return m
+            return m, work
         trust = False  # the ring changed: every label gets the exact tests from now on
-    return -1
+    return -1, work
+
+
+@njit(**NJIT)
+def _vertex_cost(vx, vy, r, sx, sy):
+    """Work units of a vertex near ``(vx, vy)`` named by sites at distance ``r`` (one ``s``).
+
+    Those vertices come from exact expansions when the centre is near the origin against
+    its circle and sites (its rounding bound is then past ``VERTEX_REFINE_RTOL`` of its
+    magnitude: sites on a circle about the origin), and cost ``_W_EXACT`` each.
+    """
+    if abs(vx) + abs(vy) < _SLOW_RTOL * (r + abs(sx) + abs(sy)):
+        return _W_EXACT
+    return _W_VERTEX
+
+
+@njit(**NJIT)
+def _near_cost(a, b, c0, cand, nc, sidx, xs, ys, vx, vy, r2, tol, merge):
+    """Work units of the sites among ``cand[c0:nc]`` (but ``a``, ``b``) near the circle at ``v``.
+
+    A site within ``merge`` of the circle costs two vertices (:func:`_joins`), one within
+    ``tol`` an exact test.
+    """
+    join = 2 * _vertex_cost(vx, vy, np.sqrt(r2), xs[a], ys[a])
+    work = 0
+    for c in range(c0, nc):
+        x = sidx[cand[c]]
+        if x == a or x == b:
+            continue
+        dx = xs[x] - vx
+        dy = ys[x] - vy
+        d = abs(dx * dx + dy * dy - r2)
+        if d <= merge:
+            work += join
+        elif d <= tol:
+            work += _W_TEST
+    return work
 
 
 @njit(**NJIT)
