@@ -25,7 +25,7 @@ from numba import njit, prange
 
 from ..config import FOLD_MAX_ROUNDS, NJIT, NJIT_PARALLEL, RELABEL_RTOL
 from .centers import circumcenters, contract, merge_cocircular
-from .clip import dedupe_ring
+from .clip import dedupe_ring, open_ring_convex
 from .folds import fold_pairs, folded_rings, risky_sites
 from .power import box_cell
 from .vertex import box_crossing
@@ -430,6 +430,15 @@ def _cell(i, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, bufs, nbrs, cl, tb
             m = _spliced_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, err, bufs, cl, ss)
             if m >= 0:
                 return m
+        m = _cut_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, px, py, pw, qx, qy, qw, ss)
+        if m < 3 or open_ring_convex(px, py, m):
+            return m
+        # the cut folded: bisectors that meet within their rounding of one point (a float
+        # circle's hull cells all reach its centre) cut in the wrong order. The edges between
+        # centres safely inside the box are final; cut by the others only and splice them in
+        m = _spliced_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, err, bufs, cl, ss)
+        if m >= 3 and open_ring_convex(px, py, m):
+            return m
         return _cut_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, px, py, pw, qx, qy, qw, ss)
     if m > 1 and cl[m - 1] == cl[0]:
         m -= 1

@@ -145,21 +145,25 @@ def ring_convex(xy, a, b):
     Such a ring is a simple convex polygon, so valid. Rounding may also leave a tiny
     concavity in a valid ring; callers use this as a certificate, not as a validity test.
     """
-    m = b - a - 1
+    return open_ring_convex(xy[a : b - 1, 0], xy[a : b - 1, 1], b - a - 1)
+
+
+@njit(**NJIT)
+def open_ring_convex(px, py, m):
+    """:func:`ring_convex` of the open ring ``p[:m]`` (no repeated closing vertex)."""
     if m < 3:
         return False
     wraps = 0
     for k in range(m):
-        k0 = a + (k - 1 if k > 0 else m - 1)
-        k1 = a + k
-        k2 = a + (k + 1 if k + 1 < m else 0)
-        ex = xy[k1, 0] - xy[k0, 0]
-        ey = xy[k1, 1] - xy[k0, 1]
-        fx = xy[k2, 0] - xy[k1, 0]
-        fy = xy[k2, 1] - xy[k1, 1]
+        k0 = k - 1 if k > 0 else m - 1
+        k2 = k + 1 if k + 1 < m else 0
+        ex = px[k] - px[k0]
+        ey = py[k] - py[k0]
+        fx = px[k2] - px[k]
+        fy = py[k2] - py[k]
         if (ex == 0.0 and ey == 0.0) or (fx == 0.0 and fy == 0.0):
             return False
-        o = orient2d(xy[k0, 0], xy[k0, 1], xy[k1, 0], xy[k1, 1], xy[k2, 0], xy[k2, 1])
+        o = orient2d(px[k0], py[k0], px[k], py[k], px[k2], py[k2])
         if o < 0.0:
             return False
         if o == 0.0 and (_upper(ex, ey) != _upper(fx, fy)):
