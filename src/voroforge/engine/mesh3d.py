@@ -1,18 +1,22 @@
 """Mesh containers: cells built in the mesh's (padded) bounding box, then cut by the mesh.
 
-Only cells that the surface meets are cut: a cell that no triangle meets (each triangle
-clipped by the cell's face planes moved out by a 1e-9 slack, :mod:`kernels.meshclip3d`) is
-wholly inside or wholly outside, decided by exact ray parity at its centroid
-(:mod:`kernels.inside3d`), and kept untouched (convex, named vertices) or emptied. The cells
-that the surface meets are intersected with the mesh by manifold3d (double precision) in a
-few batches of cells that share no vertex (a greedy colouring), one boolean per batch: each
-boolean costs about the container's size plus the batch's, so cutting cells one at a time
-would pay the container once per cell.
+Only the cells that can reach the mesh are built (:func:`reaching_sites`: sites inside, and
+sites outside that are not provably farther from every container triangle than another
+site). Only cells that the surface meets are cut: a cell that no triangle meets (each
+triangle clipped by the cell's face planes moved out by a 1e-9 slack,
+:mod:`kernels.meshclip3d`) is wholly inside or wholly outside, decided by exact ray parity
+at its centroid (:mod:`kernels.inside3d`), and kept untouched (convex, named vertices) or
+emptied. A cell the surface meets only where it is convex from the cell's side is cut by
+the triangles' planes (:func:`kernels.meshclip3d.convex_cells`, checked there). The other
+cells are intersected with the mesh by manifold3d (double precision) in a few batches of
+cells that share no vertex (a greedy colouring), one boolean per batch: each boolean costs
+about the batch's size, so cutting cells one at a time would pay the overhead per cell.
 The result's triangles are labelled with the cell face they came from (a site or a box
 wall) or ``-1 - t`` for container triangle ``t``; its connected components tell the cells
 apart (a component without a cell face, a closed part of the container inside a cell, makes
 the batch split in halves). A cut cell's new vertices are its own (not shared with the
 neighbour across a cut face). Cells that the container splits report their number of pieces.
+The cut works relative to an origin whose subtraction is exact (:func:`_exact_origin`).
 """
 
 from __future__ import annotations
