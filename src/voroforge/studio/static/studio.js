@@ -102,7 +102,7 @@ var VoroStudio = (function () {
     this.legendEl = root.querySelector("[data-role=legend]");
     this.raw = []; this.cells = []; this.boxes = []; this.mask = new Uint8Array(0);
     this.img = null; this.baseValid = false; this.pending = null; this.baseView = null; this.boundaryId = 0;
-    this.rawData = []; this.sites = new Float64Array(0);
+    this.sites = new Float64Array(0);
     this.boundary = null; this.domain = null; this.bounds = [0, 0, 1, 1];
     this.attractors = []; this.violations = []; this.legend = [];
     this.state = null; this.header = null; this.n = 0;
@@ -214,22 +214,24 @@ var VoroStudio = (function () {
   Studio.prototype.geometry = function (m) {
     var h = m.header, a = m.arrays, t0 = performance.now();
     var n = h.n, idx = a.idx, k, i, boxes = [], old = this.raw.length;
-    var full = h.full || old !== n && !a.sites;
+    // more changed cells than a patch repaints one by one (see renderPending): a whole redraw,
+    // without the boxes to repaint
+    var full = h.full || old !== n && !a.sites || idx.length > 400;
     this.bounds = h.bounds;
-    if (h.full) { this.raw = new Array(n); this.cells = new Array(n); this.rawData = new Array(n); this.boxes = new Array(n); }
+    if (h.full) { this.raw = new Array(n); this.cells = new Array(n); this.boxes = new Array(n); }
     else if (old !== n) {  // cells past the new count are gone: repaint where they were
       for (i = n; i < old; i++) if (this.boxes[i]) boxes.push(this.boxes[i]);
-      this.raw.length = n; this.cells.length = n; this.rawData.length = n; this.boxes.length = n;
+      this.raw.length = n; this.cells.length = n; this.boxes.length = n;
     }
     for (k = 0; k < idx.length; k++) {
       i = idx[k];
       var was = this.boxes[i];
       // no Path2D per cell: the rings stay in the message's buffers until drawn
       this.raw[i] = a.rg[k + 1] > a.rg[k] ? [a.rg, a.rr, a.rc, k] : null;
-      this.rawData[i] = a.rc.subarray(2 * a.rr[a.rg[k]], 2 * a.rr[a.rg[k + 1]]);
       if (h.cells_raw) this.cells[i] = this.raw[i];  // cells without operations: the raw rings
       else this.cells[i] = a.cg[k + 1] > a.cg[k] ? [a.cg, a.cr, a.cc, k] : null;
       this.boxes[i] = ringBox(a.rg, a.rr, a.rc, k);
+      if (full) continue;
       var box = grow(was ? was.slice() : null, this.boxes[i]);
       if (box) boxes.push(box);
     }
@@ -772,7 +774,10 @@ var VoroStudio = (function () {
 
   /* For tests and scripts: a cell's rings as sent last, and a site's position. */
   Studio.prototype.cellPath = function (i) {
-    return this.rawData[i] ? Array.prototype.slice.call(this.rawData[i]) : null;
+    var w = this.raw[i];
+    if (!w) return i < this.n ? [] : null;
+    var r = w[1], g = w[0], k = w[3];
+    return Array.prototype.slice.call(w[2].subarray(2 * r[g[k]], 2 * r[g[k + 1]]));
   };
   Studio.prototype.site = function (i) { return [this.sites[2 * i], this.sites[2 * i + 1]]; };
   Studio.prototype.toScreen = function (p) {
