@@ -262,7 +262,7 @@ def _touching(cf, roff, ring, verts, farea, live, tri, tol, grid=None):
 def _convex_part(todo, cf, lab, farea, roff, ring, verts, grid, tol):
     """The cells of ``todo`` that :func:`kernels.meshclip3d.convex_cells` cuts itself.
 
-    ``(part, volumes, centroids)`` for those cells (a part as :func:`cut_by_mesh` collects
+    ``(part, volumes, centroids, pieces)`` for those cells (a part as :func:`cut_by_mesh` collects
     them: vertices, cells, faces per cell, flat rings into the vertices, ring lengths,
     labels), or None when it cut none.
     """
@@ -284,6 +284,7 @@ def _convex_part(todo, cf, lab, farea, roff, ring, verts, grid, tol):
     counts = np.zeros((k, 3), np.int64)
     vol = np.zeros(k)
     cen = np.zeros((k, 3))
+    npc = np.zeros(k, np.int64)
     with serial_below(k):
         mc.convex_cells(
             np.asarray(todo, np.int64),
@@ -308,6 +309,7 @@ def _convex_part(todo, cf, lab, farea, roff, ring, verts, grid, tol):
             counts,
             vol,
             cen,
+            npc,
         )
     ok = np.flatnonzero(counts[:, 0] > 0)
     if not len(ok):
@@ -318,7 +320,7 @@ def _convex_part(todo, cf, lab, farea, roff, ring, verts, grid, tol):
     ri = np.repeat(ok * mc.CC_OUT_R, nr) + _ranks(nr)
     vbase = np.repeat(np.cumsum(nv) - nv, nr)  # each cell's first row in the vertices
     part = (oV[vi], todo[ok], nf, oR[ri] + vbase, oF[fi, 1], oF[fi, 0])
-    return part, vol[ok], cen[ok]
+    return part, vol[ok], cen[ok], npc[ok]
 
 
 def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
@@ -371,10 +373,10 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     tol = VORONOI3D_MESH_SLACK_RTOL * ext + big
     got = _convex_part(todo, cf, lab, farea, roff, ring, vl, grid, tol)
     if got is not None:
-        part, v, ce = got
+        part, v, ce, npc = got
         cells = part[1]
         cut[cells] = True
-        vol[cells], cen[cells], pieces[cells], counts[cells] = v, ce + o, 1, part[2]
+        vol[cells], cen[cells], pieces[cells], counts[cells] = v, ce + o, npc, part[2]
         parts.append((part[0] + o,) + part[1:3] + (part[3] + nvert,) + part[4:])
         nvert += len(part[0])
         todo = np.setdiff1d(todo, cells, assume_unique=True)
