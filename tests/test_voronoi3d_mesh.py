@@ -272,7 +272,7 @@ def _wall_areas(d):
 @pytest.mark.parametrize("make", [_torus, _lbracket, _holed], ids=["torus", "lbracket", "holed"])
 def test_convex_cuts_against_manifold(make, monkeypatch):
     # cells that meet the surface only where it is convex from their side are cut by their
-    # own planes (kernels/meshclip3d.convex_cells); manifold3d's boolean gives the same
+    # own planes (kernels/meshcut3d.convex_cells); manifold3d's boolean gives the same
     # volumes (to the rounding of its absolute coordinates), pieces and walls
     import voroforge.engine.mesh3d as m3d
 

@@ -7,7 +7,7 @@ triangle clipped by the cell's face planes moved out by a 1e-9 slack,
 :mod:`kernels.meshclip3d`) is wholly inside or wholly outside, decided by exact ray parity
 at its centroid (:mod:`kernels.inside3d`), and kept untouched (convex, named vertices) or
 emptied. A cell the surface meets only where it is convex from the cell's side is cut by
-the triangles' planes (:func:`kernels.meshclip3d.convex_cells`, checked there). The other
+the triangles' planes (:func:`kernels.meshcut3d.convex_cells`, checked there). The other
 cells are intersected with the mesh by manifold3d (double precision) in a few batches of
 cells that share no vertex (a greedy colouring), one boolean per batch: each boolean costs
 about the batch's size, so cutting cells one at a time would pay the overhead per cell.
@@ -260,13 +260,13 @@ def _touching(cf, roff, ring, verts, farea, live, tri, tol, grid=None):
 
 
 def _convex_part(todo, cf, lab, farea, roff, ring, verts, grid, tol):
-    """The cells of ``todo`` that :func:`kernels.meshclip3d.convex_cells` cuts itself.
+    """The cells of ``todo`` that :func:`kernels.meshcut3d.convex_cells` cuts itself.
 
     ``(part, volumes, centroids, pieces)`` for those cells (a part as :func:`cut_by_mesh` collects
     them: vertices, cells, faces per cell, flat rings into the vertices, ring lengths,
     labels), or None when it cut none.
     """
-    from ..kernels import meshclip3d as mc
+    from ..kernels import meshcut3d as mc
     from .threads import serial_below
 
     T, lo, h, dims, start, items = grid

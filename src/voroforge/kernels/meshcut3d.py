@@ -1,0 +1,869 @@
+"""Convex cells cut by a closed triangle mesh, exactly, where the surface allows it.
+
+:func:`convex_cells` takes the cells that the surface meets (:mod:`kernels.meshclip3d`) and
+cuts each by the planes of the triangles that meet it, when that is provably the cell ∩ the
+solid: every triangle, clipped by the cell, lies inside every other one's half-space. A
+cell where that fails (reflex edges, saddles) is first split into convex parts where it
+holds, by the plane bisecting the wedge outside an inconsistent pair; the parts are joined
+again. Each cell is checked (new faces lie in their triangles, the result is closed) and
+left to the caller (manifold3d) otherwise. Polyhedra are held as :mod:`kernels.polyhedron`
+holds them, relative to the cell's first vertex.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit, prange
+
+from ..config import NJIT, NJIT_PARALLEL
+from .meshclip3d import clip_triangle
+from .polyhedron import (
+    CUT_BROKEN,
+    CUT_DONE,
+    CUT_EMPTY,
+    CUT_NONE,
+    CUT_OVERFLOW,
+    cut,
+    moments,
+    plane_values,
+    ring_count,
+)
+
+#: labels of the faces a container plane group ``g`` adds while a cell is cut: ``GROUP - g``
+GROUP = -(1 << 40)
+#: the label of the faces where a cell is split into parts (dropped when they are joined)
+SPLIT = -(1 << 50)
+#: per-cell scratch and output limits of :func:`convex_cells` (past them: manifold3d)
+CC_TRIS = 64  # triangles meeting one cell
+CC_SEEN = 512  # triangles looked at (each bucket's, before the duplicates are skipped)
+CC_POLY = 64  # vertices of a triangle clipped by the cell
+CC_V, CC_F, CC_R = 128, 64, 1024  # polyhedron scratch: vertices, faces, ring entries
+CC_PARTS, CC_DEPTH = 6, 4  # parts a cell may be split into, split planes per part
+CC_OUT_V, CC_OUT_F, CC_OUT_R = 96, 48, 384  # a finished cell's slots
+CC_BLOCK = 64  # cells per parallel block (one set of scratch each)
+
+
+@njit(**NJIT)
+def _split_face(V, nv, F, nf, R, nr, f, S):
+    """Split face ``f`` along the plane of values ``S`` (both sides strictly present).
+
+    Each crossing edge gets a new vertex, put also into the ring of the face across that
+    edge (no T-junctions); ``f`` keeps its ``S >= 0`` part, a new face (same label) the
+    rest. Rings are rewritten at the end of ``R``. Returns ``(ok, nv, nf, nr)``.
+    """
+    vcap = V.shape[0]
+    st = F[f, 1]
+    ln = F[f, 2]
+    if nf + 1 > F.shape[0] or nr + 2 * ln + 4 > R.shape[0]:
+        return False, nv, nf, nr
+    xs = np.zeros((2, 3), np.int64)  # (vertex, lower end, upper end) per crossing
+    nx_ = 0
+    # new vertices on the crossing edges, and into the twin faces
+    for k in range(ln):
+        a = R[st + k]
+        c = R[st + k + 1] if k + 1 < ln else R[st]
+        if (S[a] < 0.0 and S[c] > 0.0) or (S[a] > 0.0 and S[c] < 0.0):
+            if nx_ == 2 or nv >= vcap:
+                return False, nv, nf, nr
+            lo_, hi_ = (a, c) if abs(S[a]) <= abs(S[c]) else (c, a)
+            t = S[lo_] / (S[lo_] - S[hi_])
+            for q in range(3):
+                V[nv, q] = V[lo_, q] + t * (V[hi_, q] - V[lo_, q])
+            S[nv] = 0.0
+            xs[nx_, 0] = nv
+            xs[nx_, 1] = min(a, c)
+            xs[nx_, 2] = max(a, c)
+            nx_ += 1
+            # the twin: the face holding c -> a
+            done = False
+            for g in range(nf):
+                if g == f or done:
+                    continue
+                gs = F[g, 1]
+                gl = F[g, 2]
+                for j in range(gl):
+                    u = R[gs + j]
+                    w = R[gs + j + 1] if j + 1 < gl else R[gs]
+                    if u == c and w == a:
+                        if nr + gl + 1 > R.shape[0]:
+                            return False, nv, nf, nr
+                        b = nr
+                        for jj in range(gl):
+                            R[nr] = R[gs + jj]
+                            nr += 1
+                            if jj == j:
+                                R[nr] = nv
+                                nr += 1
+                        F[g, 1] = b
+                        F[g, 2] = gl + 1
+                        done = True
+                        break
+            if not done:
+                return False, nv, nf, nr
+            nv += 1
+    # the two sides
+    for side in range(2):
+        b = nr
+        for k in range(ln):
+            a = R[st + k]
+            c = R[st + k + 1] if k + 1 < ln else R[st]
+            sa = S[a] if side == 0 else -S[a]
+            sc = S[c] if side == 0 else -S[c]
+            if sa >= 0.0:
+                R[nr] = a
+                nr += 1
+            if (sa < 0.0 and sc > 0.0) or (sa > 0.0 and sc < 0.0):
+                # the crossing made for this edge
+                cr = -1
+                for q in range(nx_):
+                    if xs[q, 1] == min(a, c) and xs[q, 2] == max(a, c):
+                        cr = xs[q, 0]
+                if cr < 0:
+                    return False, nv, nf, nr
+                R[nr] = cr
+                nr += 1
+        if nr - b < 3:
+            return False, nv, nf, nr
+        if side == 0:
+            F[f, 1] = b
+            F[f, 2] = nr - b
+        else:
+            F[nf, 0] = F[f, 0]
+            F[nf, 1] = b
+            F[nf, 2] = nr - b
+            nf += 1
+    return True, nv, nf, nr
+
+
+@njit(**NJIT)
+def _fail():
+    return 0, 0, 0, 0.0, 0.0, 0.0, 0.0, 0
+
+
+@njit(**NJIT)
+def _merge_parts(PV, PF, PR, pnv, pnf, nparts, ms, o, tol, out):
+    """The parts of a split cell joined into one closed polyhedron in ``out``.
+
+    Split faces are dropped; the parts' vertices on them that coincide within ``tol`` become
+    one. Checked closed (every edge has exactly one twin) and with positive volume, else the
+    cell is left to manifold3d. Returns the row of :func:`convex_cells` (sizes, volume,
+    centroid, pieces).
+    """
+    MV, gid, onsp, MF, MR, keys, par = ms
+    oV, oF, oR = out
+    nt = 0
+    for p in range(nparts):
+        if pnf[p] == 0:
+            continue
+        for v in range(pnv[p]):
+            for c in range(3):
+                MV[nt + v, c] = PV[p, v, c]
+            gid[nt + v] = nt + v
+            onsp[nt + v] = False
+        for f in range(pnf[p]):
+            if PF[p, f, 0] == SPLIT:
+                for s in range(PF[p, f, 1], PF[p, f, 1] + PF[p, f, 2]):
+                    onsp[nt + PR[p, s]] = True
+        # vertices on split faces: the same as an earlier part's within tol
+        for v in range(nt, nt + pnv[p]):
+            if not onsp[v]:
+                continue
+            for w in range(nt):
+                if not onsp[w] or gid[w] != w:
+                    continue
+                if (
+                    abs(MV[v, 0] - MV[w, 0]) <= tol
+                    and abs(MV[v, 1] - MV[w, 1]) <= tol
+                    and abs(MV[v, 2] - MV[w, 2]) <= tol
+                ):
+                    gid[v] = w
+                    break
+        nt += pnv[p]
+    # the faces, split faces left out
+    nf = 0
+    nr = 0
+    base = 0
+    for p in range(nparts):
+        if pnf[p] == 0:
+            continue
+        for f in range(pnf[p]):
+            if PF[p, f, 0] == SPLIT:
+                continue
+            if nf == MF.shape[0] or nr + PF[p, f, 2] > MR.shape[0]:
+                return _fail()
+            MF[nf, 0] = PF[p, f, 0]
+            MF[nf, 1] = nr
+            MF[nf, 2] = PF[p, f, 2]
+            nf += 1
+            for s in range(PF[p, f, 1], PF[p, f, 1] + PF[p, f, 2]):
+                MR[nr] = gid[base + PR[p, s]]
+                nr += 1
+        base += pnv[p]
+    # vertices in use, numbered in order
+    for v in range(nt):
+        par[v] = -1
+    for s in range(nr):
+        par[MR[s]] = 0
+    nv = 0
+    for v in range(nt):
+        if par[v] == 0:
+            par[v] = nv
+            for c in range(3):
+                MV[nv, c] = MV[v, c]
+            nv += 1
+    for s in range(nr):
+        MR[s] = par[MR[s]]
+    if nv > oV.shape[0] or nf > oF.shape[0] or nr > oR.shape[0]:
+        return _fail()
+    # closed: each directed edge once, and its reverse once
+    ne = 0
+    for f in range(nf):
+        st = MF[f, 1]
+        ln = MF[f, 2]
+        for j in range(ln):
+            a = MR[st + j]
+            b = MR[st + j + 1] if j + 1 < ln else MR[st]
+            if a == b:
+                return _fail()
+            keys[ne] = a * nv + b
+            ne += 1
+    ks = np.sort(keys[:ne])
+    for j in range(ne - 1):
+        if ks[j] == ks[j + 1]:
+            return _fail()
+    for j in range(ne):
+        a = ks[j] // nv
+        b = ks[j] % nv
+        r = np.searchsorted(ks, b * nv + a)
+        if r >= ne or ks[r] != b * nv + a:
+            return _fail()
+    vol, mx, my, mz = moments(MV, MF, nf, MR)
+    if not vol > 0.0:
+        return _fail()
+    # pieces: vertices joined by the faces (union-find)
+    for v in range(nv):
+        par[v] = v
+    for f in range(nf):
+        st = MF[f, 1]
+        r0 = MR[st]
+        while par[r0] != r0:
+            r0 = par[r0]
+        for j in range(1, MF[f, 2]):
+            r1 = MR[st + j]
+            while par[r1] != r1:
+                r1 = par[r1]
+            if r1 != r0:
+                par[r1] = r0
+    npc = 0
+    for v in range(nv):
+        if par[v] == v:
+            npc += 1
+    for v in range(nv):
+        for c in range(3):
+            oV[v, c] = MV[v, c] + o[c]
+    q = 0
+    for f in range(nf):
+        oF[f, 0] = MF[f, 0]
+        oF[f, 1] = MF[f, 2]
+        for s in range(MF[f, 1], MF[f, 1] + MF[f, 2]):
+            oR[q] = MR[s]
+            q += 1
+    return nv, nf, nr, vol, mx / vol + o[0], my / vol + o[1], mz / vol + o[2], npc
+
+
+@njit(**NJIT)
+def _gather(i, cf, roff, ring, verts, farea, fpt, T, TO, lo, h, dims, start, items, tol, sc):
+    """The triangles meeting cell ``i`` grown by ``tol``, clipped by it: their count, or -1."""
+    ids, seen, pm, polys, buf_a, buf_b = sc
+    ny, nz = dims[1], dims[2]
+    f0, f1 = cf[i], cf[i + 1]
+    if f1 - f0 + 3 > polys.shape[1]:
+        return -1
+    cell_lo = np.full(3, np.inf)
+    cell_hi = np.full(3, -np.inf)
+    for s in range(roff[f0], roff[f1]):
+        v = ring[s]
+        for c in range(3):
+            cell_lo[c] = min(cell_lo[c], verts[v, c])
+            cell_hi[c] = max(cell_hi[c], verts[v, c])
+    a0 = np.zeros(3, np.int64)
+    a1 = np.zeros(3, np.int64)
+    for c in range(3):
+        cell_lo[c] -= tol
+        cell_hi[c] += tol
+        a0[c] = min(dims[c] - 1, max(0, int((cell_lo[c] - lo[c]) / h)))
+        a1[c] = min(dims[c] - 1, max(0, int((cell_hi[c] - lo[c]) / h)))
+    k = 0
+    ns = 0
+    for a in range(a0[0], a1[0] + 1):
+        for b in range(a0[1], a1[1] + 1):
+            for kk in range(a0[2], a1[2] + 1):
+                bk = (a * ny + b) * nz + kk
+                for s in range(start[bk], start[bk + 1]):
+                    t = items[s]
+                    dup = False
+                    for q in range(ns):
+                        if seen[q] == t:
+                            dup = True
+                            break
+                    if dup:
+                        continue
+                    if ns == seen.shape[0]:
+                        return -1
+                    seen[ns] = t
+                    ns += 1
+                    away = False
+                    for c in range(3):
+                        x0 = min(T[t, 0, c], min(T[t, 1, c], T[t, 2, c]))
+                        x1 = max(T[t, 0, c], max(T[t, 1, c], T[t, 2, c]))
+                        if x1 < cell_lo[c] or x0 > cell_hi[c]:
+                            away = True
+                    if away:
+                        continue
+                    m, src = clip_triangle(T, t, f0, f1, farea, fpt, tol, buf_a, buf_b)
+                    if m == 0:
+                        continue
+                    if k == ids.shape[0] or not np.isfinite(TO[t]):  # no room, no plane
+                        return -1
+                    ids[k] = t
+                    pm[k] = m
+                    for q in range(m):
+                        for c in range(3):
+                            polys[k, q, c] = src[q, c]
+                    k += 1
+    return k
+
+
+@njit(**NJIT)
+def _clip_poly(P, m, nx, ny, nz, hh, tol, dst):
+    """Polygon ``P[:m]`` clipped to ``n . x <= hh + tol`` into ``dst``: its size."""
+    k = 0
+    sp = nx * P[m - 1, 0] + ny * P[m - 1, 1] + nz * P[m - 1, 2] - hh - tol
+    for q in range(m):
+        sq = nx * P[q, 0] + ny * P[q, 1] + nz * P[q, 2] - hh - tol
+        if (sp <= 0.0) != (sq <= 0.0):
+            p = q - 1 if q > 0 else m - 1
+            r = sp / (sp - sq)
+            for c in range(3):
+                dst[k, c] = P[p, c] + r * (P[q, c] - P[p, c])
+            k += 1
+        if sq <= 0.0:
+            for c in range(3):
+                dst[k, c] = P[q, c]
+            k += 1
+        sp = sq
+    return k
+
+
+@njit(**NJIT)
+def _beyond(sub, m, a, n, hh, tol):
+    """Whether a vertex of polygon ``sub[a, :m]`` lies beyond ``n . x = hh`` by ``tol``."""
+    for q in range(m):
+        if n[0] * sub[a, q, 0] + n[1] * sub[a, q, 1] + n[2] * sub[a, q, 2] - hh > tol:
+            return True
+    return False
+
+
+@njit(**NJIT)
+def _finish_part(V, nv, F, nf, R, R2, S, work, k, use, grp, ids, T, TN, toff, o, tol):
+    """Part ``(V, F, R)`` cut by the planes of its triangles (``use``), new faces labelled.
+
+    Each new face is split along its triangles' edges and named by the one it lies in.
+    Returns ``(ok, nv, nf)`` (``ok`` False: leave the cell to manifold3d).
+    """
+    for a in range(k):
+        if grp[a] != a:
+            continue
+        inpart = False
+        for b in range(k):
+            if use[b] and grp[b] == a:
+                inpart = True
+        if not inpart:
+            continue
+        t = ids[a]
+        plane_values(V, nv, TN[t, 0], TN[t, 1], TN[t, 2], toff[a], tol, S)
+        st, nv, nf = cut(V, nv, F, nf, R, R2, S, work, GROUP - a)
+        if st != CUT_NONE and st != CUT_DONE:
+            return False, nv, nf
+    # a face lying in a group's plane (not made by its cut): left to manifold3d
+    has = False
+    for f in range(nf):
+        if SPLIT < F[f, 0] <= GROUP:
+            has = True
+            continue
+        for a in range(k):
+            if grp[a] != a:
+                continue
+            t = ids[a]
+            allon = True
+            for s in range(F[f, 1], F[f, 1] + F[f, 2]):
+                v = R[s]
+                sv = TN[t, 0] * V[v, 0] + TN[t, 1] * V[v, 1] + TN[t, 2] * V[v, 2] - toff[a]
+                if abs(sv) > tol:
+                    allon = False
+                    break
+            if allon:
+                return False, nv, nf
+    if not has:
+        return False, nv, nf
+    nr = ring_count(F, nf)
+    # split each group's faces along its triangles' edges, then name each piece's triangle
+    for a in range(k):
+        if not use[a]:
+            continue
+        g = grp[a]
+        t = ids[a]
+        for e in range(3):
+            p0 = T[t, e]
+            p1 = T[t, (e + 1) % 3]
+            dx = p1[0] - p0[0]
+            dy = p1[1] - p0[1]
+            dz = p1[2] - p0[2]
+            ex = TN[t, 1] * dz - TN[t, 2] * dy  # inward, in the triangle's plane
+            ey = TN[t, 2] * dx - TN[t, 0] * dz
+            ez = TN[t, 0] * dy - TN[t, 1] * dx
+            en = np.sqrt(ex * ex + ey * ey + ez * ez)
+            if en == 0.0:
+                return False, nv, nf
+            ex /= en
+            ey /= en
+            ez /= en
+            h0 = ex * (p0[0] - o[0]) + ey * (p0[1] - o[1]) + ez * (p0[2] - o[2])
+            f = 0
+            while f < nf:
+                if F[f, 0] == GROUP - g:
+                    plane_values(V, nv, ex, ey, ez, h0, tol, S)
+                    lo_ = 0.0
+                    hi_ = 0.0
+                    for s in range(F[f, 1], F[f, 1] + F[f, 2]):
+                        lo_ = min(lo_, S[R[s]])
+                        hi_ = max(hi_, S[R[s]])
+                    if lo_ < 0.0 and hi_ > 0.0:
+                        ok, nv, nf, nr = _split_face(V, nv, F, nf, R, nr, f, S)
+                        if not ok:
+                            return False, nv, nf
+                f += 1
+    for f in range(nf):
+        if F[f, 0] > GROUP or F[f, 0] == SPLIT:
+            continue
+        g = GROUP - F[f, 0]
+        found = -1
+        for a in range(k):
+            if grp[a] != g:
+                continue
+            t = ids[a]
+            inside = True
+            for e in range(3):
+                p0 = T[t, e]
+                p1 = T[t, (e + 1) % 3]
+                dx = p1[0] - p0[0]
+                dy = p1[1] - p0[1]
+                dz = p1[2] - p0[2]
+                ex = TN[t, 1] * dz - TN[t, 2] * dy
+                ey = TN[t, 2] * dx - TN[t, 0] * dz
+                ez = TN[t, 0] * dy - TN[t, 1] * dx
+                en = np.sqrt(ex * ex + ey * ey + ez * ez)
+                h0 = (ex * (p0[0] - o[0]) + ey * (p0[1] - o[1]) + ez * (p0[2] - o[2])) / en
+                for s in range(F[f, 1], F[f, 1] + F[f, 2]):
+                    v = R[s]
+                    sv = (ex * V[v, 0] + ey * V[v, 1] + ez * V[v, 2]) / en - h0
+                    if sv < -tol:
+                        inside = False
+                        break
+                if not inside:
+                    break
+            if inside:
+                found = t
+                break
+        if found < 0:
+            return False, nv, nf
+        F[f, 0] = -1 - found
+    return True, nv, nf
+
+
+@njit(**NJIT)
+def _convex_cell(
+    i, cf, roff, ring, verts, lab, farea, fpt, T, TN, TO, lo, h, dims, start, items, tol, sc, out
+):
+    """One cell of :func:`convex_cells` (scratch ``sc``, outputs ``out`` for its slot)."""
+    (
+        gsc,
+        grp,
+        toff,
+        use,
+        sub,
+        subm,
+        bufc,
+        PV,
+        PF,
+        PR,
+        pnv,
+        pnf,
+        pspl,
+        pdep,
+        R2,
+        S,
+        S2,
+        work,
+        vmap,
+        ms,
+    ) = sc
+    ids, seen, pm, polys, buf_a, buf_b = gsc
+    oV, oF, oR = out
+    k = _gather(i, cf, roff, ring, verts, farea, fpt, T, TO, lo, h, dims, start, items, tol, gsc)
+    if k <= 0:
+        return _fail()
+    f0, f1 = cf[i], cf[i + 1]
+    o = np.zeros(3)
+    for c in range(3):
+        o[c] = verts[ring[roff[f0]], c]
+    # everything relative to the cell's first vertex
+    for a in range(k):
+        t = ids[a]
+        toff[a] = TN[t, 0] * (T[t, 0, 0] - o[0]) + TN[t, 1] * (T[t, 0, 1] - o[1])
+        toff[a] += TN[t, 2] * (T[t, 0, 2] - o[2])
+        for q in range(pm[a]):
+            for c in range(3):
+                polys[a, q, c] -= o[c]
+    # plane groups: triangles whose corners lie within tol of an earlier group's plane
+    for a in range(k):
+        ta = ids[a]
+        grp[a] = a
+        for b in range(a):
+            if grp[b] != b:
+                continue
+            tb = ids[b]
+            if TN[ta, 0] * TN[tb, 0] + TN[ta, 1] * TN[tb, 1] + TN[ta, 2] * TN[tb, 2] <= 0.0:
+                continue
+            on = True
+            for q in range(3):
+                sv = TN[tb, 0] * T[ta, q, 0] + TN[tb, 1] * T[ta, q, 1] + TN[tb, 2] * T[ta, q, 2]
+                if abs(sv - TO[tb]) > tol:
+                    on = False
+            if on:
+                grp[a] = b
+                break
+    # part 0: the cell as a polyhedron
+    nv = 0
+    nr = 0
+    nf = 0
+    for f in range(f0, f1):
+        if nf == PF.shape[1]:
+            return _fail()
+        PF[0, nf, 0] = lab[f]
+        PF[0, nf, 1] = nr
+        PF[0, nf, 2] = roff[f + 1] - roff[f]
+        nf += 1
+        for s in range(roff[f], roff[f + 1]):
+            v = ring[s]
+            x = -1
+            for q in range(nv):
+                if vmap[q] == v:
+                    x = q
+                    break
+            if x < 0:
+                if nv == PV.shape[1]:
+                    return _fail()
+                vmap[nv] = v
+                for c in range(3):
+                    PV[0, nv, c] = verts[v, c] - o[c]
+                x = nv
+                nv += 1
+            if nr == PR.shape[1]:
+                return _fail()
+            PR[0, nr] = x
+            nr += 1
+    pnv[0] = nv
+    pnf[0] = nf
+    pdep[0] = 0
+    nparts = 1
+    done = np.zeros(PV.shape[0], np.bool_)
+    while True:
+        p = -1
+        for q in range(nparts):
+            if not done[q]:
+                p = q
+                break
+        if p < 0:
+            break
+        # the triangles meeting this part: clipped by its split planes too
+        for a in range(k):
+            m = pm[a]
+            for q in range(m):
+                for c in range(3):
+                    sub[a, q, c] = polys[a, q, c]
+            for d in range(pdep[p]):  # shrunk by tol: a triangle that only touches a split
+                # plane (the other one of the pair, along their meeting line) is not the part's
+                m2 = _clip_poly(
+                    sub[a],
+                    m,
+                    pspl[p, d, 0],
+                    pspl[p, d, 1],
+                    pspl[p, d, 2],
+                    pspl[p, d, 3],
+                    -tol,
+                    bufc,
+                )
+                for q in range(m2):
+                    for c in range(3):
+                        sub[a, q, c] = bufc[q, c]
+                m = m2
+                if m == 0:
+                    break
+            use[a] = m > 0
+            subm[a] = m
+        # a pair of inconsistent triangles whose bisecting plane (below) separates them
+        anybad = False
+        bad_a = -1
+        bad_b = -1
+        for a in range(k):
+            if not use[a] or bad_a >= 0:
+                continue
+            for b in range(k):
+                if a == b or not use[b]:
+                    continue
+                if not _beyond(sub, subm[a], a, TN[ids[b]], toff[b], tol):
+                    continue
+                anybad = True
+                ta = ids[a]
+                tb = ids[b]
+                nn = np.sqrt(
+                    (TN[ta, 0] - TN[tb, 0]) ** 2
+                    + (TN[ta, 1] - TN[tb, 1]) ** 2
+                    + (TN[ta, 2] - TN[tb, 2]) ** 2
+                )
+                if nn < 1e-6:
+                    continue
+                nvec = (TN[ta] - TN[tb]) / nn
+                hh = (toff[a] - toff[b]) / nn
+                if _beyond(sub, subm[a], a, nvec, hh, tol):
+                    continue
+                if _beyond(sub, subm[b], b, -nvec, -hh, tol):
+                    continue
+                bad_a = a
+                bad_b = b
+                break
+        if anybad and bad_a < 0:
+            return _fail()
+        if bad_a < 0:
+            ok, pnv[p], pnf[p] = _finish_part(
+                PV[p],
+                pnv[p],
+                PF[p],
+                pnf[p],
+                PR[p],
+                R2,
+                S,
+                work,
+                k,
+                use,
+                grp,
+                ids,
+                T,
+                TN,
+                toff,
+                o,
+                tol,
+            )
+            if not ok:
+                return _fail()
+            done[p] = True
+            continue
+        # split the part where the two planes' signed distances are equal (the plane through
+        # their meeting line that bisects the wedge outside both); a's side keeps a
+        if nparts == PV.shape[0] or pdep[p] == pspl.shape[1]:
+            return _fail()
+        ta = ids[bad_a]
+        tb = ids[bad_b]
+        nx = TN[ta, 0] - TN[tb, 0]
+        ny = TN[ta, 1] - TN[tb, 1]
+        nz = TN[ta, 2] - TN[tb, 2]
+        nn = np.sqrt(nx * nx + ny * ny + nz * nz)
+        if nn < 1e-6:
+            return _fail()
+        nx /= nn
+        ny /= nn
+        nz /= nn
+        hh = (toff[bad_a] - toff[bad_b]) / nn
+        for a in range(k):  # a triangle in the split plane would be lost on both sides
+            if not use[a]:
+                continue
+            far = False
+            for j in range(subm[a]):
+                if abs(nx * sub[a, j, 0] + ny * sub[a, j, 1] + nz * sub[a, j, 2] - hh) > tol:
+                    far = True
+                    break
+            if not far:
+                return _fail()
+        q = nparts
+        nparts += 1
+        nv = pnv[p]
+        nf = pnf[p]
+        nr = ring_count(PF[p], nf)
+        for v in range(nv):
+            for c in range(3):
+                PV[q, v, c] = PV[p, v, c]
+        for f in range(nf):
+            for c in range(3):
+                PF[q, f, c] = PF[p, f, c]
+        for s in range(nr):
+            PR[q, s] = PR[p, s]
+        plane_values(PV[p], nv, nx, ny, nz, hh, tol, S)
+        for v in range(nv):
+            S2[v] = -S[v]
+        st, pnv[p], pnf[p] = cut(PV[p], nv, PF[p], nf, PR[p], R2, S, work, SPLIT)
+        if st == CUT_OVERFLOW or st == CUT_BROKEN:
+            return _fail()
+        if st == CUT_EMPTY:
+            done[p] = True  # nothing of it is left
+            pnf[p] = 0
+        st, pnv[q], pnf[q] = cut(PV[q], nv, PF[q], nf, PR[q], R2, S2, work, SPLIT)
+        if st == CUT_OVERFLOW or st == CUT_BROKEN:
+            return _fail()
+        pnf[q] = 0 if st == CUT_EMPTY else pnf[q]
+        done[q] = st == CUT_EMPTY
+        for d in range(pdep[p]):
+            for c in range(4):
+                pspl[q, d, c] = pspl[p, d, c]
+        pspl[p, pdep[p], 0] = nx
+        pspl[p, pdep[p], 1] = ny
+        pspl[p, pdep[p], 2] = nz
+        pspl[p, pdep[p], 3] = hh
+        pspl[q, pdep[p], 0] = -nx
+        pspl[q, pdep[p], 1] = -ny
+        pspl[q, pdep[p], 2] = -nz
+        pspl[q, pdep[p], 3] = -hh
+        pdep[q] = pdep[p] + 1
+        pdep[p] += 1
+    return _merge_parts(PV, PF, PR, pnv, pnf, nparts, ms, o, tol, out)
+
+
+@njit(**NJIT_PARALLEL)
+def convex_cells(
+    cells,
+    cf,
+    roff,
+    ring,
+    verts,
+    lab,
+    farea,
+    T,
+    TN,
+    TO,
+    lo,
+    h,
+    dims,
+    start,
+    items,
+    tol,
+    oV,
+    oF,
+    oR,
+    counts,
+    vol,
+    cen,
+    npc,
+):
+    """Cells the surface meets only where it is convex from their side, cut here exactly.
+
+    For each cell of ``cells`` (a :meth:`Diagram3D.cell_face_table` cell): the triangles
+    that meet it grown by ``tol`` (bucketed by :func:`tri_grid`; unit normals ``TN``,
+    offsets ``TO``), each clipped by the cell. When every clipped triangle lies inside
+    every other one's half-space (within ``tol``), the cell ∩ the solid is the cell cut by
+    those planes (coplanar triangles, within ``tol``, are one plane): the surface inside
+    the cell is then the cut's new faces, the solid is on their inner side, and the rest of
+    the cell, cut off by them, outside. It is checked: each new face, split along its
+    triangles' edges (new vertices also put into the neighbouring faces' rings), must lie
+    inside one of them (within ``tol``), which it is then labelled by (``-1 - t``); a face
+    of the cell lying in such a plane, or any limit passed, leaves the cell to the caller
+    (``counts[j] = 0``). Outputs per cell ``j``: slots of ``oV`` (vertices), ``oF``
+    (``label, ring length``), ``oR`` (rings, local vertex numbers), ``counts[j] = (nv, nf,
+    nr)``, ``vol[j]``, ``cen[j]``.
+    """
+    n = cells.shape[0]
+    nfc = farea.shape[0]
+    fpt = np.zeros((nfc, 3))
+    for f in prange(nfc):
+        v = ring[roff[f]]
+        for c in range(3):
+            fpt[f, c] = verts[v, c]
+    cv = oV.shape[0] // max(n, 1)
+    cfa = oF.shape[0] // max(n, 1)
+    cr = oR.shape[0] // max(n, 1)
+    nblk = (n + CC_BLOCK - 1) // CC_BLOCK
+    for blk in prange(nblk):
+        gsc = (
+            np.zeros(CC_TRIS, np.int64),
+            np.zeros(CC_SEEN, np.int64),
+            np.zeros(CC_TRIS, np.int64),
+            np.zeros((CC_TRIS, CC_POLY, 3)),
+            np.zeros((CC_POLY, 3)),
+            np.zeros((CC_POLY, 3)),
+        )
+        nm = CC_PARTS * CC_V
+        ms = (
+            np.zeros((nm, 3)),
+            np.zeros(nm, np.int64),
+            np.zeros(nm, np.bool_),
+            np.zeros((CC_PARTS * CC_F, 3), np.int64),
+            np.zeros(4 * CC_R, np.int64),
+            np.zeros(4 * CC_R, np.int64),
+            np.zeros(nm, np.int64),
+        )
+        sc = (
+            gsc,
+            np.zeros(CC_TRIS, np.int64),
+            np.zeros(CC_TRIS),
+            np.zeros(CC_TRIS, np.bool_),
+            np.zeros((CC_TRIS, CC_POLY, 3)),
+            np.zeros(CC_TRIS, np.int64),
+            np.zeros((CC_POLY, 3)),
+            np.zeros((CC_PARTS, CC_V, 3)),
+            np.zeros((CC_PARTS, CC_F, 3), np.int64),
+            np.zeros((CC_PARTS, CC_R), np.int64),
+            np.zeros(CC_PARTS, np.int64),
+            np.zeros(CC_PARTS, np.int64),
+            np.zeros((CC_PARTS, CC_DEPTH, 4)),
+            np.zeros(CC_PARTS, np.int64),
+            np.zeros(CC_R, np.int64),
+            np.zeros(CC_V),
+            np.zeros(CC_V),
+            np.zeros((CC_R, 4), np.int64),
+            np.zeros(CC_V, np.int64),
+            ms,
+        )
+        for j in range(blk * CC_BLOCK, min(n, (blk + 1) * CC_BLOCK)):
+            out = (
+                oV[j * cv : (j + 1) * cv],
+                oF[j * cfa : (j + 1) * cfa],
+                oR[j * cr : (j + 1) * cr],
+            )
+            r = _convex_cell(
+                cells[j],
+                cf,
+                roff,
+                ring,
+                verts,
+                lab,
+                farea,
+                fpt,
+                T,
+                TN,
+                TO,
+                lo,
+                h,
+                dims,
+                start,
+                items,
+                tol,
+                sc,
+                out,
+            )
+            counts[j, 0] = r[0]
+            counts[j, 1] = r[1]
+            counts[j, 2] = r[2]
+            vol[j] = r[3]
+            cen[j, 0] = r[4]
+            cen[j, 1] = r[5]
+            cen[j, 2] = r[6]
+            npc[j] = r[7]
