@@ -188,7 +188,7 @@ def test_drag_recomputes_the_neighbourhood_and_settles_to_the_full_compute(name)
 def test_compute_workers_give_the_same_cells():
     design, _ = load({**HOLED, "seeds": {"method": "random", "count": 700}})
     one = compute(design, frame=False)
-    three = compute(design, frame=False, workers=3)  # the studio passes its core count
+    three = compute(design, frame=False, workers=3)  # threads split the cells
     assert _wkb(one.cells) == _wkb(three.cells) and len(one.cells) >= 3 * 200
     bad, _ = load({**HOLED, "seeds": {"method": "random", "count": 700}, "cells": {"web": -1}})
     with pytest.raises(DesignError, match="cells"):

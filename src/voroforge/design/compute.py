@@ -649,7 +649,8 @@ def compute(
         the boundary minus their union, the slowest step for cells without webs).
     workers : int
         Threads for the cell operations (inset, fillet, ...) of many cells; the result is
-        the same (an editor on a multi-core machine passes its core count).
+        the same with any count (GEOS's buffers run in parallel; the convex cells' numpy
+        mostly holds the GIL, so the studio passes 1).
 
     Returns
     -------
