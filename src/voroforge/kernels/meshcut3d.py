@@ -764,21 +764,26 @@ def convex_cells(
     cen,
     npc,
 ):
-    """Cells the surface meets only where it is convex from their side, cut here exactly.
+    """The cells ``cells`` ∩ the solid, cut here where that is provably exact.
 
-    For each cell of ``cells`` (a :meth:`Diagram3D.cell_face_table` cell): the triangles
-    that meet it grown by ``tol`` (bucketed by :func:`tri_grid`; unit normals ``TN``,
+    For each cell (a :meth:`Diagram3D.cell_face_table` cell): the triangles that meet it
+    grown by ``tol`` (bucketed by :func:`kernels.meshclip3d.tri_grid`; unit normals ``TN``,
     offsets ``TO``), each clipped by the cell. When every clipped triangle lies inside
     every other one's half-space (within ``tol``), the cell ∩ the solid is the cell cut by
     those planes (coplanar triangles, within ``tol``, are one plane): the surface inside
     the cell is then the cut's new faces, the solid is on their inner side, and the rest of
-    the cell, cut off by them, outside. It is checked: each new face, split along its
-    triangles' edges (new vertices also put into the neighbouring faces' rings), must lie
-    inside one of them (within ``tol``), which it is then labelled by (``-1 - t``); a face
-    of the cell lying in such a plane, or any limit passed, leaves the cell to the caller
-    (``counts[j] = 0``). Outputs per cell ``j``: slots of ``oV`` (vertices), ``oF``
-    (``label, ring length``), ``oR`` (rings, local vertex numbers), ``counts[j] = (nv, nf,
-    nr)``, ``vol[j]``, ``cen[j]``.
+    the cell, cut off by them, outside. Where a pair is inconsistent (a reflex edge, a
+    saddle), the cell is split by the plane where the two planes' signed distances are
+    equal (it bisects the wedge outside both and separates the pair) and each part is
+    treated alike, with the triangles that meet it by more than ``tol``; the parts are then
+    joined (split faces dropped, their vertices merged within ``tol``). Checked: each new
+    face, split along its triangles' edges (new vertices also put into the neighbouring
+    faces' rings), must lie inside one of them (within ``tol``), which it is then labelled
+    by (``-1 - t``), and the joined cell must be closed (each edge exactly one twin); a
+    face of the cell lying in such a plane, a pair no bisector separates, or any limit
+    passed leaves the cell to the caller (``counts[j] = 0``). Outputs per cell ``j``: slots
+    of ``oV`` (vertices), ``oF`` (``label, ring length``), ``oR`` (rings, local vertex
+    numbers), ``counts[j] = (nv, nf, nr)``, ``vol[j]``, ``cen[j]``, ``npc[j]`` (pieces).
     """
     n = cells.shape[0]
     nfc = farea.shape[0]
