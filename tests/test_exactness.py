@@ -320,3 +320,22 @@ def test_collinear_plus_one_same_cells():
     for alg in ("fortune", "halfplane"):
         d = vf.voronoi(pts, boundary, algorithm=alg)
         np.testing.assert_allclose(d.areas, ref.areas, rtol=1e-9, atol=1e-15)
+
+
+def test_unrepresentable_cells_flagged_on_the_box_sides_too():
+    """A lattice one ulp apart (2.5e15, step 0.5): its cells' corners are not floats.
+
+    Every distinct site in the box, sides included, has a cell of positive area (a disc
+    around it, halved on a side), so a site left without a ring is in ``unresolved`` for
+    every algorithm; before, sites on the box's sides were lost silently.
+    """
+    off = 2.5e15
+    x, y = np.meshgrid(np.arange(4) * 0.5 + off, np.arange(3) * 0.5 - off * 0.7)
+    pts = np.column_stack((x.ravel(), y.ravel()))
+    box = (off - 0.25, -off * 0.7 - 0.25, off + 1.75, -off * 0.7 + 1.25)  # x sides round onto sites
+    for alg in ALGS:
+        d = vf.voronoi(pts, box, algorithm=alg)
+        empty = np.flatnonzero(shapely.is_empty(np.asarray(d.cells, dtype=object)))
+        assert len(empty), alg  # the input is what it claims to be
+        assert set(empty.tolist()) <= set(d.unresolved.tolist()), alg
+        assert (pts[empty, 0] == box[0]).any(), alg  # ... with sites on a side among them

@@ -106,11 +106,15 @@ def _closed_cells(xs, ys, box, algorithm, kmap):
 
 
 def _lost(xs, ys, box, lengths):
-    """Distinct sites strictly inside ``box`` whose ring is empty (they own a cell)."""
+    """Distinct sites in ``box`` (its sides included) whose ring is empty.
+
+    Each owns a cell of positive area there: a disc around a distinct site is its own, and
+    a site on a side keeps half of it (a quarter at a corner).
+    """
     empty = lengths[1:] == lengths[:-1]
     if not empty.any():
         return np.zeros(0, dtype=np.intp)  # (most diagrams: no site-by-site test)
-    inside = (box[0] < xs) & (xs < box[2]) & (box[1] < ys) & (ys < box[3])
+    inside = (box[0] <= xs) & (xs <= box[2]) & (box[1] <= ys) & (ys <= box[3])
     return np.flatnonzero(inside & empty)
 
 
