@@ -49,6 +49,13 @@ def _holed():
     return _bool(_box((-1, -1, -0.5), (1, 1, 0.5)), cyl, "minus")
 
 
+def _cavity():
+    # a spherical hollow cut out of a box's corner: the surface is concave from the inside
+    ball = trimesh.creation.icosphere(subdivisions=2, radius=0.9)
+    ball.apply_translation([2, 2, 2])
+    return _bool(_box((0, 0, 0), (2, 2, 2)), ball, "minus")
+
+
 def _check_mesh_diagram(d, mesh, pts):
     vol = abs(mesh.volume)
     assert abs(d.volumes.sum() - vol) <= 1e-9 * vol
@@ -269,11 +276,14 @@ def _wall_areas(d):
     return out
 
 
-@pytest.mark.parametrize("make", [_torus, _lbracket, _holed], ids=["torus", "lbracket", "holed"])
+@pytest.mark.parametrize(
+    "make", [_torus, _lbracket, _holed, _cavity], ids=["torus", "lbracket", "holed", "cavity"]
+)
 def test_convex_cuts_against_manifold(make, monkeypatch):
-    # cells that meet the surface only where it is convex from their side are cut by their
-    # own planes (kernels/meshcut3d.convex_cells); manifold3d's boolean gives the same
-    # volumes (to the rounding of its absolute coordinates), pieces and walls
+    # cells that the surface meets are cut by our kernel (kernels/meshcut3d.convex_cells:
+    # by the triangles' planes, split into convex parts at reflex edges and saddles);
+    # manifold3d's boolean gives the same volumes (to the rounding of its absolute
+    # coordinates), pieces and walls
     import voroforge.engine.mesh3d as m3d
 
     mesh = make()
