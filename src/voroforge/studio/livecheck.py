@@ -107,17 +107,20 @@ class LiveCheck:
         sub = holes[new]
         for i in new:
             self._single[wkb[i]] = []
-        one = check(
-            openings=sub,
-            boundary=boundary,
-            min_opening=limits["min_opening"],
-            min_inside_radius=limits["min_inside_radius"],
-            corner_tolerance=tol,
-            islands=False,
-        )
-        for v in one.violations:
-            if v.items and v.items[0] >= 0:
-                self._single[wkb[new[v.items[0]]]].append(v)
+        if limits["min_opening"] is not None or limits["min_inside_radius"] is not None:
+            # (without either limit check() finds nothing here: 175 of a 2,000-opening
+            # check's 220 ms went to building its frame for nothing)
+            one = check(
+                openings=sub,
+                boundary=boundary,
+                min_opening=limits["min_opening"],
+                min_inside_radius=limits["min_inside_radius"],
+                corner_tolerance=tol,
+                islands=False,
+            )
+            for v in one.violations:
+                if v.items and v.items[0] >= 0:
+                    self._single[wkb[new[v.items[0]]]].append(v)
         web = limits["min_web"]
         if not web:
             return
