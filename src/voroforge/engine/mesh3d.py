@@ -43,23 +43,27 @@ class MeshContainer:
 def _edge_report(F: np.ndarray) -> str | None:
     """None for a closed 2-manifold with consistent orientation, else what is wrong."""
     e = np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]])
-    key = np.sort(e, axis=1)
-    uniq, inv, cnt = np.unique(key, axis=0, return_inverse=True, return_counts=True)
-    bad = uniq[cnt != 2]
-    if len(bad):
+    nv = int(F.max()) + 1  # edges as one integer each (a 1-D unique: ~5x faster than rows)
+    lo, hi = e.min(axis=1), e.max(axis=1)
+    uniq, cnt = np.unique(lo * nv + hi, return_counts=True)
+    if (cnt != 2).any():
         kinds = cnt[cnt != 2]
-        show = ", ".join(f"({a}, {b}) x{k}" for (a, b), k in zip(bad[:5], kinds[:5], strict=True))
+        bad = uniq[cnt != 2]
+        show = ", ".join(
+            f"({a}, {b}) x{k}"
+            for a, b, k in zip(bad[:5] // nv, bad[:5] % nv, kinds[:5], strict=True)
+        )
         what = "open" if (kinds == 1).any() else "non-manifold"
         return (
             f"the container mesh is {what}: {len(bad)} edges not shared by exactly two "
             f"faces ({show})"
         )
-    d, dc = np.unique(e, axis=0, return_counts=True)
+    d, dc = np.unique(e[:, 0] * nv + e[:, 1], return_counts=True)
     if (dc > 1).any():
-        a, b = d[dc > 1][0]
+        k = int(d[dc > 1][0])
         return (
             "the container mesh is not consistently oriented "
-            f"(edge ({a}, {b}) runs the same way twice)"
+            f"(edge ({k // nv}, {k % nv}) runs the same way twice)"
         )
     return None
 
