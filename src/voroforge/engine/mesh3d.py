@@ -360,7 +360,6 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     q = np.ascontiguousarray(np.asarray(d.centroids)[test])
     ins[test] = inside_mesh(q, V, F, g, start, items)
     keep = live & ~cand & ins
-    whole = _manifold(Vl, F, np.arange(len(F)))
     vol = np.where(keep, d.volumes, 0.0)
     cen = np.where(keep[:, None], d.centroids, np.nan)
     pieces = np.where(keep, 1, 0).astype(np.int64)
@@ -386,6 +385,8 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
         todo = np.setdiff1d(todo, cells, assume_unique=True)
     done = 0
     for batch in _apart(todo, cf, roff, ring, len(verts)):
+        if done == 0:  # the container for manifold3d, only when some cell needs it
+            whole = _manifold(Vl, F, np.arange(len(F)))
         r = _cut_split(batch, (cf, roff, ring, vl, lab, len(F), whole))
         ov, cells, ntri, ot, labels, v, ce, npc = r
         cut[cells] = True
