@@ -100,6 +100,20 @@ def _shadowed_at_box(i, j, k, side, xs, ys, box):
 
 
 @njit(**NJIT)
+def _shadowing(i, j, side, cand, nc, sidx, xs, ys, box):
+    """A site among ``cand[:nc]`` a few ulps from ``j`` and nearer than it at ``j``'s box end.
+
+    That is where the bisector of ``i, j`` meets box side ``side``
+    (:func:`_shadowed_at_box`); -1 when there is none.
+    """
+    for c in range(nc):
+        x = sidx[cand[c]]
+        if x != j and x != i and _shadowed_at_box(i, j, x, side, xs, ys, box):
+            return x
+    return -1
+
+
+@njit(**NJIT)
 def _remove(lab, m, u):
     for k in range(u, m - 1):
         lab[k] = lab[k + 1]
@@ -176,6 +190,19 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
         for u in range(m):
             a = lab[u - 1] if u > 0 else lab[m - 1]
             b = lab[u]
+            if (a < 0) != (b < 0) and m < cap:
+                # a site's edge meeting a box side: a site a few ulps from it that is
+                # nearer there owns the edge's end (their bisectors with i coincide in
+                # floats, and the cut kept one of them)
+                work += nc
+                x = _shadowing(i, b if a < 0 else a, b if b < 0 else a, cand, nc, sidx, xs, ys, box)
+                if x >= 0 and not _has(lab, m, x):
+                    for k in range(m, u, -1):
+                        lab[k] = lab[k - 1]
+                    lab[u] = x
+                    m += 1
+                    inserted = True
+                    break
             if a < 0 or b < 0:
                 continue
             ix = xs[i]
