@@ -270,8 +270,9 @@ def _convex_part(todo, cf, lab, farea, roff, ring, verts, grid, tol):
     them: vertices, cells, faces per cell, flat rings into the vertices, ring lengths,
     labels), or None when it cut none.
     """
+    import numba
+
     from ..kernels import meshcut3d as mc
-    from .threads import serial_below
 
     T, lo, h, dims, start, items = grid
     k = len(todo)
@@ -289,15 +290,21 @@ def _convex_part(todo, cf, lab, farea, roff, ring, verts, grid, tol):
     vol = np.zeros(k)
     cen = np.zeros((k, 3))
     npc = np.zeros(k, np.int64)
-    with serial_below(k):
+    lab = np.asarray(lab, np.int64)
+    farea = np.ascontiguousarray(farea)
+    fpt = np.ascontiguousarray(verts[ring[roff[:-1]]])  # a point of each face
+    cells = np.asarray(todo, np.int64)
+
+    def part(a, b):  # the kernel releases the GIL: threads take slices of the cells
         mc.convex_cells(
-            np.asarray(todo, np.int64),
+            cells[a:b],
             cf,
             roff,
             ring,
             verts,
-            np.asarray(lab, np.int64),
-            np.ascontiguousarray(farea),
+            lab,
+            farea,
+            fpt,
             T,
             tn,
             to,
@@ -307,14 +314,24 @@ def _convex_part(todo, cf, lab, farea, roff, ring, verts, grid, tol):
             start,
             items,
             tol,
-            oV,
-            oF,
-            oR,
-            counts,
-            vol,
-            cen,
-            npc,
+            oV[a * mc.CC_OUT_V : b * mc.CC_OUT_V],
+            oF[a * mc.CC_OUT_F : b * mc.CC_OUT_F],
+            oR[a * mc.CC_OUT_R : b * mc.CC_OUT_R],
+            counts[a:b],
+            vol[a:b],
+            cen[a:b],
+            npc[a:b],
         )
+
+    nth = max(1, min(numba.get_num_threads(), k // 256))  # ~40 us a cell: threads from 256
+    if nth == 1:
+        part(0, k)
+    else:  # 8 slices a thread, taken as threads come free (a loaded machine)
+        from concurrent.futures import ThreadPoolExecutor
+
+        bounds = np.linspace(0, k, 8 * nth + 1).astype(int)
+        with ThreadPoolExecutor(nth) as pool:
+            list(pool.map(part, bounds[:-1], bounds[1:]))
     ok = np.flatnonzero(counts[:, 0] > 0)
     if not len(ok):
         return None

@@ -13,9 +13,9 @@ holds them, relative to the cell's first vertex.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit, prange
+from numba import njit
 
-from ..config import NJIT, NJIT_PARALLEL
+from ..config import NJIT
 from .meshclip3d import clip_triangle
 from .polyhedron import (
     CUT_BROKEN,
@@ -738,7 +738,7 @@ def _convex_cell(
     return _merge_parts(PV, PF, PR, pnv, pnf, nparts, ms, o, tol, out)
 
 
-@njit(**NJIT_PARALLEL)
+@njit(**NJIT)
 def convex_cells(
     cells,
     cf,
@@ -747,6 +747,7 @@ def convex_cells(
     verts,
     lab,
     farea,
+    fpt,
     T,
     TN,
     TO,
@@ -766,7 +767,9 @@ def convex_cells(
 ):
     """The cells ``cells`` ∩ the solid, cut here where that is provably exact.
 
-    For each cell (a :meth:`Diagram3D.cell_face_table` cell): the triangles that meet it
+    One thread (callers run slices of the cells on threads; it releases the GIL; ``fpt``:
+    a point of each face). For each cell (a :meth:`Diagram3D.cell_face_table` cell): the
+    triangles that meet it
     grown by ``tol`` (bucketed by :func:`kernels.meshclip3d.tri_grid`; unit normals ``TN``,
     offsets ``TO``), each clipped by the cell. When every clipped triangle lies inside
     every other one's half-space (within ``tol``), the cell ∩ the solid is the cell cut by
@@ -786,17 +789,11 @@ def convex_cells(
     numbers), ``counts[j] = (nv, nf, nr)``, ``vol[j]``, ``cen[j]``, ``npc[j]`` (pieces).
     """
     n = cells.shape[0]
-    nfc = farea.shape[0]
-    fpt = np.zeros((nfc, 3))
-    for f in prange(nfc):
-        v = ring[roff[f]]
-        for c in range(3):
-            fpt[f, c] = verts[v, c]
     cv = oV.shape[0] // max(n, 1)
     cfa = oF.shape[0] // max(n, 1)
     cr = oR.shape[0] // max(n, 1)
     nblk = (n + CC_BLOCK - 1) // CC_BLOCK
-    for blk in prange(nblk):
+    for blk in range(nblk):
         gsc = (
             np.zeros(CC_TRIS, np.int64),
             np.zeros(CC_SEEN, np.int64),
