@@ -62,6 +62,31 @@ def _meets(T, t, cell_lo, cell_hi, f0, f1, farea, fpt, tol, buf_a, buf_b):
     return m > 0
 
 
+@njit(**NJIT)
+def cell_buckets(f0, f1, roff, ring, verts, tol, lo, h, dims):
+    """A cell's box grown by ``tol`` and its bucket range ``a0..a1`` (per axis, inclusive).
+
+    The cell is faces ``f0:f1`` of the rings ``roff``/``ring`` into ``verts``; the grid is
+    :func:`tri_grid`'s (origin ``lo``, bucket side ``h``, ``dims`` buckets per axis).
+    Returns ``(cell_lo, cell_hi, a0, a1)``.
+    """
+    cell_lo = np.full(3, np.inf)
+    cell_hi = np.full(3, -np.inf)
+    for s in range(roff[f0], roff[f1]):
+        v = ring[s]
+        for c in range(3):
+            cell_lo[c] = min(cell_lo[c], verts[v, c])
+            cell_hi[c] = max(cell_hi[c], verts[v, c])
+    a0 = np.zeros(3, np.int64)
+    a1 = np.zeros(3, np.int64)
+    for c in range(3):
+        cell_lo[c] -= tol
+        cell_hi[c] += tol
+        a0[c] = min(dims[c] - 1, max(0, int((cell_lo[c] - lo[c]) / h)))
+        a1[c] = min(dims[c] - 1, max(0, int((cell_hi[c] - lo[c]) / h)))
+    return cell_lo, cell_hi, a0, a1
+
+
 @njit(**NJIT_PARALLEL)
 def touching_cells(cf, roff, ring, verts, farea, live, T, lo, h, dims, start, items, tol):
     """``(n,) bool``: the cells that some triangle of ``T (m, 3, 3)`` meets.
@@ -83,20 +108,7 @@ def touching_cells(cf, roff, ring, verts, farea, live, T, lo, h, dims, start, it
         if not live[i]:
             continue
         f0, f1 = cf[i], cf[i + 1]
-        cell_lo = np.full(3, np.inf)
-        cell_hi = np.full(3, -np.inf)
-        for s in range(roff[f0], roff[f1]):
-            v = ring[s]
-            for c in range(3):
-                cell_lo[c] = min(cell_lo[c], verts[v, c])
-                cell_hi[c] = max(cell_hi[c], verts[v, c])
-        a0 = np.zeros(3, np.int64)
-        a1 = np.zeros(3, np.int64)
-        for c in range(3):
-            cell_lo[c] -= tol
-            cell_hi[c] += tol
-            a0[c] = min(dims[c] - 1, max(0, int((cell_lo[c] - lo[c]) / h)))
-            a1[c] = min(dims[c] - 1, max(0, int((cell_hi[c] - lo[c]) / h)))
+        cell_lo, cell_hi, a0, a1 = cell_buckets(f0, f1, roff, ring, verts, tol, lo, h, dims)
         buf_a = np.zeros((3 + f1 - f0, 3))
         buf_b = np.zeros((3 + f1 - f0, 3))
         hit = False

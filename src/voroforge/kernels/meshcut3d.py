@@ -16,7 +16,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
-from .meshclip3d import clip_triangle
+from .meshclip3d import cell_buckets, clip_triangle
 from .polyhedron import (
     CUT_BROKEN,
     CUT_DONE,
@@ -279,20 +279,7 @@ def _gather(i, cf, roff, ring, verts, farea, fpt, T, TO, lo, h, dims, start, ite
     f0, f1 = cf[i], cf[i + 1]
     if f1 - f0 + 3 > polys.shape[1]:
         return -1
-    cell_lo = np.full(3, np.inf)
-    cell_hi = np.full(3, -np.inf)
-    for s in range(roff[f0], roff[f1]):
-        v = ring[s]
-        for c in range(3):
-            cell_lo[c] = min(cell_lo[c], verts[v, c])
-            cell_hi[c] = max(cell_hi[c], verts[v, c])
-    a0 = np.zeros(3, np.int64)
-    a1 = np.zeros(3, np.int64)
-    for c in range(3):
-        cell_lo[c] -= tol
-        cell_hi[c] += tol
-        a0[c] = min(dims[c] - 1, max(0, int((cell_lo[c] - lo[c]) / h)))
-        a1[c] = min(dims[c] - 1, max(0, int((cell_hi[c] - lo[c]) / h)))
+    cell_lo, cell_hi, a0, a1 = cell_buckets(f0, f1, roff, ring, verts, tol, lo, h, dims)
     k = 0
     ns = 0
     for a in range(a0[0], a1[0] + 1):
