@@ -30,7 +30,7 @@ FAMILIES = [
     "lattice_offset_none",
     "float_circle_64",
     "float_circle_257",
-    "float_circle_513",
+    "float_circle_205",
     "float_circles_concentric",
     "float_circle_64_small_off",
     "float_circle_128_tiny_off",

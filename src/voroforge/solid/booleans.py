@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["from_manifold", "manifold_status", "to_manifold", "trim"]
+__all__ = ["from_manifold", "manifold_status", "status_name", "to_manifold", "trim"]
 
 
 def to_manifold(m):
@@ -18,9 +18,14 @@ def to_manifold(m):
     return manifold3d.Manifold(mesh)
 
 
+def status_name(man) -> str:
+    """A ``manifold3d.Manifold``'s status as a name: ``"NoError"`` when it is valid."""
+    return str(man.status()).split(".")[-1]
+
+
 def manifold_status(m) -> str:
     """manifold3d's verdict on a mesh: ``"NoError"`` when it is a closed 2-manifold."""
-    return str(to_manifold(m).status()).split(".")[-1]
+    return status_name(to_manifold(m))
 
 
 def from_manifold(man):
@@ -34,7 +39,7 @@ def from_manifold(man):
 
 
 def _check(man, what: str):
-    status = str(man.status()).split(".")[-1]
+    status = status_name(man)
     if status != "NoError":
         raise ValueError(f"{what}: manifold3d rejects the mesh ({status}); is it closed?")
     return man

@@ -134,13 +134,13 @@ def _shown(m, view, cut: bool):
     """
     from ..config import SOLID_PREVIEW_SIMPLIFY
     from ..io.render3d import _rotation
-    from .booleans import from_manifold, to_manifold
+    from .booleans import from_manifold, status_name, to_manifold
 
     big = len(m.faces) > _PREVIEW_FACES
     if not (cut or big):
         return m
     man = to_manifold(m)
-    if str(man.status()).split(".")[-1] != "NoError":
+    if status_name(man) != "NoError":
         return m
     if big:
         man = man.simplify(float(m.scale) * SOLID_PREVIEW_SIMPLIFY)
