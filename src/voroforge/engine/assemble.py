@@ -4,11 +4,14 @@ The kernels return, per site, one closed counter-clockwise ring clipped to the d
 bounding box, with the neighbour that owns each edge. :func:`assemble` is the one routine that
 turns them into a diagram's buffers and edges for every construction (Voronoi, power,
 periodic): it expands the rings to all input sites (duplicates get empty cells), clips them
-to non-rectangular domains, and extracts the unique shared edges. :func:`from_shapely` and
+to non-rectangular domains, and extracts the unique shared edges when they are first read
+(:class:`~voroforge.engine.diagram.LazyEdges`). :func:`from_shapely` and
 :func:`first_cells` build and cut buffers for the periodic diagrams.
 """
 
 from __future__ import annotations
+
+from functools import partial
 
 import numpy as np
 import shapely
@@ -16,8 +19,9 @@ import shapely
 from ..config import EDGE_LENGTH_RTOL
 from ..kernels.domain_grid import classify, mark_segments, scanline_inside
 from ..kernels.rings import shared_edges
-from .diagram import Edges
+from .diagram import Edges, LazyEdges
 from .domain import Domain
+from .threads import serial_below
 
 
 def assemble(dom: Domain, closed, lengths, owner, n: int, cell_ids=None):
@@ -43,8 +47,9 @@ def assemble(dom: Domain, closed, lengths, owner, n: int, cell_ids=None):
     -------
     buffers : tuple
         GeoArrow multipolygon buffers ``(coords, ring, poly, geom)`` of the ``n`` cells.
-    edges : Edges
-        Each shared edge once, clipped to the domain.
+    edges : LazyEdges
+        Each shared edge once, clipped to the domain: computed when first read (it keeps
+        the rings and the domain's grid until then).
     """
     nonempty = lengths[1:] > lengths[:-1]
     ring_offsets = np.concatenate(([0], lengths[1:][nonempty]))
@@ -53,15 +58,21 @@ def assemble(dom: Domain, closed, lengths, owner, n: int, cell_ids=None):
     if not dom.is_rect:
         grid = domain_grid(dom, len(ring_cell))
         pieces = _Pieces(dom, closed, ring_offsets, ring_cell, n)
-    edge_coords, edge_pairs = domain_edges(
-        dom, grid, pieces, closed, ring_offsets, ring_cell, owner
+    edges = LazyEdges(
+        partial(_edges_later, n, dom, grid, pieces, closed, ring_offsets, ring_cell, owner)
     )
     if dom.is_rect:
         polys = np.arange(len(ring_cell) + 1, dtype=np.int64)
         bufs = (closed, ring_offsets, polys, geom_offsets_for(n, ring_cell))
     else:
         bufs = clip_to_polygon(dom, grid, pieces, closed, ring_offsets, ring_cell, n)
-    return bufs, Edges(edge_coords, edge_pairs)
+    return bufs, edges
+
+
+def _edges_later(n, dom, *args) -> Edges:
+    """:func:`domain_edges` of :func:`assemble`'s rings, under the engine's thread policy."""
+    with serial_below(n):
+        return Edges(*domain_edges(dom, *args))
 
 
 def from_shapely(cells: np.ndarray):

@@ -8,6 +8,8 @@ through a diagram's private attributes.
 
 from __future__ import annotations
 
+import threading
+from collections.abc import Callable
 from functools import cached_property
 from typing import NamedTuple
 
@@ -33,6 +35,54 @@ class Edges(NamedTuple):
 
     coords: np.ndarray
     pairs: np.ndarray
+
+
+class LazyEdges:
+    """:class:`Edges` computed on first use (once, read-only), then kept.
+
+    The engine builds a diagram's cells eagerly and its shared edges only when something
+    reads them (:attr:`Diagram.edges`, :attr:`Diagram.neighbors`): many callers (a design's
+    cell operations, an editor's redraw) never do.
+
+    Parameters
+    ----------
+    make : callable
+        Called with no arguments, once; returns the :class:`Edges`. Dropped after the call
+        (with whatever it holds).
+    """
+
+    def __init__(self, make: Callable[[], Edges]):
+        self._make = make
+        self._value: Edges | None = None
+        self._lock = threading.Lock()
+
+    def resolve(self) -> Edges:
+        """The edges, computed now if not yet (their arrays read-only)."""
+        if self._value is None:
+            with self._lock:
+                if self._value is None:
+                    value = self._make()
+                    for arr in value:
+                        arr.setflags(write=False)
+                    self._value, self._make = value, None
+        return self._value
+
+    @property
+    def coords(self) -> np.ndarray:
+        """(m, 2, 2) float64 end points (see :class:`Edges`)."""
+        return self.resolve().coords
+
+    @property
+    def pairs(self) -> np.ndarray:
+        """(m, 2) int64 cell pairs (see :class:`Edges`)."""
+        return self.resolve().pairs
+
+    def __getstate__(self):  # pickled as the edges themselves
+        return {"_value": self.resolve()}
+
+    def __setstate__(self, state):
+        self._value, self._make = state["_value"], None
+        self._lock = threading.Lock()
 
 
 class Diagram:
@@ -75,18 +125,21 @@ class Diagram:
         self.duplicate_of = duplicate_of
         self._domain = domain
         self._buffers = buffers
-        self._edges = edges
+        self._edges = edges  # Edges, or LazyEdges until read (see the edges property)
         self.algorithm = algorithm
         self.unresolved = np.zeros(0, np.int64) if unresolved is None else unresolved
-        for arr in (sites, duplicate_of, self.unresolved, *buffers, *edges):
+        for arr in (sites, duplicate_of, self.unresolved, *buffers):
             arr.setflags(write=False)
+        if not isinstance(edges, LazyEdges):
+            for arr in edges:
+                arr.setflags(write=False)
 
     def __len__(self) -> int:
         return len(self.sites)
 
     def __repr__(self) -> str:
         return (
-            f"Diagram(sites={len(self.sites)}, edges={len(self._edges.pairs)}, "
+            f"Diagram(sites={len(self.sites)}, edges={len(self.edges.pairs)}, "
             f"bounds={self.bounds}, algorithm={self.algorithm!r})"
         )
 
@@ -169,13 +222,19 @@ class Diagram:
 
     @property
     def edges(self) -> Edges:
-        """Unique shared edges (each once) with the pair of cells they separate."""
-        return self._edges
+        """Unique shared edges (each once) with the pair of cells they separate.
+
+        Computed on first use (most callers of the engine read only the cells), then kept.
+        """
+        edges = self._edges
+        if isinstance(edges, LazyEdges):
+            edges = self._edges = edges.resolve()
+        return edges
 
     @cached_property
     def neighbors(self) -> tuple[np.ndarray, np.ndarray]:
         """CSR ``(indptr, indices)`` of cells sharing an edge of positive length."""
-        pairs = self._edges.pairs
+        pairs = self.edges.pairs
         return csr_from_pairs(len(self.sites), pairs[:, 0], pairs[:, 1])
 
     @cached_property
