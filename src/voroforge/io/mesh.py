@@ -28,15 +28,36 @@ from __future__ import annotations
 
 import io
 import re
+import sys
 import zipfile
 from pathlib import Path
+from typing import NamedTuple
 from xml.etree import ElementTree as ET
 
 import numpy as np
 
 from .atomic import write_atomically, write_bytes
 
-__all__ = ["FORMATS", "UNITS", "read", "write", "write_curves_3dm"]
+__all__ = ["FORMATS", "UNITS", "Arrays", "read", "write", "write_curves_3dm"]
+
+
+class Arrays(NamedTuple):
+    """A triangle mesh as bare arrays, for :func:`write` where a Trimesh would only hold them.
+
+    3MF, PLY (one body) and ``.3dm`` are written from it without importing trimesh (about a
+    quarter of a second of a first run); the other formats make a Trimesh of it
+    (``process=False``), so a file is the same whichever of the two is given.
+
+    Attributes
+    ----------
+    vertices : (n, 3) float64
+    faces : (t, 3) int
+        Indices into ``vertices``.
+    """
+
+    vertices: np.ndarray
+    faces: np.ndarray
+
 
 #: Suffixes :func:`write` and :func:`read` understand.
 FORMATS = (".stl", ".3mf", ".obj", ".glb", ".ply", ".3dm")
@@ -84,11 +105,24 @@ def _units(units: str) -> str:
     return units
 
 
-def _named(meshes) -> list[tuple[str, object]]:
-    """``(name, Trimesh)`` pairs from one mesh, a sequence or a mapping."""
+def _is_mesh(m) -> bool:
+    """A Trimesh or :class:`Arrays` (a Trimesh exists only once trimesh was imported)."""
+    tm = sys.modules.get("trimesh")
+    return isinstance(m, Arrays) or (tm is not None and isinstance(m, tm.Trimesh))
+
+
+def _trimesh(m):
+    """``m`` as a Trimesh (an :class:`Arrays` wrapped as it is, ``process=False``)."""
+    if not isinstance(m, Arrays):
+        return m
     import trimesh
 
-    if isinstance(meshes, trimesh.Trimesh):
+    return trimesh.Trimesh(m.vertices, m.faces, process=False)
+
+
+def _named(meshes) -> list[tuple[str, object]]:
+    """``(name, mesh)`` pairs from one mesh, a sequence or a mapping (Trimesh or Arrays)."""
+    if _is_mesh(meshes):
         items = [("body", meshes)]
     elif isinstance(meshes, dict):
         items = [(str(k), v) for k, v in meshes.items()]
@@ -97,7 +131,7 @@ def _named(meshes) -> list[tuple[str, object]]:
     if not items:
         raise ValueError("nothing to write: no meshes given")
     for name, m in items:
-        if not isinstance(m, trimesh.Trimesh):
+        if not _is_mesh(m):
             raise ValueError(f"{name}: expected a trimesh.Trimesh, got {type(m).__name__}")
         if len(m.faces) == 0:
             raise ValueError(f"{name}: the mesh has no faces")
@@ -352,9 +386,9 @@ def write(mesh_or_meshes, path, *, units: str = "mm") -> Path:
     Parameters
     ----------
     mesh_or_meshes : trimesh.Trimesh, sequence of them, or mapping name -> Trimesh
-        What to write. Several meshes become separate objects (3MF objects, OBJ ``o``
-        groups, GLB nodes, ``.3dm`` mesh objects on layers named after them); STL and PLY
-        hold one body, so several are concatenated.
+        What to write (each mesh may also be an :class:`Arrays`). Several meshes become
+        separate objects (3MF objects, OBJ ``o`` groups, GLB nodes, ``.3dm`` mesh objects on
+        layers named after them); STL and PLY hold one body, so several are concatenated.
     path : str or Path
         ``.stl`` (binary), ``.3mf``, ``.obj``, ``.glb``, ``.ply`` (binary) or ``.3dm``.
     units : {"mm", "um", "cm", "m", "in", "ft"}
@@ -365,8 +399,6 @@ def write(mesh_or_meshes, path, *, units: str = "mm") -> Path:
     Path
         The file written.
     """
-    import trimesh
-
     path = Path(path)
     kind = _suffix(path)
     units = _units(units)
@@ -375,6 +407,11 @@ def write(mesh_or_meshes, path, *, units: str = "mm") -> Path:
         return _atomic(path, _3mf_bytes(items, units))
     if kind == ".3dm":
         return _3dm_write(items, path, units)
+    if kind == ".ply" and len(items) == 1:
+        return _atomic(path, _ply_bytes(items[0][1]))
+    import trimesh
+
+    items = [(name, _trimesh(m)) for name, m in items]
     if kind in (".stl", ".ply"):
         m = items[0][1] if len(items) == 1 else trimesh.util.concatenate([m for _, m in items])
         if kind == ".ply":

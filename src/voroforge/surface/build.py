@@ -138,11 +138,12 @@ def surface_panels(design, base: Path | None = None, *, progress=None):
 
 
 def _solids(sec: SurfaceSection, panels):
+    """The panel solids as :class:`voroforge.io.mesh.Arrays` (written without trimesh)."""
     solids = []
     if sec.thickness is not None:
-        solids += panels.thicken(sec.thickness)
+        solids += panels.thicken(sec.thickness, arrays=True)
     if sec.frame is not None:
-        solids += panels.frame(sec.frame)
+        solids += panels.frame(sec.frame, arrays=True)
     return solids
 
 
@@ -220,7 +221,7 @@ def build_surface(design, base, out: Path, stage, *, preview: bool = False) -> l
         from ..io.mesh import write
 
         solids = _solids(sec, panels) or panels.thicken(
-            float(np.linalg.norm(np.ptp(panels.vertices, axis=0))) * 0.004
+            float(np.linalg.norm(np.ptp(panels.vertices, axis=0))) * 0.004, arrays=True
         )
         for fmt in sec.meshes:
             path = out / f"{stem}-panels.{fmt}"

@@ -514,7 +514,8 @@ class Panels:
         return np.broadcast_to(nrm, (len(idx), 3))
 
     def _panel_solid(self, p: int, t: float):
-        import trimesh
+        """Panel ``p`` offset by ``t`` into a closed solid, as :class:`voroforge.io.mesh.Arrays`."""
+        from ..io.mesh import Arrays
 
         idx = self._all_index(p)
         local = {int(g): q for q, g in enumerate(idx)}
@@ -540,10 +541,18 @@ class Panels:
         a, b, c = (verts[faces[:, k]] for k in range(3))
         if np.einsum("ij,ij->", a, np.cross(b, c)) < 0:  # 6 x the signed volume (trimesh's
             faces = faces[:, ::-1]  # mass properties cost 20x more)
-        return trimesh.Trimesh(verts, faces, process=False)
+        return Arrays(verts, faces)
 
-    def thicken(self, t: float):
+    def thicken(self, t: float, *, arrays: bool = False):
         """Every panel as a solid of thickness ``t`` (offset along its normals).
+
+        Parameters
+        ----------
+        t : float
+            Thickness (> 0).
+        arrays : bool
+            Return :class:`voroforge.io.mesh.Arrays` instead of Trimeshes (the same vertices
+            and faces; :func:`voroforge.io.mesh.write` takes them without importing trimesh).
 
         Returns
         -------
@@ -553,9 +562,10 @@ class Panels:
         t = float(t)
         if not t > 0:
             raise ValueError(f"thickness must be positive; got {t!r}")
-        return [self._panel_solid(p, t) for p in range(len(self))]
+        solids = [self._panel_solid(p, t) for p in range(len(self))]
+        return solids if arrays else _trimeshes(solids)
 
-    def frame(self, width: float, *, depth: float | None = None):
+    def frame(self, width: float, *, depth: float | None = None, arrays: bool = False):
         """The frame along the panel edges: each panel's rim of ``width / 2`` as a solid.
 
         Neighbouring rims meet along the shared edges, so the members are ``width`` wide.
@@ -566,6 +576,8 @@ class Panels:
             Full member width.
         depth : float, optional
             Member depth (default ``width``).
+        arrays : bool
+            Return :class:`voroforge.io.mesh.Arrays` instead of Trimeshes (as :meth:`thicken`).
 
         Returns
         -------
@@ -593,7 +605,7 @@ class Panels:
             # same exterior ring, same orientation: the rim's normal is the panel's
             rim = Panels(np.concatenate(verts), [rings], self.ids[p : p + 1], None, None)
             rims.append(rim._panel_solid(0, depth))
-        return rims
+        return rims if arrays else _trimeshes(rims)
 
     def to_trimesh(self):
         """All panels triangulated into one mesh; ``face_attributes["panel"]`` the position."""
@@ -635,6 +647,13 @@ class Panels:
         from .unroll import unroll
 
         return unroll(self, **kwargs)
+
+
+def _trimeshes(solids: list) -> list:
+    """Each :class:`voroforge.io.mesh.Arrays` as a ``trimesh.Trimesh`` (``process=False``)."""
+    import trimesh
+
+    return [trimesh.Trimesh(m.vertices, m.faces, process=False) for m in solids]
 
 
 def _signed_area(xy: np.ndarray) -> float:
