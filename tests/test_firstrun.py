@@ -82,6 +82,9 @@ def test_a_2d_build_loads_only_what_it_needs(tmp_path):
     unwanted = ("scipy.spatial", "scipy.sparse", "trimesh", "manifold3d", "skimage", "starlette")
     unwanted += ("ezdxf",)
     assert not {m for m in loaded if m.startswith(unwanted)}
+    # numba's BLAS check found the preloaded extension: scipy.linalg's __init__ did not run
+    assert "scipy.linalg.cython_blas" in loaded and "numba.np.arraymath" in loaded
+    assert "scipy.linalg" not in loaded and "scipy._lib._util" not in loaded
     for sub in ("solid.build", "surface.build", "studio.server", "engine.voronoi3d", "scale"):
         assert f"voroforge.{sub}" not in loaded, sub
 
@@ -238,3 +241,23 @@ def test_a_surface_build_writes_its_meshes_without_trimesh(tmp_path):
     for ext in ("ply", "stl", "obj"):
         a = write(arrays[0], tmp_path / f"a.{ext}").read_bytes()
         assert a == write(meshes[0], tmp_path / f"t.{ext}").read_bytes()
+
+
+def test_the_blas_preload_leaves_numba_and_scipy_working():
+    code = (
+        "import sys\n"
+        "from voroforge.cli.startup import preload_blas\n"
+        "assert preload_blas() and not preload_blas()\n"
+        "import numba.np.arraymath as am\n"
+        "assert am._HAVE_BLAS and 'scipy.linalg' not in sys.modules\n"
+        "import numpy as np, scipy.linalg\n"
+        "from scipy.linalg import cython_blas\n"
+        "assert cython_blas is sys.modules['scipy.linalg.cython_blas']\n"
+        "x = scipy.linalg.solve(np.array([[2.0, 1.0], [1.0, 3.0]]), np.array([3.0, 5.0]))\n"
+        "assert np.allclose(x, [0.8, 1.4])\n"
+        "print('OK')\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=60, check=False
+    )
+    assert done.stdout.strip() == "OK", done.stderr[-2000:]

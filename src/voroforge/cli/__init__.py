@@ -65,6 +65,10 @@ def _parser() -> argparse.ArgumentParser:
     return parser
 
 
+#: Commands that call no compiled kernel (``warmup`` runs its steps through :func:`main`).
+_NO_KERNELS = frozenset({"new", "warmup"})
+
+
 def _error(message: str) -> int:
     for line in str(message).splitlines() or [""]:  # a design file may have several issues
         print(f"{PROG}: error: {line}", file=sys.stderr)
@@ -89,6 +93,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         args = _parser().parse_args(argv)
     except SystemExit as exc:  # --help, --version and argparse's own usage errors
         return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
+    if args.command not in _NO_KERNELS:
+        from .startup import preload_blas
+
+        preload_blas()  # numba's first call then skips scipy.linalg's import (~0.13 s)
     try:
         with progress(sys.stderr.isatty()) as stage:
             written = args.run(args, stage)
