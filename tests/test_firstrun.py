@@ -261,3 +261,40 @@ def test_the_blas_preload_leaves_numba_and_scipy_working():
         [sys.executable, "-c", code], capture_output=True, text=True, timeout=60, check=False
     )
     assert done.stdout.strip() == "OK", done.stderr[-2000:]
+
+
+TINY_FOAM = """
+[design]
+name = "tiny-foam"
+units = "mm"
+
+[solid]
+kind = "foam"
+container = [0, 0, 0, 20, 20, 20]
+cells = 8
+relax = 0
+wall = 1.0
+png_size = 200
+formats = ["stl", "png", "3mf", "ply"]
+"""
+
+
+def test_a_solid_writes_its_meshes_beside_the_preview_with_the_same_bytes(tmp_path):
+    # 3MF and PLY are written on a second thread while the preview renders: the paths come
+    # back in the order of formats, and each file is what io.mesh.write gives alone
+    pytest.importorskip("manifold3d")
+    from voroforge.design.build import build
+    from voroforge.design.designfile import load
+    from voroforge.io.mesh import write
+    from voroforge.solid.build import make_solid
+
+    src = tmp_path / "foam.toml"
+    src.write_text(TINY_FOAM, encoding="utf-8")
+    paths = build(src, tmp_path / "out")
+    assert [p.name for p in paths] == [f"tiny-foam.{e}" for e in ("stl", "png", "3mf", "ply")]
+    m = make_solid(*load(src))
+    for p in paths:
+        if p.suffix != ".png":
+            alone = write(m, tmp_path / f"alone{p.suffix}", units="mm")
+            assert alone.read_bytes() == p.read_bytes(), p.name
+    assert paths[1].stat().st_size > 1000

@@ -17,16 +17,21 @@ from __future__ import annotations
 
 import os
 import tempfile
+import threading
 from collections.abc import Callable
 from pathlib import Path
 
 __all__ = ["new_file_mode", "write_atomically", "write_bytes"]
 
 
+_UMASK = threading.Lock()  # reading the umask sets it for a moment: one thread at a time
+
+
 def new_file_mode() -> int:
     """The mode an ordinary new file gets here: ``0o666`` less the process's umask."""
-    mask = os.umask(0)
-    os.umask(mask)
+    with _UMASK:
+        mask = os.umask(0)
+        os.umask(mask)
     return 0o666 & ~mask
 
 
