@@ -193,7 +193,7 @@ def _resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X):
 
 
 @njit(**NJIT_INLINE)
-def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2):
+def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G, nv, nf, nt, rmax2):
     """Cut cell ``i`` by the ``m`` gathered candidates, nearest first.
 
     ``C = (V, F, R, R2, S, work, T)`` holds the cell (face rings) and the planes that cut or
@@ -220,7 +220,7 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv,
         dx = SP[t, 0] - px
         dy = SP[t, 1] - py
         dz = SP[t, 2] - pz
-        h = 0.5 * (d2 + (wi - W[j]))
+        h = 0.5 * (d2 + (wi - SW[t]))
         if h > 0.0 and h * h > rmax2 * d2 * (1.0 + VORONOI3D_STOP_RTOL):
             continue  # the plane passes beyond every vertex
         tol = VORONOI3D_CUT_RTOL * (np.sqrt(d2 * rmax2) + abs(h))
@@ -255,7 +255,7 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv,
 
 
 @njit(**NJIT_INLINE)
-def _gather(b, t, i, px, py, pz, wi, W, start, SP, sidx, cand, cd2, m, mg, rmax2):
+def _gather(b, t, i, px, py, pz, wi, start, SP, SW, sidx, cand, cd2, m, mg, rmax2):
     """Add the sites of bucket ``b`` from its ``t``-th on to the candidates, until full.
 
     A site whose plane passes beyond every vertex of the cell as it is now (``rmax2``) is
@@ -275,7 +275,7 @@ def _gather(b, t, i, px, py, pz, wi, W, start, SP, sidx, cand, cd2, m, mg, rmax2
             d2 = dx * dx + dy * dy + dz * dz
             if d2 != 0.0:
                 mg += 1
-                h = 0.5 * (d2 + (wi - W[sidx[t]]))
+                h = 0.5 * (d2 + (wi - SW[t]))
                 if not (h > 0.0 and h * h > reach * d2):
                     cand[m] = t
                     cd2[m] = d2
@@ -325,7 +325,7 @@ def _axis_gap(p, origin, size, b, off):
 
 @njit(**NJIT)
 def _one_cell(
-    i, P, W, WP, X, wmax, start, SP, sidx, g, order, TV, TF, TR, TG, C, G, cand, cd2, buck
+    i, P, W, WP, X, wmax, start, SP, SW, sidx, g, order, TV, TF, TR, TG, C, G, cand, cd2, buck
 ):
     """Cut cell ``i``; leaves it in ``C``'s ``(V, F, R)``. Returns ``(status, nv, nf, nt, rmax2)``.
 
@@ -420,7 +420,7 @@ def _one_cell(
                 stop = nb == 0
         if b >= 0:
             m, mg, rt = _gather(
-                b, rt, i, px, py, pz, wi, W, start, SP, sidx, cand, cd2, m, mg, rmax2
+                b, rt, i, px, py, pz, wi, start, SP, SW, sidx, cand, cd2, m, mg, rmax2
             )
             if rt < start[b + 1]:  # a crowded neighbourhood: cut by what is gathered, go on
                 rb = b
@@ -428,7 +428,27 @@ def _one_cell(
         if flush:
             if m > 0:
                 st, nv, nf, nt, rmax2 = _cut_batch(
-                    m, i, P, WP, X, px, py, pz, wi, W, SP, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
+                    m,
+                    i,
+                    P,
+                    WP,
+                    X,
+                    px,
+                    py,
+                    pz,
+                    wi,
+                    W,
+                    SP,
+                    SW,
+                    sidx,
+                    cand,
+                    cd2,
+                    C,
+                    G,
+                    nv,
+                    nf,
+                    nt,
+                    rmax2,
                 )
                 if st != OK:
                     return st, 0, 0, 0, 0.0
