@@ -119,10 +119,12 @@ def shell(
         if tree is not None and len(near):
             ijk = np.column_stack(np.unravel_index(near, shape)).astype(np.float64)
             xyz = origin + h * ijk
-            dd, _ = tree.query(xyz, k=2)
+            # every core queries its share of the points (the same answers: each point's
+            # query is on its own; the lamp-shade example's 0.9M queries are 0.6 s of CPU)
+            dd, _ = tree.query(xyz, k=2, workers=-1)
             f_web = 0.5 * (dd[:, 1] - dd[:, 0]) - 0.5 * wfun(xyz)
             if btree is not None:
-                f_web = np.minimum(f_web, btree.query(xyz)[0] - rim_w)
+                f_web = np.minimum(f_web, btree.query(xyz, workers=-1)[0] - rim_w)
             flat = g.ravel()
             flat[near] = np.maximum(flat[near], f_web.astype(np.float32))
             g = flat.reshape(shape)
