@@ -216,6 +216,7 @@ def _join(c0, status, counts, caps, osite, ovabs, vbits, ofaces, oring, out, tab
     nvid = sizes[3]
     k = counts.shape[0]
     widest = np.iinfo(ring.dtype).max
+    hs = np.zeros(cv, np.int64)
     why = 0
     c = c0
     while c < k:
@@ -237,9 +238,19 @@ def _join(c0, status, counts, caps, osite, ovabs, vbits, ofaces, oring, out, tab
         ):
             why = 1
             break
+        # first every slot the cell's vertices will probe, and the vertex each holds: the
+        # loads are independent, so their cache misses overlap (the table is random access)
+        touch = 0
+        for v in range(nv):
+            h = _hash3(vbits, c * cv + v, mask)
+            hs[v] = h
+            gv = table[h]
+            if gv >= 0 and verts[gv, 0] == ovabs[c * cv + v, 0]:
+                touch += 1
+        gl[0] = touch
         for v in range(nv):
             r = c * cv + v
-            h = _hash3(vbits, r, mask)
+            h = hs[v]
             while True:
                 gv = table[h]
                 if gv < 0:
