@@ -577,6 +577,7 @@ def _legalize_all(xs, ys, tri, he, stats):
 def _fortune(xs, ys, stats):
     """Triangles (input numbering) and halfedges of the sweep over ``xs, ys``."""
     order = _site_order(xs, ys)
+    _compile_callees()
     tri, he = _fortune_sorted(
         np.ascontiguousarray(xs[order]), np.ascontiguousarray(ys[order]), stats
     )
@@ -666,8 +667,24 @@ def fortune_delaunay(xs: np.ndarray, ys: np.ndarray):
     sx = sxy[:, 0]
     sy = sxy[:, 1]
     stats = np.zeros(_NSTATS, dtype=np.int64)
+    _compile_callees()
     tri, he = _fortune_sorted(*_normalised(sx, sy), stats)
     return order, sx, sy, tri, he, tri.shape[0] > 0
+
+
+def _compile_callees() -> None:
+    """Compile (or load) the predicates the event loop calls, with their own options.
+
+    :func:`_sweep_loop` runs without reference counting; a callee compiled for the first
+    time inside its compilation inherits that, and the exact predicates' stage allocates
+    (numba refuses: a ``TypingError`` on a fresh cache when the sweep is the first user of
+    ``orient2d``). Compiled on their own first, they keep their counting; the calls are
+    cheap once cached.
+    """
+    orient2d(0.0, 0.0, 1.0, 0.0, 0.0, 1.0)
+    incircle(0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0)
+    incircle_fast(0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0)
+    center_offset(0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0)
 
 
 def fortune_debug(points: np.ndarray) -> dict:
