@@ -231,11 +231,11 @@ def build_solid(design, base, out: Path, stage, *, preview_only: bool = False) -
     Mesh files are written on a second thread while the preview renders (:func:`_write_meshes`);
     the list returned is in the order of ``formats`` either way.
     """
+    from ..io.mesh import write
+
     s = design.solid
     stem = design.output.stem or design.design.name
     m = make_solid(design, base, stage)
-    from ..io.mesh import write
-
     units = design.design.units
     formats = ["png"] if preview_only else list(s.formats)
     paths = {fmt: out / f"{stem}.{fmt}" for fmt in formats}
@@ -252,9 +252,12 @@ def build_solid(design, base, out: Path, stage, *, preview_only: bool = False) -
         if "png" in paths:
             stage(f"writing {paths['png'].name}")
             preview(m, paths["png"], size=s.png_size, view=s.view)
-    finally:
+    except Exception:
         if pending is not None:
-            pending.result()  # waits; a writer's error is raised here
+            pending.exception()  # the files are finished (or not begun) before the error
+        raise
+    if pending is not None:
+        pending.result()  # waits; a writer's error is raised here
     return [paths[fmt] for fmt in formats]
 
 
