@@ -5,8 +5,10 @@ from __future__ import annotations
 import itertools
 
 import numpy as np
+from numba import njit
 
-from .build3d import build_cells3d, csr_take, duplicate_owners
+from ..config import NJIT
+from .build3d import build_cells3d, duplicate_owners
 from .containers import Convex, Template, as_container, box_template
 from .diagram3d import Diagram3D
 from .inputs import as_points, as_weights, from_working, working_frame
@@ -133,15 +135,25 @@ def _periodic(P, W, t, progress):
     while True:
         K = int(np.ceil(margin / L.min()))
         imgs, origs, shifts = [P], [np.arange(u)], [np.zeros((u, 3), np.int64)]
+        # per axis and shift, the sites whose image lies within the margin (the test on
+        # P + s * L, one axis at a time); an image needs all three
+        near = [
+            {
+                sa: (P[:, a] + sa * L[a] >= lo[a] - margin)
+                & (P[:, a] + sa * L[a] <= hi[a] + margin)
+                for sa in range(-K, K + 1)
+            }
+            for a in range(3)
+        ]
         for s in itertools.product(range(-K, K + 1), repeat=3):
             if s == (0, 0, 0):
                 continue
-            q = P + np.array(s) * L
-            ok = ((q >= lo - margin) & (q <= hi + margin)).all(axis=1)
-            if ok.any():
-                imgs.append(q[ok])
-                origs.append(np.flatnonzero(ok))
-                shifts.append(np.tile(np.array(s, np.int64), (int(ok.sum()), 1)))
+            ok = near[0][s[0]] & near[1][s[1]] & near[2][s[2]]
+            idx = np.flatnonzero(ok)
+            if len(idx):
+                imgs.append(P[idx] + np.array(s) * L)
+                origs.append(idx)
+                shifts.append(np.tile(np.array(s, np.int64), (len(idx), 1)))
         PP = np.ascontiguousarray(np.concatenate(imgs))
         orig = np.concatenate(origs)
         shift = np.concatenate(shifts)
@@ -154,6 +166,51 @@ def _periodic(P, W, t, progress):
         if ok and (res.status == 0).all():
             return res, (orig, shift)
         margin *= 2.0
+
+
+@njit(**NJIT)
+def _torus_faces(lab, cf, rpos, orig, shift, uniq, cfx, pos):
+    """Periodic cells' faces: site labels, which face is listed once, image shifts.
+
+    ``lab``, ``cf`` (build order) label faces by image number; returns the labels as input
+    sites, ``keep`` (build order: a wall, a larger site, or the same site across a shift
+    that is lexicographically positive) and the shift of the image across each face in the
+    caller's order (``pos``, ``cfx``: ``cf`` with an empty slot after the last).
+    """
+    nfc = lab.shape[0]
+    lab2 = lab.copy()
+    keep = np.zeros(nfc, np.bool_)
+    for c in range(rpos.shape[0]):
+        p = rpos[c]
+        owner = uniq[c]
+        for f in range(cf[p], cf[p + 1]):
+            j = lab[f]
+            if j < 0:
+                keep[f] = True
+                continue
+            s0 = shift[j, 0]
+            s1 = shift[j, 1]
+            s2 = shift[j, 2]
+            o = uniq[orig[j]]
+            lab2[f] = o
+            lexpos = s0 > 0 or (s0 == 0 and (s1 > 0 or (s1 == 0 and s2 > 0)))
+            keep[f] = o > owner or (o == owner and lexpos)
+    n = pos.shape[0]
+    total = 0
+    for i in range(n):
+        total += cfx[pos[i] + 1] - cfx[pos[i]]
+    shifts = np.zeros((total, 3), np.int64)
+    r = 0
+    for i in range(n):
+        p = pos[i]
+        for f in range(cfx[p], cfx[p + 1]):
+            j = lab[f]
+            if j >= 0:
+                shifts[r, 0] = shift[j, 0]
+                shifts[r, 1] = shift[j, 1]
+                shifts[r, 2] = shift[j, 2]
+            r += 1
+    return lab2, keep, shifts
 
 
 def _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh):
@@ -200,22 +257,9 @@ def _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh):
     face_keep = shifts = None
     if gmap is not None:
         orig, shift = gmap
-        lab = lab.copy()
-        site = lab >= 0
-        shifts = np.zeros((len(lab), 3), np.int64)
-        shifts[site] = shift[lab[site]]
-        lab[site] = orig[lab[site]]
-        lab[site] = uniq[lab[site]]
-        at = np.zeros(u, np.int64)
-        at[res.pos] = np.arange(u)
-        owner = np.repeat(uniq[at], np.diff(res.cell_faces))
-        s3 = shifts
-        lexpos = (s3[:, 0] > 0) | (
-            (s3[:, 0] == 0) & ((s3[:, 1] > 0) | ((s3[:, 1] == 0) & (s3[:, 2] > 0)))
+        lab, face_keep, shifts = _torus_faces(
+            res.flabel, res.cell_faces, res.pos, orig, shift, uniq, cell_faces, pos
         )
-        face_keep = (lab < 0) | (lab > owner) | ((lab == owner) & lexpos)
-        # the public per-face shifts follow cell_face_table (the caller's order)
-        shifts = shifts[csr_take(np.diff(cell_faces), pos)]
     elif u != n:  # site labels from the unique sites' numbers to the input's
         lab = lab.copy()
         site = lab >= 0
