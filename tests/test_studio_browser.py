@@ -305,7 +305,16 @@ def _row(name, lat):
     def mean(key):
         return float(np.mean([entry.get(key) or 0.0 for entry in lat]))
 
-    stages = ("queue_ms", "server_ms", "encode_ms", "wire_ms", "parse_ms", "paint_ms", "frame_ms")
+    stages = (
+        "queue_ms",
+        "server_ms",
+        "cpu_ms",
+        "encode_ms",
+        "wire_ms",
+        "parse_ms",
+        "paint_ms",
+        "frame_ms",
+    )
     return (
         f"| {name:<46} | {lat[0]['n']:>6} | {len(ms):>3} | {np.percentile(ms, 50):>6.1f} | "
         f"{np.percentile(ms, 95):>6.1f} | {np.percentile(drawn, 50):>6.1f} | "
@@ -317,8 +326,8 @@ def _row(name, lat):
 
 HEAD = (
     "| case | cells | n | frame p50 | frame p95 | drawn p50 | drawn p95 | mean: queue | server "
-    "| encode | wire | parse | paint | frame | KiB |\n"
-    "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+    "| server CPU | encode | wire | parse | paint | frame | KiB |\n"
+    "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 )
 
 

@@ -10,8 +10,9 @@ Safety: the server binds 127.0.0.1 unless told otherwise; requests must name an 
 host (DNS rebinding); a WebSocket whose ``Origin`` is another site is refused; messages
 above :data:`voroforge.config.STUDIO_MAX_MESSAGE` bytes, non-JSON, non-finite numbers and
 unknown ops get an error reply and the connection stays up; every edit is computed under
-one lock (a seed drag's step in the event loop, it takes milliseconds; anything else in a
-worker thread), so a closed tab or a flood of bad messages leaves the session as it was.
+one lock (in the event loop's thread when the session's edits take milliseconds, else in a
+worker thread: :func:`_inline`), so a closed tab or a flood of bad messages leaves the
+session as it was.
 """
 
 from __future__ import annotations
@@ -528,11 +529,10 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
     received = time.perf_counter()
     async with hub.lock:
         start = time.perf_counter()
-        if isinstance(msg, dict) and msg.get("op") == "move" and session.incremental:
-            # a drag's step takes milliseconds: a hop to a worker thread would cost more
-            reply: Reply = session.apply(msg)
+        if _inline(session, msg):
+            reply, cpu_ms = _apply_timed(session, msg)
         else:
-            reply = await asyncio.to_thread(session.apply, msg)
+            reply, cpu_ms = await asyncio.to_thread(_apply_timed, session, msg)
         server_ms = (time.perf_counter() - start) * 1e3
         if reply.kind == "update":
             hub.seq += 1
@@ -550,6 +550,7 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
                     "reply_to": mid,
                     "client": cid,
                     "server_ms": round(server_ms, 2),
+                    "cpu_ms": round(cpu_ms, 2),
                     "wait_ms": round((start - received) * 1e3, 2),
                 },
                 sent=hub.sent,
@@ -573,6 +574,42 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
         await hub.send(ws, {"op": "saved", "name": reply.name, "files": reply.files, **base})
     else:
         await hub.send(ws, {"op": "info", "note": reply.note, **base})
+
+
+#: An edit runs in the event loop's own thread while the session's last computation took
+#: less than this (milliseconds); slower ones go to a worker thread (see _inline)
+INLINE_MS = 100.0
+_INLINE_OPS = frozenset(
+    ("move", "set", "add", "remove", "attractor", "undo", "redo", "reset_sites", "frame")
+)
+
+
+def _inline(session: Session, msg) -> bool:
+    """Whether an edit is computed in the event loop's thread instead of a worker thread.
+
+    A seed drag's step (milliseconds) always is; any other edit that makes geometry is
+    while the session's last computation took under :data:`INLINE_MS`. The hop to a
+    worker thread and back (two thread wake-ups, the GIL handed between threads) cost a
+    ``design.seed`` step of the holed 2,000-cell panel 10-20 ms of its 40-80 (two A/B
+    pairs in the browser test, load 3-5): the step's CPU time was the same, its wall time
+    not. Slower edits, saves and exports go to a worker thread so that the server keeps
+    answering meanwhile.
+    """
+    if not isinstance(msg, dict) or msg.get("op") not in _INLINE_OPS:
+        return False
+    if msg.get("op") == "move" and session.incremental:
+        return True
+    return session.compute_ms < INLINE_MS
+
+
+def _apply_timed(session: Session, msg) -> tuple[Reply, float]:
+    """``session.apply(msg)`` and the CPU milliseconds its thread spent on it.
+
+    Beside the wall time (``server_ms``) it tells the work from the wait for a core.
+    """
+    c0 = time.thread_time()
+    reply = session.apply(msg)
+    return reply, (time.thread_time() - c0) * 1e3
 
 
 async def _view(hub: _Hub, ws, cid: int, msg: dict, mid) -> None:

@@ -276,7 +276,7 @@ var VoroStudio = (function () {
       requestAnimationFrame(function () {
         var now = performance.now(), ms = now - done.t0;
         self.latencies.push({ op: done.op, ms: ms, drawn: drawn - done.t0, compute_ms: h.compute_ms,
-          server_ms: h.server_ms, wait_ms: h.wait_ms,
+          server_ms: h.server_ms, cpu_ms: h.cpu_ms, wait_ms: h.wait_ms,
           encode_ms: h.encode_ms, bytes: m.bytes,
           draw_ms: drawn - t0, parse_ms: t1 - t0, paint_ms: drawn - t1, frame_ms: now - drawn,
           queue_ms: done.tsend - done.t0, wire_ms: recv - done.tsend - (h.server_ms || 0) - (h.encode_ms || 0),
