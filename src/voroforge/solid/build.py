@@ -6,7 +6,6 @@ Called by :func:`voroforge.design.build.build` and ``check_design`` when the fil
 
 from __future__ import annotations
 
-from concurrent.futures import Future, ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
@@ -197,68 +196,23 @@ def preview(m, path, *, size=900, view=(35.0, 25.0), cut=None) -> Path:
     )
 
 
-#: Mesh formats written from bare arrays (:class:`voroforge.io.mesh.Arrays`), so on a thread
-#: of their own; the others go through trimesh's exporters, which may read the metadata.
-_ARRAY_FORMATS = ("3mf", "ply", "3dm")
-
-
-def _write_meshes(m, paths: list[Path], units: str) -> Future:
-    """Write ``m`` to each of ``paths`` on a second thread; the future's result is ``paths``.
-
-    The thread gets the bare arrays (:class:`voroforge.io.mesh.Arrays`: no Trimesh caches
-    shared between threads). While it writes, the preview renders on the calling thread:
-    3MF's deflate and numpy's large operations release the GIL, manifold3d's simplification
-    keeps it, so the two overlap. The files are the bytes written one after the other
-    would be (:func:`voroforge.io.mesh.write` gives an Arrays the Trimesh's bytes).
-    """
-    from ..io.mesh import Arrays, write
-
-    mesh = Arrays(np.asarray(m.vertices), np.asarray(m.faces))
-
-    def run() -> list[Path]:
-        return [write(mesh, path, units=units) for path in paths]
-
-    pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="voroforge-mesh")
-    try:
-        return pool.submit(run)
-    finally:
-        pool.shutdown(wait=False)  # the thread finishes its one task, then ends
-
-
 def build_solid(design, base, out: Path, stage, *, preview_only: bool = False) -> list[Path]:
-    """Build the solid and write ``[solid] formats`` (meshes and a PNG preview) to ``out``.
-
-    Mesh files are written on a second thread while the preview renders (:func:`_write_meshes`);
-    the list returned is in the order of ``formats`` either way.
-    """
+    """Build the solid and write ``[solid] formats`` (meshes and a PNG preview) to ``out``."""
     from ..io.mesh import write
 
     s = design.solid
     stem = design.output.stem or design.design.name
     m = make_solid(design, base, stage)
-    units = design.design.units
-    formats = ["png"] if preview_only else list(s.formats)
-    paths = {fmt: out / f"{stem}.{fmt}" for fmt in formats}
+    written = []
+    formats = ["png"] if preview_only else s.formats
     for fmt in formats:
-        if fmt != "png" and fmt not in _ARRAY_FORMATS:
-            stage(f"writing {paths[fmt].name}")
-            write(m, paths[fmt], units=units)
-    threaded = [paths[fmt] for fmt in formats if fmt in _ARRAY_FORMATS]
-    pending = None
-    if threaded:
-        stage("writing " + ", ".join(p.name for p in threaded))
-        pending = _write_meshes(m, threaded, units)
-    try:
-        if "png" in paths:
-            stage(f"writing {paths['png'].name}")
-            preview(m, paths["png"], size=s.png_size, view=s.view)
-    except Exception:
-        if pending is not None:
-            pending.exception()  # the files are finished (or not begun) before the error
-        raise
-    if pending is not None:
-        pending.result()  # waits; a writer's error is raised here
-    return [paths[fmt] for fmt in formats]
+        path = out / f"{stem}.{fmt}"
+        stage(f"writing {path.name}")
+        if fmt == "png":
+            written.append(preview(m, path, size=s.png_size, view=s.view))
+        else:
+            written.append(write(m, path, units=design.design.units))
+    return written
 
 
 def check_solid(design, base=None, stage=None):
