@@ -42,6 +42,7 @@ class LiveCheck:
         self._single: dict[bytes, list[Violation]] = {}  # opening, corner, web to the rim
         self._pairs: dict[tuple[bytes, bytes], Violation] = {}
         self._outline: list[Violation] = []
+        self._island_cache: tuple[object, list[Violation]] | None = None  # (result, its islands)
 
     def run(self, result, stale=None) -> list[Violation] | None:
         """The violations of ``result`` (a :class:`~voroforge.design.compute.Result`).
@@ -97,8 +98,10 @@ class LiveCheck:
             else:
                 del self._pairs[(a, b)]
         found += self._outline
-        if limits["islands"]:
-            found += _islands(result)
+        if limits["islands"]:  # the frame's loose parts, once per result
+            if self._island_cache is None or self._island_cache[0] is not result:
+                self._island_cache = (result, _islands(result))
+            found += self._island_cache[1]
         found.sort(key=_order)
         return found
 

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import asyncio
 import base64
+import contextlib
 import gc
 import itertools
 import json
@@ -281,15 +282,16 @@ class _Hub:
             self.state_text = text
             await self.broadcast(text)
 
-    def schedule_check(self) -> None:
+    def schedule_check(self, delay: float | None = None) -> None:
         """Settle a drag's result, then run the fabrication check, once edits pause.
 
         Later edits push both back. Settling (:meth:`Session.settle`) swaps the drag's
         provisional cells for the full computation's and sends the cells that differ.
+        ``delay`` (default ``STUDIO_CHECK_DELAY``) is the wait before the check.
         """
         now = time.monotonic()
         self.settle_due = now + SETTLE_DELAY
-        self.check_due = now + config.STUDIO_CHECK_DELAY
+        self.check_due = now + (config.STUDIO_CHECK_DELAY if delay is None else delay)
         if self.check_task is None or self.check_task.done():
             self.check_task = asyncio.get_running_loop().create_task(self._check_later())
 
@@ -475,7 +477,14 @@ def create_app(session: Session, *, hosts=LOCAL_HOSTS):
         Mount("/static", app=StaticFiles(directory=str(static)), name="static"),
     ]
     middleware = [Middleware(TrustedHostMiddleware, allowed_hosts=list(hosts))]
-    app = Starlette(routes=routes, middleware=middleware)
+
+    @contextlib.asynccontextmanager
+    async def lifespan(app):
+        # the first check runs while the browser opens the page, not beside its first edits
+        hub.schedule_check(delay=0.0)
+        yield
+
+    app = Starlette(routes=routes, middleware=middleware, lifespan=lifespan)
     app.state.hub = hub
     return app
 
