@@ -103,7 +103,7 @@ def test_graph_cut_matches_face_ring_cut():
             if (S[:nv] < 0).sum() < 4:
                 continue  # would leave (nearly) nothing: not a cut the builder makes
             st, nv2, nf2 = polyhedron.cut(V, nv, F, nf, R, R2, S, work, 100 + step)
-            gst, gnv2 = graph3d.cut(GV, gnv, deg, ed, bk, lb, FL, GS, CP, 100 + step)
+            gst, gnv2, _ = graph3d.cut(GV, gnv, deg, ed, bk, lb, FL, GS, CP, 100 + step)
             assert gst != graph3d.GCUT_BROKEN, (seq, step, kind)
             assert (st, gst) in {
                 (polyhedron.CUT_NONE, graph3d.GCUT_NONE),

@@ -236,13 +236,14 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
         if smax <= 0.0:
             continue
         if graph:
-            st, nv2 = graph_cut(V, nv, G[0], G[1], G[2], G[3], G[6], S, G[4], j)
+            st, nv2, r2c = graph_cut(V, nv, G[0], G[1], G[2], G[3], G[6], S, G[4], j)
             if st == GCUT_EMPTY:
                 return EMPTY, 0, 0, 0, 0.0
             if st != GCUT_DONE:
                 return BROKEN, 0, 0, 0, 0.0
             nf2 = 0
         else:
+            r2c = -1.0
             st, nv2, nf2 = cut(V, nv, F, nf, R, R2, S, work, j)
             if st == CUT_EMPTY:
                 return EMPTY, 0, 0, 0, 0.0
@@ -250,7 +251,7 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
                 return (OVERFLOW if st == CUT_OVERFLOW else BROKEN), 0, 0, 0, 0.0
         nv = nv2
         nf = nf2
-        rmax2 = _radius2(V, nv)
+        rmax2 = r2c if graph else _radius2(V, nv)  # the graph cut's own (the same max)
     return OK, nv, nf, nt, rmax2
 
 

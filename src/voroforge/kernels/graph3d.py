@@ -149,34 +149,33 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
     ``FL (cap,)`` flags vertices that may lie on planes other than their faces' (the
     caller's mark); a new vertex on an edge is flagged when both ends are (the edge may lie
     in such a plane). ``CP (cap, 4) int64`` is scratch (the cap's ring). Returns
-    ``(status, nv)``.
+    ``(status, nv, r2)``, ``r2`` (done) the largest ``|v|^2`` of the vertices left.
     """
     vcap = V.shape[0]
     D = ED.shape[1]
     ncap = CP.shape[0]
+    # whether a vertex is above and one below, and the boundary edges v -> u (v removed, u
+    # kept): one to start from, and their count (one pass)
     up = -1
     down = False
-    for v in range(nv):
-        if S[v] > 0.0:
-            up = v
-        elif S[v] < 0.0:
-            down = True
-    if up < 0:
-        return GCUT_NONE, nv
-    if not down:
-        return GCUT_EMPTY, 0
-    # the boundary edges v -> u (v removed, u kept): one to start from, and their count
     e0v = -1
     e0k = -1
     nbound = 0
     for v in range(nv):
         if S[v] > 0.0:
+            up = v
             for k in range(DEG[v]):
                 if S[ED[v, k]] <= 0.0:
                     if e0v < 0:
                         e0v = v
                         e0k = k
                     nbound += 1
+        elif S[v] < 0.0:
+            down = True
+    if up < 0:
+        return GCUT_NONE, nv, 0.0
+    if not down:
+        return GCUT_EMPTY, 0, 0.0
     # trace the cap: CP[m] = (boundary vertex v, its index k, point, -)
     m = 0
     v = e0v
@@ -184,7 +183,7 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
     nb = 0
     while True:
         if m >= ncap:
-            return GCUT_BROKEN, nv
+            return GCUT_BROKEN, nv, 0.0
         CP[m, 0] = v
         CP[m, 1] = k
         m += 1
@@ -204,16 +203,16 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
             a = na
             steps += 1
             if steps > nv:
-                return GCUT_BROKEN, nv
+                return GCUT_BROKEN, nv, 0.0
         v = b
         k = BK[a, j]  # ED[b, k] == a
         nb += 1
         if v == e0v and k == e0k:
             break
         if nb > nbound:
-            return GCUT_BROKEN, nv
+            return GCUT_BROKEN, nv, 0.0
     if m != nbound:  # the cap is not one ring
-        return GCUT_BROKEN, nv
+        return GCUT_BROKEN, nv, 0.0
     # cap points: a new vertex on each edge to a vertex below, the vertex itself if on
     nv0 = nv
     for q in range(m):
@@ -224,7 +223,7 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
             CP[q, 2] = u
         else:
             if nv >= vcap:
-                return GCUT_BROKEN, nv
+                return GCUT_BROKEN, nv, 0.0
             x = nv
             nv += 1
             sv = S[v]
@@ -258,14 +257,14 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
     while w > 1 and CP[w - 1, 2] == CP[0, 2]:
         w -= 1
     if w < 3:
-        return GCUT_BROKEN, nv0
+        return GCUT_BROKEN, nv0, 0.0
     # an on-plane vertex must appear once
     for q in range(w):
         c = CP[q, 2]
         if c < nv0:
             for r in range(q + 1, w):
                 if CP[r, 2] == c:
-                    return GCUT_BROKEN, nv0
+                    return GCUT_BROKEN, nv0, 0.0
     # rewire. Per point q (prev p = q - 1, next n = q + 1) its list gets ... A, next, prev, B
     # where the removed run lay; new vertices get [prev, u, next].
     for q in range(w):
@@ -295,10 +294,10 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
             for r in range(d):
                 if S[ED[u, r]] <= 0.0 and S[ED[u, (r + 1) % d]] > 0.0:
                     if s0 >= 0:
-                        return GCUT_BROKEN, nv0  # two runs
+                        return GCUT_BROKEN, nv0, 0.0  # two runs
                     s0 = r
             if s0 < 0:
-                return GCUT_BROKEN, nv0
+                return GCUT_BROKEN, nv0, 0.0
             # run is s0 + 1 .. s0 + t
             t = 0
             while S[ED[u, (s0 + 1 + t) % d]] > 0.0:
@@ -311,9 +310,9 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
             nk = 0
             kept = d - t
             if kept + 2 > D:
-                return GCUT_BROKEN, nv0
+                return GCUT_BROKEN, nv0, 0.0
             if nv >= vcap:
-                return GCUT_BROKEN, nv0
+                return GCUT_BROKEN, nv0, 0.0
             tmp = nv
             for r in range(kept):
                 src = (s0 + t + 1 + r) % d  # B first, A last
@@ -333,7 +332,7 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
                 LB[tmp, nk] = lab_t
                 nk += 1
             if nk < 3:
-                return GCUT_BROKEN, nv0
+                return GCUT_BROKEN, nv0, 0.0
             for r in range(nk):
                 ED[u, r] = ED[tmp, r]
                 LB[u, r] = LB[tmp, r]
@@ -348,12 +347,14 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
         a = _only_edge(DEG, ED, c, cn)
         b = _only_edge(DEG, ED, cn, c)
         if a < 0 or b < 0:
-            return GCUT_BROKEN, nv0
+            return GCUT_BROKEN, nv0, 0.0
         BK[c, a] = b
         BK[cn, b] = a
     # drop the removed vertices: fill holes from the top
+    # (and the largest squared distance of a vertex left from the origin: the site)
     top = nv
     v = 0
+    r2 = 0.0
     while v < top:
         if S[v] > 0.0:
             top -= 1
@@ -362,8 +363,10 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
             if top > v:
                 _move(V, DEG, ED, BK, LB, FL, top, v)
                 S[v] = S[top]
+        if v < top:
+            r2 = max(r2, V[v, 0] * V[v, 0] + V[v, 1] * V[v, 1] + V[v, 2] * V[v, 2])
         v += 1
-    return GCUT_DONE, top
+    return GCUT_DONE, top, r2
 
 
 @njit(**NJIT)
