@@ -267,7 +267,6 @@ _NEAR_DUPLICATE_VARIANTS = [
     for offset, step in ((0.0, 1.0 / n), (0.0, 0.125), (500000.0, 0.125))
     for direction in [(1.0, 0.0), (0.0, 1.0), (1.0, 1.0), (-1.0, 1.0), (1.0, -1.0)]
 ]
-_NEAR_DUPLICATE_OPEN = {(4, 500000.0, d) for d in [(1.0, 1.0), (-1.0, 1.0), (1.0, -1.0)]}
 
 
 def test_halfplane_near_duplicate_sites_variants():
@@ -280,24 +279,8 @@ def test_halfplane_near_duplicate_sites_variants():
     fails Euler there too).
     """
     for n, ulps, offset, step, direction in _NEAR_DUPLICATE_VARIANTS:
-        if (ulps, offset, direction) in _NEAR_DUPLICATE_OPEN:
-            continue  # test_halfplane_near_duplicate_sites_open_variants
         pts, box = _near_duplicate_grid(n, step, ulps, offset, direction)
         _assert_halfplane_as_default(pts, box)
-
-
-@pytest.mark.xfail(
-    reason="issue 15, open: since the default keeps true Voronoi edges a few ulps long "
-    "(exact vertex identity), the half-plane merge band drops some of them on 4-ulp diagonal "
-    "near-duplicates at offset 500000 (6 of these 9 variants); the two merge rules must "
-    "become one rounding bound",
-    strict=False,
-)
-def test_halfplane_near_duplicate_sites_open_variants():
-    for n, ulps, offset, step, direction in _NEAR_DUPLICATE_VARIANTS:
-        if (ulps, offset, direction) in _NEAR_DUPLICATE_OPEN:
-            pts, box = _near_duplicate_grid(n, step, ulps, offset, direction)
-            _assert_halfplane_as_default(pts, box)
 
 
 def test_halfplane_tight_clusters_use_kd_buckets():

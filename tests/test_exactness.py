@@ -21,7 +21,7 @@ import voroforge as vf
 from voroforge.kernels.clip import rings_convex
 from voroforge.kernels.predicates import cross_diff
 
-from catalogue import CATALOGUE, FEW_ULPS, OPEN
+from catalogue import CATALOGUE, FAR_CIRCLES, FEW_ULPS
 
 ALGS = ["delaunay", "fortune", "halfplane"]
 FAMILIES = [
@@ -155,17 +155,25 @@ def test_float_circle_hull_cells_valid(n, r, phase):
         assert shapely.intersects(cells, shapely.points(pts)).all()
 
 
-@pytest.mark.xfail(strict=False, reason="open: not yet right on every algorithm (catalogue.OPEN)")
-@pytest.mark.parametrize("name", list(OPEN))
-def test_open_families_valid(name):
-    """The classes still open: every cell valid and each distinct site in its own cell."""
-    pts, boundary = OPEN[name]
+@pytest.mark.parametrize("name", list(FAR_CIRCLES))
+def test_far_circles_valid_and_same(name):
+    """Far float circles: valid cells tiling the plane's box, each site in its own cell,
+    and the same diagram from every algorithm (folded cells, or the sweep's and the
+    default's cells differing, before)."""
+    from test_algorithms import _assert_same
+
+    pts, boundary = FAR_CIRCLES[name]
+    ref = None
     for alg in ALGS:
         d = vf.voronoi(pts, boundary, algorithm=alg)
         cells = np.asarray(d.cells, dtype=object)
-        assert shapely.is_valid(cells).all(), alg
-        own = shapely.intersects(cells, shapely.points(pts))
-        assert own[d.duplicate_of < 0].all(), alg
+        assert shapely.is_valid(cells).all(), (alg, np.flatnonzero(~shapely.is_valid(cells)))
+        assert shapely.intersects(cells, shapely.points(pts)).all(), alg
+        assert d.areas.sum() == pytest.approx(d.boundary.area, rel=1e-12), alg
+        if ref is None:
+            ref = d
+        else:
+            _assert_same(ref, d, d.boundary)
 
 
 @pytest.mark.parametrize("name", list(FEW_ULPS))

@@ -130,7 +130,7 @@ def _plain_merge(sx, sy, tri, he, rank, box):
     for e, f in edges:
         q = [int(tri[e]), int(tri[e - e % 3 + (e + 1) % 3]), int(tri[e - e % 3 + (e + 2) % 3])]
         d = int(tri[f - f % 3 + (f + 2) % 3])
-        close = centers._cc_close(sx, sy, q[0], err, cx, cy, e // 3, f // 3)
+        close = centers._cc_close(sx, sy, tri, err, cx, cy, e // 3, f // 3)
         cocircular = flag[e] and incircle(*[v for s in (*q, d) for v in (sx[s], sy[s])]) == 0.0
         if close or cocircular:
             merged |= bool(link(e // 3, f // 3))
@@ -220,7 +220,7 @@ def _joined(sx, sy, tri, he, cx, cy, err, flag):
     for e in np.flatnonzero(flag):
         f = int(he[e])
         a, b, c, d = (int(v) for v in centers._quad(tri, e, f))
-        close = centers._cc_close(sx, sy, a, err, cx, cy, e // 3, f // 3)
+        close = centers._cc_close(sx, sy, tri, err, cx, cy, e // 3, f // 3)
         if close or incircle(sx[a], sy[a], sx[b], sy[b], sx[c], sy[c], sx[d], sy[d]) == 0.0:
             ra, rb = find(e // 3), find(f // 3)
             parent[max(ra, rb)] = min(ra, rb)

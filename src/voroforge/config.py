@@ -40,8 +40,10 @@ VERTEX_SNAP_RTOL = 2.0**-40
 #: A centre whose rounding bound exceeds this fraction of its own magnitude is computed from
 #: exact expansions (a sliver's: sites on a circle, sites a few ulps apart; kernels/vertex)
 VERTEX_REFINE_RTOL = 2.0**-30
-#: Circumcentres of two adjacent triangles closer than this (L1, relative to their magnitude
-#: and the circumradius) are one vertex: floats cannot order a shorter Voronoi edge
+#: Two computed vertices within their rounding bounds of each other and closer than this
+#: (L1, relative to the circumradius, plus ulps of their magnitude) are one vertex: floats
+#: cannot order a shorter Voronoi edge (kernels/vertex.same_vertex: adjacent Delaunay
+#: centres, and a site joining a half-plane cell's vertex)
 CC_MERGE_RTOL = 2.0**-46
 #: Rounds of merging swapped Voronoi vertices (a backwards edge) before the cells are built;
 #: each round merges, so this only bounds pathological input (kernels/centers._unfold)
@@ -88,9 +90,6 @@ HALFPLANE_NEAR_RTOL = 1e-7
 #: |d| (squared distance to a vertex's circle minus its radius squared) below which a site
 #: counts as on the circle: 2 r times the default algorithm's 2**-46 vertex merge tolerance
 HALFPLANE_MERGE_RTOL = 2.0**-45
-#: A site within HALFPLANE_MERGE_RTOL of a circle joins its vertex only if the vertices it
-#: forms with the circle's sites are this close (L1, relative; the default's merge rule)
-HALFPLANE_JOIN_RTOL = 2.0**-46
 #: Squared float edge length, relative to the squared cell radius, above which a half-plane
 #: cell's edge is taken as it is (rounding moves vertices by ~1e-16 of the radius)
 HALFPLANE_SURE_RTOL = 1e-12

@@ -13,7 +13,7 @@ import numpy as np
 
 from ..config import HALFPLANE_TILING_RTOL
 from ..kernels.cells import cells_from_neighbors, cells_from_triangulation
-from ..kernels.clip import rings_convex
+from ..kernels.clip import rings_convex, tiny_folded
 from ..kernels.delaunay import triangulate_sorted
 from ..kernels.fortune import fortune_delaunay
 from ..kernels.halfplane import halfplane_cells
@@ -118,6 +118,27 @@ def _lost(xs, ys, box, lengths):
     return np.flatnonzero(inside & empty)
 
 
+_FOLDED_ULPS = 64  # a folded ring this many ulps across is not representable: left empty
+
+
+def _drop_folded(closed, lengths, owner):
+    """The rings with every tiny one that fails the exact convexity test left empty.
+
+    Each builder certifies its rings; one that still folds and is only a few dozen ulps
+    across lies where floats cannot represent the cell (sites a few ulps apart far from the
+    origin: its vertices are a few ulps apart too). It is reported in
+    ``Diagram.unresolved`` (:func:`_lost`) instead of as a self-intersecting polygon.
+    """
+    bad = tiny_folded(closed, lengths, _FOLDED_ULPS)
+    if not bad.any():
+        return closed, lengths, owner
+    size = np.where(bad, 0, np.diff(lengths))
+    out = np.zeros_like(lengths)
+    np.cumsum(size, out=out[1:])
+    idx = np.repeat(lengths[:-1] - out[:-1], size) + np.arange(int(out[-1]))
+    return closed[idx], out, owner[idx]
+
+
 def _splice(closed, lengths, owner, dual, take):
     """Closed rings with cell ``k`` from ``dual`` where ``take[k]``, else from ``closed``."""
     dclosed, dlengths, downer = dual
@@ -203,6 +224,7 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
     box = np.array(wdom.bounds, dtype=np.float64)
     with serial_below(n):
         closed, lengths, own = _closed_cells(xs, ys, box, algorithm, unique)
+        closed, lengths, own = _drop_folded(closed, lengths, own)
         bufs, edges = assemble(wdom, closed, lengths, own, n, unique)
     # sites every construction leaves without a cell: floats cannot represent it
     unresolved = unique[_lost(xs, ys, box, lengths)].astype(np.int64)

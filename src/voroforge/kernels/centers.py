@@ -20,7 +20,6 @@ import numpy as np
 from numba import njit, prange
 
 from ..config import (
-    CC_MERGE_RTOL,
     FOLD_MAX_ROUNDS,
     FOLD_SPAN_ERRS,
     NJIT,
@@ -32,6 +31,7 @@ from .vertex import (
     canonical_vertex_ranked,
     is_close,
     near_pair,
+    same_vertex,
     voronoi_vertex,
     voronoi_vertex_and_error,
 )
@@ -96,20 +96,34 @@ def _quad(tri, e, f):
 
 
 @njit(**NJIT)
-def _cc_close(xs, ys, a, err, cx, cy, t, u):
-    """Whether the centres of triangles ``t``, ``u`` (site ``a`` on both) are one point.
+def _radius(xs, ys, tri, cx, cy, t, u):
+    """The L1 radius the merge and fold tolerances of triangles ``t``, ``u`` scale with.
+
+    The largest L1 distance from either centre to its triangle's sites: the same whichever
+    of the two comes first and whichever site a halfedge starts at (an L1 distance differs
+    from site to site on one circle, and which halfedge of an edge is the lower one depends
+    on the builder's numbering: the sweep and the default then merged differently).
+    """
+    r = 0.0
+    for k in (t, u):
+        for j in range(3):
+            v = tri[3 * k + j]
+            r = max(r, abs(cx[k] - xs[v]) + abs(cy[k] - ys[v]))
+    return r
+
+
+@njit(**NJIT)
+def _cc_close(xs, ys, tri, err, cx, cy, t, u):
+    """Whether the centres of adjacent triangles ``t``, ``u`` are one point.
 
     They are when their distance is within both centres' rounding bounds
     (``vertex.center_error``: floats cannot tell them apart) and within ``CC_MERGE_RTOL`` of
     the circle's radius (a centre floats cannot place, a sliver's, merges with nothing by
-    distance alone; :func:`_unfold` merges it if it swaps with a neighbour). Both scale
-    with the local spacing: the coordinates' magnitude enters only through its ulps.
+    distance alone; :func:`_unfold` merges it if it swaps with a neighbour): the one merge
+    rule, :func:`.vertex.same_vertex`, which the half-plane cells use too.
     """
-    d = abs(cx[t] - cx[u]) + abs(cy[t] - cy[u])
-    if not d <= err[t] + err[u]:
-        return False
-    r = abs(cx[t] - xs[a]) + abs(cy[t] - ys[a])
-    return d <= CC_MERGE_RTOL * r + 4.0 * _U * (abs(cx[t]) + abs(cy[t]))
+    r = _radius(xs, ys, tri, cx, cy, t, u)
+    return same_vertex(cx[t], cy[t], err[t], cx[u], cy[u], err[u], r)
 
 
 @njit(**NJIT_PARALLEL)
@@ -133,11 +147,11 @@ def flag_close(xs, ys, tri, he, cx, cy, flag, err, box, fold, near):
             continue
         # both tests need the edge within what rounding and naming move its ends (_short;
         # _cc_close's bound is within it as FOLD_SPAN_ERRS >= 1): most edges end here
-        if not _short(xs, ys, tri[e], err, cx, cy, t, u):
+        if not _short(xs, ys, tri, err, cx, cy, t, u):
             continue
         near[t] = 1
         near[u] = 1
-        if _cc_close(xs, ys, tri[e], err, cx, cy, t, u):
+        if _cc_close(xs, ys, tri, err, cx, cy, t, u):
             flag[e] = 1
         elif _folds(xs, ys, tri, e, f, cx, cy, box, err):
             fold[e] = 1
@@ -154,7 +168,7 @@ def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank, err, box, fold):
         e = cand[k]
         f = he[e]
         a, b, c, d = _quad(tri, e, f)
-        if (near and _cc_close(xs, ys, a, err, cx, cy, e // 3, f // 3)) or (
+        if (near and _cc_close(xs, ys, tri, err, cx, cy, e // 3, f // 3)) or (
             incircle(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c], xs[d], ys[d]) == 0.0
         ):
             joined[k] = 1
@@ -184,25 +198,37 @@ def _next(e):
 
 
 @njit(**NJIT)
-def _short(xs, ys, a, err, cx, cy, t, u):
-    """Whether the Voronoi edge between the centres of ``t``, ``u`` (site ``a``) can fold.
+def _short(xs, ys, tri, err, cx, cy, t, u):
+    """Whether the Voronoi edge between the centres of adjacent ``t``, ``u`` can fold.
 
     Only an edge within what rounding and naming can move its ends (the centres' bounds,
     and a class's snap to its name, ``VERTEX_SNAP_RTOL`` of the radius) can; a longer one
     that breaks a turn test is a straight angle rounded, left alone.
     """
     d = abs(cx[t] - cx[u]) + abs(cy[t] - cy[u])
-    r = abs(cx[t] - xs[a]) + abs(cy[t] - ys[a])
-    return d <= FOLD_SPAN_ERRS * (err[t] + err[u] + VERTEX_SNAP_RTOL * r)
+    r = _radius(xs, ys, tri, cx, cy, t, u)
+    return d <= FOLD_SPAN_ERRS * (err[t] + err[u] + VERTEX_SNAP_RTOL * r + _ulps(cx, cy, t, u))
 
 
 @njit(**NJIT)
-def short_edge(xs, ys, a, err, cx, cy, t, u):
-    """Whether the centres of triangles ``t``, ``u`` (site ``a`` on both) may be one vertex.
+def _ulps(cx, cy, t, u):
+    """An ulp of each centre's coordinates (both rounded to nearest: twice the half ulp).
+
+    Rounding bounds count a centre's final addition exactly (0 where it is exact, an
+    exact lattice far from the origin), so two centres a few ulps apart stay two vertices;
+    a swap between them (a fold, proven by exact signs) may still be the representation
+    of two vertices closer than the ulps, and the fold tests reach that far.
+    """
+    return 2.0 * _U * (abs(cx[t]) + abs(cy[t]) + abs(cx[u]) + abs(cy[u]))
+
+
+@njit(**NJIT)
+def short_edge(xs, ys, tri, err, cx, cy, t, u):
+    """Whether the centres of adjacent triangles ``t``, ``u`` may be one vertex.
 
     Within what rounding and naming move them (:func:`_short`): the edges a fold may contract.
     """
-    return _short(xs, ys, a, err, cx, cy, t, u)
+    return _short(xs, ys, tri, err, cx, cy, t, u)
 
 
 @njit(**NJIT)
@@ -217,7 +243,7 @@ def _folds(xs, ys, tri, e, f, cx, cy, box, err):
     """
     t = e // 3
     u = f // 3
-    if not _short(xs, ys, tri[e], err, cx, cy, t, u):
+    if not _short(xs, ys, tri, err, cx, cy, t, u):
         return False
     if not (_in_box(cx[t], cy[t], box) and _in_box(cx[u], cy[u], box)):
         return False  # a vertex outside the box is never output: its cells are cut
@@ -251,7 +277,7 @@ def _refold(xs, ys, tri, he, parent, cx, cy, box, err, changed):
             hi = max(e, f)
             if parent[lo // 3] == parent[hi // 3]:
                 continue  # one class (a shared parent is a shared root)
-            if not _short(xs, ys, tri[lo], err, cx, cy, lo // 3, hi // 3):
+            if not _short(xs, ys, tri, err, cx, cy, lo // 3, hi // 3):
                 continue  # the cheap test first: most edges are long
             if _find(parent, lo // 3) == _find(parent, hi // 3):
                 continue
@@ -322,7 +348,7 @@ def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined,
         f = he[e]
         if changed[e // 3] != 0 or changed[f // 3] != 0:
             continue  # tested below
-        if _short(xs, ys, tri[e], err, cx, cy, e // 3, f // 3):
+        if _short(xs, ys, tri, err, cx, cy, e // 3, f // 3):
             if _find(parent, e // 3) != _find(parent, f // 3):
                 if _folds(xs, ys, tri, e, f, cx, cy, box, err):
                     merges += _link(parent, e // 3, f // 3)
@@ -339,6 +365,34 @@ def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined,
 
 
 @njit(**NJIT)
+def _rank_key(t, tri, rank):
+    """Triangle ``t``'s site ranks, sorted: a key that no builder's numbering changes."""
+    a = rank[tri[3 * t]]
+    b = rank[tri[3 * t + 1]]
+    c = rank[tri[3 * t + 2]]
+    if a > b:
+        a, b = b, a
+    if b > c:
+        b, c = c, b
+    if a > b:
+        a, b = b, a
+    return a, b, c
+
+
+@njit(**NJIT)
+def _better_ref(t, u, err, tri, rank):
+    """Whether triangle ``t`` is a better reference for its class's name than ``u``.
+
+    The smaller rounding bound (the best-conditioned centre), ties to the lower rank key:
+    never the triangles' numbering, which differs between builders (the sweep's and the
+    default's classes then got different names where a class spans more than the snap).
+    """
+    if err.shape[0] == 0 or err[t] == err[u]:
+        return _rank_key(t, tri, rank) < _rank_key(u, tri, rank)
+    return err[t] < err[u]
+
+
+@njit(**NJIT)
 def _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy):
     """Vertex of the class rooted at triangle ``r`` with sites ``on[:k]`` (see below)."""
     a0 = tri[3 * r]
@@ -347,7 +401,7 @@ def _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy):
 
 
 @njit(**NJIT_PARALLEL)
-def _name_pairs(xs, ys, tri, size, other, cx, cy, rank, changed):
+def _name_pairs(xs, ys, tri, size, other, cx, cy, rank, err, changed):
     """:func:`_name_classes` for the classes of two triangles, while every centre is its own.
 
     Such a class (root ``r``, other member ``u``) has the root's three sites and, when the two
@@ -365,6 +419,9 @@ def _name_pairs(xs, ys, tri, size, other, cx, cy, rank, changed):
         if size[r] != 2:
             continue
         u = other[r]
+        # the name must be near the better-conditioned centre (not the root's: the
+        # numbering differs between builders)
+        ref = np.int64(u) if _better_ref(u, r, err, tri, rank) else np.int64(r)
         a = tri[3 * r]
         b = tri[3 * r + 1]
         c = tri[3 * r + 2]
@@ -402,10 +459,10 @@ def _name_pairs(xs, ys, tri, size, other, cx, cy, rank, changed):
             else:
                 wx, wy = voronoi_vertex(p, q, w, xs, ys)
             if np.isfinite(wx) and np.isfinite(wy):
-                sx = xs[a]
-                sy = ys[a]
-                vx = cx[r]
-                vy = cy[r]
+                sx = xs[tri[3 * ref]]
+                sy = ys[tri[3 * ref]]
+                vx = cx[ref]
+                vy = cy[ref]
                 r2 = (vx - sx) * (vx - sx) + (vy - sy) * (vy - sy)
                 near = near_pair(p, q, r2, xs, ys) or near_pair(q, w, r2, xs, ys)
                 if not (near or near_pair(p, w, r2, xs, ys)):
@@ -420,7 +477,7 @@ def _name_pairs(xs, ys, tri, size, other, cx, cy, rank, changed):
                 if v != a and v != b and v != c:
                     on[k] = v
                     k += 1
-            wx, wy = _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy)
+            wx, wy = _class_vertex(on, k, rank, ref, xs, ys, tri, cx, cy)
         _set_vertex(cx, cy, r, wx, wy, changed)
         _set_vertex(cx, cy, u, wx, wy, changed)
 
@@ -458,7 +515,7 @@ def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, own):
         if k != r:
             other[r] = k
     if own:
-        _name_pairs(xs, ys, tri, size, other, cx, cy, rank, changed)
+        _name_pairs(xs, ys, tri, size, other, cx, cy, rank, err, changed)
         if most <= 2:
             return
     on = np.zeros(max(6, 3 * most), dtype=np.int64)
@@ -481,7 +538,8 @@ def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, own):
                 if v != a and v != b and v != c and (k == 3 or v != on[3]):
                     on[k] = v
                     k += 1
-            vx, vy = _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy)
+            ref = u if _better_ref(u, r, err, tri, rank) else r
+            vx, vy = _class_vertex(on, k, rank, ref, xs, ys, tri, cx, cy)
             _set_vertex(cx, cy, r, vx, vy, changed)
             _set_vertex(cx, cy, u, vx, vy, changed)
         elif size[r] > 2:
@@ -517,7 +575,7 @@ def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, own):
         best = r
         if err.shape[0] > 0:
             for u in range(start[r], start[r + 1]):
-                if err[members[u]] < err[best]:
+                if _better_ref(members[u], best, err, tri, rank):
                     best = members[u]
         vx, vy = _class_vertex(on, k, rank, best, xs, ys, tri, cx, cy)
         for u in range(start[r], start[r + 1]):

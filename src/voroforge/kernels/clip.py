@@ -182,3 +182,31 @@ def rings_convex(xy, lengths):
         if lengths[i + 1] > lengths[i]:
             ok[i] = ring_convex(xy, lengths[i], lengths[i + 1])
     return ok
+
+
+@njit(**NJIT)
+def tiny_folded(xy, lengths, ulps):
+    """Rings at most ``ulps`` ulps across that fail :func:`ring_convex`.
+
+    Cells floats cannot represent (sites a few ulps apart far from the origin; ulps of the
+    ring's largest coordinate). The span test comes first, so the exact test runs on those
+    rings only.
+    """
+    n = lengths.shape[0] - 1
+    bad = np.zeros(n, dtype=np.bool_)
+    for i in range(n):
+        a = lengths[i]
+        b = lengths[i + 1]
+        if b - a < 2:
+            continue
+        x0 = x1 = xy[a, 0]
+        y0 = y1 = xy[a, 1]
+        for k in range(a + 1, b):
+            x0 = min(x0, xy[k, 0])
+            x1 = max(x1, xy[k, 0])
+            y0 = min(y0, xy[k, 1])
+            y1 = max(y1, xy[k, 1])
+        big = max(abs(x0), abs(x1), abs(y0), abs(y1))
+        if max(x1 - x0, y1 - y0) <= ulps * 2.0**-52 * big:
+            bad[i] = not ring_convex(xy, a, b)
+    return bad

@@ -520,6 +520,72 @@ def _repair(xs, ys, tri, he, hull_tri, suspects):
 
 
 @njit(**NJIT)
+def _tie_flips(xs, ys, pr, pl, p0, p1, rank):
+    """Whether edge ``pr -> pl`` (apex ``p0`` left, ``p1`` right) flips, ties broken by rank.
+
+    The exact ``incircle`` decides; where the four sites are exactly cocircular, the lifted
+    site of the lowest ``rank`` is taken as raised by a symbolic epsilon (a perturbation
+    every caller applies alike), whose sign is an ``orient2d`` of the other three: so each
+    cocircular set has one triangulation, whatever order built it (the same Voronoi
+    vertices, and the same fold contraction, for the sweep and the default).
+    """
+    v = incircle(xs[pr], ys[pr], xs[pl], ys[pl], xs[p0], ys[p0], xs[p1], ys[p1])
+    if v != 0.0:
+        return v > 0.0
+    low = pr
+    for q in (pl, p0, p1):
+        if rank[q] < rank[low]:
+            low = q
+    if low == p1:
+        return -orient2d(xs[pr], ys[pr], xs[pl], ys[pl], xs[p0], ys[p0]) > 0.0
+    if low == pr:
+        return orient2d(xs[p1], ys[p1], xs[pl], ys[pl], xs[p0], ys[p0]) > 0.0
+    if low == pl:
+        return orient2d(xs[pr], ys[pr], xs[p1], ys[p1], xs[p0], ys[p0]) > 0.0
+    return orient2d(xs[pr], ys[pr], xs[pl], ys[pl], xs[p1], ys[p1]) > 0.0
+
+
+@njit(**NJIT)
+def canonical_ties(xs, ys, tri, he, rank, cand):
+    """Flip exactly cocircular quads of a Delaunay triangulation to one canonical choice.
+
+    A Delaunay triangulation is unique but for its cocircular sets, which each builder
+    triangulates in its own order. Lawson flips under :func:`_tie_flips` (the exact test,
+    ties broken by a symbolic lift of the lowest-``rank`` site) from the halfedges ``cand``
+    (every edge the float filter could not call: the cocircular ones among them) reach the
+    one triangulation that this perturbation makes Delaunay. Only edges with an exact tie
+    ever flip (the others stay strictly legal). Returns the number of flips.
+    """
+    n = xs.shape[0]
+    hull_tri = np.zeros(n, dtype=np.int32)  # unused: hull edges (he -1) never flip
+    stack = np.zeros(cand.shape[0] + 64, dtype=np.int32)
+    sp = cand.shape[0]
+    for k in range(sp):
+        stack[k] = cand[k]
+    flips = 0
+    while sp > 0:
+        sp -= 1
+        a = stack[sp]
+        b = he[a]
+        if b == -1:
+            continue
+        if not _tie_flips(xs, ys, tri[a], tri[_next(a)], tri[_prev(a)], tri[_prev(b)], rank):
+            continue
+        _flip(a, b, tri, he, hull_tri)
+        flips += 1
+        if sp + 4 > stack.shape[0]:
+            grown = np.zeros(2 * stack.shape[0], dtype=np.int32)
+            grown[:sp] = stack[:sp]
+            stack = grown
+        stack[sp] = a
+        stack[sp + 1] = _next(a)
+        stack[sp + 2] = b
+        stack[sp + 3] = _next(b)
+        sp += 4
+    return flips
+
+
+@njit(**NJIT)
 def _insert_deferred(xs, ys, tri, he, tcount, hull_tri, hull_next, hull_prev, deferred):
     """Insert points the sweep could not attach to the hull (they lie inside or on it)."""
     stack = np.zeros(tri.shape[0] + 16, dtype=np.int32)

@@ -99,7 +99,9 @@ def _moved(t, xs, ys, tri, err, cx, cy):
     snap tolerance. Infinite (no bound) when its own centre is not finite.
     """
     ox, oy = voronoi_vertex(tri[3 * t], tri[3 * t + 1], tri[3 * t + 2], xs, ys)
-    return err[t] + abs(cx[t] - ox) + abs(cy[t] - oy)
+    # plus an ulp of the vertex (the fold tests' reach, as ``centers._ulps``)
+    ulp = 2.0 * _U * (abs(cx[t]) + abs(cy[t]))
+    return err[t] + abs(cx[t] - ox) + abs(cy[t] - oy) + ulp
 
 
 @njit(**NJIT)
@@ -111,9 +113,10 @@ def _one_vertex(i, xs, ys, tri, err, cx, cy, t, u):
     ``FOLD_REACH_RTOL`` of their distance from the site).
     """
     d = abs(cx[t] - cx[u]) + abs(cy[t] - cy[u])
-    if not d <= FOLD_REACH_RTOL * (abs(cx[t] - xs[i]) + abs(cy[t] - ys[i])):
+    r = max(abs(cx[t] - xs[i]) + abs(cy[t] - ys[i]), abs(cx[u] - xs[i]) + abs(cy[u] - ys[i]))
+    if not d <= FOLD_REACH_RTOL * r:
         return False  # (a centre's bound may reach 2**-30 of its magnitude: not the spacing)
-    if short_edge(xs, ys, i, err, cx, cy, t, u):
+    if short_edge(xs, ys, tri, err, cx, cy, t, u):
         return True
     bound = _moved(t, xs, ys, tri, err, cx, cy) + _moved(u, xs, ys, tri, err, cx, cy)
     return d <= FOLD_SPAN_ERRS * bound < np.inf

@@ -26,7 +26,6 @@ import numpy as np
 from numba import njit
 
 from ..config import (
-    HALFPLANE_JOIN_RTOL,
     HALFPLANE_MERGE_RTOL,
     HALFPLANE_NEAR_RTOL,
     HALFPLANE_SHADOW_RTOL,
@@ -35,7 +34,13 @@ from ..config import (
 )
 from .clip import dedupe_ring
 from .predicates import incircle, orient2d
-from .vertex import box_crossing, canonical_vertex, is_close, voronoi_vertex
+from .vertex import (
+    box_crossing,
+    canonical_vertex,
+    near_pair,
+    same_vertex,
+    voronoi_vertex_and_error,
+)
 
 #: Box sides as ring labels (those of :func:`.vertex.box_crossing`); all become owner -1.
 LEFT, BOTTOM, RIGHT, TOP = -1, -2, -3, -4
@@ -45,6 +50,7 @@ _MAX_FIX = 64  # rounds of exact repair per cell before the float cut is kept as
 _W_TEST = 8  # a filtered exact test (incircle, orient2d: ~10-20 ns)
 _W_VERTEX = 32  # a vertex from its name (voronoi_vertex: ~30-50 ns)
 _W_EXACT = 1024  # one from exact expansions (~5-10 us; a centre near the origin, see below)
+_W_ADAPT = 512  # an incircle whose float filter fails: its exact stage (~1-3 us)
 _SLOW_RTOL = 2.0**-20  # centres nearer the origin than this of their scale take that path
 
 
@@ -213,7 +219,7 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
             work += _W_VERTEX + nc
             if work > budget:
                 return -2, work
-            vx_, vy_ = voronoi_vertex(i, a, b, xs, ys)
+            vx_, vy_, ev_ = voronoi_vertex_and_error(i, a, b, xs, ys)
             r2 = (ix - vx_) * (ix - vx_) + (iy - vy_) * (iy - vy_)
             tol = HALFPLANE_NEAR_RTOL * r2
             # a site this close to the circle is on it: the edge it would add or keep is
@@ -241,7 +247,7 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
                     charged = True
                     if work > budget:
                         return -2, work
-                if abs(d) <= merge and _joins(i, a, b, x, vx_, vy_, xs, ys, HALFPLANE_JOIN_RTOL):
+                if abs(d) <= merge and _joins(i, a, b, x, vx_, vy_, ev_, xs, ys):
                     if x == nxt or x == prv:
                         # the edge of b (or a) between this vertex and x's is noise: drop it
                         m = _remove(lab, m, u if x == nxt else (u - 1 if u > 0 else m - 1))
@@ -251,6 +257,12 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
                 elif d < -tol and abs(d) > merge:
                     s = 1.0
                 else:
+                    if abs(d) <= merge:
+                        # not joined, yet on the circle to rounding: the float filter
+                        # cannot call it, the exact stage runs (a far circle's centre)
+                        work += _W_ADAPT
+                        if work > budget:
+                            return -2, work
                     s = incircle(ix, iy, xs[a], ys[a], xs[b], ys[b], xs[x], ys[x])
                 if s > 0.0:
                     # x strictly inside the circle and on the line through i and a (or b)
@@ -273,11 +285,16 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
                         m += 1
                         inserted = True
                         break
-                elif (s == 0.0 or abs(d) <= merge) and non + 3 < on.shape[0]:
-                    on[non] = x  # on the circle, or off it by rounding only
+                elif s == 0.0 and non + 3 < on.shape[0]:
+                    on[non] = x  # on the circle, or on the vertex by rounding (joined)
                     non += 1
             if inserted:
                 break
+            if non > 1:
+                work += non * non  # a pair test each (sites on one circle: many)
+                if work > budget:
+                    return -2, work
+                non = _drop_shadowed(i, a, b, on, non, r2, xs, ys)
             if non == 0:
                 vx[u] = vx_  # no other site on the circle: the centre computed above
                 vy[u] = vy_
@@ -335,25 +352,56 @@ def _near_cost(a, b, c0, cand, nc, sidx, xs, ys, vx, vy, r2, tol, merge):
 
 
 @njit(**NJIT)
-def _joins(i, a, b, x, vx, vy, xs, ys, rtol):
+def _joins(i, a, b, x, vx, vy, ev, xs, ys):
     """Whether site ``x`` near the circle of ``i, a, b`` (centre ``vx, vy``) is on its vertex.
 
-    True when the circumcentres of ``x`` with ``i, a`` and with ``i, b`` both lie within
-    ``rtol`` of the vertex: the edges that ``x`` would add or shorten are then rounding
-    noise. A site a few ulps from ``i``, ``a`` or ``b`` fails: its triangle with that
-    site is ill-conditioned and its centre lies far along their bisector.
+    True when the circumcentres of ``x`` with ``i, a`` and with ``i, b`` are both that
+    vertex by the one merge rule (:func:`.vertex.same_vertex`, ``ev`` the vertex's rounding
+    bound), which the Delaunay-dual cells apply to adjacent centres: the edges that ``x``
+    would add or shorten are then rounding noise. A site a few ulps from ``i``, ``a`` or
+    ``b`` fails: its triangle with that site is ill-conditioned and its centre lies far
+    along their bisector.
+    """
+    r = abs(vx - xs[i]) + abs(vy - ys[i])
+    px, py, ep = voronoi_vertex_and_error(i, a, x, xs, ys)
+    if not (np.isfinite(px) and np.isfinite(py)):
+        return False
+    if not same_vertex(vx, vy, ev, px, py, ep, r):
+        return False
+    px, py, ep = voronoi_vertex_and_error(i, x, b, xs, ys)
+    if not (np.isfinite(px) and np.isfinite(py)):
+        return False
+    return same_vertex(vx, vy, ev, px, py, ep, r)
+
+
+@njit(**NJIT)
+def _drop_shadowed(i, a, b, on, non, r2, xs, ys):
+    """Drop from ``on[:non]`` each site a few ulps from another that is nearer the vertex.
+
+    Of two sites on the circle of ``i, a, b`` to rounding whose bisector floats cannot
+    place (:func:`.vertex.near_pair`), the one strictly inside the circle (exact
+    ``incircle``) shadows the other, as in the Delaunay dual, where the farther one is in
+    none of the vertex's triangles and so not in its name. Returns the new count.
     """
     ix = xs[i]
     iy = ys[i]
-    px, py = voronoi_vertex(i, a, x, xs, ys)
-    if not (np.isfinite(px) and np.isfinite(py)):
-        return False
-    if not is_close(vx, vy, px, py, ix, iy, rtol):
-        return False
-    px, py = voronoi_vertex(i, x, b, xs, ys)
-    if not (np.isfinite(px) and np.isfinite(py)):
-        return False
-    return is_close(vx, vy, px, py, ix, iy, rtol)
+    kept = 0
+    for c in range(non):
+        x = on[c]
+        drop = False
+        for e in range(non):
+            y = on[e]
+            if y == x or not near_pair(x, y, r2, xs, ys):
+                continue
+            sy = incircle(ix, iy, xs[a], ys[a], xs[b], ys[b], xs[y], ys[y])
+            sx = incircle(ix, iy, xs[a], ys[a], xs[b], ys[b], xs[x], ys[x])
+            if sy > 0.0 >= sx:
+                drop = True
+                break
+        if not drop:
+            on[kept] = x
+            kept += 1
+    return kept
 
 
 @njit(**NJIT)

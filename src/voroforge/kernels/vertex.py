@@ -40,6 +40,7 @@ import numpy as np
 from numba import njit
 
 from ..config import (
+    CC_MERGE_RTOL,
     NAME_MAX_TRIES,
     NJIT,
     VERTEX_DET_RTOL,
@@ -47,7 +48,7 @@ from ..config import (
     VERTEX_REFINE_RTOL,
     VERTEX_SNAP_RTOL,
 )
-from .expansion import exact_circumcenter
+from .expansion import exact_circumcenter, two_sum
 from .predicates import orient2d
 
 
@@ -123,10 +124,15 @@ def _error_of(ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det):
     acl = ex * ex + ey * ey + abs(ow) + abs(qw)
     ux = (ey * bl - dy * cl) * (0.5 / det)
     uy = (dx * cl - ex * bl) * (0.5 / det)
+    if not (abs(ux) < np.inf and abs(uy) < np.inf):
+        return np.inf
     nx = 7.0 * _U * (abs(ey) * abl + abs(dy) * acl) * (0.5 / ad)
     ny = 7.0 * _U * (abs(dx) * acl + abs(ex) * abl) * (0.5 / ad)
     err = nx + ny + (abs(ux) + abs(uy)) * (2.0 * _U + rel_det)
-    err += _U * (abs(ox + ux) + abs(oy + uy))  # the final addition
+    # the final addition o + u: its rounding error exactly (two_sum's residual), which is 0
+    # where the sum is representable (an exact lattice far from the origin), not half an
+    # ulp of the magnitude (that merged vertices a few ulps apart there)
+    err += abs(two_sum(ox, ux)[1]) + abs(two_sum(oy, uy)[1])
     return 2.0 * err + 4.0 * _U * _U * (abs(ox) + abs(oy))
 
 
@@ -365,6 +371,24 @@ def is_close(x, y, px, py, sx, sy, rtol):
     """
     scale = abs(x - sx) + abs(y - sy)
     return abs(px - x) + abs(py - y) <= rtol * scale + 16.0 * _U * (abs(x) + abs(y))
+
+
+@njit(**NJIT)
+def same_vertex(x1, y1, e1, x2, y2, e2, r):
+    """Whether two computed vertices with rounding bounds ``e1``, ``e2`` are one point.
+
+    The one merge rule of every cell builder (the Delaunay-dual cells' adjacent centres,
+    the half-plane cells' sites on a circle): the two are within their rounding bounds of
+    each other (floats cannot tell them apart; an exact lattice's distinct vertices, whose
+    bounds are ~0, never merge however far from the origin) and within ``CC_MERGE_RTOL`` of
+    ``r`` (the L1 distance from the vertex to a site on its circle) plus a few ulps of
+    their magnitude (a sliver's centre, which floats cannot place, merges with nothing by
+    distance alone). Symmetric in the two, so no caller's order can change the answer.
+    """
+    d = abs(x1 - x2) + abs(y1 - y2)
+    if not d <= e1 + e2:
+        return False
+    return d <= CC_MERGE_RTOL * r + 4.0 * _U * max(abs(x1) + abs(y1), abs(x2) + abs(y2))
 
 
 @njit(**NJIT)
