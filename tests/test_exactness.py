@@ -28,6 +28,7 @@ FAMILIES = [
     "lattice_offset_5e+13",
     "lattice_offset_1e+15",
     "lattice_offset_none",
+    "lattice_offset_4ulp",
     "float_circle_64",
     "float_circle_257",
     "float_circle_205",
@@ -57,6 +58,25 @@ def test_family_cells_valid_and_tiling(name):
         bad = np.flatnonzero(~shapely.is_valid(cells))
         assert not len(bad), f"{alg}: invalid cells {bad[:5].tolist()}"
         assert d.areas.sum() == pytest.approx(d.boundary.area, rel=1e-9), alg
+
+
+@pytest.mark.parametrize(
+    ("step", "off"), [(0.5, 1e15), (1.0, 2.5e15), (0.25, 4e14), (0.125, 2.5e14), (0.5, 7.5e14)]
+)
+def test_lattice_a_few_ulps_apart_is_exact(step, off):
+    """Lattices whose step is 2-4 ulps of their offset: every vertex is still a float64, and
+    every cell is its square bit for bit (centres that close merged while their rounding
+    bound counted an exact final addition as half an ulp)."""
+    x, y = np.meshgrid(np.arange(4) * step + off, np.arange(3) * step - 0.7 * off)
+    pts = np.column_stack((x.ravel(), y.ravel()))
+    h = step / 2
+    box = (pts[:, 0].min() - h, pts[:, 1].min() - h, pts[:, 0].max() + h, pts[:, 1].max() + h)
+    for alg in ALGS:
+        d = vf.voronoi(pts, box, algorithm=alg)
+        assert not len(d.unresolved), alg
+        for k, (px, py) in enumerate(pts):
+            want = shapely.box(px - h, py - h, px + h, py + h)
+            assert shapely.symmetric_difference(d.cells[k], want).area == 0.0, (alg, k)
 
 
 @pytest.mark.parametrize("off", [3e13, 5e13, 1e14, 7.77e13, 1e15])
