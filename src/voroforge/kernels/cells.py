@@ -26,7 +26,6 @@ from numba import njit, prange
 from ..config import FOLD_MAX_ROUNDS, NJIT, NJIT_PARALLEL, RELABEL_RTOL
 from .centers import circumcenters, contract, merge_cocircular
 from .clip import dedupe_ring, open_ring_convex
-from .delaunay import canonical_ties
 from .folds import fold_pairs, folded_rings, risky_sites
 from .power import box_cell
 from .vertex import box_crossing
@@ -587,10 +586,6 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
     box = np.asarray(box, dtype=np.float64)
     order = np.asarray(order, dtype=np.int64)
     cx, cy, err, flag = circumcenters(xs, ys, tri, he)
-    if flag.any() and canonical_ties(xs, ys, tri, he, kmap, np.flatnonzero(flag).astype(np.int32)):
-        # cocircular sets triangulated one way for every builder (their Voronoi vertices are
-        # one point either way; the fold contraction's classes follow the triangles)
-        cx, cy, err, flag = circumcenters(xs, ys, tri, he)
     cls, near = merge_cocircular(xs, ys, tri, he, cx, cy, err, flag, kmap, box)
     merged = bool(flag.any()) or bool((cls != np.arange(cls.shape[0])).any())
     # only cells with a vertex of a short edge (for its ends' rounding bounds and naming

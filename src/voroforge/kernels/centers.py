@@ -147,7 +147,7 @@ def flag_close(xs, ys, tri, he, cx, cy, flag, err, box, fold, near):
             continue
         # both tests need the edge within what rounding and naming move its ends (_short;
         # _cc_close's bound is within it as FOLD_SPAN_ERRS >= 1): most edges end here
-        if not _short(xs, ys, tri, err, cx, cy, t, u):
+        if not _short(xs, ys, tri, e, err, cx, cy, t, u):
             continue
         near[t] = 1
         near[u] = 1
@@ -198,15 +198,26 @@ def _next(e):
 
 
 @njit(**NJIT)
-def _short(xs, ys, tri, err, cx, cy, t, u):
-    """Whether the Voronoi edge between the centres of adjacent ``t``, ``u`` can fold.
+def _short(xs, ys, tri, e, err, cx, cy, t, u):
+    """Whether the Voronoi edge between the centres of ``t``, ``u`` (halfedge ``e``) can fold.
 
     Only an edge within what rounding and naming can move its ends (the centres' bounds,
-    and a class's snap to its name, ``VERTEX_SNAP_RTOL`` of the radius) can; a longer one
-    that breaks a turn test is a straight angle rounded, left alone.
+    an ulp of each, and a class's snap to its name, ``VERTEX_SNAP_RTOL`` of the radius) can;
+    a longer one that breaks a turn test is a straight angle rounded, left alone. The radius
+    is the L1 distance of the farther centre from the edge's lower site (by coordinates):
+    the same whichever halfedge or triangle the builder's numbering puts first.
     """
+    p = tri[e]
+    q = tri[_next(e)]
+    xp = xs[p]
+    yp = ys[p]
+    xq = xs[q]
+    yq = ys[q]
+    lower = (xq < xp) | ((xq == xp) & (yq < yp))
+    sx = xq if lower else xp
+    sy = yq if lower else yp
+    r = max(abs(cx[t] - sx) + abs(cy[t] - sy), abs(cx[u] - sx) + abs(cy[u] - sy))
     d = abs(cx[t] - cx[u]) + abs(cy[t] - cy[u])
-    r = _radius(xs, ys, tri, cx, cy, t, u)
     return d <= FOLD_SPAN_ERRS * (err[t] + err[u] + VERTEX_SNAP_RTOL * r + _ulps(cx, cy, t, u))
 
 
@@ -224,11 +235,14 @@ def _ulps(cx, cy, t, u):
 
 @njit(**NJIT)
 def short_edge(xs, ys, tri, err, cx, cy, t, u):
-    """Whether the centres of adjacent triangles ``t``, ``u`` may be one vertex.
+    """Whether the centres of triangles ``t``, ``u`` may be one vertex (rings' fold test).
 
-    Within what rounding and naming move them (:func:`_short`): the edges a fold may contract.
+    Within what rounding and naming move them, as :func:`_short`, with the radius of both
+    triangles (:func:`_radius`; no halfedge at hand): the edges a fold may contract.
     """
-    return _short(xs, ys, tri, err, cx, cy, t, u)
+    d = abs(cx[t] - cx[u]) + abs(cy[t] - cy[u])
+    r = _radius(xs, ys, tri, cx, cy, t, u)
+    return d <= FOLD_SPAN_ERRS * (err[t] + err[u] + VERTEX_SNAP_RTOL * r + _ulps(cx, cy, t, u))
 
 
 @njit(**NJIT)
@@ -243,7 +257,7 @@ def _folds(xs, ys, tri, e, f, cx, cy, box, err):
     """
     t = e // 3
     u = f // 3
-    if not _short(xs, ys, tri, err, cx, cy, t, u):
+    if not _short(xs, ys, tri, e, err, cx, cy, t, u):
         return False
     if not (_in_box(cx[t], cy[t], box) and _in_box(cx[u], cy[u], box)):
         return False  # a vertex outside the box is never output: its cells are cut
@@ -277,7 +291,7 @@ def _refold(xs, ys, tri, he, parent, cx, cy, box, err, changed):
             hi = max(e, f)
             if parent[lo // 3] == parent[hi // 3]:
                 continue  # one class (a shared parent is a shared root)
-            if not _short(xs, ys, tri, err, cx, cy, lo // 3, hi // 3):
+            if not _short(xs, ys, tri, lo, err, cx, cy, lo // 3, hi // 3):
                 continue  # the cheap test first: most edges are long
             if _find(parent, lo // 3) == _find(parent, hi // 3):
                 continue
@@ -348,7 +362,7 @@ def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined,
         f = he[e]
         if changed[e // 3] != 0 or changed[f // 3] != 0:
             continue  # tested below
-        if _short(xs, ys, tri, err, cx, cy, e // 3, f // 3):
+        if _short(xs, ys, tri, e, err, cx, cy, e // 3, f // 3):
             if _find(parent, e // 3) != _find(parent, f // 3):
                 if _folds(xs, ys, tri, e, f, cx, cy, box, err):
                     merges += _link(parent, e // 3, f // 3)
