@@ -127,6 +127,15 @@ def _remove(lab, m, u):
 
 
 @njit(**NJIT)
+def _insert(lab, m, u, x):
+    """Put label ``x`` at ring position ``u`` (the rest move up one); the new length."""
+    for k in range(m, u, -1):
+        lab[k] = lab[k - 1]
+    lab[u] = x
+    return m + 1
+
+
+@njit(**NJIT)
 def _drop_invalid(i, lab, m, xs, ys, sure, trust, box):
     """Remove repeated labels and neighbours whose edge has no positive length.
 
@@ -203,10 +212,7 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
                 work += nc
                 x = _shadowing(i, b if a < 0 else a, b if b < 0 else a, cand, nc, sidx, xs, ys, box)
                 if x >= 0 and not _has(lab, m, x):
-                    for k in range(m, u, -1):
-                        lab[k] = lab[k - 1]
-                    lab[u] = x
-                    m += 1
+                    m = _insert(lab, m, u, x)
                     inserted = True
                     break
             if a < 0 or b < 0:
@@ -279,10 +285,7 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
                             inserted = True
                             break
                     if m < cap and not _has(lab, m, x):
-                        for k in range(m, u, -1):
-                            lab[k] = lab[k - 1]
-                        lab[u] = x
-                        m += 1
+                        m = _insert(lab, m, u, x)
                         inserted = True
                         break
                 elif s == 0.0 and non + 3 < on.shape[0]:
