@@ -408,7 +408,7 @@ def _better_ref(t, u, err, tri, rank):
 
 @njit(**NJIT)
 def _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy):
-    """Vertex of the class rooted at triangle ``r`` with sites ``on[:k]`` (see below)."""
+    """Vertex of the class with sites ``on[:k]``, named near triangle ``r``'s centre (see below)."""
     a0 = tri[3 * r]
     _, vx, vy = canonical_vertex_ranked(on, k, rank, cx[r], cy[r], xs[a0], ys[a0], xs, ys)
     return vx, vy
@@ -424,7 +424,8 @@ def _name_pairs(xs, ys, tri, size, other, cx, cy, rank, err, changed):
     search: when it is one of the two triangles, its vertex is that triangle's centre, which
     :func:`circumcenters` computed by the same rule (same bits,
     ``vertex.voronoi_vertex_and_error``); else it is computed (``vertex.voronoi_vertex``: any
-    argument order). Then the name's tests (no close pair, finite, near the root's centre).
+    argument order). Then the name's tests (no close pair, finite, near the reference
+    centre: the better-conditioned of the two, :func:`_better_ref`).
     A class whose first triple fails one, or whose triangles do not share an edge, takes the
     full search (:func:`_class_vertex`), which tries the others. Each class reads and writes
     only its own two triangles' entries, so the classes are named in parallel.
@@ -510,9 +511,10 @@ def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, own):
     """Give every triangle of a class (``parent`` its root) the vertex of the class's name.
 
     The name is the canonical triple of the class's sites (``kernels/vertex``), numbered by
-    ``rank`` (their input indices), found near the root's centre; without one the root's
-    centre is used (for classes of three or more, the member centre with the smallest
-    rounding bound ``err`` is the reference). Classes of two triangles (four cocircular
+    ``rank`` (their input indices), found near the reference centre: the member's with the
+    smallest rounding bound ``err``, ties to the lowest rank key (:func:`_better_ref`; never
+    the root, whose number depends on the builder); without a name that centre is used.
+    Classes of two triangles (four cocircular
     sites: every square of a grid) are the common case and take a short path; larger ones
     are gathered by a counting sort. Triangles whose centre may have changed are marked
     in ``changed``. ``own`` says that every centre is still its triangle's own (the first
