@@ -132,11 +132,8 @@ def _drop_folded(closed, lengths, owner):
     bad = tiny_folded(closed, lengths, _FOLDED_ULPS)
     if not bad.any():
         return closed, lengths, owner
-    size = np.where(bad, 0, np.diff(lengths))
-    out = np.zeros_like(lengths)
-    np.cumsum(size, out=out[1:])
-    idx = np.repeat(lengths[:-1] - out[:-1], size) + np.arange(int(out[-1]))
-    return closed[idx], out, owner[idx]
+    empty = (closed[:0], np.zeros_like(lengths), owner[:0])  # every ring of no vertex
+    return _splice(closed, lengths, owner, empty, bad)
 
 
 def _splice(closed, lengths, owner, dual, take):
