@@ -138,3 +138,49 @@ def test_build_extrude_design(tmp_path):
     assert abs(m.volume - 3.0 * frame.area) <= 1e-9 * m.volume
     assert np.allclose(m.bounds[:, 2], [0, 3])
     assert np.allclose(m.bounds[:, :2], np.reshape(frame.bounds, (2, 2)), atol=1e-9)
+
+
+SHELL = """
+[design]
+name = "tiny-shell"
+units = "mm"
+
+[solid]
+kind = "shell"
+profile = [[10, 0], [12, 10], [10, 20]]
+sections = 24
+thickness = 1.0
+openings = 10
+web = 1.5
+voxel = 0.5
+smoothing = 1
+"""
+
+
+def test_builders_survive_their_submodules_being_imported_first(tmp_path):
+    # importing ``voroforge.solid.shell`` (the module) used to rebind the package's ``shell``
+    # to it, so ``solid.shell(...)`` and the design build both failed ("'module' object is not
+    # callable"); a fresh interpreter, since which comes first is what matters
+    import subprocess
+    import sys
+
+    src = tmp_path / "shell.toml"
+    src.write_text(SHELL)
+    code = (
+        "import types\n"
+        "import voroforge.solid.shell, voroforge.solid.lattice, voroforge.solid.foam\n"
+        "import voroforge.solid.extrude, voroforge.solid.check\n"
+        "from voroforge import solid\n"
+        "for name in ('shell', 'lattice', 'foam', 'extrude', 'check'):\n"
+        "    f = getattr(solid, name)\n"
+        "    assert isinstance(f, types.FunctionType) and f.__name__ == name, (name, f)\n"
+        "from voroforge.design.designfile import load\n"
+        "from voroforge.solid.build import check_solid, make_solid\n"
+        f"design, base = load({str(src)!r})\n"
+        "m = make_solid(design, base)\n"
+        "print('SHELL', m.metadata['kind'], bool(m.is_volume))\n"
+        "print('CHECK', type(check_solid(design, base)).__name__)\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert "SHELL shell True" in done.stdout and "CHECK Report" in done.stdout

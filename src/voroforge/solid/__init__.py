@@ -10,6 +10,8 @@ Every builder returns a watertight ``trimesh.Trimesh`` (``is_volume``) in the de
 from __future__ import annotations
 
 import importlib
+import sys
+import types
 from typing import TYPE_CHECKING
 
 __all__ = ["Report", "Violation", "cells", "check", "extrude", "fields", "foam", "lattice", "shell"]
@@ -48,3 +50,21 @@ def __getattr__(name: str):
 
 def __dir__() -> list[str]:
     return sorted(set(globals()) | set(__all__))
+
+
+class _Package(types.ModuleType):
+    """The package's module type: its builder functions win over same-named submodules.
+
+    Loading a submodule (``import voroforge.solid.shell``, or any ``from .shell import``)
+    makes the import system set the package's attribute ``shell`` to the module, which
+    would hide the function ``solid.shell`` (and break ``make_solid``). Such an assignment
+    binds the submodule's function instead; the module stays in ``sys.modules``.
+    """
+
+    def __setattr__(self, name: str, value) -> None:
+        if isinstance(value, types.ModuleType) and _LAZY.get(name) == f".{name}":
+            value = getattr(value, name)
+        super().__setattr__(name, value)
+
+
+sys.modules[__name__].__class__ = _Package

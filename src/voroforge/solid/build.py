@@ -69,21 +69,21 @@ def _revolve(profile, sections: int):
 
 def make_solid(design, base=None, stage=None):
     """The solid a design's ``[solid]`` section describes (a watertight Trimesh)."""
-    # each kind imports only its own builder (through the package, which binds the
-    # function, not the module of the same name)
+    # each kind imports only its own builder, from its module: the package's attribute of
+    # the same name can be the submodule (bound when something imported it first)
     stage = stage or (lambda name: None)
     s = design.solid
     f = _field(s)
     if s.kind == "extrude":
         from ..design.compute import compute
-        from . import extrude
+        from .extrude import extrude
 
         result = compute(design, base, progress=stage)
         stage("extruding")
         return extrude(result, s.thickness)
     if s.kind == "shell":
         from ..io.mesh import read
-        from . import shell
+        from .shell import shell
 
         surf = read(_path(base, s.surface)) if s.surface else _revolve(s.profile, s.sections)
         stage(f"shell with {s.openings} openings")
@@ -100,7 +100,7 @@ def make_solid(design, base=None, stage=None):
         )
     cells, mesh = _cells(s, base, stage)
     if s.kind == "lattice":
-        from . import lattice
+        from .lattice import lattice
 
         stage("lattice")
         return lattice(
@@ -113,7 +113,7 @@ def make_solid(design, base=None, stage=None):
             voxel=s.voxel,
             smoothing=s.smoothing,
         )
-    from . import foam
+    from .foam import foam
 
     stage("foam")
     return foam(cells, s.wall, field=f)
@@ -217,7 +217,7 @@ def build_solid(design, base, out: Path, stage, *, preview_only: bool = False) -
 
 def check_solid(design, base=None, stage=None):
     """Build the solid and run :func:`voroforge.solid.check` with the section's limits."""
-    from . import check  # through the package: ``solid.check`` stays the function
+    from .check import check
 
     s = design.solid
     m = make_solid(design, base, stage)
