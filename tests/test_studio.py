@@ -337,6 +337,24 @@ def test_live_check_reports_islands():
     assert _key(live) == _key(check(openings=r.openings, boundary=r.boundary).violations)
 
 
+def test_live_check_leaves_the_results_boundary_alone():
+    """The check runs in a worker thread while drag steps test containment in the domain (the
+    boundary object, prepared): it must not prepare or query that object itself (two threads
+    on one prepared GEOS polygon crashed the server)."""
+    data = {
+        "boundary": {"shape": "rectangle", "width": 100, "height": 100},
+        "seeds": {"method": "random", "count": 30},
+        "openings": {"select": "every_kth", "k": 3},
+    }
+    r = compute(load(data)[0], frame=False)
+    shapely.destroy_prepared(r.boundary)
+    live = LiveCheck()
+    found = live.run(r)
+    assert any(v.kind == "island" for v in found)  # the islands' frame was cut
+    assert not shapely.is_prepared(r.boundary)
+    assert live.run(r) == found  # and the copy is kept
+
+
 # --- sessions ------------------------------------------------------------------------------
 
 

@@ -7,6 +7,12 @@ results keyed by the openings' WKB and runs ``check`` only on openings that are 
 the last call (and, for webs, on their neighbours within ``min_web``), so dragging one seed
 re-checks a handful of openings. The violations are the ones ``voroforge check`` reports
 for the same geometry (a test compares them), worst first.
+
+The check runs in a worker thread while edits go on in the server's event loop, which
+tests containment in the result's domain (the boundary itself, prepared) on every drag
+step. GEOS's prepared geometries build their indexes lazily and without a lock, so the
+check works on its own copy of the boundary: two threads on one prepared polygon crashed
+the process (``cellops.frame`` prepares the boundary it is given).
 """
 
 from __future__ import annotations
@@ -39,6 +45,7 @@ class LiveCheck:
 
     def __init__(self) -> None:
         self._key = None
+        self._boundary = None  # this check's own copy of the boundary (see the module)
         self._single: dict[bytes, list[Violation]] = {}  # opening, corner, web to the rim
         self._pairs: dict[tuple[bytes, bytes], Violation] = {}
         self._outline: list[Violation] = []
@@ -60,11 +67,11 @@ class LiveCheck:
             Items index ``result.openings``, worst first.
         """
         limits = limits_of(result.design)
-        boundary = result.boundary
-        key = (tuple(sorted(limits.items())), shapely.to_wkb(boundary))
+        key = (tuple(sorted(limits.items())), shapely.to_wkb(result.boundary))
         per = {k: v for k, v in limits.items() if k not in ("islands", "corner_tolerance")}
-        if key != self._key:
+        if key != self._key or self._boundary is None:
             self._key = key
+            self._boundary = boundary = shapely.from_wkb(key[1])
             self._single.clear()
             self._pairs.clear()
             self._outline = []
@@ -77,6 +84,7 @@ class LiveCheck:
                     islands=False,
                 )
                 self._outline = list(rim.violations)
+        boundary = self._boundary
         holes = np.asarray(result.openings, dtype=object).reshape(-1)
         if "tile" in result.extra:  # periodic tiles are checked across seams by build
             holes = holes[:0]
@@ -100,7 +108,7 @@ class LiveCheck:
         found += self._outline
         if limits["islands"]:  # the frame's loose parts, once per result
             if self._island_cache is None or self._island_cache[0] is not result:
-                self._island_cache = (result, _islands(result))
+                self._island_cache = (result, _islands(result, boundary))
             found += self._island_cache[1]
         found.sort(key=_order)
         return found
@@ -151,9 +159,11 @@ def _renumber(v: Violation, items: tuple[int, ...]) -> Violation:
     return Violation(v.kind, v.location, v.value, v.limit, items)
 
 
-def _islands(result) -> list[Violation]:
-    """Loose parts of the frame; a one-part frame with the boundary's own rim has none."""
-    b = result.boundary
+def _islands(result, b) -> list[Violation]:
+    """Loose parts of the frame; a one-part frame with the boundary's own rim has none.
+
+    ``b`` is the result's boundary (the check's own copy of it).
+    """
     frame = result.frame
     if frame is None:  # computed without it: the same frame, from the public operation
         from ..design.cellops import frame as cut
