@@ -1,5 +1,6 @@
 """The hull lattice's building blocks against brute force: box pairs, convex separation,
-bit-exact row lookup; and the 3D preview renderer's depth order and culling."""
+bit-exact row lookup; the 3D preview renderer's depth order and culling; the solid
+preview's z-buffer and cut; Taubin smoothing against trimesh's."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ import pytest
 trimesh = pytest.importorskip("trimesh")
 
 from voroforge.solid.hulls import _find_rows  # noqa: E402
-from voroforge.solid.kernels import box_pairs, separated  # noqa: E402
+from voroforge.solid.kernels import box_pairs, separated, taubin  # noqa: E402
 
 
 def _brute_pairs(lo, hi):
@@ -128,3 +129,77 @@ def test_preview_paints_near_over_far_and_culls_back_faces(tmp_path):
         out3 = render([(tri, faces)], tmp_path / "c.png", size=(40, 40), view=(0, 0), edges=False)
         px = np.asarray(Image.open(out3).convert("RGB"))
         assert (px != 255).any() == seen
+
+
+def _pixels(path):
+    from PIL import Image
+
+    with Image.open(path) as im:
+        return np.asarray(im.convert("RGB")).astype(np.int64)
+
+
+def test_solid_preview_is_the_painter_s_picture_of_a_box(tmp_path):
+    # on a convex solid the painter's algorithm is exact: the z-buffer must draw the same
+    # picture (same framing, shading and colour), up to the edges' antialiasing
+    from voroforge.io.render3d import render
+    from voroforge.solid.render import preview
+
+    box = trimesh.creation.box((10.0, 6.0, 4.0))
+    box.apply_transform(trimesh.transformations.rotation_matrix(0.3, (1, 2, 3)))
+    for view in [(35.0, 25.0), (-55.0, 30.0)]:
+        a = render([box], tmp_path / "a.png", size=(200, 160), view=view, edges=False,
+                   colors=[(196, 205, 214)])  # fmt: skip
+        b = preview(box, tmp_path / "b.png", size=200, view=view, cut=False)
+        pa, pb = _pixels(a), _pixels(b)
+        assert pa.shape == pb.shape
+        diff = np.abs(pa - pb).max(axis=2)
+        assert (pb != 255).any(axis=2).mean() > 0.2  # the box fills the frame
+        assert (diff > 8).mean() < 0.02  # only along the edges
+        assert np.median(diff[(pb != 255).any(axis=2)]) == 0
+
+
+def test_solid_preview_cut_shows_caps_and_voids(tmp_path):
+    # cut open, a solid shows its cross-section as a flat cap facing the camera; a hollow
+    # one shows a ring of cap around its void's far walls
+    from voroforge.io.render3d import _rotation
+    from voroforge.solid.render import _rgb, preview
+
+    view = (35.0, 25.0)
+    cap = _rgb(np.array([196.0, 205.0, 214.0]), -_rotation(view)[1][None, :])[0]
+    outer = trimesh.creation.box((10.0, 10.0, 10.0))
+    inner = trimesh.creation.box((7.0, 7.0, 7.0))
+    inner.invert()
+    hollow = trimesh.Trimesh(
+        np.vstack([outer.vertices, inner.vertices]),
+        np.vstack([outer.faces, inner.faces + len(outer.vertices)]),
+        process=False,
+    )
+    frac = {}
+    for name, m, cut in [("whole", outer, False), ("solid", outer, True), ("hollow", hollow, True)]:
+        px = _pixels(preview(m, tmp_path / f"{name}.png", size=200, view=view, cut=cut))
+        shape = (px != 255).any(axis=2)
+        is_cap = (np.abs(px - cap).max(axis=2) <= 1) & shape
+        frac[name] = is_cap.sum() / shape.sum()
+        if name == "hollow":
+            # the void: pixels inside the cap's ring that are neither cap nor background
+            rows = np.flatnonzero(is_cap.any(axis=1))
+            mid = px[rows[len(rows) // 2]]
+            inside = np.flatnonzero(np.abs(mid - cap).max(axis=1) <= 1)
+            span = mid[inside.min() : inside.max()]
+            assert (np.abs(span - cap).max(axis=1) > 8).sum() > 20
+    assert frac["whole"] == 0
+    assert frac["solid"] > 0.5  # the square's section, seen face on, covers most of it
+    assert 0.1 < frac["hollow"] < 0.8 * frac["solid"]
+
+
+@pytest.mark.parametrize("iterations", [1, 6, 11])
+def test_taubin_is_trimesh_s_filter(iterations):
+    rng = np.random.default_rng(iterations)
+    m = trimesh.creation.icosphere(3)
+    m.vertices = m.vertices + rng.normal(0.0, 0.02, m.vertices.shape)
+    want = m.copy()
+    trimesh.smoothing.filter_taubin(want, iterations=iterations)
+    got = taubin(m.vertices, m.faces, iterations)
+    assert np.abs(got - want.vertices).max() < 1e-13
+    assert np.abs(got - m.vertices).max() > 1e-3  # it did move them
+    assert not np.shares_memory(got, m.vertices)

@@ -10,6 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .render import preview
+
 __all__ = ["build_solid", "check_solid", "make_solid", "preview"]
 
 
@@ -117,83 +119,6 @@ def make_solid(design, base=None, stage=None):
 
     stage("foam")
     return foam(cells, s.wall, field=f)
-
-
-_PREVIEW_FACES = 30_000  # more triangles than this are simplified before drawing
-_PREVIEW_FACES_MAX = 120_000  # the software renderer pays per face (~1 s per 70k at 900 px)
-
-
-def _shown(m, view, cut: bool):
-    """The mesh a preview draws: ``m`` simplified, and cut when ``cut``.
-
-    The cut keeps the half away from the camera (closed voids and skins show their inside).
-    Both go through one manifold3d object: a big mesh is simplified by edge collapse
-    (``SOLID_PREVIEW_SIMPLIFY`` of its size: under a pixel, where clustering vertices on a
-    grid crumpled thin struts), then trimmed by the plane through its centre. A mesh that
-    manifold3d refuses is drawn as it is.
-    """
-    from ..config import SOLID_PREVIEW_SIMPLIFY
-    from ..io.render3d import _rotation
-    from .booleans import from_manifold, status_name, to_manifold
-
-    big = len(m.faces) > _PREVIEW_FACES
-    if not (cut or big):
-        return m
-    man = to_manifold(m)
-    if status_name(man) != "NoError":
-        return m
-    if big:
-        man = man.simplify(float(m.scale) * SOLID_PREVIEW_SIMPLIFY)
-    if cut:
-        d = _rotation(view).T @ np.array([0.0, 1.0, 0.0])  # the camera looks along d
-        c = m.bounds.mean(axis=0)
-        man = man.trim_by_plane(tuple(d), float(d @ c))
-    return from_manifold(man)
-
-
-def _cluster(m, cell: float):
-    """Vertex-clustering decimation for previews: vertices snapped to ``cell`` and merged."""
-    import trimesh
-
-    key = np.floor(np.asarray(m.vertices) / cell).astype(np.int64)
-    _, inv, cnt = np.unique(key, axis=0, return_inverse=True, return_counts=True)
-    inv = inv.reshape(-1)
-    v = np.stack([np.bincount(inv, m.vertices[:, i]) / cnt for i in range(3)], axis=1)
-    f = inv[np.asarray(m.faces)]
-    f = f[(f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 0] != f[:, 2])]
-    return trimesh.Trimesh(v, f, process=False)
-
-
-def preview(m, path, *, size=900, view=(35.0, 25.0), cut=None) -> Path:
-    """A shaded PNG of a solid (software renderer, no GPU or display).
-
-    ``cut`` (default: when the solid hides its inside: closed voids or a skin) renders the
-    half away from the camera, so the cells show.
-    """
-    import trimesh
-
-    from ..io.render3d import render
-
-    if cut is None:
-        meta = m.metadata or {}
-        cut = meta.get("kind") == "foam" or bool(meta.get("skin"))
-    from ..io.render3d import _rotation
-
-    shown = _shown(m, view, cut)
-    cell = shown.scale / 400.0
-    while len(shown.faces) > _PREVIEW_FACES_MAX and cell < shown.scale / 50:  # beyond the pixels
-        shown = _cluster(shown, cell)
-        cell *= 1.5
-    # the painter's algorithm wants small faces: split long ones (few: CAD faces, cut planes)
-    v, f = trimesh.remesh.subdivide_to_size(shown.vertices, shown.faces, max_edge=shown.scale / 16)
-    # the renderer pays per face: drop the ones facing away before it sees them
-    t = v[f]
-    n = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
-    f = f[(n @ _rotation(view).T)[:, 1] <= 0]
-    w = int(size)
-    return render(
-        [(v, f)], path, size=(w, int(w * 0.8)), view=view, edges=False, colors=[(196, 205, 214)]
-    )
 
 
 def build_solid(design, base, out: Path, stage, *, preview_only: bool = False) -> list[Path]:

@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import config
+from .kernels import taubin
 from .sdf import capsules_block, mesh_sdf_block
 
 __all__ = ["capsules_mesh", "march", "signed_volume"]
@@ -113,7 +114,7 @@ def march(evaluate, lo, hi, h, *, smoothing: int = 0, progress=None):
     if _inward(m):  # orientation follows the field's sign convention: make it outward
         m.invert()
     if smoothing:
-        trimesh.smoothing.filter_taubin(m, iterations=int(smoothing))
+        m.vertices = taubin(m.vertices, m.faces, int(smoothing))
     return m
 
 

@@ -1,4 +1,4 @@
-"""Numba kernels of the hull lattice: box overlaps and convex separation over many pairs."""
+"""Numba kernels of the solids: the hull lattice's pair tests, the implicit route's smoothing."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from numba import njit
 
 from .. import config
 
-__all__ = ["box_pairs", "separated"]
+__all__ = ["box_pairs", "separated", "taubin"]
 
 
 @njit(**config.NJIT)
@@ -122,3 +122,39 @@ def separated(vp, V, qp, Q, x, y, margin: float) -> np.ndarray:
         out,
     )
     return out
+
+
+@njit(**config.NJIT)
+def _taubin(v, f, inv_deg, steps):
+    acc = np.zeros(v.shape)
+    for s in steps:
+        acc[:] = 0.0
+        for t in range(f.shape[0]):
+            a, b, c = f[t, 0], f[t, 1], f[t, 2]
+            for k in range(3):
+                acc[a, k] += v[b, k]
+                acc[b, k] += v[c, k]
+                acc[c, k] += v[a, k]
+        for i in range(v.shape[0]):
+            if inv_deg[i] > 0.0:
+                for k in range(3):
+                    v[i, k] += s * (acc[i, k] * inv_deg[i] - v[i, k])
+
+
+def taubin(vertices, faces, iterations: int, lamb: float = 0.5, nu: float = 0.5) -> np.ndarray:
+    """Taubin-smoothed copy of ``vertices`` (``trimesh.smoothing.filter_taubin``'s filter).
+
+    The operator is trimesh's equal-weight umbrella: each vertex moves towards the mean of
+    the vertices its faces' edges lead to (``a -> b, b -> c, c -> a``: on a closed oriented
+    mesh, each neighbour once), by ``lamb`` on even iterations and back by ``nu`` on odd
+    ones. The same arithmetic up to the order of the sums (rounding); built from the faces
+    in one pass instead of trimesh's sparse matrix, which costs more to set up than the
+    smoothing itself (0.4 s of a lattice's 555k triangles).
+    """
+    v = np.array(vertices, dtype=np.float64, order="C")
+    f = np.ascontiguousarray(faces, dtype=np.int64)
+    deg = np.bincount(f.ravel(), minlength=len(v)).astype(np.float64)
+    inv_deg = np.divide(1.0, deg, out=np.zeros_like(deg), where=deg > 0)
+    steps = np.where(np.arange(int(iterations)) % 2 == 0, float(lamb), -float(nu))
+    _taubin(v, f, inv_deg, steps)
+    return v
