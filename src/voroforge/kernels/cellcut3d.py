@@ -36,6 +36,10 @@ MAX_OWNERS = 32
 #: small hot helpers are inlined into their callers (numba's own inliner): a call that
 #: passes arrays costs reference counting, and the search makes ~100 such calls per cell
 NJIT_INLINE = {**NJIT, "inline": "always"}
+#: the per-cell functions allocate nothing (the caller passes every scratch array), so they
+#: are compiled without reference counting: each call otherwise pays atomic count updates
+#: for every array it is passed or takes a view of
+NJIT_NO_NRT = {**NJIT, "_nrt": False}
 
 
 @njit(**NJIT_INLINE)
@@ -85,7 +89,7 @@ def _key(lab, ns):
     return lab if lab >= 0 else ns + (-1 - lab)
 
 
-@njit(**NJIT)
+@njit(**NJIT_NO_NRT)
 def _graph_side(i, v, j, DEG, LB, ns, P, W, WP, X):
     """Exact side of graph vertex ``v`` of cell ``i`` against key ``j`` (see ``bisector_side``).
 
@@ -114,7 +118,7 @@ def _graph_side(i, v, j, DEG, LB, ns, P, W, WP, X):
     return 2
 
 
-@njit(**NJIT)
+@njit(**NJIT_NO_NRT)
 def _ring_side(i, v, j, C, nf, ns, P, W, WP, X):
     """:func:`_graph_side` for a cell held as face rings (the fallback): its faces at ``v``."""
     F = C[1]
@@ -161,7 +165,7 @@ def _values(V, nv, nx, ny, nz, h, tol, S):
     return smax, near
 
 
-@njit(**NJIT)
+@njit(**NJIT_NO_NRT)
 def _resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X):
     """Decide the values within ``tol`` of 0 exactly, on the vertices' owners.
 
@@ -324,7 +328,7 @@ def _axis_gap(p, origin, size, b, off):
     return 0.0
 
 
-@njit(**NJIT)
+@njit(**NJIT_NO_NRT)
 def _one_cell(
     i, P, W, WP, X, wmax, start, SP, SW, sidx, g, order, TV, TF, TR, TG, C, G, cand, cd2, buck
 ):

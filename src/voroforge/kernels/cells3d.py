@@ -22,6 +22,7 @@ from ..config import NJIT, VORONOI3D_CUT_RTOL, VORONOI3D_STOP_RTOL
 from .cellcut3d import (
     BROKEN,
     EMPTY,
+    NJIT_NO_NRT,
     OK,
     OVERFLOW,
     UNNAMED,
@@ -40,7 +41,7 @@ from .vertex3d import axis_snap, name_vertex
 __all__ = ["BROKEN", "EMPTY", "OK", "OVERFLOW", "UNNAMED", "build_cells", "container_cut"]
 
 
-@njit(**NJIT)
+@njit(**NJIT_NO_NRT)
 def _on_plane(i, v, key, OWN, work, nfo, P, W, WP, ns, X):
     """Whether vertex ``v`` of cell ``i`` lies exactly on the plane of ``key``.
 
@@ -57,7 +58,7 @@ def _on_plane(i, v, key, OWN, work, nfo, P, W, WP, ns, X):
     return True
 
 
-@njit(**NJIT)
+@njit(**NJIT_NO_NRT)
 def _mark_owners(i, V, nv, nx, ny, nz, h, tol, key, OWN, work, nfo, todo, nd, P, W, WP, ns, X):
     """Add owner ``key`` to every vertex of ``todo[:nd]`` on the plane ``n . v = h``.
 
@@ -78,7 +79,7 @@ def _mark_owners(i, V, nv, nx, ny, nz, h, tol, key, OWN, work, nfo, todo, nd, P,
     return ok
 
 
-@njit(**NJIT)
+@njit(**NJIT_NO_NRT)
 def _name_cell(
     i,
     P,
@@ -220,7 +221,7 @@ def _name_cell(
     return OK
 
 
-@njit(**NJIT)
+@njit(**NJIT_NO_NRT)
 def _merge_named(nv, F, nf, R, vnames, vabs, vrel, remap):
     """Merge local vertices with equal names or coordinates; drop repeats and thin faces.
 

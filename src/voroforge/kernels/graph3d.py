@@ -40,6 +40,9 @@ GCUT_DONE = 1
 GCUT_EMPTY = 2
 GCUT_BROKEN = 3  # also: out of room; the caller falls back to the face-ring cut
 
+#: allocates nothing: compiled without reference counting (see kernels.cellcut3d)
+_NO_NRT = {**NJIT, "_nrt": False}
+
 
 @njit(**NJIT)
 def from_rings(nv, F, nf, R, DEG, ED, BK, LB):
@@ -369,7 +372,7 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
     return GCUT_DONE, top, r2
 
 
-@njit(**NJIT)
+@njit(**_NO_NRT)
 def to_rings(nv, DEG, ED, BK, LB, F, R, seen):
     """Face rings ``(F, R)`` of the graph (layout of :mod:`kernels.polyhedron`).
 

@@ -44,7 +44,9 @@ _D3_BOUND = 12.0 * _EPS
 _D4_BOUND = 32.0 * _EPS
 
 #: scratch layout (components): rows' entries (4 x 3 x 2), last column (4 x 64),
-#: 2x2 minors (18 x 16), 3x3 minors (4 x 192), one product, the running sum and two temps
+#: 2x2 minors (18 x 16), 3x3 minors (4 x 192), one product, the running sum and two temps,
+#: then lengths as int64 bits (the rows' 4 x 3 entries and 4 last-column values; the 18
+#: 2x2 and 4 3x3 minors), so that the exact stage allocates nothing
 _T = 64
 _M2 = 16
 _M3 = 192
@@ -58,7 +60,9 @@ _OFF_P = _OFF_M3 + 4 * _M3
 _OFF_S = _OFF_P + _PROD
 _OFF_A = _OFF_S + _SUM
 _OFF_B = _OFF_A + _SUM
-_SCRATCH = _OFF_B + _SUM
+_OFF_L = _OFF_B + _SUM
+_OFF_ML = _OFF_L + 16
+_SCRATCH = _OFF_ML + 22
 #: the 2x2 minors' row pairs, in the order used below
 _PAIRS = ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))
 
@@ -152,8 +156,10 @@ def exact_dets(buf, EL, TL, need4):
     A = buf[_OFF_A : _OFF_A + _SUM]
     B = buf[_OFF_B : _OFF_B + _SUM]
     T = buf[_OFF_T : _OFF_T + 4 * _T]
-    M2L = np.zeros(18, np.int64)
-    M3L = np.zeros(4, np.int64)
+    ml = buf[_OFF_ML : _OFF_ML + 22].view(np.int64)
+    ml[:] = 0
+    M2L = ml[:18]
+    M3L = ml[18:22]
     rows = 4 if need4 else 3
     for p in range(6):
         a, b = _PAIRS[p]
@@ -458,8 +464,10 @@ def bisector_side(i, k0, k1, k2, j, P, W, WP, ns, rows, buf):
         s3 = 1 if d3 > 0.0 else -1
         s4 = 1 if d4 > 0.0 else -1
         return -s3 * s4
-    EL = np.zeros((4, 3), np.int64)
-    TL = np.zeros(4, np.int64)
+    # the lengths live in the scratch (each is written below before it is read)
+    lens = buf[_OFF_L : _OFF_L + 16].view(np.int64)
+    EL = lens[:12].reshape((4, 3))
+    TL = lens[12:16]
     _row_exact(k0, i, P, W, WP, ns, buf, EL, TL, 0)
     _row_exact(k1, i, P, W, WP, ns, buf, EL, TL, 1)
     _row_exact(k2, i, P, W, WP, ns, buf, EL, TL, 2)

@@ -22,8 +22,11 @@ from numba import njit
 
 from ..config import NJIT, VORONOI3D_DET_RTOL
 
+#: nothing here allocates: compiled without reference counting (see kernels.cellcut3d)
+_NO_NRT = {**NJIT, "_nrt": False}
 
-@njit(**NJIT)
+
+@njit(**_NO_NRT)
 def _row(key, p0, P, W, WP, ns, out, k):
     """Row ``k`` of the system for owner ``key`` into ``out[k] = (rx, ry, rz, t)``."""
     if key < ns:
@@ -42,7 +45,7 @@ def _row(key, p0, P, W, WP, ns, out, k):
         out[k, 3] = WP[w, 3] - (WP[w, 0] * P[p0, 0] + WP[w, 1] * P[p0, 1] + WP[w, 2] * P[p0, 2])
 
 
-@njit(**NJIT)
+@njit(**_NO_NRT)
 def solve_name(a, b, c, d, P, W, WP, ns, rows, out):
     """Coordinates of the vertex named ``(a, b, c, d)`` (``a`` a site).
 
@@ -77,7 +80,7 @@ def solve_name(a, b, c, d, P, W, WP, ns, rows, out):
     return True
 
 
-@njit(**NJIT)
+@njit(**_NO_NRT)
 def axis_snap(keys, m, ns, WP, x):
     """Put ``x`` (absolute, 3,) exactly on every axis-aligned wall among ``keys[:m]``."""
     for t in range(m):
@@ -92,7 +95,7 @@ def axis_snap(keys, m, ns, WP, x):
                 x[a] = WP[w, 3] * WP[w, a]
 
 
-@njit(**NJIT)
+@njit(**_NO_NRT)
 def name_vertex(keys, m, P, W, WP, ns, rows, y, name):
     """Name a vertex with sorted owner keys ``keys[:m]`` and solve its coordinates.
 
