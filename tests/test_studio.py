@@ -607,6 +607,29 @@ def test_wire_rings_thinned_for_drawing_stay_within_the_tolerance():
     assert np.array_equal(wire.rings(cells, tol=None)[2], c0)
 
 
+def test_drawn_cells_travel_quantized_within_a_fraction_of_a_pixel():
+    from voroforge.studio.server import geometry_message
+
+    xy = np.random.default_rng(3).random((500, 2)) * (1000.0, 700.0) + (-20.0, 5.0)
+    px = 1000.0 / 959.0
+    q, codes = wire.quantize(xy, px)
+    assert codes.dtype == np.uint16 and q[2] <= px / 16
+    assert np.abs(wire.dequantize(q, codes) - xy).max() <= q[2] / 2 + 1e-9
+    assert wire.quantize(xy, 1e-3) is None  # 10^6 steps do not fit in 16 bits
+    assert wire.quantize(xy[:0], px) is None
+    # the page's drawing of the operated cells: the thinned rings, a fraction of a pixel off
+    s = Session(HOLED)
+    h, a = wire.unpack(geometry_message(s, None, seq=1, boundary=False, px=px))
+    assert h["cq"] and a["cc"].dtype == np.uint16
+    g, r, c = wire.rings(s.result.cells, tol=0.5 * px)
+    assert np.array_equal(a["cg"], g) and np.array_equal(a["cr"], r)
+    err = np.abs(wire.dequantize(h["cq"], a["cc"]) - c).max()
+    assert err <= h["cq"][2] / 2 + 1e-3 * px, err
+    # without the page's pixel size they travel as float32
+    h, a = wire.unpack(geometry_message(s, None, seq=2, boundary=False))
+    assert h["cq"] is None and a["cc"].dtype == np.float32
+
+
 def test_patches_carry_the_moved_sites_and_flags_only():
     from voroforge.studio.server import geometry_message
 

@@ -311,6 +311,8 @@ def _row(name, lat):
         "cpu_ms",
         "encode_ms",
         "wire_ms",
+        "up_ms",
+        "down_ms",
         "parse_ms",
         "paint_ms",
         "frame_ms",
@@ -326,8 +328,8 @@ def _row(name, lat):
 
 HEAD = (
     "| case | cells | n | frame p50 | frame p95 | drawn p50 | drawn p95 | mean: queue | server "
-    "| server CPU | encode | wire | parse | paint | frame | KiB |\n"
-    "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+    "| server CPU | encode | wire | up | down | parse | paint | frame | KiB |\n"
+    "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 )
 
 
@@ -357,7 +359,8 @@ def test_latency_table(browser, tmp_path):
     """Repaint latency of seed drags and of the count slider, printed (not asserted).
 
     ``VOROFORGE_STUDIO_LATENCY=full`` measures every row of the issue's table with more
-    samples, ``VOROFORGE_STUDIO_ROUNDS=K`` repeats each row K times (a fresh page each).
+    samples, ``VOROFORGE_STUDIO_ROUNDS=K`` repeats each row K times (a fresh page each),
+    ``VOROFORGE_STUDIO_CASES=TEXT|TEXT...`` only the rows whose name holds one of the texts.
     """
     from voroforge.studio.session import Session
 
@@ -372,6 +375,9 @@ def test_latency_table(browser, tmp_path):
         for key in SLIDERS:
             cases.append((f"slider {key}, 2,000 cells, inset + fillet", HOLED_2000, key))
             cases.append((f"slider {key}, 2,000 plain cells", plain, key))
+    only = os.environ.get("VOROFORGE_STUDIO_CASES")  # e.g. "seed drag, 2,000 plain|design.seed"
+    if only:
+        cases = [c for c in cases if any(w in c[0] for w in only.split("|"))]
     rows = []
     for _ in range(rounds):
         for name, data, moves in cases:
@@ -385,8 +391,13 @@ def test_latency_table(browser, tmp_path):
                     assert len(lat) == len(SLIDERS[moves])
                 rows.append(_row(name, lat))
                 assert _patched_is_whole(page) == 0
-                if os.environ.get("VOROFORGE_STUDIO_DEBUG"):
-                    print(name, *sorted(lat, key=lambda e: -e["ms"])[:3], sep="\n")
+                if os.environ.get("VOROFORGE_STUDIO_DEBUG"):  # the slowest three, by stage
+                    slow = sorted(range(len(lat)), key=lambda k: -lat[k]["drawn"])[:3]
+                    print(name)
+                    for k in slow:
+                        stages = {s: round(v, 1) for s, v in lat[k].items() if s.endswith("_ms")}
+                        busy = f" beside the {lat[k]['busy']}" if lat[k].get("busy") else ""
+                        print(f"  step {k}: drawn {lat[k]['drawn']:.1f}{busy}", stages)
                 assert not errors, errors
             finally:
                 page.close()

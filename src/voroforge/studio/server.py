@@ -71,9 +71,11 @@ def geometry_message(
         instead of every site and flag; cells whose flag changed are added to the patch.
     px : float, optional
         The pages' pixel size in design units: the operated cells (drawn only) leave out
-        vertices closer than about half a pixel to the one before (:func:`wire.rings`);
-        the raw cells travel whole. Operated cells that are their raw cells (a design
-        without web, fillet, ...) are not sent again: the header says ``cells_raw``.
+        vertices closer than about half a pixel to the one before (:func:`wire.rings`)
+        and travel as uint16 steps of 1/64 to 1/8 of a pixel (:func:`wire.quantize`, the
+        header's ``cq``); the raw cells travel whole. Operated cells that are their raw
+        cells (a design without web, fillet, ...) are not sent again: the header says
+        ``cells_raw``.
 
     Returns
     -------
@@ -94,8 +96,11 @@ def geometry_message(
     rg, rr, rc = wire.rings(raw)
     # cells without operations (no web, no fillet) are their raw cells: sent once
     cells_raw = _same_geoms(cells, raw)
+    cq = None
     if not cells_raw:
         cg, cr, cc = wire.rings(cells, tol=0.5 * px if px else None)
+        # drawn only: uint16 steps of a fraction of a pixel, half the bytes of float32
+        cq = wire.quantize(cc, px) if px else None
     arrays = {"idx": idx}
     old_sites = sent.get("sites") if patch else None
     if old_sites is not None and old_sites.shape == sites.shape:
@@ -109,7 +114,7 @@ def geometry_message(
         arrays["m"] = mask[idx]
     arrays.update(rg=rg, rr=rr, rc=rc.reshape(-1))
     if not cells_raw:
-        arrays.update(cg=cg, cr=cr, cc=cc.reshape(-1))
+        arrays.update(cg=cg, cr=cr, cc=cc.reshape(-1) if cq is None else cq[1])
     if sent is not None:
         sent.update(n=n, mask=mask, sites=sites.copy())
     if boundary:
@@ -123,10 +128,12 @@ def geometry_message(
         "n": n,
         "bounds": [float(v) for v in r.boundary.bounds],
         "cells_raw": cells_raw,
+        "cq": None if cq is None else cq[0],  # cc as uint16 codes: x = cq[0] + code * cq[2]
         "compute_ms": round(session.compute_ms, 2),
         "sites_edited": session.sites is not None,
         "attractors": _attractors(session),
         "encode_ms": round((time.perf_counter() - start) * 1e3, 2),
+        "sent_at": round(time.time() * 1e3, 2),  # wall clock: the page splits the wire time
         **(extra or {}),
     }
     return wire.pack(header, arrays)
@@ -232,6 +239,7 @@ class _Hub:
         self.seq = 0
         self.sent_boundary = None
         self.check_task: asyncio.Task | None = None
+        self.busy = ""  # what a worker thread computes now ("check", "settle"): for the timings
         self.check_due = 0.0
         self.settle_due = 0.0
         self.sent: dict = {}  # what the pages have (geometry_message patches against it)
@@ -301,7 +309,11 @@ class _Hub:
             previous = self.session.result
             if not self.session.provisional or time.monotonic() < self.settle_due:
                 return
-        result = await asyncio.to_thread(self.session.settle_compute, previous)
+        self.busy = "settle"
+        try:
+            result = await asyncio.to_thread(self.session.settle_compute, previous)
+        finally:
+            self.busy = ""
         payload = None
         async with self.lock:
             diff = self.session.settle_finish(previous, result)
@@ -346,7 +358,11 @@ class _Hub:
             def stale(seq=seq, edits=edits) -> bool:  # an edit arrived: it goes first
                 return self.seq != seq or self.edits != edits
 
-            found = await asyncio.to_thread(self.session.check, result, stale)
+            self.busy = "check"
+            try:
+                found = await asyncio.to_thread(self.session.check, result, stale)
+            finally:
+                self.busy = ""
             if found is None or self.seq != seq:
                 await asyncio.sleep(0.05)  # the edit that stopped it is being computed
                 continue
@@ -535,14 +551,16 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
             return
     session = hub.session
     hub.edits += 1
-    received = time.perf_counter()
+    received, received_at, busy = time.perf_counter(), time.time(), hub.busy
     async with hub.lock:
-        start = time.perf_counter()
+        start, proc = time.perf_counter(), time.process_time()
         if _inline(session, msg):
             reply, cpu_ms = _apply_timed(session, msg)
         else:
             reply, cpu_ms = await asyncio.to_thread(_apply_timed, session, msg)
         server_ms = (time.perf_counter() - start) * 1e3
+        # the process's other threads meanwhile (a check, a settle): CPU beside the edit's
+        others_ms = max(0.0, (time.process_time() - proc) * 1e3 - cpu_ms)
         if reply.kind == "update":
             hub.seq += 1
             bkey = boundary_key(session, hub.sent_boundary)
@@ -560,7 +578,10 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
                     "client": cid,
                     "server_ms": round(server_ms, 2),
                     "cpu_ms": round(cpu_ms, 2),
+                    "others_ms": round(others_ms, 2),
                     "wait_ms": round((start - received) * 1e3, 2),
+                    "received_at": round(received_at * 1e3, 2),
+                    "busy": busy,
                 },
                 sent=hub.sent,
             )

@@ -9,6 +9,10 @@ Polygonal geometry travels as :func:`rings`: per geometry its first ring
 (``geom_offsets``), per ring its first coordinate (``ring_offsets``) and float32
 coordinates, the flat layout of GeoArrow without the polygon level (the page fills each
 geometry's rings with the even-odd rule, so holes and multi-parts need no more).
+
+Coordinates that are only drawn may travel as :func:`quantize` makes them: uint16 steps of
+a fraction of the page's pixel from an origin, half the bytes of float32 (the header says
+how to read them back).
 """
 
 from __future__ import annotations
@@ -19,10 +23,16 @@ import struct
 import numpy as np
 import shapely
 
-__all__ = ["MAGIC", "pack", "rings", "unpack"]
+__all__ = ["MAGIC", "dequantize", "pack", "quantize", "rings", "unpack"]
 
 MAGIC = b"VFS1"
-_DTYPES = {"f4": np.float32, "f8": np.float64, "i4": np.int32, "u1": np.uint8}
+_DTYPES = {
+    "f4": np.float32,
+    "f8": np.float64,
+    "i4": np.int32,
+    "u1": np.uint8,
+    "u2": np.uint16,
+}
 
 
 def rings(geoms, tol: float | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -106,6 +116,47 @@ def _thin(ring_offsets: np.ndarray, coords: np.ndarray, tol: float):
     # as one complex per row: boolean indexing of (n, 2) rows is far slower
     pairs = np.ascontiguousarray(coords, dtype=np.float64).view(np.complex128)[:, 0]
     return out, pairs[keep].view(np.float64).reshape(-1, 2)
+
+
+#: The steps :func:`quantize` tries, as fractions of a pixel (finest first)
+STEPS_PER_PIXEL = (64, 32, 16, 8)
+
+
+def quantize(coords: np.ndarray, px: float) -> tuple[list[float], np.ndarray] | None:
+    """Coordinates as uint16 multiples of a step from an origin, or None where they do not fit.
+
+    The step is the finest of ``px / STEPS_PER_PIXEL`` (``px``: the page's pixel size in
+    design units) at which the coordinates' extent takes at most 65,535 steps; each
+    coordinate moves by at most half a step (1/128 to 1/16 of a pixel).
+
+    Parameters
+    ----------
+    coords : (c, 2) float array
+    px : float
+
+    Returns
+    -------
+    (list of float, (2c,) uint16) or None
+        ``[x0, y0, step]`` and the codes: ``x = x0 + code * step`` (:func:`dequantize`).
+    """
+    xy = np.asarray(coords, dtype=np.float64).reshape(-1, 2)
+    if not len(xy) or not (px > 0 and np.isfinite(px)):
+        return None
+    x, y = xy[:, 0], xy[:, 1]  # per column: a reduction over axis 0 of (c, 2) is far slower
+    origin = np.array([x.min(), y.min()])
+    extent = max(float(x.max() - origin[0]), float(y.max() - origin[1]))
+    for k in STEPS_PER_PIXEL:
+        step = px / k
+        if extent / step <= 65535.0 - 1.0:
+            codes = np.rint((xy - origin) / step).astype(np.uint16).reshape(-1)
+            return [float(origin[0]), float(origin[1]), float(step)], codes
+    return None
+
+
+def dequantize(q, codes: np.ndarray) -> np.ndarray:
+    """``(c, 2)`` float64 coordinates of :func:`quantize`'s ``q`` and codes."""
+    c = np.asarray(codes, dtype=np.float64).reshape(-1, 2)
+    return np.asarray(q[:2], dtype=np.float64) + c * float(q[2])
 
 
 def pack(header: dict, arrays: dict[str, np.ndarray]) -> bytes:

@@ -9,7 +9,14 @@
 var VoroStudio = (function () {
   "use strict";
 
-  var DTYPES = { f4: Float32Array, f8: Float64Array, i4: Int32Array, u1: Uint8Array };
+  var DTYPES = { f4: Float32Array, f8: Float64Array, i4: Int32Array, u1: Uint8Array, u2: Uint16Array };
+
+  /* Coordinates sent as uint16 steps (wire.quantize): q = [x0, y0, step]. */
+  function dequantize(codes, q) {
+    var out = new Float32Array(codes.length), x0 = q[0], y0 = q[1], s = q[2];
+    for (var i = 0; i + 1 < codes.length; i += 2) { out[i] = x0 + codes[i] * s; out[i + 1] = y0 + codes[i + 1] * s; }
+    return out;
+  }
 
   function unpack(buf) {
     var bytes = new Uint8Array(buf);
@@ -213,6 +220,7 @@ var VoroStudio = (function () {
      the old and new cells for repainting (see paintNow). */
   Studio.prototype.geometry = function (m) {
     var h = m.header, a = m.arrays, t0 = performance.now();
+    if (h.cq && a.cc) a.cc = dequantize(a.cc, h.cq);
     var n = h.n, idx = a.idx, k, i, boxes = [], old = this.raw.length;
     // more changed cells than a patch repaints one by one (see renderPending): a whole redraw,
     // without the boxes to repaint
@@ -276,11 +284,14 @@ var VoroStudio = (function () {
       requestAnimationFrame(function () {
         var now = performance.now(), ms = now - done.t0;
         self.latencies.push({ op: done.op, ms: ms, drawn: drawn - done.t0, compute_ms: h.compute_ms,
-          server_ms: h.server_ms, cpu_ms: h.cpu_ms, wait_ms: h.wait_ms,
+          server_ms: h.server_ms, cpu_ms: h.cpu_ms, others_ms: h.others_ms, wait_ms: h.wait_ms,
           encode_ms: h.encode_ms, bytes: m.bytes,
           draw_ms: drawn - t0, parse_ms: t1 - t0, paint_ms: drawn - t1, frame_ms: now - drawn,
           queue_ms: done.tsend - done.t0, wire_ms: recv - done.tsend - (h.server_ms || 0) - (h.encode_ms || 0),
-          n: n, changed: idx.length, full: h.full });
+          // the wire's two ways, by the wall clocks of the page and the server (same machine)
+          up_ms: h.received_at - (performance.timeOrigin + done.tsend),
+          down_ms: performance.timeOrigin + recv - h.sent_at,
+          n: n, changed: idx.length, full: h.full, busy: h.busy });
         self.roundTrip = ms; self.status();
       });
     }
