@@ -203,3 +203,37 @@ def test_taubin_is_trimesh_s_filter(iterations):
     assert np.abs(got - want.vertices).max() < 1e-13
     assert np.abs(got - m.vertices).max() > 1e-3  # it did move them
     assert not np.shares_memory(got, m.vertices)
+
+
+@pytest.mark.parametrize("n_seeds", [2, 3, 90])
+def test_two_nearest_is_the_kd_tree_s_answer(n_seeds):
+    from scipy.spatial import cKDTree
+
+    from voroforge.solid.kernels import two_nearest
+
+    rng = np.random.default_rng(n_seeds)
+    seeds = rng.normal(0.0, 10.0, (n_seeds, 3))
+    pts = np.vstack([rng.normal(0.0, 12.0, (5000, 3)), seeds[:2], seeds[:1] + 1e-9])
+    d1, d2 = two_nearest(pts, seeds)
+    dd, _ = cKDTree(seeds).query(pts, k=2)
+    assert np.allclose(d1, dd[:, 0], rtol=1e-15, atol=0) and np.allclose(d2, dd[:, 1], rtol=1e-15)
+    assert d1[-3] == 0.0 and (d2 >= d1).all()
+    with pytest.raises(ValueError, match="two seeds"):
+        two_nearest(pts, seeds[:1])
+
+
+def test_shell_rim_queries_bounded_by_their_reach_are_exact():
+    # min(f_web, d - rim) with each group's search cut at its reach: the unbounded answer
+    from scipy.spatial import cKDTree
+
+    from voroforge.solid.shell import _with_rim
+
+    rng = np.random.default_rng(3)
+    bpts = np.column_stack([np.cos(t := rng.uniform(0, 6.3, 400)), np.sin(t), 0 * t]) * 30
+    xyz = rng.uniform(-40, 40, (20000, 3))
+    f_web = rng.uniform(-6.0, 15.0, len(xyz))
+    tree = cKDTree(bpts)
+    want = np.minimum(f_web, tree.query(xyz)[0] - 4.0)
+    got = _with_rim(f_web, xyz, tree, 4.0, 0.8)
+    assert np.array_equal(got, want)
+    assert (got < f_web).mean() > 0.05 and (got == f_web).mean() > 0.5  # both cases occur

