@@ -26,37 +26,61 @@ _EPS = 1e-9  # barycentric slack: pixel centres on a shared edge belong to both 
 
 
 @njit(**config.NJIT)
-def _zbuffer(sx, sy, depth, faces, keep, cut, nearest, zbuf):
-    """Write into ``nearest`` the nearest triangle (of those ``keep``) at every pixel centre.
+def _zbuffer(r, faces, scale, shift, light, cut, cap, col, zbuf, rgb):
+    """Draw every triangle into the depth buffer ``zbuf`` and its flat colour into ``rgb``.
 
-    ``sx, sy`` are screen coordinates (pixel ``(i, j)`` has its centre at ``(i + 0.5,
-    j + 0.5)``), ``depth`` grows away from the camera; fragments nearer than ``cut`` are
-    dropped. ``zbuf`` (filled with +inf) holds the depths; ``nearest`` (filled with -1) the
-    triangle indices.
+    ``r`` holds the vertices in the camera frame (x right, y away from the camera: the
+    depth, z up); screen coordinates are ``(x * scale + shift[0], shift[1] - z * scale)``
+    and pixel ``(i, j)`` has its centre at ``(i + 0.5, j + 0.5)``. Back faces are skipped
+    unless ``cut`` is finite; then fragments nearer than ``cut`` are dropped and back faces
+    drawn in the shade ``cap`` (seen through the cut: the solid's material). Front faces
+    are shaded ``0.35 + 0.65 * max(0, n . light)``, coloured ``min(255, col * shade + 20)``
+    (io.render3d's). ``zbuf`` starts at +inf, ``rgb`` as the background.
     """
-    hgt, wid = nearest.shape
+    hgt, wid = zbuf.shape
+    cutting = cut > -np.inf
     for t in range(faces.shape[0]):
-        if not keep[t]:
-            continue
         a, b, c = faces[t, 0], faces[t, 1], faces[t, 2]
-        x0, y0, z0 = sx[a], sy[a], depth[a]
-        x1, y1, z1 = sx[b], sy[b], depth[b]
-        x2, y2, z2 = sx[c], sy[c], depth[c]
+        ux, uy, uz = r[b, 0] - r[a, 0], r[b, 1] - r[a, 1], r[b, 2] - r[a, 2]
+        vx, vy, vz = r[c, 0] - r[a, 0], r[c, 1] - r[a, 1], r[c, 2] - r[a, 2]
+        nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+        nn = np.sqrt(nx * nx + ny * ny + nz * nz)
+        if nn == 0.0:
+            continue
+        if ny <= 0.0:  # faces the camera
+            sh = 0.35 + 0.65 * max(0.0, (nx * light[0] + ny * light[1] + nz * light[2]) / nn)
+        elif cutting:
+            sh = cap
+        else:
+            continue
+        cr = min(255.0, col[0] * sh + 20.0)
+        cg = min(255.0, col[1] * sh + 20.0)
+        cb = min(255.0, col[2] * sh + 20.0)
+        z0, z1, z2 = r[a, 1], r[b, 1], r[c, 1]
         if max(z0, z1, z2) < cut:
             continue
+        x0, y0 = r[a, 0] * scale + shift[0], shift[1] - r[a, 2] * scale
+        x1, y1 = r[b, 0] * scale + shift[0], shift[1] - r[b, 2] * scale
+        x2, y2 = r[c, 0] * scale + shift[0], shift[1] - r[c, 2] * scale
         area = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)
         if area == 0.0:
             continue
+        inv = 1.0 / area
         i0 = max(int(np.ceil(min(x0, x1, x2) - 0.5)), 0)
         i1 = min(int(np.floor(max(x0, x1, x2) - 0.5)), wid - 1)
         j0 = max(int(np.ceil(min(y0, y1, y2) - 0.5)), 0)
         j1 = min(int(np.floor(max(y0, y1, y2) - 0.5)), hgt - 1)
+        # the barycentric weights as affine functions of the pixel centre
+        a0, b0 = (y1 - y2) * inv, (x2 - x1) * inv
+        c0 = (x1 * y2 - x2 * y1) * inv
+        a1, b1 = (y2 - y0) * inv, (x0 - x2) * inv
+        c1 = (x2 * y0 - x0 * y2) * inv
         for j in range(j0, j1 + 1):
             py = j + 0.5
             for i in range(i0, i1 + 1):
                 px = i + 0.5
-                w0 = ((x1 - px) * (y2 - py) - (x2 - px) * (y1 - py)) / area
-                w1 = ((x2 - px) * (y0 - py) - (x0 - px) * (y2 - py)) / area
+                w0 = a0 * px + b0 * py + c0
+                w1 = a1 * px + b1 * py + c1
                 w2 = 1.0 - w0 - w1
                 if w0 < -_EPS or w1 < -_EPS or w2 < -_EPS:
                     continue
@@ -64,13 +88,9 @@ def _zbuffer(sx, sy, depth, faces, keep, cut, nearest, zbuf):
                 if z < cut or z >= zbuf[j, i]:
                     continue
                 zbuf[j, i] = z
-                nearest[j, i] = t
-
-
-def _rgb(col, normals):
-    """io.render3d's flat Lambert shade of unit ``normals`` in colour ``col`` (0..255)."""
-    shade = 0.35 + 0.65 * np.maximum(0.0, normals @ _LIGHT)
-    return np.minimum(255.0, col[None, :] * shade[:, None] + 20.0).astype(np.uint8)
+                rgb[j, i, 0] = np.uint8(cr)
+                rgb[j, i, 1] = np.uint8(cg)
+                rgb[j, i, 2] = np.uint8(cb)
 
 
 def preview(m, path, *, size=900, view=(35.0, 25.0), cut=None, color=(196, 205, 214)) -> Path:
@@ -109,34 +129,23 @@ def preview(m, path, *, size=900, view=(35.0, 25.0), cut=None, color=(196, 205, 
     h = int(w * 0.8)
     W, H = w * _SS, h * _SS
     rot = _rotation(view)
-    r = v @ rot.T  # x' right, y' away from the camera (depth), z' up
-    t = v[f]
-    n = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
-    nn = np.linalg.norm(n, axis=1)
-    ok = nn > 0
-    n[ok] /= nn[ok, None]
-    front = (n @ rot.T)[:, 1] <= 0
+    r = np.ascontiguousarray(v @ rot.T)  # x' right, y' away from the camera (depth), z' up
     if cut:
         z_cut = float(m.bounds.mean(axis=0) @ rot[1])  # the plane through the centre
-        keep = ok  # back faces show the cap through the cut
         framed = r[r[:, 1] >= z_cut]
     else:
         z_cut = -np.inf
-        keep = ok & front  # a closed mesh's back faces are always hidden
         framed = r
     lo, hi = framed.min(axis=0), framed.max(axis=0)
     span = max((hi[0] - lo[0]) / (0.9 * W), (hi[2] - lo[2]) / (0.9 * H), 1e-300)
-    sx = np.ascontiguousarray((r[:, 0] - 0.5 * (lo[0] + hi[0])) / span + 0.5 * W)
-    sy = np.ascontiguousarray(0.5 * H - (r[:, 2] - 0.5 * (lo[2] + hi[2])) / span)
-    nearest = np.full((H, W), -1, dtype=np.int64)
+    shift = np.array(
+        [0.5 * W - 0.5 * (lo[0] + hi[0]) / span, 0.5 * H + 0.5 * (lo[2] + hi[2]) / span]
+    )
+    light = rot @ _LIGHT  # in the camera frame
+    cap = 0.35 + 0.65 * max(0.0, -float(light[1]))  # the cut faces the camera: normal -y'
     zbuf = np.full((H, W), np.inf)
-    _zbuffer(sx, sy, np.ascontiguousarray(r[:, 1]), f, keep, z_cut, nearest, zbuf)
+    rgb = np.full((H, W, 3), 255, dtype=np.uint8)  # the white background
     col = np.asarray(color, dtype=np.float64)
-    # a colour per face (front: its own shade; back: the cap's, facing the camera), then
-    # one row more for the white background, which index -1 picks
-    faces_rgb = _rgb(col, n)
-    cap = _rgb(col, -rot[1][None, :])[0]
-    faces_rgb[~front] = cap
-    table = np.vstack([faces_rgb, np.full((1, 3), 255, dtype=np.uint8)])
-    img = Image.fromarray(table[nearest]).resize((w, h), Image.LANCZOS)
+    _zbuffer(r, f, 1.0 / span, shift, light, z_cut, cap, col, zbuf, rgb)
+    img = Image.fromarray(rgb).resize((w, h), Image.LANCZOS)
     return write_atomically(path, lambda tmp: img.save(tmp, format="PNG", compress_level=3))
