@@ -771,6 +771,18 @@ def _geom(ws):
     return wire.unpack(msg["bytes"])
 
 
+def test_a_page_gets_the_violations_checked_at_start_up(client):
+    """The first check runs before the server answers (not beside a page's first edits): a
+    page that connects gets its violations with the drawing, for the drawing's seq."""
+    hub = client.app.state.hub
+    assert hub.checked is hub.session.result and not hub.busy
+    with _ws(client) as ws:
+        _, (h, _) = _greet(ws)
+        msg = ws.receive_json()
+        assert msg["op"] == "violations" and msg["seq"] == h["seq"]
+        assert msg["total"] == len(hub.session.violations)
+
+
 def test_websocket_view_sets_the_drawing_resolution(client):
     with _ws(client) as ws:
         _greet(ws)

@@ -393,7 +393,8 @@ def test_latency_table(browser, tmp_path):
                 assert _patched_is_whole(page) == 0
                 if os.environ.get("VOROFORGE_STUDIO_DEBUG"):  # the slowest three, by stage
                     slow = sorted(range(len(lat)), key=lambda k: -lat[k]["drawn"])[:3]
-                    print(name)
+                    beside = sum(bool(entry.get("busy")) for entry in lat)
+                    print(f"{name}: {beside} of {len(lat)} steps beside a check or settle")
                     for k in slow:
                         stages = {s: round(v, 1) for s, v in lat[k].items() if s.endswith("_ms")}
                         busy = f" beside the {lat[k]['busy']}" if lat[k].get("busy") else ""
