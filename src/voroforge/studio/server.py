@@ -371,26 +371,49 @@ class _Hub:
             await self.broadcast(violations_message(self.session, seq))
             return
 
-    async def first_check(self) -> None:
-        """Check the session's result before the page is served (:func:`create_app`).
+    async def first_check(self, wait: float | None = None) -> None:
+        """Start the first check; return when it is done or after ``wait`` seconds.
 
+        The app's lifespan awaits this before requests are answered (:func:`create_app`).
         The first check is the longest (every opening is new, and the frame's islands):
-        ~65-95 ms of CPU for a 2,000-cell panel. Run beside a page that opened at once, it
-        took the core from that page's first edits (a seed drag's first steps: 67-81 ms
-        instead of 3-10, in the browser test at load 3).
+        ~65-145 ms for a 2,000-cell panel. Run beside a page that opened at once, it took
+        the core from that page's first edits (a seed drag's first steps: 67-81 ms instead
+        of 3-10, in the browser test at load 3). A big design's check (20,000 cells: ~1.8 s)
+        goes on in the background after ``wait`` (default :data:`FIRST_CHECK_WAIT`), and
+        stops for edits as any check does.
         """
-        result = self.session.result
-        if result.extra.get("provisional"):
-            return
-        self.busy = "check"
-        try:
-            found = await asyncio.to_thread(self.session.check, result)
-        except Exception:  # the server starts anyway; a page's connection checks again
-            found = None
-        finally:
-            self.busy = ""
+        self.check_task = asyncio.get_running_loop().create_task(self._first_check())
+        with contextlib.suppress(asyncio.TimeoutError):
+            wait = FIRST_CHECK_WAIT if wait is None else wait
+            await asyncio.wait_for(asyncio.shield(self.check_task), wait)
+
+    async def _first_check(self) -> None:
+        result, edits = self.session.result, self.edits
+        found = None
+        if not result.extra.get("provisional"):
+            self.busy = "check"
+            try:
+                found = await asyncio.to_thread(
+                    self.session.check, result, lambda: self.edits != edits
+                )
+            except Exception:  # the server runs anyway; the next check tries again
+                found = None
+            finally:
+                self.busy = ""
         if found is not None:
             self.checked = result
+        if not self.clients:
+            return
+        # pages came while it ran (a big design): they get the violations, or a check later
+        if found is not None and result is self.session.result:
+            await self.broadcast(violations_message(self.session, self.seq))
+        else:
+            self.check_task = None
+            self.schedule_check()
+
+
+#: Seconds the server waits for the first check before it answers (see _Hub.first_check)
+FIRST_CHECK_WAIT = 0.5
 
 
 def _freeze_heap() -> None:
