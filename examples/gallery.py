@@ -14,6 +14,7 @@ from voroforge.design.build import build
 
 ROOT = Path(__file__).resolve().parent.parent
 SIZE = 560
+SOLID_SIZE = 640  # 3D previews: a little larger, their struts and webs are fine
 
 
 def tiled(design: Path):
@@ -52,6 +53,8 @@ def main(names=()) -> None:
                 "output.png_size": SIZE,
                 "fabrication.report": "false",
             }
+            if design.stem.startswith("solid-"):
+                overrides["solid.png_size"] = SOLID_SIZE  # the 3D preview's own size key
             target = out / f"{design.stem}.png"
             if design.stem == "lamp-tile":
                 tiled(design).save(target)  # 2 x 2 copies: the seams do not show
