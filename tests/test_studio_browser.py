@@ -63,6 +63,63 @@ class Served:
         self.thread.join(10)
 
 
+class ServedProcess:
+    """A studio server for a design (dict), in a process of its own, as ``voroforge studio``.
+
+    For the latency table (``VOROFORGE_STUDIO_SERVER=process``): in a thread of the test's
+    process the server shares the GIL with Playwright's client, which parses every WebSocket
+    frame the page sends or receives (the driver forwards them all, base64 in JSON), work no
+    user's server has beside it. (Two A/B pairs at load 2.5-4.4 showed no difference beyond
+    the noise: the driver's and the browser's share of the two cores remains.)
+    """
+
+    def __init__(self, data: dict, folder: Path):
+        import json
+        import subprocess
+        import sys
+        import urllib.request
+
+        sock = socket.socket()
+        sock.bind(("127.0.0.1", 0))
+        port = sock.getsockname()[1]
+        sock.close()
+        self.url = f"http://127.0.0.1:{port}/"
+        code = (
+            "import json, sys, uvicorn\n"
+            "from voroforge.studio.server import create_app, server_config\n"
+            "from voroforge.studio.session import Session\n"
+            "data, folder, port = json.loads(sys.argv[1]), sys.argv[2], int(sys.argv[3])\n"
+            "config = server_config(create_app(Session(data, folder=folder)))\n"
+            "config.host, config.port = '127.0.0.1', port\n"
+            "uvicorn.Server(config).run()\n"
+        )
+        self.proc = subprocess.Popen(
+            [sys.executable, "-c", code, json.dumps(data), str(folder), str(port)],
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
+        deadline = time.monotonic() + 120
+        while time.monotonic() < deadline:
+            try:
+                with urllib.request.urlopen(self.url + "health", timeout=1) as r:
+                    if r.status == 200:
+                        return
+            except OSError:
+                time.sleep(0.05)
+            if self.proc.poll() is not None:
+                break
+        self.stop()
+        raise RuntimeError("the studio server process did not start")
+
+    def stop(self):
+        self.proc.terminate()
+        try:
+            self.proc.wait(10)
+        except Exception:
+            self.proc.kill()
+            self.proc.wait(10)
+
+
 @pytest.fixture(scope="module")
 def browser():
     with sync_api.sync_playwright() as p:
@@ -71,8 +128,8 @@ def browser():
         b.close()
 
 
-def _open(browser, session, size=(1280, 760)):
-    served = Served(session)
+def _open(browser, session, size=(1280, 760), served=None):
+    served = served or Served(session)
     # bypass_csp: Playwright polls with eval, which the page's CSP (rightly) forbids
     page = browser.new_page(
         viewport={"width": size[0], "height": size[1]}, accept_downloads=True, bypass_csp=True
@@ -361,6 +418,8 @@ def test_latency_table(browser, tmp_path):
     ``VOROFORGE_STUDIO_LATENCY=full`` measures every row of the issue's table with more
     samples, ``VOROFORGE_STUDIO_ROUNDS=K`` repeats each row K times (a fresh page each),
     ``VOROFORGE_STUDIO_CASES=TEXT|TEXT...`` only the rows whose name holds one of the texts.
+    ``VOROFORGE_STUDIO_SERVER=process`` runs each row's server in a process of its own
+    (:class:`ServedProcess`) instead of a thread of this one.
     """
     from voroforge.studio.session import Session
 
@@ -375,13 +434,19 @@ def test_latency_table(browser, tmp_path):
         for key in SLIDERS:
             cases.append((f"slider {key}, 2,000 cells, inset + fillet", HOLED_2000, key))
             cases.append((f"slider {key}, 2,000 plain cells", plain, key))
+    # "process": each row's server in a process of its own, as users run it (ServedProcess)
+    in_thread = os.environ.get("VOROFORGE_STUDIO_SERVER") != "process"
     only = os.environ.get("VOROFORGE_STUDIO_CASES")  # e.g. "seed drag, 2,000 plain|design.seed"
     if only:
         cases = [c for c in cases if any(w in c[0] for w in only.split("|"))]
     rows = []
     for _ in range(rounds):
         for name, data, moves in cases:
-            served, page, errors = _open(browser, Session(data, folder=tmp_path))
+            if in_thread:
+                served, page, errors = _open(browser, Session(data, folder=tmp_path))
+            else:
+                served = ServedProcess(data, tmp_path)
+                served, page, errors = _open(browser, None, served=served)
             try:
                 if isinstance(moves, int):
                     lat = _drag_latencies(page, moves)
@@ -404,9 +469,10 @@ def test_latency_table(browser, tmp_path):
                 page.close()
                 served.stop()
     load = ", ".join(f"{v:.1f}" for v in os.getloadavg())
+    where = "in the test's process" if in_thread else "in a process of its own"
     print(
-        f"\nstudio repaint latency, load {load}: ms from the input event to the page's next "
-        "frame after the redraw (frame) and to the redrawn canvas (drawn)"
+        f"\nstudio repaint latency, load {load}, server {where}: ms from the input event to the "
+        "page's next frame after the redraw (frame) and to the redrawn canvas (drawn)"
     )
     print(HEAD)
     print("\n".join(rows))
