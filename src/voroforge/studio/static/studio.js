@@ -11,11 +11,15 @@ var VoroStudio = (function () {
 
   var DTYPES = { f4: Float32Array, f8: Float64Array, i4: Int32Array, u1: Uint8Array, u2: Uint16Array };
 
-  /* Coordinates sent as uint16 steps (wire.quantize): q = [x0, y0, step]. */
-  function dequantize(codes, q) {
-    var out = new Float32Array(codes.length), x0 = q[0], y0 = q[1], s = q[2];
-    for (var i = 0; i + 1 < codes.length; i += 2) { out[i] = x0 + codes[i] * s; out[i + 1] = y0 + codes[i + 1] * s; }
-    return out;
+  /* The view `v` for coordinates sent as uint16 steps (wire.quantize, q = [x0, y0, step]):
+     x0 + code * step in design units is code * (step * s) + (x0 * s + tx) in pixels, so the
+     rasteriser draws the codes as they came (no copy as floats); kept on q per view. */
+  function codeView(q, v) {
+    if (q.vs !== v.s || q.vtx !== v.tx || q.vty !== v.ty) {
+      q.vs = v.s; q.vtx = v.tx; q.vty = v.ty;
+      q.v = { s: v.s * q[2], tx: v.tx + q[0] * v.s, ty: v.ty - q[1] * v.s };
+    }
+    return q.v;
   }
 
   function unpack(buf) {
@@ -220,7 +224,6 @@ var VoroStudio = (function () {
      the old and new cells for repainting (see paintNow). */
   Studio.prototype.geometry = function (m) {
     var h = m.header, a = m.arrays, t0 = performance.now();
-    if (h.cq && a.cc) a.cc = dequantize(a.cc, h.cq);
     var n = h.n, idx = a.idx, k, i, boxes = [], old = this.raw.length;
     // more changed cells than a patch repaints one by one (see renderPending): a whole redraw,
     // without the boxes to repaint
@@ -237,7 +240,7 @@ var VoroStudio = (function () {
       // no Path2D per cell: the rings stay in the message's buffers until drawn
       this.raw[i] = a.rg[k + 1] > a.rg[k] ? [a.rg, a.rr, a.rc, k] : null;
       if (h.cells_raw) this.cells[i] = this.raw[i];  // cells without operations: the raw rings
-      else this.cells[i] = a.cg[k + 1] > a.cg[k] ? [a.cg, a.cr, a.cc, k] : null;
+      else this.cells[i] = a.cg[k + 1] > a.cg[k] ? [a.cg, a.cr, a.cc, k, h.cq] : null;
       this.boxes[i] = ringBox(a.rg, a.rr, a.rc, k);
       if (full) continue;
       var box = grow(was ? was.slice() : null, this.boxes[i]);
@@ -425,7 +428,7 @@ var VoroStudio = (function () {
         if (!q || q[0] > r[2] || q[2] < r[0] || q[1] > r[3] || q[3] < r[1]) continue;
       }
       var c = this.cells[i], rw = this.raw[i];
-      if (c && this.mask[i]) R.fillRings(px, W, rect, c[0], c[1], c[2], c[3], PALETTE32[colourOf(i)], v, tol);
+      if (c && this.mask[i]) R.fillRings(px, W, rect, c[0], c[1], c[2], c[3], PALETTE32[colourOf(i)], c[4] ? codeView(c[4], v) : v, tol);
       if (rw) R.lineRings(cov, W, rect, rw[0], rw[1], rw[2], rw[3], v);
     }
     R.composite(px, cov, W, rect, EDGE_RGB, EDGE_ALPHA);
