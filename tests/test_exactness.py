@@ -233,6 +233,29 @@ def test_mixed_scales_samples_in_nearest_cell():
         assert inside[clear].all(), f"{alg}: {int((~inside[clear]).sum())} samples outside"
 
 
+@pytest.mark.parametrize("seed", [9, 54])
+def test_cluster_hull_strips_are_valid_or_flagged(seed):
+    """50 sites in a 1e-9 square (17 ulps) at (333333, 500000) beside 50 in [0, 1e6]^2.
+
+    A hull site of the cluster owns a strip reaching ~1e4 out and under an ulp of y wide:
+    every algorithm rounded its vertices onto one line (a zero-area, self-intersecting
+    ring). Every cell must be valid; such a cell is empty and its site listed in
+    ``Diagram.unresolved``, the same for every algorithm.
+    """
+    g = np.random.default_rng(seed)
+    pts = np.concatenate((g.random((50, 2)) * 1e-9 + [333333.0, 500000.0], g.random((50, 2)) * 1e6))
+    flagged = None
+    for alg in ALGS:
+        d = vf.voronoi(pts, algorithm=alg)
+        cells = np.asarray(d.cells, dtype=object)
+        assert shapely.is_valid(cells).all(), alg
+        empty = np.flatnonzero(shapely.is_empty(cells) & (d.duplicate_of < 0))
+        assert set(empty.tolist()) == set(d.unresolved.tolist()), alg  # (rounding made duplicates)
+        assert d.areas.sum() == pytest.approx(d.boundary.area, rel=1e-12), alg
+        flagged = set(d.unresolved.tolist()) if flagged is None else flagged
+        assert set(d.unresolved.tolist()) == flagged, alg
+
+
 def _walk(x, k, direction):
     for _ in range(k):
         x = np.nextafter(x, x + direction)

@@ -10,6 +10,7 @@ diagrams both call it, so neither needs the other.
 from __future__ import annotations
 
 import numpy as np
+import shapely
 
 from ..config import HALFPLANE_TILING_RTOL
 from ..kernels.cells import cells_from_neighbors, cells_from_triangulation
@@ -122,16 +123,24 @@ _FOLDED_ULPS = 64  # a folded ring this many ulps across is not representable: l
 
 
 def _drop_folded(closed, lengths, owner):
-    """The rings with every tiny one that fails the exact convexity test left empty.
+    """The rings with every tiny or thin one that folds left empty.
 
     Each builder certifies its rings; one that still folds and is only a few dozen ulps
     across lies where floats cannot represent the cell (sites a few ulps apart far from the
-    origin: its vertices are a few ulps apart too). It is reported in
+    origin: its vertices are a few ulps apart too). So does a long strip a few dozen ulps
+    wide whose ring is not a valid polygon (the cell of a hull site of such a cluster,
+    reaching far out: its vertices rounded onto one line). Either is reported in
     ``Diagram.unresolved`` (:func:`_lost`) instead of as a self-intersecting polygon.
     """
-    bad = tiny_folded(closed, lengths, _FOLDED_ULPS)
-    if not bad.any():
+    code = tiny_folded(closed, lengths, _FOLDED_ULPS)
+    if not code.any():
         return closed, lengths, owner
+    bad = code == 1
+    for i in np.flatnonzero(code == 2):
+        # a strip a few ulps wide that rounding left concave but simple stays; one whose
+        # vertices rounded onto one line (or across each other) is not a polygon
+        ring = closed[lengths[i] : lengths[i + 1]]
+        bad[i] = not shapely.is_valid(shapely.polygons(ring))
     empty = (closed[:0], np.zeros_like(lengths), owner[:0])  # every ring of no vertex
     return _splice(closed, lengths, owner, empty, bad)
 

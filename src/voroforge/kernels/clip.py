@@ -185,15 +185,43 @@ def rings_convex(xy, lengths):
 
 
 @njit(**NJIT)
+def _width(xy, a, b):
+    """Width of the closed ring ``xy[a:b]`` (0 when all its vertices are on one line).
+
+    The least, over its edges, of the farthest vertex from the edge's line (coordinates
+    relative to the first vertex).
+    """
+    w = np.inf
+    x0 = xy[a, 0]
+    y0 = xy[a, 1]
+    for k in range(a, b - 1):
+        ex = xy[k + 1, 0] - xy[k, 0]
+        ey = xy[k + 1, 1] - xy[k, 1]
+        e = np.sqrt(ex * ex + ey * ey)
+        if e == 0.0:
+            continue
+        far = 0.0
+        for j in range(a, b - 1):
+            dx = (xy[j, 0] - x0) - (xy[k, 0] - x0)
+            dy = (xy[j, 1] - y0) - (xy[k, 1] - y0)
+            far = max(far, abs(ex * dy - ey * dx) / e)
+        w = min(w, far)
+    return w
+
+
+@njit(**NJIT)
 def tiny_folded(xy, lengths, ulps):
-    """Rings at most ``ulps`` ulps across that fail :func:`ring_convex`.
+    """Rings that fail :func:`ring_convex` and are at most ``ulps`` ulps across or wide.
 
     Cells floats cannot represent (sites a few ulps apart far from the origin; ulps of the
-    ring's largest coordinate). The span test comes first, so the exact test runs on those
-    rings only.
+    ring's largest coordinate). Returns a code per ring: 1 for a ring at most ``ulps`` ulps
+    across in both directions (its vertices a few ulps apart), 2 for a longer one at most
+    that wide (a strip beside a cluster a few ulps across, whose vertices all rounded onto
+    one line), 0 otherwise. The cheap tests come first (spans, then the area against
+    width times span), so the width and the exact test run on those rings only.
     """
     n = lengths.shape[0] - 1
-    bad = np.zeros(n, dtype=np.bool_)
+    bad = np.zeros(n, dtype=np.uint8)
     for i in range(n):
         a = lengths[i]
         b = lengths[i + 1]
@@ -201,12 +229,22 @@ def tiny_folded(xy, lengths, ulps):
             continue
         x0 = x1 = xy[a, 0]
         y0 = y1 = xy[a, 1]
+        area2 = 0.0
         for k in range(a + 1, b):
             x0 = min(x0, xy[k, 0])
             x1 = max(x1, xy[k, 0])
             y0 = min(y0, xy[k, 1])
             y1 = max(y1, xy[k, 1])
+            if k + 1 < b:
+                area2 += (xy[k, 0] - xy[a, 0]) * (xy[k + 1, 1] - xy[a, 1]) - (
+                    xy[k, 1] - xy[a, 1]
+                ) * (xy[k + 1, 0] - xy[a, 0])
         big = max(abs(x0), abs(x1), abs(y0), abs(y1))
-        if max(x1 - x0, y1 - y0) <= ulps * 2.0**-52 * big:
-            bad[i] = not ring_convex(xy, a, b)
+        thin = ulps * 2.0**-52 * big
+        span = max(x1 - x0, y1 - y0)
+        if span <= thin:
+            bad[i] = 0 if ring_convex(xy, a, b) else 1
+        elif abs(area2) <= 4.0 * thin * span and _width(xy, a, b) <= thin:
+            # (twice the area of a ring at most w wide is at most 2 w span)
+            bad[i] = 0 if ring_convex(xy, a, b) else 2
     return bad
