@@ -336,10 +336,6 @@ SOLID_RING_SPAN = 0.8
 SOLID_HULL_SPREAD = 4.0
 #: Marching cubes: grid spacing as a fraction of the smallest radius/wall/thickness
 SOLID_VOXEL = 0.5
-#: PNG previews: a mesh with more triangles than the renderer's budget is simplified first
-#: (manifold3d edge collapse) by this fraction of its bounding-box diagonal, under a pixel of
-#: a 900 px preview, so struts and skins keep their shape
-SOLID_PREVIEW_SIMPLIFY = 1.0 / 600.0
 
 # --- fabrication / plotter (paths for machines: io/plotter, io/labels) --------------------
 
