@@ -256,6 +256,36 @@ def test_cluster_hull_strips_are_valid_or_flagged(seed):
         assert set(d.unresolved.tolist()) == flagged, alg
 
 
+@pytest.mark.parametrize(
+    ("off", "spread", "ulps", "k", "seed"),
+    [((7.25e6, 3.1e6), (1e7, 0.0), 17, 50, 5), ((-4.5e4, 2.5e4), (1e5, 5e4), 3, 8, 3)],
+)
+def test_clusters_few_ulps_wide_one_answer(off, spread, ulps, k, seed):
+    """``k`` sites in a square ``ulps`` ulps wide at ``off`` beside 50 spread far wider.
+
+    The cluster's sites lie on a lattice of ulps (many exactly cocircular quadruples, whose
+    diagonals the sweep and the default choose differently); the sweep gave 4 sites a
+    ~1e-17 triangle that the others flagged, or the half-plane cells all of them. Every
+    algorithm now keeps the construction that leaves the fewest sites flagged: one diagram.
+    """
+    from test_algorithms import _assert_same
+
+    g = np.random.default_rng(seed)
+    w = ulps * np.spacing(max(abs(off[0]), abs(off[1])))
+    cluster = g.random((k, 2)) * w + off
+    pts = np.concatenate((cluster, g.random((50, 2)) * spread[0] - [spread[1], -spread[1]]))
+    ref = None
+    for alg in ALGS:
+        d = vf.voronoi(pts, algorithm=alg)
+        assert shapely.is_valid(np.asarray(d.cells, dtype=object)).all(), alg
+        assert d.areas.sum() == pytest.approx(d.boundary.area, rel=1e-12), alg
+        if ref is None:
+            ref = d
+            continue
+        assert set(d.unresolved.tolist()) == set(ref.unresolved.tolist()), alg
+        _assert_same(ref, d, d.boundary)
+
+
 def _walk(x, k, direction):
     for _ in range(k):
         x = np.nextafter(x, x + direction)

@@ -145,6 +145,28 @@ def _drop_folded(closed, lengths, owner):
     return _splice(closed, lengths, owner, empty, bad)
 
 
+_ALGORITHMS = ("delaunay", "fortune", "halfplane")  # the order ties are broken in
+
+
+def _fewest_lost(xs, ys, box, kmap, algorithm, got):
+    """Of every construction's rings, those that leave the fewest distinct sites without a cell.
+
+    Only for diagrams where ``got`` (``algorithm``'s rings) lost a site: sites a few ulps
+    apart far from the origin, whose cells are a few ulps wide. There the constructions can
+    differ (the sweep and the default choose different diagonals of exactly cocircular
+    sites, so their centres merge differently by rounding); each algorithm then builds all
+    three and keeps the same one, the first in ``_ALGORITHMS`` order among those that give
+    the most sites a cell, so that every algorithm gives one answer.
+    """
+    best = None
+    for alg in _ALGORITHMS:
+        rings = got if alg == algorithm else _drop_folded(*_closed_cells(xs, ys, box, alg, kmap))
+        lost = len(_lost(xs, ys, box, rings[1]))
+        if best is None or lost < best[0]:
+            best = (lost, rings)
+    return best[1]
+
+
 def _splice(closed, lengths, owner, dual, take):
     """Closed rings with cell ``k`` from ``dual`` where ``take[k]``, else from ``closed``."""
     dclosed, dlengths, downer = dual
@@ -229,8 +251,10 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
     ys = np.ascontiguousarray(sub[:, 1])
     box = np.array(wdom.bounds, dtype=np.float64)
     with serial_below(n):
-        closed, lengths, own = _closed_cells(xs, ys, box, algorithm, unique)
-        closed, lengths, own = _drop_folded(closed, lengths, own)
+        closed, lengths, own = _drop_folded(*_closed_cells(xs, ys, box, algorithm, unique))
+        if len(_lost(xs, ys, box, lengths)):
+            got = (closed, lengths, own)
+            closed, lengths, own = _fewest_lost(xs, ys, box, unique, algorithm, got)
         bufs, edges = assemble(wdom, closed, lengths, own, n, unique)
     # sites every construction leaves without a cell: floats cannot represent it
     unresolved = unique[_lost(xs, ys, box, lengths)].astype(np.int64)
