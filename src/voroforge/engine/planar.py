@@ -49,40 +49,66 @@ def _collinear_neighbors(xs, ys):
     return csr_from_pairs(len(xs), a, b)
 
 
-def _closed_cells(xs, ys, box, algorithm, kmap):
+def _dual(xs, ys, box, algorithm, kmap):
+    """Closed rings of the Delaunay dual: the default's triangulation or the sweep's.
+
+    Sites all on one line have no triangles: their cells are the strips between bisectors.
+    """
+    if algorithm == "fortune":
+        # the sweep's Delaunay dual, through the same cell builder as the default
+        order, sx, sy, tri, he, ok = fortune_delaunay(xs, ys)
+    else:
+        order, sx, sy, tri, he, _, ok = triangulate_sorted(xs, ys)
+    if ok:
+        return cells_from_triangulation(sx, sy, tri, he, box, order, kmap[order])
+    indptr, indices = _collinear_neighbors(xs, ys)
+    coords, offsets, owner = cells_from_neighbors(xs, ys, indptr, indices.astype(np.int64), box)
+    return close_rings(coords, offsets, owner, np.arange(len(xs)), kmap)
+
+
+def _memo(memo, key, fn, *args):
+    """``fn(*args)``, computed once per ``key`` in the dict ``memo`` (None: no memo)."""
+    if memo is None:
+        return fn(*args)
+    if key not in memo:
+        memo[key] = fn(*args)
+    return memo[key]
+
+
+def _whole_halfplane(xs, ys, box, kmap, memo=None):
+    """The half-plane rings when every cell was built and they tile the box, else None."""
+    got = _memo(memo, "halfplane", halfplane_cells, xs, ys, box, kmap)
+    if not got[3].any() and _certified(*got[:2], box):
+        return got[:3]
+    return None
+
+
+def _closed_cells(xs, ys, box, algorithm, kmap, memo=None):
     """Kernel dispatch: closed convex rings of distinct sites clipped to ``box``.
 
     Returns ``(coords, lengths, owner)`` with distinct site ``k``'s ring at
-    ``coords[lengths[k]:lengths[k + 1]]`` and owners mapped through ``kmap``.
+    ``coords[lengths[k]:lengths[k + 1]]`` and owners mapped through ``kmap``. ``memo`` (a
+    dict) keeps each construction's output for :func:`_fewest_lost`.
     """
     if algorithm in ("delaunay", "fortune"):
-        if algorithm == "fortune":
-            # the sweep's Delaunay dual, through the same cell builder as the default
-            order, sx, sy, tri, he, ok = fortune_delaunay(xs, ys)
-        else:
-            order, sx, sy, tri, he, _, ok = triangulate_sorted(xs, ys)
-        if ok:
-            cells = cells_from_triangulation(sx, sy, tri, he, box, order, kmap[order])
-            if len(_lost(xs, ys, box, cells[1])):
-                # a distinct site whose cell merged away: its strip is narrower than the
-                # centres' rounding bounds (sites a few ulps apart). The half-plane cells
-                # decide each ring with exact predicates and keep it where floats can
-                # represent it; they replace the dual's when they tile the box.
-                got = halfplane_cells(xs, ys, box, kmap)
-                if not got[3].any() and _certified(*got[:2], box):
-                    if len(_lost(xs, ys, box, got[1])) < len(_lost(xs, ys, box, cells[1])):
-                        return got[:3]
-            return cells
-        indptr, indices = _collinear_neighbors(xs, ys)
-        coords, offsets, owner = cells_from_neighbors(xs, ys, indptr, indices.astype(np.int64), box)
-        ident = np.arange(len(xs))
-        return close_rings(coords, offsets, owner, ident, kmap)
+        cells = _memo(memo, algorithm, _dual, xs, ys, box, algorithm, kmap)
+        if len(_lost(xs, ys, box, cells[1])):
+            # a distinct site whose cell merged away: its strip is narrower than the
+            # centres' rounding bounds (sites a few ulps apart). The half-plane cells
+            # decide each ring with exact predicates and keep it where floats can
+            # represent it; they replace the dual's when they tile the box.
+            got = _whole_halfplane(xs, ys, box, kmap, memo)
+            if got is not None and len(_lost(xs, ys, box, got[1])) < len(
+                _lost(xs, ys, box, cells[1])
+            ):
+                return got
+        return cells
     # every cell on its own: the box cut by bisectors, finished with exact predicates
-    closed, lengths, owner, hard = halfplane_cells(xs, ys, box, kmap)
+    closed, lengths, owner, hard = _memo(memo, "halfplane", halfplane_cells, xs, ys, box, kmap)
     if hard.any():
         # cells whose neighbours are not local (sites on one circle, a site with thousands
         # of neighbours): the Delaunay dual builds them in O(n log n) for the whole diagram
-        dual = _closed_cells(xs, ys, box, "delaunay", kmap)
+        dual = _closed_cells(xs, ys, box, "delaunay", kmap, memo)
         if hard.all():
             return dual
         # a cell beside a dual cell must share their edge bit for bit; where the two
@@ -103,7 +129,7 @@ def _closed_cells(xs, ys, box, algorithm, kmap):
     # a cell the local finishing could not settle consistently (rounding-level vertices
     # that fold its ring, or cells that do not tile the box): the Delaunay dual decides
     # every vertex globally, and gives the answer every algorithm gives
-    return _closed_cells(xs, ys, box, "delaunay", kmap)
+    return _closed_cells(xs, ys, box, "delaunay", kmap, memo)
 
 
 def _lost(xs, ys, box, lengths):
@@ -145,22 +171,21 @@ def _drop_folded(closed, lengths, owner):
     return _splice(closed, lengths, owner, empty, bad)
 
 
-_ALGORITHMS = ("delaunay", "fortune", "halfplane")  # the order ties are broken in
+def _fewest_lost(xs, ys, box, kmap, memo):
+    """Of the constructions' rings, those that leave the fewest distinct sites without a cell.
 
-
-def _fewest_lost(xs, ys, box, kmap, algorithm, got):
-    """Of every construction's rings, those that leave the fewest distinct sites without a cell.
-
-    Only for diagrams where ``got`` (``algorithm``'s rings) lost a site: sites a few ulps
-    apart far from the origin, whose cells are a few ulps wide. There the constructions can
-    differ (the sweep and the default choose different diagonals of exactly cocircular
-    sites, so their centres merge differently by rounding); each algorithm then builds all
-    three and keeps the same one, the first in ``_ALGORITHMS`` order among those that give
-    the most sites a cell, so that every algorithm gives one answer.
+    Only for diagrams where an algorithm's rings lost a site: sites a few ulps apart far
+    from the origin, whose cells are a few ulps wide. There the constructions can differ
+    (the sweep and the default choose different diagonals of exactly cocircular sites, so
+    their centres merge differently by rounding); every algorithm then compares the same
+    three constructions (:func:`_closed_cells` of each algorithm, fallbacks included) and
+    keeps the first in the order default, sweep, half-plane among those that give the most
+    sites a cell, so that every algorithm gives one answer.
     """
     best = None
-    for alg in _ALGORITHMS:
-        rings = got if alg == algorithm else _drop_folded(*_closed_cells(xs, ys, box, alg, kmap))
+    for alg in ("delaunay", "fortune", "halfplane"):
+        # (each construction's kernels run once per build: ``memo``)
+        rings = _drop_folded(*_closed_cells(xs, ys, box, alg, kmap, memo))
         lost = len(_lost(xs, ys, box, rings[1]))
         if best is None or lost < best[0]:
             best = (lost, rings)
@@ -251,10 +276,11 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
     ys = np.ascontiguousarray(sub[:, 1])
     box = np.array(wdom.bounds, dtype=np.float64)
     with serial_below(n):
-        closed, lengths, own = _drop_folded(*_closed_cells(xs, ys, box, algorithm, unique))
+        memo = {}
+        closed, lengths, own = _drop_folded(*_closed_cells(xs, ys, box, algorithm, unique, memo))
         if len(_lost(xs, ys, box, lengths)):
-            got = (closed, lengths, own)
-            closed, lengths, own = _fewest_lost(xs, ys, box, unique, algorithm, got)
+            closed, lengths, own = _fewest_lost(xs, ys, box, unique, memo)
+        del memo
         bufs, edges = assemble(wdom, closed, lengths, own, n, unique)
     # sites every construction leaves without a cell: floats cannot represent it
     unresolved = unique[_lost(xs, ys, box, lengths)].astype(np.int64)
