@@ -286,6 +286,38 @@ def test_clusters_few_ulps_wide_one_answer(off, spread, ulps, k, seed):
         _assert_same(ref, d, d.boundary)
 
 
+def test_sites_ulps_apart_sweep_cell_valid():
+    """2-5 sites 1-6 ulps apart along a random direction at 0.3 among 20 random ones.
+
+    The sweep's construction had lost a site and folded one random site's cell (invalid)
+    where the default's had not: the constructions compared for the fewest lost sites are
+    first compared for invalid rings, so every algorithm gives the default's valid diagram.
+    """
+    from test_algorithms import _assert_same
+
+    g = np.random.default_rng(127)
+    k = g.integers(2, 6)
+    d = g.normal(size=2)
+    d /= np.abs(d).max()
+    p = np.array([0.3, 0.3])
+    near = [p.copy()]
+    for _ in range(k - 1):
+        for _ in range(int(g.integers(1, 7))):
+            p = np.nextafter(p, p + d)
+        near.append(p.copy())
+    pts = np.concatenate((near, 0.3 + (g.random((20, 2)) - 0.5) * 10.0))
+    box = (-9.7, -9.7, 10.3, 10.3)
+    ref = None
+    for alg in ALGS:
+        dia = vf.voronoi(pts, box, algorithm=alg)
+        assert shapely.is_valid(np.asarray(dia.cells, dtype=object)).all(), alg
+        if ref is None:
+            ref = dia
+            continue
+        assert set(dia.unresolved.tolist()) == set(ref.unresolved.tolist()), alg
+        _assert_same(ref, dia, dia.boundary)
+
+
 def _walk(x, k, direction):
     for _ in range(k):
         x = np.nextafter(x, x + direction)

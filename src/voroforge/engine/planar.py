@@ -165,8 +165,7 @@ def _drop_folded(closed, lengths, owner):
     for i in np.flatnonzero(code == 2):
         # a strip a few ulps wide that rounding left concave but simple stays; one whose
         # vertices rounded onto one line (or across each other) is not a polygon
-        ring = closed[lengths[i] : lengths[i + 1]]
-        bad[i] = not shapely.is_valid(shapely.polygons(ring))
+        bad[i] = not _valid_ring(closed[lengths[i] : lengths[i + 1]])
     empty = (closed[:0], np.zeros_like(lengths), owner[:0])  # every ring of no vertex
     return _splice(closed, lengths, owner, empty, bad)
 
@@ -179,17 +178,28 @@ def _fewest_lost(xs, ys, box, kmap, memo):
     (the sweep and the default choose different diagonals of exactly cocircular sites, so
     their centres merge differently by rounding); every algorithm then compares the same
     three constructions (:func:`_closed_cells` of each algorithm, fallbacks included) and
-    keeps the first in the order default, sweep, half-plane among those that give the most
-    sites a cell, so that every algorithm gives one answer.
+    keeps the first in the order default, sweep, half-plane among those with the fewest
+    invalid rings that give the most sites a cell, so that every algorithm gives one answer.
     """
     best = None
     for alg in ("delaunay", "fortune", "halfplane"):
         # (each construction's kernels run once per build: ``memo``)
         rings = _drop_folded(*_closed_cells(xs, ys, box, alg, kmap, memo))
-        lost = len(_lost(xs, ys, box, rings[1]))
-        if best is None or lost < best[0]:
-            best = (lost, rings)
+        key = (_invalid(*rings[:2]), len(_lost(xs, ys, box, rings[1])))
+        if best is None or key < best[0]:
+            best = (key, rings)
     return best[1]
+
+
+def _invalid(closed, lengths):
+    """How many rings are not valid polygons (convex ones are: only the others are tested)."""
+    uncertain = np.flatnonzero(~rings_convex(closed, lengths) & (lengths[1:] > lengths[:-1]))
+    return sum(not _valid_ring(closed[lengths[i] : lengths[i + 1]]) for i in uncertain)
+
+
+def _valid_ring(ring):
+    """Whether a closed ring (last vertex repeating the first) is a valid polygon."""
+    return len(ring) >= 4 and bool(shapely.is_valid(shapely.polygons(ring)))
 
 
 def _splice(closed, lengths, owner, dual, take):
