@@ -289,11 +289,16 @@ def test_clusters_few_ulps_wide_one_answer(off, spread, ulps, k, seed):
 def test_sites_ulps_apart_sweep_cell_valid():
     """2-5 sites 1-6 ulps apart along a random direction at 0.3 among 20 random ones.
 
-    The sweep's construction had lost a site and folded one random site's cell (invalid)
-    where the default's had not: the constructions compared for the fewest lost sites are
-    first compared for invalid rings, so every algorithm gives the default's valid diagram.
+    The sweep's triangulation left part of the hull uncovered (37 triangles, its boundary
+    winding twice, where the hull needs 40) and one random site's cell folded; the sweep's
+    triangulation is now certified to fill the hull (``planar._fills_hull``; else the
+    default's is used), and constructions compared for the fewest lost sites are first
+    compared for invalid rings: every algorithm gives one valid diagram.
     """
     from test_algorithms import _assert_same
+    from voroforge.engine.planar import _fills_hull
+    from voroforge.kernels.delaunay import triangulate_sorted
+    from voroforge.kernels.fortune import fortune_delaunay
 
     g = np.random.default_rng(127)
     k = g.integers(2, 6)
@@ -307,6 +312,9 @@ def test_sites_ulps_apart_sweep_cell_valid():
         near.append(p.copy())
     pts = np.concatenate((near, 0.3 + (g.random((20, 2)) - 0.5) * 10.0))
     box = (-9.7, -9.7, 10.3, 10.3)
+    xs, ys = pts[:, 0].copy(), pts[:, 1].copy()
+    assert _fills_hull(*triangulate_sorted(xs, ys)[1:5])
+    assert not _fills_hull(*fortune_delaunay(xs, ys)[1:5])  # (the sweep's notch, still there)
     ref = None
     for alg in ALGS:
         dia = vf.voronoi(pts, box, algorithm=alg)

@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ..config import NJIT_PARALLEL
+from ..config import NJIT, NJIT_PARALLEL
 
 
 @njit(**NJIT_PARALLEL)
@@ -85,3 +85,36 @@ def shared_edges(coords, ring_offsets, ring_cell, owner, tol):
                     pairs[j, 1] = owner[k]
                     j += 1
     return seg, pairs
+
+
+@njit(**NJIT)
+def boundary_cycle(tri, he, n):
+    """The boundary of a triangulation as one cycle of vertices, or an empty array.
+
+    ``tri``, ``he`` in the Delaunator layout (halfedge ``e`` runs from ``tri[e]`` to the next
+    corner of its triangle; ``he[e] == -1`` on the boundary). Empty when the boundary
+    halfedges do not form exactly one cycle (a vertex met twice, an open chain, two loops).
+    """
+    after = np.full(n, -1, np.int64)
+    first = -1
+    count = 0
+    for e in range(he.shape[0]):
+        if he[e] >= 0:
+            continue
+        a = tri[e]
+        if after[a] >= 0:
+            return np.zeros(0, np.int64)  # a vertex the boundary passes twice
+        after[a] = tri[e - e % 3 + (e + 1) % 3]
+        first = a if first < 0 else first
+        count += 1
+    ring = np.zeros(count, np.int64)
+    if count == 0:
+        return ring
+    ring[0] = first
+    for k in range(1, count):
+        ring[k] = after[ring[k - 1]]
+        if ring[k] < 0 or ring[k] == first:
+            return np.zeros(0, np.int64)
+    if after[ring[count - 1]] != first:
+        return np.zeros(0, np.int64)
+    return ring
