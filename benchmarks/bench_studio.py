@@ -19,7 +19,7 @@ The page's side (parse, draw, frame) is measured in the browser by
 operations ``cellops.inset``, ``cellops.fillet`` and ``cellops.inset_fillet`` against the
 whole step, one thread; ``inset_fillet``'s time includes the two on the cells it leaves to
 them). Memory is kept for reuse as the server keeps it
-(``server._keep_heap``: big numpy arrays are not page-faulted in anew every step);
+(``studio.heap.keep_heap``: big numpy arrays are not page-faulted in anew every step);
 ``--system-malloc`` leaves glibc's default.
 """
 
@@ -35,7 +35,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "src"))
 
-from voroforge.studio.server import _keep_heap, geometry_message  # noqa: E402
+from voroforge.studio.heap import keep_heap  # noqa: E402
+from voroforge.studio.server import geometry_message  # noqa: E402
 from voroforge.studio.session import Session  # noqa: E402
 
 HOLED = {
@@ -153,7 +154,7 @@ def main(argv=None) -> int:
     )
     args = ap.parse_args(argv)
     if not args.system_malloc:
-        _keep_heap()
+        keep_heap()
     print(f"python {sys.version.split()[0]}, {os.cpu_count()} CPUs, load {os.getloadavg()[0]:.1f}")
     if args.split:
         split(args.steps)
