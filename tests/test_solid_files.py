@@ -184,3 +184,57 @@ def test_builders_survive_their_submodules_being_imported_first(tmp_path):
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr[-2000:]
     assert "SHELL shell True" in done.stdout and "CHECK Report" in done.stdout
+
+
+def test_3mf_text_is_python_repr():
+    # solid.threemf writes grid values as ``%r`` does (shortest round trip, an exponent
+    # under 1e-4, -0.0 signed), integers as ``%d``; None where it cannot (off the grid, NaN,
+    # so large that a shorter decimal would read back the same)
+    from voroforge.solid.threemf import on_grid, rows_text
+
+    rng = np.random.default_rng(5)
+    for d in (1, 3, 6, 9):
+        x = np.concatenate(
+            [
+                rng.uniform(-100, 100, 400),
+                rng.choice([-1, 1], 400) * 10.0 ** rng.uniform(-d, 3, 400),
+                [0.0, -0.0, 1e-4, -1e-4, 10.0**-d, 1.5e-5, 3.0, 1234.0],
+            ]
+        )
+        v = on_grid(x, d).reshape(-1, 2)
+        tpl = '<v x="%r" y="%r"/>'
+        assert rows_text(v, tpl, d) == ((tpl * len(v)) % tuple(v.ravel().tolist())).encode(), d
+    f = rng.integers(-5, 10**12, (50, 3))
+    assert rows_text(f, "%d %d %d;") == (("%d %d %d;" * 50) % tuple(f.ravel().tolist())).encode()
+    assert rows_text([[0.1234567]], "%r", 6) is None  # off the grid
+    assert rows_text([[np.nan]], "%r", 6) is None
+    assert rows_text([[2.3e9]], "%r", 6) is None  # 1e-6 is below its float spacing's half
+    assert rows_text([[2.2e9]], "%r", 6) == b"2200000000.0"
+
+
+def test_implicit_3mf_same_bytes_as_io_mesh(tmp_path):
+    # the implicit route's vertices lie on its decimal grid; write_3mf's file is io.mesh's,
+    # byte for byte, and reads back bit for bit; a mesh off the grid goes to io.mesh.write
+    import zipfile
+
+    from voroforge.io.mesh import write
+    from voroforge.solid.implicit import capsules_mesh
+    from voroforge.solid.threemf import write_3mf
+
+    struts = {
+        "a": np.array([[0.0, 0, 0], [0, 0, 0]]),
+        "b": np.array([[3.0, 1, 0.5], [-1, 2.5, 1]]),
+        "ra": np.array([0.5, 0.4]),
+        "rb": np.array([0.3, 0.4]),
+    }
+    m = capsules_mesh(struts, voxel=0.15, smoothing=2, smooth=0.2)
+    assert m.is_volume and m.metadata["decimals"] == 6
+    fast = write_3mf(m, tmp_path / "fast.3mf").read_bytes()
+    assert fast == write(m, tmp_path / "ref.3mf").read_bytes()
+    assert (read(tmp_path / "fast.3mf").vertices == m.vertices).all()
+    with zipfile.ZipFile(tmp_path / "fast.3mf") as z:
+        assert b'x="-' in z.read("3D/3dmodel.model")  # negative coordinates among them
+    off = trimesh.creation.icosphere(subdivisions=1)
+    assert write_3mf(off, tmp_path / "o.3mf", decimals=6).read_bytes() == (
+        write(off, tmp_path / "o_ref.3mf").read_bytes()
+    )

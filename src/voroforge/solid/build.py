@@ -124,6 +124,7 @@ def make_solid(design, base=None, stage=None):
 def build_solid(design, base, out: Path, stage, *, preview_only: bool = False) -> list[Path]:
     """Build the solid and write ``[solid] formats`` (meshes and a PNG preview) to ``out``."""
     from ..io.mesh import write
+    from .threemf import write_3mf
 
     s = design.solid
     stem = design.output.stem or design.design.name
@@ -135,6 +136,9 @@ def build_solid(design, base, out: Path, stage, *, preview_only: bool = False) -
         stage(f"writing {path.name}")
         if fmt == "png":
             written.append(preview(m, path, size=s.png_size, view=s.view))
+        elif fmt == "3mf":
+            # the implicit route's vertices lie on a decimal grid: their text by a kernel
+            written.append(write_3mf(m, path, units=design.design.units))
         else:
             written.append(write(m, path, units=design.design.units))
     return written

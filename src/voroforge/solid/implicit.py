@@ -13,6 +13,7 @@ import numpy as np
 from .. import config
 from .kernels import taubin
 from .sdf import capsules_block, mesh_sdf_block
+from .threemf import on_grid
 
 __all__ = ["capsules_mesh", "march", "signed_volume"]
 
@@ -55,6 +56,7 @@ def march(evaluate, lo, hi, h, *, smoothing: int = 0, progress=None):
     Returns
     -------
     trimesh.Trimesh
+        Its vertices rounded to :func:`grid_decimals` places (``metadata["decimals"]``).
     """
     import trimesh
     from skimage.measure import marching_cubes
@@ -115,7 +117,17 @@ def march(evaluate, lo, hi, h, *, smoothing: int = 0, progress=None):
         m.invert()
     if smoothing:
         m.vertices = taubin(m.vertices, m.faces, int(smoothing))
+    # a decimal grid 1e5 times finer than the voxel: far below the surface's accuracy, and
+    # the 3MF text of such numbers is written by a kernel (solid.threemf), not float repr
+    d = grid_decimals(h)
+    m.vertices = on_grid(m.vertices, d)
+    m.metadata["decimals"] = d
     return m
+
+
+def grid_decimals(h: float) -> int:
+    """Decimal places of the implicit route's vertices at voxel ``h`` (a grid <= 1e-5 h)."""
+    return int(np.ceil(5.0 - np.log10(h)))
 
 
 def _container_field(container, skin, h):
