@@ -707,11 +707,11 @@ def client(folder):
         yield c
 
 
-def _ws(client, origin=None):
+def _ws(client, origin=None, query=""):
     headers = {"host": "127.0.0.1:8765"}
     if origin:
         headers["origin"] = origin
-    return client.websocket_connect("/ws", headers=headers)
+    return client.websocket_connect("/ws" + query, headers=headers)
 
 
 def _reply(ws):
@@ -818,6 +818,30 @@ def test_websocket_view_sets_the_drawing_resolution(client):
         ws.send_text(json.dumps({"op": "view", "px": 0.01}))  # a finer page: all again
         h, again = _geom(ws)
         assert h["full"] and len(again["cc"]) // 2 == len(wire.rings(session.result.cells)[2])
+
+
+def test_a_page_that_says_its_canvas_gets_its_first_drawing_at_its_resolution(client):
+    """``/ws?w=&h=``: the first drawing thinned and quantized as every later one (not whole)."""
+    from voroforge.studio.server import canvas_px
+
+    session = client.app.state.hub.session
+    x0, y0, x1, y1 = session.result.boundary.bounds
+    px = canvas_px(session, "959", "699")  # the page's view(): the bounds + 4% each side
+    assert px == pytest.approx(max((x1 - x0) * 1.08 / 959, (y1 - y0) * 1.08 / 699))
+    assert canvas_px(session, "0", "699") is None and canvas_px(session, "a", None) is None
+    with _ws(client) as ws:
+        _, (whole_h, whole) = _greet(ws)
+    with _ws(client, query="?w=959&h=699") as ws:
+        _, (h, drawn) = _greet(ws)
+        expect = wire.rings(session.result.cells, tol=0.5 * px)[2]
+        ws.send_text(json.dumps({"op": "view", "px": px}))  # the page's own figure: no resend
+        ws.send_text(json.dumps({"op": "set", "key": "cells.fillet", "value": 2.5, "id": 4}))
+        assert _geom(ws)[0]["reply_to"] == 4
+    assert whole_h["cq"] is None and h["cq"] is not None and h["cq"][2] <= px / 8
+    # uint16 codes of thinned rings: fewer vertices, half the bytes each
+    assert len(drawn["cc"]) < len(whole["cc"]) and drawn["cc"].nbytes < 0.5 * whole["cc"].nbytes
+    got = wire.dequantize(h["cq"], drawn["cc"])
+    assert got.shape == expect.shape and np.abs(got - expect).max() < px / 8
 
 
 def test_websocket_survives_malformed_messages(client):

@@ -22,6 +22,7 @@ import base64
 import contextlib
 import itertools
 import json
+import math
 import operator
 import time
 from importlib import resources
@@ -465,6 +466,9 @@ def create_app(session: Session, *, hosts=LOCAL_HOSTS):
         await ws.accept()
         cid = next(hub.ids)
         hub.clients[cid] = ws
+        px = canvas_px(session, ws.query_params.get("w"), ws.query_params.get("h"))
+        if px is not None:  # the page's canvas: its first drawing at the page's resolution
+            hub.pixels[cid] = px
         try:
             async with hub.lock:
                 hub.seq += 1
@@ -670,6 +674,31 @@ async def _view(hub: _Hub, ws, cid: int, msg: dict, mid) -> None:
             hub.session, None, seq=hub.seq, boundary=True, sent=hub.sent, px=hub.px
         )
     await hub.broadcast(payload)
+
+
+#: The margin around the design in the page's view, a fraction of its size (studio.js view)
+VIEW_PAD = 0.04
+
+
+def canvas_px(session: Session, width, height) -> float | None:
+    """The pixel size in design units of a page whose canvas is ``width`` x ``height`` pixels.
+
+    The page says its canvas's size when it connects (``/ws?w=...&h=...``), so its first
+    drawing travels as every later one does (thinned to its pixels, uint16 coordinates)
+    instead of whole; the page's ``view`` message follows with the size it computed itself
+    (the same formula: the design's bounds and :data:`VIEW_PAD` fitted into the canvas).
+    None when the sizes are not positive integers.
+    """
+    try:
+        w, h = int(width), int(height)
+    except (TypeError, ValueError):
+        return None
+    if not (0 < w < 100_000 and 0 < h < 100_000):
+        return None
+    x0, y0, x1, y1 = session.result.boundary.bounds
+    bw, bh = max(x1 - x0, 1e-9), max(y1 - y0, 1e-9)
+    s = min(w / (bw * (1 + 2 * VIEW_PAD)), h / (bh * (1 + 2 * VIEW_PAD)))
+    return 1.0 / s if s > 0 and math.isfinite(s) else None
 
 
 def boundary_key(session: Session, known=None):

@@ -801,9 +801,11 @@ var VoroStudio = (function () {
 
   function connect(root) {
     var proto = location.protocol === "https:" ? "wss:" : "ws:";
-    var ws = new WebSocket(proto + "//" + location.host + "/ws");
+    var ws = null, studio = new Studio(root, { send: function (t) { ws.send(t); } });
+    /* the canvas's size in pixels: the first drawing comes at the page's resolution */
+    var size = "?w=" + studio.canvas.width + "&h=" + studio.canvas.height;
+    ws = new WebSocket(proto + "//" + location.host + "/ws" + size);
     ws.binaryType = "arraybuffer";
-    var studio = new Studio(root, { send: function (t) { ws.send(t); } });
     ws.onmessage = function (e) { studio.receive(e.data); };
     ws.onclose = function () { studio.message("disconnected from the studio server", true); };
     window.studio = studio;
