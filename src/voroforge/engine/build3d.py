@@ -16,6 +16,7 @@ from numba import njit
 
 from ..config import GRID_DEGENERATE_RTOL, GRID_WIDEN_RTOL, NJIT
 from ..kernels.cells3d import OK, OVERFLOW, build_cells
+from ..kernels.grid3d import kd_buckets3d
 from .threads import serial_below
 
 #: cells per call of the kernel (its fixed per-cell slots: ~10 KB a cell while it runs)
@@ -24,6 +25,12 @@ CHUNK = 4096
 PER_BUCKET = 2.0
 #: buckets visited in distance order before the shell-by-shell search takes over
 SEARCH_RADIUS = 3
+#: k-d buckets (kernels.grid3d.kd_buckets3d) instead of the grid when a site shares its
+#: grid bucket with more than this many others on average (the sum of the buckets' squared
+#: counts over the sites; uniform sites at 2 a bucket: 3, lattices at most 8)
+KD_CROWDED = 16.0
+#: sites per k-d bucket
+KD_LEAF = 8
 
 
 def grid3d_shape(P: np.ndarray, per_bucket: float) -> np.ndarray:
@@ -133,7 +140,25 @@ def _slots(k, caps):
     )
 
 
-def _run(cells, P, W, start, SP, SW, sidx, g, order, t, caps, pool, slots=None):
+def search3d(P: np.ndarray):
+    """The search structure of the sites: ``(g, start, SP, sidx, order, tree)``.
+
+    The bucket grid ``g`` (``PER_BUCKET`` sites a bucket), its buckets ``start``, the sites
+    in bucket order ``SP`` (numbers ``sidx``) and its search ``order``; ``tree`` is empty.
+    When the grid crowds its sites (clusters: more than ``KD_CROWDED`` bucket mates a site
+    on average) the buckets are k-d buckets instead (``tree``, ``start``, ``SP``, ``sidx``
+    from :func:`.grid3d.kd_buckets3d`).
+    """
+    g = grid3d_shape(P, PER_BUCKET)
+    start, SP, sidx = bucket_sort3d(P, g)
+    counts = np.diff(start).astype(np.float64)
+    if float(counts @ counts) > KD_CROWDED * max(len(P), 1):
+        tree, start, SP, sidx = kd_buckets3d(np.ascontiguousarray(P, np.float64), KD_LEAF)
+        return g, start, SP, sidx, np.zeros((0, 5)), tree
+    return g, start, SP, sidx, search_order(g, SEARCH_RADIUS), np.zeros((0, 8))
+
+
+def _run(cells, P, W, start, SP, SW, sidx, g, order, tree, t, caps, pool, slots=None):
     """Build ``cells`` into fixed per-cell slots (threads on slices of the cells)."""
     k = len(cells)
     cv, cf, cr = caps[:3]
@@ -156,6 +181,7 @@ def _run(cells, P, W, start, SP, SW, sidx, g, order, t, caps, pool, slots=None):
             sidx,
             g,
             order,
+            tree,
             t.TV,
             t.TF,
             t.TR,
@@ -517,13 +543,16 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
     k = len(cells)
     if k == 0:
         return _empty(cells)
-    g = grid3d_shape(P, PER_BUCKET)
-    start, SP, sidx = bucket_sort3d(P, g)
+    g, start, SP, sidx, order, tree = search3d(P)
     SW = np.ascontiguousarray(W[sidx])  # the weights in bucket order, read beside SP
-    order = search_order(g, SEARCH_RADIUS)
     # cells are built in bucket order (neighbouring cells read the same sites: 1.5x less
     # time than input order on 1e5 uniform sites); the face table stays in that order
-    sort = np.argsort(bucket_keys3d(P[cells], g), kind="stable")
+    if len(tree):
+        rank = np.zeros(ns, np.int64)
+        rank[sidx] = np.arange(ns)
+        sort = np.argsort(rank[cells], kind="stable")
+    else:
+        sort = np.argsort(bucket_keys3d(P[cells], g), kind="stable")
     built = cells[sort]
     status = np.zeros(k, np.int64)
     vol = np.zeros(k)
@@ -549,7 +578,7 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
             def big(q):
                 # a cell past its slots: alone, with big slots, joined in its place
                 st[q], counts[q], v[q], c[q], r2[q] = _big(
-                    chunk[q], P, W, start, SP, SW, sidx, g, order, t, out
+                    chunk[q], P, W, start, SP, SW, sidx, g, order, tree, t, out
                 )
 
             out.add(st, counts, sl, capa, big)
@@ -566,7 +595,20 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
                     pending.pop(0).result()  # the join that used these slots is done
                 chunk = built[c0 : c0 + CHUNK]
                 res = _run(
-                    chunk, P, W, start, SP, SW, sidx, g, order, t, CAPS, pool, slots[q % len(slots)]
+                    chunk,
+                    P,
+                    W,
+                    start,
+                    SP,
+                    SW,
+                    sidx,
+                    g,
+                    order,
+                    tree,
+                    t,
+                    CAPS,
+                    pool,
+                    slots[q % len(slots)],
                 )
                 if joiner is None:
                     join(c0, chunk, *res)
@@ -607,13 +649,13 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
     )
 
 
-def _big(i, P, W, start, SP, SW, sidx, g, order, t, out):
+def _big(i, P, W, start, SP, SW, sidx, g, order, tree, t, out):
     """Build cell ``i`` alone with big slots (growing them until it fits) and join it."""
     factor = BIG_CAPS_FACTOR
     while True:
         caps = tuple(c * factor for c in CAPS[:6]) + CAPS[6:]
         st, counts, v, c, r2, sl, capa = _run(
-            np.array([i]), P, W, start, SP, SW, sidx, g, order, t, caps, None
+            np.array([i]), P, W, start, SP, SW, sidx, g, order, tree, t, caps, None
         )
         if st[0] != OVERFLOW or factor >= 256:
             break

@@ -328,14 +328,145 @@ def _axis_gap(p, origin, size, b, off):
     return 0.0
 
 
+@njit(**NJIT_INLINE)
+def _box_misses(px, py, pz, tree, v, V, nv, wi, wmax, rmax2, eps):
+    """No site in k-d node ``v``'s box can cut or touch the cell ``V[:nv]`` (relative).
+
+    A plane cuts or touches a convex cell only if some vertex ``x`` is at least as near
+    (in power) to the other site as to the cell's: the box misses when every vertex is
+    farther from it, less the heaviest weight, than from the site, with slack
+    (``VORONOI3D_STOP_RTOL`` of the cell's size; the box widened by ``eps``, the rounding
+    of coordinates relative to the site). Long cells (a cluster's outer sites) meet few
+    boxes this way, where the sphere of :func:`_far` holds the whole cluster.
+    """
+    lx = tree[v, 0] - px - eps
+    ly = tree[v, 1] - py - eps
+    lz = tree[v, 2] - pz - eps
+    hx = tree[v, 3] - px + eps
+    hy = tree[v, 4] - py + eps
+    hz = tree[v, 5] - pz + eps
+    slack = VORONOI3D_STOP_RTOL * (rmax2 + abs(wi) + abs(wmax)) + wmax - wi
+    for k in range(nv):
+        x = V[k, 0]
+        y = V[k, 1]
+        z = V[k, 2]
+        gx = max(lx - x, 0.0, x - hx)
+        gy = max(ly - y, 0.0, y - hy)
+        gz = max(lz - z, 0.0, z - hz)
+        if gx * gx + gy * gy + gz * gz <= x * x + y * y + z * z + slack:
+            return False
+    return True
+
+
+@njit(**NJIT_INLINE)
+def _box_dist2(px, py, pz, tree, v):
+    """Squared distance from the site to k-d node ``v``'s tight box (0 inside)."""
+    dx = max(tree[v, 0] - px, 0.0, px - tree[v, 3])
+    dy = max(tree[v, 1] - py, 0.0, py - tree[v, 4])
+    dz = max(tree[v, 2] - pz, 0.0, pz - tree[v, 5])
+    return dx * dx + dy * dy + dz * dz
+
+
+@njit(**NJIT_INLINE)
+def _push(hk, hv, size, key, val):
+    """Push ``(key, val)`` on the binary min-heap ``hk[:size], hv[:size]``; returns the size."""
+    u = size
+    while u > 0:
+        p = (u - 1) // 2
+        if hk[p] <= key:
+            break
+        hk[u] = hk[p]
+        hv[u] = hv[p]
+        u = p
+    hk[u] = key
+    hv[u] = val
+    return size + 1
+
+
+@njit(**NJIT_INLINE)
+def _pop(hk, hv, size):
+    """Remove the heap's smallest entry; returns ``(key, val, new size)``."""
+    key = hk[0]
+    val = hv[0]
+    size -= 1
+    lk = hk[size]
+    lv = hv[size]
+    u = 0
+    while True:
+        c = 2 * u + 1
+        if c >= size:
+            break
+        if c + 1 < size and hk[c + 1] < hk[c]:
+            c += 1
+        if hk[c] >= lk:
+            break
+        hk[u] = hk[c]
+        hv[u] = hv[c]
+        u = c
+    if size > 0:
+        hk[u] = lk
+        hv[u] = lv
+    return key, val, size
+
+
+@njit(**NJIT_INLINE)
+def _next_leaf(px, py, pz, tree, hk, hv, size, wi, wmax, rmax2, V, nv, eps):
+    """Pop k-d nodes off the heap ``hk[:size], hv[:size]`` to the next bucket that may cut.
+
+    Nearest box first (keys: squared distances from the site to the boxes); the walk ends
+    at the first node beyond the stop test (:func:`_far`: every later one is farther), a
+    node whose box every vertex is nearer than (:func:`_box_misses`) is dropped. Returns
+    ``(bucket or -1, size)``.
+    """
+    while size > 0:
+        key, v, size = _pop(hk, hv, size)
+        if _far(key, wi, wmax, rmax2):
+            return -1, 0
+        if _box_misses(px, py, pz, tree, v, V, nv, wi, wmax, rmax2, eps):
+            continue
+        left = int(tree[v, 6])
+        if left < 0:
+            return int(tree[v, 7]), size
+        for c in range(left, left + 2):
+            d2 = _box_dist2(px, py, pz, tree, c)
+            if not _far(d2, wi, wmax, rmax2):
+                size = _push(hk, hv, size, d2, c)
+    return -1, size
+
+
 @njit(**NJIT_NO_NRT)
 def _one_cell(
-    i, P, W, WP, X, wmax, start, SP, SW, sidx, g, order, TV, TF, TR, TG, C, G, cand, cd2, buck
+    i,
+    P,
+    W,
+    WP,
+    X,
+    wmax,
+    start,
+    SP,
+    SW,
+    sidx,
+    g,
+    order,
+    tree,
+    TV,
+    TF,
+    TR,
+    TG,
+    C,
+    G,
+    cand,
+    cd2,
+    buck,
+    hkey,
 ):
     """Cut cell ``i``; leaves it in ``C``'s ``(V, F, R)``. Returns ``(status, nv, nf, nt, rmax2)``.
 
     With a vertex graph ``G`` (``G[0]`` non-empty) the cell starts from the template's graph
-    ``TG`` and is cut as a graph; its rings are read off at the end.
+    ``TG`` and is cut as a graph; its rings are read off at the end. With k-d buckets
+    (``tree`` non-empty: :func:`.grid3d.kd_buckets3d`'s nodes, ``start`` its buckets) the
+    buckets come from a nearest-first walk of the tree (a heap: keys ``hkey``, nodes
+    ``buck``), each cut by at once; otherwise from the grid ``g`` in ``order``, then shell by shell.
     """
     V, F, R, R2, S, work, T = C
     graph = G[0].shape[0] > 0
@@ -386,6 +517,16 @@ def _one_cell(
     shells = False
     rb = -1  # a crowded bucket to go on gathering from, at rt
     rt = 0
+    kd = tree.shape[0] > 0
+    top = 0
+    eps = 0.0
+    if kd:
+        hkey[0] = 0.0
+        buck[0] = 0
+        top = 1
+        for a in range(6):  # coordinates' rounding relative to the site, for _box_misses
+            eps = max(eps, abs(tree[0, a]))
+        eps *= 4e-16
     while True:
         flush = False
         stop = False
@@ -393,6 +534,13 @@ def _one_cell(
         if rb >= 0:
             b = rb
             rb = -1
+        elif kd:
+            b, top = _next_leaf(px, py, pz, tree, hkey, buck, top, wi, wmax, rmax2, V, nv, eps)
+            flush = True
+            if b >= 0:
+                rt = start[b]
+            else:
+                stop = True
         elif not shells:
             if o == order.shape[0]:
                 shells = True

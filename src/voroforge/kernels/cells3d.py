@@ -289,6 +289,7 @@ def build_cells(
     sidx,
     g,
     order,
+    tree,
     TV,
     TF,
     TR,
@@ -327,6 +328,8 @@ def build_cells(
     ny = int(g[7])
     nz = int(g[8])
     nbuck = min(nx * ny * nz, 2 * (nx * ny + nx * nz + ny * nz))
+    if tree.shape[0] > 0:  # the k-d walk's heap: each node at most once
+        nbuck = max(nbuck, tree.shape[0])
     per = (k + nblocks - 1) // nblocks
     for blk in range(nblocks):
         lo = blk * per
@@ -336,6 +339,7 @@ def build_cells(
         V, F, R, R2, S, work, T, OWN, cand, cd2, buck = _scratch(
             caps[3], caps[4], caps[5], max(1024, min(ns, 1 << 16)), nbuck
         )
+        hkey = np.empty(nbuck if tree.shape[0] > 0 else 0)  # noqa: TID251 (heap: written first)
         vnames = np.zeros((caps[3], 5), np.int64)
         vabs = np.zeros((caps[3], 3))
         vrel = np.zeros((caps[3], 3))
@@ -370,6 +374,7 @@ def build_cells(
                 sidx,
                 g,
                 order,
+                tree,
                 TV,
                 TF,
                 TR,
@@ -379,6 +384,7 @@ def build_cells(
                 cand,
                 cd2,
                 buck,
+                hkey,
             )
             Gu = G
             if st == BROKEN and G[0].shape[0] > 0:  # the graph could not: face rings
@@ -396,6 +402,7 @@ def build_cells(
                     sidx,
                     g,
                     order,
+                    tree,
                     TV,
                     TF,
                     TR,
@@ -405,6 +412,7 @@ def build_cells(
                     cand,
                     cd2,
                     buck,
+                    hkey,
                 )
             counts[c, 0] = 0
             counts[c, 1] = 0
