@@ -290,9 +290,10 @@ def test_sites_ulps_apart_sweep_cell_valid():
     """2-5 sites 1-6 ulps apart along a random direction at 0.3 among 20 random ones.
 
     The sweep's triangulation left part of the hull uncovered (37 triangles, its boundary
-    winding twice, where the hull needs 40) and one random site's cell folded; the sweep's
-    triangulation is now certified to fill the hull (``planar._fills_hull``; else the
-    default's is used), and constructions compared for the fewest lost sites are first
+    winding twice, where the hull needs 40) and one random site's cell folded: its arc
+    search put a new site into the wrong arc (breakpoints compared in floats; now exact).
+    The sweep's triangulation is also certified to fill the hull (``planar._fills_hull``;
+    else the default's is used), and constructions compared for the fewest lost sites are first
     compared for invalid rings: every algorithm gives one valid diagram.
     """
     from test_algorithms import _assert_same
@@ -314,7 +315,7 @@ def test_sites_ulps_apart_sweep_cell_valid():
     box = (-9.7, -9.7, 10.3, 10.3)
     xs, ys = pts[:, 0].copy(), pts[:, 1].copy()
     assert _fills_hull(*triangulate_sorted(xs, ys)[1:5])
-    assert not _fills_hull(*fortune_delaunay(xs, ys)[1:5])  # (the sweep's notch, still there)
+    assert _fills_hull(*fortune_delaunay(xs, ys)[1:5])  # the arc search's exact breakpoints
     ref = None
     for alg in ALGS:
         dia = vf.voronoi(pts, box, algorithm=alg)

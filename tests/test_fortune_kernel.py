@@ -220,3 +220,81 @@ def test_engine_entry_point_sweep_order():
     assert brute_delaunay_ok(pts, mapped)
     for few in (pts[:2], np.array([[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]])):
         assert not fortune_delaunay(few[:, 0].copy(), few[:, 1].copy())[-1]
+
+
+def _right_of_exact(sx, px, py, qx, qy, sweep):
+    """``sx`` right of the breakpoint of the arcs of ``p`` (left) and ``q``, to 100 digits.
+
+    The breakpoint's offset from ``px`` is the root ``(hp dx - sqrt(hp hq |q - p|^2)) / a``
+    of the two parabolas' intersection (``hp``, ``hq`` the sites' distances below the sweep
+    line, ``a = qy - py``), evaluated in decimal arithmetic; ``None`` when it ties ``sx``.
+    """
+    from decimal import Decimal, localcontext
+
+    with localcontext() as ctx:
+        ctx.prec = 100
+        sx, px, py, qx, qy, sweep = (Decimal(float(v)) for v in (sx, px, py, qx, qy, sweep))
+        if py == qy:
+            x = (px + qx) / 2
+        elif sweep <= py:
+            x = px
+        elif sweep <= qy:
+            x = qx
+        else:
+            hp, hq, dx, a = sweep - py, sweep - qy, qx - px, qy - py
+            x = px + (hp * dx - (hp * hq * (dx * dx + a * a)).sqrt()) / a
+        if abs(sx - x) <= abs(x) * Decimal(10) ** -90:
+            return None
+        return sx > x
+
+
+def test_breakpoint_side_is_exact():
+    """The arc search's breakpoint test against rationals on sites a few ulps apart.
+
+    Sites 1-6 ulps apart put a new site into the wrong arc when the test was evaluated in
+    floats (the sweep then left part of the hull uncovered on ~1% of such inputs).
+    """
+    from voroforge.kernels.fortune import _right_of
+
+    g = np.random.default_rng(5)
+    wrong = 0
+    for _ in range(3000):
+        base = g.random(2) * 2.0 - 1.0
+        pts = [base]
+        for _ in range(3):
+            step = g.integers(-6, 7, size=2)
+            q = pts[-1].copy()
+            for k in range(2):
+                for _ in range(abs(int(step[k]))):
+                    q[k] = np.nextafter(q[k], q[k] + np.sign(step[k]))
+            pts.append(q)
+        (px, py), (qx, qy), (sx, sweep) = pts[0], pts[1], pts[2]
+        sweep = max(sweep, py, qy)
+        if g.random() < 0.3:
+            sweep = max(py, qy) + abs(float(g.normal())) * 1e-15
+        got = _right_of(float(sx), float(px), float(py), float(qx), float(qy), float(sweep))
+        want = _right_of_exact(sx, px, py, qx, qy, sweep)
+        wrong += want is not None and got != want
+    assert wrong == 0
+
+
+def test_sweep_fills_hull_of_sites_ulps_apart():
+    """2-5 sites 1-6 ulps apart on a line among 20 random ones: the sweep's triangles cover
+    the hull (Euler count ``2n - 2 - h``), for the seeds where floats left a notch."""
+    from voroforge.engine.planar import _fills_hull
+    from voroforge.kernels.fortune import fortune_delaunay
+
+    for seed in (94, 127, 164, 627, 652, 801):
+        g = np.random.default_rng(seed)
+        k = g.integers(2, 6)
+        d = g.normal(size=2)
+        d /= np.abs(d).max()
+        p = np.array([0.3, 0.3])
+        near = [p.copy()]
+        for _ in range(k - 1):
+            for _ in range(int(g.integers(1, 7))):
+                p = np.nextafter(p, p + d)
+            near.append(p.copy())
+        pts = np.concatenate((near, 0.3 + (g.random((20, 2)) - 0.5) * 10.0))
+        assert _fills_hull(*fortune_delaunay(pts[:, 0].copy(), pts[:, 1].copy())[1:5]), seed
+        check(pts, brute=True)
