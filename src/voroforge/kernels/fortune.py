@@ -4,7 +4,8 @@ Conventions. The sweep line ``y = L`` moves upward; sites are processed in ``(y,
 The beach line is the sequence of parabolic arcs, left to right; each arc is a node of a
 treap (random priorities, in-order = left to right, so its expected depth is O(log m)) and
 of a doubly linked list for O(1) neighbours. Breakpoints are never stored: the search for
-the arc above a new site evaluates them in floating point at the site's ``L``.
+the arc above a new site decides on which side of each breakpoint the site lies at its
+``L``, exactly (a float filter, expansions when it cannot decide; :func:`_right_of`).
 
 Three consecutive arcs ``a, b, c`` (distinct sites ``a != c``) have converging breakpoints
 exactly when ``orient2d(a, b, c) > 0`` (exact); their circle event is keyed by the top of
