@@ -137,10 +137,28 @@ def _unsigned(grid, origin, h, tris, band):
             mx = max(tri[0, c], max(tri[1, c], tri[2, c])) + band
             lo[c] = max(int(np.floor((mn - origin[c]) / h)), 0)
             hi[c] = min(int(np.ceil((mx - origin[c]) / h)), dims[c] - 1)
+        # the unit normal: the distance to the triangle's plane bounds the distance to the
+        # triangle from below, so a sample already nearer another triangle is skipped
+        # (a face's coplanar fan: its sample pays one full test, not one per triangle)
+        ux, uy, uz = tri[1, 0] - tri[0, 0], tri[1, 1] - tri[0, 1], tri[1, 2] - tri[0, 2]
+        vx, vy, vz = tri[2, 0] - tri[0, 0], tri[2, 1] - tri[0, 1], tri[2, 2] - tri[0, 2]
+        nx_, ny_, nz_ = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+        nn = np.sqrt(nx_ * nx_ + ny_ * ny_ + nz_ * nz_)
+        if nn > 0.0:
+            nx_, ny_, nz_ = nx_ / nn, ny_ / nn, nz_ / nn
         for i in range(lo[0], hi[0] + 1):
+            px = origin[0] + h * i
             for j in range(lo[1], hi[1] + 1):
+                py = origin[1] + h * j
                 for k in range(lo[2], hi[2] + 1):
-                    d = _pt_tri(origin[0] + h * i, origin[1] + h * j, origin[2] + h * k, tri)
+                    pz = origin[2] + h * k
+                    if nn > 0.0:
+                        dp = abs(
+                            nx_ * (px - tri[0, 0]) + ny_ * (py - tri[0, 1]) + nz_ * (pz - tri[0, 2])
+                        )
+                        if dp >= grid[i, j, k]:
+                            continue
+                    d = _pt_tri(px, py, pz, tri)
                     if d < grid[i, j, k]:
                         grid[i, j, k] = d
 
