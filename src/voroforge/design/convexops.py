@@ -28,6 +28,7 @@ import math
 
 import numpy as np
 import shapely
+from numba import njit
 
 from ..config import (
     CONVEX_ARC_SEPARATION,
@@ -35,6 +36,7 @@ from ..config import (
     CONVEX_PARALLEL_TURN,
     CONVEX_SHORT_EDGE_RTOL,
     CONVEX_STRAIGHT_TURN,
+    NJIT,
 )
 
 __all__ = ["convex_rings", "fillet_rings", "inset_rings", "polygons", "reconvex", "take"]
@@ -142,12 +144,6 @@ def _rows(xy: np.ndarray, index: np.ndarray) -> np.ndarray:
     """
     pairs = np.ascontiguousarray(xy, dtype=np.float64).view(np.complex128)[:, 0]
     return pairs[index].view(np.float64).reshape(-1, 2)
-
-
-def _repeat_rows(xy: np.ndarray, counts: np.ndarray) -> np.ndarray:
-    """``np.repeat(xy, counts, axis=0)`` of (N, 2) float64 rows, as complex numbers."""
-    pairs = np.ascontiguousarray(xy, dtype=np.float64).view(np.complex128)[:, 0]
-    return np.repeat(pairs, counts).view(np.float64).reshape(-1, 2)
 
 
 def _convex(xy: np.ndarray, count: np.ndarray):
@@ -327,26 +323,55 @@ def fillet_rings(xy: np.ndarray, start: np.ndarray, radius, quad_segs: int):
     owner, nxt, prv = _ring_index(cstart)
     n_in = _rows(normal, prv)  # inward normals of the edges before and after each corner
     turn = np.arctan2(_cross(n_in, normal), _dot(n_in, normal))
-    quantum = math.pi / 2.0 / int(quad_segs)
-    chords = np.maximum((turn / quantum + 0.5).astype(np.int64), 1)
-    chords[turn < CONVEX_ARC_SEPARATION] = 0  # one point where the two ends nearly meet
-    # corner k: chords[k] + 1 points at angles a0 + j * turn / chords from its centre
-    npts = chords + 1
-    npts[chords == 0] = 1
-    first = np.cumsum(npts) - npts
-    ang = np.arange(first[-1] + npts[-1] if len(npts) else 0, dtype=np.float64)
-    ang -= np.repeat(first, npts)
-    ang *= np.repeat(turn / np.maximum(chords, 1), npts)
-    ang += np.repeat(np.arctan2(-n_in[:, 1], -n_in[:, 0]), npts)
-    pts = _repeat_rows(core, npts)
+    a0 = np.arctan2(-n_in[:, 1], -n_in[:, 0])  # (atan2 by numpy: its SIMD one, not libm's)
     if not np.ndim(radius) or (m and (r == r[0]).all()):  # one radius: the same products
-        rr = float(r[0]) if m else 0.0
+        rr = np.full(len(core), float(r[0]) if m else 0.0)
     else:
-        rr = np.repeat(r[owner], npts)
-    pts[:, 0] += rr * np.cos(ang)
-    pts[:, 1] += rr * np.sin(ang)
+        rr = r[owner]
+    npts = _chord_counts(turn, int(quad_segs))
+    pts = _arcs(core, turn, a0, rr, npts)
     counts = np.bincount(owner, npts, minlength=m).astype(np.int64)
     return pts, np.concatenate(([0], np.cumsum(counts))), hard
+
+
+@njit(**NJIT)
+def _chord_counts(turn, quad_segs):
+    """Points of each corner's arc: ``round(turn / (pi / 2 / quad_segs))`` chords and one more.
+
+    At least one chord; one point where the two ends nearly meet.
+    """
+    quantum = math.pi / 2.0 / quad_segs
+    npts = np.ones(len(turn), dtype=np.int64)
+    for k in range(len(turn)):
+        if not turn[k] < CONVEX_ARC_SEPARATION:
+            npts[k] = max(int(turn[k] / quantum + 0.5), 1) + 1
+    return npts
+
+
+@njit(**NJIT)
+def _arcs(core, turn, a0, rr, npts):
+    """The arcs of :func:`fillet_rings`, ``(sum(npts), 2)`` points.
+
+    Corner ``k`` of the inset rings ``core`` gets ``npts[k]`` points at angles
+    ``a0[k] + j * turn[k] / (npts[k] - 1)`` and radius ``rr[k]`` around it: the same
+    operations in the same order as the vectorised numpy this replaces (``j * step + a0``,
+    then ``core + rr * cos``), so the same bytes; ``math.cos`` and ``math.sin`` are the C
+    library's, as numpy's are for float64 (``atan2`` is not: the callers keep numpy's).
+    """
+    total = 0
+    for k in range(len(npts)):
+        total += npts[k]
+    pts = np.zeros((total, 2))
+    at = 0
+    for k in range(len(npts)):
+        step = turn[k] / max(npts[k] - 1, 1)
+        x, y, r = core[k, 0], core[k, 1], rr[k]
+        for j in range(npts[k]):
+            ang = j * step + a0[k]
+            pts[at, 0] = x + r * math.cos(ang)
+            pts[at, 1] = y + r * math.sin(ang)
+            at += 1
+    return pts
 
 
 def _backwards(xy: np.ndarray) -> np.ndarray:
