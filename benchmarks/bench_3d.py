@@ -6,6 +6,7 @@ Usage::
         [--no-freud] [--no-qhull] [--no-periodic] [--single] [--mesh 100000]
     .venv/bin/python benchmarks/bench_3d.py --huge 10000000   # volumes + neighbours only
     .venv/bin/python benchmarks/bench_3d.py --sizes '' --mesh 100000   # the mesh case only
+    .venv/bin/python benchmarks/bench_3d.py --sizes '' --clustered 40000   # clustered inputs
 
 For each size (uniform points in the unit box, fixed seed) it prints the best-of-``repeat``
 wall and CPU (user + system seconds of the process, voro++ as a child process) of:
@@ -23,7 +24,10 @@ wall and CPU (user + system seconds of the process, voro++ as a child process) o
 
 Ours and the reference take turns, ``repeat`` times, and the best of each counts.
 Ratios are ours / theirs (< 1: we are faster). With ``--mesh N`` it also times N sites,
-uniform in its bounding box, in a torus container (20k triangles). The machine may be
+uniform in its bounding box, in a torus container (20k triangles); with ``--clustered N``,
+N sites uniform, in 20 Gaussian clusters (sd 0.02 and 0.003, clipped to the unit box) and
+in one cluster (sd 0.001) with 8 sites up to 50 away, default container, against the
+uniform cost per cell (the k-d buckets' case, ``engine.build3d.search3d``). The machine may be
 shared: compare ratios from one run, not absolute times across runs. The cost slope from
 the smallest to the largest size is printed (1.0 = linear).
 """
@@ -183,6 +187,7 @@ def main():
     ap.add_argument("--no-periodic", action="store_true")
     ap.add_argument("--single", action="store_true", help="also time ours on one thread")
     ap.add_argument("--mesh", type=int, default=0)
+    ap.add_argument("--clustered", type=int, default=0, help="clustered inputs of this size")
     ap.add_argument("--huge", type=float, default=0, help="only one call at this size")
     args = ap.parse_args()
     if args.huge:
@@ -190,8 +195,11 @@ def main():
         huge(int(args.huge))
         return
     sizes = [int(s) for s in args.sizes.split(",") if s]  # --sizes '' --mesh N: the mesh only
-    if not sizes and args.mesh:
-        mesh_case(args)
+    if not sizes and (args.mesh or args.clustered):
+        if args.mesh:
+            mesh_case(args)
+        if args.clustered:
+            clustered_case(args)
         return
     rng = np.random.default_rng(20240611)
     ours(rng.random((2000, 3)))  # compile
@@ -261,6 +269,38 @@ def main():
         )
     if args.mesh:
         mesh_case(args)
+    if args.clustered:
+        clustered_case(args)
+
+
+def clustered_points(kind, n, seed=5):
+    """``n`` sites: ``uniform``, ``sd0.02`` / ``sd0.003`` (20 clusters), ``far`` (see above)."""
+    rng = np.random.default_rng(seed)
+    if kind == "uniform":
+        return rng.random((n, 3))
+    if kind == "far":
+        tight = 0.5 + 1e-3 * rng.normal(size=(n - 8, 3))
+        return np.vstack([tight, 0.5 + 100 * (rng.random((8, 3)) - 0.5)])
+    cen = rng.random((20, 3))
+    sd = float(kind[2:])
+    return np.clip(cen[rng.integers(0, 20, n)] + sd * rng.normal(size=(n, 3)), 0, 1)
+
+
+def clustered_case(args):
+    """Best-of-repeats CPU per cell on clustered inputs against uniform ones (default box)."""
+    n = args.clustered
+    kinds = ("uniform", "sd0.02", "sd0.003", "far")
+    pts = [clustered_points(k, n) for k in kinds]
+    vf.voronoi3d(pts[1][:2000], None)  # compile (the k-d search too)
+    res = alternated([lambda p=p: vf.voronoi3d(p, None) for p in pts], args.repeat)
+    cu = res[0][1]
+    for kind, (t, c) in zip(kinds, res, strict=True):
+        print(
+            f"clustered {kind:>8} n={n}: {t:.3f} s wall, {c:.3f} s CPU, "
+            f"{1e6 * c / n:.1f} us/cell CPU ({c / cu:.2f}x uniform)",
+            flush=True,
+        )
+    print(f"load average {os.getloadavg()}")
 
 
 def mesh_case(args):
