@@ -157,6 +157,25 @@ smoothing = 1
 """
 
 
+SKIN = """
+[design]
+name = "tiny-skin"
+units = "mm"
+
+[solid]
+kind = "lattice"
+container = "box.stl"
+cells = 6
+relax = 0
+radius = 0.6
+skin = 0.8
+voxel = 0.5
+smoothing = 2
+formats = ["3mf", "png"]
+png_size = 64
+"""
+
+
 def test_builders_survive_their_submodules_being_imported_first(tmp_path):
     # importing ``voroforge.solid.shell`` (the module) used to rebind the package's ``shell``
     # to it, so ``solid.shell(...)`` and the design build both failed ("'module' object is not
@@ -166,10 +185,17 @@ def test_builders_survive_their_submodules_being_imported_first(tmp_path):
 
     src = tmp_path / "shell.toml"
     src.write_text(SHELL)
+    # first, in the same interpreter: a skinned lattice's build reads its binary STL and
+    # previews and writes the implicit route's mesh without importing trimesh
+    trimesh.creation.box((12, 10, 8)).export(tmp_path / "box.stl")
+    (tmp_path / "skin.toml").write_text(SKIN)
     code = (
-        "import types\n"
+        "import sys, types\n"
         "import voroforge.solid.shell, voroforge.solid.lattice, voroforge.solid.foam\n"
         "import voroforge.solid.extrude, voroforge.solid.check\n"
+        "from voroforge.design.build import build\n"
+        f"build({str(tmp_path / 'skin.toml')!r}, {str(tmp_path / 'out')!r})\n"
+        "print('TRIMESH', 'trimesh' in sys.modules)\n"
         "from voroforge import solid\n"
         "for name in ('shell', 'lattice', 'foam', 'extrude', 'check'):\n"
         "    f = getattr(solid, name)\n"
@@ -184,6 +210,17 @@ def test_builders_survive_their_submodules_being_imported_first(tmp_path):
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr[-2000:]
     assert "SHELL shell True" in done.stdout and "CHECK Report" in done.stdout
+    assert "TRIMESH False" in done.stdout
+    # the same files as from the Trimesh that make_solid returns (io.mesh.read's container)
+    from voroforge.io.mesh import write
+    from voroforge.solid.build import make_solid
+
+    m = make_solid(*load(tmp_path / "skin.toml"))
+    assert m.is_volume and m.metadata["skin"] == 0.8
+    built = (tmp_path / "out" / "tiny-skin.3mf").read_bytes()
+    assert built == write(m, tmp_path / "t.3mf").read_bytes()
+    (stl,) = build(tmp_path / "skin.toml", tmp_path / "o2", overrides={"solid.formats": '["stl"]'})
+    assert stl.read_bytes() == write(m, tmp_path / "t.stl").read_bytes()  # a Bare mesh's arrays
 
 
 def test_3mf_text_is_python_repr():

@@ -38,14 +38,44 @@ def _field(s):
     return g.invert() if s.invert_field else g
 
 
-def _cells(s, base, stage):
+_STL = np.dtype([("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attr", "<u2")])
+
+
+def _stl_bare(path: Path):
+    """A binary STL's triangles as a :class:`~.implicit.Bare` mesh, or None for other files.
+
+    Three vertices a face, as the file lists them. The implicit route only takes the
+    container's triangles and bounds, which are those of ``io.mesh.read`` (float32
+    coordinates as float64, the file's face order): no merged vertex list, no trimesh.
+    """
+    from .implicit import Bare
+
+    data = path.read_bytes()
+    n = int.from_bytes(data[80:84], "little") if len(data) >= 84 else 0
+    if n == 0 or len(data) != 84 + _STL.itemsize * n:
+        return None
+    corners = np.frombuffer(data, dtype=_STL, count=n, offset=84)["corners"]
+    v = corners.reshape(-1, 3).astype(np.float64)
+    if not np.isfinite(v).all():
+        return None
+    return Bare(v, np.arange(3 * n, dtype=np.int64).reshape(-1, 3))
+
+
+def _cells(s, base, stage, bare=False):
     from ..engine.voronoi3d import voronoi3d
     from ..io.mesh import read
     from .cells import relax, subdivide
 
     mesh = None
     if isinstance(s.container, str):
-        mesh = read(_path(base, s.container))
+        path = _path(base, s.container)
+        # a lattice with a skin or smooth nodes takes the implicit route, which reads only
+        # the container's triangles: a binary STL's need no trimesh
+        implicit = s.kind == "lattice" and (s.skin > 0 or s.nodes == "smooth")
+        if bare and implicit and path.suffix.lower() == ".stl" and path.is_file():
+            mesh = _stl_bare(path)
+        if mesh is None:
+            mesh = read(path)
         box = tuple(np.concatenate(mesh.bounds))
     else:
         box = tuple(s.container)
@@ -69,8 +99,13 @@ def _revolve(profile, sections: int):
     return trimesh.creation.revolve(prof, sections=sections)
 
 
-def make_solid(design, base=None, stage=None):
-    """The solid a design's ``[solid]`` section describes (a watertight Trimesh)."""
+def make_solid(design, base=None, stage=None, *, bare: bool = False):
+    """The solid a design's ``[solid]`` section describes (a watertight Trimesh).
+
+    With ``bare``, a lattice the implicit route builds comes as a
+    :class:`~voroforge.solid.implicit.Bare` mesh (what :func:`build_solid` previews and
+    writes, without trimesh's import); every other solid is a Trimesh either way.
+    """
     # each kind imports only its own builder, from its module: the package's attribute of
     # the same name can be the submodule (bound when something imported it first)
     stage = stage or (lambda name: None)
@@ -100,7 +135,7 @@ def make_solid(design, base=None, stage=None):
             smoothing=s.smoothing,
             seed=s.seed,
         )
-    cells, mesh = _cells(s, base, stage)
+    cells, mesh = _cells(s, base, stage, bare=bare)
     if s.kind == "lattice":
         from .lattice import lattice
 
@@ -114,6 +149,7 @@ def make_solid(design, base=None, stage=None):
             skin=s.skin,
             voxel=s.voxel,
             smoothing=s.smoothing,
+            bare=bare,
         )
     from .foam import foam
 
@@ -123,12 +159,12 @@ def make_solid(design, base=None, stage=None):
 
 def build_solid(design, base, out: Path, stage, *, preview_only: bool = False) -> list[Path]:
     """Build the solid and write ``[solid] formats`` (meshes and a PNG preview) to ``out``."""
-    from ..io.mesh import write
+    from ..io.mesh import Arrays, write
     from .threemf import write_3mf
 
     s = design.solid
     stem = design.output.stem or design.design.name
-    m = make_solid(design, base, stage)
+    m = make_solid(design, base, stage, bare=True)
     written = []
     formats = ["png"] if preview_only else s.formats
     for fmt in formats:
@@ -139,8 +175,9 @@ def build_solid(design, base, out: Path, stage, *, preview_only: bool = False) -
         elif fmt == "3mf":
             # the implicit route's vertices lie on a decimal grid: their text by a kernel
             written.append(write_3mf(m, path, units=design.design.units))
-        else:
-            written.append(write(m, path, units=design.design.units))
+        else:  # a Bare mesh as io.mesh's Arrays (the same file as from a Trimesh)
+            mesh = m if hasattr(m, "is_volume") else Arrays(m.vertices, m.faces)
+            written.append(write(mesh, path, units=design.design.units))
     return written
 
 

@@ -9,6 +9,8 @@ arrays: nodes closer than ``tol`` merged, each edge once, no loops.
 
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
@@ -83,6 +85,12 @@ def _from_diagram(c):
     return np.asarray(c.vertices, dtype=np.float64), edges
 
 
+def _is_trimesh(m) -> bool:
+    """Whether ``m`` is a Trimesh (none exists before trimesh's import, which this avoids)."""
+    tm = sys.modules.get("trimesh")
+    return tm is not None and isinstance(m, tm.Trimesh)
+
+
 def strut_graph(cells, *, tol: float | None = None) -> Graph:
     """The clean strut graph of ``cells``.
 
@@ -98,17 +106,15 @@ def strut_graph(cells, *, tol: float | None = None) -> Graph:
     -------
     Graph
     """
-    import trimesh
-
     if isinstance(cells, Graph):
         nodes, edges = cells.nodes, cells.edges
     elif hasattr(cells, "vertices") and hasattr(cells, "faces") and hasattr(cells, "volumes"):
         nodes, edges = _from_diagram(cells)
-    elif isinstance(cells, trimesh.Trimesh):
+    elif _is_trimesh(cells):
         nodes, edges = np.asarray(cells.vertices), feature_edges(cells)
-    elif isinstance(cells, tuple) and len(cells) == 2 and not isinstance(cells[0], trimesh.Trimesh):
+    elif isinstance(cells, tuple) and len(cells) == 2 and not _is_trimesh(cells[0]):
         nodes, edges = cells
-    elif isinstance(cells, list | tuple) and all(isinstance(m, trimesh.Trimesh) for m in cells):
+    elif isinstance(cells, list | tuple) and all(_is_trimesh(m) for m in cells):
         if not cells:
             raise ValueError("cells: an empty list")
         parts, n = [], 0

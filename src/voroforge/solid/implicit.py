@@ -15,7 +15,7 @@ from .kernels import taubin
 from .sdf import capsules_block, mesh_sdf_block
 from .threemf import on_grid
 
-__all__ = ["capsules_mesh", "march", "signed_volume"]
+__all__ = ["Bare", "capsules_mesh", "march", "signed_volume"]
 
 _SLAB = 96  # z planes per slab
 _JITTER = np.sqrt([2.0, 3.0, 5.0]) * 1e-3
@@ -36,7 +36,41 @@ def _inward(m) -> bool:
     return float(n[:, 2].sum()) < 0
 
 
-def march(evaluate, lo, hi, h, *, smoothing: int = 0, progress=None):
+class Bare:
+    """A closed triangle mesh as bare arrays and a metadata dict, without trimesh.
+
+    What a design build previews and writes (:func:`voroforge.solid.render.preview`,
+    :func:`voroforge.solid.threemf.write_3mf`) needs no more, and trimesh's import is about
+    0.3 s of a first build. :meth:`trimesh` gives the Trimesh the public builders return.
+
+    Attributes
+    ----------
+    vertices : (n, 3) float64
+    faces : (t, 3) int64
+        Every vertex used.
+    metadata : dict
+    """
+
+    def __init__(self, vertices, faces, metadata=None):
+        self.vertices = np.asarray(vertices, dtype=np.float64)
+        self.faces = np.asarray(faces, dtype=np.int64)
+        self.metadata = dict(metadata or {})
+
+    @property
+    def bounds(self) -> np.ndarray:
+        """``[[xmin, ymin, zmin], [xmax, ymax, zmax]]`` (every vertex is used)."""
+        return np.array([self.vertices.min(axis=0), self.vertices.max(axis=0)])
+
+    def trimesh(self):
+        """The same mesh as a ``trimesh.Trimesh`` (``process=False``), metadata copied."""
+        import trimesh
+
+        m = trimesh.Trimesh(self.vertices, self.faces, process=False)
+        m.metadata.update(self.metadata)
+        return m
+
+
+def march(evaluate, lo, hi, h, *, smoothing: int = 0, progress=None, bare: bool = False):
     """Mesh the zero level set of ``evaluate`` over the box ``lo..hi`` at spacing ``h``.
 
     Parameters
@@ -52,13 +86,14 @@ def march(evaluate, lo, hi, h, *, smoothing: int = 0, progress=None):
         Taubin smoothing iterations (volume-preserving, topology unchanged).
     progress : callable, optional
         Called with the fraction done after each slab.
+    bare : bool
+        Return a :class:`Bare` mesh (no trimesh import) instead of a Trimesh.
 
     Returns
     -------
-    trimesh.Trimesh
+    trimesh.Trimesh or Bare
         Its vertices rounded to :func:`grid_decimals` places (``metadata["decimals"]``).
     """
-    import trimesh
     from skimage.measure import marching_cubes
 
     # a small irrational offset keeps samples off the axis-aligned planes of CAD meshes (a ray
@@ -111,10 +146,12 @@ def march(evaluate, lo, hi, h, *, smoothing: int = 0, progress=None):
         remap[idx[order]] = first[grp]
     f = remap[f]
     f = f[(f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 0] != f[:, 2])]
-    m = trimesh.Trimesh(v * h + lo, f, process=False)
-    m.remove_unreferenced_vertices()
+    used = np.zeros(len(v), dtype=np.bool_)  # the vertices the faces use, in their order
+    used[f.ravel()] = True
+    index = np.cumsum(used) - 1
+    m = Bare(v[used] * h + lo[None], index[f])
     if _inward(m):  # orientation follows the field's sign convention: make it outward
-        m.invert()
+        m.faces = np.ascontiguousarray(m.faces[:, ::-1])
     if smoothing:
         m.vertices = taubin(m.vertices, m.faces, int(smoothing))
     # a decimal grid 1e5 times finer than the voxel: far below the surface's accuracy, and
@@ -122,7 +159,7 @@ def march(evaluate, lo, hi, h, *, smoothing: int = 0, progress=None):
     d = grid_decimals(h)
     m.vertices = on_grid(m.vertices, d)
     m.metadata["decimals"] = d
-    return m
+    return m if bare else m.trimesh()
 
 
 def grid_decimals(h: float) -> int:
@@ -143,7 +180,9 @@ def _container_field(container, skin, h):
     return sdf
 
 
-def capsules_mesh(struts, *, voxel=None, smoothing=10, container=None, skin=0.0, smooth=None):
+def capsules_mesh(
+    struts, *, voxel=None, smoothing=10, container=None, skin=0.0, smooth=None, bare=False
+):
     """Union of round-cone struts (smooth minimum at the nodes) meshed by marching cubes.
 
     Parameters
@@ -154,17 +193,19 @@ def capsules_mesh(struts, *, voxel=None, smoothing=10, container=None, skin=0.0,
         Grid spacing (default ``config.SOLID_VOXEL`` times the smallest radius).
     smoothing : int
         Taubin iterations after marching cubes.
-    container : Trimesh, optional
+    container : Trimesh or Bare, optional
         Trim to this closed mesh; with ``skin > 0`` also keep a skin of that thickness.
     skin : float
         Skin thickness inside the container's surface.
     smooth : float, optional
         Blend radius of the smooth minimum at the nodes (default the mean radius; 0: a plain
         union, spherical nodes).
+    bare : bool
+        Return a :class:`Bare` mesh instead of a Trimesh.
 
     Returns
     -------
-    trimesh.Trimesh
+    trimesh.Trimesh or Bare
     """
     a, b = np.asarray(struts["a"]), np.asarray(struts["b"])
     ra, rb = np.asarray(struts["ra"]), np.asarray(struts["rb"])
@@ -200,4 +241,4 @@ def capsules_mesh(struts, *, voxel=None, smoothing=10, container=None, skin=0.0,
                 g = np.minimum(g, np.maximum(c, -c - np.float32(skin)))
         return g
 
-    return march(evaluate, lo, hi, h, smoothing=smoothing)
+    return march(evaluate, lo, hi, h, smoothing=smoothing, bare=bare)

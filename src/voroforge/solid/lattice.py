@@ -34,6 +34,7 @@ def lattice(
     voxel: float | None = None,
     smoothing: int = 10,
     route: str = "auto",
+    bare: bool = False,
 ):
     """Struts on the edges of 3D cells, joined at watertight nodes.
 
@@ -74,6 +75,10 @@ def lattice(
         (on 1,000 random cells 1.4 times less CPU than the hull route, with ten times the
         triangles and the voxel's accuracy; out of memory at 10,000). ``hull``: node hulls
         or an error.
+    bare : bool
+        Where the implicit route builds the lattice, return it as a
+        :class:`voroforge.solid.implicit.Bare` mesh (arrays and metadata, no trimesh import:
+        what a design build needs); the hull route returns a Trimesh either way.
 
     Returns
     -------
@@ -149,6 +154,7 @@ def lattice(
         container=container,
         skin=skin,
         smooth=None if nodes == "smooth" else 0.0,
+        bare=bare,
     )
     m.metadata.update({**meta, "parts": {"method": "implicit"}, "skin": float(skin)})
     return m
