@@ -22,9 +22,10 @@ def _power(d, x):
     return ((x[:, None, :] - np.asarray(d.sites)[None]) ** 2).sum(-1) - w[None]
 
 
-def check3d(d, volume=None, samples=300, seed=0, near=False):
+def check3d(d, volume=None, samples=300, seed=0, near=False, extra=None):
     """Every invariant of a 3D diagram; returns the number of checked samples.
 
+    ``extra``: sample points ``(m, 3)`` checked besides the uniform ones.
     ``near``: the input's exact diagram has distinct vertices closer than 1e-9 of its size
     (points rounded onto a sphere): they must still be distinct doubles.
     """
@@ -95,6 +96,8 @@ def check3d(d, volume=None, samples=300, seed=0, near=False):
     rng = np.random.default_rng(seed)
     lo, hi = np.asarray(d.box) if d.box is not None else (V.min(0), V.max(0))
     x = lo + (hi - lo) * rng.random((samples, 3))
+    if extra is not None:
+        x = np.vstack([x, extra])
     inside = (x @ _walls(d)[:, :3].T - _walls(d)[:, 3] <= 0).all(axis=1)
     x = x[inside]
     pd = _power(d, x)
@@ -288,6 +291,34 @@ def test_power_cells_against_brute_force():
     e = vf.voronoi3d(pts, BOX, weights=np.full(60, 0.25))
     f = vf.voronoi3d(pts, BOX)
     np.testing.assert_array_equal(e.vertices, f.vertices)
+
+
+def _clustered(kind):
+    """~300 sites the grid crowds (k-d buckets): three tight clusters and uniform ones in the
+    unit box with power weights, or a few sites far away (unweighted, default container)."""
+    rng = np.random.default_rng(31)
+    cen = np.array([[0.3, 0.3, 0.4], [0.7, 0.6, 0.5], [0.35, 0.72, 0.6]])
+    pts = cen[rng.integers(0, 3, 280)] + 1e-3 * rng.normal(size=(280, 3))
+    if kind == "far":  # a few sites 40 away: cells 1e5 times longer than wide
+        return np.vstack([pts, 0.5 + 80 * (rng.random((6, 3)) - 0.5)]), None, None
+    pts = np.vstack([pts, rng.random((20, 3))])
+    return pts, BOX, 1e-7 * rng.random(len(pts))
+
+
+@pytest.mark.parametrize("kind", ["box", "far"])
+def test_clustered_cells(kind):
+    from voroforge.engine.build3d import search3d
+
+    pts, box, w = _clustered(kind)
+    assert len(search3d(pts)[5]) > 0  # the k-d buckets' search, not the grid's
+    d = vf.voronoi3d(pts, box, weights=w)
+    # invariants, with 40 of the samples in the clusters (in their nearest site's cell)
+    q = pts[np.arange(0, 280, 7)] + 5e-4 * np.random.default_rng(2).normal(size=(40, 3))
+    assert check3d(d, samples=300, extra=q) >= 40
+    # the cells of a cluster against the brute force (half-spaces of every other site)
+    cells = np.arange(0, 280, 31)
+    ref = brute_volumes(pts, np.asarray(d.walls), w, cells=cells)
+    np.testing.assert_allclose(d.volumes[cells], ref, rtol=1e-8, atol=0)
 
 
 def test_power_duplicates_heaviest_wins():
