@@ -167,12 +167,17 @@ kind = "lattice"
 container = "box.stl"
 cells = 6
 relax = 0
-radius = 0.6
+radius = [0.5, 0.7]
 skin = 0.8
 voxel = 0.5
 smoothing = 2
 formats = ["3mf", "png"]
 png_size = 64
+
+[[solid.fields]]
+type = "point"
+points = [[0, 0, 0]]
+radius = 8
 """
 
 
@@ -186,16 +191,18 @@ def test_builders_survive_their_submodules_being_imported_first(tmp_path):
     src = tmp_path / "shell.toml"
     src.write_text(SHELL)
     # first, in the same interpreter: a skinned lattice's build reads its binary STL and
-    # previews and writes the implicit route's mesh without importing trimesh
+    # previews and writes the implicit route's mesh without importing trimesh or
+    # scipy.spatial (its strut graph and point field need neither); its make_solid imports
+    # the lattice submodule as the statements below do, the other four come after it
     trimesh.creation.box((12, 10, 8)).export(tmp_path / "box.stl")
     (tmp_path / "skin.toml").write_text(SKIN)
     code = (
         "import sys, types\n"
-        "import voroforge.solid.shell, voroforge.solid.lattice, voroforge.solid.foam\n"
-        "import voroforge.solid.extrude, voroforge.solid.check\n"
         "from voroforge.design.build import build\n"
         f"build({str(tmp_path / 'skin.toml')!r}, {str(tmp_path / 'out')!r})\n"
-        "print('TRIMESH', 'trimesh' in sys.modules)\n"
+        "print('TRIMESH', 'trimesh' in sys.modules, 'scipy.spatial' in sys.modules)\n"
+        "import voroforge.solid.shell, voroforge.solid.lattice, voroforge.solid.foam\n"
+        "import voroforge.solid.extrude, voroforge.solid.check\n"
         "from voroforge import solid\n"
         "for name in ('shell', 'lattice', 'foam', 'extrude', 'check'):\n"
         "    f = getattr(solid, name)\n"
@@ -210,7 +217,7 @@ def test_builders_survive_their_submodules_being_imported_first(tmp_path):
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr[-2000:]
     assert "SHELL shell True" in done.stdout and "CHECK Report" in done.stdout
-    assert "TRIMESH False" in done.stdout
+    assert "TRIMESH False False" in done.stdout
     # the same files as from the Trimesh that make_solid returns (io.mesh.read's container)
     from voroforge.io.mesh import write
     from voroforge.solid.build import make_solid

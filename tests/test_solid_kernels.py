@@ -239,3 +239,20 @@ def test_shell_rim_queries_bounded_by_their_reach_are_exact():
     got = _with_rim(f_web, xyz, tree, 4.0, 0.8)
     assert np.array_equal(got, want)
     assert (got < f_web).mean() > 0.05 and (got == f_web).mean() > 0.5  # both cases occur
+
+
+def test_near_classes_are_scipys_components():
+    # strut_graph's node merge: the components of cKDTree.query_pairs(tol), as
+    # connected_components numbers them (by lowest member), chains and clusters included
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    from voroforge.solid.kernels import near_classes
+
+    rng = np.random.default_rng(2)
+    for n, tol in ((1, 0.1), (60, 1e-9), (200, 0.02), (200, 0.3)):
+        p = np.round(rng.uniform(0, 1, (n, 3)) * 6) / 6 + rng.normal(0, 4e-3, (n, 3))
+        pairs = cKDTree(p).query_pairs(tol, output_type="ndarray")
+        g = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+        assert np.array_equal(near_classes(p, tol), connected_components(g, directed=False)[1])

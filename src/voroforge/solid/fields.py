@@ -20,13 +20,13 @@ Examples
 from __future__ import annotations
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from ..design.attractors import FALLOFFS, falloff
 
 __all__ = ["Field3", "as_size", "combine", "curve", "mesh", "plane", "point"]
 
 _CHUNK = 1 << 16
+_BRUTE = 64  # up to this many points, distances by numpy (no KD-tree, no scipy.spatial)
 
 
 def _xyz(xyz) -> np.ndarray:
@@ -76,11 +76,28 @@ class _Distance(Field3):
 class _Point(_Distance):
     def __init__(self, pts, **kw):
         self.points = _xyz(pts).copy()
-        self._tree = cKDTree(self.points)
+        self._tree = None
+        if len(self.points) > _BRUTE:
+            from scipy.spatial import cKDTree
+
+            self._tree = cKDTree(self.points)
         super().__init__(**kw)
 
     def distance(self, xyz):
-        return self._tree.query(_xyz(xyz))[0]
+        xyz = _xyz(xyz)
+        if self._tree is not None:
+            return self._tree.query(xyz)[0]
+        # the KD-tree's sum (dx^2 + dy^2 + dz^2, in that order): the same bits
+        out = np.zeros(len(xyz))
+        step = max(1, _CHUNK // max(len(self.points), 1))
+        p = self.points
+        for s in range(0, len(xyz), step):
+            x = xyz[s : s + step]
+            dx = x[:, 0, None] - p[None, :, 0]
+            dy = x[:, 1, None] - p[None, :, 1]
+            dz = x[:, 2, None] - p[None, :, 2]
+            out[s : s + step] = np.sqrt(dx * dx + dy * dy + dz * dz).min(axis=1)
+        return out
 
 
 def _seg_distance(x, a, b):

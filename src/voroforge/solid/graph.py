@@ -12,11 +12,9 @@ from __future__ import annotations
 import sys
 
 import numpy as np
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
-from scipy.spatial import cKDTree
 
 from .. import config
+from .kernels import near_classes
 
 __all__ = ["Graph", "feature_edges", "strut_graph"]
 
@@ -140,14 +138,9 @@ def strut_graph(cells, *, tol: float | None = None) -> Graph:
         raise ValueError(f"edges index nodes outside 0..{len(nodes) - 1}")
     span = float(np.linalg.norm(nodes.max(0) - nodes.min(0))) or 1.0
     tol = config.SOLID_MERGE_TOL * span if tol is None else float(tol)
-    # merge near-coincident nodes (connected components of the < tol graph)
-    pairs = cKDTree(nodes).query_pairs(tol, output_type="ndarray")
-    if len(pairs):
-        n = len(nodes)
-        g = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
-        _, label = connected_components(g, directed=False)
-    else:
-        label = np.arange(len(nodes))
+    # merge near-coincident nodes (connected components of the <= tol graph, numbered by
+    # their lowest node: scipy's labels, without importing scipy.spatial and scipy.sparse)
+    label = near_classes(nodes, tol)
     used = np.unique(label[edges.ravel()])
     remap = np.full(label.max() + 1, -1, dtype=np.int64)
     remap[used] = np.arange(len(used))

@@ -7,7 +7,7 @@ from numba import njit
 
 from .. import config
 
-__all__ = ["box_pairs", "separated", "taubin", "two_nearest"]
+__all__ = ["box_pairs", "near_classes", "separated", "taubin", "two_nearest"]
 
 
 @njit(**config.NJIT)
@@ -197,3 +197,59 @@ def two_nearest(points, seeds) -> tuple[np.ndarray, np.ndarray]:
     d2 = np.zeros(len(p))
     _two_nearest(p, s, d1, d2)
     return d1, d2
+
+
+@njit(**config.NJIT)
+def _near_classes(p, order, tol2, parent):
+    """Union every pair within ``sqrt(tol2)`` (a sweep along x in ``order``); roots = minima."""
+    n = order.shape[0]
+    tol = np.sqrt(tol2)
+    for a in range(n):
+        i = order[a]
+        for b in range(a + 1, n):
+            j = order[b]
+            dx = p[j, 0] - p[i, 0]
+            if dx > tol:
+                break
+            dy = p[j, 1] - p[i, 1]
+            dz = p[j, 2] - p[i, 2]
+            if dx * dx + dy * dy + dz * dz <= tol2:
+                ri = i
+                while parent[ri] != ri:
+                    ri = parent[ri]
+                rj = j
+                while parent[rj] != rj:
+                    rj = parent[rj]
+                if ri < rj:
+                    parent[rj] = ri
+                elif rj < ri:
+                    parent[ri] = rj
+    for i in range(parent.shape[0]):  # each to its class's lowest index (roots come first)
+        parent[i] = parent[parent[i]]
+
+
+def near_classes(points, tol: float) -> np.ndarray:
+    """Classes of the points closer than ``tol`` (chains joined), numbered by lowest member.
+
+    What ``scipy.sparse.csgraph.connected_components`` labels on the graph of
+    ``cKDTree(points).query_pairs(tol)`` (distance <= tol), without scipy: class ``c`` is
+    the ``c``-th class by its lowest point index.
+
+    Parameters
+    ----------
+    points : (n, 3) float64
+    tol : float
+
+    Returns
+    -------
+    (n,) int64
+    """
+    p = np.ascontiguousarray(points, dtype=np.float64)
+    parent = np.arange(len(p), dtype=np.int64)
+    if len(p) > 1 and tol >= 0:
+        order = np.argsort(p[:, 0], kind="stable").astype(np.int64)
+        _near_classes(p, order, float(tol) * float(tol), parent)
+    roots = np.flatnonzero(parent == np.arange(len(p)))
+    label = np.zeros(len(p), dtype=np.int64)
+    label[roots] = np.arange(len(roots))
+    return label[parent]

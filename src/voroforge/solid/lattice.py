@@ -6,7 +6,6 @@ import numpy as np
 
 from .fields import as_size
 from .graph import strut_graph
-from .hulls import hull_lattice
 
 __all__ = ["lattice"]
 
@@ -122,6 +121,8 @@ def lattice(
     }
     meta = {"kind": "lattice", "struts": struts}
     if nodes != "smooth" and skin == 0 and route != "implicit":
+        from .hulls import hull_lattice  # scipy.spatial and .sparse: the hull route's only
+
         try:
             verts, faces, parts = hull_lattice(
                 g.nodes,
