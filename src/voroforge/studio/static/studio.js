@@ -11,13 +11,23 @@ var VoroStudio = (function () {
 
   var DTYPES = { f4: Float32Array, f8: Float64Array, i4: Int32Array, u1: Uint8Array, u2: Uint16Array };
 
-  /* The view `v` for coordinates sent as uint16 steps (wire.quantize, q = [x0, y0, step]):
-     x0 + code * step in design units is code * (step * s) + (x0 * s + tx) in pixels, so the
-     rasteriser draws the codes as they came (no copy as floats); kept on q per view. */
+  /* A view: design units to pixels, (x * s + tx, ty - y * s). One constructor for every view
+     object, so the rasteriser's code sees one object shape. */
+  function View(s, tx, ty) { this.s = s; this.tx = tx; this.ty = ty; }
+
+  /* Coordinates sent as uint16 steps (wire.quantize, q = [x0, y0, step]): x0 + code * step in
+     design units is code * (step * s) + (x0 * s + tx) in pixels, so the rasteriser draws the
+     codes as they came (no copy as floats) through a view of its own, kept per view. One
+     object per message, not properties added to the header's array: that array's shape
+     changed on every message, and V8 threw away the optimised paint code that read it. */
+  function Codes(q) {
+    this.x0 = +q[0]; this.y0 = +q[1]; this.step = +q[2];
+    this.vs = NaN; this.vtx = NaN; this.vty = NaN; this.v = null;
+  }
   function codeView(q, v) {
     if (q.vs !== v.s || q.vtx !== v.tx || q.vty !== v.ty) {
       q.vs = v.s; q.vtx = v.tx; q.vty = v.ty;
-      q.v = { s: v.s * q[2], tx: v.tx + q[0] * v.s, ty: v.ty - q[1] * v.s };
+      q.v = new View(v.s * q.step, v.tx + q.x0 * v.s, v.ty - q.y0 * v.s);
     }
     return q.v;
   }
@@ -122,6 +132,16 @@ var VoroStudio = (function () {
     this.controlsKey = ""; this.inputs = {}; this.client = null;
     this.lastDraw = 0; this.seq = 0; this.errors = {};
     this.downloads = [];
+    // every field the page sets later, here (undefined where "not yet" means something): a
+    // field added later changes the object's shape, and V8 throws away the optimised code
+    // that reads it (the paint's, at a page's first edits)
+    this.bg = undefined; this.bgKey = undefined; this.px = undefined; this.cov = undefined;
+    this.dpr = 1; this.handle = undefined; this.moveEvent = undefined;
+    this.parseMs = undefined; this.drawMs = undefined; this.roundTrip = undefined;
+    this.overlayKey = undefined; this.sentPx = undefined; this.saved = undefined;
+    this.violationCounts = undefined; this.violationsId = undefined; this.checkMs = undefined;
+    this.violationTotal = undefined; this.violationSeq = undefined;
+    this.playing = undefined; this.frameShown = undefined; this.framesPlayed = undefined;
     this.bind();
     this.resize();
   }
@@ -234,13 +254,14 @@ var VoroStudio = (function () {
       for (i = n; i < old; i++) if (this.boxes[i]) boxes.push(this.boxes[i]);
       this.raw.length = n; this.cells.length = n; this.boxes.length = n;
     }
+    var codes = h.cq ? new Codes(h.cq) : null;
     for (k = 0; k < idx.length; k++) {
       i = idx[k];
       var was = this.boxes[i];
       // no Path2D per cell: the rings stay in the message's buffers until drawn
       this.raw[i] = a.rg[k + 1] > a.rg[k] ? [a.rg, a.rr, a.rc, k] : null;
       if (h.cells_raw) this.cells[i] = this.raw[i];  // cells without operations: the raw rings
-      else this.cells[i] = a.cg[k + 1] > a.cg[k] ? [a.cg, a.cr, a.cc, k, h.cq] : null;
+      else this.cells[i] = a.cg[k + 1] > a.cg[k] ? [a.cg, a.cr, a.cc, k, codes] : null;
       this.boxes[i] = ringBox(a.rg, a.rr, a.rc, k);
       if (full) continue;
       var box = grow(was ? was.slice() : null, this.boxes[i]);
@@ -460,7 +481,7 @@ var VoroStudio = (function () {
     var w = Math.max(b[2] - b[0], 1e-9), hh = Math.max(b[3] - b[1], 1e-9), pad = 0.04;
     var s = Math.min(W / (w * (1 + 2 * pad)), H / (hh * (1 + 2 * pad)));
     var tx = (W - w * s) / 2 - b[0] * s, ty = (H + hh * s) / 2 + b[1] * s;
-    return { s: s, tx: tx, ty: ty };
+    return new View(s, tx, ty);
   };
 
   Studio.prototype.toDesign = function (e) {
