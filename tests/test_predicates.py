@@ -229,3 +229,33 @@ def test_incircle_adaptive_stages():
     # the raw determinant's sign (no reordering to counter-clockwise) agrees too
     for q in cases[:300]:
         assert _sgn(incircle(*map(float, q))) == exact_incircle(q[0:2], q[2:4], q[4:6], q[6:8])
+
+
+def test_parabola_gap_sign_is_exact():
+    """``parabola_gap``'s sign against rationals, for ``sx`` a few ulps from the two
+    parabolas' crossing (where the float filter cannot decide and the expansion stage
+    answers), with sites close together or far apart, at several magnitudes."""
+    from voroforge.kernels.fortune import _breakpoint
+    from voroforge.kernels.predicates import parabola_gap
+
+    rng = np.random.default_rng(12)
+    exact_stage = 0
+    for k in range(3000):
+        scale = 10.0 ** rng.integers(-3, 4)
+        spread = scale * (1e-14 if k % 2 else 1.0)
+        px, py, qx, qy = scale * rng.normal() + spread * rng.normal(size=4)
+        sweep = max(py, qy) + abs(rng.normal()) * spread
+        if sweep <= max(py, qy) or py == qy:
+            continue
+        sx = _breakpoint(px, py, qx, qy, sweep)
+        for _ in range(int(rng.integers(0, 4))):
+            sx = np.nextafter(sx, rng.choice((-np.inf, np.inf)))
+        args = tuple(float(v) for v in (sx, px, py, qx, qy, sweep))
+        fx = [Fraction(v) for v in args]
+        hp, hq = fx[5] - fx[2], fx[5] - fx[4]
+        f = hp * ((fx[0] - fx[3]) ** 2 + hq**2) - hq * ((fx[0] - fx[1]) ** 2 + hp**2)
+        assert _sgn(parabola_gap(*args)) == (f > 0) - (f < 0), args
+        u, v, h, g = args[0] - args[1], args[0] - args[3], args[5] - args[2], args[5] - args[4]
+        t1, t2 = h * (v * v + g * g), g * (u * u + h * h)
+        exact_stage += abs(t1 - t2) < 8.0 * 2.0**-53 * (t1 + t2)
+    assert exact_stage > 300  # the expansion stage was exercised

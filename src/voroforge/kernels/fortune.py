@@ -31,8 +31,8 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
-from .expansion import expansion_sum, multiply, two_diff
-from .predicates import incircle, incircle_fast, orient2d
+from .expansion import two_diff
+from .predicates import incircle, incircle_fast, orient2d, parabola_gap
 from .vertex import center_offset
 
 #: Small helpers of the sweep are inlined at the numba level: as separate functions every call
@@ -48,10 +48,6 @@ _S_MAX_BEACH = 2
 _S_CIRCLE = 3
 _S_TRI_SWEEP = 4
 _NSTATS = 5
-
-#: Error bound of the float ``f`` in :func:`_right_of`, relative to ``t1 + t2`` (six
-#: roundings in each product of rounded differences, one in their difference).
-_GAP_BOUND = (8.0 + 64.0 * 2.0**-53) * 2.0**-53
 
 
 # ---------------------------------------------------------------------------------------------
@@ -113,42 +109,6 @@ def _breakpoint(px, py, qx, qy, sweep):
     return px + (hp * dx - s) / a
 
 
-@njit(**NJIT)
-def _parabola_gap_exact(sx, px, py, qx, qy, sweep):
-    """Exact sign of ``hp (v^2 + hq^2) - hq (u^2 + hp^2)`` (see :func:`_right_of`).
-
-    ``hp = sweep - py``, ``hq = sweep - qy``, ``u = sx - px``, ``v = sx - qx``, each taken
-    as an exact two-component expansion, so the sign is that of the real numbers.
-    """
-    hp = np.zeros(2)
-    hq = np.zeros(2)
-    d = np.zeros(2)
-    sq1 = np.zeros(8)
-    sq2 = np.zeros(8)
-    s = np.zeros(16)
-    t1 = np.zeros(64)
-    t2 = np.zeros(64)
-    tmp = np.zeros(32)
-    acc = np.zeros(64)
-    out = np.zeros(128)
-    hp[1], hp[0] = two_diff(sweep, py)
-    hq[1], hq[0] = two_diff(sweep, qy)
-    d[1], d[0] = two_diff(sx, qx)
-    n1 = multiply(d, 2, d, 2, sq1, tmp, acc)
-    n2 = multiply(hq, 2, hq, 2, sq2, tmp, acc)
-    ns = expansion_sum(sq1, n1, sq2, n2, s)
-    l1 = multiply(s, ns, hp, 2, t1, tmp, acc)
-    d[1], d[0] = two_diff(sx, px)
-    n1 = multiply(d, 2, d, 2, sq1, tmp, acc)
-    n2 = multiply(hp, 2, hp, 2, sq2, tmp, acc)
-    ns = expansion_sum(sq1, n1, sq2, n2, s)
-    hq[0] = -hq[0]  # the second product negated
-    hq[1] = -hq[1]
-    l2 = multiply(s, ns, hq, 2, t2, tmp, acc)
-    n = expansion_sum(t1, l1, t2, l2, out)
-    return out[n - 1]
-
-
 @njit(**_INLINE)
 def _right_of(sx, px, py, qx, qy, sweep):
     """``sx > _breakpoint(px, py, qx, qy, sweep)``, decided exactly.
@@ -157,11 +117,9 @@ def _right_of(sx, px, py, qx, qy, sweep):
     ``f(u) = a u^2 - 2 hp dx u + hp (dx^2 - a hq)`` named in :func:`_breakpoint`; the other
     root lies beyond the vertex ``hp dx / a``, so the sign of ``f`` and the side of the
     vertex decide. Both are taken exactly: the side of the vertex is
-    ``orient2d(p, q, (sx, sweep))``, and ``f`` equals
-    ``hp ((sx - qx)^2 + hq^2) - hq ((sx - px)^2 + hp^2)`` (both parabolas' heights above
-    ``sx`` compared), whose float value is trusted when its error bound proves the sign and
-    is otherwise taken from expansions. Sites a few ulps apart otherwise put a new site into
-    the wrong arc, and the sweep's triangulation leaves part of the hull uncovered.
+    ``orient2d(p, q, (sx, sweep))`` and the sign of ``f`` is ``parabola_gap``'s (both
+    parabolas' heights above ``sx`` compared). Sites a few ulps apart otherwise put a new
+    site into the wrong arc, and the sweep's triangulation leaves part of the hull uncovered.
     """
     if py == qy:
         # sx against the midpoint, without rounding px + qx: float differences are
@@ -183,14 +141,7 @@ def _right_of(sx, px, py, qx, qy, sweep):
             return True
     elif side <= 0.0:
         return False
-    u = sx - px
-    v = sx - qx
-    t1 = hp * (v * v + hq * hq)
-    t2 = hq * (u * u + hp * hp)
-    f = t1 - t2
-    if abs(f) >= _GAP_BOUND * (t1 + t2):
-        return f < 0.0
-    return _parabola_gap_exact(sx, px, py, qx, qy, sweep) < 0.0
+    return parabola_gap(sx, px, py, qx, qy, sweep) < 0.0
 
 
 @njit(**_INLINE)
@@ -742,7 +693,7 @@ def _compile_callees() -> None:
     their counting; the calls are cheap once cached.
     """
     orient2d(0.0, 0.0, 1.0, 0.0, 0.0, 1.0)
-    _parabola_gap_exact(0.0, 0.0, 0.0, 1.0, 1.0, 2.0)
+    parabola_gap(0.0, 0.0, 0.0, 1.0, 1.0, 2.0)
     incircle(0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0)
     incircle_fast(0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0)
     center_offset(0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0)

@@ -339,3 +339,64 @@ def cross_diff(ax, ay, bx, by, cx, cy, dx, dy):
     if abs(det) >= 8.0 * _EPS * (abs(left) + abs(right)) and det == det:
         return det
     return _cross_diff_exact(ax, ay, bx, by, cx, cy, dx, dy)
+
+
+@njit(**NJIT)
+def _parabola_gap_exact(sx, px, py, qx, qy, sweep):
+    """Exact sign of :func:`parabola_gap` by expansions of the differences."""
+    hp = np.zeros(2)
+    hq = np.zeros(2)
+    d = np.zeros(2)
+    sq1 = np.zeros(8)
+    sq2 = np.zeros(8)
+    s = np.zeros(16)
+    t1 = np.zeros(64)
+    t2 = np.zeros(64)
+    tmp = np.zeros(32)
+    acc = np.zeros(64)
+    out = np.zeros(128)
+    hp[1], hp[0] = two_diff(sweep, py)
+    hq[1], hq[0] = two_diff(sweep, qy)
+    d[1], d[0] = two_diff(sx, qx)
+    n1 = multiply(d, 2, d, 2, sq1, tmp, acc)
+    n2 = multiply(hq, 2, hq, 2, sq2, tmp, acc)
+    ns = expansion_sum(sq1, n1, sq2, n2, s)
+    l1 = multiply(s, ns, hp, 2, t1, tmp, acc)
+    d[1], d[0] = two_diff(sx, px)
+    n1 = multiply(d, 2, d, 2, sq1, tmp, acc)
+    n2 = multiply(hp, 2, hp, 2, sq2, tmp, acc)
+    ns = expansion_sum(sq1, n1, sq2, n2, s)
+    hq[0] = -hq[0]  # the second product negated
+    hq[1] = -hq[1]
+    l2 = multiply(s, ns, hq, 2, t2, tmp, acc)
+    n = expansion_sum(t1, l1, t2, l2, out)
+    return out[n - 1]
+
+
+#: :func:`parabola_gap`'s filter, relative to ``t1 + t2`` (six roundings in each product of
+#: rounded differences, one in their difference).
+_GAP_BOUND = (8.0 + 64.0 * _EPS) * _EPS
+
+
+@njit(**NJIT)
+def parabola_gap(sx, px, py, qx, qy, sweep):
+    """Sign-exact ``hp ((sx - qx)^2 + hq^2) - hq ((sx - px)^2 + hp^2)``.
+
+    ``hp = sweep - py > 0`` and ``hq = sweep - qy > 0`` are the sites' distances below a
+    sweep line ``y = sweep``. Divided by ``2 hp hq`` it is ``dq - dp``, where
+    ``dp = ((sx - px)^2 + hp^2) / (2 hp)`` is how far below the line ``p``'s parabola (the
+    points as far from ``p`` as from the line) lies at ``x = sx``: negative when ``q``'s
+    parabola is nearer the line there (Fortune's breakpoint test,
+    ``kernels/fortune._right_of``). A float filter, the exact expansion when it cannot
+    decide.
+    """
+    u = sx - px
+    v = sx - qx
+    hp = sweep - py
+    hq = sweep - qy
+    t1 = hp * (v * v + hq * hq)
+    t2 = hq * (u * u + hp * hp)
+    f = t1 - t2
+    if abs(f) >= _GAP_BOUND * (t1 + t2):
+        return f
+    return _parabola_gap_exact(sx, px, py, qx, qy, sweep)
