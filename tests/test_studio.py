@@ -844,6 +844,17 @@ def test_a_page_that_says_its_canvas_gets_its_first_drawing_at_its_resolution(cl
     assert got.shape == expect.shape and np.abs(got - expect).max() < px / 8
 
 
+def test_the_check_waits_for_a_pause_in_the_edits_rhythm():
+    """A slider's steps 0.5 s apart: the check waits twice that, not 0.35 s (between steps)."""
+    from voroforge import config
+    from voroforge.studio.server import RHYTHM_WINDOW, check_delay
+
+    base = config.STUDIO_CHECK_DELAY
+    assert check_delay(None) == base and check_delay(0.01) == base  # a drag's steps
+    assert check_delay(0.5) == pytest.approx(1.0) and base < 1.0
+    assert check_delay(RHYTHM_WINDOW + 0.1) == base  # edits that far apart: already a pause
+
+
 def test_websocket_survives_malformed_messages(client):
     rng = random.Random(11)
     pieces = [
