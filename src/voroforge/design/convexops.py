@@ -155,43 +155,106 @@ def _convex(xy: np.ndarray, count: np.ndarray):
     xy, start
         The rings taken.
     """
-    start = np.concatenate(([0], np.cumsum(count)))
-    keep = np.ones(len(xy), dtype=bool)
-    keep[start[1:][count > 0] - 1] = False  # the closing point
-    xy, start = _rows(xy, keep), np.concatenate(([0], np.cumsum(_kept_counts(keep, start))))
-    # orientation: signed area by the shoelace sum of each ring
-    owner, nxt, prv = _ring_index(start)
-    twice = np.bincount(owner, _cross(xy, _rows(xy, nxt)), minlength=len(count))
-    flip = twice < 0
-    if flip.any():  # reverse those rings in place
-        local = np.arange(len(xy)) - start[owner]
-        rev = np.where(flip[owner], start[owner + 1] - 1 - local, np.arange(len(xy)))
-        xy = _rows(xy, rev)
+    m = len(count)
+    xy = np.ascontiguousarray(xy, dtype=np.float64)
+    xy, start, twice, cross, dot = _clean(xy, np.asarray(count, dtype=np.int64))
     ok = twice != 0
-    for _ in range(len(xy) + 1):  # drop repeated points and straight vertices
-        owner, nxt, prv = _ring_index(start)
-        e_in = xy - _rows(xy, prv)
-        e_out = _rows(xy, nxt) - xy
-        l_in = np.hypot(e_in[:, 0], e_in[:, 1])
-        l_out = np.hypot(e_out[:, 0], e_out[:, 1])
-        cross = _cross(e_in, e_out)
-        dot = _dot(e_in, e_out)
-        repeat = l_in == 0.0
-        straight = (np.abs(cross) <= CONVEX_STRAIGHT_TURN * l_in * l_out) & (dot > 0)
-        drop = repeat | straight
-        # of two neighbouring straight vertices drop only the first, then look again
-        drop &= ~(drop[prv] & (np.arange(len(xy)) != prv))
-        if not drop.any():
-            break
-        keep = ~drop
-        xy, start = _rows(xy, keep), np.concatenate(([0], np.cumsum(_kept_counts(keep, start))))
-    turn = np.arctan2(cross, dot)  # of the last round, which dropped nothing
+    owner = np.repeat(np.arange(m), np.diff(start))
+    turn = np.arctan2(cross, dot)  # (numpy's atan2: see _arcs)
     count = np.diff(start)
     ok &= count >= 3
-    ok &= np.bincount(owner, turn <= 0, minlength=len(count)) == 0
-    total = np.bincount(owner, turn, minlength=len(count))
+    ok &= np.bincount(owner, turn <= 0, minlength=m) == 0
+    total = np.bincount(owner, turn, minlength=m)
     ok &= np.abs(total - 2.0 * math.pi) <= CONVEX_FULL_TURN_TOL  # once round: a simple convex ring
     return ok, _rows(xy, ok[owner]), np.concatenate(([0], np.cumsum(count[ok])))
+
+
+@njit(**NJIT)
+def _clean(xy, count):
+    """The clean-up of :func:`_convex`, ring by ring.
+
+    The closing point dropped, the ring counter-clockwise (reversed where the shoelace sum
+    ``twice`` of its signed area is negative), then repeated points and straight vertices
+    dropped (of two neighbouring straight vertices only the first, then look again) until
+    none is.
+
+    The operations of the vectorised numpy this replaces, in its order (sums in vertex order,
+    ``math.hypot`` the C library's, as numpy's is), so the same bytes.
+
+    Returns
+    -------
+    xy, start
+        The cleaned rings.
+    twice : (m,) float64
+        Twice each ring's signed area, before the clean-up.
+    cross, dot : (len(xy),) float64
+        Of each vertex's incoming and outgoing edges, in the cleaned rings.
+    """
+    m = len(count)
+    size = 0
+    widest = 0
+    for r in range(m):
+        size += max(count[r] - 1, 0)
+        widest = max(widest, count[r])
+    out = np.zeros((size, 2))
+    start = np.zeros(m + 1, dtype=np.int64)
+    twice = np.zeros(m)
+    cross = np.zeros(size)
+    dot = np.zeros(size)
+    drop = np.zeros(widest, dtype=np.bool_)
+    keep = np.zeros(widest, dtype=np.bool_)
+    src = 0
+    at = 0
+    for r in range(m):
+        n = max(count[r] - 1, 0)
+        b = at
+        for k in range(n):
+            out[b + k, 0] = xy[src + k, 0]
+            out[b + k, 1] = xy[src + k, 1]
+        src += count[r]
+        t = 0.0
+        for k in range(n):
+            j = k + 1 if k + 1 < n else 0
+            t += out[b + k, 0] * out[b + j, 1] - out[b + k, 1] * out[b + j, 0]
+        twice[r] = t
+        if t < 0:
+            for k in range(n // 2):
+                for c in range(2):
+                    out[b + k, c], out[b + n - 1 - k, c] = out[b + n - 1 - k, c], out[b + k, c]
+        while n > 0:
+            for k in range(n):
+                p = k - 1 if k > 0 else n - 1
+                q = k + 1 if k + 1 < n else 0
+                i0 = out[b + k, 0] - out[b + p, 0]
+                i1 = out[b + k, 1] - out[b + p, 1]
+                o0 = out[b + q, 0] - out[b + k, 0]
+                o1 = out[b + q, 1] - out[b + k, 1]
+                l_in = math.hypot(i0, i1)
+                l_out = math.hypot(o0, o1)
+                cr = i0 * o1 - i1 * o0
+                dt = i0 * o0 + i1 * o1
+                cross[b + k] = cr
+                dot[b + k] = dt
+                drop[k] = (l_in == 0.0) or (
+                    abs(cr) <= CONVEX_STRAIGHT_TURN * l_in * l_out and dt > 0
+                )
+            dropped = False
+            for k in range(n):
+                p = k - 1 if k > 0 else n - 1
+                keep[k] = not (drop[k] and not (drop[p] and k != p))
+                dropped |= not keep[k]
+            if not dropped:
+                break
+            w = 0
+            for k in range(n):
+                if keep[k]:
+                    out[b + w, 0] = out[b + k, 0]
+                    out[b + w, 1] = out[b + k, 1]
+                    w += 1
+            n = w
+        at = b + n
+        start[r + 1] = at
+    return out[:at], start, twice, cross[:at], dot[:at]
 
 
 def inset_rings(xy: np.ndarray, start: np.ndarray, distance):
