@@ -818,10 +818,8 @@ def test_websocket_view_sets_the_drawing_resolution(client):
         ws.send_text(json.dumps({"op": "view", "px": 0.01}))  # a finer page: all again
         h, again = _geom(ws)
         assert h["full"] and len(again["cc"]) // 2 == len(wire.rings(session.result.cells)[2])
-
-
-def test_a_page_that_says_its_canvas_gets_its_first_drawing_at_its_resolution(client):
-    """``/ws?w=&h=``: the first drawing thinned and quantized as every later one (not whole)."""
+    # a page that says its canvas (/ws?w=&h=) gets its first drawing at its resolution,
+    # thinned and quantized as every later one (not whole)
     from voroforge.studio.server import canvas_px
 
     session = client.app.state.hub.session
@@ -835,7 +833,7 @@ def test_a_page_that_says_its_canvas_gets_its_first_drawing_at_its_resolution(cl
         _, (h, drawn) = _greet(ws)
         expect = wire.rings(session.result.cells, tol=0.5 * px)[2]
         ws.send_text(json.dumps({"op": "view", "px": px}))  # the page's own figure: no resend
-        ws.send_text(json.dumps({"op": "set", "key": "cells.fillet", "value": 2.5, "id": 4}))
+        ws.send_text(json.dumps({"op": "set", "key": "cells.fillet", "value": 3.0, "id": 4}))
         assert _geom(ws)[0]["reply_to"] == 4
     assert whole_h["cq"] is None and h["cq"] is not None and h["cq"][2] <= px / 8
     # uint16 codes of thinned rings: fewer vertices, half the bytes each
