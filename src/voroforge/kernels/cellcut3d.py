@@ -329,22 +329,23 @@ def _axis_gap(p, origin, size, b, off):
 
 
 @njit(**NJIT_INLINE)
-def _box_misses(px, py, pz, tree, v, V, nv, wi, wmax, rmax2, eps):
-    """No site in k-d node ``v``'s box can cut or touch the cell ``V[:nv]`` (relative).
+def _box_misses(px, py, pz, box, V, nv, wi, wmax, rmax2, eps):
+    """No site in ``box = (x0, y0, z0, x1, y1, z1)`` can cut or touch the cell ``V[:nv]``.
 
     A plane cuts or touches a convex cell only if some vertex ``x`` is at least as near
     (in power) to the other site as to the cell's: the box misses when every vertex is
     farther from it, less the heaviest weight, than from the site, with slack
     (``VORONOI3D_STOP_RTOL`` of the cell's size; the box widened by ``eps``, the rounding
     of coordinates relative to the site). Long cells (a cluster's outer sites) meet few
-    boxes this way, where the sphere of :func:`_far` holds the whole cluster.
+    boxes this way, where the sphere of :func:`_far` holds the whole cluster. ``V`` is
+    relative to the site, ``box`` absolute.
     """
-    lx = tree[v, 0] - px - eps
-    ly = tree[v, 1] - py - eps
-    lz = tree[v, 2] - pz - eps
-    hx = tree[v, 3] - px + eps
-    hy = tree[v, 4] - py + eps
-    hz = tree[v, 5] - pz + eps
+    lx = box[0] - px - eps
+    ly = box[1] - py - eps
+    lz = box[2] - pz - eps
+    hx = box[3] - px + eps
+    hy = box[4] - py + eps
+    hz = box[5] - pz + eps
     slack = VORONOI3D_STOP_RTOL * (rmax2 + abs(wi) + abs(wmax)) + wmax - wi
     for k in range(nv):
         x = V[k, 0]
@@ -422,7 +423,7 @@ def _next_leaf(px, py, pz, tree, hk, hv, size, wi, wmax, rmax2, V, nv, eps):
         key, v, size = _pop(hk, hv, size)
         if _far(key, wi, wmax, rmax2):
             return -1, 0
-        if _box_misses(px, py, pz, tree, v, V, nv, wi, wmax, rmax2, eps):
+        if _box_misses(px, py, pz, tree[v], V, nv, wi, wmax, rmax2, eps):
             continue
         left = int(tree[v, 6])
         if left < 0:
@@ -436,37 +437,12 @@ def _next_leaf(px, py, pz, tree, hk, hv, size, wi, wmax, rmax2, V, nv, eps):
 
 @njit(**NJIT_NO_NRT)
 def _one_cell(
-    i,
-    P,
-    W,
-    WP,
-    X,
-    wmax,
-    start,
-    SP,
-    SW,
-    sidx,
-    g,
-    order,
-    tree,
-    TV,
-    TF,
-    TR,
-    TG,
-    C,
-    G,
-    cand,
-    cd2,
-    buck,
-    hkey,
+    i, P, W, WP, X, wmax, start, SP, SW, sidx, g, order, TV, TF, TR, TG, C, G, cand, cd2, buck
 ):
     """Cut cell ``i``; leaves it in ``C``'s ``(V, F, R)``. Returns ``(status, nv, nf, nt, rmax2)``.
 
     With a vertex graph ``G`` (``G[0]`` non-empty) the cell starts from the template's graph
-    ``TG`` and is cut as a graph; its rings are read off at the end. With k-d buckets
-    (``tree`` non-empty: :func:`.grid3d.kd_buckets3d`'s nodes, ``start`` its buckets) the
-    buckets come from a nearest-first walk of the tree (a heap: keys ``hkey``, nodes
-    ``buck``), each cut by at once; otherwise from the grid ``g`` in ``order``, then shell by shell.
+    ``TG`` and is cut as a graph; its rings are read off at the end.
     """
     V, F, R, R2, S, work, T = C
     graph = G[0].shape[0] > 0
@@ -517,16 +493,6 @@ def _one_cell(
     shells = False
     rb = -1  # a crowded bucket to go on gathering from, at rt
     rt = 0
-    kd = tree.shape[0] > 0
-    top = 0
-    eps = 0.0
-    if kd:
-        hkey[0] = 0.0
-        buck[0] = 0
-        top = 1
-        for a in range(6):  # coordinates' rounding relative to the site, for _box_misses
-            eps = max(eps, abs(tree[0, a]))
-        eps *= 4e-16
     while True:
         flush = False
         stop = False
@@ -534,13 +500,6 @@ def _one_cell(
         if rb >= 0:
             b = rb
             rb = -1
-        elif kd:
-            b, top = _next_leaf(px, py, pz, tree, hkey, buck, top, wi, wmax, rmax2, V, nv, eps)
-            flush = True
-            if b >= 0:
-                rt = start[b]
-            else:
-                stop = True
         elif not shells:
             if o == order.shape[0]:
                 shells = True
@@ -609,6 +568,102 @@ def _one_cell(
             mg = 0
         if stop:
             break
+    if graph:
+        nf = to_rings(nv, G[0], G[1], G[2], G[3], F, R, G[5])
+        if nf < 0:
+            return BROKEN, 0, 0, 0, 0.0
+    return OK, nv, nf, nt, rmax2
+
+
+@njit(**NJIT_NO_NRT)
+def _kd_cell(
+    i, P, W, WP, X, wmax, start, SP, SW, sidx, tree, TV, TF, TR, TG, C, G, cand, cd2, hv, hk
+):
+    """:func:`_one_cell` on k-d buckets (:func:`.grid3d.kd_buckets3d`'s ``tree``, ``start``).
+
+    The buckets come nearest box first from a heap (keys ``hk``, nodes ``hv``) and each is
+    cut by at once; the stop tests are :func:`_far` on the box distance and
+    :func:`_box_misses`. Kept apart from :func:`_one_cell` so that the grid's search
+    compiles as it did (uniform sites).
+    """
+    V, F, R, R2, S, work, T = C
+    graph = G[0].shape[0] > 0
+    px = P[i, 0]
+    py = P[i, 1]
+    pz = P[i, 2]
+    wi = W[i]
+    ntv = TV.shape[0]
+    ntf = TF.shape[0]
+    if ntv > V.shape[0] or ntf > F.shape[0] or TR.shape[0] > R.shape[0]:
+        return OVERFLOW, 0, 0, 0, 0.0
+    for v in range(ntv):
+        V[v, 0] = TV[v, 0] - px
+        V[v, 1] = TV[v, 1] - py
+        V[v, 2] = TV[v, 2] - pz
+    if graph:
+        DEG, ED, BK, LB = G[0], G[1], G[2], G[3]
+        TDEG, TED, TBK, TLB = TG
+        for v in range(ntv):
+            G[6][v] = False
+            d = TDEG[v]
+            DEG[v] = d
+            for k in range(d):
+                ED[v, k] = TED[v, k]
+                BK[v, k] = TBK[v, k]
+                LB[v, k] = TLB[v, k]
+    else:
+        for f in range(ntf):
+            F[f, 0] = TF[f, 0]
+            F[f, 1] = TF[f, 1]
+            F[f, 2] = TF[f, 2]
+        for t in range(TR.shape[0]):
+            R[t] = TR[t]
+    nv = ntv
+    nf = ntf
+    nt = 0
+    rmax2 = _radius2(V, nv)
+    eps = 0.0  # the coordinates' rounding relative to the site, for _box_misses
+    for a in range(6):
+        eps = max(eps, abs(tree[0, a]))
+    eps *= 4e-16
+    hk[0] = 0.0
+    hv[0] = 0
+    size = 1
+    while True:
+        b, size = _next_leaf(px, py, pz, tree, hk, hv, size, wi, wmax, rmax2, V, nv, eps)
+        if b < 0:
+            break
+        rt = start[b]
+        while rt < start[b + 1]:  # a bucket holds a few sites: one batch, unless it is full
+            m, mg, rt = _gather(
+                b, rt, i, px, py, pz, wi, start, SP, SW, sidx, cand, cd2, 0, 0, rmax2
+            )
+            if m > 0:
+                st, nv, nf, nt, rmax2 = _cut_batch(
+                    m,
+                    i,
+                    P,
+                    WP,
+                    X,
+                    px,
+                    py,
+                    pz,
+                    wi,
+                    W,
+                    SP,
+                    SW,
+                    sidx,
+                    cand,
+                    cd2,
+                    C,
+                    G,
+                    nv,
+                    nf,
+                    nt,
+                    rmax2,
+                )
+                if st != OK:
+                    return st, 0, 0, 0, 0.0
     if graph:
         nf = to_rings(nv, G[0], G[1], G[2], G[3], F, R, G[5])
         if nf < 0:

@@ -27,6 +27,7 @@ from .cellcut3d import (
     OVERFLOW,
     UNNAMED,
     _graph_scratch,
+    _kd_cell,
     _key,
     _one_cell,
     _radius2,
@@ -328,7 +329,8 @@ def build_cells(
     ny = int(g[7])
     nz = int(g[8])
     nbuck = min(nx * ny * nz, 2 * (nx * ny + nx * nz + ny * nz))
-    if tree.shape[0] > 0:  # the k-d walk's heap: each node at most once
+    kd = tree.shape[0] > 0
+    if kd:  # the k-d walk's heap: each node at most once
         nbuck = max(nbuck, tree.shape[0])
     per = (k + nblocks - 1) // nblocks
     for blk in range(nblocks):
@@ -339,7 +341,7 @@ def build_cells(
         V, F, R, R2, S, work, T, OWN, cand, cd2, buck = _scratch(
             caps[3], caps[4], caps[5], max(1024, min(ns, 1 << 16)), nbuck
         )
-        hkey = np.empty(nbuck if tree.shape[0] > 0 else 0)  # noqa: TID251 (heap: written first)
+        hkey = np.empty(nbuck if kd else 0)  # noqa: TID251 (the k-d heap's keys: written first)
         vnames = np.zeros((caps[3], 5), np.int64)
         vabs = np.zeros((caps[3], 3))
         vrel = np.zeros((caps[3], 3))
@@ -361,34 +363,31 @@ def build_cells(
         for c in range(lo, hi):
             i = cells[c]
             X[2][0] = False
-            st, nv, nf, nt, r2 = _one_cell(
-                i,
-                P,
-                W,
-                WP,
-                X,
-                wmax,
-                start,
-                SP,
-                SW,
-                sidx,
-                g,
-                order,
-                tree,
-                TV,
-                TF,
-                TR,
-                TG,
-                C,
-                G,
-                cand,
-                cd2,
-                buck,
-                hkey,
-            )
-            Gu = G
-            if st == BROKEN and G[0].shape[0] > 0:  # the graph could not: face rings
-                Gu = G0
+            if kd:
+                st, nv, nf, nt, r2 = _kd_cell(
+                    i,
+                    P,
+                    W,
+                    WP,
+                    X,
+                    wmax,
+                    start,
+                    SP,
+                    SW,
+                    sidx,
+                    tree,
+                    TV,
+                    TF,
+                    TR,
+                    TG,
+                    C,
+                    G,
+                    cand,
+                    cd2,
+                    buck,
+                    hkey,
+                )
+            else:
                 st, nv, nf, nt, r2 = _one_cell(
                     i,
                     P,
@@ -402,18 +401,67 @@ def build_cells(
                     sidx,
                     g,
                     order,
-                    tree,
                     TV,
                     TF,
                     TR,
                     TG,
                     C,
-                    G0,
+                    G,
                     cand,
                     cd2,
                     buck,
-                    hkey,
                 )
+            Gu = G
+            if st == BROKEN and G[0].shape[0] > 0:  # the graph could not: face rings
+                Gu = G0
+                if kd:
+                    st, nv, nf, nt, r2 = _kd_cell(
+                        i,
+                        P,
+                        W,
+                        WP,
+                        X,
+                        wmax,
+                        start,
+                        SP,
+                        SW,
+                        sidx,
+                        tree,
+                        TV,
+                        TF,
+                        TR,
+                        TG,
+                        C,
+                        G0,
+                        cand,
+                        cd2,
+                        buck,
+                        hkey,
+                    )
+                else:
+                    st, nv, nf, nt, r2 = _one_cell(
+                        i,
+                        P,
+                        W,
+                        WP,
+                        X,
+                        wmax,
+                        start,
+                        SP,
+                        SW,
+                        sidx,
+                        g,
+                        order,
+                        TV,
+                        TF,
+                        TR,
+                        TG,
+                        C,
+                        G0,
+                        cand,
+                        cd2,
+                        buck,
+                    )
             counts[c, 0] = 0
             counts[c, 1] = 0
             counts[c, 2] = 0
