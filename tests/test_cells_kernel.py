@@ -21,9 +21,9 @@ def _kernel_cells(pts, box=BOX):
     order, sx, sy, tri, he, _, ok = triangulate_sorted(xs, ys)
     assert ok
     n = len(pts)
-    coords, lengths, owner = cells_from_triangulation(
-        np.ascontiguousarray(sx), np.ascontiguousarray(sy), tri, he, box, order, order.copy()
-    )
+    # the arrays exactly as the engine passes them (strided views of the triangulation's
+    # sorted sites): a contiguous copy would compile every kernel below a second time
+    coords, lengths, owner = cells_from_triangulation(sx, sy, tri, he, box, order, order.copy())
     rings = [coords[lengths[i] : lengths[i + 1]][:-1] for i in range(n)]
     owners = [owner[lengths[i] : lengths[i + 1]][:-1] for i in range(n)]
     return rings, owners

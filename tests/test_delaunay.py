@@ -275,8 +275,9 @@ def test_repair_reaches_delaunay_from_any_triangulation(name):
     scrambled = _scramble(tri, np.random.default_rng(5), flips=2 * len(pts))
     flat = scrambled.ravel().astype(np.int32)
     he = _rebuild_halfedges(scrambled)
-    xs = np.ascontiguousarray(tri.points[:, 0])
-    ys = np.ascontiguousarray(tri.points[:, 1])
+    # strided writable views, the array types the engine passes (no second compilation)
+    xy = np.array(tri.points)
+    xs, ys = xy[:, 0], xy[:, 1]
     suspects = _suspect_edges(xs, ys, flat, he, len(flat))
     assert len(suspects) > 0  # the scramble broke local Delaunayness somewhere
     with pytest.raises(AssertionError, match="circumcircle"):

@@ -322,6 +322,11 @@ def domain_edges(dom: Domain, grid, pieces, coords, ring_offsets, ring_cell, own
     """
     x0, y0, x1, y1 = dom.bounds
     tol = EDGE_LENGTH_RTOL * max(x1 - x0, y1 - y0)
+    # read-only views whichever way the rings came (a diagram's buffers are read-only, a
+    # fresh assembly's not): one compiled signature of the kernel instead of two
+    coords, ring_offsets = coords.view(), ring_offsets.view()
+    coords.setflags(write=False)
+    ring_offsets.setflags(write=False)
     seg, pairs = shared_edges(coords, ring_offsets, ring_cell, owner, tol)
     if dom.is_rect or len(seg) == 0:
         return seg, pairs

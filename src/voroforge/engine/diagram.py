@@ -203,7 +203,10 @@ class Diagram:
                 areas, centroids = area_centroid(coords, ring, poly, geom)
             else:
                 # at extreme scales squared coordinates leave the double range: work scaled
-                areas, centroids = area_centroid(np.ldexp(coords, k), ring, poly, geom)
+                # (read-only like the buffers, so the kernel is compiled once for both)
+                scaled = np.ldexp(coords, k)
+                scaled.setflags(write=False)
+                areas, centroids = area_centroid(scaled, ring, poly, geom)
                 areas, centroids = np.ldexp(areas, -2 * k), np.ldexp(centroids, -k)
         # cached and shared by every caller: read-only, like the other results
         areas.setflags(write=False)
