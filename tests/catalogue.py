@@ -293,3 +293,19 @@ def as_domain(boundary):
 def general_position(n: int, seed: int = 0) -> np.ndarray:
     """Uniform random points: no four cocircular, no three collinear (for all practical seeds)."""
     return np.random.default_rng(seed).random((n, 2))
+
+
+def sites_ulps_apart(seed: int, offset: float = 0.3) -> np.ndarray:
+    """2-5 sites 1-6 ulps apart along a random direction at ``(offset, offset)``, then 20
+    random sites in a 10-wide square about it (the sweep's notch family, issue 15)."""
+    g = np.random.default_rng(seed)
+    k = g.integers(2, 6)
+    d = g.normal(size=2)
+    d /= np.abs(d).max()
+    p = np.array([offset, offset])
+    near = [p.copy()]
+    for _ in range(k - 1):
+        for _ in range(int(g.integers(1, 7))):
+            p = np.nextafter(p, p + d)
+        near.append(p.copy())
+    return np.concatenate((near, offset + (g.random((20, 2)) - 0.5) * 10.0))

@@ -21,7 +21,7 @@ import voroforge as vf
 from voroforge.kernels.clip import rings_convex
 from voroforge.kernels.predicates import cross_diff
 
-from catalogue import CATALOGUE, FAR_CIRCLES, FEW_ULPS
+from catalogue import CATALOGUE, FAR_CIRCLES, FEW_ULPS, sites_ulps_apart
 
 ALGS = ["delaunay", "fortune", "halfplane"]
 FAMILIES = [
@@ -301,17 +301,7 @@ def test_sites_ulps_apart_sweep_cell_valid():
     from voroforge.kernels.delaunay import triangulate_sorted
     from voroforge.kernels.fortune import fortune_delaunay
 
-    g = np.random.default_rng(127)
-    k = g.integers(2, 6)
-    d = g.normal(size=2)
-    d /= np.abs(d).max()
-    p = np.array([0.3, 0.3])
-    near = [p.copy()]
-    for _ in range(k - 1):
-        for _ in range(int(g.integers(1, 7))):
-            p = np.nextafter(p, p + d)
-        near.append(p.copy())
-    pts = np.concatenate((near, 0.3 + (g.random((20, 2)) - 0.5) * 10.0))
+    pts = sites_ulps_apart(127)
     box = (-9.7, -9.7, 10.3, 10.3)
     xs, ys = pts[:, 0].copy(), pts[:, 1].copy()
     assert _fills_hull(*triangulate_sorted(xs, ys)[1:5])

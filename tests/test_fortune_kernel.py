@@ -10,7 +10,7 @@ from scipy.spatial import Delaunay
 
 from voroforge.kernels.fortune import fortune_debug, fortune_triangles
 
-from catalogue import CATALOGUE, NAMES
+from catalogue import CATALOGUE, NAMES, sites_ulps_apart
 from reference import brute_delaunay_ok, first_occurrence
 from validate import validate_triangulation
 
@@ -285,16 +285,6 @@ def test_sweep_fills_hull_of_sites_ulps_apart():
     from voroforge.kernels.fortune import fortune_delaunay
 
     for seed in (94, 127, 164, 627, 652, 801):
-        g = np.random.default_rng(seed)
-        k = g.integers(2, 6)
-        d = g.normal(size=2)
-        d /= np.abs(d).max()
-        p = np.array([0.3, 0.3])
-        near = [p.copy()]
-        for _ in range(k - 1):
-            for _ in range(int(g.integers(1, 7))):
-                p = np.nextafter(p, p + d)
-            near.append(p.copy())
-        pts = np.concatenate((near, 0.3 + (g.random((20, 2)) - 0.5) * 10.0))
+        pts = sites_ulps_apart(seed)
         assert _fills_hull(*fortune_delaunay(pts[:, 0].copy(), pts[:, 1].copy())[1:5]), seed
         check(pts, brute=True)
