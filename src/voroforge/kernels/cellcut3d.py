@@ -22,6 +22,7 @@ from numba import njit
 from ..config import NJIT, VORONOI3D_CUT_RTOL, VORONOI3D_STOP_RTOL
 from .graph3d import GCUT_DONE, GCUT_EMPTY, to_rings
 from .graph3d import cut as graph_cut
+from .grid import heap_pop, heap_push
 from .grid3d import bucket3d, shell_buckets, shell_gap
 from .polyhedron import CUT_DONE, CUT_EMPTY, CUT_OVERFLOW, cut
 from .predicates3d import bisector_side
@@ -369,48 +370,6 @@ def _box_dist2(px, py, pz, tree, v):
 
 
 @njit(**NJIT_INLINE)
-def _push(hk, hv, size, key, val):
-    """Push ``(key, val)`` on the binary min-heap ``hk[:size], hv[:size]``; returns the size."""
-    u = size
-    while u > 0:
-        p = (u - 1) // 2
-        if hk[p] <= key:
-            break
-        hk[u] = hk[p]
-        hv[u] = hv[p]
-        u = p
-    hk[u] = key
-    hv[u] = val
-    return size + 1
-
-
-@njit(**NJIT_INLINE)
-def _pop(hk, hv, size):
-    """Remove the heap's smallest entry; returns ``(key, val, new size)``."""
-    key = hk[0]
-    val = hv[0]
-    size -= 1
-    lk = hk[size]
-    lv = hv[size]
-    u = 0
-    while True:
-        c = 2 * u + 1
-        if c >= size:
-            break
-        if c + 1 < size and hk[c + 1] < hk[c]:
-            c += 1
-        if hk[c] >= lk:
-            break
-        hk[u] = hk[c]
-        hv[u] = hv[c]
-        u = c
-    if size > 0:
-        hk[u] = lk
-        hv[u] = lv
-    return key, val, size
-
-
-@njit(**NJIT_INLINE)
 def _next_leaf(px, py, pz, tree, hk, hv, size, wi, wmax, rmax2, V, nv, eps):
     """Pop k-d nodes off the heap ``hk[:size], hv[:size]`` to the next bucket that may cut.
 
@@ -420,7 +379,7 @@ def _next_leaf(px, py, pz, tree, hk, hv, size, wi, wmax, rmax2, V, nv, eps):
     ``(bucket or -1, size)``.
     """
     while size > 0:
-        key, v, size = _pop(hk, hv, size)
+        key, v, size = heap_pop(hk, hv, size)
         if _far(key, wi, wmax, rmax2):
             return -1, 0
         if _box_misses(px, py, pz, tree[v], V, nv, wi, wmax, rmax2, eps):
@@ -431,7 +390,7 @@ def _next_leaf(px, py, pz, tree, hk, hv, size, wi, wmax, rmax2, V, nv, eps):
         for c in range(left, left + 2):
             d2 = _box_dist2(px, py, pz, tree, c)
             if not _far(d2, wi, wmax, rmax2):
-                size = _push(hk, hv, size, d2, c)
+                size = heap_push(hk, hv, size, d2, c)
     return -1, size
 
 
