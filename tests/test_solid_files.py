@@ -192,14 +192,16 @@ def test_builders_survive_their_submodules_being_imported_first(tmp_path):
     src.write_text(SHELL)
     # first, in the same interpreter: a skinned lattice's build reads its binary STL and
     # previews and writes the implicit route's mesh without importing trimesh or
-    # scipy.spatial (its strut graph and point field need neither); its make_solid imports
-    # the lattice submodule as the statements below do, the other four come after it
+    # scipy.spatial (its strut graph and point field need neither), and so does a revolved
+    # shell's (its surface, seeds and rim in numpy); their make_solid imports the lattice
+    # and shell submodules as the statements below do, the other three come after them
     trimesh.creation.box((12, 10, 8)).export(tmp_path / "box.stl")
     (tmp_path / "skin.toml").write_text(SKIN)
     code = (
         "import sys, types\n"
         "from voroforge.design.build import build\n"
         f"build({str(tmp_path / 'skin.toml')!r}, {str(tmp_path / 'out')!r})\n"
+        f"build({str(src)!r}, {str(tmp_path / 'out')!r}, overrides={{'solid.png_size': 64}})\n"
         "print('TRIMESH', 'trimesh' in sys.modules, 'scipy.spatial' in sys.modules)\n"
         "import voroforge.solid.shell, voroforge.solid.lattice, voroforge.solid.foam\n"
         "import voroforge.solid.extrude, voroforge.solid.check\n"
@@ -228,6 +230,9 @@ def test_builders_survive_their_submodules_being_imported_first(tmp_path):
     assert built == write(m, tmp_path / "t.3mf").read_bytes()
     (stl,) = build(tmp_path / "skin.toml", tmp_path / "o2", overrides={"solid.formats": '["stl"]'})
     assert stl.read_bytes() == write(m, tmp_path / "t.stl").read_bytes()  # a Bare mesh's arrays
+    shell = make_solid(*load(src))  # the Trimesh route of the same shell: the same file
+    built = (tmp_path / "out" / "tiny-shell.3mf").read_bytes()
+    assert built == write(shell, tmp_path / "s.3mf").read_bytes()
 
 
 def test_3mf_text_is_python_repr():

@@ -92,17 +92,10 @@ def _cells(s, base, stage, bare=False):
     return cells, mesh
 
 
-def _revolve(profile, sections: int):
-    import trimesh
-
-    prof = np.asarray(profile, dtype=np.float64)
-    return trimesh.creation.revolve(prof, sections=sections)
-
-
 def make_solid(design, base=None, stage=None, *, bare: bool = False):
     """The solid a design's ``[solid]`` section describes (a watertight Trimesh).
 
-    With ``bare``, a lattice the implicit route builds comes as a
+    With ``bare``, a lattice the implicit route builds and a shell come as a
     :class:`~voroforge.solid.implicit.Bare` mesh (what :func:`build_solid` previews and
     writes, without trimesh's import); every other solid is a Trimesh either way.
     """
@@ -121,8 +114,10 @@ def make_solid(design, base=None, stage=None, *, bare: bool = False):
     if s.kind == "shell":
         from ..io.mesh import read
         from .shell import shell
+        from .surfaces import revolve
 
-        surf = read(_path(base, s.surface)) if s.surface else _revolve(s.profile, s.sections)
+        # a profile's surface as bare arrays: no trimesh
+        surf = read(_path(base, s.surface)) if s.surface else revolve(s.profile, s.sections)
         stage(f"shell with {s.openings} openings")
         return shell(
             surf,
@@ -134,6 +129,7 @@ def make_solid(design, base=None, stage=None, *, bare: bool = False):
             voxel=s.voxel,
             smoothing=s.smoothing,
             seed=s.seed,
+            bare=bare,
         )
     cells, mesh = _cells(s, base, stage, bare=bare)
     if s.kind == "lattice":
