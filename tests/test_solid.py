@@ -170,16 +170,61 @@ def test_slabs_stitch_exactly(monkeypatch):
     assert abs(one.volume - many.volume) <= 1e-6 * one.volume
 
 
-def test_container_trim_and_skin():
+def test_container_trim_and_skin(monkeypatch):
     rng = np.random.default_rng(5)
     cells = box_cells(rng.random((12, 3)) * 20, (0, 0, 0, 20, 20, 20))
     c = trimesh.creation.icosphere(2, radius=8.0)
     c.apply_translation([10, 10, 10])
+    reaching = implicit._reaching
+    kept = []
+    monkeypatch.setattr(implicit, "_reaching", lambda *a: kept.append(reaching(*a)) or kept[-1])
     m = solid.lattice(cells, radius=0.6, container=c, skin=1.0, voxel=0.4, smoothing=0)
     _solid_ok(m)
     # inside the container's bounds; skin volume about area * thickness
     assert (m.bounds[0] >= c.bounds[0] - 0.5).all() and (m.bounds[1] <= c.bounds[1] + 0.5).all()
     assert m.volume > 0.6 * c.area * 1.0
+    # struts left out where they cannot change the trimmed field (outside the container, and
+    # with a skin in its outer half too): the same mesh as with every strut evaluated
+    trim = solid.lattice(cells, radius=0.6, container=c, route="implicit", voxel=0.4, smoothing=0)
+    left_out = [int((~k).sum()) for k in kept]  # one slab each
+    assert len(left_out) == 2 and left_out[0] > left_out[1] > 0
+    monkeypatch.setattr(implicit, "_reaching", lambda c, below, o, h, a, *r: np.ones(len(a), bool))
+    for skin, got in ((1.0, m), (0.0, trim)):
+        route = "auto" if skin else "implicit"
+        every = solid.lattice(
+            cells, radius=0.6, container=c, skin=skin, route=route, voxel=0.4, smoothing=0
+        )
+        assert np.array_equal(got.vertices, every.vertices) and np.array_equal(
+            got.faces, every.faces
+        )
+
+
+@pytest.mark.parametrize("skin", [0.0, 2.0])
+def test_struts_left_out_do_not_change_the_trimmed_field(monkeypatch, skin):
+    # the field itself, every sample: 600 short struts strewn over a sphere's box, so that
+    # some lie wholly in each zone (outside, in the skin's outer and inner half, deeper)
+    rng = np.random.default_rng(7)
+    a = rng.uniform(0, 10, (600, 3))
+    struts = {"a": a, "b": a + rng.normal(0, 0.3, (600, 3)), "ra": np.full(600, 0.2)}
+    struts["rb"] = struts["ra"] + rng.uniform(0, 0.1, 600)
+    c = trimesh.creation.icosphere(2, radius=4.0)
+    c.apply_translation([5, 5, 5])
+    fields = []
+
+    def field(evaluate, lo, hi, h, **kw):  # the block march would sample first, whole
+        n = np.ceil((np.asarray(hi) - lo) / h).astype(int) + 1
+        fields.append(evaluate(tuple(int(k) for k in n), np.asarray(lo, float), (0, n[2] - 1)))
+        return fields[-1]
+
+    monkeypatch.setattr(implicit, "march", field)
+    reaching = implicit._reaching
+    monkeypatch.setattr(implicit, "_reaching", lambda c, below, o, h, a, *r: np.ones(len(a), bool))
+    implicit.capsules_mesh(struts, voxel=0.15, container=c, skin=skin, smooth=0.0)  # every strut
+    kept = []
+    monkeypatch.setattr(implicit, "_reaching", lambda *a: kept.append(reaching(*a)) or kept[-1])
+    implicit.capsules_mesh(struts, voxel=0.15, container=c, skin=skin, smooth=0.0)
+    assert 50 < int((~kept[0]).sum()) < 550
+    assert np.array_equal(fields[0], fields[1]) and (fields[0] < 0).any()
 
 
 # --- foam ----------------------------------------------------------------------------------

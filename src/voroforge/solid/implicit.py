@@ -168,7 +168,7 @@ def grid_decimals(h: float) -> int:
 
 
 def _container_field(container, skin, h):
-    """A function ``(shape, origin) -> sdf`` of the container (and its skin) and its bounds."""
+    """A function ``(shape, origin, z_top) -> sdf`` of the container (and its skin)."""
     tris = np.ascontiguousarray(container.vertices[container.faces], dtype=np.float64)
     zmin = tris[:, :, 2].min(axis=1)
     band = max(3.0 * h, 1.5 * skin + 2 * h)
@@ -178,6 +178,53 @@ def _container_field(container, skin, h):
         return mesh_sdf_block(container, shape, origin, h, band=band, tris=tris[sel])
 
     return sdf
+
+
+def _reaching(c, below, origin, h, a, b, reach) -> np.ndarray:
+    """Which struts' boxes hold a sample where the container's field ``c`` is under ``below``.
+
+    Elsewhere the struts cannot change the trimmed field, so a strut whose box (``reach``
+    about its segment, the samples the capsule kernel visits) holds no such sample is left
+    out, the same field bit for bit: random cells fill the container's box, and most of an
+    L-bracket's box is outside it. The struts' union ``g`` is at most its band, so where
+    ``c`` is at least that band, ``max(g, c)`` is ``c`` (outside the container); with a skin,
+    where ``c >= -skin / 2``, the skin's ``max(c, -c - skin)`` is ``c``, at most
+    ``max(g, c)``, so the field is ``c`` there too (outside and in the skin's outer half).
+    Counted by a summed-area table of the blocks of 4^3 samples that hold one: one lookup
+    per strut.
+    """
+    live = c < below
+    if live.all():
+        return np.ones(len(a), dtype=bool)
+    # blocks of 4 x 4 x 4 samples that hold one (a box touching such a block is kept: a
+    # superset, safe), and their summed-area table
+    n = np.array(c.shape)
+    nb = -(-n // 4)
+    pad = np.zeros(tuple(4 * nb), dtype=bool)
+    pad[: n[0], : n[1], : n[2]] = live
+    block = pad.reshape(nb[0], 4, nb[1], 4, nb[2], 4).any(axis=(1, 3, 5))
+    sat = np.zeros(tuple(nb + 1), dtype=np.int32)
+    sat[1:, 1:, 1:] = (
+        block.cumsum(0, dtype=np.int32).cumsum(1, dtype=np.int32).cumsum(2, dtype=np.int32)
+    )
+    # the kernel's box, one sample wider each way, in blocks
+    lo = np.floor((np.minimum(a, b) - reach[:, None] - origin) / h).astype(np.int64) - 1
+    hi = np.ceil((np.maximum(a, b) + reach[:, None] - origin) / h).astype(np.int64) + 1
+    lo = np.clip(lo, 0, n - 1) // 4
+    hi = (np.clip(hi, -1, n - 1) + 1 + 3) // 4  # exclusive
+    x0, y0, z0 = lo.T
+    x1, y1, z1 = np.maximum(hi, lo).T
+    count = (
+        sat[x1, y1, z1]
+        - sat[x0, y1, z1]
+        - sat[x1, y0, z1]
+        - sat[x1, y1, z0]
+        + sat[x0, y0, z1]
+        + sat[x0, y1, z0]
+        + sat[x1, y0, z0]
+        - sat[x0, y0, z0]
+    )
+    return count > 0
 
 
 def capsules_mesh(
@@ -228,14 +275,21 @@ def capsules_mesh(
         if skin > 0:
             lo, hi = container.bounds[0] - 2 * h, container.bounds[1] + 2 * h
     band = 3.0 * h + k
+    # where the struts can change the container's trimmed field (_reaching); with a skin, a
+    # margin of 1e-3 voxels keeps float32 rounding of -c - skin on the safe side
+    below = np.float32(band if skin == 0 else -0.5 * skin + 1e-3 * h)
 
     def evaluate(shape, origin, krange):
         z0 = origin[2]
         z1 = origin[2] + h * (shape[2] - 1)
         sel = (zhi >= z0) & (zlo <= z1)
-        g = capsules_block(shape, origin, h, a[sel], b[sel], ra[sel], rb[sel], smooth=k, band=band)
+        c = None
         if cont is not None:
             c = cont(shape, origin, z1)
+            reach = np.maximum(ra[sel], rb[sel]) + band
+            sel[sel] = _reaching(c, below, origin, h, a[sel], b[sel], reach)
+        g = capsules_block(shape, origin, h, a[sel], b[sel], ra[sel], rb[sel], smooth=k, band=band)
+        if c is not None:
             g = np.maximum(g, c)
             if skin > 0:
                 g = np.minimum(g, np.maximum(c, -c - np.float32(skin)))
