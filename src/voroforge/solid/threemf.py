@@ -35,6 +35,10 @@ from .. import config
 
 __all__ = ["on_grid", "rows_text", "write_3mf"]
 
+_VERTEX = '<vertex x="%r" y="%r" z="%r"/>'
+_TRIANGLE = '<triangle v1="%d" v2="%d" v3="%d"/>'
+_CHUNK = 1 << 16  # rows of text a piece: a 3MF's text is deflated as it is written
+
 
 def on_grid(vertices, decimals: int) -> np.ndarray:
     """``vertices`` rounded to ``decimals`` places: each the float nearest ``q / 10**decimals``.
@@ -197,32 +201,49 @@ def write_3mf(mesh, path, *, units: str = "mm", decimals: int | None = None) -> 
     v = np.asarray(mesh.vertices, dtype=np.float64).reshape(-1, 3)
     f = np.asarray(mesh.faces, dtype=np.int64).reshape(-1, 3)
     vt = None
-    if decimals is not None and len(f):
-        vt = rows_text(v, '<vertex x="%r" y="%r" z="%r"/>', decimals)
-    if path.suffix.lower() != ".3mf" or vt is None or not np.isfinite(v).all():
+    if decimals is not None and len(f):  # the vertices' text first: None when off the grid
+        vt = [rows_text(v[s : s + _CHUNK], _VERTEX, decimals) for s in range(0, len(v), _CHUNK)]
+    if path.suffix.lower() != ".3mf" or vt is None or None in vt or not np.isfinite(v).all():
         return mio.write(mesh, path, units=units)
     units = mio._units(units)
-    model = b"".join(
-        [
-            b'<?xml version="1.0" encoding="UTF-8"?>\n',
-            f'<model unit="{mio.UNITS[units]}" xml:lang="en-US" xmlns="{mio._NS3MF}">'.encode(),
-            b'<resources><object id="1" type="model" name="body"><mesh><vertices>',
-            vt,
-            b"</vertices><triangles>",
-            rows_text(f, '<triangle v1="%d" v2="%d" v3="%d"/>'),
-            b"</triangles></mesh></object></resources><build>",
-            b'<item objectid="1"/></build></model>',
-        ]
-    )
+    head = [
+        b'<?xml version="1.0" encoding="UTF-8"?>\n',
+        f'<model unit="{mio.UNITS[units]}" xml:lang="en-US" xmlns="{mio._NS3MF}">'.encode(),
+        b'<resources><object id="1" type="model" name="body"><mesh><vertices>',
+    ]
     buf = io.BytesIO()
-    # as io.mesh._3mf_bytes: deflate level 1, a fixed date, writestr's file mode
+    # as io.mesh._3mf_bytes: deflate level 1, a fixed date, writestr's file mode; the model
+    # is deflated as its text is written, a run of rows at a time (the same stream as one
+    # block: deflate's output does not depend on how its input is split), so no copy of the
+    # whole text is made
     with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED, compresslevel=1) as z:
-        for name, data in (
-            ("[Content_Types].xml", mio._CT),
-            ("_rels/.rels", mio._RELS),
-            ("3D/3dmodel.model", model),
-        ):
-            info = zipfile.ZipInfo(name, mio._ZIP_DATE)
-            info.external_attr = 0o600 << 16
-            z.writestr(info, data, zipfile.ZIP_DEFLATED, compresslevel=1)
+        for name, data in (("[Content_Types].xml", mio._CT), ("_rels/.rels", mio._RELS)):
+            z.writestr(_info(name), data, zipfile.ZIP_DEFLATED, compresslevel=1)
+        with z.open(_info("3D/3dmodel.model", deflate=1), "w") as model:
+            for piece in head + vt:
+                model.write(piece)
+            model.write(b"</vertices><triangles>")
+            for s in range(0, len(f), _CHUNK):
+                model.write(rows_text(f[s : s + _CHUNK], _TRIANGLE))
+            model.write(b"</triangles></mesh></object></resources><build>")
+            model.write(b'<item objectid="1"/></build></model>')
     return mio._atomic(path, buf.getvalue())
+
+
+def _info(name: str, *, deflate: int | None = None) -> zipfile.ZipInfo:
+    """A zip member with io.mesh's fixed date and writestr's file mode.
+
+    With ``deflate``, deflated at that level: what ``writestr(..., compresslevel=...)``
+    sets on the member it writes.
+    """
+    from ..io.mesh import _ZIP_DATE
+
+    info = zipfile.ZipInfo(name, _ZIP_DATE)
+    info.external_attr = 0o600 << 16
+    if deflate is not None:
+        info.compress_type = zipfile.ZIP_DEFLATED
+        if hasattr(info, "compress_level"):  # Python 3.13 names it
+            info.compress_level = deflate
+        else:
+            info._compresslevel = deflate
+    return info
