@@ -235,7 +235,9 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
     x0, y0, hx, hy, nx, ny = grid
     tlo, thi, tleft, tboxes = tree
     use_tree = tlo.shape[0] > 0
-    cap = _CAP
+    # integers that change later start as np.int64, not as literals: numba would compile
+    # every callee they reach once more for a Literal[int] argument while inferring types
+    cap = np.int64(_CAP)
     scratch = _scratch(cap)
     px, py, po, ss, ox, oy, oo, lab, vx, vy, cand, cd, watch, hk, hv = scratch
     pos = 0
@@ -245,21 +247,22 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
         cx = sx[k]
         cy = sy[k]
         # the box, relative to the site, as polygon a (polygon b receives the next cut)
-        a = 1
+        a = np.int64(1)
         b = cap + 2
         px[a], py[a], po[a] = box[0] - cx, box[1] - cy, BOTTOM
         px[a + 1], py[a + 1], po[a + 1] = box[2] - cx, box[1] - cy, RIGHT
         px[a + 2], py[a + 2], po[a + 2] = box[2] - cx, box[3] - cy, TOP
         px[a + 3], py[a + 3], po[a + 3] = box[0] - cx, box[3] - cy, LEFT
-        m = 4
+        m = np.int64(4)
         r2 = _radius2(px, py, a, m)
-        nc = 0
-        nw = 0
+        nc = np.int64(0)
+        nw = np.int64(0)
         work = 0
         grow = False
         poly = (px, py, po, ss)
         if use_tree:
-            hs = heap_push(hk, hv, 0, box_dist2(cx, cy, tboxes, 0), 0)
+            root = np.int64(0)
+            hs = heap_push(hk, hv, root, box_dist2(cx, cy, tboxes, root), root)
             while m >= 3 and not grow and hs > 0 and work <= budget:
                 key, v, hs = heap_pop(hk, hv, hs)
                 if key > _REACH * r2:
@@ -296,7 +299,7 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
         else:
             ix = bucket_of(cx, x0, hx, nx)
             iy = bucket_of(cy, y0, hy, ny)
-            ring = 0
+            ring = np.int64(0)
             while m >= 3 and not grow and work <= budget:
                 if ring > 0:
                     # voro++'s stop radius: a site farther than 2 r cannot cut the cell
@@ -363,7 +366,7 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
             scratch = _scratch(cap)
             px, py, po, ss, ox, oy, oo, lab, vx, vy, cand, cd, watch, hk, hv = scratch
             continue
-        c = 0
+        c = np.int64(0)
         if m >= 3 and not grow and work <= budget:
             left = budget - work
             c = _finish(
@@ -422,7 +425,7 @@ def _finish(k, sx, sy, sidx, xs, ys, box, px, py, po, a, m, r2, scratch, nw, lef
             if cr * cr <= HALFPLANE_SURE_SIN2 * e2 * f2:
                 ss[u] = 0.0
     # only sites within 2 r of the final cell can matter to its vertices
-    keep = 0
+    keep = np.int64(0)
     for c in range(nw):
         t = watch[c]
         qx = sx[t] - cx

@@ -144,7 +144,7 @@ def _drop_invalid(i, lab, m, xs, ys, sure, trust, box):
     box side and to a site a few ulps from its own goes when the other one is nearer where
     its bisector meets the box (:func:`_shadowed_at_box`).
     """
-    u = 0
+    u = np.int64(0)  # not a literal: see halfplane._cells
     while u < m and m >= 3:
         j = lab[u]
         p = lab[u - 1] if u > 0 else lab[m - 1]
@@ -234,7 +234,7 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
             merge = _merge_tol(r, vx_, vy_)
             nxt = lab[u + 1] if u + 1 < m else lab[0]
             prv = lab[u - 2] if u >= 2 else lab[u - 2 + m]
-            non = 0  # other sites on the circle, to rounding
+            non = np.int64(0)  # other sites on the circle, to rounding
             charged = False
             for c in range(nc):
                 x = sidx[cand[c]]
@@ -429,7 +429,7 @@ def _snap_crossing(i, j, x, y, xs, ys, near, nn, sidx, on):
     merge = _merge_tol(r, x, y)
     on[0] = i
     on[1] = j
-    k = 2
+    k = np.int64(2)
     for c in range(nn):
         q = sidx[near[c]]
         if q == i or q == j:
