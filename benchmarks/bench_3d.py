@@ -7,6 +7,7 @@ Usage::
     .venv/bin/python benchmarks/bench_3d.py --huge 10000000   # volumes + neighbours only
     .venv/bin/python benchmarks/bench_3d.py --sizes '' --mesh 100000   # the mesh case only
     .venv/bin/python benchmarks/bench_3d.py --sizes '' --clustered 40000   # clustered inputs
+    .venv/bin/python benchmarks/bench_3d.py --sizes '' --padded 200000   # default container
 
 For each size (uniform points in the unit box, fixed seed) it prints the best-of-``repeat``
 wall and CPU (user + system seconds of the process, voro++ as a child process) of:
@@ -27,7 +28,9 @@ Ratios are ours / theirs (< 1: we are faster). With ``--mesh N`` it also times N
 uniform in its bounding box, in a torus container (20k triangles); with ``--clustered N``,
 N sites uniform, in 20 Gaussian clusters (sd 0.02 and 0.003, clipped to the unit box) and
 in one cluster (sd 0.001) with 8 sites up to 50 away, default container, against the
-uniform cost per cell (the k-d buckets' case, ``engine.build3d.search3d``). The machine may be
+uniform cost per cell (the k-d buckets' case, ``engine.build3d.search3d``); with ``--padded
+N``, N uniform sites in the default container (their bounding box padded 10%, the call most
+users make) against the unit box. The machine may be
 shared: compare ratios from one run, not absolute times across runs. The cost slope from
 the smallest to the largest size is printed (1.0 = linear).
 """
@@ -189,17 +192,20 @@ def main():
     ap.add_argument("--mesh", type=int, default=0)
     ap.add_argument("--clustered", type=int, default=0, help="clustered inputs of this size")
     ap.add_argument("--huge", type=float, default=0, help="only one call at this size")
+    ap.add_argument("--padded", type=int, default=0, help="default container at this size")
     args = ap.parse_args()
     if args.huge:
         ours(np.random.default_rng(0).random((2000, 3)))  # compile
         huge(int(args.huge))
         return
     sizes = [int(s) for s in args.sizes.split(",") if s]  # --sizes '' --mesh N: the mesh only
-    if not sizes and (args.mesh or args.clustered):
+    if not sizes and (args.mesh or args.clustered or args.padded):
         if args.mesh:
             mesh_case(args)
         if args.clustered:
             clustered_case(args)
+        if args.padded:
+            padded_case(args)
         return
     rng = np.random.default_rng(20240611)
     ours(rng.random((2000, 3)))  # compile
@@ -271,6 +277,24 @@ def main():
         mesh_case(args)
     if args.clustered:
         clustered_case(args)
+    if args.padded:
+        padded_case(args)
+
+
+def padded_case(args):
+    """Best-of-repeats CPU per cell of uniform sites, default container against the unit box."""
+    n = args.padded
+    p = np.random.default_rng(n).random((n, 3))
+    vf.voronoi3d(p[:2000], None)  # compile
+    res = alternated([lambda: vf.voronoi3d(p, BOX), lambda: vf.voronoi3d(p, None)], args.repeat)
+    (tb, cb), (tp, cp) = res
+    print(
+        f"uniform n={n}: unit box {tb:.3f} s wall, {cb:.3f} s CPU ({1e6 * cb / n:.1f} us/cell); "
+        f"default container (padded 10%) {tp:.3f} s wall, {cp:.3f} s CPU "
+        f"({1e6 * cp / n:.1f} us/cell, {cp / cb:.2f}x the box); threads {numba.get_num_threads()}; "
+        f"load average {os.getloadavg()}",
+        flush=True,
+    )
 
 
 def clustered_points(kind, n, seed=5):

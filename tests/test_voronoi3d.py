@@ -293,6 +293,27 @@ def test_power_cells_against_brute_force():
     np.testing.assert_array_equal(e.vertices, f.vertices)
 
 
+@pytest.mark.parametrize("kind", ["cloud", "weighted", "plane"])
+def test_long_cells_in_a_wide_container(kind):
+    # the outer cells reach far past the sites (as in the default padded box, more so):
+    # their search goes shell by shell, where only buckets that the cell's bounding box can
+    # reach are gathered (cellcut3d._reach_box); a thin layer of sites above the rest, or
+    # sites in a plane (a grid one bucket high: every cell spans the padded box in z; on
+    # this one a bucket test that summed the axes' bounds in part wrongly lost a cut)
+    rng = np.random.default_rng(41)
+    pts = np.vstack([rng.random((260, 3)), rng.random((60, 3)) * [1, 1, 0.02] + [0, 0, 1.1]])
+    box = (-0.6, -0.6, -0.6, 1.7, 1.6, 2.0)
+    if kind == "plane":
+        pts = np.column_stack([np.random.default_rng(1).random((40, 2)), np.zeros(40)])
+        box = None
+    w = 2e-3 * rng.random(len(pts)) if kind == "weighted" else None
+    d = vf.voronoi3d(pts, box, weights=w)
+    check3d(d, samples=200)
+    cells = np.argsort(d.volumes)[-24:]  # the longest cells, walls far away
+    ref = brute_volumes(pts, np.asarray(d.walls), w, cells=cells)
+    np.testing.assert_allclose(d.volumes[cells], ref, rtol=1e-9, atol=0)
+
+
 def _clustered(kind):
     """~300 sites the grid crowds (k-d buckets): three tight clusters and uniform ones in the
     unit box with power weights, or a few sites far away (unweighted, default container)."""

@@ -342,6 +342,8 @@ def build_cells(
             caps[3], caps[4], caps[5], max(1024, min(ns, 1 << 16)), nbuck
         )
         hkey = np.empty(nbuck if kd else 0)  # noqa: TID251 (the k-d heap's keys: written first)
+        ib = np.zeros(6, np.int64)  # the shells' reach (cellcut3d._reach_box)
+        tb = np.zeros((3, max(nx, ny, nz)))
         vnames = np.zeros((caps[3], 5), np.int64)
         vabs = np.zeros((caps[3], 3))
         vrel = np.zeros((caps[3], 3))
@@ -410,6 +412,8 @@ def build_cells(
                     cand,
                     cd2,
                     buck,
+                    ib,
+                    tb,
                 )
             Gu = G
             if st == BROKEN and G[0].shape[0] > 0:  # the graph could not: face rings
@@ -461,6 +465,8 @@ def build_cells(
                         cand,
                         cd2,
                         buck,
+                        ib,
+                        tb,
                     )
             counts[c, 0] = 0
             counts[c, 1] = 0

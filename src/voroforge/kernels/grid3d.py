@@ -69,6 +69,51 @@ def shell_buckets(ci, cj, ck, r, g, out):
     return m
 
 
+@njit(**NJIT)
+def shell_buckets_in(ci, cj, ck, r, ib, tb, bound, nx, ny, out):
+    """:func:`shell_buckets` within an index box, only buckets whose lower bound passes.
+
+    The box is ``ib = (ix0, iy0, iz0, ix1, iy1, iz1)`` (inclusive, inside the grid); bucket
+    ``(ix, iy, iz)`` is kept when its separable lower bound ``tb[0, ix] + tb[1, iy] +
+    tb[2, iz]`` is at most ``bound``.
+
+    Returns the count, or -1 when shell ``r`` misses the box (so does every later one: the
+    box holds ``(ci, cj, ck)``).
+    """
+    if (
+        ci - r < ib[0]
+        and ci + r > ib[3]
+        and cj - r < ib[1]
+        and cj + r > ib[4]
+        and ck - r < ib[2]
+        and ck + r > ib[5]
+    ):
+        return -1
+    m = 0
+    for kz in range(max(ck - r, ib[2]), min(ck + r, ib[5]) + 1):
+        tz = tb[2, kz]
+        if tz > bound:
+            continue
+        for ky in range(max(cj - r, ib[1]), min(cj + r, ib[4]) + 1):
+            tyz = tz + tb[1, ky]
+            if tyz > bound:
+                continue
+            row = (kz * ny + ky) * nx
+            if abs(kz - ck) == r or abs(ky - cj) == r:
+                for kx in range(max(ci - r, ib[0]), min(ci + r, ib[3]) + 1):
+                    if tyz + tb[0, kx] <= bound:
+                        out[m] = row + kx
+                        m += 1
+            else:
+                if ci - r >= ib[0] and tyz + tb[0, ci - r] <= bound:
+                    out[m] = row + ci - r
+                    m += 1
+                if r > 0 and ci + r <= ib[3] and tyz + tb[0, ci + r] <= bound:
+                    out[m] = row + ci + r
+                    m += 1
+    return m
+
+
 # -- k-d buckets: the grid's adaptive form for clustered sites (kernels.grid's, in 3D) ------
 #
 # Twenty tight clusters in a unit box put thousands of sites in one bucket of the uniform
