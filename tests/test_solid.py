@@ -393,6 +393,12 @@ def test_fields():
     both = solid.fields.combine([c, p], mode="min")
     assert np.allclose(both(xyz), [1, 0.5, 0.0])
     assert np.allclose(p.remap(2, 4)(xyz), [4, 4, 3])
+    # a tilted plane: the distance along its unit normal (by columns, not BLAS: the same to
+    # rounding)
+    q = np.random.default_rng(1).normal(0, 30, (500, 3))
+    tilt = solid.fields.plane((1, -2, 3), (1, 2, -2), radius=50, falloff="linear")
+    want = 1 - np.minimum(np.abs((q - [1, -2, 3]) @ (np.array([1, 2, -2]) / 3)) / 50, 1)
+    assert np.allclose(tilt(q), want, rtol=0, atol=1e-14)
 
 
 def test_bad_input():

@@ -140,7 +140,10 @@ class _Plane(_Distance):
         super().__init__(**kw)
 
     def distance(self, xyz):
-        return np.abs((_xyz(xyz) - self.origin) @ self.normal)
+        # by columns, not ``@ self.normal``: a multithreaded BLAS call (dgemv on a shell's
+        # 0.45M samples) is 5x slower here and leaves its threads spinning ~0.05 s of CPU
+        x, o, n = _xyz(xyz), self.origin, self.normal
+        return np.abs((x[:, 0] - o[0]) * n[0] + (x[:, 1] - o[1]) * n[1] + (x[:, 2] - o[2]) * n[2])
 
 
 class _Mesh(_Distance):
