@@ -27,7 +27,6 @@ from .cellcut3d import (
     OVERFLOW,
     UNNAMED,
     _graph_scratch,
-    _kd_cell,
     _key,
     _one_cell,
     _radius2,
@@ -365,31 +364,36 @@ def build_cells(
         for c in range(lo, hi):
             i = cells[c]
             X[2][0] = False
-            if kd:
-                st, nv, nf, nt, r2 = _kd_cell(
-                    i,
-                    P,
-                    W,
-                    WP,
-                    X,
-                    wmax,
-                    start,
-                    SP,
-                    SW,
-                    sidx,
-                    tree,
-                    TV,
-                    TF,
-                    TR,
-                    TG,
-                    C,
-                    G,
-                    cand,
-                    cd2,
-                    buck,
-                    hkey,
-                )
-            else:
+            st, nv, nf, nt, r2 = _one_cell(
+                i,
+                P,
+                W,
+                WP,
+                X,
+                wmax,
+                start,
+                SP,
+                SW,
+                sidx,
+                g,
+                order,
+                tree,
+                TV,
+                TF,
+                TR,
+                TG,
+                C,
+                G,
+                cand,
+                cd2,
+                buck,
+                hkey,
+                ib,
+                tb,
+            )
+            Gu = G
+            if st == BROKEN and G[0].shape[0] > 0:  # the graph could not: face rings
+                Gu = G0
                 st, nv, nf, nt, r2 = _one_cell(
                     i,
                     P,
@@ -403,71 +407,20 @@ def build_cells(
                     sidx,
                     g,
                     order,
+                    tree,
                     TV,
                     TF,
                     TR,
                     TG,
                     C,
-                    G,
+                    G0,
                     cand,
                     cd2,
                     buck,
+                    hkey,
                     ib,
                     tb,
                 )
-            Gu = G
-            if st == BROKEN and G[0].shape[0] > 0:  # the graph could not: face rings
-                Gu = G0
-                if kd:
-                    st, nv, nf, nt, r2 = _kd_cell(
-                        i,
-                        P,
-                        W,
-                        WP,
-                        X,
-                        wmax,
-                        start,
-                        SP,
-                        SW,
-                        sidx,
-                        tree,
-                        TV,
-                        TF,
-                        TR,
-                        TG,
-                        C,
-                        G0,
-                        cand,
-                        cd2,
-                        buck,
-                        hkey,
-                    )
-                else:
-                    st, nv, nf, nt, r2 = _one_cell(
-                        i,
-                        P,
-                        W,
-                        WP,
-                        X,
-                        wmax,
-                        start,
-                        SP,
-                        SW,
-                        sidx,
-                        g,
-                        order,
-                        TV,
-                        TF,
-                        TR,
-                        TG,
-                        C,
-                        G0,
-                        cand,
-                        cd2,
-                        buck,
-                        ib,
-                        tb,
-                    )
             counts[c, 0] = 0
             counts[c, 1] = 0
             counts[c, 2] = 0
