@@ -264,6 +264,12 @@ def test_revolve_and_even_samples_are_trimesh_s():
     dome = revolve(dome_prof := [[0, 10], [6, 8], [9, 0]], 24)
     assert len(dome.faces) == len(trimesh.creation.revolve(dome_prof, sections=24).faces)
     assert len(boundary_edges(dome.faces)) == 24
+    # a closed profile: a closed surface (trimesh merges its seam too), the same samples
+    ring = [[10, 0], [12, 2], [14, 0], [12, -2], [10, 0]]
+    torus, want = revolve(ring, 24), trimesh.creation.revolve(ring, sections=24)
+    assert len(boundary_edges(torus.faces)) == 0 and len(torus.faces) == len(want.faces)
+    wanted = trimesh.sample.sample_surface_even(want, 30, seed=1)[0]
+    assert np.array_equal(sample_even(torus, 30, seed=1), wanted)
 
 
 def test_near_classes_are_scipys_components():

@@ -31,8 +31,9 @@ def revolve(profile, sections: int) -> Bare:
 
     Vertex ``s * len(profile) + p`` is profile point ``p`` at angle ``2 pi s / sections``;
     each section's quads are split into two triangles facing as trimesh's revolve faces
-    them. Points on the axis (``r == 0``) are one vertex and their zero-area triangles
-    are dropped, so a profile that ends on the axis closes there.
+    them. Coincident vertices are one (as trimesh merges them): a profile that ends on the
+    axis closes there (its zero-area triangles dropped), a closed profile is a closed
+    surface.
     """
     prof = np.asarray(profile, dtype=np.float64)
     if prof.ndim != 2 or prof.shape[1] != 2 or len(prof) < 2:
@@ -49,13 +50,15 @@ def revolve(profile, sections: int) -> Bare:
     p = np.arange(per - 1)[None, :]
     a, b, c, d = s + p, nxt + p, s + p + 1, nxt + p + 1  # (n, per - 1) quad corners
     f = np.stack([np.stack([a, b, c], -1), np.stack([c, b, d], -1)], axis=2).reshape(-1, 3)
-    axis = prof[:, 0] == 0
-    if axis.any():  # one vertex per axis point (section 0's), no zero-area triangles
-        same = np.arange(n * per)
-        same[(s + np.flatnonzero(axis)[None, :]).ravel()] = np.tile(np.flatnonzero(axis), n)
+    v = v.reshape(-1, 3)
+    # coincident vertices as one (the first), as trimesh merges them: points on the axis, a
+    # closed profile's ends; their zero-area triangles dropped
+    _, first, inverse = np.unique(v + 0.0, axis=0, return_index=True, return_inverse=True)
+    same = first[inverse.ravel()]
+    if (same != np.arange(len(v))).any():
         f = same[f]
         f = f[(f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 0] != f[:, 2])]
-    return Bare(v.reshape(-1, 3), f)
+    return Bare(v, f)
 
 
 def face_areas(vertices, faces) -> np.ndarray:
