@@ -253,7 +253,7 @@ def test_revolve_and_even_samples_are_trimesh_s():
     from voroforge.solid.surfaces import boundary_edges, revolve, sample_even
 
     prof = np.array([[38, 0], [46, 15], [52, 35], [54, 55], [44, 95], [34, 110]], float)
-    for sections, count, seed in ((96, 90, 2), (13, 40, 0)):
+    for sections, count, seed in ((96, 90, 2), (13, 40, 0), (96, 600, 1)):  # 600: KD pairs
         m, b = trimesh.creation.revolve(prof, sections=sections), revolve(prof, sections)
         assert np.array_equal(b.vertices, m.vertices) and np.array_equal(b.faces, m.faces)
         e, n = np.unique(np.sort(m.edges, axis=1), axis=0, return_counts=True)

@@ -25,6 +25,8 @@ from .implicit import Bare
 
 __all__ = ["boundary_edges", "face_areas", "revolve", "sample_even"]
 
+_ALL_PAIRS = 1536  # up to this many candidate points, sample_even compares every pair
+
 
 def revolve(profile, sections: int) -> Bare:
     """The surface swept by a profile ``[[r, z], ...]`` turned once about the z axis.
@@ -97,11 +99,15 @@ def sample_even(mesh, count: int, *, seed: int = 0) -> np.ndarray:
     flip = uv.sum(axis=1).reshape(-1) > 1.0  # outside the triangle: mirrored into it
     uv[flip] -= 1.0
     pts = (e * np.abs(uv)).sum(axis=1) + o
-    # pairs within the radius: at most a few hundred points, so all pairs at once
-    i, j = np.triu_indices(len(pts), k=1)
-    d = pts[i] - pts[j]
-    close = np.sqrt((d * d).sum(axis=1)) <= radius
-    i, j = i[close], j[close]
+    if len(pts) <= _ALL_PAIRS:  # a few hundred points: every pair at once, no scipy.spatial
+        i, j = np.triu_indices(len(pts), k=1)
+        d = pts[i] - pts[j]
+        close = np.sqrt((d * d).sum(axis=1)) <= radius
+        i, j = i[close], j[close]
+    else:  # the pairs within the radius from a KD-tree (bounded memory)
+        from scipy.spatial import cKDTree
+
+        i, j = cKDTree(pts).query_pairs(radius, output_type="ndarray").T
     times = np.bincount(np.concatenate([i, j]), minlength=len(pts))
     keep = np.ones(len(pts), dtype=bool)
     keep[np.where(times[j] > times[i], j, i)] = False
