@@ -69,12 +69,15 @@ export default {
 """
 
 
+#: The page's scripts, in the order index.html loads them.
+_SCRIPTS = ("raster.js", "geom.js", "studio.js")
+
+
 class StudioWidget(anywidget.AnyWidget):
     """A live design editor in a notebook (see the module docstring)."""
 
     _esm = traitlets.Unicode(
-        "".join(_STATIC.joinpath(f).read_text(encoding="utf-8") for f in ("raster.js", "studio.js"))
-        + _GLUE
+        "".join(_STATIC.joinpath(f).read_text(encoding="utf-8") for f in _SCRIPTS) + _GLUE
     ).tag(sync=True)
     _css = traitlets.Unicode(
         _STATIC.joinpath("studio.css").read_text(encoding="utf-8")
