@@ -364,36 +364,8 @@ def build_cells(
         for c in range(lo, hi):
             i = cells[c]
             X[2][0] = False
-            st, nv, nf, nt, r2 = _one_cell(
-                i,
-                P,
-                W,
-                WP,
-                X,
-                wmax,
-                start,
-                SP,
-                SW,
-                sidx,
-                g,
-                order,
-                tree,
-                TV,
-                TF,
-                TR,
-                TG,
-                C,
-                G,
-                cand,
-                cd2,
-                buck,
-                hkey,
-                ib,
-                tb,
-            )
             Gu = G
-            if st == BROKEN and G[0].shape[0] > 0:  # the graph could not: face rings
-                Gu = G0
+            while True:
                 st, nv, nf, nt, r2 = _one_cell(
                     i,
                     P,
@@ -413,7 +385,7 @@ def build_cells(
                     TR,
                     TG,
                     C,
-                    G0,
+                    Gu,
                     cand,
                     cd2,
                     buck,
@@ -421,6 +393,9 @@ def build_cells(
                     ib,
                     tb,
                 )
+                if st != BROKEN or Gu[0].shape[0] == 0:
+                    break
+                Gu = G0  # the graph could not: face rings
             counts[c, 0] = 0
             counts[c, 1] = 0
             counts[c, 2] = 0
