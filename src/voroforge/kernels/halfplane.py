@@ -175,17 +175,20 @@ def _insert(cand, cd, base, nc, t, q2):
 
 
 @njit(inline="always", **NJIT)
-def _cut_batch(base, nc, cand, cd, sx, sy, sidx, cx, cy, poly, a, b, m, r2, watch, nw, cap):
+def _cut_batch(
+    base, nc, cand, cd, sx, sy, sidx, cx, cy, px, py, po, ss, a, b, m, r2, watch, nw, cap
+):
     """Cut the cell by the candidates ``cand[base:nc]`` (nearest first).
 
-    ``poly = (px, py, po, ss)``: the cell is polygon ``a`` (``m`` vertices, squared radius
-    ``r2``); each cut writes polygon ``b`` and the two swap. Sites that cut, or pass within
+    ``px, py, po`` hold two polygons and ``ss`` their plane values (separate arrays, not a
+    tuple: a tuple built and unpacked per cell costs an atomic reference-count update per
+    array); the cell is polygon ``a`` (``m`` vertices, squared radius ``r2``); each cut
+    writes polygon ``b`` and the two swap. Sites that cut, or pass within
     the verification band of a vertex's circle, join the watch list (the only sites the
     exact finishing must look at: the others stay clear of every later vertex, which lies
     inside today's cell). Returns ``(a, b, m, r2, nw, grow, work)``; ``grow`` when a list
     or the polygon ran out of room, ``work`` the vertices visited.
     """
-    px, py, po, ss = poly
     grow = False
     work = 0
     for c in range(base, nc):
@@ -259,7 +262,6 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
         nw = np.int64(0)
         work = 0
         grow = False
-        poly = (px, py, po, ss)
         if use_tree:
             root = np.int64(0)
             hs = heap_push(hk, hv, root, box_dist2(cx, cy, tboxes, root), root)
@@ -293,7 +295,26 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
                 if grow:
                     break
                 a, b, m, r2, nw, grow, w = _cut_batch(
-                    base, nc, cand, cd, sx, sy, sidx, cx, cy, poly, a, b, m, r2, watch, nw, cap
+                    base,
+                    nc,
+                    cand,
+                    cd,
+                    sx,
+                    sy,
+                    sidx,
+                    cx,
+                    cy,
+                    px,
+                    py,
+                    po,
+                    ss,
+                    a,
+                    b,
+                    m,
+                    r2,
+                    watch,
+                    nw,
+                    cap,
                 )
                 work += w
         else:
@@ -357,7 +378,26 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
                     jy = rownext[jy + 1]
                 if not grow:
                     a, b, m, r2, nw, grow, w = _cut_batch(
-                        base, nc, cand, cd, sx, sy, sidx, cx, cy, poly, a, b, m, r2, watch, nw, cap
+                        base,
+                        nc,
+                        cand,
+                        cd,
+                        sx,
+                        sy,
+                        sidx,
+                        cx,
+                        cy,
+                        px,
+                        py,
+                        po,
+                        ss,
+                        a,
+                        b,
+                        m,
+                        r2,
+                        watch,
+                        nw,
+                        cap,
                     )
                     work += w
                 ring += 1
@@ -370,7 +410,31 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
         if m >= 3 and not grow and work <= budget:
             left = budget - work
             c = _finish(
-                k, sx, sy, sidx, xs, ys, box, px, py, po, a, m, r2, scratch, nw, left, budget
+                k,
+                sx,
+                sy,
+                sidx,
+                xs,
+                ys,
+                box,
+                px,
+                py,
+                po,
+                ss,
+                ox,
+                oy,
+                oo,
+                lab,
+                vx,
+                vy,
+                cand,
+                watch,
+                a,
+                m,
+                r2,
+                nw,
+                left,
+                budget,
             )
         # a site in the box always has a cell: one cut away to nothing lost it to the float
         # cut's rounding (a 1e-12 cluster beside a 1e6 one: the crossings far out round by
@@ -397,14 +461,39 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
 
 
 @njit(inline="always", **NJIT)
-def _finish(k, sx, sy, sidx, xs, ys, box, px, py, po, a, m, r2, scratch, nw, left, budget):
+def _finish(
+    k,
+    sx,
+    sy,
+    sidx,
+    xs,
+    ys,
+    box,
+    px,
+    py,
+    po,
+    ss,
+    ox,
+    oy,
+    oo,
+    lab,
+    vx,
+    vy,
+    cand,
+    watch,
+    a,
+    m,
+    r2,
+    nw,
+    left,
+    budget,
+):
     """Settle the float cell (polygon ``a``) exactly and emit it to the scratch output.
 
     Returns the emitted length, or -2 when settling would visit more than ``left`` (what
     the search left of the budget) vertex-site pairs, or cost more than ``budget`` work
     units (:func:`.halfplane_settle.settle_ring`): the cell is then hard, see :func:`_cells`.
     """
-    _, _, _, ss, ox, oy, oo, lab, vx, vy, cand, _, watch, _, _ = scratch
     cx = sx[k]
     cy = sy[k]
     for u in range(m):
