@@ -44,6 +44,45 @@ def test_build_foam_design(tmp_path):
     assert im.size[0] > 100 and len(np.unique(gray)) > 20  # shaded, not blank
 
 
+def test_a_bare_solid_writes_its_meshes_beside_the_preview(tmp_path, monkeypatch):
+    import threading
+
+    from voroforge.solid import build as solid_build
+
+    src = tmp_path / "shell.toml"
+    src.write_text(SHELL + 'formats = ["3mf", "png", "ply"]\npng_size = 64\n')
+    write, threads = solid_build._write_mesh, {}
+
+    def watched(m, path, fmt, units):
+        threads[fmt] = threading.current_thread().name
+        return write(m, path, fmt, units)
+
+    monkeypatch.setattr(solid_build, "_write_mesh", watched)
+    paths = build(src, tmp_path / "out")
+    assert [p.suffix for p in paths] == [".3mf", ".png", ".ply"]  # formats' order
+    assert threads == {"3mf": "voroforge-solid-files", "ply": "voroforge-solid-files"}
+    assert read(paths[0]).is_volume and read(paths[2]).is_volume
+
+    def broken(m, path, fmt, units):
+        raise OSError(f"no room for {path.name}")
+
+    # the writer's error is raised after the preview is written
+    monkeypatch.setattr(solid_build, "_write_mesh", broken)
+    with pytest.raises(OSError, match="no room for tiny-shell.3mf"):
+        build(src, tmp_path / "broken")
+    assert (tmp_path / "broken" / "tiny-shell.png").is_file()
+
+    # a preview's error comes first, once the mesh files are complete
+    def failing(*a, **k):
+        raise ValueError("preview failed")
+
+    monkeypatch.setattr(solid_build, "_write_mesh", write)
+    monkeypatch.setattr(solid_build, "preview", failing)
+    with pytest.raises(ValueError, match="preview failed"):
+        build(src, tmp_path / "nopng")
+    assert read(tmp_path / "nopng" / "tiny-shell.3mf").is_volume
+
+
 def test_check_design_reports_pores_and_voids(tmp_path):
     src = tmp_path / "foam.toml"
     src.write_text(FOAM)

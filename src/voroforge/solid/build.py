@@ -74,6 +74,11 @@ def _cells(s, base, stage, bare=False):
         implicit = s.kind == "lattice" and (s.skin > 0 or s.nodes == "smooth")
         if bare and implicit and path.suffix.lower() == ".stl" and path.is_file():
             mesh = _stl_bare(path)
+            if mesh is not None and s.voxel and s.skin > 0:
+                from .implicit import prefetch_container
+
+                # the skin's grid is the container's box: its field while the cells relax
+                prefetch_container(mesh, s.skin, s.voxel)
         if mesh is None:
             mesh = read(path)
         box = tuple(np.concatenate(mesh.bounds))
@@ -153,28 +158,74 @@ def make_solid(design, base=None, stage=None, *, bare: bool = False):
     return foam(cells, s.wall, field=f)
 
 
-def build_solid(design, base, out: Path, stage, *, preview_only: bool = False) -> list[Path]:
-    """Build the solid and write ``[solid] formats`` (meshes and a PNG preview) to ``out``."""
+def _write_mesh(m, path: Path, fmt: str, units: str) -> Path:
     from ..io.mesh import Arrays, write
     from .threemf import write_3mf
 
+    if fmt == "3mf":
+        # the implicit route's vertices lie on a decimal grid: their text by a kernel
+        return write_3mf(m, path, units=units)
+    # a Bare mesh as io.mesh's Arrays (the same file as from a Trimesh)
+    mesh = m if hasattr(m, "is_volume") else Arrays(m.vertices, m.faces)
+    return write(mesh, path, units=units)
+
+
+def _on_thread(run):
+    """Start ``run()`` on a second thread; ``join()`` waits and gives its error or None."""
+    import threading
+
+    error = []
+
+    def target():
+        try:
+            run()
+        except Exception as exc:  # handed to the calling thread by join()
+            error.append(exc)
+
+    thread = threading.Thread(target=target, name="voroforge-solid-files", daemon=True)
+    thread.start()
+
+    def join():
+        thread.join()
+        return error[0] if error else None
+
+    return join
+
+
+def build_solid(design, base, out: Path, stage, *, preview_only: bool = False) -> list[Path]:
+    """Build the solid and write ``[solid] formats`` (meshes and a PNG preview) to ``out``.
+
+    A bare mesh (the implicit route's lattices, shells) has its mesh files written on a
+    second thread while the preview renders: the 3MF's text kernel, deflate and the
+    preview's z-buffer release the GIL, and both only read the mesh's arrays. The files
+    are those written one after the other; the list follows ``formats`` either way.
+    """
     s = design.solid
     stem = design.output.stem or design.design.name
+    units = design.design.units
     m = make_solid(design, base, stage, bare=True)
-    written = []
-    formats = ["png"] if preview_only else s.formats
-    for fmt in formats:
-        path = out / f"{stem}.{fmt}"
-        stage(f"writing {path.name}")
-        if fmt == "png":
-            written.append(preview(m, path, size=s.png_size, view=s.view))
-        elif fmt == "3mf":
-            # the implicit route's vertices lie on a decimal grid: their text by a kernel
-            written.append(write_3mf(m, path, units=design.design.units))
-        else:  # a Bare mesh as io.mesh's Arrays (the same file as from a Trimesh)
-            mesh = m if hasattr(m, "is_volume") else Arrays(m.vertices, m.faces)
-            written.append(write(mesh, path, units=design.design.units))
-    return written
+    formats = ["png"] if preview_only else list(s.formats)
+    paths = {fmt: out / f"{stem}.{fmt}" for fmt in formats}
+    meshes = [fmt for fmt in formats if fmt != "png"]
+    join = None
+    if "png" in paths and meshes and not hasattr(m, "is_volume"):
+        stage("writing " + ", ".join(paths[fmt].name for fmt in meshes))
+        join = _on_thread(lambda: [_write_mesh(m, paths[fmt], fmt, units) for fmt in meshes])
+    else:
+        for fmt in meshes:
+            stage(f"writing {paths[fmt].name}")
+            _write_mesh(m, paths[fmt], fmt, units)
+    try:
+        if "png" in paths:
+            stage(f"writing {paths['png'].name}")
+            preview(m, paths["png"], size=s.png_size, view=s.view)
+    finally:
+        # the mesh files are complete before anything returns or propagates; a preview's
+        # error goes first, the writer's is raised after a successful preview
+        error = join() if join is not None else None
+    if error is not None:
+        raise error
+    return [paths[fmt] for fmt in formats]
 
 
 def check_solid(design, base=None, stage=None):

@@ -15,7 +15,7 @@ from .kernels import taubin
 from .sdf import capsules_block, mesh_sdf_block
 from .threemf import on_grid
 
-__all__ = ["Bare", "capsules_mesh", "march", "signed_volume"]
+__all__ = ["Bare", "capsules_mesh", "march", "prefetch_container", "signed_volume"]
 
 _SLAB = 96  # z planes per slab
 _JITTER = np.sqrt([2.0, 3.0, 5.0]) * 1e-3
@@ -50,6 +50,9 @@ class Bare:
         Every vertex used.
     metadata : dict
     """
+
+    #: A container field started ahead of its lattice (:func:`prefetch_container`).
+    _ahead = None
 
     def __init__(self, vertices, faces, metadata=None):
         self.vertices = np.asarray(vertices, dtype=np.float64)
@@ -96,21 +99,12 @@ def march(evaluate, lo, hi, h, *, smoothing: int = 0, progress=None, bare: bool 
     """
     from skimage.measure import marching_cubes
 
-    # a small irrational offset keeps samples off the axis-aligned planes of CAD meshes (a ray
-    # along a mesh face would make the inside parity ambiguous)
-    lo = np.asarray(lo, np.float64) - 2 * h - h * _JITTER
-    hi = np.asarray(hi, np.float64) + 2 * h
-    n = np.ceil((hi - lo) / h).astype(np.int64) + 1
-    if n.prod() > 2e9:
-        raise ValueError(f"the voxel grid would have {n.prod():.3g} samples; use a larger voxel")
+    lo, n = _grid(lo, hi, h)
     verts, faces, nv = [], [], 0
     prev = None
-    k0 = 0
     bounds: list[int] = []
-    while k0 < n[2] - 1:
-        k1 = min(k0 + _SLAB, n[2] - 1)
-        origin = lo + np.array([0.0, 0.0, k0 * h])
-        g = evaluate((int(n[0]), int(n[1]), int(k1 - k0 + 1)), origin, (k0, k1))
+    for shape, origin, (k0, k1) in _slabs(lo, n, h):
+        g = evaluate(shape, origin, (k0, k1))
         g = np.asarray(g, dtype=np.float32)
         if prev is not None:
             g[:, :, 0] = prev  # the shared plane, bit for bit
@@ -124,7 +118,6 @@ def march(evaluate, lo, hi, h, *, smoothing: int = 0, progress=None, bare: bool 
             faces.append(f.astype(np.int64) + nv)
             nv += len(v)
         bounds.extend((k0, k1))
-        k0 = k1
         if progress is not None:
             progress(k1 / (n[2] - 1))
     if not verts:
@@ -162,22 +155,115 @@ def march(evaluate, lo, hi, h, *, smoothing: int = 0, progress=None, bare: bool 
     return m if bare else m.trimesh()
 
 
+def _grid(lo, hi, h):
+    """:func:`march`'s grid over ``lo..hi``: its first sample and its (3,) sample counts."""
+    # a small irrational offset keeps samples off the axis-aligned planes of CAD meshes (a ray
+    # along a mesh face would make the inside parity ambiguous)
+    lo = np.asarray(lo, np.float64) - 2 * h - h * _JITTER
+    hi = np.asarray(hi, np.float64) + 2 * h
+    n = np.ceil((hi - lo) / h).astype(np.int64) + 1
+    if n.prod() > 2e9:
+        raise ValueError(f"the voxel grid would have {n.prod():.3g} samples; use a larger voxel")
+    return lo, n
+
+
+def _slabs(lo, n, h):
+    """The grid's slabs along z: ``(shape, origin, (k0, k1))``, sharing their end planes."""
+    out = []
+    k0 = 0
+    while k0 < n[2] - 1:
+        k1 = min(k0 + _SLAB, n[2] - 1)
+        origin = lo + np.array([0.0, 0.0, k0 * h])
+        out.append(((int(n[0]), int(n[1]), int(k1 - k0 + 1)), origin, (k0, k1)))
+        k0 = k1
+    return out
+
+
 def grid_decimals(h: float) -> int:
     """Decimal places of the implicit route's vertices at voxel ``h`` (a grid <= 1e-5 h)."""
     return int(np.ceil(5.0 - np.log10(h)))
 
 
+class _ContainerField:
+    """``(shape, origin, z_top) -> sdf`` of a container (and its skin), blocks computed ahead.
+
+    :meth:`start` computes the blocks of a grid's slabs on a second thread (the distance and
+    parity kernels release the GIL); a call for one of them waits for it and takes it, any
+    other block is computed on the spot. The same values either way.
+    """
+
+    def __init__(self, container, skin, h):
+        self.tris = np.ascontiguousarray(container.vertices[container.faces], dtype=np.float64)
+        self.zmin = self.tris[:, :, 2].min(axis=1)
+        self.band = max(3.0 * h, 1.5 * skin + 2 * h)
+        self.container, self.skin, self.h = container, float(skin), float(h)
+        self.ahead: dict = {}
+
+    def block(self, shape, origin, z_top):
+        sel = self.zmin <= z_top + self.band  # parity needs everything below the slab too
+        tris = self.tris[sel]
+        return mesh_sdf_block(self.container, shape, origin, self.h, band=self.band, tris=tris)
+
+    def start(self, lo, hi):
+        """Compute the blocks of :func:`march`'s slabs over ``lo..hi`` on a second thread."""
+        import threading
+
+        jobs = []
+        for shape, origin, _ in _slabs(*_grid(lo, hi, self.h), self.h):
+            z_top = origin[2] + self.h * (shape[2] - 1)
+            key = (shape, origin.tobytes(), z_top)
+            self.ahead[key] = [threading.Event(), None]
+            jobs.append((key, shape, origin, z_top))
+
+        def run():
+            for key, shape, origin, z_top in jobs:
+                slot = self.ahead[key]
+                try:
+                    slot[1] = self.block(shape, origin, z_top)
+                except Exception:  # the caller computes this block again, and raises
+                    pass
+                finally:
+                    slot[0].set()
+
+        threading.Thread(target=run, name="voroforge-container", daemon=True).start()
+        return self
+
+    def __call__(self, shape, origin, z_top):
+        slot = self.ahead.pop((tuple(shape), np.asarray(origin).tobytes(), z_top), None)
+        if slot is not None:
+            slot[0].wait()
+            if slot[1] is not None:
+                return slot[1]
+        return self.block(shape, origin, z_top)
+
+
+def prefetch_container(container, skin: float, voxel: float) -> None:
+    """Start a trimmed lattice's container field on a second thread, for what comes later.
+
+    For :func:`capsules_mesh` with this ``container`` (a :class:`Bare` mesh, the same
+    object), ``skin > 0`` and ``voxel``: with a skin the grid is the container's box, so
+    its blocks are known before the struts are; a design build computes them while its
+    cells relax. The first such call takes them (the same values as computed in place);
+    the blocks are held by the container until then.
+    """
+    if not (isinstance(container, Bare) and skin > 0 and voxel and np.isfinite(voxel)):
+        return
+    h = float(voxel)
+    if h <= 0:
+        return
+    field = _ContainerField(container, skin, h)
+    lo, hi = container.bounds[0] - 2 * h, container.bounds[1] + 2 * h  # as capsules_mesh
+    container._ahead = field.start(lo, hi)
+
+
 def _container_field(container, skin, h):
     """A function ``(shape, origin, z_top) -> sdf`` of the container (and its skin)."""
-    tris = np.ascontiguousarray(container.vertices[container.faces], dtype=np.float64)
-    zmin = tris[:, :, 2].min(axis=1)
-    band = max(3.0 * h, 1.5 * skin + 2 * h)
-
-    def sdf(shape, origin, z_top):
-        sel = zmin <= z_top + band  # parity needs everything below the slab too
-        return mesh_sdf_block(container, shape, origin, h, band=band, tris=tris[sel])
-
-    return sdf
+    field = getattr(container, "_ahead", None)
+    if field is not None:
+        container._ahead = None  # one use
+        if field.skin == float(skin) and field.h == float(h):
+            return field
+    return _ContainerField(container, skin, h)
 
 
 def _reaching(c, below, origin, h, a, b, reach) -> np.ndarray:
