@@ -96,11 +96,13 @@ class Triangulation:
         """
         work, k = working_frame(self.points)
         work = np.array(work, dtype=np.float64, order="C")  # writable, as in the build
-        # the kernels see the array types the Voronoi build passes them (strided views of
-        # the sites, writable triangles), so they are not compiled a second time
+        # the kernels see the array types the Voronoi build passes them (contiguous
+        # coordinates, writable triangles), so they are not compiled a second time
         tri = np.array(self.triangles.ravel(), dtype=np.int32)
         he = np.array(self.halfedges, dtype=np.int32)
-        cx, cy = triangle_centers(work[:, 0], work[:, 1], tri, he)
+        xs = np.ascontiguousarray(work[:, 0])
+        ys = np.ascontiguousarray(work[:, 1])
+        cx, cy = triangle_centers(xs, ys, tri, he)
         return from_working(np.stack((cx, cy), axis=1), k)
 
     @cached_property

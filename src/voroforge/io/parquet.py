@@ -85,7 +85,7 @@ def _wkb_pass(
                 if multi:
                     if fill:
                         out[pos] = 1
-                        _put_u32(out, pos + 1, 3)
+                        _put_u32(out, pos + 1, np.int64(3))  # typed: a literal compiles twice
                         _put_u32(out, pos + 5, poly[p + 1] - poly[p])
                     pos += 9
                 for r in _ring_order(xy, ring, poly, p):

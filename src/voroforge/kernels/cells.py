@@ -132,8 +132,10 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, q
     triangulation. A vertex on a box side is the canonical crossing of the bisector with that
     side; two box sides meet at an exact corner. Owners of box sides (-1..-4) become -1.
     """
-    out = 0
-    hint = 0
+    # counters start as np.int64: a literal 0 would make numba compile each callee they
+    # reach once more, for the literal
+    out = np.int64(0)
+    hint = np.int64(0)
     for v in range(m):
         a = pw[v - 1] if v > 0 else pw[m - 1]
         b = pw[v]
@@ -209,7 +211,7 @@ def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw):
     nearest neighbour; when the ends disagree, the Delaunay chain of circumcentres between
     the two neighbours is inserted, so the edge is split where the true vertices are.
     """
-    out = 0
+    out = np.int64(0)
     for v in range(m):
         b = pw[v]
         qx[out] = px[v]
@@ -224,7 +226,7 @@ def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw):
         if lp == lq:
             qw[out - 1] = lp
             continue
-        kp, steps = _chain(nbrs, tris, nn, lp, lq, 0)
+        kp, steps = _chain(nbrs, tris, nn, lp, lq, np.int64(0))
         if not (steps >= 1 and out + steps + (m - v) <= qx.shape[0]):
             qw[out - 1] = _nearest_label(
                 xs, ys, 0.5 * (px[v] + px[w]), 0.5 * (py[v] + py[w]), b, nbrs, nn
@@ -289,19 +291,19 @@ def _splice(px, py, pw, m, nbrs, tris, nn, cx, cy, err, box, qx, qy, qw):
     v0 = -1
     for v in range(m):
         if pw[v] >= 0:
-            k = _index_of(nbrs, nn, pw[v], 0)
+            k = _index_of(nbrs, nn, pw[v], np.int64(0))
             if k >= 0 and _interior((k + 1) % nn, tris, nn, cx, cy, err, box):
                 v0 = v
                 break
     if v0 < 0:
         return -1
-    out = 0
+    out = np.int64(0)
     v = v0
     first = True
     pend = False
     ox = 0.0
     oy = 0.0
-    hint = 0
+    hint = np.int64(0)
     while True:
         if not first and v == v0:
             if pend:
@@ -357,7 +359,7 @@ def _spliced_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, err, bufs, gl, ss)
     of interior edges are spliced back in rotation order (:func:`_splice`).
     """
     px, py, pw, qx, qy, qw = bufs
-    ng = 0
+    ng = np.int64(0)
     for q in range(nn):
         if not _interior(q, tris, nn, cx, cy, err, box):
             gl[ng] = nbrs[q]
@@ -582,6 +584,10 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
     every cell holding those vertices gets the one named vertex) and the cells at the
     changed vertices are built again.
     """
+    # the sweeps hand over strided views of their sorted points: one layout for every
+    # caller, or numba compiles this whole kernel a second time for the other one
+    xs = np.ascontiguousarray(xs)
+    ys = np.ascontiguousarray(ys)
     n = xs.shape[0]
     box = np.asarray(box, dtype=np.float64)
     order = np.asarray(order, dtype=np.int64)

@@ -29,18 +29,23 @@ from ..config import NJIT, NJIT_PARALLEL, SEED_DET_RTOL
 from .predicates import incircle, incircle_fast, orient2d, orient2d_fast
 from .vertex import circumcenter
 
+#: The smallest helpers are inlined by numba itself: called as functions, each would be
+#: compiled once for every mix of int32 entries, int64 indices and literal -1 its callers
+#: pass (nine times for _add_triangle), for code LLVM inlines anyway.
+_INLINE = {**NJIT, "inline": "always"}
 
-@njit(**NJIT)
+
+@njit(**_INLINE)
 def _next(e):
     return e - 2 if e % 3 == 2 else e + 1
 
 
-@njit(**NJIT)
+@njit(**_INLINE)
 def _prev(e):
     return e + 2 if e % 3 == 0 else e - 1
 
 
-@njit(**NJIT)
+@njit(**_INLINE)
 def _link(he, a, b):
     he[a] = b
     if b != -1:
@@ -65,7 +70,7 @@ def _incircle(exact, ax, ay, bx, by, cx, cy, dx, dy):
     return incircle_fast(ax, ay, bx, by, cx, cy, dx, dy)
 
 
-@njit(**NJIT)
+@njit(**_INLINE)
 def _add_triangle(tri, he, t, i0, i1, i2, a, b, c):
     tri[t] = i0
     tri[t + 1] = i1
@@ -528,7 +533,7 @@ def _insert_deferred(xs, ys, tri, he, tcount, hull_tri, hull_next, hull_prev, de
         t = _locate(xs, ys, tri, he, tcount // 3, (tcount // 3) - 1, xs[k], ys[k])
         if t == -1:
             continue  # unreachable for distinct points inside the hull
-        zero = -1
+        zero = np.int64(-1)  # not a literal: numba would compile _insert_on_edge for it
         nzero = 0
         for m in range(3):
             e = 3 * t + m

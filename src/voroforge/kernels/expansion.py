@@ -71,7 +71,7 @@ def two_two_diff(a1, a0, b1, b0, out):
     out[1] = x1
     out[2] = x2
     out[3] = x3
-    return 4
+    return np.int64(4)  # typed: a literal return makes callers compile for Literal[int](4)
 
 
 @njit(**NJIT)
@@ -182,7 +182,7 @@ def scale_expansion(e, elen, b, h):
 @njit(**NJIT)
 def multiply(e, elen, f, flen, h, tmp, acc):
     """Exact product of two expansions into ``h``; ``tmp``/``acc`` are scratch buffers."""
-    hlen = 0
+    hlen = np.int64(0)  # not a literal: numba would compile expansion_sum once more for it
     for k in range(flen):
         tlen = scale_expansion(e, elen, f[k], tmp)
         alen = expansion_sum(h, hlen, tmp, tlen, acc)
@@ -220,7 +220,7 @@ def square_sum(x, y, out):
     out[1] = o1
     out[2] = o2
     out[3] = o3
-    return 4
+    return np.int64(4)  # typed (see two_two_diff)
 
 
 @njit(**NJIT)
@@ -277,7 +277,7 @@ def _diff2(a, b, out):
     hi, lo = two_diff(a, b)
     out[0] = lo
     out[1] = hi
-    return drop_zeros(out, 2)
+    return drop_zeros(out, np.int64(2))
 
 
 @njit(**NJIT)
@@ -294,7 +294,10 @@ def exact_circumcenter(ax, ay, bx, by, cx, cy):
     sort the owners first.
     """
     buf = np.zeros((14, 512))
-    dx, dy, ex, ey, t0, t1, t2, d2, e2, det, nx, ny, acc, tmp = buf
+    # rows by index, not by unpacking: unpacked rows are typed as non-contiguous arrays, and
+    # every expansion routine would be compiled once more for them
+    dx, dy, ex, ey, t0, t1, t2 = buf[0], buf[1], buf[2], buf[3], buf[4], buf[5], buf[6]
+    d2, e2, det, nx, ny, acc, tmp = buf[7], buf[8], buf[9], buf[10], buf[11], buf[12], buf[13]
     ndx = _diff2(bx, ax, dx)
     ndy = _diff2(by, ay, dy)
     nex = _diff2(cx, ax, ex)

@@ -361,10 +361,11 @@ def kd_buckets(xs, ys, leaf):
     sx = xs.copy()
     sy = ys.copy()
     hi[0] = n
-    _tight_box(sx, sy, 0, n, boxes, 0)
+    # np.int64, not literals: numba would compile _tight_box once for each literal
+    _tight_box(sx, sy, np.int64(0), n, boxes, np.int64(0))
     stack = np.zeros(128, np.int64)
     top = 1
-    count = 1
+    count = np.int64(1)
     while top > 0:
         top -= 1
         v = stack[top]

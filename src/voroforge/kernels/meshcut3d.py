@@ -187,7 +187,7 @@ def _finish_part(V, nv, F, nf, R, R2, S, work, k, use, grp, ids, T, TN, toff, o,
             ey /= en
             ez /= en
             h0 = ex * (p0[0] - o[0]) + ey * (p0[1] - o[1]) + ez * (p0[2] - o[2])
-            f = 0
+            f = np.int64(0)  # not a literal: numba would compile split_face once more
             while f < nf:
                 if F[f, 0] == GROUP - g:
                     plane_values(V, nv, ex, ey, ez, h0, tol, S)
@@ -334,7 +334,7 @@ def _convex_cell(
     pnv[0] = nv
     pnf[0] = nf
     pdep[0] = 0
-    nparts = 1
+    nparts = np.int64(1)  # not a literal: numba would compile merge_parts once more
     done = np.zeros(PV.shape[0], np.bool_)
     while True:
         p = -1
@@ -469,13 +469,13 @@ def _convex_cell(
         plane_values(PV[p], nv, nx, ny, nz, hh, tol, S)
         for v in range(nv):
             S2[v] = -S[v]
-        st, pnv[p], pnf[p] = cut(PV[p], nv, PF[p], nf, PR[p], R2, S, work, SPLIT)
+        st, pnv[p], pnf[p] = cut(PV[p], nv, PF[p], nf, PR[p], R2, S, work, np.int64(SPLIT))
         if st == CUT_OVERFLOW or st == CUT_BROKEN:
             return _fail()
         if st == CUT_EMPTY:
             done[p] = True  # nothing of it is left
             pnf[p] = 0
-        st, pnv[q], pnf[q] = cut(PV[q], nv, PF[q], nf, PR[q], R2, S2, work, SPLIT)
+        st, pnv[q], pnf[q] = cut(PV[q], nv, PF[q], nf, PR[q], R2, S2, work, np.int64(SPLIT))
         if st == CUT_OVERFLOW or st == CUT_BROKEN:
             return _fail()
         pnf[q] = 0 if st == CUT_EMPTY else pnf[q]

@@ -155,7 +155,7 @@ def merge_parts(PV, PF, PR, pnv, pnf, nparts, ms, o, tol, out):
                     break
         nt += pnv[p]
     # the faces, split faces left out
-    nf = 0
+    nf = np.int64(0)  # not a literal: numba would compile moments() once more for it
     nr = 0
     base = 0
     for p in range(nparts):

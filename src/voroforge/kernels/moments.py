@@ -202,6 +202,11 @@ def raster_moments(
     h, w = raster.shape
     dxp = (rbox[2] - rbox[0]) / w
     dyp = (rbox[3] - rbox[1]) / h
+    # typed values, not literals: numba would compile _clip_axis once per literal pair
+    x_axis = np.int64(0)
+    y_axis = np.int64(1)
+    below = np.bool_(True)
+    above = np.bool_(False)
     for g in range(n):
         ox = origin[g, 0]
         oy = origin[g, 1]
@@ -246,8 +251,8 @@ def raster_moments(
                 for row in range(r0, r1 + 1):
                     top = rbox[3] - row * dyp - oy
                     bot = rbox[3] - (row + 1) * dyp - oy
-                    m1 = _clip_axis(rx, ry, m, t1x, t1y, 1, top, True)
-                    m2 = _clip_axis(t1x, t1y, m1, t2x, t2y, 1, bot, False)
+                    m1 = _clip_axis(rx, ry, m, t1x, t1y, y_axis, top, below)
+                    m2 = _clip_axis(t1x, t1y, m1, t2x, t2y, y_axis, bot, above)
                     if m2 < 3:
                         continue
                     xlo = np.inf
@@ -263,8 +268,8 @@ def raster_moments(
                             continue
                         left = rbox[0] + col * dxp - ox
                         right = rbox[0] + (col + 1) * dxp - ox
-                        m3 = _clip_axis(t2x, t2y, m2, t3x, t3y, 0, right, True)
-                        m4 = _clip_axis(t3x, t3y, m3, t4x, t4y, 0, left, False)
+                        m3 = _clip_axis(t2x, t2y, m2, t3x, t3y, x_axis, right, below)
+                        m4 = _clip_axis(t3x, t3y, m3, t4x, t4y, x_axis, left, above)
                         if m4 < 3:
                             continue
                         a0, ax, ay, a2 = ring_moments(t4x, t4y, 0, m4, 0.0, 0.0, False)

@@ -98,7 +98,7 @@ def cut(V, nv, F, nf, R, R2, S, work, label):
         return CUT_EMPTY, 0, 0
     nv0 = nv
     ncross = 0  # work[k] = (lo, hi, new vertex, -) for the crossings made so far
-    nr2 = 0
+    nr2 = np.int64(0)  # not a literal: numba would compile compact() once more for it
     nf2 = 0
     for f in range(nf):
         lab = F[f, 0]

@@ -53,7 +53,9 @@ def box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
     pw[1] = -3  # right
     pw[2] = -4  # top
     pw[3] = -1  # left
-    m = 4
+    # np.int64, not literals: numba would compile the clip's callees once more for them
+    m = np.int64(4)
+    zero = np.int64(0)
     sx = xs[i]
     sy = ys[i]
     swapped = False
@@ -64,9 +66,9 @@ def box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
         # the weight difference first: |d|^2 + w_i would round |d|^2 away when the weights
         # are large, and sites i and j would then see two different bisectors (a gap)
         h = 0.5 * (dx * dx + dy * dy + (ws[i] - ws[j]))
-        if plane_values(px, py, 0, m, dx, dy, sx, sy, h, ss) <= 0.0:
+        if plane_values(px, py, zero, m, dx, dy, sx, sy, h, ss) <= 0.0:
             continue
-        m = cut_ring(px, py, pw, 0, m, ss, qx, qy, qw, 0, j)
+        m = cut_ring(px, py, pw, zero, m, ss, qx, qy, qw, zero, j)
         if m < 3:
             return 0
         px, qx = qx, px
@@ -180,7 +182,8 @@ def power_cells(xs, ys, ws, indptr, indices, box, active):
         qy = np.zeros(size)
         qo = np.zeros(size, dtype=np.int64)
         ss = np.zeros(size)
-        m = _cell(i, xs, ys, ws, indptr, indices, box, px, py, po, qx, qy, qo, ss)
+        # prange's index is unsigned: as np.int64 the callees are compiled once, not twice
+        m = _cell(np.int64(i), xs, ys, ws, indptr, indices, box, px, py, po, qx, qy, qo, ss)
         if m > 0:
             b = cap[i]
             for k in range(m):

@@ -57,8 +57,9 @@ def _orient_exact(ax, ay, bx, by, cx, cy):
     cross(ax, ay, bx, by, t1)
     cross(bx, by, cx, cy, t2)
     cross(cx, cy, ax, ay, t3)
-    slen = expansion_sum(t1, 4, t2, 4, s)
-    rlen = expansion_sum(s, slen, t3, 4, r)
+    four = np.int64(4)  # not a literal: numba would compile the callee once more for it
+    slen = expansion_sum(t1, four, t2, four, s)
+    rlen = expansion_sum(s, slen, t3, four, r)
     return r[rlen - 1]
 
 
@@ -91,7 +92,7 @@ def _incircle_translated_exact(adx, ady, bdx, bdy, cdx, cdy):
     acc = buf[16:144]
     prod = buf[144:272]
     total = buf[272:400]
-    tlen = 0
+    tlen = np.int64(0)
     for k in range(3):
         if k == 0:
             llen = square_sum(adx, ady, lift)
@@ -104,7 +105,7 @@ def _incircle_translated_exact(adx, ady, bdx, bdy, cdx, cdy):
             cross(adx, ady, bdx, bdy, minor)
         # differences with few bits or zeros (grids, integers) leave zero components:
         # dropping them makes the product cheaper
-        mlen = drop_zeros(minor, 4)
+        mlen = drop_zeros(minor, np.int64(4))
         llen = drop_zeros(lift, llen)
         if mlen * llen <= 8:
             # few components (grids, integers): add the exact partial products to the total
@@ -160,22 +161,23 @@ def _incircle_full_exact(ax, ay, bx, by, cx, cy, dx, dy):
     acc = buf[80:480]  # products have at most 96 components, their sum at most 384
     prod = buf[480:880]
     total = buf[880:1280]
-    tlen = 0
+    tlen = np.int64(0)
+    four = np.int64(4)
     for k in range(4):
         if k == 0:
-            mlen = sum3(bc, 4, cd, 4, db, 4, minor, tmp8)
+            mlen = sum3(bc, four, cd, four, db, four, minor, tmp8)
             llen = square_sum(ax, ay, lift)
             sign = 1.0
         elif k == 1:
-            mlen = sum3(ac, 4, cd, 4, da, 4, minor, tmp8)
+            mlen = sum3(ac, four, cd, four, da, four, minor, tmp8)
             llen = square_sum(bx, by, lift)
             sign = -1.0
         elif k == 2:
-            mlen = sum3(ab, 4, bd, 4, da, 4, minor, tmp8)
+            mlen = sum3(ab, four, bd, four, da, four, minor, tmp8)
             llen = square_sum(cx, cy, lift)
             sign = 1.0
         else:
-            mlen = sum3(ab, 4, bc, 4, ca, 4, minor, tmp8)
+            mlen = sum3(ab, four, bc, four, ca, four, minor, tmp8)
             llen = square_sum(dx, dy, lift)
             sign = -1.0
         for i in range(llen):
@@ -311,12 +313,13 @@ def _cross_diff_exact(ax, ay, bx, by, cx, cy, dx, dy):
     tmp = np.zeros(8)
     acc = np.zeros(16)
     out = np.zeros(16)
+    two = np.int64(2)  # not a literal (see _orient_exact)
     p[1], p[0] = two_diff(bx, ax)
     q[1], q[0] = two_diff(dy, cy)
-    l1 = multiply(p, 2, q, 2, h1, tmp, acc)
+    l1 = multiply(p, two, q, two, h1, tmp, acc)
     p[1], p[0] = two_diff(ay, by)  # the second product negated
     q[1], q[0] = two_diff(dx, cx)
-    l2 = multiply(p, 2, q, 2, h2, tmp, acc)
+    l2 = multiply(p, two, q, two, h2, tmp, acc)
     n = expansion_sum(h1, l1, h2, l2, out)
     return out[n - 1]
 
@@ -355,20 +358,21 @@ def _parabola_gap_exact(sx, px, py, qx, qy, sweep):
     tmp = np.zeros(32)
     acc = np.zeros(64)
     out = np.zeros(128)
+    two = np.int64(2)  # not a literal (see _orient_exact)
     hp[1], hp[0] = two_diff(sweep, py)
     hq[1], hq[0] = two_diff(sweep, qy)
     d[1], d[0] = two_diff(sx, qx)
-    n1 = multiply(d, 2, d, 2, sq1, tmp, acc)
-    n2 = multiply(hq, 2, hq, 2, sq2, tmp, acc)
+    n1 = multiply(d, two, d, two, sq1, tmp, acc)
+    n2 = multiply(hq, two, hq, two, sq2, tmp, acc)
     ns = expansion_sum(sq1, n1, sq2, n2, s)
-    l1 = multiply(s, ns, hp, 2, t1, tmp, acc)
+    l1 = multiply(s, ns, hp, two, t1, tmp, acc)
     d[1], d[0] = two_diff(sx, px)
-    n1 = multiply(d, 2, d, 2, sq1, tmp, acc)
-    n2 = multiply(hp, 2, hp, 2, sq2, tmp, acc)
+    n1 = multiply(d, two, d, two, sq1, tmp, acc)
+    n2 = multiply(hp, two, hp, two, sq2, tmp, acc)
     ns = expansion_sum(sq1, n1, sq2, n2, s)
     hq[0] = -hq[0]  # the second product negated
     hq[1] = -hq[1]
-    l2 = multiply(s, ns, hq, 2, t2, tmp, acc)
+    l2 = multiply(s, ns, hq, two, t2, tmp, acc)
     n = expansion_sum(t1, l1, t2, l2, out)
     return out[n - 1]
 

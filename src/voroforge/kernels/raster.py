@@ -85,7 +85,7 @@ def _upper_bound(rect, k, grid, start, gx, gy, metric):
     cj = bucket_of(0.5 * (ty0 + ty1), y0, ch, ny)
     u1 = np.inf
     u2 = np.inf
-    ring = 0
+    ring = np.int64(0)  # not a literal: numba would compile the ring helpers once more
     while True:
         j0, j1 = ring_rows(cj, ring, ny)
         for j in range(j0, j1 + 1):

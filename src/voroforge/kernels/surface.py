@@ -201,7 +201,7 @@ def site_knn(sites, start, sidx, g, k):
     for i in range(n):
         x, y, z = sites[i, 0], sites[i, 1], sites[i, 2]
         ci, cj, ck = bucket3d(x, y, z, g)
-        m = 0
+        m = np.int64(0)
         for r in range(rmax + 1):
             nb = _shell(ci, cj, ck, r, g, buf)
             for u in range(nb):
@@ -242,7 +242,7 @@ def _gather(gx, gy, gz, reach, sites, start, sidx, g, cand, cdist):
     i1, j1, k1 = bucket3d(gx + reach, gy + reach, gz + reach, g)
     nx = int(g[6])
     ny = int(g[7])
-    m = 0
+    m = np.int64(0)
     r2 = reach * reach
     for k in range(k0, k1 + 1):
         for j in range(j0, j1 + 1):
@@ -275,7 +275,7 @@ def _near_list(gx, gy, gz, reach, o, sites, nbr, bound, cand, cdist):
     if not (reach + np.sqrt(d0)) * (1.0 + 1e-12) < bound[o]:
         return -1
     r2 = reach * reach
-    m = _take(o, gx, gy, gz, r2, sites, cand, cdist, 0)
+    m = _take(o, gx, gy, gz, r2, sites, cand, cdist, np.int64(0))
     for q in range(nbr.shape[1]):
         if nbr[o, q] < 0:
             break
@@ -329,7 +329,8 @@ def _cut_by_others(q, cand, m_c, sites, frame, rx, ry, ro, sx, sy, so, ss):
     ax, ay, az, e1x, e1y, e1z, e2x, e2y, e2z = frame
     i = cand[q]
     six, siy, siz = sites[i, 0], sites[i, 1], sites[i, 2]
-    m = 3
+    m = np.int64(3)  # not literals: numba would compile the clip once more for them
+    zero = np.int64(0)
     for w in range(m_c):
         j = cand[w]
         if j == i:
@@ -344,9 +345,9 @@ def _cut_by_others(q, cand, m_c, sites, frame, rx, ry, ro, sx, sy, so, ss):
         )
         px = gx * e1x + gy * e1y + gz * e1z
         py = gx * e2x + gy * e2y + gz * e2z
-        if plane_values(rx, ry, 0, m, px, py, 0.0, 0.0, hh, ss) <= 0.0:
+        if plane_values(rx, ry, zero, m, px, py, 0.0, 0.0, hh, ss) <= 0.0:
             continue
-        m = cut_ring(rx, ry, ro, 0, m, ss, sx, sy, so, 0, j)
+        m = cut_ring(rx, ry, ro, zero, m, ss, sx, sy, so, zero, j)
         if m < 3:
             return 0
         for k in range(m):
@@ -408,7 +409,7 @@ def rvd(v, f, tf, sites, start, sidx, g, hint, mode, knn):
     qxyz = np.zeros((qcap, 3))
     qown = np.zeros(qcap, np.int64)
     np_ = 0
-    nq = 0
+    nq = np.int64(0)
     cand = np.zeros(n + 1, np.int64)
     cdist = np.zeros(n + 1)
     rx = np.zeros(72)
