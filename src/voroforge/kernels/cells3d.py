@@ -52,7 +52,20 @@ def _on_plane(i, v, key, OWN, work, nfo, P, W, WP, ns, X):
     for a in range(1, m):
         for b in range(a + 1, m):
             for c in range(b + 1, m):
-                r = bisector_side(i, OWN[v, a], OWN[v, b], OWN[v, c], key, P, W, WP, ns, X[0], X[1])
+                # int64 keys (OWN is int32): bisector_side's one signature
+                r = bisector_side(
+                    i,
+                    np.int64(OWN[v, a]),
+                    np.int64(OWN[v, b]),
+                    np.int64(OWN[v, c]),
+                    key,
+                    P,
+                    W,
+                    WP,
+                    ns,
+                    X[0],
+                    X[1],
+                )
                 if r != 2:
                     return r == 0
     return True
@@ -195,7 +208,7 @@ def _name_cell(
                 keys[b + 1] = keys[b]
                 b -= 1
             keys[b + 1] = ka
-        u = 0
+        u = np.int64(0)  # not a literal: name_vertex and axis_snap compile once
         for t in range(m):
             if u == 0 or keys[t] != keys[u - 1]:
                 keys[u] = keys[t]
@@ -354,7 +367,7 @@ def build_cells(
         keys = np.zeros(OWN.shape[1], np.int64)
         C = (V, F, R, R2, S, work, T)
         G = _graph_scratch(caps[3], caps[6])
-        G0 = _graph_scratch(0, 1)  # no graph: face rings
+        G0 = _graph_scratch(np.int64(0), np.int64(1))  # no graph: face rings
         TDEG, TED, TBK, TLB, _, _, _ = _graph_scratch(max(TV.shape[0], 1), caps[6])
         # the exact predicates' scratch, and whether the cell needed them
         X = (np.zeros((2, 4, 4)), scratch(), np.zeros(1, np.bool_))

@@ -190,7 +190,7 @@ def kd_buckets3d(P, leaf):
     S = P.copy()
     hi[0] = n
     nodes[0, 6] = -1.0
-    _box3(S, 0, n, nodes, 0)
+    _box3(S, np.int64(0), n, nodes, np.int64(0))  # not literals: one compile of _box3
     stack = np.zeros(128, np.int64)
     top = 1
     count = 1
@@ -201,7 +201,7 @@ def kd_buckets3d(P, leaf):
         b = hi[v]
         if b - a <= leaf:
             continue
-        ax = 0
+        ax = np.int64(0)  # not a literal: one compile of _select3
         for c in range(1, 3):
             if nodes[v, 3 + c] - nodes[v, c] > nodes[v, 3 + ax] - nodes[v, ax]:
                 ax = c

@@ -125,7 +125,7 @@ def _minor3(buf, EL, M2L, a, b, c, out):
     B = buf[_OFF_B : _OFF_B + _SUM]
     tmp = buf[_OFF_S : _OFF_S + _SUM]
     pr = _pair_index(b, c)
-    n = 0
+    n = np.int64(0)
     for col in range(3):
         # cofactors along row a: + x * m(yz) - y * m(xz) + z * m(xy)
         m = pr * 3 + col
@@ -183,7 +183,7 @@ def exact_dets(buf, EL, TL, need4):
     if not need4:
         return s3, 0
     # D4 = -t0 M0 + t1 M1 - t2 M2 + t3 M3
-    n = 0
+    n = np.int64(0)
     for k in range(4):
         lp = multiply(M3[k * _M3 : (k + 1) * _M3], M3L[k], T[k * _T : (k + 1) * _T], TL[k], P, A, B)
         if k % 2 == 0:
@@ -217,7 +217,7 @@ def _put_lift(buf, EL, TL, k, wdiff_hi, wdiff_lo):
     B = buf[_OFF_B : _OFF_B + _SUM]
     P = buf[_OFF_P : _OFF_P + _PROD]
     tmp = buf[_OFF_S : _OFF_S + _SUM]
-    n = 0
+    n = np.int64(0)
     if wdiff_hi != 0.0:
         if wdiff_lo != 0.0:
             A[0] = wdiff_lo
@@ -225,7 +225,7 @@ def _put_lift(buf, EL, TL, k, wdiff_hi, wdiff_lo):
             n = 2
         else:
             A[0] = wdiff_hi
-            n = 1
+            n = np.int64(1)
     for c in range(3):
         o = _OFF_E + (k * 3 + c) * 2
         e = buf[o : o + 2]
@@ -236,7 +236,7 @@ def _put_lift(buf, EL, TL, k, wdiff_hi, wdiff_lo):
         n = ln
     if n == 0:
         A[0] = 0.0
-        n = 1
+        n = np.int64(1)
     for q in range(n):
         T[q] = A[q]
     TL[k] = n
@@ -256,7 +256,7 @@ def _put_wall(buf, EL, TL, k, nx, ny, nz, d, px, py, pz):
     A = buf[_OFF_A : _OFF_A + _SUM]
     B = buf[_OFF_B : _OFF_B + _SUM]
     A[0] = 2.0 * d
-    n = 1
+    n = np.int64(1)
     for c in range(3):
         nc = nx if c == 0 else (ny if c == 1 else nz)
         pc = px if c == 0 else (py if c == 1 else pz)
@@ -307,10 +307,10 @@ def orient3d(ax, ay, az, bx, by, bz, cx, cy, cz, dx, dy, dz):
     TL = np.zeros(4, np.int64)
     for c in range(3):
         dc = dx if c == 0 else (dy if c == 1 else dz)
-        _put_diff(buf, EL, 0, c, ax if c == 0 else (ay if c == 1 else az), dc)
-        _put_diff(buf, EL, 1, c, bx if c == 0 else (by if c == 1 else bz), dc)
-        _put_diff(buf, EL, 2, c, cx if c == 0 else (cy if c == 1 else cz), dc)
-    s3, _ = exact_dets(buf, EL, TL, False)
+        _put_diff(buf, EL, np.int64(0), c, ax if c == 0 else (ay if c == 1 else az), dc)
+        _put_diff(buf, EL, np.int64(1), c, bx if c == 0 else (by if c == 1 else bz), dc)
+        _put_diff(buf, EL, np.int64(2), c, cx if c == 0 else (cy if c == 1 else cz), dc)
+    s3, _ = exact_dets(buf, EL, TL, np.bool_(False))
     return float(s3)
 
 
@@ -333,7 +333,7 @@ def insphere(P5):
         for c in range(3):
             _put_diff(buf, EL, k, c, P5[k, c], P5[4, c])
         _put_lift(buf, EL, TL, k, 0.0, 0.0)
-    _, s4 = exact_dets(buf, EL, TL, True)
+    _, s4 = exact_dets(buf, EL, TL, np.bool_(True))
     return float(s4)
 
 
@@ -452,10 +452,10 @@ def bisector_side(i, k0, k1, k2, j, P, W, WP, ns, rows, buf):
     """
     r = rows[0]
     ra = rows[1]
-    _row_float(k0, i, P, W, WP, ns, r, ra, 0)
-    _row_float(k1, i, P, W, WP, ns, r, ra, 1)
-    _row_float(k2, i, P, W, WP, ns, r, ra, 2)
-    _row_float(j, i, P, W, WP, ns, r, ra, 3)
+    _row_float(k0, i, P, W, WP, ns, r, ra, np.int64(0))
+    _row_float(k1, i, P, W, WP, ns, r, ra, np.int64(1))
+    _row_float(k2, i, P, W, WP, ns, r, ra, np.int64(2))
+    _row_float(j, i, P, W, WP, ns, r, ra, np.int64(3))
     d3 = _det3_rows(r, 0, 1, 2)
     p3 = _perm3_rows(ra, 0, 1, 2)
     d4 = _det4(r)
@@ -468,11 +468,11 @@ def bisector_side(i, k0, k1, k2, j, P, W, WP, ns, rows, buf):
     lens = buf[_OFF_L : _OFF_L + 16].view(np.int64)
     EL = lens[:12].reshape((4, 3))
     TL = lens[12:16]
-    _row_exact(k0, i, P, W, WP, ns, buf, EL, TL, 0)
-    _row_exact(k1, i, P, W, WP, ns, buf, EL, TL, 1)
-    _row_exact(k2, i, P, W, WP, ns, buf, EL, TL, 2)
-    _row_exact(j, i, P, W, WP, ns, buf, EL, TL, 3)
-    s3, s4 = exact_dets(buf, EL, TL, True)
+    _row_exact(k0, i, P, W, WP, ns, buf, EL, TL, np.int64(0))
+    _row_exact(k1, i, P, W, WP, ns, buf, EL, TL, np.int64(1))
+    _row_exact(k2, i, P, W, WP, ns, buf, EL, TL, np.int64(2))
+    _row_exact(j, i, P, W, WP, ns, buf, EL, TL, np.int64(3))
+    s3, s4 = exact_dets(buf, EL, TL, np.bool_(True))
     if s3 == 0:
         return 2
     return -s3 * s4

@@ -52,9 +52,9 @@ def solve_name(a, b, c, d, P, W, WP, ns, rows, out):
     Writes ``y`` (relative to site ``a``) into ``out[0:3]`` and returns True, or False when the
     four planes are not independent (relative determinant below ``VORONOI3D_DET_RTOL``).
     """
-    _row(b, a, P, W, WP, ns, rows, 0)
-    _row(c, a, P, W, WP, ns, rows, 1)
-    _row(d, a, P, W, WP, ns, rows, 2)
+    _row(b, a, P, W, WP, ns, rows, np.int64(0))  # not literals: one compile of _row
+    _row(c, a, P, W, WP, ns, rows, np.int64(1))
+    _row(d, a, P, W, WP, ns, rows, np.int64(2))
     # cofactors: c0 = r1 x r2, c1 = r2 x r0, c2 = r0 x r1
     c0x = rows[1, 1] * rows[2, 2] - rows[1, 2] * rows[2, 1]
     c0y = rows[1, 2] * rows[2, 0] - rows[1, 0] * rows[2, 2]
