@@ -80,7 +80,9 @@ def march(evaluate, lo, hi, h, *, smoothing: int = 0, progress=None, bare: bool 
     ----------
     evaluate : callable
         ``evaluate(shape, origin, z_range) -> (nx, ny, nz) float32`` field on the block of
-        samples ``origin + h * (i, j, k)`` (negative inside).
+        samples ``origin + h * (i, j, k)`` (negative inside). Called once per slab along z,
+        in order; every slab's but the first on a second thread, while the previous slab is
+        meshed (so it must not depend on state the caller changes meanwhile).
     lo, hi : (3,) float
         The region; the grid adds two samples of margin, which must be outside.
     h : float
@@ -103,8 +105,8 @@ def march(evaluate, lo, hi, h, *, smoothing: int = 0, progress=None, bare: bool 
     verts, faces, nv = [], [], 0
     prev = None
     bounds: list[int] = []
-    for shape, origin, (k0, k1) in _slabs(lo, n, h):
-        g = evaluate(shape, origin, (k0, k1))
+    slabs = _slabs(lo, n, h)
+    for (_, _, (k0, k1)), g in zip(slabs, _evaluated(evaluate, slabs), strict=True):
         g = np.asarray(g, dtype=np.float32)
         if prev is not None:
             g[:, :, 0] = prev  # the shared plane, bit for bit
@@ -153,6 +155,41 @@ def march(evaluate, lo, hi, h, *, smoothing: int = 0, progress=None, bare: bool 
     m.vertices = on_grid(m.vertices, d)
     m.metadata["decimals"] = d
     return m if bare else m.trimesh()
+
+
+def _evaluated(evaluate, slabs):
+    """Each slab's field in turn, the next one evaluated on a second thread meanwhile.
+
+    While the caller marches a slab (scikit-image's marching cubes holds the GIL), the
+    next slab's field is sampled (kernels that release it): at most two slabs' fields
+    are held at once. An error of ``evaluate`` is raised where its slab is taken.
+    """
+    import threading
+
+    def start(slab):
+        box = {}
+
+        def run():
+            try:
+                box["field"] = evaluate(*slab)
+            except Exception as exc:  # raised by the caller's thread, below
+                box["error"] = exc
+
+        thread = threading.Thread(target=run, name="voroforge-slab", daemon=True)
+        thread.start()
+        return thread, box
+
+    pending = None
+    for i, slab in enumerate(slabs):
+        if pending is None:
+            field = evaluate(*slab)  # the first slab on the caller's thread
+        else:
+            pending[0].join()
+            if "error" in pending[1]:
+                raise pending[1]["error"]
+            field = pending[1]["field"]
+        pending = start(slabs[i + 1]) if i + 1 < len(slabs) else None
+        yield field
 
 
 def _grid(lo, hi, h):
