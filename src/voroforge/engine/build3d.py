@@ -169,6 +169,7 @@ def _run(cells, P, W, start, SP, SW, sidx, g, order, tree, t, caps, pool, slots=
     rad2 = np.zeros(k)
     osite, ovabs, ofaces, oring = _slots(k, caps) if slots is None else slots
     capa = np.array(caps, np.int64)
+    wmax = float(W.max()) if len(W) else 0.0  # once here, not per slice (8 MB at 1e6)
 
     def part(a, b):
         build_cells(
@@ -187,7 +188,7 @@ def _run(cells, P, W, start, SP, SW, sidx, g, order, tree, t, caps, pool, slots=
             t.TR,
             t.WP,
             capa,
-            1,
+            wmax,
             status[a:b],
             counts[a:b],
             vol[a:b],

@@ -308,7 +308,7 @@ def build_cells(
     TR,
     WP,
     caps,
-    nblocks,
+    wmax,
     status,
     counts,
     vol,
@@ -319,7 +319,7 @@ def build_cells(
     ofaces,
     oring,
 ):
-    """Build the cells ``cells (k,)`` (site numbers) in ``nblocks`` parallel blocks.
+    """Build the cells ``cells (k,)`` (site numbers); ``wmax`` is ``W``'s largest weight.
 
     Per cell ``c`` (position in ``cells``), with ``caps = (cv, cf, cr, scratch_v, scratch_f,
     scratch_r, graph_degree)``: its vertices' absolute coordinates ``ovabs[c * cv:...]`` and
@@ -333,7 +333,6 @@ def build_cells(
     cv = caps[0]
     cf = caps[1]
     cr = caps[2]
-    wmax = W.max() if W.shape[0] > 0 else 0.0
     # the most buckets one shell holds (kernels.grid3d.shell_buckets): full rows on the
     # two z-planes and two y-rows, two ends of every other row; not the whole grid, which
     # at 1e7 cells made every block's scratch fault in hundreds of megabytes
@@ -344,147 +343,141 @@ def build_cells(
     kd = tree.shape[0] > 0
     if kd:  # the k-d walk's heap: each node at most once
         nbuck = max(nbuck, tree.shape[0])
-    per = (k + nblocks - 1) // nblocks
-    for blk in range(nblocks):
-        lo = blk * per
-        hi = min(k, lo + per)
-        if lo >= hi:
-            continue
-        V, F, R, R2, S, work, T, OWN, cand, cd2, buck = _scratch(
-            caps[3], caps[4], caps[5], max(1024, min(ns, 1 << 16)), nbuck
-        )
-        hkey = np.empty(nbuck if kd else 0)  # noqa: TID251 (the k-d heap's keys: written first)
-        ib = np.zeros(6, np.int64)  # the shells' reach (cellcut3d._reach_box)
-        tb = np.zeros((3, max(nx, ny, nz)))
-        vnames = np.zeros((caps[3], 5), np.int64)
-        vabs = np.zeros((caps[3], 3))
-        vrel = np.zeros((caps[3], 3))
-        remap = np.zeros(caps[3], np.int64)
-        rows = np.zeros((3, 4))
-        y = np.zeros(3)
-        name = np.zeros(4, np.int64)
-        x = np.zeros(3)
-        keys = np.zeros(OWN.shape[1], np.int64)
-        C = (V, F, R, R2, S, work, T)
-        G = _graph_scratch(caps[3], caps[6])
-        G0 = _graph_scratch(np.int64(0), np.int64(1))  # no graph: face rings
-        TDEG, TED, TBK, TLB, _, _, _ = _graph_scratch(max(TV.shape[0], 1), caps[6])
-        # the exact predicates' scratch, and whether the cell needed them
-        X = (np.zeros((2, 4, 4)), scratch(), np.zeros(1, np.bool_))
-        if not from_rings(TV.shape[0], TF, TF.shape[0], TR, TDEG, TED, TBK, TLB):
-            G = G0
-        TG = (TDEG, TED, TBK, TLB)
-        for c in range(lo, hi):
-            i = cells[c]
-            X[2][0] = False
-            Gu = G
-            while True:
-                st, nv, nf, nt, r2 = _one_cell(
-                    i,
-                    P,
-                    W,
-                    WP,
-                    X,
-                    wmax,
-                    start,
-                    SP,
-                    SW,
-                    sidx,
-                    g,
-                    order,
-                    tree,
-                    TV,
-                    TF,
-                    TR,
-                    TG,
-                    C,
-                    Gu,
-                    cand,
-                    cd2,
-                    buck,
-                    hkey,
-                    ib,
-                    tb,
-                )
-                if st != BROKEN or Gu[0].shape[0] == 0:
-                    break
-                Gu = G0  # the graph could not: face rings
-            counts[c, 0] = 0
-            counts[c, 1] = 0
-            counts[c, 2] = 0
-            vol[c] = 0.0
-            cen[c, 0] = np.nan
-            cen[c, 1] = np.nan
-            cen[c, 2] = np.nan
-            rad2[c] = r2
-            if st != OK:
-                status[c] = st
-                continue
-            st = _name_cell(
+    V, F, R, R2, S, work, T, OWN, cand, cd2, buck = _scratch(
+        caps[3], caps[4], caps[5], max(1024, min(ns, 1 << 16)), nbuck
+    )
+    hkey = np.empty(nbuck if kd else 0)  # noqa: TID251 (the k-d heap's keys: written first)
+    ib = np.zeros(6, np.int64)  # the shells' reach (cellcut3d._reach_box)
+    tb = np.zeros((3, max(nx, ny, nz)))
+    vnames = np.zeros((caps[3], 5), np.int64)
+    vabs = np.zeros((caps[3], 3))
+    vrel = np.zeros((caps[3], 3))
+    remap = np.zeros(caps[3], np.int64)
+    rows = np.zeros((3, 4))
+    y = np.zeros(3)
+    name = np.zeros(4, np.int64)
+    x = np.zeros(3)
+    keys = np.zeros(OWN.shape[1], np.int64)
+    C = (V, F, R, R2, S, work, T)
+    G = _graph_scratch(caps[3], caps[6])
+    G0 = _graph_scratch(np.int64(0), np.int64(1))  # no graph: face rings
+    TDEG, TED, TBK, TLB, _, _, _ = _graph_scratch(max(TV.shape[0], 1), caps[6])
+    # the exact predicates' scratch, and whether the cell needed them
+    X = (np.zeros((2, 4, 4)), scratch(), np.zeros(1, np.bool_))
+    if not from_rings(TV.shape[0], TF, TF.shape[0], TR, TDEG, TED, TBK, TLB):
+        G = G0
+    TG = (TDEG, TED, TBK, TLB)
+    for c in range(k):
+        i = cells[c]
+        X[2][0] = False
+        Gu = G
+        while True:
+            st, nv, nf, nt, r2 = _one_cell(
                 i,
                 P,
                 W,
                 WP,
-                ns,
-                V,
-                nv,
-                F,
-                nf,
-                R,
-                T,
-                nt,
-                OWN,
-                work,
-                vnames,
-                vabs,
-                vrel,
-                rows,
-                y,
-                name,
-                x,
-                keys,
-                Gu,
                 X,
+                wmax,
+                start,
+                SP,
+                SW,
+                sidx,
+                g,
+                order,
+                tree,
+                TV,
+                TF,
+                TR,
+                TG,
+                C,
+                Gu,
+                cand,
+                cd2,
+                buck,
+                hkey,
+                ib,
+                tb,
             )
-            if st != OK:
-                status[c] = st
-                continue
-            if X[2][0] or Gu[0].shape[0] == 0:
-                nv, nf, nr = _merge_named(nv, F, nf, R, vnames, vabs, vrel, remap)
-            else:  # no vertex came within the filter's band of a plane: all are distinct
-                nr = 0
-                for f in range(nf):
-                    nr += F[f, 2]
-            if nv > cv or nf > cf or nr > cr:
-                status[c] = OVERFLOW
-                continue
-            if nf < 4:
-                status[c] = EMPTY
-                continue
-            status[c] = OK
-            counts[c, 0] = nv
-            counts[c, 1] = nf
-            counts[c, 2] = nr
-            v0, mx, my, mz = moments(vrel, F, nf, R)
-            vol[c] = v0
-            if v0 > 0.0:
-                cen[c, 0] = P[i, 0] + mx / v0
-                cen[c, 1] = P[i, 1] + my / v0
-                cen[c, 2] = P[i, 2] + mz / v0
-            bv = c * cv
-            for v in range(nv):
-                osite[bv + v] = min(vnames[v, 4], 255)
-                for q in range(3):
-                    ovabs[bv + v, q] = vabs[v, q] + 0.0  # one zero: -0.0 + 0.0 == +0.0
-            bf = c * cf
-            br = c * cr
-            t = 0
+            if st != BROKEN or Gu[0].shape[0] == 0:
+                break
+            Gu = G0  # the graph could not: face rings
+        counts[c, 0] = 0
+        counts[c, 1] = 0
+        counts[c, 2] = 0
+        vol[c] = 0.0
+        cen[c, 0] = np.nan
+        cen[c, 1] = np.nan
+        cen[c, 2] = np.nan
+        rad2[c] = r2
+        if st != OK:
+            status[c] = st
+            continue
+        st = _name_cell(
+            i,
+            P,
+            W,
+            WP,
+            ns,
+            V,
+            nv,
+            F,
+            nf,
+            R,
+            T,
+            nt,
+            OWN,
+            work,
+            vnames,
+            vabs,
+            vrel,
+            rows,
+            y,
+            name,
+            x,
+            keys,
+            Gu,
+            X,
+        )
+        if st != OK:
+            status[c] = st
+            continue
+        if X[2][0] or Gu[0].shape[0] == 0:
+            nv, nf, nr = _merge_named(nv, F, nf, R, vnames, vabs, vrel, remap)
+        else:  # no vertex came within the filter's band of a plane: all are distinct
+            nr = 0
             for f in range(nf):
-                ofaces[bf + f, 0] = F[f, 0]
-                ofaces[bf + f, 1] = F[f, 2]
-                for q in range(F[f, 2]):
-                    oring[br + t] = R[F[f, 1] + q]
-                    t += 1
+                nr += F[f, 2]
+        if nv > cv or nf > cf or nr > cr:
+            status[c] = OVERFLOW
+            continue
+        if nf < 4:
+            status[c] = EMPTY
+            continue
+        status[c] = OK
+        counts[c, 0] = nv
+        counts[c, 1] = nf
+        counts[c, 2] = nr
+        v0, mx, my, mz = moments(vrel, F, nf, R)
+        vol[c] = v0
+        if v0 > 0.0:
+            cen[c, 0] = P[i, 0] + mx / v0
+            cen[c, 1] = P[i, 1] + my / v0
+            cen[c, 2] = P[i, 2] + mz / v0
+        bv = c * cv
+        for v in range(nv):
+            osite[bv + v] = min(vnames[v, 4], 255)
+            for q in range(3):
+                ovabs[bv + v, q] = vabs[v, q] + 0.0  # one zero: -0.0 + 0.0 == +0.0
+        bf = c * cf
+        br = c * cr
+        t = 0
+        for f in range(nf):
+            ofaces[bf + f, 0] = F[f, 0]
+            ofaces[bf + f, 1] = F[f, 2]
+            for q in range(F[f, 2]):
+                oring[br + t] = R[F[f, 1] + q]
+                t += 1
 
 
 @njit(**NJIT)
