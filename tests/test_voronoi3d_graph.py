@@ -26,8 +26,9 @@ def _start():
     F[:6] = t.TF
     R = np.zeros(4 * CAP, np.int64)
     R[:24] = t.TR
-    deg = np.zeros(CAP, np.int64)
-    ed, bk, lb = (np.zeros((CAP, 24), np.int64) for _ in range(3))
+    # the engine's dtypes (cellcut3d._graph_scratch): the kernels compiled once, as it runs them
+    deg = np.zeros(CAP, np.int32)
+    ed, bk, lb = (np.zeros((CAP, 24), np.int32) for _ in range(3))
     assert graph3d.from_rings(8, F, 6, R, deg, ed, bk, lb)
     ring = (V, 8, F, 6, R)
     graph = (V.copy(), 8, deg, ed, bk, lb)
