@@ -181,7 +181,7 @@ def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank, err, box, fold):
         for k in range(t):
             parent[k] = _find(parent, k)
         # the centres are still the triangles' own here: classes of two may reuse them
-        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, True)
+        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, np.bool_(True))
     if near:
         _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined, changed)
     return parent
@@ -375,7 +375,7 @@ def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined,
         for k in range(parent.shape[0]):
             parent[k] = _find(parent, k)
         changed[:] = 0
-        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, False)
+        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, np.bool_(False))
 
 
 @njit(**NJIT)
@@ -487,7 +487,7 @@ def _name_pairs(xs, ys, tri, size, other, cx, cy, rank, err, changed):
             on[0] = a
             on[1] = b
             on[2] = c
-            k = 3
+            k = np.int64(3)  # not a literal: one compile of the callees (see halfplane._cells)
             for v in (u0, u1, u2):
                 if v != a and v != b and v != c:
                     on[k] = v
@@ -547,7 +547,7 @@ def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, own):
             on[0] = a
             on[1] = b
             on[2] = c
-            k = 3
+            k = np.int64(3)  # not a literal: one compile of the callees (see halfplane._cells)
             u = other[r]
             for j in range(3):
                 v = tri[3 * u + j]
@@ -578,7 +578,7 @@ def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, own):
     for r in range(t):
         if size[r] < 3:
             continue
-        k = 0
+        k = np.int64(0)
         for u in range(start[r], start[r + 1]):
             for c in range(3):
                 v = tri[3 * members[u] + c]
@@ -709,7 +709,7 @@ def contract(xs, ys, tri, he, parent, cx, cy, rank, box, err, pa, pb):
     for k in range(parent.shape[0]):
         parent[k] = _find(parent, k)
     changed = np.zeros(parent.shape[0], dtype=np.uint8)
-    _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, False)
+    _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, np.bool_(False))
     fold = np.zeros(tri.shape[0], dtype=np.uint8)
     cand = np.zeros(0, dtype=np.int64)
     joined = np.zeros(0, dtype=np.uint8)

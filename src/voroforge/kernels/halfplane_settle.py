@@ -31,18 +31,16 @@ from ..config import (
     HALFPLANE_SHADOW_RTOL,
     NAME_MAX_TRIES,
     NJIT,
-    VERTEX_REFINE_RTOL,
 )
 from .clip import dedupe_ring
 from .predicates import incircle, orient2d
 from .vertex import (
-    _frame,
     box_crossing,
     canonical_vertex,
     near_pair,
     same_vertex,
-    voronoi_vertex_and_error,
     voronoi_vertex_error,
+    voronoi_vertex_lazy,
 )
 
 #: Box sides as ring labels (those of :func:`.vertex.box_crossing`); all become owner -1.
@@ -55,43 +53,6 @@ _W_VERTEX = 32  # a vertex from its name (voronoi_vertex: ~30-50 ns)
 _W_EXACT = 1024  # one from exact expansions (~5-10 us; a centre near the origin, see below)
 _W_ADAPT = 512  # an incircle whose float filter fails: its exact stage (~1-3 us)
 _SLOW_RTOL = 2.0**-20  # centres nearer the origin than this of their scale take that path
-
-
-@njit(**NJIT)
-def _vertex(a, b, c, xs, ys):
-    """:func:`.vertex.voronoi_vertex_and_error`'s bits, its bound computed only where needed.
-
-    Returns ``(x, y, err)``; ``err`` is -1 (not computed) in the easy case, almost every
-    vertex: the float formula in argument order gives the canonical bits (no tied longest
-    edge, a trusted determinant, offsets neither zero nor infinite) and an upper bound of
-    the rounding bound that :func:`.vertex.voronoi_vertex_and_error` computes is below its
-    refinement threshold, so that function returns these very bits. The upper bound uses
-    the centre's one division (``0.5 / det``) where the full bound has three, and ``u |x|``
-    for the final addition's rounding error: each term is at least its counterpart, and
-    rounding is monotone. The rounding bound itself is computed only where a caller needs
-    it (a site near the circle, :func:`_joins`). Not easy: the full routine's result.
-    """
-    ox, oy, _, _, _, dx, dy, ex, ey, bl, cl, left, right, det, trusted, tie = _frame(
-        xs[a], ys[a], 0.0, xs[b], ys[b], 0.0, xs[c], ys[c], 0.0
-    )
-    if trusted and not tie:
-        d = 0.5 / det
-        ux = (ey * bl - dy * cl) * d
-        uy = (dx * cl - ex * bl) * d
-        if 0.0 < abs(ux) < np.inf and 0.0 < abs(uy) < np.inf:
-            x = ox + ux
-            y = oy + uy
-            h = abs(d)  # 0.5 / |det|, bit for bit
-            rel = 8.0 * _U * (abs(left) + abs(right)) * h * (1.0 + 2.0**-40)
-            if rel < 0.5:
-                err = 7.0 * _U * (abs(ey) * bl + abs(dy) * cl) * h
-                err += 7.0 * _U * (abs(dx) * cl + abs(ex) * bl) * h
-                err += (abs(ux) + abs(uy)) * (2.0 * _U + rel)
-                err += _U * abs(x) + _U * abs(y)
-                err = 2.0 * err + 4.0 * _U * _U * (abs(ox) + abs(oy))
-                if err <= VERTEX_REFINE_RTOL * (abs(x) + abs(y)):
-                    return x, y, -1.0
-    return voronoi_vertex_and_error(a, b, c, xs, ys)
 
 
 @njit(**NJIT)
@@ -265,7 +226,7 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
             work += _W_VERTEX + nc
             if work > budget:
                 return -2, work
-            vx_, vy_, ev_ = _vertex(i, a, b, xs, ys)
+            vx_, vy_, ev_ = voronoi_vertex_lazy(i, a, b, xs, ys)
             r2 = (ix - vx_) * (ix - vx_) + (iy - vy_) * (iy - vy_)
             tol = HALFPLANE_NEAR_RTOL * r2
             # a site this close to the circle is on it: the edge it would add or keep is
@@ -293,9 +254,10 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
                     charged = True
                     if work > budget:
                         return -2, work
-                if abs(d) <= merge and ev_ < 0.0:
-                    ev_ = voronoi_vertex_error(i, a, b, xs, ys)  # (not computed: easy)
-                if abs(d) <= merge and _joins(i, a, b, x, vx_, vy_, ev_, xs, ys):
+                joined = False
+                if abs(d) <= merge:
+                    joined, ev_ = _joins(i, a, b, x, vx_, vy_, ev_, xs, ys)
+                if joined:
                     if x == nxt or x == prv:
                         # the edge of b (or a) between this vertex and x's is noise: drop it
                         m = _remove(lab, m, u if x == nxt else (u - 1 if u > 0 else m - 1))
@@ -405,18 +367,26 @@ def _joins(i, a, b, x, vx, vy, ev, xs, ys):
     bound), which the Delaunay-dual cells apply to adjacent centres: the edges that ``x``
     would add or shorten are then rounding noise. A site a few ulps from ``i``, ``a`` or
     ``b`` fails: its triangle with that site is ill-conditioned and its centre lies far
-    along their bisector.
+    along their bisector. A centre with the vertex's very bits passes the rule whatever
+    the bounds (distance 0), so bounds are computed only for one that differs (an exact
+    lattice's never do). Returns ``(joined, ev)``: ``ev`` is -1 on entry when not yet
+    computed, and comes back computed if it was needed.
     """
     r = abs(vx - xs[i]) + abs(vy - ys[i])
-    px, py, ep = voronoi_vertex_and_error(i, a, x, xs, ys)
-    if not (np.isfinite(px) and np.isfinite(py)):
-        return False
-    if not same_vertex(vx, vy, ev, px, py, ep, r):
-        return False
-    px, py, ep = voronoi_vertex_and_error(i, x, b, xs, ys)
-    if not (np.isfinite(px) and np.isfinite(py)):
-        return False
-    return same_vertex(vx, vy, ev, px, py, ep, r)
+    for k in range(2):
+        p, q = (a, x) if k == 0 else (x, b)
+        px, py, ep = voronoi_vertex_lazy(i, p, q, xs, ys)
+        if not (np.isfinite(px) and np.isfinite(py)):
+            return False, ev
+        if px == vx and py == vy:
+            continue
+        if ev < 0.0:
+            ev = voronoi_vertex_error(i, a, b, xs, ys)
+        if ep < 0.0:
+            ep = voronoi_vertex_error(i, p, q, xs, ys)
+        if not same_vertex(vx, vy, ev, px, py, ep, r):
+            return False, ev
+    return True, ev
 
 
 @njit(**NJIT)

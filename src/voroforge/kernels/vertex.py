@@ -184,6 +184,12 @@ def voronoi_vertex_and_error(a, b, c, xs, ys):
             y = oy + uy
             if not err > VERTEX_REFINE_RTOL * (abs(x) + abs(y)):
                 return x, y, err
+    return _sorted_vertex_and_error(a, b, c, xs, ys)
+
+
+@njit(**NJIT)
+def _sorted_vertex_and_error(a, b, c, xs, ys):
+    """:func:`voronoi_vertex_and_error` where the order could matter: owners sorted first."""
     a, b, c = sorted_triple(a, b, c, xs, ys)
     ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det, _, _ = _frame(
         xs[a], ys[a], 0.0, xs[b], ys[b], 0.0, xs[c], ys[c], 0.0
@@ -199,6 +205,47 @@ def voronoi_vertex_and_error(a, b, c, xs, ys):
         if np.isfinite(rx) and np.isfinite(ry):
             return rx, ry, 8.0 * _U * (abs(rx) + abs(ry))
     return x, y, err
+
+
+@njit(**NJIT)
+def voronoi_vertex_lazy(a, b, c, xs, ys):
+    """:func:`voronoi_vertex_and_error`'s bits, the bound computed only where it is needed.
+
+    Returns ``(x, y, err)``; ``err`` is -1 (not computed) in the easy case, almost every
+    vertex: the float formula in argument order gives the canonical bits (no tied longest
+    edge, a trusted determinant, offsets neither zero nor infinite) and an upper bound of
+    the rounding bound of :func:`_error_of` is below the refinement threshold, so that
+    :func:`voronoi_vertex_and_error` returns these very bits. The upper bound uses the
+    centre's one division (``0.5 / det``) where the full bound has three, and ``u |x|`` for
+    the final addition's rounding error (its exact residual there): each term is at least
+    its counterpart, and rounding is monotone. Where it fails, the full bound decides, and
+    the rest is :func:`voronoi_vertex_and_error`'s own path.
+    """
+    ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det, trusted, tie = _frame(
+        xs[a], ys[a], 0.0, xs[b], ys[b], 0.0, xs[c], ys[c], 0.0
+    )
+    if trusted and not tie:
+        d = 0.5 / det
+        ux = (ey * bl - dy * cl) * d
+        uy = (dx * cl - ex * bl) * d
+        if 0.0 < abs(ux) < np.inf and 0.0 < abs(uy) < np.inf:
+            x = ox + ux
+            y = oy + uy
+            lim = VERTEX_REFINE_RTOL * (abs(x) + abs(y))
+            h = abs(d)  # 0.5 / |det|, bit for bit
+            rel = 8.0 * _U * (abs(left) + abs(right)) * h * (1.0 + 2.0**-40)
+            if rel < 0.5:
+                ub = 7.0 * _U * (abs(ey) * bl + abs(dy) * cl) * h
+                ub += 7.0 * _U * (abs(dx) * cl + abs(ex) * bl) * h
+                ub += (abs(ux) + abs(uy)) * (2.0 * _U + rel)
+                ub += _U * abs(x) + _U * abs(y)
+                ub = 2.0 * ub + 4.0 * _U * _U * (abs(ox) + abs(oy))
+                if ub <= lim:
+                    return x, y, -1.0
+            err = _error_of(ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det)
+            if not err > lim:
+                return x, y, err
+    return _sorted_vertex_and_error(a, b, c, xs, ys)
 
 
 @njit(**NJIT)
@@ -278,9 +325,10 @@ def voronoi_vertex(a, b, c, xs, ys):
     That of :func:`center` on the owners in canonical order; they are sorted only where the
     order could change a bit (:func:`_center_if_order_free`). A sliver's centre, which the
     float formula loses to cancellation, is computed from exact expansions
-    (:func:`voronoi_vertex_and_error`), the same bits as there.
+    (:func:`voronoi_vertex_and_error`), the same bits as there; the rounding bound is
+    computed only where the easy case is not proven (:func:`voronoi_vertex_lazy`).
     """
-    x, y, _ = voronoi_vertex_and_error(a, b, c, xs, ys)
+    x, y, _ = voronoi_vertex_lazy(a, b, c, xs, ys)
     return x, y
 
 
