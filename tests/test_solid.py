@@ -219,6 +219,19 @@ def test_container_trim_and_skin(monkeypatch):
     trim = solid.lattice(cells, radius=0.6, container=c, route="implicit", voxel=0.4, smoothing=0)
     left_out = [int((~k).sum()) for k in kept]  # one slab each
     assert len(left_out) == 2 and left_out[0] > left_out[1] > 0
+    # the container's field started ahead on a second thread (a design build's, while its
+    # cells relax): the lattice takes those blocks, the same mesh
+    bare, block, threads = implicit.Bare(c.vertices, c.faces), implicit._ContainerField.block, []
+
+    def counted(self, *a):
+        threads.append(threading.current_thread().name)
+        return block(self, *a)
+
+    monkeypatch.setattr(implicit._ContainerField, "block", counted)
+    implicit.prefetch_container(bare, 1.0, 0.4)
+    ahead = solid.lattice(cells, radius=0.6, container=bare, skin=1.0, voxel=0.4, smoothing=0)
+    assert threads and set(threads) == {"voroforge-container"} and bare._ahead is None
+    assert np.array_equal(ahead.vertices, m.vertices) and np.array_equal(ahead.faces, m.faces)
     monkeypatch.setattr(implicit, "_reaching", lambda c, below, o, h, a, *r: np.ones(len(a), bool))
     for skin, got in ((1.0, m), (0.0, trim)):
         route = "auto" if skin else "implicit"
@@ -228,37 +241,6 @@ def test_container_trim_and_skin(monkeypatch):
         assert np.array_equal(got.vertices, every.vertices) and np.array_equal(
             got.faces, every.faces
         )
-
-
-def test_a_container_field_started_ahead_gives_the_same_lattice(monkeypatch):
-    # prefetch_container computes the skin's container field on a second thread before the
-    # struts exist (a design build: while its cells relax); the lattice takes those blocks
-    rng = np.random.default_rng(5)
-    cells = box_cells(rng.random((12, 3)) * 20, (0, 0, 0, 20, 20, 20))
-    c = trimesh.creation.icosphere(2, radius=8.0)
-    c.apply_translation([10, 10, 10])
-    bare = implicit.Bare(c.vertices, c.faces)
-    monkeypatch.setattr(implicit, "_SLAB", 20)  # three slabs, each its own block
-    kw = {"radius": 0.6, "container": bare, "skin": 1.0, "voxel": 0.4, "smoothing": 0}
-    here = solid.lattice(cells, **kw, bare=True)
-    block, threads = implicit._ContainerField.block, []
-
-    def counted(self, *a):
-        threads.append(threading.current_thread().name)
-        return block(self, *a)
-
-    monkeypatch.setattr(implicit._ContainerField, "block", counted)
-    implicit.prefetch_container(bare, 1.0, 0.4)
-    ahead = solid.lattice(cells, **kw, bare=True)
-    assert threads == ["voroforge-container"] * 3 and bare._ahead is None
-    assert np.array_equal(here.vertices, ahead.vertices)
-    assert np.array_equal(here.faces, ahead.faces)
-    # started for another voxel: not taken, the lattice computes its own blocks
-    threads.clear()
-    implicit.prefetch_container(bare, 1.0, 0.5)
-    again = solid.lattice(cells, **kw, bare=True)
-    mine = [t for t in threads if t != "voroforge-container"]  # the slabs' own threads
-    assert len(mine) == 3 and np.array_equal(here.faces, again.faces)
 
 
 @pytest.mark.parametrize("skin", [0.0, 2.0])
