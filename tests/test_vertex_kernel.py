@@ -13,6 +13,7 @@ from voroforge.kernels.vertex import (
     box_crossing,
     canonical_triple,
     canonical_vertex,
+    canonical_vertex4,
     center,
     circumcenter,
     power_box_crossing,
@@ -220,3 +221,25 @@ def test_canonical_triple_skips_ill_conditioned_triples():
     assert not {0, 1} <= {a, b, c}
     none = canonical_triple(np.array([0, 1], dtype=np.int64), 2, 0.0, 0.0, 1.0, 0.0, xs, ys)
     assert none == (-1, -1, -1)
+
+
+def test_canonical_vertex4_is_canonical_vertex_bit_for_bit():
+    # squares of a float grid (their triples' centres differ by ulps), four sites on the
+    # unit circle, and a square with two sites a few ulps apart (ill-conditioned triples)
+    k = 316  # benchmarks' grid(1e5): about half its squares' triples differ in bits
+    axis = (np.arange(k) + 0.5) / k
+    gx, gy = (g.ravel() for g in np.meshgrid(axis, axis))
+    quads = [(gx, gy, [i, i + 1, i + k, i + k + 1]) for i in (0, 8, 17, 40, 1000, 5003, 20000)]
+    t = np.array([0.1, 1.7, 2.9, 4.4])
+    quads.append((np.cos(t), np.sin(t), [0, 1, 2, 3]))
+    xs = np.array([1.0, np.nextafter(1.0, 2.0), 0.0, -1.0])
+    quads.append((xs, np.array([0.0, 0.0, 1.0, 0.0]), [0, 1, 2, 3]))
+    for xs, ys, q in quads:
+        for p0, p1, p2, p3 in itertools.permutations(q):
+            vx, vy = voronoi_vertex(p1, p2, p3, xs, ys)
+            c1 = voronoi_vertex(p0, p2, p3, xs, ys)
+            c2 = voronoi_vertex(p0, p1, p3, xs, ys)
+            on = np.array([p0, p1, p2, p3], dtype=np.int64)
+            want = canonical_vertex(on, 4, vx, vy, xs[p3], ys[p3], xs, ys)
+            got = canonical_vertex4(p0, p1, p2, p3, vx, vy, *c1, *c2, xs, ys)
+            assert _bits(got) == _bits(want)

@@ -37,6 +37,7 @@ from .predicates import incircle, orient2d
 from .vertex import (
     box_crossing,
     canonical_vertex,
+    canonical_vertex4,
     near_pair,
     same_vertex,
     voronoi_vertex_error,
@@ -226,7 +227,7 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
             work += _W_VERTEX + nc
             if work > budget:
                 return -2, work
-            vx_, vy_, ev_ = voronoi_vertex_lazy(i, a, b, xs, ys)
+            vx_, vy_, ev_, lv_ = voronoi_vertex_lazy(i, a, b, xs, ys)
             r2 = (ix - vx_) * (ix - vx_) + (iy - vy_) * (iy - vy_)
             tol = HALFPLANE_NEAR_RTOL * r2
             # a site this close to the circle is on it: the edge it would add or keep is
@@ -237,6 +238,8 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
             prv = lab[u - 2] if u >= 2 else lab[u - 2 + m]
             non = np.int64(0)  # other sites on the circle, to rounding
             charged = False
+            jsite = np.int64(-1)  # the last joined site, and its two centres (_joins)
+            j1x = j1y = j2x = j2y = 0.0
             for c in range(nc):
                 x = sidx[cand[c]]
                 if x == a or x == b:
@@ -256,7 +259,7 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
                         return -2, work
                 joined = False
                 if abs(d) <= merge:
-                    joined, ev_ = _joins(i, a, b, x, vx_, vy_, ev_, xs, ys)
+                    joined, ev_, q1x, q1y, q2x, q2y = _joins(i, a, b, x, vx_, vy_, ev_, lv_, xs, ys)
                 if joined:
                     if x == nxt or x == prv:
                         # the edge of b (or a) between this vertex and x's is noise: drop it
@@ -264,6 +267,8 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
                         inserted = True
                         break
                     s = 0.0
+                    jsite = x
+                    j1x, j1y, j2x, j2y = q1x, q1y, q2x, q2y
                 elif d < -tol and abs(d) > merge:
                     s = 1.0
                 else:
@@ -312,10 +317,17 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
                 work += tries * _vertex_cost(vx_, vy_, r, ix, iy)
                 if work > budget:
                     return -2, work
-                on[non] = i
-                on[non + 1] = a
-                on[non + 2] = b
-                vx[u], vy[u] = canonical_vertex(on, non + 3, vx_, vy_, ix, iy, xs, ys)
+                if non == 1 and on[0] == jsite:
+                    # four sites (a grid's square): three of the four triples' centres
+                    # are known, the vertex's and the two _joins computed
+                    vx[u], vy[u] = canonical_vertex4(
+                        jsite, b, a, i, vx_, vy_, j1x, j1y, j2x, j2y, xs, ys
+                    )
+                else:
+                    on[non] = i
+                    on[non + 1] = a
+                    on[non + 2] = b
+                    vx[u], vy[u] = canonical_vertex(on, non + 3, vx_, vy_, ix, iy, xs, ys)
         if not inserted:
             return m, work
         trust = False  # the ring changed: every label gets the exact tests from now on
@@ -359,7 +371,7 @@ def _near_cost(a, b, c0, cand, nc, sidx, xs, ys, vx, vy, r2, tol, merge):
 
 
 @njit(**NJIT)
-def _joins(i, a, b, x, vx, vy, ev, xs, ys):
+def _joins(i, a, b, x, vx, vy, ev, lv, xs, ys):
     """Whether site ``x`` near the circle of ``i, a, b`` (centre ``vx, vy``) is on its vertex.
 
     True when the circumcentres of ``x`` with ``i, a`` and with ``i, b`` are both that
@@ -368,25 +380,35 @@ def _joins(i, a, b, x, vx, vy, ev, xs, ys):
     would add or shorten are then rounding noise. A site a few ulps from ``i``, ``a`` or
     ``b`` fails: its triangle with that site is ill-conditioned and its centre lies far
     along their bisector. A centre with the vertex's very bits passes the rule whatever
-    the bounds (distance 0), so bounds are computed only for one that differs (an exact
-    lattice's never do). Returns ``(joined, ev)``: ``ev`` is -1 on entry when not yet
-    computed, and comes back computed if it was needed.
+    the bounds (distance 0); one that passes it with lower bounds of the two rounding
+    bounds (``lv`` the vertex's, :func:`.vertex.voronoi_vertex_lazy`) passes it with the
+    bounds, which are computed only where that fails (a grid's squares: never). Returns
+    ``(joined, ev, x1, y1, x2, y2)``: ``ev`` is -1 on entry when not yet computed, and
+    comes back computed if it was needed; when joined, the two centres (of ``i, a, x`` and
+    of ``i, x, b``), which may name the vertex.
     """
     r = abs(vx - xs[i]) + abs(vy - ys[i])
+    x1 = y1 = x2 = y2 = 0.0
     for k in range(2):
         p, q = (a, x) if k == 0 else (x, b)
-        px, py, ep = voronoi_vertex_lazy(i, p, q, xs, ys)
+        px, py, ep, lp = voronoi_vertex_lazy(i, p, q, xs, ys)
         if not (np.isfinite(px) and np.isfinite(py)):
-            return False, ev
+            return False, ev, 0.0, 0.0, 0.0, 0.0
+        if k == 0:
+            x1, y1 = px, py
+        else:
+            x2, y2 = px, py
         if px == vx and py == vy:
             continue
+        if same_vertex(vx, vy, lv, px, py, lp, r):
+            continue  # (lv <= ev, lp <= ep: the rule holds with the bounds too)
         if ev < 0.0:
             ev = voronoi_vertex_error(i, a, b, xs, ys)
         if ep < 0.0:
             ep = voronoi_vertex_error(i, p, q, xs, ys)
         if not same_vertex(vx, vy, ev, px, py, ep, r):
-            return False, ev
-    return True, ev
+            return False, ev, 0.0, 0.0, 0.0, 0.0
+    return True, ev, x1, y1, x2, y2
 
 
 @njit(**NJIT)

@@ -211,7 +211,7 @@ def _sorted_vertex_and_error(a, b, c, xs, ys):
 def voronoi_vertex_lazy(a, b, c, xs, ys):
     """:func:`voronoi_vertex_and_error`'s bits, the bound computed only where it is needed.
 
-    Returns ``(x, y, err)``; ``err`` is -1 (not computed) in the easy case, almost every
+    Returns ``(x, y, err, low)``; ``err`` is -1 (not computed) in the easy case, almost every
     vertex: the float formula in argument order gives the canonical bits (no tied longest
     edge, a trusted determinant, offsets neither zero nor infinite) and an upper bound of
     the rounding bound of :func:`_error_of` is below the refinement threshold, so that
@@ -219,7 +219,11 @@ def voronoi_vertex_lazy(a, b, c, xs, ys):
     centre's one division (``0.5 / det``) where the full bound has three, and ``u |x|`` for
     the final addition's rounding error (its exact residual there): each term is at least
     its counterpart, and rounding is monotone. Where it fails, the full bound decides, and
-    the rest is :func:`voronoi_vertex_and_error`'s own path.
+    the rest is :func:`voronoi_vertex_and_error`'s own path. ``low`` is a lower bound of the
+    rounding bound (``err`` itself where computed): in the easy case twice the final
+    addition's exact rounding errors, one of :func:`_error_of`'s non-negative terms (a
+    rounded sum of non-negative terms is at least each of them), so that a caller can prove
+    two centres within their bounds of each other without computing the bounds.
     """
     ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det, trusted, tie = _frame(
         xs[a], ys[a], 0.0, xs[b], ys[b], 0.0, xs[c], ys[c], 0.0
@@ -241,11 +245,13 @@ def voronoi_vertex_lazy(a, b, c, xs, ys):
                 ub += _U * abs(x) + _U * abs(y)
                 ub = 2.0 * ub + 4.0 * _U * _U * (abs(ox) + abs(oy))
                 if ub <= lim:
-                    return x, y, -1.0
+                    low = 2.0 * (abs(two_sum(ox, ux)[1]) + abs(two_sum(oy, uy)[1]))
+                    return x, y, -1.0, low
             err = _error_of(ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det)
             if not err > lim:
-                return x, y, err
-    return _sorted_vertex_and_error(a, b, c, xs, ys)
+                return x, y, err, err
+    x, y, err = _sorted_vertex_and_error(a, b, c, xs, ys)
+    return x, y, err, err
 
 
 @njit(**NJIT)
@@ -328,7 +334,7 @@ def voronoi_vertex(a, b, c, xs, ys):
     (:func:`voronoi_vertex_and_error`), the same bits as there; the rounding bound is
     computed only where the easy case is not proven (:func:`voronoi_vertex_lazy`).
     """
-    x, y, _ = voronoi_vertex_lazy(a, b, c, xs, ys)
+    x, y, _, _ = voronoi_vertex_lazy(a, b, c, xs, ys)
     return x, y
 
 
@@ -532,3 +538,50 @@ def canonical_vertex_ranked(on, k, rank, vx, vy, sx, sy, xs, ys):
     _sort_by_rank(on, k, rank)
     a, _, _, x, y = _named(on, k, vx, vy, sx, sy, xs, ys)
     return a >= 0, x, y
+
+
+@njit(**NJIT)
+def canonical_vertex4(p0, p1, p2, p3, vx, vy, c1x, c1y, c2x, c2y, xs, ys):
+    """:func:`canonical_vertex` where four sites are on the circle, three centres known.
+
+    The sites are ``p0..p3``, ``(vx, vy)`` the vertex (the centre of the triple without
+    ``p0``), ``c1``, ``c2`` the centres of the triples without ``p1`` and ``p2`` (from
+    :func:`voronoi_vertex`: any order, the same bits), and ``p3`` the vertex's site. The
+    same triples are tried in the same order with the same tests as :func:`canonical_vertex`
+    on ``[p0, p1, p2, p3]``, so the result is its bits; only the triple without ``p3`` has
+    its centre computed, if it is tried. Returns ``(x, y)``.
+    """
+    sx = xs[p3]
+    sy = ys[p3]
+    r2 = (vx - sx) * (vx - sx) + (vy - sy) * (vy - sy)
+    s0, s1, s2, s3 = np.int64(p0), np.int64(p1), np.int64(p2), np.int64(p3)
+    s0, s1 = min(s0, s1), max(s0, s1)  # the sites by index (a sorting network)
+    s2, s3 = min(s2, s3), max(s2, s3)
+    s0, s2 = min(s0, s2), max(s0, s2)
+    s1, s3 = min(s1, s3), max(s1, s3)
+    s1, s2 = min(s1, s2), max(s1, s2)
+    for t in range(4):  # lexicographic triples leave out s3, s2, s1, s0 in turn
+        if t > NAME_MAX_TRIES - 1:
+            return vx, vy
+        omit = s3 if t == 0 else (s2 if t == 1 else (s1 if t == 2 else s0))
+        x0 = s0 if t < 3 else s1
+        x1 = s1 if t < 2 else s2
+        x2 = s2 if t == 0 else s3
+        if x0 == x1 or x1 == x2:
+            continue
+        if near_pair(x0, x1, r2, xs, ys) or near_pair(x1, x2, r2, xs, ys):
+            continue
+        if near_pair(x0, x2, r2, xs, ys):
+            continue
+        if omit == p0:
+            cx, cy = vx, vy
+        elif omit == p1:
+            cx, cy = c1x, c1y
+        elif omit == p2:
+            cx, cy = c2x, c2y
+        else:
+            cx, cy = voronoi_vertex(x0, x1, x2, xs, ys)
+        if np.isfinite(cx) and np.isfinite(cy):
+            if is_close(vx, vy, cx, cy, sx, sy, VERTEX_SNAP_RTOL):
+                return cx, cy
+    return vx, vy
