@@ -173,6 +173,7 @@ def test_slabs_stitch_exactly(monkeypatch):
 
 def test_slabs_are_sampled_ahead_in_order_and_errors_reach_the_caller(monkeypatch):
     monkeypatch.setattr(implicit, "_SLAB", 5)
+    monkeypatch.setattr(implicit, "THREADS", True)  # whatever the machine's load
     seen = []
 
     def ball(shape, origin, krange):
@@ -199,6 +200,12 @@ def test_slabs_are_sampled_ahead_in_order_and_errors_reach_the_caller(monkeypatc
 
     with pytest.raises(ValueError, match=r"no field at \(5, 10\)"):
         implicit.march(broken, (0, 0, 0), (4, 4, 4), 0.5, bare=True)
+    # without a spare core, every slab on the caller's thread: the same mesh
+    monkeypatch.setattr(implicit, "THREADS", False)
+    seen.clear()
+    one = implicit.march(ball, (0, 0, 0), (4, 4, 4), 0.5, bare=True)
+    assert [t for _, t in seen] == ["MainThread"] * 3
+    assert np.array_equal(one.vertices, m.vertices) and np.array_equal(one.faces, m.faces)
 
 
 def test_container_trim_and_skin(monkeypatch):
@@ -228,6 +235,7 @@ def test_container_trim_and_skin(monkeypatch):
         return block(self, *a)
 
     monkeypatch.setattr(implicit._ContainerField, "block", counted)
+    monkeypatch.setattr(implicit, "THREADS", True)  # whatever the machine's load
     implicit.prefetch_container(bare, 1.0, 0.4)
     ahead = solid.lattice(cells, radius=0.6, container=bare, skin=1.0, voxel=0.4, smoothing=0)
     assert threads and set(threads) == {"voroforge-container"} and bare._ahead is None

@@ -48,6 +48,7 @@ def test_a_bare_solid_writes_its_meshes_beside_the_preview(tmp_path, monkeypatch
     import threading
 
     from voroforge.solid import build as solid_build
+    from voroforge.solid import implicit
     from voroforge.solid.implicit import Bare
 
     src = tmp_path / "shell.toml"
@@ -55,6 +56,7 @@ def test_a_bare_solid_writes_its_meshes_beside_the_preview(tmp_path, monkeypatch
     box = trimesh.creation.box((12, 10, 8))  # the bare mesh a shell's make_solid returns
     bare = Bare(box.vertices, box.faces, {"decimals": 6})  # on the implicit route's grid
     monkeypatch.setattr(solid_build, "make_solid", lambda *a, **k: bare)
+    monkeypatch.setattr(implicit, "THREADS", True)  # whatever the machine's load
     write, threads = solid_build._write_mesh, {}
 
     def watched(m, path, fmt, units):

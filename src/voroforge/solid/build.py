@@ -196,7 +196,8 @@ def build_solid(design, base, out: Path, stage, *, preview_only: bool = False) -
     """Build the solid and write ``[solid] formats`` (meshes and a PNG preview) to ``out``.
 
     A bare mesh (the implicit route's lattices, shells) has its mesh files written on a
-    second thread while the preview renders: the 3MF's text kernel, deflate and the
+    second thread while the preview renders, where a core is free
+    (:func:`voroforge.solid.implicit.spare_core`): the 3MF's text kernel, deflate and the
     preview's z-buffer release the GIL, and both only read the mesh's arrays. The files
     are those written one after the other; the list follows ``formats`` either way.
     """
@@ -208,7 +209,9 @@ def build_solid(design, base, out: Path, stage, *, preview_only: bool = False) -
     paths = {fmt: out / f"{stem}.{fmt}" for fmt in formats}
     meshes = [fmt for fmt in formats if fmt != "png"]
     join = None
-    if "png" in paths and meshes and not hasattr(m, "is_volume"):
+    from .implicit import spare_core
+
+    if "png" in paths and meshes and not hasattr(m, "is_volume") and spare_core():
         stage("writing " + ", ".join(paths[fmt].name for fmt in meshes))
         join = _on_thread(lambda: [_write_mesh(m, paths[fmt], fmt, units) for fmt in meshes])
     else:
