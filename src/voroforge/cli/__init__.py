@@ -13,6 +13,7 @@ Nothing heavy is imported before a command runs, so ``--help`` and ``--version``
 from __future__ import annotations
 
 import argparse
+import gc
 import sys
 from collections.abc import Sequence
 
@@ -73,6 +74,19 @@ def _error(message: str) -> int:
     for line in str(message).splitlines() or [""]:  # a design file may have several issues
         print(f"{PROG}: error: {line}", file=sys.stderr)
     return 2
+
+
+def entry() -> int:
+    """The ``voroforge`` console script and ``python -m voroforge``: :func:`main`, then exit.
+
+    Before the interpreter exits, the objects made so far are frozen out of the garbage
+    collector: its final collection would otherwise walk everything numba and LLVM created
+    (0.25-0.45 s of every command that ran a kernel, 0.04-0.05 s frozen). Nothing is lost:
+    files are closed and written atomically before this point.
+    """
+    status = main()
+    gc.freeze()
+    return status
 
 
 def main(argv: Sequence[str] | None = None) -> int:
