@@ -171,20 +171,8 @@ def voronoi_vertex_and_error(a, b, c, xs, ys):
     :func:`_error_of` (addition is commutative in floats) and negates the determinant and
     both numerators exactly. Elsewhere both come from the owners in canonical order.
     """
-    ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det, trusted, tie = _frame(
-        xs[a], ys[a], 0.0, xs[b], ys[b], 0.0, xs[c], ys[c], 0.0
-    )
-    if trusted and not tie:
-        d = 0.5 / det
-        ux = (ey * bl - dy * cl) * d
-        uy = (dx * cl - ex * bl) * d
-        if 0.0 < abs(ux) < np.inf and 0.0 < abs(uy) < np.inf:
-            err = _error_of(ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det)
-            x = ox + ux
-            y = oy + uy
-            if not err > VERTEX_REFINE_RTOL * (abs(x) + abs(y)):
-                return x, y, err
-    return _sorted_vertex_and_error(a, b, c, xs, ys)
+    x, y, err, _ = _vertex_and_bounds(a, b, c, xs, ys, np.bool_(False))
+    return x, y, err
 
 
 @njit(**NJIT)
@@ -225,6 +213,17 @@ def voronoi_vertex_lazy(a, b, c, xs, ys):
     rounded sum of non-negative terms is at least each of them), so that a caller can prove
     two centres within their bounds of each other without computing the bounds.
     """
+    return _vertex_and_bounds(a, b, c, xs, ys, np.bool_(True))
+
+
+@njit(**{**NJIT, "inline": "always"})  # as a call: half-plane grid 1e5 ~13% slower
+def _vertex_and_bounds(a, b, c, xs, ys, lazy):
+    """One copy of the float path behind two entries: ``lazy`` False or True.
+
+    :func:`voronoi_vertex_and_error` (False) and :func:`voronoi_vertex_lazy` (True) share the
+    formula, so the lazy proof and the full bound always see the same bits. Returns
+    ``(x, y, err, low)``.
+    """
     ox, oy, ow, pw, qw, dx, dy, ex, ey, bl, cl, left, right, det, trusted, tie = _frame(
         xs[a], ys[a], 0.0, xs[b], ys[b], 0.0, xs[c], ys[c], 0.0
     )
@@ -238,7 +237,7 @@ def voronoi_vertex_lazy(a, b, c, xs, ys):
             lim = VERTEX_REFINE_RTOL * (abs(x) + abs(y))
             h = abs(d)  # 0.5 / |det|, bit for bit
             rel = 8.0 * _U * (abs(left) + abs(right)) * h * (1.0 + 2.0**-40)
-            if rel < 0.5:
+            if lazy and rel < 0.5:
                 ub = 7.0 * _U * (abs(ey) * bl + abs(dy) * cl) * h
                 ub += 7.0 * _U * (abs(dx) * cl + abs(ex) * bl) * h
                 ub += (abs(ux) + abs(uy)) * (2.0 * _U + rel)
