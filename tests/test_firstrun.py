@@ -87,6 +87,12 @@ def test_a_2d_build_loads_only_what_it_needs(tmp_path):
     assert "scipy.linalg" not in loaded and "scipy._lib._util" not in loaded
     for sub in ("solid.build", "surface.build", "studio.server", "engine.voronoi3d", "scale"):
         assert f"voroforge.{sub}" not in loaded, sub
+    # the design schema reads the surface section without loading the surface modules, and
+    # the SVG writer escapes without xml.sax.saxutils (which loads urllib.request and ssl)
+    assert "voroforge.surface.schema" in loaded
+    for sub in ("morph", "panels", "shapes", "unroll", "voronoi"):
+        assert f"voroforge.surface.{sub}" not in loaded, sub
+    assert not {"xml.sax.saxutils", "urllib.request", "ssl"} & loaded
 
 
 def test_first_runs_are_timed_in_fresh_processes(tmp_path):

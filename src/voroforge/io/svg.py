@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 import shapely
@@ -27,6 +26,28 @@ __all__ = ["layers_string", "svg_string", "write_layers", "write_svg"]
 
 _UNITS = ("px", "mm", "cm", "in", "pt")
 _DEFAULT_PIXELS = 800.0
+
+
+# xml.sax.saxutils has these two, but importing it loads urllib.request and ssl (~0.07 s of
+# every build that writes an SVG); the same rules, for the text this writer emits:
+def _escape(text: str) -> str:
+    """``text`` with ``&``, ``<`` and ``>`` as XML entities."""
+    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+
+
+def _quoteattr(value: str) -> str:
+    """``value`` escaped and quoted as an XML attribute value, quotes included.
+
+    Double quotes unless the value holds one (then single quotes, or ``&quot;`` when it
+    holds both); newlines, returns and tabs as character references so they survive
+    attribute normalisation.
+    """
+    value = _escape(value).replace("\n", "&#10;").replace("\r", "&#13;").replace("\t", "&#9;")
+    if '"' not in value:
+        return f'"{value}"'
+    if "'" not in value:
+        return f"'{value}'"
+    return '"' + value.replace('"', "&quot;") + '"'
 
 
 def _colour(value) -> str:
@@ -107,15 +128,15 @@ def svg_string(
         f'width="{format_number(out_w, 4)}{suffix}" height="{format_number(out_h, 4)}{suffix}" '
         f'viewBox="{num(xmin)} {num(-ymax)} {num(w)} {num(h)}">',
     ]
-    cell_attrs = f'fill-rule="evenodd" stroke={quoteattr(stroke)} stroke-width="{num(sw)}"'
+    cell_attrs = f'fill-rule="evenodd" stroke={_quoteattr(stroke)} stroke-width="{num(sw)}"'
     if group_fill is not None:
-        cell_attrs += f" fill={quoteattr(_colour(group_fill))}"
+        cell_attrs += f" fill={_quoteattr(_colour(group_fill))}"
     out.append(f'<g id="cells" {cell_attrs} stroke-linejoin="round">')
     for i, geom in enumerate(cells):
         ctx = PathContext(digits)
         if trace(ctx, geom, flip) == 0:
             continue
-        extra = "" if cell_fills is None else f" fill={quoteattr(cell_fills[i])}"
+        extra = "" if cell_fills is None else f" fill={_quoteattr(cell_fills[i])}"
         out.append(f'<path id="cell-{i}"{extra} d="{ctx}"/>')
     out.append("</g>")
 
@@ -123,14 +144,14 @@ def svg_string(
         ctx = PathContext(digits)
         trace(ctx, bound, flip)
         out.append(
-            f'<g id="boundary" fill="none" fill-rule="evenodd" stroke={quoteattr(stroke)} '
+            f'<g id="boundary" fill="none" fill-rule="evenodd" stroke={_quoteattr(stroke)} '
             f'stroke-width="{num(2.0 * sw)}" stroke-linejoin="round">'
         )
         out.append(f'<path d="{ctx}"/>')
         out.append("</g>")
 
     if pts is not None:
-        out.append(f'<g id="sites" fill={quoteattr(stroke)} stroke="none">')
+        out.append(f'<g id="sites" fill={_quoteattr(stroke)} stroke="none">')
         r = num(radius)
         out.extend(f'<circle cx="{num(x)}" cy="{num(-y)}" r="{r}"/>' for x, y in pts.tolist())
         out.append("</g>")
@@ -344,9 +365,9 @@ def layers_string(
             '1.5" vector-effect="non-scaling-stroke' if screen else format_number(stroke_width, 6)
         )
         out.append(
-            f'<g id={quoteattr(ident)} inkscape:groupmode="layer" '
-            f"inkscape:label={quoteattr(name)} fill={quoteattr(fill_attr)} "
-            f'fill-rule="evenodd" stroke={quoteattr(stroke)} '
+            f'<g id={_quoteattr(ident)} inkscape:groupmode="layer" '
+            f"inkscape:label={_quoteattr(name)} fill={_quoteattr(fill_attr)} "
+            f'fill-rule="evenodd" stroke={_quoteattr(stroke)} '
             f'stroke-width="{width}" '
             'stroke-linejoin="round" stroke-linecap="round">'
         )
@@ -390,8 +411,8 @@ def _legend(rows, xmin: float, ymax: float, span: float, num) -> list[str]:
     for k, (text, colour) in enumerate(rows):
         y = -ymax + size * (0.4 + 1.4 * (k + 1))
         out.append(
-            f'<text x="{num(xmin + size)}" y="{num(y)}" fill={quoteattr(_colour(colour))}>'
-            f"{escape(str(text))}</text>"
+            f'<text x="{num(xmin + size)}" y="{num(y)}" fill={_quoteattr(_colour(colour))}>'
+            f"{_escape(str(text))}</text>"
         )
     out.append("</g>")
     return out
