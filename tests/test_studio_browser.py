@@ -243,6 +243,38 @@ def test_drag_a_seed_changes_its_cell(panel):
     _shot(page, "laser-panel.png")  # the status line shows a drag step's figures
 
 
+def test_status_line_is_written_sparingly_during_a_drag(panel):
+    """A drag rewrites the status line at most every 250 ms, and shows the last step's figures.
+
+    A text that changes lays the page out and paints it again: on every step, that was a
+    frame's work beside the drag's own.
+    """
+    page, _, _ = panel
+    page.wait_for_function("studio.violationSeq === studio.seq", timeout=60_000)  # quiet
+    page.evaluate(
+        """() => { const s = studio; s.statusWrites = 0; s.dragStart = performance.now();
+             new MutationObserver(() => { s.statusWrites++; })
+               .observe(s.statusEl, { childList: true, characterData: true, subtree: true }); }"""
+    )
+    x, y = page.evaluate("studio.toScreen(studio.site(7))")
+    page.mouse.move(x, y)
+    page.mouse.down()
+    for k in range(1, 13):
+        page.mouse.move(x + k, y - k / 2)
+        _idle(page)
+    page.mouse.up()
+    _idle(page)
+    writes, ms = page.evaluate("[studio.statusWrites, performance.now() - studio.dragStart]")
+    # 12 steps: each wrote it twice before; now the timer's writes, the last step's and
+    # maybe a settle's or a check's
+    assert 1 <= writes <= 3 + ms / 250, (writes, ms)
+    # once the drag ends, the line shows the last step's repaint figure
+    page.wait_for_function(
+        "studio.statusEl.textContent.includes('repaint ' + studio.roundTrip.toFixed(1) + ' ms')",
+        timeout=10_000,
+    )
+
+
 def test_add_and_remove_a_seed_then_undo(panel):
     page, session, _ = panel
     n = page.evaluate("studio.n")

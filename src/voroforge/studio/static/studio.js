@@ -59,6 +59,7 @@ var VoroStudio = (function () {
     this.overlayKey = undefined; this.sentPx = undefined; this.saved = undefined;
     this.violationCounts = undefined; this.violationsId = undefined; this.checkMs = undefined;
     this.violationTotal = undefined; this.violationSeq = undefined;
+    this.statusText = ""; this.statusAt = -Infinity; this.statusTimer = 0; this.messageColour = undefined;
     this.playing = undefined; this.frameShown = undefined; this.framesPlayed = undefined;
     this.bind();
     this.resize();
@@ -472,6 +473,11 @@ var VoroStudio = (function () {
     });
   };
 
+  /* The status line: its text is written only when it changes, and during a drag at most
+     every STATUS_GAP ms (the latest figures then; at once when the drag ends). A text that
+     changes lays out and paints the page again: on every drag step that was a frame's main
+     thread work beside the step's own (the studio's browser test, issue 13). */
+  var STATUS_GAP = 250;
   Studio.prototype.status = function () {
     var h = this.header; if (!h || !this.statusEl) return;
     var parts = [h.n + " cells", (this.sites.length / 2) + " seeds" + (h.sites_edited ? " (edited)" : ""),
@@ -479,22 +485,35 @@ var VoroStudio = (function () {
     if (this.roundTrip !== undefined) parts.push("repaint " + this.roundTrip.toFixed(1) + " ms");
     if (this.drawMs !== undefined) parts.push("draw " + this.drawMs.toFixed(1) + " ms");
     if (this.violationTotal !== undefined) parts.push(this.violationTotal + " violations (check " + this.checkMs.toFixed(0) + " ms)");
-    this.statusEl.textContent = parts.join(" · ");
+    this.statusText = parts.join(" · ");
+    var wait = this.drag ? STATUS_GAP - (performance.now() - this.statusAt) : 0;
+    if (wait <= 0) { this.writeStatus(); return; }
+    if (!this.statusTimer) {
+      var self = this;
+      this.statusTimer = setTimeout(function () { self.statusTimer = 0; self.writeStatus(); }, wait);
+    }
+  };
+
+  Studio.prototype.writeStatus = function () {
+    this.statusAt = performance.now();
+    if (this.statusEl.textContent !== this.statusText) this.statusEl.textContent = this.statusText;
   };
 
   Studio.prototype.message = function (text, bad) {
     if (!this.messageEl) return;
-    this.messageEl.textContent = text || "";
-    this.messageEl.style.color = bad ? "#b00020" : "#225522";
+    var colour = bad ? "#b00020" : "#225522";
+    if (this.messageEl.textContent !== (text || "")) this.messageEl.textContent = text || "";
+    if (this.messageColour !== colour) { this.messageColour = colour; this.messageEl.style.color = colour; }
   };
 
   Studio.prototype.updateBar = function () {
     var st = this.state; if (!st) return;
     var q = function (sel) { return this.root.querySelector(sel); }.bind(this);
     var u = q("[data-act=undo]"), r = q("[data-act=redo]"), f = q("[data-role=file]");
-    if (u) u.disabled = !st.can_undo;
-    if (r) r.disabled = !st.can_redo;
-    if (f) f.textContent = st.file + " — " + st.folder;
+    var file = st.file + " — " + st.folder;  // each written only when it changes (status)
+    if (u && u.disabled !== !st.can_undo) u.disabled = !st.can_undo;
+    if (r && r.disabled !== !st.can_redo) r.disabled = !st.can_redo;
+    if (f && f.textContent !== file) f.textContent = file;
   };
 
   /* --- inputs from the schema ------------------------------------------------------------ */
