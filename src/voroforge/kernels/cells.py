@@ -469,7 +469,8 @@ def _count(xs, ys, ws, tri, he, cx, cy, err, cls, out, box, cap, deg, cut, merge
     """Vertex count of every cell.
 
     Without cocircular merges an uncut cell has one vertex per incident triangle, so only cut
-    cells need the full construction.
+    cells need the full construction; with them, an uncut cell is counted by its halfedge
+    walk (:func:`_classed_ring`).
     """
     n = xs.shape[0]
     counts = np.zeros(n, dtype=np.int64)
@@ -477,10 +478,17 @@ def _count(xs, ys, ws, tri, he, cx, cy, err, cls, out, box, cap, deg, cut, merge
         for i in prange(n):
             counts[i] = deg[i] if deg[i] >= 3 else 0
     nchunks = (n + _CHUNK - 1) // _CHUNK
+    nowhere = np.zeros((0, 2))
+    none = np.zeros(0, dtype=np.int64)
+    count_only = np.int64(-1)  # not a literal: one compile of _classed_ring (see _fill)
     for ch in prange(nchunks):
         bufs, nbrs, cl, tb, ss = _scratch(cap[ch])
         for i in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
-            if not merged and not cut[i]:
+            if not cut[i]:
+                if merged:  # inside the box: the walk alone counts it
+                    counts[i] = _classed_ring(
+                        i, tri, he, cx, cy, cls, out, count_only, nowhere, none, none
+                    )
                 continue
             counts[i] = _cell(
                 i, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, bufs, nbrs, cl, tb, ss
@@ -514,6 +522,54 @@ def _write_ring(i, tri, he, cx, cy, out, base, coords, owner, kmap):
 
 
 @njit(**NJIT)
+def _classed_ring(i, tri, he, cx, cy, cls, out, base, coords, owner, kmap):
+    """:func:`_cell` of an uncut cell (interior site, every centre in the box), from the walk.
+
+    Returns its vertex count, as :func:`_cell` does: one vertex per run of triangles of
+    one class around the site, the last run dropped when it is the first one's class. With
+    ``base >= 0`` the ring is also written closed at ``coords[base:]`` (what :func:`_fill`
+    writes from :func:`_cell`'s ring, bit for bit: each vertex's owner is the neighbour
+    after the last triangle of its run); only a cell of 3 or more vertices has room there.
+    """
+    o0 = out[i]
+    if o0 == -1:
+        return 0
+    o = o0
+    m = 0
+    first = np.int64(-1)
+    last = np.int64(-1)
+    write = base >= 0
+    while True:
+        p = o - o % 3 + (o + 2) % 3  # previous halfedge: y -> i
+        t = o // 3
+        c = cls[t]
+        if m > 0 and c == last:
+            if write:
+                owner[base + m - 1] = kmap[tri[p]]  # same vertex: the run's last owner
+        else:
+            if write:
+                coords[base + m, 0] = cx[t]
+                coords[base + m, 1] = cy[t]
+                owner[base + m] = kmap[tri[p]]
+            if m == 0:
+                first = c
+            last = c
+            m += 1
+        o = he[p]
+        if o == -1 or o == o0:
+            break
+    if m > 1 and last == first:
+        m -= 1
+    if m < 3:
+        return 0
+    if write:
+        coords[base + m, 0] = coords[base, 0]
+        coords[base + m, 1] = coords[base, 1]
+        owner[base + m] = -2
+    return m
+
+
+@njit(**NJIT)
 def _put_ring(base, m, px, py, pw, coords, owner, kmap):
     """Write a built cell's ``m`` vertices at ``base`` as a closed ring, owners through ``kmap``."""
     for k in range(m):
@@ -528,13 +584,32 @@ def _put_ring(base, m, px, py, pw, coords, owner, kmap):
 
 @njit(**NJIT_PARALLEL)
 def _fill(
-    xs, ys, ws, tri, he, cx, cy, err, cls, out, box, cap, start, coords, owner, kmap, cut, merged
+    xs,
+    ys,
+    ws,
+    tri,
+    he,
+    cx,
+    cy,
+    err,
+    cls,
+    out,
+    box,
+    cap,
+    start,
+    counts,
+    coords,
+    owner,
+    kmap,
+    cut,
+    merged,
 ):
     """Write every cell as a closed ring at ``start[i]``; owners go through ``kmap``.
 
     Without cocircular merges an uncut cell is its ring of circumcentres, one per incident
     triangle (what :func:`_cell` builds then, see :func:`_count`): it is written straight
-    from the halfedge walk.
+    from the halfedge walk; with merges, an uncut cell is written from its walk too
+    (:func:`_classed_ring`, ``counts`` its vertex count).
     """
     n = xs.shape[0]
     nchunks = (n + _CHUNK - 1) // _CHUNK
@@ -542,8 +617,11 @@ def _fill(
         bufs, nbrs, cl, tb, ss = _scratch(cap[ch])
         px, py, pw = bufs[0], bufs[1], bufs[2]
         for i in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
-            if not merged and not cut[i]:
-                _write_ring(i, tri, he, cx, cy, out, start[i], coords, owner, kmap)
+            if not cut[i]:
+                if not merged:
+                    _write_ring(i, tri, he, cx, cy, out, start[i], coords, owner, kmap)
+                elif counts[i] > 0:
+                    _classed_ring(i, tri, he, cx, cy, cls, out, start[i], coords, owner, kmap)
                 continue
             m = _cell(i, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, bufs, nbrs, cl, tb, ss)
             if m == 0:
@@ -651,7 +729,7 @@ def _build(xs, ys, tri, he, cx, cy, err, cls, box, order, kmap, merged):
     total = int(lengths[-1])
     coords = np.zeros((total, 2))
     owner = np.zeros(total, dtype=np.int64)
-    args = (cls, out, box, cap, start, coords, owner, kmap, cut, merged)
+    args = (cls, out, box, cap, start, counts, coords, owner, kmap, cut, merged)
     _fill(xs, ys, ws, tri, he, cx, cy, err, *args)
     return out, (coords, lengths, owner)
 
