@@ -115,29 +115,38 @@ def _same(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return shapely.to_wkb(shapely.normalize(a)) == shapely.to_wkb(shapely.normalize(b))
 
 
-def _frame_of(result: Result) -> tuple[tuple[float, float, float, float], bool]:
-    """The domain's bounding box and whether the domain is that box (cached in ``extra``)."""
+def _frame_of(result: Result) -> tuple[tuple[float, float, float, float], bool, object]:
+    """The domain's bounding box, whether the domain is that box, and the box beyond it.
+
+    The last is what the box holds outside the domain (its holes, and past a polygonal
+    outline), prepared; all three are cached in ``extra``.
+    """
     known = result.extra.get("domain_box")
     if known is None or known[0] is not result.domain:
         box = tuple(float(v) for v in result.domain.bounds)
         rect = bool(shapely.equals(result.domain, shapely.box(*box)))
         shapely.prepare(result.domain)  # containment tests of every drag step
-        known = (result.domain, box, rect)
+        outside = shapely.difference(shapely.box(*box), result.domain)
+        shapely.prepare(outside)
+        known = (result.domain, box, rect, outside)
         result.extra["domain_box"] = known
-    return known[1], known[2]
+    return known[1], known[2], known[3]
 
 
-def _clip(cells: np.ndarray, domain) -> np.ndarray:
+def _clip(cells: np.ndarray, domain, outside) -> np.ndarray:
     """Box-clipped convex cells cut to a polygonal ``domain`` (inside the box).
 
-    Cells the domain contains stay as they are; only those crossing its outline or holes
-    go through an overlay, oriented as the engine orients its cells (exterior CCW).
+    Only the cells that meet ``outside`` (the box's part beyond the domain, see
+    :func:`_frame_of`) go through an overlay, oriented as the engine orients its cells
+    (exterior CCW); the rest lie in the domain and stay as they are, those along the box's
+    sides too (an overlay gave them back vertex for vertex, at ~0.4 ms a drag step near the
+    outline).
     """
     out = cells.copy()
     if not len(cells):
         return out
     live = ~shapely.is_empty(cells)
-    cut = np.flatnonzero(live & ~shapely.contains_properly(domain, cells))
+    cut = np.flatnonzero(live & shapely.intersects(outside, cells))
     if len(cut):
         pieces = shapely.intersection(cells[cut], domain)
         bad = np.flatnonzero(~np.isin(shapely.get_type_id(pieces), (3, 6)))
@@ -252,7 +261,7 @@ def update(
     if not k_changes or k_changes > min(MAX_CHANGES, MAX_SHARE * max(n, n0)) or not n:
         return None if k_changes else (result, np.zeros(0, dtype=np.int32))
     domain = result.domain
-    box, rect = _frame_of(result)
+    box, rect, outside = _frame_of(result)
     spacing = float(np.sqrt(domain.area / max(n, 1)))
     old_boxes = _bounds(result)
     # one window per change: its centre, a first radius, and the region it can change
@@ -295,7 +304,7 @@ def update(
             # A cell the domain cuts needs certifying only where it is inside the domain:
             # cut the uncertified ones and score their pieces' vertices instead.
             redo = np.flatnonzero(~ok)
-            cells[redo] = _clip(cells[redo], domain)
+            cells[redo] = _clip(cells[redo], domain, outside)
             ok[redo] = _certified(cells[redo], sites[window[redo]], centres, radii)
             cut[redo] = True
         pos = np.full(n, -1, dtype=np.int64)
@@ -309,7 +318,7 @@ def update(
         return None
     if not rect:
         late = pos[need][~cut[pos[need]]]
-        cells[late] = _clip(cells[late], domain)
+        cells[late] = _clip(cells[late], domain, outside)
     return _assemble(result, design, sites, need, cells[pos[need]], field_fn, n0)
 
 
