@@ -284,6 +284,23 @@ def test_drag_onto_another_seed_and_across_the_panel():
         assert _close(far[0].raw, full.raw)
 
 
+def test_warm_runs_a_drag_step_and_keeps_the_session_as_it_was():
+    s = Session(HOLED)
+    result, raw, cells = s.result, _wkb(s.result.raw), _wkb(s.result.cells)
+    assert "domain_box" not in result.extra  # what a drag step's first call computes
+    s.warm()
+    assert s.result is result and not s.provisional and not s.history and s.sites is None
+    assert _wkb(s.result.raw) == raw and _wkb(s.result.cells) == cells
+    assert "domain_box" in result.extra and "raw_bounds" in result.extra
+    # the first drag step after it: the same cells as without it
+    x, y = result.sites[4]
+    s.apply({"op": "move", "i": 4, "x": float(x) + 0.5, "y": float(y), "begin": True})
+    cold = Session(HOLED)
+    cold.apply({"op": "move", "i": 4, "x": float(x) + 0.5, "y": float(y), "begin": True})
+    assert s.provisional and _wkb(s.result.raw) == _wkb(cold.result.raw)
+    assert _wkb(s.result.cells) == _wkb(cold.result.cells)
+
+
 def test_sites_must_be_finite_pairs():
     design, _ = load(HOLED)
     with pytest.raises(ValueError, match="sites"):
@@ -786,6 +803,18 @@ def test_a_page_gets_the_violations_checked_at_start_up(client):
         msg = ws.receive_json()
         assert msg["op"] == "violations" and msg["seq"] == h["seq"]
         assert msg["total"] == len(hub.session.violations)
+
+
+def test_the_server_warms_the_drag_before_it_answers(folder):
+    from starlette.testclient import TestClient
+
+    from voroforge.studio.server import create_app
+
+    session = Session(folder / "holed.toml")
+    app = create_app(session)
+    assert "domain_box" not in session.result.extra
+    with TestClient(app, base_url="http://127.0.0.1:8765"):
+        assert "domain_box" in session.result.extra  # the lifespan ran a drag step
 
 
 def test_a_page_that_comes_before_the_first_check_ends_gets_its_violations(folder, monkeypatch):

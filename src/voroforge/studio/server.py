@@ -264,7 +264,9 @@ def create_app(session: Session, *, hosts=LOCAL_HOSTS):
     (``gc.freeze``): a full collection of them would stall an edit by ~80 ms. Freed memory
     is kept for reuse (:func:`.heap.keep_heap`, glibc): big numpy arrays are not page-faulted
     in anew on every edit. The fabrication check of the session's result runs at start-up
-    (the app's lifespan, before requests are answered): a page gets its violations at once.
+    (the app's lifespan, before requests are answered): a page gets its violations at once;
+    so does one seed drag step, dropped (:meth:`Session.warm`): the first drag step is as
+    quick as the next ones.
 
     Parameters
     ----------
@@ -348,6 +350,8 @@ def create_app(session: Session, *, hosts=LOCAL_HOSTS):
 
     @contextlib.asynccontextmanager
     async def lifespan(app):
+        # a drag's code runs once before the page is served, not in its first step
+        session.warm()
         # the first check runs before the page is served, not beside its first edits
         await hub.first_check()
         yield
