@@ -646,6 +646,7 @@ var VoroStudio = (function () {
     });
     cv.addEventListener("pointerup", function (e) {
       var d = self.drag; self.drag = null;
+      if (self.statusTimer) { clearTimeout(self.statusTimer); self.statusTimer = 0; self.writeStatus(); }
       if (d && d.kind === "click" && !e.shiftKey) self.queue({ op: "add", x: d.at[0], y: d.at[1] });
       self.invalidate();
     });
