@@ -9,13 +9,14 @@ disagreed on a nearly degenerate input) becomes its own vertex and is counted.
 
 from __future__ import annotations
 
+import threading
 from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
 
 from ..config import GRID_DEGENERATE_RTOL, GRID_WIDEN_RTOL, NJIT
-from ..kernels.cells3d import OK, OVERFLOW, build_cells
+from ..kernels.cells3d import OK, OVERFLOW, build_cells, cell_scratch
 from ..kernels.grid3d import kd_buckets3d
 from .threads import serial_below
 
@@ -158,9 +159,14 @@ def search3d(P: np.ndarray):
     return g, start, SP, sidx, search_order(g, SEARCH_RADIUS), np.zeros((0, 8))
 
 
-def _run(cells, P, W, start, SP, SW, sidx, g, order, tree, t, caps, pool, slots=None):
-    """Build ``cells`` into fixed per-cell slots (threads on slices of the cells)."""
+def _run(cells, P, W, start, SP, SW, sidx, g, order, tree, t, caps, pool, slots=None, scr=None):
+    """Build ``cells`` into fixed per-cell slots (threads on slices of the cells).
+
+    ``scr`` (a dict, thread id -> :func:`.cells3d.cell_scratch`) keeps each thread's working
+    space from call to call on the same inputs and caps; None: made for this call.
+    """
     k = len(cells)
+    scr = {} if scr is None else scr
     cv, cf, cr = caps[:3]
     status = np.zeros(k, np.int64)
     counts = np.zeros((k, 3), np.int64)
@@ -172,6 +178,10 @@ def _run(cells, P, W, start, SP, SW, sidx, g, order, tree, t, caps, pool, slots=
     wmax = float(W.max()) if len(W) else 0.0  # once here, not per slice (8 MB at 1e6)
 
     def part(a, b):
+        me = threading.get_ident()
+        work = scr.get(me)
+        if work is None:
+            work = scr[me] = cell_scratch(len(P), g, tree, t.TV, t.TF, t.TR, capa)
         build_cells(
             cells[a:b],
             P,
@@ -198,6 +208,7 @@ def _run(cells, P, W, start, SP, SW, sidx, g, order, tree, t, caps, pool, slots=
             ovabs[a * cv : b * cv],
             ofaces[a * cf : b * cf],
             oring[a * cr : b * cr],
+            work,
         )
 
     nth = 1 if pool is None else max(1, min(pool._max_workers, k // 512 or 1))
@@ -573,6 +584,7 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
             # slots); the joins run in order
             joiner = ThreadPoolExecutor(1)
         slots = [_slots(min(CHUNK, k), CAPS) for _ in range(2 if joiner else 1)]
+        scr = {}  # each thread's working space, kept from chunk to chunk (_run)
         pending = []
 
         def join(c0, chunk, st, counts, v, c, r2, sl, capa):
@@ -610,6 +622,7 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
                     CAPS,
                     pool,
                     slots[q % len(slots)],
+                    scr,
                 )
                 if joiner is None:
                     join(c0, chunk, *res)
