@@ -225,6 +225,8 @@ def test_page_draws_the_design(panel):
            return s.size; }"""
     )
     assert colours > 20
+    # the patch path ran with the first drawing (not in the first drag steps), unseen
+    assert page.evaluate("studio.warmed") and _patched_is_whole(page) == 0
     keys = page.eval_on_selector_all(".vf-ctl", "els => els.map(e => e.dataset.key)")
     assert {"seeds.radius", "cells.web", "cells.fillet", "fabrication.min_web"} <= set(keys)
 
