@@ -301,6 +301,19 @@ def test_warm_runs_a_drag_step_and_keeps_the_session_as_it_was():
     assert _wkb(s.result.cells) == _wkb(cold.result.cells)
 
 
+def test_a_warm_up_that_fails_does_not_stop_the_server(monkeypatch):
+    from voroforge.studio import incremental
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("a kernel that fails")
+
+    s = Session(HOLED)
+    result = s.result
+    monkeypatch.setattr(incremental, "move", broken)
+    s.warm()  # no exception: the server starts anyway
+    assert s.result is result and not s.provisional
+
+
 def test_sites_must_be_finite_pairs():
     design, _ = load(HOLED)
     with pytest.raises(ValueError, match="sites"):

@@ -226,7 +226,8 @@ class Session:
         nudge = 1e-6 * math.sqrt(float(result.domain.area) / n)
         if not shapely.contains_xy(result.domain, x + nudge, y):
             return
-        with contextlib.suppress(ValueError, DesignError):
+        # only a warm-up: whatever fails here, the drag's own step meets (and answers) again
+        with contextlib.suppress(Exception):
             incremental.move(result, i, (x + nudge, y), self._field_fn())
 
     def check(self, result=None, stale=None) -> list | None:
