@@ -343,10 +343,15 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
             DEG[u] = nk
             for r in range(kept):  # kept neighbours point back at their new index
                 BK[ED[u, r], BK[u, r]] = r
-    # back pointers along the cap (and duplicate-edge check)
+    # back pointers along the cap (and duplicate-edge check; two new points in a row have
+    # [prev, u, next] lists of distinct entries (w >= 3): cn is c's entry 2, c is cn's 0)
     for q in range(w):
         c = CP[q, 2]
         cn = CP[_next(q, w), 2]
+        if c >= nv0 and cn >= nv0:
+            BK[c, 2] = 0
+            BK[cn, 0] = 2
+            continue
         a = _only_edge(DEG, ED, c, cn)
         b = _only_edge(DEG, ED, cn, c)
         if a < 0 or b < 0:
