@@ -637,6 +637,76 @@ def test_wire_rings_thinned_for_drawing_stay_within_the_tolerance():
     assert np.array_equal(wire.rings(cells, tol=None)[2], c0)
 
 
+def _thin_reference(ring: np.ndarray, tol: float) -> np.ndarray:
+    """Slow Douglas-Peucker of one closed ring (wire.rings' thinning, written out plainly)."""
+    n = len(ring)
+    if n <= 4:
+        return ring
+    keep = [False] * n
+    keep[0] = keep[-1] = True
+    for t in range(n - 1):  # both ends of every edge longer than tol
+        if float(np.hypot(*(ring[t + 1] - ring[t]))) ** 2 > tol * tol:
+            keep[t] = keep[t + 1] = True
+    eps2 = (tol / 2) ** 2
+
+    def split(a, b):
+        (ax, ay), (bx, by) = ring[a], ring[b]
+        dx, dy = bx - ax, by - ay
+        ll = dx * dx + dy * dy
+        far, at = -1.0, -1
+        for t in range(a + 1, b):
+            px, py = ring[t][0] - ax, ring[t][1] - ay
+            dot = px * dx + py * dy
+            if dot <= 0:
+                d2 = px * px + py * py
+            elif dot >= ll:
+                d2 = (px - dx) ** 2 + (py - dy) ** 2
+            else:
+                d2 = (px * dy - py * dx) ** 2 * (1.0 / ll)
+            if d2 > far:
+                far, at = d2, t
+        if far > eps2:
+            keep[at] = True
+            split(a, at)
+            split(at, b)
+
+    anchors = [t for t in range(n) if keep[t]]
+    for a, b in zip(anchors[:-1], anchors[1:], strict=True):
+        split(a, b)
+    out = ring[np.array(keep)]
+    return ring if len(out) < 4 else out
+
+
+def test_wire_rings_thin_fillets_within_half_the_tolerance_keeping_long_edges():
+    """Douglas-Peucker per ring: a quarter pixel off at most, the edges a pixel shows kept."""
+    cells = compute(load(HOLED)[0]).cells  # filleted: arcs of many short chords
+    zigzag = shapely.Polygon([(x * 0.1, (x % 2) * 0.3) for x in range(40)] + [(3.9, 5), (0, 5)])
+    cells = np.concatenate((cells, [zigzag, shapely.box(0, 0, 0.01, 0.01), shapely.Polygon()]))
+    g0, r0, c0 = wire.rings(cells)
+    full = shapely.get_coordinates(cells)  # float64, in the order of c0
+    for tol in (0.05, 0.3, 1.0):
+        g, r, c = wire.rings(cells, tol=tol)
+        assert np.array_equal(g, g0) and len(r) == len(r0) and len(c) < len(c0)
+        for j in range(len(r) - 1):
+            ring = full[r0[j] : r0[j + 1]]
+            want = _thin_reference(ring, tol).astype(np.float32)
+            got = c[r[j] : r[j + 1]]
+            assert np.array_equal(got, want), (tol, j)
+            gap = shapely.hausdorff_distance(
+                shapely.LineString(got), shapely.LineString(ring), densify=0.1
+            )
+            assert gap <= tol / 2 + 1e-4, (tol, j, gap)
+            long = np.flatnonzero(np.hypot(*np.diff(ring, axis=0).T) > tol * (1 + 1e-6))
+            ends = {tuple(p) for p in ring[np.union1d(long, long + 1)].astype(np.float32)}
+            assert ends <= {tuple(p) for p in got}, (tol, j)
+    # at the pages' half-pixel tolerance a fillet's arc is a few chords: far fewer vertices
+    # than a half-pixel grid kept (each vertex whose grid square is not its predecessor's)
+    _, r, c = wire.rings(cells[:-3], tol=0.5)  # pixels of 1 (the fillets' radius is 1.5)
+    square = np.floor(full[: r0[-3]] / 0.5)  # the panel's rings (not the last two)
+    grid = 1 + int(np.count_nonzero((square[1:] != square[:-1]).any(axis=1)))
+    assert len(c) < 0.6 * grid, (len(c), grid)
+
+
 def test_drawn_cells_travel_quantized_within_a_fraction_of_a_pixel():
     from voroforge.studio.server import geometry_message
 
@@ -686,6 +756,23 @@ def test_patches_carry_the_moved_sites_and_flags_only():
         # the page, patched, holds the session's sites and flags
         assert np.array_equal(page_sites, s.result.sites)
         assert np.array_equal(page_mask, s.result.mask.astype(np.uint8))
+
+
+def test_new_seeds_patch_every_cell_with_all_the_sites():
+    """design.seed makes every seed new: all cells change, and the sites travel whole."""
+    from voroforge.studio.server import geometry_message
+
+    s = Session(MANY)
+    sent: dict = {}
+    geometry_message(s, None, seq=1, boundary=True, sent=sent)
+    reply = s.apply({"op": "set", "key": "design.seed", "value": 8})
+    n = len(s.result.raw)
+    assert reply.kind == "update" and np.array_equal(reply.changed, np.arange(n))
+    assert reply.changed.dtype == np.int32 and len(s.result.extra["redone"]) == n
+    h, a = wire.unpack(geometry_message(s, reply.changed, seq=2, boundary=False, sent=sent))
+    assert not h["full"] and np.array_equal(a["idx"], np.arange(n))
+    assert "si" not in a and np.array_equal(a["sites"].reshape(-1, 2), s.result.sites)
+    assert np.array_equal(a["m"], s.result.mask.astype(np.uint8))
 
 
 def _page_cells(arrays, prefix):

@@ -46,15 +46,16 @@ def geometry_message(
         More header fields.
     sent : dict, optional
         What the pages were sent last (updated here): with it, a patch carries only the
-        sites that moved (``si``, ``sv``) and the opening flags of its cells (``m``)
-        instead of every site and flag; cells whose flag changed are added to the patch.
+        sites that moved (``si``, ``sv``; every site where most moved) and the opening
+        flags of its cells (``m``) instead of every site and flag; cells whose flag
+        changed are added to the patch.
     px : float, optional
-        The pages' pixel size in design units: the operated cells (drawn only) leave out
-        vertices closer than about half a pixel to the one before (:func:`wire.rings`)
-        and travel as uint16 steps of 1/64 to 1/8 of a pixel (:func:`wire.quantize`, the
-        header's ``cq``); the raw cells travel whole. Operated cells that are their raw
-        cells (a design without web, fillet, ...) are not sent again: the header says
-        ``cells_raw``.
+        The pages' pixel size in design units: the operated cells (drawn only) are
+        thinned to within a quarter of a pixel (:func:`wire.rings`: a fillet's arcs become
+        the few chords a pixel shows) and travel as uint16 steps of 1/64 to 1/8 of a pixel
+        (:func:`wire.quantize`, the header's ``cq``); the raw cells travel whole.
+        Operated cells that are their raw cells (a design without web, fillet, ...) are
+        not sent again: the header says ``cells_raw``.
 
     Returns
     -------
@@ -67,7 +68,8 @@ def geometry_message(
     sites = np.ascontiguousarray(r.sites, dtype=np.float64)
     full = changed is None
     patch = not full and sent is not None and sent.get("n") == n
-    if patch and sent.get("mask") is not None and len(sent["mask"]) == n:
+    every = not full and len(changed) == n  # all the cells (new seeds): no flips to add
+    if patch and not every and sent.get("mask") is not None and len(sent["mask"]) == n:
         flips = np.flatnonzero(sent["mask"] != mask)
         changed = np.union1d(np.asarray(changed, np.int64), flips)
     idx = np.arange(n, dtype=np.int32) if full else np.asarray(changed, np.int32)
@@ -82,8 +84,12 @@ def geometry_message(
         cq = wire.quantize(cc, px) if px else None
     arrays = {"idx": idx}
     old_sites = sent.get("sites") if patch else None
+    moved = None
     if old_sites is not None and old_sites.shape == sites.shape:
         moved = np.flatnonzero((old_sites != sites).any(axis=1)).astype(np.int32)
+    # the sites that moved (an index and two float64 each), or all of them where that is
+    # fewer bytes (most moved: new seeds)
+    if moved is not None and 5 * len(moved) < 4 * n:
         arrays["si"], arrays["sv"] = moved, sites[moved].reshape(-1)
     else:
         arrays["sites"] = sites.reshape(-1)

@@ -698,6 +698,8 @@ def _changed(previous, result) -> np.ndarray | None:
     if previous is None or redo is None:
         return None
     n0, n1 = len(previous.raw), len(result.raw)
+    if len(redo) >= n1:  # every cell redone (new seeds): all of them, without the unions
+        return np.arange(n1, dtype=np.int32)
     m = min(n0, n1)
     flipped = np.flatnonzero(previous.mask[:m] != result.mask[:m])
     out = np.union1d(np.union1d(redo, flipped), np.arange(n0, n1))

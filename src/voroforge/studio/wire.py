@@ -22,6 +22,9 @@ import struct
 
 import numpy as np
 import shapely
+from numba import njit
+
+from ..config import NJIT
 
 __all__ = ["MAGIC", "dequantize", "pack", "quantize", "rings", "unpack"]
 
@@ -42,11 +45,12 @@ def rings(geoms, tol: float | None = None) -> tuple[np.ndarray, np.ndarray, np.n
     ----------
     geoms : (n,) object array of shapely Polygon/MultiPolygon
     tol : float, optional
-        For drawing only: a vertex in the same ``tol``-square of a grid as the vertex before
-        it is left out (each kept vertex stands for a run of vertices less than
-        ``tol * sqrt(2)`` away from it; rings keep their first and last vertex and at least
-        four). A page passes half its pixel size: a fillet's arcs have far more vertices
-        than pixels.
+        For drawing only: each ring thinned (Douglas-Peucker, :func:`_thin`) so that every
+        vertex left out lies within ``tol / 2`` of the kept ring, and the kept ring within
+        ``tol / 2`` of the whole one; rings keep their first and last vertex, both ends of
+        every edge longer than ``tol`` and at least four vertices. A page passes half its
+        pixel size (a quarter of a pixel off at most): a fillet's arcs have far more
+        vertices than pixels.
 
     Returns
     -------
@@ -93,29 +97,120 @@ def rings(geoms, tol: float | None = None) -> tuple[np.ndarray, np.ndarray, np.n
 
 
 def _thin(ring_offsets: np.ndarray, coords: np.ndarray, tol: float):
-    """Drop each vertex whose ``tol``-grid square is that of the vertex before it (see rings)."""
-    inv = 1.0 / tol
-    kx = np.floor(coords[:, 0] * inv)
-    ky = np.floor(coords[:, 1] * inv)
-    keep = np.ones(len(coords), dtype=bool)
-    np.not_equal(kx[1:], kx[:-1], out=keep[1:])
-    keep[1:] |= ky[1:] != ky[:-1]
-    starts, ends = ring_offsets[:-1], ring_offsets[1:]
-    full = ends > starts
-    keep[starts[full]] = True
-    keep[ends[full] - 1] = True
-    kept = np.add.reduceat(keep.astype(np.int64), starts[full]) if full.any() else keep[:0]
-    counts = np.zeros(len(starts), dtype=np.int64)
-    counts[full] = kept
-    few = np.flatnonzero(full & (counts < 4))  # a ring smaller than the grid: keep it whole
-    for j in few:
-        keep[starts[j] : ends[j]] = True
-        counts[j] = ends[j] - starts[j]
-    out = np.zeros(len(ring_offsets), dtype=np.int64)
-    np.cumsum(counts, out=out[1:])
-    # as one complex per row: boolean indexing of (n, 2) rows is far slower
-    pairs = np.ascontiguousarray(coords, dtype=np.float64).view(np.complex128)[:, 0]
-    return out, pairs[keep].view(np.float64).reshape(-1, 2)
+    """Rings thinned to within ``tol / 2`` (see :func:`rings`); (offsets, coordinates)."""
+    return _simplify(
+        np.ascontiguousarray(coords, dtype=np.float64),
+        np.ascontiguousarray(ring_offsets, dtype=np.int64),
+        0.5 * tol,
+        tol,
+    )
+
+
+@njit(**NJIT)
+def _simplify(xy, offsets, eps, edge):
+    """Douglas-Peucker of each closed ring of ``xy`` (ring ``j``: ``offsets[j]:offsets[j+1]``).
+
+    A ring keeps its first and last vertex and both ends of every edge longer than
+    ``edge`` (a corner the page can show); each run of shorter edges between two kept
+    vertices keeps its vertex farthest from their segment while that is more than ``eps``
+    away (then both halves again). Every vertex left out is within ``eps`` of the segment
+    that replaces it, so the thinned ring and the whole one are within ``eps`` of each
+    other. A ring left with fewer than four vertices is kept whole (smaller than ``eps``:
+    nothing to gain).
+
+    Returns
+    -------
+    offsets : (m + 1,) int64
+    xy : (k, 2) float64
+    """
+    m = len(offsets) - 1
+    n = len(xy)
+    keep = np.zeros(n, dtype=np.bool_)
+    counts = np.zeros(m, dtype=np.int64)
+    stack = np.zeros(2 * n + 2, dtype=np.int64)
+    e2 = eps * eps
+    edge2 = edge * edge
+    for j in range(m):
+        s0 = offsets[j]
+        s1 = offsets[j + 1]
+        if s1 - s0 <= 4:
+            for t in range(s0, s1):
+                keep[t] = True
+            counts[j] = s1 - s0
+            continue
+        keep[s0] = True
+        keep[s1 - 1] = True
+        for t in range(s0, s1 - 1):
+            ex = xy[t + 1, 0] - xy[t, 0]
+            ey = xy[t + 1, 1] - xy[t, 1]
+            if ex * ex + ey * ey > edge2:
+                keep[t] = True
+                keep[t + 1] = True
+        # the runs between kept vertices
+        kept = np.int64(1)
+        top = np.int64(0)
+        last = s0
+        for t in range(s0 + 1, s1):
+            if keep[t]:
+                kept += 1
+                stack[top] = last
+                stack[top + 1] = t
+                top += 2
+                last = t
+        while top > 0:
+            b = stack[top - 1]
+            a = stack[top - 2]
+            top -= 2
+            if b - a < 2:
+                continue
+            ax = xy[a, 0]
+            ay = xy[a, 1]
+            dx = xy[b, 0] - ax
+            dy = xy[b, 1] - ay
+            ll = dx * dx + dy * dy
+            inv = 1.0 / ll if ll > 0.0 else 0.0
+            far = -1.0
+            at = np.int64(-1)
+            for t in range(a + 1, b):
+                px = xy[t, 0] - ax
+                py = xy[t, 1] - ay
+                dot = px * dx + py * dy
+                if dot <= 0.0:  # nearest to a (or a and b are one point)
+                    d2 = px * px + py * py
+                elif dot >= ll:  # nearest to b
+                    qx = px - dx
+                    qy = py - dy
+                    d2 = qx * qx + qy * qy
+                else:
+                    cr = px * dy - py * dx
+                    d2 = cr * cr * inv
+                if d2 > far:
+                    far = d2
+                    at = t
+            if far > e2:
+                keep[at] = True
+                kept += 1
+                stack[top] = a
+                stack[top + 1] = at
+                stack[top + 2] = at
+                stack[top + 3] = b
+                top += 4
+        if kept < 4:
+            for t in range(s0, s1):
+                keep[t] = True
+            kept = s1 - s0
+        counts[j] = kept
+    out_offsets = np.zeros(m + 1, dtype=np.int64)
+    for j in range(m):
+        out_offsets[j + 1] = out_offsets[j] + counts[j]
+    out = np.zeros((out_offsets[m], 2))
+    w = np.int64(0)
+    for t in range(n):
+        if keep[t]:
+            out[w, 0] = xy[t, 0]
+            out[w, 1] = xy[t, 1]
+            w += 1
+    return out_offsets, out
 
 
 #: The steps :func:`quantize` tries, as fractions of a pixel (finest first)
