@@ -971,6 +971,21 @@ def test_websocket_view_sets_the_drawing_resolution(client):
     assert got.shape == expect.shape and np.abs(got - expect).max() < px / 8
 
 
+def test_edit_replies_count_the_server_threads_context_switches(client):
+    """Beside its CPU time, an edit's reply says how often its thread slept or was preempted."""
+    import sys
+
+    with _ws(client) as ws:
+        _greet(ws)
+        ws.send_text(json.dumps({"op": "set", "key": "cells.fillet", "value": 2.0, "id": 5}))
+        h, _ = _geom(ws)
+    assert h["reply_to"] == 5 and h["cpu_ms"] > 0
+    if sys.platform.startswith("linux"):
+        assert len(h["switches"]) == 2 and all(isinstance(k, int) and k >= 0 for k in h["switches"])
+    else:
+        assert h["switches"] is None or len(h["switches"]) == 2
+
+
 def test_the_check_waits_for_a_pause_in_the_edits_rhythm():
     """A slider's steps 0.5 s apart: the check waits twice that, not 0.35 s (between steps)."""
     from voroforge import config

@@ -497,7 +497,9 @@ def test_latency_table(browser, tmp_path):
                     for k in slow:
                         stages = {s: round(v, 1) for s, v in lat[k].items() if s.endswith("_ms")}
                         busy = f" beside the {lat[k]['busy']}" if lat[k].get("busy") else ""
-                        print(f"  step {k}: drawn {lat[k]['drawn']:.1f}{busy}", stages)
+                        sw = lat[k].get("switches")  # the server thread's [slept, preempted]
+                        sw = f" switches {sw}" if sw else ""
+                        print(f"  step {k}: drawn {lat[k]['drawn']:.1f}{busy}{sw}", stages)
                 assert not errors, errors
             finally:
                 page.close()

@@ -411,9 +411,9 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
     async with hub.lock:
         start, proc = time.perf_counter(), time.process_time()
         if _inline(session, msg):
-            reply, cpu_ms = _apply_timed(session, msg)
+            reply, cpu_ms, switches = _apply_timed(session, msg)
         else:
-            reply, cpu_ms = await asyncio.to_thread(_apply_timed, session, msg)
+            reply, cpu_ms, switches = await asyncio.to_thread(_apply_timed, session, msg)
         server_ms = (time.perf_counter() - start) * 1e3
         # the process's other threads meanwhile (a check, a settle): CPU beside the edit's
         others_ms = max(0.0, (time.process_time() - proc) * 1e3 - cpu_ms)
@@ -435,6 +435,7 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
                     "server_ms": round(server_ms, 2),
                     "cpu_ms": round(cpu_ms, 2),
                     "others_ms": round(others_ms, 2),
+                    "switches": switches,
                     "wait_ms": round((start - received) * 1e3, 2),
                     "received_at": round(received_at * 1e3, 2),
                     "busy": busy,
@@ -488,14 +489,32 @@ def _inline(session: Session, msg) -> bool:
     return session.compute_ms < INLINE_MS
 
 
-def _apply_timed(session: Session, msg) -> tuple[Reply, float]:
-    """``session.apply(msg)`` and the CPU milliseconds its thread spent on it.
+def _apply_timed(session: Session, msg) -> tuple[Reply, float, list[int] | None]:
+    """``session.apply(msg)``, the CPU milliseconds its thread spent on it and its switches.
 
-    Beside the wall time (``server_ms``) it tells the work from the wait for a core.
+    Beside the wall time (``server_ms``) they tell the work from the wait: the thread's
+    voluntary context switches (it slept: the GIL held by another thread, or a file) and
+    involuntary ones (the system gave its core to another thread), ``[voluntary,
+    involuntary]`` (None where the system does not count them per thread).
     """
+    before = _switches()
     c0 = time.thread_time()
     reply = session.apply(msg)
-    return reply, (time.thread_time() - c0) * 1e3
+    cpu_ms = (time.thread_time() - c0) * 1e3
+    after = _switches()
+    switches = None if before is None else [a - b for a, b in zip(after, before, strict=True)]
+    return reply, cpu_ms, switches
+
+
+def _switches() -> tuple[int, int] | None:
+    """The calling thread's (voluntary, involuntary) context switches so far, or None."""
+    try:
+        import resource
+
+        use = resource.getrusage(resource.RUSAGE_THREAD)
+    except (ImportError, AttributeError, OSError):  # not Linux
+        return None
+    return use.ru_nvcsw, use.ru_nivcsw
 
 
 async def _view(hub: _Hub, ws, cid: int, msg: dict, mid) -> None:
