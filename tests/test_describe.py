@@ -12,8 +12,19 @@ from voroforge.engine.diagram import Diagram, domain_of
 
 from catalogue import CATALOGUE, NAMES
 
+# far_clusters (1e-6 clusters 1e3 apart): the default's cells 1, 44 and 53 carry vertices that
+# their neighbours lack, 1e-14 off the shared edge (1e-8 of the cells' size, far beyond
+# rounding; the half-plane cells, otherwise equal bit for bit, have none of them). The
+# domain-relative tolerance describe() had (1e-13 of the diagonal, 1.2e-10 here) hid them.
+_ENGINE_T_JUNCTIONS = pytest.mark.xfail(
+    strict=True, reason="engine: T-junctions 1e-14 off shared edges (far_clusters)"
+)
 
-@pytest.mark.parametrize("name", NAMES)
+
+@pytest.mark.parametrize(
+    "name",
+    [pytest.param(n, marks=_ENGINE_T_JUNCTIONS) if n == "far_clusters" else n for n in NAMES],
+)
 def test_catalogue_euler_and_convexity(name):
     points, boundary = CATALOGUE[name]
     d = vf.voronoi(points, boundary)
@@ -143,3 +154,65 @@ def test_euler_on_parts_touching_at_points(algorithm):
         r = vf.voronoi(rng.random((60, 2)) * scale, dom, algorithm=algorithm).describe()
         assert r.euler_expected == chi
         assert r.euler_ok, (r.euler, r.euler_expected)
+
+
+def _general_position_counts(d):
+    """``(V, E, F)`` of a diagram in general position whose box holds every Voronoi vertex.
+
+    Each of the ``2n - 2 - h`` Delaunay triangles gives a vertex, each of the ``h`` hull
+    edges an unbounded edge crossing the box once, plus 4 corners; edges: ``3n - 3 - h``
+    Voronoi edges and ``h + 4`` box segments. So ``V = 2n + 2``, ``E = 3n + 1`` (``n``
+    non-empty cells), whatever the hull.
+    """
+    n = int((d.areas > 0).sum())
+    return 2 * n + 2, 3 * n + 1, n
+
+
+def _cluster_beside_big_cells(seed, offset):
+    g = np.random.default_rng(seed)
+    pts = np.concatenate((np.array(offset) + g.random((30, 2)) * 1e-12, g.random((50, 2)) * 1e6))
+    allp = np.concatenate((pts, vf.delaunay(pts).circumcenters))
+    lo, hi = allp.min(0), allp.max(0)
+    pad = 0.1 * (hi - lo)
+    return pts, (*(lo - pad), *(hi + pad))  # a box that holds every Voronoi vertex
+
+
+@pytest.mark.parametrize("algorithm", ["delaunay", "fortune", "halfplane"])
+@pytest.mark.parametrize("offset", [(0.0, 0.0), (333333.0, 500000.0)])
+def test_small_cells_in_a_big_domain(algorithm, offset):
+    # a 1e-12 cluster beside 50 sites in [0, 1e6]^2: a tolerance of the domain's diagonal
+    # (1e-13 of ~1e8) made the cluster one vertex (V 114 for 162, Euler FAILED). At the
+    # offset the cluster rounds onto a few floats (duplicates, empty cells): Euler and the
+    # counts hold for what is there.
+    for seed in range(2):
+        pts, box = _cluster_beside_big_cells(seed, offset)
+        d = vf.voronoi(pts, box, algorithm=algorithm)
+        r = d.describe()
+        assert r.euler_ok and r.convex_ok, str(r)
+        assert (r.vertices, r.edges, r.faces) == _general_position_counts(d), str(r)
+        assert r.voronoi_vertices == 2 * r.cells - 2 - r.unbounded
+        assert r.mismatched_vertices == 0
+        if offset == (0.0, 0.0):
+            assert r.cells == len(pts)
+
+
+def test_reflex_corner_of_a_small_cell_in_a_big_domain():
+    # a cell of the 1e-12 cluster dented by a fifth of its size: 1e-13 of the domain's
+    # diagonal (~1e-5) was far wider than the cell, so the dent went unseen
+    pts, box = _cluster_beside_big_cells(0, (0.0, 0.0))
+    d = vf.voronoi(pts, box)
+    coords, (ring, poly, geom) = d.to_geoarrow()
+    tiny = np.flatnonzero(np.abs(coords).max(1) < 1e-11)
+    k = tiny[0]
+    same = (coords == coords[k]).all(1)
+    first = np.flatnonzero(same)[0]
+    r = np.searchsorted(ring, first, side="right") - 1
+    ring_pts = coords[ring[r] : ring[r + 1] - 1]
+    j = int(np.flatnonzero((ring_pts == coords[k]).all(1))[0])
+    mid = 0.5 * (ring_pts[j - 1] + ring_pts[(j + 1) % len(ring_pts)])
+    in_ring = same & (np.arange(len(coords)) >= ring[r]) & (np.arange(len(coords)) < ring[r + 1])
+    dented = coords.copy()
+    dented[in_ring] = mid + 0.2 * (mid - coords[k])
+    got = _rebuilt(d, dented).describe()
+    assert not got.convex_ok and got.nonconvex >= 1
+    assert not got.euler_ok  # the moved vertex is no longer its neighbours'

@@ -117,8 +117,19 @@ PERIODIC_PROOF_RTOL = 1e-7
 PERIODIC_SLIVER_ULPS = 64.0
 #: Periodic wrap: holes and parts below this fraction of a united cell's area are slivers
 PERIODIC_SLIVER_RTOL = 1e-9
-#: describe(): vertices closer than this (of the domain's diagonal) are one vertex
+#: describe(): on a torus, a vertex and another's image closer than this (of the box's
+#: diagonal) are one vertex (images come from sites shifted by the box's size); a cell of a
+#: non-convex domain within 100 times this of its own coordinates' magnitude from the
+#: boundary may have been cut by it (its convexity is not checked)
 VERTEX_RTOL = 1e-13
+#: describe(): a ring vertex that at most two rings have, within this many ulps (of the
+#: largest coordinate of it and its two ring neighbours) of the chord between them, is a
+#: straight angle (a rounded T-junction); no turn that small makes a cell non-convex
+VERTEX_STRAIGHT_ULPS = 8.0
+#: describe(): a point only one ring has and turns at, not a domain corner (a boundary
+#: crossing one cell rounded elsewhere), is one vertex with the points at most two rings have
+#: within this many ulps of its largest coordinate; all others are one only when bit-equal
+VERTEX_MERGE_ULPS = 2.0
 #: describe(): a domain whose hull area exceeds its area by less than this (relative) is convex
 CONVEX_DOMAIN_RTOL = 1e-12
 #: locate(): a candidate this close (relative) to the best squared distance may be a tie

@@ -4,32 +4,48 @@ The cells of a diagram, clipped to a domain ``D``, subdivide it. Count
 
 * ``V``: distinct ring vertices of all cells (Voronoi vertices, points where Voronoi edges
   meet the boundary, and the boundary's own corners), leaving out a vertex that is a
-  straight angle (within ``VERTEX_RTOL`` of the diagonal of the line through its two
-  neighbours) in every ring that has it: the middle of an edge, or a rounding-level
-  T-junction that only one side of an edge has,
+  straight angle in every ring that has it: the middle of an edge, or a T-junction that
+  only one side of an edge has,
 * ``E``: distinct segments between consecutive corners of a ring (a shared Voronoi edge is
   in the rings of both of its cells and counts once; a boundary segment counts once),
 * ``F``: the faces, each polygon part of each cell counting ``1 - h`` for its ``h`` holes
   (an open disk counts 1; a part with holes is not a disk).
 
-Vertices closer than ``VERTEX_RTOL`` of the domain's diagonal count as one (the report
-says how many coordinates differed from their vertex by rounding). Then
-``V - E + F = chi(D)``, the Euler characteristic of the domain: the number of its parts
+Nothing is measured against the domain's size, so the report is the same at every scale
+and mix of scales (a 1e-12 cluster beside 1e6 cells, strips a few ulps wide). The engine
+computes each vertex once, from its name, so vertices are identified by their bits. Rounding
+is merged only where the engine rounds twice: a boundary crossing that one cell rounded onto
+another point (an *orphan*: one ring has it; it joins the points at most two rings have
+within ``VERTEX_MERGE_ULPS`` ulps of its coordinates), and on a torus a vertex and its image
+(within ``VERTEX_RTOL`` of the box's diagonal: images come from sites shifted by the box's
+size). The report counts the points so merged. A vertex is straight when the exact
+``orient2d`` of it and its ring neighbours is 0; one that only one or two rings have is also
+straight within ``VERTEX_STRAIGHT_ULPS`` ulps of the coordinates involved (a rounded
+T-junction), and no turn that small counts against convexity.
+
+Then ``V - E + F = chi(D)``, the Euler characteristic of the domain: the number of its parts
 minus the number of its holes (1 for a box). A vertex that one cell has and its neighbour
 lacks at a corner, a gap or an overlap breaks the equality, so it checks that the cells fit
 together. On a torus (``periodic=True``, unwrapped cells) ``chi = 0``, faces are the cells,
-edges the torus edges, and vertices are the cell vertices identified modulo the box.
-Cut into the box (``wrap=True``) the pieces subdivide the box and ``chi = 1``.
+vertices are the cell vertices identified modulo the box, and every edge borders two ring
+sides (``E`` is half the ring segments). Cut into the box (``wrap=True``) the pieces
+subdivide the box and ``chi = 1``.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from fractions import Fraction
 
 import numpy as np
 import shapely
 
-from ..config import CONVEX_DOMAIN_RTOL, VERTEX_RTOL
+from ..config import (
+    CONVEX_DOMAIN_RTOL,
+    VERTEX_MERGE_ULPS,
+    VERTEX_RTOL,
+    VERTEX_STRAIGHT_ULPS,
+)
 from .csr import unique
 from .diagram import domain_of
 
@@ -52,8 +68,9 @@ class Description:
         ``V`` and ``E`` of the subdivision (see the module description).
     mismatched_vertices : int
         Distinct float64 vertex coordinates that were merged into another vertex because
-        they differ from it only by rounding (``VERTEX_RTOL``); 0 when neighbouring cells
-        share their vertices bit for bit.
+        they differ from it only by rounding (a boundary crossing rounded differently by
+        the two cells beside it, a vertex and its image on a torus; see the module
+        description); 0 when neighbouring cells share their vertices bit for bit.
     faces : int
         ``F``: parts minus holes.
     voronoi_edges : int
@@ -74,8 +91,9 @@ class Description:
         although weights can hide a site that lies inside a hull edge.
     convex_checked : int
         Cells that must be convex: all non-empty cells when the domain is convex (a box),
-        else those farther than ``100 * VERTEX_RTOL`` of the diagonal from its boundary
-        (with ``wrap=True`` every piece of every cell that does not border its own image).
+        else those farther from its boundary than ``100 * VERTEX_RTOL`` of their own
+        largest coordinate (with ``wrap=True`` every piece of every cell that does not
+        border its own image).
     nonconvex : int
         How many of them are not convex (should be 0).
     convex_ok : bool
@@ -119,13 +137,47 @@ class Description:
         )
 
 
-def _ring_vertices(coords: np.ndarray, ring: np.ndarray, tol: float):
-    """Open ring vertices: ``(idx, rid, nxt, corner, cross)``.
+_EPS = 2.0**-53
+#: Shewchuk's orient2d filter: the float determinant's sign is right when its magnitude
+#: exceeds this fraction of the sum of its two products' magnitudes
+_CCW_BOUND = (3.0 + 16.0 * _EPS) * _EPS
+#: products below this may have underflowed (the filter's bound then fails): decided exactly
+_TINY = 2.0**-900
+
+
+def _orient(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """Exact signs (int8) of ``orient2d(a[k], b[k], c[k])``: positive for a left turn.
+
+    A float filter answers where its error bound proves the sign (every vertex of a
+    general-position diagram); the rest, collinear or nearly so, are decided in rationals.
+    """
+    with np.errstate(all="ignore"):
+        acx = a[:, 0] - c[:, 0]
+        acy = a[:, 1] - c[:, 1]
+        bcx = b[:, 0] - c[:, 0]
+        bcy = b[:, 1] - c[:, 1]
+        left = acx * bcy
+        right = acy * bcx
+        det = left - right
+        size = np.abs(left) + np.abs(right)
+        sure = (np.abs(det) > _CCW_BOUND * size) & (size > _TINY) & (size < np.inf)
+    sign = np.zeros(len(det), dtype=np.int8)
+    sign[sure] = np.sign(det[sure])
+    for k in np.flatnonzero(~sure):
+        ax, ay, bx, by, cx, cy = map(Fraction, (*a[k], *b[k], *c[k]))
+        v = (ax - cx) * (by - cy) - (ay - cy) * (bx - cx)
+        sign[k] = (v > 0) - (v < 0)
+    return sign
+
+
+def _ring_vertices(coords: np.ndarray, ring: np.ndarray):
+    """Open ring vertices: ``(idx, rid, turn, flat)``.
 
     ``idx`` indexes ``coords`` (the closing repeat of each ring left out), ``rid`` is the
-    ring, ``nxt`` the next vertex of the ring, ``corner`` False where the vertex lies within
-    ``tol`` of the chord between its two neighbours (a straight angle, or a near-duplicate),
-    ``cross`` the cross product of the edges into and out of the vertex.
+    ring, ``turn`` the side the ring turns to at the vertex (+1 left, -1 right, 0 straight:
+    the exact ``orient2d`` of the previous vertex, it and the next), ``flat`` True where the
+    vertex lies within ``VERTEX_STRAIGHT_ULPS`` ulps of the three points' largest coordinate
+    from the chord between its neighbours: straight up to the rounding of those coordinates.
     """
     lengths = np.diff(ring) - 1  # rings are closed: the last vertex repeats the first
     rid = np.repeat(np.arange(len(lengths)), lengths)
@@ -133,48 +185,135 @@ def _ring_vertices(coords: np.ndarray, ring: np.ndarray, tol: float):
     pos = np.arange(len(rid)) - np.repeat(np.cumsum(lengths) - lengths, lengths)
     idx = start + pos
     size = lengths[rid]
-    prev = start + (pos - 1) % size
-    nxt = start + (pos + 1) % size
-    e = coords[idx] - coords[prev]
-    f = coords[nxt] - coords[idx]
-    cross = e[:, 0] * f[:, 1] - e[:, 1] * f[:, 0]
-    chord = np.hypot(*(e + f).T)
-    return idx, rid, nxt, np.abs(cross) > tol * chord, cross
+    a = coords[start + (pos - 1) % size]
+    b = coords[idx]
+    c = coords[start + (pos + 1) % size]
+    turn = _orient(a, b, c)
+    with np.errstate(all="ignore"):
+        e = b - a
+        f = c - b
+        cross = e[:, 0] * f[:, 1] - e[:, 1] * f[:, 0]
+        big = np.maximum(np.abs(a).max(1), np.maximum(np.abs(b).max(1), np.abs(c).max(1)))
+        reach = VERTEX_STRAIGHT_ULPS * np.spacing(big) * np.hypot(*(c - a).T)
+        flat = (turn == 0) | (np.abs(cross) <= reach)
+    return idx, rid, turn, flat
 
 
-def _vertex_ids(pts: np.ndarray, tol: float, boxsize=None) -> tuple[np.ndarray, int]:
-    """Cluster points closer than ``tol`` (single linkage); ``(ids, exact_mismatches)``."""
+def _row_keys(xy: np.ndarray) -> np.ndarray:
+    """One complex key per row of a ``(m, 2)`` float array (-0.0 made 0.0).
+
+    Complex numbers sort by their real part, then their imaginary part, as rows sort.
+    """
+    return np.ascontiguousarray(xy + 0.0).view(np.complex128).ravel()
+
+
+def _unique_rows(xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``np.unique(xy, axis=0, return_inverse=True)`` by a sort of complex keys (~8x faster)."""
+    keys = _row_keys(xy)
+    order = np.argsort(keys)
+    ordered = keys[order]
+    first = np.ones(len(keys), dtype=bool)
+    np.not_equal(ordered[1:], ordered[:-1], out=first[1:])
+    inv = np.zeros(len(keys), dtype=np.int64)
+    inv[order] = np.cumsum(first) - 1
+    return ordered[first].view(np.float64).reshape(-1, 2), inv
+
+
+def _rings_per_vertex(ids: np.ndarray, rid: np.ndarray) -> np.ndarray:
+    """How many distinct rings have each vertex id."""
+    k = int(rid.max(initial=0)) + 1
+    return np.bincount(unique(ids * k + rid) // k, minlength=int(ids.max(initial=-1)) + 1)
+
+
+def _vertex_ids(
+    pts: np.ndarray, rid: np.ndarray, flat, corners, wrap=None
+) -> tuple[np.ndarray, int]:
+    """Vertex ids of the ring vertices ``pts`` (ring ``rid``); ``(ids, merged)``.
+
+    Equal bits are one vertex: the engine computes each vertex once, from its name. Rounding
+    is merged (single linkage) in two places only. In the plane, an *orphan* (a point that
+    only one ring has and turns at, not a corner of the domain: a boundary crossing rounded
+    differently by the two cells beside it, such as onto a corner) joins the points that at
+    most two rings have within ``VERTEX_MERGE_ULPS`` ulps of its largest coordinate (max
+    norm). On a torus (``wrap = (raw, lo, hi, tol)``, ``pts`` taken into the box, ``raw`` as
+    they were) two points closer than ``tol`` modulo the box are one when one of them lies
+    outside the open box ``(lo, hi)``: a vertex and its image, computed from sites shifted
+    by the box's size. ``merged`` counts the distinct points merged into another.
+    """
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
 
-    uniq, inv = np.unique(pts, axis=0, return_inverse=True)
-    inv = inv.ravel()
+    uniq, inv = _unique_rows(pts)
     m = len(uniq)
-    pairs = cKDTree(uniq, boxsize=boxsize).query_pairs(tol, output_type="ndarray")
+    if wrap is None:
+        rings = _rings_per_vertex(inv, rid)
+        few = np.flatnonzero(rings <= 2)
+        # an orphan: a point only one ring has, turning there, that is no corner of the
+        # domain (a crossing of the boundary is in both cells beside it, a Voronoi vertex in
+        # three; a straight one is a T-junction, left out of the graph anyway)
+        turning = np.bincount(inv, weights=~flat, minlength=m) > 0
+        orphan = few[(rings[few] == 1) & turning[few]]
+        if len(corners):
+            corner = np.sort(_row_keys(corners))
+            key = _row_keys(uniq[orphan])
+            at = np.minimum(np.searchsorted(corner, key), len(corner) - 1)
+            orphan = orphan[corner[at] != key]
+        if not len(orphan):
+            return inv, 0
+        reach = VERTEX_MERGE_ULPS * np.spacing(np.abs(uniq[orphan]).max(1))
+        tree = cKDTree(uniq[few])
+        lists = tree.query_ball_point(uniq[orphan], reach, p=np.inf, return_sorted=False)
+        sizes = np.fromiter(map(len, lists), dtype=np.int64, count=len(lists))
+        src = np.repeat(orphan, sizes)
+        dst = np.fromiter((j for row in lists for j in row), dtype=np.int64, count=len(src))
+        pairs = np.column_stack((src, few[dst]))
+    else:
+        raw, lo, hi, tol = wrap
+        boxsize = hi - lo
+        outside = ~((raw > lo) & (raw < hi)).all(1)
+        out_u = np.bincount(inv, weights=outside, minlength=m) > 0
+        shifted = np.mod(uniq - lo, boxsize)
+        shifted[shifted >= boxsize] = 0.0
+        pairs = cKDTree(shifted, boxsize=boxsize).query_pairs(tol, output_type="ndarray")
+        pairs = pairs[out_u[pairs[:, 0]] | out_u[pairs[:, 1]]]
     graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(m, m))
     count, label = connected_components(graph, directed=False)
     return label[inv].astype(np.int64), int(m - count)
 
 
-def _counts(coords, ring, cell_of_ring, tol, boxsize=None, origin=None):
-    """``(V, E, mismatched, V3)`` of the ring graph, vertices identified within ``tol``.
+def _counts(coords, ring, cell_of_ring, corners, wrap=None):
+    """``(V, E, merged, V3)`` of the ring graph (``wrap``: see :func:`_vertex_ids`).
 
     A vertex that is a straight angle in every ring that has it (the middle of an edge, or a
-    T-junction that rounding left on one side only) is not a vertex of the graph. ``V3``
-    counts the vertices that at least three cells share.
+    T-junction that only one side of an edge has) is not a vertex of the graph. ``V3``
+    counts the vertices that at least three cells share. On a torus (``wrap``) every edge
+    borders two ring sides, so ``E`` is half the segments between the kept vertices (an edge
+    can join a vertex to itself there).
     """
     if len(coords) == 0:
         return 0, 0, 0, 0
-    idx, rid, nxt, corner, _ = _ring_vertices(coords, ring, tol)
+    idx, rid, turn, flat = _ring_vertices(coords, ring)
     pts = coords[idx]
-    if boxsize is not None:
-        pts = np.mod(pts - origin, boxsize)
-        pts[pts >= boxsize] = 0.0
-    ids, mismatched = _vertex_ids(pts, tol, boxsize)
+    if wrap is not None:
+        lo, hi, tol = wrap
+        boxsize = hi - lo
+        raw = pts
+        outside = ~((raw > lo) & (raw < hi)).all(1)
+        # inside the open box a point is its own bits; outside it is taken modulo the box
+        pts = raw.copy()
+        moved = lo + np.mod(raw[outside] - lo, boxsize)
+        moved = np.where(moved >= hi, lo, moved)
+        pts[outside] = moved
+        wrap = (raw, lo, hi, tol)
+    ids, merged = _vertex_ids(pts, rid, flat, corners, wrap)
+    rings = _rings_per_vertex(ids, rid)
+    # a vertex three cells share is the engine's, computed once: straight only exactly;
+    # one that one or two rings have is straight also up to rounding (a T-junction)
+    corner = (turn != 0) & ~(flat & (rings[ids] <= 2))
     keep = np.bincount(ids, weights=corner)[ids] > 0
     few = np.bincount(rid, weights=keep, minlength=len(ring) - 1) < 3
-    keep |= few[rid]  # a ring thinner than the tolerance keeps all its vertices
+    keep |= few[rid]  # a flat ring (all its vertices on one line) keeps them all
     kept = np.flatnonzero(keep)
     krid = rid[kept]
     following = np.append(kept[1:], 0)
@@ -185,14 +324,18 @@ def _counts(coords, ring, cell_of_ring, tol, boxsize=None, origin=None):
     following[last] = starts
     va = ids[kept]
     vb = ids[following]
-    sep = va != vb
-    lo = np.minimum(va, vb)[sep]
-    hi = np.maximum(va, vb)[sep]
-    edges = unique(lo * (len(coords) + 1) + hi)
+    if wrap is None:
+        sep = va != vb
+        lo_ = np.minimum(va, vb)[sep]
+        hi_ = np.maximum(va, vb)[sep]
+        n_edges = len(unique(lo_ * (len(coords) + 1) + hi_))
+    else:
+        # segments of positive length (a ring's repeated point is none), each edge twice
+        n_edges = int((coords[idx[kept]] != coords[idx[following]]).any(1).sum()) // 2
     cells = cell_of_ring[krid].astype(np.int64)
     pairs = unique(va * (int(cells.max(initial=0)) + 1) + cells)
     per_vertex = np.bincount(pairs // (int(cells.max(initial=0)) + 1))
-    return len(unique(va)), len(edges), mismatched, int((per_vertex >= 3).sum())
+    return len(unique(va)), n_edges, merged, int((per_vertex >= 3).sum())
 
 
 def _domain_chi(geom) -> int:
@@ -216,11 +359,11 @@ def _domain_chi(geom) -> int:
     return chi - sum(len(k) - 1 for k in meets.values())
 
 
-def _nonconvex(coords, ring, poly, geom, cells, tol) -> int:
+def _nonconvex(coords, ring, poly, geom, cells) -> int:
     """Number of ``cells`` that are not one convex polygon without holes.
 
-    A vertex turns the wrong way when it lies more than ``tol`` off the line through its two
-    neighbours on the inner side (rounding moves vertices by far less).
+    A ring is convex when it never turns both left and right (a vertex within rounding of
+    the chord between its neighbours turns neither way; see :func:`_ring_vertices`).
     """
     if not len(cells):
         return 0
@@ -236,9 +379,10 @@ def _nonconvex(coords, ring, poly, geom, cells, tol) -> int:
     sub_ring = np.zeros(len(r) + 1, dtype=np.int64)
     np.cumsum(length, out=sub_ring[1:])
     take = np.repeat(lo - sub_ring[:-1], length) + np.arange(int(sub_ring[-1]))
-    _, rid, _, turns, cross = _ring_vertices(coords[take], sub_ring, tol)
-    left = np.bincount(rid, weights=turns & (cross > 0), minlength=len(r))
-    right = np.bincount(rid, weights=turns & (cross < 0), minlength=len(r))
+    _, rid, turn, flat = _ring_vertices(coords[take], sub_ring)
+    turn = np.where(flat, 0, turn)  # a turn within rounding of straight is no turn
+    left = np.bincount(rid, weights=turn > 0, minlength=len(r))
+    right = np.bincount(rid, weights=turn < 0, minlength=len(r))
     return bad + int(((left > 0) & (right > 0)).sum())
 
 
@@ -288,16 +432,15 @@ def describe(d) -> Description:
     size = np.array([x1 - x0, y1 - y0])
     cell_of_poly = np.repeat(np.arange(n), parts_per_cell)
     cell_of_ring = cell_of_poly[np.repeat(np.arange(len(poly) - 1), np.diff(poly))]
-    tol = VERTEX_RTOL * float(np.hypot(*size))
     if d.periodic and not d.wrapped:
-        vertices, _, mismatched, vor_vertices = _counts(
-            coords, ring, cell_of_ring, tol, size, np.array([x0, y0])
-        )
-        edges = len(d.edges.pairs)
+        tol = VERTEX_RTOL * float(np.hypot(*size))
+        wrap = (np.array([x0, y0]), np.array([x1, y1]), tol)
+        vertices, edges, mismatched, vor_vertices = _counts(coords, ring, cell_of_ring, None, wrap)
         faces = cells
         expected = 0
     else:
-        vertices, edges, mismatched, vor_vertices = _counts(coords, ring, cell_of_ring, tol)
+        corners = shapely.get_coordinates(d.boundary)
+        vertices, edges, mismatched, vor_vertices = _counts(coords, ring, cell_of_ring, corners)
         expected = 1 if d.periodic else _domain_chi(d.boundary)
     if cells == 0:
         expected = 0  # nothing is subdivided
@@ -311,10 +454,13 @@ def describe(d) -> Description:
     if convex_domain or not len(nonempty):
         checked = nonempty
     else:
-        # cells that keep a distance from the boundary were not cut by it
+        # cells that keep a distance from the boundary were not cut by it: farther than
+        # 100 VERTEX_RTOL of their own coordinates' magnitude (what a cut rounds by is ulps)
         edge = shapely.boundary(geom_b)
         shapely.prepare(edge)
-        inner = ~shapely.dwithin(edge, d.cells[nonempty], 100.0 * tol)
+        own = d.cells[nonempty]
+        reach = 100.0 * VERTEX_RTOL * np.abs(shapely.bounds(own)).max(1)
+        inner = ~shapely.dwithin(edge, own, reach)
         checked = nonempty[inner]
     if d.periodic and d.wrapped:
         # the pieces of a wrapped cell are convex each: check them one by one, except for
@@ -325,9 +471,9 @@ def describe(d) -> Description:
         checked = nonempty[~selfish[nonempty]]
         polys = np.concatenate([np.arange(geom[i], geom[i + 1]) for i in checked] or [[]])
         pieces = np.arange(len(poly), dtype=np.int64)
-        bad = _nonconvex(coords, ring, poly, pieces, polys.astype(np.int64), tol)
+        bad = _nonconvex(coords, ring, poly, pieces, polys.astype(np.int64))
     else:
-        bad = _nonconvex(coords, ring, poly, geom, checked, tol)
+        bad = _nonconvex(coords, ring, poly, geom, checked)
     return Description(
         sites=n,
         cells=cells,
