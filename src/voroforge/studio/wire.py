@@ -127,7 +127,10 @@ def _simplify(xy, offsets, eps, edge):
     n = len(xy)
     keep = np.zeros(n, dtype=np.bool_)
     counts = np.zeros(m, dtype=np.int64)
-    stack = np.zeros(2 * n + 2, dtype=np.int64)
+    widest = np.int64(0)
+    for j in range(m):
+        widest = max(widest, offsets[j + 1] - offsets[j])
+    stack = np.zeros(2 * widest + 2, dtype=np.int64)  # the runs of one ring
     e2 = eps * eps
     edge2 = edge * edge
     for j in range(m):
