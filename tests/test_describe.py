@@ -216,3 +216,21 @@ def test_reflex_corner_of_a_small_cell_in_a_big_domain():
     got = _rebuilt(d, dented).describe()
     assert not got.convex_ok and got.nonconvex >= 1
     assert not got.euler_ok  # the moved vertex is no longer its neighbours'
+
+
+def test_same_report_at_every_scale():
+    # one diagram scaled by 1e-300 .. 1e300 and moved far out: the same counts (the diagonal's
+    # tolerance merged everything at 1e-300, and its distances overflowed at 1e300)
+    p = np.random.default_rng(5).random((300, 2))
+    want = vf.voronoi(p, (0, 0, 1, 1)).describe()
+    assert want.euler_ok and want.convex_ok
+    for s in (1e-300, 1e-200, 1e-9, 1e9, 1e200, 1e300):
+        for off in (0.0, 1e6 * s):
+            got = vf.voronoi(p * s + off, (off, off, off + s, off + s)).describe()
+            assert (got.vertices, got.edges, got.faces, got.voronoi_vertices) == (
+                want.vertices,
+                want.edges,
+                want.faces,
+                want.voronoi_vertices,
+            ), (s, off, str(got))
+            assert got.euler_ok and got.convex_ok and got.mismatched_vertices == 0

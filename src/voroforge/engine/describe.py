@@ -143,6 +143,9 @@ _EPS = 2.0**-53
 _CCW_BOUND = (3.0 + 16.0 * _EPS) * _EPS
 #: products below this may have underflowed (the filter's bound then fails): decided exactly
 _TINY = 2.0**-900
+#: ring triples whose largest coordinate lies outside (_FAR_LO, _FAR_HI) are scaled first
+_FAR_LO = 2.0**-400
+_FAR_HI = 2.0**400
 
 
 def _orient(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
@@ -188,13 +191,32 @@ def _ring_vertices(coords: np.ndarray, ring: np.ndarray):
     a = coords[start + (pos - 1) % size]
     b = coords[idx]
     c = coords[start + (pos + 1) % size]
-    turn = _orient(a, b, c)
+    big = np.maximum(np.abs(a).max(1), np.maximum(np.abs(b).max(1), np.abs(c).max(1)))
+    # a triple far from 1 is scaled by a power of two to a largest coordinate in [0.5, 1),
+    # so its products neither overflow nor underflow (1e300, 1e-300); the scaling is exact
+    # unless a coordinate falls below 2**-1074 of the largest (such a triple's turn is then
+    # taken on its own coordinates)
+    far = np.flatnonzero(~((big > _FAR_LO) & (big < _FAR_HI)))
+    sa, sb, sc = a, b, c
+    oa, ob, oc = a, b, c
+    if len(far):
+        ex = np.clip(np.frexp(big[far])[1], -1020, 1024)
+        big = big.copy()
+        big[far] = np.ldexp(big[far], -ex)
+        sa, sb, sc = a.copy(), b.copy(), c.copy()
+        oa, ob, oc = a.copy(), b.copy(), c.copy()
+        exact = np.ones(len(far), dtype=bool)
+        for raw, scaled in ((a, sa), (b, sb), (c, sc)):
+            scaled[far] = np.ldexp(raw[far], -ex[:, None])
+            exact &= (np.ldexp(scaled[far], ex[:, None]) == raw[far]).all(1)
+        for scaled, used in ((sa, oa), (sb, ob), (sc, oc)):
+            used[far[exact]] = scaled[far[exact]]
+    turn = _orient(oa, ob, oc)
     with np.errstate(all="ignore"):
-        e = b - a
-        f = c - b
+        e = sb - sa
+        f = sc - sb
         cross = e[:, 0] * f[:, 1] - e[:, 1] * f[:, 0]
-        big = np.maximum(np.abs(a).max(1), np.maximum(np.abs(b).max(1), np.abs(c).max(1)))
-        reach = VERTEX_STRAIGHT_ULPS * np.spacing(big) * np.hypot(*(c - a).T)
+        reach = VERTEX_STRAIGHT_ULPS * np.spacing(big) * np.hypot(*(sc - sa).T)
         flat = (turn == 0) | (np.abs(cross) <= reach)
     return idx, rid, turn, flat
 
@@ -275,7 +297,8 @@ def _vertex_ids(
         out_u = np.bincount(inv, weights=outside, minlength=m) > 0
         shifted = np.mod(uniq - lo, boxsize)
         shifted[shifted >= boxsize] = 0.0
-        pairs = cKDTree(shifted, boxsize=boxsize).query_pairs(tol, output_type="ndarray")
+        tree = cKDTree(shifted, boxsize=boxsize)
+        pairs = tree.query_pairs(tol, p=np.inf, output_type="ndarray")
         pairs = pairs[out_u[pairs[:, 0]] | out_u[pairs[:, 1]]]
     graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(m, m))
     count, label = connected_components(graph, directed=False)
