@@ -222,10 +222,11 @@ def _exactness_families(c: dict[str, tuple[np.ndarray, object]]) -> None:
 def _few_ulps_families() -> dict[str, tuple[np.ndarray, object]]:
     """Mixed scales and sites a few ulps apart (issue 15), right for every algorithm now.
 
-    Kept out of :data:`NAMES`: ``describe()`` identifies vertices within 1e-13 of the
-    domain's diagonal and cannot count these (the diagrams are valid, tile, and every
-    distinct site owns its cell: ``test_exactness``, ``test_algorithms``), and the
-    validator's nearest-site samples cannot order a 1e-12 cluster seen from 1e5 away.
+    Kept out of :data:`NAMES`: the validator's nearest-site samples cannot order a 1e-12
+    cluster seen from 1e5 away (the diagrams are valid, tile, and every distinct site owns
+    its cell: ``test_exactness``, ``test_algorithms``). ``describe()`` counts them since it
+    identifies vertices by their bits (``test_describe``), except the strip a few ulps wide,
+    one of whose vertices rounds to points 1-4 ulps apart in its three cells.
 
     - mixed scales: a 1e-12 cluster beside a 1e6 one (hull cells of the tiny cluster are
       cut from a 1e6 box);
@@ -274,8 +275,10 @@ def _far_circle_families() -> dict[str, tuple[np.ndarray, object]]:
 
 CATALOGUE = _build()
 #: Families every NAMES-parametrized test runs on: all but the small float circles off the
-#: origin, whose features are below describe()'s vertex tolerance (1e-13 of the domain's
-#: diagonal); test_exactness checks them on every algorithm, test_perf_regressions folds them.
+#: origin, whose features were below describe()'s old vertex tolerance (1e-13 of the domain's
+#: diagonal; describe() is scale-free since 8e4fa54, but the other NAMES tests' samples and
+#: comparisons were not checked on them); test_exactness checks them on every algorithm,
+#: test_perf_regressions folds them.
 NAMES = [n for n in CATALOGUE if not n.endswith("_off")]
 #: Issue 15's mixed scales and sites a few ulps apart (see :func:`_few_ulps_families`).
 FEW_ULPS = _few_ulps_families()
