@@ -14,11 +14,10 @@ import shapely
 
 from ..config import HALFPLANE_TILING_RTOL
 from ..kernels.cells import cells_from_neighbors, cells_from_triangulation
-from ..kernels.clip import open_ring_convex, rings_convex, tiny_folded
+from ..kernels.clip import open_ring_convex, rings_convex, rings_convex_area, tiny_folded
 from ..kernels.delaunay import triangulate_sorted
 from ..kernels.fortune import fortune_delaunay
 from ..kernels.halfplane import halfplane_cells
-from ..kernels.moments import rings_area
 from ..kernels.rings import boundary_cycle, close_rings
 from .assemble import assemble
 from .csr import csr_from_pairs
@@ -99,7 +98,7 @@ def _fills_hull(sx, sy, tri, he):
 def _whole_halfplane(xs, ys, box, kmap, memo=None):
     """The half-plane rings when every cell was built and they tile the box, else None."""
     got = _memo(memo, "halfplane", halfplane_cells, xs, ys, box, kmap)
-    if not got[3].any() and _certified(*got[:2], box):
+    if not got[3].any() and _certified(*got[:2], box, memo):
         return got[:3]
     return None
 
@@ -145,7 +144,7 @@ def _closed_cells(xs, ys, box, algorithm, kmap, memo=None):
         if take.all():
             return dual
         closed, lengths, owner = spliced
-    if _certified(closed, lengths, box):
+    if _certified(closed, lengths, box, memo):
         return closed, lengths, owner
     # a cell the local finishing could not settle consistently (rounding-level vertices
     # that fold its ring, or cells that do not tile the box): the Delaunay dual decides
@@ -169,7 +168,7 @@ def _lost(xs, ys, box, lengths):
 _FOLDED_ULPS = 64  # a folded ring this many ulps across is not representable: left empty
 
 
-def _drop_folded(closed, lengths, owner):
+def _drop_folded(closed, lengths, owner, memo=None):
     """The rings with every tiny or thin one that folds left empty.
 
     Each builder certifies its rings; one that still folds and is only a few dozen ulps
@@ -178,7 +177,12 @@ def _drop_folded(closed, lengths, owner):
     wide whose ring is not a valid polygon (the cell of a hull site of such a cluster,
     reaching far out: its vertices rounded onto one line). Either is reported in
     ``Diagram.unresolved`` (:func:`_lost`) instead of as a self-intersecting polygon.
+
+    Rings that :func:`_certified` passed (listed in ``memo``) are all convex, and only a
+    ring that is not convex can be flagged: they are returned as they are, untested.
     """
+    if memo is not None and any(x is lengths for x in memo.get("convex", ())):
+        return closed, lengths, owner
     code = tiny_folded(closed, lengths, _FOLDED_ULPS)
     if not code.any():
         return closed, lengths, owner
@@ -205,7 +209,7 @@ def _fewest_lost(xs, ys, box, kmap, memo):
     best = None
     for alg in ("delaunay", "fortune", "halfplane"):
         # (each construction's kernels run once per build: ``memo``)
-        rings = _drop_folded(*_closed_cells(xs, ys, box, alg, kmap, memo))
+        rings = _drop_folded(*_closed_cells(xs, ys, box, alg, kmap, memo), memo)
         key = (_invalid(*rings[:2]), len(_lost(xs, ys, box, rings[1])))
         if best is None or key < best[0]:
             best = (key, rings)
@@ -264,19 +268,23 @@ def _seams(closed, lengths, owner, take, kmap):
     return bad
 
 
-def _certified(closed, lengths, box) -> bool:
+def _certified(closed, lengths, box, memo=None) -> bool:
     """Whether closed rings are convex (exact test) and tile the box (areas to 1e-9).
 
     Areas are summed per ring relative to its first vertex, so coordinates far from the
-    origin keep their precision.
+    origin keep their precision. Certified rings are noted in the dict ``memo`` (under
+    ``"convex"``, by their ``lengths`` array), so :func:`_drop_folded` need not test them.
     """
-    if not rings_convex(closed, lengths).all():
-        return False
     if len(closed) == 0:
         return False
-    area = rings_area(closed[:, 0], closed[:, 1], lengths)
+    convex, area = rings_convex_area(closed, lengths)  # one pass for both
+    if not convex:
+        return False
     want = (box[2] - box[0]) * (box[3] - box[1])
-    return abs(area - want) <= HALFPLANE_TILING_RTOL * want
+    ok = abs(area - want) <= HALFPLANE_TILING_RTOL * want
+    if ok and memo is not None:
+        memo.setdefault("convex", []).append(lengths)
+    return ok
 
 
 def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
@@ -308,7 +316,8 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
     box = np.array(wdom.bounds, dtype=np.float64)
     with serial_below(n):
         memo = {}
-        closed, lengths, own = _drop_folded(*_closed_cells(xs, ys, box, algorithm, unique, memo))
+        rings = _closed_cells(xs, ys, box, algorithm, unique, memo)
+        closed, lengths, own = _drop_folded(*rings, memo)
         if len(_lost(xs, ys, box, lengths)):
             closed, lengths, own = _fewest_lost(xs, ys, box, unique, memo)
         del memo

@@ -30,6 +30,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
+from .moments import ring_sums
 from .predicates import orient2d
 
 
@@ -182,6 +183,40 @@ def rings_convex(xy, lengths):
         if lengths[i + 1] > lengths[i]:
             ok[i] = ring_convex(xy, lengths[i], lengths[i + 1])
     return ok
+
+
+@njit(**NJIT)
+def rings_convex_area(xy, lengths):
+    """Whether every ring ``xy[lengths[i]:lengths[i + 1]]`` is convex, and their total area.
+
+    One pass for what :func:`rings_convex` and :func:`.moments.rings_area` give separately
+    (the half-plane cells' certificate, :func:`voroforge.engine.planar._certified`): each
+    closed ring gets :func:`ring_convex`'s exact test (empty rings pass) and its signed area
+    from :func:`.moments.ring_sums` relative to its first vertex, summed with the same
+    compensation as ``rings_area``, so both answers are theirs bit for bit. Returns
+    ``(convex, area)``; stops at the first ring that is not convex (area then NaN).
+    """
+    xs = xy[:, 0]
+    ys = xy[:, 1]
+    total = 0.0
+    comp = 0.0
+    for i in range(lengths.shape[0] - 1):
+        a = lengths[i]
+        b = lengths[i + 1]
+        if b == a:
+            continue
+        if not open_ring_convex(xs[a : b - 1], ys[a : b - 1], b - a - 1):
+            return False, np.nan
+        if b - a < 2:
+            continue
+        ring = ring_sums(xs, ys, a, b, xs[a], ys[a], True)[0]
+        t = total + ring
+        if abs(total) >= abs(ring):
+            comp += (total - t) + ring
+        else:
+            comp += (ring - t) + total
+        total = t
+    return True, 0.5 * (total + comp)
 
 
 @njit(**NJIT)
