@@ -775,6 +775,81 @@ def test_new_seeds_patch_every_cell_with_all_the_sites():
     assert np.array_equal(a["m"], s.result.mask.astype(np.uint8))
 
 
+def _same_step(a: Session, b: Session):
+    """Two sessions hold the same design, geometry, flags and undo depth."""
+    _same_result(a.result, b.result)
+    assert np.array_equal(a.result.mask, b.result.mask)
+    assert a.data == b.data and a.design == b.design and len(a.history) == len(b.history)
+    assert a.result.extra.keys() == b.result.extra.keys()
+    for k in ("raw_wkb", "open_cells"):
+        assert np.array_equal(a.result.extra[k], b.result.extra[k])
+
+
+def test_a_slider_step_computed_ahead_is_the_step_computed_when_asked():
+    """compute_ahead: the next value, computed before it is asked for, the same bytes."""
+    a, b = Session(HOLED), Session(HOLED)
+    for v in (4, 5):
+        assert b.compute_ahead(b.data, b.result, "design.seed", v)
+        ra = a.apply({"op": "set", "key": "design.seed", "value": v})
+        rb = b.apply({"op": "set", "key": "design.seed", "value": v})
+        assert rb.kind == ra.kind == "update" and b.ahead_used and not a.ahead_used
+        assert np.array_equal(ra.changed, rb.changed)
+        _same_step(a, b)
+    assert a.apply({"op": "undo"}).kind == b.apply({"op": "undo"}).kind == "update"
+    _same_step(a, b)
+    # a guess that misses is dropped: the step computes as it would have
+    assert b.compute_ahead(b.data, b.result, "design.seed", 9)
+    a.apply({"op": "set", "key": "design.seed", "value": 7})
+    b.apply({"op": "set", "key": "design.seed", "value": 7})
+    assert not b.ahead_used and b._ahead is None
+    _same_step(a, b)
+    # the same number of another type is another value (7.0 may not validate as 7 does)
+    assert b.compute_ahead(b.data, b.result, "design.seed", 8)
+    b.apply({"op": "set", "key": "design.seed", "value": 8.0})
+    assert not b.ahead_used
+    # kept for the result it was computed from only: another edit came between
+    assert b.compute_ahead(b.data, b.result, "design.seed", 9)
+    b.apply({"op": "set", "key": "cells.web", "value": 2.5})
+    b.apply({"op": "set", "key": "design.seed", "value": 9})
+    assert not b.ahead_used
+    # given up when stale; nothing to compute ahead for hand-placed sites or unchanged cells
+    assert not b.compute_ahead(b.data, b.result, "design.seed", 10, stale=lambda: True)
+    assert not b.compute_ahead(b.data, b.result, "fabrication.min_web", 3.0)
+    assert not b.compute_ahead(b.data, b.result, "seeds.count", -5)  # invalid: nothing kept
+    assert b._ahead is None
+    x, y = b.result.sites[1]
+    assert b.apply({"op": "move", "i": 1, "x": float(x) + 0.5, "y": float(y)}).kind == "update"
+    assert not b.compute_ahead(b.data, b.result, "design.seed", 11)
+
+
+def test_the_server_computes_a_sliders_next_step_ahead(folder, monkeypatch):
+    """After each step of a slider the next one (the same way) is computed while the page
+    draws; the step that asks for it takes it (the reply says so), the same geometry."""
+    import time
+
+    from starlette.testclient import TestClient
+
+    from voroforge.studio import server
+
+    monkeypatch.setattr(server, "AHEAD_MS", 0.0)  # the small panel computes in milliseconds
+    app = server.create_app(Session(folder / "holed.toml"))
+    hub, plain = app.state.hub, Session(folder / "holed.toml")
+    with TestClient(app, base_url="http://127.0.0.1:8765") as c, _ws(c) as ws:
+        _greet(ws)
+        before = 3
+        for k, v in enumerate((4, 5, 6, 8)):  # design.seed is 3: 4 makes 5 next, ...
+            ws.send_text(json.dumps({"op": "set", "key": "design.seed", "value": v, "id": k}))
+            h, _ = _geom(ws)
+            assert h["reply_to"] == k and h["ahead"] == (k in (1, 2)), (k, h["ahead"])
+            plain.apply({"op": "set", "key": "design.seed", "value": v})
+            _same_step(plain, hub.session)
+            guess, before = 2 * v - before, v  # one more step the same way
+            deadline = time.monotonic() + 30  # its computation has started
+            while (hub.ahead or (None, None))[1] != guess and time.monotonic() < deadline:
+                time.sleep(0.005)
+            assert hub.ahead[:2] == ("design.seed", guess)
+
+
 def _page_cells(arrays, prefix):
     """Per cell of a geometry message: its flat float32 coordinates (the page's rawData)."""
     g, r, c = arrays[prefix + "g"], arrays[prefix + "r"], arrays[prefix + "c"]

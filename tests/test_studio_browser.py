@@ -493,12 +493,17 @@ def test_latency_table(browser, tmp_path):
                 if os.environ.get("VOROFORGE_STUDIO_DEBUG"):  # the slowest three, by stage
                     slow = sorted(range(len(lat)), key=lambda k: -lat[k]["drawn"])[:3]
                     beside = sum(bool(entry.get("busy")) for entry in lat)
-                    print(f"{name}: {beside} of {len(lat)} steps beside a check or settle")
+                    ahead = sum(bool(entry.get("ahead")) for entry in lat)
+                    print(
+                        f"{name}: {beside} of {len(lat)} steps beside a check or settle, "
+                        f"{ahead} computed ahead"
+                    )
                     for k in slow:
                         stages = {s: round(v, 1) for s, v in lat[k].items() if s.endswith("_ms")}
                         busy = f" beside the {lat[k]['busy']}" if lat[k].get("busy") else ""
                         sw = lat[k].get("switches")  # the server thread's [slept, preempted]
                         sw = f" switches {sw}" if sw else ""
+                        sw += " (computed ahead)" if lat[k].get("ahead") else ""
                         print(f"  step {k}: drawn {lat[k]['drawn']:.1f}{busy}{sw}", stages)
                 assert not errors, errors
             finally:

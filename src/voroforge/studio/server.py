@@ -66,6 +66,9 @@ class _Hub:
         self.edits = 0  # messages received: a running check stops for a new one
         self.pixels: dict[int, float] = {}  # each page's pixel size in design units
         self.last_edit: float | None = None  # when the last edit came (time.monotonic)
+        #: (key, value, task) of the slider value being computed ahead (look_ahead), or None
+        self.ahead: tuple | None = None
+        self.other_edits = 0  # edits other than the one computed ahead: it stops for them
 
     @property
     def px(self) -> float | None:
@@ -108,6 +111,42 @@ class _Hub:
         if force or text != self.state_text:
             self.state_text = text
             await self.broadcast(text)
+
+    def look_ahead(self, msg: dict, before) -> None:
+        """After a slider's step, compute its next step (one more step the same way).
+
+        ``msg`` is the ``set`` just answered and ``before`` the key's value before it. Only
+        numbers that moved, and only where the step was a full computation of at least
+        :data:`AHEAD_MS` (``design.seed``: every seed new): :data:`AHEAD_DELAY` later the
+        next value is computed in a worker thread (:meth:`Session.compute_ahead`), and the
+        next step takes it if it asks for that value, waiting for it if need be (else it is
+        dropped, and stops at its next stage for the edit that came instead).
+        """
+        s = self.session
+        key, value = msg.get("key"), msg.get("value")
+        if msg.get("op") != "set" or not isinstance(key, str) or s.provisional:
+            return
+        if s.compute_ms < AHEAD_MS or s.frame is not None or s.sites is not None:
+            return
+        if not (_number(value) and _number(before) and type(value) is type(before)):
+            return
+        guess = value + (value - before)
+        if guess == value or not math.isfinite(guess):
+            return
+        marker, data, result = self.other_edits, s.data, s.result
+
+        def stale() -> bool:
+            return self.other_edits != marker
+
+        def start() -> None:  # after the page had the time to take this step and draw it
+            if stale() or s.result is not result:
+                return
+            work = asyncio.to_thread(s.compute_ahead, data, result, key, guess, stale)
+            task = asyncio.get_running_loop().create_task(work)
+            task.add_done_callback(lambda t: t.cancelled() or t.exception())  # none unread
+            self.ahead = (key, guess, task)
+
+        asyncio.get_running_loop().call_later(AHEAD_DELAY, start)
 
     def schedule_check(self, delay: float | None = None, *, edit: bool = False) -> None:
         """Settle a drag's result, then run the fabrication check, once edits pause.
@@ -406,8 +445,16 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
             await _view(hub, ws, cid, msg, mid)
             return
     session = hub.session
-    hub.edits += 1
     received, received_at, busy = time.perf_counter(), time.time(), hub.busy
+    ahead = hub.ahead
+    wanted = ahead is not None and _asks(msg, ahead[0], ahead[1])
+    if not wanted:
+        hub.other_edits += 1  # a value computed ahead for another step stops
+    hub.edits += 1
+    if wanted and not ahead[2].done():  # it is computing what this edit asks: wait for it
+        with contextlib.suppress(Exception):
+            await asyncio.shield(ahead[2])
+    before = _value_at(session.data, msg.get("key")) if isinstance(msg, dict) else None
     async with hub.lock:
         start, proc = time.perf_counter(), time.process_time()
         if _inline(session, msg):
@@ -436,6 +483,7 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
                     "cpu_ms": round(cpu_ms, 2),
                     "others_ms": round(others_ms, 2),
                     "switches": switches,
+                    "ahead": session.ahead_used,  # computed ahead, while the last was drawn
                     "wait_ms": round((start - received) * 1e3, 2),
                     "received_at": round(received_at * 1e3, 2),
                     "busy": busy,
@@ -444,6 +492,7 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
             )
     if reply.kind == "update":
         await hub.broadcast(payload)
+        hub.look_ahead(msg, before)
         await hub.broadcast_state()
         hub.schedule_check(edit=True)
         return
@@ -461,6 +510,39 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
         await hub.send(ws, {"op": "saved", "name": reply.name, "files": reply.files, **base})
     else:
         await hub.send(ws, {"op": "info", "note": reply.note, **base})
+
+
+#: A slider step whose full computation took at least this many milliseconds gets its next
+#: step computed ahead (:meth:`_Hub.look_ahead`)
+AHEAD_MS = 10.0
+#: Seconds after a step's geometry is sent before its next step is computed ahead: the
+#: message's bytes and the page's drawing first (started at once, the computation took the
+#: GIL from the event loop still writing a 290 KiB message and a core from the page)
+AHEAD_DELAY = 0.025
+
+
+def _number(v) -> bool:
+    return isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def _asks(msg, key: str, value) -> bool:
+    """Whether ``msg`` sets ``key`` to ``value`` (the same number, the same type)."""
+    if not isinstance(msg, dict) or msg.get("op") != "set" or msg.get("key") != key:
+        return False
+    v = msg.get("value")
+    return type(v) is type(value) and v == value
+
+
+def _value_at(data: dict, key) -> object:
+    """The value of a dotted ``key`` in a design mapping (tables only), or None."""
+    if not isinstance(key, str):
+        return None
+    node = data
+    for part in key.split("."):
+        if not isinstance(node, dict) or part not in node:
+            return None
+        node = node[part]
+    return node
 
 
 #: An edit runs in the event loop's own thread while the session's last computation took

@@ -216,7 +216,7 @@ var VoroStudio = (function () {
           // the wire's two ways, by the wall clocks of the page and the server (same machine)
           up_ms: h.received_at - (performance.timeOrigin + done.tsend),
           down_ms: performance.timeOrigin + recv - h.sent_at,
-          n: n, changed: idx.length, full: h.full, busy: h.busy, switches: h.switches });
+          n: n, changed: idx.length, full: h.full, busy: h.busy, switches: h.switches, ahead: h.ahead });
         self.roundTrip = ms; self.status();
       });
     }
