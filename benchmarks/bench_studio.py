@@ -8,8 +8,10 @@ as the studio server handles it: ``Session.apply`` (a seed drag on the increment
 page (``geometry_message``, cells at the page's pixel size). A seed drag is also timed on
 the full-recompute path (``Session.incremental = False``: ``compute`` with the previous
 result to reuse), for the ratio, and the sliders with the cell operations in one thread
-(``Session.workers = 1``). CPU time (``time.process_time``, all threads) is what to
-read on a shared machine; wall time is printed beside it. Median and best over the steps.
+(``Session.workers = 1``), and ``design.seed`` steps computed ahead as the server computes
+them between a slider's steps (``Session.compute_ahead``, untimed: what is left for the
+step). CPU time (``time.process_time``, all threads) is what to read on a shared machine;
+wall time is printed beside it. Median and best over the steps.
 The page's side (parse, draw, frame) is measured in the browser by
 ``tests/test_studio_browser.py::test_latency_table``. Run from the repository root:
 
@@ -101,6 +103,20 @@ def slider(session: Session, steps: int, key: str) -> np.ndarray:
     )
 
 
+def slider_ahead(session: Session, steps: int, key: str) -> np.ndarray:
+    """(steps, 3) timings of slider steps each computed ahead (as the server does between
+    steps, :meth:`Session.compute_ahead`, not timed): what is left for the step itself."""
+    sent: dict = {}
+    geometry_message(session, None, seq=0, boundary=True, sent=sent, px=PX)
+    values = SLIDERS[key] * (1 + steps // 8)
+    out = []
+    for v in values[:steps]:
+        session.compute_ahead(session.data, session.result, key, v)
+        out.append(_timed(session, {"op": "set", "key": key, "value": v}, sent))
+        assert session.ahead_used
+    return np.array(out)
+
+
 def split(steps: int) -> None:
     """Where a design.seed step of the holed panel goes: the cell operations and the rest."""
     from voroforge.design import cellops
@@ -176,6 +192,9 @@ def main(argv=None) -> int:
                 print(_row(f"{key} slider, {name}", slider(session, steps, key)), flush=True)
                 session.workers = 1
                 print(_row(f"{key} slider, {name}, 1 thread", slider(session, 4, key)), flush=True)
+                if key == "design.seed":  # a full computation each: the server computes ahead
+                    t = slider_ahead(session, steps, key)
+                    print(_row(f"{key} slider, {name}, computed ahead", t), flush=True)
     return 0
 
 
