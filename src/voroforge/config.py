@@ -60,11 +60,9 @@ FOLD_REACH_ERRS = 256.0
 #: ... and never further than this of the vertex's distance from its site (a class's naming
 #: move grows with every join: it must not carry vertices across the sites' spacing)
 FOLD_REACH_RTOL = 2.0**-10
-#: A chain of circumcentres shorter than this (relative to the box's width + height) is
-#: rounding noise, not put back into a cut cell (kernels/cells)
-CHAIN_SPAN_RTOL = 1e-9
-#: A point must be this far (relative to the coordinates' size) off the bisector of two
-#: neighbours for a cut cell's edge to be relabelled from one to the other (kernels/cells)
+#: A point must be this far (relative to its distances to the two sites, plus 16 ulps of
+#: its own coordinates for their rounding) off the bisector of two neighbours for a cut
+#: cell's edge to be relabelled from one to the other (kernels/cells._nearest_label)
 RELABEL_RTOL = 1e-9
 #: Power-cell vertices closer than this (max-norm, relative to the box's larger side) to a
 #: ring neighbour keep their cut coordinates, and a vertex computed from its name replaces
