@@ -83,7 +83,35 @@ def _edge_ok(i, j, p, q, xs, ys):
         return False
     if orient2d(ix, iy, jx, jy, xs[q], ys[q]) <= 0.0:
         return False
+    if _rectangle(ix, iy, jx, jy, xs[q], ys[q], xs[p], ys[p]):
+        return False  # cocircular: incircle is exactly 0 (its exact stage costs ~0.5 us)
     return incircle(ix, iy, jx, jy, xs[q], ys[q], xs[p], ys[p]) < 0.0
+
+
+@njit(**NJIT)
+def _rectangle(ax, ay, bx, by, cx, cy, dx, dy):
+    """Whether the four points are the corners of an axis-aligned rectangle (in any order).
+
+    Such corners are exactly cocircular (a rectangle's diagonals are diameters of one
+    circle), so their ``incircle`` is exactly 0: an exact grid's squares, where the float
+    filter always fails and the exact stage would run for every edge at them. The test:
+    ``a`` shares its x with exactly one other point and its y with exactly one other, two
+    different ones, and the fourth point has the x of the second and the y of the first.
+    """
+    nx = int(bx == ax) + int(cx == ax) + int(dx == ax)
+    ny = int(by == ay) + int(cy == ay) + int(dy == ay)
+    if nx != 1 or ny != 1:
+        return False
+    kp = 0 if bx == ax else (1 if cx == ax else 2)  # the point with a's x
+    kr = 0 if by == ay else (1 if cy == ay else 2)  # the point with a's y
+    if kp == kr:
+        return False  # one point with both: not four corners
+    ks = 3 - kp - kr  # the other one: the opposite corner
+    xs3 = (bx, cx, dx)
+    ys3 = (by, cy, dy)
+    rx = xs3[kr]
+    py = ys3[kp]
+    return xs3[ks] == rx and ys3[ks] == py and rx != ax and py != ay
 
 
 @njit(**NJIT)
