@@ -850,6 +850,33 @@ def test_the_server_computes_a_sliders_next_step_ahead(folder, monkeypatch):
             assert hub.ahead[:2] == ("design.seed", guess)
 
 
+def test_an_input_about_to_be_used_gets_its_first_step_computed_ahead(folder, monkeypatch):
+    """A page's hint (a slider pressed, a number box focused): the step up is computed."""
+    import time
+
+    from starlette.testclient import TestClient
+
+    from voroforge.studio import server
+
+    monkeypatch.setattr(server, "AHEAD_MS", 0.0)  # the small panel computes in milliseconds
+    app = server.create_app(Session(folder / "holed.toml"))
+    hub, plain = app.state.hub, Session(folder / "holed.toml")
+    with TestClient(app, base_url="http://127.0.0.1:8765") as c, _ws(c) as ws:
+        _greet(ws)
+        for key, value in (("seeds.count", 61), ("fabrication.min_web", 3.0), ("design.seed", 4.0)):
+            ws.send_text(json.dumps({"op": "ahead", "key": key, "value": value}))  # not these
+        ws.send_text(json.dumps({"op": "ahead", "key": "design.seed", "value": 4}))
+        deadline = time.monotonic() + 30
+        while (hub.ahead is None or not hub.ahead[2].done()) and time.monotonic() < deadline:
+            time.sleep(0.005)
+        assert hub.ahead[:2] == ("design.seed", 4) and hub.ahead[2].result() is True
+        ws.send_text(json.dumps({"op": "set", "key": "design.seed", "value": 4, "id": 9}))
+        h, _ = _geom(ws)
+        assert h["reply_to"] == 9 and h["ahead"]
+        plain.apply({"op": "set", "key": "design.seed", "value": 4})
+        _same_step(plain, hub.session)
+
+
 def _page_cells(arrays, prefix):
     """Per cell of a geometry message: its flat float32 coordinates (the page's rawData)."""
     g, r, c = arrays[prefix + "g"], arrays[prefix + "r"], arrays[prefix + "c"]

@@ -133,20 +133,49 @@ class _Hub:
         guess = value + (value - before)
         if guess == value or not math.isfinite(guess):
             return
+        self._ahead_of(key, guess, AHEAD_DELAY)
+
+    def hint(self, msg: dict) -> None:
+        """A page's ``{"op": "ahead", "key", "value"}``: an input about to be used.
+
+        The page says so when one of its number inputs gets the focus (a slider is
+        pressed), with the value one step up: that first step is computed ahead as the
+        next ones are (:meth:`look_ahead`), where the last computation was a full one of at
+        least :data:`AHEAD_MS`. Not for ``[seeds]``, ``[relax]`` (their steps are patched
+        near the changed seeds) nor sections that keep the cells.
+        """
+        s = self.session
+        key, value = msg.get("key"), msg.get("value")
+        if not isinstance(key, str) or not _number(value) or key.split(".")[0] in _NO_AHEAD:
+            return
+        if s.provisional or s.compute_ms < AHEAD_MS or s.frame is not None or s.sites is not None:
+            return
+        if self.ahead is not None and self.ahead[:2] == (key, value):
+            return
+        if type(_value_at(s.data, key)) is not type(value):
+            return
+        self._ahead_of(key, value, 0.0)
+
+    def _ahead_of(self, key: str, value, delay: float) -> None:
+        """Compute ``key = value`` ahead in a worker thread, ``delay`` seconds from now."""
+        s = self.session
         marker, data, result = self.other_edits, s.data, s.result
 
         def stale() -> bool:
             return self.other_edits != marker
 
-        def start() -> None:  # after the page had the time to take this step and draw it
+        def start() -> None:
             if stale() or s.result is not result:
                 return
-            work = asyncio.to_thread(s.compute_ahead, data, result, key, guess, stale)
+            work = asyncio.to_thread(s.compute_ahead, data, result, key, value, stale)
             task = asyncio.get_running_loop().create_task(work)
             task.add_done_callback(lambda t: t.cancelled() or t.exception())  # none unread
-            self.ahead = (key, guess, task)
+            self.ahead = (key, value, task)
 
-        asyncio.get_running_loop().call_later(AHEAD_DELAY, start)
+        if delay > 0:  # after the page had the time to take this step and draw it
+            asyncio.get_running_loop().call_later(delay, start)
+        else:
+            start()
 
     def schedule_check(self, delay: float | None = None, *, edit: bool = False) -> None:
         """Settle a drag's result, then run the fabrication check, once edits pause.
@@ -444,6 +473,9 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
         if msg.get("op") == "view":
             await _view(hub, ws, cid, msg, mid)
             return
+        if msg.get("op") == "ahead":  # not an edit: no reply
+            hub.hint(msg)
+            return
     session = hub.session
     received, received_at, busy = time.perf_counter(), time.time(), hub.busy
     ahead = hub.ahead
@@ -515,6 +547,8 @@ async def _handle(hub: _Hub, ws, cid: int, event: dict) -> None:
 #: A slider step whose full computation took at least this many milliseconds gets its next
 #: step computed ahead (:meth:`_Hub.look_ahead`)
 AHEAD_MS = 10.0
+#: Sections whose inputs get no first step computed ahead (_Hub.hint)
+_NO_AHEAD = ("seeds", "relax", "fabrication", "output", "animation")
 #: Seconds after a step's geometry is sent before its next step is computed ahead: the
 #: message's bytes and the page's drawing first (started at once, the computation took the
 #: GIL from the event loop still writing a 290 KiB message and a core from the page)

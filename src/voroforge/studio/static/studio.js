@@ -568,12 +568,25 @@ var VoroStudio = (function () {
         };
         range.addEventListener("input", function (e) { send(range, e.timeStamp); });
         num.addEventListener("change", function (e) { send(num, e.timeStamp); });
+        if (!sub) {  // about to be used: the server may compute the step up ahead
+          var hint = function () { self.hintAhead(c, num); };
+          range.addEventListener("pointerdown", hint); num.addEventListener("focus", hint);
+        }
         return { sub: sub, range: range, num: num };
       });
       el("div", { "class": "vf-err" }, box);
       self.inputs[c.key] = { box: box, rows: rows, spec: c };
       self.setInputs(c);
     });
+  };
+
+  /* Tell the server which input is about to change, with the value one step up (not an
+     edit: no reply; see the server's _Hub.hint). */
+  Studio.prototype.hintAhead = function (c, num) {
+    var v = parseFloat(num.value), step = parseFloat(c.step) || 1;
+    if (!isFinite(v)) return;
+    var next = c.kind === "int" ? Math.round(v + step) : v + step;
+    this.transport.send(JSON.stringify({ op: "ahead", key: c.key, value: next }));
   };
 
   Studio.prototype.setInputs = function (c) {
