@@ -1088,6 +1088,23 @@ def test_edit_replies_count_the_server_threads_context_switches(client):
         assert h["switches"] is None or len(h["switches"]) == 2
 
 
+def test_integers_too_large_for_a_float_get_an_error_and_the_connection_stays(client):
+    """JSON integers have no size limit: 10**400 is an error reply, not a dropped page."""
+    s = client.app.state.hub.session
+    for msg in (
+        {"op": "set", "key": "cells.web", "value": 10**400},
+        {"op": "move", "i": 0, "x": 10**400, "y": 1.0},
+    ):
+        assert s.apply(msg).kind == "error"
+    with _ws(client) as ws:
+        _greet(ws)
+        ws.send_text(json.dumps({"op": "ahead", "key": "cells.web", "value": 10**400}))
+        ws.send_text(json.dumps({"op": "set", "key": "cells.web", "value": 10**400, "id": 1}))
+        assert _reply(ws)["op"] == "error"
+        ws.send_text(json.dumps({"op": "set", "key": "cells.web", "value": 2.5, "id": 2}))
+        assert _geom(ws)[0]["reply_to"] == 2
+
+
 def test_the_check_waits_for_a_pause_in_the_edits_rhythm():
     """A slider's steps 0.5 s apart: the check waits twice that, not 0.35 s (between steps)."""
     from voroforge import config

@@ -556,7 +556,13 @@ AHEAD_DELAY = 0.025
 
 
 def _number(v) -> bool:
-    return isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v)
+    """A finite int or float (JSON's integers may be too large for a float: not those)."""
+    if not isinstance(v, int | float) or isinstance(v, bool):
+        return False
+    try:
+        return math.isfinite(v)
+    except OverflowError:
+        return False
 
 
 def _asks(msg, key: str, value) -> bool:

@@ -384,8 +384,9 @@ class Session:
             return Reply("error", issues=[{"key": exc.key, "message": exc.message}])
         except DesignError as exc:
             return _error(exc)
-        except (TypeError, ValueError, KeyError, IndexError, OSError) as exc:
-            # a message the checks above let through: answer it, keep the session as it was
+        except (TypeError, ValueError, ArithmeticError, KeyError, IndexError, OSError) as exc:
+            # a message the checks above let through (an integer too large for a float, ...):
+            # answer it, keep the session as it was
             return Reply("error", issues=[{"key": "", "message": f"cannot apply: {exc}"[:300]}])
 
     def _op_set(self, msg: dict) -> Reply:
