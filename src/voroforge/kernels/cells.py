@@ -141,6 +141,14 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, q
         b = pw[v]
         x = px[v]
         y = py[v]
+        if a >= 0 and a == b:
+            # two edges on one bisector: not a Voronoi vertex. A cut vertex of two nearly
+            # parallel bisectors (sites far from this one, close to each other) is off the
+            # true vertex along them by rounding over their angle, far more than its distance
+            # to either line: _relabel_edges puts the true vertices in from the chain and
+            # leaves the cut one between two edges of one owner (a T-junction on the
+            # neighbour's edge, 1e-14 off it, issue 15)
+            continue
         if a >= 0 and b >= 0:
             ka, steps = _chain(nbrs, tris, nn, a, b, hint)
             hint = max(ka, 0)
