@@ -30,7 +30,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
-from .moments import ring_sums
+from .moments import neumaier_add, ring_sums
 from .predicates import orient2d
 
 
@@ -210,12 +210,7 @@ def rings_convex_area(xy, lengths):
         if b - a < 2:
             continue
         ring = ring_sums(xs, ys, a, b, xs[a], ys[a], True)[0]
-        t = total + ring
-        if abs(total) >= abs(ring):
-            comp += (total - t) + ring
-        else:
-            comp += (ring - t) + total
-        total = t
+        total, comp = neumaier_add(total, comp, ring)
     return True, 0.5 * (total + comp)
 
 

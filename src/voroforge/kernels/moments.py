@@ -53,6 +53,17 @@ def ring_moments(xs, ys, a, b, ox, oy, closed):
 
 
 @njit(**NJIT)
+def neumaier_add(total, comp, x):
+    """``(total + x, comp)`` with ``comp`` gathering the rounding error (Neumaier's summation)."""
+    t = total + x
+    if abs(total) >= abs(x):
+        comp += (total - t) + x
+    else:
+        comp += (x - t) + total
+    return t, comp
+
+
+@njit(**NJIT)
 def rings_area(xs, ys, lengths):
     """Sum of the signed areas of the closed rings ``(xs, ys)[lengths[i]:lengths[i + 1]]``.
 
@@ -69,12 +80,7 @@ def rings_area(xs, ys, lengths):
         if b - a < 2:
             continue
         ring = ring_sums(xs, ys, a, b, xs[a], ys[a], True)[0]
-        t = total + ring
-        if abs(total) >= abs(ring):
-            comp += (total - t) + ring
-        else:
-            comp += (ring - t) + total
-        total = t
+        total, comp = neumaier_add(total, comp, ring)
     return 0.5 * (total + comp)
 
 
