@@ -35,6 +35,7 @@ from ..config import (
 from .clip import dedupe_ring
 from .predicates import incircle, orient2d
 from .vertex import (
+    _vertex_and_bounds,
     box_crossing,
     canonical_vertex,
     canonical_vertex4,
@@ -165,7 +166,7 @@ def _insert(lab, m, u, x):
     return m + 1
 
 
-@njit(**NJIT)
+@njit(inline="always", **NJIT)
 def _drop_invalid(i, lab, m, xs, ys, sure, trust, box):
     """Remove repeated labels and neighbours whose edge has no positive length.
 
@@ -192,7 +193,7 @@ def _drop_invalid(i, lab, m, xs, ys, sure, trust, box):
     return m
 
 
-@njit(**NJIT)
+@njit(inline="always", **NJIT)
 def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget):
     """Make the ring of neighbour labels ``lab[:m]`` exactly right.
 
@@ -255,7 +256,8 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
             work += _W_VERTEX + nc
             if work > budget:
                 return -2, work
-            vx_, vy_, ev_, lv_ = voronoi_vertex_lazy(i, a, b, xs, ys)
+            # voronoi_vertex_lazy's body, inlined: a call costs reference counts of xs, ys
+            vx_, vy_, ev_, lv_ = _vertex_and_bounds(i, a, b, xs, ys, np.bool_(True))
             r2 = (ix - vx_) * (ix - vx_) + (iy - vy_) * (iy - vy_)
             tol = HALFPLANE_NEAR_RTOL * r2
             # a site this close to the circle is on it: the edge it would add or keep is
@@ -506,7 +508,7 @@ def _snap_crossing(i, j, x, y, xs, ys, near, nn, sidx, on):
     return canonical_vertex(on, k, x, y, xs[i], ys[i], xs, ys)
 
 
-@njit(**NJIT)
+@njit(inline="always", **NJIT)
 def emit_exact(i, lab, m, vx, vy, xs, ys, box, near, nn, sidx, ox, oy, oo, on):
     """Write the settled ring with canonical vertices to ``o``; -1 when one is undefined.
 
