@@ -35,7 +35,6 @@ from ..config import (
 from .clip import dedupe_ring
 from .predicates import incircle, orient2d
 from .vertex import (
-    _vertex_and_bounds,
     box_crossing,
     canonical_vertex,
     canonical_vertex4,
@@ -43,6 +42,7 @@ from .vertex import (
     same_vertex,
     voronoi_vertex_error,
     voronoi_vertex_lazy,
+    voronoi_vertex_lazy_inline,
 )
 
 #: Box sides as ring labels (those of :func:`.vertex.box_crossing`); all become owner -1.
@@ -256,8 +256,8 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
             work += _W_VERTEX + nc
             if work > budget:
                 return -2, work
-            # voronoi_vertex_lazy's body, inlined: a call costs reference counts of xs, ys
-            vx_, vy_, ev_, lv_ = _vertex_and_bounds(i, a, b, xs, ys, np.bool_(True))
+            # voronoi_vertex_lazy inlined: a call costs reference counts of xs, ys
+            vx_, vy_, ev_, lv_ = voronoi_vertex_lazy_inline(i, a, b, xs, ys)
             r2 = (ix - vx_) * (ix - vx_) + (iy - vy_) * (iy - vy_)
             tol = HALFPLANE_NEAR_RTOL * r2
             # a site this close to the circle is on it: the edge it would add or keep is

@@ -216,6 +216,16 @@ def voronoi_vertex_lazy(a, b, c, xs, ys):
     return _vertex_and_bounds(a, b, c, xs, ys, np.bool_(True))
 
 
+@njit(**{**NJIT, "inline": "always"})
+def voronoi_vertex_lazy_inline(a, b, c, xs, ys):
+    """:func:`voronoi_vertex_lazy` inlined into its caller's code (numba IR).
+
+    For hot loops (the half-plane settling): a call between compiled functions updates the
+    reference count of each array argument, two per vertex here.
+    """
+    return _vertex_and_bounds(a, b, c, xs, ys, np.bool_(True))
+
+
 @njit(**{**NJIT, "inline": "always"})  # as a call: half-plane grid 1e5 ~13% slower
 def _vertex_and_bounds(a, b, c, xs, ys, lazy):
     """One copy of the float path behind two entries: ``lazy`` False or True.
