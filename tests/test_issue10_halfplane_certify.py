@@ -1,7 +1,8 @@
 """Issue 10: the half-plane cells' certificate in one pass (``clip.rings_convex_area``).
 
-It must give exactly what ``rings_convex(...).all()`` and ``moments.rings_area`` give (the
-engine's ``_certified`` used both), and rings it certified skip ``_drop_folded``'s test.
+It must give exactly what ``rings_convex(...).all()`` and the compensated sum of the rings'
+areas (the engine's ``_certified`` used both, the latter as ``moments.rings_area``, now
+:func:`_rings_area` here) give, and rings it certified skip ``_drop_folded``'s test.
 """
 
 import numpy as np
@@ -10,9 +11,20 @@ import pytest
 from voroforge.engine import planar
 from voroforge.kernels.clip import rings_convex, rings_convex_area, tiny_folded
 from voroforge.kernels.halfplane import halfplane_cells
-from voroforge.kernels.moments import rings_area
+from voroforge.kernels.moments import neumaier_add, ring_sums
 
 BOX = np.array([0.0, 0.0, 1.0, 1.0])
+
+
+def _rings_area(xs, ys, lengths):
+    """The rings' signed areas (each relative to its first vertex) summed with compensation."""
+    xs, ys = np.ascontiguousarray(xs), np.ascontiguousarray(ys)
+    total = comp = 0.0
+    for a, b in zip(lengths[:-1], lengths[1:], strict=True):
+        if b - a >= 2:
+            ring = ring_sums(xs, ys, a, b, xs[a], ys[a], True)[0]
+            total, comp = neumaier_add(total, comp, ring)
+    return 0.5 * (total + comp)
 
 
 def _cells(seed, n, far=0.0):
@@ -29,7 +41,7 @@ def test_equals_the_two_passes(seed, n, far):
     closed, lengths, _, _ = _cells(seed, n, far)
     convex, area = rings_convex_area(closed, lengths)
     assert convex == bool(rings_convex(closed, lengths).all())
-    want = rings_area(closed[:, 0], closed[:, 1], lengths)
+    want = _rings_area(closed[:, 0], closed[:, 1], lengths)
     assert area == want  # bit for bit: the same sums in the same order
     assert convex
 
@@ -39,7 +51,7 @@ def test_a_fold_stops_it_and_empty_rings_pass():
     # an empty ring first, then the cells
     lengths2 = np.concatenate(([0], lengths))
     convex, area = rings_convex_area(closed, lengths2)
-    assert convex and area == rings_area(closed[:, 0], closed[:, 1], lengths2)
+    assert convex and area == _rings_area(closed[:, 0], closed[:, 1], lengths2)
     bent = closed.copy()
     k = int(lengths[7]) + 1  # a vertex of ring 7, pushed inside: a reflex turn
     a, b = int(lengths[7]), int(lengths[8]) - 1

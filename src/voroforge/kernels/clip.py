@@ -189,12 +189,13 @@ def rings_convex(xy, lengths):
 def rings_convex_area(xy, lengths):
     """Whether every ring ``xy[lengths[i]:lengths[i + 1]]`` is convex, and their total area.
 
-    One pass for what :func:`rings_convex` and :func:`.moments.rings_area` give separately
-    (the half-plane cells' certificate, :func:`voroforge.engine.planar._certified`): each
-    closed ring gets :func:`ring_convex`'s exact test (empty rings pass) and its signed area
-    from :func:`.moments.ring_sums` relative to its first vertex, summed with the same
-    compensation as ``rings_area``, so both answers are theirs bit for bit. Returns
-    ``(convex, area)``; stops at the first ring that is not convex (area then NaN).
+    The half-plane cells' certificate (:func:`voroforge.engine.planar._certified`) in one
+    pass: each closed ring gets :func:`ring_convex`'s exact test (empty rings pass, as in
+    :func:`rings_convex`) and its signed area from :func:`.moments.ring_sums` relative to its
+    first vertex, so coordinates far from the origin keep their precision; the areas are
+    added with Neumaier's compensation (:func:`.moments.neumaier_add`: a million small cells
+    sum to the box's area to a few ulps). Returns ``(convex, area)``; stops at the first ring
+    that is not convex (area then NaN).
     """
     xs = xy[:, 0]
     ys = xy[:, 1]

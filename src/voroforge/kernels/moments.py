@@ -63,27 +63,6 @@ def neumaier_add(total, comp, x):
     return t, comp
 
 
-@njit(**NJIT)
-def rings_area(xs, ys, lengths):
-    """Sum of the signed areas of the closed rings ``(xs, ys)[lengths[i]:lengths[i + 1]]``.
-
-    Each ring is :func:`ring_sums` relative to its first vertex, so coordinates far from the
-    origin keep their precision; the rings' areas are added with Neumaier's compensation (a
-    million small cells sum to the box's area to a few ulps). The engine compares it with
-    the box's area to certify that half-plane cells tile the box.
-    """
-    total = 0.0
-    comp = 0.0
-    for i in range(lengths.shape[0] - 1):
-        a = lengths[i]
-        b = lengths[i + 1]
-        if b - a < 2:
-            continue
-        ring = ring_sums(xs, ys, a, b, xs[a], ys[a], True)[0]
-        total, comp = neumaier_add(total, comp, ring)
-    return 0.5 * (total + comp)
-
-
 @njit(**NJIT_PARALLEL)
 def area_centroid(coords, ring_offsets, polygon_offsets, geom_offsets):
     """Area and area centroid of each geometry.
