@@ -124,9 +124,7 @@ class _Hub:
         """
         s = self.session
         key, value = msg.get("key"), msg.get("value")
-        if msg.get("op") != "set" or not isinstance(key, str) or s.provisional:
-            return
-        if s.compute_ms < AHEAD_MS or s.frame is not None or s.sites is not None:
+        if msg.get("op") != "set" or not isinstance(key, str) or not _full_step(s):
             return
         if not (_number(value) and _number(before) and type(value) is type(before)):
             return
@@ -148,7 +146,7 @@ class _Hub:
         key, value = msg.get("key"), msg.get("value")
         if not isinstance(key, str) or not _number(value) or key.split(".")[0] in _NO_AHEAD:
             return
-        if s.provisional or s.compute_ms < AHEAD_MS or s.frame is not None or s.sites is not None:
+        if not _full_step(s):
             return
         if self.ahead is not None and self.ahead[:2] == (key, value):
             return
@@ -553,6 +551,15 @@ _NO_AHEAD = ("seeds", "relax", "fabrication", "output", "animation")
 #: message's bytes and the page's drawing first (started at once, the computation took the
 #: GIL from the event loop still writing a 290 KiB message and a core from the page)
 AHEAD_DELAY = 0.025
+
+
+def _full_step(s) -> bool:
+    """Whether session ``s``'s last step was a full computation worth computing ahead.
+
+    At least :data:`AHEAD_MS`, not a provisional (incremental) answer, not an animation
+    frame, no hand-edited sites.
+    """
+    return not s.provisional and s.compute_ms >= AHEAD_MS and s.frame is None and s.sites is None
 
 
 def _number(v) -> bool:
