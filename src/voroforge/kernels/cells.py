@@ -15,7 +15,8 @@ Interior cells are rings of circumcentres (``kernels/centers``: each the Voronoi
 by its triangle's sites). Triangles whose circumcircles coincide (exactly cocircular sites,
 decided with the exact ``incircle``) share one circumcentre, so cocircular grids give clean
 cells without zero-length edges. Cells of hull sites (unbounded before
-clipping) are cut out of the box by the bisectors of their Delaunay neighbours.
+clipping) and cells reaching past the box are cut out of the box by the bisectors of their
+Delaunay neighbours, with their shared vertices named canonically (``kernels/cellcut``).
 """
 
 from __future__ import annotations
@@ -23,17 +24,14 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ..config import FOLD_MAX_ROUNDS, NJIT, NJIT_PARALLEL, RELABEL_RTOL
+from ..config import FOLD_MAX_ROUNDS, NJIT, NJIT_PARALLEL
+from .cellcut import cut_cell, spliced_cell
 from .centers import circumcenters, contract, merge_cocircular
-from .clip import dedupe_ring, open_ring_convex
+from .clip import open_ring_convex
 from .folds import fold_pairs, folded_rings, risky_sites
-from .power import box_cell
-from .vertex import box_crossing
-
-_U = 2.0**-53
 
 _CHUNK = 2048
-_SPLICE_MIN = 48  # cut cells with more neighbours are built by _spliced_cell
+_SPLICE_MIN = 48  # cut cells with more neighbours are built by cellcut.spliced_cell
 
 
 @njit(**NJIT)
@@ -60,333 +58,6 @@ def _outgoing(tri, he, cx, cy, box, n):
             cut[tri[3 * t + 1]] = True
             cut[tri[3 * t + 2]] = True
     return out, deg, cut
-
-
-@njit(**NJIT)
-def _index_of(nbrs, nn, a, hint):
-    """Position of ``a`` in ``nbrs[:nn]``, searched outward from ``hint`` (-1 if absent).
-
-    Consecutive vertices of a ring have neighbours next to each other in rotation order, so
-    the search usually ends at once; a cell with many neighbours stays linear.
-    """
-    if nn == 0:
-        return -1
-    hint = min(max(hint, 0), nn - 1)
-    for d in range(nn // 2 + 1):
-        k = hint + d
-        if k >= nn:
-            k -= nn
-        if nbrs[k] == a:
-            return k
-        k = hint - d
-        if k < 0:
-            k += nn
-        if nbrs[k] == a:
-            return k
-    return -1
-
-
-@njit(**NJIT)
-def _chain(nbrs, tris, nn, a, b, hint):
-    """Where neighbour ``a`` is, and how many Delaunay triangles lead from it to ``b``.
-
-    Returns ``(ka, steps)`` in rotation order; ``steps`` is -1 when either is missing, ``b``
-    does not follow ``a``, or a triangle between them does not exist (past a hull end).
-    ``hint`` is where to start looking for ``a``.
-    """
-    ka = _index_of(nbrs, nn, a, hint)
-    kb = _index_of(nbrs, nn, b, ka + 1)
-    if ka < 0 or kb < 0:
-        return ka, -1
-    steps = (kb - ka) % nn if tris[nn - 1] >= 0 else kb - ka
-    for s in range(max(steps, 0)):
-        if tris[(ka + s) % nn] < 0:
-            return ka, -1
-    return ka, steps if steps >= 1 else -1
-
-
-@njit(**NJIT)
-def _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, qx, qy, qw, out):
-    """Write the circumcentres of the ``steps`` triangles after neighbour ``ka`` to ``q``.
-
-    Each is followed by the edge of the next neighbour; returns the new vertex count.
-    """
-    for s in range(steps):
-        k = (ka + s) % nn
-        t = tris[k]
-        qx[out] = cx[t]
-        qy[out] = cy[t]
-        qw[out] = nbrs[(k + 1) % nn]
-        out += 1
-    return out
-
-
-@njit(**NJIT)
-def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, qx, qy, qw):
-    """Replace computed vertices by values every cell sharing them computes identically.
-
-    A vertex between the bisectors with neighbours ``a`` then ``b`` is the circumcentre of
-    the Delaunay triangle ``(i, a, b)``. When ``a`` and ``b`` are not consecutive neighbours
-    the clip lost edges too short for floats to separate (neighbours whose bisectors coincide
-    in floating point); the chain of circumcentres between them is put back from the
-    triangulation. A vertex on a box side is the canonical crossing of the bisector with that
-    side; two box sides meet at an exact corner. Owners of box sides (-1..-4) become -1.
-    """
-    # counters start as np.int64: a literal 0 would make numba compile each callee they
-    # reach once more, for the literal
-    out = np.int64(0)
-    hint = np.int64(0)
-    for v in range(m):
-        a = pw[v - 1] if v > 0 else pw[m - 1]
-        b = pw[v]
-        x = px[v]
-        y = py[v]
-        if a >= 0 and a == b:
-            # two edges on one bisector: not a Voronoi vertex. A cut vertex of two nearly
-            # parallel bisectors (sites far from this one, close to each other) is off the
-            # true vertex along them by rounding over their angle, far more than its distance
-            # to either line: _relabel_edges puts the true vertices in from the chain and
-            # leaves the cut one between two edges of one owner (a T-junction on the
-            # neighbour's edge, 1e-14 off it, issue 15)
-            continue
-        if a >= 0 and b >= 0:
-            ka, steps = _chain(nbrs, tris, nn, a, b, hint)
-            hint = max(ka, 0)
-            # the chain's vertices are in order: swapped ones were merged (centers._unfold)
-            ok = steps >= 1 and out + steps + (m - v) <= qx.shape[0]
-            if ok:
-                out = _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, qx, qy, qw, out)
-                continue
-        elif a >= 0 or b >= 0:
-            j = a if a >= 0 else b
-            side = b if a >= 0 else a
-            bx, by = box_crossing(i, j, xs, ys, side, box)
-            if bx == bx and box[0] <= bx <= box[2] and box[1] <= by <= box[3]:
-                x = bx
-                y = by
-        else:
-            vert = a if (a == -1 or a == -3) else b
-            horz = b if vert == a else a
-            if (vert == -1 or vert == -3) and (horz == -2 or horz == -4):
-                x = box[0] if vert == -1 else box[2]
-                y = box[1] if horz == -2 else box[3]
-        qx[out] = x
-        qy[out] = y
-        qw[out] = b
-        out += 1
-    for v in range(out):
-        px[v] = qx[v]
-        py[v] = qy[v]
-        pw[v] = qw[v] if qw[v] >= 0 else -1
-    return dedupe_ring(px, py, pw, out)
-
-
-@njit(**NJIT)
-def _nearest_label(xs, ys, x, y, b, nbrs, nn):
-    """The neighbour nearest to ``(x, y)``, starting from ``b``.
-
-    It moves only on a decisive comparison: the point must be clearly (``RELABEL_RTOL`` of
-    the coordinates' size) off the bisector of the two candidates.
-    """
-    for k in range(nn):
-        j = nbrs[k]
-        if j == b:
-            continue
-        # |P - s_j|^2 - |P - s_b|^2 = (s_j - s_b) . (s_j + s_b - 2P)
-        dx = xs[j] - xs[b]
-        dy = ys[j] - ys[b]
-        # in the frame of P: the local spacing, not the coordinates' magnitude, sets the
-        # tolerance; P's own representation error adds a few ulps of its magnitude
-        jx = xs[j] - x
-        jy = ys[j] - y
-        bx = xs[b] - x
-        by = ys[b] - y
-        d = dx * (jx + bx) + dy * (jy + by)
-        size = abs(jx) + abs(bx) + abs(jy) + abs(by)
-        tol = (RELABEL_RTOL * size + 16.0 * _U * (abs(x) + abs(y))) * (abs(dx) + abs(dy))
-        if d < -tol:
-            b = j
-    return b
-
-
-@njit(**NJIT)
-def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw):
-    """Fix the owners of bisector edges that floats could not separate; result in ``p``.
-
-    Neighbours closer to each other than the float resolution of their bisectors (sites
-    1e-17 of the extent apart, say) cut the cell along the same float line, and the clip
-    labels the whole edge with whichever came last. Each end of the edge is given its
-    nearest neighbour; when the ends disagree, the Delaunay chain of circumcentres between
-    the two neighbours is inserted, so the edge is split where the true vertices are.
-    """
-    out = np.int64(0)
-    for v in range(m):
-        b = pw[v]
-        qx[out] = px[v]
-        qy[out] = py[v]
-        qw[out] = b
-        out += 1
-        if b < 0:
-            continue
-        w = v + 1 if v + 1 < m else 0
-        lp = _nearest_label(xs, ys, px[v], py[v], b, nbrs, nn)
-        lq = _nearest_label(xs, ys, px[w], py[w], b, nbrs, nn)
-        if lp == lq:
-            qw[out - 1] = lp
-            continue
-        kp, steps = _chain(nbrs, tris, nn, lp, lq, np.int64(0))
-        if not (steps >= 1 and out + steps + (m - v) <= qx.shape[0]):
-            qw[out - 1] = _nearest_label(
-                xs, ys, 0.5 * (px[v] + px[w]), 0.5 * (py[v] + py[w]), b, nbrs, nn
-            )
-            continue
-        qw[out - 1] = lp
-        out = _emit_chain(nbrs, tris, nn, kp, steps, cx, cy, qx, qy, qw, out)
-    for v in range(out):
-        px[v] = qx[v]
-        py[v] = qy[v]
-        pw[v] = qw[v]
-    return out
-
-
-@njit(**NJIT)
-def _cut_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, px, py, pw, qx, qy, qw, ss):
-    """Cell of site ``i`` as the box cut by the bisectors with ``nbrs[:nn]``; result in ``p``.
-
-    The cut is the power cell's (``kernels/power.box_cell``) with the zero weights ``ws``:
-    Voronoi is the equal-weight case. ``tris[k]`` is the Delaunay triangle between
-    neighbours ``k`` and ``k + 1`` (or -1); it lets :func:`_canonical_vertices` make shared
-    vertices bit-identical across cells. ``ss`` is scratch.
-    """
-    m = box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss)
-    if m == 0:
-        return 0
-    m = _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw)
-    return _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, qx, qy, qw)
-
-
-@njit(**NJIT)
-def _safe_inside(t, cx, cy, err, box):
-    """Whether triangle ``t``'s centre lies inside ``box`` by more than its rounding bound."""
-    if t < 0:
-        return False
-    e = 4.0 * err[t] + 8.0 * _U * (abs(cx[t]) + abs(cy[t]))
-    return box[0] + e < cx[t] < box[2] - e and box[1] + e < cy[t] < box[3] - e
-
-
-@njit(**NJIT)
-def _interior(q, tris, nn, cx, cy, err, box):
-    """Whether neighbour ``q``'s edge runs between two centres safely inside the box.
-
-    Its two ends are the centres of the triangles before and after it in rotation order;
-    a hull site's first edge has no triangle before it (``tris[nn - 1] == -1``).
-    """
-    qp = q - 1 if q > 0 else nn - 1
-    return _safe_inside(tris[qp], cx, cy, err, box) and _safe_inside(tris[q], cx, cy, err, box)
-
-
-@njit(**NJIT)
-def _splice(px, py, pw, m, nbrs, tris, nn, cx, cy, err, box, qx, qy, qw):
-    """Put the runs of interior edges back into ring ``p``, cut by the other neighbours only.
-
-    ``p[:m]`` is the box cut by the neighbours whose edges are not interior
-    (:func:`_interior`). Between the edges of neighbours ``a`` and ``c`` that bound a run of
-    interior edges, that ring has whatever the missing neighbours would have cut away; the
-    run's edges replace it, starting and ending at the run's centres. Result in ``q``;
-    returns its vertex count, or -1 when the ring does not have the expected edges (the
-    caller then cuts by every neighbour).
-    """
-    v0 = -1
-    for v in range(m):
-        if pw[v] >= 0:
-            k = _index_of(nbrs, nn, pw[v], np.int64(0))
-            if k >= 0 and _interior((k + 1) % nn, tris, nn, cx, cy, err, box):
-                v0 = v
-                break
-    if v0 < 0:
-        return -1
-    out = np.int64(0)
-    v = v0
-    first = True
-    pend = False
-    ox = 0.0
-    oy = 0.0
-    hint = np.int64(0)
-    while True:
-        if not first and v == v0:
-            if pend:
-                qx[0] = ox
-                qy[0] = oy
-            break
-        first = False
-        if out >= qx.shape[0]:
-            return -1
-        o = pw[v]
-        qx[out] = ox if pend else px[v]
-        qy[out] = oy if pend else py[v]
-        qw[out] = o
-        out += 1
-        pend = False
-        k = _index_of(nbrs, nn, o, hint) if o >= 0 else -1
-        if k < 0 or not _interior((k + 1) % nn, tris, nn, cx, cy, err, box):
-            v = v + 1 if v + 1 < m else 0
-            continue
-        hint = k
-        q = (k + 1) % nn
-        while _interior(q, tris, nn, cx, cy, err, box):
-            t = tris[q - 1 if q > 0 else nn - 1]
-            if out >= qx.shape[0] or q == k:
-                return -1
-            qx[out] = cx[t]
-            qy[out] = cy[t]
-            qw[out] = nbrs[q]
-            out += 1
-            q = (q + 1) % nn
-        t = tris[q - 1 if q > 0 else nn - 1]
-        ox = cx[t]
-        oy = cy[t]
-        pend = True
-        target = nbrs[q]
-        v = v + 1 if v + 1 < m else 0
-        while pw[v] != target:
-            if v == v0:
-                return -1
-            v = v + 1 if v + 1 < m else 0
-    return out
-
-
-@njit(**NJIT)
-def _spliced_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, err, bufs, gl, ss):
-    """A cut cell with many neighbours in linear time; -1 when it must be cut the usual way.
-
-    Cutting the box by ``nn`` bisectors one after another costs ``nn`` times the ring, and
-    the ring grows with every edge inside the box: quadratic for a site with thousands of
-    neighbours (sites on a line and one off it). Edges whose two ends are centres safely
-    inside the box are final Voronoi edges, so only the other neighbours cut the box (their
-    ring stays small: a convex cell crosses the box's sides a few times only), and the runs
-    of interior edges are spliced back in rotation order (:func:`_splice`).
-    """
-    px, py, pw, qx, qy, qw = bufs
-    ng = np.int64(0)
-    for q in range(nn):
-        if not _interior(q, tris, nn, cx, cy, err, box):
-            gl[ng] = nbrs[q]
-            ng += 1
-    if ng == 0 or ng == nn:
-        return -1
-    m = box_cell(i, xs, ys, ws, gl, ng, box, px, py, pw, qx, qy, qw, ss)
-    if m == 0:
-        return -1
-    # (no _relabel_edges: its nearest-neighbour test would see the spliced-out neighbours'
-    # territory; a many-neighbour cell whose cut needs relabelling fails the splice instead)
-    m = _splice(px, py, pw, m, nbrs, tris, nn, cx, cy, err, box, qx, qy, qw)
-    if m < 3:
-        return -1
-    for v in range(m):
-        px[v] = qx[v]
-        py[v] = qy[v]
-        pw[v] = qw[v]
-    return _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, qx, qy, qw)
 
 
 @njit(**NJIT)
@@ -437,19 +108,19 @@ def _cell(i, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, bufs, nbrs, cl, tb
             break
     if not inside:
         if k > _SPLICE_MIN:
-            m = _spliced_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, err, bufs, cl, ss)
+            m = spliced_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, err, bufs, cl, ss)
             if m >= 0:
                 return m
-        m = _cut_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, px, py, pw, qx, qy, qw, ss)
+        m = cut_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, px, py, pw, qx, qy, qw, ss)
         if m < 3 or open_ring_convex(px, py, m):
             return m
         # the cut folded: bisectors that meet within their rounding of one point (a float
         # circle's hull cells all reach its centre) cut in the wrong order. The edges between
         # centres safely inside the box are final; cut by the others only and splice them in
-        m = _spliced_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, err, bufs, cl, ss)
+        m = spliced_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, err, bufs, cl, ss)
         if m >= 3 and open_ring_convex(px, py, m):
             return m
-        return _cut_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, px, py, pw, qx, qy, qw, ss)
+        return cut_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, px, py, pw, qx, qy, qw, ss)
     if m > 1 and cl[m - 1] == cl[0]:
         m -= 1
     return m if m >= 3 else 0
@@ -828,7 +499,7 @@ def _cut_all(xs, ys, indptr, indices, box, cap, counts, offsets, coords, owner, 
         ss = np.zeros(cap)
         for i in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
             nb = indices[indptr[i] : indptr[i + 1]]
-            m = _cut_cell(
+            m = cut_cell(
                 i, xs, ys, ws, nb, no_tris, nb.shape[0], box, none, none, px, py, pw, qx, qy, qw, ss
             )
             if not fill:
