@@ -4,8 +4,9 @@
 by hand (``sites``; ``None`` while they come from ``[seeds]``), the last good
 :class:`~voroforge.design.compute.Result` (computed without its ``frame``, which the page
 does not draw; exports rebuild everything) and the undo history. :meth:`Session.apply` takes
-one message of the page (a ``dict``, already parsed) and returns a :class:`Reply`; the web
-server and the Jupyter widget only move those messages. Nothing here draws or clips: the
+one message of the page (a ``dict``, already parsed) and returns a :class:`Reply`
+(:mod:`voroforge.studio.replies`, with the checks of a message's values); the web server
+and the Jupyter widget only move those messages. Nothing here draws or clips: the
 geometry is :func:`voroforge.design.compute.compute`'s, reused per cell between edits.
 
 Saving writes the design as TOML into the design's own folder (never elsewhere, never over
@@ -25,7 +26,6 @@ import re
 import tempfile
 import time
 import tomllib
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -37,43 +37,16 @@ from ..design.compute import compute
 from ..design.designfile import DesignError, apply_overrides, load
 from .controls import controls
 from .livecheck import LiveCheck
+from .replies import EXPORTS, BadMessage, Reply, changed_cells, error_reply, number, plain
 from .tomlfile import dumps, write_atomic
 
 __all__ = ["EXPORTS", "Reply", "Session"]
-
-#: What the page can export, and the MIME type of each.
-EXPORTS = {
-    "svg": "image/svg+xml",
-    "dxf": "application/dxf",
-    "png": "image/png",
-    "geojson": "application/geo+json",
-}
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9 _.+-]{0,120}\.toml$")
 #: Sections of a design that ``compute`` does not read (changing them keeps the cells).
 _NOT_GEOMETRY = ("fabrication", "output", "animation")
 #: Keys whose change means "new seeds" (hand-edited sites are dropped).
 _RESEED = ("seeds", "relax", "design.seed")
-
-
-@dataclass
-class Reply:
-    """What :meth:`Session.apply` answers.
-
-    ``kind`` is ``"update"`` (new geometry: ``changed`` cell indices or None for all),
-    ``"error"`` (``issues``: key and message each; the last good geometry stays),
-    ``"confirm"`` (a save would overwrite ``files``), ``"saved"``, ``"file"`` (an export:
-    ``name``, ``mime``, ``data``) or ``"info"``.
-    """
-
-    kind: str
-    issues: list[dict] = field(default_factory=list)
-    changed: np.ndarray | None = None
-    name: str = ""
-    mime: str = ""
-    data: bytes = b""
-    files: list[str] = field(default_factory=list)
-    note: str = ""
 
 
 class Session:
@@ -334,28 +307,28 @@ class Session:
                     sites = sites[inside] if inside.any() else None
                     design, result = self._compute(data, sites)
         except DesignError as exc:
-            return _error(exc)
+            return error_reply(exc)
         if remember:
             self.history.append((self.data, self.sites))
             del self.history[: -config.STUDIO_UNDO_DEPTH]
             self.future.clear()
         self.data, self.sites, self.design, self.result = data, sites, design, result
         self.frame = None
-        return Reply("update", changed=_changed(previous, result))
+        return Reply("update", changed=changed_cells(previous, result))
 
     def _sites(self) -> np.ndarray:
         return (self.result.sites if self.sites is None else self.sites).copy()
 
     def _point(self, msg: dict) -> tuple[float, float]:
-        x, y = _number(msg.get("x"), "x"), _number(msg.get("y"), "y")
+        x, y = number(msg.get("x"), "x"), number(msg.get("y"), "y")
         if not shapely.contains_xy(self.result.domain, x, y):
-            raise _Bad("", f"({x:g}, {y:g}) is outside the boundary")
+            raise BadMessage("", f"({x:g}, {y:g}) is outside the boundary")
         return x, y
 
     def _index(self, msg: dict, n: int, what: str = "i") -> int:
         i = msg.get(what)
         if not isinstance(i, int) or isinstance(i, bool) or not 0 <= i < n:
-            raise _Bad("", f"{what} must be an index below {n}; got {str(i)[:20]}")
+            raise BadMessage("", f"{what} must be an index below {n}; got {str(i)[:20]}")
         return i
 
     def apply(self, msg) -> Reply:
@@ -374,16 +347,16 @@ class Session:
         self.ahead_used = False
         try:
             if not isinstance(msg, dict):
-                raise _Bad("", "a message is a JSON object with an 'op'")
+                raise BadMessage("", "a message is a JSON object with an 'op'")
             op = msg.get("op")
             handler = _OPS.get(op) if isinstance(op, str) else None
             if handler is None:
-                raise _Bad("", f"unknown op {str(op)[:30]!r}")
+                raise BadMessage("", f"unknown op {str(op)[:30]!r}")
             return handler(self, msg)
-        except _Bad as exc:
+        except BadMessage as exc:
             return Reply("error", issues=[{"key": exc.key, "message": exc.message}])
         except DesignError as exc:
-            return _error(exc)
+            return error_reply(exc)
         except (TypeError, ValueError, ArithmeticError, KeyError, IndexError, OSError) as exc:
             # a message the checks above let through (an integer too large for a float, ...):
             # answer it, keep the session as it was
@@ -392,8 +365,8 @@ class Session:
     def _op_set(self, msg: dict) -> Reply:
         key = msg.get("key")
         if not isinstance(key, str) or not re.fullmatch(r"[A-Za-z0-9_.]{1,80}", key):
-            raise _Bad("", "set needs a dotted key, e.g. seeds.count")
-        value = _plain(msg.get("value"), key)
+            raise BadMessage("", "set needs a dotted key, e.g. seeds.count")
+        value = plain(msg.get("value"), key)
         data = apply_overrides(self.data, {key: value})
         sites = self.sites
         if any(key == k or key.startswith(k + ".") for k in _RESEED):
@@ -558,14 +531,14 @@ class Session:
     def _op_add(self, msg: dict) -> Reply:
         sites = self._sites()
         if len(sites) >= self.max_seeds:
-            raise _Bad("seeds", f"the studio's limit is {self.max_seeds} seeds")
+            raise BadMessage("seeds", f"the studio's limit is {self.max_seeds} seeds")
         return self._commit(self.data, np.vstack((sites, [self._point(msg)])))
 
     def _op_remove(self, msg: dict) -> Reply:
         sites = self._sites()
         i = self._index(msg, len(sites))
         if len(sites) <= 1:
-            raise _Bad("seeds", "the last seed cannot be removed")
+            raise BadMessage("seeds", "the last seed cannot be removed")
         return self._commit(self.data, np.delete(sites, i, axis=0))
 
     def _op_attractor(self, msg: dict) -> Reply:
@@ -573,9 +546,9 @@ class Session:
         a = self._index(msg, len(attractors), "a")
         points = attractors[a].get("points")
         if not isinstance(points, list) or not points:
-            raise _Bad(f"attractors.{a}", "this attractor has no points to drag")
+            raise BadMessage(f"attractors.{a}", "this attractor has no points to drag")
         p = self._index(msg, len(points), "p")
-        x, y = _number(msg.get("x"), "x"), _number(msg.get("y"), "y")
+        x, y = number(msg.get("x"), "x"), number(msg.get("y"), "y")
         data = apply_overrides(self.data, {f"attractors.{a}.points.{p}": [x, y]})
         return self._commit(data, self.sites, remember=bool(msg.get("begin", True)))
 
@@ -589,7 +562,7 @@ class Session:
 
         section = self.design.animation
         if section is None:
-            raise _Bad("animation", "the design has no [animation] table")
+            raise BadMessage("animation", "the design has no [animation] table")
         k = self._index(msg, section.frames, "k")
         key = (id(self.data), id(self.sites))
         if self._anim is None or self._anim["key"] != key:
@@ -620,7 +593,7 @@ class Session:
             raise named_error(exc, section, k) from None
         self.compute_ms = (time.perf_counter() - start) * 1e3
         self.result, self.frame = result, k
-        return Reply("update", changed=_changed(previous, result))
+        return Reply("update", changed=changed_cells(previous, result))
 
     def _op_reset_sites(self, msg: dict) -> Reply:
         return self._commit(self.data, None)
@@ -639,12 +612,12 @@ class Session:
         try:
             design, result = self._compute(data, sites)
         except DesignError as exc:
-            return _error(exc)
+            return error_reply(exc)
         source.pop()
         target.append((self.data, self.sites))
         self.data, self.sites, self.design, self.result = data, sites, design, result
         self.frame = None
-        return Reply("update", changed=_changed(previous, result))
+        return Reply("update", changed=changed_cells(previous, result))
 
     # --- files -------------------------------------------------------------------------
 
@@ -661,10 +634,12 @@ class Session:
     def _op_save(self, msg: dict) -> Reply:
         name = msg.get("name")
         if not isinstance(name, str) or not _NAME.match(name) or ".." in name:
-            raise _Bad("save", "save as a plain file name ending in .toml, in the design's folder")
+            raise BadMessage(
+                "save", "save as a plain file name ending in .toml, in the design's folder"
+            )
         target = (self.folder / name).resolve()
         if target.parent != self.folder:
-            raise _Bad("save", "saves go only into the design's folder")
+            raise BadMessage("save", "saves go only into the design's folder")
         csv_name = target.stem + ".seeds.csv"
         data, csv = self.saved_data(csv_name)
         text = dumps(data, comment="Saved by voroforge studio; build: voroforge build " + name)
@@ -676,7 +651,7 @@ class Session:
             return Reply("confirm", files=exists, name=name)
         for p in files:
             if p.is_symlink():
-                raise _Bad("save", f"{p.name} is a link; not writing through it")
+                raise BadMessage("save", f"{p.name} is a link; not writing through it")
         for p, content in files.items():
             write_atomic(p, content)
         return Reply("saved", name=name, files=[p.name for p in files])
@@ -684,7 +659,7 @@ class Session:
     def _op_export(self, msg: dict) -> Reply:
         fmt = msg.get("format")
         if not isinstance(fmt, str) or fmt not in EXPORTS:
-            raise _Bad("export", f"export as one of {', '.join(EXPORTS)}")
+            raise BadMessage("export", f"export as one of {', '.join(EXPORTS)}")
         name, raw = self.export(fmt)
         return Reply("file", name=name, mime=EXPORTS[fmt], data=raw)
 
@@ -719,44 +694,6 @@ def _same_data(a, b) -> bool:
     return a == b
 
 
-class _Bad(Exception):
-    def __init__(self, key: str, message: str):
-        super().__init__(message)
-        self.key, self.message = key, message
-
-
-def _error(exc: DesignError) -> Reply:
-    return Reply("error", issues=[{"key": it.key, "message": it.message} for it in exc.issues])
-
-
-def _number(value, name: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        raise _Bad("", f"{name} must be a number")
-    v = float(value)
-    if not math.isfinite(v) or abs(v) > 1e15:
-        raise _Bad("", f"{name} must be a finite number")
-    return v
-
-
-def _plain(value, key: str, depth: int = 0):
-    """A value a design file can hold (numbers, strings, booleans, lists, small tables)."""
-    if depth > 4:
-        raise _Bad(key, "value nested too deeply")
-    if isinstance(value, bool | str):
-        if isinstance(value, str) and len(value) > 1000:
-            raise _Bad(key, "text value too long")
-        return value
-    if isinstance(value, int | float):
-        if not math.isfinite(value):
-            raise _Bad(key, "must be a finite number")
-        return value
-    if isinstance(value, list) and len(value) <= 10000:
-        return [_plain(v, key, depth + 1) for v in value]
-    if isinstance(value, dict) and len(value) <= 50:
-        return {str(k): _plain(v, key, depth + 1) for k, v in value.items()}
-    raise _Bad(key, "expected a number, text, true/false, a list or a table")
-
-
 def _absolute_files(data: dict, folder: Path) -> None:
     """Make the design's file names absolute (for a copy of the design written elsewhere)."""
 
@@ -771,25 +708,6 @@ def _absolute_files(data: dict, folder: Path) -> None:
         fix(data.get("seeds"), "file")
     for a in data.get("attractors") or []:
         fix(a, "file")
-
-
-def _changed(previous, result) -> np.ndarray | None:
-    """Indices of the cells that differ from ``previous`` (None: redraw everything).
-
-    ``compute``'s reuse compares cell ``i`` with the previous cell ``i``, so with another cell
-    count (a count slider: the random stream keeps its first seeds) the cells past the old
-    count are new and the others changed only where ``redone`` or their flag says.
-    """
-    redo = result.extra.get("redone")
-    if previous is None or redo is None:
-        return None
-    n0, n1 = len(previous.raw), len(result.raw)
-    if len(redo) >= n1:  # every cell redone (new seeds): all of them, without the unions
-        return np.arange(n1, dtype=np.int32)
-    m = min(n0, n1)
-    flipped = np.flatnonzero(previous.mask[:m] != result.mask[:m])
-    out = np.union1d(np.union1d(redo, flipped), np.arange(n0, n1))
-    return out[out < n1].astype(np.int32)
 
 
 _OPS = {
