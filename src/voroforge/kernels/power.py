@@ -9,8 +9,11 @@ signed values are the Voronoi bisectors' bit for bit, and the Delaunay-dual cell
 
 After the cut every vertex is replaced by the one computed from its name
 (``kernels/vertex``): the power centre of the cell's site and its two edges' owners, or the
-power bisector's crossing with a box side. Neighbouring cells therefore share every vertex
-bit for bit.
+power bisector's crossing with a box side, whatever its distance from the cut. Where four or
+more cells meet within rounding the cells' float cuts can disagree on which tiny edges
+exist; :func:`_reconcile` then makes the rings agree (an edge one cell lacks is given to it
+when the names order its ends, merged to one point when they do not), so neighbouring
+cells share every vertex bit for bit at any distance from the origin.
 
 Output contract (the same closed-ring layout the Voronoi assembly consumes):
 
@@ -31,6 +34,8 @@ from numba import njit, prange
 from ..config import NJIT, NJIT_PARALLEL, POWER_CROWDED_RTOL
 from .clip import cut_ring, plane_values
 from .vertex import power_box_crossing, power_vertex
+
+_U = 2.0**-53  # unit roundoff of float64
 
 
 @njit(**NJIT)
@@ -84,62 +89,258 @@ def box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
 
 
 @njit(**NJIT)
-def _named_vertices(i, xs, ys, ws, px, py, pw, m, box, qx, qy):
+def _named_vertices(i, xs, ys, ws, px, py, pw, m, box):
     """Replace each vertex of ring ``p[:m]`` by the one computed from its name (in place).
 
     A vertex between two bisector edges is the power vertex of ``i`` and their owners; one
     between a bisector and a box side is the bisector's crossing with that side; box
-    corners are exact already. Where several cells meet at one point (power-cocircular
-    sites) a ring can have two vertices a few ulps apart that named copies could swap, and
-    an ill-conditioned name can be far from the cut: those vertices stay as cut.
+    corners are exact already. Always the name, never the cut: a cut vertex is cell ``i``'s
+    alone, and keeping one (where the name looked far from it by a tolerance of the box's
+    size, less than an ulp far from the origin) left its neighbours' copies in other bits.
+    Only a name that is not finite (a bisector parallel to the side) keeps the cut.
     """
-    near = POWER_CROWDED_RTOL * max(box[2] - box[0], box[3] - box[1])
     for v in range(m):
-        vp = v - 1 if v > 0 else m - 1
-        vn = v + 1 if v + 1 < m else 0
-        x = px[v]
-        y = py[v]
-        gap = min(max(abs(x - px[vp]), abs(y - py[vp])), max(abs(x - px[vn]), abs(y - py[vn])))
-        a = pw[vp]
+        a = pw[v - 1 if v > 0 else m - 1]
         b = pw[v]
-        if gap <= near or a == b:
-            nx = x
-            ny = y
-        elif a >= 0 and b >= 0:
+        if a == b or (a < 0 and b < 0):
+            continue
+        if a >= 0 and b >= 0:
             nx, ny = power_vertex(i, a, b, xs, ys, ws)
-        elif a >= 0 or b >= 0:
-            nx, ny = power_box_crossing(i, a if a >= 0 else b, xs, ys, ws, b if a >= 0 else a, box)
         else:
-            nx = x
-            ny = y
-        if not (abs(nx - x) <= near and abs(ny - y) <= near):
-            nx = x  # NaN (bisector parallel to the side) or an ill-conditioned name
-            ny = y
-        qx[v] = nx
-        qy[v] = ny
+            nx, ny = power_box_crossing(i, a if a >= 0 else b, xs, ys, ws, b if a >= 0 else a, box)
+        if abs(nx) < np.inf and abs(ny) < np.inf:
+            px[v] = nx
+            py[v] = ny
+
+
+@njit(**NJIT)
+def _root(parent, k):
+    """Representative of slot ``k`` (with path halving)."""
+    while parent[k] != k:
+        parent[k] = parent[parent[k]]
+        k = parent[k]
+    return k
+
+
+@njit(**NJIT)
+def _close(a, b, sx, sy, px, py, rtol):
+    """Whether slots ``a`` and ``b`` hold one vertex up to rounding.
+
+    Equal bits, or within ``rtol`` of their L1 distance from the cell's site ``(sx, sy)``
+    (the local spacing) plus 16 ulps of their coordinates (the rounding of a vertex far
+    from the origin): never a tolerance of the box's size.
+    """
+    d = abs(px[a] - px[b]) + abs(py[a] - py[b])
+    if d == 0.0:
+        return True
+    scale = abs(px[a] - sx) + abs(py[a] - sy) + abs(px[b] - sx) + abs(py[b] - sy)
+    mag = abs(px[a]) + abs(py[a]) + abs(px[b]) + abs(py[b])
+    return d <= rtol * scale + 16.0 * _U * mag
+
+
+@njit(**NJIT)
+def _join(parent, a, b, sx, sy, px, py, rtol):
+    """Put slots ``a`` and ``b`` in one class when they are :func:`_close`."""
+    if not _close(a, b, sx, sy, px, py, rtol):
+        return
+    ra = _root(parent, a)
+    rb = _root(parent, b)
+    if ra != rb:
+        parent[max(ra, rb)] = min(ra, rb)
+
+
+@njit(**NJIT)
+def _backwards(px, py, p, q, xs, ys, i, j):
+    """Whether edge ``p -> q`` of cell ``i`` runs against its bisector with ``j``.
+
+    A counter-clockwise edge of cell ``i`` on that bisector runs along
+    ``(-(y_j - y_i), x_j - x_i)``.
+    """
+    return (px[q] - px[p]) * (ys[j] - ys[i]) - (py[q] - py[p]) * (xs[j] - xs[i]) > 0.0
+
+
+@njit(**NJIT)
+def _side_backwards(px, py, p, q, side):
+    """Whether edge ``p -> q`` on box side ``side`` (-1 left .. -4 top) runs clockwise."""
+    if side == -2:
+        return px[q] < px[p]
+    if side == -3:
+        return py[q] < py[p]
+    if side == -4:
+        return px[q] > px[p]
+    return py[q] > py[p]
+
+
+@njit(**NJIT)
+def _insert_missing(xs, ys, px, py, po, cap, cnt, rtol):
+    """Give a cell the edges its neighbour has with it and it lacks (in place).
+
+    Cell ``i`` has an edge on its bisector with ``j``, from ``P`` (named ``i, a, j``) to
+    ``Q`` (``i, j, b``), that ``j`` lacks: ``j`` went from its edge with ``b`` straight to
+    its edge with ``a`` at one vertex (``j, b, a``). Which of the quadrilateral's diagonals
+    ``i-j`` and ``a-b`` is the power edge is decided by the order of the two named vertices
+    along the bisector of ``i`` and ``j``: ``P`` before ``Q`` by more than their rounding
+    means ``i-j``, and ``j``'s cut (rounded ring vertices, bisectors nearly parallel near a
+    float circle's centre) was wrong: that vertex becomes ``Q`` and ``P``, with the edge
+    between them, in the same bits. Shorter or backwards edges are merged by
+    :func:`_reconcile` instead.
+    """
+    n = xs.shape[0]
+    for i in range(n):
+        b0 = cap[i]
+        for v in range(cnt[i]):
+            j = po[b0 + v]
+            if j < 0 or _edge_to(po, cap[j], cnt[j], i) >= 0:
+                continue
+            m = cnt[i]
+            p = b0 + v
+            q = b0 + (v + 1 if v + 1 < m else 0)
+            if _backwards(px, py, p, q, xs, ys, i, j) or _close(p, q, xs[i], ys[i], px, py, rtol):
+                continue
+            a = po[b0 + v - 1] if v > 0 else po[b0 + m - 1]
+            b = po[q]
+            bj = cap[j]
+            mj = cnt[j]
+            if mj + 2 > cap[j + 1] - bj:
+                continue  # no room (cannot happen: a ring has at most deg + 4 vertices)
+            for u in range(mj):
+                if po[bj + u] == a and po[bj + (u - 1 if u > 0 else mj - 1)] == b:
+                    for k in range(mj, u, -1):
+                        px[bj + k] = px[bj + k - 1]
+                        py[bj + k] = py[bj + k - 1]
+                        po[bj + k] = po[bj + k - 1]
+                    px[bj + u] = px[q]
+                    py[bj + u] = py[q]
+                    po[bj + u] = i
+                    px[bj + u + 1] = px[p]
+                    py[bj + u + 1] = py[p]
+                    cnt[j] = mj + 1
+                    break
+
+
+@njit(**NJIT)
+def _edge_to(po, b, m, j):
+    """Slot of the first edge of ring ``po[b:b + m]`` owned by ``j``, or -1."""
+    for u in range(m):
+        if po[b + u] == j:
+            return b + u
+    return -1
+
+
+@njit(**NJIT)
+def _reconcile(xs, ys, px, py, po, cap, cnt, rtol):
+    """Make the named rings agree: one point for each vertex, shared bit for bit (in place).
+
+    Each cell decided in floats which bisectors cut it. Where an edge is shorter than that
+    rounding (four or more cells meeting within an ulp or so: a lattice far from the
+    origin, a float circle), neighbours can disagree: one cell has a tiny edge that the
+    other lacks, or keeps the edge reversed, and names the ends by other triples. The slots
+    of one point are joined: the ends of each edge with the matching ends of the same edge
+    in the neighbour's ring, and the two ends of an edge the neighbour lacks or that runs
+    backwards (a bisector's, or a box side's where a crossing rounded past a corner), each
+    join only within rounding of the local spacing (:func:`_close`). Edges that one cell
+    lacks but whose named ends are ordered and apart are first given to that cell
+    (:func:`_insert_missing`). Every slot then takes the coordinates of one member of its
+    class, chosen by what it is (a box corner, then a crossing of a box side, then a power
+    vertex) and then by its bits, so the choice does not depend on the cells' order.
+    """
+    n = xs.shape[0]
+    _insert_missing(xs, ys, px, py, po, cap, cnt, rtol)
+    parent = np.arange(cap[n])
+    for i in range(n):
+        m = cnt[i]
+        b = cap[i]
+        sx = xs[i]
+        sy = ys[i]
+        for v in range(m):
+            j = po[b + v]
+            p = b + v
+            q = b + (v + 1 if v + 1 < m else 0)
+            if j < 0:
+                if _side_backwards(px, py, p, q, j):  # a crossing rounded past a corner
+                    _join(parent, p, q, sx, sy, px, py, rtol)
+                continue
+            u = _edge_to(po, cap[j], cnt[j], i)
+            if u < 0:
+                _join(parent, p, q, sx, sy, px, py, rtol)  # the neighbour lacks the edge
+                continue
+            if _backwards(px, py, p, q, xs, ys, i, j):  # two ends swapped by rounding
+                _join(parent, p, q, sx, sy, px, py, rtol)
+            if i < j:
+                uq = cap[j] + (u - cap[j] + 1 if u - cap[j] + 1 < cnt[j] else 0)
+                _join(parent, p, uq, sx, sy, px, py, rtol)
+                _join(parent, q, u, sx, sy, px, py, rtol)
+    best = np.full(cap[n], -1, dtype=np.int64)
+    rank = np.zeros(cap[n], dtype=np.int64)
+    for i in range(n):
+        m = cnt[i]
+        b = cap[i]
+        for v in range(m):
+            k = b + v
+            r = _root(parent, k)
+            # 2: box corner, 1: crossing of a side, 0: power vertex
+            prev = po[b + v - 1] if v > 0 else po[b + m - 1]
+            kind = np.int64(prev < 0) + np.int64(po[k] < 0)
+            c = best[r]
+            if (
+                c < 0
+                or kind > rank[r]
+                or (kind == rank[r] and (px[k] < px[c] or (px[k] == px[c] and py[k] < py[c])))
+            ):
+                best[r] = k
+                rank[r] = kind
+    for i in range(n):
+        b = cap[i]
+        for v in range(cnt[i]):
+            c = best[_root(parent, b + v)]
+            px[b + v] = px[c]
+            py[b + v] = py[c]
+
+
+@njit(**NJIT)
+def _compact(i, xs, ys, px, py, po, b, m):
+    """Ring ``b:b + m`` of cell ``i`` without repeated points; its new count (0: no cell).
+
+    A vertex equal to the previous one is dropped and the edge that leaves it is the kept
+    vertex's; box sides become -1.
+    """
+    k = 0
     for v in range(m):
-        px[v] = qx[v]
-        py[v] = qy[v]
+        if k > 0 and px[b + v] == px[b + k - 1] and py[b + v] == py[b + k - 1]:
+            po[b + k - 1] = po[b + v]
+            continue
+        px[b + k] = px[b + v]
+        py[b + k] = py[b + v]
+        po[b + k] = po[b + v]
+        k += 1
+    while k > 1 and px[b + k - 1] == px[b] and py[b + k - 1] == py[b]:
+        k -= 1
+    if k < 3:
+        return 0
+    ox = xs[i]
+    oy = ys[i]
+    area2 = 0.0
+    for v in range(k):
+        vn = v + 1 if v + 1 < k else 0
+        area2 += (px[b + v] - ox) * (py[b + vn] - oy) - (px[b + vn] - ox) * (py[b + v] - oy)
+        if po[b + v] < 0:
+            po[b + v] = -1
+    if not area2 > 0.0:
+        return 0
+    return k
 
 
 @njit(**NJIT)
 def _cell(i, xs, ys, ws, indptr, indices, box, px, py, po, qx, qy, qo, ss):
-    """Power cell of site ``i`` clipped to ``box``; returns its vertex count (in ``p``)."""
+    """Power cell of site ``i`` cut from ``box`` with named vertices; its count (in ``p``).
+
+    Edge owners keep the box sides' codes (-1..-4) for :func:`_reconcile`.
+    """
     nb = indices[indptr[i] : indptr[i + 1]]
     m = box_cell(i, xs, ys, ws, nb, nb.shape[0], box, px, py, po, qx, qy, qo, ss)
     if m == 0:
         return 0
-    _named_vertices(i, xs, ys, ws, px, py, po, m, box, qx, qy)
-    ox = xs[i]
-    oy = ys[i]
-    area2 = 0.0
-    for k in range(m):
-        kn = k + 1 if k + 1 < m else 0
-        area2 += (px[k] - ox) * (py[kn] - oy) - (px[kn] - ox) * (py[k] - oy)
-        if po[k] < 0:
-            po[k] = -1
-    if not area2 > 0.0:
-        return 0
+    _named_vertices(i, xs, ys, ws, px, py, po, m, box)
     return m
 
 
@@ -170,7 +371,7 @@ def power_cells(xs, ys, ws, indptr, indices, box, active):
     slab_x = np.zeros(cap[n])
     slab_y = np.zeros(cap[n])
     slab_o = np.zeros(cap[n], dtype=np.int64)
-    counts = np.zeros(n + 1, dtype=np.int64)
+    cnt = np.zeros(n, dtype=np.int64)
     for i in prange(n):
         if not active[i]:
             continue
@@ -184,14 +385,20 @@ def power_cells(xs, ys, ws, indptr, indices, box, active):
         ss = np.zeros(size)
         # prange's index is unsigned: as np.int64 the callees are compiled once, not twice
         m = _cell(np.int64(i), xs, ys, ws, indptr, indices, box, px, py, po, qx, qy, qo, ss)
+        b = cap[i]
+        for k in range(m):
+            slab_x[b + k] = px[k]
+            slab_y[b + k] = py[k]
+            slab_o[b + k] = po[k]
+        cnt[i] = m
+    _reconcile(xs, ys, slab_x, slab_y, slab_o, cap, cnt, POWER_CROWDED_RTOL)
+    counts = np.zeros(n + 1, dtype=np.int64)
+    for i in prange(n):
+        m = _compact(np.int64(i), xs, ys, slab_x, slab_y, slab_o, cap[i], cnt[i])
         if m > 0:
             b = cap[i]
-            for k in range(m):
-                slab_x[b + k] = px[k]
-                slab_y[b + k] = py[k]
-                slab_o[b + k] = po[k]
-            slab_x[b + m] = px[0]
-            slab_y[b + m] = py[0]
+            slab_x[b + m] = slab_x[b]
+            slab_y[b + m] = slab_y[b]
             slab_o[b + m] = -2
             counts[i + 1] = m + 1
     for i in range(n):
