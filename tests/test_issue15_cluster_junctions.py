@@ -20,8 +20,8 @@ import voroforge as vf
 
 _ALGORITHMS = ("delaunay", "fortune", "halfplane")
 
-# every case failed before kernels.cells._canonical_vertices dropped a cut vertex left
-# between two edges of one neighbour (each checked: 10 of 10 failed)
+# every case failed before kernels.cellcut._canonical_vertices (then in kernels.cells)
+# dropped a cut vertex left between two edges of one neighbour (each checked: 10 of 10 failed)
 
 
 def _clusters(sd, offset, seed, k, per=60):

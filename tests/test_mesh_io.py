@@ -105,8 +105,8 @@ def _zip3mf(path, model: str):
     import zipfile
 
     with zipfile.ZipFile(path, "w") as z:
-        z.writestr("[Content_Types].xml", mio._CT)
-        z.writestr("_rels/.rels", mio._RELS)
+        z.writestr("[Content_Types].xml", mio.CONTENT_TYPES)
+        z.writestr("_rels/.rels", mio.RELS)
         z.writestr("3D/3dmodel.model", model)
     return path
 
@@ -140,7 +140,7 @@ def test_3mf_other_layouts_read(tmp_path, vertex, fast):
     tris = "".join(f'<m:triangle v1="{a}" v2="{b}" v3="{c}"/>' for a, b, c in box.faces)
     model = (
         '<?xml version="1.0"?><m:model unit="centimeter" xmlns:m="'
-        + mio._NS3MF
+        + mio.NS3MF
         + '"><m:resources><m:object id="1" type="model"><m:mesh><m:vertices>'
         + verts
         + "</m:vertices><m:triangles>"

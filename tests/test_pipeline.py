@@ -641,9 +641,9 @@ def test_svg_files_are_read_in_the_design_units(tmp_path, units, size):
     r = compute(design, base)
     assert r.boundary.bounds == pytest.approx((0, 0, size, size / 2))
     # the curve attractor (the outline and the midline) is in the same units: field 1 on it
-    from voroforge.design.compute import _field
+    from voroforge.design.compute import attractor_field
 
-    field = _field(design, base)
+    field = attractor_field(design, base)
     assert field(np.array([[size / 2, size / 4]]))[0] == pytest.approx(1.0)
 
 

@@ -20,7 +20,7 @@ import shapely
 import voroforge as vf
 from reference_scale import differences, single_process, tiled_table
 from voroforge import config, scale
-from voroforge.scale.tasks import _certified, open_sides, radii
+from voroforge.scale.tasks import certified_sites, open_sides, radii
 from voroforge.scale.tiling import kd_tiling
 
 distributed = pytest.importorskip("distributed")
@@ -109,7 +109,7 @@ def test_certificate_rejects_cells_a_missing_site_changes():
     )
     idx = np.flatnonzero(inside)
     sub = vf.voronoi(pts[idx], box)
-    ok = _certified(pts[idx], radii(sub, pts[idx]), open_sides(region, pts.min(0), pts.max(0)))
+    ok = certified_sites(pts[idx], radii(sub, pts[idx]), open_sides(region, pts.min(0), pts.max(0)))
     assert 0 < ok.sum() < len(idx)
     equal = shapely.equals_exact(sub.cells, full.cells[idx], 0.0)
     normal = shapely.normalize(sub.cells)

@@ -161,12 +161,12 @@ def test_solid_preview_is_the_painter_s_picture_of_a_box(tmp_path):
 def test_solid_preview_cut_shows_caps_and_voids(tmp_path):
     # cut open, a solid shows its cross-section as a flat cap facing the camera; a hollow
     # one shows a ring of cap around its void's far walls
-    from voroforge.io.render3d import _rotation
+    from voroforge.io.render3d import view_rotation
     from voroforge.solid.render import preview
 
     view = (35.0, 25.0)
     light = np.array([-0.4, -0.8, 0.6]) / np.linalg.norm([-0.4, -0.8, 0.6])  # io.render3d's
-    shade = 0.35 + 0.65 * max(0.0, -_rotation(view)[1] @ light)  # a face towards the camera
+    shade = 0.35 + 0.65 * max(0.0, -view_rotation(view)[1] @ light)  # a face towards the camera
     cap = np.minimum(255.0, np.array([196.0, 205.0, 214.0]) * shade + 20.0).astype(np.int64)
     outer = trimesh.creation.box((10.0, 10.0, 10.0))
     inner = trimesh.creation.box((7.0, 7.0, 7.0))

@@ -26,7 +26,7 @@ def _start():
     F[:6] = t.TF
     R = np.zeros(4 * CAP, np.int64)
     R[:24] = t.TR
-    # the engine's dtypes (cellcut3d._graph_scratch): the kernels compiled once, as it runs them
+    # the engine's dtypes (cellcut3d.graph_scratch): the kernels compiled once, as it runs them
     deg = np.zeros(CAP, np.int32)
     ed, bk, lb = (np.zeros((CAP, 24), np.int32) for _ in range(3))
     assert graph3d.from_rings(8, F, 6, R, deg, ed, bk, lb)

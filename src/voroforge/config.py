@@ -62,7 +62,7 @@ FOLD_REACH_ERRS = 256.0
 FOLD_REACH_RTOL = 2.0**-10
 #: A point must be this far (relative to its distances to the two sites, plus 16 ulps of
 #: its own coordinates for their rounding) off the bisector of two neighbours for a cut
-#: cell's edge to be relabelled from one to the other (kernels/cells._nearest_label)
+#: cell's edge to be relabelled from one to the other (kernels/cellcut._nearest_label)
 RELABEL_RTOL = 1e-9
 #: Power-cell vertices closer than this (max-norm, relative to the box's larger side) to a
 #: ring neighbour keep their cut coordinates, and a vertex computed from its name replaces

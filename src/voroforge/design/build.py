@@ -27,7 +27,7 @@ import numpy as np
 import shapely
 
 from .. import config
-from .compute import MM_PER_UNIT, Result, Stage, _section, compute
+from .compute import MM_PER_UNIT, Result, Stage, as_design_error, compute
 from .designfile import DesignError, Issue, find_file, load, located
 from .schema import Design
 
@@ -137,10 +137,10 @@ def _tapered(result: Result, lines, width: float, colour) -> list:
     if not segs:
         return []
     mids = shapely.get_coordinates(shapely.centroid(np.asarray(segs, dtype=object)))
-    from .compute import _field
+    from .compute import attractor_field
 
     try:  # inline attractors; one read from a file is not found without the design's folder
-        field_fn = _field(result.design)
+        field_fn = attractor_field(result.design)
     except (ValueError, OSError):
         field_fn = None
     values = np.full(len(segs), 0.4) if field_fn is None else np.clip(field_fn(mids), 0, 1)
@@ -351,7 +351,7 @@ def build(
         elif fmt == "geojson":
             written.append(_geojson(result, path, base))
         elif fmt == "parquet":
-            with located(source, overrides), _section("output.formats"):
+            with located(source, overrides), as_design_error("output.formats"):
                 written.append(_parquet(result, path, base))
         elif fmt == "gif":
             with located(source, overrides):

@@ -222,7 +222,7 @@ def _seed_curves(design: Design, base: Path | None):
     s = design.seeds
     if s.curves is not None:
         return shapely.MultiLineString([np.asarray(c, dtype=np.float64) for c in s.curves])
-    with _section("seeds.path" if s.path is not None else "seeds.file"):
+    with as_design_error("seeds.path" if s.path is not None else "seeds.file"):
         got = _curve(s, base, "seeds", design.design.units)
     if isinstance(got, np.ndarray):
         return shapely.MultiLineString([got])
@@ -240,7 +240,7 @@ def _curve_edges(design: Design, points: np.ndarray, domain, diagram, base: Path
     return crossing_edges(diagram, _seed_curves(design, base))
 
 
-def _field(design: Design, base: Path | None = None):
+def attractor_field(design: Design, base: Path | None = None):
     """The combined attractor field, or ``None`` without attractors."""
     if not design.attractors:
         return None
@@ -268,7 +268,8 @@ def _field(design: Design, base: Path | None = None):
     return combined
 
 
-def _seeds(design: Design, domain, field_fn, base: Path | None) -> np.ndarray:
+def make_seeds(design: Design, domain, field_fn, base: Path | None) -> np.ndarray:
+    """The sites ``[seeds]`` asks for in ``domain`` (``field_fn``: the attractor field or None)."""
     from . import populate
 
     s = design.seeds
@@ -306,7 +307,7 @@ def _seeds(design: Design, domain, field_fn, base: Path | None) -> np.ndarray:
     if s.method == "image":  # density from a greyscale image stretched over the domain's box
         from .stipple import image_seeds
 
-        with _section("seeds.file"):
+        with as_design_error("seeds.file"):
             return image_seeds(find_file(base, s.file, "seeds.file"), domain, s.count, seed=seed)
     return _file_seeds(design, domain, base)[0]
 
@@ -334,7 +335,7 @@ def _file_seeds(design: Design, domain, base: Path | None) -> tuple[np.ndarray, 
     """The seed file's points inside the domain, and the whole file as a :class:`SeedTable`."""
     from ..io.readers import read_point_table
 
-    with _section("seeds.file"):
+    with as_design_error("seeds.file"):
         pts, attributes = read_point_table(find_file(base, design.seeds.file, "seeds.file"))
     rows = np.flatnonzero(shapely.contains_xy(domain, pts[:, 0], pts[:, 1]))
     return pts[rows], SeedTable(pts, rows, attributes)
@@ -400,7 +401,8 @@ def _wrap(cells: np.ndarray, box) -> tuple[np.ndarray, np.ndarray]:
     return np.asarray(pieces, dtype=object), np.asarray(owner, dtype=np.int64)
 
 
-def _values(cells: np.ndarray, field_fn) -> np.ndarray:
+def cell_values(cells: np.ndarray, field_fn) -> np.ndarray:
+    """The field at a point on each cell (zeros without a field; empty cells get 0)."""
     if field_fn is None or not len(cells):
         return np.zeros(len(cells))
     live = ~shapely.is_empty(cells)
@@ -433,7 +435,7 @@ def _recurse(design: Design, domain, points, field_fn, seed):
     def count(region) -> int:
         if not count_spec.graded:
             return max(0, int(round(count_spec.value)))
-        v = float(_values(np.asarray([region], dtype=object), field_fn)[0])
+        v = float(cell_values(np.asarray([region], dtype=object), field_fn)[0])
         return max(0, int(round(count_spec.far + (count_spec.near - count_spec.far) * v)))
 
     prob_spec = rec.probability
@@ -448,7 +450,7 @@ def _recurse(design: Design, domain, points, field_fn, seed):
             return live
         prob = prob_spec.value
         if prob_spec.graded:  # each cell's chance from the field at the cell
-            values = _values(np.asarray(level.cells, dtype=object), field_fn)
+            values = cell_values(np.asarray(level.cells, dtype=object), field_fn)
             prob = np.clip(prob_spec.far + (prob_spec.near - prob_spec.far) * values, 0.0, 1.0)
         # A fresh, reproducible draw per level.
         draw = cellops.random(len(level), prob, seed=seed * 1009 + level.depth)
@@ -483,7 +485,8 @@ def _recurse(design: Design, domain, points, field_fn, seed):
     )
 
 
-def _mask(design: Design, cells: np.ndarray, values: np.ndarray, seed: int) -> np.ndarray:
+def opening_mask(design: Design, cells: np.ndarray, values: np.ndarray, seed: int) -> np.ndarray:
+    """Which cells ``[openings]`` selects (``values``: :func:`cell_values`); never empty ones."""
     from . import cellops
 
     o = design.openings
@@ -509,7 +512,8 @@ def _mask(design: Design, cells: np.ndarray, values: np.ndarray, seed: int) -> n
     return ~mask & live if o.invert else mask
 
 
-def _operate(design: Design, cells: np.ndarray, values: np.ndarray, has_field: bool):
+def operate_cells(design: Design, cells: np.ndarray, values: np.ndarray, has_field: bool):
+    """``[cells]``' operations (inset or web, scale, smooth, fillet) applied to every cell."""
     from . import cellops
 
     c = design.cells
@@ -563,18 +567,20 @@ _CELLS_PER_WORKER = 256
 
 
 def _operate_split(design, cells, values, has_field, workers: int):
-    """:func:`_operate` over up to ``workers`` threads (GEOS runs without the GIL).
+    """:func:`operate_cells` over up to ``workers`` threads (GEOS runs without the GIL).
 
     Every operation is per cell, so the cells are the same bytes as from one call.
     """
     k = min(int(workers), len(cells) // _CELLS_PER_WORKER)
     if k < 2:
-        return _operate(design, cells, values, has_field)
+        return operate_cells(design, cells, values, has_field)
     from concurrent.futures import ThreadPoolExecutor
 
     parts = np.array_split(np.arange(len(cells)), k)
     with ThreadPoolExecutor(k) as pool:
-        done = list(pool.map(lambda p: _operate(design, cells[p], values[p], has_field), parts))
+        done = list(
+            pool.map(lambda p: operate_cells(design, cells[p], values[p], has_field), parts)
+        )
     out = np.empty(len(cells), dtype=object)  # noqa: TID251 - every slot is filled below
     for p, part in zip(parts, done, strict=True):
         out[p] = part
@@ -582,13 +588,13 @@ def _operate_split(design, cells, values, has_field, workers: int):
 
 
 def _operate_reusing(design, cells, values, has_field, reuse, extra, workers: int = 1):
-    """:func:`_operate`, redoing only cells whose raw geometry or value changed since ``reuse``.
+    """:func:`operate_cells`, redoing only cells whose raw ring or value changed since ``reuse``.
 
     Keys of the cells are their WKB (kept in ``extra["raw_wkb"]`` for the next call); only
     plain diagrams (no recursion, no periodic wrap) are reused.
     """
     if design.recursion.depth > 0 or design.voronoi.periodic or not len(cells):
-        return _operate(design, cells, values, has_field)
+        return operate_cells(design, cells, values, has_field)
     keys = shapely.to_wkb(cells)
     extra["raw_wkb"] = keys
     old = reuse.extra.get("raw_wkb") if reuse is not None else None
@@ -607,7 +613,7 @@ def _operate_reusing(design, cells, values, has_field, reuse, extra, workers: in
 
 
 @contextmanager
-def _section(key: str):
+def as_design_error(key: str):
     """Turn a library ``ValueError`` raised while building ``key`` into a DesignError."""
     try:
         yield
@@ -665,17 +671,17 @@ def compute(
     stage = progress or (lambda name: None)
     seed = design.design.seed
     stage("boundary")
-    with _section("boundary.file" if design.boundary.shape == "file" else "boundary"):
+    with as_design_error("boundary.file" if design.boundary.shape == "file" else "boundary"):
         boundary, domain = _boundary(design, base)
-    with _section("attractors"):
-        field_fn = _field(design, base)
+    with as_design_error("attractors"):
+        field_fn = attractor_field(design, base)
     stage("seeds")
     extra: dict = {}
-    with _section("seeds"):
+    with as_design_error("seeds"):
         if sites is None and design.seeds.method == "file":  # rows kept for the outputs
             points, extra["seed_table"] = _file_seeds(design, domain, base)
         elif sites is None:
-            points = _seeds(design, domain, field_fn, base)
+            points = make_seeds(design, domain, field_fn, base)
         else:
             points = np.array(sites, dtype=np.float64)
             if points.ndim != 2 or points.shape[1:] != (2,) or not np.isfinite(points).all():
@@ -684,7 +690,7 @@ def compute(
     if len(points) < 1:
         raise DesignError.at("seeds", "no seeds fall inside the boundary; need 1 or more")
     if sites is None:
-        with _section("relax"):
+        with as_design_error("relax"):
             points = _relax(design, points, domain)
     stage(f"{len(points)} Voronoi cells")
     diagram = None
@@ -695,23 +701,23 @@ def compute(
             )
         if design.cells.inset_amount() is not None:
             raise DesignError.at("cells.web", "with [recursion], give the webs as recursion.web")
-        with _section("recursion"):
+        with as_design_error("recursion"):
             raw, inset_cells, level, extra["levels"] = _recurse(
                 design, domain, points, field_fn, seed
             )
     else:
-        with _section("voronoi"):
+        with as_design_error("voronoi"):
             diagram = _voronoi(design, points, domain, field_fn)
         raw = np.asarray(diagram.cells, dtype=object)
         inset_cells = raw
         level = np.zeros(len(raw), dtype=np.int64)
     if design.seeds.method == "curves" and sites is None:
         extra["curve_edges"] = _curve_edges(design, points, domain, diagram, base)
-    values = _values(raw, field_fn)
-    with _section("openings"):
-        mask = _mask(design, raw, values, seed)
+    values = cell_values(raw, field_fn)
+    with as_design_error("openings"):
+        mask = opening_mask(design, raw, values, seed)
     stage("cell operations")
-    with _section("cells"):
+    with as_design_error("cells"):
         cells = _operate_reusing(
             design, inset_cells, values, field_fn is not None, reuse, extra, workers
         )

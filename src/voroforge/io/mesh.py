@@ -73,8 +73,9 @@ UNITS = {
 }
 _FROM_3MF = {v: k for k, v in UNITS.items()}
 
-_NS3MF = "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"
-_CT = (
+#: The 3MF core namespace; with :data:`CONTENT_TYPES` and :data:`RELS` what a 3MF package needs.
+NS3MF = "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"
+CONTENT_TYPES = (
     '<?xml version="1.0" encoding="UTF-8"?>\n'
     '<Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types">'
     '<Default Extension="rels" '
@@ -83,7 +84,7 @@ _CT = (
     'ContentType="application/vnd.ms-package.3dmanufacturing-3dmodel+xml"/>'
     "</Types>"
 )
-_RELS = (
+RELS = (
     '<?xml version="1.0" encoding="UTF-8"?>\n'
     '<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships">'
     '<Relationship Target="/3D/3dmodel.model" Id="rel0" '
@@ -99,7 +100,8 @@ def _suffix(path) -> str:
     return s
 
 
-def _units(units: str) -> str:
+def check_units(units: str) -> str:
+    """``units`` when it is one of :data:`UNITS`, else a ValueError that lists them."""
     if units not in UNITS:
         raise ValueError(f"unknown units {units!r}; use one of {tuple(UNITS)}")
     return units
@@ -140,12 +142,14 @@ def _named(meshes) -> list[tuple[str, object]]:
     return items
 
 
-def _atomic(path: Path, data: bytes) -> Path:
+def save_bytes(path: Path, data: bytes) -> Path:
+    """Write ``data`` to ``path`` atomically, making its folder first; returns ``path``."""
     path.parent.mkdir(parents=True, exist_ok=True)
     return write_bytes(path, data)
 
 
-_ZIP_DATE = (1980, 1, 1, 0, 0, 0)
+#: The date of every zip entry: packages are the same bytes whenever they are written.
+ZIP_DATE = (1980, 1, 1, 0, 0, 0)
 
 
 def _xml_rows(fmt: str, a: np.ndarray) -> str:
@@ -161,7 +165,7 @@ def _xml_rows(fmt: str, a: np.ndarray) -> str:
 def _3mf_bytes(items, units: str) -> bytes:
     parts = [
         '<?xml version="1.0" encoding="UTF-8"?>\n',
-        f'<model unit="{UNITS[units]}" xml:lang="en-US" xmlns="{_NS3MF}"><resources>',
+        f'<model unit="{UNITS[units]}" xml:lang="en-US" xmlns="{NS3MF}"><resources>',
     ]
     for k, (name, m) in enumerate(items, start=1):
         v = np.asarray(m.vertices, dtype=np.float64).reshape(-1, 3)
@@ -180,12 +184,12 @@ def _3mf_bytes(items, units: str) -> bytes:
     # 1.35 s), for a file about 20% larger
     with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED, compresslevel=1) as z:
         for name, data in (
-            ("[Content_Types].xml", _CT),
-            ("_rels/.rels", _RELS),
+            ("[Content_Types].xml", CONTENT_TYPES),
+            ("_rels/.rels", RELS),
             ("3D/3dmodel.model", "".join(parts).encode()),
         ):
             # a fixed date: the same mesh gives the same file byte for byte
-            info = zipfile.ZipInfo(name, _ZIP_DATE)
+            info = zipfile.ZipInfo(name, ZIP_DATE)
             info.external_attr = 0o600 << 16  # what writestr gives a name
             z.writestr(info, data, zipfile.ZIP_DEFLATED, compresslevel=1)
     return buf.getvalue()
@@ -401,22 +405,22 @@ def write(mesh_or_meshes, path, *, units: str = "mm") -> Path:
     """
     path = Path(path)
     kind = _suffix(path)
-    units = _units(units)
+    units = check_units(units)
     items = _named(mesh_or_meshes)
     if kind == ".3mf":
-        return _atomic(path, _3mf_bytes(items, units))
+        return save_bytes(path, _3mf_bytes(items, units))
     if kind == ".3dm":
         return _3dm_write(items, path, units)
     if kind == ".ply" and len(items) == 1:
-        return _atomic(path, _ply_bytes(items[0][1]))
+        return save_bytes(path, _ply_bytes(items[0][1]))
     import trimesh
 
     items = [(name, _trimesh(m)) for name, m in items]
     if kind in (".stl", ".ply"):
         m = items[0][1] if len(items) == 1 else trimesh.util.concatenate([m for _, m in items])
         if kind == ".ply":
-            return _atomic(path, _ply_bytes(m))
-        return _atomic(path, m.export(file_type="stl"))
+            return save_bytes(path, _ply_bytes(m))
+        return save_bytes(path, m.export(file_type="stl"))
     if kind == ".obj":
         from trimesh.exchange.obj import export_obj
 
@@ -425,9 +429,9 @@ def write(mesh_or_meshes, path, *, units: str = "mm") -> Path:
         else:
             scene = trimesh.Scene({name: m for name, m in items})
             text = export_obj(scene, include_normals=False, digits=17)
-        return _atomic(path, text.encode())
+        return save_bytes(path, text.encode())
     scene = trimesh.Scene({name: m for name, m in items})
-    return _atomic(path, scene.export(file_type="glb"))
+    return save_bytes(path, scene.export(file_type="glb"))
 
 
 def read(path):
@@ -487,7 +491,7 @@ def write_curves_3dm(layers, path, *, units: str = "mm", z: float = 0.0) -> Path
     path = Path(path)
     if path.suffix.lower() != ".3dm":
         raise ValueError(f"write_curves_3dm writes .3dm files, not {path.name!r}")
-    f = _3dm_file(_units(units))
+    f = _3dm_file(check_units(units))
 
     def polylines(g):
         if isinstance(g, np.ndarray):

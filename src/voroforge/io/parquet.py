@@ -443,7 +443,7 @@ def cells_table(buffers, cells, site_ids, neighbors, attributes=None):
     return table, extent, types
 
 
-def _projjson(crs):
+def projjson(crs):
     """The PROJJSON of ``crs`` (None: unknown, written as an explicit null)."""
     if crs is None:
         return None
@@ -480,7 +480,7 @@ def geo_metadata(extent, types, crs=None) -> dict:
     column = {
         "encoding": "WKB",
         "geometry_types": list(types),
-        "crs": _projjson(crs),
+        "crs": projjson(crs),
         "edges": "planar",
         "covering": {
             "bbox": {

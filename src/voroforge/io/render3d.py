@@ -62,7 +62,8 @@ def _by_length(rings):
     return out
 
 
-def _rotation(view):
+def view_rotation(view):
+    """The (3, 3) rotation of ``view = (azimuth, elevation)`` in degrees: screen x, depth, up."""
     az, el = np.radians(view[0]), np.radians(view[1])
     rz = np.array([[np.cos(az), -np.sin(az), 0], [np.sin(az), np.cos(az), 0], [0, 0, 1]])
     # camera looks along -y' after tilting by the elevation: screen x = x', up = z'
@@ -113,7 +114,7 @@ def render(
     w, h = int(size[0]), int(size[1])
     if w < 8 or h < 8:
         raise ValueError(f"size must be at least 8x8 pixels; got {size}")
-    rot = _rotation(view)
+    rot = view_rotation(view)
     L = np.asarray(light, np.float64)
     L = L / np.linalg.norm(L)
     allpts = []

@@ -1,7 +1,7 @@
 """One 3D cell: the container cut by the bisector planes of nearby sites, nearest first.
 
 The search and cut half of the cell builder (:mod:`kernels.cells3d` names the vertices and
-writes the slots). :func:`_one_cell` starts from the container polyhedron (relative to the
+writes the slots). :func:`one_cell` starts from the container polyhedron (relative to the
 site), visits the buckets in the precomputed order of their least possible distance and
 then shell by shell (:mod:`kernels.grid3d`), gathers the candidates of one distance, cuts by
 them nearest first (:func:`_cut_batch`), and stops once no unscanned site can reach the cell
@@ -44,7 +44,8 @@ NJIT_NO_NRT = {**NJIT, "_nrt": False}
 
 
 @njit(**NJIT_INLINE)
-def _radius2(V, nv):
+def radius2(V, nv):
+    """The largest squared distance of the first ``nv`` vertices ``V`` from the site (origin)."""
     r = 0.0
     for v in range(nv):
         r = max(r, V[v, 0] * V[v, 0] + V[v, 1] * V[v, 1] + V[v, 2] * V[v, 2])
@@ -52,7 +53,8 @@ def _radius2(V, nv):
 
 
 @njit(**NJIT)
-def _scratch(vcap, fcap, rcap, ncand, nbuck):
+def cut_scratch(vcap, fcap, rcap, ncand, nbuck):
+    """The face-ring arrays and candidate buffers of one cell's cut (see :func:`one_cell`)."""
     V = np.zeros((vcap, 3))
     F = np.zeros((fcap, 3), np.int64)
     R = np.zeros(rcap, np.int64)
@@ -70,7 +72,7 @@ def _scratch(vcap, fcap, rcap, ncand, nbuck):
 
 
 @njit(**NJIT)
-def _graph_scratch(vcap, degree):
+def graph_scratch(vcap, degree):
     """The vertex-graph arrays of :mod:`kernels.graph3d`: ``(DEG, ED, BK, LB, CP, seen, FL)``.
 
     ``degree`` is the most edges a vertex may have (more: the cell is built with face rings).
@@ -87,7 +89,7 @@ def _graph_scratch(vcap, degree):
 
 
 @njit(**NJIT_INLINE)
-def _key(lab, ns):
+def owner_key(lab, ns):
     """The owner key of a face label: a site, or ``ns + w`` for wall ``w`` (label ``-1 - w``)."""
     return lab if lab >= 0 else ns + (-1 - lab)
 
@@ -105,9 +107,9 @@ def _graph_side(i, v, j, DEG, LB, ns, P, W, WP, X):
             for c in range(b + 1, d):
                 r = bisector_side(
                     i,
-                    _key(LB[v, a], ns),
-                    _key(LB[v, b], ns),
-                    _key(LB[v, c], ns),
+                    owner_key(LB[v, a], ns),
+                    owner_key(LB[v, b], ns),
+                    owner_key(LB[v, c], ns),
                     j,
                     P,
                     W,
@@ -132,7 +134,7 @@ def _ring_side(i, v, j, C, nf, ns, P, W, WP, X):
         for k in range(F[f, 2]):
             if R[F[f, 1] + k] == v:
                 if m < labs.shape[0]:
-                    labs[m] = _key(F[f, 0], ns)
+                    labs[m] = owner_key(F[f, 0], ns)
                     m += 1
                 break
     for a in range(m):
@@ -258,7 +260,7 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
                 return (OVERFLOW if st == CUT_OVERFLOW else BROKEN), 0, 0, 0, 0.0
         nv = nv2
         nf = nf2
-        rmax2 = r2c if graph else _radius2(V, nv)  # the graph cut's own (the same max)
+        rmax2 = r2c if graph else radius2(V, nv)  # the graph cut's own (the same max)
     return OK, nv, nf, nt, rmax2
 
 
@@ -446,7 +448,7 @@ def _next_leaf(px, py, pz, tree, hk, hv, size, wi, wmax, rmax2, V, nv, eps):
     Nearest box first (keys: squared distances from the site to the boxes); the walk ends
     at the first node beyond the stop test (:func:`_far`: every later one is farther), a
     node whose box every vertex is nearer than (:func:`_box_misses`) is dropped. Returns
-    ``(bucket or -1, size)``. Kept out of line: :func:`_one_cell`'s grid search compiles
+    ``(bucket or -1, size)``. Kept out of line: :func:`one_cell`'s grid search compiles
     around a call, not around the walk (inlined, the walk cost uniform cells 4-7%).
     """
     while size > 0:
@@ -466,7 +468,7 @@ def _next_leaf(px, py, pz, tree, hk, hv, size, wi, wmax, rmax2, V, nv, eps):
 
 
 @njit(**NJIT_NO_NRT)
-def _one_cell(
+def one_cell(
     i,
     P,
     W,
@@ -536,7 +538,7 @@ def _one_cell(
     nv = ntv
     nf = ntf
     nt = 0
-    rmax2 = _radius2(V, nv)
+    rmax2 = radius2(V, nv)
     ci, cj, ck = bucket3d(px, py, pz, g)
     st = OK
     # nearest buckets first, in the precomputed order of their least possible distance

@@ -26,11 +26,11 @@ from .cellcut3d import (
     OK,
     OVERFLOW,
     UNNAMED,
-    _graph_scratch,
-    _key,
-    _one_cell,
-    _radius2,
-    _scratch,
+    cut_scratch,
+    graph_scratch,
+    one_cell,
+    owner_key,
+    radius2,
 )
 from .graph3d import from_rings
 from .polyhedron import CUT_NONE, cut, moments, plane_values
@@ -152,7 +152,7 @@ def _name_cell(
             c = 1
             for k in range(DEG[v]):
                 if c < OWN.shape[1]:
-                    OWN[v, c] = _key(LB[v, k], ns)
+                    OWN[v, c] = owner_key(LB[v, k], ns)
                     c += 1
             work[v, 0] = c
             if FL[v]:
@@ -160,7 +160,7 @@ def _name_cell(
                 nd += 1
     else:
         for f in range(nf):
-            key = _key(F[f, 0], ns)
+            key = owner_key(F[f, 0], ns)
             for k in range(F[f, 2]):
                 v = R[F[f, 1] + k]
                 c = work[v, 0]
@@ -176,7 +176,7 @@ def _name_cell(
     px = P[i, 0]
     py = P[i, 1]
     pz = P[i, 2]
-    rmax2 = _radius2(V, nv)
+    rmax2 = radius2(V, nv)
     if nd > 0:
         for u in range(nt):
             j = T[u, 0]
@@ -318,7 +318,7 @@ def cell_scratch(ns, g, tree, TV, TF, TR, caps):
     kd = tree.shape[0] > 0
     if kd:  # the k-d walk's heap: each node at most once
         nbuck = max(nbuck, tree.shape[0])
-    V, F, R, R2, S, work, T, OWN, cand, cd2, buck = _scratch(
+    V, F, R, R2, S, work, T, OWN, cand, cd2, buck = cut_scratch(
         caps[3], caps[4], caps[5], max(1024, min(ns, 1 << 16)), nbuck
     )
     hkey = np.empty(nbuck if kd else 0)  # noqa: TID251 (the k-d heap's keys: written first)
@@ -336,9 +336,9 @@ def cell_scratch(ns, g, tree, TV, TF, TR, caps):
         np.zeros(OWN.shape[1], np.int64),  # keys
     )
     C = (V, F, R, R2, S, work, T)
-    G = _graph_scratch(caps[3], caps[6])
-    G0 = _graph_scratch(np.int64(0), np.int64(1))  # no graph: face rings
-    TDEG, TED, TBK, TLB, _, _, _ = _graph_scratch(max(TV.shape[0], 1), caps[6])
+    G = graph_scratch(caps[3], caps[6])
+    G0 = graph_scratch(np.int64(0), np.int64(1))  # no graph: face rings
+    TDEG, TED, TBK, TLB, _, _, _ = graph_scratch(max(TV.shape[0], 1), caps[6])
     # the exact predicates' scratch, and whether the cell needed them
     X = (np.zeros((2, 4, 4)), scratch(), np.zeros(1, np.bool_))
     if not from_rings(TV.shape[0], TF, TF.shape[0], TR, TDEG, TED, TBK, TLB):
@@ -399,7 +399,7 @@ def build_cells(
         X[2][0] = False
         Gu = G
         while True:
-            st, nv, nf, nt, r2 = _one_cell(
+            st, nv, nf, nt, r2 = one_cell(
                 i,
                 P,
                 W,

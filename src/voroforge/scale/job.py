@@ -94,7 +94,7 @@ class ScaleResult:
 
 
 @contextmanager
-def _client_for(client, workers):
+def client_for(client, workers):
     """The given client, the current one, or a LocalCluster started for the call."""
     if client is not None:
         yield client
@@ -161,7 +161,8 @@ def _boundary_spec(boundary):
     return tuple(float(v) for v in dom.bounds), list(dom.bounds)
 
 
-def _tile_count(n, tiles, tile_size, workers):
+def tile_count(n, tiles, tile_size, workers):
+    """How many tiles ``n`` sites get: ``tiles``, else from ``tile_size`` or ``workers``."""
     if tiles is not None:
         if int(tiles) < 1:
             raise ValueError(f"tiles must be at least 1; got {tiles}")
@@ -173,7 +174,7 @@ def _tile_count(n, tiles, tile_size, workers):
     return max(1, min(max(n // 1000, 1), max(math.ceil(n / config.SCALE_TILE_SITES), 2 * workers)))
 
 
-def _halo(rect, count, lo, hi):
+def first_halo(rect, count, lo, hi):
     """The first halo of a tile: a few mean site spacings of its finite part."""
     x0, y0 = max(rect[0], lo[0]), max(rect[1], lo[1])
     x1, y1 = min(rect[2], hi[0]), min(rect[3], hi[1])
@@ -287,9 +288,9 @@ def voronoi(
     eng_boundary, boundary_text = _boundary_spec(boundary)
     crs_json = None
     if crs is not None:
-        from ..io.parquet import _projjson
+        from ..io.parquet import projjson
 
-        crs_json = _projjson(crs)
+        crs_json = projjson(crs)
     resume = _prepare_out(out, overwrite)
     rows = int(chunk_rows or config.SCALE_CHUNK_ROWS)
     if rows < 1:
@@ -297,7 +298,7 @@ def voronoi(
     source = None
     try:
         source = open_source(points, out, rows)
-        with _client_for(client, workers) as cl:
+        with client_for(client, workers) as cl:
             job = {
                 "boundary": eng_boundary,
                 "boundary_text": boundary_text,
@@ -360,7 +361,7 @@ def _run(cl, source, job):
     hi = np.max([s["hi"] for s in stats if s["hi"] is not None], axis=0)
     if eng_boundary is None:
         eng_boundary = tuple(float(v) for v in padded_bounds(np.array([lo, hi])))
-    ntiles = _tile_count(n, job["tiles"], job["tile_size"], nworkers)
+    ntiles = tile_count(n, job["tiles"], job["tile_size"], nworkers)
     sample = np.concatenate([s["sample"] for s in stats])
     tiling = kd_tiling(sample, ntiles)
     ntiles = len(tiling)
@@ -368,7 +369,10 @@ def _run(cl, source, job):
     # second round; the certificate decides what is final)
     share = np.bincount(tiling.assign(sample), minlength=ntiles) * (n / max(len(sample), 1))
     loaded = np.array(
-        [_grown(r, _halo(r, max(c, 1.0), lo, hi)) for r, c in zip(tiling.rects, share, strict=True)]
+        [
+            _grown(r, first_halo(r, max(c, 1.0), lo, hi))
+            for r, c in zip(tiling.rects, share, strict=True)
+        ]
     ).reshape(-1, 4)
     fingerprint = {
         "n": n,

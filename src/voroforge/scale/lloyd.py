@@ -23,13 +23,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .. import config
-from .job import _client_for, _halo, _tile_count
+from .job import client_for, first_halo, tile_count
 from .tasks import (
     Piece,
-    _certified,
-    _gather,
-    _threads,
+    certified_sites,
+    gather_sites,
     group_discs,
+    limit_threads,
     open_sides,
     radii,
     split_by_tile,
@@ -88,7 +88,7 @@ def _moments(ids, xy, dom, loaded, wanted, last):
     d = build(as_points(xy), dom, "delaunay")
     mass, first, second = Integrator(None, len(xy))(buffers(d), xy)
     r = radii(d, xy)
-    ok = _certified(xy[wanted], r[wanted], loaded)
+    ok = certified_sites(xy[wanted], r[wanted], loaded)
     if last:
         ok[:] = True
     keep = wanted[ok]
@@ -119,8 +119,8 @@ def lloyd_tile(t, spec, own, *neighbours):
     done = []
     retried = 0
     uncertified = 0
-    with _threads():
-        ids, xy = _gather(pieces, spec["loaded"])
+    with limit_threads():
+        ids, xy = gather_sites(pieces, spec["loaded"])
         wanted = np.flatnonzero(np.isin(ids, own.ids, assume_unique=True))
         loaded = open_sides(spec["loaded"], spec["lo"], spec["hi"])
         part, pending = _moments(ids, xy, spec["domain"], loaded, wanted, False)
@@ -134,7 +134,7 @@ def lloyd_tile(t, spec, own, *neighbours):
             boxes, member = group_discs(xy_u, r_u)
             left = ([], [], [])
             for g, box in enumerate(boxes):
-                ids_b, xy_b = _gather(pieces, box)
+                ids_b, xy_b = gather_sites(pieces, box)
                 wanted = np.flatnonzero(np.isin(ids_b, ids_u[member == g], assume_unique=True))
                 box_loaded = open_sides(box, spec["lo"], spec["hi"])
                 part, more = _moments(ids_b, xy_b, spec["domain"], box_loaded, wanted, last)
@@ -273,9 +273,9 @@ def lloyd(
     hi = np.maximum(z.max(axis=0), [x1, y1])
     rng = np.random.default_rng(0)
     sample = z[rng.choice(len(z), size=min(len(z), config.SCALE_SAMPLE_SITES), replace=False)]
-    with _client_for(client, workers) as cl:
+    with client_for(client, workers) as cl:
         nworkers = max(1, len(cl.scheduler_info(n_workers=-1)["workers"]))
-        tiling = kd_tiling(sample, _tile_count(len(z), tiles, tile_size, nworkers))
+        tiling = kd_tiling(sample, tile_count(len(z), tiles, tile_size, nworkers))
         ntiles = len(tiling)
         chunk = max(1, math.ceil(len(z) / max(ntiles, 1)))
         ids = np.arange(len(z), dtype=np.int64)
@@ -297,7 +297,7 @@ def lloyd(
                 owned.append(cl.submit(merge_sorted, *parts))
             results = []
             for t in range(ntiles):
-                h = _halo(tiling.rects[t], per_tile[t], lo, hi)
+                h = first_halo(tiling.rects[t], per_tile[t], lo, hi)
                 rect = tiling.rects[t]
                 spec = {
                     "loaded": (rect[0] - h, rect[1] - h, rect[2] + h, rect[3] + h),

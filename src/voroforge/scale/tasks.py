@@ -87,7 +87,7 @@ def take(split, t):
     return split[1][t]
 
 
-def _gather(pieces, rect):
+def gather_sites(pieces, rect):
     """Sites of ``pieces`` inside the closed ``rect``, sorted by input row."""
     ids, xy = [], []
     x0, y0, x1, y1 = rect
@@ -124,7 +124,7 @@ def _farthest(coords, start, xy):  # pragma: no cover
     return r
 
 
-def _certified(xy, r, loaded):
+def certified_sites(xy, r, loaded):
     """True where the disc of radius ``2 r`` (with slack) around ``xy`` lies in ``loaded``."""
     reach = 2.0 * r * (1.0 + SCALE_CERT_RTOL)
     x0, y0, x1, y1 = loaded
@@ -149,7 +149,7 @@ def open_sides(rect, lo, hi):
 
 
 @contextmanager
-def _threads():
+def limit_threads():
     """Limit numba to the worker's threads (one thread per worker: one numba thread)."""
     import numba
 
@@ -179,7 +179,7 @@ def _compute(ids, xy, boundary, loaded, wanted, last=False):
 
     d = vf.voronoi(xy, boundary)
     r = radii(d, xy)
-    ok = _certified(xy[wanted], r[wanted], loaded)
+    ok = certified_sites(xy[wanted], r[wanted], loaded)
     keep = wanted if last else wanted[ok]
     nb = neighbor_lists(d.edges.pairs, len(xy), cells=keep, ids=ids)
     table, _, _ = cells_table(buffers(d), keep, ids[keep], nb)
@@ -199,7 +199,7 @@ def run_tile(t, spec, store, tiling):
     """
     t0 = time.perf_counter()
     lo, hi, boundary = spec["lo"], spec["hi"], spec["boundary"]
-    with _threads():
+    with limit_threads():
         (own_ids, own_xy), (halo_ids, halo_xy) = store.loaded(t)
         own = Piece(own_ids, own_xy)
         ids = np.concatenate((own_ids, halo_ids))
@@ -230,7 +230,7 @@ def run_tile(t, spec, store, tiling):
                 pieces.update({u: Piece(*p) for u, p in store.owned(missing).items()})
             left = ([], [], [])
             for g, box in enumerate(boxes):
-                ids_b, xy_b = _gather([pieces[int(u)] for u in reach[g]], box)
+                ids_b, xy_b = gather_sites([pieces[int(u)] for u in reach[g]], box)
                 wanted = np.flatnonzero(np.isin(ids_b, ids_u[member == g], assume_unique=True))
                 part, more = _compute(ids_b, xy_b, boundary, open_sides(box, lo, hi), wanted, last)
                 tables.append(part)

@@ -118,7 +118,7 @@ def preview(m, path, *, size=900, view=(35.0, 25.0), cut=None, color=(196, 205, 
     from PIL import Image
 
     from ..io.atomic import write_atomically
-    from ..io.render3d import _rotation
+    from ..io.render3d import view_rotation
 
     if cut is None:
         meta = m.metadata or {}
@@ -128,7 +128,7 @@ def preview(m, path, *, size=900, view=(35.0, 25.0), cut=None, color=(196, 205, 
     w = int(size)
     h = int(w * 0.8)
     W, H = w * _SS, h * _SS
-    rot = _rotation(view)
+    rot = view_rotation(view)
     # x' right, y' away from the camera (depth), z' up; by columns, not ``v @ rot.T``: a
     # multithreaded BLAS call leaves its worker threads spinning for ~0.05 s of CPU
     r = np.stack([v[:, 0] * q[0] + v[:, 1] * q[1] + v[:, 2] * q[2] for q in rot], axis=1)

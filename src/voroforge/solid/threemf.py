@@ -205,10 +205,10 @@ def write_3mf(mesh, path, *, units: str = "mm", decimals: int | None = None) -> 
         vt = [rows_text(v[s : s + _CHUNK], _VERTEX, decimals) for s in range(0, len(v), _CHUNK)]
     if path.suffix.lower() != ".3mf" or vt is None or None in vt or not np.isfinite(v).all():
         return mio.write(mesh, path, units=units)
-    units = mio._units(units)
+    units = mio.check_units(units)
     head = [
         b'<?xml version="1.0" encoding="UTF-8"?>\n',
-        f'<model unit="{mio.UNITS[units]}" xml:lang="en-US" xmlns="{mio._NS3MF}">'.encode(),
+        f'<model unit="{mio.UNITS[units]}" xml:lang="en-US" xmlns="{mio.NS3MF}">'.encode(),
         b'<resources><object id="1" type="model" name="body"><mesh><vertices>',
     ]
     buf = io.BytesIO()
@@ -217,7 +217,7 @@ def write_3mf(mesh, path, *, units: str = "mm", decimals: int | None = None) -> 
     # block: deflate's output does not depend on how its input is split), so no copy of the
     # whole text is made
     with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED, compresslevel=1) as z:
-        for name, data in (("[Content_Types].xml", mio._CT), ("_rels/.rels", mio._RELS)):
+        for name, data in (("[Content_Types].xml", mio.CONTENT_TYPES), ("_rels/.rels", mio.RELS)):
             z.writestr(_info(name), data, zipfile.ZIP_DEFLATED, compresslevel=1)
         with z.open(_info("3D/3dmodel.model", deflate=1), "w") as model:
             for piece in head + vt:
@@ -227,7 +227,7 @@ def write_3mf(mesh, path, *, units: str = "mm", decimals: int | None = None) -> 
                 model.write(rows_text(f[s : s + _CHUNK], _TRIANGLE))
             model.write(b"</triangles></mesh></object></resources><build>")
             model.write(b'<item objectid="1"/></build></model>')
-    return mio._atomic(path, buf.getvalue())
+    return mio.save_bytes(path, buf.getvalue())
 
 
 def _info(name: str, *, deflate: int | None = None) -> zipfile.ZipInfo:
@@ -236,9 +236,9 @@ def _info(name: str, *, deflate: int | None = None) -> zipfile.ZipInfo:
     With ``deflate``, deflated at that level: what ``writestr(..., compresslevel=...)``
     sets on the member it writes.
     """
-    from ..io.mesh import _ZIP_DATE
+    from ..io.mesh import ZIP_DATE
 
-    info = zipfile.ZipInfo(name, _ZIP_DATE)
+    info = zipfile.ZipInfo(name, ZIP_DATE)
     info.external_attr = 0o600 << 16
     if deflate is not None:
         info.compress_type = zipfile.ZIP_DEFLATED

@@ -189,7 +189,7 @@ def move(result: Result, i: int, xy, field_fn=None) -> tuple[Result, np.ndarray]
     xy : (2,) float
         Its new position (inside the domain).
     field_fn : callable, optional
-        The design's attractor field (``compute._field``), for the changed cells' values.
+        The design's attractor field (``compute.attractor_field``), for the changed cells' values.
 
     Returns
     -------
@@ -389,18 +389,18 @@ def _assemble(result: Result, design, sites, need, fresh, field_fn, n0):
     raw[redo] = fresh[differ]
     values = _resized(result.values, n, 0.0)
     if field_fn is not None and len(redo):
-        values[redo] = dc._values(raw[redo], field_fn)
+        values[redo] = dc.cell_values(raw[redo], field_fn)
     seed = design.design.seed
     old_mask = _resized(result.mask, n, False)
     if design.openings.select in _PER_CELL and design.design.seed == result.design.design.seed:
         mask = old_mask.copy()
-        mask[redo] = dc._mask(design, raw[redo], values[redo], seed)
+        mask[redo] = dc.opening_mask(design, raw[redo], values[redo], seed)
     else:  # random, every_kth, largest: by index or rank, over all cells
-        mask = dc._mask(design, raw, values, seed)
+        mask = dc.opening_mask(design, raw, values, seed)
     out = _resized(result.cells, n, empty)
     live = _resized(_live(result), n, False)
     if len(redo):
-        out[redo] = dc._operate(design, raw[redo], values[redo], field_fn is not None)
+        out[redo] = dc.operate_cells(design, raw[redo], values[redo], field_fn is not None)
         live[redo] = ~shapely.is_empty(out[redo])
     open_cells = np.flatnonzero(mask & live)
     extra = {k: v for k, v in result.extra.items() if k not in ("edges", "frame_fast")}

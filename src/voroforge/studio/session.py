@@ -411,7 +411,7 @@ class Session:
         start = time.perf_counter()
         field_fn = self._field_fn()
         try:
-            points = dc._seeds(design, self.result.domain, field_fn, self.folder)
+            points = dc.make_seeds(design, self.result.domain, field_fn, self.folder)
         except (DesignError, ValueError, OSError):
             return None
         if not 1 <= len(points) <= self.max_seeds:
@@ -465,11 +465,11 @@ class Session:
 
     def _field_fn(self):
         """The current design's attractor field (cached per design), or None."""
-        from ..design.compute import _field
+        from ..design.compute import attractor_field
 
         design = self.result.design
         if self._field_cache is None or self._field_cache[0] is not design:
-            self._field_cache = (design, _field(design, self.folder))
+            self._field_cache = (design, attractor_field(design, self.folder))
         return self._field_cache[1]
 
     @property

@@ -92,6 +92,22 @@ class Surface:
         return self._cache["areas"]
 
     @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(lo, hi)``, each (3,): the corners of the vertices' bounding box."""
+        if "box" not in self._cache:
+            self._cache["box"] = (self.vertices.min(axis=0), self.vertices.max(axis=0))
+        return self._cache["box"]
+
+    @property
+    def face_frames(self) -> np.ndarray:
+        """Per triangle, what the surface kernels need of it (``kernels.surface.tri_frames``)."""
+        if "frames" not in self._cache:
+            from ..kernels.surface import tri_frames
+
+            self._cache["frames"] = tri_frames(self.vertices, self.faces)
+        return self._cache["frames"]
+
+    @property
     def area(self) -> float:
         """Total mesh area (exactly summed: ``math.fsum``)."""
         if "area" not in self._cache:
@@ -152,7 +168,7 @@ class Surface:
         """
         from ..kernels.surface import project_pieces
 
-        p = _as3(points, "points")
+        p = as_points3(points, "points")
         tree, rad = self._centroid_tree()
         d, _ = tree.query(p)
         lists = tree.query_ball_point(p, d + rad + 1e-12 * self.scale)
@@ -281,11 +297,12 @@ class Surface:
             k = np.where(border | (area == 0), 0.0, (2 * np.pi - ang) / np.maximum(area, 1e-300))
             self._cache["gauss"] = (cKDTree(v), k)
         tree, k = self._cache["gauss"]
-        _, idx = tree.query(_as3(points, "points"))
+        _, idx = tree.query(as_points3(points, "points"))
         return k[idx]
 
 
-def _as3(points, name: str) -> np.ndarray:
+def as_points3(points, name: str) -> np.ndarray:
+    """A float64 copy of ``points`` checked to be finite ``(n, 3)`` (``name`` for the error)."""
     p = np.array(points, dtype=np.float64, copy=True)
     if p.ndim != 2 or p.shape[1] != 3:
         raise ValueError(f"{name} must be (n, 3); got shape {p.shape}")

@@ -24,16 +24,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .. import config
-from .shapes import Surface, _as3
+from .shapes import Surface, as_points3
 
 __all__ = ["SurfaceVoronoi", "voronoi"]
 
 
 def _box(S: Surface, sites: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The box of the mesh and the sites."""
-    if "box" not in S._cache:
-        S._cache["box"] = (S.vertices.min(axis=0), S.vertices.max(axis=0))
-    lo, hi = S._cache["box"]
+    lo, hi = S.bounds
     return np.minimum(lo, sites.min(axis=0)), np.maximum(hi, sites.max(axis=0))
 
 
@@ -58,10 +56,8 @@ def _run(S: Surface, sites: np.ndarray, mode: int, hint: np.ndarray | None = Non
     the start of this call's nearest-site search.
     """
     from ..engine.build3d import bucket_sort3d
-    from ..kernels.surface import rvd, tri_frames
+    from ..kernels.surface import rvd
 
-    if "frames" not in S._cache:
-        S._cache["frames"] = tri_frames(S.vertices, S.faces)
     h = bucket_side(S, sites)
     lo, hi = _box(S, sites)
     dims = np.floor(np.maximum(hi - lo, 0.0) / h) + 1
@@ -72,7 +68,7 @@ def _run(S: Surface, sites: np.ndarray, mode: int, hint: np.ndarray | None = Non
     return rvd(
         S.vertices,
         S.faces,
-        S._cache["frames"],
+        S.face_frames,
         sites,
         start,
         sidx,
@@ -529,7 +525,7 @@ def voronoi(
             raise ValueError(f"site count must be a positive integer; got {n!r}")
         sites = S.sample(int(n), seed=seed)
     else:
-        sites = _as3(points_or_count, "points")
+        sites = as_points3(points_or_count, "points")
         if len(sites) < 1:
             raise ValueError("voronoi needs at least one site")
         if len(np.unique(sites, axis=0)) < len(sites):
