@@ -404,38 +404,52 @@ def _near_cost(a, b, c0, cand, nc, sidx, xs, ys, vx, vy, r2, tol, merge):
 def _joins(i, a, b, x, vx, vy, ev, lv, xs, ys):
     """Whether site ``x`` near the circle of ``i, a, b`` (centre ``vx, vy``) is on its vertex.
 
-    True when the circumcentres of ``x`` with ``i, a`` and with ``i, b`` are both that
-    vertex by the one merge rule (:func:`.vertex.same_vertex`, ``ev`` the vertex's rounding
-    bound), which the Delaunay-dual cells apply to adjacent centres: the edges that ``x``
-    would add or shorten are then rounding noise. A site a few ulps from ``i``, ``a`` or
-    ``b`` fails: its triangle with that site is ill-conditioned and its centre lies far
-    along their bisector. A centre with the vertex's very bits passes the rule whatever
-    the bounds (distance 0); one that passes it with lower bounds of the two rounding
-    bounds (``lv`` the vertex's, :func:`.vertex.voronoi_vertex_lazy`) passes it with the
-    bounds, which are computed only where that fails (a grid's squares: never). Returns
-    ``(joined, ev, x1, y1, x2, y2)``: ``ev`` is -1 on entry when not yet computed, and
-    comes back computed if it was needed; when joined, the two centres (of ``i, a, x`` and
-    of ``i, x, b``), which may name the vertex.
+    True when the circumcentres of ``x`` with ``i, a``, with ``i, b`` and (unless both have
+    the vertex's bits) with ``a, b`` are all that vertex by the one merge rule
+    (:func:`.vertex.same_vertex`, ``ev`` the vertex's rounding bound), which the
+    Delaunay-dual cells apply to adjacent centres: the edges that ``x`` would add or shorten
+    are then rounding noise. The third centre makes the answer the quadruple's, the same
+    from each of its four cells: sites an ulp apart on a line have no centre, and a site
+    ``x`` a few ulps from ``a`` fails. A centre with the vertex's very bits passes the rule
+    whatever the bounds (distance 0); one that passes it with lower bounds of the two
+    rounding bounds (``lv`` the vertex's, :func:`.vertex.voronoi_vertex_lazy`) passes it
+    with the bounds, which are computed only where that fails (a grid's squares: never).
+    Returns ``(joined, ev, x1, y1, x2, y2)``: ``ev`` is -1 on entry when not yet computed,
+    and comes back computed if it was needed; when joined, the two centres (of ``i, a, x``
+    and of ``i, x, b``), which may name the vertex.
     """
     r = abs(vx - xs[i]) + abs(vy - ys[i])
     x1 = y1 = x2 = y2 = 0.0
-    for k in range(2):
-        p, q = (a, x) if k == 0 else (x, b)
-        px, py, ep, lp = voronoi_vertex_lazy(i, p, q, xs, ys)
+    bits = True  # both centres with ``i`` have the vertex's very bits
+    for k in range(3):
+        if k == 0:
+            c, p, q = i, a, x
+        elif k == 1:
+            c, p, q = i, x, b
+        elif bits:
+            break  # (a grid's squares: x is on the circle, the cells of a and b agree)
+        else:
+            # the centre of the three other sites makes the rule the quadruple's, the same
+            # from each of its cells: a site an ulp from ``a`` on the line through ``a`` and
+            # ``b`` has no centre with them, the cell of ``x`` keeps its edge with ``i``,
+            # and so must ``i`` (ulp_diagonal: one vertex had stood at three points)
+            c, p, q = a, x, b
+        px, py, ep, lp = voronoi_vertex_lazy(c, p, q, xs, ys)
         if not (np.isfinite(px) and np.isfinite(py)):
             return False, ev, 0.0, 0.0, 0.0, 0.0
         if k == 0:
             x1, y1 = px, py
-        else:
+        elif k == 1:
             x2, y2 = px, py
         if px == vx and py == vy:
             continue
+        bits = False
         if same_vertex(vx, vy, lv, px, py, lp, r):
             continue  # (lv <= ev, lp <= ep: the rule holds with the bounds too)
         if ev < 0.0:
             ev = voronoi_vertex_error(i, a, b, xs, ys)
         if ep < 0.0:
-            ep = voronoi_vertex_error(i, p, q, xs, ys)
+            ep = voronoi_vertex_error(c, p, q, xs, ys)
         if not same_vertex(vx, vy, ev, px, py, ep, r):
             return False, ev, 0.0, 0.0, 0.0, 0.0
     return True, ev, x1, y1, x2, y2
