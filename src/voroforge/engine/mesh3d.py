@@ -324,6 +324,7 @@ def _convex_part(todo, cf, lab, farea, roff, ring, verts, grid, tol):
         )
 
     nth = max(1, min(numba.get_num_threads(), k // 256))  # ~40 us a cell: threads from 256
+    bounds = np.array([0, k])
     if nth == 1:
         part(0, k)
     else:  # 8 slices a thread, taken as threads come free (a loaded machine)
@@ -335,12 +336,18 @@ def _convex_part(todo, cf, lab, farea, roff, ring, verts, grid, tol):
     ok = np.flatnonzero(counts[:, 0] > 0)
     if not len(ok):
         return None
+    # each slice's cells wrote their rows one after another from the slice's start
+    used = np.add.reduceat(counts, bounds[:-1], axis=0)  # slices are not empty
+    runs = [
+        (a * mc.CC_OUT_V, a * mc.CC_OUT_F, a * mc.CC_OUT_R, u)
+        for a, u in zip(bounds[:-1], used, strict=True)
+    ]
+    pv = np.concatenate([oV[v : v + u[0]] for v, _, _, u in runs])
+    pf = np.concatenate([oF[f : f + u[1]] for _, f, _, u in runs])
+    pr = np.concatenate([oR[r : r + u[2]] for _, _, r, u in runs])
     nv, nf, nr = counts[ok, 0], counts[ok, 1], counts[ok, 2]
-    vi = np.repeat(ok * mc.CC_OUT_V, nv) + _ranks(nv)
-    fi = np.repeat(ok * mc.CC_OUT_F, nf) + _ranks(nf)
-    ri = np.repeat(ok * mc.CC_OUT_R, nr) + _ranks(nr)
     vbase = np.repeat(np.cumsum(nv) - nv, nr)  # each cell's first row in the vertices
-    part = (oV[vi], todo[ok], nf, oR[ri] + vbase, oF[fi, 1], oF[fi, 0])
+    part = (pv, todo[ok], nf, pr + vbase, pf[:, 1], pf[:, 0])
     return part, vol[ok], cen[ok], npc[ok]
 
 

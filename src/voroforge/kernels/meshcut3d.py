@@ -542,15 +542,21 @@ def convex_cells(
     faces' rings), must lie inside one of them (within ``tol``), which it is then labelled
     by (``-1 - t``), and the joined cell must be closed (each edge exactly one twin); a
     face of the cell lying in such a plane, a pair no bisector separates, or any limit
-    passed leaves the cell to the caller (``counts[j] = 0``). Outputs per cell ``j``: slots
-    of ``oV`` (vertices), ``oF`` (``label, ring length``), ``oR`` (rings, local vertex
-    numbers), ``counts[j] = (nv, nf, nr)``, ``vol[j]``, ``cen[j]``, ``npc[j]`` (pieces).
+    passed leaves the cell to the caller (``counts[j] = 0``). Outputs per cell ``j``: its
+    rows of ``oV`` (vertices), ``oF`` (``label, ring length``), ``oR`` (rings, local vertex
+    numbers), written one cell after another from the start (a cell left to the caller
+    writes none; room for ``CC_OUT_*`` rows a cell; only the rows written are touched, so
+    fresh zeroed pages past them cost nothing), ``counts[j] = (nv, nf, nr)``, ``vol[j]``,
+    ``cen[j]``, ``npc[j]`` (pieces).
     """
     n = cells.shape[0]
     cv = oV.shape[0] // max(n, 1)
     cfa = oF.shape[0] // max(n, 1)
     cr = oR.shape[0] // max(n, 1)
     nblk = (n + CC_BLOCK - 1) // CC_BLOCK
+    pv = 0
+    pf = 0
+    pr = 0
     for blk in range(nblk):
         gsc = (
             np.zeros(CC_TRIS, np.int64),
@@ -594,9 +600,9 @@ def convex_cells(
         )
         for j in range(blk * CC_BLOCK, min(n, (blk + 1) * CC_BLOCK)):
             out = (
-                oV[j * cv : (j + 1) * cv],
-                oF[j * cfa : (j + 1) * cfa],
-                oR[j * cr : (j + 1) * cr],
+                oV[pv : pv + cv],
+                oF[pf : pf + cfa],
+                oR[pr : pr + cr],
             )
             r = _convex_cell(
                 cells[j],
@@ -627,3 +633,6 @@ def convex_cells(
             cen[j, 1] = r[5]
             cen[j, 2] = r[6]
             npc[j] = r[7]
+            pv += r[0]  # the next cell's output follows this one's (a failed one: nothing)
+            pf += r[1]
+            pr += r[2]
