@@ -190,8 +190,11 @@ def merge_parts(PV, PF, PR, pnv, pnf, nparts, ms, o, tol, out):
         MR[s] = par[MR[s]]
     if nv > oV.shape[0] or nf > oF.shape[0] or nr > oR.shape[0]:
         return fail()
-    # closed: each directed edge once, and its reverse once
-    ne = 0
+    # closed: each directed edge once, and its reverse once. The edges leaving each vertex
+    # in a list (counting sort: ``gid`` the offsets, ``par`` the cursors, ``keys`` the
+    # heads; all free here); then each edge a -> b: b once in a's list, a in b's
+    for v in range(nv + 1):
+        gid[v] = 0
     for f in range(nf):
         st = MF[f, 1]
         ln = MF[f, 2]
@@ -200,18 +203,30 @@ def merge_parts(PV, PF, PR, pnv, pnf, nparts, ms, o, tol, out):
             b = MR[st + j + 1] if j + 1 < ln else MR[st]
             if a == b:
                 return fail()
-            keys[ne] = a * nv + b
-            ne += 1
-    ks = np.sort(keys[:ne])
-    for j in range(ne - 1):
-        if ks[j] == ks[j + 1]:
-            return fail()
-    for j in range(ne):
-        a = ks[j] // nv
-        b = ks[j] % nv
-        r = np.searchsorted(ks, b * nv + a)
-        if r >= ne or ks[r] != b * nv + a:
-            return fail()
+            gid[a + 1] += 1
+    for v in range(nv):
+        gid[v + 1] += gid[v]
+        par[v] = gid[v]
+    for f in range(nf):
+        st = MF[f, 1]
+        ln = MF[f, 2]
+        for j in range(ln):
+            a = MR[st + j]
+            keys[par[a]] = MR[st + j + 1] if j + 1 < ln else MR[st]
+            par[a] += 1
+    for a in range(nv):
+        for e in range(gid[a], gid[a + 1]):
+            b = keys[e]
+            twice = False
+            for e2 in range(gid[a], gid[a + 1]):
+                if e2 != e and keys[e2] == b:
+                    twice = True
+            back = False
+            for e2 in range(gid[b], gid[b + 1]):
+                if keys[e2] == a:
+                    back = True
+            if twice or not back:
+                return fail()
     vol, mx, my, mz = moments(MV, MF, nf, MR)
     if not vol > 0.0:
         return fail()
