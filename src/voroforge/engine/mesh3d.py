@@ -21,6 +21,7 @@ The cut works relative to an origin whose subtraction is exact (:func:`_exact_or
 
 from __future__ import annotations
 
+import itertools
 import os
 from dataclasses import dataclass
 
@@ -142,10 +143,12 @@ def _manifold(V, F, face_id):
 def sites_inside(mesh: MeshContainer, pts: np.ndarray) -> np.ndarray:
     """``(n,) bool``: which points lie inside the mesh (exact ray parity)."""
     from ..kernels.inside3d import inside_mesh, yz_grid
+    from .threads import serial_below
 
     V, F = mesh.vertices, mesh.faces
     g, start, items = yz_grid(V, F, int(max(1, min(512, np.sqrt(len(F) / 4)))))
-    return inside_mesh(np.ascontiguousarray(pts, np.float64), V, F, g, start, items)
+    with serial_below(len(pts)):
+        return inside_mesh(np.ascontiguousarray(pts, np.float64), V, F, g, start, items)
 
 
 #: :func:`reaching_sites` splits a triangle in four while its size (largest distance of a
@@ -202,8 +205,12 @@ def reaching_sites(mesh: MeshContainer, pts: np.ndarray, inside: np.ndarray) -> 
     at = np.flatnonzero(R >= 0)
     scale = max(float(np.abs(V).max()), float(np.abs(pts[far]).max()))
     R = R[at] * (1.0 + 1e-12) + VORONOI3D_MESH_SLACK_RTOL * scale
-    near = cKDTree(pts[far]).query_ball_point(V[at], R, return_sorted=False)
-    hit = np.concatenate([np.asarray(x, np.int64) for x in near])
+    # which far sites some ball holds (a set: the tree's shape does not matter, and an
+    # unbalanced one builds faster); its lists flattened in one pass (~5x faster than
+    # concatenating an array per list)
+    tree = cKDTree(pts[far], balanced_tree=False)
+    near = tree.query_ball_point(V[at], R, return_sorted=False)
+    hit = np.fromiter(itertools.chain.from_iterable(near), np.int64)
     out[far[hit]] = True
     return out
 
@@ -362,6 +369,7 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     from ..kernels.inside3d import inside_mesh, yz_grid
     from ..kernels.meshclip3d import copy_runs
     from .diagram3d import Diagram3D
+    from .threads import serial_below
 
     n = len(d)
     V, F = mesh.vertices, mesh.faces
@@ -382,7 +390,8 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     test = np.flatnonzero(live & ~cand)  # the others: no parity needed
     ins = np.zeros(n, bool)
     q = np.ascontiguousarray(np.asarray(d.centroids)[test])
-    ins[test] = inside_mesh(q, V, F, g, start, items)
+    with serial_below(len(test)):
+        ins[test] = inside_mesh(q, V, F, g, start, items)
     keep = live & ~cand & ins
     vol = np.where(keep, d.volumes, 0.0)
     cen = np.where(keep[:, None], d.centroids, np.nan)
@@ -488,8 +497,10 @@ def _exact_origin(*arrays):
     lie in ``[2b, b]`` (``b < 0``), else 0 (Sterbenz: ``x - y`` is exact for ``y / 2 <= x
     <= 2 y``).
     """
-    lo = np.min([a.min(axis=0) for a in arrays], axis=0)
-    hi = np.max([a.max(axis=0) for a in arrays], axis=0)
+    # per column: numpy's axis-0 reduction of an (n, 3) array is ~20x slower (412k
+    # vertices: 12-27 ms against 1 ms)
+    lo = np.array([min(a[:, c].min() for a in arrays) for c in range(3)])
+    hi = np.array([max(a[:, c].max() for a in arrays) for c in range(3)])
     return np.where((lo > 0) & (hi <= 2 * lo), lo, np.where((hi < 0) & (lo >= 2 * hi), hi, 0.0))
 
 

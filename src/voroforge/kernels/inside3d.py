@@ -11,9 +11,9 @@ are bucketed by their (y, z) bounding boxes so each query tests only its bucket.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
-from ..config import NJIT
+from ..config import NJIT, NJIT_PARALLEL
 from .predicates import orient2d
 
 
@@ -67,12 +67,15 @@ def yz_grid(V, F, nb):
     return g, count, items
 
 
-@njit(**NJIT)
+@njit(**NJIT_PARALLEL)
 def inside_mesh(Q, V, F, g, start, items):
-    """``(m,) bool``: which query points ``Q (m, 3)`` lie inside the closed mesh ``(V, F)``."""
+    """``(m,) bool``: which query points ``Q (m, 3)`` lie inside the closed mesh ``(V, F)``.
+
+    Parallel over the points (callers run it under ``engine.threads.serial_below``).
+    """
     nb = int(g[4])
     out = np.zeros(Q.shape[0], np.bool_)
-    for q in range(Q.shape[0]):
+    for q in prange(Q.shape[0]):
         px = Q[q, 0]
         py = Q[q, 1]
         pz = Q[q, 2]
