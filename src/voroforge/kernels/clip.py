@@ -34,11 +34,12 @@ from .moments import neumaier_add, ring_sums
 from .predicates import orient2d
 
 
-@njit(**NJIT)
-def plane_values(px, py, a, m, nx, ny, ox, oy, h, ss):
-    """Signed values ``n . (p - o) - h`` of vertices ``a:a + m`` into ``ss[:m]``.
+@njit(inline="always", **NJIT)
+def plane_values_inline(px, py, a, m, nx, ny, ox, oy, h, ss):
+    """:func:`plane_values` inlined into its caller's code (numba IR).
 
-    Returns the largest value: the ring is cut exactly when it is positive.
+    For hot loops (the half-plane cells' search): a call between compiled functions updates
+    the reference count of each array argument, and a cut is a few dozen flops.
     """
     smax = -np.inf
     for u in range(m):
@@ -49,6 +50,15 @@ def plane_values(px, py, a, m, nx, ny, ox, oy, h, ss):
 
 
 @njit(**NJIT)
+def plane_values(px, py, a, m, nx, ny, ox, oy, h, ss):
+    """Signed values ``n . (p - o) - h`` of vertices ``a:a + m`` into ``ss[:m]``.
+
+    Returns the largest value: the ring is cut exactly when it is positive.
+    """
+    return plane_values_inline(px, py, a, m, nx, ny, ox, oy, h, ss)
+
+
+@njit(inline="always", **NJIT)
 def crossing(ax, ay, sa, bx, by, sb):
     """Where segment ``a -> b`` (signed values ``sa``, ``sb`` of opposite sign) meets the line.
 
@@ -62,7 +72,7 @@ def crossing(ax, ay, sa, bx, by, sb):
     return bx + t * (ax - bx), by + t * (ay - by)
 
 
-@njit(**NJIT)
+@njit(inline="always", **NJIT)
 def _push(qx, qy, qo, b, c, x, y, o):
     """Append ``(x, y)`` with edge owner ``o`` at slot ``c`` of the ring starting at ``b``.
 
@@ -87,6 +97,16 @@ def cut_ring(px, py, po, a, m, ss, qx, qy, qo, b, label):
     have fewer than 3 vertices when the ring only touches the line, and callers that need a
     polygon test for that). ``q`` may be the same arrays as ``p`` when ``b >= a + m``.
     The destination needs room for ``m + 1`` vertices.
+    """
+    return cut_ring_inline(px, py, po, a, m, ss, qx, qy, qo, b, label)
+
+
+@njit(inline="always", **NJIT)
+def cut_ring_inline(px, py, po, a, m, ss, qx, qy, qo, b, label):
+    """:func:`cut_ring` inlined into its caller's code (numba IR).
+
+    For the half-plane cells' search, as :func:`plane_values_inline`; :func:`cut_ring` is
+    this body compiled once, for the other cell builders.
     """
     c = b
     for k in range(m):

@@ -42,7 +42,7 @@ from ..config import (
     NJIT,
     NJIT_PARALLEL,
 )
-from .clip import cut_ring, plane_values
+from .clip import cut_ring_inline, plane_values_inline
 from .grid import (
     adaptive_grid,
     block_box,
@@ -73,8 +73,12 @@ _KD_LEAF = 8  # sites per k-d bucket
 _KD_CROWDED = 4.0  # k-d buckets when the median site shares its grid bucket with more
 _REACH = 4.0 * (1.0 + HALFPLANE_REACH_RTOL)  # (2 r)^2 / r^2 with a margin against rounding
 
+# The helpers called per cut or per bucket (these, clip's cut) are inlined into _cells'
+# numba IR: a call costs an atomic reference-count update per array argument, about as
+# much as the few flops they do (half-plane uniform 1e5: _first_pass ~15% faster).
 
-@njit(**NJIT)
+
+@njit(inline="always", **NJIT)
 def _radius2(px, py, a, m):
     """Largest squared distance of the cell's vertices from its site (the origin)."""
     r2 = 0.0
@@ -83,7 +87,7 @@ def _radius2(px, py, a, m):
     return r2
 
 
-@njit(**NJIT)
+@njit(inline="always", **NJIT)
 def _rect_clear(px, py, a, m, cx, cy, bx0, by0, bx1, by1):
     """Whether every vertex is farther from the rectangle than from its site (with margin).
 
@@ -97,7 +101,7 @@ def _rect_clear(px, py, a, m, cx, cy, bx0, by0, bx1, by1):
     return True
 
 
-@njit(**NJIT)
+@njit(inline="always", **NJIT)
 def _unscanned_clear(px, py, a, m, cx, cy, block, grid):
     """Whether no site in the buckets not yet scanned can cut the cell.
 
@@ -197,7 +201,7 @@ def _cut_batch(
         t = cand[c]
         qx = sx[t] - cx
         qy = sy[t] - cy
-        smax = plane_values(px, py, a, m, qx, qy, 0.0, 0.0, 0.5 * cd[c], ss)
+        smax = plane_values_inline(px, py, a, m, qx, qy, 0.0, 0.0, 0.5 * cd[c], ss)
         work += m
         if smax > -0.5 * HALFPLANE_NEAR_RTOL * r2:
             if nw == watch.shape[0]:
@@ -210,7 +214,7 @@ def _cut_batch(
         if m + m // 2 + 2 > cap:  # each run of cut vertices adds at most one
             grow = True
             break
-        m = cut_ring(px, py, po, a, m, ss, px, py, po, b, sidx[t])
+        m = cut_ring_inline(px, py, po, a, m, ss, px, py, po, b, sidx[t])
         work += m
         r2 = _radius2(px, py, b, m)
         a, b = b, a
