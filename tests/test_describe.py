@@ -229,29 +229,12 @@ def test_same_report_at_every_scale():
             assert got.euler_ok and got.convex_ok and got.mismatched_vertices == 0
 
 
-#: A strip 1.5 ulps wide at x = 500000 (cell 0): the engine's cells now share every vertex
-#: around it by their bits but one (cell 20 lacks its edge with the strip: the relabelling
-#: test's 16-ulp allowance is wider than the strip), and describe's straight-angle and
-#: orphan-merge rules (8 and 2 ulps) cannot count a strip that narrow; before the cut-vertex
-#: fix (kernels.cellcut._canonical_vertices) the two errors cancelled. On the other side
-#: (x = 500001, cell 17) the relabelled ring, which has the strip's edge, turns the wrong way
-#: by rounding at it, and the spliced ring that replaces it (no relabelling) lacks the edge:
-#: the certificate prefers a convex ring to one that shares every vertex.
-_STRIP_TOO_NARROW = pytest.mark.xfail(
-    strict=True,
-    reason="a 1.5-ulp strip: below describe()'s ulps rules (near_duplicates_at_box_sides)",
-)
-_FEW_ULPS_MARKS = {
-    "near_duplicates_at_box_sides": _STRIP_TOO_NARROW,
-}
-
-
 @pytest.mark.parametrize("algorithm", ["delaunay", "fortune", "halfplane"])
 @pytest.mark.parametrize(
     "name",
     [
-        pytest.param(n, marks=_FEW_ULPS_MARKS[n]) if n in _FEW_ULPS_MARKS else n
-        for n in [*FEW_ULPS, *FAR_CIRCLES]
+        *FEW_ULPS,
+        *FAR_CIRCLES,
     ],
 )
 def test_mixed_scales_few_ulps_and_far_circles(name, algorithm):

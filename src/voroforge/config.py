@@ -64,6 +64,10 @@ FOLD_REACH_RTOL = 2.0**-10
 #: its own coordinates for their rounding) off the bisector of two neighbours for a cut
 #: cell's edge to be relabelled from one to the other (kernels/cellcut._nearest_label)
 RELABEL_RTOL = 1e-9
+#: A cut cell's ring that rounding turns the wrong way only beside edges this many ulps (of
+#: the vertex's coordinates) long, and is simple, is kept: the end of a strip an ulp wide
+#: (kernels/cells._reflex_by_rounding)
+REFLEX_SHORT_ULPS = 16.0
 #: Power-cell vertices closer than this (max-norm, relative to the box's larger side) to a
 #: ring neighbour keep their cut coordinates, and a vertex computed from its name replaces
 #: the cut one only within this distance (kernels/power)

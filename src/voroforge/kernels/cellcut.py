@@ -157,12 +157,18 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, q
 
 
 @njit(**NJIT)
-def _nearest_label(xs, ys, x, y, b, nbrs, nn):
+def _nearest_label(xs, ys, x, y, b, nbrs, nn, box):
     """The neighbour nearest to ``(x, y)``, starting from ``b``.
 
     It moves only on a decisive comparison: the point must be clearly (``RELABEL_RTOL`` of
-    the coordinates' size) off the bisector of the two candidates.
+    the coordinates' size) off the bisector of the two candidates. A coordinate on a side
+    of the ``box`` is exact (the cut's crossing keeps the side's value), so only the other
+    coordinate's error counts: the cell at the end of a strip an ulp wide along a side
+    meets the strip there, and a tolerance in both coordinates gave the strip's edge to
+    the neighbour beyond it.
     """
+    ex = 0.0 if (x == box[0] or x == box[2]) else 1.0
+    ey = 0.0 if (y == box[1] or y == box[3]) else 1.0
     for k in range(nn):
         j = nbrs[k]
         if j == b:
@@ -178,14 +184,14 @@ def _nearest_label(xs, ys, x, y, b, nbrs, nn):
         by = ys[b] - y
         d = dx * (jx + bx) + dy * (jy + by)
         size = abs(jx) + abs(bx) + abs(jy) + abs(by)
-        tol = (RELABEL_RTOL * size + 16.0 * _U * (abs(x) + abs(y))) * (abs(dx) + abs(dy))
+        tol = (RELABEL_RTOL * size + 16.0 * _U * (abs(x) + abs(y))) * (ex * abs(dx) + ey * abs(dy))
         if d < -tol:
             b = j
     return b
 
 
 @njit(**NJIT)
-def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw):
+def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw, box):
     """Fix the owners of bisector edges that floats could not separate; result in ``p``.
 
     Neighbours closer to each other than the float resolution of their bisectors (sites
@@ -204,15 +210,15 @@ def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw):
         if b < 0:
             continue
         w = v + 1 if v + 1 < m else 0
-        lp = _nearest_label(xs, ys, px[v], py[v], b, nbrs, nn)
-        lq = _nearest_label(xs, ys, px[w], py[w], b, nbrs, nn)
+        lp = _nearest_label(xs, ys, px[v], py[v], b, nbrs, nn, box)
+        lq = _nearest_label(xs, ys, px[w], py[w], b, nbrs, nn, box)
         if lp == lq:
             qw[out - 1] = lp
             continue
         kp, steps = _chain(nbrs, tris, nn, lp, lq, np.int64(0))
         if not (steps >= 1 and out + steps + (m - v) <= qx.shape[0]):
             qw[out - 1] = _nearest_label(
-                xs, ys, 0.5 * (px[v] + px[w]), 0.5 * (py[v] + py[w]), b, nbrs, nn
+                xs, ys, 0.5 * (px[v] + px[w]), 0.5 * (py[v] + py[w]), b, nbrs, nn, box
             )
             continue
         qw[out - 1] = lp
@@ -236,7 +242,7 @@ def cut_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, px, py, pw, qx, qy, qw,
     m = box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss)
     if m == 0:
         return 0
-    m = _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw)
+    m = _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw, box)
     return _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, qx, qy, qw)
 
 

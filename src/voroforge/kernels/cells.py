@@ -24,11 +24,14 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ..config import FOLD_MAX_ROUNDS, NJIT, NJIT_PARALLEL
+from ..config import FOLD_MAX_ROUNDS, NJIT, NJIT_PARALLEL, REFLEX_SHORT_ULPS
 from .cellcut import cut_cell, spliced_cell
 from .centers import circumcenters, contract, merge_cocircular
 from .clip import open_ring_convex
 from .folds import fold_pairs, folded_rings, risky_sites
+from .predicates import orient2d
+
+_U = 2.0**-53
 
 _CHUNK = 2048
 _SPLICE_MIN = 48  # cut cells with more neighbours are built by cellcut.spliced_cell
@@ -58,6 +61,61 @@ def _outgoing(tri, he, cx, cy, box, n):
             cut[tri[3 * t + 1]] = True
             cut[tri[3 * t + 2]] = True
     return out, deg, cut
+
+
+@njit(**NJIT)
+def _reflex_by_rounding(px, py, m):
+    """Whether the open ring ``p[:m]`` is simple and turns right only beside short edges.
+
+    A strip an ulp wide between sites a few ulps apart meets this cell along an edge a few
+    ulps long, and rounding turns the ring the wrong way at its ends: the ring shares every
+    vertex with its neighbours, where the spliced ring (:func:`.cellcut.spliced_cell`, no
+    relabelling) would be convex but lack the strip's edge. Short: within
+    ``REFLEX_SHORT_ULPS`` ulps of the vertex's coordinates. Rings of more than
+    ``_SPLICE_MIN`` vertices are not tested (the simplicity test is quadratic).
+    """
+    area = 0.0
+    for k in range(m):
+        k0 = k - 1 if k > 0 else m - 1
+        k2 = k + 1 if k + 1 < m else 0
+        ex = px[k] - px[k0]
+        ey = py[k] - py[k0]
+        fx = px[k2] - px[k]
+        fy = py[k2] - py[k]
+        if (ex == 0.0 and ey == 0.0) or (fx == 0.0 and fy == 0.0):
+            return False
+        area += (px[k] - px[0]) * (py[k2] - py[0]) - (px[k2] - px[0]) * (py[k] - py[0])
+        if orient2d(px[k0], py[k0], px[k], py[k], px[k2], py[k2]) <= 0.0:
+            s = REFLEX_SHORT_ULPS * _U * (abs(px[k]) + abs(py[k]))
+            if not (max(abs(ex), abs(ey)) <= s or max(abs(fx), abs(fy)) <= s):
+                return False
+    if not area > 0.0 or m > _SPLICE_MIN:
+        return False
+    # a fold (a float circle's hull cells all reach its centre) also turns right beside
+    # short edges: the ring must be simple, no two edges that are not neighbours meeting
+    for a in range(m):
+        a2 = a + 1 if a + 1 < m else 0
+        for b in range(a + 2, m):
+            if a == 0 and b == m - 1:
+                continue
+            b2 = b + 1 if b + 1 < m else 0
+            o1 = orient2d(px[a], py[a], px[a2], py[a2], px[b], py[b])
+            o2 = orient2d(px[a], py[a], px[a2], py[a2], px[b2], py[b2])
+            if (o1 > 0.0 and o2 > 0.0) or (o1 < 0.0 and o2 < 0.0):
+                continue
+            o3 = orient2d(px[b], py[b], px[b2], py[b2], px[a], py[a])
+            o4 = orient2d(px[b], py[b], px[b2], py[b2], px[a2], py[a2])
+            if (o3 > 0.0 and o4 > 0.0) or (o3 < 0.0 and o4 < 0.0):
+                continue
+            if o1 == 0.0 and o2 == 0.0:  # on one line: they meet only if they overlap
+                lo = min(px[a], px[a2]) if px[a] != px[a2] else min(py[a], py[a2])
+                hi = max(px[a], px[a2]) if px[a] != px[a2] else max(py[a], py[a2])
+                u = px[b] if px[a] != px[a2] else py[b]
+                w = px[b2] if px[a] != px[a2] else py[b2]
+                if max(u, w) < lo or min(u, w) > hi:
+                    continue
+            return False
+    return True
 
 
 @njit(**NJIT)
@@ -112,7 +170,7 @@ def _cell(i, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, bufs, nbrs, cl, tb
             if m >= 0:
                 return m
         m = cut_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, px, py, pw, qx, qy, qw, ss)
-        if m < 3 or open_ring_convex(px, py, m):
+        if m < 3 or open_ring_convex(px, py, m) or _reflex_by_rounding(px, py, m):
             return m
         # the cut folded: bisectors that meet within their rounding of one point (a float
         # circle's hull cells all reach its centre) cut in the wrong order. The edges between
