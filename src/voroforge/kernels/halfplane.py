@@ -266,10 +266,19 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
         nw = np.int64(0)
         work = 0
         grow = False
+        # one loop for both searches, so that the cut (inlined) is compiled once
+        ix = bucket_of(cx, x0, hx, nx)
+        iy = bucket_of(cy, y0, hy, ny)
+        ring = np.int64(0)
+        hs = np.int64(0)
         if use_tree:
             root = np.int64(0)
             hs = heap_push(hk, hv, root, box_dist2(cx, cy, tboxes, root), root)
-            while m >= 3 and not grow and hs > 0 and work <= budget:
+        while m >= 3 and not grow and work <= budget:
+            base = nc
+            if use_tree:
+                if hs == 0:
+                    break
                 key, v, hs = heap_pop(hk, hv, hs)
                 if key > _REACH * r2:
                     break  # every bucket left is farther still
@@ -284,7 +293,6 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
                     hs = heap_push(hk, hv, hs, box_dist2(cx, cy, tboxes, c), c)
                     hs = heap_push(hk, hv, hs, box_dist2(cx, cy, tboxes, c + 1), c + 1)
                     continue
-                base = nc
                 for t in range(tlo[v], thi[v]):
                     qx = sx[t] - cx
                     qy = sy[t] - cy
@@ -296,36 +304,7 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
                         break
                     work += _insert(cand, cd, base, nc, t, q2)
                     nc += 1
-                if grow:
-                    break
-                a, b, m, r2, nw, grow, w = _cut_batch(
-                    base,
-                    nc,
-                    cand,
-                    cd,
-                    sx,
-                    sy,
-                    sidx,
-                    cx,
-                    cy,
-                    px,
-                    py,
-                    po,
-                    ss,
-                    a,
-                    b,
-                    m,
-                    r2,
-                    watch,
-                    nw,
-                    cap,
-                )
-                work += w
-        else:
-            ix = bucket_of(cx, x0, hx, nx)
-            iy = bucket_of(cy, y0, hy, ny)
-            ring = np.int64(0)
-            while m >= 3 and not grow and work <= budget:
+            else:
                 if ring > 0:
                     # voro++'s stop radius: a site farther than 2 r cannot cut the cell
                     gap = ring_gap(cx, cx, cy, cy, ix, iy, ring - 1, grid)
@@ -340,7 +319,6 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
                 # gather the ring's sites that can still cut, nearest first, then cut with
                 # them: near bisectors shrink the cell early, so far ones fail the cheap
                 # radius test
-                base = nc
                 # rows, and on the ring's top and bottom rows runs of buckets, without any
                 # site are skipped (rownext, bnext): long thin cells cross many nearly empty
                 # rings
@@ -380,31 +358,32 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
                             nc += 1
                         jx = bnext[row + jx + 1] if edge_row else jx + step
                     jy = rownext[jy + 1]
-                if not grow:
-                    a, b, m, r2, nw, grow, w = _cut_batch(
-                        base,
-                        nc,
-                        cand,
-                        cd,
-                        sx,
-                        sy,
-                        sidx,
-                        cx,
-                        cy,
-                        px,
-                        py,
-                        po,
-                        ss,
-                        a,
-                        b,
-                        m,
-                        r2,
-                        watch,
-                        nw,
-                        cap,
-                    )
-                    work += w
                 ring += 1
+            if grow:
+                break
+            a, b, m, r2, nw, grow, w = _cut_batch(
+                base,
+                nc,
+                cand,
+                cd,
+                sx,
+                sy,
+                sidx,
+                cx,
+                cy,
+                px,
+                py,
+                po,
+                ss,
+                a,
+                b,
+                m,
+                r2,
+                watch,
+                nw,
+                cap,
+            )
+            work += w
         if grow and 2 * cap <= _HARD_CAP:  # many vertices: build it again with more room
             cap *= 2
             scratch = _scratch(cap)
