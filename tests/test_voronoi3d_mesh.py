@@ -329,3 +329,32 @@ def test_mesh_container_far_from_the_origin():
     assert abs(e.volumes.sum() - abs(mesh.volume)) <= 1e-9 * abs(mesh.volume)
     np.testing.assert_allclose(e.volumes, d.volumes, rtol=1e-6, atol=1e-9 * abs(mesh.volume))
     np.testing.assert_array_equal(e.pieces, d.pieces)
+
+
+def test_same_cells_on_one_thread_and_two():
+    # the convex cuts run in slices on threads (from 256 cells a thread), each slice's cells
+    # writing their rows one after another, and the touch test walks the cells in space
+    # order: one thread and two must give the same cells, bit for bit
+    import numba
+
+    if numba.config.NUMBA_NUM_THREADS < 2:
+        pytest.skip("needs two numba threads")
+    mesh = _torus()
+    lo, hi = mesh.bounds
+    pts = np.random.default_rng(5).uniform(lo, hi, (6000, 3))
+    before = numba.get_num_threads()
+    try:
+        numba.set_num_threads(1)
+        one = vf.voronoi3d(pts, mesh)
+        numba.set_num_threads(2)
+        two = vf.voronoi3d(pts, mesh)
+    finally:
+        numba.set_num_threads(before)
+    assert one.cut_cells.sum() >= 512  # two threads of slices
+    np.testing.assert_array_equal(one.volumes, two.volumes)
+    np.testing.assert_array_equal(one.centroids, two.centroids)
+    np.testing.assert_array_equal(one.vertices, two.vertices)
+    np.testing.assert_array_equal(one.pieces, two.pieces)
+    for a, b in zip(one.cell_face_table(), two.cell_face_table(), strict=True):
+        np.testing.assert_array_equal(a, b)
+    assert abs(one.volumes.sum() - abs(mesh.volume)) <= 1e-9 * abs(mesh.volume)

@@ -252,14 +252,26 @@ def _touching(cf, roff, ring, verts, farea, live, tri, tol, grid=None):
     from .threads import serial_below
 
     T, lo, h, dims, start, items = _tri_buckets(tri, tol) if grid is None else grid
-    with serial_below(int(live.sum())):
+    # the cells in space order (by buckets of twice the triangles' grid, at a vertex of
+    # each): the input's order reads the vertices at random (bench: 0.30-0.42 -> 0.17-0.29
+    # s on one thread)
+    cells = np.flatnonzero(live)
+    if len(cells):
+        at = verts[ring[roff[cf[cells]]]]
+        key = np.zeros(len(cells), np.int64)
+        for c in range(3):
+            g = np.floor((at[:, c] - lo[c]) / (2.0 * h)).astype(np.int64)
+            g -= g.min()
+            key = key * (int(g.max()) + 1) + g
+        cells = cells[np.argsort(key, kind="stable")]
+    with serial_below(len(cells)):
         return touching_cells(
             cf,
             roff,
             ring,
             verts,
             np.ascontiguousarray(farea),
-            live,
+            cells,
             T,
             lo,
             h,

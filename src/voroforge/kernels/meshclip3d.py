@@ -88,12 +88,13 @@ def cell_buckets(f0, f1, roff, ring, verts, tol, lo, h, dims):
 
 
 @njit(**NJIT_PARALLEL)
-def touching_cells(cf, roff, ring, verts, farea, live, T, lo, h, dims, start, items, tol):
+def touching_cells(cf, roff, ring, verts, farea, cells, T, lo, h, dims, start, items, tol):
     """``(n,) bool``: the cells that some triangle of ``T (m, 3, 3)`` meets.
 
     Cells as :meth:`Diagram3D.cell_face_table` gives them (faces ``cf``, rings
     ``roff``/``ring`` into ``verts``, outward area vectors ``farea``), each grown by ``tol``;
-    ``live`` marks the cells to test; triangles bucketed by :func:`tri_grid`.
+    ``cells`` lists the cells to test, in the order to test them (near ones together: their
+    vertices stay in the caches); triangles bucketed by :func:`tri_grid`.
     """
     n = cf.shape[0] - 1
     out = np.zeros(n, np.bool_)
@@ -104,9 +105,8 @@ def touching_cells(cf, roff, ring, verts, farea, live, T, lo, h, dims, start, it
         for c in range(3):
             fpt[f, c] = verts[v, c]
     ny, nz = dims[1], dims[2]
-    for i in prange(n):
-        if not live[i]:
-            continue
+    for j in prange(cells.shape[0]):
+        i = cells[j]
         f0, f1 = cf[i], cf[i + 1]
         cell_lo, cell_hi, a0, a1 = cell_buckets(f0, f1, roff, ring, verts, tol, lo, h, dims)
         buf_a = np.zeros((3 + f1 - f0, 3))
