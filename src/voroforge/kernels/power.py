@@ -97,7 +97,8 @@ def _named_vertices(i, xs, ys, ws, px, py, pw, m, box):
     corners are exact already. Always the name, never the cut: a cut vertex is cell ``i``'s
     alone, and keeping one (where the name looked far from it by a tolerance of the box's
     size, less than an ulp far from the origin) left its neighbours' copies in other bits.
-    Only a name that is not finite (a bisector parallel to the side) keeps the cut.
+    Only a name that is not finite (a bisector parallel to the side) keeps the cut; a
+    crossing that rounded past the side's end is put on the box's corner.
     """
     for v in range(m):
         a = pw[v - 1 if v > 0 else m - 1]
@@ -108,6 +109,11 @@ def _named_vertices(i, xs, ys, ws, px, py, pw, m, box):
             nx, ny = power_vertex(i, a, b, xs, ys, ws)
         else:
             nx, ny = power_box_crossing(i, a if a >= 0 else b, xs, ys, ws, b if a >= 0 else a, box)
+            # rounded past a corner: the corner (from the name's bits alone, so both cells
+            # of the bisector agree)
+            if abs(nx) < np.inf and abs(ny) < np.inf:
+                nx = min(max(nx, box[0]), box[2])
+                ny = min(max(ny, box[1]), box[3])
         if abs(nx) < np.inf and abs(ny) < np.inf:
             px[v] = nx
             py[v] = ny
