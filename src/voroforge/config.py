@@ -68,9 +68,9 @@ RELABEL_RTOL = 1e-9
 #: the vertex's coordinates) long, and is simple, is kept: the end of a strip an ulp wide
 #: (kernels/cells._reflex_by_rounding)
 REFLEX_SHORT_ULPS = 16.0
-#: Power-cell vertices closer than this (max-norm, relative to the box's larger side) to a
-#: ring neighbour keep their cut coordinates, and a vertex computed from its name replaces
-#: the cut one only within this distance (kernels/power)
+#: Two power-cell vertices are one point when within this times their L1 distance from the
+#: cell's site (the local spacing), plus 16 ulps of their coordinates: the join of the rings'
+#: tiny or one-sided edges across neighbours (kernels/power._close, _reconcile)
 POWER_CROWDED_RTOL = 1e-9
 #: Relative size of a seed candidate's float orientation below which the sweep's seed
 #: search asks the exact orient2d (nearly collinear: never the smallest circle; delaunay)
