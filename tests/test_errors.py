@@ -132,3 +132,53 @@ def test_text_points_and_boolean_seeds_are_refused(tmp_path):
     )
     with pytest.raises(DesignError, match=r"3.*design\.seed.*true/false"):
         load(f)
+
+
+@pytest.mark.parametrize(
+    ("section", "key", "value"),
+    [
+        ("attractors", "points", '[["10", "20"]]'),
+        ("attractors", "points", "[[true, 20]]"),
+        ("seeds", "radius", "true"),
+        ("seeds", "count", '"5"'),
+        ("design", "seed", '"3"'),
+        ("boundary", "width", '"100"'),
+    ],
+)
+def test_design_numbers_written_as_text_or_booleans_are_refused(tmp_path, section, key, value):
+    """A number in a design file is a TOML number: "10" and true were read as 10 and 1."""
+    from voroforge.design.designfile import DesignError, load
+
+    body = {
+        "design": {"name": '"x"', "seed": "1"},
+        "boundary": {"shape": '"rectangle"', "width": "10", "height": "10"},
+        "seeds": {"method": '"poisson"', "radius": "1.5"},
+        "attractors": {},
+    }
+    body[section][key] = value
+    if section == "seeds" and key == "count":
+        body["seeds"] = {"method": '"random"', "count": value}
+    if section == "attractors":
+        body["attractors"]["radius"] = "5"
+    text = "".join(
+        ("[[attractors]]\n" if name == "attractors" else f"[{name}]\n")
+        + "".join(f"{k} = {v}\n" for k, v in keys.items())
+        for name, keys in body.items()
+        if keys
+    )
+    f = tmp_path / "d.toml"
+    f.write_text(text)
+    with pytest.raises(DesignError, match=rf"{section}(\.0)?\.{key}"):
+        load(f)
+
+
+def test_explain_gif_size_has_an_upper_bound(tmp_path):
+    """``explain --size 200000`` ran out of memory with a traceback; now a clear error."""
+    from voroforge.explain.render import render_frames
+
+    pts = np.random.default_rng(0).random((10, 2))
+    with pytest.raises(ValueError, match="size must be an int from 16 to 8192"):
+        render_frames(pts, frames=2, size=200_000)
+    with pytest.raises(ValueError, match="at most"):
+        render_frames(pts, frames=4000, size=8192)
+    assert len(render_frames(pts, frames=3, size=64)) == 3

@@ -172,6 +172,9 @@ LBFGS_CURVATURE_RTOL = 1e-12
 #: writer's supersampling): 2**30 px is about 3 GB of RGB; beyond it a typo (--size 100000)
 #: would exhaust the machine's memory instead of failing with a clear error
 MAX_PIXELS = 2**30
+#: Longest side of an `explain` GIF in pixels (its frames together hold at most MAX_PIXELS):
+#: a typo such as --size 200000 fails at once instead of exhausting the memory
+GIF_MAX_SIDE = 8192
 #: Most points seeds.method = 'poisson' may place (about 0.67 area / radius^2 are expected;
 #: it is checked before sampling, which takes about a millisecond per point)
 POISSON_MAX_POINTS = 200_000

@@ -13,7 +13,7 @@ from __future__ import annotations
 import re
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, model_validator
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, Strict, model_validator
 
 from .. import config
 from ..solid.schema import SolidSection, fill_2d
@@ -40,16 +40,34 @@ __all__ = [
 PRODUCTS = ("frame", "openings", "cells", "edges", "sites", "boundary", "labels")
 Product = Literal["frame", "openings", "cells", "edges", "sites", "boundary", "labels", "curves"]
 
-PositiveFloat = Annotated[float, Field(gt=0)]
-NonNegFloat = Annotated[float, Field(ge=0)]
-Point = tuple[float, float]
-
 
 def _not_bool(value: Any) -> Any:
-    """``seed = true`` is a typo, not the seed 1: refuse booleans where a number is meant."""
+    """``seed = true`` is a typo, not the seed 1: refuse booleans (and text) for a seed."""
     if isinstance(value, bool):
         raise ValueError("expected a whole number >= 0, not true/false")
+    if isinstance(value, str):
+        raise ValueError(f"expected an integer >= 0, not the text {short_repr(value)}")
     return value
+
+
+def _whole(value: Any) -> Any:
+    """A count is a TOML number: refuse ``"3"`` and ``true`` (pydantic would take them as 3, 1)."""
+    if isinstance(value, bool):
+        raise ValueError("expected an integer, not true/false")
+    if isinstance(value, str):
+        raise ValueError(f"expected an integer, not the text {short_repr(value)}")
+    return value
+
+
+#: A number written as a number: ``"10"`` and ``true`` are refused, not read as 10 and 1.
+Num = Annotated[float, Strict()]
+#: A whole number written as a number (``100.0`` is still 100).
+Whole = Annotated[int, BeforeValidator(_whole)]
+#: true or false, not ``"yes"`` or 1.
+Flag = Annotated[bool, Strict()]
+PositiveFloat = Annotated[Num, Field(gt=0)]
+NonNegFloat = Annotated[Num, Field(ge=0)]
+Point = tuple[Num, Num]
 
 
 #: Random seeds: numpy's generators take non-negative integers only.
@@ -72,9 +90,9 @@ class Graded(_Model):
     (at an attractor) and 1.5 where it is 0, linear in between.
     """
 
-    value: float | None = None
-    near: float | None = None
-    far: float | None = None
+    value: Num | None = None
+    near: Num | None = None
+    far: Num | None = None
 
     @model_validator(mode="before")
     @classmethod
@@ -138,7 +156,7 @@ class Boundary(_Model):
     origin: Point = (0.0, 0.0)
     radius: PositiveFloat | None = None
     center: Point = (0.0, 0.0)
-    segments: Annotated[int, Field(ge=8)] = 256
+    segments: Annotated[Whole, Field(ge=8)] = 256
     points: list[Point] | None = None
     holes: list[list[Point]] = []
     parts: list[Part] | None = None
@@ -169,16 +187,16 @@ class Seeds(_Model):
     method: Literal[
         "random", "grid", "hexgrid", "jittered", "poisson", "density", "file", "image", "curves"
     ] = "random"
-    count: Annotated[int, Field(gt=0)] | None = None
+    count: Annotated[Whole, Field(gt=0)] | None = None
     spacing: PositiveFloat | None = None
     radius: PositiveFloat | None = None
     radius_max: PositiveFloat | None = None
-    jitter: Annotated[float, Field(ge=0, le=1)] = 0.5
-    angle: float = 0.0
+    jitter: Annotated[Num, Field(ge=0, le=1)] = 0.5
+    angle: Num = 0.0
     offset: Point = (0.0, 0.0)
     file: str | None = None
     seed: Seed | None = None
-    use_field: bool = False
+    use_field: Flag = False
     # method = "curves": the curves the cell edges trace (polylines, SVG path data or file)
     curves: list[Annotated[list[Point], Field(min_length=2)]] | None = None
     path: str | None = None
@@ -220,7 +238,7 @@ class Seeds(_Model):
 class Relax(_Model):
     """``[relax]``: Lloyd relaxation of the seeds."""
 
-    iterations: Annotated[int, Field(ge=0, le=1000)] = 0
+    iterations: Annotated[Whole, Field(ge=0, le=1000)] = 0
     tolerance: PositiveFloat | None = None
 
 
@@ -228,7 +246,7 @@ class Voronoi(_Model):
     """``[voronoi]``: engine options."""
 
     algorithm: Literal["delaunay", "fortune", "halfplane"] = "delaunay"
-    periodic: bool = False
+    periodic: Flag = False
     power_radius: Graded | None = None
 
     @model_validator(mode="after")
@@ -272,7 +290,7 @@ class FieldSpec(_Model):
     """``[field]``: how the attractors combine."""
 
     combine: Literal["max", "min", "sum"] = "max"
-    invert: bool = False
+    invert: Flag = False
 
 
 class Cells(_Model):
@@ -282,7 +300,7 @@ class Cells(_Model):
     inset: Graded | None = None
     join: Literal["mitre", "round"] = "mitre"
     scale: Graded = Graded(value=1.0)
-    smooth: Annotated[int, Field(ge=0, le=8)] = 0
+    smooth: Annotated[Whole, Field(ge=0, le=8)] = 0
     fillet: Graded = Graded(value=0.0)
     min_area: NonNegFloat = 0.0
     min_size: NonNegFloat = 0.0
@@ -309,12 +327,12 @@ class Openings(_Model):
     select: Literal["all", "area", "random", "every_kth", "largest", "field"] = "all"
     min_area: NonNegFloat | None = None
     max_area: NonNegFloat | None = None
-    probability: Annotated[float, Field(ge=0, le=1)] | None = None
-    k: Annotated[int, Field(gt=0)] | None = None
-    start: Annotated[int, Field(ge=0)] = 0
-    count: Annotated[int, Field(ge=0)] | None = None
-    threshold: float | None = None
-    invert: bool = False
+    probability: Annotated[Num, Field(ge=0, le=1)] | None = None
+    k: Annotated[Whole, Field(gt=0)] | None = None
+    start: Annotated[Whole, Field(ge=0)] = 0
+    count: Annotated[Whole, Field(ge=0)] | None = None
+    threshold: Num | None = None
+    invert: Flag = False
     seed: Seed | None = None
 
     @model_validator(mode="after")
@@ -338,7 +356,7 @@ class Openings(_Model):
 class Recursion(_Model):
     """``[recursion]``: subdivide chosen cells again, level by level."""
 
-    depth: Annotated[int, Field(ge=0, le=6)] = 0
+    depth: Annotated[Whole, Field(ge=0, le=6)] = 0
     count: Graded = Graded(value=6.0)
     # a number, or { near = 1, far = 0.5 }: the chance that a cell is subdivided, by the field
     probability: Graded = Graded(value=1.0)
@@ -364,12 +382,12 @@ class Gif(_Model):
 
     key: str
     values: Annotated[list[Any], Field(min_length=1)] | None = None
-    start: float | None = None
-    stop: float | None = None
-    frames: Annotated[int, Field(ge=2, le=200)] = 12
-    fps: Annotated[float, Field(gt=0, le=50)] = 8.0
-    size: Annotated[int, Field(ge=32, le=2048)] = 400
-    bounce: bool = True
+    start: Num | None = None
+    stop: Num | None = None
+    frames: Annotated[Whole, Field(ge=2, le=200)] = 12
+    fps: Annotated[Num, Field(gt=0, le=50)] = 8.0
+    size: Annotated[Whole, Field(ge=32, le=2048)] = 400
+    bounce: Flag = True
 
     @model_validator(mode="after")
     def _range(self) -> Gif:
@@ -396,20 +414,20 @@ class Output(_Model):
     formats: list[Literal["svg", "dxf", "png", "geojson", "gif", "parquet"]] = ["svg", "png"]
     layers: dict[str, Product | list[Product]] = {"CUT": "frame"}
     kerf: NonNegFloat = 0.0
-    png_size: Annotated[int, Field(ge=32, le=8192)] = 1200
+    png_size: Annotated[Whole, Field(ge=32, le=8192)] = 1200
     png: Literal["cells", "layers"] = "cells"
-    png_sites: bool = False
+    png_sites: Flag = False
     geojson: Product = "cells"
     stroke_width: PositiveFloat | None = None  # None: 0.01 mm in the design's units
     arc_tolerance: PositiveFloat = config.ARC_TOLERANCE
     gif: Gif | None = None
     # paths for the machine (voroforge.io.plotter): pen-up travel order, merged strokes
     order: Literal["travel", "file"] = "travel"
-    merge_lines: bool = True
+    merge_lines: Flag = True
     site_marks: Literal["circle", "cross"] = "circle"
     # cell numbers as single-stroke text (voroforge.io.labels) and cut-apart pieces
     label_height: PositiveFloat | None = None
-    pieces: bool = False
+    pieces: Flag = False
     # "source": the SVG page is the boundary file's page (same size and origin)
     page: Literal["boundary", "source"] = "boundary"
 
@@ -439,8 +457,8 @@ class Fabrication(_Model):
     min_opening: NonNegFloat | None = None
     tool_radius: NonNegFloat | None = None
     corner_tolerance: NonNegFloat = config.FAB_CORNER_TOLERANCE
-    islands: bool = True
-    report: bool = False
+    islands: Flag = True
+    report: Flag = False
 
 
 class Design(_Model):

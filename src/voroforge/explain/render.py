@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..config import GIF_MAX_SIDE, MAX_PIXELS
 from .fortune import FortuneTrace, breakpoint_x, parabola_y, trace
 
 __all__ = ["COLORS", "frame_size", "render_frames", "sweep_positions", "write_gif"]
@@ -201,7 +202,8 @@ def render_frames(points_or_trace, *, frames: int = 60, size: int = 480) -> list
         Number of frames, at least 2 and at most the picture's height in pixels (so the
         sweep line moves in every frame). The last frame shows the finished diagram.
     size : int
-        Pixels along the longer side of the picture (at least 16).
+        Pixels along the longer side of the picture, 16 to ``GIF_MAX_SIDE`` (8192); all the
+        frames together hold at most ``config.MAX_PIXELS`` pixels.
 
     Returns
     -------
@@ -213,14 +215,19 @@ def render_frames(points_or_trace, *, frames: int = 60, size: int = 480) -> list
     ValueError
         For a bad ``frames`` or ``size``, or bad points.
     """
+    if not isinstance(size, int) or isinstance(size, bool) or not 16 <= size <= GIF_MAX_SIDE:
+        raise ValueError(f"size must be an int from 16 to {GIF_MAX_SIDE} pixels; got {size!r}")
     tr = points_or_trace if isinstance(points_or_trace, FortuneTrace) else trace(points_or_trace)
-    if not isinstance(size, int) or isinstance(size, bool) or size < 16:
-        raise ValueError(f"size must be an int >= 16 pixels; got {size!r}")
     width, height = frame_size(tr.bounds, size)
     if not isinstance(frames, int) or isinstance(frames, bool) or not 2 <= frames <= height:
         raise ValueError(
             f"frames must be an int from 2 to the picture's height ({height} px) so that the "
             f"sweep moves every frame; got {frames!r}"
+        )
+    if frames * width * height > MAX_PIXELS:
+        raise ValueError(
+            f"{frames} frames of {width} x {height} px are {frames * width * height:,} pixels, "
+            f"at most {MAX_PIXELS:,}: use fewer frames or a smaller size"
         )
     out = []
     for sweep in sweep_positions(tr.bounds, frames):
