@@ -26,6 +26,7 @@ import pytest
 import shapely
 
 import voroforge as vf
+from test_exactness import _walk
 
 from catalogue import FEW_ULPS, sites_ulps_apart
 
@@ -89,18 +90,6 @@ def test_sites_ulps_apart_euler_and_shared_vertices(off, seed):
     assert len(flagged) == 1
 
 
-def _up(x, k):
-    for _ in range(k):
-        x = np.nextafter(x, np.inf)
-    return x
-
-
-def _down(x, k):
-    for _ in range(k):
-        x = np.nextafter(x, -np.inf)
-    return x
-
-
 def _box_side_strips(lo, seed):
     """``near_duplicates_at_box_sides``'s neighbours: pairs of sites 1-5 ulps inside both
     sides of a unit box at ``lo``, the pair at one height (a strip cell between the pair's
@@ -111,11 +100,11 @@ def _box_side_strips(lo, seed):
     k1 = int(g.integers(1, 4))
     k2 = k1 + int(g.integers(1, 3))
     side = [
-        [_up(lo, k1), y1],
-        [_up(lo, k2), y1],
-        [_up(lo, int(g.integers(1, 4))), y2],
-        [_down(lo + 1.0, k2), y3],
-        [_down(lo + 1.0, k1), y3],
+        [_walk(lo, k1, 1.0), y1],
+        [_walk(lo, k2, 1.0), y1],
+        [_walk(lo, int(g.integers(1, 4)), 1.0), y2],
+        [_walk(lo + 1.0, k2, -1.0), y3],
+        [_walk(lo + 1.0, k1, -1.0), y3],
     ]
     inner = [lo, 0.0] + g.random((int(g.integers(5, 25)), 2))
     pts = np.concatenate((np.array(side), inner, inner[:4] + [0.0, 2.0**-33]))
