@@ -236,7 +236,7 @@ def _tiling_halfplane(xs, ys, box, kmap, memo):
     closed, lengths, owner, hard = _memo(memo, "halfplane", halfplane_cells, xs, ys, box, kmap)
     if hard.any() or len(closed) == 0:
         return None
-    # signed areas relative to each ring's first vertex, summed exactly (a rare path)
+    # signed areas relative to each ring's first vertex, added with math.fsum (a rare path)
     size = np.diff(lengths)
     rel = closed - np.repeat(closed[lengths[:-1][size > 0]], size[size > 0], axis=0)
     last = np.zeros(len(closed), np.bool_)
