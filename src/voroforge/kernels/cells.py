@@ -27,7 +27,7 @@ from numba import njit, prange
 from ..config import FOLD_MAX_ROUNDS, NJIT, NJIT_PARALLEL, REFLEX_SHORT_ULPS
 from .cellcut import cut_cell, spliced_cell
 from .centers import circumcenters, contract, merge_cocircular
-from .clip import open_ring_convex
+from .clip import open_ring_convex, ring_corner
 from .folds import fold_pairs, folded_rings, risky_sites
 from .predicates import orient2d
 
@@ -74,14 +74,11 @@ def _reflex_by_rounding(px, py, m):
     ``REFLEX_SHORT_ULPS`` ulps of the vertex's coordinates. Rings of more than
     ``_SPLICE_MIN`` vertices are not tested (the simplicity test is quadratic).
     """
+    if m > _SPLICE_MIN:
+        return False
     area = 0.0
     for k in range(m):
-        k0 = k - 1 if k > 0 else m - 1
-        k2 = k + 1 if k + 1 < m else 0
-        ex = px[k] - px[k0]
-        ey = py[k] - py[k0]
-        fx = px[k2] - px[k]
-        fy = py[k2] - py[k]
+        k0, k2, ex, ey, fx, fy = ring_corner(px, py, m, k)
         if (ex == 0.0 and ey == 0.0) or (fx == 0.0 and fy == 0.0):
             return False
         area += (px[k] - px[0]) * (py[k2] - py[0]) - (px[k2] - px[0]) * (py[k] - py[0])
@@ -89,7 +86,7 @@ def _reflex_by_rounding(px, py, m):
             s = REFLEX_SHORT_ULPS * _U * (abs(px[k]) + abs(py[k]))
             if not (max(abs(ex), abs(ey)) <= s or max(abs(fx), abs(fy)) <= s):
                 return False
-    if not area > 0.0 or m > _SPLICE_MIN:
+    if not area > 0.0:
         return False
     # a fold (a float circle's hull cells all reach its centre) also turns right beside
     # short edges: the ring must be simple, no two edges that are not neighbours meeting

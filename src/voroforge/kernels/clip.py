@@ -169,6 +169,18 @@ def ring_convex(xy, a, b):
     return open_ring_convex(xy[a : b - 1, 0], xy[a : b - 1, 1], b - a - 1)
 
 
+@njit(inline="always", **NJIT)
+def ring_corner(px, py, m, k):
+    """Vertex ``k`` of the open ring ``p[:m]``: ``(k0, k2, ex, ey, fx, fy)``.
+
+    ``k0`` and ``k2`` are the previous and next vertices (wrapping around), ``e`` the edge
+    into vertex ``k`` and ``f`` the edge out of it.
+    """
+    k0 = k - 1 if k > 0 else m - 1
+    k2 = k + 1 if k + 1 < m else 0
+    return k0, k2, px[k] - px[k0], py[k] - py[k0], px[k2] - px[k], py[k2] - py[k]
+
+
 @njit(**NJIT)
 def open_ring_convex(px, py, m):
     """:func:`ring_convex` of the open ring ``p[:m]`` (no repeated closing vertex)."""
@@ -176,12 +188,7 @@ def open_ring_convex(px, py, m):
         return False
     wraps = 0
     for k in range(m):
-        k0 = k - 1 if k > 0 else m - 1
-        k2 = k + 1 if k + 1 < m else 0
-        ex = px[k] - px[k0]
-        ey = py[k] - py[k0]
-        fx = px[k2] - px[k]
-        fy = py[k2] - py[k]
+        k0, k2, ex, ey, fx, fy = ring_corner(px, py, m, k)
         if (ex == 0.0 and ey == 0.0) or (fx == 0.0 and fy == 0.0):
             return False
         o = orient2d(px[k0], py[k0], px[k], py[k], px[k2], py[k2])
