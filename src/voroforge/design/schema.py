@@ -41,17 +41,11 @@ PRODUCTS = ("frame", "openings", "cells", "edges", "sites", "boundary", "labels"
 Product = Literal["frame", "openings", "cells", "edges", "sites", "boundary", "labels", "curves"]
 
 
-def _not_bool(value: Any) -> Any:
-    """``seed = true`` is a typo, not the seed 1: refuse booleans (and text) for a seed."""
-    if isinstance(value, bool):
-        raise ValueError("expected a whole number >= 0, not true/false")
-    if isinstance(value, str):
-        raise ValueError(f"expected an integer >= 0, not the text {short_repr(value)}")
-    return value
-
-
 def _whole(value: Any) -> Any:
-    """A count is a TOML number: refuse ``"3"`` and ``true`` (pydantic would take them as 3, 1)."""
+    """A count or seed is a TOML number: refuse ``"3"`` and ``true`` (pydantic reads 3 and 1).
+
+    ``seed = true`` is a typo, not the seed 1.
+    """
     if isinstance(value, bool):
         raise ValueError("expected an integer, not true/false")
     if isinstance(value, str):
@@ -71,7 +65,7 @@ Point = tuple[Num, Num]
 
 
 #: Random seeds: numpy's generators take non-negative integers only.
-Seed = Annotated[int, BeforeValidator(_not_bool), Field(ge=0)]
+Seed = Annotated[Whole, Field(ge=0)]
 
 
 def _need(field: str, message: str) -> ValueError:
