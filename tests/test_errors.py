@@ -135,6 +135,29 @@ def test_text_points_and_boolean_seeds_are_refused(tmp_path):
 
 
 @pytest.mark.parametrize(
+    "points",
+    [
+        [[True, 2.0], [0.5, 0.3], [0.2, 0.9]],
+        [(0.5, np.bool_(False)), (0.1, 0.2), (0.7, 0.7)],
+        [[1, 1], [0, 0], [True, 0.5]],
+        [np.array([True, False]), [0.5, 0.5], [0.2, 0.1]],
+    ],
+)
+def test_a_boolean_among_numbers_is_refused(points):
+    """numpy turns ``[[True, 2.0]]`` into floats; the mix must still be refused."""
+    with pytest.raises(ValueError, match="true/false among the numbers is not a coordinate"):
+        vf.voronoi(points)
+    with pytest.raises(ValueError, match="true/false among the numbers is not a number"):
+        vf.power([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], [True, 0.5, 0.25])
+
+
+def test_zeros_and_ones_without_booleans_are_coordinates():
+    d = vf.voronoi([[1, 1], [0, 0], [1.0, 0.5], [0, 1]], (0, 0, 1, 1))
+    assert np.isclose(d.areas.sum(), 1.0)
+    assert (d.duplicate_of == -1).all()
+
+
+@pytest.mark.parametrize(
     ("section", "key", "value"),
     [
         ("attractors", "points", '[["10", "20"]]'),

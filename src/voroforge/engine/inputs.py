@@ -39,6 +39,8 @@ def as_points(points, *, dim: int = 2, name: str = "points") -> np.ndarray:
         ):
             raise TypeError("text and true/false are not coordinates (parse them first)")
         arr = np.array(raw, dtype=np.float64, copy=True)
+        if raw.dtype.kind != "b" and _nested_bool(points, arr):
+            raise TypeError("a true/false among the numbers is not a coordinate")
     except (TypeError, ValueError) as exc:
         raise ValueError(
             f"{name} must be an (n, {dim}) array of real numbers; could not convert it ({exc})"
@@ -55,6 +57,27 @@ def as_points(points, *, dim: int = 2, name: str = "points") -> np.ndarray:
             f"{name} contains {kind} coordinates (first at row {bad}: {arr[bad].tolist()})"
         )
     return np.ascontiguousarray(arr)
+
+
+def _nested_bool(points, arr: np.ndarray) -> bool:
+    """Whether a nested list gave numpy a ``True``/``False`` that it turned into 1.0/0.0.
+
+    ``np.asarray([[True, 2.0]])`` is a float array, so the mix is invisible in its dtype. A
+    boolean can only have become 0.0 or 1.0: ordinary float input costs one comparison per
+    value, and only input holding 0.0 or 1.0 is read again as Python objects.
+    """
+    if isinstance(points, np.ndarray):
+        return False
+    mask = (arr == 0.0) | (arr == 1.0)
+    if not mask.any():
+        return False
+    try:
+        items = np.array(points, dtype=object)
+    except (TypeError, ValueError):
+        return False
+    if items.shape != arr.shape:
+        return False
+    return any(isinstance(v, bool | np.bool_) for v in items[mask])
 
 
 def as_query(xy, *, dim: int = 2, name: str = "xy") -> tuple[np.ndarray, bool]:
@@ -86,7 +109,10 @@ def _real_copy(values, what: str) -> np.ndarray:
     raw = np.asarray(values)
     if raw.dtype.kind == "c":
         raise TypeError(what)
-    return np.array(raw, dtype=np.float64, copy=True)
+    out = np.array(raw, dtype=np.float64, copy=True)
+    if raw.dtype.kind != "b" and _nested_bool(values, out):
+        raise TypeError("a true/false among the numbers is not a number")
+    return out
 
 
 def as_weights(weights, n: int, *, name: str = "weights") -> np.ndarray:
