@@ -234,6 +234,46 @@ def _edge_to(po, b, m, j):
 
 
 @njit(**NJIT)
+def _same(px, py, a, b):
+    """Whether slots ``a`` and ``b`` hold the same bits."""
+    return px[a] == px[b] and py[a] == py[b]
+
+
+@njit(**NJIT_PARALLEL)
+def _agreed(xs, ys, px, py, po, cap, cnt):
+    """Whether the named rings already agree, so that :func:`_reconcile` would change nothing.
+
+    True when every bisector edge is in the neighbour's ring too, with the same end points
+    in the same bits, and no edge runs backwards (along its bisector or box side) between
+    two different points: then no edge is inserted and :func:`_reconcile`'s classes only
+    join slots with equal bits. The usual case: each vertex is computed from its name.
+    """
+    n = xs.shape[0]
+    bad = np.zeros(n, dtype=np.bool_)
+    for i in prange(n):
+        m = cnt[i]
+        b = cap[i]
+        for v in range(m):
+            j = po[b + v]
+            p = b + v
+            q = b + (v + 1 if v + 1 < m else 0)
+            if j < 0:
+                if _side_backwards(px, py, p, q, j) and not _same(px, py, p, q):
+                    bad[i] = True
+                    break
+                continue
+            u = _edge_to(po, cap[j], cnt[j], i)
+            if u < 0 or (_backwards(px, py, p, q, xs, ys, i, j) and not _same(px, py, p, q)):
+                bad[i] = True
+                break
+            uq = cap[j] + (u - cap[j] + 1 if u - cap[j] + 1 < cnt[j] else 0)
+            if not (_same(px, py, p, uq) and _same(px, py, q, u)):
+                bad[i] = True
+                break
+    return not bad.any()
+
+
+@njit(**NJIT)
 def _reconcile(xs, ys, px, py, po, cap, cnt, rtol):
     """Make the named rings agree: one point for each vertex, shared bit for bit (in place).
 
@@ -397,7 +437,8 @@ def power_cells(xs, ys, ws, indptr, indices, box, active):
             slab_y[b + k] = py[k]
             slab_o[b + k] = po[k]
         cnt[i] = m
-    _reconcile(xs, ys, slab_x, slab_y, slab_o, cap, cnt, POWER_CROWDED_RTOL)
+    if not _agreed(xs, ys, slab_x, slab_y, slab_o, cap, cnt):
+        _reconcile(xs, ys, slab_x, slab_y, slab_o, cap, cnt, POWER_CROWDED_RTOL)
     counts = np.zeros(n + 1, dtype=np.int64)
     for i in prange(n):
         m = _compact(np.int64(i), xs, ys, slab_x, slab_y, slab_o, cap[i], cnt[i])
