@@ -38,6 +38,15 @@ from .threads import serial_below
 
 #: Up to this many sites every pair is a candidate neighbour (no triangulation needed).
 _ALL_PAIRS_MAX = 16
+_EPS = float(np.finfo(float).eps)
+#: A lower facet of the lift resolves its sites' curvature when each side's squared length
+#: (frame units) exceeds this many ulps of the lifted heights at its ends (config candidate)
+_LIFT_RESOLVE_ULPS = 1e4
+#: Where not, each site's nearest in the lifted space are its first candidates; then cells'
+#: vertices are checked against as many, to this many ulps, in so many rounds at most
+_LOST_NEAR = 12
+_CHECK_ULPS = 16.0
+_CHECK_ROUNDS = 64
 
 
 class PowerDiagram(Diagram):
@@ -163,14 +172,17 @@ def _may_win(x, y, w, box, active):
 
 
 def _neighbors(x, y, w, box, active):
-    """Candidate neighbours (CSR over all sites) and the mask of sites that can have a cell."""
+    """Candidate neighbours (CSR over all sites), sites that can have a cell, lift resolved.
+
+    When the lift has not resolved every site, :func:`_checked_cells` completes the cells.
+    """
     n = len(x)
     active = _may_win(x, y, w, box, active)
     idx = np.flatnonzero(active)
     m = len(idx)
     if m <= _ALL_PAIRS_MAX:
         a, b = np.triu_indices(m, 1)
-        return (*_pairs_csr(n, idx[a], idx[b]), active)
+        return (*_pairs_csr(n, idx[a], idx[b]), active, True)
     # lift in a frame centred on the box with unit size: well-conditioned for Qhull
     cx = 0.5 * (box[0] + box[2])
     cy = 0.5 * (box[1] + box[3])
@@ -185,19 +197,83 @@ def _neighbors(x, y, w, box, active):
         far = int(np.argmax(np.einsum("ij,ij->i", span, span)))
         cross = span[:, 0] * span[far, 1] - span[:, 1] * span[far, 0]
         if np.abs(cross).max() <= POWER_FLAT_RTOL * float(span[far] @ span[far]):
-            return _collinear(n, idx, span, span[far], lift[:, 2], active)
+            return (*_collinear(n, idx, span, span[far], lift[:, 2], active), True)
         hull = ConvexHull(lift, qhull_options="QJ")  # coplanar lift: one shared vertex
     lower = hull.simplices[hull.equations[:, 2] < 0.0]
     on_hull = np.zeros(n, dtype=bool)
     on_hull[idx[lower.ravel()]] = True
     a = idx[lower[:, [0, 1, 2]].ravel()]
     b = idx[lower[:, [1, 2, 0]].ravel()]
+    # a facet shorter than the lift's rounding has lost z's curvature and sites with it
+    # (1e-6 clusters 1e3 apart: 17 of 120 on the hull); every site may then have a cell
+    turn = lower[:, [1, 2, 0]]
+    side = (u[lower] - u[turn]) ** 2 + (v[lower] - v[turn]) ** 2
+    noise = np.abs(lift[:, 2])[lower] + np.abs(lift[:, 2])[turn]
+    sure = bool(np.all(side > _LIFT_RESOLVE_ULPS * _EPS * noise))
+    if not sure:
+        # first candidates: the nearest sites in the lifted space (:func:`_checked_cells`)
+        k = min(m, _LOST_NEAR + 1)
+        near = np.column_stack((x[idx] - cx, y[idx] - cy, np.sqrt(w[idx].max() - w[idx])))
+        nb = cKDTree(near).query(near, k=k)[1].reshape(m, k)
+        a = np.concatenate((a, np.repeat(idx, k)))
+        b = np.concatenate((b, idx[nb.ravel()]))
+        keep = a != b
+        a, b = a[keep], b[keep]
+        on_hull = active
     key = np.minimum(a, b) * n + np.maximum(a, b)
     key.sort()
     keep = np.ones(len(key), dtype=bool)
     keep[1:] = key[1:] != key[:-1]
     key = key[keep]
-    return (*_pairs_csr(n, key // n, key % n), active & on_hull)
+    return (*_pairs_csr(n, key // n, key % n), active & on_hull, sure)
+
+
+def _checked_cells(x, y, w, box, active, indptr, indices):
+    """Power cells from candidates that may lack neighbours, completed until every vertex checks.
+
+    A cell cut by too few bisectors is larger than the true cell, so one of its vertices
+    lies in another site's cell: the sites nearest in power at each vertex (a KD-tree of the
+    lifted sites, as in ``locate``; power distances in differences) that beat or tie the
+    cell's own site there, within the vertex's rounding, become candidates both ways,
+    and the cells are cut again until none is new. A missed tie is a missed tiny edge (a
+    T-junction); an extra candidate costs one cut. An empty cell is certain: fewer
+    bisectors leave more of the box.
+    """
+    n = len(x)
+    pts = np.column_stack((x, y))
+    ids = np.flatnonzero(active)
+    top = float(w[ids].max())
+    tree = cKDTree(np.column_stack((pts[ids], np.sqrt(top - w[ids]))))
+    rows = np.repeat(np.arange(n), np.diff(indptr))
+    known = rows * n + indices
+    for _ in range(_CHECK_ROUNDS):
+        got = power_cells(x, y, w, indptr, indices, box, active)
+        q = got[0]
+        cell = np.repeat(np.arange(n), np.diff(got[1]))
+        rows, k, key = np.arange(len(q)), min(len(ids), _LOST_NEAR), [known[:0]]
+        while len(rows):  # more sites where all k found lead or tie
+            i = cell[rows, None]
+            j = ids[tree.query(np.column_stack((q[rows], np.zeros(len(rows)))), k=k)[1]]
+            j = j.reshape(len(rows), k)
+            di = q[rows] - pts[i[:, 0]]
+            dj = q[rows, None, :] - pts[j]
+            pi = np.einsum("ij,ij->i", di, di)[:, None] - w[i]
+            pj = np.einsum("ijk,ijk->ij", dj, dj) - w[j]
+            # a vertex moved by delta changes the difference by 2 delta |p_i - p_j|
+            delta = _CHECK_ULPS * _EPS * np.abs(q[rows]).max(axis=1)[:, None]
+            gap = np.linalg.norm(pts[j] - pts[i], axis=2)
+            band = pj <= pi + 2.0 * delta * gap + _CHECK_ULPS * _EPS * (np.abs(pi) + np.abs(pj))
+            bad = band & (j != i)
+            i, j = np.broadcast_arrays(i, j)
+            key.append(np.minimum(i, j)[bad] * n + np.maximum(i, j)[bad])
+            rows, k = (rows[band[:, -1]], min(len(ids), 4 * k)) if k < len(ids) else (rows[:0], k)
+        key = np.setdiff1d(np.concatenate(key), known)
+        if not len(key):
+            return got
+        known = np.union1d(known, np.concatenate((key, (key % n) * n + key // n)))
+        keep = known // n < known % n
+        indptr, indices = _pairs_csr(n, known[keep] // n, known[keep] % n)
+    return got
 
 
 def _collinear(n, idx, span, direction, z, active):
@@ -247,8 +323,11 @@ def power_diagram(pts: np.ndarray, w: np.ndarray, dom: Domain) -> PowerDiagram:
     x = np.ascontiguousarray(pts[:, 0])
     y = np.ascontiguousarray(pts[:, 1])
     box = np.array(dom.bounds, dtype=np.float64)
-    indptr, indices, active = _neighbors(x, y, w, box, active)
-    closed, lengths, own = power_cells(x, y, w, indptr, indices, box, active)
+    indptr, indices, active, sure = _neighbors(x, y, w, box, active)
+    if sure:
+        closed, lengths, own = power_cells(x, y, w, indptr, indices, box, active)
+    else:
+        closed, lengths, own = _checked_cells(x, y, w, box, active, indptr, indices)
     bufs, edges = assemble(dom, closed, lengths, own, n)
     return PowerDiagram(pts, dup, dom, bufs, edges, w)
 
