@@ -172,10 +172,7 @@ def _may_win(x, y, w, box, active):
 
 
 def _neighbors(x, y, w, box, active):
-    """Candidate neighbours (CSR over all sites), sites that can have a cell, lift resolved.
-
-    When the lift has not resolved every site, :func:`_checked_cells` completes the cells.
-    """
+    """Candidate neighbours (CSR), sites that may have a cell, whether the lift resolved all."""
     n = len(x)
     active = _may_win(x, y, w, box, active)
     idx = np.flatnonzero(active)
@@ -362,9 +359,11 @@ def power(points, weights, boundary=None) -> PowerDiagram:
 
     Notes
     -----
-    Neighbours come from Qhull's lower hull of the lifted sites; the cells are cut in
-    floating point relative to each site (unequal weights do not use the exact predicates
-    of :func:`voroforge.voronoi`). Collinear sites are handled by a 1D lower hull.
+    Neighbours come from Qhull's lower hull of the lifted sites (where it cannot resolve
+    them, e.g. clusters far narrower than the box, each cell's vertices are checked against
+    the sites nearest in power); the cells are cut in floating point relative to each site
+    (unequal weights do not use the exact predicates of :func:`voroforge.voronoi`).
+    Collinear sites are handled by a 1D lower hull.
 
     Examples
     --------
