@@ -174,3 +174,14 @@ def test_reconcile_is_skipped_only_where_it_changes_nothing(case):
     same = all(np.array_equal(a, b) for a, b in zip(before, (px, py, po, cnt), strict=True))
     assert same or not agreed
     assert agreed == (case == "uniform")
+
+
+def test_cluster_at_the_box_centre_among_spread_sites():
+    """A 1e-6 cluster at the lift's frame centre: its lifted heights are exact, yet Qhull's
+    tolerance (of the largest lifted coordinate) merges it: most of its cells were empty."""
+    g = np.random.default_rng(0)
+    pts = np.concatenate((g.random((300, 2)) * 1e3, g.normal(0.0, 1e-6, (30, 2)) + 500.0))
+    w = g.random(len(pts)) * 1e-14
+    box = (0.0, 0.0, 1e3, 1e3)
+    d = _check(pts, w, box, [np.arange(300, 330)])
+    assert (d.areas[300:] > 0).sum() >= 25

@@ -40,7 +40,7 @@ from .threads import serial_below
 _ALL_PAIRS_MAX = 16
 _EPS = float(np.finfo(float).eps)
 #: A lower facet of the lift resolves its sites' curvature when each side's squared length
-#: (frame units) exceeds this many ulps of the lifted heights at its ends (config candidate)
+#: (frame units) exceeds this many ulps of twice the largest lifted coordinate (config)
 _LIFT_RESOLVE_ULPS = 1e4
 #: Where not, each site's nearest in the lifted space are its first candidates; then cells'
 #: vertices are checked against as many, to this many ulps, in so many rounds at most
@@ -201,12 +201,12 @@ def _neighbors(x, y, w, box, active):
     on_hull[idx[lower.ravel()]] = True
     a = idx[lower[:, [0, 1, 2]].ravel()]
     b = idx[lower[:, [1, 2, 0]].ravel()]
-    # a facet shorter than the lift's rounding has lost z's curvature and sites with it
-    # (1e-6 clusters 1e3 apart: 17 of 120 on the hull); every site may then have a cell
+    # a facet shorter than Qhull's rounding (relative to the largest lifted coordinate) has
+    # lost z's curvature and sites with it (1e-6 clusters 1e3 apart: 17 of 120 on the hull,
+    # or one at the box's centre); every site may then have a cell
     turn = lower[:, [1, 2, 0]]
     side = (u[lower] - u[turn]) ** 2 + (v[lower] - v[turn]) ** 2
-    noise = np.abs(lift[:, 2])[lower] + np.abs(lift[:, 2])[turn]
-    sure = bool(np.all(side > _LIFT_RESOLVE_ULPS * _EPS * noise))
+    sure = bool(side.min() > _LIFT_RESOLVE_ULPS * _EPS * 2.0 * np.abs(lift).max())
     if not sure:
         # first candidates: the nearest sites in the lifted space (:func:`_checked_cells`)
         k = min(m, _LOST_NEAR + 1)
