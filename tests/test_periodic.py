@@ -270,3 +270,41 @@ def test_periodic_wrap_has_no_rounding_slivers(k):
     # the tiled reference: each site's cell is the h x h square around it
     ref = shapely.box(*(g - h / 2).T, *(g + h / 2).T)
     assert np.allclose(w.areas, shapely.area(ref), rtol=1e-12, atol=0)
+
+
+# --- regressions from the independent check of 2026-12-04 -----------------------------------
+
+
+@pytest.mark.parametrize(
+    ("off", "delta"), [(1e9, 0.003), (1e9, 0.0045), (1e6, 1e-5), (0.0, 1e-8), (4e12, 0.25)]
+)
+def test_wrap_keeps_thin_pieces_that_are_wider_than_rounding(off, delta):
+    # a 2 x 2 grid shifted by delta: the last cell's corner piece is delta wide (25,000 ulps
+    # at 1e9); it was dropped as a sliver because its area was compared with a length
+    p = off + np.array([[0.25, 0.25], [0.75, 0.25], [0.25, 0.75], [0.75, 0.75]]) + delta
+    w = vf.voronoi(p, (off, off, off + 1.0, off + 1.0), periodic=True, wrap=True)
+    assert w.areas.sum() == pytest.approx(1.0, rel=1e-12)
+    q = shapely.Point(off + delta / 2, off + delta / 2)
+    assert [i for i in range(4) if w.cells[i].covers(q)] == [3]
+    assert w.describe().euler_ok
+
+
+@pytest.mark.parametrize("off", [4e12, 5e13])
+def test_wrap_of_an_exact_lattice_far_out_tiles_the_box(off):
+    # pieces half a cell wide are 64 ulps at 5e13: the old 64-ulp sliver rule dropped them
+    x, y = np.meshgrid(np.arange(4), np.arange(4))
+    p = np.column_stack((x.ravel(), y.ravel())) + off
+    w = vf.voronoi(p, (off, off, off + 4.0, off + 4.0), periodic=True, wrap=True)
+    assert w.areas.sum() == 16.0
+    assert (w.areas == 1.0).all()
+
+
+def test_periodic_flags_the_sites_its_construction_could_not_resolve():
+    # sites on a 1-ulp lattice at 1e15 (still open: such vertices are not float64 numbers):
+    # every site has a cell or is listed in unresolved, wrapped or not
+    off = 1e15
+    p = np.random.default_rng(3).random((25, 2)) * 2 + off
+    for wrap in (False, True):
+        d = vf.voronoi(p, (off, off, off + 2, off + 2), periodic=True, wrap=wrap)
+        empty = set(np.flatnonzero(d.areas == 0).tolist())
+        assert empty <= set(d.unresolved.tolist())

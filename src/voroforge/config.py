@@ -115,10 +115,11 @@ RASTER_SLACK_FLOOR = 1e-300
 
 #: Periodic margin proof: relative slack on the squared empty-disk radius (rounded distances)
 PERIODIC_PROOF_RTOL = 1e-7
-#: Periodic wrap: ulps of the box's magnitude below which an image's piece is a rounding sliver
-PERIODIC_SLIVER_ULPS = 64.0
-#: Periodic wrap: holes and parts below this fraction of a united cell's area are slivers
-PERIODIC_SLIVER_RTOL = 1e-9
+#: Periodic wrap: an image's piece, or a part or hole of a united cell, at most this many
+#: ulps of the box's magnitude wide (its area against its extent) is a rounding sliver: an
+#: image site off by rounding moves its cell's edge by an ulp or two. A width, not an area:
+#: a thin piece is kept however small (a corner that just reaches across the wrap)
+PERIODIC_SLIVER_ULPS = 4.0
 #: describe(): on a torus, a vertex and another's image closer than this (of the box's
 #: diagonal) are one vertex (images come from sites shifted by the box's size); a cell of a
 #: non-convex domain within 100 times this of its own coordinates' magnitude from the

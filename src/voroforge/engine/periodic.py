@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
-from ..config import PERIODIC_PROOF_RTOL, PERIODIC_SLIVER_RTOL, PERIODIC_SLIVER_ULPS
+from ..config import PERIODIC_PROOF_RTOL, PERIODIC_SLIVER_ULPS
 from .assemble import first_cells, from_shapely
 from .diagram import Diagram, Edges, buffers, frame_exponent
 from .domain import Domain, make_domain
@@ -116,7 +116,7 @@ def _proved(d: Diagram, cells: np.ndarray, box, margin: float) -> bool:
     return bool((room >= 0).all() and (room * room >= r2 * (1.0 + PERIODIC_PROOF_RTOL)).all())
 
 
-def _gather(d: Diagram, source: np.ndarray, n: int, keep: np.ndarray):
+def _gather(d: Diagram, source: np.ndarray, n: int, keep: np.ndarray, rounding: float):
     """Buffers of ``n`` cells, cell ``i`` made of the pieces ``keep[source[keep] == i]``."""
     keep = keep[np.argsort(source[keep], kind="stable")]
     pieces = d.cells[keep]
@@ -135,7 +135,14 @@ def _gather(d: Diagram, source: np.ndarray, n: int, keep: np.ndarray):
         bad = ~shapely.is_valid(merged)
         # pieces of one cell that touch along an edge (a cell bordering its own image)
         for j in np.flatnonzero(bad):
-            merged[j] = _without_slivers(shapely.union_all(shapely.get_parts(merged[j])))
+            parts = shapely.get_parts(merged[j])
+            try:
+                united = shapely.union_all(parts)
+            except shapely.errors.GEOSException:
+                # a piece that is not a valid polygon (a spike of an ulp): GEOS cannot
+                # assign its holes; the pieces made valid unite
+                united = shapely.union_all(shapely.make_valid(parts))
+            merged[j] = _without_slivers(united, rounding)
         out[groups[0]] = merged
     return from_shapely(out)
 
@@ -178,7 +185,12 @@ def _thick_pieces(d: Diagram, box, n: int) -> np.ndarray:
             minlength=len(img),
         )
     )
-    thick = img[area > _rounding(box) / side]
+    # a piece is a sliver when it is narrow, however long: its area against its extent
+    # (its farthest vertex from the first one, at least half its longer side)
+    extent = np.zeros(len(img))
+    if len(img):
+        extent = np.maximum.reduceat(np.abs(a).max(axis=1), np.cumsum(length) - length)
+    thick = img[area > (_rounding(box) / side) * extent]
     return np.concatenate((np.arange(n), thick))
 
 
@@ -204,19 +216,27 @@ def _gather_pieces(d: Diagram, source: np.ndarray, n: int, keep: np.ndarray):
     return np.ascontiguousarray(coords[take]), new_ring, new_poly, new_geom
 
 
-def _without_slivers(geom, rtol: float = PERIODIC_SLIVER_RTOL):
-    """``geom`` without holes and parts smaller than ``rtol`` of its area.
+def _narrow(poly, rounding: float) -> bool:
+    """Whether ``poly`` is at most ``rounding`` wide: its area against its longer extent."""
+    x0, y0, x1, y1 = poly.bounds
+    return poly.area <= rounding * max(x1 - x0, y1 - y0)
+
+
+def _without_slivers(geom, rounding: float):
+    """``geom`` without the holes and parts that are at most ``rounding`` wide.
 
     Pieces of one cell meet along an edge computed in two positions, whose end points can
-    differ by rounding: their union can keep a sliver hole there.
+    differ by rounding: their union can keep a sliver hole there. A small piece is kept
+    when it is wider than rounding (a corner of a cell that just reaches across the wrap).
     """
-    tiny = rtol * geom.area
     polys = []
     for part in shapely.get_parts(geom):
-        if part.area <= tiny:
+        if _narrow(part, rounding):
             continue
-        holes = [r for r in part.interiors if shapely.Polygon(r).area > tiny]
+        holes = [r for r in part.interiors if not _narrow(shapely.Polygon(r), rounding)]
         polys.append(shapely.Polygon(part.exterior, holes))
+    if not polys:
+        return shapely.Polygon()
     return polys[0] if len(polys) == 1 else shapely.MultiPolygon(polys)
 
 
@@ -289,12 +309,15 @@ def periodic_voronoi(points, boundary, *, algorithm: str = "delaunay", wrap: boo
         keep = _thick_pieces(d, box, n)
         if (source[pairs[:, 0]] == source[pairs[:, 1]]).any():
             # some cell borders its own image: unite its touching pieces (few sites)
-            bufs = _gather(d, source, n, keep)
+            bufs = _gather(d, source, n, keep, _rounding(box))
         else:
             bufs = _gather_pieces(d, source, n, keep)
     else:
         bufs = first_cells(buffers(d), n)
     edges = _torus_edges(d, source, shift, n, wrap, keep if wrap else None)
+    # a site is unresolved when the copy its cell comes from is (unwrapped: the original;
+    # wrapped: any copy, whose piece is then missing)
+    lost = d.unresolved if wrap else d.unresolved[d.unresolved < n]
     out = Diagram(
         np.ascontiguousarray(d.sites[:n]),
         np.ascontiguousarray(d.duplicate_of[:n]),
@@ -303,6 +326,7 @@ def periodic_voronoi(points, boundary, *, algorithm: str = "delaunay", wrap: boo
         edges,
         algorithm,
         frame_exponent(d),
+        np.unique(source[lost]).astype(np.int64),
     )
     out.periodic = True
     out.wrapped = wrap
