@@ -5,6 +5,11 @@ Families (``--families``, all by default):
 ``collinear``
     ``n`` sites evenly spaced on ``y = 0`` in ``[0, 1]`` and one site at ``(0.5, 0.1)``, box
     ``(-0.5, -0.5, 1.5, 1.5)``: the off-line cell has ``n`` neighbours.
+``sloped``
+    ``n`` sites evenly spaced on ``y = 0.5 x`` for ``x`` in ``[0, 1]`` and one site at
+    ``(0.2, 0.9)``, box ``(-1, -1, 2, 2)`` (the independent check's input: the k-d buckets'
+    axis-aligned boxes are as wide across a sloped line as along it, which cost
+    ``O(sqrt n)`` buckets per cell until each bucket kept its sites' oriented bounds).
 ``collinear_others``
     ``n`` sites on one line plus ``n / 100`` random ones in the unit box (the README's
     "100,000 on a line plus 1,000 others").
@@ -50,6 +55,12 @@ def collinear(n: int):
     return pts, (-0.5, -0.5, 1.5, 1.5)
 
 
+def sloped(n: int):
+    t = np.linspace(0.0, 1.0, n)
+    pts = np.concatenate((np.column_stack((t, 0.5 * t)), [[0.2, 0.9]]))
+    return pts, (-1.0, -1.0, 2.0, 2.0)
+
+
 def collinear_others(n: int):
     x = np.linspace(0.0, 1.0, n)
     others = np.random.default_rng(1).random((max(n // 100, 1), 2))
@@ -80,6 +91,7 @@ def circle_mostly(n: int):
 
 FAMILIES = {
     "collinear": collinear,
+    "sloped": sloped,
     "collinear_others": collinear_others,
     "clustered": clustered,
     "circle": circle,

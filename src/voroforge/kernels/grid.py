@@ -441,3 +441,96 @@ def box_dist2(x, y, boxes, v):
     dx = max(boxes[v, 0] - x, 0.0, x - boxes[v, 2])
     dy = max(boxes[v, 1] - y, 0.0, y - boxes[v, 3])
     return dx * dx + dy * dy
+
+
+# -- oriented slabs of k-d buckets: tight bounds for sites along a sloped line ------------
+#
+# A k-d bucket's axis-aligned box is loose for sites on a sloped line: the box of a run of
+# the line is as wide across it as along it, so the search near a cell of the line (whose
+# vertices are far from its site, across the line) cannot clear buckets until they are
+# about sqrt(length across / bucket size) buckets away: O(sqrt n) buckets per cell. Each
+# node also keeps the range of its sites along and across its principal direction: a
+# rectangle that is flat for sites on a line at any slope.
+
+
+@njit(**NJIT)
+def kd_slabs(tree, sx, sy):
+    """Oriented bounds of every k-d node: ``(n_nodes, 7)`` rows ``(ux, uy, a0, a1, b0, b1, 0)``.
+
+    ``(ux, uy)`` is the unit principal direction of the node's sites; a site ``(x, y)``
+    projects to ``a = (x - x0) * ux + (y - y0) * uy`` and ``b = (y - y0) * ux - (x - x0) *
+    uy`` about the node's box corner ``(x0, y0)`` (``tree``'s boxes), and every site's
+    projections lie in ``[a0, a1] x [b0, b1]`` (widened by their rounding).
+    """
+    lo, hi, left, boxes = tree
+    cnt = lo.shape[0]
+    out = np.zeros((cnt, 7))
+    eps = 2.0**-50
+    for v in range(cnt):
+        x0 = boxes[v, 0]
+        y0 = boxes[v, 1]
+        k = hi[v] - lo[v]
+        mx = 0.0
+        my = 0.0
+        for t in range(lo[v], hi[v]):
+            mx += sx[t] - x0
+            my += sy[t] - y0
+        mx /= k
+        my /= k
+        cxx = 0.0
+        cyy = 0.0
+        cxy = 0.0
+        for t in range(lo[v], hi[v]):
+            dx = sx[t] - x0 - mx
+            dy = sy[t] - y0 - my
+            cxx += dx * dx
+            cyy += dy * dy
+            cxy += dx * dy
+        ang = 0.5 * np.arctan2(2.0 * cxy, cxx - cyy)
+        ux = np.cos(ang)
+        uy = np.sin(ang)
+        a0 = np.inf
+        a1 = -np.inf
+        b0 = np.inf
+        b1 = -np.inf
+        big = 0.0
+        for t in range(lo[v], hi[v]):
+            px = sx[t] - x0
+            py = sy[t] - y0
+            a = px * ux + py * uy
+            b = py * ux - px * uy
+            a0 = min(a0, a)
+            a1 = max(a1, a)
+            b0 = min(b0, b)
+            b1 = max(b1, b)
+            big = max(big, abs(px) + abs(py))
+        pad = eps * big  # the projections' rounding (the subtraction's is within it)
+        out[v, 0] = ux
+        out[v, 1] = uy
+        out[v, 2] = a0 - pad
+        out[v, 3] = a1 + pad
+        out[v, 4] = b0 - pad
+        out[v, 5] = b1 + pad
+    return out
+
+
+@njit(**NJIT)
+def slab_dist2(x, y, boxes, slabs, v):
+    """A lower bound on the squared distance from ``(x, y)`` to the sites of k-d node ``v``.
+
+    The larger of :func:`box_dist2` and the distance to the node's oriented rectangle
+    (:func:`kd_slabs`), the latter less its rounding (a few ulps of the point's offset).
+    """
+    d2 = box_dist2(x, y, boxes, v)
+    px = x - boxes[v, 0]
+    py = y - boxes[v, 1]
+    ux = slabs[v, 0]
+    uy = slabs[v, 1]
+    a = px * ux + py * uy
+    b = py * ux - px * uy
+    da = max(slabs[v, 2] - a, 0.0, a - slabs[v, 3])
+    db = max(slabs[v, 4] - b, 0.0, b - slabs[v, 5])
+    d = np.sqrt(da * da + db * db) - 2.0**-48 * (abs(px) + abs(py))
+    if d > 0.0:
+        d2 = max(d2, d * d)
+    return d2

@@ -46,17 +46,18 @@ from .clip import cut_ring_inline, plane_values_inline
 from .grid import (
     adaptive_grid,
     block_box,
-    box_dist2,
     bucket_of,
     heap_pop,
     heap_push,
     kd_buckets,
+    kd_slabs,
     outside_dist2,
     rect_dist2,
     ring_gap,
     ring_row,
     ring_rows,
     skip_lists,
+    slab_dist2,
 )
 from .halfplane_settle import BOTTOM, LEFT, RIGHT, TOP, emit_exact, emit_float, settle_ring
 from .predicates import orient2d
@@ -71,6 +72,7 @@ _BUDGET = 20000  # vertices and sites one cell's search and settling may visit b
 _PROBE = 64  # cells tried first: when most of them are hard, the Delaunay dual builds all
 _KD_LEAF = 8  # sites per k-d bucket
 _KD_CROWDED = 4.0  # k-d buckets when the median site shares its grid bucket with more
+_SURE_FAR = 2.0**-72  # (a sure edge's length times the sine at its ends)^2 / box radius^2
 _REACH = 4.0 * (1.0 + HALFPLANE_REACH_RTOL)  # (2 r)^2 / r^2 with a margin against rounding
 
 # The helpers called per cut or per bucket (these, clip's cut) are inlined into _cells'
@@ -118,11 +120,11 @@ def _unscanned_clear(px, py, a, m, cx, cy, block, grid):
 
 
 @njit(**NJIT)
-def _node_clear(px, py, a, m, cx, cy, boxes, v):
-    """:func:`_rect_clear` for a k-d bucket's tight box (which may be flat or a point)."""
+def _node_clear(px, py, a, m, cx, cy, boxes, slabs, v):
+    """:func:`_rect_clear` for a k-d bucket's bounds (:func:`.grid.slab_dist2`)."""
     for u in range(a, a + m):
         own = _REACH * 0.25 * (px[u] * px[u] + py[u] * py[u])
-        if box_dist2(px[u] + cx, py[u] + cy, boxes, v) <= own:
+        if slab_dist2(px[u] + cx, py[u] + cy, boxes, slabs, v) <= own:
             return False
     return True
 
@@ -240,7 +242,7 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
     start, sx, sy, sidx, rownext, bnext = sites
     xs, ys = orig
     x0, y0, hx, hy, nx, ny = grid
-    tlo, thi, tleft, tboxes = tree
+    tlo, thi, tleft, tboxes, tslabs = tree
     use_tree = tlo.shape[0] > 0
     # integers that change later start as np.int64, not as literals: numba would compile
     # every callee they reach once more for a Literal[int] argument while inferring types
@@ -273,7 +275,7 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
         hs = np.int64(0)
         if use_tree:
             root = np.int64(0)
-            hs = heap_push(hk, hv, root, box_dist2(cx, cy, tboxes, root), root)
+            hs = heap_push(hk, hv, root, slab_dist2(cx, cy, tboxes, tslabs, root), root)
         while m >= 3 and not grow and work <= budget:
             base = nc
             if use_tree:
@@ -283,15 +285,16 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
                 if key > _REACH * r2:
                     break  # every bucket left is farther still
                 work += m
-                if key > 0.0 and _node_clear(px, py, a, m, cx, cy, tboxes, v):
+                if key > 0.0 and _node_clear(px, py, a, m, cx, cy, tboxes, tslabs, v):
                     continue
                 if tleft[v] >= 0:
                     if hs + 2 > hk.shape[0]:
                         grow = True
                         break
                     c = tleft[v]
-                    hs = heap_push(hk, hv, hs, box_dist2(cx, cy, tboxes, c), c)
-                    hs = heap_push(hk, hv, hs, box_dist2(cx, cy, tboxes, c + 1), c + 1)
+                    hs = heap_push(hk, hv, hs, slab_dist2(cx, cy, tboxes, tslabs, c), c)
+                    c1 = c + 1
+                    hs = heap_push(hk, hv, hs, slab_dist2(cx, cy, tboxes, tslabs, c1), c1)
                     continue
                 for t in range(tlo[v], thi[v]):
                     qx = sx[t] - cx
@@ -484,17 +487,25 @@ def _finish(
         un = u + 1 if u + 1 < m else 0
         vx[u] = px[a + un] - px[a + u]  # edge vectors (vx, vy are free until settle_ring)
         vy[u] = py[a + un] - py[a + u]
+    # the cut's crossings are off by ulps of the polygon they cut, which started as the box:
+    # its squared radius about the site bounds their error (not the final cell's)
+    far2 = 0.0
+    for bx in (box[0] - cx, box[2] - cx):
+        for by in (box[1] - cy, box[3] - cy):
+            far2 = max(far2, bx * bx + by * by)
     for u in range(m):
         # a long float edge is a true edge (rounding moves its ends by ulps only), unless an
         # end is where nearly parallel bisectors cross (sites a few ulps apart): that
-        # crossing can be anywhere along them, and so can the edge
+        # crossing can be anywhere along them, and so can the edge. Both relative to the
+        # rounding of the crossings, ulps of the box over the angle at each end (a 1e-9
+        # cluster in a 1e6 box: ends off by 10% of the cell, a neighbour out of order)
         un = u + 1 if u + 1 < m else 0
         e2 = vx[u] * vx[u] + vy[u] * vy[u]
         ss[u] = 1.0 if e2 > HALFPLANE_SURE_RTOL * r2 else 0.0
         for w in (u - 1 if u > 0 else m - 1, un):
             f2 = vx[w] * vx[w] + vy[w] * vy[w]
             cr = vx[u] * vy[w] - vy[u] * vx[w]
-            if cr * cr <= HALFPLANE_SURE_SIN2 * e2 * f2:
+            if cr * cr <= HALFPLANE_SURE_SIN2 * e2 * f2 or cr * cr <= _SURE_FAR * far2 * f2:
                 ss[u] = 0.0
     # only sites within 2 r of the final cell can matter to its vertices
     keep = np.int64(0)
@@ -642,11 +653,12 @@ def _search_grid(xs, ys):
     median = _median_occupancy(occ)
     if median > _KD_CROWDED * _PER_BUCKET:
         tree, (sx, sy, sidx) = kd_buckets(xs, ys, _KD_LEAF)
+        tree = (*tree, kd_slabs(tree, sx, sy))
         none = np.zeros(1, np.int64)
         return grid, (none, sx, sy, sidx, none, np.zeros(1, np.int32)), tree
     rownext, bnext = skip_lists(sites[0], grid[4], grid[5])
     empty = np.zeros(0, np.int64)
-    return grid, (*sites, rownext, bnext), (empty, empty, empty, np.zeros((0, 4)))
+    return grid, (*sites, rownext, bnext), (empty, empty, empty, np.zeros((0, 4)), np.zeros((0, 7)))
 
 
 def _probe_hard(sites, orig, grid, tree, box, budget):

@@ -313,18 +313,31 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
                     # x strictly inside the circle and on the line through i and a (or b)
                     # lies between them: a's bisector is beyond x's, so x replaces a
                     ua = u - 1 if u > 0 else m - 1
-                    if orient2d(ix, iy, xs[a], ys[a], xs[x], ys[x]) == 0.0:
+                    oa = orient2d(ix, iy, xs[a], ys[a], xs[x], ys[x])
+                    if oa == 0.0:
                         if not _has(lab, m, x):
                             lab[ua] = x
                             inserted = True
                             break
-                    if orient2d(ix, iy, xs[b], ys[b], xs[x], ys[x]) == 0.0:
+                    ob = orient2d(ix, iy, xs[b], ys[b], xs[x], ys[x])
+                    if ob == 0.0:
                         if not _has(lab, m, x):
                             lab[u] = x
                             inserted = True
                             break
                     if m < cap and not _has(lab, m, x):
-                        m = _insert(lab, m, u, x)
+                        # x goes where its direction from i is in the ring: between a and
+                        # b, or just past b (before a) when the float ring put b (a) on
+                        # the wrong side of it; that neighbour's edge then fails
+                        # _edge_ok. Inserted between them, x would fail it instead, and
+                        # come back every round (a 1e-9 cluster in a 1e6 box: the float
+                        # cut's crossings are off by ulps of the box, 10% of the cell)
+                        at = u
+                        if ob > 0.0 and oa > 0.0:
+                            at = u + 1
+                        elif oa < 0.0 and ob < 0.0:
+                            at = ua
+                        m = _insert(lab, m, at, x)
                         inserted = True
                         break
                 elif s == 0.0 and non + 3 < on.shape[0]:
@@ -337,6 +350,15 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
                 if work > budget:
                     return -2, work
                 non = _drop_shadowed(i, a, b, on, non, r2, xs, ys)
+                if non > 1 and jsite >= 0:
+                    # five or more sites on the vertex to rounding, some only joined:
+                    # joining is decided per quadruple (_joins), so the cells around such
+                    # a vertex can join different sites and name it differently (350
+                    # sites on a circle of 1e-4 at (-2e5, 5e5): two vertices an ulp
+                    # apart, one cell took the other's). The Delaunay dual decides them
+                    # for the whole diagram, and its seams with the other cells are
+                    # checked (engine.planar)
+                    return -2, work
             if non == 0:
                 vx[u] = vx_  # no other site on the circle: the centre computed above
                 vy[u] = vy_
