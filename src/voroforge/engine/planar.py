@@ -14,8 +14,13 @@ import math
 import numpy as np
 import shapely
 
-from ..config import HALFPLANE_TILING_RTOL
-from ..kernels.cells import cells_from_neighbors, cells_from_triangulation
+from ..config import HALFPLANE_TILING_RTOL, VERTEX_STRAIGHT_ULPS
+from ..kernels.cells import (
+    cells_from_neighbors,
+    cells_from_triangulation,
+    rings_astray,
+    rings_nearly_convex,
+)
 from ..kernels.clip import open_ring_convex, rings_convex, rings_convex_area, tiny_folded
 from ..kernels.delaunay import triangulate_sorted
 from ..kernels.fortune import fortune_delaunay
@@ -50,10 +55,13 @@ def _collinear_neighbors(xs, ys):
     return csr_from_pairs(len(xs), a, b)
 
 
-def _dual(xs, ys, box, algorithm, kmap):
+def _dual(xs, ys, box, algorithm, kmap, memo=None):
     """Closed rings of the Delaunay dual: the default's triangulation or the sweep's.
 
     Sites all on one line have no triangles: their cells are the strips between bisectors.
+    Which rings miss their site or are strips a few ulps wide at it (tested only where
+    vertices merged or are close: :func:`.cells.rings_astray`'s codes) is noted in the dict
+    ``memo`` under ``"astray"``, by the rings' ``lengths`` array (:func:`_lost`, :func:`build`).
     """
     ok = False
     if algorithm == "fortune":
@@ -65,7 +73,12 @@ def _dual(xs, ys, box, algorithm, kmap):
     if not ok:
         order, sx, sy, tri, he, _, ok = triangulate_sorted(xs, ys)
     if ok:
-        return cells_from_triangulation(sx, sy, tri, he, box, order, kmap[order])
+        cells, astray = cells_from_triangulation(
+            sx, sy, tri, he, box, order, kmap[order], astray=True
+        )
+        if memo is not None:
+            memo.setdefault("astray", []).append((cells[1], astray))
+        return cells
     indptr, indices = _collinear_neighbors(xs, ys)
     coords, offsets, owner = cells_from_neighbors(xs, ys, indptr, indices.astype(np.int64), box)
     return close_rings(coords, offsets, owner, np.arange(len(xs)), kmap)
@@ -113,15 +126,15 @@ def _closed_cells(xs, ys, box, algorithm, kmap, memo=None):
     dict) keeps each construction's output for :func:`_fewest_lost`.
     """
     if algorithm in ("delaunay", "fortune"):
-        cells = _memo(memo, algorithm, _dual, xs, ys, box, algorithm, kmap)
-        if len(_lost(xs, ys, box, cells[1])):
+        cells = _memo(memo, algorithm, _dual, xs, ys, box, algorithm, kmap, memo)
+        if len(_lost(xs, ys, box, *cells[:2], memo)):
             # a distinct site whose cell merged away: its strip is narrower than the
             # centres' rounding bounds (sites a few ulps apart). The half-plane cells
             # decide each ring with exact predicates and keep it where floats can
             # represent it; they replace the dual's when they tile the box.
             got = _whole_halfplane(xs, ys, box, kmap, memo)
-            if got is not None and len(_lost(xs, ys, box, got[1])) < len(
-                _lost(xs, ys, box, cells[1])
+            if got is not None and len(_lost(xs, ys, box, *got[:2], memo)) < len(
+                _lost(xs, ys, box, *cells[:2], memo)
             ):
                 return got
         return cells
@@ -146,6 +159,7 @@ def _closed_cells(xs, ys, box, algorithm, kmap, memo=None):
         if take.all():
             return dual
         closed, lengths, owner = spliced
+        _note_spliced(memo, dual[1], take, lengths)
     if _certified(closed, lengths, box, memo):
         return closed, lengths, owner
     # a cell the local finishing could not settle consistently (rounding-level vertices
@@ -154,20 +168,103 @@ def _closed_cells(xs, ys, box, algorithm, kmap, memo=None):
     return _closed_cells(xs, ys, box, "delaunay", kmap, memo)
 
 
-def _lost(xs, ys, box, lengths):
-    """Distinct sites in ``box`` (its sides included) whose ring is empty.
+def _lost(xs, ys, box, closed, lengths, memo=None):
+    """Distinct sites in ``box`` (its sides included) whose ring is empty or misses them.
 
     Each owns a cell of positive area there: a disc around a distinct site is its own, and
-    a site on a side keeps half of it (a quarter at a corner).
+    a site on a side keeps half of it (a quarter at a corner). A ring misses its site
+    (exact test, :func:`.cells.rings_astray`) where rounding merged the two vertices at the
+    end of a strip an ulp or two wide (three sites 1-4 ulps apart on a line): the ring, a
+    triangle, passes beside the site. The Delaunay dual's rings are tested only where
+    vertices merged or are close (noted in ``memo["astray"]`` by :func:`_dual`, and for
+    the half-plane rings that took some of the dual's by :func:`_note_spliced`); other
+    rings :func:`_certified` passed (the half-plane cells: each the box cut by the site's
+    bisectors, none seen astray) are not tested; any other rings (a rarer path) are tested
+    whole.
     """
     empty = lengths[1:] == lengths[:-1]
-    if not empty.any():
+    astray = _astray(xs, ys, box, closed, lengths, memo)
+    if not empty.any() and astray is None:
         return np.zeros(0, dtype=np.intp)  # (most diagrams: no site-by-site test)
     inside = (box[0] <= xs) & (xs <= box[2]) & (box[1] <= ys) & (ys <= box[3])
+    if astray is not None:
+        empty = empty | astray
     return np.flatnonzero(inside & empty)
 
 
+def _astray(xs, ys, box, closed, lengths, memo):
+    """Which sites' non-empty rings miss them, or None where none does (see :func:`_lost`)."""
+    if memo is not None:
+        for x, code in memo.get("astray", ()):
+            if x is lengths:
+                return code == 1 if (code == 1).any() else None
+        if any(x is lengths for x in memo.get("convex", ())):
+            return None
+    code = rings_astray(xs, ys, closed, lengths, box, np.ones(len(xs), dtype=np.bool_))
+    if memo is not None:
+        memo.setdefault("astray", []).append((lengths, code))
+    return code == 1 if (code == 1).any() else None
+
+
+def _note_spliced(memo, dual, take, lengths):
+    """Note the dual's ring codes for the spliced rings ``lengths``.
+
+    They took the dual's cells (rings ``dual``, :func:`_dual`) where ``take``; the
+    half-plane's own rings are not tested (see :func:`_lost`).
+    """
+    if memo is None:
+        return
+    for x, code in memo.get("astray", ()):
+        if x is dual:
+            memo["astray"].append((lengths, np.where(take, code, 0).astype(np.uint8)))
+            return
+
+
+def _thin_dual(lengths, memo):
+    """Whether the Delaunay dual's rings ``lengths`` hold a site within ulps of an edge.
+
+    Only the dual's rings at merged or close vertices are tested (:func:`_dual`).
+    """
+    for x, code in memo.get("astray", ()):
+        if x is lengths:
+            return bool((code == 2).any())
+    return False
+
+
 _FOLDED_ULPS = 64  # a folded ring this many ulps across is not representable: left empty
+_ASTRAY_AREA = 2.0**-45  # a ring beside its site this small (of the box's area) is emptied
+
+
+def _empty_astray(closed, lengths, owner, lost, box):
+    """Rings beside their site (every construction's) left empty where tiny; sites flagged.
+
+    Returns the rings and the ``lost`` sites that stay flagged.
+
+    A strip an ulp or two wide (sites a few ulps apart) whose ring passes beside its site
+    is flagged and emptied, as a site whose ring merged away is (its area, under
+    ``_ASTRAY_AREA`` of the box's, is below the tiling's rounding). A bigger ring that
+    misses its site (the hull strip of a cluster a few ulps wide, reaching far out) is most
+    of the site's cell: it is kept, and the site is not flagged (``Diagram.unresolved``
+    lists sites without a cell).
+    """
+    size = lengths[1:][lost] - lengths[:-1][lost]
+    ring = lost[size > 0]
+    if not len(ring):
+        return closed, lengths, owner, lost
+    area = np.zeros(len(ring))
+    for k, j in enumerate(ring):
+        r = closed[lengths[j] : lengths[j + 1]] - closed[lengths[j]]
+        area[k] = 0.5 * abs(math.fsum(r[:-1, 0] * r[1:, 1] - r[1:, 0] * r[:-1, 1]))
+    tiny = area <= _ASTRAY_AREA * (box[2] - box[0]) * (box[3] - box[1])
+    drop = np.zeros(len(lengths) - 1, dtype=np.bool_)
+    drop[ring[tiny]] = True
+    keep = np.ones(len(lengths) - 1, dtype=np.bool_)
+    keep[ring[~tiny]] = False
+    lost = lost[keep[lost]]
+    if drop.any():
+        empty = (closed[:0], np.zeros_like(lengths), owner[:0])
+        closed, lengths, owner = _splice(closed, lengths, owner, empty, drop)
+    return closed, lengths, owner, lost
 
 
 def _drop_folded(closed, lengths, owner, memo=None):
@@ -217,7 +314,7 @@ def _fewest_lost(xs, ys, box, kmap, memo):
                 continue
         else:
             rings = _drop_folded(*_closed_cells(xs, ys, box, alg, kmap, memo), memo)
-        key = (_invalid(*rings[:2]), len(_lost(xs, ys, box, rings[1])))
+        key = (_invalid(*rings[:2]), len(_lost(xs, ys, box, *rings[:2], memo)))
         if best is None or key < best[0]:
             best = (key, rings)
     return best[1]
@@ -245,6 +342,10 @@ def _tiling_halfplane(xs, ys, box, kmap, memo):
     area = 0.5 * math.fsum(rel[k, 0] * rel[k + 1, 1] - rel[k + 1, 0] * rel[k, 1])
     want = (box[2] - box[0]) * (box[3] - box[1])
     if not abs(area - want) <= HALFPLANE_TILING_RTOL * want:
+        return None
+    # a turn the wrong way by more than rounding (44 ulps, sites_ulps_apart seed 3) is a
+    # cell the half-plane settling got wrong, not one floats cannot do better
+    if not rings_nearly_convex(closed, lengths, VERTEX_STRAIGHT_ULPS):
         return None
     return closed, lengths, owner
 
@@ -351,12 +452,26 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
         memo = {}
         rings = _closed_cells(xs, ys, box, algorithm, unique, memo)
         closed, lengths, own = _drop_folded(*rings, memo)
-        if len(_lost(xs, ys, box, lengths)):
+        lost = _lost(xs, ys, box, closed, lengths, memo)
+        if len(lost):
             closed, lengths, own = _fewest_lost(xs, ys, box, unique, memo)
+            lost = _lost(xs, ys, box, closed, lengths, memo)
+        elif _thin_dual(lengths, memo):
+            # a strip a few ulps wide whose two vertices at one end merged by rounding: the
+            # dual's ring, a triangle, holds its site but not the points an ulp beside it
+            # that are nearer to it than to any other site; the half-plane rings keep both
+            # vertices, and replace the dual's where they tile the box, are all valid and
+            # give every site its cell (the same rings from every algorithm)
+            got = _tiling_halfplane(xs, ys, box, unique, memo)
+            if got is not None and not _invalid(*got[:2]):
+                if not len(_lost(xs, ys, box, *got[:2], memo)):
+                    closed, lengths, own = got
         del memo
+        if len(lost):
+            closed, lengths, own, lost = _empty_astray(closed, lengths, own, lost, box)
         bufs, edges = assemble(wdom, closed, lengths, own, n, unique)
-    # sites every construction leaves without a cell: floats cannot represent it
-    unresolved = unique[_lost(xs, ys, box, lengths)].astype(np.int64)
+    # sites every construction leaves without a cell holding them: floats cannot represent it
+    unresolved = unique[lost].astype(np.int64)
     if k:
         bufs = (np.ldexp(bufs[0], -k), *bufs[1:])
         edges = Edges(np.ldexp(edges.coords, -k), edges.pairs)

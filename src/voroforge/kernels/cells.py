@@ -21,6 +21,8 @@ Delaunay neighbours, with their shared vertices named canonically (``kernels/cel
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit, prange
 
@@ -35,6 +37,7 @@ _U = 2.0**-53
 
 _CHUNK = 2048
 _SPLICE_MIN = 48  # cut cells with more neighbours are built by cellcut.spliced_cell
+_THIN_ULPS = 8.0  # a ring whose edge passes this close to its site is a strip (rings_astray)
 
 
 @njit(**NJIT)
@@ -82,10 +85,17 @@ def _reflex_by_rounding(px, py, m):
         if (ex == 0.0 and ey == 0.0) or (fx == 0.0 and fy == 0.0):
             return False
         area += (px[k] - px[0]) * (py[k2] - py[0]) - (px[k2] - px[0]) * (py[k] - py[0])
-        if orient2d(px[k0], py[k0], px[k], py[k], px[k2], py[k2]) <= 0.0:
+        turn = orient2d(px[k0], py[k0], px[k], py[k], px[k2], py[k2])
+        if turn <= 0.0:
             s = REFLEX_SHORT_ULPS * _U * (abs(px[k]) + abs(py[k]))
             if not (max(abs(ex), abs(ey)) <= s or max(abs(fx), abs(fy)) <= s):
-                return False
+                # a steep edge a few ulps wide is longer than that along the other axis
+                # (the strip's end meets a bisector of slope 3 there): the vertex is still
+                # within ``s`` of the line through its neighbours (``turn`` is twice the
+                # triangle's area: that distance times the chord)
+                chord = np.hypot(px[k2] - px[k0], py[k2] - py[k0])
+                if not (turn < 0.0 and -turn <= s * chord):
+                    return False
     if not area > 0.0:
         return False
     # a fold (a float circle's hull cells all reach its centre) also turns right beside
@@ -363,7 +373,7 @@ def _fill(
             _put_ring(start[i], m, px, py, pw, coords, owner, kmap)
 
 
-def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
+def cells_from_triangulation(xs, ys, tri, he, box, order, kmap, *, astray=False):
     """Clipped Voronoi cells of distinct sites from their Delaunay triangulation.
 
     Parameters
@@ -378,6 +388,11 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
         ``order[k]`` is the output position of kernel site ``k``.
     kmap : (u,) int64
         Output owner id of kernel site ``k``.
+    astray : bool
+        Also return, in output order, :func:`rings_astray`'s code of each site's ring (1:
+        misses its site, 2: a strip a few ulps wide at it, 0: neither or not tested),
+        tested where merged or short-edged vertices can have moved a ring past its site
+        (the cells checked for folds); the others hold their sites.
 
     Returns
     -------
@@ -388,6 +403,9 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
     owner : (K,) int64
         ``owner[v]`` is the site across the edge from vertex ``v`` to ``v + 1``, -1 on the box,
         -2 on each closing vertex.
+    codes : (u,) uint8
+        With ``astray=True`` only, returned after the three: ``((coords, lengths, owner),
+        codes)``.
 
     Every ring is certified convex (exact turns, :func:`.clip.ring_convex`); a ring that
     rounding folded across edges that are not neighbours (the vertices of a float circle far
@@ -411,6 +429,7 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
     # fold is contracted, every cell is checked, and then each round builds and checks
     # again only the cells whose vertices it changed
     risk = risky_sites(tri, near, n)
+    tested = risk.copy()  # every cell a merge or contraction can have moved past its site
     out, cells = _build(xs, ys, tri, he, cx, cy, err, cls, box, order, kmap, merged)
     bad = np.zeros(n, dtype=np.bool_)
     checked_all = False
@@ -436,10 +455,22 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap):
         # every cell is checked once after the first contraction (a cell outside ``risk``
         # can fold then), and from then on the cells built again (the others kept their bits)
         risk = redo if checked_all else np.ones(n, dtype=np.bool_)
+        tested |= risk
         checked_all = True
         merged = True
         out, cells = _rebuild(xs, ys, tri, he, cx, cy, err, cls, box, order, kmap, cells, redo)
-    return cells
+    if not astray:
+        return cells
+    miss = np.zeros(n, dtype=np.uint8)
+    if tested.any():
+        which = np.zeros(n, dtype=np.bool_)
+        which[order[tested]] = True
+        sx = np.zeros(n)
+        sy = np.zeros(n)
+        sx[order] = xs
+        sy[order] = ys
+        miss = rings_astray(sx, sy, cells[0], cells[1], box, which)
+    return cells, miss
 
 
 def _build(xs, ys, tri, he, cx, cy, err, cls, box, order, kmap, merged):
@@ -583,3 +614,106 @@ def cells_from_neighbors(xs, ys, indptr, indices, box):
     owner = np.zeros(int(offsets[-1]), dtype=np.int32)
     _cut_all(xs, ys, indptr, indices, box, cap, counts, offsets, coords, owner, True)
     return coords, offsets, owner
+
+
+@njit(**NJIT)
+def _holds(sx, sy, coords, a, b):
+    """Whether the closed ring ``coords[a:b]`` holds the point ``s`` (its edges included).
+
+    The crossing number of a ray from ``s`` along +x, each crossing decided by an exact
+    turn (:func:`.predicates.orient2d`), so a ring that rounding left reflex by an ulp is
+    tested as the polygon it is. Only the edges that straddle the point's height are turned.
+    """
+    inside = False
+    for k in range(a, b - 1):
+        ax, ay = coords[k, 0], coords[k, 1]
+        bx, by = coords[k + 1, 0], coords[k + 1, 1]
+        if (ay > sy) != (by > sy):
+            o = orient2d(ax, ay, bx, by, sx, sy)
+            if o == 0.0:
+                return True  # on the edge
+            if (o > 0.0) == (by > ay):
+                inside = not inside
+        elif ay == sy and (ax == sx or (by == sy and min(ax, bx) <= sx <= max(ax, bx))):
+            return True  # at a vertex, or on an edge along the point's height
+    return inside
+
+
+@njit(**NJIT)
+def _thin(sx, sy, coords, a, b, box):
+    """Whether a ring's edge passes within ``_THIN_ULPS`` ulps of the point ``s``.
+
+    The closed ring is ``coords[a:b]``; edges along the box's sides are not counted. Such a
+    ring is a strip a few ulps wide at its site.
+    """
+    tol = _THIN_ULPS * _U * (abs(sx) + abs(sy))
+    for k in range(a, b - 1):
+        ax, ay = coords[k, 0], coords[k, 1]
+        bx, by = coords[k + 1, 0], coords[k + 1, 1]
+        if (ax == bx and (ax == box[0] or ax == box[2])) or (
+            ay == by and (ay == box[1] or ay == box[3])
+        ):
+            continue
+        if not (min(ax, bx) - tol <= sx <= max(ax, bx) + tol):
+            continue
+        if not (min(ay, by) - tol <= sy <= max(ay, by) + tol):
+            continue
+        ex = bx - ax
+        ey = by - ay
+        if abs(ex * (sy - ay) - ey * (sx - ax)) <= tol * np.hypot(ex, ey):
+            return True
+    return False
+
+
+@njit(**NJIT_PARALLEL)
+def rings_astray(xs, ys, coords, lengths, box, which):
+    """Per site: 1 where its non-empty ring misses it (exact), 2 where it is a strip at it.
+
+    A strip: the ring holds its site within ``_THIN_ULPS`` ulps of an edge (:func:`_thin`).
+    Site ``j`` is ``(xs[j], ys[j])`` and its ring ``coords[lengths[j]:lengths[j + 1]]``;
+    only the sites marked in ``which`` and inside ``box`` are tested (a cell clipped to the
+    box misses a site outside it). Three sites 1-4 ulps apart on a line: the middle one's
+    cell is a strip an ulp or two wide whose two vertices at one end merged by rounding,
+    and its ring, a triangle, passed the site by a fraction of an ulp.
+    """
+    n = xs.shape[0]
+    out = np.zeros(n, dtype=np.uint8)
+    for j in prange(n):
+        a = lengths[j]
+        b = lengths[j + 1]
+        sx, sy = xs[j], ys[j]
+        if which[j] and b > a and box[0] <= sx <= box[2] and box[1] <= sy <= box[3]:
+            if not _holds(sx, sy, coords, a, b):
+                out[j] = 1
+            elif _thin(sx, sy, coords, a, b, box):
+                out[j] = 2
+    return out
+
+
+@njit(**NJIT)
+def rings_nearly_convex(coords, lengths, ulps):
+    """Whether every closed ring is convex up to the rounding of its vertices.
+
+    A ring may turn right only at a vertex within ``ulps`` ulps (of the three points'
+    largest coordinate) of the chord between its neighbours, as ``describe()`` counts
+    convexity. The turn's side is exact (:func:`.predicates.orient2d`).
+    """
+    for j in range(lengths.shape[0] - 1):
+        a = lengths[j]
+        m = lengths[j + 1] - a - 1  # the closing vertex repeats the first
+        for k in range(m):
+            k0 = a + (k - 1 if k > 0 else m - 1)
+            k1 = a + k
+            k2 = a + (k + 1 if k + 1 < m else 0)
+            x0, y0 = coords[k0, 0], coords[k0, 1]
+            x1, y1 = coords[k1, 0], coords[k1, 1]
+            x2, y2 = coords[k2, 0], coords[k2, 1]
+            turn = orient2d(x0, y0, x1, y1, x2, y2)
+            if turn >= 0.0:
+                continue
+            big = max(max(abs(x0), abs(y0)), max(max(abs(x1), abs(y1)), max(abs(x2), abs(y2))))
+            ulp = math.ldexp(1.0, math.frexp(big)[1] - 53)  # numpy's spacing(big)
+            reach = ulps * ulp * np.hypot(x2 - x0, y2 - y0)
+            if not -turn <= reach:
+                return False
+    return True
