@@ -311,13 +311,14 @@ def _join(
             break
         # first every slot the cell's vertices will probe, and the vertex each holds: the
         # loads are independent, so their cache misses overlap (the table is random access)
+        # (and its count of references, the next thing a hit reads: another random line)
         touch = 0
         for v in range(nv):
             h = _slot(vbits, ovabs, c * cv + v, jg, bslot, mask)
             hs[v] = h
             gv = table[h]
             if gv >= 0 and verts[gv, 0] == ovabs[c * cv + v, 0]:
-                touch += 1
+                touch += refs[gv]
         gl[0] = touch
         for v in range(nv):
             r = c * cv + v
@@ -540,6 +541,24 @@ def _table_size(nvert):
     return 1 << int(np.ceil(np.log2(max(nvert, 8) / TABLE_LOAD)))
 
 
+def build_order(P, cells, g, sidx, tree):
+    """The order to build ``cells`` in: the positions in ``cells`` sorted by bucket (stable).
+
+    ``g, sidx, tree`` from :func:`search3d`. Cells in bucket order read the same sites as
+    their neighbours (1.5x less time than input order on 1e5 uniform sites).
+    """
+    k = len(cells)
+    if len(tree):
+        rank = np.zeros(len(P), np.int64)
+        rank[sidx] = np.arange(len(P))
+        return np.argsort(rank[cells], kind="stable")
+    if k and cells[0] == 0 and cells[-1] == k - 1 and (np.diff(cells) == 1).all():
+        # the first k sites (all of them, or the sites before a periodic build's images):
+        # the stable sort of their keys is the sites' own (sidx), less the others
+        return sidx if k == len(P) else sidx[sidx < k]
+    return np.argsort(bucket_keys3d(P[cells], g), kind="stable")
+
+
 def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
     """Cells of sites ``cells`` (default all) of ``P (ns, 3)``, weights ``W``, template ``t``.
 
@@ -559,12 +578,7 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
     SW = np.ascontiguousarray(W[sidx])  # the weights in bucket order, read beside SP
     # cells are built in bucket order (neighbouring cells read the same sites: 1.5x less
     # time than input order on 1e5 uniform sites); the face table stays in that order
-    if len(tree):
-        rank = np.zeros(ns, np.int64)
-        rank[sidx] = np.arange(ns)
-        sort = np.argsort(rank[cells], kind="stable")
-    else:
-        sort = np.argsort(bucket_keys3d(P[cells], g), kind="stable")
+    sort = build_order(P, cells, g, sidx, tree)
     built = cells[sort]
     status = np.zeros(k, np.int64)
     vol = np.zeros(k)
@@ -700,4 +714,4 @@ def _empty(cells):
     )
 
 
-__all__ = ["Cells3D", "build_cells3d", "duplicate_owners", "OK"]
+__all__ = ["Cells3D", "build_cells3d", "build_order", "duplicate_owners", "OK"]

@@ -206,17 +206,28 @@ def _name_cell(
     for v in range(nv):
         c = work[v, 0]
         # sort and dedupe the owners
-        m = 0
-        for t in range(c):
-            keys[m] = OWN[v, t]
-            m += 1
-        for a in range(1, m):
-            ka = keys[a]
-            b = a - 1
-            while b >= 0 and keys[b] > ka:
-                keys[b + 1] = keys[b]
-                b -= 1
-            keys[b + 1] = ka
+        m = c
+        if c == 4:  # the usual vertex (three faces): a sorting network, no branches
+            k0 = min(OWN[v, 0], OWN[v, 1])
+            k1 = max(OWN[v, 0], OWN[v, 1])
+            k2 = min(OWN[v, 2], OWN[v, 3])
+            k3 = max(OWN[v, 2], OWN[v, 3])
+            keys[0] = min(k0, k2)
+            keys[3] = max(k1, k3)
+            k0 = max(k0, k2)
+            k1 = min(k1, k3)
+            keys[1] = min(k0, k1)
+            keys[2] = max(k0, k1)
+        else:
+            for t in range(c):
+                keys[t] = OWN[v, t]
+            for a in range(1, m):
+                ka = keys[a]
+                b = a - 1
+                while b >= 0 and keys[b] > ka:
+                    keys[b + 1] = keys[b]
+                    b -= 1
+                keys[b + 1] = ka
         u = np.int64(0)  # not a literal: name_vertex and axis_snap compile once
         for t in range(m):
             if u == 0 or keys[t] != keys[u - 1]:
