@@ -100,17 +100,21 @@ def test_cluster_1e9_in_1e6_box():
 
 
 @pytest.mark.parametrize(
-    ("size", "off", "bounds", "seed"),
+    ("n", "size", "off", "bounds", "seed"),
     [
-        (1e-9, (0.0, 0.0), MIN3B_BOX, 1),
-        (1e-12, (0.0, 0.0), MIN3B_BOX, 2),
-        (1e-6, (3.0, -2.0), (-1e5, -2e5, 1.2e6, 1.05e6), 3),
-        (1e-9, (1e3, 1e3), (-4e6, -1e2, 1e7, 3e5), 4),
+        (6, 1e-9, (0.0, 0.0), MIN3B_BOX, 1),
+        (6, 1e-12, (0.0, 0.0), MIN3B_BOX, 2),
+        (6, 1e-6, (3.0, -2.0), (-1e5, -2e5, 1.2e6, 1.05e6), 3),
+        (6, 1e-9, (1e3, 1e3), (-4e6, -1e2, 1e7, 3e5), 4),
+        # a true neighbour whose plane values the float cell (off by ulps of the box)
+        # put past the watch band: it must be watched (halfplane._cut_batch's slack)
+        (20, 1e-10, (0.0, 0.0), MIN3B_BOX, 2),
+        (20, 1e-10, (0.0, 0.0), MIN3B_BOX, 3),
     ],
 )
-def test_clusters_in_big_boxes(size, off, bounds, seed):
-    """Neighbours: other sizes, offsets, seeds and box shapes."""
-    pts = np.random.default_rng(seed).random((6, 2)) * size + off
+def test_clusters_in_big_boxes(n, size, off, bounds, seed):
+    """Neighbours: other sizes, counts, offsets, seeds and box shapes."""
+    pts = np.random.default_rng(seed).random((n, 2)) * size + off
     _agree(pts, bounds)
 
 

@@ -72,6 +72,7 @@ _BUDGET = 20000  # vertices and sites one cell's search and settling may visit b
 _PROBE = 64  # cells tried first: when most of them are hard, the Delaunay dual builds all
 _KD_LEAF = 8  # sites per k-d bucket
 _KD_CROWDED = 4.0  # k-d buckets when the median site shares its grid bucket with more
+_SLACK2 = 2.0**-80  # (the float cut's vertex error / the box's radius about the site)^2
 _SURE_FAR = 2.0**-72  # (a sure edge's length times the sine at its ends)^2 / box radius^2
 _REACH = 4.0 * (1.0 + HALFPLANE_REACH_RTOL)  # (2 r)^2 / r^2 with a margin against rounding
 
@@ -182,7 +183,7 @@ def _insert(cand, cd, base, nc, t, q2):
 
 @njit(inline="always", **NJIT)
 def _cut_batch(
-    base, nc, cand, cd, sx, sy, sidx, cx, cy, px, py, po, ss, a, b, m, r2, watch, nw, cap
+    base, nc, cand, cd, sx, sy, sidx, cx, cy, px, py, po, ss, a, b, m, r2, watch, nw, cap, slack2
 ):
     """Cut the cell by the candidates ``cand[base:nc]`` (nearest first).
 
@@ -190,7 +191,8 @@ def _cut_batch(
     tuple: a tuple built and unpacked per cell costs an atomic reference-count update per
     array); the cell is polygon ``a`` (``m`` vertices, squared radius ``r2``); each cut
     writes polygon ``b`` and the two swap. Sites that cut, or pass within
-    the verification band of a vertex's circle, join the watch list (the only sites the
+    the verification band of a vertex's circle or within the float cell's rounding of it
+    (``slack2``: ulps of the box, squared), join the watch list (the only sites the
     exact finishing must look at: the others stay clear of every later vertex, which lies
     inside today's cell). Returns ``(a, b, m, r2, nw, grow, work)``; ``grow`` when a list
     or the polygon ran out of room, ``work`` the vertices visited.
@@ -205,7 +207,9 @@ def _cut_batch(
         qy = sy[t] - cy
         smax = plane_values_inline(px, py, a, m, qx, qy, 0.0, 0.0, 0.5 * cd[c], ss)
         work += m
-        if smax > -0.5 * HALFPLANE_NEAR_RTOL * r2:
+        # (or within the plane values' rounding, ulps of the box times |q|: a 1e-10
+        # cluster in a 1e6 box, whose float cell is off by a tenth of itself)
+        if smax > -0.5 * HALFPLANE_NEAR_RTOL * r2 or smax * smax < slack2 * cd[c]:
             if nw == watch.shape[0]:
                 grow = True
                 break
@@ -264,6 +268,7 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
         px[a + 3], py[a + 3], po[a + 3] = box[0] - cx, box[3] - cy, LEFT
         m = np.int64(4)
         r2 = _radius2(px, py, a, m)
+        slack2 = _SLACK2 * r2  # the float cell's rounding, squared, from the box's radius
         nc = np.int64(0)
         nw = np.int64(0)
         work = 0
@@ -385,6 +390,7 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
                 watch,
                 nw,
                 cap,
+                slack2,
             )
             work += w
         if grow and 2 * cap <= _HARD_CAP:  # many vertices: build it again with more room
