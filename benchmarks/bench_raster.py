@@ -3,12 +3,13 @@
 Usage::
 
     .venv/bin/python benchmarks/bench_raster.py [--size 2048] [--sites 10000] [--repeat 3]
-        [--dist uniform|clustered|grid] [--f2] [--no-scipy]
+        [--dist uniform|clustered|grid|circle|two_circles|slanted_line] [--f2] [--no-scipy]
 
 Prints the best-of-``repeat`` wall time (after a warm-up call that also compiles) of each
 method, its CPU time summed over threads (steadier on a shared machine), the share of JFA
-pixels whose label differs from the exact one, and the same for two scipy references run in
-this process on the same pixel centres:
+pixels whose label differs from the exact one, the time and that share for the flood alone
+(JFA before its exact check: what a plain Jump Flooding returns), and the same for two scipy
+references run in this process on the same pixel centres:
 
 * ``cKDTree.query`` of every pixel centre (exact nearest site; ``workers=-1``);
 * ``ndimage.distance_transform_edt(..., return_indices=True)`` on an image with one seed
@@ -26,7 +27,9 @@ import numba
 import numpy as np
 
 from voroforge import rasterize
+from voroforge.engine import raster
 from voroforge.engine.raster import pixel_centers
+from voroforge.kernels.raster import jfa_nearest
 
 
 def make_sites(kind: str, n: int, seed: int = 0) -> np.ndarray:
@@ -42,7 +45,30 @@ def make_sites(kind: str, n: int, seed: int = 0) -> np.ndarray:
         g = (np.arange(k) + 0.5) / k
         xx, yy = np.meshgrid(g, g)
         return np.stack((xx.ravel(), yy.ravel()), axis=1)[:n]
+    if kind in ("circle", "two_circles"):  # crowded: many sites per pixel along the circles
+        radii = [0.45] if kind == "circle" else [0.45, 0.2]
+        parts = []
+        for i, radius in enumerate(radii):
+            k = n // len(radii) + (i < n % len(radii))
+            t = np.arange(k) * 2 * np.pi / k + 0.1 * i
+            parts.append(np.column_stack((np.cos(t), np.sin(t))) * radius + 0.5)
+        return np.vstack(parts)
+    if kind == "slanted_line":  # crowded: cells are strips thinner than a pixel
+        s = np.linspace(0.1, 0.9, n)
+        return np.column_stack((s, 0.3 + 0.4 * s))
     raise ValueError(kind)
+
+
+def flood_only(pts, bounds, shape):
+    """Labels of the Jump Flooding pass alone, as ``rasterize`` runs it before its check."""
+    h, w = shape
+    xmin, ymin, xmax, ymax = bounds
+    xs = np.ascontiguousarray(pts[:, 0])
+    ys = np.ascontiguousarray(pts[:, 1])
+    px, py = pixel_centers(bounds, shape)
+    geom = np.array([xmin, ymax, (xmax - xmin) / w, (ymax - ymin) / h])
+    steps = raster._jfa_steps(h, w, raster._jfa_reach(xs, ys, geom, shape))
+    return jfa_nearest(xs, ys, px, py, geom, steps, False)[0]
 
 
 def best_time(fn, repeat: int) -> tuple[float, float, object]:
@@ -88,7 +114,8 @@ def main() -> None:
     ap.add_argument("--size", type=int, default=2048)
     ap.add_argument("--sites", type=int, default=10_000)
     ap.add_argument("--repeat", type=int, default=3)
-    ap.add_argument("--dist", default="uniform", choices=("uniform", "clustered", "grid"))
+    dists = ("uniform", "clustered", "grid", "circle", "two_circles", "slanted_line")
+    ap.add_argument("--dist", default="uniform", choices=dists)
     ap.add_argument("--f2", action="store_true")
     ap.add_argument("--no-scipy", action="store_true", help="skip the scipy references")
     args = ap.parse_args()
@@ -101,7 +128,9 @@ def main() -> None:
     t_jfa, c_jfa, jf = best_time(
         lambda: rasterize(pts, shape, bounds, method="jfa", f2=args.f2), args.repeat
     )
+    t_flood, c_flood, fl = best_time(lambda: flood_only(pts, bounds, shape), args.repeat)
     mismatch = float(np.mean(ex.labels != jf.labels))
+    flood_bad = float(np.mean(ex.labels != fl))
     derr = float(np.max(jf.distance - ex.distance))
     print(f"{args.dist} sites={args.sites} image={args.size}x{args.size} f2={args.f2}")
     print(f"threads={numba.get_num_threads()}  (cpu = CPU seconds summed over threads)")
@@ -110,6 +139,10 @@ def main() -> None:
     print(
         f"jfa label mismatch vs exact: {100 * mismatch:.4f} %   "
         f"max F1 excess: {derr:.3g} ({derr * args.size:.2f} px)"
+    )
+    print(
+        f"  flood only: wall {t_flood:8.3f} s   cpu {c_flood:8.3f} s   (label mismatch vs exact: "
+        f"{100 * flood_bad:.4f} %)"
     )
     if args.f2:
         print(f"jfa max F2 excess: {float(np.max(jf.f2 - ex.f2)):.3g}")
