@@ -12,7 +12,9 @@ built again):
 - :func:`folded_rings`: which of those rings fail the exact convexity test.
 - :func:`fold_pairs`: for each folded ring, the pairs of triangles to join (the run of edges
   through a bad turn whose ends are one vertex to rounding, or, at a straight angle rounded
-  into a bad turn, the edge :func:`_straight_fold` picks).
+  into a bad turn, the edge :func:`_straight_fold` picks), within a reach of
+  ``FOLD_REACH_RTOL`` of the vertex's distance from its site, doubled while no folded ring
+  gives a join (a stall: small float circles far from the origin).
 """
 
 from __future__ import annotations
@@ -27,6 +29,14 @@ from .predicates import orient2d
 from .vertex import voronoi_vertex
 
 _U = 2.0**-53
+# (both belong in config.py with the other FOLD_* tolerances)
+#: How many times a stalled fold test doubles its reach (FOLD_REACH_RTOL): 2**-10 -> 2**-4
+#: of the vertex's distance from its site
+FOLD_STALL_DOUBLINGS = 6
+#: ... while every join keeps its ends within this of the site's distance to its nearest
+#: neighbour of their exact centres (0.5: half the spacing; 0.25 left 600 sites of radius
+#: 1e-5 at (3e4, 1e4) non-convex, 2 folded more of the neighbouring circles)
+FOLD_STALL_SPACING = 0.5
 
 
 @njit(**NJIT)
@@ -105,16 +115,16 @@ def _moved(t, xs, ys, tri, err, cx, cy):
 
 
 @njit(**NJIT)
-def _one_vertex(i, xs, ys, tri, err, cx, cy, t, u):
+def _one_vertex(i, xs, ys, tri, err, cx, cy, t, u, rtol):
     """Whether the vertices of triangles ``t``, ``u`` (site ``i`` on both) are one to rounding.
 
     They are within what rounding and naming move them (:func:`.centers.short_edge`), or
     within ``FOLD_SPAN_ERRS`` times the proven distance of each from its exact centre (and
-    ``FOLD_REACH_RTOL`` of their distance from the site).
+    ``rtol`` of their distance from the site: :func:`fold_pairs`' reach).
     """
     d = abs(cx[t] - cx[u]) + abs(cy[t] - cy[u])
     r = max(abs(cx[t] - xs[i]) + abs(cy[t] - ys[i]), abs(cx[u] - xs[i]) + abs(cy[u] - ys[i]))
-    if not d <= FOLD_REACH_RTOL * r:
+    if not d <= rtol * r:
         return False  # (a centre's bound may reach 2**-30 of its magnitude: not the spacing)
     if short_edge(xs, ys, tri, err, cx, cy, t, u):
         return True
@@ -131,6 +141,36 @@ def fold_pairs(sites, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, o
     the run of consecutive edges through it whose two ends are one vertex to rounding
     (:func:`.centers.short_edge`) is the folded cluster: each of its edges is a pair. A ring
     folded only by long edges (a straight angle rounded) gives none.
+    """
+    args = (sites, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, order)
+    rtol = FOLD_REACH_RTOL
+    pa, pb = _pairs_within(*args, rtol, False)
+    # a stall: folded rings, and no join within the reach. Where a float circle's exact
+    # vertices scatter over more than the reach (its sites' rounding moves the centres
+    # of neighbouring triples by ~ulp * n**2 / 20: 600 sites of radius 1e-5 at 3e4,
+    # 6e-3 of the radius) the contractions grow classes up to the reach and stop there,
+    # with rings folded and even self-intersecting. The reach doubles until a ring gives
+    # a join (the least that unfolds anything), at most FOLD_STALL_DOUBLINGS times, and
+    # such joins keep their ends within FOLD_STALL_SPACING of the site's spacing of their
+    # exact centres (unbounded, contractions carried vertices across sites: 333 sites of
+    # radius 1e-5 at (1e6, 3e5) put 36 sites outside their cells)
+    for _ in range(FOLD_STALL_DOUBLINGS):
+        if pa.shape[0]:
+            break
+        rtol *= 2.0
+        pa, pb = _pairs_within(*args, rtol, True)
+    return pa, pb
+
+
+@njit(**NJIT)
+def _pairs_within(
+    sites, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, order, rtol, near
+):
+    """:func:`fold_pairs` with the reach ``rtol`` of a vertex's distance from its site.
+
+    ``near``: also keep every join's ends within ``FOLD_STALL_SPACING`` of the site's
+    distance to its nearest neighbour of their exact centres (what the join and the earlier
+    ones move them), so that no stalled contraction carries a vertex across the sites.
     """
     total = 0
     most = 0
@@ -153,6 +193,15 @@ def fold_pairs(sites, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, o
         if m < 3:
             continue
         nf = _fan(i, tri, he, out, fan)
+        lim = np.inf
+        if near:
+            sp = np.inf
+            for d in range(nf):
+                for j in range(3):
+                    v = tri[3 * fan[d] + j]
+                    if v != i:
+                        sp = min(sp, abs(xs[v] - xs[i]) + abs(ys[v] - ys[i]))
+            lim = FOLD_STALL_SPACING * sp
         h = 0
         for k in range(m):
             tk[k] = -1
@@ -198,7 +247,9 @@ def fold_pairs(sites, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, o
                     u = tk[jn]
                     if t < 0 or u < 0 or cls[t] == cls[u]:
                         break
-                    if not _one_vertex(i, xs, ys, tri, err, cx, cy, t, u):
+                    if not _one_vertex(i, xs, ys, tri, err, cx, cy, t, u, rtol):
+                        break
+                    if near and not _within(xs, ys, tri, err, cx, cy, t, u, lim):
                         break
                     if used[e] == 0:
                         used[e] = 1
@@ -209,10 +260,12 @@ def fold_pairs(sites, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, o
                     if j == k:
                         break
             if np_ == before:
-                e = _straight_fold(xs[i], ys[i], cls, coords, b, tk, mv, kp, k, kn)
+                e = _straight_fold(xs[i], ys[i], cls, coords, b, tk, mv, kp, k, kn, rtol)
+                en = e + 1 if e + 1 < m else 0
+                if near and e >= 0 and not _within(xs, ys, tri, err, cx, cy, tk[e], tk[en], lim):
+                    e = -1
                 if e >= 0 and used[e] == 0:
                     used[e] = 1
-                    en = e + 1 if e + 1 < m else 0
                     pa[np_] = tk[e]
                     pb[np_] = tk[en]
                     np_ += 1
@@ -220,7 +273,14 @@ def fold_pairs(sites, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, o
 
 
 @njit(**NJIT)
-def _straight_fold(sx, sy, cls, coords, b, tk, mv, kp, k, kn):
+def _within(xs, ys, tri, err, cx, cy, t, u, lim):
+    """Whether joining triangles ``t``, ``u`` keeps both within ``lim`` of their exact centres."""
+    d = abs(cx[t] - cx[u]) + abs(cy[t] - cy[u])
+    return d + _moved(t, xs, ys, tri, err, cx, cy) + _moved(u, xs, ys, tri, err, cx, cy) <= lim
+
+
+@njit(**NJIT)
+def _straight_fold(sx, sy, cls, coords, b, tk, mv, kp, k, kn, rtol):
     """The edge to contract at a bad turn ``kp -> k -> kn`` whose edges are not short; -1.
 
     The exact turn is left, so a computed right turn puts vertex ``k`` within what rounding
@@ -245,9 +305,9 @@ def _straight_fold(sx, sy, cls, coords, b, tk, mv, kp, k, kn):
         return -1
     dp = abs(vx - px) + abs(vy - py) if tk[kp] >= 0 and cls[tk[kp]] != cls[t] else np.inf
     dq = abs(vx - qx) + abs(vy - qy) if tk[kn] >= 0 and cls[tk[kn]] != cls[t] else np.inf
-    # never further than FOLD_REACH_RTOL of the cell's size: a class's naming move grows
-    # with every join, and must not carry a vertex across the sites' spacing
-    reach = min(FOLD_REACH_ERRS * moved, FOLD_REACH_RTOL * (abs(vx - sx) + abs(vy - sy)))
+    # never further than ``rtol`` of the cell's size: a class's naming move grows with
+    # every join, and must not carry a vertex across the sites' spacing
+    reach = min(FOLD_REACH_ERRS * moved, rtol * (abs(vx - sx) + abs(vy - sy)))
     if dp <= dq and dp <= reach:
         return kp  # the edge kp -> k
     if dq < dp and dq <= reach:
