@@ -269,6 +269,7 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
             non = np.int64(0)  # other sites on the circle, to rounding
             charged = False
             jsite = np.int64(-1)  # the last joined site, and its two centres (_joins)
+            doubt = False  # a site on the circle to rounding that does not join
             j1x = j1y = j2x = j2y = 0.0
             for c in range(nc):
                 x = sidx[cand[c]]
@@ -290,6 +291,7 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
                 joined = False
                 if abs(d) <= merge:
                     joined, ev_, q1x, q1y, q2x, q2y = _joins(i, a, b, x, vx_, vy_, ev_, lv_, xs, ys)
+                    doubt = doubt or not joined
                 if joined:
                     if x == nxt or x == prv:
                         # the edge of b (or a) between this vertex and x's is noise: drop it
@@ -350,14 +352,16 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
                 if work > budget:
                     return -2, work
                 non = _drop_shadowed(i, a, b, on, non, r2, xs, ys)
-                if non > 1 and jsite >= 0:
-                    # five or more sites on the vertex to rounding, some only joined:
-                    # joining is decided per quadruple (_joins), so the cells around such
-                    # a vertex can join different sites and name it differently (350
-                    # sites on a circle of 1e-4 at (-2e5, 5e5): two vertices an ulp
-                    # apart, one cell took the other's). The Delaunay dual decides them
-                    # for the whole diagram, and its seams with the other cells are
-                    # checked (engine.planar)
+                if non > 1 and jsite >= 0 and doubt:
+                    # two or more other sites on the vertex to rounding, some joined and
+                    # some near it refused: joining is decided per quadruple (_joins), so
+                    # the cells around such a vertex can join different sites and name it
+                    # differently (350 sites on a circle of 1e-4 at (-2e5, 5e5): two
+                    # vertices an ulp apart, one cell took the other's). The Delaunay dual
+                    # decides them for the whole diagram, and its seams with the other
+                    # cells are checked (engine.planar). Where every site near the circle
+                    # joins (a lattice's cocircular sites scaled by 1/6), every cell finds
+                    # the same set: those vertices stay here
                     return -2, work
             if non == 0:
                 vx[u] = vx_  # no other site on the circle: the centre computed above
