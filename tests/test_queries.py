@@ -376,3 +376,18 @@ def test_locate_far_queries_exactly_nearest():
     values = np.arange(80.0)
     assert vf.natural_neighbor(pts, values, qs, extrapolate="nearest").tolist() == want
     assert vf.locate(pts, [[0.25, 0.75], qs[0]]).tolist() == [vf.locate(pts, [0.25, 0.75]), want[0]]
+
+
+def test_locate_decides_float_ties_exactly():
+    # squared distances 2.5e11 apart by 1e-6 round to the same float: the nearest site is
+    # the one whose cell holds the query, not the lower index (independent check, F6)
+    sites = np.array([[0.3, 0.3], [0.3 + 1e-12, 0.3], [1e6, 1e6]])
+    q = np.array([[5e5, 0.3], [5e5, 1e5], [0.3, 0.3]])
+    d = vf.voronoi(sites, (0, 0, 1e6, 1e6))
+    want = [1, 1, 0]
+    assert vf.locate(sites, q).tolist() == want
+    assert d.locate(q).tolist() == want
+    for k in range(2):
+        assert d.cells[1].covers(shapely.Point(q[k]))
+    # an exact tie still goes to the lowest index
+    assert vf.locate([[0.0, 0.0], [2.0, 0.0]], [1.0, 5.0]) == 0

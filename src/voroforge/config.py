@@ -137,6 +137,9 @@ VERTEX_MERGE_ULPS = 2.0
 CONVEX_DOMAIN_RTOL = 1e-12
 #: locate(): a candidate this close (relative) to the best squared distance may be a tie
 LOCATE_TIE_RTOL = 1e-9
+#: locate: float squared distances within this relative band of the nearest one may be
+#: the nearest exactly (each is rounded by a few ulps): those sites are compared in rationals
+LOCATE_ROUND_RTOL = 2.0**-48
 #: locate(): absolute floor added to tie thresholds so a zero distance still admits ties
 LOCATE_TIE_ATOL = 1e-300
 #: locate(): queries farther than this from the sites' box centre (per axis) are settled by

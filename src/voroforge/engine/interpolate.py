@@ -10,6 +10,7 @@ Delaunay triangulation (see :mod:`voroforge.kernels.natural`), never by rebuildi
 from __future__ import annotations
 
 import weakref
+from fractions import Fraction
 
 import numpy as np
 from scipy.spatial import cKDTree
@@ -18,6 +19,7 @@ from ..config import (
     GRADIENT_FIT_FLOOR,
     GRADIENT_FIT_RTOL,
     LOCATE_FAR,
+    LOCATE_ROUND_RTOL,
     LOCATE_TIE_ATOL,
     LOCATE_TIE_RTOL,
 )
@@ -74,6 +76,11 @@ class _Locator:
         tied = d2 == best[:, None]
         rank = np.where(tied, self.owners[cand], np.iinfo(np.int64).max)
         out[rows] = rank.min(axis=1)
+        if self.size is None:
+            # float distances within their rounding of the best: decided exactly
+            close = d2 <= best[:, None] * (1.0 + LOCATE_ROUND_RTOL)
+            for r in np.flatnonzero(close.sum(axis=1) > 1):
+                out[rows[r]] = self._exact_nearest(q[rows[r]], cand[r][close[r]])
         if k == npts:
             return rows[:0], best[:0]
         # a candidate this close to the best one may hide further ties beyond the k-th
@@ -126,8 +133,26 @@ class _Locator:
         for row, members in zip(rows, lists, strict=True):
             members = np.asarray(members, dtype=np.int64)
             dd = self._d2(q[row : row + 1], members[None, :])[0]
-            out[row] = self.owners[members[dd == dd.min()]].min()
+            if self.size is None:
+                out[row] = self._exact_nearest(
+                    q[row], members[dd <= dd.min() * (1.0 + LOCATE_ROUND_RTOL)]
+                )
+            else:
+                out[row] = self.owners[members[dd == dd.min()]].min()
         return out
+
+    def _exact_nearest(self, q: np.ndarray, cand: np.ndarray) -> int:
+        """Lowest input index among the exactly nearest of sites ``cand`` (rationals)."""
+        qx, qy = Fraction(float(q[0])), Fraction(float(q[1]))
+        keys = [
+            (
+                (qx - Fraction(float(self.pts[c, 0]))) ** 2
+                + (qy - Fraction(float(self.pts[c, 1]))) ** 2,
+                int(self.owners[c]),
+            )
+            for c in cand
+        ]
+        return min(keys)[1]
 
 
 _CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
@@ -154,8 +179,9 @@ def locate(points, xy) -> np.ndarray | int:
     Returns
     -------
     int or (m,) int64
-        Index into ``points`` of the nearest site. Ties (equal float64 values of
-        ``(x - xi)**2 + (y - yi)**2``) go to the lowest index.
+        Index into ``points`` of the nearest site by exact distance: sites whose float64
+        squared distances are within rounding of the nearest are compared in rationals, and
+        exact ties go to the lowest index. On a periodic diagram, float ties.
 
     Raises
     ------
