@@ -81,6 +81,16 @@ def _chain(nbrs, tris, nn, a, b, hint):
 
 
 @njit(**NJIT)
+def _chain_in_box(nbrs, tris, nn, ka, steps, cx, cy, box):
+    """Whether the circumcentres of the ``steps`` triangles after ``ka`` lie in ``box``."""
+    for s in range(steps):
+        t = tris[(ka + s) % nn]
+        if not (box[0] <= cx[t] <= box[2] and box[1] <= cy[t] <= box[3]):
+            return False
+    return True
+
+
+@njit(**NJIT)
 def _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, qx, qy, qw, out):
     """Write the circumcentres of the ``steps`` triangles after neighbour ``ka`` to ``q``.
 
@@ -129,6 +139,11 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, q
             hint = max(ka, 0)
             # the chain's vertices are in order: swapped ones were merged (centers._unfold)
             ok = steps >= 1 and out + steps + (m - v) <= qx.shape[0]
+            if ok and steps > 1:
+                # lost edges lie where the cut's vertex is, inside the box: a chain that
+                # leaves it went round the wrong way (sites near a box side whose images
+                # wrap, issue 15); the cut's own vertex is kept instead
+                ok = _chain_in_box(nbrs, tris, nn, ka, steps, cx, cy, box)
             if ok:
                 out = _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, qx, qy, qw, out)
                 continue
@@ -149,11 +164,109 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, q
         qy[out] = y
         qw[out] = b
         out += 1
+    out = _drop_side_slivers(i, xs, ys, qx, qy, qw, out, box)
     for v in range(out):
         px[v] = qx[v]
         py[v] = qy[v]
         pw[v] = qw[v] if qw[v] >= 0 else -1
     return dedupe_ring(px, py, pw, out)
+
+
+@njit(**NJIT)
+def _beyond_side(x, y, side, box):
+    """-1 inside box side ``side`` (-1..-4), 0 on it, 1 strictly past it."""
+    if side == -1:
+        d = box[0] - x
+    elif side == -2:
+        d = box[1] - y
+    elif side == -3:
+        d = x - box[2]
+    else:
+        d = y - box[3]
+    return 1 if d > 0.0 else (0 if d == 0.0 else -1)
+
+
+@njit(**NJIT)
+def _along_side(x, y, side):
+    """Position along box side ``side`` in the direction a counter-clockwise ring runs."""
+    if side == -1:
+        return -y
+    if side == -2:
+        return x
+    if side == -3:
+        return y
+    return -x
+
+
+@njit(**NJIT)
+def _remove(qx, qy, qw, m, k):
+    """Remove vertex ``k`` of ring ``q[:m]``; returns the new count."""
+    for v in range(k, m - 1):
+        qx[v] = qx[v + 1]
+        qy[v] = qy[v + 1]
+        qw[v] = qw[v + 1]
+    return m - 1
+
+
+@njit(**NJIT)
+def _drop_side_slivers(i, xs, ys, qx, qy, qw, m, box):
+    """Drop a bisector edge between a box side and a named vertex on or past that side.
+
+    The cut crosses the box sides with the computed bisectors; the vertex between two
+    bisectors is then named by its circumcentre. When that centre lies past a side (a
+    Voronoi vertex on the box's side, rounded out), the edge from it to the side has no
+    inside: the ring went out to it and back. That edge is dropped and its neighbour meets
+    the side at its own canonical crossing, as the cell beyond computes it. When the centre
+    lies on the side but the crossing is past it along the side (a spike of an ulp), the
+    crossing is dropped and the side runs to the centre. ``q[:m]`` still has the sides'
+    owners -1..-4; returns the new count.
+    """
+    k = np.int64(0)
+    while k < m and m > 3:
+        a = qw[k - 1] if k > 0 else qw[m - 1]
+        b = qw[k]
+        if a < 0 or b < 0:
+            k += 1
+            continue
+        p = k - 1 if k > 0 else m - 1
+        s = qw[p - 1] if p > 0 else qw[m - 1]
+        nx = k + 1 if k + 1 < m else 0
+        t = qw[nx]
+        x = qx[k]
+        y = qy[k]
+        if s < 0:
+            past = _beyond_side(x, y, s, box)
+            if past > 0:
+                cx, cy = box_crossing(i, b, xs, ys, s, box)
+                if cx == cx and box[0] <= cx <= box[2] and box[1] <= cy <= box[3]:
+                    qx[p] = cx
+                    qy[p] = cy
+                    qw[p] = b
+                    m = _remove(qx, qy, qw, m, k)
+                    k = np.int64(0)
+                    continue
+            elif past == 0 and _along_side(x, y, s) < _along_side(qx[p], qy[p], s):
+                m = _remove(qx, qy, qw, m, p)
+                k = np.int64(0)
+                continue
+        if t < 0:
+            past = _beyond_side(x, y, t, box)
+            if past > 0:
+                cx, cy = box_crossing(i, a, xs, ys, t, box)
+                if cx == cx and box[0] <= cx <= box[2] and box[1] <= cy <= box[3]:
+                    qx[k] = cx
+                    qy[k] = cy
+                    qw[k] = t
+                    m = _remove(qx, qy, qw, m, nx)
+                    k = np.int64(0)
+                    continue
+            elif past == 0 and _along_side(qx[nx], qy[nx], t) < _along_side(x, y, t):
+                qw[k] = t
+                m = _remove(qx, qy, qw, m, nx)
+                k = np.int64(0)
+                continue
+        k += 1
+    return m
 
 
 @njit(**NJIT)
@@ -216,7 +329,11 @@ def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw, bo
             qw[out - 1] = lp
             continue
         kp, steps = _chain(nbrs, tris, nn, lp, lq, np.int64(0))
-        if not (steps >= 1 and out + steps + (m - v) <= qx.shape[0]):
+        if not (
+            steps >= 1
+            and out + steps + (m - v) <= qx.shape[0]
+            and _chain_in_box(nbrs, tris, nn, kp, steps, cx, cy, box)
+        ):
             qw[out - 1] = _nearest_label(
                 xs, ys, 0.5 * (px[v] + px[w]), 0.5 * (py[v] + py[w]), b, nbrs, nn, box
             )
