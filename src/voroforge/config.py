@@ -60,6 +60,13 @@ FOLD_REACH_ERRS = 256.0
 #: ... and never further than this of the vertex's distance from its site (a class's naming
 #: move grows with every join: it must not carry vertices across the sites' spacing)
 FOLD_REACH_RTOL = 2.0**-10
+#: How many times a stalled fold test doubles its reach (FOLD_REACH_RTOL): 2**-10 -> 2**-4
+#: of the vertex's distance from its site
+FOLD_STALL_DOUBLINGS = 6
+#: ... while every join keeps its ends within this of the site's distance to its nearest
+#: neighbour of their exact centres (0.5: half the spacing; 0.25 left 600 sites of radius
+#: 1e-5 at (3e4, 1e4) non-convex, 2 folded more of the neighbouring circles)
+FOLD_STALL_SPACING = 0.5
 #: A point must be this far (relative to its distances to the two sites, plus 16 ulps of
 #: its own coordinates for their rounding) off the bisector of two neighbours for a cut
 #: cell's edge to be relabelled from one to the other (kernels/cellcut._nearest_label)

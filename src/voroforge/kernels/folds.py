@@ -22,21 +22,21 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ..config import FOLD_REACH_ERRS, FOLD_REACH_RTOL, FOLD_SPAN_ERRS, NJIT, NJIT_PARALLEL
+from ..config import (
+    FOLD_REACH_ERRS,
+    FOLD_REACH_RTOL,
+    FOLD_SPAN_ERRS,
+    FOLD_STALL_DOUBLINGS,
+    FOLD_STALL_SPACING,
+    NJIT,
+    NJIT_PARALLEL,
+)
 from .centers import short_edge
 from .clip import ring_convex
 from .predicates import orient2d
 from .vertex import voronoi_vertex
 
 _U = 2.0**-53
-# (both belong in config.py with the other FOLD_* tolerances)
-#: How many times a stalled fold test doubles its reach (FOLD_REACH_RTOL): 2**-10 -> 2**-4
-#: of the vertex's distance from its site
-FOLD_STALL_DOUBLINGS = 6
-#: ... while every join keeps its ends within this of the site's distance to its nearest
-#: neighbour of their exact centres (0.5: half the spacing; 0.25 left 600 sites of radius
-#: 1e-5 at (3e4, 1e4) non-convex, 2 folded more of the neighbouring circles)
-FOLD_STALL_SPACING = 0.5
 
 
 @njit(**NJIT)
