@@ -108,10 +108,12 @@ class Diagram:
     wrapped : bool
         True when periodic cells were cut into the box (``wrap=True``).
     unresolved : (m,) int64
-        Distinct sites inside the domain's box whose cell is empty because float64 cannot
-        represent it: a site a few ulps from others whose cell is a strip narrower than
-        the coordinates' spacing. Usually empty; such a site is not a duplicate
-        (``duplicate_of == -1``) but has no cell.
+        Distinct sites inside the domain's box whose cell float64 cannot represent: a site
+        a few ulps from others whose cell is a strip narrower than the coordinates'
+        spacing. Its cell is empty, or, where the strip is most of a bigger cell (the hull
+        site of a cluster a few ulps wide far from the origin), a ring that lies beside the
+        site by an ulp, kept so the cells tile the domain. Usually empty; such a site is
+        not a duplicate (``duplicate_of == -1``).
     """
 
     periodic = False

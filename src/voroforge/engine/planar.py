@@ -244,8 +244,8 @@ def _empty_astray(closed, lengths, owner, lost, box):
     is flagged and emptied, as a site whose ring merged away is (its area, under
     ``_ASTRAY_AREA`` of the box's, is below the tiling's rounding). A bigger ring that
     misses its site (the hull strip of a cluster a few ulps wide, reaching far out) is most
-    of the site's cell: it is kept, and the site is not flagged (``Diagram.unresolved``
-    lists sites without a cell).
+    of the site's cell: it is kept so the cells tile the domain, and the site is flagged
+    too (``Diagram.unresolved``: no cell, or a cell beside its site).
     """
     size = lengths[1:][lost] - lengths[:-1][lost]
     ring = lost[size > 0]
@@ -258,9 +258,6 @@ def _empty_astray(closed, lengths, owner, lost, box):
     tiny = area <= _ASTRAY_AREA * (box[2] - box[0]) * (box[3] - box[1])
     drop = np.zeros(len(lengths) - 1, dtype=np.bool_)
     drop[ring[tiny]] = True
-    keep = np.ones(len(lengths) - 1, dtype=np.bool_)
-    keep[ring[~tiny]] = False
-    lost = lost[keep[lost]]
     if drop.any():
         empty = (closed[:0], np.zeros_like(lengths), owner[:0])
         closed, lengths, owner = _splice(closed, lengths, owner, empty, drop)
@@ -470,7 +467,8 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
         if len(lost):
             closed, lengths, own, lost = _empty_astray(closed, lengths, own, lost, box)
         bufs, edges = assemble(wdom, closed, lengths, own, n, unique)
-    # sites every construction leaves without a cell holding them: floats cannot represent it
+    # sites every construction leaves without a cell holding them (empty, or a ring beside
+    # the site): floats cannot represent it
     unresolved = unique[lost].astype(np.int64)
     if k:
         bufs = (np.ldexp(bufs[0], -k), *bufs[1:])
