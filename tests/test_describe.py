@@ -245,3 +245,27 @@ def test_mixed_scales_few_ulps_and_far_circles(name, algorithm):
     r = vf.voronoi(points, boundary, algorithm=algorithm).describe()
     assert r.euler_ok, str(r)
     assert r.convex_ok, str(r)
+
+
+@pytest.mark.parametrize("algorithm", ["delaunay", "fortune", "halfplane"])
+def test_euler_with_holes_that_touch_the_shell_or_each_other(algorithm):
+    # a hole touching the outer ring at a point leaves the cell's interior an open disk
+    # (independent check, 2026-12-04: it was counted 1 - 1 and Euler FAILED); two holes
+    # touching each other bound one face with two holes' worth of characteristic
+    from shapely.geometry import Polygon
+
+    square = [(0, 0), (10, 0), (10, 10), (0, 10)]
+    cases = [
+        (Polygon(square, [[(0, 5), (3, 4), (3, 6)]]), [[2, 5], [8, 5]], 0),
+        (Polygon(square, [[(0, 5), (3, 4), (3, 6)]]), [[2, 5], [8, 5], [5, 8]], 0),
+        (
+            Polygon(square, [[(2, 2), (4, 2), (3, 3)], [(4, 2), (6, 2), (5, 3)]]),
+            [[1, 1], [8, 8], [5, 6]],
+            -1,
+        ),
+        (Polygon(square, [[(2, 2), (4, 2), (3, 3)]]), [[1, 1], [8, 8], [5, 6]], 0),
+    ]
+    for dom, sites, chi in cases:
+        r = vf.voronoi(np.array(sites, dtype=float), dom, algorithm=algorithm).describe()
+        assert r.euler_expected == chi
+        assert r.euler_ok, str(r)

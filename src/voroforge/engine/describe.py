@@ -361,6 +361,45 @@ def _counts(coords, ring, cell_of_ring, corners, wrap=None):
     return len(unique(va)), n_edges, merged, int((per_vertex >= 3).sum())
 
 
+def _open_holes(cells, parts_per_cell, poly) -> int:
+    """How many holes of the cells' parts do not make a part's interior less than a disk.
+
+    A face counts ``1 - h`` for its ``h`` holes only where they are apart from its outer
+    ring: a hole that touches the outer ring at a point (a domain whose hole touches its
+    shell) leaves the interior an open disk, and holes that touch one another count once.
+    So each part counts one minus the groups of touching holes that do not reach its shell.
+    """
+    holed = np.flatnonzero(np.diff(poly) > 1)
+    if not len(holed):
+        return 0
+    owner = np.repeat(np.arange(len(cells)), parts_per_cell)
+    first = np.concatenate(([0], np.cumsum(parts_per_cell)[:-1]))
+    opened = 0
+    for j in holed:
+        c = owner[j]
+        geom = cells[c]
+        part = (
+            shapely.get_parts(geom)[j - first[c]] if shapely.get_num_geometries(geom) > 1 else geom
+        )
+        rings = [part.exterior, *part.interiors]
+        group = list(range(len(rings)))  # union-find over touching rings
+
+        def root(a, group=group):
+            while group[a] != a:
+                group[a] = group[group[a]]
+                a = group[a]
+            return a
+
+        for a in range(len(rings)):
+            for b in range(a + 1, len(rings)):
+                if rings[a].intersects(rings[b]):
+                    group[root(a)] = root(b)
+        roots = {root(a) for a in range(1, len(rings))}
+        closed_groups = len(roots - {root(0)})
+        opened += (len(rings) - 1) - closed_groups
+    return opened
+
+
 def _domain_chi(geom) -> int:
     """Euler characteristic of a polygonal domain: parts minus holes, less the pinches.
 
@@ -450,7 +489,7 @@ def describe(d) -> Description:
     cells = int((parts_per_cell > 0).sum())
     parts = int(len(poly) - 1)
     holes = int(len(ring) - 1 - parts)
-    faces = parts - holes
+    faces = parts - holes + _open_holes(d.cells, parts_per_cell, poly) if holes else parts
     x0, y0, x1, y1 = d.bounds
     size = np.array([x1 - x0, y1 - y0])
     cell_of_poly = np.repeat(np.arange(n), parts_per_cell)
