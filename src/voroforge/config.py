@@ -142,6 +142,11 @@ VERTEX_STRAIGHT_ULPS = 8.0
 VERTEX_MERGE_ULPS = 2.0
 #: describe(): a domain whose hull area exceeds its area by less than this (relative) is convex
 CONVEX_DOMAIN_RTOL = 1e-12
+#: 3D describe(): a cell is convex when no vertex is past another face's plane by more
+#: than this of the cell's size, or CONVEX3D_ULPS ulps of its coordinates where coarser
+#: (rounding at an offset: a third of an ulp at 7e13 was a dent)
+CONVEX3D_RTOL = 1e-9
+CONVEX3D_ULPS = 16.0
 #: locate(): a candidate this close (relative) to the best squared distance may be a tie
 LOCATE_TIE_RTOL = 1e-9
 #: locate: float squared distances within this relative band of the nearest one may be

@@ -4,6 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..config import CONVEX3D_RTOL, CONVEX3D_ULPS
+
+EPS = float(np.finfo(np.float64).eps)
+
 
 def describe3d(d) -> dict:
     """V, E, F, C; the Euler check per cell; convexity; cells cut by a non-convex container.
@@ -11,8 +15,9 @@ def describe3d(d) -> dict:
     Returns a dict: ``vertices``, ``edges`` (unique undirected edges), ``faces`` (unique),
     ``cells`` (non-empty), ``euler_ok`` (every non-empty cell has ``V - E + F = 2``),
     ``euler_failures`` (cell numbers), ``convex`` (every face's vertices on the inner side of
-    every other face of its cell, to 1e-9 of the cell's size; faces smaller than
-    that squared are left out), ``cut_cells`` (cells cut by a
+    every other face of its cell, to ``CONVEX3D_RTOL`` of the cell's size or
+    ``CONVEX3D_ULPS`` ulps of its coordinates, whichever is coarser; faces thinner than that
+    are left out), ``cut_cells`` (cells cut by a
     mesh container, else 0), ``unmatched_vertices``, ``volume`` and ``container_volume``.
     """
     cf, lab, farea, roff, ring = d.cell_face_table()
@@ -38,13 +43,16 @@ def describe3d(d) -> dict:
         if d.container != "mesh" or d.cut_cells is None or not d.cut_cells[i]:
             V = d.vertices[list(verts)]
             size = float(np.ptp(V, axis=0).max()) if len(V) else 0.0
+            # the resolution: a fraction of the cell, or a few ulps of its coordinates where
+            # those are coarser (a cell 4 wide at 7e13 has vertices an ulp, 0.0078, apart)
+            res = max(CONVEX3D_RTOL * size, CONVEX3D_ULPS * EPS * float(np.abs(V).max(initial=0)))
             for f in range(f0, f1):
                 a = farea[f]
                 na = np.linalg.norm(a)
-                if na <= (1e-9 * size) ** 2:
-                    continue  # a face below the doubles' resolution has no normal to test
+                if na <= res * size:
+                    continue  # a face thinner than the resolution has no normal to test
                 p0 = d.vertices[ring[roff[f]]]
-                if ((V - p0) @ (a / na)).max() > 1e-9 * size:
+                if ((V - p0) @ (a / na)).max() > res:
                     nonconvex.append(i)
                     break
     return {
