@@ -83,7 +83,13 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
         if periodic and not inside.all():
             bad = int(np.flatnonzero(~inside)[0])
             raise ValueError(f"periodic sites must lie in the box (first outside: row {bad})")
-    dup = duplicate_owner3d(pts, w)
+    if periodic and n:
+        # on the torus a site on an upper face is the one on the lower face: duplicates are
+        # found on the wrapped coordinates
+        lo, hi = np.asarray(t.bounds, dtype=np.float64)
+        dup = duplicate_owner3d(np.where(pts >= hi, lo, pts), w)
+    else:
+        dup = duplicate_owner3d(pts, w)
     uniq = np.flatnonzero(dup < 0)
     work, k = working_frame(pts, extra=t.bounds)
     tw = t.scaled(k)
