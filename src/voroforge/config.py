@@ -71,6 +71,8 @@ FOLD_STALL_SPACING = 0.5
 #: its own coordinates for their rounding) off the bisector of two neighbours for a cut
 #: cell's edge to be relabelled from one to the other (kernels/cellcut._nearest_label)
 RELABEL_RTOL = 1e-9
+#: ... plus this many unit roundoffs (2**-53) of the point's coordinates (its rounding)
+RELABEL_ULPS = 16.0
 #: A cut cell's ring that rounding turns the wrong way only beside edges this many ulps (of
 #: the vertex's coordinates) long, and is simple, is kept: the end of a strip an ulp wide
 #: (kernels/cells._reflex_by_rounding)
@@ -79,6 +81,18 @@ REFLEX_SHORT_ULPS = 16.0
 #: cell's site (the local spacing), plus 16 ulps of their coordinates: the join of the rings'
 #: tiny or one-sided edges across neighbours (kernels/power._close, _reconcile)
 POWER_CROWDED_RTOL = 1e-9
+#: ... that many unit roundoffs (2**-53) of the vertices' coordinates (their rounding far
+#: from the origin)
+POWER_CROWDED_ULPS = 16.0
+#: Power lift: a lower facet resolves its sites' curvature when each side's squared length
+#: (frame units) exceeds this many ulps of twice the largest lifted coordinate
+POWER_LIFT_RESOLVE_ULPS = 1e4
+#: Where not, each site's nearest this many in the lifted space are its first candidates;
+#: then cells' vertices are checked against them, to POWER_CHECK_ULPS ulps, in at most
+#: POWER_CHECK_ROUNDS rounds (engine/power._checked_cells)
+POWER_LOST_NEAR = 12
+POWER_CHECK_ULPS = 16.0
+POWER_CHECK_ROUNDS = 64
 #: Relative size of a seed candidate's float orientation below which the sweep's seed
 #: search asks the exact orient2d (nearly collinear: never the smallest circle; delaunay)
 SEED_DET_RTOL = 1e-10
@@ -93,6 +107,12 @@ GRID_DEGENERATE_RTOL = 1e-6
 GRID_WIDEN_RTOL = 1e-12
 #: Margin on the half-plane cell's stop radius (2 r) against rounding in its radius r
 HALFPLANE_REACH_RTOL = 1e-9
+#: Half-plane settling: a site is watched where its plane value is below this times the
+#: box's squared radius about the site (the float cut's vertex error, squared: 2**-40 of it)
+HALFPLANE_SLACK2 = 2.0**-80
+#: ... and an edge is sure (no exact test) only when its length times the sine at its ends,
+#: squared, exceeds this times the box's squared radius about the site
+HALFPLANE_SURE_FAR = 2.0**-72
 #: Band around a vertex's circle (relative to its squared radius) inside which a candidate
 #: site is watched and gets the exact incircle test in the half-plane cell's finishing
 HALFPLANE_NEAR_RTOL = 1e-7

@@ -20,11 +20,15 @@ from scipy.sparse.linalg import MatrixRankWarning, spsolve
 from scipy.spatial import ConvexHull, QhullError, cKDTree
 
 from ..config import (
+    POWER_CHECK_ROUNDS,
+    POWER_CHECK_ULPS,
     POWER_FIT_DEFAULT_RTOL,
     POWER_FIT_SUM_RTOL,
     POWER_FLAT_RTOL,
     POWER_HIDDEN_RTOL,
     POWER_LABEL_RTOL,
+    POWER_LIFT_RESOLVE_ULPS,
+    POWER_LOST_NEAR,
     POWER_NEWTON_SHIFT,
     POWER_TIE_RTOL,
 )
@@ -39,14 +43,6 @@ from .threads import serial_below
 #: Up to this many sites every pair is a candidate neighbour (no triangulation needed).
 _ALL_PAIRS_MAX = 16
 _EPS = float(np.finfo(float).eps)
-#: A lower facet of the lift resolves its sites' curvature when each side's squared length
-#: (frame units) exceeds this many ulps of twice the largest lifted coordinate (config)
-_LIFT_RESOLVE_ULPS = 1e4
-#: Where not, each site's nearest in the lifted space are its first candidates; then cells'
-#: vertices are checked against as many, to this many ulps, in so many rounds at most
-_LOST_NEAR = 12
-_CHECK_ULPS = 16.0
-_CHECK_ROUNDS = 64
 
 
 class PowerDiagram(Diagram):
@@ -206,10 +202,10 @@ def _neighbors(x, y, w, box, active):
     # or one at the box's centre); every site may then have a cell
     turn = lower[:, [1, 2, 0]]
     side = (u[lower] - u[turn]) ** 2 + (v[lower] - v[turn]) ** 2
-    sure = bool(side.min() > _LIFT_RESOLVE_ULPS * _EPS * 2.0 * np.abs(lift).max())
+    sure = bool(side.min() > POWER_LIFT_RESOLVE_ULPS * _EPS * 2.0 * np.abs(lift).max())
     if not sure:
         # first candidates: the nearest sites in the lifted space (:func:`_checked_cells`)
-        k = min(m, _LOST_NEAR + 1)
+        k = min(m, POWER_LOST_NEAR + 1)
         near = np.column_stack((x[idx] - cx, y[idx] - cy, np.sqrt(w[idx].max() - w[idx])))
         nb = cKDTree(near).query(near, k=k)[1].reshape(m, k)
         a = np.concatenate((a, np.repeat(idx, k)))
@@ -243,11 +239,11 @@ def _checked_cells(x, y, w, box, active, indptr, indices):
     tree = cKDTree(np.column_stack((pts[ids], np.sqrt(top - w[ids]))))
     rows = np.repeat(np.arange(n), np.diff(indptr))
     known = rows * n + indices
-    for _ in range(_CHECK_ROUNDS):
+    for _ in range(POWER_CHECK_ROUNDS):
         got = power_cells(x, y, w, indptr, indices, box, active)
         q = got[0]
         cell = np.repeat(np.arange(n), np.diff(got[1]))
-        rows, k, key = np.arange(len(q)), min(len(ids), _LOST_NEAR), [known[:0]]
+        rows, k, key = np.arange(len(q)), min(len(ids), POWER_LOST_NEAR), [known[:0]]
         while len(rows):  # more sites where all k found lead or tie
             i = cell[rows, None]
             j = ids[tree.query(np.column_stack((q[rows], np.zeros(len(rows)))), k=k)[1]]
@@ -257,9 +253,11 @@ def _checked_cells(x, y, w, box, active, indptr, indices):
             pi = np.einsum("ij,ij->i", di, di)[:, None] - w[i]
             pj = np.einsum("ijk,ijk->ij", dj, dj) - w[j]
             # a vertex moved by delta changes the difference by 2 delta |p_i - p_j|
-            delta = _CHECK_ULPS * _EPS * np.abs(q[rows]).max(axis=1)[:, None]
+            delta = POWER_CHECK_ULPS * _EPS * np.abs(q[rows]).max(axis=1)[:, None]
             gap = np.linalg.norm(pts[j] - pts[i], axis=2)
-            band = pj <= pi + 2.0 * delta * gap + _CHECK_ULPS * _EPS * (np.abs(pi) + np.abs(pj))
+            band = pj <= pi + 2.0 * delta * gap + POWER_CHECK_ULPS * _EPS * (
+                np.abs(pi) + np.abs(pj)
+            )
             bad = band & (j != i)
             i, j = np.broadcast_arrays(i, j)
             key.append(np.minimum(i, j)[bad] * n + np.maximum(i, j)[bad])

@@ -29,7 +29,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import NJIT, RELABEL_RTOL
+from ..config import NJIT, RELABEL_RTOL, RELABEL_ULPS
 from .clip import dedupe_ring
 from .power import box_cell
 from .vertex import box_crossing
@@ -297,7 +297,9 @@ def _nearest_label(xs, ys, x, y, b, nbrs, nn, box):
         by = ys[b] - y
         d = dx * (jx + bx) + dy * (jy + by)
         size = abs(jx) + abs(bx) + abs(jy) + abs(by)
-        tol = (RELABEL_RTOL * size + 16.0 * _U * (abs(x) + abs(y))) * (ex * abs(dx) + ey * abs(dy))
+        tol = (RELABEL_RTOL * size + RELABEL_ULPS * _U * (abs(x) + abs(y))) * (
+            ex * abs(dx) + ey * abs(dy)
+        )
         if d < -tol:
             b = j
     return b

@@ -37,6 +37,8 @@ from numba import njit, prange
 from ..config import (
     HALFPLANE_NEAR_RTOL,
     HALFPLANE_REACH_RTOL,
+    HALFPLANE_SLACK2,
+    HALFPLANE_SURE_FAR,
     HALFPLANE_SURE_RTOL,
     HALFPLANE_SURE_SIN2,
     NJIT,
@@ -72,8 +74,6 @@ _BUDGET = 20000  # vertices and sites one cell's search and settling may visit b
 _PROBE = 64  # cells tried first: when most of them are hard, the Delaunay dual builds all
 _KD_LEAF = 8  # sites per k-d bucket
 _KD_CROWDED = 4.0  # k-d buckets when the median site shares its grid bucket with more
-_SLACK2 = 2.0**-80  # (the float cut's vertex error / the box's radius about the site)^2
-_SURE_FAR = 2.0**-72  # (a sure edge's length times the sine at its ends)^2 / box radius^2
 _REACH = 4.0 * (1.0 + HALFPLANE_REACH_RTOL)  # (2 r)^2 / r^2 with a margin against rounding
 
 # The helpers called per cut or per bucket (these, clip's cut) are inlined into _cells'
@@ -268,7 +268,7 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
         px[a + 3], py[a + 3], po[a + 3] = box[0] - cx, box[3] - cy, LEFT
         m = np.int64(4)
         r2 = _radius2(px, py, a, m)
-        slack2 = _SLACK2 * r2  # the float cell's rounding, squared, from the box's radius
+        slack2 = HALFPLANE_SLACK2 * r2  # the float cell's rounding, squared, from the box's radius
         nc = np.int64(0)
         nw = np.int64(0)
         work = 0
@@ -511,7 +511,10 @@ def _finish(
         for w in (u - 1 if u > 0 else m - 1, un):
             f2 = vx[w] * vx[w] + vy[w] * vy[w]
             cr = vx[u] * vy[w] - vy[u] * vx[w]
-            if cr * cr <= HALFPLANE_SURE_SIN2 * e2 * f2 or cr * cr <= _SURE_FAR * far2 * f2:
+            if (
+                cr * cr <= HALFPLANE_SURE_SIN2 * e2 * f2
+                or cr * cr <= HALFPLANE_SURE_FAR * far2 * f2
+            ):
                 ss[u] = 0.0
     # only sites within 2 r of the final cell can matter to its vertices
     keep = np.int64(0)

@@ -31,7 +31,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ..config import NJIT, NJIT_PARALLEL, POWER_CROWDED_RTOL
+from ..config import NJIT, NJIT_PARALLEL, POWER_CROWDED_RTOL, POWER_CROWDED_ULPS
 from .clip import cut_ring, plane_values
 from .vertex import power_box_crossing, power_vertex
 
@@ -141,7 +141,7 @@ def _close(a, b, sx, sy, px, py, rtol):
         return True
     scale = abs(px[a] - sx) + abs(py[a] - sy) + abs(px[b] - sx) + abs(py[b] - sy)
     mag = abs(px[a]) + abs(py[a]) + abs(px[b]) + abs(py[b])
-    return d <= rtol * scale + 16.0 * _U * mag
+    return d <= rtol * scale + POWER_CROWDED_ULPS * _U * mag
 
 
 @njit(**NJIT)
