@@ -209,6 +209,22 @@ def _remove(qx, qy, qw, m, k):
 
 
 @njit(**NJIT)
+def _to_crossing(i, j, xs, ys, side, box, qx, qy, qw, m, at, owner, drop):
+    """Vertex ``at`` becomes the canonical crossing of ``side`` by the bisector of ``i, j``.
+
+    Its edge is owned by ``owner`` and vertex ``drop`` goes. Returns the new count, or 0
+    (nothing changed) when the bisector does not cross the side inside the box.
+    """
+    cx, cy = box_crossing(i, j, xs, ys, side, box)
+    if not (cx == cx and box[0] <= cx <= box[2] and box[1] <= cy <= box[3]):
+        return 0
+    qx[at] = cx
+    qy[at] = cy
+    qw[at] = owner
+    return _remove(qx, qy, qw, m, drop)
+
+
+@njit(**NJIT)
 def _drop_side_slivers(i, xs, ys, qx, qy, qw, m, box):
     """Drop a bisector edge between a box side and a named vertex on or past that side.
 
@@ -237,12 +253,9 @@ def _drop_side_slivers(i, xs, ys, qx, qy, qw, m, box):
         if s < 0:
             past = _beyond_side(x, y, s, box)
             if past > 0:
-                cx, cy = box_crossing(i, b, xs, ys, s, box)
-                if cx == cx and box[0] <= cx <= box[2] and box[1] <= cy <= box[3]:
-                    qx[p] = cx
-                    qy[p] = cy
-                    qw[p] = b
-                    m = _remove(qx, qy, qw, m, k)
+                got = _to_crossing(i, b, xs, ys, s, box, qx, qy, qw, m, p, b, k)
+                if got > 0:
+                    m = got
                     k = np.int64(0)
                     continue
             elif past == 0 and _along_side(x, y, s) < _along_side(qx[p], qy[p], s):
@@ -252,12 +265,9 @@ def _drop_side_slivers(i, xs, ys, qx, qy, qw, m, box):
         if t < 0:
             past = _beyond_side(x, y, t, box)
             if past > 0:
-                cx, cy = box_crossing(i, a, xs, ys, t, box)
-                if cx == cx and box[0] <= cx <= box[2] and box[1] <= cy <= box[3]:
-                    qx[k] = cx
-                    qy[k] = cy
-                    qw[k] = t
-                    m = _remove(qx, qy, qw, m, nx)
+                got = _to_crossing(i, a, xs, ys, t, box, qx, qy, qw, m, k, t, nx)
+                if got > 0:
+                    m = got
                     k = np.int64(0)
                     continue
             elif past == 0 and _along_side(qx[nx], qy[nx], t) < _along_side(x, y, t):
