@@ -391,3 +391,18 @@ def test_locate_decides_float_ties_exactly():
         assert d.cells[1].covers(shapely.Point(q[k]))
     # an exact tie still goes to the lowest index
     assert vf.locate([[0.0, 0.0], [2.0, 0.0]], [1.0, 5.0]) == 0
+
+
+@pytest.mark.parametrize("off", [(5e5, 4e6), (1e9, 1e9), (-3e7, 2e5)])
+def test_natural_neighbor_far_from_the_origin_keeps_its_digits(off):
+    # the same sites and queries shifted by an exact offset give the same interpolant: the
+    # areas are computed at the sites' corner (independent check: 1.25e-8 off at 1e9)
+    g = np.random.default_rng(3)
+    x, y = np.meshgrid(np.arange(5.0), np.arange(5.0))
+    sites = np.column_stack((x.ravel(), y.ravel()))
+    vals = g.random(25)
+    far = np.add(off, 0.3 + g.random((10, 2)) * 3.4)
+    q = far - off  # exact: the queries are the same points in both frames
+    here = vf.natural_neighbor(sites, vals, q)
+    there = vf.natural_neighbor(sites + off, vals, far)
+    assert np.abs(there - here).max() <= 1e-13

@@ -286,6 +286,21 @@ def estimate_gradients(tri, values: np.ndarray) -> np.ndarray:
     return grads
 
 
+def _exact_origin(pts: np.ndarray) -> np.ndarray:
+    """An origin near the sites that every site's difference from is exact, else zero.
+
+    Far from the origin (UTM-like coordinates) the Sibson areas lose digits to the
+    coordinates' magnitude; in a frame at the sites' lower corner they keep the spacing's.
+    The translation must leave the triangulation's exact decisions unchanged, so it is used
+    only when every ``site - origin`` is exact (Knuth's two-sum error is zero).
+    """
+    origin = pts.min(axis=0)
+    d = pts - origin
+    back = d - pts
+    err = (pts - (d - back)) + (-origin - back)
+    return origin if not err.any() else np.zeros(2)
+
+
 def natural_neighbor(
     points,
     values,
@@ -377,8 +392,9 @@ def natural_neighbor(
     if len(tri.triangles):
         # the kernel's incircle and areas need degree-4 terms in the double range: at extreme
         # scales it works on points, queries and gradients scaled by a power of two (exact)
-        work, k = working_frame(pts)
-        qk = np.ldexp(q, k) if k else q
+        origin = _exact_origin(pts)
+        work, k = working_frame(pts - origin)
+        qk = np.ldexp(q - origin, k) if k else q - origin
         status = sibson(
             np.ascontiguousarray(work[:, 0]),
             np.ascontiguousarray(work[:, 1]),
