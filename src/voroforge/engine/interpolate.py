@@ -10,7 +10,6 @@ Delaunay triangulation (see :mod:`voroforge.kernels.natural`), never by rebuildi
 from __future__ import annotations
 
 import weakref
-from fractions import Fraction
 
 import numpy as np
 from scipy.spatial import cKDTree
@@ -26,6 +25,7 @@ from ..config import (
 from ..kernels.natural import INSIDE, sibson
 from .delaunay import delaunay
 from .inputs import as_points, as_query, as_values, duplicate_map, working_frame
+from .locate3d import nearest_exact
 
 
 class _Locator:
@@ -80,7 +80,7 @@ class _Locator:
             # float distances within their rounding of the best: decided exactly
             close = d2 <= best[:, None] * (1.0 + LOCATE_ROUND_RTOL)
             for r in np.flatnonzero(close.sum(axis=1) > 1):
-                out[rows[r]] = self._exact_nearest(q[rows[r]], cand[r][close[r]])
+                out[rows[r]] = self.owners[nearest_exact(q[rows[r]], cand[r][close[r]], self.pts)]
         if k == npts:
             return rows[:0], best[:0]
         # a candidate this close to the best one may hide further ties beyond the k-th
@@ -134,25 +134,11 @@ class _Locator:
             members = np.asarray(members, dtype=np.int64)
             dd = self._d2(q[row : row + 1], members[None, :])[0]
             if self.size is None:
-                out[row] = self._exact_nearest(
-                    q[row], members[dd <= dd.min() * (1.0 + LOCATE_ROUND_RTOL)]
-                )
+                near = members[dd <= dd.min() * (1.0 + LOCATE_ROUND_RTOL)]
+                out[row] = self.owners[nearest_exact(q[row], near, self.pts)]
             else:
                 out[row] = self.owners[members[dd == dd.min()]].min()
         return out
-
-    def _exact_nearest(self, q: np.ndarray, cand: np.ndarray) -> int:
-        """Lowest input index among the exactly nearest of sites ``cand`` (rationals)."""
-        qx, qy = Fraction(float(q[0])), Fraction(float(q[1]))
-        keys = [
-            (
-                (qx - Fraction(float(self.pts[c, 0]))) ** 2
-                + (qy - Fraction(float(self.pts[c, 1]))) ** 2,
-                int(self.owners[c]),
-            )
-            for c in cand
-        ]
-        return min(keys)[1]
 
 
 _CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()

@@ -43,7 +43,7 @@ def locate3d(d, xyz):
             if near.all():  # many ties: fall back to a full scan of this query
                 d2 = ((sites[live] - q[r]) ** 2).sum(axis=1)
                 cand = live[d2 <= d2.min() * (1 + 1e-9) + 1e-300]
-            out[r] = _pick(q[r], cand, sites, w)
+            out[r] = nearest_exact(q[r], cand, sites, w)
     else:
         for s in range(0, len(q), step):
             qq = q[s : s + step]
@@ -53,12 +53,17 @@ def locate3d(d, xyz):
                 near = dd[r] <= best[r, 0] + 1e-9 * (
                     abs(best[r, 0]) + np.abs(qq[r]).max() ** 2 + 1e-300
                 )
-                out[s + r] = _pick(qq[r], live[near], sites, w)
+                out[s + r] = nearest_exact(qq[r], live[near], sites, w)
     return int(out[0]) if single else out
 
 
-def _pick(q, cand, sites, w):
+def nearest_exact(q, cand, sites, w=None) -> int:
+    """Lowest index among the exactly nearest of sites ``cand`` to ``q`` (any dimension).
+
+    Squared distances less the weights ``w`` (none: zero) in rationals, so float ties and
+    near ties are decided exactly; ``locate`` in 2D uses it for its near ties too.
+    """
     if len(cand) == 1:
         return int(cand[0])
-    keys = [(_exact_key(q, sites[c], w[c]), int(c)) for c in cand]
+    keys = [(_exact_key(q, sites[c], 0.0 if w is None else w[c]), int(c)) for c in cand]
     return min(keys)[1]
