@@ -178,19 +178,9 @@ def test_strip_end_meets_a_steep_bisector():
 def _wide_strips(lo, seed):
     """Pairs of sites 1-5 and 3-10 ulps inside both sides of a unit box at ``lo``: strips
     2-5 ulps wide along the sides, whose ends meet bisectors of any slope."""
-    g = np.random.default_rng(1000 + seed)
-    y1, y2, y3 = g.random(3)
-    k1 = int(g.integers(1, 6))
-    k2 = k1 + int(g.integers(2, 6))
-    side = [
-        [_walk(lo, k1, 1.0), y1],
-        [_walk(lo, k2, 1.0), y1],
-        [_walk(lo, int(g.integers(1, 4)), 1.0), y2],
-        [_walk(lo + 1.0, k2, -1.0), y3],
-        [_walk(lo + 1.0, k1, -1.0), y3],
-    ]
-    inner = [lo, 0.0] + g.random((int(g.integers(5, 25)), 2))
-    return np.concatenate((np.array(side), inner)), (lo, 0.0, lo + 1.0, 1.0)
+    from test_issue15_ulp_strips import _box_side_strips
+
+    return _box_side_strips(lo, 1000 + seed, first=(1, 6), gap=(2, 6), near_duplicates=False)
 
 
 @pytest.mark.parametrize(("lo", "seed"), [(7.0, 11), (1234.5, 11), (1234.5, 24), (1234.5, 55)])

@@ -90,15 +90,16 @@ def test_sites_ulps_apart_euler_and_shared_vertices(off, seed):
     assert len(flagged) == 1
 
 
-def _box_side_strips(lo, seed):
+def _box_side_strips(lo, seed, first=(1, 4), gap=(1, 3), near_duplicates=True):
     """``near_duplicates_at_box_sides``'s neighbours: pairs of sites 1-5 ulps inside both
     sides of a unit box at ``lo``, the pair at one height (a strip cell between the pair's
     bisector and the side), a third site near the left side, random sites inside and four
-    near-duplicates of them 2**-33 above."""
+    near-duplicates of them 2**-33 above. ``first`` and ``gap``: the ranges of the pair's
+    ulps from the side and of their distance apart."""
     g = np.random.default_rng(seed)
     y1, y2, y3 = g.random(3)
-    k1 = int(g.integers(1, 4))
-    k2 = k1 + int(g.integers(1, 3))
+    k1 = int(g.integers(*first))
+    k2 = k1 + int(g.integers(*gap))
     side = [
         [_walk(lo, k1, 1.0), y1],
         [_walk(lo, k2, 1.0), y1],
@@ -107,7 +108,8 @@ def _box_side_strips(lo, seed):
         [_walk(lo + 1.0, k1, -1.0), y3],
     ]
     inner = [lo, 0.0] + g.random((int(g.integers(5, 25)), 2))
-    pts = np.concatenate((np.array(side), inner, inner[:4] + [0.0, 2.0**-33]))
+    extra = [inner[:4] + [0.0, 2.0**-33]] if near_duplicates else []
+    pts = np.concatenate((np.array(side), inner, *extra))
     return pts, (lo, 0.0, lo + 1.0, 1.0)
 
 
