@@ -33,7 +33,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
-from .expansion import expansion_sum, multiply, two_diff, two_product
+from .expansion import estimate, expansion_sum, multiply, two_diff, two_product
 
 _EPS = 2.0**-53
 #: filter bounds (relative to the permanent). Shewchuk's orient3d bound is (7 + 56 eps) eps;
@@ -149,6 +149,19 @@ def exact_dets(buf, EL, TL, need4):
     components at ``(3 k + c) * 2``; ``buf[_OFF_T + 64 k:]`` the last column's ``t_k`` with
     ``TL[k]`` components.
     """
+    n3, n4 = _dets(buf, EL, TL, need4)
+    s3 = _sign(buf[_OFF_M3 + 3 * _M3 : _OFF_M3 + 4 * _M3], n3)
+    if not need4:
+        return s3, 0
+    return s3, _sign(buf[_OFF_S : _OFF_S + _SUM], n4)
+
+
+@njit(**NJIT)
+def _dets(buf, EL, TL, need4):
+    """The expansions behind :func:`exact_dets`; returns their lengths (D4: 0 if not needed).
+
+    D3 is left in ``buf[_OFF_M3 + 3 * _M3:]``, D4 in ``buf[_OFF_S:]``.
+    """
     M2 = buf[_OFF_M2 : _OFF_M2 + 18 * _M2]
     M3 = buf[_OFF_M3 : _OFF_M3 + 4 * _M3]
     S = buf[_OFF_S : _OFF_S + _SUM]
@@ -179,9 +192,8 @@ def exact_dets(buf, EL, TL, need4):
         r1 = 2 if k <= 1 else 1
         r2 = 3 if k <= 2 else 2
         M3L[k] = _minor3(buf, EL, M2L, r0, r1, r2, M3[k * _M3 : (k + 1) * _M3])
-    s3 = _sign(M3[3 * _M3 : 4 * _M3], M3L[3])
     if not need4:
-        return s3, 0
+        return M3L[3], np.int64(0)
     # D4 = -t0 M0 + t1 M1 - t2 M2 + t3 M3
     n = np.int64(0)
     for k in range(4):
@@ -192,7 +204,7 @@ def exact_dets(buf, EL, TL, need4):
         for q in range(ln):
             S[q] = A[q]
         n = ln
-    return s3, _sign(S, n)
+    return M3L[3], n
 
 
 @njit(**NJIT)
@@ -476,3 +488,42 @@ def bisector_side(i, k0, k1, k2, j, P, W, WP, ns, rows, buf):
     if s3 == 0:
         return 2
     return -s3 * s4
+
+
+@njit(**NJIT)
+def exact_point(a, k0, k1, k2, P, W, WP, ns, buf, x):
+    """The vertex of site ``a``'s owners ``k0, k1, k2`` into ``x (3,)``, from exact expansions.
+
+    Coordinate ``c`` is ``s`` of :func:`bisector_side` for the plane ``x_c = 0`` (a wall
+    row ``(e_c, 2 (0 - p_a,c))``): ``x_c = -D4 / (2 D3)`` with both determinants exact, so
+    only their two estimates and one division round and ``x`` is right to a few ulps of
+    itself, however much of the sites' magnitude cancels (a vertex 1e-17 from the origin
+    among sites on the unit sphere: the float solve's error is 1e-16). Returns False when
+    the planes do not meet in one point (``D3 == 0``). ``buf`` is :func:`scratch`.
+    """
+    lens = buf[_OFF_L : _OFF_L + 16].view(np.int64)
+    EL = lens[:12].reshape((4, 3))
+    TL = lens[12:16]
+    _row_exact(k0, a, P, W, WP, ns, buf, EL, TL, np.int64(0))
+    _row_exact(k1, a, P, W, WP, ns, buf, EL, TL, np.int64(1))
+    _row_exact(k2, a, P, W, WP, ns, buf, EL, TL, np.int64(2))
+    for c in range(3):  # rows 0-2 stay: only row 3 and the minors are written again
+        _put_wall(
+            buf,
+            EL,
+            TL,
+            np.int64(3),
+            1.0 if c == 0 else 0.0,
+            1.0 if c == 1 else 0.0,
+            1.0 if c == 2 else 0.0,
+            0.0,
+            P[a, 0],
+            P[a, 1],
+            P[a, 2],
+        )
+        n3, n4 = _dets(buf, EL, TL, np.bool_(True))
+        d3 = estimate(buf[_OFF_M3 + 3 * _M3 : _OFF_M3 + 4 * _M3], n3)
+        if d3 == 0.0:
+            return False
+        x[c] = -estimate(buf[_OFF_S : _OFF_S + _SUM], n4) / (2.0 * d3)
+    return True

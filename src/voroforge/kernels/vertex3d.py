@@ -13,6 +13,14 @@ The linear system: for the lowest site ``p0`` and each other owner a row ``r . y
 ``r = p_j - p0``, ``t = (|r|^2 + w0 - w_j) / 2`` for a site (its power bisector), ``r = n``,
 ``t = d - n . p0`` for a wall ``n . x <= d``; ``x = p0 + y`` by Cramer's rule. A coordinate on
 an axis-aligned wall is set to the wall's value exactly.
+
+Where ``p0 + y`` cancels (the vertex lies much nearer the origin than its sites: points on a
+float sphere around the origin, whose exact diagram has several vertices within 1e-16 of
+the centre) the float solve's error, a few ulps of the sites, is as large as the vertex
+itself, and distinct exact vertices came out in arbitrary order or as one (a cell's faces
+pinched at the merged vertex). Such a vertex is solved again from exact expansions
+(:func:`place`, :func:`kernels.predicates3d.exact_point`), right to a few ulps of itself;
+still from the name alone, so every cell gets the same bits.
 """
 
 from __future__ import annotations
@@ -21,6 +29,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT, VORONOI3D_DET_RTOL
+from .predicates3d import exact_point
 
 #: nothing here allocates: compiled without reference counting (see kernels.cellcut3d)
 _NO_NRT = {**NJIT, "_nrt": False}
@@ -78,6 +87,36 @@ def solve_name(a, b, c, d, P, W, WP, ns, rows, out):
     out[1] = (t0 * c0y + t1 * c1y + t2 * c2y) / det
     out[2] = (t0 * c0z + t1 * c1z + t2 * c2z) / det
     return True
+
+
+#: ``p0 + y`` is solved again exactly when its largest coordinate is below this fraction of
+#: the largest of ``p0`` and ``y`` (the float solve's error is a few ulps of those, so the
+#: result kept fewer than ~20 bits of itself)
+CANCEL = 2.0**-20
+
+
+@njit(**_NO_NRT)
+def place(name, P, W, WP, ns, y, x, buf):
+    """Absolute coordinates ``x (3,)`` of the vertex ``name`` solved as ``y`` (:func:`solve_name`).
+
+    ``x = p0 + y``, or, where that cancels below ``CANCEL`` of the terms, the exactly computed
+    point (:func:`kernels.predicates3d.exact_point`; ``buf`` its scratch). Returns True when
+    ``x`` is not ``p0 + y``.
+    """
+    a = name[0]
+    big = 0.0
+    small = 0.0
+    for q in range(3):
+        x[q] = P[a, q] + y[q]
+        big = max(big, abs(P[a, q]), abs(y[q]))
+        small = max(small, abs(x[q]))
+    if not small < CANCEL * big:
+        return False
+    if exact_point(a, name[1], name[2], name[3], P, W, WP, ns, buf, x):
+        return True
+    for q in range(3):
+        x[q] = P[a, q] + y[q]
+    return False
 
 
 @njit(**_NO_NRT)
