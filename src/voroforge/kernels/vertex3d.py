@@ -121,17 +121,16 @@ def place(name, P, W, WP, ns, y, x, buf):
 
 @njit(**_NO_NRT)
 def name_key(m, name):
-    """The join's key of a vertex besides its coordinates: its name's hash, or 0.
+    """The join's key of a vertex besides its coordinates: a hash of its name (22 bits, >= 1).
 
-    A vertex of exactly four owners is that quadruple, the same in every cell at it, and
-    distinct exact vertices can round to the same doubles (float points on a sphere far from
-    the origin, an FCC lattice at 1e8: vertices 1e-8 apart where an ulp is 1.5e-8), so such
-    vertices are told apart by their names' hash (22 bits, 1 + a SplitMix-style mix of the
-    four keys). A vertex of more owners (equidistant from five sites or more: exact lattice
-    points) keeps 0: it is joined by its coordinates alone, as before.
+    Distinct exact vertices can round to the same doubles (float points on a sphere far from
+    the origin, an FCC lattice at 1e8: vertices 1e-8 apart where an ulp is 1.5e-8); their
+    names differ (two vertices named by the same independent quadruple are its one
+    circumcentre), and every cell at a vertex collects the same owners and so the same
+    name, so the name tells them apart where the coordinates cannot. ``m`` (the number of
+    owners) is not used: a vertex of five owners or more is as distinct from its
+    neighbours as one of four. A SplitMix-style mix of the four keys, plus one.
     """
-    if m != 4:
-        return np.int64(0)
     h = np.uint64(0x9E3779B97F4A7C15)
     for q in range(4):
         h ^= np.uint64(name[q])
