@@ -9,7 +9,9 @@ from functools import cached_property
 import numpy as np
 
 from .. import config
-from ..kernels.raster import exact_nearest, jfa_nearest, nearest_tiles
+from ..kernels.raster import exact_nearest, fix_pixels, jfa_nearest, nearest_tiles, walk_tiles
+from .csr import csr_from_pairs
+from .delaunay import delaunay
 from .domain import padded_bounds
 from .inputs import as_points, duplicate_map
 
@@ -233,6 +235,66 @@ def _exact_tile(sites: np.ndarray, bounds, shape) -> np.ndarray:
     return np.array([th, tw], dtype=np.int64)
 
 
+#: Largest coordinate magnitude the Delaunay walk is used at: its squared distances must
+#: not overflow (past it, the tile search decides every pixel).
+_WALK_MAX_SCALE = 1e150
+
+
+#: Fraction of empty buckets (of a grid of two sites a bucket) past which the sites count as
+#: crowded: uniform sites leave about e^-2 = 13.5% empty.
+_CROWDED_EMPTY = 0.35
+
+
+def _walks(sites: np.ndarray, bounds, shape, metric: str, want_f2: bool) -> bool:
+    """Whether the Delaunay walk decides the labels instead of the tile search.
+
+    Euclidean F1 only, at least a pixel a site, and only where the sites crowd (most
+    buckets of a uniform grid over the image and the sites empty: along a curve or a line,
+    in clusters, or in a small part of the image). There the tile
+    search scans every empty bucket within the nearest distance for each small tile (inside
+    a circle of sites, the whole grid: 10,000 sites at 1024^2 took 9.7 s against 0.17 s);
+    on uniform sites it is about 1.2x faster than the walk plus its triangulation.
+    """
+    h, w = shape
+    scale = max(float(np.abs(sites).max()), *(abs(v) for v in bounds))
+    if metric != "euclidean" or want_f2 or h * w < len(sites) or scale >= _WALK_MAX_SCALE:
+        return False
+    # buckets of about two sites each over the image and the sites together
+    lo = np.minimum(sites.min(axis=0), (bounds[0], bounds[1]))
+    hi = np.maximum(sites.max(axis=0), (bounds[2], bounds[3]))
+    size = hi - lo
+    nb = max(len(sites) / 2.0, 1.0)
+    nx = int(min(max(math.sqrt(nb * size[0] / size[1]), 1.0), nb))
+    ny = int(min(max(nb / nx, 1.0), nb))
+    ix = np.minimum(((sites[:, 0] - lo[0]) / size[0] * nx).astype(np.int64), nx - 1)
+    iy = np.minimum(((sites[:, 1] - lo[1]) / size[1] * ny).astype(np.int64), ny - 1)
+    filled = len(np.unique(iy * nx + ix))
+    return filled < (1.0 - _CROWDED_EMPTY) * nx * ny
+
+
+def _delaunay_neighbors(sites: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """CSR Delaunay neighbours of distinct sites (collinear: the previous and next on the line)."""
+    tri = delaunay(sites)
+    if len(tri.triangles):
+        t = tri.triangles.astype(np.int64)
+        a = np.concatenate((t[:, 0], t[:, 1], t[:, 2]))
+        b = np.concatenate((t[:, 1], t[:, 2], t[:, 0]))
+    else:
+        a = tri.hull[:-1].astype(np.int64)
+        b = tri.hull[1:].astype(np.int64)
+    return csr_from_pairs(len(sites), a, b)
+
+
+def _walk_nearest(xs, ys, pxs, pys, tile, hint):
+    """Labels and distances by the Delaunay walk; pixels within rounding of a tie brute-forced."""
+    nptr, nidx = _delaunay_neighbors(np.column_stack((xs, ys)))
+    lab, d1, hard = walk_tiles(xs, ys, pxs, pys, nptr, nidx, tile, hint)
+    rows, cols = np.nonzero(hard)
+    if len(rows):
+        fix_pixels(xs, ys, pxs, pys, rows.astype(np.int64), cols.astype(np.int64), lab, d1)
+    return lab, d1, np.zeros((0, 0))
+
+
 def rasterize(
     points,
     shape,
@@ -264,7 +326,10 @@ def rasterize(
         the exact method's on every arrangement. (The flood alone misses sites where they
         crowd: several per pixel, or cells thinner than a pixel, e.g. many sites along a
         circle or a slanted line.) On a CPU ``"exact"`` is faster; ``"jfa"`` is the method
-        GPU pipelines use, kept for comparison.
+        GPU pipelines use, kept for comparison. Where the sites crowd (most of a uniform
+        bucket grid empty: sites along curves or lines, in clusters) both decide the
+        Euclidean nearest site by walking the sites' Delaunay graph from pixel to pixel,
+        which costs about the same per pixel on any arrangement.
     metric : {"euclidean", "manhattan", "chebyshev"}
         Distance used for the labels and distances.
     f2 : bool
@@ -311,7 +376,10 @@ def rasterize(
     pxs, pys = pixel_centers(box, (h, w))
     want_f2 = bool(f2)
     tile = _exact_tile(sub, box, (h, w))
-    if method == "exact":
+    walk = _walks(sub, box, (h, w), metric, want_f2)
+    if method == "exact" and walk:
+        lab, d1, d2 = _walk_nearest(xs, ys, pxs, pys, tile, np.zeros((0, 0), dtype=np.int32))
+    elif method == "exact":
         lab, d1, d2 = exact_nearest(
             xs, ys, pxs, pys, METRICS.index(metric), want_f2, tile, _MAX_CANDIDATES
         )
@@ -319,6 +387,11 @@ def rasterize(
         geom = np.array([box[0], box[3], (box[2] - box[0]) / w, (box[3] - box[1]) / h])
         steps = _jfa_steps(h, w, _jfa_reach(xs, ys, geom, (h, w)))
         flood = jfa_nearest(xs, ys, pxs, pys, geom, steps, want_f2)
+    if method == "jfa" and walk:
+        # The flood's labels start each pixel's walk on the Delaunay graph (a step or two
+        # where the flood was right), which then decides every pixel exactly.
+        lab, d1, d2 = _walk_nearest(xs, ys, pxs, pys, tile, flood[0])
+    elif method == "jfa":
         # The flood's distances are to real sites: each bounds the pixel's nearest (second
         # nearest) distance, so the tiles below check every pixel against the few sites
         # within that bound. The flood misses sites (crowded arrangements: many sites per

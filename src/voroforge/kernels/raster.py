@@ -20,6 +20,12 @@ Exact method
     :func:`nearest_tiles` may also be given a bound per pixel (below: the flood's distances);
     a tile's bound is then its largest, and the ring search runs only where that leaves too
     many candidates.
+Delaunay walk (Euclidean, nearest only; the engine picks it where sites crowd)
+    Each pixel walks the Delaunay graph to a site no neighbour of which is nearer, and a
+    rectangle whose four corners prove one unique nearest site is filled (see the section
+    below): about linear in the pixels however the sites lie, where the tile search above
+    scans every empty bucket within a pixel's nearest distance (inside a circle of sites:
+    the whole grid, for every small tile).
 Jump Flooding
     Rong & Tan (2006): seed each site's pixel, then passes with the steps given by the
     caller (N/2, ..., 1); each pixel keeps the best of the sites held by its 9 neighbours at
@@ -147,6 +153,18 @@ def _collect(rect, u, grid, start, gx, gy, gi, metric, cx, cy, cid):
 
 
 @njit(**NJIT)
+def _grown(count, rect, u, grid, start, gx, gy, gi, metric, cx, cy, cid):
+    """The candidate buffers, collected again into bigger ones when ``count`` overflowed them."""
+    if count <= cx.shape[0]:
+        return cx, cy, cid
+    cx = np.zeros(count)
+    cy = np.zeros(count)
+    cid = np.zeros(count, dtype=np.int64)
+    _collect(rect, u, grid, start, gx, gy, gi, metric, cx, cy, cid)
+    return cx, cy, cid
+
+
+@njit(**NJIT)
 def _brute_tile(r0, r1, c0, c1, pxs, pys, cx, cy, cid, count, metric, want_f2, lab, d1, d2):
     """Nearest (and second nearest) candidate of every pixel of a tile; ties -> lowest id."""
     for r in range(r0, r1):
@@ -236,10 +254,9 @@ def nearest_tiles(xs, ys, pxs, pys, metric, want_f2, tile, max_cand, bound):
     cap0 = min(m, max(4 * max_cand, 64))
     given = bound.shape[0] > 0
     for tr in prange(ntr):
-        cap = cap0
-        cx = np.zeros(cap)
-        cy = np.zeros(cap)
-        cid = np.zeros(cap, dtype=np.int64)
+        cx = np.zeros(cap0)
+        cy = np.zeros(cap0)
+        cid = np.zeros(cap0, dtype=np.int64)
         stack = np.zeros((256, 4), dtype=np.int64)
         rect = np.zeros(4)
         for tc in range(ntc):
@@ -280,12 +297,9 @@ def nearest_tiles(xs, ys, pxs, pys, metric, want_f2, tile, max_cand, bound):
                                 stack[top, 3] = cb
                                 top += 1
                     continue
-                if count > cap:
-                    cap = count
-                    cx = np.zeros(cap)
-                    cy = np.zeros(cap)
-                    cid = np.zeros(cap, dtype=np.int64)
-                    _collect(rect, u, grid, start, gx, gy, gi, metric, cx, cy, cid)
+                # (not an `if` here: numba's parallel loops lose arrays reassigned in a
+                # branch, so the brute force saw only the first buffer's candidates)
+                cx, cy, cid = _grown(count, rect, u, grid, start, gx, gy, gi, metric, cx, cy, cid)
                 _brute_tile(
                     r0, r1, c0, c1, pxs, pys, cx, cy, cid, count, metric, want_f2, lab, d1, d2
                 )
@@ -296,6 +310,202 @@ def nearest_tiles(xs, ys, pxs, pys, metric, want_f2, tile, max_cand, bound):
 def exact_nearest(xs, ys, pxs, pys, metric, want_f2, tile, max_cand):
     """Exact nearest site of every pixel centre: :func:`nearest_tiles` with no bound."""
     return nearest_tiles(xs, ys, pxs, pys, metric, want_f2, tile, max_cand, np.zeros((0, 0)))
+
+
+# ---------------------------------------------------------------------------------------
+# Delaunay walk (Euclidean nearest site only)
+# ---------------------------------------------------------------------------------------
+#
+# A site ``s`` is a pixel's nearest exactly when no Delaunay neighbour of ``s`` is nearer
+# (its cell is the intersection of the half-planes of its neighbours), so a greedy walk on
+# the triangulation finds it with a few distance evaluations, however the sites crowd (the
+# tile search above scans every bucket within the nearest distance: inside a circle of
+# sites that is the whole grid for every pixel). For a point ``q`` strictly inside the cell
+# of ``s`` the second nearest site is also a neighbour of ``s``. ``f_t(q) = |q - t|^2 -
+# |q - s|^2`` is affine in ``q``, so its minimum over a rectangle of pixel centres is at a
+# corner: when the four corners walk to the same ``s`` and every neighbour's margin there
+# exceeds the keys' rounding, every pixel of the rectangle has ``s`` as its unique nearest
+# site in the floats a brute-force argmin computes, and is filled without evaluating
+# anything but its own distance. Rectangles that fail are split; single pixels that fail
+# (a true tie, or one within rounding) are brute-forced over the sites within their bound.
+
+_U = 2.0**-53
+_KEY_REL = 16.0 * _U  # a float key is within 4 ulps of the exact squared distance
+_KEY_TINY = 1e-320  # absolute error of keys that underflow (a few subnormal ulps)
+
+
+@njit(**NJIT)
+def _walk(px, py, xs, ys, nptr, nidx, s):
+    """Greedy walk from site ``s`` to one no Delaunay neighbour of which has a smaller key.
+
+    Returns the site, its key and the margin ``k_t (1 - r) - k_s (1 + r)`` of its nearest
+    neighbour ``t`` (inf without neighbours, -inf on nan): a lower bound on the exact
+    ``|q - t|^2 - |q - s|^2`` over all neighbours (``r`` covers the keys' rounding).
+    """
+    ks = _key(px - xs[s], py - ys[s], 0)
+    while True:
+        best = s
+        bk = ks
+        kt = np.inf
+        for e in range(nptr[s], nptr[s + 1]):
+            t = nidx[e]
+            k = _key(px - xs[t], py - ys[t], 0)
+            if k < kt:
+                kt = k
+            if k < bk:
+                bk = k
+                best = t
+        if best == s:
+            margin = kt * (1.0 - _KEY_REL) - ks * (1.0 + _KEY_REL)
+            if margin != margin:
+                margin = -np.inf
+            return s, ks, margin
+        s = best
+        ks = bk
+
+
+@njit(**NJIT)
+def _safe(margin, key):
+    """Whether ``margin`` (from :func:`_walk`) proves a unique nearest at keys up to ``key``."""
+    return margin > 2.0 * _KEY_REL * key + _KEY_TINY
+
+
+@njit(**NJIT_PARALLEL)
+def walk_tiles(xs, ys, pxs, pys, nptr, nidx, tile, hint):
+    """Nearest site (Euclidean) of every pixel centre by walking the Delaunay graph.
+
+    Parameters
+    ----------
+    xs, ys : (m,) float64
+        Distinct sites, in increasing input order (m >= 1).
+    pxs, pys : (w,), (h,) float64
+        Pixel centres (columns increasing, rows top to bottom).
+    nptr, nidx : CSR int64 / int32
+        Delaunay neighbours of each site (for collinear sites: the previous and next site
+        along the line).
+    tile : (2,) int64
+        Initial tile size ``(rows, cols)``.
+    hint : (h, w) int32, or (0, 0)
+        Optional site to start each pixel's walk from (e.g. a flood's labels; values
+        ``>= m`` are ignored).
+
+    Returns
+    -------
+    lab : (h, w) int32
+        Position of the nearest site where ``hard`` is false.
+    d1 : (h, w) float64
+        Distance to it, computed as a brute-force argmin computes it.
+    hard : (h, w) bool
+        Pixels whose nearest site is tied or within rounding of a tie: not decided here
+        (:func:`fix_pixels` decides them).
+    """
+    h = pys.shape[0]
+    w = pxs.shape[0]
+    m = xs.shape[0]
+    lab = np.zeros((h, w), dtype=np.int32)
+    d1 = np.zeros((h, w))
+    hard = np.zeros((h, w), dtype=np.bool_)
+    th, tw = tile[0], tile[1]
+    ntr = (h + th - 1) // th
+    ntc = (w + tw - 1) // tw
+    given = hint.shape[0] > 0
+    for tr in prange(ntr):
+        stack = np.zeros((256, 4), dtype=np.int64)
+        cur = 0
+        for tc in range(ntc):
+            stack[0, 0] = tr * th
+            stack[0, 1] = min(h, (tr + 1) * th)
+            stack[0, 2] = tc * tw
+            stack[0, 3] = min(w, (tc + 1) * tw)
+            top = 1
+            while top > 0:
+                top -= 1
+                r0, r1, c0, c1 = stack[top, 0], stack[top, 1], stack[top, 2], stack[top, 3]
+                if (r1 - r0) * (c1 - c0) <= 16 or top + 4 > stack.shape[0]:
+                    for r in range(r0, r1):
+                        for c in range(c0, c1):
+                            st = cur
+                            if given and hint[r, c] < m:
+                                st = hint[r, c]
+                            s, ks, mg = _walk(pxs[c], pys[r], xs, ys, nptr, nidx, st)
+                            cur = s
+                            lab[r, c] = s
+                            d1[r, c] = math.sqrt(ks)
+                            if not _safe(mg, ks):
+                                hard[r, c] = True
+                    continue
+                same = True
+                s0 = -1
+                kmax = 0.0
+                mgmin = np.inf
+                for corner in range(4):
+                    r = r0 if corner < 2 else r1 - 1
+                    c = c0 if corner % 2 == 0 else c1 - 1
+                    st = cur
+                    if given and hint[r, c] < m:
+                        st = hint[r, c]
+                    s, ks, mg = _walk(pxs[c], pys[r], xs, ys, nptr, nidx, st)
+                    cur = s
+                    if s0 < 0:
+                        s0 = s
+                    elif s != s0:
+                        same = False
+                        break
+                    if not ks <= kmax:
+                        kmax = ks
+                    if not mg >= mgmin:
+                        mgmin = mg
+                if same and _safe(mgmin, kmax):
+                    sx = xs[s0]
+                    sy = ys[s0]
+                    for r in range(r0, r1):
+                        py = pys[r]
+                        for c in range(c0, c1):
+                            lab[r, c] = s0
+                            d1[r, c] = math.sqrt(_key(pxs[c] - sx, py - sy, 0))
+                    continue
+                rm = (r0 + r1 + 1) // 2 if r1 - r0 > 1 else r1
+                cm = (c0 + c1 + 1) // 2 if c1 - c0 > 1 else c1
+                for ra, rb in ((r0, rm), (rm, r1)):
+                    for ca, cb in ((c0, cm), (cm, c1)):
+                        if ra < rb and ca < cb:
+                            stack[top, 0] = ra
+                            stack[top, 1] = rb
+                            stack[top, 2] = ca
+                            stack[top, 3] = cb
+                            top += 1
+    return lab, d1, hard
+
+
+@njit(**NJIT_PARALLEL)
+def fix_pixels(xs, ys, pxs, pys, rows, cols, lab, d1):
+    """Brute-force pixels ``(rows[k], cols[k])`` over the sites within their ``d1``.
+
+    ``d1`` holds the distance to some site for each of them (the walk's), a bound on the
+    nearest distance; ``lab`` and ``d1`` are overwritten there with the exact answer (ties
+    to the lowest position), as :func:`nearest_tiles` computes it.
+    """
+    m = xs.shape[0]
+    grid = grid_shape(xs, ys, _PER_BUCKET)
+    start, gx, gy, gi = bucket_sort(xs, ys, grid)
+    scale = max(abs(pxs[0]), abs(pxs[-1]), abs(pys[0]), abs(pys[-1]))
+    scale = max(scale, np.abs(xs).max(), np.abs(ys).max())
+    slack = RASTER_SLACK_RTOL * scale + RASTER_SLACK_FLOOR
+    d2 = np.zeros((0, 0))
+    for k in prange(rows.shape[0]):
+        r = rows[k]
+        c = cols[k]
+        rect = np.array([pxs[c], pxs[c], pys[r], pys[r]])
+        u = d1[r, c] * (1.0 + RASTER_BOUND_RTOL) + slack
+        if not math.isfinite(u):
+            u = np.inf
+        cap = min(m, 64)
+        cx = np.zeros(cap)
+        cy = np.zeros(cap)
+        cid = np.zeros(cap, dtype=np.int64)
+        count = _collect(rect, u, grid, start, gx, gy, gi, 0, cx, cy, cid)
+        cx, cy, cid = _grown(count, rect, u, grid, start, gx, gy, gi, 0, cx, cy, cid)
+        _brute_tile(r, r + 1, c, c + 1, pxs, pys, cx, cy, cid, count, 0, False, lab, d1, d2)
 
 
 # ---------------------------------------------------------------------------------------
