@@ -183,3 +183,19 @@ def test_grid_dividing_the_box_and_sites_on_its_sides():
             d = _check_torus(p, box, algorithm, wrap, samples=200)
             assert np.asarray(d.duplicate_of)[-2:].tolist() == [6, 2]
             np.testing.assert_allclose(d.areas[:24], 0.25, rtol=1e-12)
+
+
+@pytest.mark.parametrize(("w", "h"), [(1e-7, 1.0), (1.0, 1e-5), (1e3, 1e-3)])
+@pytest.mark.parametrize("n", [1, 5])
+def test_thin_box_far_out_tiles(w, h, n):
+    # at 1e6 the box 1e-7 wide is 859 ulps: a centre half-way between two floats rounds to
+    # even both ways, an ulp apart after the odd shift (one site's cell 860 ulps wide,
+    # area sum +1.2e-3); and 1 x 3e-9 there raised "could not prove the margin"
+    off = 1e6
+    box = (off, off, off + w, off + h)
+    p = np.array(box[:2]) + np.random.default_rng(n).random((n, 2)) * [w, h]
+    for algorithm in ALGORITHMS:
+        _check_torus(p, box, algorithm, False, samples=150)
+    _check_torus(p, box, "delaunay", True, samples=150)
+    tiny = (off, off, off + 1.0, off + 3e-9)
+    _check_torus(np.array(tiny[:2]) + [[0.3, 1e-9]], tiny, "delaunay", False, samples=50)
