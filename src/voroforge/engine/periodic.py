@@ -2,11 +2,16 @@
 
 The diagram of sites on a torus is the ordinary diagram of the sites and all their
 periodic images, restricted to one copy. Only the images within a margin of the box are
-used; the margin is proved large enough afterwards: every vertex ``v`` of a kept cell with
-site ``p`` must have its empty disk (centre ``v``, radius ``|v - p|``) inside the region
-where every image was included. Then no left-out image could have cut the cell, so it is the
-torus cell. When the proof fails (few sites, large empty regions) the margin doubles and
-the diagram is computed again.
+used (a margin per axis, at most ~1.6 periods); the margin is proved large enough
+afterwards: no left-out image is nearer a vertex of a kept cell than its site, by the empty
+disk where the vertex has room for it, or else by bracketing the image with one a whole
+period nearer on that axis (:func:`_proved`). Then no left-out image could have cut the
+cell, so it is the torus cell. When the proof fails (few sites, large empty regions) the
+margins double and the diagram is computed again.
+
+The copies are numbered source-major, so that a vertex and its image by a box shift are
+named and computed alike (exact shifts of each other where the copies are exact shifts);
+the wrapped cells are the cells of the copies cut to the box.
 """
 
 from __future__ import annotations
