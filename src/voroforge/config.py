@@ -214,6 +214,9 @@ GIF_MAX_SIDE = 8192
 #: Most points seeds.method = 'poisson' may place (about 0.67 area / radius^2 are expected;
 #: it is checked before sampling, which takes about a millisecond per point)
 POISSON_MAX_POINTS = 200_000
+#: Most points any other seeding method may place (random, density, grids): 2e7 points are
+#: 320 MB of coordinates before any cell is built; a typo such as count = 1e9 asked for 18 GiB
+SEEDS_MAX_POINTS = 20_000_000
 
 #: mm: default SVG stroke width of a design build, a laser hairline (drivers cut only
 #: hairlines, about 0.001 in or less, as vectors; 0.01 in would be engraved).

@@ -167,22 +167,32 @@ def write_outputs(d, outputs, *, size=(1000, 800), explode=0.15, stage=None):
         elif suf in MESH_SUFFIXES:
             import trimesh
 
+            from ..io.mesh import glb_scene, ply_bytes
+
             meshes = d.to_trimesh()
             live = [(i, m) for i, m in enumerate(meshes) if len(m.faces)]
-            if suf == ".ply":
+            if suf == ".ply":  # float64 vertices, each face's cell as a face property
                 allm = trimesh.util.concatenate([m for _, m in live])
                 cell = np.concatenate([np.full(len(m.faces), i) for i, m in live])
-                allm.face_attributes["cell"] = cell
+                data = ply_bytes(allm, cell)
 
-                def w(tmp, allm=allm):
-                    allm.export(tmp, file_type="ply")
-            else:
+                def w(tmp, data=data):
+                    Path(tmp).write_bytes(data)
+            elif suf == ".glb":  # float32 by the standard: relative to a node translation
+                scene = glb_scene([(f"cell_{i}", m) for i, m in live])
+
+                def w(tmp, scene=scene):
+                    scene.export(tmp, file_type="glb")
+            else:  # .obj: text with every digit of the float64 vertices
+                from trimesh.exchange.obj import export_obj
+
                 scene = trimesh.Scene()
                 for i, m in live:
                     scene.add_geometry(m, node_name=f"cell_{i}", geom_name=f"cell_{i}")
+                text = export_obj(scene, include_normals=False, digits=17)
 
-                def w(tmp, scene=scene, suf=suf):
-                    scene.export(tmp, file_type=suf[1:])
+                def w(tmp, text=text):
+                    Path(tmp).write_text(text)
 
             write_atomically(path, w)
         elif suf == ".png":

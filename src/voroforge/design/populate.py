@@ -53,6 +53,8 @@ def as_region(boundary):
 def _count(count, name: str = "count") -> int:
     if isinstance(count, bool) or int(count) != count or count < 0:
         raise ValueError(f"{name} must be an integer >= 0, got {count!r}")
+    if count > config.SEEDS_MAX_POINTS:
+        raise ValueError(f"{name} {int(count):,} is too large: at most {config.SEEDS_MAX_POINTS:,}")
     return int(count)
 
 
@@ -157,8 +159,11 @@ def _lattice(geom, spacing: float, angle: float, offset, hexagonal: bool, margin
     dy = spacing * math.sqrt(3) / 2 if hexagonal else spacing
     nx = int(math.ceil(reach / spacing)) + 1
     ny = int(math.ceil(reach / dy)) + 1
-    if (2 * nx + 1) * (2 * ny + 1) > 20_000_000:
-        raise ValueError(f"spacing {spacing} is too small for this boundary (> 2e7 points)")
+    if (2 * nx + 1) * (2 * ny + 1) > config.SEEDS_MAX_POINTS:
+        raise ValueError(
+            f"spacing {spacing} is too small for this boundary "
+            f"(> {config.SEEDS_MAX_POINTS:,} points)"
+        )
     j, i = np.meshgrid(np.arange(-ny, ny + 1), np.arange(-nx, nx + 1), indexing="ij")
     x = i * spacing + (0.5 * spacing * (j % 2) if hexagonal else 0.0)
     y = j * dy
@@ -314,8 +319,11 @@ def poisson(boundary, radius, *, seed, field=None, radius_max=None, k: int = 30)
     cell = rmin / math.sqrt(2.0)
     gw = int((xmax - xmin) / cell) + 1
     gh = int((ymax - ymin) / cell) + 1
-    if gw * gh > 20_000_000:
-        raise ValueError(f"radius {rmin} is too small for this boundary (grid > 2e7 cells)")
+    if gw * gh > config.SEEDS_MAX_POINTS:
+        raise ValueError(
+            f"radius {rmin} is too small for this boundary "
+            f"(grid > {config.SEEDS_MAX_POINTS:,} cells)"
+        )
     # a maximal Poisson-disk sampling holds about 0.67 points per radius^2 (measured)
     expected = 0.67 * geom.area / (rmin * rmin)
     if expected > config.POISSON_MAX_POINTS:

@@ -13,7 +13,15 @@ from __future__ import annotations
 import re
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, Strict, model_validator
+from pydantic import (
+    AfterValidator,
+    BaseModel,
+    BeforeValidator,
+    ConfigDict,
+    Field,
+    Strict,
+    model_validator,
+)
 
 from .. import config
 from ..solid.schema import SolidSection, fill_2d
@@ -61,6 +69,18 @@ Whole = Annotated[int, BeforeValidator(_whole)]
 Flag = Annotated[bool, Strict()]
 PositiveFloat = Annotated[Num, Field(gt=0)]
 NonNegFloat = Annotated[Num, Field(ge=0)]
+#: A boundary's width, height or radius: at most 1e100, so areas and squared distances stay
+#: finite (width = 1e308 had reached the seeding as NaN)
+_MAX_SIZE = 1e100
+
+
+def _size(v: float) -> float:
+    if v > _MAX_SIZE:
+        raise ValueError(f"must be at most {_MAX_SIZE:g}")
+    return v
+
+
+Size = Annotated[Num, Field(gt=0), AfterValidator(_size)]
 Point = tuple[Num, Num]
 
 
@@ -145,10 +165,10 @@ class Boundary(_Model):
     """``[boundary]``: the outline the pattern fills."""
 
     shape: Literal["rectangle", "circle", "polygon", "polygons", "file"] = "rectangle"
-    width: PositiveFloat | None = None
-    height: PositiveFloat | None = None
+    width: Size | None = None
+    height: Size | None = None
     origin: Point = (0.0, 0.0)
-    radius: PositiveFloat | None = None
+    radius: Size | None = None
     center: Point = (0.0, 0.0)
     segments: Annotated[Whole, Field(ge=8)] = 256
     points: list[Point] | None = None
@@ -427,6 +447,10 @@ class Output(_Model):
 
     @model_validator(mode="after")
     def _gif(self) -> Output:
+        if not self.formats:
+            raise _need(
+                "formats", "is empty: list at least one of svg, dxf, png, geojson, gif, parquet"
+            )
         if "gif" in self.formats and self.gif is None:
             raise _need("gif", "formats includes 'gif': add an [output.gif] table")
         if re.search(r"[\\/]", self.stem or ""):

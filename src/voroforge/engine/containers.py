@@ -167,15 +167,21 @@ def _convex_template(hs: np.ndarray) -> Template:
                 raise ValueError(f"could not bound the Convex container ({res.message})")
             out[a] = res.x[a]
     size = hi - lo
-    if size.min() <= 1e-12 * max(size.max(), np.abs(lo).max(), 1e-300):
+    far = float(max(np.abs(lo).max(), np.abs(hi).max()))
+    if size.min() <= max(1e-12 * size.max(), 16.0 * np.spacing(far), 1e-300):
         raise ValueError("the Convex container has no volume (it is flat)")
     pad = 0.01 * size.max()
     k = len(hs)
-    t = box_template(lo - pad, hi + pad, labels=[-1 - (k + b) for b in range(6)])
+    # Cut and measure in a frame centred on the solid: in absolute coordinates a small solid
+    # far out lost its volume to cancellation (a tetrahedron of side 1e-3 at (5e5, 4e6, 100):
+    # -0.00117 for 1.7e-10) or could not be closed at all.
+    c = 0.5 * (lo + hi)
+    d = hs[:, 3] - hs[:, :3] @ c
+    t = box_template(lo - c - pad, hi - c + pad, labels=[-1 - (k + b) for b in range(6)])
     TV, TF, TR = t.TV, t.TF, t.TR
     for w in range(k):
         st, TV, TF, TR = container_cut(
-            TV, TF, TR, hs[w, 0], hs[w, 1], hs[w, 2], hs[w, 3], -1 - w, 4 * (len(TV) + 8 * k + 64)
+            TV, TF, TR, hs[w, 0], hs[w, 1], hs[w, 2], d[w], -1 - w, 4 * (len(TV) + 8 * k + 64)
         )
         if st == 2:
             raise ValueError("the Convex container has no volume")
@@ -187,6 +193,7 @@ def _convex_template(hs: np.ndarray) -> Template:
     from ..kernels.polyhedron import moments
 
     vol = moments(TV, TF, len(TF), TR)[0]
+    TV = TV + c
     return Template(TV, TF, TR, hs.copy(), "convex", float(vol), np.array([TV.min(0), TV.max(0)]))
 
 

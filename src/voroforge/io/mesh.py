@@ -7,7 +7,10 @@ atomically (a temporary file in the same folder, then renamed).
 
 Precision: 3MF and OBJ are written as text with 17 significant digits, PLY and ``.3dm``
 store float64 vertices, so those four reload bit for bit. STL and GLB hold float32 by
-definition; their reload equals the mesh rounded to float32.
+definition: GLB geometry is stored relative to the meshes' centre with the translation in
+its (double) node transform, so it reloads to within float32 of the meshes' size; an STL
+reload equals the mesh rounded to float32 (a warning says when that moves vertices by more
+than 1e-6 of the mesh's size).
 
 Units: 3MF records them (``unit="millimeter"`` ...), ``.3dm`` sets the model unit system;
 STL, OBJ, PLY and GLB carry none (their numbers are the design's, GLB is not rescaled to
@@ -29,6 +32,7 @@ from __future__ import annotations
 import io
 import re
 import sys
+import warnings
 import zipfile
 from pathlib import Path
 from typing import NamedTuple
@@ -195,21 +199,75 @@ def _3mf_bytes(items, units: str) -> bytes:
     return buf.getvalue()
 
 
-def _ply_bytes(m) -> bytes:
-    """Binary little-endian PLY with float64 vertices (trimesh writes float32)."""
+def ply_bytes(m, face_cell=None) -> bytes:
+    """Binary little-endian PLY with float64 vertices (trimesh writes float32).
+
+    ``face_cell``: optional ``(F,)`` ints written as a face property ``cell``.
+    """
     v = np.ascontiguousarray(m.vertices, dtype="<f8")
     f = np.asarray(m.faces, dtype=np.int64)
     if len(v) >= 2**31:
         raise ValueError("PLY: too many vertices for int32 indices")
-    rec = np.zeros(len(f), dtype=[("n", "u1"), ("i", "<i4", (3,))])
+    fields = [("n", "u1"), ("i", "<i4", (3,))]
+    if face_cell is not None:
+        fields.append(("cell", "<i4"))
+    rec = np.zeros(len(f), dtype=fields)
     rec["n"] = 3
     rec["i"] = f
+    extra = ""
+    if face_cell is not None:
+        rec["cell"] = np.asarray(face_cell, dtype=np.int64)
+        extra = "property int cell\n"
     head = (
         "ply\nformat binary_little_endian 1.0\ncomment voroforge\n"
         f"element vertex {len(v)}\nproperty double x\nproperty double y\nproperty double z\n"
-        f"element face {len(f)}\nproperty list uchar int vertex_indices\nend_header\n"
+        f"element face {len(f)}\nproperty list uchar int vertex_indices\n{extra}end_header\n"
     )
     return head.encode() + v.tobytes() + rec.tobytes()
+
+
+def glb_scene(items):
+    """A trimesh Scene of ``(name, mesh)`` items for GLB, exact far from the origin.
+
+    GLB stores vertex positions as float32 (by the glTF standard): at UTM-like offsets
+    (5e5, 4e6) that rounds to a quarter of a unit. The geometry is therefore stored relative
+    to one origin near the meshes (float32 is then relative to their extent) and each node
+    carries the translation back, which glTF keeps as a JSON (double) number.
+    """
+    import trimesh
+
+    lo = np.min(
+        [np.asarray(m.vertices).min(axis=0) for _, m in items if len(m.vertices)] or [np.zeros(3)],
+        axis=0,
+    )
+    hi = np.max(
+        [np.asarray(m.vertices).max(axis=0) for _, m in items if len(m.vertices)] or [np.zeros(3)],
+        axis=0,
+    )
+    origin = 0.5 * (lo + hi)
+    scene = trimesh.Scene()
+    move = np.eye(4)
+    move[:3, 3] = origin
+    for name, m in items:
+        local = trimesh.Trimesh(np.asarray(m.vertices) - origin, m.faces, process=False)
+        scene.add_geometry(local, node_name=name, geom_name=name, transform=move)
+    return scene
+
+
+def _f32_warning(items, kind: str) -> None:
+    """Warn when float32 storage (STL) moves vertices by more than 1e-6 of the meshes' size."""
+    v = np.concatenate([np.asarray(m.vertices, dtype=np.float64) for _, m in items])
+    if not len(v):
+        return
+    size = float(np.ptp(v, axis=0).max()) or 1.0
+    moved = float(np.abs(v.astype(np.float32).astype(np.float64) - v).max())
+    if moved > 1e-6 * size:
+        warnings.warn(
+            f"{kind} stores float32 coordinates: vertices move by up to {moved:.3g} "
+            f"({moved / size:.2g} of the mesh's size); write .3mf, .ply, .obj or .3dm, or move "
+            "the mesh near the origin",
+            stacklevel=3,
+        )
 
 
 _RE_OBJECT = re.compile(rb"<(?:[\w.-]+:)?object[\s>]")
@@ -412,14 +470,15 @@ def write(mesh_or_meshes, path, *, units: str = "mm") -> Path:
     if kind == ".3dm":
         return _3dm_write(items, path, units)
     if kind == ".ply" and len(items) == 1:
-        return save_bytes(path, _ply_bytes(items[0][1]))
+        return save_bytes(path, ply_bytes(items[0][1]))
     import trimesh
 
     items = [(name, _trimesh(m)) for name, m in items]
     if kind in (".stl", ".ply"):
         m = items[0][1] if len(items) == 1 else trimesh.util.concatenate([m for _, m in items])
         if kind == ".ply":
-            return save_bytes(path, _ply_bytes(m))
+            return save_bytes(path, ply_bytes(m))
+        _f32_warning(items, "STL")
         return save_bytes(path, m.export(file_type="stl"))
     if kind == ".obj":
         from trimesh.exchange.obj import export_obj
@@ -430,8 +489,7 @@ def write(mesh_or_meshes, path, *, units: str = "mm") -> Path:
             scene = trimesh.Scene({name: m for name, m in items})
             text = export_obj(scene, include_normals=False, digits=17)
         return save_bytes(path, text.encode())
-    scene = trimesh.Scene({name: m for name, m in items})
-    return save_bytes(path, scene.export(file_type="glb"))
+    return save_bytes(path, glb_scene(items).export(file_type="glb"))
 
 
 def read(path):
