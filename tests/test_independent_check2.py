@@ -182,3 +182,18 @@ def test_mesh_faces_must_be_integers():
         vf.voronoi3d(P, (b.vertices, b.faces + 0.5))
     d = vf.voronoi3d(P, (b.vertices, b.faces.astype(float)))  # whole numbers are fine
     assert d.volumes.sum() == pytest.approx(1.0, rel=1e-12)
+
+
+def test_periodic_power_with_an_empty_cell():
+    """A site whose power cell is empty made the periodic margin double until memory ran out."""
+    P = np.array([[0.5, 0.5, 0.5], [0.52, 0.5, 0.5], [0.1, 0.2, 0.3], [0.8, 0.7, 0.2]])
+    W = np.array([0.1, 0.0, 0.0, 0.0])
+    d = vf.voronoi3d(P, (0, 0, 0, 1, 1, 1), weights=W, periodic=True)
+    assert d.volumes[1] == 0.0
+    assert d.volumes.sum() == pytest.approx(1.0, rel=1e-12)
+    # brute force: each sample point's power-nearest site over the 27 images
+    q = np.random.default_rng(0).random((40000, 3))
+    shifts = np.array([(a, b, c) for a in (-1, 0, 1) for b in (-1, 0, 1) for c in (-1, 0, 1)])
+    pw = ((q[:, None, None] - P[None, :, None] - shifts[None, None]) ** 2).sum(-1).min(-1) - W
+    share = np.bincount(pw.argmin(1), minlength=4) / len(q)
+    np.testing.assert_allclose(share, d.volumes, atol=0.01)

@@ -169,8 +169,17 @@ def _periodic(P, W, t, progress):
         )
         r = np.sqrt(res.rad2)[:, None]
         ok = ((P - 2 * r >= lo - margin) & (P + 2 * r <= hi + margin)).all()
-        if ok and (res.status == 0).all():
+        # status 1: a power cell that no point is nearest to (empty); it had made the loop
+        # double the margin until the memory ran out
+        if ok and ((res.status == 0) | (res.status == 1)).all():
             return res, (orig, shift)
+        if margin > 8.0 * L.max():  # every cell of a torus fits well within this
+            bad = np.flatnonzero((res.status != 0) & (res.status != 1))
+            raise RuntimeError(
+                "periodic cells did not close within 8 box sizes of images"
+                + (f" (site {int(bad[0])}, status {int(res.status[bad[0]])})" if len(bad) else "")
+                + "; please report this input"
+            )
         margin *= 2.0
 
 
