@@ -10,6 +10,9 @@ Families (``--families``, all by default):
     ``(0.2, 0.9)``, box ``(-1, -1, 2, 2)`` (the independent check's input: the k-d buckets'
     axis-aligned boxes are as wide across a sloped line as along it, which cost
     ``O(sqrt n)`` buckets per cell until each bucket kept its sites' oriented bounds).
+``sloped_flat``
+    As ``sloped`` on ``y = 0.001 x`` (nearly horizontal: a k-d node's oriented bounds are
+    what keeps it flat, not its axis-aligned box).
 ``collinear_others``
     ``n`` sites on one line plus ``n / 100`` random ones in the unit box (the README's
     "100,000 on a line plus 1,000 others").
@@ -61,6 +64,12 @@ def sloped(n: int):
     return pts, (-1.0, -1.0, 2.0, 2.0)
 
 
+def sloped_flat(n: int):
+    t = np.linspace(0.0, 1.0, n)
+    pts = np.concatenate((np.column_stack((t, 1e-3 * t)), [[0.2, 0.9]]))
+    return pts, (-1.0, -1.0, 2.0, 2.0)
+
+
 def collinear_others(n: int):
     x = np.linspace(0.0, 1.0, n)
     others = np.random.default_rng(1).random((max(n // 100, 1), 2))
@@ -92,6 +101,7 @@ def circle_mostly(n: int):
 FAMILIES = {
     "collinear": collinear,
     "sloped": sloped,
+    "sloped_flat": sloped_flat,
     "collinear_others": collinear_others,
     "clustered": clustered,
     "circle": circle,

@@ -75,6 +75,14 @@ _PROBE = 64  # cells tried first: when most of them are hard, the Delaunay dual 
 _KD_LEAF = 8  # sites per k-d bucket
 _KD_CROWDED = 4.0  # k-d buckets when the median site shares its grid bucket with more
 _REACH = 4.0 * (1.0 + HALFPLANE_REACH_RTOL)  # (2 r)^2 / r^2 with a margin against rounding
+# The k-d search's stop test per bucket (_node_clear) has an absolute margin, four times the
+# float cut's vertex error: 2^-40 of the box's radius about the site (HALFPLANE_SLACK2's
+# bound) and of the site's coordinates (the named vertices' rounding). A margin relative to
+# the cell (HALFPLANE_REACH_RTOL) admits sites in proportion to n on a long line: a strip's
+# far vertices are ~1 away and the line's sites at distance s along it pass within s^2 / 2
+# of their circles, so 1e-9 kept ~45 sites on each side at 1e6 (issue 15). A local, not in
+# config.py: the same 2^-40 as HALFPLANE_SLACK2.
+_NODE_BAND = 4.0 * 2.0**-40
 
 # The helpers called per cut or per bucket (these, clip's cut) are inlined into _cells'
 # numba IR: a call costs an atomic reference-count update per array argument, about as
@@ -121,10 +129,20 @@ def _unscanned_clear(px, py, a, m, cx, cy, block, grid):
 
 
 @njit(**NJIT)
-def _node_clear(px, py, a, m, cx, cy, boxes, slabs, v):
-    """:func:`_rect_clear` for a k-d bucket's bounds (:func:`.grid.slab_dist2`)."""
+def _node_clear(px, py, a, m, r2, cx, cy, boxes, slabs, v, band):
+    """Whether no site in k-d bucket ``v`` can cut the cell (:func:`.grid.slab_dist2` bounds).
+
+    As :func:`_rect_clear` (``r2`` the cell's squared radius), with an absolute margin
+    ``band`` (four times the float cut's vertex error ``e``): every vertex ``p`` of the true
+    cell is within ``e`` of a float vertex ``u``, so a site ``q`` in the bucket, farther
+    than ``|u| + 4 e`` from ``u``, is farther than ``|p| + 2 e`` from ``p``. It misses every
+    vertex's circle by more than rounding and the merge tolerance, so neither the cut nor
+    the exact finishing needs it.
+    """
+    # (|u| + band)^2 <= |u|^2 + (2 r + band) band for r the cell's radius: one root a call
+    pad = (2.0 * np.sqrt(r2) + band) * band
     for u in range(a, a + m):
-        own = _REACH * 0.25 * (px[u] * px[u] + py[u] * py[u])
+        own = (px[u] * px[u] + py[u] * py[u] + pad) * (1.0 + 2.0**-50)
         if slab_dist2(px[u] + cx, py[u] + cy, boxes, slabs, v) <= own:
             return False
     return True
@@ -278,7 +296,9 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
         iy = bucket_of(cy, y0, hy, ny)
         ring = np.int64(0)
         hs = np.int64(0)
+        band = 0.0
         if use_tree:
+            band = _NODE_BAND * (np.sqrt(r2) + abs(cx) + abs(cy))  # r2: the box's, here
             root = np.int64(0)
             hs = heap_push(hk, hv, root, slab_dist2(cx, cy, tboxes, tslabs, root), root)
         while m >= 3 and not grow and work <= budget:
@@ -290,7 +310,7 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
                 if key > _REACH * r2:
                     break  # every bucket left is farther still
                 work += m
-                if key > 0.0 and _node_clear(px, py, a, m, cx, cy, tboxes, tslabs, v):
+                if key > 0.0 and _node_clear(px, py, a, m, r2, cx, cy, tboxes, tslabs, v, band):
                     continue
                 if tleft[v] >= 0:
                     if hs + 2 > hk.shape[0]:
