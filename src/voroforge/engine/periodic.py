@@ -271,15 +271,13 @@ def _proved(d: Diagram, cells: np.ndarray, box, margin) -> bool:
     bracket test makes the margin of a thin box's short side a period or two, however long
     the cells' empty disks are.
 
-    ``cells`` are copy indices, or, for the wrapped diagram, a pair ``(pieces, copies)``:
-    each copy's cell cut to the box. A piece is convex and inside its copy's cell, so when
-    its vertices are proved every point of it is (the cells' half-planes hold at the
-    vertices): only the part of a cell in the box needs its margin.
+    ``cells`` are copy indices, or, for the wrapped diagram, the pieces of
+    :func:`_box_pieces`: the copies' cells cut to the box. A piece is convex and inside its
+    copy's cell, so when its vertices are proved every point of it is (the cells'
+    half-planes hold at the vertices): only the part of a cell in the box needs its margin.
     """
     if isinstance(cells, tuple):
-        pieces, copies = cells
-        v, k = shapely.get_coordinates(pieces[copies], return_index=True)
-        owner = copies[k]
+        v, owner = _piece_vertices(d, cells)
     else:
         v, owner = _vertices(d, cells)
     if not len(v):
@@ -355,36 +353,98 @@ def _rounding(box) -> float:
     return ulps * max(abs(x0), abs(y0), abs(x1), abs(y1), size)
 
 
-def _box_pieces(cells, box):
-    """Each cell intersected with the box (GEOS), computed only for those crossing its sides.
+def _box_pieces(d: Diagram, box):
+    """The copies' cells cut to the box: ``(inside, cross, cut)``.
 
-    The cells come from the diagram in the grown box, where a copy and its image share their
-    vertices up to the exact shift; the pieces of two neighbours meet where GEOS cuts their
-    shared edge, once. (Clipping every copy to the box in the planar build instead lost
-    copies at 1e15, where the box is 24 ulps wide.)
+    ``inside``: the copies whose whole cell lies in the box (their piece is the cell, kept
+    in the buffers); ``cross``: those whose cell crosses a side, ``cut`` their pieces
+    (GEOS, empty where only a side or a corner is shared). The cells come from the diagram
+    in the grown box, where a copy and its image share their vertices up to the exact
+    shift; the pieces of two neighbours meet where GEOS cuts their shared edge, once.
+    (Clipping every copy to the box in the planar build instead lost copies at 1e15, where
+    the box is 24 ulps wide.)
     """
     x0, y0, x1, y1 = box
-    b = shapely.bounds(cells)
-    full = ~np.isnan(b[:, 0])
-    inside = full & (b[:, 0] >= x0) & (b[:, 2] <= x1) & (b[:, 1] >= y0) & (b[:, 3] <= y1)
-    meets = full & (b[:, 0] < x1) & (b[:, 2] > x0) & (b[:, 1] < y1) & (b[:, 3] > y0)
-    pieces = np.full(len(cells), shapely.Polygon(), dtype=object)
-    pieces[inside] = cells[inside]
+    coords, (ring, poly, geom) = d.to_geoarrow()
+    lo = ring[poly[geom[:-1]]]
+    hi = ring[poly[geom[1:]]]
+    full = np.flatnonzero(hi > lo)
+    b = np.full((len(lo), 4), np.nan)
+    if len(full):
+        start = lo[full]
+        b[full, 0] = np.minimum.reduceat(coords[: hi[full[-1]], 0], start)
+        b[full, 1] = np.minimum.reduceat(coords[: hi[full[-1]], 1], start)
+        b[full, 2] = np.maximum.reduceat(coords[: hi[full[-1]], 0], start)
+        b[full, 3] = np.maximum.reduceat(coords[: hi[full[-1]], 1], start)
+    ok = ~np.isnan(b[:, 0])
+    inside = ok & (b[:, 0] >= x0) & (b[:, 2] <= x1) & (b[:, 1] >= y0) & (b[:, 3] <= y1)
+    meets = ok & (b[:, 0] < x1) & (b[:, 2] > x0) & (b[:, 1] < y1) & (b[:, 3] > y0)
     cross = np.flatnonzero(meets & ~inside)
-    if len(cross):
-        got = shapely.intersection(cells[cross], shapely.box(x0, y0, x1, y1))
-        flat = shapely.area(got) <= 0
-        got[flat] = shapely.Polygon()
-        odd = np.flatnonzero(~flat & (shapely.get_type_id(got) != 3))
-        for k in odd:  # a collection: its polygons (GEOS can add a lower-dimension part)
-            parts = [q for q in shapely.get_parts(got[k]) if q.geom_type == "Polygon"]
-            got[k] = parts[0] if len(parts) == 1 else shapely.MultiPolygon(parts)
-        pieces[cross] = got
-    return pieces
+    length = hi[cross] - lo[cross]
+    take = np.repeat(lo[cross] - np.cumsum(length) + length, length) + np.arange(length.sum())
+    cells = shapely.polygons(
+        shapely.linearrings(coords[take], indices=np.repeat(np.arange(len(cross)), length))
+    )
+    cut = shapely.intersection(cells, shapely.box(x0, y0, x1, y1))
+    flat = shapely.area(cut) <= 0
+    cut[flat] = shapely.Polygon()
+    for k in np.flatnonzero(~flat & (shapely.get_type_id(cut) != 3)):
+        # a collection: its polygons (GEOS can add a lower-dimension part)
+        parts = [q for q in shapely.get_parts(cut[k]) if q.geom_type == "Polygon"]
+        cut[k] = parts[0] if len(parts) == 1 else shapely.MultiPolygon(parts)
+    return np.flatnonzero(inside), cross, cut
 
 
-def _slivers(pieces, box, is_orig) -> np.ndarray:
-    """Indices of the image pieces that are rounding noise: at most ``_rounding`` wide.
+def _piece_vertices(d: Diagram, pieces):
+    """The vertices of the pieces ``(inside, cross, cut)`` and, for each, its copy."""
+    inside, cross, cut = pieces
+    v, owner = _vertices(d, inside)
+    w, k = shapely.get_coordinates(cut, return_index=True)
+    return np.concatenate((v, w)), np.concatenate((owner, cross[k]))
+
+
+def _wrapped_cells(d: Diagram, pieces, source, n: int, rounding: float):
+    """Buffers of the ``n`` wrapped cells from the pieces, and the copies kept.
+
+    Each piece is one ring, except where a cell borders its own image (few sites): then the
+    touching pieces are united in shapely (:func:`_gather`).
+    """
+    inside, cross, cut = pieces
+    live = ~shapely.is_empty(cut)
+    keep = np.sort(np.concatenate((inside, cross[live])))
+    pairs = d.edges.pairs
+    single = (shapely.get_type_id(cut[live]) == 3).all()
+    if single and not (source[pairs[:, 0]] == source[pairs[:, 1]]).any():
+        coords, (ring, poly, geom) = d.to_geoarrow()
+        # rings in copy order: inside cells from the buffers, cut ones from GEOS
+        xy = [None] * len(keep)
+        where = np.searchsorted(keep, inside)
+        lo = ring[poly[geom[inside]]]
+        hi = ring[poly[geom[inside + 1]]]
+        for j, a, b in zip(where, lo, hi, strict=True):
+            xy[j] = coords[a:b]
+        cw = shapely.get_coordinates(shapely.get_exterior_ring(cut[live]), return_index=True)
+        at = np.searchsorted(keep, cross[live])
+        split = np.searchsorted(cw[1], np.arange(1, len(at)))
+        for j, ring_xy in zip(at, np.split(cw[0], split)[: len(at)], strict=True):
+            xy[j] = ring_xy
+        order = np.argsort(source[keep], kind="stable")
+        length = np.array([len(xy[j]) for j in order], dtype=np.int64)
+        new_ring = np.zeros(len(order) + 1, dtype=np.int64)
+        np.cumsum(length, out=new_ring[1:])
+        new_geom = np.zeros(n + 1, dtype=np.int64)
+        np.cumsum(np.bincount(source[keep], minlength=n), out=new_geom[1:])
+        out = np.concatenate([xy[j] for j in order]) if len(order) else np.zeros((0, 2))
+        new_poly = np.arange(len(order) + 1, dtype=np.int64)
+        return (np.ascontiguousarray(out), new_ring, new_poly, new_geom), keep
+    shapes = np.full(len(source), shapely.Polygon(), dtype=object)
+    shapes[inside] = d.cells[inside]
+    shapes[cross] = cut
+    return _gather(shapes, source, n, keep, rounding), keep
+
+
+def _slivers(pieces, box, is_orig) -> None:
+    """Empty the cut image pieces that are rounding noise: at most ``_rounding`` wide.
 
     An image whose cell passes the box edge only by the rounding of its site (``0.9 - 1`` is
     not ``-0.1`` in floats) leaves a sliver a few ulps wide inside the box: no part of the
@@ -392,10 +452,11 @@ def _slivers(pieces, box, is_orig) -> np.ndarray:
     polygon part. A piece is a sliver when it is narrow, however long: its area against its
     longer extent.
     """
-    b = shapely.bounds(pieces)
+    _, cross, cut = pieces
+    b = shapely.bounds(cut)
     extent = np.fmax(b[:, 2] - b[:, 0], b[:, 3] - b[:, 1])
-    thin = shapely.area(pieces) <= _rounding(box) * extent  # NaN (empty): False
-    return np.flatnonzero(thin & ~is_orig)
+    thin = shapely.area(cut) <= _rounding(box) * extent  # NaN (empty): False
+    cut[thin & ~is_orig[cross]] = shapely.Polygon()
 
 
 def _narrow(poly, rounding: float) -> bool:
@@ -526,8 +587,8 @@ def periodic_voronoi(points, boundary, *, algorithm: str = "delaunay", wrap: boo
         grown = make_domain((x0 - mx, y0 - my, x1 + mx, y1 + my), ext)
         d = build(ext, grown, algorithm)
         if wrap:
-            pieces = _box_pieces(d.cells, box)
-            owners = (pieces, np.flatnonzero(~shapely.is_empty(pieces) & (d.duplicate_of < 0)))
+            pieces = _box_pieces(d, box)
+            owners = pieces
         else:
             owners = orig[d.duplicate_of[orig] < 0]
         if _proved(d, owners, box, (mx, my)):
@@ -544,9 +605,8 @@ def periodic_voronoi(points, boundary, *, algorithm: str = "delaunay", wrap: boo
         # side by as much, on the same grid: kept (at 4e12 such a piece, 1 ulp wide, was
         # dropped: a gap of 6e-7 of the box)
         if not (exact and _one_grid(x0, x1) and _one_grid(y0, y1)):
-            pieces[_slivers(pieces, box, is_orig)] = shapely.Polygon()
-        keep = np.flatnonzero(~shapely.is_empty(pieces))
-        bufs = _gather(pieces, source, n, keep, _rounding(box))
+            _slivers(pieces, box, is_orig)
+        bufs, keep = _wrapped_cells(d, pieces, source, n, _rounding(box))
     else:
         bufs = _cells_at(buffers(d), orig)
         w, h = x1 - x0, y1 - y0
