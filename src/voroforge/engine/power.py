@@ -20,15 +20,12 @@ from scipy.sparse.linalg import MatrixRankWarning, spsolve
 from scipy.spatial import ConvexHull, QhullError, cKDTree
 
 from ..config import (
-    POWER_CHECK_ROUNDS,
-    POWER_CHECK_ULPS,
     POWER_FIT_DEFAULT_RTOL,
     POWER_FIT_SUM_RTOL,
     POWER_FLAT_RTOL,
     POWER_HIDDEN_RTOL,
     POWER_LABEL_RTOL,
     POWER_LIFT_RESOLVE_ULPS,
-    POWER_LOST_NEAR,
     POWER_NEWTON_SHIFT,
     POWER_TIE_RTOL,
 )
@@ -38,6 +35,7 @@ from .diagram import Diagram, buffers, frame_exponent
 from .domain import Domain, make_domain
 from .inputs import as_points, as_query, as_weights, duplicate_map
 from .planar import build
+from .power_check import checked_cells, lost_candidates, pairs_csr
 from .threads import serial_below
 
 #: Up to this many sites every pair is a candidate neighbour (no triangulation needed).
@@ -135,17 +133,6 @@ def _owners(pts: np.ndarray, w: np.ndarray) -> np.ndarray:
     return np.where(own == np.arange(len(pts)), -1, own)
 
 
-def _pairs_csr(n, a, b):
-    """Symmetric CSR ``(indptr, indices int64)`` of distinct undirected pairs ``a < b``."""
-    a = np.asarray(a, dtype=np.int64)
-    b = np.asarray(b, dtype=np.int64)
-    key = np.concatenate((a * n + b, b * n + a))
-    key.sort()  # a plain sort: faster here than np.unique's hashing
-    indptr = np.zeros(n + 1, dtype=np.int64)
-    np.cumsum(np.bincount(key // n, minlength=n), out=indptr[1:])
-    return indptr, key % n
-
-
 def _may_win(x, y, w, box, active):
     """``active`` without the sites that lose to one other site everywhere in the box.
 
@@ -168,14 +155,18 @@ def _may_win(x, y, w, box, active):
 
 
 def _neighbors(x, y, w, box, active):
-    """Candidate neighbours (CSR), sites that may have a cell, whether the lift resolved all."""
+    """Candidate neighbours (CSR), sites that may have a cell, and the suspects.
+
+    Suspects (a mask) are sites near what the lift could not resolve, for
+    :func:`~voroforge.engine.power_check.checked_cells`; None when it resolved all.
+    """
     n = len(x)
     active = _may_win(x, y, w, box, active)
     idx = np.flatnonzero(active)
     m = len(idx)
     if m <= _ALL_PAIRS_MAX:
         a, b = np.triu_indices(m, 1)
-        return (*_pairs_csr(n, idx[a], idx[b]), active, True)
+        return (*pairs_csr(n, idx[a], idx[b]), active, None)
     # lift in a frame centred on the box with unit size: well-conditioned for Qhull
     cx = 0.5 * (box[0] + box[2])
     cy = 0.5 * (box[1] + box[3])
@@ -190,7 +181,15 @@ def _neighbors(x, y, w, box, active):
         far = int(np.argmax(np.einsum("ij,ij->i", span, span)))
         cross = span[:, 0] * span[far, 1] - span[:, 1] * span[far, 0]
         if np.abs(cross).max() <= POWER_FLAT_RTOL * float(span[far] @ span[far]):
-            return (*_collinear(n, idx, span, span[far], lift[:, 2], active), True)
+            indptr, indices, on_line = _collinear(n, idx, span, span[far], lift[:, 2], active)
+            if not np.abs(cross).max() > 0.0:
+                return indptr, indices, on_line, None
+            # flat only to rounding (two clusters 1e-9 wide 1e6 apart): the chain is a
+            # first guess, checked like a lift that lost sites
+            rows = np.repeat(np.arange(n), np.diff(indptr))
+            a, b = lost_candidates(x, y, w, idx, (cx, cy), rows, indices, idx)
+            key = np.unique(np.minimum(a, b) * n + np.maximum(a, b))
+            return (*pairs_csr(n, key // n, key % n), active, active.copy())
         hull = ConvexHull(lift, qhull_options="QJ")  # coplanar lift: one shared vertex
     lower = hull.simplices[hull.equations[:, 2] < 0.0]
     on_hull = np.zeros(n, dtype=bool)
@@ -202,73 +201,24 @@ def _neighbors(x, y, w, box, active):
     # or one at the box's centre); every site may then have a cell
     turn = lower[:, [1, 2, 0]]
     side = (u[lower] - u[turn]) ** 2 + (v[lower] - v[turn]) ** 2
-    sure = bool(side.min() > POWER_LIFT_RESOLVE_ULPS * _EPS * 2.0 * np.abs(lift).max())
-    if not sure:
-        # first candidates: the nearest sites in the lifted space (:func:`_checked_cells`)
-        k = min(m, POWER_LOST_NEAR + 1)
-        near = np.column_stack((x[idx] - cx, y[idx] - cy, np.sqrt(w[idx].max() - w[idx])))
-        nb = cKDTree(near).query(near, k=k)[1].reshape(m, k)
-        a = np.concatenate((a, np.repeat(idx, k)))
-        b = np.concatenate((b, idx[nb.ravel()]))
-        keep = a != b
-        a, b = a[keep], b[keep]
+    short = side < POWER_LIFT_RESOLVE_ULPS * _EPS * 2.0 * np.abs(lift).max()
+    suspect = None
+    if short.any():
+        # suspects: the short facets' sites, their lift neighbours, and the sites off the
+        # hull (hidden, or lost); each gets its nearest lifted sites as candidates
+        suspect = np.zeros(n, dtype=bool)
+        suspect[idx[lower[short.any(axis=1)].ravel()]] = True
+        touch = suspect[idx[lower]].any(axis=1)
+        suspect[idx[lower[touch].ravel()]] = True
+        suspect |= active & ~on_hull
+        a, b = lost_candidates(x, y, w, idx, (cx, cy), a, b, np.flatnonzero(suspect))
         on_hull = active
     key = np.minimum(a, b) * n + np.maximum(a, b)
     key.sort()
     keep = np.ones(len(key), dtype=bool)
     keep[1:] = key[1:] != key[:-1]
     key = key[keep]
-    return (*_pairs_csr(n, key // n, key % n), active & on_hull, sure)
-
-
-def _checked_cells(x, y, w, box, active, indptr, indices):
-    """Power cells from candidates that may lack neighbours, completed until every vertex checks.
-
-    A cell cut by too few bisectors is larger than the true cell, so one of its vertices
-    lies in another site's cell: the sites nearest in power at each vertex (a KD-tree of the
-    lifted sites, as in ``locate``; power distances in differences) that beat or tie the
-    cell's own site there, within the vertex's rounding, become candidates both ways,
-    and the cells are cut again until none is new. A missed tie is a missed tiny edge (a
-    T-junction); an extra candidate costs one cut. An empty cell is certain: fewer
-    bisectors leave more of the box.
-    """
-    n = len(x)
-    pts = np.column_stack((x, y))
-    ids = np.flatnonzero(active)
-    top = float(w[ids].max())
-    tree = cKDTree(np.column_stack((pts[ids], np.sqrt(top - w[ids]))))
-    rows = np.repeat(np.arange(n), np.diff(indptr))
-    known = rows * n + indices
-    for _ in range(POWER_CHECK_ROUNDS):
-        got = power_cells(x, y, w, indptr, indices, box, active)
-        q = got[0]
-        cell = np.repeat(np.arange(n), np.diff(got[1]))
-        rows, k, key = np.arange(len(q)), min(len(ids), POWER_LOST_NEAR), [known[:0]]
-        while len(rows):  # more sites where all k found lead or tie
-            i = cell[rows, None]
-            j = ids[tree.query(np.column_stack((q[rows], np.zeros(len(rows)))), k=k)[1]]
-            j = j.reshape(len(rows), k)
-            di = q[rows] - pts[i[:, 0]]
-            dj = q[rows, None, :] - pts[j]
-            pi = np.einsum("ij,ij->i", di, di)[:, None] - w[i]
-            pj = np.einsum("ijk,ijk->ij", dj, dj) - w[j]
-            # a vertex moved by delta changes the difference by 2 delta |p_i - p_j|
-            delta = POWER_CHECK_ULPS * _EPS * np.abs(q[rows]).max(axis=1)[:, None]
-            gap = np.linalg.norm(pts[j] - pts[i], axis=2)
-            band = pj <= pi + 2.0 * delta * gap + POWER_CHECK_ULPS * _EPS * (
-                np.abs(pi) + np.abs(pj)
-            )
-            bad = band & (j != i)
-            i, j = np.broadcast_arrays(i, j)
-            key.append(np.minimum(i, j)[bad] * n + np.maximum(i, j)[bad])
-            rows, k = (rows[band[:, -1]], min(len(ids), 4 * k)) if k < len(ids) else (rows[:0], k)
-        key = np.setdiff1d(np.concatenate(key), known)
-        if not len(key):
-            return got
-        known = np.union1d(known, np.concatenate((key, (key % n) * n + key // n)))
-        keep = known // n < known % n
-        indptr, indices = _pairs_csr(n, known[keep] // n, known[keep] % n)
-    return got
+    return (*pairs_csr(n, key // n, key % n), active & on_hull, suspect)
 
 
 def _collinear(n, idx, span, direction, z, active):
@@ -289,7 +239,7 @@ def _collinear(n, idx, span, direction, z, active):
     ch = idx[np.array(chain, dtype=np.int64)]
     keep = np.zeros(n, dtype=bool)
     keep[ch] = True
-    return (*_pairs_csr(n, ch[:-1], ch[1:]), active & keep)
+    return (*pairs_csr(n, ch[:-1], ch[1:]), active & keep)
 
 
 def power_diagram(pts: np.ndarray, w: np.ndarray, dom: Domain) -> PowerDiagram:
@@ -318,11 +268,11 @@ def power_diagram(pts: np.ndarray, w: np.ndarray, dom: Domain) -> PowerDiagram:
     x = np.ascontiguousarray(pts[:, 0])
     y = np.ascontiguousarray(pts[:, 1])
     box = np.array(dom.bounds, dtype=np.float64)
-    indptr, indices, active, sure = _neighbors(x, y, w, box, active)
-    if sure:
+    indptr, indices, active, suspect = _neighbors(x, y, w, box, active)
+    if suspect is None:
         closed, lengths, own = power_cells(x, y, w, indptr, indices, box, active)
     else:
-        closed, lengths, own = _checked_cells(x, y, w, box, active, indptr, indices)
+        closed, lengths, own = checked_cells(x, y, w, box, active, indptr, indices, suspect)
     bufs, edges = assemble(dom, closed, lengths, own, n)
     return PowerDiagram(pts, dup, dom, bufs, edges, w)
 

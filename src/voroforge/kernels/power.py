@@ -377,13 +377,110 @@ def _compact(i, xs, ys, px, py, po, b, m):
 
 
 @njit(**NJIT)
-def _cell(i, xs, ys, ws, indptr, indices, box, px, py, po, qx, qy, qo, ss):
+def _careful_values(i, j, xs, ys, ws, px, py, pw, m, ss):
+    """Half the power difference of sites ``i`` and ``j`` at each vertex of ``p[:m]``.
+
+    At a vertex on the bisector of ``i`` and ``o`` (one of its edges' owners) the power of
+    ``o`` equals that of ``i``: the value is taken from the pair ``o, j`` when ``o`` is
+    nearer ``j`` than ``i`` is. Its rounding then scales with ``|p_j - p_o|``: sites 1e-9
+    apart 1e6 from ``i`` have bisectors with ``i`` that differ by 1e-15 in angle, and the
+    plain value ``(p_j - p_i).(x - p_i)`` cannot order them. Returns the largest value.
+    """
+    smax = -np.inf
+    for v in range(m):
+        o = i
+        dx = xs[j] - xs[i]
+        dy = ys[j] - ys[i]
+        best = dx * dx + dy * dy
+        for t in range(2):
+            c = pw[v - 1 if v > 0 else m - 1] if t == 0 else pw[v]
+            if c < 0 or c == j:
+                continue
+            ex = xs[j] - xs[c]
+            ey = ys[j] - ys[c]
+            if ex * ex + ey * ey < best:
+                o = c
+                best = ex * ex + ey * ey
+        dx = xs[j] - xs[o]
+        dy = ys[j] - ys[o]
+        h = 0.5 * (dx * dx + dy * dy + (ws[o] - ws[j]))
+        sv = dx * (px[v] - xs[o]) + dy * (py[v] - ys[o]) - h
+        ss[v] = sv
+        smax = max(smax, sv)
+    return smax
+
+
+@njit(**NJIT)
+def _careful_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
+    """:func:`box_cell` naming the two new vertices after every cut.
+
+    A cut's crossings are interpolated along the ring's edges, whose ends may lie as far
+    as the box: their rounding (ulps of the box's coordinates) is then larger than a cell
+    of a cluster 1e-9 wide at 1e6, and the next cuts decide which bisectors bound the cell
+    on that noise (a named vertex of two bisectors that are not adjacent lies off the cell:
+    a self-intersecting ring). A named vertex is rounded at its own coordinates, so the
+    later cuts see the cell to its own resolution. Used where the lift could not resolve
+    the sites (the checked path); elsewhere the cells are far wider than the rounding.
+    """
+    px[0] = box[0]
+    py[0] = box[1]
+    px[1] = box[2]
+    py[1] = box[1]
+    px[2] = box[2]
+    py[2] = box[3]
+    px[3] = box[0]
+    py[3] = box[3]
+    pw[0] = -2
+    pw[1] = -3
+    pw[2] = -4
+    pw[3] = -1
+    m = np.int64(4)
+    zero = np.int64(0)
+    for k in range(nn):
+        j = nbrs[k]
+        if _careful_values(i, j, xs, ys, ws, px, py, pw, m, ss) <= 0.0:
+            continue
+        m = cut_ring(px, py, pw, zero, m, ss, qx, qy, qw, zero, j)
+        if m < 3:
+            return 0
+        for v in range(m):
+            px[v] = qx[v]
+            py[v] = qy[v]
+            pw[v] = qw[v]
+        for v in range(m):
+            a = pw[v - 1 if v > 0 else m - 1]
+            b = pw[v]
+            if a != j and b != j:
+                continue
+            if a >= 0 and b >= 0:
+                nx, ny = power_vertex(i, a, b, xs, ys, ws)
+            elif a >= 0 or b >= 0:
+                nx, ny = power_box_crossing(
+                    i, a if a >= 0 else b, xs, ys, ws, b if a >= 0 else a, box
+                )
+                if abs(nx) < np.inf and abs(ny) < np.inf:
+                    nx = min(max(nx, box[0]), box[2])
+                    ny = min(max(ny, box[1]), box[3])
+            else:
+                continue
+            if abs(nx) < np.inf and abs(ny) < np.inf:
+                px[v] = nx
+                py[v] = ny
+    return m
+
+
+@njit(**NJIT)
+def _cell(i, xs, ys, ws, indptr, indices, box, px, py, po, qx, qy, qo, ss, careful=False):
     """Power cell of site ``i`` cut from ``box`` with named vertices; its count (in ``p``).
 
-    Edge owners keep the box sides' codes (-1..-4) for :func:`_reconcile`.
+    Edge owners keep the box sides' codes (-1..-4) for :func:`_reconcile`. ``careful``:
+    :func:`_careful_cell`'s cut.
     """
     nb = indices[indptr[i] : indptr[i + 1]]
-    m = box_cell(i, xs, ys, ws, nb, nb.shape[0], box, px, py, po, qx, qy, qo, ss)
+    if careful:
+        m = _careful_cell(i, xs, ys, ws, nb, nb.shape[0], box, px, py, po, qx, qy, qo, ss)
+    else:
+        m = box_cell(i, xs, ys, ws, nb, nb.shape[0], box, px, py, po, qx, qy, qo, ss)
     if m == 0:
         return 0
     _named_vertices(i, xs, ys, ws, px, py, po, m, box)
@@ -410,6 +507,36 @@ def power_cells(xs, ys, ws, indptr, indices, box, active):
     coords, lengths, owner
         As in the module docstring.
     """
+    none = np.zeros(0, dtype=np.bool_)
+    zf = np.zeros(0)
+    zi = np.zeros(0, dtype=np.int64)
+    slab_x, slab_y, slab_o, cap, cnt = cut_rings(
+        xs, ys, ws, indptr, indices, box, active, none, zf, zf, zi, zi, zi
+    )
+    return finish_rings(xs, ys, slab_x, slab_y, slab_o, cap, cnt)
+
+
+@njit(**NJIT_PARALLEL)
+def cut_rings(xs, ys, ws, indptr, indices, box, todo, careful, ox, oy, oo, ocap, ocnt):
+    """Named rings (before :func:`finish_rings`) of the cells in ``todo``; the others copied.
+
+    Parameters
+    ----------
+    xs, ys, ws, indptr, indices, box
+        As for :func:`power_cells`.
+    todo : (n,) bool
+        Cells to cut.
+    careful : (n,) bool or (0,) bool
+        Cells cut by :func:`_careful_cell` (none when empty).
+    ox, oy, oo, ocap, ocnt
+        Rings of an earlier call (``ocnt`` empty: none); cells not in ``todo`` keep theirs.
+
+    Returns
+    -------
+    slab_x, slab_y, slab_o, cap, cnt
+        Cell ``i``'s ring is ``slab[cap[i]:cap[i] + cnt[i]]`` (no closing vertex), with room
+        for :func:`finish_rings`' insertions.
+    """
     n = xs.shape[0]
     cap = np.zeros(n + 1, dtype=np.int64)
     for i in range(n):
@@ -418,8 +545,18 @@ def power_cells(xs, ys, ws, indptr, indices, box, active):
     slab_y = np.zeros(cap[n])
     slab_o = np.zeros(cap[n], dtype=np.int64)
     cnt = np.zeros(n, dtype=np.int64)
+    old = ocnt.shape[0] > 0
+    some = careful.shape[0] > 0
     for i in prange(n):
-        if not active[i]:
+        b = cap[i]
+        if not todo[i]:
+            if old:
+                c = ocap[i]
+                for k in range(ocnt[i]):
+                    slab_x[b + k] = ox[c + k]
+                    slab_y[b + k] = oy[c + k]
+                    slab_o[b + k] = oo[c + k]
+                cnt[i] = ocnt[i]
             continue
         size = cap[i + 1] - cap[i]
         px = np.zeros(size)
@@ -430,13 +567,35 @@ def power_cells(xs, ys, ws, indptr, indices, box, active):
         qo = np.zeros(size, dtype=np.int64)
         ss = np.zeros(size)
         # prange's index is unsigned: as np.int64 the callees are compiled once, not twice
-        m = _cell(np.int64(i), xs, ys, ws, indptr, indices, box, px, py, po, qx, qy, qo, ss)
-        b = cap[i]
+        m = _cell(
+            np.int64(i),
+            xs,
+            ys,
+            ws,
+            indptr,
+            indices,
+            box,
+            px,
+            py,
+            po,
+            qx,
+            qy,
+            qo,
+            ss,
+            some and careful[i],
+        )
         for k in range(m):
             slab_x[b + k] = px[k]
             slab_y[b + k] = py[k]
             slab_o[b + k] = po[k]
         cnt[i] = m
+    return slab_x, slab_y, slab_o, cap, cnt
+
+
+@njit(**NJIT_PARALLEL)
+def finish_rings(xs, ys, slab_x, slab_y, slab_o, cap, cnt):
+    """:func:`cut_rings`' rings reconciled, compacted and closed: :func:`power_cells`' result."""
+    n = xs.shape[0]
     if not _agreed(xs, ys, slab_x, slab_y, slab_o, cap, cnt):
         _reconcile(xs, ys, slab_x, slab_y, slab_o, cap, cnt, POWER_CROWDED_RTOL)
     counts = np.zeros(n + 1, dtype=np.int64)

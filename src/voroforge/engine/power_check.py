@@ -1,0 +1,175 @@
+"""Power cells where Qhull's lift could not resolve the sites: candidates completed by checks.
+
+Over a cluster far narrower than the box (1e-6 wide 1e3 away, 1e-9 at 1e6) the lifted
+paraboloid's curvature is below the lift's rounding: Qhull loses sites and edges there.
+:func:`lost_candidates` gives the sites near such places (the *suspects*) their nearest
+sites in the lifted space as candidates; :func:`checked_cells` cuts the cells and completes
+the candidates of the cells near the suspects until every vertex checks. A cell that no
+suspect can reach (a bound on the suspects' power distances over the cell) keeps the
+lift's neighbours unchecked: the cost follows the cells near the unresolved places.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from ..config import POWER_CHECK_ROUNDS, POWER_CHECK_ULPS, POWER_LOST_NEAR
+from ..kernels.power import cut_rings, finish_rings
+
+_EPS = float(np.finfo(float).eps)
+#: Relative slack of the proof that no suspect reaches a cell (:func:`_unreached`): far
+#: above its few roundings, far below any cell's margin that matters. Local constant.
+_REACH_RTOL = 2.0**-30
+
+
+def pairs_csr(n, a, b):
+    """Symmetric CSR ``(indptr, indices int64)`` of distinct undirected pairs ``a < b``."""
+    a = np.asarray(a, dtype=np.int64)
+    b = np.asarray(b, dtype=np.int64)
+    key = np.concatenate((a * n + b, b * n + a))
+    key.sort()  # a plain sort: faster here than np.unique's hashing
+    indptr = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(np.bincount(key // n, minlength=n), out=indptr[1:])
+    return indptr, key % n
+
+
+def lost_candidates(x, y, w, idx, centre, a, b, rows):
+    """Pairs ``a, b`` and, for the sites ``rows``, their nearest sites in the lifted space.
+
+    ``idx`` are the sites that may have a cell; the lifted space is ``(x, y, sqrt(max w -
+    w))`` about ``centre`` (power distances are squared distances there, as in
+    ``PowerDiagram.locate``).
+    """
+    m = len(idx)
+    k = min(m, POWER_LOST_NEAR + 1)
+    near = np.column_stack((x[idx] - centre[0], y[idx] - centre[1], np.sqrt(w[idx].max() - w[idx])))
+    tree = cKDTree(near)
+    pos = np.searchsorted(idx, rows)
+    nb = tree.query(near[pos], k=k)[1].reshape(len(rows), k)
+    a = np.concatenate((a, np.repeat(rows, k)))
+    b = np.concatenate((b, idx[nb.ravel()]))
+    keep = a != b
+    return a[keep], b[keep]
+
+
+def _slots(cap, cnt):
+    """Slab slots of every ring vertex, and the cell of each."""
+    cell = np.repeat(np.arange(len(cnt)), cnt)
+    start = np.cumsum(cnt) - cnt
+    return cap[:-1][cell] + (np.arange(len(cell)) - start[cell]), cell
+
+
+def _unreached(x, y, w, rings, suspect, active):
+    """Cells that no suspect site can beat anywhere (proven), as a mask.
+
+    Cell ``i`` lies within ``r_i`` (its farthest vertex) of its site, where its own power
+    distance is at most ``P_i`` (the largest at a vertex: the power distance is convex). A
+    suspect ``j`` at distance ``D`` has power distance at least ``(D - r_i)^2 - w_j`` there.
+    When that exceeds ``P_i`` for the nearest suspect and the heaviest weight, no missing
+    candidate can cut the cell: the lift's neighbours were complete for it.
+    """
+    sx, sy, _, cap, cnt = rings
+    slot, cell = _slots(cap, cnt)
+    dx = sx[slot] - x[cell]
+    dy = sy[slot] - y[cell]
+    d2 = dx * dx + dy * dy
+    n = len(x)
+    some = cnt > 0
+    start = (np.cumsum(cnt) - cnt)[some]
+    r2, mag, top = np.zeros(n), np.zeros(n), np.full(n, -np.inf)
+    if len(start):
+        r2[some] = np.maximum.reduceat(d2, start)
+        mag[some] = np.maximum.reduceat(np.maximum(np.abs(sx[slot]), np.abs(sy[slot])), start)
+        top[some] = np.maximum.reduceat(d2 - w[cell], start)
+    ids = np.flatnonzero(suspect)
+    pts = np.column_stack((x, y))
+    dist = cKDTree(pts[ids]).query(pts, k=1)[0]
+    heavy = float(w[ids].max())
+    # each vertex is rounded at its coordinates: widen the cell's radius by that
+    r = np.sqrt(r2) + POWER_CHECK_ULPS * _EPS * mag
+    gap = np.maximum(dist - r, 0.0)
+    low = gap * gap - heavy
+    slack = _REACH_RTOL * (dist * dist + r * r + abs(heavy) + np.abs(w))
+    proven = (cnt > 0) & (low > top + slack) & ~suspect
+    return proven | ((cnt == 0) & ~suspect) | ~active
+
+
+def _beaten(x, y, w, ids, tree, q, cell, n):
+    """Pairs ``(cell, j)`` keys of sites ``j`` that beat or tie ``cell`` at vertices ``q``.
+
+    The sites nearest in power at each vertex (a KD-tree of the lifted sites, as in
+    ``locate``; power distances in differences) that lead or tie the cell's own site there,
+    within the vertex's rounding. A missed tie is a missed tiny edge (a T-junction); an
+    extra candidate costs one cut.
+    """
+    pts = np.column_stack((x, y))
+    rows, k, key = np.arange(len(q)), min(len(ids), POWER_LOST_NEAR), [np.zeros(0, np.int64)]
+    while len(rows):  # more sites where all k found lead or tie
+        i = cell[rows, None]
+        j = ids[tree.query(np.column_stack((q[rows], np.zeros(len(rows)))), k=k)[1]]
+        j = j.reshape(len(rows), k)
+        di = q[rows] - pts[i[:, 0]]
+        dj = q[rows, None, :] - pts[j]
+        pi = np.einsum("ij,ij->i", di, di)[:, None] - w[i]
+        pj = np.einsum("ijk,ijk->ij", dj, dj) - w[j]
+        # a vertex moved by delta changes the difference by 2 delta |p_i - p_j|
+        delta = POWER_CHECK_ULPS * _EPS * np.abs(q[rows]).max(axis=1)[:, None]
+        gap = np.linalg.norm(pts[j] - pts[i], axis=2)
+        band = pj <= pi + 2.0 * delta * gap + POWER_CHECK_ULPS * _EPS * (np.abs(pi) + np.abs(pj))
+        bad = band & (j != i)
+        i, j = np.broadcast_arrays(i, j)
+        key.append(np.minimum(i, j)[bad] * n + np.maximum(i, j)[bad])
+        rows, k = (rows[band[:, -1]], min(len(ids), 4 * k)) if k < len(ids) else (rows[:0], k)
+    return np.unique(np.concatenate(key))
+
+
+def checked_cells(x, y, w, box, active, indptr, indices, suspect):
+    """Power cells from candidates that may lack neighbours, completed until every vertex checks.
+
+    A cell cut by too few bisectors is larger than the true cell, so one of its vertices
+    lies in another site's cell: the sites that beat or tie it there (:func:`_beaten`)
+    become candidates both ways, and the cells whose candidates grew are cut again, until
+    none is new. Only cells a suspect may reach are checked (:func:`_unreached`), and they
+    are cut with every vertex named (``kernels.power._careful_cell``). An empty cell is
+    certain: fewer bisectors leave more of the box.
+
+    Returns
+    -------
+    coords, lengths, owner
+        As ``kernels.power.power_cells``.
+    """
+    n = len(x)
+    rows = np.repeat(np.arange(n), np.diff(indptr))
+    careful = suspect.copy()
+    careful[rows[suspect[indices]]] = True
+    zf, zi = np.zeros(0), np.zeros(0, dtype=np.int64)
+    rings = cut_rings(x, y, w, indptr, indices, box, active, careful, zf, zf, zi, zi, zi)
+    todo = ~_unreached(x, y, w, rings, suspect, active)
+    redo = todo & ~careful
+    if redo.any():  # cells a suspect may reach, cut with named vertices
+        careful |= redo
+        rings = cut_rings(x, y, w, indptr, indices, box, redo, careful, *rings)
+    ids = np.flatnonzero(active)
+    top = float(w[ids].max())
+    tree = cKDTree(np.column_stack((x[ids], y[ids], np.sqrt(top - w[ids]))))
+    known = np.sort(rows * n + indices)
+    for _ in range(POWER_CHECK_ROUNDS):
+        sx, sy, _, cap, cnt = rings
+        slot, cell = _slots(cap, cnt * todo)
+        q = np.column_stack((sx[slot], sy[slot]))
+        key = _beaten(x, y, w, ids, tree, q, cell, n)
+        both = np.unique(np.concatenate((key, (key % n) * n + key // n)))
+        at = np.minimum(np.searchsorted(known, both), len(known) - 1)
+        new = both[known[at] != both] if len(known) else both
+        if not len(new):
+            break
+        known = np.sort(np.concatenate((known, new)))
+        todo = np.zeros(n, dtype=bool)
+        todo[new // n] = True
+        todo &= active
+        careful |= todo
+        keep = known // n < known % n
+        indptr, indices = pairs_csr(n, known[keep] // n, known[keep] % n)
+        rings = cut_rings(x, y, w, indptr, indices, box, todo, careful, *rings)
+    return finish_rings(x, y, *rings)
