@@ -227,3 +227,27 @@ def test_cluster_a_few_ulps_wide_among_spread_sites(offset):
     pts = np.concatenate((spread, g.normal(0.0, 1e-9, (50, 2)) + offset + 5.0))
     w = g.random(len(pts)) * 0.1 * 1e-18
     _check(pts, w, _box(pts), [np.arange(55, 105)], min_clear=0.2)
+
+
+def test_checked_path_checks_only_cells_near_the_cluster():
+    """The check's cost follows the unresolved places: 2000 spread sites and one 50-site
+    cluster 1e-6 wide; cells no suspect can reach are proven and not checked (every cell
+    was cut twice and checked before: 2.5 s against 0.12 s without the cluster at 1e4)."""
+    from voroforge.engine.power import _neighbors
+    from voroforge.engine.power_check import _unreached
+    from voroforge.kernels.power import cut_rings
+
+    g = np.random.default_rng(0)
+    pts = np.concatenate((g.random((2000, 2)) * 1e3, g.normal(0.0, 1e-6, (50, 2)) + 500.0))
+    w = g.random(len(pts)) * 1e-14
+    box = (0.0, 0.0, 1e3, 1e3)
+    _check(pts, w, box, [np.arange(2000, 2050)])
+    x, y = np.ascontiguousarray(pts[:, 0]), np.ascontiguousarray(pts[:, 1])
+    b = np.array(box, dtype=float)
+    indptr, indices, active, suspect = _neighbors(x, y, w, b, np.ones(len(pts), dtype=bool))
+    assert suspect is not None and suspect.sum() < 100
+    z, zi = np.zeros(0), np.zeros(0, dtype=np.int64)
+    rings = cut_rings(x, y, w, indptr, indices, b, active, suspect, z, z, zi, zi, zi)
+    checked = ~_unreached(x, y, w, rings, suspect, active)
+    assert checked[suspect & active].all()
+    assert checked.sum() < 150
