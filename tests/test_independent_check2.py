@@ -197,3 +197,22 @@ def test_periodic_power_with_an_empty_cell():
     pw = ((q[:, None, None] - P[None, :, None] - shifts[None, None]) ** 2).sum(-1).min(-1) - W
     share = np.bincount(pw.argmin(1), minlength=4) / len(q)
     np.testing.assert_allclose(share, d.volumes, atol=0.01)
+
+
+@pytest.mark.parametrize("offset, tiny", [(1e5, 1e-6), (1e5, 1e-8), (4e6, 1e-5)])
+def test_power_fit_far_from_the_origin(offset, tiny):
+    """Newton runs near the origin: at 1e5 a cell of area 2e-7 had stalled at 6e-6 relative."""
+    rng = np.random.default_rng(0)
+    P = rng.random((20, 2)) * 2 + offset
+    t = np.r_[tiny, np.ones(19)]
+    t = t / t.sum() * 4.0
+    d = vf.power_fit(P, t, (offset, offset, offset + 2, offset + 2))
+    assert (np.abs(d.areas - t) / t).max() <= 1e-6
+
+
+def test_power_fit_says_when_rounding_limits_a_far_cell():
+    P = np.random.default_rng(0).random((20, 2)) * 2 + 4e6
+    t = np.r_[1e-8, np.ones(19)]
+    t = t / t.sum() * 4.0
+    with pytest.raises(RuntimeError, match="rounding alone limits its area"):
+        vf.power_fit(P, t, (4e6, 4e6, 4e6 + 2, 4e6 + 2))

@@ -89,7 +89,7 @@ POWER_CROWDED_ULPS = 16.0
 POWER_LIFT_RESOLVE_ULPS = 1e4
 #: Where not, each site's nearest this many in the lifted space are its first candidates;
 #: then cells' vertices are checked against them, to POWER_CHECK_ULPS ulps, in at most
-#: POWER_CHECK_ROUNDS rounds (engine/power._checked_cells)
+#: POWER_CHECK_ROUNDS rounds (engine/power_check.checked_cells)
 POWER_LOST_NEAR = 12
 POWER_CHECK_ULPS = 16.0
 POWER_CHECK_ROUNDS = 64

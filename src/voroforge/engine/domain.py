@@ -45,6 +45,16 @@ class Domain:
         return Domain(geom, tuple(float(v) for v in b), False)
 
 
+def shifted(dom: Domain, c) -> Domain:
+    """The domain moved by ``-c`` (each coordinate minus ``c``, rounded once)."""
+    c = np.asarray(c, dtype=np.float64)
+    b = np.array(dom.bounds, dtype=np.float64) - np.r_[c, c]
+    if dom.is_rect:
+        return _rect(b)
+    geom = shapely.transform(dom.geometry, lambda xy: xy - c)
+    return Domain(geom, tuple(float(v) for v in b), False)
+
+
 def _rect(bounds) -> Domain:
     x0, y0, x1, y1 = (float(v) for v in bounds)
     return Domain(shapely.box(x0, y0, x1, y1), (x0, y0, x1, y1), True)

@@ -32,7 +32,7 @@ from ..config import (
 from ..kernels.power import power_cells
 from .assemble import assemble
 from .diagram import Diagram, buffers, frame_exponent
-from .domain import Domain, make_domain
+from .domain import Domain, make_domain, shifted
 from .inputs import as_points, as_query, as_weights, duplicate_map
 from .planar import build
 from .power_check import checked_cells, lost_candidates, pairs_csr
@@ -623,7 +623,8 @@ def as_targets(target_areas, n: int, dom: Domain) -> np.ndarray:
     total = dom.area
     if abs(t.sum() - total) > POWER_FIT_SUM_RTOL * total:
         raise ValueError(
-            f"target_areas must sum to the domain's area {total!r}; they sum to {t.sum()!r}"
+            f"target_areas must sum to the domain's area {float(total)!r}; they sum to "
+            f"{float(t.sum())!r}"
         )
     return t * (total / t.sum())
 
@@ -706,19 +707,46 @@ def power_fit(
             "needs distinct sites"
         )
     with serial_below(n):
-        d, _, err, it = fit_weights(pts, t, dom, w0, tol, int(max_iter))
+        # Newton runs near the origin (weights do not change under a translation): far out
+        # the cells' areas carry the coordinates' rounding (a cell of area 2e-7 at 1e5
+        # stalled at 6e-6 relative); the user's frame only checks and polishes the result
+        c = np.array(dom.bounds[:2])
+        lpts, ldom = pts - c, shifted(dom, c)
+        _, w, err, it = fit_weights(lpts, t, ldom, w0, tol, int(max_iter))
         if err > tol and n > 1:
             # Newton stalled (e.g. cells that must straddle the gap of a MultiPolygon): start
             # again from the shrunk sites, where every cell is open and reaches the interior
-            d2, _, err2, it2 = fit_weights(pts, t, dom, _shrink_start(pts, dom), tol, int(max_iter))
+            _, w2, err2, it2 = fit_weights(
+                lpts, t, ldom, _shrink_start(lpts, ldom), tol, int(max_iter)
+            )
             if err2 < err:
-                d, err, it = d2, err2, it2
+                w, err, it = w2, err2, it2
+        d, _, err, it2 = fit_weights(pts, t, dom, w, tol, int(max_iter))
+        it += it2
     if err > tol:
         raise RuntimeError(
             f"power_fit did not reach tol={tol:g} in {it} Newton steps (largest relative "
-            f"area error {err:.3g}){_near_pairs_note(pts, dom)}"
+            f"area error {err:.3g}){_near_pairs_note(pts, dom)}{_far_note(t, dom, tol)}"
         )
     return d
+
+
+def _far_note(targets, dom, tol) -> str:
+    """A note when the smallest cell is too few ulps of its coordinates wide for ``tol``.
+
+    A cell of side ``s`` whose vertices are rounded to ``u`` (the ulp of the coordinates)
+    has its area known to about ``4 u / s`` relative.
+    """
+    far = float(np.abs(np.asarray(dom.bounds)).max())
+    side = float(np.sqrt(targets.min()))
+    limit = 4.0 * float(np.spacing(far)) / side
+    if limit < 0.1 * tol:
+        return ""
+    return (
+        f"; the smallest cell (about {side:.3g} wide) at coordinates near {far:.3g} is "
+        f"{side / float(np.spacing(far)):.3g} ulps wide, so rounding alone limits its area to "
+        f"about {limit:.2g} relative (move the input near the origin, or raise tol)"
+    )
 
 
 def _near_pairs_note(pts, dom) -> str:
