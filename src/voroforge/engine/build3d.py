@@ -134,7 +134,7 @@ def _slots(k, caps):
     """Fixed per-cell output slots for ``k`` cells (reused from chunk to chunk)."""
     cv, cf, cr = caps[:3]
     return (
-        np.zeros(k * cv, np.uint8),
+        np.zeros(k * cv, np.int32),  # name key << 8 | owner sites (cells3d.build_cells)
         np.zeros((k * cv, 3)),
         np.zeros((k * cf, 2), np.int32),
         np.zeros(k * cr, np.int32),
@@ -234,7 +234,7 @@ def _hash3(bits, r, mask):
 
 
 @njit(**{**NJIT, "inline": "always"})
-def _slot(bits, vx, r, jg, bslot, mask):
+def _slot(bits, vx, r, jg, bslot, mask, key):
     """Table slot of the vertex at ``vx[r]`` (coordinates' bits ``bits[r]``): spatially local.
 
     The vertex's bucket in the join grid ``jg = (x0, y0, z0, 1/hx, 1/hy, 1/hz, nx, ny,
@@ -243,7 +243,10 @@ def _slot(bits, vx, r, jg, bslot, mask):
     slot in the run. Cells are joined in bucket order, so the vertices a chunk looks up
     lie in a few runs of the table that stay in cache, where a plain hash put every insert
     at a random place in a table of ~100 MB (a cache miss each). A function of the bits
-    alone, so equal coordinates meet in one probe sequence as before.
+    and the name ``key`` (the join's identity, :func:`kernels.vertex3d.name_key`): equal
+    vertices meet in one probe sequence, and the thousands of distinct vertices of a float
+    sphere that round to one point do not all share one (3,000 sites on a sphere: over
+    150 s with the bits alone).
     """
     nx = int(jg[6])
     ny = int(jg[7])
@@ -259,6 +262,9 @@ def _slot(bits, vx, r, jg, bslot, mask):
         h ^= np.uint64(bits[r, q])
         h *= np.uint64(0xBF58476D1CE4E5B9)
         h ^= h >> np.uint64(31)
+    h ^= np.uint64(key)
+    h *= np.uint64(0xBF58476D1CE4E5B9)
+    h ^= h >> np.uint64(31)
     off = (np.int64(h >> np.uint64(33)) * width) >> 31  # in [0, width)
     return (base + off) & mask
 
@@ -267,7 +273,7 @@ def _slot(bits, vx, r, jg, bslot, mask):
 def _join(
     c0, status, counts, caps, osite, ovabs, vbits, ofaces, oring, out, table, refs, want, gl, jt
 ):
-    """Append the cells ``c0, c0 + 1, ...`` of a chunk to the outputs; vertices by coordinates.
+    """Append the cells ``c0, c0 + 1, ...`` of a chunk to the outputs (vertices by bits + key).
 
     ``out = (verts, flabel, roff, ring, vid, sizes)`` with ``sizes = [nvert, nface, nring,
     nvid]``: each vertex record is looked up in ``table`` (open addressing on its
@@ -314,7 +320,7 @@ def _join(
         # (and its count of references, the next thing a hit reads: another random line)
         touch = 0
         for v in range(nv):
-            h = _slot(vbits, ovabs, c * cv + v, jg, bslot, mask)
+            h = _slot(vbits, ovabs, c * cv + v, jg, bslot, mask, osite[c * cv + v] >> 8)
             hs[v] = h
             gv = table[h]
             if gv >= 0 and verts[gv, 0] == ovabs[c * cv + v, 0]:
@@ -339,6 +345,7 @@ def _join(
                     verts[gv, 0] == ovabs[r, 0]
                     and verts[gv, 1] == ovabs[r, 1]
                     and verts[gv, 2] == ovabs[r, 2]
+                    and want[gv] >> 8 == osite[r] >> 8
                 ):
                     if refs[gv] < 255:
                         refs[gv] += 1
@@ -397,12 +404,12 @@ def duplicate_owners(P, W):
 
 
 @njit(**NJIT)
-def _rehash(verts, nvert, table, jg, bslot):
+def _rehash(verts, want, nvert, table, jg, bslot):
     """Fill an empty (all -1) ``table`` with vertices ``0:nvert`` (slots of :func:`_slot`)."""
     mask = table.shape[0] - 1
     bits = verts.view(np.int64)
     for g in range(nvert):
-        h = _slot(bits, verts, g, jg, bslot, mask)
+        h = _slot(bits, verts, g, jg, bslot, mask, want[g] >> 8)
         while table[h] >= 0:
             h = (h + 1) & mask
         table[h] = g
@@ -418,7 +425,8 @@ class _Out:
         # typical sizes per uniform cell: 6.8 vertices (27 per cell), 15.5 faces, 81 ring entries
         self.verts = np.zeros((max(16, 7 * k), 3))
         self.refs = np.zeros(len(self.verts), np.uint8)
-        self.want = np.zeros(len(self.verts), np.uint8)
+        # each vertex's owner sites and name key (osite: key << 8 | sites), kept while joining
+        self.want = np.zeros(len(self.verts), np.int32)
         self.flabel = np.zeros(max(16, 16 * k), np.int32)
         self.roff = np.zeros(len(self.flabel) + 1, _itype(84 * k))
         self.ring = np.zeros(max(64, 84 * k), np.uint8)
@@ -449,7 +457,7 @@ class _Out:
                 self.vid = self.vid.astype(np.int64)
             self.table = np.full(size, -1, self.vid.dtype)
             self.bslot = self._bslot()
-            _rehash(self.verts, nvert, self.table, self.jg, self.bslot)
+            _rehash(self.verts, self.want, nvert, self.table, self.jg, self.bslot)
         if nface + nf > len(self.flabel):
             m = int(1.5 * len(self.flabel)) + nf
             self.flabel.resize(m, refcheck=False)
@@ -502,7 +510,7 @@ class _Out:
         """Trim every output to its size (in place); returns the arrays and the unmatched."""
         nvert, nface, nring, nvid = (int(x) for x in self.sizes)
         self.table = None
-        self.short = self.refs[:nvert] < self.want[:nvert]
+        self.short = self.refs[:nvert] < (self.want[:nvert] & 255)
         unmatched = int(np.count_nonzero(self.short))
         self.refs = self.want = None
         self.verts.resize((nvert, 3), refcheck=False)

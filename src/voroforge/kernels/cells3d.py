@@ -35,7 +35,7 @@ from .cellcut3d import (
 from .graph3d import from_rings
 from .polyhedron import CUT_NONE, cut, moments, plane_values
 from .predicates3d import bisector_side, scratch
-from .vertex3d import axis_snap, name_vertex
+from .vertex3d import axis_snap, name_key, name_vertex, place
 
 # the status codes are :mod:`kernels.cellcut3d`'s; the engine reads them from here
 __all__ = [
@@ -241,9 +241,9 @@ def _name_cell(
         nsite = 0
         for t in range(u):
             nsite += keys[t] < ns
-        vnames[v, 4] = nsite
-        for q in range(3):
-            x[q] = P[a, q] + y[q]
+        # the join's identity besides the coordinates, and the owner sites (osite)
+        vnames[v, 4] = (name_key(u, name) << 8) | min(nsite, 255)
+        place(name, P, W, WP, ns, y, x, X[1])  # x = p_a + y, or exact where that cancels
         axis_snap(keys, u, ns, WP, x)
         for q in range(3):
             vabs[v, q] = x[q]
@@ -256,11 +256,15 @@ def _name_cell(
 
 @njit(**NJIT_NO_NRT)
 def _merge_named(nv, F, nf, R, vnames, vabs, vrel, remap):
-    """Merge local vertices with equal names or coordinates; drop repeats and thin faces.
+    """Merge local vertices with equal names or equal join keys; drop repeats and thin faces.
 
-    Equal coordinates under different names: exactly distinct vertices closer than the
-    doubles can tell (points rounded onto a sphere); they are one vertex here and in the
-    join (which is by coordinates). Returns ``(nv, nf, nr)``; rings are repacked from 0.
+    The join's key is the coordinates and :func:`kernels.vertex3d.name_key` (``vnames[:, 4]
+    >> 8``): exactly distinct vertices of four owners that round to the same doubles
+    (points rounded onto a sphere, an FCC lattice at 1e8) stay two vertices here and in the
+    join, as the exact diagram has them (merging them pinched the cell's faces at the
+    merged vertex, or repeated it in a ring, and moved one vertex's relative coordinates to
+    the other's); vertices of more owners with equal coordinates are one vertex. Returns
+    ``(nv, nf, nr)``; rings are repacked from 0.
     """
     m = 0
     for v in range(nv):
@@ -272,7 +276,10 @@ def _merge_named(nv, F, nf, R, vnames, vabs, vrel, remap):
                 and vnames[u, 2] == vnames[v, 2]
                 and vnames[u, 3] == vnames[v, 3]
             ) or (
-                vabs[u, 0] == vabs[v, 0] and vabs[u, 1] == vabs[v, 1] and vabs[u, 2] == vabs[v, 2]
+                vabs[u, 0] == vabs[v, 0]
+                and vabs[u, 1] == vabs[v, 1]
+                and vabs[u, 2] == vabs[v, 2]
+                and vnames[u, 4] >> 8 == vnames[v, 4] >> 8
             ):
                 same = u
                 break
@@ -504,7 +511,7 @@ def build_cells(
             cen[c, 2] = P[i, 2] + mz / v0
         bv = c * cv
         for v in range(nv):
-            osite[bv + v] = min(vnames[v, 4], 255)
+            osite[bv + v] = vnames[v, 4]  # name key << 8 | owner sites
             for q in range(3):
                 ovabs[bv + v, q] = vabs[v, q] + 0.0  # one zero: -0.0 + 0.0 == +0.0
         bf = c * cf
