@@ -47,13 +47,6 @@ def _at_side_or_out(t, cx, cy, err, box):
     A centre within reach of a side and not on it (:func:`.cellcut.on_sides`) is put on
     it, so every cell at it is cut: a ring of raw centres would keep it off the side.
     """
-    x = cx[t]
-    y = cy[t]
-    # an ulp of the larger coordinate is at most 2 * _U of it: a centre inside by more
-    # than that bound is neither moved nor out (most of them: no frexp on the hot path)
-    e = 4.0 * err[t] + 2.0 * _U * max(abs(x), abs(y))
-    if box[0] + e < x < box[2] - e and box[1] + e < y < box[3] - e:
-        return False
     x, y, _ = on_sides(t, cx, cy, err, box)
     return x != cx[t] or y != cy[t] or not (box[0] <= x <= box[2] and box[1] <= y <= box[3])
 
