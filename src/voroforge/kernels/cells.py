@@ -41,17 +41,6 @@ _THIN_ULPS = 8.0  # a ring whose edge passes this close to its site is a strip (
 
 
 @njit(**NJIT)
-def _at_side_or_out(t, cx, cy, err, box):
-    """Whether triangle ``t``'s centre lies outside the box or is put on a side.
-
-    A centre within reach of a side and not on it (:func:`.cellcut.on_sides`) is put on
-    it, so every cell at it is cut: a ring of raw centres would keep it off the side.
-    """
-    x, y, _ = on_sides(t, cx, cy, err, box)
-    return x != cx[t] or y != cy[t] or not (box[0] <= x <= box[2] and box[1] <= y <= box[3])
-
-
-@njit(**NJIT)
 def _outgoing(tri, he, cx, cy, err, box, n):
     """Per point: one outgoing halfedge, its degree, and whether its cell must be cut.
 
@@ -72,7 +61,8 @@ def _outgoing(tri, he, cx, cy, err, box, n):
             out[tri[e]] = e
             cut[tri[e]] = True
     for t in range(tri.shape[0] // 3):
-        if _at_side_or_out(t, cx, cy, err, box):
+        x, y, _ = on_sides(t, cx, cy, err, box)
+        if x != cx[t] or y != cy[t] or not (box[0] <= x <= box[2] and box[1] <= y <= box[3]):
             cut[tri[3 * t]] = True
             cut[tri[3 * t + 1]] = True
             cut[tri[3 * t + 2]] = True
@@ -174,7 +164,7 @@ def _cell(i, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, bufs, nbrs, cl, tb
                 pw[m] = y
                 cl[m] = cls[t]
                 m += 1
-                if _at_side_or_out(t, cx, cy, err, box):
+                if not (box[0] <= vx <= box[2] and box[1] <= vy <= box[3]):
                     inside = False
         o = he[p]
         if o == -1:
