@@ -26,8 +26,6 @@ neighbours ``k`` and ``k + 1`` (-1 past a hull end).
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 
@@ -37,73 +35,6 @@ from .power import box_cell
 from .vertex import box_crossing
 
 _U = 2.0**-53
-# ulps of a centre within which a box side takes it (a config.py tolerance, kept here
-# until the lead moves it there)
-_SIDE_REACH_ULPS = 1.0
-
-
-@njit(**NJIT)
-def side_reach(t, cx, cy, err):
-    """How near a box side triangle ``t``'s centre must lie to be put on it.
-
-    Four times the centre's rounding bound ``err[t]`` (its class's, so that every member
-    of a merged vertex decides alike) and ``_SIDE_REACH_ULPS`` ulps of its larger
-    coordinate. Lattices whose step is 2 ulps of their offset keep their vertices an
-    ulp or more inside the sides (``test_lattice_a_few_ulps_apart_is_exact``).
-    """
-    big = max(abs(cx[t]), abs(cy[t]))
-    return 4.0 * err[t] + _SIDE_REACH_ULPS * math.ldexp(1.0, math.frexp(big)[1] - 53)
-
-
-@njit(**NJIT)
-def on_sides(t, cx, cy, err, box):
-    """Triangle ``t``'s centre put on the box sides it lies within :func:`side_reach` of.
-
-    Returns ``(x, y, hit)``. A Voronoi vertex that close to a side (inside, on or past it)
-    is on it to rounding: the crossings of the side by its edges and the vertex itself
-    round in any order there (two crossings of one side reversed, a vertex an ulp past
-    the side), and each cell's own cut decides differently. Every cell at the vertex puts
-    it, and the crossings of its edges with that side, at this one point (a corner when
-    it is within reach of two sides), computed from the vertex's name alone.
-    """
-    x = cx[t]
-    y = cy[t]
-    e = side_reach(t, cx, cy, err)
-    hit = False
-    if box[1] - e <= y <= box[3] + e:
-        if abs(x - box[0]) <= e:
-            x = box[0]
-            hit = True
-        elif abs(x - box[2]) <= e:
-            x = box[2]
-            hit = True
-    if box[0] - e <= cx[t] <= box[2] + e:
-        if abs(y - box[1]) <= e:
-            y = box[1]
-            hit = True
-        elif abs(y - box[3]) <= e:
-            y = box[3]
-            hit = True
-    return x, y, hit
-
-
-@njit(**NJIT)
-def _on_side(x, y, side, box):
-    """Whether ``(x, y)`` lies on box side ``side`` (-1..-4), exactly."""
-    if side == -1:
-        return x == box[0]
-    if side == -2:
-        return y == box[1]
-    if side == -3:
-        return x == box[2]
-    return y == box[3]
-
-
-@njit(**NJIT)
-def _vertex_at(t, cx, cy, err, box):
-    """Triangle ``t``'s centre as cells write it: on a side when within reach of it."""
-    x, y, _ = on_sides(t, cx, cy, err, box)
-    return x, y
 
 
 @njit(**NJIT)
@@ -160,53 +91,23 @@ def _chain_in_box(nbrs, tris, nn, ka, steps, cx, cy, box):
 
 
 @njit(**NJIT)
-def _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, err, box, qx, qy, qw, out):
+def _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, qx, qy, qw, out):
     """Write the circumcentres of the ``steps`` triangles after neighbour ``ka`` to ``q``.
 
-    Each is followed by the edge of the next neighbour; returns the new vertex count. A
-    centre within reach of a box side is put on it (:func:`on_sides`).
+    Each is followed by the edge of the next neighbour; returns the new vertex count.
     """
     for s in range(steps):
         k = (ka + s) % nn
         t = tris[k]
-        qx[out], qy[out] = _vertex_at(t, cx, cy, err, box)
+        qx[out] = cx[t]
+        qy[out] = cy[t]
         qw[out] = nbrs[(k + 1) % nn]
         out += 1
     return out
 
 
 @njit(**NJIT)
-def _crossing_at_vertex(kj, nbrs, tris, nn, cx, cy, err, side, box, x, y):
-    """Crossing ``(x, y)`` of ``side`` by neighbour ``kj``'s edge, or its end on that side.
-
-    An end of the edge (the centre of the triangle before or after ``kj`` in rotation
-    order) within reach of the side is put on it (:func:`on_sides`), and the edge's
-    crossing is that point: every cell at the vertex computes it from the vertex's name,
-    whichever way its own cut rounded. With both ends there, the nearer along the side.
-    """
-    best = np.inf
-    bx = x
-    by = y
-    for s in range(2):
-        k = kj - 1 + s
-        if k < 0:
-            k += nn
-        t = tris[k]
-        if t < 0:
-            continue
-        vx, vy, hit = on_sides(t, cx, cy, err, box)
-        if not (hit and _on_side(vx, vy, side, box)):
-            continue
-        d = abs(vx - x) + abs(vy - y)
-        if d < best:
-            best = d
-            bx = vx
-            by = vy
-    return bx, by
-
-
-@njit(**NJIT)
-def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, err, box, qx, qy, qw):
+def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, qx, qy, qw):
     """Replace computed vertices by values every cell sharing them computes identically.
 
     A vertex between the bisectors with neighbours ``a`` then ``b`` is the circumcentre of
@@ -244,7 +145,7 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, err, b
                 # wrap, issue 15); the cut's own vertex is kept instead
                 ok = _chain_in_box(nbrs, tris, nn, ka, steps, cx, cy, box)
             if ok:
-                out = _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, err, box, qx, qy, qw, out)
+                out = _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, qx, qy, qw, out)
                 continue
         elif a >= 0 or b >= 0:
             j = a if a >= 0 else b
@@ -253,10 +154,6 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, err, b
             if bx == bx and box[0] <= bx <= box[2] and box[1] <= by <= box[3]:
                 x = bx
                 y = by
-            kj = _index_of(nbrs, nn, j, hint)
-            if kj >= 0:
-                hint = kj
-                x, y = _crossing_at_vertex(kj, nbrs, tris, nn, cx, cy, err, side, box, x, y)
         else:
             vert = a if (a == -1 or a == -3) else b
             horz = b if vert == a else a
@@ -419,7 +316,7 @@ def _nearest_label(xs, ys, x, y, b, nbrs, nn, box):
 
 
 @njit(**NJIT)
-def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, err, qx, qy, qw, box):
+def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw, box):
     """Fix the owners of bisector edges that floats could not separate; result in ``p``.
 
     Neighbours closer to each other than the float resolution of their bisectors (sites
@@ -454,7 +351,7 @@ def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, err, qx, qy, q
             )
             continue
         qw[out - 1] = lp
-        out = _emit_chain(nbrs, tris, nn, kp, steps, cx, cy, err, box, qx, qy, qw, out)
+        out = _emit_chain(nbrs, tris, nn, kp, steps, cx, cy, qx, qy, qw, out)
     for v in range(out):
         px[v] = qx[v]
         py[v] = qy[v]
@@ -463,7 +360,7 @@ def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, err, qx, qy, q
 
 
 @njit(**NJIT)
-def cut_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, err, px, py, pw, qx, qy, qw, ss):
+def cut_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, px, py, pw, qx, qy, qw, ss):
     """Cell of site ``i`` as the box cut by the bisectors with ``nbrs[:nn]``; result in ``p``.
 
     The cut is the power cell's (``kernels/power.box_cell``) with the zero weights ``ws``:
@@ -474,10 +371,8 @@ def cut_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, err, px, py, pw, qx, qy
     m = box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss)
     if m == 0:
         return 0
-    m = _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, err, qx, qy, qw, box)
-    return _canonical_vertices(
-        i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, err, box, qx, qy, qw
-    )
+    m = _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw, box)
+    return _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, qx, qy, qw)
 
 
 @njit(**NJIT)
@@ -601,6 +496,4 @@ def spliced_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, err, bufs, gl, ss):
         px[v] = qx[v]
         py[v] = qy[v]
         pw[v] = qw[v]
-    return _canonical_vertices(
-        i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, err, box, qx, qy, qw
-    )
+    return _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, qx, qy, qw)

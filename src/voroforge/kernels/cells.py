@@ -27,7 +27,7 @@ import numpy as np
 from numba import njit, prange
 
 from ..config import FOLD_MAX_ROUNDS, NJIT, NJIT_PARALLEL, REFLEX_SHORT_ULPS
-from .cellcut import cut_cell, on_sides, spliced_cell
+from .cellcut import cut_cell, spliced_cell
 from .centers import circumcenters, contract, merge_cocircular
 from .clip import open_ring_convex, ring_corner
 from .folds import fold_pairs, folded_rings, risky_sites
@@ -41,13 +41,11 @@ _THIN_ULPS = 8.0  # a ring whose edge passes this close to its site is a strip (
 
 
 @njit(**NJIT)
-def _outgoing(tri, he, cx, cy, err, box, n):
+def _outgoing(tri, he, cx, cy, box, n):
     """Per point: one outgoing halfedge, its degree, and whether its cell must be cut.
 
     Hull points get their outgoing hull halfedge. A cell is cut when its point is on the hull
-    or one of its circumcentres lies outside the box or within reach of a side and not on
-    it (:func:`.cellcut.on_sides`: the cut puts such a vertex on the side, and every cell
-    at it must).
+    or one of its circumcentres lies outside the box.
     """
     out = np.full(n, -1, dtype=np.int64)
     deg = np.zeros(n, dtype=np.int64)
@@ -61,8 +59,7 @@ def _outgoing(tri, he, cx, cy, err, box, n):
             out[tri[e]] = e
             cut[tri[e]] = True
     for t in range(tri.shape[0] // 3):
-        x, y, _ = on_sides(t, cx, cy, err, box)
-        if x != cx[t] or y != cy[t] or not (box[0] <= x <= box[2] and box[1] <= y <= box[3]):
+        if not (box[0] <= cx[t] <= box[2] and box[1] <= cy[t] <= box[3]):
             cut[tri[3 * t]] = True
             cut[tri[3 * t + 1]] = True
             cut[tri[3 * t + 2]] = True
@@ -179,7 +176,7 @@ def _cell(i, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, bufs, nbrs, cl, tb
             m = spliced_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, err, bufs, cl, ss)
             if m >= 0:
                 return m
-        m = cut_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, err, px, py, pw, qx, qy, qw, ss)
+        m = cut_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, px, py, pw, qx, qy, qw, ss)
         if m < 3 or open_ring_convex(px, py, m) or _reflex_by_rounding(px, py, m):
             return m
         # the cut folded: bisectors that meet within their rounding of one point (a float
@@ -188,7 +185,7 @@ def _cell(i, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, bufs, nbrs, cl, tb
         m = spliced_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, err, bufs, cl, ss)
         if m >= 3 and open_ring_convex(px, py, m):
             return m
-        return cut_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, err, px, py, pw, qx, qy, qw, ss)
+        return cut_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, px, py, pw, qx, qy, qw, ss)
     if m > 1 and cl[m - 1] == cl[0]:
         m -= 1
     return m if m >= 3 else 0
@@ -433,8 +430,7 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap, *, astray=False)
     # again only the cells whose vertices it changed
     risk = risky_sites(tri, near, n)
     tested = risk.copy()  # every cell a merge or contraction can have moved past its site
-    terr = _class_err(cls, err) if merged else err
-    out, cells = _build(xs, ys, tri, he, cx, cy, terr, cls, box, order, kmap, merged)
+    out, cells = _build(xs, ys, tri, he, cx, cy, err, cls, box, order, kmap, merged)
     bad = np.zeros(n, dtype=np.bool_)
     checked_all = False
     for _ in range(FOLD_MAX_ROUNDS):
@@ -446,7 +442,7 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap, *, astray=False)
         if not folded.shape[0]:
             break
         pa, pb = fold_pairs(folded, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, order)
-        before = (cx.view(np.int64).copy(), cy.view(np.int64).copy(), cls.copy(), terr.copy())
+        before = (cx.view(np.int64).copy(), cy.view(np.int64).copy(), cls.copy())
         if not pa.shape[0] or not contract(xs, ys, tri, he, cls, cx, cy, kmap, box, err, pa, pb):
             break
         # only cells at a triangle whose vertex (bits) or class changed can change: a few
@@ -454,8 +450,6 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap, *, astray=False)
         # quadratic (1e6 sites: 19 rounds of 3 s)
         moved = (cx.view(np.int64) != before[0]) | (cy.view(np.int64) != before[1])
         moved |= cls != before[2]
-        terr = _class_err(cls, err)
-        moved |= terr != before[3]
         redo = np.zeros(n, dtype=np.bool_)
         redo[tri.reshape(-1, 3)[moved].ravel()] = True
         # every cell is checked once after the first contraction (a cell outside ``risk``
@@ -464,7 +458,7 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap, *, astray=False)
         tested |= risk
         checked_all = True
         merged = True
-        out, cells = _rebuild(xs, ys, tri, he, cx, cy, terr, cls, box, order, kmap, cells, redo)
+        out, cells = _rebuild(xs, ys, tri, he, cx, cy, err, cls, box, order, kmap, cells, redo)
     if not astray:
         return cells
     miss = np.zeros(n, dtype=np.uint8)
@@ -479,32 +473,13 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap, *, astray=False)
     return cells, miss
 
 
-@njit(**NJIT)
-def _class_err(cls, err):
-    """Per triangle, the largest rounding bound in its class (one vertex, one bound).
-
-    The cells' tests of a vertex against the box (:func:`.cellcut.side_reach`) must decide
-    alike for every triangle of a merged class, whose members share the centre's bits but
-    not their bounds.
-    """
-    big = np.zeros_like(err)
-    for t in range(cls.shape[0]):
-        c = cls[t]
-        if err[t] > big[c]:
-            big[c] = err[t]
-    out = np.zeros_like(err)
-    for t in range(cls.shape[0]):
-        out[t] = big[cls[t]]
-    return out
-
-
 def _build(xs, ys, tri, he, cx, cy, err, cls, box, order, kmap, merged):
     """One construction of every cell from the classes ``cls``.
 
     Returns ``(out, (coords, lengths, owner))``, ``out`` each site's outgoing halfedge.
     """
     n = xs.shape[0]
-    out, deg, cut = _outgoing(tri, he, cx, cy, err, box, n)
+    out, deg, cut = _outgoing(tri, he, cx, cy, box, n)
     # scratch per chunk for its own largest degree: one site with n neighbours must not
     # make every chunk allocate (and zero) rings of n vertices (quadratic at 1e6)
     starts = np.arange(0, n, _CHUNK)
@@ -570,7 +545,7 @@ def _rebuild(xs, ys, tri, he, cx, cy, err, cls, box, order, kmap, cells, redo):
     if 8 * sites.shape[0] > n:
         return _build(xs, ys, tri, he, cx, cy, err, cls, box, order, kmap, True)
     coords, lengths, owner = cells
-    out, deg, _ = _outgoing(tri, he, cx, cy, err, box, n)
+    out, deg, _ = _outgoing(tri, he, cx, cy, box, n)
     starts = np.arange(0, sites.shape[0], _CHUNK)
     cap = np.maximum.reduceat(deg[sites], starts) + 16 if sites.shape[0] else np.zeros(0, np.int64)
     ws = np.zeros(n)
@@ -611,24 +586,7 @@ def _cut_all(xs, ys, indptr, indices, box, cap, counts, offsets, coords, owner, 
         for i in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
             nb = indices[indptr[i] : indptr[i + 1]]
             m = cut_cell(
-                i,
-                xs,
-                ys,
-                ws,
-                nb,
-                no_tris,
-                nb.shape[0],
-                box,
-                none,
-                none,
-                none,
-                px,
-                py,
-                pw,
-                qx,
-                qy,
-                qw,
-                ss,
+                i, xs, ys, ws, nb, no_tris, nb.shape[0], box, none, none, px, py, pw, qx, qy, qw, ss
             )
             if not fill:
                 counts[i] = m
