@@ -391,11 +391,33 @@ def _seams(closed, lengths, owner, take, kmap):
     if len(e) == 0:
         return bad
     bits = closed.view(np.int64)
-    ends = (*bits[e].T.tolist(), *bits[e + 1].T.tolist())
-    mine = set(zip(cell.tolist(), nbr.tolist(), *ends, strict=True))
-    for c, j, x0, y0, x1, y1 in mine:
-        if (j, c, x1, y1, x0, y0) not in mine:
-            bad[j if take[c] else c] = True
+    # An edge (c, j, a, b) and its twin (j, c, b, a) share the key (lo, hi, p, q) oriented
+    # from the lower cell; a key without rows of both orientations is an edge without its
+    # twin. Grouped by a 64-bit hash of the key (one argsort; a collision sorts the whole
+    # key instead): a Python set of tuples took 7 s of 20 on a line of 1e6 sites.
+    fwd = cell < nbr
+    a, b = bits[e], bits[e + 1]
+    p = np.where(fwd[:, None], a, b)
+    q = np.where(fwd[:, None], b, a)
+    cols = (np.where(fwd, cell, nbr), np.where(fwd, nbr, cell), p[:, 0], p[:, 1], q[:, 0], q[:, 1])
+    h = np.zeros(len(e), np.uint64)
+    with np.errstate(over="ignore"):
+        for col in cols:
+            h = (h ^ col.astype(np.int64).view(np.uint64)) * np.uint64(0x9E3779B97F4A7C15)
+            h ^= h >> np.uint64(29)
+    order = np.argsort(h, kind="stable")
+    key = np.column_stack(cols)[order]
+    same = (key[1:] == key[:-1]).all(axis=1)
+    if (h[order][1:] == h[order][:-1])[~same].any():  # a collision
+        order = np.lexsort(cols[::-1])
+        key = np.column_stack(cols)[order]
+        same = (key[1:] == key[:-1]).all(axis=1)
+    run = np.cumsum(np.r_[True, ~same]) - 1
+    has = np.zeros((run[-1] + 1, 2), np.bool_)
+    has[run, fwd[order].astype(np.int64)] = True
+    lone = ~has.all(axis=1)[run]
+    c, j = cell[order][lone], nbr[order][lone]
+    bad[np.where(take[c], j, c)] = True
     return bad
 
 
