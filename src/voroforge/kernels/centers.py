@@ -26,7 +26,6 @@ from ..config import (
     NJIT_PARALLEL,
     VERTEX_SNAP_RTOL,
 )
-from .clip import fan_bad_turns
 from .predicates import cross_diff, incircle, incircle_fast
 from .vertex import (
     canonical_vertex_ranked,
@@ -38,9 +37,6 @@ from .vertex import (
 )
 
 _U = 2.0**-53
-#: (belongs in config.py) A class joined by a contraction with more members than this keeps
-#: its usual name (:func:`_fit_joined` tries every member: the largest measured was 93)
-FIT_MAX_MEMBERS = 512
 
 
 @njit(**NJIT)
@@ -702,9 +698,8 @@ def contract(xs, ys, tri, he, parent, cx, cy, rank, box, err, pa, pb):
     across edges that are not neighbours (the pairwise test of :func:`_folds` sees only one
     edge at a time) and gives the short Voronoi edges around the fold: their ends are one
     vertex to rounding. ``parent`` (compressed, as :func:`merge_cocircular` returns it) is
-    updated in place; every member of a joined class gets the class's named vertex (or the
-    one :func:`_fit_joined` fits to its cells), and the edges at renamed centres are tested
-    for swaps again (:func:`_unfold`).
+    updated in place; every member of a joined class gets the class's named vertex, and the
+    edges at renamed centres are tested for swaps again (:func:`_unfold`).
     """
     merges = 0
     for k in range(pa.shape[0]):
@@ -715,72 +710,8 @@ def contract(xs, ys, tri, he, parent, cx, cy, rank, box, err, pa, pb):
         parent[k] = _find(parent, k)
     changed = np.zeros(parent.shape[0], dtype=np.uint8)
     _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, np.bool_(False))
-    fresh = np.zeros(parent.shape[0], dtype=np.uint8)
-    for k in range(pa.shape[0]):
-        fresh[parent[pa[k]]] = 1
-    _fit_joined(xs, ys, tri, he, parent, cx, cy, rank, fresh, changed)
     fold = np.zeros(tri.shape[0], dtype=np.uint8)
     cand = np.zeros(0, dtype=np.int64)
     joined = np.zeros(0, dtype=np.uint8)
     _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined, changed)
     return merges
-
-
-@njit(**NJIT)
-def _fit_joined(xs, ys, tri, he, parent, cx, cy, rank, fresh, changed):
-    """A class a contraction joined (``fresh`` at its root) takes the name its cells fit best.
-
-    :func:`_name_classes`' name stands unless a member's own centre leaves fewer bad turns
-    in the rings of the class's sites (:func:`.clip.fan_bad_turns`; other vertices as before, so no
-    choice depends on another's): the class is then named near it (ties: lower rank key).
-    A contracted class spans hundreds of ulps of its members' exact centres (a float circle
-    far out); the best-conditioned member's centre can lie across its cells' other edges.
-    """
-    cx0, cy0 = cx.copy(), cy.copy()
-    bx, by = np.zeros(parent.shape[0] + 2), np.zeros(parent.shape[0] + 2)
-    stamp = np.full(xs.shape[0], -1, dtype=np.int64)
-    tf = np.flatnonzero(fresh[parent])  # the joined classes' members, grouped by class
-    tf = tf[np.argsort(parent[tf], kind="mergesort")]
-    j = 0
-    while j < tf.shape[0]:
-        i, c = j, parent[tf[j]]
-        while j < tf.shape[0] and parent[tf[j]] == c:
-            j += 1
-        mem = tf[i:j]
-        if mem.shape[0] > FIT_MAX_MEMBERS:
-            continue  # (the cost is members times their sites)
-        sites, where = np.zeros(3 * mem.shape[0], np.int64), np.zeros(3 * mem.shape[0], np.int64)
-        k = 0
-        for t in mem:
-            for v in tri[3 * t : 3 * t + 3]:
-                if stamp[v] != c:
-                    stamp[v] = c
-                    sites[k] = v
-                    where[k] = t
-                    k += 1
-        bt = -1
-        best = 0
-        for q in range(k):
-            best += fan_bad_turns(
-                sites[q], where[q], tri, he, parent, c, cx0[c], cy0[c], cx0, cy0, bx, by
-            )
-        for t in mem:
-            px, py = voronoi_vertex(tri[3 * t], tri[3 * t + 1], tri[3 * t + 2], xs, ys)
-            if best == 0 or not (np.isfinite(px) and np.isfinite(py)):
-                continue
-            b = 0
-            for q in range(k):
-                if b > best:
-                    break
-                b += fan_bad_turns(sites[q], where[q], tri, he, parent, c, px, py, cx0, cy0, bx, by)
-            if b < best or (
-                b == best and bt >= 0 and _rank_key(t, tri, rank) < _rank_key(bt, tri, rank)
-            ):
-                best = b
-                bt = t
-        if bt >= 0:
-            px, py = voronoi_vertex(tri[3 * bt], tri[3 * bt + 1], tri[3 * bt + 2], xs, ys)
-            a0 = tri[3 * bt]
-            _, vx, vy = canonical_vertex_ranked(sites[:k], k, rank, px, py, xs[a0], ys[a0], xs, ys)
-            for t in mem:
-                _set_vertex(cx, cy, t, vx, vy, changed)

@@ -202,57 +202,6 @@ def open_ring_convex(px, py, m):
 
 
 @njit(**NJIT)
-def chain_bad_turns(px, py, m, closed):
-    """How many turns of the chain ``p[:m]`` go right or reverse (exact on the floats).
-
-    ``closed``: the chain wraps around (every vertex is a corner), else only its inner
-    vertices are. Corners at a non-finite vertex are not counted.
-    """
-    bad = 0
-    for k in range(0 if closed else 1, m if closed else m - 1):
-        k0, k2, ex, ey, fx, fy = ring_corner(px, py, m, k)
-        if not (np.isfinite(ex) and np.isfinite(ey) and np.isfinite(fx) and np.isfinite(fy)):
-            continue
-        o = orient2d(px[k0], py[k0], px[k], py[k], px[k2], py[k2])
-        rev = (ex != 0.0 and fx != 0.0 and (ex < 0.0) != (fx < 0.0)) or (
-            ey != 0.0 and fy != 0.0 and (ey < 0.0) != (fy < 0.0)
-        )
-        if o < 0.0 or (o == 0.0 and rev):
-            bad += 1
-    return bad
-
-
-@njit(**NJIT)
-def fan_bad_turns(s, t0, tri, he, parent, c, px, py, cx0, cy0, bx, by):
-    """Bad turns of site ``s``'s ring of triangle centres, walked from triangle ``t0``.
-
-    Triangles of class ``c`` (``parent``) are at ``(px, py)``, the others at ``cx0, cy0``;
-    a repeated vertex counts once; an open fan (a hull site's) only at its inner vertices
-    (:func:`chain_bad_turns`). ``bx``, ``by``: scratch for the site's degree.
-    """
-    e0 = 3 * t0 + (0 if tri[3 * t0] == s else (1 if tri[3 * t0 + 1] == s else 2))
-    e, closed = e0, False
-    while he[e] != -1 and not closed:  # back to the first halfedge of an open fan
-        e = he[e] - 2 if he[e] % 3 == 2 else he[e] + 1
-        closed = e == e0
-    start = e
-    m = 0
-    while True:
-        t = e // 3
-        x, y = (px, py) if parent[t] == c else (cx0[t], cy0[t])
-        if m == 0 or not (bx[m - 1] == x and by[m - 1] == y):
-            bx[m] = x
-            by[m] = y
-            m += 1
-        e = he[e - e % 3 + (e + 2) % 3]
-        if e == -1 or e == start:
-            break
-    if closed and m > 1 and bx[0] == bx[m - 1] and by[0] == by[m - 1]:
-        m -= 1
-    return chain_bad_turns(bx, by, m, closed)
-
-
-@njit(**NJIT)
 def rings_convex(xy, lengths):
     """:func:`ring_convex` of every ring ``xy[lengths[i]:lengths[i + 1]]`` (empty ones pass)."""
     n = lengths.shape[0] - 1
