@@ -563,6 +563,41 @@ def _cells_at(bufs, cells: np.ndarray):
     return np.ascontiguousarray(coords[k]), new_ring, new_poly, new_geom
 
 
+def _wrap_exponent(box) -> int:
+    """A power of two that brings an extreme box near size 1 for the wrapped pieces, or 0.
+
+    The wrapped cells are cut and measured by GEOS in the user's coordinates, whose areas
+    under- or overflow beyond about 1e+-150 (a box of side 1e-300 had pieces of area 0 and
+    lost some).
+    """
+    size = max(box[2] - box[0], box[3] - box[1])
+    far = max(abs(v) for v in box)
+    if 2.0**-400 < size and far < 2.0**400:
+        return 0
+    return -int(np.frexp(size)[1])
+
+
+def _rescaled(pts, tile, shift: int, algorithm: str) -> Diagram:
+    """The wrapped diagram computed at ``2**shift`` times the input, scaled back exactly."""
+    box = np.ldexp(np.array(tile.bounds), shift)
+    inner = periodic_voronoi(np.ldexp(pts, shift), tuple(box), algorithm=algorithm, wrap=True)
+    coords, ring, poly, geom = buffers(inner)
+    e = inner.edges
+    out = Diagram(
+        pts,
+        inner.duplicate_of,
+        tile,
+        (np.ldexp(coords, -shift), ring, poly, geom),
+        Edges(np.ldexp(e.coords, -shift), e.pairs),
+        algorithm,
+        frame_exponent(inner) + shift,
+        inner.unresolved,
+    )
+    out.periodic = True
+    out.wrapped = True
+    return out
+
+
 def periodic_voronoi(points, boundary, *, algorithm: str = "delaunay", wrap: bool = False):
     """Voronoi diagram on the torus made by identifying opposite edges of ``boundary``.
 
@@ -573,6 +608,9 @@ def periodic_voronoi(points, boundary, *, algorithm: str = "delaunay", wrap: boo
     pts = wrap_points(as_points(points), box)
     n = len(pts)
     x0, y0, x1, y1 = box
+    shift = _wrap_exponent(box) if wrap and n else 0
+    if shift:
+        return _rescaled(pts, tile, shift, algorithm)
     if n == 0:
         d = build(pts, tile, algorithm)
         d.periodic = True
