@@ -189,6 +189,22 @@ def _brute_tile(r0, r1, c0, c1, pxs, pys, cx, cy, cid, count, metric, want_f2, l
 
 
 @njit(**NJIT)
+def _split(stack, top, r0, r1, c0, c1):
+    """Push the (up to) four quarters of rows ``r0:r1``, columns ``c0:c1``; the new top."""
+    rm = (r0 + r1 + 1) // 2 if r1 - r0 > 1 else r1
+    cm = (c0 + c1 + 1) // 2 if c1 - c0 > 1 else c1
+    for ra, rb in ((r0, rm), (rm, r1)):
+        for ca, cb in ((c0, cm), (cm, c1)):
+            if ra < rb and ca < cb:
+                stack[top, 0] = ra
+                stack[top, 1] = rb
+                stack[top, 2] = ca
+                stack[top, 3] = cb
+                top += 1
+    return top
+
+
+@njit(**NJIT)
 def _tile_bound(bound, r0, r1, c0, c1):
     """Largest of ``bound`` over rows ``r0:r1``, columns ``c0:c1`` (inf if any is not finite)."""
     u = 0.0
@@ -286,16 +302,7 @@ def nearest_tiles(xs, ys, pxs, pys, metric, want_f2, tile, max_cand, bound):
                         count = _collect(rect, u, grid, start, gx, gy, gi, metric, cx, cy, cid)
                 splittable = r1 - r0 > 1 or c1 - c0 > 1
                 if count > max_cand and splittable and top + 4 <= stack.shape[0]:
-                    rm = (r0 + r1 + 1) // 2 if r1 - r0 > 1 else r1
-                    cm = (c0 + c1 + 1) // 2 if c1 - c0 > 1 else c1
-                    for ra, rb in ((r0, rm), (rm, r1)):
-                        for ca, cb in ((c0, cm), (cm, c1)):
-                            if ra < rb and ca < cb:
-                                stack[top, 0] = ra
-                                stack[top, 1] = rb
-                                stack[top, 2] = ca
-                                stack[top, 3] = cb
-                                top += 1
+                    top = _split(stack, top, r0, r1, c0, c1)
                     continue
                 # (not an `if` here: numba's parallel loops lose arrays reassigned in a
                 # branch, so the brute force saw only the first buffer's candidates)
@@ -464,16 +471,7 @@ def walk_tiles(xs, ys, pxs, pys, nptr, nidx, tile, hint):
                             lab[r, c] = s0
                             d1[r, c] = math.sqrt(_key(pxs[c] - sx, py - sy, 0))
                     continue
-                rm = (r0 + r1 + 1) // 2 if r1 - r0 > 1 else r1
-                cm = (c0 + c1 + 1) // 2 if c1 - c0 > 1 else c1
-                for ra, rb in ((r0, rm), (rm, r1)):
-                    for ca, cb in ((c0, cm), (cm, c1)):
-                        if ra < rb and ca < cb:
-                            stack[top, 0] = ra
-                            stack[top, 1] = rb
-                            stack[top, 2] = ca
-                            stack[top, 3] = cb
-                            top += 1
+                top = _split(stack, top, r0, r1, c0, c1)
     return lab, d1, hard
 
 
