@@ -710,25 +710,32 @@ def power_fit(
         # Newton runs near the origin (weights do not change under a translation): far out
         # the cells' areas carry the coordinates' rounding (a cell of area 2e-7 at 1e5
         # stalled at 6e-6 relative); the user's frame only checks and polishes the result
-        c = np.array(dom.bounds[:2])
-        lpts, ldom = pts - c, shifted(dom, c)
-        _, w, err, it = fit_weights(lpts, t, ldom, w0, tol, int(max_iter))
+        x0, y0, x1, y1 = dom.bounds
+        far = max(abs(x0), abs(y0), abs(x1), abs(y1)) > _FIT_FAR * max(x1 - x0, y1 - y0)
+        c = np.array([x0, y0]) if far else np.zeros(2)
+        lpts, ldom = (pts - c, shifted(dom, c)) if far else (pts, dom)
+        d, w, err, it = fit_weights(lpts, t, ldom, w0, tol, int(max_iter))
         if err > tol and n > 1:
             # Newton stalled (e.g. cells that must straddle the gap of a MultiPolygon): start
             # again from the shrunk sites, where every cell is open and reaches the interior
-            _, w2, err2, it2 = fit_weights(
+            d2, w2, err2, it2 = fit_weights(
                 lpts, t, ldom, _shrink_start(lpts, ldom), tol, int(max_iter)
             )
             if err2 < err:
-                w, err, it = w2, err2, it2
-        d, _, err, it2 = fit_weights(pts, t, dom, w, tol, int(max_iter))
-        it += it2
+                d, w, err, it = d2, w2, err2, it2
+        if far:  # d is in the moved frame: the user's diagram, polished there
+            d, _, err, it2 = fit_weights(pts, t, dom, w, tol, int(max_iter))
+            it += it2
     if err > tol:
         raise RuntimeError(
             f"power_fit did not reach tol={tol:g} in {it} Newton steps (largest relative "
             f"area error {err:.3g}){_near_pairs_note(pts, dom)}{_far_note(t, dom, tol)}"
         )
     return d
+
+
+#: power_fit moves a domain farther than this many of its sizes from the origin to its corner
+_FIT_FAR = 4.0
 
 
 def _far_note(targets, dom, tol) -> str:
