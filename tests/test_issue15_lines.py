@@ -19,35 +19,10 @@ import pytest
 import shapely
 
 import voroforge as vf
+from test_issue15_halfplane import _check
 from voroforge.kernels import halfplane as hp
 
 ALGS = ["delaunay", "fortune", "halfplane"]
-
-
-def _check(d, pts, seed=0, k=400):
-    """Valid cells that tile the domain, clear samples in their nearest site's cell, own
-    cell or unresolved, Euler and convexity."""
-    cells = np.asarray(d.cells, dtype=object)
-    assert shapely.is_valid(cells).all()
-    assert d.areas.sum() == pytest.approx(d.boundary.area, rel=1e-9)
-    g = np.random.default_rng(seed)
-    x0, y0, x1, y1 = d.boundary.bounds
-    q = g.random((k, 2)) * [x1 - x0, y1 - y0] + [x0, y0]
-    q = np.concatenate((q, pts[g.integers(0, len(pts), k)]))
-    rel = pts - pts.mean(0)
-    qr = q - pts.mean(0)
-    d2 = ((qr[:, None, :] - rel[None, :, :]) ** 2).sum(-1)
-    o = np.argsort(d2, axis=1)[:, :2]
-    a = np.take_along_axis(d2, o, 1)
-    clear = np.sqrt(a[:, 1]) > np.sqrt(a[:, 0]) * (1 + 1e-6)
-    inside = shapely.intersects(cells[o[:, 0]], shapely.points(q))
-    assert inside[clear].all()
-    own = shapely.intersects(cells, shapely.points(pts))
-    missing = set(np.flatnonzero(~own & (d.duplicate_of < 0)).tolist())
-    assert missing == set(d.unresolved.tolist())
-    r = d.describe()
-    assert r.euler_ok, str(r)
-    assert r.convex_ok, str(r)
 
 
 def _agree(pts, boundary):
