@@ -131,12 +131,20 @@ HALFPLANE_SHADOW_RTOL = 2.0**-40
 #: Half-plane cells certify themselves: convex rings (exact test) whose areas sum to the
 #: box's within this fraction; otherwise the Delaunay dual builds the diagram (engine/planar)
 HALFPLANE_TILING_RTOL = 1e-9
+#: Half-plane k-d search: a node is cleared when its bound exceeds the cell's reach by this
+#: times (the reach + the site's coordinates), absolute, not relative to |v|^2 (4x the cut's
+#: vertex error; a relative margin kept ~45 sites each side of a 1e6-site line)
+HALFPLANE_NODE_BAND = 4.0 * 2.0**-40
 #: Relative widening of a raster tile's k-th nearest bound against rounding in it
 RASTER_BOUND_RTOL = 1e-12
 #: Absolute slack of that bound relative to the coordinates' magnitude (rounding in the
 #: candidate distances), and its floor for all-zero coordinates
 RASTER_SLACK_RTOL = 1e-12
 RASTER_SLACK_FLOOR = 1e-300
+#: Fraction of empty buckets (of a grid of two sites a bucket over image and sites) past which
+#: the sites count as crowded and the raster finds nearest sites by a Delaunay walk (uniform
+#: sites leave about e^-2 = 13.5% empty)
+RASTER_CROWDED_EMPTY = 0.35
 
 # --- engine (inputs, domains, periodic, describe, interpolation, Lloyd) ------------------------
 
@@ -371,6 +379,10 @@ VORONOI3D_MESH_SLACK_RTOL = 1e-9
 VORONOI3D_MESH_FACING = 1e-9
 #: Mesh containers: a closed mesh's volume against the cells' sum (relative), for the checks
 VORONOI3D_MESH_RTOL = 1e-9
+#: Mesh containers: largest relative difference between the cells' total volume and the
+#: mesh's signed volume before the mesh is refused as invalid (valid solids agree to ~1e-12;
+#: two overlapping boxes given as one mesh differed by 2.4%)
+VORONOI3D_MESH_VOLUME_RTOL = 1e-7
 
 # --- solid (printable lattices, foams, shells) ---------------------------------------------
 

@@ -27,7 +27,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..config import VORONOI3D_MESH_FACING, VORONOI3D_MESH_SLACK_RTOL
+from ..config import (
+    VORONOI3D_MESH_FACING,
+    VORONOI3D_MESH_SLACK_RTOL,
+    VORONOI3D_MESH_VOLUME_RTOL,
+)
 from .containers import box_template
 from .csr import unique
 
@@ -39,11 +43,6 @@ class MeshContainer:
     vertices: np.ndarray
     faces: np.ndarray
     volume: float
-
-
-#: Largest relative difference between the cells' total volume and the mesh's signed volume
-#: (valid solids agree to ~1e-12; two overlapping boxes as one mesh differed by 2.4%)
-_VOLUME_CHECK_RTOL = 1e-7
 
 
 def _edge_report(F: np.ndarray) -> str | None:
@@ -494,7 +493,7 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
         if odd.any():
             _coplanar_walls(mesh, allv, ring2, roff2, tdest[odd], lab2, slack)
     total = float(np.sum(vol))
-    if abs(total - mesh.volume) > _VOLUME_CHECK_RTOL * mesh.volume:
+    if abs(total - mesh.volume) > VORONOI3D_MESH_VOLUME_RTOL * mesh.volume:
         # A closed, consistently oriented mesh whose shells overlap or nest the same way
         # (two boxes as one mesh, a cavity facing outwards) passes the edge checks, but its
         # signed volume counts the overlap twice while the cut sees it once.

@@ -240,11 +240,6 @@ def _exact_tile(sites: np.ndarray, bounds, shape) -> np.ndarray:
 _WALK_MAX_SCALE = 1e150
 
 
-#: Fraction of empty buckets (of a grid of two sites a bucket) past which the sites count as
-#: crowded: uniform sites leave about e^-2 = 13.5% empty.
-_CROWDED_EMPTY = 0.35
-
-
 def _walks(sites: np.ndarray, bounds, shape, metric: str, want_f2: bool) -> bool:
     """Whether the Delaunay walk decides the labels instead of the tile search.
 
@@ -269,7 +264,7 @@ def _walks(sites: np.ndarray, bounds, shape, metric: str, want_f2: bool) -> bool
     ix = np.minimum(((sites[:, 0] - lo[0]) / size[0] * nx).astype(np.int64), nx - 1)
     iy = np.minimum(((sites[:, 1] - lo[1]) / size[1] * ny).astype(np.int64), ny - 1)
     filled = len(np.unique(iy * nx + ix))
-    return filled < (1.0 - _CROWDED_EMPTY) * nx * ny
+    return filled < (1.0 - config.RASTER_CROWDED_EMPTY) * nx * ny
 
 
 def _delaunay_neighbors(sites: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

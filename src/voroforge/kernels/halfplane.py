@@ -36,6 +36,7 @@ from numba import njit, prange
 
 from ..config import (
     HALFPLANE_NEAR_RTOL,
+    HALFPLANE_NODE_BAND,
     HALFPLANE_REACH_RTOL,
     HALFPLANE_SLACK2,
     HALFPLANE_SURE_FAR,
@@ -80,9 +81,8 @@ _REACH = 4.0 * (1.0 + HALFPLANE_REACH_RTOL)  # (2 r)^2 / r^2 with a margin again
 # bound) and of the site's coordinates (the named vertices' rounding). A margin relative to
 # the cell (HALFPLANE_REACH_RTOL) admits sites in proportion to n on a long line: a strip's
 # far vertices are ~1 away and the line's sites at distance s along it pass within s^2 / 2
-# of their circles, so 1e-9 kept ~45 sites on each side at 1e6 (issue 15). A local, not in
-# config.py: the same 2^-40 as HALFPLANE_SLACK2.
-_NODE_BAND = 4.0 * 2.0**-40
+# of their circles, so 1e-9 kept ~45 sites on each side at 1e6 (issue 15):
+# config.HALFPLANE_NODE_BAND, the same 2^-40 as HALFPLANE_SLACK2.
 
 # The helpers called per cut or per bucket (these, clip's cut) are inlined into _cells'
 # numba IR: a call costs an atomic reference-count update per array argument, about as
@@ -298,7 +298,7 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
         hs = np.int64(0)
         band = 0.0
         if use_tree:
-            band = _NODE_BAND * (np.sqrt(r2) + abs(cx) + abs(cy))  # r2: the box's, here
+            band = HALFPLANE_NODE_BAND * (np.sqrt(r2) + abs(cx) + abs(cy))  # r2: the box's, here
             root = np.int64(0)
             hs = heap_push(hk, hv, root, slab_dist2(cx, cy, tboxes, tslabs, root), root)
         while m >= 3 and not grow and work <= budget:
