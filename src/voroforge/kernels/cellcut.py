@@ -26,6 +26,8 @@ neighbours ``k`` and ``k + 1`` (-1 past a hull end).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
 
@@ -35,6 +37,153 @@ from .power import box_cell
 from .vertex import box_crossing
 
 _U = 2.0**-53
+# ulps of a centre within which a box side takes it (a config.py tolerance, kept here
+# until the lead moves it there)
+_SIDE_REACH_ULPS = 1.0
+
+
+@njit(**NJIT)
+def side_reach(x, y, err):
+    """How near a box side a centre ``(x, y)`` with rounding bound ``err`` is put on it.
+
+    Four times the bound (its class's, so that every member of a merged vertex decides
+    alike) and ``_SIDE_REACH_ULPS`` ulps of its larger coordinate. Lattices whose step is
+    2 ulps of their offset keep their vertices an ulp or more inside the sides
+    (``test_lattice_a_few_ulps_apart_is_exact``).
+    """
+    big = max(abs(x), abs(y))
+    return 4.0 * err + _SIDE_REACH_ULPS * math.ldexp(1.0, math.frexp(big)[1] - 53)
+
+
+@njit(**NJIT)
+def _near_sides(x, y, e, box):
+    """Bits of the box sides (1, 2, 4, 8: left, bottom, right, top) within ``e`` of ``(x, y)``.
+
+    As :func:`on_sides` takes them: a side only along its extent (widened by ``e``), and of
+    two opposite sides the first.
+    """
+    bits = 0
+    if box[1] - e <= y <= box[3] + e:
+        if abs(x - box[0]) <= e:
+            bits |= 1
+        elif abs(x - box[2]) <= e:
+            bits |= 4
+    if box[0] - e <= x <= box[2] + e:
+        if abs(y - box[1]) <= e:
+            bits |= 2
+        elif abs(y - box[3]) <= e:
+            bits |= 8
+    return bits
+
+
+@njit(**NJIT)
+def class_err(cls, err):
+    """Per triangle, the largest rounding bound in its class (one vertex, one bound).
+
+    The cells' tests of a vertex against the box (:func:`side_reaches`) must decide
+    alike for every triangle of a merged class, whose members share the centre's bits but
+    not their bounds.
+    """
+    big = np.zeros_like(err)
+    for t in range(cls.shape[0]):
+        c = cls[t]
+        if err[t] > big[c]:
+            big[c] = err[t]
+    out = np.zeros_like(err)
+    for t in range(cls.shape[0]):
+        out[t] = big[cls[t]]
+    return out
+
+
+@njit(**NJIT)
+def side_reaches(xs, ys, tri, cls, cx, cy, err, box):
+    """Per triangle, how near a box side its centre is put on it; -1: never.
+
+    :func:`side_reach` of the centre with its class's rounding bound ``err[t]``
+    (:func:`class_err`), so every cell at a vertex decides alike. A vertex is left where
+    it is (-1, for its whole class) when a site of its triangles lies within that reach
+    of a side it would be put on, or two of them lie within twice of each other: moving
+    the vertex by its reach would take such a site out of its own cell (a strip a few
+    ulps wide along the side; issue 15, ``test_issue15_ulp_strips``), where the cut's
+    own vertices keep it in.
+    """
+    nt = cls.shape[0]
+    reach = np.zeros(nt)
+    stay = np.zeros(nt, dtype=np.bool_)
+    for t in range(nt):
+        x = cx[t]
+        y = cy[t]
+        b = err[t]
+        # an ulp of the larger coordinate is at most 2 * _U of it: a centre inside by more
+        # than that bound is put on no side (most of them: no frexp)
+        e = 4.0 * b + 2.0 * _U * max(abs(x), abs(y))
+        if box[0] + e < x < box[2] - e and box[1] + e < y < box[3] - e:
+            reach[t] = e
+            continue
+        e = side_reach(x, y, b)
+        reach[t] = e
+        bits = _near_sides(x, y, e, box)
+        if bits == 0:
+            continue
+        for k in range(3):
+            s = tri[3 * t + k]
+            s2 = tri[3 * t + (k + 1) % 3]
+            if _near_sides(xs[s], ys[s], e, box) & bits or (
+                abs(xs[s] - xs[s2]) <= 2.0 * e and abs(ys[s] - ys[s2]) <= 2.0 * e
+            ):
+                stay[cls[t]] = True
+    for t in range(nt):
+        if stay[cls[t]]:
+            reach[t] = -1.0
+    return reach
+
+
+@njit(**NJIT)
+def on_sides(t, cx, cy, reach, box):
+    """Triangle ``t``'s centre put on the box sides it lies within ``reach[t]`` of.
+
+    Returns ``(x, y, hit)``. A Voronoi vertex that close to a side (inside, on or past it)
+    is on it to rounding: the crossings of the side by its edges and the vertex itself
+    round in any order there (two crossings of one side reversed, a vertex an ulp past
+    the side), and each cell's own cut decides differently. Every cell at the vertex puts
+    it, and the crossings of its edges with that side, at this one point (a corner when
+    it is within reach of two sides), computed from the vertex's name alone.
+    ``reach`` is :func:`side_reaches`' (-1: the vertex stays where it is).
+    """
+    x = cx[t]
+    y = cy[t]
+    e = reach[t]
+    if e < 0.0:
+        return x, y, False
+    bits = _near_sides(x, y, e, box)
+    if bits & 1:
+        x = box[0]
+    elif bits & 4:
+        x = box[2]
+    if bits & 2:
+        y = box[1]
+    elif bits & 8:
+        y = box[3]
+    return x, y, bits != 0
+
+
+@njit(**NJIT)
+def _on_side(x, y, side, box):
+    """Whether ``(x, y)`` lies on box side ``side`` (-1..-4), exactly."""
+    if side == -1:
+        return x == box[0]
+    if side == -2:
+        return y == box[1]
+    if side == -3:
+        return x == box[2]
+    return y == box[3]
+
+
+@njit(**NJIT)
+def _vertex_at(t, cx, cy, reach, box):
+    """Triangle ``t``'s centre as cells write it: on a side when within reach of it."""
+    x, y, _ = on_sides(t, cx, cy, reach, box)
+    return x, y
 
 
 @njit(**NJIT)
@@ -91,23 +240,53 @@ def _chain_in_box(nbrs, tris, nn, ka, steps, cx, cy, box):
 
 
 @njit(**NJIT)
-def _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, qx, qy, qw, out):
+def _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, reach, box, qx, qy, qw, out):
     """Write the circumcentres of the ``steps`` triangles after neighbour ``ka`` to ``q``.
 
-    Each is followed by the edge of the next neighbour; returns the new vertex count.
+    Each is followed by the edge of the next neighbour; returns the new vertex count. A
+    centre within reach of a box side is put on it (:func:`on_sides`).
     """
     for s in range(steps):
         k = (ka + s) % nn
         t = tris[k]
-        qx[out] = cx[t]
-        qy[out] = cy[t]
+        qx[out], qy[out] = _vertex_at(t, cx, cy, reach, box)
         qw[out] = nbrs[(k + 1) % nn]
         out += 1
     return out
 
 
 @njit(**NJIT)
-def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, qx, qy, qw):
+def _crossing_at_vertex(kj, nbrs, tris, nn, cx, cy, reach, side, box, x, y):
+    """Crossing ``(x, y)`` of ``side`` by neighbour ``kj``'s edge, or its end on that side.
+
+    An end of the edge (the centre of the triangle before or after ``kj`` in rotation
+    order) within reach of the side is put on it (:func:`on_sides`), and the edge's
+    crossing is that point: every cell at the vertex computes it from the vertex's name,
+    whichever way its own cut rounded. With both ends there, the nearer along the side.
+    """
+    best = np.inf
+    bx = x
+    by = y
+    for s in range(2):
+        k = kj - 1 + s
+        if k < 0:
+            k += nn
+        t = tris[k]
+        if t < 0:
+            continue
+        vx, vy, hit = on_sides(t, cx, cy, reach, box)
+        if not (hit and _on_side(vx, vy, side, box)):
+            continue
+        d = abs(vx - x) + abs(vy - y)
+        if d < best:
+            best = d
+            bx = vx
+            by = vy
+    return bx, by
+
+
+@njit(**NJIT)
+def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, reach, box, qx, qy, qw):
     """Replace computed vertices by values every cell sharing them computes identically.
 
     A vertex between the bisectors with neighbours ``a`` then ``b`` is the circumcentre of
@@ -145,7 +324,7 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, q
                 # wrap, issue 15); the cut's own vertex is kept instead
                 ok = _chain_in_box(nbrs, tris, nn, ka, steps, cx, cy, box)
             if ok:
-                out = _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, qx, qy, qw, out)
+                out = _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, reach, box, qx, qy, qw, out)
                 continue
         elif a >= 0 or b >= 0:
             j = a if a >= 0 else b
@@ -154,6 +333,10 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, q
             if bx == bx and box[0] <= bx <= box[2] and box[1] <= by <= box[3]:
                 x = bx
                 y = by
+            kj = _index_of(nbrs, nn, j, hint)
+            if kj >= 0:
+                hint = kj
+                x, y = _crossing_at_vertex(kj, nbrs, tris, nn, cx, cy, reach, side, box, x, y)
         else:
             vert = a if (a == -1 or a == -3) else b
             horz = b if vert == a else a
@@ -316,7 +499,7 @@ def _nearest_label(xs, ys, x, y, b, nbrs, nn, box):
 
 
 @njit(**NJIT)
-def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw, box):
+def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, reach, qx, qy, qw, box):
     """Fix the owners of bisector edges that floats could not separate; result in ``p``.
 
     Neighbours closer to each other than the float resolution of their bisectors (sites
@@ -351,7 +534,7 @@ def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw, bo
             )
             continue
         qw[out - 1] = lp
-        out = _emit_chain(nbrs, tris, nn, kp, steps, cx, cy, qx, qy, qw, out)
+        out = _emit_chain(nbrs, tris, nn, kp, steps, cx, cy, reach, box, qx, qy, qw, out)
     for v in range(out):
         px[v] = qx[v]
         py[v] = qy[v]
@@ -360,7 +543,7 @@ def _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw, bo
 
 
 @njit(**NJIT)
-def cut_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, px, py, pw, qx, qy, qw, ss):
+def cut_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, reach, px, py, pw, qx, qy, qw, ss):
     """Cell of site ``i`` as the box cut by the bisectors with ``nbrs[:nn]``; result in ``p``.
 
     The cut is the power cell's (``kernels/power.box_cell``) with the zero weights ``ws``:
@@ -371,8 +554,10 @@ def cut_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, px, py, pw, qx, qy, qw,
     m = box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss)
     if m == 0:
         return 0
-    m = _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, qx, qy, qw, box)
-    return _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, qx, qy, qw)
+    m = _relabel_edges(xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, reach, qx, qy, qw, box)
+    return _canonical_vertices(
+        i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, reach, box, qx, qy, qw
+    )
 
 
 @njit(**NJIT)
@@ -466,7 +651,7 @@ def _splice(px, py, pw, m, nbrs, tris, nn, cx, cy, err, box, qx, qy, qw):
 
 
 @njit(**NJIT)
-def spliced_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, err, bufs, gl, ss):
+def spliced_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, err, reach, bufs, gl, ss):
     """A cut cell with many neighbours in linear time; -1 when it must be cut the usual way.
 
     Cutting the box by ``nn`` bisectors one after another costs ``nn`` times the ring, and
@@ -496,4 +681,6 @@ def spliced_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, err, bufs, gl, ss):
         px[v] = qx[v]
         py[v] = qy[v]
         pw[v] = qw[v]
-    return _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, box, qx, qy, qw)
+    return _canonical_vertices(
+        i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, reach, box, qx, qy, qw
+    )

@@ -27,7 +27,7 @@ import numpy as np
 from numba import njit, prange
 
 from ..config import FOLD_MAX_ROUNDS, NJIT, NJIT_PARALLEL, REFLEX_SHORT_ULPS
-from .cellcut import cut_cell, spliced_cell
+from .cellcut import class_err, cut_cell, on_sides, side_reaches, spliced_cell
 from .centers import circumcenters, contract, merge_cocircular
 from .clip import open_ring_convex, ring_corner
 from .folds import fold_pairs, folded_rings, risky_sites
@@ -41,11 +41,24 @@ _THIN_ULPS = 8.0  # a ring whose edge passes this close to its site is a strip (
 
 
 @njit(**NJIT)
-def _outgoing(tri, he, cx, cy, box, n):
+def _at_side_or_out(t, cx, cy, reach, box):
+    """Whether triangle ``t``'s centre lies outside the box or is put on a side.
+
+    A centre within reach of a side and not on it (:func:`.cellcut.on_sides`) is put on
+    it, so every cell at it is cut: a ring of raw centres would keep it off the side.
+    """
+    x, y, _ = on_sides(t, cx, cy, reach, box)
+    return x != cx[t] or y != cy[t] or not (box[0] <= x <= box[2] and box[1] <= y <= box[3])
+
+
+@njit(**NJIT)
+def _outgoing(tri, he, cx, cy, reach, box, n):
     """Per point: one outgoing halfedge, its degree, and whether its cell must be cut.
 
     Hull points get their outgoing hull halfedge. A cell is cut when its point is on the hull
-    or one of its circumcentres lies outside the box.
+    or one of its circumcentres lies outside the box or within reach of a side and not on
+    it (:func:`.cellcut.on_sides`: the cut puts such a vertex on the side, and every cell
+    at it must).
     """
     out = np.full(n, -1, dtype=np.int64)
     deg = np.zeros(n, dtype=np.int64)
@@ -59,7 +72,7 @@ def _outgoing(tri, he, cx, cy, box, n):
             out[tri[e]] = e
             cut[tri[e]] = True
     for t in range(tri.shape[0] // 3):
-        if not (box[0] <= cx[t] <= box[2] and box[1] <= cy[t] <= box[3]):
+        if _at_side_or_out(t, cx, cy, reach, box):
             cut[tri[3 * t]] = True
             cut[tri[3 * t + 1]] = True
             cut[tri[3 * t + 2]] = True
@@ -126,7 +139,7 @@ def _reflex_by_rounding(px, py, m):
 
 
 @njit(**NJIT)
-def _cell(i, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, bufs, nbrs, cl, tb, ss):
+def _cell(i, xs, ys, ws, tri, he, cx, cy, err, reach, cls, out, box, bufs, nbrs, cl, tb, ss):
     """Polygon of site ``i`` into ``p``; returns the vertex count.
 
     A cell whose ring of circumcentres lies inside the box is that ring. Any other cell
@@ -161,7 +174,7 @@ def _cell(i, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, bufs, nbrs, cl, tb
                 pw[m] = y
                 cl[m] = cls[t]
                 m += 1
-                if not (box[0] <= vx <= box[2] and box[1] <= vy <= box[3]):
+                if _at_side_or_out(t, cx, cy, reach, box):
                     inside = False
         o = he[p]
         if o == -1:
@@ -173,19 +186,19 @@ def _cell(i, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, bufs, nbrs, cl, tb
             break
     if not inside:
         if k > _SPLICE_MIN:
-            m = spliced_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, err, bufs, cl, ss)
+            m = spliced_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, err, reach, bufs, cl, ss)
             if m >= 0:
                 return m
-        m = cut_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, px, py, pw, qx, qy, qw, ss)
+        m = cut_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, reach, px, py, pw, qx, qy, qw, ss)
         if m < 3 or open_ring_convex(px, py, m) or _reflex_by_rounding(px, py, m):
             return m
         # the cut folded: bisectors that meet within their rounding of one point (a float
         # circle's hull cells all reach its centre) cut in the wrong order. The edges between
         # centres safely inside the box are final; cut by the others only and splice them in
-        m = spliced_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, err, bufs, cl, ss)
+        m = spliced_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, err, reach, bufs, cl, ss)
         if m >= 3 and open_ring_convex(px, py, m):
             return m
-        return cut_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, px, py, pw, qx, qy, qw, ss)
+        return cut_cell(i, xs, ys, ws, nbrs, tb, k, box, cx, cy, reach, px, py, pw, qx, qy, qw, ss)
     if m > 1 and cl[m - 1] == cl[0]:
         m -= 1
     return m if m >= 3 else 0
@@ -209,7 +222,7 @@ def _scratch(cap):
 
 
 @njit(**NJIT_PARALLEL)
-def _count(xs, ys, ws, tri, he, cx, cy, err, cls, out, box, cap, deg, cut, merged):
+def _count(xs, ys, ws, tri, he, cx, cy, err, reach, cls, out, box, cap, deg, cut, merged):
     """Vertex count of every cell.
 
     Without cocircular merges an uncut cell has one vertex per incident triangle, so only cut
@@ -235,7 +248,7 @@ def _count(xs, ys, ws, tri, he, cx, cy, err, cls, out, box, cap, deg, cut, merge
                     )
                 continue
             counts[i] = _cell(
-                i, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, bufs, nbrs, cl, tb, ss
+                i, xs, ys, ws, tri, he, cx, cy, err, reach, cls, out, box, bufs, nbrs, cl, tb, ss
             )
     return counts
 
@@ -336,6 +349,7 @@ def _fill(
     cx,
     cy,
     err,
+    reach,
     cls,
     out,
     box,
@@ -367,7 +381,9 @@ def _fill(
                 elif counts[i] > 0:
                     _classed_ring(i, tri, he, cx, cy, cls, out, start[i], coords, owner, kmap)
                 continue
-            m = _cell(i, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, bufs, nbrs, cl, tb, ss)
+            m = _cell(
+                i, xs, ys, ws, tri, he, cx, cy, err, reach, cls, out, box, bufs, nbrs, cl, tb, ss
+            )
             if m == 0:
                 continue
             _put_ring(start[i], m, px, py, pw, coords, owner, kmap)
@@ -430,7 +446,9 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap, *, astray=False)
     # again only the cells whose vertices it changed
     risk = risky_sites(tri, near, n)
     tested = risk.copy()  # every cell a merge or contraction can have moved past its site
-    out, cells = _build(xs, ys, tri, he, cx, cy, err, cls, box, order, kmap, merged)
+    terr = class_err(cls, err) if merged else err
+    reach = side_reaches(xs, ys, tri, cls, cx, cy, terr, box)
+    out, cells = _build(xs, ys, tri, he, cx, cy, terr, reach, cls, box, order, kmap, merged)
     bad = np.zeros(n, dtype=np.bool_)
     checked_all = False
     for _ in range(FOLD_MAX_ROUNDS):
@@ -442,7 +460,7 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap, *, astray=False)
         if not folded.shape[0]:
             break
         pa, pb = fold_pairs(folded, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, order)
-        before = (cx.view(np.int64).copy(), cy.view(np.int64).copy(), cls.copy())
+        before = (cx.view(np.int64).copy(), cy.view(np.int64).copy(), cls.copy(), reach.copy())
         if not pa.shape[0] or not contract(xs, ys, tri, he, cls, cx, cy, kmap, box, err, pa, pb):
             break
         # only cells at a triangle whose vertex (bits) or class changed can change: a few
@@ -450,6 +468,9 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap, *, astray=False)
         # quadratic (1e6 sites: 19 rounds of 3 s)
         moved = (cx.view(np.int64) != before[0]) | (cy.view(np.int64) != before[1])
         moved |= cls != before[2]
+        terr = class_err(cls, err)
+        reach = side_reaches(xs, ys, tri, cls, cx, cy, terr, box)
+        moved |= reach != before[3]
         redo = np.zeros(n, dtype=np.bool_)
         redo[tri.reshape(-1, 3)[moved].ravel()] = True
         # every cell is checked once after the first contraction (a cell outside ``risk``
@@ -458,7 +479,9 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap, *, astray=False)
         tested |= risk
         checked_all = True
         merged = True
-        out, cells = _rebuild(xs, ys, tri, he, cx, cy, err, cls, box, order, kmap, cells, redo)
+        out, cells = _rebuild(
+            xs, ys, tri, he, cx, cy, terr, reach, cls, box, order, kmap, cells, redo
+        )
     if not astray:
         return cells
     miss = np.zeros(n, dtype=np.uint8)
@@ -473,19 +496,19 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap, *, astray=False)
     return cells, miss
 
 
-def _build(xs, ys, tri, he, cx, cy, err, cls, box, order, kmap, merged):
+def _build(xs, ys, tri, he, cx, cy, err, reach, cls, box, order, kmap, merged):
     """One construction of every cell from the classes ``cls``.
 
     Returns ``(out, (coords, lengths, owner))``, ``out`` each site's outgoing halfedge.
     """
     n = xs.shape[0]
-    out, deg, cut = _outgoing(tri, he, cx, cy, box, n)
+    out, deg, cut = _outgoing(tri, he, cx, cy, reach, box, n)
     # scratch per chunk for its own largest degree: one site with n neighbours must not
     # make every chunk allocate (and zero) rings of n vertices (quadratic at 1e6)
     starts = np.arange(0, n, _CHUNK)
     cap = (np.maximum.reduceat(deg, starts) + 16) if n else np.zeros(0, np.int64)
     ws = np.zeros(n)
-    counts = _count(xs, ys, ws, tri, he, cx, cy, err, cls, out, box, cap, deg, cut, merged)
+    counts = _count(xs, ys, ws, tri, he, cx, cy, err, reach, cls, out, box, cap, deg, cut, merged)
     closed = np.where(counts > 0, counts + 1, 0)
     lengths = np.zeros(n + 1, dtype=np.int64)
     lengths[1:][order] = closed
@@ -495,13 +518,31 @@ def _build(xs, ys, tri, he, cx, cy, err, cls, box, order, kmap, merged):
     coords = np.zeros((total, 2))
     owner = np.zeros(total, dtype=np.int64)
     args = (cls, out, box, cap, start, counts, coords, owner, kmap, cut, merged)
-    _fill(xs, ys, ws, tri, he, cx, cy, err, *args)
+    _fill(xs, ys, ws, tri, he, cx, cy, err, reach, *args)
     return out, (coords, lengths, owner)
 
 
 @njit(**NJIT_PARALLEL)
 def _some(
-    sites, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, cap, counts, start, coords, owner, kmap
+    sites,
+    xs,
+    ys,
+    ws,
+    tri,
+    he,
+    cx,
+    cy,
+    err,
+    reach,
+    cls,
+    out,
+    box,
+    cap,
+    counts,
+    start,
+    coords,
+    owner,
+    kmap,
 ):
     """:func:`_count` (``start`` empty) or :func:`_fill` of the cells of ``sites`` only."""
     nchunks = (sites.shape[0] + _CHUNK - 1) // _CHUNK
@@ -510,7 +551,9 @@ def _some(
         px, py, pw = bufs[0], bufs[1], bufs[2]
         for s in range(ch * _CHUNK, min(sites.shape[0], (ch + 1) * _CHUNK)):
             i = sites[s]
-            m = _cell(i, xs, ys, ws, tri, he, cx, cy, err, cls, out, box, bufs, nbrs, cl, tb, ss)
+            m = _cell(
+                i, xs, ys, ws, tri, he, cx, cy, err, reach, cls, out, box, bufs, nbrs, cl, tb, ss
+            )
             if start.shape[0] == 0:
                 counts[s] = m
                 continue
@@ -533,7 +576,7 @@ def _keep(lengths, new, keep, coords, owner, ncoords, nowner):
             nowner[k + d] = owner[k]
 
 
-def _rebuild(xs, ys, tri, he, cx, cy, err, cls, box, order, kmap, cells, redo):
+def _rebuild(xs, ys, tri, he, cx, cy, err, reach, cls, box, order, kmap, cells, redo):
     """:func:`_build` (classes merged) that builds only the cells marked in ``redo`` again.
 
     The other cells keep their rings from ``cells``; a cell depends only on the centres and
@@ -543,16 +586,16 @@ def _rebuild(xs, ys, tri, he, cx, cy, err, cls, box, order, kmap, cells, redo):
     n = xs.shape[0]
     sites = np.flatnonzero(redo).astype(np.int64)
     if 8 * sites.shape[0] > n:
-        return _build(xs, ys, tri, he, cx, cy, err, cls, box, order, kmap, True)
+        return _build(xs, ys, tri, he, cx, cy, err, reach, cls, box, order, kmap, True)
     coords, lengths, owner = cells
-    out, deg, _ = _outgoing(tri, he, cx, cy, box, n)
+    out, deg, _ = _outgoing(tri, he, cx, cy, reach, box, n)
     starts = np.arange(0, sites.shape[0], _CHUNK)
     cap = np.maximum.reduceat(deg[sites], starts) + 16 if sites.shape[0] else np.zeros(0, np.int64)
     ws = np.zeros(n)
     counts = np.zeros(sites.shape[0], dtype=np.int64)
     none = np.zeros(0, dtype=np.int64)
     args = (cls, out, box, cap, counts)
-    _some(sites, xs, ys, ws, tri, he, cx, cy, err, *args, none, coords, owner, kmap)
+    _some(sites, xs, ys, ws, tri, he, cx, cy, err, reach, *args, none, coords, owner, kmap)
     closed = np.diff(lengths)
     closed[order[sites]] = np.where(counts > 0, counts + 1, 0)
     new = np.zeros(n + 1, dtype=np.int64)
@@ -563,7 +606,7 @@ def _rebuild(xs, ys, tri, he, cx, cy, err, cls, box, order, kmap, cells, redo):
     keep[order[sites]] = False
     _keep(lengths, new, keep, coords, owner, ncoords, nowner)
     start = new[:-1][order[sites]]
-    _some(sites, xs, ys, ws, tri, he, cx, cy, err, *args, start, ncoords, nowner, kmap)
+    _some(sites, xs, ys, ws, tri, he, cx, cy, err, reach, *args, start, ncoords, nowner, kmap)
     return out, (ncoords, new, nowner)
 
 
@@ -586,7 +629,24 @@ def _cut_all(xs, ys, indptr, indices, box, cap, counts, offsets, coords, owner, 
         for i in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
             nb = indices[indptr[i] : indptr[i + 1]]
             m = cut_cell(
-                i, xs, ys, ws, nb, no_tris, nb.shape[0], box, none, none, px, py, pw, qx, qy, qw, ss
+                i,
+                xs,
+                ys,
+                ws,
+                nb,
+                no_tris,
+                nb.shape[0],
+                box,
+                none,
+                none,
+                none,
+                px,
+                py,
+                pw,
+                qx,
+                qy,
+                qw,
+                ss,
             )
             if not fill:
                 counts[i] = m
