@@ -28,10 +28,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
-from ..config import NJIT
+from ..config import NJIT, NJIT_PARALLEL
 from .csr import unique
+from .threads import serial_below
 
 
 def _ro(a):
@@ -247,17 +248,18 @@ class Diagram3D:
         if "unique" not in self._cache:
             keep = self._face_keep
             use = keep is not None
-            indptr, indices, cells = _unique_faces(
-                self._positions(),
-                self._cell_faces,
-                self._flabel,
-                self._roff,
-                self._ring,
-                self._voff,
-                self._vid,
-                np.asarray(keep if use else np.zeros(0, bool)),
-                use,
-            )
+            with serial_below(len(self)):
+                indptr, indices, cells = _unique_faces(
+                    self._positions(),
+                    self._cell_faces,
+                    self._flabel,
+                    self._roff,
+                    self._ring,
+                    self._voff,
+                    self._vid,
+                    np.asarray(keep if use else np.zeros(0, bool)),
+                    use,
+                )
             self._cache["unique"] = Faces3D(_ro(indptr), _ro(indices), _ro(cells))
         return self._cache["unique"]
 
@@ -292,16 +294,17 @@ class Diagram3D:
     def neighbors(self):
         """CSR ``(indptr, indices)``: the cells sharing a face of positive area, sorted."""
         if "nb" not in self._cache:
-            indptr, indices = _neighbors(
-                self._positions(),
-                self._cell_faces,
-                self._flabel,
-                self._roff,
-                self._ring,
-                self._voff,
-                self._vid,
-                np.asarray(self.vertices),
-            )
+            with serial_below(len(self)):
+                indptr, indices = _neighbors(
+                    self._positions(),
+                    self._cell_faces,
+                    self._flabel,
+                    self._roff,
+                    self._ring,
+                    self._voff,
+                    self._vid,
+                    np.asarray(self.vertices),
+                )
             self._cache["nb"] = (_ro(indptr), _ro(indices))
         return self._cache["nb"]
 
@@ -400,48 +403,72 @@ def _cells_at(pos, npos):
 
 
 @njit(**NJIT)
+def _kept(use_keep, keep, lab, f, i):
+    """Whether face ``f`` of cell ``i`` is one of the unique faces (:func:`_unique_faces`)."""
+    if use_keep:
+        return keep[f]
+    return lab[f] < 0 or lab[f] > i
+
+
+@njit(**NJIT)
+def _runs(npos):
+    """Runs of build positions that a parallel pass over the face table takes one at a time."""
+    nrun = max(1, min(256, npos // 512))
+    return nrun, (npos + nrun - 1) // nrun
+
+
+@njit(**NJIT_PARALLEL)
 def _unique_faces(pos, cf, lab, roff, ring, voff, vid, keep, use_keep):
     """Each face once, in the caller's cell order: ``(indptr, indices, cells (m, 2))``.
 
     A face of cell ``i`` is kept when its label is a wall or a site ``> i`` (or, with
     ``use_keep``, where ``keep`` (build order) says so: periodic images). The table is read
-    in build order (neighbouring cells, near vertices) and written in the caller's.
+    in build order (neighbouring cells, near vertices) and written in the caller's; runs of
+    build positions in parallel, each cell's counts then its rows (disjoint).
     """
     n = pos.shape[0]
-    at = _cells_at(pos, cf.shape[0] - 1)
+    npos = cf.shape[0] - 1
+    at = _cells_at(pos, npos)
     nf = np.zeros(n + 1, np.int64)  # kept faces of cell i, then their offsets
     nr = np.zeros(n + 1, np.int64)  # their ring entries
-    for p in range(cf.shape[0] - 1):
-        i = at[p]
-        if i < 0:
-            continue
-        for f in range(cf[p], cf[p + 1]):
-            if (use_keep and keep[f]) or (not use_keep and (lab[f] < 0 or lab[f] > i)):
-                nf[i + 1] += 1
-                nr[i + 1] += roff[f + 1] - roff[f]
+    nrun, step = _runs(npos)
+    for run in prange(nrun):
+        for p in range(run * step, min(npos, (run + 1) * step)):
+            i = at[p]
+            if i < 0:
+                continue
+            a = 0
+            b = 0
+            for f in range(cf[p], cf[p + 1]):
+                if _kept(use_keep, keep, lab, f, i):
+                    a += 1
+                    b += roff[f + 1] - roff[f]
+            nf[i + 1] = a
+            nr[i + 1] = b
     for i in range(n):
         nf[i + 1] += nf[i]
         nr[i + 1] += nr[i]
     m = nf[n]
     indptr = np.zeros(m + 1, roff.dtype)  # unique rings are half of the per-cell ones
-    indices = np.zeros(nr[n], vid.dtype)
-    cells = np.zeros((m, 2), lab.dtype)
-    for p in range(cf.shape[0] - 1):
-        i = at[p]
-        if i < 0:
-            continue
-        k = nf[i]
-        r = nr[i]
-        base = voff[p]
-        for f in range(cf[p], cf[p + 1]):
-            if (use_keep and keep[f]) or (not use_keep and (lab[f] < 0 or lab[f] > i)):
-                cells[k, 0] = i
-                cells[k, 1] = lab[f]
-                for q in range(roff[f], roff[f + 1]):
-                    indices[r] = vid[base + ring[q]]
-                    r += 1
-                k += 1
-                indptr[k] = r
+    indices = np.empty(nr[n], vid.dtype)  # noqa: TID251 - every entry written below
+    cells = np.empty((m, 2), lab.dtype)  # noqa: TID251 - every row written below
+    for run in prange(nrun):
+        for p in range(run * step, min(npos, (run + 1) * step)):
+            i = at[p]
+            if i < 0:
+                continue
+            k = nf[i]
+            r = nr[i]
+            base = voff[p]
+            for f in range(cf[p], cf[p + 1]):
+                if _kept(use_keep, keep, lab, f, i):
+                    cells[k, 0] = i
+                    cells[k, 1] = lab[f]
+                    for q in range(roff[f], roff[f + 1]):
+                        indices[r] = vid[base + ring[q]]
+                        r += 1
+                    k += 1
+                    indptr[k] = r
     return indptr, indices, cells
 
 
@@ -470,50 +497,64 @@ def _flat(V, roff, ring, base, vid, f):
 
 
 @njit(**NJIT)
+def _sorted_nb(cf, lab, roff, ring, voff, vid, V, flat, p, i, sweep, tmp):
+    """Cell ``i``'s (build position ``p``) neighbours across faces of nonzero area, sorted.
+
+    Into ``tmp``; returns their count. ``sweep`` 0 decides each face's flatness into ``flat``,
+    sweep 1 reads it.
+    """
+    c = 0
+    for f in range(cf[p], cf[p + 1]):
+        j = lab[f]
+        if j < 0 or j == i:
+            continue
+        if sweep == 0:
+            flat[f] = _flat(V, roff, ring, voff[p], vid, f)
+        if flat[f]:
+            continue
+        b = c - 1  # insertion sort, dropping repeats
+        while b >= 0 and tmp[b] > j:
+            b -= 1
+        if b >= 0 and tmp[b] == j:
+            continue
+        for q in range(c, b + 1, -1):
+            tmp[q] = tmp[q - 1]
+        tmp[b + 1] = j
+        c += 1
+    return c
+
+
+@njit(**NJIT_PARALLEL)
 def _neighbors(pos, cf, lab, roff, ring, voff, vid, V):
     """CSR of each cell's neighbours across faces of nonzero area (sorted, once each).
 
-    Read in build order; the rows are the caller's cells.
+    Read in build order; the rows are the caller's cells. Runs of build positions in
+    parallel: the counts (and each face's flatness), then the rows (disjoint).
     """
     n = pos.shape[0]
-    at = _cells_at(pos, cf.shape[0] - 1)
+    npos = cf.shape[0] - 1
+    at = _cells_at(pos, npos)
     indptr = np.zeros(n + 1, np.int64)
     most = 0
-    for p in range(cf.shape[0] - 1):
+    for p in range(npos):
         most = max(most, cf[p + 1] - cf[p])
-    tmp = np.zeros(most, lab.dtype)
-    indices = np.zeros(0, lab.dtype)
     flat = np.zeros(lab.shape[0], np.bool_)  # the first sweep's _flat, read by the second
-    for sweep in range(2):
-        if sweep == 1:
-            for i in range(n):
-                indptr[i + 1] += indptr[i]
-            indices = np.zeros(indptr[n], lab.dtype)
-        for p in range(cf.shape[0] - 1):
+    nrun, step = _runs(npos)
+    for run in prange(nrun):
+        tmp = np.empty(most, lab.dtype)  # noqa: TID251 - read only where written
+        for p in range(run * step, min(npos, (run + 1) * step)):
             i = at[p]
-            if i < 0:
-                continue
-            c = 0
-            for f in range(cf[p], cf[p + 1]):
-                j = lab[f]
-                if j < 0 or j == i:
-                    continue
-                if sweep == 0:
-                    flat[f] = _flat(V, roff, ring, voff[p], vid, f)
-                if flat[f]:
-                    continue
-                b = c - 1  # insertion sort, dropping repeats
-                while b >= 0 and tmp[b] > j:
-                    b -= 1
-                if b >= 0 and tmp[b] == j:
-                    continue
-                for q in range(c, b + 1, -1):
-                    tmp[q] = tmp[q - 1]
-                tmp[b + 1] = j
-                c += 1
-            if sweep == 0:
-                indptr[i + 1] = c
-            else:
+            if i >= 0:
+                indptr[i + 1] = _sorted_nb(cf, lab, roff, ring, voff, vid, V, flat, p, i, 0, tmp)
+    for i in range(n):
+        indptr[i + 1] += indptr[i]
+    indices = np.empty(indptr[n], lab.dtype)  # noqa: TID251 - every entry written below
+    for run in prange(nrun):
+        tmp = np.empty(most, lab.dtype)  # noqa: TID251 - read only where written
+        for p in range(run * step, min(npos, (run + 1) * step)):
+            i = at[p]
+            if i >= 0:
+                c = _sorted_nb(cf, lab, roff, ring, voff, vid, V, flat, p, i, 1, tmp)
                 for q in range(c):
                     indices[indptr[i] + q] = tmp[q]
     return indptr, indices
