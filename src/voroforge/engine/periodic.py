@@ -25,7 +25,8 @@ from ..config import PERIODIC_PROOF_RTOL, PERIODIC_SLIVER_ULPS
 from .assemble import from_shapely
 from .diagram import Diagram, Edges, buffers, frame_exponent
 from .domain import Domain, make_domain
-from .inputs import as_points
+from .inputs import as_points, working_frame
+from .periodic_frame import corner_frame, drop_repeats, to_local, to_user_frame, two_sum_error
 from .planar import build
 
 #: Initial margin, in typical cell diameters ``sqrt(area / n)``.
@@ -107,7 +108,7 @@ def _images(sites: np.ndarray, box, margin):
                 keep[:] = True
             if keep.any() and exact and (a or b):
                 exact = Fraction(t[0]) == a * Fraction(w) and Fraction(t[1]) == b * Fraction(h)
-                exact = exact and not _two_sum_error(sites[keep], t).any()
+                exact = exact and not two_sum_error(sites[keep], t).any()
             if keep.any():
                 ext.append(img[keep])
                 source.append(idx[keep])
@@ -206,14 +207,6 @@ def _ring_area(coords, ring, lo, size):
 def _one_grid(lo: float, hi: float) -> bool:
     """Whether the floats from ``lo`` to ``hi`` are evenly spaced (one sign, one binade)."""
     return (lo > 0 or hi < 0) and abs(np.spacing(lo)) == abs(np.spacing(hi))
-
-
-def _two_sum_error(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """The rounding error of ``a + b`` (Knuth's two-sum): zero where the sum is exact."""
-    s = a + b
-    bv = s - a
-    av = s - bv
-    return (a - av) + (b - bv)
 
 
 def _margins(box, n: int):
@@ -598,14 +591,53 @@ def _rescaled(pts, tile, shift: int, algorithm: str) -> Diagram:
     return out
 
 
+def _translated(pts, tile, corner, algorithm: str, wrap: bool) -> Diagram:
+    """The diagram computed in the frame of ``corner`` (:mod:`.periodic_frame`), moved back."""
+    box = tile.bounds
+    local, local_box = to_local(pts, box, corner)
+    inner = _periodic(local, make_domain(local_box, np.zeros((0, 2))), algorithm, wrap, False)
+    coords, ring, poly, geom = buffers(inner)
+    e = inner.edges
+    xy = to_user_frame(np.concatenate((coords, e.coords.reshape(-1, 2))), box, corner, not wrap)
+    bufs = drop_repeats((np.ascontiguousarray(xy[: len(coords)]), ring, poly, geom))
+    seg = xy[len(coords) :].reshape(-1, 2, 2)
+    live = (seg[:, 0] != seg[:, 1]).any(axis=1)
+    # a cell narrower than the user's floats rounds away: its site is unresolved there
+    gone = np.flatnonzero((np.diff(geom) > 0) & (np.diff(bufs[3]) == 0))
+    lost = np.union1d(inner.unresolved, gone).astype(np.int64)
+    out = Diagram(
+        pts,
+        inner.duplicate_of,
+        tile,
+        bufs,
+        Edges(np.ascontiguousarray(seg[live]), np.ascontiguousarray(e.pairs[live])),
+        algorithm,
+        working_frame(pts, np.array(box))[1],
+        lost,
+    )
+    out.periodic = True
+    out.wrapped = wrap
+    return out
+
+
 def periodic_voronoi(points, boundary, *, algorithm: str = "delaunay", wrap: bool = False):
     """Voronoi diagram on the torus made by identifying opposite edges of ``boundary``.
 
     See :func:`voroforge.voronoi` (``periodic=True``) for the public description.
     """
     tile = _tile_of(boundary)
+    return _periodic(as_points(points), tile, algorithm, wrap, True)
+
+
+def _periodic(points, tile, algorithm: str, wrap: bool, may_move: bool) -> Diagram:
+    """:func:`periodic_voronoi` of ``points`` in ``tile``.
+
+    ``may_move``: the diagram may be computed in a frame where every copy is exact
+    (:func:`_translated`), used where the copies or their vertices are not exact shifts in
+    the user's frame, or where sites are too close for it.
+    """
     box = tile.bounds
-    pts = wrap_points(as_points(points), box)
+    pts = wrap_points(points, box)
     n = len(pts)
     x0, y0, x1, y1 = box
     shift = _wrap_exponent(box) if wrap and n else 0
@@ -620,10 +652,24 @@ def periodic_voronoi(points, boundary, *, algorithm: str = "delaunay", wrap: boo
     cx, cy = _caps(box)
     for _ in range(_MAX_TRIES):
         ext, source, shift, exact = _images(pts, box, (mx, my))
+        if may_move and not (exact and _one_grid(x0 - mx, x1 + mx) and _one_grid(y0 - my, y1 + my)):
+            # the copies or their vertices are rounded on two grids: a vertex and its image
+            # by a box shift are not exact shifts of each other
+            corner = corner_frame(pts, box)
+            if corner is not None:
+                return _translated(pts, tile, corner, algorithm, wrap)
+            may_move = False
         is_orig = ~shift.any(axis=1)
         orig = np.flatnonzero(is_orig)  # the original of site i is copy orig[i]
         grown = make_domain((x0 - mx, y0 - my, x1 + mx, y1 + my), ext)
         d = build(ext, grown, algorithm)
+        if may_move and len(d.unresolved):
+            # sites a few ulps apart (a box 24 x 16 ulps at 1e15): where the frame is exact,
+            # its finer floats resolve them
+            corner = corner_frame(pts, box)
+            if corner is not None:
+                return _translated(pts, tile, corner, algorithm, wrap)
+            may_move = False
         if wrap:
             pieces = _box_pieces(d, box)
             owners = pieces

@@ -1,0 +1,224 @@
+"""A frame for periodic diagrams whose images are not float64 numbers in the user's frame.
+
+Where the box straddles a power of two (its lower corner at ``2**42 - 1.5``, a few units
+wide), the float spacing doubles across the box: a site below ``2**42`` shifted by the
+box's size lands where its image is not a float, so the copies are not exact shifts of
+their sites and the cells of a site and of its image disagree by an ulp (areas off by
+1e-4 of the box, Euler failing, sites of a box a few ulps wide lost).
+
+Such a diagram is computed in a frame where every copy is exact: the box's lower corner is
+moved to ``2**j + 2 size`` on each axis, ``2**j >= 8 size``, so the grown box lies in one
+binade. ``site - corner`` is exact (Sterbenz: a far box's sites are within a factor two of
+its corner) and so is adding the new corner: both are checked on every site by the
+two-sum residual (:func:`corner_frame`), else the frame is not used; nor is it near zero,
+where the user's floats are the finer ones. The cells are moved
+back at the end, one rounding per coordinate (:func:`to_user_frame`); the unwrapped cells
+of a site and of its image by a box shift are rounded alike wherever the two can be floats
+(:func:`_consistent`).
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+
+
+def two_sum_error(a: np.ndarray, b) -> np.ndarray:
+    """The rounding error of ``a + b`` (Knuth's two-sum): zero where the sum is exact."""
+    s = a + b
+    bv = s - a
+    av = s - bv
+    return (a - av) + (b - bv)
+
+
+def corner_frame(pts: np.ndarray, box):
+    """The frame's corner ``(2,)`` where every site and copy of ``pts`` is exact, or None.
+
+    Parameters
+    ----------
+    pts : (n, 2) float64
+        Sites in the box (wrapped).
+    box : (xmin, ymin, xmax, ymax)
+
+    Returns
+    -------
+    (2,) float64 or None
+        ``corner``: the sites are ``pts - box[:2] + corner`` there, exactly, and so are
+        their shifts by up to two box sizes on each axis.
+    """
+    x0, y0, x1, y1 = box
+    lo = np.array([x0, y0])
+    size = np.array([x1 - x0, y1 - y0])
+    if not (size > 0).all() or not np.isfinite(size).all():
+        return None
+    if Fraction(x1) - Fraction(x0) != size[0] or Fraction(y1) - Fraction(y0) != size[1]:
+        return None
+    _, e = np.frexp(size)  # size < 2**e
+    # the frame's floats are no coarser than the user's anywhere copies go (2 sizes around
+    # the box, past the margins' cap): near zero the user's frame is the finer one
+    near = np.minimum(np.abs(lo - 2.0 * size), np.abs(lo + 3.0 * size))
+    across = np.sign(lo - 2.0 * size) != np.sign(lo + 3.0 * size)
+    if across.any() or (near < np.ldexp(1.0, e + 4)).any():
+        return None
+    corner = np.ldexp(1.0, e + 3) + 2.0 * size
+    if two_sum_error(np.ldexp(1.0, e + 3), 2.0 * size).any():
+        return None
+    if two_sum_error(pts, -lo).any():
+        return None
+    rel = pts - lo
+    local = rel + corner
+    if two_sum_error(rel, corner).any() or two_sum_error(corner, size).any():
+        return None
+    for a in (-2.0, -1.0, 1.0, 2.0):
+        if two_sum_error(local, a * size).any():
+            return None
+    return corner
+
+
+def to_local(pts: np.ndarray, box, corner: np.ndarray):
+    """The sites and the box in the frame of ``corner`` (exact: see :func:`corner_frame`)."""
+    x0, y0, x1, y1 = box
+    lo = np.array([x0, y0])
+    size = np.array([x1 - x0, y1 - y0])
+    local = (pts - lo) + corner
+    hi = corner + size
+    return local, (corner[0], corner[1], hi[0], hi[1])
+
+
+def to_user_frame(xy: np.ndarray, box, corner: np.ndarray, consistent: bool) -> np.ndarray:
+    """Points ``(m, 2)`` of the frame of ``corner`` moved back into the user's frame.
+
+    ``xy - corner`` is exact (the frame's grown box lies in one binade with its corner);
+    adding the box's corner rounds once. With ``consistent``, the copies of one point by box
+    shifts are rounded alike (:func:`_consistent`).
+    """
+    x0, y0, x1, y1 = box
+    lo = np.array([x0, y0])
+    size = np.array([x1 - x0, y1 - y0])
+    rel = xy - corner
+    out = rel + lo
+    if consistent and len(xy):
+        for k in range(2):
+            out[:, k] = _consistent(rel[:, k], out[:, k], lo[k], size[k])
+    return out
+
+
+def _consistent(rel: np.ndarray, plain: np.ndarray, lo: float, w: float) -> np.ndarray:
+    """Coordinates on one axis whose copies by box shifts are exact shifts of each other.
+
+    ``rel`` are the exact offsets from the box's corner, ``plain`` their rounded sums with
+    it. The offsets that differ by whole periods (one class) are rounded once, at the copy
+    farthest from zero (the coarsest float spacing), and the others are that value shifted
+    by the periods between them, where every such shift is a float; other classes keep
+    ``plain``.
+    """
+    a = np.floor(rel / w)
+    c = rel - a * w
+    a = np.where(c >= w, a + 1, a)
+    a = np.where(c < 0, a - 1, a)
+    c = rel - a * w
+    ok = (two_sum_error(rel, -(a * w)) == 0) & (c >= 0) & (c < w)
+    if not ok.all():
+        return plain
+    keys, cls = np.unique(c, return_inverse=True)
+    far = np.full(len(keys), -np.inf) if lo >= 0 else np.full(len(keys), np.inf)
+    if lo >= 0:
+        np.maximum.at(far, cls, a)
+    else:
+        np.minimum.at(far, cls, a)
+    # the plain value of the farthest copy of each class
+    at_far = a == far[cls]
+    base = np.zeros(len(keys))
+    base[cls[at_far]] = plain[at_far]
+    k = (a - far[cls]) * w
+    out = base[cls] + k
+    bad = two_sum_error(base[cls], k) != 0
+    if bad.any():
+        worse = np.zeros(len(keys), dtype=bool)
+        worse[cls[bad]] = True
+        out = np.where(worse[cls], plain, out)
+    return out
+
+
+def drop_repeats(bufs):
+    """Buffers without the points rounding made redundant in a ring.
+
+    Moving the cells back rounds vertices that were apart onto one point (a repeated point)
+    or onto a line through their neighbours, the ring turning back on itself there (a spike:
+    the middle point of three on a line, outside the segment of the other two). Both are
+    dropped until none is left. A ring left with fewer than four points (a cell narrower
+    than the user's float spacing) is dropped, and with it its polygon when it was the
+    exterior.
+    """
+    for _ in range(64):
+        coords, ring, poly, geom = bufs
+        if not len(coords):
+            return bufs
+        rid = np.repeat(np.arange(len(ring) - 1), np.diff(ring))
+        drop = _redundant(coords, ring, rid)
+        if not drop.any():
+            return bufs
+        bufs = _without(bufs, rid, ~drop)
+    return bufs
+
+
+def _redundant(coords: np.ndarray, ring: np.ndarray, rid: np.ndarray) -> np.ndarray:
+    """The points of the rings that repeat their predecessor or are the tip of a spike."""
+    drop = np.zeros(len(coords), dtype=bool)
+    drop[1:] = (coords[1:] == coords[:-1]).all(axis=1) & (rid[1:] == rid[:-1])
+    if drop.any():
+        return drop
+    # closed rings: the neighbours of point k (not the closing point) along its ring
+    start = ring[:-1][rid]
+    end = ring[1:][rid] - 1  # the closing point repeats the first
+    k = np.arange(len(coords))
+    prev = np.where(k == start, end - 1, k - 1)
+    nxt = k + 1
+    inner = k < end
+    a = coords[prev]
+    b = coords
+    c = coords[np.minimum(nxt, len(coords) - 1)]
+    u = b - a
+    v = c - b
+    back = inner & ((u * v).sum(axis=1) < 0)
+    cross = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
+    scale = np.abs(u).sum(axis=1) * np.abs(v).sum(axis=1)
+    for j in np.flatnonzero(back & (np.abs(cross) <= 1e-9 * scale)):
+        ax, ay, bx, by, cx, cy = (Fraction(float(t)) for t in (*a[j], *b[j], *c[j]))
+        if (bx - ax) * (cy - by) == (by - ay) * (cx - bx):
+            drop[j] = True
+            if k[j] == start[j]:
+                drop[end[j]] = True  # the closing point is the same point
+                break  # one spike at a ring's start per pass: its closing point moves
+    return drop
+
+
+def _without(bufs, rid: np.ndarray, keep: np.ndarray):
+    """Buffers with only the points ``keep``; rings under four points are dropped."""
+    coords, ring, poly, geom = bufs
+    coords = coords.copy()
+    # a ring whose first point goes: its next kept point starts it and closes it
+    first = ring[:-1]
+    lost = ~keep[first] & (np.diff(ring) > 0)
+    for r in np.flatnonzero(lost):
+        alive = np.flatnonzero(keep[ring[r] : ring[r + 1] - 1])
+        if len(alive):
+            coords[ring[r + 1] - 1] = coords[ring[r] + alive[0]]
+            keep[ring[r + 1] - 1] = True
+    count = np.bincount(rid[keep], minlength=len(ring) - 1)
+    live_ring = count >= 4
+    pid = np.repeat(np.arange(len(poly) - 1), np.diff(poly))
+    live_poly = live_ring[poly[:-1]] if len(poly) > 1 else np.zeros(0, dtype=bool)
+    live_ring &= live_poly[pid]
+    keep &= live_ring[rid]
+    new_ring = np.zeros(int(live_ring.sum()) + 1, dtype=np.int64)
+    np.cumsum(count[live_ring], out=new_ring[1:])
+    rings_per_poly = np.bincount(pid[live_ring], minlength=len(poly) - 1)
+    new_poly = np.zeros(int(live_poly.sum()) + 1, dtype=np.int64)
+    np.cumsum(rings_per_poly[live_poly], out=new_poly[1:])
+    gid = np.repeat(np.arange(len(geom) - 1), np.diff(geom))
+    polys_per_geom = np.bincount(gid[live_poly], minlength=len(geom) - 1)
+    new_geom = np.zeros(len(geom), dtype=np.int64)
+    np.cumsum(polys_per_geom, out=new_geom[1:])
+    return np.ascontiguousarray(coords[keep]), new_ring, new_poly, new_geom
