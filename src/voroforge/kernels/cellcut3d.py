@@ -25,7 +25,7 @@ from .graph3d import cut as graph_cut
 from .grid import bucket_of, heap_pop, heap_push
 from .grid3d import bucket3d, shell_buckets_in, shell_gap
 from .polyhedron import CUT_DONE, CUT_EMPTY, CUT_OVERFLOW, cut
-from .predicates3d import bisector_side
+from .predicates3d import bisector_side, offset_side, vertex_offset
 
 OK = 0
 EMPTY = 1
@@ -123,6 +123,62 @@ def _graph_side(i, v, j, DEG, LB, ns, P, W, WP, X):
     return 2
 
 
+@njit(**NJIT)
+def offset_cache(vcap):
+    """The cache of :func:`_offset_side` for cells of up to ``vcap`` vertices: ``(XK, XF)``.
+
+    ``XK[0, 0]`` counts the cells begun (:func:`one_cell`); ``XK[1 + v] = (count, k0, k1,
+    k2)`` says for which cell and owner triple ``XF[v] = (c, x - c)`` holds graph vertex
+    ``v``'s point ``x`` relative to a nearby float point ``c`` (NaN offsets: the triple is
+    not independent). An entry of another cell or triple is stale.
+    """
+    return np.zeros((vcap + 1, 4), np.int64), np.zeros((vcap, 6))
+
+
+@njit(**NJIT_NO_NRT)
+def _offset_side(i, v, j, V, DEG, LB, ns, P, W, WP, X):
+    """:func:`_graph_side` decided on the vertex's exact offset from a float point, or 2.
+
+    A vertex whose float value is within the filter's band of a plane is mostly one whose
+    coordinates, relative to the site, are too coarse for that plane, not one on it: a
+    vertex near the centre of sites on a sphere has every bisector within an ulp, and the
+    exact test of every candidate against it made such cells cost quadratic time. Its
+    point relative to ``c`` (its float position) is solved once from its first three
+    owners (:func:`kernels.predicates3d.vertex_offset`, cached per cell in ``X[3], X[4]``)
+    and each plane is then decided in double-double with a proven bound
+    (:func:`kernels.predicates3d.offset_side`); 2 when that cannot tell (then
+    :func:`_graph_side` decides exactly, as before). The first triple is the one
+    :func:`_graph_side` tries first, so a decision here is its decision.
+    """
+    XK = X[3]
+    XF = X[4]
+    if DEG[v] < 3 or v + 1 >= XK.shape[0]:
+        return 2
+    k0 = owner_key(LB[v, 0], ns)
+    k1 = owner_key(LB[v, 1], ns)
+    k2 = owner_key(LB[v, 2], ns)
+    gen = XK[0, 0]
+    if not (
+        XK[v + 1, 0] == gen and XK[v + 1, 1] == k0 and XK[v + 1, 2] == k1 and XK[v + 1, 3] == k2
+    ):
+        cx = P[i, 0] + V[v, 0]
+        cy = P[i, 1] + V[v, 1]
+        cz = P[i, 2] + V[v, 2]
+        XF[v, 0] = cx
+        XF[v, 1] = cy
+        XF[v, 2] = cz
+        if not vertex_offset(i, k0, k1, k2, P, W, WP, ns, X[1], cx, cy, cz, XF[v, 3:6]):
+            XF[v, 3] = np.nan
+        XK[v + 1, 0] = gen
+        XK[v + 1, 1] = k0
+        XK[v + 1, 2] = k1
+        XK[v + 1, 3] = k2
+    if XF[v, 3] != XF[v, 3]:
+        return 2
+    r = offset_side(i, j, XF[v, 0], XF[v, 1], XF[v, 2], XF[v, 3], XF[v, 4], XF[v, 5], P, W)
+    return 2 if r == 0 else r
+
+
 @njit(**NJIT_NO_NRT)
 def _ring_side(i, v, j, C, nf, ns, P, W, WP, X):
     """:func:`_graph_side` for a cell held as face rings (the fallback): its faces at ``v``."""
@@ -186,7 +242,9 @@ def _resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X):
         s = S[v]
         if abs(s) <= tol:
             if graph:
-                side = _graph_side(i, v, j, G[0], G[3], ns, P, W, WP, X)
+                side = _offset_side(i, v, j, C[0], G[0], G[3], ns, P, W, WP, X)
+                if side == 2:
+                    side = _graph_side(i, v, j, G[0], G[3], ns, P, W, WP, X)
             else:
                 side = _ring_side(i, v, j, C, nf, ns, P, W, WP, X)
             if side == 0 or side == 2:
@@ -505,6 +563,7 @@ def one_cell(
     """
     V, F, R, R2, S, work, T = C
     graph = G[0].shape[0] > 0
+    X[3][0, 0] += 1  # a new cell: _offset_side's cached offsets are stale
     px = P[i, 0]
     py = P[i, 1]
     pz = P[i, 2]

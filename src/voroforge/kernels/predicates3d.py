@@ -33,7 +33,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
-from .expansion import estimate, expansion_sum, multiply, two_diff, two_product
+from .expansion import estimate, expansion_sum, multiply, two_diff, two_product, two_sum
 
 _EPS = 2.0**-53
 #: filter bounds (relative to the permanent). Shewchuk's orient3d bound is (7 + 56 eps) eps;
@@ -501,6 +501,18 @@ def exact_point(a, k0, k1, k2, P, W, WP, ns, buf, x):
     among sites on the unit sphere: the float solve's error is 1e-16). Returns False when
     the planes do not meet in one point (``D3 == 0``). ``buf`` is :func:`scratch`.
     """
+    return vertex_offset(a, k0, k1, k2, P, W, WP, ns, buf, 0.0, 0.0, 0.0, x)
+
+
+@njit(**NJIT)
+def vertex_offset(a, k0, k1, k2, P, W, WP, ns, buf, cx, cy, cz, x):
+    """The vertex of site ``a``'s owners ``k0, k1, k2`` less the point ``c``, into ``x (3,)``.
+
+    :func:`exact_point` with the planes ``x_c = c_c``: each coordinate of ``vertex - c`` is
+    ``-D4 / (2 D3)`` of exact determinants, right to a few ulps of itself (the two
+    estimates and one division round), however small the offset. Returns False when the
+    planes do not meet in one point (``D3 == 0``).
+    """
     lens = buf[_OFF_L : _OFF_L + 16].view(np.int64)
     EL = lens[:12].reshape((4, 3))
     TL = lens[12:16]
@@ -516,7 +528,7 @@ def exact_point(a, k0, k1, k2, P, W, WP, ns, buf, x):
             1.0 if c == 0 else 0.0,
             1.0 if c == 1 else 0.0,
             1.0 if c == 2 else 0.0,
-            0.0,
+            cx if c == 0 else (cy if c == 1 else cz),
             P[a, 0],
             P[a, 1],
             P[a, 2],
@@ -527,3 +539,78 @@ def exact_point(a, k0, k1, k2, P, W, WP, ns, buf, x):
             return False
         x[c] = -estimate(buf[_OFF_S : _OFF_S + _SUM], n4) / (2.0 * d3)
     return True
+
+
+#: the relative error of :func:`vertex_offset`'s offsets taken by :func:`offset_side`
+#: (two estimates of nonoverlapping expansions and a division: a few ulps; padded)
+_OFFSET_RERR = 64.0 * _EPS
+#: the inputs :func:`offset_side` sums (11 an axis, 2 for the weights)
+_OFFSET_TERMS = 35
+_OFFSET_GAMMA = _OFFSET_TERMS * _EPS / (1.0 - _OFFSET_TERMS * _EPS)
+
+
+@njit(**{**NJIT, "inline": "always"})
+def _sum2(hi, lo, absum, t):
+    """One step of Ogita, Rump and Oishi's Sum2: ``hi + lo`` gains ``t`` (and ``|t|``)."""
+    hi, e = two_sum(hi, t)
+    return hi, lo + e, absum + abs(t)
+
+
+@njit(**NJIT)
+def offset_side(i, j, cx, cy, cz, dx, dy, dz, P, W):
+    """Side of the point ``x = c + d`` against site ``j``'s bisector with ``i``, or 0 (unsure).
+
+    The sign of ``2 s = 2 (x - p_i) . r - |r|^2 - (w_i - w_j)`` (``r = p_j - p_i``; as
+    :func:`bisector_side`: 1 beyond, -1 inside) in double-double: ``c - p_i`` and ``r``
+    are exact two-term differences, the big products exact (two-product), the rest
+    rounded once, ``d`` (:func:`vertex_offset`) right to ``_OFFSET_RERR`` of itself, all
+    summed by Sum2 (error ``eps |s| + gamma_{n-1}^2 sum |t|``). Where the vertex is known
+    far better than its float coordinates (a vertex near the origin among sites on the
+    unit sphere, whose every bisector passes within an ulp of it) this decides what the
+    float filter cannot, at the cost of a few dozen flops instead of exact determinants;
+    returns 0 when the bound cannot tell (then decide exactly).
+    """
+    hi = 0.0
+    lo = 0.0
+    absum = 0.0
+    small = 0.0  # bound on the rounding of the terms that are not exact
+    for k in range(3):
+        ck = cx if k == 0 else (cy if k == 1 else cz)
+        dk = dx if k == 0 else (dy if k == 1 else dz)
+        rh, rl = two_diff(P[j, k], P[i, k])
+        uh, ul = two_diff(ck, P[i, k])
+        a1, a2 = two_product(2.0 * uh, rh)
+        b1, b2 = two_product(rh, rh)
+        hi, lo, absum = _sum2(hi, lo, absum, a1)
+        hi, lo, absum = _sum2(hi, lo, absum, a2)
+        hi, lo, absum = _sum2(hi, lo, absum, -b1)
+        hi, lo, absum = _sum2(hi, lo, absum, -b2)
+        t1 = 2.0 * uh * rl
+        t2 = 2.0 * ul * rh
+        t3 = 2.0 * ul * rl
+        t4 = 2.0 * dk * rh
+        t5 = 2.0 * dk * rl
+        t6 = -2.0 * rh * rl
+        t7 = -rl * rl
+        hi, lo, absum = _sum2(hi, lo, absum, t1)
+        hi, lo, absum = _sum2(hi, lo, absum, t2)
+        hi, lo, absum = _sum2(hi, lo, absum, t3)
+        hi, lo, absum = _sum2(hi, lo, absum, t4)
+        hi, lo, absum = _sum2(hi, lo, absum, t5)
+        hi, lo, absum = _sum2(hi, lo, absum, t6)
+        hi, lo, absum = _sum2(hi, lo, absum, t7)
+        small += _EPS * (abs(t1) + abs(t2) + abs(t3) + abs(t6) + abs(t7))
+        small += (_EPS + 1.01 * _OFFSET_RERR) * (abs(t4) + abs(t5))
+    wh, wl = two_diff(W[i], W[j])
+    hi, lo, absum = _sum2(hi, lo, absum, -wh)
+    hi, lo, absum = _sum2(hi, lo, absum, -wl)
+    res = hi + lo
+    # |res - s| <= eps |s| + g: with |s| <= (|res| + g) / (1 - eps), 2 eps covers eps / (1 - eps);
+    # 1e-290 covers products that fall below the normal range (then two_product is not exact)
+    g = _OFFSET_GAMMA * _OFFSET_GAMMA * absum + small
+    bound = 2.0 * _EPS * (abs(res) + g) + g + 1e-290
+    if res > bound:
+        return 1
+    if res < -bound:
+        return -1
+    return 0
