@@ -50,20 +50,47 @@ def grid3d_shape(P: np.ndarray, per_bucket: float) -> np.ndarray:
 
 def bucket_sort3d(P: np.ndarray, g: np.ndarray):
     """Sites by bucket: ``start (nb + 1,)``, ``SP`` in bucket order, ``sidx`` (stable)."""
-    n = np.asarray(g[6:9], np.int64)
     key = bucket_keys3d(P, g)
-    sidx = np.argsort(key, kind="stable")
-    start = np.zeros(int(np.prod(n)) + 1, np.int64)
-    np.cumsum(np.bincount(key, minlength=int(np.prod(n))), out=start[1:])
-    return start, np.ascontiguousarray(P[sidx]), sidx.astype(np.int64)
+    start, sidx = _counting_sort(key, int(np.prod(np.asarray(g[6:9], np.int64))))
+    return start, np.ascontiguousarray(P[sidx]), sidx
 
 
 def bucket_keys3d(P: np.ndarray, g: np.ndarray) -> np.ndarray:
-    """Bucket number of each point of ``P`` in grid ``g`` (clamped into the grid)."""
-    n = np.asarray(g[6:9], np.int64)
-    idx = np.floor((P - g[:3]) / g[3:6])
-    idx = np.clip(np.nan_to_num(idx, nan=0.0), 0, n - 1).astype(np.int64)
-    return (idx[:, 2] * n[1] + idx[:, 1]) * n[0] + idx[:, 0]
+    """Bucket number of each point of ``P`` in grid ``g`` (clamped into the grid; NaN: 0)."""
+    return _bucket_keys(np.ascontiguousarray(P, np.float64), np.asarray(g, np.float64))
+
+
+@njit(**NJIT)
+def _bucket_keys(P, g):
+    """:func:`bucket_keys3d` in one pass (numpy's floor, NaN to 0 and clip, per point)."""
+    key = np.zeros(P.shape[0], np.int64)
+    for i in range(P.shape[0]):
+        b = 0
+        for q in range(2, -1, -1):
+            x = np.floor((P[i, q] - g[q]) / g[3 + q])
+            top = g[6 + q] - 1.0
+            if x != x:
+                x = 0.0
+            x = min(max(x, 0.0), top)
+            b = b * np.int64(g[6 + q]) + np.int64(x)
+        key[i] = b
+    return key
+
+
+@njit(**NJIT)
+def _counting_sort(key, nb):
+    """``start (nb + 1,)`` (cumulative counts) and the stable order of ``key`` (a bucket each)."""
+    start = np.zeros(nb + 1, np.int64)
+    for i in range(key.shape[0]):
+        start[key[i] + 1] += 1
+    for b in range(nb):
+        start[b + 1] += start[b]
+    fill = start[:-1].copy()
+    sidx = np.zeros(key.shape[0], np.int64)
+    for i in range(key.shape[0]):
+        sidx[fill[key[i]]] = i
+        fill[key[i]] += 1
+    return start, sidx
 
 
 def csr_take(lens: np.ndarray, take: np.ndarray) -> np.ndarray:
