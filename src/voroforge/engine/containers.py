@@ -69,8 +69,34 @@ def box_template(lo, hi, labels=None) -> Template:
         ],
         np.float64,
     )
-    vol = float(np.prod(hi - lo))
+    with np.errstate(over="ignore", under="ignore"):  # out of range: check_volume says so
+        vol = float(np.prod(hi - lo))
     return Template(TV, TF, TR, WP, "box", vol, np.array([lo, hi]))
+
+
+#: the container volumes, in the caller's units, that 3D cells can be measured in: the
+#: cells are built in a power-of-two working frame, but their volumes, face areas (whose
+#: norms square them) and centroids are reported in the caller's units, where a box of side
+#: 1e103 has a volume past the largest double, face area vectors of side 1e77 overflow when
+#: squared, and small sides underflow alike (cells then measure 0); the margin leaves room
+#: for cells and faces far smaller than the container
+VOLUME_RANGE = (1e-200, 1e200)
+
+
+def check_volume(t: Template) -> None:
+    """Raise ``ValueError`` when the container's volume lies outside :data:`VOLUME_RANGE`."""
+    lo, hi = VOLUME_RANGE
+    if lo <= t.volume <= hi:
+        return
+    with np.errstate(over="ignore", under="ignore", invalid="ignore"):
+        side = float(np.ptp(np.asarray(t.bounds, np.float64), axis=0).max())
+    what = "overflow" if not t.volume < hi else "underflow"
+    raise ValueError(
+        f"the container's volume in these units ({t.volume:.3g}; largest side {side:.3g}) is "
+        f"outside {lo:g}..{hi:g}, where 3D cell volumes would {what}: scale the points (and "
+        "the container) so that its sides lie between about 1e-66 and 1e66 (a power of two "
+        "scales exactly)"
+    )
 
 
 class Convex:

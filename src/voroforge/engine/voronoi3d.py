@@ -9,7 +9,7 @@ from numba import njit
 
 from ..config import NJIT
 from .build3d import build_cells3d, duplicate_owners
-from .containers import Convex, Template, as_container, box_template
+from .containers import Convex, Template, as_container, box_template, check_volume
 from .diagram3d import Diagram3D
 from .inputs import as_points, as_weights, from_working, working_frame
 
@@ -68,6 +68,7 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
         from .mesh3d import as_mesh_container
 
         mesh, t = as_mesh_container(container)
+    check_volume(t)
     if periodic and (t.kind != "box" or mesh is not None):
         raise ValueError("periodic=True needs a box container (None or a 6-tuple)")
     if n and mesh is not None:
