@@ -251,3 +251,65 @@ def test_checked_path_checks_only_cells_near_the_cluster():
     checked = ~_unreached(x, y, w, rings, suspect, active)
     assert checked[suspect & active].all()
     assert checked.sum() < 150
+
+
+@pytest.mark.parametrize(
+    ("n_clusters", "sd", "offset", "scale"),
+    [
+        (2, 1e-10, 3e5, 0.1),
+        (2, 1e-10, 3e5, 3.0),
+        (2, 1e-10, 1e6, 0.1),
+        (2, 1e-9, 1e7, 0.1),
+        (2, 3e-9, 1e7, 3.0),
+        (3, 1e-10, 3e5, 0.1),
+        (3, 1e-9, 1e7, 0.1),
+        (3, 3e-9, 1e7, 3.0),
+        (3, 1e-8, 1e7, 3.0),
+    ],
+)
+def test_clusters_one_to_a_few_ulps_wide(n_clusters, sd, offset, scale):
+    """Clusters 1-5 ulps of their coordinates wide: float64 cannot hold their power cells.
+
+    Each cell's named vertices are rounded alone, so a ring a few ulps across folded (a
+    self-intersecting polygon), a wedge's apex rounded across its next vertex, or one cell
+    kept an edge an ulp long that its neighbour lacked (Euler). 14 of 64 such inputs of
+    the cluster sweep failed; now those places are merged to one point each
+    (``engine.power_check.settle``) and a site whose ring that empties is flagged in
+    ``unresolved``, as ``vf.voronoi`` flags sites a few ulps apart.
+    """
+    centres = [(0.0, 0.0), (offset, 0.3 * offset), (0.4 * offset, -0.8 * offset)][:n_clusters]
+    seed = int(1000 * (n_clusters - 2) + 7 * -np.log10(sd) + np.log10(offset))
+    pts = _clusters(centres, sd, 30, seed)
+    w = _weights(pts, scale, 4)
+    groups = [np.arange(k, k + 30) for k in range(0, 30 * n_clusters, 30)]
+    d = _check(pts, w, _box(pts), groups, min_clear=0.2)
+    # a flagged site has no cell; the rest of its cluster keeps its cells
+    assert (d.areas[d.unresolved] == 0.0).all()
+    assert (d.duplicate_of[d.unresolved] == -1).all()
+    assert len(d.unresolved) <= 20
+
+
+@pytest.mark.parametrize("case", ["spread_and_cluster", "far_clusters", "two_clusters_1e-9_at_1e6"])
+def test_settle_changes_nothing_where_rings_hold(case):
+    """``settle`` is a no-op on checked rings that are valid and share their short edges."""
+    from voroforge.engine.power import _neighbors
+    from voroforge.engine.power_check import checked_cells, settle
+
+    g = np.random.default_rng(0)
+    if case == "spread_and_cluster":
+        pts = np.concatenate((g.random((300, 2)) * 1e3, g.normal(0.0, 1e-6, (30, 2)) + 500.0))
+        w = g.random(len(pts)) * 1e-14
+    elif case == "far_clusters":
+        pts = CATALOGUE["far_clusters"][0]
+        w = _weights(pts, 0.1, 1)
+    else:
+        pts = _clusters([(0.0, 0.0), (1e6, 3e5)], 1e-9, 30, 11)
+        w = _weights(pts, 0.1, 4)
+    x, y = np.ascontiguousarray(pts[:, 0]), np.ascontiguousarray(pts[:, 1])
+    box = np.array(_box(pts), dtype=float)
+    indptr, indices, active, suspect = _neighbors(x, y, w, box, np.ones(len(pts), dtype=bool))
+    assert suspect is not None
+    rings = checked_cells(x, y, w, box, active, indptr, indices, suspect)
+    *got, lost = settle(box, *rings)
+    assert not len(lost)
+    assert all(np.array_equal(a, b) for a, b in zip(rings, got, strict=True))

@@ -35,7 +35,7 @@ from .diagram import Diagram, buffers, frame_exponent
 from .domain import Domain, make_domain, shifted
 from .inputs import as_points, as_query, as_weights, duplicate_map
 from .planar import build
-from .power_check import checked_cells, lost_candidates, pairs_csr
+from .power_check import checked_cells, lost_candidates, pairs_csr, settle
 from .threads import serial_below
 
 #: Up to this many sites every pair is a candidate neighbour (no triangulation needed).
@@ -58,8 +58,8 @@ class PowerDiagram(Diagram):
         heaviest; the first among equal weights). Note that the owner may come later.
     """
 
-    def __init__(self, sites, duplicate_of, domain, buffers, edges, weights, k=0):
-        super().__init__(sites, duplicate_of, domain, buffers, edges, "power", k)
+    def __init__(self, sites, duplicate_of, domain, buffers, edges, weights, k=0, unresolved=None):
+        super().__init__(sites, duplicate_of, domain, buffers, edges, "power", k, unresolved)
         self.weights = weights
         weights.setflags(write=False)
 
@@ -262,19 +262,22 @@ def power_diagram(pts: np.ndarray, w: np.ndarray, dom: Domain) -> PowerDiagram:
     if n and (w == w[0]).all():
         # equal weights: the ordinary Voronoi diagram, from the exact engine
         d = build(pts, dom, "delaunay")
-        return PowerDiagram(d.sites, d.duplicate_of, dom, buffers(d), d.edges, w, frame_exponent(d))
+        k = frame_exponent(d)
+        return PowerDiagram(d.sites, d.duplicate_of, dom, buffers(d), d.edges, w, k, d.unresolved)
     dup = _owners(pts, w)
     active = dup < 0
     x = np.ascontiguousarray(pts[:, 0])
     y = np.ascontiguousarray(pts[:, 1])
     box = np.array(dom.bounds, dtype=np.float64)
     indptr, indices, active, suspect = _neighbors(x, y, w, box, active)
+    lost = None
     if suspect is None:
         closed, lengths, own = power_cells(x, y, w, indptr, indices, box, active)
     else:
-        closed, lengths, own = checked_cells(x, y, w, box, active, indptr, indices, suspect)
+        rings = checked_cells(x, y, w, box, active, indptr, indices, suspect)
+        closed, lengths, own, lost = settle(box, *rings)
     bufs, edges = assemble(dom, closed, lengths, own, n)
-    return PowerDiagram(pts, dup, dom, bufs, edges, w)
+    return PowerDiagram(pts, dup, dom, bufs, edges, w, unresolved=lost)
 
 
 def power(points, weights, boundary=None) -> PowerDiagram:
@@ -311,7 +314,9 @@ def power(points, weights, boundary=None) -> PowerDiagram:
     them, e.g. clusters far narrower than the box, each cell's vertices are checked against
     the sites nearest in power); the cells are cut in floating point relative to each site
     (unequal weights do not use the exact predicates of :func:`voroforge.voronoi`).
-    Collinear sites are handled by a 1D lower hull.
+    Collinear sites are handled by a 1D lower hull. In a cluster only a few ulps of its
+    coordinates wide a cell can be narrower than float64 holds there: such a site gets an
+    empty cell and is listed in ``unresolved`` (the rest still tile the domain).
 
     Examples
     --------

@@ -12,15 +12,23 @@ lift's neighbours unchecked: the cost follows the cells near the unresolved plac
 from __future__ import annotations
 
 import numpy as np
+import shapely
 from scipy.spatial import cKDTree
 
 from ..config import POWER_CHECK_ROUNDS, POWER_CHECK_ULPS, POWER_LOST_NEAR
+from ..kernels.clip import rings_convex, tiny_folded
 from ..kernels.power import cut_rings, finish_rings
+from ..kernels.predicates import orient2d
 
 _EPS = float(np.finfo(float).eps)
 #: Relative slack of the proof that no suspect reaches a cell (:func:`_unreached`): far
 #: above its few roundings, far below any cell's margin that matters. Local constant.
 _REACH_RTOL = 2.0**-30
+#: A ring or edge at most this many ulps of its coordinates across is below what float64
+#: holds of a power cell there (:func:`settle`); local constant, as planar's _FOLDED_ULPS.
+_SETTLE_ULPS = 64.0
+#: Most rounds of :func:`settle` (each merges what the last one left unmatched).
+_SETTLE_ROUNDS = 8
 
 
 def pairs_csr(n, a, b):
@@ -173,3 +181,142 @@ def checked_cells(x, y, w, box, active, indptr, indices, suspect):
         indptr, indices = pairs_csr(n, known[keep] // n, known[keep] % n)
         rings = cut_rings(x, y, w, indptr, indices, box, todo, careful, *rings)
     return finish_rings(x, y, *rings)
+
+
+def settle(box, closed, lengths, owner):
+    """The checked path's rings with what float64 cannot hold merged to points; sites lost.
+
+    In a cluster one to a few ulps of its coordinates wide (1e-10 at 3e5..1e6) the power
+    cells are a few ulps across: each cell's named vertices are rounded alone, so a tiny
+    ring folds (a self-intersecting polygon), or one cell keeps an edge an ulp long that
+    its neighbour's ring does not have (the neighbour's ring went straight past, or
+    compacted away): Euler fails. Such places are merged, each to one point shared bit for
+    bit by every ring that has one of them: every vertex of a ring at most ``_SETTLE_ULPS``
+    across that is not a valid polygon (``kernels.clip.tiny_folded``), the two ends of an
+    edge that short at a right turn of a larger ring that is not valid (a wedge's apex
+    rounded across its next vertex), and the two ends of an edge that short that the
+    owner's ring lacks. Rings are compacted (a ring left with no area is empty), and
+    rounds repeat while anything is merged. Returns the rings and the sites
+    whose non-empty ring was emptied (``Diagram.unresolved``: float64 cannot represent
+    their cells). Nothing changes where every ring is valid and every short edge shared.
+    """
+    had = lengths[1:] > lengths[:-1]
+    for _ in range(_SETTLE_ROUNDS):
+        groups = _unheld(closed, lengths, owner)
+        if not groups:
+            break
+        closed, lengths, owner = _merge(box, closed, lengths, owner, groups)
+    lost = np.flatnonzero(had & (lengths[1:] == lengths[:-1]))
+    return closed, lengths, owner, lost
+
+
+def _unheld(closed, lengths, owner):
+    """Slot groups to merge (see :func:`settle`): folded rings' rounding, unshared tiny edges."""
+    cx, cy = closed[:, 0], closed[:, 1]
+    big = np.maximum(np.abs(cx), np.abs(cy))  # (columns: faster than reductions of rows)
+    step = np.maximum(np.abs(np.diff(cx)), np.abs(np.diff(cy)))
+    short = step <= _SETTLE_ULPS * 2.0 * _EPS * np.maximum(big[:-1], big[1:])
+    short &= owner[:-1] != -2
+    groups = []
+    tiny = tiny_folded(closed, lengths, _SETTLE_ULPS) == 1
+    # rings that are not valid polygons (convex ones are: only the others are tested)
+    for i in np.flatnonzero(~rings_convex(closed, lengths) & (lengths[1:] > lengths[:-1])):
+        lo, hi = lengths[i], lengths[i + 1]
+        if shapely.is_valid(shapely.polygons(closed[lo:hi])):
+            continue
+        if tiny[i]:  # a few ulps across: nothing of it is held
+            groups.append(np.arange(lo, hi - 1))
+            continue
+        # a short edge at a right turn (exact): its ends rounded across each other (a
+        # wedge's apex at a cluster an ulp wide)
+        m = hi - lo - 1
+        for v in range(m):
+            p, c, q = lo + (v - 1) % m, lo + v, lo + (v + 1) % m
+            if orient2d(*closed[p], *closed[c], *closed[q]) >= 0.0:
+                continue
+            if short[p] or short[c]:
+                e = p if short[p] and not (short[c] and _len(closed, c) < _len(closed, p)) else c
+                groups.append(np.array([e, e + 1]))
+    k = np.flatnonzero((owner[:-1] >= 0) & short)
+    cell = np.searchsorted(lengths, k, side="right") - 1
+    for s, i in zip(k.tolist(), cell.tolist(), strict=True):
+        j = int(owner[s])
+        lo, hi = lengths[j], lengths[j + 1] - 1
+        u = lo + np.flatnonzero(owner[lo:hi] == i)
+        back = (closed[u] == closed[s + 1]).all(axis=1) & (closed[u + 1] == closed[s]).all(axis=1)
+        if not back.any():
+            groups.append(np.array([s, s + 1]))
+    return groups
+
+
+def _len(closed, s):
+    """L-infinity length of edge ``s -> s + 1``."""
+    return float(np.abs(closed[s + 1] - closed[s]).max())
+
+
+def _merge(box, closed, lengths, owner, groups):
+    """Rings with each group's points (and every copy of them) at one point, compacted.
+
+    The point kept is a box corner, else one on a box side, else the smallest bits, so
+    the choice does not depend on the cells' order.
+    """
+    pts, inv = np.unique(closed, axis=0, return_inverse=True)
+    inv = inv.ravel()
+    parent = np.arange(len(pts))
+
+    def root(p):
+        while parent[p] != p:
+            parent[p] = parent[parent[p]]
+            p = parent[p]
+        return p
+
+    side = (np.isin(pts[:, 0], box[[0, 2]])).astype(np.int64) + np.isin(pts[:, 1], box[[1, 3]])
+    for g in groups:
+        ids = np.unique(inv[g])
+        r = [root(p) for p in ids.tolist()]
+        # np.unique sorted the points: the lowest index has the smallest bits
+        best = max(r, key=lambda p: (side[p], -p))
+        for p in r:
+            parent[p] = best
+    to = np.array([root(p) for p in range(len(pts))])
+    moved = to[inv] != inv
+    closed = pts[to[inv]]
+    touched = np.zeros(len(lengths) - 1, dtype=bool)
+    touched[np.searchsorted(lengths, np.flatnonzero(moved), side="right") - 1] = True
+    rings = []
+    for i in range(len(lengths) - 1):
+        lo, hi = lengths[i], lengths[i + 1]
+        if hi == lo or not touched[i]:
+            rings.append((closed[lo:hi], owner[lo:hi]))
+            continue
+        rings.append(_compacted(closed[lo : hi - 1], owner[lo : hi - 1]))
+    size = np.array([len(r[0]) for r in rings], dtype=np.int64)
+    lengths = np.zeros(len(rings) + 1, dtype=np.int64)
+    np.cumsum(size, out=lengths[1:])
+    if not lengths[-1]:
+        return closed[:0], lengths, owner[:0]
+    return np.concatenate([r[0] for r in rings]), lengths, np.concatenate([r[1] for r in rings])
+
+
+def _compacted(xy, own):
+    """Open ring without repeated points, closed again (empty when no area is left).
+
+    The edge that leaves a dropped point is the kept one's, as in ``kernels.power``.
+    """
+    keep_xy, keep_o = [], []
+    for v in range(len(xy)):
+        if keep_xy and (xy[v] == keep_xy[-1]).all():
+            keep_o[-1] = own[v]
+            continue
+        keep_xy.append(xy[v])
+        keep_o.append(own[v])
+    while len(keep_xy) > 1 and (keep_xy[-1] == keep_xy[0]).all():
+        keep_xy.pop()
+        keep_o.pop()
+    if len(keep_xy) < 3:
+        return xy[:0], own[:0]
+    r = np.array(keep_xy)
+    d = r - r[0]
+    if not (d[:-1, 0] * d[1:, 1] - d[1:, 0] * d[:-1, 1]).sum() > 0.0:
+        return xy[:0], own[:0]
+    return np.vstack((r, r[:1])), np.array([*keep_o, -2], dtype=own.dtype)
