@@ -230,6 +230,42 @@ def test_bad_input(tmp_path, client):
     assert (tmp_path / "e" / "notes.txt").exists()
 
 
+@pytest.mark.parametrize("scale_", [1e-300, 1e-200, 1e160, 1e300])
+def test_extreme_scales_identical(tmp_path, client, scale_):
+    """Squared radii under/overflow past ~1e+-154: the certificate and halo are scale-free.
+
+    Found by an independent check: at 1e-300 every radius squared to 0, so every cell
+    passed the certificate and 290 of 1000 rows were written with wrong neighbours; at
+    1e160 the halo's area overflowed and the job raised.
+    """
+    pts = np.random.default_rng(3).random((300, 2)) * scale_
+    res, got, ref, diff = _identical(tmp_path, client, pts, None, tile_size=60)
+    assert res.tiles == 5 and res.uncertified == 0
+    assert all(not v for v in diff.values()), {k: len(v) for k, v in diff.items()}
+
+
+@pytest.mark.parametrize(
+    "kw",
+    [
+        {"tiles": 1.5},
+        {"tiles": 0},
+        {"tiles": True},
+        {"tile_size": "100"},
+        {"tiles": 4, "tile_size": 100},
+        {"chunk_rows": 0},
+        {"workers": 0},
+    ],
+)
+def test_bad_counts_refused(tmp_path, client, kw):
+    pts = np.random.default_rng(9).random((50, 2))
+    with pytest.raises(ValueError, match="tiles|tile_size|chunk_rows|workers"):
+        scale.voronoi(pts, None, out=tmp_path / "a", client=client, **kw)
+    assert not (tmp_path / "a").exists()
+    if "chunk_rows" not in kw:
+        with pytest.raises(ValueError, match="tiles|tile_size|workers"):
+            scale.lloyd(pts, (0, 0, 1, 1), iterations=1, client=client, **kw)
+
+
 class _Stop(Exception):
     pass
 

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import json
 import math
+import numbers
 import os
 import shutil
 import time
@@ -161,6 +162,26 @@ def _boundary_spec(boundary):
     return tuple(float(v) for v in dom.bounds), list(dom.bounds)
 
 
+def _whole(name, value):
+    """``value`` as an int >= 1, or ``None``; a clear error for 0, 1.5, True, "4"."""
+    if value is None:
+        return None
+    ok = isinstance(value, numbers.Integral) and not isinstance(value, bool)
+    if isinstance(value, float) and value.is_integer():
+        ok = True
+    if not ok or value < 1:
+        raise ValueError(f"{name} must be a whole number >= 1; got {value!r}")
+    return int(value)
+
+
+def check_counts(tiles=None, tile_size=None, workers=None, chunk_rows=None):
+    """Validate the size-like arguments of a tiled job before any work starts."""
+    tiles, tile_size = _whole("tiles", tiles), _whole("tile_size", tile_size)
+    if tiles is not None and tile_size is not None:
+        raise ValueError(f"give tiles or tile_size, not both; got {tiles} and {tile_size}")
+    return tiles, tile_size, _whole("workers", workers), _whole("chunk_rows", chunk_rows)
+
+
 def tile_count(n, tiles, tile_size, workers):
     """How many tiles ``n`` sites get: ``tiles``, else from ``tile_size`` or ``workers``."""
     if tiles is not None:
@@ -178,12 +199,16 @@ def first_halo(rect, count, lo, hi):
     """The first halo of a tile: a few mean site spacings of its finite part."""
     x0, y0 = max(rect[0], lo[0]), max(rect[1], lo[1])
     x1, y1 = min(rect[2], hi[0]), min(rect[3], hi[1])
-    area = max(x1 - x0, 0.0) * max(y1 - y0, 0.0)
+    w, h = max(x1 - x0, 0.0), max(y1 - y0, 0.0)
     if count == 0:
         return 0.0
-    if area == 0.0:  # sites on a line: the spacing along it
-        area = max(x1 - x0, y1 - y0, 1e-300) ** 2 / count
-    return config.SCALE_HALO_SPACINGS * math.sqrt(area / count)
+    # sqrt(w) sqrt(h), not sqrt(w h): the area under/overflows past ~1e+-154
+    spacing = math.sqrt(w) * math.sqrt(h) / math.sqrt(count)
+    if spacing == 0.0:  # sites on a line: the spacing along it
+        spacing = max(w, h) / count
+    if spacing == 0.0:  # one point: a halo of its own magnitude's ulps
+        spacing = math.ulp(max(abs(x0), abs(y0), 1e-300)) * 64
+    return config.SCALE_HALO_SPACINGS * spacing
 
 
 def _grown(rect, h):
@@ -272,7 +297,8 @@ def voronoi(
     ------
     ValueError
         Bad points (shape, non-finite rows, with their row numbers), an invalid boundary, an
-        existing output without ``overwrite``.
+        existing output without ``overwrite``, ``tiles``/``tile_size``/``workers``/
+        ``chunk_rows`` that are not whole numbers >= 1, or both ``tiles`` and ``tile_size``.
 
     Examples
     --------
@@ -284,6 +310,7 @@ def voronoi(
     0
     """
     t_start = time.perf_counter()
+    tiles, tile_size, workers, chunk_rows = check_counts(tiles, tile_size, workers, chunk_rows)
     out = Path(out)
     eng_boundary, boundary_text = _boundary_spec(boundary)
     crs_json = None
@@ -292,9 +319,7 @@ def voronoi(
 
         crs_json = projjson(crs)
     resume = _prepare_out(out, overwrite)
-    rows = int(chunk_rows or config.SCALE_CHUNK_ROWS)
-    if rows < 1:
-        raise ValueError(f"chunk_rows must be at least 1; got {chunk_rows}")
+    rows = chunk_rows or config.SCALE_CHUNK_ROWS
     source = None
     try:
         source = open_source(points, out, rows)

@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .. import config
-from .job import client_for, first_halo, tile_count
+from .job import check_counts, client_for, first_halo, tile_count
 from .tasks import (
     Piece,
     certified_sites,
@@ -234,6 +234,7 @@ def lloyd(
     from ..engine.lloyd import cell_domain, size_exponent
 
     t_start = time.perf_counter()
+    tiles, tile_size, workers, _ = check_counts(tiles, tile_size, workers)
     try:
         steps = -1 if isinstance(iterations, bool) else operator.index(iterations)
     except TypeError:

@@ -13,6 +13,7 @@ shrink, so that disc certifies it.
 
 from __future__ import annotations
 
+import math
 import time
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -112,15 +113,17 @@ def radii(d, xy):
 
 @njit(**NJIT)
 def _farthest(coords, start, xy):  # pragma: no cover
-    """``max |coords[k] - xy[i]|`` over cell ``i``'s vertices ``start[i]:start[i + 1]``."""
+    """``max |coords[k] - xy[i]|`` over cell ``i``'s vertices ``start[i]:start[i + 1]``.
+
+    By ``hypot``, not the square root of a sum of squares: squares underflow to 0 below
+    ~1e-154 (every cell would pass the certificate with radius 0) and overflow past ~1e154.
+    """
     r = np.zeros(len(start) - 1)
     for i in range(len(start) - 1):
         best = 0.0
         for k in range(start[i], start[i + 1]):
-            dx = coords[k, 0] - xy[i, 0]
-            dy = coords[k, 1] - xy[i, 1]
-            best = max(best, dx * dx + dy * dy)
-        r[i] = np.sqrt(best)
+            best = max(best, math.hypot(coords[k, 0] - xy[i, 0], coords[k, 1] - xy[i, 1]))
+        r[i] = best
     return r
 
 
