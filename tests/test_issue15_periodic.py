@@ -293,3 +293,21 @@ def test_a_box_sixteen_ulps_tall_at_1e15():
         for wrap in (False, True):
             d = _check_torus(p, box, algorithm, wrap, samples=150)
             assert not len(d.unresolved)
+
+
+def test_straddling_cells_stay_valid_where_copies_cannot_agree():
+    # 30 sites in a box 255 x 257 ulps across 2**45 (both sizes odd numbers of ulps): a
+    # vertex whose copies were rounded alike (to floats an odd number of ulps from the
+    # plain ones) passed a neighbour 0.3 ulp away, and two cells self-intersected; those
+    # classes now keep the nearest float (valid cells, an ulp of gap between the images)
+    rng = np.random.default_rng(1000 + 45 * 13 + 1)
+    frac = rng.uniform(0.05, 0.95)
+    rng.choice([1.0, 0.3, 1e-3])
+    c = 2.0**45
+    box = (c - frac, c - (1 - frac), c - frac + 1.0, c - (1 - frac) + 1.0)
+    p = np.array(box[:2]) + rng.random((30, 2)) * [box[2] - box[0], box[3] - box[1]]
+    for algorithm in ALGORITHMS:
+        d = vf.voronoi(p, box, periodic=True, algorithm=algorithm)
+        assert shapely.is_valid(d.cells).all()
+        assert abs(d.areas.sum() - 1.0) < 1e-3
+        _check_torus(p, box, algorithm, True, samples=150)

@@ -26,7 +26,7 @@ from .assemble import from_shapely
 from .diagram import Diagram, Edges, buffers, frame_exponent
 from .domain import Domain, make_domain
 from .inputs import as_points, working_frame
-from .periodic_frame import corner_frame, drop_repeats, to_local, to_user_frame, two_sum_error
+from .periodic_frame import cells_to_user_frame, corner_frame, to_local, two_sum_error
 from .planar import build
 
 #: Initial margin, in typical cell diameters ``sqrt(area / n)``.
@@ -598,9 +598,10 @@ def _translated(pts, tile, corner, algorithm: str, wrap: bool) -> Diagram:
     inner = _periodic(local, make_domain(local_box, np.zeros((0, 2))), algorithm, wrap, False)
     coords, ring, poly, geom = buffers(inner)
     e = inner.edges
-    xy = to_user_frame(np.concatenate((coords, e.coords.reshape(-1, 2))), box, corner, not wrap)
-    bufs = drop_repeats((np.ascontiguousarray(xy[: len(coords)]), ring, poly, geom))
-    seg = xy[len(coords) :].reshape(-1, 2, 2)
+    bufs, seg = cells_to_user_frame(
+        coords, (ring, poly, geom), e.coords.reshape(-1, 2), box, corner, not wrap
+    )
+    seg = seg.reshape(-1, 2, 2)
     live = (seg[:, 0] != seg[:, 1]).any(axis=1)
     # a cell narrower than the user's floats rounds away: its site is unresolved there
     gone = np.flatnonzero((np.diff(geom) > 0) & (np.diff(bufs[3]) == 0))

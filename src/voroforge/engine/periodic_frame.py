@@ -86,12 +86,13 @@ def to_local(pts: np.ndarray, box, corner: np.ndarray):
     return local, (corner[0], corner[1], hi[0], hi[1])
 
 
-def to_user_frame(xy: np.ndarray, box, corner: np.ndarray, consistent: bool) -> np.ndarray:
+def to_user_frame(xy: np.ndarray, box, corner: np.ndarray, consistent: bool, plain=None):
     """Points ``(m, 2)`` of the frame of ``corner`` moved back into the user's frame.
 
     ``xy - corner`` is exact (the frame's grown box lies in one binade with its corner);
     adding the box's corner rounds once. With ``consistent``, the copies of one point by box
-    shifts are rounded alike (:func:`_consistent`).
+    shifts are rounded alike (:func:`_consistent`), except the classes of the points
+    ``plain`` (a mask), which keep the nearest float.
     """
     x0, y0, x1, y1 = box
     lo = np.array([x0, y0])
@@ -100,18 +101,60 @@ def to_user_frame(xy: np.ndarray, box, corner: np.ndarray, consistent: bool) -> 
     out = rel + lo
     if consistent and len(xy):
         for k in range(2):
-            out[:, k] = _consistent(rel[:, k], out[:, k], lo[k], size[k])
+            out[:, k] = _consistent(rel[:, k], out[:, k], lo[k], size[k], plain)
     return out
 
 
-def _consistent(rel: np.ndarray, plain: np.ndarray, lo: float, w: float) -> np.ndarray:
+def cells_to_user_frame(coords, offsets, extra, box, corner, consistent: bool):
+    """The cells' buffers and the points ``extra`` moved back (:func:`to_user_frame`).
+
+    ``offsets = (ring, poly, geom)``. Rounding the copies of a vertex alike can put two
+    vertices a fraction of an ulp apart in the wrong order (their classes are rounded on
+    floats an odd number of ulps apart): the classes of the vertices of a cell that is then
+    invalid get the nearest float instead, until every cell is valid (a few rounds).
+
+    Returns
+    -------
+    bufs : (coords, ring, poly, geom)
+        Without the points rounding made redundant (:func:`drop_repeats`).
+    extra : (k, 2) float64
+    """
+    import shapely
+
+    ring, poly, geom = offsets
+    xy = np.concatenate((coords, extra))
+    plain = np.zeros(len(xy), dtype=bool)
+    for _ in range(4):
+        out = to_user_frame(xy, box, corner, consistent, plain)
+        bufs = drop_repeats((np.ascontiguousarray(out[: len(coords)]), ring, poly, geom))
+        if not consistent:
+            break
+        cells = shapely.from_ragged_array(
+            shapely.GeometryType.MULTIPOLYGON, bufs[0], tuple(bufs[1:])
+        )
+        bad = np.flatnonzero(~shapely.is_valid(cells))
+        if not len(bad):
+            break
+        lo = ring[poly[geom[bad]]]
+        hi = ring[poly[geom[bad + 1]]]
+        mark = np.zeros(len(xy) + 1, dtype=np.int64)
+        np.add.at(mark, lo, 1)
+        np.add.at(mark, hi, -1)
+        more = np.cumsum(mark)[:-1] > 0
+        if not (more & ~plain).any():
+            break
+        plain |= more
+    return bufs, out[len(coords) :]
+
+
+def _consistent(rel: np.ndarray, plain: np.ndarray, lo: float, w: float, keep=None):
     """Coordinates on one axis whose copies by box shifts are exact shifts of each other.
 
     ``rel`` are the exact offsets from the box's corner, ``plain`` their rounded sums with
     it. The offsets that differ by whole periods (one class) are rounded once, at the copy
     farthest from zero (the coarsest float spacing), and the others are that value shifted
-    by the periods between them, where every such shift is a float; other classes keep
-    ``plain``.
+    by the periods between them, where every such shift is a float; other classes, and
+    those of the points ``keep`` (a mask), keep ``plain``.
     """
     a = np.floor(rel / w)
     c = rel - a * w
@@ -134,6 +177,8 @@ def _consistent(rel: np.ndarray, plain: np.ndarray, lo: float, w: float) -> np.n
     k = (a - far[cls]) * w
     out = base[cls] + k
     bad = two_sum_error(base[cls], k) != 0
+    if keep is not None:
+        bad |= keep
     if bad.any():
         worse = np.zeros(len(keys), dtype=bool)
         worse[cls[bad]] = True
