@@ -717,6 +717,7 @@ def test_drawn_cells_travel_quantized_within_a_fraction_of_a_pixel():
     assert np.abs(wire.dequantize(q, codes) - xy).max() <= q[2] / 2 + 1e-9
     assert wire.quantize(xy, 1e-3) is None  # 10^6 steps do not fit in 16 bits
     assert wire.quantize(xy[:0], px) is None
+    assert wire.quantize(xy, 5e-324) is None  # px / 16 underflows: not a division by zero
     # the page's drawing of the operated cells: the thinned rings, a fraction of a pixel off
     s = Session(HOLED)
     h, a = wire.unpack(geometry_message(s, None, seq=1, boundary=False, px=px))
@@ -1033,6 +1034,18 @@ def test_a_page_that_comes_before_the_first_check_ends_gets_its_violations(folde
         assert app.state.hub.checked is app.state.hub.session.result
 
 
+def test_subnormal_view_and_huge_coordinates_get_clear_errors(client):
+    """A subnormal px had made the quantisation step 0: no reply to any later edit."""
+    with _ws(client) as ws:
+        _greet(ws)
+        ws.send_text(json.dumps({"op": "view", "px": 5e-324, "id": 1}))
+        assert "1e-300" in _reply(ws)["issues"][0]["message"]
+        ws.send_text(json.dumps({"op": "move", "i": 0, "x": 1e300, "y": 0.0, "id": 2}))
+        assert "at most 1e15" in _reply(ws)["issues"][0]["message"]
+        ws.send_text(json.dumps({"op": "set", "key": "cells.fillet", "value": 2.0, "id": 3}))
+        assert _geom(ws)[0]["reply_to"] == 3
+
+
 def test_websocket_view_sets_the_drawing_resolution(client):
     with _ws(client) as ws:
         _greet(ws)
@@ -1132,6 +1145,8 @@ def test_websocket_survives_malformed_messages(client):
         '{"op":"view","px":-1}',
         '{"op":"view","px":"1"}',
         '{"op":"view"}',
+        '{"op":"view","px":5e-324}',
+        '{"op":"move","i":0,"x":1e300,"y":0}',
         "[" * 5000,
     ]
     with _ws(client) as ws:

@@ -74,8 +74,10 @@ def number(value, name: str) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise BadMessage("", f"{name} must be a number")
     v = float(value)
-    if not math.isfinite(v) or abs(v) > 1e15:
+    if not math.isfinite(v):
         raise BadMessage("", f"{name} must be a finite number")
+    if abs(v) > 1e15:
+        raise BadMessage("", f"{name} must be at most 1e15 in magnitude; got {v:g}")
     return v
 
 

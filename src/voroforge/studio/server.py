@@ -653,8 +653,11 @@ async def _view(hub: _Hub, ws, cid: int, msg: dict, mid) -> None:
     drawing again.
     """
     px = msg.get("px")
-    if isinstance(px, bool) or not isinstance(px, int | float) or not 0 < px < 1e300:
-        await hub.send(ws, _error_json("view needs px, a positive number", mid, cid))
+    if isinstance(px, bool) or not isinstance(px, int | float) or not 1e-300 < px < 1e300:
+        # not below 1e-300: a subnormal px made the quantisation step 0 (a division by zero
+        # that left the connection without replies)
+        text = "view needs px, a number between 1e-300 and 1e300"
+        await hub.send(ws, _error_json(text, mid, cid))
         return
     before = hub.px
     hub.pixels[cid] = float(px)

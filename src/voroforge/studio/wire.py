@@ -245,6 +245,8 @@ def quantize(coords: np.ndarray, px: float) -> tuple[list[float], np.ndarray] | 
     extent = max(float(x.max() - origin[0]), float(y.max() - origin[1]))
     for k in STEPS_PER_PIXEL:
         step = px / k
+        if not step > 0.0:  # px / k underflowed: send the coordinates as they are
+            return None
         if extent / step <= 65535.0 - 1.0:
             codes = np.rint((xy - origin) / step).astype(np.uint16).reshape(-1)
             return [float(origin[0]), float(origin[1]), float(step)], codes
