@@ -273,6 +273,35 @@ def test_smooth_reproduces_linear_and_spherical_quadratics():
     assert np.abs(z0 - (1.0 + q[:, 0] - q[:, 1] + 3.0 * (q**2).sum(1))).max() > 1e-4
 
 
+@pytest.mark.parametrize("aspect", [1e-2, 1e-6, 1e-9])
+@pytest.mark.parametrize("turn", [0.0, 0.5])
+def test_estimated_gradients_on_thin_strips(aspect, turn):
+    """Sites on a 1 x 1e-6 strip: the fit's columns were 1e6 apart in size (found by an
+    independent check: 3.8e-2 error on linear data); each site's offsets are whitened now."""
+    from voroforge.engine.delaunay import delaunay
+    from voroforge.engine.interpolate import estimate_gradients
+
+    rng = np.random.default_rng(5)
+    c, s = np.cos(turn), np.sin(turn)
+    rot = np.array([[c, -s], [s, c]])
+    sites = (rng.random((40, 2)) * [1.0, aspect]) @ rot.T
+    q = (rng.random((500, 2)) * [0.8, 0.8 * aspect] + [0.1, 0.1 * aspect]) @ rot.T
+    lin = 2.5 + 0.7 * sites[:, 0] - 1.3 * sites[:, 1]
+    out = vf.natural_neighbor(sites, lin, q, smooth=True)
+    ok = ~np.isnan(out)
+    assert ok.sum() > 300
+    # a turned strip's sites round across it by ~1e-16 / aspect of its width (plain Sibson
+    # is off by 4.8e-9 at 1e-9 too)
+    tol = 1e-12 + 1e-17 / aspect
+    np.testing.assert_allclose(out[ok], 2.5 + 0.7 * q[ok, 0] - 1.3 * q[ok, 1], atol=tol)
+    # the fit is exact for quadratics: gradients where the two-ring fit is used
+    quad = sites[:, 0] ** 2 - 3.0 * sites[:, 0] * sites[:, 1] + 0.25 * sites[:, 1] ** 2
+    x, y = sites.T
+    want = np.column_stack((2 * x - 3 * y, -3 * x + 0.5 * y))
+    got = estimate_gradients(delaunay(sites), quad[:, None])[:, 0]
+    assert np.median(np.abs(got - want).max(axis=1)) < 1e-6
+
+
 def test_smooth_at_sites_continuity_and_errors():
     rng = np.random.default_rng(9)
     sites = rng.random((120, 2))
