@@ -407,6 +407,23 @@ def test_check_clean_and_overhang():
     assert all(v.value > 45 for v in rep.violations)
 
 
+def test_check_reports_pinches_that_files_would_weld(tmp_path):
+    """Two squares touching at a corner, extruded: watertight in memory, but the STL's
+    welded edge has four faces (found by an independent check)."""
+    m = solid.extrude(shapely.MultiPolygon([shapely.box(0, 0, 1, 1), shapely.box(1, 1, 2, 2)]), 1)
+    assert m.is_watertight
+    rep = solid.check(m, max_overhang=None)
+    pinches = [v for v in rep.violations if v.kind == "pinch"]
+    assert sorted(v.location for v in pinches) == [(1.0, 1.0, 0.0), (1.0, 1.0, 1.0)]
+    assert rep.stats["pinches"] == 2 and all(v.value == 2 for v in pinches)
+    path = tmp_path / "pinch.stl"
+    m.export(path)
+    assert not trimesh.load(path).is_watertight  # what the check warns about
+    parts = shapely.MultiPolygon([shapely.box(0, 0, 1, 1), shapely.box(2, 2, 3, 3)])
+    apart = solid.extrude(parts, 1)
+    assert "pinch" not in solid.check(apart, max_overhang=None).by_kind()
+
+
 # --- files ---------------------------------------------------------------------------------
 
 

@@ -1,4 +1,4 @@
-"""Print checks on a solid: thin struts, small pores, trapped voids, floating parts, overhangs.
+"""Print checks on a solid: struts, pores, voids, floating parts, pinches, overhangs.
 
 :func:`check` returns a :class:`Report` whose ``violations`` list has one entry per problem,
 each with its kind, location (x, y, z), measured value and the limit, like the 2D
@@ -159,8 +159,9 @@ def check(
     -------
     Report
         ``violations`` of kinds ``thin_strut``, ``small_pore``, ``trapped_void``,
-        ``floating_part``, ``overhang``; ``stats`` with ``watertight``, ``volume``,
-        ``bodies``, ``voids``.
+        ``floating_part``, ``pinch`` (separate sheets meeting at a point or an edge: the
+        value is the number of vertex copies there), ``overhang``; ``stats`` with
+        ``watertight``, ``volume``, ``bodies``, ``voids``, ``pinches``.
     """
     import trimesh
 
@@ -194,6 +195,8 @@ def check(
         for i in pos:
             if i != main:
                 out.append(Violation("floating_part", _loc(cen[i]), float(vol[i]), 0.0))
+    pinches = _pinches(m)
+    out.extend(Violation("pinch", _loc(p), float(c), 1.0) for p, c in pinches)
     if max_overhang is not None:
         out.extend(_overhangs(m, float(max_overhang), min_overhang_area))
     stats = {
@@ -201,8 +204,24 @@ def check(
         "volume": float(vol.sum()),
         "bodies": int(shells.sum()),
         "voids": int(len(voids)),
+        "pinches": len(pinches),
     }
     return Report(out, stats)
+
+
+def _pinches(m):
+    """``[(position, copies)]`` of points where separate sheets of the mesh meet.
+
+    Two vertices at one position (parts touching along an edge or at a point) keep the
+    mesh watertight in memory, but STL has no vertex identity and OBJ/PLY readers weld by
+    position: the file's mesh is then non-manifold there (an edge of four faces).
+    """
+    v = np.asarray(m.vertices)
+    used = np.unique(np.asarray(m.faces).reshape(-1)) if len(m.faces) else np.zeros(0, int)
+    if not len(used):
+        return []
+    pos, counts = np.unique(v[used], axis=0, return_counts=True)
+    return [(pos[i], int(counts[i])) for i in np.flatnonzero(counts > 1)]
 
 
 def _overhangs(m, max_angle: float, min_area):
