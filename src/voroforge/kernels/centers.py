@@ -27,6 +27,7 @@ from ..config import (
     VERTEX_SNAP_RTOL,
 )
 from .predicates import cross_diff, incircle, incircle_fast
+from .refit import fit_classes
 from .vertex import (
     canonical_vertex_ranked,
     is_close,
@@ -699,17 +700,32 @@ def contract(xs, ys, tri, he, parent, cx, cy, rank, box, err, pa, pb):
     edge at a time) and gives the short Voronoi edges around the fold: their ends are one
     vertex to rounding. ``parent`` (compressed, as :func:`merge_cocircular` returns it) is
     updated in place; every member of a joined class gets the class's named vertex, and the
-    edges at renamed centres are tested for swaps again (:func:`_unfold`).
+    edges at renamed centres are tested for swaps again (:func:`_unfold`). Pairs ``(t, t)``
+    are a stalled fold test's request: when no pair joins, those classes are named afresh
+    where their cells turn best (:func:`.refit.fit_classes`), and the count is of renamed
+    classes (0: nothing changed).
     """
     merges = 0
+    refit = False
     for k in range(pa.shape[0]):
-        merges += _link(parent, pa[k], pb[k])
-    if merges == 0:
+        if pa[k] == pb[k]:
+            refit = True  # a stalled fold test's request (:func:`.folds.fold_pairs`)
+        else:
+            merges += _link(parent, pa[k], pb[k])
+    if merges == 0 and not refit:
         return 0
     for k in range(parent.shape[0]):
         parent[k] = _find(parent, k)
     changed = np.zeros(parent.shape[0], dtype=np.uint8)
-    _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, np.bool_(False))
+    if merges > 0:
+        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, np.bool_(False))
+    else:
+        fresh = np.zeros(parent.shape[0], dtype=np.uint8)
+        for k in range(pa.shape[0]):
+            fresh[parent[pa[k]]] = 1
+        merges = fit_classes(xs, ys, tri, he, parent, cx, cy, fresh, changed)
+        if merges == 0:
+            return 0
     fold = np.zeros(tri.shape[0], dtype=np.uint8)
     cand = np.zeros(0, dtype=np.int64)
     joined = np.zeros(0, dtype=np.uint8)

@@ -14,7 +14,8 @@ built again):
   through a bad turn whose ends are one vertex to rounding, or, at a straight angle rounded
   into a bad turn, the edge :func:`_straight_fold` picks), within a reach of
   ``FOLD_REACH_RTOL`` of the vertex's distance from its site, doubled while no folded ring
-  gives a join (a stall: small float circles far from the origin).
+  gives a join (a stall: small float circles far from the origin); a test that still
+  stalls asks for the classes at the bad turns to be named afresh (:func:`.refit.fit_classes`).
 """
 
 from __future__ import annotations
@@ -159,7 +160,50 @@ def fold_pairs(sites, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, o
             break
         rtol *= 2.0
         pa, pb = _pairs_within(*args, rtol, True)
+    if pa.shape[0] == 0:
+        # still none: the classes at the bad turns are to be named afresh, each at the
+        # centre of one of its triples that leaves its cells the fewest bad turns (pairs
+        # (t, t): :func:`.centers.contract`); a function of the rings and classes alone
+        pa = _stalled(sites, tri, he, out, cx, cy, coords, lengths, order)
+        pb = pa
     return pa, pb
+
+
+@njit(**NJIT)
+def _stalled(sites, tri, he, out, cx, cy, coords, lengths, order):
+    """Every triangle of the rings' fans at a bad turn or its two neighbours (by bits).
+
+    All triangles holding a vertex's bits, so every class there, whatever triangle the
+    builder's numbering puts first (two classes may share a name).
+    """
+    most = 0
+    for s in range(sites.shape[0]):
+        i = sites[s]
+        most = max(most, lengths[order[i] + 1] - lengths[order[i]])
+    fan = np.zeros(tri.shape[0] // 3 + 1, dtype=np.int64)
+    got = np.zeros(3 * most * sites.shape[0] + 1, dtype=np.int64)
+    ng = 0
+    for s in range(sites.shape[0]):
+        i = sites[s]
+        b = lengths[order[i]]
+        m = lengths[order[i] + 1] - b - 1
+        if m < 3:
+            continue
+        nf = _fan(i, tri, he, out, fan)
+        for k in range(m):
+            kp = k - 1 if k > 0 else m - 1
+            kn = k + 1 if k + 1 < m else 0
+            if not _bad_turn(coords, b + kp, b + k, b + kn):
+                continue
+            for j in (kp, k, kn):
+                for d in range(nf):  # every class at the vertex (two may share its bits)
+                    t = fan[d]
+                    if cx[t] == coords[b + j, 0] and cy[t] == coords[b + j, 1]:
+                        if ng == got.shape[0]:
+                            got = np.concatenate((got, got))
+                        got[ng] = t
+                        ng += 1
+    return got[:ng]
 
 
 @njit(**NJIT)
