@@ -201,6 +201,36 @@ def test_field_values_without_attractors_are_errors():
         result_of(panel(**{"seeds.method": "density", "seeds.count": 10}))
 
 
+def test_recursion_too_big_is_refused_before_work(monkeypatch):
+    """depth 6 x count 6 on 60 seeds asked for 2.8M cells and ran for minutes (found by an
+    independent check); a callable count is stopped by subdivide's running total."""
+    import time
+
+    from voroforge import config
+    from voroforge.design.recursive import subdivide
+
+    t0 = time.perf_counter()
+    data = panel(**{"recursion.depth": 6, "recursion.count": 6, "cells.web": None})
+    with pytest.raises(DesignError, match=r"recursion.depth: depth 6 with count 6 .* cells"):
+        result_of(data)
+    assert time.perf_counter() - t0 < 30  # refused from the estimate, not after the work
+    monkeypatch.setattr(config, "RECURSION_MAX_CELLS", 50)
+    pts = np.random.default_rng(0).random((10, 2))
+    with pytest.raises(ValueError, match="recursion level 1 would hold over 50 cells"):
+        subdivide((0, 0, 1, 1), pts, depth=2, count=lambda region: 8, seed=1)
+    assert len(subdivide((0, 0, 1, 1), pts, depth=1, count=lambda region: 4, seed=1)[1].cells) == 40
+
+
+def test_design_seed_count_is_bounded(monkeypatch):
+    from voroforge import config
+
+    monkeypatch.setattr(config, "DESIGN_MAX_CELLS", 100)
+    with pytest.raises(DesignError, match=r"seeds.count: 200 seeds, at most 100"):
+        result_of(panel(**{"seeds.method": "random", "seeds.count": 200}))
+    with pytest.raises(DesignError, match=r"seeds.radius: .* seeds, at most 100"):
+        result_of(panel(**{"seeds.method": "poisson", "seeds.radius": 3}))
+
+
 def test_periodic_tile_is_seamless():
     data = panel(**{"voronoi.periodic": True, "boundary.margin": 0, "seeds.radius": 20})
     r = result_of(data)

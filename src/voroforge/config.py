@@ -225,6 +225,12 @@ POISSON_MAX_POINTS = 200_000
 #: Most points any other seeding method may place (random, density, grids): 2e7 points are
 #: 320 MB of coordinates before any cell is built; a typo such as count = 1e9 asked for 18 GiB
 SEEDS_MAX_POINTS = 20_000_000
+#: Most seeds a design may have (its cells are shapely polygons with openings, offsets and
+#: fabrication checks, about 2 KB each and more; 1e7 was killed for memory on 24 GB)
+DESIGN_MAX_CELLS = 2_000_000
+#: Most cells one recursion level may hold (design.recursive.subdivide): each costs ~0.2 ms
+#: of shapely work, and depth 6 with count 6 on 60 seeds asked for 2.8M (over 8 minutes)
+RECURSION_MAX_CELLS = 500_000
 
 #: mm: default SVG stroke width of a design build, a laser hairline (drivers cut only
 #: hairlines, about 0.001 in or less, as vectors; 0.01 in would be engraved).

@@ -269,7 +269,24 @@ def attractor_field(design: Design, base: Path | None = None):
 
 
 def make_seeds(design: Design, domain, field_fn, base: Path | None) -> np.ndarray:
-    """The sites ``[seeds]`` asks for in ``domain`` (``field_fn``: the attractor field or None)."""
+    """The sites ``[seeds]`` asks for in ``domain`` (``field_fn``: the attractor field or None).
+
+    At most ``DESIGN_MAX_CELLS``: a design's cells are shapely polygons with openings,
+    offsets and checks, and 1e7 seeds were killed for memory without a message.
+    """
+    pts = _make_seeds(design, domain, field_fn, base)
+    if len(pts) > config.DESIGN_MAX_CELLS:
+        s = design.seeds
+        key = {"random": "count", "density": "count", "image": "count", "poisson": "radius"}
+        raise DesignError.at(
+            f"seeds.{key.get(s.method, 'spacing' if s.method != 'file' else 'file')}",
+            f"{len(pts):,} seeds, at most {config.DESIGN_MAX_CELLS:,} in a design "
+            "(voroforge.voronoi takes more)",
+        )
+    return pts
+
+
+def _make_seeds(design: Design, domain, field_fn, base: Path | None) -> np.ndarray:
     from . import populate
 
     s = design.seeds
@@ -456,6 +473,16 @@ def _recurse(design: Design, domain, points, field_fn, seed):
         draw = cellops.random(len(level), prob, seed=seed * 1009 + level.depth)
         return np.asarray(draw, dtype=bool) & live
 
+    if not count_spec.graded and not prob_spec.graded:  # refuse before any work
+        grow = max(0.0, round(count_spec.value)) * min(max(prob_spec.value, 0.0), 1.0)
+        expected = len(points) * grow ** float(rec.depth)
+        if expected > config.RECURSION_MAX_CELLS:
+            raise DesignError.at(
+                "recursion.depth",
+                f"depth {rec.depth} with count {round(count_spec.value)} on {len(points):,} "
+                f"seeds makes about {expected:,.0f} cells, at most "
+                f"{config.RECURSION_MAX_CELLS:,}: use a smaller depth or count",
+            )
     webs = list(rec.web)
     if len(webs) not in (0, 1, rec.depth + 1):
         raise DesignError.at(

@@ -252,6 +252,7 @@ def subdivide(
         if mask.shape != (len(prev),) or mask.dtype != bool:
             raise ValueError(f"select must return a boolean mask of shape ({len(prev)},)")
         cells, sites, parent = [], [], []
+        total = 0
         for i in np.flatnonzero(mask):
             region = prev.openings[i]
             child_seed = int(rng.integers(2**63))  # drawn for every chosen cell: stable
@@ -261,6 +262,13 @@ def subdivide(
             if isinstance(n, bool) or int(n) != n or n < 0:
                 raise ValueError(f"count rule returned {n!r} for cell {i}; need an int >= 0")
             n = int(n)
+            total += n
+            if total > config.RECURSION_MAX_CELLS:
+                raise ValueError(
+                    f"recursion level {k} would hold over {config.RECURSION_MAX_CELLS:,} cells "
+                    f"({total:,} so far); "
+                    "use a smaller depth or count"
+                )
             if n == 0:
                 continue
             if n == 1:
