@@ -24,6 +24,7 @@ from ..io.readers.rings import even_odd, polygonal_part
 from ..io.readers.svg import path_lines, path_rings, svg_in_mm
 
 __all__ = [
+    "MM_PER_UNIT",
     "as_polygonal",
     "circle",
     "curves_from_svg",
@@ -32,12 +33,14 @@ __all__ = [
     "from_geojson",
     "from_svg",
     "load",
+    "load_in_units",
     "path_lines",
     "path_rings",
     "polygon",
     "polygonal_part",
     "rectangle",
     "svg_in_mm",
+    "svg_in_units",
     "union",
 ]
 
@@ -273,3 +276,29 @@ def load(path, **options):
         )
     p = existing_file(path)
     return as_polygonal(read_boundary(p, **options), str(p))
+
+
+#: Millimetres per design unit
+MM_PER_UNIT = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}
+
+
+def load_in_units(path: Path, units: str, close_tolerance: float = 0.0):
+    """A boundary file in the design's units.
+
+    An SVG whose width has a physical unit (``width="24in"``) is read in mm, so it is scaled
+    to the design's units (a 24 in panel in an inch design was 609.6 in wide). Unitless
+    SVGs, DXF (coordinates as drawn) and GeoJSON are taken as they are.
+    """
+    svg = path.suffix.lower() == ".svg"
+    geom = load(path, close_tolerance=close_tolerance) if svg else load(path)
+    return svg_in_units(geom, path, units) if svg else geom
+
+
+def svg_in_units(geom, path: Path, units: str):
+    """Geometry read from an SVG (in mm when its width has a unit) in the design's units."""
+    from shapely import affinity
+
+    if units == "mm" or not svg_in_mm(path):
+        return geom
+    factor = 1.0 / MM_PER_UNIT[units]
+    return affinity.scale(geom, factor, factor, origin=(0.0, 0.0))

@@ -30,13 +30,13 @@ import numpy as np
 import shapely
 
 from .. import config
+from .boundary import MM_PER_UNIT
 from .designfile import DesignError, find_file
 from .schema import Design, Graded
 
 __all__ = ["MM_PER_UNIT", "Result", "SeedTable", "Stage", "compute"]
 
 #: Millimetres per design unit.
-MM_PER_UNIT = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}
 
 #: A progress callback: called with the name of each stage.
 Stage = Callable[[str], None]
@@ -132,32 +132,6 @@ def _outline(geom) -> np.ndarray:
 # --- boundary and seeds -----------------------------------------------------------------
 
 
-def _file_boundary(path: Path, units: str, close_tolerance: float = 0.0):
-    """A boundary file in the design's units.
-
-    An SVG whose width has a physical unit (``width="24in"``) is read in mm, so it is scaled
-    to the design's units (a 24 in panel in an inch design was 609.6 in wide). Unitless
-    SVGs, DXF (coordinates as drawn) and GeoJSON are taken as they are.
-    """
-    from . import boundary as bd
-
-    svg = path.suffix.lower() == ".svg"
-    geom = bd.load(path, close_tolerance=close_tolerance) if svg else bd.load(path)
-    return _svg_in_units(geom, path, units) if path.suffix.lower() == ".svg" else geom
-
-
-def _svg_in_units(geom, path: Path, units: str):
-    """Geometry read from an SVG (in mm when its width has a unit) in the design's units."""
-    from shapely import affinity
-
-    from . import boundary as bd
-
-    if units == "mm" or not bd.svg_in_mm(path):
-        return geom
-    factor = 1.0 / MM_PER_UNIT[units]
-    return affinity.scale(geom, factor, factor, origin=(0.0, 0.0))
-
-
 def _boundary(design: Design, base: Path | None):
     from . import boundary as bd
 
@@ -171,7 +145,7 @@ def _boundary(design: Design, base: Path | None):
     elif spec.shape == "polygons":
         geom = bd.union(*(bd.polygon(p.points, p.holes) for p in spec.parts))
     else:
-        geom = _file_boundary(
+        geom = bd.load_in_units(
             find_file(base, spec.file, "boundary.file"), design.design.units, spec.close_tolerance
         )
     if spec.corner_radius > 0:
@@ -208,7 +182,7 @@ def _curve(a, base: Path | None, key: str, units: str = "mm"):
         return shapely.MultiLineString([np.asarray(x)[:, :2] for x in lines])
     path = find_file(base, a.file, f"{key}.file")
     if path.suffix.lower() == ".svg":
-        return _svg_in_units(bd.curves_from_svg(path), path, units)
+        return bd.svg_in_units(bd.curves_from_svg(path), path, units)
     geom = shapely.union_all(shapely.get_parts(shapely.from_geojson(path.read_text("utf-8"))))
     lines = [g.boundary if g.geom_type.endswith("Polygon") else g for g in shapely.get_parts(geom)]
     merged = shapely.union_all([g for g in lines if "LineString" in g.geom_type])
@@ -271,19 +245,17 @@ def attractor_field(design: Design, base: Path | None = None):
 def make_seeds(design: Design, domain, field_fn, base: Path | None) -> np.ndarray:
     """The sites ``[seeds]`` asks for in ``domain`` (``field_fn``: the attractor field or None).
 
-    At most ``DESIGN_MAX_CELLS``: a design's cells are shapely polygons with openings,
-    offsets and checks, and 1e7 seeds were killed for memory without a message.
+    At most ``DESIGN_MAX_CELLS`` (1e7 seeds were killed for memory without a message).
     """
-    pts = _make_seeds(design, domain, field_fn, base)
+    pts, m = _make_seeds(design, domain, field_fn, base), design.seeds.method
     if len(pts) > config.DESIGN_MAX_CELLS:
-        s = design.seeds
-        key = {"random": "count", "density": "count", "image": "count", "poisson": "radius"}
-        raise DesignError.at(
-            f"seeds.{key.get(s.method, 'spacing' if s.method != 'file' else 'file')}",
-            f"{len(pts):,} seeds, at most {config.DESIGN_MAX_CELLS:,} in a design "
-            "(voroforge.voronoi takes more)",
-        )
+        key = "count" if m in ("random", "density", "image") else _SIZE_KEY.get(m, "spacing")
+        why = f"{len(pts):,} seeds, at most {config.DESIGN_MAX_CELLS:,} in a design"
+        raise DesignError.at(f"seeds.{key}", why)
     return pts
+
+
+_SIZE_KEY = {"poisson": "radius", "file": "file"}
 
 
 def _make_seeds(design: Design, domain, field_fn, base: Path | None) -> np.ndarray:
@@ -441,7 +413,7 @@ def _recurse(design: Design, domain, points, field_fn, seed):
     """Recursion levels -> (leaf cells, their openings, level per cell, the levels)."""
     rec = design.recursion
     from . import cellops
-    from .recursive import subdivide
+    from .recursive import check_size, subdivide
 
     count_spec = rec.count
     if count_spec.graded and field_fn is None:
@@ -474,15 +446,8 @@ def _recurse(design: Design, domain, points, field_fn, seed):
         return np.asarray(draw, dtype=bool) & live
 
     if not count_spec.graded and not prob_spec.graded:  # refuse before any work
-        grow = max(0.0, round(count_spec.value)) * min(max(prob_spec.value, 0.0), 1.0)
-        expected = len(points) * grow ** float(rec.depth)
-        if expected > config.RECURSION_MAX_CELLS:
-            raise DesignError.at(
-                "recursion.depth",
-                f"depth {rec.depth} with count {round(count_spec.value)} on {len(points):,} "
-                f"seeds makes about {expected:,.0f} cells, at most "
-                f"{config.RECURSION_MAX_CELLS:,}: use a smaller depth or count",
-            )
+        with as_design_error("recursion.depth"):
+            check_size(len(points), rec.depth, count_spec.value, prob_spec.value)
     webs = list(rec.web)
     if len(webs) not in (0, 1, rec.depth + 1):
         raise DesignError.at(

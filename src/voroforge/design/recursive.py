@@ -299,6 +299,21 @@ def subdivide(
     return levels
 
 
+def check_size(sites: int, depth: int, count: float, probability: float = 1.0) -> None:
+    """Refuse, before any work, a recursion whose last level would pass the cell limit.
+
+    About ``sites * (count * probability) ** depth`` cells (``RECURSION_MAX_CELLS``).
+    """
+    grow = max(0.0, round(count)) * min(max(probability, 0.0), 1.0)
+    expected = sites * grow ** float(depth)
+    if expected > config.RECURSION_MAX_CELLS:
+        raise ValueError(
+            f"depth {depth} with count {round(count)} on {sites:,} seeds makes about "
+            f"{expected:,.0f} cells, at most {config.RECURSION_MAX_CELLS:,}: use a smaller "
+            "depth or count"
+        )
+
+
 def leaves(levels) -> np.ndarray:
     """The openings to cut: at every level, the openings of cells that were not subdivided.
 
