@@ -147,6 +147,11 @@ def test_mesh_write_glb_far_and_stl_warns(tmp_path):
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         meshio.write(tc.box((1, 2, 3)), tmp_path / "near.stl")  # near the origin: no warning
+    # a slab thinner than float32 holds there: the size hardly moves but the slab collapses
+    slab = tc.box((100, 100, 1e-9))
+    slab.apply_translation((50, 50, 10))
+    with pytest.warns(UserWarning, match="distinct vertices fall onto others"):
+        meshio.write(slab, tmp_path / "slab.stl")
 
 
 def _boxes(*moves, scale=None):

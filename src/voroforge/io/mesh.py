@@ -260,12 +260,24 @@ def _f32_warning(items, kind: str) -> None:
     if not len(v):
         return
     size = float(np.ptp(v, axis=0).max()) or 1.0
-    moved = float(np.abs(v.astype(np.float32).astype(np.float64) - v).max())
+    v32 = v.astype(np.float32)
+    moved = float(np.abs(v32.astype(np.float64) - v).max())
     if moved > 1e-6 * size:
         warnings.warn(
             f"{kind} stores float32 coordinates: vertices move by up to {moved:.3g} "
             f"({moved / size:.2g} of the mesh's size); write .3mf, .ply, .obj or .3dm, or move "
             "the mesh near the origin",
+            stacklevel=3,
+        )
+        return
+    # a wall or slab thinner than float32's spacing there collapses although the mesh's
+    # size hardly moves (an extrusion 1e-9 thick, a foam wall of 1e-6 at 100)
+    lost = len(np.unique(v, axis=0)) - len(np.unique(v32, axis=0))
+    if lost:
+        warnings.warn(
+            f"{kind} stores float32 coordinates: {lost} distinct vertices fall onto others "
+            "(features thinner than float32 can hold there); the file's mesh is degenerate. "
+            "Write .3mf, .ply, .obj or .3dm",
             stacklevel=3,
         )
 
