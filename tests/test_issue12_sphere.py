@@ -17,7 +17,16 @@ import pytest
 
 import voroforge as vf
 from test_issue12_exact3d import _check_cells
-from voroforge.kernels.predicates3d import bisector_side, offset_side, scratch, vertex_offset
+from voroforge.kernels.expansion import two_diff
+from voroforge.kernels.predicates3d import (
+    bisector_side,
+    frame_lift,
+    frame_offset,
+    frame_side,
+    offset_side,
+    scratch,
+    vertex_offset,
+)
 
 
 def _fib(n):
@@ -52,7 +61,8 @@ def test_offset_side_agrees_with_the_exact_side(r, off, weights):
     rows = np.zeros((2, 4, 4))
     buf = scratch()
     d = np.zeros(3)
-    decided = tried = 0
+    E = np.zeros(6)
+    decided = tried = framed = 0
     for _ in range(40):
         i, k0, k1, k2 = (int(x) for x in rng.choice(60, 4, replace=False))
         # the float centre, or a point near it
@@ -67,8 +77,17 @@ def test_offset_side_agrees_with_the_exact_side(r, off, weights):
             assert got in (0, want), (i, k0, k1, k2, j, got, want)
             decided += got != 0
             tried += 1
+            # the same in a frame o near the vertex (the cell's first solved vertex)
+            o = c + rng.normal(size=3) * r * 1e-15 * rng.integers(0, 2)
+            frame_offset(c[0], c[1], c[2], d[0], d[1], d[2], o[0], o[1], o[2], E)
+            K, kerr = frame_lift(i, j, o[0], o[1], o[2], P, W)
+            (rh0, rl0), (rh1, rl1), (rh2, rl2) = (two_diff(P[j, q], P[i, q]) for q in range(3))
+            got = frame_side(E, rh0, rh1, rh2, rl0, rl1, rl2, K, kerr)
+            assert got in (0, want), (i, k0, k1, k2, j, got, want, "frame")
+            framed += got != 0
     # the point of it: near the centre it decides (almost) all of them
     assert tried > 1000 and decided >= 0.99 * tried, (decided, tried)
+    assert framed >= 0.9 * tried, (framed, tried)
 
 
 def test_offset_side_refuses_what_it_cannot_tell():
@@ -81,8 +100,14 @@ def test_offset_side_refuses_what_it_cannot_tell():
     d = np.zeros(3)
     assert vertex_offset(0, 1, 2, 4, P, W, WP, 8, buf, 0.0, 0.0, 0.0, d)
     assert (d == 0).all()
+    E = np.zeros(6)
+    frame_offset(0.0, 0.0, 0.0, d[0], d[1], d[2], 0.0, 0.0, 0.0, E)
     for j in (3, 5, 6, 7):
         assert offset_side(0, j, 0.0, 0.0, 0.0, d[0], d[1], d[2], P, W) == 0
+        K, kerr = frame_lift(0, j, 0.0, 0.0, 0.0, P, W)
+        assert K == 0.0
+        r = P[j] - P[0]
+        assert frame_side(E, r[0], r[1], r[2], 0.0, 0.0, 0.0, K, kerr) == 0
     # and a point an ulp off the centre is decided, on the right side
     e = np.spacing(1.0)
     assert offset_side(0, 7, e, e, e, 0.0, 0.0, 0.0, P, W) == 1  # toward site 7 (1, 1, 1)

@@ -20,12 +20,20 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT, VORONOI3D_CUT_RTOL, VORONOI3D_STOP_RTOL
+from .expansion import two_diff
 from .graph3d import GCUT_DONE, GCUT_EMPTY, to_rings
 from .graph3d import cut as graph_cut
 from .grid import bucket_of, heap_pop, heap_push
 from .grid3d import bucket3d, shell_buckets_in, shell_gap
 from .polyhedron import CUT_DONE, CUT_EMPTY, CUT_OVERFLOW, cut
-from .predicates3d import bisector_side, offset_side, vertex_offset
+from .predicates3d import (
+    bisector_side,
+    frame_lift,
+    frame_offset,
+    frame_side,
+    offset_side,
+    vertex_offset,
+)
 
 OK = 0
 EMPTY = 1
@@ -125,35 +133,37 @@ def _graph_side(i, v, j, DEG, LB, ns, P, W, WP, X):
 
 @njit(**NJIT)
 def offset_cache(vcap):
-    """The cache of :func:`_offset_side` for cells of up to ``vcap`` vertices: ``(XK, XF)``.
+    """The cache of :func:`_cached_vertex` for cells of up to ``vcap`` vertices: ``(XK, XF)``.
 
-    ``XK[0, 0]`` counts the cells begun (:func:`one_cell`); ``XK[1 + v] = (count, k0, k1,
-    k2)`` says for which cell and owner triple ``XF[v] = (c, x - c)`` holds graph vertex
-    ``v``'s point ``x`` relative to a nearby float point ``c`` (NaN offsets: the triple is
-    not independent). An entry of another cell or triple is stale.
+    ``XK[0, 0]`` counts the cells begun (:func:`one_cell`), ``XK[0, 1]`` is that count once
+    the cell's frame ``o = XF[vcap, :3]`` is set; ``XK[1 + v] = (count, k0, k1, k2)`` says
+    for which cell and owner triple ``XF[v]`` holds graph vertex ``v``'s point ``x``:
+    ``(c, x - c, x - o, error of x - o)``, ``c`` a float point near it (NaN: the triple
+    is not independent). An entry of another cell or triple is stale.
     """
-    return np.zeros((vcap + 1, 4), np.int64), np.zeros((vcap, 6))
+    return np.zeros((vcap + 1, 4), np.int64), np.zeros((vcap + 1, 12))
 
 
 @njit(**NJIT_NO_NRT)
-def _offset_side(i, v, j, V, DEG, LB, ns, P, W, WP, X):
-    """:func:`_graph_side` decided on the vertex's exact offset from a float point, or 2.
+def _cached_vertex(i, v, V, DEG, LB, ns, P, W, WP, X):
+    """Whether graph vertex ``v``'s exact offsets are in the cache (solved now if stale).
 
     A vertex whose float value is within the filter's band of a plane is mostly one whose
     coordinates, relative to the site, are too coarse for that plane, not one on it: a
     vertex near the centre of sites on a sphere has every bisector within an ulp, and the
     exact test of every candidate against it made such cells cost quadratic time. Its
     point relative to ``c`` (its float position) is solved once from its first three
-    owners (:func:`kernels.predicates3d.vertex_offset`, cached per cell in ``X[3], X[4]``)
-    and each plane is then decided in double-double with a proven bound
-    (:func:`kernels.predicates3d.offset_side`); 2 when that cannot tell (then
-    :func:`_graph_side` decides exactly, as before). The first triple is the one
-    :func:`_graph_side` tries first, so a decision here is its decision.
+    owners (:func:`kernels.predicates3d.vertex_offset`), and relative to the cell's frame
+    ``o`` (the first such ``c``), so that each plane is then decided in floats or
+    double-double with a proven bound (:func:`_resolve`). The first triple is the one
+    :func:`_graph_side` tries first, so a decision on it is its decision. False when the
+    triple is not independent (then :func:`_graph_side` decides, as before).
     """
     XK = X[3]
     XF = X[4]
-    if DEG[v] < 3 or v + 1 >= XK.shape[0]:
-        return 2
+    vcap = XF.shape[0] - 1
+    if DEG[v] < 3 or v >= vcap:
+        return False
     k0 = owner_key(LB[v, 0], ns)
     k1 = owner_key(LB[v, 1], ns)
     k2 = owner_key(LB[v, 2], ns)
@@ -169,14 +179,29 @@ def _offset_side(i, v, j, V, DEG, LB, ns, P, W, WP, X):
         XF[v, 2] = cz
         if not vertex_offset(i, k0, k1, k2, P, W, WP, ns, X[1], cx, cy, cz, XF[v, 3:6]):
             XF[v, 3] = np.nan
+        elif XK[0, 1] != gen:  # the cell's frame: at its first solved vertex
+            XK[0, 1] = gen
+            XF[vcap, 0] = cx
+            XF[vcap, 1] = cy
+            XF[vcap, 2] = cz
+        if XF[v, 3] == XF[v, 3]:
+            frame_offset(
+                cx,
+                cy,
+                cz,
+                XF[v, 3],
+                XF[v, 4],
+                XF[v, 5],
+                XF[vcap, 0],
+                XF[vcap, 1],
+                XF[vcap, 2],
+                XF[v, 6:12],
+            )
         XK[v + 1, 0] = gen
         XK[v + 1, 1] = k0
         XK[v + 1, 2] = k1
         XK[v + 1, 3] = k2
-    if XF[v, 3] != XF[v, 3]:
-        return 2
-    r = offset_side(i, j, XF[v, 0], XF[v, 1], XF[v, 2], XF[v, 3], XF[v, 4], XF[v, 5], P, W)
-    return 2 if r == 0 else r
+    return XF[v, 3] == XF[v, 3]
 
 
 @njit(**NJIT_NO_NRT)
@@ -238,11 +263,28 @@ def _resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X):
     smax = -np.inf
     graph = G[0].shape[0] > 0
     ns = P.shape[0]
+    XF = X[4]
+    vcap = XF.shape[0] - 1
+    lifted = False  # j's plane in the cell's frame (frame_lift), once a vertex needs it
+    K = kerr = rh0 = rh1 = rh2 = rl0 = rl1 = rl2 = 0.0
     for v in range(nv):
         s = S[v]
         if abs(s) <= tol:
             if graph:
-                side = _offset_side(i, v, j, C[0], G[0], G[3], ns, P, W, WP, X)
+                side = 2
+                if _cached_vertex(i, v, C[0], G[0], G[3], ns, P, W, WP, X):
+                    if not lifted:
+                        lifted = True
+                        K, kerr = frame_lift(i, j, XF[vcap, 0], XF[vcap, 1], XF[vcap, 2], P, W)
+                        rh0, rl0 = two_diff(P[j, 0], P[i, 0])
+                        rh1, rl1 = two_diff(P[j, 1], P[i, 1])
+                        rh2, rl2 = two_diff(P[j, 2], P[i, 2])
+                    side = frame_side(XF[v, 6:12], rh0, rh1, rh2, rl0, rl1, rl2, K, kerr)
+                    if side == 0:
+                        e = XF[v]
+                        side = offset_side(i, j, e[0], e[1], e[2], e[3], e[4], e[5], P, W)
+                        if side == 0:
+                            side = 2
                 if side == 2:
                     side = _graph_side(i, v, j, G[0], G[3], ns, P, W, WP, X)
             else:
@@ -563,7 +605,7 @@ def one_cell(
     """
     V, F, R, R2, S, work, T = C
     graph = G[0].shape[0] > 0
-    X[3][0, 0] += 1  # a new cell: _offset_side's cached offsets are stale
+    X[3][0, 0] += 1  # a new cell: _cached_vertex's offsets and frame are stale
     px = P[i, 0]
     py = P[i, 1]
     pz = P[i, 2]

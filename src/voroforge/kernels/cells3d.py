@@ -358,7 +358,7 @@ def cell_scratch(ns, g, tree, TV, TF, TR, caps):
     G = graph_scratch(caps[3], caps[6])
     G0 = graph_scratch(np.int64(0), np.int64(1))  # no graph: face rings
     TDEG, TED, TBK, TLB, _, _, _ = graph_scratch(max(TV.shape[0], 1), caps[6])
-    # the exact predicates' scratch, whether the cell needed them, _offset_side's cache
+    # the exact predicates' scratch, whether the cell needed them, _cached_vertex's cache
     XK, XF = offset_cache(caps[3])
     X = (np.zeros((2, 4, 4)), scratch(), np.zeros(1, np.bool_), XK, XF)
     if not from_rings(TV.shape[0], TF, TF.shape[0], TR, TDEG, TED, TBK, TLB):

@@ -614,3 +614,83 @@ def offset_side(i, j, cx, cy, cz, dx, dy, dz, P, W):
     if res < -bound:
         return -1
     return 0
+
+
+#: the inputs :func:`frame_lift` sums (4 an axis for each site, 2 for the weights)
+_LIFT_TERMS = 26
+_LIFT_GAMMA = _LIFT_TERMS * _EPS / (1.0 - _LIFT_TERMS * _EPS)
+_GAMMA5 = 5.0 * _EPS / (1.0 - 5.0 * _EPS)
+
+
+@njit(**NJIT)
+def frame_lift(i, j, ox, oy, oz, P, W):
+    """``K = |p_j - o|^2 - |p_i - o|^2 + w_i - w_j`` and a bound on its error: ``(K, err)``.
+
+    The constant of ``j``'s bisector with ``i`` in a frame at ``o``: a point ``x`` is beyond
+    it when ``2 (x - o) . (p_j - p_i) > K`` (see :func:`frame_side`). Differences from ``o``
+    are exact two-term expansions, their squares' big parts exact (two-product), summed by
+    Sum2 as in :func:`offset_side`.
+    """
+    hi = 0.0
+    lo = 0.0
+    absum = 0.0
+    small = 0.0
+    for k in range(3):
+        ok = ox if k == 0 else (oy if k == 1 else oz)
+        for site, sg in ((j, 1.0), (i, -1.0)):
+            ah, al = two_diff(P[site, k], ok)
+            s1, s2 = two_product(ah, ah)
+            t1 = sg * 2.0 * ah * al
+            t2 = sg * al * al
+            hi, lo, absum = _sum2(hi, lo, absum, sg * s1)
+            hi, lo, absum = _sum2(hi, lo, absum, sg * s2)
+            hi, lo, absum = _sum2(hi, lo, absum, t1)
+            hi, lo, absum = _sum2(hi, lo, absum, t2)
+            small += _EPS * (abs(t1) + abs(t2))
+    wh, wl = two_diff(W[i], W[j])
+    hi, lo, absum = _sum2(hi, lo, absum, wh)
+    hi, lo, absum = _sum2(hi, lo, absum, wl)
+    res = hi + lo
+    g = _LIFT_GAMMA * _LIFT_GAMMA * absum + small
+    return res, 2.0 * _EPS * (abs(res) + g) + g + 1e-290
+
+
+@njit(**NJIT)
+def frame_offset(cx, cy, cz, dx, dy, dz, ox, oy, oz, out):
+    """``e = c + d - o`` into ``out[0:3]`` and a bound on its error into ``out[3:6]``.
+
+    ``d`` is :func:`vertex_offset`'s, right to ``_OFFSET_RERR`` of itself; ``c - o`` is an
+    exact two-term difference; two roundings.
+    """
+    for k in range(3):
+        ck = cx if k == 0 else (cy if k == 1 else cz)
+        dk = dx if k == 0 else (dy if k == 1 else dz)
+        ok = ox if k == 0 else (oy if k == 1 else oz)
+        hi, lo = two_diff(ck, ok)
+        e = hi + (lo + dk)
+        out[k] = e
+        out[3 + k] = 2.0 * _EPS * (abs(e) + abs(lo) + abs(dk)) + 1.01 * _OFFSET_RERR * abs(dk)
+
+
+@njit(**{**NJIT, "inline": "always"})
+def frame_side(E, rh0, rh1, rh2, rl0, rl1, rl2, K, kerr):
+    """Side of the point ``o + e`` against the bisector of :func:`frame_lift`'s ``K``, or 0.
+
+    ``E = (e, its error)`` (:func:`frame_offset`), ``r = p_j - p_i = rh + rl`` exactly:
+    1 beyond, -1 inside, 0 when the float value ``2 e . rh - K`` and its bound (``gamma_5``
+    of its terms, plus the errors of ``e``, ``rl`` and ``K``) cannot tell.
+    """
+    a0 = E[0] * rh0
+    a1 = E[1] * rh1
+    a2 = E[2] * rh2
+    g = 2.0 * (a0 + a1 + a2) - K
+    b = _GAMMA5 * (2.0 * (abs(a0) + abs(a1) + abs(a2)) + abs(K))
+    b += 2.0 * (E[3] * (abs(rh0) + abs(rl0)) + E[4] * (abs(rh1) + abs(rl1)))
+    b += 2.0 * E[5] * (abs(rh2) + abs(rl2))
+    b += 2.0 * (abs(E[0] * rl0) + abs(E[1] * rl1) + abs(E[2] * rl2)) + kerr
+    b = b * (1.0 + 16.0 * _EPS) + 1e-290
+    if g > b:
+        return 1
+    if g < -b:
+        return -1
+    return 0
