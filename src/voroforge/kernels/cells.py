@@ -47,6 +47,11 @@ def _at_side_or_out(t, cx, cy, reach, box):
     A centre within reach of a side and not on it (:func:`.cellcut.on_sides`) is put on
     it, so every cell at it is cut: a ring of raw centres would keep it off the side.
     """
+    x = cx[t]
+    y = cy[t]
+    e = max(reach[t], 0.0)  # (-1: never moved, so inside means inside)
+    if box[0] + e < x < box[2] - e and box[1] + e < y < box[3] - e:
+        return False  # most centres: one test, as before the sides' reach
     x, y, _ = on_sides(t, cx, cy, reach, box)
     return x != cx[t] or y != cy[t] or not (box[0] <= x <= box[2] and box[1] <= y <= box[3])
 
@@ -72,6 +77,11 @@ def _outgoing(tri, he, cx, cy, reach, box, n):
             out[tri[e]] = e
             cut[tri[e]] = True
     for t in range(tri.shape[0] // 3):
+        # most centres are inside by more than their reach: tested here, where the call
+        # made this loop 5-15 times slower (1e5 uniform: 1 -> 5-15 ms)
+        e = max(reach[t], 0.0)
+        if box[0] + e < cx[t] < box[2] - e and box[1] + e < cy[t] < box[3] - e:
+            continue
         if _at_side_or_out(t, cx, cy, reach, box):
             cut[tri[3 * t]] = True
             cut[tri[3 * t + 1]] = True
