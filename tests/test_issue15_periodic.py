@@ -109,10 +109,9 @@ def test_sites_outside_the_box_at_4e12_tile_the_box(algorithm, seed):
     # vertex differently); wrapped, a piece one ulp wide was dropped (6 - 6e-5)
     p = np.random.default_rng(seed).random((15, 2)) * [30, 20] - [12, 8] + OFF
     _check_torus(p, BOX_4E12, algorithm, False)
-    _check_torus(p, BOX_4E12, algorithm, True, describe=seed != 9)
+    _check_torus(p, BOX_4E12, algorithm, True)
 
 
-@pytest.mark.xfail(strict=True, reason="describe() on a wrapped piece one ulp wide")
 def test_describe_of_a_wrapped_piece_one_ulp_wide():
     # the wrapped cells of seed 9 tile the box exactly (V - E + F = 1 by bits, above), and
     # keep a triangle 1 ulp (4.9e-4) wide at a corner: the part of a cell whose original
@@ -172,7 +171,7 @@ def test_far_boxes_of_other_offsets_tile(off):
     # wrapped: at 1e15 (the box 24 x 16 ulps) the copies clipped to the box in the planar
     # build overlapped (area 8.28 of 6); they are now cut from the cells in the grown box
     # (describe() at -3e14 reports Euler 2 on pieces an ulp or two wide, as on 4e12 below)
-    _check_torus(p, box, "delaunay", True, samples=200, describe=off != -3e14)
+    _check_torus(p, box, "delaunay", True, samples=200)
 
 
 def test_grid_dividing_the_box_and_sites_on_its_sides():

@@ -337,6 +337,10 @@ def _counts(coords, ring, cell_of_ring, corners, wrap=None):
     keep = np.bincount(ids, weights=corner)[ids] > 0
     few = np.bincount(rid, weights=keep, minlength=len(ring) - 1) < 3
     keep |= few[rid]  # a flat ring (all its vertices on one line) keeps them all
+    # ... and they are vertices in every ring that has them: a triangle an ulp wide keeps its
+    # corners, which its neighbour's ring passes straight through (a wrapped piece 1 ulp
+    # wide at 4e12: V 57, E 84 where the bits give 59 and 87)
+    keep = np.bincount(ids, weights=keep)[ids] > 0
     kept = np.flatnonzero(keep)
     krid = rid[kept]
     following = np.append(kept[1:], 0)
