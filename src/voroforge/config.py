@@ -73,6 +73,13 @@ FOLD_STALL_SPACING = 0.5
 RELABEL_RTOL = 1e-9
 #: ... plus this many unit roundoffs (2**-53) of the point's coordinates (its rounding)
 RELABEL_ULPS = 16.0
+#: A Voronoi vertex within 4 times its class's rounding bound plus this many ulps of its
+#: larger coordinate of a box side is put on the side, in every cell at it, unless a site of
+#: its triangles is within that reach of the side (kernels/cellcut.side_reach)
+BOX_SIDE_REACH_ULPS = 1.0
+#: A stalled fold's class with more triangles than this keeps its name (kernels/refit: each
+#: candidate is scored on every site's ring; the largest class on issue 15's circles had 185)
+FOLD_FIT_MAX_MEMBERS = 512
 #: A cut cell's ring that rounding turns the wrong way only beside edges this many ulps (of
 #: the vertex's coordinates) long, and is simple, is kept: the end of a strip an ulp wide
 #: (kernels/cells._reflex_by_rounding)
@@ -93,6 +100,17 @@ POWER_LIFT_RESOLVE_ULPS = 1e4
 POWER_LOST_NEAR = 12
 POWER_CHECK_ULPS = 16.0
 POWER_CHECK_ROUNDS = 64
+#: Relative slack of the proof that no suspect reaches a power cell (engine/power_check
+#: _unreached): far above its few roundings, far below any cell's margin that matters
+POWER_REACH_RTOL = 2.0**-30
+#: A power ring or edge at most this many ulps of its coordinates across is below what
+#: float64 holds of a cell there and is merged to one point (engine/power_check.settle), in
+#: at most POWER_SETTLE_ROUNDS rounds
+POWER_SETTLE_ULPS = 64.0
+POWER_SETTLE_ROUNDS = 8
+#: power_fit runs Newton in a frame at the domain's corner when the domain lies farther than
+#: this many of its sizes from the origin (a cell of area 2e-7 at 1e5 had stalled)
+POWER_FIT_FAR = 4.0
 #: Relative size of a seed candidate's float orientation below which the sweep's seed
 #: search asks the exact orient2d (nearly collinear: never the smallest circle; delaunay)
 SEED_DET_RTOL = 1e-10
@@ -155,6 +173,12 @@ PERIODIC_PROOF_RTOL = 1e-7
 #: image site off by rounding moves its cell's edge by an ulp or two. A width, not an area:
 #: a thin piece is kept however small (a corner that just reaches across the wrap)
 PERIODIC_SLIVER_ULPS = 4.0
+#: The largest periodic margin, in periods of its axis: past 1.5 every vertex passes the
+#: bracket test of engine/periodic._proved; the rest is room for rounding
+PERIODIC_CAP_PERIODS = 1.6
+#: How far apart, in ulps of the box's coordinates, a vertex and its image may be computed
+#: (a tie rounded to even both ways is 1 ulp): engine/periodic._tie_images
+PERIODIC_TIE_ULPS = 2.0
 #: describe(): on a torus, a vertex and another's image closer than this (of the box's
 #: diagonal) are one vertex (images come from sites shifted by the box's size); a cell of a
 #: non-convex domain within 100 times this of its own coordinates' magnitude from the

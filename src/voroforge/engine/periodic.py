@@ -21,7 +21,12 @@ from fractions import Fraction
 import numpy as np
 import shapely
 
-from ..config import PERIODIC_PROOF_RTOL, PERIODIC_SLIVER_ULPS
+from ..config import (
+    PERIODIC_CAP_PERIODS,
+    PERIODIC_PROOF_RTOL,
+    PERIODIC_SLIVER_ULPS,
+    PERIODIC_TIE_ULPS,
+)
 from .assemble import from_shapely
 from .diagram import Diagram, Edges, buffers, frame_exponent
 from .domain import Domain, make_domain
@@ -32,12 +37,6 @@ from .planar import build
 #: Initial margin, in typical cell diameters ``sqrt(area / n)``.
 _MARGIN_CELLS = 3.0
 _MAX_TRIES = 30
-#: The largest margin, in periods of its axis: past 1.5 every vertex passes the bracket test
-#: of :func:`_proved`; the rest is room for rounding.
-_CAP_PERIODS = 1.6
-#: How far apart, in ulps of the box's coordinates, a vertex and its image may be computed
-#: (a tie rounded to even both ways is 1 ulp): :func:`_tie_images`.
-_TIE_ULPS = 2.0
 
 
 def _tile_of(boundary) -> Domain:
@@ -128,7 +127,7 @@ def _tie_images(bufs, box):
     are computed from names that are shifts of each other, and agree up to the exact shift,
     except where the centre falls half-way between two floats: rounding to even then goes
     opposite ways when the shift is an odd number of ulps (a box 1 x 1e-5 at 1e6, one site:
-    its cell 1 ulp taller than the box). Points within ``_TIE_ULPS`` ulps of each other
+    its cell 1 ulp taller than the box). Points within ``PERIODIC_TIE_ULPS`` ulps of each other
     modulo the box, one of them outside the box, are made one: the one in the box (else
     the first) shifted by whole periods, exactly. A group with two points of one ring in one
     copy of the box is left alone (two vertices of a cell an ulp apart, not a vertex and its
@@ -151,7 +150,7 @@ def _tie_images(bufs, box):
     moved = (q != 0).any(axis=1)
     if not moved.any():
         return bufs
-    tol = _TIE_ULPS * np.spacing(np.abs(np.array(box)).max())
+    tol = PERIODIC_TIE_ULPS * np.spacing(np.abs(np.array(box)).max())
     rel = np.minimum(inner - lo, size)  # in [0, size]
     rel = np.where(rel >= size, 0.0, rel)
     pairs = cKDTree(rel, boxsize=size).query_pairs(tol, p=np.inf, output_type="ndarray")
@@ -235,7 +234,7 @@ def _margins(box, n: int):
 
 
 def _caps(box):
-    """The largest margins ever needed: ``_CAP_PERIODS`` box sizes on each axis.
+    """The largest margins ever needed: ``PERIODIC_CAP_PERIODS`` box sizes on each axis.
 
     A cell lies within half a period of its site on each axis (the bisector with its own
     image), so with more than 1.5 periods every vertex passes :func:`_proved`'s bracket test.
@@ -244,7 +243,7 @@ def _caps(box):
     # plus the bracket test's slack: a box a few ulps tall at 1e6 (1 x 3e-9) failed the
     # proof at 1.6 periods and raised
     slack = 2.0 * _rounding(box)
-    return (_CAP_PERIODS * (x1 - x0) + slack, _CAP_PERIODS * (y1 - y0) + slack)
+    return (PERIODIC_CAP_PERIODS * (x1 - x0) + slack, PERIODIC_CAP_PERIODS * (y1 - y0) + slack)
 
 
 def _proved(d: Diagram, cells: np.ndarray, box, margin) -> bool:

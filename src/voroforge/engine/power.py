@@ -21,6 +21,7 @@ from scipy.spatial import ConvexHull, QhullError, cKDTree
 
 from ..config import (
     POWER_FIT_DEFAULT_RTOL,
+    POWER_FIT_FAR,
     POWER_FIT_SUM_RTOL,
     POWER_FLAT_RTOL,
     POWER_HIDDEN_RTOL,
@@ -716,7 +717,7 @@ def power_fit(
         # the cells' areas carry the coordinates' rounding (a cell of area 2e-7 at 1e5
         # stalled at 6e-6 relative); the user's frame only checks and polishes the result
         x0, y0, x1, y1 = dom.bounds
-        far = max(abs(x0), abs(y0), abs(x1), abs(y1)) > _FIT_FAR * max(x1 - x0, y1 - y0)
+        far = max(abs(x0), abs(y0), abs(x1), abs(y1)) > POWER_FIT_FAR * max(x1 - x0, y1 - y0)
         c = np.array([x0, y0]) if far else np.zeros(2)
         lpts, ldom = (pts - c, shifted(dom, c)) if far else (pts, dom)
         d, w, err, it = fit_weights(lpts, t, ldom, w0, tol, int(max_iter))
@@ -737,10 +738,6 @@ def power_fit(
             f"area error {err:.3g}){_near_pairs_note(pts, dom)}{_far_note(t, dom, tol)}"
         )
     return d
-
-
-#: power_fit moves a domain farther than this many of its sizes from the origin to its corner
-_FIT_FAR = 4.0
 
 
 def _far_note(targets, dom, tol) -> str:

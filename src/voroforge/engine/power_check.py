@@ -15,20 +15,19 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
-from ..config import POWER_CHECK_ROUNDS, POWER_CHECK_ULPS, POWER_LOST_NEAR
+from ..config import (
+    POWER_CHECK_ROUNDS,
+    POWER_CHECK_ULPS,
+    POWER_LOST_NEAR,
+    POWER_REACH_RTOL,
+    POWER_SETTLE_ROUNDS,
+    POWER_SETTLE_ULPS,
+)
 from ..kernels.clip import rings_convex, tiny_folded
 from ..kernels.power import cut_rings, finish_rings
 from ..kernels.predicates import orient2d
 
 _EPS = float(np.finfo(float).eps)
-#: Relative slack of the proof that no suspect reaches a cell (:func:`_unreached`): far
-#: above its few roundings, far below any cell's margin that matters. Local constant.
-_REACH_RTOL = 2.0**-30
-#: A ring or edge at most this many ulps of its coordinates across is below what float64
-#: holds of a power cell there (:func:`settle`); local constant, as planar's _FOLDED_ULPS.
-_SETTLE_ULPS = 64.0
-#: Most rounds of :func:`settle` (each merges what the last one left unmatched).
-_SETTLE_ROUNDS = 8
 
 
 def pairs_csr(n, a, b):
@@ -98,7 +97,7 @@ def _unreached(x, y, w, rings, suspect, active):
     r = np.sqrt(r2) + POWER_CHECK_ULPS * _EPS * mag
     gap = np.maximum(dist - r, 0.0)
     low = gap * gap - heavy
-    slack = _REACH_RTOL * (dist * dist + r * r + abs(heavy) + np.abs(w))
+    slack = POWER_REACH_RTOL * (dist * dist + r * r + abs(heavy) + np.abs(w))
     proven = (cnt > 0) & (low > top + slack) & ~suspect
     return proven | ((cnt == 0) & ~suspect) | ~active
 
@@ -191,7 +190,7 @@ def settle(box, closed, lengths, owner):
     ring folds (a self-intersecting polygon), or one cell keeps an edge an ulp long that
     its neighbour's ring does not have (the neighbour's ring went straight past, or
     compacted away): Euler fails. Such places are merged, each to one point shared bit for
-    bit by every ring that has one of them: every vertex of a ring at most ``_SETTLE_ULPS``
+    bit by every ring that has one of them: every vertex of a ring at most ``POWER_SETTLE_ULPS``
     across that is not a valid polygon (``kernels.clip.tiny_folded``), the two ends of an
     edge that short at a right turn of a larger ring that is not valid (a wedge's apex
     rounded across its next vertex), and the two ends of an edge that short that the
@@ -201,7 +200,7 @@ def settle(box, closed, lengths, owner):
     their cells). Nothing changes where every ring is valid and every short edge shared.
     """
     had = lengths[1:] > lengths[:-1]
-    for _ in range(_SETTLE_ROUNDS):
+    for _ in range(POWER_SETTLE_ROUNDS):
         groups = _unheld(closed, lengths, owner)
         if not groups:
             break
@@ -215,10 +214,10 @@ def _unheld(closed, lengths, owner):
     cx, cy = closed[:, 0], closed[:, 1]
     big = np.maximum(np.abs(cx), np.abs(cy))  # (columns: faster than reductions of rows)
     step = np.maximum(np.abs(np.diff(cx)), np.abs(np.diff(cy)))
-    short = step <= _SETTLE_ULPS * 2.0 * _EPS * np.maximum(big[:-1], big[1:])
+    short = step <= POWER_SETTLE_ULPS * 2.0 * _EPS * np.maximum(big[:-1], big[1:])
     short &= owner[:-1] != -2
     groups = []
-    tiny = tiny_folded(closed, lengths, _SETTLE_ULPS) == 1
+    tiny = tiny_folded(closed, lengths, POWER_SETTLE_ULPS) == 1
     # rings that are not valid polygons (convex ones are: only the others are tested)
     for i in np.flatnonzero(~rings_convex(closed, lengths) & (lengths[1:] > lengths[:-1])):
         lo, hi = lengths[i], lengths[i + 1]

@@ -31,15 +31,12 @@ import math
 import numpy as np
 from numba import njit
 
-from ..config import NJIT, RELABEL_RTOL, RELABEL_ULPS
+from ..config import BOX_SIDE_REACH_ULPS, NJIT, RELABEL_RTOL, RELABEL_ULPS
 from .clip import dedupe_ring
 from .power import box_cell
 from .vertex import box_crossing
 
 _U = 2.0**-53
-# ulps of a centre within which a box side takes it (a config.py tolerance, kept here
-# until the lead moves it there)
-_SIDE_REACH_ULPS = 1.0
 
 
 @njit(**NJIT)
@@ -47,12 +44,12 @@ def side_reach(x, y, err):
     """How near a box side a centre ``(x, y)`` with rounding bound ``err`` is put on it.
 
     Four times the bound (its class's, so that every member of a merged vertex decides
-    alike) and ``_SIDE_REACH_ULPS`` ulps of its larger coordinate. Lattices whose step is
+    alike) and ``BOX_SIDE_REACH_ULPS`` ulps of its larger coordinate. Lattices whose step is
     2 ulps of their offset keep their vertices an ulp or more inside the sides
     (``test_lattice_a_few_ulps_apart_is_exact``).
     """
     big = max(abs(x), abs(y))
-    return 4.0 * err + _SIDE_REACH_ULPS * math.ldexp(1.0, math.frexp(big)[1] - 53)
+    return 4.0 * err + BOX_SIDE_REACH_ULPS * math.ldexp(1.0, math.frexp(big)[1] - 53)
 
 
 @njit(**NJIT)

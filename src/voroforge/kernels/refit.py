@@ -22,15 +22,10 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import NJIT
+from ..config import FOLD_FIT_MAX_MEMBERS, NJIT
 from .clip import ring_corner
 from .predicates import incircle, orient2d
 from .vertex import voronoi_vertex
-
-#: (belongs in config.py) A class with more triangles than this keeps its name in
-#: :func:`fit_classes` (which scores each candidate on every site's ring: the largest
-#: class measured on the float circles of issue 15 had 185)
-FIT_MAX_MEMBERS = 512
 
 
 @njit(**NJIT)
@@ -117,7 +112,7 @@ def _candidates(xs, ys, tri, he, parent, c, mem, cand):
 def fit_classes(xs, ys, tri, he, parent, cx, cy, fresh, changed):
     """Name each class with ``fresh`` at its root where its sites' rings turn best.
 
-    A class of two to ``FIT_MAX_MEMBERS`` triangles is scored by the bad turns of its sites'
+    A class of two to ``FOLD_FIT_MAX_MEMBERS`` triangles is scored by the bad turns of its sites'
     rings of centres (:func:`fan_bad_turns`, every other class at its vertex as it was, so
     no choice depends on another's). Unless its vertex leaves none, each candidate triple's
     centre (:func:`_candidates`, ``vertex.voronoi_vertex``: the same bits in any order) is
@@ -129,7 +124,7 @@ def fit_classes(xs, ys, tri, he, parent, cx, cy, fresh, changed):
     cx0, cy0 = cx.copy(), cy.copy()
     bx, by = np.zeros(parent.shape[0] + 2), np.zeros(parent.shape[0] + 2)
     stamp = np.full(xs.shape[0], -1, dtype=np.int64)
-    cand = np.zeros(21 * FIT_MAX_MEMBERS, dtype=np.int64)
+    cand = np.zeros(21 * FOLD_FIT_MAX_MEMBERS, dtype=np.int64)
     tf = np.flatnonzero(fresh[parent])  # the classes' members, grouped by class
     tf = tf[np.argsort(parent[tf], kind="mergesort")]
     renamed = 0
@@ -139,7 +134,7 @@ def fit_classes(xs, ys, tri, he, parent, cx, cy, fresh, changed):
         while j < tf.shape[0] and parent[tf[j]] == c:
             j += 1
         mem = tf[i:j]
-        if mem.shape[0] < 2 or mem.shape[0] > FIT_MAX_MEMBERS:
+        if mem.shape[0] < 2 or mem.shape[0] > FOLD_FIT_MAX_MEMBERS:
             continue  # (the cost is candidates times the class's sites' degrees)
         sites = np.zeros(3 * mem.shape[0], np.int64)
         where = np.zeros(3 * mem.shape[0], np.int64)
