@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from voroforge.kernels import cells as K
+from voroforge.kernels.cellcut import class_err, side_reaches
 from voroforge.kernels.centers import circumcenters, merge_cocircular
 from voroforge.kernels.delaunay import triangulate_sorted
 
@@ -54,10 +55,13 @@ def test_walk_matches_cell_builder(name):
     cx, cy, err, flag = circumcenters(sx, sy, tri, he)
     cls, _ = merge_cocircular(sx, sy, tri, he, cx, cy, err, flag, kmap, box)
     merges = int((cls != np.arange(cls.shape[0])).sum())
+    # as the engine (cells.build) calls it: the classes' bounds and the box-side reaches
+    err = class_err(cls, err)
+    reach = side_reaches(sx, sy, tri, cls, cx, cy, err, box)
     out, (coords, lengths, owner) = K._build(
-        sx, sy, tri, he, cx, cy, err, cls, box, order, kmap, True
+        sx, sy, tri, he, cx, cy, err, reach, cls, box, order, kmap, True
     )
-    _, deg, cut = K._outgoing(tri, he, cx, cy, box, n)
+    _, deg, cut = K._outgoing(tri, he, cx, cy, reach, box, n)
     # the walk is taken: classes were merged and some cells are uncut (others are cut)
     assert merges > 0
     assert 0 < int((~cut).sum()) < n
@@ -69,7 +73,7 @@ def test_walk_matches_cell_builder(name):
     ws = np.zeros(n)
     counts = np.zeros(n, dtype=np.int64)
     none = np.zeros(0, dtype=np.int64)
-    args = (cls, out, box, cap, counts)
+    args = (reach, cls, out, box, cap, counts)
     K._some(sites, sx, sy, ws, tri, he, cx, cy, err, *args, none, coords, owner, kmap)
     closed = np.where(counts > 0, counts + 1, 0)
     assert np.array_equal(closed, np.diff(lengths)[order])
