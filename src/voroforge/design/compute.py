@@ -36,8 +36,6 @@ from .schema import Design, Graded
 
 __all__ = ["MM_PER_UNIT", "Result", "SeedTable", "Stage", "compute"]
 
-#: Millimetres per design unit.
-
 #: A progress callback: called with the name of each stage.
 Stage = Callable[[str], None]
 

@@ -266,8 +266,7 @@ def subdivide(
             if total > config.RECURSION_MAX_CELLS:
                 raise ValueError(
                     f"recursion level {k} would hold over {config.RECURSION_MAX_CELLS:,} cells "
-                    f"({total:,} so far); "
-                    "use a smaller depth or count"
+                    f"({total:,} so far); use a smaller depth or count"
                 )
             if n == 0:
                 continue

@@ -183,14 +183,13 @@ def check_counts(tiles=None, tile_size=None, workers=None, chunk_rows=None):
 
 
 def tile_count(n, tiles, tile_size, workers):
-    """How many tiles ``n`` sites get: ``tiles``, else from ``tile_size`` or ``workers``."""
+    """How many tiles ``n`` sites get: ``tiles``, else from ``tile_size`` or ``workers``.
+
+    The counts are validated first (:func:`check_counts`).
+    """
     if tiles is not None:
-        if int(tiles) < 1:
-            raise ValueError(f"tiles must be at least 1; got {tiles}")
         return int(min(tiles, max(n, 1)))
     if tile_size is not None:
-        if int(tile_size) < 1:
-            raise ValueError(f"tile_size must be at least 1; got {tile_size}")
         return max(1, math.ceil(n / int(tile_size)))
     return max(1, min(max(n // 1000, 1), max(math.ceil(n / config.SCALE_TILE_SITES), 2 * workers)))
 
