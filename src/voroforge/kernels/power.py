@@ -38,14 +38,9 @@ from .vertex import power_box_crossing, power_vertex
 _U = 2.0**-53  # unit roundoff of float64
 
 
-@njit(**NJIT)
-def box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
-    """Box cut by the power bisectors of site ``i`` with ``nbrs[:nn]``; result in ``p``.
-
-    Returns the vertex count (0 when less than a polygon is left). Edge owners are the
-    neighbours, and -1 (left), -2 (bottom), -3 (right), -4 (top) on the box sides. All
-    buffers need room for ``nn + 5`` vertices; ``q`` and ``ss`` are scratch.
-    """
+@njit(inline="always", **NJIT)  # per cut cell: no call (reference counts) in the hot path
+def _box_ring(box, px, py, pw):
+    """The box as a ring in ``p`` (owners -2 bottom, -3 right, -4 top, -1 left); returns 4."""
     px[0] = box[0]
     py[0] = box[1]
     px[1] = box[2]
@@ -58,8 +53,19 @@ def box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
     pw[1] = -3  # right
     pw[2] = -4  # top
     pw[3] = -1  # left
+    return np.int64(4)
+
+
+@njit(**NJIT)
+def box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
+    """Box cut by the power bisectors of site ``i`` with ``nbrs[:nn]``; result in ``p``.
+
+    Returns the vertex count (0 when less than a polygon is left). Edge owners are the
+    neighbours, and -1 (left), -2 (bottom), -3 (right), -4 (top) on the box sides. All
+    buffers need room for ``nn + 5`` vertices; ``q`` and ``ss`` are scratch.
+    """
     # np.int64, not literals: numba would compile the clip's callees once more for them
-    m = np.int64(4)
+    m = _box_ring(box, px, py, pw)
     zero = np.int64(0)
     sx = xs[i]
     sy = ys[i]
@@ -422,19 +428,7 @@ def _careful_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
     later cuts see the cell to its own resolution. Used where the lift could not resolve
     the sites (the checked path); elsewhere the cells are far wider than the rounding.
     """
-    px[0] = box[0]
-    py[0] = box[1]
-    px[1] = box[2]
-    py[1] = box[1]
-    px[2] = box[2]
-    py[2] = box[3]
-    px[3] = box[0]
-    py[3] = box[3]
-    pw[0] = -2
-    pw[1] = -3
-    pw[2] = -4
-    pw[3] = -1
-    m = np.int64(4)
+    m = _box_ring(box, px, py, pw)
     zero = np.int64(0)
     for k in range(nn):
         j = nbrs[k]
