@@ -11,17 +11,18 @@ The cells of a diagram, clipped to a domain ``D``, subdivide it. Count
 * ``F``: the faces, each polygon part of each cell counting ``1 - h`` for its ``h`` holes
   (an open disk counts 1; a part with holes is not a disk).
 
-Nothing is measured against the domain's size, so the report is the same at every scale
-and mix of scales (a 1e-12 cluster beside 1e6 cells, strips a few ulps wide). The engine
+Nothing is measured against the domain's size, so the report is the same at every scale and
+mix of scales (a 1e-12 cluster beside 1e6 cells, strips a few ulps wide). The engine
 computes each vertex once, from its name, so vertices are identified by their bits. Rounding
 is merged only where the engine rounds twice: a boundary crossing that one cell rounded onto
 another point (an *orphan*: one ring has it; it joins the points at most two rings have
 within ``VERTEX_MERGE_ULPS`` ulps of its coordinates), and on a torus a vertex and its image
 (within ``VERTEX_RTOL`` of the box's diagonal: images come from sites shifted by the box's
-size). The report counts the points so merged. A vertex is straight when the exact
-``orient2d`` of it and its ring neighbours is 0; one that only one or two rings have is also
-straight within ``VERTEX_STRAIGHT_ULPS`` ulps of the coordinates involved (a rounded
-T-junction), and no turn that small counts against convexity.
+size; points are taken modulo the box by their exact offsets where those are floats). The
+report counts the points so merged. A vertex is straight when the exact ``orient2d`` of it
+and its ring neighbours is 0; one that only one or two rings have is also straight within
+``VERTEX_STRAIGHT_ULPS`` ulps of the coordinates involved (a rounded T-junction), and no
+turn that small counts against convexity.
 
 Then ``V - E + F = chi(D)``, the Euler characteristic of the domain: the number of its parts
 minus the number of its holes (1 for a box). A vertex that one cell has and its neighbour
@@ -257,10 +258,11 @@ def _vertex_ids(
     only one ring has and turns at, not a corner of the domain: a boundary crossing rounded
     differently by the two cells beside it, such as onto a corner) joins the points that at
     most two rings have within ``VERTEX_MERGE_ULPS`` ulps of its largest coordinate (max
-    norm). On a torus (``wrap = (raw, lo, hi, tol)``, ``pts`` taken into the box, ``raw`` as
-    they were) two points closer than ``tol`` modulo the box are one when one of them lies
-    outside the open box ``(lo, hi)``: a vertex and its image, computed from sites shifted
-    by the box's size. ``merged`` counts the distinct points merged into another.
+    norm). On a torus (``wrap = (outside, lo, size, tol)``, ``pts`` taken into the box
+    ``[lo, lo + size)``, ``outside`` where they were outside the open box) two points closer
+    than ``tol`` modulo the box are one when one of them was outside: a vertex and its
+    image, computed from sites shifted by the box's size. ``merged`` counts the distinct
+    points merged into another.
     """
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
@@ -291,9 +293,7 @@ def _vertex_ids(
         dst = np.fromiter((j for row in lists for j in row), dtype=np.int64, count=len(src))
         pairs = np.column_stack((src, few[dst]))
     else:
-        raw, lo, hi, tol = wrap
-        boxsize = hi - lo
-        outside = ~((raw > lo) & (raw < hi)).all(1)
+        outside, lo, boxsize, tol = wrap
         out_u = np.bincount(inv, weights=outside, minlength=m) > 0
         shifted = np.mod(uniq - lo, boxsize)
         shifted[shifted >= boxsize] = 0.0
@@ -303,6 +303,31 @@ def _vertex_ids(
     graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(m, m))
     count, label = connected_components(graph, directed=False)
     return label[inv].astype(np.int64), int(m - count)
+
+
+def _box_offsets(raw: np.ndarray, lo: np.ndarray, hi: np.ndarray):
+    """The points' exact offsets ``(m, 2)`` in their copies of the box, or None.
+
+    Moving a point into the box by ``lo + mod(raw - lo, size)`` rounds where the box crosses
+    a power of two: a vertex below it whose image above is no float landed on another
+    vertex (a box 256 x 77 ulps across 2**44: V 57 where the bits give 58). The offsets are
+    ``raw - lo - a size`` for whole ``a``, used where every step is exact; None elsewhere.
+    """
+    from .periodic_frame import periods, two_sum_error
+
+    size = hi - lo
+    if any(Fraction(float(hi[k])) - Fraction(float(lo[k])) != size[k] for k in range(2)):
+        return None
+    out = np.zeros_like(raw)
+    for k in range(2):
+        r = raw[:, k] - lo[k]
+        if two_sum_error(raw[:, k], -lo[k]).any():
+            return None
+        _, c, exact = periods(r, size[k])
+        if not exact.all():
+            return None
+        out[:, k] = c
+    return out
 
 
 def _counts(coords, ring, cell_of_ring, corners, wrap=None):
@@ -323,14 +348,26 @@ def _counts(coords, ring, cell_of_ring, corners, wrap=None):
         boxsize = hi - lo
         raw = pts
         outside = ~((raw > lo) & (raw < hi)).all(1)
-        # inside the open box a point is its own bits; outside it is taken modulo the box
-        pts = raw.copy()
-        moved = lo + np.mod(raw[outside] - lo, boxsize)
-        moved = np.where(moved >= hi, lo, moved)
-        pts[outside] = moved
-        wrap = (raw, lo, hi, tol)
+        offsets = _box_offsets(raw, lo, hi)
+        if offsets is not None:
+            # each point as its exact offset in its copy of the box: two points are one
+            # vertex modulo the box exactly when their offsets are equal
+            pts, wrap = offsets, (outside, np.zeros(2), boxsize, tol)
+        else:
+            # inside the open box a point is its own bits; outside it is taken modulo the
+            # box (rounded)
+            pts = raw.copy()
+            moved = lo + np.mod(raw[outside] - lo, boxsize)
+            moved = np.where(moved >= hi, lo, moved)
+            pts[outside] = moved
+            wrap = (outside, lo, boxsize, tol)
     ids, merged = _vertex_ids(pts, rid, flat, corners, wrap)
     rings = _rings_per_vertex(ids, rid)
+    if wrap is not None:
+        # on a torus a cell that borders its own image has a vertex twice in its ring (as
+        # two copies): a vertex three ring sides pass through is the engine's, not a
+        # T-junction (a cell 320 x 96 ulps at -2**47: V 57 where the bits give 58)
+        rings = np.maximum(rings, np.bincount(ids, minlength=len(rings)))
     # a vertex three cells share is the engine's, computed once: straight only exactly;
     # one that one or two rings have is straight also up to rounding (a T-junction)
     corner = (turn != 0) & ~(flat & (rings[ids] <= 2))

@@ -12,6 +12,13 @@ margins double and the diagram is computed again.
 The copies are numbered source-major, so that a vertex and its image by a box shift are
 named and computed alike (exact shifts of each other where the copies are exact shifts);
 the wrapped cells are the cells of the copies cut to the box.
+
+Where the box crosses a power of two and its size is an odd number of ulps of the coarser
+floats, two copies of a vertex a box size apart beyond it cannot both be floats: the
+unwrapped cells there leave a gap or an overlap of an ulp between a vertex and its image.
+Their sites are listed in ``Diagram.unresolved`` (each cell with a vertex whose copies are
+not exact shifts of each other, decided exactly: :func:`.periodic_frame.mismatched`); the
+cells are valid, and the wrapped cells (``wrap=True``) tile the box exactly.
 """
 
 from __future__ import annotations
@@ -597,14 +604,17 @@ def _translated(pts, tile, corner, algorithm: str, wrap: bool) -> Diagram:
     inner = _periodic(local, make_domain(local_box, np.zeros((0, 2))), algorithm, wrap, False)
     coords, ring, poly, geom = buffers(inner)
     e = inner.edges
-    bufs, seg = cells_to_user_frame(
+    bufs, seg, apart = cells_to_user_frame(
         coords, (ring, poly, geom), e.coords.reshape(-1, 2), box, corner, not wrap
     )
     seg = seg.reshape(-1, 2, 2)
     live = (seg[:, 0] != seg[:, 1]).any(axis=1)
-    # a cell narrower than the user's floats rounds away: its site is unresolved there
+    # a cell narrower than the user's floats rounds away: its site is unresolved there;
+    # so is a site whose unwrapped cell has a vertex that cannot be an exact shift of its
+    # image in another cell (an ulp of gap or overlap between them: the copies' floats
+    # cannot agree, see periodic_frame.mismatched)
     gone = np.flatnonzero((np.diff(geom) > 0) & (np.diff(bufs[3]) == 0))
-    lost = np.union1d(inner.unresolved, gone).astype(np.int64)
+    lost = np.union1d(np.union1d(inner.unresolved, gone), apart).astype(np.int64)
     out = Diagram(
         pts,
         inner.duplicate_of,

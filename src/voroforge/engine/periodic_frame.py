@@ -90,7 +90,7 @@ def to_local(pts: np.ndarray, box, corner: np.ndarray):
     return local, (corner[0], corner[1], hi[0], hi[1])
 
 
-def to_user_frame(xy: np.ndarray, box, corner: np.ndarray, consistent: bool, plain=None):
+def to_user_frame(xy: np.ndarray, box, corner: np.ndarray, consistent: bool, plain=None, flip=None):
     """Points ``(m, 2)`` of the frame of ``corner`` moved back into the user's frame.
 
     ``xy - corner`` is exact (the frame's grown box lies in one binade with its corner);
@@ -105,7 +105,7 @@ def to_user_frame(xy: np.ndarray, box, corner: np.ndarray, consistent: bool, pla
     out = rel + lo
     if consistent and len(xy):
         for k in range(2):
-            out[:, k] = _consistent(rel[:, k], out[:, k], lo[k], size[k], plain)
+            out[:, k] = _consistent(rel[:, k], out[:, k], lo[k], size[k], plain, flip)
     return out
 
 
@@ -115,21 +115,30 @@ def cells_to_user_frame(coords, offsets, extra, box, corner, consistent: bool):
     ``offsets = (ring, poly, geom)``. Rounding the copies of a vertex alike can put two
     vertices a fraction of an ulp apart in the wrong order (their classes are rounded on
     floats an odd number of ulps apart): the classes of the vertices of a cell that is then
-    invalid get the nearest float instead, until every cell is valid (a few rounds).
+    invalid take the other float beside their farthest copy's value, still shifted alike
+    (a box 255 x 257 ulps across 2**45: valid cells that tile exactly), and where a cell
+    stays invalid, the nearest floats, until every cell is valid (a few rounds).
 
     Returns
     -------
     bufs : (coords, ring, poly, geom)
         Without the points rounding made redundant (:func:`drop_repeats`).
     extra : (k, 2) float64
+    apart : (m,) int64
+        With ``consistent``, the cells holding a vertex whose copies (the points of the
+        cells equal modulo the box in the frame) are not exact shifts of each other once
+        moved back (:func:`mismatched`): two copies in the coarser binade a box size apart,
+        the size not a multiple of their ulp, cannot both be floats, and a class given the
+        nearest floats (above) is not shifted alike. Empty without ``consistent``.
     """
     import shapely
 
     ring, poly, geom = offsets
     xy = np.concatenate((coords, extra))
     plain = np.zeros(len(xy), dtype=bool)
-    for _ in range(4):
-        out = to_user_frame(xy, box, corner, consistent, plain)
+    flip = np.zeros(len(xy), dtype=bool)
+    for _ in range(6):
+        out = to_user_frame(xy, box, corner, consistent, plain, flip)
         bufs = drop_repeats((np.ascontiguousarray(out[: len(coords)]), ring, poly, geom))
         if not consistent:
             break
@@ -147,18 +156,105 @@ def cells_to_user_frame(coords, offsets, extra, box, corner, consistent: bool):
         more = np.cumsum(mark)[:-1] > 0
         if not (more & ~plain).any():
             break
-        plain |= more
-    return bufs, out[len(coords) :]
+        plain |= more & flip
+        flip |= more
+    apart = np.zeros(0, dtype=np.int64)
+    if consistent and len(coords):
+        off = mismatched(coords - corner, out[: len(coords)], box)
+        if off.any():
+            rid = np.repeat(np.arange(len(ring) - 1), np.diff(ring))
+            pid = np.repeat(np.arange(len(poly) - 1), np.diff(poly))
+            gid = np.repeat(np.arange(len(geom) - 1), np.diff(geom))
+            apart = np.unique(gid[pid[rid[off]]]).astype(np.int64)
+    return bufs, out[len(coords) :], apart
 
 
-def _consistent(rel: np.ndarray, plain: np.ndarray, lo: float, w: float, keep=None):
+def periods(rel: np.ndarray, w: float):
+    """``(a, c, exact)`` on one axis: ``rel = a w + c`` with ``a`` whole, ``0 <= c < w``.
+
+    ``exact`` (per point): ``a w`` and ``rel - a w`` are floats without rounding, so ``c``
+    is the exact offset of the point in its copy of the box.
+    """
+    a = np.floor(rel / w)
+    c = rel - a * w
+    a = np.where(c >= w, a + 1, a)
+    a = np.where(c < 0, a - 1, a)
+    c = rel - a * w
+    exact = (_whole_times(a, w) & (two_sum_error(rel, -(a * w)) == 0)) & (c >= 0) & (c < w)
+    return a, c, exact
+
+
+def _whole_times(a: np.ndarray, w: float) -> np.ndarray:
+    """Whether ``a * w`` is a float without rounding, for the whole numbers ``a``."""
+    if not len(a):
+        return np.ones(0, dtype=bool)
+    if a.max() - a.min() > 64:
+        keys, inv = np.unique(a, return_inverse=True)
+        ok = np.array([Fraction(t * w) == int(t) * Fraction(w) for t in keys], dtype=bool)
+        return ok[inv.ravel()]
+    first = int(a.min())  # a few periods either way: one check per whole number between
+    ok = [Fraction(t * w) == t * Fraction(w) for t in range(first, int(a.max()) + 1)]
+    return np.array(ok, dtype=bool)[(a - first).astype(np.int64)]
+
+
+def mismatched(rel: np.ndarray, out: np.ndarray, box) -> np.ndarray:
+    """The points ``(m,)`` of vertex classes whose copies in ``out`` are not exact shifts.
+
+    ``rel (m, 2)`` are the points' exact offsets from the box's corner in a frame where
+    copies are exact shifts (two points are copies of one vertex when their offsets differ
+    by whole box sizes on both axes); ``out (m, 2)`` the points in the user's frame. A class
+    is mismatched when two of its copies differ by anything but their shift, exactly: a gap
+    or an overlap of the unwrapped cells there. Decided exactly (rationals where the float
+    decomposition is not exact).
+    """
+    x0, y0, x1, y1 = box
+    size = (x1 - x0, y1 - y0)
+    m = len(rel)
+    a = np.zeros((m, 2))
+    c = np.zeros((m, 2))
+    exact = np.ones(m, dtype=bool)
+    for k in range(2):
+        a[:, k], c[:, k], ok = periods(rel[:, k], size[k])
+        exact &= ok
+    keys = np.column_stack((c, np.zeros((m, 2))))
+    for j in np.flatnonzero(~exact):
+        # offsets in rationals: the class's key as an exact pair of floats (c = hi + lo)
+        for k in range(2):
+            r = Fraction(float(rel[j, k]))
+            w = Fraction(size[k])
+            t = r // w
+            rest = r - t * w
+            hi = float(rest)
+            a[j, k] = float(t)
+            keys[j, k], keys[j, 2 + k] = hi, float(rest - Fraction(hi))
+    _, first, cls = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+    cls = cls.ravel()
+    ref = first[cls]  # each class's first member
+    bad = np.zeros(m, dtype=bool)
+    for k in range(2):
+        t = a[:, k] - a[ref, k]
+        shift = t * size[k]
+        base = out[ref, k]
+        sure = exact & exact[ref] & _whole_times(t, size[k])
+        bad |= sure & ((two_sum_error(base, shift) != 0) | (base + shift != out[:, k]))
+        for j in np.flatnonzero(~sure):
+            diff = Fraction(float(out[j, k])) - Fraction(float(base[j]))
+            bad[j] |= diff != int(t[j]) * Fraction(size[k])
+    worse = np.zeros(len(first), dtype=bool)
+    worse[cls[bad]] = True
+    return worse[cls]
+
+
+def _consistent(rel: np.ndarray, plain: np.ndarray, lo: float, w: float, keep=None, flip=None):
     """Coordinates on one axis whose copies by box shifts are exact shifts of each other.
 
     ``rel`` are the exact offsets from the box's corner, ``plain`` their rounded sums with
     it. The offsets that differ by whole periods (one class) are rounded once, at the copy
     farthest from zero (the coarsest float spacing), and the others are that value shifted
     by the periods between them, where every such shift is a float; other classes, and
-    those of the points ``keep`` (a mask), keep ``plain``.
+    those of the points ``keep`` (a mask), keep ``plain``. The classes of the points
+    ``flip`` (a mask) take the other float beside the farthest copy's exact value (rounded
+    the other way), still shifted alike.
     """
     a = np.floor(rel / w)
     c = rel - a * w
@@ -178,6 +274,13 @@ def _consistent(rel: np.ndarray, plain: np.ndarray, lo: float, w: float, keep=No
     at_far = a == far[cls]
     base = np.zeros(len(keys))
     base[cls[at_far]] = plain[at_far]
+    if flip is not None and flip.any():
+        turn = np.zeros(len(keys), dtype=bool)
+        turn[cls[flip]] = True
+        err = np.zeros(len(keys))
+        err[cls[at_far]] = two_sum_error(rel[at_far], lo)  # exact value - base
+        side = np.where(err > 0, np.inf, -np.inf)
+        base = np.where(turn & (err != 0), np.nextafter(base, side), base)
     k = (a - far[cls]) * w
     out = base[cls] + k
     bad = two_sum_error(base[cls], k) != 0
