@@ -309,6 +309,24 @@ def test_straddling_box_whose_size_is_an_odd_number_of_ulps():
         assert np.asarray(d.unresolved).tolist() == [2, 8, 9]
 
 
+@pytest.mark.xfail(
+    strict=True, reason="near zero a copy is a rounded sum: a vertex and its image an ulp apart"
+)
+def test_unit_box_vertex_copies_are_exact_shifts():
+    # in the box (0, 0, 1, 1) the copies of a site are sums rounded to the coarser floats
+    # above 1 (0.12156171 + 1), so a vertex and its image are not exact shifts of each
+    # other (46 pairs up to 2.2e-16 apart here): within describe()'s VERTEX_RTOL and the
+    # area tolerances, unflagged. Floats can hold exact shifts there (the copy above 1,
+    # less 1, is exact), so this is not a case for unresolved: the periodic frame's alike
+    # rounding is not used near zero.
+    box = (0.0, 0.0, 1.0, 1.0)
+    p = np.random.default_rng(0).random((30, 2))
+    for algorithm in ALGORITHMS:
+        d = vf.voronoi(p, box, periodic=True, algorithm=algorithm)
+        assert not len(d.unresolved)
+        assert not _apart_vertices(d.cells, box)
+
+
 def _sweep_case(k, size, sign):
     """A case of the wider sweep: 30 sites, a box across ``sign * 2**k`` (aspect 1..1e-3)."""
     rng = np.random.default_rng(1000 + k * 13 + int(np.log10(size) * 5) + (sign > 0))
