@@ -74,28 +74,44 @@ def box_template(lo, hi, labels=None) -> Template:
     return Template(TV, TF, TR, WP, "box", vol, np.array([lo, hi]))
 
 
-#: the container volumes, in the caller's units, that 3D cells can be measured in: the
-#: cells are built in a power-of-two working frame, but their volumes, face areas (whose
-#: norms square them) and centroids are reported in the caller's units, where a box of side
-#: 1e103 has a volume past the largest double, face area vectors of side 1e77 overflow when
-#: squared, and small sides underflow alike (cells then measure 0); the margin leaves room
-#: for cells and faces far smaller than the container
-VOLUME_RANGE = (1e-200, 1e200)
+#: the container volumes, in the caller's units, that 3D cells can be measured in. The cells
+#: are built in a power-of-two working frame, and face areas and normals are computed in it
+#: too (engine.diagram3d: the squared areas neither overflow nor underflow), but volumes,
+#: areas and centroids are reported in the caller's units: the upper end keeps the volume a
+#: double with room to spare (1e300: a cube of side 1e100), the lower end keeps the cells'
+#: volumes normal doubles (exact powers of two of the working frame's) down to 1e-20 of the
+#: container's (1e-270: a cube of side 1e-90; 1e7 cells of a tight cluster lie far above)
+VOLUME_RANGE = (1e-270, 1e300)
+#: the largest face area of the container's bounding box (the product of its two largest
+#: sides): face areas in the caller's units stay doubles (a flat box of sides 1e150, 1e150
+#: and 1e-150 has a volume of 1e150 but faces of 1e300)
+AREA_MAX = 1e300
 
 
 def check_volume(t: Template) -> None:
-    """Raise ``ValueError`` when the container's volume lies outside :data:`VOLUME_RANGE`."""
+    """Raise ``ValueError`` when the container's volume lies outside :data:`VOLUME_RANGE`.
+
+    Or when its bounding box's largest face area exceeds :data:`AREA_MAX`.
+    """
     lo, hi = VOLUME_RANGE
-    if lo <= t.volume <= hi:
-        return
     with np.errstate(over="ignore", under="ignore", invalid="ignore"):
-        side = float(np.ptp(np.asarray(t.bounds, np.float64), axis=0).max())
+        sides = np.sort(np.ptp(np.asarray(t.bounds, np.float64), axis=0))
+        area = float(sides[1] * sides[2])
+    side = float(sides[2])
+    if lo <= t.volume <= hi and area <= AREA_MAX:
+        return
+    if lo <= t.volume <= hi:
+        raise ValueError(
+            f"the container's largest face in these units ({area:.3g}; sides {sides[2]:.3g} "
+            f"and {sides[1]:.3g}) is past {AREA_MAX:g}, where 3D face areas would overflow: "
+            "scale the points (and the container) down (a power of two scales exactly)"
+        )
     what = "overflow" if not t.volume < hi else "underflow"
     raise ValueError(
         f"the container's volume in these units ({t.volume:.3g}; largest side {side:.3g}) is "
         f"outside {lo:g}..{hi:g}, where 3D cell volumes would {what}: scale the points (and "
-        "the container) so that its sides lie between about 1e-66 and 1e66 (a power of two "
-        "scales exactly)"
+        "the container) so that its volume lies in that range, e.g. a cube's sides between "
+        "about 1e-90 and 1e100 (a power of two scales exactly)"
     )
 
 

@@ -9,6 +9,19 @@ from ..config import CONVEX3D_RTOL, CONVEX3D_ULPS
 EPS = float(np.finfo(np.float64).eps)
 
 
+def _norm(a: np.ndarray) -> float:
+    """``|a|``, computed on ``a`` scaled by a power of two.
+
+    Its square neither overflows nor underflows; the same bits as ``np.linalg.norm(a)``
+    wherever that does not.
+    """
+    big = float(np.abs(a).max())
+    if big == 0.0 or not np.isfinite(big):
+        return big
+    e = int(np.frexp(big)[1])
+    return float(np.ldexp(np.linalg.norm(np.ldexp(a, -e)), e))
+
+
 def describe3d(d) -> dict:
     """V, E, F, C; the Euler check per cell; convexity; cells cut by a non-convex container.
 
@@ -48,7 +61,7 @@ def describe3d(d) -> dict:
             res = max(CONVEX3D_RTOL * size, CONVEX3D_ULPS * EPS * float(np.abs(V).max(initial=0)))
             for f in range(f0, f1):
                 a = farea[f]
-                na = np.linalg.norm(a)
+                na = _norm(a)
                 if na <= res * size:
                     continue  # a face thinner than the resolution has no normal to test
                 p0 = d.vertices[ring[roff[f]]]

@@ -129,6 +129,7 @@ class Diagram3D:
         pos=None,
         vid=None,
         voff=None,
+        frame=0,
     ):
         self.sites = _ro(sites)
         self.weights = None if weights is None else _ro(weights)
@@ -160,6 +161,11 @@ class Diagram3D:
         self.container_volume = container_volume
         self._face_keep = face_keep
         self.face_shifts = None if shifts is None else _ro(shifts)
+        # the working frame's exponent (engine.inputs.working_frame): area vectors and the
+        # flatness test are computed on vertices times 2**frame (exact), where squares of
+        # areas and products of coordinates neither overflow nor underflow; 0 for ordinary
+        # input (the same bits)
+        self._frame = int(frame)
         self._cache: dict = {}
 
     # --- per cell -------------------------------------------------------------------------
@@ -195,7 +201,9 @@ class Diagram3D:
                 self._vid,
             )
             area = np.zeros((len(lab), 3))
-            _face_vectors(np.asarray(self.vertices), roff, ring, area)
+            _face_vectors(np.asarray(self.vertices), roff, ring, area, self._scale())
+            if self._frame:
+                area = np.ldexp(area, -2 * self._frame)
             self._cache["table"] = tuple(_ro(a) for a in (cf, lab, area, roff, ring))
         return self._cache["table"]
 
@@ -263,15 +271,26 @@ class Diagram3D:
             self._cache["unique"] = Faces3D(_ro(indptr), _ro(indices), _ro(cells))
         return self._cache["unique"]
 
+    def _scale(self):
+        """``2**frame``: the factor of the working frame's coordinates (1.0: none)."""
+        return float(np.ldexp(1.0, self._frame))
+
     def _areas(self):
-        """Areas and unit normals of the unique faces (computed on first use)."""
+        """Areas and unit normals of the unique faces (computed on first use).
+
+        Both in the working frame (a power-of-two scaling: the normals are the same bits,
+        the areas scale back exactly), where the squared areas neither overflow nor
+        underflow.
+        """
         if "areas" not in self._cache:
             faces = self.faces
             av = np.zeros((len(faces), 3))
-            _face_vectors(np.asarray(self.vertices), faces.indptr, faces.indices, av)
+            _face_vectors(np.asarray(self.vertices), faces.indptr, faces.indices, av, self._scale())
             area = np.sqrt((av * av).sum(axis=1))
             with np.errstate(invalid="ignore", divide="ignore"):
                 av /= area[:, None]
+            if self._frame:
+                area = np.ldexp(area, -2 * self._frame)
             self._cache["areas"] = (_ro(area), _ro(av))
         return self._cache["areas"]
 
@@ -304,6 +323,7 @@ class Diagram3D:
                     self._voff,
                     self._vid,
                     np.asarray(self.vertices),
+                    self._scale(),
                 )
             self._cache["nb"] = (_ro(indptr), _ro(indices))
         return self._cache["nb"]
@@ -335,11 +355,12 @@ class Diagram3D:
 
 
 @njit(**NJIT)
-def _face_vectors(V, roff, ring, out):
+def _face_vectors(V, roff, ring, out, s):
     """Area vectors of the rings ``ring[roff[f]:roff[f + 1]]`` (outward: length = area).
 
     Fanned from each ring's first vertex, in coordinates relative to it (far from the
-    origin, e.g. UTM, the products stay accurate).
+    origin, e.g. UTM, the products stay accurate), times ``s`` (a power of two: the area
+    vectors times ``s**2``, exactly, where they are representable).
     """
     for f in range(out.shape[0]):
         a = roff[f]
@@ -351,12 +372,12 @@ def _face_vectors(V, roff, ring, out):
         for q in range(a + 1, b - 1):
             u = ring[q]
             w = ring[q + 1]
-            ux = V[u, 0] - V[v0, 0]
-            uy = V[u, 1] - V[v0, 1]
-            uz = V[u, 2] - V[v0, 2]
-            wx = V[w, 0] - V[v0, 0]
-            wy = V[w, 1] - V[v0, 1]
-            wz = V[w, 2] - V[v0, 2]
+            ux = (V[u, 0] - V[v0, 0]) * s
+            uy = (V[u, 1] - V[v0, 1]) * s
+            uz = (V[u, 2] - V[v0, 2]) * s
+            wx = (V[w, 0] - V[v0, 0]) * s
+            wy = (V[w, 1] - V[v0, 1]) * s
+            wz = (V[w, 2] - V[v0, 2]) * s
             ax += uy * wz - uz * wy
             ay += uz * wx - ux * wz
             az += ux * wy - uy * wx
@@ -473,8 +494,12 @@ def _unique_faces(pos, cf, lab, roff, ring, voff, vid, keep, use_keep):
 
 
 @njit(**NJIT)
-def _flat(V, roff, ring, base, vid, f):
-    """Whether face ``f``'s area vector is exactly zero (the fan of :func:`_face_vectors`)."""
+def _flat(V, roff, ring, base, vid, f, s):
+    """Whether face ``f``'s area vector is exactly zero (the fan of :func:`_face_vectors`).
+
+    On coordinates times ``s`` (the working frame: products of tiny differences do not
+    underflow to zero).
+    """
     a = roff[f]
     b = roff[f + 1]
     v0 = vid[base + ring[a]]
@@ -484,12 +509,12 @@ def _flat(V, roff, ring, base, vid, f):
     for q in range(a + 1, b - 1):
         u = vid[base + ring[q]]
         w = vid[base + ring[q + 1]]
-        ux = V[u, 0] - V[v0, 0]
-        uy = V[u, 1] - V[v0, 1]
-        uz = V[u, 2] - V[v0, 2]
-        wx = V[w, 0] - V[v0, 0]
-        wy = V[w, 1] - V[v0, 1]
-        wz = V[w, 2] - V[v0, 2]
+        ux = (V[u, 0] - V[v0, 0]) * s
+        uy = (V[u, 1] - V[v0, 1]) * s
+        uz = (V[u, 2] - V[v0, 2]) * s
+        wx = (V[w, 0] - V[v0, 0]) * s
+        wy = (V[w, 1] - V[v0, 1]) * s
+        wz = (V[w, 2] - V[v0, 2]) * s
         ax += uy * wz - uz * wy
         ay += uz * wx - ux * wz
         az += ux * wy - uy * wx
@@ -497,7 +522,7 @@ def _flat(V, roff, ring, base, vid, f):
 
 
 @njit(**NJIT)
-def _sorted_nb(cf, lab, roff, ring, voff, vid, V, flat, p, i, sweep, tmp):
+def _sorted_nb(cf, lab, roff, ring, voff, vid, V, s, flat, p, i, sweep, tmp):
     """Cell ``i``'s (build position ``p``) neighbours across faces of nonzero area, sorted.
 
     Into ``tmp``; returns their count. ``sweep`` 0 decides each face's flatness into ``flat``,
@@ -509,7 +534,7 @@ def _sorted_nb(cf, lab, roff, ring, voff, vid, V, flat, p, i, sweep, tmp):
         if j < 0 or j == i:
             continue
         if sweep == 0:
-            flat[f] = _flat(V, roff, ring, voff[p], vid, f)
+            flat[f] = _flat(V, roff, ring, voff[p], vid, f, s)
         if flat[f]:
             continue
         b = c - 1  # insertion sort, dropping repeats
@@ -525,7 +550,7 @@ def _sorted_nb(cf, lab, roff, ring, voff, vid, V, flat, p, i, sweep, tmp):
 
 
 @njit(**NJIT_PARALLEL)
-def _neighbors(pos, cf, lab, roff, ring, voff, vid, V):
+def _neighbors(pos, cf, lab, roff, ring, voff, vid, V, s):
     """CSR of each cell's neighbours across faces of nonzero area (sorted, once each).
 
     Read in build order; the rows are the caller's cells. Runs of build positions in
@@ -545,7 +570,7 @@ def _neighbors(pos, cf, lab, roff, ring, voff, vid, V):
         for p in range(run * step, min(npos, (run + 1) * step)):
             i = at[p]
             if i >= 0:
-                indptr[i + 1] = _sorted_nb(cf, lab, roff, ring, voff, vid, V, flat, p, i, 0, tmp)
+                indptr[i + 1] = _sorted_nb(cf, lab, roff, ring, voff, vid, V, s, flat, p, i, 0, tmp)
     for i in range(n):
         indptr[i + 1] += indptr[i]
     indices = np.empty(indptr[n], lab.dtype)  # noqa: TID251 - every entry written below
@@ -554,7 +579,7 @@ def _neighbors(pos, cf, lab, roff, ring, voff, vid, V):
         for p in range(run * step, min(npos, (run + 1) * step)):
             i = at[p]
             if i >= 0:
-                c = _sorted_nb(cf, lab, roff, ring, voff, vid, V, flat, p, i, 1, tmp)
+                c = _sorted_nb(cf, lab, roff, ring, voff, vid, V, s, flat, p, i, 1, tmp)
                 for q in range(c):
                     indices[indptr[i] + q] = tmp[q]
     return indptr, indices

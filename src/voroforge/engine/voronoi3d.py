@@ -302,4 +302,5 @@ def _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh):
         pos=pos,
         vid=res.vid,
         voff=voff,
+        frame=k,
     )
