@@ -177,8 +177,8 @@ def _name_cell(
     px = P[i, 0]
     py = P[i, 1]
     pz = P[i, 2]
-    rmax2 = radius2(V, nv)
     if nd > 0:
+        rmax2 = radius2(V, nv)
         for u in range(nt):
             j = T[u, 0]
             dx = P[j, 0] - px

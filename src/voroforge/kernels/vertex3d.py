@@ -33,9 +33,12 @@ from .predicates3d import exact_point
 
 #: nothing here allocates: compiled without reference counting (see kernels.cellcut3d)
 _NO_NRT = {**NJIT, "_nrt": False}
+#: inlined into the cell builder's naming (numba's inliner): every vertex of every cell is
+#: named, and a call that passes arrays costs more than the rows' arithmetic
+_INLINE = {**_NO_NRT, "inline": "always"}
 
 
-@njit(**_NO_NRT)
+@njit(**_INLINE)
 def _row(key, p0, P, W, WP, ns, out, k):
     """Row ``k`` of the system for owner ``key`` into ``out[k] = (rx, ry, rz, t)``."""
     if key < ns:
@@ -54,7 +57,7 @@ def _row(key, p0, P, W, WP, ns, out, k):
         out[k, 3] = WP[w, 3] - (WP[w, 0] * P[p0, 0] + WP[w, 1] * P[p0, 1] + WP[w, 2] * P[p0, 2])
 
 
-@njit(**_NO_NRT)
+@njit(**_INLINE)
 def solve_name(a, b, c, d, P, W, WP, ns, rows, out):
     """Coordinates of the vertex named ``(a, b, c, d)`` (``a`` a site).
 
@@ -95,7 +98,7 @@ def solve_name(a, b, c, d, P, W, WP, ns, rows, out):
 CANCEL = 2.0**-20
 
 
-@njit(**_NO_NRT)
+@njit(**_INLINE)
 def place(name, P, W, WP, ns, y, x, buf):
     """Absolute coordinates ``x (3,)`` of the vertex ``name`` solved as ``y`` (:func:`solve_name`).
 
@@ -119,7 +122,7 @@ def place(name, P, W, WP, ns, y, x, buf):
     return False
 
 
-@njit(**_NO_NRT)
+@njit(**_INLINE)
 def name_key(m, name):
     """The join's key of a vertex besides its coordinates: a hash of its name (22 bits, >= 1).
 
@@ -139,7 +142,7 @@ def name_key(m, name):
     return np.int64(h >> np.uint64(42)) + 1
 
 
-@njit(**_NO_NRT)
+@njit(**_INLINE)
 def axis_snap(keys, m, ns, WP, x):
     """Put ``x`` (absolute, 3,) exactly on every axis-aligned wall among ``keys[:m]``."""
     for t in range(m):
@@ -154,7 +157,7 @@ def axis_snap(keys, m, ns, WP, x):
                 x[a] = WP[w, 3] * WP[w, a]
 
 
-@njit(**_NO_NRT)
+@njit(**_INLINE)
 def name_vertex(keys, m, P, W, WP, ns, rows, y, name):
     """Name a vertex with sorted owner keys ``keys[:m]`` and solve its coordinates.
 
