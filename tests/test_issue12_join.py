@@ -108,3 +108,19 @@ def test_bucket_keys_and_sort_match_numpy(seed):
     assert np.array_equal(SP, Q[want], equal_nan=True)
     nb = int(np.prod(g[6:9]))
     assert np.array_equal(start, np.concatenate([[0], np.cumsum(np.bincount(keys, minlength=nb))]))
+
+
+def test_released_memory_keeps_the_results(monkeypatch):
+    # voronoi3d hands the build's freed heap pages back (malloc_trim) from TRIM_CELLS cells:
+    # forced on a small input, the diagram is the same bits and stays usable
+    from voroforge.engine import build3d
+
+    p = np.random.default_rng(5).random((3000, 3))
+    plain = vf.voronoi3d(p, BOX)
+    monkeypatch.setattr(build3d, "TRIM_CELLS", 0)
+    d = vf.voronoi3d(p, BOX)
+    assert (d.volumes == plain.volumes).all() and (d.vertices == plain.vertices).all()
+    for a, b in zip(d.neighbors, plain.neighbors, strict=True):
+        assert (a == b).all()
+    assert (d.faces.indices == plain.faces.indices).all()
+    build3d.release_freed_memory(0)  # and called directly

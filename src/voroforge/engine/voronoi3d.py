@@ -8,7 +8,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
-from .build3d import build_cells3d, duplicate_owners
+from .build3d import build_cells3d, duplicate_owners, release_freed_memory
 from .containers import Convex, Template, as_container, box_template, check_volume
 from .diagram3d import Diagram3D
 from .inputs import as_points, as_weights, from_working, working_frame
@@ -118,6 +118,8 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
         from .mesh3d import cut_by_mesh
 
         d = cut_by_mesh(d, mesh, short=res.short)
+    del res, P, W, uniq, dup, gmap
+    release_freed_memory(u)
     return d
 
 
