@@ -37,6 +37,7 @@ from .domain import Domain, make_domain, shifted
 from .inputs import as_points, as_query, as_weights, duplicate_map
 from .planar import build
 from .power_check import checked_cells, lost_candidates, pairs_csr, settle
+from .power_exact import lost_sites, on_one_line
 from .threads import serial_below
 
 #: Up to this many sites every pair is a candidate neighbour (no triangulation needed).
@@ -176,17 +177,18 @@ def _neighbors(x, y, w, box, active):
     v = (y[idx] - cy) / s
     lift = np.column_stack((u, v, u * u + v * v - (w[idx] - w[idx].max()) / (s * s)))
     try:
-        hull = ConvexHull(lift)
+        hull = ConvexHull(lift, qhull_options="Qc")  # Qc: the coplanar points too
     except QhullError:
         span = np.column_stack((u - u[0], v - v[0]))
         far = int(np.argmax(np.einsum("ij,ij->i", span, span)))
         cross = span[:, 0] * span[far, 1] - span[:, 1] * span[far, 0]
         if np.abs(cross).max() <= POWER_FLAT_RTOL * float(span[far] @ span[far]):
             indptr, indices, on_line = _collinear(n, idx, span, span[far], lift[:, 2], active)
-            if not np.abs(cross).max() > 0.0:
+            if not np.abs(cross).max() > 0.0 and on_one_line(x[idx], y[idx], far):
                 return indptr, indices, on_line, None
-            # flat only to rounding (two clusters 1e-9 wide 1e6 apart): the chain is a
-            # first guess, checked like a lift that lost sites
+            # flat only to rounding (two clusters 1e-9 wide 1e6 apart; or 1e-12 wide at
+            # the origin, all one point in the frame): the chain is a first guess, checked
+            # like a lift that lost sites
             rows = np.repeat(np.arange(n), np.diff(indptr))
             a, b = lost_candidates(x, y, w, idx, (cx, cy), rows, indices, idx)
             key = np.unique(np.minimum(a, b) * n + np.maximum(a, b))
@@ -203,12 +205,18 @@ def _neighbors(x, y, w, box, active):
     turn = lower[:, [1, 2, 0]]
     side = (u[lower] - u[turn]) ** 2 + (v[lower] - v[turn]) ** 2
     short = side < POWER_LIFT_RESOLVE_ULPS * _EPS * 2.0 * np.abs(lift).max()
+    # sites Qhull set aside within its rounding of a lower facet: lost the same way, also
+    # where no facet is short (four clusters 1e-10 wide at 3e5: one vertex each, 116 lost)
+    cop = hull.coplanar
+    cop = cop[hull.equations[cop[:, 1], 2] < 0.0]
     suspect = None
-    if short.any():
-        # suspects: the short facets' sites, their lift neighbours, and the sites off the
-        # hull (hidden, or lost); each gets its nearest lifted sites as candidates
+    if short.any() or len(cop):
+        # suspects: the short facets' sites and the lost sites' nearest vertices, their
+        # lift neighbours, and the sites off the hull (hidden, or lost); each gets its
+        # nearest lifted sites as candidates
         suspect = np.zeros(n, dtype=bool)
         suspect[idx[lower[short.any(axis=1)].ravel()]] = True
+        suspect[idx[cop[:, 2]]] = True
         touch = suspect[idx[lower]].any(axis=1)
         suspect[idx[lower[touch].ravel()]] = True
         suspect |= active & ~on_hull
@@ -276,7 +284,9 @@ def power_diagram(pts: np.ndarray, w: np.ndarray, dom: Domain) -> PowerDiagram:
         closed, lengths, own = power_cells(x, y, w, indptr, indices, box, active)
     else:
         rings = checked_cells(x, y, w, box, active, indptr, indices, suspect)
-        closed, lengths, own, lost = settle(box, *rings)
+        closed, lengths, own = settle(box, *rings)
+        # the sites left without a ring that have a cell (exactly): float64 cannot hold it
+        lost = lost_sites(x, y, w, box, active, np.flatnonzero(active & ~(np.diff(lengths) > 0)))
     bufs, edges = assemble(dom, closed, lengths, own, n)
     return PowerDiagram(pts, dup, dom, bufs, edges, w, unresolved=lost)
 

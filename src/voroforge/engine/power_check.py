@@ -183,30 +183,28 @@ def checked_cells(x, y, w, box, active, indptr, indices, suspect):
 
 
 def settle(box, closed, lengths, owner):
-    """The checked path's rings with what float64 cannot hold merged to points; sites lost.
+    """The checked path's rings with what float64 cannot hold merged to points.
 
     In a cluster one to a few ulps of its coordinates wide (1e-10 at 3e5..1e6) the power
     cells are a few ulps across: each cell's named vertices are rounded alone, so a tiny
     ring folds (a self-intersecting polygon), or one cell keeps an edge an ulp long that
-    its neighbour's ring does not have (the neighbour's ring went straight past, or
-    compacted away): Euler fails. Such places are merged, each to one point shared bit for
-    bit by every ring that has one of them: every vertex of a ring at most ``POWER_SETTLE_ULPS``
-    across that is not a valid polygon (``kernels.clip.tiny_folded``), the two ends of an
-    edge that short at a right turn of a larger ring that is not valid (a wedge's apex
-    rounded across its next vertex), and the two ends of an edge that short that the
-    owner's ring lacks. Rings are compacted (a ring left with no area is empty), and
-    rounds repeat while anything is merged. Returns the rings and the sites
-    whose non-empty ring was emptied (``Diagram.unresolved``: float64 cannot represent
-    their cells). Nothing changes where every ring is valid and every short edge shared.
+    no other ring has (the neighbour's ring went straight past, or compacted away): Euler
+    fails. Such places are merged, each to one point shared bit for bit by every ring that
+    has one of them: every vertex of a ring at most ``POWER_SETTLE_ULPS`` across that is
+    not a valid polygon (``kernels.clip.tiny_folded``), the two ends of an edge that short
+    at a right turn of a larger ring that is not valid (a wedge's apex rounded across its
+    next vertex), and the two ends of an edge that short that no ring has reversed. Rings
+    are compacted (a ring left with no area is empty), and rounds repeat while anything is
+    merged. Which sites so emptied have a cell is decided exactly afterwards
+    (``engine.power_exact.lost_sites``: ``Diagram.unresolved``). Nothing changes where
+    every ring is valid and every short edge shared.
     """
-    had = lengths[1:] > lengths[:-1]
     for _ in range(POWER_SETTLE_ROUNDS):
         groups = _unheld(closed, lengths, owner)
         if not groups:
             break
         closed, lengths, owner = _merge(box, closed, lengths, owner, groups)
-    lost = np.flatnonzero(had & (lengths[1:] == lengths[:-1]))
-    return closed, lengths, owner, lost
+    return closed, lengths, owner
 
 
 def _unheld(closed, lengths, owner):
@@ -236,15 +234,15 @@ def _unheld(closed, lengths, owner):
             if short[p] or short[c]:
                 e = p if short[p] and not (short[c] and _len(closed, c) < _len(closed, p)) else c
                 groups.append(np.array([e, e + 1]))
-    k = np.flatnonzero((owner[:-1] >= 0) & short)
-    cell = np.searchsorted(lengths, k, side="right") - 1
-    for s, i in zip(k.tolist(), cell.tolist(), strict=True):
-        j = int(owner[s])
-        lo, hi = lengths[j], lengths[j + 1] - 1
-        u = lo + np.flatnonzero(owner[lo:hi] == i)
-        back = (closed[u] == closed[s + 1]).all(axis=1) & (closed[u + 1] == closed[s]).all(axis=1)
-        if not back.any():
-            groups.append(np.array([s, s + 1]))
+    # a short bisector edge that no ring has reversed in the same bits (whatever the
+    # owners say: a ring emptied by an earlier round still names the edges it bordered)
+    _, pid = np.unique(closed, axis=0, return_inverse=True)
+    pid = pid.ravel().astype(np.int64)
+    edge = owner[:-1] != -2
+    key = pid[:-1] * len(closed) + pid[1:]
+    back = np.isin(pid[1:] * len(closed) + pid[:-1], key[edge])
+    for s in np.flatnonzero((owner[:-1] >= 0) & short & ~back).tolist():
+        groups.append(np.array([s, s + 1]))
     return groups
 
 
@@ -256,8 +254,9 @@ def _len(closed, s):
 def _merge(box, closed, lengths, owner, groups):
     """Rings with each group's points (and every copy of them) at one point, compacted.
 
-    The point kept is a box corner, else one on a box side, else the smallest bits, so
-    the choice does not depend on the cells' order.
+    The point kept is a box corner, else one on a box side, else the member leaving the
+    rings that have one the fewest right turns (:func:`_least_turned`), then the smallest
+    bits, so the choice does not depend on the cells' order.
     """
     pts, inv = np.unique(closed, axis=0, return_inverse=True)
     inv = inv.ravel()
@@ -278,6 +277,7 @@ def _merge(box, closed, lengths, owner, groups):
         for p in r:
             parent[p] = best
     to = np.array([root(p) for p in range(len(pts))])
+    to = _least_turned(pts, inv, lengths, to, side)
     moved = to[inv] != inv
     closed = pts[to[inv]]
     touched = np.zeros(len(lengths) - 1, dtype=bool)
@@ -295,6 +295,64 @@ def _merge(box, closed, lengths, owner, groups):
     if not lengths[-1]:
         return closed[:0], lengths, owner[:0]
     return np.concatenate([r[0] for r in rings]), lengths, np.concatenate([r[1] for r in rings])
+
+
+def _least_turned(pts, inv, lengths, to, side):
+    """``to`` (each point's class representative) with each class's point chosen again.
+
+    A class merged across several rounds can span tens of ulps: its first-ranked member
+    (``to``'s choice: the smallest bits) may sit beyond a larger ring's chord there, which
+    then turns right (a wedge's apex moved past its neighbours: non-convex). Each class
+    takes, among its members on as many box sides as ``to``'s choice (a box corner or
+    side stays), the one leaving the fewest exact right turns in the rings that have one
+    of its members (compacted; the other classes at their current choice; a ring that
+    passes a point twice counts worst, :func:`_bad_turns`); ties keep ``to``'s choice,
+    then the smallest bits.
+    """
+    size = np.bincount(to, minlength=len(pts))
+    slot_ring = np.searchsorted(lengths, np.arange(len(inv)), side="right") - 1
+    for r in np.flatnonzero(size > 1).tolist():
+        mem = np.flatnonzero(to == r)
+        at = np.isin(inv, mem)
+        rings = np.unique(slot_ring[at]).tolist()
+        best, least = r, None
+        for c in [r, *(p for p in mem.tolist() if p != r and side[p] == side[r])]:
+            turns = 0
+            for i in rings:
+                lo, hi = lengths[i], lengths[i + 1] - 1
+                idx = to[inv[lo:hi]]
+                idx[at[lo:hi]] = c
+                turns += _bad_turns(pts[idx])
+            if least is None or turns < least:
+                best, least = c, turns
+        to[mem] = best
+    return to
+
+
+def _bad_turns(xy):
+    """Exact right turns of an open ring after dropping repeated points (0: no ring left).
+
+    A point the ring passes twice, or a spike (a straight turn back), counts as many
+    turns as the ring has vertices: worse than any choice that leaves the ring simple.
+    """
+    keep = np.ones(len(xy), dtype=bool)
+    keep[1:] = (xy[1:] != xy[:-1]).any(axis=1)
+    xy = xy[keep]
+    while len(xy) > 1 and (xy[-1] == xy[0]).all():
+        xy = xy[:-1]
+    m = len(xy)
+    if m < 3:
+        return 0
+    if len(np.unique(xy, axis=0)) < m:
+        return m
+    bad = 0
+    for v in range(m):
+        a, b, c = xy[v - 1], xy[v], xy[(v + 1) % m]
+        turn = orient2d(*a, *b, *c)
+        if turn == 0.0 and ((b - a) * (c - b)).sum() < 0.0:
+            return m
+        bad += turn < 0.0
+    return bad
 
 
 def _compacted(xy, own):
