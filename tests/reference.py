@@ -132,6 +132,30 @@ def brute_nearest(sites, queries) -> tuple[np.ndarray, np.ndarray]:
     return idx, best
 
 
+def exact_pixel_labels(key, labels, x, y, sites, metric="euclidean") -> np.ndarray:
+    """Float argmin ``labels`` of a raster with its near ties decided in rationals.
+
+    ``key (..., n)`` holds the float keys (squared distance, or the distance for
+    ``"manhattan"``/``"chebyshev"``) of pixel centres ``x, y (...)`` to ``sites (n, 2)``;
+    where keys lie within 16 ulps of a pixel's smallest, the exactly nearest site wins, exact
+    ties to the lowest index. Returns the corrected labels (a new array).
+    """
+    out = np.array(labels, copy=True)
+    k1 = np.take_along_axis(key, out[..., None], axis=-1)[..., 0]
+    near = key <= k1[..., None] * (1.0 + 16.0 * 2.0**-53) + 1e-320
+
+    def exact(qx, qy, i):
+        dx, dy = abs(qx - _fr(sites[i, 0])), abs(qy - _fr(sites[i, 1]))
+        if metric == "euclidean":
+            return dx * dx + dy * dy
+        return dx + dy if metric == "manhattan" else max(dx, dy)
+
+    for idx in zip(*np.nonzero(near.sum(axis=-1) > 1), strict=True):
+        qx, qy = _fr(x[idx]), _fr(y[idx])
+        out[idx] = min(np.flatnonzero(near[idx]), key=lambda i, qx=qx, qy=qy: (exact(qx, qy, i), i))
+    return out
+
+
 def _clip_halfplane(poly: np.ndarray, q: np.ndarray, c: float) -> np.ndarray:
     """Clip a convex polygon (k, 2) to ``{x : q . x <= c}`` (one Sutherland-Hodgman step)."""
     s = poly @ q - c

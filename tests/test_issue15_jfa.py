@@ -16,6 +16,8 @@ import voroforge as vf
 from voroforge.engine.raster import _jfa_reach, _jfa_steps, pixel_centers
 from voroforge.kernels.raster import jfa_nearest
 
+from reference import exact_pixel_labels
+
 BOX = (0.0, 0.0, 1.0, 1.0)
 
 
@@ -54,7 +56,7 @@ def arrangement(kind: str, n: int, seed: int = 7) -> np.ndarray:
 
 
 def brute(pts, shape, bounds=BOX):
-    """Nearest site (argmin, ties -> lowest index), F1 and F2, as the kernels round them."""
+    """Nearest site (exactly; ties -> lowest index), F1 and F2, as the kernels round them."""
     x, y = pixel_centers(bounds, shape)
     h, w = shape
     lab = np.zeros(shape, dtype=np.int64)
@@ -64,7 +66,7 @@ def brute(pts, shape, bounds=BOX):
         dx = x[:, None] - pts[:, 0]
         dy = y[r] - pts[:, 1]
         key = dx * dx + dy * dy
-        lab[r] = key.argmin(axis=1)
+        lab[r] = exact_pixel_labels(key, key.argmin(axis=1), x, np.full(w, y[r]), pts)
         k1 = key[np.arange(w), lab[r]]
         key[np.arange(w), lab[r]] = np.inf  # the sites here are distinct
         d1[r] = np.sqrt(k1)

@@ -4,6 +4,7 @@ import os
 import subprocess
 import sys
 import textwrap
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -14,6 +15,8 @@ from PIL import Image
 import voroforge as vf
 from voroforge.engine.raster import pixel_centers, rasterize
 from voroforge.io.raster_png import cell_colors, colorize, label_adjacency, write_raster_png
+
+from reference import exact_pixel_labels
 
 METRICS = ("euclidean", "manhattan", "chebyshev")
 
@@ -32,6 +35,8 @@ def brute(points, bounds, shape, metric="euclidean"):
     else:
         key = np.maximum(np.abs(dx), np.abs(dy))
     labels = key.argmin(axis=-1)
+    k1 = np.take_along_axis(key, labels[..., None], axis=-1)[..., 0]
+    labels = exact_pixel_labels(key, labels, xx, yy, pts, metric)  # near ties exactly
     k1 = np.take_along_axis(key, labels[..., None], axis=-1)[..., 0]
     # F2: smallest key over sites at a different position from the nearest one.
     same = (pts[:, 0] == pts[labels][..., 0:1]) & (pts[:, 1] == pts[labels][..., 1:2])
@@ -150,6 +155,30 @@ def test_ties_go_to_lowest_index():
             assert r.labels[0, 0] == want
             assert r.f2[0, 0] == r.distance[0, 0] == 0.25
             assert r.edge[0, 0] == 0.0
+
+
+@pytest.mark.parametrize("method", ["exact", "jfa"])
+def test_near_ties_go_to_the_exactly_nearest_site(method):
+    # pixel (1, 1) of an 8 x 8 image over the default bounds of (0, 0) and (1, 1) is at
+    # x = 0.12500000000000003, y = 0.875: x + y > 1, so site 1 is strictly nearer, though
+    # the float squared distances tie; the labels must agree with Diagram.locate
+    pts = np.array([[0.0, 0.0], [1.0, 1.0]])
+    r = rasterize(pts, (8, 8), method=method, f2=True)
+    assert Fraction(float(r.x[1])) + Fraction(float(r.y[1])) > 1
+    assert r.labels[1, 1] == 1
+    assert r.f2[1, 1] == r.distance[1, 1]  # the float distances still tie
+    d = vf.voronoi(pts)
+    # a regular 300-gon: 24 of 1024 pixel centres sit within rounding of a tie
+    t = np.linspace(0.0, 2.0 * np.pi, 300, endpoint=False)
+    gon = np.column_stack((np.cos(t), np.sin(t)))
+    for p, shape in ((pts, (8, 8)), (gon, (32, 32))):
+        r = rasterize(p, shape, method=method)
+        xx, yy = np.meshgrid(r.x, r.y)
+        d = vf.voronoi(p)
+        want = d.locate(np.column_stack((xx.ravel(), yy.ravel())))
+        np.testing.assert_array_equal(r.labels.ravel(), want)
+    for metric in METRICS if method == "exact" else ():
+        assert_matches_brute(gon, None, (32, 32), metric)
 
 
 def test_scaling_by_two_is_exact(mixed_sites):

@@ -313,18 +313,21 @@ def rasterize(
         padded by 10% on each side, exactly as :func:`voroforge.voronoi` pads its default
         domain (so the image and the diagram cover the same area).
     method : {"exact", "jfa"}
-        ``"exact"``: the true nearest site of every pixel (identical to a brute-force argmin
-        with ties to the lowest index), any metric. ``"jfa"``: Jump Flooding (Euclidean
-        only; the first step cut to what the sites' spacing needs, sites outside ``bounds``
-        seeded on the border pixel), then an exact check: each pixel is compared with every
-        site within the distance the flood found for it, so the labels and distances equal
-        the exact method's on every arrangement. (The flood alone misses sites where they
-        crowd: several per pixel, or cells thinner than a pixel, e.g. many sites along a
-        circle or a slanted line.) On a CPU ``"exact"`` is faster; ``"jfa"`` is the method
-        GPU pipelines use, kept for comparison. Where the sites crowd (most of a uniform
-        bucket grid empty: sites along curves or lines, in clusters) both decide the
-        Euclidean nearest site by walking the sites' Delaunay graph from pixel to pixel,
-        which costs about the same per pixel on any arrangement.
+        ``"exact"``: the exactly nearest site of every pixel centre (ties to the lowest
+        index), any metric: a brute-force argmin's answer wherever its float distances
+        differ by more than their rounding, and decided in exact arithmetic where they do
+        not, so the labels agree with :meth:`Diagram.locate` at the pixel centres.
+        ``"jfa"``: Jump Flooding (Euclidean only; the first step cut to what the sites'
+        spacing needs, sites outside ``bounds`` seeded on the border pixel), then an exact
+        check: each pixel is compared with every site within the distance the flood found
+        for it, so the labels and distances equal the exact method's on every arrangement.
+        (The flood alone misses sites where they crowd: several per pixel, or cells thinner
+        than a pixel, e.g. many sites along a circle or a slanted line.) On a CPU
+        ``"exact"`` is faster; ``"jfa"`` is the method GPU pipelines use, kept for
+        comparison. Where the sites crowd (most of a uniform bucket grid empty: sites along
+        curves or lines, in clusters) both decide the Euclidean nearest site by walking the
+        sites' Delaunay graph from pixel to pixel, which costs about the same per pixel on
+        any arrangement.
     metric : {"euclidean", "manhattan", "chebyshev"}
         Distance used for the labels and distances.
     f2 : bool

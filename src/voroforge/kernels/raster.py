@@ -6,8 +6,11 @@ centres arrive as ``pxs (w,)`` and ``pys (h,)``; the kernels never recompute the
 engine, the kernels and any reference agree bit for bit.
 
 Metric codes: 0 Euclidean, 1 Manhattan, 2 Chebyshev. Comparisons use a *key* (squared
-distance for Euclidean, the distance itself otherwise) computed exactly as a brute-force
-``argmin`` over all sites would compute it.
+distance for Euclidean, the distance itself otherwise) computed as a brute-force ``argmin``
+over all sites would compute it; where the two smallest keys of a pixel lie within their
+rounding of each other, the sites in that band are compared exactly
+(:mod:`.distance_exact`), so a label is the exactly nearest site of the float pixel centre
+(exact ties to the lowest position) and distances are the float keys' roots.
 
 Exact method
     The bucket grid of :mod:`.grid` over the sites; the image is cut into tiles. For a tile
@@ -45,22 +48,12 @@ import numpy as np
 from numba import njit, prange
 
 from ..config import NJIT, NJIT_PARALLEL, RASTER_BOUND_RTOL, RASTER_SLACK_FLOOR, RASTER_SLACK_RTOL
+from .distance_exact import BAND_REL, BAND_TINY, settle
+from .distance_exact import float_key as _key
 from .grid import bucket_of, bucket_sort, grid_shape, ring_gap, ring_row, ring_rows
 
 _BIG = 1 << 62
 _PER_BUCKET = 2.0  # mean sites per bucket of the exact method's grid
-
-
-@njit(**NJIT)
-def _key(dx, dy, metric):
-    """Comparison key of offset ``(dx, dy)``: squared length (Euclidean) or the distance."""
-    if metric == 0:
-        return dx * dx + dy * dy
-    adx = abs(dx)
-    ady = abs(dy)
-    if metric == 1:
-        return adx + ady
-    return max(adx, ady)
 
 
 @njit(**NJIT)
@@ -165,8 +158,23 @@ def _grown(count, rect, u, grid, start, gx, gy, gi, metric, cx, cy, cid):
 
 
 @njit(**NJIT)
+def _settle_pixel(r, c, px, py, cx, cy, cid, count, metric, b1, want_f2, lab, d1, d2):
+    """Pixel ``(r, c)`` whose smallest keys tie to rounding: decided exactly (:func:`settle`)."""
+    t, k1, k2 = settle(px, py, cx, cy, cid, count, metric, b1)
+    lab[r, c] = cid[t]
+    d1[r, c] = _key_to_distance(k1, metric)
+    if want_f2:
+        d2[r, c] = _key_to_distance(k2, metric)
+
+
+@njit(**NJIT)
 def _brute_tile(r0, r1, c0, c1, pxs, pys, cx, cy, cid, count, metric, want_f2, lab, d1, d2):
-    """Nearest (and second nearest) candidate of every pixel of a tile; ties -> lowest id."""
+    """Nearest (and second nearest) candidate of every pixel of a tile; ties -> lowest id.
+
+    Where the two smallest float keys lie within their rounding of each other (a float tie
+    included) the candidates in that band are compared exactly (:mod:`.distance_exact`), so
+    the label is the exactly nearest site of the pixel centre, exact ties to the lowest id.
+    """
     for r in range(r0, r1):
         py = pys[r]
         for c in range(c0, c1):
@@ -182,6 +190,9 @@ def _brute_tile(r0, r1, c0, c1, pxs, pys, cx, cy, cid, count, metric, want_f2, l
                     i1 = cid[t]
                 elif key < b2:
                     b2 = key
+            if b2 <= b1 * (1.0 + BAND_REL) + BAND_TINY and b1 < np.inf:
+                _settle_pixel(r, c, px, py, cx, cy, cid, count, metric, b1, want_f2, lab, d1, d2)
+                continue
             lab[r, c] = i1
             d1[r, c] = _key_to_distance(b1, metric)
             if want_f2:
@@ -332,13 +343,9 @@ def exact_nearest(xs, ys, pxs, pys, metric, want_f2, tile, max_cand):
 # |q - s|^2`` is affine in ``q``, so its minimum over a rectangle of pixel centres is at a
 # corner: when the four corners walk to the same ``s`` and every neighbour's margin there
 # exceeds the keys' rounding, every pixel of the rectangle has ``s`` as its unique nearest
-# site in the floats a brute-force argmin computes, and is filled without evaluating
+# site (exactly, and in the floats a brute-force argmin computes), and is filled without evaluating
 # anything but its own distance. Rectangles that fail are split; single pixels that fail
 # (a true tie, or one within rounding) are brute-forced over the sites within their bound.
-
-_U = 2.0**-53
-_KEY_REL = 16.0 * _U  # a float key is within 4 ulps of the exact squared distance
-_KEY_TINY = 1e-320  # absolute error of keys that underflow (a few subnormal ulps)
 
 
 @njit(**NJIT)
@@ -363,7 +370,7 @@ def _walk(px, py, xs, ys, nptr, nidx, s):
                 bk = k
                 best = t
         if best == s:
-            margin = kt * (1.0 - _KEY_REL) - ks * (1.0 + _KEY_REL)
+            margin = kt * (1.0 - BAND_REL) - ks * (1.0 + BAND_REL)
             if margin != margin:
                 margin = -np.inf
             return s, ks, margin
@@ -374,7 +381,7 @@ def _walk(px, py, xs, ys, nptr, nidx, s):
 @njit(**NJIT)
 def _safe(margin, key):
     """Whether ``margin`` (from :func:`_walk`) proves a unique nearest at keys up to ``key``."""
-    return margin > 2.0 * _KEY_REL * key + _KEY_TINY
+    return margin > 2.0 * BAND_REL * key + BAND_TINY
 
 
 @njit(**NJIT_PARALLEL)
