@@ -343,6 +343,8 @@ def test_read_points_npy_and_geojson(tmp_path):
         ("bad.csv", "x,y\n1,2\n3,oops\n", "line 3: 'oops' is not a number"),
         ("short.csv", "1,2\n3\n", "line 2: expected at least 2 columns"),
         ("nan.txt", "1 2\nnan 4\n", "line 2: 'nan' is not a finite number"),
+        ("ragged.csv", "0,0\n1,2,3\n4,5\n", "line 2: 3 columns, but line 1 has 2"),
+        ("wide.csv", "x,y\n0,0\n1,2,3\n", "line 3: 3 columns, but the header on line 1 has 2"),
         ("pts.shp", "", "unsupported point file type '.shp'"),
         (
             "poly.geojson",
@@ -367,6 +369,30 @@ def test_read_points_npy_errors(tmp_path):
         ValueError, match=r"three.npy: expected an \(n, 2\) array, got shape \(4, 3\)"
     ):
         io.read_points(tmp_path / "three.npy")
+    # complex would lose its imaginary part and bool is no coordinate: both refused
+    for name, arr in (("c.npy", np.ones((3, 2), complex)), ("b.npy", np.ones((3, 2), bool))):
+        np.save(tmp_path / name, arr)
+        with pytest.raises(ValueError, match=f"{name}: array of dtype .* is not real numbers"):
+            io.read_points(tmp_path / name)
+    np.save(tmp_path / "e.npy", np.zeros((0, 2)))
+    with pytest.raises(ValueError, match="e.npy: no points"):
+        io.read_points(tmp_path / "e.npy")
+
+
+def test_read_points_trailing_delimiter_and_three_columns(tmp_path):
+    f = tmp_path / "t.csv"
+    f.write_text("0,0,\n1,2,\n")  # a trailing comma is not a header nor a third column
+    assert read(f).tolist() == [[0, 0], [1, 2]]
+    from voroforge.cli.voronoi3d import read_points3d
+
+    f.write_text("id;height;x;y\na;5;1;2\nb;6;3;4\n")
+    assert read_points3d(f).tolist() == [[1, 2, 5], [3, 4, 6]]
+    f.write_text("x,y,z\n")
+    with pytest.raises(ValueError, match="only a header row"):
+        read_points3d(f)
+    np.save(tmp_path / "p3.npy", np.zeros((2, 2)))
+    with pytest.raises(ValueError, match=r"expected an \(n, 3\) array"):
+        read_points3d(tmp_path / "p3.npy")
 
 
 def test_read_boundary(tmp_path):

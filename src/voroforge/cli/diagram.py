@@ -47,14 +47,18 @@ examples:
 """
 
 
-def _add_outputs(sub: argparse.ArgumentParser) -> None:
+#: what ``voronoi -o`` writes besides :data:`voroforge.io.FORMATS` (``delaunay`` lacks it)
+_VORONOI_SUFFIXES = ".svg, .png, .geojson, .json, .dxf, .parquet or .geoparquet"
+
+
+def _add_outputs(sub: argparse.ArgumentParser, suffixes=".svg, .png, .geojson, .json or .dxf"):
     sub.add_argument(
         "-o",
         "--output",
         metavar="OUT",
         action="append",
         required=True,
-        help="output file; .svg, .png, .geojson, .json or .dxf (repeatable)",
+        help=f"output file; {suffixes} (repeatable)",
     )
     sub.add_argument(
         "--size", type=int, default=1024, help="PNG size in pixels, longer side (default 1024)"
@@ -76,7 +80,7 @@ def add_parsers(commands, formatter_class) -> None:
         formatter_class=formatter_class,
     )
     vor.add_argument("points", metavar="POINTS", help=POINTS_HELP)
-    _add_outputs(vor)
+    _add_outputs(vor, _VORONOI_SUFFIXES)
     vor.add_argument(
         "--boundary",
         metavar="FILE|xmin,ymin,xmax,ymax",
@@ -114,7 +118,13 @@ def run_voronoi(args: argparse.Namespace, stage: Stage) -> list[Path]:
     from .. import io
 
     for out in args.output:
-        kind = "parquet" if _is_parquet(out) else io.output_format(out)
+        try:
+            kind = "parquet" if _is_parquet(out) else io.output_format(out)
+        except ValueError:
+            raise ValueError(
+                f"{out}: unsupported output type {Path(out).suffix or '(none)'!r}; "
+                f"use {_VORONOI_SUFFIXES}"
+            ) from None
         if args.edges and kind in ("png", "parquet"):
             raise ValueError(f"{out}: --edges writes .svg, .dxf or .geojson, not .{kind}")
     stage("reading")

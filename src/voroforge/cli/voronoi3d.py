@@ -59,37 +59,16 @@ def add_parser(commands, formatter_class) -> argparse.ArgumentParser:
 
 
 def read_points3d(path):
-    """``(n, 3)`` points from a .npy or a delimited text file (header with x, y, z optional)."""
-    import numpy as np
+    """``(n, 3)`` points from a .npy or a delimited text file (header with x, y, z optional).
 
-    path = Path(path)
-    if not path.exists():
-        raise ValueError(f"point file not found: {path}")
-    if path.suffix.lower() == ".npy":
-        return np.load(path, allow_pickle=False)
-    text = path.read_text().splitlines()
-    rows = [ln.split("#")[0].strip() for ln in text]
-    rows = [r for r in rows if r]
-    if not rows:
-        raise ValueError(f"{path}: no points")
-    split = [r.replace(";", ",").replace("\t", ",").replace(" ", ",").split(",") for r in rows]
-    split = [[c for c in r if c != ""] for r in split]
-    cols = [0, 1, 2]
-    start = 0
-    try:
-        [float(v) for v in split[0]]
-    except ValueError:
-        head = [c.strip().lower() for c in split[0]]
-        if all(k in head for k in ("x", "y", "z")):
-            cols = [head.index("x"), head.index("y"), head.index("z")]
-        start = 1
-    out = []
-    for k, r in enumerate(split[start:], start=start):
-        try:
-            out.append([float(r[c]) for c in cols])
-        except (ValueError, IndexError):
-            raise ValueError(f"{path}: line {k + 1}: expected three numbers x, y, z") from None
-    return np.array(out, np.float64)
+    The 2D commands' readers with three coordinates: the same delimiters, comments, header
+    names and errors (naming the file and line).
+    """
+    from ..io.readers.points import read_npy_points, read_text_point_table
+
+    if Path(path).suffix.lower() == ".npy":
+        return read_npy_points(path, dims=3)
+    return read_text_point_table(path, dims=3)[0]
 
 
 def _container(text):

@@ -16,6 +16,8 @@ __all__ = ["read_npy_points", "read_text_point_table", "read_text_points"]
 
 _X_NAMES = ("x", "lon", "lng", "longitude", "easting")
 _Y_NAMES = ("y", "lat", "latitude", "northing")
+_Z_NAMES = ("z", "elevation", "height", "alt", "altitude")
+_AXES = ("x", "y", "z")
 
 
 def _split(line: str, delimiter: str | None) -> list[str]:
@@ -47,17 +49,28 @@ def read_text_points(path) -> np.ndarray:
     return read_text_point_table(path)[0]
 
 
-def read_text_point_table(path) -> tuple[np.ndarray, dict]:
+def _data_width(tokens: list[str]) -> int:
+    """How many cells a row has, a trailing empty one (``0,0,``) not counted."""
+    n = len(tokens)
+    while n and tokens[n - 1] == "":
+        n -= 1
+    return n
+
+
+def read_text_point_table(path, dims: int = 2) -> tuple[np.ndarray, dict]:
     """Points from delimited text, and the header row's other columns as attributes.
 
     Parameters
     ----------
     path : str or Path
         As for :func:`read_text_points`.
+    dims : {2, 3}
+        Coordinates per point: ``x, y`` or ``x, y, z`` (header names ``z``, ``elevation``,
+        ``height``, ...).
 
     Returns
     -------
-    points : (n, 2) float64
+    points : (n, dims) float64
         In file order.
     attributes : dict of name -> list
         Every column besides x and y, by its header name (files without a header have
@@ -67,7 +80,8 @@ def read_text_point_table(path) -> tuple[np.ndarray, dict]:
     Raises
     ------
     ValueError
-        Naming the file and the line: no points, missing columns, a non-numeric value.
+        Naming the file and the line: no points, missing columns, a non-numeric value, a
+        row with more cells than the header (or, without one, than the first row).
     """
     path = existing_file(path)
     try:
@@ -84,29 +98,38 @@ def read_text_point_table(path) -> tuple[np.ndarray, dict]:
     first = rows[0][1]
     delimiter = next((d for d in (",", ";", "\t") if d in first), None)
 
-    columns = (0, 1)
-    head = _split(first, delimiter)
-    header = any(parse_number(t) is None for t in head)
+    columns = tuple(range(dims))
+    head, head_line = _split(first, delimiter), rows[0][0]
+    header = any(parse_number(t) is None for t in head[: _data_width(head)])
     if header:
         names = [t.lower() for t in head]
-        xi = next((names.index(n) for n in _X_NAMES if n in names), None)
-        yi = next((names.index(n) for n in _Y_NAMES if n in names), None)
-        if xi is None or yi is None:
-            if len(names) == 2:
-                xi, yi = 0, 1
-            else:
+        found = [
+            next((names.index(n) for n in axis if n in names), None)
+            for axis in (_X_NAMES, _Y_NAMES, _Z_NAMES)[:dims]
+        ]
+        if None in found:
+            if len(names) != dims:
+                want = " and ".join((", ".join(_AXES[: dims - 1]), _AXES[dims - 1]))
                 raise ValueError(
-                    f"{path}: line {rows[0][0]}: header {head} has no columns named x and y"
+                    f"{path}: line {rows[0][0]}: header {head} has no columns named {want}"
                 )
-        columns = (xi, yi)
+            found = list(range(dims))
+        columns = tuple(found)
         rows = rows[1:]
         if not rows:
             raise ValueError(f"{path}: no points (only a header row)")
-
+    # a row wider than the header (or the first row) is a broken file, not extra data
+    width, where = (len(head), f"the header on line {head_line}") if header else (None, "")
     need = max(columns) + 1
-    out = np.zeros((len(rows), 2), dtype=np.float64)
+    out = np.zeros((len(rows), dims), dtype=np.float64)
     for k, (number, line) in enumerate(rows):
         tokens = _split(line, delimiter)
+        if width is None:
+            width, where = _data_width(tokens), f"line {number}"
+        if _data_width(tokens) > width:
+            raise ValueError(
+                f"{path}: line {number}: {_data_width(tokens)} columns, but {where} has {width}"
+            )
         if len(tokens) < need:
             raise ValueError(
                 f"{path}: line {number}: expected at least {need} columns, got {len(tokens)}"
@@ -140,17 +163,19 @@ def _attributes(rows, head, columns, delimiter) -> dict:
     return out
 
 
-def read_npy_points(path) -> np.ndarray:
-    """Points from a ``.npy`` file holding an ``(n, 2)`` numeric array.
+def read_npy_points(path, dims: int = 2) -> np.ndarray:
+    """Points from a ``.npy`` file holding an ``(n, dims)`` array of real numbers.
 
     Parameters
     ----------
     path : str or Path
         The file (no pickles).
+    dims : {2, 3}
+        Coordinates per point.
 
     Returns
     -------
-    (n, 2) float64
+    (n, dims) float64
 
     Raises
     ------
@@ -162,12 +187,13 @@ def read_npy_points(path) -> np.ndarray:
         arr = np.load(path, allow_pickle=False)
     except (ValueError, OSError) as exc:
         raise ValueError(f"{path}: not a readable .npy array ({exc})") from None
-    if arr.ndim != 2 or arr.shape[1] != 2:
-        raise ValueError(f"{path}: expected an (n, 2) array, got shape {arr.shape}")
-    try:
-        arr = arr.astype(np.float64)
-    except (TypeError, ValueError):
-        raise ValueError(f"{path}: array of dtype {arr.dtype} is not numeric") from None
+    if arr.ndim != 2 or arr.shape[1] != dims:
+        raise ValueError(f"{path}: expected an (n, {dims}) array, got shape {arr.shape}")
+    if arr.dtype.kind not in "iuf":  # complex would lose its imaginary part, bool is no number
+        raise ValueError(f"{path}: array of dtype {arr.dtype} is not real numbers")
+    if len(arr) == 0:
+        raise ValueError(f"{path}: no points (the array is empty)")
+    arr = arr.astype(np.float64)
     if not np.isfinite(arr).all():
         row = int(np.flatnonzero(~np.isfinite(arr).all(axis=1))[0])
         raise ValueError(f"{path}: row {row} is not finite: {arr[row].tolist()}")
