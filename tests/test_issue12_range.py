@@ -119,3 +119,35 @@ def test_utm_offset_unchanged():
     assert np.isfinite(d.face_areas).all()
     desc = d.describe()
     assert desc["euler_ok"] and desc["convex"]
+
+
+def _mesh_case(k):
+    import trimesh
+
+    m = trimesh.creation.icosphere(subdivisions=1)
+    S = np.random.default_rng(3).uniform(-0.5, 0.5, (40, 3))
+    mk = trimesh.Trimesh(np.ldexp(m.vertices, k), m.faces, process=False)
+    return np.ldexp(S, k), mk
+
+
+@pytest.mark.parametrize("k", [-120, -60, 60])
+def test_mesh_container_areas_in_its_vertices_frame(k):
+    # a mesh diagram (engine.mesh3d builds it) takes its frame from its vertices: finite
+    # areas scaled exactly where the cut is (below 2**60 here: the cut itself is not scale
+    # exact at 2**120 and up, before and after this change)
+    pytest.importorskip("trimesh")
+    unit = vf.voronoi3d(*_mesh_case(0))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        d = vf.voronoi3d(*_mesh_case(k))
+        assert (d.volumes == np.ldexp(unit.volumes, 3 * k)).all()
+        assert (d.face_areas == np.ldexp(unit.face_areas, 2 * k)).all()
+        assert (d.face_normals == unit.face_normals).all()
+
+
+@pytest.mark.parametrize("k", [-240, 240])
+def test_mesh_container_keeps_its_range(k):
+    # the mesh cut squares triangle areas in the caller's units: meshes keep 1e-200..1e200
+    pytest.importorskip("trimesh")
+    with pytest.raises(ValueError, match=r"outside 1e-200\.\.1e\+200"):
+        vf.voronoi3d(*_mesh_case(k))

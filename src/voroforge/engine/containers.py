@@ -86,14 +86,19 @@ VOLUME_RANGE = (1e-270, 1e300)
 #: sides): face areas in the caller's units stay doubles (a flat box of sides 1e150, 1e150
 #: and 1e-150 has a volume of 1e150 but faces of 1e300)
 AREA_MAX = 1e300
+#: a mesh container's range: its cut (engine.mesh3d) squares triangle areas in the caller's
+#: units (np.linalg.norm of cross products: overflow past sides of ~1e77), so it keeps the
+#: range that held before the areas moved into the working frame
+MESH_VOLUME_RANGE = (1e-200, 1e200)
 
 
-def check_volume(t: Template) -> None:
-    """Raise ``ValueError`` when the container's volume lies outside :data:`VOLUME_RANGE`.
+def check_volume(t: Template, limits=VOLUME_RANGE) -> None:
+    """Raise ``ValueError`` when the container's volume lies outside ``limits``.
 
-    Or when its bounding box's largest face area exceeds :data:`AREA_MAX`.
+    (:data:`VOLUME_RANGE`; :data:`MESH_VOLUME_RANGE` for a mesh) or when its bounding box's
+    largest face area exceeds :data:`AREA_MAX`.
     """
-    lo, hi = VOLUME_RANGE
+    lo, hi = limits
     with np.errstate(over="ignore", under="ignore", invalid="ignore"):
         sides = np.sort(np.ptp(np.asarray(t.bounds, np.float64), axis=0))
         area = float(sides[1] * sides[2])
@@ -110,8 +115,8 @@ def check_volume(t: Template) -> None:
     raise ValueError(
         f"the container's volume in these units ({t.volume:.3g}; largest side {side:.3g}) is "
         f"outside {lo:g}..{hi:g}, where 3D cell volumes would {what}: scale the points (and "
-        "the container) so that its volume lies in that range, e.g. a cube's sides between "
-        "about 1e-90 and 1e100 (a power of two scales exactly)"
+        f"the container) so that its volume lies in that range, e.g. a cube's sides between "
+        f"about {lo ** (1 / 3):.0e} and {hi ** (1 / 3):.0e} (a power of two scales exactly)"
     )
 
 

@@ -129,7 +129,7 @@ class Diagram3D:
         pos=None,
         vid=None,
         voff=None,
-        frame=0,
+        frame=None,
     ):
         self.sites = _ro(sites)
         self.weights = None if weights is None else _ro(weights)
@@ -164,7 +164,9 @@ class Diagram3D:
         # the working frame's exponent (engine.inputs.working_frame): area vectors and the
         # flatness test are computed on vertices times 2**frame (exact), where squares of
         # areas and products of coordinates neither overflow nor underflow; 0 for ordinary
-        # input (the same bits)
+        # input (the same bits); None (mesh containers): the same rule on the vertices
+        if frame is None:
+            frame = _vertex_frame(self.vertices)
         self._frame = int(frame)
         self._cache: dict = {}
 
@@ -349,6 +351,13 @@ class Diagram3D:
         from .describe3d import describe3d
 
         return describe3d(self)
+
+
+def _vertex_frame(V) -> int:
+    """The working frame's exponent of vertices ``V`` (:func:`.inputs.working_frame`'s rule)."""
+    from .inputs import working_frame
+
+    return working_frame(np.abs(V).max(axis=0, keepdims=True))[1] if len(V) else 0
 
 
 # --- kernels over the face table (private) ------------------------------------------------

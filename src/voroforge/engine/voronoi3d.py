@@ -9,7 +9,15 @@ from numba import njit
 
 from ..config import NJIT
 from .build3d import build_cells3d, duplicate_owners, release_freed_memory
-from .containers import Convex, Template, as_container, box_template, check_volume
+from .containers import (
+    MESH_VOLUME_RANGE,
+    VOLUME_RANGE,
+    Convex,
+    Template,
+    as_container,
+    box_template,
+    check_volume,
+)
 from .diagram3d import Diagram3D
 from .inputs import as_points, as_weights, from_working, working_frame
 
@@ -68,7 +76,7 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
         from .mesh3d import as_mesh_container
 
         mesh, t = as_mesh_container(container)
-    check_volume(t)
+    check_volume(t, VOLUME_RANGE if mesh is None else MESH_VOLUME_RANGE)
     if periodic and (t.kind != "box" or mesh is not None):
         raise ValueError("periodic=True needs a box container (None or a 6-tuple)")
     if n and mesh is not None:
