@@ -13,6 +13,12 @@ Workloads (``--what``):
 ``diagram``   ``vf.voronoi(points, (0, 0, 1, 1))``, cells not materialised.
 ``cells``     the same plus ``d.cells`` (n shapely polygons): what most users hold.
 ``shapely``   reference: GEOS ``voronoi_polygons(extend_to=box)`` + ``intersection``.
+``voronoi3d`` ``vf.voronoi3d`` of ``n`` uniform 3D points in the unit box with neighbours.
+``faces3d``   the same plus the unique faces (the issue's "per cell with faces" figure).
+
+The 3D rows' points (``n`` x 24 B) are made in the workload, so they count in its peak
+(as in ``bench_3d.py``'s B/cell); their B/point is over the ``kernels3d`` row (a 2,000-site
+3D call with faces: the 3D kernels loaded), when it was run.
 
 Examples::
 
@@ -44,9 +50,20 @@ CHILD = textwrap.dedent(
     import voroforge as vf
     import shapely
     n, what = {n}, {what!r}
-    points = uniform(n)
+    points = uniform(n) if not what.endswith("3d") else None
+    if what.endswith("3d"):
+        import numpy as np
+
+        small = vf.voronoi3d(np.random.default_rng(0).random((2000, 3)), (0, 0, 0, 1, 1, 1))
+        small.neighbors, small.faces
+        del small
     t0 = time.perf_counter()
-    if what == "kernels":
+    if what in ("voronoi3d", "faces3d"):
+        d = vf.voronoi3d(np.random.default_rng(n).random((n, 3)), (0, 0, 0, 1, 1, 1))
+        d.neighbors
+        if what == "faces3d":
+            d.faces
+    elif what == "kernels":
         small = vf.voronoi(uniform(100, seed=1), (0.0, 0.0, 1.0, 1.0)).cells
     elif what == "diagram":
         d = vf.voronoi(points, (0.0, 0.0, 1.0, 1.0))
@@ -67,7 +84,16 @@ CHILD = textwrap.dedent(
     """
 )
 
-WORKLOADS = ("baseline", "kernels", "diagram", "cells", "shapely")
+WORKLOADS = (
+    "baseline",
+    "kernels",
+    "diagram",
+    "cells",
+    "shapely",
+    "kernels3d",
+    "voronoi3d",
+    "faces3d",
+)
 
 
 def run_child(n: int, what: str) -> dict:
@@ -104,7 +130,7 @@ def main(argv: list[str] | None = None) -> None:
     print(machine_info())
     print(f"\npeak RSS per workload, n = {n:,} uniform points, each in a fresh process")
     print("(the first run of a workload may also compile numba kernels into the cache)")
-    base = kern = None
+    base = kern = kern3 = None
     header = (
         f"{'workload':<10} {'peak MiB':>10} {'- baseline':>11} {'- kernels':>10} "
         f"{'B/point':>9} {'run s':>8}"
@@ -119,11 +145,13 @@ def main(argv: list[str] | None = None) -> None:
         mib = r["maxrss_kib"] / 1024.0
         over_base = "-" if base is None or what == "baseline" else f"{mib - base:.1f}"
         uses_vf = what in ("diagram", "cells")
-        over_kern = "-" if kern is None or not uses_vf else f"{mib - kern:.1f}"
-        floor = kern if kern is not None and uses_vf else base
+        is3d = what in ("voronoi3d", "faces3d")
+        k0 = kern3 if is3d else kern
+        over_kern = "-" if k0 is None or not (uses_vf or is3d) else f"{mib - k0:.1f}"
+        floor = k0 if k0 is not None and (uses_vf or is3d) else base
         per_point = (
             "-"
-            if floor is None or what in ("baseline", "kernels")
+            if floor is None or what in ("baseline", "kernels", "kernels3d")
             else f"{(mib - floor) * 2**20 / n:.0f}"
         )
         print(
@@ -135,6 +163,8 @@ def main(argv: list[str] | None = None) -> None:
             base = mib
         elif what == "kernels":
             kern = mib
+        elif what == "kernels3d":
+            kern3 = mib
     print(
         "B/point = (peak - kernels row) / n for voroforge rows (baseline row when kernels "
         "was not run), (peak - baseline) / n for shapely; run s = the workload alone"
