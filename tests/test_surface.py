@@ -220,11 +220,23 @@ def test_uv_lloyd_is_worse_than_surface_cvt_on_a_sphere_patch():
         (lambda S: surface.parametric(3), "callable"),
         (lambda S: surface.parametric(lambda u, v: u), r"\(n, 3\)"),
         (lambda S: surface.mesh("/nonexistent/x.obj"), "no such"),
+        (lambda S: surface.cylinder(1, 1, resolution=(10_000, 10_000)), "at most 8,388,608"),
+        (lambda S: surface.cylinder(1e-9, 1), "collapses at 96 x 2730 grid cells"),
     ],
 )
+@pytest.mark.filterwarnings("ignore:near-square facets")  # the collapsing cylinder's cap
 def test_bad_input_is_a_clear_error(call, match):
     with pytest.raises(ValueError, match=match):
         call(SHAPES["sphere"])
+
+
+def test_slender_default_resolution_is_capped_with_a_warning():
+    # near-square facets on a cylinder of radius 1e-5 and height 1 would be 96 x 1.5e6 grid
+    # cells (1.1 GiB); the default is capped at 2**18 cells and says so
+    with pytest.warns(UserWarning, match="96 x 1527887 grid cells; using 96 x 2730"):
+        S = surface.cylinder(1e-5, 1)
+    assert len(S.faces) <= 2 * 2**18
+    assert np.isclose(S.area, 2 * np.pi * 1e-5, rtol=1e-3)
 
 
 def test_inputs_are_not_mutated():

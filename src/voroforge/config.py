@@ -256,6 +256,14 @@ DESIGN_MAX_CELLS = 2_000_000
 #: of shapely work, and depth 6 with count 6 on 60 seeds asked for 2.8M (over 8 minutes)
 RECURSION_MAX_CELLS = 500_000
 
+#: Surface tessellations (``vf.surface`` shapes): a default resolution (near-square facets)
+#: is capped at this many grid cells, with a warning (a cylinder of radius 1e-5 and height
+#: 1 would need 1.5e8, 1.1 GiB, and at 1e-9 114 GiB; 2**20 cells took 11 s to tessellate);
+#: an explicit ``resolution`` beyond the second figure is refused (16M triangles: ~1 GB of
+#: vertices, faces and UVs before any Voronoi work)
+SURFACE_DEFAULT_MAX_CELLS = 1 << 18
+SURFACE_MAX_CELLS = 1 << 23
+
 #: mm: default SVG stroke width of a design build, a laser hairline (drivers cut only
 #: hairlines, about 0.001 in or less, as vectors; 0.01 in would be engraved).
 HAIRLINE_MM = 0.01

@@ -14,11 +14,14 @@ facets are small against the cells (the default gives edges of about 1/100 of th
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from itertools import chain
 
 import numpy as np
+
+from ..config import SURFACE_DEFAULT_MAX_CELLS, SURFACE_MAX_CELLS
 
 __all__ = [
     "Surface",
@@ -319,11 +322,26 @@ def _positive(value, name: str) -> float:
 
 
 def _resolution(res, default: tuple[int, int]) -> tuple[int, int]:
+    """``(nu, nv)`` grid cells: ``res`` checked, or ``default`` capped (with a warning)."""
     if res is None:
-        return default
+        nu, nv = default
+        if nu * nv > SURFACE_DEFAULT_MAX_CELLS:
+            fit = max(1, SURFACE_DEFAULT_MAX_CELLS // nu)
+            warnings.warn(
+                f"near-square facets would need {nu} x {nv} grid cells; using {nu} x {fit} "
+                "(elongated facets: pass resolution=(nu, nv) to choose)",
+                stacklevel=3,
+            )
+            nv = fit
+        return nu, nv
     nu, nv = (res, res) if np.isscalar(res) else res
     if int(nu) != nu or int(nv) != nv or nu < 1 or nv < 1:
         raise ValueError(f"resolution must be positive integers (nu, nv); got {res!r}")
+    if int(nu) * int(nv) > SURFACE_MAX_CELLS:
+        raise ValueError(
+            f"resolution {int(nu)} x {int(nv)} is {int(nu) * int(nv):,} grid cells; at most "
+            f"{SURFACE_MAX_CELLS:,} (two triangles each)"
+        )
     return int(nu), int(nv)
 
 
@@ -369,6 +387,12 @@ def _grid_mesh(fn, nu: int, nv: int, *, merge_tol: float):
     good = (
         (faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 0] != faces[:, 2])
     )
+    if not good.any():
+        raise ValueError(
+            f"the surface collapses at {nu} x {nv} grid cells: every facet has corners closer "
+            f"than {merge_tol:g} x the surface's size ({span:.3g}), which are merged (too thin "
+            "to tessellate)"
+        )
     verts = xyz[keep]
     faces, uv = faces[good], uv[good]
     return verts, faces, uv
