@@ -183,6 +183,25 @@ def test_falloff_profile(kind):
     assert (v[(t > 0) & (t < 1)] > 0).all() and (v[(t > 0) & (t < 1)] < 1).all()
 
 
+@pytest.mark.parametrize("power", [1e-300, 1e-17, 1e-15, 1e-3, 0.5, 1.0, 2.0, 40.0, 1e6])
+def test_inverse_power_falloff_at_extreme_powers(power):
+    # the closed form in floats: 1e-17 gave NaN, 1e-16 zero for every t > 0; the limit as
+    # power -> 0 is the log profile log((1 + eps) / (eps + t)) / log((1 + eps) / eps)
+    t = np.linspace(0, 1, 41)
+    v = at.falloff(t, "inverse_power", power=power)
+    assert np.isfinite(v).all() and v[0] == 1.0 and v[-1] == 0.0
+    assert (np.diff(v) <= 0).all()
+    eps = 0.1
+    with np.errstate(over="ignore", invalid="ignore"):
+        a, b, e = (eps + t) ** -power, np.float64(1 + eps) ** -power, np.float64(eps) ** -power
+        want = (a - b) / (e - b)
+    if power <= 1e-15:
+        want = np.log((1 + eps) / (eps + t)) / np.log((1 + eps) / eps)
+    ok = np.isfinite(want)
+    assert ok.sum() > 20 or power > 100  # 1e6: the floats' formula overflows below t = 0.9
+    np.testing.assert_allclose(v[ok], want[ok], rtol=1e-9, atol=1e-12)
+
+
 @pytest.mark.parametrize("kind", at.FALLOFFS)
 def test_point_attractor_values(kind):
     a = at.PointAttractor([[10, 10], [50, 10]], radius=20.0, strength=0.8, falloff=kind)

@@ -73,9 +73,12 @@ def falloff(t, kind: str = "smoothstep", *, power: float = 2.0) -> np.ndarray:
         p = float(power)
         if not (math.isfinite(p) and p > 0):
             raise ValueError(f"power must be a finite number > 0, got {power!r}")
-        w0 = _INV_EPS**-p
-        w1 = (1.0 + _INV_EPS) ** -p
-        v = ((_INV_EPS + x) ** -p - w1) / (w0 - w1)
+        # ((eps + x)^-p - (1 + eps)^-p) / (eps^-p - (1 + eps)^-p) in logs, every exponent
+        # <= 0: no overflow for a large p, and expm1 keeps a tiny p (1e-17 gave 0/0 = NaN)
+        a = np.log(_INV_EPS + x)
+        b = math.log1p(_INV_EPS)
+        e = math.log(_INV_EPS)
+        v = np.exp(-p * (a - e)) * np.expm1(-p * (b - a)) / math.expm1(-p * (b - e))
     else:
         raise ValueError(f"unknown falloff {kind!r}; choose one of {', '.join(FALLOFFS)}")
     v = np.clip(v, 0.0, 1.0)
