@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import threading
+import warnings
 
 import numpy as np
 import pytest
@@ -304,6 +305,23 @@ def test_foam_random_is_container_minus_bubbles():
     assert abs(m.volume - (1000.0 - inner)) <= 1e-9 * 1000.0
     rep = solid.check(m, max_overhang=None)
     assert rep.by_kind()["trapped_void"] == sum(b is not None for b, _, _ in bubbles)
+
+
+def test_foam_walls_thicker_than_cells_are_reported():
+    # a wall of 100 in cells ~4 wide fills every cell: a solid block, which check() must not
+    # call fine (it said "ok" with min_pore=3: no pore was recorded)
+    rng = np.random.default_rng(7)
+    cells = box_cells(rng.random((10, 3)) * 30, (0, 0, 0, 30, 30, 30))
+    with pytest.warns(UserWarning, match="fill 10 of 10 cells"):
+        m = solid.foam(cells, wall=100.0)
+    assert abs(m.volume - 27000.0) <= 1e-6
+    assert (m.metadata["pores"]["size"] == 0.0).all()
+    rep = solid.check(m, min_pore=3.0, max_overhang=None)
+    assert rep.by_kind()["small_pore"] == 10 and not rep.ok
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no cell filled: no warning
+        m = solid.foam(cells, wall=0.5)
+    assert (m.metadata["pores"]["size"] > 0).all()
 
 
 # --- shell and extrude ---------------------------------------------------------------------

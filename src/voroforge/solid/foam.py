@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 from scipy.spatial import HalfspaceIntersection, QhullError
 
@@ -93,7 +95,9 @@ def foam(cells3d, wall=1.2, *, field=None, container=None):
     trimesh.Trimesh
         Watertight: the outer surface and one inward-facing surface per bubble (the bubbles
         are closed voids; :func:`voroforge.solid.check` lists them as trapped).
-        ``metadata["pores"]`` holds each bubble's centre and inscribed diameter.
+        ``metadata["pores"]`` holds each bubble's centre and inscribed diameter (0 for a
+        cell the walls fill: a warning says how many, and ``check(min_pore=...)`` lists
+        them).
 
     Examples
     --------
@@ -112,13 +116,22 @@ def foam(cells3d, wall=1.2, *, field=None, container=None):
     parts = [container]
     centres, sizes = [], []
     for b, centre, rad in bs:
-        if b is None:
+        if b is None:  # the walls fill this cell: a pore of size 0, which check() lists
+            centres.append(centre)
+            sizes.append(0.0)
             continue
         inv = b.copy()
         inv.invert()
         parts.append(inv)
         centres.append(centre)
         sizes.append(2.0 * rad)
+    closed = sum(b is None for b, _, _ in bs)
+    if closed:
+        warnings.warn(
+            f"foam: walls of {wall!r} fill {closed} of {len(bs)} cells (no bubble left there; "
+            f"{len(bs) - closed} remain)",
+            stacklevel=2,
+        )
     m = trimesh.util.concatenate(parts)
     m.metadata.update(
         {
