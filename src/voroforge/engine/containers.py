@@ -155,10 +155,19 @@ class Convex:
                 raise ValueError(f"halfspaces must have shape (k, 4) with k >= 4; got {hs.shape}")
             if not np.isfinite(hs).all():
                 raise ValueError("halfspaces contains NaN or infinite values")
-            norm = np.linalg.norm(hs[:, :3], axis=1)
-            if (norm == 0).any():
-                raise ValueError(f"halfspace {int(np.flatnonzero(norm == 0)[0])} has a zero normal")
-            hs = hs / norm[:, None]
+            # rows far from 1 are scaled by their largest normal component first: the norm of
+            # [1e155, 1e155, 0] overflowed (the row became 0 and was dropped), of [1e-300, 0,
+            # 0] underflowed (a "zero normal")
+            big = np.abs(hs[:, :3]).max(axis=1)
+            if (big == 0).any():
+                raise ValueError(f"halfspace {int(np.flatnonzero(big == 0)[0])} has a zero normal")
+            far = (big < 1e-150) | (big > 1e150)
+            with np.errstate(over="ignore"):
+                hs[far] /= big[far, None]
+            if not np.isfinite(hs[:, 3]).all():
+                w = int(np.flatnonzero(~np.isfinite(hs[:, 3]))[0])
+                raise ValueError(f"halfspace {w}: its offset over its normal overflows float64")
+            hs = hs / np.linalg.norm(hs[:, :3], axis=1)[:, None]
         self.halfspaces = hs
         self._template = _convex_template(hs)
         self.volume = self._template.volume

@@ -22,11 +22,33 @@ def _norm(a: np.ndarray) -> float:
     return float(np.ldexp(np.linalg.norm(np.ldexp(a, -e)), e))
 
 
+def _pieces(ring, roff, f0, f1) -> int:
+    """Connected pieces of the faces ``f0:f1`` (faces sharing a vertex are connected)."""
+    parent: dict = {}
+
+    def root(v):
+        while parent.setdefault(v, v) != v:
+            parent[v] = parent[parent[v]]
+            v = parent[v]
+        return v
+
+    for f in range(f0, f1):
+        r = ring[roff[f] : roff[f + 1]].tolist()
+        a = root(r[0])
+        for v in r[1:]:
+            b = root(v)
+            if a != b:
+                parent[b] = a
+    return len({root(v) for v in list(parent)})
+
+
 def describe3d(d) -> dict:
     """V, E, F, C; the Euler check per cell; convexity; cells cut by a non-convex container.
 
     Returns a dict: ``vertices``, ``edges`` (unique undirected edges), ``faces`` (unique),
-    ``cells`` (non-empty), ``euler_ok`` (every non-empty cell has ``V - E + F = 2``),
+    ``cells`` (non-empty), ``euler_ok`` (every non-empty cell has ``V - E + F = 2``; one a
+    mesh container cuts, an even ``V - E + F`` of at most 2 per connected piece: it may be
+    split into pieces, and a piece may have handles),
     ``euler_failures`` (cell numbers), ``convex`` (every face's vertices on the inner side of
     every other face of its cell, to ``CONVEX3D_RTOL`` of the cell's size or
     ``CONVEX3D_ULPS`` ulps of its coordinates, whichever is coarser; faces thinner than that
@@ -51,9 +73,17 @@ def describe3d(d) -> dict:
                 cell_edges.add(e)
                 edges.add(e)
             verts.update(r.tolist())
-        if len(verts) - len(cell_edges) + (f1 - f0) != 2:
+        chi = len(verts) - len(cell_edges) + (f1 - f0)
+        cut = d.container == "mesh" and d.cut_cells is not None and bool(d.cut_cells[i])
+        if cut:
+            # a cell the mesh cuts may be several closed pieces, each with handles (a piece
+            # of a torus): every closed orientable surface has an even chi <= 2
+            pieces = _pieces(ring, roff, f0, f1)
+            if chi % 2 or chi > 2 * pieces:
+                fails.append(i)
+        elif chi != 2:
             fails.append(i)
-        if d.container != "mesh" or d.cut_cells is None or not d.cut_cells[i]:
+        if not cut:
             V = d.vertices[list(verts)]
             size = float(np.ptp(V, axis=0).max()) if len(V) else 0.0
             # the resolution: a fraction of the cell, or a few ulps of its coordinates where
