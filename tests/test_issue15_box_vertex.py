@@ -233,14 +233,6 @@ CASES = {
 }
 
 
-# the half-plane cells (kernels/halfplane*, not the dual's cut) leave a gap of 3e-11 to
-# 1.9e-10 of the box's area there (a sliver under an ulp wide at offsets 7e5 and -2.5e7),
-# inside their own certificate's 1e-9 tiling tolerance, on HEAD before the side fix too;
-# the dual's cells tile to 1e-12
-HALFPLANE_GAPS = {("seed0_9", -2, True), ("seed0_9", -1, True), ("seed0_34", 1, False)}
-HALFPLANE_GAPS |= {("seed3_3", u, c) for u in (1, 2, 4) for c in (False, True)}
-
-
 def _case(name):
     sites, box, vertex = CASES[name]
     p = np.array([[H(x), H(y)] for x, y in sites])
@@ -283,9 +275,7 @@ def test_vertex_at_a_box_side(name, algorithm):
 @pytest.mark.parametrize("corner", [False, True])
 @pytest.mark.parametrize("ulps", [-4, -2, -1, 1, 2, 4])
 @pytest.mark.parametrize("name", list(CASES))
-def test_side_a_few_ulps_from_the_vertex(name, ulps, corner, algorithm, request):
-    if algorithm == "halfplane" and (name, ulps, corner) in HALFPLANE_GAPS:
-        request.applymarker(pytest.mark.xfail(strict=True, reason="half-plane gap, see above"))
+def test_side_a_few_ulps_from_the_vertex(name, ulps, corner, algorithm):
     p, box, vertex = _case(name)
     _check(p, _moved(box, vertex, ulps, corner), algorithm)
 

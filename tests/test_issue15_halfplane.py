@@ -163,3 +163,37 @@ def test_slab_dist2_is_a_lower_bound(kind):
         # every small node's bound (an axis-aligned box would hold it)
         widths = slabs[:, 5] - slabs[:, 4]
         assert widths.max() < 1e-12
+
+
+# A box side a few ulps from a Voronoi vertex (test_issue15_box_vertex's cases): the
+# half-plane cells kept the vertex an ulp inside the side where the dual's put it on the
+# side, leaving a sliver between the cells at it (area 3e-11..7e-10 of the box short, inside
+# the certificate's 1e-9). Now the vertex, and the crossings of that side by its edges,
+# go on the side as the dual's cells put them (halfplane_settle._side_snap), including a
+# vertex exactly on the side whose third site the cell's ring lacks (seed0_139).
+SIDE_GAPS = [
+    ("seed0_9", -2, True),
+    ("seed0_9", -1, True),
+    ("seed0_34", 1, False),
+    ("seed0_139", 0, False),
+    *[("seed3_3", u, c) for u in (1, 2, 4) for c in (False, True)],
+]
+
+
+@pytest.mark.parametrize(("name", "ulps", "corner"), SIDE_GAPS)
+def test_vertex_ulps_from_a_side_is_the_defaults(name, ulps, corner):
+    from test_issue15_box_vertex import _case, _moved
+
+    p, box, vertex = _case(name)
+    b = _moved(box, vertex, ulps, corner) if ulps else box
+    dh = vf.voronoi(p, b, algorithm="halfplane")
+    dd = vf.voronoi(p, b)
+    area = (b[2] - b[0]) * (b[3] - b[1])
+    assert dh.areas.sum() == pytest.approx(area, rel=1e-12)
+    hc = np.asarray(dh.cells, dtype=object)
+    dc = np.asarray(dd.cells, dtype=object)
+    assert shapely.is_valid(hc).all()
+    # the same vertices, bit for bit (a ring may start elsewhere)
+    assert all(_ring(h) == _ring(d) for h, d in zip(hc, dc, strict=True))
+    r = dh.describe()
+    assert r.euler_ok and r.convex_ok, str(r)

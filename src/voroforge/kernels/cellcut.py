@@ -53,7 +53,7 @@ def side_reach(x, y, err):
 
 
 @njit(**NJIT)
-def _near_sides(x, y, e, box):
+def near_sides(x, y, e, box):
     """Bits of the box sides (1, 2, 4, 8: left, bottom, right, top) within ``e`` of ``(x, y)``.
 
     As :func:`on_sides` takes them: a side only along its extent (widened by ``e``), and of
@@ -119,13 +119,13 @@ def side_reaches(xs, ys, tri, cls, cx, cy, err, box):
             continue
         e = side_reach(x, y, b)
         reach[t] = e
-        bits = _near_sides(x, y, e, box)
+        bits = near_sides(x, y, e, box)
         if bits == 0:
             continue
         for k in range(3):
             s = tri[3 * t + k]
             s2 = tri[3 * t + (k + 1) % 3]
-            if _near_sides(xs[s], ys[s], e, box) & bits or (
+            if near_sides(xs[s], ys[s], e, box) & bits or (
                 abs(xs[s] - xs[s2]) <= 2.0 * e and abs(ys[s] - ys[s2]) <= 2.0 * e
             ):
                 stay[cls[t]] = True
@@ -152,7 +152,7 @@ def on_sides(t, cx, cy, reach, box):
     e = reach[t]
     if e < 0.0:
         return x, y, False
-    bits = _near_sides(x, y, e, box)
+    bits = near_sides(x, y, e, box)
     if bits & 1:
         x = box[0]
     elif bits & 4:

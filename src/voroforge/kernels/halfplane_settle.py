@@ -32,6 +32,7 @@ from ..config import (
     NAME_MAX_TRIES,
     NJIT,
 )
+from .cellcut import near_sides, side_reach
 from .clip import dedupe_ring
 from .predicates import incircle, orient2d
 from .vertex import (
@@ -55,6 +56,10 @@ _W_VERTEX = 32  # a vertex from its name (voronoi_vertex: ~30-50 ns)
 _W_EXACT = 1024  # one from exact expansions (~5-10 us; a centre near the origin, see below)
 _W_ADAPT = 512  # an incircle whose float filter fails: its exact stage (~1-3 us)
 _SLOW_RTOL = 2.0**-20  # centres nearer the origin than this of their scale take that path
+# A vertex farther inside every box side than this times |x| + |y| is put on none
+# (_side_snap): above 4 VERTEX_REFINE_RTOL (its rounding bound's largest, 2**-30 of that)
+# and BOX_SIDE_REACH_ULPS ulps of its larger coordinate (at most 2**-52 of it)
+_SNAP_PRE = 2.0**-27
 
 
 @njit(**NJIT)
@@ -548,6 +553,110 @@ def _snap_crossing(i, j, x, y, xs, ys, near, nn, sidx, on):
     return canonical_vertex(on, k, x, y, xs[i], ys[i], xs, ys)
 
 
+@njit(**NJIT)
+def _side_snap(i, a, b, x, y, xs, ys, box):
+    """Vertex ``(x, y)`` of sites ``i, a, b`` put on the box sides within its reach.
+
+    As the Delaunay dual's cells put it (:func:`.cellcut.side_reaches`,
+    :func:`.cellcut.on_sides`): within four times its rounding bound and an ulp of a side
+    it is on that side to rounding, and each cell's own cut would decide alone where it
+    is (a gap an ulp wide along the side between the cells at it). It stays where it is
+    when one of its sites lies within that reach of the side, or two of them within twice
+    of each other. Returns ``(x, y, hit)``.
+    """
+    # the reach is at most 4 VERTEX_REFINE_RTOL (2**-30) of |x| + |y| plus an ulp: a
+    # vertex farther inside than this needs no bound (almost all of them)
+    pre = _SNAP_PRE * (abs(x) + abs(y))
+    if box[0] + pre < x < box[2] - pre and box[1] + pre < y < box[3] - pre:
+        return x, y, False
+    e = side_reach(x, y, voronoi_vertex_error(i, a, b, xs, ys))
+    bits = near_sides(x, y, e, box)
+    if bits == 0:
+        return x, y, False
+    for s, t in ((i, a), (a, b), (b, i)):
+        if near_sides(xs[s], ys[s], e, box) & bits:
+            return x, y, False
+        if abs(xs[s] - xs[t]) <= 2.0 * e and abs(ys[s] - ys[t]) <= 2.0 * e:
+            return x, y, False
+    if bits & 1:
+        x = box[0]
+    elif bits & 4:
+        x = box[2]
+    if bits & 2:
+        y = box[1]
+    elif bits & 8:
+        y = box[3]
+    return x, y, True
+
+
+@njit(**NJIT)
+def _on_side(x, y, side, box):
+    """Whether ``(x, y)`` lies on box side ``side`` (``LEFT`` .. ``TOP``), exactly."""
+    if side == LEFT:
+        return x == box[0]
+    if side == BOTTOM:
+        return y == box[1]
+    if side == RIGHT:
+        return x == box[2]
+    return y == box[3]
+
+
+@njit(**NJIT)
+def _crossing_at_end(i, u, lab, m, ox, oy, oo, xs, ys, box, near, nn, sidx, x, y):
+    """Crossing ``(x, y)`` at ring position ``u`` (a site and a side), or its edge's end there.
+
+    The site's edge ends at a vertex inside the ring (the next site label, ``ox, oy`` with
+    ``oo`` 1 where :func:`_side_snap` put it on a side) and at one past the side, shared
+    with a site of ``near[:nn]`` (sorted indices, ``sidx`` maps them) that the ring may
+    lack (its part of the cell lies past the side: a vertex on the side or an ulp past
+    it). An end put on this side by :func:`_side_snap` is the crossing, the nearer one
+    when both are (:func:`.cellcut._crossing_at_vertex`, the dual's cells).
+    """
+    a = lab[u - 1] if u > 0 else lab[m - 1]
+    b = lab[u]
+    side = b if a >= 0 else a
+    j = a if a >= 0 else b
+    best = np.inf
+    bx = x
+    by = y
+    # the end inside the ring: the vertex between j and its neighbour there
+    w = u - 1 if a >= 0 else u + 1
+    w = (w + m) % m
+    pa = lab[w - 1] if w > 0 else lab[m - 1]
+    if pa >= 0 and lab[w] >= 0 and oo[w] == 1 and _on_side(ox[w], oy[w], side, box):
+        best = abs(ox[w] - x) + abs(oy[w] - y)
+        bx = ox[w]
+        by = oy[w]
+    # the end past the side, shared with a site the ring may lack (its part of the cell
+    # is past the side): a watched site whose vertex with i and j on j's bisector lies
+    # within _side_snap's screen of the side. Along the bisector from the crossing the
+    # difference f of squared distances from k and i is linear, and the vertex (f = 0)
+    # is |f| un / (2 |cross|) from the side (un: the bisector's slope against it)
+    ix = xs[i]
+    iy = ys[i]
+    r2 = (ix - x) * (ix - x) + (iy - y) * (iy - y)
+    un = abs(xs[j] - ix) if side == BOTTOM or side == TOP else abs(ys[j] - iy)
+    # (the vertex lies along the side, within the box's extent: its magnitude is the box's)
+    pre = 4.0 * _SNAP_PRE * (max(abs(box[0]), abs(box[2])) + max(abs(box[1]), abs(box[3])))
+    for c in range(nn):
+        k = sidx[near[c]]
+        if k == i or k == j:
+            continue
+        dx = xs[k] - x
+        dy = ys[k] - y
+        f = abs(dx * dx + dy * dy - r2) - 8.0 * _U * (dx * dx + dy * dy + r2)
+        cross = (iy - ys[k]) * (xs[j] - ix) - (ix - xs[k]) * (ys[j] - iy)
+        if f * un > pre * abs(cross):
+            continue
+        vx, vy, _, _ = voronoi_vertex_lazy(i, j, k, xs, ys)
+        vx, vy, hit = _side_snap(i, j, k, vx, vy, xs, ys, box)
+        if hit and _on_side(vx, vy, side, box) and abs(vx - x) + abs(vy - y) < best:
+            best = abs(vx - x) + abs(vy - y)
+            bx = vx
+            by = vy
+    return bx, by
+
+
 @njit(inline="always", **NJIT)
 def emit_exact(i, lab, m, vx, vy, xs, ys, box, near, nn, sidx, ox, oy, oo, on):
     """Write the settled ring with canonical vertices to ``o``; -1 when one is undefined.
@@ -556,20 +665,31 @@ def emit_exact(i, lab, m, vx, vy, xs, ys, box, near, nn, sidx, ox, oy, oo, on):
     the crossing named by the pair and the side (:func:`.vertex.box_crossing`), and two
     box sides meet at the exact corner. A crossing that is also a Voronoi vertex (a site
     among ``near[:nn]`` as far from it as the pair, to rounding) is that vertex's canonical
-    circumcentre instead, which the cells meeting there inside compute too. ``on`` is
+    circumcentre instead, which the cells meeting there inside compute too. A vertex within
+    reach of a box side is put on it, with the crossings of that side by its edges
+    (:func:`_side_snap`, :func:`_crossing_at_end`), as the dual's cells put it. ``on`` is
     scratch (int64, any size).
     """
     for u in range(m):
         a = lab[u - 1] if u > 0 else lab[m - 1]
         b = lab[u]
+        oo[u] = 0
         if a >= 0 and b >= 0:
-            x = vx[u]
-            y = vy[u]
+            x, y, hit = _side_snap(i, a, b, vx[u], vy[u], xs, ys, box)
+            ox[u] = x
+            oy[u] = y
+            oo[u] = 1 if hit else 0
+    for u in range(m):
+        a = lab[u - 1] if u > 0 else lab[m - 1]
+        b = lab[u]
+        if a >= 0 and b >= 0:
+            continue
         elif a >= 0 or b >= 0:
             j = a if a >= 0 else b
             x, y = box_crossing(i, j, xs, ys, b if a >= 0 else a, box)
             if np.isfinite(x) and np.isfinite(y):
                 x, y = _snap_crossing(i, j, x, y, xs, ys, near, nn, sidx, on)
+                x, y = _crossing_at_end(i, u, lab, m, ox, oy, oo, xs, ys, box, near, nn, sidx, x, y)
         else:
             vert = a if (a == LEFT or a == RIGHT) else b
             horz = b if vert == a else a
@@ -577,13 +697,16 @@ def emit_exact(i, lab, m, vx, vy, xs, ys, box, near, nn, sidx, ox, oy, oo, on):
                 return -1
             x = box[0] if vert == LEFT else box[2]
             y = box[1] if horz == BOTTOM else box[3]
-        if not (np.isfinite(x) and np.isfinite(y)):
-            return -1
-        x = min(max(x, box[0]), box[2])
-        y = min(max(y, box[1]), box[3])
         ox[u] = x
         oy[u] = y
-        oo[u] = b if b >= 0 else -1
+    for u in range(m):
+        x = ox[u]
+        y = oy[u]
+        if not (np.isfinite(x) and np.isfinite(y)):
+            return -1
+        ox[u] = min(max(x, box[0]), box[2])
+        oy[u] = min(max(y, box[1]), box[3])
+        oo[u] = lab[u] if lab[u] >= 0 else -1
     return dedupe_ring(ox, oy, oo, m)
 
 
