@@ -28,6 +28,20 @@ def test_halfspace_rows_of_any_magnitude(rows, volume):
     assert d.volumes.sum() == pytest.approx(volume, rel=1e-12)
 
 
+@pytest.mark.parametrize("h", [1e-5, 1e-6, 3e-7])
+def test_convex_roof_nearly_flat(h):
+    # three roof walls of slope 2h meet at a ridge: their determinant (8 h^2) was below the
+    # sites' 1e-10 and no quadruple named the corner (RuntimeError "status 4", even with one
+    # site); a wall triple is named down to 1e-13 (slopes below ~3e-7 still fail: open)
+    base = [[-1, 0, 0, 0], [1, 0, 0, 1], [0, -1, 0, 0], [0, 1, 0, 1], [0, 0, -1, 0]]
+    roof = [[0, -2 * h, 1, 1], [0, 2 * h, 1, 1 + 2 * h], [-2 * h, 0, 1, 1]]
+    c = vf.Convex(halfspaces=base + roof)
+    for n in (1, 30):
+        d = vf.voronoi3d(np.random.default_rng(0).random((n, 3)), c)
+        assert d.volumes.sum() == pytest.approx(c.volume, rel=1e-12)
+        assert d.describe()["euler_ok"]
+
+
 def test_halfspace_offset_that_overflows_is_a_clear_error():
     with pytest.raises(ValueError, match="halfspace 6: its offset over its normal overflows"):
         vf.Convex(halfspaces=CUBE + [[1e-310, 0, 0, 1e300]])

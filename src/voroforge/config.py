@@ -407,6 +407,10 @@ VORONOI3D_STOP_RTOL = 1e-9
 #: Four owners name a vertex only if their planes' determinant exceeds this fraction of the
 #: product of the rows' lengths (co-spherical sites: the first independent quadruple names it)
 VORONOI3D_DET_RTOL = 1e-10
+#: The same for a site and three container walls: unit normals, whose float determinant is
+#: good to ~10 ulps (a Convex roof of slope 2e-6 has walls with determinant 8e-12 at its
+#: ridge; with the sites' 1e-10 no quadruple named that corner and the build failed)
+VORONOI3D_WALL_DET_RTOL = 1e-13
 #: Default container: the sites' bounding box padded by this fraction of its size per side
 VORONOI3D_PAD = 0.1
 #: Mesh containers: the touch test's slack (cell planes moved out) and the tolerance of a

@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import NJIT, VORONOI3D_DET_RTOL
+from ..config import NJIT, VORONOI3D_DET_RTOL, VORONOI3D_WALL_DET_RTOL
 from .predicates3d import exact_point
 
 #: nothing here allocates: compiled without reference counting (see kernels.cellcut3d)
@@ -81,7 +81,11 @@ def solve_name(a, b, c, d, P, W, WP, ns, rows, out):
     n0 = np.sqrt(rows[0, 0] ** 2 + rows[0, 1] ** 2 + rows[0, 2] ** 2)
     n1 = np.sqrt(rows[1, 0] ** 2 + rows[1, 1] ** 2 + rows[1, 2] ** 2)
     n2 = np.sqrt(rows[2, 0] ** 2 + rows[2, 1] ** 2 + rows[2, 2] ** 2)
-    if not abs(det) > VORONOI3D_DET_RTOL * n0 * n1 * n2:
+    # three walls (``b``, hence ``c`` and ``d``, past the sites) are the container's own
+    # corner: its unit normals' float determinant is good to a few ulps, so a wall triple
+    # only slightly off coplanar (a roof of slope 1e-6: det 8e-12) still names its vertex
+    rtol = VORONOI3D_DET_RTOL if b < ns else VORONOI3D_WALL_DET_RTOL
+    if not abs(det) > rtol * n0 * n1 * n2:
         return False
     t0 = rows[0, 3]
     t1 = rows[1, 3]
