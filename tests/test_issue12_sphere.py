@@ -154,22 +154,36 @@ def test_sphere_default_container(kind):
 # ---- extreme scales: volumes are reported in the caller's units -------------------------
 
 
-@pytest.mark.parametrize(
-    ("off", "span"), [(1e200, 1e199), (1e-200, 1e-201), (0.0, 1e-70), (3e66, 1e67), (0.0, 1e300)]
-)
+def _extreme(off, span, how):
+    S = off + (np.random.default_rng(2).random((30, 3)) - 0.5) * span
+    box = tuple(S.min(0) - 0.1 * np.ptp(S, 0)) + tuple(S.max(0) + 0.1 * np.ptp(S, 0))
+    if how == "default":
+        return vf.voronoi3d(S)
+    return vf.voronoi3d(S, box, periodic=how == "periodic")
+
+
+@pytest.mark.parametrize(("off", "span"), [(1e200, 1e199), (1e-200, 1e-201), (0.0, 1e300)])
 @pytest.mark.parametrize("how", ["default", "box", "periodic"])
 def test_extreme_scales_raise_naming_the_limit(off, span, how):
     # at 1e200 +- 1e199 the box volume overflowed (warnings, then inf volumes); at 1e-200
-    # every cell measured 0
-    S = off + (np.random.default_rng(2).random((30, 3)) - 0.5) * span
-    box = tuple(S.min(0) - 0.1 * np.ptp(S, 0)) + tuple(S.max(0) + 0.1 * np.ptp(S, 0))
+    # every cell measured 0: volumes outside 1e-270..1e300 are refused, naming the range
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        with pytest.raises(ValueError, match=r"between about 1e-66 and 1e66"):
-            if how == "default":
-                vf.voronoi3d(S)
-            else:
-                vf.voronoi3d(S, box, periodic=how == "periodic")
+        with pytest.raises(ValueError, match=r"outside 1e-270\.\.1e\+300.*scale the points"):
+            _extreme(off, span, how)
+
+
+@pytest.mark.parametrize(("off", "span"), [(0.0, 1e-70), (3e66, 1e67)])
+@pytest.mark.parametrize("how", ["default", "box", "periodic"])
+def test_extreme_scales_inside_the_range_work(off, span, how):
+    # refused before the areas and volumes were computed in a power-of-two frame
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        d = _extreme(off, span, how)
+    assert np.isfinite(d.volumes).all() and (d.volumes > 0).all()
+    vol = d.container_volume
+    assert abs(d.volumes.sum() - vol) <= 1e-12 * vol
+    assert d.describe()["euler_ok"]
 
 
 @pytest.mark.parametrize("k", [-215, -150, 150, 210])
