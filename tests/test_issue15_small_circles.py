@@ -22,6 +22,9 @@ import shapely
 import voroforge as vf
 from test_issue15_neighbours import ALGS, _check, _samples
 from voroforge.kernels.clip import rings_convex
+from voroforge.kernels.cocircular import canonical_flips
+from voroforge.kernels.delaunay import triangulate_sorted
+from voroforge.kernels.fortune import fortune_delaunay
 
 CASES = {
     "600_r1e-5_at_3e4": (600, 1e-5, (3e4, 1e4)),
@@ -41,8 +44,13 @@ CASES = {
 #: Valid (convex to describe()'s rounding tolerance, not exactly) since a stalled fold test
 #: names the classes at its bad turns where their rings turn best (kernels.refit): before,
 #: 6, 7 and 2 self-intersecting rings (the usual name of a class of up to 185 triangles
-#: lay across its cells' other edges); the phase-0.3 circle stops with 33 invalid rings
-#: whose bad turns are at single triangles (no class to rename)
+#: lay across its cells' other edges). The phase-0.3 circle ends with one class of 555 of
+#: its 598 triangles (over FOLD_FIT_MAX_MEMBERS: never refitted), named 3000-6700 ulps from
+#: its members' exact centres, and 33 rings folded where they go from its vertex to a
+#: single triangle's 10,000-20,000 ulps away (too far for the stalled joins' guard of half
+#: the sites' spacing); 30 clear samples lie outside their cells there too. The last two
+#: differed between the sweep and the default (37 and 178 cells) where the two triangulate
+#: exactly cocircular quads with different diagonals (kernels.cocircular flips both alike).
 VALID = {
     "600_r1e-6_at_1e5": (600, 1e-6, (1e5, 3e4), 0.0),
     "333_r1e-5_at_1e6": (333, 1e-5, (1e6, 3e5), 0.0),
@@ -50,6 +58,8 @@ VALID = {
     "600_r1e-5_phase0.3_at_3e4": pytest.param(
         600, 1e-5, (3e4, 1e4), 0.3, marks=pytest.mark.xfail(strict=True, reason="33 invalid")
     ),
+    "350_r1e-6_at_7e3": (350, 1e-6, (2e3, -7e3), 0.0),
+    "1000_r1e-5_at_1e6": (1000, 1e-5, (-4e5, 1e6), 0.0),
 }
 
 
@@ -95,3 +105,33 @@ def test_small_far_circle_cells_are_valid(n, r, centre, phase):
     for d in ds[1:]:
         b = np.asarray(d.cells, dtype=object)
         assert (shapely.area(shapely.symmetric_difference(a, b)) <= 1e-9 * ds[0].areas).all()
+
+
+def _triangles(order, tri):
+    return {tuple(sorted(order[t])) for t in np.asarray(tri).reshape(-1, 3)}
+
+
+def test_cocircular_quads_flip_alike():
+    """12 sites exactly on a circle of radius 5 and the 4 corners of a square beside it
+    triangulate alike after the flips, from both builders and in any input order: the
+    circle's fan from its lowest site."""
+    ring = [(3, 4), (4, 3), (5, 0), (4, -3), (3, -4), (0, -5)]
+    ring += [(-x, -y) for x, y in ring]
+    pts = np.array(ring + [(9.0, -1.0), (11.0, -1.0), (9.0, 1.0), (11.0, 1.0)], dtype=float)
+    got = []
+    for perm in (np.arange(len(pts)), np.random.default_rng(3).permutation(len(pts))):
+        p = pts[perm]
+        for build in (triangulate_sorted, fortune_delaunay):
+            order, sx, sy, tri, he = build(p[:, 0], p[:, 1])[:5]
+            tri, he = tri.copy(), he.copy()
+            canonical_flips(sx, sy, tri, he, np.flatnonzero(he >= 0))
+            for e in range(len(he)):  # still a triangulation: halfedges paired, reversed
+                f = he[e]
+                if f >= 0:
+                    assert he[f] == e
+                    assert tri[f] == tri[e - e % 3 + (e + 1) % 3]
+            got.append(_triangles(perm[order], tri))
+    assert all(g == got[0] for g in got)
+    assert len(got[0]) == len(np.asarray(tri)) // 3
+    low = 8  # (-5, 0): the lowest of the circle by x then y
+    assert sum(low in t for t in got[0]) == 10  # the fan over its 12 sites

@@ -26,6 +26,7 @@ from ..config import (
     NJIT_PARALLEL,
     VERTEX_SNAP_RTOL,
 )
+from .cocircular import canonical_flips
 from .predicates import cross_diff, incircle, incircle_fast
 from .refit import fit_classes
 from .vertex import (
@@ -616,10 +617,21 @@ def merge_cocircular(xs, ys, tri, he, cx, cy, err, flag, rank, box):
     Voronoi edge that rounding could turn: short for its ends' rounding bounds and naming
     moves, or flagged and not joined (:func:`_mark_risky`). Those are the triangles whose
     centres can fold a cell's ring (``kernels/cells`` checks those cells).
+
+    Where an edge is short (``near``: rounding can fold a ring there, and the classes then
+    depend on the triangles' own centres), every exactly cocircular quad is first flipped
+    to one diagonal, the same for every builder (:func:`.cocircular.canonical_flips`):
+    ``tri``, ``he`` are changed in place and ``cx, cy, err, flag`` are those of the flipped
+    triangles. (Exact grids have no short edge: their squares keep the builder's diagonals.)
     """
     fold = np.zeros(tri.shape[0], dtype=np.uint8)
     near = np.zeros(tri.shape[0] // 3, dtype=np.uint8)
     flag_close(xs, ys, tri, he, cx, cy, flag, err, box, fold, near)
+    if near.any() and canonical_flips(xs, ys, tri, he, np.flatnonzero(flag)):
+        cx[:], cy[:], err[:], flag[:] = circumcenters(xs, ys, tri, he)
+        fold[:] = 0
+        near[:] = 0
+        flag_close(xs, ys, tri, he, cx, cy, flag, err, box, fold, near)
     cand = np.flatnonzero(flag)
     if cand.shape[0] == 0 and not fold.any():
         # nothing to merge or unfold (most uniform inputs): every triangle is its own class,
