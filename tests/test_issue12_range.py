@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import voroforge as vf
-from voroforge.engine.containers import AREA_MAX, VOLUME_RANGE
+from voroforge.config import AREA_MAX, VOLUME_RANGE
 
 
 def _fixture(how, aspect=0):

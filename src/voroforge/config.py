@@ -489,3 +489,46 @@ SCALE_CHUNK_ROWS = 1_000_000
 SCALE_SAMPLE_SITES = 200_000
 #: Bisection steps for a corner's inside radius in the fabrication check (radius / 2^steps)
 FAB_CORNER_BISECTIONS = 10
+
+
+# ---- exact power cells, half-plane side snap, the 3D range and memory
+
+#: engine.power_exact.lost_sites: the sites nearest in power cut a lost site's box first
+#: (enough for a tight cluster: 30 sites); those that beat its interior point are added, for
+#: up to POWER_EXACT_ROUNDS rounds; then every site cuts it
+POWER_EXACT_FIRST = 16
+POWER_EXACT_ROUNDS = 8
+
+#: engine.power_exact: the float filter's bound on a power difference, in units of eps
+#: times its terms' sizes: the difference has five rounded operations and a rounded interior point
+#: (relative eps); 32 is generous and only sends more sites to the exact test.
+POWER_EXACT_FILTER_ULPS = 32.0
+
+#: kernels.halfplane_settle: a vertex farther inside every box side than this times
+#: |x| + |y| is put on none (_side_snap): above 4 VERTEX_REFINE_RTOL (its rounding bound's
+#: largest, 2**-30 of that) and BOX_SIDE_REACH_ULPS ulps of its larger coordinate (at most
+#: 2**-52 of it)
+HALFPLANE_SNAP_PRE = 2.0**-27
+
+#: the container volumes, in the caller's units, that 3D cells can be measured in. The cells
+#: are built in a power-of-two working frame, and face areas and normals are computed in it
+#: too (engine.diagram3d: the squared areas neither overflow nor underflow), but volumes,
+#: areas and centroids are reported in the caller's units: the upper end keeps the volume a
+#: double with room to spare (1e300: a cube of side 1e100), the lower end keeps the cells'
+#: volumes normal doubles (exact powers of two of the working frame's) down to 1e-20 of the
+#: container's (1e-270: a cube of side 1e-90; 1e7 cells of a tight cluster lie far above)
+VOLUME_RANGE = (1e-270, 1e300)
+
+#: the largest face area of the container's bounding box (the product of its two largest
+#: sides): face areas in the caller's units stay doubles (a flat box of sides 1e150, 1e150
+#: and 1e-150 has a volume of 1e150 but faces of 1e300)
+AREA_MAX = 1e300
+
+#: a mesh container's range: its cut (engine.mesh3d) squares triangle areas in the caller's
+#: units (np.linalg.norm of cross products: overflow past sides of ~1e77), so it keeps the
+#: range that held before the areas moved into the working frame
+MESH_VOLUME_RANGE = (1e-200, 1e200)
+
+#: engine.build3d: cells from which a build hands the memory it freed back to the system
+#: (glibc malloc_trim; below, a few MB)
+TRIM_CELLS = 100_000

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from ..config import GRID_DEGENERATE_RTOL, GRID_WIDEN_RTOL, NJIT
+from ..config import GRID_DEGENERATE_RTOL, GRID_WIDEN_RTOL, NJIT, TRIM_CELLS
 from ..kernels.cells3d import OK, OVERFLOW, build_cells, cell_scratch
 from ..kernels.grid3d import kd_buckets3d
 from .threads import serial_below
@@ -727,10 +727,6 @@ def _big(i, P, W, start, SP, SW, sidx, g, order, tree, t, out):
         raise RuntimeError(f"3D cell {int(i)} has more than {caps[0]} vertices")
     out.add(st, counts, sl, capa)
     return st[0], counts[0], v[0], c[0], r2[0]
-
-
-#: cells from which a build hands the memory it freed back to the system (below: a few MB)
-TRIM_CELLS = 100_000
 
 
 def release_freed_memory(k):

@@ -15,6 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..config import AREA_MAX, VOLUME_RANGE
+
 #: the cube's faces, outward counter-clockwise; corner ``k`` is ``(k & 1, k >> 1 & 1, k >> 2)``
 _CUBE_RINGS = ((0, 4, 6, 2), (1, 3, 7, 5), (0, 1, 5, 4), (2, 6, 7, 3), (0, 2, 3, 1), (4, 5, 7, 6))
 
@@ -72,24 +74,6 @@ def box_template(lo, hi, labels=None) -> Template:
     with np.errstate(over="ignore", under="ignore"):  # out of range: check_volume says so
         vol = float(np.prod(hi - lo))
     return Template(TV, TF, TR, WP, "box", vol, np.array([lo, hi]))
-
-
-#: the container volumes, in the caller's units, that 3D cells can be measured in. The cells
-#: are built in a power-of-two working frame, and face areas and normals are computed in it
-#: too (engine.diagram3d: the squared areas neither overflow nor underflow), but volumes,
-#: areas and centroids are reported in the caller's units: the upper end keeps the volume a
-#: double with room to spare (1e300: a cube of side 1e100), the lower end keeps the cells'
-#: volumes normal doubles (exact powers of two of the working frame's) down to 1e-20 of the
-#: container's (1e-270: a cube of side 1e-90; 1e7 cells of a tight cluster lie far above)
-VOLUME_RANGE = (1e-270, 1e300)
-#: the largest face area of the container's bounding box (the product of its two largest
-#: sides): face areas in the caller's units stay doubles (a flat box of sides 1e150, 1e150
-#: and 1e-150 has a volume of 1e150 but faces of 1e300)
-AREA_MAX = 1e300
-#: a mesh container's range: its cut (engine.mesh3d) squares triangle areas in the caller's
-#: units (np.linalg.norm of cross products: overflow past sides of ~1e77), so it keeps the
-#: range that held before the areas moved into the working frame
-MESH_VOLUME_RANGE = (1e-200, 1e200)
 
 
 def check_volume(t: Template, limits=VOLUME_RANGE) -> None:

@@ -18,20 +18,10 @@ from fractions import Fraction
 import numpy as np
 from scipy.spatial import cKDTree
 
+from ..config import POWER_EXACT_FILTER_ULPS, POWER_EXACT_FIRST, POWER_EXACT_ROUNDS
 from ..kernels.predicates import orient2d
 
 _EPS = float(np.finfo(float).eps)
-
-#: Sites nearest in power cut a lost site's box first (enough for a tight cluster: 30
-#: sites). Those that beat its interior point are added, for up to _ROUNDS rounds; then
-#: every site cuts it.
-_FIRST = 16
-_ROUNDS = 8
-
-#: The float filter's bound on a power difference, in units of eps times its terms'
-#: sizes: the difference has five rounded operations and a rounded interior point
-#: (relative eps); 32 is generous and only sends more sites to the exact test.
-_FILTER_ULPS = 32.0
 
 
 def _scale(values, squared) -> int:
@@ -156,7 +146,7 @@ def _rivals(x, y, w, ids, i, q):
     # power distance of j minus that of i at q: -2 d.u + |d|^2 + w_i - w_j
     val = -2.0 * (dx * ux + dy * uy) + d2 + (w[i] - w[ids])
     mag = 2.0 * np.sqrt(d2) * np.hypot(ux, uy) + d2 + abs(w[i]) + np.abs(w[ids])
-    bound = _FILTER_ULPS * _EPS * mag
+    bound = POWER_EXACT_FILTER_ULPS * _EPS * mag
     other = ids != i
     # not finite (squares overflowed): the exact test decides
     return ids[other & (val < -bound)], ids[other & ~(np.abs(val) > bound)]
@@ -169,10 +159,10 @@ def has_cell(i, x, y, w, exact, ids, tree, top):
     ``tree`` a KD-tree of them lifted to ``(x, y, sqrt(top - w))`` (power distances are its
     squared distances).
     """
-    k = min(len(ids), _FIRST + 1)
+    k = min(len(ids), POWER_EXACT_FIRST + 1)
     near = tree.query((x[i], y[i], np.sqrt(top - w[i])), k=k)[1]
     cand = list(dict.fromkeys(int(j) for j in ids[np.atleast_1d(near)]))
-    for _ in range(_ROUNDS):
+    for _ in range(POWER_EXACT_ROUNDS):
         lines = exact.cell(i, cand)
         if not lines:
             return False

@@ -7,11 +7,9 @@ import itertools
 import numpy as np
 from numba import njit
 
-from ..config import NJIT
+from ..config import MESH_VOLUME_RANGE, NJIT, VOLUME_RANGE
 from .build3d import build_cells3d, duplicate_owners, release_freed_memory
 from .containers import (
-    MESH_VOLUME_RANGE,
-    VOLUME_RANGE,
     Convex,
     Template,
     as_container,

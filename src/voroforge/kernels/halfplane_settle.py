@@ -29,6 +29,7 @@ from ..config import (
     HALFPLANE_MERGE_RTOL,
     HALFPLANE_NEAR_RTOL,
     HALFPLANE_SHADOW_RTOL,
+    HALFPLANE_SNAP_PRE,
     NAME_MAX_TRIES,
     NJIT,
 )
@@ -56,10 +57,6 @@ _W_VERTEX = 32  # a vertex from its name (voronoi_vertex: ~30-50 ns)
 _W_EXACT = 1024  # one from exact expansions (~5-10 us; a centre near the origin, see below)
 _W_ADAPT = 512  # an incircle whose float filter fails: its exact stage (~1-3 us)
 _SLOW_RTOL = 2.0**-20  # centres nearer the origin than this of their scale take that path
-# A vertex farther inside every box side than this times |x| + |y| is put on none
-# (_side_snap): above 4 VERTEX_REFINE_RTOL (its rounding bound's largest, 2**-30 of that)
-# and BOX_SIDE_REACH_ULPS ulps of its larger coordinate (at most 2**-52 of it)
-_SNAP_PRE = 2.0**-27
 
 
 @njit(**NJIT)
@@ -566,7 +563,7 @@ def _side_snap(i, a, b, x, y, xs, ys, box):
     """
     # the reach is at most 4 VERTEX_REFINE_RTOL (2**-30) of |x| + |y| plus an ulp: a
     # vertex farther inside than this needs no bound (almost all of them)
-    pre = _SNAP_PRE * (abs(x) + abs(y))
+    pre = HALFPLANE_SNAP_PRE * (abs(x) + abs(y))
     if box[0] + pre < x < box[2] - pre and box[1] + pre < y < box[3] - pre:
         return x, y, False
     e = side_reach(x, y, voronoi_vertex_error(i, a, b, xs, ys))
@@ -637,7 +634,7 @@ def _crossing_at_end(i, u, lab, m, ox, oy, oo, xs, ys, box, near, nn, sidx, x, y
     r2 = (ix - x) * (ix - x) + (iy - y) * (iy - y)
     un = abs(xs[j] - ix) if side == BOTTOM or side == TOP else abs(ys[j] - iy)
     # (the vertex lies along the side, within the box's extent: its magnitude is the box's)
-    pre = 4.0 * _SNAP_PRE * (max(abs(box[0]), abs(box[2])) + max(abs(box[1]), abs(box[3])))
+    pre = 4.0 * HALFPLANE_SNAP_PRE * (max(abs(box[0]), abs(box[2])) + max(abs(box[1]), abs(box[3])))
     for c in range(nn):
         k = sidx[near[c]]
         if k == i or k == j:
