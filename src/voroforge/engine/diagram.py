@@ -112,8 +112,10 @@ class Diagram:
         a few ulps from others whose cell is a strip narrower than the coordinates'
         spacing. Its cell is empty, or, where the strip is most of a bigger cell (the hull
         site of a cluster a few ulps wide far from the origin), a ring that lies beside the
-        site by an ulp, kept so the cells tile the domain. Usually empty; such a site is
-        not a duplicate (``duplicate_of == -1``).
+        site by an ulp, kept so the cells tile the domain. On a torus (unwrapped cells),
+        also the sites whose cell has a vertex that cannot be an exact shift of its image
+        (a box an odd number of ulps across a power of two); the cell is kept. Usually
+        empty; such a site is not a duplicate (``duplicate_of == -1``).
     """
 
     periodic = False
