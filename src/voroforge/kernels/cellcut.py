@@ -153,6 +153,13 @@ def on_sides(t, cx, cy, reach, box):
     if e < 0.0:
         return x, y, False
     bits = near_sides(x, y, e, box)
+    x, y = onto_sides(x, y, bits, box)
+    return x, y, bits != 0
+
+
+@njit(**{**NJIT, "inline": "always"})  # on every vertex a cell writes: no call
+def onto_sides(x, y, bits, box):
+    """``(x, y)`` put on the box sides set in ``bits`` (:func:`near_sides`' 1, 2, 4, 8)."""
     if bits & 1:
         x = box[0]
     elif bits & 4:
@@ -161,7 +168,7 @@ def on_sides(t, cx, cy, reach, box):
         y = box[1]
     elif bits & 8:
         y = box[3]
-    return x, y, bits != 0
+    return x, y
 
 
 @njit(**NJIT)

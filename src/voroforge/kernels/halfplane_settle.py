@@ -33,7 +33,7 @@ from ..config import (
     NAME_MAX_TRIES,
     NJIT,
 )
-from .cellcut import near_sides, side_reach
+from .cellcut import near_sides, onto_sides, side_reach
 from .clip import dedupe_ring
 from .predicates import incircle, orient2d
 from .vertex import (
@@ -575,14 +575,7 @@ def _side_snap(i, a, b, x, y, xs, ys, box):
             return x, y, False
         if abs(xs[s] - xs[t]) <= 2.0 * e and abs(ys[s] - ys[t]) <= 2.0 * e:
             return x, y, False
-    if bits & 1:
-        x = box[0]
-    elif bits & 4:
-        x = box[2]
-    if bits & 2:
-        y = box[1]
-    elif bits & 8:
-        y = box[3]
+    x, y = onto_sides(x, y, bits, box)
     return x, y, True
 
 
