@@ -363,6 +363,21 @@ def _vertex_frame(V) -> int:
 # --- kernels over the face table (private) ------------------------------------------------
 
 
+@njit(**{**NJIT, "inline": "always"})
+def _fan_cross(V, v0, u, w, s):
+    """``(u - v0) x (w - v0)`` of vertices ``V[u]``, ``V[w]``, ``V[v0]``, the offsets times ``s``.
+
+    Twice the area vector of one triangle of a face's fan (:func:`_face_vectors`, :func:`_flat`).
+    """
+    ux = (V[u, 0] - V[v0, 0]) * s
+    uy = (V[u, 1] - V[v0, 1]) * s
+    uz = (V[u, 2] - V[v0, 2]) * s
+    wx = (V[w, 0] - V[v0, 0]) * s
+    wy = (V[w, 1] - V[v0, 1]) * s
+    wz = (V[w, 2] - V[v0, 2]) * s
+    return uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx
+
+
 @njit(**NJIT)
 def _face_vectors(V, roff, ring, out, s):
     """Area vectors of the rings ``ring[roff[f]:roff[f + 1]]`` (outward: length = area).
@@ -381,15 +396,10 @@ def _face_vectors(V, roff, ring, out, s):
         for q in range(a + 1, b - 1):
             u = ring[q]
             w = ring[q + 1]
-            ux = (V[u, 0] - V[v0, 0]) * s
-            uy = (V[u, 1] - V[v0, 1]) * s
-            uz = (V[u, 2] - V[v0, 2]) * s
-            wx = (V[w, 0] - V[v0, 0]) * s
-            wy = (V[w, 1] - V[v0, 1]) * s
-            wz = (V[w, 2] - V[v0, 2]) * s
-            ax += uy * wz - uz * wy
-            ay += uz * wx - ux * wz
-            az += ux * wy - uy * wx
+            cx, cy, cz = _fan_cross(V, v0, u, w, s)
+            ax += cx
+            ay += cy
+            az += cz
         out[f, 0] = 0.5 * ax
         out[f, 1] = 0.5 * ay
         out[f, 2] = 0.5 * az
@@ -518,15 +528,10 @@ def _flat(V, roff, ring, base, vid, f, s):
     for q in range(a + 1, b - 1):
         u = vid[base + ring[q]]
         w = vid[base + ring[q + 1]]
-        ux = (V[u, 0] - V[v0, 0]) * s
-        uy = (V[u, 1] - V[v0, 1]) * s
-        uz = (V[u, 2] - V[v0, 2]) * s
-        wx = (V[w, 0] - V[v0, 0]) * s
-        wy = (V[w, 1] - V[v0, 1]) * s
-        wz = (V[w, 2] - V[v0, 2]) * s
-        ax += uy * wz - uz * wy
-        ay += uz * wx - ux * wz
-        az += ux * wy - uy * wx
+        cx, cy, cz = _fan_cross(V, v0, u, w, s)
+        ax += cx
+        ay += cy
+        az += cz
     return ax == 0.0 and ay == 0.0 and az == 0.0
 
 

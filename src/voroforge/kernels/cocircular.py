@@ -23,6 +23,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
+from .delaunay import link_halfedges
 from .predicates import incircle
 
 
@@ -40,13 +41,6 @@ def _lower_pair(xs, ys, c, d, a, b):
     if c0 != a0:
         return _lower(xs, ys, c0, a0)
     return _lower(xs, ys, c1, a1)
-
-
-@njit(**NJIT)
-def _link(he, a, b):
-    he[a] = b
-    if b != -1:
-        he[b] = a
 
 
 @njit(**NJIT)
@@ -79,9 +73,9 @@ def canonical_flips(xs, ys, tri, he, cand):
             continue
         tri[a] = p1
         tri[b] = p0
-        _link(he, a, he[bl])
-        _link(he, b, he[ar])
-        _link(he, ar, bl)
+        link_halfedges(he, a, he[bl])
+        link_halfedges(he, b, he[ar])
+        link_halfedges(he, ar, bl)
         flips += 1
         for e in (a, b, al, ar, bl, br):
             if he[e] >= 0:

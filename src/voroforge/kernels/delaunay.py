@@ -46,7 +46,8 @@ def _prev(e):
 
 
 @njit(**_INLINE)
-def _link(he, a, b):
+def link_halfedges(he, a, b):
+    """Make halfedges ``a`` and ``b`` twins (``b = -1``: ``a`` is on the hull)."""
     he[a] = b
     if b != -1:
         he[b] = a
@@ -75,9 +76,9 @@ def _add_triangle(tri, he, t, i0, i1, i2, a, b, c):
     tri[t] = i0
     tri[t + 1] = i1
     tri[t + 2] = i2
-    _link(he, t, a)
-    _link(he, t + 1, b)
-    _link(he, t + 2, c)
+    link_halfedges(he, t, a)
+    link_halfedges(he, t + 1, b)
+    link_halfedges(he, t + 2, c)
 
 
 @njit(**NJIT)
@@ -98,13 +99,13 @@ def _flip(a, b, tri, he, hull_tri):
     tri[b] = p0
     hbl = he[bl]
     har = he[ar]
-    _link(he, a, hbl)
+    link_halfedges(he, a, hbl)
     if hbl == -1:
         hull_tri[p1] = a
-    _link(he, b, har)
+    link_halfedges(he, b, har)
     if har == -1:
         hull_tri[p0] = b
-    _link(he, ar, bl)
+    link_halfedges(he, ar, bl)
 
 
 @njit(**NJIT)
@@ -145,13 +146,13 @@ def _legalize(a, xs, ys, tri, he, hull_tri, stack, exact):
             tri[b] = p0
             hbl = he[bl]
             har = he[ar]
-            _link(he, a, hbl)
+            link_halfedges(he, a, hbl)
             if hbl == -1:
                 hull_tri[p1] = a
-            _link(he, b, har)
+            link_halfedges(he, b, har)
             if har == -1:
                 hull_tri[p0] = b
-            _link(he, ar, bl)
+            link_halfedges(he, ar, bl)
             if sp >= stack.shape[0]:
                 return decided  # cannot happen: the stack is sized to the number of halfedges
             stack[sp] = br

@@ -31,6 +31,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
+from .delaunay import link_halfedges
 from .expansion import two_diff
 from .predicates import incircle, incircle_fast, orient2d, parabola_gap
 from .vertex import center_offset
@@ -521,13 +522,6 @@ def _sweep_loop(xs, ys, order, stats, tree, arcx, arcy, key, tri, he, rec_he):
 # ---------------------------------------------------------------------------------------------
 
 
-@njit(**_INLINE)
-def _link(he, a, b):
-    he[a] = b
-    if b != -1:
-        he[b] = a
-
-
 @njit(**NJIT)
 def _legalize_all(xs, ys, tri, he, stats):
     """Flip every edge whose opposite vertex lies strictly inside the neighbour's circumcircle.
@@ -573,9 +567,9 @@ def _legalize_all(xs, ys, tri, he, stats):
         tri[b] = p0
         hbl = he[bl]
         har = he[ar]
-        _link(he, a, hbl)
-        _link(he, b, har)
-        _link(he, ar, bl)
+        link_halfedges(he, a, hbl)
+        link_halfedges(he, b, har)
+        link_halfedges(he, ar, bl)
         for k in range(4):
             e = a if k == 0 else (al if k == 1 else (b if k == 2 else br))
             if queued[e] == 0 and he[e] != -1:
