@@ -6,6 +6,11 @@
 - ``build3d.bucket_keys3d`` and ``bucket_sort3d`` are one numba pass and a counting sort:
   the keys must be numpy's floor / NaN-to-0 / clip formula and the order its stable argsort,
   for points outside the grid, NaN and infinities too.
+- ``build3d.duplicate_owners`` hashes each point's bits with one zero (no ``P + 0.0`` copy,
+  int32 table): it must equal a plain dictionary of the points, ``-0.0`` meeting ``+0.0``.
+- ``build_cells3d`` writes each chunk's per-cell results straight to the caller's order
+  (no build-order copies to permute): a build of some cells, in any order, must give each
+  cell what the build of all gives it, with the joining thread and without.
 """
 
 from __future__ import annotations
@@ -16,7 +21,14 @@ import pytest
 
 import voroforge as vf
 from voroforge.config import PARALLEL_MIN_SITES
-from voroforge.engine.build3d import bucket_keys3d, bucket_sort3d, grid3d_shape
+from voroforge.engine.build3d import (
+    bucket_keys3d,
+    bucket_sort3d,
+    build_cells3d,
+    duplicate_owners,
+    grid3d_shape,
+)
+from voroforge.engine.containers import box_template
 
 BOX = (0.0, 0.0, 0.0, 1.0, 1.0, 1.0)
 
@@ -124,3 +136,62 @@ def test_released_memory_keeps_the_results(monkeypatch):
         assert (a == b).all()
     assert (d.faces.indices == plain.faces.indices).all()
     build3d.release_freed_memory(0)  # and called directly
+
+
+def _owners_reference(P, W):
+    best = {}
+    for i, p in enumerate((P + 0.0).tolist()):
+        o = best.get(tuple(p))
+        if o is None or W[i] > W[o]:
+            best[tuple(p)] = i
+    return np.array(
+        [-1 if best[tuple(p)] == i else best[tuple(p)] for i, p in enumerate((P + 0.0).tolist())],
+        np.int64,
+    )
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_duplicate_owners_match_a_dictionary(seed):
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(2, 3000))
+    P = np.round(rng.random((n, 3)) * 4) / 4 - 0.5  # many equal points, zeros among them
+    P[rng.random((n, 3)) < 0.2] *= -1.0  # -0.0 where a coordinate is 0
+    W = np.round(rng.random(n) * 3) if seed % 2 else np.zeros(n)  # ties: lowest index owns
+    dup = duplicate_owners(P, W)
+    assert dup.dtype == np.int64
+    assert np.array_equal(dup, _owners_reference(P, W))
+
+
+@pytest.mark.parametrize("threads", [1, 2])
+def test_some_cells_get_what_all_cells_get(threads):
+    rng = np.random.default_rng(7)
+    n = PARALLEL_MIN_SITES + 5000  # past serial_below, more than one chunk: the joining thread
+    P = rng.random((n, 3))
+    W = np.zeros(n)
+    t = box_template(np.zeros(3), np.ones(3))
+    before = numba.get_num_threads()
+    numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
+    try:
+        every = build_cells3d(P, W, t)
+        some = rng.permutation(n)[: n // 2]  # any order, not the bucket order
+        part = build_cells3d(P, W, t, cells=some)
+    finally:
+        numba.set_num_threads(before)
+    assert np.array_equal(part.cells, some)
+    assert (every.status == 0).all() and (part.status == 0).all()
+    assert np.array_equal(part.volume, every.volume[some])
+    assert np.array_equal(part.centroid, every.centroid[some])
+    assert np.array_equal(part.rad2, every.rad2[some])
+    assert abs(every.volume.sum() - 1.0) < 1e-12
+    for res, k in ((every, n), (part, len(some))):
+        # the offsets in build order: cell c's faces and vertices at its position pos[c]
+        assert np.array_equal(np.sort(res.pos), np.arange(k))
+        nf = np.diff(res.cell_faces)[res.pos]
+        assert (nf >= 4).all() and res.cell_faces[-1] == len(res.flabel)
+        assert res.voff[-1] == len(res.vid)
+    # each cell's faces name the same neighbours in both builds
+    for c in rng.choice(len(some), 50, replace=False):
+        i = some[c]
+        a = every.flabel[every.cell_faces[every.pos[i]] : every.cell_faces[every.pos[i] + 1]]
+        b = part.flabel[part.cell_faces[part.pos[c]] : part.cell_faces[part.pos[c] + 1]]
+        assert np.array_equal(np.sort(a), np.sort(b))

@@ -186,11 +186,14 @@ def search3d(P: np.ndarray):
     return g, start, SP, sidx, search_order(g, SEARCH_RADIUS), np.zeros((0, 8))
 
 
-def _run(cells, P, W, start, SP, SW, sidx, g, order, tree, t, caps, pool, slots=None, scr=None):
+def _run(
+    cells, P, W, start, SP, SW, sidx, g, order, tree, t, caps, pool, slots=None, scr=None, wmax=None
+):
     """Build ``cells`` into fixed per-cell slots (threads on slices of the cells).
 
     ``scr`` (a dict, thread id -> :func:`.cells3d.cell_scratch`) keeps each thread's working
-    space from call to call on the same inputs and caps; None: made for this call.
+    space from call to call on the same inputs and caps; None: made for this call. ``wmax``:
+    ``W.max()`` (None: found here; the caller of many chunks finds it once).
     """
     k = len(cells)
     scr = {} if scr is None else scr
@@ -202,7 +205,8 @@ def _run(cells, P, W, start, SP, SW, sidx, g, order, tree, t, caps, pool, slots=
     rad2 = np.zeros(k)
     osite, ovabs, ofaces, oring = _slots(k, caps) if slots is None else slots
     capa = np.array(caps, np.int64)
-    wmax = float(W.max()) if len(W) else 0.0  # once here, not per slice (8 MB at 1e6)
+    if wmax is None:  # once per build, not per chunk or slice (an 8 MB scan at 1e6)
+        wmax = float(W.max()) if len(W) else 0.0
 
     def part(a, b):
         me = threading.get_ident()
@@ -247,17 +251,6 @@ def _run(cells, P, W, start, SP, SW, sidx, g, order, tree, t, caps, pool, slots=
         bounds = np.linspace(0, k, 8 * nth + 1).astype(int)
         list(pool.map(part, bounds[:-1], bounds[1:]))
     return status, counts, vol, cen, rad2, (osite, ovabs, ofaces, oring), capa
-
-
-@njit(**NJIT)
-def _hash3(bits, r, mask):
-    """Slot of the vertex whose coordinates' bits are ``bits[r]`` in a table of ``mask + 1``."""
-    h = np.uint64(0x9E3779B97F4A7C15)
-    for q in range(3):
-        h ^= np.uint64(bits[r, q])
-        h *= np.uint64(0xBF58476D1CE4E5B9)
-        h ^= h >> np.uint64(31)
-    return np.int64(h & np.uint64(mask))
 
 
 @njit(**{**NJIT, "inline": "always"})
@@ -395,39 +388,52 @@ def _join(
     return c, why
 
 
-@njit(**NJIT)
 def duplicate_owners(P, W):
     """``(n,)``: -1 for a site that owns its cell, else the equal site that owns it.
 
     Among equal points (``+0.0 == -0.0``) the largest weight owns the cell, ties to the
-    lowest index. One pass over a hash table of the coordinates' bits.
+    lowest index. One pass over a hash table of the coordinates' bits (:func:`_owners`).
     """
     n = P.shape[0]
-    Q = P + 0.0  # one zero
-    bits = Q.view(np.int64)
-    size = 1 << int(np.ceil(np.log2(max(n, 4) / TABLE_LOAD)))
-    mask = size - 1
-    table = np.full(size, -1, np.int64)
-    head = np.zeros(n, np.int64)  # the slot of each point's coordinates
+    it = _itype(n)
+    table = np.full(1 << int(np.ceil(np.log2(max(n, 4) / TABLE_LOAD))), -1, it)
+    dup = np.full(n, -1, np.int64)
+    _owners(P, W, table, np.empty(n, it), dup)  # noqa: TID251 - every slot written first
+    return dup
+
+
+@njit(**NJIT)
+def _owners(P, W, table, head, dup):
+    """:func:`duplicate_owners` into ``dup``: ``table`` all -1 (a power of two), ``head``."""
+    n = P.shape[0]
+    mask = table.shape[0] - 1
+    row = np.zeros(3)  # the point with one zero (+0.0), and its bits
+    bits = row.view(np.int64)
     for i in range(n):
-        h = _hash3(bits, i, mask)
+        row[0] = P[i, 0] + 0.0
+        row[1] = P[i, 1] + 0.0
+        row[2] = P[i, 2] + 0.0
+        x = np.uint64(0x9E3779B97F4A7C15)  # the hash of the bits (its slot: h)
+        for q in range(3):
+            x ^= np.uint64(bits[q])
+            x *= np.uint64(0xBF58476D1CE4E5B9)
+            x ^= x >> np.uint64(31)
+        h = np.int64(x & np.uint64(mask))
         while True:
             o = table[h]
             if o < 0:
                 table[h] = i
                 break
-            if Q[o, 0] == Q[i, 0] and Q[o, 1] == Q[i, 1] and Q[o, 2] == Q[i, 2]:
+            if P[o, 0] == P[i, 0] and P[o, 1] == P[i, 1] and P[o, 2] == P[i, 2]:
                 if W[i] > W[o]:
                     table[h] = i
                 break
             h = (h + 1) & mask
         head[i] = h
-    dup = np.full(n, -1, np.int64)
     for i in range(n):
         o = table[head[i]]
         if o != i:
             dup[i] = o
-    return dup
 
 
 @njit(**NJIT)
@@ -615,13 +621,18 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
     # time than input order on 1e5 uniform sites); the face table stays in that order
     sort = build_order(P, cells, g, sidx, tree)
     built = cells[sort]
-    status = np.zeros(k, np.int64)
-    vol = np.zeros(k)
-    cen = np.zeros((k, 3))
-    rad2 = np.zeros(k)
-    nfaces = np.zeros(k, np.int64)
-    nverts = np.zeros(k, np.int64)
-    out = _Out(k, *_join_grid(P[cells], t.TV, k))
+    wmax = float(W.max()) if len(W) else 0.0
+    # per-cell results go straight to the caller's order (sort: build position -> cell);
+    # each cell's face and vertex counts to its build position's slot of the offsets
+    status = np.empty(k, np.int64)  # noqa: TID251 - every cell written by its chunk's join
+    vol = np.empty(k)  # noqa: TID251 - as status
+    cen = np.empty((k, 3))  # noqa: TID251 - as status
+    rad2 = np.empty(k)  # noqa: TID251 - as status
+    cell_faces = np.zeros(k + 1, np.int64)
+    voff = np.zeros(k + 1, np.int64)
+    # the join's outputs (_Out), made by the first join: with a joining thread, the vertex
+    # table (67 MB of -1 at 1e6 cells) is filled while the pool builds the first chunk
+    made = []
     with serial_below(k):
         nth = numba.get_num_threads()
         pool = joiner = None
@@ -637,17 +648,21 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
         pending = []
 
         def join(c0, chunk, st, counts, v, c, r2, sl, capa):
+            if not made:
+                made.append(_Out(k, *_join_grid(P[cells], t.TV, k)))
+            out = made[0]
+
             def big(q):
                 # a cell past its slots: alone, with big slots, joined in its place
                 st[q], counts[q], v[q], c[q], r2[q] = _big(
-                    chunk[q], P, W, start, SP, SW, sidx, g, order, tree, t, out
+                    chunk[q], P, W, start, SP, SW, sidx, g, order, tree, t, out, wmax
                 )
 
             out.add(st, counts, sl, capa, big)
-            sl_ = slice(c0, c0 + len(chunk))
-            status[sl_], vol[sl_], cen[sl_], rad2[sl_] = st, v, c, r2
-            nfaces[sl_] = counts[:, 1]
-            nverts[sl_] = counts[:, 0]
+            at = sort[c0 : c0 + len(chunk)]
+            status[at], vol[at], cen[at], rad2[at] = st, v, c, r2
+            cell_faces[c0 + 1 : c0 + 1 + len(chunk)] = counts[:, 1]
+            voff[c0 + 1 : c0 + 1 + len(chunk)] = counts[:, 0]
             if progress is not None:
                 progress(min(c0 + CHUNK, k), k)
 
@@ -672,6 +687,7 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
                     pool,
                     slots[q % len(slots)],
                     scr,
+                    wmax,
                 )
                 if joiner is None:
                     join(c0, chunk, *res)
@@ -684,21 +700,20 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
                 if ex is not None:
                     ex.shutdown()
     del slots
+    out = made[0]
     vertices, flabel, roff, ring, vid, unmatched = out.finish()
     vshort = out.short if short else None
     out.short = None
-    pos = np.zeros(k, np.int64)
+    pos = np.empty(k, np.int64)  # noqa: TID251 - a permutation: every slot written
     pos[sort] = np.arange(k)
-    cell_faces = np.zeros(k + 1, np.int64)
-    np.cumsum(nfaces, out=cell_faces[1:])
-    voff = np.zeros(k + 1, np.int64)
-    np.cumsum(nverts, out=voff[1:])
+    np.cumsum(cell_faces, out=cell_faces)
+    np.cumsum(voff, out=voff)
     return Cells3D(
         cells,
-        status[pos],
-        vol[pos],
-        cen[pos],
-        rad2[pos],
+        status,
+        vol,
+        cen,
+        rad2,
         vertices,
         pos,
         cell_faces,
@@ -712,13 +727,13 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
     )
 
 
-def _big(i, P, W, start, SP, SW, sidx, g, order, tree, t, out):
+def _big(i, P, W, start, SP, SW, sidx, g, order, tree, t, out, wmax=None):
     """Build cell ``i`` alone with big slots (growing them until it fits) and join it."""
     factor = BIG_CAPS_FACTOR
     while True:
         caps = tuple(c * factor for c in CAPS[:6]) + CAPS[6:]
         st, counts, v, c, r2, sl, capa = _run(
-            np.array([i]), P, W, start, SP, SW, sidx, g, order, tree, t, caps, None
+            np.array([i]), P, W, start, SP, SW, sidx, g, order, tree, t, caps, None, wmax=wmax
         )
         if st[0] != OVERFLOW or factor >= 256:
             break

@@ -239,9 +239,9 @@ def _torus_faces(lab, cf, rpos, orig, shift, uniq, cfx, pos):
 
 def _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh):
     n = len(pts)
-    vol = np.zeros(n)
-    cen = np.full((n, 3), np.nan)
     if res is None:
+        vol = np.zeros(n)
+        cen = np.full((n, 3), np.nan)
         z = np.zeros(0, np.int64)
         return Diagram3D(
             sites=pts,
@@ -267,16 +267,22 @@ def _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh):
             f"3D cell builder failed on site {int(built[bad[0]])} "
             f"(status {int(res.status[bad[0]])}); please report this input"
         )
-    scale3 = 3 * k
-    vol[built] = np.ldexp(res.volume, -scale3) if k else res.volume
-    cen[built] = from_working(res.centroid, k)
     u = len(uniq)
+    vol1 = np.ldexp(res.volume, -3 * k) if k else res.volume
+    cen1 = from_working(res.centroid, k)
+    if len(built) == n:  # every site built, in order (no duplicates, not a mesh's subset)
+        vol, cen, pos = vol1, cen1, res.pos
+    else:
+        vol = np.zeros(n)
+        cen = np.full((n, 3), np.nan)
+        vol[built] = vol1
+        cen[built] = cen1
+        pos = np.full(n, len(built), np.int64)
+        pos[built] = res.pos
     # the face table stays in build order; duplicates (and cells not built) point at an
     # empty slot after the last
     cell_faces = np.append(res.cell_faces, res.cell_faces[-1])
     voff = np.append(res.voff, res.voff[-1])
-    pos = np.full(n, len(built), np.int64)
-    pos[built] = res.pos
     lab = res.flabel
     face_keep = shifts = None
     if gmap is not None:
