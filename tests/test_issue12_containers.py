@@ -1,6 +1,8 @@
 """3D containers found by an independent check (checker4): extreme half-space rows, cells a
 mesh container splits into pieces or wraps round a hole (describe's Euler check)."""
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -32,7 +34,8 @@ def test_halfspace_rows_of_any_magnitude(rows, volume):
 def test_convex_roof_nearly_flat(h):
     # three roof walls of slope 2h meet at a ridge: their determinant (8 h^2) was below the
     # sites' 1e-10 and no quadruple named the corner (RuntimeError "status 4", even with one
-    # site); a wall triple is named down to 1e-13 (slopes below ~3e-7 still fail: open)
+    # site); a wall triple is named down to 1e-13, and below that by its exact determinant
+    # (every slope: tests/test_issue12_convex.py)
     base = [[-1, 0, 0, 0], [1, 0, 0, 1], [0, -1, 0, 0], [0, 1, 0, 1], [0, 0, -1, 0]]
     roof = [[0, -2 * h, 1, 1], [0, 2 * h, 1, 1 + 2 * h], [-2 * h, 0, 1, 1]]
     c = vf.Convex(halfspaces=base + roof)
@@ -100,3 +103,38 @@ def test_euler_still_fails_on_an_open_cell():
 
     r = describe3d(Open(d))
     assert not r["euler_ok"] and r["euler_failures"] == [3]
+
+
+@pytest.mark.parametrize("k", [-298, -268, 260, 330])
+def test_mesh_cut_scales_exactly_past_the_mesh_range(k, monkeypatch):
+    # the mesh cut squared cross products and area vectors in the caller's units: at 2**260
+    # they overflowed (a cell lost: "not a valid solid"), at 2**-268 they underflowed. Each
+    # is now scaled by a power of two first; the mesh range (engine.voronoi3d checks
+    # MESH_VOLUME_RANGE) is lifted here to probe the cut across the containers' range
+    import voroforge.engine.voronoi3d as v3
+    from voroforge.config import VOLUME_RANGE
+
+    monkeypatch.setattr(v3, "MESH_VOLUME_RANGE", VOLUME_RANGE)
+    m = trimesh.creation.icosphere(subdivisions=1)
+    sites = np.random.default_rng(3).uniform(-0.5, 0.5, (40, 3))
+    unit = vf.voronoi3d(sites, m)
+    mk = trimesh.Trimesh(np.ldexp(m.vertices, k), m.faces, process=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        d = vf.voronoi3d(np.ldexp(sites, k), mk)
+    assert (d.volumes == np.ldexp(unit.volumes, 3 * k)).all()
+    # (not the centroids of the cells kernels.meshcut3d cuts itself: its moments still
+    # overflow past 2**256 and underflow below 2**-256; open)
+    assert (d.face_areas == np.ldexp(unit.face_areas, 2 * k)).all()
+    assert (d.face_normals == unit.face_normals).all()
+
+
+def test_unit_normals_at_any_scale():
+    from voroforge.engine.mesh3d import unit_normals
+
+    e1 = np.array([[1.0, 0, 0], [1.0, 2.0, 0], [0, 0, 0]])
+    e2 = np.array([[0, 1.0, 0], [2.0, 4.0, 0], [1.0, 0, 0]])  # a needle, a zero edge
+    for k in (-1000, -500, 0, 500, 1000):
+        n, ok = unit_normals(np.ldexp(e1, k), np.ldexp(e2, k))
+        assert ok.tolist() == [True, False, False]
+        assert n.tolist() == [[0, 0, 1], [0, 0, 0], [0, 0, 0]]

@@ -312,11 +312,9 @@ def _convex_part(todo, cf, lab, farea, roff, ring, verts, grid, tol):
     k = len(todo)
     if not k:
         return None
-    tn = np.cross(T[:, 1] - T[:, 0], T[:, 2] - T[:, 0])
-    size = np.linalg.norm(tn, axis=1)
-    with np.errstate(invalid="ignore", divide="ignore"):  # a needle: no plane, NaN offset
-        tn = np.where(size[:, None] > 0, tn / size[:, None], 0.0)
-        to = np.where(size > 0, np.einsum("ij,ij->i", tn, T[:, 0]), np.nan)
+    tn, ok = unit_normals(T[:, 1] - T[:, 0], T[:, 2] - T[:, 0])
+    with np.errstate(invalid="ignore"):  # a needle: no plane, NaN offset
+        to = np.where(ok, np.einsum("ij,ij->i", tn, T[:, 0]), np.nan)
     oV = np.zeros((k * mc.CC_OUT_V, 3))
     oF = np.zeros((k * mc.CC_OUT_F, 2), np.int64)
     oR = np.zeros(k * mc.CC_OUT_R, np.int64)
@@ -401,6 +399,10 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     n = len(d)
     V, F = mesh.vertices, mesh.faces
     cf, lab, farea, roff, ring = d.cell_face_table()
+    # the kernels take each face's area vector as its plane's normal and square it (its
+    # length): a power of two per face (exact, the same decisions and bits) keeps that
+    # from overflowing past sides ~1e77 and from underflowing below ~1e-77
+    farea = np.ldexp(farea, -np.frexp(np.abs(farea).max(axis=1))[1][:, None])
     verts = np.asarray(d.vertices)
     nface = np.diff(cf)
     live = nface > 0
@@ -559,17 +561,13 @@ def _coplanar_walls(mesh, verts, ring, roff, faces, lab, tol):
     from scipy.spatial import cKDTree
 
     t3 = verts[ring[roff[faces][:, None] + np.arange(3)]]
-    area = np.cross(t3[:, 1] - t3[:, 0], t3[:, 2] - t3[:, 0])
-    size = np.linalg.norm(area, axis=1)
-    ok = size > 0
-    faces, t3, area, size = faces[ok], t3[ok], area[ok], size[ok]
+    nrm, ok = unit_normals(t3[:, 1] - t3[:, 0], t3[:, 2] - t3[:, 0])
+    faces, t3, nrm = faces[ok], t3[ok], nrm[ok]
     tri = mesh.vertices[mesh.faces]
-    tn = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    tn /= np.linalg.norm(tn, axis=1, keepdims=True)
+    tn, _ = unit_normals(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
     tc = tri.mean(axis=1)
     reach = float(np.sqrt(((tri - tc[:, None]) ** 2).sum(-1)).max())
     cen = t3.mean(axis=1)
-    nrm = area / size[:, None]
     moved = 0
     for k, near in enumerate(cKDTree(tc).query_ball_point(cen, reach + tol)):
         for t in near:
@@ -585,6 +583,25 @@ def _coplanar_walls(mesh, verts, ring, roff, faces, lab, tol):
                 moved += 1
                 break
     return moved
+
+
+def unit_normals(e1: np.ndarray, e2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Unit normals of ``e1 x e2`` (rows, (m, 3)) and ``(m,) bool``: the cross is not zero.
+
+    Each row pair is scaled by a power of two (exact) to its largest component first: the
+    cross product squares the units and its norm squares them again, which overflowed at
+    sides ~1e77 (triangles of a mesh at 2**300) and underflowed at ~1e-77. The same bits
+    as the unscaled formula wherever that neither overflows nor underflows (a normal is
+    invariant under the scaling, its norm scales exactly). A zero row (a needle) has
+    normal 0.
+    """
+    m = np.maximum(np.abs(e1).max(axis=1), np.abs(e2).max(axis=1))
+    k = np.frexp(m)[1][:, None]  # m < 2**k (0 for m == 0)
+    c = np.cross(np.ldexp(e1, -k), np.ldexp(e2, -k))
+    size = np.linalg.norm(c, axis=1)
+    ok = size > 0
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(ok[:, None], c / size[:, None], 0.0), ok
 
 
 def _apart(cells, cf, roff, ring, nvert):
@@ -650,13 +667,18 @@ def _cut_batch(batch, cf, roff, ring, verts, lab, nF, container):
     cells = cs[starts]
     ntri = np.diff(np.r_[starts, len(order)])
     v = np.add.reduceat(det[order], starts) / 6.0
-    mom = np.add.reduceat(det[order, None] * (a + b + c)[order], starts) / 24.0
+    # the moments in units of the largest determinant (a power of two, exact: the same bits
+    # as unscaled where that does not overflow; det times a coordinate overflowed at 2**300)
+    e = int(np.frexp(np.abs(det).max())[1])
+    ds = np.ldexp(det[order], -e)
+    mom = np.add.reduceat(ds[:, None] * (a + b + c)[order], starts) / 24.0
+    vs = np.add.reduceat(ds, starts) / 6.0
     # pieces: distinct components per cell (components are sorted by cell with it)
     pc = unique(cs * ncomp + tcomp[order]) // ncomp
     npc = np.diff(np.searchsorted(pc, np.r_[cells, cells[-1] + 1]))
     ok = v > 0.0
     with np.errstate(invalid="ignore", divide="ignore"):
-        ce = mom / v[:, None]
+        ce = mom / vs[:, None]
     tok = np.repeat(ok, ntri)
     sel = order[tok]
     return ov, cells[ok], ntri[ok], ot[sel], labels[sel], v[ok], ce[ok], npc[ok]

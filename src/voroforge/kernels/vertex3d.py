@@ -57,12 +57,23 @@ def _row(key, p0, P, W, WP, ns, out, k):
         out[k, 3] = WP[w, 3] - (WP[w, 0] * P[p0, 0] + WP[w, 1] * P[p0, 1] + WP[w, 2] * P[p0, 2])
 
 
+#: a name with two container walls whose unit normals' cross product is below this (the
+#: sine of their angle), or three whose determinant is, is solved exactly (:func:`name_vertex`).
+#: The float solve's error grows as 1 / sine: at a Convex roof of slope 1e-9 the ridge's vertex
+#: on a bisector came out 5e-9 off that bisector (two cells' volumes off by 7e-10); below 1e-4
+#: the float error could pass 1e-12 of the container. A function of the container only: box
+#: walls (sine 1) and walls at ordinary angles keep the float solve and their bits
+WALL_EXACT_SIN = 1e-4
+
+
 @njit(**_INLINE)
 def solve_name(a, b, c, d, P, W, WP, ns, rows, out):
     """Coordinates of the vertex named ``(a, b, c, d)`` (``a`` a site).
 
-    Writes ``y`` (relative to site ``a``) into ``out[0:3]`` and returns True, or False when the
-    four planes are not independent (relative determinant below ``VORONOI3D_DET_RTOL``).
+    Writes ``y`` (relative to site ``a``) into ``out[0:3]`` and returns 1, or 2 when the name's
+    walls meet at a small angle (:data:`WALL_EXACT_SIN`: the caller solves it exactly), or 0
+    when the four planes are not independent (relative determinant below
+    ``VORONOI3D_DET_RTOL``).
     """
     _row(b, a, P, W, WP, ns, rows, np.int64(0))  # not literals: one compile of _row
     _row(c, a, P, W, WP, ns, rows, np.int64(1))
@@ -86,14 +97,20 @@ def solve_name(a, b, c, d, P, W, WP, ns, rows, out):
     # only slightly off coplanar (a roof of slope 1e-6: det 8e-12) still names its vertex
     rtol = VORONOI3D_DET_RTOL if b < ns else VORONOI3D_WALL_DET_RTOL
     if not abs(det) > rtol * n0 * n1 * n2:
-        return False
+        return 0
     t0 = rows[0, 3]
     t1 = rows[1, 3]
     t2 = rows[2, 3]
     out[0] = (t0 * c0x + t1 * c1x + t2 * c2x) / det
     out[1] = (t0 * c0y + t1 * c1y + t2 * c2y) / det
     out[2] = (t0 * c0z + t1 * c1z + t2 * c2z) / det
-    return True
+    if c >= ns:  # two walls (rows 1 and 2, c0 their cross product) or three
+        if b >= ns:
+            if abs(det) < WALL_EXACT_SIN * n0 * n1 * n2:
+                return 2
+        elif c0x * c0x + c0y * c0y + c0z * c0z < (WALL_EXACT_SIN * n1 * n2) ** 2:
+            return 2
+    return 1
 
 
 #: ``p0 + y`` is solved again exactly when its largest coordinate is below this fraction of
@@ -162,11 +179,19 @@ def axis_snap(keys, m, ns, WP, x):
 
 
 @njit(**_INLINE)
-def name_vertex(keys, m, P, W, WP, ns, rows, y, name):
+def name_vertex(keys, m, P, W, WP, ns, rows, y, name, buf, x):
     """Name a vertex with sorted owner keys ``keys[:m]`` and solve its coordinates.
 
     ``name (4,)`` receives the quadruple, ``y (3,)`` the coordinates relative to
-    ``name[0]``. Returns False when no quadruple of the owners is independent.
+    ``name[0]``. Returns 1 (float solve: ``y``), 2 (solved exactly:
+    :func:`kernels.predicates3d.exact_point` into ``x (3,)``, absolute, and ``y = x - p_a``;
+    ``buf`` its scratch) or 0 when no quadruple of the owners is independent.
+
+    The name is the first quadruple whose float determinant passes (:func:`solve_name`);
+    when none does, the first whose exact determinant is not zero (container walls that
+    meet at slopes of 1e-7 and below: a hip roof's corner, its determinant 8 h^2; a
+    bisector through a ridge of nearly parallel walls). Both depend on the owners alone, so
+    every cell at the vertex picks the same name and the same bits.
     """
     for i0 in range(m):
         a = keys[i0]
@@ -175,10 +200,39 @@ def name_vertex(keys, m, P, W, WP, ns, rows, y, name):
         for i1 in range(i0 + 1, m):
             for i2 in range(i1 + 1, m):
                 for i3 in range(i2 + 1, m):
-                    if solve_name(a, keys[i1], keys[i2], keys[i3], P, W, WP, ns, rows, y):
+                    r = solve_name(a, keys[i1], keys[i2], keys[i3], P, W, WP, ns, rows, y)
+                    if r != 0:
                         name[0] = a
                         name[1] = keys[i1]
                         name[2] = keys[i2]
                         name[3] = keys[i3]
-                        return True
-    return False
+                        if r == 2:
+                            return _exact_named(name, P, W, WP, ns, buf, x, y)
+                        return 1
+    for i0 in range(m):
+        a = keys[i0]
+        if a >= ns:
+            break
+        for i1 in range(i0 + 1, m):
+            for i2 in range(i1 + 1, m):
+                for i3 in range(i2 + 1, m):
+                    if exact_point(a, keys[i1], keys[i2], keys[i3], P, W, WP, ns, buf, x):
+                        name[0] = a
+                        name[1] = keys[i1]
+                        name[2] = keys[i2]
+                        name[3] = keys[i3]
+                        for q in range(3):
+                            y[q] = x[q] - P[a, q]
+                        return 2
+    return 0
+
+
+@njit(**_NO_NRT)
+def _exact_named(name, P, W, WP, ns, buf, x, y):
+    """Solve ``name`` exactly into ``x`` (and ``y = x - p_a``): 2, or 1 if ``y`` must stand."""
+    a = name[0]
+    if not exact_point(a, name[1], name[2], name[3], P, W, WP, ns, buf, x):
+        return 1  # float determinant passed, so never; keep the float solve
+    for q in range(3):
+        y[q] = x[q] - P[a, q]
+    return 2
