@@ -130,6 +130,7 @@ class Convex:
 
             pts = as_points(points, dim=3, name="Convex points")
             hs = _hull_halfspaces(pts)
+            box = np.array([pts.min(axis=0), pts.max(axis=0)])
         else:
             try:
                 hs = np.array(halfspaces, dtype=np.float64, copy=True)
@@ -152,45 +153,134 @@ class Convex:
                 w = int(np.flatnonzero(~np.isfinite(hs[:, 3]))[0])
                 raise ValueError(f"halfspace {w}: its offset over its normal overflows float64")
             hs = hs / np.linalg.norm(hs[:, :3], axis=1)[:, None]
+            box = None
         self.halfspaces = hs
-        self._template = _convex_template(hs)
+        self._template = _convex_template(hs, box)
         self.volume = self._template.volume
 
     def __repr__(self) -> str:
         return f"Convex({len(self.halfspaces)} half-spaces, volume {self.volume:.6g})"
 
 
-def _hull_halfspaces(pts: np.ndarray) -> np.ndarray:
-    from scipy.spatial import ConvexHull, QhullError
+#: ``Convex(points=)`` thinner than this fraction of its extent is flat: the template's cut
+#: decides "on a wall" within ``VORONOI3D_CUT_RTOL`` (1e-12) of the container's size, so a
+#: solid must be some hundred times thicker than that to be cut reliably
+FLAT_RTOL = 1e-10
 
+
+def _hull_halfspaces(pts: np.ndarray) -> np.ndarray:
+    """The unit half-spaces of the hull of ``pts`` (one row per plane), exactly rounded.
+
+    The hull's facets are an affine invariant: Qhull sees the points on their principal
+    axes, each scaled to unit extent (a slab 1e-9 thin is a cube to it; on the raw points its
+    side facets' normals were off by ~1e-7 and the container came out "open" or
+    "unbounded"). Each facet's plane is then computed from the raw points exactly
+    (integers): its normal rounded once, its offset the largest of its corners' exactly
+    rounded. Triangles of one plane give the same bits and are merged, and so are those
+    within 1e-12 of one plane (as Qhull's were).
+    """
+    from scipy.spatial import ConvexHull, QhullError, cKDTree
+
+    c = pts.mean(axis=0)
+    q = pts - c
+    size = float(np.abs(q).max())
+    if not size > 0:
+        raise ValueError("Convex points span no volume (they are all the same point)")
+    q = q / size
+    _, _, vt = np.linalg.svd(q, full_matrices=False)
+    y = q @ vt.T  # principal axes, widest first
+    ext = np.ptp(y, axis=0)
+    if not ext[2] > FLAT_RTOL * ext[0]:
+        what = "collinear" if not ext[1] > FLAT_RTOL * ext[0] else "coplanar"
+        raise ValueError(
+            f"Convex points are {what} to within {ext[2] * size:.3g} ({ext[2] / ext[0]:.2g} "
+            f"of their extent {ext[0] * size:.3g}): they span no volume (a container must be "
+            f"thicker than {FLAT_RTOL:g} of its extent)"
+        )
     try:
-        hull = ConvexHull(pts)
+        hull = ConvexHull(y / ext)
     except (QhullError, ValueError) as exc:
         raise ValueError(
             f"Convex points span no volume (Qhull: {str(exc).splitlines()[0]})"
         ) from None
-    eq = hull.equations  # n . x + off <= 0, unit normals
-    hs = np.column_stack([eq[:, :3], -eq[:, 3]])
-    # merge the triangulated facets of one plane
-    scale = float(np.abs(pts).max()) or 1.0
-    keep: list[np.ndarray] = []
-    for row in hs:
-        if not any(
-            np.abs(row[:3] - k[:3]).max() < 1e-12 and abs(row[3] - k[3]) < 1e-12 * scale
-            for k in keep
-        ):
-            keep.append(row)
-    return np.array(keep)
+    # outward in the raw frame: Qhull's normal m (of y = M x + b) is M^T m there
+    out = (hull.equations[:, :3] / ext) @ vt
+    rows: dict[bytes, list] = {}  # unit normal -> its corners (point numbers)
+    normals = []
+    for tri, w in zip(hull.simplices, out, strict=True):
+        a, b, e = (_ints(pts[i]) for i in tri)
+        u = [b[k] - a[k] for k in range(3)]
+        v = [e[k] - a[k] for k in range(3)]
+        n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+        big = max(abs(x) for x in n)
+        if big == 0:
+            continue  # a sliver Qhull made of three collinear points: no plane
+        f = np.array([x / big for x in n])  # exact quotients, each rounded once
+        nu = f / np.sqrt(f @ f)
+        if nu @ w < 0:
+            nu = -nu
+        nu = nu + 0.0  # -0.0 -> 0.0: one key per plane
+        key = nu.tobytes()
+        if key not in rows:
+            rows[key] = []
+            normals.append(nu)
+        rows[key].extend(int(t) for t in tri)
+    N = np.array(normals)
+    corners = list(rows.values())
+    # triangles of one face whose corners rounding left off coplanar are one wall (as
+    # Qhull's were): normals within 1e-12, or far from the origin within the corners'
+    # rounding over the extent (a unit cube at 1e6: 1e-10; kept apart, one far rotated
+    # cube's cells summed 1.1e-8 off: open, see the report), and every corner within that
+    # rounding of the kept plane
+    big = float(np.abs(pts).max())
+    eps64 = 64.0 * np.finfo(float).eps
+    tilt = max(1e-12, eps64 * big / (ext[0] * size))
+    keep = np.ones(len(N), bool)
+    pairs = cKDTree(N).query_pairs(tilt, p=np.inf, output_type="ndarray")
+    for i, j in sorted(map(tuple, np.sort(pairs, axis=1))):
+        if keep[i] and keep[j]:
+            q = pts[corners[i] + corners[j]] - pts[corners[i][0]]
+            if np.abs(q @ N[i]).max() <= eps64 * max(big, 1e-300) + 1e-12 * ext[0] * size:
+                corners[i] += corners[j]
+                keep[j] = False
+    rows_out = []
+    for i in np.flatnonzero(keep):
+        nn = _ints(N[i])
+        # the offset: the largest of the corners' n . p, exact in integers, rounded once
+        ps = [_ints(pts[t]) for t in set(corners[i])]
+        d = max(sum(nn[k] * p[k] for k in range(3)) for p in ps) / _ONE**2
+        rows_out.append([*N[i], d])
+    return np.array(rows_out)
 
 
-def _convex_template(hs: np.ndarray) -> Template:
+#: :func:`_ints`' unit: every double of a Convex hull's range is an integer multiple of it
+#: (the volume range keeps coordinates above 1e-90; subnormal bits below 2**-1100 are lost)
+_ONE = 2**1100
+
+
+def _ints(x) -> list[int]:
+    """``x`` (3,) doubles as integers in units of ``1 / _ONE`` (exact above 2**-1047)."""
+    out = []
+    for m, ex in zip(*np.frexp(x), strict=True):
+        k = int(np.ldexp(m, 53))
+        s = 1100 + int(ex) - 53
+        out.append(k << s if s >= 0 else k >> -s)
+    return out
+
+
+def _convex_template(hs: np.ndarray, box: np.ndarray | None = None) -> Template:
+    """The template of the half-spaces ``hs``; ``box`` (2, 3): its bounds where known (a hull).
+
+    Otherwise the bounds are linear programs (HiGHS: feasible to ~1e-7, so a slab thinner
+    than that may not be bounded right; a hull's own points bound it exactly).
+    """
     from scipy.optimize import linprog
 
     from ..kernels.cells3d import container_cut
 
     lo = np.zeros(3)
     hi = np.zeros(3)
-    for a in range(3):
+    for a in range(3 if box is None else 0):
         for sgn, out in ((1.0, lo), (-1.0, hi)):
             c = np.zeros(3)
             c[a] = sgn
@@ -206,6 +296,8 @@ def _convex_template(hs: np.ndarray) -> Template:
             if res.status != 0:
                 raise ValueError(f"could not bound the Convex container ({res.message})")
             out[a] = res.x[a]
+    if box is not None:
+        lo, hi = box
     size = hi - lo
     far = float(max(np.abs(lo).max(), np.abs(hi).max()))
     if size.min() <= max(1e-12 * size.max(), 16.0 * np.spacing(far), 1e-300):
