@@ -195,3 +195,34 @@ def test_some_cells_get_what_all_cells_get(threads):
         a = every.flabel[every.cell_faces[every.pos[i]] : every.cell_faces[every.pos[i] + 1]]
         b = part.flabel[part.cell_faces[part.pos[c]] : part.cell_faces[part.pos[c] + 1]]
         assert np.array_equal(np.sort(a), np.sort(b))
+
+
+def test_periodic_face_shifts_one_and_two_threads():
+    # voronoi3d._torus_faces runs its cells in parallel (prange): the labels, the faces kept
+    # once and each face's image shift must be the same on one thread and two, and each
+    # face must lie midway between its site and the image across it
+    rng = np.random.default_rng(21)
+    p = rng.random((PARALLEL_MIN_SITES + 3000, 3))
+    before = numba.get_num_threads()
+    got = []
+    for nt in sorted({1, min(2, numba.config.NUMBA_NUM_THREADS)}):
+        numba.set_num_threads(nt)
+        try:
+            d = vf.voronoi3d(p, BOX, periodic=True)
+            f = d.faces
+        finally:
+            numba.set_num_threads(before)
+        got.append((d.face_shifts.tobytes(), f.cells.tobytes(), f.indices.tobytes()))
+    assert len(set(got)) == 1
+    cf, lab, area, roff, ring = d.cell_face_table()
+    sh = np.asarray(d.face_shifts)
+    assert sh.shape == (len(lab), 3)
+    owner = np.repeat(np.arange(len(d)), np.diff(cf))
+    site = lab >= 0
+    assert (sh[~site] == 0).all() and np.abs(sh).max() == 1
+    # each face's first vertex is as far from its site as from the image across it
+    first = np.asarray(ring)[np.asarray(roff)[:-1]]
+    c = np.asarray(d.vertices)[first][site]
+    di = np.linalg.norm(c - p[owner[site]], axis=1)
+    dj = np.linalg.norm(c - (p[lab[site]] + sh[site]), axis=1)
+    assert np.abs(di - dj).max() < 1e-9

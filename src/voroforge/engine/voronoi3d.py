@@ -5,9 +5,9 @@ from __future__ import annotations
 import itertools
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
-from ..config import MESH_VOLUME_RANGE, NJIT, VOLUME_RANGE
+from ..config import MESH_VOLUME_RANGE, NJIT_PARALLEL, VOLUME_RANGE
 from .build3d import build_cells3d, duplicate_owners, release_freed_memory
 from .containers import (
     Convex,
@@ -18,6 +18,7 @@ from .containers import (
 )
 from .diagram3d import Diagram3D
 from .inputs import as_points, as_weights, from_working, working_frame
+from .threads import serial_below
 
 __all__ = ["voronoi3d", "Convex", "Diagram3D"]
 
@@ -192,19 +193,20 @@ def _periodic(P, W, t, progress):
         margin *= 2.0
 
 
-@njit(**NJIT)
+@njit(**NJIT_PARALLEL)
 def _torus_faces(lab, cf, rpos, orig, shift, uniq, cfx, pos):
     """Periodic cells' faces: site labels, which face is listed once, image shifts.
 
     ``lab``, ``cf`` (build order) label faces by image number; returns the labels as input
     sites, ``keep`` (build order: a wall, a larger site, or the same site across a shift
     that is lexicographically positive) and the shift of the image across each face in the
-    caller's order (``pos``, ``cfx``: ``cf`` with an empty slot after the last).
+    caller's order (``pos``, ``cfx``: ``cf`` with an empty slot after the last). Cells in
+    parallel (each writes its own faces' rows; the shifts' rows from a prefix sum).
     """
     nfc = lab.shape[0]
     lab2 = lab.copy()
     keep = np.zeros(nfc, np.bool_)
-    for c in range(rpos.shape[0]):
+    for c in prange(rpos.shape[0]):
         p = rpos[c]
         owner = uniq[c]
         for f in range(cf[p], cf[p + 1]):
@@ -220,13 +222,13 @@ def _torus_faces(lab, cf, rpos, orig, shift, uniq, cfx, pos):
             lexpos = s0 > 0 or (s0 == 0 and (s1 > 0 or (s1 == 0 and s2 > 0)))
             keep[f] = o > owner or (o == owner and lexpos)
     n = pos.shape[0]
-    total = 0
+    row = np.zeros(n + 1, np.int64)  # the first row of cell i's faces in the shifts
     for i in range(n):
-        total += cfx[pos[i] + 1] - cfx[pos[i]]
-    shifts = np.zeros((total, 3), np.int64)
-    r = 0
-    for i in range(n):
+        row[i + 1] = row[i] + cfx[pos[i] + 1] - cfx[pos[i]]
+    shifts = np.zeros((row[n], 3), np.int64)
+    for i in prange(n):
         p = pos[i]
+        r = row[i]
         for f in range(cfx[p], cfx[p + 1]):
             j = lab[f]
             if j >= 0:
@@ -287,9 +289,10 @@ def _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh):
     face_keep = shifts = None
     if gmap is not None:
         orig, shift = gmap
-        lab, face_keep, shifts = _torus_faces(
-            res.flabel, res.cell_faces, res.pos, orig, shift, uniq, cell_faces, pos
-        )
+        with serial_below(n):
+            lab, face_keep, shifts = _torus_faces(
+                res.flabel, res.cell_faces, res.pos, orig, shift, uniq, cell_faces, pos
+            )
     elif u != n:  # site labels from the unique sites' numbers to the input's
         lab = lab.copy()
         site = lab >= 0
