@@ -95,3 +95,19 @@ def test_duplicate_and_near_duplicate_walls(extra):
     assert c.volume == pytest.approx(1.0, rel=1e-12)
     sites = np.random.default_rng(0).random((30, 3))
     _check(vf.voronoi3d(sites, c), c, sites)
+
+
+@pytest.mark.parametrize("h", [1e-5, 1e-7, 1e-11])
+def test_roof_at_utm_offsets(h):
+    # the vertex is solved exactly relative to its site (predicates3d.vertex_offset): an
+    # exactly rounded absolute vertex at 4e6 keeps ~5e-10 of a unit cell (sums 5e-11 off);
+    # the float solve of the base was 8e-12 off at slope 1e-7
+    o = np.array([5e5, 4e6, 100.0])
+    hs = np.array(_roof("hip4", h), float)
+    hs[:, 3] += hs[:, :3] @ o
+    c = vf.Convex(halfspaces=hs)
+    rng = np.random.default_rng(1)
+    for n in (1, 5, 50):
+        d = vf.voronoi3d(o + rng.random((n, 3)), c)
+        assert d.volumes.sum() == pytest.approx(c.volume, rel=1e-12, abs=0)
+        assert d.describe()["euler_ok"]

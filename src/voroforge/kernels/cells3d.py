@@ -234,7 +234,7 @@ def _name_cell(
             if u == 0 or keys[t] != keys[u - 1]:
                 keys[u] = keys[t]
                 u += 1
-        r = name_vertex(keys, u, P, W, WP, ns, rows, y, name, X[1], x) if u >= 4 else 0
+        r = name_vertex(keys, u, P, W, WP, ns, rows, y, name, X[1]) if u >= 4 else 0
         if r == 0:
             return UNNAMED
         a = name[0]
@@ -245,9 +245,8 @@ def _name_cell(
             nsite += keys[t] < ns
         # the join's identity besides the coordinates, and the owner sites (osite)
         vnames[v, 4] = (name_key(u, name) << 8) | min(nsite, 255)
-        if r == 1:
-            place(name, P, W, WP, ns, y, x, X[1])  # x = p_a + y, or exact where that cancels
-        else:  # solved exactly (walls at small angles): merge by name as exact cells do
+        place(name, P, W, WP, ns, y, x, X[1])  # x = p_a + y, or exact where that cancels
+        if r == 2:  # solved exactly (walls at small angles): merge by name as exact cells do
             X[2][0] = True
         axis_snap(keys, u, ns, WP, x)
         for q in range(3):

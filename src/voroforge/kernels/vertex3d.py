@@ -29,7 +29,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT, VORONOI3D_DET_RTOL, VORONOI3D_WALL_DET_RTOL
-from .predicates3d import exact_point
+from .predicates3d import exact_point, vertex_offset
 
 #: nothing here allocates: compiled without reference counting (see kernels.cellcut3d)
 _NO_NRT = {**NJIT, "_nrt": False}
@@ -179,13 +179,13 @@ def axis_snap(keys, m, ns, WP, x):
 
 
 @njit(**_INLINE)
-def name_vertex(keys, m, P, W, WP, ns, rows, y, name, buf, x):
+def name_vertex(keys, m, P, W, WP, ns, rows, y, name, buf):
     """Name a vertex with sorted owner keys ``keys[:m]`` and solve its coordinates.
 
     ``name (4,)`` receives the quadruple, ``y (3,)`` the coordinates relative to
-    ``name[0]``. Returns 1 (float solve: ``y``), 2 (solved exactly:
-    :func:`kernels.predicates3d.exact_point` into ``x (3,)``, absolute, and ``y = x - p_a``;
-    ``buf`` its scratch) or 0 when no quadruple of the owners is independent.
+    ``name[0]``. Returns 1 (float solve), 2 (``y`` exactly rounded from exact determinants,
+    :func:`kernels.predicates3d.vertex_offset`; ``buf`` its scratch) or 0 when no quadruple
+    of the owners is independent.
 
     The name is the first quadruple whose float determinant passes (:func:`solve_name`);
     when none does, the first whose exact determinant is not zero (container walls that
@@ -207,7 +207,7 @@ def name_vertex(keys, m, P, W, WP, ns, rows, y, name, buf, x):
                         name[2] = keys[i2]
                         name[3] = keys[i3]
                         if r == 2:
-                            return _exact_named(name, P, W, WP, ns, buf, x, y)
+                            return _exact_named(name, P, W, WP, ns, buf, y)
                         return 1
     for i0 in range(m):
         a = keys[i0]
@@ -216,23 +216,25 @@ def name_vertex(keys, m, P, W, WP, ns, rows, y, name, buf, x):
         for i1 in range(i0 + 1, m):
             for i2 in range(i1 + 1, m):
                 for i3 in range(i2 + 1, m):
-                    if exact_point(a, keys[i1], keys[i2], keys[i3], P, W, WP, ns, buf, x):
-                        name[0] = a
-                        name[1] = keys[i1]
-                        name[2] = keys[i2]
-                        name[3] = keys[i3]
-                        for q in range(3):
-                            y[q] = x[q] - P[a, q]
+                    name[0] = a
+                    name[1] = keys[i1]
+                    name[2] = keys[i2]
+                    name[3] = keys[i3]
+                    if _exact_named(name, P, W, WP, ns, buf, y) == 2:
                         return 2
     return 0
 
 
 @njit(**_NO_NRT)
-def _exact_named(name, P, W, WP, ns, buf, x, y):
-    """Solve ``name`` exactly into ``x`` (and ``y = x - p_a``): 2, or 1 if ``y`` must stand."""
+def _exact_named(name, P, W, WP, ns, buf, y):
+    """``y``: the vertex ``name`` less site ``name[0]``, exactly rounded; 2, or 1 if ``y`` stands.
+
+    Relative to the site, as the float solve: an absolute vertex far from the origin (a
+    Convex roof at UTM offsets) would keep only ~5e-10 of a unit cell's coordinates.
+    """
     a = name[0]
-    if not exact_point(a, name[1], name[2], name[3], P, W, WP, ns, buf, x):
+    if not vertex_offset(
+        a, name[1], name[2], name[3], P, W, WP, ns, buf, P[a, 0], P[a, 1], P[a, 2], y
+    ):
         return 1  # float determinant passed, so never; keep the float solve
-    for q in range(3):
-        y[q] = x[q] - P[a, q]
     return 2
