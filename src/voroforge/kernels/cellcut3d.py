@@ -372,24 +372,24 @@ def _gather(b, t, i, px, py, pz, wi, start, SP, SW, sidx, cand, cd2, m, mg, rmax
     counted (``mg``: the candidates a batch holds, for when it is full) but not kept: the
     cell only shrinks, so :func:`_cut_batch` would skip it at its turn (the test here has
     twice the slack of that one, so rounding in the cell's radius cannot tell them apart).
-    Returns ``(m, mg, t)``: ``t < start[b + 1]`` when the batch filled up first.
+    Each site is written at slot ``m`` and counted only if kept (no branches on the data:
+    which sites are kept follows no pattern). Returns ``(m, mg, t)``: ``t < start[b + 1]``
+    when the batch filled up first.
     """
     ncap = cand.shape[0]
     end = start[b + 1]
     reach = rmax2 * (1.0 + 2.0 * VORONOI3D_STOP_RTOL)
-    while t < end and mg < ncap:
-        if sidx[t] != i:
-            dx = SP[t, 0] - px
-            dy = SP[t, 1] - py
-            dz = SP[t, 2] - pz
-            d2 = dx * dx + dy * dy + dz * dz
-            if d2 != 0.0:
-                mg += 1
-                h = 0.5 * (d2 + (wi - SW[t]))
-                if not (h > 0.0 and h * h > reach * d2):
-                    cand[m] = t
-                    cd2[m] = d2
-                    m += 1
+    while t < end and mg < ncap:  # (m <= mg: slot m is in the batch)
+        dx = SP[t, 0] - px
+        dy = SP[t, 1] - py
+        dz = SP[t, 2] - pz
+        d2 = dx * dx + dy * dy + dz * dz
+        h = 0.5 * (d2 + (wi - SW[t]))
+        other = sidx[t] != i and d2 != 0.0
+        cand[m] = t
+        cd2[m] = d2
+        mg += other
+        m += other and not (h > 0.0 and h * h > reach * d2)
         t += 1
     return m, mg, t
 

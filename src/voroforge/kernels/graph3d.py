@@ -151,34 +151,49 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
 
     ``FL (cap,)`` flags vertices that may lie on planes other than their faces' (the
     caller's mark); a new vertex on an edge is flagged when both ends are (the edge may lie
-    in such a plane). ``CP (cap, 4) int64`` is scratch (the cap's ring). Returns
+    in such a plane). ``CP (cap, 3) int64`` is scratch (the cap's ring; the removed
+    vertices). Returns
     ``(status, nv, r2)``, ``r2`` (done) the largest ``|v|^2`` of the vertices left.
     """
     vcap = V.shape[0]
     D = ED.shape[1]
     ncap = CP.shape[0]
-    # whether a vertex is above and one below, and the boundary edges v -> u (v removed, u
-    # kept): one to start from, and their count (one pass)
-    up = -1
+    # the vertices above (removed), in order, listed branch-free from CP's last row up in
+    # column 2 (q-th at row ncap - 1 - q; the cap's trace fills rows from 0), and whether
+    # one is below
+    nup = 0
     down = False
-    e0v = -1
-    e0k = -1
-    nbound = 0
-    for v in range(nv):
-        if S[v] > 0.0:
-            up = v
-            for k in range(DEG[v]):
-                if S[ED[v, k]] <= 0.0:
-                    if e0v < 0:
-                        e0v = v
-                        e0k = k
-                    nbound += 1
-        elif S[v] < 0.0:
-            down = True
-    if up < 0:
+    listed = nv < ncap
+    if listed:
+        for v in range(nv):
+            s = S[v]
+            CP[ncap - 1 - nup, 2] = v
+            nup += s > 0.0
+            down |= s < 0.0
+    else:
+        for v in range(nv):
+            nup += S[v] > 0.0
+            down |= S[v] < 0.0
+    if nup == 0:
         return GCUT_NONE, nv, 0.0
     if not down:
         return GCUT_EMPTY, 0, 0.0
+    # the boundary edges v -> u (v removed, u kept): one to start from, and their count
+    e0v = -1
+    e0k = -1
+    nbound = 0
+    for q in range(nup if listed else nv):
+        v = CP[ncap - 1 - q, 2] if listed else q
+        if not S[v] > 0.0:
+            continue
+        for k in range(DEG[v]):
+            if S[ED[v, k]] <= 0.0:
+                if e0v < 0:
+                    e0v = v
+                    e0k = k
+                nbound += 1
+    # the trace writes at most nbound + 1 rows: the list must lie past them
+    listed = listed and nup + nbound < ncap
     # trace the cap: CP[m] = (boundary vertex v, its index k, point, -)
     m = 0
     v = e0v
@@ -358,22 +373,33 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
             return GCUT_BROKEN, nv0, 0.0
         BK[c, a] = b
         BK[cn, b] = a
-    # drop the removed vertices: fill holes from the top
-    # (and the largest squared distance of a vertex left from the origin: the site)
+    # drop the removed vertices (listed: in order; else found by a scan of S, in order):
+    # fill each hole from the top
     top = nv
+    q = 0
     v = 0
-    r2 = 0.0
-    while v < top:
-        if S[v] > 0.0:
+    while True:
+        if listed:
+            if q == nup:
+                break
+            v = CP[ncap - 1 - q, 2]
+            q += 1
+        else:
+            while v < top and not S[v] > 0.0:
+                v += 1
+        if v >= top:
+            break
+        top -= 1
+        while top > v and S[top] > 0.0:
             top -= 1
-            while top > v and S[top] > 0.0:
-                top -= 1
-            if top > v:
-                _move(V, DEG, ED, BK, LB, FL, top, v)
-                S[v] = S[top]
-        if v < top:
-            r2 = max(r2, V[v, 0] * V[v, 0] + V[v, 1] * V[v, 1] + V[v, 2] * V[v, 2])
+        if top > v:
+            _move(V, DEG, ED, BK, LB, FL, top, v)
+            S[v] = S[top]
         v += 1
+    # the largest squared distance of a vertex left from the origin (the site)
+    r2 = 0.0
+    for v in range(top):
+        r2 = max(r2, V[v, 0] * V[v, 0] + V[v, 1] * V[v, 1] + V[v, 2] * V[v, 2])
     return GCUT_DONE, top, r2
 
 
