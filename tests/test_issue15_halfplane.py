@@ -197,3 +197,111 @@ def test_vertex_ulps_from_a_side_is_the_defaults(name, ulps, corner):
     assert all(_ring(h) == _ring(d) for h, d in zip(hc, dc, strict=True))
     r = dh.describe()
     assert r.euler_ok and r.convex_ok, str(r)
+
+
+# A site off a line of n has n neighbours: the half-plane builder leaves its cell hard and
+# takes it from the Delaunay dual, building only the dual cells it takes
+# (dual_some.dual_cells_of); those must be the whole dual's, bit for bit, and the seam test
+# (dual_some.seams_apart) must find every edge without its twin.
+def _dual_inputs():
+    g = np.random.default_rng(7)
+    line = np.concatenate(
+        (np.column_stack((np.linspace(0, 1, 1500), np.zeros(1500))), [[0.5, 0.1]])
+    )
+    return [
+        (line, (-0.5, -0.5, 1.5, 1.5)),
+        (_circle(350, 1e-4, (-2e5, 5e5)), None),  # float circle: cells that can fold
+        (np.concatenate((_circle(200, 1.0, (0, 0)), g.random((50, 2)) - 0.5)), (-2, -2, 2, 2)),
+        (g.random((400, 2)), (0, 0, 1, 1)),
+    ]
+
+
+def _kernel_dual(pts, boundary):
+    """Kernel inputs: sites, box (the sites' box padded 10% when None), identity kmap."""
+    if boundary is None:
+        pad = 0.1 * np.ptp(pts, axis=0)
+        boundary = (*(pts.min(0) - pad), *(pts.max(0) + pad))
+    box = np.array(boundary, dtype=np.float64)
+    return pts[:, 0].copy(), pts[:, 1].copy(), box, np.arange(len(pts), dtype=np.int64)
+
+
+def test_dual_cells_of_are_the_whole_duals():
+    from voroforge.kernels.cells import cells_from_triangulation, dual_prepare
+    from voroforge.kernels.delaunay import triangulate_sorted
+    from voroforge.kernels.dual_some import dual_cells_of
+
+    built = 0
+    for pts, boundary in _dual_inputs():
+        xs, ys, box, kmap = _kernel_dual(pts, boundary)
+        order, sx, sy, tri, he, _, ok = triangulate_sorted(xs, ys)
+        assert ok
+        whole, codes = cells_from_triangulation(
+            sx, sy, tri.copy(), he.copy(), box, order, kmap[order], astray=True
+        )
+        state = dual_prepare(sx, sy, tri.copy(), he.copy(), box, order, kmap[order])
+        g = np.random.default_rng(len(xs))
+        for frac in (0.002, 0.05, 0.1):
+            want = g.random(len(xs)) < frac
+            got = dual_cells_of(state, want)
+            if got is None:  # a ring that can fold folds: the caller builds every cell
+                continue
+            built += 1
+            (c, lengths, owner), gcodes = got
+            for k in np.flatnonzero(want):
+                a, b = whole[1][k], whole[1][k + 1]
+                u, v = lengths[k], lengths[k + 1]
+                assert np.array_equal(whole[0][a:b].view(np.int64), c[u:v].view(np.int64)), k
+                assert np.array_equal(whole[2][a:b], owner[u:v]), k
+                assert codes[k] == gcodes[k], k
+    assert built >= 6
+
+
+def _seams_reference(rings, dual, take):
+    """Cells outside ``take`` with an edge to a ``take`` cell that lacks its twin (sets)."""
+    edges = {}
+    for src, inside in ((rings, False), (dual, True)):
+        c, lengths, owner = src
+        for k in np.flatnonzero(take == inside):
+            for t in range(lengths[k], lengths[k + 1] - 1):
+                j = owner[t]
+                if j >= 0 and take[j] != inside:
+                    p = tuple(c[t].view(np.int64).tolist())
+                    q = tuple(c[t + 1].view(np.int64).tolist())
+                    key = (k, j, p, q) if k < j else (j, k, q, p)
+                    edges.setdefault(key, set()).add(inside)
+    bad = np.zeros(len(take), np.bool_)
+    for (lo, hi, _, _), sides in edges.items():
+        if len(sides) < 2:
+            bad[lo if not take[lo] else hi] = True
+    return bad
+
+
+def test_seams_apart_finds_every_lone_edge():
+    from voroforge.kernels.cells import cells_from_triangulation
+    from voroforge.kernels.delaunay import triangulate_sorted
+    from voroforge.kernels.dual_some import seams_apart, splice_rings
+    from voroforge.kernels.halfplane import halfplane_cells
+
+    lone = 0
+    for pts, boundary in _dual_inputs()[2:]:
+        xs, ys, box, kmap = _kernel_dual(pts, boundary)
+        rings = halfplane_cells(xs, ys, box, kmap)[:3]
+        order, sx, sy, tri, he, _, _ = triangulate_sorted(xs, ys)
+        dual = cells_from_triangulation(sx, sy, tri, he, box, order, kmap[order])
+        g = np.random.default_rng(3)
+        for trial in range(6):
+            take = g.random(len(xs)) < 0.2
+            c = rings[0].copy()
+            if trial % 2:  # a few vertices an ulp off: their edges lose their twins
+                at = g.integers(0, len(c), 8)
+                c[at] = np.nextafter(c[at], np.inf)
+            mine = (c, rings[1], rings[2])
+            want = _seams_reference(mine, dual, take)
+            assert np.array_equal(seams_apart(mine, dual, take, kmap), want)
+            lone += int(want.sum())
+            spliced = splice_rings(mine, dual, take)
+            for k in range(len(xs)):
+                src = dual if take[k] else mine
+                a, b = src[1][k], src[1][k + 1]
+                assert np.array_equal(spliced[0][spliced[1][k] : spliced[1][k + 1]], src[0][a:b])
+    assert lone > 0

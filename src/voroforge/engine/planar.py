@@ -18,11 +18,13 @@ from ..config import HALFPLANE_TILING_RTOL, VERTEX_STRAIGHT_ULPS
 from ..kernels.cells import (
     cells_from_neighbors,
     cells_from_triangulation,
+    dual_prepare,
     rings_astray,
     rings_nearly_convex,
 )
 from ..kernels.clip import open_ring_convex, rings_convex, rings_convex_area, tiny_folded
 from ..kernels.delaunay import triangulate_sorted
+from ..kernels.dual_some import dual_cells_of, seams_apart, splice_rings
 from ..kernels.fortune import fortune_delaunay
 from ..kernels.halfplane import halfplane_cells
 from ..kernels.rings import boundary_cycle, close_rings
@@ -142,30 +144,62 @@ def _closed_cells(xs, ys, box, algorithm, kmap, memo=None):
     closed, lengths, owner, hard = _memo(memo, "halfplane", halfplane_cells, xs, ys, box, kmap)
     if hard.any():
         # cells whose neighbours are not local (sites on one circle, a site with thousands
-        # of neighbours): the Delaunay dual builds them in O(n log n) for the whole diagram
-        dual = _closed_cells(xs, ys, box, "delaunay", kmap, memo)
-        if hard.all():
-            return dual
-        # a cell beside a dual cell must share their edge bit for bit; where the two
-        # constructions named a degenerate vertex differently (float circles), the cell
-        # comes from the dual too, until every seam agrees
-        take = hard.copy()
-        while True:
-            spliced = _splice(closed, lengths, owner, dual, take)
-            bad = _seams(*spliced, take, kmap)
-            if not bad.any():
-                break
-            take |= bad
-        if take.all():
-            return dual
+        # of neighbours): the Delaunay dual builds them in O(n log n)
+        spliced = None
+        if not hard.all():
+            spliced = _with_dual(xs, ys, box, kmap, (closed, lengths, owner), hard, memo)
+        if spliced is None:
+            return _closed_cells(xs, ys, box, "delaunay", kmap, memo)
         closed, lengths, owner = spliced
-        _note_spliced(memo, dual[1], take, lengths)
     if _certified(closed, lengths, box, memo):
         return closed, lengths, owner
     # a cell the local finishing could not settle consistently (rounding-level vertices
     # that fold its ring, or cells that do not tile the box): the Delaunay dual decides
     # every vertex globally, and gives the answer every algorithm gives
     return _closed_cells(xs, ys, box, "delaunay", kmap, memo)
+
+
+def _dual_state(xs, ys, box, kmap):
+    """:func:`.cells.dual_prepare` of the default's triangulation (:func:`_dual`), or None."""
+    order, sx, sy, tri, he, _, ok = triangulate_sorted(xs, ys)
+    return dual_prepare(sx, sy, tri, he, box, order, kmap[order]) if ok else None
+
+
+def _with_dual(xs, ys, box, kmap, rings, hard, memo):
+    """The half-plane ``rings`` with the ``hard`` cells from the Delaunay dual, or None.
+
+    A cell beside a dual cell must share their edge bit for bit; where the two
+    constructions named a degenerate vertex differently (float circles), the cell comes
+    from the dual too, until every seam agrees (None: every cell came from the dual). Only
+    the cells taken are built (:func:`.dual_some.dual_cells_of`: a site off a line of a
+    million has a million neighbours, and the dual of the whole line cost as much as the
+    half-plane cells), or, where a ring can fold or most cells are taken, every cell.
+    """
+    n = len(hard)
+    inv = np.full(int(kmap.max()) + 1, -1, np.int64)
+    inv[kmap] = np.arange(n)
+    state = _memo(memo, "dual_state", _dual_state, xs, ys, box, kmap)
+    take = hard.copy()
+    dual, whole = None, False
+    while not take.all():
+        if dual is None or not whole:
+            some = None
+            if state is not None and 8 * int(take.sum()) <= n:
+                some = dual_cells_of(state, take)
+            whole = some is None
+            if whole:
+                dual = _closed_cells(xs, ys, box, "delaunay", kmap, memo)
+            else:
+                dual, codes = some
+        bad = seams_apart(rings, dual, take, inv)
+        if not bad.any():
+            spliced = splice_rings(rings, dual, take)
+            if not whole and memo is not None:
+                memo.setdefault("astray", []).append((dual[1], codes))
+            _note_spliced(memo, dual[1], take, spliced[1])
+            return spliced
+        take |= bad
+    return None
 
 
 def _lost(xs, ys, box, closed, lengths, memo=None):
@@ -360,65 +394,7 @@ def _valid_ring(ring):
 
 def _splice(closed, lengths, owner, dual, take):
     """Closed rings with cell ``k`` from ``dual`` where ``take[k]``, else from ``closed``."""
-    dclosed, dlengths, downer = dual
-    size = np.where(take, np.diff(dlengths), np.diff(lengths))
-    out = np.zeros_like(lengths)
-    np.cumsum(size, out=out[1:])
-    src = np.where(take, dlengths[:-1] + len(closed), lengths[:-1])
-    idx = np.repeat(src - out[:-1], size) + np.arange(int(out[-1]))
-    coords = np.concatenate((closed, dclosed))[idx]
-    return coords, out, np.concatenate((owner, downer))[idx]
-
-
-def _seams(closed, lengths, owner, take, kmap):
-    """Cells not in ``take`` whose edge with a ``take`` cell is not that cell's edge reversed.
-
-    ``owner`` holds ``kmap`` ids. Only edges between a cell in ``take`` and one outside it
-    are compared (bit for bit, ends swapped); either side's edge without its twin marks the
-    cell outside ``take``.
-    """
-    n = len(take)
-    inv = np.full(int(kmap.max()) + 1 if n else 0, -1, np.int64)
-    inv[kmap] = np.arange(n)
-    size = np.diff(lengths)
-    cell = np.repeat(np.arange(n), size)
-    e = np.flatnonzero(owner >= 0)  # site edges (the closing vertex has -2, the box -1)
-    nbr = inv[owner[e]]
-    e, nbr, cell = e[nbr >= 0], nbr[nbr >= 0], cell[e[nbr >= 0]]
-    seam = take[cell] != take[nbr]
-    e, nbr, cell = e[seam], nbr[seam], cell[seam]
-    bad = np.zeros(n, np.bool_)
-    if len(e) == 0:
-        return bad
-    bits = closed.view(np.int64)
-    # An edge (c, j, a, b) and its twin (j, c, b, a) share the key (lo, hi, p, q) oriented
-    # from the lower cell; a key without rows of both orientations is an edge without its
-    # twin. Grouped by a 64-bit hash of the key (one argsort; a collision sorts the whole
-    # key instead): a Python set of tuples took 7 s of 20 on a line of 1e6 sites.
-    fwd = cell < nbr
-    a, b = bits[e], bits[e + 1]
-    p = np.where(fwd[:, None], a, b)
-    q = np.where(fwd[:, None], b, a)
-    cols = (np.where(fwd, cell, nbr), np.where(fwd, nbr, cell), p[:, 0], p[:, 1], q[:, 0], q[:, 1])
-    h = np.zeros(len(e), np.uint64)
-    with np.errstate(over="ignore"):
-        for col in cols:
-            h = (h ^ col.astype(np.int64).view(np.uint64)) * np.uint64(0x9E3779B97F4A7C15)
-            h ^= h >> np.uint64(29)
-    order = np.argsort(h, kind="stable")
-    key = np.column_stack(cols)[order]
-    same = (key[1:] == key[:-1]).all(axis=1)
-    if (h[order][1:] == h[order][:-1])[~same].any():  # a collision
-        order = np.lexsort(cols[::-1])
-        key = np.column_stack(cols)[order]
-        same = (key[1:] == key[:-1]).all(axis=1)
-    run = np.cumsum(np.r_[True, ~same]) - 1
-    has = np.zeros((run[-1] + 1, 2), np.bool_)
-    has[run, fwd[order].astype(np.int64)] = True
-    lone = ~has.all(axis=1)[run]
-    c, j = cell[order][lone], nbr[order][lone]
-    bad[np.where(take[c], j, c)] = True
-    return bad
+    return splice_rings((closed, lengths, owner), dual, take)
 
 
 def _certified(closed, lengths, box, memo=None) -> bool:

@@ -440,24 +440,14 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap, *, astray=False)
     every cell holding those vertices gets the one named vertex) and the cells at the
     changed vertices are built again.
     """
-    # the sweeps hand over strided views of their sorted points: one layout for every
-    # caller, or numba compiles this whole kernel a second time for the other one
-    xs = np.ascontiguousarray(xs)
-    ys = np.ascontiguousarray(ys)
+    state = dual_prepare(xs, ys, tri, he, box, order, kmap)
+    xs, ys, tri, he, box, order, kmap, cx, cy, err, cls, risk, merged, terr, reach = state
     n = xs.shape[0]
-    box = np.asarray(box, dtype=np.float64)
-    order = np.asarray(order, dtype=np.int64)
-    cx, cy, err, flag = circumcenters(xs, ys, tri, he)
-    cls, near = merge_cocircular(xs, ys, tri, he, cx, cy, err, flag, kmap, box)
-    merged = bool(flag.any()) or bool((cls != np.arange(cls.shape[0])).any())
     # only cells with a vertex of a short edge (for its ends' rounding bounds and naming
     # moves) or of an undecided one can fold (most inputs, exact grids too: none); once a
     # fold is contracted, every cell is checked, and then each round builds and checks
     # again only the cells whose vertices it changed
-    risk = risky_sites(tri, near, n)
     tested = risk.copy()  # every cell a merge or contraction can have moved past its site
-    terr = class_err(cls, err) if merged else err
-    reach = side_reaches(xs, ys, tri, cls, cx, cy, terr, box)
     out, cells = _build(xs, ys, tri, he, cx, cy, terr, reach, cls, box, order, kmap, merged)
     bad = np.zeros(n, dtype=np.bool_)
     checked_all = False
@@ -489,7 +479,7 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap, *, astray=False)
         tested |= risk
         checked_all = True
         merged = True
-        out, cells = _rebuild(
+        out, cells = rebuild_cells(
             xs, ys, tri, he, cx, cy, terr, reach, cls, box, order, kmap, cells, redo
         )
     if not astray:
@@ -504,6 +494,23 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap, *, astray=False)
         sy[order] = ys
         miss = rings_astray(sx, sy, cells[0], cells[1], box, which)
     return cells, miss
+
+
+def dual_prepare(xs, ys, tri, he, box, order, kmap):
+    """What :func:`cells_from_triangulation` builds cells from (``tri``/``he`` flipped in place)."""
+    # the sweeps hand over strided views of their sorted points: one layout for every
+    # caller, or numba compiles this whole kernel a second time for the other one
+    xs = np.ascontiguousarray(xs)
+    ys = np.ascontiguousarray(ys)
+    box = np.asarray(box, dtype=np.float64)
+    order = np.asarray(order, dtype=np.int64)
+    cx, cy, err, flag = circumcenters(xs, ys, tri, he)
+    cls, near = merge_cocircular(xs, ys, tri, he, cx, cy, err, flag, kmap, box)
+    merged = bool(flag.any()) or bool((cls != np.arange(cls.shape[0])).any())
+    risk = risky_sites(tri, near, xs.shape[0])
+    terr = class_err(cls, err) if merged else err
+    reach = side_reaches(xs, ys, tri, cls, cx, cy, terr, box)
+    return xs, ys, tri, he, box, order, kmap, cx, cy, err, cls, risk, merged, terr, reach
 
 
 def _build(xs, ys, tri, he, cx, cy, err, reach, cls, box, order, kmap, merged):
@@ -586,7 +593,7 @@ def _keep(lengths, new, keep, coords, owner, ncoords, nowner):
             nowner[k + d] = owner[k]
 
 
-def _rebuild(xs, ys, tri, he, cx, cy, err, reach, cls, box, order, kmap, cells, redo):
+def rebuild_cells(xs, ys, tri, he, cx, cy, err, reach, cls, box, order, kmap, cells, redo):
     """:func:`_build` (classes merged) that builds only the cells marked in ``redo`` again.
 
     The other cells keep their rings from ``cells``; a cell depends only on the centres and

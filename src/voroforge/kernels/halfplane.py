@@ -660,7 +660,7 @@ def _copy_cells(k0, k1, sidx, counts, offsets, where, base, xs, ys, os, kmap, co
 
 def _median_occupancy(occ):
     """``np.median(np.repeat(occ, occ))`` without the repeat: the site-weighted median count."""
-    weight = np.bincount(occ, weights=occ)  # sites in buckets of each occupancy
+    weight = np.bincount(occ) * np.arange(int(occ.max()) + 1)  # sites per occupancy (ints)
     cum = np.cumsum(weight)
     total = int(cum[-1])
     lo = int(np.searchsorted(cum, (total - 1) // 2, side="right"))
