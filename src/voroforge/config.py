@@ -209,6 +209,9 @@ LOCATE_TIE_ATOL = 1e-300
 #: locate(): queries farther than this from the sites' box centre (per axis) are settled by
 #: |s|^2 - 2 q.s in a scaled frame, since their squared distances would overflow
 LOCATE_FAR = 1e150
+#: locate(): values of |s|^2 - 2 q.s (scaled) within this many eps of their terms' sizes of
+#: the least are compared exactly (two rounded products and a sum: 8 is generous)
+LOCATE_FAR_ULPS = 8.0
 #: Sibson Z1 gradients: smallest/largest eigenvalue ratio for a well-posed least-squares fit
 GRADIENT_FIT_RTOL = 1e-9
 #: Sibson Z1 gradients: floor on the largest eigenvalue (an all-zero fit is never well-posed)
@@ -532,3 +535,13 @@ MESH_VOLUME_RANGE = (1e-200, 1e200)
 #: engine.build3d: cells from which a build hands the memory it freed back to the system
 #: (glibc malloc_trim; below, a few MB)
 TRIM_CELLS = 100_000
+
+#: kernels.natural: a query closer to a hull edge than this times the edge's length takes
+#: Sibson's limit on the edge (linear along it). Its cell there is bounded but about
+#: 1 / distance long, so its areas carry a relative error of about eps / distance, while the
+#: limit is off by about the distance: 2**-26 (~sqrt(eps)) balances the two (~1.5e-8).
+NATURAL_HULL_RTOL = 2.0**-26
+
+#: engine.diagram: areas and centroids are computed on coordinates scaled below 2**this, so
+#: the centroids' sums (cubes of coordinates, over many vertices) stay finite in float64
+AREA_FRAME_EXP = 320

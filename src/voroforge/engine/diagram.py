@@ -16,6 +16,7 @@ from typing import NamedTuple
 import numpy as np
 import shapely
 
+from ..config import AREA_FRAME_EXP
 from ..kernels.moments import area_centroid
 from .csr import csr_from_pairs
 from .domain import Domain
@@ -94,9 +95,14 @@ class Diagram:
     Attributes
     ----------
     sites : (n, 2) float64
-        The input sites, in input order (read-only copy).
+        The input sites, in input order (read-only copy), as the engine used them: a
+        coordinate below about ``2**-188`` of the largest magnitude of the sites and the
+        domain's box (scaled into the working frame, ``inputs.working_frame``) is rounded to
+        a multiple of ``2**-240`` of it, the resolution of the exact predicates.
     duplicate_of : (n,) int64
-        -1, or the index of the earlier identical site that owns the cell (this one is empty).
+        -1, or the index of the earlier identical site that owns the cell (this one is
+        empty). Sites made identical by the rounding above count as identical: sites 1e-100
+        apart in a domain 1e300 wide are one site.
     boundary : shapely.Polygon or shapely.MultiPolygon
         The domain the cells are clipped to.
     bounds : tuple of 4 floats
@@ -202,6 +208,11 @@ class Diagram:
     def _area_centroid(self):
         coords, ring, poly, geom = self._buffers
         k = self._k
+        big = float(np.abs(coords).max(initial=0.0))
+        if big > 0.0 and np.isfinite(big):
+            # cubes of the scaled coordinates stay finite: the working frame may put the
+            # domain near 2**900 (sites 1e-154 apart in a box 10 wide: areas were inf)
+            k = min(k, AREA_FRAME_EXP - int(np.frexp(big)[1]))
         with serial_below(len(self.sites)):
             if not k:
                 areas, centroids = area_centroid(coords, ring, poly, geom)
@@ -211,7 +222,8 @@ class Diagram:
                 scaled = np.ldexp(coords, k)
                 scaled.setflags(write=False)
                 areas, centroids = area_centroid(scaled, ring, poly, geom)
-                areas, centroids = np.ldexp(areas, -2 * k), np.ldexp(centroids, -k)
+                with np.errstate(over="ignore"):  # an area past 1.8e308 is inf
+                    areas, centroids = np.ldexp(areas, -2 * k), np.ldexp(centroids, -k)
         # cached and shared by every caller: read-only, like the other results
         areas.setflags(write=False)
         centroids.setflags(write=False)

@@ -18,6 +18,7 @@ from ..config import (
     GRADIENT_FIT_FLOOR,
     GRADIENT_FIT_RTOL,
     LOCATE_FAR,
+    LOCATE_FAR_ULPS,
     LOCATE_ROUND_RTOL,
     LOCATE_TIE_ATOL,
     LOCATE_TIE_RTOL,
@@ -26,6 +27,8 @@ from ..kernels.natural import INSIDE, sibson
 from .delaunay import delaunay
 from .inputs import as_points, as_query, as_values, duplicate_map, working_frame
 from .locate3d import nearest_exact
+
+_EPS = float(np.finfo(float).eps)
 
 
 class _Locator:
@@ -51,6 +54,7 @@ class _Locator:
             rel = self._wrap(pts)
             self.tree = cKDTree(rel, boxsize=self.size)
         self.pts = pts
+        self.user_pts = sites[self.owners]  # unscaled: exact comparisons in the user frame
 
     def _wrap(self, xy: np.ndarray) -> np.ndarray:
         rel = np.mod(xy - self.origin, self.size)
@@ -88,35 +92,57 @@ class _Locator:
         return rows[again], best[again]
 
     def _far(self, q: np.ndarray) -> np.ndarray:
-        """Nearest sites of queries so far away that squared distances would overflow.
+        """Nearest sites of queries (user frame) whose squared distances would overflow.
 
-        ``|q - s|^2 = |q|^2 - 2 q.s + |s|^2``: the site minimising ``|s|^2 - 2 q.s`` wins,
-        evaluated with ``q`` scaled by a power of two to about 1 (exact), so nothing
-        overflows; ties go to the lowest index.
+        ``|q - s|^2 = |q|^2 - 2 q.s + |s|^2``: the site minimising ``|s|^2 - 2 q.s`` wins.
+        With the sites in the locator's frame (``P = s 2**k``) and ``q = u 2**e``, ``|u|``
+        about 1 (exact), that is ``g = |P|^2 2**-(k + e) - 2 u.P``: nothing overflows, even
+        where ``q 2**k`` would (sites 1e-100 apart, a query at 1e300). Values of ``g`` within
+        their rounding of the least are compared exactly; ties go to the lowest index.
         """
-        e = int(np.frexp(np.abs(q).max())[1])
-        qs = np.ldexp(q, -e)
-        ss = np.ldexp(np.einsum("ij,ij->i", self.pts, self.pts), -e)
         out = np.zeros(len(q), dtype=np.int64)
+        pp = np.einsum("ij,ij->i", self.pts, self.pts)
+        norm = np.sqrt(pp)
         step = max(1, 4_000_000 // max(len(self.pts), 1))
         for a in range(0, len(q), step):
-            f = ss[None, :] - 2.0 * (qs[a : a + step] @ self.pts.T)
-            out[a : a + step] = self.owners[np.argmin(f, axis=1)]
+            rows = q[a : a + step]
+            e = np.frexp(np.abs(rows).max(axis=1))[1]
+            u = np.ldexp(rows, -e[:, None])
+            with np.errstate(under="ignore"):
+                g = np.ldexp(pp[None, :], -(self.k + e)[:, None]) - 2.0 * (u @ self.pts.T)
+                bound = (
+                    LOCATE_FAR_ULPS
+                    * _EPS
+                    * (
+                        np.abs(g)
+                        + np.ldexp(pp[None, :], -(self.k + e)[:, None])
+                        + 2.0 * norm[None, :]
+                    )
+                )
+            best = np.argmin(g, axis=1)
+            for r in range(len(rows)):
+                close = np.flatnonzero(g[r] <= g[r, best[r]] + bound[r, best[r]] + bound[r])
+                if len(close) > 1:
+                    best[r] = nearest_exact(rows[r], close, self.user_pts)
+            out[a : a + step] = self.owners[best]
         return out
 
     def query(self, q: np.ndarray) -> np.ndarray:
-        q = np.ldexp(q, self.k) if self.k else q
-        out = np.zeros(len(q), dtype=np.int64)
         if self.size is None and len(self.pts):
-            # queries beyond ~1e150 of the sites: their squared distances overflow
-            centre = 0.5 * (self.pts.min(axis=0) + self.pts.max(axis=0))
-            far = (np.abs(q - centre) > LOCATE_FAR).any(axis=1)
+            # queries beyond ~1e150 of the sites, or beyond the double range once scaled
+            # into the sites' frame: their squared distances overflow
+            with np.errstate(over="ignore"):
+                qs = np.ldexp(q, self.k) if self.k else q
+                centre = 0.5 * (self.pts.min(axis=0) + self.pts.max(axis=0))
+                far = ~np.isfinite(qs).all(axis=1) | (np.abs(qs - centre) > LOCATE_FAR).any(axis=1)
             if far.any():
+                out = np.zeros(len(q), dtype=np.int64)
                 out[far] = self._far(q[far])
                 near = np.flatnonzero(~far)
-                out[near] = self.query_near(q[near]) if len(near) else out[near]
+                out[near] = self.query_near(qs[near]) if len(near) else out[near]
                 return out
-        return self.query_near(q)
+            return self.query_near(qs)
+        return self.query_near(np.ldexp(q, self.k) if self.k else q)
 
     def query_near(self, q: np.ndarray) -> np.ndarray:
         """:meth:`query` for queries whose squared distances to the sites stay finite."""
@@ -404,8 +430,13 @@ def natural_neighbor(
         # scales it works on points, queries and gradients scaled by a power of two (exact)
         origin = _exact_origin(pts)
         work, k = working_frame(pts - origin)
-        qk = np.ldexp(q - origin, k) if k else q - origin
-        status = sibson(
+        with np.errstate(over="ignore"):
+            qk = np.ldexp(q - origin, k) if k else q - origin
+        # a query beyond the double range once scaled is far outside the sites' hull
+        fits = np.isfinite(qk).all(axis=1)
+        status = np.full(len(q), INSIDE + 1, dtype=np.int8)
+        inner = out[fits]
+        status[fits] = sibson(
             np.ascontiguousarray(work[:, 0]),
             np.ascontiguousarray(work[:, 1]),
             np.ascontiguousarray(tri.triangles.ravel()),
@@ -413,11 +444,12 @@ def natural_neighbor(
             vals,
             np.ldexp(grads, -k) if k else grads,
             bool(smooth),
-            nearest,
-            np.ascontiguousarray(qk[:, 0]),
-            np.ascontiguousarray(qk[:, 1]),
-            out,
+            np.ascontiguousarray(nearest[fits]),
+            np.ascontiguousarray(qk[fits, 0]),
+            np.ascontiguousarray(qk[fits, 1]),
+            inner,
         )
+        out[fits] = inner
     else:
         at_site = (pts[nearest] == q).all(axis=1)
         out[at_site] = vals[nearest[at_site]]

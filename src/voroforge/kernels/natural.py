@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import NJIT
+from ..config import NATURAL_HULL_RTOL, NJIT
 from .predicates import incircle, orient2d
 from .vertex import circumcenter
 
@@ -179,6 +179,7 @@ def sibson(xs, ys, tri, he, values, grads, smooth, nearest, qx, qy, out):
         head = 0
         outside = False
         on_hull = -1
+        near = NATURAL_HULL_RTOL  # q's distance to the nearest hull edge / its length
         while head < size and not outside:
             k = cavity[head]
             head += 1
@@ -194,6 +195,17 @@ def sibson(xs, ys, tri, he, values, grads, smooth, nearest, qx, qy, out):
                         break
                     if o == 0.0:
                         on_hull = e
+                        near = 0.0
+                        continue
+                    # o is twice the triangle's area: o / |ab|^2 is q's distance to the
+                    # line over |ab|; the nearest such edge that q projects onto
+                    lx = xs[b] - xs[a]
+                    ly = ys[b] - ys[a]
+                    ll = lx * lx + ly * ly
+                    tp = (px - xs[a]) * lx + (py - ys[a]) * ly
+                    if o <= near * ll and 0.0 <= tp <= ll:
+                        on_hull = e
+                        near = o / ll
                     continue
                 k2 = twin // 3
                 if mark[k2] >= 2 * q:
@@ -208,16 +220,21 @@ def sibson(xs, ys, tri, he, values, grads, smooth, nearest, qx, qy, out):
             continue
         status[q] = INSIDE
         if on_hull >= 0:
-            # on a hull edge (the new cell is unbounded): Sibson's limit is linear along it
+            # on a hull edge (the new cell is unbounded): Sibson's limit is linear along it.
+            # Within NATURAL_HULL_RTOL of its length from it the cell is bounded but so long
+            # that its areas cancel to garbage (values far outside the data's range): the
+            # limit is used there too (off by about that fraction)
             k = on_hull // 3
             a = tri[on_hull]
             b = tri[3 * k + (on_hull % 3 + 1) % 3]
             lx = xs[b] - xs[a]
             ly = ys[b] - ys[a]
             u = ((px - xs[a]) * lx + (py - ys[a]) * ly) / (lx * lx + ly * ly)
-            if not 0.0 <= u <= 1.0:  # on the hull edge's line, beyond it: outside
-                status[q] = OUTSIDE
-                continue
+            if not 0.0 <= u <= 1.0:
+                if near == 0.0:  # on the hull edge's line, beyond it: outside
+                    status[q] = OUTSIDE
+                    continue
+                u = min(max(u, 0.0), 1.0)  # (rounding of u only)
             sums[:] = 0.0
             acc[:] = 0.0
             xi[:] = 0.0
