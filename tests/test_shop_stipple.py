@@ -54,6 +54,11 @@ def test_bad_input():
         stipple(demo_image(16), 0)
     with pytest.raises(ValueError, match="no such image"):
         grey_image("missing.png")
+    # sizes refused up front (checker5 F7: 1e8 dots, or 100 dots x 1e7 steps, ran on)
+    with pytest.raises(ValueError, match="at most 1,000,000 points"):
+        stipple(demo_image(16), 100_000_000)
+    with pytest.raises(ValueError, match="too much work"):
+        stipple(demo_image(16), 100, iterations=10_000_000)
 
 
 def test_cli_stipples_an_image_file(tmp_path, capsys):

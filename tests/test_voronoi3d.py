@@ -459,6 +459,10 @@ def test_render_png(tmp_path):
     assert (img < 250).any(axis=2).mean() > 0.2  # cells cover a good part of the picture
     with pytest.raises(ValueError):
         render([], tmp_path / "x.png")
+    # a size past the pixel budget is refused before any drawing (checker5 F8: a raw
+    # MemoryError from PIL for --size 1000000x1000000)
+    with pytest.raises(ValueError, match="too large"):
+        render(diagram_meshes(d), tmp_path / "big.png", size=(1_000_000, 1_000_000))
 
 
 def test_cli_voronoi3d(tmp_path, capsys):

@@ -255,6 +255,12 @@ SEEDS_MAX_POINTS = 20_000_000
 #: Most seeds a design may have (its cells are shapely polygons with openings, offsets and
 #: fabrication checks, about 2 KB each and more; 1e7 was killed for memory on 24 GB)
 DESIGN_MAX_CELLS = 2_000_000
+#: Most dots design.stipple places (each Lloyd step builds a diagram of them and integrates
+#: the image's density over every cell: 3e6 dots on a 256 x 256 image ran past 60 s, 2.5 GB)
+STIPPLE_MAX_POINTS = 1_000_000
+#: Most dots x Lloyd steps of one stipple (3.4-6.5 us a dot-step here, 2e4-1e5 dots on a
+#: 256 x 256 image): 5e7 is a few minutes; 100 dots x 1e7 steps ran on with no message
+STIPPLE_MAX_WORK = 50_000_000
 #: Most cells one recursion level may hold (design.recursive.subdivide): each costs ~0.2 ms
 #: of shapely work, and depth 6 with count 6 on 60 seeds asked for 2.8M (over 8 minutes)
 RECURSION_MAX_CELLS = 500_000

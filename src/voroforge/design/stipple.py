@@ -22,6 +22,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..config import STIPPLE_MAX_POINTS, STIPPLE_MAX_WORK
+
 __all__ = ["demo_image", "grey_image", "image_seeds", "stipple", "stipple_svg"]
 
 
@@ -141,6 +143,13 @@ def stipple(
         raise ValueError("width and gamma must be positive")
     if int(iterations) < 0:
         raise ValueError(f"iterations must be >= 0; got {iterations!r}")
+    if n > STIPPLE_MAX_POINTS:
+        raise ValueError(f"at most {STIPPLE_MAX_POINTS:,} points; got {n:,}")
+    if n * max(int(iterations), 1) > STIPPLE_MAX_WORK:
+        raise ValueError(
+            f"{n:,} points x {int(iterations):,} iterations is too much work: at most "
+            f"{STIPPLE_MAX_WORK:,} dot-steps (a few minutes); use fewer of either"
+        )
     density = (1.0 - grey) ** float(gamma)
     total = density.sum()
     if not total > 0:

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..config import MAX_PIXELS
 from .atomic import write_atomically
 
 #: a qualitative palette (RGB 0..255) for meshes without a colour
@@ -114,6 +115,10 @@ def render(
     w, h = int(size[0]), int(size[1])
     if w < 8 or h < 8:
         raise ValueError(f"size must be at least 8x8 pixels; got {size}")
+    if 4 * w * h > MAX_PIXELS:  # drawn at twice the size, then scaled down
+        raise ValueError(
+            f"size {w}x{h} is too large: at most {MAX_PIXELS // 4:,} pixels (e.g. 16384x16384)"
+        )
     rot = view_rotation(view)
     L = np.asarray(light, np.float64)
     L = L / np.linalg.norm(L)
