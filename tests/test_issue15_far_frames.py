@@ -51,3 +51,38 @@ def test_locate_far_from_tight_sites_is_exact(sites, queries):
     # every query is outside the sites' hull: the nearest site's value
     got = vf.natural_neighbor(sites, vals, queries, extrapolate="nearest")
     assert got.tolist() == vals[want].tolist()
+
+
+def _exact_power_nearest(sites, w, q):
+    qx, qy = Fraction(float(q[0])), Fraction(float(q[1]))
+    d = [
+        (Fraction(float(x)) - qx) ** 2 + (Fraction(float(y)) - qy) ** 2 - Fraction(float(v))
+        for (x, y), v in zip(sites, w, strict=True)
+    ]
+    return min(range(len(sites)), key=lambda i: (d[i], i))
+
+
+def test_power_locate_far_and_near_ties():
+    """checker5 F5: an IndexError for a query at 1e300 (squared distances overflowed and
+    cKDTree answered its sentinel), and float ties an ulp off a bisector given to the
+    lower index (zero weights: 12 of 42 queries)."""
+    p = np.array([[0.0, 0.0], [1e-100, 1e-100]])
+    d = vf.power(p, [0.0, 0.0], (-1e300, -1e300, 1e300, 1e300))
+    assert d.locate([[1e300, 1e300]]).tolist() == [0]  # site 1 is a duplicate there
+    d = vf.power(p, [0.0, 0.0], (-1, -1, 1, 1))
+    assert d.locate([[0.5, 0.5]]).tolist() == [1]
+    sq = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]])
+    rng = np.random.default_rng(3)
+    for w in (np.zeros(4), np.array([0.0, 1e-3, 0.0, 1e-3]), rng.random(4)):
+        d = vf.power(sq, w, (-10, -10, 1e4, 1e4))
+        q = []
+        for y in (7.0, -3.0, 0.25, 1e3):
+            for k in range(-3, 4):
+                x = np.nextafter(0.5, 1.0 if k > 0 else 0.0) if k else 0.5
+                for _ in range(abs(k) - 1):
+                    x = np.nextafter(x, 1.0 if k > 0 else 0.0)
+                q.append([x, y])
+        q.append([1e300, -1e300])
+        q.append([-1e299, 5.0])
+        want = [_exact_power_nearest(sq, w, t) for t in q]
+        assert d.locate(q).tolist() == want

@@ -218,6 +218,9 @@ GRADIENT_FIT_RTOL = 1e-9
 GRADIENT_FIT_FLOOR = 1e-300
 #: PowerDiagram.locate: relative slack before a site past the k-th KD candidate is checked
 POWER_TIE_RTOL = 1e-9
+#: PowerDiagram.locate: power distances within this many eps of their terms (|x - p|^2 and
+#: |w|) of the least are compared exactly (a rounded difference, square, sum: 8 is generous)
+POWER_LOCATE_ULPS = 8.0
 #: power(): relative slack before a site that loses everywhere in the box is dropped
 POWER_HIDDEN_RTOL = 1e-9
 #: power(): cross products below this (of the squared span) make the sites collinear

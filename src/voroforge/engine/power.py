@@ -27,6 +27,7 @@ from ..config import (
     POWER_HIDDEN_RTOL,
     POWER_LABEL_RTOL,
     POWER_LIFT_RESOLVE_ULPS,
+    POWER_LOCATE_ULPS,
     POWER_NEWTON_SHIFT,
     POWER_TIE_RTOL,
 )
@@ -35,6 +36,7 @@ from .assemble import assemble
 from .diagram import Diagram, buffers, frame_exponent
 from .domain import Domain, make_domain, shifted
 from .inputs import as_points, as_query, as_weights, duplicate_map
+from .locate3d import nearest_exact
 from .planar import build
 from .power_check import checked_cells, lost_candidates, pairs_csr, settle
 from .power_exact import lost_sites, on_one_line
@@ -87,10 +89,22 @@ class PowerDiagram(Diagram):
         if not len(owners):
             raise ValueError("the diagram has no sites to locate")
         w = self.weights[owners]
-        sites = self.sites[owners]
+        if (w == w[0]).all():
+            # equal weights: the Voronoi diagram's exact locate (far queries included)
+            from .interpolate import locate_in_diagram
+
+            out = np.atleast_1d(locate_in_diagram(self, q))
+            return int(out[0]) if single else out
+        user_sites = self.sites[owners]
+        # one power-of-two frame (exact) where squares of queries, sites and weights are
+        # finite: a query at 1e300 overflowed and cKDTree answered with its sentinel
+        big = max(float(np.abs(q).max(initial=0.0)), float(np.abs(user_sites).max()))
+        big = max(big, float(np.sqrt(np.abs(w).max())))
+        e = -int(np.frexp(big)[1]) if big > 0.0 else 0
+        qs, sites, w = np.ldexp(q, e), np.ldexp(user_sites, e), np.ldexp(w, 2 * e)
         top = float(w.max())
         tree = cKDTree(np.column_stack((sites, np.sqrt(top - w))))
-        lifted = np.column_stack((q, np.zeros(len(q))))
+        lifted = np.column_stack((qs, np.zeros(len(q))))
         m = len(owners)
         out = np.zeros(len(q), dtype=np.int64)
         rows = np.arange(len(q))
@@ -103,12 +117,20 @@ class PowerDiagram(Diagram):
                 dist, idx = tree.query(lifted[r], k=k)
                 dist = dist.reshape(len(r), k)
                 idx = idx.reshape(len(r), k)
-                # exact ties of the float64 power distance go to the lowest index
-                diff = q[r, None, :] - sites[idx]
-                pd = diff[..., 0] * diff[..., 0] + diff[..., 1] * diff[..., 1] - w[idx]
+                diff = qs[r, None, :] - sites[idx]
+                d2 = diff[..., 0] * diff[..., 0] + diff[..., 1] * diff[..., 1]
+                pd = d2 - w[idx]
                 best = pd.min(axis=1)
                 rank = np.where(pd == best[:, None], owners[idx], np.iinfo(np.int64).max)
                 out[r] = rank.min(axis=1)
+                # power distances within their rounding of the best: decided exactly
+                err = POWER_LOCATE_ULPS * _EPS * (d2 + np.abs(w[idx]))
+                at = np.argmin(pd, axis=1)
+                close = pd <= (best + err[np.arange(len(r)), at])[:, None] + err
+                for j in np.flatnonzero(close.sum(axis=1) > 1):
+                    cand = idx[j][close[j]]
+                    pick = nearest_exact(q[r[j]], cand, user_sites, self.weights[owners])
+                    out[r[j]] = owners[pick]
                 if k < m:
                     # a site past the k-th could tie after rounding: look further for those
                     slack = POWER_TIE_RTOL * (np.abs(best) + abs(top))
