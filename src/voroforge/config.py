@@ -554,3 +554,24 @@ NATURAL_HULL_RTOL = 2.0**-26
 #: engine.diagram: areas and centroids are computed on coordinates scaled below 2**this, so
 #: the centroids' sums (cubes of coordinates, over many vertices) stay finite in float64
 AREA_FRAME_EXP = 320
+
+#: engine.voronoi3d: the working frame keeps the container's coordinates below 2**this:
+#: volumes are cubes of them and first moments fourth powers (2**1024 overflows); ordinary
+#: inputs have k = 0
+FRAME3D_CAP_EXP = 240
+#: engine.planar: the same for the 2D working frame (squares of the domain's coordinates stay
+#: finite); sites closer than about 2**-684 (1e-206) of the domain are so one site
+FRAME2D_CAP_EXP = 500
+
+#: kernels.vertex3d: a name with two container walls whose unit normals' cross product is
+#: below this (the sine of their angle), or three whose determinant is, is solved exactly
+#: (name_vertex). The float solve's error grows as 1 / sine: at a Convex roof of slope 1e-9
+#: the ridge's vertex on a bisector came out 5e-9 off that bisector (two cells' volumes off by
+#: 7e-10); below 1e-4 the float error could pass 1e-12 of the container. A function of the
+#: container only: box walls (sine 1) and walls at ordinary angles keep the float solve
+WALL_EXACT_SIN = 1e-4
+
+#: engine.containers: ``Convex(points=)`` thinner than this fraction of its extent is flat:
+#: the template's cut decides "on a wall" within ``VORONOI3D_CUT_RTOL`` (1e-12) of the
+#: container's size, so a solid must be some hundred times thicker to be cut reliably
+FLAT_RTOL = 1e-10

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..config import AREA_MAX, VOLUME_RANGE
+from ..config import AREA_MAX, FLAT_RTOL, VOLUME_RANGE
 
 #: the cube's faces, outward counter-clockwise; corner ``k`` is ``(k & 1, k >> 1 & 1, k >> 2)``
 _CUBE_RINGS = ((0, 4, 6, 2), (1, 3, 7, 5), (0, 1, 5, 4), (2, 6, 7, 3), (0, 2, 3, 1), (4, 5, 7, 6))
@@ -160,12 +160,6 @@ class Convex:
 
     def __repr__(self) -> str:
         return f"Convex({len(self.halfspaces)} half-spaces, volume {self.volume:.6g})"
-
-
-#: ``Convex(points=)`` thinner than this fraction of its extent is flat: the template's cut
-#: decides "on a wall" within ``VORONOI3D_CUT_RTOL`` (1e-12) of the container's size, so a
-#: solid must be some hundred times thicker than that to be cut reliably
-FLAT_RTOL = 1e-10
 
 
 def _hull_halfspaces(pts: np.ndarray) -> np.ndarray:

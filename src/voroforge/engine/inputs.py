@@ -199,15 +199,18 @@ SAFE_EXP = 200
 _SNAP_LIMIT = 2.0 ** (52 - RES_BITS)
 
 
-def working_frame(pts: np.ndarray, extra: np.ndarray | None = None) -> tuple[np.ndarray, int]:
+def working_frame(
+    pts: np.ndarray, extra: np.ndarray | None = None, cap: int = 900
+) -> tuple[np.ndarray, int]:
     """Coordinates the kernels can compute on exactly: ``(work, k)`` with ``work ≈ pts * 2**k``.
 
     Scaling by a power of two is exact, so ordinary input (largest magnitude between
     ``2**-40`` and ``2**200``, no nonzero value below ``2**-188``) comes back unchanged with
     ``k = 0`` and no copy. Otherwise the points are scaled so their largest magnitude lies in
-    ``[0.5, 1)`` (less if ``extra``, e.g. the clipping box, would overflow), and nonzero values
-    below ``2**-188`` of that are rounded to multiples of ``2**-240``: a relative change below
-    ``1e-72`` of the points' extent, the resolution the exact predicates work at.
+    ``[0.5, 1)`` (less if ``extra``, e.g. the clipping box, would pass ``2**cap``), and
+    nonzero values below ``2**-188`` of that are rounded to multiples of ``2**-240``: a
+    relative change below ``1e-72`` of the points' extent, the resolution the exact
+    predicates work at.
     """
     big = float(np.abs(pts).max(initial=0.0))
     if big == 0.0:
@@ -217,7 +220,7 @@ def working_frame(pts: np.ndarray, extra: np.ndarray | None = None) -> tuple[np.
     if extra is not None:
         ebig = float(np.abs(extra).max(initial=0.0))
         if ebig > 0.0:
-            k = min(k, 900 - int(np.frexp(ebig)[1]))
+            k = min(k, cap - int(np.frexp(ebig)[1]))
     work = np.ldexp(pts, k) if k else pts
     tiny = (work != 0.0) & (np.abs(work) < _SNAP_LIMIT)
     if tiny.any():

@@ -22,6 +22,8 @@ from ..config import (
     LOCATE_ROUND_RTOL,
     LOCATE_TIE_ATOL,
     LOCATE_TIE_RTOL,
+    POWER_LOCATE_ULPS,
+    POWER_TIE_RTOL,
 )
 from ..kernels.natural import INSIDE, sibson
 from .delaunay import delaunay
@@ -221,6 +223,64 @@ def locate_in_diagram(diagram, xy) -> np.ndarray | int:
         loc = _Locator(np.asarray(diagram.sites), np.asarray(diagram.duplicate_of), box)
         _CACHE[diagram] = loc
     return _nearest(loc, xy)
+
+
+def locate_power(diagram, xy) -> np.ndarray | int:
+    """Power diagram locate (see :meth:`voroforge.engine.power.PowerDiagram.locate`)."""
+    q, single = as_query(xy)
+    owners = np.flatnonzero(diagram.duplicate_of < 0)
+    if not len(owners):
+        raise ValueError("the diagram has no sites to locate")
+    w = diagram.weights[owners]
+    if (w == w[0]).all():
+        # equal weights: the Voronoi diagram's exact locate (far queries included)
+        out = np.atleast_1d(locate_in_diagram(diagram, q))
+        return int(out[0]) if single else out
+    user_sites = diagram.sites[owners]
+    # one power-of-two frame (exact) where squares of queries, sites and weights are
+    # finite: a query at 1e300 overflowed and cKDTree answered with its sentinel
+    big = max(float(np.abs(q).max(initial=0.0)), float(np.abs(user_sites).max()))
+    big = max(big, float(np.sqrt(np.abs(w).max())))
+    e = -int(np.frexp(big)[1]) if big > 0.0 else 0
+    qs, sites, w = np.ldexp(q, e), np.ldexp(user_sites, e), np.ldexp(w, 2 * e)
+    top = float(w.max())
+    tree = cKDTree(np.column_stack((sites, np.sqrt(top - w))))
+    lifted = np.column_stack((qs, np.zeros(len(q))))
+    m = len(owners)
+    out = np.zeros(len(q), dtype=np.int64)
+    rows = np.arange(len(q))
+    for k in (min(4, m), min(32, m), m):
+        # chunks keep the (rows, k) candidate arrays small when every site is needed
+        step = max(1, (1 << 22) // k)
+        again = []
+        for lo in range(0, len(rows), step):
+            r = rows[lo : lo + step]
+            dist, idx = tree.query(lifted[r], k=k)
+            dist = dist.reshape(len(r), k)
+            idx = idx.reshape(len(r), k)
+            diff = qs[r, None, :] - sites[idx]
+            d2 = diff[..., 0] * diff[..., 0] + diff[..., 1] * diff[..., 1]
+            pd = d2 - w[idx]
+            best = pd.min(axis=1)
+            rank = np.where(pd == best[:, None], owners[idx], np.iinfo(np.int64).max)
+            out[r] = rank.min(axis=1)
+            # power distances within their rounding of the best: decided exactly
+            err = POWER_LOCATE_ULPS * _EPS * (d2 + np.abs(w[idx]))
+            at = np.argmin(pd, axis=1)
+            close = pd <= (best + err[np.arange(len(r)), at])[:, None] + err
+            for j in np.flatnonzero(close.sum(axis=1) > 1):
+                cand = idx[j][close[j]]
+                pick = nearest_exact(q[r[j]], cand, user_sites, diagram.weights[owners])
+                out[r[j]] = owners[pick]
+            if k < m:
+                # a site past the k-th could tie after rounding: look further for those
+                slack = POWER_TIE_RTOL * (np.abs(best) + abs(top))
+                near = dist[:, -1] ** 2 <= (best + top) + slack
+                again.append(r[near])
+        rows = np.concatenate(again) if again else rows[:0]
+        if not len(rows):
+            break
+    return int(out[0]) if single else out
 
 
 def _two_ring(tri) -> tuple[np.ndarray, np.ndarray]:

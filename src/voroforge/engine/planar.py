@@ -14,7 +14,7 @@ import math
 import numpy as np
 import shapely
 
-from ..config import HALFPLANE_TILING_RTOL, VERTEX_STRAIGHT_ULPS
+from ..config import FRAME2D_CAP_EXP, HALFPLANE_TILING_RTOL, VERTEX_STRAIGHT_ULPS
 from ..kernels.cells import (
     cells_from_neighbors,
     cells_from_triangulation,
@@ -434,7 +434,9 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
     Diagram
     """
     n = len(pts)
-    work, k = working_frame(pts, np.array(dom.bounds, dtype=np.float64))
+    # the domain's box stays below 2**FRAME2D_CAP_EXP: the half-plane cut squares it (at
+    # 2**900, sites 1e-154 apart in a box 10 wide, it did not return)
+    work, k = working_frame(pts, np.array(dom.bounds, dtype=np.float64), cap=FRAME2D_CAP_EXP)
     if work is not pts:
         pts = from_working(work, k)  # equal to the input unless it spans > 1e57 in magnitude
     wdom = dom.scaled(k)  # everything below runs in the working frame

@@ -7,7 +7,7 @@ import itertools
 import numpy as np
 from numba import njit, prange
 
-from ..config import MESH_VOLUME_RANGE, NJIT_PARALLEL, VOLUME_RANGE
+from ..config import FRAME3D_CAP_EXP, MESH_VOLUME_RANGE, NJIT_PARALLEL, VOLUME_RANGE
 from .build3d import build_cells3d, duplicate_owners, release_freed_memory
 from .containers import (
     Convex,
@@ -91,15 +91,18 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
         if periodic and not inside.all():
             bad = int(np.flatnonzero(~inside)[0])
             raise ValueError(f"periodic sites must lie in the box (first outside: row {bad})")
+    # the container stays below 2**FRAME3D_CAP_EXP: volumes are cubes of its coordinates
+    # (sites 1e-110 apart in a box 10 wide put it near 2**900: volumes inf, at 1e-160 NaN)
+    work, k = working_frame(pts, extra=t.bounds, cap=FRAME3D_CAP_EXP)
+    # duplicates in the working frame: sites its resolution rounds together are one site
     if periodic and n:
         # on the torus a site on an upper face is the one on the lower face: duplicates are
         # found on the wrapped coordinates
-        lo, hi = np.asarray(t.bounds, dtype=np.float64)
-        dup = duplicate_owner3d(np.where(pts >= hi, lo, pts), w)
+        lo, hi = np.ldexp(np.asarray(t.bounds, dtype=np.float64), k)
+        dup = duplicate_owner3d(np.where(work >= hi, lo, work), w)
     else:
-        dup = duplicate_owner3d(pts, w)
+        dup = duplicate_owner3d(work, w)
     uniq = np.flatnonzero(dup < 0)
-    work, k = working_frame(pts, extra=t.bounds)
     tw = t.scaled(k)
     wk = None if w is None else np.ldexp(w, 2 * k)
     P = np.ascontiguousarray(work[uniq])

@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import NJIT, VORONOI3D_DET_RTOL, VORONOI3D_WALL_DET_RTOL
+from ..config import NJIT, VORONOI3D_DET_RTOL, VORONOI3D_WALL_DET_RTOL, WALL_EXACT_SIN
 from .predicates3d import exact_point, vertex_offset
 
 #: nothing here allocates: compiled without reference counting (see kernels.cellcut3d)
@@ -55,15 +55,6 @@ def _row(key, p0, P, W, WP, ns, out, k):
         out[k, 1] = WP[w, 1]
         out[k, 2] = WP[w, 2]
         out[k, 3] = WP[w, 3] - (WP[w, 0] * P[p0, 0] + WP[w, 1] * P[p0, 1] + WP[w, 2] * P[p0, 2])
-
-
-#: a name with two container walls whose unit normals' cross product is below this (the
-#: sine of their angle), or three whose determinant is, is solved exactly (:func:`name_vertex`).
-#: The float solve's error grows as 1 / sine: at a Convex roof of slope 1e-9 the ridge's vertex
-#: on a bisector came out 5e-9 off that bisector (two cells' volumes off by 7e-10); below 1e-4
-#: the float error could pass 1e-12 of the container. A function of the container only: box
-#: walls (sine 1) and walls at ordinary angles keep the float solve and their bits
-WALL_EXACT_SIN = 1e-4
 
 
 @njit(**_INLINE)
