@@ -484,16 +484,20 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap, *, astray=False)
         )
     if not astray:
         return cells
-    miss = np.zeros(n, dtype=np.uint8)
-    if tested.any():
-        which = np.zeros(n, dtype=np.bool_)
-        which[order[tested]] = True
-        sx = np.zeros(n)
-        sy = np.zeros(n)
-        sx[order] = xs
-        sy[order] = ys
-        miss = rings_astray(sx, sy, cells[0], cells[1], box, which)
+    miss = astray_of(xs, ys, cells, box, order, tested) if tested.any() else np.zeros(n, np.uint8)
     return cells, miss
+
+
+def astray_of(xs, ys, cells, box, order, picked):
+    """:func:`rings_astray` codes of the rings of ``picked`` (kernel order, like ``xs``)."""
+    n = xs.shape[0]
+    which = np.zeros(n, dtype=np.bool_)
+    which[order[picked]] = True
+    sx = np.zeros(n)
+    sy = np.zeros(n)
+    sx[order] = xs
+    sy[order] = ys
+    return rings_astray(sx, sy, cells[0], cells[1], box, which)
 
 
 def dual_prepare(xs, ys, tri, he, box, order, kmap):

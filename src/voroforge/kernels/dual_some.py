@@ -14,7 +14,7 @@ import numpy as np
 from numba import njit, prange
 
 from ..config import NJIT_PARALLEL
-from .cells import rebuild_cells, rings_astray
+from .cells import astray_of, rebuild_cells
 from .folds import folded_rings
 
 
@@ -50,13 +50,7 @@ def dual_cells_of(state, want):
         # the whole construction's first fold round: no folded ring, no round
         if folded_rings(cells[0], cells[1], order, risk).any():
             return None
-        which = np.zeros(n, np.bool_)
-        which[order[risk]] = True
-        sx = np.zeros(n)
-        sy = np.zeros(n)
-        sx[order] = xs
-        sy[order] = ys
-        codes = rings_astray(sx, sy, cells[0], cells[1], box, which)
+        codes = astray_of(xs, ys, cells, box, order, risk)
     return cells, codes
 
 
