@@ -123,8 +123,9 @@ def test_mesh_cut_scales_exactly_past_the_mesh_range(k, monkeypatch):
         warnings.simplefilter("error")
         d = vf.voronoi3d(np.ldexp(sites, k), mk)
     assert (d.volumes == np.ldexp(unit.volumes, 3 * k)).all()
-    # (not the centroids of the cells kernels.meshcut3d cuts itself: its moments still
-    # overflow past 2**256 and underflow below 2**-256; open)
+    # the centroids too: kernels.meshcut3d scales each cell's moments by a power of two
+    # (they overflowed past 2**256 and underflowed below 2**-256)
+    assert np.array_equal(d.centroids, np.ldexp(unit.centroids, k), equal_nan=True)
     assert (d.face_areas == np.ldexp(unit.face_areas, 2 * k)).all()
     assert (d.face_normals == unit.face_normals).all()
 

@@ -145,9 +145,21 @@ def test_mesh_container_areas_in_its_vertices_frame(k):
         assert (d.face_normals == unit.face_normals).all()
 
 
-@pytest.mark.parametrize("k", [-240, 240])
-def test_mesh_container_keeps_its_range(k):
-    # the mesh cut squares triangle areas in the caller's units: meshes keep 1e-200..1e200
+@pytest.mark.parametrize("k", [-296, -240, 240, 328])
+def test_mesh_container_over_the_boxes_range(k):
+    # meshes now have the boxes' range (they kept 1e-200..1e200: the cut's moments
+    # overflowed past 2**256): the same cells scaled, centroids included
     pytest.importorskip("trimesh")
-    with pytest.raises(ValueError, match=r"outside 1e-200\.\.1e\+200"):
+    unit = vf.voronoi3d(*_mesh_case(0))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        d = vf.voronoi3d(*_mesh_case(k))
+    assert (d.volumes == np.ldexp(unit.volumes, 3 * k)).all()
+    assert np.array_equal(d.centroids, np.ldexp(unit.centroids, k), equal_nan=True)
+
+
+@pytest.mark.parametrize("k", [-310, 340])
+def test_mesh_container_past_the_range_raises(k):
+    pytest.importorskip("trimesh")
+    with pytest.raises(ValueError, match=r"outside 1e-270\.\.1e\+300"):
         vf.voronoi3d(*_mesh_case(k))

@@ -554,7 +554,7 @@ class _Out:
         return self.verts, self.flabel, self.roff, self.ring, self.vid, unmatched
 
 
-def _join_grid(Pb, TV, k):
+def _join_grid(Pb, bounds, k):
     """The join grid over the built sites and the container (about 2 built cells a bucket).
 
     Returns ``jg (9,)`` (origin, inverse bucket sizes, counts) and ``units (nb + 1,)``:
@@ -562,7 +562,7 @@ def _join_grid(Pb, TV, k):
     gets one unit and one per cell built in it, so a run of the table follows the vertices'
     density, and empty space keeps a little room).
     """
-    corners = np.vstack([Pb.min(axis=0), Pb.max(axis=0), TV.min(axis=0), TV.max(axis=0)])
+    corners = np.vstack([Pb.min(axis=0), Pb.max(axis=0), bounds[0], bounds[1]])
     lo = corners.min(axis=0)
     g = grid3d_shape(np.vstack([lo, corners.max(axis=0)]), 2.0 / max(k / PER_BUCKET, 1.0))
     keys = bucket_keys3d(Pb, g)
@@ -649,7 +649,7 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
 
         def join(c0, chunk, st, counts, v, c, r2, sl, capa):
             if not made:
-                made.append(_Out(k, *_join_grid(P[cells], t.TV, k)))
+                made.append(_Out(k, *_join_grid(P[cells], t.bounds, k)))
             out = made[0]
 
             def big(q):

@@ -2,7 +2,12 @@
 
 Every container becomes a *template*: a convex polyhedron ``(TV, TF, TR)`` in the layout of
 :mod:`kernels.polyhedron` whose faces carry wall labels ``-1 - w``, plus the wall planes
-``WP (W, 4)`` (``a x + b y + c z <= d``). Each cell starts as a copy of the template. A box
+``WP (W, 4)`` (``a x + b y + c z <= d``), or for a :class:`Convex` far from the origin ``WP (W,
+7)``: rows ``(a, b, c, d, ox, oy, oz)`` meaning ``a (x - ox) + b (y - oy) + c (z - oz) <= d``
+about one origin ``o`` near the solid (a power-of-two multiple, so that ``p - o`` is exact for
+every point of the solid), and ``TV`` relative to ``o``: an offset ``d`` kept in one double in
+absolute coordinates places a wall at 4e6 only to 2.3e-10. Each cell starts as a copy of the
+template. A box
 numbers its walls as voro++ does (0 x-min, 1 x-max, 2 y-min, 3 y-max, 4 z-min, 5 z-max); a
 :class:`Convex` numbers them in the order of its half-spaces (after merging coplanar hull
 facets). A mesh container's cells are built in its bounding box and then cut by the mesh
@@ -11,7 +16,7 @@ facets). A mesh container's cells are built in its bounding box and then cut by 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -32,13 +37,28 @@ class Template:
     kind: str
     volume: float
     bounds: np.ndarray  # (2, 3) lower and upper corner
+    #: the walls in absolute coordinates ``(W, 4)`` (``Diagram3D.walls``); None: ``WP``
+    walls: np.ndarray | None = None
+
+    @property
+    def origin(self) -> np.ndarray:
+        """The point ``TV`` and the rows of ``WP`` are relative to (zero unless ``WP`` has 7)."""
+        return self.WP[0, 4:7].copy() if self.WP.shape[1] > 4 else np.zeros(3)
+
+    def absolute_walls(self) -> np.ndarray:
+        """The wall rows ``(W, 4)`` in absolute coordinates."""
+        return self.WP if self.walls is None else self.walls
 
     def scaled(self, k: int) -> Template:
         """The same container with coordinates times ``2**k`` (exact)."""
         if k == 0:
             return self
         WP = self.WP.copy()
-        WP[:, 3] = np.ldexp(WP[:, 3], k)
+        WP[:, 3:] = np.ldexp(WP[:, 3:], k)  # the offsets and (7 columns) the origin
+        walls = None
+        if self.walls is not None:
+            walls = self.walls.copy()
+            walls[:, 3] = np.ldexp(walls[:, 3], k)
         return Template(
             np.ldexp(self.TV, k),
             self.TF,
@@ -47,6 +67,7 @@ class Template:
             self.kind,
             float(np.ldexp(self.volume, 3 * k)),
             np.ldexp(self.bounds, k),
+            walls,
         )
 
 
@@ -129,8 +150,12 @@ class Convex:
             from .inputs import as_points
 
             pts = as_points(points, dim=3, name="Convex points")
-            hs = _hull_halfspaces(pts)
             box = np.array([pts.min(axis=0), pts.max(axis=0)])
+            N, corners, tris = _hull_planes(pts, far_origin(*box))
+            hs = _hull_rows(pts, N, corners)
+
+            def local(o):
+                return _hull_rows(pts, N, corners, o)
         else:
             try:
                 hs = np.array(halfspaces, dtype=np.float64, copy=True)
@@ -152,18 +177,36 @@ class Convex:
             if not np.isfinite(hs[:, 3]).all():
                 w = int(np.flatnonzero(~np.isfinite(hs[:, 3]))[0])
                 raise ValueError(f"halfspace {w}: its offset over its normal overflows float64")
-            hs = hs / np.linalg.norm(hs[:, :3], axis=1)[:, None]
+            raw = hs
+            norm = np.linalg.norm(hs[:, :3], axis=1)
+            hs = hs / norm[:, None]
             box = None
+
+            def local(o):
+                return _local_rows(raw, norm, hs, o)
+
         self.halfspaces = hs
-        self._template = _convex_template(hs, box)
+        self._template = _convex_template(hs, box, local)
+        if points is not None and self._template.WP.shape[1] > 4:
+            # far out, the volume of the hull's triangles about the origin (exact
+            # differences): the template's float cut treats walls within 1e-12 of a vertex
+            # as through it, and a rotated cube at 1e6, its faces split by the corners'
+            # rounding into nearly coplanar walls, measured 1.5e-12 off its cells' sum
+            t = self._template
+            self._template = replace(t, volume=_hull_volume(pts - t.origin, tris))
         self.volume = self._template.volume
 
     def __repr__(self) -> str:
         return f"Convex({len(self.halfspaces)} half-spaces, volume {self.volume:.6g})"
 
 
-def _hull_halfspaces(pts: np.ndarray) -> np.ndarray:
-    """The unit half-spaces of the hull of ``pts`` (one row per plane), exactly rounded.
+def _hull_planes(pts: np.ndarray, o=None) -> tuple[np.ndarray, list]:
+    """The unit normals ``(W, 3)`` of the hull of ``pts`` and each plane's corners (numbers).
+
+    ``o``: the origin a far solid's walls are kept about (:func:`far_origin`); the merge of
+    nearly coplanar facets then allows the rounding of ``p - o`` (exact: nothing), not of
+    ``p`` (at 1e9, facets of a 1e-3 slab 1.4e-5 apart were merged and its volume came out
+    8e-4 too large).
 
     The hull's facets are an affine invariant: Qhull sees the points on their principal
     axes, each scaled to unit extent (a slab 1e-9 thin is a cube to it; on the raw points its
@@ -226,7 +269,7 @@ def _hull_halfspaces(pts: np.ndarray) -> np.ndarray:
     # rounding over the extent (a unit cube at 1e6: 1e-10; kept apart, one far rotated
     # cube's cells summed 1.1e-8 off: open, see the report), and every corner within that
     # rounding of the kept plane
-    big = float(np.abs(pts).max())
+    big = float(np.abs(pts if o is None else pts - o).max())
     eps64 = 64.0 * np.finfo(float).eps
     tilt = max(1e-12, eps64 * big / (ext[0] * size))
     keep = np.ones(len(N), bool)
@@ -237,14 +280,75 @@ def _hull_halfspaces(pts: np.ndarray) -> np.ndarray:
             if np.abs(q @ N[i]).max() <= eps64 * max(big, 1e-300) + 1e-12 * ext[0] * size:
                 corners[i] += corners[j]
                 keep[j] = False
+    kept = np.flatnonzero(keep)
+    return N[kept], [corners[i] for i in kept], hull.simplices
+
+
+def _hull_volume(q: np.ndarray, tris: np.ndarray) -> float:
+    """The volume of the hull of ``q`` from its triangles ``tris`` (tetrahedra to a centre)."""
+    import math
+
+    c = q[np.unique(tris)].mean(axis=0)
+    a, b, e = (q[tris[:, k]] - c for k in range(3))
+    det = np.einsum("ij,ij->i", a, np.cross(b, e))
+    return math.fsum(np.abs(det)) / 6.0
+
+
+def _hull_rows(pts, N, corners, o=None) -> np.ndarray:
+    """Rows ``(W, 4)`` of the planes of :func:`_hull_planes`, about the origin ``o`` if given.
+
+    The offset is the largest of the corners' ``n . (p - o)``, exact in integers, rounded
+    once: about ``o`` near the solid it is good to an ulp of the solid's size, where in
+    absolute coordinates (``o`` None) only to an ulp of its distance from the origin.
+    """
+    oi = [0, 0, 0] if o is None else _ints(o)
     rows_out = []
-    for i in np.flatnonzero(keep):
-        nn = _ints(N[i])
-        # the offset: the largest of the corners' n . p, exact in integers, rounded once
-        ps = [_ints(pts[t]) for t in set(corners[i])]
-        d = max(sum(nn[k] * p[k] for k in range(3)) for p in ps) / _ONE**2
-        rows_out.append([*N[i], d])
+    for n, cs in zip(N, corners, strict=True):
+        nn = _ints(n)
+        ps = [_ints(pts[t]) for t in set(cs)]
+        d = max(sum(nn[k] * (p[k] - oi[k]) for k in range(3)) for p in ps) / _ONE**2
+        rows_out.append([*n, d])
     return np.array(rows_out)
+
+
+#: a Convex whose centre lies farther from the origin than this many times its largest
+#: extent keeps its walls about an origin near it (engine.containers.far_origin): at 4 the
+#: absolute offsets are good to ~1e-15 of the solid's size, and nearer solids keep the bits
+#: they had (the walls of a unit cube at 4e6 were placed to 2.3e-10 only)
+CONVEX_FAR_ORIGIN = 4.0
+
+
+def far_origin(lo, hi) -> np.ndarray | None:
+    """The origin a Convex with bounds ``lo, hi`` keeps its walls about, or None (near).
+
+    The centre rounded to a multiple of the power of two above the largest extent: every
+    point of the solid minus it is exact (both are multiples of the point's ulp, the
+    difference below the extent), and so is scaling it by a power of two.
+    """
+    lo = np.asarray(lo, np.float64)
+    hi = np.asarray(hi, np.float64)
+    size = float((hi - lo).max())
+    c = 0.5 * lo + 0.5 * hi
+    if not float(np.abs(c).max()) > CONVEX_FAR_ORIGIN * size or not size > 0:
+        return None
+    step = np.ldexp(1.0, int(np.frexp(size)[1]))
+    return np.round(c / step) * step + 0.0
+
+
+def _local_rows(raw, norm, unit, o) -> np.ndarray:
+    """Rows ``(W, 4)`` of the half-spaces ``raw`` about ``o``: unit normals, exact offsets.
+
+    The normal is ``unit``'s (``raw``'s over its float ``norm``, as ``Convex.halfspaces``),
+    the offset ``(d - n . o) / norm`` computed exactly and rounded once.
+    """
+    from fractions import Fraction
+
+    out = unit.copy()
+    of = [Fraction(float(x)) for x in o]
+    for w, r in enumerate(raw):
+        e = Fraction(float(r[3])) - sum(Fraction(float(r[k])) * of[k] for k in range(3))
+        out[w, 3] = float(e / Fraction(float(norm[w])))
+    return out
 
 
 #: :func:`_ints`' unit: every double of a Convex hull's range is an integer multiple of it
@@ -262,15 +366,15 @@ def _ints(x) -> list[int]:
     return out
 
 
-def _convex_template(hs: np.ndarray, box: np.ndarray | None = None) -> Template:
+def _convex_template(hs: np.ndarray, box: np.ndarray | None = None, local=None) -> Template:
     """The template of the half-spaces ``hs``; ``box`` (2, 3): its bounds where known (a hull).
 
     Otherwise the bounds are linear programs (HiGHS: feasible to ~1e-7, so a slab thinner
-    than that may not be bounded right; a hull's own points bound it exactly).
+    than that may not be bounded right; a hull's own points bound it exactly). ``local(o)``:
+    the same half-spaces about the origin ``o`` (exact offsets), used when the solid lies
+    far from the origin (:func:`far_origin`).
     """
     from scipy.optimize import linprog
-
-    from ..kernels.cells3d import container_cut
 
     lo = np.zeros(3)
     hi = np.zeros(3)
@@ -298,16 +402,35 @@ def _convex_template(hs: np.ndarray, box: np.ndarray | None = None) -> Template:
         raise ValueError("the Convex container has no volume (it is flat)")
     pad = 0.01 * size.max()
     k = len(hs)
+    o = None if local is None else far_origin(lo, hi)
+    if o is not None:
+        # far out: walls about the origin o near the solid, exactly (module docstring)
+        rows = local(o)
+        WP = np.ascontiguousarray(np.column_stack([rows, np.tile(o, (k, 1))]))
+        TV, TF, TR, vol = _cut_template(rows[:, :3], rows[:, 3], lo - o - pad, hi - o + pad)
+        bounds = np.array([TV.min(0) + o, TV.max(0) + o])
+        return Template(TV, TF, TR, WP, "convex", float(vol), bounds, hs.copy())
     # Cut and measure in a frame centred on the solid: in absolute coordinates a small solid
     # far out lost its volume to cancellation (a tetrahedron of side 1e-3 at (5e5, 4e6, 100):
     # -0.00117 for 1.7e-10) or could not be closed at all.
     c = 0.5 * (lo + hi)
     d = hs[:, 3] - hs[:, :3] @ c
-    t = box_template(lo - c - pad, hi - c + pad, labels=[-1 - (k + b) for b in range(6)])
+    TV, TF, TR, vol = _cut_template(hs[:, :3], d, lo - c - pad, hi - c + pad)
+    TV = TV + c
+    return Template(TV, TF, TR, hs.copy(), "convex", float(vol), np.array([TV.min(0), TV.max(0)]))
+
+
+def _cut_template(N, d, lo, hi):
+    """The box ``lo..hi`` cut by the half-spaces ``N x <= d``: ``(TV, TF, TR, volume)``."""
+    from ..kernels.cells3d import container_cut
+    from ..kernels.polyhedron import moments
+
+    k = len(N)
+    t = box_template(lo, hi, labels=[-1 - (k + b) for b in range(6)])
     TV, TF, TR = t.TV, t.TF, t.TR
     for w in range(k):
         st, TV, TF, TR = container_cut(
-            TV, TF, TR, hs[w, 0], hs[w, 1], hs[w, 2], d[w], -1 - w, 4 * (len(TV) + 8 * k + 64)
+            TV, TF, TR, N[w, 0], N[w, 1], N[w, 2], d[w], -1 - w, 4 * (len(TV) + 8 * k + 64)
         )
         if st == 2:
             raise ValueError("the Convex container has no volume")
@@ -316,11 +439,7 @@ def _convex_template(hs: np.ndarray, box: np.ndarray | None = None) -> Template:
     if (TF[:, 0] < -k).any():
         raise ValueError("could not close the Convex container (its half-spaces leave it open)")
     # tidy: walls never reached (redundant half-spaces) keep their numbers; volume from faces
-    from ..kernels.polyhedron import moments
-
-    vol = moments(TV, TF, len(TF), TR)[0]
-    TV = TV + c
-    return Template(TV, TF, TR, hs.copy(), "convex", float(vol), np.array([TV.min(0), TV.max(0)]))
+    return TV, TF, TR, moments(TV, TF, len(TF), TR)[0]
 
 
 def _few_bits(x: np.ndarray) -> np.ndarray:

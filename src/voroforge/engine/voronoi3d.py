@@ -7,7 +7,7 @@ import itertools
 import numpy as np
 from numba import njit, prange
 
-from ..config import FRAME3D_CAP_EXP, MESH_VOLUME_RANGE, NJIT_PARALLEL, VOLUME_RANGE
+from ..config import FRAME3D_CAP_EXP, NJIT_PARALLEL, VOLUME_RANGE
 from .build3d import build_cells3d, duplicate_owners, release_freed_memory
 from .containers import (
     Convex,
@@ -21,6 +21,11 @@ from .inputs import as_points, as_weights, from_working, working_frame
 from .threads import serial_below
 
 __all__ = ["voronoi3d", "Convex", "Diagram3D"]
+
+#: a mesh container's volume range: the boxes' and Convexes' since the mesh cut's areas are
+#: taken in the working frame and kernels.meshcut3d scales each cell's moments by a power of
+#: two (its centroids overflowed past 2**256); was config.MESH_VOLUME_RANGE (1e-200, 1e200)
+MESH_VOLUME_RANGE = VOLUME_RANGE
 
 
 def duplicate_owner3d(pts: np.ndarray, w: np.ndarray | None) -> np.ndarray:
@@ -135,6 +140,8 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
 
 def _inside(pts: np.ndarray, t: Template) -> np.ndarray:
     WP = t.WP
+    if WP.shape[1] > 4:  # walls about an origin near the solid (engine.containers)
+        pts = pts - t.origin
     scale = np.abs(WP[:, 3]) + np.abs(pts).max() + 1e-300
     if t.kind == "box":  # the same test, without the (n, 6) products
         lo, hi = t.bounds
@@ -253,7 +260,7 @@ def _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh):
             weights=w,
             periodic=periodic,
             container=t.kind,
-            walls=t.WP,
+            walls=t.absolute_walls(),
             volumes=vol,
             centroids=cen,
             vertices=np.zeros((0, 3)),
@@ -305,7 +312,7 @@ def _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh):
         weights=w,
         periodic=periodic,
         container=t.kind,
-        walls=t.WP,
+        walls=t.absolute_walls(),
         volumes=vol,
         centroids=cen,
         vertices=from_working(res.vertices, k),

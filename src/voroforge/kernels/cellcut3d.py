@@ -614,10 +614,17 @@ def one_cell(
     ntf = TF.shape[0]
     if ntv > V.shape[0] or ntf > F.shape[0] or TR.shape[0] > R.shape[0]:
         return OVERFLOW, 0, 0, 0, 0.0
+    qx = px  # the template is relative to the walls' origin (engine.containers), if any
+    qy = py
+    qz = pz
+    if WP.shape[1] > 4:
+        qx = px - WP[0, 4]
+        qy = py - WP[0, 5]
+        qz = pz - WP[0, 6]
     for v in range(ntv):
-        V[v, 0] = TV[v, 0] - px
-        V[v, 1] = TV[v, 1] - py
-        V[v, 2] = TV[v, 2] - pz
+        V[v, 0] = TV[v, 0] - qx
+        V[v, 1] = TV[v, 1] - qy
+        V[v, 2] = TV[v, 2] - qz
     if graph:
         DEG, ED, BK, LB = G[0], G[1], G[2], G[3]
         TDEG, TED, TBK, TLB = TG

@@ -35,7 +35,7 @@ from .cellcut3d import (
 )
 from .graph3d import from_rings
 from .polyhedron import CUT_NONE, cut, moments, plane_values
-from .predicates3d import bisector_side, scratch
+from .predicates3d import bisector_side, scratch, wall_lift
 from .vertex3d import axis_snap, name_key, name_vertex, place
 
 # the status codes are :mod:`kernels.cellcut3d`'s; the engine reads them from here
@@ -197,7 +197,7 @@ def _name_cell(
             nx = WP[w, 0]
             ny = WP[w, 1]
             nz = WP[w, 2]
-            h = WP[w, 3] - (nx * px + ny * py + nz * pz)
+            h = wall_lift(WP, w, px, py, pz)
             nn = np.sqrt(nx * nx + ny * ny + nz * nz)
             tol = VORONOI3D_CUT_RTOL * (nn * np.sqrt(rmax2) + abs(h))
             if not _mark_owners(

@@ -12,6 +12,8 @@ holds them, relative to the cell's first vertex.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
 
@@ -40,6 +42,11 @@ CC_V, CC_F, CC_R = 128, 64, 1024  # polyhedron scratch: vertices, faces, ring en
 CC_PARTS, CC_DEPTH = 6, 4  # parts a cell may be split into, split planes per part
 CC_OUT_V, CC_OUT_F, CC_OUT_R = 96, 48, 384  # a finished cell's slots
 CC_BLOCK = 64  # cells per parallel block (one set of scratch each)
+#: cell-local coordinates beyond this (or below its inverse) are scaled by a power of two
+#: before their moments are taken (fourth powers: 2**200 keeps them below 2**800, and its
+#: inverse above 2**-800, far from float64's limits; nearer 1 nothing is scaled, so the
+#: bits of ordinary meshes do not depend on it)
+_MOMENT_SAFE = 2.0**200
 
 
 @njit(**NJIT)
@@ -493,7 +500,55 @@ def _convex_cell(
         pspl[q, pdep[p], 3] = -hh
         pdep[q] = pdep[p] + 1
         pdep[p] += 1
-    return merge_parts(PV, PF, PR, pnv, pnf, nparts, ms, o, tol, out)
+    return _merge_scaled(PV, PF, PR, pnv, pnf, nparts, ms, o, tol, out)
+
+
+@njit(**NJIT)
+def _merge_scaled(PV, PF, PR, pnv, pnf, nparts, ms, o, tol, out):
+    """:func:`.meshparts3d.merge_parts` on the parts scaled by a power of two near 1.
+
+    Its moments are cubes and fourth powers of the cell-local coordinates: past 2**256 they
+    overflowed (centroids inf or NaN), below 2**-256 they underflowed. The parts, ``o`` and
+    ``tol`` are scaled by ``2**-e`` (``2**e`` near the largest local coordinate), merged,
+    and the outputs scaled back: exact, so the same bits wherever nothing over- or
+    underflowed before.
+    """
+    big = 0.0
+    for p in range(nparts):
+        if pnf[p] == 0:
+            continue
+        for v in range(pnv[p]):
+            for c in range(3):
+                big = max(big, abs(PV[p, v, c]))
+    e = 0
+    if big > 0.0 and (big > _MOMENT_SAFE or big < 1.0 / _MOMENT_SAFE):
+        e = math.frexp(big)[1]
+    if e == 0:
+        return merge_parts(PV, PF, PR, pnv, pnf, nparts, ms, o, tol, out)
+    for p in range(nparts):
+        for v in range(pnv[p]):
+            for c in range(3):
+                PV[p, v, c] = math.ldexp(PV[p, v, c], -e)
+    os = np.zeros(3)
+    for c in range(3):
+        os[c] = math.ldexp(o[c], -e)
+    r = merge_parts(PV, PF, PR, pnv, pnf, nparts, ms, os, math.ldexp(tol, -e), out)
+    oV = out[0]
+    for v in range(r[0]):
+        for c in range(3):
+            oV[v, c] = math.ldexp(oV[v, c], e)
+    if r[0] == 0:
+        return r
+    return (
+        r[0],
+        r[1],
+        r[2],
+        math.ldexp(r[3], 3 * e),
+        math.ldexp(r[4], e),
+        math.ldexp(r[5], e),
+        math.ldexp(r[6], e),
+        r[7],
+    )
 
 
 @njit(**NJIT)

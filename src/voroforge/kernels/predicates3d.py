@@ -254,9 +254,27 @@ def _put_lift(buf, EL, TL, k, wdiff_hi, wdiff_lo):
     TL[k] = n
 
 
+@njit(**{**NJIT, "inline": "always"})
+def wall_lift(WP, w, px, py, pz):
+    """``d - n . (p - o)`` of wall ``w`` (float): how far inside it the point ``p`` lies.
+
+    ``WP`` rows are ``(n, d)`` (``n . x <= d``) or ``(n, d, o)`` (``n . (x - o) <= d``, a
+    Convex far from the origin: engine.containers); with 4 columns the same operations as
+    ``d - n . p``.
+    """
+    if WP.shape[1] > 4:
+        px = px - WP[w, 4]
+        py = py - WP[w, 5]
+        pz = pz - WP[w, 6]
+    return WP[w, 3] - (WP[w, 0] * px + WP[w, 1] * py + WP[w, 2] * pz)
+
+
 @njit(**NJIT)
-def _put_wall(buf, EL, TL, k, nx, ny, nz, d, px, py, pz):
-    """Row ``k`` of wall ``n . x <= d`` for base ``p``: ``(n, 2 (d - n . p))`` (exact)."""
+def _put_wall(buf, EL, TL, k, nx, ny, nz, d, px, py, pz, ox, oy, oz):
+    """Row ``k`` of wall ``n . (x - o) <= d`` for base ``p``: ``(n, 2 (d - n . (p - o)))``.
+
+    Exact; ``o`` is 0 for a wall in absolute coordinates (then no term is added for it).
+    """
     o = _OFF_E + k * 3 * 2
     buf[o] = nx
     buf[o + 2] = ny
@@ -283,6 +301,19 @@ def _put_wall(buf, EL, TL, k, nx, ny, nz, d, px, py, pz):
         for q in range(ln):
             A[q] = T[q]
         n = ln
+        oc = ox if c == 0 else (oy if c == 1 else oz)
+        if oc != 0.0:
+            h, lo = two_product(2.0 * nc, oc)
+            B[0] = lo
+            B[1] = h
+            lb = 2
+            if lo == 0.0:
+                B[0] = h
+                lb = 1
+            ln = expansion_sum(A, n, B, lb, T)
+            for q in range(ln):
+                A[q] = T[q]
+            n = ln
     for q in range(n):
         T[q] = A[q]
     TL[k] = n
@@ -431,14 +462,21 @@ def _row_float(key, i, P, W, WP, ns, r, ra, q):
         nx = WP[w, 0]
         ny = WP[w, 1]
         nz = WP[w, 2]
+        px = P[i, 0]
+        py = P[i, 1]
+        pz = P[i, 2]
+        if WP.shape[1] > 4:  # about the wall's origin (wall_lift): one rounding more a term
+            px = px - WP[w, 4]
+            py = py - WP[w, 5]
+            pz = pz - WP[w, 6]
         r[q, 0] = nx
         r[q, 1] = ny
         r[q, 2] = nz
-        r[q, 3] = 2.0 * (WP[w, 3] - (nx * P[i, 0] + ny * P[i, 1] + nz * P[i, 2]))
+        r[q, 3] = 2.0 * (WP[w, 3] - (nx * px + ny * py + nz * pz))
         ra[q, 0] = abs(nx)
         ra[q, 1] = abs(ny)
         ra[q, 2] = abs(nz)
-        ra[q, 3] = 2.0 * (abs(WP[w, 3]) + abs(nx * P[i, 0]) + abs(ny * P[i, 1]) + abs(nz * P[i, 2]))
+        ra[q, 3] = 2.0 * (abs(WP[w, 3]) + abs(nx * px) + abs(ny * py) + abs(nz * pz))
 
 
 @njit(**NJIT)
@@ -450,7 +488,15 @@ def _row_exact(key, i, P, W, WP, ns, buf, EL, TL, q):
         _put_lift(buf, EL, TL, q, wh, wl)
     else:
         w = key - ns
-        _put_wall(buf, EL, TL, q, WP[w, 0], WP[w, 1], WP[w, 2], WP[w, 3], P[i, 0], P[i, 1], P[i, 2])
+        ox = oy = oz = 0.0
+        if WP.shape[1] > 4:
+            ox = WP[w, 4]
+            oy = WP[w, 5]
+            oz = WP[w, 6]
+        n0 = WP[w, 0]
+        n1 = WP[w, 1]
+        n2 = WP[w, 2]
+        _put_wall(buf, EL, TL, q, n0, n1, n2, WP[w, 3], P[i, 0], P[i, 1], P[i, 2], ox, oy, oz)
 
 
 @njit(**NJIT)
@@ -458,8 +504,9 @@ def bisector_side(i, k0, k1, k2, j, P, W, WP, ns, rows, buf):
     """Exact side of the vertex of cell ``i`` named by owners ``k0, k1, k2`` against key ``j``.
 
     Keys below ``ns`` are sites (power bisector with ``i``), the others walls ``key - ns``
-    of ``WP (m, 4)``. Returns 1 (beyond ``j``'s plane: the cut removes the vertex), 0 (on
-    it), -1 (inside), or 2 when the three owner planes do not meet in one point.
+    of ``WP (m, 4)`` (or ``(m, 7)``: :func:`wall_lift`). Returns 1 (beyond ``j``'s plane:
+    the cut removes the vertex), 0 (on it), -1 (inside), or 2 when the three owner planes
+    do not meet in one point.
     ``rows (2, 4, 4)`` and ``buf`` (:func:`scratch`) are scratch.
     """
     r = rows[0]
@@ -532,6 +579,9 @@ def vertex_offset(a, k0, k1, k2, P, W, WP, ns, buf, cx, cy, cz, x):
             P[a, 0],
             P[a, 1],
             P[a, 2],
+            0.0,
+            0.0,
+            0.0,
         )
         n3, n4 = _dets(buf, EL, TL, np.bool_(True))
         d3 = estimate(buf[_OFF_M3 + 3 * _M3 : _OFF_M3 + 4 * _M3], n3)

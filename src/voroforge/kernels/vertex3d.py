@@ -11,7 +11,8 @@ cell gets the same bits.
 
 The linear system: for the lowest site ``p0`` and each other owner a row ``r . y = t``,
 ``r = p_j - p0``, ``t = (|r|^2 + w0 - w_j) / 2`` for a site (its power bisector), ``r = n``,
-``t = d - n . p0`` for a wall ``n . x <= d``; ``x = p0 + y`` by Cramer's rule. A coordinate on
+``t = d - n . p0`` for a wall ``n . x <= d`` (``d - n . (p0 - o)`` for a wall about an origin
+``o``, :func:`kernels.predicates3d.wall_lift`); ``x = p0 + y`` by Cramer's rule. A coordinate on
 an axis-aligned wall is set to the wall's value exactly.
 
 Where ``p0 + y`` cancels (the vertex lies much nearer the origin than its sites: points on a
@@ -29,7 +30,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT, VORONOI3D_DET_RTOL, VORONOI3D_WALL_DET_RTOL, WALL_EXACT_SIN
-from .predicates3d import exact_point, vertex_offset
+from .predicates3d import exact_point, vertex_offset, wall_lift
 
 #: nothing here allocates: compiled without reference counting (see kernels.cellcut3d)
 _NO_NRT = {**NJIT, "_nrt": False}
@@ -54,7 +55,7 @@ def _row(key, p0, P, W, WP, ns, out, k):
         out[k, 0] = WP[w, 0]
         out[k, 1] = WP[w, 1]
         out[k, 2] = WP[w, 2]
-        out[k, 3] = WP[w, 3] - (WP[w, 0] * P[p0, 0] + WP[w, 1] * P[p0, 1] + WP[w, 2] * P[p0, 2])
+        out[k, 3] = wall_lift(WP, w, P[p0, 0], P[p0, 1], P[p0, 2])
 
 
 @njit(**_INLINE)
@@ -166,7 +167,10 @@ def axis_snap(keys, m, ns, WP, x):
             b = (a + 1) % 3
             c = (a + 2) % 3
             if WP[w, b] == 0.0 and WP[w, c] == 0.0 and abs(WP[w, a]) == 1.0:
-                x[a] = WP[w, 3] * WP[w, a]
+                if WP.shape[1] > 4:  # about the wall's origin (exact where the wall is a double)
+                    x[a] = WP[w, 4 + a] + WP[w, 3] * WP[w, a]
+                else:
+                    x[a] = WP[w, 3] * WP[w, a]
 
 
 @njit(**_INLINE)
