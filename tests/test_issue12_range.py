@@ -163,3 +163,20 @@ def test_mesh_container_past_the_range_raises(k):
     pytest.importorskip("trimesh")
     with pytest.raises(ValueError, match=r"outside 1e-270\.\.1e\+300"):
         vf.voronoi3d(*_mesh_case(k))
+
+
+@pytest.mark.parametrize("k", [-296, 260, 328])
+def test_torus_container_over_the_boxes_range(k):
+    # a torus's cells need manifold3d, which sees coordinates past 2**200 scaled by a power
+    # of two (engine.mesh3d.MANIFOLD_SAFE): at 2**260 and 2**-260 its cells came back short
+    # ("not a valid solid"); now the same cells, scaled
+    trimesh = pytest.importorskip("trimesh")
+    m = trimesh.creation.torus(1.0, 0.4)
+    S = np.random.default_rng(4).uniform(-1.4, 1.4, (120, 3)) * [1, 1, 0.3]
+    unit = vf.voronoi3d(S, m)
+    mk = trimesh.Trimesh(np.ldexp(m.vertices, k), m.faces, process=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        d = vf.voronoi3d(np.ldexp(S, k), mk)
+    assert (d.volumes == np.ldexp(unit.volumes, 3 * k)).all()
+    assert np.array_equal(d.centroids, np.ldexp(unit.centroids, k), equal_nan=True)

@@ -446,11 +446,21 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
         nvert += len(part[0])
         todo = np.setdiff1d(todo, cells, assume_unique=True)
     done = 0
+    # manifold3d sees coordinates scaled by a power of two near 1 when they lie past
+    # 2**200 or below 2**-200 (exact; at 2**260 and 2**-260 a torus's cut cells came back
+    # short: "not a valid solid"); nearer 1 it sees them as they are
+    ms = 0
+    top = float(np.abs(Vl).max())
+    if top > MANIFOLD_SAFE or top < 1.0 / MANIFOLD_SAFE:
+        ms = int(np.frexp(top)[1])
+    Vm, vm = (Vl, vl) if ms == 0 else (np.ldexp(Vl, -ms), np.ldexp(vl, -ms))
     for batch in _apart(todo, cf, roff, ring, len(verts)):
         if done == 0:  # the container for manifold3d, only when some cell needs it
-            whole = _manifold(Vl, F, np.arange(len(F)))
-        r = _cut_split(batch, (cf, roff, ring, vl, lab, len(F), whole))
+            whole = _manifold(Vm, F, np.arange(len(F)))
+        r = _cut_split(batch, (cf, roff, ring, vm, lab, len(F), whole))
         ov, cells, ntri, ot, labels, v, ce, npc = r
+        if ms:
+            ov, v, ce = np.ldexp(ov, ms), np.ldexp(v, 3 * ms), np.ldexp(ce, ms)
         cut[cells] = True
         vol[cells], cen[cells], pieces[cells], counts[cells] = v, ce + o, npc, ntri
         parts.append((ov + o, cells, ntri, ot.reshape(-1) + nvert, np.full(len(ot), 3), labels))
@@ -528,6 +538,11 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
         cut_cells=cut,
         container_volume=mesh.volume,
     )
+
+
+#: coordinates (relative to the cut's origin) beyond this, or below its inverse, reach
+#: manifold3d scaled by a power of two (cut_by_mesh)
+MANIFOLD_SAFE = 2.0**200
 
 
 def _exact_origin(*arrays):
