@@ -25,6 +25,12 @@ from .threads import serial_below
 
 
 def assemble(dom: Domain, closed, lengths, owner, n: int, cell_ids=None):
+    """Buffers and unique edges of ``n`` cells: :func:`assemble_checked` without the sites."""
+    bufs, edges, _ = assemble_checked(dom, closed, lengths, owner, n, cell_ids)
+    return bufs, edges
+
+
+def assemble_checked(dom: Domain, closed, lengths, owner, n: int, cell_ids=None, sites=None):
     """Buffers and unique edges of ``n`` cells from closed convex rings clipped to the box.
 
     Parameters
@@ -42,6 +48,10 @@ def assemble(dom: Domain, closed, lengths, owner, n: int, cell_ids=None):
         Number of cells of the result.
     cell_ids : (u,) int64, optional
         The cell of each ring (default: ring ``r`` is cell ``r``).
+    sites : (n, 2) float64, optional
+        Each cell's site, in the rings' frame. Given, a cell that the polygon clip leaves
+        without its site though the site is in the domain is clipped again in a frame at
+        the site (:func:`_clip_at_site`), and listed in ``lost`` where that fails too.
 
     Returns
     -------
@@ -50,6 +60,9 @@ def assemble(dom: Domain, closed, lengths, owner, n: int, cell_ids=None):
     edges : LazyEdges
         Each shared edge once, clipped to the domain: computed when first read (it keeps
         the rings and the domain's grid until then).
+    lost : (m,) int64
+        The cells whose clipped polygon does not hold their site though the domain does
+        (empty without ``sites``, or on a rectangle).
     """
     nonempty = lengths[1:] > lengths[:-1]
     ring_offsets = np.concatenate(([0], lengths[1:][nonempty]))
@@ -61,12 +74,15 @@ def assemble(dom: Domain, closed, lengths, owner, n: int, cell_ids=None):
     edges = LazyEdges(
         partial(_edges_later, n, dom, grid, pieces, closed, ring_offsets, ring_cell, owner)
     )
+    lost = np.zeros(0, dtype=np.int64)
     if dom.is_rect:
         polys = np.arange(len(ring_cell) + 1, dtype=np.int64)
         bufs = (closed, ring_offsets, polys, geom_offsets_for(n, ring_cell))
     else:
-        bufs = clip_to_polygon(dom, grid, pieces, closed, ring_offsets, ring_cell, n)
-    return bufs, edges
+        bufs, lost = clip_to_polygon(
+            dom, grid, pieces, closed, ring_offsets, ring_cell, n, sites=sites
+        )
+    return bufs, edges, lost
 
 
 def _edges_later(n, dom, *args) -> Edges:
@@ -208,16 +224,58 @@ class _Pieces:
             self.bounds[ring_cell, 2] = np.maximum.reduceat(closed[:, 0], starts)
             self.bounds[ring_cell, 3] = np.maximum.reduceat(closed[:, 1], starts)
         self.cache: dict[int, object] = {}
+        self.coords = None
 
     def piece(self, cell: int):
         got = self.cache.get(cell)
         if got is None:
-            x0, y0, x1, y1 = self.bounds[cell]
-            got = shapely.clip_by_rect(self.geometry, x0, y0, x1, y1)
-            if not shapely.is_valid(got):
-                got = shapely.intersection(self.geometry, shapely.box(x0, y0, x1, y1))
-            self.cache[cell] = got
+            got = self.cache[cell] = self.around(*self.bounds[cell])
         return got
+
+    def around(self, x0, y0, x1, y1):
+        """The domain cut to a rectangle that holds ``[x0, x1] x [y0, y1]``.
+
+        GEOS's rectangle clip returns the complement of the answer (valid, so unnoticed) when
+        the domain's boundary passes through two corners of the rectangle (a box-wide cell
+        in a domain with vertices on its box: ``clip_by_rect`` of the polygon
+        ``(0 0, 3 0, 3 10, 1.5 0.5, 0 10)`` to its own bounds is the notch between its
+        teeth): the rectangle is grown a little, to sides on which no vertex of the domain
+        lies.
+        """
+        coords = self._coords()
+        rect = []
+        for v, step, axis in ((x0, -1, 0), (y0, -1, 1), (x1, 1, 0), (y1, 1, 1)):
+            width = (x1 - x0) if axis == 0 else (y1 - y0)
+            v = v + step * max(width, abs(v) * 2.0**-40) / 16
+            while (coords[:, axis] == v).any():
+                v = v + step * max(width, abs(v) * 2.0**-40) / 16
+            rect.append(v)
+        got = shapely.clip_by_rect(self.geometry, *rect)
+        if not shapely.is_valid(got):
+            got = shapely.intersection(self.geometry, shapely.box(*rect))
+        return got
+
+    def vertex_near(self, ring, reach):
+        """The vertex of the domain nearest to ``ring`` if within ``reach`` of it, else None."""
+        coords = self._coords()
+        x0, y0, x1, y1 = shapely.bounds(ring)
+        box = (
+            (coords[:, 0] >= x0 - reach)
+            & (coords[:, 0] <= x1 + reach)
+            & (coords[:, 1] >= y0 - reach)
+            & (coords[:, 1] <= y1 + reach)
+        )
+        cand = coords[box]
+        if not len(cand):
+            return None
+        dist = shapely.distance(ring, shapely.points(cand))
+        best = int(np.argmin(dist))
+        return cand[best] if dist[best] <= reach else None
+
+    def _coords(self):
+        if self.coords is None:
+            self.coords = shapely.get_coordinates(self.geometry)
+        return self.coords
 
     def intersect(self, geoms, cells, empty):
         """``geoms[k] ∩ domain`` for geometries inside the boxes of cells ``cells[k]``.
@@ -242,14 +300,16 @@ class _Pieces:
         return out
 
 
-def clip_to_polygon(dom: Domain, grid, pieces, coords, ring_offsets, ring_cell, n):
+def clip_to_polygon(dom: Domain, grid, pieces, coords, ring_offsets, ring_cell, n, sites=None):
     """Clip convex closed rings (one per non-empty cell) to a polygonal domain.
 
     Rings that the grid proves wholly inside are kept as they are, wholly outside ones are
     dropped, and only the rest go through a shapely intersection. Returns the GeoArrow
     multipolygon buffers ``(coords, ring_offsets, polygon_offsets, geom_offsets)`` of all
-    ``n`` cells.
+    ``n`` cells, and the cells that do not hold their site though the domain does (only
+    tested where ``sites`` is given: see :func:`_held`).
     """
+    lost = np.zeros(0, dtype=np.int64)
     status = classify(coords, ring_offsets, *grid)
     lengths = np.diff(ring_offsets)
     simple = np.flatnonzero(status == 1)
@@ -263,7 +323,10 @@ def clip_to_polygon(dom: Domain, grid, pieces, coords, ring_offsets, ring_cell, 
             shapely.GeometryType.POLYGON, coords[h_mask], (h_off, np.arange(len(hard) + 1))
         )
         cut = pieces.intersect(convex, ring_cell[hard], shapely.Polygon())
-        clipped = shapely.orient_polygons(_polygonal(cut))
+        clipped = _polygonal(cut)
+        rings = (coords[h_mask], h_off)
+        clipped, lost = _held(pieces, convex, clipped, ring_cell[hard], sites, rings)
+        clipped = shapely.orient_polygons(clipped)
         parts, idx = shapely.get_parts(clipped, return_index=True)
         keep = ~shapely.is_empty(parts)
         parts = parts[keep]
@@ -299,7 +362,147 @@ def clip_to_polygon(dom: Domain, grid, pieces, coords, ring_offsets, ring_cell, 
     co = np.repeat(src_start[ro] - out_ring[:-1], lens) + np.arange(out_ring[-1])
     out_poly = np.zeros(len(poly_rings) + 1, dtype=np.int64)
     np.cumsum(poly_rings[po], out=out_poly[1:])
-    return source[co], out_ring, out_poly, geom_offsets_for(n, poly_cell)
+    return (source[co], out_ring, out_poly, geom_offsets_for(n, poly_cell)), lost
+
+
+_THIN_ULPS = 64.0  # a ring whose mean width (area / diameter) is this many ulps of its
+# coordinates is a strip between sites a few ulps apart: its crossings with the domain's
+# boundary are ulps apart, which the overlay in the coordinates' own floats can snap together
+
+
+def _held(pieces, convex, clipped, cells, sites, rings):
+    """The clipped cells, thin ones redone in a frame of their own, and the cells lost.
+
+    A cell a few ulps wide at a reflex vertex of the domain (a site an ulp from the vertex,
+    the vertex a site too) crosses the domain's boundary within ulps of the vertex: the
+    overlay, which nodes in the coordinates' own floats, collapses its pieces to lines (the
+    cell came back empty) or snaps a crossing onto the vertex in one cell and not in its
+    neighbour (their rings then disagree by ulps). Such a cell (a thin ring near a vertex of
+    the domain, or, where ``sites`` are given, a cell that misses its site), and every ring
+    that meets it, is clipped again in one frame at that vertex, or at its site
+    (:func:`_clip_at_site`), where the crossings are far finer than the cell's width, so
+    the crossings they share are the same floats. With ``sites``, the cells that still do
+    not hold their site where the domain does (exact tests) are returned as ``lost``.
+    """
+    lo = shapely.bounds(convex)
+    size = np.hypot(lo[:, 2] - lo[:, 0], lo[:, 3] - lo[:, 1])
+    ulp = np.spacing(np.abs(lo).max(axis=1))
+    thin = shapely.area(convex) <= _THIN_ULPS * ulp * size
+    missed = inside = np.zeros(len(cells), dtype=np.bool_)
+    if sites is not None:
+        xy = sites[cells]
+        inside = shapely.intersects_xy(pieces.prepared, xy[:, 0], xy[:, 1])
+        missed = inside & ~shapely.intersects_xy(clipped, xy[:, 0], xy[:, 1])
+    trouble = np.flatnonzero(missed | thin)
+    done = np.zeros(len(cells), dtype=np.bool_)
+    tree = shapely.STRtree(convex) if len(trouble) else None
+    for k in trouble:
+        if done[k]:
+            continue
+        origin = pieces.vertex_near(convex[k], _THIN_ULPS * ulp[k])
+        if origin is None:
+            if not missed[k]:
+                continue  # a thin cell away from the domain's vertices: the overlay's is kept
+            origin = xy[k]
+        # the cells that meet this one are clipped in the same frame, so that the crossings
+        # they share with it (the same two segments) are the same floats
+        near = np.sort(tree.query(convex[k], predicate="intersects"))
+        piece = pieces.around(*shapely.total_bounds(convex[near]))
+        got = _clip_at_site(_aligned(rings, k, near), piece, origin)
+        if got is not None:
+            clipped[near] = got
+            done[near] = True
+    if sites is None or not len(trouble):
+        return clipped, np.zeros(0, dtype=np.int64)
+    missed = inside & ~shapely.intersects_xy(clipped, xy[:, 0], xy[:, 1])
+    return clipped, cells[missed].astype(np.int64)
+
+
+_ALIGN_ULPS = 4  # ring vertices this many ulps apart on a shared edge are the same vertex
+
+
+def _aligned(rings, k, near):
+    """Polygons of rings ``near``, each edge they share with ring ``k`` taken from ring ``k``.
+
+    Builders may return the two sides of a strip an ulp wide as segments an ulp apart (the
+    neighbour's ring then even names the cell beyond the strip as its owner). Clipped
+    apart, their crossings with the domain's boundary round apart too, and the cells
+    disagree there. Ring ``k``'s edge replaces a neighbour's whose two end points are within
+    ``_ALIGN_ULPS`` ulps of its own (reversed), where the neighbour stays convex and valid,
+    so the overlay sees one segment.
+    """
+    coords, off = rings
+    mine = coords[off[k] : off[k + 1]]
+    out = []
+    for j in near:
+        ring = coords[off[j] : off[j + 1]]
+        if j != k:
+            tol = _ALIGN_ULPS * np.spacing(max(np.abs(ring).max(), np.abs(mine).max()))
+            for t in range(len(ring) - 1):
+                # edge t of ring j against every edge of ring k, reversed
+                close = (np.abs(mine[1:] - ring[t]).max(axis=1) <= tol) & (
+                    np.abs(mine[:-1] - ring[t + 1]).max(axis=1) <= tol
+                )
+                hit = np.flatnonzero(close)
+                if len(hit) != 1:
+                    continue
+                moved = ring.copy()
+                moved[t], moved[t + 1] = mine[hit[0] + 1], mine[hit[0]]
+                if t + 1 == len(moved) - 1:
+                    moved[0] = moved[t + 1]  # (the closing repeat moved: its first vertex too)
+                moved[-1] = moved[0]
+                if _valid_convex(moved):
+                    ring = moved
+        out.append(shapely.polygons(ring))
+    return np.array(out, dtype=object)
+
+
+def _valid_convex(ring):
+    """Whether a closed ring is a valid polygon that turns left (or straight) at every vertex."""
+    e = np.diff(ring, axis=0)
+    nxt = np.roll(e, -1, axis=0)
+    turns = e[:, 0] * nxt[:, 1] - e[:, 1] * nxt[:, 0]
+    return bool((turns >= 0).all()) and bool(shapely.is_valid(shapely.polygons(ring)))
+
+
+def _clip_at_site(rings, piece, site):
+    """``rings ∩ piece`` computed with the site at the origin, or None where one fails.
+
+    The shift is exact for every coordinate near the site (its difference is a float), so the
+    overlay's crossings near the site are placed to the ulps of their small local
+    coordinates; shifted back they round once. Parts that rounding made overlap are united,
+    parts it collapsed (too few distinct vertices) are dropped, a ring it made touch itself
+    is split (GEOS's make_valid); each result must then be valid and keep its area to
+    within its rounding (``_ROUNDING_ULPS`` ulps times its perimeter), else None.
+    """
+    o = np.asarray(site, dtype=np.float64)
+    local = _polygonal(
+        shapely.intersection(
+            shapely.transform(rings, lambda xy: xy - o),
+            shapely.transform(piece, lambda xy: xy - o),
+        )
+    )
+    got = _polygonal(shapely.remove_repeated_points(shapely.transform(local, lambda xy: xy + o)))
+    for k in np.flatnonzero(~shapely.is_valid(got)):
+        parts = shapely.get_parts(got[k])
+        parts = parts[shapely.is_valid(parts) | (shapely.get_num_coordinates(parts) >= 4)]
+        fixed = shapely.union_all(parts) if len(parts) else shapely.Polygon()
+        if not shapely.is_valid(fixed):
+            fixed = _polygonal(np.array([shapely.make_valid(fixed)], dtype=object))[0]
+        slack = _ROUNDING_ULPS * np.spacing(np.abs(shapely.bounds(got[k])).max())
+        slack *= shapely.length(local[k])
+        if (
+            shapely.get_type_id(fixed) not in (3, 6)
+            or not shapely.is_valid(fixed)
+            or abs(shapely.area(fixed) - shapely.area(local[k])) > slack
+        ):
+            return None
+        got[k] = fixed
+    return got
+
+
+_ROUNDING_ULPS = 4.0  # a clipped cell shifted back moves each vertex by under an ulp: its area
+# by under an ulp times its perimeter; a repair that changes it more lost part of the cell
 
 
 def _polygonal(geoms):

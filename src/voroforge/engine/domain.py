@@ -127,7 +127,9 @@ def _from_geometry(geom: shapely.Geometry) -> Domain:
     if geom.is_empty:
         raise ValueError("boundary geometry is empty")
     if not shapely.is_valid(geom):
-        raise ValueError(f"boundary geometry is invalid: {shapely.is_valid_reason(geom)}")
+        raise ValueError(
+            f"boundary geometry is invalid: {shapely.is_valid_reason(geom)}{_shared_edge(geom)}"
+        )
     coords = shapely.get_coordinates(geom)
     if not np.isfinite(coords).all():
         raise ValueError("boundary geometry has non-finite coordinates")
@@ -143,3 +145,31 @@ def _from_geometry(geom: shapely.Geometry) -> Domain:
         if set(map(tuple, ring.tolist())) == corners:
             return Domain(geom, bounds, True)
     return Domain(geom, bounds, False)
+
+
+def _shared_edge(geom: shapely.Geometry) -> str:
+    """What to add to the invalidity reason of a MultiPolygon whose parts share an edge.
+
+    GEOS calls it a self-intersection; the parts are valid each and their interiors are
+    disjoint, but their boundaries meet along a segment (parts touching at points are valid
+    and accepted).
+    """
+    if shapely.get_type_id(geom) != 6:
+        return ""
+    parts = shapely.get_parts(geom)
+    if not shapely.is_valid(parts).all():
+        return ""
+    tree = shapely.STRtree(parts)
+    left, right = tree.query(parts, predicate="intersects")
+    merge = (
+        "; parts may touch only at points: merge them first, e.g."
+        " shapely.union_all(shapely.get_parts(g)) or shapely.ops.unary_union)"
+    )
+    for a, b in zip(left.tolist(), right.tolist(), strict=True):
+        if a >= b:
+            continue
+        if shapely.relate_pattern(parts[a], parts[b], "T********"):
+            return f" (parts {a} and {b} of the MultiPolygon overlap{merge}"
+        if shapely.relate_pattern(parts[a], parts[b], "F***1****"):
+            return f" (parts {a} and {b} of the MultiPolygon share an edge{merge}"
+    return ""
