@@ -392,7 +392,7 @@ def _held(pieces, convex, clipped, cells, sites, rings):
     if sites is not None:
         xy = sites[cells]
         inside = shapely.intersects_xy(pieces.prepared, xy[:, 0], xy[:, 1])
-        missed = inside & ~shapely.intersects_xy(clipped, xy[:, 0], xy[:, 1])
+        missed = _missed(clipped, xy, inside, pieces.prepared)
     trouble = np.flatnonzero(missed | thin)
     done = np.zeros(len(cells), dtype=np.bool_)
     tree = shapely.STRtree(convex) if len(trouble) else None
@@ -414,8 +414,23 @@ def _held(pieces, convex, clipped, cells, sites, rings):
             done[near] = True
     if sites is None or not len(trouble):
         return clipped, np.zeros(0, dtype=np.int64)
+    return clipped, cells[_missed(clipped, xy, inside, pieces.prepared)].astype(np.int64)
+
+
+def _missed(clipped, xy, inside, prepared):
+    """Which cells miss their site ``xy`` though the domain (``prepared``) holds it (``inside``).
+
+    A site on the domain's boundary whose cell's crossing rounded past it by an ulp (a site
+    on a hole's sloped edge) has its cell: only an empty cell, or one farther than
+    ``_ROUNDING_ULPS`` ulps of the site's coordinates, misses it. A site inside the domain
+    must be in its cell.
+    """
     missed = inside & ~shapely.intersects_xy(clipped, xy[:, 0], xy[:, 1])
-    return clipped, cells[missed].astype(np.int64)
+    for k in np.flatnonzero(missed):
+        if not shapely.is_empty(clipped[k]) and not shapely.contains_xy(prepared, *xy[k]):
+            reach = _ROUNDING_ULPS * np.spacing(np.abs(xy[k]).max())
+            missed[k] = shapely.distance(clipped[k], shapely.points(xy[k])) > reach
+    return missed
 
 
 _ALIGN_ULPS = 4  # ring vertices this many ulps apart on a shared edge are the same vertex
