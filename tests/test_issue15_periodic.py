@@ -124,6 +124,20 @@ def test_describe_of_a_wrapped_piece_one_ulp_wide():
     assert d.describe().euler_ok
 
 
+@pytest.mark.parametrize(("n", "w", "h", "seed"), [(500, 0.48, 0.32, 10), (1000, 0.75, 0.5, 17)])
+def test_describe_of_cells_tens_of_ulps_wide_at_4e12(n, w, h, seed):
+    # cells ~35 ulps wide (as 20,000 sites in the 3 x 2 box): two vertices an ulp apart
+    # round so that one lies exactly on the straight side of a fourth cell whose ring lacks
+    # it (a T-junction); describe() counted that side once against the two ring sides along
+    # it: Euler 1 (V 983, E 1482 here), where the cells tile the torus. It now puts such a
+    # vertex in the ring whose side it lies on (engine/torus_junctions)
+    box = (OFF, OFF, OFF + w, OFF + h)
+    p = np.random.default_rng(seed).random((n, 2)) * [box[2] - box[0], box[3] - box[1]] + OFF
+    for algorithm in ALGORITHMS:
+        r = _check_torus(p, box, algorithm, False, samples=100).describe()
+        assert r.euler == 0 and r.faces == n
+
+
 def _count_copies(monkeypatch):
     import voroforge.engine.periodic as per
 
@@ -309,20 +323,27 @@ def test_straddling_box_whose_size_is_an_odd_number_of_ulps():
         assert np.asarray(d.unresolved).tolist() == [2, 8, 9]
 
 
-@pytest.mark.xfail(
-    strict=True, reason="near zero a copy is a rounded sum: a vertex and its image an ulp apart"
+@pytest.mark.parametrize(
+    "box",
+    [
+        (0.0, 0.0, 1.0, 1.0),
+        (0.0, 0.0, 3.0, 2.0),
+        (-0.5, -0.5, 0.5, 0.5),
+        (0.0, 0.0, 1.0, 1e-3),
+        (5.0, -3.0, 6.0, -2.0),
+    ],
 )
-def test_unit_box_vertex_copies_are_exact_shifts():
+def test_vertex_copies_near_zero_are_exact_shifts(box):
     # in the box (0, 0, 1, 1) the copies of a site are sums rounded to the coarser floats
-    # above 1 (0.12156171 + 1), so a vertex and its image are not exact shifts of each
-    # other (46 pairs up to 2.2e-16 apart here): within describe()'s VERTEX_RTOL and the
-    # area tolerances, unflagged. Floats can hold exact shifts there (the copy above 1,
-    # less 1, is exact), so this is not a case for unresolved: the periodic frame's alike
-    # rounding is not used near zero.
-    box = (0.0, 0.0, 1.0, 1.0)
-    p = np.random.default_rng(0).random((30, 2))
+    # above 1 (0.12156171 + 1), so a vertex and its image were not exact shifts of each
+    # other (46 pairs up to 2.2e-16 apart here; 20 of 30 cells), within describe()'s
+    # VERTEX_RTOL and the area tolerances. Floats can hold exact shifts there (the copy
+    # above 1, less 1, is exact): each class of copies now takes the value of its member
+    # farthest from zero, shifted by whole periods (engine/periodic_ties)
+    x0, y0, x1, y1 = box
+    p = np.array([x0, y0]) + np.random.default_rng(0).random((30, 2)) * [x1 - x0, y1 - y0]
     for algorithm in ALGORITHMS:
-        d = vf.voronoi(p, box, periodic=True, algorithm=algorithm)
+        d = _check_torus(p, box, algorithm, False, samples=100)
         assert not len(d.unresolved)
         assert not _apart_vertices(d.cells, box)
 

@@ -330,19 +330,21 @@ def _box_offsets(raw: np.ndarray, lo: np.ndarray, hi: np.ndarray):
     return out
 
 
-def _counts(coords, ring, cell_of_ring, corners, wrap=None):
+def _counts(coords, ring, cell_of_ring, corners, wrap=None, junctions=True):
     """``(V, E, merged, V3)`` of the ring graph (``wrap``: see :func:`_vertex_ids`).
 
     A vertex that is a straight angle in every ring that has it (the middle of an edge, or a
     T-junction that only one side of an edge has) is not a vertex of the graph. ``V3``
     counts the vertices that at least three cells share. On a torus (``wrap``) every edge
     borders two ring sides, so ``E`` is half the segments between the kept vertices (an edge
-    can join a vertex to itself there).
+    can join a vertex to itself there); a vertex lying exactly on a ring side without it is
+    first put in that ring (``junctions``: :func:`.torus_junctions.split`).
     """
     if len(coords) == 0:
         return 0, 0, 0, 0
     idx, rid, turn, flat = _ring_vertices(coords, ring)
     pts = coords[idx]
+    torus = wrap
     if wrap is not None:
         lo, hi, tol = wrap
         boxsize = hi - lo
@@ -362,6 +364,16 @@ def _counts(coords, ring, cell_of_ring, corners, wrap=None):
             pts[outside] = moved
             wrap = (outside, lo, boxsize, tol)
     ids, merged = _vertex_ids(pts, rid, flat, corners, wrap)
+    if torus is not None and junctions:
+        from .torus_junctions import split
+
+        lengths = np.diff(ring) - 1
+        nxt = np.arange(1, len(idx) + 1)
+        ends = np.cumsum(lengths)
+        nxt[ends[lengths > 0] - 1] = (ends - lengths)[lengths > 0]
+        got = split(coords, ring, idx, nxt, ids, torus[0], torus[1] - torus[0])
+        if got is not None:
+            return _counts(got[0], got[1], cell_of_ring, corners, torus, junctions=False)
     rings = _rings_per_vertex(ids, rid)
     if wrap is not None:
         # on a torus a cell that borders its own image has a vertex twice in its ring (as

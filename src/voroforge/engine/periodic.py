@@ -32,13 +32,13 @@ from ..config import (
     PERIODIC_CAP_PERIODS,
     PERIODIC_PROOF_RTOL,
     PERIODIC_SLIVER_ULPS,
-    PERIODIC_TIE_ULPS,
 )
 from .assemble import from_shapely
 from .diagram import Diagram, Edges, buffers, frame_exponent
 from .domain import Domain, make_domain
 from .inputs import as_points, working_frame
 from .periodic_frame import cells_to_user_frame, corner_frame, to_local, two_sum_error
+from .periodic_ties import tie_images
 from .planar import build
 
 #: Initial margin, in typical cell diameters ``sqrt(area / n)``.
@@ -125,89 +125,6 @@ def _images(sites: np.ndarray, box, margin):
     # stable: within a source the copies stay in (a, b) order, the same for every source
     order = np.argsort(source, kind="stable")
     return np.ascontiguousarray(ext[order]), source[order], shift[order], exact
-
-
-def _tie_images(bufs, box):
-    """The original cells with every vertex an exact shift of its image's.
-
-    Where the copies are exact shifts and the cells lie on one grid, a vertex and its image
-    are computed from names that are shifts of each other, and agree up to the exact shift,
-    except where the centre falls half-way between two floats: rounding to even then goes
-    opposite ways when the shift is an odd number of ulps (a box 1 x 1e-5 at 1e6, one site:
-    its cell 1 ulp taller than the box). Points within ``PERIODIC_TIE_ULPS`` ulps of each other
-    modulo the box, one of them outside the box, are made one: the one in the box (else
-    the first) shifted by whole periods, exactly. A group with two points of one ring in one
-    copy of the box is left alone (two vertices of a cell an ulp apart, not a vertex and its
-    image).
-    """
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-    from scipy.spatial import cKDTree
-
-    coords, ring, poly, geom = bufs
-    if not len(coords):
-        return bufs
-    x0, y0, x1, y1 = box
-    lo = np.array([x0, y0])
-    size = np.array([x1 - x0, y1 - y0])
-    q = np.floor((coords - lo) / size)
-    q = np.where(coords - q * size >= lo + size, q + 1, q)  # rounding of the division
-    q = np.where(coords - q * size < lo, q - 1, q)
-    inner = coords - q * size  # exact: one grid
-    moved = (q != 0).any(axis=1)
-    if not moved.any():
-        return bufs
-    tol = PERIODIC_TIE_ULPS * np.spacing(np.abs(np.array(box)).max())
-    rel = np.minimum(inner - lo, size)  # in [0, size]
-    rel = np.where(rel >= size, 0.0, rel)
-    pairs = cKDTree(rel, boxsize=size).query_pairs(tol, p=np.inf, output_type="ndarray")
-    pairs = pairs[(moved[pairs[:, 0]] | moved[pairs[:, 1]])]
-    pairs = pairs[(inner[pairs[:, 0]] != inner[pairs[:, 1]]).any(axis=1)]
-    if not len(pairs):
-        return bufs
-    m = len(coords)
-    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(m, m))
-    _, label = connected_components(graph, directed=False)
-    rid = np.repeat(np.arange(len(ring) - 1), np.diff(ring))
-    touched = np.unique(pairs.ravel())
-    out = coords.copy()
-    for g in np.unique(label[touched]):
-        members = np.flatnonzero(label == g)
-        pts, first = np.unique(inner[members], axis=0, return_index=True)
-        if len(pts) < 2:
-            continue
-        # two different points of one ring in one copy of the box: an ulp-short edge, not
-        # the rounding of one vertex
-        key = np.unique(np.column_stack((rid[members], q[members], inner[members])), axis=0)
-        if len(np.unique(key[:, :3], axis=0)) < len(key):
-            continue
-        home = members[~moved[members]]
-        rep = inner[home[0]] if len(home) else inner[members[0]]
-        out[members] = rep + q[members] * size
-    # kept only where it helps: at 1e15 (a box 24 ulps wide, cells of an ulp or two) points
-    # that close are distinct vertices, and joining them broke cells
-    changed = np.unique(rid[np.flatnonzero((out != coords).any(axis=1))])
-    before = _ring_area(coords, ring, lo, size)
-    after = _ring_area(out, ring, lo, size)
-    total = size[0] / size.max() * (size[1] / size.max())
-    rings = shapely.linearrings(out[: ring[-1]], indices=rid)[changed]
-    flipped = np.sign(after[changed]) != np.sign(before[changed])
-    if abs(np.abs(after).sum() - total) > abs(np.abs(before).sum() - total) or not (
-        shapely.is_valid(shapely.polygons(rings)).all() and not flipped.any()
-    ):
-        return bufs
-    return out, ring, poly, geom
-
-
-def _ring_area(coords, ring, lo, size):
-    """Signed areas of the rings, in units of the box's longer side squared."""
-    side = size.max()
-    v = (coords - lo) / side
-    nxt = np.roll(v, -1, axis=0)
-    cross = v[:, 0] * nxt[:, 1] - v[:, 1] * nxt[:, 0]
-    last = ring[1:] - 1  # the closing point: no edge from it to the next ring
-    cross[last] = 0.0
-    return 0.5 * np.add.reduceat(cross, ring[:-1]) if len(ring) > 1 else np.zeros(0)
 
 
 def _one_grid(lo: float, hi: float) -> bool:
@@ -702,10 +619,8 @@ def _periodic(points, tile, algorithm: str, wrap: bool, may_move: bool) -> Diagr
             _slivers(pieces, box, is_orig)
         bufs, keep = _wrapped_cells(d, pieces, source, n, _rounding(box))
     else:
-        bufs = _cells_at(buffers(d), orig)
-        w, h = x1 - x0, y1 - y0
-        if exact and _one_grid(x0 - w, x1 + w) and _one_grid(y0 - h, y1 + h):
-            bufs = _tie_images(bufs, box)
+        # a vertex and its images made exact shifts of each other (periodic_ties)
+        bufs = tie_images(_cells_at(buffers(d), orig), box)
     edges = _torus_edges(d, source, shift, is_orig, wrap, keep if wrap else None, box)
     # a site is unresolved when the copy its cell comes from is (unwrapped: the original;
     # wrapped: any copy, whose piece is then missing)

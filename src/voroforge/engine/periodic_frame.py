@@ -180,11 +180,11 @@ def periods(rel: np.ndarray, w: float):
     a = np.where(c >= w, a + 1, a)
     a = np.where(c < 0, a - 1, a)
     c = rel - a * w
-    exact = (_whole_times(a, w) & (two_sum_error(rel, -(a * w)) == 0)) & (c >= 0) & (c < w)
+    exact = (whole_times(a, w) & (two_sum_error(rel, -(a * w)) == 0)) & (c >= 0) & (c < w)
     return a, c, exact
 
 
-def _whole_times(a: np.ndarray, w: float) -> np.ndarray:
+def whole_times(a: np.ndarray, w: float) -> np.ndarray:
     """Whether ``a * w`` is a float without rounding, for the whole numbers ``a``."""
     if not len(a):
         return np.ones(0, dtype=bool)
@@ -235,7 +235,7 @@ def mismatched(rel: np.ndarray, out: np.ndarray, box) -> np.ndarray:
         t = a[:, k] - a[ref, k]
         shift = t * size[k]
         base = out[ref, k]
-        sure = exact & exact[ref] & _whole_times(t, size[k])
+        sure = exact & exact[ref] & whole_times(t, size[k])
         bad |= sure & ((two_sum_error(base, shift) != 0) | (base + shift != out[:, k]))
         for j in np.flatnonzero(~sure):
             diff = Fraction(float(out[j, k])) - Fraction(float(base[j]))

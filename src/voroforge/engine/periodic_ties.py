@@ -1,0 +1,161 @@
+"""Unwrapped periodic cells whose vertex copies by box shifts are exact shifts of each other.
+
+A vertex of an original cell near one side of the box and its image in the cell of a site
+near the opposite side are computed from different copies of the sites. They agree up to
+the exact shift only where every copy is an exact shift of its site and the box lies on
+one float grid; elsewhere (a box at the origin: ``0.12156171 + 1`` is a rounded sum) they
+can be an ulp or two apart, and the cells leave a gap or an overlap of that much between a
+vertex and its image. :func:`tie_images` makes each such class of copies one value shifted
+by whole periods, exactly, wherever floats can hold it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import shapely
+
+from ..config import PERIODIC_TIE_ULPS
+from .periodic_frame import two_sum_error, whole_times
+
+#: How far the rings' area sum may move by rounding alone, in ulps of the box's area per
+#: ring point (each term of the shoelace sums rounds by about one): a tie that leaves it
+#: farther than that from the box's area joined distinct vertices and is undone
+_AREA_NOISE_ULPS = 4.0
+
+
+def tie_images(bufs, box):
+    """The original cells with every vertex an exact shift of its images, where floats allow.
+
+    Points within ``PERIODIC_TIE_ULPS`` ulps of each other modulo the box (ulps of the
+    copies' coordinates, the box grown by a period), one of them outside the box and not
+    already an exact shift of the other, are one class. On each axis a class takes the
+    value of one member shifted by whole periods: the member in the box (else the first),
+    where every such shift is a float without rounding (always on one grid), else the member
+    farthest from zero, whose floats are the coarsest: its value less whole periods is a
+    float wherever the box's size is a multiple of its ulp (a unit box at the origin). A
+    class where neither is exact keeps its points on that axis. A group with two points of
+    one ring in one copy of the box is left alone (two vertices of a cell an ulp apart, not
+    a vertex and its image). Rounding centres half-way between two floats goes opposite ways
+    for an odd shift (a box 1 x 1e-5 at 1e6, one site: its cell 1 ulp taller than the box):
+    tied the same way.
+
+    The result is kept only where it does not make the cells worse: their areas no farther
+    from the box's, every changed ring valid and no ring's orientation flipped (at 1e15, a
+    box 24 ulps wide, points that close are distinct vertices).
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    coords, ring, poly, geom = bufs
+    if not len(coords):
+        return bufs
+    x0, y0, x1, y1 = box
+    lo = np.array([x0, y0])
+    size = np.array([x1 - x0, y1 - y0])
+    q = np.floor((coords - lo) / size)
+    q = np.where(coords - q * size >= lo + size, q + 1, q)  # rounding of the division
+    q = np.where(coords - q * size < lo, q - 1, q)
+    inner = coords - q * size  # exact on one grid; else rounded, used to find the pairs
+    moved = (q != 0).any(axis=1)
+    if not moved.any():
+        return bufs
+    # the cells reach half a period past the box: the ulps of the grown box (on one grid
+    # those of the box)
+    grown = np.abs(np.concatenate((lo - size, lo + 2.0 * size))).max()
+    tol = PERIODIC_TIE_ULPS * np.spacing(grown)
+    rel = np.minimum(inner - lo, size)  # in [0, size]
+    rel = np.where(rel >= size, 0.0, rel)
+    pairs = cKDTree(rel, boxsize=size).query_pairs(tol, p=np.inf, output_type="ndarray")
+    pairs = pairs[(moved[pairs[:, 0]] | moved[pairs[:, 1]])]
+    pairs = pairs[~_exact_shifts(coords, q, size, pairs[:, 0], pairs[:, 1])]
+    if not len(pairs):
+        return bufs
+    m = len(coords)
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(m, m))
+    _, label = connected_components(graph, directed=False)
+    rid = np.repeat(np.arange(len(ring) - 1), np.diff(ring))
+    touched = np.unique(pairs.ravel())
+    # every member of the touched groups, by group
+    group = np.unique(label[touched])
+    members = np.flatnonzero(np.isin(label, group))
+    members = members[np.argsort(label[members], kind="stable")]
+    g = np.searchsorted(group, label[members])
+    # two different points of one ring in one copy of the box: an ulp-short edge, not the
+    # rounding of one vertex
+    key = np.unique(np.column_stack((g, rid[members], q[members], coords[members])), axis=0)
+    head, count = np.unique(key[:, :4], axis=0, return_counts=True)
+    skip = np.zeros(len(group), dtype=bool)
+    skip[head[count > 1, 0].astype(np.int64)] = True
+    out = coords.copy()
+    home = ~moved[members]
+    # the first member in the box, else the first member
+    first = _first_where(g, home, len(group), members)
+    for k in range(2):
+        done = skip.copy()
+        far = _farthest(g, np.abs(coords[members, k]), len(group), members)
+        for rep in (first, far):
+            r = rep[g]
+            t = q[members, k] - q[r, k]
+            shift = t * size[k]
+            val = coords[r, k] + shift
+            ok = whole_times(t, size[k]) & (two_sum_error(coords[r, k], shift) == 0)
+            good = np.bincount(g, weights=~ok, minlength=len(group)) == 0
+            take = good[g] & ~done[g]
+            out[members[take], k] = val[take]
+            done |= good
+    if not (out != coords).any():
+        return bufs
+    # kept only where it helps: at 1e15 (a box 24 ulps wide, cells of an ulp or two) points
+    # that close are distinct vertices, and joining them broke cells
+    changed = np.unique(rid[np.flatnonzero((out != coords).any(axis=1))])
+    before = ring_area(coords, ring, lo, size)
+    after = ring_area(out, ring, lo, size)
+    total = size[0] / size.max() * (size[1] / size.max())
+    rings = shapely.linearrings(out[: ring[-1]], indices=rid)[changed]
+    flipped = np.sign(after[changed]) != np.sign(before[changed])
+    # the sums round by an ulp per term: a unit box's cells summed to 1 before and 1 + 2e-16
+    # after, their vertices now exact shifts
+    noise = _AREA_NOISE_ULPS * np.finfo(np.float64).eps * len(coords)
+    worse = abs(np.abs(after).sum() - total) > abs(np.abs(before).sum() - total) + noise
+    if worse or not (shapely.is_valid(shapely.polygons(rings)).all() and not flipped.any()):
+        return bufs
+    return out, ring, poly, geom
+
+
+def _exact_shifts(coords, q, size, a, b) -> np.ndarray:
+    """Whether the points ``b`` are the points ``a`` shifted by their periods, exactly."""
+    ok = np.ones(len(a), dtype=bool)
+    for k in range(2):
+        t = q[b, k] - q[a, k]
+        shift = t * size[k]
+        ok &= whole_times(t, size[k])
+        ok &= (two_sum_error(coords[a, k], shift) == 0) & (coords[a, k] + shift == coords[b, k])
+    return ok
+
+
+def _first_where(g, mask, n, members):
+    """Per group of ``n``: the first of ``members`` where ``mask`` (the first if none)."""
+    at = np.searchsorted(g, np.arange(n))
+    idx = np.flatnonzero(mask)
+    groups, first = np.unique(g[idx], return_index=True)
+    at[groups] = idx[first]
+    return members[at]
+
+
+def _farthest(g, value, n, members):
+    """Per group of ``n``: the member with the largest ``value`` (the first of equals)."""
+    order = np.lexsort((np.arange(len(g)), -value, g))
+    start = np.searchsorted(g[order], np.arange(n))
+    return members[order[start]]
+
+
+def ring_area(coords, ring, lo, size):
+    """Signed areas of the rings, in units of the box's longer side squared."""
+    side = size.max()
+    v = (coords - lo) / side
+    nxt = np.roll(v, -1, axis=0)
+    cross = v[:, 0] * nxt[:, 1] - v[:, 1] * nxt[:, 0]
+    last = ring[1:] - 1  # the closing point: no edge from it to the next ring
+    cross[last] = 0.0
+    return 0.5 * np.add.reduceat(cross, ring[:-1]) if len(ring) > 1 else np.zeros(0)
