@@ -331,6 +331,9 @@ def test_straddling_box_whose_size_is_an_odd_number_of_ulps():
         (-0.5, -0.5, 0.5, 0.5),
         (0.0, 0.0, 1.0, 1e-3),
         (5.0, -3.0, 6.0, -2.0),
+        # periods that are no floats (1.3 - 0.3 rounds): shifts taken in rationals
+        (0.3, 0.3, 1.3, 1.3),
+        (0.1, 0.2, 0.4, 0.9),
     ],
 )
 def test_vertex_copies_near_zero_are_exact_shifts(box):

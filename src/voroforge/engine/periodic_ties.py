@@ -11,6 +11,8 @@ by whole periods, exactly, wherever floats can hold it.
 
 from __future__ import annotations
 
+from fractions import Fraction
+
 import numpy as np
 import shapely
 
@@ -33,11 +35,12 @@ def tie_images(bufs, box):
     where every such shift is a float without rounding (always on one grid), else the member
     farthest from zero, whose floats are the coarsest: its value less whole periods is a
     float wherever the box's size is a multiple of its ulp (a unit box at the origin). A
-    class where neither is exact keeps its points on that axis. A group with two points of
-    one ring in one copy of the box is left alone (two vertices of a cell an ulp apart, not
-    a vertex and its image). Rounding centres half-way between two floats goes opposite ways
-    for an odd shift (a box 1 x 1e-5 at 1e6, one site: its cell 1 ulp taller than the box):
-    tied the same way.
+    class where neither is exact keeps its points on that axis. A period that is no float
+    (the box (0.3, 1.3): 1.3 - 0.3 rounds) is taken exactly, the shifts in rationals. A
+    group with two points of one ring in one copy of the box is left alone (two vertices of
+    a cell an ulp apart, not a vertex and its image). Rounding centres half-way between two
+    floats goes opposite ways for an odd shift (a box 1 x 1e-5 at 1e6, one site: its cell 1
+    ulp taller than the box): tied the same way.
 
     The result is kept only where it does not make the cells worse: their areas no farther
     from the box's, every changed ring valid and no ring's orientation flipped (at 1e15, a
@@ -57,6 +60,8 @@ def tie_images(bufs, box):
     q = np.where(coords - q * size >= lo + size, q + 1, q)  # rounding of the division
     q = np.where(coords - q * size < lo, q - 1, q)
     inner = coords - q * size  # exact on one grid; else rounded, used to find the pairs
+    # the periods exactly: (0.3, 1.3) is not a float apart (its size rounds)
+    period = (Fraction(x1) - Fraction(x0), Fraction(y1) - Fraction(y0))
     moved = (q != 0).any(axis=1)
     if not moved.any():
         return bufs
@@ -68,7 +73,7 @@ def tie_images(bufs, box):
     rel = np.where(rel >= size, 0.0, rel)
     pairs = cKDTree(rel, boxsize=size).query_pairs(tol, p=np.inf, output_type="ndarray")
     pairs = pairs[(moved[pairs[:, 0]] | moved[pairs[:, 1]])]
-    pairs = pairs[~_exact_shifts(coords, q, size, pairs[:, 0], pairs[:, 1])]
+    pairs = pairs[~_exact_shifts(coords, q, size, period, pairs[:, 0], pairs[:, 1])]
     if not len(pairs):
         return bufs
     m = len(coords)
@@ -96,10 +101,7 @@ def tie_images(bufs, box):
         far = _farthest(g, np.abs(coords[members, k]), len(group), members)
         for rep in (first, far):
             r = rep[g]
-            t = q[members, k] - q[r, k]
-            shift = t * size[k]
-            val = coords[r, k] + shift
-            ok = whole_times(t, size[k]) & (two_sum_error(coords[r, k], shift) == 0)
+            val, ok = _shifted(coords[r, k], q[members, k] - q[r, k], size[k], period[k])
             good = np.bincount(g, weights=~ok, minlength=len(group)) == 0
             take = good[g] & ~done[g]
             out[members[take], k] = val[take]
@@ -123,15 +125,31 @@ def tie_images(bufs, box):
     return out, ring, poly, geom
 
 
-def _exact_shifts(coords, q, size, a, b) -> np.ndarray:
+def _exact_shifts(coords, q, size, period, a, b) -> np.ndarray:
     """Whether the points ``b`` are the points ``a`` shifted by their periods, exactly."""
     ok = np.ones(len(a), dtype=bool)
     for k in range(2):
-        t = q[b, k] - q[a, k]
-        shift = t * size[k]
-        ok &= whole_times(t, size[k])
-        ok &= (two_sum_error(coords[a, k], shift) == 0) & (coords[a, k] + shift == coords[b, k])
+        val, exact = _shifted(coords[a, k], q[b, k] - q[a, k], size[k], period[k])
+        ok &= exact & (val == coords[b, k])
     return ok
+
+
+def _shifted(x, t, w, period):
+    """``x + t period`` on one axis, and where that is a float without rounding.
+
+    ``w`` is the period rounded; where it is exact, in floats, else in rationals (few
+    points: those near the box's sides).
+    """
+    if period == w:
+        shift = t * w
+        return x + shift, whole_times(t, w) & (two_sum_error(x, shift) == 0)
+    val = np.zeros(len(x))
+    ok = np.zeros(len(x), dtype=bool)
+    for i, (xi, ti) in enumerate(zip(x.tolist(), t.tolist(), strict=True)):
+        exact = Fraction(xi) + int(ti) * period
+        val[i] = float(exact)
+        ok[i] = Fraction(val[i]) == exact
+    return val, ok
 
 
 def _first_where(g, mask, n, members):
