@@ -2,9 +2,10 @@
 
 :func:`build` moves extreme magnitudes into the exact power-of-two working frame, maps exact
 duplicates to their first occurrence, dispatches to one of the cell kernels (Delaunay dual,
-Fortune's dual, half-planes), and assembles the clipped cells and edges
-(:func:`voroforge.engine.assemble.assemble`). :func:`voroforge.voronoi` and the periodic
-diagrams both call it, so neither needs the other.
+Fortune's dual, half-planes), fills the gaps that sites every construction lost leave in
+the cells with their exact cells where floats hold them (:mod:`.restore`), and assembles
+the clipped cells and edges (:func:`voroforge.engine.assemble.assemble`).
+:func:`voroforge.voronoi` and the periodic diagrams both call it, so neither needs the other.
 """
 
 from __future__ import annotations
@@ -33,6 +34,7 @@ from .csr import csr_from_pairs
 from .diagram import Diagram, Edges
 from .domain import Domain
 from .inputs import duplicate_map, from_working, working_frame
+from .restore import restore_lost
 from .threads import serial_below
 
 ALGORITHMS = ("delaunay", "fortune", "halfplane")
@@ -466,6 +468,10 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
         del memo
         if len(lost):
             closed, lengths, own, lost = _empty_astray(closed, lengths, own, lost, box)
+            # a lost site's exact cell where floats hold it and the rings leave a gap for it
+            (closed, lengths, own), lost = restore_lost(
+                xs, ys, box, (closed, lengths, own), lost, unique
+            )
         bufs, edges = assemble(wdom, closed, lengths, own, n, unique)
     # sites every construction leaves without a cell holding them (empty, or a ring beside
     # the site): floats cannot represent it

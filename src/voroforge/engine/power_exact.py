@@ -201,3 +201,10 @@ def on_one_line(px, py, far):
     ax, ay, bx, by = px[0], py[0], px[far], py[far]
     c = (px - ax) * (by - ay) - (py - ay) * (bx - ax)
     return all(orient2d(ax, ay, bx, by, px[k], py[k]) == 0.0 for k in np.flatnonzero(c != 0.0))
+
+
+# the integer machinery, public for :mod:`voroforge.engine.restore` (exact Voronoi cells of
+# the sites every construction lost); unchanged here
+Exact = _Exact
+line = _line
+vertex = _vertex
