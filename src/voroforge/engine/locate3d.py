@@ -47,6 +47,9 @@ def locate3d(d, xyz):
     if n == 0:
         raise ValueError("locate on an empty diagram")
     w0 = np.zeros(n) if d.weights is None else np.asarray(d.weights)
+    if d.periodic:
+        out = _locate_torus(q, sites0, w0, np.asarray(d.duplicate_of), d.box)
+        return int(out[0]) if single else out
     q0 = q
     s = _frame(q, sites0, w0)
     sites, w = sites0, w0
@@ -92,4 +95,56 @@ def nearest_exact(q, cand, sites, w=None) -> int:
     if len(cand) == 1:
         return int(cand[0])
     keys = [(_exact_key(q, sites[c], 0.0 if w is None else w[c]), int(c)) for c in cand]
+    return min(keys)[1]
+
+
+def _torus_d2(q, sites, size):
+    """Squared minimum-image distances ``(m, k)`` from queries ``q (m, 3)`` to ``sites (k, 3)``."""
+    diff = np.abs(q[:, None, :] - sites[None, :, :]) % size
+    diff = np.minimum(diff, size - diff)
+    return (diff * diff).sum(axis=2)
+
+
+def _locate_torus(q, sites0, w0, duplicate_of, box):
+    """:func:`locate3d` on the 3-torus ``box``: minimum-image power distances, exact ties.
+
+    A site's nearest image is its nearest in each axis (weights do not depend on the image),
+    so the float filter takes the per-axis minimum image (in a power-of-two frame where the
+    squares would over/underflow) and near ties (1e-9 of the box's squared diagonal) are
+    decided in rationals modulo the box, on the queries as given.
+    """
+    lo = np.asarray(box[0], np.float64)
+    size = np.asarray(box[1], np.float64) - lo
+    live = np.flatnonzero(duplicate_of < 0)
+    s = _frame(size, sites0, w0)
+    sites, w, size_s = sites0 * s, w0 * (s * s), size * s
+    # queries into the box first (fmod is exact; only the shift by a period may round)
+    rel = np.mod(q * s - lo * s, size_s)
+    S = np.mod(sites[live] - lo * s, size_s)
+    slack = 1e-9 * float((size_s * size_s).sum() + np.abs(w).max())
+    out = np.zeros(len(q), np.int64)
+    step = max(1, 2_000_000 // max(len(live), 1))
+    for a in range(0, len(q), step):
+        dd = _torus_d2(rel[a : a + step], S, size_s) - w[live][None, :]
+        best = dd.min(axis=1, keepdims=True)
+        for r in range(len(dd)):
+            near = live[dd[r] <= best[r, 0] + slack]
+            if len(near) == 1:
+                out[a + r] = near[0]
+            else:
+                out[a + r] = _nearest_torus_exact(q[a + r], near, sites0, w0, size)
+    return out
+
+
+def _nearest_torus_exact(q, cand, sites, w, size) -> int:
+    """Lowest index among the exactly nearest of ``cand`` to ``q`` on the torus ``size``."""
+    per = [Fraction(float(x)) for x in size]
+    keys = []
+    for c in cand:
+        t = Fraction(0)
+        for a in range(3):
+            dl = (Fraction(float(q[a])) - Fraction(float(sites[c, a]))) % per[a]
+            dl = min(dl, per[a] - dl)
+            t += dl * dl
+        keys.append((t - Fraction(float(w[c])), int(c)))
     return min(keys)[1]

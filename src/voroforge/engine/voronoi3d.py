@@ -159,7 +159,9 @@ def _periodic(P, W, t, progress):
     # sites needed the doubled second try (twice the time); 5 holds in one
     margin = 5.0 * float(np.prod(L) / u) ** (1.0 / 3.0)
     while True:
-        K = int(np.ceil(margin / L.min()))
+        # shifts per axis: a thin box needs many along its short side only (one count for
+        # all three axes made (2K + 1)**3 shifts: 1 x 1 x 0.01 did not return)
+        K = [int(np.ceil(margin / L[a])) for a in range(3)]
         imgs, origs, shifts = [P], [np.arange(u)], [np.zeros((u, 3), np.int64)]
         # per axis and shift, the sites whose image lies within the margin (the test on
         # P + s * L, one axis at a time); an image needs all three
@@ -167,11 +169,11 @@ def _periodic(P, W, t, progress):
             {
                 sa: (P[:, a] + sa * L[a] >= lo[a] - margin)
                 & (P[:, a] + sa * L[a] <= hi[a] + margin)
-                for sa in range(-K, K + 1)
+                for sa in range(-K[a], K[a] + 1)
             }
             for a in range(3)
         ]
-        for s in itertools.product(range(-K, K + 1), repeat=3):
+        for s in itertools.product(*(range(-K[a], K[a] + 1) for a in range(3))):
             if s == (0, 0, 0):
                 continue
             ok = near[0][s[0]] & near[1][s[1]] & near[2][s[2]]

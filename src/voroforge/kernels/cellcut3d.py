@@ -655,6 +655,10 @@ def one_cell(
     level = 0.0  # buckets of one least distance are gathered, then cut by, together
     o = 0  # next entry of the ordered buckets; then shells r, r + 1, ... (buckets q of nb)
     r = int(order[order.shape[0] - 1, 4]) if order.shape[0] else -1
+    # least squared distance to a bucket outside the ordered block (shells r + 1, ...):
+    # the order's later entries can lie beyond it, so a far entry stops the search only
+    # below it (else the shells go on from r)
+    outside = (r * min(g[3], g[4], g[5])) ** 2 if r >= 0 else 0.0
     q = 0
     nb = 0
     shells = False
@@ -693,8 +697,11 @@ def one_cell(
             else:
                 level = order[o, 3]
                 if _far(level, wi, wmax, rmax2):
-                    stop = True
                     flush = True
+                    if level <= outside:
+                        stop = True
+                    else:
+                        shells = True
                 else:
                     b = _ordered_bucket(order, o, ci, cj, ck, px, py, pz, g, wi, wmax, rmax2)
                     if b >= 0:
