@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from .outputs import check_outputs
 from .progress import Stage
 
 __all__ = ["POINTS_HELP", "add_parsers", "run_delaunay", "run_voronoi"]
@@ -127,6 +128,7 @@ def run_voronoi(args: argparse.Namespace, stage: Stage) -> list[Path]:
             ) from None
         if args.edges and kind in ("png", "parquet"):
             raise ValueError(f"{out}: --edges writes .svg, .dxf or .geojson, not .{kind}")
+    check_outputs(args.output, png=lambda: _check_png(args.size))
     stage("reading")
     from ..io.readers import boundary_crs, read_point_table
 
@@ -175,6 +177,12 @@ def _parquet_crs(crs):
     return name if isinstance(name, str) else None
 
 
+def _check_png(size) -> None:
+    from ..io.png import check_png_size
+
+    check_png_size(size)
+
+
 def _is_parquet(out) -> bool:
     return str(out).lower().endswith((".parquet", ".geoparquet"))
 
@@ -214,6 +222,7 @@ def run_delaunay(args: argparse.Namespace, stage: Stage) -> list[Path]:
 
     for out in args.output:
         io.output_format(out)
+    check_outputs(args.output, png=lambda: _check_png(args.size))
     stage("reading")
     points = io.read_points(args.points)
     stage(f"triangulating {len(points)} points")

@@ -154,6 +154,7 @@ def run_raster(args: argparse.Namespace, stage: Stage | None = None) -> list[Pat
     from ..engine.raster import rasterize
     from ..io.raster_png import RASTER_SUFFIXES, write_raster
     from ..io.readers import read_points
+    from .outputs import check_outputs
 
     stage = stage or (lambda name: None)
     outputs = [Path(o) for o in (args.output if isinstance(args.output, list) else [args.output])]
@@ -161,6 +162,7 @@ def run_raster(args: argparse.Namespace, stage: Stage | None = None) -> list[Pat
         if out.suffix.lower() not in RASTER_SUFFIXES:
             raise ValueError(f"{out}: raster output must be a .png or .npy file")
     shape = parse_size(str(args.size))
+    check_outputs(outputs)
     bounds = parse_bounds(args.bounds)
     stage("reading")
     pts = read_points(args.points)

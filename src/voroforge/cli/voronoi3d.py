@@ -16,6 +16,7 @@ examples:
   voroforge voronoi3d points.npy -o cells.parquet --container 0,0,0,1,1,1
   voroforge voronoi3d points.csv -o cells.glb --container part.stl   cells cut by a mesh
   voroforge voronoi3d points.csv -o cells.png --periodic --container 0,0,0,1,1,1
+  voroforge voronoi3d points.csv -o cells.csv --container=-1,-1,-1,1,1,1   (negative: use =)
 
 POINTS is a .csv/.txt (three numeric columns, or columns named x, y, z in a header row) or
 an .npy (n, 3) array. OUT's suffix picks the format: .csv/.parquet (one row per cell: id,
@@ -49,6 +50,7 @@ def add_parser(commands, formatter_class) -> argparse.ArgumentParser:
         metavar="FILE|BOX",
         default=None,
         help="xmin,ymin,zmin,xmax,ymax,zmax or a closed mesh file (.stl/.obj/.ply/.off/.3mf); "
+        "write --container=-1,... when the first number is negative; "
         "default: the points' bounding box padded 10%%",
     )
     p.add_argument("--periodic", action="store_true", help="the box is a 3-torus")
@@ -193,6 +195,8 @@ def write_outputs(d, outputs, *, size=(1000, 800), explode=0.15, stage=None):
 def run_voronoi3d(args, stage: Stage) -> list[str]:
     """Compute and write the cells (the ``voronoi3d`` command)."""
     from .. import voronoi3d
+    from ..io.render3d import check_render_size
+    from .outputs import check_outputs
     from .raster import parse_size
 
     for out in args.output:
@@ -202,6 +206,7 @@ def run_voronoi3d(args, stage: Stage) -> list[str]:
                 f"unknown output suffix {suf!r}: use .csv, .parquet, .obj, .glb, .ply or .png"
             )
     h, w = parse_size(args.size)
+    check_outputs(args.output, png=lambda: check_render_size((w, h)))
     stage("reading points")
     pts = read_points3d(args.points)
     stage(f"computing {len(pts)} cells")

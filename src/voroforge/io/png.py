@@ -42,6 +42,25 @@ def _cell_colours(colors, n: int, seed: int) -> list[tuple[int, int, int]]:
     return [_rgb(v) for v in values]
 
 
+def check_png_size(size, supersample: int = 2) -> tuple[int, int]:
+    """``(size, supersample)`` as ints, or ``ValueError`` when the picture cannot be drawn.
+
+    :func:`render_image` calls it, and the command line before any work (``voroforge
+    voronoi -o a.geojson -o b.png --size 1000000`` wrote a.geojson, then failed).
+    """
+    size = int(size)
+    if size < 8:
+        raise ValueError(f"size must be at least 8 pixels; got {size}")
+    ss = max(1, int(supersample))
+    if (size * ss) ** 2 > config.MAX_PIXELS:
+        most = math.isqrt(config.MAX_PIXELS) // ss
+        raise ValueError(
+            f"size {size} px is too large: {size} x {size} pixels drawn at {ss}x supersampling "
+            f"need about {3 * (size * ss) ** 2 / 2**30:.0f} GB; use at most {most}"
+        )
+    return size, ss
+
+
 def render_image(
     geoms,
     *,
@@ -101,16 +120,7 @@ def render_image(
     PIL.Image.Image
         An RGB image, y axis up.
     """
-    size = int(size)
-    if size < 8:
-        raise ValueError(f"size must be at least 8 pixels; got {size}")
-    ss = max(1, int(supersample))
-    if (size * ss) ** 2 > config.MAX_PIXELS:
-        most = math.isqrt(config.MAX_PIXELS) // ss
-        raise ValueError(
-            f"size {size} px is too large: {size} x {size} pixels drawn at {ss}x supersampling "
-            f"need about {3 * (size * ss) ** 2 / 2**30:.0f} GB; use at most {most}"
-        )
+    size, ss = check_png_size(size, supersample)
     cells = as_geometries(geoms)
     bound = as_boundary(boundary)
     pts = None if sites is None else np.asarray(sites, dtype=np.float64).reshape(-1, 2)

@@ -72,6 +72,18 @@ def view_rotation(view):
     return rx @ rz
 
 
+def check_render_size(size) -> tuple[int, int]:
+    """``(w, h)`` as ints, or ``ValueError`` when :func:`render` cannot draw that size."""
+    w, h = int(size[0]), int(size[1])
+    if w < 8 or h < 8:
+        raise ValueError(f"size must be at least 8x8 pixels; got {size}")
+    if 4 * w * h > MAX_PIXELS:  # drawn at twice the size, then scaled down
+        raise ValueError(
+            f"size {w}x{h} is too large: at most {MAX_PIXELS // 4:,} pixels (e.g. 16384x16384)"
+        )
+    return w, h
+
+
 def render(
     meshes,
     path,
@@ -112,13 +124,7 @@ def render(
     """
     from PIL import Image, ImageDraw
 
-    w, h = int(size[0]), int(size[1])
-    if w < 8 or h < 8:
-        raise ValueError(f"size must be at least 8x8 pixels; got {size}")
-    if 4 * w * h > MAX_PIXELS:  # drawn at twice the size, then scaled down
-        raise ValueError(
-            f"size {w}x{h} is too large: at most {MAX_PIXELS // 4:,} pixels (e.g. 16384x16384)"
-        )
+    w, h = check_render_size(size)
     rot = view_rotation(view)
     L = np.asarray(light, np.float64)
     L = L / np.linalg.norm(L)

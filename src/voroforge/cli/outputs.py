@@ -1,0 +1,44 @@
+"""Checks on a command's output paths before any work: a failing run writes nothing.
+
+Each file is written atomically (``io.atomic``), but a command with several ``-o`` wrote
+the first and then failed on the second (a folder that does not exist, a PNG too large to
+draw). Everything that can be known about the outputs is checked here first.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+from pathlib import Path
+
+
+def check_outputs(outputs: Iterable, *, png: Callable[[], object] | None = None) -> list[Path]:
+    """The output paths, after checking their folders (and the PNG size) up front.
+
+    Parameters
+    ----------
+    outputs : iterable of str or Path
+        The ``-o`` arguments.
+    png : callable, optional
+        Called once when an output is a ``.png``: the writer's own size check (raises
+        ``ValueError`` naming the size).
+
+    Returns
+    -------
+    list of Path
+
+    Raises
+    ------
+    ValueError
+        An output's folder does not exist or is not a folder, an output is a folder, or
+        ``png`` refused the size.
+    """
+    paths = [Path(o) for o in outputs]
+    for path in paths:
+        folder = path.parent if str(path.parent) else Path(".")
+        if not folder.is_dir():
+            raise ValueError(f"{path}: output folder does not exist: {folder}")
+        if path.is_dir():
+            raise ValueError(f"{path}: is a folder, not a file to write")
+    if png is not None and any(p.suffix.lower() == ".png" for p in paths):
+        png()
+    return paths
