@@ -438,3 +438,17 @@ def test_straddling_cells_stay_valid_where_copies_cannot_agree():
         assert not len(d.unresolved)
         _check_flagged_torus(p, box, algorithm, min_flagged=0)
         _check_torus(p, box, algorithm, True, samples=150)
+
+
+def test_wrapped_box_thinner_than_the_rounding_of_its_other_axis():
+    # a box at (4e12, 2e12), 3 x 0.003 (12 ulps of its y): the sliver width (7 ulps of
+    # 4e12) exceeded its height, so the wrapped pieces of the 30 cells, each bordering its
+    # own image across the height, were all dropped as slivers: 28 empty cells, area 2% of
+    # the box, nothing flagged. Unwrapped was right.
+    off = 4e12
+    box = (off, off / 2, off + 3.0, off / 2 + 0.003)
+    p = np.array(box[:2]) + np.random.default_rng(30).random((30, 2)) * [3.0, box[3] - box[1]]
+    for algorithm in ALGORITHMS:
+        for wrap in (False, True):
+            d = _check_torus(p, box, algorithm, wrap, samples=100)
+            assert not len(d.unresolved)

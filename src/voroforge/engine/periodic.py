@@ -269,6 +269,18 @@ def _rounding(box) -> float:
     return ulps * max(abs(x0), abs(y0), abs(x1), abs(y1), size)
 
 
+def _sliver_width(box) -> float:
+    """How wide a wrapped piece or hole may be and still be rounding noise.
+
+    :func:`_rounding`, but at most a quarter of the box's shorter side: a box at (4e12,
+    2e12) 0.003 tall (12 ulps of its y) is thinner than the rounding of its x coordinates
+    (7 ulps of 4e12), and every piece of its 30 cells, each bordering its own image across
+    the height, was dropped as a sliver (28 cells empty, area 2% of the box).
+    """
+    x0, y0, x1, y1 = box
+    return min(_rounding(box), 0.25 * min(x1 - x0, y1 - y0))
+
+
 def _box_pieces(d: Diagram, box):
     """The copies' cells cut to the box: ``(inside, cross, cut)``.
 
@@ -360,7 +372,7 @@ def _wrapped_cells(d: Diagram, pieces, source, n: int, rounding: float):
 
 
 def _slivers(pieces, box, is_orig) -> None:
-    """Empty the cut image pieces that are rounding noise: at most ``_rounding`` wide.
+    """Empty the cut image pieces that are rounding noise: at most ``_sliver_width`` wide.
 
     An image whose cell passes the box edge only by the rounding of its site (``0.9 - 1`` is
     not ``-0.1`` in floats) leaves a sliver a few ulps wide inside the box: no part of the
@@ -371,7 +383,7 @@ def _slivers(pieces, box, is_orig) -> None:
     _, cross, cut = pieces
     b = shapely.bounds(cut)
     extent = np.fmax(b[:, 2] - b[:, 0], b[:, 3] - b[:, 1])
-    thin = shapely.area(cut) <= _rounding(box) * extent  # NaN (empty): False
+    thin = shapely.area(cut) <= _sliver_width(box) * extent  # NaN (empty): False
     cut[thin & ~is_orig[cross]] = shapely.Polygon()
 
 
@@ -617,7 +629,7 @@ def _periodic(points, tile, algorithm: str, wrap: bool, may_move: bool) -> Diagr
         # dropped: a gap of 6e-7 of the box)
         if not (exact and _one_grid(x0, x1) and _one_grid(y0, y1)):
             _slivers(pieces, box, is_orig)
-        bufs, keep = _wrapped_cells(d, pieces, source, n, _rounding(box))
+        bufs, keep = _wrapped_cells(d, pieces, source, n, _sliver_width(box))
     else:
         # a vertex and its images made exact shifts of each other (periodic_ties)
         bufs = tie_images(_cells_at(buffers(d), orig), box)
