@@ -52,3 +52,31 @@ def test_restore_without_gaps_returns_the_rings_untouched():
     out, still = restore_lost(xs, ys, box, rings, lost, np.arange(4))
     assert out is rings
     assert still is lost
+
+
+def test_restored_wedge_that_holds_its_site_leaves_unresolved():
+    """Nine sites within 3 ulps at (123456.789, -98765.4321): site 7's exact cell is a wedge
+    every construction merged away, leaving a gap (edges held by one ring only; Euler's
+    count did not see it). Its rounded exact cell runs along the gap's edges and holds the
+    site: it is the site's cell now, and the site is no longer flagged (before: flagged,
+    cell empty; 1 of 816 inputs of the neighbour sweep)."""
+    cx, cy, h = 123456.789, -98765.4321, 2e5
+    c = np.array([cx, cy])
+    off = [[-1, -2], [-1, -1], [-1, 0], [0, -2], [0, -1], [2, 0], [3, -3], [3, -2], [3, 1]]
+    pts = c + np.array(off) * np.spacing(np.abs(c))
+    box = (cx - h, cy - h * 0.7, cx + h * 1.3, cy + h)
+    got = []
+    for alg in ALGS:
+        d = vf.voronoi(pts, box, algorithm=alg)
+        cells = np.asarray(d.cells, dtype=object)
+        assert shapely.is_valid(cells).all(), alg
+        assert 7 not in d.unresolved.tolist(), alg
+        assert d.areas[7] > 0.0 and shapely.intersects(cells[7], shapely.points(pts[7])), alg
+        own = shapely.intersects(cells, shapely.points(pts))
+        assert set(np.flatnonzero(~own).tolist()) <= set(d.unresolved.tolist()), alg
+        r = d.describe()
+        assert r.euler_ok and r.convex_ok, (alg, str(r))
+        assert abs(d.areas.sum() / ((box[2] - box[0]) * (box[3] - box[1])) - 1.0) < 1e-12
+        got.append(shapely.normalize(cells))
+    for other in got[1:]:
+        assert shapely.equals_exact(got[0], other, 0.0).all()
