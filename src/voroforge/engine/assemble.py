@@ -225,6 +225,7 @@ class _Pieces:
             self.bounds[ring_cell, 3] = np.maximum.reduceat(closed[:, 1], starts)
         self.cache: dict[int, object] = {}
         self.coords = None
+        self.sides = None  # the domain's distinct x and y coordinates, sorted (when needed)
 
     def piece(self, cell: int):
         got = self.cache.get(cell)
@@ -242,12 +243,15 @@ class _Pieces:
         teeth): the rectangle is grown a little, to sides on which no vertex of the domain
         lies.
         """
-        coords = self._coords()
+        if self.sides is None:
+            xy = self._coords()
+            self.sides = (np.unique(xy[:, 0]), np.unique(xy[:, 1]))
         rect = []
         for v, step, axis in ((x0, -1, 0), (y0, -1, 1), (x1, 1, 0), (y1, 1, 1)):
             width = (x1 - x0) if axis == 0 else (y1 - y0)
+            used = self.sides[axis]
             v = v + step * max(width, abs(v) * 2.0**-40) / 16
-            while (coords[:, axis] == v).any():
+            while used[min(np.searchsorted(used, v), len(used) - 1)] == v:
                 v = v + step * max(width, abs(v) * 2.0**-40) / 16
             rect.append(v)
         got = shapely.clip_by_rect(self.geometry, *rect)
