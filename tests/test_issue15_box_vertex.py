@@ -230,6 +230,106 @@ CASES = {
         ),
         ("0x1.5e1ca7ceaa9fcp-2", "0x1.27581c8033ab2p-2"),
     ),
+    # (halfplane39) a vertex 1-4 ulps inside a side, far from the origin: the half-plane
+    # cells lacked the third site of a box-side vertex (the watch band is relative to the
+    # cell, the side snap's reach absolute: halfplane_finish.watch_sides), and a crossing
+    # took the place of a vertex 4 ulps inside or outside, beyond the snap's reach (a
+    # sliver gap or overlap, 1e-10 of the box: halfplane_settle.emit_exact keeps such a
+    # crossing where it is)
+    "seed0_4": (
+        [
+            ("-0x1.7d783fc62d6bdp+24", "-0x1.7d783fe01d2edp+24"),
+            ("-0x1.7d783fb62ff4ap+24", "-0x1.7d783f69f3d6cp+24"),
+            ("-0x1.7d783f72271ffp+24", "-0x1.7d783f30b6cb7p+24"),
+            ("-0x1.7d783f7084a5ep+24", "-0x1.7d783fb62a070p+24"),
+            ("-0x1.7d783f964c6cep+24", "-0x1.7d783f2e8f9fcp+24"),
+            ("-0x1.7d783f5f9d45cp+24", "-0x1.7d783f0a79e34p+24"),
+            ("-0x1.7d783fa16eb66p+24", "-0x1.7d783f72880d5p+24"),
+        ],
+        (
+            "-0x1.7d783f866536dp+24",
+            "-0x1.7d78408000000p+24",
+            "-0x1.7d783e8000000p+24",
+            "-0x1.7d783e8000000p+24",
+        ),
+        ("-0x1.7d783f866536dp+24", "-0x1.7d783f54102bfp+24"),
+    ),
+    "seed0_28": (
+        [
+            ("0x1.55cc127208bc7p+19", "0x1.55cc1973a3aeap+19"),
+            ("0x1.55cc0a9e38392p+19", "0x1.55cc07dc970b9p+19"),
+            ("0x1.55cc17368c11cp+19", "0x1.55cc0f3a8e025p+19"),
+            ("0x1.55cc04c6545b3p+19", "0x1.55cc02cc59b3fp+19"),
+            ("0x1.55cc1796e04cap+19", "0x1.55cc1b887f72fp+19"),
+            ("0x1.55cc1c7dd89d0p+19", "0x1.55cc1052a62eap+19"),
+            ("0x1.55cc04e9198d0p+19", "0x1.55cc073895e4cp+19"),
+        ],
+        (
+            "0x1.55cc0654e0946p+19",
+            "0x1.55cbf00000000p+19",
+            "0x1.55cc300000000p+19",
+            "0x1.55cc300000000p+19",
+        ),
+        ("0x1.55cc0654e0946p+19", "0x1.55cc144e42cfcp+19"),
+    ),
+    "seed3_9": (
+        [
+            ("-0x1.7d783f477b79ap+24", "-0x1.7d783ffcdc5c4p+24"),
+            ("-0x1.7d783f3069178p+24", "-0x1.7d783f90d99b1p+24"),
+            ("-0x1.7d783f906f797p+24", "-0x1.7d783f70091e7p+24"),
+            ("-0x1.7d783fb84909fp+24", "-0x1.7d783f1cffcd8p+24"),
+            ("-0x1.7d783fc9b17d7p+24", "-0x1.7d783f75107bep+24"),
+            ("-0x1.7d783fd4fb381p+24", "-0x1.7d783f6246335p+24"),
+            ("-0x1.7d783f191ca57p+24", "-0x1.7d783f1e0b864p+24"),
+            ("-0x1.7d783fdd8599cp+24", "-0x1.7d783f60089a0p+24"),
+            ("-0x1.7d783f1b81b0dp+24", "-0x1.7d783fccbac0bp+24"),
+            ("-0x1.7d783f95d3850p+24", "-0x1.7d783f496ea96p+24"),
+            ("-0x1.7d783f430bb55p+24", "-0x1.7d783f8c7f9c2p+24"),
+            ("-0x1.7d783f5c837e3p+24", "-0x1.7d783f54c1bb5p+24"),
+        ],
+        (
+            "-0x1.7d78408000000p+24",
+            "-0x1.7d783f43d6a6bp+24",
+            "-0x1.7d783e8000000p+24",
+            "-0x1.7d783e8000000p+24",
+        ),
+        ("-0x1.7d783fbc7d67dp+24", "-0x1.7d783f43d6a6bp+24"),
+    ),
+    "seed3_138": (
+        [
+            ("0x1.55cc14af11f9ap+19", "0x1.55cc0799d37c1p+19"),
+            ("0x1.55cc017a2549fp+19", "0x1.55cc06fd71637p+19"),
+            ("0x1.55cc13d47ec8ap+19", "0x1.55cc0cbc0899ep+19"),
+            ("0x1.55cc13919160ep+19", "0x1.55cc1428b3c78p+19"),
+            ("0x1.55cc1f6d5f43bp+19", "0x1.55cc0eb31f36fp+19"),
+            ("0x1.55cc141dfafc1p+19", "0x1.55cc08b12cd6cp+19"),
+            ("0x1.55cc14ef03effp+19", "0x1.55cc02641476fp+19"),
+            ("0x1.55cc0a855e4eep+19", "0x1.55cc0bad989a9p+19"),
+            ("0x1.55cc1c3679d57p+19", "0x1.55cc002005a6cp+19"),
+            ("0x1.55cc05a2b5b56p+19", "0x1.55cc08a7a9196p+19"),
+            ("0x1.55cc0318c9ffcp+19", "0x1.55cc0a4621509p+19"),
+            ("0x1.55cc1904c7787p+19", "0x1.55cc0e18c3f68p+19"),
+            ("0x1.55cc1b8301a18p+19", "0x1.55cc0948406e9p+19"),
+            ("0x1.55cc001866736p+19", "0x1.55cc16924a2d5p+19"),
+            ("0x1.55cc03aeb45fap+19", "0x1.55cc18a880f06p+19"),
+            ("0x1.55cc10677995bp+19", "0x1.55cc094e2ab36p+19"),
+            ("0x1.55cc13821c970p+19", "0x1.55cc150c478e8p+19"),
+            ("0x1.55cc1be02e549p+19", "0x1.55cc0eba54f92p+19"),
+            ("0x1.55cc111eb8bc3p+19", "0x1.55cc0ae4abc2dp+19"),
+            ("0x1.55cc05ea3e3abp+19", "0x1.55cc1f2158913p+19"),
+            ("0x1.55cc09dbae1a8p+19", "0x1.55cc0c73000e9p+19"),
+            ("0x1.55cc03a1f8f14p+19", "0x1.55cc07a2e7fc3p+19"),
+            ("0x1.55cc0b4dfe569p+19", "0x1.55cc1b7394f30p+19"),
+            ("0x1.55cc1b8cb1223p+19", "0x1.55cc1a5f51b42p+19"),
+        ],
+        (
+            "0x1.55cbf00000000p+19",
+            "0x1.55cbf00000000p+19",
+            "0x1.55cc1341e11f1p+19",
+            "0x1.55cc300000000p+19",
+        ),
+        ("0x1.55cc1341e11f1p+19", "0x1.55cc0aa99588ap+19"),
+    ),
 }
 
 

@@ -118,6 +118,63 @@ def test_clusters_in_big_boxes(n, size, off, bounds, seed):
     _agree(pts, bounds)
 
 
+# Nested clusters at the origin in a 2e6 box (checker5 F6): the float cut is off by ulps of
+# the box (2^-40 of its radius, ~2.5e-6), so a 1e-12 cell's float ring is a tenth of the
+# true one, and the reach tests (twice its radius) dropped true neighbours: the cell kept a
+# neighbour's far vertex (area 3.24e-24 where the exact area is 1.78e-24), Euler failed.
+# Now every reach test adds that rounding (halfplane_finish.PAD).
+NESTED_F6 = np.array(
+    [
+        [-5.435248539025035e-13, 2.356129968790856e-13],
+        [1.3247059832107583e-13, -8.637087093247064e-13],
+        [2.0218119153538617e-12, -1.1192131215999658e-12],
+        [-2.944139864607945e-13, 5.715357640164998e-13],
+        [-3.6177466176388347e-13, 1.1916968083809368e-12],
+        [8.641086441641343e-07, 9.624526561536695e-07],
+        [-0.4788523544365652, -0.9587462391233792],
+        [-1.0565734208057567, 0.38074592825227155],
+        [-0.17877780084795886, 0.2718275775260504],
+        [-977097.9747499987, 54364.7623390688],
+    ]
+)
+NESTED_BOX = (-2e6, -2e6, 2e6, 2e6)
+
+
+def _nested(scales, centre, seed):
+    g = np.random.default_rng(seed)
+    k = 6 + seed % 3
+    pts = np.concatenate([g.normal(0, s, (k, 2)) for s in scales]) + np.asarray(centre)
+    return pts.clip(-2e6, 2e6)
+
+
+def test_nested_clusters_at_the_origin():
+    """The checker's input: the half-plane cells are the default's, Euler's count holds."""
+    ds = _agree(NESTED_F6, NESTED_BOX)
+    assert ds["halfplane"].areas[3] == pytest.approx(1.7812146880618298e-24, rel=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("scales", "centre", "seed"),
+    [
+        ((1e-12, 1e-6, 1.0, 5e5), (0.0, 0.0), 1),  # a neighbour past the cut's reach
+        ((1e-12, 1e-6, 1.0, 5e5), (1.0, 0.0), 1),
+        ((1e-14, 1e-8, 1e-2, 1e6), (0.0, 0.0), 2),
+        ((1e-10, 1e-5, 1e2, 1e6), (1.0, 0.0), 1),
+        ((1e-13, 1e-9, 1e-4, 1.0), (0.0, 0.0), 2),
+    ],
+)
+def test_nested_clusters_neighbours(scales, centre, seed):
+    """Other scales, centres and seeds (each failed before, as the checker's input)."""
+    _agree(_nested(scales, centre, seed), NESTED_BOX)
+
+
+def test_tight_cluster_in_a_big_box():
+    """5000 sites, sd 1e-6, in a 2e6 box: one cell's true neighbour was past the float
+    cell's reach (a cell differed from the default's, Euler failed)."""
+    pts = np.random.default_rng(1).normal(0, 1e-6, (5000, 2))
+    _agree(pts, (-1e6, -1e6, 1e6, 1e6))
+
+
 def test_circle_1e4_far_from_origin():
     """350 sites on a circle of 1e-4 at (-2e5, 5e5), domain None: two vertices an ulp apart
     near the centre had been named differently by cells around one of them."""

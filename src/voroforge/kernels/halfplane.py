@@ -15,10 +15,10 @@ polygon, the same grid, search and exact finishing):
    with ``d < 2 r`` can cut. Once the unscanned buckets are farther than ``2 r``
    (:func:`.grid.ring_gap`), or farther from every vertex than the vertex is from the site
    (:func:`_unscanned_clear`), the cut is final.
-4. Exact finishing (:mod:`.halfplane_settle`): the ring of neighbours is made exact and
-   every vertex is computed from its name, the sorted owner triple
-   (:mod:`.vertex`), so cells sharing a vertex get the same bits as each other and as the
-   default algorithm's cells.
+4. Exact finishing (:mod:`.halfplane_finish`, :mod:`.halfplane_settle`): the ring of
+   neighbours is made exact and every vertex is computed from its name, the sorted owner
+   triple (:mod:`.vertex`), so cells sharing a vertex get the same bits as each other and
+   as the default algorithm's cells.
 
 Output contract (that of ``cells.cells_from_triangulation``): closed counter-clockwise rings
 ``coords (K, 2)``, ``offsets (n + 1,)``, ``owner (K,)`` with the site across each edge, -1 on
@@ -37,11 +37,7 @@ from numba import njit, prange
 from ..config import (
     HALFPLANE_NEAR_RTOL,
     HALFPLANE_NODE_BAND,
-    HALFPLANE_REACH_RTOL,
     HALFPLANE_SLACK2,
-    HALFPLANE_SURE_FAR,
-    HALFPLANE_SURE_RTOL,
-    HALFPLANE_SURE_SIN2,
     NJIT,
     NJIT_PARALLEL,
 )
@@ -62,7 +58,8 @@ from .grid import (
     skip_lists,
     slab_dist2,
 )
-from .halfplane_settle import BOTTOM, LEFT, RIGHT, TOP, emit_exact, emit_float, settle_ring
+from .halfplane_finish import PAD, REACH, finish_cell
+from .halfplane_settle import BOTTOM, LEFT, RIGHT, TOP
 from .predicates import orient2d
 
 _PER_BUCKET = 2.0  # mean sites per grid bucket
@@ -75,7 +72,6 @@ _BUDGET = 20000  # vertices and sites one cell's search and settling may visit b
 _PROBE = 64  # cells tried first: when most of them are hard, the Delaunay dual builds all
 _KD_LEAF = 8  # sites per k-d bucket
 _KD_CROWDED = 4.0  # k-d buckets when the median site shares its grid bucket with more
-_REACH = 4.0 * (1.0 + HALFPLANE_REACH_RTOL)  # (2 r)^2 / r^2 with a margin against rounding
 # The k-d search's stop test per bucket (_node_clear) has an absolute margin, four times the
 # float cut's vertex error: 2^-40 of the box's radius about the site (HALFPLANE_SLACK2's
 # bound) and of the site's coordinates (the named vertices' rounding). A margin relative to
@@ -99,30 +95,31 @@ def _radius2(px, py, a, m):
 
 
 @njit(inline="always", **NJIT)
-def _rect_clear(px, py, a, m, cx, cy, bx0, by0, bx1, by1):
+def _rect_clear(px, py, a, m, cx, cy, bx0, by0, bx1, by1, pad):
     """Whether every vertex is farther from the rectangle than from its site (with margin).
 
     Then no site in the rectangle can cut the cell, now or after later cuts (the cell only
     shrinks, and the points nearer to such a site form a half-plane the cell misses).
+    ``4 pad`` bounds what the float vertices' rounding adds to their squared distances.
     """
     for u in range(a, a + m):
-        own = _REACH * 0.25 * (px[u] * px[u] + py[u] * py[u])
+        own = REACH * 0.25 * (px[u] * px[u] + py[u] * py[u] + 4.0 * pad)
         if rect_dist2(px[u] + cx, py[u] + cy, bx0, by0, bx1, by1) <= own:
             return False
     return True
 
 
 @njit(inline="always", **NJIT)
-def _unscanned_clear(px, py, a, m, cx, cy, block, grid):
+def _unscanned_clear(px, py, a, m, cx, cy, block, grid, pad):
     """Whether no site in the buckets not yet scanned can cut the cell.
 
     The scanned buckets form ``block`` (:func:`.grid.block_box`). A site ``q`` cuts only if
     some vertex ``v`` is nearer to ``q`` than to the site, so the cell is final once every
     vertex is farther from the unscanned part of the grid than from the site (with the same
-    margin as the radius bound).
+    margin as the radius bound, and the rounding ``pad`` as :func:`_rect_clear`).
     """
     for u in range(a, a + m):
-        own = _REACH * 0.25 * (px[u] * px[u] + py[u] * py[u])  # |v - site|^2, with margin
+        own = REACH * 0.25 * (px[u] * px[u] + py[u] * py[u] + 4.0 * pad)  # |v - site|^2
         if outside_dist2(px[u] + cx, py[u] + cy, block, grid) <= own:
             return False
     return True
@@ -218,7 +215,7 @@ def _cut_batch(
     grow = False
     work = 0
     for c in range(base, nc):
-        if m < 3 or cd[c] > _REACH * r2:
+        if m < 3 or cd[c] > REACH * (r2 + PAD * slack2):
             break  # sorted: the rest are farther still
         t = cand[c]
         qx = sx[t] - cx
@@ -287,6 +284,7 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
         m = np.int64(4)
         r2 = _radius2(px, py, a, m)
         slack2 = HALFPLANE_SLACK2 * r2  # the float cell's rounding, squared, from the box's radius
+        pad = PAD * slack2  # (r + e)^2 - r^2 for that rounding e: the true cell's radius is r + e
         nc = np.int64(0)
         nw = np.int64(0)
         work = 0
@@ -307,7 +305,7 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
                 if hs == 0:
                     break
                 key, v, hs = heap_pop(hk, hv, hs)
-                if key > _REACH * r2:
+                if key > REACH * (r2 + pad):
                     break  # every bucket left is farther still
                 work += m
                 if key > 0.0 and _node_clear(px, py, a, m, r2, cx, cy, tboxes, tslabs, v, band):
@@ -325,7 +323,7 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
                     qx = sx[t] - cx
                     qy = sy[t] - cy
                     q2 = qx * qx + qy * qy
-                    if t == k or q2 > _REACH * r2:
+                    if t == k or q2 > REACH * (r2 + pad):
                         continue
                     if nc == cand.shape[0]:
                         grow = True
@@ -336,13 +334,13 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
                 if ring > 0:
                     # voro++'s stop radius: a site farther than 2 r cannot cut the cell
                     gap = ring_gap(cx, cx, cy, cy, ix, iy, ring - 1, grid)
-                    if gap * gap > _REACH * r2:
+                    if gap * gap > REACH * (r2 + pad):
                         break
                     # a cell reaching far past the sites (a hull site in a big box) never
                     # meets that bound: ask each vertex whether the unscanned buckets come
                     # nearer
                     block = block_box(ix, iy, ring - 1, grid)
-                    if _unscanned_clear(px, py, a, m, cx, cy, block, grid):
+                    if _unscanned_clear(px, py, a, m, cx, cy, block, grid, pad):
                         break
                 # gather the ring's sites that can still cut, nearest first, then cut with
                 # them: near bisectors shrink the cell early, so far ones fail the cheap
@@ -362,13 +360,15 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
                         bucket = jy * nx + jx
                         gx = max(x0 + jx * hx - cx, cx - (x0 + (jx + 1) * hx), 0.0)
                         scan = not grow and start[bucket] < start[bucket + 1]
-                        scan = scan and gx * gx + gy * gy <= _REACH * r2
+                        scan = scan and gx * gx + gy * gy <= REACH * (r2 + pad)
                         if scan and ring >= 2:
                             # far rings: skip a bucket that no vertex is nearer to than its
                             # site
                             bx = x0 + jx * hx
                             by = y0 + jy * hy
-                            scan = not _rect_clear(px, py, a, m, cx, cy, bx, by, bx + hx, by + hy)
+                            scan = not _rect_clear(
+                                px, py, a, m, cx, cy, bx, by, bx + hx, by + hy, pad
+                            )
                             work += m
                         t0 = start[bucket] if scan else 0
                         t1 = start[bucket + 1] if scan else 0
@@ -377,7 +377,7 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
                             qy = sy[t] - cy
                             q2 = qx * qx + qy * qy
                             work += 1
-                            if t == k or q2 > _REACH * r2:
+                            if t == k or q2 > REACH * (r2 + pad):
                                 continue
                             if nc == cand.shape[0]:
                                 grow = True
@@ -421,7 +421,7 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
         c = np.int64(0)
         if m >= 3 and not grow and work <= budget:
             left = budget - work
-            c = _finish(
+            c = finish_cell(
                 k,
                 sx,
                 sy,
@@ -440,6 +440,7 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
                 vx,
                 vy,
                 cand,
+                nc,
                 watch,
                 a,
                 m,
@@ -470,98 +471,6 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
         pos += c
         k += 1
     return fits
-
-
-@njit(inline="always", **NJIT)
-def _finish(
-    k,
-    sx,
-    sy,
-    sidx,
-    xs,
-    ys,
-    box,
-    px,
-    py,
-    po,
-    ss,
-    ox,
-    oy,
-    oo,
-    lab,
-    vx,
-    vy,
-    cand,
-    watch,
-    a,
-    m,
-    r2,
-    nw,
-    left,
-    budget,
-):
-    """Settle the float cell (polygon ``a``) exactly and emit it to the scratch output.
-
-    Returns the emitted length, or -2 when settling would visit more than ``left`` (what
-    the search left of the budget) vertex-site pairs, or cost more than ``budget`` work
-    units (:func:`.halfplane_settle.settle_ring`): the cell is then hard, see :func:`_cells`.
-    """
-    cx = sx[k]
-    cy = sy[k]
-    for u in range(m):
-        lab[u] = po[a + u]
-        un = u + 1 if u + 1 < m else 0
-        vx[u] = px[a + un] - px[a + u]  # edge vectors (vx, vy are free until settle_ring)
-        vy[u] = py[a + un] - py[a + u]
-    # the cut's crossings are off by ulps of the polygon they cut, which started as the box:
-    # its squared radius about the site bounds their error (not the final cell's)
-    far2 = 0.0
-    for bx in (box[0] - cx, box[2] - cx):
-        for by in (box[1] - cy, box[3] - cy):
-            far2 = max(far2, bx * bx + by * by)
-    for u in range(m):
-        # a long float edge is a true edge (rounding moves its ends by ulps only), unless an
-        # end is where nearly parallel bisectors cross (sites a few ulps apart): that
-        # crossing can be anywhere along them, and so can the edge. Both relative to the
-        # rounding of the crossings, ulps of the box over the angle at each end (a 1e-9
-        # cluster in a 1e6 box: ends off by 10% of the cell, a neighbour out of order)
-        un = u + 1 if u + 1 < m else 0
-        e2 = vx[u] * vx[u] + vy[u] * vy[u]
-        ss[u] = 1.0 if e2 > HALFPLANE_SURE_RTOL * r2 else 0.0
-        for w in (u - 1 if u > 0 else m - 1, un):
-            f2 = vx[w] * vx[w] + vy[w] * vy[w]
-            cr = vx[u] * vy[w] - vy[u] * vx[w]
-            if (
-                cr * cr <= HALFPLANE_SURE_SIN2 * e2 * f2
-                or cr * cr <= HALFPLANE_SURE_FAR * far2 * f2
-            ):
-                ss[u] = 0.0
-    # only sites within 2 r of the final cell can matter to its vertices
-    keep = np.int64(0)
-    for c in range(nw):
-        t = watch[c]
-        qx = sx[t] - cx
-        qy = sy[t] - cy
-        if qx * qx + qy * qy <= _REACH * r2:
-            watch[keep] = t
-            keep += 1
-    if m * keep > left:
-        return -2
-    # cand (the search's list) is free now: settle_ring's scratch for sites on a circle.
-    # Settling has a budget of its own, counted in its exact tests and named vertices: a
-    # cell whose vertices have many sites on their circles to rounding (sites on one
-    # circle) is hard however few sites its search visited
-    ms, _ = settle_ring(sidx[k], lab, m, ss, watch, keep, sidx, xs, ys, vx, vy, cand, box, budget)
-    if ms == -2:
-        return -2
-    # emitted to scratch first: only then is the exact length known, and a rebuilt chunk's
-    # output (see _second_pass) has exactly the room the first pass counted
-    c = -1
-    if ms >= 3:
-        c = emit_exact(sidx[k], lab, ms, vx, vy, xs, ys, box, watch, keep, sidx, ox, oy, oo, cand)
-    if c < 0:
-        c = emit_float(px, py, po, a, m, cx, cy, box, ox, oy, oo)
-    return c
 
 
 @njit(**NJIT_PARALLEL)

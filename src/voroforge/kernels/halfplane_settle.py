@@ -676,9 +676,14 @@ def emit_exact(i, lab, m, vx, vy, xs, ys, box, near, nn, sidx, ox, oy, oo, on):
             continue
         elif a >= 0 or b >= 0:
             j = a if a >= 0 else b
-            x, y = box_crossing(i, j, xs, ys, b if a >= 0 else a, box)
+            side = b if a >= 0 else a
+            x, y = box_crossing(i, j, xs, ys, side, box)
             if np.isfinite(x) and np.isfinite(y):
-                x, y = _snap_crossing(i, j, x, y, xs, ys, near, nn, sidx, on)
+                # the vertex takes the crossing's place only on the side: one off it (beyond
+                # the side snap's reach) keeps its edge to the side, as in the dual's cells
+                sx, sy = _snap_crossing(i, j, x, y, xs, ys, near, nn, sidx, on)
+                if _on_side(sx, sy, side, box):
+                    x, y = sx, sy
                 x, y = _crossing_at_end(i, u, lab, m, ox, oy, oo, xs, ys, box, near, nn, sidx, x, y)
         else:
             vert = a if (a == LEFT or a == RIGHT) else b

@@ -1,0 +1,173 @@
+"""The half-plane cell's float cut handed to its exact finishing (:mod:`.halfplane_settle`).
+
+:func:`finish_cell` takes the float cell that :func:`.halfplane._cells` cut, marks its
+sure edges, keeps the watched sites near it, adds those a box-side vertex needs
+(:func:`watch_sides`), and settles and emits it exactly (or as cut, when that fails).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ..config import (
+    HALFPLANE_REACH_RTOL,
+    HALFPLANE_SLACK2,
+    HALFPLANE_SNAP_PRE,
+    HALFPLANE_SURE_FAR,
+    HALFPLANE_SURE_RTOL,
+    HALFPLANE_SURE_SIN2,
+    NJIT,
+)
+from .halfplane_settle import emit_exact, emit_float, settle_ring
+
+#: (2 r)^2 / r^2 with a margin against rounding: a site farther than twice the cell's
+#: radius from its site cannot cut it
+REACH = 4.0 * (1.0 + HALFPLANE_REACH_RTOL)
+#: The float cut's vertices are off by up to e = 2^-40 of the box's radius ``R`` about the
+#: site (HALFPLANE_SLACK2 = (e / R)^2), so the true cell's radius is up to ``r + e``: the
+#: reach tests take ``r^2 + PAD * (e / R)^2 R^2``, PAD * (e / R)^2 = (2 R e + e^2) / R^2
+#: (absolute: a 1e-12 cluster in a 1e6 box has a float cell far smaller than the true one,
+#: and the true cell's neighbours past twice its radius were never cut, checker5 F6)
+PAD = 2.0 / HALFPLANE_SLACK2**0.5 + 1.0
+#: the side snap's reach about a vertex on a box side, over the box's magnitude (|x| + |y|
+#: of its farthest corner): four times HALFPLANE_SNAP_PRE, which bounds the snap's reach
+#: (:func:`.halfplane_settle._side_snap`), as :func:`.halfplane_settle._crossing_at_end`'s
+#: screen
+SIDE_WATCH = 4.0 * HALFPLANE_SNAP_PRE
+
+
+@njit(inline="always", **NJIT)
+def watch_sides(px, py, po, a, m, sx, sy, cx, cy, cand, nc, watch, keep, box):
+    """Add to ``watch[:keep]`` the candidates that a vertex on a box side needs; the new count.
+
+    A Voronoi vertex within reach of a box side is put on it (the side snap of
+    :mod:`.halfplane_settle`), so its crossing takes the vertex of a site whose bisector
+    passes within that reach of the float cell's vertex on the side. The reach is absolute
+    (ulps of the box's coordinates), the watch band of the cut relative to the cell, so a
+    small cell far from the origin misses such sites: they are looked for here, among all
+    of the search's candidates ``cand[:nc]`` (sorted indices into ``sx, sy``), and only
+    for cells with a vertex on a box side (``po`` labels below 0): a few per diagram.
+    """
+    touches = False
+    for u in range(m):
+        touches = touches or po[a + u] < 0
+    if not touches:
+        return keep
+    side = SIDE_WATCH * (max(abs(box[0]), abs(box[2])) + max(abs(box[1]), abs(box[3])))
+    side2 = side * side
+    for c in range(nc):
+        t = cand[c]
+        qx = sx[t] - cx
+        qy = sy[t] - cy
+        h = 0.5 * (qx * qx + qy * qy)
+        near = False
+        for u in range(m):
+            if po[a + u] < 0 or po[a + (u - 1 if u > 0 else m - 1)] < 0:
+                s = qx * px[a + u] + qy * py[a + u] - h
+                near = near or s * s < 2.0 * side2 * h
+        if not near:
+            continue
+        seen = False
+        for w in range(keep):
+            seen = seen or watch[w] == t
+        if not seen:
+            watch[keep] = t
+            keep += 1
+    return keep
+
+
+@njit(inline="always", **NJIT)
+def finish_cell(
+    k,
+    sx,
+    sy,
+    sidx,
+    xs,
+    ys,
+    box,
+    px,
+    py,
+    po,
+    ss,
+    ox,
+    oy,
+    oo,
+    lab,
+    vx,
+    vy,
+    cand,
+    nc,
+    watch,
+    a,
+    m,
+    r2,
+    nw,
+    left,
+    budget,
+):
+    """Settle the float cell (polygon ``a``) exactly and emit it to the scratch output.
+
+    Returns the emitted length, or -2 when settling would visit more than ``left`` (what
+    the search left of the budget) vertex-site pairs, or cost more than ``budget`` work
+    units (:func:`.halfplane_settle.settle_ring`): the cell is then hard, see
+    :func:`.halfplane._cells`.
+    """
+    cx = sx[k]
+    cy = sy[k]
+    for u in range(m):
+        lab[u] = po[a + u]
+        un = u + 1 if u + 1 < m else 0
+        vx[u] = px[a + un] - px[a + u]  # edge vectors (vx, vy are free until settle_ring)
+        vy[u] = py[a + un] - py[a + u]
+    # the cut's crossings are off by ulps of the polygon they cut, which started as the box:
+    # its squared radius about the site bounds their error (not the final cell's)
+    far2 = 0.0
+    for bx in (box[0] - cx, box[2] - cx):
+        for by in (box[1] - cy, box[3] - cy):
+            far2 = max(far2, bx * bx + by * by)
+    for u in range(m):
+        # a long float edge is a true edge (rounding moves its ends by ulps only), unless an
+        # end is where nearly parallel bisectors cross (sites a few ulps apart): that
+        # crossing can be anywhere along them, and so can the edge. Both relative to the
+        # rounding of the crossings, ulps of the box over the angle at each end (a 1e-9
+        # cluster in a 1e6 box: ends off by 10% of the cell, a neighbour out of order)
+        un = u + 1 if u + 1 < m else 0
+        e2 = vx[u] * vx[u] + vy[u] * vy[u]
+        ss[u] = 1.0 if e2 > HALFPLANE_SURE_RTOL * r2 else 0.0
+        for w in (u - 1 if u > 0 else m - 1, un):
+            f2 = vx[w] * vx[w] + vy[w] * vy[w]
+            cr = vx[u] * vy[w] - vy[u] * vx[w]
+            if (
+                cr * cr <= HALFPLANE_SURE_SIN2 * e2 * f2
+                or cr * cr <= HALFPLANE_SURE_FAR * far2 * f2
+            ):
+                ss[u] = 0.0
+    # only sites within 2 (r + e) of the final cell can matter to its vertices (PAD)
+    reach2 = REACH * (r2 + PAD * HALFPLANE_SLACK2 * far2)
+    keep = np.int64(0)
+    for c in range(nw):
+        t = watch[c]
+        qx = sx[t] - cx
+        qy = sy[t] - cy
+        if qx * qx + qy * qy <= reach2:
+            watch[keep] = t
+            keep += 1
+    keep = watch_sides(px, py, po, a, m, sx, sy, cx, cy, cand, nc, watch, keep, box)
+    if m * keep > left:
+        return -2
+    # cand (the search's list) is free now: settle_ring's scratch for sites on a circle.
+    # Settling has a budget of its own, counted in its exact tests and named vertices: a
+    # cell whose vertices have many sites on their circles to rounding (sites on one
+    # circle) is hard however few sites its search visited
+    ms, _ = settle_ring(sidx[k], lab, m, ss, watch, keep, sidx, xs, ys, vx, vy, cand, box, budget)
+    if ms == -2:
+        return -2
+    # emitted to scratch first: only then is the exact length known, and a rebuilt chunk's
+    # output (see _second_pass) has exactly the room the first pass counted
+    c = -1
+    if ms >= 3:
+        c = emit_exact(sidx[k], lab, ms, vx, vy, xs, ys, box, watch, keep, sidx, ox, oy, oo, cand)
+    if c < 0:
+        c = emit_float(px, py, po, a, m, cx, cy, box, ox, oy, oo)
+    return c
