@@ -46,40 +46,89 @@ def tie_images(bufs, box):
     from the box's, every changed ring valid and no ring's orientation flipped (at 1e15, a
     box 24 ulps wide, points that close are distinct vertices).
     """
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-    from scipy.spatial import cKDTree
-
     coords, ring, poly, geom = bufs
     if not len(coords):
         return bufs
     x0, y0, x1, y1 = box
     lo = np.array([x0, y0])
     size = np.array([x1 - x0, y1 - y0])
-    q = np.floor((coords - lo) / size)
-    q = np.where(coords - q * size >= lo + size, q + 1, q)  # rounding of the division
-    q = np.where(coords - q * size < lo, q - 1, q)
+    outside = ((coords < lo) | (coords >= lo + size)).any(axis=1)
+    if not outside.any():
+        return bufs
+    # a point outside lies at most ``depth`` past a side, its partners in the box as near
+    # the opposite side: only those points are looked at (a few per cent of them)
+    past = np.maximum(lo - coords[outside], coords[outside] - (lo + size)).max(axis=0)
+    grown = np.abs(np.concatenate((lo - size, lo + 2.0 * size))).max()
+    tol = PERIODIC_TIE_ULPS * np.spacing(grown)
+    reach = np.maximum(past, 0.0) + 4.0 * tol
+    band = ((coords - lo <= reach) | (lo + size - coords <= reach)).any(axis=1)
+    cand = np.flatnonzero(outside | band)
+    rid = np.searchsorted(ring, cand, side="right") - 1
+    out = _tie_points(coords[cand], rid, lo, size, tol, (x0, y0, x1, y1))
+    if out is None:
+        return bufs
+    moved = np.flatnonzero((out != coords[cand]).any(axis=1))
+    new = coords.copy()
+    new[cand[moved]] = out[moved]
+    # kept only where it helps: at 1e15 (a box 24 ulps wide, cells of an ulp or two) points
+    # that close are distinct vertices, and joining them broke cells
+    changed = np.unique(rid[moved])
+    sub = _rings_at(ring, changed)
+    before = ring_area(coords[sub[0]], sub[1], lo, size)
+    after = ring_area(new[sub[0]], sub[1], lo, size)
+    rings = shapely.linearrings(
+        new[sub[0]], indices=np.repeat(np.arange(len(changed)), np.diff(sub[1]))
+    )
+    flipped = np.sign(after) != np.sign(before)
+    if not shapely.is_valid(shapely.polygons(rings)).all() or flipped.any():
+        return bufs
+    # the sums round by an ulp per term: a unit box's cells summed to 1 before and 1 + 2e-16
+    # after, their vertices now exact shifts
+    noise = _AREA_NOISE_ULPS * np.finfo(np.float64).eps * len(coords)
+    delta = np.abs(after).sum() - np.abs(before).sum()
+    if abs(delta) > noise:
+        total = size[0] / size.max() * (size[1] / size.max())
+        was = np.abs(ring_area(coords, ring, lo, size)).sum()
+        if abs(was + delta - total) > abs(was - total) + noise:
+            return bufs
+    return new, ring, poly, geom
+
+
+def _rings_at(ring, which):
+    """``(points, offsets)``: the indices of the points of the rings ``which``, and theirs."""
+    length = ring[which + 1] - ring[which]
+    offsets = np.zeros(len(which) + 1, dtype=np.int64)
+    np.cumsum(length, out=offsets[1:])
+    take = np.repeat(ring[which] - offsets[:-1], length) + np.arange(int(offsets[-1]))
+    return take, offsets
+
+
+def _tie_points(coords, rid, lo, size, tol, box):
+    """The points ``coords`` (of rings ``rid``) with their classes tied, or None if none."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    x0, y0, x1, y1 = box
+    moved = ((coords < lo) | (coords >= lo + size)).any(axis=1)
+    q = np.zeros_like(coords)
+    c = coords[moved]
+    qm = np.floor((c - lo) / size)
+    qm = np.where(c - qm * size >= lo + size, qm + 1, qm)  # rounding of the division
+    q[moved] = np.where(c - qm * size < lo, qm - 1, qm)
     inner = coords - q * size  # exact on one grid; else rounded, used to find the pairs
     # the periods exactly: (0.3, 1.3) is not a float apart (its size rounds)
     period = (Fraction(x1) - Fraction(x0), Fraction(y1) - Fraction(y0))
-    moved = (q != 0).any(axis=1)
-    if not moved.any():
-        return bufs
-    # the cells reach half a period past the box: the ulps of the grown box (on one grid
-    # those of the box)
-    grown = np.abs(np.concatenate((lo - size, lo + 2.0 * size))).max()
-    tol = PERIODIC_TIE_ULPS * np.spacing(grown)
     rel = np.minimum(inner - lo, size)  # in [0, size]
     rel = np.where(rel >= size, 0.0, rel)
     pairs = cKDTree(rel, boxsize=size).query_pairs(tol, p=np.inf, output_type="ndarray")
     pairs = pairs[(moved[pairs[:, 0]] | moved[pairs[:, 1]])]
     pairs = pairs[~_exact_shifts(coords, q, size, period, pairs[:, 0], pairs[:, 1])]
     if not len(pairs):
-        return bufs
+        return None
     m = len(coords)
     graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(m, m))
     _, label = connected_components(graph, directed=False)
-    rid = np.repeat(np.arange(len(ring) - 1), np.diff(ring))
     touched = np.unique(pairs.ravel())
     # every member of the touched groups, by group
     group = np.unique(label[touched])
@@ -107,22 +156,8 @@ def tie_images(bufs, box):
             out[members[take], k] = val[take]
             done |= good
     if not (out != coords).any():
-        return bufs
-    # kept only where it helps: at 1e15 (a box 24 ulps wide, cells of an ulp or two) points
-    # that close are distinct vertices, and joining them broke cells
-    changed = np.unique(rid[np.flatnonzero((out != coords).any(axis=1))])
-    before = ring_area(coords, ring, lo, size)
-    after = ring_area(out, ring, lo, size)
-    total = size[0] / size.max() * (size[1] / size.max())
-    rings = shapely.linearrings(out[: ring[-1]], indices=rid)[changed]
-    flipped = np.sign(after[changed]) != np.sign(before[changed])
-    # the sums round by an ulp per term: a unit box's cells summed to 1 before and 1 + 2e-16
-    # after, their vertices now exact shifts
-    noise = _AREA_NOISE_ULPS * np.finfo(np.float64).eps * len(coords)
-    worse = abs(np.abs(after).sum() - total) > abs(np.abs(before).sum() - total) + noise
-    if worse or not (shapely.is_valid(shapely.polygons(rings)).all() and not flipped.any()):
-        return bufs
-    return out, ring, poly, geom
+        return None
+    return out
 
 
 def _exact_shifts(coords, q, size, period, a, b) -> np.ndarray:
