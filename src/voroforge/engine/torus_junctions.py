@@ -44,10 +44,13 @@ def split(coords, ring, idx, nxt, ids, lo, size):
     live = (step != 0).any(axis=1)
     if not live.any():
         return None
-    # a side and its partner: the same two vertices the other way, the opposite step (a
-    # side can join a vertex to its own image: the step tells them apart)
-    fwd = _keys(a, b, step)
-    back = _keys(b, a, -step + 0.0)
+    # a side and its partner: the same two vertices the other way, the step's signs
+    # opposite (a side can join a vertex to its own image; two sides the same two vertices
+    # apart by different steps, on a torus of few cells, are told apart by the signs)
+    m = int(ids.max()) + 1
+    sign = np.sign(step).astype(np.int64) + 1
+    fwd = (a * m + b) * 9 + sign[:, 0] * 3 + sign[:, 1]
+    back = (b * m + a) * 9 + (2 - sign[:, 0]) * 3 + (2 - sign[:, 1])
     keys, count = np.unique(fwd[live], return_counts=True)
 
     def times(k):
@@ -59,7 +62,8 @@ def split(coords, ring, idx, nxt, ids, lo, size):
         return None
     cand = np.unique(np.concatenate((a[odd], b[odd])))
     first = np.full(int(ids.max()) + 1, -1, dtype=np.int64)
-    first[ids[::-1]] = np.arange(len(ids))[::-1]
+    seen, at_first = np.unique(ids, return_index=True)
+    first[seen] = at_first
     w = [Fraction(float(s)) for s in size]
     inserts = {}
     for j in odd:
@@ -93,9 +97,3 @@ def split(coords, ring, idx, nxt, ids, lo, size):
     added = np.searchsorted(at, ring, side="left")  # inserts before each ring's start
     shift = np.concatenate(([0], np.cumsum(extra)))
     return new, ring + shift[added]
-
-
-def _keys(a, b, step):
-    """One sortable key per side: its two vertex ids and its step, as raw bytes."""
-    rows = np.ascontiguousarray(np.column_stack((a.astype(np.float64), b, step)))
-    return rows.view(np.dtype((np.void, rows.dtype.itemsize * 4))).ravel()
