@@ -394,16 +394,19 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     from ..kernels.inside3d import inside_mesh, yz_grid
     from ..kernels.meshclip3d import copy_runs
     from .diagram3d import Diagram3D
+    from .meshplanes3d import steady_normals
     from .threads import serial_below
 
     n = len(d)
     V, F = mesh.vertices, mesh.faces
     cf, lab, farea, roff, ring = d.cell_face_table()
+    verts = np.asarray(d.vertices)
+    # slivers' area vectors are rounding: their planes from the sites (meshplanes3d)
+    farea = steady_normals(farea, cf, lab, roff, ring, verts, np.asarray(d.sites))
     # the kernels take each face's area vector as its plane's normal and square it (its
     # length): a power of two per face (exact, the same decisions and bits) keeps that
     # from overflowing past sides ~1e77 and from underflowing below ~1e-77
     farea = np.ldexp(farea, -np.frexp(np.abs(farea).max(axis=1))[1][:, None])
-    verts = np.asarray(d.vertices)
     nface = np.diff(cf)
     live = nface > 0
     # the cut works relative to an origin that the subtraction moves exactly (Sterbenz):
