@@ -34,6 +34,7 @@ from ..config import (
 )
 from .containers import box_template
 from .csr import unique
+from .meshcheck3d import crossing_report, nesting_report
 
 
 @dataclass(frozen=True)
@@ -86,6 +87,11 @@ def as_mesh_container(container):
         except Exception as exc:  # noqa: BLE001 - trimesh raises many kinds
             raise ValueError(f"could not read the container mesh {path}: {exc}") from None
         V, F = np.asarray(mesh.vertices, np.float64), np.asarray(mesh.faces, np.int64)
+        if F.ndim != 2 or len(F) < 4:  # an empty or garbage file reads as no triangles
+            raise ValueError(
+                f"the container mesh file {path} holds {len(F)} triangles (a closed mesh "
+                "needs at least 4): empty, or not a mesh file trimesh can read"
+            )
     elif isinstance(container, trimesh.Trimesh):
         V, F = np.array(container.vertices, np.float64), np.array(container.faces, np.int64)
     elif isinstance(container, (tuple, list)) and len(container) == 2:
@@ -137,6 +143,9 @@ def as_mesh_container(container):
     if vol < 0:  # inside out: turn it
         F = F[:, ::-1].copy()
         vol = -vol
+    msg = crossing_report(V, F) or nesting_report(V, F)
+    if msg:
+        raise ValueError(msg)
     lo, hi = V.min(axis=0), V.max(axis=0)
     pad = 0.01 * float((hi - lo).max())
     t = box_template(lo - pad, hi + pad)

@@ -18,7 +18,7 @@ from .predicates import orient2d
 
 
 @njit(**NJIT)
-def _side(ay, az, by, bz, py, pz):
+def perturbed_side(ay, az, by, bz, py, pz):
     """Sign of the orientation of ``(a, b, p)`` with ``p`` perturbed: never 0 for a != b."""
     o = orient2d(ay, az, by, bz, py, pz)
     if o > 0.0:
@@ -90,9 +90,9 @@ def inside_mesh(Q, V, F, g, start, items):
             i0 = F[t, 0]
             i1 = F[t, 1]
             i2 = F[t, 2]
-            s0 = _side(V[i0, 1], V[i0, 2], V[i1, 1], V[i1, 2], py, pz)
-            s1 = _side(V[i1, 1], V[i1, 2], V[i2, 1], V[i2, 2], py, pz)
-            s2 = _side(V[i2, 1], V[i2, 2], V[i0, 1], V[i0, 2], py, pz)
+            s0 = perturbed_side(V[i0, 1], V[i0, 2], V[i1, 1], V[i1, 2], py, pz)
+            s1 = perturbed_side(V[i1, 1], V[i1, 2], V[i2, 1], V[i2, 2], py, pz)
+            s2 = perturbed_side(V[i2, 1], V[i2, 2], V[i0, 1], V[i0, 2], py, pz)
             if s0 == 0 or s1 == 0 or s2 == 0 or not (s0 == s1 and s1 == s2):
                 continue
             # the plane's x at (py, pz)
