@@ -29,41 +29,33 @@ _WALLS = np.array([[-1, 0, 0], [1, 0, 0], [0, -1, 0], [0, 1, 0], [0, 0, -1], [0,
 
 
 def steady_normals(farea, cf, lab, roff, ring, verts, sites):
-    """``farea`` with each thin face's row replaced by its exact plane's normal (a copy).
+    """``farea`` with each thin face's row replaced by its exact plane's normal.
 
     ``farea (f, 3)``: the faces' area vectors (:meth:`Diagram3D.cell_face_table`, cell ``i``'s
     faces ``cf[i]:cf[i + 1]``, labels ``lab``: a neighbour site ``>= 0`` or box wall
     ``-1 - w``); ``verts``: the vertices the rings ``roff``/``ring`` index; ``sites (n, 3)``
     in the same cell order. A thin face's new row points from its cell's site to the
     neighbour's (or along the wall's axis), scaled to its largest component in ``[0.5, 1)``.
-    Other rows are returned as they were (the same bits).
+    Other rows are returned as they were (the same bits; ``farea`` itself, as a contiguous
+    float64 array, when no face is thin; else a copy).
     """
-    farea = np.array(farea, np.float64)
-    nf = len(farea)
-    if not nf:
-        return farea
-    lens = np.diff(roff)
-    live = np.flatnonzero(lens > 0)
-    X = verts[ring]
-    lo = np.full((nf, 3), np.inf)
-    hi = np.full((nf, 3), -np.inf)
-    lo[live] = np.minimum.reduceat(X, roff[live], axis=0)
-    hi[live] = np.maximum.reduceat(X, roff[live], axis=0)
-    with np.errstate(invalid="ignore"):
-        D = np.where(lens[:, None] > 0, hi - lo, 0.0).max(axis=1)
-        M = np.where(lens[:, None] > 0, np.maximum(np.abs(lo), np.abs(hi)), 0.0).max(axis=1)
-    # in units of a power of two near each face's extent (exact): squares neither overflow
-    # (sides ~1e77 and up) nor underflow
-    k = np.frexp(D)[1]
-    Ds = np.ldexp(D, -k)
-    As = np.ldexp(farea, -2 * k[:, None])
+    from ..kernels.meshclip3d import thin_faces
+
+    farea = np.ascontiguousarray(farea, np.float64)
+    if not len(farea):
+        return farea.copy()
     eps = np.finfo(np.float64).eps
-    with np.errstate(over="ignore", invalid="ignore"):
-        size = np.sqrt((As * As).sum(axis=1))
-        thin = size <= FACE_THIN_RTOL * Ds * Ds + FACE_NOISE_ULPS * eps * np.ldexp(M, -k) * Ds
-    thin &= lens > 0
+    thin = thin_faces(
+        farea,
+        np.ascontiguousarray(roff, np.int64),
+        np.ascontiguousarray(ring, np.int64),
+        np.ascontiguousarray(verts, np.float64),
+        FACE_THIN_RTOL,
+        FACE_NOISE_ULPS * eps,
+    )
     if not thin.any():
         return farea
+    farea = farea.copy()
     f = np.flatnonzero(thin)
     owner = np.repeat(np.arange(len(cf) - 1), np.diff(cf))[f]
     lf = np.asarray(lab)[f]

@@ -203,3 +203,42 @@ def clip_triangle(T, t, f0, f1, farea, fpt, tol, buf_a, buf_b):
         m = k
         src, dst = dst, src
     return m, src
+
+
+@njit(**NJIT)
+def thin_faces(farea, roff, ring, verts, rtol, noise):
+    """``(f,) bool``: faces whose area is at most ``rtol D^2 + noise M D``.
+
+    ``D``: the largest extent of the face's ring (``roff``/``ring`` into ``verts``) along an
+    axis, ``M``: its vertices' largest coordinate; ``farea (f, 3)``: the area vectors. Both
+    sides are divided by ``D`` and the area's norm is taken scaled by its largest component
+    (no squares: no overflow at sides ~1e154, no underflow below ~1e-154). A face with no
+    extent is thin; one with no ring is not.
+    """
+    nf = farea.shape[0]
+    out = np.zeros(nf, np.bool_)
+    for f in range(nf):
+        a, b = roff[f], roff[f + 1]
+        if b == a:
+            continue
+        D = 0.0
+        M = 0.0
+        for c in range(3):
+            lo = np.inf
+            hi = -np.inf
+            for s in range(a, b):
+                x = verts[ring[s], c]
+                lo = min(lo, x)
+                hi = max(hi, x)
+            D = max(D, hi - lo)
+            M = max(M, max(abs(lo), abs(hi)))
+        if not D > 0.0:
+            out[f] = True
+            continue
+        mx = max(abs(farea[f, 0]), max(abs(farea[f, 1]), abs(farea[f, 2])))
+        size = 0.0
+        if mx > 0.0:
+            x, y, z = farea[f, 0] / mx, farea[f, 1] / mx, farea[f, 2] / mx
+            size = mx * np.sqrt(x * x + y * y + z * z)
+        out[f] = size / D <= rtol * D + noise * M
+    return out
