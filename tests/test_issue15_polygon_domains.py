@@ -11,7 +11,6 @@ import shapely
 from shapely.geometry import MultiPolygon, Polygon, box
 
 import voroforge as vf
-from voroforge.engine import planar
 
 ALGORITHMS = ("delaunay", "fortune", "halfplane")
 
@@ -82,15 +81,7 @@ def test_one_reflex_vertex_domains(dom):
 
 
 # a cell whose clip rounds a crossing past its site (2 ulps from (9.5, 0.5), direction ne)
-# is listed in unresolved once planar.build hands assemble_checked the sites
-_SITES_PASSED = hasattr(planar, "assemble_checked")
-
-
-@pytest.mark.xfail(
-    not _SITES_PASSED,
-    reason="planar.build does not pass the sites to assemble_checked yet",
-    strict=False,
-)
+# is listed in unresolved (planar.build hands assemble_checked the sites)
 @pytest.mark.parametrize("v", [(9.5, 0.5), (5.5, 0.5), (0.5, 0.5)])
 @pytest.mark.parametrize("step", [(1, 1), (1, 0), (0, 1), (-1, 1)], ids=["ne", "e", "n", "nw"])
 def test_saw_valleys_no_silent_loss(v, step):

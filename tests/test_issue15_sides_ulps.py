@@ -195,7 +195,8 @@ def test_sites_ulps_apart_own_cell_or_flagged(seed):
     """``catalogue.sites_ulps_apart`` (2-5 sites 1-6 ulps apart at 0.3 among 20, unit box):
     on these seeds 1-3 sites had a ring beside them and were not flagged, every algorithm.
     Now each distinct site is in its own cell or flagged with an empty cell (seeds 3, 18,
-    19: no construction's ring holds it), the same from every algorithm."""
+    19: no construction's ring holds it; 19 keeps a 1.5e-16 strip beside site 2 that fills
+    the gap of its neighbours, engine.restore), the same from every algorithm."""
     from catalogue import sites_ulps_apart
 
     pts = sites_ulps_apart(seed)
@@ -208,7 +209,9 @@ def test_sites_ulps_apart_own_cell_or_flagged(seed):
         inside = ((pts >= 0.0) & (pts <= 1.0)).all(1)  # (the others' cells are clipped away)
         missing = set(np.flatnonzero(~own & inside & (d.duplicate_of < 0)).tolist())
         assert missing == set(d.unresolved.tolist()), alg
-        assert all(cells[i].is_empty for i in missing), alg
+        # a flagged site's cell is empty, or the exact cell's rounding that fills the gap
+        # its neighbours leave (engine.restore: an ulp beside the site, the flag stays)
+        assert all(cells[i].is_empty or cells[i].area < 1e-15 for i in missing), alg
         assert d.areas.sum() == pytest.approx(1.0, rel=1e-12), alg
         flagged = missing if flagged is None else flagged
         assert missing == flagged, alg

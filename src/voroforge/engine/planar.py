@@ -29,7 +29,7 @@ from ..kernels.dual_some import dual_cells_of, seams_apart, splice_rings
 from ..kernels.fortune import fortune_delaunay
 from ..kernels.halfplane import halfplane_cells
 from ..kernels.rings import boundary_cycle, close_rings
-from .assemble import assemble
+from .assemble import assemble_checked
 from .csr import csr_from_pairs
 from .diagram import Diagram, Edges
 from .domain import Domain
@@ -472,10 +472,13 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
             (closed, lengths, own), lost = restore_lost(
                 xs, ys, box, (closed, lengths, own), lost, unique
             )
-        bufs, edges = assemble(wdom, closed, lengths, own, n, unique)
+        bufs, edges, clip_lost = assemble_checked(wdom, closed, lengths, own, n, unique, sites=work)
     # sites every construction leaves without a cell holding them (empty, or a ring beside
-    # the site): floats cannot represent it
+    # the site): floats cannot represent it; and sites whose cell the polygon clip could
+    # not keep around them (a cell an ulp wide at a reflex vertex of the domain)
     unresolved = unique[lost].astype(np.int64)
+    if len(clip_lost):
+        unresolved = np.union1d(unresolved, clip_lost)
     if k:
         bufs = (np.ldexp(bufs[0], -k), *bufs[1:])
         edges = Edges(np.ldexp(edges.coords, -k), edges.pairs)

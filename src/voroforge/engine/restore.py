@@ -16,8 +16,8 @@ runs along the gap: the reverse of an edge no ring shares, a stretch of a side n
 covers, or the reverse of another kept ring's edge; no gap edge or stretch is taken twice.
 The cells then meet edge to edge with the gap filled. A kept ring that holds its site (the
 exact test of :func:`.cells.rings_astray`) takes the site out of the lost list; one that
-passes beside it (a wedge whose rounded apex is an ulp off) is not kept, and the site
-stays listed with an empty cell. Everything depends on the rings and the sites alone, and every
+passes beside it (a wedge whose rounded apex is an ulp off) is kept, closing the gap, and
+the site stays listed. Everything depends on the rings and the sites alone, and every
 algorithm reaches this step with the same rings (:func:`.planar._fewest_lost`), so they
 all give the same answer.
 """
@@ -90,11 +90,9 @@ def restore_lost(xs, ys, box, rings, lost, kmap):
             if snapped is not None and _valid(snapped):
                 cand[i] = snapped
         kept = _settle(cand, gaps)
+    # a ring beside its site (rounding moved the wedge's apex an ulp past it) is kept too:
+    # the gap closes, and the site stays flagged, as a hull strip's ring beside its site is
     held = _holding(xs, ys, box, kept)
-    while set(kept) - held:
-        # a ring beside its site (rounding moved the wedge's apex an ulp past it) is not
-        # kept: its site stays flagged with an empty cell
-        kept = _settle({i: kept[i][0] for i in kept if i in held}, gaps)
     if not kept:
         return rings, lost
     own = owner.copy()
