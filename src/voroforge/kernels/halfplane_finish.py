@@ -37,8 +37,8 @@ PAD = 2.0 / HALFPLANE_SLACK2**0.5 + 1.0
 SIDE_WATCH = 4.0 * HALFPLANE_SNAP_PRE
 
 
-@njit(inline="always", **NJIT)
-def watch_sides(px, py, po, a, m, sx, sy, cx, cy, cand, nc, watch, keep, box):
+@njit(**NJIT)
+def watch_sides(px, py, po, a, m, sx, sy, cx, cy, cand, nc, watch, keep, box, reach2):
     """Add to ``watch[:keep]`` the candidates that a vertex on a box side needs; the new count.
 
     A Voronoi vertex within reach of a box side is put on it (the side snap of
@@ -47,20 +47,21 @@ def watch_sides(px, py, po, a, m, sx, sy, cx, cy, cand, nc, watch, keep, box):
     (ulps of the box's coordinates), the watch band of the cut relative to the cell, so a
     small cell far from the origin misses such sites: they are looked for here, among all
     of the search's candidates ``cand[:nc]`` (sorted indices into ``sx, sy``), and only
-    for cells with a vertex on a box side (``po`` labels below 0): a few per diagram.
+    for cells with a vertex on a box side (``po`` labels below 0, :func:`finish_cell`
+    calls it for those only): a few per diagram. Such a site is within ``2 r + side`` of
+    the cell's site (``reach2``: ``REACH (r^2 + pad)``, the search's reach): the farther
+    candidates (gathered, never cut) are not looked at.
     """
-    touches = False
-    for u in range(m):
-        touches = touches or po[a + u] < 0
-    if not touches:
-        return keep
     side = SIDE_WATCH * (max(abs(box[0]), abs(box[2])) + max(abs(box[1]), abs(box[3])))
     side2 = side * side
+    lim = (np.sqrt(reach2) + side) ** 2
     for c in range(nc):
         t = cand[c]
         qx = sx[t] - cx
         qy = sy[t] - cy
         h = 0.5 * (qx * qx + qy * qy)
+        if 2.0 * h > lim:
+            continue
         near = False
         for u in range(m):
             if po[a + u] < 0 or po[a + (u - 1 if u > 0 else m - 1)] < 0:
@@ -153,7 +154,11 @@ def finish_cell(
         if qx * qx + qy * qy <= reach2:
             watch[keep] = t
             keep += 1
-    keep = watch_sides(px, py, po, a, m, sx, sy, cx, cy, cand, nc, watch, keep, box)
+    touches = False
+    for u in range(m):
+        touches = touches or po[a + u] < 0
+    if touches:  # (a call, not inlined: the cell loop's code stays as small as it was)
+        keep = watch_sides(px, py, po, a, m, sx, sy, cx, cy, cand, nc, watch, keep, box, reach2)
     if m * keep > left:
         return -2
     # cand (the search's list) is free now: settle_ring's scratch for sites on a circle.
