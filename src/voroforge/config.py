@@ -536,11 +536,6 @@ VOLUME_RANGE = (1e-270, 1e300)
 #: and 1e-150 has a volume of 1e150 but faces of 1e300)
 AREA_MAX = 1e300
 
-#: a mesh container's range: its cut (engine.mesh3d) squares triangle areas in the caller's
-#: units (np.linalg.norm of cross products: overflow past sides of ~1e77), so it keeps the
-#: range that held before the areas moved into the working frame
-MESH_VOLUME_RANGE = (1e-200, 1e200)
-
 #: engine.build3d: cells from which a build hands the memory it freed back to the system
 #: (glibc malloc_trim; below, a few MB)
 TRIM_CELLS = 100_000

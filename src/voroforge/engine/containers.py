@@ -100,7 +100,7 @@ def box_template(lo, hi, labels=None) -> Template:
 def check_volume(t: Template, limits=VOLUME_RANGE) -> None:
     """Raise ``ValueError`` when the container's volume lies outside ``limits``.
 
-    (:data:`VOLUME_RANGE`; :data:`MESH_VOLUME_RANGE` for a mesh) or when its bounding box's
+    (:data:`VOLUME_RANGE`, meshes too since 2026-12-05) or when its bounding box's
     largest face area exceeds :data:`AREA_MAX`.
     """
     lo, hi = limits
