@@ -176,7 +176,9 @@ def _boxes(*moves, scale=None):
 )
 def test_mesh_containers_that_are_not_solids(mesh):
     P = np.random.default_rng(0).random((20, 3)) * 0.5 - 0.25
-    with pytest.raises(ValueError, match="not a valid solid"):
+    # refused up front since 391d90a (shells that overlap or nest the same way), or by the
+    # cut's volume check where the up-front test cannot be sure
+    with pytest.raises(ValueError, match="intersects itself|not a valid solid"):
         vf.voronoi3d(P, mesh)
 
 

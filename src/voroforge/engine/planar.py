@@ -34,7 +34,6 @@ from .csr import csr_from_pairs
 from .diagram import Diagram, Edges
 from .domain import Domain
 from .inputs import duplicate_map, from_working, working_frame
-from .restore import restore_lost
 from .threads import serial_below
 
 ALGORITHMS = ("delaunay", "fortune", "halfplane")
@@ -469,6 +468,10 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
         if len(lost):
             closed, lengths, own, lost = _empty_astray(closed, lengths, own, lost, box)
             # a lost site's exact cell where floats hold it and the rings leave a gap for it
+            # (imported here: its exact cells need scipy's KD-tree, which a first build of
+            # ordinary input never loads)
+            from .restore import restore_lost
+
             (closed, lengths, own), lost = restore_lost(
                 xs, ys, box, (closed, lengths, own), lost, unique
             )

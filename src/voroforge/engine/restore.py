@@ -28,7 +28,6 @@ import math
 
 import numpy as np
 import shapely
-from scipy.spatial import cKDTree
 
 from ..kernels.cells import rings_astray
 from ..kernels.dual_some import splice_rings
@@ -336,6 +335,8 @@ def _exact_rings(xs, ys, box, which):
     """
     n = len(xs)
     exact = Exact(xs, ys, np.zeros(n), np.asarray(box, dtype=np.float64), np.arange(n))
+    from scipy.spatial import cKDTree
+
     tree = cKDTree(np.column_stack((xs, ys)))
     s = exact.s
     out = {}
