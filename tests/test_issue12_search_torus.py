@@ -99,11 +99,11 @@ def test_locate_wraps_on_the_torus():
     assert d.locate([-3.1, 0.5, 0.5]) == 0  # queries outside the box wrap too
     g = np.random.default_rng(1)
     L = np.array([1.0, 3.0, 0.5])
-    P = g.random((40, 3)) * L
+    P = g.random((100, 3)) * L  # over 64 sites: unweighted, a periodic KD-tree first
     Q = g.random((150, 3)) * L * 3 - L
-    for w in (None, g.random(40) * 0.01):
+    for w in (None, g.random(100) * 0.01):
         d = vf.voronoi3d(P, (0, 0, 0, *L), periodic=True, weights=w)
-        want = _torus_nearest(Q, P, np.zeros(40) if w is None else w, L)
+        want = _torus_nearest(Q, P, np.zeros(100) if w is None else w, L)
         assert (d.locate(Q) == want).all()
 
 
@@ -114,3 +114,15 @@ def test_locate_exact_ties_across_the_wrap():
     Q = np.array([[0.0, 0.5, 0.5], [1.0, 0.5, 0.5], [0.3125, 0.5, 0.5], [0.6875, 0.5, 0.5]])
     assert d.locate(Q).tolist() == _torus_nearest(Q, P, np.zeros(3), np.ones(3)).tolist()
     assert d.locate(Q).tolist() == [0, 0, 1, 0]
+
+
+def test_locate_lattice_ties_on_the_torus():
+    # 4 x 4 x 5 lattice (80 sites, the KD-tree path): a query at a lattice cell's centre, or
+    # its image across the wrap, is equidistant to 8 sites (more than the tree's 8 nearest
+    # can settle: scanned in full), a face centre to 4: the lowest index
+    g = (np.arange(4) + 0.5) / 4
+    gz = (np.arange(5) + 0.5) / 5
+    P = np.stack(np.meshgrid(g, g, gz, indexing="ij"), -1).reshape(-1, 3)
+    d = vf.voronoi3d(P, (0, 0, 0, 1, 1, 1), periodic=True)
+    Q = np.array([[0.0, 0.0, 0.0], [1.0, 0.25, 0.2], [0.5, 0.5, 0.4], [0.125, 0.5, 0.5]])
+    assert d.locate(Q).tolist() == _torus_nearest(Q, P, np.zeros(len(P)), np.ones(3)).tolist()

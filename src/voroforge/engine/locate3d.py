@@ -123,16 +123,34 @@ def _locate_torus(q, sites0, w0, duplicate_of, box):
     S = np.mod(sites[live] - lo * s, size_s)
     slack = 1e-9 * float((size_s * size_s).sum() + np.abs(w).max())
     out = np.zeros(len(q), np.int64)
+    rows = np.arange(len(q))
+    if not np.any(w) and len(live) > 64:
+        # unweighted: the 8 nearest images from a periodic KD-tree; a query whose 8th is
+        # within the slack of its nearest (many near ties) is scanned in full below
+        from scipy.spatial import cKDTree
+
+        S[S >= size_s] = 0.0  # (np.mod can round up to the period itself)
+        rel[rel >= size_s] = 0.0
+        kk = min(8, len(live))
+        dist, idx = cKDTree(S, boxsize=size_s).query(rel, k=kk)
+        dd = dist.reshape(len(q), kk) ** 2
+        idx = live[idx.reshape(len(q), kk)]
+        near = dd <= dd[:, :1] + slack
+        for r in range(len(q)):
+            k = idx[r][near[r]]
+            out[r] = k[0] if len(k) == 1 else _nearest_torus_exact(q[r], k, sites0, w0, size)
+        rows = np.flatnonzero(near[:, -1]) if kk < len(live) else rows[:0]
     step = max(1, 2_000_000 // max(len(live), 1))
-    for a in range(0, len(q), step):
-        dd = _torus_d2(rel[a : a + step], S, size_s) - w[live][None, :]
+    for a in range(0, len(rows), step):
+        batch = rows[a : a + step]
+        dd = _torus_d2(rel[batch], S, size_s) - w[live][None, :]
         best = dd.min(axis=1, keepdims=True)
-        for r in range(len(dd)):
+        for r, qi in enumerate(batch):
             near = live[dd[r] <= best[r, 0] + slack]
             if len(near) == 1:
-                out[a + r] = near[0]
+                out[qi] = near[0]
             else:
-                out[a + r] = _nearest_torus_exact(q[a + r], near, sites0, w0, size)
+                out[qi] = _nearest_torus_exact(q[qi], near, sites0, w0, size)
     return out
 
 
