@@ -33,6 +33,37 @@ def perturbed_side(ay, az, by, bz, py, pz):
     return 0
 
 
+@njit(**{**NJIT, "inline": "always"})
+def ray_hit(V, F, t, py, pz):
+    """Where the line along x through ``(py, pz)`` meets triangle ``t``: ``(nx, x)``.
+
+    ``nx`` is the x component of the triangle's normal (its orientation decides the sign of
+    a crossing), ``x`` the plane's x at ``(py, pz)``; ``nx == 0.0`` where the line misses
+    the triangle (not strictly inside its yz projection under :func:`perturbed_side`, or
+    the plane parallel to x).
+    """
+    i0 = F[t, 0]
+    i1 = F[t, 1]
+    i2 = F[t, 2]
+    s0 = perturbed_side(V[i0, 1], V[i0, 2], V[i1, 1], V[i1, 2], py, pz)
+    s1 = perturbed_side(V[i1, 1], V[i1, 2], V[i2, 1], V[i2, 2], py, pz)
+    s2 = perturbed_side(V[i2, 1], V[i2, 2], V[i0, 1], V[i0, 2], py, pz)
+    if s0 == 0 or s1 == 0 or s2 == 0 or not (s0 == s1 and s1 == s2):
+        return 0.0, 0.0
+    ux = V[i1, 0] - V[i0, 0]
+    uy = V[i1, 1] - V[i0, 1]
+    uz = V[i1, 2] - V[i0, 2]
+    wx = V[i2, 0] - V[i0, 0]
+    wy = V[i2, 1] - V[i0, 1]
+    wz = V[i2, 2] - V[i0, 2]
+    nx = uy * wz - uz * wy
+    if nx == 0.0:
+        return 0.0, 0.0
+    ny = uz * wx - ux * wz
+    nz = ux * wy - uy * wx
+    return nx, V[i0, 0] - (ny * (py - V[i0, 1]) + nz * (pz - V[i0, 2])) / nx
+
+
 @njit(**NJIT)
 def yz_grid(V, F, nb):
     """Bucket triangles by their (y, z) boxes on an ``nb x nb`` grid: ``(g, start, items)``."""
@@ -87,28 +118,8 @@ def inside_mesh(Q, V, F, g, start, items):
         par = 0
         for s in range(start[k], start[k + 1]):
             t = items[s]
-            i0 = F[t, 0]
-            i1 = F[t, 1]
-            i2 = F[t, 2]
-            s0 = perturbed_side(V[i0, 1], V[i0, 2], V[i1, 1], V[i1, 2], py, pz)
-            s1 = perturbed_side(V[i1, 1], V[i1, 2], V[i2, 1], V[i2, 2], py, pz)
-            s2 = perturbed_side(V[i2, 1], V[i2, 2], V[i0, 1], V[i0, 2], py, pz)
-            if s0 == 0 or s1 == 0 or s2 == 0 or not (s0 == s1 and s1 == s2):
-                continue
-            # the plane's x at (py, pz)
-            ux = V[i1, 0] - V[i0, 0]
-            uy = V[i1, 1] - V[i0, 1]
-            uz = V[i1, 2] - V[i0, 2]
-            wx = V[i2, 0] - V[i0, 0]
-            wy = V[i2, 1] - V[i0, 1]
-            wz = V[i2, 2] - V[i0, 2]
-            nx = uy * wz - uz * wy
-            ny = uz * wx - ux * wz
-            nz = ux * wy - uy * wx
-            if nx == 0.0:
-                continue
-            xh = V[i0, 0] - (ny * (py - V[i0, 1]) + nz * (pz - V[i0, 2])) / nx
-            if xh > px:
+            nx, xh = ray_hit(V, F, t, py, pz)
+            if nx != 0.0 and xh > px:
                 par ^= 1
         out[q] = par == 1
     return out

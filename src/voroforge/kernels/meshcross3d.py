@@ -17,7 +17,7 @@ import numpy as np
 from numba import njit, prange
 
 from ..config import NJIT, NJIT_PARALLEL
-from .inside3d import perturbed_side
+from .inside3d import ray_hit
 from .meshclip3d import tri_grid
 
 #: a float orientation counts as certain beyond this many times its permanent (about six
@@ -220,26 +220,10 @@ def others_winding(V, F, shell, g, start, items, out):
             t = items[s]
             if shell[t] == shell[f]:
                 continue
-            i0 = F[t, 0]
-            i1 = F[t, 1]
-            i2 = F[t, 2]
-            s0 = perturbed_side(V[i0, 1], V[i0, 2], V[i1, 1], V[i1, 2], py, pz)
-            s1 = perturbed_side(V[i1, 1], V[i1, 2], V[i2, 1], V[i2, 2], py, pz)
-            s2 = perturbed_side(V[i2, 1], V[i2, 2], V[i0, 1], V[i0, 2], py, pz)
-            if s0 == 0 or s1 == 0 or s2 == 0 or not (s0 == s1 and s1 == s2):
-                continue
-            ux = V[i1, 0] - V[i0, 0]
-            uy = V[i1, 1] - V[i0, 1]
-            uz = V[i1, 2] - V[i0, 2]
-            wx = V[i2, 0] - V[i0, 0]
-            wy = V[i2, 1] - V[i0, 1]
-            wz = V[i2, 2] - V[i0, 2]
-            nx = uy * wz - uz * wy
-            ny = uz * wx - ux * wz
-            nz = ux * wy - uy * wx
+            nx, xh = ray_hit(V, F, t, py, pz)
             if nx == 0.0:
                 continue
-            xh = V[i0, 0] - (ny * (py - V[i0, 1]) + nz * (pz - V[i0, 2])) / nx
+            i0 = F[t, 0]
             size = abs(px) + abs(py) + abs(pz) + abs(V[i0, 0]) + abs(V[i0, 1]) + abs(V[i0, 2])
             if abs(xh - px) <= 1e-12 * size:
                 w = -(1 << 40)
