@@ -168,7 +168,7 @@ def test_mesh_container_past_the_range_raises(k):
 @pytest.mark.parametrize("k", [-296, 260, 328])
 def test_torus_container_over_the_boxes_range(k):
     # a torus's cells need manifold3d, which sees coordinates past 2**200 scaled by a power
-    # of two (engine.mesh3d.MANIFOLD_SAFE): at 2**260 and 2**-260 its cells came back short
+    # of two (config.MANIFOLD_SAFE): at 2**260 and 2**-260 its cells came back short
     # ("not a valid solid"); now the same cells, scaled
     trimesh = pytest.importorskip("trimesh")
     m = trimesh.creation.torus(1.0, 0.4)

@@ -570,3 +570,60 @@ WALL_EXACT_SIN = 1e-4
 #: the template's cut decides "on a wall" within ``VORONOI3D_CUT_RTOL`` (1e-12) of the
 #: container's size, so a solid must be some hundred times thicker to be cut reliably
 FLAT_RTOL = 1e-10
+
+#: engine.assemble: a ring whose mean width (area / diameter) is this many ulps of its
+#: coordinates is a strip between sites a few ulps apart: its crossings with the domain's
+#: boundary are ulps apart, which the overlay in the coordinates' own floats can snap together
+ASSEMBLE_THIN_ULPS = 64.0
+#: engine.assemble: ring vertices this many ulps apart on a shared edge are the same vertex
+ASSEMBLE_ALIGN_ULPS = 4
+#: engine.assemble: a clipped cell shifted back moves each vertex by under an ulp, its area by
+#: under an ulp times its perimeter; a repair that changes it more lost part of the cell
+ASSEMBLE_ROUNDING_ULPS = 4.0
+
+#: engine.restore: how far (ulps of the vertex's largest coordinate, per coordinate) a
+#: rounded exact vertex may be moved to the gap's vertex: a merged class's vertex sits up to
+#: 2 ulps from the exact points of a cluster 1-3 ulps wide (issue 15's cluster input: 2 ulps);
+#: 4 leaves a margin and is still far below a cell's own size wherever a ring is no sliver
+RESTORE_SNAP_ULPS = 4.0
+#: engine.restore: nearest sites the exact cut starts with; sites that beat the cell's
+#: vertices join it
+RESTORE_FIRST = 12
+
+#: engine.periodic: the widest a rounding sliver of a wrapped cell can be, as a fraction of
+#: the box's shorter side: a piece a quarter of the box wide is no rounding noise, however far
+#: out the box lies (a box 12 ulps tall at 2e12 lost its cells to 7 ulps of 4e12)
+PERIODIC_SLIVER_MAX_SIDE = 0.25
+#: engine.periodic_ties: how far the rings' area sum may move by rounding alone, in ulps of
+#: the box's area per ring point (each term of the shoelace sums rounds by about one): a tie
+#: that leaves it farther than that from the box's area joined distinct vertices and is undone
+PERIODIC_AREA_NOISE_ULPS = 4.0
+
+#: engine.containers: a Convex whose centre lies farther from the origin than this many times
+#: its largest extent keeps its walls about an origin near it (far_origin): at 4 the absolute
+#: offsets are good to ~1e-15 of the solid's size, and nearer solids keep the bits they had
+#: (the walls of a unit cube at 4e6 were placed to 2.3e-10 only)
+CONVEX_FAR_ORIGIN = 4.0
+
+#: engine.meshplanes3d: a face is thin (normal from its sites) when its area is at most this
+#: many times the square of its largest extent (aspect 1e-6: far above the rounding of the
+#: area vector of a face of any shape, and a genuine face that thin has the same plane
+#: either way)
+FACE_THIN_RTOL = 2.0**-20
+#: ... or at most this many ulps of its vertices' largest coordinate times its extent (the
+#: rounding of the vertices themselves, which a face's area vector cannot resolve)
+FACE_NOISE_ULPS = 64.0
+#: engine.mesh3d: coordinates (relative to the cut's origin) beyond this, or below its
+#: inverse, reach manifold3d scaled by a power of two (cut_by_mesh)
+MANIFOLD_SAFE = 2.0**200
+#: kernels.meshcut3d: cell-local coordinates beyond this (or below its inverse) are scaled by
+#: a power of two before their moments are taken (fourth powers: 2**200 keeps them below
+#: 2**800, and its inverse above 2**-800, far from float64's limits; nearer 1 nothing is
+#: scaled, so the bits of ordinary meshes do not depend on it)
+MESH_MOMENT_SAFE = 2.0**200
+#: kernels.meshcross3d: a float orientation counts as certain beyond this many times its
+#: permanent (about six times the bound of Shewchuk's filter); an uncertain one counts as 0
+#: (no proper crossing: a mesh is refused only where a crossing is certain; the exact test,
+#: run on the ~25% of the bench torus's tests that are exactly coplanar, made the check 4x
+#: slower)
+MESH_CROSS_FILTER = 1e-14

@@ -16,7 +16,12 @@ from functools import partial
 import numpy as np
 import shapely
 
-from ..config import EDGE_LENGTH_RTOL
+from ..config import (
+    ASSEMBLE_ALIGN_ULPS,
+    ASSEMBLE_ROUNDING_ULPS,
+    ASSEMBLE_THIN_ULPS,
+    EDGE_LENGTH_RTOL,
+)
 from ..kernels.domain_grid import classify, mark_segments, scanline_inside
 from ..kernels.rings import shared_edges
 from .diagram import Edges, LazyEdges
@@ -369,11 +374,6 @@ def clip_to_polygon(dom: Domain, grid, pieces, coords, ring_offsets, ring_cell, 
     return (source[co], out_ring, out_poly, geom_offsets_for(n, poly_cell)), lost
 
 
-_THIN_ULPS = 64.0  # a ring whose mean width (area / diameter) is this many ulps of its
-# coordinates is a strip between sites a few ulps apart: its crossings with the domain's
-# boundary are ulps apart, which the overlay in the coordinates' own floats can snap together
-
-
 def _held(pieces, convex, clipped, cells, sites, rings):
     """The clipped cells, thin ones redone in a frame of their own, and the cells lost.
 
@@ -391,7 +391,7 @@ def _held(pieces, convex, clipped, cells, sites, rings):
     lo = shapely.bounds(convex)
     size = np.hypot(lo[:, 2] - lo[:, 0], lo[:, 3] - lo[:, 1])
     ulp = np.spacing(np.abs(lo).max(axis=1))
-    thin = shapely.area(convex) <= _THIN_ULPS * ulp * size
+    thin = shapely.area(convex) <= ASSEMBLE_THIN_ULPS * ulp * size
     missed = inside = np.zeros(len(cells), dtype=np.bool_)
     if sites is not None:
         xy = sites[cells]
@@ -403,7 +403,7 @@ def _held(pieces, convex, clipped, cells, sites, rings):
     for k in trouble:
         if done[k]:
             continue
-        origin = pieces.vertex_near(convex[k], _THIN_ULPS * ulp[k])
+        origin = pieces.vertex_near(convex[k], ASSEMBLE_THIN_ULPS * ulp[k])
         if origin is None:
             if not missed[k]:
                 continue  # a thin cell away from the domain's vertices: the overlay's is kept
@@ -426,18 +426,15 @@ def _missed(clipped, xy, inside, prepared):
 
     A site on the domain's boundary whose cell's crossing rounded past it by an ulp (a site
     on a hole's sloped edge) has its cell: only an empty cell, or one farther than
-    ``_ROUNDING_ULPS`` ulps of the site's coordinates, misses it. A site inside the domain
+    ``ASSEMBLE_ROUNDING_ULPS`` ulps of the site's coordinates, misses it. A site inside the domain
     must be in its cell.
     """
     missed = inside & ~shapely.intersects_xy(clipped, xy[:, 0], xy[:, 1])
     for k in np.flatnonzero(missed):
         if not shapely.is_empty(clipped[k]) and not shapely.contains_xy(prepared, *xy[k]):
-            reach = _ROUNDING_ULPS * np.spacing(np.abs(xy[k]).max())
+            reach = ASSEMBLE_ROUNDING_ULPS * np.spacing(np.abs(xy[k]).max())
             missed[k] = shapely.distance(clipped[k], shapely.points(xy[k])) > reach
     return missed
-
-
-_ALIGN_ULPS = 4  # ring vertices this many ulps apart on a shared edge are the same vertex
 
 
 def _aligned(rings, k, near):
@@ -447,7 +444,7 @@ def _aligned(rings, k, near):
     neighbour's ring then even names the cell beyond the strip as its owner). Clipped
     apart, their crossings with the domain's boundary round apart too, and the cells
     disagree there. Ring ``k``'s edge replaces a neighbour's whose two end points are within
-    ``_ALIGN_ULPS`` ulps of its own (reversed), where the neighbour stays convex and valid,
+    ``ASSEMBLE_ALIGN_ULPS`` ulps of its own (reversed), where the neighbour stays convex and valid,
     so the overlay sees one segment.
     """
     coords, off = rings
@@ -456,7 +453,7 @@ def _aligned(rings, k, near):
     for j in near:
         ring = coords[off[j] : off[j + 1]]
         if j != k:
-            tol = _ALIGN_ULPS * np.spacing(max(np.abs(ring).max(), np.abs(mine).max()))
+            tol = ASSEMBLE_ALIGN_ULPS * np.spacing(max(np.abs(ring).max(), np.abs(mine).max()))
             for t in range(len(ring) - 1):
                 # edge t of ring j against every edge of ring k, reversed
                 close = (np.abs(mine[1:] - ring[t]).max(axis=1) <= tol) & (
@@ -492,7 +489,7 @@ def _clip_at_site(rings, piece, site):
     coordinates; shifted back they round once. Parts that rounding made overlap are united,
     parts it collapsed (too few distinct vertices) are dropped, a ring it made touch itself
     is split (GEOS's make_valid); each result must then be valid and keep its area to
-    within its rounding (``_ROUNDING_ULPS`` ulps times its perimeter), else None.
+    within its rounding (``ASSEMBLE_ROUNDING_ULPS`` ulps times its perimeter), else None.
     """
     o = np.asarray(site, dtype=np.float64)
     local = _polygonal(
@@ -508,7 +505,7 @@ def _clip_at_site(rings, piece, site):
         fixed = shapely.union_all(parts) if len(parts) else shapely.Polygon()
         if not shapely.is_valid(fixed):
             fixed = _polygonal(np.array([shapely.make_valid(fixed)], dtype=object))[0]
-        slack = _ROUNDING_ULPS * np.spacing(np.abs(shapely.bounds(got[k])).max())
+        slack = ASSEMBLE_ROUNDING_ULPS * np.spacing(np.abs(shapely.bounds(got[k])).max())
         slack *= shapely.length(local[k])
         if (
             shapely.get_type_id(fixed) not in (3, 6)
@@ -518,10 +515,6 @@ def _clip_at_site(rings, piece, site):
             return None
         got[k] = fixed
     return got
-
-
-_ROUNDING_ULPS = 4.0  # a clipped cell shifted back moves each vertex by under an ulp: its area
-# by under an ulp times its perimeter; a repair that changes it more lost part of the cell
 
 
 def _polygonal(geoms):

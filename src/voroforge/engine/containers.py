@@ -20,7 +20,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..config import AREA_MAX, FLAT_RTOL, VOLUME_RANGE
+from ..config import AREA_MAX, CONVEX_FAR_ORIGIN, FLAT_RTOL, VOLUME_RANGE
 
 #: the cube's faces, outward counter-clockwise; corner ``k`` is ``(k & 1, k >> 1 & 1, k >> 2)``
 _CUBE_RINGS = ((0, 4, 6, 2), (1, 3, 7, 5), (0, 1, 5, 4), (2, 6, 7, 3), (0, 2, 3, 1), (4, 5, 7, 6))
@@ -309,13 +309,6 @@ def _hull_rows(pts, N, corners, o=None) -> np.ndarray:
         d = max(sum(nn[k] * (p[k] - oi[k]) for k in range(3)) for p in ps) / _ONE**2
         rows_out.append([*n, d])
     return np.array(rows_out)
-
-
-#: a Convex whose centre lies farther from the origin than this many times its largest
-#: extent keeps its walls about an origin near it (engine.containers.far_origin): at 4 the
-#: absolute offsets are good to ~1e-15 of the solid's size, and nearer solids keep the bits
-#: they had (the walls of a unit cube at 4e6 were placed to 2.3e-10 only)
-CONVEX_FAR_ORIGIN = 4.0
 
 
 def far_origin(lo, hi) -> np.ndarray | None:

@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..config import (
+    MANIFOLD_SAFE,
     VORONOI3D_MESH_FACING,
     VORONOI3D_MESH_SLACK_RTOL,
     VORONOI3D_MESH_VOLUME_RTOL,
@@ -550,11 +551,6 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
         cut_cells=cut,
         container_volume=mesh.volume,
     )
-
-
-#: coordinates (relative to the cut's origin) beyond this, or below its inverse, reach
-#: manifold3d scaled by a power of two (cut_by_mesh)
-MANIFOLD_SAFE = 2.0**200
 
 
 def _exact_origin(*arrays):

@@ -16,13 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-#: a face is thin (normal from its sites) when its area is at most this many times the
-#: square of its largest extent (aspect 1e-6: far above the rounding of the area vector of
-#: a face of any shape, and a genuine face that thin has the same plane either way)
-FACE_THIN_RTOL = 2.0**-20
-#: ... or at most this many ulps of its vertices' largest coordinate times its extent (the
-#: rounding of the vertices themselves, which a face's area vector cannot resolve)
-FACE_NOISE_ULPS = 64.0
+from ..config import FACE_NOISE_ULPS, FACE_THIN_RTOL
 
 #: outward normals of the box walls, label ``-1 - w`` (:func:`containers.box_template`)
 _WALLS = np.array([[-1, 0, 0], [1, 0, 0], [0, -1, 0], [0, 1, 0], [0, 0, -1], [0, 0, 1]], float)

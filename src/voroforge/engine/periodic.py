@@ -31,6 +31,7 @@ import shapely
 from ..config import (
     PERIODIC_CAP_PERIODS,
     PERIODIC_PROOF_RTOL,
+    PERIODIC_SLIVER_MAX_SIDE,
     PERIODIC_SLIVER_ULPS,
 )
 from .assemble import from_shapely
@@ -41,10 +42,6 @@ from .periodic_frame import cells_to_user_frame, corner_frame, to_local, two_sum
 from .periodic_ties import tie_images
 from .planar import build
 
-#: The widest a rounding sliver of a wrapped cell can be, as a fraction of the box's shorter
-#: side (:func:`_sliver_width`): a piece a quarter of the box wide is no rounding noise,
-#: however far out the box lies (a box 12 ulps tall at 2e12 lost its cells to 7 ulps of 4e12)
-_SLIVER_MAX_SIDE = 0.25
 #: Initial margin, in typical cell diameters ``sqrt(area / n)``.
 _MARGIN_CELLS = 3.0
 _MAX_TRIES = 30
@@ -282,7 +279,7 @@ def _sliver_width(box) -> float:
     the height, was dropped as a sliver (28 cells empty, area 2% of the box).
     """
     x0, y0, x1, y1 = box
-    return min(_rounding(box), _SLIVER_MAX_SIDE * min(x1 - x0, y1 - y0))
+    return min(_rounding(box), PERIODIC_SLIVER_MAX_SIDE * min(x1 - x0, y1 - y0))
 
 
 def _box_pieces(d: Diagram, box):

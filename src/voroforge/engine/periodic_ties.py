@@ -16,13 +16,8 @@ from fractions import Fraction
 import numpy as np
 import shapely
 
-from ..config import PERIODIC_TIE_ULPS
+from ..config import PERIODIC_AREA_NOISE_ULPS, PERIODIC_TIE_ULPS
 from .periodic_frame import two_sum_error, whole_times
-
-#: How far the rings' area sum may move by rounding alone, in ulps of the box's area per
-#: ring point (each term of the shoelace sums rounds by about one): a tie that leaves it
-#: farther than that from the box's area joined distinct vertices and is undone
-_AREA_NOISE_ULPS = 4.0
 
 
 def tie_images(bufs, box):
@@ -84,7 +79,7 @@ def tie_images(bufs, box):
         return bufs
     # the sums round by an ulp per term: a unit box's cells summed to 1 before and 1 + 2e-16
     # after, their vertices now exact shifts
-    noise = _AREA_NOISE_ULPS * np.finfo(np.float64).eps * len(coords)
+    noise = PERIODIC_AREA_NOISE_ULPS * np.finfo(np.float64).eps * len(coords)
     delta = np.abs(after).sum() - np.abs(before).sum()
     if abs(delta) > noise:
         total = size[0] / size.max() * (size[1] / size.max())

@@ -9,7 +9,7 @@ wedges of issue 15's clusters at 1e6). :func:`restore_lost` runs only when a sit
 and does work only when the rings leave a gap: directed edges whose reverse no ring
 holds, or stretches of the box's sides no ring covers. Then each lost site whose ring is
 empty gets its exact cell (integer arithmetic on the float sites, :mod:`.power_exact`),
-its vertices rounded to float64 and each moved to the gap's vertex within ``_SNAP_ULPS``
+its vertices rounded to float64 and each moved to the gap's vertex within ``RESTORE_SNAP_ULPS``
 ulps of it (rounding puts a vertex the neighbours share, a class of merged centres, that
 far from the exact point). The ring is kept when it is a valid polygon and every edge of it
 runs along the gap: the reverse of an edge no ring shares, a stretch of a side no ring
@@ -29,17 +29,11 @@ import math
 import numpy as np
 import shapely
 
+from ..config import RESTORE_FIRST, RESTORE_SNAP_ULPS
 from ..kernels.cells import rings_astray
 from ..kernels.dual_some import splice_rings
 from .power_exact import Exact, line, vertex
 
-# how far (ulps of the vertex's largest coordinate, per coordinate) a rounded exact vertex
-# may be moved to the gap's vertex: a merged class's vertex sits up to 2 ulps from the
-# exact points of a cluster 1-3 ulps wide (pts.npy of issue 15: 2 ulps); 4 leaves a margin
-# and is still far below a cell's own size wherever a ring is not itself a sliver
-_SNAP_ULPS = 4.0
-# nearest sites the exact cut starts with; sites that beat the cell's vertices join it
-_FIRST = 12
 # the box's sides in counter-clockwise order: (axis varying, fixed coordinate's box index,
 # direction along which a ring runs on it)
 _SIDES = ((0, 1, 1.0), (1, 2, 1.0), (0, 3, -1.0), (1, 0, -1.0))
@@ -170,13 +164,13 @@ class _Gaps:
         """The rounded exact ring with each vertex moved to the gap's vertex near it, or None.
 
         A vertex that is one of the gap's, or lies on a bare stretch of a side, stays; any
-        other goes to the nearest gap vertex within ``_SNAP_ULPS`` ulps (None: there is
+        other goes to the nearest gap vertex within ``RESTORE_SNAP_ULPS`` ulps (None: there is
         none, or two are nearest). Repeated vertices are merged.
         """
         out = []
         for x, y in ring:
             if (x, y) not in self.known and not self._on_bare(x, y):
-                u = _SNAP_ULPS * math.ulp(max(abs(x), abs(y)))
+                u = RESTORE_SNAP_ULPS * math.ulp(max(abs(x), abs(y)))
                 d = np.abs(self.verts - (x, y)).max(axis=1)
                 near = np.flatnonzero(d <= u)
                 if not len(near):
@@ -328,7 +322,7 @@ def _exact_rings(xs, ys, box, which):
     """Each site of ``which``'s exact Voronoi cell in ``box``, vertices rounded to float64.
 
     ``{site: [(x, y), ...]}`` counter-clockwise (a site with no area left out). The cut
-    starts with the site's ``_FIRST`` nearest sites; any site strictly nearer than the site
+    starts with the site's ``RESTORE_FIRST`` nearest sites; any site strictly nearer than the site
     to a vertex of the cut (exact test, on the sites a KD-tree finds within the vertex's
     distance to the site, widened by its rounding) joins it, until none is: the cut is then
     the cell (convex, so its vertices decide).
@@ -341,7 +335,7 @@ def _exact_rings(xs, ys, box, which):
     s = exact.s
     out = {}
     for i in (int(i) for i in which):
-        near = np.atleast_1d(tree.query((xs[i], ys[i]), k=min(n, _FIRST + 1))[1])
+        near = np.atleast_1d(tree.query((xs[i], ys[i]), k=min(n, RESTORE_FIRST + 1))[1])
         cand = list(dict.fromkeys(int(j) for j in near))
         while True:
             lines = exact.cell(i, cand)
@@ -362,13 +356,13 @@ def _beaten(exact, tree, xs, ys, i, verts, rounded, skip):
 
     ``rounded`` are the vertices in floats: a site nearer to the exact vertex lies within
     the rounded vertex's distance to site ``i`` plus twice the rounding (an ulp of each
-    coordinate). The vertex's ``_FIRST`` nearest sites are tested first (a violator among
+    coordinate). The vertex's ``RESTORE_FIRST`` nearest sites are tested first (a violator among
     them is the nearest, the cut that shrinks the cell most); only where none is and the
     farthest of them is still that close, every site in the ball.
     """
     more = {}
     own = exact.site(i)
-    k = min(len(xs), _FIRST)
+    k = min(len(xs), RESTORE_FIRST)
     for (x, y, d), (fx, fy) in zip(verts, rounded, strict=True):
         reach = math.hypot(fx - xs[i], fy - ys[i]) * (1.0 + 2.0**-40)
         reach += 4.0 * math.ulp(max(abs(fx), abs(fy), abs(xs[i]), abs(ys[i])))

@@ -16,15 +16,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ..config import NJIT, NJIT_PARALLEL
+from ..config import MESH_CROSS_FILTER, NJIT, NJIT_PARALLEL
 from .inside3d import ray_hit
 from .meshclip3d import tri_grid
-
-#: a float orientation counts as certain beyond this many times its permanent (about six
-#: times the bound of Shewchuk's filter); an uncertain one counts as 0 (no proper crossing:
-#: a mesh is refused only where a crossing is certain; the exact test, run on the ~25% of
-#: the bench torus's tests that are exactly coplanar, made the check 4x slower)
-O3_FILTER = 1e-14
 
 
 @njit(**NJIT)
@@ -44,7 +38,7 @@ def _o3(V, a, b, c, d):
     perm = abs(adx) * (abs(bdy * cdz) + abs(bdz * cdy))
     perm += abs(bdx) * (abs(cdy * adz) + abs(cdz * ady))
     perm += abs(cdx) * (abs(ady * bdz) + abs(adz * bdy))
-    return det if abs(det) > O3_FILTER * perm else 0.0
+    return det if abs(det) > MESH_CROSS_FILTER * perm else 0.0
 
 
 @njit(**NJIT)

@@ -17,7 +17,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..config import NJIT
+from ..config import MESH_MOMENT_SAFE, NJIT
 from .meshclip3d import cell_buckets, clip_triangle
 from .meshparts3d import SPLIT, merge_parts, split_face
 from .meshparts3d import fail as _fail
@@ -42,11 +42,6 @@ CC_V, CC_F, CC_R = 128, 64, 1024  # polyhedron scratch: vertices, faces, ring en
 CC_PARTS, CC_DEPTH = 6, 4  # parts a cell may be split into, split planes per part
 CC_OUT_V, CC_OUT_F, CC_OUT_R = 96, 48, 384  # a finished cell's slots
 CC_BLOCK = 64  # cells per parallel block (one set of scratch each)
-#: cell-local coordinates beyond this (or below its inverse) are scaled by a power of two
-#: before their moments are taken (fourth powers: 2**200 keeps them below 2**800, and its
-#: inverse above 2**-800, far from float64's limits; nearer 1 nothing is scaled, so the
-#: bits of ordinary meshes do not depend on it)
-_MOMENT_SAFE = 2.0**200
 
 
 @njit(**NJIT)
@@ -521,7 +516,7 @@ def _merge_scaled(PV, PF, PR, pnv, pnf, nparts, ms, o, tol, out):
             for c in range(3):
                 big = max(big, abs(PV[p, v, c]))
     e = 0
-    if big > 0.0 and (big > _MOMENT_SAFE or big < 1.0 / _MOMENT_SAFE):
+    if big > 0.0 and (big > MESH_MOMENT_SAFE or big < 1.0 / MESH_MOMENT_SAFE):
         e = math.frexp(big)[1]
     if e == 0:
         return merge_parts(PV, PF, PR, pnv, pnf, nparts, ms, o, tol, out)
