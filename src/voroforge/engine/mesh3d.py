@@ -33,7 +33,7 @@ from ..config import (
     VORONOI3D_MESH_SLACK_RTOL,
     VORONOI3D_MESH_VOLUME_RTOL,
 )
-from .containers import box_template
+from .containers import box_template, far_origin
 from .csr import unique
 from .meshcheck3d import crossing_report, nesting_report
 
@@ -61,9 +61,19 @@ def _edge_report(F: np.ndarray) -> str | None:
             for a, b, k in zip(bad[:5] // nv, bad[:5] % nv, kinds[:5], strict=True)
         )
         what = "open" if (kinds == 1).any() else "non-manifold"
+        # even counts, each edge run both ways alike: closed shells that share an edge or a
+        # face's vertices (two boxes side by side); shells that only touch without sharing
+        # vertices are cut as their union
+        touch = (kinds % 2 == 0).all()
         return (
             f"the container mesh is {what}: {len(bad)} edges not shared by exactly two "
             f"faces ({show})"
+            + (
+                "; closed shells that touch along an edge or a face with shared vertices "
+                "are not one solid's surface: union them (e.g. with manifold3d)"
+                if touch
+                else ""
+            )
         )
     d, dc = np.unique(e[:, 0] * nv + e[:, 1], return_counts=True)
     if (dc > 1).any():
@@ -137,6 +147,9 @@ def as_mesh_container(container):
     # signed volume about the mesh's centre: about the origin it cancels far out (a torus of
     # volume 2.98 at (5e5, 4e6, 100) measured 2.87)
     centre = 0.5 * (V.min(axis=0) + V.max(axis=0))
+    fo = far_origin(V.min(axis=0), V.max(axis=0))
+    if fo is not None:  # far out: about an origin whose differences are exact (cut_by_mesh's)
+        centre = fo
     a, b, c = (V[F[:, k]] - centre for k in range(3))
     vol = float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
     if vol == 0.0:
@@ -166,14 +179,23 @@ def _manifold(V, F, face_id):
 
 
 def sites_inside(mesh: MeshContainer, pts: np.ndarray) -> np.ndarray:
-    """``(n,) bool``: which points lie inside the mesh (exact ray parity)."""
-    from ..kernels.inside3d import inside_mesh, yz_grid
+    """``(n,) bool``: which points lie in the closed solid (exact ray parity, or on a triangle).
+
+    A point on the surface (exactly, :func:`kernels.inside3d.on_mesh`) counts as inside and
+    gets its cell, as a site on a box's wall does.
+    """
+    from ..kernels.inside3d import inside_mesh, on_mesh, yz_grid
     from .threads import serial_below
 
     V, F = mesh.vertices, mesh.faces
     g, start, items = yz_grid(V, F, int(max(1, min(512, np.sqrt(len(F) / 4)))))
+    q = np.ascontiguousarray(pts, np.float64)
     with serial_below(len(pts)):
-        return inside_mesh(np.ascontiguousarray(pts, np.float64), V, F, g, start, items)
+        out = inside_mesh(q, V, F, g, start, items)
+    rest = np.flatnonzero(~out)
+    with serial_below(len(rest)):
+        out[rest] = on_mesh(np.ascontiguousarray(q[rest]), V, F, g, start, items)
+    return out
 
 
 #: :func:`reaching_sites` splits a triangle in four while its size (largest distance of a
@@ -404,7 +426,7 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     from ..kernels.inside3d import inside_mesh, yz_grid
     from ..kernels.meshclip3d import copy_runs
     from .diagram3d import Diagram3D
-    from .meshplanes3d import steady_normals
+    from .meshplanes3d import local_vertices, plane_rows, steady_normals
     from .threads import serial_below
 
     n = len(d)
@@ -422,12 +444,22 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     # the cut works relative to an origin that the subtraction moves exactly (Sterbenz):
     # far from the origin (UTM-like), manifold3d in absolute coordinates lost up to a
     # quarter of the volume
-    o = _exact_origin(V, verts)
+    # A mesh far from its size (containers.far_origin) is cut about that origin, with the
+    # cut cells' vertices and face planes recomputed about it (meshplanes3d.local_vertices):
+    # in absolute doubles a 1e-3 cube at 4e6 summed 2.2e-8 off its volume
+    fo = far_origin(V.min(axis=0), V.max(axis=0))
+    o = _exact_origin(V, verts) if fo is None else fo
     Vl, vl = V - o, verts - o
     big = 1e-14 * float(np.abs(V).max())  # the rounding of coordinates, with room
     slack = VORONOI3D_MESH_SLACK_RTOL * float(np.abs(Vl).max()) + big
     grid = _tri_buckets(Vl[F], slack)
     cand = _touching(cf, roff, ring, vl, farea, live, Vl[F], slack, grid)
+    if fo is not None and cand.any():
+        c = np.flatnonzero(cand)
+        vl = local_vertices(c, cf, lab, roff, ring, verts, d.sites, d.weights, d.box, o)
+        nf = cf[c + 1] - cf[c]
+        f = np.repeat(cf[c], nf) + _ranks(nf)
+        farea = plane_rows(farea.copy(), f, cf, lab, np.asarray(d.sites))
     g, start, items = yz_grid(V, F, int(max(1, min(512, np.sqrt(len(F) / 4)))))
     test = np.flatnonzero(live & ~cand)  # the others: no parity needed
     ins = np.zeros(n, bool)
@@ -448,6 +480,8 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     # its decisions (coplanar, inside a half-space) within 1e-9 of the mesh's size, above
     # the rounding of coordinates far from the origin
     ext = float((V.max(axis=0) - V.min(axis=0)).max())
+    if fo is not None:  # the cut cells' coordinates about o carry the rounding of those
+        big = 1e-14 * float(np.abs(Vl).max())
     tol = VORONOI3D_MESH_SLACK_RTOL * ext + big
     got = _convex_part(todo, cf, lab, farea, roff, ring, vl, grid, tol)
     if got is not None:

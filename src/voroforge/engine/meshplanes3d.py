@@ -18,6 +18,11 @@ import numpy as np
 
 from ..config import FACE_NOISE_ULPS, FACE_THIN_RTOL
 
+#: :func:`local_vertices` keeps a vertex recomputed about the local origin only within this
+#: many ulps of its absolute doubles (which the cell builder rounds once, half an ulp): a
+#: larger move means ill-conditioned planes, not the absolute rounding
+LOCAL_VERTEX_ULPS = 2.0
+
 #: outward normals of the box walls, label ``-1 - w`` (:func:`containers.box_template`)
 _WALLS = np.array([[-1, 0, 0], [1, 0, 0], [0, -1, 0], [0, 1, 0], [0, 0, -1], [0, 0, 1]], float)
 
@@ -49,8 +54,16 @@ def steady_normals(farea, cf, lab, roff, ring, verts, sites):
     )
     if not thin.any():
         return farea
-    farea = farea.copy()
-    f = np.flatnonzero(thin)
+    return plane_rows(farea.copy(), np.flatnonzero(thin), cf, lab, sites)
+
+
+def plane_rows(farea, f, cf, lab, sites):
+    """``farea`` with rows ``f`` set to their exact planes' normals (in place; returned).
+
+    A face between sites ``i`` and ``j`` gets ``p_j - p_i``, a box wall its axis, scaled to
+    the largest component in ``[0.5, 1)``; a face of another kind, or between equal sites,
+    keeps its row.
+    """
     owner = np.repeat(np.arange(len(cf) - 1), np.diff(cf))[f]
     lf = np.asarray(lab)[f]
     nrm = np.zeros((len(f), 3))
@@ -64,3 +77,98 @@ def steady_normals(farea, cf, lab, roff, ring, verts, sites):
     # a face of unknown kind or between equal sites keeps its row (no better plane)
     farea[f[ok]] = nrm[ok]
     return farea
+
+
+def local_vertices(cells, cf, lab, roff, ring, verts, sites, weights, box, o):
+    """``verts - o`` with the vertices of ``cells`` recomputed about the origin ``o``.
+
+    For a mesh far from the origin (:func:`containers.far_origin`): a vertex in absolute
+    doubles is placed only to half an ulp of its distance from the origin (2.3e-10 at 4e6,
+    2.3e-7 of a 1e-3 cell), which made a cut cell's faces non-planar by that much and a
+    1e-3 cube's two cells sum 2.2e-8 off its volume. Each vertex of ``cells`` is recomputed
+    from three of the face planes of one cell ``c`` through it, about ``c``'s site (sites
+    ``s = sites - o``, exact near the mesh: ``o`` is a multiple of a power of two above its
+    extent): the bisector ``n . y = (n . n + w_c - w_j) / 2`` with ``n = s_j - s_c``, or a
+    box wall ``box (2, 3)`` (absolute, ``-1 - w`` in voro++'s order). The three are the best
+    conditioned of its planes; the result replaces ``verts[v] - o`` only where it lies
+    within :data:`LOCAL_VERTEX_ULPS` ulps of ``verts[v]`` (the rounding the absolute vertex
+    carries), so a vertex whose planes are ill conditioned keeps its place.
+    """
+    vl = verts - o
+    cells = np.asarray(cells, np.int64)
+    if not len(cells) or not len(verts):
+        return vl
+    nf = cf[cells + 1] - cf[cells]
+    fidx = np.repeat(cf[cells], nf) + _ranks(nf)
+    owner = np.repeat(cells, nf)
+    lens = roff[fidx + 1] - roff[fidx]
+    fv = ring[np.repeat(roff[fidx], lens) + _ranks(lens)]  # (v, face, cell) rows
+    ff = np.repeat(fidx, lens)
+    fc = np.repeat(owner, lens)
+    order = np.lexsort((ff, fc, fv))
+    fv, ff, fc = fv[order], ff[order], fc[order]
+    first = np.r_[True, fv[1:] != fv[:-1]]
+    start = np.flatnonzero(first)
+    # one cell per vertex (its first): the faces of that cell through the vertex
+    c0 = np.repeat(fc[start], np.diff(np.r_[start, len(fv)]))
+    mine = fc == c0
+    fv, ff, fc = fv[mine], ff[mine], fc[mine]
+    start = np.flatnonzero(np.r_[True, fv[1:] != fv[:-1]])
+    cnt = np.diff(np.r_[start, len(fv)])
+    K = 8  # planes per vertex looked at (a vertex of more faces: its first eight)
+    rank = _ranks(cnt)
+    sel = rank < K
+    nv = len(start)
+    s = np.asarray(sites, np.float64) - o
+    w = np.zeros(len(s)) if weights is None else np.asarray(weights, np.float64)
+    lab = np.asarray(lab, np.int64)
+    lo, hi = np.asarray(box, np.float64) - o
+    N = np.zeros((nv, K, 3))
+    H = np.zeros((nv, K))
+    known = np.zeros((nv, K), bool)
+    row = np.repeat(np.arange(nv), cnt)[sel]
+    col = rank[sel]
+    lf = lab[ff[sel]]
+    c = fc[sel]
+    site = lf >= 0
+    j = np.where(site, lf, 0)
+    n = s[j] - s[c]
+    N[row[site], col[site]] = n[site]
+    H[row[site], col[site]] = 0.5 * (np.einsum("ij,ij->i", n, n) + w[c] - w[j])[site]
+    wall = (lf < 0) & (lf >= -6)
+    wi = -1 - lf[wall]
+    ax = wi // 2
+    bound = np.where(wi % 2 == 1, hi[ax], lo[ax])
+    sign = np.where(wi % 2 == 1, 1.0, -1.0)
+    N[row[wall], col[wall]] = _WALLS[wi]
+    H[row[wall], col[wall]] = sign * (bound - s[c[wall], ax])
+    known[row[site | wall], col[site | wall]] = True
+    ok = known.sum(axis=1) >= 3
+    with np.errstate(invalid="ignore", divide="ignore"):
+        U = N / np.linalg.norm(N, axis=2, keepdims=True)
+    U = np.where(known[:, :, None], U, 0.0)
+    a = np.argmax(known, axis=1)  # the first known plane
+    ua = U[np.arange(nv), a]
+    b = np.argmax(np.linalg.norm(np.cross(ua[:, None, :], U), axis=2), axis=1)
+    ub = U[np.arange(nv), b]
+    det = np.abs(np.einsum("ij,ikj->ik", np.cross(ua, ub), U))
+    e = np.argmax(det, axis=1)
+    ok &= det[np.arange(nv), e] > 0.0
+    idx = np.stack([a, b, e], axis=1)
+    A = np.take_along_axis(N, idx[:, :, None], axis=1)
+    rhs = np.take_along_axis(H, idx, axis=1)
+    A[~ok] = np.eye(3)
+    rhs[~ok] = 0.0
+    y = np.linalg.solve(A, rhs[:, :, None])[:, :, 0]
+    v = fv[start]
+    x = s[fc[start]] + y
+    near = np.abs(x - vl[v]) <= LOCAL_VERTEX_ULPS * np.spacing(np.abs(verts[v]))
+    ok &= near.all(axis=1) & np.isfinite(x).all(axis=1)
+    vl[v[ok]] = x[ok]
+    return vl
+
+
+def _ranks(lens):
+    """``0 .. len - 1`` for each run length in ``lens``, concatenated."""
+    total = int(lens.sum())
+    return np.arange(total) - np.repeat(np.cumsum(lens) - lens, lens)

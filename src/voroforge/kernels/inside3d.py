@@ -15,6 +15,7 @@ from numba import njit, prange
 
 from ..config import NJIT, NJIT_PARALLEL
 from .predicates import orient2d
+from .predicates3d import orient3d
 
 
 @njit(**NJIT)
@@ -122,4 +123,80 @@ def inside_mesh(Q, V, F, g, start, items):
             if nx != 0.0 and xh > px:
                 par ^= 1
         out[q] = par == 1
+    return out
+
+
+@njit(**NJIT)
+def on_triangle(V, F, t, px, py, pz):
+    """Whether ``p`` lies on the closed triangle ``t`` of ``(V, F)``, decided exactly.
+
+    On its plane (:func:`kernels.predicates3d.orient3d` zero) and, in a coordinate plane
+    where the triangle's projection has area, on no edge's outer side (exact
+    :func:`kernels.predicates.orient2d`): the projection is one to one on the plane.
+    """
+    a = F[t, 0]
+    b = F[t, 1]
+    c = F[t, 2]
+    for k in range(3):  # the bounding box first (cheap, and most triangles are far)
+        lo = min(V[a, k], min(V[b, k], V[c, k]))
+        hi = max(V[a, k], max(V[b, k], V[c, k]))
+        q = px if k == 0 else (py if k == 1 else pz)
+        if q < lo or q > hi:
+            return False
+    if (
+        orient3d(
+            V[a, 0],
+            V[a, 1],
+            V[a, 2],
+            V[b, 0],
+            V[b, 1],
+            V[b, 2],
+            V[c, 0],
+            V[c, 1],
+            V[c, 2],
+            px,
+            py,
+            pz,
+        )
+        != 0.0
+    ):
+        return False
+    p = (px, py, pz)
+    for drop in range(3):
+        i = 1 if drop == 0 else 0
+        j = 1 if drop == 2 else 2
+        s = orient2d(V[a, i], V[a, j], V[b, i], V[b, j], V[c, i], V[c, j])
+        if s == 0.0:
+            continue
+        s0 = orient2d(V[a, i], V[a, j], V[b, i], V[b, j], p[i], p[j])
+        s1 = orient2d(V[b, i], V[b, j], V[c, i], V[c, j], p[i], p[j])
+        s2 = orient2d(V[c, i], V[c, j], V[a, i], V[a, j], p[i], p[j])
+        if s > 0.0:
+            return s0 >= 0.0 and s1 >= 0.0 and s2 >= 0.0
+        return s0 <= 0.0 and s1 <= 0.0 and s2 <= 0.0
+    return False  # a needle or a point triangle: no plane (validation refuses them)
+
+
+@njit(**NJIT_PARALLEL)
+def on_mesh(Q, V, F, g, start, items):
+    """``(m,) bool``: which points ``Q (m, 3)`` lie exactly on a triangle of ``(V, F)``.
+
+    The triangles of each point's bucket of :func:`yz_grid` (a triangle through the point
+    has it in its (y, z) box, so in a bucket the point's lies in). Parallel over the points.
+    """
+    nb = int(g[4])
+    out = np.zeros(Q.shape[0], np.bool_)
+    for q in prange(Q.shape[0]):
+        px = Q[q, 0]
+        py = Q[q, 1]
+        pz = Q[q, 2]
+        a = int((py - g[0]) / g[2])
+        b = int((pz - g[1]) / g[3])
+        if not (0 <= a < nb and 0 <= b < nb):
+            continue
+        k = a * nb + b
+        for s in range(start[k], start[k + 1]):
+            if on_triangle(V, F, items[s], px, py, pz):
+                out[q] = True
+                break
     return out
