@@ -31,6 +31,8 @@ _EXPORTS = {
     "Relaxation": ".engine.lloyd",
     "Triangulation": ".engine.delaunay",
     "delaunay": ".engine.delaunay",
+    "Tetrahedralization": ".engine.delaunay3d",
+    "delaunay3d": ".engine.delaunay3d",
     "lloyd": ".engine.lloyd",
     "locate": ".engine.interpolate",
     "natural_neighbor": ".engine.interpolate",
@@ -64,6 +66,7 @@ def __dir__() -> list[str]:
 if TYPE_CHECKING:  # for type checkers and editors: the same names, imported eagerly
     from .engine.containers import Convex  # noqa: F401
     from .engine.delaunay import Triangulation, delaunay  # noqa: F401
+    from .engine.delaunay3d import Tetrahedralization, delaunay3d  # noqa: F401
     from .engine.describe import Description  # noqa: F401
     from .engine.diagram import Diagram, Edges  # noqa: F401
     from .engine.diagram3d import Diagram3D  # noqa: F401
