@@ -258,6 +258,10 @@ SEEDS_MAX_POINTS = 20_000_000
 #: Most seeds a design may have (its cells are shapely polygons with openings, offsets and
 #: fabrication checks, about 2 KB each and more; 1e7 was killed for memory on 24 GB)
 DESIGN_MAX_CELLS = 2_000_000
+#: design.boundary.circle / ``boundary.segments``: the most vertices of a circle boundary. At
+#: 65,536 the chord error is 1.15e-9 of the radius, below any fabrication tolerance; 1e6
+#: segments took 47 s and 1.9 GB to build a 10-seed panel (checker7 F7), 3e9 did not finish
+BOUNDARY_MAX_SEGMENTS = 1 << 16
 #: Most dots design.stipple places (each Lloyd step builds a diagram of them and integrates
 #: the image's density over every cell: 3e6 dots on a 256 x 256 image ran past 60 s, 2.5 GB)
 STIPPLE_MAX_POINTS = 1_000_000

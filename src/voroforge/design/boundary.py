@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import shapely
 
-from ..config import CURVE_TOLERANCE
+from ..config import BOUNDARY_MAX_SEGMENTS, CURVE_TOLERANCE
 from ..io.readers import BOUNDARY_SUFFIXES, read_boundary, read_dxf, read_svg, read_svg_curves
 from ..io.readers.files import existing_file, positive_number
 from ..io.readers.geojson import read_geojson_polygons
@@ -146,8 +146,10 @@ def circle(radius, *, center=(0.0, 0.0), segments: int = 256) -> shapely.Polygon
     """
     r = positive_number(radius, "radius")
     cx, cy = _xy(center, "center")
-    if int(segments) != segments or segments < 3:
-        raise ValueError(f"segments must be an integer >= 3, got {segments!r}")
+    if int(segments) != segments or not 3 <= segments <= BOUNDARY_MAX_SEGMENTS:
+        raise ValueError(
+            f"segments must be an integer in 3..{BOUNDARY_MAX_SEGMENTS}, got {segments!r}"
+        )
     t = np.linspace(0.0, 2.0 * np.pi, int(segments), endpoint=False)
     return shapely.Polygon(np.column_stack((cx + r * np.cos(t), cy + r * np.sin(t))))
 

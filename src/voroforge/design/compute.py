@@ -161,7 +161,10 @@ def _boundary(design: Design, base: Path | None):
             )
     domain = geom
     if spec.margin > 0:
-        domain = geom.buffer(-spec.margin, join_style="mitre")
+        x0, y0, x1, y1 = geom.bounds
+        # past half the boundary's width nothing is left (and a huge margin overflows GEOS)
+        margin = min(spec.margin, max(x1 - x0, y1 - y0))
+        domain = geom.buffer(-margin, join_style="mitre")
         if domain.is_empty:
             raise DesignError.at("boundary.margin", f"{spec.margin} leaves nothing of the boundary")
     return geom, domain

@@ -291,6 +291,9 @@ def inset_rings(xy: np.ndarray, start: np.ndarray, distance):
         lo = np.minimum.reduceat(xy, start[:-1][live])
         hi = np.maximum.reduceat(xy, start[:-1][live])
         size[live] = np.max(hi - lo, axis=1)
+    # an inset past the ring's extent empties it (its inradius is at most half that): so
+    # capped, a huge distance (the studio's slider at 1e308) cannot overflow the products
+    d = np.minimum(d, 2.0 * size)
     # the moved line of edge k: points q = base + s * tangent, base = xy + d * normal
     dk = d[0] if m and (d == d[0]).all() else d[owner, None]  # one distance: the same products
     base = xy + dk * normal

@@ -308,6 +308,12 @@ def poisson(boundary, radius, *, seed, field=None, radius_max=None, k: int = 30)
         rmax = _positive(radius_max, "radius_max")
         if rmax < rmin:
             raise ValueError(f"radius_max ({rmax}) must be >= radius ({rmin})")
+    # a spacing past the boundary's diagonal keeps one seed whatever its value: capped at
+    # twice the diagonal, no comparison changes and huge radii (1e308) do not overflow
+    bx0, by0, bx1, by1 = geom.bounds
+    cap = 2.0 * math.hypot(bx1 - bx0, by1 - by0)
+    if cap > 0:
+        rmin, rmax = min(rmin, cap), min(rmax, cap)
     variable = field is not None and rmax > rmin
 
     def spacing(xy):

@@ -170,7 +170,7 @@ class Boundary(_Model):
     origin: Point = (0.0, 0.0)
     radius: Size | None = None
     center: Point = (0.0, 0.0)
-    segments: Annotated[Whole, Field(ge=8)] = 256
+    segments: Annotated[Whole, Field(ge=8, le=config.BOUNDARY_MAX_SEGMENTS)] = 256
     points: list[Point] | None = None
     holes: list[list[Point]] = []
     parts: list[Part] | None = None

@@ -58,7 +58,9 @@ def feature_collection(geoms, *, sites=None, properties=None) -> dict:
     dict
         JSON-ready ``{"type": "FeatureCollection", "features": [...]}``.
     """
-    cells = as_geometries(geoms)
+    # RFC 7946 3.1.6: exterior rings counter-clockwise, holes clockwise (the design's
+    # buffered cells and openings come out of GEOS clockwise); rings already so are untouched
+    cells = shapely.orient_polygons(as_geometries(geoms), exterior_cw=False)
     n = len(cells)
     pts = None
     if sites is not None:

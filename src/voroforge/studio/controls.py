@@ -10,6 +10,7 @@ draws a slider and a number box for each; a graded value (``{ near, far }``) get
 from __future__ import annotations
 
 import math
+import sys
 import types
 import typing
 
@@ -88,6 +89,9 @@ def _entry(key: str, label: str, kind: str, meta: list, value) -> dict:
     else:
         current = value
         lo, hi = _range(value, bounds, kind)
+    # a huge value (the schema takes any finite float) must not make the range infinite:
+    # JSON has no Infinity, and the slider's step is a power of ten of the span
+    lo, hi = max(float(lo), -_FLOAT_MAX), min(float(hi), _FLOAT_MAX)
     return {
         "key": key,
         "label": label,
@@ -100,10 +104,14 @@ def _entry(key: str, label: str, kind: str, meta: list, value) -> dict:
     }
 
 
+_FLOAT_MAX = sys.float_info.max
+
+
 def _step(span: float) -> float:
-    if span <= 0:
+    if not span > 0:
         return 0.01
-    return 10.0 ** math.floor(math.log10(span / 200.0))
+    # hi - lo of two finite bounds can still overflow to inf
+    return 10.0 ** math.floor(math.log10(min(span, _FLOAT_MAX) / 200.0))
 
 
 def _section(prefix: str, model: BaseModel, out: list[dict]) -> None:

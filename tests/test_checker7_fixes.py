@@ -1,0 +1,104 @@
+"""Inputs an independent checker found mishandled in the design layer and studio (session 40)."""
+
+from __future__ import annotations
+
+import json
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+
+from voroforge import config
+from voroforge.design.build import build
+from voroforge.design.populate import poisson
+
+EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "laser-panel.toml"
+
+
+@pytest.mark.parametrize(
+    "key", ["cells.web", "cells.fillet", "seeds.radius", "fabrication.min_web"]
+)
+def test_studio_survives_a_huge_slider_value(key):
+    # 1e308 was accepted, then every controls() (the page's state message) raised
+    # OverflowError: the socket dropped and no page could connect until a restart
+    pytest.importorskip("starlette")
+    from voroforge.studio.session import Session
+
+    s = Session(str(EXAMPLE))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        s.apply({"op": "set", "key": key, "value": 1e308})
+        ctl = s.controls()
+    json.dumps(ctl, allow_nan=False)  # finite: JSON has no Infinity
+    for c in ctl:
+        assert np.isfinite([c["min"], c["max"], c["step"]]).all(), c
+
+
+def test_huge_margin_is_refused_without_overflow():
+    pytest.importorskip("starlette")
+    from voroforge.studio.session import Session
+
+    s = Session(str(EXAMPLE))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r = s.apply({"op": "set", "key": "boundary.margin", "value": 1e308})
+    assert r.kind == "error" and "boundary.margin" in json.dumps(r.issues)
+
+
+def test_poisson_radius_past_the_boundary_keeps_one_seed():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        a = poisson(shapely.box(0, 0, 10, 10), 1e308, seed=3)
+        b = poisson(shapely.box(0, 0, 10, 10), 50.0, seed=3)
+    assert len(a) == 1 and np.array_equal(a, b)
+
+
+def _design(cells, product):
+    return {
+        "design": {"name": "o", "seed": 1},
+        "boundary": {"shape": "rectangle", "width": 100, "height": 100},
+        "seeds": {"method": "random", "count": 20},
+        "cells": cells,
+        "output": {"formats": ["geojson"], "geojson": product},
+    }
+
+
+@pytest.mark.parametrize(
+    "cells, product",
+    [({}, "cells"), ({"web": 2}, "cells"), ({"fillet": 2}, "cells"), ({"web": 2}, "openings"),
+     ({"web": 2}, "frame")],
+)  # fmt: skip
+def test_design_geojson_follows_the_right_hand_rule(tmp_path, cells, product):
+    # RFC 7946 3.1.6: exteriors counter-clockwise, holes clockwise (buffered cells and
+    # openings were all clockwise)
+    written = build(_design(cells, product), tmp_path)
+    path = next(p for p in written if str(p).endswith(".geojson"))
+    rings = 0
+    for f in json.loads(Path(path).read_text())["features"]:
+        g = f["geometry"]
+        if not g:
+            continue
+        polys = [g["coordinates"]] if g["type"] == "Polygon" else g["coordinates"]
+        for poly in polys:
+            assert shapely.LinearRing(poly[0]).is_ccw
+            assert not any(shapely.LinearRing(h).is_ccw for h in poly[1:])
+            rings += 1
+    assert rings > 0
+
+
+def test_circle_segments_have_a_bound(tmp_path):
+    from voroforge.design.boundary import circle
+    from voroforge.design.designfile import DesignError
+
+    d = {
+        "design": {"name": "c"},
+        "boundary": {"shape": "circle", "radius": 10, "segments": 10**6},
+        "seeds": {"method": "random", "count": 10},
+    }
+    with pytest.raises((DesignError, ValueError), match="boundary.segments"):
+        build(d, tmp_path)
+    with pytest.raises(ValueError, match="segments"):
+        circle(1.0, segments=config.BOUNDARY_MAX_SEGMENTS + 1)
+    assert len(circle(1.0, segments=config.BOUNDARY_MAX_SEGMENTS).exterior.coords) > 60000
