@@ -122,7 +122,8 @@ def cells_to_user_frame(coords, offsets, extra, box, corner, consistent: bool):
     Returns
     -------
     bufs : (coords, ring, poly, geom)
-        Without the points rounding made redundant (:func:`drop_repeats`).
+        Without the points rounding made redundant (:func:`drop_repeats`); a ring that
+        rounding pinched (a vertex twice) is split there (:func:`split_pinched`).
     extra : (k, 2) float64
     apart : (m,) int64
         With ``consistent``, the cells holding a vertex whose copies (the points of the
@@ -158,6 +159,7 @@ def cells_to_user_frame(coords, offsets, extra, box, corner, consistent: bool):
             break
         plain |= more & flip
         flip |= more
+    bufs = split_pinched(bufs)
     apart = np.zeros(0, dtype=np.int64)
     if consistent and len(coords):
         off = mismatched(coords - corner, out[: len(coords)], box)
@@ -313,6 +315,79 @@ def drop_repeats(bufs):
             return bufs
         bufs = _without(bufs, rid, ~drop)
     return bufs
+
+
+def split_pinched(bufs):
+    """Buffers where each exterior ring that passes a point twice is split into its loops.
+
+    Rounding can bring two vertices of a cell's narrow neck onto one float point: the ring
+    touches itself there (invalid). Its loops that turn the ring's way become polygons of
+    the cell, touching at that point (the cell's holes go with the largest); a loop that
+    turns the other way, or has no area, is rounding noise and is dropped. (A wrapped cell
+    at 4e12 in a box 12 ulps tall, united from two pieces of a strip, came back pinched.)
+    """
+    coords, ring, poly, geom = bufs
+    if len(ring) < 2:
+        return bufs
+    rid = np.repeat(np.arange(len(ring) - 1), np.diff(ring))
+    body = np.ones(len(coords), dtype=bool)
+    body[ring[1:] - 1] = False  # the closing points
+    at = np.flatnonzero(body)
+    order = np.lexsort((coords[at, 1], coords[at, 0], rid[at]))
+    a = at[order]
+    twice = (rid[a[1:]] == rid[a[:-1]]) & (coords[a[1:]] == coords[a[:-1]]).all(axis=1)
+    pinched = np.unique(rid[a[1:]][twice])
+    exterior = np.zeros(len(ring) - 1, dtype=bool)
+    exterior[poly[:-1]] = True
+    pinched = pinched[exterior[pinched]]
+    if not len(pinched):
+        return bufs
+    import shapely
+
+    cells = shapely.from_ragged_array(shapely.GeometryType.MULTIPOLYGON, coords, (ring, poly, geom))
+    pid = np.repeat(np.arange(len(poly) - 1), np.diff(poly))
+    gid = np.repeat(np.arange(len(geom) - 1), np.diff(geom))
+    for g in np.unique(gid[pid[pinched]]):
+        parts = []
+        for p in range(geom[g], geom[g + 1]):
+            rings = [coords[ring[r] : ring[r + 1]] for r in range(poly[p], poly[p + 1])]
+            loops = _loops(rings[0][:-1])
+            sign = np.sign(_area(rings[0][:-1]))
+            loops = [q for q in loops if len(q) >= 3 and np.sign(_area(q)) == sign]
+            if not loops:
+                continue
+            big = max(range(len(loops)), key=lambda j: abs(_area(loops[j])))
+            for j, q in enumerate(loops):
+                parts.append(shapely.Polygon(q, rings[1:] if j == big else None))
+        cells[g] = shapely.MultiPolygon(parts)
+    _, c, offsets = shapely.to_ragged_array(cells)
+    return (np.ascontiguousarray(c), *offsets)
+
+
+def _loops(pts: np.ndarray) -> list:
+    """The simple loops of a closed walk ``pts`` (first point not repeated at its end)."""
+    out = []
+    stack: list = []
+    seen: dict = {}
+    for p in map(tuple, pts.tolist()):
+        if p in seen:
+            k = seen[p]
+            loop = stack[k:]
+            for q in loop[1:]:
+                del seen[q]
+            del stack[k + 1 :]
+            out.append(np.array(loop))
+        else:
+            seen[p] = len(stack)
+            stack.append(p)
+    out.append(np.array(stack))
+    return out
+
+
+def _area(pts: np.ndarray) -> float:
+    """Twice the signed area of the closed walk ``pts``, about its first point."""
+    v = pts - pts[0]
+    return float((v[:-1, 0] * v[1:, 1] - v[:-1, 1] * v[1:, 0]).sum()) if len(v) > 2 else 0.0
 
 
 def _redundant(coords: np.ndarray, ring: np.ndarray, rid: np.ndarray) -> np.ndarray:
