@@ -6,7 +6,8 @@ the exact shift only where every copy is an exact shift of its site and the box 
 one float grid; elsewhere (a box at the origin: ``0.12156171 + 1`` is a rounded sum) they
 can be an ulp or two apart, and the cells leave a gap or an overlap of that much between a
 vertex and its image. :func:`tie_images` makes each such class of copies one value shifted
-by whole periods, exactly, wherever floats can hold it.
+by whole periods, exactly, wherever floats can hold it. A vertex and its images are found
+by their names, the cells around them (:func:`_names`), and else by distance.
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ from ..config import PERIODIC_AREA_NOISE_ULPS, PERIODIC_TIE_ULPS
 from .periodic_frame import two_sum_error, whole_times
 
 
-def tie_images(bufs, box):
+def tie_images(bufs, box, copies=None):
     """The original cells with every vertex an exact shift of its images, where floats allow.
 
     Points within ``PERIODIC_TIE_ULPS`` ulps of each other modulo the box (ulps of the
@@ -40,6 +41,14 @@ def tie_images(bufs, box):
     The result is kept only where it does not make the cells worse: their areas no farther
     from the box's, every changed ring valid and no ring's orientation flipped (at 1e15, a
     box 24 ulps wide, points that close are distinct vertices).
+
+    ``copies = (full, source, shift)``: the buffers of the whole diagram of the copies, and
+    each copy's site and box shift. A vertex is then also tied to the vertices of other
+    original cells that have the same cells around it shifted by whole periods
+    (:func:`_names`), however far apart the two were computed: where a vertex's sites are
+    close beside a long bisector, a rounded copy moves it by many ulps (18 ulps of 0.9 in a
+    3 x 2 box at the origin, 2000 sites: beyond any distance that tells an image from a
+    neighbouring vertex).
     """
     coords, ring, poly, geom = bufs
     if not len(coords):
@@ -59,7 +68,10 @@ def tie_images(bufs, box):
     band = ((coords - lo <= reach) | (lo + size - coords <= reach)).any(axis=1)
     cand = np.flatnonzero(outside | band)
     rid = np.searchsorted(ring, cand, side="right") - 1
-    out = _tie_points(coords[cand], rid, lo, size, tol, (x0, y0, x1, y1))
+    named = None
+    if copies is not None:
+        named = _names(coords[cand], copies, lo, size, reach)
+    out = _tie_points(coords[cand], rid, lo, size, tol, (x0, y0, x1, y1), named)
     if out is None:
         return bufs
     moved = np.flatnonzero((out != coords[cand]).any(axis=1))
@@ -98,8 +110,12 @@ def _rings_at(ring, which):
     return take, offsets
 
 
-def _tie_points(coords, rid, lo, size, tol, box):
-    """The points ``coords`` (of rings ``rid``) with their classes tied, or None if none."""
+def _tie_points(coords, rid, lo, size, tol, box, named=None):
+    """The points ``coords`` (of rings ``rid``) with their classes tied, or None if none.
+
+    ``named``: per point, its name by the cells around it and that name's box shift
+    (:func:`_names`): points of one name are joined too, or None.
+    """
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
@@ -111,14 +127,31 @@ def _tie_points(coords, rid, lo, size, tol, box):
     qm = np.floor((c - lo) / size)
     qm = np.where(c - qm * size >= lo + size, qm + 1, qm)  # rounding of the division
     q[moved] = np.where(c - qm * size < lo, qm - 1, qm)
+    if named is not None:
+        # a named point's copy of the box is its name's: a vertex half-way between floats
+        # near a side and its image near the other side can both round into the box (a box
+        # 123 ulps tall at 2e12: a cell bordering its own image with vertices at 0 and 122)
+        q = _named_copies(named, q)
+        moved = (q != 0).any(axis=1)
     inner = coords - q * size  # exact on one grid; else rounded, used to find the pairs
     # the periods exactly: (0.3, 1.3) is not a float apart (its size rounds)
     period = (Fraction(x1) - Fraction(x0), Fraction(y1) - Fraction(y0))
     rel = np.minimum(inner - lo, size)  # in [0, size]
+    rel = np.where(rel < 0, np.minimum(rel + size, size), rel)  # a named point past a side
     rel = np.where(rel >= size, 0.0, rel)
     pairs = cKDTree(rel, boxsize=size).query_pairs(tol, p=np.inf, output_type="ndarray")
     pairs = pairs[(moved[pairs[:, 0]] | moved[pairs[:, 1]])]
     pairs = pairs[~_exact_shifts(coords, q, size, period, pairs[:, 0], pairs[:, 1])]
+    if named is not None:
+        # two vertices named by different cells are different vertices, however near (at
+        # 4e12 in a box 1229 ulps tall, two vertices 2 ulps apart joined a vertex's class to
+        # its neighbour's, and the whole group was left alone)
+        la, lb = named[0][pairs[:, 0]], named[0][pairs[:, 1]]
+        pairs = pairs[(la < 0) | (lb < 0) | (la == lb)]
+        # every member of a name with a member that is not its first's exact shift
+        star, label = _named_pairs(named, q)
+        off = ~_exact_shifts(coords, q, size, period, star[:, 0], star[:, 1])
+        pairs = np.concatenate((pairs, star[np.isin(label, label[off])]))
     if not len(pairs):
         return None
     m = len(coords)
@@ -207,3 +240,87 @@ def ring_area(coords, ring, lo, size):
     last = ring[1:] - 1  # the closing point: no edge from it to the next ring
     cross[last] = 0.0
     return 0.5 * np.add.reduceat(cross, ring[:-1]) if len(ring) > 1 else np.zeros(0)
+
+
+def _names(points, copies, lo, size, reach):
+    """Each of ``points`` named by the copies whose cells hold it, less a box shift.
+
+    ``copies = ((coords, ring, poly, geom), source, shift)``: the diagram of all the copies.
+    A vertex's copies ``(source, shift)`` sorted, less the shift of the first, are the same
+    for the vertex and its images by box shifts (the diagram of the copies is the same
+    around each, up to rounding that changes no cell); the shift subtracted tells which
+    image it is. Returns ``(label (m,), shift (m, 2))``: equal labels name images of one
+    vertex; ``-1`` where a point is no vertex of three cells near the sides.
+    """
+    (coords, ring, poly, geom), source, shift = copies
+    hi = lo + size
+    band = ((np.abs(coords - lo) <= reach) | (np.abs(coords - hi) <= reach)).any(axis=1)
+    band[ring[1:] - 1] = False  # a ring's closing point repeats its first
+    at = np.flatnonzero(band)
+    label = np.full(len(points), -1, dtype=np.int64)
+    ref = np.zeros((len(points), 2), dtype=np.int64)
+    if not len(at):
+        return label, ref
+    r = np.searchsorted(ring, at, side="right") - 1
+    p = np.searchsorted(poly, r, side="right") - 1
+    cell = np.searchsorted(geom, p, side="right") - 1
+    bits = np.ascontiguousarray(coords[at]).view(np.int64)
+    src = source[cell]
+    sh = shift[cell]
+    # by vertex (its bits), then by copy
+    order = np.lexsort((sh[:, 1], sh[:, 0], src, bits[:, 1], bits[:, 0]))
+    bits, src, sh = bits[order], src[order], sh[order]
+    start = np.flatnonzero(np.r_[True, (bits[1:] != bits[:-1]).any(axis=1)])
+    count = np.diff(np.r_[start, len(bits)])
+    rows = np.column_stack((src, sh - np.repeat(sh[start], count, axis=0))).astype(np.int64)
+    names: dict[bytes, int] = {}
+    vlabel = np.full(len(start), -1, dtype=np.int64)
+    for v, (a, c) in enumerate(zip(start.tolist(), count.tolist(), strict=True)):
+        if c >= 3:  # a vertex of three cells or more
+            vlabel[v] = names.setdefault(rows[a : a + c].tobytes(), len(names))
+    where = dict(zip(map(tuple, bits[start].tolist()), range(len(start)), strict=True))
+    mine = np.ascontiguousarray(points).view(np.int64).tolist()
+    k = np.array([where.get(tuple(b), -1) for b in mine], dtype=np.int64)
+    found = k >= 0
+    label[found] = vlabel[k[found]]
+    ref[found] = sh[start][k[found]]
+    return label, ref
+
+
+def _named_copies(named, q):
+    """``q`` with each named point's box copy set by its name's shift.
+
+    A name's anchor is its first point in the box (else its first point); the others are
+    in the copy of the anchor's box shifted by the difference of their names' shifts.
+    """
+    label, ref = named
+    pts = np.flatnonzero(label >= 0)
+    if not len(pts):
+        return q
+    home = ~(q[pts] != 0).any(axis=1)
+    # per name: its points in the box first, each group in order
+    pts = pts[np.lexsort((~home, label[pts]))]
+    start = np.flatnonzero(np.r_[True, label[pts[1:]] != label[pts[:-1]]])
+    anchor = np.repeat(pts[start], np.diff(np.r_[start, len(pts)]))
+    out = q.copy()
+    out[pts] = q[anchor] + (ref[pts] - ref[anchor])
+    return out
+
+
+def _named_pairs(named, q):
+    """Each point of a name paired with the name's first point, and the pairs' names.
+
+    Only where the box copies ``q`` of the two differ by their names' shifts: a point whose
+    coordinates put it in another box copy than its name says (a vertex on a side, rounded
+    across it) is left to the distance test.
+    """
+    label, ref = named
+    pts = np.flatnonzero(label >= 0)
+    if not len(pts):
+        return np.zeros((0, 2), dtype=np.int64), pts
+    pts = pts[np.argsort(label[pts], kind="stable")]
+    start = np.flatnonzero(np.r_[True, label[pts[1:]] != label[pts[:-1]]])
+    first = np.repeat(pts[start], np.diff(np.r_[start, len(pts)]))
+    a, b = first[first != pts], pts[first != pts]
+    agree = ((q[b] - q[a]).astype(np.int64) == ref[b] - ref[a]).all(axis=1)
+    return np.column_stack((a[agree], b[agree])).astype(np.int64), label[b[agree]]
