@@ -22,7 +22,10 @@ size; points are taken modulo the box by their exact offsets where those are flo
 report counts the points so merged. A vertex is straight when the exact ``orient2d`` of it
 and its ring neighbours is 0; one that only one or two rings have is also straight within
 ``VERTEX_STRAIGHT_ULPS`` ulps of the coordinates involved (a rounded T-junction), and no
-turn that small counts against convexity.
+turn that small counts against convexity. A vertex of other cells that lies on a cell's side
+(exactly on a torus; within ``VERTEX_STRAIGHT_ULPS`` ulps in the plane) where those cells'
+sides cover that side end to end is put into its ring first (:mod:`.junctions`), so the side
+counts as the edges along it.
 
 Then ``V - E + F = chi(D)``, the Euler characteristic of the domain: the number of its parts
 minus the number of its holes (1 for a box). A vertex that one cell has and its neighbour
@@ -330,15 +333,16 @@ def _box_offsets(raw: np.ndarray, lo: np.ndarray, hi: np.ndarray):
     return out
 
 
-def _counts(coords, ring, cell_of_ring, corners, wrap=None, junctions=True):
+def _counts(coords, ring, cell_of_ring, corners, wrap=None, junctions=2):
     """``(V, E, merged, V3)`` of the ring graph (``wrap``: see :func:`_vertex_ids`).
 
     A vertex that is a straight angle in every ring that has it (the middle of an edge, or a
     T-junction that only one side of an edge has) is not a vertex of the graph. ``V3``
     counts the vertices that at least three cells share. On a torus (``wrap``) every edge
     borders two ring sides, so ``E`` is half the segments between the kept vertices (an edge
-    can join a vertex to itself there); a vertex lying exactly on a ring side without it is
-    first put in that ring (``junctions``: :func:`.torus_junctions.split`).
+    can join a vertex to itself there). A vertex lying on a ring side without it (a
+    T-junction: exactly, on a torus; within ``VERTEX_STRAIGHT_ULPS`` ulps, in the plane) is
+    first put in that ring (``junctions``: :mod:`.junctions`).
     """
     if len(coords) == 0:
         return 0, 0, 0, 0
@@ -364,16 +368,22 @@ def _counts(coords, ring, cell_of_ring, corners, wrap=None, junctions=True):
             pts[outside] = moved
             wrap = (outside, lo, boxsize, tol)
     ids, merged = _vertex_ids(pts, rid, flat, corners, wrap)
-    if torus is not None and junctions:
-        from .torus_junctions import split
+    if junctions and len(idx):
+        from .junctions import split, split_plane
 
         lengths = np.diff(ring) - 1
         nxt = np.arange(1, len(idx) + 1)
         ends = np.cumsum(lengths)
         nxt[ends[lengths > 0] - 1] = (ends - lengths)[lengths > 0]
-        got = split(coords, ring, idx, nxt, ids, torus[0], torus[1] - torus[0])
+        if torus is not None:
+            got = split(coords, ring, idx, nxt, ids, torus[0], torus[1] - torus[0])
+        else:
+            got = split_plane(coords, ring, idx, nxt, ids)
         if got is not None:
-            return _counts(got[0], got[1], cell_of_ring, corners, torus, junctions=False)
+            # on a torus one pass; in the plane a split can leave a side that the next
+            # covers (nested clusters at (3e3, -2e3): Euler -3, 0 after one pass, 1 after two)
+            again = junctions - 1 if torus is None else 0
+            return _counts(got[0], got[1], cell_of_ring, corners, torus, junctions=again)
     rings = _rings_per_vertex(ids, rid)
     if wrap is not None:
         # on a torus a cell that borders its own image has a vertex twice in its ring (as
