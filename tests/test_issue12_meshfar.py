@@ -163,3 +163,19 @@ def test_shells_sharing_an_edge_are_refused_clearly(shift):
     m = _two_boxes(shift)
     with pytest.raises(ValueError, match="non-manifold.*union them"):
         vf.voronoi3d(np.array([[0.1, 0.1, 0.1]]), m)
+
+
+@pytest.mark.parametrize("scale, off", [(1e-3, (5e5, 4e6, 100)), (1.0, (1e9, 1e9, 1e9))])
+def test_weighted_torus_far_out_matches_its_translated_copy(scale, off):
+    # power bisectors about the local origin (before: 1.6e-9 and 5.1e-9 off the copy's sum)
+    off = np.asarray(off, float)
+    tor = _torus()
+    rng = np.random.default_rng(2)
+    pts = rng.uniform(-1.3, 1.3, (60, 3)) * [1, 1, 0.3] * scale + off
+    w = 0.01 * scale * scale * rng.random(60)
+    V = tor.vertices * scale + off
+    d = vf.voronoi3d(pts, (V, tor.faces), weights=w)
+    d0 = vf.voronoi3d(pts - off, (V - off, tor.faces), weights=w)
+    mv = trimesh.Trimesh(V - off, tor.faces, process=False).volume
+    assert abs(d.volumes.sum() - mv) <= 1e-12 * mv
+    assert np.abs(d.volumes - d0.volumes).max() <= 1e-13 * mv

@@ -193,8 +193,10 @@ def sites_inside(mesh: MeshContainer, pts: np.ndarray) -> np.ndarray:
     with serial_below(len(pts)):
         out = inside_mesh(q, V, F, g, start, items)
     rest = np.flatnonzero(~out)
-    with serial_below(len(rest)):
-        out[rest] = on_mesh(np.ascontiguousarray(q[rest]), V, F, g, start, items)
+    if len(rest):  # on the surface: the triangles of each point's 3D bucket
+        _, lo, h, dims, start, items = _tri_buckets(V[F], 0.0)
+        with serial_below(len(rest)):
+            out[rest] = on_mesh(np.ascontiguousarray(q[rest]), V, F, lo, h, dims, start, items)
     return out
 
 

@@ -178,24 +178,32 @@ def on_triangle(V, F, t, px, py, pz):
 
 
 @njit(**NJIT_PARALLEL)
-def on_mesh(Q, V, F, g, start, items):
+def on_mesh(Q, V, F, lo, h, dims, start, items):
     """``(m,) bool``: which points ``Q (m, 3)`` lie exactly on a triangle of ``(V, F)``.
 
-    The triangles of each point's bucket of :func:`yz_grid` (a triangle through the point
-    has it in its (y, z) box, so in a bucket the point's lies in). Parallel over the points.
+    The triangles of each point's bucket of :func:`kernels.meshclip3d.tri_grid` (``lo``,
+    ``h``, ``dims``, ``start``, ``items``; the same clamped floor of ``(x - lo) / h``
+    places a triangle's box and a point in it, so a triangle through the point is in its
+    bucket). Parallel over the points.
     """
-    nb = int(g[4])
     out = np.zeros(Q.shape[0], np.bool_)
+    nz = dims[2]
+    ny = dims[1]
     for q in prange(Q.shape[0]):
         px = Q[q, 0]
         py = Q[q, 1]
         pz = Q[q, 2]
-        a = int((py - g[0]) / g[2])
-        b = int((pz - g[1]) / g[3])
-        if not (0 <= a < nb and 0 <= b < nb):
+        b = 0
+        for c in range(3):
+            x = Q[q, c] - lo[c]
+            if not x >= 0.0 or x > dims[c] * h * 2.0:
+                b = -1
+                break
+            k = min(dims[c] - 1, max(0, int(x / h)))
+            b = b * (nz if c == 2 else ny if c == 1 else 1) + k
+        if b < 0:
             continue
-        k = a * nb + b
-        for s in range(start[k], start[k + 1]):
+        for s in range(start[b], start[b + 1]):
             if on_triangle(V, F, items[s], px, py, pz):
                 out[q] = True
                 break
