@@ -99,6 +99,19 @@ def _loc(p) -> tuple[float, float, float]:
     return (float(p[0]), float(p[1]), float(p[2]))
 
 
+def shell_volumes(t, fl, lo, n) -> np.ndarray:
+    """Signed volume of each of ``n`` shells: triangles ``t`` (T, 3, 3), shell ``fl`` (T,).
+
+    Each shell's tetrahedra are taken about its own lowest corner ``lo[fl]``, not the
+    absolute origin: a shell far from the origin (5e5 away, a few hundredths across) has
+    triple products about the origin of 1e17 whose rounding swamps its volume and flips its
+    sign; its points minus a corner near them are exact (Sterbenz) or nearly so.
+    """
+    t = t - lo[fl][:, None, :]
+    six = np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2]))
+    return np.bincount(fl, six, n) / 6.0
+
+
 def _bodies(m):
     """Connected components of the mesh with their signed volumes and centroids."""
     from scipy.sparse import coo_matrix
@@ -112,8 +125,6 @@ def _bodies(m):
     n, lab = connected_components(g, directed=False)
     flab = lab[f[:, 0]]
     t = np.asarray(m.vertices)[f]
-    vol6 = np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2]))
-    vol = np.bincount(flab, vol6, minlength=n) / 6.0
     cen = t.mean(axis=1)
     area = 0.5 * np.linalg.norm(np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]), axis=1)
     a = np.bincount(flab, area, minlength=n)
@@ -124,6 +135,9 @@ def _bodies(m):
     for i in range(3):
         np.minimum.at(lo[:, i], flab, t[:, :, i].min(axis=1))
         np.maximum.at(hi[:, i], flab, t[:, :, i].max(axis=1))
+    # about each shell's own corner: far from the origin a small cavity's volume about the
+    # origin is rounding noise of either sign (it was reported as a floating part)
+    vol = shell_volumes(t, flab, lo, n)
     used = np.bincount(flab, minlength=n) > 0
     return vol[used], c[used], lo[used], hi[used]
 

@@ -26,6 +26,7 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import ConvexHull, QhullError
 
 from .. import config
+from .check import shell_volumes
 from .conflicts import conflicts
 
 __all__ = ["hull_lattice"]
@@ -599,12 +600,12 @@ def _fill_pockets(verts, tris, size):
     n, lab = connected_components(g, directed=False)
     fl = lab[tris[:, 0]]
     t = verts[tris]
-    vol = np.bincount(fl, np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])), n) / 6.0
     lo = np.full((n, 3), np.inf)
     hi = np.full((n, 3), -np.inf)
     for i in range(3):
         np.minimum.at(lo[:, i], fl, t[:, :, i].min(axis=1))
         np.maximum.at(hi[:, i], fl, t[:, :, i].max(axis=1))
+    vol = shell_volumes(t, fl, lo, n)
     pocket = (vol < 0) & ((hi - lo).max(axis=1) < size)
     return tris[~pocket[fl]], float(-vol[pocket].sum()), int(pocket.sum())
 

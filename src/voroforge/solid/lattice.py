@@ -12,6 +12,25 @@ __all__ = ["lattice"]
 NODES = ("sphere", "hull", "smooth")
 
 
+def local_origin(points) -> np.ndarray:
+    """An origin near ``points`` that every point minus it is exact about.
+
+    Their bounding box's centre rounded to a multiple of the power of two above its largest
+    extent (as :func:`voroforge.engine.containers.far_origin`, but always, near or far):
+    both the point and the origin are multiples of the point's ulp and the difference is
+    below the extent. Zero for no points or a box about the origin.
+    """
+    p = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+    if len(p) == 0:
+        return np.zeros(3)
+    lo, hi = p.min(axis=0), p.max(axis=0)
+    size = float((hi - lo).max())
+    if not (size > 0 and np.isfinite(size)):
+        return np.zeros(3)
+    step = np.ldexp(1.0, int(np.frexp(size)[1]))
+    return np.round((0.5 * lo + 0.5 * hi) / step) * step + 0.0
+
+
 def _finish(verts, faces, meta):
     import trimesh
 
@@ -123,9 +142,13 @@ def lattice(
     if nodes != "smooth" and skin == 0 and route != "implicit":
         from .hulls import hull_lattice  # scipy.spatial and .sparse: the hull route's only
 
+        # built about a local origin, then translated back: the node hulls (qhull), the
+        # joints' unions (manifold3d, whose tolerance grows with the coordinates' magnitude)
+        # and the pocket test then see the same numbers wherever the lattice lies
+        o = local_origin(g.nodes)
         try:
             verts, faces, parts = hull_lattice(
-                g.nodes,
+                g.nodes - o,
                 g.edges,
                 r,
                 segments=int(segments),
@@ -136,6 +159,7 @@ def lattice(
             if nodes == "hull" or route == "hull":
                 raise
         else:
+            verts += o
             parts["method"] = "hull"
             m = _finish(verts, faces, {**meta, "parts": parts})
             if container is not None:
