@@ -210,6 +210,31 @@ def first_halo(rect, count, lo, hi):
     return config.SCALE_HALO_SPACINGS * spacing
 
 
+def extent_check(lo, hi, boundary, padded):
+    """Refuse, before any tile runs, sites or a domain whose extent overflows float64.
+
+    The tiling, the halos and the certificate work with widths (``hi - lo``) and the
+    default domain pads the sites' box by 10% of them: past ~1.8e308 these are infinite
+    and a tile would fail on a box the user never gave.
+    """
+    box = np.array(boundary.bounds if hasattr(boundary, "bounds") else boundary, dtype=float)
+    with np.errstate(over="ignore", invalid="ignore"):
+        sites = np.all(np.isfinite(hi - lo))
+        domain = np.all(np.isfinite(box)) and np.all(np.isfinite(box[2:] - box[:2]))
+    if sites and domain:
+        return
+    if not sites:
+        what = "their extent"
+    elif padded:
+        what = "their box padded by 10% (the default domain)"
+    else:
+        what = "the boundary's extent"
+    raise ValueError(
+        f"points span x {lo[0]:g} .. {hi[0]:g}, y {lo[1]:g} .. {hi[1]:g}: {what} overflows "
+        "float64 (widths past ~1.8e308); scale the coordinates down"
+    )
+
+
 def _grown(rect, h):
     return (rect[0] - h, rect[1] - h, rect[2] + h, rect[3] + h)
 
@@ -334,8 +359,9 @@ def voronoi(
                 "progress": progress,
             }
             result = _run(cl, source, job)
-    except ValueError:
-        # refused before any work was recorded: leave no folder that a rerun would refuse
+    except BaseException:
+        # failed before any work was recorded (a refusal, or an error reading the input):
+        # leave no folder that a rerun would refuse
         if resume is None and not (out / MANIFEST).exists() and out.is_dir() and _ours(out):
             shutil.rmtree(out, ignore_errors=True)
         raise
@@ -384,7 +410,9 @@ def _run(cl, source, job):
     lo = np.min([s["lo"] for s in stats if s["lo"] is not None], axis=0)
     hi = np.max([s["hi"] for s in stats if s["hi"] is not None], axis=0)
     if eng_boundary is None:
-        eng_boundary = tuple(float(v) for v in padded_bounds(np.array([lo, hi])))
+        with np.errstate(over="ignore", invalid="ignore"):  # refused just below
+            eng_boundary = tuple(float(v) for v in padded_bounds(np.array([lo, hi])))
+    extent_check(lo, hi, eng_boundary, job["boundary"] is None)
     ntiles = tile_count(n, job["tiles"], job["tile_size"], nworkers)
     sample = np.concatenate([s["sample"] for s in stats])
     tiling = kd_tiling(sample, ntiles)

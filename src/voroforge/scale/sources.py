@@ -75,6 +75,12 @@ class Source:
 
 
 def _xy_names(names, where):
+    seen = set()
+    twice = [c for c in names if c in seen or seen.add(c)]
+    if twice:
+        raise ValueError(
+            f"{where}: column {twice[0]!r} appears more than once; column names must be unique"
+        )
     low = {c.lower(): c for c in names}
     xs = [low[c] for c in _X_NAMES if c in low]
     ys = [low[c] for c in _Y_NAMES if c in low]
@@ -104,20 +110,22 @@ def _npy_source(path: Path, rows: int, temporary=None) -> Source:
     return Source(len(arr), chunks, temporary=temporary, description=f"{path} ({len(arr)} rows)")
 
 
-def _parquet_source(path: Path, rows: int, temporary=None) -> Source:
+def _parquet_source(path: Path, rows: int, temporary=None, label=None) -> Source:
+    """Chunks of a Parquet file; errors name ``label`` (the user's file a CSV came from)."""
     import pyarrow.parquet as pq
 
+    where = path if label is None else label
     try:
         pf = pq.ParquetFile(path)
     except Exception as exc:  # pyarrow raises its own error types for unreadable files
-        raise ValueError(f"{path}: not a readable Parquet file ({exc})") from None
-    xy = _xy_names(pf.schema_arrow.names, path)
+        raise ValueError(f"{where}: not a readable Parquet file ({exc})") from None
+    xy = _xy_names(pf.schema_arrow.names, where)
     import pyarrow.types as pat
 
     for name in xy:
         kind = pf.schema_arrow.field(name).type
         if not (pat.is_integer(kind) or pat.is_floating(kind)):
-            raise ValueError(f"{path}: column {name!r} is not numeric ({kind})")
+            raise ValueError(f"{where}: column {name!r} is not numeric ({kind})")
     chunks, start, group, acc = [], 0, [], 0
     meta = pf.metadata
     for g in range(meta.num_row_groups):
@@ -151,12 +159,16 @@ def _csv_to_parquet(path: Path, dest: Path, rows: int) -> Path:
         raise ValueError(f"{path}: not a readable CSV file ({exc})") from None
     _xy_names(reader.schema.names, path)
     tmp = dest.with_name(dest.name + ".part")
-    with pq.ParquetWriter(tmp, reader.schema) as writer:
-        try:
-            for batch in reader:
-                writer.write_batch(batch, row_group_size=rows)
-        except Exception as exc:
-            raise ValueError(f"{path}: CSV parse error ({exc})") from None
+    try:
+        with pq.ParquetWriter(tmp, reader.schema) as writer:
+            try:
+                for batch in reader:
+                    writer.write_batch(batch, row_group_size=rows)
+            except Exception as exc:
+                raise ValueError(f"{path}: CSV parse error ({exc})") from None
+    except BaseException:
+        tmp.unlink(missing_ok=True)  # a failed conversion leaves nothing behind
+        raise
     tmp.replace(dest)
     return dest
 
@@ -194,7 +206,11 @@ def open_source(points, work: Path, rows: int) -> Source:
             return _parquet_source(path, rows)
         if suffix in (".csv", ".txt", ".tsv"):
             dest = _csv_to_parquet(path, work / "_points.tmp.parquet", rows)
-            return _parquet_source(dest, rows, temporary=[dest])
+            try:
+                return _parquet_source(dest, rows, temporary=[dest], label=path)
+            except BaseException:
+                dest.unlink(missing_ok=True)
+                raise
         raise ValueError(f"{path}: unknown points format {suffix!r} (use .npy, .csv or .parquet)")
     if type(points).__module__.startswith("dask."):
         arr = points

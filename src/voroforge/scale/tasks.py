@@ -26,6 +26,7 @@ from ..config import NJIT, SCALE_CERT_RTOL
 __all__ = [
     "Piece",
     "chunk_stats",
+    "compute_cells",
     "radii",
     "run_tile",
     "split_by_tile",
@@ -61,9 +62,15 @@ def chunk_stats(chunk, block, sample_size: int, seed: int):
         "bad_count": len(bad),
         "lo": good.min(axis=0).tolist() if len(good) else None,
         "hi": good.max(axis=0).tolist() if len(good) else None,
-        "checksum": [float(v).hex() for v in good.sum(axis=0)] if len(good) else None,
+        "checksum": [float(v).hex() for v in _sum(good)] if len(good) else None,
         "sample": sample,
     }
+
+
+def _sum(xy):
+    """Column sums (a fingerprint: past ~1.8e308 they are infinite, which still fingerprints)."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        return xy.sum(axis=0)
 
 
 def split_by_tile(ids, xy, attrs, tiling):
@@ -127,6 +134,23 @@ def _farthest(coords, start, xy):  # pragma: no cover
     return r
 
 
+def ring_radii(xy, boundary):
+    """Each cell's farthest vertex distance on a polygon domain: that of its convex ring.
+
+    The engine clips a cell to a polygon domain in two steps: the convex ring cut to the
+    domain's bounding box, then that ring intersected with the polygon (GEOS). A crossing of
+    the ring with an edge of the polygon inside the box (a hole's edge, a gap between the
+    parts of a MultiPolygon) is computed from the ring edge's two vertices, and the outer
+    one may lie far beyond the clipped cell, cut by a site more than twice the clipped
+    cell's radius away: that site changes the crossing's last bit (checker7 R1). The ring
+    is the cell of the box diagram, so its radius certifies every bit of the clipped cell.
+    """
+    import voroforge as vf
+
+    box = tuple(float(v) for v in boundary.bounds)
+    return radii(vf.voronoi(xy, box), xy)
+
+
 def certified_sites(xy, r, loaded):
     """True where the disc of radius ``2 r`` (with slack) around ``xy`` lies in ``loaded``."""
     reach = 2.0 * r * (1.0 + SCALE_CERT_RTOL)
@@ -170,7 +194,7 @@ def limit_threads():
         numba.set_num_threads(before)
 
 
-def _compute(ids, xy, boundary, loaded, wanted, last=False):
+def compute_cells(ids, xy, boundary, loaded, wanted, last=False):
     """Cells of ``wanted`` (local rows) among sites ``xy``: certified table part + the rest.
 
     With ``last`` the uncertified cells go into the table too (they are reported).
@@ -181,7 +205,8 @@ def _compute(ids, xy, boundary, loaded, wanted, last=False):
     from ..io.parquet import cells_table, neighbor_lists
 
     d = vf.voronoi(xy, boundary)
-    r = radii(d, xy)
+    polygon = hasattr(boundary, "geom_type")  # a shapely Polygon/MultiPolygon, not a box
+    r = ring_radii(xy, boundary) if polygon else radii(d, xy)
     ok = certified_sites(xy[wanted], r[wanted], loaded)
     keep = wanted if last else wanted[ok]
     nb = neighbor_lists(d.edges.pairs, len(xy), cells=keep, ids=ids)
@@ -216,7 +241,7 @@ def run_tile(t, spec, store, tiling):
             table, pending = _compute_empty()
         else:
             loaded = open_sides(spec["loaded"], lo, hi)
-            table, pending = _compute(ids, xy, boundary, loaded, wanted)
+            table, pending = compute_cells(ids, xy, boundary, loaded, wanted)
         del ids, xy
         tables = [table]
         first = len(pending[0])
@@ -235,7 +260,9 @@ def run_tile(t, spec, store, tiling):
             for g, box in enumerate(boxes):
                 ids_b, xy_b = gather_sites([pieces[int(u)] for u in reach[g]], box)
                 wanted = np.flatnonzero(np.isin(ids_b, ids_u[member == g], assume_unique=True))
-                part, more = _compute(ids_b, xy_b, boundary, open_sides(box, lo, hi), wanted, last)
+                part, more = compute_cells(
+                    ids_b, xy_b, boundary, open_sides(box, lo, hi), wanted, last
+                )
                 tables.append(part)
                 for acc, new in zip(left, more, strict=True):
                     acc.append(new)
