@@ -633,7 +633,8 @@ def _periodic(points, tile, algorithm: str, wrap: bool, may_move: bool) -> Diagr
         bufs, keep = _wrapped_cells(d, pieces, source, n, _sliver_width(box))
     else:
         # a vertex and its images made exact shifts of each other (periodic_ties)
-        bufs = tie_images(_cells_at(buffers(d), orig), box, (buffers(d), source, shift))
+        copies = (buffers(d), d.sites, source, shift)
+        bufs = tie_images(_cells_at(buffers(d), orig), box, copies)
     edges = _torus_edges(d, source, shift, is_orig, wrap, keep if wrap else None, box)
     # a site is unresolved when the copy its cell comes from is (unwrapped: the original;
     # wrapped: any copy, whose piece is then missing)

@@ -42,13 +42,13 @@ def tie_images(bufs, box, copies=None):
     from the box's, every changed ring valid and no ring's orientation flipped (at 1e15, a
     box 24 ulps wide, points that close are distinct vertices).
 
-    ``copies = (full, source, shift)``: the buffers of the whole diagram of the copies, and
-    each copy's site and box shift. A vertex is then also tied to the vertices of other
-    original cells that have the same cells around it shifted by whole periods
-    (:func:`_names`), however far apart the two were computed: where a vertex's sites are
-    close beside a long bisector, a rounded copy moves it by many ulps (18 ulps of 0.9 in a
-    3 x 2 box at the origin, 2000 sites: beyond any distance that tells an image from a
-    neighbouring vertex).
+    ``copies = (full, sites, source, shift)``: the buffers of the whole diagram of the
+    copies, its sites, and each copy's site and box shift. A vertex is then also tied to
+    the vertices of other original cells that have the same cells around it shifted by
+    whole periods (:func:`_names`), however far apart the two were computed: where a
+    vertex's sites are close beside a long bisector, a rounded copy moves it by many ulps
+    (18 ulps of 0.9 in a 3 x 2 box at the origin, 2000 sites: beyond any distance that tells
+    an image from a neighbouring vertex).
     """
     coords, ring, poly, geom = bufs
     if not len(coords):
@@ -70,7 +70,9 @@ def tie_images(bufs, box, copies=None):
     rid = np.searchsorted(ring, cand, side="right") - 1
     named = None
     if copies is not None:
-        named = _names(coords[cand], copies, lo, size, reach)
+        pid = np.searchsorted(poly, rid, side="right") - 1
+        cell = np.searchsorted(geom, pid, side="right") - 1
+        named = _names(coords[cand], cell, copies, lo, size, reach)
     out = _tie_points(coords[cand], rid, lo, size, tol, (x0, y0, x1, y1), named)
     if out is None:
         return bufs
@@ -242,28 +244,38 @@ def ring_area(coords, ring, lo, size):
     return 0.5 * np.add.reduceat(cross, ring[:-1]) if len(ring) > 1 else np.zeros(0)
 
 
-def _names(points, copies, lo, size, reach):
+def _names(points, owner, copies, lo, size, reach):
     """Each of ``points`` named by the copies whose cells hold it, less a box shift.
 
-    ``copies = ((coords, ring, poly, geom), source, shift)``: the diagram of all the copies.
-    A vertex's copies ``(source, shift)`` sorted, less the shift of the first, are the same
+    ``points`` are of the original cells ``owner``, within ``reach`` of a side;
+    ``copies = ((coords, ring, poly, geom), sites, source, shift)``: the diagram of all the
+    copies. A vertex's copies ``(source, shift)`` sorted, less the shift of the first, are the same
     for the vertex and its images by box shifts (the diagram of the copies is the same
     around each, up to rounding that changes no cell); the shift subtracted tells which
     image it is. Returns ``(label (m,), shift (m, 2))``: equal labels name images of one
     vertex; ``-1`` where a point is no vertex of three cells near the sides.
     """
-    (coords, ring, poly, geom), source, shift = copies
-    hi = lo + size
-    band = ((np.abs(coords - lo) <= reach) | (np.abs(coords - hi) <= reach)).any(axis=1)
-    band[ring[1:] - 1] = False  # a ring's closing point repeats its first
-    at = np.flatnonzero(band)
+    (coords, ring, poly, geom), sites, source, shift = copies
     label = np.full(len(points), -1, dtype=np.int64)
     ref = np.zeros((len(points), 2), dtype=np.int64)
+    if not len(points):
+        return label, ref
+    # the cells holding a point are those whose sites are as far from it as its own: near
+    # the sides (only their points are read, not the whole diagram's)
+    orig = np.flatnonzero(~shift.any(axis=1))  # source-major: site i's original copy
+    own = sites[orig[owner]]
+    far = float(np.sqrt(((points - own) ** 2).sum(axis=1)).max())
+    grow = reach + far * (1.0 + 1e-6)
+    hi = lo + size
+    near = np.flatnonzero(((np.abs(sites - lo) <= grow) | (np.abs(sites - hi) <= grow)).any(axis=1))
+    r0 = poly[geom[near]]
+    nr = poly[geom[near + 1]] - r0
+    rings = np.repeat(r0 - np.cumsum(nr) + nr, nr) + np.arange(int(nr.sum()))
+    npts = np.maximum(ring[rings + 1] - ring[rings] - 1, 0)  # less the closing point
+    at = np.repeat(ring[rings] - np.cumsum(npts) + npts, npts) + np.arange(int(npts.sum()))
+    cell = np.repeat(np.repeat(near, nr), npts)
     if not len(at):
         return label, ref
-    r = np.searchsorted(ring, at, side="right") - 1
-    p = np.searchsorted(poly, r, side="right") - 1
-    cell = np.searchsorted(geom, p, side="right") - 1
     bits = np.ascontiguousarray(coords[at]).view(np.int64)
     src = source[cell]
     sh = shift[cell]
@@ -273,18 +285,33 @@ def _names(points, copies, lo, size, reach):
     start = np.flatnonzero(np.r_[True, (bits[1:] != bits[:-1]).any(axis=1)])
     count = np.diff(np.r_[start, len(bits)])
     rows = np.column_stack((src, sh - np.repeat(sh[start], count, axis=0))).astype(np.int64)
+    # each point's vertex (its bits among the vertices'), then names for those only
+    k = _find_rows(bits[start], np.ascontiguousarray(points).view(np.int64))
     names: dict[bytes, int] = {}
     vlabel = np.full(len(start), -1, dtype=np.int64)
-    for v, (a, c) in enumerate(zip(start.tolist(), count.tolist(), strict=True)):
+    for v in np.unique(k[k >= 0]).tolist():
+        a, c = int(start[v]), int(count[v])
         if c >= 3:  # a vertex of three cells or more
             vlabel[v] = names.setdefault(rows[a : a + c].tobytes(), len(names))
-    where = dict(zip(map(tuple, bits[start].tolist()), range(len(start)), strict=True))
-    mine = np.ascontiguousarray(points).view(np.int64).tolist()
-    k = np.array([where.get(tuple(b), -1) for b in mine], dtype=np.int64)
     found = k >= 0
     label[found] = vlabel[k[found]]
     ref[found] = sh[start][k[found]]
     return label, ref
+
+
+def _find_rows(table, rows):
+    """Index of each of ``rows`` in ``table`` (``(m, 2)`` int64, distinct rows), or -1."""
+    both = np.concatenate((table, rows))
+    is_row = np.r_[np.zeros(len(table), dtype=bool), np.ones(len(rows), dtype=bool)]
+    order = np.lexsort((is_row, both[:, 1], both[:, 0]))  # a table row before equal rows
+    pos = np.arange(len(order))
+    last = np.maximum.accumulate(np.where(~is_row[order], pos, -1))
+    at = np.zeros(len(order), dtype=np.int64)
+    at[order] = pos
+    mine = last[at[len(table) :]]
+    k = np.where(mine >= 0, order[np.maximum(mine, 0)], -1)
+    same = (k >= 0) & (both[np.maximum(k, 0)] == rows).all(axis=1)
+    return np.where(same, k, -1)
 
 
 def _named_copies(named, q):
