@@ -21,6 +21,7 @@ __all__ = [
     "Panels",
     "Planarity",
     "PlanarizeReport",
+    "MissingPanelWarning",
     "PlanarizeWarning",
     "Surface",
     "SurfaceVoronoi",
@@ -44,6 +45,7 @@ _LAZY = {
     "Panels": ".panels",
     "Planarity": ".panels",
     "PlanarizeReport": ".panels",
+    "MissingPanelWarning": ".panels",
     "PlanarizeWarning": ".panels",
     "Surface": ".shapes",
     "SurfaceVoronoi": ".voronoi",
@@ -62,7 +64,7 @@ _LAZY = {
 
 if TYPE_CHECKING:
     from .morph import morph
-    from .panels import Panels, Planarity, PlanarizeReport, PlanarizeWarning
+    from .panels import MissingPanelWarning, Panels, Planarity, PlanarizeReport, PlanarizeWarning
     from .shapes import (
         Surface,
         cylinder,

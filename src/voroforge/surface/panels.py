@@ -18,7 +18,11 @@ from dataclasses import dataclass, field
 import numpy as np
 import shapely
 
-__all__ = ["Panels", "Planarity", "PlanarizeReport", "PlanarizeWarning"]
+__all__ = ["MissingPanelWarning", "Panels", "Planarity", "PlanarizeReport", "PlanarizeWarning"]
+
+
+class MissingPanelWarning(UserWarning):
+    """Cells that have no panel (a boundary of fewer than 3 corners, or several rings)."""
 
 
 class PlanarizeWarning(UserWarning):
@@ -118,6 +122,9 @@ class Panels:
     surface : Surface or None
     report : PlanarizeReport or None
         Set by :meth:`planarize`.
+    missing : dict
+        The cells that have no panel, id -> why (see
+        :meth:`voroforge.surface.SurfaceVoronoi.panels`); empty when every cell has one.
     """
 
     vertices: np.ndarray
@@ -126,6 +133,7 @@ class Panels:
     uv: np.ndarray | None = None
     surface: object = None
     report: PlanarizeReport | None = None
+    missing: dict = field(default_factory=dict)
     _cache: dict = field(default_factory=dict, repr=False)
 
     # --- construction --------------------------------------------------------------------
@@ -159,6 +167,7 @@ class Panels:
             self.uv if uv is None and vertices is None else uv,
             self.surface,
             report,
+            self.missing,
         )
 
     def __len__(self) -> int:
@@ -489,7 +498,7 @@ class Panels:
             rings.append([*self.rings[p], np.arange(k, k + len(ext))[::-1]])
             k += len(ext)
         uv = np.concatenate(UV) if UV is not None else None
-        return Panels(np.concatenate(V), rings, self.ids, uv, self.surface)
+        return Panels(np.concatenate(V), rings, self.ids, uv, self.surface, None, self.missing)
 
     # --- solids --------------------------------------------------------------------------
 

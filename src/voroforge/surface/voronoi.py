@@ -335,15 +335,54 @@ class SurfaceVoronoi:
         return m
 
     def panels(self):
-        """The cells as panels: polygons through their corners (see :meth:`corners`)."""
-        from .panels import Panels
+        """The cells as panels: polygons through their corners (see :meth:`corners`).
+
+        A panel is one flat polygon, so a cell whose boundary has fewer than 3 corners (a
+        smooth curve where only two cells meet: each half of a 2-site sphere, a band around
+        a torus's tube) or several rings (a band has two, a cell around another cell has a
+        hole) gets none: such cells are listed in the result's ``missing`` (id -> why) and a
+        :class:`voroforge.surface.MissingPanelWarning` names them. Empty cells (no area) get
+        none and are not listed.
+        """
+        from .panels import MissingPanelWarning, Panels
 
         verts = self.vertices
         rings = self.corners()
-        ids = [i for i, r in enumerate(rings) if len(r) >= 3]
-        return Panels.from_indexed(
-            verts, [rings[i] for i in ids], ids=np.asarray(ids), surface=self.surface
+        _, _, coff = self._cache["ring_ids"]
+        n_rings = np.diff(coff)
+        ids, missing = [], {}
+        for i, r in enumerate(rings):
+            if n_rings[i] > 1:
+                missing[i] = (
+                    f"{int(n_rings[i])} boundary rings (a band or a cell with a hole); "
+                    "a panel is one flat polygon"
+                )
+            elif n_rings[i] == 1 and len(r) < 3:
+                missing[i] = (
+                    f"{len(r)} corners (a boundary where only two cells meet); "
+                    "a panel is a polygon of at least 3 corners"
+                )
+            elif len(r) >= 3:
+                ids.append(i)
+        if missing:
+            import warnings
+
+            shown = sorted(missing)[:10]
+            more = f" and {len(missing) - 10} more" if len(missing) > 10 else ""
+            warnings.warn(
+                f"panels: {len(missing)} of {len(rings)} cells have no panel (cells "
+                f"{', '.join(map(str, shown))}{more}): {missing[shown[0]]}; see Panels.missing",
+                MissingPanelWarning,
+                stacklevel=2,
+            )
+        out = Panels.from_indexed(
+            verts,
+            [rings[i] for i in ids],
+            ids=np.asarray(ids, dtype=np.int64),
+            surface=self.surface,
         )
+        out.missing = missing
+        return out
 
     def sample_check(self, count: int = 2000, *, seed: int = 0) -> float:
         """Share of random surface points whose nearest site owns the piece they fall in.
