@@ -655,7 +655,7 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
             def big(q):
                 # a cell past its slots: alone, with big slots, joined in its place
                 st[q], counts[q], v[q], c[q], r2[q] = _big(
-                    chunk[q], P, W, start, SP, SW, sidx, g, order, tree, t, out, wmax
+                    chunk[q], P, W, start, SP, SW, sidx, g, order, tree, t, out, wmax, counts[q]
                 )
 
             out.add(st, counts, sl, capa, big)
@@ -727,16 +727,21 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
     )
 
 
-def _big(i, P, W, start, SP, SW, sidx, g, order, tree, t, out, wmax=None):
-    """Build cell ``i`` alone with big slots (growing them until it fits) and join it."""
+def _big(i, P, W, start, SP, SW, sidx, g, order, tree, t, out, wmax=None, need=None):
+    """Build cell ``i`` alone with big slots, growing until it fits, and join it.
+
+    Slots hold at least ``need`` (the ``(nv, nf, nr)`` it reported), scratch twice that.
+    """
     factor = BIG_CAPS_FACTOR
-    while True:
-        caps = tuple(c * factor for c in CAPS[:6]) + CAPS[6:]
+    need = [0, 0, 0] if need is None else [int(x) for x in need]
+    while True:  # (growing by 4 alone built a sphere's centre cell, 8,000 vertices, 5 times)
+        caps = tuple(max(CAPS[q] * factor, need[q % 3] * (1 + q // 3)) for q in range(6)) + CAPS[6:]
         st, counts, v, c, r2, sl, capa = _run(
             np.array([i]), P, W, start, SP, SW, sidx, g, order, tree, t, caps, None, wmax=wmax
         )
         if st[0] != OVERFLOW or factor >= 256:
             break
+        need = [max(need[q], int(counts[0, q])) for q in range(3)]
         factor *= 4
     if st[0] == OVERFLOW:
         raise RuntimeError(f"3D cell {int(i)} has more than {caps[0]} vertices")

@@ -340,7 +340,7 @@ def cell_scratch(ns, g, tree, TV, TF, TR, caps):
     kd = tree.shape[0] > 0
     if kd:  # the k-d walk's heap: each node at most once
         nbuck = max(nbuck, tree.shape[0])
-    V, F, R, R2, S, work, T, OWN, cand, cd2, buck = cut_scratch(
+    V, F, R, R2, S, work, T, OWN, cand, cd2, buck, D = cut_scratch(
         caps[3], caps[4], caps[5], max(1024, min(ns, 1 << 16)), nbuck
     )
     hkey = np.empty(nbuck if kd else 0)  # noqa: TID251 (the k-d heap's keys: written first)
@@ -367,7 +367,7 @@ def cell_scratch(ns, g, tree, TV, TF, TR, caps):
     if not from_rings(TV.shape[0], TF, TF.shape[0], TR, TDEG, TED, TBK, TLB):
         G = G0
     TG = (TDEG, TED, TBK, TLB)
-    return C, OWN, cand, cd2, buck, hkey, ib, tb, NM, G, G0, TG, X
+    return C, OWN, cand, cd2, buck, hkey, ib, tb, NM, G, G0, TG, X, D
 
 
 @njit(**NJIT)
@@ -406,7 +406,8 @@ def build_cells(
     their numbers of owner sites ``osite`` (the cells that share the vertex); faces
     ``ofaces[c * cf:...] = (label, length)`` and their rings ``oring[c * cr:...]`` of local
     vertex numbers (outward); ``counts[c] = (nv, nf, nr)``; ``vol``, ``cen`` (absolute),
-    ``rad2`` (squared radius from the site). ``scr`` is the working space of
+    ``rad2`` (squared radius from the site); a cell past its output slots is ``OVERFLOW``
+    with the counts it needs (0 when its scratch overflowed first). ``scr`` is the working space of
     :func:`cell_scratch`, made once per thread for these sites, grid, template and caps.
     """
     k = cells.shape[0]
@@ -414,7 +415,7 @@ def build_cells(
     cv = caps[0]
     cf = caps[1]
     cr = caps[2]
-    C, OWN, cand, cd2, buck, hkey, ib, tb, NM, G, G0, TG, X = scr
+    C, OWN, cand, cd2, buck, hkey, ib, tb, NM, G, G0, TG, X, D = scr
     vnames, vabs, vrel, remap, rows, y, name, x, keys = NM
     V, F, R, _, _, work, T = C
     for c in range(k):
@@ -448,6 +449,7 @@ def build_cells(
                 hkey,
                 ib,
                 tb,
+                D,
             )
             if st != BROKEN or Gu[0].shape[0] == 0:
                 break
@@ -499,7 +501,10 @@ def build_cells(
             for f in range(nf):
                 nr += F[f, 2]
         if nv > cv or nf > cf or nr > cr:
-            status[c] = OVERFLOW
+            status[c] = OVERFLOW  # with the sizes it needs (the engine's retry reads them)
+            counts[c, 0] = nv
+            counts[c, 1] = nf
+            counts[c, 2] = nr
             continue
         if nf < 4:
             status[c] = EMPTY
