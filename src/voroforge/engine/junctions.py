@@ -209,6 +209,16 @@ def split_plane(coords, ring, idx, nxt, ids):
         path = _cover(chain, lambda k, s_=s_: k in paired or bool(pieces.get(k, set()) - {s_}), m)
         if path:
             paths[s_] = path
+    # a vertex found on two sides of one ring (a corner of it an ulp off) goes in neither
+    ring_of = np.searchsorted(ring, idx[odd], side="right") - 1
+    twice = {}
+    for s_, path in paths.items():
+        for k in path:
+            twice.setdefault((int(ring_of[s_]), chains[s_][k]), []).append(s_)
+    for sides in twice.values():
+        if len(sides) > 1:
+            for s_ in sides:
+                paths.pop(s_, None)
     # keep the splits whose pieces are sides without a partner, or pieces of another split
     # kept (until none is left without its support)
     changed = True
