@@ -54,6 +54,15 @@ def test_nested_clusters_junctions(scale, seed):
         assert r.convex_ok
 
 
+def test_vertex_on_two_sides_of_one_ring():
+    # a vertex half an ulp from two sides of one ring (a corner of it an ulp off): put in both
+    # it made the second pass pair a side too many (Euler 2 for 1; -1 with no split)
+    p = _nested(2, 9, centre=(-7e4, 5e4))
+    for algorithm in ALGORITHMS:
+        r = vf.voronoi(p, BOX, algorithm=algorithm).describe()
+        assert r.euler_ok, (algorithm, r.euler)
+
+
 TEETH = [(10 - i * 0.5, 10 - (i % 2) * 9.5) for i in range(1, 20)]
 SAW = shapely.Polygon([(0, 0), (10, 0), (10, 10), *TEETH, (0, 10)])
 
