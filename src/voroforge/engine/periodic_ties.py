@@ -264,10 +264,16 @@ def _names(points, owner, copies, lo, size, reach):
     # the sides (only their points are read, not the whole diagram's)
     orig = np.flatnonzero(~shift.any(axis=1))  # source-major: site i's original copy
     own = sites[orig[owner]]
-    far = float(np.sqrt(((points - own) ** 2).sum(axis=1)).max())
+    dx = points[:, 0] - own[:, 0]
+    dy = points[:, 1] - own[:, 1]
+    far = float(np.sqrt((dx * dx + dy * dy).max()))
     grow = reach + far * (1.0 + 1e-6)
     hi = lo + size
-    near = np.flatnonzero(((np.abs(sites - lo) <= grow) | (np.abs(sites - hi) <= grow)).any(axis=1))
+    near = np.zeros(len(sites), dtype=bool)
+    for k in range(2):  # column by column: (n, 2).any(axis=1) is slow
+        x = sites[:, k]
+        near |= (np.abs(x - lo[k]) <= grow[k]) | (np.abs(x - hi[k]) <= grow[k])
+    near = np.flatnonzero(near)
     r0 = poly[geom[near]]
     nr = poly[geom[near + 1]] - r0
     rings = np.repeat(r0 - np.cumsum(nr) + nr, nr) + np.arange(int(nr.sum()))
@@ -279,20 +285,30 @@ def _names(points, owner, copies, lo, size, reach):
     bits = np.ascontiguousarray(coords[at]).view(np.int64)
     src = source[cell]
     sh = shift[cell]
-    # by vertex (its bits), then by copy
-    order = np.lexsort((sh[:, 1], sh[:, 0], src, bits[:, 1], bits[:, 0]))
+    # by vertex (its bits), then by copy: the copies are numbered by source, then shift
+    order = np.lexsort((cell, bits[:, 1], bits[:, 0]))
     bits, src, sh = bits[order], src[order], sh[order]
-    start = np.flatnonzero(np.r_[True, (bits[1:] != bits[:-1]).any(axis=1)])
+    step = (bits[1:, 0] != bits[:-1, 0]) | (bits[1:, 1] != bits[:-1, 1])
+    start = np.flatnonzero(np.r_[True, step])
     count = np.diff(np.r_[start, len(bits)])
     rows = np.column_stack((src, sh - np.repeat(sh[start], count, axis=0))).astype(np.int64)
     # each point's vertex (its bits among the vertices'), then names for those only
     k = _find_rows(bits[start], np.ascontiguousarray(points).view(np.int64))
-    names: dict[bytes, int] = {}
     vlabel = np.full(len(start), -1, dtype=np.int64)
-    for v in np.unique(k[k >= 0]).tolist():
+    used = np.unique(k[k >= 0])
+    # a vertex of three cells (most): its name's 9 numbers sorted as rows, equal rows one name
+    three = used[count[used] == 3]
+    if len(three):
+        key = rows[start[three][:, None] + np.arange(3)].reshape(len(three), 9)
+        order = np.lexsort(key.T[::-1])
+        new = np.r_[True, (key[order][1:] != key[order][:-1]).any(axis=1)]
+        vlabel[three[order]] = np.cumsum(new) - 1
+    # more cells (cocircular sites): one by one, after those
+    names: dict[bytes, int] = {}
+    base = int(vlabel.max()) + 1
+    for v in used[count[used] > 3].tolist():
         a, c = int(start[v]), int(count[v])
-        if c >= 3:  # a vertex of three cells or more
-            vlabel[v] = names.setdefault(rows[a : a + c].tobytes(), len(names))
+        vlabel[v] = base + names.setdefault(rows[a : a + c].tobytes(), len(names))
     found = k >= 0
     label[found] = vlabel[k[found]]
     ref[found] = sh[start][k[found]]
