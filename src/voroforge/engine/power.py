@@ -539,13 +539,23 @@ def _line_search(pts, w, step, targets, dom, floor, norm):
     return None
 
 
+#: power_fit's bridge across a gap: a group's area gain counts only above this fraction of
+#: the domain's area. Summed cell areas carry rounding of a few ulps each; a "gain" of
+#: 1e-16 had been taken as a crossing, wasting Newton steps on raises that cross nothing
+#: (lead: move to config.py)
+POWER_BRIDGE_GAIN_RTOL = 2.0**-30
+
+
 def _bridge(pts, w, targets, areas, dom, labels, ncomp, floor):
     """Raise the weights of the group of cells short of most area until it gains some.
 
     ``labels`` are the groups of the cells' edge graph. The group's bisectors with the
     others move by ``dw / (2 |p_i - p_j|)``: the raise doubles from a tiny fraction of the
-    domain's squared size until the group's area grows, then is halved back while it still
-    does, so the front just crosses the gap. Returns ``(w, diagram, areas)`` or None.
+    domain's squared size until the group's area grows by more than rounding
+    (``POWER_BRIDGE_GAIN_RTOL`` of the domain's area), then is halved back while it still
+    does, so the front just crosses the gap. When a doubling both crosses and empties a cell
+    of another group, the raise is bisected between the two doublings for one that gains
+    and keeps every cell. Returns ``(w, diagram, areas)`` or None.
     """
     need = np.bincount(labels, weights=targets - areas, minlength=ncomp)
     g = int(np.argmax(need))
@@ -553,33 +563,62 @@ def _bridge(pts, w, targets, areas, dom, labels, ncomp, floor):
         return None
     mask = labels == g
     have = float(areas[mask].sum())
+    noise = POWER_BRIDGE_GAIN_RTOL * float(targets.sum())
     x0, y0, x1, y1 = dom.bounds
     dw = 1e-12 * ((x1 - x0) ** 2 + (y1 - y0) ** 2)
-    best = None
-    for _ in range(200):
+
+    def attempt(dw):
         w_try = w + dw * mask
         d_try = power_diagram(pts, w_try, dom)
         a_try = d_try.areas
-        if a_try.min() >= floor and a_try[mask].sum() > have:
-            best = (w_try, d_try, a_try)
+        keeps = bool(a_try.min() >= floor)
+        return (w_try, d_try, a_try), keeps, keeps and a_try[mask].sum() - have > noise
+
+    best = None
+    lo = 0.0
+    for _ in range(200):
+        got, keeps, gains = attempt(dw)
+        if gains:
+            best = got
             break
-        if a_try.min() < floor:
-            return None  # a cell of another group empties before this one gains
+        if not keeps:
+            best, dw = _bridge_between(attempt, lo, dw)
+            if best is None:
+                return None  # a cell of another group empties before this one gains
+            break
+        lo = dw
         dw *= 2.0
     if best is None:
         return None
     for _ in range(60):  # back to the smallest raise that still gains (within 1%)
         dw *= 0.5
-        w_try = w + dw * mask
-        d_try = power_diagram(pts, w_try, dom)
-        a_try = d_try.areas
-        if not (a_try.min() >= floor and a_try[mask].sum() > have):
+        got, _, gains = attempt(dw)
+        if not gains:
             break
-        best = (w_try, d_try, a_try)
-        gain = a_try[mask].sum() - have
-        if gain <= 0.01 * need[g]:
+        best = got
+        if got[2][mask].sum() - have <= 0.01 * need[g]:
             break
     return best
+
+
+def _bridge_between(attempt, lo, hi):
+    """A raise in ``(lo, hi)`` that gains and keeps every cell, by bisection, and itself.
+
+    At ``lo`` no cell empties and the group does not gain; at ``hi`` a cell empties. Returns
+    ``(None, hi)`` when none is found within 60 halvings.
+    """
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if not lo < mid < hi:
+            break
+        got, keeps, gains = attempt(mid)
+        if gains:
+            return got, mid
+        if keeps:
+            lo = mid
+        else:
+            hi = mid
+    return None, hi
 
 
 def as_targets(target_areas, n: int, dom: Domain) -> np.ndarray:
