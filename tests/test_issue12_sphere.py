@@ -156,9 +156,7 @@ def test_sphere_default_container(kind):
 def test_sphere_3000_with_and_without_centre(centre):
     # 3,000 points on a sphere, alone (every cell reaches the centre, where every bisector
     # passes within an ulp) or with the centre as a site (its cell has 3,000 faces and 6,000
-    # vertices): before the deferred planes (cellcut3d.DEFER_AFTER) a cell cut its cluster
-    # at the centre again for about one plane in six (quadratic time, 4,000 points 12 s),
-    # and the centre cell's retry zeroed an owner table of 17 GB at 4,000 points (56 s)
+    # vertices: its retry with big slots zeroed an owner table of 17 GB at 4,000 points)
     S = _rnd(3000, 7)
     if centre:
         S = np.r_[S, [[0.0, 0.0, 0.0]]]

@@ -5,9 +5,7 @@ writes the slots). :func:`one_cell` starts from the container polyhedron (relati
 site), visits the buckets in the precomputed order of their least possible distance and
 then shell by shell (:mod:`kernels.grid3d`), gathers the candidates of one distance, cuts by
 them nearest first (:func:`_cut_batch`), and stops once no unscanned site can reach the cell
-(:func:`.grid3d.far`: twice the cell's radius, widened by the weights' spread). Planes that
-reach the cell only within the float filter's band, past ``DEFER_AFTER`` of them, are cut
-by last in a shuffled order (:func:`_cut_deferred`: points on a sphere).
+(:func:`_far`: twice the cell's radius, widened by the weights' spread).
 
 The cell is held as a vertex graph (:mod:`kernels.graph3d`) when the template has one,
 else (and as the fallback the caller runs when the graph reports ``BROKEN``) as face rings
@@ -25,15 +23,8 @@ from ..config import NJIT, VORONOI3D_CUT_RTOL, VORONOI3D_STOP_RTOL
 from .expansion import two_diff
 from .graph3d import GCUT_DONE, GCUT_EMPTY, to_rings
 from .graph3d import cut as graph_cut
-from .grid3d import (
-    bucket3d,
-    far,
-    next_leaf,
-    ordered_bucket,
-    reach_box,
-    shell_buckets_in,
-    shell_gap,
-)
+from .grid import bucket_of, heap_pop, heap_push
+from .grid3d import bucket3d, shell_buckets_in, shell_gap
 from .polyhedron import CUT_DONE, CUT_EMPTY, CUT_OVERFLOW, cut
 from .predicates3d import (
     bisector_side,
@@ -51,14 +42,6 @@ BROKEN = 3
 UNNAMED = 4
 
 MAX_OWNERS = 32
-#: a cell defers the planes that reach it only within the float filter's band (they can cut
-#: a near-degenerate cluster of vertices only) once it has met this many, and cuts by them
-#: last, in a shuffled order (:func:`_cut_deferred`). Points on a sphere: every bisector
-#: passes within an ulp of the centre, where each cell has a cluster of exact vertices; in
-#: distance order about one plane in six cut that cluster again (each new vertex solved
-#: exactly: n/2 solves a cell, quadratic time), in a random order O(log n) of them do. Few
-#: enough that lattices' and other ties' cells (about 20 touching planes) keep their order.
-DEFER_AFTER = 64
 #: the most entries of the owner table (vertices x owners a vertex, int32: 64 MB); its width
 #: was ``vcap // 16``, so a big cell's retry (engine.build3d._big, scratch x256: 262,144
 #: vertices) zeroed 17 GB (the centre site of 4,000 points on a sphere: 150 s for that cell)
@@ -91,20 +74,14 @@ def cut_scratch(vcap, fcap, rcap, ncand, nbuck):
     S = np.zeros(vcap)
     work = np.zeros((max(vcap, rcap), 4), np.int64)
     T = np.zeros((4 * vcap, 1), np.int64)  # the sites whose planes cut or touched the cell
-    OWN = np.zeros((vcap, max(MAX_OWNERS, min(vcap // 16, OWN_ENTRIES // max(vcap, 1)))), np.int32)
+    own = max(MAX_OWNERS, min(vcap // 16, OWN_ENTRIES // max(vcap, 1)))
+    OWN = np.zeros((vcap, own), np.int32)
     # the batch (_gather writes slot m before _cut_batch reads below m): 1 MB at 1e6 sites,
     # which zeroed cost ~0.65 ms a call (16 calls a chunk with two threads), mostly faults
     cand = np.empty(ncand, np.int64)  # noqa: TID251 - written before read
     cd2 = np.empty(ncand)  # noqa: TID251 - written before read
     buck = np.empty(nbuck, np.int64)  # noqa: TID251 (shell_buckets writes before reads)
-    # the deferred planes (DEFER_AFTER): their sites and squared distances, and the counts
-    # (deferred, met); only cells on near-degenerate input write them
-    D = (
-        np.empty(ncand, np.int64),  # noqa: TID251 - written before read
-        np.empty(ncand),  # noqa: TID251 - written before read
-        np.zeros(2, np.int64),
-    )
-    return V, F, R, R2, S, work, T, OWN, cand, cd2, buck, D
+    return V, F, R, R2, S, work, T, OWN, cand, cd2, buck
 
 
 @njit(**NJIT)
@@ -330,21 +307,17 @@ def _resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X):
 
 
 @njit(**NJIT_INLINE)
-def _cut_batch(
-    m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G, nv, nf, nt, rmax2, D, first
-):
+def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G, nv, nf, nt, rmax2):
     """Cut cell ``i`` by the ``m`` gathered candidates, nearest first.
 
     ``C = (V, F, R, R2, S, work, T)`` holds the cell (face rings) and the planes that cut or
     touched it; ``G`` its vertex graph when ``G[0]`` is non-empty (then the rings are read
-    off at the end). ``X`` is the exact predicates' scratch. ``first``: the search's batch
-    (sorted here; a plane within the band only is deferred into ``D`` past ``DEFER_AFTER``
-    of them); else the deferred planes, in the given order. Returns
+    off at the end). ``X`` is the exact predicates' scratch. Returns
     ``(status, nv, nf, nt, rmax2)``.
     """
     V, F, R, R2, S, work, T = C
     graph = G[0].shape[0] > 0
-    for a in range(1, m if first else 0):  # insertion sort: batches are small
+    for a in range(1, m):  # insertion sort: batches are small
         ta = cand[a]
         da = cd2[a]
         b = a - 1
@@ -367,14 +340,6 @@ def _cut_batch(
         tol = VORONOI3D_CUT_RTOL * (np.sqrt(d2 * rmax2) + abs(h))
         smax, near = _values(V, nv, dx, dy, dz, h, tol, S)
         if near:
-            if first and smax <= tol:  # it can only cut where the floats cannot tell
-                cnt = D[2]
-                cnt[1] += 1
-                if cnt[1] > DEFER_AFTER and cnt[0] < D[0].shape[0]:
-                    D[0][cnt[0]] = t
-                    D[1][cnt[0]] = d2
-                    cnt[0] += 1
-                    continue
             X[2][0] = True
             smax = _resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X)
         if smax == 0.0 or smax > 0.0:  # it cuts or touches: a possible owner of vertices
@@ -402,56 +367,6 @@ def _cut_batch(
         nf = nf2
         rmax2 = r2c if graph else radius2(V, nv)  # the graph cut's own (the same max)
     return OK, nv, nf, nt, rmax2
-
-
-@njit(**NJIT_NO_NRT)
-def _cut_deferred(i, P, WP, X, W, SP, SW, sidx, C, G, nv, nf, nt, rmax2, D):
-    """Cut cell ``i`` by its deferred planes (``D``, see ``DEFER_AFTER``) in a shuffled order.
-
-    The order is a fixed function of ``i`` (xorshift), so a build is reproducible; by
-    backward analysis each plane of a random order cuts the cluster with probability about
-    its number of faces over the planes taken so far.
-    """
-    dq, dd, cnt = D
-    m = cnt[0]
-    cnt[0] = 0
-    s = np.uint64(0x9E3779B97F4A7C15) ^ np.uint64(i + 1)
-    for a in range(m - 1, 0, -1):  # Fisher-Yates
-        s ^= s << np.uint64(13)
-        s ^= s >> np.uint64(7)
-        s ^= s << np.uint64(17)
-        b = np.int64(s % np.uint64(a + 1))
-        t = dq[a]
-        dq[a] = dq[b]
-        dq[b] = t
-        x = dd[a]
-        dd[a] = dd[b]
-        dd[b] = x
-    return _cut_batch(
-        m,
-        i,
-        P,
-        WP,
-        X,
-        P[i, 0],
-        P[i, 1],
-        P[i, 2],
-        W[i],
-        W,
-        SP,
-        SW,
-        sidx,
-        dq,
-        dd,
-        C,
-        G,
-        nv,
-        nf,
-        nt,
-        rmax2,
-        D,
-        False,
-    )
 
 
 @njit(**NJIT_INLINE)
@@ -484,6 +399,179 @@ def _gather(b, t, i, px, py, pz, wi, start, SP, SW, sidx, cand, cd2, m, mg, rmax
     return m, mg, t
 
 
+@njit(**NJIT_INLINE)
+def _ordered_bucket(order, o, ci, cj, ck, px, py, pz, g, wi, wmax, rmax2):
+    """The bucket of ordered entry ``o`` around ``(ci, cj, ck)``, or -1 (outside, or too far)."""
+    ox = int(order[o, 0])
+    oy = int(order[o, 1])
+    oz = int(order[o, 2])
+    bx = ci + ox
+    by = cj + oy
+    bz = ck + oz
+    nx = int(g[6])
+    ny = int(g[7])
+    if bx < 0 or by < 0 or bz < 0 or bx >= nx or by >= ny or bz >= int(g[8]):
+        return -1
+    if order[o, 3] > 0.0:
+        gx = _axis_gap(px, g[0], g[3], bx, ox)
+        gy = _axis_gap(py, g[1], g[4], by, oy)
+        gz = _axis_gap(pz, g[2], g[5], bz, oz)
+        if _far(gx * gx + gy * gy + gz * gz, wi, wmax, rmax2):
+            return -1
+    return (bz * ny + by) * nx + bx
+
+
+@njit(**NJIT_INLINE)
+def _far(g2, wi, wmax, rmax2):
+    """No site at squared distance >= ``g2`` can cut or touch a cell of squared radius ``rmax2``."""
+    lhs = g2 + wi - wmax
+    return lhs > 0.0 and lhs * lhs > 4.0 * g2 * rmax2 * (1.0 + VORONOI3D_STOP_RTOL)
+
+
+@njit(**NJIT_INLINE)
+def _axis_gap(p, origin, size, b, off):
+    """Distance along one axis from coordinate ``p`` to bucket ``b`` (``off`` buckets away)."""
+    if off > 0:
+        return max(0.0, origin + b * size - p)
+    if off < 0:
+        return max(0.0, p - (origin + (b + 1) * size))
+    return 0.0
+
+
+@njit(**NJIT_INLINE)
+def _box_misses(px, py, pz, box, V, nv, wi, wmax, rmax2, eps):
+    """No site in ``box = (x0, y0, z0, x1, y1, z1)`` can cut or touch the cell ``V[:nv]``.
+
+    A plane cuts or touches a convex cell only if some vertex ``x`` is at least as near
+    (in power) to the other site as to the cell's: the box misses when every vertex is
+    farther from it, less the heaviest weight, than from the site, with slack
+    (``VORONOI3D_STOP_RTOL`` of the cell's size; the box widened by ``eps``, the rounding
+    of coordinates relative to the site). Long cells (a cluster's outer sites) meet few
+    boxes this way, where the sphere of :func:`_far` holds the whole cluster. ``V`` is
+    relative to the site, ``box`` absolute.
+    """
+    lx = box[0] - px - eps
+    ly = box[1] - py - eps
+    lz = box[2] - pz - eps
+    hx = box[3] - px + eps
+    hy = box[4] - py + eps
+    hz = box[5] - pz + eps
+    slack = VORONOI3D_STOP_RTOL * (rmax2 + abs(wi) + abs(wmax)) + wmax - wi
+    for k in range(nv):
+        x = V[k, 0]
+        y = V[k, 1]
+        z = V[k, 2]
+        gx = max(lx - x, 0.0, x - hx)
+        gy = max(ly - y, 0.0, y - hy)
+        gz = max(lz - z, 0.0, z - hz)
+        if gx * gx + gy * gy + gz * gz <= x * x + y * y + z * z + slack:
+            return False
+    return True
+
+
+@njit(**NJIT_NO_NRT)
+def _reach_box(px, py, pz, V, nv, wi, wmax, rmax2, g, ib, tb):
+    """Where a site that can still cut the cell ``V[:nv]`` may lie, bucket by bucket.
+
+    Site ``q`` (``d = q - p``) cuts or touches the cell only if some vertex ``x`` has
+    ``|d|^2 - 2 x . d <= w_q - w_i``; over the cell's bounding box ``[lo, hi]`` (relative to
+    the site) that least value is separable, a sum over the axes of ``T(d_k) = min over e
+    in (lo_k, hi_k) of (d_k - e)^2 - e^2``. So a bucket can hold such a site only if the sum
+    of its slabs' least ``T`` (``tb[k, index]``) is at most the returned bound (``wmax - wi``
+    with slack), and only buckets in the index box ``ib`` can (each axis on its own, the
+    others at their least, ``-max(lo^2, hi^2)``). Each row of ``tb`` is shifted to least 0
+    (the bound with it), so that a partial sum over the axes is a lower bound too. For long
+    cells (sites near the default container's padded walls) the box is far smaller than the
+    stop sphere of :func:`_far` (twice the cell's radius), and ``tb`` drops most of it.
+    """
+    allow = wmax - wi + VORONOI3D_STOP_RTOL * (rmax2 + abs(wi) + abs(wmax))
+    bound = allow
+    lo0 = np.inf
+    lo1 = np.inf
+    lo2 = np.inf
+    hi0 = -np.inf
+    hi1 = -np.inf
+    hi2 = -np.inf
+    for v in range(nv):
+        lo0 = min(lo0, V[v, 0])
+        hi0 = max(hi0, V[v, 0])
+        lo1 = min(lo1, V[v, 1])
+        hi1 = max(hi1, V[v, 1])
+        lo2 = min(lo2, V[v, 2])
+        hi2 = max(hi2, V[v, 2])
+    lo = (lo0, lo1, lo2)
+    hi = (hi0, hi1, hi2)
+    p = (px, py, pz)
+    most = 0.0
+    for k in range(3):
+        most += max(lo[k] * lo[k], hi[k] * hi[k])
+    for k in range(3):
+        n = int(g[6 + k])
+        o = g[k]
+        h = g[3 + k]
+        # the slabs' rounding relative to the site
+        eps = 1e-15 * (abs(o) + n * h + abs(p[k])) + VORONOI3D_STOP_RTOL * h
+        a = lo[k]
+        b = hi[k]
+        bk = allow + most - max(a * a, b * b)  # this axis alone
+        ra = np.sqrt(bk + a * a)
+        rb = np.sqrt(bk + b * b)
+        d0 = min(a - ra, b - rb) - eps
+        d1 = max(a + ra, b + rb) + eps
+        i0 = bucket_of(p[k] + d0, o, h, n)
+        i1 = bucket_of(p[k] + d1, o, h, n)
+        ib[k] = i0
+        ib[3 + k] = i1
+        least = np.inf
+        for i in range(i0, i1 + 1):
+            s0 = o + i * h - p[k] - eps if i > 0 else -np.inf
+            s1 = o + (i + 1) * h - p[k] + eps if i < n - 1 else np.inf
+            ca = min(max(a, s0), s1) - a
+            cb = min(max(b, s0), s1) - b
+            t = min(ca * ca - a * a, cb * cb - b * b)
+            tb[k, i] = t
+            least = min(least, t)
+        for i in range(i0, i1 + 1):  # each row's least 0: a partial sum is a lower bound
+            tb[k, i] -= least
+        bound -= least
+    return bound
+
+
+@njit(**NJIT_INLINE)
+def _box_dist2(px, py, pz, tree, v):
+    """Squared distance from the site to k-d node ``v``'s tight box (0 inside)."""
+    dx = max(tree[v, 0] - px, 0.0, px - tree[v, 3])
+    dy = max(tree[v, 1] - py, 0.0, py - tree[v, 4])
+    dz = max(tree[v, 2] - pz, 0.0, pz - tree[v, 5])
+    return dx * dx + dy * dy + dz * dz
+
+
+@njit(**NJIT_NO_NRT)
+def _next_leaf(px, py, pz, tree, hk, hv, size, wi, wmax, rmax2, V, nv, eps):
+    """Pop k-d nodes off the heap ``hk[:size], hv[:size]`` to the next bucket that may cut.
+
+    Nearest box first (keys: squared distances from the site to the boxes); the walk ends
+    at the first node beyond the stop test (:func:`_far`: every later one is farther), a
+    node whose box every vertex is nearer than (:func:`_box_misses`) is dropped. Returns
+    ``(bucket or -1, size)``. Kept out of line: :func:`one_cell`'s grid search compiles
+    around a call, not around the walk (inlined, the walk cost uniform cells 4-7%).
+    """
+    while size > 0:
+        key, v, size = heap_pop(hk, hv, size)
+        if _far(key, wi, wmax, rmax2):
+            return -1, 0
+        if _box_misses(px, py, pz, tree[v], V, nv, wi, wmax, rmax2, eps):
+            continue
+        left = int(tree[v, 6])
+        if left < 0:
+            return int(tree[v, 7]), size
+        for c in range(left, left + 2):
+            d2 = _box_dist2(px, py, pz, tree, c)
+            if not _far(d2, wi, wmax, rmax2):
+                size = heap_push(hk, hv, size, d2, c)
+    return -1, size
+
+
 @njit(**NJIT_NO_NRT)
 def one_cell(
     i,
@@ -511,7 +599,6 @@ def one_cell(
     hk,
     ib,
     tb,
-    D,
 ):
     """Cut cell ``i``; leaves it in ``C``'s ``(V, F, R)``. Returns ``(status, nv, nf, nt, rmax2)``.
 
@@ -519,14 +606,11 @@ def one_cell(
     ``TG`` and is cut as a graph; its rings are read off at the end. With k-d buckets
     (``tree`` non-empty: :func:`.grid3d.kd_buckets3d`'s nodes, ``start`` its buckets) the
     buckets come nearest box first from a heap (keys ``hk``, nodes ``buck``) and each is cut
-    by at once; the stop tests are :func:`.grid3d.far` on the box distance and
-    :func:`.grid3d.box_misses`.
+    by at once; the stop tests are :func:`_far` on the box distance and :func:`_box_misses`.
     """
     V, F, R, R2, S, work, T = C
     graph = G[0].shape[0] > 0
     X[3][0, 0] += 1  # a new cell: _cached_vertex's offsets and frame are stale
-    D[2][0] = 0  # no plane deferred, none met (DEFER_AFTER)
-    D[2][1] = 0
     px = P[i, 0]
     py = P[i, 1]
     pz = P[i, 2]
@@ -587,7 +671,7 @@ def one_cell(
     rt = 0
     kd = tree.shape[0] > 0  # k-d buckets: nearest box first from a heap (keys hk, nodes buck)
     size = 0
-    eps = 0.0  # the coordinates' rounding relative to the site, for box_misses
+    eps = 0.0  # the coordinates' rounding relative to the site, for _box_misses
     if kd:
         for a in range(6):
             eps = max(eps, abs(tree[0, a]))
@@ -603,7 +687,7 @@ def one_cell(
             b = rb
             rb = -1
         elif kd:  # each k-d bucket is cut by at once
-            b, size = next_leaf(px, py, pz, tree, hk, buck, size, wi, wmax, rmax2, V, nv, eps)
+            b, size = _next_leaf(px, py, pz, tree, hk, buck, size, wi, wmax, rmax2, V, nv, eps)
             flush = True
             if b >= 0:
                 rt = start[b]
@@ -617,14 +701,14 @@ def one_cell(
                 flush = True  # entry o is looked at again after the cut
             else:
                 level = order[o, 3]
-                if far(level, wi, wmax, rmax2):
+                if _far(level, wi, wmax, rmax2):
                     flush = True
                     if level <= outside:
                         stop = True
                     else:
                         shells = True
                 else:
-                    b = ordered_bucket(order, o, ci, cj, ck, px, py, pz, g, wi, wmax, rmax2)
+                    b = _ordered_bucket(order, o, ci, cj, ck, px, py, pz, g, wi, wmax, rmax2)
                     if b >= 0:
                         rt = start[b]
                 o += 1
@@ -636,11 +720,11 @@ def one_cell(
             flush = True
             if m == 0:  # (else the shell's sites are cut by first, and this comes again)
                 gap = shell_gap(px, py, pz, ci, cj, ck, r, g) if r >= 0 else 0.0
-                if gap == np.inf or (r >= 0 and far(gap * gap, wi, wmax, rmax2)):
+                if gap == np.inf or (r >= 0 and _far(gap * gap, wi, wmax, rmax2)):
                     stop = True
                 else:
                     r += 1
-                    bound = reach_box(px, py, pz, V, nv, wi, wmax, rmax2, g, ib, tb)
+                    bound = _reach_box(px, py, pz, V, nv, wi, wmax, rmax2, g, ib, tb)
                     nb = shell_buckets_in(ci, cj, ck, r, ib, tb, bound, int(g[6]), int(g[7]), buck)
                     q = 0
                     stop = nb < 0
@@ -676,8 +760,6 @@ def one_cell(
                     nf,
                     nt,
                     rmax2,
-                    D,
-                    True,
                 )
                 if st != OK:
                     return st, 0, 0, 0, 0.0
@@ -685,12 +767,6 @@ def one_cell(
             mg = 0
         if stop:
             break
-    if D[2][0] > 0:  # the planes deferred (within the band only), last, shuffled
-        st, nv, nf, nt, rmax2 = _cut_deferred(
-            i, P, WP, X, W, SP, SW, sidx, C, G, nv, nf, nt, rmax2, D
-        )
-        if st != OK:
-            return st, 0, 0, 0, 0.0
     if graph:
         nf = to_rings(nv, G[0], G[1], G[2], G[3], F, R, G[5])
         if nf < 0:

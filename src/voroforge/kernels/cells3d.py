@@ -340,7 +340,7 @@ def cell_scratch(ns, g, tree, TV, TF, TR, caps):
     kd = tree.shape[0] > 0
     if kd:  # the k-d walk's heap: each node at most once
         nbuck = max(nbuck, tree.shape[0])
-    V, F, R, R2, S, work, T, OWN, cand, cd2, buck, D = cut_scratch(
+    V, F, R, R2, S, work, T, OWN, cand, cd2, buck = cut_scratch(
         caps[3], caps[4], caps[5], max(1024, min(ns, 1 << 16)), nbuck
     )
     hkey = np.empty(nbuck if kd else 0)  # noqa: TID251 (the k-d heap's keys: written first)
@@ -367,7 +367,7 @@ def cell_scratch(ns, g, tree, TV, TF, TR, caps):
     if not from_rings(TV.shape[0], TF, TF.shape[0], TR, TDEG, TED, TBK, TLB):
         G = G0
     TG = (TDEG, TED, TBK, TLB)
-    return C, OWN, cand, cd2, buck, hkey, ib, tb, NM, G, G0, TG, X, D
+    return C, OWN, cand, cd2, buck, hkey, ib, tb, NM, G, G0, TG, X
 
 
 @njit(**NJIT)
@@ -415,7 +415,7 @@ def build_cells(
     cv = caps[0]
     cf = caps[1]
     cr = caps[2]
-    C, OWN, cand, cd2, buck, hkey, ib, tb, NM, G, G0, TG, X, D = scr
+    C, OWN, cand, cd2, buck, hkey, ib, tb, NM, G, G0, TG, X = scr
     vnames, vabs, vrel, remap, rows, y, name, x, keys = NM
     V, F, R, _, _, work, T = C
     for c in range(k):
@@ -449,7 +449,6 @@ def build_cells(
                 hkey,
                 ib,
                 tb,
-                D,
             )
             if st != BROKEN or Gu[0].shape[0] == 0:
                 break

@@ -5,9 +5,7 @@ floats); bucket ``(ix, iy, iz)`` is number ``(iz * ny + iy) * nx + ix``. Sites a
 into buckets by ``engine.build3d.bucket_sort3d`` (numpy, stable: increasing index within a
 bucket). Shell ``r`` around a bucket is the set of buckets at Chebyshev distance ``r``; the
 stop test is :func:`shell_gap`, a lower bound on the distance from a point inside the block
-of shells ``0..r`` to any site outside it (six slabs instead of four strips). The 3D
-cell search's stop tests (:func:`far`, :func:`reach_box`, :func:`box_misses`, the k-d walk
-:func:`next_leaf`) live here too (kernels.cellcut3d runs the search).
+of shells ``0..r`` to any site outside it (six slabs instead of four strips).
 """
 
 from __future__ import annotations
@@ -15,12 +13,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import NJIT, VORONOI3D_STOP_RTOL
-from .grid import bucket_of, heap_pop, heap_push
-
-#: the cell search's stop tests run inside its loop (numba's inliner; as kernels.cellcut3d)
-_INLINE = {**NJIT, "inline": "always"}
-_NO_NRT = {**NJIT, "_nrt": False}
+from ..config import NJIT
+from .grid import bucket_of
 
 
 @njit(**NJIT)
@@ -245,176 +239,3 @@ def kd_buckets3d(P, leaf):
             top += 2
     start[nb] = n
     return nodes[:count], start[: nb + 1], S, perm
-
-
-@njit(**_INLINE)
-def ordered_bucket(order, o, ci, cj, ck, px, py, pz, g, wi, wmax, rmax2):
-    """The bucket of ordered entry ``o`` around ``(ci, cj, ck)``, or -1 (outside, or too far)."""
-    ox = int(order[o, 0])
-    oy = int(order[o, 1])
-    oz = int(order[o, 2])
-    bx = ci + ox
-    by = cj + oy
-    bz = ck + oz
-    nx = int(g[6])
-    ny = int(g[7])
-    if bx < 0 or by < 0 or bz < 0 or bx >= nx or by >= ny or bz >= int(g[8]):
-        return -1
-    if order[o, 3] > 0.0:
-        gx = axis_gap(px, g[0], g[3], bx, ox)
-        gy = axis_gap(py, g[1], g[4], by, oy)
-        gz = axis_gap(pz, g[2], g[5], bz, oz)
-        if far(gx * gx + gy * gy + gz * gz, wi, wmax, rmax2):
-            return -1
-    return (bz * ny + by) * nx + bx
-
-
-@njit(**_INLINE)
-def far(g2, wi, wmax, rmax2):
-    """No site at squared distance >= ``g2`` can cut or touch a cell of squared radius ``rmax2``."""
-    lhs = g2 + wi - wmax
-    return lhs > 0.0 and lhs * lhs > 4.0 * g2 * rmax2 * (1.0 + VORONOI3D_STOP_RTOL)
-
-
-@njit(**_INLINE)
-def axis_gap(p, origin, size, b, off):
-    """Distance along one axis from coordinate ``p`` to bucket ``b`` (``off`` buckets away)."""
-    if off > 0:
-        return max(0.0, origin + b * size - p)
-    if off < 0:
-        return max(0.0, p - (origin + (b + 1) * size))
-    return 0.0
-
-
-@njit(**_INLINE)
-def box_misses(px, py, pz, box, V, nv, wi, wmax, rmax2, eps):
-    """No site in ``box = (x0, y0, z0, x1, y1, z1)`` can cut or touch the cell ``V[:nv]``.
-
-    A plane cuts or touches a convex cell only if some vertex ``x`` is at least as near
-    (in power) to the other site as to the cell's: the box misses when every vertex is
-    farther from it, less the heaviest weight, than from the site, with slack
-    (``VORONOI3D_STOP_RTOL`` of the cell's size; the box widened by ``eps``, the rounding
-    of coordinates relative to the site). Long cells (a cluster's outer sites) meet few
-    boxes this way, where the sphere of :func:`far` holds the whole cluster. ``V`` is
-    relative to the site, ``box`` absolute.
-    """
-    lx = box[0] - px - eps
-    ly = box[1] - py - eps
-    lz = box[2] - pz - eps
-    hx = box[3] - px + eps
-    hy = box[4] - py + eps
-    hz = box[5] - pz + eps
-    slack = VORONOI3D_STOP_RTOL * (rmax2 + abs(wi) + abs(wmax)) + wmax - wi
-    for k in range(nv):
-        x = V[k, 0]
-        y = V[k, 1]
-        z = V[k, 2]
-        gx = max(lx - x, 0.0, x - hx)
-        gy = max(ly - y, 0.0, y - hy)
-        gz = max(lz - z, 0.0, z - hz)
-        if gx * gx + gy * gy + gz * gz <= x * x + y * y + z * z + slack:
-            return False
-    return True
-
-
-@njit(**_NO_NRT)
-def reach_box(px, py, pz, V, nv, wi, wmax, rmax2, g, ib, tb):
-    """Where a site that can still cut the cell ``V[:nv]`` may lie, bucket by bucket.
-
-    Site ``q`` (``d = q - p``) cuts or touches the cell only if some vertex ``x`` has
-    ``|d|^2 - 2 x . d <= w_q - w_i``; over the cell's bounding box ``[lo, hi]`` (relative to
-    the site) that least value is separable, a sum over the axes of ``T(d_k) = min over e
-    in (lo_k, hi_k) of (d_k - e)^2 - e^2``. So a bucket can hold such a site only if the sum
-    of its slabs' least ``T`` (``tb[k, index]``) is at most the returned bound (``wmax - wi``
-    with slack), and only buckets in the index box ``ib`` can (each axis on its own, the
-    others at their least, ``-max(lo^2, hi^2)``). Each row of ``tb`` is shifted to least 0
-    (the bound with it), so that a partial sum over the axes is a lower bound too. For long
-    cells (sites near the default container's padded walls) the box is far smaller than the
-    stop sphere of :func:`far` (twice the cell's radius), and ``tb`` drops most of it.
-    """
-    allow = wmax - wi + VORONOI3D_STOP_RTOL * (rmax2 + abs(wi) + abs(wmax))
-    bound = allow
-    lo0 = np.inf
-    lo1 = np.inf
-    lo2 = np.inf
-    hi0 = -np.inf
-    hi1 = -np.inf
-    hi2 = -np.inf
-    for v in range(nv):
-        lo0 = min(lo0, V[v, 0])
-        hi0 = max(hi0, V[v, 0])
-        lo1 = min(lo1, V[v, 1])
-        hi1 = max(hi1, V[v, 1])
-        lo2 = min(lo2, V[v, 2])
-        hi2 = max(hi2, V[v, 2])
-    lo = (lo0, lo1, lo2)
-    hi = (hi0, hi1, hi2)
-    p = (px, py, pz)
-    most = 0.0
-    for k in range(3):
-        most += max(lo[k] * lo[k], hi[k] * hi[k])
-    for k in range(3):
-        n = int(g[6 + k])
-        o = g[k]
-        h = g[3 + k]
-        # the slabs' rounding relative to the site
-        eps = 1e-15 * (abs(o) + n * h + abs(p[k])) + VORONOI3D_STOP_RTOL * h
-        a = lo[k]
-        b = hi[k]
-        bk = allow + most - max(a * a, b * b)  # this axis alone
-        ra = np.sqrt(bk + a * a)
-        rb = np.sqrt(bk + b * b)
-        d0 = min(a - ra, b - rb) - eps
-        d1 = max(a + ra, b + rb) + eps
-        i0 = bucket_of(p[k] + d0, o, h, n)
-        i1 = bucket_of(p[k] + d1, o, h, n)
-        ib[k] = i0
-        ib[3 + k] = i1
-        least = np.inf
-        for i in range(i0, i1 + 1):
-            s0 = o + i * h - p[k] - eps if i > 0 else -np.inf
-            s1 = o + (i + 1) * h - p[k] + eps if i < n - 1 else np.inf
-            ca = min(max(a, s0), s1) - a
-            cb = min(max(b, s0), s1) - b
-            t = min(ca * ca - a * a, cb * cb - b * b)
-            tb[k, i] = t
-            least = min(least, t)
-        for i in range(i0, i1 + 1):  # each row's least 0: a partial sum is a lower bound
-            tb[k, i] -= least
-        bound -= least
-    return bound
-
-
-@njit(**_INLINE)
-def box_dist2(px, py, pz, tree, v):
-    """Squared distance from the site to k-d node ``v``'s tight box (0 inside)."""
-    dx = max(tree[v, 0] - px, 0.0, px - tree[v, 3])
-    dy = max(tree[v, 1] - py, 0.0, py - tree[v, 4])
-    dz = max(tree[v, 2] - pz, 0.0, pz - tree[v, 5])
-    return dx * dx + dy * dy + dz * dz
-
-
-@njit(**_NO_NRT)
-def next_leaf(px, py, pz, tree, hk, hv, size, wi, wmax, rmax2, V, nv, eps):
-    """Pop k-d nodes off the heap ``hk[:size], hv[:size]`` to the next bucket that may cut.
-
-    Nearest box first (keys: squared distances from the site to the boxes); the walk ends
-    at the first node beyond the stop test (:func:`far`: every later one is farther), a
-    node whose box every vertex is nearer than (:func:`box_misses`) is dropped. Returns
-    ``(bucket or -1, size)``. Kept out of line: :func:`.cellcut3d.one_cell`'s grid search compiles
-    around a call, not around the walk (inlined, the walk cost uniform cells 4-7%).
-    """
-    while size > 0:
-        key, v, size = heap_pop(hk, hv, size)
-        if far(key, wi, wmax, rmax2):
-            return -1, 0
-        if box_misses(px, py, pz, tree[v], V, nv, wi, wmax, rmax2, eps):
-            continue
-        left = int(tree[v, 6])
-        if left < 0:
-            return int(tree[v, 7]), size
-        for c in range(left, left + 2):
-            d2 = box_dist2(px, py, pz, tree, c)
-            if not far(d2, wi, wmax, rmax2):
-                size = heap_push(hk, hv, size, d2, c)
-    return -1, size
