@@ -130,7 +130,7 @@ def test_describe_of_cells_tens_of_ulps_wide_at_4e12(n, w, h, seed):
     # round so that one lies exactly on the straight side of a fourth cell whose ring lacks
     # it (a T-junction); describe() counted that side once against the two ring sides along
     # it: Euler 1 (V 983, E 1482 here), where the cells tile the torus. It now puts such a
-    # vertex in the ring whose side it lies on (engine/torus_junctions)
+    # vertex in the ring whose side it lies on (engine/junctions)
     box = (OFF, OFF, OFF + w, OFF + h)
     p = np.random.default_rng(seed).random((n, 2)) * [box[2] - box[0], box[3] - box[1]] + OFF
     for algorithm in ALGORITHMS:

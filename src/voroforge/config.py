@@ -631,3 +631,26 @@ MESH_MOMENT_SAFE = 2.0**200
 #: run on the ~25% of the bench torus's tests that are exactly coplanar, made the check 4x
 #: slower)
 MESH_CROSS_FILTER = 1e-14
+
+#: engine.meshplanes3d.local_vertices keeps a vertex recomputed about a far mesh's local
+#: origin only within this many ulps of its absolute doubles (which the cell builder rounds
+#: once, half an ulp): a larger move means ill-conditioned planes, not the absolute rounding
+LOCAL_VERTEX_ULPS = 2.0
+
+#: engine.power (power_fit's bridge across a gap): a group's area gain counts only above this
+#: fraction of the domain's area. Summed cell areas carry rounding of a few ulps each; a
+#: "gain" of 1e-16 had been taken as a crossing, wasting Newton steps on raises that cross
+#: nothing
+POWER_BRIDGE_GAIN_RTOL = 2.0**-30
+
+#: engine.agree: joins reach this many ulps of the larger coordinate: sites 1-4 ulps apart
+#: have exact vertices a few ulps apart, each cell rounding its own (measured: 1-3 ulps)
+AGREE_JOIN_ULPS = 16.0
+#: ... plus this much of the vertex's L1 distance from the cell's site (the local spacing),
+#: as ``POWER_CROWDED_RTOL`` for the power cells' joins
+AGREE_JOIN_RTOL = 1e-9
+#: engine.agree: only rings with an edge, or a vertex's distance from their site, shorter
+#: than this fraction of the vertex's L1 magnitude (64 ulps of its larger coordinate or more)
+#: are checked: the cells of sites ulps apart are that narrow; uniform sites' are not (their
+#: check is one pass over the vertices)
+AGREE_SHORT = 64 * 2.0**-52

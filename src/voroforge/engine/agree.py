@@ -29,20 +29,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..config import AGREE_JOIN_RTOL, AGREE_JOIN_ULPS, AGREE_SHORT
 from ..kernels.predicates import orient2d
 from ..kernels.ring_agree import rings_disagree, rings_disagree_at
-
-#: Joins reach this many ulps of the larger coordinate: sites 1-4 ulps apart have exact
-#: vertices a few ulps apart, each cell rounding its own (measured: 1-3 ulps).
-AGREE_JOIN_ULPS = 16.0
-#: ... plus this much of the vertex's L1 distance from the cell's site (the local spacing),
-#: as ``POWER_CROWDED_RTOL`` for the power cells' joins.
-AGREE_JOIN_RTOL = 1e-9
-#: Only rings with an edge, or a vertex's distance from their site, shorter than this
-#: fraction of the vertex's L1 magnitude (64 ulps of its larger coordinate or more) are
-#: checked: the cells of sites ulps apart are that narrow; uniform sites' are not (their
-#: check is one pass over the vertices).
-AGREE_SHORT = 64 * 2.0**-52
 
 
 def agree(closed, lengths, owner, ring_id, n, sites):

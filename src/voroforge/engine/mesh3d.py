@@ -151,7 +151,8 @@ def as_mesh_container(container):
     if fo is not None:  # far out: about an origin whose differences are exact (cut_by_mesh's)
         centre = fo
     a, b, c = (V[F[:, k]] - centre for k in range(3))
-    vol = float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
+    with np.errstate(over="ignore", invalid="ignore"):  # past the range: inf, refused below
+        vol = float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
     if vol == 0.0:
         raise ValueError("the container mesh encloses no volume")
     if vol < 0:  # inside out: turn it

@@ -16,12 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..config import FACE_NOISE_ULPS, FACE_THIN_RTOL
-
-#: :func:`local_vertices` keeps a vertex recomputed about the local origin only within this
-#: many ulps of its absolute doubles (which the cell builder rounds once, half an ulp): a
-#: larger move means ill-conditioned planes, not the absolute rounding
-LOCAL_VERTEX_ULPS = 2.0
+from ..config import FACE_NOISE_ULPS, FACE_THIN_RTOL, LOCAL_VERTEX_ULPS
 
 #: outward normals of the box walls, label ``-1 - w`` (:func:`containers.box_template`)
 _WALLS = np.array([[-1, 0, 0], [1, 0, 0], [0, -1, 0], [0, 1, 0], [0, 0, -1], [0, 0, 1]], float)

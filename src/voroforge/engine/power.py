@@ -20,6 +20,7 @@ from scipy.sparse.linalg import MatrixRankWarning, spsolve
 from scipy.spatial import ConvexHull, QhullError, cKDTree
 
 from ..config import (
+    POWER_BRIDGE_GAIN_RTOL,
     POWER_FIT_DEFAULT_RTOL,
     POWER_FIT_FAR,
     POWER_FIT_SUM_RTOL,
@@ -537,13 +538,6 @@ def _line_search(pts, w, step, targets, dom, floor, norm):
             return w_try, d_try, a_try
         alpha *= 0.5
     return None
-
-
-#: power_fit's bridge across a gap: a group's area gain counts only above this fraction of
-#: the domain's area. Summed cell areas carry rounding of a few ulps each; a "gain" of
-#: 1e-16 had been taken as a crossing, wasting Newton steps on raises that cross nothing
-#: (lead: move to config.py)
-POWER_BRIDGE_GAIN_RTOL = 2.0**-30
 
 
 def _bridge(pts, w, targets, areas, dom, labels, ncomp, floor):
