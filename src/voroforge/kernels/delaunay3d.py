@@ -29,17 +29,10 @@ INF = -1
 
 @njit(**NJIT)
 def _o3(P, a, b, c, d):
+    """``orient3d`` of rows ``a, b, c, d`` of ``P``."""
     return orient3d(
         P[a, 0], P[a, 1], P[a, 2], P[b, 0], P[b, 1], P[b, 2],
         P[c, 0], P[c, 1], P[c, 2], P[d, 0], P[d, 1], P[d, 2],
-    )  # fmt: skip
-
-
-@njit(**NJIT)
-def _o3q(Q, a, b, c, d):
-    return orient3d(
-        Q[a, 0], Q[a, 1], Q[a, 2], Q[b, 0], Q[b, 1], Q[b, 2],
-        Q[c, 0], Q[c, 1], Q[c, 2], Q[d, 0], Q[d, 1], Q[d, 2],
     )  # fmt: skip
 
 
@@ -62,15 +55,15 @@ def insphere_sos(Q, rank):
     for j in range(5):
         i = order[j]
         if i == 0:
-            c = -_o3q(Q, 1, 2, 3, 4)
+            c = -_o3(Q, 1, 2, 3, 4)
         elif i == 1:
-            c = _o3q(Q, 0, 2, 3, 4)
+            c = _o3(Q, 0, 2, 3, 4)
         elif i == 2:
-            c = -_o3q(Q, 0, 1, 3, 4)
+            c = -_o3(Q, 0, 1, 3, 4)
         elif i == 3:
-            c = _o3q(Q, 0, 1, 2, 4)
+            c = _o3(Q, 0, 1, 2, 4)
         else:
-            c = -_o3q(Q, 0, 1, 2, 3)
+            c = -_o3(Q, 0, 1, 2, 3)
         if c > 0.0:
             return 1
         if c < 0.0:
@@ -93,7 +86,7 @@ def _off_plane(P, a, b, c):
     for k in range(3):
         Q[3] = P[a]
         Q[3, k] = Q[3, k] + max(1.0, abs(Q[3, k]))
-        if _o3q(Q, 0, 1, 2, 3) != 0.0:
+        if _o3(Q, 0, 1, 2, 3) != 0.0:
             return Q[3].copy(), True
     return Q[3].copy(), False  # a, b, c collinear
 
@@ -121,7 +114,7 @@ def conflict(P, T, t, p):
         return insphere_sos(Q, rank) > 0
     # the facet's side: the tetrahedron with p in the infinite vertex's place
     Q[k] = P[p]
-    o = _o3q(Q, 0, 1, 2, 3)
+    o = _o3(Q, 0, 1, 2, 3)
     if o != 0.0:
         return o > 0.0
     # coplanar: p inside the facet's circle, i.e. inside the sphere through the facet and
@@ -134,7 +127,7 @@ def conflict(P, T, t, p):
             j += 1
     Q[k] = _off_plane(P, f[0], f[1], f[2])[0]
     rank[k] = -1.0
-    od = _o3q(Q, 0, 1, 2, 3)
+    od = _o3(Q, 0, 1, 2, 3)
     s = insphere_sos(Q, rank)
     return (s > 0) == (od > 0.0) and s != 0
 
