@@ -253,9 +253,7 @@ def triangulate(P, order):
             nst -= 1
             u = stack[nst]
             if ncav >= len(cav):
-                cav2 = np.empty(2 * len(cav), np.int64)  # noqa: TID251 (filled before use)
-                cav2[:ncav] = cav[:ncav]
-                cav = cav2
+                cav = _doubled(cav, ncav)
             cav[ncav] = u
             ncav += 1
             for i in range(4):
@@ -265,9 +263,7 @@ def triangulate(P, order):
                 if conflict(P, T, w, p):
                     incav[w] = True
                     if nst >= len(stack):
-                        st2 = np.empty(2 * len(stack), np.int64)  # noqa: TID251 (filled before use)
-                        st2[:nst] = stack[:nst]
-                        stack = st2
+                        stack = _doubled(stack, nst)
                     stack[nst] = w
                     nst += 1
                 else:
@@ -347,6 +343,14 @@ def triangulate(P, order):
         for j in range(4):
             nbk[i, j] = remap[nbk[i, j]]
     return T[keep], nbk, True
+
+
+@njit(**NJIT)
+def _doubled(a, n):
+    """``a`` (1D) in an array twice as long, its first ``n`` entries kept."""
+    out = np.empty(2 * len(a), a.dtype)  # noqa: TID251 (filled before use)
+    out[:n] = a[:n]
+    return out
 
 
 @njit(**NJIT)
