@@ -53,7 +53,7 @@ def _check(P, t, exact=True):
     for s in S:
         for f in itertools.combinations(sorted(s.tolist()), 3):
             faces[f] = faces.get(f, 0) + 1
-    assert max(faces.values()) == 2
+    assert max(faces.values()) <= 2  # a face in at most two (one tetrahedron: one)
     once = {f for f, c in faces.items() if c == 1}
     assert once == {tuple(sorted(h)) for h in t.convex_hull.tolist()}
     if not exact:

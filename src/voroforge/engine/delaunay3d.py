@@ -8,6 +8,7 @@ import numpy as np
 
 from ..kernels.delaunay3d import FACE, INF, triangulate
 from .inputs import as_points, working_frame
+from .voronoi3d import duplicate_owner3d
 
 
 @dataclass(frozen=True)
@@ -81,13 +82,7 @@ def delaunay3d(points) -> Tetrahedralization:
     """
     pts = as_points(points, dim=3)
     work, _ = working_frame(pts)
-    work = work + 0.0  # -0.0 and 0.0 are one coordinate
-    n = len(pts)
-    dup = np.full(n, -1, np.int64)
-    if n:
-        _, first, inv = np.unique(work, axis=0, return_index=True, return_inverse=True)
-        owner = first[inv.ravel()]
-        dup[owner != np.arange(n)] = owner[owner != np.arange(n)]
+    dup = duplicate_owner3d(work, None)  # the first of equal points (+0.0 == -0.0)
     unique = np.flatnonzero(dup < 0)
     order = _insertion_order(work[unique], unique)
     T, nb, ok = triangulate(np.ascontiguousarray(work), order)
