@@ -102,3 +102,38 @@ def test_circle_segments_have_a_bound(tmp_path):
     with pytest.raises(ValueError, match="segments"):
         circle(1.0, segments=config.BOUNDARY_MAX_SEGMENTS + 1)
     assert len(circle(1.0, segments=config.BOUNDARY_MAX_SEGMENTS).exterior.coords) > 60000
+
+
+def _issue_keys(text: str, tmp_path) -> tuple[list[str], list[int | None]]:
+    from voroforge.design.designfile import DesignError, load
+
+    f = tmp_path / "d.toml"
+    f.write_text(text)
+    with pytest.raises(DesignError) as info:
+        load(f)
+    return [i.key for i in info.value.issues], [i.line for i in info.value.issues]
+
+
+def test_a_bad_value_does_not_hide_the_sections_cross_key_checks(tmp_path):
+    # F10: pydantic skips a section's checks between keys once one key of it is bad
+    keys, lines = _issue_keys(
+        '[design]\nname = "x"\n[boundary]\nshape = "circle"\nradius = -2\n'
+        '[seeds]\nmethod = "random"\ncount = 3\n[output]\nformats = ["gif"]\npng_size = -5\n',
+        tmp_path,
+    )
+    assert keys == ["boundary.radius", "output.gif", "output.png_size"]
+    assert lines == sorted(lines)
+
+
+def test_the_second_look_adds_nothing_that_follows_from_the_bad_value(tmp_path):
+    # radius left out must not also read "shape = 'circle' needs radius"; a bad method or
+    # shape picks the section's rules, so nothing more is said about that section
+    keys, _ = _issue_keys(
+        '[boundary]\nshape = "blob"\nradius = 3\n[seeds]\nmethod = "bogus"\n', tmp_path
+    )
+    assert keys == ["boundary.shape", "seeds.method"]
+    keys, _ = _issue_keys(
+        '[boundary]\nshape = "circle"\nradius = -1\n[seeds]\nmethod = "random"\ncount = 0\n',
+        tmp_path,
+    )
+    assert keys == ["boundary.radius", "seeds.count"]

@@ -238,6 +238,73 @@ def _issues(exc: ValidationError, lines: dict[tuple, int]) -> list[Issue]:
     return out
 
 
+def _is_selector(loc: tuple) -> bool:
+    """Whether the key at ``loc`` picks among choices (``shape``, ``method``: a Literal)."""
+    model = _model_at(loc[:-1])
+    info = None if model is None else model.model_fields.get(str(loc[-1]))
+    if info is None:
+        return True  # unknown: treat as deciding the section's other rules
+    ann = info.annotation
+    return typing.get_origin(ann) is typing.Literal or any(
+        typing.get_origin(a) is typing.Literal for a in typing.get_args(ann)
+    )
+
+
+def _cross_field_issues(
+    data: dict, exc: ValidationError, issues: list[Issue], lines: dict[tuple, int]
+) -> list[Issue]:
+    """The checks between keys that pydantic skipped because a key of the section was bad.
+
+    A section's checks between its keys (``formats`` includes "gif" but no ``[output.gif]``)
+    run only once every key of it is valid, so one bad value hid them and the user met them
+    one run later. Validate again with the bad keys left out and keep the new problems,
+    except those at a left-out key (``radius = -2`` then "needs radius") or in a section
+    whose left-out key picked its rules (a bad ``method`` or ``shape``).
+    """
+    import copy
+
+    pruned = copy.deepcopy(data)
+    gone: list[tuple] = []
+    for err in exc.errors():
+        loc = tuple(p for p in err["loc"] if not (isinstance(p, str) and "[" in p))
+        if err["type"] == "missing" or not loc:
+            continue
+        if isinstance(loc[-1], int):
+            loc = loc[:-1]  # a bad list item: leave the whole list out (indices stay put)
+        node = pruned
+        for part in loc[:-1]:
+            try:
+                node = node[part]
+            except (KeyError, IndexError, TypeError):
+                node = None
+                break
+        if isinstance(node, dict) and loc and loc[-1] in node:
+            del node[loc[-1]]
+            gone.append(loc)
+    if not gone:
+        return []
+    try:
+        Design.model_validate(pruned)
+    except ValidationError as again:
+        fresh = _issues(again, lines)
+    else:
+        return []
+    keys = {it.key for it in issues}
+    dotted = [".".join(map(str, g)) for g in gone]
+    ruled = {".".join(map(str, g[:-1])) for g in gone if _is_selector(g)}
+    out = []
+    for it in fresh:
+        section = it.key.rsplit(".", 1)[0] if "." in it.key else ""
+        if it.key in keys or section in ruled:
+            continue
+        if any(
+            it.key == d or it.key.startswith(d + ".") or d.startswith(it.key + ".") for d in dotted
+        ):
+            continue
+        out.append(it)
+    return out
+
+
 # --- loading ------------------------------------------------------------------------------
 
 
@@ -380,6 +447,8 @@ def load(source, *, overrides: dict | None = None) -> tuple[Design, Path | None]
         design = Design.model_validate(data)
     except ValidationError as exc:
         issues = _issues(exc, lines)
+        issues += _cross_field_issues(data, exc, issues, lines)
+        issues.sort(key=lambda i: (i.line is None, i.line or 0))  # in the file's order
         if overrides:
             touched = {str(k) for k in overrides}
             issues = [
