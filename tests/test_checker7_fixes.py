@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 import shapely
 
+import voroforge as vf
 from voroforge import config
 from voroforge.design.build import build
 from voroforge.design.populate import poisson
@@ -137,3 +138,29 @@ def test_the_second_look_adds_nothing_that_follows_from_the_bad_value(tmp_path):
         tmp_path,
     )
     assert keys == ["boundary.radius", "seeds.count"]
+
+
+@pytest.mark.parametrize("algorithm", ["delaunay", "fortune", "halfplane"])
+def test_the_build_keeps_each_cells_reach_before_the_polygon_clip(algorithm):
+    # scale's certificate on polygon domains needs the convex ring's radius (checker7 R1);
+    # the build keeps it, so scale no longer builds the box diagram a second time
+    from shapely.geometry import MultiPolygon, Point, box
+
+    from voroforge.engine.diagram import convex_reach
+    from voroforge.scale.tasks import radii
+
+    rng = np.random.default_rng(3)
+    holed = box(0, 0, 10, 10).difference(Point(5, 5).buffer(2))
+    gap = MultiPolygon([box(0, 0, 4, 10), box(6, 0, 10, 10)])
+    for dom, scale in ((holed, 1.0), (gap, 1.0), (gap, 1e-120), (holed, 1e120)):
+        from shapely import affinity
+
+        dom = affinity.scale(dom, scale, scale, origin=(0, 0))
+        p = rng.random((600, 2)) * 10 * scale
+        p = np.vstack([p[shapely.contains_xy(dom, p[:, 0], p[:, 1])], p[:3]])  # + duplicates
+        d = vf.voronoi(p, dom, algorithm=algorithm)
+        ref = radii(vf.voronoi(p, tuple(dom.bounds), algorithm=algorithm), p)
+        assert np.array_equal(convex_reach(d), ref)
+        # the ring reaches past the clipped cell somewhere (else the test shows nothing)
+        assert (convex_reach(d) > radii(d, p) * (1 + 1e-9)).any()
+    assert convex_reach(vf.voronoi(rng.random((50, 2)), (0, 0, 1, 1))) is None

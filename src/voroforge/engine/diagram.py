@@ -128,9 +128,19 @@ class Diagram:
     wrapped = False
 
     def __init__(
-        self, sites, duplicate_of, domain: Domain, buffers, edges, algorithm, k=0, unresolved=None
+        self,
+        sites,
+        duplicate_of,
+        domain: Domain,
+        buffers,
+        edges,
+        algorithm,
+        k=0,
+        unresolved=None,
+        reach=None,
     ):
         self.sites = sites
+        self._reach = reach  # see convex_reach
         self._k = k  # the working frame's scale exponent (areas are computed there)
         self.duplicate_of = duplicate_of
         self._domain = domain
@@ -310,6 +320,18 @@ def buffers(d: Diagram) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
         Ring, polygon and cell offsets, as in :meth:`Diagram.to_geoarrow`.
     """
     return d._buffers
+
+
+def convex_reach(d: Diagram) -> np.ndarray | None:
+    """Each cell's farthest vertex from its site before the polygon clip, or ``None``.
+
+    On a polygon domain a cell is its convex ring (the cell of the domain's box) intersected
+    with the polygon, and a crossing inside the box (a hole's edge, a gap between parts) is
+    computed from the ring's own vertices, which may lie far beyond the clipped cell: a
+    site within twice this distance can change the clipped cell's bits, none beyond it
+    (``scale``'s certificate). Kept by ``vf.voronoi`` on polygon domains (``None`` else).
+    """
+    return d._reach
 
 
 def frame_exponent(d: Diagram) -> int:

@@ -28,6 +28,7 @@ from ..kernels.delaunay import triangulate_sorted
 from ..kernels.dual_some import dual_cells_of, seams_apart, splice_rings
 from ..kernels.fortune import fortune_delaunay
 from ..kernels.halfplane import halfplane_cells
+from ..kernels.moments import farthest
 from ..kernels.rings import boundary_cycle, close_rings
 from .assemble import assemble_checked
 from .csr import csr_from_pairs
@@ -475,6 +476,7 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
             (closed, lengths, own), lost = restore_lost(
                 xs, ys, box, (closed, lengths, own), lost, unique
             )
+        reach = None if dom.is_rect else _reach(closed, lengths, sub, unique, n)
         bufs, edges, clip_lost = assemble_checked(wdom, closed, lengths, own, n, unique, sites=work)
     # sites every construction leaves without a cell holding them (empty, or a ring beside
     # the site): floats cannot represent it; and sites whose cell the polygon clip could
@@ -485,4 +487,14 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
     if k:
         bufs = (np.ldexp(bufs[0], -k), *bufs[1:])
         edges = Edges(np.ldexp(edges.coords, -k), edges.pairs)
-    return Diagram(pts, dup, dom, bufs, edges, algorithm, k, unresolved)
+        if reach is not None:
+            reach = np.ldexp(reach, -k)
+    return Diagram(pts, dup, dom, bufs, edges, algorithm, k, unresolved, reach)
+
+
+def _reach(closed, lengths, sub, unique, n):
+    """``diagram.convex_reach`` in the working frame: each unique site's ring radius."""
+    reach = np.zeros(n)
+    reach[unique] = farthest(closed, np.ascontiguousarray(lengths, dtype=np.int64), sub)
+    reach.setflags(write=False)
+    return reach

@@ -12,6 +12,8 @@ Moment outputs per cell: ``mass`` (∫ρ), ``first (2,)`` (∫ρ (x - z)) and ``
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit, prange
 
@@ -267,3 +269,20 @@ def raster_moments(
         first[g, 0] = sx
         first[g, 1] = sy
         second[g] = s2
+
+
+@njit(**NJIT)
+def farthest(coords, start, xy):  # pragma: no cover
+    """``max |coords[k] - xy[i]|`` over ring ``i``'s vertices ``start[i]:start[i + 1]``.
+
+    The radius of a cell about its site (0 for an empty ring). By ``hypot``, not the square
+    root of a sum of squares: squares underflow to 0 below ~1e-154 (every cell would pass a
+    certificate with radius 0) and overflow past ~1e154.
+    """
+    r = np.zeros(len(start) - 1)
+    for i in range(len(start) - 1):
+        best = 0.0
+        for k in range(start[i], start[i + 1]):
+            best = max(best, math.hypot(coords[k, 0] - xy[i, 0], coords[k, 1] - xy[i, 1]))
+        r[i] = best
+    return r

@@ -13,15 +13,14 @@ shrink, so that disc certifies it.
 
 from __future__ import annotations
 
-import math
 import time
 from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
 
-from ..config import NJIT, SCALE_CERT_RTOL
+from ..config import SCALE_CERT_RTOL
+from ..kernels.moments import farthest
 
 __all__ = [
     "Piece",
@@ -115,26 +114,10 @@ def radii(d, xy):
 
     coords, ring, poly, geom = buffers(d)
     start = np.ascontiguousarray(ring[poly[geom]], dtype=np.int64)
-    return _farthest(np.ascontiguousarray(coords, dtype=np.float64), start, xy)
+    return farthest(np.ascontiguousarray(coords, dtype=np.float64), start, xy)
 
 
-@njit(**NJIT)
-def _farthest(coords, start, xy):  # pragma: no cover
-    """``max |coords[k] - xy[i]|`` over cell ``i``'s vertices ``start[i]:start[i + 1]``.
-
-    By ``hypot``, not the square root of a sum of squares: squares underflow to 0 below
-    ~1e-154 (every cell would pass the certificate with radius 0) and overflow past ~1e154.
-    """
-    r = np.zeros(len(start) - 1)
-    for i in range(len(start) - 1):
-        best = 0.0
-        for k in range(start[i], start[i + 1]):
-            best = max(best, math.hypot(coords[k, 0] - xy[i, 0], coords[k, 1] - xy[i, 1]))
-        r[i] = best
-    return r
-
-
-def ring_radii(xy, boundary):
+def ring_radii(xy, boundary, d=None):
     """Each cell's farthest vertex distance on a polygon domain: that of its convex ring.
 
     The engine clips a cell to a polygon domain in two steps: the convex ring cut to the
@@ -147,6 +130,10 @@ def ring_radii(xy, boundary):
     """
     import voroforge as vf
 
+    from ..engine.diagram import convex_reach
+
+    if d is not None and (reach := convex_reach(d)) is not None:
+        return reach  # kept by the build (the rings before the polygon clip)
     box = tuple(float(v) for v in boundary.bounds)
     return radii(vf.voronoi(xy, box), xy)
 
@@ -206,7 +193,7 @@ def compute_cells(ids, xy, boundary, loaded, wanted, last=False):
 
     d = vf.voronoi(xy, boundary)
     polygon = hasattr(boundary, "geom_type")  # a shapely Polygon/MultiPolygon, not a box
-    r = ring_radii(xy, boundary) if polygon else radii(d, xy)
+    r = ring_radii(xy, boundary, d) if polygon else radii(d, xy)
     ok = certified_sites(xy[wanted], r[wanted], loaded)
     keep = wanted if last else wanted[ok]
     nb = neighbor_lists(d.edges.pairs, len(xy), cells=keep, ids=ids)
