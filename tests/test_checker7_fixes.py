@@ -164,3 +164,27 @@ def test_the_build_keeps_each_cells_reach_before_the_polygon_clip(algorithm):
         # the ring reaches past the clipped cell somewhere (else the test shows nothing)
         assert (convex_reach(d) > radii(d, p) * (1 + 1e-9)).any()
     assert convex_reach(vf.voronoi(rng.random((50, 2)), (0, 0, 1, 1))) is None
+
+
+@pytest.mark.parametrize("e", [660, 990, -990])
+def test_polygon_domains_with_holes_at_extreme_scales(e):
+    # GEOS's validity check raised GEOSException ("Segment vertex does not intersect ring")
+    # on a valid square with a round hole scaled past ~1e150; it is checked scaled now
+    from shapely import affinity
+    from shapely.geometry import Point, box
+
+    dom = box(0, 0, 10, 10).difference(Point(5, 5).buffer(2))
+    q = np.random.default_rng(1).random((300, 2)) * 10
+    q = q[shapely.contains_xy(dom, q[:, 0], q[:, 1])]
+    s = 2.0**e
+    d = vf.voronoi(q * s, affinity.scale(dom, s, s, origin=(0, 0)))
+    cells = [shapely.transform(c, lambda c: c / s) for c in d.cells]  # exact: a power of two
+    assert all(c.is_valid for c in cells)
+    assert sum(c.area for c in cells) == pytest.approx(dom.area, rel=1e-12)
+    assert all(shapely.intersects_xy(c, x, y) for c, (x, y) in zip(cells, q, strict=True))
+    bowtie = shapely.Polygon([(0, 0), (1, 1), (1, 0), (0, 1)])
+    with pytest.raises(ValueError, match=r"invalid: Self-intersection") as info:
+        vf.voronoi(q[:1] * 0.05 * s, affinity.scale(bowtie, 10 * s, 10 * s, origin=(0, 0)))
+    # the crossing named in the user's frame (5 s, 5 s), not in the frame it was checked in
+    x, y = (float(v) for v in str(info.value).split("[")[1].rstrip("]").split())
+    assert x == pytest.approx(5 * s, rel=1e-12) and y == pytest.approx(5 * s, rel=1e-12)

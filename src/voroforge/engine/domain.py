@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -126,14 +127,24 @@ def _from_geometry(geom: shapely.Geometry) -> Domain:
         )
     if geom.is_empty:
         raise ValueError("boundary geometry is empty")
-    if not shapely.is_valid(geom):
-        raise ValueError(
-            f"boundary geometry is invalid: {shapely.is_valid_reason(geom)}{_shared_edge(geom)}"
-        )
     coords = shapely.get_coordinates(geom)
     if not np.isfinite(coords).all():
         raise ValueError("boundary geometry has non-finite coordinates")
-    area = shapely.area(geom)
+    # GEOS's validity check squares coordinates: past ~1e150 it raised GEOSException
+    # ("Segment vertex does not intersect ring") on a valid square with a hole; a
+    # power-of-two scale is exact and keeps every relation, so check near unit size
+    e = int(np.frexp(np.abs(coords).max(initial=0.0))[1])
+    check = geom if abs(e) < 256 else shapely.transform(geom, lambda c: np.ldexp(c, -e))
+    if not shapely.is_valid(check):
+        reason = shapely.is_valid_reason(check)
+        if check is not geom:  # the reason's point back in the user's frame
+            reason = re.sub(
+                r"\[([-+0-9.eE]+) ([-+0-9.eE]+)\]",
+                lambda m: f"[{np.ldexp(float(m[1]), e):.17g} {np.ldexp(float(m[2]), e):.17g}]",
+                reason,
+            )
+        raise ValueError(f"boundary geometry is invalid: {reason}{_shared_edge(check)}")
+    area = shapely.area(check)  # in the scaled frame: the area of a polygon at 1e200 is inf
     if not area > 0.0:
         raise ValueError("boundary geometry has zero area")
     bounds = tuple(float(v) for v in shapely.bounds(geom))
