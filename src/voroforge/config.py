@@ -603,6 +603,11 @@ PERIODIC_SLIVER_MAX_SIDE = 0.25
 #: that leaves it farther than that from the box's area joined distinct vertices and is undone
 PERIODIC_AREA_NOISE_ULPS = 4.0
 
+#: engine.periodic_ties: the relative room added to the farthest a named point lies from its
+#: own site when choosing the sites near the box's sides whose cells may hold it (the
+#: distances are rounded; a point a rounding farther than the farthest must not be missed)
+PERIODIC_NAME_REACH_SLACK = 1e-6
+
 #: engine.containers: a Convex whose centre lies farther from the origin than this many times
 #: its largest extent keeps its walls about an origin near it (far_origin): at 4 the absolute
 #: offsets are good to ~1e-15 of the solid's size, and nearer solids keep the bits they had
@@ -631,6 +636,11 @@ MESH_MOMENT_SAFE = 2.0**200
 #: run on the ~25% of the bench torus's tests that are exactly coplanar, made the check 4x
 #: slower)
 MESH_CROSS_FILTER = 1e-14
+
+#: engine.mesh3d: the rounding of a mesh's coordinates, with room, relative to their largest
+#: magnitude: added to the cut's slack and tolerance (far from the origin it is what a
+#: double can say about a position; 1e-14 is ~45 ulps)
+MESH_COORD_RTOL = 1e-14
 
 #: engine.meshplanes3d.local_vertices keeps a vertex recomputed about a far mesh's local
 #: origin only within this many ulps of its absolute doubles (which the cell builder rounds

@@ -29,6 +29,7 @@ import numpy as np
 
 from ..config import (
     MANIFOLD_SAFE,
+    MESH_COORD_RTOL,
     VORONOI3D_MESH_FACING,
     VORONOI3D_MESH_SLACK_RTOL,
     VORONOI3D_MESH_VOLUME_RTOL,
@@ -453,7 +454,7 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     fo = far_origin(V.min(axis=0), V.max(axis=0))
     o = _exact_origin(V, verts) if fo is None else fo
     Vl, vl = V - o, verts - o
-    big = 1e-14 * float(np.abs(V).max())  # the rounding of coordinates, with room
+    big = MESH_COORD_RTOL * float(np.abs(V).max())  # the rounding of coordinates, with room
     slack = VORONOI3D_MESH_SLACK_RTOL * float(np.abs(Vl).max()) + big
     grid = _tri_buckets(Vl[F], slack)
     cand = _touching(cf, roff, ring, vl, farea, live, Vl[F], slack, grid)
@@ -484,7 +485,7 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     # the rounding of coordinates far from the origin
     ext = float((V.max(axis=0) - V.min(axis=0)).max())
     if fo is not None:  # the cut cells' coordinates about o carry the rounding of those
-        big = 1e-14 * float(np.abs(Vl).max())
+        big = MESH_COORD_RTOL * float(np.abs(Vl).max())
     tol = VORONOI3D_MESH_SLACK_RTOL * ext + big
     got = _convex_part(todo, cf, lab, farea, roff, ring, vl, grid, tol)
     if got is not None:

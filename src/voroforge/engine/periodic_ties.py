@@ -17,7 +17,7 @@ from fractions import Fraction
 import numpy as np
 import shapely
 
-from ..config import PERIODIC_AREA_NOISE_ULPS, PERIODIC_TIE_ULPS
+from ..config import PERIODIC_AREA_NOISE_ULPS, PERIODIC_NAME_REACH_SLACK, PERIODIC_TIE_ULPS
 from .periodic_frame import two_sum_error, whole_times
 
 
@@ -267,7 +267,7 @@ def _names(points, owner, copies, lo, size, reach):
     dx = points[:, 0] - own[:, 0]
     dy = points[:, 1] - own[:, 1]
     far = float(np.sqrt((dx * dx + dy * dy).max()))
-    grow = reach + far * (1.0 + 1e-6)
+    grow = reach + far * (1.0 + PERIODIC_NAME_REACH_SLACK)
     hi = lo + size
     near = np.zeros(len(sites), dtype=bool)
     for k in range(2):  # column by column: (n, 2).any(axis=1) is slow
