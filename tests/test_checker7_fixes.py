@@ -188,3 +188,43 @@ def test_polygon_domains_with_holes_at_extreme_scales(e):
     # the crossing named in the user's frame (5 s, 5 s), not in the frame it was checked in
     x, y = (float(v) for v in str(info.value).split("[")[1].rstrip("]").split())
     assert x == pytest.approx(5 * s, rel=1e-12) and y == pytest.approx(5 * s, rel=1e-12)
+
+
+@pytest.mark.parametrize("e", [490, 505, -490, -500])
+def test_power_diagrams_are_scaled_exactly_at_extreme_magnitudes(e):
+    # squared distances near float64's limits: at 2**490 the cells' bits moved and areas
+    # overflowed; they are built scaled by a power of two now, weights by its square
+    from shapely import affinity
+    from shapely.geometry import Point, box
+
+    rng = np.random.default_rng(0)
+    p, w = rng.random((30, 2)), rng.random(30) * 0.02
+    s = 2.0**e
+    for dom in ((0, 0, 1, 1), box(0, 0, 1, 1).difference(Point(0.5, 0.5).buffer(0.2))):
+        ref = vf.power(p, w, dom)
+        big = (0, 0, s, s) if isinstance(dom, tuple) else affinity.scale(dom, s, s, origin=(0, 0))
+        d = vf.power(p * s, w * s * s, big)
+        for c, r in zip(d.cells, ref.cells, strict=True):
+            assert np.array_equal(
+                np.ldexp(shapely.get_coordinates(c), -e), shapely.get_coordinates(r)
+            )
+        assert np.array_equal(np.ldexp(np.asarray(d.areas), -2 * e), np.asarray(ref.areas))
+
+
+@pytest.mark.parametrize("s", [1e150, 1e-150, 1e154, 1e-154])
+def test_power_fit_at_extreme_scales(s):
+    # at 1e-150 Newton stalled after one step and the polygon clip raised GEOSException; at
+    # 1e154 a polygon's area overflowed in GEOS and the fit returned unfitted cells
+    from shapely import affinity
+    from shapely.geometry import MultiPolygon, Point, box
+
+    rng = np.random.default_rng(0)
+    holed = box(0, 0, 1, 1).difference(Point(0.5, 0.5).buffer(0.2))
+    gap = MultiPolygon([box(0, 0, 0.4, 1), box(0.6, 0, 1, 1)])
+    for dom in (holed, gap):
+        p = rng.random((40, 2))
+        p = p[shapely.contains_xy(dom, p[:, 0], p[:, 1])]
+        t = rng.random(len(p)) + 0.5
+        t *= dom.area / t.sum()
+        d = vf.power_fit(p * s, t * s * s, affinity.scale(dom, s, s, origin=(0, 0)))
+        assert np.abs(np.asarray(d.areas) / (t * s * s) - 1).max() <= 1e-6

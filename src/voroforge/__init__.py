@@ -37,7 +37,7 @@ _EXPORTS = {
     "locate": ".engine.interpolate",
     "natural_neighbor": ".engine.interpolate",
     "power": ".engine.power",
-    "power_fit": ".engine.power",
+    "power_fit": ".engine.capacity",
     "rasterize": ".engine.raster",
     "voronoi": ".engine.voronoi",
     "voronoi3d": ".engine.voronoi3d",
@@ -64,6 +64,7 @@ def __dir__() -> list[str]:
 
 
 if TYPE_CHECKING:  # for type checkers and editors: the same names, imported eagerly
+    from .engine.capacity import power_fit  # noqa: F401
     from .engine.containers import Convex  # noqa: F401
     from .engine.delaunay import Triangulation, delaunay  # noqa: F401
     from .engine.delaunay3d import Tetrahedralization, delaunay3d  # noqa: F401
@@ -73,7 +74,7 @@ if TYPE_CHECKING:  # for type checkers and editors: the same names, imported eag
     from .engine.interpolate import locate, natural_neighbor  # noqa: F401
     from .engine.lloyd import Relaxation, lloyd  # noqa: F401
     from .engine.lloyd3d import Relaxation3D, lloyd3d  # noqa: F401
-    from .engine.power import PowerDiagram, power, power_fit  # noqa: F401
+    from .engine.power import PowerDiagram, power  # noqa: F401
     from .engine.raster import RasterVoronoi, rasterize  # noqa: F401
     from .engine.voronoi import voronoi  # noqa: F401
     from .engine.voronoi3d import voronoi3d  # noqa: F401

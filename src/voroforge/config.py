@@ -647,6 +647,24 @@ MESH_COORD_RTOL = 1e-14
 #: once, half an ulp): a larger move means ill-conditioned planes, not the absolute rounding
 LOCAL_VERTEX_ULPS = 2.0
 
+#: engine.domain: a polygon domain whose coordinates are past 2**±this is checked (validity)
+#: and measured (area) by GEOS scaled near unit size by a power of two (exact): GEOS squares
+#: coordinates, and at ~1e150 its validity check raised on a valid polygon, and at 1e154 its
+#: area of a square with a hole overflowed
+DOMAIN_GEOS_EXP = 255
+
+#: engine.power: unequal-weight power diagrams are built scaled by a power of two (weights by
+#: its square; exact) when the sites' or the domain's largest magnitude is beyond 2**±this:
+#: squared distances reach float64's limits near 2**±511 (at 2**490 the cells' bits moved and
+#: areas overflowed); up to 2**±300 the bits were already the scaled bits
+POWER_FRAME_EXP = 256
+
+#: engine.capacity: power_fit runs on the problem scaled by a power of two (exact) when its
+#: domain's size is beyond 2**±this: at 1e-150 its Newton stalled after one step and the
+#: polygon clip raised GEOSException; at 1e154 areas overflowed. Nearer 1 nothing is scaled
+#: (the bits of ordinary fits do not depend on it)
+POWER_FIT_SCALE_EXP = 64
+
 #: engine.power (power_fit's bridge across a gap): a group's area gain counts only above this
 #: fraction of the domain's area. Summed cell areas carry rounding of a few ulps each; a
 #: "gain" of 1e-16 had been taken as a crossing, wasting Newton steps on raises that cross

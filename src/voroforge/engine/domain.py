@@ -8,6 +8,8 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
+from ..config import DOMAIN_GEOS_EXP
+
 
 @dataclass(frozen=True)
 class Domain:
@@ -33,7 +35,13 @@ class Domain:
         if self.is_rect:
             x0, y0, x1, y1 = self.bounds
             return (x1 - x0) * (y1 - y0)
-        return float(shapely.area(self.geometry))
+        # GEOS's shoelace products overflow first: a square with a hole at 1e154 (area
+        # 8.7e307) read inf; at unit size (power of two, exact) and scaled back
+        e = _unit_exponent(shapely.get_coordinates(self.geometry))
+        if not e:
+            return float(shapely.area(self.geometry))
+        with np.errstate(over="ignore"):
+            return float(np.ldexp(shapely.area(self.scaled(-e).geometry), 2 * e))
 
     def scaled(self, k: int) -> Domain:
         """The image under multiplication by ``2**k`` (exact, barring over/underflow)."""
@@ -133,8 +141,8 @@ def _from_geometry(geom: shapely.Geometry) -> Domain:
     # GEOS's validity check squares coordinates: past ~1e150 it raised GEOSException
     # ("Segment vertex does not intersect ring") on a valid square with a hole; a
     # power-of-two scale is exact and keeps every relation, so check near unit size
-    e = int(np.frexp(np.abs(coords).max(initial=0.0))[1])
-    check = geom if abs(e) < 256 else shapely.transform(geom, lambda c: np.ldexp(c, -e))
+    e = _unit_exponent(coords)
+    check = geom if not e else shapely.transform(geom, lambda c: np.ldexp(c, -e))
     if not shapely.is_valid(check):
         reason = shapely.is_valid_reason(check)
         if check is not geom:  # the reason's point back in the user's frame
@@ -156,6 +164,13 @@ def _from_geometry(geom: shapely.Geometry) -> Domain:
         if set(map(tuple, ring.tolist())) == corners:
             return Domain(geom, bounds, True)
     return Domain(geom, bounds, False)
+
+
+def _unit_exponent(coords: np.ndarray) -> int:
+    """0, or the power of two that brings coordinates past ``2**±DOMAIN_GEOS_EXP`` near 1."""
+    big = float(np.abs(coords).max(initial=0.0))
+    e = int(np.frexp(big)[1]) if big > 0.0 and np.isfinite(big) else 0
+    return e if abs(e) > DOMAIN_GEOS_EXP else 0
 
 
 def _shared_edge(geom: shapely.Geometry) -> str:

@@ -15,12 +15,13 @@ import numpy as np
 import shapely
 
 from ..config import LBFGS_ARMIJO, LBFGS_CURVATURE_RTOL, LLOYD_REFIT_RTOL
+from .capacity import as_targets
 from .diagram import Diagram, buffers
 from .domain import make_domain
 from .inputs import as_points, duplicate_map
 from .integrate import Integrator, as_raster
 from .planar import build
-from .power import as_targets, fit_weights, power_diagram
+from .power import fit_weights, power_diagram
 from .threads import serial_below
 
 METHODS = ("lloyd", "lbfgs")

@@ -1,4 +1,4 @@
-"""Power (Laguerre) diagrams, :func:`power`, and capacity-constrained cells, :func:`power_fit`.
+"""Power (Laguerre) diagrams, :func:`power`, and the Newton fit of their weights.
 
 Cell ``i`` of the power diagram of sites ``p`` with weights ``w`` is
 ``{x : |x - p_i|^2 - w_i <= |x - p_j|^2 - w_j for all j}``. Its neighbours come from the
@@ -17,14 +17,12 @@ import scipy.sparse as sp
 import shapely
 from scipy.sparse.csgraph import connected_components
 from scipy.sparse.linalg import MatrixRankWarning, spsolve
-from scipy.spatial import ConvexHull, QhullError, cKDTree
+from scipy.spatial import ConvexHull, QhullError
 
 from ..config import (
     POWER_BRIDGE_GAIN_RTOL,
-    POWER_FIT_DEFAULT_RTOL,
-    POWER_FIT_FAR,
-    POWER_FIT_SUM_RTOL,
     POWER_FLAT_RTOL,
+    POWER_FRAME_EXP,
     POWER_HIDDEN_RTOL,
     POWER_LABEL_RTOL,
     POWER_LIFT_RESOLVE_ULPS,
@@ -32,13 +30,12 @@ from ..config import (
 )
 from ..kernels.power import power_cells
 from .assemble import assemble
-from .diagram import Diagram, buffers, frame_exponent
-from .domain import Domain, make_domain, shifted
+from .diagram import Diagram, Edges, buffers, frame_exponent
+from .domain import Domain, make_domain
 from .inputs import as_points, as_weights, duplicate_map
 from .planar import build
 from .power_check import checked_cells, lost_candidates, pairs_csr, settle
 from .power_exact import lost_sites, on_one_line
-from .threads import serial_below
 
 #: Up to this many sites every pair is a candidate neighbour (no triangulation needed).
 _ALL_PAIRS_MAX = 16
@@ -240,6 +237,15 @@ def power_diagram(pts: np.ndarray, w: np.ndarray, dom: Domain) -> PowerDiagram:
         d = build(pts, dom, "delaunay")
         k = frame_exponent(d)
         return PowerDiagram(d.sites, d.duplicate_of, dom, buffers(d), d.edges, w, k, d.unresolved)
+    e = _frame(pts, dom)
+    if e:
+        # squared distances and weights past float64's range (a cell at 2**490: its bits
+        # moved; areas inf): build the diagram scaled by 2**-e, weights by 4**-e (exact)
+        d = power_diagram(np.ldexp(pts, -e), np.ldexp(w, -2 * e), dom.scaled(-e))
+        coords, ring, poly, geom = buffers(d)
+        edges = Edges(np.ldexp(d.edges.coords, e), d.edges.pairs)
+        bufs = (np.ldexp(coords, e), ring, poly, geom)
+        return PowerDiagram(pts, d.duplicate_of, dom, bufs, edges, w, -e, d.unresolved)
     dup = _owners(pts, w)
     active = dup < 0
     x = np.ascontiguousarray(pts[:, 0])
@@ -256,6 +262,16 @@ def power_diagram(pts: np.ndarray, w: np.ndarray, dom: Domain) -> PowerDiagram:
         lost = lost_sites(x, y, w, box, active, np.flatnonzero(active & ~(np.diff(lengths) > 0)))
     bufs, edges = assemble(dom, closed, lengths, own, n)
     return PowerDiagram(pts, dup, dom, bufs, edges, w, unresolved=lost)
+
+
+def _frame(pts: np.ndarray, dom: Domain) -> int:
+    """0, or ``e`` such that the sites and the domain scaled by ``2**-e`` are about unit size.
+
+    Only past ``2**±POWER_FRAME_EXP``: nearer 1 the bits do not depend on it.
+    """
+    big = max(float(np.abs(pts).max(initial=0.0)), *(abs(float(v)) for v in dom.bounds))
+    e = int(np.frexp(big)[1]) if big > 0.0 else 0
+    return e if abs(e) > POWER_FRAME_EXP else 0
 
 
 def power(points, weights, boundary=None) -> PowerDiagram:
@@ -352,7 +368,7 @@ def _seed_empty(pts, w, targets, dom, empty):
     return w
 
 
-def _shrink_start(pts, dom):
+def shrink_start(pts, dom):
     """Weights whose power cells are the Voronoi cells of the sites shrunk towards the domain.
 
     With ``c`` inside the domain and ``0 < s <= 1``, ``|x - p_i|^2 - (1 - s) |p_i - c|^2``
@@ -420,7 +436,7 @@ def fit_weights(pts, targets, dom, w0, tol, max_iter):
         areas = d.areas
     if (areas <= 0.0).any():
         # seeding one cell can empty another (sites sharing their nearest domain point)
-        w = _shrink_start(pts, dom)
+        w = shrink_start(pts, dom)
         d = power_diagram(pts, w, dom)
         areas = d.areas
     if (areas <= 0.0).any():
@@ -613,177 +629,3 @@ def _bridge_between(attempt, lo, hi):
         else:
             hi = mid
     return None, hi
-
-
-def as_targets(target_areas, n: int, dom: Domain) -> np.ndarray:
-    """Validated target areas, rescaled to sum exactly to the domain's area.
-
-    Parameters
-    ----------
-    target_areas : (n,) array_like
-        Positive areas summing to the domain's area (to ``POWER_FIT_SUM_RTOL``).
-    n : int
-        Number of sites.
-    dom : Domain
-        The domain.
-
-    Returns
-    -------
-    (n,) float64
-    """
-    t = as_weights(target_areas, n, name="target_areas")
-    if not (t > 0.0).all():
-        i = int(np.flatnonzero(~(t > 0.0))[0])
-        raise ValueError(f"target_areas must be positive; index {i} is {t[i]}")
-    total = dom.area
-    if abs(t.sum() - total) > POWER_FIT_SUM_RTOL * total:
-        raise ValueError(
-            f"target_areas must sum to the domain's area {float(total)!r}; they sum to "
-            f"{float(t.sum())!r}"
-        )
-    return t * (total / t.sum())
-
-
-def power_fit(
-    points,
-    target_areas,
-    boundary=None,
-    *,
-    tol: float = POWER_FIT_DEFAULT_RTOL,
-    max_iter: int = 100,
-    weights=None,
-) -> PowerDiagram:
-    """Weights that give every power cell a prescribed area (capacity-constrained cells).
-
-    Maximises the concave dual of the semi-discrete transport problem (Aurenhammer,
-    Hoffmann and Aronov 1998) with a damped Newton method: the Hessian is the sparse graph
-    Laplacian with entries ``|edge_ij| / (2 |p_i - p_j|)``, solved with
-    ``scipy.sparse.linalg.spsolve``; the step is halved until every cell keeps at least half
-    of the smallest area seen at the start and the area error shrinks.
-
-    Parameters
-    ----------
-    points : (n, 2) array_like
-        Distinct sites, anywhere: a site whose starting cell is empty (outside the domain,
-        in a hole) first gets a weight that opens a small cell at the domain point nearest
-        to it; if that fails, or Newton stalls, the fit starts again from the Voronoi cells
-        of the sites shrunk towards a point inside the domain. Never modified.
-    target_areas : (n,) array_like
-        Positive areas that sum to the domain's area (to 1e-6 relative; they are rescaled to
-        sum exactly).
-    boundary : None, (xmin, ymin, xmax, ymax) or shapely Polygon/MultiPolygon, optional
-        The domain, as for :func:`voroforge.voronoi`.
-    tol : float
-        Stop when every ``|area_i - target_i| / target_i <= tol``.
-    max_iter : int
-        Most Newton steps.
-    weights : (n,) array_like, optional
-        Starting weights (default zeros: the Voronoi diagram); warm starts converge faster.
-        Starting weights that leave a cell empty are replaced by zeros.
-
-    Returns
-    -------
-    PowerDiagram
-        The fitted diagram; ``.weights`` are the weights found.
-
-    Raises
-    ------
-    ValueError
-        Malformed input, duplicate sites, targets not positive or not summing to the domain's
-        area, or a site whose cell cannot be opened.
-    RuntimeError
-        When the areas do not reach ``tol`` within ``max_iter`` steps.
-
-    Examples
-    --------
-    >>> import numpy as np, voroforge as vf
-    >>> pts = np.random.default_rng(2).random((40, 2))
-    >>> target = np.full(40, 1 / 40)
-    >>> d = vf.power_fit(pts, target, (0, 0, 1, 1))
-    >>> bool(np.all(np.abs(d.areas - target) <= 1e-6 * target))
-    True
-    """
-    pts = as_points(points)
-    n = len(pts)
-    dom = make_domain(boundary, pts)
-    t = as_targets(target_areas, n, dom)
-    w0 = np.zeros(n) if weights is None else as_weights(weights, n)
-    if not (isinstance(tol, (int, float, np.number)) and tol > 0 and np.isfinite(tol)):
-        raise ValueError(f"tol must be a positive number; got {tol!r}")
-    if isinstance(max_iter, bool) or not isinstance(max_iter, (int, np.integer)):
-        raise ValueError(f"max_iter must be an integer; got {max_iter!r}")
-    if max_iter < 0:
-        raise ValueError(f"max_iter must be >= 0; got {max_iter!r}")
-    dup, _ = duplicate_map(pts)
-    if (dup >= 0).any():
-        i = int(np.flatnonzero(dup >= 0)[0])
-        raise ValueError(
-            f"points has duplicate sites (rows {int(dup[i])} and {i}); capacity fitting "
-            "needs distinct sites"
-        )
-    with serial_below(n):
-        # Newton runs near the origin (weights do not change under a translation): far out
-        # the cells' areas carry the coordinates' rounding (a cell of area 2e-7 at 1e5
-        # stalled at 6e-6 relative); the user's frame only checks and polishes the result
-        x0, y0, x1, y1 = dom.bounds
-        far = max(abs(x0), abs(y0), abs(x1), abs(y1)) > POWER_FIT_FAR * max(x1 - x0, y1 - y0)
-        c = np.array([x0, y0]) if far else np.zeros(2)
-        lpts, ldom = (pts - c, shifted(dom, c)) if far else (pts, dom)
-        d, w, err, it = fit_weights(lpts, t, ldom, w0, tol, int(max_iter))
-        if err > tol and n > 1:
-            # Newton stalled (e.g. cells that must straddle the gap of a MultiPolygon): start
-            # again from the shrunk sites, where every cell is open and reaches the interior
-            d2, w2, err2, it2 = fit_weights(
-                lpts, t, ldom, _shrink_start(lpts, ldom), tol, int(max_iter)
-            )
-            if err2 < err:
-                d, w, err, it = d2, w2, err2, it2
-        if far:  # d is in the moved frame: the user's diagram, polished there
-            d, _, err, it2 = fit_weights(pts, t, dom, w, tol, int(max_iter))
-            it += it2
-    if err > tol:
-        raise RuntimeError(
-            f"power_fit did not reach tol={tol:g} in {it} Newton steps (largest relative "
-            f"area error {err:.3g}){_near_pairs_note(pts, dom)}{_far_note(t, dom, tol)}"
-        )
-    return d
-
-
-def _far_note(targets, dom, tol) -> str:
-    """A note when the smallest cell is too few ulps of its coordinates wide for ``tol``.
-
-    A cell of side ``s`` whose vertices are rounded to ``u`` (the ulp of the coordinates)
-    has its area known to about ``4 u / s`` relative.
-    """
-    far = float(np.abs(np.asarray(dom.bounds)).max())
-    side = float(np.sqrt(targets.min()))
-    limit = 4.0 * float(np.spacing(far)) / side
-    if limit < 0.1 * tol:
-        return ""
-    return (
-        f"; the smallest cell (about {side:.3g} wide) at coordinates near {far:.3g} is "
-        f"{side / float(np.spacing(far)):.3g} ulps wide, so rounding alone limits its area to "
-        f"about {limit:.2g} relative (move the input near the origin, or raise tol)"
-    )
-
-
-def _near_pairs_note(pts, dom) -> str:
-    """A note naming sites too close for float64 weights to place their bisector, if any.
-
-    The bisector of sites ``d`` apart moves by ``dw / (2 d)``: with weights of size ``w``
-    its position is only known to ``ulp(w) / (2 d)``. Sites a few ulps apart with other
-    cells needing weights of any size cannot reach a small tolerance.
-    """
-    if len(pts) < 2:
-        return ""
-    dist, idx = cKDTree(pts).query(pts, k=2)
-    x0, y0, x1, y1 = dom.bounds
-    size = max(x1 - x0, y1 - y0)
-    close = np.flatnonzero(dist[:, 1] < 1e-9 * size)
-    if not len(close):
-        return ""
-    i = int(close[0])
-    return (
-        f"; sites {i} and {int(idx[i, 1])} are {dist[i, 1]:.3g} apart, too close for "
-        "float64 weights to place their bisector (merge them or move them apart)"
-    )

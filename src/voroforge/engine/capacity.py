@@ -1,0 +1,228 @@
+"""Capacity-constrained cells: :func:`power_fit`, power cells of prescribed areas.
+
+The Newton iteration itself is :func:`.power.fit_weights`; this module validates the input,
+chooses the frame it runs in and says why a fit that stalls could not do better.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from ..config import POWER_FIT_DEFAULT_RTOL, POWER_FIT_FAR, POWER_FIT_SCALE_EXP, POWER_FIT_SUM_RTOL
+from .domain import Domain, make_domain, shifted
+from .inputs import as_points, as_weights, duplicate_map
+from .power import PowerDiagram, fit_weights, power_diagram, shrink_start
+from .threads import serial_below
+
+__all__ = ["as_targets", "power_fit"]
+
+
+def as_targets(target_areas, n: int, dom: Domain) -> np.ndarray:
+    """Validated target areas, rescaled to sum exactly to the domain's area.
+
+    Parameters
+    ----------
+    target_areas : (n,) array_like
+        Positive areas summing to the domain's area (to ``POWER_FIT_SUM_RTOL``).
+    n : int
+        Number of sites.
+    dom : Domain
+        The domain.
+
+    Returns
+    -------
+    (n,) float64
+    """
+    t = as_weights(target_areas, n, name="target_areas")
+    if not (t > 0.0).all():
+        i = int(np.flatnonzero(~(t > 0.0))[0])
+        raise ValueError(f"target_areas must be positive; index {i} is {t[i]}")
+    total = dom.area
+    if abs(t.sum() - total) > POWER_FIT_SUM_RTOL * total:
+        raise ValueError(
+            f"target_areas must sum to the domain's area {float(total)!r}; they sum to "
+            f"{float(t.sum())!r}"
+        )
+    return t * (total / t.sum())
+
+
+def power_fit(
+    points,
+    target_areas,
+    boundary=None,
+    *,
+    tol: float = POWER_FIT_DEFAULT_RTOL,
+    max_iter: int = 100,
+    weights=None,
+) -> PowerDiagram:
+    """Weights that give every power cell a prescribed area (capacity-constrained cells).
+
+    Maximises the concave dual of the semi-discrete transport problem (Aurenhammer,
+    Hoffmann and Aronov 1998) with a damped Newton method: the Hessian is the sparse graph
+    Laplacian with entries ``|edge_ij| / (2 |p_i - p_j|)``, solved with
+    ``scipy.sparse.linalg.spsolve``; the step is halved until every cell keeps at least half
+    of the smallest area seen at the start and the area error shrinks.
+
+    Parameters
+    ----------
+    points : (n, 2) array_like
+        Distinct sites, anywhere: a site whose starting cell is empty (outside the domain,
+        in a hole) first gets a weight that opens a small cell at the domain point nearest
+        to it; if that fails, or Newton stalls, the fit starts again from the Voronoi cells
+        of the sites shrunk towards a point inside the domain. Never modified.
+    target_areas : (n,) array_like
+        Positive areas that sum to the domain's area (to 1e-6 relative; they are rescaled to
+        sum exactly).
+    boundary : None, (xmin, ymin, xmax, ymax) or shapely Polygon/MultiPolygon, optional
+        The domain, as for :func:`voroforge.voronoi`.
+    tol : float
+        Stop when every ``|area_i - target_i| / target_i <= tol``.
+    max_iter : int
+        Most Newton steps.
+    weights : (n,) array_like, optional
+        Starting weights (default zeros: the Voronoi diagram); warm starts converge faster.
+        Starting weights that leave a cell empty are replaced by zeros.
+
+    Returns
+    -------
+    PowerDiagram
+        The fitted diagram; ``.weights`` are the weights found.
+
+    Raises
+    ------
+    ValueError
+        Malformed input, duplicate sites, targets not positive or not summing to the domain's
+        area, or a site whose cell cannot be opened.
+    RuntimeError
+        When the areas do not reach ``tol`` within ``max_iter`` steps.
+
+    Examples
+    --------
+    >>> import numpy as np, voroforge as vf
+    >>> pts = np.random.default_rng(2).random((40, 2))
+    >>> target = np.full(40, 1 / 40)
+    >>> d = vf.power_fit(pts, target, (0, 0, 1, 1))
+    >>> bool(np.all(np.abs(d.areas - target) <= 1e-6 * target))
+    True
+    """
+    pts = as_points(points)
+    n = len(pts)
+    dom = make_domain(boundary, pts)
+    t = as_targets(target_areas, n, dom)
+    w0 = np.zeros(n) if weights is None else as_weights(weights, n)
+    if not (isinstance(tol, (int, float, np.number)) and tol > 0 and np.isfinite(tol)):
+        raise ValueError(f"tol must be a positive number; got {tol!r}")
+    if isinstance(max_iter, bool) or not isinstance(max_iter, (int, np.integer)):
+        raise ValueError(f"max_iter must be an integer; got {max_iter!r}")
+    if max_iter < 0:
+        raise ValueError(f"max_iter must be >= 0; got {max_iter!r}")
+    dup, _ = duplicate_map(pts)
+    if (dup >= 0).any():
+        i = int(np.flatnonzero(dup >= 0)[0])
+        raise ValueError(
+            f"points has duplicate sites (rows {int(dup[i])} and {i}); capacity fitting "
+            "needs distinct sites"
+        )
+    # the fit runs where the domain is about unit size (the user's problem scaled by a power
+    # of two, exactly): at 1e-150 its Newton stalled after one step and its polygon clip
+    # raised GEOSException, and at 1e154 areas overflowed and the fit returned unfitted cells
+    e = _frame_exponent(dom)
+    ws = (pts, t, dom, w0) if not e else _scaled(pts, t, dom, w0, -e)
+    with serial_below(n):
+        d, w, err, it = _fit(*ws, tol, int(max_iter))
+        if e:  # the weights back in the user's frame, and the cells and their error there
+            d = power_diagram(pts, np.ldexp(w, 2 * e), dom)
+            err = _area_error(d, t)
+    if not err <= tol:  # NaN too: areas past float64's range are no fit
+        raise RuntimeError(
+            f"power_fit did not reach tol={tol:g} in {it} Newton steps (largest relative "
+            f"area error {err:.3g}){_near_pairs_note(pts, dom)}{_far_note(t, dom, tol)}"
+        )
+    return d
+
+
+def _fit(pts, t, dom, w0, tol, max_iter):
+    """``fit_weights`` near the origin, a second start where it stalls, a polish in place.
+
+    Newton runs near the origin (weights do not change under a translation): far out the
+    cells' areas carry the coordinates' rounding (a cell of area 2e-7 at 1e5 stalled at
+    6e-6 relative); the given frame only checks and polishes the result.
+    """
+    x0, y0, x1, y1 = dom.bounds
+    far = max(abs(x0), abs(y0), abs(x1), abs(y1)) > POWER_FIT_FAR * max(x1 - x0, y1 - y0)
+    c = np.array([x0, y0]) if far else np.zeros(2)
+    lpts, ldom = (pts - c, shifted(dom, c)) if far else (pts, dom)
+    d, w, err, it = fit_weights(lpts, t, ldom, w0, tol, max_iter)
+    if err > tol and len(pts) > 1:
+        # Newton stalled (e.g. cells that must straddle the gap of a MultiPolygon): start
+        # again from the shrunk sites, where every cell is open and reaches the interior
+        d2, w2, err2, it2 = fit_weights(lpts, t, ldom, shrink_start(lpts, ldom), tol, max_iter)
+        if err2 < err:
+            d, w, err, it = d2, w2, err2, it2
+    if far:  # d is in the moved frame: the given frame's diagram, polished there
+        d, w, err, it2 = fit_weights(pts, t, dom, w, tol, max_iter)
+        it += it2
+    return d, w, err, it
+
+
+def _frame_exponent(dom: Domain) -> int:
+    """0, or ``e`` such that the domain scaled by ``2**-e`` is about unit size.
+
+    Only past ``2**±POWER_FIT_SCALE_EXP`` (ordinary domains keep their bits).
+    """
+    x0, y0, x1, y1 = dom.bounds
+    size = max(x1 - x0, y1 - y0)
+    e = int(np.frexp(size)[1])
+    return e if abs(e) > POWER_FIT_SCALE_EXP else 0
+
+
+def _scaled(pts, t, dom, w0, k):
+    """The fit's input scaled by ``2**k`` (areas and weights by ``4**k``): exact."""
+    return np.ldexp(pts, k), np.ldexp(t, 2 * k), dom.scaled(k), np.ldexp(w0, 2 * k)
+
+
+def _area_error(d, t) -> float:
+    """Largest ``|area - target| / target`` (NaN where the areas left float64's range)."""
+    with np.errstate(invalid="ignore", over="ignore"):
+        return float(np.max(np.abs(np.asarray(d.areas) - t) / t))
+
+
+def _far_note(targets, dom, tol) -> str:
+    """A note when the smallest cell is too few ulps of its coordinates wide for ``tol``.
+
+    A cell of side ``s`` whose vertices are rounded to ``u`` (the ulp of the coordinates)
+    has its area known to about ``4 u / s`` relative.
+    """
+    far = float(np.abs(np.asarray(dom.bounds)).max())
+    side = float(np.sqrt(targets.min()))
+    limit = 4.0 * float(np.spacing(far)) / side
+    if limit < 0.1 * tol:
+        return ""
+    return (
+        f"; the smallest cell (about {side:.3g} wide) at coordinates near {far:.3g} is "
+        f"{side / float(np.spacing(far)):.3g} ulps wide, so rounding alone limits its area to "
+        f"about {limit:.2g} relative (move the input near the origin, or raise tol)"
+    )
+
+
+def _near_pairs_note(pts, dom) -> str:
+    """A note naming sites too close for float64 weights to place their bisector, if any.
+
+    The bisector of sites ``d`` apart moves by ``dw / (2 d)``: with weights of size ``w``
+    its position is only known to ``ulp(w) / (2 d)``. Sites a few ulps apart with other
+    cells needing weights of any size cannot reach a small tolerance.
+    """
+    if len(pts) < 2:
+        return ""
+    dist, idx = cKDTree(pts).query(pts, k=2)
+    x0, y0, x1, y1 = dom.bounds
+    size = max(x1 - x0, y1 - y0)
+    close = np.flatnonzero(dist[:, 1] < 1e-9 * size)
+    if not len(close):
+        return ""
+    i = int(close[0])
+    return (
+        f"; sites {i} and {int(idx[i, 1])} are {dist[i, 1]:.3g} apart, too close for "
+        "float64 weights to place their bisector (merge them or move them apart)"
+    )
