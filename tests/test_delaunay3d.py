@@ -194,3 +194,32 @@ def test_input_not_mutated():
     keep = P.copy()
     vf.delaunay3d(P)
     assert np.array_equal(P, keep)
+
+
+def test_volumes_of_slivers_are_positive_and_exactly_rounded():
+    # checker8: points on cones (k cos a, k sin a, k) give slivers whose float determinant
+    # read -1.5e-16 where the exact volume is +1e-33; unsure ones are computed in rationals
+    from fractions import Fraction
+
+    P = np.array(
+        [(k * np.cos(a), k * np.sin(a), k) for a in np.arange(12) * np.pi / 6 for k in range(1, 7)]
+    )
+    t = vf.delaunay3d(P)
+    vol = t.volumes
+    assert (vol > 0).all()
+    slivers = 0
+    Q = [[Fraction(float(x)) for x in row] for row in P]
+    for s, v in zip(t.simplices.tolist(), vol.tolist(), strict=True):
+        a, b, c, d = (Q[i] for i in s)
+        u, w, z = ([q[i] - a[i] for i in range(3)] for q in (b, c, d))
+        exact = (
+            u[0] * (w[1] * z[2] - w[2] * z[1])
+            - u[1] * (w[0] * z[2] - w[2] * z[0])
+            + u[2] * (w[0] * z[1] - w[1] * z[0])
+        ) / 6
+        if exact < Fraction(1, 10**20):  # a sliver: as exact as one rounding allows
+            assert v == pytest.approx(float(exact), rel=1e-15)
+            slivers += 1
+        else:  # float, relative to the first vertex: to the rounding of coordinates ~6
+            assert v == pytest.approx(float(exact), abs=1e-13)
+    assert slivers > 0  # the input makes them (else the test shows nothing)

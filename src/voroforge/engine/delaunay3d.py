@@ -27,7 +27,11 @@ class Tetrahedralization:
         Hull triangles, counter-clockwise seen from outside.
     duplicate_of : (n,) int64
         -1 for a point's first occurrence, else the index of its first occurrence (left out
-        of the tetrahedra).
+        of the tetrahedra). Points that the working frame made equal count as equal: where
+        the points span more than ~2**188 (a unit grid beside a point at 1e300), coordinates
+        below ``2**-188`` of the largest magnitude are rounded to multiples of ``2**-240`` of
+        it (the exact predicates' resolution, ``engine.inputs.working_frame``), and every
+        decision is made on those rounded points.
     """
 
     points: np.ndarray
@@ -38,10 +42,48 @@ class Tetrahedralization:
 
     @property
     def volumes(self) -> np.ndarray:
-        """Each tetrahedron's volume (positive)."""
+        """Each tetrahedron's volume (positive; inf past float64's range).
+
+        In floating point relative to the first vertex; a sliver whose float determinant
+        is within its rounding bound (a float volume of -1.5e-16 where the exact one is
+        +1.4e-33) is computed exactly (rationals) and rounded once.
+        """
         p = self.points
         a, b, c, d = (p[self.simplices[:, k]] for k in range(4))
-        return np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a) / 6.0
+        u, v, w = b - a, c - a, d - a
+        with np.errstate(over="ignore", invalid="ignore"):
+            det = np.einsum("ij,ij->i", np.cross(u, v), w)
+            # the sum of the determinant's terms' magnitudes: its rounding is below a few
+            # eps of this (and so is the rounding of the differences u, v, w)
+            au, av = np.abs(u), np.abs(v)
+            pairs = au[:, [1, 2, 0]] * av[:, [2, 0, 1]] + au[:, [2, 0, 1]] * av[:, [1, 2, 0]]
+            perm = np.einsum("ij,ij->i", pairs, np.abs(w))
+        unsure = np.flatnonzero(~(np.abs(det) > VOLUME_UNSURE * perm) & np.isfinite(perm))
+        for t in unsure.tolist():
+            det[t] = _exact_det(p[self.simplices[t]])
+        return det / 6.0
+
+
+#: a float determinant relative to its permanent-like bound below this is recomputed exactly
+#: (Shewchuk's orient3d bound is ~8 eps for the difference form; this leaves room for the
+#: differences' own rounding)
+VOLUME_UNSURE = 64.0 * np.finfo(float).eps
+
+
+def _exact_det(q: np.ndarray) -> float:
+    """``det[b - a, c - a, d - a]`` of the rows of ``q`` in rationals, rounded once."""
+    from fractions import Fraction
+
+    a, b, c, d = ([Fraction(float(x)) for x in row] for row in q)
+    u = [b[i] - a[i] for i in range(3)]
+    v = [c[i] - a[i] for i in range(3)]
+    w = [d[i] - a[i] for i in range(3)]
+    det = (
+        u[0] * (v[1] * w[2] - v[2] * w[1])
+        - u[1] * (v[0] * w[2] - v[2] * w[0])
+        + u[2] * (v[0] * w[1] - v[1] * w[0])
+    )
+    return float(det)
 
 
 def delaunay3d(points) -> Tetrahedralization:
