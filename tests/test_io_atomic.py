@@ -45,3 +45,37 @@ def test_the_temporary_keeps_the_suffix_and_svg_gets_an_ordinary_mode(tmp_path):
     assert seen[0].endswith(".ply")  # writers that choose the format by suffix
     svg = write_svg([shapely.box(0, 0, 1, 1)], tmp_path / "s.svg")
     assert os.stat(svg).st_mode & 0o777 == new_file_mode()
+
+
+def test_a_symbolic_link_is_written_through(tmp_path):
+    # checker8: the rename onto a link replaced the link with a file
+    from voroforge.io.atomic import write_bytes
+
+    target = tmp_path / "real.csv"
+    target.write_text("old")
+    link = tmp_path / "link.csv"
+    link.symlink_to("real.csv")
+    write_bytes(link, b"new")
+    assert link.is_symlink() and target.read_bytes() == b"new"
+
+
+def test_an_unwritable_folder_names_the_file_asked_for(tmp_path):
+    from voroforge.io.atomic import write_bytes
+
+    missing = tmp_path / "no" / "such" / "out.csv"
+    with pytest.raises(OSError, match=r"cannot write .*out\.csv"):
+        write_bytes(missing, b"x")
+
+
+def test_explode_must_be_finite():
+    # checker8: --explode nan drew an all-white PNG and exited 0
+    import numpy as np
+
+    import voroforge as vf
+    from voroforge.io.render3d import diagram_meshes
+
+    d = vf.voronoi3d(np.random.default_rng(0).random((20, 3)), (0, 0, 0, 1, 1, 1))
+    for bad in (float("nan"), float("inf"), -0.5, "0.1"):
+        with pytest.raises(ValueError, match="explode"):
+            diagram_meshes(d, explode=bad)
+    assert len(diagram_meshes(d, explode=0.2)) == 20

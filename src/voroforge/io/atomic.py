@@ -51,12 +51,19 @@ def write_atomically(path, write: Callable[[str], object], *, suffix: str | None
     Returns
     -------
     Path
-        ``path``. On any error the temporary file is removed and ``path`` is left as it was.
+        ``path`` (where ``path`` is a symbolic link: the file it names, which is written and
+        the link kept). On any error the temporary file is removed and ``path`` is left as it was.
     """
     path = Path(path)
+    if path.is_symlink():
+        # write the file the link names (a rename onto the link replaced the link itself)
+        path = Path(os.path.realpath(path))
     folder = path.parent if str(path.parent) else Path(".")
     suffix = path.suffix if suffix is None else suffix
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix, dir=folder)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix, dir=folder)
+    except OSError as exc:  # name the file asked for, not the temporary one
+        raise type(exc)(exc.errno, f"cannot write {path}: {exc.strerror}") from None
     os.close(fd)
     try:
         write(tmp)

@@ -197,8 +197,11 @@ def diagram_edges(d, cells=None):
 def diagram_meshes(d, cells=None, *, explode=0.0):
     """``(vertices, rings)`` of a Diagram3D's cells, pushed out from the centre by ``explode``.
 
-    ``explode`` is a fraction of each cell centroid's offset from the diagram's centre.
+    ``explode`` is a fraction of each cell centroid's offset from the diagram's centre
+    (finite, at least 0: a NaN drew an empty picture).
     """
+    if not (isinstance(explode, int | float) and 0.0 <= float(explode) < float("inf")):
+        raise ValueError(f"explode must be a finite number >= 0; got {explode!r}")
     n = len(d)
     cells = range(n) if cells is None else cells
     cen = np.nanmean(np.asarray(d.centroids), axis=0)
