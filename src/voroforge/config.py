@@ -647,6 +647,11 @@ MESH_COORD_RTOL = 1e-14
 #: once, half an ulp): a larger move means ill-conditioned planes, not the absolute rounding
 LOCAL_VERTEX_ULPS = 2.0
 
+#: engine.raster: a raster whose sites or bounds are past 2**±this is computed at unit size
+#: (a power-of-two scaling, exact) and its distances scaled back: squared distances
+#: overflowed (inf distances at bounds 1e308; NaN from the width of (-1e308, 1e308))
+RASTER_FRAME_EXP = 480
+
 #: engine.domain: a polygon domain whose coordinates are past 2**±this is checked (validity)
 #: and measured (area) by GEOS scaled near unit size by a power of two (exact): GEOS squares
 #: coordinates, and at ~1e150 its validity check raised on a valid polygon, and at 1e154 its

@@ -155,6 +155,13 @@ def _check_bounds(bounds, pts: np.ndarray) -> tuple[float, float, float, float]:
     return vals
 
 
+def _frame(pts: np.ndarray, box) -> int:
+    """0, or ``e`` bringing the sites and the box near unit size, past ``2**±RASTER_FRAME_EXP``."""
+    big = max(float(np.abs(pts).max(initial=0.0)), *(abs(v) for v in box))
+    e = int(np.frexp(big)[1]) if big > 0.0 else 0
+    return e if abs(e) > config.RASTER_FRAME_EXP else 0
+
+
 def _jfa_steps(h: int, w: int, reach: int | None = None) -> np.ndarray:
     """JFA steps: K, K/2, ..., 2, 1.
 
@@ -367,6 +374,20 @@ def rasterize(
         raise ValueError("points is empty: rasterize needs at least one site")
     h, w = _check_shape(shape)
     box = _check_bounds(bounds, pts)
+    e = _frame(pts, box)
+    if e:
+        # squared distances (and the box's width at +-1e308) leave float64's range: the
+        # same raster at unit size, scaled by a power of two (exact), distances scaled back
+        r = rasterize(
+            np.ldexp(pts, -e),
+            (h, w),
+            tuple(np.ldexp(box, -e).tolist()),
+            method=method,
+            metric=metric,
+            f2=f2,
+        )
+        d2 = None if r.f2 is None else np.ldexp(r.f2, e)
+        return RasterVoronoi(r.labels, np.ldexp(r.distance, e), d2, box, method, metric)
     dup, unique = duplicate_map(pts)
     sub = pts[unique]
     xs = np.ascontiguousarray(sub[:, 0])
