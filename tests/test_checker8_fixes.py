@@ -22,3 +22,45 @@ def test_rasters_near_float64s_limits_are_the_unit_raster_scaled(method, e):
         assert np.array_equal(r.distance, np.ldexp(ref.distance, e))
         assert np.array_equal(r.f2, np.ldexp(ref.f2, e))
         assert r.bounds == tuple(float(v) * s for v in box)
+
+
+@pytest.mark.parametrize("command", ["check", "build"])
+def test_gif_sweeps_are_refused_alike_by_check_and_build(tmp_path, capsys, command):
+    # checker8: `check` accepted a sweep of a key that does not exist, or of values the key
+    # refuses, which `build` refused; a bad value is reported on the values' line
+    from voroforge.cli import main
+
+    base = (
+        '[design]\nname = "x"\n[boundary]\nshape = "rectangle"\nwidth = 100\nheight = 50\n'
+        '[seeds]\nmethod = "random"\ncount = 20\n[output]\nformats = ["gif"]\n[output.gif]\n'
+    )
+    for sweep, where in (
+        ('key = "nonexistent.key"\nstart = 1\nstop = 2\n', ":13: output.gif.key: "),
+        ('key = "cells.web"\nvalues = [1, "a"]\n', ":14: output.gif.values: "),
+    ):
+        f = tmp_path / "d.toml"
+        f.write_text(base + sweep)
+        assert (
+            main(
+                [command, str(f), "-o", str(tmp_path / "o")]
+                if command == "build"
+                else [command, str(f)]
+            )
+            == 2
+        )
+        assert f"{f}{where}" in capsys.readouterr().err
+
+
+def test_nan_and_inf_in_a_design_name_their_key(tmp_path):
+    from voroforge.design.designfile import DesignError, load
+
+    f = tmp_path / "d.toml"
+    f.write_text(
+        '[boundary]\nshape = "rectangle"\nwidth = 10\nheight = inf\n[seeds]\nmethod = "random"\n'
+        "count = 5\n[cells]\nweb = nan\nfillet = { near = nan, far = 1 }\n"
+    )
+    with pytest.raises(DesignError) as info:
+        load(f)
+    got = [(i.key, i.line) for i in info.value.issues]
+    assert got == [("boundary.height", 4), ("cells.web", 9), ("cells.fillet.near", 10)]
+    assert all("finite number" in i.message for i in info.value.issues)

@@ -240,10 +240,10 @@ BASE = '[boundary]\nwidth = 100\nheight = 80\n[seeds]\nmethod = "random"\ncount 
         ("[cells]\nfillet = [1, 2]\n", "8: cells.fillet", "expected a number or {"),
         # a key given twice on the last line: tomllib says "at end of document", no line
         ("[cells]\nweb = 1\nweb = 2", "9: (top level)", "TOML syntax: Cannot overwrite a value"),
-        # a bad GIF sweep value: the file and the line of output.gif.key, not "<design>"
+        # a bad GIF sweep value: the file and the line of output.gif.values, not "<design>"
         (
             "[output]\nformats = ['gif']\n[output.gif]\nkey = 'cells.web'\nvalues = [1, -2]\n",
-            "10: output.gif.key",
+            "11: output.gif.values",
             "cells.web = -2: cells.web: must be >= 0",
         ),
     ],

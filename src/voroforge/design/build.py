@@ -538,30 +538,55 @@ def _gif(design: Design, base: Path | None, path: Path, stage: Stage) -> Path:
     from ..io.gif import write_gif
 
     gif = design.output.gif
-    data = design.model_dump()
-    frames = []
     values = gif.sweep()
+    designs = sweep_designs(design)
     unique = {}
     for i, v in enumerate(values):
         if repr(v) not in unique:
             stage(f"gif frame {i + 1}/{len(values)}")
             try:
-                d, _ = load(data, overrides={gif.key: v})
-                unique[repr(v)] = render_preview(compute(d, base), size=gif.size)
-            except DesignError as exc:
-                raise DesignError(
-                    [
-                        Issue(
-                            "output.gif.key",
-                            None,
-                            f"{gif.key} = {v!r}: {it.key}: "
-                            + it.message.removesuffix(" (from --set)"),
-                        )
-                        for it in exc.issues
-                    ]
-                ) from None
-        frames.append(unique[repr(v)])
-    return write_gif(frames, path, fps=gif.fps)
+                unique[repr(v)] = render_preview(compute(designs[repr(v)], base), size=gif.size)
+            except DesignError as exc:  # a value the schema takes and the geometry refuses
+                raise _sweep_error(gif, v, exc) from None
+    return write_gif([unique[repr(v)] for v in values], path, fps=gif.fps)
+
+
+def _sweep_error(gif, v, exc: DesignError) -> DesignError:
+    """``exc`` of the design with ``gif.key = v``, said of the sweep's keys."""
+    where = "output.gif.values" if gif.values is not None else "output.gif.start"
+    return DesignError(
+        [
+            Issue(
+                where if it.key == gif.key else "output.gif.key",
+                None,
+                f"{gif.key} = {v!r}: {it.key}: " + it.message.removesuffix(" (from --set)"),
+            )
+            for it in exc.issues
+        ]
+    )
+
+
+def sweep_designs(design: Design) -> dict[str, Design]:
+    """The design of each distinct value of its ``[output.gif]`` sweep, by ``repr(value)``.
+
+    Raises
+    ------
+    DesignError
+        At ``output.gif.key`` when the key is no key of a design, at ``output.gif.values``
+        (or ``start``/``stop``) when a value is not one the key accepts: ``voroforge check``
+        says so as ``build`` does.
+    """
+    gif = design.output.gif
+    data = design.model_dump()
+    out = {}
+    for v in gif.sweep():
+        if repr(v) in out:
+            continue
+        try:
+            out[repr(v)], _ = load(data, overrides={gif.key: v})
+        except DesignError as exc:
+            raise _sweep_error(gif, v, exc) from None
+    return out
 
 
 def _report(result: Result):
@@ -613,6 +638,9 @@ def check_design(source, *, overrides: dict | None = None, progress: Stage | Non
     voroforge.design.fabrication.Report
     """
     design, base = load(source, overrides=overrides)
+    if design.output.gif is not None and "gif" in design.output.formats:
+        with located(source, overrides):
+            sweep_designs(design)  # a sweep build would refuse is refused here too
     if design.solid is not None:  # print checks of a 3D product (voroforge.solid)
         from ..solid.build import check_solid
 

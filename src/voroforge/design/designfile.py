@@ -21,7 +21,7 @@ from typing import Any
 
 from pydantic import BaseModel, ValidationError
 
-from .schema import Design, short_repr
+from .schema import Design, Graded, short_repr
 
 __all__ = [
     "DesignError",
@@ -205,7 +205,19 @@ def _expected(error: dict) -> str:
         return "required key is missing"
     got = error.get("input")
     if kind.startswith(
-        ("float", "int", "bool", "string", "literal", "greater", "less", "list", "tuple", "too_")
+        (
+            "float",
+            "int",
+            "bool",
+            "string",
+            "literal",
+            "greater",
+            "less",
+            "list",
+            "tuple",
+            "too_",
+            "finite",
+        )
     ):
         return f"{msg[0].lower()}{msg[1:]}; got {short_repr(got)}"
     return msg
@@ -223,6 +235,8 @@ def _issues(exc: ValidationError, lines: dict[tuple, int]) -> list[Issue]:
             message = field.group(2)
         elif text.startswith("Value error, "):
             message = text[len("Value error, ") :]
+        if loc and loc[-1] == "value" and _model_at(loc[:-1]) is Graded:
+            loc = loc[:-1]  # ``web = nan``: a Graded given as a bare number is its key
         if err["type"] == "extra_forbidden":
             model = _model_at(loc[:-1])
             if model is not None:

@@ -61,8 +61,9 @@ def _whole(value: Any) -> Any:
     return value
 
 
-#: A number written as a number: ``"10"`` and ``true`` are refused, not read as 10 and 1.
-Num = Annotated[float, Strict()]
+#: A finite number written as a number: ``"10"`` and ``true`` are refused, not read as 10 and
+#: 1; ``nan`` and ``inf`` too (``web = nan`` reached the cell offsets without its key).
+Num = Annotated[float, Strict(), Field(allow_inf_nan=False)]
 #: A whole number written as a number (``100.0`` is still 100).
 Whole = Annotated[int, BeforeValidator(_whole)]
 #: true or false, not ``"yes"`` or 1.
