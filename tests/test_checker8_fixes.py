@@ -64,3 +64,22 @@ def test_nan_and_inf_in_a_design_name_their_key(tmp_path):
     got = [(i.key, i.line) for i in info.value.issues]
     assert got == [("boundary.height", 4), ("cells.web", 9), ("cells.fillet.near", 10)]
     assert all("finite number" in i.message for i in info.value.issues)
+
+
+def test_no_queries_is_an_empty_answer():
+    # checker8: vf.locate(pts, []) said "xy must have shape (n, 2); got shape (1, 0)"
+    p = np.random.default_rng(0).random((5, 2))
+    assert vf.locate(p, []).shape == (0,)
+    assert vf.voronoi(p).locate([]).shape == (0,)
+    assert vf.natural_neighbor(p, np.arange(5.0), []).shape == (0,)
+    q = np.random.default_rng(0).random((10, 3))
+    assert vf.voronoi3d(q).locate([]).shape == (0,)
+
+
+def test_a_csv_of_a_header_alone_has_no_points(tmp_path):
+    from voroforge.scale.sources import open_source
+
+    f = tmp_path / "h.csv"
+    f.write_text("x,y\n")
+    with pytest.raises(ValueError, match=r"no points: .*h\.csv has no rows"):
+        open_source(f, tmp_path, 1000)

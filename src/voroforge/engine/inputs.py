@@ -100,6 +100,8 @@ def as_query(xy, *, dim: int = 2, name: str = "xy") -> tuple[np.ndarray, bool]:
         True when ``xy`` was one point (callers then return a scalar).
     """
     arr = np.asarray(xy)
+    if arr.ndim == 1 and arr.size == 0:  # ``[]``: no queries (it read "got shape (1, 0)")
+        return np.zeros((0, dim)), False
     single = arr.ndim == 1
     return as_points(arr.reshape(1, -1) if single else arr, dim=dim, name=name), single
 

@@ -120,6 +120,8 @@ def _parquet_source(path: Path, rows: int, temporary=None, label=None) -> Source
     except Exception as exc:  # pyarrow raises its own error types for unreadable files
         raise ValueError(f"{where}: not a readable Parquet file ({exc})") from None
     xy = _xy_names(pf.schema_arrow.names, where)
+    if pf.metadata.num_rows == 0:  # a CSV of a header alone read "column 'x' is not numeric"
+        raise ValueError(f"no points: {where} has no rows")
     import pyarrow.types as pat
 
     for name in xy:
