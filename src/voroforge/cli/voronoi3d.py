@@ -107,8 +107,6 @@ def _table(d):
 
 def write_outputs(d, outputs, *, size=(1000, 800), explode=0.15, stage=None):
     """Write diagram ``d`` to each path of ``outputs`` by suffix; returns the paths."""
-    import numpy as np
-
     from ..io.atomic import write_atomically
 
     written = []
@@ -150,16 +148,19 @@ def write_outputs(d, outputs, *, size=(1000, 800), explode=0.15, stage=None):
 
             from ..io.mesh import glb_scene, ply_bytes
 
-            meshes = d.to_trimesh()
-            live = [(i, m) for i, m in enumerate(meshes) if len(m.faces)]
             if suf == ".ply":  # float64 vertices, each face's cell as a face property
-                allm = trimesh.util.concatenate([m for _, m in live])
-                cell = np.concatenate([np.full(len(m.faces), i) for i, m in live])
-                data = ply_bytes(allm, cell)
+                verts, faces, cell = d.triangles()  # all cells at once (not mesh by mesh)
+                data = ply_bytes(trimesh.Trimesh(verts, faces, process=False), cell)
 
                 def w(tmp, data=data):
                     Path(tmp).write_bytes(data)
-            elif suf == ".glb":  # float32 by the standard: relative to a node translation
+
+                write_atomically(path, w)
+                written.append(str(path))
+                continue
+            meshes = d.to_trimesh()
+            live = [(i, m) for i, m in enumerate(meshes) if len(m.faces)]
+            if suf == ".glb":  # float32 by the standard: relative to a node translation
                 scene = glb_scene([(f"cell_{i}", m) for i, m in live])
 
                 def w(tmp, scene=scene):

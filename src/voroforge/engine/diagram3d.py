@@ -253,6 +253,28 @@ class Diagram3D:
             return one(i)
         return [one(k) for k in range(len(self))]
 
+    def triangles(self):
+        """Every cell as one triangle mesh: ``(vertices (m, 3), faces (t, 3), cell (t,))``.
+
+        The same triangles, vertices and order as concatenating :meth:`to_trimesh`'s meshes
+        (each cell its own copy of its vertices, rings fanned outward, cells in input order,
+        empty cells left out), built at once: 100,000 cells one by one took ~40 s.
+        """
+        cf, _, _, roff, ring = self.cell_face_table()
+        flen = np.diff(roff)
+        ntri = np.maximum(flen - 2, 0)
+        tri_face = np.repeat(np.arange(len(flen)), ntri)
+        first = np.cumsum(ntri) - ntri  # each face's first triangle
+        t = np.arange(len(tri_face)) - first[tri_face] + 1  # fan step 1 .. len - 2
+        start = roff[:-1][tri_face]
+        cell = np.repeat(np.arange(len(self), dtype=np.int64), np.diff(cf))[tri_face]
+        nv = max(len(self.vertices), 1)
+        corners = [ring[start], ring[start + t], ring[start + t + 1]]
+        keys = np.concatenate([cell * nv + np.asarray(c, np.int64) for c in corners])
+        uk, inv = np.unique(keys, return_inverse=True)
+        verts = np.asarray(self.vertices)[uk % nv]
+        return verts, inv.reshape(3, -1).T.copy(), cell
+
     # --- unique faces ---------------------------------------------------------------------
     def _unique(self):
         if "unique" not in self._cache:
