@@ -100,3 +100,18 @@ def test_all_cells_as_one_triangle_mesh_equal_the_meshes_joined():
         v, f, c = d.triangles()
         assert np.array_equal(v, joined.vertices) and np.array_equal(f, joined.faces)
         assert np.array_equal(c, np.concatenate([np.full(len(m.faces), i) for i, m in live]))
+
+
+def test_an_output_may_not_replace_the_input(tmp_path, capsys):
+    # checker8: `voroforge voronoi3d p.csv -o p.csv` replaced the points with the cells
+    from voroforge.cli import main
+
+    f = tmp_path / "p.csv"
+    np.savetxt(f, np.random.default_rng(0).random((20, 3)), delimiter=",")
+    before = f.read_bytes()
+    assert main(["voronoi3d", str(f), "-o", str(f)]) == 2
+    assert "is the input file" in capsys.readouterr().err and f.read_bytes() == before
+    g = tmp_path / "q.npy"
+    np.save(g, np.random.default_rng(0).random((20, 2)))
+    assert main(["raster", str(g), "-o", str(g)]) == 2
+    assert "is the input file" in capsys.readouterr().err

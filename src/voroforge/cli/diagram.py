@@ -128,7 +128,7 @@ def run_voronoi(args: argparse.Namespace, stage: Stage) -> list[Path]:
             ) from None
         if args.edges and kind in ("png", "parquet"):
             raise ValueError(f"{out}: --edges writes .svg, .dxf or .geojson, not .{kind}")
-    check_outputs(args.output, png=lambda: _check_png(args.size))
+    check_outputs(args.output, png=lambda: _check_png(args.size), inputs=[args.points])
     stage("reading")
     from ..io.readers import boundary_crs, read_point_table
 
@@ -222,7 +222,7 @@ def run_delaunay(args: argparse.Namespace, stage: Stage) -> list[Path]:
 
     for out in args.output:
         io.output_format(out)
-    check_outputs(args.output, png=lambda: _check_png(args.size))
+    check_outputs(args.output, png=lambda: _check_png(args.size), inputs=[args.points])
     stage("reading")
     points = io.read_points(args.points)
     stage(f"triangulating {len(points)} points")

@@ -11,7 +11,9 @@ from collections.abc import Callable, Iterable
 from pathlib import Path
 
 
-def check_outputs(outputs: Iterable, *, png: Callable[[], object] | None = None) -> list[Path]:
+def check_outputs(
+    outputs: Iterable, *, png: Callable[[], object] | None = None, inputs: Iterable = ()
+) -> list[Path]:
     """The output paths, after checking their folders (and the PNG size) up front.
 
     Parameters
@@ -21,6 +23,9 @@ def check_outputs(outputs: Iterable, *, png: Callable[[], object] | None = None)
     png : callable, optional
         Called once when an output is a ``.png``: the writer's own size check (raises
         ``ValueError`` naming the size).
+    inputs : iterable of str or Path
+        The files the command reads: an output may not be one of them (``-o points.csv``
+        replaced the points with the cells).
 
     Returns
     -------
@@ -29,8 +34,8 @@ def check_outputs(outputs: Iterable, *, png: Callable[[], object] | None = None)
     Raises
     ------
     ValueError
-        An output's folder does not exist or is not a folder, an output is a folder, or
-        ``png`` refused the size.
+        An output's folder does not exist or is not a folder, an output is a folder or
+        one of ``inputs``, or ``png`` refused the size.
     """
     paths = [Path(o) for o in outputs]
     for path in paths:
@@ -39,6 +44,9 @@ def check_outputs(outputs: Iterable, *, png: Callable[[], object] | None = None)
             raise ValueError(f"{path}: output folder does not exist: {folder}")
         if path.is_dir():
             raise ValueError(f"{path}: is a folder, not a file to write")
+        for given in inputs:
+            if path.exists() and Path(given).exists() and path.samefile(given):
+                raise ValueError(f"{path}: is the input file {given}; write elsewhere")
     if png is not None and any(p.suffix.lower() == ".png" for p in paths):
         png()
     return paths

@@ -162,7 +162,7 @@ def run_raster(args: argparse.Namespace, stage: Stage | None = None) -> list[Pat
         if out.suffix.lower() not in RASTER_SUFFIXES:
             raise ValueError(f"{out}: raster output must be a .png or .npy file")
     shape = parse_size(str(args.size))
-    check_outputs(outputs)
+    check_outputs(outputs, inputs=[args.points])
     bounds = parse_bounds(args.bounds)
     stage("reading")
     pts = read_points(args.points)

@@ -207,7 +207,8 @@ def run_voronoi3d(args, stage: Stage) -> list[str]:
                 f"unknown output suffix {suf!r}: use .csv, .parquet, .obj, .glb, .ply or .png"
             )
     h, w = parse_size(args.size)
-    check_outputs(args.output, png=lambda: check_render_size((w, h)))
+    given = [args.points] + ([args.container] if args.container else [])
+    check_outputs(args.output, png=lambda: check_render_size((w, h)), inputs=given)
     stage("reading points")
     pts = read_points3d(args.points)
     stage(f"computing {len(pts)} cells")
