@@ -46,7 +46,7 @@ def test_the_plan_warms_every_example_raster_and_explain(tmp_path):
     built = [s.argv[1] for s in steps if s.argv[0] == "build"]
     assert built == [str(d) for d in designs]
     assert all(s.argv[s.argv.index("-o") + 1].startswith(str(tmp_path)) for s in steps)
-    assert {s.argv[0] for s in steps} == {"build", "raster", "explain"}
+    assert {s.argv[0] for s in steps} == {"build", "raster", "explain", "voronoi3d"}
     methods = {s.argv[s.argv.index("--method") + 1] for s in steps if s.argv[0] == "raster"}
     assert methods == {"exact", "jfa"}
     # without a checkout's examples/ (an installed wheel) the packaged starter is warmed

@@ -101,7 +101,7 @@ def needs_missing_extra(design: Path) -> bool:
 
 
 def plan(designs: Sequence[Path], scratch: Path) -> list[Step]:
-    """The warm-up commands: each design's build, then raster and explain on small inputs.
+    """The warm-up commands: each design's build, then raster, explain and voronoi3d.
 
     Parameters
     ----------
@@ -132,14 +132,18 @@ def plan(designs: Sequence[Path], scratch: Path) -> list[Step]:
             ("explain", "fortune", str(pts), "-o", gif, "--frames", "4", "--size", "64"),
         )
     )
+    # the 3D cells' kernels (~60 s of compile on a first vf.voronoi3d, checker8)
+    pts3 = str(scratch / "warmup-points3d.csv")
+    steps.append(Step("voronoi3d", ("voronoi3d", pts3, "-o", str(scratch / "cells3d.csv"))))
     return steps
 
 
-def _write_points(path: Path) -> None:
+def _write_points(path: Path, dims: int = 2) -> None:
     # a fixed, irregular set (no numpy needed to write it): a low-discrepancy sequence
-    lines = ["x,y"]
+    steps = (0.6180339887498949, 0.7548776662466927, 0.5698402909980532)[:dims]
+    lines = [",".join("xyz"[:dims])]
     for k in range(1, _POINTS + 1):
-        lines.append(f"{(k * 0.6180339887498949) % 1.0:.12f},{(k * 0.7548776662466927) % 1.0:.12f}")
+        lines.append(",".join(f"{(k * a) % 1.0:.12f}" for a in steps))
     path.write_text("\n".join(lines) + "\n")
 
 
@@ -286,6 +290,7 @@ def warm_up(
     with tempfile.TemporaryDirectory(prefix="voroforge-warmup-") as tmp:
         scratch = Path(tmp)
         _write_points(scratch / "warmup-points.csv")
+        _write_points(scratch / "warmup-points3d.csv", dims=3)
         steps = plan([Path(d) for d in designs], scratch)
         done = run_plan(steps, report)
         if timed:
