@@ -9,8 +9,9 @@ cell sharing them computes identically:
    lost to coinciding float bisectors come back) and names every vertex by its owners:
    :func:`.vertex.voronoi_vertex` of the triple, or, where more sites are on the circle to
    rounding, the triple :func:`.vertex.canonical_triple` picks. A site counts as on a circle
-   by rounding only if its own vertices with the circle's sites are that vertex to rounding
-   (:func:`_joins`): near-duplicate sites make a tiny incircle value but long edges.
+   by rounding only if the four sites' centres are one vertex to rounding, decided once
+   for the four whichever cell asks (:func:`_joins`): near-duplicate sites make a tiny
+   incircle value but long edges.
 2. :func:`emit_exact` writes the ring: bisector-bisector vertices from step 1, a bisector's
    crossing with a box side by :func:`.vertex.box_crossing` (or the canonical vertex there
    when the crossing is one), box corners exactly.
@@ -432,55 +433,72 @@ def _near_cost(a, b, c0, cand, nc, sidx, xs, ys, vx, vy, r2, tol, merge):
 def _joins(i, a, b, x, vx, vy, ev, lv, xs, ys):
     """Whether site ``x`` near the circle of ``i, a, b`` (centre ``vx, vy``) is on its vertex.
 
-    True when the circumcentres of ``x`` with ``i, a``, with ``i, b`` and (unless both have
-    the vertex's bits) with ``a, b`` are all that vertex by the one merge rule
-    (:func:`.vertex.same_vertex`, ``ev`` the vertex's rounding bound), which the
-    Delaunay-dual cells apply to adjacent centres: the edges that ``x`` would add or shorten
-    are then rounding noise. The third centre makes the answer the quadruple's, the same
-    from each of its four cells: sites an ulp apart on a line have no centre, and a site
-    ``x`` a few ulps from ``a`` fails. A centre with the vertex's very bits passes the rule
-    whatever the bounds (distance 0); one that passes it with lower bounds of the two
-    rounding bounds (``lv`` the vertex's, :func:`.vertex.voronoi_vertex_lazy`) passes it
-    with the bounds, which are computed only where that fails (a grid's squares: never).
+    Decided for the four sites once, the same from each of their cells: True when the
+    four centres of their triples are one point by the one merge rule
+    (:func:`.vertex.same_vertex`) pair by pair, at the scale :func:`_quad_scale`, or when
+    the four are a rectangle's corners (exactly cocircular: one exact centre). The merge
+    rule is not transitive, so a test from the asking cell's own vertex would let two
+    cells at one group decide it differently: one merged an edge an ulp long that its
+    neighbour kept, one vertex at two points (sites 1-3 ulps apart, issue 15). Each
+    centre's bits and bounds do not depend on the order of its sites, so neither does the
+    answer. The pairs are tried with lower bounds first (``lv`` the vertex's,
+    :func:`.vertex.voronoi_vertex_lazy`): passing with them passes with the bounds, which
+    are computed only where that fails. A collinear triple (no centre) never joins.
     Returns ``(joined, ev, x1, y1, x2, y2)``: ``ev`` is -1 on entry when not yet computed,
     and comes back computed if it was needed; when joined, the two centres (of ``i, a, x``
     and of ``i, x, b``), which may name the vertex.
     """
-    r = abs(vx - xs[i]) + abs(vy - ys[i])
-    x1 = y1 = x2 = y2 = 0.0
-    bits = True  # both centres with ``i`` have the vertex's very bits
-    for k in range(3):
-        if k == 0:
-            c, p, q = i, a, x
-        elif k == 1:
-            c, p, q = i, x, b
-        elif bits:
-            break  # (a grid's squares: x is on the circle, the cells of a and b agree)
-        else:
-            # the centre of the three other sites makes the rule the quadruple's, the same
-            # from each of its cells: a site an ulp from ``a`` on the line through ``a`` and
-            # ``b`` has no centre with them, the cell of ``x`` keeps its edge with ``i``,
-            # and so must ``i`` (ulp_diagonal: one vertex had stood at three points)
-            c, p, q = a, x, b
-        px, py, ep, lp = voronoi_vertex_lazy(c, p, q, xs, ys)
-        if not (np.isfinite(px) and np.isfinite(py)):
-            return False, ev, 0.0, 0.0, 0.0, 0.0
-        if k == 0:
-            x1, y1 = px, py
-        elif k == 1:
-            x2, y2 = px, py
-        if px == vx and py == vy:
-            continue
-        bits = False
-        if same_vertex(vx, vy, lv, px, py, lp, r):
-            continue  # (lv <= ev, lp <= ep: the rule holds with the bounds too)
-        if ev < 0.0:
-            ev = voronoi_vertex_error(i, a, b, xs, ys)
-        if ep < 0.0:
-            ep = voronoi_vertex_error(c, p, q, xs, ys)
-        if not same_vertex(vx, vy, ev, px, py, ep, r):
-            return False, ev, 0.0, 0.0, 0.0, 0.0
-    return True, ev, x1, y1, x2, y2
+    x1, y1, e1, l1 = voronoi_vertex_lazy(i, a, x, xs, ys)
+    x2, y2, e2, l2 = voronoi_vertex_lazy(i, x, b, xs, ys)
+    fin = np.isfinite(x1) and np.isfinite(y1) and np.isfinite(x2) and np.isfinite(y2)
+    if not fin:
+        return False, ev, 0.0, 0.0, 0.0, 0.0
+    if _rectangle(xs[i], ys[i], xs[a], ys[a], xs[b], ys[b], xs[x], ys[x]):
+        return True, ev, x1, y1, x2, y2  # (a grid's squares: no bound needed)
+    x3, y3, e3, l3 = voronoi_vertex_lazy(a, x, b, xs, ys)
+    if not (np.isfinite(x3) and np.isfinite(y3)):
+        return False, ev, 0.0, 0.0, 0.0, 0.0
+    cx = (vx, x1, x2, x3)
+    cy = (vy, y1, y2, y3)
+    r = _quad_scale(i, a, b, x, cx, cy, xs, ys)
+    if _one_point(cx, cy, (lv, l1, l2, l3), r):
+        return True, ev, x1, y1, x2, y2
+    if ev < 0.0:
+        ev = voronoi_vertex_error(i, a, b, xs, ys)
+    e1 = e1 if e1 >= 0.0 else voronoi_vertex_error(i, a, x, xs, ys)
+    e2 = e2 if e2 >= 0.0 else voronoi_vertex_error(i, x, b, xs, ys)
+    e3 = e3 if e3 >= 0.0 else voronoi_vertex_error(a, x, b, xs, ys)
+    if _one_point(cx, cy, (ev, e1, e2, e3), r):
+        return True, ev, x1, y1, x2, y2
+    return False, ev, 0.0, 0.0, 0.0, 0.0
+
+
+@njit(**NJIT)
+def _quad_scale(i, a, b, x, cx, cy, xs, ys):
+    """The smallest L1 distance from one of four centres to one of the four sites.
+
+    The merge rule's ``r`` for the group (a distance from a vertex to a site on its
+    circle), the same whichever cell asks: the asking cell's own distance differs by
+    rounding between the cells.
+    """
+    r = np.inf
+    for s in (i, a, b, x):
+        for k in range(4):
+            r = min(r, abs(cx[k] - xs[s]) + abs(cy[k] - ys[s]))
+    return r
+
+
+@njit(**NJIT)
+def _one_point(cx, cy, e, r):
+    """Whether the four centres ``(cx[k], cy[k])`` with bounds ``e[k]`` are one vertex.
+
+    Every pair by :func:`.vertex.same_vertex` (not transitive: all six are tested).
+    """
+    for p in range(4):
+        for q in range(p + 1, 4):
+            if not same_vertex(cx[p], cy[p], e[p], cx[q], cy[q], e[q], r):
+                return False
+    return True
 
 
 @njit(**NJIT)
