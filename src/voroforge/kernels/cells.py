@@ -26,11 +26,11 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ..config import FOLD_MAX_ROUNDS, NJIT, NJIT_PARALLEL, REFLEX_SHORT_ULPS
+from ..config import NJIT, NJIT_PARALLEL, REFLEX_SHORT_ULPS
 from .cellcut import class_err, cut_cell, on_sides, side_reaches, spliced_cell
-from .centers import circumcenters, contract, merge_cocircular
+from .centers import circumcenters, merge_cocircular
 from .clip import open_ring_convex, ring_corner
-from .folds import fold_pairs, folded_rings, risky_sites
+from .folds import risky_sites, unfold_cells
 from .predicates import orient2d
 
 _U = 2.0**-53
@@ -437,53 +437,16 @@ def cells_from_triangulation(xs, ys, tri, he, box, order, kmap, *, astray=False)
     rounding folded across edges that are not neighbours (the vertices of a float circle far
     from the origin are spaced like the ulps there) has its short edges around the fold
     contracted (:func:`.folds.fold_pairs`, :func:`.centers.contract`: classes of triangles, so
-    every cell holding those vertices gets the one named vertex) and the cells at the
-    changed vertices are built again.
+    every cell holding those vertices gets the one named vertex), the cells at the changed
+    vertices are built again (:func:`.folds.unfold_cells`: the best round is kept).
     """
     state = dual_prepare(xs, ys, tri, he, box, order, kmap)
     xs, ys, tri, he, box, order, kmap, cx, cy, err, cls, risk, merged, terr, reach = state
-    n = xs.shape[0]
-    # only cells with a vertex of a short edge (for its ends' rounding bounds and naming
-    # moves) or of an undecided one can fold (most inputs, exact grids too: none); once a
-    # fold is contracted, every cell is checked, and then each round builds and checks
-    # again only the cells whose vertices it changed
-    tested = risk.copy()  # every cell a merge or contraction can have moved past its site
     out, cells = _build(xs, ys, tri, he, cx, cy, terr, reach, cls, box, order, kmap, merged)
-    bad = np.zeros(n, dtype=np.bool_)
-    checked_all = False
-    for _ in range(FOLD_MAX_ROUNDS):
-        if not risk.any():
-            break
-        coords, lengths, _ = cells
-        bad[risk] = folded_rings(coords, lengths, order, risk)[risk]
-        folded = np.flatnonzero(bad).astype(np.int64)
-        if not folded.shape[0]:
-            break
-        pa, pb = fold_pairs(folded, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, order)
-        before = (cx.view(np.int64).copy(), cy.view(np.int64).copy(), cls.copy(), reach.copy())
-        if not pa.shape[0] or not contract(xs, ys, tri, he, cls, cx, cy, kmap, box, err, pa, pb):
-            break
-        # only cells at a triangle whose vertex (bits) or class changed can change: a few
-        # per round, where building every cell again made a float circle's dozens of rounds
-        # quadratic (1e6 sites: 19 rounds of 3 s)
-        moved = (cx.view(np.int64) != before[0]) | (cy.view(np.int64) != before[1])
-        moved |= cls != before[2]
-        terr = class_err(cls, err)
-        reach = side_reaches(xs, ys, tri, cls, cx, cy, terr, box)
-        moved |= reach != before[3]
-        redo = np.zeros(n, dtype=np.bool_)
-        redo[tri.reshape(-1, 3)[moved].ravel()] = True
-        # every cell is checked once after the first contraction (a cell outside ``risk``
-        # can fold then), and from then on the cells built again (the others kept their bits)
-        risk = redo if checked_all else np.ones(n, dtype=np.bool_)
-        tested |= risk
-        checked_all = True
-        merged = True
-        out, cells = rebuild_cells(
-            xs, ys, tri, he, cx, cy, terr, reach, cls, box, order, kmap, cells, redo
-        )
+    cells, tested = unfold_cells(state, out, cells, rebuild_cells)
     if not astray:
         return cells
+    n = xs.shape[0]
     miss = astray_of(xs, ys, cells, box, order, tested) if tested.any() else np.zeros(n, np.uint8)
     return cells, miss
 

@@ -16,6 +16,9 @@ built again):
   ``FOLD_REACH_RTOL`` of the vertex's distance from its site, doubled while no folded ring
   gives a join (a stall: small float circles far from the origin); a test that still
   stalls asks for the classes at the bad turns to be named afresh (:func:`.refit.fit_classes`).
+- :func:`unfold_cells`: the rounds (test, join, build again), kept to the best round by
+  :func:`_score` (rings not simple, then folded): where joins score worse, the best round's
+  classes at the bad turns are named afresh instead.
 """
 
 from __future__ import annotations
@@ -24,6 +27,7 @@ import numpy as np
 from numba import njit, prange
 
 from ..config import (
+    FOLD_MAX_ROUNDS,
     FOLD_REACH_ERRS,
     FOLD_REACH_RTOL,
     FOLD_SPAN_ERRS,
@@ -32,7 +36,8 @@ from ..config import (
     NJIT,
     NJIT_PARALLEL,
 )
-from .centers import short_edge
+from .cellcut import class_err, side_reaches
+from .centers import contract, short_edge
 from .clip import ring_convex
 from .predicates import orient2d
 from .vertex import voronoi_vertex
@@ -357,3 +362,204 @@ def _straight_fold(sx, sy, cls, coords, b, tk, mv, kp, k, kn, rtol):
     if dq < dp and dq <= reach:
         return k  # the edge k -> kn
     return -1
+
+
+#: Rings longer than this are not tested for simplicity (the test is quadratic): a folded one
+#: counts as not simple, alike in every round
+_SIMPLE_MAX = 512
+
+
+@njit(**NJIT)
+def _meet(coords, a, b, c, d):
+    """Whether closed segments ``a-b`` and ``c-d`` (rows of ``coords``) share a point (exact)."""
+    ax, ay, bx, by = coords[a, 0], coords[a, 1], coords[b, 0], coords[b, 1]
+    qx, qy, rx, ry = coords[c, 0], coords[c, 1], coords[d, 0], coords[d, 1]
+    o1 = orient2d(ax, ay, bx, by, qx, qy)
+    o2 = orient2d(ax, ay, bx, by, rx, ry)
+    if (o1 > 0.0 and o2 > 0.0) or (o1 < 0.0 and o2 < 0.0):
+        return False
+    o3 = orient2d(qx, qy, rx, ry, ax, ay)
+    o4 = orient2d(qx, qy, rx, ry, bx, by)
+    if (o3 > 0.0 and o4 > 0.0) or (o3 < 0.0 and o4 < 0.0):
+        return False
+    if o1 == 0.0 and o2 == 0.0:  # on one line: they meet only where their boxes overlap
+        return (
+            min(ax, bx) <= max(qx, rx)
+            and min(qx, rx) <= max(ax, bx)
+            and min(ay, by) <= max(qy, ry)
+            and min(qy, ry) <= max(ay, by)
+        )
+    return True
+
+
+@njit(**NJIT)
+def _ring_simple(coords, a, b):
+    """Whether the closed ring ``coords[a:b]`` (last row repeats the first) is simple.
+
+    No edge meets an edge that is not its neighbour, and no two neighbours fold back onto
+    each other (a reversal: a spike GEOS calls a self-intersection).
+    """
+    m = b - a - 1
+    if m > _SIMPLE_MAX:
+        return False
+    for k in range(m):
+        kp = k - 1 if k > 0 else m - 1
+        kn = k + 1 if k + 1 < m else 0
+        if (
+            _bad_turn(coords, a + kp, a + k, a + kn)
+            and orient2d(
+                coords[a + kp, 0],
+                coords[a + kp, 1],
+                coords[a + k, 0],
+                coords[a + k, 1],
+                coords[a + kn, 0],
+                coords[a + kn, 1],
+            )
+            == 0.0
+        ):
+            return False
+    for p in range(m):
+        for q in range(p + 2, m):
+            if p == 0 and q == m - 1:
+                continue  # neighbours across the closing vertex
+            if _meet(coords, a + p, a + p + 1, a + q, a + q + 1):
+                return False
+    return True
+
+
+@njit(**NJIT_PARALLEL)
+def _not_simple(coords, lengths, order, bad):
+    """How many of the kernel sites' rings marked in ``bad`` are not simple."""
+    n = order.shape[0]
+    got = np.zeros(n, dtype=np.int64)
+    for i in prange(n):
+        if bad[i]:
+            got[i] = 0 if _ring_simple(coords, lengths[order[i]], lengths[order[i] + 1]) else 1
+    return got.sum()
+
+
+def _score(cells, bad, order):
+    """``(rings not simple, rings folded)`` among those marked in ``bad`` (the folded ones)."""
+    return (int(_not_simple(cells[0], cells[1], order, bad)), int(bad.sum()))
+
+
+def unfold_cells(state, out, cells, rebuild):
+    """The fold rounds of :func:`.cells.cells_from_triangulation`: ``(cells, tested)``.
+
+    ``state`` is :func:`.cells.dual_prepare`'s (its centres and classes change in place),
+    ``out, cells`` the first build, ``rebuild`` :func:`.cells.rebuild_cells`. Each round
+    tests the rings that can fold, joins the classes :func:`fold_pairs` gives and builds the
+    changed cells again, until no ring folds. Joins can fold more rings than they unfold
+    (the phase-0.3 circle of 600 sites of radius 1e-5 at (3e4, 1e4): 6 self-intersecting
+    rings before the first round, 33 after the twelfth, one class of 555 of its 598
+    triangles named thousands of ulps from its members), so the best round is returned
+    (:func:`_score`; a later round wins ties, so rounds that end with no ring folded
+    return their last, as before). Where rings stay folded, the rounds go on from the best
+    round with its classes at the bad turns named afresh (:func:`.refit.fit_classes`, as a
+    stalled test asks), back to the best round whenever joins score worse, until a fresh
+    naming scores worse too. ``tested`` marks every cell a merge or contraction can have
+    moved past its site.
+    """
+    run = _Rounds(state, out, cells, rebuild)
+    for _ in range(FOLD_MAX_ROUNDS):
+        if not run.risk.any():
+            break
+        run.measure()
+        if not run.folded().shape[0] or not run.step(False):
+            break
+    else:
+        run.measure()  # the last round's cells
+    if run.best is not None and run.best[0] != (0, 0):
+        run.restore()
+        refit = True
+        for _ in range(FOLD_MAX_ROUNDS):
+            if not run.folded().shape[0] or not run.step(refit):
+                break
+            if run.measure():
+                refit = False
+            elif refit:
+                break  # named afresh and still worse: the best round stands
+            else:
+                run.restore()
+                refit = True
+    return (run.cells if run.best is None else run.best[2]), run.tested
+
+
+class _Rounds:
+    """The state of :func:`unfold_cells`'s rounds.
+
+    Centres and classes (changed in place), the rings, the last test of each ring (``bad``),
+    and the best round seen with what restores it.
+    """
+
+    def __init__(self, state, out, cells, rebuild):
+        self.state = state
+        self.cx, self.cy, self.err, self.cls, self.risk = state[7:12]
+        self.terr, self.reach = state[13:15]
+        self.out, self.cells, self.rebuild = out, cells, rebuild
+        # only cells with a vertex of a short edge (for its ends' rounding bounds and naming
+        # moves) or of an undecided one can fold (most inputs, exact grids too: none); once
+        # a fold is contracted, every cell is checked, and then each round builds and checks
+        # again only the cells whose vertices it changed
+        self.tested = self.risk.copy()
+        self.bad = np.zeros(self.risk.shape[0], dtype=np.bool_)
+        self.checked_all = False
+        self.best = None  # (score, out, cells, (cx, cy, cls, bad, terr, reach))
+
+    def measure(self):
+        """Test the rings built since the last test; whether the round is the best so far."""
+        order, risk = self.state[5], self.risk
+        self.bad[risk] = folded_rings(self.cells[0], self.cells[1], order, risk)[risk]
+        score = _score(self.cells, self.bad, order)
+        if self.best is not None and score > self.best[0]:
+            return False
+        keep = (self.cx.copy(), self.cy.copy(), self.cls.copy(), self.bad.copy())
+        self.best = (score, self.out, self.cells, (*keep, self.terr, self.reach))
+        return True
+
+    def restore(self):
+        """Back to the best round (its centres, classes, rings and tests)."""
+        _, self.out, self.cells, keep = self.best
+        for now, then in zip((self.cx, self.cy, self.cls, self.bad), keep[:4], strict=True):
+            now[:] = then
+        self.terr, self.reach = keep[4], keep[5]
+
+    def folded(self):
+        """The sites whose rings the last test found folded."""
+        return np.flatnonzero(self.bad).astype(np.int64)
+
+    def step(self, refit):
+        """Join the classes the folded rings ask for, and build the changed cells again.
+
+        ``refit``: name the classes at the rings' bad turns afresh instead. False where
+        nothing changed.
+        """
+        xs, ys, tri, he, box, order, kmap = self.state[:7]
+        cx, cy, err, cls = self.cx, self.cy, self.err, self.cls
+        coords, lengths, _ = self.cells
+        folded = self.folded()
+        if refit:
+            pa = _stalled(folded, tri, he, self.out, cx, cy, coords, lengths, order)
+            pb = pa
+        else:
+            args = (xs, ys, tri, he, self.out, cx, cy, err, cls, coords, lengths, order)
+            pa, pb = fold_pairs(folded, *args)
+        before = (cx.view(np.int64).copy(), cy.view(np.int64).copy(), cls.copy(), self.reach)
+        if not pa.shape[0] or not contract(xs, ys, tri, he, cls, cx, cy, kmap, box, err, pa, pb):
+            return False
+        # only cells at a triangle whose vertex (bits) or class changed can change: building
+        # every cell again made a float circle's rounds quadratic (1e6: 19 rounds of 3 s)
+        self.terr = class_err(cls, err)
+        self.reach = side_reaches(xs, ys, tri, cls, cx, cy, self.terr, box)
+        moved = (cx.view(np.int64) != before[0]) | (cy.view(np.int64) != before[1])
+        moved |= (cls != before[2]) | (self.reach != before[3])
+        redo = np.zeros(xs.shape[0], dtype=np.bool_)
+        redo[tri.reshape(-1, 3)[moved].ravel()] = True
+        # every cell is checked once after the first contraction (a cell outside ``risk``
+        # can fold then), and from then on the cells built again (the others kept their bits)
+        self.risk = redo if self.checked_all else np.ones(xs.shape[0], dtype=np.bool_)
+        self.tested |= self.risk
+        self.checked_all = True
+        args = (xs, ys, tri, he, cx, cy, self.terr, self.reach, cls, box, order, kmap)
+        self.out, self.cells = self.rebuild(*args, self.cells, redo)
+        return True
