@@ -86,6 +86,23 @@ def _edge_report(F: np.ndarray) -> str | None:
     return None
 
 
+def _read_mesh_file(path: str):
+    """The mesh in ``path``: the project's reader for 3MF and ``.3dm``, trimesh for the rest.
+
+    :func:`voroforge.io.mesh.read` reads 3MF without lxml (``trimesh.load`` needed it) and
+    ``.3dm`` through rhino3dm (``trimesh.load`` cannot); every other suffix (STL, OBJ, PLY,
+    GLB, OFF ...) loads through ``trimesh.load`` as before (the same vertices and faces as
+    ``read`` for the formats both know, and an empty file still reads as no triangles).
+    """
+    import trimesh
+
+    if os.path.splitext(path)[1].lower() in (".3mf", ".3dm"):
+        from ..io.mesh import read
+
+        return read(path)
+    return trimesh.load(path, force="mesh")
+
+
 def as_mesh_container(container):
     """``(MeshContainer, Template)`` from a trimesh, ``(vertices, faces)`` or a mesh file."""
     import trimesh
@@ -95,8 +112,8 @@ def as_mesh_container(container):
         if not os.path.exists(path):
             raise ValueError(f"container file not found: {path}")
         try:
-            mesh = trimesh.load(path, force="mesh")
-        except Exception as exc:  # noqa: BLE001 - trimesh raises many kinds
+            mesh = _read_mesh_file(path)
+        except Exception as exc:  # noqa: BLE001 - the readers raise many kinds
             raise ValueError(f"could not read the container mesh {path}: {exc}") from None
         V, F = np.asarray(mesh.vertices, np.float64), np.asarray(mesh.faces, np.int64)
         if F.ndim != 2 or len(F) < 4:  # an empty or garbage file reads as no triangles
