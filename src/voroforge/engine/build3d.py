@@ -18,6 +18,7 @@ from numba import njit
 from ..config import GRID_DEGENERATE_RTOL, GRID_WIDEN_RTOL, NJIT, TRIM_CELLS
 from ..kernels.cells3d import OK, OVERFLOW, build_cells, cell_scratch
 from ..kernels.grid3d import kd_buckets3d
+from .lists3d import Lists, chunk_search, chunks, redo_slow
 from .threads import serial_below
 
 #: cells per call of the kernel (its fixed per-cell slots: ~10 KB a cell while it runs)
@@ -600,13 +601,14 @@ def build_order(P, cells, g, sidx, tree):
     return np.argsort(bucket_keys3d(P[cells], g), kind="stable")
 
 
-def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
+def build_cells3d(P, W, t, cells=None, progress=None, short=False, lists=True) -> Cells3D:
     """Cells of sites ``cells`` (default all) of ``P (ns, 3)``, weights ``W``, template ``t``.
 
     Chunks of cells are built in bucket order into per-cell slots (threads), and each chunk
     is joined at once into the growing outputs (:func:`_join`); a cell that overflowed its
     slots is built again alone with big slots and joined in its place. ``short``: keep the
-    per-vertex mask behind ``unmatched`` (:attr:`Cells3D.short`).
+    per-vertex mask behind ``unmatched`` (:attr:`Cells3D.short`). ``lists``: unweighted
+    cells past a search budget are built from Delaunay lists (:mod:`.lists3d`).
     """
     import numba
 
@@ -617,6 +619,8 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
         return _empty(cells)
     g, start, SP, sidx, order, tree = search3d(P)
     SW = np.ascontiguousarray(W[sidx])  # the weights in bucket order, read beside SP
+    # unweighted: a budget of sites a cell, past it the cell's Delaunay list (engine.lists3d)
+    lists = None if W.any() or not lists else Lists(P, W, g)
     # cells are built in bucket order (neighbouring cells read the same sites: 1.5x less
     # time than input order on 1e5 uniform sites); the face table stays in that order
     sort = build_order(P, cells, g, sidx, tree)
@@ -647,15 +651,20 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
         scr = {}  # each thread's working space, kept from chunk to chunk (_run)
         pending = []
 
-        def join(c0, chunk, st, counts, v, c, r2, sl, capa):
+        def run(few, *search, sl=None):  # search: (start, SP, SW, sidx, g)
+            return _run(few, P, W, *search, order, tree, t, CAPS, pool, sl, scr, wmax)
+
+        def join(c0, chunk, how, st, counts, v, c, r2, sl, capa):
             if not made:
                 made.append(_Out(k, *_join_grid(P[cells], t.bounds, k)))
             out = made[0]
 
             def big(q):
-                # a cell past its slots: alone, with big slots, joined in its place
+                # a cell past its slots: alone, with big slots (its list, if it was built
+                # from one), joined in its place
+                s = lists.get()[:5] if how is not None and how[q] else (start, SP, SW, sidx, g)
                 st[q], counts[q], v[q], c[q], r2[q] = _big(
-                    chunk[q], P, W, start, SP, SW, sidx, g, order, tree, t, out, wmax, counts[q]
+                    chunk[q], P, W, *s, order, tree, t, out, wmax, counts[q]
                 )
 
             out.add(st, counts, sl, capa, big)
@@ -664,35 +673,23 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False) -> Cells3D:
             cell_faces[c0 + 1 : c0 + 1 + len(chunk)] = counts[:, 1]
             voff[c0 + 1 : c0 + 1 + len(chunk)] = counts[:, 0]
             if progress is not None:
-                progress(min(c0 + CHUNK, k), k)
+                progress(c0 + len(chunk), k)
 
         try:
-            for q, c0 in enumerate(range(0, k, CHUNK)):
+            for q, (c0, c1) in enumerate(chunks(k, CHUNK, lists is not None)):
                 if len(pending) >= len(slots):
                     pending.pop(0).result()  # the join that used these slots is done
-                chunk = built[c0 : c0 + CHUNK]
-                res = _run(
-                    chunk,
-                    P,
-                    W,
-                    start,
-                    SP,
-                    SW,
-                    sidx,
-                    g,
-                    order,
-                    tree,
-                    t,
-                    CAPS,
-                    pool,
-                    slots[q % len(slots)],
-                    scr,
-                    wmax,
-                )
+                chunk = built[c0:c1]
+                grid = (start, SP, SW, sidx, g)
+                s = grid if lists is None else chunk_search(lists, grid)
+                res = run(chunk, *s, sl=slots[q % len(slots)])
+                how = None
+                if lists is not None:  # cells past the budget, again (from their lists)
+                    how = redo_slow(chunk, res, lists, run, grid)
                 if joiner is None:
-                    join(c0, chunk, *res)
+                    join(c0, chunk, how, *res)
                 else:
-                    pending.append(joiner.submit(join, c0, chunk, *res))
+                    pending.append(joiner.submit(join, c0, chunk, how, *res))
             for f in pending:
                 f.result()
         finally:
@@ -739,7 +736,8 @@ def _big(i, P, W, start, SP, SW, sidx, g, order, tree, t, out, wmax=None, need=N
         st, counts, v, c, r2, sl, capa = _run(
             np.array([i]), P, W, start, SP, SW, sidx, g, order, tree, t, caps, None, wmax=wmax
         )
-        if st[0] != OVERFLOW or factor >= 256:
+        # (a sphere's centre cell of 40,000 faces needs the slots of its counts at 1024)
+        if st[0] != OVERFLOW or factor >= 1024:
             break
         need = [max(need[q], int(counts[0, q])) for q in range(3)]
         factor *= 4

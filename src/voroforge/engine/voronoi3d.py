@@ -123,7 +123,9 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
         build = np.arange(u)
         if w is None:
             build = np.flatnonzero(reaching_sites(mesh, pts, ins)[uniq])
-        res = build_cells3d(P, W, tw, cells=build, progress=progress, short=True)
+        # (no Delaunay lists: the mesh cut's new vertices round by the order of the cell's
+        # faces, which a cell built from its list does not keep)
+        res = build_cells3d(P, W, tw, cells=build, progress=progress, short=True, lists=False)
         gmap = None
     else:
         res = build_cells3d(P, W, tw, cells=np.arange(u), progress=progress)

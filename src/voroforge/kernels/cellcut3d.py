@@ -40,6 +40,9 @@ EMPTY = 1
 OVERFLOW = 2
 BROKEN = 3
 UNNAMED = 4
+#: the cell examined more sites than the grid's budget ``g[9]`` allows (engine.lists3d
+#: rebuilds it from its Delaunay candidate list)
+SLOW = 5
 
 MAX_OWNERS = 32
 #: the most entries of the owner table (vertices x owners a vertex, int32: 64 MB); its width
@@ -607,6 +610,8 @@ def one_cell(
     (``tree`` non-empty: :func:`.grid3d.kd_buckets3d`'s nodes, ``start`` its buckets) the
     buckets come nearest box first from a heap (keys ``hk``, nodes ``buck``) and each is cut
     by at once; the stop tests are :func:`_far` on the box distance and :func:`_box_misses`.
+    ``g[9]`` (optional): the most sites to examine (past it ``SLOW``), or when negative
+    candidate lists (bucket ``i`` of ``start`` holds cell ``i``'s sites: engine.lists3d).
     """
     V, F, R, R2, S, work, T = C
     graph = G[0].shape[0] > 0
@@ -679,6 +684,11 @@ def one_cell(
         hk[0] = 0.0
         buck[0] = 0
         size = 1
+    # g[9], when there: > 0 the most sites to examine (then SLOW), < 0 candidate lists
+    # (bucket i of start/SP/SW/sidx holds cell i's sites: its one batch, then done)
+    budget = g[9] if g.shape[0] > 9 else 0.0
+    lists = budget < 0.0
+    seen = 0
     while True:
         flush = False
         stop = False
@@ -686,6 +696,13 @@ def one_cell(
         if rb >= 0:
             b = rb
             rb = -1
+        elif lists:  # the cell's list is one bucket: gathered once, then the search ends
+            flush = True
+            stop = seen > 0
+            if not stop:
+                b = i
+                rt = start[i]
+                seen = 1
         elif kd:  # each k-d bucket is cut by at once
             b, size = _next_leaf(px, py, pz, tree, hk, buck, size, wi, wmax, rmax2, V, nv, eps)
             flush = True
@@ -763,8 +780,11 @@ def one_cell(
                 )
                 if st != OK:
                     return st, 0, 0, 0, 0.0
+            seen += mg
             m = 0
             mg = 0
+            if budget > 0.0 and seen > budget:
+                return SLOW, 0, 0, 0, 0.0
         if stop:
             break
     if graph:

@@ -1,0 +1,140 @@
+"""Cells whose grid search ran past its budget, rebuilt from Delaunay candidate lists.
+
+The grid search of a cell (:mod:`kernels.cellcut3d`) stops once no unscanned site can
+reach the cell: twice its radius. Points on a sphere defeat it: every cell reaches from
+the centre to the walls, so every site is within reach of every cell and the build was
+quadratic (4,000 points without the centre: 12.5 s). So the unweighted build gives each
+search a budget of sites (:data:`SITE_BUDGET`); a cell past it stops (``SLOW``) and is
+built again from its list (:func:`.kernels.candidates3d.candidate_lists`: the sites of its
+Delaunay polytopes, from one ``vf.delaunay3d`` of all sites, made when the first cell
+needs it). The list holds every site whose plane bounds the cell or passes through one of
+its vertices, so the cell and its vertex names are the ones the full search gives; only
+the order of its vertices and faces (the cuts' history) and the rounding of its volume
+and centroid may differ. A site with no list (a polytope of more than
+:data:`POLYTOPE_MOST` sites: integer points of one sphere; a flat input) is searched
+again without a budget, as before.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..kernels.candidates3d import candidate_lists
+from ..kernels.cellcut3d import SLOW
+
+#: the most sites a cell's grid search examines before it stops with ``SLOW`` (uniform
+#: cells examine ~100, cells of 1e5 sites at a default container's padded walls at most
+#: ~700; a cell of n points on a sphere examines all n)
+SITE_BUDGET = 2048.0
+#: the lists are made (one Delaunay triangulation of all sites, ~100 us a site) once this
+#: many cells ran past the budget, and this share of the cells built so far: fewer are
+#: searched again without a budget (each cost at most a full scan: cheaper than the lists)
+LISTS_AFTER = (64, 0.01)
+#: the largest Delaunay polytope (sites on one empty sphere) whose sites get lists: each of
+#: its sites' lists holds all of it
+POLYTOPE_MOST = 64
+#: test only: every cell is built from its list (where it has one)
+FORCE = False
+
+
+class Lists:
+    """The candidate lists of sites ``P`` (weights ``W``, all zero), made on first use.
+
+    ``g`` is the search grid (9 values, :func:`.build3d.search3d`); :meth:`budget` is it
+    with the budget, the lists' own grid ends in -1 (the kernel's list mode).
+    """
+
+    def __init__(self, P: np.ndarray, W: np.ndarray, g: np.ndarray):
+        self.P, self.W, self.g = P, W, g
+        self.made = None
+        self.slow = self.seen = 0  # cells past the budget, and cells built
+
+    def budget(self) -> np.ndarray:
+        """The search grid with the budget (``g[9]``, read by ``cellcut3d.one_cell``)."""
+        if self.made is False:  # the sites span no volume: no lists, no budget
+            return self.g
+        return np.append(self.g, SITE_BUDGET)
+
+    def worth(self, slow: int, k: int) -> bool:
+        """Count ``slow`` cells past the budget in ``k`` more; whether to use (make) lists."""
+        self.slow += slow
+        self.seen += k
+        most, share = LISTS_AFTER
+        return self.made is not None or FORCE or self.slow >= max(most, share * self.seen)
+
+    def get(self):
+        """``(start, SP, SW, sidx, g, listed)`` or None when the sites span no volume."""
+        if self.made is None:
+            from .delaunay3d import delaunay3d  # (imports engine.voronoi3d, which imports us)
+
+            tri = delaunay3d(self.P)
+            self.made = False
+            if len(tri.simplices):
+                start, sites, listed = candidate_lists(
+                    self.P, tri.simplices, tri.neighbors, POLYTOPE_MOST
+                )
+                SP = np.ascontiguousarray(self.P[sites])
+                SW = np.ascontiguousarray(self.W[sites])
+                self.made = (start, SP, SW, sites, np.append(self.g, -1.0), listed)
+        return self.made or None
+
+
+def chunks(k: int, most: int, probe: bool):
+    """Bounds ``(c0, c1)`` of the chunks of ``k`` cells, ``most`` a chunk.
+
+    ``probe``: 64, 128, ... cells first: a cell past the budget has cost thousands of sites
+    (a sphere's, each decided near the centre), so the lists are made after a few of them.
+    """
+    c0, size = 0, 64 if probe else most
+    while c0 < k:
+        yield c0, min(c0 + size, k)
+        c0, size = c0 + size, min(2 * size, most)
+
+
+def chunk_search(lists, search):
+    """The search of the next chunk: the lists once they are made, else the grid's.
+
+    ``search = (start, SP, SW, sidx, g)``: the grid's, given the budget here.
+    """
+    if lists.made:
+        return lists.made[:5]
+    return (*search[:4], lists.budget())
+
+
+def redo_slow(chunk, res, lists, run, search):
+    """Build again the cells of ``chunk`` that ran past the budget; returns which from lists.
+
+    ``res`` is :func:`.build3d._run`'s result for the chunk (changed in place), ``run(cells,
+    start, SP, SW, sidx, g)`` runs the kernel on a few cells, ``search`` is ``(start, SP,
+    SW, sidx, g)`` of the grid (no budget). Returns ``(k,) bool``, True where the cell was
+    built from its list, or None when no cell ran past the budget.
+    """
+    if lists.made:  # the chunk was built from lists: the sites without one, searched
+        listed = lists.made[5][chunk]
+        at = np.flatnonzero(~listed)
+        if len(at):
+            _splice(res, at, run(chunk[at], *search))
+        return listed
+    status = res[0]
+    slow = np.flatnonzero(status == SLOW) if not FORCE else np.arange(len(chunk))
+    if len(slow) == 0:
+        lists.worth(0, len(chunk))
+        return None
+    made = lists.get() if lists.worth(len(slow), len(chunk)) else None
+    listed = np.zeros(len(chunk), np.bool_)
+    if made is not None:
+        listed[slow] = made[5][chunk[slow]]
+    for use in (True, False):
+        at = slow[listed[slow] == use]
+        if len(at):
+            _splice(res, at, run(chunk[at], *(made[:5] if use else search)))
+    return listed
+
+
+def _splice(res, at, new):
+    """Put cells ``new`` (a :func:`.build3d._run` result) at positions ``at`` of ``res``."""
+    for q in range(5):
+        res[q][at] = new[q]
+    cv, cf, cr = (int(x) for x in res[6][:3])  # slot rows a cell: osite, ovabs, ofaces, oring
+    for a, b, per in zip(res[5], new[5], (cv, cv, cf, cr), strict=True):
+        a.reshape((-1, per) + a.shape[1:])[at] = b.reshape((-1, per) + b.shape[1:])
