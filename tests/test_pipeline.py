@@ -277,7 +277,7 @@ def test_gif_sweep(tmp_path):
     assert np.array_equal(frames[1], frames[3])
     bad = panel(**{"output.formats": ["gif"]})
     bad["output"]["gif"] = {"key": "cells.web", "values": [-1]}
-    with pytest.raises(DesignError, match="output.gif.key"):
+    with pytest.raises(DesignError, match="output.gif.values: cells.web = -1"):
         build(bad, tmp_path)
 
 
