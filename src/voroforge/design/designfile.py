@@ -301,6 +301,8 @@ def _cross_field_issues(
         Design.model_validate(pruned)
     except ValidationError as again:
         fresh = _issues(again, lines)
+    except Exception:  # noqa: BLE001 - a second look only adds; it never replaces the first
+        return []
     else:
         return []
     keys = {it.key for it in issues}

@@ -331,7 +331,7 @@ def convex_reach(d: Diagram) -> np.ndarray | None:
     site within twice this distance can change the clipped cell's bits, none beyond it
     (``scale``'s certificate). Kept by ``vf.voronoi`` on polygon domains (``None`` else).
     """
-    return d._reach
+    return getattr(d, "_reach", None)
 
 
 def frame_exponent(d: Diagram) -> int:

@@ -15,6 +15,8 @@ Example::
 
 from __future__ import annotations
 
+import numbers
+
 import numpy as np
 
 from ..config import MAX_PIXELS
@@ -200,7 +202,9 @@ def diagram_meshes(d, cells=None, *, explode=0.0):
     ``explode`` is a fraction of each cell centroid's offset from the diagram's centre
     (finite, at least 0: a NaN drew an empty picture).
     """
-    if not (isinstance(explode, int | float) and 0.0 <= float(explode) < float("inf")):
+    if isinstance(explode, bool) or not (
+        isinstance(explode, numbers.Real) and 0.0 <= float(explode) < float("inf")
+    ):
         raise ValueError(f"explode must be a finite number >= 0; got {explode!r}")
     n = len(d)
     cells = range(n) if cells is None else cells
