@@ -154,14 +154,8 @@ def write_outputs(d, outputs, *, size=(1000, 800), explode=0.15, stage=None):
 
                 def w(tmp, data=data):
                     Path(tmp).write_bytes(data)
-
-                write_atomically(path, w)
-                written.append(str(path))
-                continue
-            meshes = d.to_trimesh()
-            live = [(i, m) for i, m in enumerate(meshes) if len(m.faces)]
-            if suf == ".glb":  # float32 by the standard: relative to a node translation
-                scene = glb_scene([(f"cell_{i}", m) for i, m in live])
+            elif suf == ".glb":  # float32 by the standard: relative to a node translation
+                scene = glb_scene([(f"cell_{i}", m) for i, m in _live_meshes(d)])
 
                 def w(tmp, scene=scene):
                     scene.export(tmp, file_type="glb")
@@ -169,7 +163,7 @@ def write_outputs(d, outputs, *, size=(1000, 800), explode=0.15, stage=None):
                 from trimesh.exchange.obj import export_obj
 
                 scene = trimesh.Scene()
-                for i, m in live:
+                for i, m in _live_meshes(d):
                     scene.add_geometry(m, node_name=f"cell_{i}", geom_name=f"cell_{i}")
                 text = export_obj(scene, include_normals=False, digits=17)
 
@@ -191,6 +185,11 @@ def write_outputs(d, outputs, *, size=(1000, 800), explode=0.15, stage=None):
             )
         written.append(str(path))
     return written
+
+
+def _live_meshes(d):
+    """``(i, mesh)`` of every non-empty cell of ``d`` (``to_trimesh``), in input order."""
+    return [(i, m) for i, m in enumerate(d.to_trimesh()) if len(m.faces)]
 
 
 def run_voronoi3d(args, stage: Stage) -> list[str]:

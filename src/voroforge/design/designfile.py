@@ -299,11 +299,10 @@ def _cross_field_issues(
         return []
     try:
         Design.model_validate(pruned)
+        return []
     except ValidationError as again:
         fresh = _issues(again, lines)
     except Exception:  # noqa: BLE001 - a second look only adds; it never replaces the first
-        return []
-    else:
         return []
     keys = {it.key for it in issues}
     dotted = [".".join(map(str, g)) for g in gone]

@@ -11,7 +11,7 @@ from scipy.spatial import cKDTree
 
 from ..config import POWER_FIT_DEFAULT_RTOL, POWER_FIT_FAR, POWER_FIT_SCALE_EXP, POWER_FIT_SUM_RTOL
 from .domain import Domain, make_domain, shifted
-from .inputs import as_points, as_weights, duplicate_map
+from .inputs import as_points, as_weights, require_distinct, unit_exponent
 from .power import PowerDiagram, fit_weights, power_diagram, shrink_start
 from .threads import serial_below
 
@@ -117,17 +117,12 @@ def power_fit(
         raise ValueError(f"max_iter must be an integer; got {max_iter!r}")
     if max_iter < 0:
         raise ValueError(f"max_iter must be >= 0; got {max_iter!r}")
-    dup, _ = duplicate_map(pts)
-    if (dup >= 0).any():
-        i = int(np.flatnonzero(dup >= 0)[0])
-        raise ValueError(
-            f"points has duplicate sites (rows {int(dup[i])} and {i}); capacity fitting "
-            "needs distinct sites"
-        )
+    require_distinct(pts, "capacity fitting")
     # the fit runs where the domain is about unit size (the user's problem scaled by a power
     # of two, exactly): at 1e-150 its Newton stalled after one step and its polygon clip
     # raised GEOSException, and at 1e154 areas overflowed and the fit returned unfitted cells
-    e = _frame_exponent(dom)
+    x0, y0, x1, y1 = dom.bounds
+    e = unit_exponent(max(x1 - x0, y1 - y0), POWER_FIT_SCALE_EXP)
     ws = (pts, t, dom, w0) if not e else _scaled(pts, t, dom, w0, -e)
     with serial_below(n):
         d, w, err, it = _fit(*ws, tol, int(max_iter))
@@ -164,17 +159,6 @@ def _fit(pts, t, dom, w0, tol, max_iter):
         d, w, err, it2 = fit_weights(pts, t, dom, w, tol, max_iter)
         it += it2
     return d, w, err, it
-
-
-def _frame_exponent(dom: Domain) -> int:
-    """0, or ``e`` such that the domain scaled by ``2**-e`` is about unit size.
-
-    Only past ``2**±POWER_FIT_SCALE_EXP`` (ordinary domains keep their bits).
-    """
-    x0, y0, x1, y1 = dom.bounds
-    size = max(x1 - x0, y1 - y0)
-    e = int(np.frexp(size)[1])
-    return e if abs(e) > POWER_FIT_SCALE_EXP else 0
 
 
 def _scaled(pts, t, dom, w0, k):

@@ -9,6 +9,7 @@ import numpy as np
 import shapely
 
 from ..config import DOMAIN_GEOS_EXP
+from .inputs import unit_exponent
 
 
 @dataclass(frozen=True)
@@ -168,9 +169,7 @@ def _from_geometry(geom: shapely.Geometry) -> Domain:
 
 def _unit_exponent(coords: np.ndarray) -> int:
     """0, or the power of two that brings coordinates past ``2**±DOMAIN_GEOS_EXP`` near 1."""
-    big = float(np.abs(coords).max(initial=0.0))
-    e = int(np.frexp(big)[1]) if big > 0.0 and np.isfinite(big) else 0
-    return e if abs(e) > DOMAIN_GEOS_EXP else 0
+    return unit_exponent(float(np.abs(coords).max(initial=0.0)), DOMAIN_GEOS_EXP)
 
 
 def _shared_edge(geom: shapely.Geometry) -> str:

@@ -201,6 +201,29 @@ SAFE_EXP = 200
 _SNAP_LIMIT = 2.0 ** (52 - RES_BITS)
 
 
+def unit_exponent(big: float, beyond: int) -> int:
+    """0, or the binary exponent ``e`` of ``big`` (``big < 2**e``) where it is past ``2**±beyond``.
+
+    Dividing by ``2**e`` (exact) brings ``big`` near 1: the frame the entry points that scale
+    a whole problem by a power of two work in (power diagrams, ``power_fit``, rasters, GEOS's
+    checks of polygon domains, Lloyd). Non-positive or non-finite ``big`` gives 0.
+    """
+    if not (big > 0.0 and np.isfinite(big)):
+        return 0
+    e = int(np.frexp(big)[1])
+    return e if abs(e) > beyond else 0
+
+
+def require_distinct(pts: np.ndarray, need: str) -> None:
+    """Raise ``ValueError`` naming two equal rows of ``pts``: ``need`` needs distinct sites."""
+    dup, _ = duplicate_map(pts)
+    if (dup >= 0).any():
+        i = int(np.flatnonzero(dup >= 0)[0])
+        raise ValueError(
+            f"points has duplicate sites (rows {int(dup[i])} and {i}); {need} needs distinct sites"
+        )
+
+
 def working_frame(
     pts: np.ndarray, extra: np.ndarray | None = None, cap: int = 900
 ) -> tuple[np.ndarray, int]:

@@ -18,7 +18,7 @@ from ..config import LBFGS_ARMIJO, LBFGS_CURVATURE_RTOL, LLOYD_REFIT_RTOL
 from .capacity import as_targets
 from .diagram import Diagram, buffers
 from .domain import make_domain
-from .inputs import as_points, duplicate_map
+from .inputs import as_points, require_distinct, unit_exponent
 from .integrate import Integrator, as_raster
 from .planar import build
 from .power import fit_weights, power_diagram
@@ -175,13 +175,7 @@ def lloyd(
     integ = Integrator(density, len(z))
     targets = None if areas is None else as_targets(areas, len(z), dom)
     if targets is not None:
-        dup, _ = duplicate_map(z)
-        if (dup >= 0).any():
-            i = int(np.flatnonzero(dup >= 0)[0])
-            raise ValueError(
-                f"points has duplicate sites (rows {int(dup[i])} and {i}); areas= needs "
-                "distinct sites"
-            )
+        require_distinct(z, "areas=")
     k = size_exponent(dom)
     if k:
         return _rescaled(z, dom, k, iterations, tol, density, method, targets)
@@ -223,8 +217,7 @@ def size_exponent(dom) -> int:
     about ``2**+-60`` they would leave the double range (energy ``inf``, centroids NaN).
     """
     x0, y0, x1, y1 = dom.bounds
-    e = int(np.frexp(max(x1 - x0, y1 - y0))[1])
-    return 0 if -60 <= e <= 60 else -e
+    return -unit_exponent(max(x1 - x0, y1 - y0), 60)
 
 
 def _rescaled(z, dom, k, iterations, tol, density, method, targets):

@@ -32,7 +32,7 @@ from ..kernels.power import power_cells
 from .assemble import assemble
 from .diagram import Diagram, Edges, buffers, frame_exponent
 from .domain import Domain, make_domain
-from .inputs import as_points, as_weights, duplicate_map
+from .inputs import as_points, as_weights, duplicate_map, unit_exponent
 from .planar import build
 from .power_check import checked_cells, lost_candidates, pairs_csr, settle
 from .power_exact import lost_sites, on_one_line
@@ -270,8 +270,7 @@ def _frame(pts: np.ndarray, dom: Domain) -> int:
     Only past ``2**±POWER_FRAME_EXP``: nearer 1 the bits do not depend on it.
     """
     big = max(float(np.abs(pts).max(initial=0.0)), *(abs(float(v)) for v in dom.bounds))
-    e = int(np.frexp(big)[1]) if big > 0.0 else 0
-    return e if abs(e) > POWER_FRAME_EXP else 0
+    return unit_exponent(big, POWER_FRAME_EXP)
 
 
 def power(points, weights, boundary=None) -> PowerDiagram:

@@ -13,7 +13,7 @@ from ..kernels.raster import exact_nearest, fix_pixels, jfa_nearest, nearest_til
 from .csr import csr_from_pairs
 from .delaunay import delaunay
 from .domain import padded_bounds
-from .inputs import as_points, duplicate_map
+from .inputs import as_points, duplicate_map, unit_exponent
 
 METHODS = ("exact", "jfa")
 METRICS = ("euclidean", "manhattan", "chebyshev")
@@ -158,8 +158,7 @@ def _check_bounds(bounds, pts: np.ndarray) -> tuple[float, float, float, float]:
 def _frame(pts: np.ndarray, box) -> int:
     """0, or ``e`` bringing the sites and the box near unit size, past ``2**±RASTER_FRAME_EXP``."""
     big = max(float(np.abs(pts).max(initial=0.0)), *(abs(v) for v in box))
-    e = int(np.frexp(big)[1]) if big > 0.0 else 0
-    return e if abs(e) > config.RASTER_FRAME_EXP else 0
+    return unit_exponent(big, config.RASTER_FRAME_EXP)
 
 
 def _jfa_steps(h: int, w: int, reach: int | None = None) -> np.ndarray:
