@@ -117,27 +117,6 @@ def radii(d, xy):
     return farthest(np.ascontiguousarray(coords, dtype=np.float64), start, xy)
 
 
-def ring_radii(xy, boundary, d=None):
-    """Each cell's farthest vertex distance on a polygon domain: that of its convex ring.
-
-    The engine clips a cell to a polygon domain in two steps: the convex ring cut to the
-    domain's bounding box, then that ring intersected with the polygon (GEOS). A crossing of
-    the ring with an edge of the polygon inside the box (a hole's edge, a gap between the
-    parts of a MultiPolygon) is computed from the ring edge's two vertices, and the outer
-    one may lie far beyond the clipped cell, cut by a site more than twice the clipped
-    cell's radius away: that site changes the crossing's last bit (checker7 R1). The ring
-    is the cell of the box diagram, so its radius certifies every bit of the clipped cell.
-    """
-    import voroforge as vf
-
-    from ..engine.diagram import convex_reach
-
-    if d is not None and (reach := convex_reach(d)) is not None:
-        return reach  # kept by the build (the rings before the polygon clip)
-    box = tuple(float(v) for v in boundary.bounds)
-    return radii(vf.voronoi(xy, box), xy)
-
-
 def certified_sites(xy, r, loaded):
     """True where the disc of radius ``2 r`` (with slack) around ``xy`` lies in ``loaded``."""
     reach = 2.0 * r * (1.0 + SCALE_CERT_RTOL)
@@ -188,12 +167,17 @@ def compute_cells(ids, xy, boundary, loaded, wanted, last=False):
     """
     import voroforge as vf
 
-    from ..engine.diagram import buffers
+    from ..engine.diagram import buffers, convex_reach
     from ..io.parquet import cells_table, neighbor_lists
 
     d = vf.voronoi(xy, boundary)
     polygon = hasattr(boundary, "geom_type")  # a shapely Polygon/MultiPolygon, not a box
-    r = ring_radii(xy, boundary, d) if polygon else radii(d, xy)
+    # on a polygon domain a cell is its convex ring (the cell of the domain's box) clipped by
+    # GEOS, which computes a crossing inside the box (a hole's edge, a gap between parts)
+    # from the ring edge's two vertices: the outer one may lie beyond twice the clipped
+    # cell's radius, where a site still moves the crossing's last bit (checker7 R1); the
+    # ring's radius, which the build keeps, certifies every bit
+    r = convex_reach(d) if polygon else radii(d, xy)
     ok = certified_sites(xy[wanted], r[wanted], loaded)
     keep = wanted if last else wanted[ok]
     nb = neighbor_lists(d.edges.pairs, len(xy), cells=keep, ids=ids)
