@@ -63,6 +63,9 @@ FOLD_REACH_RTOL = 2.0**-10
 #: How many times a stalled fold test doubles its reach (FOLD_REACH_RTOL): 2**-10 -> 2**-4
 #: of the vertex's distance from its site
 FOLD_STALL_DOUBLINGS = 6
+#: Rings longer than this are not tested for simplicity (the test is quadratic): a folded one
+#: counts as not simple, alike in every round (kernels/folds._ring_simple)
+FOLD_SIMPLE_MAX = 512
 #: ... while every join keeps its ends within this of the site's distance to its nearest
 #: neighbour of their exact centres (0.5: half the spacing; 0.25 left 600 sites of radius
 #: 1e-5 at (3e4, 1e4) non-convex, 2 folded more of the neighbouring circles)
@@ -441,6 +444,15 @@ VORONOI3D_MESH_RTOL = 1e-9
 #: mesh's signed volume before the mesh is refused as invalid (valid solids agree to ~1e-12;
 #: two overlapping boxes given as one mesh differed by 2.4%)
 VORONOI3D_MESH_VOLUME_RTOL = 1e-7
+
+#: engine.lloyd3d._into_mesh pushes a projected site that rounding left outside the solid on
+#: along the ray from the centroid through it (into the solid where the surface is smooth or
+#: convex there) by ``2**-k`` of the mesh's largest coordinate, ``k`` from 50 (a few units
+#: of rounding) to 30 by 4; the first step the exact inside test accepts is kept
+LLOYD3D_INTO_MESH_PUSH = tuple(2.0**-k for k in range(50, 29, -4))
+#: then (a sharp spike seen from the side) it steps back towards the site's previous,
+#: inside, place by fractions ``2**-k`` of the way, ``k`` from 48 to 0 by 4
+LLOYD3D_INTO_MESH_FRACTIONS = tuple(2.0**-k for k in range(48, -1, -4))
 
 # --- solid (printable lattices, foams, shells) ---------------------------------------------
 

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..config import LLOYD3D_INTO_MESH_FRACTIONS, LLOYD3D_INTO_MESH_PUSH
 from .inputs import as_points
 from .voronoi3d import voronoi3d
 
@@ -70,17 +71,6 @@ def _check(iterations, tol, density):
         raise ValueError(f"density must be None or a callable; got {type(density).__name__}")
 
 
-#: :func:`_into_mesh` pushes a projected site that rounding left outside the solid on along
-#: the ray from the centroid through it (into the solid where the surface is smooth or
-#: convex there) by ``2**-k`` of the mesh's largest coordinate, ``k`` from 50 (a few units
-#: of rounding) to 30 by 4; the first step the exact inside test accepts is kept
-INTO_MESH_PUSH = tuple(2.0**-k for k in range(50, 29, -4))
-
-#: then (a sharp spike seen from the side) it steps back towards the site's previous,
-#: inside, place by fractions ``2**-k`` of the way, ``k`` from 48 to 0 by 4
-INTO_MESH_FRACTIONS = tuple(2.0**-k for k in range(48, -1, -4))
-
-
 def _nearest_on_mesh(mesh, q):
     """The point of the mesh's surface nearest to each row of ``q`` (to rounding)."""
     from itertools import chain
@@ -124,9 +114,10 @@ def _into_mesh(mesh, c, old):
 def _push_inside(mesh, q, c, old, rows):
     """Rows ``rows`` of ``q`` (on the surface to rounding) moved inside the exact test, in place.
 
-    First along the ray from the centroid ``c`` through ``q`` by :data:`INTO_MESH_PUSH`
-    (farther from ``c`` by at most ``2**-30`` of the mesh's size), else towards ``old``
-    where that is inside, by :data:`INTO_MESH_FRACTIONS`: a point between ``q`` and ``old``
+    First along the ray from the centroid ``c`` through ``q`` by
+    :data:`~voroforge.config.LLOYD3D_INTO_MESH_PUSH` (farther from ``c`` by at most ``2**-30``
+    of the mesh's size), else towards ``old`` where that is inside, by
+    :data:`~voroforge.config.LLOYD3D_INTO_MESH_FRACTIONS`: a point between ``q`` and ``old``
     is no farther from ``c`` than ``old`` (the distance is convex). A row neither moves in
     stays on the surface, just outside (its cell still reaches the solid).
     """
@@ -140,8 +131,8 @@ def _push_inside(mesh, q, c, old, rows):
     norm = np.sqrt((u * u).sum(axis=1))[:, None]
     u = np.divide(u, norm, out=np.zeros_like(u), where=norm > 0)
     start = q[rows]
-    tries = [(start, u * (h * scale)) for h in INTO_MESH_PUSH]
-    for t in INTO_MESH_FRACTIONS:
+    tries = [(start, u * (h * scale)) for h in LLOYD3D_INTO_MESH_PUSH]
+    for t in LLOYD3D_INTO_MESH_FRACTIONS:
         tries.append((start, t * (old[rows] - start)))
     keep = np.ones(len(rows), bool)
     for base, delta in tries:

@@ -30,6 +30,7 @@ from ..config import (
     FOLD_MAX_ROUNDS,
     FOLD_REACH_ERRS,
     FOLD_REACH_RTOL,
+    FOLD_SIMPLE_MAX,
     FOLD_SPAN_ERRS,
     FOLD_STALL_DOUBLINGS,
     FOLD_STALL_SPACING,
@@ -364,11 +365,6 @@ def _straight_fold(sx, sy, cls, coords, b, tk, mv, kp, k, kn, rtol):
     return -1
 
 
-#: Rings longer than this are not tested for simplicity (the test is quadratic): a folded one
-#: counts as not simple, alike in every round
-_SIMPLE_MAX = 512
-
-
 @njit(**NJIT)
 def _meet(coords, a, b, c, d):
     """Whether closed segments ``a-b`` and ``c-d`` (rows of ``coords``) share a point (exact)."""
@@ -400,7 +396,7 @@ def _ring_simple(coords, a, b):
     each other (a reversal: a spike GEOS calls a self-intersection).
     """
     m = b - a - 1
-    if m > _SIMPLE_MAX:
+    if m > FOLD_SIMPLE_MAX:
         return False
     for k in range(m):
         kp = k - 1 if k > 0 else m - 1
