@@ -384,6 +384,32 @@ def test_queries_at_extreme_scales(scale):
     assert np.allclose(z[inside], (2 * q[:, 0] - q[:, 1])[inside], rtol=0, atol=1e-12)
 
 
+@pytest.mark.parametrize("scale", [1e-310, 1e-300, 1e-200, 1e160, 1e200, 1e300])
+def test_smooth_natural_neighbor_at_extreme_scales(scale):
+    # checker9 F2: the gradient fit's normal equations (fourth powers of the offsets)
+    # overflowed or vanished past ~1e+-155 (numpy's "Eigenvalues did not converge"); they
+    # are formed on each site's offsets scaled by a power of two, in the working frame, so
+    # Z1 is the unit-scale Z1 (the fit is scale-invariant) and exact on quadratics
+    rng = np.random.default_rng(7)
+    pts = rng.random((40, 2))
+    q = 0.3 + 0.4 * rng.random((50, 2))
+    quad = 1.0 + pts[:, 0] - pts[:, 1] + 3.0 * (pts**2).sum(1)
+    unit = vf.natural_neighbor(pts, quad, q, smooth=True)
+    got = vf.natural_neighbor(pts * scale, quad, q * scale, smooth=True)
+    ok = np.isfinite(unit)
+    assert ok.sum() > 40 and np.array_equal(np.isfinite(got), ok)
+    # subnormal sites (1e-310) are rounded to 2**-1074: their fit moves by ~1e-13
+    atol = 1e-12 if scale > 1e-300 else 1e-9
+    np.testing.assert_allclose(got[ok], unit[ok], rtol=0, atol=atol)
+    # the gradients in the user's units scale as 1 / scale
+    from voroforge.engine.delaunay import delaunay
+    from voroforge.engine.interpolate import estimate_gradients
+
+    lin = 2.0 * pts[:, 0] - pts[:, 1]
+    g = estimate_gradients(delaunay(pts * 1e200), lin[:, None])[:, 0]
+    np.testing.assert_allclose(g * 1e200, np.tile([2.0, -1.0], (40, 1)), rtol=1e-9)
+
+
 def test_locate_far_queries_exactly_nearest():
     # |q| >= 1e155: squared distances overflow in float64; the answer is still the nearest
     # site, checked in exact rational arithmetic (lowest index on a tie)

@@ -312,7 +312,7 @@ def _fit(rows, w, rhs, owner, n):
     return x, ok
 
 
-def estimate_gradients(tri, values: np.ndarray) -> np.ndarray:
+def estimate_gradients(tri, values: np.ndarray, pts: np.ndarray | None = None) -> np.ndarray:
     """Gradients of the data at the sites from local quadratic least squares.
 
     For each site a quadratic through its value is fitted to the values at its Delaunay
@@ -324,20 +324,31 @@ def estimate_gradients(tri, values: np.ndarray) -> np.ndarray:
     ----------
     tri : Triangulation
     values : (n, k) float64
+    pts : (n, 2) float64, optional
+        The sites in the frame the gradients are wanted in (``tri.points`` scaled by a power
+        of two, or moved: :func:`natural_neighbor`'s working frame); default ``tri.points``.
 
     Returns
     -------
     (n, k, 2) float64
         Zero for duplicates and where neither fit is possible.
     """
-    pts = np.asarray(tri.points)
+    pts = np.asarray(tri.points if pts is None else pts)
     n, k = values.shape
     grads = np.zeros((n, k, 2))
     indptr, nbr = _two_ring(tri)
     owner = np.repeat(np.arange(n), np.diff(indptr))
     if not len(nbr):
         return grads
-    d = pts[nbr] - pts[owner]
+    # each site's offsets scaled by a power of two to unit size (exact): their squares and
+    # fourth powers overflowed past ~1e155 and vanished below ~1e-155 (checker9 F2), and a
+    # quadratic in 2**-e d is a quadratic in d, so the fit stays exact
+    pre = 1 if np.abs(pts).max(initial=0.0) >= 2.0**1023 else 0  # differences stay finite
+    d = np.ldexp(pts[nbr], -pre) - np.ldexp(pts[owner], -pre)
+    reach = np.zeros(n)
+    np.maximum.at(reach, owner, np.abs(d).max(axis=1))
+    e = np.frexp(reach)[1]  # 0 where all offsets are 0
+    d = np.ldexp(d, -e[owner][:, None])
     white = _whitening(d, owner, n)
     u = np.einsum("mij,mj->mi", white[owner], d)
     uu = (u * u).sum(1)
@@ -350,11 +361,13 @@ def estimate_gradients(tri, values: np.ndarray) -> np.ndarray:
         ip1, nb1 = tri.neighbors
         own1 = np.repeat(np.arange(n), np.diff(ip1))
         nb1 = nb1.astype(np.int64)
-        u1 = np.einsum("mij,mj->mi", white[own1], pts[nb1] - pts[own1])
+        d1 = np.ldexp(pts[nb1], -pre) - np.ldexp(pts[own1], -pre)
+        u1 = np.einsum("mij,mj->mi", white[own1], np.ldexp(d1, -e[own1][:, None]))
         x1, ok1 = _fit(u1, 1.0 / (u1 * u1).sum(1), values[nb1] - values[own1], own1, n)
         use = ~ok & ok1
         grads[use] = np.einsum("nji,nkj->nki", white[use], np.transpose(x1[use], (0, 2, 1)))
-    return grads
+    # back to the user's units: d was scaled by 2**-(pre + e)
+    return np.ldexp(grads, -(pre + e)[:, None, None])
 
 
 def _whitening(d, owner, n):
@@ -468,9 +481,14 @@ def natural_neighbor(
     q, single = as_query(query)
     if gradients is not None and not smooth:
         raise ValueError("gradients= is used only with smooth=True")
+    if len(tri.triangles):
+        # the kernel's incircle and areas need degree-4 terms in the double range: at extreme
+        # scales it works on points, queries and gradients scaled by a power of two (exact)
+        origin = _exact_origin(pts)
+        work, k = working_frame(pts - origin)
     if smooth and len(tri.triangles):
-        if gradients is None:
-            grads = estimate_gradients(tri, vals)
+        if gradients is None:  # in the working frame (d f / d work = 2**-k d f / d pts)
+            grads = estimate_gradients(tri, vals, work)
         else:
             grads = np.array(gradients, dtype=np.float64, copy=True)
             if grads.shape in ((n, 2), (n, 1, 2)) and vals.shape[1] == 1:
@@ -480,16 +498,13 @@ def natural_neighbor(
                     f"gradients must be finite with shape ({n}, 2) or ({n}, k, 2) matching "
                     f"values; got {grads.shape}"
                 )
+            grads = np.ldexp(grads, -k) if k else grads
     else:
         grads = np.zeros((n, vals.shape[1], 2))
     loc = _Locator(pts, np.asarray(tri.duplicate_of))
     nearest = loc.query(q) if len(q) else np.zeros(0, dtype=np.int64)
     out = np.full((len(q), vals.shape[1]), np.nan)
     if len(tri.triangles):
-        # the kernel's incircle and areas need degree-4 terms in the double range: at extreme
-        # scales it works on points, queries and gradients scaled by a power of two (exact)
-        origin = _exact_origin(pts)
-        work, k = working_frame(pts - origin)
         with np.errstate(over="ignore"):
             qk = np.ldexp(q - origin, k) if k else q - origin
         # a query beyond the double range once scaled is far outside the sites' hull
@@ -502,7 +517,7 @@ def natural_neighbor(
             np.ascontiguousarray(tri.triangles.ravel()),
             np.asarray(tri.halfedges),
             vals,
-            np.ldexp(grads, -k) if k else grads,
+            grads,
             bool(smooth),
             np.ascontiguousarray(nearest[fits]),
             np.ascontiguousarray(qk[fits, 0]),

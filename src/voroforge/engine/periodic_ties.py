@@ -266,7 +266,7 @@ def _names(points, owner, copies, lo, size, reach):
     own = sites[orig[owner]]
     dx = points[:, 0] - own[:, 0]
     dy = points[:, 1] - own[:, 1]
-    far = float(np.sqrt((dx * dx + dy * dy).max()))
+    far = float(np.hypot(dx, dy).max())  # (squares overflowed past ~1e154: far read inf)
     grow = reach + far * (1.0 + PERIODIC_NAME_REACH_SLACK)
     hi = lo + size
     near = np.zeros(len(sites), dtype=bool)
