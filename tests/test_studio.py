@@ -1148,6 +1148,10 @@ def test_websocket_survives_malformed_messages(client):
         '{"op":"view","px":5e-324}',
         '{"op":"move","i":0,"x":1e300,"y":0}',
         "[" * 5000,
+        # checker9 F5: an unhashable op (a list, an object) closed the connection silently
+        '{"op":["set"],"key":"seeds.count","value":3}',
+        '{"op":{"a":1}}',
+        '{"op":5}',
     ]
     with _ws(client) as ws:
         _greet(ws)

@@ -83,7 +83,8 @@ def foam(cells3d, wall=1.2, *, field=None, container=None):
         The cells (``vf.voronoi3d(...)`` or convex meshes).
     wall : float or (far, near)
         Wall thickness between neighbouring bubbles (each side gives half; the container's
-        skin is a full wall). With ``field``: the pair of thicknesses at field 0 and 1.
+        skin is half a wall too, as every cell is shrunk by half the wall on every face).
+        With ``field``: the pair of thicknesses at field 0 and 1.
     field : callable, optional
         A 0..1 3D field (:mod:`voroforge.solid.fields`), sampled at each face's centre.
     container : Trimesh, optional

@@ -611,7 +611,8 @@ def _inline(session: Session, msg) -> bool:
     not. Slower edits, saves and exports go to a worker thread so that the server keeps
     answering meanwhile.
     """
-    if not isinstance(msg, dict) or msg.get("op") not in _INLINE_OPS:
+    op = msg.get("op") if isinstance(msg, dict) else None
+    if not isinstance(op, str) or op not in _INLINE_OPS:  # (a list or an object is unhashable)
         return False
     if msg.get("op") == "move" and session.incremental:
         return True
