@@ -161,16 +161,21 @@ def _periodic(P, W, t, progress):
     # sites needed the doubled second try (twice the time); 5 holds in one
     margin = 5.0 * float(np.prod(L) / u) ** (1.0 / 3.0)
     while True:
-        # shifts per axis: a thin box needs many along its short side only (one count for
-        # all three axes made (2K + 1)**3 shifts: 1 x 1 x 0.01 did not return)
-        K = [int(np.ceil(margin / L[a])) for a in range(3)]
+        # a torus cell lies within half a period of its site on every axis (its own images a
+        # period away bound it), so the image of another site that can bound it is within a
+        # period of the site: shifts of -1, 0, 1 suffice, for power cells too (every image
+        # has the site's weight). An axis whose margin reaches its period takes all of them
+        # and needs no closing test: a thin box's margin grew as its cells (wide across
+        # it) did not close, with ~margin / L shifts along it (1 x 1 x 1e-6: no return)
+        m = np.minimum(margin, L)
+        full = m >= L
+        K = [int(np.ceil(m[a] / L[a])) for a in range(3)]
         imgs, origs, shifts = [P], [np.arange(u)], [np.zeros((u, 3), np.int64)]
         # per axis and shift, the sites whose image lies within the margin (the test on
         # P + s * L, one axis at a time); an image needs all three
         near = [
             {
-                sa: (P[:, a] + sa * L[a] >= lo[a] - margin)
-                & (P[:, a] + sa * L[a] <= hi[a] + margin)
+                sa: (P[:, a] + sa * L[a] >= lo[a] - m[a]) & (P[:, a] + sa * L[a] <= hi[a] + m[a])
                 for sa in range(-K[a], K[a] + 1)
             }
             for a in range(3)
@@ -187,17 +192,17 @@ def _periodic(P, W, t, progress):
         PP = np.ascontiguousarray(np.concatenate(imgs))
         orig = np.concatenate(origs)
         shift = np.concatenate(shifts)
-        big = box_template(lo - margin, hi + margin)
+        big = box_template(lo - m, hi + m)
         res = build_cells3d(
             PP, np.ascontiguousarray(W[orig]), big, cells=np.arange(u), progress=progress
         )
         r = np.sqrt(res.rad2)[:, None]
-        ok = ((P - 2 * r >= lo - margin) & (P + 2 * r <= hi + margin)).all()
+        ok = (full | ((P - 2 * r >= lo - m) & (P + 2 * r <= hi + m))).all()
         # status 1: a power cell that no point is nearest to (empty); it had made the loop
         # double the margin until the memory ran out
         if ok and ((res.status == 0) | (res.status == 1)).all():
             return res, (orig, shift)
-        if margin > 8.0 * L.max():  # every cell of a torus fits well within this
+        if full.all() or margin > 8.0 * L.max():  # every image that can bound a cell is in
             bad = np.flatnonzero((res.status != 0) & (res.status != 1))
             raise RuntimeError(
                 "periodic cells did not close within 8 box sizes of images"
