@@ -7,7 +7,7 @@ Every container becomes a *template*: a convex polyhedron ``(TV, TF, TR)`` in th
 about one origin ``o`` near the solid (a power-of-two multiple, so that ``p - o`` is exact for
 every point of the solid), and ``TV`` relative to ``o``: an offset ``d`` kept in one double in
 absolute coordinates places a wall at 4e6 only to 2.3e-10. Each cell starts as a copy of the
-template. A box
+template (a big :class:`Convex`: each cell that reaches a wall, :mod:`engine.hull3d`). A box
 numbers its walls as voro++ does (0 x-min, 1 x-max, 2 y-min, 3 y-max, 4 z-min, 5 z-max); a
 :class:`Convex` numbers them in the order of its half-spaces (after merging coplanar hull
 facets). A mesh container's cells are built in its bounding box and then cut by the mesh
@@ -445,20 +445,20 @@ def _hull_template(hs, lo, hi, o, local) -> Template:
 
 def _cut_template(N, d, lo, hi):
     """The box ``lo..hi`` cut by the half-spaces ``N x <= d``: ``(TV, TF, TR, volume)``."""
-    from ..kernels.cells3d import container_cut
     from ..kernels.polyhedron import moments
+    from ..kernels.template3d import cut_all
 
     k = len(N)
     t = box_template(lo, hi, labels=[-1 - (k + b) for b in range(6)])
-    TV, TF, TR = t.TV, t.TF, t.TR
-    for w in range(k):
-        st, TV, TF, TR = container_cut(
-            TV, TF, TR, N[w, 0], N[w, 1], N[w, 2], d[w], -1 - w, 4 * (len(TV) + 8 * k + 64)
-        )
-        if st == 2:
-            raise ValueError("the Convex container has no volume")
-        if st not in (0, 1):
-            raise ValueError("could not build the Convex container (degenerate half-spaces)")
+    # every plane in one call (a call a plane allocated the arrays anew: the 3,996 planes
+    # of the hull of 2,000 points on a sphere took 12-36 s); the same cuts, bit for bit
+    N = np.ascontiguousarray(N, np.float64)
+    d = np.ascontiguousarray(d, np.float64)
+    st, _, TV, TF, TR = cut_all(t.TV, t.TF, t.TR, N, d, -1)
+    if st == 2:
+        raise ValueError("the Convex container has no volume")
+    if st != 0:
+        raise ValueError("could not build the Convex container (degenerate half-spaces)")
     if (TF[:, 0] < -k).any():
         raise ValueError("could not close the Convex container (its half-spaces leave it open)")
     # walls never reached (redundant half-spaces) keep their numbers; volume from faces

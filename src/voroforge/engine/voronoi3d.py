@@ -17,6 +17,7 @@ from .containers import (
     check_volume,
 )
 from .diagram3d import Diagram3D
+from .hull3d import hull_cells, takes_hull_path
 from .inputs import as_points, as_weights, from_working, working_frame
 from .threads import serial_below
 
@@ -127,6 +128,9 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
         # faces, which a cell built from its list does not keep)
         res = build_cells3d(P, W, tw, cells=build, progress=progress, short=True, lists=False)
         gmap = None
+    elif takes_hull_path(tw):  # a big Convex: box cells, then those at a wall (engine.hull3d)
+        res = hull_cells(P, W, tw, progress=progress)
+        gmap = None
     else:
         res = build_cells3d(P, W, tw, cells=np.arange(u), progress=progress)
         gmap = None
@@ -141,6 +145,7 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
 
 
 def _inside(pts: np.ndarray, t: Template) -> np.ndarray:
+    """Which sites the container holds (a box); for a Convex those up to the first it holds."""
     WP = t.WP
     if WP.shape[1] > 4:  # walls about an origin near the solid (engine.containers)
         pts = pts - t.origin
@@ -148,8 +153,20 @@ def _inside(pts: np.ndarray, t: Template) -> np.ndarray:
     if t.kind == "box":  # the same test, without the (n, 6) products
         lo, hi = t.bounds
         return ((pts >= lo - 1e-12 * scale[0::2]) & (pts <= hi + 1e-12 * scale[1::2])).all(axis=1)
-    s = pts @ WP[:, :3].T - WP[:, 3]
-    return (s <= 1e-12 * scale).all(axis=1)
+    # a Convex: only whether any site is inside is asked (periodic needs a box), so blocks
+    # of sites until one is (the (n, W) products of 20,000 sites and a hull of 4,000 walls
+    # took 1.2 s)
+    out = np.zeros(len(pts), bool)
+    for a in range(0, len(pts), _INSIDE_BLOCK):
+        s = pts[a : a + _INSIDE_BLOCK] @ WP[:, :3].T - WP[:, 3]
+        out[a : a + _INSIDE_BLOCK] = (s <= 1e-12 * scale).all(axis=1)
+        if out[a : a + _INSIDE_BLOCK].any():
+            break
+    return out
+
+
+#: sites a block of :func:`_inside`'s test of a Convex
+_INSIDE_BLOCK = 256
 
 
 def _periodic(P, W, t, progress):
