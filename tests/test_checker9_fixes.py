@@ -50,3 +50,35 @@ def test_thin_periodic_box_returns_and_tiles(aspect):
     for i in range(len(p)):
         for j in n[1][n[0][i] : n[0][i + 1]]:
             assert i in n[1][n[0][j] : n[0][j + 1]]
+
+
+# F4: surface.voronoi on a mesh past ~1e+-77 returned areas 0 (1e80), 81% off (1e-80) or
+# hung (1e-100) without an error: the kernels square areas. In 1e+-60 the areas scale as
+# s**2 exactly enough; beyond, a ValueError names the range.
+@pytest.mark.parametrize("s", [1e-60, 1e60])
+def test_surface_voronoi_at_the_ends_of_its_range(s):
+    trimesh = pytest.importorskip("trimesh")
+    from voroforge import surface
+
+    sph = trimesh.creation.icosphere(2)
+    sites = sph.vertices[np.random.default_rng(2).choice(len(sph.vertices), 12, replace=False)]
+    unit = surface.voronoi(
+        surface.mesh(trimesh.Trimesh(sph.vertices, sph.faces, process=False)), sites
+    )
+    far = surface.voronoi(
+        surface.mesh(trimesh.Trimesh(sph.vertices * s, sph.faces, process=False)), sites * s
+    )
+    np.testing.assert_allclose(far.areas / s**2, unit.areas, rtol=1e-12)
+
+
+@pytest.mark.parametrize("s", [1e-80, 1e80, 1e-100])
+def test_surface_past_its_range_is_refused(s):
+    trimesh = pytest.importorskip("trimesh")
+    from voroforge import surface
+
+    sph = trimesh.creation.icosphere(1)
+    with pytest.raises(ValueError, match="surface vertices (reach|span)"):
+        surface.mesh(trimesh.Trimesh(sph.vertices * s, sph.faces, process=False))
+    S = surface.mesh(sph)
+    with pytest.raises(ValueError, match="points reach"):
+        surface.voronoi(S, sph.vertices[:5] * 1e80)

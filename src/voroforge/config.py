@@ -396,6 +396,13 @@ SURFACE_BUCKETS_PER_SITE = 8
 #: A cell boundary shorter than this (relative to the mesh's size) makes no neighbour.
 SURFACE_EDGE_RTOL = 1e-9
 
+#: A Surface's extent (its bounding box's largest side) and the magnitude of its vertices and
+#: of the sites given to surface.voronoi must lie in this range: the restricted Voronoi
+#: kernels square areas (fourth powers of lengths), which vanished or overflowed past ~1e+-77
+#: (checker9: areas 0 at 1e80, 81% off at 1e-80, a hang at 1e-100); out of it a ValueError
+#: says so (scale the mesh by a power of ten and the results back)
+SURFACE_COORD_RANGE = (1e-60, 1e60)
+
 #: Surface CVT from a site count: the share of the relaxation steps spent on the coarse level
 #: (a quarter of the sites) before the midpoints of its neighbour pairs are added (0.4: 94.9%
 #: hexagons over three seeds on the 1,000-cell sphere benchmark; 0.2: 92.7%, 0.3: 94.1%).

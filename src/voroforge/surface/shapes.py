@@ -21,7 +21,7 @@ from itertools import chain
 
 import numpy as np
 
-from ..config import SURFACE_DEFAULT_MAX_CELLS, SURFACE_MAX_CELLS
+from ..config import SURFACE_COORD_RANGE, SURFACE_DEFAULT_MAX_CELLS, SURFACE_MAX_CELLS
 
 __all__ = [
     "Surface",
@@ -73,6 +73,7 @@ class Surface:
             raise ValueError("surface vertices must be finite")
         if f.min() < 0 or f.max() >= len(v):
             raise ValueError("surface faces index vertices that do not exist")
+        check_surface_range(v, "surface vertices", extent=True)
         v.flags.writeable = False
         f.flags.writeable = False
         self.vertices, self.faces = v, f
@@ -312,6 +313,29 @@ def as_points3(points, name: str) -> np.ndarray:
     if not np.isfinite(p).all():
         raise ValueError(f"{name} must be finite")
     return p
+
+
+def check_surface_range(p: np.ndarray, name: str, *, extent: bool = False) -> None:
+    """Raise ``ValueError`` where ``p`` lies outside :data:`SURFACE_COORD_RANGE`.
+
+    Every coordinate's magnitude must be at most its upper end and, with ``extent``, the
+    largest side of the points' bounding box at least its lower end (areas are squared in
+    the kernels: past ~1e+-77 they vanish or overflow).
+    """
+    lo, hi = SURFACE_COORD_RANGE
+    big = float(np.abs(p).max(initial=0.0))
+    if big > hi:
+        raise ValueError(
+            f"{name} reach {big:.3g}; surfaces work with coordinates up to {hi:g} "
+            "(scale them by a power of ten, and the results back)"
+        )
+    if extent and len(p):
+        side = float(np.ptp(p, axis=0).max())
+        if side < lo:
+            raise ValueError(
+                f"{name} span {side:.3g}; surfaces work with an extent of at least {lo:g} "
+                "(scale them by a power of ten, and the results back)"
+            )
 
 
 def _positive(value, name: str) -> float:

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .. import config
-from .shapes import Surface, as_points3
+from .shapes import Surface, as_points3, check_surface_range
 
 __all__ = ["SurfaceVoronoi", "voronoi"]
 
@@ -565,6 +565,7 @@ def voronoi(
         sites = S.sample(int(n), seed=seed)
     else:
         sites = as_points3(points_or_count, "points")
+        check_surface_range(sites, "points")
         if len(sites) < 1:
             raise ValueError("voronoi needs at least one site")
         if len(np.unique(sites, axis=0)) < len(sites):
