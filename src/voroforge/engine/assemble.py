@@ -205,6 +205,9 @@ def _centres(lo, hi, h, count):
 
 
 _PIECE_SMALL = 256  # a domain with at most this many vertices is intersected whole
+# (lead: to config.py) the most rings one clip at a domain vertex takes: the rings meeting a
+# thin ring, and the rings meeting those of them that are thin too (_held)
+_GROUP_MAX = 64
 
 
 class _Pieces:
@@ -390,11 +393,13 @@ def _held(pieces, convex, clipped, cells, sites, rings):
     overlay, which nodes in the coordinates' own floats, collapses its pieces to lines (the
     cell came back empty) or snaps a crossing onto the vertex in one cell and not in its
     neighbour (their rings then disagree by ulps). Such a cell (a thin ring near a vertex of
-    the domain, or, where ``sites`` are given, a cell that misses its site), and every ring
-    that meets it, is clipped again in one frame at that vertex, or at its site
-    (:func:`_clip_at_site`), where the crossings are far finer than the cell's width, so
-    the crossings they share are the same floats. With ``sites``, the cells that still do
-    not hold their site where the domain does (exact tests) are returned as ``lost``.
+    the domain, or, where ``sites`` are given, a cell that misses its site), every ring
+    that meets it and every ring meeting a thin one of those (:func:`_group`) is clipped
+    again in one frame at that vertex, or at its site, where the crossings are far finer
+    than the cell's width: with ``sites`` through one arrangement of all their boundaries
+    (:func:`_clip_arranged`: each crossing is one point), else, or where that fails, each
+    on its own (:func:`_clip_at_site`). With ``sites``, the cells that still do not hold
+    their site where the domain does (exact tests) are returned as ``lost``.
     """
     lo = shapely.bounds(convex)
     size = np.hypot(lo[:, 2] - lo[:, 0], lo[:, 3] - lo[:, 1])
@@ -417,16 +422,87 @@ def _held(pieces, convex, clipped, cells, sites, rings):
                 continue  # a thin cell away from the domain's vertices: the overlay's is kept
             origin = xy[k]
         # the cells that meet this one are clipped in the same frame, so that the crossings
-        # they share with it (the same two segments) are the same floats
-        near = np.sort(tree.query(convex[k], predicate="intersects"))
+        # they share with it (the same two segments) are the same floats; so are those that
+        # meet a thin one among them (a strip between two cells, which meet it only)
+        near = _group(tree, convex, k, missed | thin)
         piece = pieces.around(*shapely.total_bounds(convex[near]))
-        got = _clip_at_site(_aligned(rings, k, near), piece, origin)
+        polys = _aligned(rings, k, near)
+        got = None if sites is None else _clip_arranged(polys, piece, origin, xy[near])
+        if got is None:
+            got = _clip_at_site(polys, piece, origin)
         if got is not None:
             clipped[near] = got
             done[near] = True
     if sites is None or not len(trouble):
         return clipped, np.zeros(0, dtype=np.int64)
     return clipped, cells[_missed(clipped, xy, inside, pieces.prepared)].astype(np.int64)
+
+
+def _group(tree, convex, k, grow):
+    """Rings meeting ring ``k``, and those meeting any ``grow`` ring among them (sorted).
+
+    Stops growing at ``_GROUP_MAX`` rings (a thin ring's neighbours are always in).
+    """
+    near = np.sort(tree.query(convex[k], predicate="intersects"))
+    seen = {k}
+    while len(near) < _GROUP_MAX:
+        todo = [j for j in near if grow[j] and j not in seen]
+        if not todo:
+            break
+        seen.update(todo)
+        more = np.union1d(near, tree.query(convex[todo], predicate="intersects")[1])
+        if len(more) > _GROUP_MAX:
+            break
+        near = more
+    return near
+
+
+def _clip_arranged(rings, piece, site, xy):
+    """``rings ∩ piece`` from one arrangement of their boundaries at ``site``; None: failed.
+
+    Each ring clipped on its own (:func:`_clip_at_site`) computes its crossings with the
+    domain's boundary itself, and GEOS's overlay snaps a segment an ulp from another one
+    (a strip an ulp wide) differently in each: neighbours then round one crossing to two
+    points, and a strip's pieces vanish from one cell and not from its neighbour. Here all
+    the rings' and the piece's boundaries are noded together once (with the site at the
+    origin, an exact shift), so every crossing is one point, and each face of the
+    arrangement inside the piece goes to the ring holding it; a face that two rings hold
+    (rings that overlap by an ulp) goes to the one whose site ``xy`` it holds, else to the
+    nearer of their sites at its interior point, and a face no
+    ring holds strictly is another cell's, or a gap the rings leave. Each ring's faces are
+    united (every vertex must be one of the faces': none is new) and shifted back: the
+    crossings round once, the same in every cell.
+    """
+    o = np.asarray(site, dtype=np.float64)
+    local = shapely.transform(rings, lambda p: p - o)
+    lp = shapely.transform(piece, lambda p: p - o)
+    lines = np.concatenate((shapely.boundary(local), [shapely.boundary(lp)]))
+    faces = shapely.get_parts(shapely.polygonize(shapely.get_parts(shapely.union_all(lines))))
+    if not len(faces):
+        return None
+    x, y = shapely.get_coordinates(shapely.point_on_surface(faces)).T
+    keep = shapely.intersects_xy(lp, x, y)
+    faces, x, y = faces[keep], x[keep], y[keep]
+    held = np.array([shapely.contains_xy(r, x, y) for r in local]).reshape(len(local), -1)
+    cell = np.where(held.any(axis=0), np.argmax(held, axis=0), -1)
+    rel = xy - o
+    for f in np.flatnonzero(held.sum(axis=0) > 1):
+        cand = np.flatnonzero(held[:, f])
+        mine = cand[shapely.intersects_xy(faces[f], rel[cand, 0], rel[cand, 1])]
+        if len(mine) == 1:
+            cell[f] = mine[0]  # the face holds one of the sites: it is that site's
+            continue
+        d2 = (rel[cand, 0] - x[f]) ** 2 + (rel[cand, 1] - y[f]) ** 2
+        cell[f] = cand[np.argmin(d2)]
+    out = np.empty(len(rings), dtype=object)  # noqa: TID251 - every slot is filled below
+    for j in range(len(rings)):
+        mine = faces[cell == j]
+        out[j] = shapely.union_all(mine) if len(mine) else shapely.Polygon()
+        if len(mine):
+            have = {tuple(p) for p in shapely.get_coordinates(mine).tolist()}
+            if any(tuple(p) not in have for p in shapely.get_coordinates(out[j]).tolist()):
+                return None
+    return _shifted_back(_polygonal(out), o)
 
 
 def _missed(clipped, xy, inside, prepared):
@@ -506,6 +582,15 @@ def _clip_at_site(rings, piece, site):
             shapely.transform(piece, lambda xy: xy - o),
         )
     )
+    return _shifted_back(local, o)
+
+
+def _shifted_back(local, o):
+    """Polygons ``local`` (in the frame at ``o``) moved back, rounding made valid, or None.
+
+    See :func:`_clip_at_site`: each must be valid after the fix and keep its area to within
+    ``ASSEMBLE_ROUNDING_ULPS`` ulps times its perimeter.
+    """
     got = _polygonal(shapely.remove_repeated_points(shapely.transform(local, lambda xy: xy + o)))
     for k in np.flatnonzero(~shapely.is_valid(got)):
         parts = shapely.get_parts(got[k])

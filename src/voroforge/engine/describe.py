@@ -391,8 +391,15 @@ def _counts(coords, ring, cell_of_ring, corners, wrap=None, junctions=2):
         # T-junction (a cell 320 x 96 ulps at -2**47: V 57 where the bits give 58)
         rings = np.maximum(rings, np.bincount(ids, minlength=len(rings)))
     # a vertex three cells share is the engine's, computed once: straight only exactly;
-    # one that one or two rings have is straight also up to rounding (a T-junction)
-    corner = (turn != 0) & ~(flat & (rings[ids] <= 2))
+    # one that one or two rings have is straight also up to rounding (a T-junction), but in
+    # the plane not where the ring graph branches there: a vertex with three or more
+    # neighbours (the end of a sliver an ulp wide, where two rings that share a path part)
+    # is a vertex of every ring that has it, however straight each ring is there (dropped
+    # from both rings, they joined it to different points: Euler 2 for 1 at a saw's valley)
+    rounded = flat & (rings[ids] <= 2)
+    if wrap is None:
+        rounded &= _degree(ids, rid)[ids] <= 2
+    corner = (turn != 0) & ~rounded
     keep = np.bincount(ids, weights=corner)[ids] > 0
     few = np.bincount(rid, weights=keep, minlength=len(ring) - 1) < 3
     keep |= few[rid]  # a flat ring (all its vertices on one line) keeps them all
@@ -422,6 +429,22 @@ def _counts(coords, ring, cell_of_ring, corners, wrap=None, junctions=2):
     pairs = unique(va * (int(cells.max(initial=0)) + 1) + cells)
     per_vertex = np.bincount(pairs // (int(cells.max(initial=0)) + 1))
     return len(unique(va)), n_edges, merged, int((per_vertex >= 3).sum())
+
+
+def _degree(ids: np.ndarray, rid: np.ndarray) -> np.ndarray:
+    """Per vertex id, how many distinct other ids precede or follow it in some ring.
+
+    ``ids`` are the ring vertices' ids in ring order (``rid`` the ring of each, rings
+    contiguous, no closing repeat).
+    """
+    nxt = np.arange(1, len(ids) + 1)
+    last = np.flatnonzero(np.append(rid[1:] != rid[:-1], True))
+    nxt[last] = np.append(0, last[:-1] + 1)
+    a = np.concatenate((ids, ids[nxt]))
+    b = np.concatenate((ids[nxt], ids))
+    sep = a != b
+    k = int(ids.max(initial=0)) + 1
+    return np.bincount(unique(a[sep] * k + b[sep]) // k, minlength=k)
 
 
 def _open_holes(cells, parts_per_cell, poly) -> int:
