@@ -477,7 +477,11 @@ def _clip_arranged(rings, piece, site, xy):
     local = shapely.transform(rings, lambda p: p - o)
     lp = shapely.transform(piece, lambda p: p - o)
     lines = np.concatenate((shapely.boundary(local), [shapely.boundary(lp)]))
-    faces = shapely.get_parts(shapely.polygonize(shapely.get_parts(shapely.union_all(lines))))
+    try:
+        noded = shapely.union_all(lines)
+    except shapely.errors.GEOSException:
+        return None  # (the clip one ring at a time is tried instead)
+    faces = shapely.get_parts(shapely.polygonize(shapely.get_parts(noded)))
     if not len(faces):
         return None
     x, y = shapely.get_coordinates(shapely.point_on_surface(faces)).T
