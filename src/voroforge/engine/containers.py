@@ -431,19 +431,19 @@ def _hull_template(hs, lo, hi, o, local) -> Template:
         # far out: walls about the origin o near the solid, exactly (module docstring)
         rows = local(o)
         WP = np.ascontiguousarray(np.column_stack([rows, np.tile(o, (k, 1))]))
-        TV, TF, TR, vol = _cut_template(rows[:, :3], rows[:, 3], lo - o - pad, hi - o + pad)
+        TV, TF, TR, vol = cut_template(rows[:, :3], rows[:, 3], lo - o - pad, hi - o + pad)
         bounds = np.array([TV.min(0) + o, TV.max(0) + o])
         return Template(TV, TF, TR, WP, "convex", float(vol), bounds, hs.copy())
     # cut in a frame centred on the solid: in absolute coordinates a small solid far out
     # lost its volume to cancellation
     c = 0.5 * (lo + hi)
     d = hs[:, 3] - hs[:, :3] @ c
-    TV, TF, TR, vol = _cut_template(hs[:, :3], d, lo - c - pad, hi - c + pad)
+    TV, TF, TR, vol = cut_template(hs[:, :3], d, lo - c - pad, hi - c + pad)
     TV = TV + c
     return Template(TV, TF, TR, hs.copy(), "convex", float(vol), np.array([TV.min(0), TV.max(0)]))
 
 
-def _cut_template(N, d, lo, hi):
+def cut_template(N, d, lo, hi):
     """The box ``lo..hi`` cut by the half-spaces ``N x <= d``: ``(TV, TF, TR, volume)``."""
     from ..kernels.polyhedron import moments
     from ..kernels.template3d import cut_all
