@@ -251,9 +251,10 @@ def _hull_planes(pts: np.ndarray, o=None) -> tuple[np.ndarray, list]:
     # outward in the raw frame: Qhull's normal m (of y = M x + b) is M^T m there
     out = (hull.equations[:, :3] / ext) @ vt
     rows: dict[bytes, list] = {}  # unit normal -> its corners (point numbers)
+    seen: dict = {}  # point number -> its integers (_point_ints)
     normals = []
     for tri, w in zip(hull.simplices, out, strict=True):
-        a, b, e = (_ints(pts[i]) for i in tri)
+        a, b, e = (_point_ints(pts, i, seen) for i in tri)
         u = [b[k] - a[k] for k in range(3)]
         v = [e[k] - a[k] for k in range(3)]
         n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
@@ -310,10 +311,11 @@ def _hull_rows(pts, N, corners, o=None) -> np.ndarray:
     absolute coordinates (``o`` None) only to an ulp of its distance from the origin.
     """
     oi = [0, 0, 0] if o is None else _ints(o)
+    seen: dict = {}  # point number -> its integers (_point_ints)
     rows_out = []
     for n, cs in zip(N, corners, strict=True):
         nn = _ints(n)
-        ps = [_ints(pts[t]) for t in set(cs)]
+        ps = [_point_ints(pts, t, seen) for t in set(cs)]
         d = max(sum(nn[k] * (p[k] - oi[k]) for k in range(3)) for p in ps) / _ONE**2
         rows_out.append([*n, d])
     return np.array(rows_out)
@@ -355,6 +357,18 @@ def _local_rows(raw, norm, unit, o) -> np.ndarray:
 #: :func:`_ints`' unit: every double of a Convex hull's range is an integer multiple of it
 #: (the volume range keeps coordinates above 1e-90; subnormal bits below 2**-1100 are lost)
 _ONE = 2**1100
+
+
+def _point_ints(pts, i, seen: dict) -> list[int]:
+    """:func:`_ints` of point ``pts[i]``, kept in ``seen``.
+
+    A hull point is a corner of ~6 facets: 28,000 conversions for the hull of 2,000 points
+    took 0.37 s.
+    """
+    x = seen.get(int(i))
+    if x is None:
+        x = seen[int(i)] = _ints(pts[i])
+    return x
 
 
 def _ints(x) -> list[int]:
