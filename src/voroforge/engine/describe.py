@@ -21,8 +21,9 @@ within ``VERTEX_MERGE_ULPS`` ulps of its coordinates), and on a torus a vertex a
 size; points are taken modulo the box by their exact offsets where those are floats). The
 report counts the points so merged. A vertex is straight when the exact ``orient2d`` of it
 and its ring neighbours is 0; one that only one or two rings have is also straight within
-``VERTEX_STRAIGHT_ULPS`` ulps of the coordinates involved (a rounded T-junction), and no
-turn that small counts against convexity. A vertex of other cells that lies on a cell's side
+``VERTEX_STRAIGHT_ULPS`` ulps of the coordinates involved (a rounded T-junction), unless
+three or more edges meet there in the plane (the end of a sliver where two rings part), and
+no turn that small counts against convexity. A vertex of other cells that lies on a cell's side
 (exactly on a torus; within ``VERTEX_STRAIGHT_ULPS`` ulps in the plane) where those cells'
 sides cover that side end to end is put into its ring first (:mod:`.junctions`), so the side
 counts as the edges along it.
