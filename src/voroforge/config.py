@@ -437,6 +437,12 @@ VORONOI3D_DET_RTOL = 1e-10
 #: good to ~10 ulps (a Convex roof of slope 2e-6 has walls with determinant 8e-12 at its
 #: ridge; with the sites' 1e-10 no quadruple named that corner and the build failed)
 VORONOI3D_WALL_DET_RTOL = 1e-13
+#: A vertex whose name's determinant is below this fraction of the product of its rows'
+#: lengths is solved exactly (kernels.vertex3d.solve_name -> vertex_offset): the float
+#: solve's error grows as 1 / that ratio, and across a thin periodic box (1 x 1 x 1e-8, the
+#: sites' quadruples flat as the box) it moved vertices by 2% of the height (checker9 F1:
+#: volumes 2e-2 off; 4e-8 at 1e-5). About 0.6% of the vertices of uniform random sites
+VORONOI3D_EXACT_DET_RTOL = 2.0**-6
 #: Default container: the sites' bounding box padded by this fraction of its size per side
 VORONOI3D_PAD = 0.1
 #: Mesh containers: the touch test's slack (cell planes moved out) and the tolerance of a

@@ -29,7 +29,13 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import NJIT, VORONOI3D_DET_RTOL, VORONOI3D_WALL_DET_RTOL, WALL_EXACT_SIN
+from ..config import (
+    NJIT,
+    VORONOI3D_DET_RTOL,
+    VORONOI3D_EXACT_DET_RTOL,
+    VORONOI3D_WALL_DET_RTOL,
+    WALL_EXACT_SIN,
+)
 from .predicates3d import exact_point, vertex_offset, wall_lift
 
 #: nothing here allocates: compiled without reference counting (see kernels.cellcut3d)
@@ -63,7 +69,8 @@ def solve_name(a, b, c, d, P, W, WP, ns, rows, out):
     """Coordinates of the vertex named ``(a, b, c, d)`` (``a`` a site).
 
     Writes ``y`` (relative to site ``a``) into ``out[0:3]`` and returns 1, or 2 when the name's
-    walls meet at a small angle (:data:`WALL_EXACT_SIN`: the caller solves it exactly), or 0
+    walls meet at a small angle (:data:`WALL_EXACT_SIN`) or its determinant is small
+    (:data:`VORONOI3D_EXACT_DET_RTOL`): the caller solves it exactly, or 0
     when the four planes are not independent (relative determinant below
     ``VORONOI3D_DET_RTOL``).
     """
@@ -96,6 +103,8 @@ def solve_name(a, b, c, d, P, W, WP, ns, rows, out):
     out[0] = (t0 * c0x + t1 * c1x + t2 * c2x) / det
     out[1] = (t0 * c0y + t1 * c1y + t2 * c2y) / det
     out[2] = (t0 * c0z + t1 * c1z + t2 * c2z) / det
+    if abs(det) < VORONOI3D_EXACT_DET_RTOL * n0 * n1 * n2:
+        return 2  # ill-conditioned (flat owners): the caller solves it exactly
     if c >= ns:  # two walls (rows 1 and 2, c0 their cross product) or three
         if b >= ns:
             if abs(det) < WALL_EXACT_SIN * n0 * n1 * n2:
