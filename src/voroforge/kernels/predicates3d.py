@@ -23,8 +23,10 @@ Each is a floating-point filter (the determinant and a bound on its rounding err
 the permanent: the same expression on absolute values) with an exact fallback on
 expansions (:mod:`kernels.expansion`, Shewchuk 1997). The fallback takes every input
 difference as a two-component expansion, so it is exact for any doubles; it allocates its
-scratch (``scratch()``) once per caller. As everywhere in the package the arithmetic is
-exact only when no product underflows or overflows (the engine's working frame sees to it).
+scratch (``scratch()``) once per caller. ``insphere`` tries a double-double evaluation with
+a proven bound between the two (:mod:`.insphere_dd`: points rounded onto a sphere). As
+everywhere in the package the arithmetic is exact only when no product underflows or
+overflows (the engine's working frame sees to it).
 """
 
 from __future__ import annotations
@@ -34,6 +36,7 @@ from numba import njit
 
 from ..config import NJIT
 from .expansion import estimate, expansion_sum, multiply, two_diff, two_product, two_sum
+from .insphere_dd import insphere_dd
 
 _EPS = 2.0**-53
 #: filter bounds (relative to the permanent). Shewchuk's orient3d bound is (7 + 56 eps) eps;
@@ -369,6 +372,9 @@ def insphere(P5):
     val, perm = _d4_float(P5, W0, 4, 0, 1, 2, 3)
     if abs(val) > _D4_BOUND * perm:
         return val
+    dd = insphere_dd(P5)
+    if dd != 0.0:
+        return dd
     buf = scratch()
     EL = np.zeros((4, 3), np.int64)
     TL = np.zeros(4, np.int64)
