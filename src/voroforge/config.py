@@ -443,6 +443,18 @@ VORONOI3D_WALL_DET_RTOL = 1e-13
 #: sites' quadruples flat as the box) it moved vertices by 2% of the height (checker9 F1:
 #: volumes 2e-2 off; 4e-8 at 1e-5). About 0.6% of the vertices of uniform random sites
 VORONOI3D_EXACT_DET_RTOL = 2.0**-6
+#: engine.hull3d: a Convex template of more vertices than this takes the two-pass hull path
+#: even when it fits the cell builder's scratch (hull3d.takes_hull_path)
+HULL3D_BIG = 512
+#: per-cell output slots of the second pass (vertices, faces, ring entries); a cell past
+#: them runs again alone with its counts
+HULL3D_SLOTS = (256, 128, 1024)
+#: cells of the second pass a kernel call (slots reused)
+HULL3D_CHUNK = 1024
+#: the first pass's container (hull3d._around) is padded by this much of the hull's extent
+HULL3D_DOP_PAD = 0.01
+#: the reach test's margin, relative to the wall's offset and the cell's size
+HULL3D_REACH_RTOL = 1e-9
 #: Default container: the sites' bounding box padded by this fraction of its size per side
 VORONOI3D_PAD = 0.1
 #: Mesh containers: the touch test's slack (cell planes moved out) and the tolerance of a
@@ -712,3 +724,12 @@ AGREE_JOIN_RTOL = 1e-9
 #: are checked: the cells of sites ulps apart are that narrow; uniform sites' are not (their
 #: check is one pass over the vertices)
 AGREE_SHORT = 64 * 2.0**-52
+#: engine.agree: how many choices of the joined classes' points are tried: where the
+#: first (the smallest bits) leaves a ring reflex by rounding or without its site, another
+#: slot's point of the same class often keeps every ring convex (groups of 4-5 sites ulps
+#: apart, each cell rounding its own centres). A bound on a rare path: on 816 clusters of 4-8
+#: sites 1-3 ulps apart, 234 reached the placing, at most 12 choices tried in all (median 1)
+AGREE_POINT_TRIES = 256
+#: engine.assemble: the most rings one clip at a domain vertex takes (the rings meeting a
+#: thin ring, and the rings meeting those of them that are thin too: _held, _group)
+ASSEMBLE_GROUP_MAX = 64

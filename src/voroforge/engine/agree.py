@@ -41,16 +41,15 @@ import itertools
 import numpy as np
 import shapely
 
-from ..config import AGREE_JOIN_RTOL, AGREE_JOIN_ULPS, AGREE_SHORT, VERTEX_STRAIGHT_ULPS
+from ..config import (
+    AGREE_JOIN_RTOL,
+    AGREE_JOIN_ULPS,
+    AGREE_POINT_TRIES,
+    AGREE_SHORT,
+    VERTEX_STRAIGHT_ULPS,
+)
 from ..kernels.predicates import orient2d
 from ..kernels.ring_agree import rings_disagree, rings_disagree_at
-
-#: (lead: to config.py) how many choices of the joined classes' points are tried: where the
-#: first (the smallest bits) leaves a ring reflex by rounding or without its site, another
-#: slot's point of the same class often keeps every ring convex (groups of 4-5 sites ulps
-#: apart, each cell rounding its own centres). A bound on a rare path: on 816 clusters of 4-8
-#: sites 1-3 ulps apart, 234 reached the placing, at most 12 choices tried in all (median 1)
-AGREE_POINT_TRIES = 256
 
 
 def agree(closed, lengths, owner, ring_id, n, sites):

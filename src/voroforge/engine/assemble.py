@@ -18,6 +18,7 @@ import shapely
 
 from ..config import (
     ASSEMBLE_ALIGN_ULPS,
+    ASSEMBLE_GROUP_MAX,
     ASSEMBLE_ROUNDING_ULPS,
     ASSEMBLE_THIN_ULPS,
     EDGE_LENGTH_RTOL,
@@ -205,9 +206,6 @@ def _centres(lo, hi, h, count):
 
 
 _PIECE_SMALL = 256  # a domain with at most this many vertices is intersected whole
-# (lead: to config.py) the most rings one clip at a domain vertex takes: the rings meeting a
-# thin ring, and the rings meeting those of them that are thin too (_held)
-_GROUP_MAX = 64
 
 
 class _Pieces:
@@ -441,17 +439,17 @@ def _held(pieces, convex, clipped, cells, sites, rings):
 def _group(tree, convex, k, grow):
     """Rings meeting ring ``k``, and those meeting any ``grow`` ring among them (sorted).
 
-    Stops growing at ``_GROUP_MAX`` rings (a thin ring's neighbours are always in).
+    Stops growing at ``ASSEMBLE_GROUP_MAX`` rings (a thin ring's neighbours are always in).
     """
     near = np.sort(tree.query(convex[k], predicate="intersects"))
     seen = {k}
-    while len(near) < _GROUP_MAX:
+    while len(near) < ASSEMBLE_GROUP_MAX:
         todo = [j for j in near if grow[j] and j not in seen]
         if not todo:
             break
         seen.update(todo)
         more = np.union1d(near, tree.query(convex[todo], predicate="intersects")[1])
-        if len(more) > _GROUP_MAX:
+        if len(more) > ASSEMBLE_GROUP_MAX:
             break
         near = more
     return near

@@ -27,26 +27,21 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ..config import NJIT, NJIT_PARALLEL
+from ..config import (
+    HULL3D_BIG,
+    HULL3D_CHUNK,
+    HULL3D_DOP_PAD,
+    HULL3D_REACH_RTOL,
+    HULL3D_SLOTS,
+    NJIT,
+    NJIT_PARALLEL,
+)
 from ..kernels.cells3d import OVERFLOW, build_cells, cell_scratch
 from ..kernels.predicates3d import scratch
 from ..kernels.vertex3d import axis_snap, name_key, name_vertex, place
 from .build3d import CAPS, PER_BUCKET, Cells3D, build_cells3d, csr_take, grid3d_shape
 from .containers import Template, cut_template
 from .threads import serial_below
-
-#: a Convex template of more vertices than this takes this path even when it fits the cell
-#: builder's scratch (:func:`takes_hull_path`)
-HULL_BIG = 512
-#: per-cell output slots of the second pass (vertices, faces, ring entries); a cell past
-#: them runs again alone with its counts
-SLOTS = (256, 128, 1024)
-#: cells of the second pass a kernel call (slots reused)
-CHUNK = 1024
-#: the first pass's container (:func:`_around`) is padded by this much of the hull's extent
-DOP_PAD = 0.01
-#: the reach test's margin, relative to the wall's offset and the cell's size
-REACH_RTOL = 1e-9
 
 
 def takes_hull_path(t: Template) -> bool:
@@ -55,13 +50,13 @@ def takes_hull_path(t: Template) -> bool:
     When the template is past the cell builder's scratch (:data:`.build3d.CAPS`: 512 faces,
     so a hull of ~260 points on a sphere, where every cell was built again alone and the
     template path turned ~10x slower: 2,000 sites, 300 points: 3.2 s, here 0.39 s) or past
-    :data:`HULL_BIG` vertices. Smaller hulls keep the template path (as fast there, and its
+    :data:`HULL3D_BIG` vertices. Smaller hulls keep the template path (as fast there, and its
     vertex and face order: the 3D hashes' 60-point hull).
     """
     if t.kind != "convex":
         return False
     big = len(t.TV) > CAPS[3] or len(t.TF) > CAPS[4] or len(t.TR) > CAPS[5]
-    return big or len(t.TV) > HULL_BIG
+    return big or len(t.TV) > HULL3D_BIG
 
 
 def hull_cells(P: np.ndarray, W: np.ndarray, t: Template, progress=None) -> Cells3D:
@@ -109,7 +104,7 @@ def _around(t: Template) -> Template:
     dirs /= np.linalg.norm(dirs, axis=1)[:, None]
     V = t.TV + t.origin
     lo, hi = V.min(axis=0), V.max(axis=0)
-    pad = DOP_PAD * float((hi - lo).max())
+    pad = HULL3D_DOP_PAD * float((hi - lo).max())
     c = 0.5 * (lo + hi)
     d = ((V - c) @ dirs.T).max(axis=0) + pad
     TV, TF, TR, vol = cut_template(dirs, d, lo - c - 2 * pad, hi - c + 2 * pad)
@@ -159,12 +154,12 @@ def _reaching(V, voff, vid, cf, flabel, P, bcell, WP, ball):
             dy = V[g, 1] - oy - py
             dz = V[g, 2] - oz - pz
             r2 = max(r2, dx * dx + dy * dy + dz * dz)
-        r = np.sqrt(r2) * (1.0 + REACH_RTOL)
+        r = np.sqrt(r2) * (1.0 + HULL3D_REACH_RTOL)
         size = abs(px) + abs(py) + abs(pz) + r
         qx = px - ball[0]
         qy = py - ball[1]
         qz = pz - ball[2]
-        if hit or np.sqrt(qx * qx + qy * qy + qz * qz) + r >= ball[3] - REACH_RTOL * (
+        if hit or np.sqrt(qx * qx + qy * qy + qz * qz) + r >= ball[3] - HULL3D_REACH_RTOL * (
             size + abs(ball[3]) + abs(ball[0]) + abs(ball[1]) + abs(ball[2])
         ):
             for w in range(WP.shape[0]):
@@ -174,7 +169,7 @@ def _reaching(V, voff, vid, cf, flabel, P, bcell, WP, ball):
                 ny = WP[w, 1]
                 nz = WP[w, 2]
                 d = WP[w, 3]
-                marg = REACH_RTOL * (abs(d) + size)
+                marg = HULL3D_REACH_RTOL * (abs(d) + size)
                 if nx * px + ny * py + nz * pz - d + r < -marg:
                     continue
                 for e in range(voff[b], voff[b + 1]):
@@ -313,12 +308,12 @@ def _second_pass(P, W, t, cells, start, sites):
         return st, ct, v, c, r2, osite, ovabs, ofaces, oring
 
     def part(a, b):
-        caps = _caps(t, SLOTS)
+        caps = _caps(t, HULL3D_SLOTS)
         scr = cell_scratch(len(P), g, tree, t.TV, t.TF, t.TR, caps)
-        for c0 in range(a, b, CHUNK):
-            c1 = min(c0 + CHUNK, b)
+        for c0 in range(a, b, HULL3D_CHUNK):
+            c1 = min(c0 + HULL3D_CHUNK, b)
             st, ct, v, c, r2, osite, ovabs, ofaces, oring = run(cells[c0:c1], caps, scr)
-            cv, cf, cr = SLOTS
+            cv, cf, cr = HULL3D_SLOTS
             for q in range(c1 - c0):
                 x = c0 + q
                 s = st[q]
@@ -354,7 +349,7 @@ def _second_pass(P, W, t, cells, start, sites):
 
 def _alone(run, i, t, g, ns, need):
     """Cell ``i`` alone with slots for its counts ``need`` (grown until it fits)."""
-    slots = [max(SLOTS[q], int(need[q])) for q in range(3)]
+    slots = [max(HULL3D_SLOTS[q], int(need[q])) for q in range(3)]
     for _ in range(8):
         caps = _caps(t, slots)
         scr = cell_scratch(ns, g, np.zeros((0, 8)), t.TV, t.TF, t.TR, caps)
