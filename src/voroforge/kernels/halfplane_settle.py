@@ -140,6 +140,23 @@ def _shadowed_at_box(i, j, k, side, xs, ys, box):
 
 
 @njit(**NJIT)
+def _behind(i, j, k, xs, ys):
+    """Whether site ``k`` lies strictly between sites ``i`` and ``j`` on one line (exact).
+
+    Then the bisector of ``i, k`` is parallel to that of ``i, j`` and nearer ``i``: ``j``
+    has no edge in ``i``'s cell (sites an ulp apart on a line: the float cut made the two
+    parallel bisectors cross, and the ring kept a vertex of three collinear sites).
+    """
+    if orient2d(xs[i], ys[i], xs[j], ys[j], xs[k], ys[k]) != 0.0:
+        return False
+    # on the line i-j: strictly between along each axis where they differ (exact compares)
+    for a, b, c in ((xs[i], xs[j], xs[k]), (ys[i], ys[j], ys[k])):
+        if a != b and not (min(a, b) < c < max(a, b)):
+            return False
+    return (xs[k], ys[k]) != (xs[i], ys[i]) and (xs[k], ys[k]) != (xs[j], ys[j])
+
+
+@njit(**NJIT)
 def _shadowing(i, j, side, cand, nc, sidx, xs, ys, box):
     """A site among ``cand[:nc]`` a few ulps from ``j`` and nearer than it at ``j``'s box end.
 
@@ -186,7 +203,9 @@ def _drop_invalid(i, lab, m, xs, ys, sure, trust, box):
         check = j >= 0 and p >= 0 and q >= 0 and p != q and not (trust and sure[u] > 0.0)
         shadowed = j >= 0 and (p < 0) != (q < 0)
         if shadowed:
-            shadowed = _shadowed_at_box(i, j, q if p < 0 else p, p if p < 0 else q, xs, ys, box)
+            k = q if p < 0 else p
+            shadowed = _shadowed_at_box(i, j, k, p if p < 0 else q, xs, ys, box)
+            shadowed = shadowed or _behind(i, j, k, xs, ys)
         if j == p or shadowed or (check and not _edge_ok(i, j, p, q, xs, ys)):
             m = _remove(lab, m, u)
             u = max(u - 1, 0)
