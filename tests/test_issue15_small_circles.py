@@ -30,15 +30,12 @@ CASES = {
     "600_r1e-5_at_3e4": (600, 1e-5, (3e4, 1e4)),
     "333_r1e-6_at_7e3": (333, 1e-6, (2e3, -7e3)),
     "350_r1e-6_at_7e3": (350, 1e-6, (2e3, -7e3)),
-    # 2 self-intersecting rings before the stalled test's refit (kernels.refit); now valid,
-    # and one ring convex only to rounding
-    "1000_r1e-5_at_6e4": pytest.param(
-        1000, 1e-5, (-1e4, 6e4), marks=pytest.mark.xfail(strict=True, reason="1 nonconvex")
-    ),
-    # 6 self-intersecting rings before the refit; now valid, convex only to rounding
-    "600_r1e-6_at_1e5": pytest.param(
-        600, 1e-6, (1e5, 3e4), marks=pytest.mark.xfail(strict=True, reason="to rounding")
-    ),
+    # 2 self-intersecting rings before the stalled test's refit (kernels.refit), then one
+    # ring convex only to rounding; exactly convex since the fold moves from the best round
+    # name only the classes they join (kernels.folds._refine)
+    "1000_r1e-5_at_6e4": (1000, 1e-5, (-1e4, 6e4)),
+    # 6 self-intersecting rings before the refit, then convex only to rounding; now exactly
+    "600_r1e-6_at_1e5": (600, 1e-6, (1e5, 3e4)),
 }
 
 #: Valid (convex to describe()'s rounding tolerance, not exactly) since a stalled fold test

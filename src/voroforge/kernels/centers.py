@@ -179,13 +179,14 @@ def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank, err, box, fold):
             if ra != rb:
                 parent[max(ra, rb)] = min(ra, rb)
                 merged = True
+    every = np.zeros(0, dtype=np.uint8)  # (``pick``: every class)
     if merged:
         for k in range(t):
             parent[k] = _find(parent, k)
         # the centres are still the triangles' own here: classes of two may reuse them
-        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, np.bool_(True))
+        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, np.bool_(True), every)
     if near:
-        _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined, changed)
+        _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined, changed, every)
     return parent
 
 
@@ -336,7 +337,7 @@ def _swapped(xs, ys, tri, e, f, ux, uy, tx, ty):
 
 
 @njit(**NJIT)
-def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined, changed):
+def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined, changed, pick):
     """Merge swapped vertices (:func:`_folds`) until none is left; renames the classes.
 
     Each round joins the classes at both ends of every edge that folds, then names the
@@ -349,9 +350,12 @@ def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined,
     merge has both ends in one class for good, and is skipped); later rounds test the edges
     at centres the last renaming changed. Each round merges classes, so this ends; every
     merge is a pair of vertices closer than their rounding, and the merged class gets its
-    canonical vertex as any other.
+    canonical vertex as any other. ``pick`` empty: every class is named again after each
+    round; else only the classes a round joined (``pick`` is scratch, one entry a triangle).
     """
     merges = 0
+    every = pick.shape[0] == 0
+    old = parent.copy() if not every else parent
     for e in range(fold.shape[0]):
         if fold[e] != 0:
             f = he[e]
@@ -371,13 +375,20 @@ def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined,
     merges += _refold(xs, ys, tri, he, parent, cx, cy, box, err, changed)
     for it in range(FOLD_MAX_ROUNDS):
         if it > 0:
+            if not every:
+                old[:] = parent
             merges = _refold(xs, ys, tri, he, parent, cx, cy, box, err, changed)
         if merges == 0:
             return
         for k in range(parent.shape[0]):
             parent[k] = _find(parent, k)
+        if not every:
+            pick[:] = 0
+            for k in range(parent.shape[0]):
+                if old[k] != parent[k]:
+                    pick[parent[k]] = 1  # a class that took in another
         changed[:] = 0
-        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, np.bool_(False))
+        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, np.bool_(False), pick)
 
 
 @njit(**NJIT)
@@ -509,7 +520,7 @@ def _set_vertex(cx, cy, k, vx, vy, changed):
 
 
 @njit(**NJIT)
-def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, own):
+def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, own, pick):
     """Give every triangle of a class (``parent`` its root) the vertex of the class's name.
 
     The name is the canonical triple of the class's sites (``kernels/vertex``), numbered by
@@ -520,7 +531,8 @@ def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, own):
     sites: every square of a grid) are the common case and take a short path; larger ones
     are gathered by a counting sort. Triangles whose centre may have changed are marked
     in ``changed``. ``own`` says that every centre is still its triangle's own (the first
-    naming), which lets a class of two reuse one (:func:`_name_pairs`).
+    naming), which lets a class of two reuse one (:func:`_name_pairs`). ``pick``: only the
+    classes whose root it marks are named (empty: every class).
     """
     t = parent.shape[0]
     size = np.zeros(t, dtype=np.int64)
@@ -538,9 +550,12 @@ def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, own):
             return
     on = np.zeros(max(6, 3 * most), dtype=np.int64)
     big = 0
+    every = pick.shape[0] == 0
     for r in range(t):
         if size[r] == 2 and own:
             continue  # named above
+        if not every and pick[r] == 0:
+            continue
         if size[r] == 2:
             # the root's three sites and the other triangle's new ones (one, when adjacent)
             a = tri[3 * r]
@@ -578,7 +593,7 @@ def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, own):
             fill[r] += 1
     seen = np.full(xs.shape[0], -1, dtype=np.int64)
     for r in range(t):
-        if size[r] < 3:
+        if size[r] < 3 or not (every or pick[r] != 0):
             continue
         k = np.int64(0)
         for u in range(start[r], start[r + 1]):
@@ -704,7 +719,7 @@ def triangle_centers(xs, ys, tri, he):
 
 
 @njit(**NJIT)
-def contract(xs, ys, tri, he, parent, cx, cy, rank, box, err, pa, pb):
+def contract(xs, ys, tri, he, parent, cx, cy, rank, box, err, pa, pb, only):
     """Join the classes of triangles ``pa[k]`` and ``pb[k]``, name them, unfold; joins made.
 
     The cells' fold test (``kernels/folds.fold_pairs``) finds rings that rounding folded
@@ -715,10 +730,13 @@ def contract(xs, ys, tri, he, parent, cx, cy, rank, box, err, pa, pb):
     edges at renamed centres are tested for swaps again (:func:`_unfold`). Pairs ``(t, t)``
     are a stalled fold test's request: when no pair joins, those classes are named afresh
     where their cells turn best (:func:`.refit.fit_classes`), and the count is of renamed
-    classes (0: nothing changed).
+    classes (0: nothing changed). ``only``: name only the classes a join changed (every
+    other keeps its vertex, one :func:`.refit.fit_classes` chose too); else all of them.
     """
     merges = 0
     refit = False
+    t = parent.shape[0]
+    old = parent.copy()
     for k in range(pa.shape[0]):
         if pa[k] == pb[k]:
             refit = True  # a stalled fold test's request (:func:`.folds.fold_pairs`)
@@ -726,13 +744,20 @@ def contract(xs, ys, tri, he, parent, cx, cy, rank, box, err, pa, pb):
             merges += _link(parent, pa[k], pb[k])
     if merges == 0 and not refit:
         return 0
-    for k in range(parent.shape[0]):
+    for k in range(t):
         parent[k] = _find(parent, k)
-    changed = np.zeros(parent.shape[0], dtype=np.uint8)
+    changed = np.zeros(t, dtype=np.uint8)
+    pick = np.zeros(t if only else 0, dtype=np.uint8)  # (empty: every class)
+    if only:
+        for k in range(t):
+            if old[k] != parent[k]:
+                pick[parent[k]] = 1
     if merges > 0:
-        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, np.bool_(False))
+        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, np.bool_(False), pick)
+        if only:
+            fit_classes(xs, ys, tri, he, parent, cx, cy, pick, changed)
     else:
-        fresh = np.zeros(parent.shape[0], dtype=np.uint8)
+        fresh = np.zeros(t, dtype=np.uint8)
         for k in range(pa.shape[0]):
             fresh[parent[pa[k]]] = 1
         merges = fit_classes(xs, ys, tri, he, parent, cx, cy, fresh, changed)
@@ -741,5 +766,5 @@ def contract(xs, ys, tri, he, parent, cx, cy, rank, box, err, pa, pb):
     fold = np.zeros(tri.shape[0], dtype=np.uint8)
     cand = np.zeros(0, dtype=np.int64)
     joined = np.zeros(0, dtype=np.uint8)
-    _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined, changed)
+    _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined, changed, pick)
     return merges
