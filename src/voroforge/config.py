@@ -455,6 +455,12 @@ HULL3D_CHUNK = 1024
 HULL3D_DOP_PAD = 0.01
 #: the reach test's margin, relative to the wall's offset and the cell's size
 HULL3D_REACH_RTOL = 1e-9
+#: engine.jointable3d: linear probes in a vertex's local run (slot) before its probe
+#: sequence jumps to a slot hashed over the whole table: the vertices of a float sphere (all
+#: within ulps of its centre, far from their sites) fall in the centre's join bucket, whose
+#: run is a slot or two, and linear probing from one slot made the join quadratic (10,000
+#: points: 5 s of 7)
+JOIN_LOCAL_PROBES = 32
 #: Default container: the sites' bounding box padded by this fraction of its size per side
 VORONOI3D_PAD = 0.1
 #: Mesh containers: the touch test's slack (cell planes moved out) and the tolerance of a

@@ -18,6 +18,7 @@ from numba import njit
 from ..config import GRID_DEGENERATE_RTOL, GRID_WIDEN_RTOL, NJIT, TRIM_CELLS
 from ..kernels.cells3d import OK, OVERFLOW, build_cells, cell_scratch
 from ..kernels.grid3d import kd_buckets3d
+from .jointable3d import probe_next, rehash, slot
 from .lists3d import Lists, chunk_search, chunks, redo_slow
 from .threads import serial_below
 
@@ -254,42 +255,6 @@ def _run(
     return status, counts, vol, cen, rad2, (osite, ovabs, ofaces, oring), capa
 
 
-@njit(**{**NJIT, "inline": "always"})
-def _slot(bits, vx, r, jg, bslot, mask, key):
-    """Table slot of the vertex at ``vx[r]`` (coordinates' bits ``bits[r]``): spatially local.
-
-    The vertex's bucket in the join grid ``jg = (x0, y0, z0, 1/hx, 1/hy, 1/hz, nx, ny,
-    nz)`` picks a run of slots ``bslot[b]:bslot[b + 1]`` (as long as the bucket's share of
-    the table: one unit per bucket and one per cell built in it), the hash of the bits a
-    slot in the run. Cells are joined in bucket order, so the vertices a chunk looks up
-    lie in a few runs of the table that stay in cache, where a plain hash put every insert
-    at a random place in a table of ~100 MB (a cache miss each). A function of the bits
-    and the name ``key`` (the join's identity, :func:`kernels.vertex3d.name_key`): equal
-    vertices meet in one probe sequence, and the thousands of distinct vertices of a float
-    sphere that round to one point do not all share one (3,000 sites on a sphere: over
-    150 s with the bits alone).
-    """
-    nx = int(jg[6])
-    ny = int(jg[7])
-    nz = int(jg[8])
-    ix = min(max(int(np.floor((vx[r, 0] - jg[0]) * jg[3])), 0), nx - 1)
-    iy = min(max(int(np.floor((vx[r, 1] - jg[1]) * jg[4])), 0), ny - 1)
-    iz = min(max(int(np.floor((vx[r, 2] - jg[2]) * jg[5])), 0), nz - 1)
-    b = (iz * ny + iy) * nx + ix
-    base = bslot[b]
-    width = max(bslot[b + 1] - base, 1)
-    h = np.uint64(0x9E3779B97F4A7C15)
-    for q in range(3):
-        h ^= np.uint64(bits[r, q])
-        h *= np.uint64(0xBF58476D1CE4E5B9)
-        h ^= h >> np.uint64(31)
-    h ^= np.uint64(key)
-    h *= np.uint64(0xBF58476D1CE4E5B9)
-    h ^= h >> np.uint64(31)
-    off = (np.int64(h >> np.uint64(33)) * width) >> 31  # in [0, width)
-    return (base + off) & mask
-
-
 @njit(**NJIT)
 def _join(
     c0, status, counts, caps, osite, ovabs, vbits, ofaces, oring, out, table, refs, want, gl, jt
@@ -302,7 +267,7 @@ def _join(
     cell's list of vertex numbers goes to ``vid`` and its rings stay local. Stops before a
     cell that does not fit (an output or the table is full: returns its number and 1), that
     overflowed its slots (2) or whose local numbers need a wider ring type (3); returns
-    ``(k, 0)`` when done. ``jt = (jg, bslot)``: the table's slot layout (:func:`_slot`).
+    ``(k, 0)`` when done. ``jt = (jg, bslot)``: the table's slot layout (:func:`.jointable3d.slot`).
     """
     verts, flabel, roff, ring, vid, sizes = out
     jg, bslot = jt
@@ -341,7 +306,7 @@ def _join(
         # (and its count of references, the next thing a hit reads: another random line)
         touch = 0
         for v in range(nv):
-            h = _slot(vbits, ovabs, c * cv + v, jg, bslot, mask, osite[c * cv + v] >> 8)
+            h = slot(vbits, ovabs, c * cv + v, jg, bslot, mask, osite[c * cv + v] >> 8)
             hs[v] = h
             gv = table[h]
             if gv >= 0 and verts[gv, 0] == ovabs[c * cv + v, 0]:
@@ -350,6 +315,8 @@ def _join(
         for v in range(nv):
             r = c * cv + v
             h = hs[v]
+            key_r = osite[r] >> 8
+            steps = 0
             while True:
                 gv = table[h]
                 if gv < 0:
@@ -372,7 +339,8 @@ def _join(
                         refs[gv] += 1
                     vid[nvid + v] = gv
                     break
-                h = (h + 1) & mask
+                h = probe_next(h, mask, vbits, r, key_r, steps)
+                steps += 1
         nvid += nv
         for f in range(nf):
             flabel[nface] = ofaces[c * cf + f, 0]
@@ -437,23 +405,11 @@ def _owners(P, W, table, head, dup):
             dup[i] = o
 
 
-@njit(**NJIT)
-def _rehash(verts, want, nvert, table, jg, bslot):
-    """Fill an empty (all -1) ``table`` with vertices ``0:nvert`` (slots of :func:`_slot`)."""
-    mask = table.shape[0] - 1
-    bits = verts.view(np.int64)
-    for g in range(nvert):
-        h = _slot(bits, verts, g, jg, bslot, mask, want[g] >> 8)
-        while table[h] >= 0:
-            h = (h + 1) & mask
-        table[h] = g
-
-
 class _Out:
     """The growing outputs of the join (numpy arrays, resized in place)."""
 
     def __init__(self, k, jg, units):
-        # the table's layout (:func:`_slot`): join grid and cumulative units per bucket
+        # the table's layout (:func:`.jointable3d.slot`): join grid and cumulative units per bucket
         self.jg = jg
         self.units = units
         # typical sizes per uniform cell: 6.8 vertices (27 per cell), 15.5 faces, 81 ring entries
@@ -491,7 +447,7 @@ class _Out:
                 self.vid = self.vid.astype(np.int64)
             self.table = np.full(size, -1, self.vid.dtype)
             self.bslot = self._bslot()
-            _rehash(self.verts, self.want, nvert, self.table, self.jg, self.bslot)
+            rehash(self.verts, self.want, nvert, self.table, self.jg, self.bslot)
         if nface + nf > len(self.flabel):
             m = int(1.5 * len(self.flabel)) + nf
             self.flabel.resize(m, refcheck=False)
