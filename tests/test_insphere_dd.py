@@ -14,18 +14,9 @@ from fractions import Fraction as Q
 import numpy as np
 import pytest
 
+from test_predicates3d import _det
 from voroforge.kernels.insphere_dd import insphere_dd
 from voroforge.kernels.predicates3d import insphere
-
-
-def _det(m):
-    """Exact determinant of a small square matrix of Fractions (Laplace)."""
-    n = len(m)
-    if n == 1:
-        return m[0][0]
-    return sum(
-        (-1) ** c * m[0][c] * _det([row[:c] + row[c + 1 :] for row in m[1:]]) for c in range(n)
-    )
 
 
 def _insphere_ref(p5):
