@@ -32,6 +32,9 @@ from voroforge.kernels.vertex import (
 
 from catalogue import CATALOGUE
 
+#: ``_name_classes``' ``pick``: empty names every class
+EVERY = np.zeros(0, dtype=np.uint8)
+
 
 def _bits(*values):
     return np.array(values, dtype=np.float64).tobytes()
@@ -138,7 +141,7 @@ def _plain_merge(sx, sy, tri, he, rank, box):
 
     def rename():
         parent[:] = [find(k) for k in range(t)]
-        centers._name_classes(sx, sy, tri, parent, cx, cy, rank, err, changed, False)
+        centers._name_classes(sx, sy, tri, parent, cx, cy, rank, err, changed, False, EVERY)
 
     if merged:
         rename()
@@ -242,7 +245,7 @@ def test_pair_classes_named_from_own_centres_equal_the_full_search():
         out = []
         for own in (True, False):
             ox, oy, changed = cx.copy(), cy.copy(), np.zeros(len(cx), dtype=np.uint8)
-            centers._name_classes(sx, sy, tri, parent, ox, oy, rank, err, changed, own)
+            centers._name_classes(sx, sy, tri, parent, ox, oy, rank, err, changed, own, EVERY)
             out.append(_bits(*ox, *oy) + changed.tobytes())
         assert out[0] == out[1]
         size = np.bincount(parent, minlength=len(parent))
