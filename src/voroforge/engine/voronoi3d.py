@@ -91,8 +91,8 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
         if not ins.any():
             raise ValueError("the container mesh contains none of the sites")
     if n and mesh is None:
-        inside = _inside(pts, t)
-        if not inside.any():
+        inside = _in_box(pts, t) if t.kind == "box" else None  # (periodic: a box)
+        if not (inside.any() if inside is not None else _convex_holds_any(pts, t)):
             raise ValueError("the container contains none of the sites")
         if periodic and not inside.all():
             bad = int(np.flatnonzero(~inside)[0])
@@ -144,29 +144,37 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
     return d
 
 
-def _inside(pts: np.ndarray, t: Template) -> np.ndarray:
-    """Which sites the container holds (a box); for a Convex those up to the first it holds."""
-    WP = t.WP
-    if WP.shape[1] > 4:  # walls about an origin near the solid (engine.containers)
+def _walls_frame(pts: np.ndarray, t: Template):
+    """``pts`` in the frame of the template's walls, and the inside test's scale per wall."""
+    if t.WP.shape[1] > 4:  # walls about an origin near the solid (engine.containers)
         pts = pts - t.origin
-    scale = np.abs(WP[:, 3]) + np.abs(pts).max() + 1e-300
-    if t.kind == "box":  # the same test, without the (n, 6) products
-        lo, hi = t.bounds
-        return ((pts >= lo - 1e-12 * scale[0::2]) & (pts <= hi + 1e-12 * scale[1::2])).all(axis=1)
-    # a Convex: only whether any site is inside is asked (periodic needs a box), so blocks
-    # of sites until one is (the (n, W) products of 20,000 sites and a hull of 4,000 walls
-    # took 1.2 s)
-    out = np.zeros(len(pts), bool)
+    return pts, np.abs(t.WP[:, 3]) + np.abs(pts).max() + 1e-300
+
+
+def _in_box(pts: np.ndarray, t: Template) -> np.ndarray:
+    """Which sites a box template holds (its walls within 1e-12 of their scale)."""
+    pts, scale = _walls_frame(pts, t)
+    lo, hi = t.bounds
+    return ((pts >= lo - 1e-12 * scale[0::2]) & (pts <= hi + 1e-12 * scale[1::2])).all(axis=1)
+
+
+#: sites a block of :func:`_convex_holds_any`'s test
+_INSIDE_BLOCK = 256
+
+
+def _convex_holds_any(pts: np.ndarray, t: Template) -> bool:
+    """Whether a Convex template holds any site.
+
+    Blocks of sites until one is held: the (n, W) products of 20,000 sites and a hull of
+    4,000 walls took 1.2 s.
+    """
+    pts, scale = _walls_frame(pts, t)
+    WP = t.WP
     for a in range(0, len(pts), _INSIDE_BLOCK):
         s = pts[a : a + _INSIDE_BLOCK] @ WP[:, :3].T - WP[:, 3]
-        out[a : a + _INSIDE_BLOCK] = (s <= 1e-12 * scale).all(axis=1)
-        if out[a : a + _INSIDE_BLOCK].any():
-            break
-    return out
-
-
-#: sites a block of :func:`_inside`'s test of a Convex
-_INSIDE_BLOCK = 256
+        if (s <= 1e-12 * scale).all(axis=1).any():
+            return True
+    return False
 
 
 def _periodic(P, W, t, progress):
