@@ -220,3 +220,24 @@ def test_frame_and_openings_on_cut_give_no_duplicate_segments(tmp_path):
     arcs = ezdxf.readfile(dxf).modelspace().query("LWPOLYLINE")
     assert all(e.closed for e in arcs)  # each ring once, kept whole (fillets as arcs)
     assert svg.read_text().count("<path") == len(arcs)
+
+
+@pytest.mark.parametrize("offset", [0.0, 1e6, 5e8, 3e11])
+def test_fillet_arcs_survive_far_from_the_origin(tmp_path, offset):
+    # the merge tolerance follows the drawing's size, not its distance from the origin: a
+    # rounded rectangle 46 x 26 (corner radius 3) at 5e8 had its fillet chords merged into
+    # its corners (4 straight vertices, area 998 instead of 1188.27)
+    part = shapely.box(offset, offset, offset + 40, offset + 20).buffer(3, quad_segs=16)
+    (e,) = ezdxf.readfile(write_dxf([part], tmp_path / "p.dxf")).modelspace()
+    pts = e.get_points("xyb")
+    xy = np.array([(p[0] - offset, p[1] - offset) for p in pts])
+    nxt = np.roll(xy, -1, axis=0)
+    area = 0.5 * np.sum(xy[:, 0] * nxt[:, 1] - nxt[:, 0] * xy[:, 1])
+    for (_, _, b), a, c in zip(pts, xy, nxt, strict=True):
+        if b:  # the circular segment a bulge adds (its chord, its sweep 4 atan b)
+            th = 4 * np.arctan(b)
+            r = np.linalg.norm(c - a) / (2 * np.sin(th / 2))
+            area += 0.5 * r * r * (th - np.sin(th))
+    assert sum(1 for p in pts if p[2]) == 4
+    true = 46 * 26 - (4 - np.pi) * 9
+    assert abs(area - true) < 1e-6 * true + 64 * np.spacing(offset + 46) * 46

@@ -510,6 +510,8 @@ SOLID_VOXEL = 0.5
 #: Path end points closer than this fraction of the drawing's size are one vertex when
 #: layers are deduplicated and lines merged (rounding between products of one layer)
 PLOTTER_MERGE_RTOL = 1e-9
+#: ...and at least this many ulps of the largest coordinate (rounding far from the origin)
+PLOTTER_MERGE_ULPS = 64
 #: 2-opt candidate list: this many nearest path ends of each end
 PLOTTER_NEIGHBOURS = 10
 #: 2-opt stops after this many passes even if a move still shortens the tour

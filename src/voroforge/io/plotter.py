@@ -129,8 +129,11 @@ def _tolerance(coords: np.ndarray, tolerance) -> float:
         return t
     if not len(coords):
         return 0.0
-    size = max(float(np.ptp(coords, axis=0).max()), float(np.abs(coords).max()))
-    return size * config.PLOTTER_MERGE_RTOL
+    # the drawing's size, not its distance from the origin (a 0.5 mm fillet's chords were
+    # merged away at an offset of 5e8); far out, a few ulps of the coordinates (rounding)
+    size = float(np.ptp(coords, axis=0).max()) * config.PLOTTER_MERGE_RTOL
+    ulps = float(np.abs(coords).max()) * np.finfo(np.float64).eps * config.PLOTTER_MERGE_ULPS
+    return max(size, ulps)
 
 
 def _vertex_ids(coords: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray]:
