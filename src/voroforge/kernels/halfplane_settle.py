@@ -161,12 +161,16 @@ def _shadowing(i, j, side, cand, nc, sidx, xs, ys, box):
     """A site among ``cand[:nc]`` a few ulps from ``j`` and nearer than it at ``j``'s box end.
 
     That is where the bisector of ``i, j`` meets box side ``side``
-    (:func:`_shadowed_at_box`); -1 when there is none.
+    (:func:`_shadowed_at_box`), or anywhere: a site strictly between ``i`` and ``j`` on
+    their line (:func:`_behind`, exact; three sites an ulp apart on a line, where the two
+    outer ones' float bisectors coincide and the cut lost the middle one). -1 when there
+    is none.
     """
     for c in range(nc):
         x = sidx[cand[c]]
-        if x != j and x != i and _shadowed_at_box(i, j, x, side, xs, ys, box):
-            return x
+        if x != j and x != i:
+            if _shadowed_at_box(i, j, x, side, xs, ys, box) or _behind(i, j, x, xs, ys):
+                return x
     return -1
 
 
