@@ -48,8 +48,9 @@ from ..config import (
     AGREE_SHORT,
     VERTEX_STRAIGHT_ULPS,
 )
-from ..kernels.predicates import orient2d
+from ..kernels.predicates import incircle, orient2d
 from ..kernels.ring_agree import rings_disagree, rings_disagree_at
+from ..kernels.vertex import voronoi_vertex
 
 
 def agree(closed, lengths, owner, ring_id, n, sites):
@@ -377,3 +378,131 @@ def _rebuilt(closed, lengths, owner, rings):
         parts_o.append(o)
         new_len[r + 1] = new_len[r] + len(c)
     return np.concatenate(parts_c), new_len, np.concatenate(parts_o)
+
+
+def split_merged(closed, lengths, owner, ring_id, n, sites, astray):
+    """Rings ``astray`` (indices) that miss their site, given it back by splitting a vertex.
+
+    Where the cells merged four sites' Voronoi vertices ulps apart into one point (their
+    centres within rounding bounds of each other, :func:`.kernels.vertex.same_vertex`),
+    the point the group takes can leave a site outside its ring by an ulp, though floats
+    hold the two exact vertices apart (issue 15's cluster c354). For a vertex of ring ``i``
+    between its edges with ``a`` and ``b`` whose circle holds a fourth site ``c`` (exact
+    ``incircle``) that has the same point between its edges with ``b`` and ``a``, the
+    point is split as the exact diagram has it: ``i`` and ``c`` get their shared edge
+    between the vertices of ``(i, a, c)`` and ``(i, c, b)``, each named by its triple
+    (:func:`.kernels.vertex.voronoi_vertex`), ``a`` and ``b`` the one of theirs. Kept only
+    where every changed ring stays exactly convex, holds its site where it did and ring
+    ``i`` holds its own, and the rings still share every edge (else again with rings that
+    turn right by rounding only, as in :func:`agree`); else the next such vertex is tried.
+    Returns ``(closed, lengths, owner)``, the input arrays where none is kept.
+    """
+    xs = np.ascontiguousarray(sites[:, 0])
+    ys = np.ascontiguousarray(sites[:, 1])
+    inv = np.full(n, -1, dtype=np.int64)
+    inv[ring_id] = np.arange(len(ring_id))
+    for r in astray:
+        i = int(ring_id[r])
+        a0, b0 = lengths[r], lengths[r + 1] - 1
+        m = b0 - a0
+        for v in range(m):
+            a = int(owner[a0 + (v - 1) % m])
+            b = int(owner[a0 + v])
+            p = (float(closed[a0 + v, 0]), float(closed[a0 + v, 1]))
+            if a < 0 or b < 0 or inv[a] < 0 or inv[b] < 0:
+                continue
+            got = _split_at(closed, lengths, owner, ring_id, inv, xs, ys, (i, a, b), p)
+            if got is not None:
+                closed, lengths, owner = got
+                break
+    return closed, lengths, owner
+
+
+def _slot_between(closed, lengths, owner, r, before, after, p):
+    """The slot of ring ``r`` at point ``p`` between its edges with ``before`` and ``after``."""
+    a0, b0 = lengths[r], lengths[r + 1] - 1
+    m = b0 - a0
+    for w in range(m):
+        if owner[a0 + (w - 1) % m] == before and owner[a0 + w] == after:
+            if (closed[a0 + w, 0], closed[a0 + w, 1]) == p:
+                return w
+    return -1
+
+
+def _split_at(closed, lengths, owner, ring_id, inv, xs, ys, iab, p):
+    """:func:`split_merged` at ring ``inv[i]``'s vertex ``p`` between ``a`` and ``b``; or None."""
+    i, a, b = iab
+    ra = int(inv[a])
+    for c in sorted(set(owner[lengths[ra] : lengths[ra + 1] - 1].tolist())):
+        if c < 0 or c in (i, a, b) or inv[c] < 0:
+            continue
+        w = _slot_between(closed, lengths, owner, int(inv[c]), b, a, p)
+        if w < 0:
+            continue
+        if incircle(xs[i], ys[i], xs[a], ys[a], xs[b], ys[b], xs[c], ys[c]) <= 0.0:
+            continue  # (i, a, b) is the exact diagram's vertex: nothing to split
+        # each ring's slot at p and what replaces it: [(x, y, owner after), ...]
+        new = {}
+        for ring_site, before, after, tris in (
+            (i, a, b, ((i, a, c, c), (i, c, b, b))),
+            (c, b, a, ((c, b, i, i), (c, i, a, a))),
+            (a, c, i, ((a, c, i, i),)),
+            (b, i, c, ((b, i, c, c),)),
+        ):
+            r = int(inv[ring_site])
+            u = _slot_between(closed, lengths, owner, r, before, after, p)
+            if u < 0:
+                return None
+            pts = []
+            for t0, t1, t2, after_ in tris:
+                x, y = voronoi_vertex(t0, t1, t2, xs, ys)
+                if not (np.isfinite(x) and np.isfinite(y)):
+                    return None
+                pts.append((x, y, after_))
+            new[r] = (u, pts)
+        for lax in (False, True):
+            got = _split_rings(
+                closed, lengths, owner, ring_id, inv, (xs, ys), new, int(inv[i]), lax
+            )
+            if got is not None:
+                return got
+        return None
+    return None
+
+
+def _split_rings(closed, lengths, owner, ring_id, inv, xys, new, mine, lax):
+    """The rings with slots replaced as ``new`` says; None where a check fails.
+
+    With ``lax``, a changed ring may turn right by rounding (:func:`_kept`).
+    """
+    xs, ys = xys
+    placed = {}
+    for r, (u, pts) in new.items():
+        a0, b0 = lengths[r], lengths[r + 1] - 1
+        slots = [(closed[k, 0], closed[k, 1], owner[k]) for k in range(a0, b0)]
+        slots[u : u + 1] = pts
+        rx, ry, ro = [], [], []
+        for x, y, o in slots:
+            if rx and rx[-1] == x and ry[-1] == y:
+                ro[-1] = o  # an edge of length 0 goes
+                continue
+            rx.append(float(x))
+            ry.append(float(y))
+            ro.append(int(o))
+        while len(rx) > 1 and rx[-1] == rx[0] and ry[-1] == ry[0]:
+            rx.pop()
+            ry.pop()
+            ro.pop()
+        site = (xs[ring_id[r]], ys[ring_id[r]])
+        held = _holds(closed[a0:b0, 0].tolist(), closed[a0:b0, 1].tolist(), site)
+        now = _kept(rx, ry, site, lax)
+        if now is None or (held and not now) or (r == mine and not now):
+            return None
+        placed[r] = [rx, ry, [max(o, -1) for o in ro]]
+    out = _rebuilt(closed, lengths, owner, placed)
+    near = set(placed)
+    for r in placed:
+        near.update(int(inv[j]) for j in placed[r][2] if j >= 0 and inv[j] >= 0)
+    if rings_disagree_at(*out, inv, ring_id, np.array(sorted(near), dtype=np.int64)).any():
+        return None
+    return out

@@ -21,6 +21,7 @@ from ..kernels.cells import (
     cells_from_triangulation,
     dual_prepare,
     rings_astray,
+    rings_miss,
     rings_nearly_convex,
 )
 from ..kernels.clip import open_ring_convex, rings_convex, rings_convex_area, tiny_folded
@@ -30,6 +31,7 @@ from ..kernels.fortune import fortune_delaunay
 from ..kernels.halfplane import halfplane_cells
 from ..kernels.moments import farthest
 from ..kernels.rings import boundary_cycle, close_rings
+from .agree import agree, split_merged
 from .assemble import assemble_checked
 from .csr import csr_from_pairs
 from .diagram import Diagram, Edges
@@ -465,6 +467,7 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
             if got is not None and not _invalid(*got[:2]):
                 if not len(_lost(xs, ys, box, *got[:2], memo)):
                     closed, lengths, own = got
+        certified = any(x is lengths for x in memo.get("convex", ()))
         del memo
         if len(lost):
             closed, lengths, own, lost = _empty_astray(closed, lengths, own, lost, box)
@@ -475,6 +478,10 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
 
             (closed, lengths, own), lost = restore_lost(
                 xs, ys, box, (closed, lengths, own), lost, unique
+            )
+        if certified:
+            (closed, lengths, own), lost = _held_after_agree(
+                xs, ys, box, (closed, lengths, own), lost, unique, work
             )
         reach = None if dom.is_rect else _reach(closed, lengths, sub, unique, n)
         bufs, edges, clip_lost = assemble_checked(wdom, closed, lengths, own, n, unique, sites=work)
@@ -490,6 +497,29 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
         if reach is not None:
             reach = np.ldexp(reach, -k)
     return Diagram(pts, dup, dom, bufs, edges, algorithm, k, unresolved, reach)
+
+
+def _held_after_agree(xs, ys, box, rings, lost, unique, work):
+    """Certified rings (the half-plane cells) made to agree, with the sites they miss flagged.
+
+    Each half-plane vertex is named, but a vertex rounded (or a group of vertices ulps
+    apart merged) across its site's bisector can leave the site outside its ring by less
+    than an ulp (issue 15's ulp clusters c202, c354); :func:`_lost` does not test these
+    rings. The rings that miss their site (:func:`.cells.rings_miss`, an exact turn or two
+    per ring) are first made to agree with their neighbours (:func:`.agree.agree`, which
+    assembly would apply next and which can give a site back: c328), then a vertex merged
+    from two that floats hold apart is split (:func:`.agree.split_merged`: c354), and the
+    sites still outside are added to ``lost``. Returns ``(rings, lost)``.
+    """
+    miss = rings_miss(xs, ys, rings[0], rings[1], box)
+    if not miss.any():
+        return rings, lost
+    rings = agree(*rings, unique, len(work), work)
+    miss = rings_miss(xs, ys, rings[0], rings[1], box)
+    if miss.any():
+        rings = split_merged(*rings, unique, len(work), work, np.flatnonzero(miss))
+        miss = rings_miss(xs, ys, rings[0], rings[1], box)
+    return rings, np.union1d(lost, np.flatnonzero(miss)).astype(lost.dtype)
 
 
 def _reach(closed, lengths, sub, unique, n):

@@ -734,6 +734,25 @@ def rings_astray(xs, ys, coords, lengths, box, which):
     return out
 
 
+@njit(**NJIT_PARALLEL)
+def rings_miss(xs, ys, coords, lengths, box):
+    """Per site: whether its non-empty ring misses it (exact), the code 1 of :func:`rings_astray`.
+
+    Without the strip test, so about one exact turn per ring (the two edges that straddle
+    the site's height): for rings whose vertices are all named and none merged away by
+    the dual (the half-plane cells), where only code 1 counts.
+    """
+    n = xs.shape[0]
+    out = np.zeros(n, dtype=np.bool_)
+    for j in prange(n):
+        a = lengths[j]
+        b = lengths[j + 1]
+        sx, sy = xs[j], ys[j]
+        if b > a and box[0] <= sx <= box[2] and box[1] <= sy <= box[3]:
+            out[j] = not _holds(sx, sy, coords, a, b)
+    return out
+
+
 @njit(**NJIT)
 def rings_nearly_convex(coords, lengths, ulps):
     """Whether every closed ring is convex up to the rounding of its vertices.
