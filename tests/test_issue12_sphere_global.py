@@ -111,17 +111,24 @@ def test_candidate_lists_hold_polytopes_and_delaunay_edges():
     # a cube's corners are one polytope (all on one empty sphere): each lists the other 7
     cube = np.array([[x, y, z] for x in (0.0, 1.0) for y in (0.0, 1.0) for z in (0.0, 1.0)])
     t = vf.delaunay3d(cube)
-    start, sites, listed = candidate_lists(cube, t.simplices, t.neighbors, 64)
-    assert listed.all()
+    start, sites, listed, big, _ = candidate_lists(cube, t.simplices, t.neighbors, 64)
+    assert listed.all() and (big[0] == -1).all()
     for i in range(8):
         assert sorted(sites[start[i] : start[i + 1]].tolist()) == [j for j in range(8) if j != i]
-    # too big a polytope: no list
-    _, _, listed = candidate_lists(cube, t.simplices, t.neighbors, 7)
-    assert not listed.any()
+    # too big a polytope: each corner lists the corners of its three square faces (not the
+    # opposite one), and the polytope's sites are given whole
+    start, sites, listed, (bigof, bstart, bsite), _ = candidate_lists(
+        cube, t.simplices, t.neighbors, 7
+    )
+    assert listed.all() and (bigof == 0).all() and bsite.tolist() == list(range(8))
+    for i in range(8):
+        assert sorted(sites[start[i] : start[i + 1]].tolist()) == [
+            j for j in range(8) if j not in (i, 7 - i)
+        ]
     # random points: every Delaunay edge in both lists, nearest first
     p = np.random.default_rng(8).random((300, 3))
     t = vf.delaunay3d(p)
-    start, sites, listed = candidate_lists(p, t.simplices, t.neighbors, 64)
+    start, sites, listed, _, _ = candidate_lists(p, t.simplices, t.neighbors, 64)
     assert listed.all()
     lists = [set(sites[start[i] : start[i + 1]].tolist()) for i in range(300)]
     for s in t.simplices:

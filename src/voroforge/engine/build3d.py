@@ -189,13 +189,30 @@ def search3d(P: np.ndarray):
 
 
 def _run(
-    cells, P, W, start, SP, SW, sidx, g, order, tree, t, caps, pool, slots=None, scr=None, wmax=None
+    cells,
+    P,
+    W,
+    start,
+    SP,
+    SW,
+    sidx,
+    g,
+    order,
+    tree,
+    t,
+    caps,
+    pool,
+    slots=None,
+    scr=None,
+    wmax=None,
+    big=None,
 ):
     """Build ``cells`` into fixed per-cell slots (threads on slices of the cells).
 
     ``scr`` (a dict, thread id -> :func:`.cells3d.cell_scratch`) keeps each thread's working
     space from call to call on the same inputs and caps; None: made for this call. ``wmax``:
-    ``W.max()`` (None: found here; the caller of many chunks finds it once).
+    ``W.max()`` (None: found here; the caller of many chunks finds it once). ``big``: the
+    candidate lists' ``(big, star)`` (:mod:`.lists3d`, :func:`.cells3d.build_cells`), or None.
     """
     k = len(cells)
     scr = {} if scr is None else scr
@@ -242,6 +259,7 @@ def _run(
             ofaces[a * cf : b * cf],
             oring[a * cr : b * cr],
             work,
+            *(() if big is None else big),
         )
 
     nth = 1 if pool is None else max(1, min(pool._max_workers, k // 512 or 1))
@@ -606,9 +624,11 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False, lists=True) -
         slots = [_slots(min(CHUNK, k), CAPS) for _ in range(2 if joiner else 1)]
         scr = {}  # each thread's working space, kept from chunk to chunk (_run)
         pending = []
+        grid = (start, SP, SW, sidx, g, None)  # the grid's search (no big polytopes)
 
-        def run(few, *search, sl=None):  # search: (start, SP, SW, sidx, g)
-            return _run(few, P, W, *search, order, tree, t, CAPS, pool, sl, scr, wmax)
+        def run(few, *search, sl=None):  # search: (start, SP, SW, sidx, g, big)
+            *s, big = search
+            return _run(few, P, W, *s, order, tree, t, CAPS, pool, sl, scr, wmax, big)
 
         def join(c0, chunk, how, st, counts, v, c, r2, sl, capa):
             if not made:
@@ -618,9 +638,9 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False, lists=True) -
             def big(q):
                 # a cell past its slots: alone, with big slots (its list, if it was built
                 # from one), joined in its place
-                s = lists.get()[:5] if how is not None and how[q] else (start, SP, SW, sidx, g)
+                s = lists.get()[:6] if how is not None and how[q] else grid
                 st[q], counts[q], v[q], c[q], r2[q] = _big(
-                    chunk[q], P, W, *s, order, tree, t, out, wmax, counts[q]
+                    chunk[q], P, W, s, order, tree, t, out, wmax, counts[q]
                 )
 
             out.add(st, counts, sl, capa, big)
@@ -636,7 +656,6 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False, lists=True) -
                 if len(pending) >= len(slots):
                     pending.pop(0).result()  # the join that used these slots is done
                 chunk = built[c0:c1]
-                grid = (start, SP, SW, sidx, g)
                 s = grid if lists is None else chunk_search(lists, grid)
                 res = run(chunk, *s, sl=slots[q % len(slots)])
                 how = None
@@ -680,17 +699,19 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False, lists=True) -
     )
 
 
-def _big(i, P, W, start, SP, SW, sidx, g, order, tree, t, out, wmax=None, need=None):
+def _big(i, P, W, search, order, tree, t, out, wmax=None, need=None):
     """Build cell ``i`` alone with big slots, growing until it fits, and join it.
 
-    Slots hold at least ``need`` (the ``(nv, nf, nr)`` it reported), scratch twice that.
+    ``search = (start, SP, SW, sidx, g, big)`` (:mod:`.lists3d`). Slots hold at least
+    ``need`` (the ``(nv, nf, nr)`` it reported), scratch twice that.
     """
+    *s, big = search
     factor = BIG_CAPS_FACTOR
     need = [0, 0, 0] if need is None else [int(x) for x in need]
     while True:  # (growing by 4 alone built a sphere's centre cell, 8,000 vertices, 5 times)
         caps = tuple(max(CAPS[q] * factor, need[q % 3] * (1 + q // 3)) for q in range(6)) + CAPS[6:]
         st, counts, v, c, r2, sl, capa = _run(
-            np.array([i]), P, W, start, SP, SW, sidx, g, order, tree, t, caps, None, wmax=wmax
+            np.array([i]), P, W, *s, order, tree, t, caps, None, wmax=wmax, big=big
         )
         # (a sphere's centre cell of 40,000 faces needs the slots of its counts at 1024)
         if st[0] != OVERFLOW or factor >= 1024:

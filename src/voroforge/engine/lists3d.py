@@ -10,9 +10,13 @@ Delaunay polytopes, from one ``vf.delaunay3d`` of all sites, made when the first
 needs it). The list holds every site whose plane bounds the cell or passes through one of
 its vertices, so the cell and its vertex names are the ones the full search gives; only
 the order of its vertices and faces (the cuts' history) and the rounding of its volume
-and centroid may differ. A site with no list (a polytope of more than
-:data:`POLYTOPE_MOST` sites: integer points of one sphere; a flat input) is searched
-again without a budget, as before.
+and centroid may differ. A polytope of more than :data:`POLYTOPE_MOST` sites (integer
+points of one sphere: one polytope of all n) is not listed whole: its sites list the sites
+of its 2-faces at them, and its centre vertex is named once from all its sites (the
+``big`` of :func:`.kernels.candidates3d.candidate_lists`). A site with no list (in two
+such polytopes; a flat input) is searched again without a budget, as before. A cell whose
+vertex has more owners than its owner table holds (the centre of a big polytope) stops
+with ``SLOW`` too, so such inputs take the lists below the budget.
 """
 
 from __future__ import annotations
@@ -30,9 +34,13 @@ SITE_BUDGET = 2048.0
 #: many cells ran past the budget, and this share of the cells built so far: fewer are
 #: searched again without a budget (each cost at most a full scan: cheaper than the lists)
 LISTS_AFTER = (64, 0.01)
-#: the largest Delaunay polytope (sites on one empty sphere) whose sites get lists: each of
-#: its sites' lists holds all of it
+#: the largest Delaunay polytope (sites on one empty sphere) listed whole: each of its sites'
+#: lists holds all of it; a bigger one lists the sites of its 2-faces at each site
 POLYTOPE_MOST = 64
+#: a cell with at least this many candidates is read off its Delaunay star
+#: (:mod:`.kernels.star3d`) where the container does not cut it: cut plane by plane, the
+#: centre of n points on a sphere (n faces) cost O(n^2)
+STAR_LEAST = 256
 #: test only: every cell is built from its list (where it has one)
 FORCE = False
 
@@ -41,7 +49,10 @@ class Lists:
     """The candidate lists of sites ``P`` (weights ``W``, all zero), made on first use.
 
     ``g`` is the search grid (9 values, :func:`.build3d.search3d`); :meth:`budget` is it
-    with the budget, the lists' own grid ends in -1 (the kernel's list mode).
+    with the budget, the lists' own grid ends in -1 (the kernel's list mode). A search is
+    ``(start, SP, SW, sidx, g, big)``: ``big`` None for the grid's, for the lists' the big
+    polytopes' sites and every site's Delaunay star (``big`` and ``star`` of
+    :func:`.kernels.cells3d.build_cells`).
     """
 
     def __init__(self, P: np.ndarray, W: np.ndarray, g: np.ndarray):
@@ -63,19 +74,27 @@ class Lists:
         return self.made is not None or FORCE or self.slow >= max(most, share * self.seen)
 
     def get(self):
-        """``(start, SP, SW, sidx, g, listed)`` or None when the sites span no volume."""
+        """``(start, SP, SW, sidx, g, big, listed)`` or None when the sites span no volume."""
         if self.made is None:
             from .delaunay3d import delaunay3d  # (imports engine.voronoi3d, which imports us)
 
             tri = delaunay3d(self.P)
             self.made = False
             if len(tri.simplices):
-                start, sites, listed = candidate_lists(
-                    self.P, tri.simplices, tri.neighbors, POLYTOPE_MOST
+                T = np.ascontiguousarray(tri.simplices, np.int64)
+                N = np.ascontiguousarray(tri.neighbors, np.int64)
+                start, sites, listed, big, (tpid, pstart, psite) = candidate_lists(
+                    self.P, T, N, POLYTOPE_MOST
                 )
                 SP = np.ascontiguousarray(self.P[sites])
                 SW = np.ascontiguousarray(self.W[sites])
-                self.made = (start, SP, SW, sites, np.append(self.g, -1.0), listed)
+                # the tetrahedra at each site (CSR)
+                tlist = np.argsort(T.ravel(), kind="stable") // 4
+                tstart = np.zeros(len(self.P) + 1, np.int64)
+                np.cumsum(np.bincount(T.ravel(), minlength=len(self.P)), out=tstart[1:])
+                star = (tstart, tlist, T, N, tpid, pstart, psite, np.array([STAR_LEAST]))
+                g = np.append(self.g, -1.0)
+                self.made = (start, SP, SW, sites, g, (big, star), listed)
         return self.made or None
 
 
@@ -94,23 +113,23 @@ def chunks(k: int, most: int, probe: bool):
 def chunk_search(lists, search):
     """The search of the next chunk: the lists once they are made, else the grid's.
 
-    ``search = (start, SP, SW, sidx, g)``: the grid's, given the budget here.
+    ``search = (start, SP, SW, sidx, g, None)``: the grid's, given the budget here.
     """
     if lists.made:
-        return lists.made[:5]
-    return (*search[:4], lists.budget())
+        return lists.made[:6]
+    return (*search[:4], lists.budget(), None)
 
 
 def redo_slow(chunk, res, lists, run, search):
     """Build again the cells of ``chunk`` that ran past the budget; returns which from lists.
 
     ``res`` is :func:`.build3d._run`'s result for the chunk (changed in place), ``run(cells,
-    start, SP, SW, sidx, g)`` runs the kernel on a few cells, ``search`` is ``(start, SP,
-    SW, sidx, g)`` of the grid (no budget). Returns ``(k,) bool``, True where the cell was
+    start, SP, SW, sidx, g, big)`` runs the kernel on a few cells, ``search`` is ``(start, SP,
+    SW, sidx, g, None)`` of the grid (no budget). Returns ``(k,) bool``, True where the cell was
     built from its list, or None when no cell ran past the budget.
     """
     if lists.made:  # the chunk was built from lists: the sites without one, searched
-        listed = lists.made[5][chunk]
+        listed = lists.made[6][chunk]
         at = np.flatnonzero(~listed)
         if len(at):
             _splice(res, at, run(chunk[at], *search))
@@ -123,11 +142,11 @@ def redo_slow(chunk, res, lists, run, search):
     made = lists.get() if lists.worth(len(slow), len(chunk)) else None
     listed = np.zeros(len(chunk), np.bool_)
     if made is not None:
-        listed[slow] = made[5][chunk[slow]]
+        listed[slow] = made[6][chunk[slow]]
     for use in (True, False):
         at = slow[listed[slow] == use]
         if len(at):
-            _splice(res, at, run(chunk[at], *(made[:5] if use else search)))
+            _splice(res, at, run(chunk[at], *(made[:6] if use else search)))
     return listed
 
 

@@ -25,6 +25,7 @@ from .cellcut3d import (
     NJIT_NO_NRT,
     OK,
     OVERFLOW,
+    SLOW,
     UNNAMED,
     cut_scratch,
     graph_scratch,
@@ -36,6 +37,7 @@ from .cellcut3d import (
 from .graph3d import from_rings
 from .polyhedron import CUT_NONE, cut, moments, plane_values
 from .predicates3d import bisector_side, scratch, wall_lift
+from .star3d import DECLINE, star_cell
 from .vertex3d import axis_snap, name_key, name_vertex, place
 
 # the status codes are :mod:`kernels.cellcut3d`'s; the engine reads them from here
@@ -128,6 +130,8 @@ def _name_cell(
     keys,
     G,
     X,
+    BG,
+    bkeys,
 ):
     """Owners, names and named coordinates of the cell's vertices; returns status.
 
@@ -136,7 +140,10 @@ def _name_cell(
     cut) can have those, so only they are tested against the planes that touched the cell
     and the walls; without one (face rings) every vertex is. ``rows (3, 4)``, ``y (3,)``,
     ``name (4,)``, ``x (3,)`` and ``keys`` (``OWN``'s width) are scratch; ``X`` the exact
-    predicates'.
+    predicates'. ``BG = (bigof, bstart, bsite)``: a vertex named by four sites of cell
+    ``i``'s big polytope is its centre, whose owners are all its sites (and the walls found
+    here): named from them (:func:`_big_keys`, into ``bkeys``), as a cell that found every
+    one of them names it.
     """
     graph = G[0].shape[0] > 0
     nfo = work[:, 1]
@@ -235,6 +242,13 @@ def _name_cell(
                 keys[u] = keys[t]
                 u += 1
         r = name_vertex(keys, u, P, W, WP, ns, rows, y, name, X[1]) if u >= 4 else 0
+        kk = keys
+        if r != 0 and BG[0].shape[0] > 0 and BG[0][i] >= 0:
+            u2 = _big_keys(BG, BG[0][i], name, keys, u, ns, bkeys)
+            if u2 > 0:  # the big polytope's centre: named from all its sites
+                kk = bkeys
+                u = u2
+                r = name_vertex(kk, u, P, W, WP, ns, rows, y, name, X[1])
         if r == 0:
             return UNNAMED
         a = name[0]
@@ -242,13 +256,13 @@ def _name_cell(
             vnames[v, q] = name[q]
         nsite = 0
         for t in range(u):
-            nsite += keys[t] < ns
+            nsite += kk[t] < ns
         # the join's identity besides the coordinates, and the owner sites (osite)
         vnames[v, 4] = (name_key(u, name) << 8) | min(nsite, 255)
         place(name, P, W, WP, ns, y, x, X[1])  # x = p_a + y, or exact where that cancels
         if r == 2:  # solved exactly (walls at small angles): merge by name as exact cells do
             X[2][0] = True
-        axis_snap(keys, u, ns, WP, x)
+        axis_snap(kk, u, ns, WP, x)
         for q in range(3):
             vabs[v, q] = x[q]
             if x[q] == P[a, q] + y[q]:
@@ -256,6 +270,44 @@ def _name_cell(
             else:  # snapped onto a wall
                 vrel[v, q] = x[q] - P[i, q]
     return OK
+
+
+@njit(**NJIT_NO_NRT)
+def _big_keys(BG, q, name, keys, u, ns, bkeys):
+    """All owners of big polytope ``q``'s centre into ``bkeys``, if ``name`` names it.
+
+    ``name`` (four keys) names the centre when all four are sites of the polytope: four
+    independent sites on its empty sphere meet only there. The owners are then the
+    polytope's sites (``BG[2]``, increasing) and the walls among ``keys[:u]`` (the found
+    owners, sorted: walls last). Returns their number, or 0 (another vertex).
+    """
+    bstart = BG[1]
+    bsite = BG[2]
+    lo0 = bstart[q]
+    hi0 = bstart[q + 1]
+    for t in range(4):
+        k = name[t]
+        if k >= ns:
+            return 0
+        lo = lo0
+        hi = hi0
+        while lo < hi:  # binary search in the polytope's sorted sites
+            mid = (lo + hi) // 2
+            if bsite[mid] < k:
+                lo = mid + 1
+            else:
+                hi = mid
+        if lo == hi0 or bsite[lo] != k:
+            return 0
+    m = 0
+    for t in range(lo0, hi0):
+        bkeys[m] = bsite[t]
+        m += 1
+    for t in range(u):
+        if keys[t] >= ns:
+            bkeys[m] = keys[t]
+            m += 1
+    return m
 
 
 @njit(**NJIT_NO_NRT)
@@ -398,6 +450,8 @@ def build_cells(
     ofaces,
     oring,
     scr,
+    big=None,
+    star=None,
 ):
     """Build the cells ``cells (k,)`` (site numbers); ``wmax`` is ``W``'s largest weight.
 
@@ -409,19 +463,81 @@ def build_cells(
     ``rad2`` (squared radius from the site); a cell past its output slots is ``OVERFLOW``
     with the counts it needs (0 when its scratch overflowed first). ``scr`` is the working space of
     :func:`cell_scratch`, made once per thread for these sites, grid, template and caps.
+    ``big``: ``(bigof, bstart, bsite)`` of candidate lists' big polytopes
+    (:func:`.candidates3d.candidate_lists`; their centres named from all their sites), or
+    None. A cell whose vertex has more owners than ``OWN`` holds is ``SLOW`` where the grid
+    has a budget (``g[9] > 0``: the engine builds it from its list), else ``OVERFLOW``.
+    ``star``: the Delaunay star of every site (:func:`.star3d.star_cell`'s ``ST``, its last
+    entry ``[least]``): a cell whose candidate list (list mode) has at least ``least``
+    sites is read off its star where the container does not cut it, else None.
     """
     k = cells.shape[0]
     ns = P.shape[0]
-    cv = caps[0]
-    cf = caps[1]
-    cr = caps[2]
     C, OWN, cand, cd2, buck, hkey, ib, tb, NM, G, G0, TG, X = scr
     vnames, vabs, vrel, remap, rows, y, name, x, keys = NM
     V, F, R, _, _, work, T = C
+    if big is None:
+        BG = (np.full(0, -1, np.int64), np.zeros(1, np.int64), np.zeros(0, np.int64))
+    else:
+        BG = big
+    most = 0  # the largest big polytope: bkeys holds it and the walls
+    for q in range(BG[1].shape[0] - 1):
+        most = max(most, BG[1][q + 1] - BG[1][q])
+    bkeys = np.zeros(most + WP.shape[0] + 1, np.int64)
+    budget = g.shape[0] > 9 and g[9] > 0.0
+    least = -1  # star: the shortest list read off its star (-1: none is)
+    if star is not None and g.shape[0] > 9 and g[9] < 0.0:
+        for c in range(k):
+            if start[cells[c] + 1] - start[cells[c]] >= star[7][0]:
+                least = star[7][0]
+        # its scratch (per polytope, per site), made only where a cell needs it
+        m = star[5].shape[0] if least >= 0 else 0
+        mark = (np.zeros(m, np.int64), np.zeros(m, np.int64), np.zeros(ns if m else 0, np.int64))
+        scaps = np.array([V.shape[0], F.shape[0], R.shape[0]], np.int64)
     for c in range(k):
         i = cells[c]
         X[2][0] = False
         Gu = G
+        if least >= 0 and start[i + 1] - start[i] >= least:
+            st, nv, nf, nr = star_cell(i, P, W, WP, star, F, R, NM, X[1], mark, scaps)
+            if st != DECLINE:
+                counts[c, 0] = nv
+                counts[c, 1] = nf
+                counts[c, 2] = nr
+                vol[c] = 0.0
+                cen[c, 0] = np.nan
+                cen[c, 1] = np.nan
+                cen[c, 2] = np.nan
+                rad2[c] = 0.0
+                if st != OK:
+                    status[c] = OVERFLOW  # its scratch: the engine's retry reads the counts
+                    continue
+                nv, nf, nr = _merge_named(nv, F, nf, R, vnames, vabs, vrel, remap)
+                rad2[c] = radius2(vrel, nv)
+                _finish(
+                    c,
+                    i,
+                    P,
+                    nv,
+                    nf,
+                    nr,
+                    F,
+                    R,
+                    vnames,
+                    vabs,
+                    vrel,
+                    caps,
+                    status,
+                    counts,
+                    vol,
+                    cen,
+                    rad2,
+                    osite,
+                    ovabs,
+                    ofaces,
+                    oring,
+                )
+                continue
         while True:
             st, nv, nf, nt, r2 = one_cell(
                 i,
@@ -489,7 +605,11 @@ def build_cells(
             keys,
             Gu,
             X,
+            BG,
+            bkeys,
         )
+        if st == OVERFLOW and budget:
+            st = SLOW  # a vertex of more owners than OWN holds: from its list
         if st != OK:
             status[c] = st
             continue
@@ -499,39 +619,92 @@ def build_cells(
             nr = 0
             for f in range(nf):
                 nr += F[f, 2]
-        if nv > cv or nf > cf or nr > cr:
-            status[c] = OVERFLOW  # with the sizes it needs (the engine's retry reads them)
-            counts[c, 0] = nv
-            counts[c, 1] = nf
-            counts[c, 2] = nr
-            continue
-        if nf < 4:
-            status[c] = EMPTY
-            continue
-        status[c] = OK
+        _finish(
+            c,
+            i,
+            P,
+            nv,
+            nf,
+            nr,
+            F,
+            R,
+            vnames,
+            vabs,
+            vrel,
+            caps,
+            status,
+            counts,
+            vol,
+            cen,
+            rad2,
+            osite,
+            ovabs,
+            ofaces,
+            oring,
+        )
+
+
+@njit(**{**NJIT_NO_NRT, "inline": "always"})
+def _finish(
+    c,
+    i,
+    P,
+    nv,
+    nf,
+    nr,
+    F,
+    R,
+    vnames,
+    vabs,
+    vrel,
+    caps,
+    status,
+    counts,
+    vol,
+    cen,
+    rad2,
+    osite,
+    ovabs,
+    ofaces,
+    oring,
+):
+    """Cell ``c`` (site ``i``), named and merged, into its output slots (or ``OVERFLOW``)."""
+    cv = caps[0]
+    cf = caps[1]
+    cr = caps[2]
+    if nv > cv or nf > cf or nr > cr:
+        status[c] = OVERFLOW  # with the sizes it needs (the engine's retry reads them)
         counts[c, 0] = nv
         counts[c, 1] = nf
         counts[c, 2] = nr
-        v0, mx, my, mz = moments(vrel, F, nf, R)
-        vol[c] = v0
-        if v0 > 0.0:
-            cen[c, 0] = P[i, 0] + mx / v0
-            cen[c, 1] = P[i, 1] + my / v0
-            cen[c, 2] = P[i, 2] + mz / v0
-        bv = c * cv
-        for v in range(nv):
-            osite[bv + v] = vnames[v, 4]  # name key << 8 | owner sites
-            for q in range(3):
-                ovabs[bv + v, q] = vabs[v, q] + 0.0  # one zero: -0.0 + 0.0 == +0.0
-        bf = c * cf
-        br = c * cr
-        t = 0
-        for f in range(nf):
-            ofaces[bf + f, 0] = F[f, 0]
-            ofaces[bf + f, 1] = F[f, 2]
-            for q in range(F[f, 2]):
-                oring[br + t] = R[F[f, 1] + q]
-                t += 1
+        return
+    if nf < 4:
+        status[c] = EMPTY
+        return
+    status[c] = OK
+    counts[c, 0] = nv
+    counts[c, 1] = nf
+    counts[c, 2] = nr
+    v0, mx, my, mz = moments(vrel, F, nf, R)
+    vol[c] = v0
+    if v0 > 0.0:
+        cen[c, 0] = P[i, 0] + mx / v0
+        cen[c, 1] = P[i, 1] + my / v0
+        cen[c, 2] = P[i, 2] + mz / v0
+    bv = c * cv
+    for v in range(nv):
+        osite[bv + v] = vnames[v, 4]  # name key << 8 | owner sites
+        for q in range(3):
+            ovabs[bv + v, q] = vabs[v, q] + 0.0  # one zero: -0.0 + 0.0 == +0.0
+    bf = c * cf
+    br = c * cr
+    t = 0
+    for f in range(nf):
+        ofaces[bf + f, 0] = F[f, 0]
+        ofaces[bf + f, 1] = F[f, 2]
+        for q in range(F[f, 2]):
+            oring[br + t] = R[F[f, 1] + q]
+            t += 1
 
 
 @njit(**NJIT)
