@@ -128,12 +128,13 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
         # faces, which a cell built from its list does not keep)
         res = build_cells3d(P, W, tw, cells=build, progress=progress, short=True, lists=False)
         gmap = None
-    elif takes_hull_path(tw):  # a big Convex: box cells, then those at a wall (engine.hull3d)
-        res = hull_cells(P, W, tw, progress=progress)
-        gmap = None
     else:
-        res = build_cells3d(P, W, tw, cells=np.arange(u), progress=progress)
+        res = _convex_cells(P, W, tw, progress)
         gmap = None
+        if tw.float_cut and (res.unmatched or ((res.status != 0) & (res.status != 1)).any()):
+            # a bisector through a hull corner of 4+ walls (containers.exact_twin): the
+            # cells again from the exact polytope of the same walls
+            res = _convex_cells(P, W, container._twin().scaled(k), progress)
     d = _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh)
     if mesh is not None:
         from .mesh3d import cut_by_mesh
@@ -142,6 +143,13 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
     del res, P, W, uniq, dup, gmap
     release_freed_memory(u)
     return d
+
+
+def _convex_cells(P, W, tw, progress):
+    """The cells of every site in a box or Convex template ``tw`` (working frame)."""
+    if takes_hull_path(tw):  # a big Convex: box cells, then those at a wall (engine.hull3d)
+        return hull_cells(P, W, tw, progress=progress)
+    return build_cells3d(P, W, tw, cells=np.arange(len(P)), progress=progress)
 
 
 def _walls_frame(pts: np.ndarray, t: Template):
