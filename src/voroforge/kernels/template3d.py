@@ -55,15 +55,8 @@ def cut_all(TV, TF, TR, N, d, first_label):
             return st, w, V[:0].copy(), F[:0].copy(), R[:0].copy()
         nv = nv2
         nf = nf2
-        # rings packed from 0 in face order (as container_cut returns them)
-        t = 0
-        for f in range(nf):
-            for q in range(F[f, 2]):
-                R2[t + q] = R[F[f, 1] + q]
-            F[f, 1] = t
-            t += F[f, 2]
-        for q in range(t):
-            R[q] = R2[q]
+        # (the cut leaves the rings packed from 0 in face order, as container_cut returns
+        # them: a repack here copied every ring twice a plane, 15% of the call)
     nr = 0
     for f in range(nf):
         nr += F[f, 2]
