@@ -9,6 +9,7 @@ import pytest
 import shapely
 import shapely.geometry
 
+import voroforge as vf
 from voroforge.cli import main
 from voroforge.io.readers import boundary_crs, read_point_table
 
@@ -169,3 +170,23 @@ def test_design_geoparquet_has_the_geojson_rows(tmp_path):
         if f["geometry"]:
             assert shapely.geometry.shape(f["geometry"]).equals_exact(row.geometry, 1e-12)
     assert np.isclose(df["area"].sum(), 1.0)
+
+
+def test_design_seed_file_points_on_the_outline_get_their_cells(tmp_path):
+    # a row on the boundary's edge or corner is inside (it had no cell, and its region went
+    # to its neighbours); its cell is the one vf.voronoi gives the same sites in the box
+    from voroforge.design.build import build
+
+    pts = np.array([[10, 10], [50, 40], [100, 40], [0, 0], [70, 20], [120, 5]], float)
+    (tmp_path / "pts.csv").write_text("x,y\n" + "".join(f"{x},{y}\n" for x, y in pts))
+    (tmp_path / "d.toml").write_text(
+        '[design]\nname = "sf"\n[boundary]\nshape = "rectangle"\nwidth = 100\nheight = 80\n'
+        '[seeds]\nmethod = "file"\nfile = "pts.csv"\n[output]\nformats = ["geojson"]\n'
+    )
+    build(tmp_path / "d.toml", tmp_path / "out")
+    feats = json.loads((tmp_path / "out" / "sf.geojson").read_text())["features"]
+    ref = vf.voronoi(pts[:5], (0, 0, 100, 80))
+    got = [shapely.geometry.shape(f["geometry"]).area if f["geometry"] else 0.0 for f in feats]
+    assert np.allclose(got[:5], ref.areas, rtol=1e-12, atol=1e-9)
+    assert got[2] > 1300 and got[3] == pytest.approx(50.0)  # the edge's and the corner's
+    assert feats[5]["geometry"] is None  # outside: no cell

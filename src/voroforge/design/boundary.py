@@ -198,8 +198,33 @@ def union(*geoms):
         raise ValueError("union needs at least one polygon")
     for i, g in enumerate(geoms):
         as_polygonal(g, f"geometry {i}")
-    out = shapely.union_all(np.asarray(geoms, dtype=object))
+    out = union_all_checked(np.asarray(geoms, dtype=object))
     return as_polygonal(polygonal_part(out), "union")
+
+
+def union_all_checked(geoms):
+    """``shapely.union_all`` of polygons, checked: no polygon is left out.
+
+    GEOS's cascaded union can drop whole polygons whose edges lie a rounding apart from
+    their neighbours' (25 cells inset by 1e-16: two of them missing, the union 22.54 of
+    25.0, and valid). A polygon whose interior point the union does not cover is united
+    again, pairwise with the result, until every one is covered.
+    """
+    parts = shapely.get_parts(np.asarray(geoms, dtype=object).ravel())
+    parts = parts[~shapely.is_empty(parts)]
+    out = shapely.union_all(parts)
+    if len(parts) < 2:
+        return out
+    probe = shapely.point_on_surface(parts)
+    px, py = shapely.get_x(probe), shapely.get_y(probe)
+    for _ in range(4):
+        shapely.prepare(out)
+        lost = np.flatnonzero(~shapely.intersects_xy(out, px, py))
+        if not len(lost):
+            return out
+        for k in lost:
+            out = shapely.union(out, parts[k])
+    return out
 
 
 # ----------------------------------------------------------------------------- files

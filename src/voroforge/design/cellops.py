@@ -708,7 +708,7 @@ def frame(boundary, openings) -> shapely.Polygon | shapely.MultiPolygon:  # noqa
     shapely.Polygon or shapely.MultiPolygon
         With the openings as holes (a MultiPolygon if the openings cut it apart).
     """
-    from .boundary import as_polygonal, polygonal_part
+    from .boundary import as_polygonal, polygonal_part, union_all_checked
 
     geom = as_polygonal(boundary)
     arr = as_cells(openings)
@@ -742,5 +742,5 @@ def frame(boundary, openings) -> shapely.Polygon | shapely.MultiPolygon:  # noqa
     result = pieces[0] if len(pieces) == 1 else shapely.MultiPolygon(pieces)
     rest = parts[~simple]
     if len(rest):
-        result = shapely.difference(result, shapely.union_all(rest))
+        result = shapely.difference(result, union_all_checked(rest))
     return polygonal_part(result)

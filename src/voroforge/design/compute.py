@@ -327,7 +327,8 @@ def _file_seeds(design: Design, domain, base: Path | None) -> tuple[np.ndarray, 
 
     with as_design_error("seeds.file"):
         pts, attributes = read_point_table(find_file(base, design.seeds.file, "seeds.file"))
-    rows = np.flatnonzero(shapely.contains_xy(domain, pts[:, 0], pts[:, 1]))
+    # on the outline counts as inside: such a site owns the part of the domain nearest it
+    rows = np.flatnonzero(shapely.intersects_xy(domain, pts[:, 0], pts[:, 1]))
     return pts[rows], SeedTable(pts, rows, attributes)
 
 
@@ -780,4 +781,6 @@ def _frame(boundary, openings: np.ndarray, fresh: np.ndarray | None = None, extr
                     extra["frame_fast"] = True
                 rings = [*boundary.interiors, *(o.exterior for o in openings)]
                 return shapely.Polygon(boundary.exterior, rings)
-    return boundary.difference(shapely.union_all(openings))
+    from .boundary import union_all_checked
+
+    return boundary.difference(union_all_checked(openings))

@@ -26,6 +26,7 @@ import numpy as np
 import shapely
 
 from .. import config
+from .boundary import union_all_checked
 
 __all__ = [
     "KINDS",
@@ -426,7 +427,7 @@ def check(
             raise ValueError("openings need a boundary to check against")
         holes = _as_polygons(openings, "openings")
         outline = shapely.union_all(_as_polygons(boundary, "boundary"))
-        frame_geom = outline.difference(shapely.union_all(holes)) if len(holes) else outline
+        frame_geom = outline.difference(union_all_checked(holes)) if len(holes) else outline
     else:
         raise ValueError("check needs a frame, or openings and a boundary")
 
