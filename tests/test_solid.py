@@ -338,6 +338,24 @@ def test_shell_with_openings():
     assert len(m.metadata["pores"]["size"]) == 12
 
 
+def test_shell_of_an_unwelded_surface_is_the_welded_one():
+    # every triangle with its own three vertices (as STL gives them): every edge was "open",
+    # the rim covered the whole surface and no opening was cut (the plain shell's volume)
+    surf = trimesh.creation.cylinder(radius=10.0, height=12.0, sections=48)
+    keep = surf.face_normals[:, 2] ** 2 < 0.5
+    tube = trimesh.Trimesh(surf.vertices, surf.faces[keep], process=True)
+    loose = trimesh.Trimesh(
+        tube.vertices[tube.faces].reshape(-1, 3),
+        np.arange(3 * len(tube.faces)).reshape(-1, 3),
+        process=False,
+    )
+    args = dict(thickness=1.0, openings=12, web=1.5, voxel=0.4, smoothing=2)
+    a, b = solid.shell(tube, **args), solid.shell(loose, **args)
+    _solid_ok(b)
+    assert b.volume < 0.95 * 2 * math.pi * 10.0 * 12.0
+    assert b.volume == pytest.approx(a.volume, rel=1e-9)
+
+
 def test_extrude_analytic_and_relief():
     frame = shapely.box(0, 0, 10, 10).difference(shapely.box(2, 2, 8, 8))
     m = solid.extrude(frame, 3.0)

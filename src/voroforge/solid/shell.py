@@ -29,8 +29,14 @@ _RIM_RUN = 4096
 
 
 def _boundary_points(verts, faces, step: float) -> np.ndarray:
-    """Points every ``step`` along the mesh's open boundary edges (empty when closed)."""
-    b = boundary_edges(faces)
+    """Points every ``step`` along the mesh's open boundary edges (empty when closed).
+
+    Vertices at one position are one (an unwelded mesh, every triangle with its own three
+    vertices as STL gives them, had every edge open: the rim covered the whole surface and
+    no opening was cut).
+    """
+    verts, same = np.unique(verts, axis=0, return_inverse=True)
+    b = boundary_edges(same.reshape(-1)[faces])
     if not len(b):
         return np.zeros((0, 3))
     p, q = verts[b[:, 0]], verts[b[:, 1]]
