@@ -241,3 +241,14 @@ def test_fillet_arcs_survive_far_from_the_origin(tmp_path, offset):
     assert sum(1 for p in pts if p[2]) == 4
     true = 46 * 26 - (4 - np.pi) * 9
     assert abs(area - true) < 1e-6 * true + 64 * np.spacing(offset + 46) * 46
+
+
+def test_rings_smaller_than_the_merge_tolerance_are_named_not_dropped_silently():
+    big = shapely.box(0, 0, 100, 80)
+    tiny = shapely.box(50, 40, 50 + 2e-8, 40 + 2e-8)  # 2e-10 of the drawing
+    with pytest.warns(UserWarning, match="1 closed paths are no bigger than the vertex merge"):
+        paths = plotter.layer_paths([big, tiny])
+    assert len(paths.paths) == 1
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert len(plotter.layer_paths([big, tiny], tolerance=1e-12).paths) == 2

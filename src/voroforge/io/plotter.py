@@ -28,6 +28,7 @@ Examples
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -664,6 +665,13 @@ def layer_paths(
         return Paths([], np.zeros(0, dtype=bool))
     coords = np.concatenate(everything)
     tol = _tolerance(coords, tolerance)
+    tiny = sum(1 for r in rings if float(np.ptp(r, axis=0).max()) <= tol)
+    if tiny:  # they collapse to a point: say so rather than drop them silently
+        warnings.warn(
+            f"{tiny} closed paths are no bigger than the vertex merge tolerance {tol:.3g} "
+            "and are left out (pass a smaller tolerance, or scale the drawing)",
+            stacklevel=2,
+        )
     if dedupe:
         rings, lines = _dedupe(rings, lines, tol)
     if merge and lines:
