@@ -98,7 +98,8 @@ class Description:
         Cells that must be convex: all non-empty cells when the domain is convex (a box),
         else those farther from its boundary than ``100 * VERTEX_RTOL`` of their own
         largest coordinate (with ``wrap=True`` every piece of every cell that does not
-        border its own image).
+        border its own image); never the cell of a site in ``Diagram.unresolved`` (a ring
+        that closes the gap its neighbours leave, not the site's Voronoi cell).
     nonconvex : int
         How many of them are not convex (should be 0).
     convex_ok : bool
@@ -595,6 +596,9 @@ def describe(d) -> Description:
         expected = 0  # nothing is subdivided
     euler = vertices - edges + faces
     nonempty = np.flatnonzero(parts_per_cell > 0)
+    # a flagged site's ring (kept beside it, or the gap its neighbours leave, engine.restore)
+    # stands in for a cell floats cannot give: not held to convexity
+    nonempty = nonempty[~np.isin(nonempty, d.unresolved)]
     geom_b = d.boundary
     convex_domain = d.periodic or domain_of(d).is_rect
     if not convex_domain:

@@ -175,6 +175,7 @@ def split_plane(coords, ring, idx, nxt, ids):
         # within the rounding of the coordinates (a tenth more: the float products' error)
         close = cross <= 1.1 * VERTEX_STRAIGHT_ULPS * np.spacing(top) * np.hypot(*e.T)
     found = {}
+    apart = {}  # (side, point): the point's exact distance from the side's line, scaled
     for s_, c_ in zip(side[close], cand[close], strict=True):
         pa = [Fraction(float(t)) for t in p[s_]]
         qa = [Fraction(float(t)) for t in q[s_]]
@@ -183,6 +184,7 @@ def split_plane(coords, ring, idx, nxt, ids):
         along = d[0] * (va[0] - pa[0]) + d[1] * (va[1] - pa[1])
         if 0 < along < d[0] ** 2 + d[1] ** 2:  # strictly between the side's ends
             found.setdefault(int(s_), []).append((along, int(c_)))
+            apart[int(s_), int(c_)] = abs(d[0] * (va[1] - pa[1]) - d[1] * (va[0] - pa[0]))
     # ... and not a vertex of the side's own ring (it would pass that vertex twice)
     for s_ in found:
         j = int(odd[s_])
@@ -198,7 +200,10 @@ def split_plane(coords, ring, idx, nxt, ids):
     chains = {}
     pieces = {}
     for s_, row in found.items():
-        row.sort()
+        # at one place along the side, the point nearest it first: a vertex exactly on it
+        # before one a few ulps off (cells 3 ulps wide at 1e14: a vertex 6 ulps below the
+        # side, as far along it as the T-junction's, took its place in the chain)
+        row.sort(key=lambda t, s_=s_: (t[0], apart[s_, t[1]], t[1]))
         chain = [int(a[odd[s_]])] + [int(pid[c_]) for _, c_ in row] + [int(b[odd[s_]])]
         chains[s_] = chain
         for u, w in zip(chain[:-1], chain[1:], strict=True):

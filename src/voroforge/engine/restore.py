@@ -19,18 +19,22 @@ exact test of :func:`.cells.rings_astray`) takes the site out of the lost list; 
 passes beside it (a wedge whose rounded apex is an ulp off) is kept, closing the gap, and
 the site stays listed. Everything depends on the rings and the sites alone, and every
 algorithm reaches this step with the same rings (:func:`.planar._fewest_lost`), so they
-all give the same answer.
+all give the same answer. Where no exact cell fits (cells ~35 ulps wide at 4e12: a ring left
+empty as folded, its neighbours' vertices up to 6 ulps from the exact ones), the gap's own
+boundary closes it as the ring of a lost site its edges name (:func:`_fill_cycles`).
 """
 
 from __future__ import annotations
 
 import math
+from collections import Counter
 
 import numpy as np
 import shapely
 
 from ..config import RESTORE_FIRST, RESTORE_SNAP_ULPS
 from ..kernels.cells import rings_astray
+from ..kernels.clip import rings_convex
 from ..kernels.dual_some import splice_rings
 from .power_exact import Exact, line, vertex
 
@@ -85,23 +89,36 @@ def restore_lost(xs, ys, box, rings, lost, kmap):
         kept = _settle(cand, gaps)
     # a ring beside its site (rounding moved the wedge's apex an ulp past it) is kept too:
     # the gap closes, and the site stays flagged, as a hull strip's ring beside its site is
-    held = _holding(xs, ys, box, kept)
-    if not kept:
-        return rings, lost
+    if kept:
+        held = _holding(xs, ys, box, kept)
+        rings = _spliced(rings, kept, gaps, kmap)
+        lost = lost[~np.isin(lost, list(held & set(kept)))]
+    rest = empty[~np.isin(empty, list(kept))]
+    if len(rest):
+        rings, lost = _fill_cycles(xs, ys, box, rings, lost, rest, kmap)
+    return rings, lost
+
+
+def _spliced(rings, kept, gaps, kmap):
+    """The rings with ``kept`` (:func:`_settle`'s ``{site: (ring, labels)}``) spliced in.
+
+    Each gap edge a kept ring runs along is a neighbour's edge reversed: the neighbour's
+    edge now faces the kept ring's site.
+    """
+    closed, lengths, owner = rings
     own = owner.copy()
     new_lengths = np.zeros_like(lengths)
     size = np.zeros(len(lengths) - 1, dtype=np.int64)
-    parts = []
     for i in sorted(kept):
         ring, labels = kept[i]
         for e in (e for kind, e in labels if kind == "gap"):
             own[e] = kmap[i]  # the neighbour's edge along the gap now faces site i
         size[i] = len(ring) + 1
-        parts.append((ring, labels))
     np.cumsum(size, out=new_lengths[1:])
     coords = np.zeros((int(new_lengths[-1]), 2))
     labels_out = np.full(len(coords), -2, dtype=np.int64)
-    for i, (ring, labels) in zip(sorted(kept), parts, strict=True):
+    for i in sorted(kept):
+        ring, labels = kept[i]
         a = new_lengths[i]
         coords[a : a + len(ring)] = ring
         coords[a + len(ring)] = ring[0]
@@ -112,8 +129,56 @@ def restore_lost(xs, ys, box, rings, lost, kmap):
                 labels_out[a + k] = kmap[e] if kind == "pair" else _BOX_OWNER
     take = np.zeros(len(lengths) - 1, dtype=np.bool_)
     take[sorted(kept)] = True
-    out = splice_rings((closed, lengths, own), (coords, new_lengths, labels_out), take)
-    return out, lost[~np.isin(lost, list(held & set(kept)))]
+    return splice_rings((closed, lengths, own), (coords, new_lengths, labels_out), take)
+
+
+def _fill_cycles(xs, ys, box, rings, lost, rest, kmap):
+    """The rings with each closed gap that names an empty lost site given to it.
+
+    Where no exact cell of a lost site fits the gap its neighbours leave (their vertices,
+    rounded circumcentres, lie more than ``RESTORE_SNAP_ULPS`` from the exact cell's: cells
+    ~35 ulps wide at 4e12 whose rounded ring turned the wrong way by an ulp and was left
+    empty as folded), the gap itself closes the cells: its boundary, traced along the
+    edges no ring shares (reversed) and the bare stretches of the box's sides, is a ring
+    whose every edge is a neighbour's reversed. A cycle that is a valid counter-clockwise
+    polygon goes to an empty lost site its edges name (the neighbours were built with that
+    site across), one that the cycle holds (exact test) first, then the one named most
+    (ties: the lower index). The site leaves ``lost`` only where the ring holds it and is
+    convex (exact turns); otherwise its ring is kept beside it, flagged, as a wedge's.
+    Slivers between two cells (T-junctions) name no lost site and stay as they are.
+    """
+    closed, lengths, owner = rings
+    gaps = _Gaps(closed, lengths, box)
+    if not gaps.any():
+        return rings, lost
+    of_input = {int(kmap[i]): int(i) for i in rest}
+    kept = {}
+    for ring, labels in gaps.cycles():
+        named = Counter(
+            of_input[int(owner[e])]
+            for kind, e in labels
+            if kind == "gap" and int(owner[e]) in of_input
+        )
+        if not named or not _valid(ring):
+            continue
+        order = sorted((i for i in named if i not in kept), key=lambda i: (-named[i], i))
+        if not order:
+            continue
+        held = _holding(xs, ys, box, {i: (ring, labels) for i in order})
+        pick = next((i for i in order if i in held), order[0])
+        kept[pick] = (ring, labels)
+    if not kept:
+        return rings, lost
+    held = _holding(xs, ys, box, kept)
+    convex = {i for i in kept if _convex(kept[i][0])}
+    rings = _spliced(rings, kept, gaps, kmap)
+    return rings, lost[~np.isin(lost, list(held & convex))]
+
+
+def _convex(ring) -> bool:
+    """Whether an open counter-clockwise ring never turns right (exact turns)."""
+    r = np.array(ring + ring[:1], dtype=np.float64)
+    return bool(rings_convex(r, np.array([0, len(r)], dtype=np.int64))[0])
 
 
 class _Gaps:
@@ -186,6 +251,45 @@ class _Gaps:
             out.pop()
         return out
 
+    def cycles(self):
+        """The gap's boundary as closed cycles: ``[(ring, labels), ...]``.
+
+        Each cycle runs counter-clockwise around a gap (the gap on its left) through the gap
+        edges (``("gap", e)``) and the bare stretches of the box's sides (``("side", s)``).
+        At a vertex with several ways on, the one turning most to the right is taken (the
+        smallest gap). A walk that does not come back to its start is dropped.
+        """
+        out = {}
+        for key, e in self.free.items():
+            out.setdefault(key[:2], []).append((key[2:], ("gap", e)))
+        for s, (axis, fix, sign) in enumerate(_SIDES):
+            for lo, hi in self.bare[s]:
+                a, b = (lo, hi) if sign > 0 else (hi, lo)
+                p, q = ((a, self.box[fix]), (b, self.box[fix]))
+                if axis == 1:
+                    p, q = p[::-1], q[::-1]
+                out.setdefault(p, []).append((q, ("side", s)))
+        used = set()
+        found = []
+        for start in sorted(out):
+            for first in out[start]:
+                if (start, first) in used:
+                    continue
+                ring, labels, here, step = [start], [], start, first
+                while True:
+                    used.add((here, step))
+                    labels.append(step[1])
+                    prev, here = here, step[0]
+                    if here == start:
+                        found.append((ring, labels))
+                        break
+                    ways = [w for w in out.get(here, ()) if (here, w) not in used]
+                    if not ways:
+                        break
+                    ring.append(here)
+                    step = min(ways, key=lambda w: _turn(prev, here, w[0]))
+        return found
+
     def _on_bare(self, x, y) -> bool:
         for s, (axis, fix, _) in enumerate(_SIDES):
             if (y, x)[axis] == self.box[fix]:
@@ -206,6 +310,13 @@ class _Gaps:
                 if any(a <= lo and hi <= b for a, b in self.bare[s]):
                     return ("side", s)
         return None
+
+
+def _turn(p, q, r) -> float:
+    """The signed angle of the turn ``p -> q -> r`` (left positive), in local differences."""
+    ax, ay = q[0] - p[0], q[1] - p[1]
+    bx, by = r[0] - q[0], r[1] - q[1]
+    return math.atan2(ax * by - ay * bx, ax * bx + ay * by)
 
 
 def _rows(a):
