@@ -24,7 +24,7 @@ import pytest
 import shapely
 
 import voroforge as vf
-from voroforge.engine.restore import _fill_cycles
+from voroforge.engine.restore import _fill_cycles, _loops
 
 ALGORITHMS = ("delaunay", "fortune", "halfplane")
 OFF = 4e12
@@ -199,3 +199,17 @@ def test_nested_clusters_flagged_sites_leave_no_gap(centre, scale, seed):
         # exact areas tile the box (rationals)
         want = Fraction(4_000_000) ** 2
         assert sum(_exact_area(c) for c in d.cells if not c.is_empty) == want
+
+
+def test_a_gap_pinched_at_a_vertex_splits_into_its_loops():
+    # the gap of two lost sites side by side touching at one vertex (1.3e13, 10,000 sites:
+    # two such gaps stayed holes): its walk passes the vertex twice, each loop is a ring
+    a, b, c, e, f = (0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (2.0, 1.0), (1.0, 2.0)
+    walk = [a, b, c, e, f, c]
+    labels = list("ABCDEF")
+    loops = _loops(walk, labels)
+    assert sorted(map(tuple, (r for r, _ in loops))) == [(a, b, c), (c, e, f)]
+    for r, lab in loops:
+        assert len(r) == len(lab) == 3
+        assert shapely.Polygon(r).is_valid
+    assert sorted(x for _, lab in loops for x in lab) == labels  # every step in one loop

@@ -281,7 +281,7 @@ class _Gaps:
                     labels.append(step[1])
                     prev, here = here, step[0]
                     if here == start:
-                        found.append((ring, labels))
+                        found.extend(_loops(ring, labels))
                         break
                     ways = [w for w in out.get(here, ()) if (here, w) not in used]
                     if not ways:
@@ -310,6 +310,30 @@ class _Gaps:
                 if any(a <= lo and hi <= b for a, b in self.bare[s]):
                     return ("side", s)
         return None
+
+
+def _loops(ring, labels):
+    """A closed walk split at the vertices it passes twice into simple loops (with labels).
+
+    The gap of two lost sites side by side can pinch at a vertex: its walk is no valid ring,
+    the loops on either side of the pinch are.
+    """
+    out = []
+    stack = []  # (vertex, label of the step leaving it)
+    at = {}
+    for v, lab in zip(ring, labels, strict=True):
+        if v in at:
+            k = at[v]
+            loop = stack[k:]
+            del stack[k:]
+            for u, _ in loop:
+                at.pop(u, None)
+            out.append(([u for u, _ in loop], [b for _, b in loop]))
+        at[v] = len(stack)
+        stack.append((v, lab))
+    if stack:
+        out.append(([u for u, _ in stack], [b for _, b in stack]))
+    return out
 
 
 def _turn(p, q, r) -> float:
