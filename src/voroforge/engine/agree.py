@@ -37,6 +37,7 @@ and their neighbours are looked at.
 from __future__ import annotations
 
 import itertools
+from fractions import Fraction
 
 import numpy as np
 import shapely
@@ -506,3 +507,74 @@ def _split_rings(closed, lengths, owner, ring_id, inv, xys, new, mine, lax):
     if rings_disagree_at(*out, inv, ring_id, np.array(sorted(near), dtype=np.int64)).any():
         return None
     return out
+
+
+def nudge_vertex(closed, lengths, owner, ring_id, n, sites, astray):
+    """Rings ``astray`` (indices) that miss their site, given it back by a vertex rounded up.
+
+    Or down: a vertex of ring ``i`` between its edges with ``a`` and ``b`` is the centre of
+    ``i, a, b`` rounded to nearest; where that point takes the edge across the site (sites
+    an ulp apart: issue 15's cluster c202, by 1.6e-16 ulps), another of the four floats
+    around the exact centre (rationals: a rare path) can keep it. The point moves in the rings of
+    ``i, a, b`` alike, and is kept only with the checks of :func:`split_merged`.
+    Returns ``(closed, lengths, owner)``, the input arrays where none is kept.
+    """
+    xs = np.ascontiguousarray(sites[:, 0])
+    ys = np.ascontiguousarray(sites[:, 1])
+    inv = np.full(n, -1, dtype=np.int64)
+    inv[ring_id] = np.arange(len(ring_id))
+    for r in astray:
+        i = int(ring_id[r])
+        a0, b0 = lengths[r], lengths[r + 1] - 1
+        m = b0 - a0
+        done = False
+        for v in range(m):
+            a = int(owner[a0 + (v - 1) % m])
+            b = int(owner[a0 + v])
+            if a < 0 or b < 0 or inv[a] < 0 or inv[b] < 0:
+                continue
+            p = (float(closed[a0 + v, 0]), float(closed[a0 + v, 1]))
+            centre = _exact_centre((i, a, b), xs, ys)
+            if centre is None:
+                continue
+            for q in itertools.product(_floats_around(centre[0]), _floats_around(centre[1])):
+                if q == p:
+                    continue
+                new = {}
+                for s, before, after in ((i, a, b), (a, b, i), (b, i, a)):
+                    rs = int(inv[s])
+                    u = _slot_between(closed, lengths, owner, rs, before, after, p)
+                    if u >= 0:
+                        new[rs] = (u, [(q[0], q[1], after)])
+                for lax in (False, True):
+                    got = _split_rings(closed, lengths, owner, ring_id, inv, (xs, ys), new, r, lax)
+                    if got is not None:
+                        closed, lengths, owner = got
+                        done = True
+                        break
+                if done:
+                    break
+            if done:
+                break
+    return closed, lengths, owner
+
+
+def _exact_centre(tri, xs, ys):
+    """The circumcentre of sites ``tri`` in rationals, or None where they are collinear."""
+    (ax, ay), (bx, by), (cx, cy) = ((Fraction(float(xs[t])), Fraction(float(ys[t]))) for t in tri)
+    d = 2 * (ax * (by - cy) + bx * (cy - ay) + cx * (ay - by))
+    if d == 0:
+        return None
+    sa, sb, sc = ax * ax + ay * ay, bx * bx + by * by, cx * cx + cy * cy
+    x = (sa * (by - cy) + sb * (cy - ay) + sc * (ay - by)) / d
+    y = (sa * (cx - bx) + sb * (ax - cx) + sc * (bx - ax)) / d
+    return x, y
+
+
+def _floats_around(f):
+    """The float nearest the rational ``f`` and its neighbour on ``f``'s other side."""
+    near = float(f)
+    if Fraction(near) == f:
+        return [near]
+    other = np.nextafter(near, np.inf if Fraction(near) < f else -np.inf)
+    return [near, float(other)]

@@ -31,7 +31,7 @@ from ..kernels.fortune import fortune_delaunay
 from ..kernels.halfplane import halfplane_cells
 from ..kernels.moments import farthest
 from ..kernels.rings import boundary_cycle, close_rings
-from .agree import agree, split_merged
+from .agree import agree, nudge_vertex, split_merged
 from .assemble import assemble_checked
 from .csr import csr_from_pairs
 from .diagram import Diagram, Edges
@@ -508,8 +508,9 @@ def _held_after_agree(xs, ys, box, rings, lost, unique, work):
     rings. The rings that miss their site (:func:`.cells.rings_miss`, an exact turn or two
     per ring) are first made to agree with their neighbours (:func:`.agree.agree`, which
     assembly would apply next and which can give a site back: c328), then a vertex merged
-    from two that floats hold apart is split (:func:`.agree.split_merged`: c354), and the
-    sites still outside are added to ``lost``. Returns ``(rings, lost)``.
+    from two that floats hold apart is split (:func:`.agree.split_merged`: c354), or a
+    vertex rounded the other way (:func:`.agree.nudge_vertex`: c202), and the sites still
+    outside are added to ``lost``. Returns ``(rings, lost)``.
     """
     miss = rings_miss(xs, ys, rings[0], rings[1], box)
     if not miss.any():
@@ -518,6 +519,9 @@ def _held_after_agree(xs, ys, box, rings, lost, unique, work):
     miss = rings_miss(xs, ys, rings[0], rings[1], box)
     if miss.any():
         rings = split_merged(*rings, unique, len(work), work, np.flatnonzero(miss))
+        miss = rings_miss(xs, ys, rings[0], rings[1], box)
+    if miss.any():
+        rings = nudge_vertex(*rings, unique, len(work), work, np.flatnonzero(miss))
         miss = rings_miss(xs, ys, rings[0], rings[1], box)
     return rings, np.union1d(lost, np.flatnonzero(miss)).astype(lost.dtype)
 
