@@ -28,7 +28,7 @@ from ..config import (
 )
 from .cocircular import canonical_flips
 from .predicates import cross_diff, incircle, incircle_fast
-from .refit import fit_classes
+from .refit import fit_classes, middle_member, rank_key
 from .vertex import (
     canonical_vertex_ranked,
     is_close,
@@ -186,7 +186,8 @@ def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank, err, box, fold):
         # the centres are still the triangles' own here: classes of two may reuse them
         _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, np.bool_(True), every)
     if near:
-        _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined, changed, every)
+        args = (fold, cand, joined, changed, every, np.bool_(False))
+        _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, *args)
     return parent
 
 
@@ -337,7 +338,9 @@ def _swapped(xs, ys, tri, e, f, ux, uy, tx, ty):
 
 
 @njit(**NJIT)
-def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined, changed, pick):
+def _unfold(
+    xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined, changed, pick, middle
+):
     """Merge swapped vertices (:func:`_folds`) until none is left; renames the classes.
 
     Each round joins the classes at both ends of every edge that folds, then names the
@@ -388,22 +391,8 @@ def _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined,
                 if old[k] != parent[k]:
                     pick[parent[k]] = 1  # a class that took in another
         changed[:] = 0
-        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, np.bool_(False), pick)
-
-
-@njit(**NJIT)
-def _rank_key(t, tri, rank):
-    """Triangle ``t``'s site ranks, sorted: a key that no builder's numbering changes."""
-    a = rank[tri[3 * t]]
-    b = rank[tri[3 * t + 1]]
-    c = rank[tri[3 * t + 2]]
-    if a > b:
-        a, b = b, a
-    if b > c:
-        b, c = c, b
-    if a > b:
-        a, b = b, a
-    return a, b, c
+        no = np.bool_(False)
+        _name_classes_by(xs, ys, tri, parent, cx, cy, rank, err, changed, no, pick, middle)
 
 
 @njit(**NJIT)
@@ -415,7 +404,7 @@ def _better_ref(t, u, err, tri, rank):
     default's classes then got different names where a class spans more than the snap).
     """
     if err.shape[0] == 0 or err[t] == err[u]:
-        return _rank_key(t, tri, rank) < _rank_key(u, tri, rank)
+        return rank_key(t, tri, rank) < rank_key(u, tri, rank)
     return err[t] < err[u]
 
 
@@ -521,12 +510,21 @@ def _set_vertex(cx, cy, k, vx, vy, changed):
 
 @njit(**NJIT)
 def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, own, pick):
+    """:func:`_name_classes_by`, every class named near its best-conditioned member."""
+    no = np.bool_(False)
+    _name_classes_by(xs, ys, tri, parent, cx, cy, rank, err, changed, own, pick, no)
+
+
+@njit(**NJIT)
+def _name_classes_by(xs, ys, tri, parent, cx, cy, rank, err, changed, own, pick, middle):
     """Give every triangle of a class (``parent`` its root) the vertex of the class's name.
 
     The name is the canonical triple of the class's sites (``kernels/vertex``), numbered by
     ``rank`` (their input indices), found near the reference centre: the member's with the
     smallest rounding bound ``err``, ties to the lowest rank key (:func:`_better_ref`; never
-    the root, whose number depends on the builder); without a name that centre is used.
+    the root, whose number depends on the builder), or, for a class whose members' own
+    centres spread far and ``middle`` (the fold rounds' first try), the middle member's own
+    centre (:func:`.refit.middle_member`); without a name that centre is used.
     Classes of two triangles (four cocircular
     sites: every square of a grid) are the common case and take a short path; larger ones
     are gathered by a counting sort. Triangles whose centre may have changed are marked
@@ -604,13 +602,21 @@ def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, own, pick):
                     on[k] = v
                     k += 1
         # the class's best-conditioned centre is the reference its name must match (the
-        # root's may be a sliver's, which no triple's centre is near)
-        best = r
-        if err.shape[0] > 0:
-            for u in range(start[r], start[r + 1]):
-                if _better_ref(members[u], best, err, tri, rank):
-                    best = members[u]
-        vx, vy = _class_vertex(on, k, rank, best, xs, ys, tri, cx, cy)
+        # root's may be a sliver's, which no triple's centre is near), unless the members'
+        # centres spread far (a fold round's joins): then the middle member's own centre
+        mid, px, py = -1, 0.0, 0.0
+        if middle:
+            mid, px, py = middle_member(xs, ys, tri, members[start[r] : start[r + 1]], rank)
+        if mid >= 0:
+            a0 = tri[3 * mid]
+            _, vx, vy = canonical_vertex_ranked(on, k, rank, px, py, xs[a0], ys[a0], xs, ys)
+        else:
+            best = r
+            if err.shape[0] > 0:
+                for u in range(start[r], start[r + 1]):
+                    if _better_ref(members[u], best, err, tri, rank):
+                        best = members[u]
+            vx, vy = _class_vertex(on, k, rank, best, xs, ys, tri, cx, cy)
         for u in range(start[r], start[r + 1]):
             _set_vertex(cx, cy, members[u], vx, vy, changed)
 
@@ -720,6 +726,13 @@ def triangle_centers(xs, ys, tri, he):
 
 @njit(**NJIT)
 def contract(xs, ys, tri, he, parent, cx, cy, rank, box, err, pa, pb, only):
+    """:func:`contract_by`, every joined class named near its best-conditioned member."""
+    no = np.bool_(False)
+    return contract_by(xs, ys, tri, he, parent, cx, cy, rank, box, err, pa, pb, only, no)
+
+
+@njit(**NJIT)
+def contract_by(xs, ys, tri, he, parent, cx, cy, rank, box, err, pa, pb, only, middle):
     """Join the classes of triangles ``pa[k]`` and ``pb[k]``, name them, unfold; joins made.
 
     The cells' fold test (``kernels/folds.fold_pairs``) finds rings that rounding folded
@@ -732,6 +745,8 @@ def contract(xs, ys, tri, he, parent, cx, cy, rank, box, err, pa, pb, only):
     where their cells turn best (:func:`.refit.fit_classes`), and the count is of renamed
     classes (0: nothing changed). ``only``: name only the classes a join changed (every
     other keeps its vertex, one :func:`.refit.fit_classes` chose too); else all of them.
+    ``middle``: a class whose members' centres spread far is named from its middle member
+    (:func:`.refit.middle_member`), not its best-conditioned one.
     """
     merges = 0
     refit = False
@@ -753,7 +768,8 @@ def contract(xs, ys, tri, he, parent, cx, cy, rank, box, err, pa, pb, only):
             if old[k] != parent[k]:
                 pick[parent[k]] = 1
     if merges > 0:
-        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, np.bool_(False), pick)
+        no = np.bool_(False)
+        _name_classes_by(xs, ys, tri, parent, cx, cy, rank, err, changed, no, pick, middle)
         if only:
             fit_classes(xs, ys, tri, he, parent, cx, cy, pick, changed)
     else:
@@ -766,5 +782,6 @@ def contract(xs, ys, tri, he, parent, cx, cy, rank, box, err, pa, pb, only):
     fold = np.zeros(tri.shape[0], dtype=np.uint8)
     cand = np.zeros(0, dtype=np.int64)
     joined = np.zeros(0, dtype=np.uint8)
-    _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, fold, cand, joined, changed, pick)
+    args = (fold, cand, joined, changed, pick, middle)
+    _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, *args)
     return merges
