@@ -37,7 +37,7 @@ from .cellcut3d import (
 from .graph3d import from_rings
 from .polyhedron import CUT_NONE, cut, moments, plane_values
 from .predicates3d import bisector_side, scratch, wall_lift
-from .star3d import DECLINE, star_cell
+from .star3d import DECLINE, merge_star, star_cell
 from .vertex3d import axis_snap, name_key, name_vertex, place
 
 # the status codes are :mod:`kernels.cellcut3d`'s; the engine reads them from here
@@ -494,6 +494,7 @@ def build_cells(
         m = star[5].shape[0] if least >= 0 else 0
         mark = (np.zeros(m, np.int64), np.zeros(m, np.int64), np.zeros(ns if m else 0, np.int64))
         scaps = np.array([V.shape[0], F.shape[0], R.shape[0]], np.int64)
+        vbits = vabs.view(np.int64)
     for c in range(k):
         i = cells[c]
         X[2][0] = False
@@ -512,7 +513,7 @@ def build_cells(
                 if st != OK:
                     status[c] = OVERFLOW  # its scratch: the engine's retry reads the counts
                     continue
-                nv, nf, nr = _merge_named(nv, F, nf, R, vnames, vabs, vrel, remap)
+                nv, nf, nr = merge_star(nv, F, nf, R, vnames, vabs, vrel, remap, vbits, T[:, 0])
                 rad2[c] = radius2(vrel, nv)
                 _finish(
                     c,

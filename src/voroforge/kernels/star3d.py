@@ -86,7 +86,7 @@ def star_cell(i, P, W, WP, ST, F, R, NM, buf, mark, caps):
             vnames[nv, c] = name[c]
         vnames[nv, 4] = (name_key(u, name) << 8) | min(u, 255)
         for c in range(3):
-            vabs[nv, c] = x[c]
+            vabs[nv, c] = x[c] + 0.0  # one zero: equal values, equal bits (merge_star)
             if x[c] == P[a, c] + y[c]:
                 vrel[nv, c] = (P[a, c] - P[i, c]) + y[c]
             else:
@@ -156,3 +156,78 @@ def star_cell(i, P, W, WP, ST, F, R, NM, buf, mark, caps):
             else:
                 nr = b0
     return 0, nv, nf, nr
+
+
+@njit(**_NO_NRT)
+def merge_star(nv, F, nf, R, vnames, vabs, vrel, remap, vbits, table):
+    """:func:`.cells3d._merge_named` for a star's vertices, in linear time.
+
+    Two polytopes never share a name (the name's four sites lie on one empty sphere), so
+    only vertices with equal coordinates and join keys merge (distinct exact vertices that
+    round to the same doubles and whose names' keys collide), found through a hash table
+    on their bits (``vbits``: ``vabs``'s int64 view; ``table``: scratch of at least
+    ``2 nv`` slots). The merge of all pairs cost ``nv^2`` (80,000 vertices: 5 s). Returns
+    ``(nv, nf, nr)``; as there, vertices keep the order of their first occurrence and
+    rings drop repeats and faces of fewer than three vertices.
+    """
+    size = 1
+    while size < 2 * nv:
+        size *= 2
+    size = min(size, table.shape[0])
+    mask = size - 1
+    for h in range(size):
+        table[h] = -1
+    m = 0
+    for v in range(nv):
+        key = vnames[v, 4] >> 8
+        hv = np.uint64(key)
+        for q in range(3):
+            hv = (hv ^ np.uint64(vbits[v, q])) * np.uint64(0x9E3779B97F4A7C15)
+            hv ^= hv >> np.uint64(29)
+        h = np.int64(hv & np.uint64(mask))
+        same = -1
+        while table[h] >= 0:
+            u = table[h]  # a kept vertex (its new number is remap[u]... u is new)
+            if (
+                vabs[u, 0] == vabs[v, 0]
+                and vabs[u, 1] == vabs[v, 1]
+                and vabs[u, 2] == vabs[v, 2]
+                and vnames[u, 4] >> 8 == key
+            ):
+                same = u
+                break
+            h = (h + 1) & mask
+        if same >= 0:
+            remap[v] = same
+            continue
+        remap[v] = m
+        if m != v:
+            for q in range(5):
+                vnames[m, q] = vnames[v, q]
+            for q in range(3):
+                vabs[m, q] = vabs[v, q]
+                vrel[m, q] = vrel[v, q]
+        table[h] = m
+        m += 1
+    nr = 0
+    nf2 = 0
+    for f in range(nf):
+        st = F[f, 1]
+        ln = F[f, 2]
+        b = nr
+        for k in range(ln):
+            x = remap[R[st + k]]
+            if nr > b and R[nr - 1] == x:
+                continue
+            R[nr] = x
+            nr += 1
+        while nr - b > 1 and R[nr - 1] == R[b]:
+            nr -= 1
+        if nr - b >= 3:
+            F[nf2, 0] = F[f, 0]
+            F[nf2, 1] = b
+            F[nf2, 2] = nr - b
+            nf2 += 1
+        else:
+            nr = b
+    return m, nf2, nr
