@@ -83,6 +83,11 @@ BOX_SIDE_REACH_ULPS = 1.0
 #: A stalled fold's class with more triangles than this keeps its name (kernels/refit: each
 #: candidate is scored on every site's ring; the largest class on issue 15's circles had 185)
 FOLD_FIT_MAX_MEMBERS = 512
+#: A fold round's class whose members' own centres spread over more than this many unit
+#: roundoffs of their magnitude (L1) is named from its middle member, not its
+#: best-conditioned one (kernels/refit.middle_member: a name at a class's edge folded more
+#: rings, and a 1000-site circle's class grew to 997 of 998 triangles, 22,189 ulps off)
+CLASS_SPREAD_ULPS = 64.0
 #: A cut cell's ring that rounding turns the wrong way only beside edges this many ulps (of
 #: the vertex's coordinates) long, and is simple, is kept: the end of a strip an ulp wide
 #: (kernels/cells._reflex_by_rounding)
@@ -461,6 +466,30 @@ HULL3D_REACH_RTOL = 1e-9
 #: run is a slot or two, and linear probing from one slot made the join quadratic (10,000
 #: points: 5 s of 7)
 JOIN_LOCAL_PROBES = 32
+#: engine.lists3d: the most sites a cell's grid search examines before it stops with SLOW
+#: (uniform cells examine ~100, cells of 1e5 sites at a default container's padded walls at
+#: most ~700; a cell of n points on a sphere examines all n)
+LISTS3D_SITE_BUDGET = 2048.0
+#: the lists are made (one Delaunay triangulation of all sites, ~100 us a site) once this
+#: many cells ran past the budget, and this share of the cells built so far: fewer are
+#: searched again without a budget (each cost at most a full scan: cheaper than the lists)
+LISTS3D_AFTER = (64, 0.01)
+#: the largest Delaunay polytope (sites on one empty sphere) listed whole: each of its sites'
+#: lists holds all of it; a bigger one lists the sites of its 2-faces at each site
+LISTS3D_POLYTOPE_MOST = 64
+#: a cell with at least this many candidates is read off its Delaunay star
+#: (kernels.star3d) where the container does not cut it: cut plane by plane, the centre of
+#: n points on a sphere (n faces) cost O(n^2) (40,000 points: 68 s, now 6 s)
+LISTS3D_STAR_LEAST = 256
+#: kernels.star3d: every star vertex must be inside every wall by more than this many times
+#: the cut's band (VORONOI3D_CUT_RTOL), else the cell is cut as before
+STAR3D_WALL_BANDS = 4.0
+#: kernels.cellcut3d: the most entries of a cell's owner table (vertices x owners a vertex,
+#: int32: 64 MB); its width was vcap // 16, so a big cell's retry (scratch x256: 262,144
+#: vertices) zeroed 17 GB (the centre site of 4,000 points on a sphere: 150 s for that cell)
+CELLCUT3D_OWN_ENTRIES = 1 << 24
+#: engine.voronoi3d: sites a block of the Convex container's any-site-inside test
+VORONOI3D_INSIDE_BLOCK = 256
 #: Default container: the sites' bounding box padded by this fraction of its size per side
 VORONOI3D_PAD = 0.1
 #: Mesh containers: the touch test's slack (cell planes moved out) and the tolerance of a

@@ -23,24 +23,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..config import LISTS3D_AFTER as LISTS_AFTER
+from ..config import LISTS3D_POLYTOPE_MOST as POLYTOPE_MOST
+from ..config import LISTS3D_SITE_BUDGET as SITE_BUDGET
+from ..config import LISTS3D_STAR_LEAST as STAR_LEAST
 from ..kernels.candidates3d import candidate_lists
 from ..kernels.cellcut3d import SLOW
 
-#: the most sites a cell's grid search examines before it stops with ``SLOW`` (uniform
-#: cells examine ~100, cells of 1e5 sites at a default container's padded walls at most
-#: ~700; a cell of n points on a sphere examines all n)
-SITE_BUDGET = 2048.0
-#: the lists are made (one Delaunay triangulation of all sites, ~100 us a site) once this
-#: many cells ran past the budget, and this share of the cells built so far: fewer are
-#: searched again without a budget (each cost at most a full scan: cheaper than the lists)
-LISTS_AFTER = (64, 0.01)
-#: the largest Delaunay polytope (sites on one empty sphere) listed whole: each of its sites'
-#: lists holds all of it; a bigger one lists the sites of its 2-faces at each site
-POLYTOPE_MOST = 64
-#: a cell with at least this many candidates is read off its Delaunay star
-#: (:mod:`.kernels.star3d`) where the container does not cut it: cut plane by plane, the
-#: centre of n points on a sphere (n faces) cost O(n^2)
-STAR_LEAST = 256
 #: test only: every cell is built from its list (where it has one)
 FORCE = False
 

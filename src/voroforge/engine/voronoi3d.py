@@ -7,7 +7,7 @@ import itertools
 import numpy as np
 from numba import njit, prange
 
-from ..config import FRAME3D_CAP_EXP, NJIT_PARALLEL, VOLUME_RANGE
+from ..config import FRAME3D_CAP_EXP, NJIT_PARALLEL, VOLUME_RANGE, VORONOI3D_INSIDE_BLOCK
 from .build3d import build_cells3d, duplicate_owners, release_freed_memory
 from .containers import (
     Convex,
@@ -166,8 +166,6 @@ def _in_box(pts: np.ndarray, t: Template) -> np.ndarray:
     return ((pts >= lo - 1e-12 * scale[0::2]) & (pts <= hi + 1e-12 * scale[1::2])).all(axis=1)
 
 
-#: sites a block of :func:`_convex_holds_any`'s test
-_INSIDE_BLOCK = 256
 
 
 def _convex_holds_any(pts: np.ndarray, t: Template) -> bool:
@@ -178,8 +176,8 @@ def _convex_holds_any(pts: np.ndarray, t: Template) -> bool:
     """
     pts, scale = _walls_frame(pts, t)
     WP = t.WP
-    for a in range(0, len(pts), _INSIDE_BLOCK):
-        s = pts[a : a + _INSIDE_BLOCK] @ WP[:, :3].T - WP[:, 3]
+    for a in range(0, len(pts), VORONOI3D_INSIDE_BLOCK):
+        s = pts[a : a + VORONOI3D_INSIDE_BLOCK] @ WP[:, :3].T - WP[:, 3]
         if (s <= 1e-12 * scale).all(axis=1).any():
             return True
     return False

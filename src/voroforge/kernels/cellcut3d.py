@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ..config import CELLCUT3D_OWN_ENTRIES as OWN_ENTRIES
 from ..config import NJIT, VORONOI3D_CUT_RTOL, VORONOI3D_STOP_RTOL
 from .expansion import two_diff
 from .graph3d import GCUT_DONE, GCUT_EMPTY, to_rings
@@ -45,10 +46,6 @@ UNNAMED = 4
 SLOW = 5
 
 MAX_OWNERS = 32
-#: the most entries of the owner table (vertices x owners a vertex, int32: 64 MB); its width
-#: was ``vcap // 16``, so a big cell's retry (engine.build3d._big, scratch x256: 262,144
-#: vertices) zeroed 17 GB (the centre site of 4,000 points on a sphere: 150 s for that cell)
-OWN_ENTRIES = 1 << 24
 #: small hot helpers are inlined into their callers (numba's own inliner): a call that
 #: passes arrays costs reference counting, and the search makes ~100 such calls per cell
 NJIT_INLINE = {**NJIT, "inline": "always"}

@@ -26,16 +26,12 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import FOLD_FIT_MAX_MEMBERS, NJIT
+from ..config import CLASS_SPREAD_ULPS, FOLD_FIT_MAX_MEMBERS, NJIT
 from .clip import ring_corner
 from .predicates import incircle, orient2d
 from .vertex import voronoi_vertex
 
 _U = 2.0**-53
-#: A class whose members' own centres spread over more than this many unit roundoffs of
-#: their magnitude (L1) is named from its middle member, not its best-conditioned one
-#: (:func:`middle_member`; lead: move to config.py as CLASS_SPREAD_ULPS)
-CLASS_SPREAD_ULPS = 64.0
 
 
 @njit(**NJIT)

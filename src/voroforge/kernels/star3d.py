@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import NJIT, VORONOI3D_CUT_RTOL
+from ..config import NJIT, STAR3D_WALL_BANDS, VORONOI3D_CUT_RTOL
 from .predicates3d import wall_lift
 from .vertex3d import name_key, name_vertex, place
 
@@ -102,7 +102,7 @@ def star_cell(i, P, W, WP, ST, F, R, NM, buf, mark, caps):
     for w in range(WP.shape[0]):
         h = wall_lift(WP, w, px, py, pz)
         nn = np.sqrt(WP[w, 0] ** 2 + WP[w, 1] ** 2 + WP[w, 2] ** 2)
-        tol = 4.0 * VORONOI3D_CUT_RTOL * (nn * rmax + abs(h))
+        tol = STAR3D_WALL_BANDS * VORONOI3D_CUT_RTOL * (nn * rmax + abs(h))
         for v in range(nv):
             s = WP[w, 0] * vrel[v, 0] + WP[w, 1] * vrel[v, 1] + WP[w, 2] * vrel[v, 2] - h
             if not s < -tol:
