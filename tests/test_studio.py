@@ -1224,7 +1224,7 @@ ANIMATED = {
         "frames": 4,
         "tracks": [
             {"key": "attractors.0.points.0", "values": [[20, 20], [280, 180]]},
-            {"key": "seeds.count", "values": [40, 41]},
+            {"key": "attractors.0.radius", "values": [120, 150]},
         ],
     },
 }
@@ -1336,3 +1336,90 @@ def test_serve_listens_before_printing_and_warns_off_loopback(folder, monkeypatc
     serve(session=Session(folder / "holed.toml"), port=0, open_browser=False)
     out, err = capsys.readouterr()
     assert "http://127.0.0.1:" in out and not err
+
+
+def test_scrubbed_relaxed_frames_equal_the_animation_in_any_order(folder):
+    # the sites of frame k are frame k-1's relaxed in frame k-1's domain (the margin moves it)
+    from voroforge.studio.animation import frames
+
+    data = {
+        **ANIMATED,
+        "animation": {
+            "frames": 5,
+            "relax": 2,
+            "tracks": [
+                *ANIMATED["animation"]["tracks"],
+                {"key": "boundary.margin", "values": [0, 3]},
+            ],
+        },
+    }
+    still = {**data, "animation": {**data["animation"], "tracks": ANIMATED["animation"]["tracks"]}}
+    for case in (data, still):
+        played = [r.sites for r in frames(case, base=folder, frame=False)]
+        assert not np.array_equal(played[4], played[3])
+        for order in ([4, 2, 0, 4, 3], [2, 1, 4], [0, 1, 2, 3, 4]):
+            s = Session(case, folder=folder)
+            for k in order:
+                assert s.apply({"op": "frame", "k": k}).kind == "update"
+                assert np.array_equal(s.result.sites, played[k]), (order, k)
+
+
+@pytest.mark.parametrize("key", ["seeds.count", "seeds", "relax.iterations", "design.seed"])
+def test_animation_refuses_tracks_on_the_sites(key):
+    bad = {**ANIMATED, "animation": {"tracks": [{"key": key, "values": [1, 9]}]}}
+    with pytest.raises(DesignError, match=r"animation\.tracks\.0\.key.*cannot be animated"):
+        load(bad)
+    ok = {**ANIMATED, "animation": {"tracks": [{"key": "seeds_x", "values": [1, 9]}]}}
+    assert load(ok)[0].animation.tracks[0].key == "seeds_x"  # only the keys themselves
+
+
+def test_slider_ends_are_valid_values():
+    # every control's slider ends load as a design (exclusive bounds, graded bounds)
+    from voroforge.design.designfile import apply_overrides
+
+    data = {
+        **ANIMATED,
+        "seeds": {"method": "poisson", "radius": 12.0},
+        "cells": {"inset": 1.0},
+        "voronoi": {"power_radius": {"near": 2, "far": 0.5}},
+        "recursion": {"depth": 1, "probability": 0.5, "web": [1.0]},
+        "openings": {"select": "every_kth", "k": 2},
+    }
+    entries = controls(load(data)[0])
+    keys = {c["key"] for c in entries}
+    assert {"attractors.0.radius", "attractors.0.power", "animation.fps"} <= keys
+    assert {"seeds.radius", "recursion.probability", "openings.k"} <= keys
+    for c in entries:
+        for end in (c["min"], c["max"]):
+            value = int(end) if c["kind"] == "int" else float(end)
+            try:
+                load(apply_overrides(data, {c["key"]: value}))
+            except DesignError as exc:
+                raise AssertionError(f"{c['key']} = {value}: {exc}") from None
+    prob = next(c for c in entries if c["key"] == "recursion.probability")
+    assert (prob["min"], prob["max"]) == (0.0, 1.0)
+
+
+def test_widget_gives_the_seeds_csv_its_toml_names(tmp_path):
+    pytest.importorskip("anywidget")
+    from voroforge.studio import widget
+
+    path = tmp_path / "holed.toml"
+    path.write_text(tomlfile.dumps(HOLED), encoding="utf-8")
+    w = widget(str(path))
+    w.send = lambda content, buffers=None: None
+    assert w.seeds_csv is None
+    x, y = w.sites[3]
+    assert w.apply({"op": "move", "i": 3, "x": x + 1.0, "y": y}).kind == "update"
+    sites = w.sites
+    other = tmp_path / "other"
+    other.mkdir()
+    (other / "mine.toml").write_text(w.toml, encoding="utf-8")
+    (other / "design.seeds.csv").write_text(w.seeds_csv, encoding="utf-8")
+    assert np.array_equal(Session(other / "mine.toml").result.sites, sites)
+    assert w.save("kept.toml").kind == "saved"
+    assert np.array_equal(Session(tmp_path / "kept.toml").result.sites, sites)
+    assert (tmp_path / "kept.seeds.csv").read_text(encoding="utf-8") == w.seeds_csv
+    assert w.save("kept.toml").kind == "confirm"  # nothing overwritten without asking
+    with pytest.raises(ValueError, match="file name"):
+        w.save("../x.toml")

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 from typing import Annotated, Any
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 __all__ = [
     "AnimationSection",
@@ -42,12 +42,31 @@ class _Model(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True)
 
 
+#: Keys that choose the sites: every frame keeps frame 0's sites, so a track on them would
+#: do nothing (design.seed also reseeds the openings and recursion: animate openings.seed)
+_SITE_KEYS = ("seeds", "relax", "design.seed")
+
+
 class Track(_Model):
-    """``[[animation.tracks]]``: one key's keyframes."""
+    """``[[animation.tracks]]``: one key's keyframes.
+
+    Not on ``seeds.*``, ``relax.*`` or ``design.seed``: every frame keeps frame 0's sites.
+    """
 
     key: Annotated[str, Field(min_length=1, pattern=r"^[A-Za-z0-9_]+(\.[A-Za-z0-9_]+)*$")]
     values: Annotated[list[Any], Field(min_length=2)]
     times: list[float] | None = None
+
+    @field_validator("key")
+    @classmethod
+    def _not_sites(cls, key: str) -> str:
+        if any(key == k or key.startswith(k + ".") for k in _SITE_KEYS):
+            raise ValueError(
+                f"{key!r} cannot be animated: every frame keeps the sites of frame 0 "
+                "(moved by animation.relax), so seeds.*, relax.* and design.seed stay as "
+                "frame 0 has them; animate openings.seed for a random choice of openings"
+            )
+        return key
 
     @model_validator(mode="after")
     def _times(self) -> Track:

@@ -24,6 +24,11 @@ __all__ = ["controls"]
 #: Sections whose numbers are drawing or file options rather than the pattern's.
 _SKIP = {("output", "gif"), ("output", "stroke_width"), ("output", "arc_tolerance")}
 
+#: Bounds of graded values (``{ near, far }`` or a number), which the schema checks in model
+#: validators rather than field metadata (schema.Recursion._probability, Voronoi._power);
+#: the others are >= 0 by the slider's own 0 end. (Constant for the lead to move to config.)
+_GRADED_BOUNDS = {"recursion.probability": {"min": 0, "max": 1}, "voronoi.power_radius": {"min": 0}}
+
 
 def _kind(annotation) -> tuple[str | None, list]:
     """('int' | 'float' | 'graded' | None, constraint objects) of a field annotation."""
@@ -82,9 +87,12 @@ def _range(value, bounds: dict, kind: str) -> tuple[float, float]:
 def _entry(key: str, label: str, kind: str, meta: list, value) -> dict:
     bounds = _bounds(meta, kind)
     if kind == "graded":
+        bounds = dict(_GRADED_BOUNDS.get(key, {}))
         nums = [value.value] if value.value is not None else [value.near, value.far]
         biggest = max(abs(float(n)) for n in nums)
         lo, hi = 0.0, max(4.0 * biggest, 1.0)
+        # clipped to the schema's bounds: every position of the slider is a valid value
+        lo, hi = max(lo, bounds.get("min", lo)), min(hi, bounds.get("max", hi))
         current = value.value if value.value is not None else {"near": value.near, "far": value.far}
     else:
         current = value
@@ -92,6 +100,13 @@ def _entry(key: str, label: str, kind: str, meta: list, value) -> dict:
     # a huge value (the schema takes any finite float) must not make the range infinite:
     # JSON has no Infinity, and the slider's step is a power of ten of the span
     lo, hi = max(float(lo), -_FLOAT_MAX), min(float(hi), _FLOAT_MAX)
+    step = 1 if kind == "int" else _step(hi - lo)
+    # an exclusive bound (gt/lt) is not a value: the slider's end moves in by one step (or
+    # to the current value, which is valid, where that is nearer the bound)
+    if bounds.get("exclusive_min") and lo <= bounds["min"]:
+        lo = min(lo + step, float(current)) if current > bounds["min"] else lo + step
+    if bounds.get("exclusive_max") and hi >= bounds["max"]:
+        hi = max(hi - step, float(current)) if current < bounds["max"] else hi - step
     return {
         "key": key,
         "label": label,
@@ -99,7 +114,7 @@ def _entry(key: str, label: str, kind: str, meta: list, value) -> dict:
         "value": current,
         "min": lo,
         "max": hi,
-        "step": 1 if kind == "int" else _step(hi - lo),
+        "step": step,
         "bounds": bounds,
     }
 

@@ -555,8 +555,11 @@ class Session:
     def _op_frame(self, msg: dict) -> Reply:
         """Show frame ``k`` of the design's ``[animation]`` (not an edit: no undo step).
 
-        The sites of frame 0 are kept for every frame (hand-edited ones if any); played in
-        order, ``animation.relax`` Lloyd steps move them from the previous frame.
+        The sites of frame 0 are kept for every frame (hand-edited ones if any);
+        ``animation.relax`` Lloyd steps move them from the previous frame, as in
+        :func:`~voroforge.studio.animation.frames`: a frame scrubbed to first has the sites of
+        the frames before it relaxed in order (in each frame's own domain), so frame ``k``
+        is the same in any order of scrubbing.
         """
         from .animation import frame_design, named_error
 
@@ -569,16 +572,17 @@ class Session:
             sites = self.sites
             if sites is None:
                 sites = compute(frame_design(self.data, section, 0), self.folder).sites
-            self._anim = {"key": key, "sites": {0: sites}}
+            self._anim = {"key": key, "sites": {0: sites}, "domains": {}}
         known = self._anim["sites"]
-        sites = known.get(k)
-        if sites is None:
-            sites = known.get(k - 1, known[0])
-            if section.relax and (k - 1) in known:
+        for i in range(max(known) + 1, k + 1):  # known holds frames 0 .. max(known)
+            sites = known[i - 1]
+            if section.relax:
                 from ..design.relax import relax
 
-                sites = relax(sites, self.result.domain, iterations=section.relax)
-            known[k] = sites
+                domain = self._frame_domain(section, i - 1)
+                sites = relax(sites, domain, iterations=section.relax)
+            known[i] = sites
+        sites = known[k]
         previous = self.result
         start = time.perf_counter()
         try:
@@ -593,7 +597,25 @@ class Session:
             raise named_error(exc, section, k) from None
         self.compute_ms = (time.perf_counter() - start) * 1e3
         self.result, self.frame = result, k
+        self._anim["domains"][k] = result.domain
         return Reply("update", changed=changed_cells(previous, result))
+
+    def _frame_domain(self, section, i: int):
+        """The domain of animation frame ``i``, whose sites are known (to relax them)."""
+        from .animation import frame_design, named_error
+
+        domains = self._anim["domains"]
+        if i in domains:
+            return domains[i]
+        if not any(t.key.split(".")[0] in ("boundary", "design") for t in section.tracks):
+            return self.result.domain  # no track moves the boundary: one domain for all
+        try:  # the boundary moves: frame i's own, as animation.frames relaxes in
+            design = frame_design(self.data, section, i)
+            sites = self._anim["sites"][i]
+            domains[i] = compute(design, self.folder, sites=sites, frame=False).domain
+        except DesignError as exc:
+            raise named_error(exc, section, i) from None
+        return domains[i]
 
     def _op_reset_sites(self, msg: dict) -> Reply:
         return self._commit(self.data, None)

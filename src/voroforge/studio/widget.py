@@ -5,7 +5,8 @@ dragging, sliders, live check, undo/redo, save and export as ``voroforge studio`
 page's messages go over the widget's comm instead of a WebSocket (same
 :class:`~voroforge.studio.session.Session`, same binary geometry). The current state is
 readable from Python at any time: ``w.design`` (the validated design), ``w.result`` (its
-geometry), ``w.sites``, ``w.toml`` (the design as it would be saved).
+geometry), ``w.sites``, ``w.toml`` (the design as it would be saved) with ``w.seeds_csv``
+(the hand-placed sites it names), and ``w.save(name)`` writes both into the design's folder.
 
 Examples
 --------
@@ -121,9 +122,44 @@ class StudioWidget(anywidget.AnyWidget):
 
     @property
     def toml(self) -> str:
-        """The design as TOML, as *Save* writes it (hand-placed sites go to a CSV beside it)."""
+        """The design as TOML, as *Save* writes it.
+
+        Once sites were placed by hand it reads them from ``design.seeds.csv``
+        (``[seeds] method = "file"``): write :attr:`seeds_csv` to that file beside it, or
+        use :meth:`save`, which writes both files.
+        """
         data, _ = self.session.saved_data("design.seeds.csv")
         return dumps(data)
+
+    @property
+    def seeds_csv(self) -> str | None:
+        """The text of the ``design.seeds.csv`` that :attr:`toml` names, or None.
+
+        The hand-placed sites, bit for bit; None while the sites come from ``[seeds]``.
+        """
+        return self.session.saved_data("design.seeds.csv")[1]
+
+    def save(self, name: str, *, overwrite: bool = False):
+        """Save as the page's *Save* does: ``name`` (``*.toml``) in the design's folder.
+
+        With hand-placed sites, ``<stem>.seeds.csv`` beside it; each file written atomically.
+
+        Returns
+        -------
+        Reply
+            ``kind == "saved"`` with the file names, or ``"confirm"`` naming the files that
+            exist already (nothing written; pass ``overwrite=True``).
+
+        Raises
+        ------
+        ValueError
+            For a name that is not a plain ``*.toml`` file name.
+        """
+        with self._lock:
+            reply = self.session.apply({"op": "save", "name": name, "overwrite": overwrite})
+        if reply.kind == "error":
+            raise ValueError("; ".join(i["message"] for i in reply.issues))
+        return reply
 
     def apply(self, msg: dict):
         """Apply one edit from Python, as the page does (``{"op": "set", ...}``); the view follows.
