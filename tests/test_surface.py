@@ -306,3 +306,30 @@ def test_candidates_from_neighbour_lists_grid_and_any_hint_give_the_same_diagram
             fast[-1],
             np.argmin(((sphere3.vertices[:, None] - sites[None]) ** 2).sum(axis=2), axis=1),
         )
+
+
+# checker11 F7: sample_check's slack was 1e-12 of the surface's size, so a correct diagram far
+# from the origin (rounded piece vertices there) scored 0.9989 at 1e9; a wrong one must still fail.
+@pytest.mark.parametrize("offset", [0.0, 1e6, 1e9, 1e12])
+def test_sample_check_is_one_far_out_and_still_catches_wrong_cells(sphere3, offset):
+    import dataclasses
+
+    sites = sphere3.sample(60, seed=4)
+    ref = surface.voronoi(sphere3, sites)
+    shift = np.array([offset, -0.5 * offset, 0.25 * offset])
+    S = surface.Surface(sphere3.vertices + shift, sphere3.faces)
+    vd = surface.voronoi(S, sites + shift)
+    # the same diagram as at the origin (areas to the rounding of coordinates at the offset)
+    ulp = np.spacing(max(offset, 1.0))
+    np.testing.assert_allclose(vd.areas, ref.areas, rtol=0, atol=1e-12 + 64 * ulp)
+    assert vd.sample_check(20000, seed=1) == 1.0
+    # wrong labelling: two neighbouring cells swapped
+    i = 0
+    j = int(vd.neighbors[1][vd.neighbors[0][0]])  # its first neighbour (CSR lists)
+    cell = vd.piece_cell.copy()
+    cell[vd.piece_cell == i], cell[vd.piece_cell == j] = j, i
+    assert dataclasses.replace(vd, piece_cell=cell).sample_check(4000, seed=1) < 0.99
+    # slightly wrong: one site moved a tenth of the way to its neighbour, pieces kept
+    moved = vd.sites.copy()
+    moved[i] += 0.1 * (vd.sites[j] - vd.sites[i])
+    assert dataclasses.replace(vd, sites=moved).sample_check(20000, seed=1) < 0.999

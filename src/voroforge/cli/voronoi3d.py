@@ -144,31 +144,21 @@ def write_outputs(d, outputs, *, size=(1000, 800), explode=0.15, stage=None):
             )
             write_atomically(path, lambda tmp, tab=tab: pq.write_table(tab, tmp))
         elif suf in MESH_SUFFIXES:
-            import trimesh
-
-            from ..io.mesh import glb_scene, ply_bytes
+            from ..io.mesh import glb_bytes, obj_text, ply_bytes
 
             if suf == ".ply":  # float64 vertices, each face's cell as a face property
+                import trimesh
+
                 verts, faces, cell = d.triangles()  # all cells at once (not mesh by mesh)
                 data = ply_bytes(trimesh.Trimesh(verts, faces, process=False), cell)
-
-                def w(tmp, data=data):
-                    Path(tmp).write_bytes(data)
             elif suf == ".glb":  # float32 by the standard: relative to a node translation
-                scene = glb_scene([(f"cell_{i}", m) for i, m in _live_meshes(d)])
+                data = glb_bytes([(f"cell_{i}", m) for i, m in _live_meshes(d)])
+            else:  # .obj: text with every digit of the float64 vertices (repr)
+                data = items = [(f"cell_{i}", m) for i, m in _live_meshes(d)]
+                data = obj_text(items, groups=True).encode()
 
-                def w(tmp, scene=scene):
-                    scene.export(tmp, file_type="glb")
-            else:  # .obj: text with every digit of the float64 vertices
-                from trimesh.exchange.obj import export_obj
-
-                scene = trimesh.Scene()
-                for i, m in _live_meshes(d):
-                    scene.add_geometry(m, node_name=f"cell_{i}", geom_name=f"cell_{i}")
-                text = export_obj(scene, include_normals=False, digits=17)
-
-                def w(tmp, text=text):
-                    Path(tmp).write_text(text)
+            def w(tmp, data=data):
+                Path(tmp).write_bytes(data)
 
             write_atomically(path, w)
         elif suf == ".png":

@@ -5,7 +5,7 @@ them and picks the format from the suffix; :func:`read` loads a file back as one
 bodies concatenated) with its units in ``mesh.metadata["units"]``. Files are written
 atomically (a temporary file in the same folder, then renamed).
 
-Precision: 3MF and OBJ are written as text with 17 significant digits, PLY and ``.3dm``
+Precision: 3MF and OBJ are written as text with every digit (``repr``), PLY and ``.3dm``
 store float64 vertices, so those four reload bit for bit. STL and GLB hold float32 by
 definition: GLB geometry is stored relative to the meshes' centre with the translation in
 its (double) node transform, so it reloads to within float32 of the meshes' size; an STL
@@ -226,25 +226,33 @@ def ply_bytes(m, face_cell=None) -> bytes:
     return head.encode() + v.tobytes() + rec.tobytes()
 
 
+def _glb_origin(items) -> np.ndarray:
+    """The centre of the bounding box of ``items``' vertices (zeros when there are none)."""
+    boxes = [
+        (np.asarray(m.vertices).min(axis=0), np.asarray(m.vertices).max(axis=0))
+        for _, m in items
+        if len(m.vertices)
+    ]
+    if not boxes:
+        return np.zeros(3)
+    lo = np.min([b[0] for b in boxes], axis=0)
+    hi = np.max([b[1] for b in boxes], axis=0)
+    return 0.5 * (lo + hi)
+
+
 def glb_scene(items):
     """A trimesh Scene of ``(name, mesh)`` items for GLB, exact far from the origin.
 
     GLB stores vertex positions as float32 (by the glTF standard): at UTM-like offsets
     (5e5, 4e6) that rounds to a quarter of a unit. The geometry is therefore stored relative
     to one origin near the meshes (float32 is then relative to their extent) and each node
-    carries the translation back, which glTF keeps as a JSON (double) number.
+    carries the translation back, which glTF keeps as a JSON (double) number. Export it with
+    :func:`glb_bytes`: trimesh's exporter drops a node matrix within 1e-8 of the identity,
+    which would lose the translation of a model smaller than that.
     """
     import trimesh
 
-    lo = np.min(
-        [np.asarray(m.vertices).min(axis=0) for _, m in items if len(m.vertices)] or [np.zeros(3)],
-        axis=0,
-    )
-    hi = np.max(
-        [np.asarray(m.vertices).max(axis=0) for _, m in items if len(m.vertices)] or [np.zeros(3)],
-        axis=0,
-    )
-    origin = 0.5 * (lo + hi)
+    origin = _glb_origin(items)
     scene = trimesh.Scene()
     move = np.eye(4)
     move[:3, 3] = origin
@@ -252,6 +260,80 @@ def glb_scene(items):
         local = trimesh.Trimesh(np.asarray(m.vertices) - origin, m.faces, process=False)
         scene.add_geometry(local, node_name=name, geom_name=name, transform=move)
     return scene
+
+
+def glb_bytes(items) -> bytes:
+    """GLB file contents of ``(name, mesh)`` items (see :func:`glb_scene`).
+
+    Every mesh node gets its translation back: a node whose matrix trimesh left out (within
+    its 1e-8 of the identity: a model near the origin smaller than that) is given the
+    origin as its glTF ``translation``, so the file reloads to within float32 of the
+    meshes' extent at any scale.
+    """
+    origin = _glb_origin(items)
+    shift = [float(x) for x in origin]
+
+    def keep_translation(tree):
+        for node in tree.get("nodes", []):
+            if "mesh" in node and "matrix" not in node and any(shift):
+                node["translation"] = shift
+
+    return glb_scene(items).export(file_type="glb", tree_postprocessor=keep_translation)
+
+
+def _glb_read(path: Path):
+    """A GLB file's meshes as one Trimesh, each placed by its node's full transform.
+
+    trimesh's own concatenation skips a transform within 1e-8 of the identity, which is the
+    whole translation of a model smaller than that (see :func:`glb_bytes`).
+    """
+    import trimesh
+
+    scene = trimesh.load(path, file_type="glb", process=False)
+    if isinstance(scene, trimesh.Trimesh):
+        return scene
+    verts, faces, n = [], [], 0
+    for node in scene.graph.nodes_geometry:
+        matrix, name = scene.graph[node]
+        m = scene.geometry.get(name)
+        if not isinstance(m, trimesh.Trimesh) or len(m.faces) == 0:
+            continue
+        matrix = np.asarray(matrix, dtype=np.float64)
+        v = np.asarray(m.vertices, dtype=np.float64) @ matrix[:3, :3].T + matrix[:3, 3]
+        f = np.asarray(m.faces, dtype=np.int64)
+        if np.linalg.det(matrix[:3, :3]) < 0:  # a mirror turns the faces inside out
+            f = f[:, ::-1]
+        verts.append(v)
+        faces.append(f + n)
+        n += len(v)
+    if not verts:
+        return None
+    return trimesh.Trimesh(np.vstack(verts), np.vstack(faces), process=False)
+
+
+def obj_text(items, *, groups: bool | None = None) -> str:
+    """Wavefront OBJ text of ``(name, mesh)`` items, every vertex coordinate exact.
+
+    Coordinates are written with ``repr`` (the shortest text that reads back as the same
+    float64), so a file reloads bit for bit at any scale; trimesh's ``digits`` counts decimal
+    places, which keeps only a few significant digits of a model 1e-12 in size. Each item
+    becomes an ``o`` group named after it when ``groups`` (default: when there are several);
+    faces are 1-based, as OBJ has them.
+    """
+    if groups is None:
+        groups = len(items) > 1
+    out = ["# voroforge"]
+    base = 1
+    for name, m in items:
+        v = np.asarray(m.vertices, dtype=np.float64).reshape(-1, 3)
+        f = np.asarray(m.faces, dtype=np.int64).reshape(-1, 3) + base
+        if groups:
+            out.append(f"\no {name}")
+        out.extend(f"v {x!r} {y!r} {z!r}" for x, y, z in v.tolist())
+        out.extend(f"f {a} {b} {c}" for a, b, c in f.tolist())
+        base += len(v)
+    out.append("")
+    return "\n".join(out)
 
 
 def _f32_warning(items, kind: str) -> None:
@@ -355,7 +437,7 @@ def _read_3mf(path: Path):
     m = trimesh.Trimesh(
         np.vstack([v for v, _ in meshes]),
         np.vstack([f + o for (_, f), o in zip(meshes, offsets, strict=False)]),
-        process=True,
+        process=False,
     )
     m.metadata["units"] = units
     return m
@@ -441,7 +523,7 @@ def _3dm_read(path: Path):
         n += len(v)
     if not verts:
         raise ValueError(f"{path}: the .3dm file holds no meshes")
-    m = trimesh.Trimesh(np.vstack(verts), np.vstack(faces), process=True)
+    m = trimesh.Trimesh(np.vstack(verts), np.vstack(faces), process=False)
     units = {
         rhino3dm.UnitSystem.Microns: "um",
         rhino3dm.UnitSystem.Millimeters: "mm",
@@ -483,6 +565,8 @@ def write(mesh_or_meshes, path, *, units: str = "mm") -> Path:
         return _3dm_write(items, path, units)
     if kind == ".ply" and len(items) == 1:
         return save_bytes(path, ply_bytes(items[0][1]))
+    if kind == ".obj":
+        return save_bytes(path, obj_text(items).encode())
     import trimesh
 
     items = [(name, _trimesh(m)) for name, m in items]
@@ -492,16 +576,7 @@ def write(mesh_or_meshes, path, *, units: str = "mm") -> Path:
             return save_bytes(path, ply_bytes(m))
         _f32_warning(items, "STL")
         return save_bytes(path, m.export(file_type="stl"))
-    if kind == ".obj":
-        from trimesh.exchange.obj import export_obj
-
-        if len(items) == 1:
-            text = export_obj(items[0][1], include_normals=False, digits=17)
-        else:
-            scene = trimesh.Scene({name: m for name, m in items})
-            text = export_obj(scene, include_normals=False, digits=17)
-        return save_bytes(path, text.encode())
-    return save_bytes(path, glb_scene(items).export(file_type="glb"))
+    return save_bytes(path, glb_bytes(items))
 
 
 def read(path):
@@ -516,6 +591,7 @@ def read(path):
     -------
     trimesh.Trimesh
         With ``metadata["units"]`` set from 3MF and ``.3dm`` files (None for the others).
+        Only exactly equal vertices are merged, so a model reloads the same at any scale.
     """
     import trimesh
 
@@ -524,15 +600,41 @@ def read(path):
     if not path.is_file():
         raise ValueError(f"{path}: no such file")
     if kind == ".3mf":
-        return _read_3mf(path)
-    if kind == ".3dm":
-        return _3dm_read(path)
-    loaded = trimesh.load(path, file_type=kind[1:], force="mesh", process=True)
+        loaded = _read_3mf(path)
+    elif kind == ".3dm":
+        loaded = _3dm_read(path)
+    elif kind == ".glb":
+        loaded = _glb_read(path)
+    else:
+        loaded = trimesh.load(path, file_type=kind[1:], force="mesh", process=False)
     if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
         raise ValueError(f"{path}: holds no triangles")
-    loaded.merge_vertices()
-    loaded.metadata["units"] = None
-    return loaded
+    out = _merged(loaded)
+    out.metadata["units"] = loaded.metadata.get("units")
+    return out
+
+
+def _merged(m):
+    """``m`` with exactly equal vertices merged and faces on non-finite ones dropped.
+
+    trimesh's own merge rounds to 1e-8 absolute: a model 1e-12 in size collapses to a point
+    and coordinates past ~1e11 overflow its integer keys.
+    """
+    import trimesh
+
+    v = np.asarray(m.vertices, dtype=np.float64).reshape(-1, 3)
+    f = np.asarray(m.faces, dtype=np.int64).reshape(-1, 3)
+    f = f[np.isfinite(v).all(axis=1)[f].all(axis=1)]
+    used = np.unique(f)
+    uniq, first, inv = np.unique(
+        v[used] + 0.0, axis=0, return_index=True, return_inverse=True
+    )  # + 0.0: -0.0 -> 0.0
+    order = np.argsort(first)  # vertices in the order of their first occurrence
+    rank = np.zeros(len(order), dtype=np.int64)
+    rank[order] = np.arange(len(order))
+    where = np.zeros(len(v), dtype=np.int64)
+    where[used] = rank[inv.reshape(-1)]
+    return trimesh.Trimesh(uniq[order], where[f], process=False)
 
 
 def write_curves_3dm(layers, path, *, units: str = "mm", z: float = 0.0) -> Path:

@@ -26,6 +26,11 @@ import numpy as np
 from .. import config
 from .shapes import Surface, as_points3, check_surface_range
 
+# (for config.py) sample_check's slack in unit roundoffs of the surface's largest coordinate:
+# piece vertices are rounded where they lie, so far from the origin a correct diagram's sample
+# lands up to ~1.4 of them past a tie (unit sphere at offsets 1e6..1e15), not 1e-12 of its size
+SURFACE_SAMPLE_ULPS = 8
+
 __all__ = ["SurfaceVoronoi", "voronoi"]
 
 
@@ -387,24 +392,30 @@ class SurfaceVoronoi:
     def sample_check(self, count: int = 2000, *, seed: int = 0) -> float:
         """Share of random surface points whose nearest site owns the piece they fall in.
 
-        A diagnostic for tests and users: 1.0 for a correct diagram (ties aside).
+        A diagnostic for tests and users: 1.0 for a correct diagram (ties aside) at any
+        scale and distance from the origin. Distances are measured in a frame centred on the
+        surface, and a point counts as its owner's when it is no farther from it than from
+        the nearest site by ``1e-12`` of the surface's size plus ``SURFACE_SAMPLE_ULPS`` unit
+        roundoffs of its largest coordinate (where the pieces' vertices were rounded).
         """
         from scipy.spatial import cKDTree
 
         S = self.surface
+        V = np.asarray(S.vertices, dtype=np.float64)
+        centre = 0.5 * (V.min(axis=0) + V.max(axis=0))
+        sites = self.sites - centre
         rng = np.random.default_rng(seed)
         k = rng.choice(len(self.piece_area), size=count, p=self.piece_area / self.piece_area.sum())
-        ok = 0
         d_owner = np.zeros(count)
         pts = np.zeros((count, 3))
         for q, p in enumerate(k):
-            ring = self.piece_coords[self.piece_offsets[p] : self.piece_offsets[p + 1]]
+            ring = self.piece_coords[self.piece_offsets[p] : self.piece_offsets[p + 1]] - centre
             w = rng.random(len(ring)) ** 4
             pts[q] = (w / w.sum()) @ ring
-            d_owner[q] = np.linalg.norm(pts[q] - self.sites[self.piece_cell[p]])
-        d, _ = cKDTree(self.sites).query(pts)
-        ok = d_owner <= d + 1e-12 * S.scale
-        return float(ok.mean())
+            d_owner[q] = np.linalg.norm(pts[q] - sites[self.piece_cell[p]])
+        d, _ = cKDTree(sites).query(pts)
+        slack = 1e-12 * S.scale + SURFACE_SAMPLE_ULPS * np.finfo(np.float64).eps * np.abs(V).max()
+        return float((d_owner <= d + slack).mean())
 
 
 def _result(S: Surface, sites: np.ndarray, history: list, store: bool = True) -> SurfaceVoronoi:
