@@ -407,6 +407,10 @@ SURFACE_EDGE_RTOL = 1e-9
 #: (checker9: areas 0 at 1e80, 81% off at 1e-80, a hang at 1e-100); out of it a ValueError
 #: says so (scale the mesh by a power of ten and the results back)
 SURFACE_COORD_RANGE = (1e-60, 1e60)
+#: surface.SurfaceVoronoi.sample_check's slack in unit roundoffs of the surface's largest
+#: coordinate: piece vertices are rounded where they lie, so far from the origin a correct
+#: diagram's sample lands up to ~1.4 of them past a tie (unit sphere at offsets 1e6..1e15)
+SURFACE_SAMPLE_ULPS = 8
 
 #: Surface CVT from a site count: the share of the relaxation steps spent on the coarse level
 #: (a quarter of the sites) before the midpoints of its neighbour pairs are added (0.4: 94.9%

@@ -26,11 +26,6 @@ import numpy as np
 from .. import config
 from .shapes import Surface, as_points3, check_surface_range
 
-# (for config.py) sample_check's slack in unit roundoffs of the surface's largest coordinate:
-# piece vertices are rounded where they lie, so far from the origin a correct diagram's sample
-# lands up to ~1.4 of them past a tie (unit sphere at offsets 1e6..1e15), not 1e-12 of its size
-SURFACE_SAMPLE_ULPS = 8
-
 __all__ = ["SurfaceVoronoi", "voronoi"]
 
 
@@ -395,7 +390,7 @@ class SurfaceVoronoi:
         A diagnostic for tests and users: 1.0 for a correct diagram (ties aside) at any
         scale and distance from the origin. Distances are measured in a frame centred on the
         surface, and a point counts as its owner's when it is no farther from it than from
-        the nearest site by ``1e-12`` of the surface's size plus ``SURFACE_SAMPLE_ULPS`` unit
+        the nearest site by ``1e-12`` of the surface's size plus ``config.SURFACE_SAMPLE_ULPS`` unit
         roundoffs of its largest coordinate (where the pieces' vertices were rounded).
         """
         from scipy.spatial import cKDTree
@@ -414,7 +409,10 @@ class SurfaceVoronoi:
             pts[q] = (w / w.sum()) @ ring
             d_owner[q] = np.linalg.norm(pts[q] - sites[self.piece_cell[p]])
         d, _ = cKDTree(sites).query(pts)
-        slack = 1e-12 * S.scale + SURFACE_SAMPLE_ULPS * np.finfo(np.float64).eps * np.abs(V).max()
+        slack = (
+            1e-12 * S.scale
+            + config.SURFACE_SAMPLE_ULPS * np.finfo(np.float64).eps * np.abs(V).max()
+        )
         return float((d_owner <= d + slack).mean())
 
 
