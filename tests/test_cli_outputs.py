@@ -95,3 +95,65 @@ def test_raster_missing_folder_writes_nothing(tmp_path, pts2, capsys):
         a,
         says="does not exist",
     )
+
+
+ANIMATION = """
+[design]
+name = "st"
+seed = 3
+[boundary]
+shape = "rectangle"
+width = 100
+height = 80
+[seeds]
+method = "random"
+count = 30
+[cells]
+web = 2
+[animation]
+frames = 5
+[[animation.tracks]]
+key = "cells.web"
+values = [1, 4]
+"""
+
+
+def test_animate_frame_folder_is_replaced_whole(tmp_path, monkeypatch):
+    from voroforge.design import build as build_module
+
+    design = tmp_path / "a.toml"
+    design.write_text(ANIMATION, encoding="utf-8")
+    out = tmp_path / "frames"
+    args = ["animate", str(design), "-o", str(out), "--size", "40"]
+    assert main([*args, "--frames", "5"]) == 0
+    mine = ["frame-7.png", "frame-00009.png", "frame-0009.txt", "notes.txt"]
+    for name in mine:
+        (out / name).write_text("not ours", encoding="utf-8")
+    assert main([*args, "--frames", "2"]) == 0  # frames 3..5 of the older run removed
+    assert sorted(p.name for p in out.iterdir()) == sorted(
+        ["frame-0001.png", "frame-0002.png", *mine]
+    )
+    old = {p.name: p.read_bytes() for p in out.iterdir()}
+    calls = []
+    real = build_module.render_preview
+
+    def stop_at_second(result, **kwargs):
+        calls.append(1)
+        if len(calls) == 2:
+            raise KeyboardInterrupt
+        return real(result, **kwargs)
+
+    monkeypatch.setattr(build_module, "render_preview", stop_at_second)
+    assert main([*args, "--frames", "4"]) == 130  # Ctrl-C: the older animation as it was
+    assert {p.name: p.read_bytes() for p in out.iterdir()} == old
+
+
+def test_animate_refuses_a_gif_past_its_memory_budget(tmp_path, capsys):
+
+    design = tmp_path / "a.toml"
+    design.write_text(ANIMATION, encoding="utf-8")
+    gif = tmp_path / "a.gif"
+    assert main(["animate", str(design), "-o", str(gif), "--frames", "2000", "--size", "4096"]) == 2
+    err = capsys.readouterr().err
+    assert "voroforge: error: a GIF of 2000 frames of up to 4096 x 4096 px" in err
+    assert "33.6 GB" in err and not gif.exists()

@@ -524,3 +524,38 @@ def test_open_svg_outline_is_an_error_naming_file_and_element(tmp_path):
     with pytest.raises(DesignError, match=r"d\.toml:3: boundary\.file: .*<path id='outline'>"):
         check_design(design)
     check_design(design, overrides={"boundary.close_tolerance": 1})
+
+
+def test_gif_streams_frames_of_several_sizes_and_is_written_whole(tmp_path, monkeypatch):
+    from voroforge.io.gif import write_gif
+
+    rng = np.random.default_rng(3)
+    colours = rng.integers(0, 256, (6, 3), dtype=np.uint8)
+    shapes = [(40, 30), (24, 36), (40, 30)]
+    arrays = [colours[rng.integers(0, 6, s)] for s in shapes]
+    made = []
+
+    def frames():
+        for a in arrays:
+            made.append(len(made))
+            yield Image.fromarray(a, "RGB")
+
+    path = write_gif(frames(), tmp_path / "a.gif", fps=10)
+    with Image.open(path) as im:
+        assert im.n_frames == 3 and im.size == (36, 40)
+        for k, a in enumerate(arrays):
+            im.seek(k)
+            shown = np.asarray(im.convert("RGB"))
+            y, x = (40 - a.shape[0]) // 2, (36 - a.shape[1]) // 2
+            want = np.broadcast_to(a[0, 0], (40, 36, 3)).copy()  # its corner colour around it
+            want[y : y + a.shape[0], x : x + a.shape[1]] = a
+            assert np.array_equal(shown, want)  # 6 colours: the palette is exact
+    old = path.read_bytes()
+
+    def failing():
+        yield Image.fromarray(arrays[0], "RGB")
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        write_gif(failing(), path)
+    assert path.read_bytes() == old and [p.name for p in tmp_path.iterdir()] == ["a.gif"]

@@ -691,3 +691,42 @@ def test_build_warns_about_an_empty_cut_layer(tmp_path, capsys):
     path.write_text(BASE + '[cells]\nweb = 2\n[output]\nformats = ["svg"]\n')
     assert main(["build", str(path), "-o", str(tmp_path / "o")]) == 0
     assert capsys.readouterr().err == ""
+
+
+def _half_then_interrupt(monkeypatch, kind):
+    """Make PIL's save ("image") or ``Path.write_text`` ("text") leave half a file, then Ctrl-C."""
+    import pathlib
+
+    owner, name = (Image.Image, "save") if kind == "image" else (pathlib.Path, "write_text")
+    real = getattr(owner, name)
+
+    def half(self, fp, *args, **kwargs):
+        real(self, fp, *args, **kwargs)
+        target = pathlib.Path(self if kind == "text" else fp)
+        data = target.read_bytes()
+        target.write_bytes(data[: len(data) // 2])
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(owner, name, half)
+
+
+@pytest.mark.parametrize(
+    ("kind", "preview", "broken"),
+    [("image", False, "p.png"), ("text", False, "p-check.txt"), ("image", True, "p.png")],
+)
+def test_build_interrupted_mid_file_keeps_the_old_file(
+    tmp_path, monkeypatch, kind, preview, broken
+):
+    data = panel(**{"output.formats": ["png"], "fabrication.report": True, "output.png_size": 96})
+    build(data, tmp_path)
+    old = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+    assert broken in old and "p-check.png" in old
+    _half_then_interrupt(monkeypatch, kind)
+    with pytest.raises(KeyboardInterrupt):
+        build(panel(**{**data, "design.seed": 6}), tmp_path, preview=preview)
+    monkeypatch.undo()
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(old)  # no temporary file left
+    assert (tmp_path / broken).read_bytes() == old[broken]
+    for p in tmp_path.glob("*.png"):
+        with Image.open(p) as im:
+            im.load()  # every PNG whole (old or new)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import re
 
 from .progress import Stage
 
@@ -12,6 +13,12 @@ _ANIMATE_EPILOG = """\
 Plays the design's [animation] table (keyframes of any key, e.g. an attractor moving along
 a path) and writes the frames: the seeds of frame 0 stay (moved, not re-sampled), so the
 pattern morphs; cell colours are stable from frame to frame.
+
+Every file is written whole or not at all (Ctrl-C leaves the previous one). A folder gets
+frame-0001.png ...: older frame-NNNN.png files past the new count are removed, so the folder
+holds this animation only (other files are left alone). Frames are streamed to a folder or
+an MP4; a GIF holds every frame (1 byte a pixel) until it is written, so frames x size^2
+past 2 GB is refused: write a folder or an MP4 for longer, larger animations.
 
 examples:
   voroforge animate examples/facade-panel.toml -o sun.gif
@@ -103,36 +110,78 @@ def run_animate(args: argparse.Namespace, stage: Stage) -> list:
             ) from None
     from ..design.build import render_preview
     from ..design.designfile import load, located
+    from ..io.atomic import write_atomically
     from ..studio.animation import frames
 
     design, _ = load(args.design)
     fps = args.fps or (design.animation.fps if design.animation else 12.0)
-    images = []
-    with located(args.design):
-        for k, result in enumerate(frames(args.design, count=args.frames)):
-            stage(f"frame {k + 1}")
-            images.append(render_preview(result, size=args.size))
+    count = args.frames or (design.animation.frames if design.animation else 0)
     if suffix == ".gif":
-        from ..io.gif import write_gif
+        from ..io.gif import GIF_MAX_BYTES, write_gif
 
-        return [write_gif(images, out, fps=fps)]
+        need = count * args.size**2  # at most: 1 byte a pixel, the longer side --size
+        if need > GIF_MAX_BYTES:
+            raise ValueError(
+                f"a GIF of {count} frames of up to {args.size} x {args.size} px needs up to "
+                f"{need / 1e9:.1f} GB of memory (at most {GIF_MAX_BYTES / 1e9:.1f} GB): "
+                "use fewer --frames, a smaller --size, or write an .mp4 or a folder of PNG "
+                "frames (streamed)"
+            )
+
+    def images():  # one frame at a time: nothing holds the rendered frames
+        with located(args.design):
+            for k, result in enumerate(frames(args.design, count=args.frames)):
+                stage(f"frame {k + 1}")
+                yield render_preview(result, size=args.size)
+
+    if suffix == ".gif":
+        return [write_gif(images(), out, fps=fps)]
     if suffix == ".mp4":
         import imageio.v2 as imageio
         import numpy as np
 
-        with imageio.get_writer(out, fps=fps, macro_block_size=1) as w:
-            for im in images:
-                rgb = np.asarray(im.convert("RGB"))
-                # H.264 in yuv420p needs even sides: repeat the last row/column where odd
-                pad = ((0, rgb.shape[0] % 2), (0, rgb.shape[1] % 2), (0, 0))
-                w.append_data(np.pad(rgb, pad, mode="edge"))
-        if not out.exists() or out.stat().st_size == 0:
-            raise ValueError(f"{out}: ffmpeg wrote nothing (see its messages above)")
-        return [out]
+        def write_mp4(tmp):
+            with imageio.get_writer(tmp, fps=fps, macro_block_size=1) as w:
+                for im in images():
+                    rgb = np.asarray(im.convert("RGB"))
+                    # H.264 in yuv420p needs even sides: repeat the last row/column where odd
+                    pad = ((0, rgb.shape[0] % 2), (0, rgb.shape[1] % 2), (0, 0))
+                    w.append_data(np.pad(rgb, pad, mode="edge"))
+            if Path(tmp).stat().st_size == 0:
+                raise ValueError(f"{out}: ffmpeg wrote nothing (see its messages above)")
+
+        return [write_atomically(out, write_mp4)]
+    return _write_frames(images(), out)
+
+
+_FRAME = re.compile(r"frame-(\d{4})\.png")
+
+
+def _write_frames(images, out) -> list:
+    """Write ``frame-0001.png ...`` into the folder ``out``; remove older frames past them.
+
+    The frames are drawn into a hidden folder inside ``out`` and moved into place once all
+    are drawn: Ctrl-C leaves the previous animation as it was. Files named like our frames
+    (``frame-NNNN.png``) numbered past the new count are removed, so the folder holds this
+    animation only; other files are left alone.
+    """
+    import shutil
+    import tempfile
+    from pathlib import Path
+
     out.mkdir(parents=True, exist_ok=True)
-    written = []
-    for k, im in enumerate(images, start=1):
-        path = out / f"frame-{k:04d}.png"
-        im.save(path)
-        written.append(path)
-    return written
+    work = Path(tempfile.mkdtemp(prefix=".frames-", dir=out))
+    try:
+        names = []
+        for k, im in enumerate(images, start=1):
+            names.append(f"frame-{k:04d}.png")
+            im.save(work / names[-1], format="PNG")
+        for name in names:
+            (work / name).replace(out / name)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    for old in out.iterdir():
+        m = _FRAME.fullmatch(old.name)
+        if m and int(m.group(1)) > len(names) and old.is_file():
+            old.unlink()
+    return [out / name for name in names]

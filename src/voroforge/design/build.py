@@ -298,8 +298,7 @@ def build(
     if preview:
         stage("writing preview")
         path = out / f"{stem}.png"
-        render_preview(result, size=min(o.png_size, 800)).save(path, optimize=False)
-        return [path]
+        return [_save_png(render_preview(result, size=min(o.png_size, 800)), path, optimize=False)]
     if "svg" in o.formats and design.design.units not in ("mm", "cm", "in"):
         with located(source, overrides):
             raise DesignError.at(
@@ -346,8 +345,7 @@ def build(
                 )
             )
         elif fmt == "png":
-            render_preview(result, size=o.png_size).save(path)
-            written.append(path)
+            written.append(_save_png(render_preview(result, size=o.png_size), path))
         elif fmt == "geojson":
             written.append(_geojson(result, path, base))
         elif fmt == "parquet":
@@ -363,10 +361,23 @@ def build(
     if design.fabrication.report:
         report = _report(result)
         text = out / f"{stem}-check.txt"
-        text.write_text(report.table(max_rows=None) + "\n", encoding="utf-8")  # every row
-        written.append(text)
+        written.append(_save_text(text, report.table(max_rows=None) + "\n"))  # every row
         written.append(report.write_png(out / f"{stem}-check.png", size=min(o.png_size, 1200)))
     return written
+
+
+def _save_png(image, path: Path, **options) -> Path:
+    """Save a PIL image as PNG atomically: Ctrl-C leaves the old file or none, never half."""
+    from ..io.atomic import write_atomically
+
+    return write_atomically(path, lambda tmp: image.save(tmp, format="PNG", **options))
+
+
+def _save_text(path: Path, text: str) -> Path:
+    """Write UTF-8 text atomically (:func:`voroforge.io.atomic.write_atomically`)."""
+    from ..io.atomic import write_atomically
+
+    return write_atomically(path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
 
 
 def _page(result: Result, kerf: float, source, overrides, base):
@@ -419,8 +430,8 @@ def _write_legend(result: Result, stem: Path) -> list[Path]:
     writer.writeheader()
     writer.writerows(rows)
     paths = [stem.with_suffix(".csv"), stem.with_suffix(".json")]
-    paths[0].write_text(buf.getvalue(), encoding="utf-8")
-    paths[1].write_text(json.dumps(rows, indent=1) + "\n", encoding="utf-8")
+    _save_text(paths[0], buf.getvalue())
+    _save_text(paths[1], json.dumps(rows, indent=1) + "\n")
     return paths
 
 
@@ -672,5 +683,4 @@ def write_starter(path="design.toml", *, overwrite: bool = False) -> Path:
     path = Path(path)
     if path.exists() and not overwrite:
         raise ValueError(f"{path}: already exists (use --force to overwrite)")
-    path.write_text(starter(), encoding="utf-8")
-    return path
+    return _save_text(path, starter())

@@ -6,9 +6,15 @@ from pathlib import Path
 
 from PIL import Image
 
+from .atomic import write_atomically
 from .png import render_image
 
-__all__ = ["sweep_frames", "write_gif"]
+__all__ = ["GIF_MAX_BYTES", "sweep_frames", "write_gif"]
+
+# Memory a GIF's frames may take while it is written (Pillow holds every frame, 1 byte a
+# pixel, before it writes the file): `voroforge animate` refuses frames x size^2 past it.
+# (for config.py)
+GIF_MAX_BYTES = 2_000_000_000
 
 
 def sweep_frames(frames, *, size: int = 400, **options) -> list[Image.Image]:
@@ -47,8 +53,9 @@ def write_gif(frames, path, *, fps: float = 8.0, loop: int = 0, size: int = 400,
 
     Parameters
     ----------
-    frames : sequence of PIL images, or of cells (see :func:`sweep_frames`)
-        The frames in order; images of different sizes are centred on the largest.
+    frames : iterable of PIL images, or of cells (see :func:`sweep_frames`)
+        The frames in order (a generator is consumed one frame at a time, each kept only
+        as its palette image); images of different sizes are centred on the largest.
     path : str or Path
         Output file.
     fps : float
@@ -61,7 +68,7 @@ def write_gif(frames, path, *, fps: float = 8.0, loop: int = 0, size: int = 400,
     Returns
     -------
     Path
-        The file written.
+        The file written, atomically: an interrupted write leaves the old file or none.
 
     Raises
     ------
@@ -76,38 +83,45 @@ def write_gif(frames, path, *, fps: float = 8.0, loop: int = 0, size: int = 400,
     >>> write_gif(frames, out, size=64).name
     'sweep.gif'
     """
-    items = list(frames)
-    if not items:
-        raise ValueError("write_gif needs at least one frame")
     if not fps > 0:
         raise ValueError(f"fps must be positive; got {fps!r}")
-    if all(isinstance(f, Image.Image) for f in items):
-        images = items
-    else:
-        images = [
-            f if isinstance(f, Image.Image) else sweep_frames([f], size=size, **options)[0]
-            for f in items
-        ]
-    w = max(im.width for im in images)
-    h = max(im.height for im in images)
+    # Each frame is quantized as it comes (1 byte a pixel): a generator of frames is never
+    # held as full-colour images, only as the palette images the GIF is made of.
     canvas = []
-    for im in images:
-        rgb = im.convert("RGB")
-        if rgb.size != (w, h):
-            bg = Image.new("RGB", (w, h), rgb.getpixel((0, 0)))
-            bg.paste(rgb, ((w - rgb.width) // 2, (h - rgb.height) // 2))
-            rgb = bg
+    for f in frames:
+        im = f if isinstance(f, Image.Image) else sweep_frames([f], size=size, **options)[0]
         # One adaptive palette per frame, no dithering: crisp edges, deterministic bytes.
+        rgb = im.convert("RGB")
         canvas.append(rgb.quantize(colors=255, method=Image.Quantize.MEDIANCUT, dither=0))
-    path = Path(path)
+        del im, rgb
+    if not canvas:
+        raise ValueError("write_gif needs at least one frame")
+    w = max(im.width for im in canvas)
+    h = max(im.height for im in canvas)
+    for i, im in enumerate(canvas):
+        if im.size != (w, h):  # centred on the largest, the rest in its own corner colour
+            bg = Image.new("P", (w, h), im.getpixel((0, 0)))
+            bg.putpalette(im.getpalette())
+            bg.paste(im, ((w - im.width) // 2, (h - im.height) // 2))
+            canvas[i] = bg
     duration = max(20, int(round(1000.0 / fps / 10.0)) * 10)
-    canvas[0].save(
+    first = canvas.pop(0)
+    canvas.reverse()  # handed to Pillow one by one, so that only its copy stays held
+
+    def rest():
+        while canvas:
+            yield canvas.pop()
+
+    return write_atomically(
         path,
-        save_all=True,
-        append_images=canvas[1:],
-        duration=duration,
-        loop=loop,
-        optimize=False,
-        disposal=1,
+        lambda tmp: first.save(
+            tmp,
+            format="GIF",
+            save_all=True,
+            append_images=rest(),
+            duration=duration,
+            loop=loop,
+            optimize=False,
+            disposal=1,
+        ),
     )
-    return path

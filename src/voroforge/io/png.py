@@ -324,6 +324,7 @@ def write_png(
     image = render_image(
         geoms, size=size, sites=sites, boundary=boundary, colors=colors, seed=seed, **options
     )
-    path = Path(path)
-    image.save(path, format="PNG", optimize=False)
-    return path
+    from .atomic import write_atomically
+
+    # atomically: an interrupted save leaves the old file or none, never half a PNG
+    return write_atomically(path, lambda tmp: image.save(tmp, format="PNG", optimize=False))
