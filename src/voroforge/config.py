@@ -545,6 +545,9 @@ SOLID_VOXEL = 0.5
 PLOTTER_MERGE_RTOL = 1e-9
 #: ...and at least this many ulps of the largest coordinate (rounding far from the origin)
 PLOTTER_MERGE_ULPS = 64
+#: Memory a GIF's frames may take while it is written (Pillow holds every frame, 1 byte a
+#: pixel, before it writes the file): `voroforge animate` refuses frames x size^2 past it
+GIF_MAX_BYTES = 2_000_000_000
 #: 2-opt candidate list: this many nearest path ends of each end
 PLOTTER_NEIGHBOURS = 10
 #: 2-opt stops after this many passes even if a move still shortens the tour

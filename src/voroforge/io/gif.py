@@ -6,15 +6,11 @@ from pathlib import Path
 
 from PIL import Image
 
+from ..config import GIF_MAX_BYTES
 from .atomic import write_atomically
 from .png import render_image
 
 __all__ = ["GIF_MAX_BYTES", "sweep_frames", "write_gif"]
-
-# Memory a GIF's frames may take while it is written (Pillow holds every frame, 1 byte a
-# pixel, before it writes the file): `voroforge animate` refuses frames x size^2 past it.
-# (for config.py)
-GIF_MAX_BYTES = 2_000_000_000
 
 
 def sweep_frames(frames, *, size: int = 400, **options) -> list[Image.Image]:
