@@ -166,8 +166,6 @@ def _in_box(pts: np.ndarray, t: Template) -> np.ndarray:
     return ((pts >= lo - 1e-12 * scale[0::2]) & (pts <= hi + 1e-12 * scale[1::2])).all(axis=1)
 
 
-
-
 def _convex_holds_any(pts: np.ndarray, t: Template) -> bool:
     """Whether a Convex template holds any site.
 
