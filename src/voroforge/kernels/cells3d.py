@@ -34,7 +34,7 @@ from .cellcut3d import (
     owner_key,
     radius2,
 )
-from .graph3d import from_rings
+from .graph3d import from_rings, remap_rings
 from .polyhedron import CUT_NONE, cut, moments, plane_values
 from .predicates3d import bisector_side, scratch, wall_lift
 from .star3d import DECLINE, merge_star, star_cell
@@ -350,27 +350,7 @@ def _merge_named(nv, F, nf, R, vnames, vabs, vrel, remap):
                 vabs[m, q] = vabs[v, q]
                 vrel[m, q] = vrel[v, q]
         m += 1
-    nr = 0
-    nf2 = 0
-    for f in range(nf):
-        st = F[f, 1]
-        ln = F[f, 2]
-        b = nr
-        for k in range(ln):
-            x = remap[R[st + k]]
-            if nr > b and R[nr - 1] == x:
-                continue
-            R[nr] = x
-            nr += 1
-        while nr - b > 1 and R[nr - 1] == R[b]:
-            nr -= 1
-        if nr - b >= 3:
-            F[nf2, 0] = F[f, 0]
-            F[nf2, 1] = b
-            F[nf2, 2] = nr - b
-            nf2 += 1
-        else:
-            nr = b
+    nf2, nr = remap_rings(nf, F, R, remap)
     return m, nf2, nr
 
 

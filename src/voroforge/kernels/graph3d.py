@@ -44,6 +44,37 @@ GCUT_BROKEN = 3  # also: out of room; the caller falls back to the face-ring cut
 _NO_NRT = {**NJIT, "_nrt": False}
 
 
+@njit(**{**NJIT, "inline": "always"})
+def remap_rings(nf, F, R, remap):
+    """Face rings ``F``/``R`` renumbered by ``remap`` and packed again, in place.
+
+    A vertex repeated next to itself (two merged into one) is kept once, and a face left
+    with fewer than three vertices is dropped. Returns the faces and ring entries kept.
+    """
+    nr = 0
+    nf2 = 0
+    for f in range(nf):
+        st = F[f, 1]
+        ln = F[f, 2]
+        b = nr
+        for k in range(ln):
+            x = remap[R[st + k]]
+            if nr > b and R[nr - 1] == x:
+                continue
+            R[nr] = x
+            nr += 1
+        while nr - b > 1 and R[nr - 1] == R[b]:
+            nr -= 1
+        if nr - b >= 3:
+            F[nf2, 0] = F[f, 0]
+            F[nf2, 1] = b
+            F[nf2, 2] = nr - b
+            nf2 += 1
+        else:
+            nr = b
+    return nf2, nr
+
+
 @njit(**NJIT)
 def from_rings(nv, F, nf, R, DEG, ED, BK, LB):
     """Build the graph of polyhedron ``(nv, F, nf, R)`` (outward rings). Returns ok."""

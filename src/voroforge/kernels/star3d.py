@@ -20,6 +20,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT, STAR3D_WALL_BANDS, VORONOI3D_CUT_RTOL
+from .graph3d import remap_rings
 from .predicates3d import wall_lift
 from .vertex3d import name_key, name_vertex, place
 
@@ -209,25 +210,5 @@ def merge_star(nv, F, nf, R, vnames, vabs, vrel, remap, vbits, table):
                 vrel[m, q] = vrel[v, q]
         table[h] = m
         m += 1
-    nr = 0
-    nf2 = 0
-    for f in range(nf):
-        st = F[f, 1]
-        ln = F[f, 2]
-        b = nr
-        for k in range(ln):
-            x = remap[R[st + k]]
-            if nr > b and R[nr - 1] == x:
-                continue
-            R[nr] = x
-            nr += 1
-        while nr - b > 1 and R[nr - 1] == R[b]:
-            nr -= 1
-        if nr - b >= 3:
-            F[nf2, 0] = F[f, 0]
-            F[nf2, 1] = b
-            F[nf2, 2] = nr - b
-            nf2 += 1
-        else:
-            nr = b
+    nf2, nr = remap_rings(nf, F, R, remap)
     return m, nf2, nr
