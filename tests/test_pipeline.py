@@ -281,6 +281,34 @@ def test_gif_sweep(tmp_path):
         build(bad, tmp_path)
 
 
+def test_gif_draws_each_value_once_and_shows_it_at_each_of_its_places(tmp_path, monkeypatch):
+    import voroforge.design.build as build_module
+
+    drawn = []
+    real = build_module.render_preview
+
+    def counting(result, size):
+        drawn.append(repr(result.design.cells.web))
+        return real(result, size=size)
+
+    monkeypatch.setattr(build_module, "render_preview", counting)
+    data = panel(**{"output.formats": ["gif"], "seeds.radius": 30})
+    # 2 4 6 4, then back (bounce): 6 4; 4 is shown three times and 6 twice, each drawn once
+    data["output"]["gif"] = {"key": "cells.web", "values": [2, 4, 6, 4], "size": 64}
+    (path,) = build(data, tmp_path)
+    assert len(drawn) == len(set(drawn)) == 3
+    with Image.open(path) as img:
+        frames = []
+        for i in range(img.n_frames):
+            img.seek(i)
+            frames.append(np.asarray(img.convert("RGB")))
+    assert len(frames) == 6
+    assert all(np.array_equal(frames[i], frames[1]) for i in (3, 5))
+    assert np.array_equal(frames[2], frames[4])
+    assert not np.array_equal(frames[0], frames[1])
+    assert not np.array_equal(frames[2], frames[1])
+
+
 def test_input_dict_is_not_mutated(tmp_path):
     data = panel()
     before = json.dumps(data, sort_keys=True)

@@ -546,20 +546,29 @@ def _warn_coincident_layers(layers: dict) -> None:
 
 
 def _gif(design: Design, base: Path | None, path: Path, stage: Stage) -> Path:
-    from ..io.gif import write_gif
+    from ..io.gif import palette_frame, write_gif
 
     gif = design.output.gif
-    values = gif.sweep()
+    keys = [repr(v) for v in gif.sweep()]
     designs = sweep_designs(design)
-    unique = {}
-    for i, v in enumerate(values):
-        if repr(v) not in unique:
-            stage(f"gif frame {i + 1}/{len(values)}")
-            try:
-                unique[repr(v)] = render_preview(compute(designs[repr(v)], base), size=gif.size)
-            except DesignError as exc:  # a value the schema takes and the geometry refuses
-                raise _sweep_error(gif, v, exc) from None
-    return write_gif([unique[repr(v)] for v in values], path, fps=gif.fps)
+    last = {k: i for i, k in enumerate(keys)}  # a value shown again (bounce) is drawn once
+
+    def frames():
+        kept = {}  # only frames still to be shown again, and only as palette images
+        for i, (k, v) in enumerate(zip(keys, gif.sweep(), strict=True)):
+            frame = kept.pop(k, None) if last[k] == i else kept.get(k)
+            if frame is None:
+                stage(f"gif frame {i + 1}/{len(keys)}")
+                try:
+                    image = render_preview(compute(designs[k], base), size=gif.size)
+                except DesignError as exc:  # a value the schema takes and the geometry refuses
+                    raise _sweep_error(gif, v, exc) from None
+                frame = palette_frame(image)
+                if last[k] > i:
+                    kept[k] = frame
+            yield frame
+
+    return write_gif(frames(), path, fps=gif.fps)
 
 
 def _sweep_error(gif, v, exc: DesignError) -> DesignError:

@@ -10,7 +10,7 @@ from ..config import GIF_MAX_BYTES
 from .atomic import write_atomically
 from .png import render_image
 
-__all__ = ["GIF_MAX_BYTES", "sweep_frames", "write_gif"]
+__all__ = ["GIF_MAX_BYTES", "palette_frame", "sweep_frames", "write_gif"]
 
 
 def sweep_frames(frames, *, size: int = 400, **options) -> list[Image.Image]:
@@ -44,6 +44,16 @@ def sweep_frames(frames, *, size: int = 400, **options) -> list[Image.Image]:
     return images
 
 
+def palette_frame(image: Image.Image) -> Image.Image:
+    """``image`` as one GIF frame, one byte a pixel.
+
+    Its own adaptive palette of 255 colours, no dithering (crisp edges, deterministic
+    bytes). :func:`write_gif` takes such frames as they are, so a caller that shows one
+    frame several times keeps only this.
+    """
+    return image.convert("RGB").quantize(colors=255, method=Image.Quantize.MEDIANCUT, dither=0)
+
+
 def write_gif(frames, path, *, fps: float = 8.0, loop: int = 0, size: int = 400, **options) -> Path:
     """Write an animated GIF.
 
@@ -51,7 +61,8 @@ def write_gif(frames, path, *, fps: float = 8.0, loop: int = 0, size: int = 400,
     ----------
     frames : iterable of PIL images, or of cells (see :func:`sweep_frames`)
         The frames in order (a generator is consumed one frame at a time, each kept only
-        as its palette image); images of different sizes are centred on the largest.
+        as its palette image; a palette ("P") image is taken as it is, see
+        :func:`palette_frame`); images of different sizes are centred on the largest.
     path : str or Path
         Output file.
     fps : float
@@ -86,10 +97,8 @@ def write_gif(frames, path, *, fps: float = 8.0, loop: int = 0, size: int = 400,
     canvas = []
     for f in frames:
         im = f if isinstance(f, Image.Image) else sweep_frames([f], size=size, **options)[0]
-        # One adaptive palette per frame, no dithering: crisp edges, deterministic bytes.
-        rgb = im.convert("RGB")
-        canvas.append(rgb.quantize(colors=255, method=Image.Quantize.MEDIANCUT, dither=0))
-        del im, rgb
+        canvas.append(im if im.mode == "P" else palette_frame(im))
+        del im
     if not canvas:
         raise ValueError("write_gif needs at least one frame")
     w = max(im.width for im in canvas)
