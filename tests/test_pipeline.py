@@ -11,7 +11,7 @@ import shapely
 from PIL import Image
 
 from voroforge.design.build import DesignWarning, build, check_design, products
-from voroforge.design.compute import compute
+from voroforge.design.compute import compute, outline
 from voroforge.design.designfile import DesignError, load
 from voroforge.design.fabrication import check
 
@@ -307,6 +307,24 @@ def test_gif_draws_each_value_once_and_shows_it_at_each_of_its_places(tmp_path, 
     assert np.array_equal(frames[2], frames[4])
     assert not np.array_equal(frames[0], frames[1])
     assert not np.array_equal(frames[2], frames[1])
+
+
+@pytest.mark.parametrize(
+    "changes",
+    [{}, {"boundary.corner_radius": 12, "boundary.margin": 0}, {"boundary.margin": 1e6}],
+)
+def test_outline_is_computes_boundary_and_domain(changes):
+    design, base = load(panel(**changes))
+    if changes.get("boundary.margin") == 1e6:
+        with pytest.raises(DesignError, match="boundary.margin"):
+            outline(design, base)
+        return
+    boundary, domain = outline(design, base)
+    r = compute(design, base)
+    assert shapely.equals_exact(boundary, r.boundary, 0) and shapely.equals_exact(
+        domain, r.domain, 0
+    )
+    assert domain.area < boundary.area if changes.get("boundary.margin", 5) else domain is boundary
 
 
 def test_input_dict_is_not_mutated(tmp_path):

@@ -34,7 +34,7 @@ from .boundary import MM_PER_UNIT
 from .designfile import DesignError, find_file
 from .schema import Design, Graded
 
-__all__ = ["MM_PER_UNIT", "Result", "SeedTable", "Stage", "compute"]
+__all__ = ["MM_PER_UNIT", "Result", "SeedTable", "Stage", "compute", "outline"]
 
 #: A progress callback: called with the name of each stage.
 Stage = Callable[[str], None]
@@ -128,6 +128,26 @@ def _outline(geom) -> np.ndarray:
 
 
 # --- boundary and seeds -----------------------------------------------------------------
+
+
+def outline(design: Design, base: Path | None = None):
+    """The boundary and the domain of ``design``, as :func:`compute` makes them.
+
+    For callers that need where the cells live without computing them (an animation's
+    frame whose boundary moves, relaxed in its own domain).
+
+    Returns
+    -------
+    boundary, domain : shapely Polygon or MultiPolygon
+        The panel outline, and the boundary shrunk by ``boundary.margin``.
+
+    Raises
+    ------
+    DesignError
+        At ``boundary`` (or ``boundary.file``) for a boundary the design cannot make.
+    """
+    with as_design_error("boundary.file" if design.boundary.shape == "file" else "boundary"):
+        return _boundary(design, base)
 
 
 def _boundary(design: Design, base: Path | None):
@@ -665,8 +685,7 @@ def compute(
     stage = progress or (lambda name: None)
     seed = design.design.seed
     stage("boundary")
-    with as_design_error("boundary.file" if design.boundary.shape == "file" else "boundary"):
-        boundary, domain = _boundary(design, base)
+    boundary, domain = outline(design, base)
     with as_design_error("attractors"):
         field_fn = attractor_field(design, base)
     stage("seeds")

@@ -33,7 +33,7 @@ import shapely
 
 from .. import config
 from ..design.build import build, starter
-from ..design.compute import compute
+from ..design.compute import compute, outline
 from ..design.designfile import DesignError, apply_overrides, load
 from .controls import controls
 from .livecheck import LiveCheck
@@ -610,9 +610,7 @@ class Session:
         if not any(t.key.split(".")[0] in ("boundary", "design") for t in section.tracks):
             return self.result.domain  # no track moves the boundary: one domain for all
         try:  # the boundary moves: frame i's own, as animation.frames relaxes in
-            design = frame_design(self.data, section, i)
-            sites = self._anim["sites"][i]
-            domains[i] = compute(design, self.folder, sites=sites, frame=False).domain
+            _, domains[i] = outline(frame_design(self.data, section, i), self.folder)
         except DesignError as exc:
             raise named_error(exc, section, i) from None
         return domains[i]
