@@ -28,6 +28,7 @@ from ..kernels.rings import shared_edges
 from .agree import agree
 from .diagram import Edges, LazyEdges
 from .domain import Domain
+from .slivers import sliver_owner
 from .threads import serial_below
 
 
@@ -466,10 +467,11 @@ def _clip_arranged(rings, piece, site, xy):
     origin, an exact shift), so every crossing is one point, and each face of the
     arrangement inside the piece goes to the ring holding it; a face that two rings hold
     (rings that overlap by an ulp) goes to the one whose site ``xy`` it holds, else to the
-    nearer of their sites at its interior point, and a face no
-    ring holds strictly is another cell's, or a gap the rings leave. Each ring's faces are
-    united (every vertex must be one of the faces': none is new) and shifted back: the
-    crossings round once, the same in every cell.
+    nearer of their sites at its interior point, and a face no ring holds strictly is
+    another cell's, or a gap the rings leave. A face a few ulps wide may hold no float point
+    (a strip's piece of a tooth): its owner is decided exactly (:func:`.slivers.sliver_owner`).
+    Each ring's faces are united (every vertex must be one of the faces': none is new) and
+    shifted back: the crossings round once, the same in every cell.
     """
     o = np.asarray(site, dtype=np.float64)
     local = shapely.transform(rings, lambda p: p - o)
@@ -483,10 +485,21 @@ def _clip_arranged(rings, piece, site, xy):
     if not len(faces):
         return None
     x, y = shapely.get_coordinates(shapely.point_on_surface(faces)).T
-    keep = shapely.intersects_xy(lp, x, y)
-    faces, x, y = faces[keep], x[keep], y[keep]
+    # a face a few ulps wide may hold no float point: its owner is decided exactly
+    ulp = np.spacing(np.abs(shapely.bounds(faces)).max(axis=1))
+    thin = (shapely.area(faces) <= ASSEMBLE_THIN_ULPS * ulp * shapely.length(faces)) & (
+        shapely.get_num_interior_rings(faces) == 0
+    )
+    sliver = np.full(len(faces), -2, dtype=np.int64)
+    for f in np.flatnonzero(thin):
+        got = sliver_owner(faces[f], local, lp, o, xy, ASSEMBLE_ROUNDING_ULPS * ulp[f])
+        sliver[f] = -2 if got is None else got
+    keep = np.where(sliver == -2, shapely.intersects_xy(lp, x, y), sliver >= 0)
+    faces, x, y, sliver = faces[keep], x[keep], y[keep], sliver[keep]
     held = np.array([shapely.contains_xy(r, x, y) for r in local]).reshape(len(local), -1)
     cell = np.where(held.any(axis=0), np.argmax(held, axis=0), -1)
+    cell = np.where(sliver >= 0, sliver, cell)
+    held[:, sliver >= 0] = False
     rel = xy - o
     for f in np.flatnonzero(held.sum(axis=0) > 1):
         cand = np.flatnonzero(held[:, f])
