@@ -131,20 +131,10 @@ def _outline(geom) -> np.ndarray:
 
 
 def outline(design: Design, base: Path | None = None):
-    """The boundary and the domain of ``design``, as :func:`compute` makes them.
+    """``(boundary, domain)`` of ``design`` as :func:`compute` makes them, without its cells.
 
-    For callers that need where the cells live without computing them (an animation's
-    frame whose boundary moves, relaxed in its own domain).
-
-    Returns
-    -------
-    boundary, domain : shapely Polygon or MultiPolygon
-        The panel outline, and the boundary shrunk by ``boundary.margin``.
-
-    Raises
-    ------
-    DesignError
-        At ``boundary`` (or ``boundary.file``) for a boundary the design cannot make.
+    For an animation frame whose boundary moves (relaxed in its own domain). Raises
+    DesignError at ``boundary`` (or ``boundary.file``) for a boundary it cannot make.
     """
     with as_design_error("boundary.file" if design.boundary.shape == "file" else "boundary"):
         return _boundary(design, base)
