@@ -16,14 +16,16 @@ import numpy as np
 from numba import njit
 
 from ..config import GRID_DEGENERATE_RTOL, GRID_WIDEN_RTOL, NJIT, TRIM_CELLS
-from ..kernels.cells3d import OK, OVERFLOW, build_cells, cell_scratch
+from ..kernels.cells3d import EMPTY, OK, OVERFLOW, build_cells, cell_scratch
 from ..kernels.grid3d import kd_buckets3d
+from .containers import maybe_outside
 from .jointable3d import probe_next, rehash, slot
 from .lists3d import Lists, chunk_search, chunks, redo_slow
 from .threads import serial_below
 
 #: cells per call of the kernel (its fixed per-cell slots: ~10 KB a cell while it runs)
 CHUNK = 4096
+_NONE_GONE = np.zeros(0, np.bool_)  # no site's cell known empty (the kernel's gone)
 #: mean sites per bucket of the search grid
 PER_BUCKET = 2.0
 #: buckets visited in distance order before the shell-by-shell search takes over
@@ -206,6 +208,7 @@ def _run(
     scr=None,
     wmax=None,
     big=None,
+    gone=None,
 ):
     """Build ``cells`` into fixed per-cell slots (threads on slices of the cells).
 
@@ -213,8 +216,10 @@ def _run(
     space from call to call on the same inputs and caps; None: made for this call. ``wmax``:
     ``W.max()`` (None: found here; the caller of many chunks finds it once). ``big``: the
     candidate lists' ``(big, star)`` (:mod:`.lists3d`, :func:`.cells3d.build_cells`), or None.
+    ``gone``: ``(ns,) bool``, sites whose cells are empty (:func:`build_cells3d`), or None.
     """
     k = len(cells)
+    gone = _NONE_GONE if gone is None else gone
     scr = {} if scr is None else scr
     cv, cf, cr = caps[:3]
     status = np.zeros(k, np.int64)
@@ -259,7 +264,8 @@ def _run(
             ofaces[a * cf : b * cf],
             oring[a * cr : b * cr],
             work,
-            *(() if big is None else big),
+            *((None, None) if big is None else big),
+            gone,
         )
 
     nth = 1 if pool is None else max(1, min(pool._max_workers, k // 512 or 1))
@@ -575,14 +581,21 @@ def build_order(P, cells, g, sidx, tree):
     return np.argsort(bucket_keys3d(P[cells], g), kind="stable")
 
 
-def build_cells3d(P, W, t, cells=None, progress=None, short=False, lists=True) -> Cells3D:
+def build_cells3d(
+    P, W, t, cells=None, progress=None, short=False, lists=True, outside=False
+) -> Cells3D:
     """Cells of sites ``cells`` (default all) of ``P (ns, 3)``, weights ``W``, template ``t``.
 
     Chunks of cells are built in bucket order into per-cell slots (threads), and each chunk
     is joined at once into the growing outputs (:func:`_join`); a cell that overflowed its
     slots is built again alone with big slots and joined in its place. ``short``: keep the
     per-vertex mask behind ``unmatched`` (:attr:`Cells3D.short`). ``lists``: unweighted
-    cells past a search budget are built from Delaunay lists (:mod:`.lists3d`).
+    cells past a search budget are built from Delaunay lists (:mod:`.lists3d`); ``"owners"``:
+    only those with a vertex of more owners than the cell's table holds (mesh containers).
+    ``outside``: the cells of the sites that may lie outside the container
+    (:func:`maybe_outside`) are built first, and those found empty own no vertex (a site
+    outside a box whose cell shrinks to a corner is on that vertex's sphere, but no cell of
+    it references the vertex: it counted as unmatched, and a float hull was built twice).
     """
     import numba
 
@@ -594,7 +607,7 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False, lists=True) -
     g, start, SP, sidx, order, tree = search3d(P)
     SW = np.ascontiguousarray(W[sidx])  # the weights in bucket order, read beside SP
     # unweighted: a budget of sites a cell, past it the cell's Delaunay list (engine.lists3d)
-    lists = None if W.any() or not lists else Lists(P, W, g)
+    lists = None if W.any() or not lists else Lists(P, W, g, owners_only=lists == "owners")
     # cells are built in bucket order (neighbouring cells read the same sites: 1.5x less
     # time than input order on 1e5 uniform sites); the face table stays in that order
     sort = build_order(P, cells, g, sidx, tree)
@@ -625,10 +638,19 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False, lists=True) -
         scr = {}  # each thread's working space, kept from chunk to chunk (_run)
         pending = []
         grid = (start, SP, SW, sidx, g, None)  # the grid's search (no big polytopes)
+        gone = None  # the sites whose cells are empty (outside), not counted as owners
 
         def run(few, *search, sl=None):  # search: (start, SP, SW, sidx, g, big)
             *s, big = search
-            return _run(few, P, W, *s, order, tree, t, CAPS, pool, sl, scr, wmax, big)
+            return _run(few, P, W, *s, order, tree, t, CAPS, pool, sl, scr, wmax, big, gone)
+
+        if outside:
+            far = np.flatnonzero(maybe_outside(P, t))
+            if len(far):
+                empty = far[run(far, *grid)[0] == EMPTY]
+                if len(empty):
+                    gone = np.zeros(ns, np.bool_)
+                    gone[empty] = True
 
         def join(c0, chunk, how, st, counts, v, c, r2, sl, capa):
             if not made:
@@ -640,7 +662,7 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False, lists=True) -
                 # from one), joined in its place
                 s = lists.get()[:6] if how is not None and how[q] else grid
                 st[q], counts[q], v[q], c[q], r2[q] = _big(
-                    chunk[q], P, W, s, order, tree, t, out, wmax, counts[q]
+                    chunk[q], P, W, s, order, tree, t, out, wmax, counts[q], gone
                 )
 
             out.add(st, counts, sl, capa, big)
@@ -699,11 +721,12 @@ def build_cells3d(P, W, t, cells=None, progress=None, short=False, lists=True) -
     )
 
 
-def _big(i, P, W, search, order, tree, t, out, wmax=None, need=None):
+def _big(i, P, W, search, order, tree, t, out, wmax=None, need=None, gone=None):
     """Build cell ``i`` alone with big slots, growing until it fits, and join it.
 
     ``search = (start, SP, SW, sidx, g, big)`` (:mod:`.lists3d`). Slots hold at least
-    ``need`` (the ``(nv, nf, nr)`` it reported), scratch twice that.
+    ``need`` (the ``(nv, nf, nr)`` it reported), scratch twice that. ``gone``: as
+    :func:`_run`'s.
     """
     *s, big = search
     factor = BIG_CAPS_FACTOR
@@ -711,7 +734,7 @@ def _big(i, P, W, search, order, tree, t, out, wmax=None, need=None):
     while True:  # (growing by 4 alone built a sphere's centre cell, 8,000 vertices, 5 times)
         caps = tuple(max(CAPS[q] * factor, need[q % 3] * (1 + q // 3)) for q in range(6)) + CAPS[6:]
         st, counts, v, c, r2, sl, capa = _run(
-            np.array([i]), P, W, *s, order, tree, t, caps, None, wmax=wmax, big=big
+            np.array([i]), P, W, *s, order, tree, t, caps, None, wmax=wmax, big=big, gone=gone
         )
         # (a sphere's centre cell of 40,000 faces needs the slots of its counts at 1024)
         if st[0] != OVERFLOW or factor >= 1024:

@@ -22,6 +22,13 @@ import numpy as np
 
 from ..config import AREA_MAX, CONVEX_FAR_ORIGIN, FLAT_RTOL, VOLUME_RANGE
 
+# (for config.py) engine.build3d's outside pass: sites within this much of a wall's scale
+# of its outside may lie outside the container; their cells are built first, to learn
+# which are empty
+OUTSIDE3D_RTOL = 1e-12
+#: sites per block of the outside test (a block's (sites, walls) values at once)
+OUTSIDE3D_BLOCK = 65536
+
 #: the cube's faces, outward counter-clockwise; corner ``k`` is ``(k & 1, k >> 1 & 1, k >> 2)``
 _CUBE_RINGS = ((0, 4, 6, 2), (1, 3, 7, 5), (0, 1, 5, 4), (2, 6, 7, 3), (0, 2, 3, 1), (4, 5, 7, 6))
 
@@ -576,3 +583,25 @@ def as_container(container, pts: np.ndarray) -> Template:
             )
         return box_template(b[:3], b[3:])
     raise TypeError("not a box or Convex container")
+
+
+def maybe_outside(P: np.ndarray, t: Template) -> np.ndarray:
+    """``(n,) bool``: the sites ``P`` (working frame) that may lie outside template ``t``.
+
+    A box's walls are compared exactly (a site on a wall is inside); a Convex's in floats,
+    so a site within :data:`OUTSIDE3D_RTOL` of a wall's scale of its outside is included.
+    """
+    WP = t.WP
+    if t.kind == "box" and WP.shape[1] == 4:
+        lo, hi = t.bounds
+        return ((P < lo) | (P > hi)).any(axis=1)
+    out = np.zeros(len(P), np.bool_)
+    n = WP[:, :3]
+    for a in range(0, len(P), OUTSIDE3D_BLOCK):
+        Q = P[a : a + OUTSIDE3D_BLOCK]
+        if WP.shape[1] > 4:
+            Q = Q - WP[0, 4:7]
+        s = Q @ n.T - WP[:, 3]
+        scale = np.abs(WP[:, 3]) + np.abs(Q).max(axis=1)[:, None] * np.abs(n).sum(axis=1)
+        out[a : a + OUTSIDE3D_BLOCK] = (s > -OUTSIDE3D_RTOL * scale).any(axis=1)
+    return out

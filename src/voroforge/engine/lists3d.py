@@ -44,8 +44,11 @@ class Lists:
     :func:`.kernels.cells3d.build_cells`).
     """
 
-    def __init__(self, P: np.ndarray, W: np.ndarray, g: np.ndarray):
+    def __init__(self, P: np.ndarray, W: np.ndarray, g: np.ndarray, owners_only=False):
         self.P, self.W, self.g = P, W, g
+        # owners_only (mesh containers): no budget of sites, lists only for the cells with a
+        # vertex of more owners than their table holds
+        self.most = float(2**62) if owners_only else SITE_BUDGET
         self.made = None
         self.slow = self.seen = 0  # cells past the budget, and cells built
 
@@ -53,14 +56,17 @@ class Lists:
         """The search grid with the budget (``g[9]``, read by ``cellcut3d.one_cell``)."""
         if self.made is False:  # the sites span no volume: no lists, no budget
             return self.g
-        return np.append(self.g, SITE_BUDGET)
+        return np.append(self.g, self.most)
 
     def worth(self, slow: int, k: int) -> bool:
         """Count ``slow`` cells past the budget in ``k`` more; whether to use (make) lists."""
         self.slow += slow
         self.seen += k
         most, share = LISTS_AFTER
-        return self.made is not None or FORCE or self.slow >= max(most, share * self.seen)
+        if self.most > SITE_BUDGET and slow:  # owners only: such a cell fails without its list
+            return True
+        force = FORCE and self.most == SITE_BUDGET
+        return self.made is not None or force or self.slow >= max(most, share * self.seen)
 
     def get(self):
         """``(start, SP, SW, sidx, g, big, listed)`` or None when the sites span no volume."""
@@ -104,7 +110,7 @@ def chunk_search(lists, search):
 
     ``search = (start, SP, SW, sidx, g, None)``: the grid's, given the budget here.
     """
-    if lists.made:
+    if lists.made and lists.most == SITE_BUDGET:  # (owners only: just the cells that need them)
         return lists.made[:6]
     return (*search[:4], lists.budget(), None)
 
@@ -117,14 +123,15 @@ def redo_slow(chunk, res, lists, run, search):
     SW, sidx, g, None)`` of the grid (no budget). Returns ``(k,) bool``, True where the cell was
     built from its list, or None when no cell ran past the budget.
     """
-    if lists.made:  # the chunk was built from lists: the sites without one, searched
+    if lists.made and lists.most == SITE_BUDGET:  # built from lists: those without, searched
         listed = lists.made[6][chunk]
         at = np.flatnonzero(~listed)
         if len(at):
             _splice(res, at, run(chunk[at], *search))
         return listed
     status = res[0]
-    slow = np.flatnonzero(status == SLOW) if not FORCE else np.arange(len(chunk))
+    force = FORCE and lists.most == SITE_BUDGET  # (owners only: never forced)
+    slow = np.flatnonzero(status == SLOW) if not force else np.arange(len(chunk))
     if len(slow) == 0:
         lists.worth(0, len(chunk))
         return None

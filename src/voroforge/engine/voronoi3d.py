@@ -112,7 +112,10 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
     tw = t.scaled(k)
     wk = None if w is None else np.ldexp(w, 2 * k)
     P = np.ascontiguousarray(work[uniq])
-    W = np.zeros(len(uniq)) if wk is None else np.ascontiguousarray(wk[uniq])
+    # equal weights give the unweighted cells (only weight differences enter): built so,
+    # they take the Delaunay lists (a vertex of 1,032 owners failed with weights=ones)
+    equal = wk is None or not len(wk) or bool((wk == wk[0]).all())
+    W = np.zeros(len(uniq)) if equal else np.ascontiguousarray(wk[uniq])
     u = len(uniq)
     if u == 0:
         return _assemble(pts, w, t, k, None, uniq, dup, None, periodic, mesh)
@@ -124,9 +127,10 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
         build = np.arange(u)
         if w is None:
             build = np.flatnonzero(reaching_sites(mesh, pts, ins)[uniq])
-        # (no Delaunay lists: the mesh cut's new vertices round by the order of the cell's
-        # faces, which a cell built from its list does not keep)
-        res = build_cells3d(P, W, tw, cells=build, progress=progress, short=True, lists=False)
+        # (Delaunay lists only for cells with a vertex of more owners than the cell's table
+        # holds: the mesh cut's new vertices round by the order of the cell's faces, which a
+        # cell built from its list does not keep)
+        res = build_cells3d(P, W, tw, cells=build, progress=progress, short=True, lists="owners")
         gmap = None
     else:
         res = _convex_cells(P, W, tw, progress)
@@ -149,7 +153,7 @@ def _convex_cells(P, W, tw, progress):
     """The cells of every site in a box or Convex template ``tw`` (working frame)."""
     if takes_hull_path(tw):  # a big Convex: box cells, then those at a wall (engine.hull3d)
         return hull_cells(P, W, tw, progress=progress)
-    return build_cells3d(P, W, tw, cells=np.arange(len(P)), progress=progress)
+    return build_cells3d(P, W, tw, cells=np.arange(len(P)), progress=progress, outside=True)
 
 
 def _walls_frame(pts: np.ndarray, t: Template):

@@ -132,6 +132,7 @@ def _name_cell(
     X,
     BG,
     bkeys,
+    GN,
 ):
     """Owners, names and named coordinates of the cell's vertices; returns status.
 
@@ -143,7 +144,9 @@ def _name_cell(
     predicates'. ``BG = (bigof, bstart, bsite)``: a vertex named by four sites of cell
     ``i``'s big polytope is its centre, whose owners are all its sites (and the walls found
     here): named from them (:func:`_big_keys`, into ``bkeys``), as a cell that found every
-    one of them names it.
+    one of them names it. ``GN (ns,) bool`` (or empty): sites whose cells are empty (outside
+    the container, touching it at most); they own no vertex, so they are not counted in
+    the vertex's owner sites (its name is unchanged).
     """
     graph = G[0].shape[0] > 0
     nfo = work[:, 1]
@@ -256,7 +259,8 @@ def _name_cell(
             vnames[v, q] = name[q]
         nsite = 0
         for t in range(u):
-            nsite += kk[t] < ns
+            if kk[t] < ns and not (GN.shape[0] > 0 and GN[kk[t]]):
+                nsite += 1
         # the join's identity besides the coordinates, and the owner sites (osite)
         vnames[v, 4] = (name_key(u, name) << 8) | min(nsite, 255)
         place(name, P, W, WP, ns, y, x, X[1])  # x = p_a + y, or exact where that cancels
@@ -432,6 +436,7 @@ def build_cells(
     scr,
     big=None,
     star=None,
+    gone=None,
 ):
     """Build the cells ``cells (k,)`` (site numbers); ``wmax`` is ``W``'s largest weight.
 
@@ -449,7 +454,8 @@ def build_cells(
     has a budget (``g[9] > 0``: the engine builds it from its list), else ``OVERFLOW``.
     ``star``: the Delaunay star of every site (:func:`.star3d.star_cell`'s ``ST``, its last
     entry ``[least]``): a cell whose candidate list (list mode) has at least ``least``
-    sites is read off its star where the container does not cut it, else None.
+    sites is read off its star where the container does not cut it, else None. ``gone``:
+    ``(ns,) bool``, sites whose cells are empty (not counted as owner sites), or empty/None.
     """
     k = cells.shape[0]
     ns = P.shape[0]
@@ -460,6 +466,7 @@ def build_cells(
         BG = (np.full(0, -1, np.int64), np.zeros(1, np.int64), np.zeros(0, np.int64))
     else:
         BG = big
+    GN = np.zeros(0, np.bool_) if gone is None else gone
     most = 0  # the largest big polytope: bkeys holds it and the walls
     for q in range(BG[1].shape[0] - 1):
         most = max(most, BG[1][q + 1] - BG[1][q])
@@ -588,6 +595,7 @@ def build_cells(
             X,
             BG,
             bkeys,
+            GN,
         )
         if st == OVERFLOW and budget:
             st = SLOW  # a vertex of more owners than OWN holds: from its list
