@@ -129,6 +129,47 @@ def test_wrap_cells_tile_the_box(n):
     ).all()
 
 
+def _seam_cases():
+    hexes = [((i + 0.5 * (j % 2)) / 4, (j + 0.5) / 4) for j in range(4) for i in range(4)]
+    return {
+        "centred_grid": (
+            np.array([(i / 3 + 1 / 6, j / 3 + 1 / 6) for i in range(3) for j in range(3)]),
+            (0, 0, 1, 1),
+        ),
+        "row": (np.column_stack([np.arange(7) / 7, np.full(7, 0.5)]), (0, 0, 1, 1)),
+        "hex_tile": (np.array(hexes), (0, 0, 1, 1)),
+        "far_grid": (
+            4e6
+            + 3 * np.array([(i / 4 + 0.125, j / 4 + 0.125) for i in range(4) for j in range(4)]),
+            (4e6, 4e6, 4e6 + 3, 4e6 + 3),
+        ),
+    }
+
+
+@pytest.mark.parametrize("algorithm", ["delaunay", "fortune", "halfplane"])
+@pytest.mark.parametrize("case", ["centred_grid", "row", "hex_tile", "far_grid"])
+def test_wrap_keeps_the_torus_edges_lying_on_the_box_sides(case, algorithm):
+    # tiles whose seams are the box's sides: wrapped, the same neighbours and the same total
+    # edge length as the unwrapped torus (each side edge once, not dropped on both sides)
+    pts, box = _seam_cases()[case]
+
+    def length(d):
+        seg = np.asarray(d.edges.coords).reshape(-1, 2, 2)
+        return np.hypot(*(seg[:, 1] - seg[:, 0]).T).sum()
+
+    def neighbours(d):
+        ip, ix = d.neighbors
+        return [set(ix[ip[i] : ip[i + 1]].tolist()) for i in range(len(pts))]
+
+    u = vf.voronoi(pts, box, periodic=True, algorithm=algorithm)
+    w = vf.voronoi(pts, box, periodic=True, wrap=True, algorithm=algorithm)
+    assert neighbours(w) == neighbours(u)
+    assert length(w) == pytest.approx(length(u), rel=1e-12)
+    if case == "centred_grid":  # every square borders four others across the torus
+        assert all(len(nb) == 4 for nb in neighbours(w))
+        assert length(w) == pytest.approx(6.0, rel=1e-12)
+
+
 def test_crossing_cell_becomes_multipolygon():
     rng = np.random.default_rng(3)
     sites = np.concatenate(
@@ -267,9 +308,10 @@ def test_periodic_wrap_has_no_rounding_slivers(k):
     assert all(len(shapely.get_parts(c)) == 1 for c in w.cells)
     assert abs(w.areas.sum() - 1.0) <= 1e-14
     assert w.describe().euler_ok
-    # the seams inside the box, each once: k - 1 vertical and k - 1 horizontal lines
+    # the seams, each once: k vertical and k horizontal lines (the box's lower sides are
+    # seams of the torus too; its upper sides are the same lines)
     length = np.hypot(*(w.edges.coords[:, 1] - w.edges.coords[:, 0]).T)
-    assert length.min() > 0.5 * h and abs(length.sum() - 2 * (k - 1)) <= 1e-12
+    assert length.min() > 0.5 * h and abs(length.sum() - 2 * k) <= 1e-12
     # the tiled reference: each site's cell is the h x h square around it
     ref = shapely.box(*(g - h / 2).T, *(g + h / 2).T)
     assert np.allclose(w.areas, shapely.area(ref), rtol=1e-12, atol=0)

@@ -416,6 +416,9 @@ def _torus_edges(d: Diagram, source, shift, is_orig, wrap: bool, pieces, box) ->
     pairs = d.edges.pairs
     coords = d.edges.coords
     if wrap:
+        kept = np.zeros(len(d.sites), dtype=bool)
+        kept[pieces] = True
+        side = _side_edges(coords, pairs, kept, box)
         coords, inside = _clip_segments(coords, box)
         pairs = pairs[inside]
     a = pairs[:, 0]
@@ -424,9 +427,12 @@ def _torus_edges(d: Diagram, source, shift, is_orig, wrap: bool, pieces, box) ->
     sb = source[b]
     if wrap:
         # the edges between copies that left a piece in the box (see _slivers)
-        kept = np.zeros(len(d.sites), dtype=bool)
-        kept[pieces] = True
         keep = kept[a] & kept[b]
+        sc, sp = side
+        coords = np.concatenate((coords[keep], sc))
+        sa = np.concatenate((sa[keep], source[sp[:, 0]]))
+        sb = np.concatenate((sb[keep], source[sp[:, 1]]))
+        keep = np.ones(len(coords), dtype=bool)
     else:
         # each torus edge once: where the lower-index cell is the original copy (a self
         # edge, between a cell and its own image, where the image lies on the positive side)
@@ -436,6 +442,29 @@ def _torus_edges(d: Diagram, source, shift, is_orig, wrap: bool, pieces, box) ->
     lo = np.minimum(sa, sb)[keep]
     hi = np.maximum(sa, sb)[keep]
     return Edges(np.ascontiguousarray(coords[keep]), np.stack((lo, hi), axis=1).astype(np.int64))
+
+
+def _side_edges(seg: np.ndarray, pairs: np.ndarray, kept: np.ndarray, box):
+    """The torus edges along the box's sides (a square grid's, a hex tile's seams), once.
+
+    Such an edge lies between a copy with a piece in the box and one without, and again on
+    the opposite side between the other two copies; the box clip keeps one, both or (an ulp
+    outside) neither of them. Kept here from the lower sides (x0, y0), within rounding of
+    the side, moved onto it and cut to the box.
+    """
+    x0, y0, x1, y1 = box
+    w = _sliver_width(box)
+    one = kept[pairs[:, 0]] != kept[pairs[:, 1]]
+    out, which = [], []
+    for k, (at, lo, hi) in enumerate(((x0, y0, y1), (y0, x0, x1))):
+        along = one & (np.abs(seg[:, :, k] - at) <= w).all(axis=1)
+        s = seg[along].copy()
+        s[:, :, k] = at
+        s[:, :, 1 - k] = np.clip(s[:, :, 1 - k], lo, hi)
+        long = s[:, 0, 1 - k] != s[:, 1, 1 - k]
+        out.append(s[long])
+        which.append(np.flatnonzero(along)[long])
+    return np.concatenate(out), pairs[np.concatenate(which)]
 
 
 def _clip_segments(seg: np.ndarray, box):
