@@ -334,6 +334,22 @@ def test_input_dict_is_not_mutated(tmp_path):
     assert json.dumps(data, sort_keys=True) == before
 
 
+@pytest.mark.parametrize("method", ["grid", "poisson"])
+def test_periodic_tile_edges_draw_each_seam_once(method):
+    # a grid's seams lie on the tile's sides: the outline draws them, the wrapped edges not
+    changes = {"voronoi.periodic": True, "boundary.margin": 0, "cells.web": 0, "cells.fillet": 0}
+    changes.update({"seeds.method": method, "seeds.spacing": 20, "seeds.radius": 20})
+    r = result_of(panel(**changes))
+    lines = list(shapely.get_parts(r.edges))
+    segs = [tuple(sorted(map(tuple, np.round(np.asarray(g.coords), 9)))) for g in lines]
+    assert len(segs) == len(set(segs))
+    on_outline = sum(g.length for g in lines if r.domain.exterior.buffer(1e-9).contains(g))
+    assert on_outline == pytest.approx(r.domain.length, rel=1e-12)
+    # every cell's perimeter is drawn: inner seams twice over the cells, the outline once
+    total = sum(g.length for g in lines)
+    assert 2 * total - r.domain.length == pytest.approx(sum(c.length for c in r.raw), rel=1e-9)
+
+
 def test_edges_are_unique(tmp_path):
     r = result_of(panel(**{"cells.web": 0, "cells.fillet": 0}))
     segs = [

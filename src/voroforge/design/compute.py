@@ -110,12 +110,15 @@ def _edges(result: Result):
     d = result.diagram
     if d is None:
         return cellops.edges_to_lines(cellops.explode(result.raw))
-    if d.periodic:  # the edges between the pieces of the cells cut into the tile
-        import voroforge as vf
+    seg = d.edges.coords
+    if d.periodic:  # the edges of the cells cut into the tile; the outline draws its sides
+        from ..engine.periodic import periodic_voronoi
 
-        tile = result.extra["tile"]
-        d = vf.voronoi(d.sites, tile, algorithm=d.algorithm, periodic=True, wrap=True)
-    return cellops.edges_to_lines(np.concatenate((d.edges.coords, _outline(result.domain))))
+        x0, y0, x1, y1 = tile = result.extra["tile"]
+        seg = periodic_voronoi(d.sites, tile, algorithm=d.algorithm, wrap=True).edges.coords
+        on = [(seg[:, :, k] == v).all(axis=1) for k, v in ((0, x0), (1, y0), (0, x1), (1, y1))]
+        seg = seg[~np.logical_or.reduce(on)]
+    return cellops.edges_to_lines(np.concatenate((seg, _outline(result.domain))))
 
 
 def _outline(geom) -> np.ndarray:
