@@ -302,12 +302,14 @@ def _empty_astray(closed, lengths, owner, lost, box):
     return closed, lengths, owner, lost
 
 
-def _drop_folded(closed, lengths, owner, memo=None):
+def _drop_folded(closed, lengths, owner, memo=None, kmap=None):
     """The rings with every tiny or thin one that folds left empty.
 
     Each builder certifies its rings; one that still folds and is only a few dozen ulps
     across lies where floats cannot represent the cell (sites a few ulps apart far from the
-    origin: its vertices are a few ulps apart too). So does a long strip a few dozen ulps
+    origin: its vertices are a few ulps apart too), unless it is valid, convex to rounding
+    and edge to edge with its neighbours (:func:`_kept_tiny`; ``kmap`` maps ring indices to
+    the owners' numbering, None: the same). So does a long strip a few dozen ulps
     wide whose ring is not a valid polygon (the cell of a hull site of such a cluster,
     reaching far out: its vertices rounded onto one line). Either is reported in
     ``Diagram.unresolved`` (:func:`_lost`) instead of as a self-intersecting polygon.
@@ -325,8 +327,45 @@ def _drop_folded(closed, lengths, owner, memo=None):
         # a strip a few ulps wide that rounding left concave but simple stays; one whose
         # vertices rounded onto one line (or across each other) is not a polygon
         bad[i] = not _valid_ring(closed[lengths[i] : lengths[i + 1]])
+    tiny = np.flatnonzero(code == 1)
+    if len(tiny):
+        inv = np.arange(len(lengths) - 1)  # owner's numbering -> ring
+        if kmap is not None:
+            inv = np.full(int(kmap.max()) + 1, -1, np.int64)
+            inv[kmap] = np.arange(len(kmap))
+        for i in tiny:
+            bad[i] = not _kept_tiny(closed, lengths, owner, i, inv)
     empty = (closed[:0], np.zeros_like(lengths), owner[:0])  # every ring of no vertex
     return _splice(closed, lengths, owner, empty, bad)
+
+
+def _kept_tiny(closed, lengths, owner, i, inv):
+    """Whether ring ``i``, a few ulps across and not exactly convex, is kept as it is.
+
+    It is where it is a valid polygon, convex to the rounding of its vertices (as
+    ``describe()`` counts convexity: ``VERTEX_STRAIGHT_ULPS``) and each of its bisector
+    edges is an edge of its owner's ring reversed, bit for bit: then it fills exactly the
+    hole that emptying it would leave (float circles of radius 1e-7 far out, cells within
+    rounding of the exact ones). A ring a neighbour does not match edge for edge (a
+    neighbour's cut lost a vertex between nearly parallel bisectors) is left empty, so its
+    gap is traced from the neighbours' edges (``restore``) and the cells meet edge to edge.
+    ``inv`` maps an owner to its ring (-1: none).
+    """
+    a, b = lengths[i], lengths[i + 1]
+    ring = closed[a:b]
+    one = np.array([0, len(ring)], dtype=lengths.dtype)
+    if not (_valid_ring(ring) and rings_nearly_convex(ring, one, VERTEX_STRAIGHT_ULPS)):
+        return False
+    for k in range(len(ring) - 1):
+        o = int(owner[a + k])
+        if o < 0:
+            continue  # a box side
+        j = int(inv[o]) if o < len(inv) else -1
+        other = closed[lengths[j] : lengths[j + 1]] if j >= 0 else closed[:0]
+        at = (other[:-1] == ring[k + 1]).all(axis=1) & (other[1:] == ring[k]).all(axis=1)
+        if not at.any():
+            return False
+    return True
 
 
 def _fewest_lost(xs, ys, box, kmap, memo):
@@ -348,7 +387,7 @@ def _fewest_lost(xs, ys, box, kmap, memo):
             if rings is None:
                 continue
         else:
-            rings = _drop_folded(*_closed_cells(xs, ys, box, alg, kmap, memo), memo)
+            rings = _drop_folded(*_closed_cells(xs, ys, box, alg, kmap, memo), memo, kmap)
         key = (_invalid(*rings[:2]), len(_lost(xs, ys, box, *rings[:2], memo)))
         if best is None or key < best[0]:
             best = (key, rings)
@@ -452,7 +491,7 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
     with serial_below(n):
         memo = {}
         rings = _closed_cells(xs, ys, box, algorithm, unique, memo)
-        closed, lengths, own = _drop_folded(*rings, memo)
+        closed, lengths, own = _drop_folded(*rings, memo, unique)
         lost = _lost(xs, ys, box, closed, lengths, memo)
         if len(lost):
             closed, lengths, own = _fewest_lost(xs, ys, box, unique, memo)

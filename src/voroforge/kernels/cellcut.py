@@ -12,7 +12,9 @@ bit for bit:
 - :func:`_canonical_vertices` replaces a vertex between two bisectors by the circumcentre of
   its Delaunay triangle (the chain of them when the clip lost short edges,
   :func:`_chain`), a vertex on a box side by the canonical crossing
-  (``kernels/vertex.box_crossing``) and a vertex between two sides by the exact corner.
+  (``kernels/vertex.box_crossing``) and a vertex between two sides by the exact corner;
+  a circumcentre past one side by the crossings of its two edges with that side
+  (:func:`_past_side_crossings`).
 
 A cut cell with many neighbours is built in linear time by :func:`spliced_cell`: only the
 neighbours whose edges are not safely inside the box (:func:`_interior`) cut it, and the
@@ -290,6 +292,45 @@ def _crossing_at_vertex(kj, nbrs, tris, nn, cx, cy, reach, side, box, x, y):
 
 
 @njit(**NJIT)
+def _past_side_crossings(i, a, b, t, xs, ys, cx, cy, reach, box):
+    """The side crossings that stand for triangle ``t``'s centre where it lies past one side.
+
+    Returns ``(ok, x1, y1, x2, y2, side)``. The centre of ``(i, a, b)`` strictly past one
+    box side (not put on it: :func:`on_sides`) is no vertex of cell ``i``: its edges with
+    ``a`` then ``b`` cross that side, and a side edge joins the crossings. When the cut's
+    own crossings rounded to one point (a float circle's hull cells ~10 ulps apart, the
+    exact side edge 0.07 ulp long), the cut met the bisectors without the side and the
+    centre became the ring's vertex, off the box and beside the crossings its neighbours
+    use (issue 15). The canonical crossings (:func:`.vertex.box_crossing`, the neighbours'
+    bits) are used when both lie on the side in the ring's order; else ``ok`` is False.
+    """
+    x, y = _vertex_at(t, cx, cy, reach, box)
+    side = 0
+    if box[1] <= y <= box[3]:
+        if x < box[0]:
+            side = -1
+        elif x > box[2]:
+            side = -3
+    if box[0] <= x <= box[2]:
+        if y < box[1]:
+            side = -2
+        elif y > box[3]:
+            side = -4
+    if side == 0:
+        return False, x, y, x, y, side
+    x1, y1 = box_crossing(i, a, xs, ys, side, box)
+    x2, y2 = box_crossing(i, b, xs, ys, side, box)
+    ok = (
+        box[0] <= x1 <= box[2]
+        and box[1] <= y1 <= box[3]
+        and box[0] <= x2 <= box[2]
+        and box[1] <= y2 <= box[3]
+        and _along_side(x1, y1, side) <= _along_side(x2, y2, side)
+    )
+    return ok, x1, y1, x2, y2, side
+
+
+@njit(**NJIT)
 def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, reach, box, qx, qy, qw):
     """Replace computed vertices by values every cell sharing them computes identically.
 
@@ -327,6 +368,14 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, reach,
                 # leaves it went round the wrong way (sites near a box side whose images
                 # wrap, issue 15); the cut's own vertex is kept instead
                 ok = _chain_in_box(nbrs, tris, nn, ka, steps, cx, cy, box)
+            if ok and steps == 1 and out + 2 + (m - v) <= qx.shape[0]:
+                got = _past_side_crossings(i, a, b, tris[ka], xs, ys, cx, cy, reach, box)
+                if got[0]:
+                    _, x1, y1, x2, y2, side = got
+                    qx[out], qy[out], qw[out] = x1, y1, side
+                    qx[out + 1], qy[out + 1], qw[out + 1] = x2, y2, b
+                    out += 2
+                    continue
             if ok:
                 out = _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, reach, box, qx, qy, qw, out)
                 continue
