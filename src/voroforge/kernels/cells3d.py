@@ -38,7 +38,7 @@ from .graph3d import from_rings, remap_rings
 from .polyhedron import CUT_NONE, cut, moments, plane_values
 from .predicates3d import bisector_side, scratch, wall_lift
 from .star3d import DECLINE, merge_star, star_cell
-from .vertex3d import axis_snap, name_key, name_vertex, place
+from .vertex3d import CANCEL, axis_snap, name_key, name_vertex, place
 
 # the status codes are :mod:`kernels.cellcut3d`'s; the engine reads them from here
 __all__ = [
@@ -51,6 +51,46 @@ __all__ = [
     "cell_scratch",
     "container_cut",
 ]
+
+
+# (for config.py) entries of each thread's cache of exact vertex points (a power of two)
+PLACE_CACHE = 4096
+
+
+@njit(**{**NJIT_NO_NRT, "inline": "always"})
+def _place_cached(name, P, W, WP, ns, y, x, X):
+    """:func:`.vertex3d.place` of vertex ``name``, its exact points cached by name in ``X[5:7]``.
+
+    A vertex near the origin among far sites (the centre of points on a sphere) is solved
+    exactly (three expansion determinants) by each of its cells; the point depends on the
+    name alone, so a cell built after a neighbour on the same thread reads its bits.
+    """
+    a = name[0]
+    big = 0.0
+    small = 0.0
+    for q in range(3):
+        x[q] = P[a, q] + y[q]
+        big = max(big, abs(P[a, q]), abs(y[q]))
+        small = max(small, abs(x[q]))
+    if not small < CANCEL * big:
+        return
+    PK = X[5]
+    PV = X[6]
+    h = np.uint64(0x9E3779B97F4A7C15)
+    for q in range(4):
+        h ^= np.uint64(name[q])
+        h *= np.uint64(0xBF58476D1CE4E5B9)
+        h ^= h >> np.uint64(31)
+    e = np.int64(h & np.uint64(PK.shape[0] - 1))
+    if PK[e, 0] == name[0] and PK[e, 1] == name[1] and PK[e, 2] == name[2] and PK[e, 3] == name[3]:
+        for q in range(3):
+            x[q] = PV[e, q]
+        return
+    if place(name, P, W, WP, ns, y, x, X[1]):  # exact: a function of the name alone
+        for q in range(4):
+            PK[e, q] = name[q]
+        for q in range(3):
+            PV[e, q] = x[q]
 
 
 @njit(**NJIT_NO_NRT)
@@ -263,7 +303,7 @@ def _name_cell(
                 nsite += 1
         # the join's identity besides the coordinates, and the owner sites (osite)
         vnames[v, 4] = (name_key(u, name) << 8) | min(nsite, 255)
-        place(name, P, W, WP, ns, y, x, X[1])  # x = p_a + y, or exact where that cancels
+        _place_cached(name, P, W, WP, ns, y, x, X)  # x = p_a + y, or exact where that cancels
         if r == 2:  # solved exactly (walls at small angles): merge by name as exact cells do
             X[2][0] = True
         axis_snap(kk, u, ns, WP, x)
@@ -399,7 +439,17 @@ def cell_scratch(ns, g, tree, TV, TF, TR, caps):
     TDEG, TED, TBK, TLB, _, _, _ = graph_scratch(max(TV.shape[0], 1), caps[6])
     # the exact predicates' scratch, whether the cell needed them, _cached_vertex's cache
     XK, XF = offset_cache(caps[3])
-    X = (np.zeros((2, 4, 4)), scratch(), np.zeros(1, np.bool_), XK, XF)
+    # (and the exact points of named vertices, by name: _place_cached)
+    PK = np.full((PLACE_CACHE, 4), -1, np.int64)
+    X = (
+        np.zeros((2, 4, 4)),
+        scratch(),
+        np.zeros(1, np.bool_),
+        XK,
+        XF,
+        PK,
+        np.zeros((PLACE_CACHE, 3)),
+    )
     if not from_rings(TV.shape[0], TF, TF.shape[0], TR, TDEG, TED, TBK, TLB):
         G = G0
     TG = (TDEG, TED, TBK, TLB)
