@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import NJIT, VORONOI3D_CUT_RTOL, VORONOI3D_STOP_RTOL
+from ..config import CELLS3D_PLACE_CACHE, NJIT, VORONOI3D_CUT_RTOL, VORONOI3D_STOP_RTOL
 from .cellcut3d import (
     BROKEN,
     EMPTY,
@@ -52,9 +52,7 @@ __all__ = [
     "container_cut",
 ]
 
-
-# (for config.py) entries of each thread's cache of exact vertex points (a power of two)
-PLACE_CACHE = 4096
+PLACE_CACHE = CELLS3D_PLACE_CACHE
 
 
 @njit(**{**NJIT_NO_NRT, "inline": "always"})
