@@ -135,7 +135,10 @@ class Diagram3D:
         self.weights = None if weights is None else _ro(weights)
         self.periodic = bool(periodic)
         self.container = container
-        self.walls = _ro(walls)
+        # a copy: ``walls`` may be the container template's own rows (Template.absolute_walls),
+        # which frozen in place made the next call on the same Convex pass the kernels a
+        # read-only array, a second numba type: every 3D cell kernel compiled twice
+        self.walls = _ro(np.array(walls, dtype=np.float64))
         self.volumes = _ro(volumes)
         self.centroids = _ro(centroids)
         self.vertices = _ro(vertices)
