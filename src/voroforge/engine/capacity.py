@@ -17,6 +17,13 @@ from .threads import serial_below
 
 __all__ = ["as_targets", "power_fit"]
 
+#: (for config.py) the continuation's intermediate targets are fitted to this relative error
+CONTINUATION_RTOL = 1e-3
+#: (for config.py) the continuation's first step (the fraction of the way, in log areas, from
+#: the shrunk sites' areas to the targets) and the smallest it is halved to before giving up
+CONTINUATION_STEP = 0.25
+CONTINUATION_MIN_STEP = 1.0 / 64.0
+
 
 def as_targets(target_areas, n: int, dom: Domain) -> np.ndarray:
     """Validated target areas, rescaled to sum exactly to the domain's area.
@@ -70,7 +77,9 @@ def power_fit(
         Distinct sites, anywhere: a site whose starting cell is empty (outside the domain,
         in a hole) first gets a weight that opens a small cell at the domain point nearest
         to it; if that fails, or Newton stalls, the fit starts again from the Voronoi cells
-        of the sites shrunk towards a point inside the domain. Never modified.
+        of the sites shrunk towards a point inside the domain, and if that stalls too, it
+        follows targets moved in steps from those cells' areas to the given ones (each
+        step a warm start). Never modified.
     target_areas : (n,) array_like
         Positive areas that sum to the domain's area (to 1e-6 relative; they are rescaled to
         sum exactly).
@@ -95,7 +104,8 @@ def power_fit(
         Malformed input, duplicate sites, targets not positive or not summing to the domain's
         area, or a site whose cell cannot be opened.
     RuntimeError
-        When the areas do not reach ``tol`` within ``max_iter`` steps.
+        When the areas do not reach ``tol`` within ``max_iter`` steps (per start, and per
+        step of the targets); the message names the cells farthest from their targets.
 
     Examples
     --------
@@ -133,6 +143,7 @@ def power_fit(
         raise RuntimeError(
             f"power_fit did not reach tol={tol:g} in {it} Newton steps (largest relative "
             f"area error {err:.3g}){_near_pairs_note(pts, dom)}{_far_note(t, dom, tol)}"
+            f"{_worst_note(d, t, n)}"
         )
     return d
 
@@ -155,10 +166,46 @@ def _fit(pts, t, dom, w0, tol, max_iter):
         d2, w2, err2, it2 = fit_weights(lpts, t, ldom, shrink_start(lpts, ldom), tol, max_iter)
         if err2 < err:
             d, w, err, it = d2, w2, err2, it2
+        if err > tol:
+            # both stalled (checker12 F9: sites whose cells are slivers at a hole's edge, far
+            # from the sites, where the areas bend too sharply for Newton's steps): follow
+            # the targets from the shrunk sites' areas in steps, each a warm start
+            got = _continuation(lpts, t, ldom, tol, max_iter)
+            if got is not None and got[2] < err:
+                d, w, err, it = got
     if far:  # d is in the moved frame: the given frame's diagram, polished there
         d, w, err, it2 = fit_weights(pts, t, dom, w, tol, max_iter)
         it += it2
     return d, w, err, it
+
+
+def _continuation(pts, t, dom, tol, max_iter):
+    """``fit_weights`` along targets moving from the shrunk sites' areas to ``t``.
+
+    The targets ``a0**(1 - s) t**s`` (normalised to the domain's area) for growing ``s``,
+    each fitted to ``CONTINUATION_RTOL`` from the last one's weights (the last to ``tol``);
+    a step that does not fit is halved. Returns ``(d, w, err, steps)`` of the furthest
+    target reached (its error against ``t``), or None when no step fits.
+    """
+    w = shrink_start(pts, dom)
+    a0 = power_diagram(pts, w, dom).areas
+    if not (a0 > 0.0).all():
+        return None
+    log0, log1 = np.log(a0), np.log(t)
+    best, s, ds, steps = None, 0.0, CONTINUATION_STEP, 0
+    while s < 1.0 and ds >= CONTINUATION_MIN_STEP:
+        nxt = min(1.0, s + ds)
+        ts = np.exp((1.0 - nxt) * log0 + nxt * log1)
+        ts *= t.sum() / ts.sum()
+        want = tol if nxt == 1.0 else max(tol, CONTINUATION_RTOL)
+        d, w_try, err, it = fit_weights(pts, ts, dom, w, want, max_iter)
+        steps += it
+        if err <= want:
+            s, w = nxt, w_try
+            best = (d, w, _area_error(d, t), steps)
+        else:
+            ds *= 0.5
+    return best
 
 
 def _scaled(pts, t, dom, w0, k):
@@ -170,6 +217,21 @@ def _area_error(d, t) -> float:
     """Largest ``|area - target| / target`` (NaN where the areas left float64's range)."""
     with np.errstate(invalid="ignore", over="ignore"):
         return float(np.max(np.abs(np.asarray(d.areas) - t) / t))
+
+
+def _worst_note(d, t, n) -> str:
+    """The cells farthest from their targets, and what was tried."""
+    with np.errstate(invalid="ignore", over="ignore"):
+        rel = np.abs(np.asarray(d.areas) - t) / t
+    worst = np.argsort(-np.nan_to_num(rel, nan=np.inf), kind="stable")[:3]
+    cells = ", ".join(f"{int(i)} (area {d.areas[i]:.3g}, target {t[i]:.3g})" for i in worst)
+    tried = (
+        "; tried Newton from the given weights, from the sites shrunk into the domain and "
+        "along targets moved in steps from the shrunk sites' areas"
+        if n > 1
+        else ""
+    )
+    return f"; farthest from their targets: sites {cells}{tried}"
 
 
 def _far_note(targets, dom, tol) -> str:

@@ -9,6 +9,12 @@ For every cell ``g`` with site ``z_g``: ``mass = ∫ρ``, ``first = ∫ρ (x - z
   7-point rule, exact for polynomials of degree 5.
 - a raster ``(array (h, w), (xmin, ymin, xmax, ymax))``: the piecewise-constant density is
   integrated exactly, cell by pixel (row 0 is the top, as in an image; 0 outside the box).
+
+The moments are computed for ``ρ`` scaled by a power of two so that its largest value is in
+``[0.5, 1)`` (exact): a density of 1e-308 or 1e300 has the masses and centroids of a
+density of 1 (its masses were subnormal and ``1 / mass`` overflowed: checker12 F1).
+:meth:`Integrator.scaled` returns them so, in units of ``2**exponent``; calling the
+integrator returns the true ones.
 """
 
 from __future__ import annotations
@@ -35,6 +41,15 @@ RADON_NODES = np.array(
 RADON_WEIGHTS = np.array(
     [9 / 40] + [(155 - _S15) / 1200] * 3 + [(155 + _S15) / 1200] * 3, dtype=np.float64
 )
+
+
+def unit_exponent_of(values) -> int:
+    """``e`` such that the largest of ``values`` (>= 0) scaled by ``2**-e`` is in ``[0.5, 1)``.
+
+    0 when all are 0 (or there are none).
+    """
+    top = float(np.max(values, initial=0.0))
+    return int(np.frexp(top)[1]) if top > 0.0 else 0
 
 
 def as_raster(density):
@@ -73,17 +88,27 @@ class Integrator:
         See the module docstring.
     n : int
         Number of cells (sizes the reusable outputs).
+
+    Attributes
+    ----------
+    exponent : int
+        :meth:`scaled`'s moments are those of ``ρ * 2**-exponent`` (0 for a uniform
+        density; for a raster fixed by its largest value; for a callable by the largest
+        value at the latest call's nodes): the true ones are ``np.ldexp(moment, exponent)``.
     """
 
     def __init__(self, density, n: int):
         self.kind = "uniform"
         self.raster = None
         self.func = None
+        self.exponent = 0
         if density is not None:
             ras = as_raster(density)
             if ras is not None:
                 self.kind = "raster"
-                self.raster = ras
+                values, box = ras
+                self.exponent = unit_exponent_of(values)
+                self.raster = (np.ldexp(values, -self.exponent), box)
             elif callable(density):
                 self.kind = "callable"
                 self.func = density
@@ -99,8 +124,18 @@ class Integrator:
     def __call__(self, buffers, origin):
         """``(mass (n,), first (n, 2), second (n,))`` of the cells in GeoArrow ``buffers``.
 
-        The returned arrays are this integrator's own buffers: copy them to keep them.
+        The returned arrays are this integrator's own buffers: copy them to keep them. A
+        density whose moments leave float64's range gives 0 or inf (use :meth:`scaled`).
         """
+        self.scaled(buffers, origin)
+        if self.exponent:
+            with np.errstate(over="ignore", under="ignore"):
+                for arr in (self.mass, self.first, self.second):
+                    np.ldexp(arr, self.exponent, out=arr)
+        return self.mass, self.first, self.second
+
+    def scaled(self, buffers, origin):
+        """As :meth:`__call__`, in units of ``2**self.exponent`` (see the class)."""
         coords, ring, poly, geom = buffers
         if self.kind == "uniform":
             uniform_moments(coords, ring, poly, geom, origin, self.mass, self.first, self.second)
@@ -146,6 +181,9 @@ class Integrator:
         ax = (nodes[:, :, 0] + o[:, None, 0]).ravel()
         ay = (nodes[:, :, 1] + o[:, None, 1]).ravel()
         rho = _evaluate(self.func, ax, ay).reshape(nodes.shape[:2])
+        self.exponent = unit_exponent_of(rho)
+        if self.exponent:
+            rho = np.ldexp(rho, -self.exponent)
         wq = rho * RADON_WEIGHTS[None, :] * scale[:, None]
         cell = cell_of_ring[tri_ring]
         self.mass[:] = np.bincount(cell, wq.sum(axis=1), minlength=n)

@@ -336,6 +336,11 @@ def estimate_gradients(tri, values: np.ndarray, pts: np.ndarray | None = None) -
     pts = np.asarray(tri.points if pts is None else pts)
     n, k = values.shape
     grads = np.zeros((n, k, 2))
+    # each field fitted scaled down by a power of two to a largest |value| in [0.5, 1)
+    # (exact): differences of values near +-8e307 and the normal equations overflowed
+    # (checker12 F7); small values are left as they are
+    vexp = np.maximum(np.frexp(np.abs(values).max(axis=0, initial=0.0))[1], 0)
+    values = np.ldexp(values, -vexp)
     indptr, nbr = _two_ring(tri)
     owner = np.repeat(np.arange(n), np.diff(indptr))
     if not len(nbr):
@@ -366,8 +371,9 @@ def estimate_gradients(tri, values: np.ndarray, pts: np.ndarray | None = None) -
         x1, ok1 = _fit(u1, 1.0 / (u1 * u1).sum(1), values[nb1] - values[own1], own1, n)
         use = ~ok & ok1
         grads[use] = np.einsum("nji,nkj->nki", white[use], np.transpose(x1[use], (0, 2, 1)))
-    # back to the user's units: d was scaled by 2**-(pre + e)
-    return np.ldexp(grads, -(pre + e)[:, None, None])
+    # back to the user's units: d was scaled by 2**-(pre + e), the values by 2**-vexp
+    with np.errstate(over="ignore"):  # inf only where the gradient is beyond the range
+        return np.ldexp(grads, vexp[None, :, None] - (pre + e)[:, None, None])
 
 
 def _whitening(d, owner, n):
@@ -486,9 +492,15 @@ def natural_neighbor(
         # scales it works on points, queries and gradients scaled by a power of two (exact)
         origin = _exact_origin(pts)
         work, k = working_frame(pts - origin)
+    # each field scaled down by a power of two to a largest |value| in [0.5, 1) (exact; the
+    # interpolants are linear in the values): differences, normal equations and the
+    # kernel's area-weighted sums of values near +-1e308 overflowed to NaN (checker12 F7).
+    # Small values are left as they are (given gradients scaled up could overflow)
+    vexp = np.maximum(np.frexp(np.abs(vals).max(axis=0, initial=0.0))[1], 0)
+    svals = np.ldexp(vals, -vexp)
     if smooth and len(tri.triangles):
         if gradients is None:  # in the working frame (d f / d work = 2**-k d f / d pts)
-            grads = estimate_gradients(tri, vals, work)
+            grads = estimate_gradients(tri, svals, work)
         else:
             grads = np.array(gradients, dtype=np.float64, copy=True)
             if grads.shape in ((n, 2), (n, 1, 2)) and vals.shape[1] == 1:
@@ -498,7 +510,7 @@ def natural_neighbor(
                     f"gradients must be finite with shape ({n}, 2) or ({n}, k, 2) matching "
                     f"values; got {grads.shape}"
                 )
-            grads = np.ldexp(grads, -k) if k else grads
+            grads = np.ldexp(grads, (-k - vexp)[:, None])
     else:
         grads = np.zeros((n, vals.shape[1], 2))
     loc = _Locator(pts, np.asarray(tri.duplicate_of))
@@ -516,7 +528,7 @@ def natural_neighbor(
             np.ascontiguousarray(work[:, 1]),
             np.ascontiguousarray(tri.triangles.ravel()),
             np.asarray(tri.halfedges),
-            vals,
+            svals,
             grads,
             bool(smooth),
             np.ascontiguousarray(nearest[fits]),
@@ -524,7 +536,8 @@ def natural_neighbor(
             np.ascontiguousarray(qk[fits, 1]),
             inner,
         )
-        out[fits] = inner
+        with np.errstate(over="ignore"):  # inf only where the true value is beyond 1.8e308
+            out[fits] = np.ldexp(inner, vexp)
     else:
         at_site = (pts[nearest] == q).all(axis=1)
         out[at_site] = vals[nearest[at_site]]

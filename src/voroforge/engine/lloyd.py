@@ -25,6 +25,10 @@ from .power import fit_weights, power_diagram
 from .threads import serial_below
 
 METHODS = ("lloyd", "lbfgs")
+#: (for config.py) a cell whose mass, for the density scaled to a largest value of ~1 (see
+#: integrate.Integrator), is below the smallest normal double has no reliable centroid
+#: (``1 / mass`` overflowed: checker12 F1): its site stays, as an empty cell's does.
+MASS_FLOOR = float(np.finfo(np.float64).tiny)
 
 
 @dataclass(frozen=True)
@@ -282,8 +286,8 @@ def _lloyd(z, dom, integ, iterations, stop):
     z_new = np.zeros_like(z)
     for it in range(int(iterations) + 1):
         d = _voronoi(z, dom)
-        mass, first, second = integ(buffers(d), z)
-        energy.append(float(second.sum()))
+        mass, first, second = integ.scaled(buffers(d), z)
+        energy.append(_energy(second, integ))
         elapsed.append(time.perf_counter() - t0)
         if it == iterations:
             break
@@ -292,8 +296,8 @@ def _lloyd(z, dom, integ, iterations, stop):
         z, z_new = z_new, z
         if stop is not None and shift <= stop:
             d = _voronoi(z, dom)
-            mass, first, second = integ(buffers(d), z)
-            energy.append(float(second.sum()))
+            mass, first, second = integ.scaled(buffers(d), z)
+            energy.append(_energy(second, integ))
             elapsed.append(time.perf_counter() - t0)
             break
     return Relaxation(
@@ -301,11 +305,21 @@ def _lloyd(z, dom, integ, iterations, stop):
     )
 
 
+def _energy(second, integ) -> float:
+    """The CVT energy from :meth:`Integrator.scaled`'s second moments (0 or inf out of range)."""
+    with np.errstate(over="ignore", under="ignore"):
+        return float(np.ldexp(second.sum(), integ.exponent))
+
+
 def _step(z, mass, first, out):
-    """Centroids into ``out`` (sites with empty cells stay); returns the largest move."""
+    """Centroids into ``out``; returns the largest move.
+
+    Sites whose cells are empty, or whose mass (in :meth:`Integrator.scaled`'s units) is below
+    ``MASS_FLOOR``, stay.
+    """
     if not len(z):
         return 0.0
-    inv = np.divide(1.0, mass, out=np.zeros_like(mass), where=mass > 0.0)
+    inv = np.divide(1.0, mass, out=np.zeros_like(mass), where=mass >= MASS_FLOOR)
     move = np.multiply(first, inv[:, None], out=out)
     dist2 = np.einsum("ij,ij->i", move, move)
     np.add(z, move, out=out)
@@ -320,8 +334,8 @@ def _capacity(z, dom, integ, targets, iterations, stop):
     z_new = np.zeros_like(z)
     for it in range(iterations + 1):
         d, w, _, _ = fit_weights(z.copy(), targets, dom, w, LLOYD_REFIT_RTOL, 100)
-        mass, first, second = integ(buffers(d), z)
-        energy.append(float(second.sum()))
+        mass, first, second = integ.scaled(buffers(d), z)
+        energy.append(_energy(second, integ))
         elapsed.append(time.perf_counter() - t0)
         if it == iterations:
             break
@@ -333,8 +347,8 @@ def _capacity(z, dom, integ, targets, iterations, stop):
         z, z_new = z_new, z
         if stop is not None and shift <= stop:
             d, w, _, _ = fit_weights(z.copy(), targets, dom, w, LLOYD_REFIT_RTOL, 100)
-            mass, first, second = integ(buffers(d), z)
-            energy.append(float(second.sum()))
+            mass, first, second = integ.scaled(buffers(d), z)
+            energy.append(_energy(second, integ))
             elapsed.append(time.perf_counter() - t0)
             break
     return Relaxation(
@@ -347,6 +361,12 @@ def _capacity(z, dom, integ, targets, iterations, stop):
         "lloyd",
         w.copy(),
     )
+
+
+def _norm(a) -> float:
+    """Euclidean norm of all of ``a``, without overflow or underflow of the squares."""
+    top = float(np.abs(a).max(initial=0.0))
+    return top * float(np.sqrt(((a / top) ** 2).sum())) if top > 0.0 else 0.0
 
 
 def _into_domain(z, dom):
@@ -374,18 +394,30 @@ def _lbfgs(z, dom, integ, iterations, stop, memory=8):
     hi = np.array(dom.bounds[2:])
     cdom = cell_domain(dom)
 
+    units = []  # the run's units: 2**units[0] (the first evaluation's density scale)
+
     def evaluate(zz):
         d = _voronoi(zz, cdom)
-        mass, first, second = integ(buffers(d), zz)
-        return d, float(second.sum()), -2.0 * first, mass.copy()
+        mass, first, second = integ.scaled(buffers(d), zz)
+        if not units:
+            units.append(integ.exponent)
+        shift = integ.exponent - units[0]  # 0 unless a callable's largest value moved
+        with np.errstate(over="ignore", under="ignore"):
+            f = float(np.ldexp(second.sum(), shift))
+            return d, f, np.ldexp(-2.0 * first, shift), np.ldexp(mass, shift)
+
+    def true_energy(f):
+        with np.errstate(over="ignore", under="ignore"):
+            return float(np.ldexp(f, units[0]))
 
     d, f, g, mass = evaluate(z)
-    energy, elapsed, shifts = [f], [time.perf_counter() - t0], []
+    energy, elapsed, shifts = [true_energy(f)], [time.perf_counter() - t0], []
     pairs: list[tuple[np.ndarray, np.ndarray, float]] = []
     for _ in range(iterations):
         if n == 0:
             break
-        inv = np.where(mass > 0, 0.5 / np.where(mass > 0, mass, 1.0), 0.0)[:, None]
+        full = mass >= MASS_FLOOR  # the others stay (no reliable curvature)
+        inv = np.where(full, 0.5 / np.where(full, mass, 1.0), 0.0)[:, None]
         q = g.copy()
         alphas = []
         for s_k, y_k, rho in reversed(pairs):
@@ -422,13 +454,14 @@ def _lbfgs(z, dom, integ, iterations, stop, memory=8):
         s_k = z_try - z
         y_k = g_try - g
         sy = float((s_k * y_k).sum())
-        if sy > LBFGS_CURVATURE_RTOL * float(np.sqrt((s_k * s_k).sum() * (y_k * y_k).sum())):
+        # |s| |y| as a product of norms: (s.s) (y.y) overflowed past ~1e155 (checker12 F2)
+        if sy > LBFGS_CURVATURE_RTOL * _norm(s_k) * _norm(y_k):
             pairs.append((s_k, y_k, 1.0 / sy))
             if len(pairs) > memory:
                 pairs.pop(0)
         shift = float(np.sqrt((s_k * s_k).sum(axis=1).max()))
         z, d, f, g, mass = z_try, d_try, f_try, g_try, m_try
-        energy.append(f)
+        energy.append(true_energy(f))
         elapsed.append(time.perf_counter() - t0)
         shifts.append(shift)
         if stop is not None and shift <= stop:
