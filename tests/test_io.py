@@ -324,11 +324,16 @@ def test_read_points_npy_and_geojson(tmp_path):
                 "properties": {},
                 "geometry": {"type": "MultiPoint", "coordinates": [[3, 4, 9], [5, 6]]},
             },
-            {"type": "Feature", "properties": {}, "geometry": None},
         ],
     }
     (tmp_path / "p.geojson").write_text(json.dumps(fc))
     assert read(tmp_path / "p.geojson").tolist() == [[1, 2], [3, 4], [5, 6]]
+    # a feature without a point is named, not skipped (checker12 F8: skipping renumbered
+    # the rows after it; test_checker12_io has the cases)
+    fc["features"].append({"type": "Feature", "properties": {}, "geometry": None})
+    (tmp_path / "p.geojson").write_text(json.dumps(fc))
+    with pytest.raises(ValueError, match="feature 2 has no geometry"):
+        read(tmp_path / "p.geojson")
     (tmp_path / "g.json").write_text(json.dumps({"type": "MultiPoint", "coordinates": [[0, 1]]}))
     assert read(tmp_path / "g.json").tolist() == [[0, 1]]
 

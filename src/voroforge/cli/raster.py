@@ -151,7 +151,7 @@ def run_raster(args: argparse.Namespace, stage: Stage | None = None) -> list[Pat
     ``metric``, ``seed``), see :func:`add_parser`. ``stage(name)`` is called with progress
     messages when given.
     """
-    from ..engine.raster import rasterize
+    from ..engine.raster import check_raster_size, rasterize
     from ..io.raster_png import RASTER_SUFFIXES, write_raster
     from ..io.readers import read_points
     from .outputs import check_outputs
@@ -162,10 +162,21 @@ def run_raster(args: argparse.Namespace, stage: Stage | None = None) -> list[Pat
         if out.suffix.lower() not in RASTER_SUFFIXES:
             raise ValueError(f"{out}: raster output must be a .png or .npy file")
     shape = parse_size(str(args.size))
+    f2 = args.field in ("f2", "edge")
+
+    def check_size(sites: int) -> None:  # computing, then drawing the field (.npy: less)
+        try:
+            metric = getattr(args, "metric", "euclidean")
+            check_raster_size(shape, f2=f2, field=args.field, sites=sites, metric=metric)
+        except ValueError as exc:
+            raise ValueError(f"--size {args.size}: {exc}") from None
+
+    check_size(0)  # before any work
     check_outputs(outputs, inputs=[args.points])
     bounds = parse_bounds(args.bounds)
     stage("reading")
     pts = read_points(args.points)
+    check_size(len(pts))
     stage(f"rasterising {len(pts)} sites at {shape[1]}x{shape[0]} ({args.method})")
     result = rasterize(
         pts,
@@ -173,7 +184,7 @@ def run_raster(args: argparse.Namespace, stage: Stage | None = None) -> list[Pat
         bounds,
         method=args.method,
         metric=getattr(args, "metric", "euclidean"),
-        f2=args.field in ("f2", "edge"),
+        f2=f2,
     )
     written = []
     for out in outputs:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from pathlib import Path
 
 from .progress import Stage
@@ -42,16 +43,26 @@ def add_parser(commands, formatter_class) -> None:
 
 def run_stipple(args: argparse.Namespace, stage: Stage) -> list[Path]:
     """Run ``voroforge stipple``; returns the file written."""
-    from ..design.stipple import demo_image, grey_image, stipple, stipple_svg
+    from ..design.stipple import STIPPLE_MAX_PAGE, demo_image, grey_image, stipple, stipple_svg
 
     if Path(args.output).suffix.lower() != ".svg":
         raise ValueError(f"{args.output}: stipple writes an .svg file")
+    if not (math.isfinite(args.dot) and args.dot > 0):
+        raise ValueError(f"--dot must be a positive radius in mm; got {args.dot!r}")
+    if not (math.isfinite(args.width) and args.width > 0):
+        raise ValueError(f"--width must be a positive page width in mm; got {args.width!r}")
     if args.image.startswith("@"):
         if args.image != "@sphere":
             raise ValueError(f"{args.image}: the built-in image is @sphere")
         grey = demo_image(256)
     else:
         grey = grey_image(args.image)
+    h, w = grey.shape
+    if max(args.width, args.width * (h / w)) > STIPPLE_MAX_PAGE:
+        raise ValueError(
+            f"--width {args.width!r} is too large: the {w} x {h} image's page sides must be "
+            f"at most {STIPPLE_MAX_PAGE:g} mm"
+        )
     pts = stipple(
         grey,
         args.points,
@@ -61,7 +72,6 @@ def run_stipple(args: argparse.Namespace, stage: Stage) -> list[Path]:
         seed=args.seed,
         progress=stage,
     )
-    h, w = grey.shape
-    stage(f"writing {args.output}")
     height = args.width * h / w
+    stage(f"writing {args.output}")
     return [stipple_svg(pts, args.output, width=args.width, height=height, dot=args.dot)]

@@ -140,6 +140,28 @@ class Graded(_Model):
         return min(self.near, self.far), max(self.near, self.far)
 
 
+def _at_least_zero(value: Graded) -> Graded:
+    lo = value.bounds()[0]
+    if lo < 0:
+        raise ValueError("must be >= 0" if not value.graded else "near and far must be >= 0")
+    return value
+
+
+def _probability(value: Graded) -> Graded:
+    lo, hi = value.bounds()
+    if lo < 0 or hi > 1:
+        raise ValueError("must be between 0 and 1")
+    return value
+
+
+#: A graded key that cannot go below 0 (web, inset, fillet, scale, power_radius): checked
+#: here, with the other values, so that ``voroforge check`` lists it with every other problem
+#: (it was checked while computing, and a schema error elsewhere hid it).
+NonNegGraded = Annotated[Graded, AfterValidator(_at_least_zero)]
+#: A graded chance, 0..1.
+ChanceGraded = Annotated[Graded, AfterValidator(_probability)]
+
+
 class Info(_Model):
     """``[design]``: name, units and the master random seed."""
 
@@ -262,14 +284,12 @@ class Voronoi(_Model):
 
     algorithm: Literal["delaunay", "fortune", "halfplane"] = "delaunay"
     periodic: Flag = False
-    power_radius: Graded | None = None
+    power_radius: NonNegGraded | None = None
 
     @model_validator(mode="after")
     def _power(self) -> Voronoi:
         if self.power_radius is not None and self.periodic:
             raise _need("power_radius", "power (weighted) cells and periodic tiles do not combine")
-        if self.power_radius is not None and self.power_radius.bounds()[0] < 0:
-            raise _need("power_radius", "must be >= 0")
         return self
 
 
@@ -311,12 +331,12 @@ class FieldSpec(_Model):
 class Cells(_Model):
     """``[cells]``: operations on every cell, in the order inset, scale, smooth, fillet."""
 
-    web: Graded | None = None
-    inset: Graded | None = None
+    web: NonNegGraded | None = None
+    inset: NonNegGraded | None = None
     join: Literal["mitre", "round"] = "mitre"
-    scale: Graded = Graded(value=1.0)
+    scale: NonNegGraded = Graded(value=1.0)
     smooth: Annotated[Whole, Field(ge=0, le=8)] = 0
-    fillet: Graded = Graded(value=0.0)
+    fillet: NonNegGraded = Graded(value=0.0)
     min_area: NonNegFloat = 0.0
     min_size: NonNegFloat = 0.0
 
@@ -374,7 +394,7 @@ class Recursion(_Model):
     depth: Annotated[Whole, Field(ge=0, le=6)] = 0
     count: Graded = Graded(value=6.0)
     # a number, or { near = 1, far = 0.5 }: the chance that a cell is subdivided, by the field
-    probability: Graded = Graded(value=1.0)
+    probability: ChanceGraded = Graded(value=1.0)
     web: list[NonNegFloat] = []
 
     @model_validator(mode="before")
@@ -383,13 +403,6 @@ class Recursion(_Model):
         if isinstance(data, dict) and isinstance(data.get("web"), int | float):
             return {**data, "web": [data["web"]]}
         return data
-
-    @model_validator(mode="after")
-    def _probability(self) -> Recursion:
-        lo, hi = self.probability.bounds()
-        if lo < 0 or hi > 1:
-            raise _need("probability", "must be between 0 and 1")
-        return self
 
 
 class Gif(_Model):

@@ -26,6 +26,11 @@ from ..config import STIPPLE_MAX_POINTS, STIPPLE_MAX_WORK
 
 __all__ = ["demo_image", "grey_image", "image_seeds", "stipple", "stipple_svg"]
 
+#: Largest page side :func:`stipple_svg` writes (for config.py): the pen-up ordering squares
+#: distances between dots, which overflow past about 1e154 (``--width 1e308`` gave an
+#: internal error, then an inf height).
+STIPPLE_MAX_PAGE = 1e150
+
 
 def demo_image(size: int = 256) -> np.ndarray:
     """A greyscale test image: a sphere lit from the top left, its shadow, a soft gradient.
@@ -87,8 +92,10 @@ def grey_image(source) -> np.ndarray:
             raise ValueError(f"{path}: not an image pillow can read") from None
         return arr / 255.0
     arr = np.array(source, dtype=np.float64)
-    if arr.ndim != 2 or min(arr.shape) < 2:
-        raise ValueError(f"the image must be a 2-D array of grey values; got shape {arr.shape}")
+    if arr.ndim != 2 or arr.size == 0:
+        raise ValueError(
+            f"the image must be a 2-D array of grey values, at least 1 x 1; got shape {arr.shape}"
+        )
     if not np.isfinite(arr).all() or arr.min() < 0 or arr.max() > 1:
         raise ValueError("grey values must be finite and in [0, 1]")
     return arr
@@ -157,6 +164,11 @@ def stipple(
     h, w = density.shape
     k = float(width) / w
     box = (0.0, 0.0, w * k, h * k)
+    if not math.isfinite(h * k):
+        raise ValueError(
+            f"width {width!r} is too large: the drawing's height ({h} / {w} of it) is past "
+            "the largest float"
+        )
     stage = progress or (lambda text: None)
     stage(f"sampling {n} dots")
     rng = np.random.default_rng(seed)
@@ -181,7 +193,7 @@ def stipple_svg(points, path, *, width: float, height: float, dot: float = 0.4, 
     width, height : float
         Page size in ``units``.
     dot : float
-        Dot radius.
+        Dot radius (> 0).
     units : {"mm", "cm", "in", "px"}
         Page units.
     """
@@ -190,6 +202,15 @@ def stipple_svg(points, path, *, width: float, height: float, dot: float = 0.4, 
     from ..io.plotter import order_paths
     from ..io.svg import write_layers
 
+    if not (math.isfinite(dot) and dot > 0):
+        raise ValueError(
+            f"dot must be a positive radius; got {dot!r} (a radius of 0 draws nothing)"
+        )
+    if not all(0 < v <= STIPPLE_MAX_PAGE for v in (width, height)):
+        raise ValueError(
+            f"width and height must be positive, at most {STIPPLE_MAX_PAGE:g}; "
+            f"got {width!r}, {height!r}"
+        )
     pts = np.asarray(points, dtype=np.float64).reshape(-1, 2)
     order, _ = order_paths([p[None] for p in pts], start=(0.0, float(height)), reverse=False)
     dots = shapely.MultiPoint(pts[order]) if len(pts) else shapely.MultiPoint()

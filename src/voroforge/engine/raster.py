@@ -25,6 +25,30 @@ _MAX_CANDIDATES = 48
 #: Largest initial tile side of the exact method, in pixels.
 _MAX_TILE = 64
 
+#: Most memory a raster may need, in bytes (for config.py): :func:`rasterize` and
+#: ``voroforge raster`` refuse a shape whose estimated peak passes it, before any work (the
+#: old cap of config.MAX_PIXELS = 2**30 pixels let through ~108 GiB for a labels PNG: an
+#: OOM kill on a 24 GiB machine instead of the error).
+RASTER_MAX_BYTES = 16 * 2**30
+#: Peak bytes a pixel of :func:`rasterize` (without, with ``f2``), the largest of the exact
+#: and jfa methods and the Delaunay walk: peak RSS growth from 1000^2 to 3000^2 pixels with
+#: 20, 1,000 and 2,000 crowded sites was 12-25 and 20-40 (jfa), rounded up.
+RASTER_BYTES = {False: 26, True: 42}
+#: Bytes a pixel of its result: labels int32 and F1 float64 (and F2 float64).
+RASTER_RESULT_BYTES = {False: 12, True: 20}
+#: Peak bytes a site of :func:`rasterize`, on top, where the Delaunay walk may decide the
+#: labels (Euclidean F1, at most a site a pixel): 884 with sites crowded on a circle (a
+#: quarter of a site per pixel), rounded up; elsewhere (the tiles alone: 113-124 with one
+#: uniform site a pixel, exact and jfa, with and without f2) the second value.
+RASTER_SITE_BYTES = (1000, 160)
+#: Peak bytes a pixel of drawing one field of a result as a PNG, on top of the result
+#: (measured alike: 96, 25, 25, 33): the labels' colouring lists every pair of touching
+#: pixels. A .npy of a field needs at most as much.
+RASTER_WRITE_BYTES = {"labels": 100, "distance": 28, "f2": 28, "edge": 36}
+#: And a site, for labels (up to one a pixel): the pairs of touching pixels that differ
+#: (372 fitted from a quarter and one uniform site a pixel), rounded up.
+RASTER_WRITE_SITE_BYTES = 400
+
 
 class RasterVoronoi:
     """Nearest-site labels and distances sampled at pixel centres.
@@ -116,6 +140,89 @@ def pixel_centers(bounds, shape) -> tuple[np.ndarray, np.ndarray]:
     return x, y
 
 
+def raster_bytes(
+    shape, *, f2: bool = False, field: str | None = None, sites: int = 0, metric="euclidean"
+) -> int:
+    """Estimated peak memory of a raster, in bytes: computing it, then drawing one field.
+
+    Parameters
+    ----------
+    shape : tuple of 2 int
+        ``(h, w)``.
+    f2 : bool
+        Whether the second-nearest distances are computed.
+    field : {"labels", "distance", "f2", "edge"} or None
+        The field then drawn as a PNG (None: the computation alone).
+    sites : int
+        Number of sites (0: a lower bound, before they are read).
+    metric : str
+        The distance (only the Euclidean one may walk the sites' Delaunay graph).
+
+    Returns
+    -------
+    int
+        Bytes: the larger of the computation's peak and the result plus the drawing's, from
+        the measured :data:`RASTER_BYTES`, :data:`RASTER_SITE_BYTES`,
+        :data:`RASTER_RESULT_BYTES`, :data:`RASTER_WRITE_BYTES` and
+        :data:`RASTER_WRITE_SITE_BYTES`.
+    """
+    h, w = shape
+    px, n, f2 = int(h) * int(w), int(sites), bool(f2)
+    # the walk needs at most a site a pixel: up to px sites at its cost (monotone in px)
+    walked = min(n, px) if metric == "euclidean" and not f2 else 0
+    sites_bytes = walked * RASTER_SITE_BYTES[0] + (n - walked) * RASTER_SITE_BYTES[1]
+    compute = px * RASTER_BYTES[f2] + sites_bytes
+    if field is None:
+        return compute
+    draw = px * (RASTER_RESULT_BYTES[f2] + RASTER_WRITE_BYTES[field])
+    if field == "labels":
+        draw += min(n, px) * RASTER_WRITE_SITE_BYTES
+    return max(compute, draw)
+
+
+def check_raster_size(
+    shape, *, f2: bool = False, field: str | None = None, sites: int = 0, metric="euclidean"
+) -> None:
+    """``ValueError`` when a raster would need more than :data:`RASTER_MAX_BYTES`.
+
+    Parameters
+    ----------
+    shape : tuple of 2 int
+        ``(h, w)``, positive.
+    f2, field, sites, metric
+        As for :func:`raster_bytes`.
+
+    Raises
+    ------
+    ValueError
+        Naming the size, the memory it needs, and the most pixels allowed.
+    """
+    h, w = shape
+    kw = {"f2": f2, "field": field, "sites": sites, "metric": metric}
+    need = raster_bytes((h, w), **kw)
+    if need <= RASTER_MAX_BYTES:
+        return
+    # the most pixels that fit with these sites (the estimate grows with the pixels)
+    lo, hi = 0, h * w
+    while lo < hi:
+        mid = (lo + hi + 1) // 2
+        if raster_bytes((1, mid), **kw) <= RASTER_MAX_BYTES:
+            lo = mid
+        else:
+            hi = mid - 1
+    what = "to compute" + (" with f2" if f2 else "") + (f" and draw {field}" if field else "")
+    who = f" for {sites:,} sites" if sites else ""
+    most = (
+        f"at most {lo:,} pixels (e.g. {math.isqrt(lo)} x {math.isqrt(lo)})"
+        if lo
+        else "no image fits: use fewer sites"
+    )
+    raise ValueError(
+        f"shape {h} x {w} is too large: {h * w:,} pixels need about {need / 2**30:.1f} GiB "
+        f"{what}{who}; the limit is {RASTER_MAX_BYTES / 2**30:g} GiB, that is {most}"
+    )
+
+
 def _check_shape(shape) -> tuple[int, int]:
     try:
         items = tuple(shape)
@@ -126,12 +233,7 @@ def _check_shape(shape) -> tuple[int, int]:
     )
     if not ok:
         raise ValueError(f"shape must be a pair (h, w) of positive ints; got {shape!r}")
-    h, w = int(items[0]), int(items[1])
-    if h * w > config.MAX_PIXELS:
-        raise ValueError(
-            f"shape {h} x {w} is too large: {h * w:,} pixels, at most {config.MAX_PIXELS:,}"
-        )
-    return h, w
+    return int(items[0]), int(items[1])
 
 
 def _check_bounds(bounds, pts: np.ndarray) -> tuple[float, float, float, float]:
@@ -347,7 +449,8 @@ def rasterize(
     Raises
     ------
     ValueError
-        On non-finite or wrongly shaped points, no points, a bad shape or bounds, or an
+        On non-finite or wrongly shaped points, no points, a bad shape or bounds, a shape
+        needing more than :data:`RASTER_MAX_BYTES` (:func:`check_raster_size`), or an
         unknown or unsupported method/metric.
 
     Examples
@@ -372,6 +475,7 @@ def rasterize(
     if len(pts) == 0:
         raise ValueError("points is empty: rasterize needs at least one site")
     h, w = _check_shape(shape)
+    check_raster_size((h, w), f2=bool(f2), sites=len(pts), metric=metric)
     box = _check_bounds(bounds, pts)
     e = _frame(pts, box)
     if e:

@@ -57,8 +57,13 @@ class Chunk:
 def _split_columns(table, xy):
     x = table.column(xy[0]).to_numpy(zero_copy_only=False).astype(np.float64, copy=False)
     y = table.column(xy[1]).to_numpy(zero_copy_only=False).astype(np.float64, copy=False)
+    from ..io.parquet import CELL_COLUMNS
+    from ..io.readers.points import attribute_names
+
     rest = [c for c in table.column_names if c not in xy]
-    attrs = table.select(rest) if rest else None
+    # an attribute named like a cell column (area, geometry, ...) is kept as input_<name>,
+    # as by `voroforge voronoi`: two columns of one name made files pyarrow cannot read
+    attrs = table.select(rest).rename_columns(attribute_names(rest, CELL_COLUMNS)) if rest else None
     return np.column_stack((x, y)), attrs
 
 

@@ -97,6 +97,39 @@ def _point_features(obj, props=None):
             yield c, props or {}
 
 
+def _pointless_feature(doc) -> str | None:
+    """Why a feature of a points file gives no point (None when each gives one or more).
+
+    Each feature is one row or more (a MultiPoint's points); one with a null or empty
+    geometry or no point in it would silently renumber every later row.
+    """
+    if not isinstance(doc, dict) or doc.get("type") != "FeatureCollection":
+        return None
+    features = doc.get("features")
+    if not isinstance(features, list):
+        return None
+    for i, f in enumerate(features):
+        if next(_point_features(f), None) is not None:
+            continue
+        geom = f.get("geometry") if isinstance(f, dict) else None
+        name = f"feature {i}" + (
+            f" (id {f['id']!r})" if isinstance(f, dict) and f.get("id") is not None else ""
+        )
+        if not isinstance(geom, dict):
+            what = "has no geometry (null)"
+        elif geom.get("type") in ("Point", "MultiPoint"):
+            what = f"has an empty {geom.get('type')}"
+        elif geom.get("type") == "GeometryCollection":
+            what = "has no point in its GeometryCollection"
+        else:
+            what = f"is a {geom.get('type')}, not a Point or MultiPoint"
+        return (
+            f"{name} {what}: each feature is a row and cell i is row i, so it cannot be "
+            "skipped; give it a point or remove the feature"
+        )
+    return None
+
+
 def read_geojson_point_table(path) -> tuple[np.ndarray, dict]:
     """The points of a GeoJSON file and their features' properties, in file order.
 
@@ -115,13 +148,18 @@ def read_geojson_point_table(path) -> tuple[np.ndarray, dict]:
     Raises
     ------
     ValueError
-        No points in the file, or coordinates that are not ``[x, y]`` numbers.
+        No points in the file, coordinates that are not ``[x, y]`` numbers, or a feature
+        without a point (null or empty geometry, a LineString among points, ...): skipping
+        it would renumber the rows after it.
     """
     path = existing_file(path)
     doc = load_json(path)
     rows = list(_point_features(doc))
     if not rows:
         raise ValueError(f"{path}: no Point or MultiPoint geometries{_found(geometries(doc))}")
+    pointless = _pointless_feature(doc)
+    if pointless:
+        raise ValueError(f"{path}: {pointless}")
     try:
         arr = np.array([c[:2] for c, _ in rows], dtype=np.float64)
     except (TypeError, ValueError, IndexError):
@@ -176,6 +214,10 @@ def geojson_crs(path):
 def read_geojson_polygons(path):
     """The polygons of a GeoJSON file as one domain (features united, holes kept).
 
+    Several features, and the overlapping or edge-sharing parts of one MultiPolygon, are
+    united; a part or polygon that is invalid by itself (a self-intersecting ring) is not
+    repaired and fails the domain's checks with GEOS's reason.
+
     Parameters
     ----------
     path : str or Path
@@ -199,6 +241,7 @@ def read_geojson_polygons(path):
         shapes = [shape(g) for g in polygons]
     except (TypeError, ValueError, IndexError, KeyError, shapely.errors.ShapelyError) as exc:
         raise ValueError(f"{path}: malformed polygon coordinates ({exc})") from None
+    shapes = [_united(s) for s in shapes]
     if len(shapes) == 1:
         return shapes[0]
     invalid = [i for i, s in enumerate(shapes) if not s.is_valid]
@@ -206,3 +249,18 @@ def read_geojson_polygons(path):
         reason = shapely.is_valid_reason(shapes[invalid[0]])
         raise ValueError(f"{path}: polygon {invalid[0]} is invalid ({reason})")
     return shapely.union_all(shapes)
+
+
+def _united(geom):
+    """A MultiPolygon whose valid parts overlap or share edges, united; else ``geom``."""
+    if geom.geom_type != "MultiPolygon":
+        return geom
+    try:  # GEOS squares coordinates: past ~1e150 it may raise; the domain's checks then decide
+        if geom.is_valid:
+            return geom
+        parts = shapely.get_parts(geom)
+        if not shapely.is_valid(parts).all():
+            return geom
+        return shapely.union_all(parts)
+    except shapely.errors.GEOSException:
+        return geom

@@ -7,12 +7,13 @@ the reader from the suffix.
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 
 from .files import existing_file, parse_number
 
-__all__ = ["read_npy_points", "read_text_point_table", "read_text_points"]
+__all__ = ["attribute_names", "read_npy_points", "read_text_point_table", "read_text_points"]
 
 _X_NAMES = ("x", "lon", "lng", "longitude", "easting")
 _Y_NAMES = ("y", "lat", "latitude", "northing")
@@ -74,8 +75,10 @@ def read_text_point_table(path, dims: int = 2) -> tuple[np.ndarray, dict]:
         In file order.
     attributes : dict of name -> list
         Every column besides x and y, by its header name (files without a header have
-        none): numbers where the whole column is numeric, else the text as written
-        (empty cells None).
+        none): ints where every cell is an integer (within int64), floats where every
+        cell is a number a float64 holds as written, else the text as written (codes
+        with leading zeros such as ``00501``, integers past 2**53 in a float column);
+        empty cells None.
 
     Raises
     ------
@@ -145,7 +148,7 @@ def read_text_point_table(path, dims: int = 2) -> tuple[np.ndarray, dict]:
 
 
 def _attributes(rows, head, columns, delimiter) -> dict:
-    """The non-coordinate columns named in ``head``: numbers where all parse, else text."""
+    """The non-coordinate columns named in ``head``, typed by :func:`_typed_column`."""
     out = {}
     for c, name in enumerate(head):
         if c in columns:
@@ -157,9 +160,85 @@ def _attributes(rows, head, columns, delimiter) -> dict:
         for _, line in rows:
             tokens = _split(line, delimiter)
             cells.append(tokens[c] if c < len(tokens) and tokens[c] != "" else None)
-        numbers = [None if t is None else parse_number(t) for t in cells]
-        numeric = all(v is not None for v, t in zip(numbers, cells, strict=True) if t is not None)
-        out[key] = numbers if numeric else cells
+        out[key] = _typed_column(cells)
+    return out
+
+
+#: An integer literal as a CSV writes one: optional sign, digits, nothing else.
+_INT = re.compile(r"[+-]?[0-9]+")
+#: A number written with a leading zero that a number would drop (``00501``, ``-007``,
+#: ``012.5``): a code (zip, FIPS, id), not a quantity.
+_LEADING_ZERO = re.compile(r"[+-]?0[0-9]")
+_INT64 = (-(2**63), 2**63 - 1)
+
+
+def _typed_column(cells: list) -> list:
+    """One attribute column (``None`` for empty cells) as ints, floats or the text.
+
+    ints: every cell an integer literal within int64 (Parquet's int64; ids past 2**53
+    keep every digit). floats: every cell a number whose value a float64 holds as
+    written: no leading zeros (``00501`` stays text) and no integer literal past 2**53
+    (9007199254740993 would become ...992). Otherwise the text as written.
+    """
+    present = [t for t in cells if t is not None]
+    if any(_LEADING_ZERO.match(t) for t in present):
+        return cells
+    if all(_INT.fullmatch(t) for t in present):
+        if any(len(t.lstrip("+-")) > 19 for t in present):  # past int64 (and int()'s limit)
+            return cells
+        ints = [None if t is None else int(t) for t in cells]
+        if all(_INT64[0] <= v <= _INT64[1] for v in ints if v is not None):
+            return ints
+        return cells
+    numbers = [None if t is None else parse_number(t) for t in cells]
+    if any(v is None for v, t in zip(numbers, cells, strict=True) if t is not None):
+        return cells
+    if any(_INT.fullmatch(t) and not _float_holds(t) for t in present):
+        return cells
+    return numbers
+
+
+def _float_holds(literal: str) -> bool:
+    """Whether float64 holds the integer ``literal`` exactly."""
+    digits = len(literal.lstrip("+-"))
+    if digits <= 15:
+        return True
+    return digits <= 309 and float(int(literal)) == int(literal)
+
+
+def attribute_names(names, reserved) -> list[str]:
+    """Input attribute names kept apart from the columns a writer fills itself.
+
+    A name among ``reserved`` becomes ``input_<name>`` (``area`` -> ``input_area``), again
+    while it still clashes with a reserved name or an earlier attribute.
+
+    Parameters
+    ----------
+    names : sequence of str
+        The attribute columns, in order.
+    reserved : collection of str
+        The computed columns (``area``, ``site_id``, ``geometry``, ...).
+
+    Returns
+    -------
+    list of str
+        Unique names, none in ``reserved``; a name that clashes with nothing is unchanged.
+
+    Examples
+    --------
+    >>> attribute_names(["area", "species", "input_area"], {"area"})
+    ['input_input_area', 'species', 'input_area']
+    """
+    taken = set(reserved)
+    out = []
+    for name in names:
+        key = str(name)
+        if key in taken:
+            key = f"input_{key}"
+            while key in taken or key in names:
+                key = f"input_{key}"
+        taken.add(key)
+        out.append(key)
     return out
 
 
