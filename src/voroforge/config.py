@@ -250,10 +250,27 @@ LBFGS_CURVATURE_RTOL = 1e-12
 
 # --- design layer and io ----------------------------------------------------------------------
 
-#: Largest picture the PNG writer and the rasteriser accept, in pixels (w x h, with the PNG
-#: writer's supersampling): 2**30 px is about 3 GB of RGB; beyond it a typo (--size 100000)
-#: would exhaust the machine's memory instead of failing with a clear error
+#: Largest picture the PNG writer, the 3D renderer and `explain` accept, in pixels (w x h,
+#: with the PNG writer's supersampling): 2**30 px is about 3 GB of RGB; beyond it a typo
+#: (--size 100000) would exhaust the machine's memory instead of failing with a clear error
+#: (the rasteriser's own guard is on bytes: RASTER_MAX_BYTES)
 MAX_PIXELS = 2**30
+#: engine.raster: the most memory a raster may need (bytes); `rasterize` and `voroforge
+#: raster` refuse a larger estimated peak up front (2**30 px had let ~108 GiB through)
+RASTER_MAX_BYTES = 16 * 2**30
+#: Peak bytes a pixel (without, with f2), exact/jfa/Delaunay walk: measured 12-25, 20-40
+RASTER_BYTES = {False: 26, True: 42}
+#: Bytes a pixel of the result: labels int32 and F1 float64 (and F2 float64)
+RASTER_RESULT_BYTES = {False: 12, True: 20}
+#: Peak bytes a site, on top: where the Delaunay walk decides labels (884 measured, sites
+#: crowded on a circle), elsewhere (113-124 measured)
+RASTER_SITE_BYTES = (1000, 160)
+#: Peak bytes a pixel of drawing one field as a PNG, on top (measured 96, 25, 25, 33)
+RASTER_WRITE_BYTES = {"labels": 100, "distance": 28, "f2": 28, "edge": 36}
+#: And a site, for labels: the pairs of touching pixels that differ (372 measured)
+RASTER_WRITE_SITE_BYTES = 400
+#: design.stipple: largest page side (the pen-up ordering squares distances: inf past 1e154)
+STIPPLE_MAX_PAGE = 1e150
 #: Longest side of an `explain` GIF in pixels (its frames together hold at most MAX_PIXELS):
 #: a typo such as --size 200000 fails at once instead of exhausting the memory
 GIF_MAX_SIDE = 8192
@@ -611,13 +628,9 @@ POWER_EXACT_FILTER_ULPS = 32.0
 #: 2**-52 of it)
 HALFPLANE_SNAP_PRE = 2.0**-27
 
-#: the container volumes, in the caller's units, that 3D cells can be measured in. The cells
-#: are built in a power-of-two working frame, and face areas and normals are computed in it
-#: too (engine.diagram3d: the squared areas neither overflow nor underflow), but volumes,
-#: areas and centroids are reported in the caller's units: the upper end keeps the volume a
-#: double with room to spare (1e300: a cube of side 1e100), the lower end keeps the cells'
-#: volumes normal doubles (exact powers of two of the working frame's) down to 1e-20 of the
-#: container's (1e-270: a cube of side 1e-90; 1e7 cells of a tight cluster lie far above)
+#: the container volumes, in the caller's units, that 3D cells can be measured in (built in a
+#: power-of-two working frame, reported in the caller's units): the volume a double with room
+#: (a cube of side 1e100), cells' volumes normal doubles down to 1e-20 of the container's
 VOLUME_RANGE = (1e-270, 1e300)
 
 #: the largest face area of the container's bounding box (the product of its two largest
@@ -647,12 +660,9 @@ FRAME3D_CAP_EXP = 240
 #: finite); sites closer than about 2**-684 (1e-206) of the domain are so one site
 FRAME2D_CAP_EXP = 500
 
-#: kernels.vertex3d: a name with two container walls whose unit normals' cross product is
-#: below this (the sine of their angle), or three whose determinant is, is solved exactly
-#: (name_vertex). The float solve's error grows as 1 / sine: at a Convex roof of slope 1e-9
-#: the ridge's vertex on a bisector came out 5e-9 off that bisector (two cells' volumes off by
-#: 7e-10); below 1e-4 the float error could pass 1e-12 of the container. A function of the
-#: container only: box walls (sine 1) and walls at ordinary angles keep the float solve
+#: kernels.vertex3d: a name with two container walls whose angle's sine is below this (or
+#: three whose determinant is) is solved exactly: the float solve's error grows as 1 / sine
+#: (a roof of slope 1e-9: volumes 7e-10 off); box walls keep the float solve
 WALL_EXACT_SIN = 1e-4
 
 #: engine.containers: ``Convex(points=)`` thinner than this fraction of its extent is flat:

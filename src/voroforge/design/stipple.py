@@ -22,14 +22,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..config import STIPPLE_MAX_POINTS, STIPPLE_MAX_WORK
+from ..config import STIPPLE_MAX_PAGE, STIPPLE_MAX_POINTS, STIPPLE_MAX_WORK
 
 __all__ = ["demo_image", "grey_image", "image_seeds", "stipple", "stipple_svg"]
-
-#: Largest page side :func:`stipple_svg` writes (for config.py): the pen-up ordering squares
-#: distances between dots, which overflow past about 1e154 (``--width 1e308`` gave an
-#: internal error, then an inf height).
-STIPPLE_MAX_PAGE = 1e150
 
 
 def demo_image(size: int = 256) -> np.ndarray:

@@ -9,6 +9,14 @@ from functools import cached_property
 import numpy as np
 
 from .. import config
+from ..config import (
+    RASTER_BYTES,
+    RASTER_MAX_BYTES,
+    RASTER_RESULT_BYTES,
+    RASTER_SITE_BYTES,
+    RASTER_WRITE_BYTES,
+    RASTER_WRITE_SITE_BYTES,
+)
 from ..kernels.raster import exact_nearest, fix_pixels, jfa_nearest, nearest_tiles, walk_tiles
 from .csr import csr_from_pairs
 from .delaunay import delaunay
@@ -24,30 +32,6 @@ _TILE_SPACINGS = 1.0
 _MAX_CANDIDATES = 48
 #: Largest initial tile side of the exact method, in pixels.
 _MAX_TILE = 64
-
-#: Most memory a raster may need, in bytes (for config.py): :func:`rasterize` and
-#: ``voroforge raster`` refuse a shape whose estimated peak passes it, before any work (the
-#: old cap of config.MAX_PIXELS = 2**30 pixels let through ~108 GiB for a labels PNG: an
-#: OOM kill on a 24 GiB machine instead of the error).
-RASTER_MAX_BYTES = 16 * 2**30
-#: Peak bytes a pixel of :func:`rasterize` (without, with ``f2``), the largest of the exact
-#: and jfa methods and the Delaunay walk: peak RSS growth from 1000^2 to 3000^2 pixels with
-#: 20, 1,000 and 2,000 crowded sites was 12-25 and 20-40 (jfa), rounded up.
-RASTER_BYTES = {False: 26, True: 42}
-#: Bytes a pixel of its result: labels int32 and F1 float64 (and F2 float64).
-RASTER_RESULT_BYTES = {False: 12, True: 20}
-#: Peak bytes a site of :func:`rasterize`, on top, where the Delaunay walk may decide the
-#: labels (Euclidean F1, at most a site a pixel): 884 with sites crowded on a circle (a
-#: quarter of a site per pixel), rounded up; elsewhere (the tiles alone: 113-124 with one
-#: uniform site a pixel, exact and jfa, with and without f2) the second value.
-RASTER_SITE_BYTES = (1000, 160)
-#: Peak bytes a pixel of drawing one field of a result as a PNG, on top of the result
-#: (measured alike: 96, 25, 25, 33): the labels' colouring lists every pair of touching
-#: pixels. A .npy of a field needs at most as much.
-RASTER_WRITE_BYTES = {"labels": 100, "distance": 28, "f2": 28, "edge": 36}
-#: And a site, for labels (up to one a pixel): the pairs of touching pixels that differ
-#: (372 fitted from a quarter and one uniform site a pixel), rounded up.
-RASTER_WRITE_SITE_BYTES = 400
 
 
 class RasterVoronoi:
@@ -162,7 +146,7 @@ def raster_bytes(
     -------
     int
         Bytes: the larger of the computation's peak and the result plus the drawing's, from
-        the measured :data:`RASTER_BYTES`, :data:`RASTER_SITE_BYTES`,
+        the measured :data:`config.RASTER_BYTES`, :data:`RASTER_SITE_BYTES`,
         :data:`RASTER_RESULT_BYTES`, :data:`RASTER_WRITE_BYTES` and
         :data:`RASTER_WRITE_SITE_BYTES`.
     """
