@@ -364,3 +364,21 @@ def test_scale_attribute_named_like_a_cell_column(tmp_path, dask_client):
     assert [table.column("kind").to_pylist()[i] for i in order] == [f"k{i}" for i in range(4)]
     # the cell columns are the cells': areas tile the box
     assert abs(sum(table.column("area").to_pylist()) - 100.0) < 1e-9
+
+
+@pytest.mark.parametrize("delimiter", [",", ";", "\t"])
+def test_csv_quoted_fields_are_read_as_the_csv_module_writes_them(tmp_path, delimiter):
+    # F12: a quoted field holding the delimiter or a doubled quote is one field
+    import csv
+
+    from voroforge.io.readers.points import read_text_point_table
+
+    rows = [[1, 1, f"Smith{delimiter} John"], [5, 2, 'say "hi"'], [3.5, 7, ""], [8, 8, "d"]]
+    path = tmp_path / "p.csv"
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f, delimiter=delimiter)
+        w.writerow(["x", "y", "name"])
+        w.writerows(rows)
+    pts, attrs = read_text_point_table(path)
+    assert pts.tolist() == [[1, 1], [5, 2], [3.5, 7], [8, 8]]
+    assert attrs["name"] == [f"Smith{delimiter} John", 'say "hi"', None, "d"]

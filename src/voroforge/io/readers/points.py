@@ -6,6 +6,7 @@ the reader from the suffix.
 
 from __future__ import annotations
 
+import csv
 import math
 import re
 
@@ -22,8 +23,21 @@ _AXES = ("x", "y", "z")
 
 
 def _split(line: str, delimiter: str | None) -> list[str]:
-    parts = line.split(delimiter) if delimiter else line.split()
-    return [p.strip().strip("\"'").strip() for p in parts]
+    """The fields of one line, quoted as RFC 4180 has it.
+
+    ``"Smith, John"`` is one field and ``""`` a quote inside one, as Python's csv module,
+    pandas and spreadsheets write them; single quotes around a whole field are dropped too.
+    """
+    if not delimiter:
+        return [_unquote(p.strip()) for p in line.split()]
+    fields = next(csv.reader([line], delimiter=delimiter, skipinitialspace=True))
+    return [_unquote(p.strip()) for p in fields]
+
+
+def _unquote(field: str) -> str:
+    if len(field) >= 2 and field[0] == field[-1] and field[0] in "\"'":
+        return field[1:-1].strip()
+    return field
 
 
 def read_text_points(path) -> np.ndarray:
