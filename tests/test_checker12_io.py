@@ -382,3 +382,15 @@ def test_csv_quoted_fields_are_read_as_the_csv_module_writes_them(tmp_path, deli
     pts, attrs = read_text_point_table(path)
     assert pts.tolist() == [[1, 1], [5, 2], [3.5, 7], [8, 8]]
     assert attrs["name"] == [f"Smith{delimiter} John", 'say "hi"', None, "d"]
+
+
+def test_voronoi_cli_keeps_both_an_area_and_an_input_area_column(tmp_path):
+    # `area` is renamed past the computed column and past the file's own `input_area`
+    (tmp_path / "p.csv").write_text("x,y,area,input_area\n1,1,10,20\n5,2,11,21\n3,7,12,22\n")
+    out = tmp_path / "c.geojson"
+    args = ["voronoi", str(tmp_path / "p.csv"), "-o", str(out), "--boundary", "0,0,10,10"]
+    assert main(args) == 0
+    props = [f["properties"] for f in json.loads(out.read_text())["features"]]
+    assert [p["input_area"] for p in props] == [20, 21, 22]
+    assert [p["input_input_area"] for p in props] == [10, 11, 12]
+    assert sum(p["area"] for p in props) == pytest.approx(100.0)

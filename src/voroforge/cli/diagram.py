@@ -131,11 +131,14 @@ def run_voronoi(args: argparse.Namespace, stage: Stage) -> list[Path]:
     check_outputs(args.output, png=lambda: _check_png(args.size), inputs=[args.points])
     stage("reading")
     from ..io.readers import boundary_crs, read_point_table
+    from ..io.readers.points import attribute_names
 
     # every input row keeps its place (row i is cell i; a site outside the domain gets an
     # empty cell), its attributes and the boundary's CRS go to the GeoJSON/GeoParquet cells
     points, attributes = read_point_table(args.points)
-    attributes = {(f"input_{k}" if k in _RESERVED else k): v for k, v in attributes.items()}
+    attributes = dict(
+        zip(attribute_names(list(attributes), _RESERVED), attributes.values(), strict=True)
+    )
     boundary = io.read_boundary(args.boundary) if args.boundary else None
     crs = boundary_crs(args.boundary) if args.boundary else None
     stage(f"computing {len(points)} Voronoi cells")
