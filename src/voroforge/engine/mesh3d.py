@@ -165,9 +165,11 @@ def as_mesh_container(container):
     # signed volume about the mesh's centre: about the origin it cancels far out (a torus of
     # volume 2.98 at (5e5, 4e6, 100) measured 2.87)
     centre = 0.5 * (V.min(axis=0) + V.max(axis=0))
-    fo = far_origin(V.min(axis=0), V.max(axis=0))
-    if fo is not None:  # far out: about an origin whose differences are exact (cut_by_mesh's)
-        centre = fo
+    if far_origin(V.min(axis=0), V.max(axis=0)) is not None:
+        # far out: about an origin whose differences are exact, per axis (far_origin's
+        # steps follow the largest extent: a rod 1e3 thick 1e9 long at 1e15 had y and z
+        # differences up to ~5e8 there, and its volume came out 1.4e-5 short)
+        centre = _exact_origin(V)
     a, b, c = (V[F[:, k]] - centre for k in range(3))
     with np.errstate(over="ignore", invalid="ignore"):  # past the range: inf, refused below
         vol = float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
@@ -498,9 +500,10 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     # (vertices, cells, faces per cell, flat rings (global vertex numbers), ring lengths,
     # labels) per part: the cells cut here, then manifold3d's batches
     parts = []
-    # its decisions (coplanar, inside a half-space) within 1e-9 of the mesh's size, above
-    # the rounding of coordinates far from the origin
-    ext = float((V.max(axis=0) - V.min(axis=0)).max())
+    # its decisions (coplanar, inside a half-space) within 1e-9 of the mesh's least extent
+    # (its largest gave a rod 1e-7 thick 1% of its thickness), above the rounding of the
+    # coordinates (``big``). The bench torus: the same cells, bit for bit
+    ext = float((V.max(axis=0) - V.min(axis=0)).min())
     if fo is not None:  # the cut cells' coordinates about o carry the rounding of those
         big = MESH_COORD_RTOL * float(np.abs(Vl).max())
     tol = VORONOI3D_MESH_SLACK_RTOL * ext + big

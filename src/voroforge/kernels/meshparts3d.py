@@ -227,7 +227,23 @@ def merge_parts(PV, PF, PR, pnv, pnf, nparts, ms, o, tol, out):
                     back = True
             if twice or not back:
                 return fail()
-    vol, mx, my, mz = moments(MV, MF, nf, MR)
+    # the moments about the centre of the polyhedron's box (shifted copies of its rows in
+    # the free rows after them): about the cell's first vertex, a part much thinner than the
+    # cell (a rod 1e-6 thick in a cell 2e-2 wide) lost its volume to cancellation (1e-8)
+    ref = np.zeros(3)
+    for c in range(3):
+        lo = MV[0, c]
+        hi = MV[0, c]
+        for v in range(1, nv):
+            lo = min(lo, MV[v, c])
+            hi = max(hi, MV[v, c])
+        ref[c] = 0.5 * lo + 0.5 * hi
+    if 2 * nv > MV.shape[0]:
+        return fail()
+    for v in range(nv):
+        for c in range(3):
+            MV[nv + v, c] = MV[v, c] - ref[c]
+    vol, mx, my, mz = moments(MV[nv:], MF, nf, MR)
     if not vol > 0.0:
         return fail()
     # pieces: vertices joined by the faces (union-find)
@@ -258,4 +274,13 @@ def merge_parts(PV, PF, PR, pnv, pnf, nparts, ms, o, tol, out):
         for s in range(MF[f, 1], MF[f, 1] + MF[f, 2]):
             oR[q] = MR[s]
             q += 1
-    return nv, nf, nr, vol, mx / vol + o[0], my / vol + o[1], mz / vol + o[2], npc
+    return (
+        nv,
+        nf,
+        nr,
+        vol,
+        mx / vol + ref[0] + o[0],
+        my / vol + ref[1] + o[1],
+        mz / vol + ref[2] + o[2],
+        npc,
+    )
