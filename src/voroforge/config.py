@@ -764,6 +764,11 @@ POWER_FRAME_EXP = 256
 #: polygon clip raised GEOSException; at 1e154 areas overflowed. Nearer 1 nothing is scaled
 #: (the bits of ordinary fits do not depend on it)
 POWER_FIT_SCALE_EXP = 64
+#: engine.capacity: when both starts stall, targets moved from the shrunk sites' areas in
+#: steps of this fraction (log areas, halved down to the least), each fitted to the rtol
+POWER_FIT_CONTINUATION_STEP = 0.25
+POWER_FIT_CONTINUATION_MIN_STEP = 1.0 / 64.0
+POWER_FIT_CONTINUATION_RTOL = 1e-3
 
 #: engine.power (power_fit's bridge across a gap): a group's area gain counts only above this
 #: fraction of the domain's area. Summed cell areas carry rounding of a few ulps each; a

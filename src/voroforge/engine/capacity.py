@@ -9,20 +9,21 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ..config import POWER_FIT_DEFAULT_RTOL, POWER_FIT_FAR, POWER_FIT_SCALE_EXP, POWER_FIT_SUM_RTOL
+from ..config import (
+    POWER_FIT_CONTINUATION_MIN_STEP,
+    POWER_FIT_CONTINUATION_RTOL,
+    POWER_FIT_CONTINUATION_STEP,
+    POWER_FIT_DEFAULT_RTOL,
+    POWER_FIT_FAR,
+    POWER_FIT_SCALE_EXP,
+    POWER_FIT_SUM_RTOL,
+)
 from .domain import Domain, make_domain, shifted
 from .inputs import as_points, as_weights, require_distinct, unit_exponent
 from .power import PowerDiagram, fit_weights, power_diagram, shrink_start
 from .threads import serial_below
 
 __all__ = ["as_targets", "power_fit"]
-
-#: (for config.py) the continuation's intermediate targets are fitted to this relative error
-CONTINUATION_RTOL = 1e-3
-#: (for config.py) the continuation's first step (the fraction of the way, in log areas, from
-#: the shrunk sites' areas to the targets) and the smallest it is halved to before giving up
-CONTINUATION_STEP = 0.25
-CONTINUATION_MIN_STEP = 1.0 / 64.0
 
 
 def as_targets(target_areas, n: int, dom: Domain) -> np.ndarray:
@@ -183,7 +184,8 @@ def _continuation(pts, t, dom, tol, max_iter):
     """``fit_weights`` along targets moving from the shrunk sites' areas to ``t``.
 
     The targets ``a0**(1 - s) t**s`` (normalised to the domain's area) for growing ``s``,
-    each fitted to ``CONTINUATION_RTOL`` from the last one's weights (the last to ``tol``);
+    each fitted to ``config.POWER_FIT_CONTINUATION_RTOL`` from the last one's weights (the
+    last to ``tol``);
     a step that does not fit is halved. Returns ``(d, w, err, steps)`` of the furthest
     target reached (its error against ``t``), or None when no step fits.
     """
@@ -192,12 +194,12 @@ def _continuation(pts, t, dom, tol, max_iter):
     if not (a0 > 0.0).all():
         return None
     log0, log1 = np.log(a0), np.log(t)
-    best, s, ds, steps = None, 0.0, CONTINUATION_STEP, 0
-    while s < 1.0 and ds >= CONTINUATION_MIN_STEP:
+    best, s, ds, steps = None, 0.0, POWER_FIT_CONTINUATION_STEP, 0
+    while s < 1.0 and ds >= POWER_FIT_CONTINUATION_MIN_STEP:
         nxt = min(1.0, s + ds)
         ts = np.exp((1.0 - nxt) * log0 + nxt * log1)
         ts *= t.sum() / ts.sum()
-        want = tol if nxt == 1.0 else max(tol, CONTINUATION_RTOL)
+        want = tol if nxt == 1.0 else max(tol, POWER_FIT_CONTINUATION_RTOL)
         d, w_try, err, it = fit_weights(pts, ts, dom, w, want, max_iter)
         steps += it
         if err <= want:
