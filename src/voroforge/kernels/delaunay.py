@@ -26,8 +26,17 @@ import numpy as np
 from numba import literally, njit, prange
 
 from ..config import NJIT, NJIT_PARALLEL, SEED_DET_RTOL
+from .delaunay_brio import brio_order, convex_hull
 from .predicates import incircle, incircle_fast, orient2d, orient2d_fast
 from .vertex import circumcenter
+
+#: The sweep gives up after FLIP_BUDGET_PER_POINT * n + FLIP_BUDGET_BASE flips, or as many hull
+#: walk steps, and the points are inserted in a randomised order instead
+#: (:func:`_triangulate_brio`). Uniform points make about 4 flips and 2 steps a point; points on
+#: a few parallel lines make n / 30 flips a point, three lines of integer points n / 150 hull
+#: steps (issue 15).
+FLIP_BUDGET_PER_POINT = 16
+FLIP_BUDGET_BASE = 1 << 16
 
 #: The smallest helpers are inlined by numba itself: called as functions, each would be
 #: compiled once for every mix of int32 entries, int64 indices and literal -1 its callers
@@ -109,7 +118,7 @@ def _flip(a, b, tri, he, hull_tri):
 
 
 @njit(**NJIT)
-def _legalize(a, xs, ys, tri, he, hull_tri, stack, exact):
+def _legalize(a, xs, ys, tri, he, hull_tri, stack, exact, flips):
     """Flip edges opposite the newest point until all are locally Delaunay.
 
     ``a`` is a halfedge whose triangle's opposite corner is the new point. Whenever a flip moves
@@ -117,6 +126,7 @@ def _legalize(a, xs, ys, tri, he, hull_tri, stack, exact):
     With ``exact`` False an edge whose filtered incircle cannot decide is left unflipped
     (always a valid triangulation) and the function returns False; :func:`_repair` then
     settles such edges exactly after the sweep. Returns True when every test was decided.
+    ``flips[0]`` counts the flips.
     """
     literally(exact)
     sp = 0
@@ -153,6 +163,7 @@ def _legalize(a, xs, ys, tri, he, hull_tri, stack, exact):
             if har == -1:
                 hull_tri[p0] = b
             link_halfedges(he, ar, bl)
+            flips[0] += 1
             if sp >= stack.shape[0]:
                 return decided  # cannot happen: the stack is sized to the number of halfedges
             stack[sp] = br
@@ -283,7 +294,7 @@ def _contains(xs, ys, tri, t, px, py):
 
 
 @njit(**NJIT)
-def _insert_in_triangle(k, t, xs, ys, tri, he, hull_tri, stack, tcount):
+def _insert_in_triangle(k, t, xs, ys, tri, he, hull_tri, stack, flips, tcount):
     """1-to-3 split of triangle ``t`` by point ``k`` strictly inside it."""
     t0 = 3 * t
     a = tri[t0]
@@ -303,14 +314,14 @@ def _insert_in_triangle(k, t, xs, ys, tri, he, hull_tri, stack, tcount):
         hull_tri[b] = t1
     if h2 == -1:
         hull_tri[c] = t2
-    _legalize(t0, xs, ys, tri, he, hull_tri, stack, True)
-    _legalize(t1, xs, ys, tri, he, hull_tri, stack, True)
-    _legalize(t2, xs, ys, tri, he, hull_tri, stack, True)
+    _legalize(t0, xs, ys, tri, he, hull_tri, stack, True, flips)
+    _legalize(t1, xs, ys, tri, he, hull_tri, stack, True, flips)
+    _legalize(t2, xs, ys, tri, he, hull_tri, stack, True, flips)
     return tcount + 6
 
 
 @njit(**NJIT)
-def _insert_on_edge(k, e, xs, ys, tri, he, hull_tri, hull_next, hull_prev, stack, tcount):
+def _insert_on_edge(k, e, xs, ys, tri, he, hull_tri, hull_next, hull_prev, stack, flips, tcount):
     """Split halfedge ``e`` (and its twin, if any) at point ``k`` lying on it."""
     a = tri[e]
     b = tri[_next(e)]
@@ -348,23 +359,25 @@ def _insert_on_edge(k, e, xs, ys, tri, he, hull_tri, hull_next, hull_prev, stack
             hull_tri[a] = tc
         if h_db == -1:
             hull_tri[d] = td
-        _legalize(tc, xs, ys, tri, he, hull_tri, stack, True)
-        _legalize(td, xs, ys, tri, he, hull_tri, stack, True)
-    _legalize(ta, xs, ys, tri, he, hull_tri, stack, True)
-    _legalize(tb, xs, ys, tri, he, hull_tri, stack, True)
+        _legalize(tc, xs, ys, tri, he, hull_tri, stack, True, flips)
+        _legalize(td, xs, ys, tri, he, hull_tri, stack, True, flips)
+    _legalize(ta, xs, ys, tri, he, hull_tri, stack, True, flips)
+    _legalize(tb, xs, ys, tri, he, hull_tri, stack, True, flips)
     return tcount
 
 
 @njit(**NJIT)
-def _sweep(xs, ys):
+def _sweep(xs, ys, max_flips):
     """Sweep points renumbered so that the seed is 0, 1, 2 and the rest follow in sweep order.
 
     Hull visibility uses the exact (adaptive) orientation, so the triangulation is always
     valid. Flips use the filtered incircle alone, which keeps the large exact-arithmetic code
     out of the hot loop: an edge it cannot decide stays unflipped and :func:`_repair` makes
     the result Delaunay afterwards. Returns ``(clean, tri, he, tcount, hull_tri, hull_next,
-    hull_prev, hull_start, deferred)``; ``clean`` is True when every incircle test was
-    decided, so the sweep did exactly what an exact one would have done.
+    hull_prev, hull_start, deferred, work)``; ``clean`` is True when every incircle test was
+    decided, so the sweep did exactly what an exact one would have done. ``work`` is the larger
+    of the flips made and the hull walk's steps; the sweep stops (unfinished) as soon as it
+    passes ``max_flips``.
     """
     n = xs.shape[0]
     max_tri = max(2 * n - 5, 1)
@@ -378,6 +391,7 @@ def _sweep(xs, ys):
     hull_hash = np.full(hash_size, -1, dtype=np.int32)
     deferred = np.zeros(n, dtype=np.int32)
     n_def = 0
+    flips = np.zeros(2, dtype=np.int64)  # flips, hull walk steps
 
     cx, cy = circumcenter(xs[0], ys[0], xs[1], ys[1], xs[2], ys[2])
     hull_next[0] = 1
@@ -397,6 +411,8 @@ def _sweep(xs, ys):
     clean = True
 
     for k in range(3, n):
+        if flips[0] > max_flips or flips[1] > max_flips:
+            break
         x = xs[k]
         y = ys[k]
         key = _hash_key(x, y, cx, cy, hash_size)
@@ -408,6 +424,7 @@ def _sweep(xs, ys):
         start = hull_prev[start]
         e = start
         while True:
+            flips[1] += 1
             q = hull_next[e]
             if _orient(xs[e], ys[e], xs[q], ys[q], x, y) < 0.0:
                 break
@@ -426,7 +443,7 @@ def _sweep(xs, ys):
         tcount += 3
         hull_tri[e] = t
         hull_tri[k] = t + 1
-        clean &= _legalize(t + 2, xs, ys, tri, he, hull_tri, stack, False)
+        clean &= _legalize(t + 2, xs, ys, tri, he, hull_tri, stack, False, flips)
 
         nn = q
         while True:
@@ -437,7 +454,7 @@ def _sweep(xs, ys):
             _add_triangle(tri, he, t, nn, k, q, hull_tri[k], -1, hull_tri[nn])
             tcount += 3
             hull_tri[k] = t + 1
-            clean &= _legalize(t + 2, xs, ys, tri, he, hull_tri, stack, False)
+            clean &= _legalize(t + 2, xs, ys, tri, he, hull_tri, stack, False, flips)
             hull_next[nn] = nn
             nn = q
 
@@ -450,7 +467,7 @@ def _sweep(xs, ys):
                 _add_triangle(tri, he, t, q, k, e, -1, hull_tri[e], hull_tri[q])
                 tcount += 3
                 hull_tri[q] = t
-                clean &= _legalize(t + 2, xs, ys, tri, he, hull_tri, stack, False)
+                clean &= _legalize(t + 2, xs, ys, tri, he, hull_tri, stack, False, flips)
                 hull_next[e] = e
                 e = q
 
@@ -462,7 +479,9 @@ def _sweep(xs, ys):
         hull_hash[_hash_key(x, y, cx, cy, hash_size)] = k
         hull_hash[_hash_key(xs[e], ys[e], cx, cy, hash_size)] = e
 
-    return clean, tri, he, tcount, hull_tri, hull_next, hull_prev, hull_start, deferred[:n_def]
+    deferred = deferred[:n_def]
+    work = max(flips[0], flips[1])
+    return clean, tri, he, tcount, hull_tri, hull_next, hull_prev, hull_start, deferred, work
 
 
 @njit(**NJIT_PARALLEL)
@@ -527,8 +546,12 @@ def _repair(xs, ys, tri, he, hull_tri, suspects):
 
 @njit(**NJIT)
 def _insert_deferred(xs, ys, tri, he, tcount, hull_tri, hull_next, hull_prev, deferred):
-    """Insert points the sweep could not attach to the hull (they lie inside or on it)."""
+    """Insert points the sweep could not attach to the hull (they lie inside or on it).
+
+    Returns the new triangle count and the number of flips made.
+    """
     stack = np.zeros(tri.shape[0] + 16, dtype=np.int32)
+    flips = np.zeros(1, dtype=np.int64)
     for j in range(deferred.shape[0]):
         k = deferred[j]
         t = _locate(xs, ys, tri, he, tcount // 3, (tcount // 3) - 1, xs[k], ys[k])
@@ -544,13 +567,13 @@ def _insert_deferred(xs, ys, tri, he, tcount, hull_tri, hull_next, hull_prev, de
                 zero = e
                 nzero += 1
         if nzero == 0:
-            tcount = _insert_in_triangle(k, t, xs, ys, tri, he, hull_tri, stack, tcount)
+            tcount = _insert_in_triangle(k, t, xs, ys, tri, he, hull_tri, stack, flips, tcount)
         elif nzero == 1:
             tcount = _insert_on_edge(
-                k, zero, xs, ys, tri, he, hull_tri, hull_next, hull_prev, stack, tcount
+                k, zero, xs, ys, tri, he, hull_tri, hull_next, hull_prev, stack, flips, tcount
             )
         # nzero == 2 would mean a duplicate point, which the engine removes beforehand
-    return tcount
+    return tcount, flips[0]
 
 
 @njit(**NJIT)
@@ -612,14 +635,64 @@ def _relabel(tri, tcount, hull, order):
     return out
 
 
-def triangulate_sorted(xs: np.ndarray, ys: np.ndarray):
+@njit(**NJIT)
+def _hull_links(tri, he, tcount, hull, n):
+    """``hull_tri``, ``hull_next``, ``hull_prev`` (size ``n``) of a triangulation and its hull."""
+    hull_tri = np.full(n, -1, dtype=np.int32)
+    hull_next = np.zeros(n, dtype=np.int32)
+    hull_prev = np.zeros(n, dtype=np.int32)
+    for e in range(tcount):
+        if he[e] == -1:
+            hull_tri[tri[e]] = e
+    h = hull.shape[0]
+    for j in range(h):
+        hull_next[hull[j]] = hull[(j + 1) % h]
+        hull_prev[hull[(j + 1) % h]] = hull[j]
+    return hull_tri, hull_next, hull_prev
+
+
+def _triangulate_brio(sx, sy, order):
+    """Fallback of :func:`triangulate_sorted` when the sweep makes too many flips.
+
+    The exact convex hull's vertices are swept (without a budget), then every other point is
+    located and inserted (1-to-3 or edge split, exact Lawson flips) in a biased randomised
+    order, whose expected number of flips is linear whatever the input. Points are renumbered
+    hull first, then in insertion order; returns what :func:`triangulate_sorted` does and the
+    number of flips made.
+    """
+    n = sx.shape[0]
+    hv = convex_hull(sx, sy, np.lexsort((sy, sx)))
+    inner = np.ones(n, dtype=np.bool_)
+    inner[hv] = False
+    rest = brio_order(sx, sy, np.flatnonzero(inner))
+    h_order, _, _, htri, hhe, hhull, _ = triangulate_sorted(sx[hv], sy[hv], max_flips=-1)
+    new = np.concatenate([hv[h_order], rest])
+    gxy = _gather(sx, sy, new)
+    gx = gxy[:, 0]
+    gy = gxy[:, 1]
+    max_tri = max(2 * n - 5, 1)
+    tri = np.full(3 * max_tri, -1, dtype=np.int32)
+    he = np.full(3 * max_tri, -1, dtype=np.int32)
+    tcount = htri.shape[0]
+    tri[:tcount] = htri
+    he[:tcount] = hhe
+    hull_tri, hull_next, hull_prev = _hull_links(tri, he, tcount, hhull, n)
+    todo = np.arange(hv.shape[0], n, dtype=np.int32)
+    tcount, flips = _insert_deferred(gx, gy, tri, he, tcount, hull_tri, hull_next, hull_prev, todo)
+    hull = _hull_array(hull_next, hhull[0])
+    return (order[new], gx, gy, tri[:tcount], he[:tcount], hull, True), flips
+
+
+def triangulate_sorted(xs: np.ndarray, ys: np.ndarray, *, max_flips: int | None = None):
     """Triangulate distinct points, returning the result in sweep order.
 
     Returns ``(order, sx, sy, tri, he, hull, ok)``: point ``k`` of the sweep-ordered arrays
     ``sx, sy`` is input point ``order[k]``; ``tri`` (flat), ``he`` and ``hull`` use sweep
     indices. Working in sweep order keeps each point's triangles close together in memory,
     which matters for everything that walks around points afterwards. ``ok`` is False when
-    all points are collinear (then only ``order`` is meaningful).
+    all points are collinear (then only ``order`` is meaningful). A sweep that makes more than
+    ``max_flips`` flips (default: the budget above; -1: no limit) is abandoned for
+    :func:`_triangulate_brio`, and then the order is the hull first, then insertion order.
     """
     n = xs.shape[0]
     empty = np.zeros(0, dtype=np.int32)
@@ -632,13 +705,22 @@ def triangulate_sorted(xs: np.ndarray, ys: np.ndarray):
     sxy = _gather(xs, ys, order)
     sx = sxy[:, 0]  # strided views
     sy = sxy[:, 1]
-    clean, tri, he, tcount, hull_tri, hull_next, hull_prev, hull_start, deferred = _sweep(sx, sy)
+    if max_flips is None:
+        max_flips = FLIP_BUDGET_PER_POINT * n + FLIP_BUDGET_BASE
+    elif max_flips < 0:
+        max_flips = np.iinfo(np.int64).max
+    swept = _sweep(sx, sy, max_flips)
+    clean, tri, he, tcount, hull_tri, hull_next, hull_prev, hull_start, deferred, flips = swept
+    if flips > max_flips:
+        return _triangulate_brio(sx, sy, order)[0]
     if not clean:
         suspects = _suspect_edges(sx, sy, tri, he, tcount)
         if suspects.shape[0]:
             _repair(sx, sy, tri, he, hull_tri, suspects)
     if deferred.shape[0]:
-        tcount = _insert_deferred(sx, sy, tri, he, tcount, hull_tri, hull_next, hull_prev, deferred)
+        tcount, _ = _insert_deferred(
+            sx, sy, tri, he, tcount, hull_tri, hull_next, hull_prev, deferred
+        )
     hull = _hull_array(hull_next, hull_start)
     return order, sx, sy, tri[:tcount], he[:tcount], hull, True
 
