@@ -18,6 +18,7 @@ from numba import njit
 from ..config import GRID_DEGENERATE_RTOL, GRID_WIDEN_RTOL, NJIT, TRIM_CELLS
 from ..kernels.cells3d import EMPTY, OK, OVERFLOW, build_cells, cell_scratch
 from ..kernels.grid3d import kd_buckets3d
+from ..kernels.reach3d import weight_reach
 from .containers import maybe_outside
 from .jointable3d import probe_next, rehash, slot
 from .lists3d import Lists, chunk_search, chunks, redo_slow
@@ -637,7 +638,7 @@ def build_cells3d(
         slots = [_slots(min(CHUNK, k), CAPS) for _ in range(2 if joiner else 1)]
         scr = {}  # each thread's working space, kept from chunk to chunk (_run)
         pending = []
-        grid = (start, SP, SW, sidx, g, None)  # the grid's search (no big polytopes)
+        grid = (start, SP, SW, sidx, weight_reach(P, W, g), None)  # (+ local weights)
         gone = None  # the sites whose cells are empty (outside), not counted as owners
 
         def run(few, *search, sl=None):  # search: (start, SP, SW, sidx, g, big)

@@ -5,7 +5,8 @@ writes the slots). :func:`one_cell` starts from the container polyhedron (relati
 site), visits the buckets in the precomputed order of their least possible distance and
 then shell by shell (:mod:`kernels.grid3d`), gathers the candidates of one distance, cuts by
 them nearest first (:func:`_cut_batch`), and stops once no unscanned site can reach the cell
-(:func:`_far`: twice the cell's radius, widened by the weights' spread).
+(:func:`_far`: twice the cell's radius, widened by the weights' spread, or the local
+bound of :func:`.reach3d.local_stop` when the grid carries the weights' pyramid).
 
 The cell is held as a vertex graph (:mod:`kernels.graph3d`) when the template has one,
 else (and as the fallback the caller runs when the graph reports ``BROKEN``) as face rings
@@ -35,6 +36,8 @@ from .predicates3d import (
     offset_side,
     vertex_offset,
 )
+from .reach3d import far as _far
+from .reach3d import local_stop
 
 OK = 0
 EMPTY = 1
@@ -422,13 +425,6 @@ def _ordered_bucket(order, o, ci, cj, ck, px, py, pz, g, wi, wmax, rmax2):
 
 
 @njit(**NJIT_INLINE)
-def _far(g2, wi, wmax, rmax2):
-    """No site at squared distance >= ``g2`` can cut or touch a cell of squared radius ``rmax2``."""
-    lhs = g2 + wi - wmax
-    return lhs > 0.0 and lhs * lhs > 4.0 * g2 * rmax2 * (1.0 + VORONOI3D_STOP_RTOL)
-
-
-@njit(**NJIT_INLINE)
 def _axis_gap(p, origin, size, b, off):
     """Distance along one axis from coordinate ``p`` to bucket ``b`` (``off`` buckets away)."""
     if off > 0:
@@ -547,29 +543,32 @@ def _box_dist2(px, py, pz, tree, v):
 
 
 @njit(**NJIT_NO_NRT)
-def _next_leaf(px, py, pz, tree, hk, hv, size, wi, wmax, rmax2, V, nv, eps):
+def _next_leaf(px, py, pz, tree, hk, hv, size, wi, wmax, rmax2, V, nv, eps, g, gs):
     """Pop k-d nodes off the heap ``hk[:size], hv[:size]`` to the next bucket that may cut.
 
     Nearest box first (keys: squared distances from the site to the boxes); the walk ends
     at the first node beyond the stop test (:func:`_far`: every later one is farther), a
     node whose box every vertex is nearer than (:func:`_box_misses`) is dropped. Returns
-    ``(bucket or -1, size)``. Kept out of line: :func:`one_cell`'s grid search compiles
-    around a call, not around the walk (inlined, the walk cost uniform cells 4-7%).
+    ``(bucket or -1, size, gs)`` (``gs``: :func:`.reach3d.local_stop`'s). Kept out of line:
+    :func:`one_cell`'s grid search compiles around a call, not around the walk (inlined,
+    the walk cost uniform cells 4-7%).
     """
     while size > 0:
         key, v, size = heap_pop(hk, hv, size)
-        if _far(key, wi, wmax, rmax2):
-            return -1, 0
+        stop, gs2, gr2 = local_stop(key, wi, wmax, rmax2, px, py, pz, g, gs[0], gs[1])
+        gs = (gs2, gr2)
+        if stop:
+            return -1, 0, gs
         if _box_misses(px, py, pz, tree[v], V, nv, wi, wmax, rmax2, eps):
             continue
         left = int(tree[v, 6])
         if left < 0:
-            return int(tree[v, 7]), size
+            return int(tree[v, 7]), size, gs
         for c in range(left, left + 2):
             d2 = _box_dist2(px, py, pz, tree, c)
             if not _far(d2, wi, wmax, rmax2):
                 size = heap_push(hk, hv, size, d2, c)
-    return -1, size
+    return -1, size, gs
 
 
 @njit(**NJIT_NO_NRT)
@@ -686,6 +685,7 @@ def one_cell(
     budget = g[9] if g.shape[0] > 9 else 0.0
     lists = budget < 0.0
     seen = 0
+    gs = (np.inf, -1.0)  # the local stop's bound and the radius it was found at (reach3d)
     while True:
         flush = False
         stop = False
@@ -701,7 +701,9 @@ def one_cell(
                 rt = start[i]
                 seen = 1
         elif kd:  # each k-d bucket is cut by at once
-            b, size = _next_leaf(px, py, pz, tree, hk, buck, size, wi, wmax, rmax2, V, nv, eps)
+            b, size, gs = _next_leaf(
+                px, py, pz, tree, hk, buck, size, wi, wmax, rmax2, V, nv, eps, g, gs
+            )
             flush = True
             if b >= 0:
                 rt = start[b]
@@ -715,7 +717,9 @@ def one_cell(
                 flush = True  # entry o is looked at again after the cut
             else:
                 level = order[o, 3]
-                if _far(level, wi, wmax, rmax2):
+                far, gs2, gr2 = local_stop(level, wi, wmax, rmax2, px, py, pz, g, gs[0], gs[1])
+                gs = (gs2, gr2)
+                if far:
                     flush = True
                     if level <= outside:
                         stop = True
@@ -734,7 +738,9 @@ def one_cell(
             flush = True
             if m == 0:  # (else the shell's sites are cut by first, and this comes again)
                 gap = shell_gap(px, py, pz, ci, cj, ck, r, g) if r >= 0 else 0.0
-                if gap == np.inf or (r >= 0 and _far(gap * gap, wi, wmax, rmax2)):
+                far, gs2, gr2 = local_stop(gap * gap, wi, wmax, rmax2, px, py, pz, g, gs[0], gs[1])
+                gs = (gs2, gr2)
+                if gap == np.inf or (r >= 0 and far):
                     stop = True
                 else:
                     r += 1
