@@ -297,11 +297,9 @@ STIPPLE_MAX_WORK = 50_000_000
 #: of shapely work, and depth 6 with count 6 on 60 seeds asked for 2.8M (over 8 minutes)
 RECURSION_MAX_CELLS = 500_000
 
-#: Surface tessellations (``vf.surface`` shapes): a default resolution (near-square facets)
-#: is capped at this many grid cells, with a warning (a cylinder of radius 1e-5 and height
-#: 1 would need 1.5e8, 1.1 GiB, and at 1e-9 114 GiB; 2**20 cells took 11 s to tessellate);
-#: an explicit ``resolution`` beyond the second figure is refused (16M triangles: ~1 GB of
-#: vertices, faces and UVs before any Voronoi work)
+#: Surface tessellations (``vf.surface`` shapes): a default resolution is capped at this
+#: many grid cells, with a warning (a cylinder of radius 1e-9 would need 114 GiB); an
+#: explicit ``resolution`` beyond the second figure is refused (16M triangles: ~1 GB)
 SURFACE_DEFAULT_MAX_CELLS = 1 << 18
 SURFACE_MAX_CELLS = 1 << 23
 
@@ -418,11 +416,9 @@ SURFACE_BUCKETS_PER_SITE = 8
 #: A cell boundary shorter than this (relative to the mesh's size) makes no neighbour.
 SURFACE_EDGE_RTOL = 1e-9
 
-#: A Surface's extent (its bounding box's largest side) and the magnitude of its vertices and
-#: of the sites given to surface.voronoi must lie in this range: the restricted Voronoi
-#: kernels square areas (fourth powers of lengths), which vanished or overflowed past ~1e+-77
-#: (checker9: areas 0 at 1e80, 81% off at 1e-80, a hang at 1e-100); out of it a ValueError
-#: says so (scale the mesh by a power of ten and the results back)
+#: A Surface's extent and the magnitude of its vertices and sites must lie in this range:
+#: the restricted Voronoi kernels square areas (fourth powers of lengths: 0 or inf past
+#: ~1e+-77); out of it a ValueError says so
 SURFACE_COORD_RANGE = (1e-60, 1e60)
 #: surface.SurfaceVoronoi.sample_check's slack in unit roundoffs of the surface's largest
 #: coordinate: piece vertices are rounded where they lie, so far from the origin a correct
@@ -464,10 +460,8 @@ VORONOI3D_DET_RTOL = 1e-10
 #: ridge; with the sites' 1e-10 no quadruple named that corner and the build failed)
 VORONOI3D_WALL_DET_RTOL = 1e-13
 #: A vertex whose name's determinant is below this fraction of the product of its rows'
-#: lengths is solved exactly (kernels.vertex3d.solve_name -> vertex_offset): the float
-#: solve's error grows as 1 / that ratio, and across a thin periodic box (1 x 1 x 1e-8, the
-#: sites' quadruples flat as the box) it moved vertices by 2% of the height (checker9 F1:
-#: volumes 2e-2 off; 4e-8 at 1e-5). About 0.6% of the vertices of uniform random sites
+#: lengths is solved exactly (kernels.vertex3d.solve_name): the float solve's error grows as
+#: 1 / that ratio (a 1 x 1 x 1e-8 periodic box: volumes 2e-2 off); ~0.6% of uniform vertices
 VORONOI3D_EXACT_DET_RTOL = 2.0**-6
 #: engine.hull3d: a Convex template of more vertices than this takes the two-pass hull path
 #: even when it fits the cell builder's scratch (hull3d.takes_hull_path)
@@ -482,10 +476,8 @@ HULL3D_DOP_PAD = 0.01
 #: the reach test's margin, relative to the wall's offset and the cell's size
 HULL3D_REACH_RTOL = 1e-9
 #: engine.jointable3d: linear probes in a vertex's local run (slot) before its probe
-#: sequence jumps to a slot hashed over the whole table: the vertices of a float sphere (all
-#: within ulps of its centre, far from their sites) fall in the centre's join bucket, whose
-#: run is a slot or two, and linear probing from one slot made the join quadratic (10,000
-#: points: 5 s of 7)
+#: sequence jumps to a slot hashed over the whole table (a float sphere's vertices all fall
+#: in one bucket: linear probing made the join quadratic)
 JOIN_LOCAL_PROBES = 32
 #: engine.lists3d: the most sites a cell's grid search examines before it stops with SLOW
 #: (uniform cells examine ~100, cells of 1e5 sites at a default container's padded walls at
@@ -513,6 +505,10 @@ CELLCUT3D_OWN_ENTRIES = 1 << 24
 #: of two): neighbouring cells on one thread reuse a vertex's exact point (points on a
 #: sphere without centre, 40k: 18.2 -> 15.7 s one thread)
 CELLS3D_PLACE_CACHE = 4096
+#: kernels.reach3d (unequal weights' local stop): a max-weight pyramid node's box is widened
+#: by this much of the grid's extent (bucket keys are rounded); tries to round a reach up
+REACH3D_BOX_RTOL = 1e-15
+REACH3D_ROUND_TRIES = 64
 #: engine.voronoi3d: sites a block of the Convex container's any-site-inside test
 VORONOI3D_INSIDE_BLOCK = 256
 #: Default container: the sites' bounding box padded by this fraction of its size per side

@@ -19,16 +19,11 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import NJIT, VORONOI3D_STOP_RTOL
+from ..config import NJIT, REACH3D_BOX_RTOL, REACH3D_ROUND_TRIES, VORONOI3D_STOP_RTOL
 from .grid3d import bucket3d
 
 NJIT_INLINE = {**NJIT, "inline": "always"}
 NJIT_NO_NRT = {**NJIT, "_nrt": False}
-#: a pyramid node's box is widened by this much of the grid's extent plus VORONOI3D_STOP_RTOL
-#: of a bucket (the sites' bucket keys are rounded); the lead may move it to config.py
-REACH3D_BOX_RTOL = 1e-15
-#: most tries to round a node's closed-form reach up to one the float test passes
-REACH3D_ROUND_TRIES = 64
 
 
 @njit(**NJIT_INLINE)
