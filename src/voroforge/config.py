@@ -52,10 +52,9 @@ FOLD_MAX_ROUNDS = 64
 #: error bounds + VERTEX_SNAP_RTOL of the radius) can be a fold: a longer one that breaks a
 #: turn test is a straight angle rounded (kernels/centers._unfold)
 FOLD_SPAN_ERRS = 4.0
-#: A cell's vertex that rounding left a right turn, on the line of its neighbours to
-#: rounding, joins the nearer neighbour when within this many times what rounding and
-#: naming moved the three (a nearly cocircular cluster far from the origin, whose exact
-#: spread follows the input's rounding; kernels/folds._straight_fold)
+#: A cell's vertex that rounding left a right turn, on the line of its neighbours, joins the
+#: nearer one when within this many times what rounding and naming moved the three (a nearly
+#: cocircular cluster far out; kernels/folds._straight_fold)
 FOLD_REACH_ERRS = 256.0
 #: ... and never further than this of the vertex's distance from its site (a class's naming
 #: move grows with every join: it must not carry vertices across the sites' spacing)
@@ -83,10 +82,9 @@ BOX_SIDE_REACH_ULPS = 1.0
 #: A stalled fold's class with more triangles than this keeps its name (kernels/refit: each
 #: candidate is scored on every site's ring; the largest class on issue 15's circles had 185)
 FOLD_FIT_MAX_MEMBERS = 512
-#: A fold round's class whose members' own centres spread over more than this many unit
-#: roundoffs of their magnitude (L1) is named from its middle member, not its
-#: best-conditioned one (kernels/refit.middle_member: a name at a class's edge folded more
-#: rings, and a 1000-site circle's class grew to 997 of 998 triangles, 22,189 ulps off)
+#: A fold round's class whose members' centres spread over more than this many ulps (L1) is
+#: named from its middle member (kernels/refit.middle_member: a name at a class's edge folded
+#: more rings, a 1000-site circle's class grew to 997 of 998 triangles, 22,189 ulps off)
 CLASS_SPREAD_ULPS = 64.0
 #: A cut cell's ring that rounding turns the wrong way only beside edges this many ulps (of
 #: the vertex's coordinates) long, and is simple, is kept: the end of a strip an ulp wide
@@ -509,6 +507,14 @@ CELLS3D_PLACE_CACHE = 4096
 #: by this much of the grid's extent (bucket keys are rounded); tries to round a reach up
 REACH3D_BOX_RTOL = 1e-15
 REACH3D_ROUND_TRIES = 64
+#: engine.containers: sites within this much of a wall's scale of its outside may lie outside
+#: (their cells built first, to learn which are empty); sites per block of that test
+OUTSIDE3D_RTOL = 1e-12
+OUTSIDE3D_BLOCK = 65536
+#: Convex(points=) volume from the exact polytope of its rows at most this many walls, or
+#: thin (volume below this of its extent cubed: a 1 x 1e-9 x 1e-9 box's float one 5e-10 off)
+CONVEX_EXACT_ROWS = 256
+CONVEX_EXACT_THIN = 1e-2
 #: engine.voronoi3d: sites a block of the Convex container's any-site-inside test
 VORONOI3D_INSIDE_BLOCK = 256
 #: Default container: the sites' bounding box padded by this fraction of its size per side

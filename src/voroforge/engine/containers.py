@@ -20,22 +20,16 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..config import AREA_MAX, CONVEX_FAR_ORIGIN, FLAT_RTOL, VOLUME_RANGE
-
-# (for config.py) engine.build3d's outside pass: sites within this much of a wall's scale
-# of its outside may lie outside the container; their cells are built first, to learn
-# which are empty
-OUTSIDE3D_RTOL = 1e-12
-#: sites per block of the outside test (a block's (sites, walls) values at once)
-OUTSIDE3D_BLOCK = 65536
-
-# (for config.py) Convex(points=): its volume is the exact polytope's of its rows (not the
-# float cut's) when it has at most this many walls or its volume is below this much of its
-# largest extent cubed (thin: the float cut's vertices are off by ulps of the extent, a 1 x
-# 1e-9 x 1e-9 box's volume by 5.3e-10); the hull of 10,000 sphere points (19,996 walls)
-# took 6.3 s and its exact polytope 18 s more, a 60-point hull's (~90 walls) 0.01 s
-CONVEX_EXACT_ROWS = 256
-CONVEX_EXACT_THIN = 1e-2
+from ..config import (
+    AREA_MAX,
+    CONVEX_EXACT_ROWS,
+    CONVEX_EXACT_THIN,
+    CONVEX_FAR_ORIGIN,
+    FLAT_RTOL,
+    OUTSIDE3D_BLOCK,
+    OUTSIDE3D_RTOL,
+    VOLUME_RANGE,
+)
 
 #: the cube's faces, outward counter-clockwise; corner ``k`` is ``(k & 1, k >> 1 & 1, k >> 2)``
 _CUBE_RINGS = ((0, 4, 6, 2), (1, 3, 7, 5), (0, 1, 5, 4), (2, 6, 7, 3), (0, 2, 3, 1), (4, 5, 7, 6))
