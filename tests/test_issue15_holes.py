@@ -102,10 +102,13 @@ def _samples(d, pts, box, k=400):
 @pytest.mark.parametrize("algorithm", ALGORITHMS)
 def test_folded_ring_left_empty_is_no_hole(algorithm):
     # 57 sites about site 6817 of 10,000 (seed 0): its ring was left empty (folded by an
-    # ulp), a hole of 4,660 ulps^2 (Euler 0 for 1, areas 1.1e-3 short)
+    # ulp), a hole of 4,660 ulps^2 (Euler 0 for 1, areas 1.1e-3 short). Since 1bdd7d6 the
+    # tiny ring is kept where it is valid and matches its neighbours' edges bit for bit
+    # (engine.planar._kept_tiny); kept or left empty, no hole
     pts, box = _window(10_000, 0, 6817, 0.08)
     d = vf.voronoi(pts, box, algorithm=algorithm)
-    assert len(d.unresolved) == 1
+    assert len(d.unresolved) <= 1
+    assert shapely.is_valid(d.cells).all()
     _tiles(d, box)
     assert d.describe().euler_ok
     _samples(d, pts, box)
