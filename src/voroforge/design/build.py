@@ -549,13 +549,14 @@ def _gif(design: Design, base: Path | None, path: Path, stage: Stage) -> Path:
     from ..io.gif import palette_frame, write_gif
 
     gif = design.output.gif
-    keys = [repr(v) for v in gif.sweep()]
+    values = gif.sweep()
+    keys = [repr(v) for v in values]
     designs = sweep_designs(design)
     last = {k: i for i, k in enumerate(keys)}  # a value shown again (bounce) is drawn once
 
     def frames():
         kept = {}  # only frames still to be shown again, and only as palette images
-        for i, (k, v) in enumerate(zip(keys, gif.sweep(), strict=True)):
+        for i, (k, v) in enumerate(zip(keys, values, strict=True)):
             frame = kept.pop(k, None) if last[k] == i else kept.get(k)
             if frame is None:
                 stage(f"gif frame {i + 1}/{len(keys)}")

@@ -432,16 +432,16 @@ def _torus_edges(d: Diagram, source, shift, is_orig, wrap: bool, pieces, box) ->
         coords = np.concatenate((coords[keep], sc))
         sa = np.concatenate((sa[keep], source[sp[:, 0]]))
         sb = np.concatenate((sb[keep], source[sp[:, 1]]))
-        keep = np.ones(len(coords), dtype=bool)
     else:
         # each torus edge once: where the lower-index cell is the original copy (a self
         # edge, between a cell and its own image, where the image lies on the positive side)
         lower_is_a = (sa < sb) | ((sa == sb) & _positive(shift[b] - shift[a]))
         low = np.where(lower_is_a, a, b)
         keep = is_orig[low]
-    lo = np.minimum(sa, sb)[keep]
-    hi = np.maximum(sa, sb)[keep]
-    return Edges(np.ascontiguousarray(coords[keep]), np.stack((lo, hi), axis=1).astype(np.int64))
+        coords, sa, sb = coords[keep], sa[keep], sb[keep]
+    lo = np.minimum(sa, sb)
+    hi = np.maximum(sa, sb)
+    return Edges(np.ascontiguousarray(coords), np.stack((lo, hi), axis=1).astype(np.int64))
 
 
 def _side_edges(seg: np.ndarray, pairs: np.ndarray, kept: np.ndarray, box):
