@@ -1,0 +1,140 @@
+"""Numerical settings of the 3D engine (voronoi3d, containers, 3D Lloyd).
+
+Re-exported by :mod:`voroforge.config`, so every module still imports its constants from
+``config``; they are kept here only to keep each module short.
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "VORONOI3D_CUT_RTOL",
+    "VORONOI3D_STOP_RTOL",
+    "VORONOI3D_DET_RTOL",
+    "VORONOI3D_WALL_DET_RTOL",
+    "VORONOI3D_EXACT_DET_RTOL",
+    "HULL3D_BIG",
+    "HULL3D_SLOTS",
+    "HULL3D_CHUNK",
+    "HULL3D_DOP_PAD",
+    "HULL3D_REACH_RTOL",
+    "JOIN_LOCAL_PROBES",
+    "LISTS3D_SITE_BUDGET",
+    "LISTS3D_AFTER",
+    "LISTS3D_POLYTOPE_MOST",
+    "LISTS3D_STAR_LEAST",
+    "STAR3D_WALL_BANDS",
+    "CELLCUT3D_OWN_ENTRIES",
+    "CELLS3D_PLACE_CACHE",
+    "REACH3D_BOX_RTOL",
+    "REACH3D_ROUND_TRIES",
+    "OUTSIDE3D_RTOL",
+    "OUTSIDE3D_BLOCK",
+    "CONVEX_EXACT_ROWS",
+    "CONVEX_EXACT_THIN",
+    "VORONOI3D_INSIDE_BLOCK",
+    "VORONOI3D_PAD",
+    "VORONOI3D_MESH_SLACK_RTOL",
+    "VORONOI3D_MESH_FACING",
+    "VORONOI3D_MESH_RTOL",
+    "VORONOI3D_MESH_VOLUME_RTOL",
+    "LLOYD3D_INTO_MESH_PUSH",
+    "LLOYD3D_INTO_MESH_FRACTIONS",
+]
+
+#: The 3D cut's float filter: a vertex's value against a bisector plane farther from 0 than
+#: this (relative to |d| * cell radius + |offset|, the scale of the value) is trusted; one
+#: within it is decided exactly (kernels/predicates3d) on the vertex's owners
+VORONOI3D_CUT_RTOL = 1e-12
+#: Relative slack of the 3D stop test and of the "plane beyond every vertex" skip (inclusive,
+#: so a site whose plane only touches the cell is still visited and named as an owner)
+VORONOI3D_STOP_RTOL = 1e-9
+#: Four owners name a vertex only if their planes' determinant exceeds this fraction of the
+#: product of the rows' lengths (co-spherical sites: the first independent quadruple names it)
+VORONOI3D_DET_RTOL = 1e-10
+#: The same for a site and three container walls: unit normals, whose float determinant is
+#: good to ~10 ulps (a Convex roof of slope 2e-6 has walls with determinant 8e-12 at its
+#: ridge; with the sites' 1e-10 no quadruple named that corner and the build failed)
+VORONOI3D_WALL_DET_RTOL = 1e-13
+#: A vertex whose name's determinant is below this fraction of the product of its rows'
+#: lengths is solved exactly (kernels.vertex3d.solve_name): the float solve's error grows as
+#: 1 / that ratio (a 1 x 1 x 1e-8 periodic box: volumes 2e-2 off); ~0.6% of uniform vertices
+VORONOI3D_EXACT_DET_RTOL = 2.0**-6
+#: engine.hull3d: a Convex template of more vertices than this takes the two-pass hull path
+#: even when it fits the cell builder's scratch (hull3d.takes_hull_path)
+HULL3D_BIG = 512
+#: per-cell output slots of the second pass (vertices, faces, ring entries); a cell past
+#: them runs again alone with its counts
+HULL3D_SLOTS = (256, 128, 1024)
+#: cells of the second pass a kernel call (slots reused)
+HULL3D_CHUNK = 1024
+#: the first pass's container (hull3d._around) is padded by this much of the hull's extent
+HULL3D_DOP_PAD = 0.01
+#: the reach test's margin, relative to the wall's offset and the cell's size
+HULL3D_REACH_RTOL = 1e-9
+#: engine.jointable3d: linear probes in a vertex's local run (slot) before its probe
+#: sequence jumps to a slot hashed over the whole table (a float sphere's vertices all fall
+#: in one bucket: linear probing made the join quadratic)
+JOIN_LOCAL_PROBES = 32
+#: engine.lists3d: the most sites a cell's grid search examines before it stops with SLOW
+#: (uniform cells examine ~100, cells of 1e5 sites at a default container's padded walls at
+#: most ~700; a cell of n points on a sphere examines all n)
+LISTS3D_SITE_BUDGET = 2048.0
+#: the lists are made (one Delaunay triangulation of all sites, ~100 us a site) once this
+#: many cells ran past the budget, and this share of the cells built so far: fewer are
+#: searched again without a budget (each cost at most a full scan: cheaper than the lists)
+LISTS3D_AFTER = (64, 0.01)
+#: the largest Delaunay polytope (sites on one empty sphere) listed whole: each of its sites'
+#: lists holds all of it; a bigger one lists the sites of its 2-faces at each site
+LISTS3D_POLYTOPE_MOST = 64
+#: a cell with at least this many candidates is read off its Delaunay star
+#: (kernels.star3d) where the container does not cut it: cut plane by plane, the centre of
+#: n points on a sphere (n faces) cost O(n^2) (40,000 points: 68 s, now 6 s)
+LISTS3D_STAR_LEAST = 256
+#: kernels.star3d: every star vertex must be inside every wall by more than this many times
+#: the cut's band (VORONOI3D_CUT_RTOL), else the cell is cut as before
+STAR3D_WALL_BANDS = 4.0
+#: kernels.cellcut3d: the most entries of a cell's owner table (vertices x owners a vertex,
+#: int32: 64 MB); its width was vcap // 16, so a big cell's retry (scratch x256: 262,144
+#: vertices) zeroed 17 GB (the centre site of 4,000 points on a sphere: 150 s for that cell)
+CELLCUT3D_OWN_ENTRIES = 1 << 24
+#: kernels.cells3d: entries of each thread's cache of exact vertex points by name (a power
+#: of two): neighbouring cells on one thread reuse a vertex's exact point (points on a
+#: sphere without centre, 40k: 18.2 -> 15.7 s one thread)
+CELLS3D_PLACE_CACHE = 4096
+#: kernels.reach3d (unequal weights' local stop): a max-weight pyramid node's box is widened
+#: by this much of the grid's extent (bucket keys are rounded); tries to round a reach up
+REACH3D_BOX_RTOL = 1e-15
+REACH3D_ROUND_TRIES = 64
+#: engine.containers: sites within this much of a wall's scale of its outside may lie outside
+#: (their cells built first, to learn which are empty); sites per block of that test
+OUTSIDE3D_RTOL = 1e-12
+OUTSIDE3D_BLOCK = 65536
+#: Convex(points=) volume from the exact polytope of its rows at most this many walls, or
+#: thin (volume below this of its extent cubed: a 1 x 1e-9 x 1e-9 box's float one 5e-10 off)
+CONVEX_EXACT_ROWS = 256
+CONVEX_EXACT_THIN = 1e-2
+#: engine.voronoi3d: sites a block of the Convex container's any-site-inside test
+VORONOI3D_INSIDE_BLOCK = 256
+#: Default container: the sites' bounding box padded by this fraction of its size per side
+VORONOI3D_PAD = 0.1
+#: Mesh containers: the touch test's slack (cell planes moved out) and the tolerance of a
+#: face lying in a container triangle's plane, relative to the mesh's largest coordinate
+VORONOI3D_MESH_SLACK_RTOL = 1e-9
+#: Mesh containers: a face and a container triangle face the same way when the cosine of
+#: their normals is within this of 1
+VORONOI3D_MESH_FACING = 1e-9
+#: Mesh containers: a closed mesh's volume against the cells' sum (relative), for the checks
+VORONOI3D_MESH_RTOL = 1e-9
+#: Mesh containers: largest relative difference between the cells' total volume and the
+#: mesh's signed volume before the mesh is refused as invalid (valid solids agree to ~1e-12;
+#: two overlapping boxes given as one mesh differed by 2.4%)
+VORONOI3D_MESH_VOLUME_RTOL = 1e-7
+
+#: engine.lloyd3d._into_mesh pushes a projected site that rounding left outside the solid on
+#: along the ray from the centroid through it (into the solid where the surface is smooth or
+#: convex there) by ``2**-k`` of the mesh's largest coordinate, ``k`` from 50 (a few units
+#: of rounding) to 30 by 4; the first step the exact inside test accepts is kept
+LLOYD3D_INTO_MESH_PUSH = tuple(2.0**-k for k in range(50, 29, -4))
+#: then (a sharp spike seen from the side) it steps back towards the site's previous,
+#: inside, place by fractions ``2**-k`` of the way, ``k`` from 48 to 0 by 4
+LLOYD3D_INTO_MESH_FRACTIONS = tuple(2.0**-k for k in range(48, -1, -4))
