@@ -16,7 +16,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
-from .predicates import orient2d, orient2d_fast
+from .predicates import orient2d
 
 #: Rounds smaller than this are not split further (one Hilbert-sorted run).
 BRIO_MIN_ROUND = 64
@@ -24,14 +24,6 @@ BRIO_MIN_ROUND = 64
 BRIO_SEED = 20240615
 #: Hilbert curve levels (a 2^16 x 2^16 grid over the bounding box).
 HILBERT_LEVELS = 16
-
-
-@njit(**NJIT)
-def _orient(ax, ay, bx, by, cx, cy):
-    o = orient2d_fast(ax, ay, bx, by, cx, cy)
-    if o != o:
-        return orient2d(ax, ay, bx, by, cx, cy)
-    return o
 
 
 @njit(**NJIT)
@@ -44,23 +36,15 @@ def convex_hull(xs, ys, by_x):
     n = by_x.shape[0]
     out = np.zeros(2 * n + 1, dtype=np.int64)
     h = 0
-    for j in range(n):  # lower chain
-        p = by_x[j]
-        while h >= 2:
-            a = out[h - 2]
-            b = out[h - 1]
-            if _orient(xs[a], ys[a], xs[b], ys[b], xs[p], ys[p]) > 0.0:
-                break
-            h -= 1
-        out[h] = p
-        h += 1
-    low = h + 1
-    for j in range(n - 2, -1, -1):  # upper chain
-        p = by_x[j]
+    low = 2  # the lower chain pops down to two points, the upper one down to the lower chain
+    for k in range(2 * n - 1):  # left to right (lower chain), then back (upper chain)
+        if k == n:
+            low = h + 1
+        p = by_x[k] if k < n else by_x[2 * n - 2 - k]
         while h >= low:
             a = out[h - 2]
             b = out[h - 1]
-            if _orient(xs[a], ys[a], xs[b], ys[b], xs[p], ys[p]) > 0.0:
+            if orient2d(xs[a], ys[a], xs[b], ys[b], xs[p], ys[p]) > 0.0:
                 break
             h -= 1
         out[h] = p
