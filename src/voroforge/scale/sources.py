@@ -151,33 +151,152 @@ def _parquet_source(path: Path, rows: int, temporary=None, label=None) -> Source
     )
 
 
-def _csv_to_parquet(path: Path, dest: Path, rows: int) -> Path:
-    """Stream a CSV file into Parquet row groups of ``rows`` (bounded memory)."""
+def _csv_reader(path: Path, delimiter: str, names=None):
+    """A streaming pyarrow CSV reader; with ``names`` (the header's, cleaned) all text."""
+    import pyarrow as pa
     import pyarrow.csv as pacsv
-    import pyarrow.parquet as pq
 
+    read = pacsv.ReadOptions(block_size=1 << 24)
+    convert = None
+    if names is not None:
+        read = pacsv.ReadOptions(block_size=1 << 24, column_names=names, skip_rows=1)
+        convert = pacsv.ConvertOptions(
+            column_types=dict.fromkeys(names, pa.string()),
+            null_values=[""],
+            strings_can_be_null=True,
+        )
     try:
-        reader = pacsv.open_csv(
+        return pacsv.open_csv(
             path,
-            read_options=pacsv.ReadOptions(block_size=1 << 24),
-            parse_options=pacsv.ParseOptions(delimiter=_sniff_delimiter(path)),
+            read_options=read,
+            parse_options=pacsv.ParseOptions(delimiter=delimiter),
+            convert_options=convert,
         )
     except Exception as exc:  # pyarrow.lib.ArrowInvalid and friends
         raise ValueError(f"{path}: not a readable CSV file ({exc})") from None
-    _xy_names(reader.schema.names, path)
+
+
+def _cells(col):
+    """A text column's cells as the text reader sees them: trimmed, unquoted, "" missing."""
+    import pyarrow.compute as pc
+
+    col = pc.utf8_trim_whitespace(col)
+    if pc.any(pc.starts_with(col, "'")).as_py():  # the regex only where it can match
+        col = pc.utf8_trim_whitespace(pc.replace_substring_regex(col, r"^'(.*)'$", r"\1"))
+    empty = pc.equal(col, "")
+    return pc.if_else(empty, None, col) if pc.any(empty).as_py() else col
+
+
+def _attribute_types(batches, rest) -> dict:
+    """Arrow types of the attribute columns ``rest``, by the text reader's rules.
+
+    As ``io.readers.points._typed_column`` has them, so `voroforge scale` and `voroforge
+    voronoi` read one CSV alike: int64 where every cell is an integer literal within int64,
+    float64 where every cell is a number a float64 holds as written, text otherwise (codes
+    with leading zeros such as ``00501``, integers past 2**53 among floats). pyarrow's own
+    inference looks at the first block only and reads ``00501`` as 501.
+    """
+    import pyarrow as pa
+    import pyarrow.compute as pc
+
+    lead, nonint, nonnum, unheld, outside = (dict.fromkeys(rest, False) for _ in range(5))
+    for batch in batches:
+        for name in rest:
+            present = _cells(batch.column(name)).drop_null()
+            if len(present) == 0:
+                continue
+            lead[name] |= pc.any(pc.match_substring_regex(present, r"^[+-]?0[0-9]")).as_py()
+            is_int = pc.match_substring_regex(present, r"^[+-]?[0-9]+$")
+            ints = present.filter(is_int)
+            others = present.filter(pc.invert(is_int))
+            nonint[name] |= len(others) > 0
+            if len(ints):  # past 15 digits: is it an int64, and does a float64 hold it?
+                long = ints.filter(pc.greater(pc.utf8_length(ints), 15)).to_pylist()
+                values = [int(t) for t in long if len(t) <= 400]
+                outside[name] |= len(values) < len(long)
+                outside[name] |= any(not -(2**63) <= v <= 2**63 - 1 for v in values)
+                unheld[name] |= len(values) < len(long) or any(float(v) != v for v in values)
+            if len(others) and not nonnum[name]:
+                try:
+                    pc.cast(others, pa.float64())
+                except (pa.ArrowInvalid, pa.ArrowNotImplementedError):
+                    nonnum[name] = True
+    types = {}
+    for name in rest:
+        if lead[name] or (not nonint[name] and outside[name]):
+            types[name] = pa.string()
+        elif not nonint[name]:
+            types[name] = pa.int64()
+        elif nonnum[name] or unheld[name]:
+            types[name] = pa.string()
+        else:
+            types[name] = pa.float64()
+    return types
+
+
+def _typed(batch, types, xy, where):
+    """``batch`` with its text columns cast to ``types`` (``xy``: float64, no empty cell)."""
+    import pyarrow as pa
+    import pyarrow.compute as pc
+
+    columns = []
+    for name, col in zip(batch.schema.names, batch.columns, strict=True):
+        kind = types.get(name)
+        if kind is not None:
+            col = _cells(col)
+            if kind == pa.int64() and pc.any(pc.starts_with(col, "+")).as_py():
+                col = pc.replace_substring_regex(col, r"^\+", "")
+            if name in xy and col.null_count:
+                raise ValueError(f"{where}: column {name!r} has an empty cell")
+            try:
+                col = pc.cast(col, kind)
+            except pa.ArrowInvalid as exc:
+                raise ValueError(f"{where}: column {name!r} is not numeric ({exc})") from None
+        columns.append(col)
+    return pa.RecordBatch.from_arrays(columns, names=batch.schema.names)
+
+
+def _csv_to_parquet(path: Path, dest: Path, rows: int) -> Path:
+    """Stream a CSV file into Parquet row groups of ``rows`` (bounded memory).
+
+    Cells are read as text and typed as the text reader types them: two passes, the first
+    types the attribute columns (:func:`_attribute_types`).
+    """
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    delimiter = _sniff_delimiter(path)
+    names = [_cells(pa.array([n])).to_pylist()[0] or "" for n in _header(path, delimiter)]
+    xy = _xy_names(names, path)
+    rest = [c for c in names if c not in xy]
     tmp = dest.with_name(dest.name + ".part")
     try:
-        with pq.ParquetWriter(tmp, reader.schema) as writer:
-            try:
+        try:
+            types = _attribute_types(_csv_reader(path, delimiter, names), rest)
+            types.update(dict.fromkeys(xy, pa.float64()))
+            reader = _csv_reader(path, delimiter, names)
+            first = _typed(reader.read_next_batch(), types, xy, path)
+            with pq.ParquetWriter(tmp, first.schema) as out:
+                out.write_batch(first, row_group_size=rows)
                 for batch in reader:
-                    writer.write_batch(batch, row_group_size=rows)
-            except Exception as exc:
-                raise ValueError(f"{path}: CSV parse error ({exc})") from None
+                    out.write_batch(_typed(batch, types, xy, path), row_group_size=rows)
+        except StopIteration:
+            raise ValueError(f"no points: {path} has no rows") from None
+        except pa.ArrowException as exc:  # a ValueError too: caught before the plain ones
+            raise ValueError(f"{path}: CSV parse error ({exc})") from None
     except BaseException:
         tmp.unlink(missing_ok=True)  # a failed conversion leaves nothing behind
         raise
     tmp.replace(dest)
     return dest
+
+
+def _header(path: Path, delimiter: str) -> list:
+    """The header row's fields (RFC 4180 quoting, as pyarrow reads the rows)."""
+    import csv
+
+    with open(path, encoding="utf-8-sig", newline="") as fh:
+        return next(csv.reader(fh, delimiter=delimiter), [])
 
 
 def _sniff_delimiter(path: Path) -> str:
