@@ -190,3 +190,20 @@ def test_design_seed_file_points_on_the_outline_get_their_cells(tmp_path):
     assert np.allclose(got[:5], ref.areas, rtol=1e-12, atol=1e-9)
     assert got[2] > 1300 and got[3] == pytest.approx(50.0)  # the edge's and the corner's
     assert feats[5]["geometry"] is None  # outside: no cell
+
+
+def test_a_crs_dict_must_be_projjson_pyproj_reads(tmp_path):
+    pyproj = pytest.importorskip("pyproj")
+    from voroforge.io.parquet import projjson
+
+    good = pyproj.CRS.from_epsg(2056).to_json_dict()
+    assert projjson(good) == good
+    for bad in ({"type": "bogus"}, {"hello": 1}):
+        with pytest.raises(ValueError, match="is not a coordinate reference system"):
+            projjson(bad)
+    from voroforge.io.parquet import write_cells
+
+    d = vf.voronoi([[0.1, 0.1], [0.5, 0.5]], (0, 0, 1, 1))
+    with pytest.raises(ValueError, match="is not a coordinate reference system"):
+        write_cells(d, tmp_path / "c.parquet", crs={"hello": 1})
+    assert not list(tmp_path.iterdir())

@@ -444,14 +444,18 @@ def cells_table(buffers, cells, site_ids, neighbors, attributes=None):
 
 
 def projjson(crs):
-    """The PROJJSON of ``crs`` (None: unknown, written as an explicit null)."""
+    """The PROJJSON of ``crs`` (None: unknown, written as an explicit null).
+
+    A dict is checked to be PROJJSON that pyproj reads (as GDAL and geopandas will) and
+    written as pyproj writes it back; without pyproj it is written as given.
+    """
     if crs is None:
         return None
-    if isinstance(crs, dict):
-        return crs
     try:
         import pyproj
     except ImportError:  # pragma: no cover - pyproj comes with geopandas
+        if isinstance(crs, dict):
+            return crs
         raise ValueError("crs needs pyproj (install voroforge[scale])") from None
     try:
         return pyproj.CRS.from_user_input(crs).to_json_dict()
