@@ -223,10 +223,19 @@ def _expected(error: dict) -> str:
     return msg
 
 
+#: The names pydantic gives the branches of a union in an error's location
+#: (``constrained-float``, ``function-after[...]``, ``tuple[...]``): not keys of the file.
+_BRANCH = re.compile(r"\[|^(constrained|function|lax-or-strict|json-or-python|tagged)-")
+
+
+def _loc(err: dict) -> tuple:
+    return tuple(p for p in err["loc"] if not (isinstance(p, str) and _BRANCH.search(p)))
+
+
 def _issues(exc: ValidationError, lines: dict[tuple, int]) -> list[Issue]:
     out = []
     for err in exc.errors():
-        loc = tuple(p for p in err["loc"] if not (isinstance(p, str) and "[" in p))
+        loc = _loc(err)
         message = _expected(err)
         text = err["msg"]
         field = re.search(r"@(\w+)@ (.*)$", text)
@@ -277,10 +286,13 @@ def _cross_field_issues(
     """
     import copy
 
-    pruned = copy.deepcopy(data)
+    from ..solid.schema import fill_2d
+
+    # the 2D stand-ins a 3D [solid] gets, before its bad keys (its kind perhaps) are left out
+    pruned = copy.deepcopy(fill_2d(data))
     gone: list[tuple] = []
     for err in exc.errors():
-        loc = tuple(p for p in err["loc"] if not (isinstance(p, str) and "[" in p))
+        loc = _loc(err)
         if err["type"] == "missing" or not loc:
             continue
         if isinstance(loc[-1], int):

@@ -78,11 +78,41 @@ _MAX_SIZE = 1e100
 def _size(v: float) -> float:
     if v > _MAX_SIZE:
         raise ValueError(f"must be at most {_MAX_SIZE:g}")
+    if v < 1.0 / _MAX_SIZE:  # 1e-200 x 1e-200 had an area of 0 ("seeds: ... zero area")
+        raise ValueError(f"must be at least {1.0 / _MAX_SIZE:g}")
     return v
 
 
 Size = Annotated[Num, Field(gt=0), AfterValidator(_size)]
-Point = tuple[Num, Num]
+
+
+def _coordinate(v: float) -> float:
+    if abs(v) > _MAX_SIZE:  # a polygon at 1e155 overflowed its area to NaN in the seeding
+        raise ValueError(f"must be at most {_MAX_SIZE:g} in magnitude")
+    return v
+
+
+def _path_data(d: str | None) -> None:
+    """SVG path data that parses and draws finite points, checked by the model holding it.
+
+    (A model validator, not a field type: a field's error had the section's cross-field
+    pass report the path as missing too.)
+    """
+    if d is None:
+        return
+    from ..io.readers.svg import path_lines
+
+    try:
+        lines = path_lines(d)
+    except ValueError as exc:
+        raise _need("path", f"SVG path data: {exc}") from None
+    if not lines:
+        raise _need("path", "the SVG path data draws nothing")
+    if any(not (abs(v) <= _MAX_SIZE) for x in lines for v in x.ravel().tolist()):
+        raise _need("path", f"SVG path data: coordinates must be finite, at most {_MAX_SIZE:g}")
+#: A coordinate: finite and at most 1e100 in magnitude.
+Coordinate = Annotated[Num, AfterValidator(_coordinate)]
+Point = tuple[Coordinate, Coordinate]
 
 
 #: Random seeds: numpy's generators take non-negative integers only.
@@ -263,6 +293,7 @@ class Seeds(_Model):
                     "method = 'curves' needs exactly one of curves = [[[x, y], ...], ...], "
                     "path (SVG path data) or file (SVG or GeoJSON lines)",
                 )
+            _path_data(self.path)
         if (
             self.radius_max is not None
             and self.radius is not None
@@ -318,6 +349,7 @@ class Attractor(_Model):
             )
         elif self.points is not None and len(self.points) < 2:
             raise _need("points", "a curve needs at least two points")
+        _path_data(self.path)
         return self
 
 
@@ -385,6 +417,9 @@ class Openings(_Model):
                 raise _need(name, f"select = {self.select!r} needs {name}")
         if self.select == "area" and self.min_area is None and self.max_area is None:
             raise _need("min_area", "select = 'area' needs min_area or max_area")
+        if self.select == "area" and None not in (self.min_area, self.max_area):
+            if self.min_area > self.max_area:  # an empty range: no opening, no warning
+                raise _need("max_area", f"must be at least min_area ({self.min_area:g})")
         return self
 
 
