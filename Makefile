@@ -53,8 +53,12 @@ warmup: $(VENV)/.installed-run
 
 demo: run
 
+# One pytest worker per CPU (pytest-xdist), at most 4: on a fresh numba cache most of the
+# suite's time is compilation, which runs in one thread per process. Whole files go to one
+# worker (--dist loadfile), so a file's kernels compile once. TEST_WORKERS=0 runs in-process.
+TEST_WORKERS ?= logical
 test: $(VENV)/.installed-test
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n $(TEST_WORKERS) --maxprocesses 4 --dist loadfile
 
 # With NUMBA_DISABLE_JIT=1 the @njit kernels run as plain Python, so coverage.py sees their
 # lines. Pure-Python kernels are slow: only these test files run, less COVERAGE_SKIP
