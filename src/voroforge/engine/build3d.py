@@ -19,6 +19,7 @@ from ..config import GRID_DEGENERATE_RTOL, GRID_WIDEN_RTOL, NJIT, TRIM_CELLS
 from ..kernels.cells3d import EMPTY, OK, OVERFLOW, build_cells, cell_scratch
 from ..kernels.grid3d import kd_buckets3d
 from ..kernels.reach3d import weight_reach
+from .bigvertex3d import BigVertices
 from .containers import maybe_outside
 from .jointable3d import probe_next, rehash, slot
 from .lists3d import Lists, chunk_search, chunks, redo_slow
@@ -576,8 +577,7 @@ def build_order(P, cells, g, sidx, tree):
         rank[sidx] = np.arange(len(P))
         return np.argsort(rank[cells], kind="stable")
     if k and cells[0] == 0 and cells[-1] == k - 1 and (np.diff(cells) == 1).all():
-        # the first k sites (all of them, or the sites before a periodic build's images):
-        # the stable sort of their keys is the sites' own (sidx), less the others
+        # the first k sites (all, or those before a periodic build's images): sidx, less others
         return sidx if k == len(P) else sidx[sidx < k]
     return np.argsort(bucket_keys3d(P[cells], g), kind="stable")
 
@@ -614,8 +614,7 @@ def build_cells3d(
     sort = build_order(P, cells, g, sidx, tree)
     built = cells[sort]
     wmax = float(W.max()) if len(W) else 0.0
-    # per-cell results go straight to the caller's order (sort: build position -> cell);
-    # each cell's face and vertex counts to its build position's slot of the offsets
+    # per-cell results to the caller's order (sort), counts to the build position's offsets
     status = np.empty(k, np.int64)  # noqa: TID251 - every cell written by its chunk's join
     vol = np.empty(k)  # noqa: TID251 - as status
     cen = np.empty((k, 3))  # noqa: TID251 - as status
@@ -632,14 +631,14 @@ def build_cells3d(
             from concurrent.futures import ThreadPoolExecutor
 
             pool = ThreadPoolExecutor(nth)
-            # one more thread joins chunk c while the pool builds chunk c + 1 (two sets of
-            # slots); the joins run in order
+            # one more thread joins chunk c while the pool builds c + 1 (two sets of slots)
             joiner = ThreadPoolExecutor(1)
         slots = [_slots(min(CHUNK, k), CAPS) for _ in range(2 if joiner else 1)]
         scr = {}  # each thread's working space, kept from chunk to chunk (_run)
         pending = []
-        grid = (start, SP, SW, sidx, weight_reach(P, W, g), None)  # (+ local weights)
+        grid = (start, SP, SW, sidx, weight_reach(P, W, g, sidx), None)  # (+ local weights)
         gone = None  # the sites whose cells are empty (outside), not counted as owners
+        bv = BigVertices(P, W, t.WP) if lists is None else None  # (found where they overflow)
 
         def run(few, *search, sl=None):  # search: (start, SP, SW, sidx, g, big)
             *s, big = search
@@ -659,11 +658,10 @@ def build_cells3d(
             out = made[0]
 
             def big(q):
-                # a cell past its slots: alone, with big slots (its list, if it was built
-                # from one), joined in its place
+                # a cell past its slots: alone, big slots (its list if built from one), in place
                 s = lists.get()[:6] if how is not None and how[q] else grid
                 st[q], counts[q], v[q], c[q], r2[q] = _big(
-                    chunk[q], P, W, s, order, tree, t, out, wmax, counts[q], gone
+                    chunk[q], P, W, s, order, tree, t, out, wmax, counts[q], gone, bv
                 )
 
             out.add(st, counts, sl, capa, big)
@@ -722,21 +720,24 @@ def build_cells3d(
     )
 
 
-def _big(i, P, W, search, order, tree, t, out, wmax=None, need=None, gone=None):
+def _big(i, P, W, search, order, tree, t, out, wmax=None, need=None, gone=None, bv=None):
     """Build cell ``i`` alone with big slots, growing until it fits, and join it.
 
-    ``search = (start, SP, SW, sidx, g, big)`` (:mod:`.lists3d`). Slots hold at least
-    ``need`` (the ``(nv, nf, nr)`` it reported), scratch twice that. ``gone``: as
-    :func:`_run`'s.
+    ``search = (start, SP, SW, sidx, g, big)`` (:mod:`.lists3d`); slots hold ``need`` (its
+    ``(nv, nf, nr)``), scratch twice; ``gone``: :func:`_run`'s; ``bv``: :mod:`.bigvertex3d`'s.
     """
     *s, big = search
+    big = bv.search(i) if bv is not None and big is None else big
     factor = BIG_CAPS_FACTOR
     need = [0, 0, 0] if need is None else [int(x) for x in need]
     while True:  # (growing by 4 alone built a sphere's centre cell, 8,000 vertices, 5 times)
         caps = tuple(max(CAPS[q] * factor, need[q % 3] * (1 + q // 3)) for q in range(6)) + CAPS[6:]
         st, counts, v, c, r2, sl, capa = _run(
-            np.array([i]), P, W, *s, order, tree, t, caps, None, wmax=wmax, big=big, gone=gone
+            np.array([i]), P, W, *s, order, tree, t, caps, None, None, scr := {}, wmax, big, gone
         )
+        if st[0] == OVERFLOW and factor == 16 and big is None and bv and bv.find(i, scr):
+            big = bv.search(i)  # its owners overflowed the widest table: a big vertex
+            continue
         # (a sphere's centre cell of 40,000 faces needs the slots of its counts at 1024)
         if st[0] != OVERFLOW or factor >= 1024:
             break

@@ -25,7 +25,7 @@ from ..config import NJIT, VORONOI3D_CUT_RTOL, VORONOI3D_STOP_RTOL
 from .expansion import two_diff
 from .graph3d import GCUT_DONE, GCUT_EMPTY, to_rings
 from .graph3d import cut as graph_cut
-from .grid import bucket_of, heap_pop, heap_push
+from .grid import heap_pop, heap_push
 from .grid3d import bucket3d, shell_buckets_in, shell_gap
 from .polyhedron import CUT_DONE, CUT_EMPTY, CUT_OVERFLOW, cut
 from .predicates3d import (
@@ -37,7 +37,8 @@ from .predicates3d import (
     vertex_offset,
 )
 from .reach3d import far as _far
-from .reach3d import local_stop
+from .reach3d import gather_heavy, heavy_header, local_stop
+from .reach3d import reach_box as _reach_box
 
 OK = 0
 EMPTY = 1
@@ -465,74 +466,6 @@ def _box_misses(px, py, pz, box, V, nv, wi, wmax, rmax2, eps):
     return True
 
 
-@njit(**NJIT_NO_NRT)
-def _reach_box(px, py, pz, V, nv, wi, wmax, rmax2, g, ib, tb):
-    """Where a site that can still cut the cell ``V[:nv]`` may lie, bucket by bucket.
-
-    Site ``q`` (``d = q - p``) cuts or touches the cell only if some vertex ``x`` has
-    ``|d|^2 - 2 x . d <= w_q - w_i``; over the cell's bounding box ``[lo, hi]`` (relative to
-    the site) that least value is separable, a sum over the axes of ``T(d_k) = min over e
-    in (lo_k, hi_k) of (d_k - e)^2 - e^2``. So a bucket can hold such a site only if the sum
-    of its slabs' least ``T`` (``tb[k, index]``) is at most the returned bound (``wmax - wi``
-    with slack), and only buckets in the index box ``ib`` can (each axis on its own, the
-    others at their least, ``-max(lo^2, hi^2)``). Each row of ``tb`` is shifted to least 0
-    (the bound with it), so that a partial sum over the axes is a lower bound too. For long
-    cells (sites near the default container's padded walls) the box is far smaller than the
-    stop sphere of :func:`_far` (twice the cell's radius), and ``tb`` drops most of it.
-    """
-    allow = wmax - wi + VORONOI3D_STOP_RTOL * (rmax2 + abs(wi) + abs(wmax))
-    bound = allow
-    lo0 = np.inf
-    lo1 = np.inf
-    lo2 = np.inf
-    hi0 = -np.inf
-    hi1 = -np.inf
-    hi2 = -np.inf
-    for v in range(nv):
-        lo0 = min(lo0, V[v, 0])
-        hi0 = max(hi0, V[v, 0])
-        lo1 = min(lo1, V[v, 1])
-        hi1 = max(hi1, V[v, 1])
-        lo2 = min(lo2, V[v, 2])
-        hi2 = max(hi2, V[v, 2])
-    lo = (lo0, lo1, lo2)
-    hi = (hi0, hi1, hi2)
-    p = (px, py, pz)
-    most = 0.0
-    for k in range(3):
-        most += max(lo[k] * lo[k], hi[k] * hi[k])
-    for k in range(3):
-        n = int(g[6 + k])
-        o = g[k]
-        h = g[3 + k]
-        # the slabs' rounding relative to the site
-        eps = 1e-15 * (abs(o) + n * h + abs(p[k])) + VORONOI3D_STOP_RTOL * h
-        a = lo[k]
-        b = hi[k]
-        bk = allow + most - max(a * a, b * b)  # this axis alone
-        ra = np.sqrt(bk + a * a)
-        rb = np.sqrt(bk + b * b)
-        d0 = min(a - ra, b - rb) - eps
-        d1 = max(a + ra, b + rb) + eps
-        i0 = bucket_of(p[k] + d0, o, h, n)
-        i1 = bucket_of(p[k] + d1, o, h, n)
-        ib[k] = i0
-        ib[3 + k] = i1
-        least = np.inf
-        for i in range(i0, i1 + 1):
-            s0 = o + i * h - p[k] - eps if i > 0 else -np.inf
-            s1 = o + (i + 1) * h - p[k] + eps if i < n - 1 else np.inf
-            ca = min(max(a, s0), s1) - a
-            cb = min(max(b, s0), s1) - b
-            t = min(ca * ca - a * a, cb * cb - b * b)
-            tb[k, i] = t
-            least = min(least, t)
-        for i in range(i0, i1 + 1):  # each row's least 0: a partial sum is a lower bound
-            tb[k, i] -= least
-        bound -= least
-    return bound
-
-
 @njit(**NJIT_INLINE)
 def _box_dist2(px, py, pz, tree, v):
     """Squared distance from the site to k-d node ``v``'s tight box (0 inside)."""
@@ -616,6 +549,8 @@ def one_cell(
     py = P[i, 1]
     pz = P[i, 2]
     wi = W[i]
+    # heavy sites (reach3d.weight_reach): the search bounds the light ones, then they cut
+    hb, hn, wmax = heavy_header(g, wi, wmax)
     ntv = TV.shape[0]
     ntf = TF.shape[0]
     if ntv > V.shape[0] or ntf > F.shape[0] or TR.shape[0] > R.shape[0]:
@@ -756,7 +691,9 @@ def one_cell(
             if rt < start[b + 1]:  # a crowded neighbourhood: cut by what is gathered, go on
                 rb = b
                 flush = True
-        if flush:
+        for _ in range(2):  # (twice when the search stops and the heavy sites remain)
+            if not flush:
+                break
             if m > 0:
                 st, nv, nf, nt, rmax2 = _cut_batch(
                     m,
@@ -788,6 +725,12 @@ def one_cell(
             mg = 0
             if budget > 0.0 and seen > budget:
                 return SLOW, 0, 0, 0, 0.0
+            if not stop or hn == 0:
+                break
+            # the light sites cannot reach the cell: the heavy ones that can, then done
+            m = gather_heavy(g, hb, hn, i, px, py, pz, wi, SP, SW, sidx, cand, cd2, rmax2)
+            mg = m
+            hn = 0
         if stop:
             break
     if graph:

@@ -122,11 +122,15 @@ def _on_plane(i, v, key, OWN, work, nfo, P, W, WP, ns, X):
 
 
 @njit(**NJIT_NO_NRT)
-def _mark_owners(i, V, nv, nx, ny, nz, h, tol, key, OWN, work, nfo, todo, nd, P, W, WP, ns, X):
+def _mark_owners(
+    i, V, nv, nx, ny, nz, h, tol, key, OWN, work, nfo, todo, nd, P, W, WP, ns, X, past
+):
     """Add owner ``key`` to every vertex of ``todo[:nd]`` on the plane ``n . v = h``.
 
     ``tol`` is the float filter; candidates within it are decided exactly (:func:`_on_plane`).
-    Returns False when a vertex has more owners than ``OWN`` has room for.
+    Returns False when a vertex has more owners than ``OWN`` has room for, unless ``past``:
+    then they are counted past its row (``work[v, 0]`` beyond its width), for a vertex that
+    the cell's big polytope names (:func:`_name_cell`).
     """
     ok = True
     for t in range(nd):
@@ -136,6 +140,8 @@ def _mark_owners(i, V, nv, nx, ny, nz, h, tol, key, OWN, work, nfo, todo, nd, P,
             c = work[v, 0]
             if c < OWN.shape[1]:
                 OWN[v, c] = key
+                work[v, 0] = c + 1
+            elif past:
                 work[v, 0] = c + 1
             else:
                 ok = False
@@ -225,6 +231,8 @@ def _name_cell(
     px = P[i, 0]
     py = P[i, 1]
     pz = P[i, 2]
+    # a vertex of more owners than OWN holds may be the cell's big polytope's centre
+    past = BG[0].shape[0] > 0 and BG[0][i] >= 0
     if nd > 0:
         rmax2 = radius2(V, nv)
         for u in range(nt):
@@ -238,7 +246,7 @@ def _name_cell(
                 continue  # beyond every vertex of the finished cell
             tol = VORONOI3D_CUT_RTOL * (np.sqrt(d2 * rmax2) + abs(h))
             if not _mark_owners(
-                i, V, nv, dx, dy, dz, h, tol, j, OWN, work, nfo, todo, nd, P, W, WP, ns, X
+                i, V, nv, dx, dy, dz, h, tol, j, OWN, work, nfo, todo, nd, P, W, WP, ns, X, past
             ):
                 return OVERFLOW
         for w in range(WP.shape[0]):
@@ -248,12 +256,14 @@ def _name_cell(
             h = wall_lift(WP, w, px, py, pz)
             nn = np.sqrt(nx * nx + ny * ny + nz * nz)
             tol = VORONOI3D_CUT_RTOL * (nn * np.sqrt(rmax2) + abs(h))
+            k = ns + w
             if not _mark_owners(
-                i, V, nv, nx, ny, nz, h, tol, ns + w, OWN, work, nfo, todo, nd, P, W, WP, ns, X
+                i, V, nv, nx, ny, nz, h, tol, k, OWN, work, nfo, todo, nd, P, W, WP, ns, X, past
             ):
                 return OVERFLOW
     for v in range(nv):
-        c = work[v, 0]
+        c = min(work[v, 0], OWN.shape[1])
+        cut_short = work[v, 0] > c  # owners past the table: named by the big polytope, or none
         # sort and dedupe the owners
         m = c
         if c == 4:  # the usual vertex (three faces): a sorting network, no branches
@@ -290,6 +300,9 @@ def _name_cell(
                 kk = bkeys
                 u = u2
                 r = name_vertex(kk, u, P, W, WP, ns, rows, y, name, X[1])
+                cut_short = False
+        if cut_short:
+            return OVERFLOW
         if r == 0:
             return UNNAMED
         a = name[0]

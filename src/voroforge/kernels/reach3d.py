@@ -9,9 +9,19 @@ below), and :func:`local_stop` then also stops where every pyramid node is eithe
 to cut the cell with its own heaviest weight, or beyond ``g2`` and made so by it: a proven
 bound like :func:`far`'s, local to the cell.
 
+A few heavy sites among light ones (one site of weight 1 among 80,000 of weight 0: the
+cells of its light neighbours are empty, and each searched up to it past O(n) nearer
+sites) are taken out of the pyramid instead (:func:`heavy_sites`): the search then bounds
+the light sites alone (their heaviest weight ``wl``, the pyramid of theirs) and the cell
+is cut by every heavy site that can reach it when that search stops
+(:func:`.cellcut3d.one_cell`); the cell only shrinks, so the stop stays proven. (The
+shells' reach by the cell's bounding box, :func:`reach_box`, is here too.)
+
 ``g`` with a pyramid: ``g[9] = 0`` (no budget), ``g[10]`` the top level ``T``, ``g[11 + L]``
 where level ``L``'s maxima start (``-inf``: an empty node), level ``L`` holding
-``ceil(n_k / 2^L)`` nodes along axis ``k`` (x fastest).
+``ceil(n_k / 2^L)`` nodes along axis ``k`` (x fastest); then at ``b = 12 + T``: ``g[b]``
+the number ``h`` of heavy sites, ``g[b + 1]`` the light sites' heaviest weight ``wl`` and
+``g[b + 2:b + 2 + h]`` the heavy sites' positions in the search's bucket order.
 """
 
 from __future__ import annotations
@@ -20,7 +30,14 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT, REACH3D_BOX_RTOL, REACH3D_ROUND_TRIES, VORONOI3D_STOP_RTOL
+from .grid import bucket_of
 from .grid3d import bucket3d
+
+#: heavy sites (:func:`heavy_sites`): weights above the lightest by more than this many
+#: squared bucket sides (the light ones then reach about two buckets past the unweighted
+#: stop), at most this many (more: none, the pyramid bounds them all)
+REACH3D_HEAVY_GAP = 4.0
+REACH3D_HEAVY_MOST = 256
 
 NJIT_INLINE = {**NJIT, "inline": "always"}
 NJIT_NO_NRT = {**NJIT, "_nrt": False}
@@ -36,13 +53,39 @@ def far(g2, wi, wmax, rmax2):
     return lhs > 0.0 and lhs * lhs > 4.0 * g2 * rmax2 * (1.0 + VORONOI3D_STOP_RTOL)
 
 
-def weight_reach(P: np.ndarray, W: np.ndarray, g: np.ndarray) -> np.ndarray:
-    """The grid ``g`` with the weights' max pyramid appended (unequal weights), else ``g``."""
+def heavy_sites(W: np.ndarray, g: np.ndarray) -> np.ndarray:
+    """The heavy sites of weights ``W`` on grid ``g``, sorted (none when there are too many).
+
+    Heavy: above the lightest weight by more than ``REACH3D_HEAVY_GAP`` squared bucket sides
+    (the grid's largest), at most ``REACH3D_HEAVY_MOST`` of them.
+    """
+    side = float(np.max(g[3:6]))
+    heavy = np.flatnonzero(W > float(W.min()) + REACH3D_HEAVY_GAP * side * side)
+    if len(heavy) > REACH3D_HEAVY_MOST:
+        return heavy[:0]
+    return heavy
+
+
+def weight_reach(P: np.ndarray, W: np.ndarray, g: np.ndarray, sidx=None) -> np.ndarray:
+    """The grid ``g`` with the weights' max pyramid appended (unequal weights), else ``g``.
+
+    With ``sidx`` (the search's bucket order of the sites) the heavy sites
+    (:func:`heavy_sites`) are left out of the pyramid and listed after it, by position in
+    that order; without it none are.
+    """
     if len(W) == 0 or not float(W.max()) > float(W.min()) or g.shape[0] > 9:
         return g
+    heavy = heavy_sites(W, g) if sidx is not None else np.zeros(0, np.int64)
+    WL = np.asarray(W, np.float64)
+    if len(heavy):
+        WL = WL.copy()
+        WL[heavy] = -np.inf
+        rank = np.zeros(len(W), np.int64)
+        rank[sidx] = np.arange(len(W))
+        heavy = np.sort(rank[heavy])
     n = [int(g[6]), int(g[7]), int(g[8])]
     top = np.full(n[0] * n[1] * n[2], -np.inf)
-    _bucket_max(np.ascontiguousarray(P, np.float64), np.asarray(W, np.float64), g, top)
+    _bucket_max(np.ascontiguousarray(P, np.float64), WL, g, top)
     levels = [top.reshape(n[2], n[1], n[0])]
     while max(levels[-1].shape) > 1:
         a = levels[-1]
@@ -50,9 +93,10 @@ def weight_reach(P: np.ndarray, W: np.ndarray, g: np.ndarray) -> np.ndarray:
         a = np.pad(a, pad, constant_values=-np.inf)
         z, y, x = (s // 2 for s in a.shape)
         levels.append(a.reshape(z, 2, y, 2, x, 2).max(axis=(1, 3, 5)))
-    head = 11 + len(levels)
+    hb = [float(len(heavy)), float(WL.max())] + heavy.astype(np.float64).tolist()
+    head = 11 + len(levels) + len(hb)
     offs = np.cumsum([head] + [lv.size for lv in levels])[:-1]
-    parts = [g[:9], [0.0, len(levels) - 1.0], offs.astype(np.float64)]
+    parts = [g[:9], [0.0, len(levels) - 1.0], offs.astype(np.float64), hb]
     return np.concatenate(parts + [lv.ravel() for lv in levels])
 
 
@@ -171,3 +215,109 @@ def local_stop(g2, wi, wmax, rmax2, px, py, pz, g, gs2, gr2):
         gs2 = local_reach(px, py, pz, wi, rmax2, g)
         gr2 = rmax2
     return g2 >= gs2, gs2, gr2
+
+
+@njit(**NJIT_INLINE)
+def heavy_header(g, wi, wmax):
+    """``(hb, hn, wmax)``: where ``g``'s heavy sites are listed, how many, the weight to bound.
+
+    The heavy sites are at ``g[hb + 2:hb + 2 + hn]`` (:func:`weight_reach`); with some, the
+    search of a cell of weight ``wi`` bounds the light sites: ``max(wl, wi)``.
+    """
+    if g.shape[0] <= 10:
+        return 0, 0, wmax
+    hb = 12 + int(g[10])
+    hn = int(g[hb])
+    return hb, hn, (max(g[hb + 1], wi) if hn > 0 else wmax)
+
+
+@njit(**NJIT_INLINE)
+def gather_heavy(g, hb, hn, i, px, py, pz, wi, SP, SW, sidx, cand, cd2, rmax2):
+    """The ``hn`` heavy sites listed in ``g`` from ``hb + 2`` that can reach the cell, as a batch.
+
+    The test is :func:`.cellcut3d._gather`'s (the site itself and its duplicates skipped).
+    Returns how many were kept (at most ``REACH3D_HEAVY_MOST``, within the batch's room).
+    """
+    reach = rmax2 * (1.0 + 2.0 * VORONOI3D_STOP_RTOL)
+    m = 0
+    for q in range(hn):
+        t = int(g[hb + 2 + q])
+        dx = SP[t, 0] - px
+        dy = SP[t, 1] - py
+        dz = SP[t, 2] - pz
+        d2 = dx * dx + dy * dy + dz * dz
+        h = 0.5 * (d2 + (wi - SW[t]))
+        if sidx[t] == i or d2 == 0.0 or (h > 0.0 and h * h > reach * d2):
+            continue
+        cand[m] = t
+        cd2[m] = d2
+        m += 1
+    return m
+
+
+@njit(**NJIT_NO_NRT)
+def reach_box(px, py, pz, V, nv, wi, wmax, rmax2, g, ib, tb):
+    """Where a site that can still cut the cell ``V[:nv]`` may lie, bucket by bucket.
+
+    Site ``q`` (``d = q - p``) cuts or touches the cell only if some vertex ``x`` has
+    ``|d|^2 - 2 x . d <= w_q - w_i``; over the cell's bounding box ``[lo, hi]`` (relative to
+    the site) that least value is separable, a sum over the axes of ``T(d_k) = min over e
+    in (lo_k, hi_k) of (d_k - e)^2 - e^2``. So a bucket can hold such a site only if the sum
+    of its slabs' least ``T`` (``tb[k, index]``) is at most the returned bound (``wmax - wi``
+    with slack), and only buckets in the index box ``ib`` can (each axis on its own, the
+    others at their least, ``-max(lo^2, hi^2)``). Each row of ``tb`` is shifted to least 0
+    (the bound with it), so that a partial sum over the axes is a lower bound too. For long
+    cells (sites near the default container's padded walls) the box is far smaller than the
+    stop sphere of :func:`far` (twice the cell's radius), and ``tb`` drops most of it.
+    """
+    allow = wmax - wi + VORONOI3D_STOP_RTOL * (rmax2 + abs(wi) + abs(wmax))
+    bound = allow
+    lo0 = np.inf
+    lo1 = np.inf
+    lo2 = np.inf
+    hi0 = -np.inf
+    hi1 = -np.inf
+    hi2 = -np.inf
+    for v in range(nv):
+        lo0 = min(lo0, V[v, 0])
+        hi0 = max(hi0, V[v, 0])
+        lo1 = min(lo1, V[v, 1])
+        hi1 = max(hi1, V[v, 1])
+        lo2 = min(lo2, V[v, 2])
+        hi2 = max(hi2, V[v, 2])
+    lo = (lo0, lo1, lo2)
+    hi = (hi0, hi1, hi2)
+    p = (px, py, pz)
+    most = 0.0
+    for k in range(3):
+        most += max(lo[k] * lo[k], hi[k] * hi[k])
+    for k in range(3):
+        n = int(g[6 + k])
+        o = g[k]
+        h = g[3 + k]
+        # the slabs' rounding relative to the site
+        eps = 1e-15 * (abs(o) + n * h + abs(p[k])) + VORONOI3D_STOP_RTOL * h
+        a = lo[k]
+        b = hi[k]
+        bk = allow + most - max(a * a, b * b)  # this axis alone
+        ra = np.sqrt(bk + a * a)
+        rb = np.sqrt(bk + b * b)
+        d0 = min(a - ra, b - rb) - eps
+        d1 = max(a + ra, b + rb) + eps
+        i0 = bucket_of(p[k] + d0, o, h, n)
+        i1 = bucket_of(p[k] + d1, o, h, n)
+        ib[k] = i0
+        ib[3 + k] = i1
+        least = np.inf
+        for i in range(i0, i1 + 1):
+            s0 = o + i * h - p[k] - eps if i > 0 else -np.inf
+            s1 = o + (i + 1) * h - p[k] + eps if i < n - 1 else np.inf
+            ca = min(max(a, s0), s1) - a
+            cb = min(max(b, s0), s1) - b
+            t = min(ca * ca - a * a, cb * cb - b * b)
+            tb[k, i] = t
+            least = min(least, t)
+        for i in range(i0, i1 + 1):  # each row's least 0: a partial sum is a lower bound
+            tb[k, i] -= least
+        bound -= least
+    return bound
