@@ -434,6 +434,7 @@ def check(
     found: list[Violation] = []
     if min_web is not None and min_web > 0:
         found += _webs(holes, outline, min_web, tolerance)
+        found += _tongues(holes, outline, frame_geom, min_web, tolerance)
     if min_opening is not None and min_opening > 0:
         found += _openings(holes, min_opening, tolerance)
     if min_inside_radius is not None and min_inside_radius > 0:
@@ -476,6 +477,50 @@ def _webs(holes: np.ndarray, outline, min_web: float, tol: float) -> list[Violat
             line = shapely.shortest_line(holes[i], rim)
             m = shapely.line_interpolate_point(line, 0.5, normalized=True)
             out.append(Violation("web", (m.x, m.y), float(dist[i]), min_web, (i, -1)))
+    return out
+
+
+def _tongues(holes, outline, frame, min_web: float, tol: float) -> list[Violation]:
+    """Thin material inside one opening's own convex hull (a tongue between a U's arms).
+
+    :func:`_webs` measures between two openings and from an opening to the outline; here the
+    material in a non-convex opening's hull, away from every other cut, is opened
+    morphologically with discs of diameter ``min_web - tol``: what no such disc covers, and
+    reaches deeper than the disc's radius from what they do (a convex material corner of 60
+    degrees or more does not), is a web narrower than the limit, its width the piece's
+    inscribed diameter.
+    """
+    r = 0.5 * (min_web - tol)
+    if not len(holes) or not r > 0:
+        return []
+    hulls = shapely.convex_hull(holes)
+    concave = shapely.area(hulls) - shapely.area(holes) > 1e-9 * shapely.area(hulls)
+    if not concave.any():
+        return []
+    tree = shapely.STRtree(holes)
+    out = []
+    for i in np.flatnonzero(concave).tolist():
+        inside = shapely.intersection(hulls[i], frame)
+        if not inside.area > 0:
+            continue
+        near = tree.query(hulls[i], predicate="dwithin", distance=min_web)
+        cuts = [holes[j].buffer(min_web) for j in near.tolist() if j != i]
+        cuts.append(outline.boundary.buffer(min_web))
+        inside = inside.difference(shapely.union_all(cuts))
+        if not inside.area > 0:
+            continue
+        around = shapely.intersection(frame, hulls[i].buffer(min_web))
+        opened = around.buffer(-r).buffer(r)
+        thin = shapely.get_parts(inside.difference(opened))
+        thin = thin[shapely.area(thin) > 0]
+        for piece in thin:
+            probe = shapely.points(shapely.get_coordinates(shapely.segmentize(piece, r / 4)))
+            if not opened.is_empty and not shapely.distance(probe, opened).max() > r * (1 + 1e-9):
+                continue
+            (centre,), (radius,) = inscribed_circles([piece])
+            out.append(
+                Violation("web", tuple(centre.tolist()), 2.0 * float(radius), min_web, (i, i))
+            )
     return out
 
 
