@@ -45,6 +45,8 @@ from .planar import build
 #: Initial margin, in typical cell diameters ``sqrt(area / n)``.
 _MARGIN_CELLS = 3.0
 _MAX_TRIES = 30
+#: A failing vertex's shortfall is asked for this many times over (:func:`_shortfall`).
+_SHORTFALL_SLACK = 1.0625
 
 
 def _tile_of(boundary) -> Domain:
@@ -133,6 +135,17 @@ def _one_grid(lo: float, hi: float) -> bool:
     return (lo > 0 or hi < 0) and abs(np.spacing(lo)) == abs(np.spacing(hi))
 
 
+def _odd_period(box) -> bool:
+    """Whether the box is an odd number of its floats' ulps across on an axis (one grid)."""
+    x0, y0, x1, y1 = box
+    for a, b in ((x0, x1), (y0, y1)):
+        if _one_grid(a, b):
+            steps = (b - a) / abs(np.spacing(a))
+            if steps == np.floor(steps) and steps % 2 == 1:
+                return True
+    return False
+
+
 def _margins(box, n: int):
     """First margins ``(mx, my)`` around the box, each at most its cap (:func:`_caps`).
 
@@ -171,7 +184,7 @@ def _caps(box):
     return (PERIODIC_CAP_PERIODS * (x1 - x0) + slack, PERIODIC_CAP_PERIODS * (y1 - y0) + slack)
 
 
-def _proved(d: Diagram, cells: np.ndarray, box, margin) -> bool:
+def _proved(d: Diagram, cells: np.ndarray, box, margin, sites=None) -> bool:
     """True when no copy left out of ``d`` can be nearer a vertex of ``cells`` than its site.
 
     A vertex ``v`` of cell ``p`` has every copy in ``d`` at least ``r = |v - p|`` away. A copy
@@ -183,6 +196,10 @@ def _proved(d: Diagram, cells: np.ndarray, box, margin) -> bool:
       that is shifted along this axis towards ``v`` by whole periods to within one period of
       ``v`` is in the region on this axis, is no farther from ``v`` than ``q``, and differs
       from ``q`` only on this axis (the bracket test).
+
+    - (``sites``: the sites in the box) no copy past the margin can be in the disk: the
+      chord of the disk there is clear of every copy's other coordinate
+      (:func:`_chord_clear`), so ``q`` is ``>= r`` away.
 
     Applying this to ``x`` then to ``y`` ends at a copy in ``d``, so ``|v - q| >= r``. The
     bracket test makes the margin of a thin box's short side a period or two, however long
@@ -212,8 +229,77 @@ def _proved(d: Diagram, cells: np.ndarray, box, margin) -> bool:
             return False
         bracket = room >= (b - a) + slack
         room = room / side
-        ok &= bracket | (room * room >= r2)
+        good = bracket | (room * room >= r2)
+        if sites is not None and not good.all():
+            good |= _chord_clear(v, r2 - room * room, sites, box, k, side, slack, ~good)
+        ok &= good
     return bool(ok.all())
+
+
+def _chord_clear(v, c2, sites, box, k, side, slack, which):
+    """Where no copy past the margin of axis ``k`` can lie in the vertex's empty disk.
+
+    A copy ``q`` past that margin is at least ``room`` from ``v`` on axis ``k``, so inside the
+    disk only if its other coordinate is within the chord's half-length ``c = sqrt(r^2 -
+    room^2)`` of ``v``'s. Every copy's other coordinate is a site's plus whole periods: where
+    none falls in that interval (grown by ``slack`` for the rounded sums), none is inside
+    (sites on one line: their cells reach half a period across it, and the line's own
+    copies never enter the disks, so the margin along the line stays a few cells wide).
+    """
+    out = np.zeros(len(v), dtype=bool)
+    j = 1 - k
+    lo, hi = box[j], box[j + 2]
+    h = hi - lo
+    idx = np.flatnonzero(which)
+    c = side * np.sqrt(np.maximum(c2[idx], 0.0)) + 2.0 * slack
+    short = 2.0 * c < h
+    idx, c = idx[short], c[short]
+    if not len(idx):
+        return out
+    ys = np.sort(sites[:, j])
+    start = v[idx, j] - c
+    base = start - np.floor((start - lo) / h) * h  # in [lo, hi), to rounding
+    hit = np.zeros(len(idx), dtype=bool)
+    for t in (-1.0, 0.0, 1.0):  # the interval and its neighbours by a period: rounding
+        a = base + t * h - slack
+        z = base + t * h + 2.0 * c + slack
+        hit |= np.searchsorted(ys, z, side="right") > np.searchsorted(ys, a, side="left")
+    out[idx[~hit]] = True
+    return out
+
+
+def _shortfall(d: Diagram, cells, box, margin):
+    """Per axis, the margin :func:`_proved`'s disk test asked for, or 0.0 where it passed.
+
+    A vertex that fails on an axis asks for its radius past its room there, added to the
+    axis's margin: an estimate (more copies move the vertices), not a proof.
+    """
+    if isinstance(cells, tuple):
+        v, owner = _piece_vertices(d, cells)
+    else:
+        v, owner = _vertices(d, cells)
+    x0, y0, x1, y1 = box
+    side = max(x1 - x0, y1 - y0)
+    diff = (v - d.sites[owner]) / side
+    r = np.sqrt(diff[:, 0] * diff[:, 0] + diff[:, 1] * diff[:, 1]) * (1.0 + PERIODIC_PROOF_RTOL)
+    slack = _rounding(box)
+    # a vertex on the grown box's side is where a cell was cut off, not a vertex: it asks
+    # for that axis only (sites on one line: their cells end there until the copies of the
+    # line beside it are in, and asked for half a period along the line too)
+    edge = np.column_stack(
+        [
+            (v[:, k] <= a - m + slack) | (v[:, k] >= b + m - slack)
+            for k, (a, b, m) in enumerate(((x0, x1, margin[0]), (y0, y1, margin[1])))
+        ]
+    )
+    out = []
+    for k, (a, b, m) in enumerate(((x0, x1, margin[0]), (y0, y1, margin[1]))):
+        room = np.minimum(v[:, k] - (a - m), (b + m) - v[:, k])
+        bad = (room < (b - a) + slack) & (room / side < r) & ~edge[:, 1 - k]
+        bad |= room < 0
+        need = (r[bad] - np.maximum(room[bad], 0.0) / side).max() if bad.any() else 0.0
+        out.append(float(m + _SHORTFALL_SLACK * need * side) if bad.any() else 0.0)
+    return out
 
 
 def _vertices(d: Diagram, cells: np.ndarray):
@@ -621,9 +707,14 @@ def _periodic(points, tile, algorithm: str, wrap: bool, may_move: bool) -> Diagr
     cx, cy = _caps(box)
     for _ in range(_MAX_TRIES):
         ext, source, shift, exact = _images(pts, box, (mx, my))
-        if may_move and not (exact and _one_grid(x0 - mx, x1 + mx) and _one_grid(y0 - my, y1 + my)):
+        one = exact and _one_grid(x0 - mx, x1 + mx) and _one_grid(y0 - my, y1 + my)
+        if may_move and not (one and not _odd_period(box)):
             # the copies or their vertices are rounded on two grids: a vertex and its image
-            # by a box shift are not exact shifts of each other
+            # by a box shift are not exact shifts of each other; or the box is an odd
+            # number of ulps across, where a vertex half-way between two floats rounds to
+            # even one way and its image the other (4e12, a box 123 ulps tall: a corner at
+            # 110 ulps and its image at -14; the cell builder then kept a vertex in one
+            # copy's cell and folded it away in the other's, Euler 4)
             corner = corner_frame(pts, box)
             if corner is not None:
                 return _translated(pts, tile, corner, algorithm, wrap)
@@ -644,12 +735,18 @@ def _periodic(points, tile, algorithm: str, wrap: bool, may_move: bool) -> Diagr
             owners = pieces
         else:
             owners = orig[d.duplicate_of[orig] < 0]
-        if _proved(d, owners, box, (mx, my)):
+        if _proved(d, owners, box, (mx, my), pts):
             break
         if mx >= cx and my >= cy:  # pragma: no cover - the bracket test passes at the caps
             raise RuntimeError("periodic diagram: could not prove the margin")
-        mx = min(2.0 * mx, cx)
-        my = min(2.0 * my, cy)
+        grow_x, grow_y = _shortfall(d, owners, box, (mx, my))
+        if (mx >= cx or not grow_x) and (my >= cy or not grow_y):
+            grow_x, grow_y = 2.0 * mx, 2.0 * my  # pragma: no cover - the old rule: both double
+        # the failing axes at least double, at once to what their vertices asked for (sites
+        # on one line: the first margins hold only the line, its cells end at the grown box
+        # and ask for half a period; doubling took five builds to get there)
+        mx = min(max(2.0 * mx, grow_x), cx) if grow_x else mx
+        my = min(max(2.0 * my, grow_y), cy) if grow_y else my
     else:  # pragma: no cover - the margins reach their caps long before
         raise RuntimeError("periodic diagram: could not prove the margin")
     if wrap:

@@ -296,19 +296,18 @@ def _names(points, owner, copies, lo, size, reach):
     k = _find_rows(bits[start], np.ascontiguousarray(points).view(np.int64))
     vlabel = np.full(len(start), -1, dtype=np.int64)
     used = np.unique(k[k >= 0])
-    # a vertex of three cells (most): its name's 9 numbers sorted as rows, equal rows one name
-    three = used[count[used] == 3]
-    if len(three):
-        key = rows[start[three][:, None] + np.arange(3)].reshape(len(three), 9)
+    # a vertex of c cells: its name's 3 c numbers as one row, equal rows one name; by c
+    # (three: most; four: every vertex of sites on one line, whose images make rectangles)
+    base = 0
+    for c in np.unique(count[used]).tolist():
+        if c < 3:
+            continue
+        these = used[count[used] == c]
+        key = rows[start[these][:, None] + np.arange(c)].reshape(len(these), 3 * c)
         order = np.lexsort(key.T[::-1])
         new = np.r_[True, (key[order][1:] != key[order][:-1]).any(axis=1)]
-        vlabel[three[order]] = np.cumsum(new) - 1
-    # more cells (cocircular sites): one by one, after those
-    names: dict[bytes, int] = {}
-    base = int(vlabel.max()) + 1
-    for v in used[count[used] > 3].tolist():
-        a, c = int(start[v]), int(count[v])
-        vlabel[v] = base + names.setdefault(rows[a : a + c].tobytes(), len(names))
+        vlabel[these[order]] = base + np.cumsum(new) - 1
+        base = int(vlabel.max()) + 1
     found = k >= 0
     label[found] = vlabel[k[found]]
     ref[found] = sh[start][k[found]]
