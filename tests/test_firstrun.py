@@ -24,7 +24,7 @@ def _modules_after(argv: list[str]) -> set[str]:
         "sys.exit(rc)\n"
     )
     done = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, timeout=60, check=True
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True
     )
     line = [x for x in done.stdout.splitlines() if x.startswith("MODULES ")][-1]
     return set(line.split()[1:])  # not the help text, which may name numba
