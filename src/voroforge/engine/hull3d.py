@@ -43,6 +43,9 @@ from .build3d import CAPS, PER_BUCKET, Cells3D, build_cells3d, csr_take, grid3d_
 from .containers import Template, cut_template
 from .threads import serial_below
 
+#: no site's cell known empty (build_cells' ``gone``, as :mod:`.build3d` passes it)
+_NONE_GONE = np.zeros(0, np.bool_)
+
 
 def takes_hull_path(t: Template) -> bool:
     """Whether :func:`.voronoi3d.voronoi3d` builds the cells of Convex template ``t`` here.
@@ -304,6 +307,9 @@ def _second_pass(P, W, t, cells, start, sites):
             ofaces,
             oring,
             scr,
+            None,  # big, star and gone as build3d passes them (none known empty): omitted
+            None,  # arguments are another numba type, and build_cells compiled twice
+            _NONE_GONE,
         )
         return st, ct, v, c, r2, osite, ovabs, ofaces, oring
 
@@ -480,7 +486,9 @@ def _combine(P, W, t, A, bcell, ipos, rpos, B, vstart, vcells):
         pos,
         np.concatenate([zero, np.cumsum(nf)]),
         flabel,
-        np.concatenate([zero, np.cumsum(rl)]),
+        # build3d's offset type (int32 below 2**30 entries): one compiled signature of the
+        # face-table kernels (diagram3d's) for both builders, not a second for int64
+        np.concatenate([zero, np.cumsum(rl)]).astype(np.int32 if len(ring) < 2**30 else np.int64),
         ring,
         np.concatenate([zero, np.cumsum(nv)]),
         vid.astype(np.int32 if len(vertices) < 2**31 else np.int64),

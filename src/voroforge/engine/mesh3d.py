@@ -211,6 +211,8 @@ def sites_inside(mesh: MeshContainer, pts: np.ndarray) -> np.ndarray:
     V, F = mesh.vertices, mesh.faces
     g, start, items = yz_grid(V, F, int(max(1, min(512, np.sqrt(len(F) / 4)))))
     q = np.ascontiguousarray(pts, np.float64)
+    if not q.flags.writeable:  # (a frozen Diagram3D's sites): numba types the flag, so a
+        q = q.copy()  # read-only array compiled inside_mesh a second time
     with serial_below(len(pts)):
         out = inside_mesh(q, V, F, g, start, items)
     rest = np.flatnonzero(~out)
