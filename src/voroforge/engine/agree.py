@@ -81,7 +81,11 @@ def agree(closed, lengths, owner, ring_id, n, sites):
         return closed, lengths, owner
     inv = np.full(n, -1, dtype=np.int64)
     inv[ring_id] = np.arange(len(ring_id))
-    bad = rings_disagree(closed, lengths, owner, inv, ring_id, AGREE_SHORT, sites)
+    # a read-only view whoever's sites they are (a frozen Diagram's or a fresh array):
+    # numba types the flag, and rings_disagree was compiled once for each
+    ro = np.asarray(sites).view()
+    ro.flags.writeable = False
+    bad = rings_disagree(closed, lengths, owner, inv, ring_id, AGREE_SHORT, ro)
     if not bad.any():
         return closed, lengths, owner
     region = set(np.flatnonzero(bad).tolist())

@@ -67,9 +67,11 @@ def circumcenters(xs, ys, tri, he):
     err = np.zeros(t)
     flag = np.zeros(tri.shape[0], dtype=np.uint8)
     for k in prange(t):
-        a = tri[3 * k]
-        b = tri[3 * k + 1]
-        c = tri[3 * k + 2]
+        # int64 site numbers (the triangles are int32): one compile of the vertex kernels,
+        # which the other callers reach with int64
+        a = np.int64(tri[3 * k])
+        b = np.int64(tri[3 * k + 1])
+        c = np.int64(tri[3 * k + 2])
         ux, uy, err[k] = voronoi_vertex_and_error(a, b, c, xs, ys)
         if not (np.isfinite(ux) and np.isfinite(uy)):
             # a sliver whose centre overflows: far outside any box, so its cells get cut
@@ -139,8 +141,11 @@ def flag_close(xs, ys, tri, he, cx, cy, flag, err, box, fold, near):
     (their vertices are among the only ones rounding can fold a cell's ring at; flagged
     edges and merged classes are marked after the merge, :func:`_mark_risky`).
     """
-    for e in prange(tri.shape[0]):
-        f = he[e]
+    for e0 in prange(tri.shape[0]):
+        # int64 halfedges (a prange index is uint64, the halfedges int32): the callees
+        # (_short, _folds, _swapped, _next) are compiled once, for the other callers' types
+        e = np.int64(e0)
+        f = np.int64(he[e])
         if f < e:
             continue
         t = e // 3
@@ -168,7 +173,7 @@ def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank, err, box, fold):
     merged = False
     for k in range(cand.shape[0]):
         e = cand[k]
-        f = he[e]
+        f = np.int64(he[e])
         a, b, c, d = _quad(tri, e, f)
         if (near and _cc_close(xs, ys, tri, err, cx, cy, e // 3, f // 3)) or (
             incircle(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c], xs[d], ys[d]) == 0.0
@@ -368,7 +373,7 @@ def _unfold(
         if joined[k] != 0:
             continue  # one class already
         e = cand[k]
-        f = he[e]
+        f = np.int64(he[e])
         if changed[e // 3] != 0 or changed[f // 3] != 0:
             continue  # tested below
         if _short(xs, ys, tri, e, err, cx, cy, e // 3, f // 3):
@@ -432,19 +437,21 @@ def _name_pairs(xs, ys, tri, size, other, cx, cy, rank, err, changed):
     full search (:func:`_class_vertex`), which tries the others. Each class reads and writes
     only its own two triangles' entries, so the classes are named in parallel.
     """
-    for r in prange(size.shape[0]):
+    for r0 in prange(size.shape[0]):
+        r = np.int64(r0)  # (a prange index is uint64: see flag_close)
         if size[r] != 2:
             continue
         u = other[r]
         # the name must be near the better-conditioned centre (not the root's: the
         # numbering differs between builders)
-        ref = np.int64(u) if _better_ref(u, r, err, tri, rank) else np.int64(r)
-        a = tri[3 * r]
-        b = tri[3 * r + 1]
-        c = tri[3 * r + 2]
-        u0 = tri[3 * u]
-        u1 = tri[3 * u + 1]
-        u2 = tri[3 * u + 2]
+        ref = u if _better_ref(u, r, err, tri, rank) else r
+        # int64 site numbers: one compile of the vertex kernels (see circumcenters)
+        a = np.int64(tri[3 * r])
+        b = np.int64(tri[3 * r + 1])
+        c = np.int64(tri[3 * r + 2])
+        u0 = np.int64(tri[3 * u])
+        u1 = np.int64(tri[3 * u + 1])
+        u2 = np.int64(tri[3 * u + 2])
         new0 = u0 != a and u0 != b and u0 != c
         new1 = u1 != a and u1 != b and u1 != c
         new2 = u2 != a and u2 != b and u2 != c

@@ -117,7 +117,9 @@ def _moved(t, xs, ys, tri, err, cx, cy):
     the cells put it, which a class joined by a chain of merges can carry further than the
     snap tolerance. Infinite (no bound) when its own centre is not finite.
     """
-    ox, oy = voronoi_vertex(tri[3 * t], tri[3 * t + 1], tri[3 * t + 2], xs, ys)
+    # int64 site numbers (the triangles are int32): the vertex kernels' one signature
+    a, b, c = np.int64(tri[3 * t]), np.int64(tri[3 * t + 1]), np.int64(tri[3 * t + 2])
+    ox, oy = voronoi_vertex(a, b, c, xs, ys)
     # plus an ulp of the vertex (the fold tests' reach, as ``centers._ulps``)
     ulp = 2.0 * _U * (abs(cx[t]) + abs(cy[t]))
     return err[t] + abs(cx[t] - ox) + abs(cy[t] - oy) + ulp

@@ -225,7 +225,9 @@ def middle_member(xs, ys, tri, mem, rank):
     oy = np.zeros(m)
     for j in range(m):
         t = mem[j]
-        ox[j], oy[j] = voronoi_vertex(tri[3 * t], tri[3 * t + 1], tri[3 * t + 2], xs, ys)
+        # int64 site numbers (the triangles are int32): the vertex kernels' one signature
+        a, b, c = np.int64(tri[3 * t]), np.int64(tri[3 * t + 1]), np.int64(tri[3 * t + 2])
+        ox[j], oy[j] = voronoi_vertex(a, b, c, xs, ys)
     if not (np.isfinite(ox).all() and np.isfinite(oy).all()):
         return -1, 0.0, 0.0
     spread = (ox.max() - ox.min()) + (oy.max() - oy.min())
