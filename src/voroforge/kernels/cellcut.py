@@ -14,7 +14,10 @@ bit for bit:
   :func:`_chain`), a vertex on a box side by the canonical crossing
   (``kernels/vertex.box_crossing``) and a vertex between two sides by the exact corner;
   a circumcentre past one side by the crossings of its two edges with that side
-  (:func:`_past_side_crossings`).
+  (:func:`_past_side_crossings`), and the edges a cut lost between a bisector and a side
+  are put back from the triangles whose centres lie inside the box (:func:`_lost_at_side`).
+
+Which vertices are put on a box side is :mod:`kernels.cellsides`' (re-exported here).
 
 A cut cell with many neighbours is built in linear time by :func:`spliced_cell`: only the
 neighbours whose edges are not safely inside the box (:func:`_interior`) cut it, and the
@@ -28,168 +31,25 @@ neighbours ``k`` and ``k + 1`` (-1 past a hull end).
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 
-from ..config import BOX_SIDE_REACH_ULPS, NJIT, RELABEL_RTOL, RELABEL_ULPS
+from ..config import NJIT, RELABEL_RTOL, RELABEL_ULPS
+from .cellsides import (  # noqa: F401  (re-exported: cells, folds, halfplane_settle)
+    class_err,
+    near_sides,
+    on_side,
+    on_sides,
+    onto_sides,
+    side_reach,
+    side_reaches,
+    vertex_at,
+)
 from .clip import dedupe_ring
 from .power import box_cell
 from .vertex import box_crossing
 
 _U = 2.0**-53
-
-
-@njit(**NJIT)
-def side_reach(x, y, err):
-    """How near a box side a centre ``(x, y)`` with rounding bound ``err`` is put on it.
-
-    Four times the bound (its class's, so that every member of a merged vertex decides
-    alike) and ``BOX_SIDE_REACH_ULPS`` ulps of its larger coordinate. Lattices whose step is
-    2 ulps of their offset keep their vertices an ulp or more inside the sides
-    (``test_lattice_a_few_ulps_apart_is_exact``).
-    """
-    big = max(abs(x), abs(y))
-    return 4.0 * err + BOX_SIDE_REACH_ULPS * math.ldexp(1.0, math.frexp(big)[1] - 53)
-
-
-@njit(**NJIT)
-def near_sides(x, y, e, box):
-    """Bits of the box sides (1, 2, 4, 8: left, bottom, right, top) within ``e`` of ``(x, y)``.
-
-    As :func:`on_sides` takes them: a side only along its extent (widened by ``e``), and of
-    two opposite sides the first.
-    """
-    bits = 0
-    if box[1] - e <= y <= box[3] + e:
-        if abs(x - box[0]) <= e:
-            bits |= 1
-        elif abs(x - box[2]) <= e:
-            bits |= 4
-    if box[0] - e <= x <= box[2] + e:
-        if abs(y - box[1]) <= e:
-            bits |= 2
-        elif abs(y - box[3]) <= e:
-            bits |= 8
-    return bits
-
-
-@njit(**NJIT)
-def class_err(cls, err):
-    """Per triangle, the largest rounding bound in its class (one vertex, one bound).
-
-    The cells' tests of a vertex against the box (:func:`side_reaches`) must decide
-    alike for every triangle of a merged class, whose members share the centre's bits but
-    not their bounds.
-    """
-    big = np.zeros_like(err)
-    for t in range(cls.shape[0]):
-        c = cls[t]
-        if err[t] > big[c]:
-            big[c] = err[t]
-    out = np.zeros_like(err)
-    for t in range(cls.shape[0]):
-        out[t] = big[cls[t]]
-    return out
-
-
-@njit(**NJIT)
-def side_reaches(xs, ys, tri, cls, cx, cy, err, box):
-    """Per triangle, how near a box side its centre is put on it; -1: never.
-
-    :func:`side_reach` of the centre with its class's rounding bound ``err[t]``
-    (:func:`class_err`), so every cell at a vertex decides alike. A vertex is left where
-    it is (-1, for its whole class) when a site of its triangles lies within that reach
-    of a side it would be put on, or two of them lie within twice of each other: moving
-    the vertex by its reach would take such a site out of its own cell (a strip a few
-    ulps wide along the side; issue 15, ``test_issue15_ulp_strips``), where the cut's
-    own vertices keep it in.
-    """
-    nt = cls.shape[0]
-    reach = np.zeros(nt)
-    stay = np.zeros(nt, dtype=np.bool_)
-    for t in range(nt):
-        x = cx[t]
-        y = cy[t]
-        b = err[t]
-        # an ulp of the larger coordinate is at most 2 * _U of it: a centre inside by more
-        # than that bound is put on no side (most of them: no frexp)
-        e = 4.0 * b + 2.0 * _U * max(abs(x), abs(y))
-        if box[0] + e < x < box[2] - e and box[1] + e < y < box[3] - e:
-            reach[t] = e
-            continue
-        e = side_reach(x, y, b)
-        reach[t] = e
-        bits = near_sides(x, y, e, box)
-        if bits == 0:
-            continue
-        for k in range(3):
-            s = tri[3 * t + k]
-            s2 = tri[3 * t + (k + 1) % 3]
-            if near_sides(xs[s], ys[s], e, box) & bits or (
-                abs(xs[s] - xs[s2]) <= 2.0 * e and abs(ys[s] - ys[s2]) <= 2.0 * e
-            ):
-                stay[cls[t]] = True
-    for t in range(nt):
-        if stay[cls[t]]:
-            reach[t] = -1.0
-    return reach
-
-
-@njit(**NJIT)
-def on_sides(t, cx, cy, reach, box):
-    """Triangle ``t``'s centre put on the box sides it lies within ``reach[t]`` of.
-
-    Returns ``(x, y, hit)``. A Voronoi vertex that close to a side (inside, on or past it)
-    is on it to rounding: the crossings of the side by its edges and the vertex itself
-    round in any order there (two crossings of one side reversed, a vertex an ulp past
-    the side), and each cell's own cut decides differently. Every cell at the vertex puts
-    it, and the crossings of its edges with that side, at this one point (a corner when
-    it is within reach of two sides), computed from the vertex's name alone.
-    ``reach`` is :func:`side_reaches`' (-1: the vertex stays where it is).
-    """
-    x = cx[t]
-    y = cy[t]
-    e = reach[t]
-    if e < 0.0:
-        return x, y, False
-    bits = near_sides(x, y, e, box)
-    x, y = onto_sides(x, y, bits, box)
-    return x, y, bits != 0
-
-
-@njit(**{**NJIT, "inline": "always"})  # on every vertex a cell writes: no call
-def onto_sides(x, y, bits, box):
-    """``(x, y)`` put on the box sides set in ``bits`` (:func:`near_sides`' 1, 2, 4, 8)."""
-    if bits & 1:
-        x = box[0]
-    elif bits & 4:
-        x = box[2]
-    if bits & 2:
-        y = box[1]
-    elif bits & 8:
-        y = box[3]
-    return x, y
-
-
-@njit(**NJIT)
-def _on_side(x, y, side, box):
-    """Whether ``(x, y)`` lies on box side ``side`` (-1..-4), exactly."""
-    if side == -1:
-        return x == box[0]
-    if side == -2:
-        return y == box[1]
-    if side == -3:
-        return x == box[2]
-    return y == box[3]
-
-
-@njit(**NJIT)
-def _vertex_at(t, cx, cy, reach, box):
-    """Triangle ``t``'s centre as cells write it: on a side when within reach of it."""
-    x, y, _ = on_sides(t, cx, cy, reach, box)
-    return x, y
 
 
 @njit(**NJIT)
@@ -255,7 +115,7 @@ def _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, reach, box, qx, qy, qw, out):
     for s in range(steps):
         k = (ka + s) % nn
         t = tris[k]
-        qx[out], qy[out] = _vertex_at(t, cx, cy, reach, box)
+        qx[out], qy[out] = vertex_at(t, cx, cy, reach, box)
         qw[out] = nbrs[(k + 1) % nn]
         out += 1
     return out
@@ -281,7 +141,7 @@ def _crossing_at_vertex(kj, nbrs, tris, nn, cx, cy, reach, side, box, x, y):
         if t < 0:
             continue
         vx, vy, hit = on_sides(t, cx, cy, reach, box)
-        if not (hit and _on_side(vx, vy, side, box)):
+        if not (hit and on_side(vx, vy, side, box)):
             continue
         d = abs(vx - x) + abs(vy - y)
         if d < best:
@@ -304,7 +164,7 @@ def _past_side_crossings(i, a, b, t, xs, ys, cx, cy, reach, box):
     use (issue 15). The canonical crossings (:func:`.vertex.box_crossing`, the neighbours'
     bits) are used when both lie on the side in the ring's order; else ``ok`` is False.
     """
-    x, y = _vertex_at(t, cx, cy, reach, box)
+    x, y = vertex_at(t, cx, cy, reach, box)
     side = 0
     if box[1] <= y <= box[3]:
         if x < box[0]:
@@ -328,6 +188,69 @@ def _past_side_crossings(i, a, b, t, xs, ys, cx, cy, reach, box):
         and _along_side(x1, y1, side) <= _along_side(x2, y2, side)
     )
     return ok, x1, y1, x2, y2, side
+
+
+@njit(**NJIT)
+def _inside_box(t, cx, cy, reach, box):
+    """Whether triangle ``t``'s centre lies inside ``box`` by more than its side reach."""
+    if t < 0 or reach[t] < 0.0:
+        return False
+    e = reach[t]
+    return box[0] + e < cx[t] < box[2] - e and box[1] + e < cy[t] < box[3] - e
+
+
+@njit(**NJIT)
+def _lost_at_side(kj, forward, tris, nn, cx, cy, reach, box):
+    """The run of Delaunay triangles beside neighbour ``kj``'s edge with centres in the box.
+
+    Returns ``(k0, steps)``: the triangles ``tris[k0 : k0 + steps]`` (rotation order). An
+    edge of the cell that meets a box side (``forward``: leaving the box; else entering it)
+    ends at the centre of the triangle after it (before it) when that centre lies inside the
+    box: exactly, a segment cannot leave a convex box and end inside it. Floats meet two
+    nearly parallel bisectors past the side instead (sites a few ulps apart on a float circle
+    far out, issue 15: an edge 13 ulps long lost), and the cell loses the edges between them.
+    Centres within their reach of a side (:func:`side_reaches`) end the run.
+    """
+    steps = np.int64(0)
+    k = kj
+    while steps < nn - 1:
+        if forward:
+            t = tris[(kj + steps) % nn]
+        else:
+            k = kj - steps - 1
+            if k < 0:
+                k += nn
+            t = tris[k]
+        if not _inside_box(t, cx, cy, reach, box):
+            break
+        steps += 1
+    if forward:
+        return kj, steps
+    k = kj - steps
+    if k < 0:
+        k += nn
+    return k, steps
+
+
+@njit(**NJIT)
+def _side_vertex(
+    i, j, kj, nbrs, tris, nn, xs, ys, cx, cy, reach, side, box, x, y, owner, qx, qy, qw, out
+):
+    """Write the crossing of ``side`` by the edge of neighbour ``j`` (at ``kj``) to ``q``.
+
+    The canonical crossing (:func:`.vertex.box_crossing`), or the cut's ``(x, y)`` where
+    it is not on the side inside the box; an end of the edge on the side is used instead
+    (:func:`_crossing_at_vertex`). Its edge is owned by ``owner``; returns the new count.
+    """
+    bx, by = box_crossing(i, j, xs, ys, side, box)
+    if bx == bx and box[0] <= bx <= box[2] and box[1] <= by <= box[3]:
+        x = bx
+        y = by
+    x, y = _crossing_at_vertex(kj, nbrs, tris, nn, cx, cy, reach, side, box, x, y)
+    qx[out] = x
+    qy[out] = y
+    qw[out] = owner
+    return out + 1
 
 
 @njit(**NJIT)
@@ -382,6 +305,69 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, reach,
         elif a >= 0 or b >= 0:
             j = a if a >= 0 else b
             side = b if a >= 0 else a
+            kj = _index_of(nbrs, nn, j, hint)
+            if kj >= 0:
+                # edges the cut lost between the bisector and the side: the Delaunay
+                # triangles beyond ``j`` whose centres lie inside the box are vertices of
+                # the cell (nearly parallel bisectors met past the side in floats)
+                k0, steps = _lost_at_side(kj, a >= 0, tris, nn, cx, cy, reach, box)
+                if steps > 0 and out + steps + 1 + (m - v) <= qx.shape[0]:
+                    j = nbrs[(k0 + steps) % nn] if a >= 0 else nbrs[k0]
+                    if a >= 0:
+                        out = _emit_chain(
+                            nbrs, tris, nn, k0, steps, cx, cy, reach, box, qx, qy, qw, out
+                        )
+                    else:
+                        out = _side_vertex(
+                            i,
+                            j,
+                            k0,
+                            nbrs,
+                            tris,
+                            nn,
+                            xs,
+                            ys,
+                            cx,
+                            cy,
+                            reach,
+                            side,
+                            box,
+                            x,
+                            y,
+                            j,
+                            qx,
+                            qy,
+                            qw,
+                            out,
+                        )
+                        out = _emit_chain(
+                            nbrs, tris, nn, k0, steps, cx, cy, reach, box, qx, qy, qw, out
+                        )
+                        continue
+                    hint = (k0 + steps) % nn
+                    out = _side_vertex(
+                        i,
+                        j,
+                        hint,
+                        nbrs,
+                        tris,
+                        nn,
+                        xs,
+                        ys,
+                        cx,
+                        cy,
+                        reach,
+                        side,
+                        box,
+                        x,
+                        y,
+                        b,
+                        qx,
+                        qy,
+                        qw,
+                        out,
+                    )
+                    continue
             bx, by = box_crossing(i, j, xs, ys, side, box)
             if bx == bx and box[0] <= bx <= box[2] and box[1] <= by <= box[3]:
                 x = bx

@@ -1,0 +1,123 @@
+"""Float circles far out: edges a cut cell lost between a bisector and the box side (issue 15).
+
+1000 float sites on a circle of radius 1e-7 at (5e5, 4e6) (1.3 ulps apart): the hull cells
+are wedges from near the centre to the box's sides, and neighbouring wedges' bisectors are
+nearly parallel. Cutting the box by them in floats, two of them (site 324's with 321 and
+320 at phase 0.40) met past the side, so 320's edge (13 ulps long) was lost, 324's ring
+ran along 321's bisector to the side and the cells left a hole (Euler -1; 4 of 240 inputs
+of the r = 1e-7 scan, every algorithm). A cut edge that meets a side now ends at the centre
+of the Delaunay triangle after it (before it, for an edge entering the box) whenever that
+centre lies inside the box by more than its rounding reach: exactly, a segment cannot
+leave a convex box and end inside it (``kernels.cellcut._lost_at_side``). Before: Euler -1
+and 30 flagged sites; now Euler 1 and 28.
+
+Checked against exact references: the exact cell of site 324 (Fractions), the largest
+distance of a vertex past a bisector of its site and any other (integers), Euler, every
+cell valid and inside the box.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction as F
+
+import numpy as np
+import pytest
+import shapely
+
+import voroforge as vf
+
+ALGS = ["delaunay", "fortune", "halfplane"]
+CENTRE = (5e5, 4e6)
+R = 1e-7
+#: the local frame's unit: the ulp of x (2^-34); y's ulp (the larger coordinate's) is 8
+UNIT = 2.0**-34
+ULP = 8.0
+#: phases of 1000 sites whose cells left a hole at a box side (Euler -1). Phases 0.05, 0.80
+#: and 0.90 still fail Euler at other cells (not this cause; docs/exactness.md, still failing)
+PHASES = [0.40]
+
+
+def _circle(n, phase):
+    t = np.arange(n) * (2.0 * np.pi / n) + phase
+    return np.column_stack((R * np.cos(t), R * np.sin(t))) + CENTRE
+
+
+def _local(xy):
+    """Coordinates in units of 2^-34 from the centre: exact integers (as float64)."""
+    out = (np.asarray(xy, dtype=np.float64) - CENTRE) / UNIT
+    assert (out == np.round(out)).all() and np.abs(out).max() < 2.0**20
+    return out
+
+
+def _past(v, p, i):
+    """Largest distance (ulps of the centre) of vertices ``v`` past a bisector of site ``i``.
+
+    ``(2 v - p_i - p_j) . (p_j - p_i)`` is exact in float64 (integers below 2^53); only the
+    division by the length rounds, far below an ulp.
+    """
+    d = p - p[i]
+    dot = ((2.0 * v[:, None, :] - p[i] - p[None, :, :]) * d[None]).sum(-1)
+    nrm = np.sqrt((d**2).sum(1))
+    nrm[i] = np.inf
+    dot[:, i] = 0.0
+    return float((dot / (2.0 * nrm[None])).max() / ULP)
+
+
+def _exact_cell(p, i, box):
+    """Site ``i``'s exact cell in ``box`` (local integer frame): its vertices as Fractions."""
+    x0, y0, x1, y1 = (F(float(b)) for b in box)
+    poly = [(x0, y0), (x1, y0), (x1, y1), (x0, y1)]
+    px, py = F(float(p[i, 0])), F(float(p[i, 1]))
+    for j in range(len(p)):
+        qx, qy = F(float(p[j, 0])), F(float(p[j, 1]))
+        if j == i or (qx == px and qy == py):
+            continue
+        a, b = qx - px, qy - py
+        c = (qx * qx - px * px + qy * qy - py * py) / 2
+        out = []
+        for k in range(len(poly)):
+            (ux, uy), (wx, wy) = poly[k], poly[(k + 1) % len(poly)]
+            s0, s1 = a * ux + b * uy - c, a * wx + b * wy - c
+            if s0 <= 0:
+                out.append((ux, uy))
+            if (s0 < 0 < s1) or (s1 < 0 < s0):
+                t = s0 / (s0 - s1)
+                out.append((ux + t * (wx - ux), uy + t * (wy - uy)))
+        poly = out
+    return poly
+
+
+@pytest.mark.parametrize("phase", PHASES)
+def test_cells_meet_at_the_side(phase):
+    """Every algorithm: Euler holds, every cell valid, inside the box, near its exact cell."""
+    pts = _circle(1000, phase)
+    p = _local(pts)
+    for alg in ALGS:
+        d = vf.voronoi(pts, None, algorithm=alg)
+        rep = d.describe()
+        assert rep.euler_ok, f"{alg}: {rep}"
+        cells = np.asarray(d.cells, dtype=object)
+        assert shapely.is_valid(cells).all()
+        x0, y0, x1, y1 = d.boundary.bounds
+        worst = 0.0
+        for i, c in enumerate(d.cells):
+            if c is None or c.is_empty:
+                continue
+            v = shapely.get_coordinates(c)
+            assert ((v[:, 0] >= x0) & (v[:, 0] <= x1) & (v[:, 1] >= y0) & (v[:, 1] <= y1)).all()
+            if i not in d.unresolved:
+                worst = max(worst, _past(_local(v), p, i))
+        assert worst <= 8.0, f"{alg}: a vertex {worst:.2f} ulps past its exact cell"
+
+
+def test_lost_edge_is_back():
+    """Phase 0.40, site 324: every exact vertex of its cell within 1 ulp of a float vertex
+    (320's edge, 13 ulps long between the box side and the triangle 324-321-320, was lost)."""
+    pts = _circle(1000, 0.40)
+    p = _local(pts)
+    d = vf.voronoi(pts, None)
+    box = _local(np.reshape(d.boundary.bounds, (2, 2))).ravel()
+    got = _local(shapely.get_coordinates(d.cells[324]))
+    for ex, ey in _exact_cell(p, 324, box):
+        near = np.abs(got[:, 0] - float(ex)) + np.abs(got[:, 1] - float(ey))
+        assert near.min() <= 2.0 * ULP, (float(ex) / ULP, float(ey) / ULP)
