@@ -185,6 +185,9 @@ PERIODIC_CAP_PERIODS = 1.6
 #: How far apart, in ulps of the box's coordinates, a vertex and its image may be computed
 #: (a tie rounded to even both ways is 1 ulp): engine/periodic._tie_images
 PERIODIC_TIE_ULPS = 2.0
+#: engine.periodic: a margin whose proof fails grows each failing axis to this many times the
+#: failing vertices' shortfall (``_shortfall``; sites on one line: 7.9 n copies -> 3 n)
+PERIODIC_SHORTFALL_SLACK = 1.0625
 #: describe(): on a torus, a vertex and another's image closer than this (of the box's
 #: diagonal) are one vertex (images come from sites shifted by the box's size); a cell of a
 #: non-convex domain within 100 times this of its own coordinates' magnitude from the

@@ -31,6 +31,7 @@ import shapely
 from ..config import (
     PERIODIC_CAP_PERIODS,
     PERIODIC_PROOF_RTOL,
+    PERIODIC_SHORTFALL_SLACK,
     PERIODIC_SLIVER_MAX_SIDE,
     PERIODIC_SLIVER_ULPS,
 )
@@ -45,8 +46,6 @@ from .planar import build
 #: Initial margin, in typical cell diameters ``sqrt(area / n)``.
 _MARGIN_CELLS = 3.0
 _MAX_TRIES = 30
-#: A failing vertex's shortfall is asked for this many times over (:func:`_shortfall`).
-_SHORTFALL_SLACK = 1.0625
 
 
 def _tile_of(boundary) -> Domain:
@@ -298,7 +297,7 @@ def _shortfall(d: Diagram, cells, box, margin):
         bad = (room < (b - a) + slack) & (room / side < r) & ~edge[:, 1 - k]
         bad |= room < 0
         need = (r[bad] - np.maximum(room[bad], 0.0) / side).max() if bad.any() else 0.0
-        out.append(float(m + _SHORTFALL_SLACK * need * side) if bad.any() else 0.0)
+        out.append(float(m + PERIODIC_SHORTFALL_SLACK * need * side) if bad.any() else 0.0)
     return out
 
 

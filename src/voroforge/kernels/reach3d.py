@@ -29,15 +29,16 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import NJIT, REACH3D_BOX_RTOL, REACH3D_ROUND_TRIES, VORONOI3D_STOP_RTOL
+from ..config import (
+    NJIT,
+    REACH3D_BOX_RTOL,
+    REACH3D_HEAVY_GAP,
+    REACH3D_HEAVY_MOST,
+    REACH3D_ROUND_TRIES,
+    VORONOI3D_STOP_RTOL,
+)
 from .grid import bucket_of
 from .grid3d import bucket3d
-
-#: heavy sites (:func:`heavy_sites`): weights above the lightest by more than this many
-#: squared bucket sides (the light ones then reach about two buckets past the unweighted
-#: stop), at most this many (more: none, the pyramid bounds them all)
-REACH3D_HEAVY_GAP = 4.0
-REACH3D_HEAVY_MOST = 256
 
 NJIT_INLINE = {**NJIT, "inline": "always"}
 NJIT_NO_NRT = {**NJIT, "_nrt": False}
