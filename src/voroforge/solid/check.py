@@ -1,10 +1,10 @@
-"""Print checks on a solid: struts, pores, voids, floating parts, pinches, overhangs.
+"""Print checks on a solid: struts, pores, walls, voids, floating parts, pinches, overhangs.
 
 :func:`check` returns a :class:`Report` whose ``violations`` list has one entry per problem,
 each with its kind, location (x, y, z), measured value and the limit, like the 2D
-fabrication report. Struts and pores come from the builders' metadata (``lattice`` records
-its struts and radii, ``foam`` its bubbles, ``shell`` its openings); voids, parts and
-overhangs are measured on the mesh itself.
+fabrication report. Struts, pores and walls come from the builders' metadata (``lattice``
+records its struts and radii, ``foam`` its bubbles and walls, ``shell`` its openings and
+thickness, ``extrude`` its slabs); voids, parts and overhangs are measured on the mesh itself.
 """
 
 from __future__ import annotations
@@ -147,6 +147,7 @@ def check(
     *,
     min_strut: float | None = None,
     min_pore: float | None = None,
+    min_wall: float | None = None,
     max_overhang: float | None = 45.0,
     min_overhang_area: float | None = None,
 ) -> Report:
@@ -162,6 +163,11 @@ def check(
     min_pore : float, optional
         Smallest opening/pore diameter that drains (resin, powder): smaller foam bubbles and
         shell openings are reported at their centre.
+    min_wall : float, optional
+        Thinnest printable wall: walls the builder recorded thinner than this are reported
+        at a point of the wall (a foam's walls between bubbles, ``wall`` thick, and its skin,
+        half a wall; a shell's ``thickness``; an extruded slab's thickness or, with a
+        relief, its lowest top). A mesh without that record (a lattice) has none to check.
     max_overhang : float or None
         Largest overhang angle from the vertical (degrees) printable without supports:
         downward-facing regions beyond it (off the build plate) are reported, one entry per
@@ -172,7 +178,7 @@ def check(
     Returns
     -------
     Report
-        ``violations`` of kinds ``thin_strut``, ``small_pore``, ``trapped_void``,
+        ``violations`` of kinds ``thin_strut``, ``small_pore``, ``thin_wall``, ``trapped_void``,
         ``floating_part``, ``pinch`` (separate sheets meeting at a point or an edge: the
         value is the number of vertex copies there), ``overhang``; ``stats`` with
         ``watertight``, ``volume``, ``bodies``, ``voids``, ``pinches``.
@@ -197,6 +203,12 @@ def check(
                 out.append(
                     Violation("small_pore", _loc(p["centre"][i]), float(p["size"][i]), min_pore)
                 )
+    if min_wall is not None:
+        w = meta.get("walls")
+        if w is not None and len(w["thickness"]):
+            th = np.asarray(w["thickness"], dtype=np.float64)
+            for i in np.flatnonzero(th < min_wall):
+                out.append(Violation("thin_wall", _loc(w["at"][i]), float(th[i]), min_wall))
     vol, cen, lo, hi = _bodies(m)
     shells = vol > 0
     voids = np.flatnonzero(~shells)

@@ -185,6 +185,46 @@ def _split_segments(ring, which):
     return out
 
 
+def _heights(relief, xy) -> np.ndarray:
+    """``relief(xy)`` checked: one finite height per point (a NaN passed ``top_z <= 0``)."""
+    r = np.asarray(relief(xy), dtype=np.float64)
+    if r.shape != (len(xy),):
+        raise ValueError(
+            f"relief must return one height per point, shape ({len(xy)},) for the "
+            f"({len(xy)}, 2) points it is given; got shape {r.shape}"
+        )
+    bad = np.flatnonzero(~np.isfinite(r))
+    if len(bad):
+        at = ", ".join(f"({xy[i, 0]:.6g}, {xy[i, 1]:.6g})" for i in bad[:3])
+        more = f" and {len(bad) - 3} more points" if len(bad) > 3 else ""
+        raise ValueError(f"relief returned non-finite heights at (x, y) = {at}{more}")
+    return r
+
+
+def _material(geom):
+    """The polygonal material of ``geom``: an invalid geometry's parts made valid and unioned.
+
+    ``shapely.make_valid`` of a MultiPolygon whose parts overlap (polygons collected in a
+    list) keeps their symmetric difference: the overlap was lost. The material is what any
+    part covers, so each part is made valid on its own and the parts are unioned. A
+    GeometryCollection's parts may overlap and still be valid: it is always unioned (its
+    parts were extruded twice where they overlapped, a mesh through itself).
+    """
+    import shapely
+
+    if geom.is_valid and geom.geom_type != "GeometryCollection":
+        return geom
+    parts = []
+    todo = [geom]
+    while todo:
+        g = todo.pop()
+        if g.geom_type in ("MultiPolygon", "GeometryCollection"):
+            todo.extend(shapely.get_parts(g).tolist())
+        elif not g.is_empty:
+            parts.append(shapely.make_valid(g))
+    return shapely.union_all(parts)
+
+
 def _slab(poly, thickness, relief, max_area):
     """One polygon (with holes) as a closed slab; the top displaced by ``relief(xy)``."""
     import trimesh
@@ -194,7 +234,7 @@ def _slab(poly, thickness, relief, max_area):
     nv = len(xy)
     top_z = np.full(nv, float(thickness))
     if relief is not None:
-        top_z = top_z + np.asarray(relief(xy), dtype=np.float64)
+        top_z = top_z + _heights(relief, xy)
         if (top_z <= 0).any():
             raise ValueError(
                 "relief: the top surface goes below the bottom (thickness + relief <= 0)"
@@ -215,7 +255,9 @@ def _slab(poly, thickness, relief, max_area):
     i, j = b[:, 0], b[:, 1]
     faces.append(np.column_stack([i, j, j + nv]))
     faces.append(np.column_stack([i, j + nv, i + nv]))
-    return trimesh.Trimesh(v, np.vstack(faces), process=False)
+    k = int(np.argmin(top_z))  # the slab's thinnest point (``check(min_wall=)``)
+    thin = (np.array([xy[k, 0], xy[k, 1], 0.5 * top_z[k]]), float(top_z[k]))
+    return trimesh.Trimesh(v, np.vstack(faces), process=False), thin
 
 
 def extrude(design_result, thickness, *, relief=None, max_area=None):
@@ -224,19 +266,24 @@ def extrude(design_result, thickness, *, relief=None, max_area=None):
     Parameters
     ----------
     design_result : design Result, shapely Polygon/MultiPolygon
-        ``voroforge.design.compute(...)`` (its ``frame``), or any polygonal material.
+        ``voroforge.design.compute(...)`` (its ``frame``), or any polygonal material
+        (overlapping parts of an invalid MultiPolygon are unioned: the material is what
+        any part covers).
     thickness : float
         Slab thickness (> 0), in the design's units; the bottom is at z = 0.
     relief : callable, optional
         A height field ``xy (m, 2) -> (m,)`` added to the top (for example an attractor
         field remapped to millimetres): the top is triangulated finely enough to follow it.
+        Heights must be finite (a ValueError names the points where they are not).
     max_area : float, optional
         Largest top triangle with ``relief`` (default: the material's area / 20000).
 
     Returns
     -------
     trimesh.Trimesh
-        Watertight; one body per separate piece of material.
+        Watertight; one body per separate piece of material. ``metadata["walls"]`` holds
+        each piece's thinnest point (``at`` (k, 3), mid-slab) and its thickness (``thickness``
+        (k,): the slab, or the lowest top with ``relief``), what ``check(min_wall=)`` compares.
 
     Examples
     --------
@@ -257,12 +304,17 @@ def extrude(design_result, thickness, *, relief=None, max_area=None):
     t = float(thickness)
     if not (np.isfinite(t) and t > 0):
         raise ValueError(f"thickness must be a finite number > 0, got {thickness!r}")
-    polys = list(_polygons(shapely.make_valid(geom) if not geom.is_valid else geom))
+    polys = list(_polygons(_material(geom)))
     if not polys:
         raise ValueError("extrude: no polygonal material to extrude")
     if max_area is None:
         max_area = sum(p.area for p in polys) / 20000.0
-    parts = [_slab(p, t, relief, max_area) for p in polys]
+    slabs = [_slab(p, t, relief, max_area) for p in polys]
+    parts = [s for s, _ in slabs]
     m = trimesh.util.concatenate(parts) if len(parts) > 1 else parts[0]
-    m.metadata.update({"kind": "extrude"})
+    walls = {
+        "at": np.array([at for _, (at, _) in slabs]).reshape(-1, 3),
+        "thickness": np.array([z for _, (_, z) in slabs]),
+    }
+    m.metadata.update({"kind": "extrude", "walls": walls})
     return m

@@ -25,9 +25,14 @@ def _planes(cell) -> tuple[np.ndarray, np.ndarray]:
     return np.column_stack([n[first], c[first]]), cen
 
 
+# the inscribed balls' LP takes this many cells at a time (independent blocks of one LP:
+# one solver call instead of one a cell)
+_LP_CELLS = 256
+
+
 def _chebyshev(a: np.ndarray, c: np.ndarray):
     """Centre and radius of the largest ball inside ``a x <= c`` (None when empty)."""
-    from scipy.optimize import linprog  # only for cells whose centroid is not inside
+    from scipy.optimize import linprog
 
     norm = np.linalg.norm(a, axis=1)
     res = linprog(
@@ -41,27 +46,85 @@ def _chebyshev(a: np.ndarray, c: np.ndarray):
     return res.x[:3], float(res.x[3])
 
 
+def _inscribed(systems):
+    """Chebyshev centre and radius of each ``(a, c, x0, s)``: the largest ball in ``a x <= c``.
+
+    Each system is posed in its own frame ``x = x0 + s y`` (``x0`` a point near the cell,
+    ``s`` its size: every block is of order one for the solver's absolute tolerances) and
+    all are one LP of independent blocks, the radius free: a negative radius is an empty
+    region (a ``r >= 0`` bound would make the whole LP infeasible for one swallowed cell).
+    Returns centres (n, 3) and radii (n,) (radius -inf where a block could not be solved:
+    the LP of that system alone is then tried).
+    """
+    from scipy.optimize import linprog
+    from scipy.sparse import coo_matrix
+
+    n = len(systems)
+    centres, radii = np.zeros((n, 3)), np.full(n, -np.inf)
+    for lo in range(0, n, _LP_CELLS):
+        part = systems[lo : lo + _LP_CELLS]
+        rows, cols, vals, rhs = [], [], [], []
+        r0 = 0
+        for j, (a, c, x0, sc) in enumerate(part):
+            k = len(a)
+            an = np.column_stack([a, np.linalg.norm(a, axis=1)])
+            rr = np.repeat(np.arange(r0, r0 + k), 4)
+            rows.append(rr)
+            cols.append(np.tile(np.arange(4 * j, 4 * j + 4), k))
+            vals.append(an.ravel())
+            rhs.append((c - a @ x0) / sc)
+            r0 += k
+        m = len(part)
+        a_ub = coo_matrix(
+            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(r0, 4 * m)
+        ).tocsc()
+        cost = np.zeros(4 * m)
+        cost[3::4] = -1.0
+        res = linprog(cost, A_ub=a_ub, b_ub=np.concatenate(rhs), bounds=(None, None))
+        if not res.success:
+            continue
+        y = res.x.reshape(m, 4)
+        for j, (_, _, x0, sc) in enumerate(part):
+            centres[lo + j] = x0 + sc * y[j, :3]
+            radii[lo + j] = sc * y[j, 3]
+    return centres, radii
+
+
 def bubbles(cells, wall, *, field=None):
     """Each cell shrunk by half the local wall thickness on every face (convex bubbles).
 
     Returns
     -------
     list of (Trimesh or None, centre (3,), inscribed radius)
-        ``None`` where the wall swallows the cell (it stays solid).
+        ``None`` where the wall swallows the cell (it stays solid). The centre and radius
+        are the bubble's largest inscribed ball (its Chebyshev centre: an LP of its planes).
     """
-    size = as_size(wall, field, "wall")
-    out = []
+    return _bubbles(cells, as_size(wall, field, "wall"))[0]
+
+
+def _bubbles(cells, size):
+    """:func:`bubbles` and each cell's faces: ``(planes (k, 4), face points (k, 3), walls)``."""
+    systems, faces = [], []
     for cell in cells:
         pl, cen = _planes(cell)
-        w = size(cen)
-        a, c = pl[:, :3], pl[:, 3] - 0.5 * w
-        x0 = cell.center_mass
+        w = np.broadcast_to(np.asarray(size(cen), dtype=np.float64), (len(pl),))
+        faces.append((pl, cen, w))
+        systems.append((pl[:, :3], pl[:, 3] - 0.5 * w, cell.center_mass, max(cell.scale, 1e-300)))
+    ball, ball_r = _inscribed(systems)
+    out = []
+    for i, (cell, (a, c, x0, _)) in enumerate(zip(cells, systems, strict=True)):
         slack = c - a @ x0
-        if slack.min() > 1e-6 * cell.scale:  # the centroid is inside: its clearance
-            centre, rad = x0, float(slack.min())  # (a lower bound of the inscribed radius)
+        if not np.isfinite(ball_r[i]):  # the joint LP failed: this cell's own
+            b_c, b_r = _chebyshev(a, c)
+            ball[i], ball_r[i] = (x0, 0.0) if b_c is None else (b_c, b_r)
+        if slack.min() > 1e-6 * cell.scale:  # the centroid is inside: the interior point
+            centre = x0
+            if slack.min() > ball_r[i]:  # its clearance bounds the inscribed radius
+                ball[i], ball_r[i] = x0, float(slack.min())
         else:
-            centre, rad = _chebyshev(a, c)
-        if centre is None or rad <= 1e-6 * cell.scale:
+            centre = ball[i]
+        rad = float(ball_r[i])
+        if rad <= 1e-6 * cell.scale:
             out.append((None, x0, 0.0))
             continue
         try:
@@ -70,8 +133,59 @@ def bubbles(cells, wall, *, field=None):
         except QhullError:
             out.append((None, x0, 0.0))
             continue
-        out.append((b, centre, rad))
-    return out
+        out.append((b, ball[i].copy(), rad))
+    return out, faces
+
+
+def _walls(cells, bs, faces):
+    """Each wall a bubble's facet meets: ``(points (k, 3), thickness (k,))``.
+
+    A face two cells share (the same plane, normals opposite, the one's face point inside
+    the other's bounds) is a wall ``w_i / 2 + w_j / 2`` thick where both bubbles have a
+    facet on it (listed once); a face no other cell shares is the container's skin, half a
+    wall (the cells fill the container). A facet whose other side is solid (no bubble, or
+    that bubble's plane left no facet) is thicker and not listed.
+    """
+    from scipy.spatial import cKDTree
+
+    if not cells:
+        return np.zeros((0, 3)), np.zeros(0)
+    lo = np.min([c.bounds[0] for c in cells], axis=0)
+    hi = np.max([c.bounds[1] for c in cells], axis=0)
+    span = max(float(np.max(hi - lo)), 1e-300)
+    pl = np.vstack([f[0] for f in faces])
+    pts = np.vstack([f[1] for f in faces])
+    w = np.concatenate([f[2] for f in faces])
+    owner = np.repeat(np.arange(len(cells)), [len(f[0]) for f in faces])
+    # whether the bubble has a facet on each face's moved plane (3 corners on it at least)
+    facet = np.zeros(len(pl), dtype=bool)
+    at = 0
+    for cell, (b, _, _), (p, _, wf) in zip(cells, bs, faces, strict=True):
+        if b is not None:
+            d = np.abs(np.asarray(b.vertices) @ p[:, :3].T - (p[:, 3] - 0.5 * wf))
+            facet[at : at + len(p)] = (d <= 1e-7 * cell.scale).sum(axis=0) >= 3
+        at += len(p)
+    key = np.column_stack([pl[:, :3], pl[:, 3] / span])
+    tree = cKDTree(key)
+    hits = tree.query_ball_point(-key, 1e-6)
+    bounds = np.array([c.bounds for c in cells])
+    tol = 1e-6 * span
+    where, thick = [], []
+    for i in np.flatnonzero(facet):
+        other = [
+            j
+            for j in hits[i]
+            if owner[j] != owner[i]
+            and np.all(pts[i] >= bounds[owner[j], 0] - tol)
+            and np.all(pts[i] <= bounds[owner[j], 1] + tol)
+        ]
+        if not other:  # the container's skin
+            where.append(pts[i])
+            thick.append(0.5 * w[i])
+        elif facet[other[0]] and owner[i] < owner[other[0]]:
+            where.append(pts[i])
+            thick.append(0.5 * (w[i] + w[other[0]]))
+    return np.array(where).reshape(-1, 3), np.array(thick, dtype=np.float64)
 
 
 def foam(cells3d, wall=1.2, *, field=None, container=None):
@@ -96,9 +210,11 @@ def foam(cells3d, wall=1.2, *, field=None, container=None):
     trimesh.Trimesh
         Watertight: the outer surface and one inward-facing surface per bubble (the bubbles
         are closed voids; :func:`voroforge.solid.check` lists them as trapped).
-        ``metadata["pores"]`` holds each bubble's centre and inscribed diameter (0 for a
-        cell the walls fill: a warning says how many, and ``check(min_pore=...)`` lists
-        them).
+        ``metadata["pores"]`` holds each bubble's largest inscribed ball: its centre and
+        diameter (0 for a cell the walls fill: a warning says how many, and
+        ``check(min_pore=...)`` lists them). ``metadata["walls"]`` holds the walls
+        between bubbles and the skin (``at`` (k, 3) on each wall, ``thickness`` (k,)), what
+        ``check(min_wall=...)`` compares.
 
     Examples
     --------
@@ -113,7 +229,7 @@ def foam(cells3d, wall=1.2, *, field=None, container=None):
     cells = cell_meshes(cells3d)
     if container is None:
         container = convex_mesh(np.vstack([c.vertices for c in cells]))
-    bs = bubbles(cells, wall, field=field)
+    bs, faces = _bubbles(cells, as_size(wall, field, "wall"))
     parts = [container]
     centres, sizes = [], []
     for b, centre, rad in bs:
@@ -138,6 +254,7 @@ def foam(cells3d, wall=1.2, *, field=None, container=None):
         {
             "kind": "foam",
             "pores": {"centre": np.array(centres).reshape(-1, 3), "size": np.array(sizes)},
+            "walls": dict(zip(("at", "thickness"), _walls(cells, bs, faces), strict=True)),
         }
     )
     return m

@@ -128,7 +128,8 @@ def shell(
     -------
     trimesh.Trimesh or Bare
         Watertight. ``metadata["pores"]`` holds each opening's seed and approximate
-        inscribed diameter (nearest-seed distance minus the web).
+        inscribed diameter (nearest-seed distance minus the web); ``metadata["walls"]``
+        the thickness (``at`` (1, 3) a point of the surface, ``thickness`` (1,)).
     """
     surf = mesh_or_cells
     if not (hasattr(surf, "vertices") and hasattr(surf, "faces")):
@@ -193,5 +194,7 @@ def shell(
         size = np.maximum(nn - wfun(seeds), 0.0)
     else:
         size = np.zeros(0)
-    m.metadata.update({"kind": "shell", "pores": {"centre": seeds, "size": size}})
+    # the shell's one wall thickness, at a point of the surface (``check(min_wall=)``)
+    walls = {"at": used[:1].copy(), "thickness": np.array([t])}
+    m.metadata.update({"kind": "shell", "pores": {"centre": seeds, "size": size}, "walls": walls})
     return m
