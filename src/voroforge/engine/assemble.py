@@ -241,6 +241,7 @@ class _Pieces:
         self.cache: dict[int, object] = {}
         self.coords = None
         self.sides = None  # the domain's distinct x and y coordinates, sorted (when needed)
+        self.rings = None  # an index of the domain's rings (:meth:`_near`), when needed
 
     def piece(self, cell: int):
         got = self.cache.get(cell)
@@ -269,10 +270,73 @@ class _Pieces:
             while used[min(np.searchsorted(used, v), len(used) - 1)] == v:
                 v = v + step * max(width, abs(v) * 2.0**-40) / 16
             rect.append(v)
-        got = shapely.clip_by_rect(self.geometry, *rect)
+        got = shapely.clip_by_rect(self._near(rect), *rect)
         if not shapely.is_valid(got):
             got = shapely.intersection(self.geometry, shapely.box(*rect))
         return got
+
+    def _ring_index(self):
+        """An STRtree of the domain's rings (shells, then holes) and each ring's part."""
+        if self.rings is None:
+            polys = shapely.get_parts(self.geometry)
+            holes = [
+                shapely.get_interior_ring(p, range(shapely.get_num_interior_rings(p)))
+                for p in polys
+            ]
+            shells = shapely.get_exterior_ring(polys)
+            every = np.concatenate([shells, *holes])
+            part = np.concatenate(
+                [np.arange(len(polys)), *[np.full(len(h), k) for k, h in enumerate(holes)]]
+            )
+            self.rings = (shapely.STRtree(every), every, part)
+        return self.rings
+
+    def _disjoint(self, geoms, todo):
+        """``disjoint(domain, geoms[k])`` where ``todo[k]`` (False elsewhere), exactly.
+
+        The prepared predicate tests a point of every ring of the domain against each
+        geometry (thousands of holes: quadratic); here a geometry that meets no ring (an
+        indexed exact query) lies wholly inside or wholly outside, which its first vertex
+        tells.
+        """
+        out = np.zeros(len(geoms), dtype=np.bool_)
+        idx = np.flatnonzero(todo)
+        if self.whole or not len(idx):
+            out[idx] = shapely.disjoint(self.prepared, geoms[idx])
+            return out
+        tree = self._ring_index()[0]
+        meets = np.zeros(len(idx), dtype=np.bool_)
+        meets[tree.query(geoms[idx], predicate="intersects")[0]] = True
+        xy, at = shapely.get_coordinates(geoms[idx], return_index=True)
+        first = xy[np.unique(at, return_index=True)[1]]
+        out[idx] = ~meets & ~shapely.intersects_xy(self.prepared, first[:, 0], first[:, 1])
+        return out
+
+    def _near(self, rect):
+        """The domain without the parts and holes whose boxes miss ``rect``: the same clip.
+
+        GEOS's rectangle clip drops a ring that misses the rectangle (a hole whose box
+        misses it cannot hold it) and keeps the others in their order, so the clip of what
+        is left is the clip of the domain, point for point, in time linear in the rings
+        near the rectangle rather than in all the domain's vertices (a domain with
+        thousands of holes spread over it).
+        """
+        tree, every, part = self._ring_index()
+        if len(every) <= 2:
+            return self.geometry
+        hit = np.sort(tree.query(shapely.box(*rect)))
+        if len(hit) == len(every):
+            return self.geometry
+        polys = []
+        for k in np.unique(part[hit]):
+            mine = hit[part[hit] == k]
+            if mine[0] == k:  # (a part whose shell misses the rectangle misses it whole)
+                polys.append(shapely.polygons(every[k], holes=every[mine[1:]]))
+        if not polys:
+            return self.geometry  # (the rectangle misses the domain: the clip is empty)
+        if shapely.get_type_id(self.geometry) == 3:
+            return polys[0]
+        return shapely.multipolygons(polys)
 
     def vertex_near(self, ring, reach):
         """The vertex of the domain nearest to ``ring`` if within ``reach`` of it, else None."""
@@ -291,6 +355,23 @@ class _Pieces:
         best = int(np.argmin(dist))
         return cand[best] if dist[best] <= reach else None
 
+    def in_interior(self, lines, cells):
+        """Whether each of ``lines`` meets the domain's interior (exact predicates).
+
+        Line ``k`` lies in the domain and in the box of cell ``cells[k]``; a piece along
+        the domain's boundary does not meet its interior.
+        """
+        out = np.zeros(len(lines), dtype=np.bool_)
+        if self.whole:
+            return shapely.relate_pattern(self.geometry, lines, "T********")
+        order = np.argsort(cells, kind="stable")
+        cuts = np.flatnonzero(np.diff(cells[order])) + 1
+        for group in np.split(order, cuts) if len(order) else []:
+            out[group] = shapely.relate_pattern(
+                self.piece(int(cells[group[0]])), lines[group], "T********"
+            )
+        return out
+
     def _coords(self):
         if self.coords is None:
             self.coords = shapely.get_coordinates(self.geometry)
@@ -305,7 +386,7 @@ class _Pieces:
         """
         out = np.empty(len(geoms), dtype=object)  # noqa: TID251 - every slot is filled below
         inside = shapely.contains_properly(self.prepared, geoms)
-        outside = shapely.disjoint(self.prepared, geoms)
+        outside = self._disjoint(geoms, ~inside)
         out[inside] = geoms[inside]
         out[outside] = empty
         rest = np.flatnonzero(~(inside | outside))
@@ -646,7 +727,8 @@ def domain_edges(dom: Domain, grid, pieces, coords, ring_offsets, ring_cell, own
     """Unique shared edges ``(m, 2, 2)`` and their cell pairs ``(m, 2)``, clipped to the domain.
 
     Each pair ``(i, j)`` with ``i < j`` is taken from cell ``i``'s ring. Edges not longer than
-    ``EDGE_LENGTH_RTOL`` times the domain's size are point contacts and are left out.
+    ``EDGE_LENGTH_RTOL`` times the domain's size are point contacts and are left out, and so
+    are the pieces on the domain's boundary (an edge along a hole's side or the box's).
     """
     x0, y0, x1, y1 = dom.bounds
     tol = EDGE_LENGTH_RTOL * max(x1 - x0, y1 - y0)
@@ -656,6 +738,13 @@ def domain_edges(dom: Domain, grid, pieces, coords, ring_offsets, ring_cell, own
     coords.setflags(write=False)
     ring_offsets.setflags(write=False)
     seg, pairs = shared_edges(coords, ring_offsets, ring_cell, owner, tol)
+    # an edge on a side of the box (two sites mirrored across it) has its second cell
+    # outside the box, clipped to nothing: no two cells share it
+    xs, ys = seg[:, :, 0], seg[:, :, 1]
+    on_box = (xs == x0).all(axis=1) | (xs == x1).all(axis=1)
+    on_box |= (ys == y0).all(axis=1) | (ys == y1).all(axis=1)
+    if on_box.any():
+        seg, pairs = seg[~on_box], pairs[~on_box]
     if dom.is_rect or len(seg) == 0:
         return seg, pairs
     return _clip_segments(grid, pieces, seg, pairs, tol)
@@ -676,6 +765,11 @@ def _clip_segments(grid, pieces, seg, pairs, tol):
     is_line = (shapely.get_type_id(parts) == 1) & ~shapely.is_empty(parts)
     parts = parts[is_line]
     idx = idx[is_line]
+    # a piece along the domain's boundary (a cell's side on a hole's edge, the other cell
+    # empty or beyond it) separates no two clipped cells: only pieces in the interior stay
+    inner = pieces.in_interior(parts, pairs[hard[idx]].min(axis=1))
+    parts = parts[inner]
+    idx = idx[inner]
     # a straight segment intersected with a region gives straight pieces: keep end points
     piece = np.stack(
         (
