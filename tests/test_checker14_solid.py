@@ -189,3 +189,53 @@ def test_shell_thickness_is_a_wall():
     assert 0.9 < m.volume / tube.area < 1.15
     assert solid.check(m, min_wall=1.5, max_overhang=None).by_kind().get("thin_wall") == 1
     assert "thin_wall" not in solid.check(m, min_wall=0.8, max_overhang=None).by_kind()
+
+
+# --- F8 (schema side): [solid] validation errors name the key and line ----------------------
+
+_DESIGN = """[design]
+name = "t"
+units = "mm"
+
+[solid]
+kind = "foam"
+container = [0, 0, 0, 20, 20, 20]
+cells = 12
+wall = 1.2
+"""
+
+
+def _issues(tmp_path, old, new):
+    from voroforge.design.designfile import DesignError, load
+
+    p = tmp_path / "t.toml"
+    p.write_text(_DESIGN.replace(old, new, 1), encoding="utf-8")
+    with pytest.raises(DesignError) as err:
+        load(p)
+    return [(i.key, i.line, i.message) for i in err.value.issues]
+
+
+@pytest.mark.parametrize(
+    ("old", "new"),
+    [
+        ('kind = "foam"', 'kind = "foma"'),
+        ("container = [0, 0, 0, 20, 20, 20]", "container = [0, 0, 0, 20, 20, 0]"),
+        ('kind = "foam"', 'kind = "shell"'),
+    ],
+)
+def test_a_bad_solid_adds_no_2d_errors(tmp_path, old, new):
+    keys = [k for k, _, _ in _issues(tmp_path, old, new)]
+    assert keys and all(k.startswith("solid") for k in keys), keys
+
+
+def test_a_nan_container_is_not_finite_at_its_line(tmp_path):
+    got = _issues(tmp_path, "20, 20, 20]", "20, 20, nan]")
+    assert any(k.startswith("solid.container") and ln == 7 and "finite" in m for k, ln, m in got)
+    assert not any("max must exceed" in m for _, _, m in got)
+
+
+@pytest.mark.parametrize("key", ["wall", "radius"])
+def test_a_size_pair_without_fields_names_its_key(tmp_path, key):
+    got = _issues(tmp_path, "wall = 1.2", f"{key} = [2.0, 0.5]")
+    assert (f"solid.{key}", 9) in [(k, ln) for k, ln, _ in got], got
+    assert any("[[solid.fields]]" in m for _, _, m in got)

@@ -14,6 +14,7 @@ from pydantic import BaseModel, ConfigDict, Field, model_validator
 __all__ = ["SolidField", "SolidSection", "fill_2d"]
 
 Positive = Annotated[float, Field(gt=0)]
+Finite = Annotated[float, Field(allow_inf_nan=False)]
 NonNeg = Annotated[float, Field(ge=0)]
 Size = Positive | tuple[Positive, Positive]
 
@@ -45,7 +46,7 @@ class SolidSection(BaseModel):
 
     kind: Literal["lattice", "foam", "shell", "extrude"]
     # cells (lattice, foam)
-    container: tuple[float, float, float, float, float, float] | str | None = None
+    container: tuple[Finite, Finite, Finite, Finite, Finite, Finite] | str | None = None
     cells: Annotated[int, Field(gt=0, le=200_000)] = 200
     relax: Annotated[int, Field(ge=0, le=200)] = 0
     seed: int = 0
@@ -89,6 +90,13 @@ class SolidSection(BaseModel):
             lo, hi = self.container[:3], self.container[3:]
             if not all(b > a for a, b in zip(lo, hi, strict=True)):
                 raise ValueError("container box: each max must exceed its min")
+        if not self.fields:  # a (far, near) pair is graded by the fields
+            for key in ("radius", "wall", "web", "subdivide_count"):
+                if isinstance(getattr(self, key), tuple):
+                    raise ValueError(
+                        f"@{key}@ (far, near) sizes need a [[solid.fields]] table to grade "
+                        "them; give one number without fields"
+                    )
         if self.skin > 0 and not isinstance(self.container, str):
             raise ValueError("skin lines a mesh container: give container = 'part.stl'")
         return self
@@ -107,7 +115,7 @@ def fill_2d(data):
         return data
     sol = data.get("solid")
     kind = sol.get("kind") if isinstance(sol, dict) else getattr(sol, "kind", None)
-    if kind in ("lattice", "foam", "shell"):
+    if sol is not None and kind != "extrude":  # a misspelt kind is no 2D design either
         missing = {k: v for k, v in _PLACEHOLDER.items() if k not in data}
         if missing:
             return {**data, **missing}
