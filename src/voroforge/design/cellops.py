@@ -131,16 +131,17 @@ def explode(cells, *, tol: float | None = None) -> np.ndarray:
 
     Ring segments of all cells are collected; vertices closer than ``tol`` are merged into
     one (so rounding-level differences between neighbouring cells do not double an edge),
-    and segments are deduplicated as unordered pairs of merged vertices. A laser cutter
-    then passes over every line once.
+    segments are cut at the vertices lying on them (within ``tol``: T-junctions, such as
+    nested cells' corners on their parent's edge), and the pieces are deduplicated as
+    unordered pairs of merged vertices. A laser cutter then passes over every line once.
 
     Parameters
     ----------
     cells : Diagram or (n,) array of Polygon/MultiPolygon
         The cells.
     tol : float, optional
-        Vertex merge distance. Default: ``config.EDGE_MERGE_RTOL`` (1e-9) of the cells'
-        bounding-box diagonal.
+        Vertex merge distance (and how near a segment a vertex cuts it; 0: no merging, no
+        cuts). Default: ``config.EDGE_MERGE_RTOL`` (1e-9) of the cells' bounding-box diagonal.
 
     Returns
     -------
@@ -173,10 +174,37 @@ def explode(cells, *, tol: float | None = None) -> np.ndarray:
     b = vid[1:][same_ring]
     keep = a != b
     a, b = a[keep], b[keep]
+    if tol > 0:  # tol=0: the rings' own segments, neither merged nor cut
+        a, b = _split_at_vertices(verts, a, b, tol)
     key = np.stack((np.minimum(a, b), np.maximum(a, b)), axis=1)
     _, first = np.unique(key, axis=0, return_index=True)
     first = np.sort(first)
     return np.ascontiguousarray(np.stack((verts[a[first]], verts[b[first]]), axis=1))
+
+
+def _split_at_vertices(verts, a, b, tol):
+    """Segments ``verts[a] -> verts[b]`` cut at every vertex within ``tol`` of their interior.
+
+    A parent cell's edge and its children's pieces of it (T-junctions) become the same
+    pieces, which then deduplicate (checker15 F5: a recursive design drew them twice).
+    """
+    lines = shapely.linestrings(np.stack((verts[a], verts[b]), axis=1))
+    seg, v = shapely.STRtree(shapely.points(verts)).query(lines, "dwithin", tol)
+    d = verts[b] - verts[a]
+    t = np.einsum("ij,ij->i", verts[v] - verts[a[seg]], d[seg]) / np.einsum("ij,ij->i", d, d)[seg]
+    inner = (v != a[seg]) & (v != b[seg]) & (t > 0.0) & (t < 1.0)
+    if not inner.any():
+        return a, b
+    m = len(a)
+    node_seg = np.concatenate((np.arange(m), seg[inner], np.arange(m)))
+    node_t = np.concatenate((np.zeros(m), t[inner], np.ones(m)))
+    node_v = np.concatenate((a, v[inner], b))
+    order = np.lexsort((node_t, node_seg))
+    node_seg, node_v = node_seg[order], node_v[order]
+    piece = node_seg[1:] == node_seg[:-1]
+    a, b = node_v[:-1][piece], node_v[1:][piece]
+    keep = a != b
+    return a[keep], b[keep]
 
 
 def edges_to_lines(edges, *, merge: bool = False) -> shapely.MultiLineString:

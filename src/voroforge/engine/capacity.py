@@ -7,6 +7,7 @@ chooses the frame it runs in and says why a fit that stalls could not do better.
 from __future__ import annotations
 
 import numpy as np
+import shapely
 from scipy.spatial import cKDTree
 
 from ..config import (
@@ -143,7 +144,7 @@ def power_fit(
     if not err <= tol:  # NaN too: areas past float64's range are no fit
         raise RuntimeError(
             f"power_fit did not reach tol={tol:g} in {it} Newton steps (largest relative "
-            f"area error {err:.3g}){_near_pairs_note(pts, dom)}{_far_note(t, dom, tol)}"
+            f"area error {err:.3g}){_near_pairs_note(pts, dom)}{_far_note(t, dom, tol, d)}"
             f"{_worst_note(d, t, n)}"
         )
     return d
@@ -236,21 +237,36 @@ def _worst_note(d, t, n) -> str:
     return f"; farthest from their targets: sites {cells}{tried}"
 
 
-def _far_note(targets, dom, tol) -> str:
+def _far_note(targets, dom, tol, d=None) -> str:
     """A note when the smallest cell is too few ulps of its coordinates wide for ``tol``.
 
-    A cell of side ``s`` whose vertices are rounded to ``u`` (the ulp of the coordinates)
-    has its area known to about ``4 u / s`` relative.
+    Vertices rounded to ``u`` (the ulp of the coordinates) move a cell's area by about
+    ``perimeter * u``: ``4 u / s`` relative for a square of side ``s``, ``2 u / w`` for a
+    strip ``w`` wide. The smallest target's cell in ``d`` gives its own perimeter, area and
+    width (the short side of its minimum rotated rectangle; checker15 F2: a strip 5e-11
+    wide was called 7e-9 wide, from the square root of its area); without that cell, a
+    square of the target's area.
     """
     far = float(np.abs(np.asarray(dom.bounds)).max())
-    side = float(np.sqrt(targets.min()))
-    limit = 4.0 * float(np.spacing(far)) / side
+    ulp = float(np.spacing(far))
+    i = int(np.argmin(targets))
+    side = float(np.sqrt(targets[i]))
+    limit = 4.0 * ulp / side
+    cell = None if d is None else d.cells[i]
+    if cell is not None and not cell.is_empty and cell.area > 0.0:
+        rect = np.asarray(shapely.get_coordinates(shapely.minimum_rotated_rectangle(cell)))
+        sides = np.hypot(*np.diff(rect[:3], axis=0).T) if len(rect) >= 3 else np.zeros(1)
+        side = float(sides.min()) if sides.min() > 0.0 else 2.0 * cell.area / cell.length
+        limit = cell.length * ulp / cell.area
     if limit < 0.1 * tol:
         return ""
+    x0, y0, x1, y1 = dom.bounds
+    moved = far > 2.0 * max(x1 - x0, y1 - y0)  # else the input is already at the origin
     return (
         f"; the smallest cell (about {side:.3g} wide) at coordinates near {far:.3g} is "
-        f"{side / float(np.spacing(far)):.3g} ulps wide, so rounding alone limits its area to "
-        f"about {limit:.2g} relative (move the input near the origin, or raise tol)"
+        f"{side / ulp:.3g} ulps wide, so rounding alone limits its area to "
+        f"about {limit:.2g} relative ("
+        f"{'move the input near the origin, or raise tol' if moved else 'raise tol'})"
     )
 
 
