@@ -239,3 +239,22 @@ def test_a_size_pair_without_fields_names_its_key(tmp_path, key):
     got = _issues(tmp_path, "wall = 1.2", f"{key} = [2.0, 0.5]")
     assert (f"solid.{key}", 9) in [(k, ln) for k, ln, _ in got], got
     assert any("[[solid.fields]]" in m for _, _, m in got)
+
+
+# --- F11: shell seed points are validated ---------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("openings", "match"),
+    [
+        (np.zeros((3, 2)) + np.arange(3)[:, None], r"\(k, 3\)"),
+        (np.ones((4, 2)), r"\(k, 3\)"),
+        (np.array([[0.0, 0, 0], [1, 1, np.nan]]), "finite"),
+        (np.array([[10.0, 0, 0]]), "2 distinct"),
+        (np.array([[10.0, 0, 0]] * 5), "2 distinct"),
+    ],
+)
+def test_shell_seed_points_are_checked(openings, match):
+    tube = trimesh.creation.cylinder(radius=10.0, height=12.0, sections=16)
+    with pytest.raises(ValueError, match=match):
+        solid.shell(tube, thickness=1.0, openings=openings, voxel=0.5)

@@ -83,6 +83,23 @@ def _with_rim(f_web, xyz, bpts, rim_w: float) -> np.ndarray:
     return out
 
 
+def _seed_points(openings) -> np.ndarray:
+    """``openings`` given as points: a finite (k, 3) array of 2 distinct seeds at least.
+
+    A (3, 2) array (a 2D design's seeds) was read as 2 seeds, NaN rows were taken and one
+    seed (or copies of one) gave a plain shell, all without a word.
+    """
+    seeds = np.array(openings, dtype=np.float64)
+    if seeds.ndim != 2 or seeds.shape[1] != 3:
+        raise ValueError(f"openings: seed points as a (k, 3) array, got shape {seeds.shape}")
+    bad = np.flatnonzero(~np.isfinite(seeds).all(axis=1))
+    if len(bad):
+        raise ValueError(f"openings: seed points must be finite (row {int(bad[0])} is not)")
+    if len(np.unique(seeds, axis=0)) < 2:
+        raise ValueError(f"openings: at least 2 distinct seed points, got {len(seeds)} rows")
+    return seeds
+
+
 def shell(
     mesh_or_cells,
     thickness=2.0,
@@ -148,7 +165,7 @@ def shell(
             raise ValueError(f"openings: at least 2 seeds, got {openings!r}")
         seeds = sample_even(surf, k, seed=seed)
     else:
-        seeds = np.array(openings, dtype=np.float64).reshape(-1, 3)
+        seeds = _seed_points(openings)
     wmin = float(np.min(wfun(np.vstack([seeds, verts[:1]]))))
     rim_w = 2.0 * wmin if rim is None else float(rim)
     h = config.SOLID_VOXEL * min(t, wmin) if voxel is None else float(voxel)
