@@ -7,7 +7,13 @@ import itertools
 import numpy as np
 from numba import njit, prange
 
-from ..config import FRAME3D_CAP_EXP, NJIT_PARALLEL, VOLUME_RANGE, VORONOI3D_INSIDE_BLOCK
+from ..config import (
+    FRAME3D_CAP_EXP,
+    NJIT_PARALLEL,
+    OUTSIDE3D_BLOCK,
+    VOLUME_RANGE,
+    VORONOI3D_INSIDE_BLOCK,
+)
 from .build3d import build_cells3d, duplicate_owners, release_freed_memory
 from .containers import (
     Convex,
@@ -27,6 +33,16 @@ __all__ = ["voronoi3d", "Convex", "Diagram3D"]
 #: taken in the working frame and kernels.meshcut3d scales each cell's moments by a power of
 #: two (its centroids overflowed past 2**256); was config.MESH_VOLUME_RANGE (1e-200, 1e200)
 MESH_VOLUME_RANGE = VOLUME_RANGE
+#: a float-cut hull whose walls include two within this sine of parallel (nearly coplanar
+#: facets: corners coplanar only to rounding) has its cells' vertices checked against its
+#: walls (checker14 F9); for the lead to move to config3d.py
+CONVEX_NEAR_PARALLEL_SIN = 1e-3
+#: ... and a vertex further outside a wall than this many ulps of the wall's scale (the
+#: template's largest L1 coordinate plus the wall's offset) sends the cells to the exact
+#: twin, whose cells lie inside to a few ulps. The float cut's cells may lie out by its
+#: own tolerance (``VORONOI3D_CUT_RTOL``: a cube jittered by 1e-11 had cells 2.3e-11 out of
+#: its rows, their volumes 7.6e-12 over the hull's); the wrong vertices were up to 0.94 out
+CONVEX_VERTEX_OUT_ULPS = 64.0
 
 
 def duplicate_owner3d(pts: np.ndarray, w: np.ndarray | None) -> np.ndarray:
@@ -135,8 +151,13 @@ def voronoi3d(points, container=None, *, weights=None, periodic=False, progress=
     else:
         res = _convex_cells(P, W, tw, progress)
         gmap = None
-        if tw.float_cut and (res.unmatched or ((res.status != 0) & (res.status != 1)).any()):
-            # a bisector through a hull corner of 4+ walls (containers.exact_twin): the
+        if tw.float_cut and (
+            res.unmatched
+            or ((res.status != 0) & (res.status != 1)).any()
+            or _leaves_walls(res.vertices, tw)
+        ):
+            # a bisector through a hull corner of 4+ walls (containers.exact_twin), or
+            # nearly coplanar walls that put a vertex outside the hull (checker14 F9): the
             # cells again from the exact polytope of the same walls
             res = _convex_cells(P, W, container._twin().scaled(k), progress)
     d = _assemble(pts, w, t, k, res, uniq, dup, gmap, periodic, mesh)
@@ -154,6 +175,30 @@ def _convex_cells(P, W, tw, progress):
     if takes_hull_path(tw):  # a big Convex: box cells, then those at a wall (engine.hull3d)
         return hull_cells(P, W, tw, progress=progress)
     return build_cells3d(P, W, tw, cells=np.arange(len(P)), progress=progress, outside=True)
+
+
+def _leaves_walls(V: np.ndarray, tw: Template) -> bool:
+    """Whether a vertex of ``V`` (working frame) lies outside a wall of the float-cut ``tw``.
+
+    Checked only where two of its walls are nearly parallel (:data:`CONVEX_NEAR_PARALLEL_SIN`):
+    a hull whose facets are coplanar only to rounding (the corners of a cell far out, points
+    jittered by 1e-11) gave cells whose vertices, placed by those walls, lay up to 0.15 of
+    the solid's extent outside it, non-convex, their volumes still summing right.
+    """
+    from scipy.spatial import cKDTree
+
+    WP = tw.WP
+    n = np.ascontiguousarray(WP[:, :3])
+    if not len(V) or not len(cKDTree(n).query_pairs(CONVEX_NEAR_PARALLEL_SIN)):
+        return False
+    scale = float(np.abs(tw.TV).sum(axis=1).max())  # as kernels.template3d.cut_all
+    tol = CONVEX_VERTEX_OUT_ULPS * np.finfo(np.float64).eps * (scale + np.abs(WP[:, 3]))
+    o = WP[0, 4:7] if WP.shape[1] > 4 else np.zeros(3)
+    for a in range(0, len(V), OUTSIDE3D_BLOCK):
+        s = (V[a : a + OUTSIDE3D_BLOCK] - o) @ n.T - WP[:, 3]
+        if (s > tol).any():
+            return True
+    return False
 
 
 def _walls_frame(pts: np.ndarray, t: Template):
