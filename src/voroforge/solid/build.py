@@ -237,4 +237,10 @@ def check_solid(design, base=None, stage=None):
 
     s = design.solid
     m = make_solid(design, base, stage)
-    return check(m, min_strut=s.min_strut, min_pore=s.min_pore, max_overhang=s.max_overhang)
+    return check(
+        m,
+        min_strut=s.min_strut,
+        min_pore=s.min_pore,
+        min_wall=s.min_wall,
+        max_overhang=s.max_overhang,
+    )

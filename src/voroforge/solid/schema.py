@@ -75,6 +75,9 @@ class SolidSection(BaseModel):
     view: tuple[float, float] = (35.0, 25.0)
     min_strut: Positive | None = None
     min_pore: Positive | None = None
+    #: thinnest printable wall: a foam's walls and skin, a shell's thickness, an extrude's
+    #: slab (``check(min_wall=)``: ``thin_wall`` entries)
+    min_wall: Positive | None = None
     max_overhang: Annotated[float, Field(gt=0, lt=90)] | None = None
 
     @model_validator(mode="after")
