@@ -107,3 +107,12 @@ def test_values_inside_the_bounds_load(tmp_path):
     path = tmp_path / "d.toml"
     path.write_text(BASE.replace(POLY, "points = [[0, 0], [1e99, 0], [1e99, 1e99]]"))
     assert load(path)[0].boundary.points[1] == (1e99, 0.0)
+
+
+def test_a_nan_in_the_solid_box_is_one_error_at_its_line(tmp_path):
+    # the tuple branch's "finite number", not also the str branch's "valid string"
+    text = '[design]\nname = "t"\n\n[solid]\nkind = "foam"\n'
+    text += "container = [0, 0, 0, 20, 20, nan]\n"
+    issues = _issues(tmp_path, text)
+    assert [(k, ln) for k, ln, _ in issues] == [("solid.container.5", 6)]
+    assert "finite" in issues[0][2]

@@ -258,7 +258,21 @@ def _issues(exc: ValidationError, lines: dict[tuple, int]) -> list[Issue]:
         if any(it.key == key for it in out):
             continue  # the other branches of a union say the same thing again
         out.append(Issue(key, _line_of(lines, loc), message))
-    return out
+    # a union's plain-type branch ("solid.container.str: input should be a valid string")
+    # beside its other branch's error at the same key says nothing new
+    keys = [it.key for it in out]
+    return [
+        it
+        for it in out
+        if not (
+            it.key.rsplit(".", 1)[-1] in _TYPE_BRANCHES
+            and any(k != it.key and k.startswith(it.key.rsplit(".", 1)[0] + ".") for k in keys)
+        )
+    ]
+
+
+#: The branch names pydantic gives a union's plain types.
+_TYPE_BRANCHES = {"str", "int", "float", "bool", "none", "list", "dict", "bytes"}
 
 
 def _is_selector(loc: tuple) -> bool:
