@@ -27,6 +27,7 @@ from numba import njit
 
 from ..config import NJIT
 from .clip import cut_ring, plane_values
+from .expansion import two_diff, two_product, two_sum
 from .grid3d import bucket3d, shell_buckets, shell_gap
 from .moments import ring_sums
 
@@ -320,6 +321,33 @@ def _relevant(v, ia, ib, ic, vnear, sites, cand, m):
     return out
 
 
+@njit(inline="always", **NJIT)
+def _dd_add(ah, al, bh, bl):
+    """Double-double ``(ah + al) + (bh + bl)`` (relative error ~ eps^2)."""
+    s, e = two_sum(ah, bh)
+    e += al + bl
+    h = s + e
+    return h, e - (h - s)
+
+
+@njit(inline="always", **NJIT)
+def _offset(sj, si, a):
+    """One coordinate's term ``(sj - si) * ((si + sj) / 2 - a)`` in double-double.
+
+    Summed over the coordinates: the bisector's offset from triangle corner ``a``.
+    The sites' differences and sums are exact pairs, so a site far from a small surface
+    (``|s| = D``) places the bisector to ~ ``D eps^2``, not ``D eps`` (checker14 F6); the
+    result is the exact negative when ``si`` and ``sj`` swap, so two sites' pieces tile.
+    """
+    gh, gl = two_diff(sj, si)
+    mh, ml = two_sum(si, sj)
+    wh, wl = _dd_add(0.5 * mh, 0.5 * ml, -a, 0.0)
+    p, e = two_product(gh, wh)
+    e += gh * wl + gl * wh
+    h = p + e
+    return h, e - (h - p)
+
+
 @njit(**NJIT)
 def _cut_by_others(q, cand, m_c, sites, frame, rx, ry, ro, sx, sy, so, ss):
     """The triangle cut to candidate ``q``'s side of every other candidate's bisector.
@@ -338,11 +366,12 @@ def _cut_by_others(q, cand, m_c, sites, frame, rx, ry, ro, sx, sy, so, ss):
         gx = sites[j, 0] - six
         gy = sites[j, 1] - siy
         gz = sites[j, 2] - siz
-        hh = -(
-            gx * (ax - 0.5 * (sites[j, 0] + six))
-            + gy * (ay - 0.5 * (sites[j, 1] + siy))
-            + gz * (az - 0.5 * (sites[j, 2] + siz))
-        )
+        xh, xl = _offset(sites[j, 0], six, ax)
+        yh, yl = _offset(sites[j, 1], siy, ay)
+        zh, zl = _offset(sites[j, 2], siz, az)
+        xh, xl = _dd_add(xh, xl, yh, yl)
+        xh, xl = _dd_add(xh, xl, zh, zl)
+        hh = xh + xl
         px = gx * e1x + gy * e1y + gz * e1z
         py = gx * e2x + gy * e2y + gz * e2z
         if plane_values(rx, ry, zero, m, px, py, 0.0, 0.0, hh, ss) <= 0.0:
@@ -468,21 +497,25 @@ def rvd(v, f, tf, sites, start, sidx, g, hint, mode, knn):
                 m = _cut_by_others(q, cand, m_c, sites, frame, rx, ry, ro, sx, sy, so, ss)
                 if m < 3:
                     continue
-                # area, centroid, ∫|x - s|^2 in the plane's frame (s projected, plus height^2)
-                dsx, dsy, dsz = sites[i, 0] - ax, sites[i, 1] - ay, sites[i, 2] - az
-                ox = dsx * r[0] + dsy * r[1] + dsz * r[2]
-                oy = dsx * r[3] + dsy * r[4] + dsz * r[5]
-                hz = dsx * r[6] + dsy * r[7] + dsz * r[8]
-                a2, mx, my, m2 = ring_sums(rx, ry, 0, m, ox, oy, False)
+                # area, centroid, ∫|x - s|^2 in the plane's frame. The shoelace sums run
+                # about the piece's first vertex (relative to the site's projection, a far
+                # site's distance squared swamped the area: checker14 F6); the energy about
+                # the site from the one about the centroid (parallel axis theorem).
+                x0, y0 = rx[0], ry[0]
+                a2, mx, my, m2 = ring_sums(rx, ry, 0, m, x0, y0, False)
                 area = 0.5 * a2
                 if area <= 0.0:
                     continue
-                cgx = ox + mx / 6.0 / area
-                cgy = oy + my / 6.0 / area
+                lx = mx / 6.0 / area
+                ly = my / 6.0 / area
+                cgx = x0 + lx
+                cgy = y0 + ly
                 cx = ax + cgx * r[0] + cgy * r[3]
                 cy = ay + cgx * r[1] + cgy * r[4]
                 cz = az + cgx * r[2] + cgy * r[5]
-                en = m2 / 12.0 + hz * hz * area
+                jg = max(m2 / 12.0 - area * (lx * lx + ly * ly), 0.0)  # about the centroid
+                dg = (cx - sites[i, 0]) ** 2 + (cy - sites[i, 1]) ** 2 + (cz - sites[i, 2]) ** 2
+                en = jg + area * dg
             mass[i] += area
             first[i, 0] += area * cx
             first[i, 1] += area * cy

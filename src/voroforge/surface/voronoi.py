@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from fractions import Fraction
 
 import numpy as np
 
@@ -391,7 +392,9 @@ class SurfaceVoronoi:
         scale and distance from the origin. Distances are measured in a frame centred on the
         surface, and a point counts as its owner's when it is no farther from it than from
         the nearest site by ``1e-12`` of the surface's size plus ``config.SURFACE_SAMPLE_ULPS`` unit
-        roundoffs of its largest coordinate (where the pieces' vertices were rounded).
+        roundoffs of its largest coordinate (where the pieces' vertices were rounded); when
+        the nearest distances tie to within their own rounding (sites far from the surface),
+        the point's exact squared distances decide.
         """
         from scipy.spatial import cKDTree
 
@@ -408,12 +411,30 @@ class SurfaceVoronoi:
             w = rng.random(len(ring)) ** 4
             pts[q] = (w / w.sum()) @ ring
             d_owner[q] = np.linalg.norm(pts[q] - sites[self.piece_cell[p]])
-        d, _ = cKDTree(sites).query(pts)
-        slack = (
-            1e-12 * S.scale
-            + config.SURFACE_SAMPLE_ULPS * np.finfo(np.float64).eps * np.abs(V).max()
-        )
-        return float((d_owner <= d + slack).mean())
+        tree = cKDTree(sites)
+        dk, _ = tree.query(pts, k=min(2, len(sites)))
+        dk = dk.reshape(count, -1)
+        d = dk[:, 0]
+        d2 = dk[:, -1] if dk.shape[1] > 1 else np.full(count, np.inf)
+        eps = np.finfo(np.float64).eps
+        slack = 1e-12 * S.scale + config.SURFACE_SAMPLE_ULPS * eps * np.abs(V).max()
+        # distances round to ulps of their length (the KD tree and numpy disagree by an ulp
+        # of ``d``; checker14 F6): the owner within that of the nearest distance is the
+        # nearest site when no other is as near, else exact squares decide
+        tol = slack + 4.0 * eps * (d2 + d_owner)
+        ok = np.abs(d_owner - d) <= tol
+        for q in np.flatnonzero(ok & (d2 - d <= 2.0 * tol)):
+            x = [Fraction(float(a)) + Fraction(float(c)) for a, c in zip(pts[q], centre)]  # noqa: B905
+            do2 = _dist2(x, self.sites[self.piece_cell[k[q]]])
+            rhs = Fraction(slack * 2.0 * (d[q] + tol[q]) * (1.0 + 1e-9))
+            near = tree.query_ball_point(pts[q], d[q] + 2.0 * tol[q])
+            ok[q] = all(do2 - _dist2(x, self.sites[j]) <= rhs for j in near)
+        return float(ok.mean())
+
+
+def _dist2(x, s) -> Fraction:
+    """Exact squared distance from rational ``x`` to float point ``s``."""
+    return sum((a - Fraction(float(b))) ** 2 for a, b in zip(x, s))  # noqa: B905
 
 
 def _result(S: Surface, sites: np.ndarray, history: list, store: bool = True) -> SurfaceVoronoi:
