@@ -77,7 +77,7 @@ RELABEL_RTOL = 1e-9
 RELABEL_ULPS = 16.0
 #: A Voronoi vertex within 4 times its class's rounding bound plus this many ulps of its
 #: larger coordinate of a box side is put on the side, in every cell at it, unless a site of
-#: its triangles is within that reach of the side (kernels/cellcut.side_reach)
+#: its triangles is within that reach of the side (kernels/cellsides.side_reach)
 BOX_SIDE_REACH_ULPS = 1.0
 #: A stalled fold's class with more triangles than this keeps its name (kernels/refit: each
 #: candidate is scored on every site's ring; the largest class on issue 15's circles had 185)
@@ -244,6 +244,9 @@ POWER_NEWTON_SHIFT = 1e-12
 POWER_LABEL_RTOL = 1e-3
 #: lloyd(areas=): relative area error each iteration's weight refit goes to
 LLOYD_REFIT_RTOL = 1e-9
+#: engine.integrate: a cell part's GEOS triangulation whose area differs from the part's by
+#: more than this (relative) is not trusted and its signed fan is used (checker15 F6)
+INTEGRATE_COVER_RTOL = 1e-9
 #: lloyd(method="lbfgs"): Armijo sufficient-decrease constant of the line search
 LBFGS_ARMIJO = 1e-4
 #: lloyd(method="lbfgs"): curvature s.y below this (of |s| |y|) drops the pair from memory
@@ -449,6 +452,10 @@ SURFACE_STRAIGHT_DEG = 10.0
 from .config3d import *  # noqa: E402, F403
 
 # --- solid (printable lattices, foams, shells) ---------------------------------------------
+
+#: solid.foam: the bubbles' inscribed balls are found as one LP of this many cells'
+#: independent blocks at a time (one solver call, not one a cell)
+FOAM_LP_CELLS = 256
 
 #: Strut graph: nodes closer than this fraction of the bounding-box diagonal are one node
 SOLID_MERGE_TOL = 1e-9

@@ -29,6 +29,8 @@ __all__ = [
     "REACH3D_ROUND_TRIES",
     "REACH3D_HEAVY_GAP",
     "REACH3D_HEAVY_MOST",
+    "CONVEX_NEAR_PARALLEL_SIN",
+    "CONVEX_VERTEX_OUT_ULPS",
     "OUTSIDE3D_RTOL",
     "OUTSIDE3D_BLOCK",
     "CONVEX_EXACT_ROWS",
@@ -146,3 +148,13 @@ LLOYD3D_INTO_MESH_PUSH = tuple(2.0**-k for k in range(50, 29, -4))
 #: then (a sharp spike seen from the side) it steps back towards the site's previous,
 #: inside, place by fractions ``2**-k`` of the way, ``k`` from 48 to 0 by 4
 LLOYD3D_INTO_MESH_FRACTIONS = tuple(2.0**-k for k in range(48, -1, -4))
+#: a float-cut hull whose walls include two within this sine of parallel (nearly coplanar
+#: facets: corners coplanar only to rounding) has its cells' vertices checked against its
+#: walls (engine.voronoi3d; checker14 F9)
+CONVEX_NEAR_PARALLEL_SIN = 1e-3
+#: ... and a vertex further outside a wall than this many ulps of the wall's scale (the
+#: template's largest L1 coordinate plus the wall's offset) sends the cells to the exact
+#: twin, whose cells lie inside to a few ulps. The float cut's cells may lie out by its
+#: own tolerance (``VORONOI3D_CUT_RTOL``: a cube jittered by 1e-11 had cells 2.3e-11 out of
+#: its rows, their volumes 7.6e-12 over the hull's); the wrong vertices were up to 0.94 out
+CONVEX_VERTEX_OUT_ULPS = 64.0

@@ -25,11 +25,8 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
+from ..config import INTEGRATE_COVER_RTOL
 from ..kernels.moments import raster_moments, uniform_moments
-
-#: relative area mismatch past which a part's GEOS triangulation is not trusted (its signed
-#: fan is used instead); CDT only reuses the part's vertices, so the sums agree to rounding.
-_COVER_TOL = 1e-9
 
 _S15 = np.sqrt(15.0)
 _A1 = (6.0 - _S15) / 21.0
@@ -249,7 +246,7 @@ def _triangulate(coords, ring, poly, parts):
         owner, np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]) / 2, minlength=len(parts)
     )
     want = shapely.area(polys)
-    ok = np.abs(got - want) <= _COVER_TOL * want
+    ok = np.abs(got - want) <= INTEGRATE_COVER_RTOL * want
     sel = ok[owner]
     return tri[sel], owner[sel], ok
 

@@ -8,6 +8,8 @@ import numpy as np
 from numba import njit, prange
 
 from ..config import (
+    CONVEX_NEAR_PARALLEL_SIN,
+    CONVEX_VERTEX_OUT_ULPS,
     FRAME3D_CAP_EXP,
     NJIT_PARALLEL,
     OUTSIDE3D_BLOCK,
@@ -33,16 +35,6 @@ __all__ = ["voronoi3d", "Convex", "Diagram3D"]
 #: taken in the working frame and kernels.meshcut3d scales each cell's moments by a power of
 #: two (its centroids overflowed past 2**256); was config.MESH_VOLUME_RANGE (1e-200, 1e200)
 MESH_VOLUME_RANGE = VOLUME_RANGE
-#: a float-cut hull whose walls include two within this sine of parallel (nearly coplanar
-#: facets: corners coplanar only to rounding) has its cells' vertices checked against its
-#: walls (checker14 F9); for the lead to move to config3d.py
-CONVEX_NEAR_PARALLEL_SIN = 1e-3
-#: ... and a vertex further outside a wall than this many ulps of the wall's scale (the
-#: template's largest L1 coordinate plus the wall's offset) sends the cells to the exact
-#: twin, whose cells lie inside to a few ulps. The float cut's cells may lie out by its
-#: own tolerance (``VORONOI3D_CUT_RTOL``: a cube jittered by 1e-11 had cells 2.3e-11 out of
-#: its rows, their volumes 7.6e-12 over the hull's); the wrong vertices were up to 0.94 out
-CONVEX_VERTEX_OUT_ULPS = 64.0
 
 
 def duplicate_owner3d(pts: np.ndarray, w: np.ndarray | None) -> np.ndarray:

@@ -7,6 +7,7 @@ import warnings
 import numpy as np
 from scipy.spatial import HalfspaceIntersection, QhullError
 
+from ..config import FOAM_LP_CELLS
 from .fields import as_size
 from .graph import cell_meshes
 from .hulls import convex_mesh
@@ -23,11 +24,6 @@ def _planes(cell) -> tuple[np.ndarray, np.ndarray]:
     first = np.sort(first)
     cen = cell.vertices[cell.faces[first]].mean(axis=1)
     return np.column_stack([n[first], c[first]]), cen
-
-
-# the inscribed balls' LP takes this many cells at a time (independent blocks of one LP:
-# one solver call instead of one a cell)
-_LP_CELLS = 256
 
 
 def _chebyshev(a: np.ndarray, c: np.ndarray):
@@ -61,8 +57,8 @@ def _inscribed(systems):
 
     n = len(systems)
     centres, radii = np.zeros((n, 3)), np.full(n, -np.inf)
-    for lo in range(0, n, _LP_CELLS):
-        part = systems[lo : lo + _LP_CELLS]
+    for lo in range(0, n, FOAM_LP_CELLS):
+        part = systems[lo : lo + FOAM_LP_CELLS]
         rows, cols, vals, rhs = [], [], [], []
         r0 = 0
         for j, (a, c, x0, sc) in enumerate(part):
