@@ -74,3 +74,34 @@ def test_sample_check_sees_wrong_owner():
     assert vd.sample_check(500) == 1.0
     vd.piece_cell[:] = vd.piece_cell[::-1]
     assert vd.sample_check(500) < 1.0
+
+
+@pytest.mark.parametrize("scale", [1.0, 1e-300, 1e-200, 1e-110, 1e110, 1e160, 1e250, 1e300])
+def test_fortune_trace_scale_free(scale):
+    """checker14 F7: the tracer's edges equal vf.voronoi's at every scale."""
+    import voroforge as vf
+    from voroforge.explain.fortune import trace
+
+    pts = np.random.default_rng(0).random((30, 2)) * scale
+    t = trace(pts)
+    ours = {tuple(p) for p in t.edges().pairs.tolist()}
+    d = vf.voronoi(pts, t.bounds).edges
+    P = np.sort(np.asarray(d.pairs), 1)
+    ref = {tuple(p) for p in P[P[:, 1] >= 0].tolist()}
+    assert ours == ref
+    # states scale back exactly: the sweep positions and circle events follow the sites
+    ys = [s.y for s in t.states if s.kind == "site"]
+    assert sorted(ys, reverse=True) == ys
+    assert set(ys) <= set(pts[:, 1].tolist())
+    for s in t.states:
+        for e in s.pending:
+            r = [np.hypot(*(np.asarray(e.centre) - pts[i])) for i in e.sites]
+            assert max(r) - min(r) <= 1e-9 * max(r)
+            assert e.y == pytest.approx(e.centre[1] - e.radius, rel=1e-9, abs=1e-9 * scale)
+
+
+def test_fortune_trace_refuses_unsweepable_spread():
+    from voroforge.explain.fortune import trace
+
+    with pytest.raises(ValueError, match="span more than"):
+        trace([[1e300, 0.0], [5e-324, 1.0], [0.0, -1e300]])

@@ -50,6 +50,9 @@ __all__ = ["BeachState", "CircleEvent", "FortuneTrace", "breakpoint_x", "parabol
 
 #: Largest number of sites the tracer accepts: it is quadratic, and meant for pictures.
 MAX_SITES = 2000
+#: Sites whose largest coordinate is past ``2**_SCALE_LIMIT`` (or below its inverse) are
+#: swept scaled by a power of two (checker14 F7; the lead may move this to config.py).
+_SCALE_LIMIT = 64
 
 
 def parabola_y(site: tuple[float, float], x, sweep: float):
@@ -341,7 +344,8 @@ def trace(points, bounds=None) -> FortuneTrace:
     Raises
     ------
     ValueError
-        Malformed points, no points, too many points or bad bounds.
+        Malformed points, no points, too many points, bad bounds, or nonzero coordinates
+        spanning more than ~1e300 (sites far from 1 are swept scaled by a power of two).
 
     Examples
     --------
@@ -370,7 +374,57 @@ def trace(points, bounds=None) -> FortuneTrace:
             raise ValueError(f"bounds must satisfy xmin < xmax and ymin < ymax; got {box}")
     sites = pts[unique]
     sites.setflags(write=False)
-    return _Sweep(sites, box).run(unique)
+    k = _scale_exponent(sites)
+    if k == 0:
+        return _Sweep(sites, box).run(unique)
+    # far from 1 the sweep's squares leave the floats (wrong edges past ~1e105 and below
+    # ~1e-105, OverflowError past 1e154: checker14 F7); the trace is scale-free, so sweep
+    # the sites scaled by 2**k and scale every recorded coordinate back exactly
+    scaled = np.ldexp(sites, k)
+    if not np.array_equal(np.ldexp(scaled, -k), sites):
+        raise ValueError(
+            "the teaching tracer cannot sweep sites whose nonzero coordinates span more than "
+            "~1e300 in magnitude (scaled for the sweep, the smallest would lose bits)"
+        )
+    scaled.setflags(write=False)
+    t = _Sweep(scaled, tuple(math.ldexp(v, k) for v in box)).run(unique)
+    return _unscale(t, sites, box, -k)
+
+
+def _scale_exponent(sites) -> int:
+    """The power of two that brings the largest coordinate near 1 (0: already in range).
+
+    Coordinates up to ``2**_SCALE_LIMIT`` (and down to its inverse) are swept as given.
+    """
+    m = float(np.abs(sites).max())
+    if m == 0.0 or 2.0**-_SCALE_LIMIT <= m <= 2.0**_SCALE_LIMIT:
+        return 0
+    return -math.frexp(m)[1]
+
+
+def _unscale(t: FortuneTrace, sites, box, k: int) -> FortuneTrace:
+    """Trace ``t`` with every coordinate multiplied by ``2**k``."""
+
+    def pt(p):
+        return None if p is None else (math.ldexp(p[0], k), math.ldexp(p[1], k))
+
+    def ev(e):
+        return CircleEvent(e.sites, pt(e.centre), math.ldexp(e.radius, k), math.ldexp(e.y, k))
+
+    states = [
+        BeachState(
+            math.ldexp(st.y, k),
+            st.kind,
+            st.arcs,
+            tuple(pt(p) for p in st.starts),
+            tuple(ev(e) for e in st.pending),
+            st.swept,
+            st.finished,
+        )
+        for st in t.states
+    ]
+    segments = [(i, j, pt(a), pt(b)) for i, j, a, b in t.segments]
+    return FortuneTrace(sites, t.index, t.order, segments, states, box)
 
 
 class _Sweep:
