@@ -105,3 +105,18 @@ def test_fortune_trace_refuses_unsweepable_spread():
 
     with pytest.raises(ValueError, match="span more than"):
         trace([[1e300, 0.0], [5e-324, 1.0], [0.0, -1e300]])
+
+
+def test_fortune_trace_cocircular_many():
+    """checker14 F12: 1200 sites on a circle (was cubic: 800 took 24 s). Each site's cell
+    is a wedge sharing rays with its two neighbours on the circle."""
+    from voroforge.explain.fortune import trace
+
+    n = 1200
+    th = 2 * np.pi * np.arange(n) / n
+    t = trace(np.column_stack([np.cos(th), np.sin(th)]))
+    pairs = {tuple(p) for p in t.edges().pairs.tolist()}
+    assert pairs == {tuple(sorted((i, (i + 1) % n))) for i in range(n)}
+    for s in t.states[:: n // 7]:
+        for e in s.pending:  # a pending event's middle arc is on the beach line
+            assert e.sites[1] in s.arcs

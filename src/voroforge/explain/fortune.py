@@ -440,6 +440,7 @@ class _Sweep:
         self.states: list[BeachState] = []
         self.queue: list = []
         self.counter = 0
+        self.live: dict = {}  # id of each live circle event: (its queue key, the event)
         self.scale = max(1.0, *(abs(v) for xy in self.p for v in xy))
 
     # -- bookkeeping ----------------------------------------------------------------------
@@ -450,11 +451,9 @@ class _Sweep:
         self.counter += 1
 
     def _record(self, y, kind, swept):
-        pending = tuple(
-            entry[4]
-            for entry in sorted(self.queue)
-            if entry[2] == 1 and entry[4] is not None and self._live(entry[4])
-        )
+        # the live circle events in queue order (a dict of them, not a scan of the queue
+        # and the beach line per event: that was cubic on cocircular sites, checker14 F12)
+        pending = tuple(e for _, e in sorted(self.live.values(), key=lambda v: v[0]))
         self.states.append(
             BeachState(
                 y=y,
@@ -468,7 +467,15 @@ class _Sweep:
         )
 
     def _live(self, event) -> bool:
-        return any(a.event is event for a in self.arcs)
+        return id(event) in self.live
+
+    def _set_event(self, arc, event, key=None):
+        """Make ``event`` (queued under ``key``) arc ``arc``'s live circle event, or none."""
+        if arc.event is not None:
+            self.live.pop(id(arc.event), None)
+        arc.event = event
+        if event is not None:
+            self.live[id(event)] = (key, event)
 
     def _finish(self, k, point):
         """End the edge at breakpoint ``k`` (between arcs k and k + 1) at ``point``."""
@@ -478,7 +485,7 @@ class _Sweep:
     def _check(self, k, sweep):
         """(Re)schedule the circle event of arc ``k`` from its current neighbours."""
         arc = self.arcs[k]
-        arc.event = None
+        self._set_event(arc, None)
         if k == 0 or k == len(self.arcs) - 1:
             return
         a, b, c = self.arcs[k - 1].site, arc.site, self.arcs[k + 1].site
@@ -488,7 +495,7 @@ class _Sweep:
         # A clockwise triple of consecutive arcs always converges, and while arc b has
         # positive length its event lies ahead: a y above the sweep is only rounding.
         event = CircleEvent((a, b, c), centre, radius, min(y, sweep))
-        arc.event = event
+        self._set_event(arc, event, (-event.y, centre[0], 1, self.counter))
         self._push(event.y, centre[0], 1, event)
 
     # -- events ---------------------------------------------------------------------------
@@ -549,7 +556,7 @@ class _Sweep:
         k = self._locate(x, y)
         split = self.arcs[k]
         if split.event is not None:
-            split.event = None  # its neighbourhood changes: a false alarm now
+            self._set_event(split, None)  # its neighbourhood changes: a false alarm now
         start = (x, float(parabola_y(self.p[split.site], x, y)))
         # arcs: ..., split, new, copy of split, ...
         self.arcs[k + 1 : k + 1] = [_Arc(s), _Arc(split.site)]
@@ -562,6 +569,7 @@ class _Sweep:
         point = event.centre
         self._finish(k - 1, point)
         self._finish(k, point)
+        self._set_event(self.arcs[k], None)
         del self.arcs[k]
         del self.starts[k - 1 : k + 1]
         self.starts.insert(k - 1, point)
