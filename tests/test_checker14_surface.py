@@ -120,3 +120,9 @@ def test_fortune_trace_cocircular_many():
     for s in t.states[:: n // 7]:
         for e in s.pending:  # a pending event's middle arc is on the beach line
             assert e.sites[1] in s.arcs
+
+
+def test_too_far_sites_refused():
+    T = surface.torus(1.0, 0.4, resolution=(24, 10))
+    with pytest.raises(ValueError, match="times the surface's size"):
+        surface.voronoi(T, np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]) * 1e13)
