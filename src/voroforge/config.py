@@ -411,7 +411,17 @@ EXPLAIN_EDGE_RTOL = 1e-9
 #: compared exactly, so near-degenerate input cannot put a site under the wrong arc.
 EXPLAIN_HEIGHT_RTOL = 1e-9
 
+#: Fortune tracer: sites whose largest coordinate is past ``2**EXPLAIN_SCALE_EXP`` (or below
+#: its inverse) are swept scaled by a power of two, every recorded coordinate scaled back
+#: exactly (wrong edges past ~1e105 and an OverflowError from 1e154 before)
+EXPLAIN_SCALE_EXP = 64
+
 # --- surface (Voronoi on curved surfaces, panels) --------------------------------------------
+
+#: surface.voronoi: sites farther than this many times the surface's size from its box centre
+#: are refused: the cuts are exact to ~1e-16 there, but each mesh vertex's nearest site comes
+#: from squared distances, which tie past ~1e13 (D = 1e16: cells 94% off, silently)
+SURFACE_FAR_SITES = 1e12
 
 #: Restricted Voronoi: at most this many grid buckets per site (the bucket side grows to fit;
 #: sites on a surface leave most buckets of the box empty).

@@ -41,7 +41,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from ..config import EXPLAIN_EDGE_RTOL, EXPLAIN_HEIGHT_RTOL
+from ..config import EXPLAIN_EDGE_RTOL, EXPLAIN_HEIGHT_RTOL, EXPLAIN_SCALE_EXP
 from ..engine.diagram import Edges
 from ..engine.domain import padded_bounds
 from ..engine.inputs import as_points, duplicate_map
@@ -50,9 +50,6 @@ __all__ = ["BeachState", "CircleEvent", "FortuneTrace", "breakpoint_x", "parabol
 
 #: Largest number of sites the tracer accepts: it is quadratic, and meant for pictures.
 MAX_SITES = 2000
-#: Sites whose largest coordinate is past ``2**_SCALE_LIMIT`` (or below its inverse) are
-#: swept scaled by a power of two (checker14 F7; the lead may move this to config.py).
-_SCALE_LIMIT = 64
 
 
 def parabola_y(site: tuple[float, float], x, sweep: float):
@@ -394,10 +391,10 @@ def trace(points, bounds=None) -> FortuneTrace:
 def _scale_exponent(sites) -> int:
     """The power of two that brings the largest coordinate near 1 (0: already in range).
 
-    Coordinates up to ``2**_SCALE_LIMIT`` (and down to its inverse) are swept as given.
+    Coordinates up to ``2**EXPLAIN_SCALE_EXP`` (and down to its inverse) are swept as given.
     """
     m = float(np.abs(sites).max())
-    if m == 0.0 or 2.0**-_SCALE_LIMIT <= m <= 2.0**_SCALE_LIMIT:
+    if m == 0.0 or 2.0**-EXPLAIN_SCALE_EXP <= m <= 2.0**EXPLAIN_SCALE_EXP:
         return 0
     return -math.frexp(m)[1]
 

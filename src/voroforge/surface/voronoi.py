@@ -27,11 +27,6 @@ import numpy as np
 from .. import config
 from .shapes import Surface, as_points3, check_surface_range
 
-#: Sites farther than this many times the surface's size from its box centre are refused
-#: (checker14 F6; the lead may move it): the cuts are exact to ~1e-16 at 1e12, but each
-#: mesh vertex's nearest site comes from squared distances, which tie past ~1e13
-_FAR_LIMIT = 1e12
-
 __all__ = ["SurfaceVoronoi", "voronoi"]
 
 
@@ -605,11 +600,11 @@ def voronoi(
             raise ValueError("voronoi needs at least one site")
         V = np.asarray(S.vertices, dtype=np.float64)
         far = float(np.abs(sites - 0.5 * (V.min(axis=0) + V.max(axis=0))).max()) / S.scale
-        if far > _FAR_LIMIT:
+        if far > config.SURFACE_FAR_SITES:
             raise ValueError(
                 f"a site lies {far:.3g} times the surface's size from it; the cells are "
-                f"computed for sites within {_FAR_LIMIT:g} times (squared distances to farther "
-                "sites no longer tell which is nearest)"
+                f"computed for sites within {config.SURFACE_FAR_SITES:g} times (squared "
+                "distances to farther sites no longer tell which is nearest)"
             )
         if len(np.unique(sites, axis=0)) < len(sites):
             raise ValueError("sites contain exact duplicates (their cells would coincide)")
