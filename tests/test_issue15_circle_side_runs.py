@@ -26,41 +26,13 @@ import shapely
 
 import voroforge as vf
 
+# the circle, its exact local frame and the past-a-bisector measure of the side tests
+from test_issue15_circle_sides import ULP, _circle, _local, _past
+
 ALGS = ["delaunay", "fortune", "halfplane"]
-CENTRE = (5e5, 4e6)
-R = 1e-7
-#: the local frame's unit: the ulp of x (2^-34); y's ulp (the larger coordinate's) is 8
-UNIT = 2.0**-34
-ULP = 8.0
 #: phases of 1000 sites whose cells left a hole at a box side (Euler -1). Phases 0.05, 0.80
 #: and 0.90 still fail Euler at other cells (not this cause; docs/exactness.md, still failing)
 PHASES = [0.40]
-
-
-def _circle(n, phase):
-    t = np.arange(n) * (2.0 * np.pi / n) + phase
-    return np.column_stack((R * np.cos(t), R * np.sin(t))) + CENTRE
-
-
-def _local(xy):
-    """Coordinates in units of 2^-34 from the centre: exact integers (as float64)."""
-    out = (np.asarray(xy, dtype=np.float64) - CENTRE) / UNIT
-    assert (out == np.round(out)).all() and np.abs(out).max() < 2.0**20
-    return out
-
-
-def _past(v, p, i):
-    """Largest distance (ulps of the centre) of vertices ``v`` past a bisector of site ``i``.
-
-    ``(2 v - p_i - p_j) . (p_j - p_i)`` is exact in float64 (integers below 2^53); only the
-    division by the length rounds, far below an ulp.
-    """
-    d = p - p[i]
-    dot = ((2.0 * v[:, None, :] - p[i] - p[None, :, :]) * d[None]).sum(-1)
-    nrm = np.sqrt((d**2).sum(1))
-    nrm[i] = np.inf
-    dot[:, i] = 0.0
-    return float((dot / (2.0 * nrm[None])).max() / ULP)
 
 
 def _exact_cell(p, i, box):
