@@ -116,3 +116,16 @@ def test_a_nan_in_the_solid_box_is_one_error_at_its_line(tmp_path):
     issues = _issues(tmp_path, text)
     assert [(k, ln) for k, ln, _ in issues] == [("solid.container.5", 6)]
     assert "finite" in issues[0][2]
+
+
+def test_a_boundary_of_zero_area_is_an_error_at_the_boundary(tmp_path):
+    from voroforge.design.compute import outline
+
+    path = tmp_path / "d.toml"
+    # its area underflows: GEOS calls it invalid, an error at the boundary (not "seeds")
+    tiny = "points = [[0, 0], [1e-200, 0], [1e-200, 8e-201], [0, 8e-201]]"
+    path.write_text(BASE.replace(POLY, tiny))
+    design, base = load(path)
+    with pytest.raises(DesignError) as info:
+        outline(design, base)
+    assert [i.key for i in info.value.issues] == ["boundary"]
