@@ -313,42 +313,19 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, reach,
                 k0, steps = _lost_at_side(kj, a >= 0, tris, nn, cx, cy, reach, box)
                 if steps > 0 and out + steps + 1 + (m - v) <= qx.shape[0]:
                     j = nbrs[(k0 + steps) % nn] if a >= 0 else nbrs[k0]
+                    # the chain, then the side vertex (leaving the box) or the other way round
                     if a >= 0:
                         out = _emit_chain(
                             nbrs, tris, nn, k0, steps, cx, cy, reach, box, qx, qy, qw, out
                         )
+                        hint = (k0 + steps) % nn
+                        at, label = hint, b
                     else:
-                        out = _side_vertex(
-                            i,
-                            j,
-                            k0,
-                            nbrs,
-                            tris,
-                            nn,
-                            xs,
-                            ys,
-                            cx,
-                            cy,
-                            reach,
-                            side,
-                            box,
-                            x,
-                            y,
-                            j,
-                            qx,
-                            qy,
-                            qw,
-                            out,
-                        )
-                        out = _emit_chain(
-                            nbrs, tris, nn, k0, steps, cx, cy, reach, box, qx, qy, qw, out
-                        )
-                        continue
-                    hint = (k0 + steps) % nn
+                        at, label = k0, j
                     out = _side_vertex(
                         i,
                         j,
-                        hint,
+                        at,
                         nbrs,
                         tris,
                         nn,
@@ -361,12 +338,16 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, reach,
                         box,
                         x,
                         y,
-                        b,
+                        label,
                         qx,
                         qy,
                         qw,
                         out,
                     )
+                    if a < 0:
+                        out = _emit_chain(
+                            nbrs, tris, nn, k0, steps, cx, cy, reach, box, qx, qy, qw, out
+                        )
                     continue
             bx, by = box_crossing(i, j, xs, ys, side, box)
             if bx == bx and box[0] <= bx <= box[2] and box[1] <= by <= box[3]:
