@@ -151,26 +151,21 @@ def _parquet_source(path: Path, rows: int, temporary=None, label=None) -> Source
     )
 
 
-def _csv_reader(path: Path, delimiter: str, names=None):
-    """A streaming pyarrow CSV reader; with ``names`` (the header's, cleaned) all text."""
+def _csv_reader(path: Path, delimiter: str, names):
+    """A streaming pyarrow CSV reader of every column as text, named ``names`` (the header's)."""
     import pyarrow as pa
     import pyarrow.csv as pacsv
 
-    read = pacsv.ReadOptions(block_size=1 << 24)
-    convert = None
-    if names is not None:
-        read = pacsv.ReadOptions(block_size=1 << 24, column_names=names, skip_rows=1)
-        convert = pacsv.ConvertOptions(
-            column_types=dict.fromkeys(names, pa.string()),
-            null_values=[""],
-            strings_can_be_null=True,
-        )
     try:
         return pacsv.open_csv(
             path,
-            read_options=read,
+            read_options=pacsv.ReadOptions(block_size=1 << 24, column_names=names, skip_rows=1),
             parse_options=pacsv.ParseOptions(delimiter=delimiter),
-            convert_options=convert,
+            convert_options=pacsv.ConvertOptions(
+                column_types=dict.fromkeys(names, pa.string()),
+                null_values=[""],
+                strings_can_be_null=True,
+            ),
         )
     except Exception as exc:  # pyarrow.lib.ArrowInvalid and friends
         raise ValueError(f"{path}: not a readable CSV file ({exc})") from None
@@ -265,8 +260,7 @@ def _csv_to_parquet(path: Path, dest: Path, rows: int) -> Path:
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    delimiter = _sniff_delimiter(path)
-    names = [_cells(pa.array([n])).to_pylist()[0] or "" for n in _header(path, delimiter)]
+    delimiter, names = _header(path)
     xy = _xy_names(names, path)
     rest = [c for c in names if c not in xy]
     tmp = dest.with_name(dest.name + ".part")
@@ -291,18 +285,18 @@ def _csv_to_parquet(path: Path, dest: Path, rows: int) -> Path:
     return dest
 
 
-def _header(path: Path, delimiter: str) -> list:
-    """The header row's fields (RFC 4180 quoting, as pyarrow reads the rows)."""
-    import csv
+def _header(path: Path) -> tuple[str, list]:
+    """The delimiter (``,``, ``;`` or a tab) and the header row's names.
 
-    with open(path, encoding="utf-8-sig", newline="") as fh:
-        return next(csv.reader(fh, delimiter=delimiter), [])
+    Split as the text reader splits them (``io.readers.points.split_fields``: RFC 4180
+    quoting, quotes and padding dropped).
+    """
+    from ..io.readers.points import split_fields
 
-
-def _sniff_delimiter(path: Path) -> str:
     with open(path, encoding="utf-8-sig") as fh:
-        first = fh.readline()
-    return next((d for d in (",", ";", "\t") if d in first), ",")
+        first = fh.readline().rstrip("\r\n")
+    delimiter = next((d for d in (",", ";", "\t") if d in first), ",")
+    return delimiter, split_fields(first, delimiter)
 
 
 def open_source(points, work: Path, rows: int) -> Source:

@@ -22,7 +22,7 @@ _Z_NAMES = ("z", "elevation", "height", "alt", "altitude")
 _AXES = ("x", "y", "z")
 
 
-def _split(line: str, delimiter: str | None) -> list[str]:
+def split_fields(line: str, delimiter: str | None) -> list[str]:
     """The fields of one line, quoted as RFC 4180 has it.
 
     ``"Smith, John"`` is one field and ``""`` a quote inside one, as Python's csv module,
@@ -116,7 +116,7 @@ def read_text_point_table(path, dims: int = 2) -> tuple[np.ndarray, dict]:
     delimiter = next((d for d in (",", ";", "\t") if d in first), None)
 
     columns = tuple(range(dims))
-    head, head_line = _split(first, delimiter), rows[0][0]
+    head, head_line = split_fields(first, delimiter), rows[0][0]
     header = any(parse_number(t) is None for t in head[: _data_width(head)])
     if header:
         names = [t.lower() for t in head]
@@ -140,7 +140,7 @@ def read_text_point_table(path, dims: int = 2) -> tuple[np.ndarray, dict]:
     need = max(columns) + 1
     out = np.zeros((len(rows), dims), dtype=np.float64)
     for k, (number, line) in enumerate(rows):
-        tokens = _split(line, delimiter)
+        tokens = split_fields(line, delimiter)
         if width is None:
             width, where = _data_width(tokens), f"line {number}"
         if _data_width(tokens) > width:
@@ -172,7 +172,7 @@ def _attributes(rows, head, columns, delimiter) -> dict:
             key += "_"
         cells = []
         for _, line in rows:
-            tokens = _split(line, delimiter)
+            tokens = split_fields(line, delimiter)
             cells.append(tokens[c] if c < len(tokens) and tokens[c] != "" else None)
         out[key] = _typed_column(cells)
     return out
