@@ -564,14 +564,26 @@ _docs = st.dictionaries(
         _tables,
         st.dictionaries(_keys, st.one_of(_values, _tables), max_size=3),
         st.lists(_tables.filter(bool), min_size=1, max_size=3),
+        # items of an array of tables that hold sub-tables only, or nested arrays of tables
+        st.lists(
+            st.dictionaries(
+                _keys, st.one_of(_tables, st.lists(_tables.filter(bool), min_size=1, max_size=2))
+            ).filter(bool),
+            min_size=1,
+            max_size=3,
+        ),
     ),
     max_size=5,
 )
 
 
-@settings(max_examples=20)
+@settings(max_examples=40)
 @given(_docs)
 @example(doc={"0\n": [{"0": []}]})  # a key ending in a newline is not bare ("$" let it be)
+# an item of sub-tables only kept its own [[a]] line (it was merged into the item before it,
+# or two [a.b] tables made the file unreadable)
+@example(doc={"a": [{"x": 1}, {"b": {"c": {"d": 1}}}]})
+@example(doc={"a": [{"b": {"c": {"d": 1}}}, {"b": {"c": {"d": 2}}}]})
 def test_toml_writer_round_trips(doc):
     assert tomllib.loads(tomlfile.dumps(doc)) == doc
 

@@ -77,7 +77,9 @@ def _inline(v: dict) -> bool:
 def _table(path: list[str], data: dict, out: list[str], header: str | None) -> None:
     plain = [(k, v) for k, v in data.items() if not _subtable(v)]
     subs = [(k, v) for k, v in data.items() if _subtable(v)]
-    if header is not None and (plain or not subs):
+    # an item of an array of tables always gets its ``[[...]]`` line, even one holding only
+    # sub-tables: without it TOML merges the item into the one before (or redefines a table)
+    if header is not None and (plain or not subs or header.startswith("[[")):
         out.append(header)
     for k, v in plain:
         out.append(f"{_key(k)} = {_value(v)}")
