@@ -34,6 +34,22 @@ def _frame(q, sites, w):
     return float(np.ldexp(1.0, -int(np.frexp(big)[1])))
 
 
+def _lifted(sites, q, w):
+    """Sites and queries in a space where the Euclidean nearest is the power-nearest.
+
+    Without weights, the points themselves (and ``None`` for the spread). With weights, a
+    fourth coordinate ``sqrt(max(w) - w_p)`` for the sites and 0 for the queries: the lifted
+    squared distance is the power distance ``|x - p|^2 - w_p`` plus ``max(w)``, so a KD-tree
+    finds the power-nearest in ``log n`` (a block scan of every site per query was
+    quadratic). ``spread`` (the largest ``|w|``) bounds the rounding the lift adds.
+    """
+    if w is None:
+        return sites, q, None
+    top = float(w.max())
+    lifted = np.column_stack((sites, np.sqrt(top - w)))  # (top - w >= 0 also after rounding)
+    return lifted, np.column_stack((q, np.zeros(len(q)))), float(np.abs(w).max())
+
+
 def locate3d(d, xyz):
     """Index of the site whose cell holds each query (power distance with weights).
 
@@ -58,20 +74,25 @@ def locate3d(d, xyz):
     live = np.flatnonzero(np.asarray(d.duplicate_of) < 0)
     out = np.zeros(len(q), np.int64)
     step = max(1, 2_000_000 // max(len(live), 1))
-    if d.weights is None and len(live) > 64:
+    if len(live) > 64:
         from scipy.spatial import cKDTree
 
-        tree = cKDTree(sites[live])
+        pts, qq, spread = _lifted(sites[live], q, None if d.weights is None else w[live])
         kk = min(8, len(live))
-        dist, idx = tree.query(q, k=kk)
+        dist, idx = cKDTree(pts).query(qq, k=kk)
         dist = dist.reshape(len(q), kk)
         idx = idx.reshape(len(q), kk)
         for r in range(len(q)):
-            near = dist[r] <= dist[r, 0] * (1 + 1e-9) + 1e-300
+            if spread is None:
+                near = dist[r] <= dist[r, 0] * (1 + 1e-9) + 1e-300
+            else:  # (lifted squared distances: the power distance plus max(w))
+                dd = dist[r] ** 2
+                near = dd <= dd[0] + 1e-9 * (dd[0] + spread) + 1e-300
             cand = live[idx[r][near]]
             if near.all():  # many ties: fall back to a full scan of this query
-                d2 = ((sites[live] - q[r]) ** 2).sum(axis=1)
-                cand = live[d2 <= d2.min() * (1 + 1e-9) + 1e-300]
+                dd = ((sites[live] - q[r]) ** 2).sum(axis=1) - w[live]
+                best = dd.min()
+                cand = live[dd <= best + 1e-9 * (abs(best) + np.abs(q[r]).max() ** 2 + 1e-300)]
             out[r] = nearest_exact(q0[r], cand, sites0, w0)
     else:
         for s0 in range(0, len(q), step):
@@ -124,15 +145,18 @@ def _locate_torus(q, sites0, w0, duplicate_of, box):
     slack = 1e-9 * float((size_s * size_s).sum() + np.abs(w).max())
     out = np.zeros(len(q), np.int64)
     rows = np.arange(len(q))
-    if not np.any(w) and len(live) > 64:
-        # unweighted: the 8 nearest images from a periodic KD-tree; a query whose 8th is
-        # within the slack of its nearest (many near ties) is scanned in full below
+    if len(live) > 64:
+        # the 8 nearest images from a periodic KD-tree (with weights, of the lifted sites: a
+        # fourth, non-periodic coordinate; see _lifted); a query whose 8th is within the
+        # slack of its nearest (many near ties) is scanned in full below
         from scipy.spatial import cKDTree
 
         S[S >= size_s] = 0.0  # (np.mod can round up to the period itself)
         rel[rel >= size_s] = 0.0
         kk = min(8, len(live))
-        dist, idx = cKDTree(S, boxsize=size_s).query(rel, k=kk)
+        pts, qq, spread = _lifted(S, rel, w[live] if np.any(w) else None)
+        period = size_s if spread is None else np.append(size_s, 0.0)  # (0: not periodic)
+        dist, idx = cKDTree(pts, boxsize=period).query(qq, k=kk)
         dd = dist.reshape(len(q), kk) ** 2
         idx = live[idx.reshape(len(q), kk)]
         near = dd <= dd[:, :1] + slack
