@@ -56,10 +56,19 @@ class BigVertices:
         full = np.flatnonzero((counts >= OWN.shape[1]) & (OWN[:, 0] == i))  # (a named row)
         if len(full) == 0:
             return False
-        keys = np.unique(OWN[full[0]].astype(np.int64))
+        return self.add(i, OWN[full[0]], OWN.shape[1], X[0], X[1])
+
+    def add(self, i, keys, width, rows, buf) -> bool:
+        """Add the vertex of site ``i`` and sites among ``keys`` if past ``width`` owners.
+
+        ``keys``: owners of one vertex of cell ``i`` (sites past ``len(P)`` are walls);
+        ``width``: the owner table's; ``rows``, ``buf``: the exact predicates' scratch.
+        Returns whether one was added.
+        """
+        keys = np.unique(np.asarray(keys).astype(np.int64))
         keys = keys[(keys != i) & (keys < len(self.P))]
-        owners = _least_power(i, keys, self.P, self.W, self.WP, X[0], X[1])
-        if len(owners) <= OWN.shape[1] or (self.of[owners] >= 0).any():
+        owners = _least_power(i, keys, self.P, self.W, self.WP, rows, buf)
+        if len(owners) <= width or (self.of[owners] >= 0).any():
             return False
         self.of[owners] = len(self.sets)
         self.sets.append(owners)

@@ -20,14 +20,21 @@ Here (issue 12):
    by naming them from their owner sites.
 
 Only the order of vertices and faces (the cuts' history) differs from the template path.
+A vertex of more owners than the second pass's owner table holds (144 at its slots: sites
+on a sphere about it) is a big polytope of every cell (:mod:`.bigvertex3d`), found from the
+first pass's vertices or from the first cell that overflows (growing the slots never held
+1,032 owners: "overflowed its biggest slots", or killed for memory).
 """
 
 from __future__ import annotations
+
+import threading
 
 import numpy as np
 from numba import njit, prange
 
 from ..config import (
+    CELLCUT3D_OWN_ENTRIES,
     HULL3D_BIG,
     HULL3D_CHUNK,
     HULL3D_DOP_PAD,
@@ -36,9 +43,11 @@ from ..config import (
     NJIT,
     NJIT_PARALLEL,
 )
+from ..kernels.cellcut3d import MAX_OWNERS
 from ..kernels.cells3d import OVERFLOW, build_cells, cell_scratch
 from ..kernels.predicates3d import scratch
 from ..kernels.vertex3d import axis_snap, name_key, name_vertex, place
+from .bigvertex3d import BigVertices
 from .build3d import CAPS, PER_BUCKET, Cells3D, build_cells3d, csr_take, grid3d_shape
 from .containers import Template, cut_template
 from .threads import serial_below
@@ -87,7 +96,7 @@ def hull_cells(P: np.ndarray, W: np.ndarray, t: Template, progress=None) -> Cell
     np.cumsum(np.bincount(A.vid, minlength=len(A.vertices)), out=vstart[1:])
     vcells = np.ascontiguousarray(owner[byv])
     start, sites = _lists(rpos, bcell, A.voff, A.vid, vstart, vcells, u)
-    B = _second_pass(P, W, t, bcell[rpos], start, sites)
+    B = _second_pass(P, W, t, bcell[rpos], start, sites, _wide(P, W, t, vstart, vcells))
     return _combine(P, W, t, A, bcell, ipos, rpos, B, vstart, vcells)
 
 
@@ -245,7 +254,26 @@ def _caps(t: Template, slots) -> np.ndarray:
     )
 
 
-def _second_pass(P, W, t, cells, start, sites):
+def _wide(P, W, t, vstart, vcells) -> BigVertices:
+    """The first pass's vertices of more owners than a cell's owner table holds.
+
+    Found before the second pass (else every cell on one overflowed and was built twice: the
+    1,032 integer points of a sphere in a ball, ~8 -> ~5.5 CPU s): each from its first-pass
+    cells, whose owners are then tested exactly (:meth:`.bigvertex3d.BigVertices.add`).
+    """
+    bv = BigVertices(P, W, t.WP)
+    vcap = int(_caps(t, HULL3D_SLOTS)[3])  # the owner table's width at the second pass's caps
+    width = max(MAX_OWNERS, min(vcap // 16, CELLCUT3D_OWN_ENTRIES // vcap))  # (as cut_scratch)
+    wide = np.flatnonzero(np.diff(vstart) > width - 2)
+    if len(wide):
+        rows, buf = np.zeros((2, 4, 4)), scratch()
+        for g in wide:
+            own = vcells[vstart[g] : vstart[g + 1]]
+            bv.add(int(own[0]), own[1:], width, rows, buf)
+    return bv
+
+
+def _second_pass(P, W, t, cells, start, sites, bv):
     """Build ``cells`` from the template ``t`` and their lists; per cell its slot records.
 
     Returns ``(status, counts, vol, cen, rad2, osite, ovabs, ofaces, oring)``: per cell the
@@ -268,7 +296,13 @@ def _second_pass(P, W, t, cells, start, sites):
     rad2 = np.zeros(k)
     recs = [None] * k
 
-    def run(few, caps, scr):
+    # ``bv``: vertices of more owners than a cell's owner table holds (sites on a sphere
+    # about it), big polytopes of every cell (named from all their owners, as the first
+    # pass's Delaunay lists name them); found from the first pass (:func:`_wide`), or here
+    # exactly from the first cell whose table overflows
+    lock = threading.Lock()
+
+    def run(few, caps, scr, big=None):
         m = len(few)
         cv, cf, cr = (int(x) for x in caps[:3])
         st = np.zeros(m, np.int64)
@@ -307,8 +341,10 @@ def _second_pass(P, W, t, cells, start, sites):
             ofaces,
             oring,
             scr,
-            None,  # big, star and gone as build3d passes them (none known empty): omitted
-            None,  # arguments are another numba type, and build_cells compiled twice
+            # big and star as build3d passes them (None, or a big vertex's (big, None)),
+            # gone none known empty: omitted arguments are another numba type, and
+            # build_cells compiled twice
+            *((None, None) if big is None else big),
             _NONE_GONE,
         )
         return st, ct, v, c, r2, osite, ovabs, ofaces, oring
@@ -318,14 +354,25 @@ def _second_pass(P, W, t, cells, start, sites):
         scr = cell_scratch(len(P), g, tree, t.TV, t.TF, t.TR, caps)
         for c0 in range(a, b, HULL3D_CHUNK):
             c1 = min(c0 + HULL3D_CHUNK, b)
-            st, ct, v, c, r2, osite, ovabs, ofaces, oring = run(cells[c0:c1], caps, scr)
+            few = cells[c0:c1]
+            big = _every(bv, lock)
+            st, ct, v, c, r2, osite, ovabs, ofaces, oring = run(few, caps, scr, big)
+            over = np.flatnonzero(st == OVERFLOW)
+            if len(over) and big is None and _found(run, few[over[0]], caps, scr, bv, lock):
+                # its cells again with the vertex: every cell on it overflowed, and each
+                # alone cost a scratch (1,032 sites on a sphere: 1,032 calls)
+                st, ct, v, c, r2, osite, ovabs, ofaces, oring = run(
+                    few, caps, scr, _every(bv, lock)
+                )
             cv, cf, cr = HULL3D_SLOTS
             for q in range(c1 - c0):
                 x = c0 + q
                 s = st[q]
                 nv, nf, nr = ct[q]
                 if s == OVERFLOW:
-                    s, (nv, nf, nr), v1, cn1, r21, rec = _alone(run, cells[x], t, g, len(P), ct[q])
+                    s, (nv, nf, nr), v1, cn1, r21, rec = _alone(
+                        run, cells[x], t, g, len(P), ct[q], bv, lock
+                    )
                     vol[x], cen[x], rad2[x] = v1, cn1, r21
                     recs[x] = rec
                 else:
@@ -353,17 +400,48 @@ def _second_pass(P, W, t, cells, start, sites):
     return status, counts, vol, cen, rad2, recs
 
 
-def _alone(run, i, t, g, ns, need):
-    """Cell ``i`` alone with slots for its counts ``need`` (grown until it fits)."""
+def _every(bv, lock):
+    """The big vertices found so far as :func:`.cells3d.build_cells`'s ``(big, star)``, or None.
+
+    Every cell may take them: a site on none (``of[i] < 0``) builds as without them.
+    """
+    with lock:
+        if not bv.sets:
+            return None
+        return bv.search(int(np.flatnonzero(bv.of >= 0)[0]))
+
+
+def _found(run, i, caps, scr, bv, lock) -> bool:
+    """Whether cell ``i`` is on a big vertex, found now from its overflowing owner table."""
+    if run(np.array([i]), caps, scr)[0][0] != OVERFLOW:
+        return False
+    with lock:
+        return bool(bv.of[i] >= 0 or bv.find(i, {threading.get_ident(): scr}))
+
+
+def _alone(run, i, t, g, ns, need, bv, lock):
+    """Cell ``i`` alone with slots for its counts ``need`` (grown until it fits).
+
+    A cell whose owner table overflowed at a vertex of more owners than it holds (not its
+    slots: larger slots do not widen the table) finds that vertex (:mod:`.bigvertex3d`) and
+    is built again with it as a big polytope; growing the slots for it allocated gigabytes.
+    """
     slots = [max(HULL3D_SLOTS[q], int(need[q])) for q in range(3)]
+    big = _every(bv, lock)
     for _ in range(8):
         caps = _caps(t, slots)
         scr = cell_scratch(ns, g, np.zeros((0, 8)), t.TV, t.TF, t.TR, caps)
-        st, ct, v, c, r2, osite, ovabs, ofaces, oring = run(np.array([i]), caps, scr)
+        st, ct, v, c, r2, osite, ovabs, ofaces, oring = run(np.array([i]), caps, scr, big)
         if st[0] != OVERFLOW:
             nv, nf, nr = (int(x) for x in ct[0])
             rec = (osite[:nv].copy(), ovabs[:nv].copy(), ofaces[:nf].copy(), oring[:nr].copy())
             return st[0], ct[0], v[0], c[0], r2[0], rec
+        if big is None or bv.of[i] < 0:
+            with lock:
+                found = bv.of[i] >= 0 or bv.find(i, {threading.get_ident(): scr})
+            if found:
+                big = _every(bv, lock)
+                continue
         slots = [max(4 * slots[q], int(ct[0, q])) for q in range(3)]
     raise RuntimeError(f"3D cell {int(i)} overflowed its biggest slots")
 
