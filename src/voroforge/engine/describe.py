@@ -572,6 +572,13 @@ def describe(d) -> Description:
     (1, True, True, 100)
     """
     coords, (ring, poly, geom) = d.to_geoarrow()
+    # past 2**1000 the counts run on coordinates scaled by 2**-64 (exact: a power of two;
+    # every decision below is relative to the coordinates' ulps): distances between
+    # vertices near +-1.8e308 overflowed (scipy's "'x' must be finite")
+    scale = 1.0
+    if len(coords) and float(np.abs(coords).max()) > 2.0**1000:
+        scale = 2.0**-64
+        coords = coords * scale
     n = len(d.sites)
     parts_per_cell = np.diff(geom)
     cells = int((parts_per_cell > 0).sum())
@@ -579,17 +586,17 @@ def describe(d) -> Description:
     holes = int(len(ring) - 1 - parts)
     faces = parts - holes + _open_holes(d.cells, parts_per_cell, poly) if holes else parts
     x0, y0, x1, y1 = d.bounds
-    size = np.array([x1 - x0, y1 - y0])
+    size = np.array([x1 * scale - x0 * scale, y1 * scale - y0 * scale])
     cell_of_poly = np.repeat(np.arange(n), parts_per_cell)
     cell_of_ring = cell_of_poly[np.repeat(np.arange(len(poly) - 1), np.diff(poly))]
     if d.periodic and not d.wrapped:
         tol = VERTEX_RTOL * float(np.hypot(*size))
-        wrap = (np.array([x0, y0]), np.array([x1, y1]), tol)
+        wrap = (np.array([x0, y0]) * scale, np.array([x1, y1]) * scale, tol)
         vertices, edges, mismatched, vor_vertices = _counts(coords, ring, cell_of_ring, None, wrap)
         faces = cells
         expected = 0
     else:
-        corners = shapely.get_coordinates(d.boundary)
+        corners = shapely.get_coordinates(d.boundary) * scale
         vertices, edges, mismatched, vor_vertices = _counts(coords, ring, cell_of_ring, corners)
         expected = 1 if d.periodic else _domain_chi(d.boundary)
     if cells == 0:

@@ -75,18 +75,29 @@ def padded_bounds(sites: np.ndarray, pad: float = 0.1) -> tuple[float, float, fl
 
     A degenerate extent (one site, or sites on a vertical/horizontal line) is padded by
     ``pad`` of the larger side, or by ``pad * max(1, |coordinate|)`` when both sides are 0.
+    A box past float64's range is clamped to it: sites spanning more than ~1.6e308 (whose
+    extent, or padded sides, overflow) get a box with finite sides, at most the largest double
+    (a site there lies on the box's side).
     """
     if len(sites) == 0:
         raise ValueError("boundary=None needs at least one site to define the domain's extent")
     lo = sites.min(axis=0)
     hi = sites.max(axis=0)
-    size = hi - lo
-    big = float(size.max())
-    if big == 0.0:
-        big = max(1.0, float(np.abs(lo).max()))
-    padx = pad * (size[0] if size[0] > 0 else big)
-    pady = pad * (size[1] if size[1] > 0 else big)
-    return (lo[0] - padx, lo[1] - pady, hi[0] + padx, hi[1] + pady)
+    top = float(np.finfo(np.float64).max)
+    with np.errstate(over="ignore"):
+        size = hi - lo
+    if np.isfinite(size).all():
+        big = float(size.max())
+        if big == 0.0:
+            big = max(1.0, float(np.abs(lo).max()))
+        padx = pad * (size[0] if size[0] > 0 else big)
+        pady = pad * (size[1] if size[1] > 0 else big)
+    else:  # the extent overflows (sites past +-9e307 on both sides): pad by its halves
+        half = hi * 0.5 - lo * 0.5
+        padx, pady = (min(2.0 * (pad * float(h if h > 0 else half.max())), top) for h in half)
+    with np.errstate(over="ignore"):
+        box = (lo[0] - padx, lo[1] - pady, hi[0] + padx, hi[1] + pady)
+    return tuple(min(max(float(v), -top), top) for v in box)
 
 
 def make_domain(boundary, sites: np.ndarray) -> Domain:

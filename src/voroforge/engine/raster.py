@@ -351,7 +351,8 @@ def _walks(sites: np.ndarray, bounds, shape, metric: str, want_f2: bool) -> bool
     hi = np.maximum(sites.max(axis=0), (bounds[2], bounds[3]))
     size = hi - lo
     nb = max(len(sites) / 2.0, 1.0)
-    nx = int(min(max(math.sqrt(nb * size[0] / size[1]), 1.0), nb))
+    with np.errstate(over="ignore"):  # (a strip 1e308 long: the ratio is inf, nx is nb)
+        nx = int(min(max(math.sqrt(nb * size[0] / size[1]), 1.0), nb))
     ny = int(min(max(nb / nx, 1.0), nb))
     ix = np.minimum(((sites[:, 0] - lo[0]) / size[0] * nx).astype(np.int64), nx - 1)
     iy = np.minimum(((sites[:, 1] - lo[1]) / size[1] * ny).astype(np.int64), ny - 1)
@@ -473,8 +474,10 @@ def rasterize(
             metric=metric,
             f2=f2,
         )
-        d2 = None if r.f2 is None else np.ldexp(r.f2, e)
-        return RasterVoronoi(r.labels, np.ldexp(r.distance, e), d2, box, method, metric)
+        with np.errstate(over="ignore"):  # (distances past the largest double are inf)
+            d2 = None if r.f2 is None else np.ldexp(r.f2, e)
+            dist = np.ldexp(r.distance, e)
+        return RasterVoronoi(r.labels, dist, d2, box, method, metric)
     dup, unique = duplicate_map(pts)
     sub = pts[unique]
     xs = np.ascontiguousarray(sub[:, 0])
