@@ -314,6 +314,16 @@ def test_a_warm_up_that_fails_does_not_stop_the_server(monkeypatch):
     assert s.result is result and not s.provisional
 
 
+def test_a_bad_design_file_is_reported_with_its_name_line_and_key(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[boundary]\nshape = "rectangle"\nwidth = 10\nheight = 5\n[cells]\nfilet = 2\n')
+    with pytest.raises(DesignError, match=r"bad\.toml:6: cells\.filet: unknown key"):
+        Session(bad)
+    bad.write_text("[design]\n[cells\n")
+    with pytest.raises(DesignError, match=r"bad\.toml:2: .*TOML syntax"):
+        Session(bad)
+
+
 def test_sites_must_be_finite_pairs():
     design, _ = load(HOLED)
     with pytest.raises(ValueError, match="sites"):
@@ -424,6 +434,11 @@ def test_bad_values_keep_the_last_good_drawing_and_name_the_key(folder):
     assert s.apply({"op": "set", "key": "seeds.method", "value": "poisson"}).kind == "error"
     r = s.apply({"op": "set", "key": "seeds", "value": {"method": "poisson", "radius": 0.001}})
     assert r.kind == "error" and "limit" in r.issues[0]["message"]
+    assert s.result is good
+    # a spacing whose square underflows: the limit at its key (was "float division by zero")
+    r = s.apply({"op": "set", "key": "seeds", "value": {"method": "grid", "spacing": 1e-300}})
+    assert r.kind == "error" and r.issues[0]["key"] == "seeds.spacing", r.issues
+    assert "limit" in r.issues[0]["message"]
     assert s.result is good
 
 

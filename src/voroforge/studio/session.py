@@ -76,6 +76,9 @@ class Session:
             data = copy.deepcopy(source)
         else:
             self.path = Path(source).resolve()
+            # the file through the loader first: a bad design is reported with the file's name,
+            # line and key (the mapping read below has no lines; the first compute loads it)
+            load(self.path)
             data = tomllib.loads(self.path.read_text(encoding="utf-8-sig"))
         if folder is None:
             folder = self.path.parent if self.path is not None else Path.cwd()
@@ -240,12 +243,13 @@ class Session:
         if s.method == "poisson":
             spacing = s.radius * 0.8
         if spacing and self.result is not None:
-            estimate = float(self.result.domain.area) / (spacing * spacing)
+            # (area / spacing / spacing: spacing * spacing underflows to 0 below ~1e-162)
+            with np.errstate(over="ignore"):
+                estimate = float(np.float64(self.result.domain.area) / spacing / spacing)
             if estimate > 2 * self.max_seeds:
                 key = "seeds.radius" if s.method == "poisson" else "seeds.spacing"
-                raise DesignError.at(
-                    key, f"about {estimate:.0f} seeds, more than the limit of {self.max_seeds}"
-                )
+                many = f"about {estimate:.0f}" if math.isfinite(estimate) else "past 1e308"
+                raise DesignError.at(key, f"{many} seeds, more than the limit of {self.max_seeds}")
 
     def warm(self) -> None:
         """Run one seed drag step on the current result and drop it (the result is kept).
