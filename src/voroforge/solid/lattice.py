@@ -161,6 +161,7 @@ def lattice(
         else:
             verts += o
             parts["method"] = "hull"
+            meta["segments"] = int(segments)  # struts are k-gon prisms of circumradius r
             m = _finish(verts, faces, {**meta, "parts": parts})
             if container is not None:
                 from .booleans import trim
@@ -181,5 +182,10 @@ def lattice(
         smooth=None if nodes == "smooth" else 0.0,
         bare=bare,
     )
-    m.metadata.update({**meta, "parts": {"method": "implicit"}, "skin": float(skin)})
+    # the grid marching cubes ran on (capsules_mesh's default): check's strut widths use it
+    from .. import config
+
+    h = config.SOLID_VOXEL * float(r.min()) if voxel is None else float(voxel)
+    meta = {**meta, "parts": {"method": "implicit"}, "skin": float(skin), "voxel": h}
+    m.metadata.update(meta)
     return m
