@@ -21,6 +21,7 @@ from typing import Any
 
 from pydantic import BaseModel, ValidationError
 
+from ..config import DESIGN_FILE_MAX_BYTES
 from .schema import Design, Graded, short_repr
 
 __all__ = [
@@ -510,13 +511,22 @@ def find_file(base: Path | None, name: str, key: str) -> Path:
     Raises
     ------
     DesignError
-        At ``key`` when the file does not exist.
+        At ``key`` when the file does not exist, is not a regular file (a directory, a pipe,
+        a device: reading one hung or filled the memory) or is larger than
+        ``config.DESIGN_FILE_MAX_BYTES``.
     """
     p = Path(name)
     if not p.is_absolute() and base is not None:
         p = base / p
     if not p.exists():
         raise DesignError.at(key, f"file not found: {p}")
+    if not p.is_file():
+        raise DesignError.at(key, f"not a regular file (a directory, pipe or device): {p}")
+    size = p.stat().st_size
+    if size > DESIGN_FILE_MAX_BYTES:
+        raise DesignError.at(
+            key, f"{p} is {size / 2**30:.1f} GiB, more than {DESIGN_FILE_MAX_BYTES / 2**30:g} GiB"
+        )
     return p
 
 
