@@ -4,11 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["relax", "subdivide"]
+from ..config3d import SUBDIVIDE_SLIVER as SLIVER
 
-# a leaf's hull triangle lower than this fraction of its size has a vertex that close to
-# the other two's segment; that vertex is left out (``_hull_mesh``; for config.py)
-SLIVER = 1e-9
+__all__ = ["relax", "subdivide"]
 
 
 def relax(points, container, *, iterations: int = 10):

@@ -13,12 +13,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["Report", "Violation", "check", "strut_widths"]
+from ..config3d import IMPLICIT_SAG
 
-# how deep marching cubes' chords cut into a round strut of radius r at voxel h, as
-# IMPLICIT_SAG * h**2 / r: measured 0.42-0.52 for h = 0.2 .. 1.0 r (10 Taubin steps); a
-# bound above them (``strut_widths``; for config.py)
-IMPLICIT_SAG = 0.6
+__all__ = ["Report", "Violation", "check", "strut_widths"]
 
 
 @dataclass(frozen=True)
