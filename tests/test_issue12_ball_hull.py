@@ -120,10 +120,26 @@ def test_fcc_sites():
     _check(vf.voronoi3d(sites, c), c, ball, sites)
 
 
+def test_lattice_hull_walls_meet_at_its_corners():
+    # exact normals (containers._exact_normals): every wall through a corner of the hull
+    # passes through it exactly, so the float template and the exact polytope agree and
+    # the cells need no exact twin (they did: status 3, 4, unmatched vertices)
+    ball = _ball(9.5)
+    c = vf.Convex(points=ball)
+    rows = [[Fraction(float(x)) for x in r] for r in c.halfspaces]
+    h = ConvexHull(ball)
+    for p in ball[h.vertices]:
+        fp = [Fraction(float(x)) for x in p]
+        side = [r[0] * fp[0] + r[1] * fp[1] + r[2] * fp[2] - r[3] for r in rows]
+        assert max(side) == 0 and sum(s == 0 for s in side) >= 3
+    assert len(exact_twin(c._template).TV) == len(c._template.TV) == len(h.vertices)
+
+
 def test_exact_twin_is_the_polytope_of_the_same_walls():
-    # the float template merges the 8 walls at (-3, 0, 0) into one vertex; the exact
-    # polytope of the same rows splits it, keeping walls, origin and volume
-    c = vf.Convex(points=_ball(9.5))
+    # a ball whose walls round (its points a third of the lattice's): the float template
+    # merges the walls at a corner into one vertex; the exact polytope of the same rows
+    # splits it, keeping walls, origin and volume
+    c = vf.Convex(points=_ball(9.5) / 3)
     t = c._template
     assert t.float_cut
     e = exact_twin(t)

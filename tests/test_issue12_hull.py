@@ -74,8 +74,13 @@ def test_hull_planes_exact_off_the_origin():
     tet = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
     c = vf.Convex(points=tet + 1e4)
     assert c.volume == pytest.approx(1 / 6, rel=1e-13)
-    # a plane through three float points: the exact cross product, rounded once
+    # a plane through three float points: the exact cross product, scaled by a power of two
+    # where it is a double (containers._exact_normals), else its unit normal rounded once
     c = vf.Convex(points=tet)
+    want = np.array([[-1, 0, 0, 0], [0, -1, 0, 0], [0, 0, -1, 0], [1, 1, 1, 1]])
+    got = c.halfspaces[np.lexsort(c.halfspaces.T[::-1])]
+    assert (got == want[np.lexsort(want.T[::-1])]).all()
+    c = vf.Convex(points=tet * (1 + 2**-52))  # normal (c^2, c^2, c^2): 105 bits, no double
     want = np.array([[-1, 0, 0, 0], [0, -1, 0, 0], [0, 0, -1, 0], [3**-0.5] * 4])
     got = c.halfspaces[np.lexsort(c.halfspaces.T[::-1])]
-    assert np.abs(got - want[np.lexsort(want.T[::-1])]).max() <= 2e-16
+    assert np.abs(got - want[np.lexsort(want.T[::-1])]).max() <= 4e-16
