@@ -25,8 +25,8 @@ from .jointable3d import probe_next, rehash, slot
 from .lists3d import Lists, chunk_search, chunks, redo_slow
 from .threads import serial_below
 
-#: cells per call of the kernel (its fixed per-cell slots: ~10 KB a cell while it runs)
-CHUNK = 4096
+#: cells per kernel call: k // 128 within these (its slots, 2 x 4.3 KB a cell, stay resident)
+CHUNK = (1024, 4096)
 _NONE_GONE = np.zeros(0, np.bool_)  # no site's cell known empty (the kernel's gone)
 #: mean sites per bucket of the search grid
 PER_BUCKET = 2.0
@@ -625,7 +625,7 @@ def build_cells3d(
     # table (67 MB of -1 at 1e6 cells) is filled while the pool builds the first chunk
     made = []
     with serial_below(k):
-        nth = numba.get_num_threads()
+        nth, size = numba.get_num_threads(), min(max(CHUNK[0], k // 128), CHUNK[1])
         pool = joiner = None
         if nth > 1 and k >= 128:
             from concurrent.futures import ThreadPoolExecutor
@@ -633,7 +633,7 @@ def build_cells3d(
             pool = ThreadPoolExecutor(nth)
             # one more thread joins chunk c while the pool builds c + 1 (two sets of slots)
             joiner = ThreadPoolExecutor(1)
-        slots = [_slots(min(CHUNK, k), CAPS) for _ in range(2 if joiner else 1)]
+        slots = [_slots(min(size, k), CAPS) for _ in range(2 if joiner else 1)]
         scr = {}  # each thread's working space, kept from chunk to chunk (_run)
         pending = []
         grid = (start, SP, SW, sidx, weight_reach(P, W, g, sidx), None)  # (+ local weights)
@@ -673,7 +673,7 @@ def build_cells3d(
                 progress(c0 + len(chunk), k)
 
         try:
-            for q, (c0, c1) in enumerate(chunks(k, CHUNK, lists is not None)):
+            for q, (c0, c1) in enumerate(chunks(k, size, lists is not None)):
                 if len(pending) >= len(slots):
                     pending.pop(0).result()  # the join that used these slots is done
                 chunk = built[c0:c1]
