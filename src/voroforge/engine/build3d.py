@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from ..config import GRID_DEGENERATE_RTOL, GRID_WIDEN_RTOL, NJIT, TRIM_CELLS
+from ..config import GRID_DEGENERATE_RTOL, GRID_WIDEN_RTOL, NJIT, TRIM_CELLS, VORONOI3D_CHUNK
 from ..kernels.cells3d import EMPTY, OK, OVERFLOW, build_cells, cell_scratch
 from ..kernels.grid3d import kd_buckets3d
 from ..kernels.reach3d import weight_reach
@@ -25,8 +25,6 @@ from .jointable3d import probe_next, rehash, slot
 from .lists3d import Lists, chunk_search, chunks, redo_slow
 from .threads import serial_below
 
-#: cells per kernel call: k // 128 within these (its slots, 2 x 4.3 KB a cell, stay resident)
-CHUNK = (1024, 4096)
 _NONE_GONE = np.zeros(0, np.bool_)  # no site's cell known empty (the kernel's gone)
 #: mean sites per bucket of the search grid
 PER_BUCKET = 2.0
@@ -625,7 +623,7 @@ def build_cells3d(
     # table (67 MB of -1 at 1e6 cells) is filled while the pool builds the first chunk
     made = []
     with serial_below(k):
-        nth, size = numba.get_num_threads(), min(max(CHUNK[0], k // 128), CHUNK[1])
+        nth, size = numba.get_num_threads(), int(np.clip(k // 128, *VORONOI3D_CHUNK))
         pool = joiner = None
         if nth > 1 and k >= 128:
             from concurrent.futures import ThreadPoolExecutor
