@@ -43,6 +43,9 @@ __all__ = [
     "VORONOI3D_MESH_VOLUME_RTOL",
     "LLOYD3D_INTO_MESH_PUSH",
     "LLOYD3D_INTO_MESH_FRACTIONS",
+    "SUBDIVIDE_SLIVER",
+    "IMPLICIT_SAG",
+    "VORONOI3D_CHUNK",
 ]
 
 #: The 3D cut's float filter: a vertex's value against a bisector plane farther from 0 than
