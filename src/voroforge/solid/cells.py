@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..config3d import SUBDIVIDE_SLIVER as SLIVER
+from ..config import SUBDIVIDE_SLIVER as SLIVER
 
 __all__ = ["relax", "subdivide"]
 

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..config3d import IMPLICIT_SAG
+from ..config import IMPLICIT_SAG
 
 __all__ = ["Report", "Violation", "check", "strut_widths"]
 
