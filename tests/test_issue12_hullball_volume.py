@@ -12,13 +12,19 @@ in rationals (every triple of points whose plane has all points on one side).
 from __future__ import annotations
 
 import itertools
+import sys
 import warnings
 from fractions import Fraction
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import voroforge as vf
+
+sys.path.insert(0, str(Path(__file__).parent))
+from reference3d import brute_volumes  # noqa: E402
+from test_solid_subdivide_far import LOST  # noqa: E402
 
 CUBE = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
 
@@ -105,3 +111,23 @@ def test_jittered_cube_volume(eps):
         # which holds the hull (every point is inside its rows) and is within the merge of it
         rel = float(Fraction(c.volume) / exact - 1)
         assert -4 * np.finfo(float).eps <= rel <= 1e-12
+
+
+def test_points_past_a_triangle_of_a_merged_qhull_facet():
+    # 16 points at 1e5 (solidfix's LOST): one of Qhull's triangles (of a facet it merged in
+    # the principal-axes frame) has five points 4e-3..6e-3 past its plane; the row through
+    # its corners cut them off and the container was 8.4e-4 smaller than the hull (three
+    # cells too small). Each row's offset now holds every point.
+    v, seeds = (np.asarray(x, float) for x in LOST)
+    c = vf.Convex(points=v)
+    exact = _exact_hull_volume(v)
+    assert abs(float(Fraction(c.volume) / exact - 1)) <= 1e-12
+    hs = c.halfspaces
+    o = np.round(v.mean(axis=0))
+    assert ((v - o) @ hs[:, :3].T - (hs[:, 3] - o @ hs[:, :3].T)).max() <= 1e-9
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        d = vf.voronoi3d(seeds, c)
+    assert abs(d.volumes.sum() - c.volume) <= 1e-12 * c.volume
+    ref = brute_volumes(seeds, hs)
+    assert np.abs(d.volumes - ref).max() <= 1e-9 * c.volume
