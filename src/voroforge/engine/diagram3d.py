@@ -542,17 +542,27 @@ def _flat(V, roff, ring, base, vid, f, s):
     """Whether face ``f``'s area vector is exactly zero (the fan of :func:`_face_vectors`).
 
     On coordinates times ``s`` (the working frame: products of tiny differences do not
-    underflow to zero).
+    underflow to zero). The fan starts at the ring's lowest vertex number and runs towards
+    its lower-numbered neighbour, so both cells of a face (the same vertices, rings
+    reversed) sum the same products and agree: a face a few ulps wide (a lattice moved by
+    ulps) was flat on one side only, and ``neighbors`` was not symmetric.
     """
     a = roff[f]
-    b = roff[f + 1]
-    v0 = vid[base + ring[a]]
+    n = roff[f + 1] - a
+    q0 = 0
+    for q in range(1, n):
+        if vid[base + ring[a + q]] < vid[base + ring[a + q0]]:
+            q0 = q
+    step = 1
+    if vid[base + ring[a + (q0 + n - 1) % n]] < vid[base + ring[a + (q0 + 1) % n]]:
+        step = n - 1
+    v0 = vid[base + ring[a + q0]]
     ax = 0.0
     ay = 0.0
     az = 0.0
-    for q in range(a + 1, b - 1):
-        u = vid[base + ring[q]]
-        w = vid[base + ring[q + 1]]
+    for k in range(1, n - 1):
+        u = vid[base + ring[a + (q0 + k * step) % n]]
+        w = vid[base + ring[a + (q0 + (k + 1) * step) % n]]
         cx, cy, cz = _fan_cross(V, v0, u, w, s)
         ax += cx
         ay += cy

@@ -12,7 +12,8 @@ The cell is held as a vertex graph (:mod:`kernels.graph3d`) when the template ha
 else (and as the fallback the caller runs when the graph reports ``BROKEN``) as face rings
 cut by :func:`kernels.polyhedron.cut`. Vertex values farther from a plane than the float
 filter's band are trusted; those within it are decided exactly on the vertex's owners
-(:func:`_resolve`, :func:`kernels.predicates3d.bisector_side`).
+(:func:`_resolve`, :func:`kernels.predicates3d.bisector_side`). A cut's new vertex on an edge
+nearly parallel to its plane is solved again exactly (:func:`kernels.vertex3d.resettle`).
 """
 
 from __future__ import annotations
@@ -39,6 +40,7 @@ from .predicates3d import (
 from .reach3d import far as _far
 from .reach3d import gather_heavy, heavy_header, local_stop
 from .reach3d import reach_box as _reach_box
+from .vertex3d import resettle, resettle_rings
 
 OK = 0
 EMPTY = 1
@@ -359,6 +361,7 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
                 return EMPTY, 0, 0, 0, 0.0
             if st != GCUT_DONE:
                 return BROKEN, 0, 0, 0, 0.0
+            r2c = max(r2c, resettle(i, j, V, nv2, G, S, P, W, WP, X))
             nf2 = 0
         else:
             r2c = -1.0
@@ -367,6 +370,7 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
                 return EMPTY, 0, 0, 0, 0.0
             if st != CUT_DONE:
                 return (OVERFLOW if st == CUT_OVERFLOW else BROKEN), 0, 0, 0, 0.0
+            resettle_rings(i, j, C[0], C[1], C[2], C[5][:, 3], nf2, P, W, WP, X)
         nv = nv2
         nf = nf2
         rmax2 = r2c if graph else radius2(V, nv)  # the graph cut's own (the same max)

@@ -38,6 +38,12 @@ from ..config import (
 )
 from .predicates3d import exact_point, vertex_offset, wall_lift
 
+#: a vertex a cut makes on an edge whose planes and the cut's meet at a relative determinant
+#: below this is solved again exactly (:func:`resettle`): the edge's interpolation errs by
+#: ~ulp / determinant, and the float filter's band (``VORONOI3D_CUT_RTOL``) assumes ulps
+#: (config: the lead moves it)
+CUT_EXACT_DET_RTOL = 1e-3
+
 #: nothing here allocates: compiled without reference counting (see kernels.cellcut3d)
 _NO_NRT = {**NJIT, "_nrt": False}
 #: inlined into the cell builder's naming (numba's inliner): every vertex of every cell is
@@ -242,3 +248,89 @@ def _exact_named(name, P, W, WP, ns, buf, y):
     ):
         return 1  # float determinant passed, so never; keep the float solve
     return 2
+
+
+@njit(**_INLINE)
+def _key(lab, ns):
+    """The owner key of a face label (as ``kernels.cellcut3d.owner_key``)."""
+    return lab if lab >= 0 else ns + (-1 - lab)
+
+
+@njit(**_NO_NRT)
+def resettle(i, j, V, nv, G, S, P, W, WP, X):
+    """Solve again exactly the vertices the graph cut by ``j`` made on ill-conditioned edges.
+
+    A new vertex (``S == 0``, three faces, the last ``j``'s) is interpolated along its edge
+    from the ends' float values; where ``j``'s plane is nearly parallel to the edge (the
+    bisectors of sites a few ulps apart) those values are mostly rounding and the point
+    lands anywhere on the edge, far beyond the filter's band: later planes were then
+    trusted on a wrong point (vertices outside the box, faces the exact cell lacks). Such a
+    vertex is put at its owners' exact point, rounded (:func:`vertex_offset`). Returns the
+    largest ``|v|^2`` of the vertices moved (0 when none), for the cell's radius.
+    """
+    r2 = 0.0
+    DEG = G[0]
+    LB = G[3]
+    ns = P.shape[0]
+    for v in range(nv):
+        if S[v] != 0.0 or DEG[v] != 3 or LB[v, 2] != j:
+            continue
+        k0 = _key(LB[v, 0], ns)
+        k1 = _key(LB[v, 1], ns)
+        rows = X[1]  # vertex_offset's scratch; its rows are written again there
+        det, nrm = _rel_det(i, k0, k1, j, P, WP, ns)
+        if abs(det) < CUT_EXACT_DET_RTOL * nrm:
+            vertex_offset(i, k0, k1, j, P, W, WP, ns, rows, P[i, 0], P[i, 1], P[i, 2], V[v])
+            r2 = max(r2, V[v, 0] * V[v, 0] + V[v, 1] * V[v, 1] + V[v, 2] * V[v, 2])
+    return r2
+
+
+@njit(**_NO_NRT)
+def resettle_rings(i, j, V, F, R, labs, nf, P, W, WP, X):
+    """:func:`resettle` for a cell held as face rings (the fallback): ``j``'s face's vertices.
+
+    A vertex of three faces, ``j``'s one of them, is solved again exactly where the three
+    planes meet at a small relative determinant (an on-plane vertex of old is one the
+    exact point rounds to as well).
+    """
+    ns = P.shape[0]
+    for g in range(nf):
+        if F[g, 0] != j:
+            continue
+        for q in range(F[g, 2]):
+            v = R[F[g, 1] + q]
+            m = 0
+            for f in range(nf):
+                for k in range(F[f, 2]):
+                    if R[F[f, 1] + k] == v:
+                        if m < labs.shape[0] and F[f, 0] != j:
+                            labs[m] = _key(F[f, 0], ns)
+                            m += 1
+                        break
+            if m != 2:
+                continue
+            det, nrm = _rel_det(i, labs[0], labs[1], j, P, WP, ns)
+            if abs(det) < CUT_EXACT_DET_RTOL * nrm:
+                vertex_offset(
+                    i, labs[0], labs[1], j, P, W, WP, ns, X[1], P[i, 0], P[i, 1], P[i, 2], V[v]
+                )
+
+
+@njit(**_INLINE)
+def _normal(i, k, P, WP, ns):
+    """The normal of owner ``k``'s plane in cell ``i``: ``p_k - p_i`` or the wall's."""
+    if k < ns:
+        return P[k, 0] - P[i, 0], P[k, 1] - P[i, 1], P[k, 2] - P[i, 2]
+    w = k - ns
+    return WP[w, 0], WP[w, 1], WP[w, 2]
+
+
+@njit(**_INLINE)
+def _rel_det(i, a, b, c, P, WP, ns):
+    """The determinant of owners ``a, b, c``'s normals and the product of their lengths."""
+    ax, ay, az = _normal(i, a, P, WP, ns)
+    bx, by, bz = _normal(i, b, P, WP, ns)
+    cx, cy, cz = _normal(i, c, P, WP, ns)
+    det = ax * (by * cz - bz * cy) + ay * (bz * cx - bx * cz) + az * (bx * cy - by * cx)
+    nrm = np.sqrt((ax * ax + ay * ay + az * az) * (bx * bx + by * by + bz * bz))
+    return det, nrm * np.sqrt(cx * cx + cy * cy + cz * cz)
