@@ -14,6 +14,13 @@ from .render import preview
 
 __all__ = ["build_solid", "check_solid", "make_solid", "preview"]
 
+#: Draws of ``cells`` (at least 64) points in a foam's mesh container's box to find sites
+#: inside the mesh (a solid filling 1/20 of its box needs ~20). (lead: to config.py)
+_FOAM_DRAWS = 200
+#: A cell is convex when its convex hull's volume exceeds its own by at most this fraction
+#: (a float32 STL's convex solid dents its cells by its rounding, ~1e-7 of a cell).
+_CONVEX_TOL = 1e-5
+
 
 def _path(base, name: str) -> Path:
     p = Path(name)
@@ -85,16 +92,53 @@ def _cells(s, base, stage, bare=False):
     else:
         box = tuple(s.container)
     lo, hi = np.array(box[:3]), np.array(box[3:])
-    pts = np.random.default_rng(s.seed).uniform(lo, hi, size=(s.cells, 3))
+    # a foam's bubbles lie in its cells: they are cut by the mesh, and its sites inside it
+    clip = mesh if s.kind == "foam" and mesh is not None else None
+    if clip is not None:
+        clip, pts = _foam_sites(clip, s, lo, hi)
+    else:
+        pts = np.random.default_rng(s.seed).uniform(lo, hi, size=(s.cells, 3))
+    where = box if clip is None else clip
     if s.relax:
         stage(f"relaxing {s.cells} cells ({s.relax} steps)")
-        pts = relax(pts, box, iterations=s.relax)
+        pts = relax(pts, where, iterations=s.relax)
     stage(f"3D Voronoi of {s.cells} cells")
-    cells = voronoi3d(pts, box)
+    cells = voronoi3d(pts, where)
     if s.subdivide:
         stage(f"subdividing ({s.subdivide} levels)")
         cells = subdivide(cells, s.subdivide_count, levels=s.subdivide, field=_field(s))
     return cells, mesh
+
+
+def _foam_sites(mesh, s, lo, hi):
+    """``(container, sites)``: a foam's mesh container (closed) and ``s.cells`` sites in it.
+
+    The sites are drawn in the mesh's box and kept where they lie in the solid, in draw
+    order, until there are enough (the same seed gives the same sites).
+    """
+    from ..design.designfile import DesignError
+    from ..engine.mesh3d import as_mesh_container, sites_inside
+
+    try:
+        box_mesh, _ = as_mesh_container((mesh.vertices, mesh.faces))
+        # voronoi3d's own check of the mesh: an open one is refused naming its open edges
+        from ..engine.voronoi3d import voronoi3d
+
+        voronoi3d(np.zeros((0, 3)), (mesh.vertices, mesh.faces))
+    except ValueError as exc:
+        raise DesignError.at("solid.container", str(exc)) from None
+    rng = np.random.default_rng(s.seed)
+    got = np.zeros((0, 3))
+    for _ in range(_FOAM_DRAWS):
+        p = rng.uniform(lo, hi, size=(max(s.cells, 64), 3))
+        got = np.vstack([got, p[sites_inside(box_mesh, p)]])
+        if len(got) >= s.cells:
+            return (mesh.vertices, mesh.faces), got[: s.cells]
+    raise DesignError.at(
+        "solid.container",
+        f"could not place {s.cells} sites inside the container mesh in {_FOAM_DRAWS} draws "
+        "of its bounding box (is it a thin or empty solid?)",
+    )
 
 
 def make_solid(design, base=None, stage=None, *, bare: bool = False):
@@ -155,7 +199,39 @@ def make_solid(design, base=None, stage=None, *, bare: bool = False):
     from .foam import foam
 
     stage("foam")
-    return foam(cells, s.wall, field=f)
+    if mesh is None:
+        return foam(cells, s.wall, field=f)
+    return foam(_convex_cells(cells), s.wall, field=f, container=_trimesh(mesh))
+
+
+def _trimesh(mesh):
+    import trimesh
+
+    if isinstance(mesh, trimesh.Trimesh):
+        return mesh
+    return trimesh.Trimesh(np.asarray(mesh.vertices), np.asarray(mesh.faces), process=True)
+
+
+def _convex_cells(cells):
+    """The cells (cut by a mesh container) as convex meshes; a non-convex one is an error.
+
+    A foam's bubble is its cell shrunk plane by plane (:func:`voroforge.solid.foam`): a
+    cell a concave container cuts is not the intersection of its faces' half-spaces.
+    """
+    from ..design.designfile import DesignError
+    from .foam import cell_meshes
+
+    ms = cell_meshes(cells)
+    for i, m in enumerate(ms):
+        hull = m.convex_hull.volume
+        if hull - m.volume > _CONVEX_TOL * hull:
+            raise DesignError.at(
+                "solid.container",
+                f"the container mesh cuts cell {i} into a non-convex piece (its volume "
+                f"{m.volume:.6g}, its hull's {hull:.6g}): a foam needs a convex container "
+                "mesh, or one whose concave parts no cell reaches",
+            )
+    return ms
 
 
 def _write_mesh(m, path: Path, fmt: str, units: str) -> Path:

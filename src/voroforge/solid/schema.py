@@ -22,7 +22,7 @@ Size = Positive | tuple[Positive, Positive]
 class SolidField(BaseModel):
     """``[[solid.fields]]``: a 3D attractor (point, curve, plane) grading the sizes."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
     type: Literal["point", "curve", "plane"] = "point"
     points: list[tuple[float, float, float]] | None = None
@@ -35,21 +35,25 @@ class SolidField(BaseModel):
     @model_validator(mode="after")
     def _pts(self) -> SolidField:
         if self.type in ("point", "curve") and not self.points:
-            raise ValueError(f"a {self.type} field needs points = [[x, y, z], ...]")
+            raise ValueError(f"@points@ a {self.type} field needs points = [[x, y, z], ...]")
+        if self.type == "curve" and len(self.points) < 2:
+            raise ValueError(
+                f"@points@ a curve field needs at least two points; got {len(self.points)}"
+            )
         return self
 
 
 class SolidSection(BaseModel):
     """``[solid]``: what to build, from which cells, and the print limits."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
     kind: Literal["lattice", "foam", "shell", "extrude"]
     # cells (lattice, foam)
     container: tuple[Finite, Finite, Finite, Finite, Finite, Finite] | str | None = None
     cells: Annotated[int, Field(gt=0, le=200_000)] = 200
     relax: Annotated[int, Field(ge=0, le=200)] = 0
-    seed: int = 0
+    seed: Annotated[int, Field(ge=0)] = 0
     subdivide: Annotated[int, Field(ge=0, le=3)] = 0
     subdivide_count: Size = 4.0
     # sizes
@@ -84,6 +88,18 @@ class SolidSection(BaseModel):
     def _kind(self) -> SolidSection:
         if self.kind == "shell" and self.surface is None and self.profile is None:
             raise ValueError("a shell needs surface = 'file.stl' or profile = [[r, z], ...]")
+        if self.profile is not None:
+            if len(self.profile) < 2:
+                raise ValueError(
+                    f"@profile@ profile must be [[r, z], ...] with at least 2 points; "
+                    f"got {len(self.profile)}"
+                )
+            neg = [i for i, (r, _) in enumerate(self.profile) if r < 0]
+            if neg:
+                raise ValueError(
+                    f"@profile@ profile radii must be >= 0 (revolved about the z axis); "
+                    f"point {neg[0]} has r = {self.profile[neg[0]][0]:g}"
+                )
         if self.kind in ("lattice", "foam") and self.container is None:
             raise ValueError(
                 f"a {self.kind} needs container = [xmin, ymin, zmin, xmax, ymax, zmax] "

@@ -42,7 +42,16 @@ def surface_of(sec: SurfaceSection, base: Path | None = None):
     if sec.shape == "parametric":
         from .expr import parametric_map
 
-        return shapes.parametric(parametric_map(sec.x, sec.y, sec.z), resolution=res)
+        try:
+            return shapes.parametric(parametric_map(sec.x, sec.y, sec.z), resolution=res)
+        except ValueError as exc:
+            if "non-finite" not in str(exc):
+                raise
+            from ..design.designfile import DesignError
+
+            raise DesignError.at(
+                "surface.x", f"x, y, z give non-finite points on the surface's UV grid ({exc})"
+            ) from None
     from ..design.designfile import find_file
 
     path = None if sec.file is None else find_file(base, sec.file, "surface.file")
@@ -91,7 +100,27 @@ def _height_samples(path: Path, rise: float) -> np.ndarray:
         raise DesignError.at(
             "surface.file", f"cannot read height samples from {path.name}: {exc}"
         ) from None
-    return np.asarray(z, dtype=float)
+    z = np.asarray(z, dtype=float)
+    if not np.isfinite(z).all():
+        bad = np.argwhere(~np.isfinite(z))[0]
+        raise DesignError.at(
+            "surface.file",
+            f"height samples in {path.name} must be finite; row {bad[0]}, column "
+            f"{bad[-1]} is {z[tuple(bad)]}",
+        )
+    return z
+
+
+def _unroll(panels, sheet):
+    """``panels.unroll(sheet=)``; a panel the sheet cannot hold is an error at the key."""
+    try:
+        return panels.unroll(sheet=sheet)
+    except ValueError as exc:
+        if sheet is None or "sheet" not in str(exc):
+            raise
+        from ..design.designfile import DesignError
+
+        raise DesignError.at("surface.sheet", str(exc)) from None
 
 
 def surface_panels(design, base: Path | None = None, *, progress=None):
@@ -118,6 +147,11 @@ def surface_panels(design, base: Path | None = None, *, progress=None):
             raise DesignError.at(
                 "surface.count", "mode = 'voronoi' needs surface.count or seeds.count"
             )
+        if n < 2:
+            from ..design.designfile import DesignError
+
+            key = "surface.count" if sec.count else "seeds.count"
+            raise DesignError.at(key, f"mode = 'voronoi' needs at least 2 cells; got {n}")
         relax = sec.relax if sec.relax is not None else design.relax.iterations
         stage(f"surface Voronoi of {n} cells, {relax} relaxation steps")
         vd = voronoi(S, n, relax=relax, method=sec.method, seed=design.design.seed)
@@ -199,7 +233,7 @@ def build_surface(design, base, out: Path, stage, *, preview: bool = False) -> l
         else:
             if sheets is None:
                 stage("unrolling")
-                sheets = panels.unroll(sheet=sec.sheet)
+                sheets = _unroll(panels, sec.sheet)
             if fmt == "dxf":
                 written.append(
                     sheets.write_dxf(path, layer=cut, label_layer=label, units=design.design.units)
@@ -211,7 +245,7 @@ def build_surface(design, base, out: Path, stage, *, preview: bool = False) -> l
     if preview:
         return written
     if sec.unroll and sheets is None:
-        sheets = panels.unroll(sheet=sec.sheet)
+        sheets = _unroll(panels, sec.sheet)
         written.append(
             sheets.write_dxf(
                 out / f"{stem}-sheets.dxf", layer=cut, label_layer=label, units=design.design.units

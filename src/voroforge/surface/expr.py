@@ -67,6 +67,12 @@ def _check(node: ast.AST, text: str) -> None:
     if isinstance(node, ast.Constant):
         if isinstance(node.value, bool) or not isinstance(node.value, int | float):
             raise ValueError(f"{text!r}: only numbers are allowed as constants")
+        try:
+            big = not math.isfinite(float(node.value))
+        except OverflowError:  # an integer past the largest double
+            big = True
+        if big:
+            raise ValueError(f"{text!r}: the number {_short(node.value)} is not a finite double")
         return None
     if isinstance(node, ast.Name):
         if node.id not in ("u", "v") and node.id not in _CONSTANTS:
@@ -92,13 +98,20 @@ def _check(node: ast.AST, text: str) -> None:
     raise ValueError(f"{text!r}: {type(node).__name__} is not allowed in an expression")
 
 
+def _short(value) -> str:
+    text = repr(value)
+    return text if len(text) <= 24 else f"{text[:10]}...({len(text)} digits)"
+
+
 def _walk(node: ast.AST, env: dict):
+    # numbers are numpy doubles: ``10 ** 400`` of two constants is inf (then refused as a
+    # non-finite surface), not Python's OverflowError
     if isinstance(node, ast.Expression):
         return _walk(node.body, env)
     if isinstance(node, ast.Constant):
-        return float(node.value)
+        return np.float64(node.value)
     if isinstance(node, ast.Name):
-        return env[node.id] if node.id in env else _CONSTANTS[node.id]
+        return env[node.id] if node.id in env else np.float64(_CONSTANTS[node.id])
     if isinstance(node, ast.BinOp):
         return _BINARY[type(node.op)](_walk(node.left, env), _walk(node.right, env))
     if isinstance(node, ast.UnaryOp):

@@ -12,18 +12,38 @@ from __future__ import annotations
 
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field, StrictBool, model_validator
+
+from ..config import SURFACE_COORD_RANGE
 
 __all__ = ["SurfaceSection"]
 
-Positive = Annotated[float, Field(gt=0)]
+#: UV samples per side on which a parametric surface's expressions must be finite (the
+#: builder's grid is checked again when it is built). (lead: to config.py)
+_EXPR_SAMPLES = 65
+
+_BIG = SURFACE_COORD_RANGE[1]
+# lengths and coordinates: finite (the model forbids inf/nan) and within the surfaces' range
+
+
+def _in_range(x: float) -> float:
+    if abs(x) > _BIG:
+        raise ValueError(
+            f"{x:g} is past the surfaces' coordinate range (magnitude up to {_BIG:g}; scale "
+            "the design by a power of ten)"
+        )
+    return x
+
+
+Positive = Annotated[float, Field(gt=0), AfterValidator(_in_range)]
+Coord = Annotated[float, AfterValidator(_in_range)]
 Fraction = Annotated[float, Field(gt=0, lt=1)]
 
 
 class SurfaceSection(BaseModel):
     """``[surface]``: the surface, how the pattern gets onto it, and the panel products."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
     shape: Literal[
         "cylinder", "sphere_patch", "sphere", "saddle", "torus", "heightfield", "parametric", "mesh"
@@ -33,30 +53,30 @@ class SurfaceSection(BaseModel):
     height: Positive | None = None
     width: Positive | None = None
     depth: Positive | None = None
-    rise: float = 0.0
+    rise: Coord = 0.0
     major: Positive | None = None
     minor: Positive | None = None
     polar: tuple[float, float] = (0.0, 90.0)  # degrees from the top
     azimuth: tuple[float, float] = (0.0, 360.0)  # degrees
     resolution: Annotated[int, Field(ge=3, le=2000)] | None = None
     file: str | None = None
-    heights: list[list[float]] | None = None
+    heights: list[list[Coord]] | None = None
     x: str | None = None
     y: str | None = None
     z: str | None = None
     what: Literal["panels", "cells", "openings", "frame"] = "panels"
-    count: Annotated[int, Field(gt=0)] | None = None
+    count: Annotated[int, Field(ge=2)] | None = None
     relax: Annotated[int, Field(ge=0, le=2000)] | None = None
     method: Literal["lbfgs", "lloyd"] = "lbfgs"
     planarize: Positive | None = None
     openings: Fraction | None = None
     openings_near: Fraction | None = None
     openings_far: Fraction | None = None
-    attractors: list[tuple[float, float, float]] = []
+    attractors: list[tuple[Coord, Coord, Coord]] = []
     attractor_radius: Positive | None = None
     thickness: Positive | None = None
     frame: Positive | None = None
-    unroll: bool = False
+    unroll: StrictBool = False
     sheet: tuple[Positive, Positive] | None = None
     meshes: list[Literal["3mf", "obj", "glb", "stl", "ply", "3dm"]] = []
     view: tuple[float, float] = (35.0, 30.0)
@@ -96,9 +116,28 @@ class SurfaceSection(BaseModel):
             from .expr import compile_expression
 
             try:
-                compile_expression(text)
+                f = compile_expression(text)
             except ValueError as exc:
                 raise ValueError(f"@{name}@ {exc}") from None
+            _finite_on_grid(name, text, f)
+        if self.shape == "sphere_patch":
+            t0, t1 = self.polar
+            if not 0 <= t0 < t1 <= 180:
+                raise ValueError(
+                    f"@polar@ polar must be [start, stop] degrees from the top with "
+                    f"0 <= start < stop <= 180; got [{t0:g}, {t1:g}]"
+                )
+            p0, p1 = self.azimuth
+            if not p0 < p1 <= p0 + 360:
+                raise ValueError(
+                    f"@azimuth@ azimuth must be [start, stop] degrees with start < stop <= "
+                    f"start + 360; got [{p0:g}, {p1:g}]"
+                )
+        if self.shape == "torus" and not self.minor < self.major:
+            raise ValueError(
+                f"@minor@ a torus needs minor < major; got minor = {self.minor:g}, "
+                f"major = {self.major:g}"
+            )
         if self.mode == "morph" and self.shape == "sphere":
             raise ValueError("@shape@ morph needs a UV map: use sphere_patch, not sphere")
         graded = (self.openings_near is None) + (self.openings_far is None)
@@ -107,3 +146,22 @@ class SurfaceSection(BaseModel):
         if graded == 0 and (not self.attractors or self.attractor_radius is None):
             raise ValueError("@attractors@ graded openings need attractors and attractor_radius")
         return self
+
+
+def _finite_on_grid(name: str, text: str, f) -> None:
+    """Raise (at ``name``) where the expression is not finite on a UV grid over [0, 1]^2."""
+    import numpy as np
+
+    t = np.linspace(0.0, 1.0, _EXPR_SAMPLES)
+    u, v = np.meshgrid(t, t, indexing="ij")
+    try:
+        val = f(u, v)
+    except (ArithmeticError, ValueError) as exc:  # defensive: the walker is numpy
+        raise ValueError(f"@{name}@ {text!r} cannot be evaluated: {exc}") from None
+    bad = ~np.isfinite(val) | (np.abs(val) > _BIG)
+    if bad.any():
+        i, j = np.argwhere(bad)[0]
+        raise ValueError(
+            f"@{name}@ {text!r} gives {float(val[i, j]):g} at (u, v) = ({t[i]:g}, {t[j]:g}); "
+            f"it must be finite (magnitude up to {_BIG:g}) on 0 <= u, v <= 1"
+        )

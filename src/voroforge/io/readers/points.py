@@ -124,6 +124,14 @@ def read_text_point_table(path, dims: int = 2) -> tuple[np.ndarray, dict]:
             next((names.index(n) for n in axis if n in names), None)
             for axis in (_X_NAMES, _Y_NAMES, _Z_NAMES)[:dims]
         ]
+        for i in found:
+            twice = [k + 1 for k, n in enumerate(names) if i is not None and n == names[i]]
+            if len(twice) > 1:  # which one holds the coordinate is anyone's guess
+                raise ValueError(
+                    f"{path}: line {rows[0][0]}: header {head} names the coordinate column "
+                    f"{head[i]!r} {len(twice)} times (columns {', '.join(map(str, twice))}); "
+                    "rename all but one"
+                )
         if None in found:
             if len(names) != dims:
                 want = " and ".join((", ".join(_AXES[: dims - 1]), _AXES[dims - 1]))
