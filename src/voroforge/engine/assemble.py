@@ -28,6 +28,7 @@ from ..kernels.rings import shared_edges
 from .agree import agree
 from .diagram import Edges, LazyEdges
 from .domain import Domain
+from .pieces import Pieces
 from .slivers import sliver_owner
 from .threads import serial_below
 
@@ -85,7 +86,7 @@ def assemble_checked(dom: Domain, closed, lengths, owner, n: int, cell_ids=None,
     grid = pieces = None
     if not dom.is_rect:
         grid = domain_grid(dom, len(ring_cell))
-        pieces = _Pieces(dom, closed, ring_offsets, ring_cell, n)
+        pieces = Pieces(dom, closed, ring_offsets, ring_cell, n)
     edges = LazyEdges(
         partial(_edges_later, n, dom, grid, pieces, closed, ring_offsets, ring_cell, owner)
     )
@@ -206,200 +207,6 @@ def _centres(lo, hi, h, count):
     )
 
 
-_PIECE_SMALL = 256  # a domain with at most this many vertices is intersected whole
-
-
-class _Pieces:
-    """The domain cut to each cell's box: what a cell, or an edge of it, is intersected with.
-
-    Overlay cost grows with the size of both operands, so a cell meeting the domain's
-    boundary is intersected with the domain cut to the cell's bounding box (GEOS's
-    rectangle clip, linear in the domain's vertices and tens of times cheaper than an
-    overlay; when its result is not valid, the overlay makes it), and an edge with the
-    piece of its lower-numbered cell, whose box holds it. A piece depends on the domain
-    and the cell's convex ring alone, never on the other cells: a cell gets the same
-    crossing points bit for bit whichever other cells are computed with it (the tiled
-    ``scale.voronoi`` relies on it). A domain of ``N`` vertices thus costs ``N`` per cell
-    on its boundary (about the square root of the cells), not ``N`` per overlay of a
-    large piece.
-    """
-
-    def __init__(self, dom: Domain, closed, ring_offsets, ring_cell, n: int):
-        self.geometry = dom.geometry
-        self.whole = int(shapely.get_num_coordinates(dom.geometry)) <= _PIECE_SMALL
-        # a prepared copy (the caller's geometry is left as it is) for the exact predicates
-        # that settle most geometries without an overlay
-        self.prepared = shapely.from_wkb(shapely.to_wkb(dom.geometry))
-        shapely.prepare(self.prepared)
-        self.bounds = np.zeros((n, 4))
-        if len(ring_cell):
-            starts = ring_offsets[:-1]
-            self.bounds[ring_cell, 0] = np.minimum.reduceat(closed[:, 0], starts)
-            self.bounds[ring_cell, 1] = np.minimum.reduceat(closed[:, 1], starts)
-            self.bounds[ring_cell, 2] = np.maximum.reduceat(closed[:, 0], starts)
-            self.bounds[ring_cell, 3] = np.maximum.reduceat(closed[:, 1], starts)
-        self.cache: dict[int, object] = {}
-        self.coords = None
-        self.sides = None  # the domain's distinct x and y coordinates, sorted (when needed)
-        self.rings = None  # an index of the domain's rings (:meth:`_near`), when needed
-
-    def piece(self, cell: int):
-        got = self.cache.get(cell)
-        if got is None:
-            got = self.cache[cell] = self.around(*self.bounds[cell])
-        return got
-
-    def around(self, x0, y0, x1, y1):
-        """The domain cut to a rectangle that holds ``[x0, x1] x [y0, y1]``.
-
-        GEOS's rectangle clip returns the complement of the answer (valid, so unnoticed) when
-        the domain's boundary passes through two corners of the rectangle (a box-wide cell
-        in a domain with vertices on its box: ``clip_by_rect`` of the polygon
-        ``(0 0, 3 0, 3 10, 1.5 0.5, 0 10)`` to its own bounds is the notch between its
-        teeth): the rectangle is grown a little, to sides on which no vertex of the domain
-        lies.
-        """
-        if self.sides is None:
-            xy = self._coords()
-            self.sides = (np.unique(xy[:, 0]), np.unique(xy[:, 1]))
-        rect = []
-        for v, step, axis in ((x0, -1, 0), (y0, -1, 1), (x1, 1, 0), (y1, 1, 1)):
-            width = (x1 - x0) if axis == 0 else (y1 - y0)
-            used = self.sides[axis]
-            v = v + step * max(width, abs(v) * 2.0**-40) / 16
-            while used[min(np.searchsorted(used, v), len(used) - 1)] == v:
-                v = v + step * max(width, abs(v) * 2.0**-40) / 16
-            rect.append(v)
-        got = shapely.clip_by_rect(self._near(rect), *rect)
-        if not shapely.is_valid(got):
-            got = shapely.intersection(self.geometry, shapely.box(*rect))
-        return got
-
-    def _ring_index(self):
-        """An STRtree of the domain's rings (shells, then holes) and each ring's part."""
-        if self.rings is None:
-            polys = shapely.get_parts(self.geometry)
-            holes = [
-                shapely.get_interior_ring(p, range(shapely.get_num_interior_rings(p)))
-                for p in polys
-            ]
-            shells = shapely.get_exterior_ring(polys)
-            every = np.concatenate([shells, *holes])
-            part = np.concatenate(
-                [np.arange(len(polys)), *[np.full(len(h), k) for k, h in enumerate(holes)]]
-            )
-            self.rings = (shapely.STRtree(every), every, part)
-        return self.rings
-
-    def _disjoint(self, geoms, todo):
-        """``disjoint(domain, geoms[k])`` where ``todo[k]`` (False elsewhere), exactly.
-
-        The prepared predicate tests a point of every ring of the domain against each
-        geometry (thousands of holes: quadratic); here a geometry that meets no ring (an
-        indexed exact query) lies wholly inside or wholly outside, which its first vertex
-        tells.
-        """
-        out = np.zeros(len(geoms), dtype=np.bool_)
-        idx = np.flatnonzero(todo)
-        if self.whole or not len(idx):
-            out[idx] = shapely.disjoint(self.prepared, geoms[idx])
-            return out
-        tree = self._ring_index()[0]
-        meets = np.zeros(len(idx), dtype=np.bool_)
-        meets[tree.query(geoms[idx], predicate="intersects")[0]] = True
-        xy, at = shapely.get_coordinates(geoms[idx], return_index=True)
-        first = xy[np.unique(at, return_index=True)[1]]
-        out[idx] = ~meets & ~shapely.intersects_xy(self.prepared, first[:, 0], first[:, 1])
-        return out
-
-    def _near(self, rect):
-        """The domain without the parts and holes whose boxes miss ``rect``: the same clip.
-
-        GEOS's rectangle clip drops a ring that misses the rectangle (a hole whose box
-        misses it cannot hold it) and keeps the others in their order, so the clip of what
-        is left is the clip of the domain, point for point, in time linear in the rings
-        near the rectangle rather than in all the domain's vertices (a domain with
-        thousands of holes spread over it).
-        """
-        tree, every, part = self._ring_index()
-        if len(every) <= 2:
-            return self.geometry
-        hit = np.sort(tree.query(shapely.box(*rect)))
-        if len(hit) == len(every):
-            return self.geometry
-        polys = []
-        for k in np.unique(part[hit]):
-            mine = hit[part[hit] == k]
-            if mine[0] == k:  # (a part whose shell misses the rectangle misses it whole)
-                polys.append(shapely.polygons(every[k], holes=every[mine[1:]]))
-        if not polys:
-            return self.geometry  # (the rectangle misses the domain: the clip is empty)
-        if shapely.get_type_id(self.geometry) == 3:
-            return polys[0]
-        return shapely.multipolygons(polys)
-
-    def vertex_near(self, ring, reach):
-        """The vertex of the domain nearest to ``ring`` if within ``reach`` of it, else None."""
-        coords = self._coords()
-        x0, y0, x1, y1 = shapely.bounds(ring)
-        box = (
-            (coords[:, 0] >= x0 - reach)
-            & (coords[:, 0] <= x1 + reach)
-            & (coords[:, 1] >= y0 - reach)
-            & (coords[:, 1] <= y1 + reach)
-        )
-        cand = coords[box]
-        if not len(cand):
-            return None
-        dist = shapely.distance(ring, shapely.points(cand))
-        best = int(np.argmin(dist))
-        return cand[best] if dist[best] <= reach else None
-
-    def in_interior(self, lines, cells):
-        """Whether each of ``lines`` meets the domain's interior (exact predicates).
-
-        Line ``k`` lies in the domain and in the box of cell ``cells[k]``; a piece along
-        the domain's boundary does not meet its interior.
-        """
-        out = np.zeros(len(lines), dtype=np.bool_)
-        if self.whole:
-            return shapely.relate_pattern(self.geometry, lines, "T********")
-        order = np.argsort(cells, kind="stable")
-        cuts = np.flatnonzero(np.diff(cells[order])) + 1
-        for group in np.split(order, cuts) if len(order) else []:
-            out[group] = shapely.relate_pattern(
-                self.piece(int(cells[group[0]])), lines[group], "T********"
-            )
-        return out
-
-    def _coords(self):
-        if self.coords is None:
-            self.coords = shapely.get_coordinates(self.geometry)
-        return self.coords
-
-    def intersect(self, geoms, cells, empty):
-        """``geoms[k] ∩ domain`` for geometries inside the boxes of cells ``cells[k]``.
-
-        A geometry in the domain's interior is its own intersection and one disjoint from it
-        has ``empty`` (exact predicates on the prepared domain, several times cheaper than an
-        overlay); only the rest, which meet the domain's boundary, are overlaid.
-        """
-        out = np.empty(len(geoms), dtype=object)  # noqa: TID251 - every slot is filled below
-        inside = shapely.contains_properly(self.prepared, geoms)
-        outside = self._disjoint(geoms, ~inside)
-        out[inside] = geoms[inside]
-        out[outside] = empty
-        rest = np.flatnonzero(~(inside | outside))
-        if self.whole:
-            out[rest] = shapely.intersection(geoms[rest], self.geometry)
-            return out
-        order = rest[np.argsort(cells[rest], kind="stable")]
-        cuts = np.flatnonzero(np.diff(cells[order])) + 1
-        for group in np.split(order, cuts) if len(order) else []:
-            out[group] = shapely.intersection(geoms[group], self.piece(int(cells[group[0]])))
-        return out
-
-
 def clip_to_polygon(dom: Domain, grid, pieces, coords, ring_offsets, ring_cell, n, sites=None):
     """Clip convex closed rings (one per non-empty cell) to a polygonal domain.
 
@@ -488,7 +295,9 @@ def _held(pieces, convex, clipped, cells, sites, rings):
     missed = inside = np.zeros(len(cells), dtype=np.bool_)
     if sites is not None:
         xy = sites[cells]
-        inside = shapely.intersects_xy(pieces.prepared, xy[:, 0], xy[:, 1])
+        inside = np.zeros(len(cells), dtype=np.bool_)
+        known = np.zeros(len(cells), dtype=np.bool_)
+        _locate(pieces, clipped, xy, inside, known)
         missed = _missed(clipped, xy, inside, pieces.prepared)
     trouble = np.flatnonzero(missed | thin)
     done = np.zeros(len(cells), dtype=np.bool_)
@@ -515,7 +324,19 @@ def _held(pieces, convex, clipped, cells, sites, rings):
             done[near] = True
     if sites is None or not len(trouble):
         return clipped, np.zeros(0, dtype=np.int64)
+    _locate(pieces, clipped, xy, inside, known)
     return clipped, cells[_missed(clipped, xy, inside, pieces.prepared)].astype(np.int64)
+
+
+def _locate(pieces, clipped, xy, inside, known):
+    """Fill ``inside`` (the domain holds site ``xy[k]``) where clipped cell ``k`` misses it.
+
+    Only those are read (:func:`_missed`), and locating a site is the costly part on a
+    domain whose boundary spans it many times (:meth:`.pieces.Pieces.holds`).
+    """
+    need = np.flatnonzero(~known & ~shapely.intersects_xy(clipped, xy[:, 0], xy[:, 1]))
+    inside[need] = pieces.holds(xy[need])
+    known[need] = True
 
 
 def _group(tree, convex, k, grow):
