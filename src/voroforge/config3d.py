@@ -46,6 +46,9 @@ __all__ = [
     "SUBDIVIDE_SLIVER",
     "IMPLICIT_SAG",
     "VORONOI3D_CHUNK",
+    "SURFACE_EXPR_SAMPLES",
+    "SOLID_FOAM_DRAWS",
+    "SOLID_FOAM_CONVEX_RTOL",
 ]
 
 #: The 3D cut's float filter: a vertex's value against a bisector plane farther from 0 than
@@ -174,3 +177,13 @@ IMPLICIT_SAG = 0.6
 #: (4.35 KB a cell each) stay resident for the call: 4,096 made the 1e5 peak 1.2 KB a cell
 #: (0.9 KB at 1,024, outputs byte-equal); 1e6 keeps 4,096 (1,024 measured 5% more CPU)
 VORONOI3D_CHUNK = (1024, 4096)
+#: [surface] parametric: UV samples per side on which x/y/z expressions must be finite when
+#: the design is checked (the builder's own grid is checked again when it is built)
+SURFACE_EXPR_SAMPLES = 65
+#: [solid] foam in a mesh container: draws of ``cells`` (at least 64) points in the mesh's
+#: box to find sites inside it (a solid filling 1/20 of its box needs ~20)
+SOLID_FOAM_DRAWS = 200
+#: [solid] foam in a mesh container: a clipped cell is convex when its hull's volume exceeds
+#: its own by at most this fraction (a float32 STL's convex solid dents its cells by its
+#: rounding, ~1e-7 of a cell; 1e-9 refused convex STL containers)
+SOLID_FOAM_CONVEX_RTOL = 1e-5

@@ -10,16 +10,10 @@ from pathlib import Path
 
 import numpy as np
 
+from ..config import SOLID_FOAM_CONVEX_RTOL, SOLID_FOAM_DRAWS
 from .render import preview
 
 __all__ = ["build_solid", "check_solid", "make_solid", "preview"]
-
-#: Draws of ``cells`` (at least 64) points in a foam's mesh container's box to find sites
-#: inside the mesh (a solid filling 1/20 of its box needs ~20). (lead: to config.py)
-_FOAM_DRAWS = 200
-#: A cell is convex when its convex hull's volume exceeds its own by at most this fraction
-#: (a float32 STL's convex solid dents its cells by its rounding, ~1e-7 of a cell).
-_CONVEX_TOL = 1e-5
 
 
 def _path(base, name: str) -> Path:
@@ -129,14 +123,14 @@ def _foam_sites(mesh, s, lo, hi):
         raise DesignError.at("solid.container", str(exc)) from None
     rng = np.random.default_rng(s.seed)
     got = np.zeros((0, 3))
-    for _ in range(_FOAM_DRAWS):
+    for _ in range(SOLID_FOAM_DRAWS):
         p = rng.uniform(lo, hi, size=(max(s.cells, 64), 3))
         got = np.vstack([got, p[sites_inside(box_mesh, p)]])
         if len(got) >= s.cells:
             return (mesh.vertices, mesh.faces), got[: s.cells]
     raise DesignError.at(
         "solid.container",
-        f"could not place {s.cells} sites inside the container mesh in {_FOAM_DRAWS} draws "
+        f"could not place {s.cells} sites inside the container mesh in {SOLID_FOAM_DRAWS} draws "
         "of its bounding box (is it a thin or empty solid?)",
     )
 
@@ -224,7 +218,7 @@ def _convex_cells(cells):
     ms = cell_meshes(cells)
     for i, m in enumerate(ms):
         hull = m.convex_hull.volume
-        if hull - m.volume > _CONVEX_TOL * hull:
+        if hull - m.volume > SOLID_FOAM_CONVEX_RTOL * hull:
             raise DesignError.at(
                 "solid.container",
                 f"the container mesh cuts cell {i} into a non-convex piece (its volume "

@@ -14,13 +14,10 @@ from typing import Annotated, Literal
 
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, StrictBool, model_validator
 
-from ..config import SURFACE_COORD_RANGE
+from ..config import SURFACE_COORD_RANGE, SURFACE_EXPR_SAMPLES
 
 __all__ = ["SurfaceSection"]
 
-#: UV samples per side on which a parametric surface's expressions must be finite (the
-#: builder's grid is checked again when it is built). (lead: to config.py)
-_EXPR_SAMPLES = 65
 
 _BIG = SURFACE_COORD_RANGE[1]
 # lengths and coordinates: finite (the model forbids inf/nan) and within the surfaces' range
@@ -152,7 +149,7 @@ def _finite_on_grid(name: str, text: str, f) -> None:
     """Raise (at ``name``) where the expression is not finite on a UV grid over [0, 1]^2."""
     import numpy as np
 
-    t = np.linspace(0.0, 1.0, _EXPR_SAMPLES)
+    t = np.linspace(0.0, 1.0, SURFACE_EXPR_SAMPLES)
     u, v = np.meshgrid(t, t, indexing="ij")
     try:
         val = f(u, v)
