@@ -23,24 +23,8 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
+from ..config import PIECE_BIG_RING, PIECE_CHUNK, PIECE_RAY_SPAN, PIECE_SMALL, PIECE_TILE
 from .domain import Domain
-
-# (constants for config.py)
-#: A domain with at most this many vertices is intersected whole, and tested with
-#: predicates on the whole domain
-PIECE_SMALL = 256
-#: Consecutive segments of a ring in one chunk of the boundary index (a geometry is tested
-#: against the chunks whose boxes it meets; a piece keeps the chunks its rectangle meets)
-PIECE_CHUNK = 32
-#: A point is located in the whole (prepared) domain when at most this many boundary
-#: segments span its ordinate (GEOS's ray crosses those), else in the domain cut near it
-PIECE_RAY_SPAN = 1024
-#: Points located together in one cut of the domain (:meth:`Pieces.holds`), on average
-PIECE_TILE = 32
-#: The boundary's chunks are used only when a ring has more vertices than this (below,
-#: the whole rings near a cell cost less than the chunks' bookkeeping: comb of 1,000
-#: teeth 1.1x slower with chunks, 2,000 about even; 400 square holes 1.18x slower)
-PIECE_BIG_RING = 8192
 
 
 class Pieces:
