@@ -11,7 +11,9 @@ geometry is :func:`voroforge.design.compute.compute`'s, reused per cell between 
 
 Saving writes the design as TOML into the design's own folder (never elsewhere, never over
 a file without ``overwrite``), with hand-edited sites in a ``<name>.seeds.csv`` beside it
-that ``[seeds] method = "file"`` reads back bit for bit; ``voroforge build`` of the saved
+that ``[seeds] method = "file"`` reads back bit for bit (a ``<name>.seeds.geojson`` when the
+sites came from a seed file with attribute columns: each site keeps its row's properties,
+added sites get nulls, JSON types kept); ``voroforge build`` of the saved
 file gives the files the page exports, byte for byte (exports go through the same
 :func:`voroforge.design.build.build`).
 """
@@ -21,6 +23,7 @@ from __future__ import annotations
 import contextlib
 import copy
 import dataclasses
+import json
 import math
 import re
 import tempfile
@@ -86,8 +89,11 @@ class Session:
         self.max_seeds = int(max_seeds)
         self.data: dict = data
         self.sites: np.ndarray | None = None
-        self.history: list[tuple[dict, np.ndarray | None]] = []
-        self.future: list[tuple[dict, np.ndarray | None]] = []
+        #: (attributes, row of each of ``sites``, -1 for added ones) when the edited sites
+        #: came from a seed file with attribute columns (kept on save), else None
+        self.rows: tuple[dict, np.ndarray] | None = None
+        self.history: list[tuple[dict, np.ndarray | None, tuple | None]] = []
+        self.future: list[tuple[dict, np.ndarray | None, tuple | None]] = []
         self.result = None
         self.design = None
         self.live = LiveCheck()
@@ -301,7 +307,7 @@ class Session:
 
     # --- edits -------------------------------------------------------------------------
 
-    def _commit(self, data: dict, sites, *, remember: bool = True) -> Reply:
+    def _commit(self, data: dict, sites, *, remember: bool = True, rows=None) -> Reply:
         previous = self.result
         try:
             design, result = self._compute(data, sites)
@@ -309,19 +315,33 @@ class Session:
                 inside = shapely.contains_xy(result.domain, sites[:, 0], sites[:, 1])
                 if not inside.all():
                     sites = sites[inside] if inside.any() else None
+                    rows = None if rows is None or sites is None else (rows[0], rows[1][inside])
                     design, result = self._compute(data, sites)
         except DesignError as exc:
             return error_reply(exc)
         if remember:
-            self.history.append((self.data, self.sites))
-            del self.history[: -config.STUDIO_UNDO_DEPTH]
-            self.future.clear()
+            self._remember()
         self.data, self.sites, self.design, self.result = data, sites, design, result
+        self.rows = rows if sites is not None else None
         self.frame = None
         return Reply("update", changed=changed_cells(previous, result))
 
+    def _remember(self) -> None:
+        self.history.append((self.data, self.sites, self.rows))
+        del self.history[: -config.STUDIO_UNDO_DEPTH]
+        self.future.clear()
+
     def _sites(self) -> np.ndarray:
         return (self.result.sites if self.sites is None else self.sites).copy()
+
+    def _rows(self) -> tuple[dict, np.ndarray] | None:
+        """:attr:`rows` of the sites an edit starts from (the seed file's rows at first)."""
+        if self.sites is not None:
+            return self.rows
+        table = self.result.extra.get("seed_table")
+        if table is None or not table.attributes or len(table.rows) != len(self.result.sites):
+            return None
+        return table.attributes, np.asarray(table.rows, dtype=np.int64)
 
     def _point(self, msg: dict) -> tuple[float, float]:
         x, y = number(msg.get("x"), "x"), number(msg.get("y"), "y")
@@ -372,13 +392,13 @@ class Session:
             raise BadMessage("", "set needs a dotted key, e.g. seeds.count")
         value = plain(msg.get("value"), key)
         data = apply_overrides(self.data, {key: value})
-        sites = self.sites
+        sites, rows = self.sites, self.rows
         if any(key == k or key.startswith(k + ".") for k in _RESEED):
             sites = None
             fast = self._reseed_fast(data) if self.frame is None else None
             if fast is not None:
                 return fast
-        reply = self._commit(data, sites)
+        reply = self._commit(data, sites, rows=rows)
         if reply.kind == "error":
             for it in reply.issues:
                 it.setdefault("key", key)
@@ -429,27 +449,29 @@ class Session:
             return None
         self._seeded = None
         self.compute_ms = (time.perf_counter() - start) * 1e3
-        self.history.append((self.data, self.sites))
-        del self.history[: -config.STUDIO_UNDO_DEPTH]
-        self.future.clear()
-        self.data, self.sites, self.design, self.result = data, None, design, fast[0]
+        self._remember()
+        self.data, self.sites, self.rows, self.design, self.result = (
+            data,
+            None,
+            None,
+            design,
+            fast[0],
+        )
         self.frame = None
         return Reply("update", changed=fast[1])
 
     def _op_move(self, msg: dict) -> Reply:
-        sites = self._sites()
+        sites, rows = self._sites(), self._rows()
         i = self._index(msg, len(sites))
         sites[i] = self._point(msg)
         remember = bool(msg.get("begin", True))
         fast = self._move_fast(i, sites[i]) if self.frame is None else None
         if fast is None:
-            return self._commit(self.data, sites, remember=remember)
+            return self._commit(self.data, sites, remember=remember, rows=rows)
         result, changed = fast
         if remember:
-            self.history.append((self.data, self.sites))
-            del self.history[: -config.STUDIO_UNDO_DEPTH]
-            self.future.clear()
-        self.sites, self.result = sites, result
+            self._remember()
+        self.sites, self.rows, self.result = sites, rows, result
         return Reply("update", changed=changed)
 
     def _move_fast(self, i: int, xy):
@@ -533,17 +555,19 @@ class Session:
         return np.flatnonzero(~same).astype(np.int32)
 
     def _op_add(self, msg: dict) -> Reply:
-        sites = self._sites()
+        sites, rows = self._sites(), self._rows()
         if len(sites) >= self.max_seeds:
             raise BadMessage("seeds", f"the studio's limit is {self.max_seeds} seeds")
-        return self._commit(self.data, np.vstack((sites, [self._point(msg)])))
+        rows = None if rows is None else (rows[0], np.append(rows[1], -1))
+        return self._commit(self.data, np.vstack((sites, [self._point(msg)])), rows=rows)
 
     def _op_remove(self, msg: dict) -> Reply:
-        sites = self._sites()
+        sites, rows = self._sites(), self._rows()
         i = self._index(msg, len(sites))
         if len(sites) <= 1:
             raise BadMessage("seeds", "the last seed cannot be removed")
-        return self._commit(self.data, np.delete(sites, i, axis=0))
+        rows = None if rows is None else (rows[0], np.delete(rows[1], i))
+        return self._commit(self.data, np.delete(sites, i, axis=0), rows=rows)
 
     def _op_attractor(self, msg: dict) -> Reply:
         attractors = self.data.get("attractors") or []
@@ -554,7 +578,7 @@ class Session:
         p = self._index(msg, len(points), "p")
         x, y = number(msg.get("x"), "x"), number(msg.get("y"), "y")
         data = apply_overrides(self.data, {f"attractors.{a}.points.{p}": [x, y]})
-        return self._commit(data, self.sites, remember=bool(msg.get("begin", True)))
+        return self._commit(data, self.sites, remember=bool(msg.get("begin", True)), rows=self.rows)
 
     def _op_frame(self, msg: dict) -> Reply:
         """Show frame ``k`` of the design's ``[animation]`` (not an edit: no undo step).
@@ -631,29 +655,43 @@ class Session:
     def _travel(self, source: list, target: list, empty: str) -> Reply:
         if not source:
             return Reply("info", note=empty)
-        data, sites = source[-1]
+        data, sites, rows = source[-1]
         previous = self.result
         try:
             design, result = self._compute(data, sites)
         except DesignError as exc:
             return error_reply(exc)
         source.pop()
-        target.append((self.data, self.sites))
-        self.data, self.sites, self.design, self.result = data, sites, design, result
+        target.append((self.data, self.sites, self.rows))
+        self.data, self.sites, self.rows, self.design, self.result = (
+            data,
+            sites,
+            rows,
+            design,
+            result,
+        )
         self.frame = None
         return Reply("update", changed=changed_cells(previous, result))
 
     # --- files -------------------------------------------------------------------------
 
     def saved_data(self, seeds_file: str | None) -> tuple[dict, str | None]:
-        """The design mapping as saved, and the CSV text of hand-edited sites (or None)."""
+        """The design mapping as saved, and the text of hand-edited sites (or None).
+
+        The text is CSV (``x,y``) written to ``seeds_file``; when the sites came from a seed
+        file with attributes it is GeoJSON, and ``data["seeds"]["file"]`` names
+        ``seeds_file`` with the suffix ``.geojson`` (each site with its row's properties).
+        """
         data = copy.deepcopy(self.data)
         if self.sites is None:
             return data, None
-        data["seeds"] = {"method": "file", "file": seeds_file}
         data.pop("relax", None)
-        lines = ["x,y", *(f"{float(x)!r},{float(y)!r}" for x, y in self.sites)]
-        return data, "\n".join(lines) + "\n"
+        if self.rows is None:
+            data["seeds"] = {"method": "file", "file": seeds_file}
+            lines = ["x,y", *(f"{float(x)!r},{float(y)!r}" for x, y in self.sites)]
+            return data, "\n".join(lines) + "\n"
+        data["seeds"] = {"method": "file", "file": str(Path(seeds_file).with_suffix(".geojson"))}
+        return data, _points_geojson(self.sites, *self.rows)
 
     def _op_save(self, msg: dict) -> Reply:
         name = msg.get("name")
@@ -664,12 +702,11 @@ class Session:
         target = (self.folder / name).resolve()
         if target.parent != self.folder:
             raise BadMessage("save", "saves go only into the design's folder")
-        csv_name = target.stem + ".seeds.csv"
-        data, csv = self.saved_data(csv_name)
+        data, csv = self.saved_data(target.stem + ".seeds.csv")
         text = dumps(data, comment="Saved by voroforge studio; build: voroforge build " + name)
         files = {target: text}
         if csv is not None:
-            files = {self.folder / csv_name: csv, target: text}
+            files = {self.folder / data["seeds"]["file"]: csv, target: text}
         exists = [p.name for p in files if p.exists() or p.is_symlink()]
         if exists and msg.get("overwrite") is not True:
             return Reply("confirm", files=exists, name=name)
@@ -694,7 +731,7 @@ class Session:
             data, csv = self.saved_data("studio.seeds.csv")
             _absolute_files(data, self.folder)
             if csv is not None:
-                (tmp / "studio.seeds.csv").write_text(csv, encoding="utf-8")
+                (tmp / data["seeds"]["file"]).write_text(csv, encoding="utf-8")
             data.setdefault("output", {})["formats"] = [fmt]
             data.setdefault("fabrication", {})["report"] = False
             (tmp / "studio.toml").write_text(dumps(data), encoding="utf-8")
@@ -718,6 +755,16 @@ def _same_data(a, b) -> bool:
     return a == b
 
 
+def _points_geojson(sites: np.ndarray, attributes: dict, rows: np.ndarray) -> str:
+    """GeoJSON of ``sites``, each with its file row's properties (nulls for row -1)."""
+    features = []
+    for (x, y), r in zip(sites.tolist(), rows.tolist(), strict=True):
+        props = {k: (col[r] if r >= 0 else None) for k, col in attributes.items()}
+        point = {"type": "Point", "coordinates": [float(x), float(y)]}
+        features.append({"type": "Feature", "properties": props, "geometry": point})
+    return json.dumps({"type": "FeatureCollection", "features": features}, indent=1) + "\n"
+
+
 def _absolute_files(data: dict, folder: Path) -> None:
     """Make the design's file names absolute (for a copy of the design written elsewhere)."""
 
@@ -728,7 +775,7 @@ def _absolute_files(data: dict, folder: Path) -> None:
                 table[key] = str(folder / p)
 
     fix(data.get("boundary"), "file")
-    if (data.get("seeds") or {}).get("file") != "studio.seeds.csv":
+    if (data.get("seeds") or {}).get("file") not in ("studio.seeds.csv", "studio.seeds.geojson"):
         fix(data.get("seeds"), "file")
     for a in data.get("attractors") or []:
         fix(a, "file")
