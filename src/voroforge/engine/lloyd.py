@@ -8,6 +8,7 @@ density-weighted centroid of cell ``i``; a CVT (``z_i = c_i``) is a critical poi
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass
 
@@ -221,7 +222,10 @@ def size_exponent(dom) -> int:
     about ``2**+-60`` they would leave the double range (energy ``inf``, centroids NaN).
     """
     x0, y0, x1, y1 = dom.bounds
-    return -unit_exponent(max(x1 - x0, y1 - y0), 60)
+    size = max(x1 - x0, y1 - y0)
+    if not math.isfinite(size):  # a box past float64's range across (the default one, clamped)
+        return -(unit_exponent(max(x1 / 2 - x0 / 2, y1 / 2 - y0 / 2), 60) + 1)
+    return -unit_exponent(size, 60)
 
 
 def _rescaled(z, dom, k, iterations, tol, density, method, targets):
