@@ -210,7 +210,7 @@ class Convex:
 
         self.halfspaces = hs
         self._template = _convex_template(hs, box, local)
-        if points is not None and self._template.WP.shape[1] > 4:
+        if points is not None and self._template.float_cut and self._template.WP.shape[1] > 4:
             # far out, the volume of the hull's triangles about the origin (exact
             # differences): the template's float cut treats walls within 1e-12 of a vertex
             # as through it, and a rotated cube at 1e6, its faces split by the corners'
@@ -219,9 +219,13 @@ class Convex:
             self._template = replace(t, volume=_hull_volume(pts - t.origin, tris))
         self._exact: Template | None = None
         t = self._template
-        if points is not None and (
-            len(hs) <= CONVEX_EXACT_ROWS
-            or t.volume < CONVEX_EXACT_THIN * float(np.ptp(t.bounds, axis=0).max()) ** 3
+        if (
+            points is not None
+            and t.float_cut  # (else the template is that polytope: containers._Degenerate)
+            and (
+                len(hs) <= CONVEX_EXACT_ROWS
+                or t.volume < CONVEX_EXACT_THIN * float(np.ptp(t.bounds, axis=0).max()) ** 3
+            )
         ):
             # the cells sum to the exact polytope of the rows, not to the float cut (or, far
             # out, the hull's triangles): its volume, and it is the exact twin (built once)
@@ -548,14 +552,25 @@ def _hull_template(hs, lo, hi, o, local) -> Template:
         # far out: walls about the origin o near the solid, exactly (module docstring)
         rows = local(o)
         WP = np.ascontiguousarray(np.column_stack([rows, np.tile(o, (k, 1))]))
-        TV, TF, TR, vol = cut_template(rows[:, :3], rows[:, 3], lo - o - pad, hi - o + pad)
+        cut = True
+        try:
+            TV, TF, TR, vol = cut_template(rows[:, :3], rows[:, 3], lo - o - pad, hi - o + pad)
+        except _Degenerate:
+            # the float cut lost its rings among walls ulps apart (a relaxed cell of a box
+            # at 1e6, 31 walls); the exact polytope of the same rows holds them
+            TV, TF, TR, vol = _exact_template(rows, lo - o, hi - o)
+            cut = False
         bounds = np.array([TV.min(0) + o, TV.max(0) + o])
-        return Template(TV, TF, TR, WP, "convex", float(vol), bounds, hs.copy(), True)
+        return Template(TV, TF, TR, WP, "convex", float(vol), bounds, hs.copy(), cut)
     # cut in a frame centred on the solid: in absolute coordinates a small solid far out
     # lost its volume to cancellation
     c = 0.5 * (lo + hi)
     d = hs[:, 3] - hs[:, :3] @ c
-    TV, TF, TR, vol = cut_template(hs[:, :3], d, lo - c - pad, hi - c + pad)
+    try:
+        TV, TF, TR, vol = cut_template(hs[:, :3], d, lo - c - pad, hi - c + pad)
+    except _Degenerate:  # (as above)
+        TV, TF, TR, vol = _exact_template(np.ascontiguousarray(hs), lo, hi)
+        return Template(TV, TF, TR, hs.copy(), "convex", vol, np.array([TV.min(0), TV.max(0)]))
     TV = TV + c
     bounds = np.array([TV.min(0), TV.max(0)])
     return Template(TV, TF, TR, hs.copy(), "convex", float(vol), bounds, None, True)
@@ -594,11 +609,15 @@ def cut_template(N, d, lo, hi):
     if st == 2:
         raise ValueError("the Convex container has no volume")
     if st != 0:
-        raise ValueError("could not build the Convex container (degenerate half-spaces)")
+        raise _Degenerate("could not build the Convex container (degenerate half-spaces)")
     if (TF[:, 0] < -k).any():
         raise ValueError("could not close the Convex container (its half-spaces leave it open)")
     # walls never reached (redundant half-spaces) keep their numbers; volume from faces
     return TV, TF, TR, moments(TV, TF, len(TF), TR)[0]
+
+
+class _Degenerate(ValueError):
+    """The float cut of a template failed (``cut_template``): the exact polytope may not."""
 
 
 def _exact_template(rows, lo, hi):
