@@ -605,6 +605,10 @@ FLAT_RTOL = 1e-10
 ASSEMBLE_THIN_ULPS = 64.0
 #: engine.assemble: ring vertices this many ulps apart on a shared edge are the same vertex
 ASSEMBLE_ALIGN_ULPS = 4
+#: engine.assemble._aligned: an edge is moved onto its neighbour's only where each end moves
+#: by at most 1 / ASSEMBLE_ALIGN_MOVE_RATIO of the edge's length (in a polygon a few hundred
+#: ulps wide, at 3e14, 4 ulps matched an edge with the next one and dropped a vertex)
+ASSEMBLE_ALIGN_MOVE_RATIO = 4.0
 #: engine.assemble: a clipped cell shifted back moves each vertex by under an ulp, its area by
 #: under an ulp times its perimeter; a repair that changes it more lost part of the cell
 ASSEMBLE_ROUNDING_ULPS = 4.0

@@ -17,6 +17,7 @@ import numpy as np
 import shapely
 
 from ..config import (
+    ASSEMBLE_ALIGN_MOVE_RATIO,
     ASSEMBLE_ALIGN_ULPS,
     ASSEMBLE_GROUP_MAX,
     ASSEMBLE_ROUNDING_ULPS,
@@ -451,7 +452,11 @@ def _aligned(rings, k, near):
     apart, their crossings with the domain's boundary round apart too, and the cells
     disagree there. Ring ``k``'s edge replaces a neighbour's whose two end points are within
     ``ASSEMBLE_ALIGN_ULPS`` ulps of its own (reversed), where the neighbour stays convex and valid,
-    so the overlay sees one segment.
+    so the overlay sees one segment. Only edges not shared yet bit for bit on either side are
+    matched, and only where each end moves by at most ``1 / ASSEMBLE_ALIGN_MOVE_RATIO`` of the
+    edge's length and no edge of the neighbour collapses: in a domain a few hundred ulps wide (a
+    polygon at 3e14) cells are a few ulps across, and 4 ulps matched an edge with the next
+    one along the neighbour's ring, dropping a vertex (a gap, Euler's count failed).
     """
     coords, off = rings
     mine = coords[off[k] : off[k + 1]]
@@ -460,19 +465,45 @@ def _aligned(rings, k, near):
         ring = coords[off[j] : off[j + 1]]
         if j != k:
             tol = ASSEMBLE_ALIGN_ULPS * np.spacing(max(np.abs(ring).max(), np.abs(mine).max()))
+            # ring k's edges that ring j has reversed bit for bit are shared already
+            have = {
+                (tuple(a), tuple(b))
+                for a, b in zip(ring[1:].tolist(), ring[:-1].tolist(), strict=True)
+            }
+            free = np.array(
+                [
+                    (tuple(a), tuple(b)) not in have
+                    for a, b in zip(mine[:-1].tolist(), mine[1:].tolist(), strict=True)
+                ]
+            )
+            theirs = {
+                (tuple(a), tuple(b))
+                for a, b in zip(mine[1:].tolist(), mine[:-1].tolist(), strict=True)
+            }
             for t in range(len(ring) - 1):
+                if (tuple(ring[t].tolist()), tuple(ring[t + 1].tolist())) in theirs:
+                    continue  # ring j's edge t is ring k's already
                 # edge t of ring j against every edge of ring k, reversed
-                close = (np.abs(mine[1:] - ring[t]).max(axis=1) <= tol) & (
-                    np.abs(mine[:-1] - ring[t + 1]).max(axis=1) <= tol
+                close = (
+                    (np.abs(mine[1:] - ring[t]).max(axis=1) <= tol)
+                    & (np.abs(mine[:-1] - ring[t + 1]).max(axis=1) <= tol)
+                    & free
                 )
                 hit = np.flatnonzero(close)
                 if len(hit) != 1:
                     continue
+                a, b = mine[hit[0] + 1], mine[hit[0]]
+                # one segment rounded apart: each end moves far less than the edge is long
+                move = max(np.abs(a - ring[t]).max(), np.abs(b - ring[t + 1]).max())
+                if ASSEMBLE_ALIGN_MOVE_RATIO * move > np.abs(a - b).max():
+                    continue
                 moved = ring.copy()
-                moved[t], moved[t + 1] = mine[hit[0] + 1], mine[hit[0]]
+                moved[t], moved[t + 1] = a, b
                 if t + 1 == len(moved) - 1:
                     moved[0] = moved[t + 1]  # (the closing repeat moved: its first vertex too)
                 moved[-1] = moved[0]
+                if (np.diff(moved, axis=0) == 0).all(axis=1).any():
+                    continue  # an edge of ring j collapsed to a point
                 if _valid_convex(moved):
                     ring = moved
         out.append(shapely.polygons(ring))
