@@ -49,6 +49,8 @@ __all__ = [
     "SURFACE_EXPR_SAMPLES",
     "SOLID_FOAM_DRAWS",
     "SOLID_FOAM_CONVEX_RTOL",
+    "CUT_EXACT_DET_RTOL",
+    "CONVEX_FOLD_ULPS",
 ]
 
 #: The 3D cut's float filter: a vertex's value against a bisector plane farther from 0 than
@@ -187,3 +189,13 @@ SOLID_FOAM_DRAWS = 200
 #: its own by at most this fraction (a float32 STL's convex solid dents its cells by its
 #: rounding, ~1e-7 of a cell; 1e-9 refused convex STL containers)
 SOLID_FOAM_CONVEX_RTOL = 1e-5
+#: kernels.vertex3d.resettle: a vertex a cut makes on an edge whose planes and the cut's meet
+#: at a relative determinant below this is solved again exactly: the edge's interpolation
+#: errs by ~ulp / determinant (sites a few ulps apart: 0.0047 off in a unit box, 1.6 in a
+#: rotated cube) and the float filter's band (``VORONOI3D_CUT_RTOL``) assumes ulps
+CUT_EXACT_DET_RTOL = 1e-3
+#: engine.voronoi3d: a Convex container's float-built cell with a wall face is folded
+#: (rebuilt from the exact twin) when one of its vertices is power-nearer a site across one
+#: of its faces by more than this many roundings of the distances (a folded cell at 1000:
+#: 0.64 against a bound of ~7e-7; the worst unfolded cell 3e-13, at 1e5 4e-11 vs ~3e-5)
+CONVEX_FOLD_ULPS = 2.0**20

@@ -8,6 +8,7 @@ import numpy as np
 from numba import njit, prange
 
 from ..config import (
+    CONVEX_FOLD_ULPS,
     CONVEX_NEAR_PARALLEL_SIN,
     CONVEX_VERTEX_OUT_ULPS,
     FRAME3D_CAP_EXP,
@@ -28,12 +29,6 @@ from .diagram3d import Diagram3D
 from .hull3d import hull_cells, takes_hull_path
 from .inputs import as_points, as_weights, from_working, working_frame
 from .threads import serial_below
-
-#: a Convex container's float-built cell is folded (rebuilt from the exact twin) when one of
-#: its vertices is power-nearer a site across one of its faces by more than this many
-#: roundings of the distances (FOLDED at 1000: 0.64 against a bound of ~7e-7; the worst
-#: unfolded cell there 3e-13, at 1e5 4e-11 against ~3e-5). Lead: move to config3d.
-CONVEX_FOLD_ULPS = 2.0**20
 
 __all__ = ["voronoi3d", "Convex", "Diagram3D"]
 

@@ -30,6 +30,7 @@ import numpy as np
 from numba import njit
 
 from ..config import (
+    CUT_EXACT_DET_RTOL,
     NJIT,
     VORONOI3D_DET_RTOL,
     VORONOI3D_EXACT_DET_RTOL,
@@ -37,12 +38,6 @@ from ..config import (
     WALL_EXACT_SIN,
 )
 from .predicates3d import exact_point, vertex_offset, wall_lift
-
-#: a vertex a cut makes on an edge whose planes and the cut's meet at a relative determinant
-#: below this is solved again exactly (:func:`resettle`): the edge's interpolation errs by
-#: ~ulp / determinant, and the float filter's band (``VORONOI3D_CUT_RTOL``) assumes ulps
-#: (config: the lead moves it)
-CUT_EXACT_DET_RTOL = 1e-3
 
 #: nothing here allocates: compiled without reference counting (see kernels.cellcut3d)
 _NO_NRT = {**NJIT, "_nrt": False}
