@@ -125,24 +125,28 @@ class StudioWidget(anywidget.AnyWidget):
         """The design as TOML, as *Save* writes it.
 
         Once sites were placed by hand it reads them from ``design.seeds.csv``
-        (``[seeds] method = "file"``): write :attr:`seeds_csv` to that file beside it, or
-        use :meth:`save`, which writes both files.
+        (``[seeds] method = "file"``; ``design.seeds.geojson`` when the sites came from a
+        seed file with attribute columns, which it keeps): write :attr:`seeds_csv` to that
+        file beside it, or use :meth:`save`, which writes both files.
         """
         data, _ = self.session.saved_data("design.seeds.csv")
         return dumps(data)
 
     @property
     def seeds_csv(self) -> str | None:
-        """The text of the ``design.seeds.csv`` that :attr:`toml` names, or None.
+        """The text of the seeds file that :attr:`toml` names, or None.
 
-        The hand-placed sites, bit for bit; None while the sites come from ``[seeds]``.
+        The hand-placed sites, bit for bit (CSV ``x,y``; GeoJSON points with each site's
+        row of attributes when they came from a seed file with attribute columns); None
+        while the sites come from ``[seeds]``.
         """
         return self.session.saved_data("design.seeds.csv")[1]
 
     def save(self, name: str, *, overwrite: bool = False):
         """Save as the page's *Save* does: ``name`` (``*.toml``) in the design's folder.
 
-        With hand-placed sites, ``<stem>.seeds.csv`` beside it; each file written atomically.
+        With hand-placed sites, ``<stem>.seeds.csv`` beside it (``<stem>.seeds.geojson``
+        when the seed file had attribute columns); each file written atomically.
 
         Returns
         -------
