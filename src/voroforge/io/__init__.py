@@ -89,8 +89,9 @@ def write(
     geoms : sequence of shapely Polygon or MultiPolygon
         What to write, for example ``diagram.cells``.
     path : str or Path
-        Output file; ``.svg``, ``.png``, ``.geojson``, ``.json`` or ``.dxf`` (closed
-        LWPOLYLINEs on layer CELLS, the boundary on BOUNDARY, sites as POINTs on SITES).
+        Output file; ``.svg``, ``.png``, ``.geojson``, ``.json`` or ``.dxf`` (the cells'
+        edges on layer CELLS, each shared edge once, joined into runs: :func:`write_dxf`'s
+        ``dedupe`` and ``merge``; the boundary on BOUNDARY, sites as POINTs on SITES).
     sites : (n, 2) array_like, optional
         Sites to draw (SVG, PNG) or to record per feature (GeoJSON).
     boundary : shapely geometry or (xmin, ymin, xmax, ymax), optional
