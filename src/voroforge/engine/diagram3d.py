@@ -553,16 +553,23 @@ def _flat(V, roff, ring, base, vid, f, s):
     for q in range(1, n):
         if vid[base + ring[a + q]] < vid[base + ring[a + q0]]:
             q0 = q
-    step = 1
-    if vid[base + ring[a + (q0 + n - 1) % n]] < vid[base + ring[a + (q0 + 1) % n]]:
-        step = n - 1
+    nxt = q0 + 1 if q0 + 1 < n else 0
+    prv = q0 - 1 if q0 > 0 else n - 1
+    d = -1 if vid[base + ring[a + prv]] < vid[base + ring[a + nxt]] else 1
     v0 = vid[base + ring[a + q0]]
     ax = 0.0
     ay = 0.0
     az = 0.0
-    for k in range(1, n - 1):
-        u = vid[base + ring[a + (q0 + k * step) % n]]
-        w = vid[base + ring[a + (q0 + (k + 1) * step) % n]]
+    j = prv if d < 0 else nxt  # (ring positions wrapped by hand: no division per step)
+    for _ in range(1, n - 1):
+        j2 = j + d
+        if j2 == n:
+            j2 = 0
+        elif j2 < 0:
+            j2 = n - 1
+        u = vid[base + ring[a + j]]
+        w = vid[base + ring[a + j2]]
+        j = j2
         cx, cy, cz = _fan_cross(V, v0, u, w, s)
         ax += cx
         ay += cy
