@@ -96,41 +96,49 @@ def brute_periodic_volumes(points, L=1.0):
     return brute_volumes(allp, walls, cells=range(len(p)))
 
 
+def _voropp(points, box, fmt, *, weights=None, walls=None, ordered=False):
+    """voro++'s command line on ``points`` in ``box = (xmin, ymin, zmin, xmax, ymax, zmax)``.
+
+    ``fmt``: its custom output (``-c``), one line a cell; ``weights``: the radical tessellation
+    (``-r``, radius^2 = weight - min(weight), the same power cells); ``walls``: rows
+    ``[a, b, c, d]`` as ``-wp a b c d`` (inside ``a x + b y + c z < d``). Returns the output's
+    lines split into fields.
+    """
+    pts = np.asarray(points, np.float64)
+    rad = None if weights is None else np.sqrt(np.asarray(weights, np.float64) - np.min(weights))
+    opts = ["-c", fmt] + (["-o"] if ordered else []) + ([] if rad is None else ["-r"])
+    for r in np.asarray([] if walls is None else walls, np.float64).reshape(-1, 4):
+        opts += ["-wp", *(repr(float(x)) for x in r)]
+    x0, y0, z0, x1, y1, z1 = box
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "pts")
+        with open(path, "w") as fh:
+            for k, (x, y, z) in enumerate(pts):
+                extra = "" if rad is None else f" {float(rad[k])!r}"
+                fh.write(f"{k} {float(x)!r} {float(y)!r} {float(z)!r}{extra}\n")
+        bounds = [str(x0), str(x1), str(y0), str(y1), str(z0), str(z1)]
+        subprocess.run([VOROPP, *opts, *bounds, path], check=True, capture_output=True)
+        with open(path + ".vol") as fh:
+            return [line.split() for line in fh]
+
+
+def voropp_volumes(points, box, *, weights=None, walls=None):
+    """voro++'s volumes of ``points`` in ``box`` (weights: radical; walls: ``-wp`` rows)."""
+    vol = np.zeros(len(points))
+    for k, v in _voropp(points, box, "%i %v", weights=weights, walls=walls):
+        vol[int(k)] = float(v)
+    return vol
+
+
 def voropp_cells(points, box):
     """voro++ CLI on ``points`` in ``box = (xmin, ymin, zmin, xmax, ymax, zmax)``.
 
     Returns ``(volumes (n,), neighbours: list of sorted int lists, walls as -1..-6)``.
     """
-    pts = np.asarray(points, np.float64)
-    with tempfile.TemporaryDirectory() as tmp:
-        path = os.path.join(tmp, "pts")
-        with open(path, "w") as fh:
-            for k, (x, y, z) in enumerate(pts):
-                fh.write(f"{k} {float(x)!r} {float(y)!r} {float(z)!r}\n")
-        x0, y0, z0, x1, y1, z1 = box
-        subprocess.run(
-            [
-                VOROPP,
-                "-o",
-                "-c",
-                "%i %v %n",
-                str(x0),
-                str(x1),
-                str(y0),
-                str(y1),
-                str(z0),
-                str(z1),
-                path,
-            ],
-            check=True,
-            capture_output=True,
-        )
-        vol = np.zeros(len(pts))
-        nbs = [[] for _ in range(len(pts))]
-        with open(path + ".vol") as fh:
-            for line in fh:
-                parts = line.split()
-                k = int(parts[0])
-                vol[k] = float(parts[1])
-                nbs[k] = sorted(int(v) for v in parts[2:])
+    vol = np.zeros(len(points))
+    nbs = [[] for _ in range(len(points))]
+    for parts in _voropp(points, box, "%i %v %n", ordered=True):
+        k = int(parts[0])
+        vol[k] = float(parts[1])
+        nbs[k] = sorted(int(v) for v in parts[2:])
     return vol, nbs

@@ -14,10 +14,7 @@ samples in their nearest site's cell.
 
 from __future__ import annotations
 
-import os
-import subprocess
 import sys
-import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -29,38 +26,11 @@ import voroforge as vf
 from voroforge.engine.hull3d import takes_hull_path
 
 sys.path.insert(0, str(Path(__file__).parent))
-from reference3d import VOROPP, brute_volumes  # noqa: E402
+from reference3d import VOROPP, brute_volumes, voropp_volumes  # noqa: E402
 from test_issue12_weights_owners import _sphere_points  # noqa: E402
 
 R2 = 2966
 R = float(np.sqrt(R2))
-
-
-def _voropp_walls(points, rows, half, weights=None):
-    """voro++ volumes of ``points`` in the box ``[-half, half]^3`` cut by walls ``rows``.
-
-    ``rows``: ``[a, b, c, d]`` as ``-wp a b c d`` (inside ``a x + b y + c z < d``);
-    ``weights``: the radical tessellation (``-r``, radius^2 = weight - min(weight)).
-    """
-    rad = None if weights is None else np.sqrt(np.asarray(weights) - np.min(weights))
-    with tempfile.TemporaryDirectory() as tmp:
-        path = os.path.join(tmp, "pts")
-        with open(path, "w") as fh:
-            for k, x in enumerate(np.asarray(points, np.float64)):
-                extra = "" if rad is None else f" {float(rad[k])!r}"
-                fh.write(f"{k} {float(x[0])!r} {float(x[1])!r} {float(x[2])!r}{extra}\n")
-        walls = []
-        for r in np.asarray(rows, np.float64):
-            walls += ["-wp", *(repr(float(x)) for x in r)]
-        box = [str(s * half) for _ in range(3) for s in (-1, 1)]
-        opts = ["-c", "%i %v"] + ([] if rad is None else ["-r"])
-        subprocess.run([VOROPP, *opts, *walls, *box, path], check=True, capture_output=True)
-        vol = np.zeros(len(points))
-        with open(path + ".vol") as fh:
-            for line in fh:
-                k, v = line.split()
-                vol[int(k)] = float(v)
-    return vol
 
 
 def _check(d, c, P, W=None, half=2.5 * R):
@@ -76,7 +46,7 @@ def _check(d, c, P, W=None, half=2.5 * R):
         assert (np.asarray(d.cell(int(i)).vertices) == 0).all(1).any()
     pick = np.r_[full[:: len(full) // 6], full[-1]]
     if VOROPP is not None:
-        vp = _voropp_walls(P, c.halfspaces, half, W)
+        vp = voropp_volumes(P, (-half,) * 3 + (half,) * 3, weights=W, walls=c.halfspaces)
         # voro++'s 6 digits; it drops or miscuts a cell or two at the 1,032-owner vertex
         # (and fails at some box sizes): those few are checked by brute force below
         # (empty cells come out ~1e-38 there)

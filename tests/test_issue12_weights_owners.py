@@ -13,19 +13,14 @@ volumes tiling the box and the one shared vertex.
 
 from __future__ import annotations
 
-import os
-import shutil
-import subprocess
-import tempfile
-
 import numpy as np
 import pytest
 from scipy.spatial import ConvexHull
 
 import voroforge as vf
+from reference3d import VOROPP, voropp_volumes
 
 R2 = 2966
-VOROPP = shutil.which("voro++")
 
 
 def _sphere_points(r2):
@@ -37,21 +32,7 @@ def _sphere_points(r2):
 
 def voropp_radical(points, weights, box):
     """voro++ ``-r`` volumes: radius^2 = weight - min(weight) (the same power cells)."""
-    rad = np.sqrt(np.asarray(weights, float) - float(np.min(weights)))
-    with tempfile.TemporaryDirectory() as tmp:
-        path = os.path.join(tmp, "pts")
-        with open(path, "w") as fh:
-            for k, ((x, y, z), r) in enumerate(zip(points, rad, strict=True)):
-                fh.write(f"{k} {float(x)!r} {float(y)!r} {float(z)!r} {float(r)!r}\n")
-        x0, y0, z0, x1, y1, z1 = box
-        args = [VOROPP, "-r", "-c", "%i %v", str(x0), str(x1), str(y0), str(y1), str(z0), str(z1)]
-        subprocess.run([*args, path], check=True, capture_output=True)
-        vol = np.zeros(len(points))
-        with open(path + ".vol") as fh:
-            for line in fh:
-                k, v = line.split()
-                vol[int(k)] = float(v)
-    return vol
+    return voropp_volumes(points, box, weights=weights)
 
 
 pytestmark = pytest.mark.slow  # (one build: every cell is cut by all 1,031 other planes)
