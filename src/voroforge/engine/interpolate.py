@@ -28,7 +28,7 @@ from ..config import (
 from ..kernels.natural import INSIDE, sibson
 from .delaunay import delaunay
 from .inputs import as_points, as_query, as_values, duplicate_map, working_frame
-from .locate3d import nearest_exact
+from .locate3d import lifted_sites, nearest_exact
 
 _EPS = float(np.finfo(float).eps)
 
@@ -244,8 +244,8 @@ def locate_power(diagram, xy) -> np.ndarray | int:
     e = -int(np.frexp(big)[1]) if big > 0.0 else 0
     qs, sites, w = np.ldexp(q, e), np.ldexp(user_sites, e), np.ldexp(w, 2 * e)
     top = float(w.max())
-    tree = cKDTree(np.column_stack((sites, np.sqrt(top - w))))
-    lifted = np.column_stack((qs, np.zeros(len(q))))
+    pts, lifted, _ = lifted_sites(sites, qs, w)
+    tree = cKDTree(pts)
     m = len(owners)
     out = np.zeros(len(q), dtype=np.int64)
     rows = np.arange(len(q))

@@ -34,11 +34,12 @@ def _frame(q, sites, w):
     return float(np.ldexp(1.0, -int(np.frexp(big)[1])))
 
 
-def _lifted(sites, q, w):
+def lifted_sites(sites, q, w):
     """Sites and queries in a space where the Euclidean nearest is the power-nearest.
 
-    Without weights, the points themselves (and ``None`` for the spread). With weights, a
-    fourth coordinate ``sqrt(max(w) - w_p)`` for the sites and 0 for the queries: the lifted
+    Without weights, the points themselves (and ``None`` for the spread). With weights, one
+    more coordinate ``sqrt(max(w) - w_p)`` for the sites and 0 for the queries (any
+    dimension: the 2D power diagram's ``locate`` lifts its sites with it too): the lifted
     squared distance is the power distance ``|x - p|^2 - w_p`` plus ``max(w)``, so a KD-tree
     finds the power-nearest in ``log n`` (a block scan of every site per query was
     quadratic). ``spread`` (the largest ``|w|``) bounds the rounding the lift adds.
@@ -77,7 +78,7 @@ def locate3d(d, xyz):
     if len(live) > 64:
         from scipy.spatial import cKDTree
 
-        pts, qq, spread = _lifted(sites[live], q, None if d.weights is None else w[live])
+        pts, qq, spread = lifted_sites(sites[live], q, None if d.weights is None else w[live])
         kk = min(8, len(live))
         dist, idx = cKDTree(pts).query(qq, k=kk)
         dist = dist.reshape(len(q), kk)
@@ -147,14 +148,14 @@ def _locate_torus(q, sites0, w0, duplicate_of, box):
     rows = np.arange(len(q))
     if len(live) > 64:
         # the 8 nearest images from a periodic KD-tree (with weights, of the lifted sites: a
-        # fourth, non-periodic coordinate; see _lifted); a query whose 8th is within the
+        # fourth, non-periodic coordinate; see lifted_sites); a query whose 8th is within the
         # slack of its nearest (many near ties) is scanned in full below
         from scipy.spatial import cKDTree
 
         S[S >= size_s] = 0.0  # (np.mod can round up to the period itself)
         rel[rel >= size_s] = 0.0
         kk = min(8, len(live))
-        pts, qq, spread = _lifted(S, rel, w[live] if np.any(w) else None)
+        pts, qq, spread = lifted_sites(S, rel, w[live] if np.any(w) else None)
         period = size_s if spread is None else np.append(size_s, 0.0)  # (0: not periodic)
         dist, idx = cKDTree(pts, boxsize=period).query(qq, k=kk)
         dd = dist.reshape(len(q), kk) ** 2
