@@ -1448,5 +1448,7 @@ def test_widget_gives_the_seeds_csv_its_toml_names(tmp_path):
     assert np.array_equal(Session(tmp_path / "kept.toml").result.sites, sites)
     assert (tmp_path / "kept.seeds.csv").read_text(encoding="utf-8") == w.seeds_csv
     assert w.save("kept.toml").kind == "confirm"  # nothing overwritten without asking
-    with pytest.raises(ValueError, match="file name"):
-        w.save("../x.toml")
+    for bad in ("../x.toml", "x.toml\n", "/tmp/x.toml", "x.toml\x00"):  # ($ matched before \n)
+        with pytest.raises(ValueError, match="file name"):
+            w.save(bad)
+    assert not any(p.name.startswith("x.toml") for p in tmp_path.iterdir())

@@ -695,7 +695,7 @@ class Session:
 
     def _op_save(self, msg: dict) -> Reply:
         name = msg.get("name")
-        if not isinstance(name, str) or not _NAME.match(name) or ".." in name:
+        if not isinstance(name, str) or not _NAME.fullmatch(name) or ".." in name:
             raise BadMessage(
                 "save", "save as a plain file name ending in .toml, in the design's folder"
             )
