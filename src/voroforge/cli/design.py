@@ -4,11 +4,19 @@ from __future__ import annotations
 
 import argparse
 import sys
+from contextlib import contextmanager
 from pathlib import Path
 
 from .progress import Stage
 
-__all__ = ["add_parsers", "overrides", "run_build", "run_check", "run_new"]
+__all__ = [
+    "add_parsers",
+    "design_warnings",
+    "overrides",
+    "run_build",
+    "run_check",
+    "run_new",
+]
 
 _BUILD_EPILOG = """\
 Writes every output the design file names (output.formats) into DIR and prints the paths.
@@ -131,28 +139,52 @@ def overrides(pairs: list[str]) -> dict:
     return out
 
 
-def run_build(args: argparse.Namespace, stage: Stage) -> list[Path]:
-    """Run ``voroforge build``; design warnings go to stderr as one line each."""
+@contextmanager
+def design_warnings(design):
+    """Print the design's warnings to stderr, one line each, once each, when the block ends.
+
+    ``voroforge: warning: DESIGN: <message>`` for :class:`~voroforge.design.build.DesignWarning`
+    and :class:`~voroforge.design.designfile.UnusedKeyWarning` (a key is named once, with its
+    line: a GIF sweep loads the design again); other warnings are shown as Python shows them.
+    Printed also when the block raises (before the error: a key the design does not read
+    may be why it fails).
+    """
     import warnings
 
-    from ..design.build import DesignWarning, build
+    from ..design.build import DesignWarning
+    from ..design.designfile import UnusedKeyWarning
     from . import PROG
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", DesignWarning)
-        written = build(
+        warnings.simplefilter("always", UnusedKeyWarning)
+        try:
+            yield
+        finally:
+            seen = set()
+            for w in caught:
+                if issubclass(w.category, UnusedKeyWarning | DesignWarning):
+                    once = getattr(w.message, "issue", None)
+                    once = str(w.message) if once is None else once.key
+                    if once not in seen:
+                        seen.add(once)
+                        print(f"{PROG}: warning: {design}: {w.message}", file=sys.stderr)
+                else:
+                    warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+
+
+def run_build(args: argparse.Namespace, stage: Stage) -> list[Path]:
+    """Run ``voroforge build``; design warnings go to stderr as one line each."""
+    from ..design.build import build
+
+    with design_warnings(args.design):
+        return build(
             args.design,
             args.output,
             overrides=overrides(args.set),
             preview=args.preview,
             progress=stage,
         )
-    for w in caught:
-        if issubclass(w.category, DesignWarning):
-            print(f"{PROG}: warning: {args.design}: {w.message}", file=sys.stderr)
-        else:
-            warnings.showwarning(w.message, w.category, w.filename, w.lineno)
-    return written
 
 
 def run_new(args: argparse.Namespace, stage: Stage) -> list[Path]:
@@ -169,7 +201,8 @@ def run_check(args: argparse.Namespace, stage: Stage) -> int:
     suffix = Path(args.overlay).suffix.lower() if args.overlay else None
     if args.overlay and suffix not in OVERLAY_SUFFIXES:
         raise ValueError(f"{args.overlay}: the overlay must be a .png or .svg file")
-    report = check_design(args.design, overrides=overrides(args.set), progress=stage)
+    with design_warnings(args.design):
+        report = check_design(args.design, overrides=overrides(args.set), progress=stage)
     print(report.table(max_rows=None if args.all else 50))
     if args.overlay:
         (report.write_png if suffix == ".png" else report.write_svg)(args.overlay)

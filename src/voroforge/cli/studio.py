@@ -80,14 +80,35 @@ def run(args: argparse.Namespace, stage: Stage) -> int:
     """Run the studio until Ctrl+C; returns exit status 0."""
     if not 0 <= args.port <= 65535:
         raise ValueError(f"--port {args.port}: expected 0 to 65535")
-    from ..studio.server import serve
+    import warnings
 
-    serve(args.design, host=args.host, port=args.port, open_browser=not args.no_browser)
+    from ..design.designfile import UnusedKeyWarning, load
+    from ..studio.server import serve
+    from .design import design_warnings
+
+    if args.design is not None:
+        with design_warnings(args.design):
+            load(args.design)  # errors with file and line; unused keys said once, here
+    with warnings.catch_warnings():
+        # the page shows them with each edit (state_message): not again on the console
+        warnings.simplefilter("ignore", UnusedKeyWarning)
+        serve(args.design, host=args.host, port=args.port, open_browser=not args.no_browser)
     return 0
 
 
 def run_animate(args: argparse.Namespace, stage: Stage) -> list:
     """Run ``voroforge animate``; returns the files written."""
+    import warnings
+
+    from ..design.designfile import UnusedKeyWarning
+
+    with warnings.catch_warnings():
+        # said once, as the design is first loaded (design_warnings): each frame loads it again
+        warnings.simplefilter("ignore", UnusedKeyWarning)
+        return _animate(args, stage)
+
+
+def _animate(args: argparse.Namespace, stage: Stage) -> list:
     from pathlib import Path
 
     out = Path(args.output)
@@ -112,8 +133,10 @@ def run_animate(args: argparse.Namespace, stage: Stage) -> list:
     from ..design.designfile import load, located
     from ..io.atomic import write_atomically
     from ..studio.animation import frames
+    from .design import design_warnings
 
-    design, _ = load(args.design)
+    with design_warnings(args.design):  # its filter says them even under the caller's "ignore"
+        design, _ = load(args.design)
     fps = args.fps or (design.animation.fps if design.animation else 12.0)
     count = args.frames or (design.animation.frames if design.animation else 0)
     if suffix == ".gif":

@@ -3,7 +3,9 @@
 :func:`load` reads a TOML design, applies ``--set``-style overrides, validates it against
 :class:`~voroforge.design.schema.Design` and raises :class:`DesignError` with one
 :class:`Issue` per problem: the dotted key, the line of that key in the file and what was
-expected. Unknown keys are errors with a "did you mean" hint. tomllib keeps no positions, so
+expected. Unknown keys are errors with a "did you mean" hint; keys the design's choices do not
+read (``points`` on a rectangle) are warnings (:func:`unused_keys`, :class:`UnusedKeyWarning`),
+so that a design switched between shapes keeps building. tomllib keeps no positions, so
 :func:`key_lines` maps key paths back to lines, and :func:`located` gives errors raised while
 computing a design (a missing file, say) the file name and line of their key.
 """
@@ -11,6 +13,7 @@ computing a design (a missing file, say) the file name and line of their key.
 from __future__ import annotations
 
 import difflib
+import functools
 import re
 import tomllib
 import typing
@@ -27,12 +30,14 @@ from .schema import Design, Graded, short_repr
 __all__ = [
     "DesignError",
     "Issue",
+    "UnusedKeyWarning",
     "apply_overrides",
     "find_file",
     "key_lines",
     "load",
     "located",
     "parse_value",
+    "unused_keys",
 ]
 
 
@@ -347,6 +352,118 @@ def _cross_field_issues(
     return out
 
 
+# --- keys the design's choices do not read -------------------------------------------------
+
+
+class UnusedKeyWarning(UserWarning):
+    """A key that the design's choices do not read (``points`` with ``shape = "rectangle"``).
+
+    Not an error: a design switched between shapes (in the studio, say) keeps the other
+    shape's keys and builds. ``issue`` is the :class:`Issue` (key, line, message); the text
+    is :meth:`text` of it. (Built from the text alone too, as pytest-xdist rebuilds it.)
+    """
+
+    def __init__(self, message: str, issue: Issue | None = None):
+        super().__init__(message)
+        self.issue = issue
+
+    @staticmethod
+    def text(issue: Issue) -> str:
+        """``boundary.points (line 7) is not used by shape = 'rectangle'; ...``."""
+        set_here = issue.message.endswith(" (from --set)")
+        where = f" (line {issue.line})" if issue.line else " (from --set)" if set_here else ""
+        return f"{issue.key}{where} {issue.message.removesuffix(' (from --set)')}"
+
+
+def _choices(values: tuple) -> str:
+    quoted = [repr(v) for v in values]
+    return quoted[0] if len(quoted) == 1 else ", ".join(quoted[:-1]) + " or " + quoted[-1]
+
+
+@functools.cache
+def _key_sets(cls: type[BaseModel]) -> tuple[tuple, tuple[str, ...]]:
+    """``cls``'s ``USED_BY`` as ``(key, selector, choices, default)`` rows, and its fields."""
+    used_by = cls.__dict__.get("USED_BY", {})
+    used_when = cls.__dict__.get("USED_WHEN", {})
+    rules = [*used_by.items(), *((k, (sel, (f, text))) for k, (sel, f, text) in used_when.items())]
+    rows = tuple(
+        (key, sel, values, cls.model_fields[key].get_default(call_default_factory=True))
+        for key, (sel, values) in rules
+    )
+    return rows, tuple(cls.model_fields)
+
+
+def _unused(model: BaseModel, loc: tuple, out: list[tuple[tuple, str]]) -> None:
+    rows, names = _key_sets(type(model))
+    for key, selector, values, default in rows:  # values: USED_BY's choices, USED_WHEN's rule
+        if getattr(model, key) == default:
+            continue  # not given, or given as the default: nothing is lost
+        chosen = getattr(model, selector)
+        if callable(values[0]):  # USED_WHEN: (reads, when)
+            if values[0](chosen):
+                continue
+            message = f"is not used by {selector} = {short_repr(chosen)}; it is used {values[1]}"
+        elif isinstance(chosen, list):  # output.formats: read when any of them reads it
+            if set(chosen) & set(values):
+                continue
+            message = f"is not used by {selector} = {chosen!r}; add {_choices(values)} to it"
+        elif chosen in values:
+            continue
+        else:
+            message = (
+                f"is not used by {selector} = {chosen!r}; it is used by {selector} = "
+                + _choices(values)
+            )
+        out.append(((*loc, key), message))
+    for name in names:
+        value = getattr(model, name)
+        if isinstance(value, BaseModel):
+            _unused(value, (*loc, name), out)
+        elif isinstance(value, list | tuple) and value and isinstance(value[0], BaseModel):
+            for i, item in enumerate(value):  # (not a list of points: only tables hold keys)
+                if isinstance(item, BaseModel):
+                    _unused(item, (*loc, name, i), out)
+
+
+def unused_keys(
+    design: Design, lines: dict[tuple, int] | None = None, overrides: dict | None = None
+) -> list[Issue]:
+    """The keys of ``design`` that its choices do not read, one :class:`Issue` each.
+
+    A table's discriminator (``boundary.shape``, ``seeds.method``, ``openings.select``,
+    ``attractors.N.falloff``, ``solid.kind``, ``surface.shape``/``mode``, ...) decides which
+    of its keys are read (the models' ``USED_BY``); a key given with another value than its
+    default under a choice that does not read it is listed: ``boundary.points`` with
+    ``shape = "rectangle"``.
+
+    Parameters
+    ----------
+    design : Design
+        A validated design.
+    lines : dict, optional
+        :func:`key_lines` of the file, for the line of each key.
+    overrides : dict, optional
+        ``--set`` keys: an issue at one of them says ``(from --set)`` instead of a line.
+
+    Returns
+    -------
+    list of Issue
+        In the file's order.
+    """
+    found: list[tuple[tuple, str]] = []
+    _unused(design, (), found)
+    touched = {str(k) for k in (overrides or {})}
+    out = []
+    for loc, message in found:
+        key = ".".join(map(str, loc))
+        if key in touched:
+            out.append(Issue(key, None, message + " (from --set)"))
+        else:
+            out.append(Issue(key, _line_of(lines or {}, loc), message))
+    out.sort(key=lambda i: (i.line is None, i.line or 0))
+    return out
+
+
 # --- loading ------------------------------------------------------------------------------
 
 
@@ -459,6 +576,11 @@ def load(source, *, overrides: dict | None = None) -> tuple[Design, Path | None]
         For TOML syntax errors and every schema problem, with key and line.
     FileNotFoundError
         For a missing file.
+
+    Warns
+    -----
+    UnusedKeyWarning
+        For each key the design's choices do not read (:func:`unused_keys`), with its line.
     """
     lines: dict[tuple, int] = {}
     name = None
@@ -502,6 +624,10 @@ def load(source, *, overrides: dict | None = None) -> tuple[Design, Path | None]
                 for i in issues
             ]
         raise DesignError(issues, name) from None
+    import warnings
+
+    for issue in unused_keys(design, lines, overrides):
+        warnings.warn(UnusedKeyWarning(UnusedKeyWarning.text(issue), issue), stacklevel=2)
     return design, base
 
 

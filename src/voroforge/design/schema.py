@@ -11,7 +11,7 @@ that key's line.
 from __future__ import annotations
 
 import re
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import (
     AfterValidator,
@@ -110,6 +110,8 @@ def _path_data(d: str | None) -> None:
         raise _need("path", "the SVG path data draws nothing")
     if any(not (abs(v) <= _MAX_SIZE) for x in lines for v in x.ravel().tolist()):
         raise _need("path", f"SVG path data: coordinates must be finite, at most {_MAX_SIZE:g}")
+
+
 #: A coordinate: finite and at most 1e100 in magnitude.
 Coordinate = Annotated[Num, AfterValidator(_coordinate)]
 Point = tuple[Coordinate, Coordinate]
@@ -126,6 +128,16 @@ def _need(field: str, message: str) -> ValueError:
 
 class _Model(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+#: ``USED_BY`` of a model: the keys that only some choices of another key (its
+#: discriminator: ``shape``, ``method``, ...) read, as ``key -> (discriminator, choices)``.
+#: :func:`voroforge.design.designfile.unused_keys` warns about such a key given (other than
+#: its default) with a choice that does not read it: ``points`` on a rectangle is ignored.
+UsedBy = ClassVar[dict[str, tuple[str, tuple[str, ...]]]]
+#: ``USED_WHEN``: the same for a condition on another key's value, as
+#: ``key -> (other key, whether its value reads key, when it is read)``.
+UsedWhen = ClassVar[dict[str, tuple[str, Any, str]]]
 
 
 class Graded(_Model):
@@ -233,6 +245,20 @@ class Boundary(_Model):
     # an SVG file's open subpaths are errors unless their ends are at most this far apart
     close_tolerance: NonNegFloat = 0.0
 
+    USED_BY: UsedBy = {
+        "width": ("shape", ("rectangle",)),
+        "height": ("shape", ("rectangle",)),
+        "origin": ("shape", ("rectangle",)),
+        "radius": ("shape", ("circle",)),
+        "center": ("shape", ("circle",)),
+        "segments": ("shape", ("circle",)),
+        "points": ("shape", ("polygon",)),
+        "holes": ("shape", ("polygon",)),
+        "parts": ("shape", ("polygons",)),
+        "file": ("shape", ("file",)),
+        "close_tolerance": ("shape", ("file",)),
+    }
+
     @model_validator(mode="after")
     def _shape_fields(self) -> Boundary:
         need = {
@@ -268,6 +294,22 @@ class Seeds(_Model):
     curves: list[Annotated[list[Point], Field(min_length=2)]] | None = None
     path: str | None = None
     distance: PositiveFloat | None = None  # of each site from its curve (spacing / 2)
+
+    USED_BY: UsedBy = {
+        "count": ("method", ("random", "density", "image")),
+        "spacing": ("method", ("grid", "hexgrid", "jittered", "curves")),
+        "radius": ("method", ("poisson", "curves")),
+        "radius_max": ("method", ("poisson",)),
+        "jitter": ("method", ("jittered",)),
+        "angle": ("method", ("grid", "hexgrid", "jittered")),
+        "offset": ("method", ("grid", "hexgrid", "jittered")),
+        "file": ("method", ("file", "image", "curves")),
+        "seed": ("method", ("random", "jittered", "poisson", "density", "curves", "image")),
+        "use_field": ("method", ("poisson",)),
+        "curves": ("method", ("curves",)),
+        "path": ("method", ("curves",)),
+        "distance": ("method", ("curves",)),
+    }
 
     @model_validator(mode="after")
     def _method_fields(self) -> Seeds:
@@ -337,6 +379,8 @@ class Attractor(_Model):
     falloff: Literal["linear", "smoothstep", "gaussian", "inverse_power"] = "smoothstep"
     power: PositiveFloat = 2.0
 
+    USED_BY: UsedBy = {"power": ("falloff", ("inverse_power",))}
+
     @model_validator(mode="after")
     def _curve(self) -> Attractor:
         given = [k for k in ("points", "path", "file") if getattr(self, k) is not None]
@@ -402,6 +446,17 @@ class Openings(_Model):
     invert: Flag = False
     seed: Seed | None = None
 
+    USED_BY: UsedBy = {
+        "min_area": ("select", ("area",)),
+        "max_area": ("select", ("area",)),
+        "probability": ("select", ("random",)),
+        "seed": ("select", ("random",)),
+        "k": ("select", ("every_kth",)),
+        "start": ("select", ("every_kth",)),
+        "count": ("select", ("largest",)),
+        "threshold": ("select", ("field",)),
+    }
+
     @model_validator(mode="after")
     def _select_fields(self) -> Openings:
         need = {
@@ -432,6 +487,11 @@ class Recursion(_Model):
     probability: ChanceGraded = Graded(value=1.0)
     web: list[NonNegFloat] = []
 
+    USED_WHEN: UsedWhen = {
+        k: ("depth", lambda depth: depth > 0, "with depth >= 1")
+        for k in ("count", "probability", "web")
+    }
+
     @model_validator(mode="before")
     @classmethod
     def _scalar_web(cls, data: Any) -> Any:
@@ -451,6 +511,10 @@ class Gif(_Model):
     fps: Annotated[Num, Field(gt=0, le=50)] = 8.0
     size: Annotated[Whole, Field(ge=32, le=2048)] = 400
     bounce: Flag = True
+
+    USED_WHEN: UsedWhen = {
+        k: ("values", lambda values: values is None, "without values") for k in ("start", "stop")
+    }
 
     @model_validator(mode="after")
     def _range(self) -> Gif:
@@ -493,6 +557,9 @@ class Output(_Model):
     pieces: Flag = False
     # "source": the SVG page is the boundary file's page (same size and origin)
     page: Literal["boundary", "source"] = "boundary"
+
+    # the [output.gif] sweep is made only for a "gif" in formats (build, check)
+    USED_BY: UsedBy = {"gif": ("formats", ("gif",))}
 
     @model_validator(mode="after")
     def _gif(self) -> Output:

@@ -7,7 +7,7 @@ the file's 2D design into a slab. The 3D kinds need no ``[boundary]``/``[seeds]`
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated, ClassVar, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
@@ -32,6 +32,13 @@ class SolidField(BaseModel):
     strength: NonNeg = 1.0
     falloff: Literal["linear", "smoothstep", "gaussian", "inverse_power"] = "smoothstep"
 
+    #: keys only some types read (see ``voroforge.design.schema.UsedBy``)
+    USED_BY: ClassVar[dict] = {
+        "points": ("type", ("point", "curve")),
+        "origin": ("type", ("plane",)),
+        "normal": ("type", ("plane",)),
+    }
+
     @model_validator(mode="after")
     def _pts(self) -> SolidField:
         if self.type in ("point", "curve") and not self.points:
@@ -41,6 +48,10 @@ class SolidField(BaseModel):
                 f"@points@ a curve field needs at least two points; got {len(self.points)}"
             )
         return self
+
+
+#: The kinds built from 3D cells in a container.
+_CELLS = ("lattice", "foam")
 
 
 class SolidSection(BaseModel):
@@ -83,6 +94,31 @@ class SolidSection(BaseModel):
     #: slab (``check(min_wall=)``: ``thin_wall`` entries)
     min_wall: Positive | None = None
     max_overhang: Annotated[float, Field(gt=0, lt=90)] | None = None
+
+    #: keys only some kinds read (``solid/build.py``; see ``voroforge.design.schema.UsedBy``)
+    USED_BY: ClassVar[dict] = {
+        "container": ("kind", _CELLS),
+        "cells": ("kind", _CELLS),
+        "relax": ("kind", _CELLS),
+        "seed": ("kind", (*_CELLS, "shell")),
+        "subdivide": ("kind", _CELLS),
+        "subdivide_count": ("kind", _CELLS),
+        "radius": ("kind", ("lattice",)),
+        "nodes": ("kind", ("lattice",)),
+        "skin": ("kind", ("lattice",)),
+        "wall": ("kind", ("foam",)),
+        "thickness": ("kind", ("shell", "extrude")),
+        "openings": ("kind", ("shell",)),
+        "web": ("kind", ("shell",)),
+        "rim": ("kind", ("shell",)),
+        "surface": ("kind", ("shell",)),
+        "profile": ("kind", ("shell",)),
+        "sections": ("kind", ("shell",)),
+        "fields": ("kind", (*_CELLS, "shell")),
+        "invert_field": ("kind", (*_CELLS, "shell")),
+        "voxel": ("kind", ("lattice", "shell")),
+        "smoothing": ("kind", ("lattice", "shell")),
+    }
 
     @model_validator(mode="after")
     def _kind(self) -> SolidSection:

@@ -157,7 +157,21 @@ def state_message(session: Session) -> dict:
         "legend": _legend(),
         "limits": {"max_seeds": session.max_seeds, "max_message": config.STUDIO_MAX_MESSAGE},
         "animation": _animation(session),
+        "warnings": _unused(session),
     }
+
+
+def _unused(session: Session) -> list[dict]:
+    """The design's keys that its choices do not read (``boundary.points`` on a rectangle).
+
+    Not errors: a design switched between shapes keeps the other shape's keys. Key and
+    message each, as an ``"error"`` reply's issues (:func:`designfile.unused_keys`).
+    """
+    from ..design.designfile import unused_keys
+
+    return [
+        {"key": it.key, "message": f"{it.key} {it.message}"} for it in unused_keys(session.design)
+    ]
 
 
 def _animation(session: Session) -> dict | None:

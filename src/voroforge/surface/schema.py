@@ -10,7 +10,7 @@ the analytic shapes, a height field (``heights`` inline or a ``file``), a parame
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated, ClassVar, Literal
 
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, StrictBool, model_validator
 
@@ -77,6 +77,29 @@ class SurfaceSection(BaseModel):
     sheet: tuple[Positive, Positive] | None = None
     meshes: list[Literal["3mf", "obj", "glb", "stl", "ply", "3dm"]] = []
     view: tuple[float, float] = (35.0, 30.0)
+
+    #: keys only some shapes or modes read (``surface/build.py``; see
+    #: ``voroforge.design.schema.UsedBy``)
+    USED_BY: ClassVar[dict] = {
+        "radius": ("shape", ("cylinder", "sphere_patch", "sphere")),
+        "height": ("shape", ("cylinder",)),
+        "width": ("shape", ("saddle", "heightfield")),
+        "depth": ("shape", ("saddle", "heightfield")),
+        "rise": ("shape", ("saddle", "heightfield")),
+        "major": ("shape", ("torus",)),
+        "minor": ("shape", ("torus",)),
+        "polar": ("shape", ("sphere_patch",)),
+        "azimuth": ("shape", ("sphere_patch",)),
+        "resolution": (
+            "shape",
+            ("cylinder", "sphere_patch", "sphere", "saddle", "torus", "parametric"),
+        ),
+        "file": ("shape", ("heightfield", "mesh")),
+        "what": ("mode", ("morph",)),
+        "count": ("mode", ("voronoi",)),
+        "relax": ("mode", ("voronoi",)),
+        "method": ("mode", ("voronoi",)),
+    }
 
     @model_validator(mode="after")
     def _shape_fields(self) -> SurfaceSection:

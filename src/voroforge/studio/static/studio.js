@@ -114,6 +114,9 @@ var VoroStudio = (function () {
       if (msg.client !== undefined && this.client === null) this.client = msg.client;
       this.state = msg; this.legend = msg.legend || [];
       this.controlsPanel(); this.updateBar(); this.drawLegend(); this.timeline();
+      // keys the design's choices do not read (points on a rectangle): said, not refused
+      if (msg.warnings && msg.warnings.length && !Object.keys(this.errors).length)
+        this.message("warning: " + msg.warnings.map(function (w) { return w.message; }).join("; "), false);
       return;
     }
     if (msg.op === "violations") {
