@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from .outputs import check_outputs
+from .outputs import check_outputs, unused_option
 from .progress import Stage
 
 __all__ = ["POINTS_HELP", "add_parsers", "run_delaunay", "run_voronoi"]
@@ -62,13 +62,37 @@ def _add_outputs(sub: argparse.ArgumentParser, suffixes=".svg, .png, .geojson, .
         help=f"output file; {suffixes} (repeatable)",
     )
     sub.add_argument(
-        "--size", type=int, default=1024, help="PNG size in pixels, longer side (default 1024)"
+        "--size", type=int, default=None, help="PNG size in pixels, longer side (default 1024)"
     )
     sub.add_argument(
         "--units",
         choices=("mm", "cm", "in", "pt", "px"),
-        help="SVG size units; with mm, 1 data unit = 1 mm",
+        help="SVG size units (with mm, 1 data unit = 1 mm) and DXF $INSUNITS (pt and px: unitless)",
     )
+
+
+#: ``--size`` when not given.
+_PNG_SIZE = 1024
+
+
+def _option_uses(args: argparse.Namespace, kinds: list[str]) -> None:
+    """Warn about ``--size``/``--units`` given where no output uses them; fill defaults."""
+    if args.size is not None and "png" not in kinds:
+        unused_option(f"--size {args.size}", ".png outputs")
+    if args.units is not None and not {"svg", "dxf"} & set(kinds):
+        unused_option(f"--units {args.units}", ".svg and .dxf outputs")
+    if args.size is None:
+        args.size = _PNG_SIZE
+
+
+def _check_parquet(kinds: list[str]) -> None:
+    """GeoParquet needs pyarrow (the ``scale`` extra): say so before writing anything."""
+    import importlib.util
+
+    if "parquet" in kinds and importlib.util.find_spec("pyarrow") is None:
+        raise ValueError(
+            "GeoParquet output needs pyarrow: pip install 'voroforge[scale]' (nothing written)"
+        )
 
 
 def add_parsers(commands, formatter_class) -> None:
@@ -118,6 +142,7 @@ def run_voronoi(args: argparse.Namespace, stage: Stage) -> list[Path]:
 
     from .. import io
 
+    kinds = []
     for out in args.output:
         try:
             kind = "parquet" if _is_parquet(out) else io.output_format(out)
@@ -128,6 +153,10 @@ def run_voronoi(args: argparse.Namespace, stage: Stage) -> list[Path]:
             ) from None
         if args.edges and kind in ("png", "parquet"):
             raise ValueError(f"{out}: --edges writes .svg, .dxf or .geojson, not .{kind}")
+        kinds.append(kind)
+    # every output's options checked before any is written: a failing run writes nothing
+    _option_uses(args, kinds)
+    _check_parquet(kinds)
     check_outputs(args.output, png=lambda: _check_png(args.size), inputs=[args.points])
     stage("reading")
     from ..io.readers import boundary_crs, read_point_table
@@ -206,15 +235,11 @@ def _write_edges(d, args: argparse.Namespace, stage: Stage) -> list[Path]:
             )
         elif kind == "dxf":
             written.append(
-                io.write_dxf(None, out, layers={"EDGES": lines}, units=_dxf_units(args.units))
+                io.write_dxf(None, out, layers={"EDGES": lines}, units=io.dxf_units(args.units))
             )
         else:
             written.append(io.write_geojson(lines, out))
     return written
-
-
-def _dxf_units(units: str | None) -> str:
-    return units if units in ("mm", "cm", "in") else "unitless"
 
 
 def run_delaunay(args: argparse.Namespace, stage: Stage) -> list[Path]:
@@ -223,8 +248,7 @@ def run_delaunay(args: argparse.Namespace, stage: Stage) -> list[Path]:
 
     from .. import io
 
-    for out in args.output:
-        io.output_format(out)
+    _option_uses(args, [io.output_format(out) for out in args.output])
     check_outputs(args.output, png=lambda: _check_png(args.size), inputs=[args.points])
     stage("reading")
     points = io.read_points(args.points)

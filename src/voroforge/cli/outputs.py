@@ -7,8 +7,18 @@ draw). Everything that can be known about the outputs is checked here first.
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Callable, Iterable
 from pathlib import Path
+
+
+def unused_option(option: str, used_by: str) -> None:
+    """Say on stderr that ``option`` was given but none of the outputs uses it (not an error)."""
+    from . import PROG
+
+    print(
+        f"{PROG}: warning: {option} is used only by {used_by}; no output uses it", file=sys.stderr
+    )
 
 
 def check_outputs(

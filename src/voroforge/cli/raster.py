@@ -139,9 +139,16 @@ def add_parser(commands, formatter_class) -> argparse.ArgumentParser:
         help="area covered by the image (default: the points' box padded 10%%)",
     )
     p.add_argument("--field", default="labels", choices=FIELDS, help="what to draw")
-    p.add_argument("--seed", type=int, default=0, help="colour seed for --field labels")
+    p.add_argument(
+        "--seed", type=int, default=None, help="colour seed for --field labels (default 0)"
+    )
     p.set_defaults(run=run_raster)
     return p
+
+
+def _any_png(outputs) -> bool:
+    outputs = outputs if isinstance(outputs, list) else [outputs]
+    return any(str(o).lower().endswith(".png") for o in outputs)
 
 
 def run_raster(args: argparse.Namespace, stage: Stage | None = None) -> list[Path]:
@@ -154,9 +161,12 @@ def run_raster(args: argparse.Namespace, stage: Stage | None = None) -> list[Pat
     from ..engine.raster import check_raster_size, rasterize
     from ..io.raster_png import RASTER_SUFFIXES, write_raster
     from ..io.readers import read_points
-    from .outputs import check_outputs
+    from .outputs import check_outputs, unused_option
 
     stage = stage or (lambda name: None)
+    seed = getattr(args, "seed", None)
+    if seed is not None and (args.field != "labels" or not _any_png(args.output)):
+        unused_option(f"--seed {seed}", "--field labels in .png outputs")
     outputs = [Path(o) for o in (args.output if isinstance(args.output, list) else [args.output])]
     for out in outputs:
         if out.suffix.lower() not in RASTER_SUFFIXES:
@@ -189,5 +199,5 @@ def run_raster(args: argparse.Namespace, stage: Stage | None = None) -> list[Pat
     written = []
     for out in outputs:
         stage(f"writing {out}")
-        written.append(write_raster(result, out, field=args.field, seed=getattr(args, "seed", 0)))
+        written.append(write_raster(result, out, field=args.field, seed=seed or 0))
     return written

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import os
 from pathlib import Path
 
@@ -54,8 +55,8 @@ def add_parser(commands, formatter_class) -> argparse.ArgumentParser:
         "default: the points' bounding box padded 10%%",
     )
     p.add_argument("--periodic", action="store_true", help="the box is a 3-torus")
-    p.add_argument("--size", default="1000x800", help="PNG size WIDTHxHEIGHT (default 1000x800)")
-    p.add_argument("--explode", type=float, default=0.15, help="PNG: push cells apart (0.15)")
+    p.add_argument("--size", default=None, help="PNG size WIDTHxHEIGHT (default 1000x800)")
+    p.add_argument("--explode", type=float, default=None, help="PNG: push cells apart (0.15)")
     p.set_defaults(run=run_voronoi3d)
     return p
 
@@ -186,16 +187,24 @@ def run_voronoi3d(args, stage: Stage) -> list[str]:
     """Compute and write the cells (the ``voronoi3d`` command)."""
     from .. import voronoi3d
     from ..io.render3d import check_render_size
-    from .outputs import check_outputs
+    from .outputs import check_outputs, unused_option
     from .raster import parse_size
 
-    for out in args.output:
-        suf = Path(out).suffix.lower()
+    suffixes = [Path(out).suffix.lower() for out in args.output]
+    for suf in suffixes:
         if suf not in (".csv", ".parquet", ".png") + MESH_SUFFIXES:
             raise ValueError(
                 f"unknown output suffix {suf!r}: use .csv, .parquet, .obj, .glb, .ply or .png"
             )
-    h, w = parse_size(args.size)
+    # every output's needs checked before any is written: a failing run writes nothing
+    for suf, module in ((".parquet", "pyarrow"), (".ply", "trimesh")):
+        if suf in suffixes and importlib.util.find_spec(module) is None:
+            raise ValueError(f"{suf} output needs {module} (pip install {module}); nothing written")
+    for option, value in (("--size", args.size), ("--explode", args.explode)):
+        if value is not None and ".png" not in suffixes:
+            unused_option(f"{option} {value}", ".png outputs")
+    h, w = parse_size(args.size if args.size is not None else "1000x800")
+    explode = args.explode if args.explode is not None else 0.15
     given = [args.points] + ([args.container] if args.container else [])
     check_outputs(args.output, png=lambda: check_render_size((w, h)), inputs=given)
     stage("reading points")
@@ -207,4 +216,4 @@ def run_voronoi3d(args, stage: Stage) -> list[str]:
         periodic=args.periodic,
         progress=lambda done, total: stage(f"cells {done}/{total}"),
     )
-    return write_outputs(d, args.output, size=(w, h), explode=args.explode, stage=stage)
+    return write_outputs(d, args.output, size=(w, h), explode=explode, stage=stage)

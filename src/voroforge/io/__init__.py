@@ -29,6 +29,7 @@ from .svg import svg_string, write_layers, write_svg
 
 __all__ = [
     "FORMATS",
+    "dxf_units",
     "feature_collection",
     "read_boundary",
     "read_points",
@@ -52,6 +53,16 @@ FORMATS = {
     ".json": "geojson",
     ".dxf": "dxf",
 }
+
+
+def dxf_units(units: str | None) -> str:
+    """The DXF ``$INSUNITS`` name of an SVG ``units`` (``None``, px and pt: ``"unitless"``).
+
+    SVG sizes come in screen and print units that DXF has no name for; those drawings are
+    written without units, as a DXF without ``units`` is. Other names pass unchanged (the
+    DXF writer refuses those it does not know).
+    """
+    return "unitless" if units in (None, "px", "pt") else units
 
 
 def output_format(path) -> str:
@@ -101,7 +112,8 @@ def write(
     size : int
         PNG size in pixels (longer side).
     units : str, optional
-        SVG and DXF units, for example ``"mm"`` (DXF without units: ``unitless``).
+        SVG and DXF units, for example ``"mm"`` (a DXF without units, or in px or pt, which
+        DXF cannot name, is ``unitless``: :func:`dxf_units`).
 
     Returns
     -------
@@ -121,7 +133,7 @@ def write(
             layers["BOUNDARY"] = [boundary]
         if sites is not None:
             layers["SITES"] = [shapely.multipoints(np.asarray(sites, dtype=np.float64))]
-        return write_dxf(geoms, path, layer="CELLS", layers=layers, units=units or "unitless")
+        return write_dxf(geoms, path, layer="CELLS", layers=layers, units=dxf_units(units))
     return write_geojson(geoms, path, sites=sites, properties=properties)
 
 
