@@ -297,9 +297,16 @@ def inset_rings(xy: np.ndarray, start: np.ndarray, distance):
     # the moved line of edge k: points q = base + s * tangent, base = xy + d * normal
     dk = d[0] if m and (d == d[0]).all() else d[owner, None]  # one distance: the same products
     base = xy + dk * normal
-    # first round: neighbours share the vertex, the crossing is xy + d (n_p + n_k) / (1 + c)
+    # first round: neighbours share the vertex, the crossing is xy + d (n_p + n_k) / (1 + c),
+    # c = n_p . n_k; at a corner sharper than a right angle 1 + c ~ theta^2 / 2 cancels
+    # (a 2e-9 corner gave NaN, one of 2e-7 a vertex 1.9e-4 off), so there the same point is
+    # xy + d (t_k - t_p) / (t_p x t_k), which has no cancellation: t_k - t_p ~ 2 t_k
     n_p = _rows(normal, prv)
-    vert = xy + dk * (n_p + normal) / (1.0 + _dot(n_p, normal))[:, None]
+    t_p = _rows(tangent, prv)
+    c = _dot(n_p, normal)
+    sharp = c < 0.0
+    num = np.where(sharp[:, None], tangent - t_p, n_p + normal)
+    vert = xy + dk * num / np.where(sharp, _cross(t_p, tangent), 1.0 + c)[:, None]
     # the moved segment of edge k runs from vert[k] to vert[k + 1]
     gone = _dot(_rows(vert, nxt) - vert, tangent) <= CONVEX_SHORT_EDGE_RTOL * size[owner]
     keep = np.ones(len(xy), dtype=bool)
