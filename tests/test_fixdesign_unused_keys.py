@@ -332,3 +332,23 @@ def test_conditional_keys(folder):
     assert [(i.key, i.message) for i in issues] == [
         ("output.gif", "is not used by formats = ['svg']; add 'gif' to it")
     ]
+
+
+def test_power_cells_and_page(folder, tmp_path):
+    """algorithm beside power_radius (power cells have one builder); page without an SVG."""
+    plain = {**_design("seeds", SEEDS["random"]), "voronoi": {"power_radius": 2.0}}
+    other = {**plain, "voronoi": {"power_radius": 2.0, "algorithm": "fortune"}}
+    issues = unused_keys(load(other)[0])
+    assert [(i.key, i.message) for i in issues] == [
+        ("voronoi.algorithm", "is not used with power_radius given; it is used without it")
+    ]
+    assert _geometry(other, folder) == _geometry(plain, folder)
+    from voroforge.design.build import build
+
+    png = {**plain, "output": {"formats": ["png"], "png_size": 64}}
+    paged = {**png, "output": {**png["output"], "page": "source"}}
+    assert [i.key for i in unused_keys(load(paged)[0])] == ["output.page"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UnusedKeyWarning)
+        a = build(paged, tmp_path / "a")[0].read_bytes()
+    assert a == build(png, tmp_path / "b")[0].read_bytes()

@@ -359,6 +359,9 @@ class Voronoi(_Model):
     periodic: Flag = False
     power_radius: NonNegGraded | None = None
 
+    # power cells are cut from the box (vf.power): the algorithm picks the Voronoi builder
+    USED_WHEN: UsedWhen = {"algorithm": ("power_radius", lambda r: r is None, "without it")}
+
     @model_validator(mode="after")
     def _power(self) -> Voronoi:
         if self.power_radius is not None and self.periodic:
@@ -559,7 +562,8 @@ class Output(_Model):
     page: Literal["boundary", "source"] = "boundary"
 
     # the [output.gif] sweep is made only for a "gif" in formats (build, check)
-    USED_BY: UsedBy = {"gif": ("formats", ("gif",))}
+    # (page: the SVG's page; the surface's cut sheets have their own)
+    USED_BY: UsedBy = {"gif": ("formats", ("gif",)), "page": ("formats", ("svg",))}
 
     @model_validator(mode="after")
     def _gif(self) -> Output:
