@@ -79,3 +79,58 @@ def test_explode_must_be_finite():
         with pytest.raises(ValueError, match="explode"):
             diagram_meshes(d, explode=bad)
     assert len(diagram_meshes(d, explode=0.2)) == 20
+
+
+_FULL_DISK = """
+import resource, signal, sys
+import numpy as np, shapely
+import voroforge as vf
+from voroforge.explain.render import write_gif
+from voroforge.io import write
+from voroforge.io.geojson import write_geojson
+from voroforge.io.raster_png import write_raster
+signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # past the limit a write fails (EFBIG)
+pts = np.random.default_rng(0).random((3000, 2))
+d = vf.voronoi(pts)
+r = vf.rasterize(pts, (400, 400))
+resource.setrlimit(resource.RLIMIT_FSIZE, (20000, 20000))
+writers = {
+    "cells.geojson": lambda p: write_geojson(d.cells, p),
+    "cells.svg": lambda p: write(d.cells, p),
+    "cells-drawn.png": lambda p: write(d.cells, p),
+    "cells.png": lambda p: write_raster(r, p),
+    "labels.npy": lambda p: write_raster(r, p),
+    "sweep.gif": lambda p: write_gif(pts[:300], p, frames=40, size=300),
+}
+for name, w in writers.items():
+    try:
+        w(sys.argv[1] + "/" + name)
+    except OSError as exc:
+        print(name, "failed:", exc.errno)
+"""
+
+
+def test_writers_leave_the_old_file_when_the_disk_fills(tmp_path):
+    # checker19 F4: GeoJSON, the cells' SVG, raster PNG/.npy and the sweep's GIF were written
+    # in place, so a failed write left a truncated file
+    import subprocess
+    import sys
+
+    names = [
+        "cells.geojson",
+        "cells.svg",
+        "cells-drawn.png",
+        "cells.png",
+        "labels.npy",
+        "sweep.gif",
+    ]
+    for name in names:
+        (tmp_path / name).write_text("old")
+    run = subprocess.run(
+        [sys.executable, "-c", _FULL_DISK, str(tmp_path)], capture_output=True, text=True
+    )
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.count("failed:") == len(names), run.stdout  # EFBIG (numpy: errno None)
+    for name in names:
+        assert (tmp_path / name).read_text() == "old", name
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(names)  # no temporaries

@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from ..config import GIF_MAX_SIDE, MAX_PIXELS
+from ..io.atomic import write_atomically
 from .fortune import FortuneTrace, breakpoint_x, parabola_y, trace
 
 __all__ = ["COLORS", "frame_size", "render_frames", "sweep_positions", "write_gif"]
@@ -262,16 +263,17 @@ def write_gif(
         The path written.
     """
     images = render_frames(points_or_trace, frames=frames, size=size)
-    out = Path(path)
     durations = [duration_ms] * (len(images) - 1) + [25 * duration_ms]
-    images[0].save(
-        out,
-        format="GIF",
-        save_all=True,
-        append_images=images[1:],
-        duration=durations,
-        loop=0,
-        optimize=False,
-        disposal=1,
+    return write_atomically(
+        path,
+        lambda tmp: images[0].save(
+            tmp,
+            format="GIF",
+            save_all=True,
+            append_images=images[1:],
+            duration=durations,
+            loop=0,
+            optimize=False,
+            disposal=1,
+        ),
     )
-    return out

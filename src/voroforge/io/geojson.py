@@ -124,6 +124,6 @@ def write_geojson(geoms, path, *, sites=None, properties=None, crs=None) -> Path
     if crs is not None:
         head += '"crs":' + json.dumps(crs, allow_nan=False, separators=(",", ":")) + ","
     text = head + '"features":[\n' + body + ("\n" if body else "") + "]}\n"
-    path = Path(path)
-    path.write_text(text, encoding="utf-8")
-    return path
+    from .atomic import write_atomically
+
+    return write_atomically(path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))

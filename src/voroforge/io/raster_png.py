@@ -188,10 +188,10 @@ def write_raster_png(result, path, *, field: str = "labels", seed: int = 0) -> P
     """
     from PIL import Image
 
-    img = colorize(result, field=field, seed=seed)
-    out = Path(path)
-    Image.fromarray(np.ascontiguousarray(img)).save(out, format="PNG")  # RGB or L from shape
-    return out
+    from .atomic import write_atomically
+
+    img = Image.fromarray(np.ascontiguousarray(colorize(result, field=field, seed=seed)))
+    return write_atomically(path, lambda tmp: img.save(tmp, format="PNG"))  # RGB or L
 
 
 def write_raster(result, path, *, field: str = "labels", seed: int = 0) -> Path:
@@ -224,6 +224,8 @@ def write_raster(result, path, *, field: str = "labels", seed: int = 0) -> Path:
     if suffix not in RASTER_SUFFIXES:
         raise ValueError(f"{out}: raster output must be a .png or .npy file")
     if suffix == ".npy":
-        np.save(out, np.asarray(field_values(result, field)))
-        return out
+        from .atomic import write_atomically
+
+        values = np.asarray(field_values(result, field))
+        return write_atomically(out, lambda tmp: np.save(tmp, values))
     return write_raster_png(result, out, field=field, seed=seed)

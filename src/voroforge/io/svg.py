@@ -231,9 +231,7 @@ def write_svg(
         site_radius=site_radius,
         seed=seed,
     )
-    path = Path(path)
-    path.write_text(text, encoding="utf-8")
-    return path
+    return _write_text(Path(path), text)
 
 
 def _write_text(path: Path, text: str) -> Path:

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..io.atomic import write_atomically
 from .schema import SurfaceSection
 
 __all__ = ["build_surface", "surface_of", "surface_panels"]
@@ -278,6 +279,7 @@ def build_surface(design, base, out: Path, stage, *, preview: bool = False) -> l
             f"turned over: {len(rep.flipped)} {list(map(int, panels.ids[rep.flipped]))}",
             f"border vertices left out of straight runs: {rep.dropped}",
         ]
-        text.write_text("\n".join(lines) + "\n", encoding="utf-8")
+        body = "\n".join(lines) + "\n"
+        write_atomically(text, lambda tmp, body=body: Path(tmp).write_text(body, encoding="utf-8"))
         written.append(text)
     return written
