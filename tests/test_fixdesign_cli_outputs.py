@@ -86,3 +86,21 @@ def test_voronoi3d_and_raster_options(tmp_path, capsys):
     p2.write_text("x,y\n0,0\n1,1\n2,0\n")
     assert main(["raster", str(p2), "-o", str(npy), "--size", "8x8", "--seed", "3"]) == 0
     assert "warning: --seed 3 is used only by --field labels" in capsys.readouterr().err
+
+
+def test_studio_port_in_use_names_it(tmp_path, capsys):
+    import socket
+
+    design = tmp_path / "s.toml"
+    design.write_text(
+        '[boundary]\nshape = "rectangle"\nwidth = 10\nheight = 8\n'
+        '[seeds]\nmethod = "random"\ncount = 5\n'
+    )
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        s.listen()
+        port = s.getsockname()[1]
+        argv = ["studio", str(design), "--port", str(port), "--no-browser"]
+        assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert f"error: --host 127.0.0.1 --port {port}: " in err

@@ -92,8 +92,26 @@ def run(args: argparse.Namespace, stage: Stage) -> int:
     with warnings.catch_warnings():
         # the page shows them with each edit (state_message): not again on the console
         warnings.simplefilter("ignore", UnusedKeyWarning)
-        serve(args.design, host=args.host, port=args.port, open_browser=not args.no_browser)
+        try:
+            serve(args.design, host=args.host, port=args.port, open_browser=not args.no_browser)
+        except OSError as exc:
+            if exc.filename is not None or not _address_error(exc):
+                raise
+            # "Address already in use" said which address (checker16 F9)
+            raise ValueError(f"--host {args.host} --port {args.port}: {exc.strerror}") from None
     return 0
+
+
+def _address_error(exc: OSError) -> bool:
+    """Whether ``exc`` is about the address the studio listens on (in use, not there, ...)."""
+    import errno
+    import socket
+
+    return isinstance(exc, socket.gaierror) or exc.errno in (
+        errno.EADDRINUSE,
+        errno.EADDRNOTAVAIL,
+        errno.EACCES,
+    )
 
 
 def run_animate(args: argparse.Namespace, stage: Stage) -> list:
