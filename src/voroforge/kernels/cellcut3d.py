@@ -24,8 +24,7 @@ from numba import njit
 from ..config import CELLCUT3D_OWN_ENTRIES as OWN_ENTRIES
 from ..config import NJIT, VORONOI3D_CUT_RTOL, VORONOI3D_STOP_RTOL
 from .expansion import two_diff
-from .graph3d import GCUT_DONE, GCUT_EMPTY, to_rings
-from .graph3d import cut as graph_cut
+from .graph3d import GCUT_DONE, GCUT_EMPTY, cut_close, cut_open, to_rings
 from .grid import heap_pop, heap_push
 from .grid3d import bucket3d, shell_buckets_in, shell_gap
 from .polyhedron import CUT_DONE, CUT_EMPTY, CUT_OVERFLOW, cut
@@ -356,12 +355,14 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
         if smax <= 0.0:
             continue
         if graph:
-            st, nv2, r2c = graph_cut(V, nv, G[0], G[1], G[2], G[3], G[6], S, G[4], j)
+            st, nv2, w, nl = cut_open(V, nv, G[0], G[1], G[2], G[3], G[6], S, G[4], j)
             if st == GCUT_EMPTY:
                 return EMPTY, 0, 0, 0, 0.0
             if st != GCUT_DONE:
                 return BROKEN, 0, 0, 0, 0.0
-            r2c = max(r2c, resettle(i, j, V, nv2, G, S, P, W, WP, X))
+            r2m = resettle(i, j, V, G[4], w, G, S, P, W, WP, X)
+            st, nv2, r2c = cut_close(V, nv2, G[0], G[1], G[2], G[3], G[6], S, G[4], nl)
+            r2c = max(r2c, r2m)
             nf2 = 0
         else:
             r2c = -1.0

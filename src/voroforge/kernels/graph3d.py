@@ -185,6 +185,24 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
     in such a plane). ``CP (cap, 3) int64`` is scratch (the cap's ring; the removed
     vertices). Returns
     ``(status, nv, r2)``, ``r2`` (done) the largest ``|v|^2`` of the vertices left.
+
+    :func:`cut_open` then :func:`cut_close`: a caller that moves the cap's points (the cell
+    builder's exact re-solve, :func:`kernels.vertex3d.resettle`) does so between them.
+    """
+    st, nv, w, nlist = cut_open(V, nv, DEG, ED, BK, LB, FL, S, CP, label)
+    if st != GCUT_DONE:
+        return st, nv, 0.0
+    return cut_close(V, nv, DEG, ED, BK, LB, FL, S, CP, nlist)
+
+
+@njit(**{**NJIT, "inline": "always"})
+def cut_open(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
+    """The cut of :func:`cut` up to the removed vertices' slots: the cap built and wired.
+
+    Returns ``(status, nv, w, nlist)``. Done: ``CP[:w, 2]`` are the cap's points in order
+    (the new vertices, numbered from the ``nv`` given, and the vertices found on the
+    plane), ``nv`` counts the new vertices, the removed ones are still in their slots and
+    ``nlist`` is for :func:`cut_close`. Else ``nv`` is :func:`cut`'s.
     """
     vcap = V.shape[0]
     D = ED.shape[1]
@@ -206,9 +224,9 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
             nup += S[v] > 0.0
             down |= S[v] < 0.0
     if nup == 0:
-        return GCUT_NONE, nv, 0.0
+        return GCUT_NONE, nv, 0, -1
     if not down:
-        return GCUT_EMPTY, 0, 0.0
+        return GCUT_EMPTY, 0, 0, -1
     # the boundary edges v -> u (v removed, u kept): one to start from, and their count
     e0v = -1
     e0k = -1
@@ -232,7 +250,7 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
     nb = 0
     while True:
         if m >= ncap:
-            return GCUT_BROKEN, nv, 0.0
+            return GCUT_BROKEN, nv, 0, -1
         CP[m, 0] = v
         CP[m, 1] = k
         m += 1
@@ -252,16 +270,16 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
             a = na
             steps += 1
             if steps > nv:
-                return GCUT_BROKEN, nv, 0.0
+                return GCUT_BROKEN, nv, 0, -1
         v = b
         k = BK[a, j]  # ED[b, k] == a
         nb += 1
         if v == e0v and k == e0k:
             break
         if nb > nbound:
-            return GCUT_BROKEN, nv, 0.0
+            return GCUT_BROKEN, nv, 0, -1
     if m != nbound:  # the cap is not one ring
-        return GCUT_BROKEN, nv, 0.0
+        return GCUT_BROKEN, nv, 0, -1
     # cap points: a new vertex on each edge to a vertex below, the vertex itself if on
     nv0 = nv
     for q in range(m):
@@ -272,7 +290,7 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
             CP[q, 2] = u
         else:
             if nv >= vcap:
-                return GCUT_BROKEN, nv, 0.0
+                return GCUT_BROKEN, nv, 0, -1
             x = nv
             nv += 1
             sv = S[v]
@@ -306,14 +324,14 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
     while w > 1 and CP[w - 1, 2] == CP[0, 2]:
         w -= 1
     if w < 3:
-        return GCUT_BROKEN, nv0, 0.0
+        return GCUT_BROKEN, nv0, 0, -1
     # an on-plane vertex must appear once
     for q in range(w):
         c = CP[q, 2]
         if c < nv0:
             for r in range(q + 1, w):
                 if CP[r, 2] == c:
-                    return GCUT_BROKEN, nv0, 0.0
+                    return GCUT_BROKEN, nv0, 0, -1
     # rewire. Per point q (prev p = q - 1, next n = q + 1) its list gets ... A, next, prev, B
     # where the removed run lay; new vertices get [prev, u, next].
     for q in range(w):
@@ -343,10 +361,10 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
             for r in range(d):
                 if S[ED[u, r]] <= 0.0 and S[ED[u, (r + 1) % d]] > 0.0:
                     if s0 >= 0:
-                        return GCUT_BROKEN, nv0, 0.0  # two runs
+                        return GCUT_BROKEN, nv0, 0, -1  # two runs
                     s0 = r
             if s0 < 0:
-                return GCUT_BROKEN, nv0, 0.0
+                return GCUT_BROKEN, nv0, 0, -1
             # run is s0 + 1 .. s0 + t
             t = 0
             while S[ED[u, (s0 + 1 + t) % d]] > 0.0:
@@ -359,9 +377,9 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
             nk = 0
             kept = d - t
             if kept + 2 > D:
-                return GCUT_BROKEN, nv0, 0.0
+                return GCUT_BROKEN, nv0, 0, -1
             if nv >= vcap:
-                return GCUT_BROKEN, nv0, 0.0
+                return GCUT_BROKEN, nv0, 0, -1
             tmp = nv
             for r in range(kept):
                 src = (s0 + t + 1 + r) % d  # B first, A last
@@ -381,7 +399,7 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
                 LB[tmp, nk] = lab_t
                 nk += 1
             if nk < 3:
-                return GCUT_BROKEN, nv0, 0.0
+                return GCUT_BROKEN, nv0, 0, -1
             for r in range(nk):
                 ED[u, r] = ED[tmp, r]
                 LB[u, r] = LB[tmp, r]
@@ -401,9 +419,22 @@ def cut(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
         a = _only_edge(DEG, ED, c, cn)
         b = _only_edge(DEG, ED, cn, c)
         if a < 0 or b < 0:
-            return GCUT_BROKEN, nv0, 0.0
+            return GCUT_BROKEN, nv0, 0, -1
         BK[c, a] = b
         BK[cn, b] = a
+    return GCUT_DONE, nv, w, nup if listed else -1
+
+
+@njit(**{**NJIT, "inline": "always"})
+def cut_close(V, nv, DEG, ED, BK, LB, FL, S, CP, nlist):
+    """:func:`cut`'s end after :func:`cut_open`: the removed vertices' slots filled from the top.
+
+    ``nlist`` is :func:`cut_open`'s (the removed vertices listed in ``CP``'s column 2 from
+    its last row up, or -1: found by a scan of ``S``). Returns ``(GCUT_DONE, nv, r2)``.
+    """
+    ncap = CP.shape[0]
+    listed = nlist >= 0
+    nup = nlist
     # drop the removed vertices (listed: in order; else found by a scan of S, in order):
     # fill each hole from the top
     top = nv

@@ -39,6 +39,9 @@ from ..config import (
 )
 from .predicates3d import exact_point, vertex_offset, wall_lift
 
+#: :func:`_ill`'s squared test is trusted where it clears the threshold by this margin
+#: (both sides carry a few roundings: ~1e-15); nearer, the test of :func:`_rel_det` decides
+_ILL_MARGIN = 1e-12
 #: nothing here allocates: compiled without reference counting (see kernels.cellcut3d)
 _NO_NRT = {**NJIT, "_nrt": False}
 #: inlined into the cell builder's naming (numba's inliner): every vertex of every cell is
@@ -251,8 +254,8 @@ def _key(lab, ns):
     return lab if lab >= 0 else ns + (-1 - lab)
 
 
-@njit(**_NO_NRT)
-def resettle(i, j, V, nv, G, S, P, W, WP, X):
+@njit(**_INLINE)
+def resettle(i, j, V, CP, w, G, S, P, W, WP, X):
     """Solve again exactly the vertices the graph cut by ``j`` made on ill-conditioned edges.
 
     A new vertex (``S == 0``, three faces, the last ``j``'s) is interpolated along its edge
@@ -260,24 +263,56 @@ def resettle(i, j, V, nv, G, S, P, W, WP, X):
     bisectors of sites a few ulps apart) those values are mostly rounding and the point
     lands anywhere on the edge, far beyond the filter's band: later planes were then
     trusted on a wrong point (vertices outside the box, faces the exact cell lacks). Such a
-    vertex is put at its owners' exact point, rounded (:func:`vertex_offset`). Returns the
-    largest ``|v|^2`` of the vertices moved (0 when none), for the cell's radius.
+    vertex is put at its owners' exact point, rounded (:func:`vertex_offset`).
+
+    Called between :func:`kernels.graph3d.cut_open` and ``cut_close``: only the cap's points
+    ``CP[:w, 2]`` can have ``j``'s face (a plane cuts a cell once), so they are the ones
+    looked at. Returns the largest ``|v|^2`` of the vertices moved, before and after (0 when
+    none): ``cut_close``'s radius sees only the moved points, the cell's radius takes both.
+    Inlined into the cut's loop (a call per cut cost more than the few points' tests).
     """
     r2 = 0.0
     DEG = G[0]
     LB = G[3]
     ns = P.shape[0]
-    for v in range(nv):
+    for q in range(w):
+        v = CP[q, 2]
         if S[v] != 0.0 or DEG[v] != 3 or LB[v, 2] != j:
             continue
         k0 = _key(LB[v, 0], ns)
         k1 = _key(LB[v, 1], ns)
-        rows = X[1]  # vertex_offset's scratch; its rows are written again there
-        det, nrm = _rel_det(i, k0, k1, j, P, WP, ns)
-        if abs(det) < CUT_EXACT_DET_RTOL * nrm:
+        if _ill(i, k0, k1, j, P, WP, ns):
+            r2 = max(r2, V[v, 0] * V[v, 0] + V[v, 1] * V[v, 1] + V[v, 2] * V[v, 2])
+            rows = X[1]  # vertex_offset's scratch; its rows are written again there
             vertex_offset(i, k0, k1, j, P, W, WP, ns, rows, P[i, 0], P[i, 1], P[i, 2], V[v])
             r2 = max(r2, V[v, 0] * V[v, 0] + V[v, 1] * V[v, 1] + V[v, 2] * V[v, 2])
     return r2
+
+
+@njit(**_INLINE)
+def _ill(i, a, b, c, P, WP, ns):
+    """Whether owners ``a, b, c``'s relative determinant is below ``CUT_EXACT_DET_RTOL``.
+
+    The same answer as ``|det| < CUT_EXACT_DET_RTOL * |n_a| |n_b| |n_c|`` of :func:`_rel_det`,
+    from squares (no square roots): ``det^2`` against ``rtol^2 |n_a|^2 |n_b|^2 |n_c|^2``,
+    which decides unless the two lie within :data:`_ILL_MARGIN` of each other or outside the
+    range where neither under- nor overflows (then the test with roots decides).
+    """
+    ax, ay, az = _normal(i, a, P, WP, ns)
+    bx, by, bz = _normal(i, b, P, WP, ns)
+    cx, cy, cz = _normal(i, c, P, WP, ns)
+    det = ax * (by * cz - bz * cy) + ay * (bz * cx - bx * cz) + az * (bx * cy - by * cx)
+    na = ax * ax + ay * ay + az * az
+    nb = bx * bx + by * by + bz * bz
+    nc = cx * cx + cy * cy + cz * cz
+    lim = (CUT_EXACT_DET_RTOL * CUT_EXACT_DET_RTOL) * (na * nb * nc)
+    d2 = det * det
+    if 1e-250 < lim < 1e250:
+        if d2 > lim * (1.0 + _ILL_MARGIN):
+            return False
+        if d2 < lim * (1.0 - _ILL_MARGIN):
+            return True
+    return abs(det) < CUT_EXACT_DET_RTOL * (np.sqrt(na * nb) * np.sqrt(nc))
 
 
 @njit(**_NO_NRT)
