@@ -534,3 +534,46 @@ def test_bad_input():
     keep = nodes.copy()
     solid.lattice((nodes, [[0, 1]]), radius=0.1)
     assert (nodes == keep).all()  # never mutates the input
+
+
+def test_foam_keeps_the_bubbles_of_cells_a_torus_cuts():
+    # checker20 F3: a cut cell's mesh fans a ring with three collinear vertices into a
+    # triangle of ~1e-15 area; its zero normal became the plane 0 <= -wall/2 and three of
+    # 30 roomy cells lost their bubbles ("walls fill 3 of 30 cells")
+    from scipy.optimize import linprog
+
+    import voroforge as vf
+    from voroforge.solid.foam import bubbles
+    from voroforge.solid.graph import cell_meshes
+
+    rng = np.random.default_rng(4)
+    tor = trimesh.creation.torus(major_radius=20, minor_radius=8)
+    X = rng.uniform(-28, 28, (2, 4000, 3))[1]  # (the checker's second draw)
+    P = X[(np.hypot(X[:, 0], X[:, 1]) - 20) ** 2 + X[:, 2] ** 2 < 7.5**2][:30]
+    d = vf.voronoi3d(P, tor)
+    got = bubbles(cell_meshes(d), 1.0)
+    for i, (mesh, _, rad) in enumerate(got):
+        # reference: the largest ball inside the cell's own face planes (Newell normals of
+        # its rings) moved in by half the wall
+        cell = d.cell(i)
+        V = np.asarray(cell.vertices)
+        rows = []
+        for ring in cell.faces:
+            q = V[np.asarray(ring)]
+            n = np.cross(q, np.roll(q, -1, axis=0)).sum(0)
+            if np.linalg.norm(n) > 1e-9 * np.ptp(V, axis=0).max() ** 2:
+                n /= np.linalg.norm(n)
+                rows.append([*n, n @ q.mean(0) - 0.5])
+        A = np.asarray(rows)
+        lp = linprog(
+            [0, 0, 0, -1],
+            A_ub=np.c_[A[:, :3], np.ones(len(A))],
+            b_ub=A[:, 3],
+            bounds=[(None, None)] * 3 + [(0, None)],
+        )
+        assert lp.success and lp.x[3] > 0.1, i
+        assert mesh is not None, i
+        assert rad == pytest.approx(lp.x[3], rel=1e-6), i
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        solid.foam(d, wall=1.0, container=tor)

@@ -469,6 +469,10 @@ from .config3d import *  # noqa: E402, F403
 #: solid.foam: the bubbles' inscribed balls are found as one LP of this many cells'
 #: independent blocks at a time (one solver call, not one a cell)
 FOAM_LP_CELLS = 256
+#: solid.foam: a cell mesh's triangle below this fraction of its scale squared gives no
+#: face plane (three collinear ring vertices fan into one: zero normal, or one rounding
+#: turns; its plane read as a wall swallowed a roomy cell's bubble)
+FOAM_FACE_AREA_RTOL = 1e-10
 
 #: Strut graph: nodes closer than this fraction of the bounding-box diagonal are one node
 SOLID_MERGE_TOL = 1e-9

@@ -7,7 +7,7 @@ import warnings
 import numpy as np
 from scipy.spatial import HalfspaceIntersection, QhullError
 
-from ..config import FOAM_LP_CELLS
+from ..config import FOAM_FACE_AREA_RTOL, FOAM_LP_CELLS
 from .fields import as_size
 from .graph import cell_meshes
 from .hulls import convex_mesh
@@ -16,12 +16,21 @@ __all__ = ["bubbles", "foam"]
 
 
 def _planes(cell) -> tuple[np.ndarray, np.ndarray]:
-    """Unique outward face planes ``n . x <= c`` of a convex cell mesh."""
+    """Unique outward face planes ``n . x <= c`` of a convex cell mesh.
+
+    Triangles of (nearly) zero area are left out: a ring with three collinear vertices (where
+    a mesh cut joined a cell's parts) fans into one, whose normal trimesh gives as zero or
+    rounding makes point anywhere; its row ``0 <= 0`` moved in by the wall read ``0 <= -w/2``
+    and the cell lost its bubble. Each face keeps its plane from its other triangles.
+    """
     n = np.asarray(cell.face_normals)
     c = np.einsum("ij,ij->i", n, cell.triangles_center)
+    sound = (np.abs(np.einsum("ij,ij->i", n, n) - 1.0) < 1e-6) & (
+        np.asarray(cell.area_faces) > FOAM_FACE_AREA_RTOL * max(cell.scale, 1e-300) ** 2
+    )
     key = np.round(np.column_stack([n, c / max(cell.scale, 1e-300)]), 9)
-    _, first = np.unique(key, axis=0, return_index=True)
-    first = np.sort(first)
+    _, first = np.unique(key[sound], axis=0, return_index=True)
+    first = np.sort(np.flatnonzero(sound)[first])
     cen = cell.vertices[cell.faces[first]].mean(axis=1)
     return np.column_stack([n[first], c[first]]), cen
 
