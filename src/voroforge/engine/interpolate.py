@@ -237,6 +237,7 @@ def locate_power(diagram, xy) -> np.ndarray | int:
         out = np.atleast_1d(locate_in_diagram(diagram, q))
         return int(out[0]) if single else out
     user_sites = diagram.sites[owners]
+    user_w = diagram.weights[owners]
     # one power-of-two frame (exact) where squares of queries, sites and weights are
     # finite: a query at 1e300 overflowed and cKDTree answered with its sentinel
     big = max(float(np.abs(q).max(initial=0.0)), float(np.abs(user_sites).max()))
@@ -270,7 +271,7 @@ def locate_power(diagram, xy) -> np.ndarray | int:
             close = pd <= (best + err[np.arange(len(r)), at])[:, None] + err
             for j in np.flatnonzero(close.sum(axis=1) > 1):
                 cand = idx[j][close[j]]
-                pick = nearest_exact(q[r[j]], cand, user_sites, diagram.weights[owners])
+                pick = nearest_exact(q[r[j]], cand, user_sites, user_w)
                 out[r[j]] = owners[pick]
             if k < m:
                 # a site past the k-th could tie after rounding: look further for those

@@ -6,7 +6,10 @@ from fractions import Fraction
 
 import numpy as np
 
+from ..kernels.nearest_exact import nearest_of
 from .inputs import as_query
+
+_NO_WEIGHTS = np.zeros(0)
 
 
 def _exact_key(q, p, w):
@@ -59,11 +62,11 @@ def locate3d(d, xyz):
     power-of-two frame where squares of the coordinates would overflow or underflow.
     """
     q, single = as_query(xyz, dim=3)
-    sites0 = np.asarray(d.sites)
+    sites0 = np.ascontiguousarray(d.sites, dtype=np.float64)
     n = len(sites0)
     if n == 0:
         raise ValueError("locate on an empty diagram")
-    w0 = np.zeros(n) if d.weights is None else np.asarray(d.weights)
+    w0 = np.zeros(n) if d.weights is None else np.ascontiguousarray(d.weights, dtype=np.float64)
     if d.periodic:
         out = _locate_torus(q, sites0, w0, np.asarray(d.duplicate_of), d.box)
         return int(out[0]) if single else out
@@ -111,11 +114,21 @@ def locate3d(d, xyz):
 def nearest_exact(q, cand, sites, w=None) -> int:
     """Lowest index among the exactly nearest of sites ``cand`` to ``q`` (any dimension).
 
-    Squared distances less the weights ``w`` (none: zero) in rationals, so float ties and
-    near ties are decided exactly; ``locate`` in 2D uses it for its near ties too.
+    Squared distances less the weights ``w`` (none: zero), decided exactly, so float ties
+    and near ties go to the lowest index; ``locate`` in 2D uses it for its near ties too.
+    A compiled float filter and expansion comparison (:func:`kernels.nearest_exact.nearest_of`)
+    decides them; rationals only where the offsets span more binades than one scaled frame
+    holds exactly.
     """
     if len(cand) == 1:
         return int(cand[0])
+    cand = np.asarray(cand, dtype=np.int64)
+    q = np.ascontiguousarray(q, dtype=np.float64)
+    sites = np.ascontiguousarray(sites, dtype=np.float64)
+    ww = _NO_WEIGHTS if w is None else np.ascontiguousarray(w, dtype=np.float64)
+    pick = int(nearest_of(q, cand, sites, ww))
+    if pick >= 0:
+        return pick
     keys = [(_exact_key(q, sites[c], 0.0 if w is None else w[c]), int(c)) for c in cand]
     return min(keys)[1]
 
