@@ -38,7 +38,9 @@ class RasterVoronoi:
     """Nearest-site labels and distances sampled at pixel centres.
 
     Pixel ``(row r, column c)`` is sampled at ``x = xmin + (c + 0.5) (xmax - xmin) / w``,
-    ``y = ymax - (r + 0.5) (ymax - ymin) / h``: row 0 is at the top, as in an image.
+    ``y = ymax - (r + 0.5) (ymax - ymin) / h``: row 0 is at the top, as in an image. The
+    sampled points are :attr:`x` and :attr:`y` (see :func:`pixel_centers`), and the labels
+    are ``locate``'s answers there.
 
     Attributes
     ----------
@@ -57,7 +59,8 @@ class RasterVoronoi:
         How the labels were computed and with which distance.
     """
 
-    def __init__(self, labels, distance, f2, bounds, method, metric):
+    def __init__(self, labels, distance, f2, bounds, method, metric, centers=None):
+        self._centers = centers
         self.labels = labels
         self.distance = distance
         self.f2 = f2
@@ -89,17 +92,24 @@ class RasterVoronoi:
 
     @cached_property
     def x(self) -> np.ndarray:
-        """(w,) float64 x of the pixel centres of each column."""
-        return pixel_centers(self.bounds, self.shape)[0]
+        """(w,) float64 x of the pixel centres of each column: the points sampled."""
+        return (self._centers or pixel_centers(self.bounds, self.shape))[0]
 
     @cached_property
     def y(self) -> np.ndarray:
-        """(h,) float64 y of the pixel centres of each row (decreasing)."""
-        return pixel_centers(self.bounds, self.shape)[1]
+        """(h,) float64 y of the pixel centres of each row (decreasing): the points sampled."""
+        return (self._centers or pixel_centers(self.bounds, self.shape))[1]
 
 
 def pixel_centers(bounds, shape) -> tuple[np.ndarray, np.ndarray]:
-    """Pixel-centre coordinates of an image over ``bounds``.
+    """Pixel-centre coordinates of an image over ``bounds``: the points a raster samples.
+
+    Where the bounds are past ``2**±RASTER_FRAME_EXP`` (config) the formulas below are
+    evaluated on the bounds scaled by a power of two, where they neither overflow
+    (``xmax - xmin`` at bounds of ``±1e308``) nor lose digits to underflow (a subnormal
+    pixel size), and scaled back: a centre then rounds only where it is subnormal, and the
+    raster samples the rounded point (so its labels are ``locate``'s answers at exactly
+    these coordinates).
 
     Parameters
     ----------
@@ -115,10 +125,16 @@ def pixel_centers(bounds, shape) -> tuple[np.ndarray, np.ndarray]:
     y : (h,) float64
         ``ymax - (r + 0.5) * ((ymax - ymin) / h)`` for each row ``r`` (row 0 at the top).
     """
-    xmin, ymin, xmax, ymax = bounds
-    h, w = shape
-    x = xmin + (np.arange(w, dtype=np.float64) + 0.5) * ((xmax - xmin) / w)
-    y = ymax - (np.arange(h, dtype=np.float64) + 0.5) * ((ymax - ymin) / h)
+    e = unit_exponent(max(abs(float(v)) for v in bounds), config.RASTER_FRAME_EXP)
+    if e:
+        xs, ys = pixel_centers(tuple(np.ldexp(np.asarray(bounds, np.float64), -e)), shape)
+        with np.errstate(under="ignore"):
+            x, y = np.ldexp(xs, e), np.ldexp(ys, e)
+    else:
+        xmin, ymin, xmax, ymax = bounds
+        h, w = shape
+        x = xmin + (np.arange(w, dtype=np.float64) + 0.5) * ((xmax - xmin) / w)
+        y = ymax - (np.arange(h, dtype=np.float64) + 0.5) * ((ymax - ymin) / h)
     for arr in (x, y):
         arr.setflags(write=False)
     return x, y
@@ -462,28 +478,37 @@ def rasterize(
     h, w = _check_shape(shape)
     check_raster_size((h, w), f2=bool(f2), sites=len(pts), metric=metric)
     box = _check_bounds(bounds, pts)
+    pxs, pys = pixel_centers(box, (h, w))
     e = _frame(pts, box)
-    if e:
-        # squared distances (and the box's width at +-1e308) leave float64's range: the
-        # same raster at unit size, scaled by a power of two (exact), distances scaled back
-        r = rasterize(
-            np.ldexp(pts, -e),
-            (h, w),
-            tuple(np.ldexp(box, -e).tolist()),
-            method=method,
-            metric=metric,
-            f2=f2,
-        )
-        with np.errstate(over="ignore"):  # (distances past the largest double are inf)
-            d2 = None if r.f2 is None else np.ldexp(r.f2, e)
-            dist = np.ldexp(r.distance, e)
-        return RasterVoronoi(r.labels, dist, d2, box, method, metric)
+    if not e:
+        lab, d1, d2 = _nearest(pts, box, pxs, pys, method, metric, bool(f2))
+        return RasterVoronoi(lab, d1, d2, box, method, metric)
+    # squared distances (and the box's width at +-1e308) leave float64's range: the same
+    # raster at unit size, scaled by a power of two (exact), distances scaled back. The
+    # samples are the pixel centres scaled (exact unless one underflows there: the centres
+    # reported are then the points sampled, scaled back)
+    with np.errstate(under="ignore"):
+        sx, sy = np.ldexp(pxs, -e), np.ldexp(pys, -e)
+    sbox = tuple(np.ldexp(box, -e).tolist())
+    lab, d1, d2 = _nearest(np.ldexp(pts, -e), sbox, sx, sy, method, metric, bool(f2))
+    with np.errstate(over="ignore"):  # (distances past the largest double are inf)
+        d2 = None if d2 is None else np.ldexp(d2, e)
+        d1 = np.ldexp(d1, e)
+    centers = []
+    for full, scaled in ((pxs, sx), (pys, sy)):
+        back = np.ldexp(scaled, e)
+        back.setflags(write=False)
+        centers.append(full if np.array_equal(back, full) else back)
+    return RasterVoronoi(lab, d1, d2, box, method, metric, tuple(centers))
+
+
+def _nearest(pts, box, pxs, pys, method, metric, want_f2):
+    """``(labels, distance, f2 or None)`` of :func:`rasterize` at the samples ``pxs, pys``."""
+    h, w = len(pys), len(pxs)
     dup, unique = duplicate_map(pts)
     sub = pts[unique]
     xs = np.ascontiguousarray(sub[:, 0])
     ys = np.ascontiguousarray(sub[:, 1])
-    pxs, pys = pixel_centers(box, (h, w))
-    want_f2 = bool(f2)
     tile = _exact_tile(sub, box, (h, w))
     walk = _walks(sub, box, (h, w), metric, want_f2)
     if method == "exact" and walk:
@@ -510,4 +535,4 @@ def rasterize(
         )
     if len(unique) < len(pts):
         lab = unique.astype(np.int32)[lab]
-    return RasterVoronoi(lab, d1, d2 if want_f2 else None, box, method, metric)
+    return lab, d1, d2 if want_f2 else None
