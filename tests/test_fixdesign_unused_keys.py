@@ -352,3 +352,37 @@ def test_power_cells_and_page(folder, tmp_path):
         warnings.simplefilter("ignore", UnusedKeyWarning)
         a = build(paged, tmp_path / "a")[0].read_bytes()
     assert a == build(png, tmp_path / "b")[0].read_bytes()
+
+
+def test_corner_tolerance_needs_tool_radius(folder):
+    from voroforge.design.build import check_design
+
+    plain = {**_design("seeds", SEEDS["random"]), "fabrication": {"min_web": 3, "min_opening": 9}}
+    tol = {**plain, "fabrication": {**plain["fabrication"], "corner_tolerance": 0.5}}
+    issues = unused_keys(load(tol)[0])
+    assert [(i.key, i.message) for i in issues] == [
+        ("fabrication.corner_tolerance", "is not used without tool_radius; it is used with it > 0")
+    ]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UnusedKeyWarning)
+        a = check_design(tol).table(max_rows=None)
+    assert a == check_design(plain).table(max_rows=None)
+    tooled = {**tol, "fabrication": {**tol["fabrication"], "tool_radius": 1.0}}
+    assert unused_keys(load(tooled)[0]) == []
+
+
+def test_cells_scale_is_bounded(tmp_path):
+    """cells.scale past 100 is refused at its key and line (1e200 was a GEOS traceback)."""
+    from voroforge.design.designfile import DesignError
+
+    f = tmp_path / "s.toml"
+    head = '[boundary]\nshape = "rectangle"\nwidth = 10\nheight = 8\n[seeds]\ncount = 5\n'
+    for value in ("1e200", "{ near = 1e300, far = 1 }", "100.5"):
+        f.write_text(head + f"[cells]\nscale = {value}\n")
+        with pytest.raises(DesignError) as err:
+            load(f)
+        assert (
+            str(err.value) == f"{f}:8: cells.scale: must be at most 100 (1 keeps each cell's size)"
+        )
+    f.write_text(head + "[cells]\nscale = 100\n")
+    assert load(f)[0].cells.scale.value == 100

@@ -402,11 +402,12 @@ def _unused(model: BaseModel, loc: tuple, out: list[tuple[tuple, str]]) -> None:
         if callable(values[0]):  # USED_WHEN: (reads, when)
             if values[0](chosen):
                 continue
-            given = (
-                f"with {selector} given"
-                if isinstance(chosen, BaseModel)
-                else f"by {selector} = {short_repr(chosen)}"
-            )
+            if chosen is None:
+                given = f"without {selector}"
+            elif isinstance(chosen, BaseModel):
+                given = f"with {selector} given"
+            else:
+                given = f"by {selector} = {short_repr(chosen)}"
             message = f"is not used {given}; it is used {values[1]}"
         elif isinstance(chosen, list):  # output.formats: read when any of them reads it
             if set(chosen) & set(values):

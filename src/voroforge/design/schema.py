@@ -196,6 +196,18 @@ def _probability(value: Graded) -> Graded:
     return value
 
 
+#: The largest cells.scale: a cell grown 100 times covers its neighbours many times over;
+#: 1e200 had GEOS fail with a traceback and 1e307 ran for minutes (checker19 F6).
+#: (for config.py: DESIGN_MAX_CELL_SCALE)
+_MAX_SCALE = 100.0
+
+
+def _scale_bound(value: Graded) -> Graded:
+    if value.bounds()[1] > _MAX_SCALE:
+        raise ValueError(f"must be at most {_MAX_SCALE:g} (1 keeps each cell's size)")
+    return value
+
+
 #: A graded key that cannot go below 0 (web, inset, fillet, scale, power_radius): checked
 #: here, with the other values, so that ``voroforge check`` lists it with every other problem
 #: (it was checked while computing, and a schema error elsewhere hid it).
@@ -413,7 +425,7 @@ class Cells(_Model):
     web: NonNegGraded | None = None
     inset: NonNegGraded | None = None
     join: Literal["mitre", "round"] = "mitre"
-    scale: NonNegGraded = Graded(value=1.0)
+    scale: Annotated[NonNegGraded, AfterValidator(_scale_bound)] = Graded(value=1.0)
     smooth: Annotated[Whole, Field(ge=0, le=8)] = 0
     fillet: NonNegGraded = Graded(value=0.0)
     min_area: NonNegFloat = 0.0
@@ -597,6 +609,11 @@ class Fabrication(_Model):
     corner_tolerance: NonNegFloat = config.FAB_CORNER_TOLERANCE
     islands: Flag = True
     report: Flag = False
+
+    # the inside-corner check runs only with a tool radius (fabrication.check)
+    USED_WHEN: UsedWhen = {
+        "corner_tolerance": ("tool_radius", lambda r: r is not None and r > 0, "with it > 0")
+    }
 
 
 class Design(_Model):
