@@ -99,6 +99,8 @@ def _moments(ids, xy, dom, loaded, wanted, last):
 
 def _step_piece(done):
     """The moved sites of a tile's certified cells (sorted by id) and their summary."""
+    if not done:
+        return Piece(np.zeros(0, np.int64), np.zeros((0, 2)), None), 0.0, 0.0
     ids, xy, mass, first, second = (np.concatenate(a) for a in zip(*done, strict=True))
     order = np.argsort(ids, kind="stable")
     ids, xy, mass, first, second = ids[order], xy[order], mass[order], first[order], second[order]
@@ -109,16 +111,24 @@ def _step_piece(done):
     return Piece(ids, np.ascontiguousarray(new), None), float(second.sum()), shift
 
 
-def lloyd_tile(t, spec, own, *neighbours):
+def lloyd_tile(t, spec, tiling, own, *neighbours):
     """One Lloyd step of tile ``t``: certified moments, grown halos for the others.
 
-    Returns ``(summary, Piece of the moved owned sites)``; the summary is a small dict.
+    ``neighbours`` are the owned sites of the tiles ``spec["held"][1:]``. A cell whose
+    certificate fails is recomputed here only when every tile its grown box reaches is held
+    (then the box holds all the sites in it); the others are escalated to the driver, which
+    recomputes them with the sites of every tile their boxes reach (:func:`lloyd_box`).
+
+    Returns ``(summary, Piece of the moved certified sites, escalated (ids, xy, r))``; the
+    summary is a small dict.
     """
     t0 = time.perf_counter()
     pieces = [own, *neighbours]
+    held = {int(u) for u in spec["held"]}
     done = []
     retried = 0
     uncertified = 0
+    escalated = ([], [], [])
     with limit_threads():
         ids, xy = gather_sites(pieces, spec["loaded"])
         wanted = np.flatnonzero(np.isin(ids, own.ids, assume_unique=True))
@@ -134,19 +144,26 @@ def lloyd_tile(t, spec, own, *neighbours):
             boxes, member = group_discs(xy_u, r_u)
             left = ([], [], [])
             for g, box in enumerate(boxes):
+                group = member == g
+                if not held.issuperset(int(u) for u in tiling.touching(box)):
+                    # the box reaches sites this task never loaded (checker19 F3)
+                    for acc, new in zip(escalated, pending, strict=True):
+                        acc.append(new[group])
+                    continue
                 ids_b, xy_b = gather_sites(pieces, box)
-                wanted = np.flatnonzero(np.isin(ids_b, ids_u[member == g], assume_unique=True))
+                wanted = np.flatnonzero(np.isin(ids_b, ids_u[group], assume_unique=True))
                 box_loaded = open_sides(box, spec["lo"], spec["hi"])
                 part, more = _moments(ids_b, xy_b, spec["domain"], box_loaded, wanted, last)
                 done.append(part)
                 for acc, new in zip(left, more, strict=True):
                     acc.append(new)
-            pending = tuple(np.concatenate(a) for a in left)
+            pending = _cat(left)
             if last:
                 uncertified += len(pending[0])
                 break
+    escalated = _cat(escalated)
     piece, energy, shift = _step_piece(done)
-    if len(piece.ids) != len(own.ids):
+    if len(piece.ids) + len(escalated[0]) != len(own.ids):
         raise RuntimeError(f"tile {t}: moments do not match the tile's sites")  # a bug
     summary = {
         "tile": t,
@@ -154,9 +171,67 @@ def lloyd_tile(t, spec, own, *neighbours):
         "shift": shift,
         "retried": retried,
         "uncertified": uncertified,
+        "escalated": len(escalated[0]),
         "seconds": time.perf_counter() - t0,
     }
-    return summary, piece
+    return summary, piece, escalated
+
+
+def _cat(parts):
+    """``(ids, xy, r)`` lists concatenated (empty arrays for none)."""
+    ids, xy, r = parts
+    if not ids:
+        return np.zeros(0, np.int64), np.zeros((0, 2)), np.zeros(0)
+    return np.concatenate(ids), np.concatenate(xy), np.concatenate(r)
+
+
+def lloyd_box(spec, box, ids_u, last, *pieces):
+    """Moments of the cells ``ids_u`` recomputed in ``box`` from ``pieces``.
+
+    ``pieces`` are the owned sites of every tile that ``box`` reaches, so the box holds all
+    the sites in it and certifies the cells whose discs it contains. Returns ``(summary,
+    Piece of the moved certified sites, still uncertified (ids, xy, r))``.
+    """
+    with limit_threads():
+        ids_b, xy_b = gather_sites(pieces, box)
+        wanted = np.flatnonzero(np.isin(ids_b, ids_u, assume_unique=True))
+        if len(wanted) != len(ids_u):
+            raise RuntimeError("a recomputation box misses its own sites")  # a bug
+        loaded = open_sides(box, spec["lo"], spec["hi"])
+        part, more = _moments(ids_b, xy_b, spec["domain"], loaded, wanted, last)
+    piece, energy, shift = _step_piece([part])
+    return {"energy": energy, "shift": shift, "n": len(piece.ids)}, piece, more
+
+
+def _escalations(cl, tiling, spec, owned, pending):
+    """Recompute the escalated cells ``pending`` with every tile their boxes reach.
+
+    Returns ``(energy, shift, retried, uncertified, futures of moved Pieces)``.
+    """
+    energy = shift = 0.0
+    retried = uncertified = rounds = 0
+    moved = []
+    while len(pending[0]):
+        rounds += 1
+        retried += len(pending[0])
+        last = rounds >= spec["max_rounds"]
+        ids_u, xy_u, r_u = pending
+        boxes, member = group_discs(xy_u, r_u)
+        futures = []
+        for g, box in enumerate(boxes):
+            reach = [owned[int(u)] for u in tiling.touching(box)]
+            box_t = tuple(float(v) for v in box)
+            futures.append(cl.submit(lloyd_box, spec, box_t, ids_u[member == g], last, *reach))
+        summaries = cl.gather([cl.submit(operator.getitem, f, 0) for f in futures])
+        left = cl.gather([cl.submit(operator.getitem, f, 2) for f in futures])
+        moved += [cl.submit(operator.getitem, f, 1) for f in futures]
+        energy += float(sum(s["energy"] for s in summaries))
+        shift = max([shift, *(s["shift"] for s in summaries)])
+        pending = _cat(tuple(list(a) for a in zip(*left, strict=True)))
+        if last:
+            uncertified += len(pending[0])
+            break
+    return energy, shift, retried, uncertified, moved
 
 
 def split_piece(piece, tiling):
@@ -307,21 +382,31 @@ def lloyd(
                     "domain": cell_dom,
                     "max_rounds": config.SCALE_MAX_ROUNDS,
                 }
-                near = [u for u in tiling.touching(spec["loaded"]) if u != t]
-                results.append(cl.submit(lloyd_tile, t, spec, owned[t], *[owned[u] for u in near]))
+                near = [int(u) for u in tiling.touching(spec["loaded"]) if u != t]
+                spec["held"] = [t, *near]
+                results.append(
+                    cl.submit(lloyd_tile, t, spec, tiling, owned[t], *[owned[u] for u in near])
+                )
             summaries = cl.gather([cl.submit(operator.getitem, r, 0) for r in results])
-            energy.append(float(sum(s["energy"] for s in summaries)))
-            step_retried = int(sum(s["retried"] for s in summaries))
+            up = [r for r, s in zip(results, summaries, strict=True) if s["escalated"]]
+            esc = cl.gather([cl.submit(operator.getitem, r, 2) for r in up])
+            pending = _cat(tuple(list(a) for a in zip(*esc, strict=True)) if esc else ([],) * 3)
+            e_energy, e_shift, e_retried, e_unc, moved = _escalations(
+                cl, tiling, {**spec, "held": None}, owned, pending
+            )
+            energy.append(float(sum(s["energy"] for s in summaries)) + e_energy)
+            # an escalated cell was counted once by its tile: count the driver's rounds past it
+            step_retried = int(sum(s["retried"] for s in summaries)) + e_retried - len(pending[0])
             retried += step_retried
-            uncertified += int(sum(s["uncertified"] for s in summaries))
+            uncertified += int(sum(s["uncertified"] for s in summaries)) + e_unc
             per_iter.append(
                 {"retried": step_retried, "seconds": max(s["seconds"] for s in summaries)}
             )
             if it == iterations:
                 # the moved pieces of the last pass are not a step: keep the sites
                 break
-            shifts.append(float(max(s["shift"] for s in summaries)))
-            current = [cl.submit(operator.getitem, r, 1) for r in results]
+            shifts.append(max(float(max(s["shift"] for s in summaries)), e_shift))
+            current = [cl.submit(operator.getitem, r, 1) for r in results] + moved
             if progress is not None:
                 progress(it + 1, iterations)
         final = cl.gather(owned)
