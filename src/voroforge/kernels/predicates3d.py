@@ -65,19 +65,29 @@ _OFF_A = _OFF_S + _SUM
 _OFF_B = _OFF_A + _SUM
 _OFF_L = _OFF_B + _SUM
 _OFF_ML = _OFF_L + 16
-_SCRATCH = _OFF_ML + 22
+#: :func:`vertex_offset`'s cache: ``_CACHE`` entries by a hash of the query, a site column
+#: (-1 when the scratch is made: no entry) and the rest of each entry (written before read)
+_CACHE = 8192
+_ENTRY = 13
+_OFF_CA = _OFF_ML + 22
+_OFF_CE = _OFF_CA + _CACHE
+_OFF_Q = _OFF_CE + _CACHE * _ENTRY  # the query (vertex_offset)
+_SCRATCH = _OFF_Q + 11
 #: the 2x2 minors' row pairs, in the order used below
 _PAIRS = ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))
 
 
 @njit(**NJIT)
 def scratch():
-    """A scratch buffer for the exact stage (2.5 MB, untouched until the exact stage runs).
+    """A scratch buffer for the exact stage (3.3 MB, untouched until the exact stage runs).
 
     Every component is written before it is read, so it is left uninitialised: pages the
-    exact stage never reaches are never touched.
+    exact stage never reaches are never touched, but for :func:`vertex_offset`'s cache's
+    site column (64 KB, set to -1). A scratch serves one build (its sites, weights, walls).
     """
-    return np.empty(_SCRATCH)  # noqa: TID251 - every component is written before it is read
+    buf = np.empty(_SCRATCH)  # noqa: TID251 - every component is written before it is read
+    buf[_OFF_CA:_OFF_CE] = -1.0
+    return buf
 
 
 @njit(**NJIT)
@@ -160,10 +170,12 @@ def exact_dets(buf, EL, TL, need4):
 
 
 @njit(**NJIT)
-def _dets(buf, EL, TL, need4):
+def _dets(buf, EL, TL, need4, fresh=True):
     """The expansions behind :func:`exact_dets`; returns their lengths (D4: 0 if not needed).
 
-    D3 is left in ``buf[_OFF_M3 + 3 * _M3:]``, D4 in ``buf[_OFF_S:]``.
+    D3 is left in ``buf[_OFF_M3 + 3 * _M3:]``, D4 in ``buf[_OFF_S:]``; only the 2x2 minors
+    the 3x3 ones read are made. Not ``fresh``: only row 3 is new (:func:`vertex_offset`),
+    so D3 and the minors of rows 1-2 stand.
     """
     M2 = buf[_OFF_M2 : _OFF_M2 + 18 * _M2]
     M3 = buf[_OFF_M3 : _OFF_M3 + 4 * _M3]
@@ -173,13 +185,14 @@ def _dets(buf, EL, TL, need4):
     B = buf[_OFF_B : _OFF_B + _SUM]
     T = buf[_OFF_T : _OFF_T + 4 * _T]
     ml = buf[_OFF_ML : _OFF_ML + 22].view(np.int64)
-    ml[:] = 0
+    if fresh:
+        ml[:] = 0
     M2L = ml[:18]
     M3L = ml[18:22]
     rows = 4 if need4 else 3
-    for p in range(6):
+    for p in range(3, 6):  # (1, 2), (1, 3), (2, 3): the pairs _minor3 reads
         a, b = _PAIRS[p]
-        if b >= rows:
+        if b >= rows or (p == 3 and not fresh):
             continue
         for cp in range(3):
             # column pairs: (y, z), (x, z), (x, y)
@@ -189,7 +202,7 @@ def _dets(buf, EL, TL, need4):
             M2L[m] = _minor2(buf, EL, a, b, c0, c1, M2[m * _M2 : (m + 1) * _M2])
     # 3x3 minors: M3[k] leaves row k out; D3 is M3[3]
     for k in range(4):
-        if k < 3 and not need4:
+        if (k < 3 and not need4) or (k == 3 and not fresh):
             continue
         r0 = 1 if k == 0 else 0
         r1 = 2 if k <= 1 else 1
@@ -565,34 +578,69 @@ def vertex_offset(a, k0, k1, k2, P, W, WP, ns, buf, cx, cy, cz, x):
     ``-D4 / (2 D3)`` of exact determinants, right to a few ulps of itself (the two
     estimates and one division round), however small the offset. Returns False when the
     planes do not meet in one point (``D3 == 0``).
+
+    Cached in ``buf`` by the query (with the arrays' addresses): each cell at a vertex names
+    it with the same query, and a cell past its slots is built again; a hit returns the
+    same bits.
     """
+    Q = buf[_OFF_Q : _OFF_Q + 11]  # the query: a, k0, k1, k2, c (bits), arrays, lengths
+    QI = Q.view(np.int64)
+    Q[4] = cx
+    Q[5] = cy
+    Q[6] = cz
+    QI[0] = a
+    QI[1] = k0
+    QI[2] = k1
+    QI[3] = k2
+    QI[7] = P.ctypes.data ^ (W.ctypes.data << 1) ^ (WP.ctypes.data << 2)
+    QI[8] = P.shape[0]
+    QI[9] = WP.shape[0]
+    h = np.uint64(0x9E3779B97F4A7C15)  # a SplitMix-style mix of the query: its entry
+    for q in range(7):
+        h ^= np.uint64(QI[q])
+        h *= np.uint64(0xBF58476D1CE4E5B9)
+        h ^= h >> np.uint64(31)
+    e = np.int64(h & np.uint64(_CACHE - 1))
+    E = buf[_OFF_CE + e * _ENTRY : _OFF_CE + (e + 1) * _ENTRY]
+    EI = E.view(np.int64)
+    hit = buf[_OFF_CA + e] == a
+    for q in range(1, 10):
+        hit = hit and EI[q - 1] == QI[q]
+    if hit:
+        for q in range(3 if EI[9] else 0):  # (no point: x as it was)
+            x[q] = E[10 + q]
+        return EI[9] != 0
+    ok = _vertex_offset(a, k0, k1, k2, P, W, WP, ns, buf, cx, cy, cz, x)
+    buf[_OFF_CA + e] = a
+    for q in range(1, 10):
+        EI[q - 1] = QI[q]
+    EI[9] = ok
+    for q in range(3 if ok else 0):
+        E[10 + q] = x[q]
+    return ok
+
+
+@njit(**NJIT)
+def _vertex_offset(a, k0, k1, k2, P, W, WP, ns, buf, cx, cy, cz, x):
+    """:func:`vertex_offset` solved (not cached)."""
     lens = buf[_OFF_L : _OFF_L + 16].view(np.int64)
     EL = lens[:12].reshape((4, 3))
     TL = lens[12:16]
     _row_exact(k0, a, P, W, WP, ns, buf, EL, TL, np.int64(0))
     _row_exact(k1, a, P, W, WP, ns, buf, EL, TL, np.int64(1))
     _row_exact(k2, a, P, W, WP, ns, buf, EL, TL, np.int64(2))
-    for c in range(3):  # rows 0-2 stay: only row 3 and the minors are written again
-        _put_wall(
-            buf,
-            EL,
-            TL,
-            np.int64(3),
-            1.0 if c == 0 else 0.0,
-            1.0 if c == 1 else 0.0,
-            1.0 if c == 2 else 0.0,
-            cx if c == 0 else (cy if c == 1 else cz),
-            P[a, 0],
-            P[a, 1],
-            P[a, 2],
-            0.0,
-            0.0,
-            0.0,
-        )
-        n3, n4 = _dets(buf, EL, TL, np.bool_(True))
-        d3 = estimate(buf[_OFF_M3 + 3 * _M3 : _OFF_M3 + 4 * _M3], n3)
-        if d3 == 0.0:
-            return False
+    d3 = 0.0
+    for c in range(3):  # rows 0-2 stay: only row 3 and the minors with it are made again
+        n0 = 1.0 if c == 0 else 0.0
+        n1 = 1.0 if c == 1 else 0.0
+        n2 = 1.0 if c == 2 else 0.0
+        d = cx if c == 0 else (cy if c == 1 else cz)
+        _put_wall(buf, EL, TL, np.int64(3), n0, n1, n2, d, P[a, 0], P[a, 1], P[a, 2], 0.0, 0.0, 0.0)
+        n3, n4 = _dets(buf, EL, TL, np.bool_(True), c == 0)
+        if c == 0:
+            d3 = estimate(buf[_OFF_M3 + 3 * _M3 : _OFF_M3 + 4 * _M3], n3)
+            if d3 == 0.0:
+                return False
         x[c] = -estimate(buf[_OFF_S : _OFF_S + _SUM], n4) / (2.0 * d3)
     return True
 
