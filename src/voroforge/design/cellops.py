@@ -349,12 +349,14 @@ def web(cells, width, *, join: str = "mitre", resolution: int = 16) -> np.ndarra
 
 
 @_single_ok
-def fillet(cells, radius, *, resolution: int = 16) -> np.ndarray:
+def fillet(cells, radius, *, resolution: int = 16, concave: bool = True) -> np.ndarray:
     """Round the convex and concave corners of every cell with ``radius``.
 
     An opening (shrink, then grow, round joins) rounds convex corners; a closing (grow, then
-    shrink) rounds concave ones. Parts narrower than ``2 * radius`` disappear, as they would
-    under a cutter of that radius. A convex cell's opening is computed directly: its inset
+    shrink) rounds concave ones, which grows the cell there (``concave=False`` leaves them
+    sharp, as a cutter of that radius leaves an opening's: the design's ``web`` is kept).
+    Parts narrower than ``2 * radius`` disappear, as they would under a cutter of that
+    radius. A convex cell's opening is computed directly: its inset
     by ``radius`` with every corner an arc of ``radius``, sampled as GEOS samples a round
     join (:mod:`voroforge.design.convexops`); the others go through GEOS's buffers.
 
@@ -366,6 +368,8 @@ def fillet(cells, radius, *, resolution: int = 16) -> np.ndarray:
         Corner radius per cell (>= 0; 0 leaves the cell unchanged).
     resolution : int
         Segments per quarter circle of each rounded corner.
+    concave : bool
+        Round concave corners too (a closing).
 
     Returns
     -------
@@ -389,12 +393,12 @@ def fillet(cells, radius, *, resolution: int = 16) -> np.ndarray:
         mask[np.flatnonzero(mask)[hard]] = False
     rest = ~mask & (radius > 0)
     if rest.any():
-        out[rest] = _fillet_geos(arr[rest], radius[rest], q)
+        out[rest] = _fillet_geos(arr[rest], radius[rest], q, concave)
     return clean(out)
 
 
 def inset_fillet(
-    cells, distance, radius, *, join: str = "mitre", resolution: int = 16
+    cells, distance, radius, *, join: str = "mitre", resolution: int = 16, concave: bool = True
 ) -> np.ndarray:
     """``fillet(inset(cells, distance, join=join), radius, resolution=resolution)``, faster.
 
@@ -407,7 +411,7 @@ def inset_fillet(
     cells : (n,) array of Polygon/MultiPolygon
     distance, radius : float or (n,) array_like
         As for :func:`inset` and :func:`fillet`.
-    join, resolution
+    join, resolution, concave
         As for :func:`inset` and :func:`fillet`.
 
     Returns
@@ -443,16 +447,24 @@ def inset_fillet(
     rest = np.flatnonzero(~done)
     if len(rest):
         d = dist[rest] if np.ndim(dist) else dist
-        out[rest] = fillet(inset(arr[rest], d, join=join), radius[rest], resolution=q)
+        out[rest] = fillet(
+            inset(arr[rest], d, join=join), radius[rest], resolution=q, concave=concave
+        )
     return out
 
 
-def _fillet_geos(arr: np.ndarray, r: np.ndarray, q: int) -> np.ndarray:
+def _fillet_geos(arr: np.ndarray, r: np.ndarray, q: int, close: bool = True) -> np.ndarray:
     """Fillet by GEOS buffers: an opening, then a closing where the cell has concave corners."""
     opened = shapely.buffer(shapely.buffer(arr, -r, quad_segs=q), r, quad_segs=q)
     # a convex cell has no concave corner, so closing would change nothing: skip it there
     closed = opened.copy()
     concave = ~_is_convex(arr) & ~shapely.is_empty(opened)
+    if concave.any() and not close:  # the chords of the eroded arc at a concave corner
+        from .boundary import polygonal_part  # poke past it
+
+        kept = shapely.intersection(opened[concave], arr[concave])
+        opened[concave] = [polygonal_part(g) for g in kept]
+        return opened
     if concave.any():
         closed[concave] = shapely.buffer(
             shapely.buffer(opened[concave], r[concave], quad_segs=q), -r[concave], quad_segs=q
@@ -535,7 +547,9 @@ def smooth(cells, *, iterations: int = 2, ratio: float = 0.25) -> np.ndarray:
     """Round every cell by Chaikin corner cutting (organic outlines, inside the cell).
 
     Each iteration replaces every edge ``p -> q`` by the points at ``ratio`` and
-    ``1 - ratio`` along it; the limit is a quadratic B-spline inside the original outline.
+    ``1 - ratio`` along it; the limit is a quadratic B-spline. At a concave corner that
+    curve passes outside the outline, so a cell that is not convex keeps only its part
+    inside the cell (the corner stays sharp: an opening never eats a design's web).
 
     Parameters
     ----------
@@ -575,6 +589,11 @@ def smooth(cells, *, iterations: int = 2, ratio: float = 0.25) -> np.ndarray:
 
             res = polygonal_part(shapely.make_valid(res))
         out[i] = res
+    bent = ~_is_convex(arr) & ~shapely.is_empty(out)
+    if bent.any():
+        from .boundary import polygonal_part
+
+        out[bent] = [polygonal_part(g) for g in shapely.intersection(out[bent], arr[bent])]
     return clean(out)
 
 
