@@ -290,6 +290,9 @@ DESIGN_MAX_CELLS = 2_000_000
 #: The largest file a design may name (point tables, outlines, images, meshes, heights): a
 #: link to /dev/zero or a 50 GB file was read whole until memory ran out.
 DESIGN_FILE_MAX_BYTES = 4 * 2**30
+#: The largest ``cells.scale``: a cell grown 100 times covers its neighbours many times
+#: over; 1e200 had GEOS fail with a traceback and 1e307 ran for minutes.
+DESIGN_MAX_CELL_SCALE = 100.0
 #: design.boundary.circle / ``boundary.segments``: the most vertices of a circle boundary. At
 #: 65,536 the chord error is 1.15e-9 of the radius, below any fabrication tolerance; 1e6
 #: segments took 47 s and 1.9 GB to build a 10-seed panel (checker7 F7), 3e9 did not finish

@@ -196,15 +196,10 @@ def _probability(value: Graded) -> Graded:
     return value
 
 
-#: The largest cells.scale: a cell grown 100 times covers its neighbours many times over;
-#: 1e200 had GEOS fail with a traceback and 1e307 ran for minutes (checker19 F6).
-#: (for config.py: DESIGN_MAX_CELL_SCALE)
-_MAX_SCALE = 100.0
-
-
 def _scale_bound(value: Graded) -> Graded:
-    if value.bounds()[1] > _MAX_SCALE:
-        raise ValueError(f"must be at most {_MAX_SCALE:g} (1 keeps each cell's size)")
+    if value.bounds()[1] > config.DESIGN_MAX_CELL_SCALE:
+        top = config.DESIGN_MAX_CELL_SCALE
+        raise ValueError(f"must be at most {top:g} (1 keeps each cell's size)")
     return value
 
 
