@@ -30,6 +30,11 @@ METHODS = ("lloyd", "lbfgs")
 #: integrate.Integrator), is below the smallest normal double has no reliable centroid
 #: (``1 / mass`` overflowed: checker12 F1): its site stays, as an empty cell's does.
 MASS_FLOOR = float(np.finfo(np.float64).tiny)
+#: (for config.py) size_exponent: a domain whose area, at unit size, is below 2**-this is
+#: relaxed in a frame set by its energy's size instead (its cells' masses were subnormal)
+ASPECT_AREA_EXP = 900
+#: (for config.py) size_exponent: that frame keeps ``long**3 * short`` below 2**this
+ASPECT_ENERGY_EXP = 960
 
 
 @dataclass(frozen=True)
@@ -113,8 +118,9 @@ def lloyd(
     iterations : int
         Most iterations (Lloyd steps, or L-BFGS iterations).
     tol : float, optional
-        Stop early once an iteration moves no site farther than ``tol`` times the domain's
-        larger side.
+        Stop early once an iteration moves no site farther than ``tol``, with moves measured
+        in units of the domain's width along x and its height along y (on a square domain:
+        ``tol`` times its side), so a thin domain's short axis converges too.
     density : None, callable, or raster, optional
         ``ρ >= 0``. None: uniform (exact closed-form moments). A vectorised callable
         ``rho(x, y)`` taking and returning arrays: integrated over each clipped cell with a
@@ -176,7 +182,9 @@ def lloyd(
     z = as_points(points)
     dom = make_domain(boundary, z)
     x0, y0, x1, y1 = dom.bounds
-    stop = None if tol is None else float(tol) * max(x1 - x0, y1 - y0)
+    # the stop test in units of the domain's width and height, so it holds on both axes of
+    # a thin domain (tol times its long side passed every move across a 1.6e8 x 1.2 strip)
+    stop = None if tol is None else (float(tol), np.array([x1 - x0, y1 - y0]))
     integ = Integrator(density, len(z))
     targets = None if areas is None else as_targets(areas, len(z), dom)
     if targets is not None:
@@ -216,16 +224,27 @@ def _lloyd3d(points, container, iterations, tol, density, method, areas):
 
 
 def size_exponent(dom) -> int:
-    """0, or ``k`` such that the domain scaled by ``2**k`` has a size near 1.
+    """0, or ``k`` such that the domain scaled by ``2**k`` has cells with usable moments.
 
     Masses, moments and energies grow with the 2nd to 4th power of the cells' size: beyond
-    about ``2**+-60`` they would leave the double range (energy ``inf``, centroids NaN).
+    about ``2**+-60`` they would leave the double range (energy ``inf``, centroids NaN), so
+    the domain is brought to a size near 1. Where it is so thin that its area would then be
+    below ``2**-ASPECT_AREA_EXP`` (a 1.6e308 x 1.2 box: every cell's mass subnormal, no site
+    moved), ``k`` is the largest for which ``long**3 * short`` (the energy's size) stays
+    below ``2**ASPECT_ENERGY_EXP``: the area is then near ``2**480 * sqrt(short / long)``.
+    Either ``k`` gives 0 for the domain it scaled.
     """
     x0, y0, x1, y1 = dom.bounds
     size = max(x1 - x0, y1 - y0)
     if not math.isfinite(size):  # a box past float64's range across (the default one, clamped)
-        return -(unit_exponent(max(x1 / 2 - x0 / 2, y1 / 2 - y0 / 2), 60) + 1)
-    return -unit_exponent(size, 60)
+        k = -(unit_exponent(max(x1 / 2 - x0 / 2, y1 / 2 - y0 / 2), 60) + 1)
+    else:
+        k = -unit_exponent(size, 60)
+    halves = sorted((x1 / 2 - x0 / 2, y1 / 2 - y0 / 2))
+    short, long = (math.frexp(v)[1] + 1 for v in halves)  # (binary exponents of the sides)
+    if short + long + 2 * k >= -ASPECT_AREA_EXP:
+        return k
+    return (ASPECT_ENERGY_EXP - 3 * long - short) // 4
 
 
 def _rescaled(z, dom, k, iterations, tol, density, method, targets):
@@ -298,7 +317,7 @@ def _lloyd(z, dom, integ, iterations, stop):
         shift = _step(z, mass, first, z_new)
         shifts.append(shift)
         z, z_new = z_new, z
-        if stop is not None and shift <= stop:
+        if _stops(z - z_new, stop):
             d = _voronoi(z, dom)
             mass, first, second = integ.scaled(buffers(d), z)
             energy.append(_energy(second, integ))
@@ -313,6 +332,19 @@ def _energy(second, integ) -> float:
     """The CVT energy from :meth:`Integrator.scaled`'s second moments (0 or inf out of range)."""
     with np.errstate(over="ignore", under="ignore"):
         return float(np.ldexp(second.sum(), integ.exponent))
+
+
+def _stops(move, stop) -> bool:
+    """Whether no site moved farther than ``tol`` in units of the domain's width and height.
+
+    ``stop``: None (never) or ``(tol, (width, height))``. On a square domain that is a move
+    of at most ``tol`` times its side.
+    """
+    if stop is None or not len(move):
+        return stop is not None
+    tol, sides = stop
+    with np.errstate(over="ignore"):
+        return float(np.hypot(*(move / sides).T).max()) <= tol
 
 
 def _step(z, mass, first, out):
@@ -349,7 +381,7 @@ def _capacity(z, dom, integ, targets, iterations, stop):
         shift = float(np.sqrt(np.einsum("ij,ij->i", move, move).max()))
         shifts.append(shift)
         z, z_new = z_new, z
-        if stop is not None and shift <= stop:
+        if _stops(move, stop):
             d, w, _, _ = fit_weights(z.copy(), targets, dom, w, LLOYD_REFIT_RTOL, 100)
             mass, first, second = integ.scaled(buffers(d), z)
             energy.append(_energy(second, integ))
@@ -468,7 +500,7 @@ def _lbfgs(z, dom, integ, iterations, stop, memory=8):
         energy.append(true_energy(f))
         elapsed.append(time.perf_counter() - t0)
         shifts.append(shift)
-        if stop is not None and shift <= stop:
+        if _stops(s_k, stop):
             break
     return Relaxation(
         z.copy(),
