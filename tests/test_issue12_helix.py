@@ -142,3 +142,22 @@ def test_helix_and_circle_cells(make):
         v = voropp_volumes(P, BOX)
         # voro++ prints 6 significant digits
         assert np.allclose(d.volumes, v, rtol=2e-5, atol=1e-9)
+
+
+def test_flat_sites_get_a_grid_in_their_plane():
+    # sites on one plane had a degenerate z extent, buckets of side ~1e-3 and a 630 x 630 x 1
+    # grid for 500 sites: every cell reaching the circle's axis walked 400,000 buckets
+    from voroforge.engine.build3d import PER_BUCKET
+    from voroforge.engine.sitegrid3d import grid3d_shape
+
+    for P in (_circle(500), np.c_[np.random.default_rng(1).random((500, 2)), np.full(500, 0.5)]):
+        g = grid3d_shape(P, PER_BUCKET)
+        counts = g[6:9]
+        assert counts[2] == 1 and counts.prod() <= 2 * len(P) / PER_BUCKET + 2 * counts[:2].sum()
+        assert counts.prod() >= 0.5 * len(P) / PER_BUCKET
+        d = vf.voronoi3d(P, BOX)
+        _check(d, P)
+    U = np.random.default_rng(2).random((2000, 3))  # a full box: the cube grid as before
+    g = grid3d_shape(U, PER_BUCKET)
+    side = (np.prod(np.ptp(U, axis=0)) / (len(U) / PER_BUCKET)) ** (1 / 3)
+    assert (g[6:9] == np.maximum(np.floor(np.ptp(U, axis=0) / side), 1)).all()

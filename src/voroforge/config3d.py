@@ -50,6 +50,10 @@ __all__ = [
     "SOLID_FOAM_DRAWS",
     "SOLID_FOAM_CONVEX_RTOL",
     "CUT_EXACT_DET_RTOL",
+    "CUT_ILL_MARGIN",
+    "FAN_ERR",
+    "FAN_D2_MIN",
+    "FAN_D2_MAX",
     "CONVEX_FOLD_ULPS",
 ]
 
@@ -189,6 +193,17 @@ SOLID_FOAM_DRAWS = 200
 #: its own by at most this fraction (a float32 STL's convex solid dents its cells by its
 #: rounding, ~1e-7 of a cell; 1e-9 refused convex STL containers)
 SOLID_FOAM_CONVEX_RTOL = 1e-5
+#: kernels.vertex3d._ill: the squared determinant test is trusted where it clears
+#: CUT_EXACT_DET_RTOL by this margin (both sides carry a few roundings, ~1e-15); nearer,
+#: the test with square roots decides (the same vertices re-solved)
+CUT_ILL_MARGIN = 1e-12
+#: engine.diagram3d._clearly_not_flat: a face's fan-sum component above FAN_ERR n^2 D^2
+#: (n vertices, D the longest offset from the apex) is nonzero in every fan (the rounding
+#: bound of two fans' difference is 5.6e-16 n^2 D^2); D^2 outside (FAN_D2_MIN, FAN_D2_MAX)
+#: leaves it to the canonical fan (products clear of under- and overflow)
+FAN_ERR = 2e-15
+FAN_D2_MIN = 1e-260
+FAN_D2_MAX = 1e260
 #: kernels.vertex3d.resettle: a vertex a cut makes on an edge whose planes and the cut's meet
 #: at a relative determinant below this is solved again exactly: the edge's interpolation
 #: errs by ~ulp / determinant (sites a few ulps apart: 0.0047 off in a unit box, 1.6 in a

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from ..config import GRID_DEGENERATE_RTOL, GRID_WIDEN_RTOL, NJIT, TRIM_CELLS, VORONOI3D_CHUNK
+from ..config import NJIT, TRIM_CELLS, VORONOI3D_CHUNK
 from ..kernels.cells3d import EMPTY, OK, OVERFLOW, build_cells, cell_scratch
 from ..kernels.grid3d import kd_buckets3d
 from ..kernels.reach3d import weight_reach
@@ -23,6 +23,7 @@ from .bigvertex3d import BigVertices
 from .containers import maybe_outside
 from .jointable3d import probe_next, rehash, slot
 from .lists3d import Lists, chunk_search, chunks, redo_slow
+from .sitegrid3d import grid3d_shape
 from .threads import serial_below
 
 _NONE_GONE = np.zeros(0, np.bool_)  # no site's cell known empty (the kernel's gone)
@@ -36,20 +37,6 @@ SEARCH_RADIUS = 3
 KD_CROWDED = 16.0
 #: sites per k-d bucket
 KD_LEAF = 8
-
-
-def grid3d_shape(P: np.ndarray, per_bucket: float) -> np.ndarray:
-    """The search grid ``(x0, y0, z0, hx, hy, hz, nx, ny, nz)`` over the sites (kernels/grid3d)."""
-    lo = P.min(axis=0)
-    ext = P.max(axis=0) - lo
-    span = float(ext.max())
-    if span == 0.0:
-        span = max(float(np.abs(lo).max()), 1.0)
-    ext = np.maximum(ext, GRID_DEGENERATE_RTOL * span)
-    nb = max(1.0, len(P) / per_bucket)
-    side = (float(np.prod(ext)) / nb) ** (1.0 / 3.0)
-    counts = np.minimum(np.maximum(ext / side, 1.0), 1024.0).astype(np.int64).astype(np.float64)
-    return np.concatenate([lo, ext * (1.0 + GRID_WIDEN_RTOL) / counts, counts])
 
 
 def bucket_sort3d(P: np.ndarray, g: np.ndarray):
@@ -545,7 +532,8 @@ def _join_grid(Pb, bounds, k):
     """
     corners = np.vstack([Pb.min(axis=0), Pb.max(axis=0), bounds[0], bounds[1]])
     lo = corners.min(axis=0)
-    g = grid3d_shape(np.vstack([lo, corners.max(axis=0)]), 2.0 / max(k / PER_BUCKET, 1.0))
+    box = np.vstack([lo, corners.max(axis=0)])
+    g = grid3d_shape(box, 2.0 / max(k / PER_BUCKET, 1.0), flat=False)
     keys = bucket_keys3d(Pb, g)
     nb = int(np.prod(g[6:9]))
     units = np.zeros(nb + 1, np.int64)

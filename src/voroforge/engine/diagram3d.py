@@ -30,21 +30,21 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit, prange
 
+from ..config import FAN_D2_MAX as _FAN_D2_MAX
+from ..config import FAN_D2_MIN as _FAN_D2_MIN
+from ..config import FAN_ERR as _FAN_ERR
 from ..config import NJIT, NJIT_PARALLEL
 from .csr import unique
 from .threads import serial_below
 
-#: :func:`_flat`'s shortcut (:func:`_clearly_not_flat`): a fan sum over a ring of ``n``
-#: vertices whose offsets from its apex are at most ``M`` long is within ``1.01 u n^2 M^2``
-#: of the exact area vector (``u = 2**-53``: ~4 roundings in each cross product, each
-#: component at most ``|u||w|``, and ``n`` in the sum). The first entry's fan has ``M = D``
-#: (its longest offset), any other's ``M <= 2 D``, so two fans' sums differ by less than
-#: ``5.05 u n^2 D^2 = 5.6e-16 n^2 D^2``: a component above ``_FAN_ERR n^2 D^2`` is nonzero
-#: in every fan. ``D^2`` in ``(_FAN_D2_MIN, _FAN_D2_MAX)`` keeps the products clear of
-#: under- and overflow (else the canonical fan decides)
-_FAN_ERR = 2e-15
-_FAN_D2_MIN = 1e-260
-_FAN_D2_MAX = 1e260
+# :func:`_flat`'s shortcut (:func:`_clearly_not_flat`): a fan sum over a ring of ``n``
+# vertices whose offsets from its apex are at most ``M`` long is within ``1.01 u n^2 M^2``
+# of the exact area vector (``u = 2**-53``: ~4 roundings in each cross product, each
+# component at most ``|u||w|``, and ``n`` in the sum). The first entry's fan has ``M = D``
+# (its longest offset), any other's ``M <= 2 D``, so two fans' sums differ by less than
+# ``5.05 u n^2 D^2 = 5.6e-16 n^2 D^2``: a component above ``FAN_ERR n^2 D^2`` (config) is
+# nonzero in every fan. ``D^2`` in ``(FAN_D2_MIN, FAN_D2_MAX)`` keeps the products clear of
+# under- and overflow (else the canonical fan decides)
 
 
 def _ro(a):

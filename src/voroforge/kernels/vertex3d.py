@@ -37,11 +37,9 @@ from ..config import (
     VORONOI3D_WALL_DET_RTOL,
     WALL_EXACT_SIN,
 )
+from ..config import CUT_ILL_MARGIN as _ILL_MARGIN
 from .predicates3d import exact_point, vertex_offset, wall_lift
 
-#: :func:`_ill`'s squared test is trusted where it clears the threshold by this margin
-#: (both sides carry a few roundings: ~1e-15); nearer, the test of :func:`_rel_det` decides
-_ILL_MARGIN = 1e-12
 #: nothing here allocates: compiled without reference counting (see kernels.cellcut3d)
 _NO_NRT = {**NJIT, "_nrt": False}
 #: inlined into the cell builder's naming (numba's inliner): every vertex of every cell is
