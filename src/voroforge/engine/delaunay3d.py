@@ -48,20 +48,46 @@ class Tetrahedralization:
         is within its rounding bound (a float volume of -1.5e-16 where the exact one is
         +1.4e-33) is computed exactly (rationals) and rounded once.
         """
-        p = self.points
-        a, b, c, d = (p[self.simplices[:, k]] for k in range(4))
-        u, v, w = b - a, c - a, d - a
-        with np.errstate(over="ignore", invalid="ignore"):
-            det = np.einsum("ij,ij->i", np.cross(u, v), w)
-            # the sum of the determinant's terms' magnitudes: its rounding is below a few
-            # eps of this (and so is the rounding of the differences u, v, w)
-            au, av = np.abs(u), np.abs(v)
-            pairs = au[:, [1, 2, 0]] * av[:, [2, 0, 1]] + au[:, [2, 0, 1]] * av[:, [1, 2, 0]]
-            perm = np.einsum("ij,ij->i", pairs, np.abs(w))
-        unsure = np.flatnonzero(~(np.abs(det) > VOLUME_UNSURE * perm) & np.isfinite(perm))
-        for t in unsure.tolist():
-            det[t] = _exact_det(p[self.simplices[t]])
+        q = self.points[self.simplices]
+        u, v, w = q[:, 1] - q[:, 0], q[:, 2] - q[:, 0], q[:, 3] - q[:, 0]
+        det, perm = _dets(u, v, w, q)
+        # past ~1e100 the products overflow (inf - inf: NaN): those tetrahedra's edges are
+        # taken with the coordinates scaled by a power of two to below 1 (exact), scaled
+        # again to edges below 1 and the determinant scaled back, so a volume past
+        # float64's range is inf and any other is as at scale 1
+        big = np.flatnonzero(~np.isfinite(perm))
+        if big.size:
+            qb = q[big]
+            e = np.frexp(np.abs(qb).max(axis=(1, 2)))[1][:, None]
+            qs = np.ldexp(qb, -e[:, :, None])
+            ub, vb, wb = qs[:, 1] - qs[:, 0], qs[:, 2] - qs[:, 0], qs[:, 3] - qs[:, 0]
+            f = np.frexp(np.abs(np.hstack([ub, vb, wb])).max(axis=1))[1][:, None]
+            small, _ = _dets(np.ldexp(ub, -f), np.ldexp(vb, -f), np.ldexp(wb, -f), None)
+            with np.errstate(over="ignore"):
+                scaled = np.ldexp(small, 3 * (e + f)[:, 0])
+            for t in np.flatnonzero(np.isnan(small)).tolist():  # unsure: exact, unscaled
+                scaled[t] = _exact_det(qb[t])
+            det[big] = scaled
         return det / 6.0
+
+
+def _dets(u, v, w, q):
+    """``det[u, v, w]`` of each row and its rounding scale (the terms' magnitudes' sum).
+
+    A determinant within its rounding bound is computed exactly from the rows of ``q``
+    (rationals) where the bound is finite, or left NaN where ``q`` is None.
+    """
+    with np.errstate(over="ignore", invalid="ignore"):
+        det = np.einsum("ij,ij->i", np.cross(u, v), w)
+        # the sum of the determinant's terms' magnitudes: its rounding is below a few
+        # eps of this (and so is the rounding of the differences u, v, w)
+        au, av = np.abs(u), np.abs(v)
+        pairs = au[:, [1, 2, 0]] * av[:, [2, 0, 1]] + au[:, [2, 0, 1]] * av[:, [1, 2, 0]]
+        perm = np.einsum("ij,ij->i", pairs, np.abs(w))
+    unsure = np.flatnonzero(~(np.abs(det) > VOLUME_UNSURE * perm) & np.isfinite(perm))
+    for t in unsure.tolist():
+        det[t] = np.nan if q is None else _exact_det(q[t])
+    return det, perm
 
 
 #: a float determinant relative to its permanent-like bound below this is recomputed exactly
@@ -83,7 +109,10 @@ def _exact_det(q: np.ndarray) -> float:
         - u[1] * (v[0] * w[2] - v[2] * w[0])
         + u[2] * (v[0] * w[1] - v[1] * w[0])
     )
-    return float(det)
+    try:
+        return float(det)
+    except OverflowError:  # past float64's range
+        return float(np.copysign(np.inf, det))
 
 
 def delaunay3d(points) -> Tetrahedralization:

@@ -12,6 +12,11 @@ from .voronoi3d import voronoi3d
 
 __all__ = ["Relaxation3D", "lloyd3d"]
 
+# degree-2 tetrahedron rule (Keast/Stroud, 4 points, weights 1/4): barycentric (A, B, B, B)
+# with A = (5 + 3 sqrt 5) / 20, B = (5 - sqrt 5) / 20. Lead: move to config.py.
+_KEAST_A = (5.0 + 3.0 * np.sqrt(5.0)) / 20.0
+_KEAST_B = (5.0 - np.sqrt(5.0)) / 20.0
+
 
 @dataclass(frozen=True)
 class Relaxation3D:
@@ -24,7 +29,12 @@ class Relaxation3D:
 
 
 def _density_centroids(d, density):
-    """Density-weighted cell centroids by one-point quadrature on each face-fan tetrahedron."""
+    """Density-weighted cell centroids: a degree-2 rule on each face-fan tetrahedron.
+
+    Four points per tetrahedron, equal weights, at barycentric (a, b, b, b) and its
+    permutations (:data:`_KEAST_A`, :data:`_KEAST_B`): exact for quadratics, so mass and
+    first moments are exact for linear densities (to rounding).
+    """
     cf, lab, farea, roff, ring = d.cell_face_table()
     V = np.asarray(d.vertices)
     sites = np.asarray(d.sites)
@@ -43,13 +53,16 @@ def _density_centroids(d, density):
     cell = owner_f[tri_f]
     apex = np.where(np.isfinite(d.centroids[cell]), d.centroids[cell], sites[cell])
     vol = np.einsum("ij,ij->i", a - apex, np.cross(b - apex, c - apex)) / 6.0
-    mid = (a + b + c + apex) / 4.0
-    rho = np.asarray(density(mid), np.float64).reshape(-1)
-    if rho.shape != (len(mid),) or not np.isfinite(rho).all() or (rho < 0).any():
+    corners = np.stack([a, b, c, apex])  # (4, m, 3)
+    base = _KEAST_B * corners.sum(axis=0)
+    pts = base[None] + (_KEAST_A - _KEAST_B) * corners  # (4, m, 3): one point per corner
+    rho = np.asarray(density(pts.reshape(-1, 3)), np.float64).reshape(-1)
+    if rho.shape != (pts.shape[0] * pts.shape[1],) or not np.isfinite(rho).all() or (rho < 0).any():
         raise ValueError("density must return one finite, non-negative value per point")
-    mass = np.bincount(cell, weights=vol * rho, minlength=n)
+    w = rho.reshape(4, -1) * (vol / 4.0)  # (4, m)
+    mass = np.bincount(cell, weights=w.sum(axis=0), minlength=n)
     for ax in range(3):
-        m = np.bincount(cell, weights=vol * rho * mid[:, ax], minlength=n)
+        m = np.bincount(cell, weights=(w * pts[:, :, ax]).sum(axis=0), minlength=n)
         with np.errstate(invalid="ignore", divide="ignore"):
             out[:, ax] = np.where(mass > 0, m / np.where(mass > 0, mass, 1), out[:, ax])
     return out
@@ -159,8 +172,8 @@ def lloyd3d(points, container=None, *, iterations=20, tol=1e-9, density=None) ->
         Stop when no site moves more than ``tol`` times the container's size (None: run
         every step).
     density : callable, optional
-        ``density(xyz (m, 3)) -> (m,)`` non-negative: density-weighted centroids (one-point
-        quadrature per tetrahedron of each cell's face fans).
+        ``density(xyz (m, 3)) -> (m,)`` non-negative: density-weighted centroids (a 4-point
+        degree-2 rule per tetrahedron of each cell's face fans: exact for linear densities).
 
     Returns
     -------
