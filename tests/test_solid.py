@@ -536,21 +536,27 @@ def test_bad_input():
     assert (nodes == keep).all()  # never mutates the input
 
 
+def _torus_cells():
+    """30 cells in a torus (R 20, r 8): those at its inner side are cut non-convex."""
+    import voroforge as vf
+
+    rng = np.random.default_rng(4)
+    tor = trimesh.creation.torus(major_radius=20, minor_radius=8)
+    X = rng.uniform(-28, 28, (2, 4000, 3))[1]  # (checker20's second draw)
+    P = X[(np.hypot(X[:, 0], X[:, 1]) - 20) ** 2 + X[:, 2] ** 2 < 7.5**2][:30]
+    return vf.voronoi3d(P, tor), tor
+
+
 def test_foam_keeps_the_bubbles_of_cells_a_torus_cuts():
     # checker20 F3: a cut cell's mesh fans a ring with three collinear vertices into a
     # triangle of ~1e-15 area; its zero normal became the plane 0 <= -wall/2 and three of
     # 30 roomy cells lost their bubbles ("walls fill 3 of 30 cells")
     from scipy.optimize import linprog
 
-    import voroforge as vf
     from voroforge.solid.foam import bubbles
     from voroforge.solid.graph import cell_meshes
 
-    rng = np.random.default_rng(4)
-    tor = trimesh.creation.torus(major_radius=20, minor_radius=8)
-    X = rng.uniform(-28, 28, (2, 4000, 3))[1]  # (the checker's second draw)
-    P = X[(np.hypot(X[:, 0], X[:, 1]) - 20) ** 2 + X[:, 2] ** 2 < 7.5**2][:30]
-    d = vf.voronoi3d(P, tor)
+    d, tor = _torus_cells()
     got = bubbles(cell_meshes(d), 1.0)
     for i, (mesh, _, rad) in enumerate(got):
         # reference: the largest ball inside the cell's own face planes (Newell normals of
@@ -577,3 +583,29 @@ def test_foam_keeps_the_bubbles_of_cells_a_torus_cuts():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         solid.foam(d, wall=1.0, container=tor)
+
+
+def test_non_convex_cells_are_not_hulled_silently(tmp_path):
+    # checker20 F9/F10: subdivide took each torus-cut cell's hull (leaves 12% over the torus,
+    # outside it), and foam(d)'s default container, the cells' hull, filled the torus's hole
+    from voroforge.design.build import build
+    from voroforge.design.designfile import DesignError
+    from voroforge.solid.cells import subdivide
+
+    d, tor = _torus_cells()
+    with pytest.raises(ValueError, match="not convex"):
+        subdivide(d, 4)
+    with pytest.warns(UserWarning, match="convex hull"):
+        solid.foam(d, wall=1.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        solid.foam(d, wall=1.0, container=tor)
+        box = trimesh.creation.box((10, 10, 10))
+        solid.foam([box], wall=2.0)  # cells that fill their hull: no warning
+    tor.export(tmp_path / "torus.stl")
+    (tmp_path / "f.toml").write_text(
+        '[solid]\nkind = "foam"\ncontainer = "torus.stl"\ncells = 12\nseed = 3\n'
+        'wall = 1.0\nsubdivide = 1\nsubdivide_count = 4\nformats = ["3mf"]\n'
+    )
+    with pytest.raises(DesignError, match="non-convex"):
+        build(tmp_path / "f.toml", tmp_path / "out")

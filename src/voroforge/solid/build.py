@@ -100,6 +100,8 @@ def _cells(s, base, stage, bare=False):
     cells = voronoi3d(pts, where)
     if s.subdivide:
         stage(f"subdividing ({s.subdivide} levels)")
+        if clip is not None:  # leaves fill their cell's hull: a cut cell must be convex
+            cells = _convex_cells(cells)
         cells = subdivide(cells, s.subdivide_count, levels=s.subdivide, field=_field(s))
     return cells, mesh
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..config import SOLID_FOAM_CONVEX_RTOL
 from ..config import SUBDIVIDE_SLIVER as SLIVER
 
 __all__ = ["relax", "subdivide"]
@@ -226,6 +227,13 @@ def subdivide(cells, counts, *, levels: int = 1, field=None, seed: int = 0):
 
     rng = np.random.default_rng(seed)
     cur = cell_meshes(cells)
+    for i, m in enumerate(cur):  # seeds and leaves are taken from each cell's hull
+        hull = m.convex_hull.volume
+        if hull - m.volume > SOLID_FOAM_CONVEX_RTOL * hull:
+            raise ValueError(
+                f"subdivide: cell {i} is not convex (its volume {m.volume:.6g}, its hull's "
+                f"{hull:.6g}; a concave mesh container cut it): its leaves would fill the hull"
+            )
     hulled = set()
     for _ in range(int(levels)):
         cen = np.array([c.center_mass for c in cur])

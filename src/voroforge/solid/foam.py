@@ -7,7 +7,7 @@ import warnings
 import numpy as np
 from scipy.spatial import HalfspaceIntersection, QhullError
 
-from ..config import FOAM_FACE_AREA_RTOL, FOAM_LP_CELLS
+from ..config import FOAM_FACE_AREA_RTOL, FOAM_LP_CELLS, SOLID_FOAM_CONVEX_RTOL
 from .fields import as_size
 from .graph import cell_meshes
 from .hulls import convex_mesh
@@ -208,7 +208,8 @@ def foam(cells3d, wall=1.2, *, field=None, container=None):
         A 0..1 3D field (:mod:`voroforge.solid.fields`), sampled at each face's centre.
     container : Trimesh, optional
         The outer solid (default: the convex hull of the cells: exact for box and convex
-        containers).
+        containers; for cells built in a concave mesh pass that mesh, else a warning says
+        the hull holds more than the cells).
 
     Returns
     -------
@@ -234,6 +235,15 @@ def foam(cells3d, wall=1.2, *, field=None, container=None):
     cells = cell_meshes(cells3d)
     if container is None:
         container = convex_mesh(np.vstack([c.vertices for c in cells]))
+        held = sum(c.volume for c in cells)
+        if held < container.volume * (1.0 - SOLID_FOAM_CONVEX_RTOL):
+            warnings.warn(
+                f"foam: the cells fill {held:.6g} of their convex hull's {container.volume:.6g}"
+                " (a concave container, a torus's hole): the default container is that hull,"
+                " so the foam fills the rest; pass container= (the mesh the cells were built"
+                " in)",
+                stacklevel=2,
+            )
     bs, faces = _bubbles(cells, as_size(wall, field, "wall"))
     parts = [container]
     centres, sizes = [], []
