@@ -621,6 +621,7 @@ def build_cells3d(
             joiner = ThreadPoolExecutor(1)
         slots = [_slots(min(size, k), CAPS) for _ in range(2 if joiner else 1)]
         scr = {}  # each thread's working space, kept from chunk to chunk (_run)
+        bigscr = {}  # the same for cells built alone with big slots (_big), by slot size
         pending = []
         grid = (start, SP, SW, sidx, weight_reach(P, W, g, sidx), None)  # (+ local weights)
         gone = None  # the sites whose cells are empty (outside), not counted as owners
@@ -647,7 +648,7 @@ def build_cells3d(
                 # a cell past its slots: alone, big slots (its list if built from one), in place
                 s = lists.get()[:6] if how is not None and how[q] else grid
                 st[q], counts[q], v[q], c[q], r2[q] = _big(
-                    chunk[q], P, W, s, order, tree, t, out, wmax, counts[q], gone, bv
+                    chunk[q], P, W, s, order, tree, t, out, wmax, counts[q], gone, bv, bigscr
                 )
 
             out.add(st, counts, sl, capa, big)
@@ -706,11 +707,12 @@ def build_cells3d(
     )
 
 
-def _big(i, P, W, search, order, tree, t, out, wmax=None, need=None, gone=None, bv=None):
+def _big(i, P, W, search, order, tree, t, out, wmax, need, gone, bv, keep):
     """Build cell ``i`` alone with big slots, growing until it fits, and join it.
 
     ``search = (start, SP, SW, sidx, g, big)`` (:mod:`.lists3d`); slots hold ``need`` (its
     ``(nv, nf, nr)``), scratch twice; ``gone``: :func:`_run`'s; ``bv``: :mod:`.bigvertex3d`'s.
+    ``keep``: scratch kept between calls, by slot size and grid (a helix's cells all come here).
     """
     *s, big = search
     big = bv.search(i) if bv is not None and big is None else big
@@ -718,8 +720,9 @@ def _big(i, P, W, search, order, tree, t, out, wmax=None, need=None, gone=None, 
     need = [0, 0, 0] if need is None else [int(x) for x in need]
     while True:  # (growing by 4 alone built a sphere's centre cell, 8,000 vertices, 5 times)
         caps = tuple(max(CAPS[q] * factor, need[q % 3] * (1 + q // 3)) for q in range(6)) + CAPS[6:]
+        scr = keep.setdefault((caps, s[4].tobytes()), {})
         st, counts, v, c, r2, sl, capa = _run(
-            np.array([i]), P, W, *s, order, tree, t, caps, None, None, scr := {}, wmax, big, gone
+            np.array([i]), P, W, *s, order, tree, t, caps, None, None, scr, wmax, big, gone
         )
         if st[0] == OVERFLOW and factor == 16 and big is None and bv and bv.find(i, scr):
             big = bv.search(i)  # its owners overflowed the widest table: a big vertex
