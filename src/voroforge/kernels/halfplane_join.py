@@ -104,30 +104,23 @@ def name4(p0, p1, p2, p3, vx, vy, c1x, c1y, c2x, c2y, xs, ys):
     (the four centres are one point by the merge rule). Another's centre is no exact cell's
     vertex, so a neighbour keeping the two vertices apart shared neither (issue 15, c236).
     """
-    s0, s1, s2, s3 = np.int64(p0), np.int64(p1), np.int64(p2), np.int64(p3)
-    s0, s1 = min(s0, s1), max(s0, s1)  # the sites by index (a sorting network: no list)
-    s2, s3 = min(s2, s3), max(s2, s3)
-    s0, s2 = min(s0, s2), max(s0, s2)
-    s1, s3 = min(s1, s3), max(s1, s3)
-    s1, s2 = min(s1, s2), max(s1, s2)
+    s = sorted((np.int64(p0), np.int64(p1), np.int64(p2), np.int64(p3)))
     r2 = (vx - xs[p3]) * (vx - xs[p3]) + (vy - ys[p3]) * (vy - ys[p3])
-    # a grid's squares are exactly cocircular: every triple names the vertex, and incircle's
-    # exact stage at every vertex made half-plane cells of a 1e5 grid 3.3 times as slow
-    cyc = rectangle(xs[p0], ys[p0], xs[p1], ys[p1], xs[p2], ys[p2], xs[p3], ys[p3])
-    for t in range(4):  # the triples leave out s3, s2, s1, s0 in turn
-        w = s3 if t == 0 else (s2 if t == 1 else (s1 if t == 2 else s0))
-        x0 = s0 if t < 3 else s1
-        x1 = s1 if t < 2 else s2
-        x2 = s2 if t == 0 else s3
+    for t in range(4):  # the triples leave out s[3], s[2], s[1], s[0] in turn
+        w = s[3 - t]
+        x0, x1, x2 = (
+            s[0] if t < 3 else s[1],
+            s[1] if t < 2 else s[2],
+            s[2] if t == 0 else s[3],
+        )
         if near_pair(x0, x1, r2, xs, ys) or near_pair(x1, x2, r2, xs, ys):
             continue
-        if near_pair(x0, x2, r2, xs, ys):
+        o = orient2d(xs[x0], ys[x0], xs[x1], ys[x1], xs[x2], ys[x2])
+        if near_pair(x0, x2, r2, xs, ys) or o == 0.0:
             continue
-        if not cyc:
-            o = orient2d(xs[x0], ys[x0], xs[x1], ys[x1], xs[x2], ys[x2])
-            ic = incircle(xs[x0], ys[x0], xs[x1], ys[x1], xs[x2], ys[x2], xs[w], ys[w])
-            if o == 0.0 or (ic != 0.0 and (ic > 0.0) == (o > 0.0)):
-                continue  # the fourth strictly inside: no vertex of the four's exact diagram
+        ic = incircle(xs[x0], ys[x0], xs[x1], ys[x1], xs[x2], ys[x2], xs[w], ys[w])
+        if ic != 0.0 and (ic > 0.0) == (o > 0.0):
+            continue  # the fourth strictly inside: no vertex of the four's exact diagram
         if w == p0 or w == p1 or w == p2:
             return (vx, vy) if w == p0 else ((c1x, c1y) if w == p1 else (c2x, c2y))
         return voronoi_vertex(x0, x1, x2, xs, ys)
