@@ -69,11 +69,9 @@ NUDGED = {
 FIXED.update(NUDGED)
 
 # c236's site 5, 1.5 ulps outside its ring beside a flagged site 3 (the scan's count, of
-# clusters with no site flagged, did not see it), was flagged; its ring's vertex there was
-# named by a triple whose circle held the fourth site of a joined four, and is now one of
-# the four's exact vertices (halfplane_join.name4): site 5 is in its cell. Sites flagged:
+# clusters with no site flagged, did not see it), is flagged now. Sites flagged:
 ASTRAY = {
-    "c236": ([[-1, -3], [1, -1], [2, -2], [2, -1], [3, -3], [3, -1]], 1),
+    "c236": ([[-1, -3], [1, -1], [2, -2], [2, -1], [3, -3], [3, -1]], 2),
 }
 
 

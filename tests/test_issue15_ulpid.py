@@ -118,18 +118,13 @@ def test_agree_leaves_agreeing_rings_alone():
 
 
 def test_agree_gives_a_lacking_ring_its_edge():
-    """The half-plane rings of cluster c99 of the 816-cluster scan: one ring lacks an edge
-    an ulp long that its neighbour has; after :func:`agree` every ring shares every edge.
-
-    (``one_merged_edge``'s half-plane rings agree as they come since the settling keeps
-    the edges floats hold, ``halfplane_join.floats_hold``.)
-    """
+    """The half-plane rings of ``one_merged_edge``: one ring lacks an edge an ulp long that
+    its neighbour has; after :func:`agree` every ring shares every edge."""
     from voroforge.engine.agree import agree
     from voroforge.kernels.halfplane import halfplane_cells
     from voroforge.kernels.ring_agree import rings_disagree_at
 
-    c99 = [[-2, -2], [0, -3], [0, -1], [0, 0], [1, 1], [3, -1], [3, 1], [3, 2]]
-    pts = CENTRE + np.array(c99, dtype=np.float64) * ULP
+    pts = CENTRE + np.array(CLUSTERS["one_merged_edge"], dtype=np.float64) * ULP
     n = len(pts)
     ids = np.arange(n)
     xs, ys = pts[:, 0].copy(), pts[:, 1].copy()

@@ -10,9 +10,8 @@ cell sharing them computes identically:
    :func:`.vertex.voronoi_vertex` of the triple, or, where more sites are on the circle to
    rounding, the triple :func:`.vertex.canonical_triple` picks. A site counts as on a circle
    by rounding only if the four sites' centres are one vertex to rounding, decided once
-   for the four whichever cell asks (:func:`.halfplane_join.joins`: near-duplicate sites
-   make a tiny incircle value but long edges), and only where floats cannot hold the exact
-   topology there (:func:`.halfplane_join.floats_hold`).
+   for the four whichever cell asks (:func:`_joins`): near-duplicate sites make a tiny
+   incircle value but long edges.
 2. :func:`emit_exact` writes the ring: bisector-bisector vertices from step 1, a bisector's
    crossing with a box side by :func:`.vertex.box_crossing` (or the canonical vertex there
    when the crossing is one), box corners exactly.
@@ -37,14 +36,13 @@ from ..config import (
 )
 from .cellcut import near_sides, onto_sides, side_reach
 from .clip import dedupe_ring
-from .halfplane_join import floats_hold, name4
-from .halfplane_join import joins as _joins  # (tests import both from here)
-from .halfplane_join import rectangle as _rectangle
 from .predicates import incircle, orient2d
 from .vertex import (
     box_crossing,
     canonical_vertex,
+    canonical_vertex4,
     near_pair,
+    same_vertex,
     voronoi_vertex_error,
     voronoi_vertex_lazy,
     voronoi_vertex_lazy_inline,
@@ -92,6 +90,32 @@ def _edge_ok(i, j, p, q, xs, ys):
     if _rectangle(ix, iy, jx, jy, xs[q], ys[q], xs[p], ys[p]):
         return False  # cocircular: incircle is exactly 0 (its exact stage costs ~0.5 us)
     return incircle(ix, iy, jx, jy, xs[q], ys[q], xs[p], ys[p]) < 0.0
+
+
+@njit(**NJIT)
+def _rectangle(ax, ay, bx, by, cx, cy, dx, dy):
+    """Whether the four points are the corners of an axis-aligned rectangle (in any order).
+
+    Such corners are exactly cocircular (a rectangle's diagonals are diameters of one
+    circle), so their ``incircle`` is exactly 0: an exact grid's squares, where the float
+    filter always fails and the exact stage would run for every edge at them. The test:
+    ``a`` shares its x with exactly one other point and its y with exactly one other, two
+    different ones, and the fourth point has the x of the second and the y of the first.
+    """
+    nx = int(bx == ax) + int(cx == ax) + int(dx == ax)
+    ny = int(by == ay) + int(cy == ay) + int(dy == ay)
+    if nx != 1 or ny != 1:
+        return False
+    kp = 0 if bx == ax else (1 if cx == ax else 2)  # the point with a's x
+    kr = 0 if by == ay else (1 if cy == ay else 2)  # the point with a's y
+    if kp == kr:
+        return False  # one point with both: not four corners
+    ks = 3 - kp - kr  # the other one: the opposite corner
+    xs3 = (bx, cx, dx)
+    ys3 = (by, cy, dy)
+    rx = xs3[kr]
+    py = ys3[kp]
+    return xs3[ks] == rx and ys3[ks] == py and rx != ax and py != ay
 
 
 @njit(**NJIT)
@@ -216,11 +240,8 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
     Returns -1 when the ring cannot be settled (the caller keeps the float cut).
 
     A site within rounding of the circle is taken as on it (never inserted) only if its
-    vertices with the circle's sites are the vertex to rounding (:func:`.halfplane_join.joins`)
-    and floats cannot hold its exact edges (:func:`.halfplane_join.floats_hold`); a site a
-    few ulps from ``i``, ``a`` or ``b`` gets the exact test, and so does one outside the
-    circle by less than the vertex's rounding moves it (``merge``: sites ulps apart, whose
-    float vertex is ulps from the exact one). The canonical centre is that of
+    vertices with the circle's sites are the vertex to rounding (:func:`_joins`); a site a
+    few ulps from ``i``, ``a`` or ``b`` gets the exact test. The canonical centre is that of
     the first well-conditioned triple of the sites on the circle
     (:func:`.vertex.canonical_vertex`). ``on`` is scratch for those sites (int64, any size).
 
@@ -283,7 +304,7 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
                 dx = xs[x] - vx_
                 dy = ys[x] - vy_
                 d = dx * dx + dy * dy - r2
-                if d > tol and d > merge:
+                if d > tol:
                     continue
                 if not charged and d >= -tol:
                     # the first site near the circle: charge all of them at once, so a
@@ -293,16 +314,10 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
                     charged = True
                     if work > budget:
                         return -2, work
-                if d > tol and incircle(ix, iy, xs[a], ys[a], xs[b], ys[b], xs[x], ys[x]) <= 0.0:
-                    continue  # outside by rounding, and exactly
                 joined = False
                 if abs(d) <= merge:
                     joined, ev_, q1x, q1y, q2x, q2y = _joins(i, a, b, x, vx_, vy_, ev_, lv_, xs, ys)
                     doubt = doubt or not joined
-                    if joined and floats_hold(
-                        i, a, b, x, nxt, prv, vx_, vy_, q1x, q1y, q2x, q2y, xs, ys
-                    ):
-                        joined = False  # the exact topology, which floats hold
                 if joined:
                     if x == nxt or x == prv:
                         # the edge of b (or a) between this vertex and x's is noise: drop it
@@ -387,7 +402,9 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
                 if non == 1 and on[0] == jsite:
                     # four sites (a grid's square): three of the four triples' centres
                     # are known, the vertex's and the two _joins computed
-                    vx[u], vy[u] = name4(jsite, b, a, i, vx_, vy_, j1x, j1y, j2x, j2y, xs, ys)
+                    vx[u], vy[u] = canonical_vertex4(
+                        jsite, b, a, i, vx_, vy_, j1x, j1y, j2x, j2y, xs, ys
+                    )
                 else:
                     on[non] = i
                     on[non + 1] = a
@@ -416,8 +433,8 @@ def _vertex_cost(vx, vy, r, sx, sy):
 def _near_cost(a, b, c0, cand, nc, sidx, xs, ys, vx, vy, r2, tol, merge):
     """Work units of the sites among ``cand[c0:nc]`` (but ``a``, ``b``) near the circle at ``v``.
 
-    A site within ``merge`` of the circle costs two vertices (:func:`.halfplane_join.joins`),
-    one within ``tol`` an exact test.
+    A site within ``merge`` of the circle costs two vertices (:func:`_joins`), one within
+    ``tol`` an exact test.
     """
     join = 2 * _vertex_cost(vx, vy, np.sqrt(r2), xs[a], ys[a])
     work = 0
@@ -433,6 +450,78 @@ def _near_cost(a, b, c0, cand, nc, sidx, xs, ys, vx, vy, r2, tol, merge):
         elif d <= tol:
             work += _W_TEST
     return work
+
+
+@njit(**NJIT)
+def _joins(i, a, b, x, vx, vy, ev, lv, xs, ys):
+    """Whether site ``x`` near the circle of ``i, a, b`` (centre ``vx, vy``) is on its vertex.
+
+    Decided for the four sites once, the same from each of their cells: True when the
+    four centres of their triples are one point by the one merge rule
+    (:func:`.vertex.same_vertex`) pair by pair, at the scale :func:`_quad_scale`, or when
+    the four are a rectangle's corners (exactly cocircular: one exact centre). The merge
+    rule is not transitive, so a test from the asking cell's own vertex would let two
+    cells at one group decide it differently: one merged an edge an ulp long that its
+    neighbour kept, one vertex at two points (sites 1-3 ulps apart, issue 15). Each
+    centre's bits and bounds do not depend on the order of its sites, so neither does the
+    answer. The pairs are tried with lower bounds first (``lv`` the vertex's,
+    :func:`.vertex.voronoi_vertex_lazy`): passing with them passes with the bounds, which
+    are computed only where that fails. A collinear triple (no centre) never joins.
+    Returns ``(joined, ev, x1, y1, x2, y2)``: ``ev`` is -1 on entry when not yet computed,
+    and comes back computed if it was needed; when joined, the two centres (of ``i, a, x``
+    and of ``i, x, b``), which may name the vertex.
+    """
+    x1, y1, e1, l1 = voronoi_vertex_lazy(i, a, x, xs, ys)
+    x2, y2, e2, l2 = voronoi_vertex_lazy(i, x, b, xs, ys)
+    fin = np.isfinite(x1) and np.isfinite(y1) and np.isfinite(x2) and np.isfinite(y2)
+    if not fin:
+        return False, ev, 0.0, 0.0, 0.0, 0.0
+    if _rectangle(xs[i], ys[i], xs[a], ys[a], xs[b], ys[b], xs[x], ys[x]):
+        return True, ev, x1, y1, x2, y2  # (a grid's squares: no bound needed)
+    x3, y3, e3, l3 = voronoi_vertex_lazy(a, x, b, xs, ys)
+    if not (np.isfinite(x3) and np.isfinite(y3)):
+        return False, ev, 0.0, 0.0, 0.0, 0.0
+    cx = (vx, x1, x2, x3)
+    cy = (vy, y1, y2, y3)
+    r = _quad_scale(i, a, b, x, cx, cy, xs, ys)
+    if _one_point(cx, cy, (lv, l1, l2, l3), r):
+        return True, ev, x1, y1, x2, y2
+    if ev < 0.0:
+        ev = voronoi_vertex_error(i, a, b, xs, ys)
+    e1 = e1 if e1 >= 0.0 else voronoi_vertex_error(i, a, x, xs, ys)
+    e2 = e2 if e2 >= 0.0 else voronoi_vertex_error(i, x, b, xs, ys)
+    e3 = e3 if e3 >= 0.0 else voronoi_vertex_error(a, x, b, xs, ys)
+    if _one_point(cx, cy, (ev, e1, e2, e3), r):
+        return True, ev, x1, y1, x2, y2
+    return False, ev, 0.0, 0.0, 0.0, 0.0
+
+
+@njit(**NJIT)
+def _quad_scale(i, a, b, x, cx, cy, xs, ys):
+    """The smallest L1 distance from one of four centres to one of the four sites.
+
+    The merge rule's ``r`` for the group (a distance from a vertex to a site on its
+    circle), the same whichever cell asks: the asking cell's own distance differs by
+    rounding between the cells.
+    """
+    r = np.inf
+    for s in (i, a, b, x):
+        for k in range(4):
+            r = min(r, abs(cx[k] - xs[s]) + abs(cy[k] - ys[s]))
+    return r
+
+
+@njit(**NJIT)
+def _one_point(cx, cy, e, r):
+    """Whether the four centres ``(cx[k], cy[k])`` with bounds ``e[k]`` are one vertex.
+
+    Every pair by :func:`.vertex.same_vertex` (not transitive: all six are tested).
+    """
+    for p in range(4):
+        for q in range(p + 1, 4):
+            if not same_vertex(cx[p], cy[p], e[p], cx[q], cy[q], e[q], r):
+                return False
+    return True
 
 
 @njit(**NJIT)
