@@ -28,6 +28,8 @@ def _planes(cell) -> tuple[np.ndarray, np.ndarray]:
     sound = (np.abs(np.einsum("ij,ij->i", n, n) - 1.0) < 1e-6) & (
         np.asarray(cell.area_faces) > FOAM_FACE_AREA_RTOL * max(cell.scale, 1e-300) ** 2
     )
+    if not sound.any():  # a degenerate cell: its triangles as they are
+        sound[:] = True
     key = np.round(np.column_stack([n, c / max(cell.scale, 1e-300)]), 9)
     _, first = np.unique(key[sound], axis=0, return_index=True)
     first = np.sort(np.flatnonzero(sound)[first])
