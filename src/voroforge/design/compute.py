@@ -535,7 +535,7 @@ def operate_cells(design: Design, cells: np.ndarray, values: np.ndarray, has_fie
             raise DesignError.at(key, "must be >= 0 (use cells.scale > 1 to grow cells)")
         if filleted and not scaled and not c.smooth:  # the same cells, in one pass
             r = _fillet_radii(c, values, has_field)
-            out = cellops.inset_fillet(out, d, r, join=c.join, concave=False)
+            out = cellops.inset_fillet(out, d, r, join=c.join)
             filleted = False
         else:
             out = cellops.inset(out, d, join=c.join)
@@ -547,7 +547,7 @@ def operate_cells(design: Design, cells: np.ndarray, values: np.ndarray, has_fie
     if c.smooth:
         out = cellops.smooth(out, iterations=c.smooth)
     if filleted:
-        out = cellops.fillet(out, _fillet_radii(c, values, has_field), concave=False)
+        out = cellops.fillet(out, _fillet_radii(c, values, has_field))
     out = np.asarray(out, dtype=object)
     if c.min_area > 0:
         out[shapely.area(out) < c.min_area] = shapely.Polygon()
