@@ -26,14 +26,14 @@ from .power import fit_weights, power_diagram
 from .threads import serial_below
 
 METHODS = ("lloyd", "lbfgs")
-#: (for config.py) a cell whose mass, for the density scaled to a largest value of ~1 (see
+#: a cell whose mass, for the density scaled to a largest value of ~1 (see
 #: integrate.Integrator), is below the smallest normal double has no reliable centroid
 #: (``1 / mass`` overflowed: checker12 F1): its site stays, as an empty cell's does.
 MASS_FLOOR = float(np.finfo(np.float64).tiny)
-#: (for config.py) size_exponent: a domain whose area, at unit size, is below 2**-this is
+#: size_exponent: a domain whose area, at unit size, is below 2**-this is
 #: relaxed in a frame set by its energy's size instead (its cells' masses were subnormal)
 ASPECT_AREA_EXP = 900
-#: (for config.py) size_exponent: that frame keeps ``long**3 * short`` below 2**this
+#: size_exponent: that frame keeps ``long**3 * short`` below 2**this
 ASPECT_ENERGY_EXP = 960
 
 

@@ -50,7 +50,7 @@ def _offset(a, b, out, neg):
 
 
 @njit(**NJIT)
-def _top_sign(e, elen):
+def top_sign(e, elen):
     """Sign of a nonoverlapping expansion: the sign of its largest nonzero component."""
     for i in range(elen - 1, -1, -1):
         if e[i] > 0.0:
@@ -81,7 +81,7 @@ def _key(px, py, sx, sy, metric, neg, out, w):
     else:
         _offset(py, sy, w[2], True)
         m = expansion_sum(dx, np.int64(2), w[2], np.int64(2), w[3])
-        src = dx if _top_sign(w[3], m) >= 0 else dy
+        src = dx if top_sign(w[3], m) >= 0 else dy
         out[0] = src[0]
         out[1] = src[1]
         n = np.int64(2)
@@ -97,7 +97,7 @@ def compare(px, py, ax, ay, bx, by, metric, w):
     na = _key(px, py, ax, ay, metric, False, w[6], w)
     nb = _key(px, py, bx, by, metric, True, w[7], w)
     n = expansion_sum(w[6], na, w[7], nb, w[8])
-    return _top_sign(w[8], n)
+    return top_sign(w[8], n)
 
 
 @njit(**NJIT)

@@ -22,12 +22,13 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
+from .distance_exact import top_sign
 from .expansion import expansion_sum, grow, two_diff, two_product, two_sum
 
-#: (for config.py) the largest scaled offset or ``sqrt(|w|)``: squares and their sums stay
+#: the largest scaled offset or ``sqrt(|w|)``: squares and their sums stay
 #: below ``2**902``, far from overflow
 TOP_EXPONENT = 450
-#: (for config.py) nonzero scaled offset components below ``2**-MIN_EXPONENT`` could make a
+#: nonzero scaled offset components below ``2**-MIN_EXPONENT`` could make a
 #: product's error term subnormal (inexact): such candidate sets go back to the caller
 MIN_EXPONENT = 480
 _U = 2.0**-53
@@ -39,17 +40,6 @@ FILTER_ULPS = 16.0
 DD_ULPS = 128.0
 #: absolute part of the float bound: squares of scaled offsets down to 2**-480 may underflow
 FILTER_TINY = 2.0**-900
-
-
-@njit(**NJIT)
-def _top_sign(e, elen):
-    """Sign of a nonoverlapping expansion: the sign of its largest nonzero component."""
-    for i in range(elen - 1, -1, -1):
-        if e[i] > 0.0:
-            return 1
-        if e[i] < 0.0:
-            return -1
-    return 0
 
 
 @njit(**NJIT)
@@ -182,7 +172,7 @@ def nearest_of(q, cand, sites, w):
         m = expansion_sum(buf[1], nc, buf[0], nb, buf[2])
         for i in range(nb):
             buf[0, i] = -buf[0, i]
-        sign = _top_sign(buf[2], m)
+        sign = top_sign(buf[2], m)
         if sign < 0 or (sign == 0 and cand[j] < cand[best]):
             best, tb, rb, eb = j, t, r, ej
             for i in range(nc):
