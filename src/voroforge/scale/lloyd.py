@@ -150,10 +150,7 @@ def lloyd_tile(t, spec, tiling, own, *neighbours):
                     for acc, new in zip(escalated, pending, strict=True):
                         acc.append(new[group])
                     continue
-                ids_b, xy_b = gather_sites(pieces, box)
-                wanted = np.flatnonzero(np.isin(ids_b, ids_u[group], assume_unique=True))
-                box_loaded = open_sides(box, spec["lo"], spec["hi"])
-                part, more = _moments(ids_b, xy_b, spec["domain"], box_loaded, wanted, last)
+                part, more = _box_moments(spec, box, ids_u[group], last, pieces)
                 done.append(part)
                 for acc, new in zip(left, more, strict=True):
                     acc.append(new)
@@ -193,14 +190,19 @@ def lloyd_box(spec, box, ids_u, last, *pieces):
     Piece of the moved certified sites, still uncertified (ids, xy, r))``.
     """
     with limit_threads():
-        ids_b, xy_b = gather_sites(pieces, box)
-        wanted = np.flatnonzero(np.isin(ids_b, ids_u, assume_unique=True))
-        if len(wanted) != len(ids_u):
-            raise RuntimeError("a recomputation box misses its own sites")  # a bug
-        loaded = open_sides(box, spec["lo"], spec["hi"])
-        part, more = _moments(ids_b, xy_b, spec["domain"], loaded, wanted, last)
+        part, more = _box_moments(spec, box, ids_u, last, pieces)
+    if len(part[0]) + len(more[0]) != len(ids_u):
+        raise RuntimeError("a recomputation box misses its own sites")  # a bug
     piece, energy, shift = _step_piece([part])
     return {"energy": energy, "shift": shift, "n": len(piece.ids)}, piece, more
+
+
+def _box_moments(spec, box, ids_u, last, pieces):
+    """:func:`_moments` of the cells ``ids_u`` in ``box``, from the sites of ``pieces`` in it."""
+    ids_b, xy_b = gather_sites(pieces, box)
+    wanted = np.flatnonzero(np.isin(ids_b, ids_u, assume_unique=True))
+    loaded = open_sides(box, spec["lo"], spec["hi"])
+    return _moments(ids_b, xy_b, spec["domain"], loaded, wanted, last)
 
 
 def _escalations(cl, tiling, spec, owned, pending):
