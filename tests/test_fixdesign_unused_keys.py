@@ -386,3 +386,42 @@ def test_cells_scale_is_bounded(tmp_path):
         )
     f.write_text(head + "[cells]\nscale = 100\n")
     assert load(f)[0].cells.scale.value == 100
+
+
+def test_whole_2d_tables_a_3d_product_or_surface_voronoi_does_not_read(tmp_path):
+    from voroforge.surface.build import surface_panels
+
+    # a 3D [solid] reads [design], [output] and [solid]: a 2D table given beside it is named
+    foam = {"solid": {"kind": "foam", "container": [0, 0, 0, 10, 10, 10]}}
+    assert unused_keys(load(foam)[0]) == []
+    given = {**foam, "cells": {"web": 2}, "boundary": BOUNDARIES["rectangle"]}
+    assert {i.key for i in unused_keys(load(given)[0])} == {"cells", "boundary"}
+    extrude = {**_design("seeds", SEEDS["random"]), "solid": {"kind": "extrude", "thickness": 3}}
+    assert unused_keys(load(extrude)[0]) == []  # extrude is the 2D design made thick
+    # [surface] mode = "voronoi" makes its own cells: [cells]/[openings] change nothing
+    surf = _design("seeds", SEEDS["random"])
+    surf["surface"] = {"shape": "cylinder", "radius": 30, "height": 50, "mode": "voronoi"}
+    surf["surface"]["count"] = 12
+    issues = {i.key: i.message for i in unused_keys(load(surf)[0])}
+    assert set(issues) == {"cells", "openings"}
+    assert "surface.mode = 'voronoi'" in issues["cells"]
+    plain = {k: v for k, v in surf.items() if k not in ("cells", "openings")}
+    assert unused_keys(load(plain)[0]) == []
+    a = surface_panels(load(surf)[0])[1]
+    b = surface_panels(load(plain)[0])[1]
+    assert np.array_equal(a.vertices, b.vertices)  # the warning is true
+    morph = copy.deepcopy(surf)
+    morph["surface"]["mode"] = "morph"
+    assert "cells" not in {i.key for i in unused_keys(load(morph)[0])}
+    # the CLI names the table with its line
+    path = tmp_path / "foam.toml"
+    path.write_text(
+        '[solid]\nkind = "foam"\ncontainer = [0, 0, 0, 10, 10, 10]\n\n[cells]\nweb = 2\n'
+    )
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", UnusedKeyWarning)
+        load(path)
+    said = [str(w.message) for w in caught if issubclass(w.category, UnusedKeyWarning)]
+    assert said == [
+        "cells (line 5) is not used by solid.kind = 'foam' (a 3D product reads [solid])"
+    ]

@@ -431,6 +431,40 @@ def _unused(model: BaseModel, loc: tuple, out: list[tuple[tuple, str]]) -> None:
                     _unused(item, (*loc, name, i), out)
 
 
+#: The 2D tables a design does not read when its ``[solid]`` is a 3D product (every kind but
+#: ``extrude``) or its ``[surface]`` makes its own cells (``mode = "voronoi"``). A surface
+#: design still needs ``[boundary]``/``[seeds]`` (and ``voroforge check`` runs the 2D
+#: ``[fabrication]`` check), so those are not listed there.
+_TABLES_2D = ("voronoi", "attractors", "field", "cells", "openings", "recursion")
+
+
+def _unused_tables(design: Design) -> list[tuple[tuple, str]]:
+    """Whole 2D tables a 3D ``[solid]`` or a ``[surface]`` in voronoi mode does not read."""
+    solid, surface = design.solid, design.surface
+    if solid is not None and solid.kind != "extrude":
+        from ..solid.schema import PLACEHOLDER_2D as filled
+
+        names = ("boundary", "seeds", "relax", *_TABLES_2D, "fabrication")
+        why = f"is not used by solid.kind = {solid.kind!r} (a 3D product reads [solid])"
+    elif surface is not None and surface.mode == "voronoi":
+        filled = {}
+        names = _TABLES_2D
+        why = "is not used by surface.mode = 'voronoi' (the cells are made on the surface)"
+    else:
+        return []
+    out = []
+    for name in names:
+        value = getattr(design, name)
+        field = type(design).model_fields[name]
+        if name in filled:
+            default = field.annotation.model_validate(filled[name])
+        else:
+            default = field.get_default(call_default_factory=True)
+        if value != default:
+            out.append(((name,), why))
+    return out
+
+
 def unused_keys(
     design: Design, lines: dict[tuple, int] | None = None, overrides: dict | None = None
 ) -> list[Issue]:
@@ -458,6 +492,7 @@ def unused_keys(
     """
     found: list[tuple[tuple, str]] = []
     _unused(design, (), found)
+    found += _unused_tables(design)
     touched = {str(k) for k in (overrides or {})}
     out = []
     for loc, message in found:

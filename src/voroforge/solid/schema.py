@@ -11,7 +11,7 @@ from typing import Annotated, ClassVar, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
-__all__ = ["SolidField", "SolidSection", "fill_2d"]
+__all__ = ["PLACEHOLDER_2D", "SolidField", "SolidSection", "fill_2d"]
 
 Positive = Annotated[float, Field(gt=0)]
 Finite = Annotated[float, Field(allow_inf_nan=False)]
@@ -158,7 +158,7 @@ class SolidSection(BaseModel):
 
 
 #: A stand-in 2D design for the 3D kinds (their files have no [boundary]/[seeds]).
-_PLACEHOLDER = {
+PLACEHOLDER_2D = {
     "boundary": {"shape": "rectangle", "width": 1.0, "height": 1.0},
     "seeds": {"method": "random", "count": 4},
 }
@@ -171,7 +171,7 @@ def fill_2d(data):
     sol = data.get("solid")
     kind = sol.get("kind") if isinstance(sol, dict) else getattr(sol, "kind", None)
     if sol is not None and kind != "extrude":  # a misspelt kind is no 2D design either
-        missing = {k: v for k, v in _PLACEHOLDER.items() if k not in data}
+        missing = {k: v for k, v in PLACEHOLDER_2D.items() if k not in data}
         if missing:
             return {**data, **missing}
     return data
