@@ -376,3 +376,41 @@ def test_describe_counts_a_vertex_lying_on_another_cells_side():
     # along y = 2, two along x = 2 and two along x = 0
     assert (r.vertices, r.edges, r.faces, r.euler) == (4, 7, 3, 0)
     assert r.euler_ok
+
+
+def _torus_nearest_exact(q, sites, box):
+    """Slow reference: lowest index of the exactly nearest minimum-image site (rationals)."""
+    from fractions import Fraction
+
+    per = [Fraction(float(box[2] - box[0])), Fraction(float(box[3] - box[1]))]
+    keys = []
+    for i, s in enumerate(sites):
+        t = Fraction(0)
+        for a in range(2):
+            d = (Fraction(float(q[a])) - Fraction(float(s[a]))) % per[a]
+            t += min(d, per[a] - d) ** 2
+        keys.append((t, i))
+    return min(keys)[1]
+
+
+@pytest.mark.parametrize("offset", [0.0, 1e6, 4e6, 1e12])
+@pytest.mark.parametrize("size", [1.0, 3.0, 1e-3])
+def test_locate_on_the_torus_settles_ties_exactly(offset, size):
+    # a g x g lattice (bisectors through the queries) in a far-out box: queries at
+    # midpoints between sites and their images, on sites, and outside the box; the old
+    # float comparison gave another site on 27 of 6,000 such queries
+    rng = np.random.default_rng(int(offset) % 97 + int(size * 10))
+    for g in (3, 5, 6):
+        xs = np.arange(g) * (size / g)
+        sites = np.array([(x, y) for x in xs for y in xs]) + offset
+        box = (offset, offset, offset + size, offset + size)
+        d = vf.voronoi(sites, box, periodic=True)
+        i, j = rng.integers(0, len(sites), (2, 40))
+        shift = rng.integers(-1, 2, (40, 2)) * size
+        q = np.vstack([(sites[i] + sites[j] + shift) / 2, sites[i] + shift])
+        q = np.vstack([q, rng.uniform(offset - size, offset + 2 * size, (10, 2))])
+        got = d.locate(q)
+        want = [_torus_nearest_exact(p, d.sites, box) for p in q]
+        # a duplicate's owner answers for it (none here: the lattice is distinct)
+        assert (d.duplicate_of < 0).all()
+        np.testing.assert_array_equal(got, want)

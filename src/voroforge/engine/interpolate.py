@@ -28,7 +28,7 @@ from ..config import (
 from ..kernels.natural import INSIDE, sibson
 from .delaunay import delaunay
 from .inputs import as_points, as_query, as_values, duplicate_map, working_frame
-from .locate3d import lifted_sites, nearest_exact
+from .locate3d import lifted_sites, nearest_exact, nearest_torus_exact
 
 _EPS = float(np.finfo(float).eps)
 
@@ -71,6 +71,28 @@ class _Locator:
             diff = np.minimum(diff, self.size - diff)
         return diff[..., 0] * diff[..., 0] + diff[..., 1] * diff[..., 1]
 
+    def _torus_err(self, q: np.ndarray, cand: np.ndarray, d2: np.ndarray) -> np.ndarray:
+        """A bound on the rounding of :meth:`_d2` on the torus, per candidate ``(m, k)``.
+
+        ``|q - s|`` rounds by half an ulp of itself, ``np.mod`` is exact and ``size - d`` rounds
+        by half an ulp of the period: each minimum-image component is off by at most
+        ``t = eps (|q - s| + size)``, so its square by ``2 d t + t^2``; the squares and their
+        sum round by ``eps d2`` more. Twice that is the bound.
+        """
+        raw = np.abs(q[:, None, :] - self.pts[cand])
+        t = _EPS * (raw + self.size)
+        comp = np.sqrt(d2)[..., None]  # each component is at most the distance
+        return 2.0 * (((2.0 * comp + t) * t).sum(axis=2) + 2.0 * _EPS * d2)
+
+    def _torus_pick(self, q: np.ndarray, cand: np.ndarray, d2: np.ndarray) -> int:
+        """Lowest index among the exactly nearest of ``cand`` (``d2``: their float ``_d2``)."""
+        err = self._torus_err(q[None, :], cand[None, :], d2[None, :])[0]
+        at = int(np.argmin(d2))
+        close = cand[d2 - err <= d2[at] + err[at]]
+        if len(close) == 1:
+            return int(close[0])
+        return nearest_torus_exact(q, close, self.pts, None, self.size)
+
     def _settle(self, q, tq, rows, out, k):
         """Lowest index among the exactly nearest sites for ``rows``, looking at ``k``."""
         npts = len(self.pts)
@@ -82,15 +104,27 @@ class _Locator:
         tied = d2 == best[:, None]
         rank = np.where(tied, self.owners[cand], np.iinfo(np.int64).max)
         out[rows] = rank.min(axis=1)
+        slack = 0.0
         if self.size is None:
             # float distances within their rounding of the best: decided exactly
             close = d2 <= best[:, None] * (1.0 + LOCATE_ROUND_RTOL)
             for r in np.flatnonzero(close.sum(axis=1) > 1):
                 out[rows[r]] = self.owners[nearest_exact(q[rows[r]], cand[r][close[r]], self.pts)]
+        else:
+            # on the torus a component near the period rounds by an ulp of the period, not
+            # of itself: candidates within the proven bound of the best are decided exactly
+            err = self._torus_err(q[rows], cand, d2)
+            at = np.argmin(d2, axis=1)
+            reach = (best + err[np.arange(len(rows)), at])[:, None]
+            close = d2 - err <= reach
+            for r in np.flatnonzero(close.sum(axis=1) > 1):
+                pick = nearest_torus_exact(q[rows[r]], cand[r][close[r]], self.pts, None, self.size)
+                out[rows[r]] = self.owners[pick]
+            slack = 2.0 * err.max(axis=1)
         if k == npts:
             return rows[:0], best[:0]
         # a candidate this close to the best one may hide further ties beyond the k-th
-        again = d2[:, -1] <= best * (1.0 + LOCATE_TIE_RTOL) + LOCATE_TIE_ATOL
+        again = d2[:, -1] <= best * (1.0 + LOCATE_TIE_RTOL) + LOCATE_TIE_ATOL + slack
         return rows[again], best[again]
 
     def _far(self, q: np.ndarray) -> np.ndarray:
@@ -157,6 +191,9 @@ class _Locator:
                 return out
         # more than 16 nearly equidistant sites: settle exhaustively
         radius = np.sqrt(best) * (1.0 + LOCATE_TIE_RTOL) + LOCATE_TIE_ATOL
+        if self.size is not None:  # on the torus rounding is absolute (ulps of the period)
+            reach = np.abs(q[rows] - self.origin).max(axis=1) + float(self.size.max())
+            radius = radius + 8.0 * _EPS * reach
         lists = self.tree.query_ball_point(tq[rows], radius)
         for row, members in zip(rows, lists, strict=True):
             members = np.asarray(members, dtype=np.int64)
@@ -165,7 +202,7 @@ class _Locator:
                 near = members[dd <= dd.min() * (1.0 + LOCATE_ROUND_RTOL)]
                 out[row] = self.owners[nearest_exact(q[row], near, self.pts)]
             else:
-                out[row] = self.owners[members[dd == dd.min()]].min()
+                out[row] = self.owners[self._torus_pick(q[row], members, dd)]
         return out
 
 
@@ -195,7 +232,8 @@ def locate(points, xy) -> np.ndarray | int:
     int or (m,) int64
         Index into ``points`` of the nearest site by exact distance: sites whose float64
         squared distances are within rounding of the nearest are compared in rationals, and
-        exact ties go to the lowest index. On a periodic diagram, float ties.
+        exact ties go to the lowest index; on a periodic diagram the same with
+        minimum-image distances (rationals modulo the period).
 
     Raises
     ------

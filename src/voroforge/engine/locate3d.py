@@ -176,7 +176,7 @@ def _locate_torus(q, sites0, w0, duplicate_of, box):
         near = dd <= dd[:, :1] + slack
         for r in range(len(q)):
             k = idx[r][near[r]]
-            out[r] = k[0] if len(k) == 1 else _nearest_torus_exact(q[r], k, sites0, w0, size)
+            out[r] = k[0] if len(k) == 1 else nearest_torus_exact(q[r], k, sites0, w0, size)
         rows = np.flatnonzero(near[:, -1]) if kk < len(live) else rows[:0]
     step = max(1, 2_000_000 // max(len(live), 1))
     for a in range(0, len(rows), step):
@@ -188,19 +188,23 @@ def _locate_torus(q, sites0, w0, duplicate_of, box):
             if len(near) == 1:
                 out[qi] = near[0]
             else:
-                out[qi] = _nearest_torus_exact(q[qi], near, sites0, w0, size)
+                out[qi] = nearest_torus_exact(q[qi], near, sites0, w0, size)
     return out
 
 
-def _nearest_torus_exact(q, cand, sites, w, size) -> int:
-    """Lowest index among the exactly nearest of ``cand`` to ``q`` on the torus ``size``."""
+def nearest_torus_exact(q, cand, sites, w, size) -> int:
+    """Lowest index among the exactly nearest of ``cand`` to ``q`` on the torus ``size``.
+
+    Minimum-image squared distances less the weights ``w`` (``None``: zero) in rationals,
+    in any dimension (``len(size)``); 2D ``locate`` on a periodic diagram uses it too.
+    """
     per = [Fraction(float(x)) for x in size]
     keys = []
     for c in cand:
         t = Fraction(0)
-        for a in range(3):
+        for a in range(len(per)):
             dl = (Fraction(float(q[a])) - Fraction(float(sites[c, a]))) % per[a]
             dl = min(dl, per[a] - dl)
             t += dl * dl
-        keys.append((t - Fraction(float(w[c])), int(c)))
+        keys.append((t if w is None else t - Fraction(float(w[c])), int(c)))
     return min(keys)[1]
