@@ -155,22 +155,28 @@ def design_warnings(design):
     from ..design.designfile import UnusedKeyWarning
     from . import PROG
 
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", DesignWarning)
-        warnings.simplefilter("always", UnusedKeyWarning)
-        try:
-            yield
-        finally:
-            seen = set()
-            for w in caught:
-                if issubclass(w.category, UnusedKeyWarning | DesignWarning):
-                    once = getattr(w.message, "issue", None)
-                    once = str(w.message) if once is None else once.key
-                    if once not in seen:
-                        seen.add(once)
-                        print(f"{PROG}: warning: {design}: {w.message}", file=sys.stderr)
-                else:
-                    warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+    caught: list = []
+    try:
+        with warnings.catch_warnings(record=True) as recorded:
+            warnings.simplefilter("always", DesignWarning)
+            warnings.simplefilter("always", UnusedKeyWarning)
+            try:
+                yield
+            finally:
+                caught = list(recorded)
+    finally:
+        # shown once the recording is undone: inside it, showwarning appended to the list
+        # being read and the loop never ended (a build with any other warning hung)
+        seen = set()
+        for w in caught:
+            if issubclass(w.category, UnusedKeyWarning | DesignWarning):
+                once = getattr(w.message, "issue", None)
+                once = str(w.message) if once is None else once.key
+                if once not in seen:
+                    seen.add(once)
+                    print(f"{PROG}: warning: {design}: {w.message}", file=sys.stderr)
+            else:
+                warnings.showwarning(w.message, w.category, w.filename, w.lineno)
 
 
 def run_build(args: argparse.Namespace, stage: Stage) -> list[Path]:

@@ -158,6 +158,15 @@ def surface_panels(design, base: Path | None = None, *, progress=None):
         vd = voronoi(S, n, relax=relax, method=sec.method, seed=design.design.seed)
         extra["voronoi"] = vd
         panels = vd.panels()
+        if not len(panels):  # e.g. two cells of a torus: bands, no flat panel to cut
+            from ..design.designfile import DesignError
+
+            key = "surface.count" if sec.count else "seeds.count"
+            raise DesignError.at(
+                key,
+                f"none of the {n} cells makes a panel (each is a band or has a hole: "
+                "Panels.missing); use more cells",
+            )
     if sec.planarize is not None:
         stage("planarizing")
         panels = panels.planarize(sec.planarize)
