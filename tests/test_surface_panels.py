@@ -229,3 +229,26 @@ def test_outline_faults_find_bow_ties_and_turned_panels_and_planarize_warns():
         out = P.planarize(1e-6)
     assert list(out.report.self_intersecting) == [1] and not out.report.ok
     assert list(out.report.invalid) == [1]
+
+
+def test_panels_that_cross_themselves_are_refused_by_thicken_and_frame():
+    # a bow tie (a corner cell of a creased mesh planarized) cannot be capped on its own
+    # corners: thicken used to crash in numpy, with an opening it returned an open solid
+    square = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], float)
+    bow = square[[0, 1, 3, 2]]
+    V = np.concatenate([square, bow + [3, 0, 0]])
+    P = surface.Panels(V, [[np.arange(4)], [np.arange(4, 8)]], np.array([10, 11]))
+    for make in (
+        lambda: P.thicken(0.1),
+        lambda: P.openings(0.5).thicken(0.1),
+        lambda: P.frame(0.05),
+    ):
+        with pytest.raises(ValueError, match=r"1 of 2 panels \(cells 11\) cross themselves"):
+            make()
+    # the valid panel alone still makes its closed solid, with the right volume
+    ok = surface.Panels(square.copy(), [[np.arange(4)]], np.array([10]))
+    (solid,) = ok.thicken(0.1)
+    assert solid.is_watertight and solid.is_volume
+    assert solid.volume == pytest.approx(0.1)
+    (holed,) = ok.openings(0.5).thicken(0.1)
+    assert holed.is_watertight and holed.volume == pytest.approx(0.1 * 0.75)

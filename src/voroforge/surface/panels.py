@@ -523,7 +523,11 @@ class Panels:
         return np.broadcast_to(nrm, (len(idx), 3))
 
     def _panel_solid(self, p: int, t: float):
-        """Panel ``p`` offset by ``t`` into a closed solid, as :class:`voroforge.io.mesh.Arrays`."""
+        """Panel ``p`` offset by ``t`` into a closed solid, as :class:`voroforge.io.mesh.Arrays`.
+
+        ``None`` where the panel's rings, laid flat, cross themselves or each other (its caps
+        cannot be triangulated on its own vertices, so no closed solid is made).
+        """
         from ..io.mesh import Arrays
 
         idx = self._all_index(p)
@@ -534,6 +538,8 @@ class Panels:
             c, e1, e2, _ = _plane_frames(P[None])
             flat = np.stack([(self.vertices - c[0]) @ e1[0], (self.vertices - c[0]) @ e2[0]], 1)
         tri = _triangles(flat, self.rings[p])
+        if not len(tri):
+            return None
         tri = np.vectorize(local.get)(tri)
         base = self.vertices[idx]
         top = base + t * self._normals(p, idx)
@@ -547,6 +553,8 @@ class Panels:
             faces.append(np.stack([r, rn + m, r + m], 1))
             k += len(ring)
         verts, faces = np.concatenate([base, top]), np.concatenate(faces)
+        if not _closed(faces):  # the caps missed triangles: an outline crossing itself
+            return None
         a, b, c = (verts[faces[:, k]] for k in range(3))
         if np.einsum("ij,ij->", a, np.cross(b, c)) < 0:  # 6 x the signed volume (trimesh's
             faces = faces[:, ::-1]  # mass properties cost 20x more)
@@ -567,11 +575,19 @@ class Panels:
         -------
         list of trimesh.Trimesh
             One watertight solid per panel (holes kept), in panel order.
+
+        Raises
+        ------
+        ValueError
+            Naming the panels whose rings cross themselves or each other in their plane (a
+            corner cell of a creased mesh planarized, an opening wider than its panel): no
+            closed solid can be made of them. ``planarize`` warns about the same panels.
         """
         t = float(t)
         if not t > 0:
             raise ValueError(f"thickness must be positive; got {t!r}")
         solids = [self._panel_solid(p, t) for p in range(len(self))]
+        _refuse_open(solids, self.ids, "thicken")
         return solids if arrays else _trimeshes(solids)
 
     def frame(self, width: float, *, depth: float | None = None, arrays: bool = False):
@@ -614,6 +630,7 @@ class Panels:
             # same exterior ring, same orientation: the rim's normal is the panel's
             rim = Panels(np.concatenate(verts), [rings], self.ids[p : p + 1], None, None)
             rims.append(rim._panel_solid(0, depth))
+        _refuse_open(rims, self.ids, "frame")
         return rims if arrays else _trimeshes(rims)
 
     def to_trimesh(self):
@@ -663,6 +680,29 @@ def _trimeshes(solids: list) -> list:
     import trimesh
 
     return [trimesh.Trimesh(m.vertices, m.faces, process=False) for m in solids]
+
+
+def _closed(faces: np.ndarray) -> bool:
+    """Whether triangles ``faces`` close up: each directed edge once, its reverse once."""
+    d = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
+    if (d[:, 0] == d[:, 1]).any():
+        return False
+    m = int(faces.max()) + 1
+    fwd, back = d[:, 0] * m + d[:, 1], d[:, 1] * m + d[:, 0]
+    u, count = np.unique(fwd, return_counts=True)
+    return bool((count == 1).all()) and np.array_equal(u, np.unique(back))
+
+
+def _refuse_open(solids: list, ids, what: str) -> None:
+    """Raise naming the panels :meth:`Panels._panel_solid` could not close."""
+    bad = [p for p, s in enumerate(solids) if s is None]
+    if bad:
+        shown = ", ".join(str(int(ids[p])) for p in bad[:12]) + (", ..." if len(bad) > 12 else "")
+        raise ValueError(
+            f"{what}: {len(bad)} of {len(solids)} panels (cells {shown}) cross themselves or "
+            "their openings in their plane: no closed solid can be made of them (planarize "
+            "less, use more cells near sharp creases, or smaller openings)"
+        )
 
 
 def _signed_area(xy: np.ndarray) -> float:
