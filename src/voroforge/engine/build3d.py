@@ -1,7 +1,8 @@
 """The 3D build: sites and a container template in, per-cell polyhedra with shared vertices out.
 
 :func:`build_cells3d` runs the cell kernel in chunks (fixed per-cell slots; cells that do not
-fit run again alone with room to spare), then joins the vertices: a vertex is owned by the
+fit run again alone with room to spare, and after a chunk of such cells the next chunks' slots
+grow: :mod:`.slots3d`), then joins the vertices: a vertex is owned by the
 lowest site of its name, and every other cell that uses it finds it in that cell's list by
 name (:func:`_match`). A vertex not found there (only when two cells' float decisions
 disagreed on a nearly degenerate input) becomes its own vertex and is counted.
@@ -24,6 +25,7 @@ from .containers import maybe_outside
 from .jointable3d import probe_next, rehash, slot
 from .lists3d import Lists, chunk_search, chunks, redo_slow
 from .sitegrid3d import grid3d_shape
+from .slots3d import big_cell, grown_caps, slot_arrays
 from .threads import serial_below
 
 _NONE_GONE = np.zeros(0, np.bool_)  # no site's cell known empty (the kernel's gone)
@@ -108,8 +110,9 @@ def search_order(g: np.ndarray, radius: int) -> np.ndarray:
     return np.ascontiguousarray(out[np.argsort(lb, kind="stable")])
 
 
-#: per-cell output slots (vertices, faces, ring entries; a cell past them runs again alone;
-#: 1e5 uniform cells reach 64 vertices), scratch (vertices, faces, ring entries) and the most
+#: per-cell output slots (vertices, faces, ring entries; a cell past them runs again alone,
+#: and they grow for the next chunks after a chunk of such cells; 1e5 uniform cells reach 64
+#: vertices), scratch (vertices, faces, ring entries) and the most
 #: edges at a vertex of the cell's graph (kernels/cells3d.build_cells)
 CAPS = (96, 48, 320, 1024, 512, 4096, 24)
 BIG_CAPS_FACTOR = 4
@@ -146,17 +149,6 @@ class Cells3D:
     #: built cells than they have owner sites (``unmatched`` counts them; in a build of some
     #: cells only, also the vertices shared with cells not built)
     short: np.ndarray | None = None
-
-
-def _slots(k, caps):
-    """Fixed per-cell output slots for ``k`` cells (reused from chunk to chunk)."""
-    cv, cf, cr = caps[:3]
-    return (
-        np.zeros(k * cv, np.int32),  # name key << 8 | owner sites (cells3d.build_cells)
-        np.zeros((k * cv, 3)),
-        np.zeros((k * cf, 2), np.int32),
-        np.zeros(k * cr, np.int32),
-    )
 
 
 def search3d(P: np.ndarray):
@@ -214,7 +206,7 @@ def _run(
     vol = np.zeros(k)
     cen = np.zeros((k, 3))
     rad2 = np.zeros(k)
-    osite, ovabs, ofaces, oring = _slots(k, caps) if slots is None else slots
+    osite, ovabs, ofaces, oring = slot_arrays(k, caps) if slots is None else slots
     capa = np.array(caps, np.int64)
     if wmax is None:  # once per build, not per chunk or slice (an 8 MB scan at 1e6)
         wmax = float(W.max()) if len(W) else 0.0
@@ -619,9 +611,12 @@ def build_cells3d(
             pool = ThreadPoolExecutor(nth)
             # one more thread joins chunk c while the pool builds c + 1 (two sets of slots)
             joiner = ThreadPoolExecutor(1)
-        slots = [_slots(min(size, k), CAPS) for _ in range(2 if joiner else 1)]
-        scr = {}  # each thread's working space, kept from chunk to chunk (_run)
-        bigscr = {}  # the same for cells built alone with big slots (_big), by slot size
+        nsl = 2 if joiner else 1
+        slots = [slot_arrays(min(size, k), CAPS) for _ in range(nsl)]
+        # the chunks' caps and each thread's working space for them, kept from chunk to
+        # chunk (_run); grown after a chunk of many-faced cells (.slots3d.grown_caps)
+        cur = [CAPS, {}]
+        bigscr = {}  # the same for cells built alone with big slots (big_cell), by slot size
         pending = []
         grid = (start, SP, SW, sidx, weight_reach(P, W, g, sidx), None)  # (+ local weights)
         gone = None  # the sites whose cells are empty (outside), not counted as owners
@@ -629,7 +624,7 @@ def build_cells3d(
 
         def run(few, *search, sl=None):  # search: (start, SP, SW, sidx, g, big)
             *s, big = search
-            return _run(few, P, W, *s, order, tree, t, CAPS, pool, sl, scr, wmax, big, gone)
+            return _run(few, P, W, *s, order, tree, t, cur[0], pool, sl, cur[1], wmax, big, gone)
 
         if outside:
             far = np.flatnonzero(maybe_outside(P, t))
@@ -647,8 +642,9 @@ def build_cells3d(
             def big(q):
                 # a cell past its slots: alone, big slots (its list if built from one), in place
                 s = lists.get()[:6] if how is not None and how[q] else grid
-                st[q], counts[q], v[q], c[q], r2[q] = _big(
-                    chunk[q], P, W, s, order, tree, t, out, wmax, counts[q], gone, bv, bigscr
+                st[q], counts[q], v[q], c[q], r2[q] = big_cell(
+                    *(chunk[q], P, W, s, order, tree, t, out, wmax, counts[q], gone, bv),
+                    *(bigscr, CAPS, BIG_CAPS_FACTOR, _run),
                 )
 
             out.add(st, counts, sl, capa, big)
@@ -669,6 +665,10 @@ def build_cells3d(
                 how = None
                 if lists is not None:  # cells past the budget, again (from their lists)
                     how = redo_slow(chunk, res, lists, run, grid)
+                grown = grown_caps(res[0], res[1], cur[0], CAPS, nsl * min(size, k))
+                if grown is not None:  # most cells overflowed: the next chunks fit them
+                    cur[:] = [grown, {}]
+                    slots = [slot_arrays(min(size, k), grown) for _ in range(nsl)]
                 if joiner is None:
                     join(c0, chunk, how, *res)
                 else:
@@ -705,37 +705,6 @@ def build_cells3d(
         unmatched,
         vshort,
     )
-
-
-def _big(i, P, W, search, order, tree, t, out, wmax, need, gone, bv, keep):
-    """Build cell ``i`` alone with big slots, growing until it fits, and join it.
-
-    ``search = (start, SP, SW, sidx, g, big)`` (:mod:`.lists3d`); slots hold ``need`` (its
-    ``(nv, nf, nr)``), scratch twice; ``gone``: :func:`_run`'s; ``bv``: :mod:`.bigvertex3d`'s.
-    ``keep``: scratch kept between calls, by slot size and grid (a helix's cells all come here).
-    """
-    *s, big = search
-    big = bv.search(i) if bv is not None and big is None else big
-    factor = BIG_CAPS_FACTOR
-    need = [0, 0, 0] if need is None else [int(x) for x in need]
-    while True:  # (growing by 4 alone built a sphere's centre cell, 8,000 vertices, 5 times)
-        caps = tuple(max(CAPS[q] * factor, need[q % 3] * (1 + q // 3)) for q in range(6)) + CAPS[6:]
-        scr = keep.setdefault((caps, s[4].tobytes()), {})
-        st, counts, v, c, r2, sl, capa = _run(
-            np.array([i]), P, W, *s, order, tree, t, caps, None, None, scr, wmax, big, gone
-        )
-        if st[0] == OVERFLOW and factor == 16 and big is None and bv and bv.find(i, scr):
-            big = bv.search(i)  # its owners overflowed the widest table: a big vertex
-            continue
-        # (a sphere's centre cell of 40,000 faces needs the slots of its counts at 1024)
-        if st[0] != OVERFLOW or factor >= 1024:
-            break
-        need = [max(need[q], int(counts[0, q])) for q in range(3)]
-        factor *= 4
-    if st[0] == OVERFLOW:
-        raise RuntimeError(f"3D cell {int(i)} has more than {caps[0]} vertices")
-    out.add(st, counts, sl, capa)
-    return st[0], counts[0], v[0], c[0], r2[0]
 
 
 def release_freed_memory(k):

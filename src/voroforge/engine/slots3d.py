@@ -1,0 +1,106 @@
+"""The 3D build's per-cell slots: their sizes, growth for many-faced cells, cells built alone.
+
+:func:`.build3d.build_cells3d` builds chunks of cells into fixed per-cell output slots
+(``caps``: vertices, faces, ring entries, the kernel's scratch and its graph's degree). A cell
+past its slots is ``OVERFLOW`` with the counts it needs and is built again alone with room to
+spare (:func:`big_cell`): the first build's work is thrown away. Where most cells of a chunk
+overflow (sites on a helix: 95-380 faces a cell; on three orthogonal lines) every cell was
+built twice, so the next chunks get slots for the counts seen (:func:`grown_caps`). A cell's
+result does not depend on its slots' size (they only decide whether it fits), so the
+diagram is the same bit for bit.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..kernels.cells3d import OVERFLOW
+
+#: a chunk's slots grow when at least this share of its cells overflowed them (uniform 1e5
+#: sites: none do; a helix: all) ...
+GROW_SHARE = 1 / 8
+#: ... and at least this many (a few many-faced cells among many go to big_cell alone)
+GROW_LEAST = 8
+#: room over the most a chunk's overflowed cells needed (the next chunks' cells vary)
+GROW_PAD = 1.25
+#: slots grow to at most this many times the base caps (past it, cells are built alone)
+GROW_MOST = 16
+#: bytes of one set of slots at most (a chunk's cells times a cell's slots)
+GROW_BYTES = 2**26
+
+
+def slot_arrays(k, caps):
+    """Fixed per-cell output slots for ``k`` cells (reused from chunk to chunk)."""
+    cv, cf, cr = caps[:3]
+    return (
+        np.zeros(k * cv, np.int32),  # name key << 8 | owner sites (cells3d.build_cells)
+        np.zeros((k * cv, 3)),
+        np.zeros((k * cf, 2), np.int32),
+        np.zeros(k * cr, np.int32),
+    )
+
+
+def slot_bytes(k, caps):
+    """The bytes of :func:`slot_arrays` for ``k`` cells."""
+    return k * (caps[0] * (4 + 24) + caps[1] * 8 + caps[2] * 4)
+
+
+def grown_caps(status, counts, caps, base, k):
+    """Caps for the next chunks of ``k`` cells after one whose cells had ``status, counts``.
+
+    None (keep ``caps``) unless :data:`GROW_SHARE` of the chunk, and :data:`GROW_LEAST`
+    cells, overflowed their output slots with known counts; else the output slots cover
+    the most they needed (padded, at most :data:`GROW_MOST` times ``base``'s) and the
+    scratch grows in proportion (as :func:`big_cell`'s). None when that is no bigger or
+    its slots would pass :data:`GROW_BYTES`.
+    """
+    over = (status == OVERFLOW) & (counts[:, 0] > 0)
+    m = int(np.count_nonzero(over))
+    if m < GROW_LEAST or m < GROW_SHARE * len(status):
+        return None
+    need = counts[over].max(axis=0)
+    out = [
+        min(max(caps[q], int(np.ceil(need[q] * GROW_PAD))), base[q] * GROW_MOST) for q in range(3)
+    ]
+    if all(out[q] <= caps[q] for q in range(3)):
+        return None
+    grown = tuple(out) + tuple(
+        max(caps[3 + q], -(-base[3 + q] * out[q] // base[q])) for q in range(3)
+    )
+    grown += tuple(caps[6:])
+    if slot_bytes(k, grown) > GROW_BYTES:
+        return None
+    return grown
+
+
+def big_cell(i, P, W, search, order, tree, t, out, wmax, need, gone, bv, keep, base, factor, run):
+    """Build cell ``i`` alone with big slots, growing until it fits, and join it.
+
+    ``search = (start, SP, SW, sidx, g, big)`` (:mod:`.lists3d`); slots hold ``need`` (its
+    ``(nv, nf, nr)``), scratch twice, at least ``factor`` times the caps ``base``; ``gone``:
+    :func:`.build3d._run`'s, which is ``run``; ``bv``: :mod:`.bigvertex3d`'s. ``keep``:
+    scratch kept between calls, by slot size and grid (a helix's cells all came here).
+    """
+    *s, big = search
+    big = bv.search(i) if bv is not None and big is None else big
+    need = [0, 0, 0] if need is None else [int(x) for x in need]
+    while True:  # (growing by 4 alone built a sphere's centre cell, 8,000 vertices, 5 times)
+        caps = tuple(max(base[q] * factor, need[q % 3] * (1 + q // 3)) for q in range(6)) + tuple(
+            base[6:]
+        )
+        scr = keep.setdefault((caps, s[4].tobytes()), {})
+        st, counts, v, c, r2, sl, capa = run(
+            np.array([i]), P, W, *s, order, tree, t, caps, None, None, scr, wmax, big, gone
+        )
+        if st[0] == OVERFLOW and factor == 16 and big is None and bv and bv.find(i, scr):
+            big = bv.search(i)  # its owners overflowed the widest table: a big vertex
+            continue
+        # (a sphere's centre cell of 40,000 faces needs the slots of its counts at 1024)
+        if st[0] != OVERFLOW or factor >= 1024:
+            break
+        need = [max(need[q], int(counts[0, q])) for q in range(3)]
+        factor *= 4
+    if st[0] == OVERFLOW:
+        raise RuntimeError(f"3D cell {int(i)} has more than {caps[0]} vertices")
+    out.add(st, counts, sl, capa)
+    return st[0], counts[0], v[0], c[0], r2[0]
