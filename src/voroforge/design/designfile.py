@@ -244,9 +244,10 @@ def _issues(exc: ValidationError, lines: dict[tuple, int]) -> list[Issue]:
         loc = _loc(err)
         message = _expected(err)
         text = err["msg"]
-        field = re.search(r"@(\w+)@ (.*)$", text)
-        if field:  # a model validator naming its field
-            loc = (*loc, field.group(1))
+        field = re.search(r"@([\w.]+)@ (.*)$", text)
+        if field:  # a model validator naming its field (a dotted path: tracks.1.key)
+            parts = field.group(1).split(".")
+            loc = (*loc, *(int(p) if p.isdigit() else p for p in parts))
             message = field.group(2)
         elif text.startswith("Value error, "):
             message = text[len("Value error, ") :]

@@ -23,6 +23,7 @@ animate`` writes them as a GIF or PNG frames, and the studio plays them on a tim
 
 from __future__ import annotations
 
+import math
 from typing import Annotated, Any
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
@@ -45,6 +46,13 @@ class _Model(BaseModel):
 #: Keys that choose the sites: every frame keeps frame 0's sites, so a track on them would
 #: do nothing (design.seed also reseeds the openings and recursion: animate openings.seed)
 _SITE_KEYS = ("seeds", "relax", "design.seed")
+#: Of ``[output]``, what a frame's picture reads (``design.build.render_preview``): a track
+#: on any other output key (formats, stem, sizes of files) changes no frame
+_OUTPUT_DRAWN = ("output.layers", "output.png")
+
+
+def _under(key: str, prefix: str) -> bool:
+    return key == prefix or key.startswith(prefix + ".")
 
 
 class Track(_Model):
@@ -60,13 +68,35 @@ class Track(_Model):
     @field_validator("key")
     @classmethod
     def _not_sites(cls, key: str) -> str:
-        if any(key == k or key.startswith(k + ".") for k in _SITE_KEYS):
+        if any(_under(key, k) for k in _SITE_KEYS):
             raise ValueError(
                 f"{key!r} cannot be animated: every frame keeps the sites of frame 0 "
                 "(moved by animation.relax), so seeds.*, relax.* and design.seed stay as "
                 "frame 0 has them; animate openings.seed for a random choice of openings"
             )
+        if _under(key, "animation"):
+            raise ValueError(f"{key!r} cannot be animated: it is the table being played")
+        if _under(key, "output") and not any(_under(key, k) for k in _OUTPUT_DRAWN):
+            raise ValueError(
+                f"{key!r} cannot be animated: a frame's picture reads only "
+                + " and ".join(_OUTPUT_DRAWN)
+                + " of [output]"
+            )
         return key
+
+    @field_validator("values")
+    @classmethod
+    def _finite(cls, values: list) -> list:
+        # inf between keyframes is nan (0 + (inf - 0) * 0): named here, as the file holds it
+        def bad(v):
+            if isinstance(v, list):
+                return any(bad(x) for x in v)
+            return isinstance(v, float) and not math.isfinite(v)
+
+        for k, v in enumerate(values):
+            if bad(v):
+                raise ValueError(f"value {k} ({v!r}) is not finite")
+        return values
 
     @model_validator(mode="after")
     def _times(self) -> Track:
@@ -87,6 +117,19 @@ class AnimationSection(_Model):
     relax: Annotated[int, Field(ge=0, le=20)] = 0
     loop: bool = True
     tracks: Annotated[list[Track], Field(min_length=1)]
+
+    @model_validator(mode="after")
+    def _one_track_a_key(self) -> AnimationSection:
+        # a second track on a key (or inside it: attractors.0 and attractors.0.points)
+        # silently replaced the first: the frames played one of them
+        for j, t in enumerate(self.tracks):
+            for i, s in enumerate(self.tracks[:j]):
+                if _under(t.key, s.key) or _under(s.key, t.key):
+                    raise ValueError(
+                        f"@tracks.{j}.key@ {t.key!r} is animated by track {i} ({s.key!r}) "
+                        "already: one track a key"
+                    )
+        return self
 
 
 def _lerp(a, b, w: float):
