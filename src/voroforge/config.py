@@ -519,6 +519,9 @@ PLOTTER_OR_WINDOW = 64
 STUDIO_MAX_SEEDS = 50_000
 #: Largest message the page may send (bytes); bigger ones are refused with an error
 STUDIO_MAX_MESSAGE = 64 * 1024
+#: Seconds ``voroforge studio`` waits after SIGTERM/Ctrl+C for open work (an edit's compute
+#: in a worker thread cannot be interrupted) before it exits without it
+STUDIO_SHUTDOWN_S = 5.0
 #: Undo steps kept
 STUDIO_UNDO_DEPTH = 200
 #: Seconds without edits before the live fabrication check runs (dragging stays smooth)

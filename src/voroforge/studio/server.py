@@ -33,6 +33,7 @@ from .. import config
 from .heap import freeze_heap, keep_heap
 from .messages import geometry_message, state_message, violations_message
 from .session import Reply, Session
+from .stop import stoppable_server
 
 __all__ = ["create_app", "geometry_message", "serve", "state_message"]
 
@@ -747,8 +748,6 @@ def serve(
     import sys
     import webbrowser
 
-    import uvicorn
-
     session = session or Session(source)
     hosts = list(LOCAL_HOSTS)
     if host not in LOCAL_HOSTS:
@@ -768,8 +767,8 @@ def serve(
     print(f"voroforge studio: {url}  (Ctrl+C to stop)", flush=True)
     if open_browser:
         webbrowser.open(url)
-    server = uvicorn.Server(server_config(create_app(session, hosts=hosts), log_level=log_level))
-    server.run(sockets=[sock])
+    app = create_app(session, hosts=hosts)
+    stoppable_server(server_config(app, log_level=log_level)).run(sockets=[sock])
 
 
 def server_config(app, *, log_level: str = "warning"):
@@ -785,6 +784,7 @@ def server_config(app, *, log_level: str = "warning"):
         app,
         log_level=log_level,
         ws_max_size=4 * config.STUDIO_MAX_MESSAGE,
+        timeout_graceful_shutdown=config.STUDIO_SHUTDOWN_S,
         # geometry is binary floats that hardly compress: deflate would only cost time
         ws_per_message_deflate=False,
     )
