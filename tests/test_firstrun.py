@@ -39,6 +39,15 @@ def test_version_and_help_do_not_import_the_engine():
         assert not any(m.startswith("voroforge.engine") for m in loaded), argv
 
 
+def test_warmup_names_a_missing_design_before_any_step(tmp_path, capsys):
+    from voroforge.cli import main
+
+    missing = tmp_path / "nope.toml"
+    assert main(["warmup", str(missing)]) == 2
+    err = capsys.readouterr().err
+    assert err.strip() == f"voroforge: error: {missing}: no such design file"  # no step ran
+
+
 def test_the_plan_warms_every_example_raster_and_explain(tmp_path):
     designs = example_designs(ROOT)
     assert designs == sorted((ROOT / "examples").glob("*.toml")) and designs

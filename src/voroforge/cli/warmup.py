@@ -58,12 +58,15 @@ def run_warmup(args: argparse.Namespace, stage=None) -> int:
     from ..warmup import example_designs, plan, warm_up
 
     designs = [Path(d) for d in args.designs] or example_designs()
+    for d in designs:  # before any step runs (the steps took ~30 s to say so)
+        if not d.is_file():
+            raise ValueError(f"{d}: no such design file")
     if args.list:
         for step in plan(designs, Path(tempfile.gettempdir()) / "voroforge-warmup"):
             print(f"{step.label:<34} voroforge {' '.join(step.argv)}")
         return 0
     if args.time < 0:
-        raise ValueError(f"--time needs a number of runs >= 1, got {args.time}")
+        raise ValueError(f"--time needs a number of runs >= 1 (0: no timing), got {args.time}")
     done = warm_up(
         designs, report=lambda line: print(line, file=sys.stderr, flush=True), timed=args.time
     )
