@@ -426,6 +426,7 @@ def test_bad_values_keep_the_last_good_drawing_and_name_the_key(folder):
         ("seeds.count", 10**7, "limit"),
         ("relax.iterations", 5000, "less than or equal"),
         ("seeds.count", "many", "integer"),
+        ("seeds.radius", 2**70, "64-bit"),  # no design file could hold it (checker21)
     ]:
         r = s.apply({"op": "set", "key": key, "value": value})
         assert r.kind == "error", (key, value)

@@ -89,6 +89,9 @@ def plain(value, key: str, depth: int = 0):
         if isinstance(value, str) and len(value) > 1000:
             raise BadMessage(key, "text value too long")
         return value
+    if isinstance(value, int) and not -(2**63) <= value < 2**63:
+        # a design file could not hold it: TOML's integers are 64-bit
+        raise BadMessage(key, "integer outside the 64-bit range a design file holds")
     if isinstance(value, int | float):
         if not math.isfinite(value):
             raise BadMessage(key, "must be a finite number")

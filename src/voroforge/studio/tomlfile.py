@@ -46,6 +46,8 @@ def _value(v) -> str:
     if isinstance(v, bool):
         return "true" if v else "false"
     if isinstance(v, int):
+        if not -(2**63) <= v < 2**63:
+            raise ValueError(f"cannot write {v} to a design file (TOML integers are 64-bit)")
         return str(v)
     if isinstance(v, float):
         if not math.isfinite(v):
