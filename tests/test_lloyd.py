@@ -216,6 +216,8 @@ def test_errors_and_input_untouched():
         vf.lloyd(pts, density=(np.ones(5), (0, 0, 1, 1)))
     with pytest.raises(ValueError, match="bounds"):
         vf.lloyd(pts, density=(np.ones((5, 5)), (1, 0, 0, 1)))
+    with pytest.raises(ValueError, match="not complex"):  # was cast to its real part, 0
+        vf.lloyd(pts, (0, 0, 1, 1), density=(np.full((2, 2), 1j), (0, 0, 1, 1)))
     with pytest.raises(ValueError, match="method='lloyd'"):
         vf.lloyd(pts, (0, 0, 1, 1), method="lbfgs", areas=np.full(20, 0.05))
     with pytest.raises(ValueError, match="sum to the domain"):

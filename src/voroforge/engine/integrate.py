@@ -66,6 +66,8 @@ def as_raster(density):
         bounds = density.bounds
     else:
         return None
+    if np.iscomplexobj(values) or np.iscomplexobj(bounds):  # the cast drops the imaginary part
+        raise ValueError("density raster values and bounds must be real numbers, not complex")
     try:
         arr = np.array(values, dtype=np.float64, copy=True)
         box = np.array(bounds, dtype=np.float64).reshape(-1)
