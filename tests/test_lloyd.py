@@ -356,3 +356,17 @@ def test_lloyd_on_3d_sites_is_lloyd3d():
         vf.lloyd(p, (0, 0, 0, 1, 1, 1), method="lbfgs")
     with pytest.raises(ValueError, match=r"rho\(x, y, z\)"):
         vf.lloyd(p, (0, 0, 0, 1, 1, 1), density=(np.ones((2, 2)), (0, 0, 1, 1)))
+
+
+@pytest.mark.parametrize("size", [(1.0, 1e-6), (1e-6, 1.0), (1.0, 1e-3)])
+def test_lbfgs_meets_tol_on_the_short_side_of_a_thin_box(size):
+    # the short axis' share of the energy is below the energy's rounding: L-BFGS's line
+    # search stalled there and its tiny steps read as convergence, 8-24x tol off (checker22)
+    w, h = size
+    box = (0.0, 0.0, w, h)
+    pts = np.random.default_rng(4).random((30, 2)) * [w, h]
+    r = vf.lloyd(pts, box, iterations=5000, tol=1e-8, method="lbfgs")
+    cells = vf.voronoi(r.points, box).cells
+    centroids = np.array([c.centroid.coords[0] for c in cells])  # shapely's, independent
+    off = np.abs(centroids - r.points) / [w, h]
+    assert off.max() <= 2e-8, off.max(axis=0)
