@@ -79,6 +79,32 @@ def test_curves_on_layers(tmp_path):
     assert f.Settings.ModelUnitSystem == rhino3dm.UnitSystem.Millimeters
 
 
+def test_3dm_ids_are_the_same_in_every_write(tmp_path):
+    # rhino3dm gave every object and layer a random id: no two builds were alike (checker21)
+    import rhino3dm
+    import trimesh
+
+    def ids(path):
+        f = rhino3dm.File3dm.Read(str(path))
+        objects = [str(o.Attributes.Id) for o in f.Objects]
+        layers = [str(f.Layers[i].Id) for i in range(len(f.Layers))]
+        return objects, layers
+
+    m = trimesh.creation.icosphere(subdivisions=1)
+    a = ids(mio.write([m, m], tmp_path / "a.3dm"))
+    b = ids(mio.write([m, m], tmp_path / "b.3dm"))
+    assert a == b and len(set(a[0])) == 2 and len(set(a[1])) == 2
+    curves = {"CUT": [shapely.box(0, 0, 1, 1), shapely.box(2, 0, 3, 1)], "SCORE": [np.eye(2)]}
+    c = ids(mio.write_curves_3dm(curves, tmp_path / "c.3dm"))
+    d = ids(mio.write_curves_3dm(curves, tmp_path / "d.3dm"))
+    assert c == d and len(set(c[0])) == 3 and len(set(c[1])) == 2  # one id per polyline
+    # the bytes differ only in openNURBS's write time and file name (its header), not after
+    x, y = (tmp_path / "c.3dm").read_bytes(), (tmp_path / "d.3dm").read_bytes()
+    assert len(x) == len(y)
+    diff = [i for i, (u, v) in enumerate(zip(x, y, strict=True)) if u != v]
+    assert len(diff) <= 40 and max(diff, default=0) < 400 + 2 * len(str(tmp_path)), diff
+
+
 def test_bad_input(tmp_path):
     m = trimesh.creation.box((1, 1, 1))
     with pytest.raises(ValueError, match="unknown mesh format"):

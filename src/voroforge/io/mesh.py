@@ -458,6 +458,16 @@ def _3dm_file(units: str):
     return f
 
 
+def _stable_id(kind: str, k: int):
+    """The ``k``-th object's (or layer's) id: a fixed UUID.
+
+    So the same model writes the same ids (rhino3dm gave each a random one).
+    """
+    import uuid
+
+    return uuid.uuid5(uuid.NAMESPACE_URL, f"voroforge:3dm/{kind}/{k}")
+
+
 def _layer(f, name: str) -> int:
     import rhino3dm
 
@@ -466,6 +476,7 @@ def _layer(f, name: str) -> int:
             return i
     layer = rhino3dm.Layer()
     layer.Name = name
+    layer.Id = _stable_id("layer", len(f.Layers))
     return f.Layers.Add(layer)
 
 
@@ -493,6 +504,7 @@ def _3dm_write(items, path: Path, units: str) -> Path:
         attr = rhino3dm.ObjectAttributes()
         attr.Name = name
         attr.LayerIndex = _layer(f, name)
+        attr.Id = _stable_id("object", len(f.Objects))
         f.Objects.AddMesh(rm, attr)
     return _save_3dm(f, path)
 
@@ -683,8 +695,6 @@ def write_curves_3dm(layers, path, *, units: str = "mm", z: float = 0.0) -> Path
 
     for name, geoms in layers.items():
         idx = _layer(f, str(name))
-        attr = rhino3dm.ObjectAttributes()
-        attr.LayerIndex = idx
         if isinstance(geoms, shapely.Geometry | np.ndarray):
             geoms = [geoms]
         for g in geoms:
@@ -694,5 +704,8 @@ def write_curves_3dm(layers, path, *, units: str = "mm", z: float = 0.0) -> Path
                 pl = rhino3dm.Point3dList()
                 for x, y in xy[:, :2].tolist():
                     pl.Add(x, y, z)
+                attr = rhino3dm.ObjectAttributes()
+                attr.LayerIndex = idx
+                attr.Id = _stable_id("object", len(f.Objects))
                 f.Objects.AddPolyline(pl, attr)
     return _save_3dm(f, path)
