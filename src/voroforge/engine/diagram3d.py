@@ -169,7 +169,7 @@ class Diagram3D:
         self._vid = _ro(vid)
         self._voff = _ro(voff)
         self.duplicate_of = _ro(duplicate_of)
-        self.unmatched_vertices = int(unmatched)
+        self._unmatched = int(unmatched)
         self.box = box
         self.pieces = None if pieces is None else _ro(pieces)
         self.cut_cells = None if cut_cells is None else _ro(cut_cells)
@@ -366,6 +366,24 @@ class Diagram3D:
                 )
             self._cache["nb"] = (_ro(indptr), _ro(indices))
         return self._cache["nb"]
+
+    @property
+    def unmatched_vertices(self) -> int:
+        """Vertices referenced by fewer cells than they have owner sites (0 when healthy).
+
+        Owner sites are those whose cells are not empty, in the diagram's frame: on a torus
+        not the images (their cells hold the vertex as another record, shifted), and with
+        weights not the sites of empty power cells; there the count is taken from the faces
+        (:func:`.describe3d.unmatched_on_faces`), on first use.
+        """
+        if "unmatched" not in self._cache:
+            u = self._unmatched
+            if self.periodic or (u and self.weights is not None and self.container != "mesh"):
+                from .describe3d import unmatched_on_faces
+
+                u = unmatched_on_faces(self)
+            self._cache["unmatched"] = u
+        return self._cache["unmatched"]
 
     # --- queries --------------------------------------------------------------------------
     def locate(self, xyz):

@@ -39,6 +39,7 @@ from .predicates3d import (
 from .reach3d import far as _far
 from .reach3d import gather_heavy, heavy_header, local_stop
 from .reach3d import reach_box as _reach_box
+from .ties3d import retie
 from .vertex3d import resettle, resettle_rings
 
 OK = 0
@@ -353,6 +354,8 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
             T[nt, 0] = j
             nt += 1
         if smax <= 0.0:
+            if smax == 0.0 and near:
+                retie(i, j, nv, nf, S, C, G, P)
             continue
         if graph:
             st, nv2, w, nl = cut_open(V, nv, G[0], G[1], G[2], G[3], G[6], S, G[4], j)
