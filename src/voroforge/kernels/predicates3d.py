@@ -66,8 +66,8 @@ _OFF_B = _OFF_A + _SUM
 _OFF_L = _OFF_B + _SUM
 _OFF_ML = _OFF_L + 16
 #: :func:`vertex_offset`'s cache: ``_CACHE`` entries by a hash of the query, a site column
-#: (-1 when the scratch is made: no entry) and the rest of each entry (written before read)
-_CACHE = 8192
+#: (-1 when the scratch is made: no entry), the rest of each entry (written before read)
+_CACHE = 65536
 _ENTRY = 13
 _OFF_CA = _OFF_ML + 22
 _OFF_CE = _OFF_CA + _CACHE
@@ -79,11 +79,11 @@ _PAIRS = ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))
 
 @njit(**NJIT)
 def scratch():
-    """A scratch buffer for the exact stage (3.3 MB, untouched until the exact stage runs).
+    """A scratch buffer for the exact stage (9.9 MB, untouched until the exact stage runs).
 
     Every component is written before it is read, so it is left uninitialised: pages the
     exact stage never reaches are never touched, but for :func:`vertex_offset`'s cache's
-    site column (64 KB, set to -1). A scratch serves one build (its sites, weights, walls).
+    site column (512 KB, set to -1). A scratch serves one build (its sites, weights, walls).
     """
     buf = np.empty(_SCRATCH)  # noqa: TID251 - every component is written before it is read
     buf[_OFF_CA:_OFF_CE] = -1.0
@@ -361,7 +361,7 @@ def orient3d(ax, ay, az, bx, by, bz, cx, cy, cz, dx, dy, dz):
     )
     if abs(det) > _O3D_BOUND * perm:
         return det
-    buf = scratch()
+    buf = np.empty(_OFF_CA)  # noqa: TID251 - scratch() less vertex_offset's cache (unused)
     EL = np.zeros((4, 3), np.int64)
     TL = np.zeros(4, np.int64)
     for c in range(3):
@@ -388,7 +388,7 @@ def insphere(P5):
     dd = insphere_dd(P5)
     if dd != 0.0:
         return dd
-    buf = scratch()
+    buf = np.empty(_OFF_CA)  # noqa: TID251 - as orient3d's
     EL = np.zeros((4, 3), np.int64)
     TL = np.zeros(4, np.int64)
     for k in range(4):
