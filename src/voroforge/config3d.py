@@ -7,6 +7,11 @@ Re-exported by :mod:`voroforge.config`, so every module still imports its consta
 from __future__ import annotations
 
 __all__ = [
+    "GROW_BYTES",
+    "GROW_LEAST",
+    "GROW_MOST",
+    "GROW_PAD",
+    "GROW_SHARE",
     "VORONOI3D_CUT_RTOL",
     "VORONOI3D_STOP_RTOL",
     "VORONOI3D_DET_RTOL",
@@ -214,3 +219,14 @@ CUT_EXACT_DET_RTOL = 1e-3
 #: of its faces by more than this many roundings of the distances (a folded cell at 1000:
 #: 0.64 against a bound of ~7e-7; the worst unfolded cell 3e-13, at 1e5 4e-11 vs ~3e-5)
 CONVEX_FOLD_ULPS = 2.0**20
+#: engine.slots3d.grown_caps: a chunk's slots grow when at least this share of its cells
+#: overflowed them (uniform 1e5 sites: none do; a helix: all) ...
+GROW_SHARE = 1 / 8
+#: ... and at least this many (a few many-faced cells among many go to big_cell alone)
+GROW_LEAST = 8
+#: room over the most a chunk's overflowed cells needed (the next chunks' cells vary)
+GROW_PAD = 1.25
+#: slots grow to at most this many times the base caps (past it, cells are built alone)
+GROW_MOST = 16
+#: bytes of one set of slots at most (a chunk's cells times a cell's slots)
+GROW_BYTES = 2**26

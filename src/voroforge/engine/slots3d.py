@@ -14,19 +14,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..config3d import GROW_BYTES, GROW_LEAST, GROW_MOST, GROW_PAD, GROW_SHARE
 from ..kernels.cells3d import OVERFLOW
-
-#: a chunk's slots grow when at least this share of its cells overflowed them (uniform 1e5
-#: sites: none do; a helix: all) ...
-GROW_SHARE = 1 / 8
-#: ... and at least this many (a few many-faced cells among many go to big_cell alone)
-GROW_LEAST = 8
-#: room over the most a chunk's overflowed cells needed (the next chunks' cells vary)
-GROW_PAD = 1.25
-#: slots grow to at most this many times the base caps (past it, cells are built alone)
-GROW_MOST = 16
-#: bytes of one set of slots at most (a chunk's cells times a cell's slots)
-GROW_BYTES = 2**26
 
 
 def slot_arrays(k, caps):
