@@ -391,7 +391,7 @@ def shrink_start(pts, dom):
     return (1.0 - s) * np.einsum("ij,ij->i", q, q)
 
 
-def fit_weights(pts, targets, dom, w0, tol, max_iter):
+def fit_weights(pts, targets, dom, w0, tol, max_iter, relax=None):
     """Damped Newton on the concave dual: weights whose power cells have ``targets`` areas.
 
     Parameters
@@ -408,6 +408,10 @@ def fit_weights(pts, targets, dom, w0, tol, max_iter):
         Largest relative area error to stop at.
     max_iter : int
         Most Newton steps.
+    relax : (Domain, float), optional
+        ``(hull, eps)``: fit the masses of the density 1 on ``dom`` and ``eps`` on the rest
+        of the convex ``hull`` (``targets`` then sum to that density's mass). Its support is
+        connected, so the Hessian is never singular (``capacity._gap_continuation``).
 
     Returns
     -------
@@ -418,6 +422,8 @@ def fit_weights(pts, targets, dom, w0, tol, max_iter):
     iterations : int
         Newton steps taken.
     """
+    if relax is not None:
+        return _fit_relaxed(pts, targets, dom, w0, tol, max_iter, *relax)
     w = w0.copy()
     d = power_diagram(pts, w, dom)
     areas = d.areas
@@ -628,3 +634,59 @@ def _bridge_between(attempt, lo, hi):
         else:
             hi = mid
     return None, hi
+
+
+def _relaxed(pts, w, dom, hull, eps):
+    """The diagram on ``dom``, and the masses and Hessian of the relaxed density.
+
+    Density 1 on ``dom`` and ``eps`` on ``hull`` outside it: the masses are
+    ``(1 - eps) A_dom + eps A_hull``, the Hessian the same mix of the two Laplacians.
+    """
+    d = power_diagram(pts, w, dom)
+    dh = power_diagram(pts, w, hull)
+    mass = (1.0 - eps) * d.areas + eps * dh.areas
+    return d, dh, mass
+
+
+def _fit_relaxed(pts, targets, dom, w0, tol, max_iter, hull, eps):
+    """:func:`fit_weights` for the relaxed density (see its ``relax``); same returns.
+
+    Kitagawa, Merigot and Thibert (2019): on a connected support the damped Newton step,
+    halved until every mass keeps ``floor`` and the error shrinks, converges from any
+    weights that give every cell mass.
+    """
+    w = w0.copy()
+    d, dh, mass = _relaxed(pts, w, dom, hull, eps)
+    if not (mass > 0.0).all():
+        return d, w, np.inf, 0
+    floor = 0.5 * min(float(targets.min()), float(mass.min()))
+    err = float(np.max(np.abs(mass - targets) / targets))
+    it = 0
+    while err > tol and it < max_iter:
+        it += 1
+        r = targets - mass
+        lap, deg = _hessian(d, pts)
+        laph, degh = _hessian(dh, pts)
+        lap = (1.0 - eps) * lap + eps * laph
+        deg = (1.0 - eps) * deg + eps * degh
+        norm = float(np.linalg.norm(r))
+        got = None
+        for step in _steps(lap, deg, r):
+            alpha = 1.0
+            for _ in range(40):
+                w_try = w + alpha * step
+                d_try, dh_try, m_try = _relaxed(pts, w_try, dom, hull, eps)
+                if (
+                    m_try.min() >= floor
+                    and np.linalg.norm(targets - m_try) <= (1 - alpha / 2) * norm
+                ):
+                    got = w_try, d_try, dh_try, m_try
+                    break
+                alpha *= 0.5
+            if got is not None:
+                break
+        if got is None:
+            break
+        w, d, dh, mass = got
+        err = float(np.max(np.abs(mass - targets) / targets))
+    return d, w, err, it
