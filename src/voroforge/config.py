@@ -727,6 +727,14 @@ POWER_FIT_SCALE_EXP = 64
 POWER_FIT_CONTINUATION_STEP = 0.25
 POWER_FIT_CONTINUATION_MIN_STEP = 1.0 / 64.0
 POWER_FIT_CONTINUATION_RTOL = 1e-3
+#: engine.capacity._gap_continuation: the relaxed density's gap weight falls by this
+#: factor per stage (a later stage that does not fit in POWER_FIT_GAP_STAGE_STEPS Newton
+#: steps is retried with the factor's square root, down to POWER_FIT_GAP_MIN_FACTOR); on a
+#: MultiPolygon plain Newton first gets POWER_FIT_GAP_FIRST_STEPS steps
+POWER_FIT_GAP_EPS_FACTOR = 10.0
+POWER_FIT_GAP_MIN_FACTOR = 1.1
+POWER_FIT_GAP_STAGE_STEPS = 40
+POWER_FIT_GAP_FIRST_STEPS = 20
 
 #: engine.power (power_fit's bridge across a gap): a group's area gain counts only above this
 #: fraction of the domain's area. Summed cell areas carry rounding of a few ulps each; a

@@ -16,6 +16,10 @@ from ..config import (
     POWER_FIT_CONTINUATION_STEP,
     POWER_FIT_DEFAULT_RTOL,
     POWER_FIT_FAR,
+    POWER_FIT_GAP_EPS_FACTOR,
+    POWER_FIT_GAP_FIRST_STEPS,
+    POWER_FIT_GAP_MIN_FACTOR,
+    POWER_FIT_GAP_STAGE_STEPS,
     POWER_FIT_SCALE_EXP,
     POWER_FIT_SUM_RTOL,
 )
@@ -25,15 +29,6 @@ from .power import PowerDiagram, fit_weights, power_diagram, shrink_start
 from .threads import serial_below
 
 __all__ = ["as_targets", "power_fit"]
-
-#: _gap_continuation: the relaxed density's gap weight falls by this factor per stage
-#: (a later stage that does not fit in GAP_STAGE_STEPS Newton steps is retried with the
-#: factor's square root, down to GAP_MIN_FACTOR); on a MultiPolygon plain Newton first
-#: gets GAP_FIRST_STEPS steps (lead: move to config.py as POWER_FIT_GAP_*)
-GAP_EPS_FACTOR = 10.0
-GAP_MIN_FACTOR = 1.1
-GAP_STAGE_STEPS = 40
-GAP_FIRST_STEPS = 20
 
 
 def as_targets(target_areas, n: int, dom: Domain) -> np.ndarray:
@@ -171,7 +166,7 @@ def _fit(pts, t, dom, w0, tol, max_iter):
     c = np.array([x0, y0]) if far else np.zeros(2)
     lpts, ldom = (pts - c, shifted(dom, c)) if far else (pts, dom)
     parts = len(pts) > 1 and shapely.get_num_geometries(ldom.geometry) > 1
-    cap = min(max_iter, GAP_FIRST_STEPS) if parts else max_iter
+    cap = min(max_iter, POWER_FIT_GAP_FIRST_STEPS) if parts else max_iter
     d, w, err, it = fit_weights(lpts, t, ldom, w0, tol, cap)
     if err > tol and parts:
         # parts apart: the cells of one part see another's only through a cell on both
@@ -207,12 +202,12 @@ def _gap_continuation(pts, t, dom, w0, tol, max_iter):
     both, so Newton's step is singular, or nearly so (checker22 F1: two squares 1000
     apart, 40 sites in one: 49 steps, no fit). The density 1 on the domain and ``eps`` on
     the rest of its convex hull has a connected support, where damped Newton converges
-    (Kitagawa, Merigot and Thibert 2019); ``eps`` falls by ``GAP_EPS_FACTOR`` per stage
+    (Kitagawa, Merigot and Thibert 2019); ``eps`` falls by ``POWER_FIT_GAP_EPS_FACTOR`` per stage
     (by its square root after a stage that does not fit), each a warm start fitted to
     ``POWER_FIT_CONTINUATION_RTOL``, from the gap holding about as much mass as the domain
     (at most half its density) until its mass is within that tolerance of the smallest
     target; then ``eps = 0`` to ``tol``. Returns ``(d, w, err, steps)``, or None when the
-    first stage does not fit or the factor falls below ``GAP_MIN_FACTOR``.
+    first stage does not fit or the factor falls below ``POWER_FIT_GAP_MIN_FACTOR``.
     """
     hull = make_domain(shapely.convex_hull(dom.geometry), pts)
     area = dom.area
@@ -225,11 +220,11 @@ def _gap_continuation(pts, t, dom, w0, tol, max_iter):
     w, steps = w0.copy(), 0
     if not (power_diagram(pts, w, dom).areas > 0.0).all():
         w = shrink_start(pts, dom)
-    factor, last = GAP_EPS_FACTOR, None
+    factor, last = POWER_FIT_GAP_EPS_FACTOR, None
     while eps * gap > end:
         te = t * ((area + eps * gap) / area)
         relax = (hull, eps)
-        cap = max_iter if last is None else min(max_iter, GAP_STAGE_STEPS)
+        cap = max_iter if last is None else min(max_iter, POWER_FIT_GAP_STAGE_STEPS)
         _, w_try, err, it = fit_weights(pts, te, dom, w, want, cap, relax=relax)
         steps += it
         if err <= want:
@@ -239,7 +234,7 @@ def _gap_continuation(pts, t, dom, w0, tol, max_iter):
         if last is None:
             return None
         factor = np.sqrt(factor)
-        if factor < GAP_MIN_FACTOR:
+        if factor < POWER_FIT_GAP_MIN_FACTOR:
             return None
         eps = last / factor
     d, w, err, it = fit_weights(pts, t, dom, w, tol, max_iter)
