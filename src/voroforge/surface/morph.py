@@ -20,6 +20,10 @@ __all__ = ["morph"]
 
 WHAT = ("panels", "cells", "openings", "frame")
 
+# Mapped ring vertices this close (relative to the mapped design's extent) to the previous
+# kept one are one point: a UV edge collapsed by the map (a sphere's pole, a cone's apex).
+MERGE_REL = 1e-12
+
 
 def _polygons(geom) -> list:
     if geom is None or geom.is_empty:
@@ -150,4 +154,47 @@ def morph(
         raise ValueError("the design reaches outside its bounds (UV outside [0, 1]^2)")
     flat = np.clip(flat, 0.0, 1.0)
     xyz = S.evaluate(flat[:, 0], flat[:, 1])
-    return Panels.from_rings(rings_uv, flat, xyz, ids=ids, surface=S)
+    return _merged(rings_uv, flat, xyz, ids, S)
+
+
+def _merged(rings_uv, flat, xyz, ids, S) -> Panels:
+    """Panels with each ring's runs of coincident mapped vertices kept as one vertex.
+
+    Where the map collapses a UV edge to a point (the pole of a sphere patch at polar 0),
+    a ring that runs along it would repeat that point: zero-length edges, which the unroll
+    fan and the solids cannot use. The first vertex of a run is kept (its UV too). A ring
+    left with under 3 points is dropped (a hole), or the panel with it (an exterior).
+    """
+    ext = np.ptp(xyz, axis=0).max() if len(xyz) else 0.0
+    tol = MERGE_REL * max(float(ext), np.finfo(float).tiny)
+    keep_uv, keep_xyz, keep_rings, keep_ids = [], [], [], []
+    k = 0
+    for p, rings in enumerate(rings_uv):
+        out = []
+        for r in rings:
+            q = xyz[k : k + len(r)]
+            sel = np.ones(len(r), bool)
+            sel[1:] = np.linalg.norm(q[1:] - q[:-1], axis=1) > tol
+            at_start = np.linalg.norm(q - q[0], axis=1) <= tol
+            j = len(r)
+            while j > 1 and at_start[j - 1]:  # the run wraps around the ring's start
+                j -= 1
+            sel[j:] = False
+            out.append(k + np.flatnonzero(sel))
+            k += len(r)
+        if len(out[0]) < 3:  # the exterior collapsed to a point or a line: no panel
+            continue
+        out = [out[0]] + [h for h in out[1:] if len(h) >= 3]
+        keep_rings.append([flat[s] for s in out])
+        keep_uv += [flat[s] for s in out]
+        keep_xyz += [xyz[s] for s in out]
+        keep_ids.append(ids[p])
+    if not keep_rings:
+        raise ValueError("nothing to morph: every polygon maps to a point or a line")
+    return Panels.from_rings(
+        keep_rings,
+        np.concatenate(keep_uv),
+        np.concatenate(keep_xyz),
+        ids=np.asarray(keep_ids, dtype=np.int64),
+        surface=S,
+    )

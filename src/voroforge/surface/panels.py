@@ -20,6 +20,12 @@ import shapely
 
 __all__ = ["MissingPanelWarning", "Panels", "Planarity", "PlanarizeReport", "PlanarizeWarning"]
 
+# A morphed vertex's normal f_u x f_v is degenerate where |f_u x f_v| <= this x |f_u| |f_v|
+# (a pole of the map); it is then taken a step NUDGE_UV (fractions of the way to the panel's
+# UV centre) into the panel, the first step that gives one.
+DEGENERATE_NORMAL = 1e-12
+NUDGE_UV = (1e-9, 1e-6, 1e-3)
+
 
 class MissingPanelWarning(UserWarning):
     """Cells that have no panel (a boundary of fewer than 3 corners, or several rings)."""
@@ -512,15 +518,36 @@ class Panels:
         _, nrm = _fit_planes(P[None])
         nrm = nrm[0]
         if self.uv is not None and self.surface is not None:
-            fu, fv = self.surface.derivatives(self.uv[idx, 0], self.uv[idx, 1])
-            n = np.cross(fu, fv)
-            n /= np.linalg.norm(n, axis=1, keepdims=True)
+            uv = self.uv[idx]
+            n = self._surface_normals(uv)
+            bad = ~(np.linalg.norm(n, axis=1) > 0.5)
+            if bad.any():  # a degenerate point of the map (a pole): the normal next to it,
+                c = self.uv[self.rings[p][0]].mean(axis=0)  # a step into the panel
+                for step in NUDGE_UV:
+                    m = self._surface_normals(uv[bad] + step * (c - uv[bad]))
+                    n[np.flatnonzero(bad)] = m
+                    bad = ~(np.linalg.norm(n, axis=1) > 0.5)
+                    if not bad.any():
+                        break
+                else:
+                    raise ValueError(f"panel {p}: no surface normal at a vertex")
             return n
         # orient like the ring (counter-clockwise seen from the normal's side)
         vec = np.cross(P, np.roll(P, -1, axis=0)).sum(axis=0)
         if vec @ nrm < 0:
             nrm = -nrm
         return np.broadcast_to(nrm, (len(idx), 3))
+
+    def _surface_normals(self, uv: np.ndarray) -> np.ndarray:
+        """Unit ``f_u x f_v`` at ``uv``; zero rows where it vanishes (a pole of the map)."""
+        fu, fv = self.surface.derivatives(uv[:, 0], uv[:, 1])
+        n = np.cross(fu, fv)
+        size = np.linalg.norm(fu, axis=1) * np.linalg.norm(fv, axis=1)
+        ln = np.linalg.norm(n, axis=1)
+        ok = (ln > 0) & (ln > DEGENERATE_NORMAL * size)
+        out = np.zeros_like(n)
+        out[ok] = n[ok] / ln[ok, None]
+        return out
 
     def _panel_solid(self, p: int, t: float):
         """Panel ``p`` offset by ``t`` into a closed solid, as :class:`voroforge.io.mesh.Arrays`.
@@ -532,28 +559,36 @@ class Panels:
 
         idx = self._all_index(p)
         local = {int(g): q for q, g in enumerate(idx)}
-        flat = self.uv
-        if flat is None:
+
+        def plane():
             P = self.vertices[self.rings[p][0]]
             c, e1, e2, _ = _plane_frames(P[None])
-            flat = np.stack([(self.vertices - c[0]) @ e1[0], (self.vertices - c[0]) @ e2[0]], 1)
-        tri = _triangles(flat, self.rings[p])
-        if not len(tri):
-            return None
-        tri = np.vectorize(local.get)(tri)
-        base = self.vertices[idx]
-        top = base + t * self._normals(p, idx)
-        m = len(idx)
-        faces = [tri[:, ::-1], tri + m]
-        k = 0
-        for ring in self.rings[p]:
-            r = np.arange(k, k + len(ring))
-            rn = np.roll(r, -1)
-            faces.append(np.stack([r, rn, rn + m], 1))
-            faces.append(np.stack([r, rn + m, r + m], 1))
-            k += len(ring)
-        verts, faces = np.concatenate([base, top]), np.concatenate(faces)
-        if not _closed(faces):  # the caps missed triangles: an outline crossing itself
+            return np.stack([(self.vertices - c[0]) @ e1[0], (self.vertices - c[0]) @ e2[0]], 1)
+
+        # the plane chart also takes a morphed panel whose UV ring merged a pole's run
+        charts = [plane] if self.uv is None else [lambda: self.uv, plane]
+        top = None
+        for chart in charts:
+            tri = _triangles(chart(), self.rings[p])
+            if not len(tri):
+                continue
+            tri = np.vectorize(local.get)(tri)
+            base = self.vertices[idx]
+            if top is None:
+                top = base + t * self._normals(p, idx)
+            m = len(idx)
+            faces = [tri[:, ::-1], tri + m]
+            k = 0
+            for ring in self.rings[p]:
+                r = np.arange(k, k + len(ring))
+                rn = np.roll(r, -1)
+                faces.append(np.stack([r, rn, rn + m], 1))
+                faces.append(np.stack([r, rn + m, r + m], 1))
+                k += len(ring)
+            verts, faces = np.concatenate([base, top]), np.concatenate(faces)
+            if _closed(faces):
+                break
+        else:  # the caps missed triangles: an outline crossing itself
             return None
         a, b, c = (verts[faces[:, k]] for k in range(3))
         if np.einsum("ij,ij->", a, np.cross(b, c)) < 0:  # 6 x the signed volume (trimesh's
@@ -700,8 +735,8 @@ def _refuse_open(solids: list, ids, what: str) -> None:
         shown = ", ".join(str(int(ids[p])) for p in bad[:12]) + (", ..." if len(bad) > 12 else "")
         raise ValueError(
             f"{what}: {len(bad)} of {len(solids)} panels (cells {shown}) cross themselves or "
-            "their openings in their plane: no closed solid can be made of them (planarize "
-            "less, use more cells near sharp creases, or smaller openings)"
+            "their openings in their plane: no closed solid can be made of them (relax the "
+            "sites, planarize less, use more cells near sharp creases, or smaller openings)"
         )
 
 
