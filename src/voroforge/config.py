@@ -454,6 +454,15 @@ SURFACE_COARSE_SHARE = 0.4
 #: before a Lloyd step is taken instead.
 SURFACE_LBFGS_MEMORY = 10
 SURFACE_LBFGS_BACKTRACK = 8
+#: surface.morph: mapped ring vertices this close (relative to the mapped design's extent)
+#: to the previous kept one are one point: a UV edge collapsed by the map (a sphere's pole,
+#: a cone's apex)
+SURFACE_MORPH_MERGE_RTOL = 1e-12
+#: surface.panels: a morphed vertex's normal f_u x f_v is degenerate where |f_u x f_v| <=
+#: this x |f_u| |f_v| (a pole of the map); it is then taken a step SURFACE_NORMAL_NUDGE
+#: (fractions of the way to the panel's UV centre) into the panel, the first that gives one
+SURFACE_DEGENERATE_NORMAL = 1e-12
+SURFACE_NORMAL_NUDGE = (1e-9, 1e-6, 1e-3)
 
 #: Restricted Voronoi: each site's list of nearest sites, from which a triangle's candidate
 #: sites are taken when the list provably holds them all (else a grid query).

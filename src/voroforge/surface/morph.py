@@ -13,16 +13,13 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
+from ..config import SURFACE_MORPH_MERGE_RTOL
 from .panels import Panels
 from .shapes import Surface
 
 __all__ = ["morph"]
 
 WHAT = ("panels", "cells", "openings", "frame")
-
-# Mapped ring vertices this close (relative to the mapped design's extent) to the previous
-# kept one are one point: a UV edge collapsed by the map (a sphere's pole, a cone's apex).
-MERGE_REL = 1e-12
 
 
 def _polygons(geom) -> list:
@@ -166,7 +163,7 @@ def _merged(rings_uv, flat, xyz, ids, S) -> Panels:
     left with under 3 points is dropped (a hole), or the panel with it (an exterior).
     """
     ext = np.ptp(xyz, axis=0).max() if len(xyz) else 0.0
-    tol = MERGE_REL * max(float(ext), np.finfo(float).tiny)
+    tol = SURFACE_MORPH_MERGE_RTOL * max(float(ext), np.finfo(float).tiny)
     keep_uv, keep_xyz, keep_rings, keep_ids = [], [], [], []
     k = 0
     for p, rings in enumerate(rings_uv):

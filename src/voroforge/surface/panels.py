@@ -18,13 +18,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import shapely
 
-__all__ = ["MissingPanelWarning", "Panels", "Planarity", "PlanarizeReport", "PlanarizeWarning"]
+from ..config import SURFACE_DEGENERATE_NORMAL, SURFACE_NORMAL_NUDGE
 
-# A morphed vertex's normal f_u x f_v is degenerate where |f_u x f_v| <= this x |f_u| |f_v|
-# (a pole of the map); it is then taken a step NUDGE_UV (fractions of the way to the panel's
-# UV centre) into the panel, the first step that gives one.
-DEGENERATE_NORMAL = 1e-12
-NUDGE_UV = (1e-9, 1e-6, 1e-3)
+__all__ = ["MissingPanelWarning", "Panels", "Planarity", "PlanarizeReport", "PlanarizeWarning"]
 
 
 class MissingPanelWarning(UserWarning):
@@ -523,7 +519,7 @@ class Panels:
             bad = ~(np.linalg.norm(n, axis=1) > 0.5)
             if bad.any():  # a degenerate point of the map (a pole): the normal next to it,
                 c = self.uv[self.rings[p][0]].mean(axis=0)  # a step into the panel
-                for step in NUDGE_UV:
+                for step in SURFACE_NORMAL_NUDGE:
                     m = self._surface_normals(uv[bad] + step * (c - uv[bad]))
                     n[np.flatnonzero(bad)] = m
                     bad = ~(np.linalg.norm(n, axis=1) > 0.5)
@@ -544,7 +540,7 @@ class Panels:
         n = np.cross(fu, fv)
         size = np.linalg.norm(fu, axis=1) * np.linalg.norm(fv, axis=1)
         ln = np.linalg.norm(n, axis=1)
-        ok = (ln > 0) & (ln > DEGENERATE_NORMAL * size)
+        ok = (ln > 0) & (ln > SURFACE_DEGENERATE_NORMAL * size)
         out = np.zeros_like(n)
         out[ok] = n[ok] / ln[ok, None]
         return out
