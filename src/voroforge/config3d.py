@@ -7,6 +7,7 @@ Re-exported by :mod:`voroforge.config`, so every module still imports its consta
 from __future__ import annotations
 
 __all__ = [
+    "TIES_RAY_RTOL",
     "GROW_BYTES",
     "GROW_LEAST",
     "GROW_MOST",
@@ -230,3 +231,7 @@ GROW_PAD = 1.25
 GROW_MOST = 16
 #: bytes of one set of slots at most (a chunk's cells times a cell's slots)
 GROW_BYTES = 2**26
+#: kernels.ties3d: a face found on a touching plane is relabelled only when the two sites lie
+#: on one ray from the cell's site to this relative precision (a guard: exact ties are
+#: parallel)
+TIES_RAY_RTOL = 1e-10

@@ -363,7 +363,7 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
                 return EMPTY, 0, 0, 0, 0.0
             if st != GCUT_DONE:
                 return BROKEN, 0, 0, 0, 0.0
-            r2m = resettle(i, j, V, G[4], w, G, S, P, W, WP, X)
+            r2m = resettle(i, j, V, G[4], w, G[0], G[3], S, P, W, WP, X[1])
             st, nv2, r2c = cut_close(V, nv2, G[0], G[1], G[2], G[3], G[6], S, G[4], nl)
             r2c = max(r2c, r2m)
             nf2 = 0

@@ -17,12 +17,10 @@ from __future__ import annotations
 from numba import njit
 
 from ..config import NJIT
+from ..config3d import TIES_RAY_RTOL
 
 NJIT_INLINE = {**NJIT, "inline": "always"}
 NJIT_NO_NRT = {**NJIT, "_nrt": False}
-#: a face found on a touching plane is relabelled only when the two sites lie on one ray
-#: from the cell's site to this relative precision (a guard: exact ties are parallel)
-_RAY_RTOL = 1e-10
 
 
 @njit(**NJIT_INLINE)
@@ -48,7 +46,7 @@ def _farther(i, k, j, P):
         if abs(dk) > big:
             big = abs(dk)
             a = q
-    if not dot > 0.0 or dot * dot < nk * nj * (1.0 - _RAY_RTOL):
+    if not dot > 0.0 or dot * dot < nk * nj * (1.0 - TIES_RAY_RTOL):
         return False
     if P[j, a] == P[k, a]:
         return j < k  # (coincident sites are merged before: an order-free rule anyway)

@@ -253,7 +253,7 @@ def _key(lab, ns):
 
 
 @njit(**_NO_NRT)
-def resettle(i, j, V, CP, w, G, S, P, W, WP, X):
+def resettle(i, j, V, CP, w, DEG, LB, S, P, W, WP, rows):
     """Solve again exactly the vertices the graph cut by ``j`` made on ill-conditioned edges.
 
     A new vertex (``S == 0``, three faces, the last ``j``'s) is interpolated along its edge
@@ -270,8 +270,6 @@ def resettle(i, j, V, CP, w, G, S, P, W, WP, X):
     Not inlined: inlined into the cut's loop it cost the 1e5 build ~3% more CPU.
     """
     r2 = 0.0
-    DEG = G[0]
-    LB = G[3]
     ns = P.shape[0]
     for q in range(w):
         v = CP[q, 2]
@@ -281,7 +279,6 @@ def resettle(i, j, V, CP, w, G, S, P, W, WP, X):
         k1 = _key(LB[v, 1], ns)
         if _ill(i, k0, k1, j, P, WP, ns):
             r2 = max(r2, V[v, 0] * V[v, 0] + V[v, 1] * V[v, 1] + V[v, 2] * V[v, 2])
-            rows = X[1]  # vertex_offset's scratch; its rows are written again there
             vertex_offset(i, k0, k1, j, P, W, WP, ns, rows, P[i, 0], P[i, 1], P[i, 2], V[v])
             r2 = max(r2, V[v, 0] * V[v, 0] + V[v, 1] * V[v, 1] + V[v, 2] * V[v, 2])
     return r2
