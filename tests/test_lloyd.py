@@ -220,8 +220,10 @@ def test_errors_and_input_untouched():
         vf.lloyd(pts, (0, 0, 1, 1), density=(np.full((2, 2), 1j), (0, 0, 1, 1)))
     with pytest.raises(ValueError, match="method='lloyd'"):
         vf.lloyd(pts, (0, 0, 1, 1), method="lbfgs", areas=np.full(20, 0.05))
-    with pytest.raises(ValueError, match="sum to the domain"):
+    with pytest.raises(ValueError, match="^areas must sum to the domain"):
         vf.lloyd(pts, (0, 0, 1, 1), areas=np.full(20, 1.0))
+    with pytest.raises(ValueError, match=r"^areas must have shape \(20,\)"):  # its own name
+        vf.lloyd(pts, (0, 0, 1, 1), areas=np.full(19, 1 / 19))
 
 
 class _Raster:

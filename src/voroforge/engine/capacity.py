@@ -31,7 +31,7 @@ from .threads import serial_below
 __all__ = ["as_targets", "power_fit"]
 
 
-def as_targets(target_areas, n: int, dom: Domain) -> np.ndarray:
+def as_targets(target_areas, n: int, dom: Domain, name: str = "target_areas") -> np.ndarray:
     """Validated target areas, rescaled to sum exactly to the domain's area.
 
     Parameters
@@ -42,20 +42,21 @@ def as_targets(target_areas, n: int, dom: Domain) -> np.ndarray:
         Number of sites.
     dom : Domain
         The domain.
+    name : str
+        The caller's name for them in errors (``vf.lloyd``'s is ``areas``).
 
     Returns
     -------
     (n,) float64
     """
-    t = as_weights(target_areas, n, name="target_areas")
+    t = as_weights(target_areas, n, name=name)
     if not (t > 0.0).all():
         i = int(np.flatnonzero(~(t > 0.0))[0])
-        raise ValueError(f"target_areas must be positive; index {i} is {t[i]}")
+        raise ValueError(f"{name} must be positive; index {i} is {t[i]}")
     total = dom.area
     if abs(t.sum() - total) > POWER_FIT_SUM_RTOL * total:
         raise ValueError(
-            f"target_areas must sum to the domain's area {float(total)!r}; they sum to "
-            f"{float(t.sum())!r}"
+            f"{name} must sum to the domain's area {float(total)!r}; they sum to {float(t.sum())!r}"
         )
     return t * (total / t.sum())
 

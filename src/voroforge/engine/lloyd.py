@@ -189,7 +189,7 @@ def lloyd(
     # a thin domain (tol times its long side passed every move across a 1.6e8 x 1.2 strip)
     stop = None if tol is None else (float(tol), np.array([x1 - x0, y1 - y0]))
     integ = Integrator(density, len(z))
-    targets = None if areas is None else as_targets(areas, len(z), dom)
+    targets = None if areas is None else as_targets(areas, len(z), dom, "areas")
     if targets is not None:
         require_distinct(z, "areas=")
     k = size_exponent(dom)
