@@ -54,8 +54,17 @@ def test_rings_have_no_repeated_points_and_lie_on_the_sphere(dome):
 @pytest.mark.parametrize("holes", [False, True])
 def test_unroll_keeps_3d_edge_lengths(dome, holes):
     P = dome.openings(0.5) if holes else dome
-    sheets = P.unroll()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        sheets = P.unroll()
     assert len(sheets.parts) == len(P)
+    # a part that crosses itself is said, by its label (it cannot be cut as it is)
+    crossed = [part.label for part in sheets.parts if not part.polygon.is_valid]
+    said = [str(w.message) for w in caught if issubclass(w.category, surface.UnrollWarning)]
+    if crossed:
+        assert len(said) == 1 and f"({', '.join(crossed)})" in said[0], said
+    else:
+        assert said == []
     # a panel far from planar (one wraps the pole: 3x its size off its plane) may fold over
     # itself when unrolled; the rest are simple polygons
     bent = P.planarity().relative > 0.5

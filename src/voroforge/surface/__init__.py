@@ -35,6 +35,7 @@ __all__ = [
     "sphere_patch",
     "torus",
     "unroll",
+    "UnrollWarning",
     "voronoi",
 ]
 
@@ -59,6 +60,7 @@ _LAZY = {
     "sphere_patch": ".shapes",
     "torus": ".shapes",
     "unroll": ".unroll",
+    "UnrollWarning": ".unroll",
     "voronoi": ".voronoi",
 }
 
@@ -76,7 +78,7 @@ if TYPE_CHECKING:
         sphere_patch,
         torus,
     )
-    from .unroll import CutSheets, unroll
+    from .unroll import CutSheets, UnrollWarning, unroll
     from .voronoi import SurfaceVoronoi, voronoi
 
 

@@ -20,7 +20,11 @@ from pathlib import Path
 import numpy as np
 import shapely
 
-__all__ = ["CutSheets", "Part", "flatten", "unroll"]
+__all__ = ["CutSheets", "Part", "UnrollWarning", "flatten", "unroll"]
+
+
+class UnrollWarning(UserWarning):
+    """Panels whose unfolded outline crosses itself (bent far off their plane)."""
 
 
 def _fan(P: np.ndarray, normal: np.ndarray) -> np.ndarray:
@@ -317,4 +321,15 @@ def unroll(
             spot = poly.point_on_surface()
         size = math.sqrt(max(poly.area, 0.0))
         parts.append(Part(p, names[p], k, rings, (spot.x, spot.y), 0.18 * size))
+    crossed = [p for p in range(n) if not parts[p].polygon.is_valid]
+    if crossed:  # the edge lengths are kept, but such a part cannot be cut
+        import warnings
+
+        shown = ", ".join(names[p] for p in crossed[:12]) + (", ..." if len(crossed) > 12 else "")
+        warnings.warn(
+            f"unroll: {len(crossed)} of {n} panels ({shown}) unfold into outlines that cross "
+            "themselves (bent far off their plane): planarize first, or use more cells",
+            UnrollWarning,
+            stacklevel=2,
+        )
     return CutSheets(tuple(parts), (width, height), count, g)
