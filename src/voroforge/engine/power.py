@@ -11,6 +11,7 @@ by the same code as :func:`voroforge.voronoi`.
 from __future__ import annotations
 
 import warnings
+from functools import partial
 
 import numpy as np
 import scipy.sparse as sp
@@ -472,7 +473,7 @@ def fit_weights(pts, targets, dom, w0, tol, max_iter, relax=None):
         norm = float(np.linalg.norm(r))
         got = None
         for step in _steps(lap, deg, r):
-            got = _line_search(pts, w, step, targets, dom, floor, norm)
+            got = _line_search(partial(_areas, pts, dom), w, step, targets, floor, norm)
             if got is not None:
                 break
         if got is None:
@@ -548,17 +549,26 @@ def _two_level(lap, r, shift):
     return None if fine is None else step + fine
 
 
-def _line_search(pts, w, step, targets, dom, floor, norm):
-    """Halve ``step`` until the cells keep ``floor`` and the area error shrinks; or None."""
+def _line_search(masses, w, step, targets, floor, norm):
+    """Halve ``step`` until the cells keep ``floor`` and the mass error shrinks; or None.
+
+    ``masses(w)`` gives ``(state, masses)`` of weights ``w`` (the diagram and its areas, or
+    :func:`_relaxed`'s diagrams and masses); returns ``(w, state, masses)`` of the step taken.
+    """
     alpha = 1.0
     for _ in range(40):
         w_try = w + alpha * step
-        d_try = power_diagram(pts, w_try, dom)
-        a_try = d_try.areas
-        if a_try.min() >= floor and np.linalg.norm(targets - a_try) <= (1 - alpha / 2) * norm:
-            return w_try, d_try, a_try
+        state, m_try = masses(w_try)
+        if m_try.min() >= floor and np.linalg.norm(targets - m_try) <= (1 - alpha / 2) * norm:
+            return w_try, state, m_try
         alpha *= 0.5
     return None
+
+
+def _areas(pts, dom, w):
+    """``masses`` of :func:`_line_search` for the plain fit: the diagram and its areas."""
+    d = power_diagram(pts, w, dom)
+    return d, d.areas
 
 
 def _bridge(pts, w, targets, areas, dom, labels, ncomp, floor):
@@ -636,16 +646,15 @@ def _bridge_between(attempt, lo, hi):
     return None, hi
 
 
-def _relaxed(pts, w, dom, hull, eps):
-    """The diagram on ``dom``, and the masses and Hessian of the relaxed density.
+def _relaxed(pts, dom, hull, eps, w):
+    """``((diagram on dom, diagram on hull), masses)`` of the relaxed density.
 
     Density 1 on ``dom`` and ``eps`` on ``hull`` outside it: the masses are
     ``(1 - eps) A_dom + eps A_hull``, the Hessian the same mix of the two Laplacians.
     """
     d = power_diagram(pts, w, dom)
     dh = power_diagram(pts, w, hull)
-    mass = (1.0 - eps) * d.areas + eps * dh.areas
-    return d, dh, mass
+    return (d, dh), (1.0 - eps) * d.areas + eps * dh.areas
 
 
 def _fit_relaxed(pts, targets, dom, w0, tol, max_iter, hull, eps):
@@ -655,8 +664,9 @@ def _fit_relaxed(pts, targets, dom, w0, tol, max_iter, hull, eps):
     halved until every mass keeps ``floor`` and the error shrinks, converges from any
     weights that give every cell mass.
     """
+    masses = partial(_relaxed, pts, dom, hull, eps)
     w = w0.copy()
-    d, dh, mass = _relaxed(pts, w, dom, hull, eps)
+    (d, dh), mass = masses(w)
     if not (mass > 0.0).all():
         return d, w, np.inf, 0
     floor = 0.5 * min(float(targets.min()), float(mass.min()))
@@ -672,21 +682,11 @@ def _fit_relaxed(pts, targets, dom, w0, tol, max_iter, hull, eps):
         norm = float(np.linalg.norm(r))
         got = None
         for step in _steps(lap, deg, r):
-            alpha = 1.0
-            for _ in range(40):
-                w_try = w + alpha * step
-                d_try, dh_try, m_try = _relaxed(pts, w_try, dom, hull, eps)
-                if (
-                    m_try.min() >= floor
-                    and np.linalg.norm(targets - m_try) <= (1 - alpha / 2) * norm
-                ):
-                    got = w_try, d_try, dh_try, m_try
-                    break
-                alpha *= 0.5
+            got = _line_search(masses, w, step, targets, floor, norm)
             if got is not None:
                 break
         if got is None:
             break
-        w, d, dh, mass = got
+        w, (d, dh), mass = got
         err = float(np.max(np.abs(mass - targets) / targets))
     return d, w, err, it
