@@ -561,6 +561,16 @@ class Panels:
             c, e1, e2, _ = _plane_frames(P[None])
             return np.stack([(self.vertices - c[0]) @ e1[0], (self.vertices - c[0]) @ e2[0]], 1)
 
+        base = self.vertices[idx]
+        m = len(idx)
+        walls = []  # the side walls, the same whichever chart the caps come from
+        k = 0
+        for ring in self.rings[p]:
+            r = np.arange(k, k + len(ring))
+            rn = np.roll(r, -1)
+            walls.append(np.stack([r, rn, rn + m], 1))
+            walls.append(np.stack([r, rn + m, r + m], 1))
+            k += len(ring)
         # the plane chart also takes a morphed panel whose UV ring merged a pole's run
         charts = [plane] if self.uv is None else [lambda: self.uv, plane]
         top = None
@@ -569,19 +579,12 @@ class Panels:
             if not len(tri):
                 continue
             tri = np.vectorize(local.get)(tri)
-            base = self.vertices[idx]
             if top is None:
                 top = base + t * self._normals(p, idx)
-            m = len(idx)
-            faces = [tri[:, ::-1], tri + m]
-            k = 0
-            for ring in self.rings[p]:
-                r = np.arange(k, k + len(ring))
-                rn = np.roll(r, -1)
-                faces.append(np.stack([r, rn, rn + m], 1))
-                faces.append(np.stack([r, rn + m, r + m], 1))
-                k += len(ring)
-            verts, faces = np.concatenate([base, top]), np.concatenate(faces)
+            verts, faces = (
+                np.concatenate([base, top]),
+                np.concatenate([tri[:, ::-1], tri + m, *walls]),
+            )
             if _closed(faces):
                 break
         else:  # the caps missed triangles: an outline crossing itself
@@ -724,11 +727,17 @@ def _closed(faces: np.ndarray) -> bool:
     return bool((count == 1).all()) and np.array_equal(u, np.unique(back))
 
 
+def listed(names, most: int = 12) -> str:
+    """The first ``most`` of ``names`` joined by commas, ``, ...`` when there are more."""
+    names = [str(x) for x in names]
+    return ", ".join(names[:most]) + (", ..." if len(names) > most else "")
+
+
 def _refuse_open(solids: list, ids, what: str) -> None:
     """Raise naming the panels :meth:`Panels._panel_solid` could not close."""
     bad = [p for p, s in enumerate(solids) if s is None]
     if bad:
-        shown = ", ".join(str(int(ids[p])) for p in bad[:12]) + (", ..." if len(bad) > 12 else "")
+        shown = listed(int(ids[p]) for p in bad)
         raise ValueError(
             f"{what}: {len(bad)} of {len(solids)} panels (cells {shown}) cross themselves or "
             "their openings in their plane: no closed solid can be made of them (relax the "

@@ -325,7 +325,9 @@ def unroll(
     if crossed:  # the edge lengths are kept, but such a part cannot be cut
         import warnings
 
-        shown = ", ".join(names[p] for p in crossed[:12]) + (", ..." if len(crossed) > 12 else "")
+        from .panels import listed
+
+        shown = listed(names[p] for p in crossed)
         warnings.warn(
             f"unroll: {len(crossed)} of {n} panels ({shown}) unfold into outlines that cross "
             "themselves (bent far off their plane): planarize first, or use more cells",
