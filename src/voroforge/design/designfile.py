@@ -25,6 +25,7 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from ..config import DESIGN_FILE_MAX_BYTES
+from ..solid.schema import PLACEHOLDER_2D
 from .schema import Design, Graded, short_repr
 
 __all__ = [
@@ -443,8 +444,7 @@ def _unused_tables(design: Design) -> list[tuple[tuple, str]]:
     """Whole 2D tables a 3D ``[solid]`` or a ``[surface]`` in voronoi mode does not read."""
     solid, surface = design.solid, design.surface
     if solid is not None and solid.kind != "extrude":
-        from ..solid.schema import PLACEHOLDER_2D as filled
-
+        filled = PLACEHOLDER_2D
         names = ("boundary", "seeds", "relax", *_TABLES_2D, "fabrication")
         why = f"is not used by solid.kind = {solid.kind!r} (a 3D product reads [solid])"
     elif surface is not None and surface.mode == "voronoi":
