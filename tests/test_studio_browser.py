@@ -324,6 +324,16 @@ def test_slider_changes_the_cell_count_and_bad_values_show_the_error(panel):
     message = page.inner_text(".vf-ctl[data-key='cells.web'] .vf-err")
     assert ">= 0" in message
     assert page.evaluate("studio.n") == good  # the last good drawing stays
+    held = page.get_attribute(box, "data-last")  # the value the server holds
+    page.fill(box, "1e309")  # past float64: the box must not go blank with nothing said
+    page.press(box, "Enter")
+    page.wait_for_function(
+        "document.querySelector(\".vf-ctl[data-key='cells.web'] .vf-err\").textContent"
+        ".indexOf('finite') >= 0",
+        timeout=30_000,
+    )
+    assert page.input_value(box) == held != ""
+    assert page.evaluate("studio.n") == good
 
 
 def test_save_rebuild_and_export_are_byte_identical(panel):

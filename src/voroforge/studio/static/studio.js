@@ -562,7 +562,11 @@ var VoroStudio = (function () {
         var num = el("input", { type: "number", step: c.step, "data-key": c.key + (sub ? "." + sub : "") }, row);
         var send = function (from, t0) {
           var v = parseFloat(from.value);
-          if (!isFinite(v)) { self.showErrors([{ key: c.key, message: "not a number" }]); return; }
+          if (!isFinite(v)) {  // typed past float64 ("1e309") or left empty: keep the last value
+            var kept = (sub ? rows.filter(function (rw) { return rw.sub === sub; })[0] : rows[0]).num.dataset.last;
+            self.showErrors([{ key: c.key, message: "not a finite number; kept " + kept }]);
+            from.value = kept; return;
+          }
           if (c.kind === "int") v = Math.round(v);
           (from === range ? num : range).value = v;
           var value = v;
@@ -596,6 +600,7 @@ var VoroStudio = (function () {
     var ent = this.inputs[c.key]; if (!ent) return;
     ent.rows.forEach(function (rw) {
       var v = rw.sub ? c.value[rw.sub] : c.value;
+      rw.num.dataset.last = v;  // the value the server holds: what a bad entry falls back to
       if (document.activeElement !== rw.range && document.activeElement !== rw.num) {
         if (v > parseFloat(rw.range.max)) rw.range.max = v;
         rw.range.value = v; rw.num.value = v;
