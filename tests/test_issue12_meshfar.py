@@ -179,3 +179,25 @@ def test_weighted_torus_far_out_matches_its_translated_copy(scale, off):
     mv = trimesh.Trimesh(V - off, tor.faces, process=False).volume
     assert abs(d.volumes.sum() - mv) <= 1e-12 * mv
     assert np.abs(d.volumes - d0.volumes).max() <= 1e-13 * mv
+
+
+_ONE_AXIS = [(1e12, 1e12, 1e12), (1e12, 0, 0), (1e11, 0, 0), (0, 1e12, 0), (1e10, 0.5, 3.0)]
+
+
+@pytest.mark.parametrize("off", _ONE_AXIS)
+def test_box_mesh_far_along_one_axis_cuts_as_the_box(off):
+    # checker24 F1: a far vertex recomputed about the mesh's origin was kept only within an
+    # ulp of each of its own coordinates, so on an axis near 0 (y = 0 beside x = 1e11) it
+    # kept its absolute place, good only to ulp(1e11): cells off by 4e-5 of the median cell
+    # and a box mesh refused as "not a valid solid". Reference: the same box as a box
+    # container (no mesh cut).
+    rng = np.random.default_rng(1)
+    s0 = rng.random((40, 3)) * [4, 3, 4]
+    s0[:4] = [[0, 0, 0], [4, 3, 4], [0, 1.5, 2], [4, 0, 4]]  # corners and a face
+    off = np.array(off)
+    cube = trimesh.creation.box(extents=(4, 3, 4))
+    cube.apply_translation(off + [2, 1.5, 2])
+    ref = vf.voronoi3d(s0 + off, tuple(off) + tuple(off + [4, 3, 4])).volumes
+    v = vf.voronoi3d(s0 + off, cube).volumes
+    assert abs(v.sum() / 48 - 1) <= 1e-12
+    assert np.abs(v - ref).max() <= 1e-12 * np.median(ref)

@@ -87,7 +87,8 @@ def local_vertices(cells, cf, lab, roff, ring, verts, sites, weights, box, o):
     box wall ``box (2, 3)`` (absolute, ``-1 - w`` in voro++'s order). The three are the best
     conditioned of its planes; the result replaces ``verts[v] - o`` only where it lies
     within :data:`LOCAL_VERTEX_ULPS` ulps of ``verts[v]`` (the rounding the absolute vertex
-    carries), so a vertex whose planes are ill conditioned keeps its place.
+    carries: an ulp of its largest coordinate, on every axis), so a vertex whose planes are ill
+    conditioned keeps its place.
     """
     vl = verts - o
     cells = np.asarray(cells, np.int64)
@@ -157,7 +158,10 @@ def local_vertices(cells, cf, lab, roff, ring, verts, sites, weights, box, o):
     y = np.linalg.solve(A, rhs[:, :, None])[:, :, 0]
     v = fv[start]
     x = s[fc[start]] + y
-    near = np.abs(x - vl[v]) <= LOCAL_VERTEX_ULPS * np.spacing(np.abs(verts[v]))
+    # the absolute vertex carries the rounding of its largest coordinate on every axis (a
+    # mesh far along x only: y and z near 0 are still computed from x's ~1e10 products)
+    ulp = np.spacing(np.abs(verts[v]).max(axis=1, keepdims=True))
+    near = np.abs(x - vl[v]) <= LOCAL_VERTEX_ULPS * ulp
     ok &= near.all(axis=1) & np.isfinite(x).all(axis=1)
     vl[v[ok]] = x[ok]
     return vl
