@@ -485,6 +485,12 @@ def test_cli_voronoi3d(tmp_path, capsys):
     rows = outs[0].read_text().splitlines()
     assert rows[0] == "id,volume,cx,cy,cz,neighbors" and len(rows) == 41
     np.testing.assert_allclose(float(rows[1].split(",")[1]), d.volumes[0], rtol=1e-15)
+    ip, ix = d.neighbors
+    for i, row in enumerate(rows[1:]):  # walls (-1 - w) first, then d.neighbors' row
+        listed = [int(v) for v in row.split(",")[5].split()]
+        assert [v for v in listed if v >= 0] == sorted(ix[ip[i] : ip[i + 1]].tolist())
+        assert all(-6 <= v <= -1 for v in listed if v < 0)
+    assert tab["neighbors"] == [[int(v) for v in r.split(",")[5].split()] for r in rows[1:]]
     scene = trimesh.load(outs[2])
     assert len(scene.geometry) == 40
     vol = sum(g.volume for g in scene.geometry.values())
@@ -492,3 +498,25 @@ def test_cli_voronoi3d(tmp_path, capsys):
     assert main(["voronoi3d", str(src), "-o", str(tmp_path / "x.xyz")]) == 2
     assert "unknown output suffix" in capsys.readouterr().err
     assert main(["voronoi3d", str(src), "-o", str(outs[0]), "--container", "nope"]) == 2
+
+
+def test_cli_table_neighbours_on_a_torus_are_the_api_s(tmp_path):
+    # checker24 F2: the table listed every face label, so a periodic cell bordering its own
+    # image across the torus listed itself (d.neighbors does not)
+    from voroforge.cli import main
+
+    pts = np.random.default_rng(5).random((60, 3)) * [3, 1, 0.5]
+    src = tmp_path / "p.csv"
+    np.savetxt(src, pts, delimiter=",", header="x,y,z", comments="")
+    out = tmp_path / "c.csv"
+    box = "0,0,0,3,1,0.5"
+    assert main(["voronoi3d", str(src), "-o", str(out), "--periodic", "--container", box]) == 0
+    d = vf.voronoi3d(pts, (0, 0, 0, 3, 1, 0.5), periodic=True)
+    ip, ix = d.neighbors
+    rows = out.read_text().splitlines()[1:]
+    cf, lab = d.cell_face_table()[:2]
+    for i, row in enumerate(rows):
+        listed = [int(v) for v in row.split(",")[5].split()]
+        assert listed == sorted(ix[ip[i] : ip[i + 1]].tolist())  # a torus has no walls
+    # the input has cells facing their own image (listed before the fix)
+    assert any(i in set(lab[cf[i] : cf[i + 1]].tolist()) for i in range(len(rows)))

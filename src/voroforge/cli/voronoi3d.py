@@ -91,11 +91,16 @@ def _container(text):
 def _table(d):
     import numpy as np
 
-    indptr, _ = d.neighbors
-    cf, lab, _, _, _ = d.cell_face_table()
-    nbs = [sorted(set(lab[cf[i] : cf[i + 1]].tolist())) for i in range(len(d))]
+    # the cells of d.neighbors (faces of positive area; a torus cell's face with its own
+    # image is no neighbour), then the walls it touches with positive area as -1 - w
+    indptr, idx = d.neighbors
+    cf, lab, area, _, _ = d.cell_face_table()
+    wall = (np.asarray(lab) < 0) & np.any(np.asarray(area) != 0, axis=1)
+    nbs = []
+    for i in range(len(d)):
+        walls = set(np.asarray(lab[cf[i] : cf[i + 1]])[wall[cf[i] : cf[i + 1]]].tolist())
+        nbs.append(sorted(walls) + sorted(idx[indptr[i] : indptr[i + 1]].tolist()))
     c = np.asarray(d.centroids)
-    del indptr
     return {
         "id": np.arange(len(d)),
         "volume": np.asarray(d.volumes),
