@@ -75,10 +75,10 @@ def test_explode_must_be_finite():
     from voroforge.io.render3d import diagram_meshes
 
     d = vf.voronoi3d(np.random.default_rng(0).random((20, 3)), (0, 0, 0, 1, 1, 1))
-    for bad in (float("nan"), float("inf"), -0.5, "0.1"):
+    for bad in (float("nan"), float("inf"), -0.5, "0.1", 1e20, 5.5):  # 1e20: a blank PNG
         with pytest.raises(ValueError, match="explode"):
             diagram_meshes(d, explode=bad)
-    assert len(diagram_meshes(d, explode=0.2)) == 20
+    assert len(diagram_meshes(d, explode=0.2)) == 20 == len(diagram_meshes(d, explode=5))
 
 
 _FULL_DISK = """
@@ -134,3 +134,17 @@ def test_writers_leave_the_old_file_when_the_disk_fills(tmp_path):
     for name in names:
         assert (tmp_path / name).read_text() == "old", name
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted(names)  # no temporaries
+
+
+def test_cli_explode_past_the_bound_is_refused_before_computing(tmp_path, capsys):
+    # checker24 F3: --explode 1e20 wrote a blank PNG with exit 0
+    import numpy as np
+
+    from voroforge.cli import main
+
+    src = tmp_path / "p.csv"
+    np.savetxt(src, np.random.default_rng(0).random((20, 3)), delimiter=",")
+    out = tmp_path / "c.png"
+    assert main(["voronoi3d", str(src), "-o", str(out), "--explode", "1e20"]) == 2
+    assert "explode must be a number from 0 to 5" in capsys.readouterr().err
+    assert not out.exists()

@@ -259,6 +259,9 @@ LBFGS_CURVATURE_RTOL = 1e-12
 #: (--size 100000) would exhaust the machine's memory instead of failing with a clear error
 #: (the rasteriser's own guard is on bytes: RASTER_MAX_BYTES)
 MAX_PIXELS = 2**30
+#: Largest `explode` of a 3D picture (a fraction of each cell centroid's offset from the
+#: centre): the view fits every cell, so at 30 cells were specks and at 1e20 the PNG was blank
+EXPLODE_MAX = 5.0
 #: engine.raster: the most memory a raster may need (bytes); `rasterize` and `voroforge
 #: raster` refuse a larger estimated peak up front (2**30 px had let ~108 GiB through)
 RASTER_MAX_BYTES = 16 * 2**30

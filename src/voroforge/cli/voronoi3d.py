@@ -56,7 +56,9 @@ def add_parser(commands, formatter_class) -> argparse.ArgumentParser:
     )
     p.add_argument("--periodic", action="store_true", help="the box is a 3-torus")
     p.add_argument("--size", default=None, help="PNG size WIDTHxHEIGHT (default 1000x800)")
-    p.add_argument("--explode", type=float, default=None, help="PNG: push cells apart (0.15)")
+    p.add_argument(
+        "--explode", type=float, default=None, help="PNG: push cells apart (0.15; 0 to 5)"
+    )
     p.set_defaults(run=run_voronoi3d)
     return p
 
@@ -191,7 +193,7 @@ def _live_meshes(d):
 def run_voronoi3d(args, stage: Stage) -> list[str]:
     """Compute and write the cells (the ``voronoi3d`` command)."""
     from .. import voronoi3d
-    from ..io.render3d import check_render_size
+    from ..io.render3d import check_explode, check_render_size
     from .outputs import check_outputs, unused_option
     from .raster import parse_size
 
@@ -210,6 +212,8 @@ def run_voronoi3d(args, stage: Stage) -> list[str]:
             unused_option(f"{option} {value}", ".png outputs")
     h, w = parse_size(args.size if args.size is not None else "1000x800")
     explode = args.explode if args.explode is not None else 0.15
+    if ".png" in suffixes:
+        check_explode(explode)  # before the cells are computed
     given = [args.points] + ([args.container] if args.container else [])
     check_outputs(args.output, png=lambda: check_render_size((w, h)), inputs=given)
     stage("reading points")

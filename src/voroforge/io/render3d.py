@@ -19,7 +19,7 @@ import numbers
 
 import numpy as np
 
-from ..config import MAX_PIXELS
+from ..config import EXPLODE_MAX, MAX_PIXELS
 from .atomic import write_atomically
 
 #: a qualitative palette (RGB 0..255) for meshes without a colour
@@ -196,16 +196,25 @@ def diagram_edges(d, cells=None):
     ]
 
 
+def check_explode(explode):
+    """Raise ``ValueError`` unless ``explode`` is a number from 0 to ``EXPLODE_MAX``."""
+    if isinstance(explode, bool) or not (
+        isinstance(explode, numbers.Real) and 0.0 <= float(explode) <= EXPLODE_MAX
+    ):
+        raise ValueError(
+            f"explode must be a number from 0 to {EXPLODE_MAX:g} (a fraction of each cell's"
+            f" offset from the centre); got {explode!r}"
+        )
+
+
 def diagram_meshes(d, cells=None, *, explode=0.0):
     """``(vertices, rings)`` of a Diagram3D's cells, pushed out from the centre by ``explode``.
 
     ``explode`` is a fraction of each cell centroid's offset from the diagram's centre
-    (finite, at least 0: a NaN drew an empty picture).
+    (0 to :data:`~voroforge.config.EXPLODE_MAX`: a NaN drew an empty picture, 1e20 a blank
+    one, the view fitting cells pushed that far).
     """
-    if isinstance(explode, bool) or not (
-        isinstance(explode, numbers.Real) and 0.0 <= float(explode) < float("inf")
-    ):
-        raise ValueError(f"explode must be a finite number >= 0; got {explode!r}")
+    check_explode(explode)
     n = len(d)
     cells = range(n) if cells is None else cells
     cen = np.nanmean(np.asarray(d.centroids), axis=0)
