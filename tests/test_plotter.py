@@ -252,3 +252,32 @@ def test_rings_smaller_than_the_merge_tolerance_are_named_not_dropped_silently()
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert len(plotter.layer_paths([big, tiny], tolerance=1e-12).paths) == 2
+
+
+@pytest.mark.parametrize(
+    "offset, step",
+    [(1e14, 1.0), (1e15, 0.5), (2.0**52, 2.0)],  # 64, 4 and 2 ulps a step
+)
+def test_exact_lattice_cells_far_out_keep_every_edge(tmp_path, offset, step):
+    # checker23 F4: the merge tolerance far out was 64 ulps of the coordinates whatever the
+    # drawing, so exact cells one unit wide at 1e14 were merged to points and left out of
+    # the DXF (121 of 144), at 1e15 with steps of 4 ulps all of them. It stays below a
+    # quarter of the shortest drawn segment: every engine edge is drawn, no cell dropped.
+    g = np.array([(i + j / 2, j) for i in range(8) for j in range(8)], float) * step + offset
+    lo, hi = offset - step / 4, offset + 12 * step
+    d = vf.voronoi(g, (lo, lo, hi, hi))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        p = plotter.layer_paths(list(d.cells))
+    drawn = set()  # exact end points (segment_multiset's rounding moves values near 1e14)
+    for q, closed in zip(p.paths, p.closed, strict=True):
+        q = np.vstack((q, q[:1])) if closed else np.asarray(q)
+        drawn |= {
+            tuple(sorted((tuple(a), tuple(b))))
+            for a, b in zip(q[:-1].tolist(), q[1:].tolist(), strict=True)
+        }
+    ends = np.asarray(d.edges.coords).reshape(-1, 2, 2)
+    want = {tuple(sorted((tuple(a), tuple(b)))) for a, b in ends.tolist()}
+    assert want <= drawn
+    path = write_dxf(list(d.cells), tmp_path / "cells.dxf", dedupe=False, merge=False)
+    assert len(ezdxf.readfile(path).modelspace().query("LWPOLYLINE")) == len(d)

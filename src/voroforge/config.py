@@ -512,7 +512,8 @@ SOLID_VOXEL = 0.5
 #: Path end points closer than this fraction of the drawing's size are one vertex when
 #: layers are deduplicated and lines merged (rounding between products of one layer)
 PLOTTER_MERGE_RTOL = 1e-9
-#: ...and at least this many ulps of the largest coordinate (rounding far from the origin)
+#: ...and at least this many ulps of the largest coordinate (rounding far from the origin),
+#: but below a quarter of the shortest drawn segment (io.plotter._tolerance)
 PLOTTER_MERGE_ULPS = 64
 #: Memory a GIF's frames may take while it is written (Pillow holds every frame, 1 byte a
 #: pixel, before it writes the file): `voroforge animate` refuses frames x size^2 past it

@@ -122,7 +122,11 @@ def _collect(geoms) -> tuple[list, list]:
     return rings, lines
 
 
-def _tolerance(coords: np.ndarray, tolerance) -> float:
+def _tolerance(coords: np.ndarray, tolerance, pieces=()) -> float:
+    """The vertex merge distance: ``tolerance`` if given, else from the drawing.
+
+    ``pieces`` are the drawn point runs (rings, lines, segments: consecutive points joined).
+    """
     if tolerance is not None:
         t = float(tolerance)
         if not math.isfinite(t) or t < 0:
@@ -131,10 +135,27 @@ def _tolerance(coords: np.ndarray, tolerance) -> float:
     if not len(coords):
         return 0.0
     # the drawing's size, not its distance from the origin (a 0.5 mm fillet's chords were
-    # merged away at an offset of 5e8); far out, a few ulps of the coordinates (rounding)
+    # merged away at an offset of 5e8); far out, the rounding of the coordinates, but never
+    # a quarter of a drawn segment or more: exact cells one unit wide at 1e14 (64 ulps) were
+    # merged to points and left out of the DXF (checker23 F4)
     size = float(np.ptp(coords, axis=0).max()) * config.PLOTTER_MERGE_RTOL
     ulps = float(np.abs(coords).max()) * np.finfo(np.float64).eps * config.PLOTTER_MERGE_ULPS
+    if ulps > size:
+        ulps = min(ulps, 0.25 * _shortest_step(pieces))
     return max(size, ulps)
+
+
+def _shortest_step(pieces) -> float:
+    """The shortest nonzero distance between consecutive points of any piece (inf if none)."""
+    if isinstance(pieces, np.ndarray):  # (s, 2, 2) segments
+        steps = [pieces[:, 1] - pieces[:, 0]]
+    else:
+        steps = [np.diff(np.asarray(p, dtype=np.float64), axis=0) for p in pieces if len(p) >= 2]
+    if not steps:
+        return float("inf")
+    d = np.hypot(*np.concatenate(steps).reshape(-1, 2).T)
+    d = d[d > 0]
+    return float(d.min()) if len(d) else float("inf")
 
 
 def _vertex_ids(coords: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray]:
@@ -183,9 +204,8 @@ def segment_keys(geoms, *, tolerance=None, points=None) -> np.ndarray:
     arr = np.concatenate(segs)
     coords = arr.reshape(-1, 2)
     extra = np.zeros((0, 2)) if points is None else np.asarray(points, dtype=np.float64)
-    ids, _ = _vertex_ids(
-        np.vstack((coords, extra)), _tolerance(np.vstack((coords, extra)), tolerance)
-    )
+    both = np.vstack((coords, extra))
+    ids, _ = _vertex_ids(both, _tolerance(both, tolerance, arr))
     ids = ids[: len(coords)].reshape(-1, 2)
     ids = ids[ids[:, 0] != ids[:, 1]]
     return np.sort(ids, axis=1)
@@ -380,7 +400,7 @@ def merge_lines(lines, *, tolerance=None) -> list:
         return []
     segs = np.concatenate([np.stack((p[:-1], p[1:]), axis=1) for p in pieces if len(p) >= 2])
     coords = segs.reshape(-1, 2)
-    ids, verts = _vertex_ids(coords, _tolerance(coords, tolerance))
+    ids, verts = _vertex_ids(coords, _tolerance(coords, tolerance, segs))
     e = ids.reshape(-1, 2)
     e = e[e[:, 0] != e[:, 1]]
     if not len(e):
@@ -664,7 +684,7 @@ def layer_paths(
     if not everything:
         return Paths([], np.zeros(0, dtype=bool))
     coords = np.concatenate(everything)
-    tol = _tolerance(coords, tolerance)
+    tol = _tolerance(coords, tolerance, [np.vstack((r, r[:1])) for r in rings] + lines)
     tiny = sum(1 for r in rings if float(np.ptp(r, axis=0).max()) <= tol)
     if tiny:  # they collapse to a point: say so rather than drop them silently
         warnings.warn(
