@@ -740,11 +740,19 @@ POWER_FIT_SCALE_EXP = 64
 POWER_FIT_CONTINUATION_STEP = 0.25
 POWER_FIT_CONTINUATION_MIN_STEP = 1.0 / 64.0
 POWER_FIT_CONTINUATION_RTOL = 1e-3
-#: engine.capacity._gap_continuation: the relaxed density's gap weight falls by this
-#: factor per stage (a later stage that does not fit in POWER_FIT_GAP_STAGE_STEPS Newton
-#: steps is retried with the factor's square root, down to POWER_FIT_GAP_MIN_FACTOR); on a
-#: MultiPolygon plain Newton first gets POWER_FIT_GAP_FIRST_STEPS steps
-POWER_FIT_GAP_EPS_FACTOR = 10.0
+#: engine.capacity._gap_continuation (a MultiPolygon's far parts; sites in a hole or a
+#: notch): the relaxed density on the hull outside the domain starts at most at
+#: POWER_FIT_GAP_FIRST_EPS (1: the plain fit on the convex hull) and falls by
+#: POWER_FIT_GAP_FACTOR per stage, squared after a stage that fits in POWER_FIT_GAP_EASY_STEPS
+#: Newton steps; each stage is fitted to POWER_FIT_GAP_STAGE_RTOL (a 1,000-site ring with
+#: 28% of its sites in the hole: 234 power diagrams, 414 with the old 10x-a-stage schedule).
+#: A later stage that does not fit in POWER_FIT_GAP_STAGE_STEPS Newton steps is retried
+#: with the factor's square root, down to POWER_FIT_GAP_MIN_FACTOR; on a MultiPolygon plain
+#: Newton first gets POWER_FIT_GAP_FIRST_STEPS steps
+POWER_FIT_GAP_FIRST_EPS = 1.0
+POWER_FIT_GAP_FACTOR = 2.0
+POWER_FIT_GAP_STAGE_RTOL = 0.3
+POWER_FIT_GAP_EASY_STEPS = 2
 POWER_FIT_GAP_MIN_FACTOR = 1.1
 POWER_FIT_GAP_STAGE_STEPS = 40
 POWER_FIT_GAP_FIRST_STEPS = 20

@@ -16,8 +16,12 @@ from ..config import (
     POWER_FIT_CONTINUATION_STEP,
     POWER_FIT_DEFAULT_RTOL,
     POWER_FIT_FAR,
+    POWER_FIT_GAP_EASY_STEPS,
+    POWER_FIT_GAP_FACTOR,
+    POWER_FIT_GAP_FIRST_EPS,
     POWER_FIT_GAP_FIRST_STEPS,
     POWER_FIT_GAP_MIN_FACTOR,
+    POWER_FIT_GAP_STAGE_RTOL,
     POWER_FIT_GAP_STAGE_STEPS,
     POWER_FIT_SCALE_EXP,
     POWER_FIT_SUM_RTOL,
@@ -28,17 +32,6 @@ from .power import PowerDiagram, fit_weights, power_diagram, shrink_start
 from .threads import serial_below
 
 __all__ = ["as_targets", "power_fit"]
-
-# the relaxed-density continuation (_gap_continuation; lead: move to config.py, where they
-# replace POWER_FIT_GAP_EPS_FACTOR): the gap's density starts at most at _GAP_FIRST_EPS
-# (1: the plain fit on the convex hull) and falls by _GAP_FACTOR per stage, squared after a
-# stage that fits in _GAP_EASY_STEPS Newton steps; each stage is fitted to _GAP_STAGE_RTOL.
-# F3 ring (1000 sites, 28% in the hole): 234 power diagrams, 414 with the old schedule
-# (0.5, 10, 1e-3, no squaring); three squares 1000 apart, 40 sites in one: 2536 and 4395
-_GAP_FIRST_EPS = 1.0
-_GAP_FACTOR = 2.0
-_GAP_STAGE_RTOL = 0.3
-_GAP_EASY_STEPS = 2
 
 
 def as_targets(target_areas, n: int, dom: Domain, name: str = "target_areas") -> np.ndarray:
@@ -261,10 +254,10 @@ def _gap_continuation(pts, t, dom, w0, tol, max_iter):
     the slivers seeded for them make Newton's steps empty other cells (checker22 F3). The
     density 1 on the domain and ``eps`` on the rest of its convex hull has a connected
     support, where damped Newton converges from any weights that give every cell mass
-    (Kitagawa, Merigot and Thibert 2019). ``eps`` starts at ``_GAP_FIRST_EPS`` (at most
-    the gap holding as much mass as the domain) and falls by ``_GAP_FACTOR`` per stage
+    (Kitagawa, Merigot and Thibert 2019). ``eps`` starts at ``POWER_FIT_GAP_FIRST_EPS`` (at most
+    the gap holding as much mass as the domain) and falls by ``POWER_FIT_GAP_FACTOR`` per stage
     (squared after an easy stage, its square root after a stage that does not fit), each
-    a warm start fitted to ``_GAP_STAGE_RTOL``, until the gap's mass is within that
+    a warm start fitted to ``POWER_FIT_GAP_STAGE_RTOL``, until the gap's mass is within that
     tolerance of the smallest target; then ``eps = 0`` to ``tol``. ``w0`` must give
     every cell mass under the first density. Returns ``(d, w, err, steps)``, or None when
     the first stage does not fit or the factor falls below ``POWER_FIT_GAP_MIN_FACTOR``.
@@ -274,11 +267,11 @@ def _gap_continuation(pts, t, dom, w0, tol, max_iter):
     gap = hull.area - area
     if not gap > 0.0:
         return None
-    eps = min(_GAP_FIRST_EPS, area / gap)
-    want = max(tol, _GAP_STAGE_RTOL)
+    eps = min(POWER_FIT_GAP_FIRST_EPS, area / gap)
+    want = max(tol, POWER_FIT_GAP_STAGE_RTOL)
     end = want * float(t.min())
     w, steps = w0.copy(), 0
-    factor, last = _GAP_FACTOR, None
+    factor, last = POWER_FIT_GAP_FACTOR, None
     while eps * gap > end:
         te = t * ((area + eps * gap) / area)
         cap = max_iter if last is None else min(max_iter, POWER_FIT_GAP_STAGE_STEPS)
@@ -289,7 +282,7 @@ def _gap_continuation(pts, t, dom, w0, tol, max_iter):
         steps += it
         if err <= want:
             w, last = w_try, eps
-            if it <= _GAP_EASY_STEPS:  # an easy stage: the next one a longer step
+            if it <= POWER_FIT_GAP_EASY_STEPS:  # an easy stage: the next one a longer step
                 factor *= factor
             eps /= factor
             continue
