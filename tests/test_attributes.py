@@ -207,3 +207,28 @@ def test_a_crs_dict_must_be_projjson_pyproj_reads(tmp_path):
     with pytest.raises(ValueError, match="is not a coordinate reference system"):
         write_cells(d, tmp_path / "c.parquet", crs={"hello": 1})
     assert not list(tmp_path.iterdir())
+
+
+def test_design_file_seeds_keep_an_area_beside_an_input_area(tmp_path):
+    # checker25 F3: `area` renamed to `input_area` overwrote the file's own `input_area`
+    # (a file-seeded design's GeoJSON has both, so a round trip lost a column)
+    import pyarrow.parquet as pq
+
+    from voroforge.design.build import build
+
+    (tmp_path / "pts.csv").write_text("x,y,area,input_area\n10,10,111,keep-me\n60,40,222,too\n")
+    spec = {
+        "design": {"name": "rt"},
+        "boundary": {"shape": "rectangle", "width": 100, "height": 80},
+        "seeds": {"method": "file", "file": str(tmp_path / "pts.csv")},
+        "output": {"formats": ["geojson", "parquet"]},
+    }
+    build(spec, tmp_path / "o")
+    props = [
+        f["properties"] for f in json.loads((tmp_path / "o" / "rt.geojson").read_text())["features"]
+    ]
+    assert [p["input_area"] for p in props] == ["keep-me", "too"]
+    assert [p["input_input_area"] for p in props] == [111, 222]
+    assert np.isclose(sum(p["area"] for p in props), 8000.0)
+    table = pq.read_table(tmp_path / "o" / "rt.parquet").to_pydict()
+    assert table["input_area"] == ["keep-me", "too"] and table["input_input_area"] == [111, 222]

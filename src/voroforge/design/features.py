@@ -15,6 +15,8 @@ from pathlib import Path
 import numpy as np
 import shapely
 
+from ..io.readers.points import attribute_names
+
 __all__ = ["COMPUTED", "cell_features", "write_parquet"]
 
 #: Properties the writers fill themselves; a seed-file column of that name is kept as
@@ -67,8 +69,10 @@ def _seed_rows(result, table) -> tuple[np.ndarray, np.ndarray, dict]:
         column = np.full(n, None, dtype=object)
         column[table.rows] = values.tolist()
         props[name] = column
-    for name, column in table.attributes.items():
-        props[f"input_{name}" if name in COMPUTED else name] = column
+    # renamed again while a name clashes ("area" beside "input_area": both kept, checker25 F3)
+    names = attribute_names(list(table.attributes), COMPUTED)
+    for name, column in zip(names, table.attributes.values(), strict=True):
+        props[name] = column
     return geoms, sites, props
 
 
