@@ -159,3 +159,18 @@ def test_curves_from_an_svg_file_and_inline_polylines_agree(tmp_path):
     assert traced[0].equals_exact(traced[1], 1e-6)
     out = build(tmp_path / "d.toml", tmp_path / "out")  # the curves product as a layer
     assert "ENGRAVE" in out[0].read_text()
+
+
+@pytest.mark.parametrize("curve", [[[0, 0], [200, 0]], [[0, 300], [200, 300]]])
+def test_a_curve_no_cell_edge_can_trace_builds(tmp_path, curve):
+    # checker25 F4: a curve along the outline or outside it left no crossing edge and
+    # `voroforge build` ended in a TypeError traceback from shapely
+    d = vf.voronoi(np.random.default_rng(0).random((30, 2)) * [200, 120], (0, 0, 200, 120))
+    traced = crossing_edges(d, [curve])
+    assert traced.geom_type == "MultiLineString" and traced.is_empty
+    spec = {
+        "boundary": {"shape": "rectangle", "width": 200, "height": 120},
+        "seeds": {"method": "curves", "curves": [curve], "spacing": 8, "radius": 20},
+    }
+    written = build(spec, tmp_path / "o")
+    assert written and all(p.exists() for p in written)

@@ -618,4 +618,6 @@ def crossing_edges(diagram, curves) -> shapely.MultiLineString:
     cross = shapely.intersects(network, links)
     segs = shapely.linestrings(np.asarray(e.coords)[cross])
     merged = shapely.line_merge(shapely.MultiLineString(list(segs)))
+    if merged.is_empty:  # no link crosses a curve (it runs along the outline or outside)
+        return shapely.MultiLineString()
     return merged if merged.geom_type == "MultiLineString" else shapely.MultiLineString([merged])
