@@ -100,6 +100,9 @@ CASES = [
     (SOLID, SHELL, "profile = [[1, 0], [nan, 5], [1, 10]]", "solid.profile.1.0", "finite"),
     (SOLID, SHELL, "profile = [[1, 0]]", "solid.profile", "at least 2 points"),
     (SOLID, SHELL, "profile = [[-1, 0], [2, 5], [1, 10]]", "solid.profile", ">= 0"),
+    # checker25 F6: profiles sweeping no area ended in an IndexError from sample_even
+    (SOLID, SHELL, "profile = [[10, 0], [10, 0], [10, 0]]", "solid.profile", "no length"),
+    (SOLID, SHELL, "profile = [[0, 0], [0, 5]]", "solid.profile", "on the z axis"),
     (
         SOLID,
         FOAM,

@@ -130,6 +130,12 @@ class SolidSection(BaseModel):
                     f"@profile@ profile must be [[r, z], ...] with at least 2 points; "
                     f"got {len(self.profile)}"
                 )
+            if all(tuple(q) == tuple(self.profile[0]) for q in self.profile):
+                raise ValueError("@profile@ profile has no length: all its points are one point")
+            if all(r == 0 for r, _ in self.profile):
+                raise ValueError(
+                    "@profile@ profile lies on the z axis (every r = 0): revolved, it has no area"
+                )
             neg = [i for i, (r, _) in enumerate(self.profile) if r < 0]
             if neg:
                 raise ValueError(
