@@ -209,3 +209,18 @@ def test_point_header_naming_a_coordinate_twice_is_refused(tmp_path):
     p.write_text("X,y,x\n1,2,3\n")  # names are case-blind
     with pytest.raises(ValueError, match="2 times"):
         read_text_point_table(p, dims=2)
+
+
+@pytest.mark.parametrize(
+    ("table", "key", "value"),
+    [("design", "name", "x\\ny"), ("design", "name", "x\\ty"), ("output", "stem", "a\\u0000b")],
+)
+def test_output_names_with_control_characters_are_errors_at_their_line(tmp_path, table, key, value):
+    # checker25 F2: a name with a newline wrote DIR/x<LF>y.svg; a NUL ended in "embedded null
+    # byte" with no key or line
+    path = tmp_path / "f.toml"
+    path.write_text(f'[{table}]\n{key} = "{value}"\n')
+    with pytest.raises(DesignError) as info:
+        load(path)
+    text = str(info.value)
+    assert f"f.toml:2: {table}.{key}" in text and "control characters" in text

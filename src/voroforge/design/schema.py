@@ -221,8 +221,11 @@ class Info(_Model):
 
     @model_validator(mode="after")
     def _name(self) -> Info:
-        if re.search(r"[\\/]", self.name) or not self.name.strip():
-            raise _need("name", "must be a file name without folders (it names the outputs)")
+        if re.search(r"[\\/\x00-\x1f\x7f]", self.name) or not self.name.strip():
+            raise _need(
+                "name",
+                "must be a file name without folders or control characters (it names the outputs)",
+            )
         return self
 
 
@@ -580,8 +583,8 @@ class Output(_Model):
             )
         if "gif" in self.formats and self.gif is None:
             raise _need("gif", "formats includes 'gif': add an [output.gif] table")
-        if re.search(r"[\\/]", self.stem or ""):
-            raise _need("stem", "must be a file name without folders")
+        if re.search(r"[\\/\x00-\x1f\x7f]", self.stem or ""):
+            raise _need("stem", "must be a file name without folders or control characters")
         seen: dict[str, str] = {}
         for name in self.layers:
             key = name.strip().upper()  # SVG and DXF layers are upper-cased
