@@ -508,3 +508,33 @@ def test_periodic_tile_check_looks_across_the_seams():
     # each neighbouring pair once: no two violations at the same spot
     spots = {(round(v.location[0], 6), round(v.location[1], 6)) for v in webs}
     assert len(spots) == len(webs)
+
+
+def test_design_corner_tolerance_default_is_in_millimetres():
+    # checker25 F1: the default 0.02 was drawing units, 20 mm in a design drawn in metres:
+    # the same part had 442 corner violations in mm and none in m
+    from voroforge.design.build import check_design
+    from voroforge.design.designfile import load
+    from voroforge.design.fabrication import design_corner_tolerance
+
+    counts = {}
+    for units, s in [("mm", 1.0), ("in", 1 / 25.4), ("m", 1e-3)]:
+        spec = {
+            "design": {"units": units, "seed": 3},
+            "boundary": {
+                "shape": "rectangle",
+                "width": 200 * s,
+                "height": 150 * s,
+                "margin": 15 * s,
+            },
+            "seeds": {"method": "poisson", "radius": 38 * s},
+            "cells": {"web": 3 * s},
+            "fabrication": {"tool_radius": 1.0 * s},
+        }
+        design = load(spec)[0]
+        assert np.isclose(design_corner_tolerance(design), 0.02 * s, rtol=1e-15)
+        counts[units] = sum(v.kind == "corner" for v in check_design(spec).violations)
+    assert counts["mm"] > 0
+    assert max(counts.values()) - min(counts.values()) <= 0.1 * counts["mm"]
+    given = load({**spec, "fabrication": {"tool_radius": 1e-3, "corner_tolerance": 0.5}})[0]
+    assert design_corner_tolerance(given) == 0.5  # a value given is the design's units

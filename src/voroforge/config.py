@@ -358,8 +358,10 @@ TILING_AREA_RTOL = 1e-9
 FAB_LIMIT_ATOL = 1e-6
 
 #: design.fabrication.check: uncut material thinner than this (drawing units) in a corner is
-#: ignored (chord-vs-arc noise of fillets); also the design files' default corner_tolerance.
+#: ignored (chord-vs-arc noise of fillets)
 FAB_CORNER_TOLERANCE = 0.02
+#: ...and a design file's default corner_tolerance, in millimetres (converted to design.units)
+FAB_CORNER_TOLERANCE_MM = 0.02
 
 #: design.fabrication: corner leftovers with area below (this x corner tolerance)^2 are noise.
 FAB_CORNER_AREA_RTOL = 0.1

@@ -611,14 +611,14 @@ def sweep_designs(design: Design) -> dict[str, Design]:
 
 
 def _report(result: Result):
-    from .fabrication import Report, check
+    from .fabrication import Report, check, design_corner_tolerance
 
     f = result.design.fabrication
     limits = {
         "min_web": f.min_web,
         "min_opening": f.min_opening,
         "min_inside_radius": f.tool_radius,
-        "corner_tolerance": f.corner_tolerance,
+        "corner_tolerance": design_corner_tolerance(result.design),
         "islands": f.islands,
         "keys": {
             "min_web": "fabrication.min_web",

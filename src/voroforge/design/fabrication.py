@@ -26,7 +26,7 @@ import numpy as np
 import shapely
 
 from .. import config
-from .boundary import union_all_checked
+from .boundary import MM_PER_UNIT, union_all_checked
 
 __all__ = [
     "KINDS",
@@ -34,6 +34,7 @@ __all__ = [
     "Report",
     "Violation",
     "check",
+    "design_corner_tolerance",
     "inscribed_circles",
     "kerf",
     "pack_pieces",
@@ -343,6 +344,18 @@ def _check_limit(name: str, value) -> float | None:
     if not math.isfinite(v) or v < 0:
         raise ValueError(f"{name} must be a non-negative number; got {value!r}")
     return v
+
+
+def design_corner_tolerance(design) -> float:
+    """A design's ``fabrication.corner_tolerance``: as given, else 0.02 mm in its units.
+
+    (:data:`~voroforge.config.FAB_CORNER_TOLERANCE_MM`; a default of 0.02 drawing units was
+    20 mm in a design drawn in metres, and every uncut corner up to that deep passed.)
+    """
+    given = design.fabrication.corner_tolerance
+    if given is not None:
+        return given
+    return config.FAB_CORNER_TOLERANCE_MM / MM_PER_UNIT[design.design.units]
 
 
 def check(

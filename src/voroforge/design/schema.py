@@ -604,7 +604,7 @@ class Fabrication(_Model):
     min_web: NonNegFloat | None = None
     min_opening: NonNegFloat | None = None
     tool_radius: NonNegFloat | None = None
-    corner_tolerance: NonNegFloat = config.FAB_CORNER_TOLERANCE
+    corner_tolerance: NonNegFloat | None = None  # FAB_CORNER_TOLERANCE_MM in design.units
     islands: Flag = True
     report: Flag = False
 

@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
-from ..design.fabrication import KINDS, Violation, check
+from ..design.fabrication import KINDS, Violation, check, design_corner_tolerance
 
 __all__ = ["LiveCheck", "limits_of"]
 
@@ -35,7 +35,7 @@ def limits_of(design) -> dict:
         "min_web": f.min_web,
         "min_opening": f.min_opening,
         "min_inside_radius": f.tool_radius,
-        "corner_tolerance": f.corner_tolerance,
+        "corner_tolerance": design_corner_tolerance(design),
         "islands": f.islands,
     }
 
