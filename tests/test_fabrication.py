@@ -1,6 +1,8 @@
 """Fabrication outputs and checks: DXF with true arcs, layered SVG, the fabrication report."""
 
 import math
+import re
+import warnings
 import xml.etree.ElementTree as ET
 
 import ezdxf
@@ -538,3 +540,25 @@ def test_design_corner_tolerance_default_is_in_millimetres():
     assert max(counts.values()) - min(counts.values()) <= 0.1 * counts["mm"]
     given = load({**spec, "fabrication": {"tool_radius": 1e-3, "corner_tolerance": 0.5}})[0]
     assert design_corner_tolerance(given) == 0.5  # a value given is the design's units
+
+
+def test_openings_narrower_than_the_kerf_are_named(tmp_path):
+    # checker25 F5: a kerf wider than an opening dropped it from the SVG/DXF without a word
+    from voroforge.design.build import DesignWarning, build
+
+    spec = {
+        "design": {"name": "k", "seed": 2},
+        "boundary": {"shape": "rectangle", "width": 100, "height": 60},
+        "seeds": {"method": "poisson", "radius": 10},
+        "cells": {"web": 3},
+        "output": {"formats": ["dxf"], "kerf": 6},
+    }
+    with pytest.warns(DesignWarning, match=r"output\.kerf: (\d+) of (\d+) openings") as rec:
+        (path,) = build(spec, tmp_path / "o")
+    lost, total = map(int, re.search(r"(\d+) of (\d+) openings", str(rec[0].message)).groups())
+    assert 0 < lost < total
+    rings = len(ezdxf.readfile(path).modelspace().query("LWPOLYLINE"))
+    assert rings == 1 + total - lost  # the outline and the openings that can be cut
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", DesignWarning)
+        build({**spec, "output": {"formats": ["dxf"], "kerf": 0.2}}, tmp_path / "p")

@@ -310,6 +310,7 @@ def build(
     if "svg" in o.formats or "dxf" in o.formats:
         _warn_empty_layers(result)
         _warn_coincident_layers(_layers(result, kerf))
+        _warn_kerf_losses(result, kerf)
     for fmt in o.formats:
         path = out / f"{stem}.{fmt}"
         stage(f"writing {path.name}")
@@ -521,6 +522,25 @@ def _warn_empty_layers(result: Result) -> None:
                 DesignWarning,
                 stacklevel=3,
             )
+
+
+def _warn_kerf_losses(result: Result, kerf: float) -> None:
+    """Warn about openings the kerf shrinks to nothing (left out of the cut file)."""
+    import warnings
+
+    from .fabrication import kerf as apply_kerf
+
+    holes = list(result.openings)
+    if kerf <= 0 or not holes:
+        return
+    lost = int(np.count_nonzero(shapely.is_empty(apply_kerf(holes, kerf, role="hole"))))
+    if lost:
+        warnings.warn(
+            f"output.kerf: {lost} of {len(holes)} openings are narrower than the kerf {kerf:g} "
+            "and are left out of the cut (too small to cut: a smaller kerf, or larger openings)",
+            DesignWarning,
+            stacklevel=3,
+        )
 
 
 def _warn_coincident_layers(layers: dict) -> None:
