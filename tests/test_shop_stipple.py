@@ -106,3 +106,26 @@ def test_design_seeds_follow_an_image(tmp_path):
     assert len(r.sites) == 300
     assert (r.sites[:, 0] < 0).mean() > 0.85  # darkness 1 against 0.1
     assert np.hypot(*r.sites.T).max() <= 50
+
+
+def test_sixteen_bit_and_float_images_are_read_at_their_depth(tmp_path):
+    # checker25 F9: Pillow's convert("L") clipped a 16-bit grey PNG above 255/65535 to white
+    # (98% white on a black-to-white gradient), and float images read black everywhere
+    from PIL import Image
+
+    x = np.linspace(0, 1, 64)[None, :].repeat(8, 0)
+    Image.fromarray(np.round(x * 255).astype(np.uint8)).save(tmp_path / "g8.png")
+    Image.fromarray(np.round(x * 65535).astype(np.uint16)).save(tmp_path / "g16.png")
+    Image.fromarray(x.astype(np.float32)).save(tmp_path / "gf.tif")
+    g8, g16, gf = (grey_image(tmp_path / f) for f in ("g8.png", "g16.png", "gf.tif"))
+    assert np.abs(g16 - x).max() <= 0.5 / 65535 + 1e-15
+    assert np.abs(g8 - x).max() <= 0.5 / 255 + 1e-15
+    assert np.abs(gf - x).max() <= 1e-7
+    bad = x.astype(np.float32)
+    bad[0, 0] = np.nan
+    Image.fromarray(bad).save(tmp_path / "nan.tif")
+    with pytest.raises(ValueError, match="NaN"):
+        grey_image(tmp_path / "nan.tif")
+    Image.fromarray((x * 255).astype(np.float32)).save(tmp_path / "big.tif")
+    with pytest.raises(ValueError, match=r"must lie in \[0, 1\]"):
+        grey_image(tmp_path / "big.tif")

@@ -59,6 +59,30 @@ def demo_image(size: int = 256) -> np.ndarray:
     return np.clip(grey, 0.0, 1.0)
 
 
+#: Pillow's single-channel modes deeper than 8 bits (16-bit PNG/TIFF open as "I" or "I;16",
+#: float TIFF as "F"): converting them to "L" clipped every value above 255 to white
+_DEEP_MODES = ("I", "I;16", "I;16B", "I;16L", "I;16N", "F")
+
+
+def _deep_grey(arr: np.ndarray, mode: str, path: Path) -> np.ndarray:
+    """Grey values in [0, 1] of a 16-bit, 32-bit integer or float image (1 white)."""
+    if not np.isfinite(arr).all():
+        raise ValueError(f"{path}: the image has NaN or infinite pixels")
+    lo, hi = float(arr.min()), float(arr.max())
+    if mode == "F":
+        if lo < 0 or hi > 1:
+            raise ValueError(
+                f"{path}: a float image's grey values must lie in [0, 1]; got [{lo:g}, {hi:g}]"
+            )
+        return arr
+    if lo < 0 or hi > 65535:
+        raise ValueError(
+            f"{path}: integer grey values past 16 bits ([{lo:g}, {hi:g}]); save it as an 8- or "
+            "16-bit image"
+        )
+    return arr / 65535.0
+
+
 def grey_image(source) -> np.ndarray:
     """A greyscale image in [0, 1] (1 white), row 0 at the top, from a file or an array.
 
@@ -66,7 +90,8 @@ def grey_image(source) -> np.ndarray:
     ----------
     source : str, Path or (h, w) array_like
         An image file pillow reads (PNG, JPEG, ...; colour is converted to luminance, alpha
-        over white), or grey values in [0, 1].
+        over white; 16-bit grey is read at 16 bits, a float image must hold [0, 1]), or grey
+        values in [0, 1].
 
     Returns
     -------
@@ -80,6 +105,8 @@ def grey_image(source) -> np.ndarray:
             raise ValueError(f"{path}: no such image file")
         try:
             with Image.open(path) as im:
+                if im.mode in _DEEP_MODES:  # one channel past 8 bits: read at its own depth
+                    return _deep_grey(np.asarray(im, dtype=np.float64), im.mode, path)
                 im = im.convert("RGBA")
                 white = Image.new("RGBA", im.size, (255, 255, 255, 255))
                 arr = np.asarray(Image.alpha_composite(white, im).convert("L"), dtype=np.float64)
