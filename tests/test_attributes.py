@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import warnings
 
 import numpy as np
 import pytest
@@ -232,3 +233,30 @@ def test_design_file_seeds_keep_an_area_beside_an_input_area(tmp_path):
     assert np.isclose(sum(p["area"] for p in props), 8000.0)
     table = pq.read_table(tmp_path / "o" / "rt.parquet").to_pydict()
     assert table["input_area"] == ["keep-me", "too"] and table["input_input_area"] == [111, 222]
+
+
+def test_seeds_in_another_crs_than_the_boundary_are_named(tmp_path):
+    # checker25 F8: boundary and seed GeoJSON in different CRSs were mixed silently, the
+    # output claiming the boundary's
+    from voroforge.design.build import DesignWarning, build
+
+    _boundary(tmp_path)
+    other = {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32633"}}
+    feats = [
+        {"type": "Feature", "properties": {}, "geometry": {"type": "Point", "coordinates": p}}
+        for p in ([0.2, 0.3], [0.7, 0.6], [0.4, 0.8])
+    ]
+    seeds = {"type": "FeatureCollection", "crs": other, "features": feats}
+    (tmp_path / "s.geojson").write_text(json.dumps(seeds))
+    spec = {
+        "boundary": {"shape": "file", "file": str(tmp_path / "bnd.geojson")},
+        "seeds": {"method": "file", "file": str(tmp_path / "s.geojson")},
+        "output": {"formats": ["geojson"]},
+    }
+    with pytest.warns(DesignWarning, match="EPSG::32633 is not boundary.file's .*EPSG::2056"):
+        build(spec, tmp_path / "o")
+    seeds["crs"] = CRS  # the same CRS: no warning
+    (tmp_path / "s.geojson").write_text(json.dumps(seeds))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", DesignWarning)
+        build(spec, tmp_path / "p")

@@ -191,12 +191,15 @@ def _source_crs(result: Result, base: Path | None):
 
     QGIS writes one for projected data; copying it keeps the output where the input was.
     """
+    import warnings
+
     from ..io.readers.geojson import geojson_crs
 
     d = result.design
-    files = [d.boundary.file if d.boundary.shape == "file" else None]
-    files.append(d.seeds.file if d.seeds.method == "file" else None)
-    for name in files:
+    files = {"boundary.file": d.boundary.file if d.boundary.shape == "file" else None}
+    files["seeds.file"] = d.seeds.file if d.seeds.method == "file" else None
+    found = {}
+    for key, name in files.items():
         if not name or Path(name).suffix.lower() not in (".geojson", ".json"):
             continue
         try:
@@ -204,8 +207,20 @@ def _source_crs(result: Result, base: Path | None):
         except (OSError, ValueError, DesignError):
             continue
         if crs is not None:
-            return crs
-    return None
+            found[key] = crs
+    if len(found) == 2 and found["boundary.file"] != found["seeds.file"]:
+        named = {
+            k: c.get("properties", {}).get("name", c) if isinstance(c, dict) else c
+            for k, c in found.items()
+        }
+        warnings.warn(  # checker25 F8: mixed silently, the output claiming the boundary's
+            f"seeds.file: its GeoJSON crs {named['seeds.file']} is not boundary.file's "
+            f"{named['boundary.file']}; nothing is reprojected (the output claims the "
+            "boundary's): reproject one file",
+            DesignWarning,
+            stacklevel=3,
+        )
+    return next(iter(found.values()), None)
 
 
 def _geojson(result: Result, path: Path, base: Path | None = None) -> Path:
