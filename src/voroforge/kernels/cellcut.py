@@ -37,16 +37,19 @@ from numba import njit
 from ..config import NJIT, RELABEL_RTOL, RELABEL_ULPS
 from .cellsides import (  # noqa: F401  (re-exported: cells, folds, halfplane_settle)
     class_err,
+    end_past,
     near_sides,
     on_side,
     on_sides,
     onto_sides,
+    past_side,
     side_reach,
     side_reaches,
     vertex_at,
 )
 from .clip import dedupe_ring
 from .power import box_cell
+from .sidegap import restore_side_vertices
 from .vertex import box_crossing
 
 _U = 2.0**-53
@@ -192,10 +195,16 @@ def _past_side_crossings(i, a, b, t, xs, ys, cx, cy, reach, box):
 
 @njit(**NJIT)
 def _inside_box(t, cx, cy, reach, box):
-    """Whether triangle ``t``'s centre lies inside ``box`` by more than its side reach."""
-    if t < 0 or reach[t] < 0.0:
+    """Whether triangle ``t``'s centre lies inside ``box`` by more than its side reach.
+
+    A centre never put on a side (a negative reach, :func:`side_reaches`) is every cell's
+    vertex where it lies: inside when inside by more than its rounding bound, the reach's
+    size (issue 15: a float circle's vertex 2.75 ulps from a side, its sites an ulp from
+    each other, was dropped by the one cell whose cut lost its edge to the side).
+    """
+    if t < 0:
         return False
-    e = reach[t]
+    e = abs(reach[t])
     return box[0] + e < cx[t] < box[2] - e and box[1] + e < cy[t] < box[3] - e
 
 
@@ -254,22 +263,7 @@ def _side_vertex(
 
 
 @njit(**NJIT)
-def _past_side(t, side, cx, cy, reach, box):
-    """Whether triangle ``t``'s centre lies past box side ``side`` by more than its reach."""
-    if t < 0 or reach[t] < 0.0:
-        return False
-    e = reach[t]
-    if side == -1:
-        return cx[t] < box[0] - e
-    if side == -2:
-        return cy[t] < box[1] - e
-    if side == -3:
-        return cx[t] > box[2] + e
-    return cy[t] > box[3] + e
-
-
-@njit(**NJIT)
-def _drop_outside_edges(pw, m, nbrs, tris, nn, cx, cy, reach, box):
+def _drop_outside_edges(i, xs, ys, pw, m, nbrs, tris, nn, cx, cy, reach, box):
     """Give an edge that meets a box side the owner whose edge does; in place on ``pw``.
 
     An edge entering the box from a side (or leaving it) whose two ends, the centres of
@@ -277,7 +271,10 @@ def _drop_outside_edges(pw, m, nbrs, tris, nn, cx, cy, reach, box):
     their reach lies outside the box, exactly (a segment between two points past a side).
     Floats kept it: nearly parallel bisectors of sites a few ulps apart on a float circle
     far out met inside the box (issue 15: site 47 of 1,000 at r = 1e-7, (5e5, 4e6),
-    phase 0.05 kept 51's neighbour 52 and lost 51's 13-ulp edge). The owner passes to the
+    phase 0.05 kept 51's neighbour 52 and lost 51's 13-ulp edge). An end past a hull end is
+    the ray's, at infinity (:func:`.cellsides.end_past`; phase 0.95: hull site 352's ray with 355, 5
+    ulps left of the left side and running left, kept its 1-ulp neighbour 354 off the
+    side). A centre never put on a side counts by its rounding bound. The owner passes to the
     next neighbour in rotation order (entering; the previous one leaving) until the edge
     does reach the box; :func:`_canonical_vertices` then names its side crossing and the
     chain after it.
@@ -297,14 +294,15 @@ def _drop_outside_edges(pw, m, nbrs, tris, nn, cx, cy, reach, box):
         hint = kj
         for _ in range(nn):
             k0 = kj - 1 if kj > 0 else nn - 1
+            k1 = kj + 1 if kj + 1 < nn else 0
             t0 = tris[k0]
             t1 = tris[kj]
-            if before < 0 and _past_side(t0, before, cx, cy, reach, box):
-                if _past_side(t1, before, cx, cy, reach, box):
-                    kj = kj + 1 if kj + 1 < nn else 0
+            if before < 0 and past_side(t1, before, cx, cy, reach, box):
+                if end_past(i, nbrs[kj], nbrs[k1], t0, before, xs, ys, cx, cy, reach, box):
+                    kj = k1
                     continue
-            if after < 0 and _past_side(t1, after, cx, cy, reach, box):
-                if _past_side(t0, after, cx, cy, reach, box):
+            if after < 0 and past_side(t0, after, cx, cy, reach, box):
+                if end_past(i, nbrs[kj], nbrs[k0], t1, after, xs, ys, cx, cy, reach, box):
                     kj = k0
                     continue
             break
@@ -321,10 +319,13 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, reach,
     in floating point); the chain of circumcentres between them is put back from the
     triangulation. A vertex on a box side is the canonical crossing of the bisector with that
     side; two box sides meet at an exact corner. Owners of box sides (-1..-4) become -1.
+    Sides the cut lost between two parallel bisectors (sites on one line) are put back
+    first (:func:`.sidegap.restore_side_vertices`).
     """
     # counters start as np.int64: a literal 0 would make numba compile each callee they
     # reach once more, for the literal
-    _drop_outside_edges(pw, m, nbrs, tris, nn, cx, cy, reach, box)
+    m = restore_side_vertices(i, px, py, pw, m, nbrs, tris, nn, xs, ys, box)
+    _drop_outside_edges(i, xs, ys, pw, m, nbrs, tris, nn, cx, cy, reach, box)
     out = np.int64(0)
     hint = np.int64(0)
     for v in range(m):

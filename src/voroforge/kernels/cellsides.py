@@ -14,8 +14,10 @@ import numpy as np
 from numba import njit
 
 from ..config import BOX_SIDE_REACH_ULPS, NJIT
+from .predicates import orient2d
 
 _U = 2.0**-53
+_TINY = 2.0**-1074  # a stay's reach is negative even where its centre's bound is 0
 
 
 @njit(**NJIT)
@@ -73,7 +75,7 @@ def class_err(cls, err):
 
 @njit(**NJIT)
 def side_reaches(xs, ys, tri, cls, cx, cy, err, box):
-    """Per triangle, how near a box side its centre is put on it; -1: never.
+    """Per triangle, how near a box side its centre is put on it; negative: never.
 
     :func:`side_reach` of the centre with its class's rounding bound ``err[t]``
     (:func:`class_err`), so every cell at a vertex decides alike. A vertex is left where
@@ -110,7 +112,9 @@ def side_reaches(xs, ys, tri, cls, cx, cy, err, box):
                 stay[cls[t]] = True
     for t in range(nt):
         if stay[cls[t]]:
-            reach[t] = -1.0
+            # negative: never put on a side; its size is the centre's rounding bound
+            # (cellcut: a centre inside, or past a side, by more than that is so exactly)
+            reach[t] = -max(err[t], _TINY)
     return reach
 
 
@@ -167,3 +171,52 @@ def vertex_at(t, cx, cy, reach, box):
     """Triangle ``t``'s centre as cells write it: on a side when within reach of it."""
     x, y, _ = on_sides(t, cx, cy, reach, box)
     return x, y
+
+
+@njit(**NJIT)
+def past_side(t, side, cx, cy, reach, box):
+    """Whether triangle ``t``'s centre lies past box side ``side`` by more than its reach.
+
+    A negative reach (a centre never put on a side) counts by its size, the centre's
+    rounding bound: past by more than that is past exactly.
+    """
+    if t < 0:
+        return False
+    e = abs(reach[t])
+    if side == -1:
+        return cx[t] < box[0] - e
+    if side == -2:
+        return cy[t] < box[1] - e
+    if side == -3:
+        return cx[t] > box[2] + e
+    return cy[t] > box[3] + e
+
+
+@njit(**NJIT)
+def end_past(i, j, c, t, side, xs, ys, cx, cy, reach, box):
+    """Whether the end of neighbour ``j``'s edge at triangle ``t`` lies past ``side``.
+
+    The centre of ``t`` past the side by more than its reach (:func:`past_side`); past a
+    hull end (``t`` -1) the edge is a ray from the other triangle's centre, ``(i, j, c)``'s,
+    away from ``c``: its end at infinity is past the side when the ray does not turn back
+    towards the box (the sign of a difference of two doubles, exact).
+    """
+    if t >= 0:
+        return past_side(t, side, cx, cy, reach, box)
+    if c < 0 or c == i or c == j:
+        return False
+    o = orient2d(xs[i], ys[i], xs[j], ys[j], xs[c], ys[c])
+    if not (o > 0.0 or o < 0.0):
+        return False
+    dx = xs[j] - xs[i]
+    dy = ys[j] - ys[i]
+    # perpendicular to i -> j, on the side away from c
+    ux = dy if o > 0.0 else -dy
+    uy = -dx if o > 0.0 else dx
+    if side == -1:
+        return ux <= 0.0
+    if side == -2:
+        return uy <= 0.0
+    if side == -3:
+        return ux >= 0.0
+    return uy >= 0.0

@@ -20,6 +20,7 @@ from ..config import (
     NJIT,
 )
 from .halfplane_settle import emit_exact, emit_float, settle_ring
+from .sidegap import restore_sides
 
 #: (2 r)^2 / r^2 with a margin against rounding: a site farther than twice the cell's
 #: radius from its site cannot cut it
@@ -165,7 +166,10 @@ def finish_cell(
     # Settling has a budget of its own, counted in its exact tests and named vertices: a
     # cell whose vertices have many sites on their circles to rounding (sites on one
     # circle) is hard however few sites its search visited
-    ms, _ = settle_ring(sidx[k], lab, m, ss, watch, keep, sidx, xs, ys, vx, vy, cand, box, budget)
+    # a side the float cut lost between two parallel bisectors (sites on one line) is put
+    # back, so that settling names the ring's side points by their crossings
+    ml = restore_sides(sidx[k], lab, ss, m, xs, ys, box)
+    ms, _ = settle_ring(sidx[k], lab, ml, ss, watch, keep, sidx, xs, ys, vx, vy, cand, box, budget)
     if ms == -2:
         return -2
     # emitted to scratch first: only then is the exact length known, and a rebuilt chunk's

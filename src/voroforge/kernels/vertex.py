@@ -50,6 +50,7 @@ from ..config import (
 )
 from .expansion import exact_circumcenter, two_sum
 from .predicates import orient2d
+from .sidecross import nearest_crossing
 
 
 @njit(**NJIT)
@@ -386,13 +387,16 @@ def box_crossing(a, b, xs, ys, side, box):
     """Where the bisector of sites ``a`` and ``b`` crosses box side ``side`` (-1..-4).
 
     Computed from the pair in canonical order, so both cells of the pair get the same bits;
-    NaN when the bisector is parallel to the side.
+    for sites a few ulps apart the double nearest the exact crossing
+    (:func:`.sidecross.nearest_crossing`: their crossings of one side stay in order, issue
+    15). NaN when the bisector is parallel to the side.
     """
     a = np.int64(a)
     b = np.int64(b)
     if before(b, a, xs, ys):
         a, b = b, a
-    return _side_crossing(xs[a], ys[a], xs[b] - xs[a], ys[b] - ys[a], 0.5, side, box)
+    x, y = _side_crossing(xs[a], ys[a], xs[b] - xs[a], ys[b] - ys[a], 0.5, side, box)
+    return nearest_crossing(xs[a], ys[a], xs[b], ys[b], side, box, x, y)
 
 
 @njit(**NJIT)
@@ -401,12 +405,15 @@ def power_box_crossing(a, b, xs, ys, ws, side, box):
 
     The bisector ``|x - a|^2 - w_a = |x - b|^2 - w_b`` passes through ``a + t (b - a)`` with
     ``t = 1/2 + (w_a - w_b) / (2 |b - a|^2)``: for equal weights ``t`` is exactly 1/2 and
-    the result is :func:`box_crossing`'s, bit for bit.
+    the result is :func:`box_crossing`'s, bit for bit (the nearest double: equal weights
+    go through it).
     """
     a = np.int64(a)
     b = np.int64(b)
     if before(b, a, xs, ys):
         a, b = b, a
+    if ws[a] == ws[b]:
+        return box_crossing(a, b, xs, ys, side, box)
     dx = xs[b] - xs[a]
     dy = ys[b] - ys[a]
     t = 0.5 + 0.5 * (ws[a] - ws[b]) / (dx * dx + dy * dy)

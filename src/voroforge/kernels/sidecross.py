@@ -1,0 +1,183 @@
+"""Bisectors' crossings with a box side, rounded to the nearest double.
+
+Where the bisector of two sites crosses a side of the box is named by the pair and the side
+(:func:`.vertex.box_crossing`), so every cell at it gets the same bits. The float formula
+is off by up to a couple of ulps, and two crossings of one side less than an ulp apart can
+then come out in the wrong order: the cell between the two bisectors runs backwards along
+the side and folds (issue 15: a float circle of 1,000 sites of radius 1e-7 at (5e5, 4e6),
+phase 0.05, crossings 118.79 and 118.25 ulps above the centre rounded to 118 and 119; the
+ring of the site between them was dropped and left a hole). The double nearest to each
+crossing keeps every pair in order (rounding to nearest is monotone), or puts both on one
+point. Only sites a few ulps apart (``SIDE_NEAREST_ULPS``) need it; farther pairs keep the
+float formula's bits.
+
+On a vertical side ``x = X`` the crossing is
+
+    y = ((ax - bx) (2 X - ax - bx) + (by - ay) (by + ay)) / (2 (by - ay))
+
+(a horizontal side swaps the axes). The numerator is a sum of 20 exact products of doubles
+(``two_diff``, ``two_sum``, ``two_product``), the denominator ``2 (by - ay)`` two doubles.
+The float estimate is moved to the double nearest the quotient by the signs of
+``N - m D`` at the midpoints ``m`` beside it: each sign is a compensated sum with a proven
+error bound (Ogita, Rump and Oishi's Sum2), or, where that bound cannot decide it, exact
+(Shewchuk's growth of an expansion). Coordinates whose products could underflow keep the
+float formula.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..config import NJIT
+from .expansion import grow, two_diff, two_product, two_sum
+
+_U = 2.0**-53
+_TINY = 2.0**-900  # a product below this may lose its error term to underflow
+_NT = 20  # exact parts of the numerator
+_MAX_STEPS = 8  # the float estimate is within an ulp or two: more means something is off
+# (for config.py) sites at most this many ulps (of their largest coordinate) apart get
+# the nearest double; farther pairs keep the float formula (every pair: 114 of the 186
+# catalogue diagrams changed bits; 2**-26 of the magnitude: 15). Crossings of one side
+# come within the formula's error (an ulp or two) of each other where the bisectors,
+# turning by |b - a| / R over a circumradius R, reach the side h from their vertex with
+# h |b - a| / R below it: for h ~ R (a float circle in its box) sites a few ulps apart;
+# a vertex much nearer the side is a side sliver (cellcut._drop_side_slivers)
+SIDE_NEAREST_ULPS = 16.0
+
+
+@njit(**NJIT)
+def _put(t, k, a, b):
+    """Write ``a * b`` as two exact parts at ``t[k:k + 2]``; False where it may underflow."""
+    hi, lo = two_product(a, b)
+    t[k] = hi
+    t[k + 1] = lo
+    return hi == 0.0 or abs(hi) >= _TINY
+
+
+@njit(**NJIT)
+def _numerator(ax, ay, bx, by, x, t):
+    """The numerator's exact parts into ``t[:_NT]``; False where a part may be inexact."""
+    p1, p0 = two_diff(ax, bx)
+    s1, s0 = two_sum(-ax, -bx)
+    q2, q1 = two_sum(2.0 * x, s1)  # 2 X - ax - bx = q2 + q1 + s0, exactly
+    r1, r0 = two_diff(by, ay)
+    u1, u0 = two_sum(by, ay)
+    ok = _put(t, 0, p1, q2) & _put(t, 2, p1, q1) & _put(t, 4, p1, s0)
+    ok &= _put(t, 6, p0, q2) & _put(t, 8, p0, q1) & _put(t, 10, p0, s0)
+    ok &= _put(t, 12, r1, u1) & _put(t, 14, r1, u0) & _put(t, 16, r0, u1)
+    ok &= _put(t, 18, r0, u0)
+    return ok
+
+
+@njit(**NJIT)
+def _sign_past(t, m, h, r1, r0, w):
+    """Sign of ``N - (m + h) D`` with ``D = 2 (r1 + r0)``; 2 where a part may underflow.
+
+    ``t[:_NT]`` holds ``N``'s parts; ``h`` is a power of two, so ``h D`` is exact. Sum2
+    (a chain of ``two_sum``) decides the sign unless its error bound, ``u |s| +
+    gamma_{25}^2 sum |x_i|`` (doubled here), reaches the sum; then ``w`` grows the exact
+    expansion.
+    """
+    ok = _put(t, _NT, -2.0 * m, r1) & _put(t, _NT + 2, -2.0 * m, r0)
+    t[_NT + 4] = -2.0 * h * r1
+    t[_NT + 5] = -2.0 * h * r0
+    if not ok or (t[_NT + 4] != 0.0 and abs(t[_NT + 4]) < _TINY):
+        return 2
+    if t[_NT + 5] != 0.0 and abs(t[_NT + 5]) < _TINY:
+        return 2
+    n = _NT + 6
+    s = 0.0
+    c = 0.0
+    a = 0.0
+    for k in range(n):
+        s, e = two_sum(s, t[k])
+        c += e
+        a += abs(t[k])
+    r = s + c
+    if abs(r) > 4.0 * _U * abs(r) + 1024.0 * _U * _U * a:
+        return 1 if r > 0.0 else -1
+    size = 0
+    for k in range(n):
+        size = grow(w, size, t[k])
+    top = w[size - 1]  # the largest component carries the sign
+    return 1 if top > 0.0 else (-1 if top < 0.0 else 0)
+
+
+@njit(**NJIT)
+def _even(v):
+    """Whether ``v``'s significand is even (the tie's winner under round-to-nearest-even)."""
+    m, _ = math.frexp(v)
+    return np.int64(abs(m) * 2.0**53) % 2 == 0
+
+
+@njit(**NJIT)
+def _nearest(ax, ay, bx, by, x, y):
+    """The double nearest ``y`` on the line ``x = X`` of the bisector; ``y`` its estimate.
+
+    Returns ``y`` unchanged where the parts could underflow or the walk does not settle.
+    """
+    if not (y == y and abs(y) < np.inf):
+        return y
+    # the parts, then room for the exact sum: every slot is written before it is read
+    buf = np.empty(2 * _NT + 13)  # noqa: TID251
+    t = buf[: _NT + 6]
+    w = buf[_NT + 6 :]
+    if not _numerator(ax, ay, bx, by, x, t):
+        return y
+    r1, r0 = two_diff(by, ay)
+    sd = 1 if r1 > 0.0 else -1
+    # start from the numerator's compensated sum (an ill-conditioned float formula, a
+    # bisector nearly parallel to the side, is off by dozens of ulps)
+    s = 0.0
+    c = 0.0
+    for k in range(_NT):
+        s, e = two_sum(s, t[k])
+        c += e
+    v = (s + c) / (2.0 * (r1 + r0))
+    if not (v == v and abs(v) < np.inf):
+        return y
+    for _ in range(_MAX_STEPS):
+        up = np.nextafter(v, np.inf)
+        dn = np.nextafter(v, -np.inf)
+        s = _sign_past(t, v, 0.5 * (up - v), r1, r0, w)
+        if s == 2:
+            return y
+        s *= sd  # sign of (exact - midpoint above v)
+        if s > 0:
+            v = up
+            continue
+        if s == 0:
+            return v if _even(v) else up
+        s = _sign_past(t, v, -0.5 * (v - dn), r1, r0, w)
+        if s == 2:
+            return y
+        s *= sd
+        if s < 0:
+            v = dn
+            continue
+        if s == 0:
+            return v if _even(v) else dn
+        return v
+    return y
+
+
+@njit(**NJIT)
+def nearest_crossing(ax, ay, bx, by, side, box, x, y):
+    """The crossing ``(x, y)`` of ``side`` (-1..-4) by the bisector of ``a, b``, nearest.
+
+    ``(x, y)`` is the float formula's (NaN where the bisector is parallel to the side);
+    for sites within ``SIDE_NEAREST_ULPS`` ulps of their magnitude of each other (a few
+    ulps apart, where the formula's error is the crossings' spacing) the coordinate along
+    the side is replaced by the double nearest the exact one.
+    """
+    if x != x or y != y:
+        return x, y
+    big = max(max(abs(ax), abs(ay)), max(abs(bx), abs(by)))
+    if abs(bx - ax) + abs(by - ay) > SIDE_NEAREST_ULPS * np.spacing(big):
+        return x, y
+    if side == -1 or side == -3:
+        return x, _nearest(ax, ay, bx, by, x, y)
+    return _nearest(ay, ax, by, bx, y, x), y
