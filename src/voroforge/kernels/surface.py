@@ -26,10 +26,9 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
-from .clip import cut_ring, plane_values
-from .expansion import two_diff, two_product, two_sum
 from .grid3d import bucket3d, shell_buckets, shell_gap
 from .moments import ring_sums
+from .surfcut import SURFACE_LOCAL_CUT, cut_by_others, cut_local, gather
 
 #: columns of :func:`tri_frames`
 _E1, _E2, _N, _LAB, _CX, _CY, _AREA, _G, _J, _RAD, _LC = 0, 3, 6, 9, 10, 11, 12, 13, 16, 17, 18
@@ -234,27 +233,6 @@ def _shell(ci, cj, ck, r, g, buf):
 
 
 @njit(**NJIT)
-def _gather(gx, gy, gz, reach, sites, start, sidx, g, cand, cdist):
-    """Sites within ``reach`` of ``g``, nearest first, into ``cand``/``cdist``; their count.
-
-    The arrays hold a slot per site.
-    """
-    i0, j0, k0 = bucket3d(gx - reach, gy - reach, gz - reach, g)
-    i1, j1, k1 = bucket3d(gx + reach, gy + reach, gz + reach, g)
-    nx = int(g[6])
-    ny = int(g[7])
-    m = np.int64(0)
-    r2 = reach * reach
-    for k in range(k0, k1 + 1):
-        for j in range(j0, j1 + 1):
-            row = (k * ny + j) * nx
-            for b in range(row + i0, row + i1 + 1):
-                for q in range(start[b], start[b + 1]):
-                    m = _take(sidx[q], gx, gy, gz, r2, sites, cand, cdist, m)
-    return m
-
-
-@njit(**NJIT)
 def _take(s, gx, gy, gz, r2, sites, cand, cdist, m):
     """Site ``s`` into the sorted list ``cand[:m]`` when within ``sqrt(r2)``; the new count."""
     dd = (sites[s, 0] - gx) ** 2 + (sites[s, 1] - gy) ** 2 + (sites[s, 2] - gz) ** 2
@@ -266,11 +244,11 @@ def _take(s, gx, gy, gz, r2, sites, cand, cdist, m):
 
 @njit(**NJIT)
 def _near_list(gx, gy, gz, reach, o, sites, nbr, bound, cand, cdist):
-    """:func:`_gather` from site ``o``'s neighbour list, or -1 when the list may miss one.
+    """:func:`.surfcut.gather` from site ``o``'s neighbour list, or -1 when the list may miss one.
 
     Every site within ``reach`` of ``g`` is within ``reach + |g - s_o|`` of ``s_o``: when that
     is below ``bound[o]``, all of them are ``o`` or in ``o``'s list, and the result (the same
-    sites in the same order) is :func:`_gather`'s.
+    sites in the same order) is :func:`.surfcut.gather`'s.
     """
     d0 = (sites[o, 0] - gx) ** 2 + (sites[o, 1] - gy) ** 2 + (sites[o, 2] - gz) ** 2
     if not (reach + np.sqrt(d0)) * (1.0 + 1e-12) < bound[o]:
@@ -321,71 +299,6 @@ def _relevant(v, ia, ib, ic, vnear, sites, cand, m):
     return out
 
 
-@njit(inline="always", **NJIT)
-def _dd_add(ah, al, bh, bl):
-    """Double-double ``(ah + al) + (bh + bl)`` (relative error ~ eps^2)."""
-    s, e = two_sum(ah, bh)
-    e += al + bl
-    h = s + e
-    return h, e - (h - s)
-
-
-@njit(inline="always", **NJIT)
-def _offset(sj, si, a):
-    """One coordinate's term ``(sj - si) * ((si + sj) / 2 - a)`` in double-double.
-
-    Summed over the coordinates: the bisector's offset from triangle corner ``a``.
-    The sites' differences and sums are exact pairs, so a site far from a small surface
-    (``|s| = D``) places the bisector to ~ ``D eps^2``, not ``D eps`` (checker14 F6); the
-    result is the exact negative when ``si`` and ``sj`` swap, so two sites' pieces tile.
-    """
-    gh, gl = two_diff(sj, si)
-    mh, ml = two_sum(si, sj)
-    wh, wl = _dd_add(0.5 * mh, 0.5 * ml, -a, 0.0)
-    p, e = two_product(gh, wh)
-    e += gh * wl + gl * wh
-    h = p + e
-    return h, e - (h - p)
-
-
-@njit(**NJIT)
-def _cut_by_others(q, cand, m_c, sites, frame, rx, ry, ro, sx, sy, so, ss):
-    """The triangle cut to candidate ``q``'s side of every other candidate's bisector.
-
-    The caller sets the triangle in ``rx, ry, ro[:3]``. Returns the vertex count (0: empty).
-    """
-    ax, ay, az, e1x, e1y, e1z, e2x, e2y, e2z = frame
-    i = cand[q]
-    six, siy, siz = sites[i, 0], sites[i, 1], sites[i, 2]
-    m = np.int64(3)  # not literals: numba would compile the clip once more for them
-    zero = np.int64(0)
-    for w in range(m_c):
-        j = cand[w]
-        if j == i:
-            continue
-        gx = sites[j, 0] - six
-        gy = sites[j, 1] - siy
-        gz = sites[j, 2] - siz
-        xh, xl = _offset(sites[j, 0], six, ax)
-        yh, yl = _offset(sites[j, 1], siy, ay)
-        zh, zl = _offset(sites[j, 2], siz, az)
-        xh, xl = _dd_add(xh, xl, yh, yl)
-        xh, xl = _dd_add(xh, xl, zh, zl)
-        hh = xh + xl
-        px = gx * e1x + gy * e1y + gz * e1z
-        py = gx * e2x + gy * e2y + gz * e2z
-        if plane_values(rx, ry, zero, m, px, py, 0.0, 0.0, hh, ss) <= 0.0:
-            continue
-        m = cut_ring(rx, ry, ro, zero, m, ss, sx, sy, so, zero, j)
-        if m < 3:
-            return 0
-        for k in range(m):
-            rx[k] = sx[k]
-            ry[k] = sy[k]
-            ro[k] = so[k]
-    return m
-
-
 @njit(**NJIT)
 def rvd(v, f, tf, sites, start, sidx, g, hint, mode, knn):
     """Cut every triangle of mesh ``(v, f)`` into the restricted cells of ``sites``.
@@ -403,7 +316,9 @@ def rvd(v, f, tf, sites, start, sidx, g, hint, mode, knn):
         vertices (3D) and edge owners
     knn : int, length of each site's neighbour list (:func:`site_knn`): a triangle's
         candidates come from a corner owner's list when it provably holds them all, else
-        from the grid (:func:`_gather`)
+        from the grid (:func:`.surfcut.gather`); with more than
+        ``SURFACE_LOCAL_CUT`` candidates each piece is cut by its own site's neighbours
+        (:func:`.surfcut.cut_local`)
 
     Returns
     -------
@@ -440,6 +355,7 @@ def rvd(v, f, tf, sites, start, sidx, g, hint, mode, knn):
     np_ = 0
     nq = np.int64(0)
     cand = np.zeros(n + 1, np.int64)
+    js = np.zeros(n + 1, np.int64)
     cdist = np.zeros(n + 1)
     rx = np.zeros(72)
     ry = np.zeros(72)
@@ -472,7 +388,7 @@ def rvd(v, f, tf, sites, start, sidx, g, hint, mode, knn):
                 if m_c >= 0:
                     break
             if m_c < 0:
-                m_c = _gather(r[13], r[14], r[15], reach, sites, start, sidx, g, cand, cdist)
+                m_c = gather(r[13], r[14], r[15], reach, sites, start, sidx, g, cand, cdist)
             m_c = _relevant(v, ia, ib, ic, vnear, sites, cand, m_c)
             if m_c + 8 > rx.shape[0]:
                 rx = np.zeros(2 * m_c + 8)
@@ -494,7 +410,15 @@ def rvd(v, f, tf, sites, start, sidx, g, hint, mode, knn):
                 dg = (cx - sites[i, 0]) ** 2 + (cy - sites[i, 1]) ** 2 + (cz - sites[i, 2]) ** 2
                 en = r[_J] + area * dg
             else:
-                m = _cut_by_others(q, cand, m_c, sites, frame, rx, ry, ro, sx, sy, so, ss)
+                m = -1
+                if m_c > SURFACE_LOCAL_CUT:  # many sites: each piece by its site's neighbours
+                    ring = (rx, ry, ro, sx, sy, so, ss)
+                    m = cut_local(i, sites, frame, nbr, bound, (start, sidx, g, buf, js), ring)
+                if m < 0:
+                    rx[0], ry[0], ro[0] = 0.0, 0.0, -1
+                    rx[1], ry[1], ro[1] = r[_LAB], 0.0, -2
+                    rx[2], ry[2], ro[2] = r[_CX], r[_CY], -3
+                    m = cut_by_others(q, cand, m_c, sites, frame, rx, ry, ro, sx, sy, so, ss)
                 if m < 3:
                     continue
                 # area, centroid, ∫|x - s|^2 in the plane's frame. The shoelace sums run

@@ -3,7 +3,9 @@
 Each panel's exterior is unfolded as a fan from one corner (the sharpest): every triangle of
 the fan keeps its three 3D edge lengths, so every boundary edge of the flat part has its 3D
 length (to rounding) even when the panel is slightly bent; for a planar panel the fan is its
-plane, rigidly. Holes follow by the least-squares rigid map from the panel's best-fit plane.
+plane, rigidly. Each hole (an opening) is unfolded the same way, as its own fan, so its edges
+keep their 3D lengths too, and placed by the least-squares rigid map onto where the panel's
+best-fit plane puts it relative to the exterior.
 Parts are turned to their smallest bounding rectangle and packed in shelves (rows of
 bounding boxes a gap apart, so no two parts overlap), sheet after sheet; each part carries
 its panel's label.
@@ -60,7 +62,7 @@ def _apex(P: np.ndarray) -> int:
 def flatten(panels, p: int) -> list[np.ndarray]:
     """Panel ``p`` flattened: its rings as ``(k, 2)`` arrays (exterior counter-clockwise).
 
-    The exterior's edge lengths equal the 3D ones to rounding (see the module docstring).
+    Every ring's edge lengths equal the 3D ones to rounding (see the module docstring).
     """
     rings = panels.polygon(p)
     ext = rings[0]
@@ -79,16 +81,26 @@ def flatten(panels, p: int) -> list[np.ndarray]:
         if np.cross(e1, e2) @ normal < 0:
             e2 = -e2
         proj = [np.stack([(r - c) @ e1, (r - c) @ e2], axis=1) for r in rings]
-        # rigid (Kabsch) map from the projected exterior onto the unfolded one
-        X, Y = proj[0], flat_ext
-        xm, ym = X.mean(axis=0), Y.mean(axis=0)
-        u, _, vt = np.linalg.svd((X - xm).T @ (Y - ym))
-        r = u @ vt
-        if np.linalg.det(r) < 0:
-            u[:, -1] = -u[:, -1]
-            r = u @ vt
-        out += [(h - xm) @ r + ym for h in proj[1:]]
+        # where each hole goes: the projection's rigid map onto the unfolded exterior; the
+        # hole itself unfolded as a fan (its edge lengths kept) and fitted rigidly there
+        spot = _rigid(proj[0], flat_ext)
+        for h3, h2 in zip(rings[1:], proj[1:], strict=True):
+            order = np.roll(np.arange(len(h3)), -_apex(h3))
+            fan = np.zeros((len(h3), 2))
+            fan[order] = _fan(h3[order], normal)
+            out.append(_rigid(fan, spot(h2))(fan))
     return out
+
+
+def _rigid(X: np.ndarray, Y: np.ndarray):
+    """The rotation and shift taking points ``X (k, 2)`` nearest to ``Y`` (Kabsch)."""
+    xm, ym = X.mean(axis=0), Y.mean(axis=0)
+    u, _, vt = np.linalg.svd((X - xm).T @ (Y - ym))
+    r = u @ vt
+    if np.linalg.det(r) < 0:
+        u[:, -1] = -u[:, -1]
+        r = u @ vt
+    return lambda P: (P - xm) @ r + ym
 
 
 @dataclass(frozen=True)
