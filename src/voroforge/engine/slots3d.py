@@ -65,8 +65,11 @@ def grown_caps(status, counts, caps, base, k):
 def big_cell(i, P, W, search, order, tree, t, out, wmax, need, gone, bv, keep, base, factor, run):
     """Build cell ``i`` alone with big slots, growing until it fits, and join it.
 
-    ``search = (start, SP, SW, sidx, g, big)`` (:mod:`.lists3d`); slots hold ``need`` (its
-    ``(nv, nf, nr)``), scratch twice, at least ``factor`` times the caps ``base``; ``gone``:
+    ``search = (start, SP, SW, sidx, g, big)`` (:mod:`.lists3d`); scratch holds twice
+    ``need`` (its ``(nv, nf, nr)``), at least ``factor`` times the caps ``base``, and the
+    output slots as much as the scratch: a cell whose cut fits its scratch fits them, so it
+    is searched again only when its scratch overflowed (a heavy site's cell of 3,914
+    vertices was searched twice here, the first time for its counts alone). ``gone``:
     :func:`.build3d._run`'s, which is ``run``; ``bv``: :mod:`.bigvertex3d`'s. ``keep``:
     scratch kept between calls, by slot size and grid (a helix's cells all came here).
     """
@@ -74,9 +77,8 @@ def big_cell(i, P, W, search, order, tree, t, out, wmax, need, gone, bv, keep, b
     big = bv.search(i) if bv is not None and big is None else big
     need = [0, 0, 0] if need is None else [int(x) for x in need]
     while True:  # (growing by 4 alone built a sphere's centre cell, 8,000 vertices, 5 times)
-        caps = tuple(max(base[q] * factor, need[q % 3] * (1 + q // 3)) for q in range(6)) + tuple(
-            base[6:]
-        )
+        scratch = tuple(max(base[3 + q] * factor, need[q] * 2) for q in range(3))
+        caps = scratch + scratch + tuple(base[6:])
         scr = keep.setdefault((caps, s[4].tobytes()), {})
         st, counts, v, c, r2, sl, capa = run(
             np.array([i]), P, W, *s, order, tree, t, caps, None, None, scr, wmax, big, gone

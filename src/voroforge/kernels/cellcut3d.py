@@ -36,8 +36,11 @@ from .predicates3d import (
     offset_side,
     vertex_offset,
 )
+from .reach3d import axis_gap as _axis_gap
+from .reach3d import box_dist2 as _box_dist2
+from .reach3d import box_misses as _box_misses
 from .reach3d import far as _far
-from .reach3d import gather_heavy, heavy_header, local_stop
+from .reach3d import gather_heavy, heavy_header, local_stop, shell_hit, shell_range
 from .reach3d import reach_box as _reach_box
 from .ties3d import retie
 from .vertex3d import resettle, resettle_rings
@@ -361,8 +364,8 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
             st, nv2, w, nl = cut_open(V, nv, G[0], G[1], G[2], G[3], G[6], S, G[4], j)
             if st == GCUT_EMPTY:
                 return EMPTY, 0, 0, 0, 0.0
-            if st != GCUT_DONE:
-                return BROKEN, 0, 0, 0, 0.0
+            if st != GCUT_DONE:  # out of vertex rows (nv2 is all of them): more, not rings
+                return (OVERFLOW if nv2 >= V.shape[0] else BROKEN), 0, 0, 0, 0.0
             r2m = resettle(i, j, V, G[4], w, G[0], G[3], S, P, W, WP, X[1])
             st, nv2, r2c = cut_close(V, nv2, G[0], G[1], G[2], G[3], G[6], S, G[4], nl)
             r2c = max(r2c, r2m)
@@ -433,56 +436,6 @@ def _ordered_bucket(order, o, ci, cj, ck, px, py, pz, g, wi, wmax, rmax2):
     return (bz * ny + by) * nx + bx
 
 
-@njit(**NJIT_INLINE)
-def _axis_gap(p, origin, size, b, off):
-    """Distance along one axis from coordinate ``p`` to bucket ``b`` (``off`` buckets away)."""
-    if off > 0:
-        return max(0.0, origin + b * size - p)
-    if off < 0:
-        return max(0.0, p - (origin + (b + 1) * size))
-    return 0.0
-
-
-@njit(**NJIT_INLINE)
-def _box_misses(px, py, pz, box, V, nv, wi, wmax, rmax2, eps):
-    """No site in ``box = (x0, y0, z0, x1, y1, z1)`` can cut or touch the cell ``V[:nv]``.
-
-    A plane cuts or touches a convex cell only if some vertex ``x`` is at least as near
-    (in power) to the other site as to the cell's: the box misses when every vertex is
-    farther from it, less the heaviest weight, than from the site, with slack
-    (``VORONOI3D_STOP_RTOL`` of the cell's size; the box widened by ``eps``, the rounding
-    of coordinates relative to the site). Long cells (a cluster's outer sites) meet few
-    boxes this way, where the sphere of :func:`_far` holds the whole cluster. ``V`` is
-    relative to the site, ``box`` absolute.
-    """
-    lx = box[0] - px - eps
-    ly = box[1] - py - eps
-    lz = box[2] - pz - eps
-    hx = box[3] - px + eps
-    hy = box[4] - py + eps
-    hz = box[5] - pz + eps
-    slack = VORONOI3D_STOP_RTOL * (rmax2 + abs(wi) + abs(wmax)) + wmax - wi
-    for k in range(nv):
-        x = V[k, 0]
-        y = V[k, 1]
-        z = V[k, 2]
-        gx = max(lx - x, 0.0, x - hx)
-        gy = max(ly - y, 0.0, y - hy)
-        gz = max(lz - z, 0.0, z - hz)
-        if gx * gx + gy * gy + gz * gz <= x * x + y * y + z * z + slack:
-            return False
-    return True
-
-
-@njit(**NJIT_INLINE)
-def _box_dist2(px, py, pz, tree, v):
-    """Squared distance from the site to k-d node ``v``'s tight box (0 inside)."""
-    dx = max(tree[v, 0] - px, 0.0, px - tree[v, 3])
-    dy = max(tree[v, 1] - py, 0.0, py - tree[v, 4])
-    dz = max(tree[v, 2] - pz, 0.0, pz - tree[v, 5])
-    return dx * dx + dy * dy + dz * dz
-
-
 @njit(**NJIT_NO_NRT)
 def _next_leaf(px, py, pz, tree, hk, hv, size, wi, wmax, rmax2, V, nv, eps, g, gs):
     """Pop k-d nodes off the heap ``hk[:size], hv[:size]`` to the next bucket that may cut.
@@ -510,6 +463,66 @@ def _next_leaf(px, py, pz, tree, hk, hv, size, wi, wmax, rmax2, V, nv, eps, g, g
             if not _far(d2, wi, wmax, rmax2):
                 size = heap_push(hk, hv, size, d2, c)
     return -1, size, gs
+
+
+@njit(**NJIT_NO_NRT)
+def _shell_cut(i, P, W, WP, X, q, box, start, SP, SW, sidx, g, C, G, cand, cd2, nv, nf, nt, rmax2):
+    """Cut cell ``i`` by the sites of the buckets that :func:`.reach3d.shell_hit` takes.
+
+    ``q = (px, py, pz, wi, rs2)``: the site, its weight and the squared radius of the sphere
+    whose buckets are taken; ``box``: :func:`.reach3d.shell_range`'s index box. Returns
+    ``_cut_batch``'s tuple.
+    """
+    px, py, pz, wi, rs2 = q
+    nx = int(g[6])
+    ny = int(g[7])
+    m = 0
+    mg = 0
+    st = OK
+    for bz in range(box[2], box[5] + 1):
+        for by in range(box[1], box[4] + 1):
+            for bx in range(box[0], box[3] + 1):
+                b = (bz * ny + by) * nx + bx
+                if not shell_hit(b, px, py, pz, g, rs2, box):
+                    continue
+                t = start[b]
+                while t < start[b + 1]:
+                    m, mg, t = _gather(
+                        b, t, i, px, py, pz, wi, start, SP, SW, sidx, cand, cd2, m, mg, rmax2
+                    )
+                    if mg >= cand.shape[0]:
+                        st, nv, nf, nt, rmax2 = _cut_batch(
+                            m,
+                            i,
+                            P,
+                            WP,
+                            X,
+                            px,
+                            py,
+                            pz,
+                            wi,
+                            W,
+                            SP,
+                            SW,
+                            sidx,
+                            cand,
+                            cd2,
+                            C,
+                            G,
+                            nv,
+                            nf,
+                            nt,
+                            rmax2,
+                        )
+                        if st != OK:
+                            return st, 0, 0, 0, 0.0
+                        m = 0
+                        mg = 0
+    if m > 0:
+        st, nv, nf, nt, rmax2 = _cut_batch(
+            m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
+        )
+    return st, nv, nf, nt, rmax2
 
 
 @njit(**NJIT_NO_NRT)
@@ -629,6 +642,40 @@ def one_cell(
     lists = budget < 0.0
     seen = 0
     gs = (np.inf, -1.0)  # the local stop's bound and the radius it was found at (reach3d)
+    # heavier than the light sites by rs2: cut first by those at sqrt(rs2) (reach3d.shell_range)
+    rs2 = wi - g[hb + 1] if hn > 0 and not kd and not lists else 0.0
+    light = True  # a light site may still reach the cell
+    shell = (0, 0, 0, -1, -1, -1)  # the buckets cut by first (none)
+    if rs2 > 0.0:
+        light = rs2 <= rmax2 * (1.0 + 4.0 * VORONOI3D_STOP_RTOL)
+        if light:
+            shell = shell_range(px, py, pz, g, rs2)
+            here = (px, py, pz, wi, rs2)
+            st, nv, nf, nt, rmax2 = _shell_cut(
+                i,
+                P,
+                W,
+                WP,
+                X,
+                here,
+                shell,
+                start,
+                SP,
+                SW,
+                sidx,
+                g,
+                C,
+                G,
+                cand,
+                cd2,
+                nv,
+                nf,
+                nt,
+                rmax2,
+            )
+            if st != OK:
+                return st, 0, 0, 0, 0.0
+            light = rs2 <= rmax2 * (1.0 + 4.0 * VORONOI3D_STOP_RTOL)
     while True:
         flush = False
         stop = False
@@ -636,6 +683,9 @@ def one_cell(
         if rb >= 0:
             b = rb
             rb = -1
+        elif not light:  # no light site can reach the cell: the heavy ones, then done
+            flush = True
+            stop = True
         elif lists:  # the cell's list is one bucket: gathered once, then the search ends
             flush = True
             stop = seen > 0
@@ -692,6 +742,8 @@ def one_cell(
                     q = 0
                     stop = nb < 0
                     nb = max(nb, 0)
+        if b >= 0 and rs2 > 0.0 and shell_hit(b, px, py, pz, g, rs2, shell):
+            b = -1  # (cut by first)
         if b >= 0:
             m, mg, rt = _gather(
                 b, rt, i, px, py, pz, wi, start, SP, SW, sidx, cand, cd2, m, mg, rmax2

@@ -322,3 +322,108 @@ def reach_box(px, py, pz, V, nv, wi, wmax, rmax2, g, ib, tb):
             tb[k, i] -= least
         bound -= least
     return bound
+
+
+@njit(**NJIT_INLINE)
+def _slab(p, o, h, n, a):
+    """``(least, most)`` squared distance along one axis from ``p`` to bucket ``a``'s slab."""
+    lo = o + a * h - p if a > 0 else -np.inf  # edge buckets hold the clamped sites
+    hi = o + (a + 1) * h - p if a < n - 1 else np.inf
+    gap = max(lo, -hi, 0.0)
+    return gap * gap, max(lo * lo, hi * hi)
+
+
+@njit(**NJIT_INLINE)
+def shell_hit(b, px, py, pz, g, rs2, box):
+    """Whether bucket ``b`` is in :func:`shell_range`'s index ``box`` and meets its sphere.
+
+    The sphere is ``|x - p|^2 = rs2``; both tests are those of the first cut and of the
+    search that skips its buckets, so each bucket is taken by exactly one of them.
+    """
+    nx = int(g[6])
+    ny = int(g[7])
+    a0 = b % nx
+    a1 = (b // nx) % ny
+    a2 = b // (nx * ny)
+    if a0 < box[0] or a0 > box[3] or a1 < box[1] or a1 > box[4] or a2 < box[2] or a2 > box[5]:
+        return False
+    l0, h0 = _slab(px, g[0], g[3], nx, a0)
+    l1, h1 = _slab(py, g[1], g[4], ny, a1)
+    l2, h2 = _slab(pz, g[2], g[5], int(g[8]), a2)
+    return l0 + l1 + l2 <= rs2 <= h0 + h1 + h2
+
+
+@njit(**NJIT_INLINE)
+def shell_range(px, py, pz, g, rs2):
+    """The index box ``(x0, y0, z0, x1, y1, z1)`` of the buckets within ``sqrt(rs2)`` of ``p``.
+
+    A cell heavier than every light site by ``c`` (:func:`heavy_header`) is cut by no light
+    plane nearer than ``rs = sqrt(c)`` to its site (a plane at ``(d^2 + c) / 2d`` from the
+    site), and by the nearest ones at sites that far: :func:`.cellcut3d.one_cell` cuts it
+    by the sites of the buckets meeting that sphere first (:func:`shell_hit`), so that its
+    search, which visits every light site, keeps few (one site of weight 1 among n of
+    weight 0: the heavy cell's scan kept most of the n sites, each tested against its
+    thousands of vertices, while its far corners were still uncut). The box is one bucket
+    wider than ``bucket_of`` finds (rounding), clamped to the grid.
+    """
+    rs = np.sqrt(rs2)
+    n0 = int(g[6])
+    n1 = int(g[7])
+    n2 = int(g[8])
+    x0 = max(bucket_of(px - rs, g[0], g[3], n0) - 1, 0)
+    y0 = max(bucket_of(py - rs, g[1], g[4], n1) - 1, 0)
+    z0 = max(bucket_of(pz - rs, g[2], g[5], n2) - 1, 0)
+    x1 = min(bucket_of(px + rs, g[0], g[3], n0) + 1, n0 - 1)
+    y1 = min(bucket_of(py + rs, g[1], g[4], n1) + 1, n1 - 1)
+    z1 = min(bucket_of(pz + rs, g[2], g[5], n2) + 1, n2 - 1)
+    return x0, y0, z0, x1, y1, z1
+
+
+@njit(**NJIT_INLINE)
+def box_misses(px, py, pz, box, V, nv, wi, wmax, rmax2, eps):
+    """No site in ``box = (x0, y0, z0, x1, y1, z1)`` can cut or touch the cell ``V[:nv]``.
+
+    A plane cuts or touches a convex cell only if some vertex ``x`` is at least as near
+    (in power) to the other site as to the cell's: the box misses when every vertex is
+    farther from it, less the heaviest weight, than from the site, with slack
+    (``VORONOI3D_STOP_RTOL`` of the cell's size; the box widened by ``eps``, the rounding
+    of coordinates relative to the site). Long cells (a cluster's outer sites) meet few
+    boxes this way, where the sphere of :func:`far` holds the whole cluster. ``V`` is
+    relative to the site, ``box`` absolute.
+    """
+    lx = box[0] - px - eps
+    ly = box[1] - py - eps
+    lz = box[2] - pz - eps
+    hx = box[3] - px + eps
+    hy = box[4] - py + eps
+    hz = box[5] - pz + eps
+    slack = VORONOI3D_STOP_RTOL * (rmax2 + abs(wi) + abs(wmax)) + wmax - wi
+    for k in range(nv):
+        x = V[k, 0]
+        y = V[k, 1]
+        z = V[k, 2]
+        gx = max(lx - x, 0.0, x - hx)
+        gy = max(ly - y, 0.0, y - hy)
+        gz = max(lz - z, 0.0, z - hz)
+        if gx * gx + gy * gy + gz * gz <= x * x + y * y + z * z + slack:
+            return False
+    return True
+
+
+@njit(**NJIT_INLINE)
+def box_dist2(px, py, pz, tree, v):
+    """Squared distance from the site to k-d node ``v``'s tight box (0 inside)."""
+    dx = max(tree[v, 0] - px, 0.0, px - tree[v, 3])
+    dy = max(tree[v, 1] - py, 0.0, py - tree[v, 4])
+    dz = max(tree[v, 2] - pz, 0.0, pz - tree[v, 5])
+    return dx * dx + dy * dy + dz * dz
+
+
+@njit(**NJIT_INLINE)
+def axis_gap(p, origin, size, b, off):
+    """Distance along one axis from coordinate ``p`` to bucket ``b`` (``off`` buckets away)."""
+    if off > 0:
+        return max(0.0, origin + b * size - p)
+    if off < 0:
+        return max(0.0, p - (origin + (b + 1) * size))
+    return 0.0
