@@ -4,7 +4,7 @@
 the bisectors of 421-425 and 425-426 (phase 0.05) cross the left side 118.79 and 118.25
 ulps above the centre; the float formula gave 118 and 119, so 425's side edge ran
 backwards, its ring folded and was dropped, and every algorithm left a hole (Euler -1; so
-did phase 0.80). For sites a few ulps apart (``sidecross.SIDE_NEAREST_ULPS``) the crossing
+did phase 0.80). For sites a few ulps apart (``config.SIDE_NEAREST_ULPS``) the crossing
 is now the double nearest the exact one (``kernels.sidecross``), which keeps crossings in
 order; farther pairs keep the float formula's bits (every catalogue diagram unchanged).
 
@@ -41,8 +41,9 @@ import voroforge as vf
 from test_issue15_circle_sides import _circle, _local, _past
 from test_issue15_polygon_domains import _ulps_from
 from test_issue15_ulpid import _edge_to_edge, _rings
+from voroforge.config import SIDE_NEAREST_ULPS
 from voroforge.engine.assemble import _union_kept
-from voroforge.kernels.sidecross import SIDE_NEAREST_ULPS, nearest_crossing
+from voroforge.kernels.sidecross import nearest_crossing
 from voroforge.kernels.sidegap import parallel_between, restore_side_vertices, restore_sides
 from voroforge.kernels.vertex import box_crossing
 

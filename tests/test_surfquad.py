@@ -17,7 +17,7 @@ from scipy.spatial import Voronoi
 
 from reference_surface import clip_polygon, polygon_area
 from voroforge import surface
-from voroforge.kernels.surfcut import SURFACE_LOCAL_CUT
+from voroforge.config import SURFACE_LOCAL_CUT
 
 SQUARE = trimesh.Trimesh(
     [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], [[0, 1, 2], [0, 2, 3]], process=False

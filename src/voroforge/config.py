@@ -120,6 +120,20 @@ POWER_FIT_FAR = 4.0
 #: Relative size of a seed candidate's float orientation below which the sweep's seed
 #: search asks the exact orient2d (nearly collinear: never the smallest circle; delaunay)
 SEED_DET_RTOL = 1e-10
+#: kernels.sidecross: sites at most this many ulps (of their largest coordinate) apart get
+#: their bisector's box-side crossing as the nearest double (farther pairs keep the float
+#: formula: every pair changed the bits of 114 of the 186 catalogue diagrams, 2**-26 of the
+#: magnitude 15). Crossings of one side come within the formula's error (an ulp or two) of
+#: each other where the bisectors, turning by |b - a| / R over a circumradius R, reach the
+#: side h from their vertex with h |b - a| / R below it: for h ~ R (a float circle in its
+#: box) sites a few ulps apart; a vertex much nearer the side is a side sliver
+SIDE_NEAREST_ULPS = 16.0
+#: ...found in at most this many ulp steps from the float estimate (within an ulp or two)
+SIDE_NEAREST_MAX_STEPS = 8
+#: engine.assemble._union_kept: a union of a cell's parts whose float area is below this
+#: fraction of theirs is checked exactly for lost parts (GEOS gave POLYGON EMPTY for two
+#: strip pieces an ulp wide)
+UNION_KEPT_RATIO = 0.75
 
 # --- half-plane cells, bucket grid, raster ----------------------------------------------------
 
@@ -427,59 +441,11 @@ EXPLAIN_HEIGHT_RTOL = 1e-9
 #: exactly (wrong edges past ~1e105 and an OverflowError from 1e154 before)
 EXPLAIN_SCALE_EXP = 64
 
-# --- surface (Voronoi on curved surfaces, panels) --------------------------------------------
-
-#: surface.voronoi: sites farther than this many times the surface's size from its box centre
-#: are refused: the cuts are exact to ~1e-16 there, but each mesh vertex's nearest site comes
-#: from squared distances, which tie past ~1e13 (D = 1e16: cells 94% off, silently)
-SURFACE_FAR_SITES = 1e12
-
-#: Restricted Voronoi: at most this many grid buckets per site (the bucket side grows to fit;
-#: sites on a surface leave most buckets of the box empty).
-SURFACE_BUCKETS_PER_SITE = 8
-
-#: A cell boundary shorter than this (relative to the mesh's size) makes no neighbour.
-SURFACE_EDGE_RTOL = 1e-9
-
-#: A Surface's extent and the magnitude of its vertices and sites must lie in this range:
-#: the restricted Voronoi kernels square areas (fourth powers of lengths: 0 or inf past
-#: ~1e+-77); out of it a ValueError says so
-SURFACE_COORD_RANGE = (1e-60, 1e60)
-#: surface.SurfaceVoronoi.sample_check's slack in unit roundoffs of the surface's largest
-#: coordinate: piece vertices are rounded where they lie, so far from the origin a correct
-#: diagram's sample lands up to ~1.4 of them past a tie (unit sphere at offsets 1e6..1e15)
-SURFACE_SAMPLE_ULPS = 8
-
-#: Surface CVT from a site count: the share of the relaxation steps spent on the coarse level
-#: (a quarter of the sites) before the midpoints of its neighbour pairs are added (0.4: 94.9%
-#: hexagons over three seeds on the 1,000-cell sphere benchmark; 0.2: 92.7%, 0.3: 94.1%).
-SURFACE_COARSE_SHARE = 0.4
-
-#: Surface CVT by L-BFGS: steps kept in the two-loop recursion, and halvings of a step tried
-#: before a Lloyd step is taken instead.
-SURFACE_LBFGS_MEMORY = 10
-SURFACE_LBFGS_BACKTRACK = 8
-#: surface.morph: mapped ring vertices this close (relative to the mapped design's extent)
-#: to the previous kept one are one point: a UV edge collapsed by the map (a sphere's pole,
-#: a cone's apex)
-SURFACE_MORPH_MERGE_RTOL = 1e-12
-#: surface.panels: a morphed vertex's normal f_u x f_v is degenerate where |f_u x f_v| <=
-#: this x |f_u| |f_v| (a pole of the map); it is then taken a step SURFACE_NORMAL_NUDGE
-#: (fractions of the way to the panel's UV centre) into the panel, the first that gives one
-SURFACE_DEGENERATE_NORMAL = 1e-12
-SURFACE_NORMAL_NUDGE = (1e-9, 1e-6, 1e-3)
-
-#: Restricted Voronoi: each site's list of nearest sites, from which a triangle's candidate
-#: sites are taken when the list provably holds them all (else a grid query).
-SURFACE_KNN = 8
-
-#: Planarize: a vertex of one panel only (a mesh border's facets) where the outline turns by
-#: less than this many degrees is left out of the outline before planarising.
-SURFACE_STRAIGHT_DEG = 10.0
-
-# --- voronoi3d (3D cells, containers): config3d.py, re-exported here --------------------------
+# --- voronoi3d (3D cells, containers): config3d.py; surfaces (Voronoi on curved surfaces,
+# --- panels): config_surface.py; both re-exported here ------------------------------------
 
 from .config3d import *  # noqa: E402, F403
+from .config_surface import *  # noqa: E402, F403
 
 # --- solid (printable lattices, foams, shells) ---------------------------------------------
 

@@ -24,6 +24,7 @@ from ..config import (
     ASSEMBLE_ROUNDING_ULPS,
     ASSEMBLE_THIN_ULPS,
     EDGE_LENGTH_RTOL,
+    UNION_KEPT_RATIO,
 )
 from ..kernels.domain_grid import classify, mark_segments, scanline_inside
 from ..kernels.rings import shared_edges
@@ -33,10 +34,6 @@ from .domain import Domain
 from .pieces import Pieces
 from .slivers import sliver_owner
 from .threads import serial_below
-
-# (for config.py) a union of parts whose float area is below this fraction of theirs is
-# checked exactly for lost parts (:func:`_union_kept`)
-UNION_KEPT_RATIO = 0.75
 
 
 def assemble(dom: Domain, closed, lengths, owner, n: int, cell_ids=None):

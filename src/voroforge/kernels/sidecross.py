@@ -31,21 +31,13 @@ import math
 import numpy as np
 from numba import njit
 
-from ..config import NJIT
+from ..config import NJIT, SIDE_NEAREST_ULPS
+from ..config import SIDE_NEAREST_MAX_STEPS as _MAX_STEPS
 from .expansion import grow, two_diff, two_product, two_sum
 
 _U = 2.0**-53
 _TINY = 2.0**-900  # a product below this may lose its error term to underflow
 _NT = 20  # exact parts of the numerator
-_MAX_STEPS = 8  # the float estimate is within an ulp or two: more means something is off
-# (for config.py) sites at most this many ulps (of their largest coordinate) apart get
-# the nearest double; farther pairs keep the float formula (every pair: 114 of the 186
-# catalogue diagrams changed bits; 2**-26 of the magnitude: 15). Crossings of one side
-# come within the formula's error (an ulp or two) of each other where the bisectors,
-# turning by |b - a| / R over a circumradius R, reach the side h from their vertex with
-# h |b - a| / R below it: for h ~ R (a float circle in its box) sites a few ulps apart;
-# a vertex much nearer the side is a side sliver (cellcut._drop_side_slivers)
-SIDE_NEAREST_ULPS = 16.0
 
 
 @njit(**NJIT)

@@ -25,10 +25,10 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import NJIT
+from ..config import NJIT, SURFACE_LOCAL_CUT
 from .grid3d import bucket3d, shell_buckets, shell_gap
 from .moments import ring_sums
-from .surfcut import SURFACE_LOCAL_CUT, cut_by_others, cut_local, gather
+from .surfcut import cut_by_others, cut_local, gather
 
 #: columns of :func:`tri_frames`
 _E1, _E2, _N, _LAB, _CX, _CY, _AREA, _G, _J, _RAD, _LC = 0, 3, 6, 9, 10, 11, 12, 13, 16, 17, 18

@@ -23,11 +23,6 @@ from .clip import cut_ring, plane_values
 from .expansion import two_diff, two_product, two_sum
 from .grid3d import bucket3d, shell_buckets, shell_gap
 
-#: a triangle with more candidate sites than this cuts each piece by its site's neighbours
-#: (:func:`cut_local`) instead of by every candidate (measured: 8,000 sites on a 2-triangle
-#: square 2.6 s -> 0.05 s; below this the two cost about the same). Lead: move to config.py.
-SURFACE_LOCAL_CUT = 32
-
 _EPS = np.finfo(np.float64).eps
 
 
