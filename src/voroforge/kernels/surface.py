@@ -28,7 +28,7 @@ from numba import njit
 from ..config import NJIT, SURFACE_LOCAL_CUT
 from .grid3d import bucket3d, shell_buckets, shell_gap
 from .moments import ring_sums
-from .surfcut import cut_by_others, cut_local, gather
+from .surfcut import cut_by_others, cut_local, gather, insert_by_distance
 
 #: columns of :func:`tri_frames`
 _E1, _E2, _N, _LAB, _CX, _CY, _AREA, _G, _J, _RAD, _LC = 0, 3, 6, 9, 10, 11, 12, 13, 16, 17, 18
@@ -168,21 +168,6 @@ def _nearer(x, y, z, sites, start, sidx, b, best, bd):
 
 
 @njit(**NJIT)
-def _insert(cand, cdist, m, s, dd):
-    """Site ``s`` at squared distance ``dd`` into the list ``cand[:m]`` kept by (distance, index).
-
-    Writes slots ``0..m`` (the caller makes room).
-    """
-    p = m
-    while p > 0 and (cdist[p - 1] > dd or (cdist[p - 1] == dd and cand[p - 1] > s)):
-        cand[p] = cand[p - 1]
-        cdist[p] = cdist[p - 1]
-        p -= 1
-    cand[p] = s
-    cdist[p] = dd
-
-
-@njit(**NJIT)
 def site_knn(sites, start, sidx, g, k):
     """Each site's ``k`` nearest other sites, and a bound on the distance of all the others.
 
@@ -212,10 +197,10 @@ def site_knn(sites, start, sidx, g, k):
                         continue
                     dd = (sites[s, 0] - x) ** 2 + (sites[s, 1] - y) ** 2 + (sites[s, 2] - z) ** 2
                     if m < k + 1:
-                        _insert(cand, cdist, m, s, dd)
+                        insert_by_distance(cand, cdist, m, s, dd)
                         m += 1
                     elif dd < cdist[k] or (dd == cdist[k] and s < cand[k]):
-                        _insert(cand, cdist, k, s, dd)
+                        insert_by_distance(cand, cdist, k, s, dd)
             gap = shell_gap(x, y, z, ci, cj, ck, r, g)
             if m == k + 1 and cdist[k] <= gap * gap:
                 break
@@ -237,7 +222,7 @@ def _take(s, gx, gy, gz, r2, sites, cand, cdist, m):
     """Site ``s`` into the sorted list ``cand[:m]`` when within ``sqrt(r2)``; the new count."""
     dd = (sites[s, 0] - gx) ** 2 + (sites[s, 1] - gy) ** 2 + (sites[s, 2] - gz) ** 2
     if dd <= r2:
-        _insert(cand, cdist, m, s, dd)
+        insert_by_distance(cand, cdist, m, s, dd)
         m += 1
     return m
 

@@ -181,6 +181,21 @@ def cut_local(i, sites, frame, nbr, bound, grid, ring):
 
 
 @njit(**NJIT)
+def insert_by_distance(cand, cdist, m, s, dd):
+    """Site ``s`` at squared distance ``dd`` into the list ``cand[:m]`` kept by (distance, index).
+
+    Writes slots ``0..m`` (the caller makes room).
+    """
+    p = m
+    while p > 0 and (cdist[p - 1] > dd or (cdist[p - 1] == dd and cand[p - 1] > s)):
+        cand[p] = cand[p - 1]
+        cdist[p] = cdist[p - 1]
+        p -= 1
+    cand[p] = s
+    cdist[p] = dd
+
+
+@njit(**NJIT)
 def gather(gx, gy, gz, reach, sites, start, sidx, g, cand, cdist):
     """Sites within ``reach`` of ``g`` into ``cand``/``cdist`` by (distance, index); the count.
 
@@ -207,14 +222,7 @@ def gather(gx, gy, gz, reach, sites, start, sidx, g, cand, cdist):
                         m += 1
     if m <= 64:  # few: sorted in place (no arrays to allocate)
         for a in range(1, m):
-            s, dd = cand[a], cdist[a]
-            p = a
-            while p > 0 and (cdist[p - 1] > dd or (cdist[p - 1] == dd and cand[p - 1] > s)):
-                cand[p] = cand[p - 1]
-                cdist[p] = cdist[p - 1]
-                p -= 1
-            cand[p] = s
-            cdist[p] = dd
+            insert_by_distance(cand, cdist, a, cand[a], cdist[a])
     else:
         o = np.argsort(cand[:m])
         c1 = cand[:m][o]
