@@ -224,3 +224,17 @@ def test_output_names_with_control_characters_are_errors_at_their_line(tmp_path,
         load(path)
     text = str(info.value)
     assert f"f.toml:2: {table}.{key}" in text and "control characters" in text
+
+
+@pytest.mark.parametrize("name", ["nope.stl", "c.toml"])
+def test_a_solid_container_file_that_is_no_mesh_is_an_error_at_its_line(tmp_path, name):
+    # checker25 F6: a missing or non-mesh container file gave an error naming neither the
+    # design file's line nor solid.container
+    from voroforge.design.build import build
+
+    (tmp_path / "c.toml").write_text("")
+    path = tmp_path / "f.toml"
+    path.write_text(f'[design]\nname = "x"\n[solid]\nkind = "lattice"\ncontainer = "{name}"\n')
+    with pytest.raises(DesignError) as info:
+        build(path, tmp_path / "o")
+    assert "f.toml:5: solid.container: " in info.value.format()

@@ -63,6 +63,7 @@ def _stl_bare(path: Path):
 
 
 def _cells(s, base, stage, bare=False):
+    from ..design.designfile import DesignError
     from ..engine.voronoi3d import voronoi3d
     from ..io.mesh import read
     from .cells import relax, subdivide
@@ -81,7 +82,10 @@ def _cells(s, base, stage, bare=False):
                 # the skin's grid is the container's box: its field while the cells relax
                 prefetch_container(mesh, s.skin, s.voxel)
         if mesh is None:
-            mesh = read(path)
+            try:
+                mesh = read(path)
+            except (OSError, ValueError) as exc:  # missing, or not a mesh: at the key's line
+                raise DesignError.at("solid.container", str(exc)) from None
         box = tuple(np.concatenate(mesh.bounds))
     else:
         box = tuple(s.container)
