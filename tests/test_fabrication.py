@@ -368,11 +368,35 @@ def test_web_violation_iff_gap_below_limit(gap, limit, height):
     b = shapely.box(10 + gap, 0, 20 + gap, height)
     report = check(openings=[a, b], boundary=outline, min_web=limit)
     webs = [v for v in report.violations if v.kind == "web"]
-    if gap < limit - 1e-6:
+    if gap < limit * (1 - config.FAB_LIMIT_RTOL) - 100 * config.FAB_LIMIT_COORD_RTOL:
         assert len(webs) == 1 and webs[0].value == pytest.approx(gap)
         assert 10 <= webs[0].location[0] <= 10 + gap
     else:
         assert not webs
+
+
+@pytest.mark.parametrize("scale", [1e-6, 1e-3, 1.0, 1e3, 1e6])
+@pytest.mark.parametrize("offset", [0.0, 5e5])
+def test_web_and_opening_limits_are_relative_to_the_limit(scale, offset):
+    # A web 0.01% under the limit is a violation at every scale (the slack was 1e-6 drawing
+    # units: at 1e-3 it let such webs pass); a web exactly at the limit is not. (1e-4 of a
+    # limit of 2e-6 at 5e5 is 2 ulps of the coordinates: below what the check can tell.)
+    if scale * 1e-4 < 1e3 * np.spacing(offset):
+        pytest.skip("the limit's 1e-4 is a few ulps of the coordinates")
+    outline = shapely.box(offset - 50 * scale, -50 * scale, offset + 100 * scale, 100 * scale)
+    limit = 2.0 * scale
+    for gap, bad in ((limit * (1 - 1e-4), True), (limit, False), (limit * (1 + 1e-4), False)):
+        a = shapely.box(offset, 0, offset + 10 * scale, 20 * scale)
+        b = shapely.box(offset + 10 * scale + gap, 0, offset + 20 * scale + gap, 20 * scale)
+        report = check(openings=[a, b], boundary=outline, min_web=limit)
+        webs = [v for v in report.violations if v.kind == "web"]
+        assert bool(webs) == bad, (scale, offset, gap)
+        small = check(
+            openings=[shapely.box(offset, 0, offset + gap, 50 * scale)],
+            boundary=outline,
+            min_opening=limit,
+        )
+        assert bool(small.violations) == bad, (scale, offset, gap)
 
 
 @pytest.mark.parametrize("seed", [1, 2])

@@ -367,9 +367,12 @@ MIN_SIZE_RTOL = 1e-3
 #: fraction (else they are cut to the region again).
 TILING_AREA_RTOL = 1e-9
 
-#: design.fabrication.check: webs and openings within this (drawing units) of their limit pass
-#: (a web inset to exactly min_web is no violation because of rounding).
-FAB_LIMIT_ATOL = 1e-6
+#: design.fabrication.check: webs and openings within this fraction of their limit, plus
+#: FAB_LIMIT_COORD_RTOL of the panel's largest coordinate, pass (a web inset to exactly
+#: min_web is no violation because of rounding; relative, so a panel in metres or microns
+#: is checked as closely as one in mm).
+FAB_LIMIT_RTOL = 1e-6
+FAB_LIMIT_COORD_RTOL = 1e-14
 
 #: design.fabrication.check: uncut material thinner than this (drawing units) in a corner is
 #: ignored (chord-vs-arc noise of fillets)

@@ -367,7 +367,7 @@ def check(
     min_opening: float | None = None,
     min_inside_radius: float | None = None,
     corner_tolerance: float = config.FAB_CORNER_TOLERANCE,
-    tolerance: float = config.FAB_LIMIT_ATOL,
+    tolerance: float | None = None,
     islands: bool = True,
     keys: dict | None = None,
 ) -> Report:
@@ -405,9 +405,11 @@ def check(
         Limits in drawing units (mm).
     corner_tolerance : float
         Uncut material thinner than this is ignored (chord-vs-arc noise of fillets).
-    tolerance : float
+    tolerance : float, optional
         Webs and openings within this of their limit pass (a web inset to exactly
-        ``min_web`` is not a violation because of rounding).
+        ``min_web`` is not a violation because of rounding). Default: 1e-6 of each limit
+        plus 1e-14 of the panel's largest coordinate (``config.FAB_LIMIT_RTOL``,
+        ``FAB_LIMIT_COORD_RTOL``), so any unit and scale is checked alike.
     islands : bool
         Look for loose parts.
     keys : dict, optional
@@ -427,7 +429,7 @@ def check(
     min_opening = _check_limit("min_opening", min_opening)
     min_inside_radius = _check_limit("min_inside_radius", min_inside_radius)
     corner_tolerance = _check_limit("corner_tolerance", corner_tolerance) or 0.0
-    tolerance = _check_limit("tolerance", tolerance) or 0.0
+    tolerance = _check_limit("tolerance", tolerance)
     if frame is not None and openings is not None:
         raise ValueError("give either frame or openings (with boundary), not both")
     if frame is not None:
@@ -446,10 +448,11 @@ def check(
 
     found: list[Violation] = []
     if min_web is not None and min_web > 0:
-        found += _webs(holes, outline, min_web, tolerance)
-        found += _tongues(holes, outline, frame_geom, min_web, tolerance)
+        tol = _limit_tolerance(min_web, tolerance, outline)
+        found += _webs(holes, outline, min_web, tol)
+        found += _tongues(holes, outline, frame_geom, min_web, tol)
     if min_opening is not None and min_opening > 0:
-        found += _openings(holes, min_opening, tolerance)
+        found += _openings(holes, min_opening, _limit_tolerance(min_opening, tolerance, outline))
     if min_inside_radius is not None and min_inside_radius > 0:
         found += _corners(holes, outline, min_inside_radius, corner_tolerance)
     if islands:
@@ -461,6 +464,14 @@ def check(
         "min_inside_radius": min_inside_radius,
     }
     return Report(found, limits, frame_geom, holes, dict(keys or {}))
+
+
+def _limit_tolerance(limit: float, tolerance: float | None, outline) -> float:
+    """The slack of one limit: as given, else relative to the limit and the coordinates."""
+    if tolerance is not None:
+        return tolerance
+    extent = np.abs(np.asarray(outline.bounds, dtype=np.float64)) if not outline.is_empty else 0
+    return limit * config.FAB_LIMIT_RTOL + config.FAB_LIMIT_COORD_RTOL * float(np.max(extent))
 
 
 def _webs(holes: np.ndarray, outline, min_web: float, tol: float) -> list[Violation]:
