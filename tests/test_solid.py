@@ -14,6 +14,7 @@ trimesh = pytest.importorskip("trimesh")
 pytest.importorskip("manifold3d")
 pytest.importorskip("skimage")
 
+import voroforge as vf  # noqa: E402
 from reference_solid import box_cells, hull_volume, segment_distance, winding_numbers  # noqa: E402
 from voroforge import config, solid  # noqa: E402
 from voroforge.io import mesh as mio  # noqa: E402
@@ -305,6 +306,23 @@ def test_foam_random_is_container_minus_bubbles():
     assert abs(m.volume - (1000.0 - inner)) <= 1e-9 * 1000.0
     rep = solid.check(m, max_overhang=None)
     assert rep.by_kind()["trapped_void"] == sum(b is not None for b, _, _ in bubbles)
+
+
+@pytest.mark.parametrize("scale", [1e-9, 1e-6, 1e6])
+def test_foam_keeps_every_bubble_at_any_scale(scale):
+    # trimesh's face normals are zero below an absolute area: a foam 1e-6 across lost 21 of
+    # 30 bubbles (its volume came out negative), at 1e-7 all of them
+    rng = np.random.default_rng(1)
+    p = rng.random((30, 3))
+    one = solid.foam(vf.voronoi3d(p, (0, 0, 0, 1, 1, 1)), wall=0.02)
+    cells = vf.voronoi3d(p * scale, (0, 0, 0, scale, scale, scale))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no "walls fill k cells"
+        m = solid.foam(cells, wall=0.02 * scale)
+    assert m.is_watertight
+    assert (m.metadata["pores"]["size"] > 0).all()
+    assert len(m.metadata["pores"]["size"]) == 30
+    assert abs(m.volume / scale**3 - one.volume) <= 1e-9 * one.volume
 
 
 def test_foam_walls_thicker_than_cells_are_reported():

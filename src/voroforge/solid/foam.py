@@ -23,11 +23,14 @@ def _planes(cell) -> tuple[np.ndarray, np.ndarray]:
     rounding makes point anywhere; its row ``0 <= 0`` moved in by the wall read ``0 <= -w/2``
     and the cell lost its bubble. Each face keeps its plane from its other triangles.
     """
-    n = np.asarray(cell.face_normals)
-    c = np.einsum("ij,ij->i", n, cell.triangles_center)
-    sound = (np.abs(np.einsum("ij,ij->i", n, n) - 1.0) < 1e-6) & (
-        np.asarray(cell.area_faces) > FOAM_FACE_AREA_RTOL * max(cell.scale, 1e-300) ** 2
-    )
+    tri = np.asarray(cell.triangles)
+    # The normals from the corners (trimesh's face_normals are zero below an absolute area:
+    # every face of a cell 1e-6 across, whose bubble was then lost).
+    cross = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    twice = np.linalg.norm(cross, axis=1)
+    n = cross / np.where(twice > 0, twice, 1.0)[:, None]
+    c = np.einsum("ij,ij->i", n, tri.mean(axis=1))
+    sound = 0.5 * twice > FOAM_FACE_AREA_RTOL * max(cell.scale, 1e-300) ** 2
     if not sound.any():  # a degenerate cell: its triangles as they are
         sound[:] = True
     key = np.round(np.column_stack([n, c / max(cell.scale, 1e-300)]), 9)
@@ -119,7 +122,7 @@ def _bubbles(cells, size):
         systems.append((pl[:, :3], pl[:, 3] - 0.5 * w, cell.center_mass, max(cell.scale, 1e-300)))
     ball, ball_r = _inscribed(systems)
     out = []
-    for i, (cell, (a, c, x0, _)) in enumerate(zip(cells, systems, strict=True)):
+    for i, (cell, (a, c, x0, sc)) in enumerate(zip(cells, systems, strict=True)):
         slack = c - a @ x0
         if not np.isfinite(ball_r[i]):  # the joint LP failed: this cell's own
             b_c, b_r = _chebyshev(a, c)
@@ -134,9 +137,10 @@ def _bubbles(cells, size):
         if rad <= 1e-6 * cell.scale:
             out.append((None, x0, 0.0))
             continue
-        try:
-            v = HalfspaceIntersection(np.column_stack([a, -c]), centre).intersections
-            b = convex_mesh(v)
+        try:  # in the cell's frame x = x0 + sc y (Qhull's tolerances are absolute)
+            rows = np.column_stack([a, -(c - a @ x0) / sc])
+            y = HalfspaceIntersection(rows, (centre - x0) / sc).intersections
+            b = convex_mesh(x0 + sc * y)
         except QhullError:
             out.append((None, x0, 0.0))
             continue
