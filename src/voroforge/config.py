@@ -359,6 +359,10 @@ CONVEX_FULL_TURN_TOL = 1e-6
 #: core GEOS drops; the radius is made this fraction smaller to keep a sliver of it.
 CORNER_RADIUS_SHRINK = 1e-4
 
+#: design.populate: a boundary filling less of its bounding box than this is sampled from
+#: its triangles (rejection from the box would draw count / fill points).
+POPULATE_REJECTION_MIN_FILL = 1e-3
+
 #: design.compute: cells.min_size measures openings' inscribed circles to this fraction of
 #: min_size.
 MIN_SIZE_RTOL = 1e-3
