@@ -355,12 +355,17 @@ def pixel_density_moments(cells, sites, values, bounds) -> tuple[np.ndarray, np.
 def brute_lloyd_step(points, domain) -> np.ndarray:
     """One Lloyd step: every site moves to the GEOS centroid of its :func:`brute_voronoi` cell.
 
-    Sites whose cell is empty (duplicates, sites whose cell misses the domain) stay put.
+    Sites whose cell is empty stay put (duplicates) unless they lie outside the domain (in a
+    hole, or with other sites nearer to all of it): those move to the domain's nearest point.
     """
     z = np.array(points, dtype=np.float64).reshape(-1, 2)
     cells = brute_voronoi(z, domain)
     ok = ~shapely.is_empty(cells)
     z[ok] = shapely.get_coordinates(shapely.centroid(cells[ok]))
+    for i in np.flatnonzero(~ok):
+        p = shapely.Point(z[i])
+        if not domain.covers(p):
+            z[i] = shapely.shortest_line(domain, p).coords[0]
     return z
 
 

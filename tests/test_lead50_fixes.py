@@ -57,3 +57,25 @@ def test_poisson_puts_a_point_in_every_part(side):
         assert shapely.contains_xy(small, pts[:, 0], pts[:, 1]).sum() == 1
         assert shapely.contains_xy(mp, pts[:, 0], pts[:, 1]).all()
         assert pdist(pts).min() >= 0.5
+
+
+@pytest.mark.parametrize("case", ["hole", "outside_box"])
+def test_lloyd_brings_every_site_with_an_empty_cell_into_the_domain(case):
+    # sites in a hole (or outside, other sites nearer to all of the domain) had no centroid
+    # and stayed put for ever: 15 of 80 after 40 iterations, 48 of 60 after 30
+    import voroforge as vf
+
+    rng = np.random.default_rng(8)
+    if case == "hole":
+        dom = shapely.box(0, 0, 1, 1).difference(shapely.Point(0.5, 0.5).buffer(0.3))
+        pts, geom = rng.random((80, 2)), dom
+    else:
+        rng.random((80, 2))
+        dom, pts, geom = (0, 0, 1, 1), rng.random((60, 2)) * 3 - 1, shapely.box(0, 0, 1, 1)
+    start = pts.copy()
+    r = vf.lloyd(pts, dom, iterations=40)
+    np.testing.assert_array_equal(pts, start)  # the input is not moved
+    assert shapely.covers(geom, shapely.points(r.points)).all()
+    assert (r.diagram.areas > 0).all()
+    assert abs(r.diagram.areas.sum() - geom.area) <= 1e-12
+    assert np.all(np.diff(r.energy) <= 1e-12 * r.energy[0])  # Lloyd's energy never grows

@@ -162,8 +162,10 @@ def lloyd(
     -----
     Lloyd's energy never increases (exactly so for uniform and raster densities; with a
     callable density up to the quadrature error). Sites outside the domain get the part of
-    the domain nearest to them and move to its centroid; a site whose cell is empty has no
-    centroid and stays where it is for that iteration. Exact duplicates: the later copies
+    the domain nearest to them and move to its centroid; a site outside whose cell is empty
+    (other sites are nearer to all of the domain, or it lies in a hole) moves to the nearest
+    point of the domain's outline, and has a cell from the next iteration on (plain Lloyd;
+    ``method="lbfgs"`` keeps sites in the domain's box). Exact duplicates: the later copies
     get empty cells, so they wait one iteration while the first copy moves to its centroid,
     then they have cells of their own and the sites separate. The centroid of a cell cut by
     a concave boundary can lie outside the domain (that site then gets the domain part
@@ -318,6 +320,7 @@ def _lloyd(z, dom, integ, iterations, stop):
         if it == iterations:
             break
         shift = _step(z, mass, first, z_new)
+        shift = max(shift, empty_into_domain(z_new, mass < MASS_FLOOR, dom))
         shifts.append(shift)
         z, z_new = z_new, z
         if _stops(z - z_new, stop):
@@ -363,6 +366,30 @@ def _step(z, mass, first, out):
     dist2 = np.einsum("ij,ij->i", move, move)
     np.add(z, move, out=out)
     return float(np.sqrt(dist2.max()))
+
+
+def empty_into_domain(z, empty, dom) -> float:
+    """Move the sites ``empty`` (a mask) that lie outside ``dom`` to its nearest point (in place).
+
+    Such a site (in a hole, or outside with other sites nearer to every point of the domain)
+    has no centroid; left where it was it stayed there for ever and the relaxation had fewer
+    cells than sites. On the domain's outline it takes a cell the next step (Lloyd's energy,
+    the integral of the squared distance to the nearest site, cannot grow by that). Returns
+    the largest such move.
+    """
+    empty = np.flatnonzero(empty)
+    if not len(empty):
+        return 0.0
+    before = z[empty].copy()
+    if dom.is_rect:
+        x0, y0, x1, y1 = dom.bounds
+        z[empty] = np.clip(z[empty], (x0, y0), (x1, y1))
+    else:
+        part = z[empty]
+        _into_domain(part, dom)
+        z[empty] = part
+    move = z[empty] - before
+    return float(np.sqrt(np.einsum("ij,ij->i", move, move).max()))
 
 
 def _capacity(z, dom, integ, targets, iterations, stop):

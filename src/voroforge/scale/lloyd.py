@@ -97,8 +97,14 @@ def _moments(ids, xy, dom, loaded, wanted, last):
     return done, (ids[bad], xy[bad], r[bad])
 
 
-def _step_piece(done):
-    """The moved sites of a tile's certified cells (sorted by id) and their summary."""
+def _step_piece(done, dom):
+    """The moved sites of a tile's certified cells (sorted by id) and their summary.
+
+    A site outside the domain whose cell is empty moves to the domain's nearest point, as in
+    :func:`voroforge.lloyd` (:func:`~voroforge.engine.lloyd.empty_into_domain`).
+    """
+    from ..engine.lloyd import empty_into_domain
+
     if not done:
         return Piece(np.zeros(0, np.int64), np.zeros((0, 2)), None), 0.0, 0.0
     ids, xy, mass, first, second = (np.concatenate(a) for a in zip(*done, strict=True))
@@ -108,6 +114,7 @@ def _step_piece(done):
     move = first * inv[:, None]
     new = xy + move
     shift = float(np.sqrt(np.einsum("ij,ij->i", move, move).max())) if len(ids) else 0.0
+    shift = max(shift, empty_into_domain(new, ~(mass > 0.0), dom))
     return Piece(ids, np.ascontiguousarray(new), None), float(second.sum()), shift
 
 
@@ -159,7 +166,7 @@ def lloyd_tile(t, spec, tiling, own, *neighbours):
                 uncertified += len(pending[0])
                 break
     escalated = _cat(escalated)
-    piece, energy, shift = _step_piece(done)
+    piece, energy, shift = _step_piece(done, spec["domain"])
     if len(piece.ids) + len(escalated[0]) != len(own.ids):
         raise RuntimeError(f"tile {t}: moments do not match the tile's sites")  # a bug
     summary = {
@@ -193,7 +200,7 @@ def lloyd_box(spec, box, ids_u, last, *pieces):
         part, more = _box_moments(spec, box, ids_u, last, pieces)
     if len(part[0]) + len(more[0]) != len(ids_u):
         raise RuntimeError("a recomputation box misses its own sites")  # a bug
-    piece, energy, shift = _step_piece([part])
+    piece, energy, shift = _step_piece([part], spec["domain"])
     return {"energy": energy, "shift": shift, "n": len(piece.ids)}, piece, more
 
 
@@ -266,7 +273,8 @@ def lloyd(
     """Lloyd relaxation of many sites in tiles on dask.distributed.
 
     Each step is that of :func:`voroforge.lloyd` (uniform density): every site moves to the
-    centroid of its Voronoi cell in the domain (a site with an empty cell stays). The cells
+    centroid of its Voronoi cell in the domain (a site outside with an empty cell moves to
+    the domain's nearest point; a duplicate inside waits a step). The cells
     are computed in tiles with certified halos (see :func:`voronoi`); between steps each
     tile's moved sites go to the tiles that own them now, on the workers.
 
