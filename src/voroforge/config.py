@@ -362,6 +362,14 @@ CORNER_RADIUS_SHRINK = 1e-4
 #: design.populate: a boundary filling less of its bounding box than this is sampled from
 #: its triangles (rejection from the box would draw count / fill points).
 POPULATE_REJECTION_MIN_FILL = 1e-3
+#: design.populate / image seeds: rejection rounds keeping under this fraction of their
+#: candidates draw the shortfall at the rate seen (at most POPULATE_MAX_BATCH a round, and a
+#: uniform draw needing more is sampled from the triangles); POPULATE_MAX_DRAWS in all, or
+#: POPULATE_EMPTY_DRAWS with none kept, before giving up.
+POPULATE_LOW_ACCEPT = 0.05
+POPULATE_MAX_BATCH = 10_000_000
+POPULATE_MAX_DRAWS = 50_000_000
+POPULATE_EMPTY_DRAWS = 1_000_000
 
 #: design.compute: cells.min_size measures openings' inscribed circles to this fraction of
 #: min_size.

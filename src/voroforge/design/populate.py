@@ -88,6 +88,27 @@ def _field_values(field, xy: np.ndarray) -> np.ndarray:
     return np.clip(values, 0.0, 1.0)
 
 
+def next_batch(base: int, short: int, drawn: int, kept: int, what: str = "the field") -> int:
+    """Candidates to draw in a rejection round: ``base``, unless few are being kept.
+
+    Where under ``config.POPULATE_LOW_ACCEPT`` of the ``drawn`` candidates were ``kept``,
+    the ``short`` points still missing are drawn at that rate (capped at
+    ``config.POPULATE_MAX_BATCH``): at a fixed multiple of the shortfall a rate of 1e-3
+    needed thousands of rounds and was refused as a field or image that misses the
+    boundary. Raises ValueError once ``config.POPULATE_MAX_DRAWS`` candidates are drawn.
+    """
+    if drawn >= config.POPULATE_MAX_DRAWS or (not kept and drawn >= config.POPULATE_EMPTY_DRAWS):
+        raise ValueError(
+            f"could not place the points: {kept:,} of {drawn:,} candidates fell in the boundary"
+            f" where the density allows ({what} hardly meets the boundary)"
+        )
+    rate = kept / drawn if drawn else 1.0
+    if rate >= config.POPULATE_LOW_ACCEPT:
+        return base
+    want = short / max(rate, 1.0 / drawn) * 1.2 + 16
+    return int(min(max(base, want), config.POPULATE_MAX_BATCH))
+
+
 def _uniform(geom, count: int, rng) -> np.ndarray:
     """Exactly ``count`` uniform points inside ``geom`` by rejection from its bounding box.
 
@@ -97,7 +118,7 @@ def _uniform(geom, count: int, rng) -> np.ndarray:
     """
     xmin, ymin, xmax, ymax = geom.bounds
     ratio = geom.area / ((xmax - xmin) * (ymax - ymin))
-    if ratio < config.POPULATE_REJECTION_MIN_FILL:
+    if ratio < config.POPULATE_REJECTION_MIN_FILL or count / ratio > config.POPULATE_MAX_BATCH:
         return _uniform_triangles(geom, count, rng)
     out = []
     have = 0
@@ -509,17 +530,18 @@ def by_density(boundary, count, field, *, seed) -> np.ndarray:
     if fmax <= 0.0:
         raise ValueError("field is zero everywhere in the boundary: no density to sample")
     out = []
-    have = 0
+    have = drawn = 0
     for _ in range(_MAX_ROUNDS):
         if have >= n:
             break
-        m = max(256, int((n - have) * 1.5))
+        m = next_batch(max(256, int((n - have) * 1.5)), n - have, drawn, have)
         xy = _uniform(geom, m, rng)
         values = _field_values(field, xy)
         keep = rng.uniform(0.0, fmax, size=m) < values
         fmax = max(fmax, float(values.max()))  # a higher peak seen: accept less from now on
         out.append(xy[keep])
         have += int(keep.sum())
+        drawn += m
     else:
         raise ValueError("field is too small over the boundary to place the points")
     return np.ascontiguousarray(np.concatenate(out)[:n])

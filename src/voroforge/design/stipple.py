@@ -289,13 +289,17 @@ def image_seeds(image, domain, count: int, *, seed: int = 0, gamma: float = 1.0)
     kx, ky = (xmax - xmin) / w, (ymax - ymin) / h
     rng = np.random.default_rng(seed)
     prob = (density / total).ravel()
+    from .populate import next_batch
+
     out = np.zeros((0, 2))
-    for _ in range(64):
-        m = max(2 * (int(count) - len(out)), 16)
+    drawn = 0
+    while True:  # until count, or next_batch gives up
+        short = int(count) - len(out)
+        m = next_batch(max(2 * short, 16), short, drawn, len(out), "the image's darkness")
+        drawn += m
         pick = rng.choice(h * w, size=m, p=prob)
         col, row = pick % w, pick // w
         xy = np.column_stack((xmin + (col + rng.random(m)) * kx, ymax - (row + rng.random(m)) * ky))
         out = np.vstack((out, xy[shapely.contains_xy(domain, xy[:, 0], xy[:, 1])]))
         if len(out) >= count:
             return out[: int(count)]
-    raise ValueError("the image's dark parts hardly meet the boundary: too few seeds inside")
