@@ -164,8 +164,8 @@ def lloyd(
     callable density up to the quadrature error). Sites outside the domain get the part of
     the domain nearest to them and move to its centroid; a site outside whose cell is empty
     (other sites are nearer to all of the domain, or it lies in a hole) moves to the nearest
-    point of the domain's outline, and has a cell from the next iteration on (plain Lloyd;
-    ``method="lbfgs"`` keeps sites in the domain's box). Exact duplicates: the later copies
+    point of the domain's outline, and has a cell from the next iteration on (with
+    ``method="lbfgs"`` that move is an iteration of its own). Exact duplicates: the later copies
     get empty cells, so they wait one iteration while the first copy moves to its centroid,
     then they have cells of their own and the sites separate. The centroid of a cell cut by
     a concave boundary can lie outside the domain (that site then gets the domain part
@@ -484,6 +484,17 @@ def _lbfgs(z, dom, integ, iterations, stop, memory=8):
         if n == 0:
             break
         full = mass >= MASS_FLOOR  # the others stay (no reliable curvature)
+        if not full.all():
+            # a site outside with an empty cell has no gradient: into the domain first
+            z_in = z.copy()
+            moved = empty_into_domain(z_in, ~full, dom)
+            if moved > 0.0:
+                z, (d, f, g, mass) = z_in, evaluate(z_in)
+                pairs.clear()
+                energy.append(true_energy(f))
+                elapsed.append(time.perf_counter() - t0)
+                shifts.append(moved)
+                continue
         inv = np.where(full, 0.5 / np.where(full, mass, 1.0), 0.0)[:, None]
         lloyd = -inv * g  # each site to its cell's centroid
         if shifts and _stops(lloyd, stop):
