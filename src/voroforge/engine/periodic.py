@@ -68,14 +68,18 @@ def wrap_points(points: np.ndarray, box) -> np.ndarray:
     Returns
     -------
     (n, 2) float64
-        A new array.
+        A new array. Coordinates already in ``[min, max)`` are kept bit for bit
+        (``lo + mod(p - lo, size)`` rounds: a site an ulp below ``max`` moved onto its
+        neighbour an ulp lower, a false duplicate, or one below ``max`` of y to ``min``).
     """
     lo = np.array(box[:2], dtype=np.float64)
+    top = np.array(box[2:], dtype=np.float64)
     size = np.array([box[2] - box[0], box[3] - box[1]], dtype=np.float64)
     out = lo + np.mod(points - lo, size)
     hi = lo + size
     out = np.where(out >= hi, lo, out)  # rounding can land on the upper edge
-    return np.where(out < lo, lo, out)
+    out = np.where(out < lo, lo, out)
+    return np.where((points >= lo) & (points < top), points, out)
 
 
 def _images(sites: np.ndarray, box, margin):
