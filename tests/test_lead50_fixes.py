@@ -134,3 +134,19 @@ def test_periodic_sites_inside_the_box_are_kept_bit_for_bit():
         np.testing.assert_array_equal(wrap_points(p, bx), p)
         out = wrap_points(p + [x1 - x0, 0.0], bx)  # shifted a period: back in the box
         assert ((out >= [x0, y0]) & (out < [x1, y1])).all()
+
+
+@pytest.mark.parametrize("hexagonal", [False, True])
+def test_lattices_on_a_long_strip_cover_only_its_box(hexagonal):
+    # the lattice covered the disc around the box: (diagonal / spacing)^2 points, and a
+    # 20000 x 10 strip at spacing 0.5 (760k points inside) was refused as > 2e7
+    strip = shapely.box(0, 0, 20000, 10)
+    pts = (P.hexgrid if hexagonal else P.grid)(strip, 0.5)
+    if not hexagonal:  # x = 10000 + 0.5 i in (0, 20000), y = 5 + 0.5 j in (0, 10)
+        assert len(pts) == 39999 * 19
+        assert len(np.unique(pts, axis=0)) == len(pts)
+    assert len(pts) > 700_000
+    assert shapely.contains_xy(strip, pts[:, 0], pts[:, 1]).all()
+    tilted = P.grid(shapely.box(0, 0, 2000, 10), 0.5, angle=30.0)  # rotated: same spacing
+    d = np.sort(np.hypot(*np.diff(tilted[:200], axis=0).T))
+    assert abs(d[0] - 0.5) < 1e-9

@@ -229,6 +229,21 @@ def test_design_seed_count_is_bounded(monkeypatch):
         result_of(panel(**{"seeds.method": "random", "seeds.count": 200}))
     with pytest.raises(DesignError, match=r"seeds.radius: .* seeds, at most 100"):
         result_of(panel(**{"seeds.method": "poisson", "seeds.radius": 3}))
+    # refused from the count, before drawing the points (1.5e7 took 11 s and 846 MB)
+    from voroforge.design import populate
+
+    def never(*args, **kwargs):
+        raise AssertionError("the points were drawn")
+
+    monkeypatch.setattr(config, "DESIGN_MAX_CELLS", 2_000_000)
+    monkeypatch.setattr(populate, "random", never)
+    with pytest.raises(DesignError, match=r"seeds.count: 15,000,000 seeds"):
+        result_of(panel(**{"seeds.method": "random", "seeds.count": 15_000_000}))
+    # a spacing or radius too small is named at its own key, not at the table
+    with pytest.raises(DesignError, match=r"seeds.spacing: spacing 0.001 is too small"):
+        result_of(panel(**{"seeds.method": "grid", "seeds.spacing": 0.001}))
+    with pytest.raises(DesignError, match=r"seeds.radius: radius 0.001 is too small"):
+        result_of(panel(**{"seeds.method": "poisson", "seeds.radius": 0.001}))
 
 
 def test_periodic_tile_is_seamless():
