@@ -20,7 +20,7 @@ from ..config import (
     NJIT,
 )
 from .halfplane_settle import emit_exact, emit_float, settle_ring
-from .sidegap import restore_sides
+from .sidegap import may_have_parallel, restore_sides
 
 #: (2 r)^2 / r^2 with a margin against rounding: a site farther than twice the cell's
 #: radius from its site cannot cut it
@@ -168,7 +168,9 @@ def finish_cell(
     # circle) is hard however few sites its search visited
     # a side the float cut lost between two parallel bisectors (sites on one line) is put
     # back, so that settling names the ring's side points by their crossings
-    ml = restore_sides(sidx[k], lab, ss, m, xs, ys, box)
+    ml = m
+    if may_have_parallel(sidx[k], lab, m, xs, ys):
+        ml = restore_sides(sidx[k], lab, ss, m, xs, ys, box)
     ms, _ = settle_ring(sidx[k], lab, ml, ss, watch, keep, sidx, xs, ys, vx, vy, cand, box, budget)
     if ms == -2:
         return -2

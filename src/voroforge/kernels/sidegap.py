@@ -24,7 +24,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
-from .predicates import orient2d
+from .predicates import orient2d, orient2d_fast
 from .vertex import box_crossing
 
 
@@ -49,6 +49,34 @@ def parallel_between(i, a, b, xs, ys):
                 return False
             moved = True
     return moved
+
+
+@njit(inline="always", **NJIT)
+def may_have_parallel(i, lab, m, xs, ys):
+    """Whether some consecutive labels of a ring may be a :func:`parallel_between` pair.
+
+    The callers' screen before :func:`restore_sides` (``lab[u - 1]`` then ``lab[u]``).
+    Inlined and without exact code: False where each pair of sites is proven not to lie in
+    opposite directions from ``i`` on one line (a dot product that is not negative, or
+    orient2d's float filter finding the three not collinear), as on every ring but a
+    strip's; the hot loop then makes no call (``restore_sides`` takes four arrays).
+    """
+    if m < 2:
+        return False
+    xi = xs[i]
+    yi = ys[i]
+    b = lab[m - 1]
+    for u in range(m):
+        a = b
+        b = lab[u]
+        if a < 0 or b < 0:
+            continue
+        if (xs[a] - xi) * (xs[b] - xi) + (ys[a] - yi) * (ys[b] - yi) >= 0.0:
+            continue
+        det = orient2d_fast(xs[a], ys[a], xs[b], ys[b], xi, yi)
+        if det != det:
+            return True  # NaN: collinear, or the filter could not decide
+    return False
 
 
 @njit(**NJIT)
@@ -108,20 +136,21 @@ def _end_side(i, j, xs, ys, box, leaving):
 def side_path(i, a, b, xs, ys, box):
     """The sides between the edges of neighbours ``a`` then ``b`` with parallel bisectors.
 
-    Returns ``(first, count)``: the sides ``first``, :func:`_next_side` of it, ...
-    (``count`` of them) that a counter-clockwise ring of ``i`` runs along from ``a``'s edge
-    to ``b``'s; ``count`` 0 where the bisectors do not cross the box's sides.
+    Returns ``(first, count, xa, ya, xb, yb)``: the sides ``first``, :func:`_next_side`
+    of it, ... (``count`` of them) that a counter-clockwise ring of ``i`` runs along from
+    ``a``'s edge to ``b``'s, and where the two edges meet them (the canonical crossings);
+    ``count`` 0 where the bisectors do not cross the box's sides.
     """
-    sa, _, _ = _end_side(i, a, xs, ys, box, True)
-    sb, _, _ = _end_side(i, b, xs, ys, box, False)
+    sa, xa, ya = _end_side(i, a, xs, ys, box, True)
+    sb, xb, yb = _end_side(i, b, xs, ys, box, False)
     if sa == 0 or sb == 0:
-        return 0, 0
+        return 0, 0, xa, ya, xb, yb
     count = 1
     s = sa
     while s != sb and count < 5:
         s = _next_side(s)
         count += 1
-    return sa, count if count < 5 else 0
+    return sa, count if count < 5 else 0, xa, ya, xb, yb
 
 
 @njit(**NJIT)
@@ -138,7 +167,7 @@ def restore_sides(i, lab, sure, m, xs, ys, box):
         a = lab[u - 1] if u > 0 else lab[m - 1]
         b = lab[u]
         if parallel_between(i, a, b, xs, ys):
-            first, count = side_path(i, a, b, xs, ys, box)
+            first, count, _, _, _, _ = side_path(i, a, b, xs, ys, box)
             if count > 0 and m + count <= min(lab.shape[0], sure.shape[0]):
                 for k in range(m - 1, u - 1, -1):
                     lab[k + count] = lab[k]
@@ -176,29 +205,29 @@ def restore_side_vertices(i, px, py, pw, m, nbrs, tris, nn, xs, ys, box):
     between the two parallel edges becomes the first edge's crossing, the corners, and the
     second edge's crossing (the canonical crossings); returns the new length.
     """
+    if not may_have_parallel(i, pw, m, xs, ys):
+        return m
     v = 0
     while v < m:
         a = pw[v - 1] if v > 0 else pw[m - 1]
         b = pw[v]
         if parallel_between(i, a, b, xs, ys) and _no_triangle(a, b, nbrs, tris, nn):
-            first, count = side_path(i, a, b, xs, ys, box)
+            first, count, xa, ya, xb, yb = side_path(i, a, b, xs, ys, box)
             if count > 0 and m + count <= px.shape[0]:
                 for k in range(m - 1, v, -1):
                     px[k + count] = px[k]
                     py[k + count] = py[k]
                     pw[k + count] = pw[k]
-                _, x, y = _end_side(i, a, xs, ys, box, True)
-                px[v] = x
-                py[v] = y
+                px[v] = xa
+                py[v] = ya
                 s = first
                 for k in range(count):
                     pw[v + k] = s
                     if k + 1 < count:
                         px[v + k + 1], py[v + k + 1] = _corner(s, box)
                     s = _next_side(s)
-                _, x, y = _end_side(i, b, xs, ys, box, False)
-                px[v + count] = x
-                py[v + count] = y
+                px[v + count] = xb
+                py[v + count] = yb
                 pw[v + count] = b
                 m += count
                 v += count
