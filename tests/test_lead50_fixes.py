@@ -150,3 +150,30 @@ def test_lattices_on_a_long_strip_cover_only_its_box(hexagonal):
     tilted = P.grid(shapely.box(0, 0, 2000, 10), 0.5, angle=30.0)  # rotated: same spacing
     d = np.sort(np.hypot(*np.diff(tilted[:200], axis=0).T))
     assert abs(d[0] - 0.5) < 1e-9
+
+
+def test_scale_overwrite_never_removes_a_file_or_a_foreign_dataset(tmp_path):
+    # --overwrite unlinked any file at OUT (the points file itself: the points were lost) and
+    # removed any folder of part-*.parquet (checker26 F6); refused before any cluster starts
+    pytest.importorskip("distributed")
+    import pyarrow as pa
+    import pyarrow.dataset as ds
+
+    from voroforge import scale
+
+    pts = tmp_path / "in.csv"
+    pts.write_text("x,y\n0,0\n1,0\n0,1\n1,1\n0.5,0.5\n")
+    with pytest.raises(ValueError, match="is the points file"):
+        scale.voronoi(str(pts), out=pts, overwrite=True)
+    assert pts.read_text().startswith("x,y\n0,0")
+    report = tmp_path / "report.csv"
+    report.write_text("my data\n")
+    with pytest.raises(ValueError, match="is a file, not a dataset folder"):
+        scale.voronoi(str(pts), out=report, overwrite=True)
+    assert report.read_text() == "my data\n"
+    sales = tmp_path / "sales"
+    ds.write_dataset(pa.table({"a": [1, 2]}), sales, format="parquet")
+    before = sorted(p.name for p in sales.iterdir())
+    with pytest.raises(ValueError, match="refusing to overwrite"):
+        scale.voronoi(str(pts), out=sales, overwrite=True)
+    assert sorted(p.name for p in sales.iterdir()) == before

@@ -20,6 +20,7 @@ import json
 import math
 import numbers
 import os
+import re
 import shutil
 import time
 from contextlib import contextmanager
@@ -119,7 +120,7 @@ def _ours(path: Path) -> bool:
         name = p.name
         if not (
             name in (MANIFEST, "_metadata", "_common_metadata")
-            or (name.startswith("part-") and name.endswith(".parquet"))
+            or re.fullmatch(r"part-\d{5,}\.parquet", name)
             or name.startswith("_points.tmp")
             or (name == SHUFFLE and p.is_dir())
             or (name.startswith(".") and name.endswith(".tmp"))
@@ -128,8 +129,18 @@ def _ours(path: Path) -> bool:
     return True
 
 
-def _prepare_out(out: Path, overwrite: bool):
-    """Create ``out``; returns the manifest of an unfinished job there (to resume) or None."""
+def _prepare_out(out: Path, overwrite: bool, points=None):
+    """Create ``out``; returns the manifest of an unfinished job there (to resume) or None.
+
+    Only a folder of a job's own files is ever removed: a file at ``out`` (the points file
+    itself, a report) or a dataset without the job's manifest is refused, overwrite or not.
+    """
+    if isinstance(points, (str, Path)):
+        src = Path(points).resolve()
+        if src == out.resolve() or out.resolve() in src.parents:
+            raise ValueError(f"{out} is the points file or holds it; write the cells elsewhere")
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"{out} is a file, not a dataset folder; refusing to overwrite it")
     if out.exists():
         manifest = out / MANIFEST
         if out.is_dir() and manifest.is_file():
@@ -138,12 +149,12 @@ def _prepare_out(out: Path, overwrite: bool):
                 return old
         if not overwrite:
             raise ValueError(f"{out} exists; pass overwrite=True (--overwrite) to replace it")
-        if out.is_dir():
-            if not _ours(out):
-                raise ValueError(f"{out} is a folder with other files; refusing to overwrite it")
-            shutil.rmtree(out)
-        else:
-            out.unlink()
+        if not _ours(out) or (any(out.glob("part-*")) and not manifest.is_file()):
+            raise ValueError(
+                f"{out} is a folder with other files (or a dataset no job of ours wrote);"
+                " refusing to overwrite it"
+            )
+        shutil.rmtree(out)
     out.mkdir(parents=True)
     return None
 
@@ -342,7 +353,7 @@ def voronoi(
         from ..io.parquet import projjson
 
         crs_json = projjson(crs)
-    resume = _prepare_out(out, overwrite)
+    resume = _prepare_out(out, overwrite, points)
     rows = chunk_rows or config.SCALE_CHUNK_ROWS
     source = None
     try:
