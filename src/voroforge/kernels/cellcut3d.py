@@ -5,7 +5,7 @@ writes the slots). :func:`one_cell` starts from the container polyhedron (relati
 site), visits the buckets in the precomputed order of their least possible distance and
 then shell by shell (:mod:`kernels.grid3d`), gathers the candidates of one distance, cuts by
 them nearest first (:func:`_cut_batch`), and stops once no unscanned site can reach the cell
-(:func:`_far`: twice the cell's radius, widened by the weights' spread, or the local
+(:func:`.reach3d.far`: twice the cell's radius, widened by the weights' spread, or the local
 bound of :func:`.reach3d.local_stop` when the grid carries the weights' pyramid).
 
 The cell is held as a vertex graph (:mod:`kernels.graph3d`) when the template has one,
@@ -25,7 +25,6 @@ from ..config import CELLCUT3D_OWN_ENTRIES as OWN_ENTRIES
 from ..config import NJIT, VORONOI3D_CUT_RTOL, VORONOI3D_STOP_RTOL
 from .expansion import two_diff
 from .graph3d import GCUT_DONE, GCUT_EMPTY, cut_close, cut_open, to_rings
-from .grid import heap_pop, heap_push
 from .grid3d import bucket3d, shell_buckets_in, shell_gap
 from .polyhedron import CUT_DONE, CUT_EMPTY, CUT_OVERFLOW, cut
 from .predicates3d import (
@@ -36,14 +35,18 @@ from .predicates3d import (
     offset_side,
     vertex_offset,
 )
-from .reach3d import axis_gap as _axis_gap
-from .reach3d import box_dist2 as _box_dist2
-from .reach3d import box_misses as _box_misses
-from .reach3d import far as _far
 from .reach3d import gather_heavy, heavy_header, local_stop, shell_hit, shell_range
 from .reach3d import reach_box as _reach_box
 from .ties3d import retie
 from .vertex3d import resettle, resettle_rings
+from .walk3d import (
+    BIN_SORT_FROM,
+    bin_group,
+    gap_rows,
+    next_leaf,
+    ordered_bucket,
+    ordered_bucket_rows,
+)
 
 OK = 0
 EMPTY = 1
@@ -326,7 +329,9 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
     """
     V, F, R, R2, S, work, T = C
     graph = G[0].shape[0] > 0
-    for a in range(1, m):  # insertion sort: batches are small
+    if BIN_SORT_FROM <= m < min(S.shape[0], work.shape[0]):
+        bin_group(m, cand, cd2, S, work)
+    for a in range(1, m):  # insertion sort (stable): batches are small, or grouped
         ta = cand[a]
         da = cd2[a]
         b = a - 1
@@ -412,57 +417,6 @@ def _gather(b, t, i, px, py, pz, wi, start, SP, SW, sidx, cand, cd2, m, mg, rmax
         m += other and not (h > 0.0 and h * h > reach * d2)
         t += 1
     return m, mg, t
-
-
-@njit(**NJIT_INLINE)
-def _ordered_bucket(order, o, ci, cj, ck, px, py, pz, g, wi, wmax, rmax2):
-    """The bucket of ordered entry ``o`` around ``(ci, cj, ck)``, or -1 (outside, or too far)."""
-    ox = int(order[o, 0])
-    oy = int(order[o, 1])
-    oz = int(order[o, 2])
-    bx = ci + ox
-    by = cj + oy
-    bz = ck + oz
-    nx = int(g[6])
-    ny = int(g[7])
-    if bx < 0 or by < 0 or bz < 0 or bx >= nx or by >= ny or bz >= int(g[8]):
-        return -1
-    if order[o, 3] > 0.0:
-        gx = _axis_gap(px, g[0], g[3], bx, ox)
-        gy = _axis_gap(py, g[1], g[4], by, oy)
-        gz = _axis_gap(pz, g[2], g[5], bz, oz)
-        if _far(gx * gx + gy * gy + gz * gz, wi, wmax, rmax2):
-            return -1
-    return (bz * ny + by) * nx + bx
-
-
-@njit(**NJIT_NO_NRT)
-def _next_leaf(px, py, pz, tree, hk, hv, size, wi, wmax, rmax2, V, nv, eps, g, gs):
-    """Pop k-d nodes off the heap ``hk[:size], hv[:size]`` to the next bucket that may cut.
-
-    Nearest box first (keys: squared distances from the site to the boxes); the walk ends
-    at the first node beyond the stop test (:func:`_far`: every later one is farther), a
-    node whose box every vertex is nearer than (:func:`_box_misses`) is dropped. Returns
-    ``(bucket or -1, size, gs)`` (``gs``: :func:`.reach3d.local_stop`'s). Kept out of line:
-    :func:`one_cell`'s grid search compiles around a call, not around the walk (inlined,
-    the walk cost uniform cells 4-7%).
-    """
-    while size > 0:
-        key, v, size = heap_pop(hk, hv, size)
-        stop, gs2, gr2 = local_stop(key, wi, wmax, rmax2, px, py, pz, g, gs[0], gs[1])
-        gs = (gs2, gr2)
-        if stop:
-            return -1, 0, gs
-        if _box_misses(px, py, pz, tree[v], V, nv, wi, wmax, rmax2, eps):
-            continue
-        left = int(tree[v, 6])
-        if left < 0:
-            return int(tree[v, 7]), size, gs
-        for c in range(left, left + 2):
-            d2 = _box_dist2(px, py, pz, tree, c)
-            if not _far(d2, wi, wmax, rmax2):
-                size = heap_push(hk, hv, size, d2, c)
-    return -1, size, gs
 
 
 @njit(**NJIT_NO_NRT)
@@ -559,7 +513,8 @@ def one_cell(
     ``TG`` and is cut as a graph; its rings are read off at the end. With k-d buckets
     (``tree`` non-empty: :func:`.grid3d.kd_buckets3d`'s nodes, ``start`` its buckets) the
     buckets come nearest box first from a heap (keys ``hk``, nodes ``buck``) and each is cut
-    by at once; the stop tests are :func:`_far` on the box distance and :func:`_box_misses`.
+    by at once; the stop tests are :func:`.reach3d.far` on the box distance and
+    :func:`.reach3d.box_misses`.
     ``g[9]`` (optional): the most sites to examine (past it ``SLOW``), or when negative
     candidate lists (bucket ``i`` of ``start`` holds cell ``i``'s sites: engine.lists3d).
     """
@@ -621,6 +576,9 @@ def one_cell(
     # the order's later entries can lie beyond it, so a far entry stops the search only
     # below it (else the shells go on from r)
     outside = (r * min(g[3], g[4], g[5])) ** 2 if r >= 0 else 0.0
+    rows = r >= 0 and 2 * r + 1 <= tb.shape[1]  # the ordered entries' gaps from tb's rows
+    if rows:  # (tb is the shells' scratch: free until they begin)
+        gap_rows(px, py, pz, ci, cj, ck, r, g, tb)
     q = 0
     nb = 0
     shells = False
@@ -628,7 +586,7 @@ def one_cell(
     rt = 0
     kd = tree.shape[0] > 0  # k-d buckets: nearest box first from a heap (keys hk, nodes buck)
     size = 0
-    eps = 0.0  # the coordinates' rounding relative to the site, for _box_misses
+    eps = 0.0  # the coordinates' rounding relative to the site, for .reach3d.box_misses
     if kd:
         for a in range(6):
             eps = max(eps, abs(tree[0, a]))
@@ -694,7 +652,7 @@ def one_cell(
                 rt = start[i]
                 seen = 1
         elif kd:  # each k-d bucket is cut by at once
-            b, size, gs = _next_leaf(
+            b, size, gs = next_leaf(
                 px, py, pz, tree, hk, buck, size, wi, wmax, rmax2, V, nv, eps, g, gs
             )
             flush = True
@@ -718,11 +676,43 @@ def one_cell(
                         stop = True
                     else:
                         shells = True
-                else:
-                    b = _ordered_bucket(order, o, ci, cj, ck, px, py, pz, g, wi, wmax, rmax2)
+                    o += 1
+                # the entries of this level in a row (the same level and radius: the same
+                # stop test), until one is crowded
+                while not far:
+                    if rows:
+                        b = ordered_bucket_rows(order, o, ci, cj, ck, r, tb, g, wi, wmax, rmax2)
+                    else:
+                        b = ordered_bucket(order, o, ci, cj, ck, px, py, pz, g, wi, wmax, rmax2)
+                    o += 1
+                    if b >= 0 and rs2 > 0.0 and shell_hit(b, px, py, pz, g, rs2, shell):
+                        b = -1  # (cut by first)
                     if b >= 0:
-                        rt = start[b]
-                o += 1
+                        m, mg, rt = _gather(
+                            b,
+                            start[b],
+                            i,
+                            px,
+                            py,
+                            pz,
+                            wi,
+                            start,
+                            SP,
+                            SW,
+                            sidx,
+                            cand,
+                            cd2,
+                            m,
+                            mg,
+                            rmax2,
+                        )
+                        if rt < start[b + 1]:  # crowded: cut by what is gathered, go on
+                            rb = b
+                            flush = True
+                            break
+                    if o == order.shape[0] or order[o, 3] != level:
+                        break
+                b = -1
         elif q < nb:
             b = buck[q]
             rt = start[b]

@@ -432,7 +432,7 @@ def cell_scratch(ns, g, tree, TV, TF, TR, caps):
     )
     hkey = np.empty(nbuck if kd else 0)  # noqa: TID251 (the k-d heap's keys: written first)
     ib = np.zeros(6, np.int64)  # the shells' reach (cellcut3d._reach_box)
-    tb = np.zeros((3, max(nx, ny, nz)))
+    tb = np.zeros((3, max(nx, ny, nz, 8)))  # (8: the ordered entries' gap rows too)
     NM = (
         np.zeros((caps[3], 5), np.int64),  # vnames
         np.zeros((caps[3], 3)),  # vabs
