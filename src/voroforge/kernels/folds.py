@@ -46,6 +46,9 @@ from .predicates import orient2d
 from .vertex import voronoi_vertex
 
 _U = 2.0**-53
+# -> config: a folded ring's fan is sorted by its centres' bits for the stalled test
+# (:func:`_stalled_at`) when it has more bad turns than this (fewer: read whole at each)
+FOLD_SORT_TURNS = 8
 
 
 @njit(**NJIT)
@@ -152,8 +155,14 @@ def fold_pairs(sites, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, o
     the run of consecutive edges through it whose two ends are one vertex to rounding
     (:func:`.centers.short_edge`) is the folded cluster: each of its edges is a pair. A ring
     folded only by long edges (a straight angle rounded) gives none.
+
+    The fans, the matches and the bad turns are found once (:func:`_matched`); each reach
+    then visits only the bad turns (a ring of ``n`` vertices folded at a few: a sloped float
+    line's site off it, whose reach doubled 6 times, each reading the whole ring again).
     """
-    args = (sites, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, order)
+    fit = _matched(sites, tri, he, out, cx, cy, cls, coords, lengths, order)
+    mv = np.full(fit[2].shape[0], -1.0)  # each vertex's naming move, once (:func:`_moved_at`)
+    args = (sites, xs, ys, tri, err, cx, cy, cls, coords, lengths, order, fit, mv)
     rtol = FOLD_REACH_RTOL
     pa, pb = _pairs_within(*args, rtol, False)
     # a stall: folded rings, and no join within the reach. Where a float circle's exact
@@ -174,24 +183,84 @@ def fold_pairs(sites, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, o
         # still none: the classes at the bad turns are to be named afresh, each at the
         # centre of one of its triples that leaves its cells the fewest bad turns (pairs
         # (t, t): :func:`.centers.contract`); a function of the rings and classes alone
-        pa = _stalled(sites, tri, he, out, cx, cy, coords, lengths, order)
+        pa = _stalled_at(sites, cx, cy, coords, lengths, order, fit)
         pb = pa
     return pa, pb
 
 
 @njit(**NJIT)
-def _stalled(sites, tri, he, out, cx, cy, coords, lengths, order):
+def _matched(sites, tri, he, out, cx, cy, cls, coords, lengths, order):
+    """The sites' fans, their rings' vertices matched to them, and the turns to visit.
+
+    Returns ``(fans, fan_at, tk, hk, flag)``: site ``sites[s]``'s fan (:func:`_fan`) is
+    ``fans[fan_at[s]:fan_at[s + 1]]``; its ring vertex ``k`` (at ``coords[lengths[order[i]]
+    + k]``) is the ``r = lengths[order[i]] + k``-th slot of ``tk`` (the first triangle of the
+    fan from the previous match on that holds its bits, -1 for none), ``hk`` (its place in
+    the fan) and ``flag`` (bit 1: a right or reversing turn, exact; bit 2: its edge to the
+    next vertex joins two classes of one name). Slots of rings of under 3 vertices are
+    unused.
+    """
+    size = coords.shape[0]
+    tk = np.full(size, -1, dtype=np.int64)
+    hk = np.zeros(size, dtype=np.int64)
+    flag = np.zeros(size, dtype=np.uint8)
+    fan_at = np.zeros(sites.shape[0] + 1, dtype=np.int64)
+    fans = np.zeros(tri.shape[0] + 1, dtype=np.int64)  # (distinct sites: 3 per triangle)
+    for s in range(sites.shape[0]):
+        i = sites[s]
+        b = lengths[order[i]]
+        m = lengths[order[i] + 1] - b - 1
+        fan_at[s + 1] = fan_at[s]
+        if m < 3:
+            continue
+        if fans.shape[0] - fan_at[s] <= tri.shape[0] // 3:  # (a site listed twice)
+            fans = np.concatenate((fans, np.zeros(tri.shape[0] // 3 + 1, dtype=np.int64)))
+        fan = fans[fan_at[s] :]
+        nf = _fan(i, tri, he, out, fan)
+        fan_at[s + 1] = fan_at[s] + nf
+        h = 0
+        for k in range(m):
+            for d in range(nf):
+                t = fan[(h + d) % nf]
+                if cx[t] == coords[b + k, 0] and cy[t] == coords[b + k, 1]:
+                    tk[b + k] = t
+                    h = (h + d) % nf
+                    hk[b + k] = h
+                    break
+        for k in range(m):
+            kp = k - 1 if k > 0 else m - 1
+            kn = k + 1 if k + 1 < m else 0
+            t = tk[b + k]
+            u = tk[b + kn]
+            if t >= 0 and u >= 0 and cls[t] != cls[u]:
+                if cx[t] == cx[u] and cy[t] == cy[u]:
+                    flag[b + k] |= 2
+            if _bad_turn(coords, b + kp, b + k, b + kn):
+                flag[b + k] |= 1
+    return fans, fan_at, tk, hk, flag
+
+
+@njit(**NJIT)
+def _stalled(sites, tri, he, out, cx, cy, cls, coords, lengths, order):
     """Every triangle of the rings' fans at a bad turn or its two neighbours (by bits).
 
     All triangles holding a vertex's bits, so every class there, whatever triangle the
     builder's numbering puts first (two classes may share a name).
     """
-    most = 0
-    for s in range(sites.shape[0]):
-        i = sites[s]
-        most = max(most, lengths[order[i] + 1] - lengths[order[i]])
-    fan = np.zeros(tri.shape[0] // 3 + 1, dtype=np.int64)
-    got = np.zeros(3 * most * sites.shape[0] + 1, dtype=np.int64)
+    fit = _matched(sites, tri, he, out, cx, cy, cls, coords, lengths, order)
+    return _stalled_at(sites, cx, cy, coords, lengths, order, fit)
+
+
+@njit(**NJIT)
+def _stalled_at(sites, cx, cy, coords, lengths, order, fit):
+    """:func:`_stalled` on :func:`_matched`'s fans and turns.
+
+    In fan order at each vertex; a fan of many bad turns (a sloped float line's site off
+    it: ~n**2 of its n vertices' turns fold) is searched through its triangles sorted by
+    their bits (:func:`_bits_range`) instead of read whole at each.
+    """
+    fans, fan_at, _, _, flag = fit
+    got = np.zeros(64, dtype=np.int64)
     ng = 0
     for s in range(sites.shape[0]):
         i = sites[s]
@@ -199,16 +268,27 @@ def _stalled(sites, tri, he, out, cx, cy, coords, lengths, order):
         m = lengths[order[i] + 1] - b - 1
         if m < 3:
             continue
-        nf = _fan(i, tri, he, out, fan)
+        fan = fans[fan_at[s] : fan_at[s + 1]]
+        nf = fan.shape[0]
+        nbad = 0
         for k in range(m):
+            nbad += flag[b + k] & 1
+        if nbad == 0:
+            continue
+        by = _sorted_by_bits(fan, cx, cy) if nbad > FOLD_SORT_TURNS else np.zeros(0, np.int64)
+        for k in range(m):
+            if not flag[b + k] & 1:
+                continue
             kp = k - 1 if k > 0 else m - 1
             kn = k + 1 if k + 1 < m else 0
-            if not _bad_turn(coords, b + kp, b + k, b + kn):
-                continue
             for j in (kp, k, kn):
-                for d in range(nf):  # every class at the vertex (two may share its bits)
-                    t = fan[d]
-                    if cx[t] == coords[b + j, 0] and cy[t] == coords[b + j, 1]:
+                x, y = coords[b + j, 0], coords[b + j, 1]
+                lo, hi = 0, nf  # every class at the vertex (two may share its bits)
+                if by.shape[0]:
+                    lo, hi = _bits_range(by, fan, cx, cy, x, y)
+                for q in range(lo, hi):
+                    t = fan[by[q]] if by.shape[0] else fan[q]
+                    if cx[t] == x and cy[t] == y:
                         if ng == got.shape[0]:
                             got = np.concatenate((got, got))
                         got[ng] = t
@@ -217,28 +297,66 @@ def _stalled(sites, tri, he, out, cx, cy, coords, lengths, order):
 
 
 @njit(**NJIT)
+def _sorted_by_bits(fan, cx, cy):
+    """Places in ``fan`` sorted by their triangles' ``cx``, then ``cy``, then place."""
+    fx = np.zeros(fan.shape[0])
+    fy = np.zeros(fan.shape[0])
+    for d in range(fan.shape[0]):
+        fx[d] = cx[fan[d]]
+        fy[d] = cy[fan[d]]
+    by = np.argsort(fy, kind="mergesort")
+    return by[np.argsort(fx[by], kind="mergesort")]
+
+
+@njit(**NJIT)
+def _bits_range(by, fan, cx, cy, x, y):
+    """The run of ``by`` (:func:`_sorted_by_bits`) whose triangles' centres equal ``(x, y)``.
+
+    ``==`` on floats, as the direct search (0 and -0 equal, NaN equal to nothing; NaNs sort
+    last, so "below" and "at most" stay monotone along ``by``).
+    """
+    if x != x or y != y:
+        return 0, 0
+    lo, hi = 0, by.shape[0]
+    while lo < hi:  # the first place not below (x, y)
+        mid = (lo + hi) // 2
+        t = fan[by[mid]]
+        if cx[t] < x or (cx[t] == x and cy[t] < y):
+            lo = mid + 1
+        else:
+            hi = mid
+    first = lo
+    hi = by.shape[0]
+    while lo < hi:  # the first place past (x, y)
+        mid = (lo + hi) // 2
+        t = fan[by[mid]]
+        if cx[t] < x or (cx[t] == x and cy[t] <= y):
+            lo = mid + 1
+        else:
+            hi = mid
+    return first, lo
+
+
+@njit(**NJIT)
 def _pairs_within(
-    sites, xs, ys, tri, he, out, cx, cy, err, cls, coords, lengths, order, rtol, near
+    sites, xs, ys, tri, err, cx, cy, cls, coords, lengths, order, fit, mv, rtol, near
 ):
     """:func:`fold_pairs` with the reach ``rtol`` of a vertex's distance from its site.
 
-    ``near``: also keep every join's ends within ``FOLD_STALL_SPACING`` of the site's
-    distance to its nearest neighbour of their exact centres (what the join and the earlier
-    ones move them), so that no stalled contraction carries a vertex across the sites.
+    ``fit``: :func:`_matched`'s fans, matches and turns; ``mv``: the naming moves found so
+    far (:func:`_moved_at`). ``near``: also keep every join's ends within
+    ``FOLD_STALL_SPACING`` of the site's distance to its nearest neighbour of their exact
+    centres (what the join and the earlier ones move them), so that no stalled contraction
+    carries a vertex across the sites.
     """
+    fans, fan_at, tk, hk, flag = fit
     total = 0
-    most = 0
     for s in range(sites.shape[0]):
         i = sites[s]
-        size = lengths[order[i] + 1] - lengths[order[i]]
-        total += size
-        most = max(most, size)
+        total += lengths[order[i] + 1] - lengths[order[i]]
     pa = np.zeros(total, dtype=np.int64)
     pb = np.zeros(total, dtype=np.int64)
-    fan = np.zeros(tri.shape[0] // 3 + 1, dtype=np.int64)
-    tk = np.zeros(most, dtype=np.int64)
-    mv = np.zeros(most)
-    used = np.zeros(most, dtype=np.uint8)
+    used = np.zeros(coords.shape[0], dtype=np.uint8)
     np_ = 0
     for s in range(sites.shape[0]):
         i = sites[s]
@@ -246,7 +364,8 @@ def _pairs_within(
         m = lengths[order[i] + 1] - b - 1
         if m < 3:
             continue
-        nf = _fan(i, tri, he, out, fan)
+        fan = fans[fan_at[s] : fan_at[s + 1]]
+        nf = fan.shape[0]
         lim = np.inf
         if near:
             sp = np.inf
@@ -256,36 +375,17 @@ def _pairs_within(
                     if v != i:
                         sp = min(sp, abs(xs[v] - xs[i]) + abs(ys[v] - ys[i]))
             lim = FOLD_STALL_SPACING * sp
-        h = 0
         for k in range(m):
-            tk[k] = -1
-            used[k] = 0
-            mv[k] = 8.0 * _U * (abs(coords[b + k, 0]) + abs(coords[b + k, 1]))  # a crossing
-            for d in range(nf):
-                t = fan[(h + d) % nf]
-                if cx[t] == coords[b + k, 0] and cy[t] == coords[b + k, 1]:
-                    tk[k] = t
-                    h = (h + d) % nf
-                    # the most any member of its class in the fan moved (they follow it)
-                    mv[k] = _moved(t, xs, ys, tri, err, cx, cy)
-                    for d2 in range(1, nf):
-                        u = fan[(h + d2) % nf]
-                        if cls[u] != cls[t]:
-                            break
-                        mv[k] = max(mv[k], _moved(u, xs, ys, tri, err, cx, cy))
-                    break
-        for k in range(m):
+            if flag[b + k] == 0:
+                continue
             kp = k - 1 if k > 0 else m - 1
             kn = k + 1 if k + 1 < m else 0
-            t = tk[k]
-            u = tk[kn]
-            if t >= 0 and u >= 0 and cls[t] != cls[u] and used[k] == 0:
-                if cx[t] == cx[u] and cy[t] == cy[u]:
-                    used[k] = 1  # two classes with one name: one vertex already
-                    pa[np_] = t
-                    pb[np_] = u
-                    np_ += 1
-            if not _bad_turn(coords, b + kp, b + k, b + kn):
+            if flag[b + k] & 2 and used[b + k] == 0:
+                used[b + k] = 1  # two classes with one name: one vertex already
+                pa[np_] = tk[b + k]
+                pb[np_] = tk[b + kn]
+                np_ += 1
+            if not flag[b + k] & 1:
                 continue
             before = np_
             for step in (-1, 1):
@@ -297,16 +397,16 @@ def _pairs_within(
                     elif jn >= m:
                         jn -= m
                     e = j if step == 1 else jn  # edge e runs from vertex e to e + 1
-                    t = tk[j]
-                    u = tk[jn]
+                    t = tk[b + j]
+                    u = tk[b + jn]
                     if t < 0 or u < 0 or cls[t] == cls[u]:
                         break
                     if not _one_vertex(i, xs, ys, tri, err, cx, cy, t, u, rtol):
                         break
                     if near and not _within(xs, ys, tri, err, cx, cy, t, u, lim):
                         break
-                    if used[e] == 0:
-                        used[e] = 1
+                    if used[b + e] == 0:
+                        used[b + e] = 1
                         pa[np_] = t
                         pb[np_] = u
                         np_ += 1
@@ -314,16 +414,44 @@ def _pairs_within(
                     if j == k:
                         break
             if np_ == before:
-                e = _straight_fold(xs[i], ys[i], cls, coords, b, tk, mv, kp, k, kn, rtol)
+                rk, rm = tk[b : b + m], mv[b : b + m]
+                for j in (kp, k, kn):
+                    _moved_at(j, xs, ys, tri, err, cx, cy, cls, coords, b, fan, rk, hk[b:], rm)
+                e = _straight_fold(xs[i], ys[i], cls, coords, b, rk, rm, kp, k, kn, rtol)
                 en = e + 1 if e + 1 < m else 0
-                if near and e >= 0 and not _within(xs, ys, tri, err, cx, cy, tk[e], tk[en], lim):
+                if near and e >= 0 and not _within(xs, ys, tri, err, cx, cy, rk[e], rk[en], lim):
                     e = -1
-                if e >= 0 and used[e] == 0:
-                    used[e] = 1
-                    pa[np_] = tk[e]
-                    pb[np_] = tk[en]
+                if e >= 0 and used[b + e] == 0:
+                    used[b + e] = 1
+                    pa[np_] = rk[e]
+                    pb[np_] = rk[en]
                     np_ += 1
     return pa[:np_], pb[:np_]
+
+
+@njit(**NJIT)
+def _moved_at(k, xs, ys, tri, err, cx, cy, cls, coords, b, fan, tk, hk, mv):
+    """``mv[k]``: how far ring vertex ``k``'s class can have moved (:func:`_moved`), once.
+
+    The most any member of its class in the fan moved (they follow the member ``tk[k]``
+    at fan place ``hk[k]``); a few ulps for a box crossing (no member). Computed only
+    where a bad turn asks (a ring of ``n`` vertices may fold at a few).
+    """
+    if mv[k] >= 0.0:
+        return
+    t = tk[k]
+    if t < 0:
+        mv[k] = 8.0 * _U * (abs(coords[b + k, 0]) + abs(coords[b + k, 1]))  # a crossing
+        return
+    nf = fan.shape[0]
+    h = hk[k]
+    got = _moved(t, xs, ys, tri, err, cx, cy)
+    for d2 in range(1, nf):
+        u = fan[(h + d2) % nf]
+        if cls[u] != cls[t]:
+            break
+        got = max(got, _moved(u, xs, ys, tri, err, cx, cy))
+    mv[k] = got
 
 
 @njit(**NJIT)
@@ -610,7 +738,7 @@ class _Rounds:
         coords, lengths, _ = self.cells
         folded = self.folded() if folded is None else folded
         if refit:
-            pa = _stalled(folded, tri, he, self.out, cx, cy, coords, lengths, order)
+            pa = _stalled(folded, tri, he, self.out, cx, cy, cls, coords, lengths, order)
             pb = pa
         else:
             args = (xs, ys, tri, he, self.out, cx, cy, err, cls, coords, lengths, order)
