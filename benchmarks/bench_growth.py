@@ -13,6 +13,16 @@ Families (``--families``, all by default):
 ``sloped_flat``
     As ``sloped`` on ``y = 0.001 x`` (nearly horizontal: a k-d node's oriented bounds are
     what keeps it flat, not its axis-aligned box).
+``sloped_float``
+    ``n`` sites at random ``x`` in ``[0, 1000]`` on ``y = 0.3 x + 100`` (rounded: the line is
+    straight only to rounding, and random draws put sites a few ulps apart) and one site
+    off it, default box: the off-line ring folds where close sites round its vertices
+    across each other (the fold test once read the whole ring for every reach it tried).
+``comb``
+    A polygon domain, a comb of ``n`` teeth (0.6 wide, 1000 high, on a strip 1 high: an
+    outline of ``4 n`` vertices meeting every cell), with 4,000 random sites in its box:
+    here ``n`` is the boundary's size, not the sites' (only when named: ``--families comb
+    --sizes 500,1000,2000``).
 ``collinear_others``
     ``n`` sites on one line plus ``n / 100`` random ones in the unit box (the README's
     "100,000 on a line plus 1,000 others").
@@ -70,6 +80,23 @@ def sloped_flat(n: int):
     return pts, (-1.0, -1.0, 2.0, 2.0)
 
 
+def sloped_float(n: int):
+    x = np.random.default_rng(1).random(n) * 1000.0
+    pts = np.concatenate((np.column_stack((x, 0.3 * x + 100.0)), [[500.0, 619.8]]))
+    return pts, None
+
+
+def comb(n: int):
+    import shapely
+
+    teeth = []
+    for i in range(n):
+        teeth += [(i, 1000.0), (i + 0.6, 1000.0), (i + 0.6, 1.0), (i + 1, 1.0)]
+    geom = shapely.Polygon([(0, 0), (n, 0), *teeth[::-1]])
+    pts = np.random.default_rng(5).random((4000, 2)) * [n, 1000.0]
+    return pts, geom
+
+
 def collinear_others(n: int):
     x = np.linspace(0.0, 1.0, n)
     others = np.random.default_rng(1).random((max(n // 100, 1), 2))
@@ -102,6 +129,8 @@ FAMILIES = {
     "collinear": collinear,
     "sloped": sloped,
     "sloped_flat": sloped_flat,
+    "sloped_float": sloped_float,
+    "comb": comb,
     "collinear_others": collinear_others,
     "clustered": clustered,
     "circle": circle,
@@ -152,7 +181,8 @@ def run_family(name: str, sizes: list[int], algorithms, repeat: int, cutoff: flo
 def main(argv: list[str] | None = None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--sizes", default="1e4,1e5,1e6", help="comma-separated sizes")
-    ap.add_argument("--families", default=",".join(FAMILIES), help="comma-separated families")
+    every = ",".join(f for f in FAMILIES if f != "comb")  # (comb: boundary sizes, on request)
+    ap.add_argument("--families", default=every, help="comma-separated families")
     ap.add_argument("--algorithms", default=",".join(ALGORITHMS))
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--cutoff", type=float, default=60.0, help="skip larger sizes past this")
