@@ -37,6 +37,11 @@ __all__ = ["voronoi3d", "Convex", "Diagram3D"]
 #: two (its centroids overflowed past 2**256); was config.MESH_VOLUME_RANGE (1e-200, 1e200)
 MESH_VOLUME_RANGE = VOLUME_RANGE
 
+# -> config: a periodic try's sample of cells (_doomed): the sites nearest each open side of
+# the box, and more spread over the input
+DOOMED_SIDE = 8
+DOOMED_SPREAD = 16
+
 
 def duplicate_owner3d(pts: np.ndarray, w: np.ndarray | None) -> np.ndarray:
     """``(n,)``: -1 for a site that owns its cell, else the site that owns it (equal point).
@@ -347,9 +352,11 @@ def _periodic(P, W, t, progress):
         orig = np.concatenate(origs)
         shift = np.concatenate(shifts)
         big = box_template(lo - m, hi + m)
-        res = build_cells3d(
-            PP, np.ascontiguousarray(W[orig]), big, cells=np.arange(u), progress=progress
-        )
+        WO = np.ascontiguousarray(W[orig])
+        if not full.all() and _doomed(P, PP, WO, big, lo, hi, m, full):
+            margin *= 2.0  # (the cells of a sample already fail the test below)
+            continue
+        res = build_cells3d(PP, WO, big, cells=np.arange(u), progress=progress)
         r = np.sqrt(res.rad2)[:, None]
         ok = (full | ((P - 2 * r >= lo - m) & (P + 2 * r <= hi + m))).all()
         # status 1: a power cell that no point is nearest to (empty); it had made the loop
@@ -364,6 +371,41 @@ def _periodic(P, W, t, progress):
                 + "; please report this input"
             )
         margin *= 2.0
+
+
+def _doomed(P, PP, WO, big, lo, hi, m, full) -> bool:
+    """Whether a try of :func:`_periodic` with margins ``m`` fails its closing test for sure.
+
+    Only where a gap between the sites' coordinates along an open axis (circularly, on the
+    torus) is wider than its margin (sites on one plane or line: their cells span the period
+    across it); then the cells of a sample of the sites (the 8 nearest each open side, 16
+    more spread over the input) are built first, and the try is known to fail when one of
+    them reaches past the margin by more than rounding. A try that fails this way is skipped,
+    so the build that passes is the same call as before, with the same bits: 4,000 sites on
+    a plane built three times (2.15 + 1.38 + 1.35 s, the first with its cells spanning the
+    margins), on a line 12.0 + 2.1 + 2.3 s.
+    """
+    L = hi - lo
+    u = len(P)
+    wide = False
+    for a in range(3):
+        if full[a]:
+            continue
+        x = np.unique(P[:, a])
+        gaps = np.diff(np.r_[x, x[0] + L[a]])
+        wide |= bool(gaps.max() > m[a])
+    if not wide:
+        return False
+    pick = [np.linspace(0, u - 1, min(u, DOOMED_SPREAD)).astype(np.int64)]
+    for a in np.flatnonzero(~full):
+        o = np.argsort(P[:, a], kind="stable")
+        pick += [o[:DOOMED_SIDE], o[-DOOMED_SIDE:]]
+    cells = np.unique(np.concatenate(pick))
+    res = build_cells3d(PP, WO, big, cells=cells, lists=False)
+    r = np.sqrt(res.rad2)[:, None]
+    tol = 1e-9 * L  # far above the radius's rounding: a skipped try fails in the real build
+    out = (P[cells] - 2 * r < lo - m - tol) | (P[cells] + 2 * r > hi + m + tol)
+    return bool((out[:, ~full].any(axis=1) & (res.status == 0)).any())
 
 
 @njit(**NJIT_PARALLEL)
