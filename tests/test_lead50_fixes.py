@@ -177,3 +177,70 @@ def test_scale_overwrite_never_removes_a_file_or_a_foreign_dataset(tmp_path):
     with pytest.raises(ValueError, match="refusing to overwrite"):
         scale.voronoi(str(pts), out=sales, overwrite=True)
     assert sorted(p.name for p in sales.iterdir()) == before
+
+
+def test_an_image_over_pillows_limit_is_a_clear_error_everywhere(tmp_path, monkeypatch):
+    # DecompressionBombError is no ValueError: a traceback from stipple/build and a studio
+    # message that raised out of Session.apply (checker26 F4)
+    from PIL import Image
+
+    from voroforge.design.stipple import grey_image
+
+    monkeypatch.setattr(Image, "MAX_IMAGE_PIXELS", 1000)  # an error past 2000 pixels
+    bomb = tmp_path / "bomb.png"
+    Image.new("L", (100, 100), 0).save(bomb)
+    with pytest.raises(ValueError, match="bomb.png: Image size \\(10000 pixels\\) exceeds"):
+        grey_image(bomb)
+    from voroforge.studio.replies import shown
+
+    assert shown(10**30) == "an integer of about 31 digits"  # str(i)[:20] read 1e19
+    assert shown("x" * 50, 10) == "'xxxxxxxxx..."
+
+
+def test_a_drawing_wider_than_float64_is_refused_not_written_as_nan(tmp_path):
+    # an SVG with width="nan" and viewBox="-inf -inf inf inf" was written with rc 0 (F1)
+    import voroforge as vf
+    from voroforge.io.dxf import write_dxf
+    from voroforge.io.png import write_png
+    from voroforge.io.svg import write_svg
+
+    pts = np.array([[1e308, 1e308], [-1e308, -1e308], [0.0, 0.0]])
+    d = vf.voronoi(pts)
+    for suffix, write in ((".svg", write_svg), (".png", write_png)):
+        with pytest.raises(ValueError, match="overflows float64"):
+            write(d.cells, tmp_path / f"h{suffix}", sites=pts)
+        assert not (tmp_path / f"h{suffix}").exists()
+    with pytest.raises(ValueError, match="overflows float64"):
+        write_dxf(list(d.cells), tmp_path / "h.dxf")
+
+
+def test_studio_save_gets_the_mode_of_every_other_output(tmp_path):
+    import os
+
+    from voroforge.studio.tomlfile import write_atomic
+
+    mask = os.umask(0o022)
+    try:
+        p = tmp_path / "p.toml"
+        p.write_text("a = 1\n")
+        os.chmod(p, 0o644)
+        write_atomic(p, "a = 2\n")
+        assert p.stat().st_mode & 0o777 == 0o644 and p.read_text() == "a = 2\n"
+    finally:
+        os.umask(mask)
+
+
+@pytest.mark.parametrize(
+    ("text", "why"),
+    [("x y w\n0.1 0.2 3\n0.5 0.5 1\n", "space-separated"), ("0.5,0.5\n0.1,0.2\n", "no header row")],
+)
+def test_scale_names_the_csv_it_cannot_stream(tmp_path, text, why):
+    # a space-separated file: "no x/y columns (columns are ['x y w'])"; a headerless one:
+    # "column '0.5' appears more than once" (checker26 F5)
+    pytest.importorskip("distributed")
+    from voroforge import scale
+
+    p = tmp_path / "p.csv"
+    p.write_text(text)
+    with pytest.raises(ValueError, match=f"{why}.*; scale reads CSV files with a header row"):
+        scale.voronoi(str(p), out=tmp_path / "cells.parquet")

@@ -29,7 +29,7 @@ from ..config import ARC_TOLERANCE
 from .arcs import bulges_of_rings
 from .atomic import write_atomically
 from .plotter import layer_paths
-from .render import as_geometries
+from .render import as_geometries, data_bounds
 
 __all__ = ["LAYER_COLOURS", "UNITS", "R2000", "dxf_skeleton", "write_dxf"]
 
@@ -161,6 +161,9 @@ def write_dxf(
     for name, value in (layers or {}).items():
         content.setdefault(_layer_name(name), []).extend(as_geometries(value))
     palette = {**LAYER_COLOURS, **{k.upper(): int(v) for k, v in (colours or {}).items()}}
+    everything = [g for items in content.values() for g in items]
+    if everything:
+        data_bounds(np.array(everything, dtype=object))  # a width past float64 is refused
 
     options = {"tolerance": arc_tolerance, "max_step": math.radians(max_arc_step), "arcs": arcs}
     drawing = {

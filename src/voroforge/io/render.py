@@ -199,7 +199,14 @@ def data_bounds(geoms: np.ndarray, sites=None, boundary=None) -> tuple[float, fl
     b = np.array(boxes)
     xmin, ymin = b[:, 0].min(), b[:, 1].min()
     xmax, ymax = b[:, 2].max(), b[:, 3].max()
-    span = max(xmax - xmin, ymax - ymin)
+    with np.errstate(over="ignore"):
+        span = max(xmax - xmin, ymax - ymin)
+    if not math.isfinite(span):
+        raise ValueError(
+            f"the drawing spans ({xmin:.6g}, {ymin:.6g}) to ({xmax:.6g}, {ymax:.6g}): its width"
+            " overflows float64, so no drawing or raster can hold it (write .geojson, .csv or"
+            " .parquet, or scale the input)"
+        )
     pad = span * 0.5 if span > 0 else max(1.0, abs(xmin), abs(ymin)) * 0.5
     if xmax - xmin <= 0:
         xmin, xmax = xmin - pad, xmax + pad

@@ -291,12 +291,22 @@ def _header(path: Path) -> tuple[str, list]:
     Split as the text reader splits them (``io.readers.points.split_fields``: RFC 4180
     quoting, quotes and padding dropped).
     """
+    from ..io.readers.files import parse_number
     from ..io.readers.points import split_fields
 
     with open(path, encoding="utf-8-sig") as fh:
         first = fh.readline().rstrip("\r\n")
-    delimiter = next((d for d in (",", ";", "\t") if d in first), ",")
-    return delimiter, split_fields(first, delimiter)
+    delimiter = next((d for d in (",", ";", "\t") if d in first), None)
+    # the streamed reader needs what the text reader (voroforge voronoi) can do without
+    how = "a header row naming the x and y columns, cells separated by commas, semicolons or tabs"
+    if delimiter is None and len(first.split()) > 1:
+        raise ValueError(f"{path}: space-separated; scale reads CSV files with {how}")
+    names = split_fields(first, delimiter or ",")
+    if names and all(parse_number(t) is not None for t in names):
+        raise ValueError(
+            f"{path}: no header row ({first[:40]!r}); scale reads CSV files with {how}"
+        )
+    return delimiter or ",", names
 
 
 def open_source(points, work: Path, rows: int) -> Source:

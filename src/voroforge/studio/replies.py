@@ -64,6 +64,18 @@ class BadMessage(Exception):
         self.key, self.message = key, message
 
 
+def shown(value, most: int = 20) -> str:
+    """``value`` for an error message: as sent, or visibly shortened (never another number).
+
+    ``str(i)[:20]`` of ``10**30`` read "10000000000000000000", a value nobody sent.
+    """
+    if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 60:
+        digits = int(value.bit_length() * math.log10(2)) + 1  # str() of 5,000 digits raises
+        return f"an integer of about {digits} digits"
+    text = repr(value)
+    return text if len(text) <= most else text[:most] + "..."
+
+
 def error_reply(exc: DesignError) -> Reply:
     """The ``"error"`` reply of a design's errors, one issue each."""
     return Reply("error", issues=[{"key": it.key, "message": it.message} for it in exc.issues])

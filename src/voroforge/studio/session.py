@@ -40,7 +40,7 @@ from ..design.compute import compute, outline
 from ..design.designfile import DesignError, apply_overrides, load
 from .controls import controls
 from .livecheck import LiveCheck
-from .replies import EXPORTS, BadMessage, Reply, changed_cells, error_reply, number, plain
+from .replies import EXPORTS, BadMessage, Reply, changed_cells, error_reply, number, plain, shown
 from .tomlfile import dumps, write_atomic
 
 __all__ = ["EXPORTS", "Reply", "Session"]
@@ -352,7 +352,7 @@ class Session:
     def _index(self, msg: dict, n: int, what: str = "i") -> int:
         i = msg.get(what)
         if not isinstance(i, int) or isinstance(i, bool) or not 0 <= i < n:
-            raise BadMessage("", f"{what} must be an index below {n}; got {str(i)[:20]}")
+            raise BadMessage("", f"{what} must be an index below {n}; got {shown(i)}")
         return i
 
     def apply(self, msg) -> Reply:
@@ -375,15 +375,15 @@ class Session:
             op = msg.get("op")
             handler = _OPS.get(op) if isinstance(op, str) else None
             if handler is None:
-                raise BadMessage("", f"unknown op {str(op)[:30]!r}")
+                raise BadMessage("", f"unknown op {shown(op, 30)}")
             return handler(self, msg)
         except BadMessage as exc:
             return Reply("error", issues=[{"key": exc.key, "message": exc.message}])
         except DesignError as exc:
             return error_reply(exc)
-        except (TypeError, ValueError, ArithmeticError, KeyError, IndexError, OSError) as exc:
-            # a message the checks above let through (an integer too large for a float, ...):
-            # answer it, keep the session as it was
+        except Exception as exc:  # noqa: BLE001 -- a message never raises
+            # a message the checks above let through (an integer too large for a float, an
+            # image over Pillow's limit, ...): answer it, keep the session as it was
             return Reply("error", issues=[{"key": "", "message": f"cannot apply: {exc}"[:300]}])
 
     def _op_set(self, msg: dict) -> Reply:

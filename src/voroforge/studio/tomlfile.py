@@ -10,10 +10,10 @@ same folder and renames it over the target.
 from __future__ import annotations
 
 import math
-import os
 import re
-import tempfile
 from pathlib import Path
+
+from ..io.atomic import write_bytes
 
 __all__ = ["dumps", "write_atomic"]
 
@@ -162,18 +162,7 @@ def write_atomic(path, data: bytes | str) -> Path:
     -------
     Path
     """
-    path = Path(path)
     raw = data.encode("utf-8") if isinstance(data, str) else bytes(data)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    done = False
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(raw)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-        done = True
-    finally:
-        if not done:
-            Path(tmp).unlink(missing_ok=True)
-    return path
+    # io.atomic's rename, so a saved file gets the mode of every other output (0666 less the
+    # umask; its own mkstemp left 0600, also on a design saved over)
+    return write_bytes(path, raw)

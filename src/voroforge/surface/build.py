@@ -10,6 +10,7 @@ else ``LABELS``) for the labels.
 from __future__ import annotations
 
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -82,7 +83,13 @@ def _height_samples(path: Path, rise: float) -> np.ndarray:
         elif ext in (".png", ".jpg", ".jpeg", ".tif", ".tiff"):
             from PIL import Image
 
-            with Image.open(path) as im:
+            try:
+                with warnings.catch_warnings():  # Pillow's limit is ours, without its warning
+                    warnings.simplefilter("ignore", Image.DecompressionBombWarning)
+                    im = Image.open(path)
+            except Image.DecompressionBombError as exc:  # not an OSError: a traceback before
+                raise ValueError(str(exc)) from None
+            with im:
                 grey = np.asarray(
                     im.convert("I;16") if im.mode.startswith("I;16") else im.convert("L")
                 )

@@ -14,13 +14,13 @@ its panel's label.
 from __future__ import annotations
 
 import math
-import os
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 import shapely
+
+from ..io.atomic import write_atomically
 
 __all__ = ["CutSheets", "Part", "UnrollWarning", "flatten", "unroll"]
 
@@ -230,15 +230,12 @@ class CutSheets:
 def _atomic(path, write, *, text: bool) -> Path:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w" if text else "wb", encoding="utf-8" if text else None) as f:
+
+    def into(tmp: str) -> None:
+        with open(tmp, "w" if text else "wb", encoding="utf-8" if text else None) as f:
             write(f)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
+
+    return write_atomically(path, into)  # the mode of every other output, not mkstemp's 0600
 
 
 def _upright(rings: list[np.ndarray]) -> list[np.ndarray]:
