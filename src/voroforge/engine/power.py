@@ -38,6 +38,8 @@ from .planar import build
 from .power_check import checked_cells, lost_candidates, pairs_csr, settle
 from .power_exact import lost_sites, on_one_line
 
+# -> config: the first fraction of a Newton step tried is this times the last one taken
+POWER_FIT_ALPHA_GROWTH = 2.0
 #: Up to this many sites every pair is a candidate neighbour (no triangulation needed).
 _ALL_PAIRS_MAX = 16
 _EPS = float(np.finfo(float).eps)
@@ -232,21 +234,46 @@ def power_diagram(pts: np.ndarray, w: np.ndarray, dom: Domain) -> PowerDiagram:
     -------
     PowerDiagram
     """
+    return power_diagrams(pts, w, (dom,))[0]
+
+
+def power_diagrams(pts: np.ndarray, w: np.ndarray, doms) -> tuple[PowerDiagram, ...]:
+    """:func:`power_diagram` on each of ``doms``, the box cells built once where they can be.
+
+    The cells are the bounding box cut by power bisectors, then clipped to the domain: on
+    domains with one bounding box (a domain and its convex hull, as the relaxed fit asks)
+    only the clip differs, so the box cells are built once (the same bits as one
+    :func:`power_diagram` per domain).
+    """
+    dom = doms[0]
+    if any(tuple(d.bounds) != tuple(dom.bounds) for d in doms[1:]):
+        return tuple(power_diagrams(pts, w, (d,))[0] for d in doms)
     n = len(pts)
     if n and (w == w[0]).all():
         # equal weights: the ordinary Voronoi diagram, from the exact engine
-        d = build(pts, dom, "delaunay")
-        k = frame_exponent(d)
-        return PowerDiagram(d.sites, d.duplicate_of, dom, buffers(d), d.edges, w, k, d.unresolved)
+        out = []
+        for one in doms:
+            d = build(pts, one, "delaunay")
+            k = frame_exponent(d)
+            bufs = buffers(d)
+            out.append(
+                PowerDiagram(d.sites, d.duplicate_of, one, bufs, d.edges, w, k, d.unresolved)
+            )
+        return tuple(out)
     e = _frame(pts, dom)
     if e:
         # squared distances and weights past float64's range (a cell at 2**490: its bits
         # moved; areas inf): build the diagram scaled by 2**-e, weights by 4**-e (exact)
-        d = power_diagram(np.ldexp(pts, -e), np.ldexp(w, -2 * e), dom.scaled(-e))
-        coords, ring, poly, geom = buffers(d)
-        edges = Edges(np.ldexp(d.edges.coords, e), d.edges.pairs)
-        bufs = (np.ldexp(coords, e), ring, poly, geom)
-        return PowerDiagram(pts, d.duplicate_of, dom, bufs, edges, w, -e, d.unresolved)
+        scaled = tuple(one.scaled(-e) for one in doms)
+        out = []
+        for one, d in zip(
+            doms, power_diagrams(np.ldexp(pts, -e), np.ldexp(w, -2 * e), scaled), strict=True
+        ):
+            coords, ring, poly, geom = buffers(d)
+            edges = Edges(np.ldexp(d.edges.coords, e), d.edges.pairs)
+            bufs = (np.ldexp(coords, e), ring, poly, geom)
+            out.append(PowerDiagram(pts, d.duplicate_of, one, bufs, edges, w, -e, d.unresolved))
+        return tuple(out)
     dup = _owners(pts, w)
     active = dup < 0
     x = np.ascontiguousarray(pts[:, 0])
@@ -261,8 +288,11 @@ def power_diagram(pts: np.ndarray, w: np.ndarray, dom: Domain) -> PowerDiagram:
         closed, lengths, own = settle(box, *rings)
         # the sites left without a ring that have a cell (exactly): float64 cannot hold it
         lost = lost_sites(x, y, w, box, active, np.flatnonzero(active & ~(np.diff(lengths) > 0)))
-    bufs, edges = assemble(dom, closed, lengths, own, n)
-    return PowerDiagram(pts, dup, dom, bufs, edges, w, unresolved=lost)
+    out = []
+    for one in doms:
+        bufs, edges = assemble(one, closed, lengths, own, n)
+        out.append(PowerDiagram(pts, dup, one, bufs, edges, w, unresolved=lost))
+    return tuple(out)
 
 
 def _frame(pts: np.ndarray, dom: Domain) -> int:
@@ -453,7 +483,7 @@ def fit_weights(pts, targets, dom, w0, tol, max_iter, relax=None):
         )
     floor = 0.5 * min(float(targets.min()), float(areas.min()))
     err = float(np.max(np.abs(areas - targets) / targets))
-    it = 0
+    it, alpha = 0, 1.0
     while err > tol and it < max_iter:
         it += 1
         r = targets - areas
@@ -473,12 +503,13 @@ def fit_weights(pts, targets, dom, w0, tol, max_iter, relax=None):
         norm = float(np.linalg.norm(r))
         got = None
         for step in _steps(lap, deg, r):
-            got = _line_search(partial(_areas, pts, dom), w, step, targets, floor, norm)
+            got = _line_search(partial(_areas, pts, dom), w, step, targets, floor, norm, alpha)
             if got is not None:
                 break
         if got is None:
             break  # no progress possible at float precision
-        w, d, areas = got
+        w, d, areas, alpha = got
+        alpha = _first_alpha(alpha)
         err = float(np.max(np.abs(areas - targets) / targets))
     return d, w, err, it
 
@@ -549,20 +580,30 @@ def _two_level(lap, r, shift):
     return None if fine is None else step + fine
 
 
-def _line_search(masses, w, step, targets, floor, norm):
+def _line_search(masses, w, step, targets, floor, norm, alpha=1.0):
     """Halve ``step`` until the cells keep ``floor`` and the mass error shrinks; or None.
 
     ``masses(w)`` gives ``(state, masses)`` of weights ``w`` (the diagram and its areas, or
-    :func:`_relaxed`'s diagrams and masses); returns ``(w, state, masses)`` of the step taken.
+    :func:`_relaxed`'s diagrams and masses); the first try is ``alpha`` of the step. Returns
+    ``(w, state, masses, alpha)`` of the step taken.
     """
-    alpha = 1.0
     for _ in range(40):
         w_try = w + alpha * step
         state, m_try = masses(w_try)
         if m_try.min() >= floor and np.linalg.norm(targets - m_try) <= (1 - alpha / 2) * norm:
-            return w_try, state, m_try
+            return w_try, state, m_try, alpha
         alpha *= 0.5
     return None
+
+
+def _first_alpha(taken):
+    """The first fraction of the next step to try: ``POWER_FIT_ALPHA_GROWTH`` x the last taken.
+
+    Far from the fit (the relaxed density's stages) Newton's full step empties hundreds of
+    cells and steps of 1/8-1/16 are taken step after step: trying the full step first cost
+    3-4 diagrams a step; near the fit full steps are taken, and the full step is tried.
+    """
+    return min(1.0, POWER_FIT_ALPHA_GROWTH * taken)
 
 
 def _areas(pts, dom, w):
@@ -652,8 +693,7 @@ def _relaxed(pts, dom, hull, eps, w):
     Density 1 on ``dom`` and ``eps`` on ``hull`` outside it: the masses are
     ``(1 - eps) A_dom + eps A_hull``, the Hessian the same mix of the two Laplacians.
     """
-    d = power_diagram(pts, w, dom)
-    dh = power_diagram(pts, w, hull)
+    d, dh = power_diagrams(pts, w, (dom, hull))
     return (d, dh), (1.0 - eps) * d.areas + eps * dh.areas
 
 
@@ -671,7 +711,7 @@ def _fit_relaxed(pts, targets, dom, w0, tol, max_iter, hull, eps):
         return d, w, np.inf, 0
     floor = 0.5 * min(float(targets.min()), float(mass.min()))
     err = float(np.max(np.abs(mass - targets) / targets))
-    it = 0
+    it, alpha = 0, 1.0
     while err > tol and it < max_iter:
         it += 1
         r = targets - mass
@@ -682,11 +722,12 @@ def _fit_relaxed(pts, targets, dom, w0, tol, max_iter, hull, eps):
         norm = float(np.linalg.norm(r))
         got = None
         for step in _steps(lap, deg, r):
-            got = _line_search(masses, w, step, targets, floor, norm)
+            got = _line_search(masses, w, step, targets, floor, norm, alpha)
             if got is not None:
                 break
         if got is None:
             break
-        w, (d, dh), mass = got
+        w, (d, dh), mass, alpha = got
+        alpha = _first_alpha(alpha)
         err = float(np.max(np.abs(mass - targets) / targets))
     return d, w, err, it
