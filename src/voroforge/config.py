@@ -62,6 +62,9 @@ FOLD_REACH_RTOL = 2.0**-10
 #: How many times a stalled fold test doubles its reach (FOLD_REACH_RTOL): 2**-10 -> 2**-4
 #: of the vertex's distance from its site
 FOLD_STALL_DOUBLINGS = 6
+#: A folded ring's fan is sorted by its centres' bits for the stalled test
+#: (kernels/folds._stalled_at) when it has more bad turns than this (fewer: read whole)
+FOLD_SORT_TURNS = 8
 #: Rings longer than this are not tested for simplicity (the test is quadratic): a folded one
 #: counts as not simple, alike in every round (kernels/folds._ring_simple)
 FOLD_SIMPLE_MAX = 512
@@ -739,6 +742,13 @@ POWER_FIT_GAP_EASY_STEPS = 2
 POWER_FIT_GAP_MIN_FACTOR = 1.1
 POWER_FIT_GAP_STAGE_STEPS = 40
 POWER_FIT_GAP_FIRST_STEPS = 20
+#: engine.capacity: where at most POWER_FIT_HOLE_SEED_FRACTION of the cells start empty
+#: (sites in a small hole), plain Newton from slivers seeded for them gets
+#: POWER_FIT_HOLE_SEED_STEPS steps before the relaxed density's continuation
+POWER_FIT_HOLE_SEED_FRACTION = 0.05
+POWER_FIT_HOLE_SEED_STEPS = 20
+#: engine.power: the first fraction of a Newton step tried is this times the last one taken
+POWER_FIT_ALPHA_GROWTH = 2.0
 
 #: engine.power (power_fit's bridge across a gap): a group's area gain counts only above this
 #: fraction of the domain's area. Summed cell areas carry rounding of a few ulps each; a

@@ -7,6 +7,9 @@ Re-exported by :mod:`voroforge.config`, so every module still imports its consta
 from __future__ import annotations
 
 __all__ = [
+    "BIN_SORT_FROM",
+    "DOOMED_SIDE",
+    "DOOMED_SPREAD",
     "TIES_RAY_RTOL",
     "GROW_BYTES",
     "GROW_LEAST",
@@ -235,3 +238,11 @@ GROW_BYTES = 2**26
 #: on one ray from the cell's site to this relative precision (a guard: exact ties are
 #: parallel)
 TIES_RAY_RTOL = 1e-10
+#: engine.voronoi3d._doomed: a periodic build try is skipped when a sample of cells (the
+#: DOOMED_SIDE sites nearest each open side of the box and DOOMED_SPREAD spread over the
+#: input) already reaches past its image margin (sites on one plane or line)
+DOOMED_SIDE = 8
+DOOMED_SPREAD = 16
+#: kernels.walk3d: batches of at least this many candidates are first grouped by distance
+#: into bins (bin_group, a stable counting sort), so the insertion sort after it moves few
+BIN_SORT_FROM = 24

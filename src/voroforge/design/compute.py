@@ -257,9 +257,7 @@ def attractor_field(design: Design, base: Path | None = None):
 
 
 def make_seeds(design: Design, domain, field_fn, base: Path | None) -> np.ndarray:
-    """The sites ``[seeds]`` asks for in ``domain`` (``field_fn``: attractor field or None).
-
-    At most ``DESIGN_MAX_CELLS`` (1e7 seeds were killed for memory without a message)."""
+    """The sites ``[seeds]`` asks for (at most ``DESIGN_MAX_CELLS``, ``seeds.count`` first)."""
     m = design.seeds.method
     key = "count" if m in ("random", "density", "image") else _SIZE_KEY.get(m, "spacing")
     n = design.seeds.count if key == "count" else 0  # refused before drawing 1.5e7 (11 s)

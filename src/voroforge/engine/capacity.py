@@ -23,6 +23,8 @@ from ..config import (
     POWER_FIT_GAP_MIN_FACTOR,
     POWER_FIT_GAP_STAGE_RTOL,
     POWER_FIT_GAP_STAGE_STEPS,
+    POWER_FIT_HOLE_SEED_FRACTION,
+    POWER_FIT_HOLE_SEED_STEPS,
     POWER_FIT_SCALE_EXP,
     POWER_FIT_SUM_RTOL,
 )
@@ -32,12 +34,6 @@ from .power import PowerDiagram, fit_weights, power_diagram, shrink_start
 from .threads import serial_below
 
 __all__ = ["as_targets", "power_fit"]
-
-# -> config: where at most this fraction of the cells start empty (sites in a small hole),
-# plain Newton from slivers seeded for them gets POWER_FIT_HOLE_SEED_STEPS steps before the
-# relaxed density's continuation
-POWER_FIT_HOLE_SEED_FRACTION = 0.05
-POWER_FIT_HOLE_SEED_STEPS = 20
 
 
 def as_targets(target_areas, n: int, dom: Domain, name: str = "target_areas") -> np.ndarray:

@@ -22,6 +22,7 @@ from scipy.spatial import ConvexHull, QhullError
 
 from ..config import (
     POWER_BRIDGE_GAIN_RTOL,
+    POWER_FIT_ALPHA_GROWTH,
     POWER_FLAT_RTOL,
     POWER_FRAME_EXP,
     POWER_HIDDEN_RTOL,
@@ -38,8 +39,6 @@ from .planar import build
 from .power_check import checked_cells, lost_candidates, pairs_csr, settle
 from .power_exact import lost_sites, on_one_line
 
-# -> config: the first fraction of a Newton step tried is this times the last one taken
-POWER_FIT_ALPHA_GROWTH = 2.0
 #: Up to this many sites every pair is a candidate neighbour (no triangulation needed).
 _ALL_PAIRS_MAX = 16
 _EPS = float(np.finfo(float).eps)

@@ -11,6 +11,8 @@ from ..config import (
     CONVEX_FOLD_ULPS,
     CONVEX_NEAR_PARALLEL_SIN,
     CONVEX_VERTEX_OUT_ULPS,
+    DOOMED_SIDE,
+    DOOMED_SPREAD,
     FRAME3D_CAP_EXP,
     NJIT_PARALLEL,
     OUTSIDE3D_BLOCK,
@@ -36,11 +38,6 @@ __all__ = ["voronoi3d", "Convex", "Diagram3D"]
 #: taken in the working frame and kernels.meshcut3d scales each cell's moments by a power of
 #: two (its centroids overflowed past 2**256); was config.MESH_VOLUME_RANGE (1e-200, 1e200)
 MESH_VOLUME_RANGE = VOLUME_RANGE
-
-# -> config: a periodic try's sample of cells (_doomed): the sites nearest each open side of
-# the box, and more spread over the input
-DOOMED_SIDE = 8
-DOOMED_SPREAD = 16
 
 
 def duplicate_owner3d(pts: np.ndarray, w: np.ndarray | None) -> np.ndarray:

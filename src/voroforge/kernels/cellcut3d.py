@@ -21,8 +21,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ..config import BIN_SORT_FROM, NJIT, VORONOI3D_CUT_RTOL, VORONOI3D_STOP_RTOL
 from ..config import CELLCUT3D_OWN_ENTRIES as OWN_ENTRIES
-from ..config import NJIT, VORONOI3D_CUT_RTOL, VORONOI3D_STOP_RTOL
 from .expansion import two_diff
 from .graph3d import GCUT_DONE, GCUT_EMPTY, cut_close, cut_open, to_rings
 from .grid3d import bucket3d, shell_buckets_in, shell_gap
@@ -40,7 +40,6 @@ from .reach3d import reach_box as _reach_box
 from .ties3d import retie
 from .vertex3d import resettle, resettle_rings
 from .walk3d import (
-    BIN_SORT_FROM,
     bin_group,
     gap_rows,
     next_leaf,

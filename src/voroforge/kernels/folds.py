@@ -33,6 +33,7 @@ from ..config import (
     FOLD_REACH_ERRS,
     FOLD_REACH_RTOL,
     FOLD_SIMPLE_MAX,
+    FOLD_SORT_TURNS,
     FOLD_SPAN_ERRS,
     FOLD_STALL_DOUBLINGS,
     FOLD_STALL_SPACING,
@@ -46,9 +47,6 @@ from .predicates import orient2d
 from .vertex import voronoi_vertex
 
 _U = 2.0**-53
-# -> config: a folded ring's fan is sorted by its centres' bits for the stalled test
-# (:func:`_stalled_at`) when it has more bad turns than this (fewer: read whole at each)
-FOLD_SORT_TURNS = 8
 
 
 @njit(**NJIT)

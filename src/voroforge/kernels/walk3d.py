@@ -23,9 +23,6 @@ from .reach3d import local_stop
 _INLINE = {**NJIT, "inline": "always"}
 #: allocates nothing: compiled without reference counting (see kernels.cellcut3d)
 _NO_NRT = {**NJIT, "_nrt": False}
-# -> config: batches of at least this many candidates are first grouped by distance into
-# bins (bin_group, a stable counting sort), so that the insertion sort after it moves few
-BIN_SORT_FROM = 24
 
 
 @njit(**_INLINE)
