@@ -33,6 +33,7 @@ from numba import njit, prange
 
 from ..config import NJIT, NJIT_PARALLEL, POWER_CROWDED_RTOL, POWER_CROWDED_ULPS
 from .clip import cut_ring, plane_values
+from .distance_exact import compare
 from .vertex import power_box_crossing, power_vertex
 
 _U = 2.0**-53  # unit roundoff of float64
@@ -86,11 +87,88 @@ def box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
         py, qy = qy, py
         pw, qw = qw, pw
         swapped = not swapped
+    m = _corner_crossings(i, xs, ys, ws, px, py, pw, m, box)
     if swapped:
         for v in range(m):
             qx[v] = px[v]
             qy[v] = py[v]
             qw[v] = pw[v]
+    return m
+
+
+@njit(**NJIT)
+def _side_corner(side, start, box):
+    """The corner where box side ``side`` (-1..-4) starts (``start``) or ends, counter-clockwise."""
+    if side == -2:
+        return (box[0], box[1]) if start else (box[2], box[1])
+    if side == -3:
+        return (box[2], box[1]) if start else (box[2], box[3])
+    if side == -4:
+        return (box[2], box[3]) if start else (box[0], box[3])
+    return (box[0], box[3]) if start else (box[0], box[1])
+
+
+@njit(**NJIT)
+def _corner_crossings(i, xs, ys, ws, px, py, pw, m, box):
+    """Put back the corner a cut's crossing rounded onto, where it is exactly in the cell.
+
+    A bisector passing within rounding of a box corner crosses one of the corner's two
+    sides an ulp or less from it; the cut's crossing then lands on the corner and merges
+    with it, the later edge keeping its owner, so the vertex names the crossing of
+    whichever side the ring leaves by, not of the side the bisector crosses (issue 15:
+    sites (5e5, 4e6 + 0.003) and (5e5 + 0.003, 4e6), corners an ulp from their bisector:
+    one cell named the top side's crossing, an ulp left of the corner, the other the
+    corner; a gap of 7e-8 of the box). Where the ring meets the corner between a bisector
+    and a side, the corner's exact side of the bisector (equal weights:
+    :func:`.distance_exact.compare`) decides: strictly in the cell, the bisector crosses
+    the other side at the corner and the corner is a vertex of its own (inserted); else the
+    vertex stays the crossing of its side. A corner exactly on the bisector is the
+    lower-numbered site's. Both cells of the bisector decide by the one exact sign.
+    Returns the new count.
+    """
+    w = np.empty((0, 0))  # noqa: TID251  (scratch of the exact test, made when needed)
+    v = np.int64(0)
+    while v < m:
+        a = pw[v - 1 if v > 0 else m - 1]
+        b = pw[v]
+        x = px[v]
+        y = py[v]
+        if (a >= 0) == (b >= 0) or not (
+            (x == box[0] or x == box[2]) and (y == box[1] or y == box[3])
+        ):
+            v += 1
+            continue
+        j = a if a >= 0 else b
+        side = b if a >= 0 else a
+        # entering the side at its start (the ring's corner), or leaving it at its end
+        cx, cy = _side_corner(side, a >= 0, box)
+        if cx != x or cy != y or ws[i] != ws[j] or m + 1 > px.shape[0]:
+            v += 1
+            continue
+        if w.shape[0] == 0:
+            w = np.empty((9, 64))  # noqa: TID251  (every slot read is written first)
+        # on the bisector exactly: the corner is the lower-numbered site's (one decision)
+        s = compare(x, y, xs[i], ys[i], xs[j], ys[j], np.int64(0), w)
+        if s > 0 or (s == 0 and i > j):
+            v += 1
+            continue
+        for k in range(m, v, -1):
+            px[k] = px[k - 1]
+            py[k] = py[k - 1]
+            pw[k] = pw[k - 1]
+        # the side before (entering) or after (leaving) the corner, counter-clockwise
+        if a >= 0:
+            other = side + 1 if side <= -3 else (-1 if side == -2 else -4)
+        else:
+            other = -1 if side == -4 else (-2 if side == -1 else side - 1)
+        if a >= 0:
+            pw[v] = other  # the crossing of the side before, then the corner
+            pw[v + 1] = side
+        else:
+            pw[v] = other  # the corner, then the crossing of the side after
+            pw[v + 1] = j
+        m += 1
+        v += 2
     return m
 
 
