@@ -87,8 +87,8 @@ formats = {formats}
 @pytest.mark.parametrize(
     "width, count, formats, message",
     [
-        (100, 1000000000, '["svg"]', "seeds: count 1,000,000,000 is too large"),
-        (100, 10000000000000, '["svg"]', "seeds: count 10,000,000,000,000 is too large"),
+        (100, 1000000000, '["svg"]', "seeds.count: 1,000,000,000 seeds, at most 2,000,000"),
+        (100, 10000000000000, '["svg"]', "seeds.count: 10,000,000,000,000 seeds, at most"),
         ("1e308", 10, '["svg"]', "boundary.width: must be at most 1e+100"),
         (100, 10, "[]", "output.formats: is empty"),
     ],
