@@ -459,3 +459,27 @@ def brute_sibson(sites, queries, *, pad: float = 20.0) -> np.ndarray:
         stolen[stolen < 1e-12 * cell.area] = 0.0  # cells that only touch the new one
         out[k] = stolen / stolen.sum()
     return out
+
+
+def check_power_fit(fit, pts, targets, dom, rtol, seed=0, samples=4000) -> None:
+    """Assert a ``power_fit`` result independently of the engine.
+
+    Each cell clipped to ``dom`` by shapely has its target area to ``2 * rtol``, the cells
+    tile the domain, and random points of the domain clear of a power tie lie in the cell
+    of the site least in power distance (brute force over all sites).
+    """
+    cells = np.asarray(fit.cells, dtype=object)
+    t = np.asarray(targets, dtype=np.float64)
+    areas = shapely.area(shapely.intersection(cells, dom))
+    assert np.max(np.abs(areas - t) / t) <= 2 * rtol
+    assert abs(shapely.area(shapely.union_all(cells)) - dom.area) <= 1e-9 * dom.area
+    rng = np.random.default_rng(seed)
+    x0, y0, x1, y1 = dom.bounds
+    q = rng.uniform((x0, y0), (x1, y1), size=(samples, 2))
+    q = q[shapely.contains_xy(dom, q[:, 0], q[:, 1])]
+    w = np.asarray(fit.weights)
+    pw = ((q[:, None, :] - pts[None, :, :]) ** 2).sum(axis=2) - w[None, :]
+    order = np.sort(pw, axis=1)
+    clear = order[:, 1] - order[:, 0] > 1e-9
+    owner = np.argmin(pw, axis=1)[clear]
+    assert shapely.contains(cells[owner], shapely.points(q[clear])).all()

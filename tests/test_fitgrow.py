@@ -17,6 +17,8 @@ from voroforge.engine.diagram import buffers
 from voroforge.engine.domain import make_domain
 from voroforge.engine.power import power_diagram, power_diagrams
 
+from reference import check_power_fit
+
 TOL = 1e-6
 
 
@@ -51,19 +53,7 @@ def test_one_box_build_for_a_domain_and_its_hull():
 
 
 def _check(fit, pts, t, dom):
-    cells = np.asarray(fit.cells, dtype=object)
-    areas = shapely.area(shapely.intersection(cells, dom))
-    assert np.max(np.abs(areas - t) / t) <= 2 * TOL
-    assert abs(shapely.area(shapely.union_all(cells)) - dom.area) <= 1e-9 * dom.area
-    rng = np.random.default_rng(0)
-    q = rng.uniform((0, 0), (1, 1), size=(3000, 2))
-    q = q[shapely.contains_xy(dom, q[:, 0], q[:, 1])]
-    w = np.asarray(fit.weights)
-    pw = ((q[:, None, :] - pts[None, :, :]) ** 2).sum(axis=2) - w[None, :]
-    order = np.sort(pw, axis=1)
-    clear = order[:, 1] - order[:, 0] > 1e-9
-    owner = np.argmin(pw, axis=1)[clear]
-    assert shapely.contains(cells[owner], shapely.points(q[clear])).all()
+    check_power_fit(fit, pts, t, dom, TOL, samples=3000)
 
 
 def test_small_hole_needs_no_relaxed_density(monkeypatch):

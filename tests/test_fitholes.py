@@ -14,6 +14,8 @@ from shapely.ops import unary_union
 import voroforge as vf
 import voroforge.engine.capacity as capacity
 
+from reference import check_power_fit
+
 TOL = 1e-6
 
 
@@ -27,22 +29,7 @@ def _targets(rng, n, dom):
 
 
 def _check(fit, pts, t, dom, seed=0):
-    cells = np.asarray(fit.cells, dtype=object)
-    areas = shapely.area(shapely.intersection(cells, dom))
-    assert np.max(np.abs(areas - t) / t) <= 2 * TOL
-    assert abs(shapely.area(shapely.union_all(cells)) - dom.area) <= 1e-9 * dom.area
-    # points well inside one cell: there the site of least power distance owns them
-    rng = np.random.default_rng(seed)
-    x0, y0, x1, y1 = dom.bounds
-    q = rng.uniform((x0, y0), (x1, y1), size=(4000, 2))
-    q = q[shapely.contains_xy(dom, q[:, 0], q[:, 1])]
-    w = np.asarray(fit.weights)
-    pw = ((q[:, None, :] - pts[None, :, :]) ** 2).sum(axis=2) - w[None, :]
-    order = np.sort(pw, axis=1)
-    clear = order[:, 1] - order[:, 0] > 1e-9
-    owner = np.argmin(pw, axis=1)[clear]
-    qs = shapely.points(q[clear])
-    assert shapely.contains(cells[owner], qs).all()
+    check_power_fit(fit, pts, t, dom, TOL, seed)
 
 
 @pytest.mark.parametrize("r", [0.1, 0.3, 0.45])
