@@ -18,7 +18,6 @@ Examples
 from __future__ import annotations
 
 import math
-import warnings
 from pathlib import Path
 
 import numpy as np
@@ -101,14 +100,13 @@ def grey_image(source) -> np.ndarray:
     if isinstance(source, str | Path):
         from PIL import Image, UnidentifiedImageError
 
+        from ..io.readers.files import open_image
+
         path = Path(source)
         if not path.is_file():
             raise ValueError(f"{path}: no such image file")
         try:
-            with warnings.catch_warnings():  # up to Pillow's limit is read, without its warning
-                warnings.simplefilter("ignore", Image.DecompressionBombWarning)
-                im = Image.open(path)
-            with im:
+            with open_image(path) as im:
                 if im.mode in _DEEP_MODES:  # one channel past 8 bits: read at its own depth
                     return _deep_grey(np.asarray(im, dtype=np.float64), im.mode, path)
                 im = im.convert("RGBA")
@@ -116,8 +114,6 @@ def grey_image(source) -> np.ndarray:
                 arr = np.asarray(Image.alpha_composite(white, im).convert("L"), dtype=np.float64)
         except UnidentifiedImageError:
             raise ValueError(f"{path}: not an image pillow can read") from None
-        except Image.DecompressionBombError as exc:  # not a ValueError: a traceback before
-            raise ValueError(f"{path}: {exc}") from None
         return arr / 255.0
     arr = np.array(source, dtype=np.float64)
     if arr.ndim != 2 or arr.size == 0:

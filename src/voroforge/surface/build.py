@@ -10,7 +10,6 @@ else ``LABELS``) for the labels.
 from __future__ import annotations
 
 import math
-import warnings
 from pathlib import Path
 
 import numpy as np
@@ -81,15 +80,9 @@ def _height_samples(path: Path, rise: float) -> np.ndarray:
             text = path.read_text(encoding="utf-8")
             z = np.loadtxt(text.splitlines(), delimiter="," if "," in text else None, ndmin=2)
         elif ext in (".png", ".jpg", ".jpeg", ".tif", ".tiff"):
-            from PIL import Image
+            from ..io.readers.files import open_image
 
-            try:
-                with warnings.catch_warnings():  # Pillow's limit is ours, without its warning
-                    warnings.simplefilter("ignore", Image.DecompressionBombWarning)
-                    im = Image.open(path)
-            except Image.DecompressionBombError as exc:  # not an OSError: a traceback before
-                raise ValueError(str(exc)) from None
-            with im:
+            with open_image(path) as im:
                 grey = np.asarray(
                     im.convert("I;16") if im.mode.startswith("I;16") else im.convert("L")
                 )

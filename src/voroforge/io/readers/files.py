@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import math
+import warnings
 from pathlib import Path
 
-__all__ = ["existing_file", "finite_number", "parse_number", "positive_number"]
+__all__ = ["existing_file", "finite_number", "open_image", "parse_number", "positive_number"]
 
 
 def existing_file(path) -> Path:
@@ -102,3 +103,19 @@ def positive_number(value, name: str) -> float:
     if v <= 0:
         raise ValueError(f"{name} must be > 0, got {value!r}")
     return v
+
+
+def open_image(path):
+    """``PIL.Image.open(path)`` up to Pillow's pixel limit, without its warning.
+
+    Past the limit a ValueError naming the file (Pillow's DecompressionBombError is neither a
+    ValueError nor an OSError: it gave tracebacks, and a studio message raised).
+    """
+    from PIL import Image
+
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", Image.DecompressionBombWarning)
+            return Image.open(path)
+    except Image.DecompressionBombError as exc:
+        raise ValueError(f"{path}: {exc}") from None
