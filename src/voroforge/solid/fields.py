@@ -203,11 +203,32 @@ def combine(fields, *, mode: str = "max") -> Field3:
     return Field3(f)
 
 
+def _checked(f, name: str):
+    """``f`` wrapped so that its values are one finite, positive float per point."""
+
+    def sized(x):
+        m = len(x)
+        try:
+            v = np.asarray(f(x), dtype=np.float64)
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"{name}: the field's values are not numbers ({exc})") from None
+        if v.ndim == 0:
+            v = np.full(m, float(v))
+        if v.shape != (m,):
+            raise ValueError(f"{name}: the field gave {v.shape} values for {m} points")
+        if not (np.isfinite(v).all() and (v > 0).all()):
+            raise ValueError(f"{name}: the field gave non-positive or non-finite values")
+        return v
+
+    return sized
+
+
 def as_size(value, field, name: str):
     """A size argument as a callable ``xyz -> (m,)`` of positive values.
 
-    ``value`` is a number, a callable (used as is), or with ``field`` a pair ``(far, near)``
-    mapped by the field's 0..1 values. Raises ``ValueError`` naming ``name`` otherwise.
+    ``value`` is a number, a callable (its values checked at each call: one finite value
+    > 0 per point), or with ``field`` a pair ``(far, near)`` mapped by the field's 0..1
+    values. Raises ``ValueError`` naming ``name`` otherwise.
     """
     if field is not None:
         if callable(value):
@@ -216,9 +237,11 @@ def as_size(value, field, name: str):
         lo, hi = float(lo), float(hi)
         if not (lo > 0 and hi > 0 and np.isfinite(lo) and np.isfinite(hi)):
             raise ValueError(f"{name}: sizes must be finite and > 0, got {value!r}")
-        return lambda x: lo + (hi - lo) * np.clip(np.asarray(field(x), dtype=np.float64), 0, 1)
+        return _checked(
+            lambda x: lo + (hi - lo) * np.clip(np.asarray(field(x), dtype=np.float64), 0, 1), name
+        )
     if callable(value):
-        return lambda x: np.asarray(value(x), dtype=np.float64)
+        return _checked(value, name)
     if np.ndim(value) != 0:
         raise ValueError(f"{name}: a number, a callable field, or (far, near) with field=")
     v = float(value)
