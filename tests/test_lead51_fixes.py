@@ -34,3 +34,32 @@ def test_a_callable_wall_equal_to_a_number_gives_the_same_foam(cells20):
     b = solid.foam(cells20, wall=lambda x: np.full(len(x), 0.02))
     assert a.is_volume and b.is_volume
     assert np.isclose(a.volume, b.volume, rtol=1e-12, atol=0)
+
+
+SHELL_TOML = """[design]
+name = "s"
+units = "mm"
+
+[solid]
+kind = "shell"
+profile = {profile}
+openings = {openings}
+thickness = 1.6
+formats = ["stl"]
+"""
+
+
+@pytest.mark.parametrize(
+    ("profile", "openings", "where"),
+    [
+        ("[[30, 0], [22, 40]]", 1, ":8: solid.openings: .*at least 2"),  # checker28 F3
+        ("[[1e300, 0], [2e300, 1e300]]", 60, ":7: solid.profile: .*within"),  # checker28 F4
+    ],
+)
+def test_shell_keys_out_of_range_name_their_line(tmp_path, profile, openings, where):
+    from voroforge.design.designfile import DesignError, load
+
+    path = tmp_path / "s.toml"
+    path.write_text(SHELL_TOML.format(profile=profile, openings=openings))
+    with pytest.raises(DesignError, match=where):
+        load(path)

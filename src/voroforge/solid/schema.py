@@ -11,6 +11,8 @@ from typing import Annotated, ClassVar, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
+from ..config import SURFACE_COORD_RANGE
+
 __all__ = ["PLACEHOLDER_2D", "SolidField", "SolidSection", "fill_2d"]
 
 Positive = Annotated[float, Field(gt=0)]
@@ -124,7 +126,18 @@ class SolidSection(BaseModel):
     def _kind(self) -> SolidSection:
         if self.kind == "shell" and self.surface is None and self.profile is None:
             raise ValueError("a shell needs surface = 'file.stl' or profile = [[r, z], ...]")
+        if self.openings == 1:
+            raise ValueError(
+                "@openings@ openings must be 0 (a plain shell) or at least 2 seeds (one "
+                "seed's cell is the whole surface: no web); got 1"
+            )
         if self.profile is not None:
+            big = max(abs(c) for q in self.profile for c in q)
+            if big > SURFACE_COORD_RANGE[1]:
+                raise ValueError(
+                    f"@profile@ profile coordinates must lie within +-{SURFACE_COORD_RANGE[1]:g} "
+                    f"(a surface's range; rescale the design's units); got {big:g}"
+                )
             if len(self.profile) < 2:
                 raise ValueError(
                     f"@profile@ profile must be [[r, z], ...] with at least 2 points; "
