@@ -107,7 +107,8 @@ def describe3d(d) -> dict:
     ``euler_failures`` (cell numbers), ``convex`` (every face's vertices on the inner side of
     every other face of its cell, to ``CONVEX3D_RTOL`` of the cell's size or
     ``CONVEX3D_ULPS`` ulps of its coordinates, whichever is coarser; faces thinner than that
-    are left out), ``cut_cells`` (cells cut by a
+    are left out; cells a mesh container cuts are tested too, so a torus's cut cells make
+    it ``False``: ``nonconvex_cells`` lists them), ``cut_cells`` (cells cut by a
     mesh container, else 0), ``unmatched_vertices``, ``volume`` and ``container_volume``.
     """
     cf, lab, farea, roff, ring = d.cell_face_table()
@@ -138,21 +139,21 @@ def describe3d(d) -> dict:
                 fails.append(i)
         elif chi != 2:
             fails.append(i)
-        if not cut:
-            V = d.vertices[list(verts)]
-            size = float(np.ptp(V, axis=0).max()) if len(V) else 0.0
-            # the resolution: a fraction of the cell, or a few ulps of its coordinates where
-            # those are coarser (a cell 4 wide at 7e13 has vertices an ulp, 0.0078, apart)
-            res = max(CONVEX3D_RTOL * size, CONVEX3D_ULPS * EPS * float(np.abs(V).max(initial=0)))
-            for f in range(f0, f1):
-                a = farea[f]
-                na = _norm(a)
-                if na <= res * size:
-                    continue  # a face thinner than the resolution has no normal to test
-                p0 = d.vertices[ring[roff[f]]]
-                if ((V - p0) @ (a / na)).max() > res:
-                    nonconvex.append(i)
-                    break
+        # convexity of cut cells too: a non-convex container's cut cells are not convex
+        V = d.vertices[list(verts)]
+        size = float(np.ptp(V, axis=0).max()) if len(V) else 0.0
+        # the resolution: a fraction of the cell, or a few ulps of its coordinates where
+        # those are coarser (a cell 4 wide at 7e13 has vertices an ulp, 0.0078, apart)
+        res = max(CONVEX3D_RTOL * size, CONVEX3D_ULPS * EPS * float(np.abs(V).max(initial=0)))
+        for f in range(f0, f1):
+            a = farea[f]
+            na = _norm(a)
+            if na <= res * size:
+                continue  # a face thinner than the resolution has no normal to test
+            p0 = d.vertices[ring[roff[f]]]
+            if ((V - p0) @ (a / na)).max() > res:
+                nonconvex.append(i)
+                break
     return {
         "vertices": len(d.vertices),
         "edges": len(edges),

@@ -103,6 +103,8 @@ def as_query(xy, *, dim: int = 2, name: str = "xy") -> tuple[np.ndarray, bool]:
     if arr.ndim == 1 and arr.size == 0:  # ``[]``: no queries (it read "got shape (1, 0)")
         return np.zeros((0, dim)), False
     single = arr.ndim == 1
+    if single and arr.shape[0] != dim:  # reshaped, it would read "got shape (1, 2)"
+        raise ValueError(f"{name} must be ({dim},) or (n, {dim}); got shape {arr.shape}")
     return as_points(arr.reshape(1, -1) if single else arr, dim=dim, name=name), single
 
 

@@ -61,7 +61,7 @@ def locate3d(d, xyz):
     arithmetic, so an exact tie goes to the lowest index. The float search runs in a
     power-of-two frame where squares of the coordinates would overflow or underflow.
     """
-    q, single = as_query(xyz, dim=3)
+    q, single = as_query(xyz, dim=3, name="xyz")
     sites0 = np.ascontiguousarray(d.sites, dtype=np.float64)
     n = len(sites0)
     if n == 0:
