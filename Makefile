@@ -56,8 +56,13 @@ demo: run
 # One pytest worker per CPU (pytest-xdist), at most 4: on a fresh numba cache most of the
 # suite's time is compilation, which runs in one thread per process. Whole files go to one
 # worker (--dist loadfile), so a file's kernels compile once. TEST_WORKERS=0 runs in-process.
+# Before pytest, a compile step (voroforge.warmup.SUITE_GROUPS, one process per group side
+# by side) compiles into the cache the largest kernels that both workers meet first, which
+# they compiled twice otherwise; on a warm cache it only loads them. TEST_COMPILE=0 skips it.
 TEST_WORKERS ?= logical
+TEST_COMPILE ?= 1
 test: $(VENV)/.installed-test
+	@[ "$(TEST_COMPILE)" = 0 ] || $(BIN)/python -m voroforge.warmup --suite
 	$(BIN)/python -m pytest -n $(TEST_WORKERS) --maxprocesses 4 --dist loadfile
 
 # With NUMBA_DISABLE_JIT=1 the @njit kernels run as plain Python, so coverage.py sees their

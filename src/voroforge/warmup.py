@@ -26,7 +26,17 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["Step", "example_designs", "plan", "run_plan", "time_first_runs", "warm_up"]
+__all__ = [
+    "SUITE_GROUPS",
+    "Step",
+    "compile_for_suite",
+    "compile_suite",
+    "example_designs",
+    "plan",
+    "run_plan",
+    "time_first_runs",
+    "warm_up",
+]
 
 #: Points of the raster and explain steps: enough for every code path, small enough to be
 #: instant once compiled.
@@ -296,3 +306,175 @@ def warm_up(
         if timed:
             done += time_first_runs(steps, report, repeat=timed)
         return done
+
+
+# The test suite's compile step (`make test`). On a fresh numba cache about half of the
+# suite's CPU time is compilation (cold run 2026-12-06, 2 workers: 724 of 1311 s), and
+# pytest-xdist's two workers compiled 176 of the same kernels twice (86 s: the 2D
+# diagrams' and the 3D cells' largest kernels, which both workers meet first). These
+# workloads reach those kernels through the public functions, with the argument types the
+# engine gives them, in groups of roughly equal compile time: `make test` runs one group per
+# process, side by side, before pytest, whose workers then load them from the cache (cold
+# run with it: groups 157 and 166 s CPU, workers 471 and 458 s (639 and 672 without), 19 s
+# compiled twice; kernels reached only by rarer paths still compile in the tests).
+
+
+def _suite_points(n: int = 60, dims: int = 2, seed: int = 7):
+    import numpy as np
+
+    return np.random.default_rng(seed).random((n, dims))
+
+
+def _suite_2d_delaunay() -> None:
+    import numpy as np
+
+    import voroforge as vf
+
+    p = _suite_points()
+    d = vf.voronoi(p, (-0.5, -0.5, 1.5, 1.5))
+    d.areas, d.centroids, d.neighbors, d.edges  # noqa: B018 (their kernels)
+    # exactly cocircular and rounded cocircular sites far out: the merge and fold rounds
+    t = np.linspace(0.0, 2.0 * np.pi, 64, endpoint=False)
+    ring = np.column_stack([1e6 + np.cos(t), 1e6 + np.sin(t)])
+    vf.voronoi(np.vstack([ring, [[1e6, 1e6]]]))
+    grid = np.stack(np.meshgrid(np.arange(6.0), np.arange(6.0)), -1).reshape(-1, 2)
+    vf.voronoi(grid)
+
+
+def _suite_2d_fortune() -> None:
+    import voroforge as vf
+
+    vf.voronoi(_suite_points(), algorithm="fortune")
+
+
+def _suite_2d_halfplane() -> None:
+    import voroforge as vf
+
+    vf.voronoi(_suite_points(), algorithm="halfplane")
+
+
+def _suite_power_raster() -> None:
+    import numpy as np
+
+    import voroforge as vf
+
+    p = _suite_points()
+    vf.power(p, np.linspace(0.0, 0.01, len(p)))
+    for method in ("exact", "jfa"):
+        vf.rasterize(p, (32, 32), method=method)
+
+
+def _suite_3d() -> None:
+    import numpy as np
+
+    import voroforge as vf
+
+    p = _suite_points(80, 3)
+    d = vf.voronoi3d(p)
+    d.volumes, d.neighbors, d.face_areas  # noqa: B018
+    vf.voronoi3d(p, weights=np.linspace(0.0, 0.001, len(p)))
+    vf.voronoi3d(p, (0.0, 0.0, 0.0, 1.0, 1.0, 1.0), periodic=True)
+
+
+#: The compile step's groups (each of roughly equal compile time, one process each).
+SUITE_GROUPS: tuple[tuple[Callable[[], None], ...], ...] = (
+    (_suite_2d_delaunay, _suite_2d_fortune, _suite_2d_halfplane),
+    (_suite_3d, _suite_power_raster),
+)
+
+
+def compile_for_suite(group: int, report: Callable[[str], None] | None = None) -> list[Step]:
+    """Run one group of :data:`SUITE_GROUPS` (1-based), compiling its kernels into the cache.
+
+    Parameters
+    ----------
+    group : int
+        Which group, ``1 .. len(SUITE_GROUPS)``.
+    report : callable, optional
+        Called with one line per workload.
+
+    Returns
+    -------
+    list of Step
+        One per workload (``argv`` empty), with its times and error; a failed workload is
+        reported and the others still run (its kernels then compile in the tests).
+    """
+    if not 1 <= group <= len(SUITE_GROUPS):
+        raise ValueError(f"group must be 1..{len(SUITE_GROUPS)}, got {group!r}")
+    done = []
+    for work in SUITE_GROUPS[group - 1]:
+        t0, c0, error = time.perf_counter(), time.process_time(), ""
+        try:
+            work()
+        except Exception as exc:  # the tests compile what a broken workload did not
+            error = f"{type(exc).__name__}: {exc}"
+        dt, cpu = time.perf_counter() - t0, time.process_time() - c0
+        step = Step(work.__name__.lstrip("_"), (), dt, error, cpu)
+        done.append(step)
+        if report is not None:
+            status = "ok" if not error else f"FAILED: {error}"
+            report(
+                f"compile {group}: {step.label:<20} {step.seconds:6.1f} s "
+                f"({step.cpu:5.1f} s CPU)  {status}"
+            )
+    return done
+
+
+def compile_suite(report: Callable[[str], None] | None = None) -> int:
+    """Run every group of :data:`SUITE_GROUPS` at once, each in its own interpreter.
+
+    ``make test`` calls it (``python -m voroforge.warmup --suite``) before pytest. Each
+    group's lines go to ``report`` as it ends. Returns the number of failed workloads (their
+    kernels then compile in the tests, which report the failure themselves).
+    """
+    import subprocess
+    import sys
+
+    t0 = time.perf_counter()
+    runs = [
+        subprocess.Popen(
+            [sys.executable, "-m", "voroforge.warmup", "--suite-group", str(g)],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+        )
+        for g in range(1, len(SUITE_GROUPS) + 1)
+    ]
+    failed = 0
+    for run in runs:
+        out, _ = run.communicate()
+        failed += out.count("FAILED") + (run.returncode != 0)
+        if report is not None:
+            for line in out.splitlines():
+                report(line)
+    if report is not None:
+        report(f"compile step: {len(runs)} groups in {time.perf_counter() - t0:.1f} s")
+    return failed
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """``python -m voroforge.warmup --suite``: the test suite's compile step (always exits 0).
+
+    ``--suite-group G`` runs group ``G`` alone in this process.
+    """
+    import argparse
+    import sys
+
+    parser = argparse.ArgumentParser(prog="python -m voroforge.warmup")
+    which = parser.add_mutually_exclusive_group(required=True)
+    which.add_argument("--suite", action="store_true", help="every group, side by side")
+    which.add_argument("--suite-group", type=int, metavar="G", help="group G alone")
+    args = parser.parse_args(argv)
+
+    def say(line: str) -> None:
+        print(line, file=sys.stderr, flush=True)
+
+    if args.suite:
+        compile_suite(say)
+    else:
+        compile_for_suite(args.suite_group, say)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
