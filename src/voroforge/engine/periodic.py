@@ -39,6 +39,7 @@ from .assemble import from_shapely
 from .diagram import Diagram, Edges, buffers, frame_exponent
 from .domain import Domain, make_domain
 from .inputs import as_points, working_frame
+from .periodic_chord import chord_clear
 from .periodic_frame import cells_to_user_frame, corner_frame, to_local, two_sum_error
 from .periodic_ties import tie_images
 from .planar import build
@@ -202,7 +203,8 @@ def _proved(d: Diagram, cells: np.ndarray, box, margin, sites=None) -> bool:
 
     - (``sites``: the sites in the box) no copy past the margin can be in the disk: the
       chord of the disk there is clear of every copy's other coordinate
-      (:func:`_chord_clear`), so ``q`` is ``>= r`` away.
+      (:func:`.periodic_chord.chord_clear`; or, where a few sites' coordinates fall in it,
+      their copies past the margin are measured), so ``q`` is ``>= r`` away.
 
     Applying this to ``x`` then to ``y`` ends at a copy in ``d``, so ``|v - q| >= r``. The
     bracket test makes the margin of a thin box's short side a period or two, however long
@@ -234,48 +236,19 @@ def _proved(d: Diagram, cells: np.ndarray, box, margin, sites=None) -> bool:
         room = room / side
         good = bracket | (room * room >= r2)
         if sites is not None and not good.all():
-            good |= _chord_clear(v, r2 - room * room, sites, box, k, side, slack, ~good)
+            good |= chord_clear(v, r2, room, sites, box, k, m, side, slack, ~good)
         ok &= good
     return bool(ok.all())
 
 
-def _chord_clear(v, c2, sites, box, k, side, slack, which):
-    """Where no copy past the margin of axis ``k`` can lie in the vertex's empty disk.
-
-    A copy ``q`` past that margin is at least ``room`` from ``v`` on axis ``k``, so inside the
-    disk only if its other coordinate is within the chord's half-length ``c = sqrt(r^2 -
-    room^2)`` of ``v``'s. Every copy's other coordinate is a site's plus whole periods: where
-    none falls in that interval (grown by ``slack`` for the rounded sums), none is inside
-    (sites on one line: their cells reach half a period across it, and the line's own
-    copies never enter the disks, so the margin along the line stays a few cells wide).
-    """
-    out = np.zeros(len(v), dtype=bool)
-    j = 1 - k
-    lo, hi = box[j], box[j + 2]
-    h = hi - lo
-    idx = np.flatnonzero(which)
-    c = side * np.sqrt(np.maximum(c2[idx], 0.0)) + 2.0 * slack
-    short = 2.0 * c < h
-    idx, c = idx[short], c[short]
-    if not len(idx):
-        return out
-    ys = np.sort(sites[:, j])
-    start = v[idx, j] - c
-    base = start - np.floor((start - lo) / h) * h  # in [lo, hi), to rounding
-    hit = np.zeros(len(idx), dtype=bool)
-    for t in (-1.0, 0.0, 1.0):  # the interval and its neighbours by a period: rounding
-        a = base + t * h - slack
-        z = base + t * h + 2.0 * c + slack
-        hit |= np.searchsorted(ys, z, side="right") > np.searchsorted(ys, a, side="left")
-    out[idx[~hit]] = True
-    return out
-
-
-def _shortfall(d: Diagram, cells, box, margin):
+def _shortfall(d: Diagram, cells, box, margin, sites):
     """Per axis, the margin :func:`_proved`'s disk test asked for, or 0.0 where it passed.
 
     A vertex that fails on an axis asks for its radius past its room there, added to the
-    axis's margin: an estimate (more copies move the vertices), not a proof.
+    axis's margin: an estimate (more copies move the vertices), not a proof. A vertex the
+    chord test clears on an axis asks nothing there (sites on a line and one off it: the
+    first margins hold only the line, the off site's cell reaches across the box and asked
+    for 1.4 periods along the line, 5.9 n copies where 3 n are proved).
     """
     if isinstance(cells, tuple):
         v, owner = _piece_vertices(d, cells)
@@ -295,11 +268,25 @@ def _shortfall(d: Diagram, cells, box, margin):
             for k, (a, b, m) in enumerate(((x0, x1, margin[0]), (y0, y1, margin[1])))
         ]
     )
-    out = []
+    bads, rooms = [], []
     for k, (a, b, m) in enumerate(((x0, x1, margin[0]), (y0, y1, margin[1]))):
         room = np.minimum(v[:, k] - (a - m), (b + m) - v[:, k])
         bad = (room < (b - a) + slack) & (room / side < r) & ~edge[:, 1 - k]
-        bad |= room < 0
+        if bad.any():
+            rs = np.maximum(room, 0.0) / side
+            bad &= ~chord_clear(v, r * r, rs, sites, box, k, m, side, slack, bad)
+        bads.append(bad)
+        rooms.append(room)
+    if edge.any():
+        # cells cut off by the grown box: the copies past that side are missing, and a vertex
+        # failing on both axes may be one they move (a site off a line: the first margins
+        # hold only the line, and the line's cells beside the off site's asked for 1.4
+        # periods along the line, 5.9 n copies where the next try proves 3 n): it waits
+        both = bads[0] & bads[1]
+        bads = [bad & ~both for bad in bads]
+    out = []
+    for room, bad, m in zip(rooms, bads, margin, strict=True):
+        bad = bad | (room < 0)
         need = (r[bad] - np.maximum(room[bad], 0.0) / side).max() if bad.any() else 0.0
         out.append(float(m + PERIODIC_SHORTFALL_SLACK * need * side) if bad.any() else 0.0)
     return out
@@ -742,7 +729,7 @@ def _periodic(points, tile, algorithm: str, wrap: bool, may_move: bool) -> Diagr
             break
         if mx >= cx and my >= cy:  # pragma: no cover - the bracket test passes at the caps
             raise RuntimeError("periodic diagram: could not prove the margin")
-        grow_x, grow_y = _shortfall(d, owners, box, (mx, my))
+        grow_x, grow_y = _shortfall(d, owners, box, (mx, my), pts)
         if (mx >= cx or not grow_x) and (my >= cy or not grow_y):
             grow_x, grow_y = 2.0 * mx, 2.0 * my  # pragma: no cover - the old rule: both double
         # the failing axes at least double, at once to what their vertices asked for (sites
