@@ -202,7 +202,10 @@ def cut_open(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
     Returns ``(status, nv, w, nlist)``. Done: ``CP[:w, 2]`` are the cap's points in order
     (the new vertices, numbered from the ``nv`` given, and the vertices found on the
     plane), ``nv`` counts the new vertices, the removed ones are still in their slots and
-    ``nlist`` is for :func:`cut_close`. Else ``nv`` is :func:`cut`'s.
+    ``nlist`` is for :func:`cut_close`; or, where every cap point is new and there are at
+    least as many as removed vertices (the usual cut), the new vertices already at the
+    numbers :func:`cut_close` would move them to (:func:`_place_cap`), ``nv`` the count
+    left and ``nlist`` -2. Else ``nv`` is :func:`cut`'s.
     """
     vcap = V.shape[0]
     D = ED.shape[1]
@@ -332,6 +335,8 @@ def cut_open(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
             for r in range(q + 1, w):
                 if CP[r, 2] == c:
                     return GCUT_BROKEN, nv0, 0, -1
+    if listed and nv - nv0 == w and nup <= w and D < 256:
+        return _place_cap(V, nv0, nv, DEG, ED, BK, LB, FL, S, CP, label, w, nup)
     # rewire. Per point q (prev p = q - 1, next n = q + 1) its list gets ... A, next, prev, B
     # where the removed run lay; new vertices get [prev, u, next].
     for q in range(w):
@@ -426,13 +431,68 @@ def cut_open(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
 
 
 @njit(**{**NJIT, "inline": "always"})
+def _place_cap(V, nv0, nv, DEG, ED, BK, LB, FL, S, CP, label, w, nup):
+    """:func:`cut_open`'s rewiring where every cap point is new and they fill every hole.
+
+    :func:`cut_close` would move new vertex ``nv - 1 - q`` into the ``q``-th removed slot
+    (ascending) and repoint its neighbours; here each new vertex is wired at that final
+    number at once (the same arrays, bit for bit, without the moves). Returns
+    :func:`cut_open`'s tuple with ``nv`` the count left and ``nlist`` -2 (nothing to fill).
+    """
+    ncap = CP.shape[0]
+    nnew = nv - nv0
+    # what the rewiring reads of the removed vertices, before their slots are reused:
+    # (u << 8 | j, LB[v, k]) for the edge v -> u of cap point q (D < 256)
+    for q in range(w):
+        v = CP[q, 0]
+        k = CP[q, 1]
+        CP[q, 0] = (np.int64(ED[v, k]) << 8) | BK[v, k]
+        CP[q, 1] = LB[v, k]
+    # final numbers: new vertex nv0 + c goes to the (nnew - 1 - c)-th hole, if there is one
+    for q in range(w):
+        x = CP[q, 2]
+        r = nnew - 1 - (x - nv0)
+        if r < nup:
+            f = CP[ncap - 1 - r, 2]
+            V[f, 0] = V[x, 0]
+            V[f, 1] = V[x, 1]
+            V[f, 2] = V[x, 2]
+            FL[f] = FL[x]
+            S[f] = 0.0
+            CP[q, 2] = f
+    for q in range(w):
+        c = CP[q, 2]
+        u = CP[q, 0] >> 8
+        j = CP[q, 0] & 255
+        DEG[c] = 3
+        ED[c, 0] = CP[_prev(q, w), 2]
+        ED[c, 1] = u
+        ED[c, 2] = CP[_next(q, w), 2]
+        LB[c, 0] = LB[u, j]
+        LB[c, 1] = CP[q, 1]
+        LB[c, 2] = label
+        ED[u, j] = c
+        BK[u, j] = 1
+        BK[c, 1] = j
+        BK[c, 2] = 0
+        BK[CP[_next(q, w), 2], 0] = 2
+    return GCUT_DONE, nv - nup, w, -2
+
+
+@njit(**{**NJIT, "inline": "always"})
 def cut_close(V, nv, DEG, ED, BK, LB, FL, S, CP, nlist):
     """:func:`cut`'s end after :func:`cut_open`: the removed vertices' slots filled from the top.
 
     ``nlist`` is :func:`cut_open`'s (the removed vertices listed in ``CP``'s column 2 from
-    its last row up, or -1: found by a scan of ``S``). Returns ``(GCUT_DONE, nv, r2)``.
+    its last row up, or -1: found by a scan of ``S``, or -2: none left to fill). Returns
+    ``(GCUT_DONE, nv, r2)``.
     """
     ncap = CP.shape[0]
+    if nlist == -2:  # (_place_cap: nothing to fill)
+        r2 = 0.0
+        for v in range(nv):
+            r2 = max(r2, V[v, 0] * V[v, 0] + V[v, 1] * V[v, 1] + V[v, 2] * V[v, 2])
+        return GCUT_DONE, nv, r2
     listed = nlist >= 0
     nup = nlist
     # drop the removed vertices (listed: in order; else found by a scan of S, in order):
