@@ -598,8 +598,9 @@ def test_foam_keeps_the_bubbles_of_cells_a_torus_cuts():
         assert lp.success and lp.x[3] > 0.1, i
         assert mesh is not None, i
         assert rad == pytest.approx(lp.x[3], rel=1e-6), i
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
+    # foam() itself refuses cells the torus cut into non-convex pieces (checker28 F7: their
+    # plane-by-plane bubbles were up to 5x too small), naming one
+    with pytest.raises(ValueError, match="foam: cell .* is not convex"):
         solid.foam(d, wall=1.0, container=tor)
 
 
@@ -613,12 +614,18 @@ def test_non_convex_cells_are_not_hulled_silently(tmp_path):
     d, tor = _torus_cells()
     with pytest.raises(ValueError, match="not convex"):
         subdivide(d, 4)
-    with pytest.warns(UserWarning, match="convex hull"):
-        solid.foam(d, wall=1.0)
+    # checker28 F7: a bubble is its cell shrunk plane by plane, so a torus-cut cell's bubble
+    # was far too small (walls up to 4x thicker): refused, with or without the container
+    for container in (None, tor):
+        with pytest.raises(ValueError, match="foam: cell .* is not convex"):
+            solid.foam(d, wall=1.0, container=container)
+    box = trimesh.creation.box((10, 10, 10))
+    apart = box.copy()
+    apart.apply_translation((20, 0, 0))
+    with pytest.warns(UserWarning, match="convex hull"):  # convex cells short of their hull
+        solid.foam([box, apart], wall=1.0)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        solid.foam(d, wall=1.0, container=tor)
-        box = trimesh.creation.box((10, 10, 10))
         solid.foam([box], wall=2.0)  # cells that fill their hull: no warning
     tor.export(tmp_path / "torus.stl")
     (tmp_path / "f.toml").write_text(

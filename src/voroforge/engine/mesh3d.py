@@ -35,7 +35,7 @@ from ..config import (
     VORONOI3D_MESH_VOLUME_RTOL,
 )
 from .containers import box_template, far_origin
-from .csr import unique
+from .meshbool3d import cut_split, manifold_of, ranks
 from .meshcheck3d import crossing_report, nesting_report
 
 
@@ -48,7 +48,7 @@ class MeshContainer:
     volume: float
 
 
-def _edge_report(F: np.ndarray) -> str | None:
+def _edge_report(F: np.ndarray, V: np.ndarray) -> str | None:
     """None for a closed 2-manifold with consistent orientation, else what is wrong."""
     e = np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]])
     nv = int(F.max()) + 1  # edges as one integer each (a 1-D unique: ~5x faster than rows)
@@ -66,12 +66,15 @@ def _edge_report(F: np.ndarray) -> str | None:
         # face's vertices (two boxes side by side); shells that only touch without sharing
         # vertices are cut as their union
         touch = (kinds % 2 == 0).all()
+        a, b = (", ".join(f"{x:.17g}" for x in V[k]) for k in (bad[0] // nv, bad[0] % nv))
         return (
             f"the container mesh is {what}: {len(bad)} edges not shared by exactly two "
-            f"faces ({show})"
+            f"faces ({show}; the first from ({a}) to ({b}))"
             + (
-                "; closed shells that touch along an edge or a face with shared vertices "
-                "are not one solid's surface: union them (e.g. with manifold3d)"
+                "; closed shells that touch along an edge or a face with shared vertices, "
+                "or one solid pinched along an edge (its surface meets itself there; "
+                "vertices at equal positions are merged), are not a surface bounding a "
+                "solid: union them (e.g. with manifold3d) or thicken the pinch"
                 if touch
                 else ""
             )
@@ -159,7 +162,7 @@ def as_mesh_container(container):
     F = inv.reshape(-1)[F]
     if ((F[:, 0] == F[:, 1]) | (F[:, 1] == F[:, 2]) | (F[:, 2] == F[:, 0])).any():
         raise ValueError("the container mesh has degenerate triangles (a repeated vertex)")
-    msg = _edge_report(F)
+    msg = _edge_report(F, V)
     if msg:
         raise ValueError(msg)
     # signed volume about the mesh's centre: about the origin it cancels far out (a torus of
@@ -186,17 +189,6 @@ def as_mesh_container(container):
     t = box_template(lo - pad, hi + pad)
     t = type(t)(t.TV, t.TF, t.TR, t.WP, "mesh", vol, t.bounds)
     return MeshContainer(np.ascontiguousarray(V), np.ascontiguousarray(F), vol), t
-
-
-def _manifold(V, F, face_id):
-    import manifold3d as m3
-
-    mesh = m3.Mesh64(
-        vert_properties=np.ascontiguousarray(V, np.float64),
-        tri_verts=np.ascontiguousarray(F, np.uint64),
-        face_id=np.ascontiguousarray(face_id, np.uint64),
-    )
-    return m3.Manifold(mesh)
 
 
 def sites_inside(mesh: MeshContainer, pts: np.ndarray) -> np.ndarray:
@@ -483,7 +475,7 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
         c = np.flatnonzero(cand)
         vl = local_vertices(c, cf, lab, roff, ring, verts, d.sites, d.weights, d.box, o)
         nf = cf[c + 1] - cf[c]
-        f = np.repeat(cf[c], nf) + _ranks(nf)
+        f = np.repeat(cf[c], nf) + ranks(nf)
         farea = plane_rows(farea.copy(), f, cf, lab, np.asarray(d.sites))
     g, start, items = yz_grid(V, F, int(max(1, min(512, np.sqrt(len(F) / 4)))))
     test = np.flatnonzero(live & ~cand)  # the others: no parity needed
@@ -529,8 +521,8 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     Vm, vm = (Vl, vl) if ms == 0 else (np.ldexp(Vl, -ms), np.ldexp(vl, -ms))
     for batch in _apart(todo, cf, roff, ring, len(verts)):
         if done == 0:  # the container for manifold3d, only when some cell needs it
-            whole = _manifold(Vm, F, np.arange(len(F)))
-        r = _cut_split(batch, (cf, roff, ring, vm, lab, len(F), whole))
+            whole = manifold_of(Vm, F, np.arange(len(F)))
+        r = cut_split(batch, (cf, roff, ring, vm, lab, len(F), whole, np.ldexp(tol, -ms)))
         ov, cells, ntri, ot, labels, v, ce, npc = r
         if ms:
             ov, v, ce = np.ldexp(ov, ms), np.ldexp(v, 3 * ms), np.ldexp(ce, ms)
@@ -554,7 +546,7 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     if parts:  # cut cells: their faces, in the order their part lists them
         cells = np.concatenate([p[1] for p in parts])
         nfc = np.concatenate([p[2] for p in parts])
-        tdest = np.repeat(cell_faces[cells], nfc) + _ranks(nfc)
+        tdest = np.repeat(cell_faces[cells], nfc) + ranks(nfc)
         flens = np.concatenate([p[4] for p in parts])
         lens[tdest] = flens
         lab2[tdest] = np.concatenate([p[5] for p in parts])
@@ -563,9 +555,7 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     kc = np.flatnonzero(keep)  # each kept cell's rings: one block, copied whole
     copy_runs(ring, roff[cf[kc]], roff[cf[kc + 1]], ring2, roff2[cell_faces[kc]])
     if parts:
-        ring2[np.repeat(roff2[tdest], flens) + _ranks(flens)] = np.concatenate(
-            [p[3] for p in parts]
-        )
+        ring2[np.repeat(roff2[tdest], flens) + ranks(flens)] = np.concatenate([p[3] for p in parts])
     cut_verts = [p[0] for p in parts]
     allv = np.vstack([verts, *cut_verts])
     used = np.zeros(len(allv), bool)
@@ -695,103 +685,3 @@ def _apart(cells, cf, roff, ring, nvert):
     order = np.argsort(col, kind="stable")
     cuts = np.flatnonzero(np.diff(col[order])) + 1
     return np.split(cells[order], cuts) if len(cells) else []
-
-
-def _cut_batch(batch, cf, roff, ring, verts, lab, nF, container):
-    """Cells ``batch`` (no two touching) ∩ ``container`` (a Manifold), in one boolean.
-
-    ``(vertices, cells, ntri, triangles, labels, volumes, centroids, pieces)`` for the cells
-    that keep some volume (``cells`` ascending, their ``ntri`` triangles one cell after
-    another), or None when a connected component of the result cannot be given to one
-    cell: a closed part of the container inside a cell that touches none of its faces, or
-    faces of two cells in one component (cells that touch without sharing a named vertex);
-    the caller then halves the batch.
-    """
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
-    nf = cf[batch + 1] - cf[batch]
-    fidx = np.repeat(cf[batch], nf) + _ranks(nf)  # the batch's faces
-    lens = roff[fidx + 1] - roff[fidx]
-    flat = ring[np.repeat(roff[fidx], lens) + _ranks(lens)]
-    ids = unique(flat)  # the cells share no vertex: one vertex list for the batch
-    loc = np.searchsorted(ids, flat)
-    first = np.repeat(np.cumsum(lens) - lens, lens - 2)  # fans from each face's first vertex
-    step = _ranks(lens - 2) + 1
-    ts = np.stack([loc[first], loc[first + step], loc[first + step + 1]], 1)
-    fs = np.repeat(fidx, lens - 2) + nF
-    face_owner = np.repeat(batch, nf)  # the owner of each batch face, by position
-    out = (_manifold(verts[ids], ts, fs) ^ container).to_mesh64()
-    ofid = np.asarray(out.face_id, np.int64)
-    ov = np.array(np.asarray(out.vert_properties)[:, :3], np.float64)
-    ot = np.asarray(out.tri_verts, np.int64).reshape(-1, 3)
-    empty = np.zeros(0, np.int64)
-    if not len(ot):
-        return ov, empty, empty, ot, empty, np.zeros(0), np.zeros((0, 3)), empty
-    fromcell = ofid >= nF
-    gface = np.where(fromcell, ofid - nF, 0)
-    tcell = np.where(fromcell, face_owner[np.searchsorted(fidx, gface)], -1)
-    # connected components of the result: each lies in one cell
-    e = np.concatenate([ot[:, [0, 1]], ot[:, [1, 2]]])
-    g = coo_matrix((np.ones(len(e)), (e[:, 0], e[:, 1])), shape=(len(ov), len(ov)))
-    ncomp, comp = connected_components(g, directed=False)
-    tcomp = comp[ot[:, 0]]
-    ccell = np.full(ncomp, batch[0] if len(batch) == 1 else -1, np.int64)
-    ccell[tcomp[fromcell]] = tcell[fromcell]
-    if (ccell[tcomp] < 0).any() or (ccell[tcomp[fromcell]] != tcell[fromcell]).any():
-        return None
-    tcell = ccell[tcomp]
-    labels = np.where(fromcell, lab[gface], -1 - ofid)
-    a, b, c = ov[ot[:, 0]], ov[ot[:, 1]], ov[ot[:, 2]]
-    det = np.einsum("ij,ij->i", a, np.cross(b, c))
-    order = np.argsort(tcell, kind="stable")
-    cs = tcell[order]
-    starts = np.flatnonzero(np.r_[True, cs[1:] != cs[:-1]])
-    cells = cs[starts]
-    ntri = np.diff(np.r_[starts, len(order)])
-    v = np.add.reduceat(det[order], starts) / 6.0
-    # the moments in units of the largest determinant (a power of two, exact: the same bits
-    # as unscaled where that does not overflow; det times a coordinate overflowed at 2**300)
-    e = int(np.frexp(np.abs(det).max())[1])
-    ds = np.ldexp(det[order], -e)
-    mom = np.add.reduceat(ds[:, None] * (a + b + c)[order], starts) / 24.0
-    vs = np.add.reduceat(ds, starts) / 6.0
-    # pieces: distinct components per cell (components are sorted by cell with it)
-    pc = unique(cs * ncomp + tcomp[order]) // ncomp
-    npc = np.diff(np.searchsorted(pc, np.r_[cells, cells[-1] + 1]))
-    ok = v > 0.0
-    with np.errstate(invalid="ignore", divide="ignore"):
-        ce = mom / vs[:, None]
-    tok = np.repeat(ok, ntri)
-    sel = order[tok]
-    return ov, cells[ok], ntri[ok], ot[sel], labels[sel], v[ok], ce[ok], npc[ok]
-
-
-def _cut_split(batch, args):
-    """``_cut_batch``, halving the batch where a result cannot be told apart by cells."""
-    got = _cut_batch(batch, *args)
-    if got is not None:
-        return got
-    if len(batch) == 1:  # unreachable: a lone cell owns every component
-        raise RuntimeError("manifold3d's result could not be assigned to the cell")
-    h = len(batch) // 2
-    return _merge([_cut_split(batch[:h], args), _cut_split(batch[h:], args)])
-
-
-def _merge(got):
-    """One result of ``_cut_batch`` from several, triangle indices shifted."""
-    base = np.cumsum([0] + [len(r[0]) for r in got])
-    ov = np.vstack([r[0] for r in got])
-    ot = np.concatenate([r[3] + b for r, b in zip(got, base, strict=False)])
-    return (
-        ov,
-        np.concatenate([r[1] for r in got]),
-        np.concatenate([r[2] for r in got]),
-        ot,
-    ) + tuple(np.concatenate([r[k] for r in got]) for k in range(4, 8))
-
-
-def _ranks(lens):
-    """``0 .. len - 1`` for each run length in ``lens``, concatenated."""
-    total = int(lens.sum())
-    return np.arange(total) - np.repeat(np.cumsum(lens) - lens, lens)

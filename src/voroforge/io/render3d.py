@@ -66,8 +66,17 @@ def _by_length(rings):
 
 
 def view_rotation(view):
-    """The (3, 3) rotation of ``view = (azimuth, elevation)`` in degrees: screen x, depth, up."""
-    az, el = np.radians(view[0]), np.radians(view[1])
+    """The (3, 3) rotation of ``view = (azimuth, elevation)`` in degrees: screen x, depth, up.
+
+    ``ValueError`` unless ``view`` is two finite numbers (a NaN drew a blank picture).
+    """
+    try:
+        az, el = (float(x) for x in view)
+    except (TypeError, ValueError):
+        raise ValueError(f"view must be (azimuth, elevation) in degrees; got {view!r}") from None
+    if not (np.isfinite(az) and np.isfinite(el)):
+        raise ValueError(f"view must be finite degrees; got {view!r}")
+    az, el = np.radians(az), np.radians(el)
     rz = np.array([[np.cos(az), -np.sin(az), 0], [np.sin(az), np.cos(az), 0], [0, 0, 1]])
     # camera looks along -y' after tilting by the elevation: screen x = x', up = z'
     rx = np.array([[1, 0, 0], [0, np.cos(el), -np.sin(el)], [0, np.sin(el), np.cos(el)]])

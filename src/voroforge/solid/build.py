@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..config import SOLID_FOAM_CONVEX_RTOL, SOLID_FOAM_DRAWS
+from ..config import SOLID_FOAM_DRAWS
 from .render import preview
 
 __all__ = ["build_solid", "check_solid", "make_solid", "preview"]
@@ -213,25 +213,18 @@ def _trimesh(mesh):
 
 
 def _convex_cells(cells):
-    """The cells (cut by a mesh container) as convex meshes; a non-convex one is an error.
-
-    A foam's bubble is its cell shrunk plane by plane (:func:`voroforge.solid.foam`): a
-    cell a concave container cuts is not the intersection of its faces' half-spaces.
-    """
+    """The cells (cut by a mesh container) as convex meshes; a non-convex one is an error."""
     from ..design.designfile import DesignError
-    from .foam import cell_meshes
+    from .graph import convex_cell_meshes
 
-    ms = cell_meshes(cells)
-    for i, m in enumerate(ms):
-        hull = m.convex_hull.volume
-        if hull - m.volume > SOLID_FOAM_CONVEX_RTOL * hull:
-            raise DesignError.at(
-                "solid.container",
-                f"the container mesh cuts cell {i} into a non-convex piece (its volume "
-                f"{m.volume:.6g}, its hull's {hull:.6g}): a foam needs a convex container "
-                "mesh, or one whose concave parts no cell reaches",
-            )
-    return ms
+    try:
+        return convex_cell_meshes(
+            cells,
+            "the container mesh cuts cells into non-convex pieces",
+            "a foam needs a convex container mesh, or one whose concave parts no cell reaches",
+        )
+    except ValueError as exc:
+        raise DesignError.at("solid.container", str(exc)) from None
 
 
 def _write_mesh(m, path: Path, fmt: str, units: str) -> Path:

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..config import SOLID_FOAM_CONVEX_RTOL
 from ..config import SUBDIVIDE_SLIVER as SLIVER
 
 __all__ = ["relax", "subdivide"]
@@ -223,17 +222,11 @@ def subdivide(cells, counts, *, levels: int = 1, field=None, seed: int = 0):
         ``is_watertight`` hold at any offset (leaves at 1e5 .. 1e9 had rings an ulp from
         convex with sliver triangles; their volumes sum to the parents' to rounding).
     """
-    from .graph import cell_meshes
+    from .graph import convex_cell_meshes
 
     rng = np.random.default_rng(seed)
-    cur = cell_meshes(cells)
-    for i, m in enumerate(cur):  # seeds and leaves are taken from each cell's hull
-        hull = m.convex_hull.volume
-        if hull - m.volume > SOLID_FOAM_CONVEX_RTOL * hull:
-            raise ValueError(
-                f"subdivide: cell {i} is not convex (its volume {m.volume:.6g}, its hull's "
-                f"{hull:.6g}; a concave mesh container cut it): its leaves would fill the hull"
-            )
+    # seeds and leaves are taken from each cell's hull
+    cur = convex_cell_meshes(cells, "subdivide", "its leaves would fill the hull")
     hulled = set()
     for _ in range(int(levels)):
         cen = np.array([c.center_mass for c in cur])

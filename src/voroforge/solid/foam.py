@@ -9,7 +9,7 @@ from scipy.spatial import HalfspaceIntersection, QhullError
 
 from ..config import FOAM_FACE_AREA_RTOL, FOAM_LP_CELLS, SOLID_FOAM_CONVEX_RTOL
 from .fields import as_size
-from .graph import cell_meshes
+from .graph import cell_meshes, convex_cell_meshes
 from .hulls import convex_mesh
 
 __all__ = ["bubbles", "foam"]
@@ -108,8 +108,29 @@ def bubbles(cells, wall, *, field=None):
     list of (Trimesh or None, centre (3,), inscribed radius)
         ``None`` where the wall swallows the cell (it stays solid). The centre and radius
         are the bubble's largest inscribed ball (its Chebyshev centre: an LP of its planes).
+        ``cells`` is a 3D diagram or a list of meshes (each shrunk as the intersection of its
+        faces' half-spaces; :func:`foam` refuses cells that are not convex).
     """
-    return _bubbles(cells, as_size(wall, field, "wall"))[0]
+    return _bubbles(cell_meshes(cells), as_size(wall, field, "wall"))[0]
+
+
+def _convex(cells3d):
+    return convex_cell_meshes(
+        cells3d, "foam", "a bubble is its cell shrunk face by face, so its walls would be thicker"
+    )
+
+
+def _held(container, bs) -> None:
+    """Raise where a bubble reaches outside ``container`` (exact parity of its vertices)."""
+    from ..engine.mesh3d import as_mesh_container, sites_inside
+
+    mc, _ = as_mesh_container(container)
+    for i, (b, _, _) in enumerate(bs):
+        if b is not None and not sites_inside(mc, np.asarray(b.vertices)).all():
+            raise ValueError(
+                f"foam: bubble {i} of {len(bs)} reaches outside container= (the container "
+                "must hold the cells: pass the mesh they were built in)"
+            )
 
 
 def _bubbles(cells, size):
@@ -205,7 +226,8 @@ def foam(cells3d, wall=1.2, *, field=None, container=None):
     Parameters
     ----------
     cells3d : Diagram3D or list of convex Trimesh
-        The cells (``vf.voronoi3d(...)`` or convex meshes).
+        The cells (``vf.voronoi3d(...)`` or convex meshes); a cell a concave mesh container
+        cut into a non-convex piece is refused, naming it.
     wall : float or (far, near)
         Wall thickness between neighbouring bubbles (each side gives half; the container's
         skin is half a wall too, as every cell is shrunk by half the wall on every face).
@@ -215,7 +237,7 @@ def foam(cells3d, wall=1.2, *, field=None, container=None):
     container : Trimesh, optional
         The outer solid (default: the convex hull of the cells: exact for box and convex
         containers; for cells built in a concave mesh pass that mesh, else a warning says
-        the hull holds more than the cells).
+        the hull holds more than the cells). A bubble reaching outside it is refused.
 
     Returns
     -------
@@ -238,7 +260,8 @@ def foam(cells3d, wall=1.2, *, field=None, container=None):
     """
     import trimesh
 
-    cells = cell_meshes(cells3d)
+    cells = _convex(cells3d)
+    given_hull = container is None
     if container is None:
         container = convex_mesh(np.vstack([c.vertices for c in cells]))
         held = sum(c.volume for c in cells)
@@ -251,6 +274,8 @@ def foam(cells3d, wall=1.2, *, field=None, container=None):
                 stacklevel=2,
             )
     bs, faces = _bubbles(cells, as_size(wall, field, "wall"))
+    if not given_hull:
+        _held(container, bs)
     parts = [container]
     centres, sizes = [], []
     for b, centre, rad in bs:

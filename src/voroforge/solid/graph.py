@@ -155,6 +155,33 @@ def strut_graph(cells, *, tol: float | None = None) -> Graph:
     return Graph(new_nodes, e)
 
 
+def convex_cell_meshes(cells, what: str, why: str) -> list:
+    """:func:`cell_meshes`, each checked convex; ``ValueError`` naming a cell that is not.
+
+    A cell a concave mesh container cut (a torus's inner side, an L's inner corner) is not
+    the intersection of its faces' half-spaces: foams shrink cells plane by plane and
+    subdivision fills each cell's hull, so both refuse it. ``what`` starts the message,
+    ``why`` ends it. Cells of a diagram the container did not cut are convex by
+    construction and not tested.
+    """
+    ms = cell_meshes(cells)
+    if hasattr(cells, "to_trimesh") and hasattr(cells, "volumes"):
+        ids = np.flatnonzero(np.asarray(cells.volumes) > 0)
+        cut = getattr(cells, "cut_cells", None)
+        test = np.zeros(len(ids), bool) if cut is None else np.asarray(cut, bool)[ids]
+    else:
+        ids, test = np.arange(len(ms)), np.ones(len(ms), bool)
+    for k in np.flatnonzero(test):
+        m = ms[k]
+        hull = m.convex_hull.volume
+        if hull - m.volume > config.SOLID_FOAM_CONVEX_RTOL * hull:
+            raise ValueError(
+                f"{what}: cell {int(ids[k])} is not convex (its volume {m.volume:.6g}, its "
+                f"hull's {hull:.6g}; a concave mesh container cut it): {why}"
+            )
+    return ms
+
+
 def cell_meshes(cells) -> list:
     """Closed convex cell meshes from a 3D diagram (``to_trimesh(i)``) or a list of meshes."""
     import trimesh

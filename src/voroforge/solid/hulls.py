@@ -26,7 +26,7 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import ConvexHull, QhullError
 
 from .. import config
-from .check import shell_volumes
+from .check import fill_pockets
 from .conflicts import conflicts
 
 __all__ = ["hull_lattice"]
@@ -556,7 +556,7 @@ def _joints(g, groups, ce, pieces):
     verts = np.vstack([v for v, _ in unions])
     tris = np.vstack([t + o for (_, t), o in zip(unions, nv, strict=False)])
     del unions
-    tris, filled, count = _fill_pockets(verts, tris, 2.0 * float(g.r_node.min()))
+    tris, filled, count = fill_pockets(verts, tris, 2.0 * float(g.r_node.min()))
     vol += filled
     g.pockets = (count, filled)
     # the rings' vertices must come back bit for bit, their faces as whole polygons
@@ -577,37 +577,6 @@ def _joints(g, groups, ce, pieces):
     if bad.any():
         return None, ce[bad]
     return verts, tris[~cap], ridx, vol
-
-
-def _fill_pockets(verts, tris, size):
-    """Drop the union's closed cavities smaller than ``size``: ``(tris, volume, count)``.
-
-    Convex parts that overlap can enclose tiny pockets (a few faces, a fraction of a strut
-    across): sealed voids no printer resolves that ``check`` would list as trapped. A cavity
-    is a connected shell of negative volume; its volume is added back to the solid's.
-    """
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
-    if len(tris) == 0:
-        return tris, 0.0, 0
-    nv = len(verts)
-    ij = tris.astype(np.int32)  # the vertex graph in int32 and bytes: bounded memory
-    g = coo_matrix(
-        (np.ones(2 * len(ij), dtype=np.int8), (ij[:, :2].ravel(), ij[:, 1:].ravel())),
-        shape=(nv, nv),
-    )
-    n, lab = connected_components(g, directed=False)
-    fl = lab[tris[:, 0]]
-    t = verts[tris]
-    lo = np.full((n, 3), np.inf)
-    hi = np.full((n, 3), -np.inf)
-    for i in range(3):
-        np.minimum.at(lo[:, i], fl, t[:, :, i].min(axis=1))
-        np.maximum.at(hi[:, i], fl, t[:, :, i].max(axis=1))
-    vol = shell_volumes(t, fl, lo, n)
-    pocket = (vol < 0) & ((hi - lo).max(axis=1) < size)
-    return tris[~pocket[fl]], float(-vol[pocket].sum()), int(pocket.sum())
 
 
 def _inner_struts(g, ie):

@@ -118,17 +118,18 @@ def preview(m, path, *, size=900, view=(35.0, 25.0), cut=None, color=(196, 205, 
     from PIL import Image
 
     from ..io.atomic import write_atomically
-    from ..io.render3d import view_rotation
+    from ..io.render3d import check_render_size, view_rotation
 
     if cut is None:
         meta = m.metadata or {}
         cut = meta.get("kind") == "foam" or bool(meta.get("skin"))
+    if isinstance(size, bool) or not isinstance(size, int | np.integer):
+        raise ValueError(f"size must be an integer width in pixels; got {size!r}")
+    w, h = check_render_size((int(size), int(int(size) * 0.8)))
+    rot = view_rotation(view)  # checked before any drawing
     v = np.asarray(m.vertices, dtype=np.float64)
     f = np.ascontiguousarray(m.faces, dtype=np.int64)
-    w = int(size)
-    h = int(w * 0.8)
     W, H = w * _SS, h * _SS
-    rot = view_rotation(view)
     # x' right, y' away from the camera (depth), z' up; by columns, not ``v @ rot.T``: a
     # multithreaded BLAS call leaves its worker threads spinning for ~0.05 s of CPU
     r = np.stack([v[:, 0] * q[0] + v[:, 1] * q[1] + v[:, 2] * q[2] for q in rot], axis=1)

@@ -421,7 +421,8 @@ class SurfaceVoronoi:
         # distances round to ulps of their length (the KD tree and numpy disagree by an ulp
         # of ``d``; checker14 F6): the owner within that of the nearest distance is the
         # nearest site when no other is as near, else exact squares decide
-        tol = slack + 4.0 * eps * (d2 + d_owner)
+        # (one site: no second distance; its own bounds the rounding)
+        tol = slack + 4.0 * eps * (np.where(np.isfinite(d2), d2, d) + d_owner)
         ok = np.abs(d_owner - d) <= tol
         for q in np.flatnonzero(ok & (d2 - d <= 2.0 * tol)):
             x = [Fraction(float(a)) + Fraction(float(c)) for a, c in zip(pts[q], centre)]  # noqa: B905
