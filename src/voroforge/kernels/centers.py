@@ -26,9 +26,11 @@ from ..config import (
     NJIT_PARALLEL,
     VERTEX_SNAP_RTOL,
 )
+from .classname import bound_ok, class_vertex
 from .cocircular import canonical_flips
 from .predicates import cross_diff, incircle, incircle_fast
 from .refit import fit_classes, middle_member, rank_key
+from .risky import mark_risky
 from .vertex import (
     canonical_vertex_ranked,
     is_close,
@@ -139,7 +141,7 @@ def flag_close(xs, ys, tri, he, cx, cy, flag, err, box, fold, near):
     :func:`_unfold` takes that mark wherever naming left both centres as they are, so the
     edges are scanned once, here. Both triangles of a short edge are marked in ``near``
     (their vertices are among the only ones rounding can fold a cell's ring at; flagged
-    edges and merged classes are marked after the merge, :func:`_mark_risky`).
+    edges and merged classes are marked after the merge, :func:`.risky.mark_risky`).
     """
     for e0 in prange(tri.shape[0]):
         # int64 halfedges (a prange index is uint64, the halfedges int32): the callees
@@ -414,11 +416,18 @@ def _better_ref(t, u, err, tri, rank):
 
 
 @njit(**NJIT)
-def _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy):
-    """Vertex of the class with sites ``on[:k]``, named near triangle ``r``'s centre (see below)."""
+def _class_vertex(on, k, rank, r, xs, ys, tri, cx, cy, err):
+    """``(found, x, y)``: the class's vertex (sites ``on[:k]``), named near ``r``'s centre.
+
+    With bounds (``err``), the name is also the centre to ``r``'s bound, or the class exactly
+    cocircular (:func:`.classname.class_vertex`).
+    """
     a0 = tri[3 * r]
-    _, vx, vy = canonical_vertex_ranked(on, k, rank, cx[r], cy[r], xs[a0], ys[a0], xs, ys)
-    return vx, vy
+    if err.shape[0] == 0:
+        return canonical_vertex_ranked(on, k, rank, cx[r], cy[r], xs[a0], ys[a0], xs, ys)
+    a1 = tri[3 * r + 1]
+    a2 = tri[3 * r + 2]
+    return class_vertex(on, k, rank, cx[r], cy[r], err[r], xs[a0], ys[a0], a0, a1, a2, xs, ys)
 
 
 @njit(**NJIT_PARALLEL)
@@ -491,6 +500,12 @@ def _name_pairs(xs, ys, tri, size, other, cx, cy, rank, err, changed):
                 near = near_pair(p, q, r2, xs, ys) or near_pair(q, w, r2, xs, ys)
                 if not (near or near_pair(p, w, r2, xs, ys)):
                     found = is_close(vx, vy, wx, wy, sx, sy, VERTEX_SNAP_RTOL)
+                    if found and not bound_ok(vx, vy, err[ref], wx, wy, p, q, w, xs, ys):
+                        # not the centre to the bounds: a name only where all four
+                        # are exactly on one circle (:mod:`.classname`)
+                        found = (
+                            incircle(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c], xs[d], ys[d]) == 0.0
+                        )
         if not found:
             on = np.zeros(6, dtype=np.int64)
             on[0] = a
@@ -501,7 +516,7 @@ def _name_pairs(xs, ys, tri, size, other, cx, cy, rank, err, changed):
                 if v != a and v != b and v != c:
                     on[k] = v
                     k += 1
-            wx, wy = _class_vertex(on, k, rank, ref, xs, ys, tri, cx, cy)
+            _, wx, wy = _class_vertex(on, k, rank, ref, xs, ys, tri, cx, cy, err)
         _set_vertex(cx, cy, r, wx, wy, changed)
         _set_vertex(cx, cy, u, wx, wy, changed)
 
@@ -577,7 +592,7 @@ def _name_classes_by(xs, ys, tri, parent, cx, cy, rank, err, changed, own, pick,
                     on[k] = v
                     k += 1
             ref = u if _better_ref(u, r, err, tri, rank) else r
-            vx, vy = _class_vertex(on, k, rank, ref, xs, ys, tri, cx, cy)
+            _, vx, vy = _class_vertex(on, k, rank, ref, xs, ys, tri, cx, cy, err)
             _set_vertex(cx, cy, r, vx, vy, changed)
             _set_vertex(cx, cy, u, vx, vy, changed)
         elif size[r] > 2:
@@ -623,7 +638,9 @@ def _name_classes_by(xs, ys, tri, parent, cx, cy, rank, err, changed, own, pick,
                 for u in range(start[r], start[r + 1]):
                     if _better_ref(members[u], best, err, tri, rank):
                         best = members[u]
-            vx, vy = _class_vertex(on, k, rank, best, xs, ys, tri, cx, cy)
+            # (the snap alone: a chain of joins, named as the fold rounds left it)
+            none = np.zeros(0)
+            _, vx, vy = _class_vertex(on, k, rank, best, xs, ys, tri, cx, cy, none)
         for u in range(start[r], start[r + 1]):
             _set_vertex(cx, cy, members[u], vx, vy, changed)
 
@@ -643,7 +660,7 @@ def merge_cocircular(xs, ys, tri, he, cx, cy, err, flag, rank, box):
 
     Returns ``(cls, near)``: each triangle's class (its root) and whether it is on a
     Voronoi edge that rounding could turn: short for its ends' rounding bounds and naming
-    moves, or flagged and not joined (:func:`_mark_risky`). Those are the triangles whose
+    moves, or flagged and not joined (:func:`.risky.mark_risky`). Those are the triangles whose
     centres can fold a cell's ring (``kernels/cells`` checks those cells).
 
     Where an edge is short (``near``: rounding can fold a ring there, and the classes then
@@ -668,50 +685,8 @@ def merge_cocircular(xs, ys, tri, he, cx, cy, err, flag, rank, box):
     own_x = cx.copy()
     own_y = cy.copy()
     cls = _merge_exact(xs, ys, tri, he, cand, cx, cy, True, rank, err, box, fold)
-    _mark_risky(xs, ys, tri, he, cls, cx, cy, own_x, own_y, err, flag, near)
+    mark_risky(xs, ys, tri, he, cls, cx, cy, own_x, own_y, err, flag, near)
     return cls, near
-
-
-@njit(**NJIT)
-def _mark_risky(xs, ys, tri, he, cls, cx, cy, own_x, own_y, err, flag, near):
-    """Mark in ``near`` both triangles of every edge between two classes that can fold.
-
-    Within a class every triangle has the one named vertex (no edge). Between two classes,
-    an edge :func:`flag_close` could not decide (flagged, not joined) is marked; so is one at
-    a class of two or more whose vertices are within ``FOLD_SPAN_ERRS`` times their proven
-    distance from their triangles' exact centres (rounding bound plus the naming move, as
-    ``folds._moved``; ``own_x, own_y`` are the centres before naming) and the snap
-    tolerance: the short-edge test of :func:`_short` with the naming moves added. Edges
-    between two single triangles kept their centres: :func:`flag_close` marked the short
-    ones. A class whose vertex is far from every other vertex (an exact grid's squares)
-    cannot fold a ring, so its cells are not checked.
-    """
-    t_count = cls.shape[0]
-    multi = np.zeros(t_count, dtype=np.uint8)
-    for t in range(t_count):
-        if cls[t] != t:
-            multi[cls[t]] = 1
-    for e in range(tri.shape[0]):
-        f = he[e]
-        if f < e:
-            continue
-        t = e // 3
-        u = f // 3
-        if cls[t] == cls[u]:
-            continue
-        if flag[e] != 0:
-            near[t] = 1
-            near[u] = 1
-            continue
-        if multi[cls[t]] == 0 and multi[cls[u]] == 0:
-            continue
-        d = abs(cx[t] - cx[u]) + abs(cy[t] - cy[u])
-        r = abs(cx[t] - xs[tri[e]]) + abs(cy[t] - ys[tri[e]])
-        mt = err[t] + abs(cx[t] - own_x[t]) + abs(cy[t] - own_y[t])
-        mu = err[u] + abs(cx[u] - own_x[u]) + abs(cy[u] - own_y[u])
-        if not d > FOLD_SPAN_ERRS * (mt + mu + VERTEX_SNAP_RTOL * r):
-            near[t] = 1  # (also where a bound is not finite)
-            near[u] = 1
 
 
 def triangle_centers(xs, ys, tri, he):
