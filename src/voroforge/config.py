@@ -205,6 +205,9 @@ PERIODIC_TIE_ULPS = 2.0
 #: engine.periodic: a margin whose proof fails grows each failing axis to this many times the
 #: failing vertices' shortfall (``_shortfall``; sites on one line: 7.9 n copies -> 3 n)
 PERIODIC_SHORTFALL_SLACK = 1.0625
+#: engine/periodic_chord.chord_clear: a vertex whose chord holds more sites' coordinates than
+#: this is left unproved by the chord test (the per-site check costs a pair per site)
+PERIODIC_CHORD_SITES = 16
 #: describe(): on a torus, a vertex and another's image closer than this (of the box's
 #: diagonal) are one vertex (images come from sites shifted by the box's size); a cell of a
 #: non-convex domain within 100 times this of its own coordinates' magnitude from the

@@ -22,9 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-#: A vertex whose chord holds more sites' coordinates than this is left unproved by the
-#: chord test (the per-site check costs a pair per site). -> config
-PERIODIC_CHORD_SITES = 16
+from ..config import PERIODIC_CHORD_SITES
 
 
 def chord_clear(v, r2, room, sites, box, k, m, side, slack, which):
