@@ -126,6 +126,11 @@ def nearest_exact(q, cand, sites, w=None) -> int:
     q = np.ascontiguousarray(q, dtype=np.float64)
     sites = np.ascontiguousarray(sites, dtype=np.float64)
     ww = _NO_WEIGHTS if w is None else np.ascontiguousarray(w, dtype=np.float64)
+    # read-only views (one numba type: a frozen diagram's sites and weights are read-only,
+    # a caller's may not be; numba types the flag)
+    sites, ww = sites.view(), ww.view()
+    sites.setflags(write=False)
+    ww.setflags(write=False)
     pick = int(nearest_of(q, cand, sites, ww))
     if pick >= 0:
         return pick

@@ -277,16 +277,21 @@ def power_diagrams(pts: np.ndarray, w: np.ndarray, doms) -> tuple[PowerDiagram, 
     active = dup < 0
     x = np.ascontiguousarray(pts[:, 0])
     y = np.ascontiguousarray(pts[:, 1])
+    # the kernels get a read-only view of the weights, whatever the caller's flag: numba
+    # types the flag, and PowerDiagram freezes the weights it keeps (a caller's array is
+    # read-only from its second diagram on): every power kernel compiled twice
+    ww = w.view()
+    ww.setflags(write=False)
     box = np.array(dom.bounds, dtype=np.float64)
-    indptr, indices, active, suspect = _neighbors(x, y, w, box, active)
+    indptr, indices, active, suspect = _neighbors(x, y, ww, box, active)
     lost = None
     if suspect is None:
-        closed, lengths, own = power_cells(x, y, w, indptr, indices, box, active)
+        closed, lengths, own = power_cells(x, y, ww, indptr, indices, box, active)
     else:
-        rings = checked_cells(x, y, w, box, active, indptr, indices, suspect)
+        rings = checked_cells(x, y, ww, box, active, indptr, indices, suspect)
         closed, lengths, own = settle(box, *rings)
         # the sites left without a ring that have a cell (exactly): float64 cannot hold it
-        lost = lost_sites(x, y, w, box, active, np.flatnonzero(active & ~(np.diff(lengths) > 0)))
+        lost = lost_sites(x, y, ww, box, active, np.flatnonzero(active & ~(np.diff(lengths) > 0)))
     out = []
     for one in doms:
         bufs, edges = assemble(one, closed, lengths, own, n)

@@ -505,6 +505,11 @@ def rasterize(
 def _nearest(pts, box, pxs, pys, method, metric, want_f2):
     """``(labels, distance, f2 or None)`` of :func:`rasterize` at the samples ``pxs, pys``."""
     h, w = len(pys), len(pxs)
+    # read-only views, as pixel_centers gives them: numba types the writeable flag, and the
+    # scaled samples (np.ldexp) compiled every raster kernel a second time
+    pxs, pys = pxs.view(), pys.view()
+    pxs.setflags(write=False)
+    pys.setflags(write=False)
     dup, unique = duplicate_map(pts)
     sub = pts[unique]
     xs = np.ascontiguousarray(sub[:, 0])
