@@ -27,7 +27,9 @@ from .predicates3d import insphere, orient3d
 INF = -1
 
 
-@njit(**NJIT)
+# inlined: called with literal rows (``_o3(Q, 0, 1, 2, 4)``), a dispatcher compiled one
+# specialisation per literal tuple (6 in all)
+@njit(**{**NJIT, "inline": "always"})
 def _o3(P, a, b, c, d):
     """``orient3d`` of rows ``a, b, c, d`` of ``P``."""
     return orient3d(
@@ -228,7 +230,9 @@ def triangulate(P, order):
     used = np.zeros(n, np.bool_)
     for f in range(4):
         used[first[f]] = True
-    last = 0
+    # (np.int64: a literal 0 compiled _locate, conflict and _doubled once more for it, while
+    # type inference had not yet unified it with the later values)
+    last = np.int64(0)
     stack = np.empty(64, np.int64)  # noqa: TID251 (filled before use)
     cav = np.empty(64, np.int64)  # noqa: TID251 (filled before use)
     incav = np.zeros(T.shape[0], np.bool_)
@@ -244,7 +248,7 @@ def triangulate(P, order):
         # the cavity: tetrahedra in conflict, connected to t
         if T.shape[0] > len(incav):
             incav = np.zeros(T.shape[0], np.bool_)
-        ncav = 0
+        ncav = np.int64(0)
         stack[0] = t
         nst = 1
         incav[t] = True
