@@ -57,7 +57,9 @@ def _ro(a):
 class Faces3D:
     """Unique faces: ``ring(k) = indices[indptr[k]:indptr[k + 1]]``, ``cells (m, 2)``.
 
-    ``cells[k] = (i, j)`` with ``j`` a site (``j > i``) or ``-1 - w`` for a wall face.
+    ``cells[k] = (i, j)`` with ``j`` a site (``j > i``) or ``-1 - w`` for a wall face; on a
+    torus, ``(i, i)`` for a face between a cell and its own image (``neighbors`` leaves
+    those out).
     """
 
     indptr: np.ndarray
