@@ -24,7 +24,13 @@ from numba import njit
 
 from ..config import NAME_MAX_TRIES, NJIT, VERTEX_SNAP_RTOL
 from .predicates import incircle
-from .vertex import is_close, near_pair, voronoi_vertex, voronoi_vertex_and_error
+from .vertex import (
+    is_close,
+    near_pair,
+    sort_by_rank,
+    voronoi_vertex,
+    voronoi_vertex_and_error,
+)
 
 _U = 2.0**-53
 
@@ -53,17 +59,6 @@ def exactly_cocircular(on, k, a, b, c, xs, ys):
         if incircle(xs[a], ys[a], xs[b], ys[b], xs[c], ys[c], xs[x], ys[x]) != 0.0:
             return False
     return True
-
-
-@njit(**NJIT)
-def _sort_by_rank(on, k, rank):
-    for p in range(1, k):  # insertion sort: few sites are on one circle
-        x = on[p]
-        q = p
-        while q > 0 and rank[x] < rank[on[q - 1]]:
-            on[q] = on[q - 1]
-            q -= 1
-        on[q] = x
 
 
 @njit(**NJIT)
@@ -103,7 +98,7 @@ def class_vertex(on, k, rank, vx, vy, ev, sx, sy, a, b, c, xs, ys):
     there (repeats, close pairs and non-finite centres skipped, the snap tested), the first
     that passes :func:`name_ok` names it. Returns ``(found, x, y)``; ``(vx, vy)`` if none.
     """
-    _sort_by_rank(on, k, rank)
+    sort_by_rank(on, k, rank)
     r2 = (vx - sx) * (vx - sx) + (vy - sy) * (vy - sy)
     exact = np.full(1, -1, dtype=np.int64)
     tries = 0

@@ -515,7 +515,8 @@ def _sort_by_index(on, k):
 
 
 @njit(**NJIT)
-def _sort_by_rank(on, k, rank):
+def sort_by_rank(on, k, rank):
+    """Insertion sort of ``on[:k]`` by ``rank[on[p]]`` (few sites are on one circle)."""
     for p in range(1, k):
         x = on[p]
         q = p
@@ -551,7 +552,7 @@ def canonical_vertex_ranked(on, k, rank, vx, vy, sx, sy, xs, ys):
 
     Returns ``(found, x, y)``: whether a triple names the vertex, and its coordinates.
     """
-    _sort_by_rank(on, k, rank)
+    sort_by_rank(on, k, rank)
     a, _, _, x, y = _named(on, k, vx, vy, sx, sy, xs, ys)
     return a >= 0, x, y
 
