@@ -125,12 +125,18 @@ def _held(container, bs) -> None:
     from ..engine.mesh3d import as_mesh_container, sites_inside
 
     mc, _ = as_mesh_container(container)
-    for i, (b, _, _) in enumerate(bs):
-        if b is not None and not sites_inside(mc, np.asarray(b.vertices)).all():
-            raise ValueError(
-                f"foam: bubble {i} of {len(bs)} reaches outside container= (the container "
-                "must hold the cells: pass the mesh they were built in)"
-            )
+    live = [i for i, (b, _, _) in enumerate(bs) if b is not None]
+    if not live:
+        return
+    verts = [np.asarray(bs[i][0].vertices) for i in live]
+    inside = sites_inside(mc, np.vstack(verts))  # one search grid for all bubbles
+    owner = np.repeat(live, [len(v) for v in verts])
+    if not inside.all():
+        i = int(owner[np.argmin(inside)])
+        raise ValueError(
+            f"foam: bubble {i} of {len(bs)} reaches outside container= (the container "
+            "must hold the cells: pass the mesh they were built in)"
+        )
 
 
 def _bubbles(cells, size):
