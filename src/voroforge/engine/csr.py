@@ -20,6 +20,16 @@ def unique(values) -> np.ndarray:
     return flat[keep]
 
 
+def used_only(points: np.ndarray, index: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(points[used], index renumbered)``: the points ``index`` refers to, in their order.
+
+    A mesh's vertices after some of its triangles were dropped (every vertex used again).
+    """
+    used = np.zeros(len(points), dtype=bool)
+    used[np.asarray(index).ravel()] = True
+    return points[used], (np.cumsum(used) - 1)[index]
+
+
 def csr_from_pairs(n: int, a, b) -> tuple[np.ndarray, np.ndarray]:
     """Symmetric CSR ``(indptr, indices)`` from undirected pairs; duplicates removed, rows sorted.
 

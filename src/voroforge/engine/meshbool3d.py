@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .csr import unique
+from .csr import unique, used_only
 
 __all__ = ["cut_split", "manifold_of", "ranks"]
 
@@ -52,10 +52,8 @@ def _drop_flat(ov, ot, ofid, tol):
     if not flat[tcomp].any():
         return ov, ot, ofid
     keep = ~flat[tcomp]
-    ot, ofid = ot[keep], ofid[keep]
-    used = np.zeros(len(ov), bool)
-    used[ot.ravel()] = True
-    return ov[used], (np.cumsum(used) - 1)[ot], ofid
+    ov, ot = used_only(ov, ot[keep])
+    return ov, ot, ofid[keep]
 
 
 def _cut_batch(batch, cf, roff, ring, verts, lab, nF, container, tol):

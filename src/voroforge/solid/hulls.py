@@ -26,6 +26,7 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import ConvexHull, QhullError
 
 from .. import config
+from ..engine.csr import used_only
 from .check import fill_pockets
 from .conflicts import conflicts
 
@@ -494,11 +495,8 @@ def _assemble(g, label):
     t2 = np.stack([ra, rb1, rb], axis=-1).reshape(-1, 3)
     all_v = np.vstack(verts) if verts else np.zeros((0, 3))
     all_f = np.vstack([*faces, t1, t2]) if faces else np.zeros((0, 3), np.int64)
-    # drop the sphere points no hull triangle uses
-    used = np.zeros(len(all_v), dtype=bool)
-    used[all_f.ravel()] = True
-    all_f = (np.cumsum(used) - 1)[all_f]
-    return all_v[used], all_f, hull_vol, d, len(multi)
+    all_v, all_f = used_only(all_v, all_f)  # drop the sphere points no hull triangle uses
+    return all_v, all_f, hull_vol, d, len(multi)
 
 
 def _joints(g, groups, ce, pieces):

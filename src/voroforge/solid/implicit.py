@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import config
+from ..engine.csr import used_only
 from .kernels import taubin
 from .sdf import capsules_block, mesh_sdf_block
 from .threemf import on_grid
@@ -142,10 +143,8 @@ def march(evaluate, lo, hi, h, *, smoothing: int = 0, progress=None, bare: bool 
         remap[idx[order]] = first[grp]
     f = remap[f]
     f = f[(f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 0] != f[:, 2])]
-    used = np.zeros(len(v), dtype=np.bool_)  # the vertices the faces use, in their order
-    used[f.ravel()] = True
-    index = np.cumsum(used) - 1
-    m = Bare(v[used] * h + lo[None], index[f])
+    v, f = used_only(v, f)  # the vertices the faces use, in their order
+    m = Bare(v * h + lo[None], f)
     if _inward(m):  # orientation follows the field's sign convention: make it outward
         m.faces = np.ascontiguousarray(m.faces[:, ::-1])
     if smoothing:

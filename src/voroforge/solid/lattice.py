@@ -200,16 +200,14 @@ def _drop_pockets(m, size, bare):
     at a voxel of 0.02), which ``check`` would list as a trapped void no printer resolves.
     Returns ``(mesh, count, volume filled)``; ``m`` itself where there is none.
     """
+    from ..engine.csr import used_only
     from .check import fill_pockets
 
     verts, faces = np.asarray(m.vertices), np.asarray(m.faces)
     kept, filled, count = fill_pockets(verts, faces, size)
     if count == 0:
         return m, 0, 0.0
-    used = np.zeros(len(verts), dtype=bool)
-    used[kept.ravel()] = True
-    index = np.cumsum(used) - 1
-    verts, kept = verts[used], index[kept]
+    verts, kept = used_only(verts, kept)
     if bare:
         from .implicit import Bare
 
