@@ -52,6 +52,22 @@ def algorithm(request) -> str:
     return request.param
 
 
+@pytest.fixture
+def periodic_builds(monkeypatch) -> list:
+    """The site counts of each periodic build (``engine.periodic.build``) in the test."""
+    import voroforge.engine.periodic as per
+
+    sizes = []
+    real = per.build
+
+    def counting(pts, *args):
+        sizes.append(len(pts))
+        return real(pts, *args)
+
+    monkeypatch.setattr(per, "build", counting)
+    return sizes
+
+
 @pytest.fixture(scope="module")
 def dask_client():
     """An in-process LocalCluster of two single-threaded workers, one per test module."""

@@ -130,17 +130,8 @@ def test_odd_period_far_out_matches_exact(off, ulps, seed):
 
 
 @pytest.mark.parametrize("n", [1000, 4000])
-def test_sites_on_one_line_exact_strips_two_builds(n, monkeypatch):
-    import voroforge.engine.periodic as per
-
-    sizes = []
-    real = per.build
-
-    def counting(pts, *args):
-        sizes.append(len(pts))
-        return real(pts, *args)
-
-    monkeypatch.setattr(per, "build", counting)
+def test_sites_on_one_line_exact_strips_two_builds(n, periodic_builds):
+    sizes = periodic_builds
     rng = np.random.default_rng(n)
     # dyadic x: the midpoints, the strips' sides, are floats
     x = np.unique(np.floor(rng.random(n) * 2.0**20) / 2.0**20)

@@ -33,24 +33,10 @@ def _line_and_one(kind: str, n: int, seed: int):
     return np.vstack((p, [[1.234375, 1.5625]]))
 
 
-def _count_builds(monkeypatch):
-    import voroforge.engine.periodic as per
-
-    sizes = []
-    real = per.build
-
-    def counting(pts, *args):
-        sizes.append(len(pts))
-        return real(pts, *args)
-
-    monkeypatch.setattr(per, "build", counting)
-    return sizes
-
-
 @pytest.mark.parametrize("kind", ["h", "v"])
-def test_line_and_one_site_three_copies_and_torus_cells(kind, monkeypatch):
+def test_line_and_one_site_three_copies_and_torus_cells(kind, periodic_builds):
     p = _line_and_one(kind, 300, 3)
-    sizes = _count_builds(monkeypatch)
+    sizes = periodic_builds
     d = _check_torus(p, BOX, "delaunay", False, samples=300)
     # the line alone, then the line and its two copies across it (was 5.9 n: 1.4 periods
     # along the line too)
