@@ -229,6 +229,36 @@ def _voronoi_cell(p: np.ndarray, others: np.ndarray, domain):
     return shapely.intersection(shapely.make_valid(region), domain)
 
 
+def exact_cell(points, i: int, box) -> list[tuple[Fraction, Fraction]]:
+    """Site ``i``'s Voronoi cell in ``box`` with every bisector cut exactly: Fraction vertices.
+
+    ``points`` (n, 2) floats, ``box`` (xmin, ymin, xmax, ymax); sites equal to site ``i``
+    are skipped. The ring is counter-clockwise, as the box's.
+    """
+    x0, y0, x1, y1 = (_fr(b) for b in box)
+    ring = [(x0, y0), (x1, y0), (x1, y1), (x0, y1)]
+    px, py = _fr(points[i][0]), _fr(points[i][1])
+    for j in range(len(points)):
+        qx, qy = _fr(points[j][0]), _fr(points[j][1])
+        if j == i or (qx == px and qy == py):
+            continue
+        # twice the signed side of each vertex: <= 0 on site i's side of the bisector
+        val = [(qx - px) * (2 * a - px - qx) + (qy - py) * (2 * b - py - qy) for a, b in ring]
+        if all(v <= 0 for v in val):
+            continue
+        out = []
+        for k in range(len(ring)):
+            v0, v1 = val[k], val[(k + 1) % len(ring)]
+            (ax, ay), (bx, by) = ring[k], ring[(k + 1) % len(ring)]
+            if v0 <= 0:
+                out.append((ax, ay))
+            if (v0 < 0 < v1) or (v1 < 0 < v0):
+                t = v0 / (v0 - v1)
+                out.append((ax + t * (bx - ax), ay + t * (by - ay)))
+        ring = out
+    return ring
+
+
 def all_triples(n: int):
     """Every index triple ``i < j < k`` below ``n`` (for exhaustive tiny checks)."""
     return combinations(range(n), 3)

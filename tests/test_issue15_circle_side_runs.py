@@ -21,46 +21,21 @@ cell valid and inside the box.
 
 from __future__ import annotations
 
-from fractions import Fraction as F
-
 import numpy as np
 import pytest
 import shapely
 
 import voroforge as vf
+from test_issue15_circle_sides import ULP, _circle, _local, _past
 
 # the circle, its exact local frame and the past-a-bisector measure of the side tests
-from test_issue15_circle_sides import ULP, _circle, _local, _past
+from reference import exact_cell
 
 ALGS = ["delaunay", "fortune", "halfplane"]
 #: phases of 1000 sites whose cells left a hole at a box side (Euler -1). Phases 0.05 and 0.80
 #: still fail Euler: two side crossings 0.8 ulp off come out of order (docs/exactness.md,
 #: still failing)
 PHASES = [0.40, 0.90]
-
-
-def _exact_cell(p, i, box):
-    """Site ``i``'s exact cell in ``box`` (local integer frame): its vertices as Fractions."""
-    x0, y0, x1, y1 = (F(float(b)) for b in box)
-    poly = [(x0, y0), (x1, y0), (x1, y1), (x0, y1)]
-    px, py = F(float(p[i, 0])), F(float(p[i, 1]))
-    for j in range(len(p)):
-        qx, qy = F(float(p[j, 0])), F(float(p[j, 1]))
-        if j == i or (qx == px and qy == py):
-            continue
-        a, b = qx - px, qy - py
-        c = (qx * qx - px * px + qy * qy - py * py) / 2
-        out = []
-        for k in range(len(poly)):
-            (ux, uy), (wx, wy) = poly[k], poly[(k + 1) % len(poly)]
-            s0, s1 = a * ux + b * uy - c, a * wx + b * wy - c
-            if s0 <= 0:
-                out.append((ux, uy))
-            if (s0 < 0 < s1) or (s1 < 0 < s0):
-                t = s0 / (s0 - s1)
-                out.append((ux + t * (wx - ux), uy + t * (wy - uy)))
-        poly = out
-    return poly
 
 
 @pytest.mark.parametrize("phase", PHASES)
@@ -99,6 +74,6 @@ def test_lost_edge_is_back():
     d = vf.voronoi(pts, None)
     box = _local(np.reshape(d.boundary.bounds, (2, 2))).ravel()
     got = _local(shapely.get_coordinates(d.cells[324]))
-    for ex, ey in _exact_cell(p, 324, box):
+    for ex, ey in exact_cell(p, 324, box):
         near = np.abs(got[:, 0] - float(ex)) + np.abs(got[:, 1] - float(ey))
         assert near.min() <= 2.0 * ULP, (float(ex) / ULP, float(ey) / ULP)

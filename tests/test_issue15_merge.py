@@ -13,7 +13,6 @@ the snap alone: site 243 of 257 at phase 0.35, in a class of six, is still flagg
 from __future__ import annotations
 
 import warnings
-from fractions import Fraction
 from functools import cache
 
 import numpy as np
@@ -21,6 +20,8 @@ import pytest
 import shapely
 
 import voroforge as vf
+
+from reference import exact_cell
 
 CENTRE = (5e5, 4e6)
 UX = 2.0**-34  # x's ulp at 5e5
@@ -34,32 +35,9 @@ def _circle(n, phase):
 
 @cache
 def _exact_cell(n, phase, i, box):
-    """Site ``i``'s cell in ``box``, every bisector cut exactly: vertices as Fractions.
-
-    Cached: each algorithm's test compares with the one exact cell.
-    """
-    pts = _circle(n, phase)
-    ring = [(Fraction(box[0]), Fraction(box[1])), (Fraction(box[2]), Fraction(box[1]))]
-    ring += [(Fraction(box[2]), Fraction(box[3])), (Fraction(box[0]), Fraction(box[3]))]
-    px, py = Fraction(pts[i][0]), Fraction(pts[i][1])
-    for j, (x, y) in enumerate(pts):
-        if j == i:
-            continue
-        qx, qy = Fraction(x), Fraction(y)
-        val = [(qx - px) * (2 * a - px - qx) + (qy - py) * (2 * b - py - qy) for a, b in ring]
-        if all(v <= 0 for v in val):
-            continue
-        out = []
-        for k in range(len(ring)):
-            v0, v1 = val[k], val[(k + 1) % len(ring)]
-            (x0, y0), (x1, y1) = ring[k], ring[(k + 1) % len(ring)]
-            if v0 <= 0:
-                out.append((x0, y0))
-            if (v0 < 0 < v1) or (v1 < 0 < v0):
-                t = v0 / (v0 - v1)
-                out.append((x0 + t * (x1 - x0), y0 + t * (y1 - y0)))
-        ring = out
-    return ring
+    """Site ``i``'s exact cell in ``box`` (Fraction vertices), cached: each algorithm's test
+    compares with the one exact cell."""
+    return exact_cell(_circle(n, phase), i, box)
 
 
 def _local(xy):
