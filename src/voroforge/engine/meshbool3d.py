@@ -42,9 +42,9 @@ def _drop_flat(ov, ot, ofid, tol):
     ncomp, comp = connected_components(g, directed=False)
     tcomp = comp[ot[:, 0]]
     a, b, c = ov[ot[:, 0]], ov[ot[:, 1]], ov[ot[:, 2]]
-    p0 = ov[ot[np.unique(tcomp, return_index=True)[1], 0]]  # about each component's vertex
+    comps, first = np.unique(tcomp, return_index=True)
     o = np.zeros((ncomp, 3))
-    o[np.unique(tcomp)] = p0
+    o[comps] = ov[ot[first, 0]]  # about a vertex of each component
     a, b, c = a - o[tcomp], b - o[tcomp], c - o[tcomp]
     vol = np.bincount(tcomp, np.einsum("ij,ij->i", a, np.cross(b, c)), ncomp) / 6.0
     area = np.bincount(tcomp, 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1), ncomp)
