@@ -105,7 +105,7 @@ def needs_missing_extra(design: Path) -> bool:
         return False
     try:
         data = tomllib.loads(design.read_text(encoding="utf-8"))
-    except (OSError, tomllib.TOMLDecodeError):
+    except (OSError, tomllib.TOMLDecodeError, RecursionError):
         return False  # the build step reports it
     return "solid" in data or "surface" in data
 

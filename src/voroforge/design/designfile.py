@@ -513,7 +513,7 @@ def parse_value(text: str) -> Any:
     """Read a ``--set`` value as TOML (``500``, ``true``, ``[1, 2]``, ``"x"``); else a string."""
     try:
         return tomllib.loads(f"v = {text}")["v"]
-    except tomllib.TOMLDecodeError:
+    except (tomllib.TOMLDecodeError, RecursionError):
         return text
 
 
@@ -568,6 +568,36 @@ def _step(node, part: str, dotted: str, following: str):
     return node[part]
 
 
+def _deepest_line(text: str) -> int:
+    """The line where ``[`` / ``{`` nesting is deepest (quoted text and comments skipped)."""
+    depth = best = 0
+    line = best_line = 1
+    quote = None
+    comment = escaped = False
+    for ch in text:
+        if ch == "\n":
+            line += 1
+            comment = False
+        elif comment:
+            continue
+        elif escaped:
+            escaped = False
+        elif quote:
+            escaped = quote == '"' and ch == "\\"
+            quote = None if ch == quote else quote
+        elif ch in "\"'":
+            quote = ch
+        elif ch == "#":
+            comment = True
+        elif ch in "[{":
+            depth += 1
+            if depth > best:
+                best, best_line = depth, line
+        elif ch in "]}":
+            depth -= 1
+    return best_line
+
+
 def _error_line(text: str, error: str) -> int | None:
     """The line of a TOML error that tomllib places "at end of document" (a key given twice).
 
@@ -581,6 +611,8 @@ def _error_line(text: str, error: str) -> int | None:
             tomllib.loads("\n".join(lines[:n]))
         except tomllib.TOMLDecodeError as exc:
             return str(exc).split(" (at ")[0] == error.split(" (at ")[0]
+        except RecursionError:
+            pass
         return False
 
     if not lines or not fails(len(lines)):
@@ -647,6 +679,9 @@ def load(source, *, overrides: dict | None = None) -> tuple[Design, Path | None]
             line = int(m.group(1)) if m else _error_line(text, str(exc))
             message = re.sub(r"\s*\(at (line \d+, column \d+|end of document)\)", "", str(exc))
             raise DesignError([Issue("", line, f"TOML syntax: {message}")], name) from None
+        except RecursionError:  # tomllib recurses once a level of [..] / {..}
+            message = "TOML syntax: arrays or tables nested too deeply to read"
+            raise DesignError([Issue("", _deepest_line(text), message)], name) from None
         lines = key_lines(text)
     data = apply_overrides(data, overrides)
     try:

@@ -16,10 +16,8 @@ from typing import Annotated, Any, ClassVar, Literal
 from pydantic import (
     AfterValidator,
     BaseModel,
-    BeforeValidator,
     ConfigDict,
     Field,
-    Strict,
     model_validator,
 )
 
@@ -27,6 +25,7 @@ from .. import config
 from ..solid.schema import SolidSection, fill_2d
 from ..studio.animation import AnimationSection
 from ..surface.schema import SurfaceSection
+from .numbers import Flag, Num, Whole, short_repr
 
 __all__ = [
     "Attractor",
@@ -49,25 +48,6 @@ PRODUCTS = ("frame", "openings", "cells", "edges", "sites", "boundary", "labels"
 Product = Literal["frame", "openings", "cells", "edges", "sites", "boundary", "labels", "curves"]
 
 
-def _whole(value: Any) -> Any:
-    """A count or seed is a TOML number: refuse ``"3"`` and ``true`` (pydantic reads 3 and 1).
-
-    ``seed = true`` is a typo, not the seed 1.
-    """
-    if isinstance(value, bool):
-        raise ValueError("expected an integer, not true/false")
-    if isinstance(value, str):
-        raise ValueError(f"expected an integer, not the text {short_repr(value)}")
-    return value
-
-
-#: A finite number written as a number: ``"10"`` and ``true`` are refused, not read as 10 and
-#: 1; ``nan`` and ``inf`` too (``web = nan`` reached the cell offsets without its key).
-Num = Annotated[float, Strict(), Field(allow_inf_nan=False)]
-#: A whole number written as a number (``100.0`` is still 100).
-Whole = Annotated[int, BeforeValidator(_whole)]
-#: true or false, not ``"yes"`` or 1.
-Flag = Annotated[bool, Strict()]
 PositiveFloat = Annotated[Num, Field(gt=0)]
 NonNegFloat = Annotated[Num, Field(ge=0)]
 #: A boundary's width, height or radius: at most 1e100, so areas and squared distances stay
@@ -637,9 +617,3 @@ class Design(_Model):
     @classmethod
     def _solid_2d(cls, data):
         return fill_2d(data)  # 3D [solid] kinds need no [boundary]/[seeds]
-
-
-def short_repr(value) -> str:
-    """``repr(value)`` cut to 40 characters, for error messages that quote a given value."""
-    text = repr(value)
-    return text if len(text) <= 40 else text[:37] + "..."

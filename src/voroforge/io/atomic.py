@@ -58,6 +58,8 @@ def write_atomically(path, write: Callable[[str], object], *, suffix: str | None
     if path.is_symlink():
         # write the file the link names (a rename onto the link replaced the link itself)
         path = Path(os.path.realpath(path))
+    if path.is_dir():  # os.replace would name the temporary file
+        raise IsADirectoryError(21, f"cannot write {path}: is a folder, not a file")
     folder = path.parent if str(path.parent) else Path(".")
     suffix = path.suffix if suffix is None else suffix
     try:

@@ -17,13 +17,13 @@ from __future__ import annotations
 
 import json
 import math
-import os
 from pathlib import Path
 
 import numpy as np
 from numba import njit
 
 from ..config import NJIT
+from .atomic import write_atomically
 
 __all__ = [
     "GEOPARQUET_VERSION",
@@ -528,7 +528,6 @@ def write_table(table, path, geo: dict, *, extra: dict | None = None) -> Path:
     for key, value in (extra or {}).items():
         meta[key.encode()] = json.dumps(value).encode()
     table = table.replace_schema_metadata(meta)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     # no dictionaries for the cell columns (all distinct values: pyarrow tries one for each
     # column and gives up, which costs half the write); statistics where readers prune by
     # them (site_id, area, the bbox covering) and on the attributes
@@ -537,20 +536,19 @@ def write_table(table, path, geo: dict, *, extra: dict | None = None) -> Path:
     stats = [c for c in names if c not in ("geometry", "neighbors", "bbox")]
     if "bbox" in names:
         stats += [f"bbox.{k}" for k in ("xmin", "ymin", "xmax", "ymax")]
-    try:
-        pq.write_table(
+    # the temporary file ends in .tmp: a scale job's folder check knows such leftovers
+    return write_atomically(
+        path,
+        lambda tmp: pq.write_table(
             table,
             tmp,
             row_group_size=ROW_GROUP_SIZE,
             compression="zstd",
             use_dictionary=attrs or False,
             write_statistics=stats,
-        )
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
-    return path
+        ),
+        suffix=".tmp",
+    )
 
 
 def write_cells(diagram, path, *, crs=None, attributes=None, site_ids=None) -> Path:

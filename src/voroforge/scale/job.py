@@ -19,7 +19,6 @@ from __future__ import annotations
 import json
 import math
 import numbers
-import os
 import re
 import shutil
 import time
@@ -30,6 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import config
+from ..io.atomic import write_atomically
 from .buckets import Store, bucket_chunk, halo_sources
 from .sources import open_source
 from .tasks import chunk_stats, run_tile
@@ -531,9 +531,8 @@ def _run(cl, source, job):
 
 
 def _write_json(path: Path, obj) -> None:
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_text(json.dumps(obj, indent=1, allow_nan=True))
-    os.replace(tmp, path)
+    text = json.dumps(obj, indent=1, allow_nan=True)
+    write_atomically(path, lambda tmp: Path(tmp).write_text(text), suffix=".tmp")
 
 
 def _write_dataset_metadata(out: Path, tile_info) -> None:
@@ -569,6 +568,8 @@ def _write_dataset_metadata(out: Path, tile_info) -> None:
     meta.pop(b"voroforge_tile", None)
     schema = schema.with_metadata(meta)
     for name, mds in (("_common_metadata", None), ("_metadata", collected)):
-        tmp = out / f".{name}.{os.getpid()}.tmp"
-        pq.write_metadata(schema, tmp, metadata_collector=mds)
-        os.replace(tmp, out / name)
+        write_atomically(
+            out / name,
+            lambda tmp, mds=mds: pq.write_metadata(schema, tmp, metadata_collector=mds),
+            suffix=".tmp",
+        )

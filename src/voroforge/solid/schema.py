@@ -11,13 +11,15 @@ from typing import Annotated, ClassVar, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
-from ..config import SURFACE_COORD_RANGE
+from ..config import SOLID_MAX_OPENINGS, SURFACE_COORD_RANGE
+from ..design.numbers import Flag, Num, Whole
 
 __all__ = ["PLACEHOLDER_2D", "SolidField", "SolidSection", "fill_2d"]
 
-Positive = Annotated[float, Field(gt=0)]
-Finite = Annotated[float, Field(allow_inf_nan=False)]
-NonNeg = Annotated[float, Field(ge=0)]
+# numbers written as numbers (``"1.6"`` and ``true`` are refused with their key)
+Positive = Annotated[Num, Field(gt=0)]
+Finite = Num
+NonNeg = Annotated[Num, Field(ge=0)]
 Size = Positive | tuple[Positive, Positive]
 
 
@@ -27,9 +29,9 @@ class SolidField(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
     type: Literal["point", "curve", "plane"] = "point"
-    points: list[tuple[float, float, float]] | None = None
-    origin: tuple[float, float, float] = (0.0, 0.0, 0.0)
-    normal: tuple[float, float, float] = (0.0, 0.0, 1.0)
+    points: list[tuple[Num, Num, Num]] | None = None
+    origin: tuple[Num, Num, Num] = (0.0, 0.0, 0.0)
+    normal: tuple[Num, Num, Num] = (0.0, 0.0, 1.0)
     radius: Positive
     strength: NonNeg = 1.0
     falloff: Literal["linear", "smoothstep", "gaussian", "inverse_power"] = "smoothstep"
@@ -64,10 +66,10 @@ class SolidSection(BaseModel):
     kind: Literal["lattice", "foam", "shell", "extrude"]
     # cells (lattice, foam)
     container: tuple[Finite, Finite, Finite, Finite, Finite, Finite] | str | None = None
-    cells: Annotated[int, Field(gt=0, le=200_000)] = 200
-    relax: Annotated[int, Field(ge=0, le=200)] = 0
-    seed: Annotated[int, Field(ge=0)] = 0
-    subdivide: Annotated[int, Field(ge=0, le=3)] = 0
+    cells: Annotated[Whole, Field(gt=0, le=200_000)] = 200
+    relax: Annotated[Whole, Field(ge=0, le=200)] = 0
+    seed: Annotated[Whole, Field(ge=0)] = 0
+    subdivide: Annotated[Whole, Field(ge=0, le=3)] = 0
     subdivide_count: Size = 4.0
     # sizes
     radius: Size = 0.8
@@ -75,27 +77,27 @@ class SolidSection(BaseModel):
     skin: NonNeg = 0.0
     wall: Size = 1.2
     thickness: Positive = 2.0
-    openings: Annotated[int, Field(ge=0)] = 60
+    openings: Annotated[Whole, Field(ge=0, le=SOLID_MAX_OPENINGS)] = 60
     web: Size = 1.5
     rim: Positive | None = None
     # shell surfaces: a mesh file, or a profile [[r, z], ...] revolved about z
     surface: str | None = None
-    profile: list[tuple[float, float]] | None = None
-    sections: Annotated[int, Field(ge=8, le=1024)] = 96
+    profile: list[tuple[Num, Num]] | None = None
+    sections: Annotated[Whole, Field(ge=8, le=1024)] = 96
     fields: list[SolidField] = []
-    invert_field: bool = False
+    invert_field: Flag = False
     voxel: Positive | None = None
-    smoothing: Annotated[int, Field(ge=0, le=200)] = 10
+    smoothing: Annotated[Whole, Field(ge=0, le=200)] = 10
     # outputs and checks
     formats: list[Literal["3mf", "stl", "obj", "glb", "ply", "3dm", "png"]] = ["3mf", "png"]
-    png_size: Annotated[int, Field(ge=64, le=4096)] = 900
-    view: tuple[float, float] = (35.0, 25.0)
+    png_size: Annotated[Whole, Field(ge=64, le=4096)] = 900
+    view: tuple[Num, Num] = (35.0, 25.0)
     min_strut: Positive | None = None
     min_pore: Positive | None = None
     #: thinnest printable wall: a foam's walls and skin, a shell's thickness, an extrude's
     #: slab (``check(min_wall=)``: ``thin_wall`` entries)
     min_wall: Positive | None = None
-    max_overhang: Annotated[float, Field(gt=0, lt=90)] | None = None
+    max_overhang: Annotated[Num, Field(gt=0, lt=90)] | None = None
 
     #: keys only some kinds read (``solid/build.py``; see ``voroforge.design.schema.UsedBy``)
     USED_BY: ClassVar[dict] = {

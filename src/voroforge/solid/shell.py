@@ -163,6 +163,10 @@ def shell(
         k = int(openings)
         if k < 2:
             raise ValueError(f"openings: at least 2 seeds, got {openings!r}")
+        if k > config.SOLID_MAX_OPENINGS:
+            raise ValueError(
+                f"openings: at most {config.SOLID_MAX_OPENINGS:,} seeds on one shell, got {k:,}"
+            )
         seeds = sample_even(surf, k, seed=seed)
     else:
         seeds = _seed_points(openings)

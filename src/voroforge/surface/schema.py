@@ -15,6 +15,7 @@ from typing import Annotated, ClassVar, Literal
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, StrictBool, model_validator
 
 from ..config import SURFACE_COORD_RANGE, SURFACE_EXPR_SAMPLES
+from ..design.numbers import Num, Whole
 
 __all__ = ["SurfaceSection"]
 
@@ -32,9 +33,10 @@ def _in_range(x: float) -> float:
     return x
 
 
-Positive = Annotated[float, Field(gt=0), AfterValidator(_in_range)]
-Coord = Annotated[float, AfterValidator(_in_range)]
-Fraction = Annotated[float, Field(gt=0, lt=1)]
+# numbers written as numbers (``"5"`` and ``true`` are refused with their key)
+Positive = Annotated[Num, Field(gt=0), AfterValidator(_in_range)]
+Coord = Annotated[Num, AfterValidator(_in_range)]
+Fraction = Annotated[Num, Field(gt=0, lt=1)]
 
 
 class SurfaceSection(BaseModel):
@@ -53,17 +55,17 @@ class SurfaceSection(BaseModel):
     rise: Coord = 0.0
     major: Positive | None = None
     minor: Positive | None = None
-    polar: tuple[float, float] = (0.0, 90.0)  # degrees from the top
-    azimuth: tuple[float, float] = (0.0, 360.0)  # degrees
-    resolution: Annotated[int, Field(ge=3, le=2000)] | None = None
+    polar: tuple[Num, Num] = (0.0, 90.0)  # degrees from the top
+    azimuth: tuple[Num, Num] = (0.0, 360.0)  # degrees
+    resolution: Annotated[Whole, Field(ge=3, le=2000)] | None = None
     file: str | None = None
     heights: list[list[Coord]] | None = None
     x: str | None = None
     y: str | None = None
     z: str | None = None
     what: Literal["panels", "cells", "openings", "frame"] = "panels"
-    count: Annotated[int, Field(ge=2)] | None = None
-    relax: Annotated[int, Field(ge=0, le=2000)] | None = None
+    count: Annotated[Whole, Field(ge=2)] | None = None
+    relax: Annotated[Whole, Field(ge=0, le=2000)] | None = None
     method: Literal["lbfgs", "lloyd"] = "lbfgs"
     planarize: Positive | None = None
     openings: Fraction | None = None
@@ -76,7 +78,7 @@ class SurfaceSection(BaseModel):
     unroll: StrictBool = False
     sheet: tuple[Positive, Positive] | None = None
     meshes: list[Literal["3mf", "obj", "glb", "stl", "ply", "3dm"]] = []
-    view: tuple[float, float] = (35.0, 30.0)
+    view: tuple[Num, Num] = (35.0, 30.0)
 
     #: keys only some shapes or modes read (``surface/build.py``; see
     #: ``voroforge.design.schema.UsedBy``)
