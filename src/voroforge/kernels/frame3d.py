@@ -19,8 +19,8 @@ from .expansion import two_diff, two_product, two_sum
 _EPS = 2.0**-53
 
 #: the relative error of :func:`.predicates3d.vertex_offset`'s offsets taken by
-#: :func:`offset_side` (two estimates of nonoverlapping expansions and a division: a few
-#: ulps; padded)
+#: :func:`offset_side` (two determinants rounded to nearest and a division: 1.5 ulps;
+#: padded)
 _OFFSET_RERR = 64.0 * _EPS
 #: the inputs :func:`offset_side` sums (11 an axis, 2 for the weights)
 _OFFSET_TERMS = 35

@@ -35,12 +35,13 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
-from .expansion import estimate, expansion_sum, multiply, two_diff, two_product
+from .expansion import expansion_sum, multiply, two_diff, two_product
 from .frame3d import frame_lift as frame_lift  # the cell cut's band tests (re-exported)
 from .frame3d import frame_offset as frame_offset
 from .frame3d import frame_side as frame_side
 from .frame3d import offset_side as offset_side
 from .insphere_dd import insphere_dd
+from .vertexdd3d import nearest
 
 _EPS = 2.0**-53
 #: filter bounds (relative to the permanent). Shewchuk's orient3d bound is (7 + 56 eps) eps;
@@ -565,8 +566,8 @@ def exact_point(a, k0, k1, k2, P, W, WP, ns, buf, x):
     """The vertex of site ``a``'s owners ``k0, k1, k2`` into ``x (3,)``, from exact expansions.
 
     Coordinate ``c`` is ``s`` of :func:`bisector_side` for the plane ``x_c = 0`` (a wall
-    row ``(e_c, 2 (0 - p_a,c))``): ``x_c = -D4 / (2 D3)`` with both determinants exact, so
-    only their two estimates and one division round and ``x`` is right to a few ulps of
+    row ``(e_c, 2 (0 - p_a,c))``): ``x_c = -D4 / (2 D3)`` with both determinants exact,
+    each rounded to its nearest double, then divided, so ``x`` is right to ~1.5 ulps of
     itself, however much of the sites' magnitude cancels (a vertex 1e-17 from the origin
     among sites on the unit sphere: the float solve's error is 1e-16). Returns False when
     the planes do not meet in one point (``D3 == 0``). ``buf`` is :func:`scratch`.
@@ -579,9 +580,11 @@ def vertex_offset(a, k0, k1, k2, P, W, WP, ns, buf, cx, cy, cz, x):
     """The vertex of site ``a``'s owners ``k0, k1, k2`` less the point ``c``, into ``x (3,)``.
 
     :func:`exact_point` with the planes ``x_c = c_c``: each coordinate of ``vertex - c`` is
-    ``-D4 / (2 D3)`` of exact determinants, right to a few ulps of itself (the two
-    estimates and one division round), however small the offset. Returns False when the
-    planes do not meet in one point (``D3 == 0``).
+    ``-D4 / (2 D3)`` of exact determinants, each rounded to its nearest double
+    (:func:`.vertexdd3d.nearest`) before the one division: right to ~1.5 ulps of itself
+    however small the offset, and a function of the exact determinants alone, so that the
+    double-double stage (:func:`.vertexdd3d.vertex_dd`) gives the same bits where it can
+    prove them. Returns False when the planes do not meet in one point (``D3 == 0``).
 
     Cached in ``buf`` by the query (with the arrays' addresses): each cell at a vertex names
     it with the same query, and a cell past its slots is built again; a hit returns the
@@ -627,9 +630,16 @@ def vertex_offset(a, k0, k1, k2, P, W, WP, ns, buf, cx, cy, cz, x):
 @njit(**NJIT)
 def _vertex_offset(a, k0, k1, k2, P, W, WP, ns, buf, cx, cy, cz, x):
     """:func:`vertex_offset` solved (not cached)."""
+    return vertex_exact(a, k0, k1, k2, P, W, WP, ns, buf, cx, cy, cz, x)
+
+
+@njit(**NJIT)
+def vertex_exact(a, k0, k1, k2, P, W, WP, ns, buf, cx, cy, cz, x):
+    """:func:`vertex_offset` from exact expansions (not cached)."""
     lens = buf[_OFF_L : _OFF_L + 16].view(np.int64)
     EL = lens[:12].reshape((4, 3))
     TL = lens[12:16]
+    tmp = buf[_OFF_A : _OFF_A + _SUM]  # nearest's (the determinants are made before)
     _row_exact(k0, a, P, W, WP, ns, buf, EL, TL, np.int64(0))
     _row_exact(k1, a, P, W, WP, ns, buf, EL, TL, np.int64(1))
     _row_exact(k2, a, P, W, WP, ns, buf, EL, TL, np.int64(2))
@@ -642,8 +652,8 @@ def _vertex_offset(a, k0, k1, k2, P, W, WP, ns, buf, cx, cy, cz, x):
         _put_wall(buf, EL, TL, np.int64(3), n0, n1, n2, d, P[a, 0], P[a, 1], P[a, 2], 0.0, 0.0, 0.0)
         n3, n4 = _dets(buf, EL, TL, np.bool_(True), c == 0)
         if c == 0:
-            d3 = estimate(buf[_OFF_M3 + 3 * _M3 : _OFF_M3 + 4 * _M3], n3)
+            d3 = nearest(buf[_OFF_M3 + 3 * _M3 : _OFF_M3 + 4 * _M3], n3, tmp)
             if d3 == 0.0:
                 return False
-        x[c] = -estimate(buf[_OFF_S : _OFF_S + _SUM], n4) / (2.0 * d3)
+        x[c] = -nearest(buf[_OFF_S : _OFF_S + _SUM], n4, tmp) / (2.0 * d3)
     return True
