@@ -41,7 +41,7 @@ from .frame3d import frame_offset as frame_offset
 from .frame3d import frame_side as frame_side
 from .frame3d import offset_side as offset_side
 from .insphere_dd import insphere_dd
-from .vertexdd3d import nearest
+from .vertexdd3d import nearest, vertex_dd
 
 _EPS = 2.0**-53
 #: filter bounds (relative to the permanent). Shewchuk's orient3d bound is (7 + 56 eps) eps;
@@ -629,7 +629,9 @@ def vertex_offset(a, k0, k1, k2, P, W, WP, ns, buf, cx, cy, cz, x):
 
 @njit(**NJIT)
 def _vertex_offset(a, k0, k1, k2, P, W, WP, ns, buf, cx, cy, cz, x):
-    """:func:`vertex_offset` solved (not cached)."""
+    """:func:`vertex_offset` solved (not cached): double-double where it proves the bits."""
+    if vertex_dd(a, k0, k1, k2, P, W, WP, ns, cx, cy, cz, buf[_OFF_A : _OFF_A + 63], x):
+        return True
     return vertex_exact(a, k0, k1, k2, P, W, WP, ns, buf, cx, cy, cz, x)
 
 
