@@ -130,7 +130,8 @@ def cells_to_user_frame(coords, offsets, extra, box, corner, consistent: bool):
         cells equal modulo the box in the frame) are not exact shifts of each other once
         moved back (:func:`mismatched`): two copies in the coarser binade a box size apart,
         the size not a multiple of their ulp, cannot both be floats, and a class given the
-        nearest floats (above) is not shifted alike. Empty without ``consistent``.
+        nearest floats (above) is not shifted alike. Without ``consistent``: the cells
+        that fold once rounded (:func:`_merge_folds`).
     """
     import shapely
 
@@ -142,6 +143,7 @@ def cells_to_user_frame(coords, offsets, extra, box, corner, consistent: bool):
         out = to_user_frame(xy, box, corner, consistent, plain, flip)
         bufs = drop_repeats((np.ascontiguousarray(out[: len(coords)]), ring, poly, geom))
         if not consistent:
+            out, bufs, folded = _merge_folds(xy, out, len(coords), offsets, bufs)
             break
         cells = shapely.from_ragged_array(
             shapely.GeometryType.MULTIPOLYGON, bufs[0], tuple(bufs[1:])
@@ -160,7 +162,7 @@ def cells_to_user_frame(coords, offsets, extra, box, corner, consistent: bool):
         plain |= more & flip
         flip |= more
     bufs = split_pinched(bufs)
-    apart = np.zeros(0, dtype=np.int64)
+    apart = np.zeros(0, dtype=np.int64) if consistent else folded
     if consistent and len(coords):
         off = mismatched(coords - corner, out[: len(coords)], box)
         if off.any():
@@ -169,6 +171,122 @@ def cells_to_user_frame(coords, offsets, extra, box, corner, consistent: bool):
             gid = np.repeat(np.arange(len(geom) - 1), np.diff(geom))
             apart = np.unique(gid[pid[rid[off]]]).astype(np.int64)
     return bufs, out[len(coords) :], apart
+
+
+def _merge_folds(xy, out, m: int, offsets, bufs):
+    """Rounded points ``out`` and buffers where no cell folds on two vertices an ulp apart.
+
+    Two vertices of a cell closer than the user's floats can order them (a tiny edge, a
+    fraction of an ulp long) round to neighbouring floats in the wrong order, and the ring
+    crosses itself there (500 sites on a sloped line in a 3 x 2 box at 4e12, wrapped: a
+    vertex pair 0.05 x 0.13 ulps apart rounded to (4159, 1392), (4159, 1391) ulps, a
+    bow-tie). In an invalid cell, a ring's next point within an ulp of a point on each axis
+    takes that point's value: every copy of it (the points equal in the frame: the
+    neighbours' and the edges' copies too, so the cells still meet), a few rounds; the tiny
+    edge rounds away (:func:`drop_repeats`). ``m``: the points of ``xy`` that are the cells'.
+
+    A cell narrower than an ulp whose long sides cross once rounded (two nearly parallel
+    edges a fraction of an ulp apart) stays invalid: it keeps the part its ring winds round
+    the right way (GEOS's ``buffer(0)``; the crossed tip, a fraction of an ulp squared, is
+    left to its neighbours) and is returned in ``folded``, its site then unresolved.
+
+    Returns
+    -------
+    out : (k, 2) float64
+    bufs : (coords, ring, poly, geom)
+    folded : (f,) int64
+    """
+    import shapely
+
+    ring, poly, geom = offsets
+    cls = None
+    if not m:
+        return out, bufs, np.zeros(0, dtype=np.int64)
+    for _ in range(4):
+        bad = _invalid(bufs)
+        if not len(bad):
+            return out, bufs, bad
+        # the points of the bad cells' rings, each with the next one along its ring
+        rings = np.concatenate([np.arange(poly[geom[g]], poly[geom[g + 1]]) for g in bad])
+        length = ring[rings + 1] - ring[rings] - 1  # without the closing point
+        at = np.repeat(ring[rings] - np.cumsum(length) + length, length) + np.arange(
+            int(length.sum())
+        )
+        nxt = at + 1
+        a, b = out[at], out[nxt]
+        near = (np.abs(b - a) <= np.spacing(np.maximum(np.abs(a), np.abs(b)))).all(axis=1)
+        near &= (a != b).any(axis=1)
+        if not near.any():
+            break
+        if cls is None:
+            _, cls = np.unique(xy, axis=0, return_inverse=True)
+            cls = cls.ravel()
+        value = np.full((int(cls.max()) + 1, 2), np.nan)
+        value[cls[nxt[near]]] = a[near]
+        take = ~np.isnan(value[cls, 0])
+        out = np.where(take[:, None], value[cls], out)
+        bufs = drop_repeats((np.ascontiguousarray(out[:m]), ring, poly, geom))
+    bad = _invalid(bufs)
+    if len(bad):
+        cells = shapely.from_ragged_array(
+            shapely.GeometryType.MULTIPOLYGON, bufs[0], tuple(bufs[1:])
+        )
+        for g in bad:
+            cells[g] = _wound(cells[g])
+        _, c, offs = shapely.to_ragged_array(cells)
+        bufs = (np.ascontiguousarray(c), *offs)
+    return out, bufs, bad.astype(np.int64)
+
+
+def _wound(cell):
+    """The parts of a self-crossing ``cell`` that its rings wind round the way they turn.
+
+    GEOS's ``make_valid`` splits the rings where they cross into parts; a part is kept
+    where the winding number of its rings about a point inside it has the sign of their
+    signed area (the cell's own side), not where a crossed loop turns back.
+    """
+    import shapely
+
+    # about a point of the cell (exact differences: a cell is a few ulps across), where GEOS
+    # places the crossings and a point inside a part without the far coordinates' rounding
+    o = shapely.get_coordinates(cell)[0]
+    local = shapely.transform(cell, lambda xy: xy - o)
+    fixed = shapely.get_parts(shapely.make_valid(local))
+    fixed = fixed[shapely.get_type_id(fixed) == 3]
+    rings = [
+        np.asarray(r.coords) for p in shapely.get_parts(local) for r in (p.exterior, *p.interiors)
+    ]
+    sign = np.sign(sum(_area(r[:-1]) for r in rings))
+    keep = []
+    for part in fixed:
+        q = np.asarray(shapely.point_on_surface(part).coords)[0]
+        turns = sum(_winding(r, q) for r in rings)
+        if turns * sign > 0:
+            keep.append(shapely.transform(part, lambda xy: xy + o))
+    return shapely.MultiPolygon(keep)
+
+
+def _winding(ring: np.ndarray, q: np.ndarray) -> int:
+    """The winding number of the closed ring ``(k, 2)`` (last point = first) about ``q``."""
+    a = ring[:-1] - q
+    b = ring[1:] - q
+    cross = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+    up = (a[:, 1] <= 0) & (b[:, 1] > 0) & (cross > 0)
+    down = (a[:, 1] > 0) & (b[:, 1] <= 0) & (cross < 0)
+    return int(up.sum() - down.sum())
+
+
+def _invalid(bufs) -> np.ndarray:
+    """The cells of the buffers ``(coords, ring, poly, geom)`` that are not valid polygons.
+
+    Judged once their pinched rings are split (:func:`split_pinched`, done afterwards): a
+    ring that touches itself is not a fold.
+    """
+    import shapely
+
+    coords, ring, poly, geom = split_pinched(bufs)
+    cells = shapely.from_ragged_array(shapely.GeometryType.MULTIPOLYGON, coords, (ring, poly, geom))
+    return np.flatnonzero(~shapely.is_valid(cells))
 
 
 def periods(rel: np.ndarray, w: float):
