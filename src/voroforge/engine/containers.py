@@ -487,37 +487,23 @@ def _convex_template(hs: np.ndarray, box: np.ndarray | None = None, local=None) 
     """The template of the half-spaces ``hs``; ``box`` (2, 3): its bounds where known (a hull).
 
     Otherwise the bounds are linear programs (HiGHS: feasible to ~1e-7, so a slab thinner
-    than that may not be bounded right; a hull's own points bound it exactly). ``local(o)``:
+    than that may not be bounded right, and one that looks flat is bounded again on scaled
+    offsets; a hull's own points bound it exactly). ``local(o)``:
     the same half-spaces about the origin ``o`` (exact offsets), used when the solid lies
     far from the origin (:func:`far_origin`).
     """
-    from scipy.optimize import linprog
-
-    lo = np.zeros(3)
-    hi = np.zeros(3)
-    for a in range(3 if box is None else 0):
-        for sgn, out in ((1.0, lo), (-1.0, hi)):
-            c = np.zeros(3)
-            c[a] = sgn
-            res = linprog(
-                c, A_ub=hs[:, :3], b_ub=hs[:, 3], bounds=[(None, None)] * 3, method="highs"
-            )
-            if res.status == 2:
-                raise ValueError("the half-spaces of the Convex container have no common point")
-            if res.status == 3:
-                raise ValueError(
-                    "the Convex container is unbounded (add half-spaces that close it)"
-                )
-            if res.status != 0:
-                raise ValueError(f"could not bound the Convex container ({res.message})")
-            out[a] = res.x[a]
     if box is not None:
         lo, hi = box
+    else:
+        lo, hi = _lp_bounds(hs, 0)
+    if box is None and _flat(lo, hi):
+        # HiGHS's tolerances are absolute: a 1e-9 x 1e-9 x 1e-16 slab at the origin bounded
+        # as 0 thick (the same slab x 1e3 as 1e-13). Solved again with the offsets scaled by
+        # a power of two to about 1 (exact); only where the first answer refused the solid
+        lo, hi = _lp_bounds(hs, -int(np.frexp(float(np.abs(hs[:, 3]).max()))[1]))
     size = hi - lo
     far = float(max(np.abs(lo).max(), np.abs(hi).max()))
-    # down to an ulp of its coordinates: far out the walls are kept about an origin near the
-    # solid, exactly (a 1 x 1e-9 x 1e-9 box at 1e6, 8.6 ulps thick, had been refused at 16)
-    if size.min() <= max(1e-12 * size.max(), np.spacing(far), 1e-300):
+    if _flat(lo, hi):
         raise ValueError(
             f"the Convex container has no volume (it is flat: {size.min():.3g} thick, within "
             f"an ulp of its coordinates ({np.spacing(far):.3g}) or 1e-12 of its extent)"
@@ -535,6 +521,41 @@ def _convex_template(hs: np.ndarray, box: np.ndarray | None = None, local=None) 
     WP = np.ascontiguousarray(np.column_stack([rows, np.tile(o, (k, 1))]))
     bounds = np.array([TV.min(0) + o, TV.max(0) + o])
     return Template(TV, TF, TR, WP, "convex", vol, bounds, hs.copy())
+
+
+def _flat(lo, hi) -> bool:
+    """Whether the box ``lo..hi`` is too thin to hold a solid.
+
+    Down to an ulp of its coordinates: far out the walls are kept about an origin near the
+    solid, exactly (a 1 x 1e-9 x 1e-9 box at 1e6, 8.6 ulps thick, had been refused at 16).
+    """
+    size = hi - lo
+    far = float(max(np.abs(lo).max(), np.abs(hi).max()))
+    return bool(size.min() <= max(1e-12 * size.max(), np.spacing(far), 1e-300))
+
+
+def _lp_bounds(hs: np.ndarray, e: int) -> tuple[np.ndarray, np.ndarray]:
+    """The bounds of the rows ``hs`` by six linear programs, on the offsets times ``2**e``."""
+    from scipy.optimize import linprog
+
+    b = np.ldexp(hs[:, 3], e)
+    lo = np.zeros(3)
+    hi = np.zeros(3)
+    for a in range(3):
+        for sgn, out in ((1.0, lo), (-1.0, hi)):
+            c = np.zeros(3)
+            c[a] = sgn
+            res = linprog(c, A_ub=hs[:, :3], b_ub=b, bounds=[(None, None)] * 3, method="highs")
+            if res.status == 2:
+                raise ValueError("the half-spaces of the Convex container have no common point")
+            if res.status == 3:
+                raise ValueError(
+                    "the Convex container is unbounded (add half-spaces that close it)"
+                )
+            if res.status != 0:
+                raise ValueError(f"could not bound the Convex container ({res.message})")
+            out[a] = res.x[a]
+    return np.ldexp(lo, -e), np.ldexp(hi, -e)
 
 
 def _hull_template(hs, lo, hi, o, local) -> Template:

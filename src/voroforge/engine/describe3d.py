@@ -23,6 +23,16 @@ def _norm(a: np.ndarray) -> float:
     return float(np.ldexp(np.linalg.norm(np.ldexp(a, -e)), e))
 
 
+def _perimeter(r: np.ndarray) -> float:
+    """The perimeter of the ring of points ``r (k, 3)`` (scaled as :func:`_norm`)."""
+    e = r - np.roll(r, 1, axis=0)
+    big = float(np.abs(e).max())
+    if big == 0.0 or not np.isfinite(big):
+        return big
+    k = int(np.frexp(big)[1])
+    return float(np.ldexp(np.linalg.norm(np.ldexp(e, -k), axis=1).sum(), k))
+
+
 def unmatched_on_faces(d) -> int:
     """Vertices of a face between two cells that the cell across does not reference.
 
@@ -106,10 +116,12 @@ def describe3d(d) -> dict:
     split into pieces, and a piece may have handles),
     ``euler_failures`` (cell numbers), ``convex`` (every face's vertices on the inner side of
     every other face of its cell, to ``CONVEX3D_RTOL`` of the cell's size or
-    ``CONVEX3D_ULPS`` ulps of its coordinates, whichever is coarser; faces thinner than that
-    are left out; cells a mesh container cuts are tested too, so a torus's cut cells make
-    it ``False``: ``nonconvex_cells`` lists them), ``cut_cells`` (cells cut by a
-    mesh container, else 0), ``unmatched_vertices``, ``volume`` and ``container_volume``.
+    ``CONVEX3D_ULPS`` ulps of its coordinates, whichever is coarser, plus the error that
+    resolution makes in the face's normal (times the cell's size and the face's perimeter
+    over its area); faces thinner than that are left out; cells a mesh container cuts are
+    tested too, so a torus's cut cells make it ``False``: ``nonconvex_cells`` lists them),
+    ``cut_cells`` (cells cut by a mesh container, else 0), ``unmatched_vertices``,
+    ``volume`` and ``container_volume``.
     """
     cf, lab, farea, roff, ring = d.cell_face_table()
     n = len(d)
@@ -150,8 +162,13 @@ def describe3d(d) -> dict:
             na = _norm(a)
             if na <= res * size:
                 continue  # a face thinner than the resolution has no normal to test
-            p0 = d.vertices[ring[roff[f]]]
-            if ((V - p0) @ (a / na)).max() > res:
+            r = d.vertices[ring[roff[f] : roff[f + 1]]]
+            p0 = r[0]
+            # the normal of vertices each within res is good to res * perimeter / area (a
+            # wall's sliver beside a nearly coplanar wall of a hull at UTM offsets: 1.1e-8
+            # of area, its rounded normal put the cell's far vertices 4e-8 past it)
+            tol = res * (1.0 + size * _perimeter(r) / na)
+            if ((V - p0) @ (a / na)).max() > tol:
                 nonconvex.append(i)
                 break
     return {
