@@ -407,6 +407,9 @@ INSCRIBED_RTOL = 1e-3
 
 #: ...and never below this (drawing units), nor a drawing's extent for marker sizes.
 INSCRIBED_FLOOR = 1e-9
+#: A tolerance given to it is raised to at least this fraction of the polygon's smaller box
+#: side (``cells.min_size = 1e-300`` asked GEOS for 1e-303 and never finished).
+INSCRIBED_MIN_RTOL = 1e-12
 
 #: design.fabrication: a frame part touches the outline when nearer than this fraction of the
 #: outline's largest coordinate (at least 1); parts farther away are loose islands.
@@ -415,6 +418,12 @@ ISLAND_TOUCH_RTOL = 1e-9
 #: mm: default largest distance between a curve (SVG Bézier/arc, DXF bulge/circle) and the
 #: polyline a boundary reader flattens it to; well below laser and CNC resolution.
 CURVE_TOLERANCE = 0.01
+#: Largest coordinate or width a drawing (SVG, PNG, DXF, GIF) takes: its page size, padding
+#: and pixel scale multiply the extent by up to ~1e3 (a box to 1e308 wrote width="inf").
+DRAW_MAX_COORD = 1e300
+#: Most points one flattened arc or circle may take (an SVG arc of radius 1e40 at 0.01 asked
+#: for 1e21); past it the reader names the arc and asks for a coarser tolerance.
+CURVE_MAX_POINTS = 4_000_000
 
 #: Floor on an SVG element's transform scale, so its flattening tolerance never divides by 0.
 SVG_MIN_SCALE = 1e-300
@@ -549,6 +558,9 @@ SCALE_TILE_SITES = 250_000
 SCALE_CHUNK_ROWS = 1_000_000
 #: Sites sampled (over all chunks) to place the k-d tile splits.
 SCALE_SAMPLE_SITES = 200_000
+#: A LocalCluster starts one Python process a worker: at most this many a core (``--workers
+#: 100000`` started processes for minutes with no output; a remote ``--scheduler`` has no cap).
+SCALE_LOCAL_WORKERS_PER_CORE = 4
 #: Bisection steps for a corner's inside radius in the fabrication check (radius / 2^steps)
 FAB_CORNER_BISECTIONS = 10
 

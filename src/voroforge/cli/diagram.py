@@ -157,7 +157,7 @@ def run_voronoi(args: argparse.Namespace, stage: Stage) -> list[Path]:
     # every output's options checked before any is written: a failing run writes nothing
     _option_uses(args, kinds)
     _check_parquet(kinds)
-    check_outputs(args.output, png=lambda: _check_png(args.size), inputs=[args.points])
+    check_outputs(args.output, png=lambda: _check_png(args.size), inputs=_inputs(args))
     stage("reading")
     from ..io.readers import boundary_crs, read_point_table
     from ..io.readers.points import attribute_names
@@ -209,6 +209,12 @@ def _parquet_crs(crs):
     return name if isinstance(name, str) else None
 
 
+def _inputs(args) -> list:
+    """The files a command reads: POINTS and a ``--boundary`` file (not written over)."""
+    boundary = getattr(args, "boundary", None)
+    return [args.points, *([boundary] if boundary else [])]
+
+
 def _check_png(size) -> None:
     from ..io.png import check_png_size
 
@@ -249,7 +255,7 @@ def run_delaunay(args: argparse.Namespace, stage: Stage) -> list[Path]:
     from .. import io
 
     _option_uses(args, [io.output_format(out) for out in args.output])
-    check_outputs(args.output, png=lambda: _check_png(args.size), inputs=[args.points])
+    check_outputs(args.output, png=lambda: _check_png(args.size), inputs=_inputs(args))
     stage("reading")
     points = io.read_points(args.points)
     stage(f"triangulating {len(points)} points")

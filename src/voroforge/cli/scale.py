@@ -64,12 +64,16 @@ def run(args: argparse.Namespace, stage: Stage) -> list[Path]:
     from distributed import Client
 
     from .. import io, scale
-    from ..scale.cluster import local_cluster
+    from ..scale.cluster import check_local_workers, local_cluster
+    from ..scale.job import check_counts
 
     if args.workers is not None and args.workers < 1:
         raise ValueError(f"--workers must be at least 1; got {args.workers}")
     if args.scheduler and args.workers is not None:
         raise ValueError("--workers applies to the LocalCluster; not with --scheduler")
+    # every count before the cluster starts (it prints its dashboard and takes seconds)
+    check_local_workers(args.workers)
+    check_counts(tile_size=args.tile_size)
     boundary = io.read_boundary(args.boundary) if args.boundary else None
     stage("starting the cluster")
     if args.scheduler:

@@ -28,7 +28,7 @@ import shapely
 
 from .. import config
 from .compute import MM_PER_UNIT, Result, Stage, as_design_error, compute
-from .designfile import DesignError, Issue, find_file, load, located
+from .designfile import DesignError, Issue, find_file, inputs_named_like, load, located
 from .schema import Design
 
 __all__ = [
@@ -289,6 +289,17 @@ def build(
             design, base = load(design.model_dump(), overrides=overrides)
     else:
         design, base = load(source, overrides=overrides)
+    stem = design.output.stem or design.design.name
+    clash = inputs_named_like(design, base, Path(out_dir), stem)
+    if clash:
+        key, path = clash[0]
+        with located(source, overrides):
+            raise DesignError.at(
+                key,
+                f"{path} is read by the design and named like its outputs ({stem}.* and "
+                f"{stem}-* in {Path(out_dir)}): the build would write over it; give another "
+                "output folder or set output.stem",
+            )
     if design.solid is not None:  # a printable 3D product: voroforge.solid builds it
         from ..solid.build import build_solid
 

@@ -569,11 +569,12 @@ def inscribed_circles(polygons, *, tolerance=None) -> tuple[np.ndarray, np.ndarr
     polys = np.asarray(polygons, dtype=object).reshape(-1)
     if not len(polys):
         return np.zeros((0, 2)), np.zeros(0)
+    xmin, ymin, xmax, ymax = shapely.bounds(polys).T
+    side = np.minimum(xmax - xmin, ymax - ymin)
     if tolerance is None:
-        xmin, ymin, xmax, ymax = shapely.bounds(polys).T
-        tolerance = np.maximum(
-            np.minimum(xmax - xmin, ymax - ymin) * config.INSCRIBED_RTOL, config.INSCRIBED_FLOOR
-        )
+        tolerance = np.maximum(side * config.INSCRIBED_RTOL, config.INSCRIBED_FLOOR)
+    else:  # GEOS refines until the tolerance: 1e-300 of a 10 mm cell never finished
+        tolerance = np.maximum(tolerance, side * config.INSCRIBED_MIN_RTOL)
     if hasattr(shapely, "maximum_inscribed_circle"):
         circles = shapely.maximum_inscribed_circle(polys, tolerance=tolerance)
         return shapely.get_coordinates(shapely.get_point(circles, 0)), shapely.length(circles)

@@ -425,8 +425,13 @@ def _counts(coords, ring, cell_of_ring, corners, wrap=None, junctions=2):
         hi_ = np.maximum(va, vb)[sep]
         n_edges = len(unique(lo_ * (len(coords) + 1) + hi_))
     else:
-        # segments of positive length (a ring's repeated point is none), each edge twice
-        n_edges = int((coords[idx[kept]] != coords[idx[following]]).any(1).sum()) // 2
+        # segments of positive length (a ring's repeated point is none), each edge twice;
+        # not one whose two ends are one vertex within tol of each other: the ulp-long edges
+        # of a cluster of vertices whose image across the box rounded to one point (eight
+        # float sites on a circle about the box's corner: E 15 for 14)
+        a, b = coords[idx[kept]], coords[idx[following]]
+        loop = (va == vb) & (np.abs(a - b).max(1) <= wrap[3])
+        n_edges = int(((a != b).any(1) & ~loop).sum()) // 2
     cells = cell_of_ring[krid].astype(np.int64)
     pairs = unique(va * (int(cells.max(initial=0)) + 1) + cells)
     per_vertex = np.bincount(pairs // (int(cells.max(initial=0)) + 1))

@@ -523,7 +523,7 @@ def natural_neighbor(
     if n == 0:
         raise ValueError("natural_neighbor needs at least one site")
     vals, flat = as_values(values, n)
-    q, single = as_query(query)
+    q, single = as_query(query, name="query")
     if gradients is not None and not smooth:
         raise ValueError("gradients= is used only with smooth=True")
     if len(tri.triangles):

@@ -103,7 +103,9 @@ def _read_mesh_file(path: str):
         from ..io.mesh import read
 
         return read(path)
-    return trimesh.load(path, force="mesh")
+    # unprocessed: trimesh's processing drops faces of NaN vertices (the file was then called
+    # "open") and merges vertices within 1e-8; exactly equal ones are merged below
+    return trimesh.load(path, force="mesh", process=False)
 
 
 def as_mesh_container(container):

@@ -11,6 +11,7 @@ the clipped cells and edges (:func:`voroforge.engine.assemble.assemble`).
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import shapely
@@ -36,7 +37,7 @@ from .assemble import assemble_checked
 from .csr import csr_from_pairs
 from .diagram import Diagram, Edges
 from .domain import Domain
-from .inputs import duplicate_map, from_working, working_frame
+from .inputs import RES_BITS, duplicate_map, from_working, working_frame
 from .threads import serial_below
 
 ALGORITHMS = ("delaunay", "fortune", "halfplane")
@@ -459,6 +460,22 @@ def _certified(closed, lengths, box, memo=None) -> bool:
     return ok
 
 
+def _warn_merged(given: np.ndarray, dup: np.ndarray, k: int) -> None:
+    """Warn that the working frame's rounding made distinct sites one (``duplicate_of``)."""
+    same = np.flatnonzero(dup >= 0)
+    diff = same[(given[same] != given[dup[same]]).any(axis=1)]
+    if len(diff):
+        i = int(diff[0])
+        warnings.warn(
+            f"{len(diff)} distinct sites are used as one: the working frame of the sites' and "
+            "the domain's largest magnitude rounds small coordinates to multiples of "
+            f"{math.ldexp(1.0, -RES_BITS - k):.3g} (e.g. site {i} {given[i].tolist()} is site "
+            f"{int(dup[i])}; see duplicate_of; a domain nearer the sites' size keeps them apart)",
+            RuntimeWarning,
+            stacklevel=4,
+        )
+
+
 def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
     """Voronoi diagram of validated sites clipped to a validated domain.
 
@@ -477,6 +494,7 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
     Diagram
     """
     n = len(pts)
+    given = pts
     # the domain's box stays below 2**FRAME2D_CAP_EXP: the half-plane cut squares it (at
     # 2**900, sites 1e-154 apart in a box 10 wide, it did not return)
     work, k = working_frame(pts, np.array(dom.bounds, dtype=np.float64), cap=FRAME2D_CAP_EXP)
@@ -484,6 +502,8 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
         pts = from_working(work, k)  # equal to the input unless it spans > 1e57 in magnitude
     wdom = dom.scaled(k)  # everything below runs in the working frame
     dup, unique = duplicate_map(work)
+    if work is not given and (dup >= 0).sum() > (duplicate_map(given)[0] >= 0).sum():
+        _warn_merged(given, dup, k)
     sub = work if len(unique) == n else work[unique]
     xs = np.ascontiguousarray(sub[:, 0])
     ys = np.ascontiguousarray(sub[:, 1])

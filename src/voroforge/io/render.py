@@ -15,6 +15,8 @@ from collections.abc import Callable
 import numpy as np
 import shapely
 
+from ..config import DRAW_MAX_COORD
+
 __all__ = [
     "PathContext",
     "RingContext",
@@ -201,11 +203,14 @@ def data_bounds(geoms: np.ndarray, sites=None, boundary=None) -> tuple[float, fl
     xmax, ymax = b[:, 2].max(), b[:, 3].max()
     with np.errstate(over="ignore"):
         span = max(xmax - xmin, ymax - ymin)
-    if not math.isfinite(span):
+    far = max(abs(xmin), abs(ymin), abs(xmax), abs(ymax))
+    if not (math.isfinite(span) and max(span, far) <= DRAW_MAX_COORD):
+        # past DRAW_MAX_COORD the page's size, margins and pixel scale overflow float64
         raise ValueError(
             f"the drawing spans ({xmin:.6g}, {ymin:.6g}) to ({xmax:.6g}, {ymax:.6g}): its width"
-            " overflows float64, so no drawing or raster can hold it (write .geojson, .csv or"
-            " .parquet, or scale the input)"
+            f" overflows float64 once drawn (coordinates and width up to {DRAW_MAX_COORD:g}),"
+            " so no drawing or raster can hold it (write .geojson, .csv or .parquet, or scale"
+            " the input)"
         )
     pad = span * 0.5 if span > 0 else max(1.0, abs(xmin), abs(ymin)) * 0.5
     if xmax - xmin <= 0:

@@ -15,7 +15,9 @@ from __future__ import annotations
 import logging
 import os
 
-__all__ = ["CLUSTER_CONFIG", "local_cluster"]
+from .. import config
+
+__all__ = ["CLUSTER_CONFIG", "check_local_workers", "local_cluster"]
 
 #: dask settings under which :func:`local_cluster` starts its scheduler and workers.
 CLUSTER_CONFIG = {
@@ -29,6 +31,28 @@ CLUSTER_CONFIG = {
     "distributed.admin.tick.interval": "500ms",
     "distributed.admin.system-monitor.interval": "2s",
 }
+
+
+def check_local_workers(workers, cores: int | None = None) -> None:
+    """Refuse a worker count a local machine cannot start (before any process starts).
+
+    Raises
+    ------
+    ValueError
+        ``workers`` below 1 or above ``config.SCALE_LOCAL_WORKERS_PER_CORE`` per core.
+    """
+    if workers is None:
+        return
+    cores = max(1, os.cpu_count() or 1) if cores is None else cores
+    most = config.SCALE_LOCAL_WORKERS_PER_CORE * cores
+    if int(workers) < 1:
+        raise ValueError(f"workers must be at least 1; got {workers}")
+    if int(workers) > most:
+        raise ValueError(
+            f"workers: at most {most} local worker processes on {cores} cores "
+            f"({config.SCALE_LOCAL_WORKERS_PER_CORE} a core); got {workers} (use --scheduler "
+            "for a bigger cluster)"
+        )
 
 
 def local_cluster(workers: int | None = None, **kwargs):
@@ -49,9 +73,9 @@ def local_cluster(workers: int | None = None, **kwargs):
     import dask
     from distributed import LocalCluster
 
-    if workers is not None and int(workers) < 1:
-        raise ValueError(f"workers must be at least 1; got {workers}")
-    n = int(workers) if workers is not None else max(1, os.cpu_count() or 1)
+    cores = max(1, os.cpu_count() or 1)
+    check_local_workers(workers, cores)
+    n = int(workers) if workers is not None else cores
     options = {"silence_logs": logging.ERROR, **kwargs}
     with dask.config.set(CLUSTER_CONFIG):
         return LocalCluster(n_workers=n, threads_per_worker=1, processes=True, **options)

@@ -6,6 +6,8 @@ import math
 
 import numpy as np
 
+from ...config import CURVE_MAX_POINTS
+
 __all__ = ["arc_points", "bezier_points"]
 
 
@@ -33,8 +35,16 @@ def arc_points(cx, cy, rx, ry, phi, t0, dt, tol) -> np.ndarray:
     if r <= tol:
         n = 1
     else:
-        step = 2.0 * math.acos(max(-1.0, 1.0 - tol / r))
+        # 2 acos(1 - x) ~ 2 sqrt(2 x) where 1 - x rounds to 1 (acos gave 0: a step of 0)
+        x = tol / r
+        step = 2.0 * math.acos(max(-1.0, 1.0 - x)) if x > 1e-8 else 2.0 * math.sqrt(2.0 * x)
         n = max(1, math.ceil(abs(dt) / step))
+        if n > CURVE_MAX_POINTS:
+            raise ValueError(
+                f"an arc of radius {r:g} sweeping {math.degrees(abs(dt)):g} degrees needs "
+                f"{n:g} points at tolerance {tol:g} (at most {CURVE_MAX_POINTS:,}); "
+                "give a coarser tolerance or a smaller radius"
+            )
     t = t0 + dt * np.arange(1, n + 1) / n
     c, s = math.cos(phi), math.sin(phi)
     x = rx * np.cos(t)

@@ -45,6 +45,8 @@ def load_json(path: Path):
         raise ValueError(f"{path}: line {exc.lineno}: invalid JSON ({exc.msg})") from None
     except UnicodeDecodeError as exc:
         raise ValueError(f"{path}: not a text file ({exc.reason})") from None
+    except RecursionError:  # json recurses once a level of [..] / {..}
+        raise ValueError(f"{path}: invalid JSON (arrays or objects nested too deeply)") from None
 
 
 def geometries(obj) -> list[dict]:

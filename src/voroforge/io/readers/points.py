@@ -285,7 +285,9 @@ def read_npy_points(path, dims: int = 2) -> np.ndarray:
     """
     path = existing_file(path)
     try:
-        arr = np.load(path, allow_pickle=False)
+        # mapped first: a header claiming more rows than the file holds is refused here,
+        # not allocated (1.46 TiB for a 64-byte file)
+        arr = np.array(np.load(path, mmap_mode="r", allow_pickle=False))
     except (ValueError, OSError) as exc:
         raise ValueError(f"{path}: not a readable .npy array ({exc})") from None
     if arr.ndim != 2 or arr.shape[1] != dims:

@@ -66,9 +66,16 @@ def svg_arc(p0, rx, ry, angle_deg, large, sweep, p1, tol) -> np.ndarray:
     if lam > 1.0:  # radii too small: scale them up until the arc just fits
         rx *= math.sqrt(lam)
         ry *= math.sqrt(lam)
-    num = rx * rx * ry * ry - rx * rx * yp * yp - ry * ry * xp * xp
-    den = rx * rx * yp * yp + ry * ry * xp * xp
-    coef = math.sqrt(max(0.0, num / den))
+        lam = 1.0
+    if not large and lam * max(rx, ry) <= tol:  # the small arc within tol of its chord
+        return np.array([[x2, y2]], dtype=np.float64)
+    if lam == 0.0:  # radii past 1e154 times the chord (rx * rx overflowed here)
+        raise ValueError(
+            f"the large arc of radii ({rx:g}, {ry:g}) through two points "
+            f"{math.hypot(x2 - x1, y2 - y1):g} apart reaches past any drawing"
+        )
+    # the centre's offset (F.6.5.2) divided through by rx^2 ry^2: no overflow
+    coef = math.sqrt(max(0.0, (1.0 - lam) / lam))
     if large == sweep:
         coef = -coef
     cxp = coef * rx * yp / ry
@@ -409,10 +416,13 @@ def _read_svg(p: Path, tol: float, flip_y: bool, reader) -> list[np.ndarray]:
     scale, box = _document_scale(root)
     found_all: list[np.ndarray] = []
 
-    def walk(el, matrix):
+    # depth first, in document order, without recursion (groups nest as deep as a file says)
+    stack = [(root, np.eye(3))]
+    while stack:
+        el, matrix = stack.pop()
         tag = _tag(el)
         if tag in _SKIP:
-            return
+            continue
         m = matrix @ _transform(el.get("transform"))
         try:
             found = reader(el, tol / max(scale * _matrix_scale(m), SVG_MIN_SCALE))
@@ -420,10 +430,7 @@ def _read_svg(p: Path, tol: float, flip_y: bool, reader) -> list[np.ndarray]:
             raise ValueError(f"{p}: <{tag} id={el.get('id')!r}>: {exc}") from None
         for r in found:
             found_all.append(r @ m[:2, :2].T + m[:2, 2])
-        for child in el:
-            walk(child, m)
-
-    walk(root, np.eye(3))
+        stack.extend((child, m) for child in reversed(el))
     out = [r * scale for r in found_all]
     if flip_y and out:
         top = (box[1] + box[3]) * scale if box is not None else max(r[:, 1].max() for r in out)
