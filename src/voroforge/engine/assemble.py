@@ -32,6 +32,7 @@ from .agree import agree
 from .diagram import Edges, LazyEdges
 from .domain import Domain
 from .pieces import Pieces
+from .polyclip import clip_convex
 from .slivers import sliver_owner
 from .threads import serial_below
 
@@ -232,7 +233,7 @@ def clip_to_polygon(dom: Domain, grid, pieces, coords, ring_offsets, ring_cell, 
         convex = shapely.from_ragged_array(
             shapely.GeometryType.POLYGON, coords[h_mask], (h_off, np.arange(len(hard) + 1))
         )
-        cut = pieces.intersect(convex, ring_cell[hard], shapely.Polygon())
+        cut = clip_convex(pieces, convex, coords[h_mask], h_off, ring_cell[hard])
         clipped = _polygonal(cut)
         rings = (coords[h_mask], h_off)
         clipped, lost = _held(pieces, convex, clipped, ring_cell[hard], sites, rings)

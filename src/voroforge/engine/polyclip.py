@@ -1,0 +1,110 @@
+"""Cells that meet a long polygonal boundary, clipped by the segments near each one.
+
+Above ``PIECE_SMALL`` vertices a cell that meets the domain's boundary is cut by the
+boundary segments in the grid buckets over its box (:func:`.kernels.polyclip.clip_cells`),
+in time proportional to the segments near it: a comb whose outline meets every cell no
+longer pays a GEOS overlay per cell (0.6 ms each on a comb of 1,000 teeth). A cell that no
+segment meets is wholly inside or outside, which one of its vertices tells (exact, local:
+:meth:`.pieces.Pieces.holds`); a cell the kernel leaves (a near-degenerate sign, a ring
+wholly inside it) takes the overlay with its piece of the domain as before
+(:meth:`.pieces.Pieces.intersect`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import shapely
+
+from ..kernels.polyclip import DONE, NONE, bucket_segments, clip_cells
+
+
+def clip_convex(pieces, convex, ring_xy, ring_off, cells):
+    """``convex[k] ∩ domain`` for closed convex rings in the boxes of cells ``cells[k]``.
+
+    Parameters
+    ----------
+    pieces : Pieces
+        The domain and its pieces.
+    convex : (u,) object
+        The rings as shapely polygons.
+    ring_xy : (k, 2) float64
+        The same rings, closed and counter-clockwise, ring ``i`` at
+        ``ring_off[i]:ring_off[i + 1]``.
+    ring_off : (u + 1,) int64
+    cells : (u,) int64
+        Each ring's cell (whose piece the overlay reads).
+
+    Returns
+    -------
+    (u,) object
+        Polygons, MultiPolygons or empty polygons.
+    """
+    empty = shapely.Polygon()
+    if pieces.whole or not len(convex):
+        return pieces.intersect(convex, cells, empty)
+    seg, nxt = _segments(pieces.geometry)
+    grid = _grid(shapely.bounds(convex), len(convex))
+    boff, bids = bucket_segments(seg, *grid[:3], int(grid[3]), int(grid[4]))
+    status, xy, off, owner = clip_cells(
+        np.ascontiguousarray(ring_xy, dtype=np.float64),
+        np.ascontiguousarray(ring_off, dtype=np.int64),
+        seg,
+        nxt,
+        boff,
+        bids,
+        grid,
+    )
+    out = np.empty(len(convex), dtype=object)  # noqa: TID251 - every slot is filled below
+    done = np.flatnonzero(status == DONE)
+    if len(done):
+        count = np.bincount(owner, minlength=len(convex))
+        geom = np.concatenate(([0], np.cumsum(count[done])))
+        got = shapely.from_ragged_array(
+            shapely.GeometryType.MULTIPOLYGON, xy, (off, np.arange(len(off)), geom)
+        )
+        one = count[done] == 1
+        got[one] = shapely.get_geometry(got[one], 0)
+        out[done] = got
+    free = np.flatnonzero(status == NONE)
+    if len(free):
+        held = pieces.holds(ring_xy[ring_off[free]])
+        out[free[held]] = convex[free[held]]
+        out[free[~held]] = empty
+    hard = np.flatnonzero(status > NONE)
+    if len(hard):
+        out[hard] = pieces.intersect(convex[hard], cells[hard], empty)
+    return out
+
+
+def _segments(geom):
+    """The boundary's segments ``(m, 4)``, the domain on their left, and each one's next."""
+    rings = shapely.get_rings(shapely.get_parts(shapely.orient_polygons(geom)))
+    xy, at = shapely.get_coordinates(rings, return_index=True)
+    # (repeated points dropped: a segment of no length has no side)
+    keep = np.ones(len(xy), dtype=np.bool_)
+    keep[1:] = (xy[1:] != xy[:-1]).any(axis=1) | (at[1:] != at[:-1])
+    xy, at = xy[keep], at[keep]
+    last = np.r_[at[1:] != at[:-1], True]  # each ring's closing repeat
+    idx = np.flatnonzero(~last)
+    seg = np.ascontiguousarray(np.hstack((xy[idx], xy[idx + 1])))
+    ring = at[idx]
+    first = np.r_[True, ring[1:] != ring[:-1]]
+    start = np.flatnonzero(first)
+    nxt = np.arange(1, len(idx) + 1, dtype=np.int64)
+    ends = np.r_[start[1:], len(idx)] - 1
+    nxt[ends] = start
+    return seg, nxt
+
+
+def _grid(boxes, count):
+    """``(x0, y0, h, nx, ny)``: squares over the cells' boxes, about one cell per square."""
+    x0, y0 = boxes[:, 0].min(), boxes[:, 1].min()
+    x1, y1 = boxes[:, 2].max(), boxes[:, 3].max()
+    w, hgt = max(x1 - x0, 0.0), max(y1 - y0, 0.0)
+    h = np.sqrt(w * hgt / count) if w * hgt > 0 else max(w, hgt, 1.0)
+    if not h > 0:
+        h = 1.0
+    nx = min(int(w / h) + 1, 4096)
+    ny = min(int(hgt / h) + 1, 4096)
+    h = max(h, w / nx, hgt / ny) * (1 + 2.0**-40)
+    return np.array([x0, y0, h, nx, ny], dtype=np.float64)
