@@ -45,9 +45,24 @@ def _local(xy):
     return np.array([((x - CENTRE[0]) / UX, (y - CENTRE[1]) / UY) for x, y in xy], dtype=float)
 
 
+# Site 243 of 257 at phase 0.35 (92 at 0.90, the mirror): its vertex (223.33, -0.17) in
+# ulps, own centre (223, 0) with a bound of 3.38 units, sits in a class of six triangles
+# whose own centres span x = 35..223 (bounds 1.4-7.6) joined by a chain of fold joins
+# (centers._unfold), named at (172, -3): the site is flagged. Joins kept to classes whose
+# members' bounds share a point fixed both, but left other inputs' vertices unmerged where
+# the cells then failed (vertices past the box side: 257 at phase 0.05), so not landed.
+CHAINED = pytest.mark.xfail(strict=True, reason="chained fold joins of merge_cocircular")
+
+
 @pytest.mark.parametrize(
     ("n", "phase", "site"),
-    [(64, 0.05, 52), (600, 0.40, 62), (1000, 0.80, 258)],
+    [
+        (64, 0.05, 52),
+        (600, 0.40, 62),
+        (1000, 0.80, 258),
+        pytest.param(257, 0.35, 243, marks=CHAINED),
+        pytest.param(257, 0.90, 92, marks=CHAINED),
+    ],
 )
 @pytest.mark.parametrize("algorithm", ["delaunay", "fortune", "halfplane"])
 def test_far_circle_cells_match_exact(n, phase, site, algorithm):
