@@ -541,29 +541,12 @@ STUDIO_UNDO_DEPTH = 200
 #: Seconds without edits before the live fabrication check runs (dragging stays smooth)
 STUDIO_CHECK_DELAY = 0.35
 
-# --- scale (tiled Voronoi on dask.distributed) ------------------------------------------------
+# --- scale (tiled Voronoi on dask.distributed): config_scale.py, re-exported here -----------
 
-#: First halo of a tile, in mean site spacings of the tile (sqrt(area / sites)): most cells of a
-#: Poisson tile are certified by it; the rest are recomputed with the halo their own bound asks.
-SCALE_HALO_SPACINGS = 3.0
-#: Relative slack on the certificate: a cell is final only when every site nearer than
-#: (2 + this) times its farthest vertex distance is loaded (the inequality is then strict).
-SCALE_CERT_RTOL = 1e-9
-#: Rounds of recomputation before a cell is reported uncertified (one is enough in exact
-#: arithmetic: a recomputed cell can only shrink, so its own bound covers it).
-SCALE_MAX_ROUNDS = 4
-#: Sites per tile when neither ``tiles`` nor ``tile_size`` is given.
-SCALE_TILE_SITES = 250_000
-#: Input rows per chunk read by one task (a .npy slice, Parquet row groups of a CSV).
-SCALE_CHUNK_ROWS = 1_000_000
-#: Sites sampled (over all chunks) to place the k-d tile splits.
-SCALE_SAMPLE_SITES = 200_000
-#: A LocalCluster starts one Python process a worker: at most this many a core (``--workers
-#: 100000`` started processes for minutes with no output; a remote ``--scheduler`` has no cap).
-SCALE_LOCAL_WORKERS_PER_CORE = 4
+from .config_scale import *  # noqa: E402, F403
+
 #: Bisection steps for a corner's inside radius in the fabrication check (radius / 2^steps)
 FAB_CORNER_BISECTIONS = 10
-
 
 # ---- exact power cells, half-plane side snap, the 3D range and memory
 
@@ -642,6 +625,16 @@ ASSEMBLE_ROUNDING_ULPS = 4.0
 #: engine.pieces: a domain with at most this many vertices is intersected whole, and tested
 #: with predicates on the whole domain
 PIECE_SMALL = 256
+#: kernels.polyclip (cells meeting a long boundary, clipped by its nearby segments): relative
+#: error bound of a float orientation (Shewchuk's ccwerrboundA is 3.3e-16; this one also
+#: covers the subtractions of nearby points)...
+POLYCLIP_ORIENT_EPS = 1e-15
+#: ...two crossings, or a crossing and a cell's vertex, closer than this fraction of a cell's
+#: edge (or of a segment) are left to the overlay...
+POLYCLIP_PARAM_EPS = 1e-12
+#: ...and so are features of a clipped cell (a crossing to a vertex or to another crossing, a
+#: vertex to an edge) closer than this many ulps of the cell's coordinates
+POLYCLIP_ULPS = 16.0
 #: engine.pieces: consecutive segments of a ring in one chunk of the boundary index (a
 #: geometry is tested against the chunks whose boxes it meets; a piece keeps those it meets)
 PIECE_CHUNK = 32

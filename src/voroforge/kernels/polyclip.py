@@ -26,17 +26,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..config import NJIT
-
-# -> config: relative error bound of a float orientation (Shewchuk's ccwerrboundA is
-# 3.3e-16; this one also covers the subtractions of nearby points)
-POLYCLIP_ORIENT_EPS = 1e-15
-# -> config: two crossings, or a crossing and a cell's vertex, closer than this fraction of
-# a cell's edge (or of a segment) are left to the overlay
-POLYCLIP_PARAM_EPS = 1e-12
-# -> config: features of a clipped cell (a crossing to a vertex or to another crossing, a
-# vertex to an edge) closer than this many ulps of the cell's coordinates: the overlay
-POLYCLIP_ULPS = 16.0
+from ..config import NJIT, POLYCLIP_ORIENT_EPS, POLYCLIP_PARAM_EPS, POLYCLIP_ULPS
 
 DONE = 0  # clipped here
 NONE = 1  # no boundary segment meets the cell: wholly inside or wholly outside
