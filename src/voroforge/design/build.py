@@ -28,7 +28,7 @@ import shapely
 
 from .. import config
 from .compute import MM_PER_UNIT, Result, Stage, as_design_error, compute
-from .designfile import DesignError, Issue, find_file, inputs_named_like, load, located
+from .designfile import DesignError, Issue, find_file, load, located
 from .schema import Design
 
 __all__ = [
@@ -249,6 +249,43 @@ def _parquet(result: Result, path: Path, base: Path | None = None) -> Path:
     return write_parquet(geoms, path, sites=sites, properties=props, crs=crs)
 
 
+def _inputs_named_like(design, base: Path | None, out: Path, stem: str) -> list[tuple[str, Path]]:
+    """``(key, path)`` of every file the design reads that an output would write over.
+
+    Every string value of the design that names an existing file (relative to ``base``) is
+    an input; a build writes ``<stem>.<suffix>`` and ``<stem>-<part>`` files into ``out``
+    (a design named "pts" reading ``seeds.file = "pts.geojson"`` replaced its own seeds).
+    """
+    found = []
+    folder = out.resolve()
+
+    def walk(node, key):
+        if isinstance(node, dict):
+            for k, v in node.items():
+                walk(v, f"{key}.{k}" if key else str(k))
+        elif isinstance(node, (list, tuple)):
+            first = node[0] if node else None
+            if isinstance(first, (list, tuple)) and first:
+                first = first[0]
+            if isinstance(first, (int, float)):  # coordinates (a polygon of 200k points)
+                return
+            for i, v in enumerate(node):
+                walk(v, f"{key}.{i}")
+        elif isinstance(node, str) and node and "\n" not in node and len(node) < 4096:
+            p = Path(node)
+            if not p.is_absolute() and base is not None:
+                p = base / p
+            try:
+                hit = p.is_file() and p.resolve().parent == folder
+            except OSError:
+                return
+            if hit and (p.name.startswith(f"{stem}.") or p.name.startswith(f"{stem}-")):
+                found.append((key, p))
+
+    walk(design.model_dump(), "")
+    return found
+
+
 def build(
     source,
     out_dir=".",
@@ -290,7 +327,7 @@ def build(
     else:
         design, base = load(source, overrides=overrides)
     stem = design.output.stem or design.design.name
-    clash = inputs_named_like(design, base, Path(out_dir), stem)
+    clash = _inputs_named_like(design, base, Path(out_dir), stem)
     if clash:
         key, path = clash[0]
         with located(source, overrides):

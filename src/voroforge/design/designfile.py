@@ -733,38 +733,6 @@ def find_file(base: Path | None, name: str, key: str) -> Path:
     return p
 
 
-def inputs_named_like(design, base: Path | None, out: Path, stem: str) -> list[tuple[str, Path]]:
-    """``(key, path)`` of every file the design reads that an output would write over.
-
-    Every string value of the design that names an existing file (relative to ``base``) is
-    an input; a build writes ``<stem>.<suffix>`` and ``<stem>-<part>`` files into ``out``
-    (a design named "pts" reading ``seeds.file = "pts.geojson"`` replaced its own seeds).
-    """
-    found = []
-    folder = out.resolve()
-
-    def walk(node, key):
-        if isinstance(node, dict):
-            for k, v in node.items():
-                walk(v, f"{key}.{k}" if key else str(k))
-        elif isinstance(node, (list, tuple)):
-            for i, v in enumerate(node):
-                walk(v, f"{key}.{i}")
-        elif isinstance(node, str) and node and "\n" not in node and len(node) < 4096:
-            p = Path(node)
-            if not p.is_absolute() and base is not None:
-                p = base / p
-            try:
-                hit = p.is_file() and p.resolve().parent == folder
-            except OSError:
-                return
-            if hit and (p.name.startswith(f"{stem}.") or p.name.startswith(f"{stem}-")):
-                found.append((key, p))
-
-    walk(design.model_dump(), "")
-    return found
-
-
 @contextmanager
 def located(source, overrides: dict | None = None):
     """Give DesignErrors raised inside the design file's name and the lines of their keys.
