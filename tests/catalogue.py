@@ -47,6 +47,22 @@ def _star(k: int = 7, r_out: float = 10.0, r_in: float = 4.0) -> Polygon:
     return Polygon(np.column_stack((rad * np.cos(ang), rad * np.sin(ang))))
 
 
+def comb_outline(k, top=1000.0):
+    """``k`` teeth 0.6 wide and ``top`` high on a strip 1 high: one outline of 4k vertices."""
+    teeth = []
+    for i in range(k):
+        teeth += [(i, top), (i + 0.6, top), (i + 0.6, 1.0), (i + 1, 1.0)]
+    return Polygon([(0, 0), (k, 0), *teeth[::-1]])
+
+
+def saw_outline(k):
+    """A saw of ``k`` slanted teeth (no two vertices share a side of a random rectangle)."""
+    up = [(i + 0.5, 3.0 + 0.37 * np.sin(i)) for i in range(k)]
+    down = [(i + 1.0, 1.0 + 0.11 * np.cos(i)) for i in range(k)]
+    top = [p for pair in zip(up, down, strict=True) for p in pair]
+    return Polygon([(0, 0), (k, 0), *top[::-1], (0, 1.0)])
+
+
 def _build() -> dict[str, tuple[np.ndarray, object]]:
     c: dict[str, tuple[np.ndarray, object]] = {}
     unit = (0.0, 0.0, 1.0, 1.0)

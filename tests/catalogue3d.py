@@ -8,6 +8,24 @@ from __future__ import annotations
 import numpy as np
 
 
+def helix(n, turns=10, r=0.3):
+    """``n`` points on a helix of ``turns`` turns and radius ``r`` in the unit box (cells of
+    hundreds of nearly parallel faces)."""
+    a = np.linspace(0, 2 * np.pi * turns, n)
+    return np.c_[0.5 + r * np.cos(a), 0.5 + r * np.sin(a), np.linspace(0.05, 0.95, n)]
+
+
+def three_lines(n):
+    """``n`` sites on three orthogonal lines through the unit box (ill-conditioned vertices)."""
+    rng = np.random.default_rng(0)
+    k = n // 3
+    return np.r_[
+        np.c_[rng.random(k), np.full(k, 0.2), np.full(k, 0.2)],
+        np.c_[np.full(k, 0.8), rng.random(k), np.full(k, 0.5)],
+        np.c_[np.full(k, 0.5), np.full(k, 0.5), rng.random(k)],
+    ]
+
+
 def _grid(k):
     g = np.stack(np.meshgrid(*[np.arange(k)] * 3, indexing="ij"), -1).reshape(-1, 3)
     return g.astype(np.float64)

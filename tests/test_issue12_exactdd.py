@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 
 import voroforge as vf
+from catalogue3d import helix, three_lines
 from reference3d import brute_volumes
 from test_issue12_exact3d import _check_cells
 from voroforge.kernels.expansion import grow
@@ -30,21 +31,6 @@ BOX = (0.0, 0.0, 0.0, 1.0, 1.0, 1.0)
 WP = np.array(
     [[-1, 0, 0, 0], [1, 0, 0, 1.0], [0, -1, 0, 0], [0, 1, 0, 1], [0, 0, -1, 0], [0, 0, 1, 1]]
 )
-
-
-def _helix(n, turns=10, r=0.3):
-    a = np.linspace(0, 2 * np.pi * turns, n)
-    return np.c_[0.5 + r * np.cos(a), 0.5 + r * np.sin(a), np.linspace(0.05, 0.95, n)]
-
-
-def _lines3(n):
-    rng = np.random.default_rng(0)
-    k = n // 3
-    return np.r_[
-        np.c_[rng.random(k), np.full(k, 0.2), np.full(k, 0.2)],
-        np.c_[np.full(k, 0.8), rng.random(k), np.full(k, 0.5)],
-        np.c_[np.full(k, 0.5), np.full(k, 0.5), rng.random(k)],
-    ]
 
 
 def _expansion(values):
@@ -125,13 +111,13 @@ def _queries(rng, ns, m, span, walls):
 def _cases(rng):
     """Helix, three lines, weights, a Convex-like wall about an origin; near-degenerate."""
     out = []
-    P = _helix(600)
+    P = helix(600)
     out.append((P, np.zeros(len(P)), WP, 12))
-    P = _lines3(600)
+    P = three_lines(600)
     out.append((P, rng.random(len(P)) * 1e-3, WP, 60))
     far = np.c_[WP, np.tile([0.5, 0.5, 0.5], (6, 1))]  # (n, d, o) rows
     far[:, 3] = 0.5
-    P = _helix(300) + rng.normal(size=(300, 3)) * 2.0**-50  # a few ulps off the curve
+    P = helix(300) + rng.normal(size=(300, 3)) * 2.0**-50  # a few ulps off the curve
     out.append((P, np.zeros(len(P)), far, 8))
     P = np.repeat(rng.random((100, 3)), 3, axis=0)
     P[1::3, 0] = np.nextafter(P[1::3, 0], 2.0)  # twins an ulp apart: nearly parallel planes
@@ -185,7 +171,7 @@ def test_double_double_stage_gives_the_exact_bits():
     assert decided > total // 4
 
 
-@pytest.mark.parametrize(("make", "n"), [(_helix, 300), (_lines3, 150)], ids=["helix", "lines3"])
+@pytest.mark.parametrize(("make", "n"), [(helix, 300), (three_lines, 150)], ids=["helix", "lines3"])
 def test_many_faced_cells(make, n):
     P = make(n)
     d = vf.voronoi3d(P, BOX)

@@ -13,27 +13,13 @@ import numpy as np
 import pytest
 
 import voroforge as vf
+from catalogue3d import helix, three_lines
 from reference3d import VOROPP, voropp_volumes
 from voroforge.engine import build3d, slots3d
 from voroforge.engine.slots3d import grown_caps
 from voroforge.kernels.cells3d import OK, OVERFLOW
 
 BOX = (0.0, 0.0, 0.0, 1.0, 1.0, 1.0)
-
-
-def _helix(n, turns=10, r=0.3):
-    a = np.linspace(0, 2 * np.pi * turns, n)
-    return np.c_[0.5 + r * np.cos(a), 0.5 + r * np.sin(a), np.linspace(0.05, 0.95, n)]
-
-
-def _lines3(n):
-    rng = np.random.default_rng(0)
-    k = n // 3
-    return np.r_[
-        np.c_[rng.random(k), np.full(k, 0.2), np.full(k, 0.2)],
-        np.c_[np.full(k, 0.8), rng.random(k), np.full(k, 0.5)],
-        np.c_[np.full(k, 0.5), np.full(k, 0.5), rng.random(k)],
-    ]
 
 
 def _counting(monkeypatch):
@@ -60,7 +46,7 @@ def _same(a, b):
         assert [r.tolist() for r in pa.faces] == [r.tolist() for r in pb.faces]
 
 
-@pytest.mark.parametrize(("name", "pts"), [("helix", _helix(400)), ("lines3", _lines3(300))])
+@pytest.mark.parametrize(("name", "pts"), [("helix", helix(400)), ("lines3", three_lines(300))])
 def test_grown_slots_give_the_cells_built_alone(monkeypatch, name, pts):
     """With growth the diagram is bit for bit the one whose cells were all built alone."""
     seen = _counting(monkeypatch)
@@ -78,7 +64,7 @@ def test_grown_slots_give_the_cells_built_alone(monkeypatch, name, pts):
 
 
 def test_grown_helix_invariants_and_voropp():
-    pts = _helix(500)
+    pts = helix(500)
     d = vf.voronoi3d(pts, BOX)
     assert d.unmatched_vertices == 0
     assert abs(d.volumes.sum() - 1.0) < 1e-12

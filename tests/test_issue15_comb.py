@@ -25,21 +25,7 @@ from voroforge.engine import pieces as pieces_module
 from voroforge.engine.domain import Domain
 from voroforge.engine.pieces import PIECE_SMALL, Pieces
 
-
-def _comb(k, top=1000.0):
-    """``k`` teeth 0.6 wide and ``top`` high on a strip 1 high: one outline of 4k vertices."""
-    teeth = []
-    for i in range(k):
-        teeth += [(i, top), (i + 0.6, top), (i + 0.6, 1.0), (i + 1, 1.0)]
-    return shapely.Polygon([(0, 0), (k, 0), *teeth[::-1]])
-
-
-def _saw(k):
-    """A saw of ``k`` slanted teeth (no two vertices share a side of a random rectangle)."""
-    up = [(i + 0.5, 3.0 + 0.37 * np.sin(i)) for i in range(k)]
-    down = [(i + 1.0, 1.0 + 0.11 * np.cos(i)) for i in range(k)]
-    top = [p for pair in zip(up, down, strict=True) for p in pair]
-    return shapely.Polygon([(0, 0), (k, 0), *top[::-1], (0, 1.0)])
+from catalogue import comb_outline, saw_outline
 
 
 def _holed(k):
@@ -53,7 +39,7 @@ def _holed(k):
 
 
 def _domains():
-    comb = _comb(80)
+    comb = comb_outline(80)
     hole_teeth = shapely.Polygon(
         comb.exterior.coords,
         [shapely.box(i + 0.2, 300, i + 0.4, 700).exterior.coords for i in range(80)],
@@ -64,10 +50,10 @@ def _domains():
         "comb_far": affinity.translate(comb, 3e13, 7e14),
         "comb_rotated": affinity.rotate(comb, 33, origin=(0, 0)),
         "comb_holes": hole_teeth,
-        "saw": _saw(200),
+        "saw": saw_outline(200),
         "holed": _holed(12),
         "multi": shapely.MultiPolygon(
-            [_comb(40), affinity.translate(_comb(40).reverse(), 0, 1100)]
+            [comb_outline(40), affinity.translate(comb_outline(40).reverse(), 0, 1100)]
         ),
     }
 
@@ -146,7 +132,9 @@ def test_meets_boundary_as_the_whole_boundary(name):
         assert (pieces.meets_boundary(g) == ref).all()
 
 
-@pytest.mark.parametrize("geom", [_comb(150), affinity.translate(_comb(150).reverse(), 1e13, 0)])
+@pytest.mark.parametrize(
+    "geom", [comb_outline(150), affinity.translate(comb_outline(150).reverse(), 1e13, 0)]
+)
 def test_comb_cells_are_the_box_cells_cut(geom, monkeypatch):
     monkeypatch.setattr(pieces_module, "PIECE_RAY_SPAN", 0)  # every point located locally
     monkeypatch.setattr(pieces_module, "PIECE_BIG_RING", 0)  # the chunks on every domain

@@ -19,19 +19,7 @@ import voroforge as vf
 from voroforge.engine import polyclip
 from voroforge.kernels.polyclip import DONE, geos_intersection
 
-
-def _comb(k, top=1000.0):
-    teeth = []
-    for i in range(k):
-        teeth += [(i, top), (i + 0.6, top), (i + 0.6, 1.0), (i + 1, 1.0)]
-    return shapely.Polygon([(0, 0), (k, 0), *teeth[::-1]])
-
-
-def _saw(k):
-    up = [(i + 0.5, 3.0 + 0.37 * np.sin(i)) for i in range(k)]
-    down = [(i + 1.0, 1.0 + 0.11 * np.cos(i)) for i in range(k)]
-    top = [p for pair in zip(up, down, strict=True) for p in pair]
-    return shapely.Polygon([(0, 0), (k, 0), *top[::-1], (0, 1.0)])
+from catalogue import comb_outline, saw_outline
 
 
 def _zigzag(n):
@@ -41,7 +29,7 @@ def _zigzag(n):
 
 
 def _domains():
-    comb = _comb(120)
+    comb = comb_outline(120)
     return {
         "comb": comb,
         "comb_reversed": comb.reverse(),
@@ -51,10 +39,10 @@ def _domains():
             comb.exterior.coords,
             [shapely.box(i + 0.2, 300, i + 0.4, 700).exterior.coords for i in range(120)],
         ),
-        "saw": _saw(300),
+        "saw": saw_outline(300),
         "zigzag": _zigzag(2000),
         "multi": shapely.MultiPolygon(
-            [_comb(60), affinity.translate(_comb(60).reverse(), 0, 1100)]
+            [comb_outline(60), affinity.translate(comb_outline(60).reverse(), 0, 1100)]
         ),
     }
 
