@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..config import SOLID_FOAM_DRAWS
+from ..config import SOLID_FOAM_DRAWS, SOLID_MAX_VOXELS
 from .render import preview
 
 __all__ = ["build_solid", "check_solid", "make_solid", "preview"]
@@ -62,6 +62,26 @@ def _stl_bare(path: Path):
     return Bare(v, np.arange(3 * n, dtype=np.int64).reshape(-1, 3))
 
 
+def _check_voxel(voxel, lo, hi):
+    """Refuse ``[solid] voxel`` whose grid over ``lo..hi`` alone has too many samples.
+
+    The marching-cubes grid covers at least the box ``lo..hi`` (the container, or the
+    shell's surface), so a count past ``SOLID_MAX_VOXELS`` there is refused at the key's
+    line before the cells are built (the route itself would refuse after that work).
+    """
+    from ..design.designfile import DesignError
+
+    if not voxel:
+        return
+    n = float(np.prod(np.floor((np.asarray(hi) - np.asarray(lo)) / float(voxel)) + 1.0))
+    if not n <= SOLID_MAX_VOXELS:
+        raise DesignError.at(
+            "solid.voxel",
+            f"a voxel of {voxel:g} gives a grid of at least {n:.3g} samples over the solid's "
+            f"box (at most {SOLID_MAX_VOXELS:.3g}); use a larger voxel",
+        )
+
+
 def _cells(s, base, stage, bare=False):
     from ..design.designfile import DesignError
     from ..engine.voronoi3d import voronoi3d
@@ -90,6 +110,8 @@ def _cells(s, base, stage, bare=False):
     else:
         box = tuple(s.container)
     lo, hi = np.array(box[:3]), np.array(box[3:])
+    if s.kind == "lattice" and (s.skin > 0 or s.nodes == "smooth"):
+        _check_voxel(s.voxel, lo, hi)
     # a foam's bubbles lie in its cells: they are cut by the mesh, and its sites inside it
     clip = mesh if s.kind == "foam" and mesh is not None else None
     if clip is not None:
@@ -167,6 +189,9 @@ def make_solid(design, base=None, stage=None, *, bare: bool = False):
 
         # a profile's surface as bare arrays: no trimesh
         surf = read(_path(base, s.surface)) if s.surface else revolve(s.profile, s.sections)
+        v = np.asarray(surf.vertices if hasattr(surf, "vertices") else surf[0], dtype=np.float64)
+        if len(v):
+            _check_voxel(s.voxel, v.min(axis=0), v.max(axis=0))
         stage(f"shell with {s.openings} openings")
         return shell(
             surf,

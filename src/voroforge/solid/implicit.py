@@ -226,9 +226,13 @@ def _grid(lo, hi, h):
     # along a mesh face would make the inside parity ambiguous)
     lo = np.asarray(lo, np.float64) - 2 * h - h * _JITTER
     hi = np.asarray(hi, np.float64) + 2 * h
+    count = float(np.prod(np.ceil((hi - lo) / h) + 1.0))  # in floats: no int64 overflow
+    if not count <= config.SOLID_MAX_VOXELS:
+        raise ValueError(
+            f"the voxel grid would have {count:.3g} samples "
+            f"(at most {config.SOLID_MAX_VOXELS:.3g}); use a larger voxel"
+        )
     n = np.ceil((hi - lo) / h).astype(np.int64) + 1
-    if n.prod() > 2e9:
-        raise ValueError(f"the voxel grid would have {n.prod():.3g} samples; use a larger voxel")
     return lo, n
 
 

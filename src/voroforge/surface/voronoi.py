@@ -593,6 +593,11 @@ def voronoi(
         n = points_or_count
         if isinstance(n, bool) or int(n) != n or n < 1:
             raise ValueError(f"site count must be a positive integer; got {n!r}")
+        if n > config.SEEDS_MAX_POINTS:
+            raise ValueError(
+                f"site count {int(n):,} is past the most sites a surface may be sampled with "
+                f"({config.SEEDS_MAX_POINTS:,}, config.SEEDS_MAX_POINTS)"
+            )
         sites = S.sample(int(n), seed=seed)
     else:
         sites = as_points3(points_or_count, "points")
