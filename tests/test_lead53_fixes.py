@@ -58,3 +58,29 @@ def test_a_surface_site_count_past_the_seed_bound_is_refused_up_front():
     s = surface.sphere(1.0)
     with pytest.raises(ValueError, match=r"site count 1,000,000,000 .*SEEDS_MAX_POINTS"):
         surface.voronoi(s, 10**9)
+
+
+def test_corner_depths_by_the_rim_index_equal_geos_distances():
+    # checker31 F13: cells.smooth = 8 made the check 30x slower (GEOS distance of every
+    # sliver vertex against every rim segment); the indexed lookup must find the same spots
+    import shapely
+
+    from voroforge.design.fabrication import _deepest
+
+    rng = np.random.default_rng(5)
+    t = np.sort(rng.uniform(0, 2 * np.pi, 400))
+    hole = shapely.Polygon(np.c_[np.cos(t), np.sin(t)] * rng.uniform(0.8, 1.2, (400, 1)))
+    reach = hole.buffer(-0.15, quad_segs=16).buffer(0.15, quad_segs=16)
+    pieces = shapely.get_parts(shapely.difference(hole, reach))
+    assert len(pieces) > 20
+    for tol in (0.0, 1e-3, 1e-2):
+        got = _deepest(pieces, shapely.boundary(reach), tol)
+        want = []
+        for piece in pieces:
+            xy = shapely.get_coordinates(piece)
+            d = shapely.distance(shapely.points(xy), reach)
+            if d.max() > tol:
+                want.append((d.max(), tuple(xy[int(np.argmax(d))])))
+        assert len(got) == len(want) > 0
+        for (dg, pg), (dw, pw) in zip(got, want, strict=True):
+            assert dg == pytest.approx(dw, rel=1e-12, abs=1e-15) and pg == pytest.approx(pw)
