@@ -607,12 +607,10 @@ def _openings(holes: np.ndarray, min_opening: float, tol: float) -> list[Violati
 def _deepest(pieces: np.ndarray, rim, tolerance: float) -> list[tuple[float, tuple[float, float]]]:
     """Leftover pieces deeper than ``tolerance``: (depth, deepest vertex) for each.
 
-    A piece's depth is the largest distance of its vertices from ``rim``, the boundary the
-    pieces lie outside of (the tool's reach, or the outline). Each piece touches the rim,
-    so a piece whose bounding box's diagonal is within ``tolerance`` cannot be deeper and
-    is skipped (a smoothed cell leaves 1,000 slivers along its corners). A vertex's distance
-    is found in an index of the rim's segments: GEOS's point-to-line distance scans every
-    segment for every vertex (``cells.smooth = 8`` made the check 30 times slower).
+    Depth: the largest distance of a piece's vertices from ``rim`` (the reach's or the
+    outline's boundary, which each piece touches: a piece whose bounding box's diagonal is
+    within ``tolerance`` cannot be deeper). Distances come from an index of the rim's
+    segments (GEOS scans every segment for every vertex: smoothed cells were 30x slower).
     """
     pieces = np.asarray(pieces, dtype=object)
     lo_x, lo_y, hi_x, hi_y = shapely.bounds(pieces).T
