@@ -84,3 +84,22 @@ def test_corner_depths_by_the_rim_index_equal_geos_distances():
         assert len(got) == len(want) > 0
         for (dg, pg), (dw, pw) in zip(got, want, strict=True):
             assert dg == pytest.approx(dw, rel=1e-12, abs=1e-15) and pg == pytest.approx(pw)
+
+
+def test_surface_panels_far_from_the_origin_keep_their_areas_and_outward_solids():
+    # checker33 F3: cross products of absolute coordinates: at 1e8 areas() was 12x off,
+    # 18 of 30 thickened panels inside out, planarize reported flips
+    trimesh = pytest.importorskip("trimesh")
+    from voroforge import surface
+
+    base = surface.sphere(1.0, subdivisions=2)
+    near = surface.voronoi(base, 16, relax=0, seed=2)
+    want = near.panels().areas()
+    off = 1e8
+    far = surface.mesh(trimesh.Trimesh(np.asarray(base.vertices) + off, base.faces, process=False))
+    panels = surface.voronoi(far, np.asarray(near.sites) + off, relax=0).panels()
+    # the far mesh's vertices are rounded to ~1.5e-8: areas agree to that, not to 1e-16
+    assert np.allclose(panels.areas(), want, rtol=1e-6)
+    for solid in panels.thicken(0.02):
+        local = trimesh.Trimesh(np.asarray(solid.vertices) - off, solid.faces, process=False)
+        assert local.is_watertight and local.volume > 0

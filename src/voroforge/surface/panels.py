@@ -243,8 +243,8 @@ class Panels:
             else:
                 total = 0.0
                 for r, ring in enumerate(self.rings[p]):
-                    P = self.vertices[ring]
-                    vec = 0.5 * np.cross(P, np.roll(P, -1, axis=0)).sum(axis=0)
+                    P = self.vertices[ring] - self.vertices[ring[0]]  # about a ring vertex:
+                    vec = 0.5 * np.cross(P, np.roll(P, -1, axis=0)).sum(axis=0)  # no offset^2
                     total += np.linalg.norm(vec) * (1 if r == 0 else -1)
                 out[p] = total
         return out
@@ -362,7 +362,7 @@ class Panels:
         """(n, 3) each exterior's vector area (its normal times its area, for a planar one)."""
         out = np.zeros((len(self), 3))
         for p, rings in enumerate(self.rings):
-            P = self.vertices[rings[0]]
+            P = self.vertices[rings[0]] - self.vertices[rings[0][0]]  # about a ring vertex
             out[p] = 0.5 * np.cross(P, np.roll(P, -1, axis=0)).sum(axis=0)
         return out
 
@@ -529,7 +529,7 @@ class Panels:
                     raise ValueError(f"panel {p}: no surface normal at a vertex")
             return n
         # orient like the ring (counter-clockwise seen from the normal's side)
-        vec = np.cross(P, np.roll(P, -1, axis=0)).sum(axis=0)
+        vec = np.cross(P - P[0], np.roll(P - P[0], -1, axis=0)).sum(axis=0)
         if vec @ nrm < 0:
             nrm = -nrm
         return np.broadcast_to(nrm, (len(idx), 3))
@@ -589,7 +589,7 @@ class Panels:
                 break
         else:  # the caps missed triangles: an outline crossing itself
             return None
-        a, b, c = (verts[faces[:, k]] for k in range(3))
+        a, b, c = (verts[faces[:, k]] - verts[0] for k in range(3))  # about a vertex
         if np.einsum("ij,ij->", a, np.cross(b, c)) < 0:  # 6 x the signed volume (trimesh's
             faces = faces[:, ::-1]  # mass properties cost 20x more)
         return Arrays(verts, faces)

@@ -66,7 +66,8 @@ def flatten(panels, p: int) -> list[np.ndarray]:
     """
     rings = panels.polygon(p)
     ext = rings[0]
-    vec = 0.5 * np.cross(ext, np.roll(ext, -1, axis=0)).sum(axis=0)
+    rel = ext - ext[0]  # about a ring vertex: far from the origin no offset^2 cancels
+    vec = 0.5 * np.cross(rel, np.roll(rel, -1, axis=0)).sum(axis=0)
     normal = vec / max(np.linalg.norm(vec), 1e-300)
     s = _apex(ext)
     order = np.roll(np.arange(len(ext)), -s)

@@ -253,7 +253,8 @@ class SurfaceVoronoi:
             if len(pts):
                 nxt_pt = np.arange(len(pts)) + 1
                 nxt_pt[roff[1:] - 1] = roff[:-1]
-                vec = np.add.reduceat(np.cross(pts, pts[nxt_pt]), roff[:-1], axis=0)
+                rel = pts - np.repeat(pts[roff[:-1]], lens, axis=0)  # about each ring's start
+                vec = np.add.reduceat(np.cross(rel, rel[nxt_pt]), roff[:-1], axis=0)
                 per = np.add.reduceat(np.linalg.norm(pts[nxt_pt] - pts, axis=1), roff[:-1])
                 keep = np.linalg.norm(vec, axis=1) > config.SURFACE_EDGE_RTOL * per * per
             if not keep.all():
