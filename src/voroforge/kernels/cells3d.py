@@ -34,8 +34,9 @@ from .cellcut3d import (
     owner_key,
     radius2,
 )
+from .containercut3d import container_cut
 from .graph3d import from_rings, remap_rings
-from .polyhedron import CUT_NONE, cut, moments, plane_values
+from .polyhedron import moments
 from .predicates3d import bisector_side, scratch, wall_lift
 from .star3d import DECLINE, merge_star, star_cell
 from .vertex3d import CANCEL, axis_snap, name_key, name_vertex, place
@@ -468,7 +469,7 @@ def cell_scratch(ns, g, tree, TV, TF, TR, caps):
 
 
 @njit(**NJIT)
-def build_cells(
+def _build_cells(
     cells,
     P,
     W,
@@ -757,43 +758,37 @@ def _finish(
             t += 1
 
 
-@njit(**NJIT)
-def container_cut(TV, TF, TR, nx, ny, nz, h, label, caps):
-    """Cut a container template by the half-space ``n . x <= h`` (absolute frame).
+#: ``build_cells``' stand-ins for None: no big polytopes, no Delaunay stars (the lists'
+#: types; a least list length that no cell reaches)
+_NO_BIG = (np.full(0, -1, np.int64), np.zeros(1, np.int64), np.zeros(0, np.int64))
+_NO_STAR = (
+    *(np.zeros(1, np.int64), np.zeros(0, np.int64)),
+    *(np.zeros((0, 4), np.int64), np.zeros((0, 4), np.int64)),
+    *(np.zeros(0, np.int64), np.zeros(1, np.int64), np.zeros(0, np.int64)),
+    np.array([2**62], np.int64),
+)
+_NO_GONE = np.zeros(0, np.bool_)
 
-    Returns ``(status, V, F, R)`` trimmed; used to build a hull's template from a box (the
-    half-spaces of ``Convex(halfspaces=)`` go to the exact :mod:`engine.polytope3d`).
+
+class _OneSignature:
+    """:func:`_build_cells` with ``big``, ``star`` and ``gone`` always arrays: one signature.
+
+    None is passed as :data:`_NO_BIG` / :data:`_NO_STAR` / an empty ``gone`` (what the kernel
+    made of None; a star no cell is read off), so the grid's cells, the lists' and a big
+    vertex's ``(big, None)`` share one compile of the kernel instead of three (~9 s each on
+    a cold cache). ``signatures`` is the kernel's.
     """
-    V = np.zeros((caps, 3))
-    F = np.zeros((caps, 3), np.int64)
-    R = np.zeros(4 * caps, np.int64)
-    R2 = np.zeros(4 * caps, np.int64)
-    S = np.zeros(caps)
-    work = np.zeros((4 * caps, 4), np.int64)
-    nv = TV.shape[0]
-    nf = TF.shape[0]
-    V[:nv] = TV
-    F[:nf] = TF
-    R[: TR.shape[0]] = TR
-    scale = 0.0
-    for v in range(nv):
-        scale = max(scale, abs(TV[v, 0]) + abs(TV[v, 1]) + abs(TV[v, 2]))
-    nn = np.sqrt(nx * nx + ny * ny + nz * nz)
-    tol = VORONOI3D_CUT_RTOL * (nn * scale + abs(h))
-    plane_values(V, nv, nx, ny, nz, h, tol, S)
-    st, nv, nf = cut(V, nv, F, nf, R, R2, S, work, label)
-    if st == CUT_NONE:
-        return st, TV.copy(), TF.copy(), TR.copy()
-    nr = 0
-    for f in range(nf):
-        nr += F[f, 2]
-    # faces may not be packed from 0 in R after cut; repack
-    R3 = np.zeros(nr, np.int64)
-    t = 0
-    F3 = F[:nf].copy()
-    for f in range(nf):
-        for q in range(F[f, 2]):
-            R3[t + q] = R[F[f, 1] + q]
-        F3[f, 1] = t
-        t += F[f, 2]
-    return st, V[:nv].copy(), F3, R3
+
+    def __call__(self, *args):
+        fixed, opt = args[:26], (*args[26:], None, None, None)
+        big, star, gone = opt[:3]
+        big = _NO_BIG if big is None else big
+        star = _NO_STAR if star is None else star
+        return _build_cells(*fixed, big, star, _NO_GONE if gone is None else gone)
+
+    @property
+    def signatures(self):
+        return _build_cells.signatures
+
+
+build_cells = _OneSignature()
