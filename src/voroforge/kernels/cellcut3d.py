@@ -12,7 +12,7 @@ The cell is held as a vertex graph (:mod:`kernels.graph3d`) when the template ha
 else (and as the fallback the caller runs when the graph reports ``BROKEN``) as face rings
 cut by :func:`kernels.polyhedron.cut`. Vertex values farther from a plane than the float
 filter's band are trusted; those within it are decided exactly on the vertex's owners
-(:func:`_resolve`, :func:`kernels.predicates3d.bisector_side`). A cut's new vertex on an edge
+(:func:`.band3d.resolve`, :func:`kernels.predicates3d.bisector_side`). A cut's new vertex on an edge
 nearly parallel to its plane is solved again exactly (:func:`kernels.vertex3d.resettle`).
 """
 
@@ -23,18 +23,10 @@ from numba import njit
 
 from ..config import BIN_SORT_FROM, NJIT, VORONOI3D_CUT_RTOL, VORONOI3D_STOP_RTOL
 from ..config import CELLCUT3D_OWN_ENTRIES as OWN_ENTRIES
-from .expansion import two_diff
+from .band3d import offset_cache, owner_key, resolve  # noqa: F401 (re-exported: cells3d)
 from .graph3d import GCUT_DONE, GCUT_EMPTY, cut_close, cut_open, to_rings
 from .grid3d import bucket3d, shell_buckets_in, shell_gap
 from .polyhedron import CUT_DONE, CUT_EMPTY, CUT_OVERFLOW, cut
-from .predicates3d import (
-    bisector_side,
-    frame_lift,
-    frame_offset,
-    frame_side,
-    offset_side,
-    vertex_offset,
-)
 from .reach3d import gather_heavy, heavy_header, local_stop, shell_hit, shell_range
 from .reach3d import reach_box as _reach_box
 from .ties3d import retie
@@ -57,6 +49,11 @@ UNNAMED = 4
 SLOW = 5
 
 MAX_OWNERS = 32
+# -> config: the cell's squared radius after a graph cut is bounded by the one before
+# (and the moved points') times this: a crossing interpolated between two vertices is no
+# farther than them but for its rounding (~1e-16 relative); only a bound that holds lets
+# the cut skip finding the radius (_cut_batch)
+RADIUS_PAD = 1.0 + 1e-12
 #: small hot helpers are inlined into their callers (numba's own inliner): a call that
 #: passes arrays costs reference counting, and the search makes ~100 such calls per cell
 NJIT_INLINE = {**NJIT, "inline": "always"}
@@ -113,208 +110,23 @@ def graph_scratch(vcap, degree):
 
 
 @njit(**NJIT_INLINE)
-def owner_key(lab, ns):
-    """The owner key of a face label: a site, or ``ns + w`` for wall ``w`` (label ``-1 - w``)."""
-    return lab if lab >= 0 else ns + (-1 - lab)
-
-
-@njit(**NJIT_NO_NRT)
-def _graph_side(i, v, j, DEG, LB, ns, P, W, WP, X):
-    """Exact side of graph vertex ``v`` of cell ``i`` against key ``j`` (see ``bisector_side``).
-
-    The vertex is where the planes of its faces meet: the first independent triple of its
-    face labels defines it. Returns 2 when none is independent.
-    """
-    d = DEG[v]
-    for a in range(d):
-        for b in range(a + 1, d):
-            for c in range(b + 1, d):
-                r = bisector_side(
-                    i,
-                    owner_key(LB[v, a], ns),
-                    owner_key(LB[v, b], ns),
-                    owner_key(LB[v, c], ns),
-                    j,
-                    P,
-                    W,
-                    WP,
-                    ns,
-                    X[0],
-                    X[1],
-                )
-                if r != 2:
-                    return r
-    return 2
-
-
-@njit(**NJIT)
-def offset_cache(vcap):
-    """The cache of :func:`_cached_vertex` for cells of up to ``vcap`` vertices: ``(XK, XF)``.
-
-    ``XK[0, 0]`` counts the cells begun (:func:`one_cell`), ``XK[0, 1]`` is that count once
-    the cell's frame ``o = XF[vcap, :3]`` is set; ``XK[1 + v] = (count, k0, k1, k2)`` says
-    for which cell and owner triple ``XF[v]`` holds graph vertex ``v``'s point ``x``:
-    ``(c, x - c, x - o, error of x - o)``, ``c`` a float point near it (NaN: the triple
-    is not independent). An entry of another cell or triple is stale.
-    """
-    return np.zeros((vcap + 1, 4), np.int64), np.zeros((vcap + 1, 12))
-
-
-@njit(**NJIT_NO_NRT)
-def _cached_vertex(i, v, V, DEG, LB, ns, P, W, WP, X):
-    """Whether graph vertex ``v``'s exact offsets are in the cache (solved now if stale).
-
-    A vertex whose float value is within the filter's band of a plane is mostly one whose
-    coordinates, relative to the site, are too coarse for that plane, not one on it: a
-    vertex near the centre of sites on a sphere has every bisector within an ulp, and the
-    exact test of every candidate against it made such cells cost quadratic time. Its
-    point relative to ``c`` (its float position) is solved once from its first three
-    owners (:func:`kernels.predicates3d.vertex_offset`), and relative to the cell's frame
-    ``o`` (the first such ``c``), so that each plane is then decided in floats or
-    double-double with a proven bound (:func:`_resolve`). The first triple is the one
-    :func:`_graph_side` tries first, so a decision on it is its decision. False when the
-    triple is not independent (then :func:`_graph_side` decides, as before).
-    """
-    XK = X[3]
-    XF = X[4]
-    vcap = XF.shape[0] - 1
-    if DEG[v] < 3 or v >= vcap:
-        return False
-    k0 = owner_key(LB[v, 0], ns)
-    k1 = owner_key(LB[v, 1], ns)
-    k2 = owner_key(LB[v, 2], ns)
-    gen = XK[0, 0]
-    if not (
-        XK[v + 1, 0] == gen and XK[v + 1, 1] == k0 and XK[v + 1, 2] == k1 and XK[v + 1, 3] == k2
-    ):
-        cx = P[i, 0] + V[v, 0]
-        cy = P[i, 1] + V[v, 1]
-        cz = P[i, 2] + V[v, 2]
-        XF[v, 0] = cx
-        XF[v, 1] = cy
-        XF[v, 2] = cz
-        if not vertex_offset(i, k0, k1, k2, P, W, WP, ns, X[1], cx, cy, cz, XF[v, 3:6]):
-            XF[v, 3] = np.nan
-        elif XK[0, 1] != gen:  # the cell's frame: at its first solved vertex
-            XK[0, 1] = gen
-            XF[vcap, 0] = cx
-            XF[vcap, 1] = cy
-            XF[vcap, 2] = cz
-        if XF[v, 3] == XF[v, 3]:
-            frame_offset(
-                cx,
-                cy,
-                cz,
-                XF[v, 3],
-                XF[v, 4],
-                XF[v, 5],
-                XF[vcap, 0],
-                XF[vcap, 1],
-                XF[vcap, 2],
-                XF[v, 6:12],
-            )
-        XK[v + 1, 0] = gen
-        XK[v + 1, 1] = k0
-        XK[v + 1, 2] = k1
-        XK[v + 1, 3] = k2
-    return XF[v, 3] == XF[v, 3]
-
-
-@njit(**NJIT_NO_NRT)
-def _ring_side(i, v, j, C, nf, ns, P, W, WP, X):
-    """:func:`_graph_side` for a cell held as face rings (the fallback): its faces at ``v``."""
-    F = C[1]
-    R = C[2]
-    labs = C[5][:, 3]  # work's last column: free until the cut
-    m = 0
-    for f in range(nf):
-        for k in range(F[f, 2]):
-            if R[F[f, 1] + k] == v:
-                if m < labs.shape[0]:
-                    labs[m] = owner_key(F[f, 0], ns)
-                    m += 1
-                break
-    for a in range(m):
-        for b in range(a + 1, m):
-            for c in range(b + 1, m):
-                r = bisector_side(i, labs[a], labs[b], labs[c], j, P, W, WP, ns, X[0], X[1])
-                if r != 2:
-                    return r
-    return 2
-
-
-#: the value given to a vertex within the filter's band that is exactly off the plane and
-#: whose float value has the wrong sign: the cut then treats it as just off (no new vertex
-#: is moved by more than the float error)
-_TINY = 1e-300
-
-
-@njit(**NJIT_INLINE)
-def _values(V, nv, nx, ny, nz, h, tol, S):
+def _values(V, nv, nx, ny, nz, h, S):
     """Signed values ``n . v - h`` of the cell's vertices (the float filter; inlined).
 
-    Returns ``(smax, near)``: the largest value and whether one is within ``tol`` of 0 (then
-    :func:`_resolve` decides those exactly).
+    Returns ``(smax, low)``: the largest value and the least ``|value|`` (one within the
+    band ``tol`` of 0 when ``low <= tol``: :func:`.band3d.resolve` decides those exactly).
     """
     smax = -np.inf
-    near = False
+    low = np.inf
     for v in range(nv):
         s = nx * V[v, 0] + ny * V[v, 1] + nz * V[v, 2] - h
-        near |= abs(s) <= tol
+        a = abs(s)
+        if a < low:
+            low = a
         S[v] = s
         if s > smax:
             smax = s
-    return smax, near
-
-
-@njit(**NJIT_NO_NRT)
-def _resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X):
-    """Decide the values within ``tol`` of 0 exactly, on the vertices' owners.
-
-    The owners are the planes of the vertex's faces (:func:`_graph_side`,
-    :func:`_ring_side`): 0 when the vertex is on ``j``'s plane (in a graph it is flagged: it
-    may have more owners than faces), else the float value if its sign is right, or a tiny
-    value of the right sign. Returns the new largest value.
-    """
-    smax = -np.inf
-    graph = G[0].shape[0] > 0
-    ns = P.shape[0]
-    XF = X[4]
-    vcap = XF.shape[0] - 1
-    lifted = False  # j's plane in the cell's frame (frame_lift), once a vertex needs it
-    K = kerr = rh0 = rh1 = rh2 = rl0 = rl1 = rl2 = 0.0
-    for v in range(nv):
-        s = S[v]
-        if abs(s) <= tol:
-            if graph:
-                side = 2
-                if _cached_vertex(i, v, C[0], G[0], G[3], ns, P, W, WP, X):
-                    if not lifted:
-                        lifted = True
-                        K, kerr = frame_lift(i, j, XF[vcap, 0], XF[vcap, 1], XF[vcap, 2], P, W)
-                        rh0, rl0 = two_diff(P[j, 0], P[i, 0])
-                        rh1, rl1 = two_diff(P[j, 1], P[i, 1])
-                        rh2, rl2 = two_diff(P[j, 2], P[i, 2])
-                    side = frame_side(XF[v, 6:12], rh0, rh1, rh2, rl0, rl1, rl2, K, kerr)
-                    if side == 0:
-                        e = XF[v]
-                        side = offset_side(i, j, e[0], e[1], e[2], e[3], e[4], e[5], P, W)
-                        if side == 0:
-                            side = 2
-                if side == 2:
-                    side = _graph_side(i, v, j, G[0], G[3], ns, P, W, WP, X)
-            else:
-                side = _ring_side(i, v, j, C, nf, ns, P, W, WP, X)
-            if side == 0 or side == 2:
-                s = 0.0
-                if graph:
-                    G[6][v] = True
-            elif s == 0.0 or (s > 0.0) != (side > 0):
-                s = side * _TINY
-            S[v] = s
-        if s > smax:
-            smax = s
-    return smax
+    return smax, low
 
 
 @njit(**NJIT_INLINE)
@@ -328,6 +140,13 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
     """
     V, F, R, R2, S, work, T = C
     graph = G[0].shape[0] > 0
+    # after a graph cut the cell's radius is found only when needed (r2m: the last cut's
+    # moved points, which the radius takes too): rmax2 is then an upper bound ("stale"),
+    # enough for the skip test (a plane beyond the bound is beyond the cell) and, where no
+    # value is within the bound's band, for the band test; the radius itself is that of
+    # every cut (the largest |v|^2 left, or r2m if larger, as each cut found it before)
+    stale = False
+    r2m = 0.0
     if BIN_SORT_FROM <= m < min(S.shape[0], work.shape[0]):
         bin_group(m, cand, cd2, S, work)
     for a in range(1, m):  # insertion sort (stable): batches are small, or grouped
@@ -350,11 +169,18 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
         h = 0.5 * (d2 + (wi - SW[t]))
         if h > 0.0 and h * h > rmax2 * d2 * (1.0 + VORONOI3D_STOP_RTOL):
             continue  # the plane passes beyond every vertex
+        smax, low = _values(V, nv, dx, dy, dz, h, S)
         tol = VORONOI3D_CUT_RTOL * (np.sqrt(d2 * rmax2) + abs(h))
-        smax, near = _values(V, nv, dx, dy, dz, h, tol, S)
+        if stale and low <= tol:  # the band test needs the radius (and so may the skip)
+            stale = False
+            rmax2 = max(radius2(V, nv), r2m)
+            if h > 0.0 and h * h > rmax2 * d2 * (1.0 + VORONOI3D_STOP_RTOL):
+                continue
+            tol = VORONOI3D_CUT_RTOL * (np.sqrt(d2 * rmax2) + abs(h))
+        near = low <= tol
         if near:
             X[2][0] = True
-            smax = _resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X)
+            smax = resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X)
         if smax == 0.0 or smax > 0.0:  # it cuts or touches: a possible owner of vertices
             if nt >= T.shape[0]:
                 return OVERFLOW, 0, 0, 0, 0.0
@@ -371,8 +197,9 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
             if st != GCUT_DONE:  # out of vertex rows (nv2 is all of them): more, not rings
                 return (OVERFLOW if nv2 >= V.shape[0] else BROKEN), 0, 0, 0, 0.0
             r2m = resettle(i, j, V, G[4], w, G[0], G[3], S, P, W, WP, X[1])
-            st, nv2, r2c = cut_close(V, nv2, G[0], G[1], G[2], G[3], G[6], S, G[4], nl)
-            r2c = max(r2c, r2m)
+            st, nv2, _ = cut_close(V, nv2, G[0], G[1], G[2], G[3], G[6], S, G[4], nl, False)
+            r2c = max(rmax2, r2m) * RADIUS_PAD  # a bound: new points lie within the cell
+            stale = True
             nf2 = 0
         else:
             r2c = -1.0
@@ -384,7 +211,9 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
             resettle_rings(i, j, C[0], C[1], C[2], C[5][:, 3], nf2, P, W, WP, X)
         nv = nv2
         nf = nf2
-        rmax2 = r2c if graph else radius2(V, nv)  # the graph cut's own (the same max)
+        rmax2 = r2c if graph else radius2(V, nv)
+    if stale:
+        rmax2 = max(radius2(V, nv), r2m)
     return OK, nv, nf, nt, rmax2
 
 
@@ -519,7 +348,7 @@ def one_cell(
     """
     V, F, R, R2, S, work, T = C
     graph = G[0].shape[0] > 0
-    X[3][0, 0] += 1  # a new cell: _cached_vertex's offsets and frame are stale
+    X[3][0, 0] += 1  # a new cell: band3d._cached_vertex's offsets and frame are stale
     px = P[i, 0]
     py = P[i, 1]
     pz = P[i, 2]

@@ -480,17 +480,18 @@ def _place_cap(V, nv0, nv, DEG, ED, BK, LB, FL, S, CP, label, w, nup):
 
 
 @njit(**{**NJIT, "inline": "always"})
-def cut_close(V, nv, DEG, ED, BK, LB, FL, S, CP, nlist):
+def cut_close(V, nv, DEG, ED, BK, LB, FL, S, CP, nlist, radius=True):
     """:func:`cut`'s end after :func:`cut_open`: the removed vertices' slots filled from the top.
 
     ``nlist`` is :func:`cut_open`'s (the removed vertices listed in ``CP``'s column 2 from
     its last row up, or -1: found by a scan of ``S``, or -2: none left to fill). Returns
-    ``(GCUT_DONE, nv, r2)``.
+    ``(GCUT_DONE, nv, r2)``; ``r2`` is 0 unless ``radius`` (the cell builder finds it when
+    it needs it: ``cellcut3d._cut_batch``).
     """
     ncap = CP.shape[0]
     if nlist == -2:  # (_place_cap: nothing to fill)
         r2 = 0.0
-        for v in range(nv):
+        for v in range(nv if radius else 0):
             r2 = max(r2, V[v, 0] * V[v, 0] + V[v, 1] * V[v, 1] + V[v, 2] * V[v, 2])
         return GCUT_DONE, nv, r2
     listed = nlist >= 0
@@ -520,7 +521,7 @@ def cut_close(V, nv, DEG, ED, BK, LB, FL, S, CP, nlist):
         v += 1
     # the largest squared distance of a vertex left from the origin (the site)
     r2 = 0.0
-    for v in range(top):
+    for v in range(top if radius else 0):
         r2 = max(r2, V[v, 0] * V[v, 0] + V[v, 1] * V[v, 1] + V[v, 2] * V[v, 2])
     return GCUT_DONE, top, r2
 
