@@ -166,31 +166,37 @@ def _past_side_crossings(i, a, b, t, xs, ys, cx, cy, reach, box):
     centre became the ring's vertex, off the box and beside the crossings its neighbours
     use (issue 15). The canonical crossings (:func:`.vertex.box_crossing`, the neighbours'
     bits) are used when both lie on the side in the ring's order; else ``ok`` is False.
+    A centre past two sides (a corner; a lone sliver's centre of a float circle far out,
+    issue 15) has ``a``'s crossing on the side before the corner or after it and ``b``'s
+    after it or before; ``side2`` is the side of ``b``'s crossing (the ring turns at the
+    corner between when it differs from ``side``).
     """
     x, y = vertex_at(t, cx, cy, reach, box)
-    side = 0
-    if box[1] <= y <= box[3]:
-        if x < box[0]:
-            side = -1
-        elif x > box[2]:
-            side = -3
-    if box[0] <= x <= box[2]:
-        if y < box[1]:
-            side = -2
-        elif y > box[3]:
-            side = -4
-    if side == 0:
-        return False, x, y, x, y, side
+    sv = -1 if x < box[0] else (-3 if x > box[2] else 0)  # past a vertical side
+    sh = -2 if y < box[1] else (-4 if y > box[3] else 0)  # past a horizontal side
+    if sv == 0 and sh == 0:
+        return False, x, y, x, y, 0, 0
+    # the sides in counter-clockwise order around the corner (one side: both that one)
+    first = sv if sh == 0 else (sh if sv == 0 else (sv if (sv == -1) == (sh == -2) else sh))
+    last = sv + sh - first if sv != 0 and sh != 0 else first
+    side = first
     x1, y1 = box_crossing(i, a, xs, ys, side, box)
-    x2, y2 = box_crossing(i, b, xs, ys, side, box)
+    if not (box[0] <= x1 <= box[2] and box[1] <= y1 <= box[3]) and last != first:
+        side = last
+        x1, y1 = box_crossing(i, a, xs, ys, side, box)
+    side2 = last
+    x2, y2 = box_crossing(i, b, xs, ys, side2, box)
+    if not (box[0] <= x2 <= box[2] and box[1] <= y2 <= box[3]) and side == first:
+        side2 = first
+        x2, y2 = box_crossing(i, b, xs, ys, side2, box)
     ok = (
         box[0] <= x1 <= box[2]
         and box[1] <= y1 <= box[3]
         and box[0] <= x2 <= box[2]
         and box[1] <= y2 <= box[3]
-        and _along_side(x1, y1, side) <= _along_side(x2, y2, side)
+        and (side2 != side or _along_side(x1, y1, side) <= _along_side(x2, y2, side))
     )
-    return ok, x1, y1, x2, y2, side
+    return ok, x1, y1, x2, y2, side, side2
 
 
 @njit(**NJIT)
@@ -353,11 +359,17 @@ def _canonical_vertices(i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, reach,
                 ok = _chain_in_box(nbrs, tris, nn, ka, steps, cx, cy, box)
             if ok and steps == 1 and out + 2 + (m - v) <= qx.shape[0]:
                 got = _past_side_crossings(i, a, b, tris[ka], xs, ys, cx, cy, reach, box)
-                if got[0]:
-                    _, x1, y1, x2, y2, side = got
+                if got[0] and (got[5] == got[6] or out + 3 + (m - v) <= qx.shape[0]):
+                    _, x1, y1, x2, y2, side, side2 = got
                     qx[out], qy[out], qw[out] = x1, y1, side
-                    qx[out + 1], qy[out + 1], qw[out + 1] = x2, y2, b
-                    out += 2
+                    out += 1
+                    if side2 != side:  # the corner between the two sides
+                        qx[out] = box[0] if -1 in (side, side2) else box[2]
+                        qy[out] = box[1] if -2 in (side, side2) else box[3]
+                        qw[out] = side2
+                        out += 1
+                    qx[out], qy[out], qw[out] = x2, y2, b
+                    out += 1
                     continue
             if ok:
                 out = _emit_chain(nbrs, tris, nn, ka, steps, cx, cy, reach, box, qx, qy, qw, out)
