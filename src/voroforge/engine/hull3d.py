@@ -342,8 +342,8 @@ def _second_pass(P, W, t, cells, start, sites, bv):
             oring,
             scr,
             # big and star as build3d passes them (None, or a big vertex's (big, None)),
-            # gone none known empty: omitted arguments are another numba type, and
-            # build_cells compiled twice
+            # gone none known empty (build_cells passes every None to its one compiled
+            # kernel as an empty array of the lists' types)
             *((None, None) if big is None else big),
             _NONE_GONE,
         )
