@@ -58,7 +58,7 @@ from .grid import (
     skip_lists,
     slab_dist2,
 )
-from .halfplane_finish import PAD, REACH, finish_cell
+from .halfplane_finish import PAD, REACH, far_pad, finish_cell
 from .halfplane_settle import BOTTOM, LEFT, RIGHT, TOP
 from .predicates import orient2d
 
@@ -285,6 +285,7 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
         r2 = _radius2(px, py, a, m)
         slack2 = HALFPLANE_SLACK2 * r2  # the float cell's rounding, squared, from the box's radius
         pad = PAD * slack2  # (r + e)^2 - r^2 for that rounding e: the true cell's radius is r + e
+        pad += far_pad(r2, cx, cy)  # (and a site on a vertex's circle to the merge band)
         nc = np.int64(0)
         nw = np.int64(0)
         work = 0
@@ -413,6 +414,7 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
                 slack2,
             )
             work += w
+            pad = PAD * slack2 + far_pad(r2, cx, cy)
         if grow and 2 * cap <= _HARD_CAP:  # many vertices: build it again with more room
             cap *= 2
             scratch = _scratch(cap)

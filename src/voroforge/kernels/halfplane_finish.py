@@ -11,6 +11,7 @@ import numpy as np
 from numba import njit
 
 from ..config import (
+    HALFPLANE_MERGE_RTOL,
     HALFPLANE_REACH_RTOL,
     HALFPLANE_SLACK2,
     HALFPLANE_SNAP_PRE,
@@ -19,7 +20,7 @@ from ..config import (
     HALFPLANE_SURE_SIN2,
     NJIT,
 )
-from .halfplane_settle import emit_exact, emit_float, settle_ring
+from .halfplane_settle import MERGE_WIDE_MAX, emit_exact, emit_float, settle_ring
 from .sidegap import may_have_parallel, restore_sides
 
 #: (2 r)^2 / r^2 with a margin against rounding: a site farther than twice the cell's
@@ -36,6 +37,50 @@ PAD = 2.0 / HALFPLANE_SLACK2**0.5 + 1.0
 #: (:func:`.halfplane_settle._side_snap`), as :func:`.halfplane_settle._crossing_at_end`'s
 #: screen
 SIDE_WATCH = 4.0 * HALFPLANE_SNAP_PRE
+_U = 2.0**-53
+
+
+@njit(**NJIT)
+def far_pad(r2, cx, cy):
+    """What a site on a vertex's circle to the settling's merge band adds to ``r^2``.
+
+    The cell's vertices lie within ``r`` (``r2 = r^2``) of its site ``(cx, cy)``; a site
+    within the merge band (:func:`.halfplane_settle._merge_tol`: ulps of the vertex's
+    magnitude, wider than ``HALFPLANE_REACH_RTOL`` of ``r^2`` far from the origin) of such a
+    vertex's circle is within ``4 (r^2 + far_pad)`` of the site squared: the diagonal of a
+    float-rotated lattice's square at 1e7 lies ``2 (1 + 1.6e-9) r`` away, and names the
+    vertex. The search gathers those sites (:mod:`.halfplane`), and :func:`finish_cell`
+    watches them.
+
+    Zero where the band is past ``MERGE_WIDE_MAX`` of ``r^2`` (sites ulps apart, which the
+    settling decides by exact tests alone).
+    """
+    r = np.sqrt(r2)
+    band = HALFPLANE_MERGE_RTOL * r2 + 16.0 * _U * r * (abs(cx) + abs(cy) + r)
+    return band if band <= MERGE_WIDE_MAX * r2 else 0.0
+
+
+@njit(**NJIT)
+def watch_circles(sx, sy, cx, cy, cand, nc, watch, keep, reach2):
+    """Add to ``watch[:keep]`` the candidates within ``reach2`` of the site; the new count.
+
+    ``cand[:nc]`` are the search's candidates (sorted indices into ``sx, sy``), ``(cx, cy)``
+    the cell's site. See :func:`finish_cell`: far from the origin, a site on a vertex's
+    circle to the settling's merge band can lie past the search's reach.
+    """
+    for c in range(nc):
+        t = cand[c]
+        qx = sx[t] - cx
+        qy = sy[t] - cy
+        if qx * qx + qy * qy > reach2:
+            continue
+        seen = False
+        for w in range(keep):
+            seen = seen or watch[w] == t
+        if not seen:
+            watch[keep] = t
+            keep += 1
+    return keep
 
 
 @njit(**NJIT)
@@ -155,6 +200,11 @@ def finish_cell(
         if qx * qx + qy * qy <= reach2:
             watch[keep] = t
             keep += 1
+    # far out, a site on a vertex's circle to the settling's merge band can lie past the
+    # reach (:func:`far_pad`): such candidates are watched too (twice the band: a margin)
+    band = 4.0 * r2 + 8.0 * far_pad(r2, cx, cy)
+    if band > reach2:
+        keep = watch_circles(sx, sy, cx, cy, cand, nc, watch, keep, band)
     touches = False
     for u in range(m):
         touches = touches or po[a + u] < 0

@@ -57,6 +57,9 @@ _W_TEST = 8  # a filtered exact test (incircle, orient2d: ~10-20 ns)
 _W_VERTEX = 32  # a vertex from its name (voronoi_vertex: ~30-50 ns)
 _W_EXACT = 1024  # one from exact expansions (~5-10 us; a centre near the origin, see below)
 _W_ADAPT = 512  # an incircle whose float filter fails: its exact stage (~1-3 us)
+# -> config: the merge band past the near band (far out) decides joins only while it is
+# below this of the circle's squared radius (sites ulps apart: every site is in it)
+MERGE_WIDE_MAX = 2.0**-4
 _SLOW_RTOL = 2.0**-20  # centres nearer the origin than this of their scale take that path
 
 
@@ -290,6 +293,7 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
             # shorter than floats can order (the default algorithm merges such vertices too)
             r = np.sqrt(r2)
             merge = _merge_tol(r, vx_, vy_)
+            wide = merge <= MERGE_WIDE_MAX * r2
             nxt = lab[u + 1] if u + 1 < m else lab[0]
             prv = lab[u - 2] if u >= 2 else lab[u - 2 + m]
             non = np.int64(0)  # other sites on the circle, to rounding
@@ -304,7 +308,11 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
                 dx = xs[x] - vx_
                 dy = ys[x] - vy_
                 d = dx * dx + dy * dy - r2
-                if d > tol:
+                if d > tol and (d > merge or not wide):
+                    # (far out the merge band, ulps of the vertex's magnitude, is the wider:
+                    # a site within it is tested for joining, never skipped as outside by
+                    # the float test, unless the band is most of the circle: sites ulps
+                    # apart, which the exact tests decide)
                     continue
                 if not charged and d >= -tol:
                     # the first site near the circle: charge all of them at once, so a
@@ -318,6 +326,17 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
                 if abs(d) <= merge:
                     joined, ev_, q1x, q1y, q2x, q2y = _joins(i, a, b, x, vx_, vy_, ev_, lv_, xs, ys)
                     doubt = doubt or not joined
+                    if not joined and wide and not _near_any(x, i, a, b, r2, xs, ys):
+                        # on the circle to rounding, yet its four centres are not one point
+                        # pair by pair: the Delaunay dual may still join them (adjacent
+                        # centres within their bounds, chained classes) or keep the edge
+                        # (a float-rotated lattice at 1e3: an edge of 3.4e-13 it merges),
+                        # which no local test can tell; the dual builds the cell, and its
+                        # seams with the others are checked (engine.planar). Where the band
+                        # is most of the circle, or the site is a few ulps from i, a or b
+                        # (sites ulps apart, whose cells the default takes from here when
+                        # its own lose sites) the exact test decides
+                        return -2, work
                 if joined:
                     if x == nxt or x == prv:
                         # the edge of b (or a) between this vertex and x's is noise: drop it
@@ -494,6 +513,12 @@ def _joins(i, a, b, x, vx, vy, ev, lv, xs, ys):
     if _one_point(cx, cy, (ev, e1, e2, e3), r):
         return True, ev, x1, y1, x2, y2
     return False, ev, 0.0, 0.0, 0.0, 0.0
+
+
+@njit(**NJIT)
+def _near_any(x, i, a, b, r2, xs, ys):
+    """Whether site ``x`` is a few ulps from ``i``, ``a`` or ``b`` (:func:`.vertex.near_pair`)."""
+    return near_pair(x, i, r2, xs, ys) or near_pair(x, a, r2, xs, ys) or near_pair(x, b, r2, xs, ys)
 
 
 @njit(**NJIT)
