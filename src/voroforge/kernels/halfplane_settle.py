@@ -231,7 +231,7 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
     candidate looked at). The length is -2, and the ring unsettled, as soon as the work
     would pass ``budget``: the cell's vertices have many sites on their circles to rounding
     (sites on one circle), whose names alone cost up to ``NAME_MAX_TRIES`` vertices each,
-    and the caller leaves the cell to the Delaunay dual.
+    and the caller leaves the cell to the Delaunay dual (also for a four, below).
 
     Float cutting can keep an edge of zero length (cocircular sites), or lose a neighbour
     whose bisector coincides with another one in floating point. Labels without a positive
@@ -242,10 +242,11 @@ def settle_ring(i, lab, m, sure, cand, nc, sidx, xs, ys, vx, vy, on, box, budget
     triple of the sites on it, which every cell around the vertex finds the same.
     Returns -1 when the ring cannot be settled (the caller keeps the float cut).
 
-    A site within rounding of the circle is taken as on it (never inserted) only if its
-    vertices with the circle's sites are the vertex to rounding (:func:`_joins`); a site a
-    few ulps from ``i``, ``a`` or ``b`` gets the exact test. The canonical centre is that of
-    the first well-conditioned triple of the sites on the circle
+    A site in the merge band (:func:`_merge_tol`) is on the circle only if its vertices
+    with the circle's sites are the vertex to rounding (:func:`_joins`); else the dual's
+    classes decide (-2), but a site ulps from ``i``, ``a``, ``b`` (or a band past
+    ``MERGE_WIDE_MAX`` of the circle) gets the exact test. The canonical centre is that
+    of the first well-conditioned triple of the sites on the circle
     (:func:`.vertex.canonical_vertex`). ``on`` is scratch for those sites (int64, any size).
 
     ``sure[u]`` flags labels whose float edge is long; until the ring changes they skip the
