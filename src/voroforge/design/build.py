@@ -694,7 +694,7 @@ def sweep_designs(design: Design) -> dict[str, Design]:
 
 
 def _report(result: Result):
-    from .fabrication import Report, check, design_corner_tolerance
+    from .fabrication import Report, check, design_corner_tolerance, sort_key
 
     f = result.design.fabrication
     limits = {
@@ -709,29 +709,41 @@ def _report(result: Result):
             "min_inside_radius": "fabrication.tool_radius",
         },
     }
-    if "tile" not in result.extra:
-        return check(openings=result.openings, boundary=result.boundary, **limits)
+    if "tile" not in result.extra:  # the frame as computed (tiling openings leave no slivers)
+        return check(
+            openings=result.openings, boundary=result.boundary, frame=result.frame, **limits
+        )
     # A periodic tile is cut as copies side by side: openings cut by the tile's edge continue
     # in the next copy, so check the whole openings of 3 x 3 copies against each other (no
-    # outline in reach) and report what lies in the middle copy.
+    # outline in reach) and report each violation of the torus once, located in the tile.
     xmin, ymin, xmax, ymax = result.extra["tile"]
     w, h = xmax - xmin, ymax - ymin
     whole = result.extra["tile_openings"]
-    copies = [
-        shapely.transform(whole, lambda xy, dx=dx, dy=dy: xy + (dx, dy))
-        for dy in (0.0, -h, h)
-        for dx in (0.0, -w, w)
-    ]
+    shift = [(dx, dy) for dy in (0, -1, 1) for dx in (0, -1, 1)]  # copy k's shift in tiles
+    copies = [shapely.transform(whole, lambda xy, s=s: xy + (s[0] * w, s[1] * h)) for s in shift]
     holes = np.concatenate(copies) if len(whole) else whole
     far = shapely.box(xmin - 2 * w, ymin - 2 * h, xmax + 2 * w, ymax + 2 * h)
     tiled = check(openings=holes, boundary=far, **limits)
     n = max(len(whole), 1)
-    kept = [
-        replace(v, items=tuple(i % n if i >= 0 else i for i in v.items))
-        for v in tiled.violations
-        if xmin <= v.location[0] < xmax and ymin <= v.location[1] < ymax
-    ]
-    return Report(kept, tiled.limits, result.frame, result.openings, tiled.keys)
+    kept: dict = {}  # torus key -> (whether its first opening is in the middle copy, violation)
+    for v in tiled.violations:
+        x, y = v.location
+        spot = (xmin + (x - xmin) % w, ymin + (y - ymin) % h)
+        a, b = v.items[0] if v.items else -1, v.items[-1] if v.items else -1
+        if a < 0 or b < 0 or a == b:  # islands, one opening's own: the middle copy's
+            if a < n if v.items else xmin <= x < xmax and ymin <= y < ymax:
+                items = tuple(k % n if k >= 0 else k for k in v.items)
+                kept[len(kept)] = (True, replace(v, location=spot, items=items))
+            continue
+        # A web between parallel edges has no one thinnest spot, so its copies differ: keep
+        # one per pair of openings and shift between their copies, either way round.
+        (i, ix, iy), (j, jx, jy) = (a % n, *shift[a // n]), (b % n, *shift[b // n])
+        key = min((i, j, jx - ix, jy - iy), (j, i, ix - jx, iy - jy))
+        middle = (ix, iy) == (0, 0) if key[0] == i else (jx, jy) == (0, 0)
+        if key not in kept or middle and not kept[key][0]:
+            kept[key] = (middle, replace(v, location=spot, items=key[:2]))
+    found = sorted((v for _, v in kept.values()), key=sort_key)
+    return Report(found, tiled.limits, result.frame, result.openings, tiled.keys)
 
 
 def check_design(source, *, overrides: dict | None = None, progress: Stage | None = None):

@@ -32,6 +32,7 @@ import shapely
 from .. import config
 from .boundary import MM_PER_UNIT
 from .designfile import DesignError, find_file
+from .recursive import tiled_holes
 from .schema import Design, Graded
 
 __all__ = ["MM_PER_UNIT", "Result", "SeedTable", "Stage", "compute", "outline"]
@@ -738,10 +739,10 @@ def compute(
     chosen = cells[mask & ~shapely.is_empty(cells)] if len(cells) else cells
     openings = np.asarray(chosen, dtype=object)
     open_cells = np.flatnonzero(mask & ~shapely.is_empty(cells)) if len(cells) else mask[:0]
-    if frame:
-        frame = _frame(boundary, openings, _fresh(reuse, boundary, extra, open_cells), extra)
-    else:
-        frame = None
+    # openings that tile what they divide count as it (no slivers of rounding along seams)
+    whole = tiled_holes(domain, raw, cells, mask, extra.get("levels")) if frame else None
+    fresh = _fresh(reuse, boundary, extra, open_cells) if whole is None and frame else None
+    frame = _frame(boundary, openings if whole is None else whole, fresh, extra) if frame else None
     extra["open_cells"] = open_cells
     return Result(
         design,

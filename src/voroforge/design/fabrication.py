@@ -27,6 +27,8 @@ import shapely
 
 from .. import config
 from .boundary import MM_PER_UNIT, union_all_checked
+from .fabcorners import corners as _corners
+from .fabcorners import deepest as _deepest  # noqa: F401 (its tests import it from here)
 
 __all__ = [
     "KINDS",
@@ -38,6 +40,7 @@ __all__ = [
     "inscribed_circles",
     "kerf",
     "pack_pieces",
+    "sort_key",
     "split_frame",
 ]
 
@@ -106,7 +109,8 @@ class Violation:
         return f"{self.kind} at ({x:.3f}, {y:.3f}): {self.value:.3f} (limit {self.limit:g})"
 
 
-def _sort_key(v: Violation):
+def sort_key(v: Violation):
+    """The order of a report: worst first (:attr:`Violation.severity`), then kind, value, spot."""
     return (
         -v.severity,
         KINDS.index(v.kind),
@@ -385,18 +389,23 @@ def check(
     - **corner**: where a round tool of radius ``min_inside_radius`` cannot reach: the parts
       of each opening outside ``opening.buffer(-r).buffer(r)`` (and, for the outline cut
       from outside, the parts of ``boundary.buffer(r).buffer(-r)`` outside the boundary)
-      deeper than ``corner_tolerance``, at the deepest point. The value is the corner's
-      inside radius, in the limit's quantity: the largest tool radius that reaches that
-      corner to within ``corner_tolerance`` (found by bisection; 0 for a sharp corner, the
-      fillet's radius for a fillet); for an opening the tool cannot enter at all, the
-      largest radius that fits, at its centre.
+      deeper than ``corner_tolerance`` (from the tool's envelope, inside an opening and on
+      the outline alike), at the corner. The value is the corner's inside radius, in the
+      limit's quantity: the largest tool radius that reaches that corner to within
+      ``corner_tolerance`` (by bisection): ``corner_tolerance / (1 / sin(a / 2) - 1)`` for a
+      sharp corner of angle ``a`` (2.4 of it at 90 degrees), a fillet's radius plus that for
+      a fillet; for an opening the tool cannot enter at all, the largest radius that fits,
+      at its centre.
     - **island**: frame parts that touch no outline of the boundary (they fall out when cut),
-      at a point inside them; the value is their area.
+      at a point inside them; the value is their area. A part thinner than
+      ``corner_tolerance`` everywhere is not material (rounding where openings tile).
 
     Parameters
     ----------
     frame : shapely Polygon or MultiPolygon, optional
-        The panel as cut.
+        The panel as cut. With ``openings`` and ``boundary`` too: the frame their islands
+        and tongues are looked for in (default: boundary minus openings), for a caller that
+        made it already and knows which openings tile their parent exactly.
     openings : sequence of shapely Polygon, optional
         The holes cut into the boundary (used with ``boundary``).
     boundary : shapely Polygon or MultiPolygon, optional
@@ -430,9 +439,9 @@ def check(
     min_inside_radius = _check_limit("min_inside_radius", min_inside_radius)
     corner_tolerance = _check_limit("corner_tolerance", corner_tolerance) or 0.0
     tolerance = _check_limit("tolerance", tolerance)
-    if frame is not None and openings is not None:
+    if frame is not None and openings is not None and boundary is None:
         raise ValueError("give either frame or openings (with boundary), not both")
-    if frame is not None:
+    if frame is not None and openings is None:
         frame_geom = shapely.union_all(_as_polygons(frame, "frame"))
         outline, holes = split_frame(frame_geom)
         if boundary is not None:
@@ -442,7 +451,12 @@ def check(
             raise ValueError("openings need a boundary to check against")
         holes = _as_polygons(openings, "openings")
         outline = shapely.union_all(_as_polygons(boundary, "boundary"))
-        frame_geom = outline.difference(union_all_checked(holes)) if len(holes) else outline
+        if frame is not None:  # the caller's frame (compute's has no slivers of tilings)
+            frame_geom = shapely.union_all(_as_polygons(frame, "frame"))
+        elif len(holes):
+            frame_geom = outline.difference(union_all_checked(holes))
+        else:
+            frame_geom = outline
     else:
         raise ValueError("check needs a frame, or openings and a boundary")
 
@@ -456,8 +470,8 @@ def check(
     if min_inside_radius is not None and min_inside_radius > 0:
         found += _corners(holes, outline, min_inside_radius, corner_tolerance)
     if islands:
-        found += _islands(frame_geom, outline)
-    found.sort(key=_sort_key)
+        found += _islands(frame_geom, outline, corner_tolerance)
+    found.sort(key=sort_key)
     limits = {
         "min_web": min_web,
         "min_opening": min_opening,
@@ -604,111 +618,22 @@ def _openings(holes: np.ndarray, min_opening: float, tol: float) -> list[Violati
     return out
 
 
-def _deepest(pieces: np.ndarray, rim, tolerance: float) -> list[tuple[float, tuple[float, float]]]:
-    """Leftover pieces deeper than ``tolerance``: (depth, deepest vertex) for each.
-
-    Depth: the largest distance of a piece's vertices from ``rim`` (the reach's or the
-    outline's boundary, which each piece touches: a piece whose bounding box's diagonal is
-    within ``tolerance`` cannot be deeper). Distances come from an index of the rim's
-    segments (GEOS scans every segment for every vertex: smoothed cells were 30x slower).
-    """
-    pieces = np.asarray(pieces, dtype=object)
-    lo_x, lo_y, hi_x, hi_y = shapely.bounds(pieces).T
-    pieces = pieces[np.hypot(hi_x - lo_x, hi_y - lo_y) > tolerance]
-    xy, owner = shapely.get_coordinates(pieces, return_index=True)
-    lines = [np.asarray(r.coords) for r in shapely.get_parts(rim) if len(r.coords) > 1]
-    if not len(xy) or not lines:
-        return []
-    segs = shapely.linestrings(np.concatenate([np.stack((c[:-1], c[1:]), 1) for c in lines]))
-    hit, d = shapely.STRtree(segs).query_nearest(
-        shapely.points(xy), return_distance=True, all_matches=False
-    )
-    depth = np.full(len(xy), -np.inf)
-    depth[hit[0]] = d
-    # each piece's deepest vertex: the first of its largest (rows sorted by piece, then depth)
-    order = np.lexsort((np.arange(len(xy)), -depth, owner))
-    first = order[np.r_[True, owner[order][1:] != owner[order][:-1]]]
-    first = first[depth[first] > tolerance]
-    return [(float(depth[j]), (float(xy[j, 0]), float(xy[j, 1]))) for j in first.tolist()]
-
-
-def _corners(holes: np.ndarray, outline, radius: float, tolerance: float) -> list[Violation]:
-    out: list[Violation] = []
-    spots: list[tuple[int, tuple[float, float]]] = []  # (opening or -1, deepest point)
-    quad = 16
-    if len(holes):
-        reach = shapely.buffer(
-            shapely.buffer(holes, -radius, quad_segs=quad), radius, quad_segs=quad
-        )
-        left = shapely.difference(holes, reach)
-        area_floor = (tolerance * config.FAB_CORNER_AREA_RTOL) ** 2
-        for i in np.flatnonzero(shapely.area(left) > area_floor).tolist():
-            if reach[i].is_empty:  # the tool does not fit at all: value = largest radius that does
-                centres, radii = inscribed_circles([holes[i]])
-                x, y = centres[0]
-                out.append(Violation("corner", (float(x), float(y)), float(radii[0]), radius, (i,)))
-                continue
-            rim = shapely.boundary(reach[i])
-            spots += [(i, xy) for _, xy in _deepest(shapely.get_parts(left[i]), rim, tolerance)]
-    if not outline.is_empty:
-        # The outline is cut from outside: the tool cannot enter concave notches of the part.
-        closed = outline.buffer(radius, quad_segs=quad).buffer(-radius, quad_segs=quad)
-        extra = shapely.get_parts(closed.difference(outline))
-        spots += [(-1, xy) for _, xy in _deepest(extra, outline.boundary, tolerance)]
-    if spots:
-        shapes = np.asarray([holes[i] if i >= 0 else outline for i, _ in spots], dtype=object)
-        xy = np.asarray([p for _, p in spots], dtype=np.float64)
-        inside = np.asarray([i >= 0 for i, _ in spots])
-        radii = _corner_radii(shapes, xy, inside, radius, tolerance, quad)
-        for (i, p), r in zip(spots, radii.tolist(), strict=True):
-            out.append(Violation("corner", p, r, radius, (i,)))
-    return out
-
-
-def _corner_radii(shapes, xy, inside, radius: float, tolerance: float, quad: int) -> np.ndarray:
-    """The inside radius of each corner: the largest tool radius that reaches it.
-
-    Bisection on the tool radius ``t`` in ``[0, radius]``: a corner is reached when the
-    material a tool of radius ``t`` leaves near it (within ``2 radius``; the opening minus
-    its opening by ``t`` inside a hole, the closing by ``t`` minus the part outside the
-    outline) is no deeper than ``tolerance``.
-    """
-    lo = np.zeros(len(xy))
-    hi = np.full(len(xy), float(radius))
-    pts = shapely.points(xy)
-    near = shapely.buffer(pts, 2.0 * radius, quad_segs=quad)
-    rims = shapely.boundary(shapes)
-    for _ in range(config.FAB_CORNER_BISECTIONS):
-        t = 0.5 * (lo + hi)
-        grown = shapely.buffer(shapes, np.where(inside, -t, t), quad_segs=quad)
-        back = shapely.buffer(grown, np.where(inside, t, -t), quad_segs=quad)
-        left = np.where(inside, shapely.difference(shapes, back), shapely.difference(back, shapes))
-        left = shapely.intersection(left, near)
-        target = np.where(inside, back, rims)
-        coords, idx = shapely.get_coordinates(left, return_index=True)
-        depth = np.zeros(len(xy))
-        if len(coords):
-            d = shapely.distance(shapely.points(coords), target[idx])
-            np.maximum.at(depth, idx, np.nan_to_num(d, nan=np.inf))
-        ok = depth <= tolerance
-        lo = np.where(ok, t, lo)
-        hi = np.where(ok, hi, t)
-    return lo
-
-
-def _islands(frame, outline) -> list[Violation]:
+def _islands(frame, outline, tolerance: float = 0.0) -> list[Violation]:
     if frame is None or frame.is_empty or outline.is_empty:
         return []
     rim = outline.boundary
-    out = []
     tol = config.ISLAND_TOUCH_RTOL * max(1.0, float(np.abs(shapely.bounds(outline)).max()))
-    for part in shapely.get_parts(frame):
-        if part.is_empty or part.geom_type != "Polygon":
-            continue
-        if shapely.distance(part.exterior, rim) > tol:
-            p = part.point_on_surface()
-            out.append(Violation("island", (p.x, p.y), float(part.area), 0.0))
-    return out
+    parts = shapely.get_parts(frame)
+    parts = parts[(shapely.get_type_id(parts) == 3) & ~shapely.is_empty(parts)]
+    loose = parts[shapely.distance(shapely.get_exterior_ring(parts), rim) > tol]
+    if tolerance > 0 and len(loose):  # slivers (rounding where openings tile): no disc of
+        # diameter ``tolerance`` fits in them anywhere
+        loose = loose[~shapely.is_empty(shapely.buffer(loose, -0.5 * tolerance))]
+    spots = shapely.point_on_surface(loose)
+    return [
+        Violation("island", (p.x, p.y), float(a), 0.0)
+        for p, a in zip(spots, shapely.area(loose), strict=True)
+    ]
 
 
 def kerf(geoms, kerf: float, *, role: str = "part", join: str = "mitre", quad_segs: int = 8):

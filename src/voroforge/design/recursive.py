@@ -27,7 +27,7 @@ import voroforge
 from .. import config
 from . import cellops, populate
 
-__all__ = ["Level", "count_by_area", "count_by_field", "leaves", "subdivide"]
+__all__ = ["Level", "count_by_area", "count_by_field", "leaves", "subdivide", "tiled_holes"]
 
 
 @dataclass(frozen=True)
@@ -336,3 +336,83 @@ def leaves(levels) -> np.ndarray:
         out.append(level.openings[~divided])
     arr = np.concatenate(out) if out else np.zeros(0, dtype=object)
     return arr[~shapely.is_empty(arr)] if len(arr) else arr
+
+
+def tiled_holes(region, raw, holes, chosen, levels=None) -> np.ndarray | None:
+    """The holes to take out of the boundary for the frame, openings that tile merged.
+
+    Where every cell dividing a parent (or every cell of the diagram, which tiles
+    ``region``) is cut whole, the cells' union is the parent's opening (``region``): that
+    opening is returned instead of them. Boundary minus the cells themselves left GEOS
+    slivers of rounding along their seams (clipped cells meet the parent's edges only to
+    rounding): loose "islands" of 1e-13 mm^2 and cut paths of nothing.
+
+    Parameters
+    ----------
+    region : shapely geometry
+        What the first level's cells tile (the design's domain).
+    raw : (n,) object array
+        The leaf cells, in the order of ``compute`` (level by level, undivided cells in order).
+    holes : (n,) object array
+        What is cut of each leaf (its operated cell).
+    chosen : (n,) bool
+        Which leaves are openings.
+    levels : list of Level, optional
+        From :func:`subdivide` (None: ``raw`` is one diagram of ``region``).
+
+    Returns
+    -------
+    (m,) object array, or None when no cells merge (take the openings as they are).
+    """
+    raw = np.asarray(raw, dtype=object).reshape(-1)
+    holes = np.asarray(holes, dtype=object).reshape(-1)
+    if not len(raw) or len(holes) != len(raw):
+        return None
+    chosen = np.asarray(chosen, dtype=bool) & ~shapely.is_empty(holes)
+    empty = shapely.is_empty(raw)
+    whole = empty | (chosen & shapely.equals_exact(holes, raw, 0.0))  # cut as the cell itself
+    if not whole[~empty].any():
+        return None
+    if levels is None:
+        levels = [Level(0, raw, np.zeros((len(raw), 2)), np.full(len(raw), -1), 0.0, raw)]
+    split, start = [], [0]  # which cells are divided; where each level's leaves begin in raw
+    for k, lv in enumerate(levels):
+        split.append(np.zeros(len(lv), dtype=bool))
+        if k + 1 < len(levels) and len(levels[k + 1]):
+            split[k][levels[k + 1].parent] = True
+        start.append(start[-1] + int((~split[k]).sum()))
+    if start[-1] != len(raw):
+        return None
+
+    def tiles(cells, parent, n, area):  # the children of each parent sum to its area
+        got = np.zeros(n)
+        np.add.at(got, parent, shapely.area(cells))
+        return np.abs(got - area) <= config.TILING_AREA_RTOL * area
+
+    full, merged = [None] * len(levels), [None] * len(levels)
+    for k in reversed(range(len(levels))):
+        lv = levels[k]
+        full[k] = np.zeros(len(lv), dtype=bool)  # its hole is the cell itself, or empty
+        full[k][~split[k]] = whole[start[k] : start[k + 1]]
+        merged[k] = np.zeros(len(lv), dtype=bool)  # its children merge into its opening
+        if k + 1 < len(levels) and len(levels[k + 1]):
+            child = levels[k + 1]
+            every = np.ones(len(lv), dtype=bool)
+            np.logical_and.at(every, child.parent, full[k + 1])
+            area = shapely.area(lv.openings)
+            merged[k] = split[k] & every & tiles(child.cells, child.parent, len(lv), area)
+            full[k] |= merged[k] & (lv.web == 0)  # (a web of 0: the opening is the cell)
+    top = np.asarray(levels[0].cells, dtype=object)
+    if full[0].all() and tiles(top, np.zeros(len(top), dtype=np.int64), 1, region.area)[0]:
+        return np.asarray([region], dtype=object)
+    if not any(m.any() for m in merged):
+        return None
+    out, covered = [], np.zeros(len(levels[0]), dtype=bool)  # under a merged ancestor
+    for k, lv in enumerate(levels):
+        out.extend(lv.openings[merged[k] & ~covered])
+        out.extend(
+            holes[start[k] : start[k + 1]][(chosen[start[k] : start[k + 1]]) & ~covered[~split[k]]]
+        )
+        if k + 1 < len(levels) and len(levels[k + 1]):
+            covered = (covered | merged[k])[levels[k + 1].parent]
+    return np.asarray(out, dtype=object)
