@@ -31,6 +31,7 @@ import shapely
 from ..config import (
     PERIODIC_CAP_PERIODS,
     PERIODIC_PROOF_RTOL,
+    PERIODIC_SHORTFALL_SLACK,
     PERIODIC_SLIVER_MAX_SIDE,
     PERIODIC_SLIVER_ULPS,
 )
@@ -38,9 +39,8 @@ from .assemble import from_shapely
 from .diagram import Diagram, Edges, buffers, frame_exponent
 from .domain import Domain, make_domain
 from .inputs import as_points, working_frame
-from .periodic_chord import chord_clear, disks_clear
+from .periodic_chord import chord_clear
 from .periodic_frame import cells_to_user_frame, corner_frame, to_local, two_sum_error
-from .periodic_margin import shortfall
 from .periodic_ties import tie_images
 from .planar import build
 
@@ -206,11 +206,6 @@ def _proved(d: Diagram, cells: np.ndarray, box, margin, sites=None) -> bool:
       (:func:`.periodic_chord.chord_clear`; or, where a few sites' coordinates fall in it,
       their copies past the margin are measured), so ``q`` is ``>= r`` away.
 
-    - (``sites``; a vertex inside the grown box failing the above) the copies left out
-      near the grown box are searched in its disk, and none is there
-      (:func:`.periodic_chord.disks_clear`: a cell not cut by the grown box is the hull of
-      its vertices, and a copy cuts it only at a vertex whose disk holds it).
-
     Applying this to ``x`` then to ``y`` ends at a copy in ``d``, so ``|v - q| >= r``. The
     bracket test makes the margin of a thin box's short side a period or two, however long
     the cells' empty disks are.
@@ -233,7 +228,6 @@ def _proved(d: Diagram, cells: np.ndarray, box, margin, sites=None) -> bool:
     diff = (v - d.sites[owner]) / side
     r2 = (diff[:, 0] * diff[:, 0] + diff[:, 1] * diff[:, 1]) * (1.0 + PERIODIC_PROOF_RTOL)
     slack = _rounding(box)  # the copies' coordinates are rounded sums
-    inner = np.ones(len(v), dtype=bool)  # not on the grown box's side: not cut off there
     for k, (a, b, m) in enumerate(((x0, x1, mx), (y0, y1, my))):
         room = np.minimum(v[:, k] - (a - m), (b + m) - v[:, k])
         if (room < 0).any():
@@ -244,17 +238,17 @@ def _proved(d: Diagram, cells: np.ndarray, box, margin, sites=None) -> bool:
         if sites is not None and not good.all():
             good |= chord_clear(v, r2, room, sites, box, k, m, side, slack, ~good)
         ok &= good
-        inner &= room * side > 4.0 * slack
-    if sites is not None and not ok.all():
-        # the copies left out near the grown box, searched in each failing disk
-        ok |= disks_clear(v, np.sqrt(r2) * side, sites, box, margin, slack, ~ok & inner)
     return bool(ok.all())
 
 
 def _shortfall(d: Diagram, cells, box, margin, sites):
-    """Per axis, the next margin :func:`_proved`'s failing vertices ask for, or 0.0.
+    """Per axis, the margin :func:`_proved`'s disk test asked for, or 0.0 where it passed.
 
-    See :func:`.periodic_margin.shortfall`.
+    A vertex that fails on an axis asks for its radius past its room there, added to the
+    axis's margin: an estimate (more copies move the vertices), not a proof. A vertex the
+    chord test clears on an axis asks nothing there (sites on a line and one off it: the
+    first margins hold only the line, the off site's cell reaches across the box and asked
+    for 1.4 periods along the line, 5.9 n copies where 3 n are proved).
     """
     if isinstance(cells, tuple):
         v, owner = _piece_vertices(d, cells)
@@ -264,7 +258,38 @@ def _shortfall(d: Diagram, cells, box, margin, sites):
     side = max(x1 - x0, y1 - y0)
     diff = (v - d.sites[owner]) / side
     r = np.sqrt(diff[:, 0] * diff[:, 0] + diff[:, 1] * diff[:, 1]) * (1.0 + PERIODIC_PROOF_RTOL)
-    return shortfall(v, r, sites, box, margin, _rounding(box))
+    slack = _rounding(box)
+    # a vertex on the grown box's side is where a cell was cut off, not a vertex: it asks
+    # for that axis only (sites on one line: their cells end there until the copies of the
+    # line beside it are in, and asked for half a period along the line too)
+    edge = np.column_stack(
+        [
+            (v[:, k] <= a - m + slack) | (v[:, k] >= b + m - slack)
+            for k, (a, b, m) in enumerate(((x0, x1, margin[0]), (y0, y1, margin[1])))
+        ]
+    )
+    bads, rooms = [], []
+    for k, (a, b, m) in enumerate(((x0, x1, margin[0]), (y0, y1, margin[1]))):
+        room = np.minimum(v[:, k] - (a - m), (b + m) - v[:, k])
+        bad = (room < (b - a) + slack) & (room / side < r) & ~edge[:, 1 - k]
+        if bad.any():
+            rs = np.maximum(room, 0.0) / side
+            bad &= ~chord_clear(v, r * r, rs, sites, box, k, m, side, slack, bad)
+        bads.append(bad)
+        rooms.append(room)
+    if edge.any():
+        # cells cut off by the grown box: the copies past that side are missing, and a vertex
+        # failing on both axes may be one they move (a site off a line: the first margins
+        # hold only the line, and the line's cells beside the off site's asked for 1.4
+        # periods along the line, 5.9 n copies where the next try proves 3 n): it waits
+        both = bads[0] & bads[1]
+        bads = [bad & ~both for bad in bads]
+    out = []
+    for room, bad, m in zip(rooms, bads, margin, strict=True):
+        bad = bad | (room < 0)
+        need = (r[bad] - np.maximum(room[bad], 0.0) / side).max() if bad.any() else 0.0
+        out.append(float(m + PERIODIC_SHORTFALL_SLACK * need * side) if bad.any() else 0.0)
+    return out
 
 
 def _vertices(d: Diagram, cells: np.ndarray):
@@ -707,12 +732,11 @@ def _periodic(points, tile, algorithm: str, wrap: bool, may_move: bool) -> Diagr
         grow_x, grow_y = _shortfall(d, owners, box, (mx, my), pts)
         if (mx >= cx or not grow_x) and (my >= cy or not grow_y):
             grow_x, grow_y = 2.0 * mx, 2.0 * my  # pragma: no cover - the old rule: both double
-        # the failing axes grow at once to what their vertices asked for (sites on one
-        # line: the first margins hold only the line, its cells end at the grown box and ask
-        # for half a period; doubling took five builds to get there): cut-off cells at least
-        # double, measured asks grow by a quarter at least (periodic_margin)
-        mx = min(grow_x, cx) if grow_x else mx
-        my = min(grow_y, cy) if grow_y else my
+        # the failing axes at least double, at once to what their vertices asked for (sites
+        # on one line: the first margins hold only the line, its cells end at the grown box
+        # and ask for half a period; doubling took five builds to get there)
+        mx = min(max(2.0 * mx, grow_x), cx) if grow_x else mx
+        my = min(max(2.0 * my, grow_y), cy) if grow_y else my
     else:  # pragma: no cover - the margins reach their caps long before
         raise RuntimeError("periodic diagram: could not prove the margin")
     if wrap:
