@@ -30,10 +30,18 @@ from ..config import (
 )
 from .domain import Domain, make_domain, shifted
 from .inputs import as_points, as_weights, require_distinct, unit_exponent
-from .power import PowerDiagram, fit_weights, power_diagram, shrink_start
+from .power import PowerDiagram, fit_breakout, fit_weights, power_diagram, shrink_start
 from .threads import serial_below
 
 __all__ = ["as_targets", "power_fit"]
+
+# -> config: engine.capacity: sites that start with no area in a hole or notch of the domain
+# get it in steps on the domain's convex hull (power.fit_breakout), each asking a cell still
+# outside POWER_FIT_BREAKOUT_GROW times its area there, for at most POWER_FIT_BREAKOUT_ROUNDS
+# steps (about halving those cells a step: a 4,000-site ring 10 steps), before Newton on the
+# domain; where that fails, the relaxed density's continuation follows
+POWER_FIT_BREAKOUT_ROUNDS = 64
+POWER_FIT_BREAKOUT_GROW = 4.0
 
 
 def as_targets(target_areas, n: int, dom: Domain, name: str = "target_areas") -> np.ndarray:
@@ -187,6 +195,10 @@ def _local_fit(pts, t, dom, w0, tol, max_iter):
     cap = min(max_iter, POWER_FIT_GAP_FIRST_STEPS) if parts else max_iter
     relaxed = None
     start, few = (None, False) if parts or len(pts) < 2 else _hole_start(pts, dom, w0)
+    if start is not None:
+        got = _breakout(pts, t, dom, start, tol, max_iter)
+        if got is not None and got[2] <= tol:
+            return got
     if start is not None and few:
         # a few sites start with empty cells (a small hole): the slivers seeded for them
         # fit in a few Newton steps (r = 0.1: 500 sites 16 box builds against the relaxed
@@ -257,6 +269,21 @@ def _hole_start(pts, dom, w0):
     if (power_diagram(pts, zeros, make_domain(hull, pts)).areas > 0.0).all():
         return zeros, few
     return shrink_start(pts, dom), few
+
+
+def _breakout(pts, t, dom, w0, tol, max_iter):
+    """``fit_weights`` from :func:`.power.fit_breakout`'s weights, or None where it fails.
+
+    The relaxed density's continuation moved the cells wholly in a hole out of it about
+    half at a time as its ``eps`` halved, each stage a few damped Newton steps on both
+    diagrams, down to ``eps ~ 1/n`` (a 4,000-site ring: 13 stages, 223 diagram pairs).
+    """
+    hull = make_domain(shapely.convex_hull(dom.geometry), pts)
+    got = fit_breakout(pts, t, dom, hull, w0, POWER_FIT_BREAKOUT_ROUNDS, POWER_FIT_BREAKOUT_GROW)
+    if got is None:
+        return None
+    d, w, err, it = fit_weights(pts, t, dom, got[0], tol, max_iter)
+    return d, w, err, it + got[1]
 
 
 def _gap_continuation(pts, t, dom, w0, tol, max_iter):

@@ -691,6 +691,48 @@ def _bridge_between(attempt, lo, hi):
     return None, hi
 
 
+def fit_breakout(pts, targets, dom, hull, w0, rounds, grow):
+    """Weights that give every site a cell in ``dom``, by steps on its convex ``hull``.
+
+    A site whose cell lies wholly in a hole of ``dom`` has no area there, and Newton on
+    ``dom`` has nothing to move it by. On the hull every cell has area: each round takes one
+    damped Newton step on the hull towards the areas ``targets + hole share`` (the part of
+    each cell outside ``dom``, so that a cell meeting its target on the hull meets it in
+    ``dom``), where a cell still wholly outside ``dom`` asks ``grow`` times its hole share
+    (its hull area) instead, so that it reaches ``dom`` in a few rounds, all such cells at
+    once. ``w0`` must give every cell area on the hull. Returns ``(w, steps)`` once every
+    cell has area in ``dom``, or None after ``rounds`` rounds or when a step fails.
+    """
+    masses = partial(_relaxed, pts, dom, hull, 1.0)  # 1.0: the masses are the hull areas
+    w = w0.copy()
+    (d, dh), mass = masses(w)
+    if not (mass > 0.0).all():
+        return None
+    alpha = 1.0
+    for it in range(rounds):
+        a = d.areas
+        out = ~(a > 0.0)
+        if not out.any():
+            return w, it
+        share = mass - a
+        goal = targets + np.where(out, grow * share, share)
+        goal *= mass.sum() / goal.sum()
+        lap, deg = _hessian(dh, pts)
+        r = goal - mass
+        floor = 0.5 * min(float(goal.min()), float(mass.min()))
+        norm = float(np.linalg.norm(r))
+        got = None
+        for step in _steps(lap, deg, r):
+            got = _line_search(masses, w, step, goal, floor, norm, alpha)
+            if got is not None:
+                break
+        if got is None:
+            return None
+        w, (d, dh), mass, alpha = got
+        alpha = _first_alpha(alpha)
+    return None
+
+
 def _relaxed(pts, dom, hull, eps, w):
     """``((diagram on dom, diagram on hull), masses)`` of the relaxed density.
 
