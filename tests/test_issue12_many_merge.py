@@ -8,11 +8,12 @@ full of both kinds of repeats, ``-0.0`` beside ``0.0`` and NaN coordinates.
 import numpy as np
 import pytest
 
-from voroforge.kernels.merge3d import HASH_FROM, merge_named
+from voroforge.config import MERGE3D_HASH_FROM as HASH_FROM
+from voroforge.kernels.merge3d import merge_named
 
 
 def _reference(nv, F, nf, R, vnames, vabs, vrel):
-    """The plain scan, in Python (the rule of ``cells3d._merge_named``)."""
+    """The plain scan, in Python (the rule of ``kernels.merge3d``)."""
     remap = np.zeros(nv, np.int64)
     kept = []
     for v in range(nv):

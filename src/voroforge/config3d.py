@@ -8,6 +8,8 @@ from __future__ import annotations
 
 __all__ = [
     "BIN_SORT_FROM",
+    "CELLCUT3D_RADIUS_PAD",
+    "MERGE3D_HASH_FROM",
     "DOOMED_SIDE",
     "DOOMED_SPREAD",
     "TIES_RAY_RTOL",
@@ -246,3 +248,11 @@ DOOMED_SPREAD = 16
 #: kernels.walk3d: batches of at least this many candidates are first grouped by distance
 #: into bins (bin_group, a stable counting sort), so the insertion sort after it moves few
 BIN_SORT_FROM = 24
+#: kernels.cellcut3d: after a graph cut a cell's squared radius is bounded by the one before
+#: (and the moved points') times this: a crossing interpolated between two vertices is no
+#: farther than they are but for its rounding (~1e-16 relative); only a bound that holds
+#: lets the cut skip finding the radius (_cut_batch)
+CELLCUT3D_RADIUS_PAD = 1.0 + 1e-12
+#: kernels.merge3d: cells of at least this many named vertices are merged through hash
+#: tables; smaller ones by a scan of the kept vertices (cheaper at a uniform cell's ~26)
+MERGE3D_HASH_FROM = 48

@@ -21,7 +21,13 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import BIN_SORT_FROM, NJIT, VORONOI3D_CUT_RTOL, VORONOI3D_STOP_RTOL
+from ..config import (
+    BIN_SORT_FROM,
+    CELLCUT3D_RADIUS_PAD,
+    NJIT,
+    VORONOI3D_CUT_RTOL,
+    VORONOI3D_STOP_RTOL,
+)
 from ..config import CELLCUT3D_OWN_ENTRIES as OWN_ENTRIES
 from .band3d import offset_cache, owner_key, resolve  # noqa: F401 (re-exported: cells3d)
 from .graph3d import GCUT_DONE, GCUT_EMPTY, cut_close, cut_open, to_rings
@@ -49,11 +55,6 @@ UNNAMED = 4
 SLOW = 5
 
 MAX_OWNERS = 32
-# -> config: the cell's squared radius after a graph cut is bounded by the one before
-# (and the moved points') times this: a crossing interpolated between two vertices is no
-# farther than them but for its rounding (~1e-16 relative); only a bound that holds lets
-# the cut skip finding the radius (_cut_batch)
-RADIUS_PAD = 1.0 + 1e-12
 #: small hot helpers are inlined into their callers (numba's own inliner): a call that
 #: passes arrays costs reference counting, and the search makes ~100 such calls per cell
 NJIT_INLINE = {**NJIT, "inline": "always"}
@@ -198,7 +199,7 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
                 return (OVERFLOW if nv2 >= V.shape[0] else BROKEN), 0, 0, 0, 0.0
             r2m = resettle(i, j, V, G[4], w, G[0], G[3], S, P, W, WP, X[1])
             st, nv2, _ = cut_close(V, nv2, G[0], G[1], G[2], G[3], G[6], S, G[4], nl, False)
-            r2c = max(rmax2, r2m) * RADIUS_PAD  # a bound: new points lie within the cell
+            r2c = max(rmax2, r2m) * CELLCUT3D_RADIUS_PAD  # a bound: new points lie within the cell
             stale = True
             nf2 = 0
         else:

@@ -35,7 +35,8 @@ from .cellcut3d import (
     radius2,
 )
 from .containercut3d import container_cut
-from .graph3d import from_rings, remap_rings
+from .graph3d import from_rings
+from .merge3d import merge_named
 from .polyhedron import moments
 from .predicates3d import bisector_side, scratch, wall_lift
 from .star3d import DECLINE, merge_star, star_cell
@@ -366,50 +367,6 @@ def _big_keys(BG, q, name, keys, u, ns, bkeys):
     return m
 
 
-@njit(**NJIT_NO_NRT)
-def _merge_named(nv, F, nf, R, vnames, vabs, vrel, remap):
-    """Merge local vertices with equal names or equal join keys; drop repeats and thin faces.
-
-    The join's key is the coordinates and :func:`kernels.vertex3d.name_key` (``vnames[:, 4]
-    >> 8``): exactly distinct vertices of four owners that round to the same doubles
-    (points rounded onto a sphere, an FCC lattice at 1e8) stay two vertices here and in the
-    join, as the exact diagram has them (merging them pinched the cell's faces at the
-    merged vertex, or repeated it in a ring, and moved one vertex's relative coordinates to
-    the other's); vertices of more owners with equal coordinates are one vertex. Returns
-    ``(nv, nf, nr)``; rings are repacked from 0.
-    """
-    m = 0
-    for v in range(nv):
-        same = -1
-        for u in range(m):
-            if (
-                vnames[u, 0] == vnames[v, 0]
-                and vnames[u, 1] == vnames[v, 1]
-                and vnames[u, 2] == vnames[v, 2]
-                and vnames[u, 3] == vnames[v, 3]
-            ) or (
-                vabs[u, 0] == vabs[v, 0]
-                and vabs[u, 1] == vabs[v, 1]
-                and vabs[u, 2] == vabs[v, 2]
-                and vnames[u, 4] >> 8 == vnames[v, 4] >> 8
-            ):
-                same = u
-                break
-        if same >= 0:
-            remap[v] = same
-            continue
-        remap[v] = m
-        if m != v:
-            for q in range(5):
-                vnames[m, q] = vnames[v, q]
-            for q in range(3):
-                vabs[m, q] = vabs[v, q]
-                vrel[m, q] = vrel[v, q]
-        m += 1
-    nf2, nr = remap_rings(nf, F, R, remap)
-    return m, nf2, nr
-
-
 @njit(**NJIT)
 def cell_scratch(ns, g, tree, TV, TF, TR, caps):
     """The working space of :func:`build_cells` for ``ns`` sites, grid ``g``, template, ``caps``.
@@ -665,7 +622,7 @@ def _build_cells(
             status[c] = st
             continue
         if X[2][0] or Gu[0].shape[0] == 0:
-            nv, nf, nr = _merge_named(nv, F, nf, R, vnames, vabs, vrel, remap)
+            nv, nf, nr = merge_named(nv, F, nf, R, vnames, vabs, vrel, remap, work)
         else:  # no vertex came within the filter's band of a plane: all are distinct
             nr = 0
             for f in range(nf):

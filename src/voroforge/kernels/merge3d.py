@@ -1,19 +1,24 @@
-"""A cell's named vertices merged in linear time (the many-faced cells' quadratic merge).
+"""A cell's named vertices merged (``cells3d.build_cells``), in linear time for big cells.
 
-:func:`merge_named` is ``cells3d._merge_named`` with hash tables in place of its scan of
-every vertex kept so far: a vertex is merged into the first kept one with the same name
-(its four owners) or the same coordinates and join key (``vnames[:, 4] >> 8``), else kept.
-Kept vertices never match each other (each was kept because it matched none before it,
-and both relations are equivalences where they hold), so at most one kept vertex has the
-vertex's name and at most one its coordinates and key: the first kept match is the smaller
-of the two tables' answers, and the remap, the kept vertices and the rings are the same, bit
-for bit. A helix's cells of 95-380 faces spent ~10% of the build in the scan (540 vertices:
-~146,000 comparisons); a uniform cell (~26 vertices) keeps the scan below
-:data:`HASH_FROM`.
+:func:`merge_named` merges a vertex into the first kept one with the same name (its four
+owners) or the same coordinates and join key (:func:`kernels.vertex3d.name_key`,
+``vnames[:, 4] >> 8``), else keeps it. With the key, exactly distinct vertices of four
+owners that round to the same doubles (points rounded onto a sphere, an FCC lattice at 1e8)
+stay two vertices here and in the join, as the exact diagram has them (merging them pinched
+the cell's faces at the merged vertex, or repeated it in a ring, and moved one vertex's
+relative coordinates to the other's); vertices of more owners with equal coordinates are
+one vertex. Repeats in rings and thin faces go after.
 
-The tables live in a scratch the caller has free at that point (``work`` of
-``cellcut3d.cut_scratch``: ``(max(vcap, rcap), 4)`` int64, free after the naming), so
-nothing is allocated; where they do not fit it the scan runs.
+A cell under :data:`~voroforge.config.MERGE3D_HASH_FROM` vertices (a uniform cell has
+~26) is merged by a scan of the vertices kept so far; a bigger one by hash tables. Kept
+vertices never match each other (each was kept because it matched none before it, and both
+relations are equivalences where they hold), so at most one kept vertex has the vertex's
+name and at most one its coordinates and key: the first kept match is the smaller of the
+two tables' answers, and the remap, the kept vertices and the rings are the scan's, bit for
+bit. A helix's cells of 95-380 faces spent ~10% of the build in the scan (540 vertices:
+~146,000 comparisons). The tables live in a scratch the caller has free at that point
+(``work`` of ``cellcut3d.cut_scratch``: ``(max(vcap, rcap), 4)`` int64, free after the
+naming), so nothing is allocated; where they do not fit it the scan runs.
 """
 
 from __future__ import annotations
@@ -21,12 +26,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import NJIT
+from ..config import MERGE3D_HASH_FROM, NJIT
 from .graph3d import remap_rings
-
-# -> config: the fewest vertices merged through the hash tables (below: the plain scan,
-# cheaper for ~26 vertices)
-HASH_FROM = 48
 
 _NO_NRT = {**NJIT, "_nrt": False}
 _INLINE = {**_NO_NRT, "inline": "always"}
@@ -98,8 +99,8 @@ def _keep(m, v, vnames, vabs, vrel):
 def merge_named(nv, F, nf, R, vnames, vabs, vrel, remap, work):
     """Merge local vertices with equal names or equal join keys; drop repeats and thin faces.
 
-    The rule and the results of ``cells3d._merge_named`` (see the module), in time linear
-    in ``nv`` from :data:`HASH_FROM` vertices on. ``work``: free int64 scratch of at least
+    The rule of the module's docstring, in time linear in ``nv`` from
+    ``MERGE3D_HASH_FROM`` vertices on. ``work``: free int64 scratch of at least
     ``4 nv`` entries in rows of 4 (else the plain scan). Returns ``(nv, nf, nr)``; rings
     are repacked from 0.
     """
@@ -107,7 +108,7 @@ def merge_named(nv, F, nf, R, vnames, vabs, vrel, remap, work):
     while size < 2 * nv:
         size *= 2
     m = 0
-    if nv < HASH_FROM or 2 * size > work.shape[0] * work.shape[1] or work.shape[1] != 4:
+    if nv < MERGE3D_HASH_FROM or 2 * size > work.shape[0] * work.shape[1] or work.shape[1] != 4:
         for v in range(nv):
             same = -1
             for u in range(m):

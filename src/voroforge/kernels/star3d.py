@@ -161,7 +161,7 @@ def star_cell(i, P, W, WP, ST, F, R, NM, buf, mark, caps):
 
 @njit(**_NO_NRT)
 def merge_star(nv, F, nf, R, vnames, vabs, vrel, remap, vbits, table):
-    """:func:`.cells3d._merge_named` for a star's vertices, in linear time.
+    """:func:`.merge3d.merge_named` for a star's vertices, in linear time.
 
     Two polytopes never share a name (the name's four sites lie on one empty sphere), so
     only vertices with equal coordinates and join keys merge (distinct exact vertices that
