@@ -16,6 +16,7 @@ facets). A mesh container's cells are built in its bounding box and then cut by 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -30,6 +31,15 @@ from ..config import (
     OUTSIDE3D_RTOL,
     VOLUME_RANGE,
 )
+
+# -> config: a hull whose principal extents' ratio (thinnest over widest) is below this is
+# thin (:func:`_hull_planes`): walls keep their exact planes (hullnormals) and merge only
+# within CONVEX_THIN_MERGE of its thickness
+CONVEX_THIN_AXES = 1e-2
+# -> config: a thin hull's nearly coplanar facets merge only when every corner lies within
+# this fraction of its thickness of the kept plane (the wedge a merge adds is about that
+# times the face's area: 1e-12 of the extent had made a 1e-9 disk 1.28e-5 too big)
+CONVEX_THIN_MERGE = 1e-13
 
 #: the cube's faces, outward counter-clockwise; corner ``k`` is ``(k & 1, k >> 1 & 1, k >> 2)``
 _CUBE_RINGS = ((0, 4, 6, 2), (1, 3, 7, 5), (0, 1, 5, 4), (2, 6, 7, 3), (0, 2, 3, 1), (4, 5, 7, 6))
@@ -262,6 +272,13 @@ def _hull_planes(pts: np.ndarray, o=None) -> tuple[np.ndarray, list]:
     (integers): its normal rounded once, its offset the largest of its corners' exactly
     rounded. Triangles of one plane give the same bits and are merged, and so are those
     within 1e-12 of one plane (as Qhull's were).
+
+    A thin hull (principal extents' ratio below :data:`CONVEX_THIN_AXES`) groups its
+    triangles by their exact planes, merges nearly coplanar ones only within
+    :data:`CONVEX_THIN_MERGE` of its thickness, and gives a wall whose normal is no double
+    the double nearest its direction (:func:`.hullnormals.close_normal`): rounded normals
+    and a merge within 1e-12 of the extent left wedges outside a disk 1e-9 thick (checker33
+    F1: 2.5e-8..1.7e-4 of its volume).
     """
     from scipy.spatial import ConvexHull, QhullError, cKDTree
 
@@ -289,9 +306,11 @@ def _hull_planes(pts: np.ndarray, o=None) -> tuple[np.ndarray, list]:
         ) from None
     # outward in the raw frame: Qhull's normal m (of y = M x + b) is M^T m there
     out = (hull.equations[:, :3] / ext) @ vt
-    rows: dict[bytes, list] = {}  # unit normal -> its corners (point numbers)
+    thin = bool(ext[2] < CONVEX_THIN_AXES * ext[0])
+    rows: dict = {}  # unit normal (thin: exact plane) -> its corners (point numbers)
     seen: dict = {}  # point number -> its integers (_point_ints)
     normals = []
+    planes = []  # thin: each row's exact outward normal (integers, no common factor)
     for tri, w in zip(hull.simplices, out, strict=True):
         a, b, e = (_point_ints(pts, i, seen) for i in tri)
         u = [b[k] - a[k] for k in range(3)]
@@ -302,13 +321,19 @@ def _hull_planes(pts: np.ndarray, o=None) -> tuple[np.ndarray, list]:
             continue  # a sliver Qhull made of three collinear points: no plane
         f = np.array([x / big for x in n])  # exact quotients, each rounded once
         nu = f / np.sqrt(f @ f)
+        sign = 1
         if nu @ w < 0:
             nu = -nu
+            sign = -1
         nu = nu + 0.0  # -0.0 -> 0.0: one key per plane
         key = nu.tobytes()
+        if thin:
+            g = math.gcd(*n)
+            key = tuple(sign * x // g for x in n)
         if key not in rows:
             rows[key] = []
             normals.append(nu)
+            planes.append(key)
         rows[key].extend(int(t) for t in tri)
     N = np.array(normals)
     corners = list(rows.values())
@@ -320,17 +345,21 @@ def _hull_planes(pts: np.ndarray, o=None) -> tuple[np.ndarray, list]:
     big = float(np.abs(pts if o is None else pts - o).max())
     eps64 = 64.0 * np.finfo(float).eps
     tilt = max(1e-12, eps64 * big / (ext[0] * size))
+    tol = eps64 * max(big, 1e-300) + 1e-12 * ext[0] * size
+    if thin:
+        tol = min(tol, CONVEX_THIN_MERGE * ext[2] * size)
     keep = np.ones(len(N), bool)
     pairs = cKDTree(N).query_pairs(tilt, p=np.inf, output_type="ndarray")
     for i, j in sorted(map(tuple, np.sort(pairs, axis=1))):
         if keep[i] and keep[j]:
             q = pts[corners[i] + corners[j]] - pts[corners[i][0]]
-            if np.abs(q @ N[i]).max() <= eps64 * max(big, 1e-300) + 1e-12 * ext[0] * size:
+            if np.abs(q @ N[i]).max() <= tol:
                 corners[i] += corners[j]
                 keep[j] = False
     kept = np.flatnonzero(keep)
     corners = [corners[i] for i in kept]
-    return _exact_normals(pts, N[kept], corners, seen), corners, hull.simplices
+    exact = [planes[i] for i in kept] if thin else None
+    return _exact_normals(pts, N[kept], corners, seen, exact), corners, hull.simplices
 
 
 def _significant(x: int) -> int:
@@ -338,8 +367,11 @@ def _significant(x: int) -> int:
     return (abs(x) >> ((x & -x).bit_length() - 1)).bit_length() if x else 0
 
 
-def _exact_normals(pts, N, corners, seen: dict) -> np.ndarray:
+def _exact_normals(pts, N, corners, seen: dict, planes=None) -> np.ndarray:
     """``N``, exact where a plane's corners are exactly coplanar and its normal fits a double.
+
+    ``planes`` (a thin hull's): each row's exact normal; where the above leaves the unit
+    normal, the double nearest that normal's direction (:func:`.hullnormals.close_normal`).
 
     That normal is the cross product of corner differences (exact, in integers) scaled by a
     power of two (largest component in [1, 2): an axis-aligned wall's normal is the unit
@@ -353,45 +385,52 @@ def _exact_normals(pts, N, corners, seen: dict) -> np.ndarray:
     """
     out = N.copy()
     for w, cs in enumerate(corners):
-        ps = [_point_ints(pts, t, seen) for t in dict.fromkeys(cs)]
-        a = ps[0]
-        # corner differences of 30+ significant bits make products past a double (random
-        # points: every plane, skipped before the cross products: Convex of 2,000 points
-        # on a sphere 0.41 s before exact normals, 0.53 without this test, 0.43)
-        if any(_significant(p[k] - a[k]) > 30 for p in ps[1:] for k in range(3)):
-            continue
-        m = None
-        for b in ps[1:]:
-            u = [b[k] - a[k] for k in range(3)]
-            for e in ps[2:]:
-                v = [e[k] - a[k] for k in range(3)]
-                m = [
-                    u[1] * v[2] - u[2] * v[1],
-                    u[2] * v[0] - u[0] * v[2],
-                    u[0] * v[1] - u[1] * v[0],
-                ]
-                if any(m):
-                    break
-            if m is not None and any(m):
-                break
-        if m is None or not any(m):
-            continue
-        if any(sum(m[k] * (p[k] - a[k]) for k in range(3)) for p in ps):
-            continue  # corners coplanar only to the merge's tolerance
-        low = min((x & -x).bit_length() - 1 for x in m if x)  # common factor 2**low
-        m = [x >> low for x in m]
-        top = max(abs(x) for x in m).bit_length()
-        if top > 53:
-            continue  # not a double: the unit normal, rounded once
-        n = np.array([np.ldexp(float(x), 1 - top) for x in m])  # (an axis wall's is 1)
-        out[w] = n if n @ N[w] > 0 else -n
+        if not _exact_normal(pts, N, cs, seen, out, w) and planes is not None:
+            from .hullnormals import close_normal
+
+            out[w] = close_normal(planes[w])
     return out
+
+
+def _exact_normal(pts, N, cs, seen: dict, out: np.ndarray, w: int) -> bool:
+    """Set ``out[w]`` to the exact normal of the corners ``cs`` where there is one (True)."""
+    ps = [_point_ints(pts, t, seen) for t in dict.fromkeys(cs)]
+    a = ps[0]
+    # corner differences of 30+ significant bits make products past a double (random
+    # points: every plane, skipped before the cross products: Convex of 2,000 points
+    # on a sphere 0.41 s before exact normals, 0.53 without this test, 0.43)
+    if any(_significant(p[k] - a[k]) > 30 for p in ps[1:] for k in range(3)):
+        return False
+    m = None
+    for b in ps[1:]:
+        u = [b[k] - a[k] for k in range(3)]
+        for e in ps[2:]:
+            v = [e[k] - a[k] for k in range(3)]
+            m = [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ]
+            if any(m):
+                break
+        if m is not None and any(m):
+            break
+    if m is None or not any(m):
+        return False
+    if any(sum(m[k] * (p[k] - a[k]) for k in range(3)) for p in ps):
+        return False  # corners coplanar only to the merge's tolerance
+    low = min((x & -x).bit_length() - 1 for x in m if x)  # common factor 2**low
+    m = [x >> low for x in m]
+    top = max(abs(x) for x in m).bit_length()
+    if top > 53:
+        return False  # not a double: the unit normal, rounded once
+    n = np.array([np.ldexp(float(x), 1 - top) for x in m])  # (an axis wall's is 1)
+    out[w] = n if n @ N[w] > 0 else -n
+    return True
 
 
 def _hull_volume(q: np.ndarray, tris: np.ndarray) -> float:
     """The volume of the hull of ``q`` from its triangles ``tris`` (tetrahedra to a centre)."""
-    import math
-
     c = q[np.unique(tris)].mean(axis=0)
     a, b, e = (q[tris[:, k]] - c for k in range(3))
     det = np.einsum("ij,ij->i", a, np.cross(b, e))
