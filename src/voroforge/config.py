@@ -187,6 +187,11 @@ RASTER_SLACK_FLOOR = 1e-300
 #: sites leave about e^-2 = 13.5% empty)
 RASTER_CROWDED_EMPTY = 0.35
 
+#: kernels.halfplane_settle: far out, the merge band past the near band decides a cell's
+#: joins only while it is below this fraction of the circle's squared radius (sites ulps
+#: apart: every site lies in it, and they keep the exact test)
+HALFPLANE_MERGE_WIDE_MAX = 2.0**-4
+
 # --- engine (inputs, domains, periodic, describe, interpolation, Lloyd) ------------------------
 
 #: Periodic margin proof: relative slack on the squared empty-disk radius (rounded distances)
@@ -706,6 +711,13 @@ POWER_FIT_SCALE_EXP = 64
 #: engine.capacity: when both starts stall, targets moved from the shrunk sites' areas in
 #: steps of this fraction (log areas, halved down to the least), each fitted to the rtol
 POWER_FIT_CONTINUATION_STEP = 0.25
+#: engine.capacity: sites that start with no area in a hole or notch of the domain get it
+#: in damped Newton steps on the domain's convex hull (power.fit_breakout), each asking a
+#: cell still outside POWER_FIT_BREAKOUT_GROW times its area there, for at most
+#: POWER_FIT_BREAKOUT_ROUNDS steps (a 4,000-site ring: about 10), before Newton on the
+#: domain; where that fails, the relaxed density's continuation follows
+POWER_FIT_BREAKOUT_ROUNDS = 64
+POWER_FIT_BREAKOUT_GROW = 4.0
 POWER_FIT_CONTINUATION_MIN_STEP = 1.0 / 64.0
 POWER_FIT_CONTINUATION_RTOL = 1e-3
 #: engine.capacity._gap_continuation (a MultiPolygon's far parts; sites in a hole or a

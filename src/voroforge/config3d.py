@@ -9,6 +9,8 @@ from __future__ import annotations
 __all__ = [
     "BIN_SORT_FROM",
     "CELLCUT3D_RADIUS_PAD",
+    "CONVEX_THIN_AXES",
+    "CONVEX_THIN_MERGE",
     "MERGE3D_HASH_FROM",
     "DOOMED_SIDE",
     "DOOMED_SPREAD",
@@ -256,3 +258,11 @@ CELLCUT3D_RADIUS_PAD = 1.0 + 1e-12
 #: kernels.merge3d: cells of at least this many named vertices are merged through hash
 #: tables; smaller ones by a scan of the kept vertices (cheaper at a uniform cell's ~26)
 MERGE3D_HASH_FROM = 48
+#: engine.containers: a hull whose principal extents' ratio (thinnest over widest) is below
+#: this is thin (_hull_planes): walls keep their exact planes (engine.hullnormals) and
+#: merge only within CONVEX_THIN_MERGE of its thickness
+CONVEX_THIN_AXES = 1e-2
+#: ...a thin hull's nearly coplanar facets merge only when every corner lies within this
+#: fraction of its thickness of the kept plane (the wedge a merge adds is about that times
+#: the face's area: 1e-12 of the extent had made a 1e-9 disk 1.28e-5 too big)
+CONVEX_THIN_MERGE = 1e-13

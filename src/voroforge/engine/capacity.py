@@ -11,6 +11,8 @@ import shapely
 from scipy.spatial import cKDTree
 
 from ..config import (
+    POWER_FIT_BREAKOUT_GROW,
+    POWER_FIT_BREAKOUT_ROUNDS,
     POWER_FIT_CONTINUATION_MIN_STEP,
     POWER_FIT_CONTINUATION_RTOL,
     POWER_FIT_CONTINUATION_STEP,
@@ -34,14 +36,6 @@ from .power import PowerDiagram, fit_breakout, fit_weights, power_diagram, shrin
 from .threads import serial_below
 
 __all__ = ["as_targets", "power_fit"]
-
-# -> config: engine.capacity: sites that start with no area in a hole or notch of the domain
-# get it in steps on the domain's convex hull (power.fit_breakout), each asking a cell still
-# outside POWER_FIT_BREAKOUT_GROW times its area there, for at most POWER_FIT_BREAKOUT_ROUNDS
-# steps (about halving those cells a step: a 4,000-site ring 10 steps), before Newton on the
-# domain; where that fails, the relaxed density's continuation follows
-POWER_FIT_BREAKOUT_ROUNDS = 64
-POWER_FIT_BREAKOUT_GROW = 4.0
 
 
 def as_targets(target_areas, n: int, dom: Domain, name: str = "target_areas") -> np.ndarray:

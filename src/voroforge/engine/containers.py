@@ -26,20 +26,13 @@ from ..config import (
     CONVEX_EXACT_ROWS,
     CONVEX_EXACT_THIN,
     CONVEX_FAR_ORIGIN,
+    CONVEX_THIN_AXES,
+    CONVEX_THIN_MERGE,
     FLAT_RTOL,
     OUTSIDE3D_BLOCK,
     OUTSIDE3D_RTOL,
     VOLUME_RANGE,
 )
-
-# -> config: a hull whose principal extents' ratio (thinnest over widest) is below this is
-# thin (:func:`_hull_planes`): walls keep their exact planes (hullnormals) and merge only
-# within CONVEX_THIN_MERGE of its thickness
-CONVEX_THIN_AXES = 1e-2
-# -> config: a thin hull's nearly coplanar facets merge only when every corner lies within
-# this fraction of its thickness of the kept plane (the wedge a merge adds is about that
-# times the face's area: 1e-12 of the extent had made a 1e-9 disk 1.28e-5 too big)
-CONVEX_THIN_MERGE = 1e-13
 
 #: the cube's faces, outward counter-clockwise; corner ``k`` is ``(k & 1, k >> 1 & 1, k >> 2)``
 _CUBE_RINGS = ((0, 4, 6, 2), (1, 3, 7, 5), (0, 1, 5, 4), (2, 6, 7, 3), (0, 2, 3, 1), (4, 5, 7, 6))

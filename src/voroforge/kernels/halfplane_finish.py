@@ -20,7 +20,8 @@ from ..config import (
     HALFPLANE_SURE_SIN2,
     NJIT,
 )
-from .halfplane_settle import MERGE_WIDE_MAX, emit_exact, emit_float, settle_ring
+from ..config import HALFPLANE_MERGE_WIDE_MAX as MERGE_WIDE_MAX
+from .halfplane_settle import emit_exact, emit_float, settle_ring
 from .sidegap import may_have_parallel, restore_sides
 
 #: (2 r)^2 / r^2 with a margin against rounding: a site farther than twice the cell's

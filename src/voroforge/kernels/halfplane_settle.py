@@ -34,6 +34,9 @@ from ..config import (
     NAME_MAX_TRIES,
     NJIT,
 )
+from ..config import (
+    HALFPLANE_MERGE_WIDE_MAX as MERGE_WIDE_MAX,
+)
 from .cellcut import near_sides, onto_sides, side_reach
 from .clip import dedupe_ring
 from .predicates import incircle, orient2d
@@ -57,9 +60,6 @@ _W_TEST = 8  # a filtered exact test (incircle, orient2d: ~10-20 ns)
 _W_VERTEX = 32  # a vertex from its name (voronoi_vertex: ~30-50 ns)
 _W_EXACT = 1024  # one from exact expansions (~5-10 us; a centre near the origin, see below)
 _W_ADAPT = 512  # an incircle whose float filter fails: its exact stage (~1-3 us)
-# -> config: the merge band past the near band (far out) decides joins only while it is
-# below this of the circle's squared radius (sites ulps apart: every site is in it)
-MERGE_WIDE_MAX = 2.0**-4
 _SLOW_RTOL = 2.0**-20  # centres nearer the origin than this of their scale take that path
 
 
