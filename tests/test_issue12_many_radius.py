@@ -9,33 +9,18 @@ volumes summing to the box, and the neighbours symmetric.
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
 
 import voroforge as vf
+from catalogue3d import helix, three_lines
 from reference3d_exact import exact_power_cell
 
 BOX = (0.0, 0.0, 0.0, 1.0, 1.0, 1.0)
 
 
-def _helix(n, turns=10, r=0.3):
-    a = np.linspace(0, 2 * np.pi * turns, n)
-    return np.c_[0.5 + r * np.cos(a), 0.5 + r * np.sin(a), np.linspace(0.05, 0.95, n)]
-
-
-def _lines3(n):
-    rng = np.random.default_rng(0)
-    k = n // 3
-    return np.r_[
-        np.c_[rng.random(k), np.full(k, 0.2), np.full(k, 0.2)],
-        np.c_[np.full(k, 0.8), rng.random(k), np.full(k, 0.5)],
-        np.c_[np.full(k, 0.5), np.full(k, 0.5), rng.random(k)],
-    ]
-
-
 @pytest.mark.parametrize(
     "points, cells",
-    [(_helix(240), (0, 117, 239)), (_lines3(240), (3, 95, 170))],
+    [(helix(240), (0, 117, 239)), (three_lines(240), (3, 95, 170))],
     ids=["helix", "lines3"],
 )
 def test_many_faced_cells_exact(points, cells):

@@ -61,6 +61,16 @@ def far_pad(r2, cx, cy):
     return band if band <= MERGE_WIDE_MAX * r2 else 0.0
 
 
+@njit(inline="always", **NJIT)
+def _watch(watch, keep, t):
+    """``watch[:keep]`` with candidate ``t`` added if it is not there yet; the new count."""
+    for w in range(keep):
+        if watch[w] == t:
+            return keep
+    watch[keep] = t
+    return keep + 1
+
+
 @njit(**NJIT)
 def watch_circles(sx, sy, cx, cy, cand, nc, watch, keep, reach2):
     """Add to ``watch[:keep]`` the candidates within ``reach2`` of the site; the new count.
@@ -75,12 +85,7 @@ def watch_circles(sx, sy, cx, cy, cand, nc, watch, keep, reach2):
         qy = sy[t] - cy
         if qx * qx + qy * qy > reach2:
             continue
-        seen = False
-        for w in range(keep):
-            seen = seen or watch[w] == t
-        if not seen:
-            watch[keep] = t
-            keep += 1
+        keep = _watch(watch, keep, t)
     return keep
 
 
@@ -116,12 +121,7 @@ def watch_sides(px, py, po, a, m, sx, sy, cx, cy, cand, nc, watch, keep, box, re
                 near = near or s * s < 2.0 * side2 * h
         if not near:
             continue
-        seen = False
-        for w in range(keep):
-            seen = seen or watch[w] == t
-        if not seen:
-            watch[keep] = t
-            keep += 1
+        keep = _watch(watch, keep, t)
     return keep
 
 

@@ -85,7 +85,7 @@ def _same_key(vnames, vabs, u, v):
 
 
 @njit(**_INLINE)
-def _keep(m, v, vnames, vabs, vrel):
+def keep_vertex(m, v, vnames, vabs, vrel):
     """Vertex ``v`` kept as the ``m``-th: its name, coordinates and relative point moved."""
     if m != v:
         for q in range(5):
@@ -119,7 +119,7 @@ def merge_named(nv, F, nf, R, vnames, vabs, vrel, remap, work):
                 remap[v] = same
                 continue
             remap[v] = m
-            _keep(m, v, vnames, vabs, vrel)
+            keep_vertex(m, v, vnames, vabs, vrel)
             m += 1
     else:
         # two open-addressed tables of ``size`` slots (names, then keys) in work's first
@@ -153,7 +153,7 @@ def merge_named(nv, F, nf, R, vnames, vabs, vrel, remap, work):
                 remap[v] = un if uk < 0 else (uk if un < 0 else min(un, uk))
                 continue
             remap[v] = m
-            _keep(m, v, vnames, vabs, vrel)
+            keep_vertex(m, v, vnames, vabs, vrel)
             work[en >> 2, en & 3] = m + 1  # (en, ek: the empty slots the probes ended at)
             work[(size + ek) >> 2, (size + ek) & 3] = m + 1
             m += 1

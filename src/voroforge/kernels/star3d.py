@@ -21,6 +21,7 @@ from numba import njit
 
 from ..config import NJIT, STAR3D_WALL_BANDS, VORONOI3D_CUT_RTOL
 from .graph3d import remap_rings
+from .merge3d import keep_vertex
 from .predicates3d import wall_lift
 from .vertex3d import name_key, name_vertex, place
 
@@ -202,12 +203,7 @@ def merge_star(nv, F, nf, R, vnames, vabs, vrel, remap, vbits, table):
             remap[v] = same
             continue
         remap[v] = m
-        if m != v:
-            for q in range(5):
-                vnames[m, q] = vnames[v, q]
-            for q in range(3):
-                vabs[m, q] = vabs[v, q]
-                vrel[m, q] = vrel[v, q]
+        keep_vertex(m, v, vnames, vabs, vrel)
         table[h] = m
         m += 1
     nf2, nr = remap_rings(nf, F, R, remap)
