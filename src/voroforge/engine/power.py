@@ -504,12 +504,7 @@ def fit_weights(pts, targets, dom, w0, tol, max_iter, relax=None):
             w, d, areas = got
             err = float(np.max(np.abs(areas - targets) / targets))
             continue
-        norm = float(np.linalg.norm(r))
-        got = None
-        for step in _steps(lap, deg, r):
-            got = _line_search(partial(_areas, pts, dom), w, step, targets, floor, norm, alpha)
-            if got is not None:
-                break
+        got = _damped_step(partial(_areas, pts, dom), w, lap, deg, r, targets, floor, alpha)
         if got is None:
             break  # no progress possible at float precision
         w, d, areas, alpha = got
@@ -582,6 +577,16 @@ def _two_level(lap, r, shift):
         (stiff_lap + sp.diags(shift)).tocsc(), np.where(np.bincount(group)[group] > 1, rest, 0.0)
     )
     return None if fine is None else step + fine
+
+
+def _damped_step(masses, w, lap, deg, r, goal, floor, alpha):
+    """The first of :func:`_steps`' directions that :func:`_line_search` accepts, or None."""
+    norm = float(np.linalg.norm(r))
+    for step in _steps(lap, deg, r):
+        got = _line_search(masses, w, step, goal, floor, norm, alpha)
+        if got is not None:
+            return got
+    return None
 
 
 def _line_search(masses, w, step, targets, floor, norm, alpha=1.0):
@@ -720,12 +725,7 @@ def fit_breakout(pts, targets, dom, hull, w0, rounds, grow):
         lap, deg = _hessian(dh, pts)
         r = goal - mass
         floor = 0.5 * min(float(goal.min()), float(mass.min()))
-        norm = float(np.linalg.norm(r))
-        got = None
-        for step in _steps(lap, deg, r):
-            got = _line_search(masses, w, step, goal, floor, norm, alpha)
-            if got is not None:
-                break
+        got = _damped_step(masses, w, lap, deg, r, goal, floor, alpha)
         if got is None:
             return None
         w, (d, dh), mass, alpha = got
@@ -765,12 +765,7 @@ def _fit_relaxed(pts, targets, dom, w0, tol, max_iter, hull, eps):
         laph, degh = _hessian(dh, pts)
         lap = (1.0 - eps) * lap + eps * laph
         deg = (1.0 - eps) * deg + eps * degh
-        norm = float(np.linalg.norm(r))
-        got = None
-        for step in _steps(lap, deg, r):
-            got = _line_search(masses, w, step, targets, floor, norm, alpha)
-            if got is not None:
-                break
+        got = _damped_step(masses, w, lap, deg, r, targets, floor, alpha)
         if got is None:
             break
         w, (d, dh), mass, alpha = got
