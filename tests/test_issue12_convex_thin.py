@@ -1,4 +1,4 @@
-"""Thin ``vf.Convex`` hulls (issue 12, checker33 F1).
+"""Thin ``vf.Convex`` hulls and touching half-spaces (issue 12, checker33 F1, F2).
 
 F1: ``Convex(points=)`` of a disk 1e-9 thin (200 points, above the 1e-10 refusal) came out
 1.28e-5 above its exact hull: two top facets whose normals differed by 7.8e-13 were merged
@@ -8,10 +8,16 @@ normal, rounded, tilts its wall by an ulp. A thin hull now merges facets only wi
 of its thickness and gives each wall the double nearest its exact normal's direction
 (``engine/hullnormals.py``: ~1e-24 of tilt instead of 1e-16).
 
+F2: unit-cube rows plus ``[1, 1, 1, 3]``, which touches the cube at (1, 1, 1) only, made a
+face of three vertex records at that corner (the row divided by its norm and rounded passes
+an ulp inside the corner). A row that makes no face of the exact polytope of the rows as
+given is now left out of the template.
+
 The reference hull is Qhull's triangles, each checked in rationals to hold every point, its
 volume summed in rationals.
 """
 
+import itertools
 from fractions import Fraction
 
 import numpy as np
@@ -115,3 +121,54 @@ def test_close_normal():
         assert tilt <= Fraction(1, 2**140)  # 2**-70; rounding gives ~2**-53
     assert close_normal([3, 5, 7]).tolist() == [0.75, 1.25, 1.75]  # exact where it fits
     assert close_normal([0, 0, -5]).tolist() == [0, 0, -1]
+
+
+_CUBE = np.array(
+    [[-1, 0, 0, 0], [1, 0, 0, 1], [0, -1, 0, 0], [0, 1, 0, 1], [0, 0, -1, 0], [0, 0, 1, 1]], float
+)
+# rows touching the unit cube in a corner or an edge only; [1, 1, 1, 3] made a face
+_TOUCH = [[1, 1, 1, 3], [2, 2, 2, 6], [1, 2, 3, 6], [-1, 1, 1, 2], [1, 1, 0, 2], [4, 3, 0, 7]]
+_TOUCH += [[-1, 1, 7, 8], [5, 2, 0, 7], [-7, 3, 3, 6]]
+
+
+def _moved(H, off):
+    H = np.array(H, float)
+    H[:, 3] += H[:, :3] @ np.full(3, off)  # exact: small integers
+    return H
+
+
+def _same(d, ref):
+    assert np.array_equal(d.volumes, ref.volumes)
+    assert np.array_equal(d.vertices, ref.vertices)
+    assert len(np.unique(d.vertices, axis=0)) == len(d.vertices)  # each vertex once
+    assert len(d.faces) == len(ref.faces)
+    assert np.array_equal(d.faces.cells, ref.faces.cells)
+
+
+@pytest.mark.parametrize("off", [0.0, 5e5])
+def test_touching_rows_make_no_face(off):
+    p = np.random.default_rng(9).random((60, 3)) + off
+    box = vf.Convex(halfspaces=_moved(_CUBE, off))
+    ref = vf.voronoi3d(p, box)
+    one = vf.voronoi3d(p[:1], box)
+    for row in _TOUCH:
+        c = vf.Convex(halfspaces=_moved(np.vstack([_CUBE, [row]]), off))
+        t = c._template
+        assert len(t.TV) == 8 and len(t.TF) == 6 and c.volume == box.volume
+        assert sorted(map(tuple, t.TV.tolist())) == sorted(map(tuple, box._template.TV.tolist()))
+        _same(vf.voronoi3d(p, c), ref)
+        d = vf.voronoi3d(p[:1], c)  # the template itself: V 8, not 10
+        _same(d, one)
+        assert len(d.vertices) == 8
+        assert -7 not in d.cell(0).neighbors
+
+
+def test_octahedron_vertex_rows_and_a_real_cut():
+    octa = np.array([[*s, 1] for s in itertools.product((-1, 1), repeat=3)], float)
+    p = np.random.default_rng(3).random((80, 3)) * 0.6 - 0.3
+    ref = vf.voronoi3d(p, vf.Convex(halfspaces=octa))
+    for row in ([1, 0, 0, 1], [2, 1, 0, 2], [1, 0.5, 0.25, 1], [3, 1, 1, 3]):
+        _same(vf.voronoi3d(p, vf.Convex(halfspaces=np.vstack([octa, [row]]))), ref)
+    # a row past the corner by a hair still cuts it: the exact polytope's face
+    c = vf.Convex(halfspaces=np.vstack([_CUBE, [[1, 1, 1, 3 - 2.0**-50]]]))
+    assert -7 in c._template.TF[:, 0] and len(c._template.TV) == 10

@@ -212,7 +212,7 @@ class Convex:
                 return _local_rows(raw, norm, hs, o)
 
         self.halfspaces = hs
-        self._template = _convex_template(hs, box, local)
+        self._template = _convex_template(hs, box, local, None if points is not None else raw)
         if points is not None and self._template.float_cut and self._template.WP.shape[1] > 4:
             # far out, the volume of the hull's triangles about the origin (exact
             # differences): the template's float cut treats walls within 1e-12 of a vertex
@@ -515,14 +515,19 @@ def _ints(x) -> list[int]:
     return out
 
 
-def _convex_template(hs: np.ndarray, box: np.ndarray | None = None, local=None) -> Template:
+def _convex_template(
+    hs: np.ndarray, box: np.ndarray | None = None, local=None, raw=None
+) -> Template:
     """The template of the half-spaces ``hs``; ``box`` (2, 3): its bounds where known (a hull).
 
     Otherwise the bounds are linear programs (HiGHS: feasible to ~1e-7, so a slab thinner
     than that may not be bounded right, and one that looks flat is bounded again on scaled
     offsets; a hull's own points bound it exactly). ``local(o)``:
     the same half-spaces about the origin ``o`` (exact offsets), used when the solid lies
-    far from the origin (:func:`far_origin`).
+    far from the origin (:func:`far_origin`). ``raw``: the rows as the user gave them; a row
+    that makes no face of their exact polytope is left out of the template, whose rows are
+    rounded (``[1, 1, 1, 3]`` on the unit cube touches its corner; divided by its norm and
+    rounded it passes an ulp inside and cut a face of three vertices: checker33 F2).
     """
     if box is not None:
         lo, hi = box
@@ -547,7 +552,12 @@ def _convex_template(hs: np.ndarray, box: np.ndarray | None = None, local=None) 
     # far out: walls about the origin o near the solid, exactly (module docstring)
     rows = hs if o is None else local(o)
     at = np.zeros(3) if o is None else o
-    TV, TF, TR, vol = _exact_template(rows, lo - at, hi - at)
+    skip = None
+    if raw is not None:
+        _, RF, _, _ = _exact_template(raw, lo, hi)
+        skip = np.ones(k, bool)
+        skip[-1 - RF[:, 0]] = False  # every face is a row's: the box left none
+    TV, TF, TR, vol = _exact_template(rows, lo - at, hi - at, skip)
     if o is None:
         return Template(TV, TF, TR, hs.copy(), "convex", vol, np.array([TV.min(0), TV.max(0)]))
     WP = np.ascontiguousarray(np.column_stack([rows, np.tile(o, (k, 1))]))
@@ -673,7 +683,7 @@ class _Degenerate(ValueError):
     """The float cut of a template failed (``cut_template``): the exact polytope may not."""
 
 
-def _exact_template(rows, lo, hi):
+def _exact_template(rows, lo, hi, skip=None):
     """The exact polytope of ``rows`` (:mod:`engine.polytope3d`) found in the box ``lo..hi``.
 
     The box only has to hold the solid: its bounds come from a linear program good to ~1e-7,
@@ -685,7 +695,7 @@ def _exact_template(rows, lo, hi):
     k = len(rows)
     size = float((np.asarray(hi) - np.asarray(lo)).max())
     for grow in (0.01, 10.0, 1e4):
-        TV, TF, TR, vol = exact_polytope(rows, lo - grow * size, hi + grow * size)
+        TV, TF, TR, vol = exact_polytope(rows, lo - grow * size, hi + grow * size, skip)
         if not (TF[:, 0] < -k).any():
             return TV, TF, TR, vol
     raise ValueError("could not close the Convex container (its half-spaces leave it open)")

@@ -228,14 +228,16 @@ class _Cutter:
         return TV, np.array(TF, np.int64), np.array(TR, np.int64), vol
 
 
-def exact_polytope(rows: np.ndarray, lo, hi):
+def exact_polytope(rows: np.ndarray, lo, hi, skip=None):
     """The polytope of ``rows (k, 4)`` inside the box ``lo..hi``: ``(TV, TF, TR, volume)``.
 
     Faces carry ``-1 - w`` for row ``w``, and ``-1 - (k + b)`` for box wall ``b`` (0 x-min,
     1 x-max, ... as a box template) where the box still bounds the solid. Raises
-    ``ValueError`` when a row leaves no volume.
+    ``ValueError`` when a row leaves no volume. ``skip`` (k,) bool: rows left out (rows
+    that, as the user gave them, only touch the solid: ``containers._convex_template``).
     """
     cutter = _Cutter(np.asarray(rows, np.float64), lo, hi)
     for p in range(len(rows)):
-        cutter.cut(p)
+        if skip is None or not skip[p]:
+            cutter.cut(p)
     return cutter.result()
