@@ -454,7 +454,7 @@ def _build_cells(
     oring,
     scr,
     big=None,
-    star=None,
+    done=None,
     gone=None,
 ):
     """Build the cells ``cells (k,)`` (site numbers); ``wmax`` is ``W``'s largest weight.
@@ -471,9 +471,8 @@ def _build_cells(
     (:func:`.candidates3d.candidate_lists`; their centres named from all their sites), or
     None. A cell whose vertex has more owners than ``OWN`` holds is ``SLOW`` where the grid
     has a budget (``g[9] > 0``: the engine builds it from its list), else ``OVERFLOW``.
-    ``star``: the Delaunay star of every site (:func:`.star3d.star_cell`'s ``ST``, its last
-    entry ``[least]``): a cell whose candidate list (list mode) has at least ``least``
-    sites is read off its star where the container does not cut it, else None. ``gone``:
+    ``done``: ``(k,) bool``, cells already built (read off their Delaunay star by
+    :func:`_star_cells`, the caller's first pass), or empty/None. ``gone``:
     ``(ns,) bool``, sites whose cells are empty (not counted as owner sites), or empty/None.
     """
     k = cells.shape[0]
@@ -491,60 +490,13 @@ def _build_cells(
         most = max(most, BG[1][q + 1] - BG[1][q])
     bkeys = np.zeros(most + WP.shape[0] + 1, np.int64)
     budget = g.shape[0] > 9 and g[9] > 0.0
-    least = -1  # star: the shortest list read off its star (-1: none is)
-    if star is not None and g.shape[0] > 9 and g[9] < 0.0:
-        for c in range(k):
-            if start[cells[c] + 1] - start[cells[c]] >= star[7][0]:
-                least = star[7][0]
-        # its scratch (per polytope, per site), made only where a cell needs it
-        m = star[5].shape[0] if least >= 0 else 0
-        mark = (np.zeros(m, np.int64), np.zeros(m, np.int64), np.zeros(ns if m else 0, np.int64))
-        scaps = np.array([V.shape[0], F.shape[0], R.shape[0]], np.int64)
-        vbits = vabs.view(np.int64)
+    DN = np.zeros(0, np.bool_) if done is None else done
     for c in range(k):
+        if DN.shape[0] > 0 and DN[c]:
+            continue
         i = cells[c]
         X[2][0] = False
         Gu = G
-        if least >= 0 and start[i + 1] - start[i] >= least:
-            st, nv, nf, nr = star_cell(i, P, W, WP, star, F, R, NM, X[1], mark, scaps)
-            if st != DECLINE:
-                counts[c, 0] = nv
-                counts[c, 1] = nf
-                counts[c, 2] = nr
-                vol[c] = 0.0
-                cen[c, 0] = np.nan
-                cen[c, 1] = np.nan
-                cen[c, 2] = np.nan
-                rad2[c] = 0.0
-                if st != OK:
-                    status[c] = OVERFLOW  # its scratch: the engine's retry reads the counts
-                    continue
-                nv, nf, nr = merge_star(nv, F, nf, R, vnames, vabs, vrel, remap, vbits, T[:, 0])
-                rad2[c] = radius2(vrel, nv)
-                _finish(
-                    c,
-                    i,
-                    P,
-                    nv,
-                    nf,
-                    nr,
-                    F,
-                    R,
-                    vnames,
-                    vabs,
-                    vrel,
-                    caps,
-                    status,
-                    counts,
-                    vol,
-                    cen,
-                    rad2,
-                    osite,
-                    ovabs,
-                    ofaces,
-                    oring,
-                )
-                continue
         while True:
             st, nv, nf, nt, r2 = one_cell(
                 i,
@@ -652,6 +604,94 @@ def _build_cells(
         )
 
 
+@njit(**NJIT)
+def _star_cells(
+    cells,
+    P,
+    W,
+    WP,
+    start,
+    caps,
+    status,
+    counts,
+    vol,
+    cen,
+    rad2,
+    osite,
+    ovabs,
+    ofaces,
+    oring,
+    scr,
+    star,
+    done,
+):
+    """The cells of long candidate lists read off their Delaunay stars (list mode, first).
+
+    ``star``: every site's Delaunay star (:func:`.star3d.star_cell`'s ``ST``, its last entry
+    ``[least]``): a cell whose list has at least ``least`` sites is read off its star where
+    the container does not cut it; its outputs are written as :func:`_build_cells` writes
+    them and ``done[c]`` set (the cut then skips it). A kernel of its own, so that only a
+    process that builds such cells compiles it (star_cell and merge_star: ~10 of the 3D
+    warm-up's 189 CPU s when this was a branch of :func:`_build_cells`, in every process).
+    """
+    k = cells.shape[0]
+    ns = P.shape[0]
+    C, _, _, _, _, _, _, _, NM, _, _, _, X = scr
+    vnames, vabs, vrel, remap = NM[0], NM[1], NM[2], NM[3]
+    V, F, R, _, _, _, T = C
+    least = star[7][0]
+    # its scratch (per polytope, per site)
+    m = star[5].shape[0]
+    mark = (np.zeros(m, np.int64), np.zeros(m, np.int64), np.zeros(ns, np.int64))
+    scaps = np.array([V.shape[0], F.shape[0], R.shape[0]], np.int64)
+    vbits = vabs.view(np.int64)
+    for c in range(k):
+        i = cells[c]
+        if start[i + 1] - start[i] < least:
+            continue
+        X[2][0] = False
+        st, nv, nf, nr = star_cell(i, P, W, WP, star, F, R, NM, X[1], mark, scaps)
+        if st == DECLINE:
+            continue  # cut as any other cell
+        done[c] = True
+        counts[c, 0] = nv
+        counts[c, 1] = nf
+        counts[c, 2] = nr
+        vol[c] = 0.0
+        cen[c, 0] = np.nan
+        cen[c, 1] = np.nan
+        cen[c, 2] = np.nan
+        rad2[c] = 0.0
+        if st != OK:
+            status[c] = OVERFLOW  # its scratch: the engine's retry reads the counts
+            continue
+        nv, nf, nr = merge_star(nv, F, nf, R, vnames, vabs, vrel, remap, vbits, T[:, 0])
+        rad2[c] = radius2(vrel, nv)
+        _finish(
+            c,
+            i,
+            P,
+            nv,
+            nf,
+            nr,
+            F,
+            R,
+            vnames,
+            vabs,
+            vrel,
+            caps,
+            status,
+            counts,
+            vol,
+            cen,
+            rad2,
+            osite,
+            ovabs,
+            ofaces,
+            oring,
+        )
+
+
 @njit(**{**NJIT_NO_NRT, "inline": "always"})
 def _finish(
     c,
@@ -715,33 +755,37 @@ def _finish(
             t += 1
 
 
-#: ``build_cells``' stand-ins for None: no big polytopes, no Delaunay stars (the lists'
-#: types; a least list length that no cell reaches)
+#: ``build_cells``' stand-ins for None: no big polytopes, no cells built before the cut
 _NO_BIG = (np.full(0, -1, np.int64), np.zeros(1, np.int64), np.zeros(0, np.int64))
-_NO_STAR = (
-    *(np.zeros(1, np.int64), np.zeros(0, np.int64)),
-    *(np.zeros((0, 4), np.int64), np.zeros((0, 4), np.int64)),
-    *(np.zeros(0, np.int64), np.zeros(1, np.int64), np.zeros(0, np.int64)),
-    np.array([2**62], np.int64),
-)
+_NO_DONE = np.zeros(0, np.bool_)
 _NO_GONE = np.zeros(0, np.bool_)
 
 
 class _OneSignature:
-    """:func:`_build_cells` with ``big``, ``star`` and ``gone`` always arrays: one signature.
+    """:func:`_build_cells` with ``big``, ``done`` and ``gone`` always arrays: one signature.
 
-    None is passed as :data:`_NO_BIG` / :data:`_NO_STAR` / an empty ``gone`` (what the kernel
-    made of None; a star no cell is read off), so the grid's cells, the lists' and a big
-    vertex's ``(big, None)`` share one compile of the kernel instead of three (~9 s each on
-    a cold cache). ``signatures`` is the kernel's.
+    None is passed as :data:`_NO_BIG` / an empty ``done`` / an empty ``gone`` (what the
+    kernel made of None), so the grid's cells, the lists' and a big vertex's ``(big,
+    None)`` share one compile of the kernel instead of three (~9 s each on a cold cache).
+    A ``star`` (list mode, :mod:`.lists3d`) is read by :func:`_star_cells` first, only where
+    a cell's list is long enough for it, so its compile is paid only where it is used.
+    ``signatures`` is the kernel's.
     """
 
     def __call__(self, *args):
         fixed, opt = args[:26], (*args[26:], None, None, None)
         big, star, gone = opt[:3]
         big = _NO_BIG if big is None else big
-        star = _NO_STAR if star is None else star
-        return _build_cells(*fixed, big, star, _NO_GONE if gone is None else gone)
+        done = _NO_DONE
+        cells, start, g = fixed[0], fixed[3], fixed[7]
+        if star is not None and len(g) > 9 and g[9] < 0.0 and len(cells):
+            least = star[7][0]
+            if (start[cells + 1] - start[cells] >= least).any():
+                done = np.zeros(len(cells), np.bool_)
+                W, WP, caps = fixed[2], fixed[13], fixed[14]
+                out = fixed[16:25]  # status, counts, vol, cen, rad2, osite, ovabs, ofaces, oring
+                _star_cells(cells, fixed[1], W, WP, start, caps, *out, fixed[25], star, done)
+        return _build_cells(*fixed, big, done, _NO_GONE if gone is None else gone)
 
     @property
     def signatures(self):
