@@ -20,6 +20,7 @@ from ..config import AREA_FRAME_EXP
 from ..kernels.moments import area_centroid
 from .csr import csr_from_pairs
 from .domain import Domain
+from .edgeowners import reown
 from .threads import serial_below
 
 
@@ -256,8 +257,16 @@ class Diagram:
         Computed on first use (most callers of the engine read only the cells), then kept.
         """
         edges = self._edges
-        if isinstance(edges, LazyEdges):
-            edges = self._edges = edges.resolve()
+        if isinstance(edges, LazyEdges) or not getattr(self, "_owned", False):
+            if isinstance(edges, LazyEdges):
+                edges = edges.resolve()
+            mended = reown(edges, self._buffers, len(self.sites))
+            if mended is not edges:
+                for arr in mended:
+                    arr.setflags(write=False)
+                edges = Edges(*mended)
+            self._edges = edges
+            self._owned = True  # (a pair naming an empty cell mended: engine.edgeowners)
         return edges
 
     @cached_property
