@@ -167,13 +167,15 @@ _TINY = 1e-300
 
 
 @njit(**NJIT_NO_NRT)
-def resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X):
+def resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X, VL, nvl):
     """Decide the values within ``tol`` of 0 exactly, on the vertices' owners.
 
     The owners are the planes of the vertex's faces (:func:`_graph_side`,
     :func:`_ring_side`): 0 when the vertex is on ``j``'s plane (in a graph it is flagged: it
     may have more owners than faces), else the float value if its sign is right, or a tiny
-    value of the right sign. Returns the new largest value.
+    value of the right sign. Returns the new largest value. With ``nvl >= 0`` only the
+    vertices ``VL[:nvl, 1]`` are looked at (:mod:`kernels.climb3d`: every vertex within
+    the band is among them; each decision is exact, so their order does not matter).
     """
     smax = -np.inf
     graph = G[0].shape[0] > 0
@@ -182,7 +184,8 @@ def resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X):
     vcap = XF.shape[0] - 1
     lifted = False  # j's plane in the cell's frame (frame_lift), once a vertex needs it
     K = kerr = rh0 = rh1 = rh2 = rl0 = rl1 = rl2 = 0.0
-    for v in range(nv):
+    for q in range(nv if nvl < 0 else nvl):
+        v = q if nvl < 0 else VL[q, 1]
         s = S[v]
         if abs(s) <= tol:
             if graph:

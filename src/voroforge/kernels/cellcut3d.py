@@ -30,7 +30,8 @@ from ..config import (
 )
 from ..config import CELLCUT3D_OWN_ENTRIES as OWN_ENTRIES
 from .band3d import offset_cache, owner_key, resolve  # noqa: F401 (re-exported: cells3d)
-from .graph3d import GCUT_DONE, GCUT_EMPTY, cut_close, cut_open, to_rings
+from .climb3d import FULL, LOCAL_FROM, MISS, list_removed, plane_local
+from .graph3d import GCUT_DONE, cut_close, cut_listed, list_above, to_rings
 from .grid3d import bucket3d, shell_buckets_in, shell_gap
 from .polyhedron import CUT_DONE, CUT_EMPTY, CUT_OVERFLOW, cut
 from .reach3d import gather_heavy, heavy_header, local_stop, shell_hit, shell_range
@@ -148,6 +149,8 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
     # every cut (the largest |v|^2 left, or r2m if larger, as each cut found it before)
     stale = False
     r2m = 0.0
+    hint = 0  # the climb's start (kernels.climb3d): a point of the last cut's cap
+    hw = 0  # work[:hw, (0, 3)], the climb's marks, are clear (bin_group writes work)
     if BIN_SORT_FROM <= m < min(S.shape[0], work.shape[0]):
         bin_group(m, cand, cd2, S, work)
     for a in range(1, m):  # insertion sort (stable): batches are small, or grouped
@@ -170,8 +173,19 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
         h = 0.5 * (d2 + (wi - SW[t]))
         if h > 0.0 and h * h > rmax2 * d2 * (1.0 + VORONOI3D_STOP_RTOL):
             continue  # the plane passes beyond every vertex
-        smax, low = _values(V, nv, dx, dy, dz, h, S)
         tol = VORONOI3D_CUT_RTOL * (np.sqrt(d2 * rmax2) + abs(h))
+        mode = FULL
+        if graph and nv >= LOCAL_FROM:  # the values near and above the plane only, if decided
+            while hw < nv:
+                work[hw, 0] = 0
+                work[hw, 3] = 0
+                hw += 1
+            mode, smax, low, nvl = plane_local(V, nv, G[0], G[1], S, work, dx, dy, dz, h, tol, hint)
+            if mode == MISS:
+                continue  # every vertex lies beyond the band below the plane
+        if mode == FULL:
+            nvl = -1
+            smax, low = _values(V, nv, dx, dy, dz, h, S)
         if stale and low <= tol:  # the band test needs the radius (and so may the skip)
             stale = False
             rmax2 = max(radius2(V, nv), r2m)
@@ -181,20 +195,35 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
         near = low <= tol
         if near:
             X[2][0] = True
-            smax = resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X)
+            smax = resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X, work, nvl)
         if smax == 0.0 or smax > 0.0:  # it cuts or touches: a possible owner of vertices
             if nt >= T.shape[0]:
                 return OVERFLOW, 0, 0, 0, 0.0
             T[nt, 0] = j
             nt += 1
+        nup = -1
+        listed = True
+        down = True
+        if smax > 0.0 and nvl >= 0:
+            nup, down = list_removed(nv, G[0], S, work, nvl, G[4])
+        if (smax == 0.0 and near or smax > 0.0 and nup < 0) and nvl >= 0:
+            _values(V, nv, dx, dy, dz, h, S)  # the tie test and the listing read every value
+            nvl = -1  # (a variable: a literal argument would compile resolve once more)
+            if near:
+                smax = resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X, work, nvl)
         if smax <= 0.0:
             if smax == 0.0 and near:
                 retie(i, j, nv, nf, S, C, G, P)
             continue
         if graph:
-            st, nv2, w, nl = cut_open(V, nv, G[0], G[1], G[2], G[3], G[6], S, G[4], j)
-            if st == GCUT_EMPTY:
+            if nup < 0:  # (cut_open's first pass)
+                nup, down, listed = list_above(nv, S, G[4])
+            if not down:
                 return EMPTY, 0, 0, 0, 0.0
+            st, nv2, w, nl = cut_listed(
+                V, nv, G[0], G[1], G[2], G[3], G[6], S, G[4], j, nup, listed
+            )
+            hint = G[4][0, 2]
             if st != GCUT_DONE:  # out of vertex rows (nv2 is all of them): more, not rings
                 return (OVERFLOW if nv2 >= V.shape[0] else BROKEN), 0, 0, 0, 0.0
             r2m = resettle(i, j, V, G[4], w, G[0], G[3], S, P, W, WP, X[1])

@@ -207,8 +207,21 @@ def cut_open(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
     numbers :func:`cut_close` would move them to (:func:`_place_cap`), ``nv`` the count
     left and ``nlist`` -2. Else ``nv`` is :func:`cut`'s.
     """
-    vcap = V.shape[0]
-    D = ED.shape[1]
+    nup, down, listed = list_above(nv, S, CP)
+    if nup == 0:
+        return GCUT_NONE, nv, 0, -1
+    if not down:
+        return GCUT_EMPTY, 0, 0, -1
+    return cut_listed(V, nv, DEG, ED, BK, LB, FL, S, CP, label, nup, listed)
+
+
+@njit(**{**NJIT, "inline": "always"})
+def list_above(nv, S, CP):
+    """:func:`cut_open`'s first pass: the vertices above the plane and whether one is below.
+
+    Returns ``(nup, down, listed)``; listed: they are in ``CP``'s column 2 from its last row
+    up, ascending (:func:`cut_listed`).
+    """
     ncap = CP.shape[0]
     # the vertices above (removed), in order, listed branch-free from CP's last row up in
     # column 2 (q-th at row ncap - 1 - q; the cap's trace fills rows from 0), and whether
@@ -226,10 +239,20 @@ def cut_open(V, nv, DEG, ED, BK, LB, FL, S, CP, label):
         for v in range(nv):
             nup += S[v] > 0.0
             down |= S[v] < 0.0
-    if nup == 0:
-        return GCUT_NONE, nv, 0, -1
-    if not down:
-        return GCUT_EMPTY, 0, 0, -1
+    return nup, down, listed
+
+
+@njit(**{**NJIT, "inline": "always"})
+def cut_listed(V, nv, DEG, ED, BK, LB, FL, S, CP, label, nup, listed):
+    """:func:`cut_open` once the ``nup`` removed vertices are known (at least one kept).
+
+    ``listed``: they are in ``CP``'s column 2 from its last row up, ascending (else found by
+    a scan of ``S``). Only the values of the removed vertices and of their neighbours are
+    read (:mod:`kernels.climb3d` evaluates no others).
+    """
+    vcap = V.shape[0]
+    D = ED.shape[1]
+    ncap = CP.shape[0]
     # the boundary edges v -> u (v removed, u kept): one to start from, and their count
     e0v = -1
     e0k = -1
@@ -497,9 +520,11 @@ def cut_close(V, nv, DEG, ED, BK, LB, FL, S, CP, nlist, radius=True):
     listed = nlist >= 0
     nup = nlist
     # drop the removed vertices (listed: in order; else found by a scan of S, in order):
-    # fill each hole from the top
+    # fill each hole from the top (listed: the removed ones there skipped by the list, so
+    # that the values of vertices not listed are not read)
     top = nv
     q = 0
+    qt = nup - 1  # (listed: the highest removed vertex at or below top)
     v = 0
     while True:
         if listed:
@@ -513,8 +538,16 @@ def cut_close(V, nv, DEG, ED, BK, LB, FL, S, CP, nlist, radius=True):
         if v >= top:
             break
         top -= 1
-        while top > v and S[top] > 0.0:
-            top -= 1
+        if listed:
+            while top > v:
+                while qt >= 0 and CP[ncap - 1 - qt, 2] > top:
+                    qt -= 1
+                if qt < 0 or CP[ncap - 1 - qt, 2] != top:
+                    break
+                top -= 1
+        else:
+            while top > v and S[top] > 0.0:
+                top -= 1
         if top > v:
             _move(V, DEG, ED, BK, LB, FL, top, v)
             S[v] = S[top]

@@ -1,0 +1,229 @@
+"""A cutting plane's values on the part of a 3D cell near it: a climb, then a flood (voro++'s idea).
+
+:func:`.cellcut3d._cut_batch` evaluated every vertex of the cell for each candidate plane
+(``_values``), and the graph cut listed the removed vertices by another full pass: a
+many-faced cell (a helix's, 95-380 faces) paid its hundreds of vertices for each of its
+~800 candidates, where voro++'s ``cell::plane`` pays for what the plane removes. Here
+(:func:`plane_local`) the plane's values are found from a start vertex by steepest ascent
+over the cell's edges, then:
+
+* where the top reached (with its plateau: the vertices within ``PLATEAU_BAND`` bands below
+  it, connected to it, none of whose neighbours lies higher) lies more than
+  ``NOISE_BANDS`` bands below the plane, no vertex lies within the band or above: a convex
+  cell's local top is its top, and rounding (a degenerate vertex rounded into a cluster of
+  vertices a few ulps apart, each value good to far less than a band, as the band itself
+  assumes) can hide a rising edge only within the plateau; the candidate is passed over,
+  as the full pass would pass it over;
+* else every vertex within ``FLOOD_BAND`` bands below the plane or above it is reached by
+  a flood from there (the vertices above any level of a convex cell are connected, and
+  each has a rising path to the top), and only those values are written; the removed
+  vertices are listed from them (:func:`list_removed`) for :func:`.graph3d.cut_listed`.
+
+Anything else (a plateau of more than ``PLATEAU_MOST`` vertices, values that rise for
+ever) is reported ``FULL``: the caller evaluates every vertex as before. Each value is the
+same expression as the full pass's, so every decision, and every output bit, is the full
+pass's.
+
+Scratch: ``work[:, 0]`` marks the vertices evaluated for the current plane and
+``work[:, 3]`` those of the plateau (both zero outside a call: the caller clears rows it
+has not cleared since ``work`` was last used for something else), ``work[:, 1]`` lists
+the evaluated vertices, ``work[:, 2]`` the plateau's.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ..config import NJIT
+
+NJIT_INLINE = {**NJIT, "inline": "always"}
+#: called out of line (a cell's big loop stays small to compile); allocates nothing, so no
+#: reference counting (see kernels.cellcut3d)
+NJIT_NO_NRT = {**NJIT, "_nrt": False}
+
+# -> config
+#: the flood reaches every vertex within this many times the filter's band below the
+#: plane (rounding moves a vertex's value by far less than one band, ``VORONOI3D_CUT_RTOL``)
+FLOOD_BAND = 1024.0
+# -> config
+#: the top vertex's plateau: the vertices within this many bands below it, connected to it
+#: (a degenerate vertex rounded into a cluster), none of whose neighbours may lie higher
+PLATEAU_BAND = 16.0
+# -> config
+#: the most vertices a plateau may hold (else the cell's values are all evaluated)
+PLATEAU_MOST = 64
+# -> config
+#: a vertex's value is good to this many bands (the band assumes far less): a plateau top
+#: lower than that below the band passes the plane over
+NOISE_BANDS = 4.0
+# -> config
+#: vertices sampled for the climb's start (voro++ tests about sqrt(n) / 4)
+CLIMB_SAMPLES = 8
+# -> config
+#: cells of fewer vertices are evaluated whole (a uniform cell's ~26: the pass is cheaper)
+LOCAL_FROM = 64
+
+MISS = 0  # no vertex within the band of the plane or above it: pass the plane over
+LOCAL = 1  # the values near and above the plane are written, listed in work[:nvis, 1]
+FULL = 2  # not decided here: evaluate every vertex
+#: the removed vertices are sorted by insertion up to this many, else marked and read off
+SORT_MOST = 48
+
+
+@njit(**NJIT_INLINE)
+def _value(V, v, nx, ny, nz, h):
+    """The plane's value at vertex ``v``: the full pass's expression, bit for bit."""
+    return nx * V[v, 0] + ny * V[v, 1] + nz * V[v, 2] - h
+
+
+@njit(**NJIT_INLINE)
+def _visit(V, u, nx, ny, nz, h, S, work, nvis):
+    """Evaluate vertex ``u`` once for this plane (marked, listed). Returns the list's length."""
+    if work[u, 0] == 0:
+        work[u, 0] = 1
+        S[u] = _value(V, u, nx, ny, nz, h)
+        work[nvis, 1] = u
+        nvis += 1
+    return nvis
+
+
+@njit(**NJIT_NO_NRT)
+def plane_local(V, nv, DEG, ED, S, work, nx, ny, nz, h, tol, hint):
+    """The plane ``n . x = h``'s values near and above it on the graph cell (see the module).
+
+    Returns ``(mode, smax, low, nvis)``: ``MISS``, ``LOCAL`` (``smax``/``low``: the largest
+    value and the least ``|value|`` among the ``nvis`` vertices evaluated, listed in
+    ``work[:nvis, 1]``; every vertex within the band or above is among them), or ``FULL``.
+    Marks are cleared again before it returns.
+    """
+    nvis = 0
+    best = hint if 0 <= hint < nv else 0
+    nvis = _visit(V, best, nx, ny, nz, h, S, work, nvis)
+    step = nv // CLIMB_SAMPLES
+    if step > 0:
+        for k in range(CLIMB_SAMPLES):
+            v = k * step
+            nvis = _visit(V, v, nx, ny, nz, h, S, work, nvis)
+            if S[v] > S[best]:
+                best = v
+    tau = PLATEAU_BAND * tol
+    mode = LOCAL
+    steps = 0
+    while mode == LOCAL:
+        # steepest ascent over the edges to a vertex no neighbour of which lies higher
+        while True:
+            sb = S[best]
+            nb = -1
+            for k in range(DEG[best]):
+                u = ED[best, k]
+                nvis = _visit(V, u, nx, ny, nz, h, S, work, nvis)
+                if S[u] > sb:
+                    sb = S[u]
+                    nb = u
+            if nb < 0:
+                break
+            best = nb
+            steps += 1
+        if steps > nv:  # (values that rise for ever: not a convex cell's)
+            mode = FULL
+            break
+        # the top's plateau (vertices within tau below it, connected to it: rounding's
+        # clusters) must have no neighbour above the top, else the climb goes on from there
+        top = S[best]
+        work[0, 2] = best
+        work[best, 3] = 1
+        npl = 1
+        q = 0
+        higher = -1
+        while q < npl and higher < 0:
+            v = work[q, 2]
+            q += 1
+            for k in range(DEG[v]):
+                u = ED[v, k]
+                nvis = _visit(V, u, nx, ny, nz, h, S, work, nvis)
+                if S[u] > top:
+                    higher = u
+                    break
+                if S[u] >= top - tau and work[u, 3] == 0:
+                    if npl == PLATEAU_MOST:
+                        mode = FULL
+                        higher = u
+                        break
+                    work[u, 3] = 1
+                    work[npl, 2] = u
+                    npl += 1
+        for q in range(npl):
+            work[work[q, 2], 3] = 0
+        if higher < 0:
+            break
+        best = higher
+        steps += 1
+    smax = -np.inf
+    low = np.inf
+    if mode == LOCAL and S[best] < -NOISE_BANDS * tol:
+        mode = MISS  # every vertex lies within rounding of the top or below it
+    elif mode == LOCAL:
+        # the flood: every vertex evaluated that lies within the margin below the plane, or
+        # above it, has each of its neighbours evaluated
+        margin = FLOOD_BAND * tol
+        q = 0
+        while q < nvis:
+            v = work[q, 1]
+            q += 1
+            if S[v] > -margin:
+                for k in range(DEG[v]):
+                    nvis = _visit(V, ED[v, k], nx, ny, nz, h, S, work, nvis)
+        for q in range(nvis):
+            s = S[work[q, 1]]
+            a = abs(s)
+            if a < low:
+                low = a
+            if s > smax:
+                smax = s
+    for q in range(nvis):
+        work[work[q, 1], 0] = 0
+    return mode, smax, low, nvis
+
+
+@njit(**NJIT_INLINE)
+def list_removed(nv, DEG, S, work, nvis, CP):
+    """The vertices above the plane among the ``nvis`` listed, ascending, as ``cut_open`` lists.
+
+    In ``CP``'s column 2 from its last row up (:func:`.graph3d.cut_open`'s layout).
+
+    Returns ``(nup, down)``: their count, and whether a vertex lies below (one not
+    evaluated does: it lies below the margin); ``nup`` is -1 where the list and the cut's
+    trace (at most one row more than the removed vertices' edges) might not fit in ``CP``.
+    """
+    ncap = CP.shape[0]
+    nup = 0
+    down = nvis < nv
+    room = 0
+    for q in range(nvis):
+        v = work[q, 1]
+        s = S[v]
+        down |= s < 0.0
+        if s > 0.0:
+            room += DEG[v]
+            if nup < SORT_MOST:  # insertion into the ascending list
+                r = nup
+                while r > 0 and CP[ncap - r, 2] > v:
+                    CP[ncap - 1 - r, 2] = CP[ncap - r, 2]
+                    r -= 1
+                CP[ncap - 1 - r, 2] = v
+            nup += 1
+    if nup + room + 1 >= ncap:
+        return -1, down
+    if nup > SORT_MOST:  # many: marked, then read off in order
+        for q in range(nvis):
+            v = work[q, 1]
+            if S[v] > 0.0:
+                work[v, 0] = 1
+        r = 0
+        for v in range(nv):
+            if work[v, 0]:
+                work[v, 0] = 0
+                CP[ncap - 1 - r, 2] = v
+                r += 1
+    return nup, down
