@@ -31,7 +31,6 @@ import shapely
 from ..config import (
     PERIODIC_CAP_PERIODS,
     PERIODIC_PROOF_RTOL,
-    PERIODIC_SHORTFALL_SLACK,
     PERIODIC_SLIVER_MAX_SIDE,
     PERIODIC_SLIVER_ULPS,
 )
@@ -39,7 +38,7 @@ from .assemble import from_shapely
 from .diagram import Diagram, Edges, buffers, frame_exponent
 from .domain import Domain, make_domain
 from .inputs import as_points, working_frame
-from .periodic_chord import chord_clear
+from .periodic_chord import chord_clear, shortfall
 from .periodic_frame import cells_to_user_frame, corner_frame, to_local, two_sum_error
 from .periodic_ties import tie_images
 from .planar import build
@@ -47,6 +46,8 @@ from .planar import build
 #: Initial margin, in typical cell diameters ``sqrt(area / n)``.
 _MARGIN_CELLS = 3.0
 _MAX_TRIES = 30
+# -> config: the sites whose copies a margin's proof may take to the caps (a site off a line)
+PERIODIC_EXTRA_SITES = 64
 
 
 def _tile_of(boundary) -> Domain:
@@ -83,8 +84,12 @@ def wrap_points(points: np.ndarray, box) -> np.ndarray:
     return np.where((points >= lo) & (points < top), points, out)
 
 
-def _images(sites: np.ndarray, box, margin):
+def _images(sites: np.ndarray, box, margin, extra=None):
     """Every copy of the sites inside the box grown by ``margin = (mx, my)``, source-major.
+
+    ``extra = (mask, caps)``: the sites ``mask`` also have every copy inside the box grown
+    by ``caps`` (a site off a line whose copies cut the line's cells from afar; see
+    :func:`.periodic_chord.shortfall`).
 
     Returns ``(ext (N, 2), source (N,) int64, shift (N, 2) int64, exact)`` ordered by
     source, then by shift (``exact``: every copy is its site shifted by whole box sizes
@@ -99,8 +104,9 @@ def _images(sites: np.ndarray, box, margin):
     mx, my = margin
     w = x1 - x0
     h = y1 - y0
-    ax = int(np.ceil(mx / w))
-    ay = int(np.ceil(my / h))
+    wide = extra is not None and extra[0].any()
+    ax = int(np.ceil(max(mx, extra[1][0] if wide else 0.0) / w))
+    ay = int(np.ceil(max(my, extra[1][1] if wide else 0.0) / h))
     n = len(sites)
     idx = np.arange(n)
     ext = []
@@ -119,6 +125,15 @@ def _images(sites: np.ndarray, box, margin):
             )
             if a == 0 and b == 0:
                 keep[:] = True
+            elif wide:
+                cx, cy = extra[1]
+                keep |= (
+                    extra[0]
+                    & (img[:, 0] >= x0 - cx)
+                    & (img[:, 0] <= x1 + cx)
+                    & (img[:, 1] >= y0 - cy)
+                    & (img[:, 1] <= y1 + cy)
+                )
             if keep.any() and exact and (a or b):
                 exact = Fraction(t[0]) == a * Fraction(w) and Fraction(t[1]) == b * Fraction(h)
                 exact = exact and not two_sum_error(sites[keep], t).any()
@@ -188,7 +203,7 @@ def _caps(box):
     return (PERIODIC_CAP_PERIODS * (x1 - x0) + slack, PERIODIC_CAP_PERIODS * (y1 - y0) + slack)
 
 
-def _proved(d: Diagram, cells: np.ndarray, box, margin, sites=None) -> bool:
+def _proved(d: Diagram, cells: np.ndarray, box, margin, sites=None, extra=None) -> bool:
     """True when no copy left out of ``d`` can be nearer a vertex of ``cells`` than its site.
 
     A vertex ``v`` of cell ``p`` has every copy in ``d`` at least ``r = |v - p|`` away. A copy
@@ -206,6 +221,8 @@ def _proved(d: Diagram, cells: np.ndarray, box, margin, sites=None) -> bool:
       (:func:`.periodic_chord.chord_clear`; or, where a few sites' coordinates fall in it,
       their copies past the margin are measured), so ``q`` is ``>= r`` away.
 
+    ``extra = (mask, caps)``: those sites' copies are in ``d`` to the caps, and the chord
+    test measures theirs past the caps (where the bracket test holds for every vertex).
     Applying this to ``x`` then to ``y`` ends at a copy in ``d``, so ``|v - q| >= r``. The
     bracket test makes the margin of a thin box's short side a period or two, however long
     the cells' empty disks are.
@@ -236,60 +253,10 @@ def _proved(d: Diagram, cells: np.ndarray, box, margin, sites=None) -> bool:
         room = room / side
         good = bracket | (room * room >= r2)
         if sites is not None and not good.all():
-            good |= chord_clear(v, r2, room, sites, box, k, m, side, slack, ~good)
+            ek = None if extra is None else (extra[0], extra[1][k])
+            good |= chord_clear(v, r2, room, sites, box, k, m, side, slack, ~good, ek)
         ok &= good
     return bool(ok.all())
-
-
-def _shortfall(d: Diagram, cells, box, margin, sites):
-    """Per axis, the margin :func:`_proved`'s disk test asked for, or 0.0 where it passed.
-
-    A vertex that fails on an axis asks for its radius past its room there, added to the
-    axis's margin: an estimate (more copies move the vertices), not a proof. A vertex the
-    chord test clears on an axis asks nothing there (sites on a line and one off it: the
-    first margins hold only the line, the off site's cell reaches across the box and asked
-    for 1.4 periods along the line, 5.9 n copies where 3 n are proved).
-    """
-    if isinstance(cells, tuple):
-        v, owner = _piece_vertices(d, cells)
-    else:
-        v, owner = _vertices(d, cells)
-    x0, y0, x1, y1 = box
-    side = max(x1 - x0, y1 - y0)
-    diff = (v - d.sites[owner]) / side
-    r = np.sqrt(diff[:, 0] * diff[:, 0] + diff[:, 1] * diff[:, 1]) * (1.0 + PERIODIC_PROOF_RTOL)
-    slack = _rounding(box)
-    # a vertex on the grown box's side is where a cell was cut off, not a vertex: it asks
-    # for that axis only (sites on one line: their cells end there until the copies of the
-    # line beside it are in, and asked for half a period along the line too)
-    edge = np.column_stack(
-        [
-            (v[:, k] <= a - m + slack) | (v[:, k] >= b + m - slack)
-            for k, (a, b, m) in enumerate(((x0, x1, margin[0]), (y0, y1, margin[1])))
-        ]
-    )
-    bads, rooms = [], []
-    for k, (a, b, m) in enumerate(((x0, x1, margin[0]), (y0, y1, margin[1]))):
-        room = np.minimum(v[:, k] - (a - m), (b + m) - v[:, k])
-        bad = (room < (b - a) + slack) & (room / side < r) & ~edge[:, 1 - k]
-        if bad.any():
-            rs = np.maximum(room, 0.0) / side
-            bad &= ~chord_clear(v, r * r, rs, sites, box, k, m, side, slack, bad)
-        bads.append(bad)
-        rooms.append(room)
-    if edge.any():
-        # cells cut off by the grown box: the copies past that side are missing, and a vertex
-        # failing on both axes may be one they move (a site off a line: the first margins
-        # hold only the line, and the line's cells beside the off site's asked for 1.4
-        # periods along the line, 5.9 n copies where the next try proves 3 n): it waits
-        both = bads[0] & bads[1]
-        bads = [bad & ~both for bad in bads]
-    out = []
-    for room, bad, m in zip(rooms, bads, margin, strict=True):
-        bad = bad | (room < 0)
-        need = (r[bad] - np.maximum(room[bad], 0.0) / side).max() if bad.any() else 0.0
-        out.append(float(m + PERIODIC_SHORTFALL_SLACK * need * side) if bad.any() else 0.0)
-    return out
 
 
 def _vertices(d: Diagram, cells: np.ndarray):
@@ -695,9 +662,11 @@ def _periodic(points, tile, algorithm: str, wrap: bool, may_move: bool) -> Diagr
         return d
     mx, my = _margins(box, n)
     cx, cy = _caps(box)
+    extra = (np.zeros(n, dtype=bool), (cx, cy))  # sites whose copies go to the caps
     for _ in range(_MAX_TRIES):
-        ext, source, shift, exact = _images(pts, box, (mx, my))
-        one = exact and _one_grid(x0 - mx, x1 + mx) and _one_grid(y0 - my, y1 + my)
+        ext, source, shift, exact = _images(pts, box, (mx, my), extra)
+        ex, ey = (max(mx, cx), max(my, cy)) if extra[0].any() else (mx, my)
+        one = exact and _one_grid(x0 - ex, x1 + ex) and _one_grid(y0 - ey, y1 + ey)
         if may_move and not (one and not _odd_period(box)):
             # the copies or their vertices are rounded on two grids: a vertex and its image
             # by a box shift are not exact shifts of each other; or the box is an odd
@@ -725,11 +694,20 @@ def _periodic(points, tile, algorithm: str, wrap: bool, may_move: bool) -> Diagr
             owners = pieces
         else:
             owners = orig[d.duplicate_of[orig] < 0]
-        if _proved(d, owners, box, (mx, my), pts):
+        if _proved(d, owners, box, (mx, my), pts, extra):
             break
         if mx >= cx and my >= cy:  # pragma: no cover - the bracket test passes at the caps
             raise RuntimeError("periodic diagram: could not prove the margin")
-        grow_x, grow_y = _shortfall(d, owners, box, (mx, my), pts)
+        v, owner = _piece_vertices(d, owners) if wrap else _vertices(d, owners)
+        most = PERIODIC_EXTRA_SITES - int(extra[0].sum())
+        (grow_x, grow_y), asked = shortfall(
+            v, d.sites[owner], box, (mx, my), pts, _rounding(box), extra, most, owner
+        )
+        asked = asked[~extra[0][asked]]
+        if len(asked):
+            extra[0][asked] = True
+            if not grow_x and not grow_y:
+                continue  # only those sites' copies: the margins stay
         if (mx >= cx or not grow_x) and (my >= cy or not grow_y):
             grow_x, grow_y = 2.0 * mx, 2.0 * my  # pragma: no cover - the old rule: both double
         # the failing axes at least double, at once to what their vertices asked for (sites

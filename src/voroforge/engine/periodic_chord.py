@@ -16,16 +16,26 @@ room^2)`` of ``v``'s. Every copy's other coordinate is a site's plus whole perio
   from below (:func:`_far_enough`). Before this a single site off a line of 1e5 failed the
   test for every vertex near the box's sides, and the margin along the line grew to 1.4
   periods: 5.9 n copies, not 3 n.
+
+Sites whose copies are all in the diagram up to the margins' caps (``extra``: a site off a
+line, whose copies cut the line's cells from past a narrow margin) are measured past the
+cap instead; :func:`shortfall` names the sites a failing vertex's chord measured, so the
+next try takes their copies rather than growing a margin of the whole line.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..config import PERIODIC_CHORD_SITES
+from ..config import PERIODIC_CHORD_SITES, PERIODIC_PROOF_RTOL, PERIODIC_SHORTFALL_SLACK
+
+# -> config: at most this many cells cut off by the grown box on an axis double its margin
+_CUT_CELLS = 8
+# -> config: ... where they ask for more than this many times the margin
+_CUT_CELLS_ASK = 4.0
 
 
-def chord_clear(v, r2, room, sites, box, k, m, side, slack, which):
+def chord_clear(v, r2, room, sites, box, k, m, side, slack, which, extra=None, culprits=None):
     """Where no copy past the margin ``m`` of axis ``k`` can lie in the vertex's empty disk.
 
     Parameters
@@ -48,6 +58,12 @@ def chord_clear(v, r2, room, sites, box, k, m, side, slack, which):
         The rounding of the copies' coordinates.
     which : (p,) bool
         The vertices to test.
+    extra : ((n,) bool, float) or None
+        Sites whose copies are in the diagram up to the margin ``cap`` on axis ``k``, and
+        ``cap``: their copies are measured past it.
+    culprits : list or None
+        Receives an array of the sites whose measured copies failed a vertex (a vertex of
+        many sites in its chord names none).
 
     Returns
     -------
@@ -86,9 +102,12 @@ def chord_clear(v, r2, room, sites, box, k, m, side, slack, which):
         pv = np.concatenate(pv)
         ps = order[np.concatenate(ps)]
         vi = idx[pv]
-        clear = _far_enough(v[vi], r2[vi], sites[ps], box, k, m, side, slack)
+        mp = np.full(len(ps), m) if extra is None else np.where(extra[0][ps], extra[1], m)
+        clear = _far_enough(v[vi], r2[vi], sites[ps], box, k, mp, side, slack)
         bad = np.bincount(pv, weights=~clear, minlength=len(idx)) > 0
         out[idx[few & ~bad]] = True
+        if culprits is not None:
+            culprits.append(ps[~clear])
     return out
 
 
@@ -96,8 +115,8 @@ def _far_enough(v, r2, s, box, k, m, side, slack):
     """Whether every copy of site ``s`` past the margin ``m`` of axis ``k`` is outside the disk.
 
     Pairs of vertices ``v`` (squared radii ``r2``, in units of ``side``) and sites ``s`` in
-    the box. On axis ``k`` the copies past the margin are ``s + t P`` outside ``[a - m, b +
-    m]`` (``P`` the period); the margin is at most ~1.6 periods, so the nearest of them on
+    the box. On axis ``k`` the copies past the margin (per pair) are ``s + t P`` outside ``[a
+    - m, b + m]`` (``P`` the period); the margin is at most ~1.6 periods, so the nearest of them on
     each side has ``|t| <= 4``. On the other axis every copy ``s + u Q`` may be the one, so the
     nearest is taken. Distances are shortened by ``slack`` (rounded sums) and a copy within
     ``slack`` of the margin counts as past it: a lower bound of the true distance.
@@ -105,7 +124,7 @@ def _far_enough(v, r2, s, box, k, m, side, slack):
     j = 1 - k
     a, b = box[k] - m, box[k + 2] + m
     period = box[k + 2] - box[k]
-    if m > 2.5 * period:  # the nearest copies past the margin may have |t| > 4
+    if np.max(m) > 2.5 * period:  # the nearest copies past the margin may have |t| > 4
         return np.zeros(len(v), dtype=bool)
     dk = np.full(len(v), np.inf)
     for t in range(-4, 5):
@@ -120,3 +139,83 @@ def _far_enough(v, r2, s, box, k, m, side, slack):
     dk = np.maximum(dk - 2.0 * slack, 0.0) / side
     dj = np.maximum(dj - 2.0 * slack, 0.0) / side
     return dk * dk + dj * dj >= r2
+
+
+def shortfall(v, own, box, margin, sites, slack, extra, most, cell):
+    """Per axis, the margin the proof's disk test asked for (0.0 where it passed), and sites.
+
+    ``v`` are the kept cells' vertices, ``own`` their sites' copies, ``slack`` the copies'
+    rounding, ``extra = (mask, caps)`` the sites whose copies are in to the caps (per
+    axis), ``most`` how many sites may be asked for, ``cell`` each vertex's cell (what the
+    cut-off cells ask: see the comments below). A vertex that fails on an axis asks
+    for its radius past its room there, added to the axis's margin: an estimate (more
+    copies move the vertices), not a proof. A vertex the chord test clears on an axis asks
+    nothing there (sites on a line and one off it: the first margins hold only the line,
+    the off site's cell reaches across the box and asked for 1.4 periods along the line,
+    5.9 n copies where 3 n are proved). A vertex whose chord holds a few sites, some of
+    whose copies past the margin fail it, asks for those sites instead (returned, an int
+    array): their copies to the caps are a few dozen.
+    """
+    x0, y0, x1, y1 = box
+    side = max(x1 - x0, y1 - y0)
+    diff = (v - own) / side
+    r = np.sqrt(diff[:, 0] * diff[:, 0] + diff[:, 1] * diff[:, 1]) * (1.0 + PERIODIC_PROOF_RTOL)
+    # a vertex on the grown box's side is where a cell was cut off, not a vertex: it asks
+    # for that axis only (sites on one line: their cells end there until the copies of the
+    # line beside it are in, and asked for half a period along the line too)
+    axes = ((x0, x1, margin[0]), (y0, y1, margin[1]))
+    edge = np.column_stack(
+        [
+            (v[:, k] <= a - m + slack) | (v[:, k] >= b + m - slack)
+            for k, (a, b, m) in enumerate(axes)
+        ]
+    )
+    bads, rooms, named = [], [], []
+    for k, (a, b, m) in enumerate(axes):
+        room = np.minimum(v[:, k] - (a - m), (b + m) - v[:, k])
+        bad = (room < (b - a) + slack) & (room / side < r) & ~edge[:, 1 - k]
+        if bad.any():
+            rs = np.maximum(room, 0.0) / side
+            got = []
+            ek = (extra[0], extra[1][k])
+            bad &= ~chord_clear(v, r * r, rs, sites, box, k, m, side, slack, bad, ek, got)
+            got = np.unique(np.concatenate(got)) if got else got
+            if 0 < len(got) <= most:
+                # those sites' copies to the caps: the vertices they alone failed wait
+                more = extra[0].copy()
+                more[got] = True
+                ek = (more, extra[1][k])
+                bad &= ~chord_clear(v, r * r, rs, sites, box, k, m, side, slack, bad, ek)
+                named.append(got)
+        bads.append(bad)
+        rooms.append(room)
+    if edge.any():
+        # cells cut off by the grown box: the copies past that side are missing, and a vertex
+        # failing on both axes may be one they move (a site off a line: the first margins
+        # hold only the line, and the line's cells beside the off site's asked for 1.4
+        # periods along the line, 5.9 n copies where the next try proves 3 n): it waits
+        both = bads[0] & bads[1]
+        # so does every vertex of a cell cut off on both axes while others are cut off on
+        # one (a site off a vertical line: before the line's copies beside it are in, its
+        # cell reaches the grown box's top and bottom and asked for 1.6 periods along the
+        # line, 7.7 n copies where 3.6 n are proved)
+        cut = [np.unique(cell[edge[:, k]]) for k in range(2)]
+        twice = np.intersect1d(cut[0], cut[1])
+        if len(twice) and len(twice) < max(len(cut[0]), len(cut[1])):
+            both |= np.isin(cell, twice)
+        bads = [bad & ~both for bad in bads]
+    out = []
+    for k, (room, bad, m) in enumerate(zip(rooms, bads, margin, strict=True)):
+        bad = bad | (room < 0)
+        need = (r[bad] - np.maximum(room[bad], 0.0) / side).max() if bad.any() else 0.0
+        out.append(float(m + PERIODIC_SHORTFALL_SLACK * need * side) if bad.any() else 0.0)
+        few = np.unique(cell[bad])
+        cut_off = 0 < len(few) <= _CUT_CELLS and np.isin(few, cell[edge[:, k]]).all()
+        if cut_off and out[k] > _CUT_CELLS_ASK * m:
+            # only a few cells, each cut off by the grown box on this axis, not all the
+            # line's (the cell of a site off a vertical line, past the box's top by 0.12
+            # of its height): the margin doubles, where their radii asked for 1.6 periods
+            # (where they ask for more than a few times the margin)
+            out[k] = float(2.0 * m)
+    sites_asked = np.unique(np.concatenate(named)) if named else np.zeros(0, dtype=np.int64)
+    return out, sites_asked
