@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from .outputs import OneOutput
 from .progress import Stage
 
 __all__ = ["EXPLAIN_EPILOG", "add_parser", "run_explain"]
@@ -50,7 +51,9 @@ def add_parser(commands, formatter_class) -> argparse.ArgumentParser:
         metavar="POINTS",
         help="point file: .csv/.txt (x,y columns, header optional), .npy or .geojson/.json",
     )
-    f.add_argument("-o", "--output", metavar="OUT", required=True, help="output .gif file")
+    f.add_argument(
+        "-o", "--output", metavar="OUT", action=OneOutput, required=True, help="output .gif file"
+    )
     f.add_argument("--frames", type=int, default=60, help="number of frames (default 60)")
     f.add_argument(
         "--size", type=int, default=480, help="pixels along the longer side (default 480)"

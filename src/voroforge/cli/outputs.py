@@ -7,9 +7,26 @@ draw). Everything that can be known about the outputs is checked here first.
 
 from __future__ import annotations
 
+import argparse
 import sys
 from collections.abc import Callable, Iterable
 from pathlib import Path
+
+
+class OneOutput(argparse.Action):
+    """``-o`` of a command that writes one file: a second ``-o`` is a usage error.
+
+    argparse's plain ``store`` kept the last one and silently wrote only that file.
+    """
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        """Store ``values``; refuse a second ``-o`` (argparse prints usage, exit 2)."""
+        given = getattr(namespace, self.dest, None)
+        if given is not None:
+            raise argparse.ArgumentError(
+                self, f"given twice ({given} and {values}); this command writes one file"
+            )
+        setattr(namespace, self.dest, values)
 
 
 def unused_option(option: str, used_by: str) -> None:
@@ -44,10 +61,18 @@ def check_outputs(
     Raises
     ------
     ValueError
-        An output's folder does not exist or is not a folder, an output is a folder or
-        one of ``inputs``, or ``png`` refused the size.
+        An output is given twice (the second write replaced the first), an output's folder
+        does not exist or is not a folder, an output is a folder or one of ``inputs``, or
+        ``png`` refused the size.
     """
     paths = [Path(o) for o in outputs]
+    seen = {}
+    for path in paths:
+        key = path.resolve()  # './a.svg', 'a.svg' and a link to it are one file
+        if key in seen:
+            also = "" if str(seen[key]) == str(path) else f" (as {seen[key]} and {path})"
+            raise ValueError(f"{path}: given twice as an output{also}; write each file once")
+        seen[key] = path
     for path in paths:
         folder = path.parent if str(path.parent) else Path(".")
         if not folder.is_dir():

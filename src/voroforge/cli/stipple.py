@@ -6,6 +6,7 @@ import argparse
 import math
 from pathlib import Path
 
+from .outputs import OneOutput
 from .progress import Stage
 
 __all__ = ["add_parser", "run_stipple"]
@@ -31,7 +32,9 @@ def add_parser(commands, formatter_class) -> None:
         formatter_class=formatter_class,
     )
     sub.add_argument("image", metavar="IMAGE", help="image file (PNG, JPEG, ...) or @sphere")
-    sub.add_argument("-o", "--output", metavar="OUT.svg", required=True, help="SVG to write")
+    sub.add_argument(
+        "-o", "--output", metavar="OUT.svg", action=OneOutput, required=True, help="SVG to write"
+    )
     sub.add_argument("--points", type=int, default=4000, help="number of dots (default 4000)")
     sub.add_argument("--iterations", type=int, default=30, help="weighted Lloyd steps (default 30)")
     sub.add_argument("--width", type=float, default=200.0, help="page width in mm (default 200)")

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import re
 
+from .outputs import OneOutput
 from .progress import Stage
 
 __all__ = ["add_parser", "run", "run_animate"]
@@ -68,7 +69,12 @@ def add_parser(commands, formatter_class) -> None:
     )
     a.add_argument("design", metavar="DESIGN", help="design file (.toml) with [animation]")
     a.add_argument(
-        "-o", "--output", metavar="OUT", required=True, help="anim.gif, anim.mp4 or a folder"
+        "-o",
+        "--output",
+        metavar="OUT",
+        action=OneOutput,
+        required=True,
+        help="anim.gif, anim.mp4 or a folder",
     )
     a.add_argument("--frames", type=int, help="number of frames (default: animation.frames)")
     a.add_argument("--fps", type=float, help="frames per second (default: animation.fps)")
