@@ -5,9 +5,11 @@ boundary segments in the grid buckets over its box (:func:`.kernels.polyclip.cli
 in time proportional to the segments near it: a comb whose outline meets every cell no
 longer pays a GEOS overlay per cell (0.6 ms each on a comb of 1,000 teeth). A cell that no
 segment meets is wholly inside or outside, which one of its vertices tells (exact, local:
-:meth:`.pieces.Pieces.holds`); a cell the kernel leaves (a near-degenerate sign, a ring
-wholly inside it) takes the overlay with its piece of the domain as before
-(:meth:`.pieces.Pieces.intersect`).
+:meth:`.pieces.Pieces.holds`); the domain's rings wholly inside a cell become its holes
+or parts (:func:`_with_loops`, GEOS's exact predicates place them, nothing is computed);
+a cell the kernel leaves (a near-degenerate sign: features within ``POLYCLIP_ULPS`` ulps,
+a segment through a cell's vertex) or whose result is not valid takes the overlay with its
+piece of the domain as before (:meth:`.pieces.Pieces.intersect`).
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
-from ..kernels.polyclip import DONE, NONE, bucket_segments, clip_cells
+from ..kernels.polyclip import DONE, HARD, LOOPS, NONE, box_sides, bucket_segments, clip_cells
 
 
 def clip_convex(pieces, convex, ring_xy, ring_off, cells):
@@ -45,7 +47,8 @@ def clip_convex(pieces, convex, ring_xy, ring_off, cells):
     seg, nxt = _segments(pieces.geometry)
     grid = _grid(shapely.bounds(convex), len(convex))
     boff, bids = bucket_segments(seg, *grid[:3], int(grid[3]), int(grid[4]))
-    status, xy, off, owner = clip_cells(
+    box = np.ascontiguousarray(pieces.box, dtype=np.float64)
+    status, xy, off, owner, loop = clip_cells(
         np.ascontiguousarray(ring_xy, dtype=np.float64),
         np.ascontiguousarray(ring_off, dtype=np.int64),
         seg,
@@ -53,18 +56,42 @@ def clip_convex(pieces, convex, ring_xy, ring_off, cells):
         boff,
         bids,
         grid,
+        box,
+        box_sides(seg, nxt, box),
     )
     out = np.empty(len(convex), dtype=object)  # noqa: TID251 - every slot is filled below
-    done = np.flatnonzero(status == DONE)
+    count = np.bincount(owner, minlength=len(convex))
+    looped = np.flatnonzero(status == LOOPS)
+    if len(looped):
+        first = np.concatenate(([0], np.cumsum(count)))
+        for i in looped:
+            rings = [xy[off[r] : off[r + 1]] for r in range(first[i], first[i + 1])]
+            got = _with_loops(convex[i], rings, loop[first[i] : first[i + 1]])
+            if got is None:
+                status[i] = HARD
+            else:
+                out[i] = got
+                status[i] = DONE
+        done = np.setdiff1d(np.flatnonzero(status == DONE), looped)
+    else:
+        done = np.flatnonzero(status == DONE)
     if len(done):
-        count = np.bincount(owner, minlength=len(convex))
+        mine = np.isin(owner, done)
+        rings = np.flatnonzero(mine)
+        r_off = np.concatenate(([0], np.cumsum(off[rings + 1] - off[rings])))
+        pick = np.repeat(off[rings] - r_off[:-1], np.diff(r_off)) + np.arange(r_off[-1])
         geom = np.concatenate(([0], np.cumsum(count[done])))
         got = shapely.from_ragged_array(
-            shapely.GeometryType.MULTIPOLYGON, xy, (off, np.arange(len(off)), geom)
+            shapely.GeometryType.MULTIPOLYGON, xy[pick], (r_off, np.arange(len(r_off)), geom)
         )
         one = count[done] == 1
         got[one] = shapely.get_geometry(got[one], 0)
         out[done] = got
+    done = np.flatnonzero(status == DONE)
+    if len(done):
+        # a crossing rounded across a feature about an ulp away folds a ring (or makes two
+        # parts overlap): that cell takes the overlay
+        status[done[~shapely.is_valid(out[done])]] = HARD
     free = np.flatnonzero(status == NONE)
     if len(free):
         held = pieces.holds(ring_xy[ring_off[free]])
@@ -108,3 +135,42 @@ def _grid(boxes, count):
     ny = min(int(hgt / h) + 1, 4096)
     h = max(h, w / nx, hgt / ny) * (1 + 2.0**-40)
     return np.array([x0, y0, h, nx, ny], dtype=np.float64)
+
+
+def _with_loops(cell, rings, loop):
+    """A cell's polygon(s) from its clipped rings and the domain's rings wholly inside it.
+
+    ``rings`` are closed coordinate arrays, ``loop`` flags the domain's rings (shells
+    counter-clockwise, holes clockwise); the others are the shells the chains cut. Without
+    those, the cell's own ring is a shell where the outermost loops are holes. Each hole
+    goes to the smallest shell that holds it (GEOS's exact predicates). None where the
+    loops do not nest that way, or the result is not valid (the overlay then decides).
+    """
+    ring = [shapely.linearrings(r) for r in rings]
+    ccw = np.array([bool(shapely.is_ccw(r)) for r in ring])
+    shells = [shapely.polygons(r) for r, lp in zip(ring, loop, strict=True) if not lp]
+    loops = [shapely.polygons(r) for r, lp in zip(ring, loop, strict=True) if lp]
+    kind = ccw[loop]
+    shells += [p for p, k in zip(loops, kind, strict=True) if k]
+    if not (~loop).any():
+        held = [any(shapely.contains(q, p) for q in loops if q is not p) for p in loops]
+        outer = {bool(k) for k, h in zip(kind, held, strict=True) if not h}
+        if outer == {False}:
+            shells.insert(0, cell)
+        elif outer != {True}:
+            return None
+    holes = [[] for _ in shells]
+    areas = shapely.area(shells)
+    for p, k in zip(loops, kind, strict=True):
+        if k:
+            continue
+        cand = [j for j, q in enumerate(shells) if shapely.contains(q, p)]
+        if not cand:
+            return None
+        holes[min(cand, key=lambda j: areas[j])].append(shapely.get_exterior_ring(p))
+    polys = [
+        shapely.polygons(shapely.get_exterior_ring(q), h) if h else q
+        for q, h in zip(shells, holes, strict=True)
+    ]
+    got = polys[0] if len(polys) == 1 else shapely.multipolygons(polys)
+    return got if shapely.is_valid(got) else None
