@@ -7,7 +7,9 @@ magnitude): site 52 of 64 lost its cell (a gap), site 62 of 600 wrote a vertex a
 the box's top side, site 258 of 1000 was flagged. Each named cell is compared with its
 exact cell (every bisector cut in Fractions), in units of the coordinates' ulps there
 (2**-34 in x, 2**-31 in y). Classes of three or more triangles (chains of fold joins) keep
-the snap alone: site 243 of 257 at phase 0.35, in a class of six, is still flagged.
+the snap alone; site 243 of 257 at phase 0.35 (92 at 0.90), in a chained class, was
+flagged until such a class is renamed where its sites' rings of centres turn left and hold
+their sites (``kernels.chainfit``).
 """
 
 from __future__ import annotations
@@ -46,12 +48,11 @@ def _local(xy):
 
 
 # Site 243 of 257 at phase 0.35 (92 at 0.90, the mirror): its vertex (223.33, -0.17) in
-# ulps, own centre (223, 0) with a bound of 3.38 units, sits in a class of six triangles
+# ulps, own centre (223, 0) with a bound of 3.38 units, sat in a class of six triangles
 # whose own centres span x = 35..223 (bounds 1.4-7.6) joined by a chain of fold joins
-# (centers._unfold), named at (172, -3): the site is flagged. Joins kept to classes whose
-# members' bounds share a point fixed both, but left other inputs' vertices unmerged where
-# the cells then failed (vertices past the box side: 257 at phase 0.05), so not landed.
-CHAINED = pytest.mark.xfail(strict=True, reason="chained fold joins of merge_cocircular")
+# (centers._unfold), named at (172, -3): the site was flagged. A chained class is now
+# renamed where its sites' rings of centres turn left and hold their sites
+# (``kernels.chainfit.fit_chains``).
 
 
 @pytest.mark.parametrize(
@@ -60,8 +61,8 @@ CHAINED = pytest.mark.xfail(strict=True, reason="chained fold joins of merge_coc
         (64, 0.05, 52),
         (600, 0.40, 62),
         (1000, 0.80, 258),
-        pytest.param(257, 0.35, 243, marks=CHAINED),
-        pytest.param(257, 0.90, 92, marks=CHAINED),
+        (257, 0.35, 243),
+        (257, 0.90, 92),
     ],
 )
 @pytest.mark.parametrize("algorithm", ["delaunay", "fortune", "halfplane"])

@@ -26,6 +26,7 @@ from ..config import (
     NJIT_PARALLEL,
     VERTEX_SNAP_RTOL,
 )
+from .chainfit import fit_chains
 from .classname import bound_ok, class_vertex
 from .cocircular import canonical_flips
 from .predicates import cross_diff, incircle, incircle_fast
@@ -191,7 +192,7 @@ def _merge_exact(xs, ys, tri, he, cand, cx, cy, near, rank, err, box, fold):
         for k in range(t):
             parent[k] = _find(parent, k)
         # the centres are still the triangles' own here: classes of two may reuse them
-        _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, np.bool_(True), every)
+        _name_classes(xs, ys, tri, he, parent, cx, cy, rank, err, changed, np.bool_(True), every)
     if near:
         args = (fold, cand, joined, changed, every, np.bool_(False))
         _unfold(xs, ys, tri, he, parent, cx, cy, rank, box, err, *args)
@@ -399,7 +400,7 @@ def _unfold(
                     pick[parent[k]] = 1  # a class that took in another
         changed[:] = 0
         no = np.bool_(False)
-        _name_classes_by(xs, ys, tri, parent, cx, cy, rank, err, changed, no, pick, middle)
+        _name_classes_by(xs, ys, tri, he, parent, cx, cy, rank, err, changed, no, pick, middle)
 
 
 @njit(**NJIT)
@@ -531,14 +532,14 @@ def _set_vertex(cx, cy, k, vx, vy, changed):
 
 
 @njit(**NJIT)
-def _name_classes(xs, ys, tri, parent, cx, cy, rank, err, changed, own, pick):
+def _name_classes(xs, ys, tri, he, parent, cx, cy, rank, err, changed, own, pick):
     """:func:`_name_classes_by`, every class named near its best-conditioned member."""
     no = np.bool_(False)
-    _name_classes_by(xs, ys, tri, parent, cx, cy, rank, err, changed, own, pick, no)
+    _name_classes_by(xs, ys, tri, he, parent, cx, cy, rank, err, changed, own, pick, no)
 
 
 @njit(**NJIT)
-def _name_classes_by(xs, ys, tri, parent, cx, cy, rank, err, changed, own, pick, middle):
+def _name_classes_by(xs, ys, tri, he, parent, cx, cy, rank, err, changed, own, pick, middle):
     """Give every triangle of a class (``parent`` its root) the vertex of the class's name.
 
     The name is the canonical triple of the class's sites (``kernels/vertex``), numbered by
@@ -552,7 +553,8 @@ def _name_classes_by(xs, ys, tri, parent, cx, cy, rank, err, changed, own, pick,
     are gathered by a counting sort. Triangles whose centre may have changed are marked
     in ``changed``. ``own`` says that every centre is still its triangle's own (the first
     naming), which lets a class of two reuse one (:func:`_name_pairs`). ``pick``: only the
-    classes whose root it marks are named (empty: every class).
+    classes whose root it marks are named (empty: every class). A class of three or more
+    whose sites' rings then turn wrong is renamed (:func:`.chainfit.fit_chains`).
     """
     t = parent.shape[0]
     size = np.zeros(t, dtype=np.int64)
@@ -612,9 +614,11 @@ def _name_classes_by(xs, ys, tri, parent, cx, cy, rank, err, changed, own, pick,
             members[fill[r]] = k
             fill[r] += 1
     seen = np.full(xs.shape[0], -1, dtype=np.int64)
+    chain = np.zeros(t, dtype=np.uint8)  # the classes of three or more named here
     for r in range(t):
         if size[r] < 3 or not (every or pick[r] != 0):
             continue
+        chain[r] = 1
         k = np.int64(0)
         for u in range(start[r], start[r + 1]):
             for c in range(3):
@@ -643,6 +647,9 @@ def _name_classes_by(xs, ys, tri, parent, cx, cy, rank, err, changed, own, pick,
             _, vx, vy = _class_vertex(on, k, rank, best, xs, ys, tri, cx, cy, none)
         for u in range(start[r], start[r + 1]):
             _set_vertex(cx, cy, members[u], vx, vy, changed)
+    # a chain's name where its sites' rings of centres turn right or miss a site: renamed
+    if err.shape[0] > 0:  # (the cells' classes; not ``triangle_centers``)
+        fit_chains(xs, ys, tri, he, parent, cx, cy, chain, changed)  # (:mod:`.chainfit`)
 
 
 def merge_cocircular(xs, ys, tri, he, cx, cy, err, flag, rank, box):
@@ -751,7 +758,7 @@ def contract_by(xs, ys, tri, he, parent, cx, cy, rank, box, err, pa, pb, only, m
                 pick[parent[k]] = 1
     if merges > 0:
         no = np.bool_(False)
-        _name_classes_by(xs, ys, tri, parent, cx, cy, rank, err, changed, no, pick, middle)
+        _name_classes_by(xs, ys, tri, he, parent, cx, cy, rank, err, changed, no, pick, middle)
         if only:
             fit_classes(xs, ys, tri, he, parent, cx, cy, pick, changed)
     else:
