@@ -507,8 +507,8 @@ def fit_weights(pts, targets, dom, w0, tol, max_iter, relax=None):
         got = _damped_step(partial(_areas, pts, dom), w, lap, deg, r, targets, floor, alpha)
         if got is None:
             break  # no progress possible at float precision
-        w, d, areas, alpha = got
-        alpha = _first_alpha(alpha)
+        w, d, areas, taken = got
+        alpha = _first_alpha(taken, alpha)
         err = float(np.max(np.abs(areas - targets) / targets))
     return d, w, err, it
 
@@ -605,14 +605,19 @@ def _line_search(masses, w, step, targets, floor, norm, alpha=1.0):
     return None
 
 
-def _first_alpha(taken):
-    """The first fraction of the next step to try: ``POWER_FIT_ALPHA_GROWTH`` x the last taken.
+def _first_alpha(taken, tried):
+    """The first fraction of the next step to try, from the last one ``tried`` and ``taken``.
 
-    Far from the fit (the relaxed density's stages) Newton's full step empties hundreds of
-    cells and steps of 1/8-1/16 are taken step after step: trying the full step first cost
-    3-4 diagrams a step; near the fit full steps are taken, and the full step is tried.
+    ``POWER_FIT_ALPHA_GROWTH`` x the last taken where it was taken at its first try, else
+    the fraction taken. Far from the fit (the relaxed density's stages) Newton's full step
+    empties hundreds of cells and steps of 1/8-1/16 are taken step after step: trying the
+    full step first cost 3-4 diagrams a step; near the fit full steps are taken, and the
+    full step is tried. A step halved before it was taken is tried at that fraction next
+    (growing it again cost one diagram a step where each was halved once: a U notch's
+    breakout took every round at 1/2 after a full step that emptied cells; 4,000 sites 77
+    -> 67 diagrams, ring 36 -> 29).
     """
-    return min(1.0, POWER_FIT_ALPHA_GROWTH * taken)
+    return min(1.0, POWER_FIT_ALPHA_GROWTH * taken) if taken == tried else taken
 
 
 def _areas(pts, dom, w):
@@ -728,8 +733,8 @@ def fit_breakout(pts, targets, dom, hull, w0, rounds, grow):
         got = _damped_step(masses, w, lap, deg, r, goal, floor, alpha)
         if got is None:
             return None
-        w, (d, dh), mass, alpha = got
-        alpha = _first_alpha(alpha)
+        w, (d, dh), mass, taken = got
+        alpha = _first_alpha(taken, alpha)
     return None
 
 
@@ -768,7 +773,7 @@ def _fit_relaxed(pts, targets, dom, w0, tol, max_iter, hull, eps):
         got = _damped_step(masses, w, lap, deg, r, targets, floor, alpha)
         if got is None:
             break
-        w, (d, dh), mass, alpha = got
-        alpha = _first_alpha(alpha)
+        w, (d, dh), mass, taken = got
+        alpha = _first_alpha(taken, alpha)
         err = float(np.max(np.abs(mass - targets) / targets))
     return d, w, err, it
