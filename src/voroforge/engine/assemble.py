@@ -547,7 +547,11 @@ def _shifted_back(local, o):
     See :func:`_clip_at_site`: each must be valid after the fix and keep its area to within
     ``ASSEMBLE_ROUNDING_ULPS`` ulps times its perimeter.
     """
-    got = _polygonal(shapely.remove_repeated_points(shapely.transform(local, lambda xy: xy + o)))
+    back = shapely.transform(local, lambda xy: xy + o)
+    try:
+        got = _polygonal(shapely.remove_repeated_points(back))
+    except shapely.errors.GEOSException:
+        return None  # a ring collapsed to fewer than 3 points (1e15 out: the overlay's ulps)
     for k in np.flatnonzero(~shapely.is_valid(got)):
         parts = shapely.get_parts(got[k])
         parts = parts[shapely.is_valid(parts) | (shapely.get_num_coordinates(parts) >= 4)]
