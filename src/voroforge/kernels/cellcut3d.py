@@ -24,13 +24,14 @@ from numba import njit
 from ..config import (
     BIN_SORT_FROM,
     CELLCUT3D_RADIUS_PAD,
+    CLIMB3D_LOCAL_FROM,
     NJIT,
     VORONOI3D_CUT_RTOL,
     VORONOI3D_STOP_RTOL,
 )
 from ..config import CELLCUT3D_OWN_ENTRIES as OWN_ENTRIES
 from .band3d import offset_cache, owner_key, resolve  # noqa: F401 (re-exported: cells3d)
-from .climb3d import FULL, LOCAL_FROM, MISS, list_removed, plane_local
+from .climb3d import FULL, MISS, list_removed, plane_local
 from .graph3d import GCUT_DONE, cut_close, cut_listed, list_above, to_rings
 from .grid3d import bucket3d, shell_buckets_in, shell_gap
 from .polyhedron import CUT_DONE, CUT_EMPTY, CUT_OVERFLOW, cut
@@ -175,7 +176,8 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
             continue  # the plane passes beyond every vertex
         tol = VORONOI3D_CUT_RTOL * (np.sqrt(d2 * rmax2) + abs(h))
         mode = FULL
-        if graph and nv >= LOCAL_FROM:  # the values near and above the plane only, if decided
+        # the values near and above the plane only, if decided
+        if graph and nv >= CLIMB3D_LOCAL_FROM:
             while hw < nv:
                 work[hw, 0] = 0
                 work[hw, 3] = 0
@@ -291,50 +293,46 @@ def _shell_cut(i, P, W, WP, X, q, box, start, SP, SW, sidx, g, C, G, cand, cd2, 
     m = 0
     mg = 0
     st = OK
-    for bz in range(box[2], box[5] + 1):
-        for by in range(box[1], box[4] + 1):
-            for bx in range(box[0], box[3] + 1):
-                b = (bz * ny + by) * nx + bx
-                if not shell_hit(b, px, py, pz, g, rs2, box):
-                    continue
+    # the box's buckets z, y, x (u: the next), each gathered from t to tend; the batch is
+    # cut where it fills and once at the end: one call of the (inlined) cut, not two
+    sx = box[3] - box[0] + 1
+    sy = box[4] - box[1] + 1
+    sz = box[5] - box[2] + 1
+    total = sx * sy * sz if sx > 0 and sy > 0 and sz > 0 else 0
+    u = 0
+    b = -1
+    t = 0
+    tend = 0
+    while True:
+        last = False
+        if t < tend:
+            m, mg, t = _gather(
+                b, t, i, px, py, pz, wi, start, SP, SW, sidx, cand, cd2, m, mg, rmax2
+            )
+            now = mg >= cand.shape[0]
+        elif u < total:
+            bx = box[0] + u % sx
+            by = box[1] + (u // sx) % sy
+            bz = box[2] + u // (sx * sy)
+            u += 1
+            b = (bz * ny + by) * nx + bx
+            if shell_hit(b, px, py, pz, g, rs2, box):
                 t = start[b]
-                while t < start[b + 1]:
-                    m, mg, t = _gather(
-                        b, t, i, px, py, pz, wi, start, SP, SW, sidx, cand, cd2, m, mg, rmax2
-                    )
-                    if mg >= cand.shape[0]:
-                        st, nv, nf, nt, rmax2 = _cut_batch(
-                            m,
-                            i,
-                            P,
-                            WP,
-                            X,
-                            px,
-                            py,
-                            pz,
-                            wi,
-                            W,
-                            SP,
-                            SW,
-                            sidx,
-                            cand,
-                            cd2,
-                            C,
-                            G,
-                            nv,
-                            nf,
-                            nt,
-                            rmax2,
-                        )
-                        if st != OK:
-                            return st, 0, 0, 0, 0.0
-                        m = 0
-                        mg = 0
-    if m > 0:
-        st, nv, nf, nt, rmax2 = _cut_batch(
-            m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
-        )
-    return st, nv, nf, nt, rmax2
+                tend = start[b + 1]
+            continue
+        else:
+            now = m > 0
+            last = True
+        if now:
+            st, nv, nf, nt, rmax2 = _cut_batch(
+                m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
+            )
+            if st != OK:
+                return st, 0, 0, 0, 0.0
+            m = 0
+            mg = 0
+        if last:
+            return st, nv, nf, nt, rmax2
 
 
 @njit(**NJIT_NO_NRT)
