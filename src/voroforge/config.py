@@ -213,6 +213,14 @@ PERIODIC_SHORTFALL_SLACK = 1.0625
 #: engine/periodic_chord.chord_clear: a vertex whose chord holds more sites' coordinates than
 #: this is left unproved by the chord test (the per-site check costs a pair per site)
 PERIODIC_CHORD_SITES = 16
+#: engine.periodic: the sites (a site off a line) whose copies a margin's proof may take out
+#: to the caps when only they fail the chord test, instead of growing the whole margin
+PERIODIC_EXTRA_SITES = 64
+#: engine/periodic_chord.shortfall: at most this many cells cut off by the grown box on an
+#: axis double its margin (instead of asking for their radius) where they ask for more than
+#: PERIODIC_CUT_CELLS_ASK times it
+PERIODIC_CUT_CELLS = 8
+PERIODIC_CUT_CELLS_ASK = 4.0
 #: describe(): on a torus, a vertex and another's image closer than this (of the box's
 #: diagonal) are one vertex (images come from sites shifted by the box's size); a cell of a
 #: non-convex domain within 100 times this of its own coordinates' magnitude from the

@@ -12,6 +12,12 @@ __all__ = [
     "CONVEX_THIN_AXES",
     "CONVEX_THIN_MERGE",
     "MERGE3D_HASH_FROM",
+    "CLIMB3D_FLOOD_BAND",
+    "CLIMB3D_PLATEAU_BAND",
+    "CLIMB3D_PLATEAU_MOST",
+    "CLIMB3D_NOISE_BANDS",
+    "CLIMB3D_SAMPLES",
+    "CLIMB3D_LOCAL_FROM",
     "DOOMED_SIDE",
     "DOOMED_SPREAD",
     "TIES_RAY_RTOL",
@@ -266,3 +272,19 @@ CONVEX_THIN_AXES = 1e-2
 #: fraction of its thickness of the kept plane (the wedge a merge adds is about that times
 #: the face's area: 1e-12 of the extent had made a 1e-9 disk 1.28e-5 too big)
 CONVEX_THIN_MERGE = 1e-13
+#: kernels.climb3d (a many-faced cell's plane values found near the plane): the flood
+#: reaches every vertex within this many times the filter's band below the plane (rounding
+#: moves a vertex's value by far less than one band, ``VORONOI3D_CUT_RTOL``)
+CLIMB3D_FLOOD_BAND = 1024.0
+#: the top vertex's plateau: the vertices within this many bands below it, connected to it
+#: (a degenerate vertex rounded into a cluster), none of whose neighbours may lie higher
+CLIMB3D_PLATEAU_BAND = 16.0
+#: the most vertices a plateau may hold (else the cell's values are all evaluated)
+CLIMB3D_PLATEAU_MOST = 64
+#: a vertex's value is good to this many bands (the band assumes far less): a plateau top
+#: lower than that below the band passes the plane over
+CLIMB3D_NOISE_BANDS = 4.0
+#: vertices sampled for the climb's start (voro++ tests about sqrt(n) / 4)
+CLIMB3D_SAMPLES = 8
+#: cells of fewer vertices are evaluated whole (a uniform cell's ~26: the pass is cheaper)
+CLIMB3D_LOCAL_FROM = 64

@@ -30,6 +30,7 @@ import shapely
 
 from ..config import (
     PERIODIC_CAP_PERIODS,
+    PERIODIC_EXTRA_SITES,
     PERIODIC_PROOF_RTOL,
     PERIODIC_SLIVER_MAX_SIDE,
     PERIODIC_SLIVER_ULPS,
@@ -46,8 +47,6 @@ from .planar import build
 #: Initial margin, in typical cell diameters ``sqrt(area / n)``.
 _MARGIN_CELLS = 3.0
 _MAX_TRIES = 30
-# -> config: the sites whose copies a margin's proof may take to the caps (a site off a line)
-PERIODIC_EXTRA_SITES = 64
 
 
 def _tile_of(boundary) -> Domain:

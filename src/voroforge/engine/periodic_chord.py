@@ -27,12 +27,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..config import PERIODIC_CHORD_SITES, PERIODIC_PROOF_RTOL, PERIODIC_SHORTFALL_SLACK
-
-# -> config: at most this many cells cut off by the grown box on an axis double its margin
-_CUT_CELLS = 8
-# -> config: ... where they ask for more than this many times the margin
-_CUT_CELLS_ASK = 4.0
+from ..config import (
+    PERIODIC_CHORD_SITES,
+    PERIODIC_CUT_CELLS,
+    PERIODIC_CUT_CELLS_ASK,
+    PERIODIC_PROOF_RTOL,
+    PERIODIC_SHORTFALL_SLACK,
+)
 
 
 def chord_clear(v, r2, room, sites, box, k, m, side, slack, which, extra=None, culprits=None):
@@ -210,8 +211,8 @@ def shortfall(v, own, box, margin, sites, slack, extra, most, cell):
         need = (r[bad] - np.maximum(room[bad], 0.0) / side).max() if bad.any() else 0.0
         out.append(float(m + PERIODIC_SHORTFALL_SLACK * need * side) if bad.any() else 0.0)
         few = np.unique(cell[bad])
-        cut_off = 0 < len(few) <= _CUT_CELLS and np.isin(few, cell[edge[:, k]]).all()
-        if cut_off and out[k] > _CUT_CELLS_ASK * m:
+        cut_off = 0 < len(few) <= PERIODIC_CUT_CELLS and np.isin(few, cell[edge[:, k]]).all()
+        if cut_off and out[k] > PERIODIC_CUT_CELLS_ASK * m:
             # only a few cells, each cut off by the grown box on this axis, not all the
             # line's (the cell of a site off a vertical line, past the box's top by 0.12
             # of its height): the margin doubles, where their radii asked for 1.6 periods

@@ -7,19 +7,19 @@ many-faced cell (a helix's, 95-380 faces) paid its hundreds of vertices for each
 (:func:`plane_local`) the plane's values are found from a start vertex by steepest ascent
 over the cell's edges, then:
 
-* where the top reached (with its plateau: the vertices within ``PLATEAU_BAND`` bands below
+* where the top reached (with its plateau: the vertices within ``CLIMB3D_PLATEAU_BAND`` bands below
   it, connected to it, none of whose neighbours lies higher) lies more than
-  ``NOISE_BANDS`` bands below the plane, no vertex lies within the band or above: a convex
+  ``CLIMB3D_NOISE_BANDS`` bands below the plane, no vertex lies within the band or above: a convex
   cell's local top is its top, and rounding (a degenerate vertex rounded into a cluster of
   vertices a few ulps apart, each value good to far less than a band, as the band itself
   assumes) can hide a rising edge only within the plateau; the candidate is passed over,
   as the full pass would pass it over;
-* else every vertex within ``FLOOD_BAND`` bands below the plane or above it is reached by
+* else every vertex within ``CLIMB3D_FLOOD_BAND`` bands below the plane or above it is reached by
   a flood from there (the vertices above any level of a convex cell are connected, and
   each has a rising path to the top), and only those values are written; the removed
   vertices are listed from them (:func:`list_removed`) for :func:`.graph3d.cut_listed`.
 
-Anything else (a plateau of more than ``PLATEAU_MOST`` vertices, values that rise for
+Anything else (a plateau of more than ``CLIMB3D_PLATEAU_MOST`` vertices, values that rise for
 ever) is reported ``FULL``: the caller evaluates every vertex as before. Each value is the
 same expression as the full pass's, so every decision, and every output bit, is the full
 pass's.
@@ -35,34 +35,19 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import NJIT
+from ..config import (
+    CLIMB3D_FLOOD_BAND,
+    CLIMB3D_NOISE_BANDS,
+    CLIMB3D_PLATEAU_BAND,
+    CLIMB3D_PLATEAU_MOST,
+    CLIMB3D_SAMPLES,
+    NJIT,
+)
 
 NJIT_INLINE = {**NJIT, "inline": "always"}
 #: called out of line (a cell's big loop stays small to compile); allocates nothing, so no
 #: reference counting (see kernels.cellcut3d)
 NJIT_NO_NRT = {**NJIT, "_nrt": False}
-
-# -> config
-#: the flood reaches every vertex within this many times the filter's band below the
-#: plane (rounding moves a vertex's value by far less than one band, ``VORONOI3D_CUT_RTOL``)
-FLOOD_BAND = 1024.0
-# -> config
-#: the top vertex's plateau: the vertices within this many bands below it, connected to it
-#: (a degenerate vertex rounded into a cluster), none of whose neighbours may lie higher
-PLATEAU_BAND = 16.0
-# -> config
-#: the most vertices a plateau may hold (else the cell's values are all evaluated)
-PLATEAU_MOST = 64
-# -> config
-#: a vertex's value is good to this many bands (the band assumes far less): a plateau top
-#: lower than that below the band passes the plane over
-NOISE_BANDS = 4.0
-# -> config
-#: vertices sampled for the climb's start (voro++ tests about sqrt(n) / 4)
-CLIMB_SAMPLES = 8
-# -> config
-#: cells of fewer vertices are evaluated whole (a uniform cell's ~26: the pass is cheaper)
-LOCAL_FROM = 64
 
 MISS = 0  # no vertex within the band of the plane or above it: pass the plane over
 LOCAL = 1  # the values near and above the plane are written, listed in work[:nvis, 1]
@@ -100,14 +85,14 @@ def plane_local(V, nv, DEG, ED, S, work, nx, ny, nz, h, tol, hint):
     nvis = 0
     best = hint if 0 <= hint < nv else 0
     nvis = _visit(V, best, nx, ny, nz, h, S, work, nvis)
-    step = nv // CLIMB_SAMPLES
+    step = nv // CLIMB3D_SAMPLES
     if step > 0:
-        for k in range(CLIMB_SAMPLES):
+        for k in range(CLIMB3D_SAMPLES):
             v = k * step
             nvis = _visit(V, v, nx, ny, nz, h, S, work, nvis)
             if S[v] > S[best]:
                 best = v
-    tau = PLATEAU_BAND * tol
+    tau = CLIMB3D_PLATEAU_BAND * tol
     mode = LOCAL
     steps = 0
     while mode == LOCAL:
@@ -146,7 +131,7 @@ def plane_local(V, nv, DEG, ED, S, work, nx, ny, nz, h, tol, hint):
                     higher = u
                     break
                 if S[u] >= top - tau and work[u, 3] == 0:
-                    if npl == PLATEAU_MOST:
+                    if npl == CLIMB3D_PLATEAU_MOST:
                         mode = FULL
                         higher = u
                         break
@@ -161,12 +146,12 @@ def plane_local(V, nv, DEG, ED, S, work, nx, ny, nz, h, tol, hint):
         steps += 1
     smax = -np.inf
     low = np.inf
-    if mode == LOCAL and S[best] < -NOISE_BANDS * tol:
+    if mode == LOCAL and S[best] < -CLIMB3D_NOISE_BANDS * tol:
         mode = MISS  # every vertex lies within rounding of the top or below it
     elif mode == LOCAL:
         # the flood: every vertex evaluated that lies within the margin below the plane, or
         # above it, has each of its neighbours evaluated
-        margin = FLOOD_BAND * tol
+        margin = CLIMB3D_FLOOD_BAND * tol
         q = 0
         while q < nvis:
             v = work[q, 1]
