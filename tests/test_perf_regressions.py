@@ -141,7 +141,7 @@ def _plain_merge(sx, sy, tri, he, rank, box):
 
     def rename():
         parent[:] = [find(k) for k in range(t)]
-        centers._name_classes(sx, sy, tri, parent, cx, cy, rank, err, changed, False, EVERY)
+        centers._name_classes(sx, sy, tri, he, parent, cx, cy, rank, err, changed, False, EVERY)
 
     if merged:
         rename()
@@ -245,7 +245,7 @@ def test_pair_classes_named_from_own_centres_equal_the_full_search():
         out = []
         for own in (True, False):
             ox, oy, changed = cx.copy(), cy.copy(), np.zeros(len(cx), dtype=np.uint8)
-            centers._name_classes(sx, sy, tri, parent, ox, oy, rank, err, changed, own, EVERY)
+            centers._name_classes(sx, sy, tri, he, parent, ox, oy, rank, err, changed, own, EVERY)
             out.append(_bits(*ox, *oy) + changed.tobytes())
         assert out[0] == out[1]
         size = np.bincount(parent, minlength=len(parent))
