@@ -23,7 +23,7 @@ from numba import njit
 
 from ..config import FOLD_FIT_MAX_MEMBERS, NJIT
 from .predicates import orient2d
-from .refit import chain_bad_turns
+from .refit import chain_bad_turns, fan_ring
 from .vertex import voronoi_vertex
 
 
@@ -35,25 +35,7 @@ def fan_score(s, t0, tri, he, parent, c, px, py, cx0, cy0, xs, ys, bx, by):
     ``cx0, cy0``; walked counter-clockwise from triangle ``t0``), plus each edge between
     two finite centres whose exact ``orient2d`` with the site is not positive.
     """
-    e0 = 3 * t0 + (0 if tri[3 * t0] == s else (1 if tri[3 * t0 + 1] == s else 2))
-    e, closed = e0, False
-    while he[e] != -1 and not closed:  # back to the first halfedge of an open fan
-        e = he[e] - 2 if he[e] % 3 == 2 else he[e] + 1
-        closed = e == e0
-    start = e
-    m = 0
-    while True:
-        t = e // 3
-        x, y = (px, py) if parent[t] == c else (cx0[t], cy0[t])
-        if m == 0 or not (bx[m - 1] == x and by[m - 1] == y):
-            bx[m] = x
-            by[m] = y
-            m += 1
-        e = he[e - e % 3 + (e + 2) % 3]
-        if e == -1 or e == start:
-            break
-    if closed and m > 1 and bx[0] == bx[m - 1] and by[0] == by[m - 1]:
-        m -= 1
+    m, closed = fan_ring(s, t0, tri, he, parent, c, px, py, cx0, cy0, bx, by)
     bad = chain_bad_turns(bx, by, m, closed)
     for k in range(m if closed else m - 1):
         k2 = k + 1 if k + 1 < m else 0

@@ -56,12 +56,12 @@ def chain_bad_turns(px, py, m, closed):
 
 
 @njit(**NJIT)
-def fan_bad_turns(s, t0, tri, he, parent, c, px, py, cx0, cy0, bx, by):
-    """Bad turns of site ``s``'s ring of triangle centres, walked from triangle ``t0``.
+def fan_ring(s, t0, tri, he, parent, c, px, py, cx0, cy0, bx, by):
+    """Site ``s``'s ring of triangle centres, walked from triangle ``t0``: ``(m, closed)``.
 
     Triangles of class ``c`` (``parent``) are at ``(px, py)``, the others at ``cx0, cy0``;
-    a repeated vertex counts once; an open fan (a hull site's) only at its inner vertices
-    (:func:`chain_bad_turns`). ``bx``, ``by``: scratch for the site's degree.
+    a repeated vertex is written once, into ``bx[:m]``, ``by[:m]`` (scratch for the site's
+    degree); an open fan (a hull site's) from its first halfedge.
     """
     e0 = 3 * t0 + (0 if tri[3 * t0] == s else (1 if tri[3 * t0 + 1] == s else 2))
     e, closed = e0, False
@@ -82,6 +82,16 @@ def fan_bad_turns(s, t0, tri, he, parent, c, px, py, cx0, cy0, bx, by):
             break
     if closed and m > 1 and bx[0] == bx[m - 1] and by[0] == by[m - 1]:
         m -= 1
+    return m, closed
+
+
+@njit(**NJIT)
+def fan_bad_turns(s, t0, tri, he, parent, c, px, py, cx0, cy0, bx, by):
+    """Bad turns of site ``s``'s ring of triangle centres (:func:`fan_ring`).
+
+    An open fan (a hull site's) counts only at its inner vertices (:func:`chain_bad_turns`).
+    """
+    m, closed = fan_ring(s, t0, tri, he, parent, c, px, py, cx0, cy0, bx, by)
     return chain_bad_turns(bx, by, m, closed)
 
 
