@@ -63,6 +63,25 @@ def saw_outline(k):
     return Polygon([(0, 0), (k, 0), *top[::-1], (0, 1.0)])
 
 
+def zigzag_outline(n):
+    """A unit strip whose top is a zigzag of ``n`` vertices 0.01 high (a long boundary)."""
+    x = np.linspace(0.0, 1.0, n)
+    y = 1.0 + 0.01 * (np.arange(n) % 2)
+    return Polygon([(0, 0), (1, 0), *zip(x[::-1], y[::-1], strict=True)])
+
+
+def holed_square(k):
+    """A ``k`` x ``k`` square with ``k * k`` small square holes, each turned a little."""
+    from shapely import affinity
+
+    holes = []
+    for i in range(k):
+        for j in range(k):
+            sq = box(i + 0.3, j + 0.3, i + 0.7, j + 0.7)
+            holes.append(affinity.rotate(sq, 7 * i + 3 * j).exterior.coords)
+    return Polygon(box(0, 0, k, k).exterior.coords, holes)
+
+
 def _build() -> dict[str, tuple[np.ndarray, object]]:
     c: dict[str, tuple[np.ndarray, object]] = {}
     unit = (0.0, 0.0, 1.0, 1.0)

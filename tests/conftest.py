@@ -68,6 +68,26 @@ def periodic_builds(monkeypatch) -> list:
     return sizes
 
 
+@pytest.fixture
+def clip_statuses(monkeypatch) -> list:
+    """The polygon-clip kernel's status array for every call in the test.
+
+    (The engine turns LOOPS cells to DONE in place after the kernel returns.)
+    """
+    from voroforge.engine import polyclip
+
+    seen = []
+    inner = polyclip.clip_cells
+
+    def spy(*args):
+        got = inner(*args)
+        seen.append(got[0])
+        return got
+
+    monkeypatch.setattr(polyclip, "clip_cells", spy)
+    return seen
+
+
 @pytest.fixture(scope="module")
 def dask_client():
     """An in-process LocalCluster of two single-threaded workers, one per test module."""

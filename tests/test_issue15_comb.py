@@ -25,17 +25,7 @@ from voroforge.engine import pieces as pieces_module
 from voroforge.engine.domain import Domain
 from voroforge.engine.pieces import PIECE_SMALL, Pieces
 
-from catalogue import comb_outline, saw_outline
-
-
-def _holed(k):
-    """A square with ``k * k`` small square holes, each turned a little."""
-    holes = []
-    for i in range(k):
-        for j in range(k):
-            sq = shapely.box(i + 0.3, j + 0.3, i + 0.7, j + 0.7)
-            holes.append(affinity.rotate(sq, 7 * i + 3 * j).exterior.coords)
-    return shapely.Polygon(shapely.box(0, 0, k, k).exterior.coords, holes)
+from catalogue import comb_outline, holed_square, saw_outline
 
 
 def _domains():
@@ -51,7 +41,7 @@ def _domains():
         "comb_rotated": affinity.rotate(comb, 33, origin=(0, 0)),
         "comb_holes": hole_teeth,
         "saw": saw_outline(200),
-        "holed": _holed(12),
+        "holed": holed_square(12),
         "multi": shapely.MultiPolygon(
             [comb_outline(40), affinity.translate(comb_outline(40).reverse(), 0, 1100)]
         ),

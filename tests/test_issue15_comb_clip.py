@@ -16,16 +16,9 @@ import shapely
 from shapely import affinity
 
 import voroforge as vf
-from voroforge.engine import polyclip
 from voroforge.kernels.polyclip import DONE, geos_intersection
 
-from catalogue import comb_outline, saw_outline
-
-
-def _zigzag(n):
-    x = np.linspace(0.0, 1.0, n)
-    y = 1.0 + 0.01 * (np.arange(n) % 2)
-    return shapely.Polygon([(0, 0), (1, 0), *zip(x[::-1], y[::-1], strict=True)])
+from catalogue import comb_outline, saw_outline, zigzag_outline
 
 
 def _domains():
@@ -40,30 +33,15 @@ def _domains():
             [shapely.box(i + 0.2, 300, i + 0.4, 700).exterior.coords for i in range(120)],
         ),
         "saw": saw_outline(300),
-        "zigzag": _zigzag(2000),
+        "zigzag": zigzag_outline(2000),
         "multi": shapely.MultiPolygon(
             [comb_outline(60), affinity.translate(comb_outline(60).reverse(), 0, 1100)]
         ),
     }
 
 
-@pytest.fixture
-def statuses(monkeypatch):
-    """The kernel's status of every cell it was given (to check the fast path ran)."""
-    seen = []
-    inner = polyclip.clip_cells
-
-    def spy(*args):
-        got = inner(*args)
-        seen.append(got[0])
-        return got
-
-    monkeypatch.setattr(polyclip, "clip_cells", spy)
-    return seen
-
-
 @pytest.mark.parametrize("name", list(_domains()))
-def test_cells_are_the_box_cells_cut(name, statuses):
+def test_cells_are_the_box_cells_cut(name, clip_statuses):
     geom = _domains()[name]
     x0, y0, x1, y1 = geom.bounds
     rng = np.random.default_rng(len(name))
@@ -76,7 +54,7 @@ def test_cells_are_the_box_cells_cut(name, statuses):
     assert np.isclose(shapely.area(cut).sum(), geom.area, rtol=1e-12)
     inside = shapely.intersects_xy(geom, p[:, 0], p[:, 1])
     assert shapely.intersects_xy(cut[inside], p[inside, 0], p[inside, 1]).all()
-    status = np.concatenate(statuses)
+    status = np.concatenate(clip_statuses)
     # the kernel clipped most cells (the zigzag's top row, whose peaks lie on the cells'
     # box sides, cells holding a hole, and far out features within 16 ulps take the overlay)
     assert (status == DONE).mean() > {"zigzag": 0.02, "comb_far": 0.3}.get(name, 0.5)

@@ -19,31 +19,14 @@ import shapely
 from shapely import affinity
 
 import voroforge as vf
-from voroforge.engine import polyclip
 from voroforge.kernels.polyclip import DONE, NONE
 
-from catalogue import comb_outline
-
-
-def _zigzag(n):
-    x = np.linspace(0.0, 1.0, n)
-    y = 1.0 + 0.01 * (np.arange(n) % 2)
-    return shapely.Polygon([(0, 0), (1, 0), *zip(x[::-1], y[::-1], strict=True)])
-
-
-def _holed(k, shell=None):
-    """``k * k`` small turned square holes in a square (or in ``shell``'s outline)."""
-    holes = []
-    for i in range(k):
-        for j in range(k):
-            sq = shapely.box(i + 0.3, j + 0.3, i + 0.7, j + 0.7)
-            holes.append(affinity.rotate(sq, 7 * i + 3 * j).exterior.coords)
-    return shapely.Polygon(shapely.box(0, 0, k, k).exterior.coords, holes)
+from catalogue import comb_outline, holed_square, zigzag_outline
 
 
 def _islands(k):
     """A holed square and, inside every other hole, an island (a MultiPolygon part)."""
-    holed = _holed(k)
+    holed = holed_square(k)
     isles = [
         shapely.Polygon(affinity.scale(shapely.Polygon(r), 0.4, 0.4).exterior)
         for r in list(holed.interiors)[::2]
@@ -57,8 +40,8 @@ def _domains():
         "comb": (comb, 300),
         "comb_far": (affinity.translate(comb, 1e13, 3e12), 300),
         "comb_1e6": (affinity.translate(comb, 1e6, -1e6), 300),
-        "zigzag": (_zigzag(4001), 150),
-        "holed": (_holed(14), 400),
+        "zigzag": (zigzag_outline(4001), 150),
+        "holed": (holed_square(14), 400),
         "islands": (_islands(10), 120),
         "multi": (
             shapely.MultiPolygon(
@@ -67,21 +50,6 @@ def _domains():
             400,
         ),
     }
-
-
-@pytest.fixture
-def statuses(monkeypatch):
-    """The kernel's status of every cell it was given (after the engine's checks)."""
-    seen = []
-    inner = polyclip.clip_cells
-
-    def spy(*args):
-        got = inner(*args)
-        seen.append(got[0])  # (the engine turns LOOPS cells to DONE in place)
-        return got
-
-    monkeypatch.setattr(polyclip, "clip_cells", spy)
-    return seen
 
 
 def _shared_points_agree(cells, tol):
@@ -104,7 +72,7 @@ def _shared_points_agree(cells, tol):
 
 
 @pytest.mark.parametrize("name", list(_domains()))
-def test_cells_against_shapely(name, statuses):
+def test_cells_against_shapely(name, clip_statuses):
     geom, n = _domains()[name]
     x0, y0, x1, y1 = geom.bounds
     rng = np.random.default_rng(len(name))
@@ -121,19 +89,19 @@ def test_cells_against_shapely(name, statuses):
     assert shapely.intersects_xy(cut[inside], p[inside, 0], p[inside, 1]).all()
     ulp = np.spacing(max(abs(x0), abs(y0), abs(x1), abs(y1)))
     assert _shared_points_agree(cut, 4 * ulp)
-    status = np.concatenate(statuses)
+    status = np.concatenate(clip_statuses)
     # only far out (a comb at 1e13, teeth ~100 ulps wide: features within POLYCLIP_ULPS of
     # a crossing) are cells left to the overlay
     assert (status > NONE).sum() <= {"comb_far": len(status) // 2}.get(name, 0)
 
 
-def test_box_rows_and_holes_stay_in_the_kernel(statuses):
+def test_box_rows_and_holes_stay_in_the_kernel(clip_statuses):
     """The comb's top and bottom rows and cells holding a hole or an island: all clipped here."""
-    for geom in (comb_outline(40), _islands(6), _zigzag(1001)):
+    for geom in (comb_outline(40), _islands(6), zigzag_outline(1001)):
         x0, y0, x1, y1 = geom.bounds
         p = np.random.default_rng(7).random((80, 2)) * [x1 - x0, y1 - y0] + [x0, y0]
         vf.voronoi(p, geom)
-    status = np.concatenate(statuses)
+    status = np.concatenate(clip_statuses)
     assert len(status) and (status <= NONE).all() and (status == DONE).sum() > 40
 
 
