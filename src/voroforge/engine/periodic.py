@@ -30,6 +30,7 @@ import shapely
 
 from ..config import (
     PERIODIC_CAP_PERIODS,
+    PERIODIC_CUT_CELLS,
     PERIODIC_EXTRA_SITES,
     PERIODIC_PROOF_RTOL,
     PERIODIC_SLIVER_MAX_SIDE,
@@ -40,7 +41,9 @@ from .diagram import Diagram, Edges, buffers, frame_exponent
 from .domain import Domain, make_domain
 from .inputs import as_points, working_frame
 from .periodic_chord import chord_clear, shortfall
+from .periodic_edges import snap_ends
 from .periodic_frame import cells_to_user_frame, corner_frame, to_local, two_sum_error
+from .periodic_retry import cut_off_twice, next_try, on_sides, same_copies
 from .periodic_ties import tie_images
 from .planar import build
 
@@ -454,15 +457,17 @@ def _without_slivers(geom, rounding: float):
     return polys[0] if len(polys) == 1 else shapely.MultiPolygon(polys)
 
 
-def _torus_edges(d: Diagram, source, shift, is_orig, wrap: bool, pieces, box) -> Edges:
+def _torus_edges(d: Diagram, source, shift, is_orig, wrap: bool, pieces, box, cut=None) -> Edges:
     pairs = d.edges.pairs
     coords = d.edges.coords
     if wrap:
         kept = np.zeros(len(d.sites), dtype=bool)
         kept[pieces] = True
         side = _side_edges(coords, pairs, kept, box)
-        coords, inside = _clip_segments(coords, box)
+        coords, inside, clipped = _clip_segments(coords, box)
         pairs = pairs[inside]
+        # the ends on the sides at the cut cells' own vertices (checker35 F2: 2 ulps off)
+        coords = snap_ends(coords, pairs, clipped, cut, box, _sliver_width(box))
     a = pairs[:, 0]
     b = pairs[:, 1]
     sa = source[a]
@@ -510,9 +515,10 @@ def _side_edges(seg: np.ndarray, pairs: np.ndarray, kept: np.ndarray, box):
 
 
 def _clip_segments(seg: np.ndarray, box):
-    """Segments ``(m, 2, 2)`` cut to the box (Liang-Barsky), and which of them keep a length.
+    """Segments ``(m, 2, 2)`` cut to the box (Liang-Barsky), which keep a length, and ends cut.
 
-    A segment inside the box keeps its end points' bits.
+    A segment inside the box keeps its end points' bits; ``(k, 2)`` bool: which ends of the
+    kept segments the cut moved.
     """
     x0, y0, x1, y1 = box
     p = seg[:, 0]
@@ -538,7 +544,7 @@ def _clip_segments(seg: np.ndarray, box):
     out[:, :, 0] = np.clip(out[:, :, 0], x0, x1)
     out[:, :, 1] = np.clip(out[:, :, 1], y0, y1)
     keep &= (out[:, 0] != out[:, 1]).any(axis=1)
-    return np.ascontiguousarray(out[keep]), keep
+    return np.ascontiguousarray(out[keep]), keep, np.column_stack((a, b))[keep]
 
 
 def _positive(s: np.ndarray) -> np.ndarray:
@@ -662,6 +668,8 @@ def _periodic(points, tile, algorithm: str, wrap: bool, may_move: bool) -> Diagr
     mx, my = _margins(box, n)
     cx, cy = _caps(box)
     extra = (np.zeros(n, dtype=bool), (cx, cy))  # sites whose copies go to the caps
+    grew = [False, False]  # whether each margin grew before (:func:`.periodic_retry.next_try`)
+    last = None  # the copies of the last try, where its diagram may stand for the next
     for _ in range(_MAX_TRIES):
         ext, source, shift, exact = _images(pts, box, (mx, my), extra)
         ex, ey = (max(mx, cx), max(my, cy)) if extra[0].any() else (mx, my)
@@ -679,8 +687,9 @@ def _periodic(points, tile, algorithm: str, wrap: bool, may_move: bool) -> Diagr
             may_move = False
         is_orig = ~shift.any(axis=1)
         orig = np.flatnonzero(is_orig)  # the original of site i is copy orig[i]
-        grown = make_domain((x0 - mx, y0 - my, x1 + mx, y1 + my), ext)
-        d = build(ext, grown, algorithm)
+        if not same_copies(last, source, shift):
+            grown = make_domain((x0 - mx, y0 - my, x1 + mx, y1 + my), ext)
+            d = build(ext, grown, algorithm)
         if may_move and len(d.unresolved):
             # sites a few ulps apart (a box 24 x 16 ulps at 1e15): where the frame is exact,
             # its finer floats resolve them
@@ -703,17 +712,24 @@ def _periodic(points, tile, algorithm: str, wrap: bool, may_move: bool) -> Diagr
             v, d.sites[owner], box, (mx, my), pts, _rounding(box), extra, most, owner
         )
         asked = asked[~extra[0][asked]]
-        if len(asked):
-            extra[0][asked] = True
-            if not grow_x and not grow_y:
-                continue  # only those sites' copies: the margins stay
-        if (mx >= cx or not grow_x) and (my >= cy or not grow_y):
-            grow_x, grow_y = 2.0 * mx, 2.0 * my  # pragma: no cover - the old rule: both double
-        # the failing axes at least double, at once to what their vertices asked for (sites
-        # on one line: the first margins hold only the line, its cells end at the grown box
-        # and ask for half a period; doubling took five builds to get there)
-        mx = min(max(2.0 * mx, grow_x), cx) if grow_x else mx
-        my = min(max(2.0 * my, grow_y), cy) if grow_y else my
+        extra[0][asked] = True
+        # the few cells cut off on both axes bring their sites' copies now, not a build later
+        twice = cut_off_twice(v, owner, box, (mx, my), _rounding(box), PERIODIC_CUT_CELLS)
+        # the grown box's next copies may be these: then this diagram stands (no kept cell
+        # ends at its sides), proved again with the larger margins
+        last = None if on_sides(v, box, (mx, my), _rounding(box)) else (source, shift)
+        (mx, my), changed = next_try(
+            (mx, my),
+            (cx, cy),
+            (grow_x, grow_y),
+            grew,
+            source[twice],
+            extra,
+            PERIODIC_EXTRA_SITES,
+            lambda m: len(_images(pts, box, m, extra)[0]),
+        )
+        if not changed and not len(asked):  # pragma: no cover - the old rule: both double
+            mx, my = min(2.0 * mx, cx), min(2.0 * my, cy)
     else:  # pragma: no cover - the margins reach their caps long before
         raise RuntimeError("periodic diagram: could not prove the margin")
     if wrap:
@@ -728,7 +744,9 @@ def _periodic(points, tile, algorithm: str, wrap: bool, may_move: bool) -> Diagr
         # a vertex and its images made exact shifts of each other (periodic_ties)
         copies = (buffers(d), d.sites, source, shift)
         bufs = tie_images(_cells_at(buffers(d), orig), box, copies)
-    edges = _torus_edges(d, source, shift, is_orig, wrap, keep if wrap else None, box)
+    edges = _torus_edges(
+        d, source, shift, is_orig, wrap, keep if wrap else None, box, pieces if wrap else None
+    )
     # a site is unresolved when the copy its cell comes from is (unwrapped: the original;
     # wrapped: any copy, whose piece is then missing)
     lost = d.unresolved
