@@ -21,6 +21,8 @@ BAD_POINTS = {
     "strings": ([["a", "b"], ["c", "d"]], r"(?i)real|numeric|number|float|convert"),
     "objects": ([[object(), 1.0]], r"(?i)real|numeric|number|float|convert"),
     "complex": (np.array([[1 + 1j, 0], [0, 1]]), r"(?i)real|complex|numeric|number"),
+    "dates": (np.array([[1, 2], [3, 4], [5, 1]], "datetime64[s]"), r"dates and durations"),
+    "durations": (np.array([[1, 2], [3, 4], [5, 1]], "timedelta64[ms]"), r"dates and durations"),
 }
 
 
@@ -31,6 +33,11 @@ def test_bad_points(name, func):
     call = vf.delaunay if func == "delaunay" else vf.voronoi
     with pytest.raises(ValueError, match=pattern):
         call(pts)
+
+
+def test_durations_as_weights_are_refused():
+    with pytest.raises(ValueError, match="dates and durations"):
+        vf.power(GOOD, np.arange(4).astype("timedelta64[s]"), (-1, -1, 2, 2))
 
 
 def test_nan_message_names_the_row():

@@ -34,6 +34,8 @@ def as_points(points, *, dim: int = 2, name: str = "points") -> np.ndarray:
         raw = np.asarray(points)
         if raw.dtype.kind == "c":
             raise TypeError("complex values are not coordinates")
+        if raw.dtype.kind in "mM":
+            raise TypeError("dates and durations are not coordinates (convert them first)")
         if raw.dtype.kind in "USb" or (
             raw.dtype.kind == "O" and any(isinstance(v, str | bytes | bool) for v in raw.flat)
         ):
@@ -113,6 +115,8 @@ def _real_copy(values, what: str) -> np.ndarray:
     raw = np.asarray(values)
     if raw.dtype.kind == "c":
         raise TypeError(what)
+    if raw.dtype.kind in "mM":
+        raise TypeError("dates and durations are not numbers (convert them first)")
     out = np.array(raw, dtype=np.float64, copy=True)
     if raw.dtype.kind != "b" and _nested_bool(values, out):
         raise TypeError("a true/false among the numbers is not a number")
