@@ -70,8 +70,10 @@ def area_centroid(coords, ring_offsets, polygon_offsets, geom_offsets):
     """Area and area centroid of each geometry.
 
     The first ring of every polygon is its exterior, the others are holes; ring orientation
-    does not matter. Sums are taken relative to the geometry's first vertex, so coordinates
-    like 500000/4000000 keep their precision. Empty geometries get area 0 and a NaN centroid.
+    does not matter. Each polygon's sums are taken relative to its own first vertex, so
+    coordinates like 500000/4000000 keep their precision, and so does a cell with parts far
+    apart (a MultiPolygon domain's parts 1e12 apart). Empty geometries get area 0 and a NaN
+    centroid.
     """
     n = geom_offsets.shape[0] - 1
     xs = coords[:, 0]
@@ -90,14 +92,25 @@ def area_centroid(coords, ring_offsets, polygon_offsets, geom_offsets):
         mx = 0.0
         my = 0.0
         for p in range(p0, p1):
+            own = coords[ring_offsets[polygon_offsets[p]]]
+            px = own[0]
+            py = own[1]
+            ap = 0.0
+            sxp = 0.0
+            syp = 0.0
             for r in range(polygon_offsets[p], polygon_offsets[p + 1]):
-                a, sx, sy, _ = ring_sums(xs, ys, ring_offsets[r], ring_offsets[r + 1], ox, oy, True)
+                a, sx, sy, _ = ring_sums(xs, ys, ring_offsets[r], ring_offsets[r + 1], px, py, True)
                 sign = 1.0 if a >= 0.0 else -1.0
                 if r != polygon_offsets[p]:
                     sign = -sign  # holes subtract
-                a_tot += sign * a
-                mx += sign * sx
-                my += sign * sy
+                ap += sign * a
+                sxp += sign * sx
+                syp += sign * sy
+            a_tot += ap
+            # the part's first moments moved from its own vertex to the geometry's (exact
+            # zero shift for the first part: one-part cells sum as before, bit for bit)
+            mx += sxp + 3.0 * ap * (px - ox)
+            my += syp + 3.0 * ap * (py - oy)
         area[g] = 0.5 * a_tot
         if a_tot != 0.0:
             cen[g, 0] = ox + mx / (3.0 * a_tot)
