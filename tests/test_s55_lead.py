@@ -24,7 +24,8 @@ def _exact_area(geom) -> Fraction:
         rings = [poly.exterior, *poly.interiors]
         for k, ring in enumerate(rings):
             xy = [(Fraction(x), Fraction(y)) for x, y in ring.coords]
-            twice = sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(xy, xy[1:]))
+            pairs = zip(xy[:-1], xy[1:], strict=True)
+            twice = sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in pairs)
             total += abs(twice) / 2 if k == 0 else -abs(twice) / 2
     return total
 
