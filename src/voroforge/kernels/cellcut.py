@@ -204,13 +204,18 @@ def _inside_box(t, cx, cy, reach, box):
     """Whether triangle ``t``'s centre lies inside ``box`` by more than its side reach.
 
     A centre never put on a side (a negative reach, :func:`side_reaches`) is every cell's
-    vertex where it lies: inside when inside by more than its rounding bound, the reach's
-    size (issue 15: a float circle's vertex 2.75 ulps from a side, its sites an ulp from
-    each other, was dropped by the one cell whose cut lost its edge to the side).
+    vertex where it lies, so it is inside when strictly inside: the one rule the uncut
+    rings apply to it (``cells._at_side_or_out``), decided by the centre alone. A float
+    circle's vertex 2.75 ulps inside a side, its sites an ulp apart, was dropped by the one
+    cell whose cut lost its edge to the side; one 2 ulps inside, under its rounding bound
+    (300 at phase 0.75, a box side there, issue 15), was written by the uncut cell of its
+    middle site and by neither cut cell beside it (a hole of 620 units^2, Euler failed).
     """
     if t < 0:
         return False
-    e = abs(reach[t])
+    e = reach[t]
+    if e < 0.0:
+        return box[0] < cx[t] < box[2] and box[1] < cy[t] < box[3]
     return box[0] + e < cx[t] < box[2] - e and box[1] + e < cy[t] < box[3] - e
 
 
