@@ -32,7 +32,7 @@ from .agree import agree
 from .diagram import Edges, LazyEdges
 from .domain import Domain
 from .pieces import Pieces
-from .polyclip import clip_convex
+from .polyclip import clip_convex, clip_edges
 from .slivers import sliver_owner
 from .threads import serial_below
 
@@ -658,15 +658,39 @@ def _clip_segments(grid, pieces, seg, pairs, tol):
     keep = status == 1
     if not len(hard):
         return seg[keep], pairs[keep]
-    lines = shapely.linestrings(seg[hard])
-    cut = pieces.intersect(lines, pairs[hard].min(axis=1), shapely.LineString())
+    # the exact kernel first: its pieces end at the kernel-clipped cells' vertices bit for bit
+    k_piece, k_idx = np.zeros((0, 2, 2)), np.zeros(0, dtype=np.int64)
+    rest = np.arange(len(hard))
+    if not pieces.whole:
+        k_piece, k_idx, rest = clip_edges(pieces, seg[hard])
+    piece, idx = _overlay_segments(pieces, seg[hard[rest]], pairs[hard[rest]])
+    idx = np.concatenate((k_idx, rest[idx]))
+    order = np.argsort(idx, kind="stable")
+    piece = np.concatenate((k_piece, piece))[order]
+    idx = idx[order]
+    long = np.hypot(*(piece[:, 1] - piece[:, 0]).T) > tol
+    return (
+        np.concatenate((seg[keep], piece[long])),
+        np.concatenate((pairs[keep], pairs[hard[idx[long]]])),
+    )
+
+
+def _overlay_segments(pieces, seg, pairs):
+    """Segments ``seg`` cut to the domain by GEOS's overlay: pieces ``(r, 2, 2)``, their segment.
+
+    Pieces along the domain's boundary are left out.
+    """
+    if not len(seg):
+        return np.zeros((0, 2, 2)), np.zeros(0, dtype=np.int64)
+    lines = shapely.linestrings(seg)
+    cut = pieces.intersect(lines, pairs.min(axis=1), shapely.LineString())
     parts, idx = shapely.get_parts(cut, return_index=True)
     is_line = (shapely.get_type_id(parts) == 1) & ~shapely.is_empty(parts)
     parts = parts[is_line]
     idx = idx[is_line]
     # a piece along the domain's boundary (a cell's side on a hole's edge, the other cell
     # empty or beyond it) separates no two clipped cells: only pieces in the interior stay
-    inner = pieces.in_interior(parts, pairs[hard[idx]].min(axis=1))
+    inner = pieces.in_interior(parts, pairs[idx].min(axis=1))
     parts = parts[inner]
     idx = idx[inner]
     # a straight segment intersected with a region gives straight pieces: keep end points
@@ -677,8 +701,4 @@ def _clip_segments(grid, pieces, seg, pairs, tol):
         ),
         axis=1,
     )
-    long = np.hypot(*(piece[:, 1] - piece[:, 0]).T) > tol
-    return (
-        np.concatenate((seg[keep], piece[long])),
-        np.concatenate((pairs[keep], pairs[hard[idx[long]]])),
-    )
+    return piece.reshape(-1, 2, 2), idx

@@ -4,23 +4,29 @@ A cell (a closed counter-clockwise convex ring) that meets the domain's boundary
 the segments in the grid buckets its box covers (:func:`bucket_segments`), not by the whole
 domain: a comb whose one outline meets every cell costs each cell the teeth it meets.
 The domain's rings run with the domain on their left (shells counter-clockwise, holes
-clockwise). Each segment is cut to the cell (Cyrus-Beck); the pieces inside it join into
+clockwise). Each segment is cut to the cell; the pieces inside it join into
 chains along the rings, each entering the cell across one of its edges and leaving it
 across another; the clipped cell's rings are the chains joined along the cell's boundary,
 counter-clockwise from each chain's exit to the next entry (:func:`clip_cells`).
 
-Every sign is a filtered float orientation: where one is within its error bound (a vertex
-of the domain on a cell's edge line, a boundary segment along a cell's edge, a crossing
-near a cell's vertex, two crossings nearly at one point) the cell is not clipped here but
-flagged for the overlay. The boundary along the sides of the domain's bounding box (a
-comb's top and bottom rows, a zigzag's peaks on the box) is pushed out of the box by an
-infinitesimal for cells inside the box (:func:`box_sides`): the domain inside the box is
-the same, and a segment leaves a cell's edge on the box only at its own vertex. A ring of
-the domain wholly inside a cell comes back as a loop (a hole or a part). A crossing is
-computed as GEOS computes it (``CGAlgorithmsDD::intersection``: homogeneous coordinates in
-double-double arithmetic), symmetric in the two segments and their directions: two cells
-sharing an edge place a crossing on it at the same point, the point GEOS's overlay (and its
-clip of the shared edge) gives.
+Every sign is exact (:func:`.predicates.orient2d`): a segment's ends against the cell's
+edge lines, and the cell's vertices against the segment's line, whose chord in the cell
+(entered where the vertices pass from its left to its right) gives the crossings. A line
+through a cell's vertex crosses there, at the vertex itself; a vertex of the domain on a
+cell's edge is the crossing itself (a chain touching the edge from inside goes on); a
+boundary segment along a cell's edge, like the boundary along the sides of the domain's
+bounding box (a comb's top and bottom rows, a zigzag's peaks on the box: :func:`box_sides`,
+for cells inside the box), is pushed out of the cell by an infinitesimal: the domain in
+the cell is the same, and the boundary leaves the edge only at its own vertices (floats:
+nothing is rounded there). A ring of the domain wholly inside a cell comes back as a loop
+(a hole or a part). The overlay is left only what the floats cannot order: two chain ends
+within ``POLYCLIP_PARAM_EPS`` along the cell's boundary, a rounded crossing past an end
+of its segments or onto a neighbour, a cell no segment enters whose first vertex the
+boundary touches, a ring rounding bent. A crossing is computed as GEOS computes it
+(``CGAlgorithmsDD::intersection``: homogeneous coordinates in double-double arithmetic),
+symmetric in the two segments and their directions: two cells sharing an edge place a
+crossing on it at the same point, the point GEOS's overlay gives, and so does the clip of
+their shared edge (:mod:`.edgeclip`).
 """
 
 from __future__ import annotations
@@ -30,11 +36,12 @@ import math
 import numpy as np
 from numba import njit
 
-from ..config import NJIT, POLYCLIP_ORIENT_EPS, POLYCLIP_PARAM_EPS, POLYCLIP_ULPS
+from ..config import NJIT, POLYCLIP_PARAM_EPS
+from .predicates import orient2d
 
 DONE = 0  # clipped here
 NONE = 1  # no boundary segment meets the cell: wholly inside or wholly outside
-HARD = 2  # left to the overlay (a near-degenerate sign; HARD + k: which test, k < 20)
+HARD = 2  # left to the overlay (HARD + k: which test, k < 20)
 LOOPS = -1  # clipped here, with rings of the domain wholly inside the cell (loops)
 
 
@@ -170,11 +177,10 @@ def geos_intersection(p1x, p1y, p2x, p2y, q1x, q1y, q2x, q2y):
 
 
 @njit(**NJIT)
-def _orient(ax, ay, bx, by, px, py):
-    """``(b - a) x (p - a)`` and its error bound."""
-    left = (bx - ax) * (py - ay)
-    right = (by - ay) * (px - ax)
-    return left - right, POLYCLIP_ORIENT_EPS * (abs(left) + abs(right))
+def _sign(ax, ay, bx, by, px, py):
+    """The exact sign (-1, 0, 1) of ``(b - a) x (p - a)``, and its float value."""
+    d = orient2d(ax, ay, bx, by, px, py)
+    return (1 if d > 0.0 else (-1 if d < 0.0 else 0)), d
 
 
 @njit(**NJIT)
@@ -212,11 +218,12 @@ def clip_cells(ring_xy, ring_off, seg, nxt, boff, bids, grid, box, sides):
         follow its other rings, which are then its polygons' shells (none: the cell's own
         ring may be one, see :func:`.engine.polyclip.clip_convex`).
     """
-    x0, y0, h = grid[0], grid[1], grid[2]
-    nx, ny = int(grid[3]), int(grid[4])
     m = seg.shape[0]
     u = ring_off.shape[0] - 1
     stamp = np.full(m, -1, dtype=np.int64)
+    prv = np.zeros(m, dtype=np.int64)
+    for g in range(m):
+        prv[nxt[g]] = g
     loc = np.full(m, -1, dtype=np.int64)
     status = np.zeros(u, dtype=np.int8)
     out_xy = np.zeros((max(16, ring_xy.shape[0] * 2), 2))
@@ -241,35 +248,11 @@ def clip_cells(ring_xy, ring_off, seg, nxt, boff, bids, grid, box, sides):
         in_box = bx0 >= box[0] and by0 >= box[1] and bx1 <= box[2] and by1 <= box[3]
         edge_side = _edge_sides(cx, cy, nc, box, in_box)
         # the candidates: segments in the buckets of the cell's box whose boxes meet it
-        n_cand = 0
-        c0 = _clamp(math.floor((bx0 - x0) / h), nx)
-        c1 = _clamp(math.floor((bx1 - x0) / h), nx)
-        r0 = _clamp(math.floor((by0 - y0) / h), ny)
-        r1 = _clamp(math.floor((by1 - y0) / h), ny)
-        for r in range(r0, r1 + 1):
-            for c in range(c0, c1 + 1):
-                b = r * nx + c
-                for t in range(boff[b], boff[b + 1]):
-                    g = bids[t]
-                    if stamp[g] == i:
-                        continue
-                    stamp[g] = i
-                    loc[g] = -1
-                    if in_box and sides[g, 0] >= 0:
-                        continue  # (along a side of the box: outside, pushed out)
-                    if (
-                        max(seg[g, 0], seg[g, 2]) < bx0
-                        or min(seg[g, 0], seg[g, 2]) > bx1
-                        or max(seg[g, 1], seg[g, 3]) < by0
-                        or min(seg[g, 1], seg[g, 3]) > by1
-                    ):
-                        continue
-                    if n_cand == cand.shape[0]:
-                        cand = np.concatenate((cand, np.zeros(n_cand, dtype=np.int64)))
-                    loc[g] = n_cand
-                    cand[n_cand] = g
-                    n_cand += 1
-        got = _clip_one(cx, cy, nc, seg, nxt, cand[:n_cand], stamp, loc, i, edge_side, sides)
+        # (in the box, none along its sides: they are pushed out)
+        cand, n_cand = segment_candidates(
+            seg, boff, bids, grid, (bx0, by0, bx1, by1), stamp, loc, i, cand, sides, in_box
+        )
+        got = _clip_one(cx, cy, nc, seg, nxt, prv, cand[:n_cand], stamp, loc, i, edge_side, sides)
         st, xy, off, n_loop = got
         status[i] = st if n_loop == 0 else LOOPS
         if st != DONE:
@@ -295,6 +278,48 @@ def clip_cells(ring_xy, ring_off, seg, nxt, boff, bids, grid, box, sides):
         out_cell[:n_ring].copy(),
         out_loop[:n_ring].copy(),
     )
+
+
+@njit(**NJIT)
+def segment_candidates(seg, boff, bids, grid, rect, stamp, loc, mark, cand, sides, in_box):
+    """The segments in the grid buckets over ``rect = (x0, y0, x1, y1)`` whose boxes meet it.
+
+    Returns ``(cand, count)`` (``cand`` grown as needed); each segment met is stamped
+    ``mark`` once and ``loc`` holds its place in ``cand`` (-1: not kept). Where ``in_box``,
+    segments along a side of the domain's box (``sides[g, 0] >= 0``) are not kept.
+    """
+    x0, y0, h = grid[0], grid[1], grid[2]
+    nx, ny = int(grid[3]), int(grid[4])
+    bx0, by0, bx1, by1 = rect
+    n_cand = 0
+    c0 = _clamp(math.floor((bx0 - x0) / h), nx)
+    c1 = _clamp(math.floor((bx1 - x0) / h), nx)
+    r0 = _clamp(math.floor((by0 - y0) / h), ny)
+    r1 = _clamp(math.floor((by1 - y0) / h), ny)
+    for r in range(r0, r1 + 1):
+        for c in range(c0, c1 + 1):
+            b = r * nx + c
+            for t in range(boff[b], boff[b + 1]):
+                g = bids[t]
+                if stamp[g] == mark:
+                    continue
+                stamp[g] = mark
+                loc[g] = -1
+                if in_box and sides[g, 0] >= 0:
+                    continue
+                if (
+                    max(seg[g, 0], seg[g, 2]) < bx0
+                    or min(seg[g, 0], seg[g, 2]) > bx1
+                    or max(seg[g, 1], seg[g, 3]) < by0
+                    or min(seg[g, 1], seg[g, 3]) > by1
+                ):
+                    continue
+                if n_cand == cand.shape[0]:
+                    cand = np.concatenate((cand, np.zeros(n_cand, dtype=np.int64)))
+                loc[g] = n_cand
+                cand[n_cand] = g
+                n_cand += 1
+    return cand, n_cand
 
 
 @njit(**NJIT)
@@ -348,7 +373,7 @@ def _edge_sides(cx, cy, nc, box, in_box):
 
 
 @njit(**NJIT)
-def _clip_one(cx, cy, nc, seg, nxt, cand, stamp, loc, cell, edge_side, sides):
+def _clip_one(cx, cy, nc, seg, nxt, prv, cand, stamp, loc, cell, edge_side, sides):
     """One cell: (status, closed rings' coordinates, their offsets).
 
     On an edge along a side of the box (``edge_side``) a vertex is inside unless it is
@@ -365,136 +390,155 @@ def _clip_one(cx, cy, nc, seg, nxt, cand, stamp, loc, cell, edge_side, sides):
     u_out = np.zeros(q)
     x_in = np.zeros((q, 2))
     x_out = np.zeros((q, 2))
-    dp = np.zeros(nc)
-    dq = np.zeros(nc)
-    # rounding a crossing moves it by under an ulp: every feature the clipped rings keep
-    # (a vertex off a cell's edge, a cell's vertex off a segment, two crossings on one
-    # edge) must be farther than POLYCLIP_ULPS ulps of the cell's coordinates, or the
-    # rounded rings could touch or cross themselves (a comb far out, where teeth are a
-    # few ulps wide)
-    mag = 0.0
-    length = np.zeros(nc)
-    for k in range(nc):
-        mag = max(mag, abs(cx[k]), abs(cy[k]))
-        length[k] = math.hypot(cx[k + 1] - cx[k], cy[k + 1] - cy[k])
-    gap = POLYCLIP_ULPS * np.spacing(mag)
-    # (only a segment's end near the cell can be a vertex of the clipped cell)
-    lo_x, hi_x = cx.min() - 2 * gap, cx.max() + 2 * gap
-    lo_y, hi_y = cy.min() - 2 * gap, cy.max() + 2 * gap
+    at_p = np.zeros(q, dtype=np.bool_)  # entering at its own first vertex (on the boundary)
+    at_q = np.zeros(q, dtype=np.bool_)  # leaving at its own last vertex
+    sp = np.zeros(nc, dtype=np.int64)
+    push_p = np.zeros(nc, dtype=np.bool_)  # the end pushed out across the edge
+    push_q = np.zeros(nc, dtype=np.bool_)
+    sq = np.zeros(nc, dtype=np.int64)
+    sv = np.zeros(nc, dtype=np.int64)
+    dv = np.zeros(nc)
+    contact = False  # a segment meets the closed cell only at its first vertex
     n_piece = 0
     for j in range(q):
         g = cand[j]
         px, py, qx, qy = seg[g, 0], seg[g, 1], seg[g, 2], seg[g, 3]
+        # exact sides of the segment's ends against each edge's line (on the box's sides:
+        # inside unless pushed out across it, see :func:`box_sides`)
         outside = False
-        near = False
-        p_near = lo_x <= px <= hi_x and lo_y <= py <= hi_y
-        q_near = lo_x <= qx <= hi_x and lo_y <= qy <= hi_y
+        touch = False
         for k in range(nc):
-            v, e = _orient(cx[k], cy[k], cx[k + 1], cy[k + 1], px, py)
-            w, f = _orient(cx[k], cy[k], cx[k + 1], cy[k + 1], qx, qy)
             s = edge_side[k]
+            push_p[k] = False
+            push_q[k] = False
             if s >= 0:
-                # (the box's side: every vertex is on it or inside, the sign exact)
-                v = -1.0 if (sides[g, 1] >> s) & 1 else max(v, 1.0)
-                w = -1.0 if (sides[g, 2] >> s) & 1 else max(w, 1.0)
-                dp[k] = v
-                dq[k] = w
-                if v < 0.0 and w < 0.0:
+                a = -1 if (sides[g, 1] >> s) & 1 else 1
+                b = -1 if (sides[g, 2] >> s) & 1 else 1
+                push_p[k] = a < 0
+                push_q[k] = b < 0
+            else:
+                a = _sign(cx[k], cy[k], cx[k + 1], cy[k + 1], px, py)[0]
+                b = _sign(cx[k], cy[k], cx[k + 1], cy[k + 1], qx, qy)[0]
+                if a == 0 and b == 0:
+                    # along the edge's line: pushed out of the cell by an infinitesimal, as
+                    # on the box's sides (the domain in the cell is the same), and so are
+                    # the ends on it of the segments before and after it
+                    contact = contact or _on_segment(px, py, qx, qy, cx[0], cy[0])
                     outside = True
                     break
-                continue
-            dp[k] = v
-            dq[k] = w
-            if v < -e and w < -f:
+                if a == 0:
+                    h = prv[g]
+                    if _sign(cx[k], cy[k], cx[k + 1], cy[k + 1], seg[h, 0], seg[h, 1])[0] == 0:
+                        a = -1
+                        push_p[k] = True
+                if b == 0:
+                    h = nxt[g]
+                    if _sign(cx[k], cy[k], cx[k + 1], cy[k + 1], seg[h, 2], seg[h, 3])[0] == 0:
+                        b = -1
+                        push_q[k] = True
+            sp[k] = a
+            sq[k] = b
+            if a < 0 and b < 0:
                 outside = True
                 break
-            if abs(v) <= e or abs(w) <= f:
-                near = True
-            if (p_near and abs(v) <= gap * length[k]) or (q_near and abs(w) <= gap * length[k]):
-                near = True
+            if a <= 0 and b <= 0:
+                touch = True  # (in the closed half-plane beyond: a point at most)
         if outside:
             continue
-        if near:
-            return HARD + 0, nothing[0], nothing[1], 0
-        # the last entry and first exit along the segment, and their runners-up (a
-        # segment through a cell's vertex enters or leaves by two edges at one point)
-        t_in, t_in2, t_out, t_out2 = -1.0, -1.0, 2.0, 2.0
+        if touch:
+            # (only a point on the cell's first vertex can mislead the engine's test of
+            # whether a cell no segment enters is inside: that vertex's)
+            contact = contact or _on_segment(px, py, qx, qy, cx[0], cy[0])
+            continue
+        p_in = True
+        q_in = True
+        p_out = False
+        q_out = False
         for k in range(nc):
-            if dp[k] < 0.0 or dq[k] < 0.0:
-                t = dp[k] / (dp[k] - dq[k])
-                if edge_side[k] >= 0:
-                    t = 0.0 if dp[k] < 0.0 else 1.0  # (at the pushed vertex itself)
-                if dp[k] < 0.0:
-                    if t > t_in:
-                        t_in, t_in2 = t, t_in
-                        k_in[j] = k
-                    elif t > t_in2:
-                        t_in2 = t
-                else:
-                    if t < t_out:
-                        t_out, t_out2 = t, t_out
-                        k_out[j] = k
-                    elif t < t_out2:
-                        t_out2 = t
-        if k_in[j] >= 0 and t_in - t_in2 <= POLYCLIP_PARAM_EPS:
-            return HARD + 1, nothing[0], nothing[1], 0
-        if k_out[j] >= 0 and t_out2 - t_out <= POLYCLIP_PARAM_EPS:
-            return HARD + 2, nothing[0], nothing[1], 0
-        t_in = max(t_in, 0.0)
-        t_out = min(t_out, 1.0)
-        if t_in > t_out + POLYCLIP_PARAM_EPS:
-            k_in[j] = -1
-            k_out[j] = -1
-            continue  # (it passes by a corner of the cell)
-        if t_in >= t_out - POLYCLIP_PARAM_EPS:
-            return HARD + 3, nothing[0], nothing[1], 0
-        for side in range(2):
-            k = k_in[j] if side == 0 else k_out[j]
-            if k < 0:
+            p_in = p_in and sp[k] > 0
+            q_in = q_in and sq[k] > 0
+            p_out = p_out or sp[k] < 0
+            q_out = q_out or sq[k] < 0
+        if not (p_in and q_in):
+            # the chord of the segment's line in the cell, from the cell's vertices' exact
+            # sides: entered where they pass from its left to its right (counter-clockwise),
+            # at a vertex on the line or inside an edge
+            for k in range(nc):
+                sv[k], dv[k] = _sign(px, py, qx, qy, cx[k], cy[k])
+            e_in = -1
+            e_out = -1
+            v_in = False
+            v_out = False
+            n_in = 0
+            n_out = 0
+            for k in range(nc):
+                a, b = sv[k], sv[(k + 1) % nc]
+                if a == 0:
+                    before = sv[(k - 1) % nc]
+                    if before == 0 or b == 0:
+                        return HARD + 1, nothing[0], nothing[1], 0  # (the line on an edge)
+                    if before > 0 and b < 0:
+                        e_in, v_in, n_in = k, True, n_in + 1
+                    elif before < 0 and b > 0:
+                        e_out, v_out, n_out = k, True, n_out + 1
+                elif a > 0 and b < 0:
+                    e_in, v_in, n_in = k, False, n_in + 1
+                elif a < 0 and b > 0:
+                    e_out, v_out, n_out = k, False, n_out + 1
+            if n_in != n_out or n_in > 1:
+                return HARD + 2, nothing[0], nothing[1], 0  # (a ring rounding bent)
+            if n_in == 0:
+                # (the line meets the closed cell at a vertex at most)
+                contact = contact or (sv[0] == 0 and _on_segment(px, py, qx, qy, cx[0], cy[0]))
                 continue
-            ax, ay, bx, by = cx[k], cy[k], cx[k + 1], cy[k + 1]
-            if edge_side[k] >= 0:
-                # the pushed vertex, strictly between the edge's ends (exact, on an axis)
-                x, y = (px, py) if side == 0 else (qx, qy)
-                a, b, c = (ax, bx, x) if edge_side[k] % 2 == 1 else (ay, by, y)
-                if not (min(a, b) < c < max(a, b)):
-                    return HARD + 4, nothing[0], nothing[1], 0
-                t = (c - a) / (b - a)
-                if side == 0:
-                    u_in[j] = t
-                    x_in[j, 0], x_in[j, 1] = x, y
-                else:
-                    u_out[j] = t
-                    x_out[j, 0], x_out[j, 1] = x, y
+        if not p_in:
+            if p_out:
+                own = not v_in and push_p[e_in]
+                if not v_in and edge_side[e_in] >= 0 and not own:
+                    return HARD + 7, nothing[0], nothing[1], 0
+                got = _end(cx, cy, e_in, v_in, dv, True, px, py, qx, qy, own)
+            elif (v_in and px == cx[e_in] and py == cy[e_in]) or (not v_in and sp[e_in] == 0):
+                got = _on_edge(cx, cy, e_in, v_in, True, px, py)
+                at_p[j] = True
+            elif (v_out and px == cx[e_out] and py == cy[e_out]) or (not v_out and sp[e_out] == 0):
+                contact = contact or (px == cx[0] and py == cy[0])  # (it leaves where it starts)
                 continue
-            da, ea = _orient(px, py, qx, qy, ax, ay)
-            db, eb = _orient(px, py, qx, qy, bx, by)
-            far = gap * math.hypot(qx - px, qy - py)
-            if abs(da) <= max(ea, far) or abs(db) <= max(eb, far) or (da < 0.0) == (db < 0.0):
-                return HARD + 5, nothing[0], nothing[1], 0
-            t = da / (da - db)
-            if t <= POLYCLIP_PARAM_EPS or t >= 1.0 - POLYCLIP_PARAM_EPS:
-                return HARD + 6, nothing[0], nothing[1], 0
-            if min(t, 1.0 - t) * length[k] <= gap:
-                return HARD + 7, nothing[0], nothing[1], 0
-            x, y = geos_intersection(ax, ay, bx, by, px, py, qx, qy)
-            if not (
-                min(ax, bx) <= x <= max(ax, bx)
-                and min(ay, by) <= y <= max(ay, by)
-                and min(px, qx) <= x <= max(px, qx)
-                and min(py, qy) <= y <= max(py, qy)
-            ):
-                return HARD + 8, nothing[0], nothing[1], 0  # (GEOS moves it to an end point)
-            if side == 0:
-                u_in[j] = t
-                x_in[j, 0], x_in[j, 1] = x, y
             else:
-                u_out[j] = t
-                x_out[j, 0], x_out[j, 1] = x, y
+                return HARD + 3, nothing[0], nothing[1], 0
+            if got[0] < 0:
+                return HARD + 4, nothing[0], nothing[1], 0
+            k_in[j], u_in[j], x_in[j, 0], x_in[j, 1] = got
+        if not q_in:
+            if q_out:
+                own = not v_out and push_q[e_out]
+                if not v_out and edge_side[e_out] >= 0 and not own:
+                    return HARD + 8, nothing[0], nothing[1], 0
+                got = _end(cx, cy, e_out, v_out, dv, False, qx, qy, px, py, own)
+            elif (v_out and qx == cx[e_out] and qy == cy[e_out]) or (not v_out and sq[e_out] == 0):
+                got = _on_edge(cx, cy, e_out, v_out, False, qx, qy)
+                at_q[j] = True
+            elif (v_in and qx == cx[e_in] and qy == cy[e_in]) or (not v_in and sq[e_in] == 0):
+                contact = contact or (qx == cx[0] and qy == cy[0])  # (it enters where it ends)
+                k_in[j] = -1
+                at_p[j] = False
+                continue
+            else:
+                return HARD + 5, nothing[0], nothing[1], 0
+            if got[0] < 0:
+                return HARD + 6, nothing[0], nothing[1], 0
+            k_out[j], u_out[j], x_out[j, 0], x_out[j, 1] = got
         has[j] = True
         n_piece += 1
+    # a chain that touches the cell's boundary at one of its vertices from inside goes on
+    for j in range(q):
+        if has[j] and at_q[j]:
+            g2 = nxt[cand[j]]
+            nj = loc[g2] if stamp[g2] == cell else -1
+            if nj >= 0 and has[nj] and at_p[nj]:
+                k_out[j] = -1
+                k_in[nj] = -1
     if n_piece == 0:
-        return NONE, nothing[0], nothing[1], 0
+        return (HARD + 17 if contact else NONE), nothing[0], nothing[1], 0
     # chains: from each entering piece along the ring to the piece that leaves
     seen = np.zeros(q, dtype=np.bool_)
     n_chain = 0
@@ -565,13 +609,11 @@ def _clip_one(cx, cy, nc, seg, nxt, cand, stamp, loc, cell, edge_side, sides):
         key[2 * c] = k_in[head[c]] + u_in[head[c]]
         key[2 * c + 1] = k_out[tail[c]] + u_out[tail[c]]
     order = np.argsort(key)
-    for e in range(n_ev - 1):
-        d = key[order[e + 1]] - key[order[e]]
-        k = int(key[order[e]])
+    for e in range(n_ev):
+        # (keys run over [0, nc]: an entry at vertex 0 has key nc, an exit there 0)
+        d = key[order[(e + 1) % n_ev]] - key[order[e]] + (nc if e == n_ev - 1 else 0)
         if d <= POLYCLIP_PARAM_EPS * nc:
             return HARD + 12, nothing[0], nothing[1], 0
-        if int(key[order[e + 1]]) == k and d * length[k] <= gap and edge_side[k] < 0:
-            return HARD + 13, nothing[0], nothing[1], 0
     rank = np.zeros(n_ev, dtype=np.int64)
     for e in range(n_ev):
         rank[order[e]] = e
@@ -627,3 +669,56 @@ def _clip_one(cx, cy, nc, seg, nxt, cand, stamp, loc, cell, edge_side, sides):
     off2[: n_r + 1] = off[: n_r + 1]
     off2[n_r + 1 :] = n_xy + loop_at[1 : n_loop + 1]
     return DONE, xy2, off2, n_loop
+
+
+@njit(**NJIT)
+def _end(cx, cy, e, vertex, dv, entering, px, py, qx, qy, own):
+    """Where a segment from outside end ``p`` (towards ``q``) crosses the cell's boundary.
+
+    ``e`` is the chord's end: a vertex of the cell on the segment's line (its exact
+    point), or the edge its line crosses inside: ``p`` itself where ``own`` (``p`` pushed
+    out across that edge), else the crossing as GEOS computes it. Returns ``(edge,
+    parameter along it, x, y)``; an entry at a vertex is the end of the edge before it.
+    Edge -1: undecided (the rounded crossing past an end of either segment).
+    """
+    nc = cx.shape[0] - 1
+    if vertex:
+        if entering:
+            return (e - 1) % nc, 1.0, cx[e], cy[e]
+        return e, 0.0, cx[e], cy[e]
+    if own:
+        return _on_edge(cx, cy, e, False, entering, px, py)
+    ax, ay, bx, by = cx[e], cy[e], cx[e + 1], cy[e + 1]
+    x, y = geos_intersection(ax, ay, bx, by, px, py, qx, qy)
+    if not (
+        min(ax, bx) <= x <= max(ax, bx)
+        and min(ay, by) <= y <= max(ay, by)
+        and min(px, qx) <= x <= max(px, qx)
+        and min(py, qy) <= y <= max(py, qy)
+    ):
+        return -1, 0.0, 0.0, 0.0  # (GEOS moves it to an end point)
+    d0 = dv[e]
+    d1 = dv[(e + 1) % nc]
+    return e, d0 / (d0 - d1), x, y
+
+
+@njit(**NJIT)
+def _on_edge(cx, cy, e, vertex, entering, px, py):
+    """The chord's end ``e`` where it is the segment's own end ``p`` (on the cell's boundary)."""
+    nc = cx.shape[0] - 1
+    if vertex:
+        if entering:
+            return (e - 1) % nc, 1.0, px, py
+        return e, 0.0, px, py
+    ax, ay, bx, by = cx[e], cy[e], cx[e + 1], cy[e + 1]
+    dx, dy = bx - ax, by - ay
+    u = ((px - ax) * dx + (py - ay) * dy) / (dx * dx + dy * dy)
+    return e, min(max(u, 0.0), 1.0), px, py
+
+
+@njit(**NJIT)
+def _on_segment(px, py, qx, qy, x, y):
+    """Whether point ``(x, y)`` lies on segment ``p q`` (exact)."""
+    if not (min(px, qx) <= x <= max(px, qx) and min(py, qy) <= y <= max(py, qy)):
+        return False
+    return orient2d(px, py, qx, qy, x, y) == 0.0
