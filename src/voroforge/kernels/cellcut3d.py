@@ -18,8 +18,12 @@ nearly parallel to its plane is solved again exactly (:func:`kernels.vertex3d.re
 
 from __future__ import annotations
 
+import numba
 import numpy as np
-from numba import njit
+from llvmlite import ir
+from numba import njit, types
+from numba.core import cgutils
+from numba.extending import intrinsic
 
 from ..config import (
     BIN_SORT_FROM,
@@ -57,6 +61,12 @@ UNNAMED = 4
 SLOW = 5
 
 MAX_OWNERS = 32
+# -> config (CELLCUT3D_REFRESH_CUTS): a small graph cell's radius is found again once this
+# many cuts have made its bound stale and a plane within the bound comes (the skip test)
+REFRESH_CUTS = 2
+# -> config (CELLCUT3D_PREFETCH_MOST): the nearest candidates of a batch whose site rows
+# are asked of the cache before the cuts (kernels.vertex3d.resettle reads them by index)
+PREFETCH_MOST = 24
 #: small hot helpers are inlined into their callers (numba's own inliner): a call that
 #: passes arrays costs reference counting, and the search makes ~100 such calls per cell
 NJIT_INLINE = {**NJIT, "inline": "always"}
@@ -66,13 +76,50 @@ NJIT_INLINE = {**NJIT, "inline": "always"}
 NJIT_NO_NRT = {**NJIT, "_nrt": False}
 
 
+@intrinsic
+def prefetch_row(typingctx, arr, row):
+    """Ask the cache for row ``row`` of the 2D array ``arr`` (a hint: no effect on results).
+
+    The sites' rows ``P[j]`` are read by index (input order) once a plane cuts: at 1e6
+    sites each first read was a miss that the cut waited for.
+    """
+    sig = types.void(arr, row)
+
+    def codegen(context, builder, signature, args):
+        aryty = signature.args[0]
+        ary = context.make_array(aryty)(context, builder, args[0])
+        idx = context.cast(builder, args[1], signature.args[1], types.intp)
+        zero = context.get_constant(types.intp, 0)
+        ptr = cgutils.get_item_pointer(context, builder, aryty, ary, [idx, zero], wraparound=False)
+        i32 = ir.IntType(32)
+        fnty = ir.FunctionType(ir.VoidType(), [ptr.type, i32, i32, i32])
+        fn = cgutils.get_or_insert_function(builder.module, fnty, "llvm.prefetch.p0")
+        builder.call(fn, [ptr, i32(0), i32(3), i32(1)])  # read, keep, data
+        return context.get_dummy_value()
+
+    return sig, codegen
+
+
+if numba.config.DISABLE_JIT:  # kernels run as Python (coverage): a hint has nothing to do
+
+    def prefetch_row(arr, row):  # noqa: D103, ARG001
+        return None
+
+
 @njit(**NJIT_INLINE)
 def radius2(V, nv):
     """The largest squared distance of the first ``nv`` vertices ``V`` from the site (origin)."""
     r = 0.0
-    for v in range(nv):
+    r1 = 0.0  # (odd vertices: two chains of max, which is exact)
+    v = 0
+    while v + 1 < nv:
         r = max(r, V[v, 0] * V[v, 0] + V[v, 1] * V[v, 1] + V[v, 2] * V[v, 2])
-    return r
+        w = v + 1
+        r1 = max(r1, V[w, 0] * V[w, 0] + V[w, 1] * V[w, 1] + V[w, 2] * V[w, 2])
+        v += 2
+    if v < nv:
+        r = max(r, V[v, 0] * V[v, 0] + V[v, 1] * V[v, 1] + V[v, 2] * V[v, 2])
+    return max(r, r1)
 
 
 @njit(**NJIT)
@@ -119,16 +166,42 @@ def _values(V, nv, nx, ny, nz, h, S):
     Returns ``(smax, low)``: the largest value and the least ``|value|`` (one within the
     band ``tol`` of 0 when ``low <= tol``: :func:`.band3d.resolve` decides those exactly).
     """
+    # two running maxima and minima (even and odd vertices): one chain of max/min through
+    # every vertex bound the loop by their latency; max and min are exact, so the split
+    # changes no result (a zero's sign aside, which no caller reads)
     smax = -np.inf
     low = np.inf
-    for v in range(nv):
+    smax1 = -np.inf
+    low1 = np.inf
+    v = 0
+    while v + 1 < nv:
         s = nx * V[v, 0] + ny * V[v, 1] + nz * V[v, 2] - h
+        s1 = nx * V[v + 1, 0] + ny * V[v + 1, 1] + nz * V[v + 1, 2] - h
+        S[v] = s
+        S[v + 1] = s1
+        a = abs(s)
+        a1 = abs(s1)
+        if a < low:
+            low = a
+        if a1 < low1:
+            low1 = a1
+        if s > smax:
+            smax = s
+        if s1 > smax1:
+            smax1 = s1
+        v += 2
+    if v < nv:
+        s = nx * V[v, 0] + ny * V[v, 1] + nz * V[v, 2] - h
+        S[v] = s
         a = abs(s)
         if a < low:
             low = a
-        S[v] = s
         if s > smax:
             smax = s
+    if smax1 > smax:
+        smax = smax1
+    if low1 < low:
+        low = low1
     return smax, low
 
 
@@ -150,6 +223,7 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
     # every cut (the largest |v|^2 left, or r2m if larger, as each cut found it before)
     stale = False
     r2m = 0.0
+    cuts = 0  # graph cuts since the radius was last found (small cells: REFRESH_CUTS)
     hint = 0  # the climb's start (kernels.climb3d): a point of the last cut's cap
     hw = 0  # work[:hw, (0, 3)], the climb's marks, are clear (bin_group writes work)
     if BIN_SORT_FROM <= m < min(S.shape[0], work.shape[0]):
@@ -164,6 +238,8 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
             b -= 1
         cand[b + 1] = ta
         cd2[b + 1] = da
+    for a in range(min(m, PREFETCH_MOST)):  # the nearest: the likeliest to cut
+        prefetch_row(P, sidx[cand[a]])
     for a in range(m):
         t = cand[a]
         j = sidx[t]
@@ -174,6 +250,15 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
         h = 0.5 * (d2 + (wi - SW[t]))
         if h > 0.0 and h * h > rmax2 * d2 * (1.0 + VORONOI3D_STOP_RTOL):
             continue  # the plane passes beyond every vertex
+        if stale and cuts >= REFRESH_CUTS and nv < CLIMB3D_LOCAL_FROM:
+            # a small cell's radius, found again before a plane that the bound keeps: it
+            # is found from as many vertices as one plane's values, and the batch's far
+            # candidates (the first batch's bound is the container's) are then skipped
+            stale = False
+            cuts = 0
+            rmax2 = max(radius2(V, nv), r2m)
+            if h > 0.0 and h * h > rmax2 * d2 * (1.0 + VORONOI3D_STOP_RTOL):
+                continue
         tol = VORONOI3D_CUT_RTOL * (np.sqrt(d2 * rmax2) + abs(h))
         mode = FULL
         # the values near and above the plane only, if decided
@@ -190,6 +275,7 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
             smax, low = _values(V, nv, dx, dy, dz, h, S)
         if stale and low <= tol:  # the band test needs the radius (and so may the skip)
             stale = False
+            cuts = 0
             rmax2 = max(radius2(V, nv), r2m)
             if h > 0.0 and h * h > rmax2 * d2 * (1.0 + VORONOI3D_STOP_RTOL):
                 continue
@@ -232,6 +318,7 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
             st, nv2, _ = cut_close(V, nv2, G[0], G[1], G[2], G[3], G[6], S, G[4], nl, False)
             r2c = max(rmax2, r2m) * CELLCUT3D_RADIUS_PAD  # a bound: new points lie within the cell
             stale = True
+            cuts += 1
             nf2 = 0
         else:
             r2c = -1.0
