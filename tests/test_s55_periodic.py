@@ -6,6 +6,8 @@
 - A margin that grew before grows by a quarter at least, not double (a sloped line's last
   ask was 4% past its margin), and a growth that takes in no copy proves the same diagram
   again instead of building it (:mod:`voroforge.engine.periodic_retry`).
+- Wrapped, a line's cells cut off by the grown box past the box's side ask only that axis
+  (their pieces' corners on the side asked a whole period along the line: 9 n copies).
 - Wrapped edges end on the box's sides at their cells' own vertices (checker35 F2: an edge
   2 ulps off one cell's boundary).
 
@@ -32,6 +34,8 @@ def _line(kind: str, n: int, seed: int = 1, off: bool = True) -> np.ndarray:
     t = np.random.default_rng(seed).random(n)
     if kind == "v":
         p = np.column_stack((np.full(n, 1.125), t * 2.0))
+    elif kind == "h":
+        p = np.column_stack((t * 3.0, np.full(n, 0.75)))
     else:  # slope 3
         x = t * (1.9 / 3.0)
         p = np.column_stack((x, 3.0 * x + 0.1))
@@ -64,6 +68,18 @@ def test_vertical_line_small_margin_not_doubled(periodic_builds):
     # copies, more than PERIODIC_WAIT_GROW_COST, so only the site's copies come in early
     p = _line("v", 2000)
     d = _check_torus(p, BOX, "delaunay", False, samples=200)
+    assert len(periodic_builds) == 2, periodic_builds
+    assert periodic_builds[-1] <= 4 * len(p), periodic_builds
+    np.testing.assert_allclose(d.areas, _reference_areas(p), rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("kind", ["v", "h"])
+def test_wrapped_line_cut_off_cells_ask_one_axis(kind, periodic_builds):
+    # wrapped, a line cell cut off by the grown box past the box's side has its piece's
+    # corner on the side: that corner asked for a whole period along the line too
+    # (vertical + 1 at 2,000: 2,413 then 17,898 copies, 9 n; horizontal 11,245)
+    p = _line(kind, 2000)
+    d = _check_torus(p, BOX, "delaunay", True, samples=200)
     assert len(periodic_builds) == 2, periodic_builds
     assert periodic_builds[-1] <= 4 * len(p), periodic_builds
     np.testing.assert_allclose(d.areas, _reference_areas(p), rtol=0, atol=1e-12)

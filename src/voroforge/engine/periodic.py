@@ -43,7 +43,7 @@ from .inputs import as_points, working_frame
 from .periodic_chord import chord_clear, shortfall
 from .periodic_edges import snap_ends
 from .periodic_frame import cells_to_user_frame, corner_frame, to_local, two_sum_error
-from .periodic_retry import cut_off_twice, next_try, on_sides, same_copies
+from .periodic_retry import cut_off, cut_off_twice, next_try, on_sides, same_copies
 from .periodic_ties import tie_images
 from .planar import build
 
@@ -708,13 +708,14 @@ def _periodic(points, tile, algorithm: str, wrap: bool, may_move: bool) -> Diagr
             raise RuntimeError("periodic diagram: could not prove the margin")
         v, owner = _piece_vertices(d, owners) if wrap else _vertices(d, owners)
         most = PERIODIC_EXTRA_SITES - int(extra[0].sum())
+        cut = cut_off(d, owner, box, (mx, my), _rounding(box)) if wrap else None
         (grow_x, grow_y), asked = shortfall(
-            v, d.sites[owner], box, (mx, my), pts, _rounding(box), extra, most, owner
+            v, d.sites[owner], box, (mx, my), pts, _rounding(box), extra, most, owner, cut
         )
         asked = asked[~extra[0][asked]]
         extra[0][asked] = True
         # the few cells cut off on both axes bring their sites' copies now, not a build later
-        twice = cut_off_twice(v, owner, box, (mx, my), _rounding(box), PERIODIC_CUT_CELLS)
+        twice = cut_off_twice(v, owner, box, (mx, my), _rounding(box), PERIODIC_CUT_CELLS, cut)
         # the grown box's next copies may be these: then this diagram stands (no kept cell
         # ends at its sides), proved again with the larger margins
         last = None if on_sides(v, box, (mx, my), _rounding(box)) else (source, shift)

@@ -142,7 +142,7 @@ def _far_enough(v, r2, s, box, k, m, side, slack):
     return dk * dk + dj * dj >= r2
 
 
-def shortfall(v, own, box, margin, sites, slack, extra, most, cell):
+def shortfall(v, own, box, margin, sites, slack, extra, most, cell, cut=None):
     """Per axis, the margin the proof's disk test asked for (0.0 where it passed), and sites.
 
     ``v`` are the kept cells' vertices, ``own`` their sites' copies, ``slack`` the copies'
@@ -155,7 +155,8 @@ def shortfall(v, own, box, margin, sites, slack, extra, most, cell):
     the off site's cell reaches across the box and asked for 1.4 periods along the line,
     5.9 n copies where 3 n are proved). A vertex whose chord holds a few sites, some of
     whose copies past the margin fail it, asks for those sites instead (returned, an int
-    array): their copies to the caps are a few dozen.
+    array): their copies to the caps are a few dozen. ``cut`` ((p, 2) bool or None): the
+    vertices whose cells the grown box cuts off on each axis elsewhere (wrapped pieces).
     """
     x0, y0, x1, y1 = box
     side = max(x1 - x0, y1 - y0)
@@ -171,6 +172,11 @@ def shortfall(v, own, box, margin, sites, slack, extra, most, cell):
             for k, (a, b, m) in enumerate(axes)
         ]
     )
+    if cut is not None:
+        # ``cut`` (per vertex and axis): its cell is cut off by the grown box there, though
+        # the vertex is not on its side (a wrapped piece's corner on the box's side: sites on
+        # a vertical line, whose cut-off cells asked for a whole period along the line too)
+        edge = edge | cut
     bads, rooms, named = [], [], []
     for k, (a, b, m) in enumerate(axes):
         room = np.minimum(v[:, k] - (a - m), (b + m) - v[:, k])
