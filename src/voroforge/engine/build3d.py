@@ -25,7 +25,15 @@ from .containers import maybe_outside
 from .jointable3d import probe_next, rehash, slot
 from .lists3d import Lists, chunk_search, chunks, redo_slow
 from .sitegrid3d import grid3d_shape
-from .slots3d import big_cell, grown_caps, slot_arrays
+from .slots3d import (
+    GROW_CHUNK_LEAST,
+    big_cell,
+    chunk_room,
+    grown_caps,
+    probe_caps,
+    probe_grown,
+    slot_arrays,
+)
 from .threads import serial_below
 
 _NONE_GONE = np.zeros(0, np.bool_)  # no site's cell known empty (the kernel's gone)
@@ -118,6 +126,8 @@ CAPS = (96, 48, 320, 1024, 512, 4096, 24)
 BIG_CAPS_FACTOR = 4
 #: the vertex table's largest load before it doubles
 TABLE_LOAD = 0.7
+# -> config: _Out.reserve pads its estimate of a chunk's new vertices by this much
+RESERVE_PAD = 1.25
 
 
 @dataclass
@@ -436,9 +446,10 @@ class _Out:
     def tuple(self):
         return (self.verts, self.flabel, self.roff, self.ring, self.vid, self.sizes)
 
-    def grow(self, nv, nf, nr):
-        """Room for ``nv`` vertices, ``nf`` faces and ``nr`` ring entries more (by half)."""
+    def grow(self, nv, nf, nr, nref=None):
+        """Room for ``nv`` vertices (``nref`` refs), ``nf`` faces, ``nr`` ring entries (by half)."""
         nvert, nface, nring, nvid = (int(x) for x in self.sizes)
+        nref = nv if nref is None else nref
         if nvert + nv > len(self.verts):
             m = int(1.5 * len(self.verts)) + nv
             self.verts.resize((m, 3), refcheck=False)
@@ -460,8 +471,26 @@ class _Out:
             if self.roff.dtype == np.int32 and m > 2**31 - 1:
                 self.roff = self.roff.astype(np.int64)
             self.ring.resize(m, refcheck=False)
-        if nvid + nv > len(self.vid):
-            self.vid.resize(int(1.5 * len(self.vid)) + nv, refcheck=False)
+        if nvid + nref > len(self.vid):
+            self.vid.resize(int(1.5 * len(self.vid)) + nref, refcheck=False)
+
+    def reserve(self, status, counts):
+        """Room for a chunk's cells at once (new vertices: the share so far, padded).
+
+        A helix of 1,500 had 29 grows (5 rehashes) in 35 join calls; the vertex numbers
+        follow the join's order, not the room: the same outputs.
+        """
+        ok = status != OVERFLOW
+        nv, nf, nr = (int(x) for x in counts[ok].sum(axis=0))
+        nvert, nface, nring, nvid = (int(x) for x in self.sizes)
+        new = int(RESERVE_PAD * nv * (nvert / nvid if nvid else 1.0))
+        if (
+            nvert + new > min(len(self.verts), TABLE_LOAD * len(self.table))
+            or nface + nf > len(self.flabel)
+            or nring + nr > len(self.ring)
+            or nvid + nv > len(self.vid)
+        ):
+            self.grow(new, nf, nr, nv)
 
     def add(self, status, counts, slots, caps, big=None):
         """Join one chunk's cells in order.
@@ -469,6 +498,7 @@ class _Out:
         ``big(c)`` builds a cell that overflowed its slots again and joins it in its place.
         """
         osite, ovabs, ofaces, oring = slots
+        self.reserve(status, counts)
         gl = np.zeros(1, self.vid.dtype)
         c = 0
         while c < len(counts):
@@ -614,8 +644,11 @@ def build_cells3d(
         nsl = 2 if joiner else 1
         slots = [slot_arrays(min(size, k), CAPS) for _ in range(nsl)]
         # the chunks' caps and each thread's working space for them, kept from chunk to
-        # chunk (_run); grown after a chunk of many-faced cells (.slots3d.grown_caps)
-        cur = [CAPS, {}]
+        # chunk (_run); grown after a chunk of many-faced cells (.slots3d.grown_caps); the
+        # probe's slots are as large as the scratch (.slots3d.probe_caps), chunks as small
+        # as grown slots' bytes need (.slots3d.chunk_room)
+        probe = lists is not None
+        cur = [probe_caps(CAPS) if probe else CAPS, {}]
         bigscr = {}  # the same for cells built alone with big slots (big_cell), by slot size
         pending = []
         grid = (start, SP, SW, sidx, weight_reach(P, W, g, sidx), None)  # (+ local weights)
@@ -656,19 +689,27 @@ def build_cells3d(
                 progress(c0 + len(chunk), k)
 
         try:
-            for q, (c0, c1) in enumerate(chunks(k, size, lists is not None)):
+            room = [size]
+            for q, (c0, c1) in enumerate(chunks(k, size, probe, room)):
                 if len(pending) >= len(slots):
                     pending.pop(0).result()  # the join that used these slots is done
                 chunk = built[c0:c1]
                 s = grid if lists is None else chunk_search(lists, grid)
-                res = run(chunk, *s, sl=slots[q % len(slots)])
+                first = probe and q == 0
+                sl = slot_arrays(c1 - c0, cur[0]) if first else slots[q % len(slots)]
+                res = run(chunk, *s, sl=sl)
                 how = None
                 if lists is not None:  # cells past the budget, again (from their lists)
                     how = redo_slow(chunk, res, lists, run, grid)
-                grown = grown_caps(res[0], res[1], cur[0], CAPS, nsl * min(size, k))
+                if first:  # back to CAPS (the same scratch), or grown from the probe's counts
+                    grown = probe_grown(res[0], res[1], CAPS, nsl)
+                    cur[0] = CAPS
+                else:
+                    grown = grown_caps(res[0], res[1], cur[0], CAPS, nsl * GROW_CHUNK_LEAST)
                 if grown is not None:  # most cells overflowed: the next chunks fit them
                     cur[:] = [grown, {}]
-                    slots = [slot_arrays(min(size, k), grown) for _ in range(nsl)]
+                    room[0] = chunk_room(grown, nsl, size)
+                    slots = [slot_arrays(min(room[0], k), grown) for _ in range(nsl)]
                 if joiner is None:
                     join(c0, chunk, how, *res)
                 else:

@@ -93,14 +93,18 @@ class Lists:
         return self.made or None
 
 
-def chunks(k: int, most: int, probe: bool):
+def chunks(k: int, most: int, probe: bool, room=None):
     """Bounds ``(c0, c1)`` of the chunks of ``k`` cells, ``most`` a chunk.
 
     ``probe``: 64, 128, ... cells first: a cell past the budget has cost thousands of sites
     (a sphere's, each decided near the centre), so the lists are made after a few of them.
+    ``room``: a one-element list, the most cells of the chunks from now on (read before
+    each; the caller lowers it where its grown slots need: :func:`.slots3d.chunk_room`).
     """
     c0, size = 0, 64 if probe else most
     while c0 < k:
+        if room is not None:
+            size = min(size, room[0])
         yield c0, min(c0 + size, k)
         c0, size = c0 + size, min(2 * size, most)
 

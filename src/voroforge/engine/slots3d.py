@@ -17,6 +17,16 @@ import numpy as np
 from ..config3d import GROW_BYTES, GROW_LEAST, GROW_MOST, GROW_PAD, GROW_SHARE
 from ..kernels.cells3d import OVERFLOW
 
+# -> config: the cells of the first chunk (the lists' probe) get output slots as large as
+# the kernel's scratch (:func:`probe_caps`), so that a helix's or three lines' many-faced
+# cells there are not all built a second time alone; the growth from what they needed
+# (one neighbourhood of 64 cells) is padded by this much more than GROW_PAD (three lines of
+# 1,500: the next chunk's cells needed up to 1.47x the probe's most; 210 of its 512 cells
+# overflowed slots padded by GROW_PAD alone and were built twice)
+GROW_PROBE_PAD = 1.6
+# -> config: a chunk holds at least this many cells where grown slots would pass GROW_BYTES
+GROW_CHUNK_LEAST = 64
+
 
 def slot_arrays(k, caps):
     """Fixed per-cell output slots for ``k`` cells (reused from chunk to chunk)."""
@@ -34,12 +44,39 @@ def slot_bytes(k, caps):
     return k * (caps[0] * (4 + 24) + caps[1] * 8 + caps[2] * 4)
 
 
-def grown_caps(status, counts, caps, base, k):
+def probe_caps(base):
+    """Caps whose output slots are as large as ``base``'s scratch (the first chunk's)."""
+    return tuple(base[3:6]) + tuple(base[3:])
+
+
+def chunk_room(caps, nsl, most):
+    """The most cells a chunk may hold: ``nsl`` sets of its slots within :data:`GROW_BYTES`.
+
+    ``most`` at most, :data:`GROW_CHUNK_LEAST` at least (three lines of 1,500 needed slots of
+    ~72 KB a cell: 1,024 cells' slots passed the bytes, so the slots did not grow and ~30%
+    of the cells were built twice; the chunks are made smaller instead).
+    """
+    return int(max(GROW_CHUNK_LEAST, min(most, GROW_BYTES // (nsl * slot_bytes(1, caps)))))
+
+
+def probe_grown(status, counts, base, nsl):
+    """Caps after the first chunk, built with :func:`probe_caps`: :func:`grown_caps` of it.
+
+    A cell there overflowed ``base``'s output slots where its counts pass them; the growth
+    is padded by :data:`GROW_PROBE_PAD` more. None: ``base`` fits (or cannot grow).
+    """
+    over = (counts[:, :3] > np.asarray(base[:3])).any(axis=1) & (status != OVERFLOW)
+    status = np.where(over, OVERFLOW, status)
+    k = nsl * GROW_CHUNK_LEAST
+    return grown_caps(status, counts, base, base, k, GROW_PAD * GROW_PROBE_PAD)
+
+
+def grown_caps(status, counts, caps, base, k, pad=GROW_PAD):
     """Caps for the next chunks of ``k`` cells after one whose cells had ``status, counts``.
 
     None (keep ``caps``) unless :data:`GROW_SHARE` of the chunk, and :data:`GROW_LEAST`
     cells, overflowed their output slots with known counts; else the output slots cover
-    the most they needed (padded, at most :data:`GROW_MOST` times ``base``'s) and the
+    the most they needed (padded by ``pad``, at most :data:`GROW_MOST` times ``base``'s) and the
     scratch grows in proportion (as :func:`big_cell`'s). None when that is no bigger or
     its slots would pass :data:`GROW_BYTES`.
     """
@@ -48,9 +85,7 @@ def grown_caps(status, counts, caps, base, k):
     if m < GROW_LEAST or m < GROW_SHARE * len(status):
         return None
     need = counts[over].max(axis=0)
-    out = [
-        min(max(caps[q], int(np.ceil(need[q] * GROW_PAD))), base[q] * GROW_MOST) for q in range(3)
-    ]
+    out = [min(max(caps[q], int(np.ceil(need[q] * pad))), base[q] * GROW_MOST) for q in range(3)]
     if all(out[q] <= caps[q] for q in range(3)):
         return None
     grown = tuple(out) + tuple(
