@@ -360,7 +360,7 @@ def power(points, weights, boundary=None) -> PowerDiagram:
     return power_diagram(pts, w, dom)
 
 
-def _hessian(d: PowerDiagram, pts: np.ndarray) -> tuple[sp.csc_matrix, np.ndarray]:
+def hessian(d: PowerDiagram, pts: np.ndarray) -> tuple[sp.csc_matrix, np.ndarray]:
     """``dA_i/dw_j`` and its diagonal.
 
     The graph Laplacian with ``-|edge_ij| / (2 |p_i - p_j|)`` off the diagonal (edges clipped
@@ -491,7 +491,7 @@ def fit_weights(pts, targets, dom, w0, tol, max_iter, relax=None):
     while err > tol and it < max_iter:
         it += 1
         r = targets - areas
-        lap, deg = _hessian(d, pts)
+        lap, deg = hessian(d, pts)
         ncomp, labels = connected_components(lap, directed=False)
         if ncomp > 1:
             # cells in separate groups (no edge between them inside the domain: their
@@ -513,7 +513,7 @@ def fit_weights(pts, targets, dom, w0, tol, max_iter, relax=None):
     return d, w, err, it
 
 
-def _steps(lap, deg, r):
+def newton_steps(lap, deg, r):
     """Newton's step, then the diagonal (Jacobi) step when Newton's gives no progress.
 
     The Hessian is shifted by ``POWER_NEWTON_SHIFT`` of each row's own degree (a site a few
@@ -580,9 +580,9 @@ def _two_level(lap, r, shift):
 
 
 def _damped_step(masses, w, lap, deg, r, goal, floor, alpha):
-    """The first of :func:`_steps`' directions that :func:`_line_search` accepts, or None."""
+    """The first of :func:`newton_steps`' directions that :func:`_line_search` accepts, or None."""
     norm = float(np.linalg.norm(r))
-    for step in _steps(lap, deg, r):
+    for step in newton_steps(lap, deg, r):
         got = _line_search(masses, w, step, goal, floor, norm, alpha)
         if got is not None:
             return got
@@ -710,24 +710,27 @@ def fit_breakout(pts, targets, dom, hull, w0, rounds, grow):
     each cell outside ``dom``, so that a cell meeting its target on the hull meets it in
     ``dom``), where a cell still wholly outside ``dom`` asks ``grow`` times its hole share
     (its hull area) instead, so that it reaches ``dom`` in a few rounds, all such cells at
-    once. ``w0`` must give every cell area on the hull. Returns ``(w, steps)`` once every
-    cell has area in ``dom``, or None after ``rounds`` rounds or when a step fails.
+    once. ``w0`` must give every cell area on the hull. Returns ``(w, steps, back)`` once every
+    cell has area in ``dom`` (``back``: a round left more cells outside than the one
+    before), or None after ``rounds`` rounds or when a step fails.
     """
     masses = partial(_relaxed, pts, dom, hull, 1.0)  # 1.0: the masses are the hull areas
     w = w0.copy()
     (d, dh), mass = masses(w)
     if not (mass > 0.0).all():
         return None
-    alpha = 1.0
+    alpha, last, back = 1.0, len(pts), False
     for it in range(rounds):
         a = d.areas
         out = ~(a > 0.0)
-        if not out.any():
-            return w, it
+        back = back or bool(out.sum() > last)
+        last = int(out.sum())
+        if not last:
+            return w, it, back
         share = mass - a
         goal = targets + np.where(out, grow * share, share)
         goal *= mass.sum() / goal.sum()
-        lap, deg = _hessian(dh, pts)
+        lap, deg = hessian(dh, pts)
         r = goal - mass
         floor = 0.5 * min(float(goal.min()), float(mass.min()))
         got = _damped_step(masses, w, lap, deg, r, goal, floor, alpha)
@@ -766,8 +769,8 @@ def _fit_relaxed(pts, targets, dom, w0, tol, max_iter, hull, eps):
     while err > tol and it < max_iter:
         it += 1
         r = targets - mass
-        lap, deg = _hessian(d, pts)
-        laph, degh = _hessian(dh, pts)
+        lap, deg = hessian(d, pts)
+        laph, degh = hessian(dh, pts)
         lap = (1.0 - eps) * lap + eps * laph
         deg = (1.0 - eps) * deg + eps * degh
         got = _damped_step(masses, w, lap, deg, r, targets, floor, alpha)
