@@ -71,6 +71,7 @@ def box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
     sx = xs[i]
     sy = ys[i]
     swapped = False
+    w = np.empty((0, 0))  # noqa: TID251  (scratch of the exact signs, made when needed)
     for k in range(nn):
         j = nbrs[k]
         dx = xs[j] - sx
@@ -78,7 +79,10 @@ def box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
         # the weight difference first: |d|^2 + w_i would round |d|^2 away when the weights
         # are large, and sites i and j would then see two different bisectors (a gap)
         h = 0.5 * (dx * dx + dy * dy + (ws[i] - ws[j]))
-        if plane_values(px, py, zero, m, dx, dy, sx, sy, h, ss) <= 0.0:
+        smax = plane_values(px, py, zero, m, dx, dy, sx, sy, h, ss)
+        if ws[i] == ws[j]:
+            smax, w = _exact_signs(i, j, xs, ys, px, py, m, dx, dy, h, ss, smax, w)
+        if smax <= 0.0:
             continue
         m = cut_ring(px, py, pw, zero, m, ss, qx, qy, qw, zero, j)
         if m < 3:
@@ -94,6 +98,35 @@ def box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
             qy[v] = py[v]
             qw[v] = pw[v]
     return m
+
+
+@njit(**NJIT)
+def _exact_signs(i, j, xs, ys, px, py, m, dx, dy, h, ss, smax, w):
+    """Correct the float values ``ss[:m]`` of the bisector of ``i, j`` whose sign is unsure.
+
+    The value ``d.(x - p_i) - h`` is rounded at the sites' magnitude: a box far smaller
+    than the sites' spacing (issue 15: sites (+-1, 0) in a box 1e-16 wide) sees every
+    vertex at value 0 and no cut, both cells the whole box. A value within its rounding
+    bound of 0 is given the exact side of its vertex (:func:`.distance_exact.compare`):
+    kept where its sign is right, else that sign times the bound (the crossing then falls
+    between the vertices, and is named afterwards). Returns the largest value and the
+    exact test's scratch.
+    """
+    smax = -np.inf
+    for v in range(m):
+        sv = ss[v]
+        e = 8.0 * _U * (abs(dx * (px[v] - xs[i])) + abs(dy * (py[v] - ys[i])) + abs(h))
+        if abs(sv) <= e:
+            if w.shape[0] == 0:
+                w = np.empty((9, 64))  # noqa: TID251  (every slot read is written first)
+            t = compare(px[v], py[v], xs[i], ys[i], xs[j], ys[j], np.int64(0), w)
+            if t == 0:
+                sv = 0.0
+            elif (t > 0) != (sv > 0.0) or sv == 0.0:
+                sv = max(e, 1e-300) if t > 0 else -max(e, 1e-300)
+            ss[v] = sv
+        smax = max(smax, sv)
+    return smax, w
 
 
 @njit(**NJIT)

@@ -38,6 +38,9 @@ from .expansion import grow, two_diff, two_product, two_sum
 _U = 2.0**-53
 _TINY = 2.0**-900  # a product below this may lose its error term to underflow
 _NT = 20  # exact parts of the numerator
+# -> config: sites whose ulp passes this fraction of the box's extent (sites 4096 box
+# widths from the origin) get the box sides' crossings as the nearest double (issue 15)
+SIDE_BOX_RTOL = 2.0**-40
 
 
 @njit(**NJIT)
@@ -121,14 +124,16 @@ def _nearest(ax, ay, bx, by, x, y):
         return y
     r1, r0 = two_diff(by, ay)
     sd = 1 if r1 > 0.0 else -1
-    # start from the numerator's compensated sum (an ill-conditioned float formula, a
-    # bisector nearly parallel to the side, is off by dozens of ulps)
-    s = 0.0
-    c = 0.0
+    # start from the numerator's exact sum, rounded (an ill-conditioned float formula, a
+    # bisector nearly parallel to the side, is off by dozens of ulps; a crossing in a box
+    # far smaller than the sites cancels all but the last bits of the parts)
+    size = 0
     for k in range(_NT):
-        s, e = two_sum(s, t[k])
-        c += e
-    v = (s + c) / (2.0 * (r1 + r0))
+        size = grow(w, size, t[k])
+    s = 0.0
+    for k in range(size):
+        s += w[k]
+    v = s / (2.0 * (r1 + r0))
     if not (v == v and abs(v) < np.inf):
         return y
     for _ in range(_MAX_STEPS):
@@ -162,13 +167,19 @@ def nearest_crossing(ax, ay, bx, by, side, box, x, y):
 
     ``(x, y)`` is the float formula's (NaN where the bisector is parallel to the side);
     for sites within ``SIDE_NEAREST_ULPS`` ulps of their magnitude of each other (a few
-    ulps apart, where the formula's error is the crossings' spacing) the coordinate along
+    ulps apart, where the formula's error is the crossings' spacing), and for a box whose
+    extent is under ``1 / SIDE_BOX_RTOL`` ulps of the sites (a window far smaller than the
+    sites' spacing: the formula's error is then part of the box), the coordinate along
     the side is replaced by the double nearest the exact one.
     """
     if x != x or y != y:
         return x, y
     big = max(max(abs(ax), abs(ay)), max(abs(bx), abs(by)))
-    if abs(bx - ax) + abs(by - ay) > SIDE_NEAREST_ULPS * np.spacing(big):
+    # a box far smaller than the sites' magnitude (issue 15, window at a circle's centre):
+    # the formula's error, ulps of the sites, is then a visible part of the box
+    ext = max(box[2] - box[0], box[3] - box[1])
+    near = abs(bx - ax) + abs(by - ay) <= SIDE_NEAREST_ULPS * np.spacing(big)
+    if not near and not np.spacing(big) > SIDE_BOX_RTOL * ext:
         return x, y
     if side == -1 or side == -3:
         return x, _nearest(ax, ay, bx, by, x, y)
