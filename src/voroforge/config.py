@@ -133,6 +133,10 @@ SEED_DET_RTOL = 1e-10
 SIDE_NEAREST_ULPS = 16.0
 #: ...found in at most this many ulp steps from the float estimate (within an ulp or two)
 SIDE_NEAREST_MAX_STEPS = 8
+#: ...and every pair does where the sites' ulp passes this fraction of the box's extent
+#: (sites ~4096 box widths from the origin: a box 1e-16 wide between sites at +-1 had each
+#: crossing on the sites' ulp grid; 27 far catalogue diagrams changed bits, all valid)
+SIDE_BOX_RTOL = 2.0**-40
 #: engine.assemble._union_kept: a union of a cell's parts whose float area is below this
 #: fraction of theirs is checked exactly for lost parts (GEOS gave POLYGON EMPTY for two
 #: strip pieces an ulp wide)
@@ -221,6 +225,13 @@ PERIODIC_EXTRA_SITES = 64
 #: PERIODIC_CUT_CELLS_ASK times it
 PERIODIC_CUT_CELLS = 8
 PERIODIC_CUT_CELLS_ASK = 4.0
+#: engine.periodic_retry: a margin's first growth is at least this factor, a later one at
+#: least PERIODIC_REGROW (sloped lines: 3-4 builds of ~2x each became smaller steps)...
+PERIODIC_FIRST_GROW = 2.0
+PERIODIC_REGROW = 1.25
+#: ...and the margins of cells cut off on both axes double at once where that adds at most
+#: this fraction of the next try's copies (unconditional: 18% more copies at 2,000 sites)
+PERIODIC_WAIT_GROW_COST = 0.125
 #: describe(): on a torus, a vertex and another's image closer than this (of the box's
 #: diagonal) are one vertex (images come from sites shifted by the box's size); a cell of a
 #: non-convex domain within 100 times this of its own coordinates' magnitude from the
@@ -609,16 +620,10 @@ ASSEMBLE_ROUNDING_ULPS = 4.0
 #: engine.pieces: a domain with at most this many vertices is intersected whole, and tested
 #: with predicates on the whole domain
 PIECE_SMALL = 256
-#: kernels.polyclip (cells meeting a long boundary, clipped by its nearby segments): relative
-#: error bound of a float orientation (Shewchuk's ccwerrboundA is 3.3e-16; this one also
-#: covers the subtractions of nearby points)...
-POLYCLIP_ORIENT_EPS = 1e-15
-#: ...two crossings, or a crossing and a cell's vertex, closer than this fraction of a cell's
-#: edge (or of a segment) are left to the overlay...
+#: kernels.polyclip (cells meeting a long boundary, clipped by its nearby segments, every
+#: sign exact): two crossings, or a crossing and a cell's vertex, closer than this fraction of
+#: a cell's edge (or of a segment) are left to the overlay
 POLYCLIP_PARAM_EPS = 1e-12
-#: ...and so are features of a clipped cell (a crossing to a vertex or to another crossing, a
-#: vertex to an edge) closer than this many ulps of the cell's coordinates
-POLYCLIP_ULPS = 16.0
 #: engine.pieces: consecutive segments of a ring in one chunk of the boundary index (a
 #: geometry is tested against the chunks whose boxes it meets; a piece keeps those it meets)
 PIECE_CHUNK = 32
@@ -757,6 +762,16 @@ POWER_FIT_ALPHA_GROWTH = 2.0
 #: "gain" of 1e-16 had been taken as a crossing, wasting Newton steps on raises that cross
 #: nothing
 POWER_BRIDGE_GAIN_RTOL = 2.0**-30
+#: engine.powerfit (damped Newton on the transport dual after a breakout that pushed cells
+#: back out): the hull Hessian's Levenberg-Marquardt weight at the start, its fall after a
+#: full step and rise after a halved one (U notch 4,000: 8 / 4 took 32 diagrams, 2 / 2 36,
+#: 8 / 8 49), the weight below which it is dropped once every cell has area, and Armijo's
+#: fraction of the slope the objective must rise by
+POWER_DUAL_MU_START = 1.0
+POWER_DUAL_MU_DOWN = 8.0
+POWER_DUAL_MU_UP = 4.0
+POWER_DUAL_MU_OFF = 1e-4
+POWER_DUAL_ARMIJO = 1e-4
 
 #: engine.agree: joins reach this many ulps of the larger coordinate: sites 1-4 ulps apart
 #: have exact vertices a few ulps apart, each cell rounding its own (measured: 1-3 ulps)

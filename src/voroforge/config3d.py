@@ -26,6 +26,11 @@ __all__ = [
     "GROW_MOST",
     "GROW_PAD",
     "GROW_SHARE",
+    "GROW_PROBE_PAD",
+    "GROW_CHUNK_LEAST",
+    "BUILD3D_RESERVE_PAD",
+    "CELLCUT3D_REFRESH_CUTS",
+    "CELLCUT3D_PREFETCH_MOST",
     "VORONOI3D_CUT_RTOL",
     "VORONOI3D_STOP_RTOL",
     "VORONOI3D_DET_RTOL",
@@ -244,6 +249,17 @@ GROW_PAD = 1.25
 GROW_MOST = 16
 #: bytes of one set of slots at most (a chunk's cells times a cell's slots)
 GROW_BYTES = 2**26
+#: the cells of the first chunk (the lists' probe) get output slots as large as the kernel's
+#: scratch (slots3d.probe_caps), so a helix's or three lines' many-faced cells there are not
+#: all built a second time alone; the growth from what they needed is padded by this much
+#: more than GROW_PAD (three lines of 1,500: the next chunk's cells needed up to 1.47x the
+#: probe's most; 210 of its 512 cells overflowed slots padded by GROW_PAD alone)
+GROW_PROBE_PAD = 1.6
+#: a chunk holds at least this many cells where grown slots would pass GROW_BYTES (smaller
+#: chunks instead of slots kept small: three lines' 455 repeated builds -> 0)
+GROW_CHUNK_LEAST = 64
+#: engine.build3d._Out.reserve pads its estimate of a chunk's new vertices by this much
+BUILD3D_RESERVE_PAD = 1.25
 #: kernels.ties3d: a face found on a touching plane is relabelled only when the two sites lie
 #: on one ray from the cell's site to this relative precision (a guard: exact ties are
 #: parallel)
@@ -288,3 +304,10 @@ CLIMB3D_NOISE_BANDS = 4.0
 CLIMB3D_SAMPLES = 8
 #: cells of fewer vertices are evaluated whole (a uniform cell's ~26: the pass is cheaper)
 CLIMB3D_LOCAL_FROM = 64
+#: kernels.cellcut3d: a small graph cell's radius is found again once this many cuts have
+#: made its bound stale and a plane within the bound comes (a uniform cell: 68 -> 47.5 plane
+#: passes; after every cut cost more scans than it saved)
+CELLCUT3D_REFRESH_CUTS = 2
+#: the nearest candidates of a batch whose site rows are asked of the cache before the cuts
+#: (kernels.vertex3d.resettle reads them by index: a cache miss)
+CELLCUT3D_PREFETCH_MOST = 24

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from ..config import NJIT, TRIM_CELLS, VORONOI3D_CHUNK
+from ..config import BUILD3D_RESERVE_PAD, NJIT, TRIM_CELLS, VORONOI3D_CHUNK
 from ..kernels.cells3d import EMPTY, OK, OVERFLOW, build_cells, cell_scratch
 from ..kernels.grid3d import kd_buckets3d
 from ..kernels.reach3d import weight_reach
@@ -126,8 +126,6 @@ CAPS = (96, 48, 320, 1024, 512, 4096, 24)
 BIG_CAPS_FACTOR = 4
 #: the vertex table's largest load before it doubles
 TABLE_LOAD = 0.7
-# -> config: _Out.reserve pads its estimate of a chunk's new vertices by this much
-RESERVE_PAD = 1.25
 
 
 @dataclass
@@ -483,7 +481,7 @@ class _Out:
         ok = status != OVERFLOW
         nv, nf, nr = (int(x) for x in counts[ok].sum(axis=0))
         nvert, nface, nring, nvid = (int(x) for x in self.sizes)
-        new = int(RESERVE_PAD * nv * (nvert / nvid if nvid else 1.0))
+        new = int(BUILD3D_RESERVE_PAD * nv * (nvert / nvid if nvid else 1.0))
         if (
             nvert + new > min(len(self.verts), TABLE_LOAD * len(self.table))
             or nface + nf > len(self.flabel)

@@ -22,13 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-# -> config: a margin that grew before grows at least by this factor on its next growth
-PERIODIC_REGROW = 1.25
-# -> config: a margin's first growth at least by this factor (the old rule: both double)
-PERIODIC_FIRST_GROW = 2.0
-# -> config: the margins of cells cut off on both axes double where that adds at most this
-# fraction of the next try's copies
-PERIODIC_WAIT_GROW_COST = 0.125
+from ..config import PERIODIC_FIRST_GROW, PERIODIC_REGROW, PERIODIC_WAIT_GROW_COST
 
 
 def cut_off_twice(v, cell, box, margin, slack, most, cut=None):

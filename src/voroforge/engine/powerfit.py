@@ -25,21 +25,18 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
 
+from ..config import (
+    POWER_DUAL_ARMIJO,
+    POWER_DUAL_MU_DOWN,
+    POWER_DUAL_MU_OFF,
+    POWER_DUAL_MU_START,
+    POWER_DUAL_MU_UP,
+)
 from .diagram import buffers
 from .integrate import Integrator
 from .power import hessian, newton_steps, power_diagram, power_diagrams
 
 __all__ = ["fit_dual"]
-
-# -> config: Levenberg-Marquardt weight of the hull's Hessian at the start, its fall after
-# a full step and its rise after a halved one (U notch 4,000 sites: 8 / 4 took 32 diagrams,
-# 2 / 2 36, 8 / 8 49), the weight below which it is dropped once every cell has area, and
-# Armijo's fraction of the slope that Phi must rise by
-POWER_DUAL_MU_START = 1.0
-POWER_DUAL_MU_DOWN = 8.0
-POWER_DUAL_MU_UP = 4.0
-POWER_DUAL_MU_OFF = 1e-4
-POWER_DUAL_ARMIJO = 1e-4
 
 
 def _objective(d, w, targets, pts, moments) -> float:

@@ -14,18 +14,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..config3d import GROW_BYTES, GROW_LEAST, GROW_MOST, GROW_PAD, GROW_SHARE
+from ..config3d import (
+    GROW_BYTES,
+    GROW_CHUNK_LEAST,
+    GROW_LEAST,
+    GROW_MOST,
+    GROW_PAD,
+    GROW_PROBE_PAD,
+    GROW_SHARE,
+)
 from ..kernels.cells3d import OVERFLOW
-
-# -> config: the cells of the first chunk (the lists' probe) get output slots as large as
-# the kernel's scratch (:func:`probe_caps`), so that a helix's or three lines' many-faced
-# cells there are not all built a second time alone; the growth from what they needed
-# (one neighbourhood of 64 cells) is padded by this much more than GROW_PAD (three lines of
-# 1,500: the next chunk's cells needed up to 1.47x the probe's most; 210 of its 512 cells
-# overflowed slots padded by GROW_PAD alone and were built twice)
-GROW_PROBE_PAD = 1.6
-# -> config: a chunk holds at least this many cells where grown slots would pass GROW_BYTES
-GROW_CHUNK_LEAST = 64
 
 
 def slot_arrays(k, caps):

@@ -27,7 +27,9 @@ from numba.extending import intrinsic
 
 from ..config import (
     BIN_SORT_FROM,
+    CELLCUT3D_PREFETCH_MOST,
     CELLCUT3D_RADIUS_PAD,
+    CELLCUT3D_REFRESH_CUTS,
     CLIMB3D_LOCAL_FROM,
     NJIT,
     VORONOI3D_CUT_RTOL,
@@ -61,12 +63,6 @@ UNNAMED = 4
 SLOW = 5
 
 MAX_OWNERS = 32
-# -> config (CELLCUT3D_REFRESH_CUTS): a small graph cell's radius is found again once this
-# many cuts have made its bound stale and a plane within the bound comes (the skip test)
-REFRESH_CUTS = 2
-# -> config (CELLCUT3D_PREFETCH_MOST): the nearest candidates of a batch whose site rows
-# are asked of the cache before the cuts (kernels.vertex3d.resettle reads them by index)
-PREFETCH_MOST = 24
 #: small hot helpers are inlined into their callers (numba's own inliner): a call that
 #: passes arrays costs reference counting, and the search makes ~100 such calls per cell
 NJIT_INLINE = {**NJIT, "inline": "always"}
@@ -223,7 +219,7 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
     # every cut (the largest |v|^2 left, or r2m if larger, as each cut found it before)
     stale = False
     r2m = 0.0
-    cuts = 0  # graph cuts since the radius was last found (small cells: REFRESH_CUTS)
+    cuts = 0  # graph cuts since the radius was last found (small cells: CELLCUT3D_REFRESH_CUTS)
     hint = 0  # the climb's start (kernels.climb3d): a point of the last cut's cap
     hw = 0  # work[:hw, (0, 3)], the climb's marks, are clear (bin_group writes work)
     if BIN_SORT_FROM <= m < min(S.shape[0], work.shape[0]):
@@ -238,7 +234,7 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
             b -= 1
         cand[b + 1] = ta
         cd2[b + 1] = da
-    for a in range(min(m, PREFETCH_MOST)):  # the nearest: the likeliest to cut
+    for a in range(min(m, CELLCUT3D_PREFETCH_MOST)):  # the nearest: the likeliest to cut
         prefetch_row(P, sidx[cand[a]])
     for a in range(m):
         t = cand[a]
@@ -250,7 +246,7 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
         h = 0.5 * (d2 + (wi - SW[t]))
         if h > 0.0 and h * h > rmax2 * d2 * (1.0 + VORONOI3D_STOP_RTOL):
             continue  # the plane passes beyond every vertex
-        if stale and cuts >= REFRESH_CUTS and nv < CLIMB3D_LOCAL_FROM:
+        if stale and cuts >= CELLCUT3D_REFRESH_CUTS and nv < CLIMB3D_LOCAL_FROM:
             # a small cell's radius, found again before a plane that the bound keeps: it
             # is found from as many vertices as one plane's values, and the batch's far
             # candidates (the first batch's bound is the container's) are then skipped

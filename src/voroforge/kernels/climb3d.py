@@ -49,10 +49,6 @@ NJIT_INLINE = {**NJIT, "inline": "always"}
 #: reference counting (see kernels.cellcut3d)
 NJIT_NO_NRT = {**NJIT, "_nrt": False}
 
-# -> config (CLIMB3D_BOX_BANDS): a plane this many bands beyond the cell's bounding box
-# (:func:`box_misses`) is passed over without a climb
-BOX_BANDS = 4.0
-
 MISS = 0  # no vertex within the band of the plane or above it: pass the plane over
 LOCAL = 1  # the values near and above the plane are written, listed in work[:nvis, 1]
 FULL = 2  # not decided here: evaluate every vertex
@@ -75,42 +71,6 @@ def _visit(V, u, nx, ny, nz, h, S, work, nvis):
         work[nvis, 1] = u
         nvis += 1
     return nvis
-
-
-@njit(**NJIT_INLINE)
-def cell_box(V, nv):
-    """The bounding box of the cell's vertices ``V[:nv]``: ``(x0, x1, y0, y1, z0, z1)``."""
-    x0 = x1 = V[0, 0]
-    y0 = y1 = V[0, 1]
-    z0 = z1 = V[0, 2]
-    for v in range(1, nv):
-        x0 = min(x0, V[v, 0])
-        x1 = max(x1, V[v, 0])
-        y0 = min(y0, V[v, 1])
-        y1 = max(y1, V[v, 1])
-        z0 = min(z0, V[v, 2])
-        z1 = max(z1, V[v, 2])
-    return (x0, x1, y0, y1, z0, z1)
-
-
-@njit(**NJIT_INLINE)
-def box_misses(box, nx, ny, nz, h, tol):
-    """Whether the plane ``n . x = h`` passes ``BOX_BANDS`` bands beyond the box ``box``.
-
-    The box (:func:`cell_box`, of this cell or of it before some cuts: a cut only takes
-    off, and a new point lies on an old edge to rounding) bounds ``n . v`` for every vertex;
-    past it by more than the band, every vertex's value (the full pass's float
-    expression, whose error is ulps where the band ``tol`` is 1e-12 relative) lies below
-    ``-tol``: the full pass would neither cut, nor touch, nor resolve, and passes the plane
-    over, as a ``MISS`` does. A helix of 1,500 points: ~500 of a cell's ~800 planes are
-    passed over, most of them (~73% on the finished cells) beyond the box.
-    """
-    top = (
-        max(nx * box[0], nx * box[1])
-        + max(ny * box[2], ny * box[3])
-        + max(nz * box[4], nz * box[5])
-    )
-    return top - h < -BOX_BANDS * tol
 
 
 @njit(**NJIT_NO_NRT)

@@ -31,16 +31,13 @@ import math
 import numpy as np
 from numba import njit
 
-from ..config import NJIT, SIDE_NEAREST_ULPS
+from ..config import NJIT, SIDE_BOX_RTOL, SIDE_NEAREST_ULPS
 from ..config import SIDE_NEAREST_MAX_STEPS as _MAX_STEPS
 from .expansion import grow, two_diff, two_product, two_sum
 
 _U = 2.0**-53
 _TINY = 2.0**-900  # a product below this may lose its error term to underflow
 _NT = 20  # exact parts of the numerator
-# -> config: sites whose ulp passes this fraction of the box's extent (sites 4096 box
-# widths from the origin) get the box sides' crossings as the nearest double (issue 15)
-SIDE_BOX_RTOL = 2.0**-40
 
 
 @njit(**NJIT)
