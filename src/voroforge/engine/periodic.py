@@ -42,6 +42,7 @@ from .domain import Domain, make_domain
 from .inputs import as_points, working_frame
 from .periodic_chord import chord_clear, shortfall
 from .periodic_edges import snap_ends
+from .periodic_exact import exact_vertices
 from .periodic_frame import cells_to_user_frame, corner_frame, to_local, two_sum_error
 from .periodic_retry import cut_off, cut_off_twice, next_try, on_sides, same_copies
 from .periodic_ties import tie_images
@@ -733,6 +734,13 @@ def _periodic(points, tile, algorithm: str, wrap: bool, may_move: bool) -> Diagr
             mx, my = min(2.0 * mx, cx), min(2.0 * my, cy)
     else:  # pragma: no cover - the margins reach their caps long before
         raise RuntimeError("periodic diagram: could not prove the margin")
+    # a vertex that rounded copies moved by more than a few ulps (two sites 5e-9 apart: 3e-8
+    # off a period over), recomputed from the exact images (periodic_exact)
+    fixed, far = exact_vertices(d, source, shift, box)
+    if fixed is not d:
+        d = fixed
+        if wrap:
+            pieces = _box_pieces(d, box)
     if wrap:
         # where every copy is an exact shift and the box lies in one binade on each axis, a
         # piece a few ulps wide is the part of a cell whose original passes the opposite
@@ -771,7 +779,7 @@ def _periodic(points, tile, algorithm: str, wrap: bool, may_move: bool) -> Diagr
         edges,
         algorithm,
         frame_exponent(d),
-        np.unique(source[lost]).astype(np.int64),
+        np.union1d(source[lost], far).astype(np.int64),
     )
     out.periodic = True
     out.wrapped = wrap
