@@ -120,7 +120,7 @@ def exact_vertices(d: Diagram, source: np.ndarray, shift: np.ndarray, box):
     change = np.flatnonzero(off & np.isfinite(new).all(axis=1))
     if not len(change):
         return d, none
-    out, stay = _replaced(d, seg, pairs, old[change], new[change], cells[moved[change]])
+    out, stay = _replaced(d, seg, pairs, sel, old[change], new[change], cells[moved[change]])
     return out, np.unique(source[stay[stay >= 0]]).astype(np.int64)
 
 
@@ -136,7 +136,9 @@ def _vertex_cells(seg: np.ndarray, pairs: np.ndarray, grown):
     rows = np.column_stack(
         (np.repeat(bits, 2, axis=0), np.column_stack((cell[:, 0], cell[:, 1])).reshape(-1))
     )
-    rows = np.unique(rows, axis=0)
+    order = np.lexsort((rows[:, 2], rows[:, 1], rows[:, 0]))
+    rows = rows[order]
+    rows = rows[np.r_[True, (rows[1:] != rows[:-1]).any(axis=1)]]
     step = (rows[1:, 0] != rows[:-1, 0]) | (rows[1:, 1] != rows[:-1, 1])
     start = np.flatnonzero(np.r_[True, step])
     count = np.diff(np.r_[start, len(rows)])
@@ -292,8 +294,11 @@ def _matches(points, cell, old, cells):
     return out
 
 
-def _replaced(d: Diagram, seg, pairs, old, new, cells):
-    """``d`` with the points ``old`` of the rings and edges of ``cells`` moved to ``new``."""
+def _replaced(d: Diagram, seg, pairs, sel, old, new, cells):
+    """``d`` with the points ``old`` of the rings and edges of ``cells`` moved to ``new``.
+
+    ``sel``: the edges that can hold them (those of a rounded copy).
+    """
     coords, ring, poly, geom = buffers(d)
     rid = np.repeat(np.arange(len(ring) - 1), np.diff(ring))
     pid = np.repeat(np.arange(len(poly) - 1), np.diff(poly))
@@ -316,12 +321,13 @@ def _replaced(d: Diagram, seg, pairs, old, new, cells):
     if not keep.any():
         return d, stay
     seg_out = seg.copy()
-    for end in range(2):
-        for side in range(2):
-            w = _matches(seg[:, end], pairs[:, side], old, cells)
-            w2 = _matches(seg[:, end], pairs[:, 1 - side], old, cells)
-            ok = (w >= 0) & (w2 == w) & keep[np.maximum(w, 0)]
-            seg_out[ok, end] = new[w[ok]]
+    for end in range(2):  # (only the edges of a rounded copy hold such points)
+        w = np.full(len(seg), -1, dtype=np.int64)
+        w[sel] = _matches(seg[sel, end], pairs[sel, 0], old, cells)
+        w2 = np.full(len(seg), -1, dtype=np.int64)
+        w2[sel] = _matches(seg[sel, end], pairs[sel, 1], old, cells)
+        ok = (w >= 0) & (w2 == w) & keep[np.maximum(w, 0)]
+        seg_out[ok, end] = new[w[ok]]
     result = Diagram(
         d.sites,
         d.duplicate_of,
