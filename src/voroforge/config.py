@@ -232,6 +232,10 @@ PERIODIC_REGROW = 1.25
 #: ...and the margins of cells cut off on both axes double at once where that adds at most
 #: this fraction of the next try's copies (unconditional: 18% more copies at 2,000 sites)
 PERIODIC_WAIT_GROW_COST = 0.125
+#: engine.periodic_exact: a vertex rounded copies can move by more than this many ulps (a
+#: first-order bound times the safety factor) is recomputed from the exact images
+PERIODIC_EXACT_ULPS = 4.0
+PERIODIC_EXACT_SAFETY = 2.0
 #: describe(): on a torus, a vertex and another's image closer than this (of the box's
 #: diagonal) are one vertex (images come from sites shifted by the box's size); a cell of a
 #: non-convex domain within 100 times this of its own coordinates' magnitude from the

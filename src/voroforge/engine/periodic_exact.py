@@ -27,15 +27,9 @@ from fractions import Fraction
 import numpy as np
 import shapely
 
+from ..config import PERIODIC_EXACT_SAFETY, PERIODIC_EXACT_ULPS
 from .diagram import Diagram, Edges, buffers, domain_of, frame_exponent
 from .periodic_frame import two_sum_error
-
-# -> config: a vertex whose copies' rounding can move it by more than this many ulps of
-# its coordinates is recomputed from the exact images
-PERIODIC_EXACT_ULPS = 4.0
-# -> config: the first-order bound of the copies' rounding times this (its second-order
-# terms, the kernel's own rounding)
-PERIODIC_EXACT_SAFETY = 2.0
 
 
 def copy_errors(sites: np.ndarray, source: np.ndarray, shift: np.ndarray, box) -> np.ndarray:
