@@ -68,6 +68,20 @@ def periodic_builds(monkeypatch) -> list:
     return sizes
 
 
+def _first_outputs(monkeypatch, module, name: str) -> list:
+    """The first output of every call of ``module.name`` in the test (a status array)."""
+    seen = []
+    inner = getattr(module, name)
+
+    def spy(*args):
+        got = inner(*args)
+        seen.append(got[0])
+        return got
+
+    monkeypatch.setattr(module, name, spy)
+    return seen
+
+
 @pytest.fixture
 def clip_statuses(monkeypatch) -> list:
     """The polygon-clip kernel's status array for every call in the test.
@@ -76,16 +90,15 @@ def clip_statuses(monkeypatch) -> list:
     """
     from voroforge.engine import polyclip
 
-    seen = []
-    inner = polyclip.clip_cells
+    return _first_outputs(monkeypatch, polyclip, "clip_cells")
 
-    def spy(*args):
-        got = inner(*args)
-        seen.append(got[0])
-        return got
 
-    monkeypatch.setattr(polyclip, "clip_cells", spy)
-    return seen
+@pytest.fixture
+def edge_statuses(monkeypatch) -> list:
+    """The shared-edge clip kernel's status array for every call in the test."""
+    from voroforge.engine import polyclip
+
+    return _first_outputs(monkeypatch, polyclip, "edge_kernel")
 
 
 @pytest.fixture(scope="module")

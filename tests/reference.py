@@ -513,3 +513,20 @@ def check_power_fit(fit, pts, targets, dom, rtol, seed=0, samples=4000) -> None:
     clear = order[:, 1] - order[:, 0] > 1e-9
     owner = np.argmin(pw, axis=1)[clear]
     assert shapely.contains(cells[owner], shapely.points(q[clear])).all()
+
+
+def periodic_reference_areas(points, box, k: int = 2) -> np.ndarray:
+    """Areas of the original sites' cells in the plain diagram of (2k + 1)^2 copies of ``box``.
+
+    The slow reference of a periodic diagram: every site copied by whole box sizes, the
+    copies' ordinary diagram in the grown box, the middle copy's areas read back.
+    """
+    import voroforge as vf
+
+    x0, y0, x1, y1 = box
+    w, h = x1 - x0, y1 - y0
+    shifts = [(a * w, b * h) for a in range(-k, k + 1) for b in range(-k, k + 1)]
+    ext = np.concatenate([points + s for s in shifts])
+    d = vf.voronoi(ext, (x0 - k * w, y0 - k * h, x1 + k * w, y1 + k * h))
+    mid = shifts.index((0.0, 0.0))
+    return np.asarray(d.areas)[mid * len(points) : (mid + 1) * len(points)]

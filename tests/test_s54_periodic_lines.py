@@ -15,9 +15,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import voroforge as vf
 from test_issue15_periodic import _check_torus
 from voroforge.engine.periodic_chord import chord_clear
+
+from reference import periodic_reference_areas
 
 BOX = (0.0, 0.0, 3.0, 2.0)
 OFF = (1.234375, 1.5625)
@@ -33,17 +34,6 @@ def _line(kind: str, n: int, seed: int = 1) -> np.ndarray:
         x = t * (1.9 / 3.0)
         p = np.column_stack((x, 3.0 * x + 0.05))
     return np.vstack((p, [OFF]))
-
-
-def _reference_areas(p: np.ndarray) -> np.ndarray:
-    """Areas of the originals' cells in the plain diagram of 5 x 5 copies."""
-    x0, y0, x1, y1 = BOX
-    w, h = x1 - x0, y1 - y0
-    shifts = [(a * w, b * h) for a in range(-2, 3) for b in range(-2, 3)]
-    ext = np.concatenate([p + s for s in shifts])
-    d = vf.voronoi(ext, (x0 - 2 * w, y0 - 2 * h, x1 + 2 * w, y1 + 2 * h))
-    mid = shifts.index((0.0, 0.0))
-    return np.asarray(d.areas)[mid * len(p) : (mid + 1) * len(p)]
 
 
 def _symmetric(d) -> None:
@@ -63,7 +53,7 @@ def test_line_and_one_torus_cells(kind, wrap):
     _symmetric(d)
     # the copies here are rounded sums (0.9 + 3.0), and the periodic cells' vertices are
     # tied to their images' (periodic_ties): a long thin cell's area moves by ~1e-11
-    np.testing.assert_allclose(d.areas, _reference_areas(p), rtol=0, atol=1e-10)
+    np.testing.assert_allclose(d.areas, periodic_reference_areas(p, BOX), rtol=0, atol=1e-10)
 
 
 def test_vertical_line_and_one_few_copies(periodic_builds):

@@ -26,6 +26,8 @@ import voroforge as vf
 from test_issue15_periodic import _check_torus
 from voroforge.engine.periodic_retry import next_try, same_copies
 
+from reference import periodic_reference_areas
+
 BOX = (0.0, 0.0, 3.0, 2.0)
 OFF = (1.234375, 1.5625)
 
@@ -40,17 +42,6 @@ def _line(kind: str, n: int, seed: int = 1, off: bool = True) -> np.ndarray:
         x = t * (1.9 / 3.0)
         p = np.column_stack((x, 3.0 * x + 0.1))
     return np.vstack((p, [OFF])) if off else p
-
-
-def _reference_areas(p: np.ndarray) -> np.ndarray:
-    """Areas of the originals' cells in the plain diagram of 5 x 5 copies."""
-    x0, y0, x1, y1 = BOX
-    w, h = x1 - x0, y1 - y0
-    shifts = [(a * w, b * h) for a in range(-2, 3) for b in range(-2, 3)]
-    ext = np.concatenate([p + s for s in shifts])
-    d = vf.voronoi(ext, (x0 - 2 * w, y0 - 2 * h, x1 + 2 * w, y1 + 2 * h))
-    mid = shifts.index((0.0, 0.0))
-    return np.asarray(d.areas)[mid * len(p) : (mid + 1) * len(p)]
 
 
 def test_vertical_line_and_one_two_builds(periodic_builds):
@@ -70,7 +61,7 @@ def test_vertical_line_small_margin_not_doubled(periodic_builds):
     d = _check_torus(p, BOX, "delaunay", False, samples=200)
     assert len(periodic_builds) == 2, periodic_builds
     assert periodic_builds[-1] <= 4 * len(p), periodic_builds
-    np.testing.assert_allclose(d.areas, _reference_areas(p), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(d.areas, periodic_reference_areas(p, BOX), rtol=0, atol=1e-12)
 
 
 @pytest.mark.parametrize("kind", ["v", "h"])
@@ -82,7 +73,7 @@ def test_wrapped_line_cut_off_cells_ask_one_axis(kind, periodic_builds):
     d = _check_torus(p, BOX, "delaunay", True, samples=200)
     assert len(periodic_builds) == 2, periodic_builds
     assert periodic_builds[-1] <= 4 * len(p), periodic_builds
-    np.testing.assert_allclose(d.areas, _reference_areas(p), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(d.areas, periodic_reference_areas(p, BOX), rtol=0, atol=1e-12)
 
 
 def test_sloped_line_last_build_smaller(periodic_builds):

@@ -27,21 +27,6 @@ from catalogue import comb_outline, holed_square, saw_outline
 ALGORITHMS = ("delaunay", "fortune", "halfplane")
 
 
-@pytest.fixture
-def edge_statuses(monkeypatch) -> list:
-    """The edge kernel's status array for every call in the test."""
-    seen = []
-    inner = polyclip.edge_kernel
-
-    def spy(*args):
-        got = inner(*args)
-        seen.append(got[0])
-        return got
-
-    monkeypatch.setattr(polyclip, "edge_kernel", spy)
-    return seen
-
-
 def _sites(geom, n, seed):
     x0, y0, x1, y1 = geom.bounds
     return np.random.default_rng(seed).random((n, 2)) * [x1 - x0, y1 - y0] + [x0, y0]
