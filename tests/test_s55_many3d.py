@@ -16,6 +16,7 @@ import pytest
 
 import voroforge as vf
 from catalogue3d import helix, three_lines
+from test_issue12_helix4 import _counting, _same
 from voroforge.engine import build3d, slots3d
 from voroforge.kernels.cells3d import OK, OVERFLOW
 
@@ -52,29 +53,6 @@ def test_probe_grown_rule():
     status[20] = OVERFLOW  # past the scratch: no counts, not counted
     counts[20] = [0, 0, 0]
     assert slots3d.probe_grown(status, counts, base, 2) == g
-
-
-def _counting(monkeypatch):
-    seen = []
-    real = slots3d.big_cell
-
-    def counted(*a):
-        seen.append(int(a[0]))
-        return real(*a)
-
-    monkeypatch.setattr(build3d, "big_cell", counted)
-    return seen
-
-
-def _same(a, b):
-    assert a.vertices.tobytes() == b.vertices.tobytes()
-    assert a.volumes.tobytes() == b.volumes.tobytes()
-    for x, y in zip(a.neighbors, b.neighbors, strict=True):
-        assert (x == y).all()
-    assert a.face_areas.tobytes() == b.face_areas.tobytes()
-    for k in range(0, len(a.volumes), 29):
-        pa, pb = a.cell(k), b.cell(k)
-        assert [r.tolist() for r in pa.faces] == [r.tolist() for r in pb.faces]
 
 
 @pytest.mark.parametrize(("name", "pts"), [("helix", helix(400)), ("lines3", three_lines(450))])
