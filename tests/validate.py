@@ -554,3 +554,24 @@ def _check_no_missing_neighbours(cells, pts, dup, nb, tree, tol, scale) -> None:
         # a few ulps of the coordinates' magnitude in it (far from the origin, not tiny)
         bad = shared > 1e-6 * scale + 4.0 * tol
         assert not bad.any(), f"cells share a boundary but are not neighbours: {a[bad][:5]}"
+
+
+def clipped_like_shapely(p: np.ndarray, geom) -> np.ndarray:
+    """``vf.voronoi(p, geom)``'s cells, checked against shapely's clip of the box cells.
+
+    The cells equal the rectangle diagram's cells intersected with ``geom`` (symmetric
+    difference under 1e-12 of the box), are valid, tile the domain's area, and every site
+    inside the domain lies in its own cell. Returns the cells.
+    """
+    import voroforge as vf
+
+    x0, y0, x1, y1 = geom.bounds
+    cut = vf.voronoi(p, geom).cells
+    ref = shapely.intersection(vf.voronoi(p, (x0, y0, x1, y1)).cells, geom)
+    scale = (x1 - x0) * (y1 - y0) * 1e-12
+    assert np.all(shapely.area(shapely.symmetric_difference(cut, ref)) <= scale)
+    assert np.all(shapely.is_valid(cut))
+    assert np.isclose(shapely.area(cut).sum(), geom.area, rtol=1e-12)
+    inside = shapely.intersects_xy(geom, p[:, 0], p[:, 1])
+    assert shapely.intersects_xy(cut[inside], p[inside, 0], p[inside, 1]).all()
+    return cut
