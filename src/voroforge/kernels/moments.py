@@ -19,6 +19,12 @@ from numba import njit, prange
 
 from ..config import NJIT, NJIT_PARALLEL
 
+# -> config: uniform_moments: where a cell's shoelace terms cover more than MOMENTS_CANCEL x
+# its area, each polygon farther from its origin than MOMENTS_FAR_PART x its extent is
+# summed about its own first vertex
+MOMENTS_CANCEL = 16.0
+MOMENTS_FAR_PART = 4.0
+
 
 @njit(**NJIT)
 def ring_sums(xs, ys, a, b, ox, oy, closed):
@@ -118,11 +124,78 @@ def area_centroid(coords, ring_offsets, polygon_offsets, geom_offsets):
     return area, cen
 
 
+@njit(**NJIT)
+def _far_part(xs, ys, a, b, ox, oy):
+    """Whether ring ``(xs, ys)[a:b]`` is more than ``MOMENTS_FAR_PART`` x its extent from ``o``.
+
+    Measured from its first vertex, in the max norm; the extent is its bounding box's longer
+    side.
+    """
+    if b <= a:
+        return False
+    x0 = xs[a]
+    y0 = ys[a]
+    lo_x = x0
+    hi_x = x0
+    lo_y = y0
+    hi_y = y0
+    for k in range(a + 1, b):
+        lo_x = min(lo_x, xs[k])
+        hi_x = max(hi_x, xs[k])
+        lo_y = min(lo_y, ys[k])
+        hi_y = max(hi_y, ys[k])
+    reach = max(abs(x0 - ox), abs(y0 - oy))
+    return reach > MOMENTS_FAR_PART * max(hi_x - lo_x, hi_y - lo_y)
+
+
+@njit(**NJIT)
+def _ring_spread(xs, ys, a, b, ox, oy):
+    """``sum |x0 y1 - x1 y0|`` over the closed ring ``(xs, ys)[a:b]`` about ``(ox, oy)``.
+
+    Twice the area the shoelace's terms would cover without cancelling: its ratio to the
+    ring's own twice-area bounds the sums' relative rounding (in ulps).
+    """
+    total = 0.0
+    for k in range(a, b - 1):
+        total += abs((xs[k] - ox) * (ys[k + 1] - oy) - (xs[k + 1] - ox) * (ys[k] - oy))
+    return total
+
+
+@njit(**NJIT)
+def _part_moments(xs, ys, ring_offsets, r0, r1, ox, oy):
+    """Signed moments ``(mass, first x, first y, second)`` of the polygon of rings ``r0:r1``.
+
+    About ``(ox, oy)``; the first ring is the exterior, the others holes.
+    """
+    s0 = 0.0
+    sx = 0.0
+    sy = 0.0
+    s2 = 0.0
+    for r in range(r0, r1):
+        a0, ax, ay, a2 = ring_moments(xs, ys, ring_offsets[r], ring_offsets[r + 1], ox, oy, True)
+        sign = 1.0 if a0 >= 0.0 else -1.0
+        if r != r0:
+            sign = -sign  # holes subtract
+        s0 += sign * a0
+        sx += sign * ax
+        sy += sign * ay
+        s2 += sign * a2
+    return s0, sx, sy, s2
+
+
 @njit(**NJIT_PARALLEL)
 def uniform_moments(
     coords, ring_offsets, polygon_offsets, geom_offsets, origin, mass, first, second
 ):
-    """Exact (closed-form) moments of unit density; writes into ``mass``, ``first``, ``second``."""
+    """Exact (closed-form) moments of unit density; writes into ``mass``, ``first``, ``second``.
+
+    Sums are taken about the cell's origin (its site). Where their terms cancel (they cover
+    more than ``MOMENTS_CANCEL`` x the cell's area: a part of a MultiPolygon domain across
+    a gap of 1e12, whose terms are the gap times the part's size; the mass was 6e-5 off),
+    each polygon farther than ``MOMENTS_FAR_PART`` x its extent from the origin is summed
+    about its own first vertex instead and its moments moved to the origin (``first + A d``,
+    ``second + 2 d . first + A |d|^2``).
+    """
     n = geom_offsets.shape[0] - 1
     xs = coords[:, 0]
     ys = coords[:, 1]
@@ -133,6 +206,7 @@ def uniform_moments(
         sx = 0.0
         sy = 0.0
         s2 = 0.0
+        spread = 0.0
         for p in range(geom_offsets[g], geom_offsets[g + 1]):
             for r in range(polygon_offsets[p], polygon_offsets[p + 1]):
                 a0, ax, ay, a2 = ring_moments(
@@ -145,6 +219,29 @@ def uniform_moments(
                 sx += sign * ax
                 sy += sign * ay
                 s2 += sign * a2
+                spread += 0.5 * _ring_spread(xs, ys, ring_offsets[r], ring_offsets[r + 1], ox, oy)
+        if spread > MOMENTS_CANCEL * abs(s0):
+            s0 = 0.0
+            sx = 0.0
+            sy = 0.0
+            s2 = 0.0
+            for p in range(geom_offsets[g], geom_offsets[g + 1]):
+                r0 = polygon_offsets[p]
+                vx = ox
+                vy = oy
+                if _far_part(xs, ys, ring_offsets[r0], ring_offsets[r0 + 1], ox, oy):
+                    vx = xs[ring_offsets[r0]]
+                    vy = ys[ring_offsets[r0]]
+                p0, px, py, p2 = _part_moments(
+                    xs, ys, ring_offsets, r0, polygon_offsets[p + 1], vx, vy
+                )
+                # moved from the part's vertex to the origin (zero shift for a near part)
+                dx = vx - ox
+                dy = vy - oy
+                s0 += p0
+                sx += px + p0 * dx
+                sy += py + p0 * dy
+                s2 += p2 + 2.0 * (dx * px + dy * py) + p0 * (dx * dx + dy * dy)
         mass[g] = s0
         first[g, 0] = sx
         first[g, 1] = sy
@@ -196,9 +293,13 @@ def raster_moments(
     ``raster (h, w)`` covers ``rbox = (xmin, ymin, xmax, ymax)``; row 0 is the top
     (``y = ymax``), as in an image; outside the box the density is 0. Each ring is cut into
     pixel rows, each row piece into pixels, and each pixel piece's moments are weighted by
-    that pixel's value.
+    that pixel's value. Where the rings' shoelace terms about the origin cancel (see
+    :func:`uniform_moments`), a polygon far from it is cut about its own first vertex and each
+    piece's moments moved to the origin.
     """
     n = geom_offsets.shape[0] - 1
+    xs = coords[:, 0]
+    ys = coords[:, 1]
     h, w = raster.shape
     dxp = (rbox[2] - rbox[0]) / w
     dyp = (rbox[3] - rbox[1]) / h
@@ -214,7 +315,24 @@ def raster_moments(
         sx = 0.0
         sy = 0.0
         s2 = 0.0
+        spread = 0.0
+        signed = 0.0
         for p in range(geom_offsets[g], geom_offsets[g + 1]):
+            for r in range(polygon_offsets[p], polygon_offsets[p + 1]):
+                ring2 = ring_sums(xs, ys, ring_offsets[r], ring_offsets[r + 1], ox, oy, True)[0]
+                hole = r != polygon_offsets[p]
+                signed += -abs(ring2) if hole else abs(ring2)
+                spread += _ring_spread(xs, ys, ring_offsets[r], ring_offsets[r + 1], ox, oy)
+        recenter = spread > MOMENTS_CANCEL * abs(signed)
+        for p in range(geom_offsets[g], geom_offsets[g + 1]):
+            r0 = polygon_offsets[p]
+            vx = ox
+            vy = oy
+            if recenter and _far_part(xs, ys, ring_offsets[r0], ring_offsets[r0 + 1], ox, oy):
+                vx = xs[ring_offsets[r0]]
+                vy = ys[ring_offsets[r0]]
+            dx = vx - ox  # each piece's moments moved to the origin (0 for a near part)
+            dy = vy - oy
             for r in range(polygon_offsets[p], polygon_offsets[p + 1]):
                 a = ring_offsets[r]
                 b = ring_offsets[r + 1] - 1  # open ring: drop the closing vertex
@@ -236,8 +354,8 @@ def raster_moments(
                 yhi = -np.inf
                 area2 = 0.0
                 for k in range(m):
-                    rx[k] = coords[a + k, 0] - ox
-                    ry[k] = coords[a + k, 1] - oy
+                    rx[k] = coords[a + k, 0] - vx
+                    ry[k] = coords[a + k, 1] - vy
                     ylo = min(ylo, coords[a + k, 1])
                     yhi = max(yhi, coords[a + k, 1])
                 for k in range(m):
@@ -249,8 +367,8 @@ def raster_moments(
                 r0 = max(int(np.floor((rbox[3] - yhi) / dyp)), 0)
                 r1 = min(int(np.floor((rbox[3] - ylo) / dyp)), h - 1)
                 for row in range(r0, r1 + 1):
-                    top = rbox[3] - row * dyp - oy
-                    bot = rbox[3] - (row + 1) * dyp - oy
+                    top = rbox[3] - row * dyp - vy
+                    bot = rbox[3] - (row + 1) * dyp - vy
                     m1 = _clip_axis(rx, ry, m, t1x, t1y, y_axis, top, below)
                     m2 = _clip_axis(t1x, t1y, m1, t2x, t2y, y_axis, bot, above)
                     if m2 < 3:
@@ -260,14 +378,14 @@ def raster_moments(
                     for k in range(m2):
                         xlo = min(xlo, t2x[k])
                         xhi = max(xhi, t2x[k])
-                    c0 = max(int(np.floor((xlo + ox - rbox[0]) / dxp)), 0)
-                    c1 = min(int(np.floor((xhi + ox - rbox[0]) / dxp)), w - 1)
+                    c0 = max(int(np.floor((xlo + vx - rbox[0]) / dxp)), 0)
+                    c1 = min(int(np.floor((xhi + vx - rbox[0]) / dxp)), w - 1)
                     for col in range(c0, c1 + 1):
                         val = raster[row, col]
                         if val == 0.0:
                             continue
-                        left = rbox[0] + col * dxp - ox
-                        right = rbox[0] + (col + 1) * dxp - ox
+                        left = rbox[0] + col * dxp - vx
+                        right = rbox[0] + (col + 1) * dxp - vx
                         m3 = _clip_axis(t2x, t2y, m2, t3x, t3y, x_axis, right, below)
                         m4 = _clip_axis(t3x, t3y, m3, t4x, t4y, x_axis, left, above)
                         if m4 < 3:
@@ -275,9 +393,9 @@ def raster_moments(
                         a0, ax, ay, a2 = ring_moments(t4x, t4y, 0, m4, 0.0, 0.0, False)
                         f = sign * val
                         s0 += f * a0
-                        sx += f * ax
-                        sy += f * ay
-                        s2 += f * a2
+                        sx += f * (ax + a0 * dx)
+                        sy += f * (ay + a0 * dy)
+                        s2 += f * (a2 + 2.0 * (dx * ax + dy * ay) + a0 * (dx * dx + dy * dy))
         mass[g] = s0
         first[g, 0] = sx
         first[g, 1] = sy
