@@ -385,7 +385,7 @@ def _rebuilt(closed, lengths, owner, rings):
     return np.concatenate(parts_c), new_len, np.concatenate(parts_o)
 
 
-def split_merged(closed, lengths, owner, ring_id, n, sites, astray):
+def split_merged(closed, lengths, owner, ring_id, n, sites, astray, *, tolerate=False):
     """Rings ``astray`` (indices) that miss their site, given it back by splitting a vertex.
 
     Where the cells merged four sites' Voronoi vertices ulps apart into one point (their
@@ -400,6 +400,9 @@ def split_merged(closed, lengths, owner, ring_id, n, sites, astray):
     where every changed ring stays exactly convex, holds its site where it did and ring
     ``i`` holds its own, and the rings still share every edge (else again with rings that
     turn right by rounding only, as in :func:`agree`); else the next such vertex is tried.
+    With ``tolerate``, a ring beside the changed ones that disagreed with a neighbour before
+    may still (the Delaunay dual's rings of a lost site: two cells an ulp apart at a box
+    side elsewhere on the ring); no ring may disagree that did not.
     Returns ``(closed, lengths, owner)``, the input arrays where none is kept.
     """
     xs = np.ascontiguousarray(sites[:, 0])
@@ -416,7 +419,7 @@ def split_merged(closed, lengths, owner, ring_id, n, sites, astray):
             p = (float(closed[a0 + v, 0]), float(closed[a0 + v, 1]))
             if a < 0 or b < 0 or inv[a] < 0 or inv[b] < 0:
                 continue
-            got = _split_at(closed, lengths, owner, ring_id, inv, xs, ys, (i, a, b), p)
+            got = _split_at(closed, lengths, owner, ring_id, inv, xs, ys, (i, a, b), p, tolerate)
             if got is not None:
                 closed, lengths, owner = got
                 break
@@ -434,7 +437,7 @@ def _slot_between(closed, lengths, owner, r, before, after, p):
     return -1
 
 
-def _split_at(closed, lengths, owner, ring_id, inv, xs, ys, iab, p):
+def _split_at(closed, lengths, owner, ring_id, inv, xs, ys, iab, p, tolerate=False):
     """:func:`split_merged` at ring ``inv[i]``'s vertex ``p`` between ``a`` and ``b``; or None."""
     i, a, b = iab
     ra = int(inv[a])
@@ -467,7 +470,7 @@ def _split_at(closed, lengths, owner, ring_id, inv, xs, ys, iab, p):
             new[r] = (u, pts)
         for lax in (False, True):
             got = _split_rings(
-                closed, lengths, owner, ring_id, inv, (xs, ys), new, int(inv[i]), lax
+                closed, lengths, owner, ring_id, inv, (xs, ys), new, int(inv[i]), lax, tolerate
             )
             if got is not None:
                 return got
@@ -475,10 +478,11 @@ def _split_at(closed, lengths, owner, ring_id, inv, xs, ys, iab, p):
     return None
 
 
-def _split_rings(closed, lengths, owner, ring_id, inv, xys, new, mine, lax):
+def _split_rings(closed, lengths, owner, ring_id, inv, xys, new, mine, lax, tolerate=False):
     """The rings with slots replaced as ``new`` says; None where a check fails.
 
-    With ``lax``, a changed ring may turn right by rounding (:func:`_kept`).
+    With ``lax``, a changed ring may turn right by rounding (:func:`_kept`); with
+    ``tolerate``, a ring that disagreed with a neighbour before may still.
     """
     xs, ys = xys
     placed = {}
@@ -508,7 +512,11 @@ def _split_rings(closed, lengths, owner, ring_id, inv, xys, new, mine, lax):
     near = set(placed)
     for r in placed:
         near.update(int(inv[j]) for j in placed[r][2] if j >= 0 and inv[j] >= 0)
-    if rings_disagree_at(*out, inv, ring_id, np.array(sorted(near), dtype=np.int64)).any():
+    which = np.array(sorted(near), dtype=np.int64)
+    bad = rings_disagree_at(*out, inv, ring_id, which)
+    if tolerate and bad.any():
+        bad &= ~rings_disagree_at(closed, lengths, owner, inv, ring_id, which)
+    if bad.any():
         return None
     return out
 

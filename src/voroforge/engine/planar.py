@@ -533,9 +533,13 @@ def build(pts: np.ndarray, dom: Domain, algorithm: str) -> Diagram:
             # a lost site's exact cell where floats hold it and the rings leave a gap for it
             # (imported here: its exact cells need scipy's KD-tree, which a first build of
             # ordinary input never loads)
-            from .restore import restore_lost
+            from .restore import restore_lost, split_lost
 
             (closed, lengths, own), lost = restore_lost(
+                xs, ys, box, (closed, lengths, own), lost, unique
+            )
+            # a ring beside its site where the cells merged two vertices floats hold apart
+            (closed, lengths, own), lost = split_lost(
                 xs, ys, box, (closed, lengths, own), lost, unique
             )
         if certified:

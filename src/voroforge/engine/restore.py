@@ -22,6 +22,8 @@ algorithm reaches this step with the same rings (:func:`.planar._fewest_lost`), 
 all give the same answer. Where no exact cell fits (cells ~35 ulps wide at 4e12: a ring left
 empty as folded, its neighbours' vertices up to 6 ulps from the exact ones), the gap's own
 boundary closes it as the ring of a lost site its edges name (:func:`_fill_cycles`).
+A lost site's ring that passes beside it (the gap's ring, or the dual's wedge) gets its
+site back where the vertex the cells merged past it is two in floats (:func:`split_lost`).
 """
 
 from __future__ import annotations
@@ -36,6 +38,7 @@ from ..config import RESTORE_FIRST, RESTORE_SNAP_ULPS
 from ..kernels.cells import rings_astray
 from ..kernels.clip import rings_convex
 from ..kernels.dual_some import splice_rings
+from .agree import split_merged
 from .power_exact import Exact, line, vertex
 
 # the box's sides in counter-clockwise order: (axis varying, fixed coordinate's box index,
@@ -99,6 +102,45 @@ def restore_lost(xs, ys, box, rings, lost, kmap):
     return rings, lost
 
 
+def split_lost(xs, ys, box, rings, lost, kmap):
+    """The rings with lost sites' rings that pass beside them split where floats hold two.
+
+    Two sites 7 ulps apart on a float circle (issue 15: radius 1e-7 at 4e6, 1025 sites)
+    have an edge whose ends lie 2.9 ulps apart; the rounding-bound rule merges them, the
+    merged point puts the one site outside its ring, and that ring, a thin wedge, passes
+    beside its site (or, left empty, its gap was closed by :func:`restore_lost`, beside
+    it too). Where the merged point is one vertex of four sites with the fourth inside the
+    circle, :func:`.agree.split_merged` splits it as the exact diagram has it (the two
+    vertices named by their triples, every ring at the point changed alike); rings beside
+    the changed ones that disagreed before (two cells an ulp apart at a box side) may
+    still. A ring that then holds its site and is exactly convex takes it out of ``lost``;
+    one convex to rounding only keeps its site flagged, now inside it. Returns
+    ``(rings, lost)``.
+    """
+    closed, lengths, owner = rings
+    has = lost[lengths[1:][lost] > lengths[:-1][lost]]
+    if not len(has):
+        return rings, lost
+    which = np.zeros(len(xs), dtype=np.bool_)
+    which[has] = True
+    code = rings_astray(xs, ys, closed, lengths, box, which)
+    miss = np.flatnonzero(code == 1)
+    if not len(miss):
+        return rings, lost
+    sites = np.zeros((int(kmap.max()) + 1, 2))
+    sites[kmap] = np.column_stack((xs, ys))
+    got = split_merged(closed, lengths, owner, kmap, len(sites), sites, miss, tolerate=True)
+    if got[0] is closed:
+        return rings, lost
+    closed, lengths, owner = got
+    which[:] = False
+    which[miss] = True
+    now = rings_astray(xs, ys, closed, lengths, box, which)
+    back = miss[now[miss] != 1]
+    back = back[rings_convex(closed, lengths)[back]]
+    return got, lost[~np.isin(lost, back)]
+
+
 def _spliced(rings, kept, gaps, kmap):
     """The rings with ``kept`` (:func:`_settle`'s ``{site: (ring, labels)}``) spliced in.
 
@@ -145,7 +187,8 @@ def _fill_cycles(xs, ys, box, rings, lost, rest, kmap):
     site across), one that the cycle holds (exact test) first, then the one named most
     (ties: the lower index). The site leaves ``lost`` only where the ring holds it and is
     convex (exact turns); otherwise its ring is kept beside it, flagged, as a wedge's.
-    Slivers between two cells (T-junctions) name no lost site and stay as they are.
+    Slivers between two cells (T-junctions) name no lost site and stay as they are; one
+    that joins a lost site's gap is cut off its cycle (:func:`_despiked`).
     """
     closed, lengths, owner = rings
     gaps = _Gaps(closed, lengths, box)
@@ -154,6 +197,8 @@ def _fill_cycles(xs, ys, box, rings, lost, rest, kmap):
     of_input = {int(kmap[i]): int(i) for i in rest}
     kept = {}
     for ring, labels in gaps.cycles():
+        if not _valid(ring):
+            ring, labels = _despiked(ring, labels, gaps)
         named = Counter(
             of_input[int(owner[e])]
             for kind, e in labels
@@ -173,6 +218,38 @@ def _fill_cycles(xs, ys, box, rings, lost, rest, kmap):
     convex = {i for i in kept if _convex(kept[i][0])}
     rings = _spliced(rings, kept, gaps, kmap)
     return rings, lost[~np.isin(lost, list(held & convex))]
+
+
+def _despiked(ring, labels, gaps):
+    """The gap cycle ``ring`` with each spike cut off (``labels`` as :meth:`_Gaps.cycles`'s).
+
+    Two neighbours whose shared edge ends at points an ulp apart (each cell rounded its own
+    end onto a box side: issue 15's float circles of radius 1e-7 at 4e6, 1025 sites) leave
+    a sliver between their edges that no ring shares: an overlap of the two cells, not a
+    gap. Where it meets a lost site's gap, the walk runs out along one edge and back along
+    the other, to within ``RESTORE_SNAP_ULPS`` ulps of where it left, and the cycle is no
+    polygon (the strip cell stayed empty and its gap open). The cycle goes straight from
+    the spike's one end to the other instead: along the box side where both lie on it
+    (labelled as the side), else along the first edge's cell (its site across).
+    """
+    ring, labels = list(ring), list(labels)
+    k = 0
+    while len(ring) > 3 and k < len(ring):
+        p, r = ring[k - 1], ring[(k + 1) % len(ring)]
+        u = RESTORE_SNAP_ULPS * math.ulp(max(abs(p[0]), abs(p[1]), abs(r[0]), abs(r[1])))
+        spike = labels[k - 1][0] == labels[k][0] == "gap" and p != r
+        if not (spike and abs(p[0] - r[0]) <= u and abs(p[1] - r[1]) <= u):
+            k += 1
+            continue
+        cut = ("pair", int(gaps.ring_of[labels[k - 1][1]]))
+        for s, (axis, fix, sign) in enumerate(_SIDES):
+            other = 1 - axis
+            if p[other] == r[other] == gaps.box[fix] and (r[axis] - p[axis]) * sign > 0:
+                cut = ("side", s)
+        labels[k - 1] = cut
+        del ring[k], labels[k]
+        k = 0
+    return ring, labels
 
 
 def _convex(ring) -> bool:
