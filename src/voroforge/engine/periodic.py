@@ -46,6 +46,7 @@ from .periodic_exact import exact_vertices
 from .periodic_frame import cells_to_user_frame, corner_frame, to_local, two_sum_error
 from .periodic_retry import cut_off, cut_off_twice, next_try, on_sides, same_copies
 from .periodic_ties import tie_images
+from .periodic_union import united_pieces
 from .planar import build
 
 #: Initial margin, in typical cell diameters ``sqrt(area / n)``.
@@ -293,17 +294,10 @@ def _gather(pieces, source: np.ndarray, n: int, keep: np.ndarray, rounding: floa
     if multi.any():
         groups = np.unique(owner[multi], return_inverse=True)
         merged = shapely.multipolygons(pieces[multi], indices=groups[1])
-        bad = ~shapely.is_valid(merged)
+        bad = np.flatnonzero(~shapely.is_valid(merged))
         # pieces of one cell that touch along an edge (a cell bordering its own image)
-        for j in np.flatnonzero(bad):
-            parts = shapely.get_parts(merged[j])
-            try:
-                united = shapely.union_all(parts)
-            except shapely.errors.GEOSException:
-                # a piece that is not a valid polygon (a spike of an ulp): GEOS cannot
-                # assign its holes; the pieces made valid unite
-                united = shapely.union_all(shapely.make_valid(parts))
-            merged[j] = _without_slivers(united, rounding)
+        if len(bad):
+            merged[bad] = united_pieces(merged[bad], rounding)
         out[groups[0]] = merged
     return from_shapely(out)
 
@@ -432,30 +426,6 @@ def _slivers(pieces, box, is_orig) -> None:
     extent = np.fmax(b[:, 2] - b[:, 0], b[:, 3] - b[:, 1])
     thin = shapely.area(cut) <= _sliver_width(box) * extent  # NaN (empty): False
     cut[thin & ~is_orig[cross]] = shapely.Polygon()
-
-
-def _narrow(poly, rounding: float) -> bool:
-    """Whether ``poly`` is at most ``rounding`` wide: its area against its longer extent."""
-    x0, y0, x1, y1 = poly.bounds
-    return poly.area <= rounding * max(x1 - x0, y1 - y0)
-
-
-def _without_slivers(geom, rounding: float):
-    """``geom`` without the holes and parts that are at most ``rounding`` wide.
-
-    Pieces of one cell meet along an edge computed in two positions, whose end points can
-    differ by rounding: their union can keep a sliver hole there. A small piece is kept
-    when it is wider than rounding (a corner of a cell that just reaches across the wrap).
-    """
-    polys = []
-    for part in shapely.get_parts(geom):
-        if _narrow(part, rounding):
-            continue
-        holes = [r for r in part.interiors if not _narrow(shapely.Polygon(r), rounding)]
-        polys.append(shapely.Polygon(part.exterior, holes))
-    if not polys:
-        return shapely.Polygon()
-    return polys[0] if len(polys) == 1 else shapely.MultiPolygon(polys)
 
 
 def _torus_edges(d: Diagram, source, shift, is_orig, wrap: bool, pieces, box, cut=None) -> Edges:
