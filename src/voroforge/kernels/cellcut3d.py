@@ -37,7 +37,7 @@ from ..config import (
 )
 from ..config import CELLCUT3D_OWN_ENTRIES as OWN_ENTRIES
 from .band3d import offset_cache, owner_key, resolve  # noqa: F401 (re-exported: cells3d)
-from .climb3d import FULL, MISS, list_removed, plane_local
+from .climb3d import FULL, MISS, clear_tops, list_removed, plane_local
 from .graph3d import GCUT_DONE, cut_close, cut_listed, list_above, to_rings
 from .grid3d import bucket3d, shell_buckets_in, shell_gap
 from .polyhedron import CUT_DONE, CUT_EMPTY, CUT_OVERFLOW, cut
@@ -460,6 +460,8 @@ def one_cell(
     V, F, R, R2, S, work, T = C
     graph = G[0].shape[0] > 0
     X[3][0, 0] += 1  # a new cell: band3d._cached_vertex's offsets and frame are stale
+    if graph:
+        clear_tops(work)  # (kernels.climb3d: the climbs' starts of the last cell)
     px = P[i, 0]
     py = P[i, 1]
     pz = P[i, 2]

@@ -24,10 +24,20 @@ ever) is reported ``FULL``: the caller evaluates every vertex as before. Each va
 same expression as the full pass's, so every decision, and every output bit, is the full
 pass's.
 
+The climb starts from the best of the caller's hint (a vertex of the last cut's cap) and
+the top last found for a normal of the same direction slot (``TOP_SLOTS``: the normal's
+dominant axis and its three signs); where that slot has no top yet in this cell it starts
+from ``CLIMB3D_SAMPLES`` vertices spread over the cell as well (a helix's cell: 29.7
+vertices visited a passed-over plane, 9 of them these samples). Any start gives the same
+top (a convex cell's), so the start changes no decision and no output bit, only how far
+the climb goes.
+
 Scratch: ``work[:, 0]`` marks the vertices evaluated for the current plane and
 ``work[:, 3]`` those of the plateau (both zero outside a call: the caller clears rows it
 has not cleared since ``work`` was last used for something else), ``work[:, 1]`` lists
-the evaluated vertices, ``work[:, 2]`` the plateau's.
+the evaluated vertices, ``work[:, 2]`` the plateau's; the slots' tops are kept in
+``work[-TOP_SLOTS:, 2]`` (:func:`clear_tops` empties them for a new cell; anything else
+written there is only a worse start).
 """
 
 from __future__ import annotations
@@ -54,6 +64,32 @@ LOCAL = 1  # the values near and above the plane are written, listed in work[:nv
 FULL = 2  # not decided here: evaluate every vertex
 #: the removed vertices are sorted by insertion up to this many, else marked and read off
 SORT_MOST = 48
+
+
+#: the tops last found, one per direction slot of a plane's normal (its dominant axis and
+#: three signs), kept in ``work[-TOP_SLOTS:, 2]``: rows the plateau's list does not reach
+TOP_SLOTS = 24
+
+
+@njit(**NJIT_INLINE)
+def _slot_row(work, nx, ny, nz):
+    """The row of ``work[:, 2]`` that keeps the last top for normals like ``n`` (-1: none)."""
+    if work.shape[0] < CLIMB3D_PLATEAU_MOST + TOP_SLOTS:
+        return -1
+    ax = abs(nx)
+    ay = abs(ny)
+    az = abs(nz)
+    d = 0 if ax >= ay and ax >= az else (1 if ay >= az else 2)
+    slot = 8 * d + 4 * (nx < 0.0) + 2 * (ny < 0.0) + (nz < 0.0)
+    return work.shape[0] - 1 - slot
+
+
+@njit(**NJIT_INLINE)
+def clear_tops(work):
+    """Forget the slots' tops (a new cell: its vertices are others)."""
+    if work.shape[0] >= CLIMB3D_PLATEAU_MOST + TOP_SLOTS:
+        for r in range(work.shape[0] - TOP_SLOTS, work.shape[0]):
+            work[r, 2] = -1
 
 
 @njit(**NJIT_INLINE)
@@ -85,8 +121,15 @@ def plane_local(V, nv, DEG, ED, S, work, nx, ny, nz, h, tol, hint):
     nvis = 0
     best = hint if 0 <= hint < nv else 0
     nvis = _visit(V, best, nx, ny, nz, h, S, work, nvis)
+    # the top last found for a normal of this one's slot, else samples spread over the cell
+    row = _slot_row(work, nx, ny, nz)
+    t = work[row, 2] if row >= 0 else -1
+    if 0 <= t < nv:
+        nvis = _visit(V, t, nx, ny, nz, h, S, work, nvis)
+        if S[t] > S[best]:
+            best = t
     step = nv // CLIMB3D_SAMPLES
-    if step > 0:
+    if step > 0 and not 0 <= t < nv:
         for k in range(CLIMB3D_SAMPLES):
             v = k * step
             nvis = _visit(V, v, nx, ny, nz, h, S, work, nvis)
@@ -168,6 +211,8 @@ def plane_local(V, nv, DEG, ED, S, work, nx, ny, nz, h, tol, hint):
                 smax = s
     for q in range(nvis):
         work[work[q, 1], 0] = 0
+    if row >= 0 and mode != FULL:
+        work[row, 2] = best  # (a LOCAL's top is cut off: its row is then a cap's vertex)
     return mode, smax, low, nvis
 
 
