@@ -23,6 +23,7 @@ from voroforge.kernels.edgeclip import HARD as EDGE_HARD
 from voroforge.kernels.polyclip import DONE, NONE, box_sides, bucket_segments, clip_cells
 
 from catalogue import comb_outline, holed_square, saw_outline
+from validate import edges_are_the_cells
 
 ALGORITHMS = ("delaunay", "fortune", "halfplane")
 
@@ -51,25 +52,6 @@ def _check_cells(geom, p, cells, algorithm):
     assert shapely.intersects_xy(cells[inside], p[inside, 0], p[inside, 1]).all()
 
 
-def _check_edges(d, scale):
-    """Every edge's ends are vertices of both its cells; lengths per pair as the cells share."""
-    cells = d.cells
-    verts = [set(map(tuple, shapely.get_coordinates(c).tolist())) for c in cells]
-    got = {}
-    for (a, b), (i, j) in zip(d.edges.coords.tolist(), d.edges.pairs.tolist(), strict=True):
-        for q in (tuple(a), tuple(b)):
-            assert q in verts[i] and q in verts[j]
-        got[(i, j)] = got.get((i, j), 0.0) + float(np.hypot(b[0] - a[0], b[1] - a[1]))
-    tree = shapely.STRtree(cells)
-    ii, jj = tree.query(cells, predicate="intersects")
-    for i, j in zip(ii.tolist(), jj.tolist(), strict=True):
-        if i < j:
-            shared = shapely.intersection(shapely.boundary(cells[i]), shapely.boundary(cells[j]))
-            length = shapely.length(shared)
-            assert got.pop((i, j), 0.0) == pytest.approx(length, abs=1e-9 * scale)
-    assert not got  # (no edge between cells that share no boundary)
-
-
 @pytest.mark.parametrize("algorithm", ALGORITHMS)
 @pytest.mark.parametrize("offset", [1e13, 7e14])
 def test_comb_far_out_in_the_kernel(algorithm, offset, clip_statuses, edge_statuses):
@@ -78,7 +60,7 @@ def test_comb_far_out_in_the_kernel(algorithm, offset, clip_statuses, edge_statu
     p = _sites(geom, 120, 5)
     d = vf.voronoi(p, geom, algorithm=algorithm)
     _check_cells(geom, p, d.cells, algorithm)
-    _check_edges(d, 1000.0)
+    edges_are_the_cells(d, 1000.0)
     status = np.concatenate(clip_statuses)
     edges = np.concatenate(edge_statuses)
     # (at 7e14, ulps of 0.125 against teeth 0.375 wide, a crossing may round onto a vertex
@@ -100,7 +82,7 @@ def test_sloped_and_holed_edges_are_the_cells(algorithm, clip_statuses, edge_sta
         p = _sites(geom, 120, 9)
         d = vf.voronoi(p, geom, algorithm=algorithm)
         _check_cells(geom, p, d.cells, algorithm)
-        _check_edges(d, max(np.ptp(np.asarray(geom.bounds).reshape(2, 2), axis=0)))
+        edges_are_the_cells(d, max(np.ptp(np.asarray(geom.bounds).reshape(2, 2), axis=0)))
     status = np.concatenate(clip_statuses)
     assert (status <= NONE).all() and (status == DONE).sum() > 100
     assert (np.concatenate(edge_statuses) < EDGE_HARD).all()

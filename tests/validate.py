@@ -575,3 +575,22 @@ def clipped_like_shapely(p: np.ndarray, geom) -> np.ndarray:
     inside = shapely.intersects_xy(geom, p[:, 0], p[:, 1])
     assert shapely.intersects_xy(cut[inside], p[inside, 0], p[inside, 1]).all()
     return cut
+
+
+def edges_are_the_cells(d, scale: float) -> None:
+    """``d.edges``: each end a vertex of both its cells bit for bit; per pair, their length."""
+    cells = d.cells
+    verts = [set(map(tuple, shapely.get_coordinates(c).tolist())) for c in cells]
+    got = {}
+    for (a, b), (i, j) in zip(d.edges.coords.tolist(), d.edges.pairs.tolist(), strict=True):
+        for q in (tuple(a), tuple(b)):
+            assert q in verts[i] and q in verts[j]
+        got[(i, j)] = got.get((i, j), 0.0) + float(np.hypot(b[0] - a[0], b[1] - a[1]))
+    tree = shapely.STRtree(cells)
+    ii, jj = tree.query(cells, predicate="intersects")
+    for i, j in zip(ii.tolist(), jj.tolist(), strict=True):
+        if i < j:
+            shared = shapely.intersection(shapely.boundary(cells[i]), shapely.boundary(cells[j]))
+            length = shapely.length(shared)
+            assert abs(got.pop((i, j), 0.0) - length) <= 1e-9 * scale
+    assert not got  # (no edge between cells that share no boundary)

@@ -501,9 +501,10 @@ EXPLAIN_SCALE_EXP = 64
 
 # --- voronoi3d (3D cells, containers): config3d.py; surfaces (Voronoi on curved surfaces,
 # --- panels): config_surface.py; solid (printable lattices, foams, shells): config_solid.py;
-# --- all re-exported here ----------------------------------------------------------------
+# --- moments (Lloyd, CVT): config_moments.py; all re-exported here --------------------------
 
 from .config3d import *  # noqa: E402, F403
+from .config_moments import *  # noqa: E402, F403
 from .config_solid import *  # noqa: E402, F403
 from .config_surface import *  # noqa: E402, F403
 

@@ -85,8 +85,14 @@ class Pieces:
         in a domain with vertices on its box: ``clip_by_rect`` of the polygon
         ``(0 0, 3 0, 3 10, 1.5 0.5, 0 10)`` to its own bounds is the notch between its
         teeth): the rectangle is grown a little, to sides on which no vertex of the domain
-        lies.
+        lies. A domain of at most ``PIECE_SMALL`` vertices is returned whole: a cut adds
+        rounded vertices on the rectangle's sides, and a crossing with such a shortened
+        segment can round to the other neighbouring float than the crossing with the domain's
+        own segment, which the exact clip and the shared edges use (a 20-point star at 3e12:
+        a cell redone in its site's frame ended one ulp off its edge's end).
         """
+        if self.whole:
+            return self.geometry
         rect = self._grown(x0, y0, x1, y1)
         got = shapely.clip_by_rect(self._near(rect), *rect)
         if not shapely.is_valid(got):

@@ -17,13 +17,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ..config import NJIT, NJIT_PARALLEL
-
-# -> config: uniform_moments: where a cell's shoelace terms cover more than MOMENTS_CANCEL x
-# its area, each polygon farther from its origin than MOMENTS_FAR_PART x its extent is
-# summed about its own first vertex
-MOMENTS_CANCEL = 16.0
-MOMENTS_FAR_PART = 4.0
+from ..config import MOMENTS_CANCEL, MOMENTS_FAR_PART, NJIT, NJIT_PARALLEL
 
 
 @njit(**NJIT)
