@@ -40,6 +40,7 @@ from ..config import (
     HALFPLANE_SLACK2,
     NJIT,
     NJIT_PARALLEL,
+    SIDE_BOX_RTOL,
 )
 from .clip import cut_ring_inline, plane_values_inline
 from .grid import (
@@ -289,6 +290,12 @@ def _cells(k0, k1, sites, orig, grid, tree, box, budget, counts, where, hard, dx
         nc = np.int64(0)
         nw = np.int64(0)
         work = 0
+        if np.spacing(np.sqrt(r2)) > SIDE_BOX_RTOL * max(box[2] - box[0], box[3] - box[1]):
+            # a box far smaller than the site's distance's ulp: its corners in the site's
+            # frame, and the float cut, are off by a visible part of the box (issue 15: a
+            # float circle of radius 1e17 through a unit window gave one cell the whole
+            # box); the Delaunay dual cuts such cells with exact signs (``power.box_cell``)
+            work = budget + 1
         grow = False
         # one loop for both searches, so that the cut (inlined) is compiled once
         ix = bucket_of(cx, x0, hx, nx)

@@ -31,7 +31,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ..config import NJIT, NJIT_PARALLEL, POWER_CROWDED_RTOL, POWER_CROWDED_ULPS
+from ..config import NJIT, NJIT_PARALLEL, POWER_CROWDED_RTOL, POWER_CROWDED_ULPS, SIDE_BOX_RTOL
 from .clip import cut_ring, plane_values
 from .distance_exact import compare
 from .vertex import power_box_crossing, power_vertex
@@ -72,6 +72,9 @@ def box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
     sy = ys[i]
     swapped = False
     w = np.empty((0, 0))  # noqa: TID251  (scratch of the exact signs, made when needed)
+    # a box far smaller than the sites' ulp (the regime of ``sidecross``): the cut's
+    # interpolated crossings are off by a visible part of the box
+    tiny = SIDE_BOX_RTOL * max(box[2] - box[0], box[3] - box[1])
     for k in range(nn):
         j = nbrs[k]
         dx = xs[j] - sx
@@ -91,6 +94,12 @@ def box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
         py, qy = qy, py
         pw, qw = qw, pw
         swapped = not swapped
+        big = max(max(abs(sx), abs(sy)), max(abs(xs[j]), abs(ys[j])))
+        if ws[i] == ws[j] and np.spacing(big) > tiny:
+            # name the two new vertices now, so the next cuts' exact signs see them where
+            # they are (issue 15: a float circle at 1e12 seen through a unit window lost
+            # a cell whose exact area was 3e-9 of the box)
+            _name_new(i, j, xs, ys, ws, px, py, pw, m, box)
     m = _corner_crossings(i, xs, ys, ws, px, py, pw, m, box)
     if swapped:
         for v in range(m):
@@ -552,26 +561,30 @@ def _careful_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
             px[v] = qx[v]
             py[v] = qy[v]
             pw[v] = qw[v]
-        for v in range(m):
-            a = pw[v - 1 if v > 0 else m - 1]
-            b = pw[v]
-            if a != j and b != j:
-                continue
-            if a >= 0 and b >= 0:
-                nx, ny = power_vertex(i, a, b, xs, ys, ws)
-            elif a >= 0 or b >= 0:
-                nx, ny = power_box_crossing(
-                    i, a if a >= 0 else b, xs, ys, ws, b if a >= 0 else a, box
-                )
-                if abs(nx) < np.inf and abs(ny) < np.inf:
-                    nx = min(max(nx, box[0]), box[2])
-                    ny = min(max(ny, box[1]), box[3])
-            else:
-                continue
-            if abs(nx) < np.inf and abs(ny) < np.inf:
-                px[v] = nx
-                py[v] = ny
+        _name_new(i, j, xs, ys, ws, px, py, pw, m, box)
     return m
+
+
+@njit(**NJIT)
+def _name_new(i, j, xs, ys, ws, px, py, pw, m, box):
+    """Replace the vertices of ring ``p[:m]`` at an edge owned by ``j`` by their names."""
+    for v in range(m):
+        a = pw[v - 1 if v > 0 else m - 1]
+        b = pw[v]
+        if a != j and b != j:
+            continue
+        if a >= 0 and b >= 0:
+            nx, ny = power_vertex(i, a, b, xs, ys, ws)
+        elif a >= 0 or b >= 0:
+            nx, ny = power_box_crossing(i, a if a >= 0 else b, xs, ys, ws, b if a >= 0 else a, box)
+            if abs(nx) < np.inf and abs(ny) < np.inf:
+                nx = min(max(nx, box[0]), box[2])
+                ny = min(max(ny, box[1]), box[3])
+        else:
+            continue
+        if abs(nx) < np.inf and abs(ny) < np.inf:
+            px[v] = nx
+            py[v] = ny
 
 
 @njit(**NJIT)

@@ -20,8 +20,10 @@ On a vertical side ``x = X`` the crossing is
 The float estimate is moved to the double nearest the quotient by the signs of
 ``N - m D`` at the midpoints ``m`` beside it: each sign is a compensated sum with a proven
 error bound (Ogita, Rump and Oishi's Sum2), or, where that bound cannot decide it, exact
-(Shewchuk's growth of an expansion). Coordinates whose products could underflow keep the
-float formula.
+(Shewchuk's growth of an expansion). In a box below ~1e-270 some products' error terms
+underflow (each then off by a few ``2^-1074``): their signs are decided with that slack
+added to the bound, which only a midpoint within ``2^-1060`` of the crossing reaches (the
+float formula is kept there).
 """
 
 from __future__ import annotations
@@ -37,6 +39,7 @@ from .expansion import grow, two_diff, two_product, two_sum
 
 _U = 2.0**-53
 _TINY = 2.0**-900  # a product below this may lose its error term to underflow
+_SLACK = 2.0**-1060  # what underflowed products' parts may lose, all together (< 2^-1066)
 _NT = 20  # exact parts of the numerator
 
 
@@ -65,21 +68,21 @@ def _numerator(ax, ay, bx, by, x, t):
 
 
 @njit(**NJIT)
-def _sign_past(t, m, h, r1, r0, w):
-    """Sign of ``N - (m + h) D`` with ``D = 2 (r1 + r0)``; 2 where a part may underflow.
+def _sign_past(t, m, h, r1, r0, w, exact):
+    """Sign of ``N - (m + h) D`` with ``D = 2 (r1 + r0)``; 2 where underflow hides it.
 
-    ``t[:_NT]`` holds ``N``'s parts; ``h`` is a power of two, so ``h D`` is exact. Sum2
-    (a chain of ``two_sum``) decides the sign unless its error bound, ``u |s| +
-    gamma_{25}^2 sum |x_i|`` (doubled here), reaches the sum; then ``w`` grows the exact
-    expansion.
+    ``t[:_NT]`` holds ``N``'s parts (``exact``: none underflowed); ``h`` is a power of two,
+    so ``h D`` is exact but for underflow. Sum2 (a chain of ``two_sum``) decides the sign
+    unless its error bound, ``u |s| + gamma_{25}^2 sum |x_i|`` (doubled here, plus
+    ``_SLACK`` where a part underflowed), reaches the sum; then ``w`` grows the exact
+    expansion of the parts, whose sign stands where it is past ``_SLACK``.
     """
-    ok = _put(t, _NT, -2.0 * m, r1) & _put(t, _NT + 2, -2.0 * m, r0)
+    ok = _put(t, _NT, -2.0 * m, r1) & _put(t, _NT + 2, -2.0 * m, r0) & exact
     t[_NT + 4] = -2.0 * h * r1
     t[_NT + 5] = -2.0 * h * r0
-    if not ok or (t[_NT + 4] != 0.0 and abs(t[_NT + 4]) < _TINY):
-        return 2
-    if t[_NT + 5] != 0.0 and abs(t[_NT + 5]) < _TINY:
-        return 2
+    for k in range(_NT + 4, _NT + 6):
+        ok &= t[k] == 0.0 or abs(t[k]) >= _TINY
+    slack = 0.0 if ok else _SLACK
     n = _NT + 6
     s = 0.0
     c = 0.0
@@ -89,12 +92,14 @@ def _sign_past(t, m, h, r1, r0, w):
         c += e
         a += abs(t[k])
     r = s + c
-    if abs(r) > 4.0 * _U * abs(r) + 1024.0 * _U * _U * a:
+    if abs(r) > 4.0 * _U * abs(r) + 1024.0 * _U * _U * a + slack:
         return 1 if r > 0.0 else -1
     size = 0
     for k in range(n):
         size = grow(w, size, t[k])
     top = w[size - 1]  # the largest component carries the sign
+    if not ok and abs(top) <= 2.0 * slack:
+        return 2
     return 1 if top > 0.0 else (-1 if top < 0.0 else 0)
 
 
@@ -109,7 +114,7 @@ def _even(v):
 def _nearest(ax, ay, bx, by, x, y):
     """The double nearest ``y`` on the line ``x = X`` of the bisector; ``y`` its estimate.
 
-    Returns ``y`` unchanged where the parts could underflow or the walk does not settle.
+    Returns ``y`` unchanged where underflow hides a sign or the walk does not settle.
     """
     if not (y == y and abs(y) < np.inf):
         return y
@@ -117,8 +122,7 @@ def _nearest(ax, ay, bx, by, x, y):
     buf = np.empty(2 * _NT + 13)  # noqa: TID251
     t = buf[: _NT + 6]
     w = buf[_NT + 6 :]
-    if not _numerator(ax, ay, bx, by, x, t):
-        return y
+    exact = _numerator(ax, ay, bx, by, x, t)
     r1, r0 = two_diff(by, ay)
     sd = 1 if r1 > 0.0 else -1
     # start from the numerator's exact sum, rounded (an ill-conditioned float formula, a
@@ -136,7 +140,7 @@ def _nearest(ax, ay, bx, by, x, y):
     for _ in range(_MAX_STEPS):
         up = np.nextafter(v, np.inf)
         dn = np.nextafter(v, -np.inf)
-        s = _sign_past(t, v, 0.5 * (up - v), r1, r0, w)
+        s = _sign_past(t, v, 0.5 * (up - v), r1, r0, w, exact)
         if s == 2:
             return y
         s *= sd  # sign of (exact - midpoint above v)
@@ -145,7 +149,7 @@ def _nearest(ax, ay, bx, by, x, y):
             continue
         if s == 0:
             return v if _even(v) else up
-        s = _sign_past(t, v, -0.5 * (v - dn), r1, r0, w)
+        s = _sign_past(t, v, -0.5 * (v - dn), r1, r0, w, exact)
         if s == 2:
             return y
         s *= sd
