@@ -95,10 +95,12 @@ def box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
         pw, qw = qw, pw
         swapped = not swapped
         big = max(max(abs(sx), abs(sy)), max(abs(xs[j]), abs(ys[j])))
-        if ws[i] == ws[j] and np.spacing(big) > tiny:
+        if ws[i] == ws[j] and np.spacing(big) > tiny and _outside(sx, sy, xs[j], ys[j], box):
             # name the two new vertices now, so the next cuts' exact signs see them where
             # they are (issue 15: a float circle at 1e12 seen through a unit window lost
-            # a cell whose exact area was 3e-9 of the box)
+            # a cell whose exact area was 3e-9 of the box); not for sites in the box (a
+            # circle of 1,000 sites an ulp apart at 4e6 in its 256-ulp box: named early, the
+            # cells' edges no longer matched)
             _name_new(i, j, xs, ys, ws, px, py, pw, m, box)
     m = _corner_crossings(i, xs, ys, ws, px, py, pw, m, box)
     if swapped:
@@ -563,6 +565,13 @@ def _careful_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
             pw[v] = qw[v]
         _name_new(i, j, xs, ys, ws, px, py, pw, m, box)
     return m
+
+
+@njit(**{**NJIT, "inline": "always"})
+def _outside(ax, ay, bx, by, box):
+    """Whether points ``a`` and ``b`` both lie outside ``box`` (window onto far sites)."""
+    a = ax < box[0] or ax > box[2] or ay < box[1] or ay > box[3]
+    return a and (bx < box[0] or bx > box[2] or by < box[1] or by > box[3])
 
 
 @njit(**NJIT)
