@@ -333,6 +333,11 @@ def exact_polygon_moments(geom, origin=(0.0, 0.0)) -> tuple[Fraction, Fraction, 
     return tuple(total)
 
 
+def exact_area(geom) -> Fraction:
+    """The exact area (Fraction) of a (Multi)Polygon's own float vertices; holes subtract."""
+    return exact_polygon_moments(geom)[0]
+
+
 def triangulated_moments(cells, sites) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Mass, first and second moments of unit density about each site, from GEOS triangles.
 

@@ -23,19 +23,9 @@ import shapely
 
 import voroforge as vf
 
+from reference import exact_area
+
 ALGS = ["delaunay", "fortune", "halfplane"]
-
-
-def _area(cell):
-    """Exact area of a polygon (holes none here) from its float vertices."""
-    total = Fraction(0)
-    for poly in getattr(cell, "geoms", [cell]):
-        v = np.asarray(poly.exterior.coords).tolist()
-        total += sum(
-            Fraction(a) * Fraction(d) - Fraction(c) * Fraction(b)
-            for (a, b), (c, d) in zip(v[:-1], v[1:], strict=True)
-        )
-    return abs(total) / 2
 
 
 def _nearest(q, pts):
@@ -52,7 +42,7 @@ def _check(d, pts, box, margin):
     want = (Fraction(box[2]) - Fraction(box[0])) * (Fraction(box[3]) - Fraction(box[1]))
     cells = list(d.cells)
     assert all(c.is_empty or c.is_valid for c in cells)
-    assert sum(_area(c) for c in cells if not c.is_empty) == want
+    assert sum(exact_area(c) for c in cells if not c.is_empty) == want
     rng = np.random.default_rng(5)
     t = rng.random((60, 2))
     qs = np.column_stack(

@@ -23,21 +23,9 @@ import pytest
 
 import voroforge as vf
 
-from reference import exact_cell
+from reference import exact_area, exact_cell
 
 ALGS = ["delaunay", "fortune", "halfplane"]
-
-
-def _area(cell):
-    """Exact area of a polygon from its float vertices (Fractions)."""
-    total = Fraction(0)
-    for poly in getattr(cell, "geoms", [cell]):
-        v = np.asarray(poly.exterior.coords).tolist()
-        total += sum(
-            Fraction(a) * Fraction(d) - Fraction(c) * Fraction(b)
-            for (a, b), (c, d) in zip(v[:-1], v[1:], strict=True)
-        )
-    return abs(total) / 2
 
 
 def _ring_area(ring):
@@ -57,7 +45,7 @@ def _check_exact(d, pts, box):
     want = (Fraction(box[2]) - Fraction(box[0])) * (Fraction(box[3]) - Fraction(box[1]))
     cells = list(d.cells)
     assert all(c.is_empty or c.is_valid for c in cells)
-    got = [_area(c) if not c.is_empty else Fraction(0) for c in cells]
+    got = [exact_area(c) if not c.is_empty else Fraction(0) for c in cells]
     assert sum(got) == want
     for i in range(len(pts)):
         ref = exact_cell(pts, i, box)
