@@ -60,9 +60,9 @@ def periodic_builds(monkeypatch) -> list:
     sizes = []
     real = per.build
 
-    def counting(pts, *args):
+    def counting(pts, *args, **kw):
         sizes.append(len(pts))
-        return real(pts, *args)
+        return real(pts, *args, **kw)
 
     monkeypatch.setattr(per, "build", counting)
     return sizes

@@ -50,3 +50,22 @@ def test_star_far_out_edges_end_at_cell_vertices(algorithm, offset):
     missed = np.flatnonzero(~shapely.intersects_xy(cells, p[:, 0], p[:, 1]))
     assert set(missed.tolist()) <= set(np.asarray(d.unresolved).tolist())
     edges_are_the_cells(d, 20.0)
+
+
+@pytest.mark.parametrize("wrap", [False, True])
+def test_periodic_sloped_line_far_out_keeps_convex_cells(wrap):
+    """500 sites on y = 0.7 x + 0.1 (mod 2) in a 3 x 2 torus at 4e12: the periodic build of
+    rounded copies does not split lost sites' rings (the split turned five rings right by
+    ~25 ulps); cells valid, convex to rounding, tiling the box (wrapped: or a site flagged)."""
+    x = np.random.default_rng(2).random(500) * 3.0
+    p = np.column_stack((4e12 + x, 4e12 + np.mod(0.7 * x + 0.1, 2.0)))
+    box = (4e12, 4e12, 4e12 + 3.0, 4e12 + 2.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        d = vf.voronoi(p, box, periodic=True, wrap=wrap)
+    rep = d.describe()
+    assert rep.euler_ok and rep.convex_ok, rep
+    assert shapely.is_valid(d.cells).all()
+    if abs(d.areas.sum() - 6.0) > 6.0 * 1e-12:
+        # wrapped far sloped lines: a sub-ulp cell is flagged (exactness.md, Still failing)
+        assert wrap and len(d.unresolved)

@@ -660,7 +660,7 @@ def _periodic(points, tile, algorithm: str, wrap: bool, may_move: bool) -> Diagr
         orig = np.flatnonzero(is_orig)  # the original of site i is copy orig[i]
         if not same_copies(last, source, shift):
             grown = make_domain((x0 - mx, y0 - my, x1 + mx, y1 + my), ext)
-            d = build(ext, grown, algorithm)
+            d = build(ext, grown, algorithm, split=False)
         if may_move and len(d.unresolved):
             # sites a few ulps apart (a box 24 x 16 ulps at 1e15): where the frame is exact,
             # its finer floats resolve them
