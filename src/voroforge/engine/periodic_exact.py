@@ -28,6 +28,7 @@ import numpy as np
 import shapely
 
 from ..config import PERIODIC_EXACT_SAFETY, PERIODIC_EXACT_ULPS
+from .bitmix import splitmix64
 from .diagram import Diagram, Edges, buffers, domain_of, frame_exponent
 from .periodic_frame import two_sum_error
 
@@ -337,17 +338,12 @@ def _table(old, cells):
 
 
 def _mix(x, y, c):
-    """A 64-bit mix of three int64 arrays (splitmix64's finaliser of a weighted sum)."""
+    """A 64-bit mix of three int64 arrays (:func:`.bitmix.splitmix64` of a weighted sum)."""
     with np.errstate(over="ignore"):
         h = x.view(np.uint64) * np.uint64(0x9E3779B97F4A7C15)
         h ^= y.view(np.uint64) * np.uint64(0xBF58476D1CE4E5B9) + np.uint64(0x94D049BB133111EB)
         h ^= np.ascontiguousarray(c, dtype=np.int64).view(np.uint64) * np.uint64(0xD6E8FEB86659FD93)
-        h ^= h >> np.uint64(30)
-        h *= np.uint64(0xBF58476D1CE4E5B9)
-        h ^= h >> np.uint64(27)
-        h *= np.uint64(0x94D049BB133111EB)
-        h ^= h >> np.uint64(31)
-    return h
+    return splitmix64(h)
 
 
 def _replaced(d: Diagram, seg, pairs, sel, old, new, cells):

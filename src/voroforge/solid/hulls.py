@@ -26,6 +26,7 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import ConvexHull, QhullError
 
 from .. import config
+from ..engine.bitmix import splitmix64
 from ..engine.csr import used_only
 from .check import fill_pockets
 from .conflicts import conflicts
@@ -596,23 +597,12 @@ def _inner_struts(g, ie):
     return [mf.Manifold.hull_points(x) if ok else None for x, ok in zip(pts, keep, strict=True)]
 
 
-def _mix(x):
-    """splitmix64's finaliser: every input bit moves every output bit (uint64, in place)."""
-    x ^= x >> np.uint64(30)
-    x *= np.uint64(0xBF58476D1CE4E5B9)
-    x ^= x >> np.uint64(27)
-    x *= np.uint64(0x94D049BB133111EB)
-    x ^= x >> np.uint64(31)
-    return x
-
-
 def _row_hash(a) -> np.ndarray:
     """A 64-bit hash of each row's three float64 bit patterns."""
     u = np.ascontiguousarray(a, dtype=np.float64).view(np.uint64).reshape(-1, 3)
-    with np.errstate(over="ignore"):
-        h = _mix(u[:, 0].copy())
-        h = _mix(h ^ u[:, 1])
-        return _mix(h ^ u[:, 2])
+    h = splitmix64(u[:, 0].copy())
+    h = splitmix64(h ^ u[:, 1])
+    return splitmix64(h ^ u[:, 2])
 
 
 def _find_rows(table, rows) -> np.ndarray:
