@@ -137,8 +137,9 @@ def test_sites_on_one_line_exact_strips_two_builds(n, periodic_builds):
     x = np.unique(np.floor(rng.random(n) * 2.0**20) / 2.0**20)
     sites = np.column_stack((x, np.full(len(x), 0.5)))
     d = vf.voronoi(sites, (0.0, 0.0, 1.0, 1.0), periodic=True)
-    # the line alone, then the line and its two neighbouring copies, no wider along the line
-    assert len(sizes) == 2 and sizes[1] <= 3 * sizes[0], sizes
+    # the line and its two neighbouring copies, no wider along the line (one build: the
+    # line's margins are set up front, periodic_lines; was the line alone first)
+    assert len(sizes) == 1 and sizes[0] <= 4 * len(x), sizes
     # exact: site i's cell is the strip between the midpoints to its neighbours (cyclic)
     left = (x + np.r_[x[-1] - 1.0, x[:-1]]) / 2
     right = (x + np.r_[x[1:], x[0] + 1.0]) / 2

@@ -38,9 +38,10 @@ def test_line_and_one_site_three_copies_and_torus_cells(kind, periodic_builds):
     p = _line_and_one(kind, 300, 3)
     sizes = periodic_builds
     d = _check_torus(p, BOX, "delaunay", False, samples=300)
-    # the line alone, then the line and its two copies across it (was 5.9 n: 1.4 periods
-    # along the line too)
-    assert len(sizes) == 2 and sizes[1] <= 3 * sizes[0], sizes
+    # the line and its two copies across it (was 5.9 n: 1.4 periods along the line too),
+    # in one build: the line's margins are set up front (periodic_lines; was the line
+    # alone first); along the line the plain first margin, 0.48 of the period at 300 sites
+    assert len(sizes) == 1 and sizes[0] <= 5 * len(p), sizes
     pairs = {tuple(e) for e in np.asarray(d.edges.pairs).tolist()}
     indptr, idx = d.neighbors
     for i in range(len(p)):
