@@ -107,6 +107,107 @@ def _pieces(ring, roff, f0, f1) -> int:
     return len({root(v) for v in list(parent)})
 
 
+def _components(n: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Component label of each of ``n`` nodes joined by the pairs ``(a[k], b[k])``."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    g = coo_matrix((np.ones(len(a), np.int8), (a, b)), shape=(n, n))
+    return connected_components(g, directed=False)[1]
+
+
+def _mates(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``(P, m)``: for each point of ring ``a[p]``, its partner's position in ring ``b[p]``.
+
+    ``a``, ``b`` are ``(P, m, 3)``: pairs of rings that are the same polygon, rounded apart.
+    Each pair is matched as a whole: the cyclic shift, in either direction, with the least
+    summed squared distance (vertices closer than the rounding of a shift by the period
+    keep their order).
+    """
+    m = a.shape[1]
+    d = ((a[:, :, None, :] - b[:, None, :, :]) ** 2).sum(axis=3)  # (P, m, m)
+    k = np.arange(m)
+    shifts = np.concatenate([(k[:, None] + sign * k[None, :]) % m for sign in (-1, 1)])
+    cost = d[:, k[None, :], shifts].sum(axis=2)  # (P, 2m): row c maps a[k] -> b[shifts[c, k]]
+    return shifts[np.argmin(cost, axis=1)]
+
+
+def torus_counts(d) -> tuple[int, int, int]:
+    """``V, E, F`` of a periodic diagram counted on the 3-torus, not per image record.
+
+    ``vertices`` holds a vertex once for each image of the box its cells reach it in, each
+    rounded on its own, so records cannot be identified by their coordinates. The faces tell
+    which records are one: face ``f`` of cell ``i`` toward the image of ``t`` shifted by
+    ``s`` periods is, moved by ``-s`` periods, face ``g`` of cell ``t`` toward ``i``
+    shifted by ``-s`` (its twin, the same polygon in ``t``'s frame). The vertices of ``g``
+    moved back by ``s`` periods are matched to those of ``f`` (:func:`_mates`; a pair of
+    rings of different lengths, where rounding shortened an edge to a point in one, by
+    nearest points) and the matched records are united, and so are the edges between
+    matched ends. A face and its twin count once.
+    """
+    cf, lab, _, roff, ring = d.cell_face_table()
+    V = np.asarray(d.vertices)
+    lo, hi = np.asarray(d.box, float).reshape(2, 3)
+    period = hi - lo
+    shifts = np.asarray(d.face_shifts, np.int64)
+    owner = np.repeat(np.arange(len(cf) - 1), np.diff(cf))
+    keys = np.column_stack([owner, lab, shifts])
+    where = {k: f for f, k in enumerate(map(tuple, keys.tolist()))}
+    twin = np.array(
+        [where.get(k, -1) for k in map(tuple, keys[:, [1, 0, 2, 3, 4]] * [1, 1, -1, -1, -1])],
+        np.int64,
+    ).reshape(-1)
+    f = np.flatnonzero(twin > np.arange(len(lab)))  # each pair once, from its first face
+    faces = len(f) + int(np.count_nonzero(twin < 0))
+    g = twin[f]
+    length = np.diff(roff)
+    va, vb, ea, eb = [], [], [], []  # united records: g's record, f's; g's edge, f's
+    for m in np.unique(length[f]).tolist():
+        same = length[g] == m
+        pf, pg = f[(length[f] == m) & same], g[(length[f] == m) & same]
+        if len(pf):
+            rf = ring[roff[pf][:, None] + np.arange(m)]
+            rg = ring[roff[pg][:, None] + np.arange(m)]
+            at = _mates(V[rg] + (shifts[pf] * period)[:, None, :], V[rf])
+            mate = np.take_along_axis(rf, at, axis=1)
+            va.append(rg.ravel())
+            vb.append(mate.ravel())
+            ea.append(np.stack([rg, np.roll(rg, -1, axis=1)], axis=2).reshape(-1, 2))
+            eb.append(np.stack([mate, np.roll(mate, -1, axis=1)], axis=2).reshape(-1, 2))
+    for fi, gi in zip(f.tolist(), g.tolist(), strict=True):
+        if length[fi] != length[gi]:
+            rf, rg = ring[roff[fi] : roff[fi + 1]], ring[roff[gi] : roff[gi + 1]]
+            dist = ((V[rg] + shifts[fi] * period)[:, None, :] - V[rf][None, :, :]) ** 2
+            mate = rf[np.argmin(dist.sum(axis=2), axis=1)]
+            va.append(rg)
+            vb.append(mate)
+            ea.append(np.column_stack([rg, np.roll(rg, -1)]))
+            eb.append(np.column_stack([mate, np.roll(mate, -1)]))
+    used = np.unique(ring)
+    lab_v = _components(
+        len(V),
+        np.concatenate(va or [[]]).astype(np.int64),
+        np.concatenate(vb or [[]]).astype(np.int64),
+    )
+    nv = len(np.unique(lab_v[used]))
+    # every cell's edges, keyed by their two records
+    nxt = np.arange(1, len(ring) + 1)
+    nxt[roff[1:] - 1] = roff[:-1]
+    cell_e = np.sort(np.column_stack([ring, ring[nxt]]), axis=1)
+    ea = np.sort(np.concatenate(ea or [np.zeros((0, 2), np.int64)]), axis=1)
+    eb = np.sort(np.concatenate(eb or [np.zeros((0, 2), np.int64)]), axis=1)
+    keep = eb[:, 0] != eb[:, 1]  # an edge the twin's rounding shortened to a point
+    ea, eb = ea[keep], eb[keep]
+    nvx = np.int64(len(V))
+    allk, inv = np.unique(
+        np.concatenate([c[:, 0] * nvx + c[:, 1] for c in (cell_e, ea, eb)]), return_inverse=True
+    )
+    n1, n2 = len(cell_e), len(cell_e) + len(ea)
+    lab_e = _components(len(allk), inv[n1:n2], inv[n2:])
+    ne = len(np.unique(lab_e[inv[:n1]]))
+    return nv, ne, faces
+
+
 def describe3d(d) -> dict:
     """V, E, F, C; the Euler check per cell; convexity; cells cut by a non-convex container.
 
@@ -171,12 +272,24 @@ def describe3d(d) -> dict:
             if ((V - p0) @ (a / na)).max() > tol:
                 nonconvex.append(i)
                 break
+    nv, ne, nf = len(d.vertices), len(edges), len(d.faces)
+    cells = int((np.diff(cf) > 0).sum())
+    expected = 1  # the cells subdivide a ball (a box or a convex solid)
+    if d.periodic:
+        nv, ne, nf = torus_counts(d)
+        expected = 0  # the 3-torus
+    elif d.container == "mesh":
+        expected = None  # cut cells may be several pieces, faces not discs
+    euler = nv - ne + nf - cells
     return {
-        "vertices": len(d.vertices),
-        "edges": len(edges),
-        "faces": len(d.faces),
-        "cells": int((np.diff(cf) > 0).sum()),
-        "euler_ok": not fails,
+        "vertices": nv,
+        "edges": ne,
+        "faces": nf,
+        "cells": cells,
+        "vertex_records": len(d.vertices),
+        "euler": euler,
+        "euler_expected": expected,
+        "euler_ok": not fails and (expected is None or euler == expected),
         "euler_failures": fails,
         "convex": not nonconvex,
         "nonconvex_cells": nonconvex,
