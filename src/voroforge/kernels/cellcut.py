@@ -48,6 +48,7 @@ from .cellsides import (  # noqa: F401  (re-exported: cells, folds, halfplane_se
     vertex_at,
 )
 from .clip import dedupe_ring
+from .cornercut import corner_cut, near_corner
 from .power import box_cell
 from .sidegap import restore_side_vertices
 from .vertex import box_crossing
@@ -648,6 +649,15 @@ def cut_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, reach, px, py, pw, qx, 
     neighbours ``k`` and ``k + 1`` (or -1); it lets :func:`_canonical_vertices` make shared
     vertices bit-identical across cells. ``ss`` is scratch.
     """
+    if near_corner(i, xs, ys, tris, nn, cx, cy, box):
+        # Voronoi vertices crowding a box corner closer than the float cut resolves: the
+        # exact cut, whose owners need no relabelling
+        m = corner_cut(i, xs, ys, nbrs, nn, box, px, py, pw, qx, qy, qw, ss)
+        if m == 0:
+            return 0
+        return _canonical_vertices(
+            i, xs, ys, px, py, pw, m, nbrs, tris, nn, cx, cy, reach, box, qx, qy, qw
+        )
     m = box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss)
     if m == 0:
         return 0
@@ -759,6 +769,8 @@ def spliced_cell(i, xs, ys, ws, nbrs, tris, nn, box, cx, cy, err, reach, bufs, g
     of interior edges are spliced back in rotation order (:func:`_splice`).
     """
     px, py, pw, qx, qy, qw = bufs
+    if near_corner(i, xs, ys, tris, nn, cx, cy, box):
+        return -1  # cut exactly (cut_cell)
     ng = np.int64(0)
     for q in range(nn):
         if not _interior(q, tris, nn, cx, cy, err, box):

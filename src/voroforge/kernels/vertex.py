@@ -52,6 +52,11 @@ from .expansion import exact_circumcenter, two_sum
 from .predicates import orient2d
 from .sidecross import nearest_crossing
 
+# -> config: a box-side crossing within this many ulps of the sites' magnitude of a box
+# corner is the double nearest the exact one (the float formula's error would move it past
+# the corner, or past other crossings there: a float circle's centre on a corner, issue 15)
+CORNER_CROSSING_ULPS = 64.0
+
 
 @njit(**NJIT)
 def _frame(ax, ay, aw, bx, by, bw, cx, cy, cw):
@@ -389,13 +394,25 @@ def box_crossing(a, b, xs, ys, side, box):
     Computed from the pair in canonical order, so both cells of the pair get the same bits;
     for sites a few ulps apart the double nearest the exact crossing
     (:func:`.sidecross.nearest_crossing`: their crossings of one side stay in order, issue
-    15). NaN when the bisector is parallel to the side.
+    15). A crossing within ``CORNER_CROSSING_ULPS`` ulps of the sites of a box corner is
+    the nearest double too: a float circle's Voronoi vertices all within 1e-14 of the
+    corner on its centre, sites 100 away, had crossings off by ~1e-14, past one another
+    (issue 15). NaN when the bisector is parallel to the side.
     """
     a = np.int64(a)
     b = np.int64(b)
     if before(b, a, xs, ys):
         a, b = b, a
     x, y = _side_crossing(xs[a], ys[a], xs[b] - xs[a], ys[b] - ys[a], 0.5, side, box)
+    big = max(max(abs(xs[a]), abs(ys[a])), max(abs(xs[b]), abs(ys[b])))
+    if side == -1 or side == -3:
+        u = min(abs(y - box[1]), abs(y - box[3]))
+    else:
+        u = min(abs(x - box[0]), abs(x - box[2]))
+    if u <= CORNER_CROSSING_ULPS * np.spacing(big):
+        # nearest_crossing refines where the box is under an ulp of the sites: a box of
+        # no extent asks for it (it reads the box for its extent only)
+        return nearest_crossing(xs[a], ys[a], xs[b], ys[b], side, np.zeros(4), x, y)
     return nearest_crossing(xs[a], ys[a], xs[b], ys[b], side, box, x, y)
 
 
