@@ -29,6 +29,7 @@ from ..config import (
 from ..kernels.domain_grid import classify, mark_segments, scanline_inside
 from ..kernels.rings import shared_edges
 from .agree import agree
+from .celledges import ends_on_cells, shared_pieces
 from .diagram import Edges, LazyEdges
 from .domain import Domain
 from .pieces import Pieces
@@ -91,17 +92,19 @@ def assemble_checked(dom: Domain, closed, lengths, owner, n: int, cell_ids=None,
     if not dom.is_rect:
         grid = domain_grid(dom, len(ring_cell))
         pieces = Pieces(dom, closed, ring_offsets, ring_cell, n)
-    edges = LazyEdges(
-        partial(_edges_later, n, dom, grid, pieces, closed, ring_offsets, ring_cell, owner)
-    )
     lost = np.zeros(0, dtype=np.int64)
+    cut = None
     if dom.is_rect:
         polys = np.arange(len(ring_cell) + 1, dtype=np.int64)
         bufs = (closed, ring_offsets, polys, geom_offsets_for(n, ring_cell))
     else:
-        bufs, lost = clip_to_polygon(
+        bufs, lost, cut = clip_to_polygon(
             dom, grid, pieces, closed, ring_offsets, ring_cell, n, sites=sites
         )
+        cut = (bufs, cut)
+    edges = LazyEdges(
+        partial(_edges_later, n, dom, grid, pieces, closed, ring_offsets, ring_cell, owner, cut)
+    )
     return bufs, edges, lost
 
 
@@ -217,8 +220,8 @@ def clip_to_polygon(dom: Domain, grid, pieces, coords, ring_offsets, ring_cell, 
     Rings that the grid proves wholly inside are kept as they are, wholly outside ones are
     dropped, and only the rest go through a shapely intersection. Returns the GeoArrow
     multipolygon buffers ``(coords, ring_offsets, polygon_offsets, geom_offsets)`` of all
-    ``n`` cells, and the cells that do not hold their site though the domain does (only
-    tested where ``sites`` is given: see :func:`_held`).
+    ``n`` cells, the cells that do not hold their site though the domain does (only
+    tested where ``sites`` is given: see :func:`_held`), and the cells that were clipped.
     """
     lost = np.zeros(0, dtype=np.int64)
     status = classify(coords, ring_offsets, *grid)
@@ -273,7 +276,8 @@ def clip_to_polygon(dom: Domain, grid, pieces, coords, ring_offsets, ring_cell, 
     co = np.repeat(src_start[ro] - out_ring[:-1], lens) + np.arange(out_ring[-1])
     out_poly = np.zeros(len(poly_rings) + 1, dtype=np.int64)
     np.cumsum(poly_rings[po], out=out_poly[1:])
-    return (source[co], out_ring, out_poly, geom_offsets_for(n, poly_cell)), lost
+    bufs = (source[co], out_ring, out_poly, geom_offsets_for(n, poly_cell))
+    return bufs, lost, hard_cell
 
 
 def _held(pieces, convex, clipped, cells, sites, rings):
@@ -622,12 +626,15 @@ def _polygonal(geoms):
     return out
 
 
-def domain_edges(dom: Domain, grid, pieces, coords, ring_offsets, ring_cell, owner):
+def domain_edges(dom: Domain, grid, pieces, coords, ring_offsets, ring_cell, owner, cells=None):
     """Unique shared edges ``(m, 2, 2)`` and their cell pairs ``(m, 2)``, clipped to the domain.
 
     Each pair ``(i, j)`` with ``i < j`` is taken from cell ``i``'s ring. Edges not longer than
     ``EDGE_LENGTH_RTOL`` times the domain's size are point contacts and are left out, and so
     are the pieces on the domain's boundary (an edge along a hole's side or the box's).
+    Given ``cells``, the clipped cells' buffers and which cells were clipped, an edge that
+    meets a polygon domain's boundary or a clipped cell is what the two clipped cells share
+    (:func:`.celledges.shared_pieces`).
     """
     x0, y0, x1, y1 = dom.bounds
     tol = EDGE_LENGTH_RTOL * max(x1 - x0, y1 - y0)
@@ -646,33 +653,69 @@ def domain_edges(dom: Domain, grid, pieces, coords, ring_offsets, ring_cell, own
         seg, pairs = seg[~on_box], pairs[~on_box]
     if dom.is_rect or len(seg) == 0:
         return seg, pairs
-    return _clip_segments(grid, pieces, seg, pairs, tol)
+    return _clip_segments(grid, pieces, seg, pairs, tol, cells)
 
 
-def _clip_segments(grid, pieces, seg, pairs, tol):
-    """Edges ``seg`` (m, 2, 2) cut to the domain: the grid keeps or drops most of them whole."""
+def _clip_segments(grid, pieces, seg, pairs, tol, cells=None):
+    """Edges ``seg`` (m, 2, 2) cut to the domain: the grid keeps or drops most of them whole.
+
+    Given ``cells`` (the clipped cells' buffers, and which cells were clipped), an edge the
+    grid cannot decide, or one of a clipped cell (whose clip may have moved its vertices
+    far out), is the run of boundary its two clipped cells share: each crossing rounded
+    once, by the cells' clip. Where they share none, it is cut by the exact kernel, or
+    GEOS's overlay, and kept only where it ends at both cells' vertices.
+    """
     two = seg.reshape(-1, 2)
     offs = np.arange(0, 2 * len(seg) + 1, 2, dtype=np.int64)
     status = classify(two, offs, *grid)
     hard = np.flatnonzero(status == 2)
     keep = status == 1
-    if not len(hard):
+    ask = np.zeros(0, dtype=np.int64)
+    if cells is not None:
+        touched = np.zeros(int(pairs.max(initial=-1)) + 1, dtype=np.bool_)
+        touched[cells[1][cells[1] < len(touched)]] = True
+        ask = np.flatnonzero(keep & touched[pairs].any(axis=1))
+    if not len(hard) and not len(ask):
         return seg[keep], pairs[keep]
-    # the exact kernel first: its pieces end at the kernel-clipped cells' vertices bit for bit
+    # every edge's pieces, tagged with the edge, then put back in the edges' order
+    alone = np.flatnonzero(keep)
+    alone = alone[~np.isin(alone, ask)]
+    out_p, out_i = [seg[alone]], [alone]
+    if cells is not None:
+        both = np.concatenate((ask, hard))
+        c_piece, c_idx, found = shared_pieces(cells[0], pairs[both])
+        out_p.append(c_piece)
+        out_i.append(both[c_idx])
+        # a kept edge of a clipped cell that the cells do not share: itself, if it ends at
+        # both cells' vertices
+        lone = ask[~found[: len(ask)]]
+        on = ends_on_cells(cells[0], seg[lone], pairs[lone])
+        out_p.append(seg[lone[on]])
+        out_i.append(lone[on])
+        left = hard[~found[len(ask) :]]
+    else:
+        left = hard
+    # the exact kernel next: its pieces end at the kernel-clipped cells' vertices bit for bit
     k_piece, k_idx = np.zeros((0, 2, 2)), np.zeros(0, dtype=np.int64)
-    rest = np.arange(len(hard))
-    if not pieces.whole:
-        k_piece, k_idx, rest = clip_edges(pieces, seg[hard])
-    piece, idx = _overlay_segments(pieces, seg[hard[rest]], pairs[hard[rest]])
-    idx = np.concatenate((k_idx, rest[idx]))
-    order = np.argsort(idx, kind="stable")
-    piece = np.concatenate((k_piece, piece))[order]
-    idx = idx[order]
-    long = np.hypot(*(piece[:, 1] - piece[:, 0]).T) > tol
-    return (
-        np.concatenate((seg[keep], piece[long])),
-        np.concatenate((pairs[keep], pairs[hard[idx[long]]])),
-    )
+    rest = np.arange(len(left))
+    if not pieces.whole and len(left):
+        k_piece, k_idx, rest = clip_edges(pieces, seg[left])
+    piece, idx = _overlay_segments(pieces, seg[left[rest]], pairs[left[rest]])
+    idx = np.concatenate((left[k_idx], left[rest[idx]]))
+    piece = np.concatenate((k_piece, piece))
+    if cells is not None and len(piece):
+        on = ends_on_cells(cells[0], piece, pairs[idx])
+        piece, idx = piece[on], idx[on]
+    out_p.append(piece)
+    out_i.append(idx)
+    piece = np.concatenate(out_p)
+    idx = np.concatenate(out_i)
+    # the kept edges first, in order, then the pieces of the others by edge (as before)
+    late = ~keep[idx]
+    order = np.lexsort((idx, late))
+    piece, idx = piece[order], idx[order]
+    long = ~late[order] | (np.hypot(*(piece[:, 1] - piece[:, 0]).T) > tol)
+    return piece[long], pairs[idx[long]]
 
 
 def _overlay_segments(pieces, seg, pairs):

@@ -20,10 +20,12 @@ On a vertical side ``x = X`` the crossing is
 The float estimate is moved to the double nearest the quotient by the signs of
 ``N - m D`` at the midpoints ``m`` beside it: each sign is a compensated sum with a proven
 error bound (Ogita, Rump and Oishi's Sum2), or, where that bound cannot decide it, exact
-(Shewchuk's growth of an expansion). In a box below ~1e-270 some products' error terms
-underflow (each then off by a few ``2^-1074``): their signs are decided with that slack
-added to the bound, which only a midpoint within ``2^-1060`` of the crossing reaches (the
-float formula is kept there).
+(Shewchuk's growth of an expansion). In a box below ~1e-270 the products of a midpoint
+would lose their error terms to underflow: every part is then scaled by one power of two
+first (exact), which lifts them out of it, so crossings down to subnormal ones (a box
+1e-320 wide) are the nearest double too. Only a part that still underflows (a site's
+difference far below the others') is allowed for with a slack of ``2^-1060``, which only
+a midpoint that close to the crossing reaches (the float formula is kept there).
 """
 
 from __future__ import annotations
@@ -41,6 +43,7 @@ _U = 2.0**-53
 _TINY = 2.0**-900  # a product below this may lose its error term to underflow
 _SLACK = 2.0**-1060  # what underflowed products' parts may lose, all together (< 2^-1066)
 _NT = 20  # exact parts of the numerator
+_TOP_BITS = 900  # -> config: where scaled parts top out (Dekker splits of them stay finite)
 
 
 @njit(**NJIT)
@@ -53,13 +56,20 @@ def _put(t, k, a, b):
 
 
 @njit(**NJIT)
-def _numerator(ax, ay, bx, by, x, t):
-    """The numerator's exact parts into ``t[:_NT]``; False where a part may be inexact."""
+def _numerator(ax, ay, bx, by, x, t, e):
+    """The numerator's exact parts, times ``2^e``, into ``t[:_NT]``; False where one may be inexact.
+
+    Each part is the product of two doubles, the second scaled by ``2^e`` (exact): a box
+    below ~1e-270 has parts whose error terms underflow unscaled.
+    """
     p1, p0 = two_diff(ax, bx)
     s1, s0 = two_sum(-ax, -bx)
     q2, q1 = two_sum(2.0 * x, s1)  # 2 X - ax - bx = q2 + q1 + s0, exactly
     r1, r0 = two_diff(by, ay)
     u1, u0 = two_sum(by, ay)
+    if e != 0:
+        q2, q1, s0 = math.ldexp(q2, e), math.ldexp(q1, e), math.ldexp(s0, e)
+        u1, u0 = math.ldexp(u1, e), math.ldexp(u0, e)
     ok = _put(t, 0, p1, q2) & _put(t, 2, p1, q1) & _put(t, 4, p1, s0)
     ok &= _put(t, 6, p0, q2) & _put(t, 8, p0, q1) & _put(t, 10, p0, s0)
     ok &= _put(t, 12, r1, u1) & _put(t, 14, r1, u0) & _put(t, 16, r0, u1)
@@ -68,22 +78,42 @@ def _numerator(ax, ay, bx, by, x, t):
 
 
 @njit(**NJIT)
-def _sign_past(t, m, h, r1, r0, w, exact):
-    """Sign of ``N - (m + h) D`` with ``D = 2 (r1 + r0)``; 2 where underflow hides it.
+def _scale_for(t):
+    """The power of two that brings the largest of ``t[:_NT]`` near ``2^_TOP_BITS`` (or 0)."""
+    top = 0.0
+    for k in range(_NT):
+        top = max(top, abs(t[k]))
+    if not top > 0.0:
+        return 0
+    return max(0, _TOP_BITS - math.frexp(top)[1])
 
-    ``t[:_NT]`` holds ``N``'s parts (``exact``: none underflowed); ``h`` is a power of two,
-    so ``h D`` is exact but for underflow. Sum2 (a chain of ``two_sum``) decides the sign
-    unless its error bound, ``u |s| + gamma_{25}^2 sum |x_i|`` (doubled here, plus
-    ``_SLACK`` where a part underflowed), reaches the sum; then ``w`` grows the exact
-    expansion of the parts, whose sign stands where it is past ``_SLACK``.
+
+@njit(**NJIT)
+def _sign_past(t, m, h2, r1, r0, w, exact, e):
+    """Sign of ``N - (m + h2 / 2) D`` with ``D = 2 (r1 + r0)``; 2 where underflow hides it.
+
+    ``t[:_NT]`` holds ``N``'s parts times ``2^e`` (``exact``: none underflowed), and ``m``,
+    ``h2`` are scaled alike (exact); ``h2`` is a power of two (or 0), so ``h2 D / 2`` is exact
+    but for underflow. Sum2 (a chain of ``two_sum``) decides the sign unless its error
+    bound, ``u |s| + gamma_{25}^2 sum |x_i|`` (doubled here, plus ``_SLACK`` where a part
+    underflowed), reaches the sum; then ``w`` grows the exact expansion of the parts, whose
+    sign stands where it is past ``_SLACK``.
     """
+    if e != 0:
+        m = math.ldexp(m, e)
+        h2 = math.ldexp(h2, e)
     ok = _put(t, _NT, -2.0 * m, r1) & _put(t, _NT + 2, -2.0 * m, r0) & exact
-    t[_NT + 4] = -2.0 * h * r1
-    t[_NT + 5] = -2.0 * h * r0
+    t[_NT + 4] = -h2 * r1
+    t[_NT + 5] = -h2 * r0
     for k in range(_NT + 4, _NT + 6):
         ok &= t[k] == 0.0 or abs(t[k]) >= _TINY
+    return _sum_sign(t, _NT + 6, w, ok)
+
+
+@njit(**NJIT)
+def _sum_sign(t, n, w, ok):
+    """The sign of ``sum t[:n]`` (see :func:`_sign_past`); 2 where underflow hides it."""
     slack = 0.0 if ok else _SLACK
-    n = _NT + 6
     s = 0.0
     c = 0.0
     a = 0.0
@@ -122,7 +152,14 @@ def _nearest(ax, ay, bx, by, x, y):
     buf = np.empty(2 * _NT + 13)  # noqa: TID251
     t = buf[: _NT + 6]
     w = buf[_NT + 6 :]
-    exact = _numerator(ax, ay, bx, by, x, t)
+    exact = _numerator(ax, ay, bx, by, x, t, 0)
+    e = 0
+    if not exact:
+        # a box below ~1e-270: every part scaled by one power of two lifts the products'
+        # error terms out of underflow (the crossing's midpoints are scaled alike)
+        e = _scale_for(t)
+        if e > 0:
+            exact = _numerator(ax, ay, bx, by, x, t, e)
     r1, r0 = two_diff(by, ay)
     sd = 1 if r1 > 0.0 else -1
     # start from the numerator's exact sum, rounded (an ill-conditioned float formula, a
@@ -135,12 +172,14 @@ def _nearest(ax, ay, bx, by, x, y):
     for k in range(size):
         s += w[k]
     v = s / (2.0 * (r1 + r0))
+    if e != 0:
+        v = math.ldexp(v, -e)
     if not (v == v and abs(v) < np.inf):
         return y
     for _ in range(_MAX_STEPS):
         up = np.nextafter(v, np.inf)
         dn = np.nextafter(v, -np.inf)
-        s = _sign_past(t, v, 0.5 * (up - v), r1, r0, w, exact)
+        s = _sign_past(t, v, up - v, r1, r0, w, exact, e)
         if s == 2:
             return y
         s *= sd  # sign of (exact - midpoint above v)
@@ -149,7 +188,7 @@ def _nearest(ax, ay, bx, by, x, y):
             continue
         if s == 0:
             return v if _even(v) else up
-        s = _sign_past(t, v, -0.5 * (v - dn), r1, r0, w, exact)
+        s = _sign_past(t, v, dn - v, r1, r0, w, exact, e)
         if s == 2:
             return y
         s *= sd
