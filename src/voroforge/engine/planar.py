@@ -39,6 +39,7 @@ from .diagram import Diagram, Edges
 from .domain import Domain
 from .inputs import RES_BITS, duplicate_map, from_working, working_frame
 from .threads import serial_below
+from .uncross import uncrossed
 
 ALGORITHMS = ("delaunay", "fortune", "halfplane")
 
@@ -324,18 +325,22 @@ def _drop_folded(closed, lengths, owner, memo=None, kmap=None):
     if not code.any():
         return closed, lengths, owner
     bad = code == 1
+    inv = np.arange(len(lengths) - 1)  # owner's numbering -> ring
+    if kmap is not None:
+        inv = np.full(int(kmap.max()) + 1, -1, np.int64)
+        inv[kmap] = np.arange(len(kmap))
     for i in np.flatnonzero(code == 2):
         # a strip a few ulps wide that rounding left concave but simple stays; one whose
-        # vertices rounded onto one line (or across each other) is not a polygon
+        # vertices rounded onto one line (or across each other) is not a polygon, unless
+        # it crosses itself once and the crossing can cut it (:mod:`.uncross`)
         bad[i] = not _valid_ring(closed[lengths[i] : lengths[i + 1]])
-    tiny = np.flatnonzero(code == 1)
-    if len(tiny):
-        inv = np.arange(len(lengths) - 1)  # owner's numbering -> ring
-        if kmap is not None:
-            inv = np.full(int(kmap.max()) + 1, -1, np.int64)
-            inv[kmap] = np.arange(len(kmap))
-        for i in tiny:
-            bad[i] = not _kept_tiny(closed, lengths, owner, i, inv)
+        if bad[i]:
+            got = uncrossed(closed, lengths, owner, i, inv)
+            if got is not None:
+                closed, lengths, owner = got
+                bad[i] = False
+    for i in np.flatnonzero(code == 1):
+        bad[i] = not _kept_tiny(closed, lengths, owner, i, inv)
     empty = (closed[:0], np.zeros_like(lengths), owner[:0])  # every ring of no vertex
     return _splice(closed, lengths, owner, empty, bad)
 
