@@ -79,6 +79,22 @@ def _found(geoms: list[dict]) -> str:
     return f" (found {', '.join(kinds)})" if kinds else ""
 
 
+def _not_a_number(coords) -> tuple[bool, object]:
+    """``(True, leaf)``: the first leaf of nested coordinates that is not a JSON number.
+
+    ``(False, None)`` when every leaf is a number. Strings (``"0.5"``) and booleans would
+    pass numpy's and shapely's conversions silently.
+    """
+    stack = [coords]
+    while stack:
+        c = stack.pop()
+        if isinstance(c, (list, tuple)):
+            stack.extend(reversed(c))
+        elif isinstance(c, bool) or not isinstance(c, (int, float)):
+            return True, c
+    return False, None
+
+
 def _point_features(obj, props=None):
     """``(coordinates, properties)`` of every point, features' properties carried along."""
     if not isinstance(obj, dict):
@@ -162,6 +178,14 @@ def read_geojson_point_table(path) -> tuple[np.ndarray, dict]:
     pointless = _pointless_feature(doc)
     if pointless:
         raise ValueError(f"{path}: {pointless}")
+    for k, (c, _) in enumerate(rows):
+        found, bad = _not_a_number(c)
+        if not found and not (isinstance(c, (list, tuple)) and len(c) >= 2):
+            found, bad = True, c  # not a position: [x, y] or [x, y, z]
+        if found or any(isinstance(v, (list, tuple)) for v in c):
+            raise ValueError(
+                f"{path}: point {k}'s coordinates are not [x, y] numbers (found {bad!r})"
+            )
     try:
         arr = np.array([c[:2] for c, _ in rows], dtype=np.float64)
     except (TypeError, ValueError, IndexError):
@@ -239,6 +263,10 @@ def read_geojson_polygons(path):
     polygons = [g for g in geoms if g["type"] in ("Polygon", "MultiPolygon")]
     if not polygons:
         raise ValueError(f"{path}: no Polygon or MultiPolygon geometries{_found(geoms)}")
+    for k, g in enumerate(polygons):
+        found, bad = _not_a_number(g.get("coordinates"))
+        if found:
+            raise ValueError(f"{path}: polygon {k}'s coordinates are not numbers (found {bad!r})")
     try:
         shapes = [shape(g) for g in polygons]
     except (TypeError, ValueError, IndexError, KeyError, shapely.errors.ShapelyError) as exc:
