@@ -31,12 +31,17 @@ from ..config import (
     POWER_FIT_SUM_RTOL,
 )
 from .domain import Domain, make_domain, shifted
+from .farparts import far_parts, parts_start, straddle_limit, weights_limit
 from .inputs import as_points, as_weights, require_distinct, unit_exponent
 from .power import PowerDiagram, fit_breakout, fit_weights, power_diagram, shrink_start
 from .powerfit import fit_dual
 from .threads import serial_below
 
 __all__ = ["as_targets", "power_fit"]
+
+# -> config: power_fit refuses a domain's far parts at once where rounding the weights they
+# need limits the median cell's area to more than this many times tol
+POWER_FIT_PARTS_REFUSE = 10.0
 
 
 def as_targets(target_areas, n: int, dom: Domain, name: str = "target_areas") -> np.ndarray:
@@ -158,10 +163,12 @@ def power_fit(
             d = power_diagram(pts, np.ldexp(w, 2 * e), dom)
             err = _area_error(d, t)
     if not err <= tol:  # NaN too: areas past float64's range are no fit
+        held = _weights_note(pts, d, tol)
         raise RuntimeError(
             f"power_fit did not reach tol={tol:g} in {it} Newton steps (largest relative "
-            f"area error {err:.3g}){_near_pairs_note(pts, dom)}{_far_note(t, dom, tol, d)}"
-            f"{_worst_note(d, t, n)}"
+            f"area error {err:.3g}){'' if held else _near_pairs_note(pts, dom)}"
+            f"{_far_note(t, dom, tol, d)}"
+            f"{held}{_worst_note(d, t, n > 1 and not held)}"
         )
     return d
 
@@ -189,6 +196,33 @@ def _local_fit(pts, t, dom, w0, tol, max_iter):
     parts = len(pts) > 1 and shapely.get_num_geometries(dom.geometry) > 1
     cap = min(max_iter, POWER_FIT_GAP_FIRST_STEPS) if parts else max_iter
     relaxed = None
+    if parts and far_parts(dom.geometry):
+        # parts far apart (two squares 1,000 apart, 400 sites in one: the gap continuation's
+        # first stage stalled, no fit): each part fitted alone with the sites it serves
+        spread, limit = straddle_limit(pts, t, dom)
+        if limit > POWER_FIT_PARTS_REFUSE * tol:
+            raise RuntimeError(
+                f"power_fit cannot reach tol={tol:g} on this domain's far parts: the sites "
+                f"serving one part need weights {spread:.3g} apart (a cell that must "
+                "straddle a gap G from the far side needs about G**2, sites all on one side "
+                "2 G times their extent), which float64 holds to "
+                f"{float(np.spacing(spread)):.2g}: the cells' areas only to about {limit:.2g} "
+                "relative (raise tol, move the parts closer, or give targets that the sites "
+                "in each part fill without a cell across the gap)"
+            )
+        if w0.any():
+            got = fit_weights(pts, t, dom, w0, tol, cap)
+            if got[2] <= tol:
+                return got
+        got = _far_fit(pts, t, dom, tol, max_iter)
+        if got is not None and (
+            got[2] <= tol
+            or weights_limit(pts, got[1], got[0]) > tol
+            or _far_note(t, dom, tol, got[0])
+        ):
+            return (
+                got  # fitted, or float64 weights or coordinates cannot hold it (the error says so)
+            )
     start, few = (None, False) if parts or len(pts) < 2 else _hole_start(pts, dom, w0)
     if start is not None:
         got = _breakout(pts, t, dom, start, tol, max_iter)
@@ -235,6 +269,22 @@ def _local_fit(pts, t, dom, w0, tol, max_iter):
             if got is not None and got[2] < err:
                 d, w, err, it = got
     return d, w, err, it
+
+
+def _far_fit(pts, t, dom, tol, max_iter):
+    """``fit_weights`` from :func:`.farparts.parts_start`'s weights, or None where it fails."""
+    w, steps = parts_start(pts, t, dom, tol, max_iter, _local_fit)
+    if w is None:
+        return None
+    if (power_diagram(pts, w, dom).areas > 0.0).all():
+        d, w, err, it = fit_weights(pts, t, dom, w, tol, max_iter)
+        return d, w, err, it + steps
+    # a site serving one part reached into another and emptied a cell there (the parts'
+    # transport sorts sites by the gap's direction only): the dual's steps from here (where
+    # fit_weights would start again from zeros)
+    hull = make_domain(shapely.convex_hull(dom.geometry), pts)
+    d, w, err, it = fit_dual(pts, t, dom, hull, w, tol, max_iter)
+    return d, w, err, it + steps
 
 
 def _hole_start(pts, dom, w0):
@@ -379,8 +429,8 @@ def _area_error(d, t) -> float:
         return float(np.max(np.abs(np.asarray(d.areas) - t) / t))
 
 
-def _worst_note(d, t, n) -> str:
-    """The cells farthest from their targets, and what was tried."""
+def _worst_note(d, t, tried) -> str:
+    """The cells farthest from their targets, and (``tried``) the starts tried."""
     with np.errstate(invalid="ignore", over="ignore"):
         rel = np.abs(np.asarray(d.areas) - t) / t
     worst = np.argsort(-np.nan_to_num(rel, nan=np.inf), kind="stable")[:3]
@@ -388,10 +438,27 @@ def _worst_note(d, t, n) -> str:
     tried = (
         "; tried Newton from the given weights, from the sites shrunk into the domain and "
         "along targets moved in steps from the shrunk sites' areas"
-        if n > 1
+        if tried
         else ""
     )
     return f"; farthest from their targets: sites {cells}{tried}"
+
+
+def _weights_note(pts, d, tol) -> str:
+    """A note when rounding the fitted weights alone moves the areas past ``tol``."""
+    w = np.asarray(d.weights)
+    if not np.isfinite(w).all():
+        return ""
+    limit = weights_limit(pts, w, d)
+    if not limit > tol:
+        return ""
+    return (
+        f"; the weights span {float(w.max() - w.min()):.3g} (a cell that must straddle far "
+        "parts of the domain needs its weight about the gap squared from its neighbours' on "
+        f"the other part): float64 holds them to {float(np.spacing(np.abs(w).max())):.2g}, "
+        f"which moves the cells' areas by up to about {limit:.2g} relative (raise tol, or "
+        "give targets that each part's sites fill without a cell across the gap)"
+    )
 
 
 def _far_note(targets, dom, tol, d=None) -> str:
