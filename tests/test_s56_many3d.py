@@ -70,4 +70,6 @@ def test_start_changes_no_decision(n, seed):
         visits[0] += a[3]
         visits[1] += b[3]
     assert misses > 20
-    assert visits[1] < 0.8 * visits[0]  # the slot's top: less of a climb
+    # listed: the vertices near or above the plane and their neighbours, whatever the start
+    # (the climb's vertices farther below are evaluated, not listed: helix5, s57)
+    assert visits[1] == visits[0]

@@ -35,7 +35,9 @@ the climb goes.
 Scratch: ``work[:, 0]`` marks the vertices evaluated for the current plane and
 ``work[:, 3]`` those of the plateau (both zero outside a call: the caller clears rows it
 has not cleared since ``work`` was last used for something else), ``work[:, 1]`` lists
-the evaluated vertices, ``work[:, 2]`` the plateau's; the slots' tops are kept in
+the vertices evaluated within the flood's margin or above it (the climb's vertices farther
+below are evaluated, not marked: a passed-over plane marks none), ``work[:, 2]`` the
+plateau's; the slots' tops are kept in
 ``work[-TOP_SLOTS:, 2]`` (:func:`clear_tops` empties them for a new cell; anything else
 written there is only a worse start).
 """
@@ -109,45 +111,70 @@ def _visit(V, u, nx, ny, nz, h, S, work, nvis):
     return nvis
 
 
+@njit(**NJIT_INLINE)
+def _keep(u, s, S, work, nvis):
+    """List vertex ``u`` of value ``s`` once for this plane (marked, value written)."""
+    if work[u, 0] == 0:
+        work[u, 0] = 1
+        S[u] = s
+        work[nvis, 1] = u
+        nvis += 1
+    return nvis
+
+
 @njit(**NJIT_NO_NRT)
 def plane_local(V, nv, DEG, ED, S, work, nx, ny, nz, h, tol, hint):
     """The plane ``n . x = h``'s values near and above it on the graph cell (see the module).
 
     Returns ``(mode, smax, low, nvis)``: ``MISS``, ``LOCAL`` (``smax``/``low``: the largest
-    value and the least ``|value|`` among the ``nvis`` vertices evaluated, listed in
-    ``work[:nvis, 1]``; every vertex within the band or above is among them), or ``FULL``.
-    Marks are cleared again before it returns.
+    value and the least ``|value|`` among the ``nvis`` vertices listed in ``work[:nvis, 1]``
+    with their values in ``S``: every vertex within ``CLIMB3D_FLOOD_BAND`` bands below the
+    plane or above it, and their neighbours), or ``FULL``. The climb's vertices farther
+    below are evaluated but not marked nor listed (a passed-over plane lists none): the
+    marks cost more than the values, and no caller reads those (their ``|value|`` is far
+    beyond the band, so ``low <= tol`` and ``smax`` are the same). Marks are cleared again
+    before it returns.
     """
     nvis = 0
+    margin = CLIMB3D_FLOOD_BAND * tol
     best = hint if 0 <= hint < nv else 0
-    nvis = _visit(V, best, nx, ny, nz, h, S, work, nvis)
+    sb = _value(V, best, nx, ny, nz, h)
+    if sb > -margin:
+        nvis = _keep(best, sb, S, work, nvis)
     # the top last found for a normal of this one's slot, else samples spread over the cell
     row = _slot_row(work, nx, ny, nz)
     t = work[row, 2] if row >= 0 else -1
     if 0 <= t < nv:
-        nvis = _visit(V, t, nx, ny, nz, h, S, work, nvis)
-        if S[t] > S[best]:
+        s = _value(V, t, nx, ny, nz, h)
+        if s > -margin:
+            nvis = _keep(t, s, S, work, nvis)
+        if s > sb:
             best = t
+            sb = s
     step = nv // CLIMB3D_SAMPLES
     if step > 0 and not 0 <= t < nv:
         for k in range(CLIMB3D_SAMPLES):
             v = k * step
-            nvis = _visit(V, v, nx, ny, nz, h, S, work, nvis)
-            if S[v] > S[best]:
+            s = _value(V, v, nx, ny, nz, h)
+            if s > -margin:
+                nvis = _keep(v, s, S, work, nvis)
+            if s > sb:
                 best = v
+                sb = s
     tau = CLIMB3D_PLATEAU_BAND * tol
     mode = LOCAL
     steps = 0
     while mode == LOCAL:
         # steepest ascent over the edges to a vertex no neighbour of which lies higher
         while True:
-            sb = S[best]
             nb = -1
             for k in range(DEG[best]):
                 u = ED[best, k]
-                nvis = _visit(V, u, nx, ny, nz, h, S, work, nvis)
-                if S[u] > sb:
-                    sb = S[u]
+                s = _value(V, u, nx, ny, nz, h)
+                if s > -margin:
+                    nvis = _keep(u, s, S, work, nvis)
+                if s > sb:
+                    sb = s
                     nb = u
             if nb < 0:
                 break
@@ -158,22 +185,26 @@ def plane_local(V, nv, DEG, ED, S, work, nx, ny, nz, h, tol, hint):
             break
         # the top's plateau (vertices within tau below it, connected to it: rounding's
         # clusters) must have no neighbour above the top, else the climb goes on from there
-        top = S[best]
+        top = sb
         work[0, 2] = best
         work[best, 3] = 1
         npl = 1
         q = 0
         higher = -1
+        sh = top
         while q < npl and higher < 0:
             v = work[q, 2]
             q += 1
             for k in range(DEG[v]):
                 u = ED[v, k]
-                nvis = _visit(V, u, nx, ny, nz, h, S, work, nvis)
-                if S[u] > top:
+                s = _value(V, u, nx, ny, nz, h)
+                if s > -margin:
+                    nvis = _keep(u, s, S, work, nvis)
+                if s > top:
                     higher = u
+                    sh = s
                     break
-                if S[u] >= top - tau and work[u, 3] == 0:
+                if s >= top - tau and work[u, 3] == 0:
                     if npl == CLIMB3D_PLATEAU_MOST:
                         mode = FULL
                         higher = u
@@ -186,15 +217,15 @@ def plane_local(V, nv, DEG, ED, S, work, nx, ny, nz, h, tol, hint):
         if higher < 0:
             break
         best = higher
+        sb = sh
         steps += 1
     smax = -np.inf
     low = np.inf
-    if mode == LOCAL and S[best] < -CLIMB3D_NOISE_BANDS * tol:
+    if mode == LOCAL and sb < -CLIMB3D_NOISE_BANDS * tol:
         mode = MISS  # every vertex lies within rounding of the top or below it
     elif mode == LOCAL:
-        # the flood: every vertex evaluated that lies within the margin below the plane, or
-        # above it, has each of its neighbours evaluated
-        margin = CLIMB3D_FLOOD_BAND * tol
+        # the flood: every vertex listed that lies within the margin below the plane, or
+        # above it (the top is), has each of its neighbours listed
         q = 0
         while q < nvis:
             v = work[q, 1]
