@@ -215,14 +215,14 @@ def _local_fit(pts, t, dom, w0, tol, max_iter):
             if got[2] <= tol:
                 return got
         got = _far_fit(pts, t, dom, tol, max_iter)
+        # fitted, or float64 weights or coordinates cannot hold it (the error says so); an
+        # infinite error is a start the dual could not use: the other starts follow
         if got is not None and (
             got[2] <= tol
-            or weights_limit(pts, got[1], got[0]) > tol
-            or _far_note(t, dom, tol, got[0])
+            or np.isfinite(got[2])
+            and (weights_limit(pts, got[1], got[0]) > tol or bool(_far_note(t, dom, tol, got[0])))
         ):
-            return (
-                got  # fitted, or float64 weights or coordinates cannot hold it (the error says so)
-            )
+            return got
     start, few = (None, False) if parts or len(pts) < 2 else _hole_start(pts, dom, w0)
     if start is not None:
         got = _breakout(pts, t, dom, start, tol, max_iter)
