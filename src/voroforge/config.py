@@ -123,20 +123,6 @@ POWER_FIT_FAR = 4.0
 #: Relative size of a seed candidate's float orientation below which the sweep's seed
 #: search asks the exact orient2d (nearly collinear: never the smallest circle; delaunay)
 SEED_DET_RTOL = 1e-10
-#: kernels.sidecross: sites at most this many ulps (of their largest coordinate) apart get
-#: their bisector's box-side crossing as the nearest double (farther pairs keep the float
-#: formula: every pair changed the bits of 114 of the 186 catalogue diagrams, 2**-26 of the
-#: magnitude 15). Crossings of one side come within the formula's error (an ulp or two) of
-#: each other where the bisectors, turning by |b - a| / R over a circumradius R, reach the
-#: side h from their vertex with h |b - a| / R below it: for h ~ R (a float circle in its
-#: box) sites a few ulps apart; a vertex much nearer the side is a side sliver
-SIDE_NEAREST_ULPS = 16.0
-#: ...found in at most this many ulp steps from the float estimate (within an ulp or two)
-SIDE_NEAREST_MAX_STEPS = 8
-#: ...and every pair does where the sites' ulp passes this fraction of the box's extent
-#: (sites ~4096 box widths from the origin: a box 1e-16 wide between sites at +-1 had each
-#: crossing on the sites' ulp grid; 27 far catalogue diagrams changed bits, all valid)
-SIDE_BOX_RTOL = 2.0**-40
 #: engine.assemble._union_kept: a union of a cell's parts whose float area is below this
 #: fraction of theirs is checked exactly for lost parts (GEOS gave POLYGON EMPTY for two
 #: strip pieces an ulp wide)
@@ -232,6 +218,15 @@ PERIODIC_REGROW = 1.25
 #: ...and the margins of cells cut off on both axes double at once where that adds at most
 #: this fraction of the next try's copies (unconditional: 18% more copies at 2,000 sites)
 PERIODIC_WAIT_GROW_COST = 0.125
+#: engine.periodic_lines: at least PERIODIC_LINE_MIN_SITES sites, all but a few in a band
+#: across one axis at most PERIODIC_LINE_BAND of its period thin, start with the line's
+#: margins (one build instead of two)
+PERIODIC_LINE_BAND = 0.0625
+PERIODIC_LINE_MIN_SITES = 64
+#: ...an off site's cell is given room along the line this factor past its reach, plus this
+#: many plain first margins
+PERIODIC_LINE_OFF_REACH = 1.0
+PERIODIC_LINE_OFF_SLACK = 0.25
 #: engine.periodic_exact: a vertex rounded copies can move by more than this many ulps (a
 #: first-order bound times the safety factor) is recomputed from the exact images
 PERIODIC_EXACT_ULPS = 4.0
@@ -501,10 +496,12 @@ EXPLAIN_SCALE_EXP = 64
 
 # --- voronoi3d (3D cells, containers): config3d.py; surfaces (Voronoi on curved surfaces,
 # --- panels): config_surface.py; solid (printable lattices, foams, shells): config_solid.py;
-# --- moments (Lloyd, CVT): config_moments.py; all re-exported here --------------------------
+# --- moments (Lloyd, CVT): config_moments.py; box sides and corners (2D crossings):
+# --- config_sides.py; all re-exported here ---------------------------------------------------
 
 from .config3d import *  # noqa: E402, F403
 from .config_moments import *  # noqa: E402, F403
+from .config_sides import *  # noqa: E402, F403
 from .config_solid import *  # noqa: E402, F403
 from .config_surface import *  # noqa: E402, F403
 

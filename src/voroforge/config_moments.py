@@ -3,7 +3,14 @@
 Re-exported by :mod:`voroforge.config`, so modules import them from ``config``.
 """
 
-__all__ = ["MOMENTS_CANCEL", "MOMENTS_FAR_PART"]
+__all__ = [
+    "MOMENTS_CANCEL",
+    "MOMENTS_FAR_PART",
+    "POWER_FIT_PARTS_FAR",
+    "POWER_FIT_PARTS_REFUSE",
+    "POWER_FIT_PARTS_SAMPLES",
+    "POWER_FIT_PARTS_SHARE",
+]
 
 #: kernels.moments (uniform and raster moments): where a cell's shoelace terms cover more than
 #: this many times its area (parts of one cell far apart: MultiPolygon parts 1e12 apart gave
@@ -11,3 +18,15 @@ __all__ = ["MOMENTS_CANCEL", "MOMENTS_FAR_PART"]
 MOMENTS_CANCEL = 16.0
 #: ... where that polygon lies farther from the cell's origin than this many times its extent
 MOMENTS_FAR_PART = 4.0
+#: engine.farparts: a MultiPolygon's parts are fitted apart (parts_start) when every two lie
+#: farther apart than POWER_FIT_PARTS_FAR times the larger one's bounding-box diagonal
+POWER_FIT_PARTS_FAR = 4.0
+#: a site serves a part where the transport sends it more than this fraction of
+#: its target (HiGHS's own rounding is ~1e-9 of the total)
+POWER_FIT_PARTS_SHARE = 1e-9
+#: sample points per part (a grid in its bounds, plus its vertices) where a part
+#: tied to no other is given its constant
+POWER_FIT_PARTS_SAMPLES = 16
+#: engine.capacity: power_fit refuses a domain's far parts at once where rounding the weights
+#: they need limits the median cell's area to more than this many times tol
+POWER_FIT_PARTS_REFUSE = 10.0

@@ -27,6 +27,7 @@ from ..config import (
     POWER_FIT_GAP_STAGE_STEPS,
     POWER_FIT_HOLE_SEED_FRACTION,
     POWER_FIT_HOLE_SEED_STEPS,
+    POWER_FIT_PARTS_REFUSE,
     POWER_FIT_SCALE_EXP,
     POWER_FIT_SUM_RTOL,
 )
@@ -38,10 +39,6 @@ from .powerfit import fit_dual
 from .threads import serial_below
 
 __all__ = ["as_targets", "power_fit"]
-
-# -> config: power_fit refuses a domain's far parts at once where rounding the weights they
-# need limits the median cell's area to more than this many times tol
-POWER_FIT_PARTS_REFUSE = 10.0
 
 
 def as_targets(target_areas, n: int, dom: Domain, name: str = "target_areas") -> np.ndarray:

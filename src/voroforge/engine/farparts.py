@@ -22,19 +22,10 @@ import shapely
 from scipy.optimize import linprog
 from scipy.spatial import cKDTree
 
+from ..config import POWER_FIT_PARTS_FAR, POWER_FIT_PARTS_SAMPLES, POWER_FIT_PARTS_SHARE
 from .domain import make_domain, shifted
 
 __all__ = ["far_parts", "parts_start", "straddle_limit", "weights_limit"]
-
-# -> config: a MultiPolygon's parts are fitted apart (parts_start) when every two lie
-# farther apart than PARTS_FAR times the larger one's bounding-box diagonal
-POWER_FIT_PARTS_FAR = 4.0
-# -> config: a site serves a part where the transport sends it more than this fraction of
-# its target (HiGHS's own rounding is ~1e-9 of the total)
-POWER_FIT_PARTS_SHARE = 1e-9
-# -> config: sample points per part (a grid in its bounds, plus its vertices) where a part
-# tied to no other is given its constant
-POWER_FIT_PARTS_SAMPLES = 16
 
 
 def far_parts(geom) -> bool:

@@ -15,14 +15,12 @@ from __future__ import annotations
 
 import numpy as np
 
-# -> config: how many sites a line needs before its margins are set up front
-PERIODIC_LINE_MIN_SITES = 64
-# -> config: how thin (in periods) the band of the line's sites is across the line
-PERIODIC_LINE_BAND = 0.0625
-# -> config: how far past its estimate (a factor) an off site's cell is given room along
-PERIODIC_LINE_OFF_REACH = 1.0
-# -> config: the room past an off site's cell along the line, in plain first margins
-PERIODIC_LINE_OFF_SLACK = 0.25
+from ..config import (
+    PERIODIC_LINE_BAND,
+    PERIODIC_LINE_MIN_SITES,
+    PERIODIC_LINE_OFF_REACH,
+    PERIODIC_LINE_OFF_SLACK,
+)
 
 
 def line_start(pts, box, margin, caps, most):

@@ -20,14 +20,11 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..config import NJIT
+from ..config import CORNER_CUT_RTOL, NJIT
 from .distance_exact import compare
 from .vertex import box_crossing, voronoi_vertex
 
 _U = 2.0**-53
-# -> config: a centre within this of a box corner, relative to its L1 distance from the
-# cell's site, is cut exactly (the float cut is off by ~16 u of that distance)
-CORNER_CUT_RTOL = 2.0**-40
 
 
 @njit(**NJIT)

@@ -43,7 +43,7 @@ _U = 2.0**-53
 _TINY = 2.0**-900  # a product below this may lose its error term to underflow
 _SLACK = 2.0**-1060  # what underflowed products' parts may lose, all together (< 2^-1066)
 _NT = 20  # exact parts of the numerator
-_TOP_BITS = 900  # -> config: where scaled parts top out (Dekker splits of them stay finite)
+_TOP_BITS = 900  # where scaled parts top out (Dekker splits of them stay finite)
 
 
 @njit(**NJIT)

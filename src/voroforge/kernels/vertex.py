@@ -41,6 +41,7 @@ from numba import njit
 
 from ..config import (
     CC_MERGE_RTOL,
+    CORNER_CROSSING_ULPS,
     NAME_MAX_TRIES,
     NJIT,
     VERTEX_DET_RTOL,
@@ -51,11 +52,6 @@ from ..config import (
 from .expansion import exact_circumcenter, two_sum
 from .predicates import orient2d
 from .sidecross import nearest_crossing
-
-# -> config: a box-side crossing within this many ulps of the sites' magnitude of a box
-# corner is the double nearest the exact one (the float formula's error would move it past
-# the corner, or past other crossings there: a float circle's centre on a corner, issue 15)
-CORNER_CROSSING_ULPS = 64.0
 
 
 @njit(**NJIT)
