@@ -333,6 +333,26 @@ def exact_polygon_moments(geom, origin=(0.0, 0.0)) -> tuple[Fraction, Fraction, 
     return tuple(total)
 
 
+def holds_exactly(ring, q) -> bool:
+    """Whether the closed ring of float vertices (first == last) holds point ``q``, exactly.
+
+    Points on the ring count as held (crossing parity, each turn as an exact Fraction).
+    """
+    inside = False
+    qx, qy = (Fraction(float(v)) for v in q)
+    pts = [(Fraction(float(x)), Fraction(float(y))) for x, y in ring]
+    for (ax, ay), (bx, by) in zip(pts[:-1], pts[1:], strict=True):
+        turn = (bx - ax) * (qy - ay) - (by - ay) * (qx - ax)
+        if (ay > qy) != (by > qy):
+            if turn == 0:
+                return True
+            if (turn > 0) == (by > ay):
+                inside = not inside
+        elif turn == 0 and min(ax, bx) <= qx <= max(ax, bx) and min(ay, by) <= qy <= max(ay, by):
+            return True
+    return inside
+
+
 def exact_area(geom) -> Fraction:
     """The exact area (Fraction) of a (Multi)Polygon's own float vertices; holes subtract."""
     return exact_polygon_moments(geom)[0]

@@ -14,13 +14,14 @@ site. Checked against exact nearest sites in the circle's integer frame (no engi
 from __future__ import annotations
 
 import warnings
-from fractions import Fraction
 
 import numpy as np
 import pytest
 import shapely
 
 import voroforge as vf
+
+from reference import holds_exactly
 
 CENTRE = (5e5, 4e6)
 UNIT = 2.0**-34  # an x-ulp at 5e5; a y-ulp at 4e6 is 8 units
@@ -36,23 +37,6 @@ def _local(xy):
     out = (np.asarray(xy, dtype=np.float64) - CENTRE) / UNIT
     assert (out == np.round(out)).all()  # exact: every float here is on the unit grid
     return out
-
-
-def _holds(ring, q):
-    """Whether the closed ring (local integer coordinates) holds point ``q``, exactly."""
-    inside = False
-    qx, qy = (Fraction(int(v)) for v in q)
-    pts = [(Fraction(int(x)), Fraction(int(y))) for x, y in ring]
-    for (ax, ay), (bx, by) in zip(pts[:-1], pts[1:], strict=True):
-        turn = (bx - ax) * (qy - ay) - (by - ay) * (qx - ax)
-        if (ay > qy) != (by > qy):
-            if turn == 0:
-                return True
-            if (turn > 0) == (by > ay):
-                inside = not inside
-        elif turn == 0 and min(ax, bx) <= qx <= max(ax, bx) and min(ay, by) <= qy <= max(ay, by):
-            return True
-    return inside
 
 
 def _diagram(n, phase, algorithm="delaunay"):
@@ -72,7 +56,7 @@ def test_strip_cell_holds_its_site_and_leaves_no_hole(phase, strip):
     assert d.describe().euler_ok
     # the strip's own ring holds its site (exact test in the integer frame)
     ring = _local(shapely.get_coordinates(cells[strip]))
-    assert len(ring) >= 4 and _holds(ring, p[strip])
+    assert len(ring) >= 4 and holds_exactly(ring, p[strip])
     # float points around the strip (its wedge reaches ~850 x-units and ~100 y-ulps out):
     # each lies in some cell, and in its nearest site's cell where that is clear (by 4
     # y-ulps from every bisector of the nearest site, exact squared distances)

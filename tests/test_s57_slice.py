@@ -14,13 +14,14 @@ the circle's integer frame with exact rationals (no engine code).
 from __future__ import annotations
 
 import warnings
-from fractions import Fraction
 
 import numpy as np
 import pytest
 import shapely
 
 import voroforge as vf
+
+from reference import holds_exactly
 
 CENTRE = (5e5, 4e6)
 UNIT = 2.0**-34  # an x-ulp at 5e5; a y-ulp at 4e6 is 8 units
@@ -47,23 +48,6 @@ def _area2(ring):
     )
 
 
-def _holds(ring, q):
-    """Whether the closed ring (integer points) holds point ``q``, exactly."""
-    inside = False
-    qx, qy = (Fraction(int(v)) for v in q)
-    for a, b in zip(ring[:-1], ring[1:], strict=True):
-        ax, ay, bx, by = (Fraction(int(v)) for v in (*a, *b))
-        turn = (bx - ax) * (qy - ay) - (by - ay) * (qx - ax)
-        if (ay > qy) != (by > qy):
-            if turn == 0:
-                return True
-            if (turn > 0) == (by > ay):
-                inside = not inside
-        elif turn == 0 and min(ax, bx) <= qx <= max(ax, bx) and min(ay, by) <= qy <= max(ay, by):
-            return True
-    return inside
-
-
 @pytest.fixture(scope="module")
 def diagrams():
     pts = _circle(1025, 0.90)
@@ -86,7 +70,7 @@ def test_crossed_wedge_cut_and_cells_edge_to_edge(diagrams, alg):
     assert d.describe().euler_ok
     # the wedge's ring holds its site, and it is not flagged
     ring = _local(shapely.get_coordinates(cells[477]))
-    assert len(ring) >= 4 and _holds(ring, p[477])
+    assert len(ring) >= 4 and holds_exactly(ring, p[477])
     assert 477 not in set(d.unresolved.tolist())
     # the rings tile the box exactly (integer areas, every ring counter-clockwise) and
     # every edge inside the box is its neighbour's reversed

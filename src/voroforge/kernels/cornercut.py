@@ -21,6 +21,7 @@ import numpy as np
 from numba import njit
 
 from ..config import CORNER_CUT_RTOL, NJIT
+from .clip import dedupe_ring
 from .distance_exact import compare
 from .vertex import box_crossing, voronoi_vertex
 
@@ -127,18 +128,8 @@ def corner_cut(i, xs, ys, nbrs, nn, box, px, py, pw, qx, qy, qw, sg):
                 bo[c] = ao[v]
                 c += 1
         # named points of one vertex coincide: drop repeats (the later edge's owner kept)
-        m = np.int64(0)
-        for v in range(c):
-            if m > 0 and bx[v] == bx[m - 1] and by[v] == by[m - 1]:
-                bo[m - 1] = bo[v]
-                continue
-            bx[m] = bx[v]
-            by[m] = by[v]
-            bo[m] = bo[v]
-            m += 1
-        while m > 1 and bx[m - 1] == bx[0] and by[m - 1] == by[0]:
-            m -= 1
-        if m < 3:
+        m = dedupe_ring(bx, by, bo, c)
+        if m == 0:
             return 0
         ax, ay, ao, bx, by, bo = bx, by, bo, ax, ay, ao
         swapped = not swapped
