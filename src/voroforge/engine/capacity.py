@@ -160,10 +160,12 @@ def power_fit(
             d = power_diagram(pts, np.ldexp(w, 2 * e), dom)
             err = _area_error(d, t)
     if not err <= tol:  # NaN too: areas past float64's range are no fit
-        held = _weights_note(pts, d, tol)
+        # sites too close for float64 weights are the more specific cause: named first
+        near = _near_pairs_note(pts, dom)
+        held = "" if near else _weights_note(pts, d, tol)
         raise RuntimeError(
             f"power_fit did not reach tol={tol:g} in {it} Newton steps (largest relative "
-            f"area error {err:.3g}){'' if held else _near_pairs_note(pts, dom)}"
+            f"area error {err:.3g}){near}"
             f"{_far_note(t, dom, tol, d)}"
             f"{held}{_worst_note(d, t, n > 1 and not held)}"
         )
