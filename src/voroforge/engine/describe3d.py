@@ -162,27 +162,27 @@ def torus_counts(d) -> tuple[int, int, int]:
     g = twin[f]
     length = np.diff(roff)
     va, vb, ea, eb = [], [], [], []  # united records: g's record, f's; g's edge, f's
-    for m in np.unique(length[f]).tolist():
-        same = length[g] == m
-        pf, pg = f[(length[f] == m) & same], g[(length[f] == m) & same]
-        if len(pf):
-            rf = ring[roff[pf][:, None] + np.arange(m)]
-            rg = ring[roff[pg][:, None] + np.arange(m)]
-            at = _mates(V[rg] + (shifts[pf] * period)[:, None, :], V[rf])
-            mate = np.take_along_axis(rf, at, axis=1)
-            va.append(rg.ravel())
-            vb.append(mate.ravel())
-            ea.append(np.stack([rg, np.roll(rg, -1, axis=1)], axis=2).reshape(-1, 2))
-            eb.append(np.stack([mate, np.roll(mate, -1, axis=1)], axis=2).reshape(-1, 2))
-    for fi, gi in zip(f.tolist(), g.tolist(), strict=True):
-        if length[fi] != length[gi]:
-            rf, rg = ring[roff[fi] : roff[fi + 1]], ring[roff[gi] : roff[gi + 1]]
-            dist = ((V[rg] + shifts[fi] * period)[:, None, :] - V[rf][None, :, :]) ** 2
-            mate = rf[np.argmin(dist.sum(axis=2), axis=1)]
-            va.append(rg)
-            vb.append(mate)
-            ea.append(np.column_stack([rg, np.roll(rg, -1)]))
-            eb.append(np.column_stack([mate, np.roll(mate, -1)]))
+    lf, lg = length[f], length[g]
+    for m in np.unique(lf[lf == lg]).tolist():  # pairs of one length, matched by shifts
+        pick = (lf == m) & (lg == m)
+        pf, pg = f[pick], g[pick]
+        rf = ring[roff[pf][:, None] + np.arange(m)]
+        rg = ring[roff[pg][:, None] + np.arange(m)]
+        at = _mates(V[rg] + (shifts[pf] * period)[:, None, :], V[rf])
+        mate = np.take_along_axis(rf, at, axis=1)
+        va.append(rg.ravel())
+        vb.append(mate.ravel())
+        ea.append(np.stack([rg, np.roll(rg, -1, axis=1)], axis=2).reshape(-1, 2))
+        eb.append(np.stack([mate, np.roll(mate, -1, axis=1)], axis=2).reshape(-1, 2))
+    for k in np.flatnonzero(lf != lg).tolist():  # rounding shortened an edge in one copy
+        fi, gi = int(f[k]), int(g[k])
+        rf, rg = ring[roff[fi] : roff[fi + 1]], ring[roff[gi] : roff[gi + 1]]
+        dist = ((V[rg] + shifts[fi] * period)[:, None, :] - V[rf][None, :, :]) ** 2
+        mate = rf[np.argmin(dist.sum(axis=2), axis=1)]
+        va.append(rg)
+        vb.append(mate)
+        ea.append(np.column_stack([rg, np.roll(rg, -1)]))
+        eb.append(np.column_stack([mate, np.roll(mate, -1)]))
     used = np.unique(ring)
     lab_v = _components(
         len(V),
