@@ -167,10 +167,8 @@ def _tie_points(coords, rid, lo, size, tol, box, named=None):
     g = np.searchsorted(group, label[members])
     # two different points of one ring in one copy of the box: an ulp-short edge, not the
     # rounding of one vertex
-    key = np.unique(np.column_stack((g, rid[members], q[members], coords[members])), axis=0)
-    head, count = np.unique(key[:, :4], axis=0, return_counts=True)
     skip = np.zeros(len(group), dtype=bool)
-    skip[head[count > 1, 0].astype(np.int64)] = True
+    skip[_split_groups(g, rid[members], q[members], coords[members])] = True
     out = coords.copy()
     home = ~moved[members]
     # the first member in the box, else the first member
@@ -188,6 +186,31 @@ def _tie_points(coords, rid, lo, size, tol, box, named=None):
     if not (out != coords).any():
         return None
     return out
+
+
+def _split_groups(g, rid, q, coords) -> np.ndarray:
+    """The groups ``g`` with two different ``coords`` of one ring ``rid`` in one box copy ``q``.
+
+    Floats compared as values (``-0.0 == 0.0``). One lexsort of the rows, not two
+    ``np.unique(axis=0)`` of them (their structured sorts were 0.09 s of 3e4 sites on a
+    vertical line).
+    """
+    if not len(g):
+        return np.zeros(0, dtype=np.int64)
+    # + 0.0: -0.0 becomes 0.0, one value as in a float comparison
+    cols = (q[:, 0] + 0.0, q[:, 1] + 0.0, coords[:, 0] + 0.0, coords[:, 1] + 0.0)
+    order = np.lexsort((cols[3], cols[2], cols[1], cols[0], rid, g))
+    head = np.zeros(len(g) - 1, dtype=bool)  # a new (g, rid, q) after each row
+    for c in (g, rid, cols[0], cols[1]):
+        s = c[order]
+        head |= s[1:] != s[:-1]
+    same = ~head
+    for c in cols[2:]:
+        s = c[order]
+        same &= s[1:] == s[:-1]
+    # within one (g, rid, q), a row that differs from the one before: two points
+    split = ~head & ~same
+    return np.unique(g[order][1:][split]).astype(np.int64)
 
 
 def _exact_shifts(coords, q, size, period, a, b) -> np.ndarray:
