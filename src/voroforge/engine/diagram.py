@@ -16,11 +16,11 @@ from typing import NamedTuple
 import numpy as np
 import shapely
 
-from ..config import AREA_FRAME_EXP
+from ..config import AREA_FRAME_EXP, EDGE_LENGTH_RTOL
 from ..kernels.moments import area_centroid
 from .csr import csr_from_pairs
 from .domain import Domain
-from .edgeowners import reown
+from .edgeowners import reown, split_at_junctions
 from .threads import serial_below
 
 
@@ -261,6 +261,11 @@ class Diagram:
             if isinstance(edges, LazyEdges):
                 edges = edges.resolve()
             mended = reown(edges, self._buffers, len(self.sites))
+            if len(self.unresolved):
+                # beside a lost site an edge can run past a T-junction (engine.edgeowners)
+                x0, y0, x1, y1 = self.bounds
+                tol = EDGE_LENGTH_RTOL * max(x1 - x0, y1 - y0)
+                mended = split_at_junctions(mended, self._buffers, tol)
             if mended is not edges:
                 for arr in mended:
                     arr.setflags(write=False)

@@ -12,6 +12,8 @@ else holds a segment on its line overlapping it (exact ``orient2d``).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ..kernels.predicates import orient2d
@@ -36,13 +38,7 @@ def reown(edges, buffers, n: int):
     if not len(bad):
         return edges
     # every directed ring edge: its start, end and cell
-    starts = np.ones(len(coords), bool)
-    starts[ring[1:] - 1] = False  # a ring's closing point starts no edge
-    starts[len(coords) - 1 :] = False
-    k = np.flatnonzero(starts)
-    ring_of = np.searchsorted(ring, k, side="right") - 1
-    poly_of = np.searchsorted(poly, ring_of, side="right") - 1
-    cell_of = np.searchsorted(geom, poly_of, side="right") - 1
+    k, cell_of = _ring_starts(buffers)
     a_all, b_all = coords[k], coords[k + 1]
     seg = np.array(seg, copy=True)
     pairs = np.array(pairs, copy=True)
@@ -57,16 +53,8 @@ def reown(edges, buffers, n: int):
         if d < 0:
             continue  # no ring holds it: left as built
         pairs[e] = (min(c, d), max(c, d))
-    seg, pairs = seg[keep], pairs[keep]
     # a pair mended onto an edge the other cell's ring had given too: once
-    a, b = seg[:, 0], seg[:, 1]
-    swap = (b[:, 0] < a[:, 0]) | ((b[:, 0] == a[:, 0]) & (b[:, 1] < a[:, 1]))
-    lo = np.where(swap[:, None], b, a)
-    hi = np.where(swap[:, None], a, b)
-    key = np.column_stack([pairs, lo, hi])
-    _, first = np.unique(key, axis=0, return_index=True)
-    first.sort()
-    return seg[first], pairs[first]
+    return _once(seg[keep], pairs[keep])
 
 
 def _across(s, c: int, a_all, b_all, cell_of, has) -> int:
@@ -89,3 +77,126 @@ def _across(s, c: int, a_all, b_all, cell_of, has) -> int:
         ):
             return int(cell_of[r])
     return -1
+
+
+def split_at_junctions(edges, buffers, tol: float):
+    """``(coords, pairs)`` of ``edges`` cut where another cell's vertex lies on them.
+
+    Beside a lost site (issue 15: float circles of radius 1e-7 at (5e5, 4e6)) a vertex two
+    cells share can lie exactly on the straight side of a third cell's ring, which does not
+    have it (a T-junction): that side is two shared edges, with a different cell across each,
+    but the builder names one cell across the whole side, so the edge ran past the other
+    cell's end (an end that is not a vertex of that cell) and the second pair was missing.
+    Each edge with an end that is not a vertex of both its cells' rings is cut at the
+    vertices of its two cells lying exactly on it (``orient2d``), and each piece is given to
+    the two cells whose rings hold it (a ring side containing it, on its line): every end is
+    then a vertex of both cells, or lies on the straight side of a ring that passes through
+    it. A piece that two rings do not hold (a gap) keeps the edge's pair. Pieces not longer
+    than ``tol`` are left out. Returns ``edges`` itself where every end is a vertex of both
+    its cells.
+    """
+    seg, pairs = edges
+    coords, ring, poly, geom = buffers
+    if not len(seg) or len(coords) < 2:
+        return edges
+    k, cell_of = _ring_starts(buffers)
+    a_all, b_all = coords[k] + 0.0, coords[k + 1] + 0.0
+    # each cell's vertices as one sorted key (cell, x bits, y bits)
+    vkey = _keys(cell_of, a_all)
+    vkey.sort()
+    ends = seg + 0.0
+    bad = np.zeros(len(seg), bool)
+    for side in range(2):
+        for e in range(2):
+            q = _keys(pairs[:, side], ends[:, e])
+            at = np.minimum(np.searchsorted(vkey, q), len(vkey) - 1)
+            bad |= vkey[at] != q
+    bad = np.flatnonzero(bad)
+    if not len(bad):
+        return edges
+    out_s, out_p, out_i = [], [], []
+    keep = np.ones(len(seg), bool)
+    for e in bad.tolist():
+        i, j = (int(c) for c in pairs[e])
+        p, q = ends[e]
+        axis = 0 if p[0] != q[0] else 1
+        lo, hi = min(p[axis], q[axis]), max(p[axis], q[axis])
+        mine = (cell_of == i) | (cell_of == j)
+        cand = a_all[mine]
+        inside = (cand[:, axis] > lo) & (cand[:, axis] < hi)
+        cuts = {
+            (float(v[0]), float(v[1]))
+            for v in cand[inside]
+            if orient2d(p[0], p[1], q[0], q[1], v[0], v[1]) == 0
+        }
+        sign = 1.0 if q[axis] > p[axis] else -1.0
+        pts = [tuple(p.tolist()), *sorted(cuts, key=lambda v: sign * v[axis]), tuple(q.tolist())]
+        pieces = []
+        for u, v in zip(pts[:-1], pts[1:], strict=True):
+            if math.hypot(v[0] - u[0], v[1] - u[1]) <= tol:
+                continue
+            held = _holders(u, v, a_all, b_all, cell_of)
+            pair = (min(held), max(held)) if len(held) == 2 else (i, j)
+            pieces.append(((u, v), pair))
+        if len(pieces) == 1 and pieces[0][1] == (i, j) and len(pts) == 2:
+            continue  # nothing to cut or re-own: left as built
+        keep[e] = False
+        out_s += [s for s, _ in pieces]
+        out_p += [c for _, c in pieces]
+        out_i += [e] * len(pieces)
+    if keep.all():
+        return edges
+    # each edge's pieces where the edge was
+    at = np.concatenate((np.flatnonzero(keep), np.array(out_i, dtype=np.int64)))
+    order = np.argsort(at, kind="stable")
+    seg = np.concatenate((seg[keep], np.array(out_s, dtype=np.float64).reshape(-1, 2, 2)))
+    pairs = np.concatenate((pairs[keep], np.array(out_p, dtype=np.int64).reshape(-1, 2)))
+    return _once(seg[order], pairs[order])
+
+
+def _ring_starts(buffers):
+    """Every directed ring edge's start (index into coords) and cell."""
+    coords, ring, poly, geom = buffers
+    starts = np.ones(len(coords), bool)
+    starts[ring[1:] - 1] = False  # a ring's closing point starts no edge
+    starts[len(coords) - 1 :] = False
+    k = np.flatnonzero(starts)
+    ring_of = np.searchsorted(ring, k, side="right") - 1
+    poly_of = np.searchsorted(poly, ring_of, side="right") - 1
+    cell_of = np.searchsorted(geom, poly_of, side="right") - 1
+    return k, cell_of
+
+
+def _keys(cell, xy):
+    """One sortable key per (cell, point): the cell and the point's bits."""
+    rows = np.column_stack((np.asarray(cell, np.int64), (xy + 0.0).view(np.int64)))
+    return np.ascontiguousarray(rows).view(np.dtype((np.void, 24))).ravel()
+
+
+def _holders(u, v, a_all, b_all, cell_of):
+    """The cells with a ring side on the line of ``u -> v`` that contains the segment."""
+    lo = np.minimum(u, v)
+    hi = np.maximum(u, v)
+    box = (np.minimum(a_all, b_all) <= lo).all(axis=1) & (np.maximum(a_all, b_all) >= hi).all(
+        axis=1
+    )
+    got = set()
+    for r in np.flatnonzero(box).tolist():
+        a, b = a_all[r], b_all[r]
+        if orient2d(a[0], a[1], b[0], b[1], u[0], u[1]) == 0 and (
+            orient2d(a[0], a[1], b[0], b[1], v[0], v[1]) == 0
+        ):
+            got.add(int(cell_of[r]))
+    return got
+
+
+def _once(seg, pairs):
+    """Edges with each (pair, undirected segment) once, the first kept, in order."""
+    a, b = seg[:, 0], seg[:, 1]
+    swap = (b[:, 0] < a[:, 0]) | ((b[:, 0] == a[:, 0]) & (b[:, 1] < a[:, 1]))
+    lo = np.where(swap[:, None], b, a)
+    hi = np.where(swap[:, None], a, b)
+    key = np.column_stack([pairs, lo, hi])
+    _, first = np.unique(key, axis=0, return_index=True)
+    first.sort()
+    return seg[first], pairs[first]
