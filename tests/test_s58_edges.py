@@ -75,6 +75,28 @@ def test_split_at_a_vertex_on_the_side():
     assert same[0] is got_s
 
 
+def test_shared_side_named_against_an_empty_cell():
+    """Cells 1 and 2 share a side, but both rings named the lost (empty) cell 0 across it,
+    so neither gave the edge: it is added, once."""
+    rings = [
+        [(0, 0), (2, 0), (2, 2), (0, 2), (0, 0)],
+        [(0, -2), (2, -2), (2, 0), (0, 0), (0, -2)],
+        [(2, 0), (4, 0), (4, 2), (2, 2), (2, 0)],
+    ]
+    coords = np.array([q for r in rings for q in r], dtype=np.float64)
+    off = np.array([0, 5, 10, 15], dtype=np.int64)
+    # cell 0 is empty: cells 1, 2 and 3 hold the three rings
+    bufs = (coords, off, np.arange(4, dtype=np.int64), np.array([0, 0, 1, 2, 3], dtype=np.int64))
+    seg = np.array([[(2.0, 0.0), (2.0, 2.0)]])
+    pairs = np.array([[1, 3]])
+    got_s, got_p = split_at_junctions((seg, pairs), bufs, 1e-12)
+    got = {
+        (tuple(map(tuple, s)), tuple(p))
+        for s, p in zip(got_s.tolist(), got_p.tolist(), strict=True)
+    }
+    assert got == {(((2.0, 0.0), (2.0, 2.0)), (1, 3)), (((0.0, 0.0), (2.0, 0.0)), (1, 2))}
+
+
 @pytest.fixture(scope="module")
 def diagram():
     with warnings.catch_warnings():

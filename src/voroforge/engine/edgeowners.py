@@ -112,8 +112,6 @@ def split_at_junctions(edges, buffers, tol: float):
             at = np.minimum(np.searchsorted(vkey, q), len(vkey) - 1)
             bad |= vkey[at] != q
     bad = np.flatnonzero(bad)
-    if not len(bad):
-        return edges
     out_s, out_p, out_i = [], [], []
     keep = np.ones(len(seg), bool)
     for e in bad.tolist():
@@ -144,14 +142,79 @@ def split_at_junctions(edges, buffers, tol: float):
         out_s += [s for s, _ in pieces]
         out_p += [c for _, c in pieces]
         out_i += [e] * len(pieces)
-    if keep.all():
+    if not keep.all():
+        # each edge's pieces where the edge was
+        at = np.concatenate((np.flatnonzero(keep), np.array(out_i, dtype=np.int64)))
+        order = np.argsort(at, kind="stable")
+        seg = np.concatenate((seg[keep], np.array(out_s, dtype=np.float64).reshape(-1, 2, 2)))
+        pairs = np.concatenate((pairs[keep], np.array(out_p, dtype=np.int64).reshape(-1, 2)))
+        seg, pairs = _once(seg[order], pairs[order])
+    # a side two rings share that no edge covers (both rings named a lost site's empty
+    # cell across it, lower-numbered: neither gave the edge), at the end
+    add_s, add_p = _unnamed(seg, pairs, a_all, b_all, cell_of, tol)
+    if len(add_s):
+        seg, pairs = np.concatenate((seg, add_s)), np.concatenate((pairs, add_p))
+    elif keep.all():
         return edges
-    # each edge's pieces where the edge was
-    at = np.concatenate((np.flatnonzero(keep), np.array(out_i, dtype=np.int64)))
-    order = np.argsort(at, kind="stable")
-    seg = np.concatenate((seg[keep], np.array(out_s, dtype=np.float64).reshape(-1, 2, 2)))
-    pairs = np.concatenate((pairs[keep], np.array(out_p, dtype=np.int64).reshape(-1, 2)))
-    return _once(seg[order], pairs[order])
+    return seg, pairs
+
+
+def _unnamed(seg, pairs, a_all, b_all, cell_of, tol):
+    """Ring sides ``(r, 2, 2)`` two cells share that no edge of theirs covers, and pairs.
+
+    A side is shared where one cell's ring holds it and another's holds it reversed, bit for
+    bit; an edge of the two covers it where the side lies on it (exact ``orient2d``).
+    """
+    none = np.zeros((0, 2, 2)), np.zeros((0, 2), dtype=np.int64)
+    fwd = _keys(np.zeros(len(a_all), np.int64), np.hstack((a_all, b_all)))
+    back = _keys(np.zeros(len(a_all), np.int64), np.hstack((b_all, a_all)))
+    order = np.argsort(fwd, kind="stable")
+    at = order[np.minimum(np.searchsorted(fwd[order], back), len(fwd) - 1)]
+    mate = np.where(fwd[at] == back, cell_of[at], -1)
+    shared = np.flatnonzero(mate > cell_of)  # once, from the lower cell's ring
+    if not len(shared):
+        return none
+    d = b_all[shared] - a_all[shared]
+    shared = shared[np.hypot(d[:, 0], d[:, 1]) > tol]
+    want = _pair_keys(
+        np.column_stack((cell_of[shared], mate[shared])), a_all[shared], b_all[shared]
+    )
+    have = _pair_keys(pairs, seg[:, 0] + 0.0, seg[:, 1] + 0.0)
+    have.sort()
+    pos = np.minimum(np.searchsorted(have, want), max(len(have) - 1, 0))
+    miss = shared[~((have[pos] == want) if len(have) else np.zeros(len(want), bool))]
+    out_s, out_p = [], []
+    for r in miss.tolist():
+        c, m = int(cell_of[r]), int(mate[r])
+        u, v = a_all[r], b_all[r]
+        same = np.flatnonzero((pairs[:, 0] == c) & (pairs[:, 1] == m))
+        if any(_contains(seg[e, 0], seg[e, 1], u, v) for e in same.tolist()):
+            continue  # a longer edge of the two along it
+        out_s.append((u, v))
+        out_p.append((c, m))
+    if not out_s:
+        return none
+    return np.array(out_s, dtype=np.float64), np.array(out_p, dtype=np.int64)
+
+
+def _pair_keys(pairs, a, b):
+    """One sortable key per (pair, undirected segment)."""
+    swap = (b[:, 0] < a[:, 0]) | ((b[:, 0] == a[:, 0]) & (b[:, 1] < a[:, 1]))
+    lo = np.where(swap[:, None], b, a)
+    hi = np.where(swap[:, None], a, b)
+    rows = np.column_stack((np.asarray(pairs, np.int64), lo.view(np.int64), hi.view(np.int64)))
+    return np.ascontiguousarray(rows).view(np.dtype((np.void, 48))).ravel()
+
+
+def _contains(p, q, u, v) -> bool:
+    """Whether segment ``p q`` contains segment ``u v`` (exact: on its line, within it)."""
+    lo, hi = np.minimum(p, q), np.maximum(p, q)
+    if not ((lo <= np.minimum(u, v)).all() and (hi >= np.maximum(u, v)).all()):
+        return False
+    return (
+        orient2d(p[0], p[1], q[0], q[1], u[0], u[1]) == 0
+        and orient2d(p[0], p[1], q[0], q[1], v[0], v[1]) == 0
+    )
 
 
 def _ring_starts(buffers):
@@ -168,9 +231,11 @@ def _ring_starts(buffers):
 
 
 def _keys(cell, xy):
-    """One sortable key per (cell, point): the cell and the point's bits."""
-    rows = np.column_stack((np.asarray(cell, np.int64), (xy + 0.0).view(np.int64)))
-    return np.ascontiguousarray(rows).view(np.dtype((np.void, 24))).ravel()
+    """One sortable key per (cell, point or points): the cell and the coordinates' bits."""
+    rows = np.column_stack(
+        (np.asarray(cell, np.int64), np.ascontiguousarray(xy + 0.0).view(np.int64))
+    )
+    return np.ascontiguousarray(rows).view(np.dtype((np.void, 8 * rows.shape[1]))).ravel()
 
 
 def _holders(u, v, a_all, b_all, cell_of):
