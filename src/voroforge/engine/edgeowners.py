@@ -8,6 +8,9 @@ neighbours: the pair ``(0, 1)`` with cell 1 empty where cells 0 and 2 share the 
 (checker35 F1). Such a pair is wrong whatever the builder, so it is mended here, once, on the
 diagram's rings: the edge goes to the cell whose ring holds it reversed (bit for bit), or
 else holds a segment on its line overlapping it (exact ``orient2d``).
+
+Where a diagram has lost sites, :func:`split_at_junctions` then cuts an edge at a T-junction
+(another cell's vertex exactly on it) and adds a side two rings share that no edge covered.
 """
 
 from __future__ import annotations
