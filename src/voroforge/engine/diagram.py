@@ -261,8 +261,9 @@ class Diagram:
             if isinstance(edges, LazyEdges):
                 edges = edges.resolve()
             mended = reown(edges, self._buffers, len(self.sites))
-            if len(self.unresolved):
-                # beside a lost site an edge can run past a T-junction (engine.edgeowners)
+            if len(self.unresolved) and not self.periodic:
+                # beside a lost site an edge can run past a T-junction (engine.edgeowners);
+                # a torus edge may be drawn at another image of its cells' sides: left alone
                 x0, y0, x1, y1 = self.bounds
                 tol = EDGE_LENGTH_RTOL * max(x1 - x0, y1 - y0)
                 mended = split_at_junctions(mended, self._buffers, tol)
