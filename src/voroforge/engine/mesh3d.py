@@ -312,12 +312,17 @@ def _tri_buckets(tri, tol):
     return T, lo, h, dims, start, items
 
 
-def _touching(cf, roff, ring, verts, farea, live, tri, tol, grid=None):
-    """``(n,) bool``: cells that some triangle of ``tri`` meets (each grown by ``tol``)."""
+def _touching(cf, roff, ring, verts, farea, live, tri, tol, grid=None, fpt=None):
+    """``(n,) bool``: cells that some triangle of ``tri`` meets (each grown by ``tol``).
+
+    ``fpt``: a point of each face (:func:`_face_points`), computed here if not given.
+    """
     from ..kernels.meshclip3d import touching_cells
     from .threads import serial_below
 
     T, lo, h, dims, start, items = _tri_buckets(tri, tol) if grid is None else grid
+    if fpt is None:
+        fpt = _face_points(roff, ring, verts, len(cf) - 1)
     # the cells in space order (by buckets of twice the triangles' grid, at a vertex of
     # each): the input's order reads the vertices at random (bench: 0.30-0.42 -> 0.17-0.29
     # s on one thread)
@@ -337,6 +342,7 @@ def _touching(cf, roff, ring, verts, farea, live, tri, tol, grid=None):
             ring,
             verts,
             np.ascontiguousarray(farea),
+            fpt,
             cells,
             T,
             lo,
@@ -348,12 +354,22 @@ def _touching(cf, roff, ring, verts, farea, live, tri, tol, grid=None):
         )
 
 
-def _convex_part(todo, cf, lab, farea, roff, ring, verts, grid, tol):
+def _face_points(roff, ring, verts, n):
+    """``(f, 3)``: each face's first vertex (the face table of ``n`` cells)."""
+    from ..kernels.meshclip3d import face_points
+    from .threads import serial_below
+
+    with serial_below(n):
+        return face_points(roff, ring, np.ascontiguousarray(verts, np.float64))
+
+
+def _convex_part(todo, cf, lab, farea, roff, ring, verts, grid, tol, fpt):
     """The cells of ``todo`` that :func:`kernels.meshcut3d.convex_cells` cuts itself.
 
     ``(part, volumes, centroids, pieces)`` for those cells (a part as :func:`cut_by_mesh` collects
     them: vertices, cells, faces per cell, flat rings into the vertices, ring lengths,
-    labels), or None when it cut none.
+    labels), or None when it cut none. ``fpt``: a point of each face (:func:`_face_points`
+    of ``verts``).
     """
     import numba
 
@@ -375,7 +391,6 @@ def _convex_part(todo, cf, lab, farea, roff, ring, verts, grid, tol):
     npc = np.zeros(k, np.int64)
     lab = np.asarray(lab, np.int64)
     farea = np.ascontiguousarray(farea)
-    fpt = np.ascontiguousarray(verts[ring[roff[:-1]]])  # a point of each face
     cells = np.asarray(todo, np.int64)
 
     def part(a, b):  # the kernel releases the GIL: threads take slices of the cells
@@ -443,9 +458,9 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     ``unmatched_vertices`` counts those its untouched cells keep (without it, ``d``'s count).
     """
     from ..kernels.inside3d import inside_mesh, yz_grid
-    from ..kernels.meshclip3d import copy_runs
+    from ..kernels.meshclip3d import map_runs, mark_runs
     from .diagram3d import Diagram3D
-    from .meshplanes3d import local_vertices, plane_rows, steady_normals
+    from .meshplanes3d import cut_planes, local_vertices, plane_rows
     from .threads import serial_below
 
     n = len(d)
@@ -453,11 +468,8 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     cf, lab, farea, roff, ring = d.cell_face_table()
     verts = np.asarray(d.vertices)
     # slivers' area vectors are rounding: their planes from the sites (meshplanes3d)
-    farea = steady_normals(farea, cf, lab, roff, ring, verts, np.asarray(d.sites))
-    # the kernels take each face's area vector as its plane's normal and square it (its
-    # length): a power of two per face (exact, the same decisions and bits) keeps that
-    # from overflowing past sides ~1e77 and from underflowing below ~1e-77
-    farea = np.ldexp(farea, -np.frexp(np.abs(farea).max(axis=1))[1][:, None])
+    # each row scaled by a power of two (exact): the kernels square these normals
+    farea = cut_planes(farea, cf, lab, roff, ring, verts, np.asarray(d.sites))
     nface = np.diff(cf)
     live = nface > 0
     # the cut works relative to an origin that the subtraction moves exactly (Sterbenz):
@@ -472,13 +484,15 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     big = MESH_COORD_RTOL * float(np.abs(V).max())  # the rounding of coordinates, with room
     slack = VORONOI3D_MESH_SLACK_RTOL * float(np.abs(Vl).max()) + big
     grid = _tri_buckets(Vl[F], slack)
-    cand = _touching(cf, roff, ring, vl, farea, live, Vl[F], slack, grid)
+    fpt = _face_points(roff, ring, vl, n)
+    cand = _touching(cf, roff, ring, vl, farea, live, Vl[F], slack, grid, fpt)
     if fo is not None and cand.any():
         c = np.flatnonzero(cand)
         vl = local_vertices(c, cf, lab, roff, ring, verts, d.sites, d.weights, d.box, o)
         nf = cf[c + 1] - cf[c]
         f = np.repeat(cf[c], nf) + ranks(nf)
         farea = plane_rows(farea.copy(), f, cf, lab, np.asarray(d.sites))
+        fpt = _face_points(roff, ring, vl, n)  # of the recomputed vertices
     g, start, items = yz_grid(V, F, int(max(1, min(512, np.sqrt(len(F) / 4)))))
     test = np.flatnonzero(live & ~cand)  # the others: no parity needed
     ins = np.zeros(n, bool)
@@ -503,7 +517,7 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     if fo is not None:  # the cut cells' coordinates about o carry the rounding of those
         big = MESH_COORD_RTOL * float(np.abs(Vl).max())
     tol = VORONOI3D_MESH_SLACK_RTOL * ext + big
-    got = _convex_part(todo, cf, lab, farea, roff, ring, vl, grid, tol)
+    got = _convex_part(todo, cf, lab, farea, roff, ring, vl, grid, tol, fpt)
     if got is not None:
         part, v, ce, npc = got
         cells = part[1]
@@ -553,22 +567,32 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
         lens[tdest] = flens
         lab2[tdest] = np.concatenate([p[5] for p in parts])
     roff2 = np.concatenate([[0], np.cumsum(lens)]).astype(np.int64)
-    ring2 = np.zeros(int(roff2[-1]), np.int64)
-    kc = np.flatnonzero(keep)  # each kept cell's rings: one block, copied whole
-    copy_runs(ring, roff[cf[kc]], roff[cf[kc + 1]], ring2, roff2[cell_faces[kc]])
-    if parts:
-        ring2[np.repeat(roff2[tdest], flens) + ranks(flens)] = np.concatenate([p[3] for p in parts])
-    cut_verts = [p[0] for p in parts]
-    allv = np.vstack([verts, *cut_verts])
-    used = np.zeros(len(allv), bool)
-    used[ring2] = True
+    # the vertices in use (the kept cells' and the cut cells' new ones), renumbered in
+    # order, and the rings written once with the new numbers: each kept cell's rings one
+    # block (two passes over the 4.5M ring entries of the bench's 100,000 cells, not five)
+    kc = np.flatnonzero(keep)
+    s0, s1 = roff[cf[kc]], roff[cf[kc + 1]]
+    nv0 = len(verts)
+    used = np.zeros(nvert, bool)
+    mark_runs(ring, s0, s1, used)
+    pring = np.concatenate([p[3] for p in parts]) if parts else np.zeros(0, np.int64)
+    used[pring] = True
     remap = np.cumsum(used) - 1
+    ring2 = np.zeros(int(roff2[-1]), np.int64)
+    map_runs(ring, s0, s1, ring2, roff2[cell_faces[kc]], remap)
+    if parts:  # each cut cell's rings: one block of pring, one block of ring2
+        fs = np.concatenate([[0], np.cumsum(nfc)])
+        rs = np.concatenate([[0], np.cumsum(flens)])
+        map_runs(pring, rs[fs[:-1]], rs[fs[1:]], ring2, roff2[cell_faces[cells]], remap)
+    newv = np.vstack(
+        [verts[used[:nv0]]] + [p[0][used[b : b + len(p[0])]] for p, b in _bases(parts, nv0)]
+    )
     if parts:  # cut cells' triangles facing an emptied cell: walls the boolean mislabelled
         tl = lab2[tdest]
         nb = np.maximum(tl, 0)
         odd = (tl >= 0) & ~keep[nb] & ~cut[nb]
         if odd.any():
-            _coplanar_walls(mesh, allv, ring2, roff2, tdest[odd], lab2, slack)
+            _coplanar_walls(mesh, newv, ring2, roff2, tdest[odd], lab2, slack)
     total = float(np.sum(vol))
     if abs(total - mesh.volume) > VORONOI3D_MESH_VOLUME_RTOL * mesh.volume:
         # A closed, consistently oriented mesh whose shells overlap or nest the same way
@@ -582,7 +606,7 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
         )
     unmatched = d.unmatched_vertices
     if short is not None:  # of the vertices kept as they were (the untouched cells')
-        unmatched = int(np.count_nonzero(short & used[: len(verts)]))
+        unmatched = int(np.count_nonzero(short & used[:nv0]))
     return Diagram3D(
         sites=d.sites,
         weights=d.weights,
@@ -591,18 +615,39 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
         walls=np.zeros((0, 4)),
         volumes=vol,
         centroids=cen,
-        vertices=allv[used],
+        vertices=newv,
         cell_faces=cell_faces,
         flabel=lab2,
         roff=roff2,
-        ring=remap[ring2],
+        ring=ring2,
         duplicate_of=d.duplicate_of,
         unmatched=unmatched,
         box=d.box,
         pieces=pieces,
         cut_cells=cut,
         container_volume=mesh.volume,
+        frame=_vertex_frame(newv),
     )
+
+
+def _bases(parts, nv0):
+    """``(part, its first vertex number)`` for each part, numbered after ``nv0`` vertices."""
+    b = nv0
+    for p in parts:
+        yield p, b
+        b += len(p[0])
+
+
+def _vertex_frame(V):
+    """:class:`Diagram3D`'s working-frame exponent of its vertices ``V`` (the same rule).
+
+    Taken per column: numpy's axis-0 reduction of an ``(n, 3)`` array is many times slower.
+    """
+    from .inputs import working_frame
+
+    if not len(V):
+        return 0
+    return working_frame(np.array([[np.abs(V[:, c]).max() for c in range(3)]]))[1]
 
 
 def _exact_origin(*arrays):

@@ -33,23 +33,54 @@ def steady_normals(farea, cf, lab, roff, ring, verts, sites):
     Other rows are returned as they were (the same bits; ``farea`` itself, as a contiguous
     float64 array, when no face is thin; else a copy).
     """
-    from ..kernels.meshclip3d import thin_faces
+    farea = np.ascontiguousarray(farea, np.float64)
+    if not len(farea):
+        return farea.copy()
+    thin = _thin(farea, roff, ring, verts, len(cf) - 1)
+    if not thin.any():
+        return farea
+    return plane_rows(farea.copy(), np.flatnonzero(thin), cf, lab, sites)
+
+
+def cut_planes(farea, cf, lab, roff, ring, verts, sites):
+    """:func:`steady_normals`, each row then scaled by a power of two (exact).
+
+    The row's largest component in ``[0.5, 1)`` (zero rows and rows with a non-finite entry
+    as they were): the mesh cut squares these normals (their lengths), and a power of two
+    per face keeps that from overflowing past sides ~1e77 and from underflowing below
+    ~1e-77 with the same decisions. The same bits as ``steady_normals`` followed by
+    ``np.ldexp(a, -np.frexp(np.abs(a).max(axis=1))[1][:, None])`` (a thin face's new row
+    is already so scaled), in one pass over the rows and the rings in their own integer
+    type (an int64 copy of a 100,000-cell table's 4.5M ring entries cost ~0.1 s).
+    """
+    from ..kernels.meshclip3d import pow2_rows
+    from .threads import serial_below
 
     farea = np.ascontiguousarray(farea, np.float64)
     if not len(farea):
         return farea.copy()
-    eps = np.finfo(np.float64).eps
-    thin = thin_faces(
-        farea,
-        np.ascontiguousarray(roff, np.int64),
-        np.ascontiguousarray(ring, np.int64),
-        np.ascontiguousarray(verts, np.float64),
-        FACE_THIN_RTOL,
-        FACE_NOISE_ULPS * eps,
-    )
-    if not thin.any():
-        return farea
-    return plane_rows(farea.copy(), np.flatnonzero(thin), cf, lab, sites)
+    thin = _thin(farea, roff, ring, verts, len(cf) - 1)
+    with serial_below(len(cf) - 1):
+        out = pow2_rows(farea)
+    if thin.any():
+        plane_rows(out, np.flatnonzero(thin), cf, lab, sites)
+    return out
+
+
+def _thin(farea, roff, ring, verts, n):
+    """:func:`kernels.meshclip3d.thin_faces` of ``n`` cells' faces (rings in their own type)."""
+    from ..kernels.meshclip3d import thin_faces
+    from .threads import serial_below
+
+    with serial_below(n):
+        return thin_faces(
+            farea,
+            np.ascontiguousarray(roff),
+            np.ascontiguousarray(ring),
+            np.ascontiguousarray(verts, np.float64),
+            FACE_THIN_RTOL,
+            FACE_NOISE_ULPS * np.finfo(np.float64).eps,
+        )
 
 
 def plane_rows(farea, f, cf, lab, sites):

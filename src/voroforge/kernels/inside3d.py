@@ -46,6 +46,18 @@ def ray_hit(V, F, t, py, pz):
     i0 = F[t, 0]
     i1 = F[t, 1]
     i2 = F[t, 2]
+    # strictly outside the projection's box: so is the perturbed point (the same answer as
+    # the orientations below, without them; most triangles of a bucket miss the point)
+    y0 = V[i0, 1]
+    y1 = V[i1, 1]
+    y2 = V[i2, 1]
+    if py < min(y0, min(y1, y2)) or py > max(y0, max(y1, y2)):
+        return 0.0, 0.0
+    z0 = V[i0, 2]
+    z1 = V[i1, 2]
+    z2 = V[i2, 2]
+    if pz < min(z0, min(z1, z2)) or pz > max(z0, max(z1, z2)):
+        return 0.0, 0.0
     s0 = perturbed_side(V[i0, 1], V[i0, 2], V[i1, 1], V[i1, 2], py, pz)
     s1 = perturbed_side(V[i1, 1], V[i1, 2], V[i2, 1], V[i2, 2], py, pz)
     s2 = perturbed_side(V[i2, 1], V[i2, 2], V[i0, 1], V[i0, 2], py, pz)

@@ -12,6 +12,8 @@ each cell tests the triangles of the buckets its box overlaps.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit, prange
 
@@ -51,13 +53,23 @@ def tri_grid(T, lo, h, dims):
 
 
 @njit(**NJIT)
-def _meets(T, t, cell_lo, cell_hi, f0, f1, farea, fpt, tol, buf_a, buf_b):
-    """Whether triangle ``t`` meets the cell (faces ``f0:f1``) grown by ``tol``."""
+def _meets(T, t, cell_lo, cell_hi, f0, f1, farea, fpt, tol, buf_a, buf_b, at, a0, lo, h, dims):
+    """Whether triangle ``t`` meets the cell (faces ``f0:f1``) grown by ``tol``.
+
+    ``at``: the bucket being scanned; ``a0``: the cell's first bucket (per axis). A triangle
+    listed in several of the cell's buckets is clipped in the first of them only (the
+    least corner of its buckets and the cell's: the scan meets it first), False elsewhere.
+    """
+    first = True
     for c in range(3):
         x0 = min(T[t, 0, c], min(T[t, 1, c], T[t, 2, c]))
         x1 = max(T[t, 0, c], max(T[t, 1, c], T[t, 2, c]))
         if x1 < cell_lo[c] or x0 > cell_hi[c]:
             return False
+        ta = min(dims[c] - 1, max(0, int((x0 - lo[c]) / h)))  # as tri_grid placed it
+        first = first and at[c] == max(a0[c], ta)
+    if not first:
+        return False
     m, _ = clip_triangle(T, t, f0, f1, farea, fpt, tol, buf_a, buf_b)
     return m > 0
 
@@ -88,22 +100,29 @@ def cell_buckets(f0, f1, roff, ring, verts, tol, lo, h, dims):
 
 
 @njit(**NJIT_PARALLEL)
-def touching_cells(cf, roff, ring, verts, farea, cells, T, lo, h, dims, start, items, tol):
-    """``(n,) bool``: the cells that some triangle of ``T (m, 3, 3)`` meets.
-
-    Cells as :meth:`Diagram3D.cell_face_table` gives them (faces ``cf``, rings
-    ``roff``/``ring`` into ``verts``, outward area vectors ``farea``), each grown by ``tol``;
-    ``cells`` lists the cells to test, in the order to test them (near ones together: their
-    vertices stay in the caches); triangles bucketed by :func:`tri_grid`.
-    """
-    n = cf.shape[0] - 1
-    out = np.zeros(n, np.bool_)
-    nf = farea.shape[0]
+def face_points(roff, ring, verts):
+    """``(f, 3)``: the first vertex of each ring ``ring[roff[f]:roff[f + 1]]`` of ``verts``."""
+    nf = roff.shape[0] - 1
     fpt = np.zeros((nf, 3))
     for f in prange(nf):
         v = ring[roff[f]]
         for c in range(3):
             fpt[f, c] = verts[v, c]
+    return fpt
+
+
+@njit(**NJIT_PARALLEL)
+def touching_cells(cf, roff, ring, verts, farea, fpt, cells, T, lo, h, dims, start, items, tol):
+    """``(n,) bool``: the cells that some triangle of ``T (m, 3, 3)`` meets.
+
+    Cells as :meth:`Diagram3D.cell_face_table` gives them (faces ``cf``, rings
+    ``roff``/``ring`` into ``verts``, outward area vectors ``farea``, a point of each face
+    ``fpt``: :func:`face_points`), each grown by ``tol``; ``cells`` lists the cells to
+    test, in the order to test them (near ones together: their vertices stay in the
+    caches); triangles bucketed by :func:`tri_grid`.
+    """
+    n = cf.shape[0] - 1
+    out = np.zeros(n, np.bool_)
     ny, nz = dims[1], dims[2]
     for j in prange(cells.shape[0]):
         i = cells[j]
@@ -111,14 +130,35 @@ def touching_cells(cf, roff, ring, verts, farea, cells, T, lo, h, dims, start, i
         cell_lo, cell_hi, a0, a1 = cell_buckets(f0, f1, roff, ring, verts, tol, lo, h, dims)
         buf_a = np.zeros((3 + f1 - f0, 3))
         buf_b = np.zeros((3 + f1 - f0, 3))
+        at = np.zeros(3, np.int64)
         hit = False
         for a in range(a0[0], a1[0] + 1):
+            at[0] = a
             for b in range(a0[1], a1[1] + 1):
+                at[1] = b
                 for k in range(a0[2], a1[2] + 1):
+                    at[2] = k
                     bk = (a * ny + b) * nz + k
                     for s in range(start[bk], start[bk + 1]):
                         t = items[s]
-                        if _meets(T, t, cell_lo, cell_hi, f0, f1, farea, fpt, tol, buf_a, buf_b):
+                        if _meets(
+                            T,
+                            t,
+                            cell_lo,
+                            cell_hi,
+                            f0,
+                            f1,
+                            farea,
+                            fpt,
+                            tol,
+                            buf_a,
+                            buf_b,
+                            at,
+                            a0,
+                            lo,
+                            h,
+                            dims,
+                        ):
                             hit = True
                             break
                     if hit:
@@ -132,12 +172,39 @@ def touching_cells(cf, roff, ring, verts, farea, cells, T, lo, h, dims, start, i
 
 
 @njit(**NJIT)
-def copy_runs(src, s0, s1, dst, d0):
-    """``dst[d0[k]:d0[k] + s1[k] - s0[k]] = src[s0[k]:s1[k]]`` for each run ``k``."""
+def mark_runs(src, s0, s1, used):
+    """``used[src[s0[k]:s1[k]]] = True`` for each run ``k``."""
+    for k in range(s0.shape[0]):
+        for j in range(s0[k], s1[k]):
+            used[src[j]] = True
+
+
+@njit(**NJIT)
+def map_runs(src, s0, s1, dst, d0, remap):
+    """``dst[d0[k]:d0[k] + s1[k] - s0[k]] = remap[src[s0[k]:s1[k]]]`` for each run ``k``."""
     for k in range(s0.shape[0]):
         o = d0[k] - s0[k]
         for j in range(s0[k], s1[k]):
-            dst[j + o] = src[j]
+            dst[j + o] = remap[src[j]]
+
+
+@njit(**NJIT_PARALLEL)
+def pow2_rows(a):
+    """``a (m, 3)``, each row scaled by a power of two: its largest ``|x|`` in ``[0.5, 1)``.
+
+    ``np.ldexp(a, -np.frexp(np.abs(a).max(axis=1))[1][:, None])`` in one pass, the same
+    bits (zero rows and rows with a non-finite entry as they were).
+    """
+    out = np.zeros(a.shape)
+    for f in prange(a.shape[0]):
+        e = 0
+        if np.isfinite(a[f, 0]) and np.isfinite(a[f, 1]) and np.isfinite(a[f, 2]):
+            mx = max(abs(a[f, 0]), max(abs(a[f, 1]), abs(a[f, 2])))
+            if mx > 0.0:
+                e = math.frexp(mx)[1]
+        for c in range(3):
+            out[f, c] = math.ldexp(a[f, c], -e)
+    return out
 
 
 @njit(**NJIT)
@@ -205,7 +272,7 @@ def clip_triangle(T, t, f0, f1, farea, fpt, tol, buf_a, buf_b):
     return m, src
 
 
-@njit(**NJIT)
+@njit(**NJIT_PARALLEL)
 def thin_faces(farea, roff, ring, verts, rtol, noise):
     """``(f,) bool``: faces whose area is at most ``rtol D^2 + noise M D``.
 
@@ -217,7 +284,7 @@ def thin_faces(farea, roff, ring, verts, rtol, noise):
     """
     nf = farea.shape[0]
     out = np.zeros(nf, np.bool_)
-    for f in range(nf):
+    for f in prange(nf):
         a, b = roff[f], roff[f + 1]
         if b == a:
             continue

@@ -36,7 +36,7 @@ from .polyhedron import (
 GROUP = -(1 << 40)
 #: per-cell scratch and output limits of :func:`convex_cells` (past them: manifold3d)
 CC_TRIS = 64  # triangles meeting one cell
-CC_SEEN = 512  # triangles looked at (each bucket's, before the duplicates are skipped)
+CC_SEEN = 512  # distinct triangles looked at (in the cell's buckets)
 CC_POLY = 64  # vertices of a triangle clipped by the cell
 CC_V, CC_F, CC_R = 128, 64, 1024  # polyhedron scratch: vertices, faces, ring entries
 CC_PARTS, CC_DEPTH = 6, 4  # parts a cell may be split into, split planes per part
@@ -46,12 +46,19 @@ CC_BLOCK = 64  # cells per parallel block (one set of scratch each)
 
 @njit(**NJIT)
 def _gather(i, cf, roff, ring, verts, farea, fpt, T, TO, lo, h, dims, start, items, tol, sc):
-    """The triangles meeting cell ``i`` grown by ``tol``, clipped by it: their count, or -1."""
-    ids, seen, pm, polys, buf_a, buf_b = sc
+    """The triangles meeting cell ``i`` grown by ``tol``, clipped by it: their count, or -1.
+
+    ``seen`` (one slot per triangle) holds the call (``tick``) that last looked at each
+    triangle: a triangle in several of the cell's buckets is looked at once, without a
+    search through those seen before (up to ``CC_SEEN`` of them: past that, -1).
+    """
+    ids, seen, pm, polys, buf_a, buf_b, tick = sc
     ny, nz = dims[1], dims[2]
     f0, f1 = cf[i], cf[i + 1]
     if f1 - f0 + 3 > polys.shape[1]:
         return -1
+    tick[0] += 1
+    stamp = tick[0]
     cell_lo, cell_hi, a0, a1 = cell_buckets(f0, f1, roff, ring, verts, tol, lo, h, dims)
     k = 0
     ns = 0
@@ -61,16 +68,11 @@ def _gather(i, cf, roff, ring, verts, farea, fpt, T, TO, lo, h, dims, start, ite
                 bk = (a * ny + b) * nz + kk
                 for s in range(start[bk], start[bk + 1]):
                     t = items[s]
-                    dup = False
-                    for q in range(ns):
-                        if seen[q] == t:
-                            dup = True
-                            break
-                    if dup:
+                    if seen[t] == stamp:
                         continue
-                    if ns == seen.shape[0]:
+                    if ns == CC_SEEN:
                         return -1
-                    seen[ns] = t
+                    seen[t] = stamp
                     ns += 1
                     away = False
                     for c in range(3):
@@ -268,7 +270,7 @@ def _convex_cell(
         vmap,
         ms,
     ) = sc
-    ids, seen, pm, polys, buf_a, buf_b = gsc
+    ids, seen, pm, polys, buf_a, buf_b, tick = gsc
     oV, oF, oR = out
     k = _gather(i, cf, roff, ring, verts, farea, fpt, T, TO, lo, h, dims, start, items, tol, gsc)
     if k <= 0:
@@ -607,14 +609,17 @@ def convex_cells(
     pv = 0
     pf = 0
     pr = 0
+    seen = np.zeros(T.shape[0], np.int64)  # per triangle: the last gather that saw it
+    tick = np.zeros(1, np.int64)
     for blk in range(nblk):
         gsc = (
             np.zeros(CC_TRIS, np.int64),
-            np.zeros(CC_SEEN, np.int64),
+            seen,
             np.zeros(CC_TRIS, np.int64),
             np.zeros((CC_TRIS, CC_POLY, 3)),
             np.zeros((CC_POLY, 3)),
             np.zeros((CC_POLY, 3)),
+            tick,
         )
         nm = CC_PARTS * CC_V
         ms = (
