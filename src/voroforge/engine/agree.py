@@ -214,7 +214,10 @@ def _reconciled(closed, lengths, owner, ring_id, inv, sites, region, insert, lax
                 continue
             here, there = (r, v), (r, (v + 1) % m)
             s = int(inv[j])
-            if s not in rings:
+            if s not in rings or not len(rings[s][0]):
+                # an empty neighbour (a cell floats cannot hold: a corner's sliver whose
+                # crossings rounded together) has no edge to agree with: the ring keeps
+                # its edge (joining its ends gave the box corner's sliver to no cell)
                 continue
             p, q = _pt(ring, v), _pt(ring, v + 1)
             if _backwards(p, q, sites[me], sites[j]):

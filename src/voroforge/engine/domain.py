@@ -96,7 +96,10 @@ def padded_bounds(sites: np.ndarray, pad: float = 0.1) -> tuple[float, float, fl
         half = hi * 0.5 - lo * 0.5
         padx, pady = (min(2.0 * (pad * float(h if h > 0 else half.max())), top) for h in half)
     with np.errstate(over="ignore"):
-        box = (lo[0] - padx, lo[1] - pady, hi[0] + padx, hi[1] + pady)
+        box = [lo[0] - padx, lo[1] - pady, hi[0] + padx, hi[1] + pady]
+    for k in (0, 1):  # a pad below half an ulp (subnormal sites, a line far out) rounds away
+        if not box[k] < box[k + 2]:
+            box[k], box[k + 2] = np.nextafter(lo[k], -np.inf), np.nextafter(hi[k], np.inf)
     return tuple(min(max(float(v), -top), top) for v in box)
 
 
