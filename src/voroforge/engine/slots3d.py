@@ -25,6 +25,51 @@ from ..config3d import (
 )
 from ..kernels.cells3d import OVERFLOW
 
+#: arrays of at least this many bytes get 4 KB pages (:func:`small_pages`; numpy asks for
+#: huge pages from 4 MB)  # -> config
+SMALL_PAGES_FROM = 1 << 22
+#: Linux's ``MADV_NOHUGEPAGE`` and the base page size
+_MADV_NOHUGEPAGE = 15
+_PAGE = 4096
+_MADVISE = None
+
+
+def small_pages(*arrays):
+    """Ask for 4 KB pages under large, fresh, not yet touched arrays (Linux; else nothing).
+
+    numpy asks for transparent huge pages under every array of 4 MB or more; on this VM
+    (``defrag=madvise``: a huge page's fault may compact memory first, and pages freed a
+    while ago are back with the host) first touching 300 MB in huge pages cost 0.61-0.93 s
+    of system time, in 4 KB pages 0.14-0.16 s. Used for the join's outputs and vertex
+    table (:class:`.build3d._Out`: ~0.5 GB at 1e6 cells, read and written near the cells
+    being joined, so few TLB misses); the sites and the kernel's scratch keep huge pages.
+    A pages' hint only: an array in the heap among others (glibc) just splits its map.
+    """
+    global _MADVISE
+    if _MADVISE is None:
+        _MADVISE = False
+        import sys
+
+        if sys.platform.startswith("linux"):
+            import ctypes
+            import ctypes.util
+
+            try:
+                f = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6").madvise
+                f.argtypes = [ctypes.c_void_p, ctypes.c_size_t, ctypes.c_int]
+                _MADVISE = f
+            except (OSError, AttributeError):
+                pass
+    if not _MADVISE:
+        return
+    for a in arrays:
+        if a.nbytes < SMALL_PAGES_FROM:
+            continue
+        p = a.ctypes.data
+        lo = -(-p // _PAGE) * _PAGE
+        hi = (p + a.nbytes) // _PAGE * _PAGE
+        _MADVISE(lo, hi - lo, _MADV_NOHUGEPAGE)
+
 
 def slot_arrays(k, caps):
     """Fixed per-cell output slots for ``k`` cells (reused from chunk to chunk)."""
@@ -128,3 +173,11 @@ def big_cell(i, P, W, search, order, tree, t, out, wmax, need, gone, bv, keep, b
         raise RuntimeError(f"3D cell {int(i)} has more than {caps[0]} vertices")
     out.add(st, counts, sl, capa)
     return st[0], counts[0], v[0], c[0], r2[0]
+
+
+def minus_ones(size, dtype):
+    """``np.full(size, -1, dtype)`` in 4 KB pages (:func:`small_pages`): the join's table."""
+    a = np.empty(size, dtype)  # noqa: TID251 - filled at once
+    small_pages(a)
+    a.fill(-1)
+    return a

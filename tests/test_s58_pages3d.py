@@ -1,0 +1,36 @@
+"""The 3D build's page hints keep every value (s58)."""
+
+import numpy as np
+
+from voroforge.engine import voronoi3d as v3
+from voroforge.engine.slots3d import SMALL_PAGES_FROM, minus_ones, small_pages
+
+
+def test_small_pages_keeps_contents_and_minus_ones_is_full():
+    big = np.arange(SMALL_PAGES_FROM // 8 + 1000, dtype=np.float64)
+    small = np.arange(100, dtype=np.int32)
+    want_big, want_small = big.copy(), small.copy()
+    small_pages(big, small, big[1:])  # (an unaligned view too)
+    big[::4096] += 1.0  # still writable
+    want_big[::4096] += 1.0
+    assert np.array_equal(big, want_big) and np.array_equal(small, want_small)
+    for size, dtype in ((7, np.int32), (SMALL_PAGES_FROM // 4 + 3, np.int32), (1 << 20, np.int64)):
+        t = minus_ones(size, dtype)
+        assert t.dtype == dtype and t.shape == (size,) and (t == -1).all()
+
+
+def test_join_in_small_pages_is_the_same_diagram(monkeypatch):
+    from voroforge.engine import slots3d
+
+    pts = np.random.default_rng(5).random((3000, 3))
+    a = v3.voronoi3d(pts, (0, 0, 0, 1, 1, 1))
+    monkeypatch.setattr(slots3d, "SMALL_PAGES_FROM", 0)  # every join array in 4 KB pages
+    b = v3.voronoi3d(pts, (0, 0, 0, 1, 1, 1))
+    for x, y in (
+        (a.volumes, b.volumes),
+        (a.vertices, b.vertices),
+        (a.neighbors[1], b.neighbors[1]),
+        (a.faces.indices, b.faces.indices),
+    ):
+        assert np.array_equal(x, y)
+    assert abs(float(b.volumes.sum()) - 1.0) < 1e-12 and b.unmatched_vertices == 0
