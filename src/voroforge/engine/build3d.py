@@ -22,7 +22,7 @@ from ..kernels.grid3d import kd_buckets3d
 from ..kernels.reach3d import weight_reach
 from .bigvertex3d import BigVertices
 from .containers import maybe_outside
-from .jointable3d import probe_next, rehash, slot
+from .jointable3d import probe_next, rehash, rows_box, slot
 from .lists3d import Lists, chunk_search, chunks, redo_slow
 from .sitegrid3d import grid3d_shape
 from .slots3d import (
@@ -552,7 +552,7 @@ def _join_grid(Pb, bounds, k):
     gets one unit and one per cell built in it, so a run of the table follows the vertices'
     density, and empty space keeps a little room).
     """
-    corners = np.vstack([Pb.min(axis=0), Pb.max(axis=0), bounds[0], bounds[1]])
+    corners = np.vstack([*rows_box(Pb), bounds[0], bounds[1]])
     lo = corners.min(axis=0)
     box = np.vstack([lo, corners.max(axis=0)])
     g = grid3d_shape(box, 2.0 / max(k / PER_BUCKET, 1.0), flat=False)
@@ -669,7 +669,8 @@ def build_cells3d(
 
         def join(c0, chunk, how, st, counts, v, c, r2, sl, capa):
             if not made:
-                made.append(_Out(k, *_join_grid(P[cells], t.bounds, k)))
+                Pb = P if k == ns else P[cells]  # (k == ns: every site once, in some order)
+                made.append(_Out(k, *_join_grid(Pb, t.bounds, k)))
             out = made[0]
 
             def big(q):

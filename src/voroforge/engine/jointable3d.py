@@ -84,3 +84,23 @@ def rehash(verts, want, nvert, table, jg, bslot):
             h = probe_next(h, mask, bits, g, want[g] >> 8, steps)
             steps += 1
         table[h] = g
+
+
+@njit(**NJIT)
+def rows_box(P):
+    """``(lo, hi)``: the least and largest coordinate of the rows of ``P (n >= 1, 3)``.
+
+    One pass over the rows (numpy's ``P.min(axis=0)`` on a C-ordered ``(n, 3)`` array takes
+    ~30 ms at 1e6 rows: a reduction along its short axis); the same values (a minimum does
+    not round; only the sign of a zero may differ, which no bucket of :func:`slot` sees).
+    """
+    lo = P[0].copy()
+    hi = P[0].copy()
+    for i in range(1, P.shape[0]):
+        for q in range(3):
+            x = P[i, q]
+            if x < lo[q]:
+                lo[q] = x
+            elif x > hi[q]:
+                hi[q] = x
+    return lo, hi

@@ -14,6 +14,7 @@ from ..config import (
     DOOMED_SIDE,
     DOOMED_SPREAD,
     FRAME3D_CAP_EXP,
+    NJIT,
     NJIT_PARALLEL,
     OUTSIDE3D_BLOCK,
     VOLUME_RANGE,
@@ -283,14 +284,28 @@ def _walls_frame(pts: np.ndarray, t: Template):
     """``pts`` in the frame of the template's walls, and the inside test's scale per wall."""
     if t.WP.shape[1] > 4:  # walls about an origin near the solid (engine.containers)
         pts = pts - t.origin
-    return pts, np.abs(t.WP[:, 3]) + np.abs(pts).max() + 1e-300
+    big = max(float(pts.max()), -float(pts.min()))  # np.abs(pts).max(), without its copy
+    return pts, np.abs(t.WP[:, 3]) + big + 1e-300
 
 
 def _in_box(pts: np.ndarray, t: Template) -> np.ndarray:
     """Which sites a box template holds (its walls within 1e-12 of their scale)."""
     pts, scale = _walls_frame(pts, t)
     lo, hi = t.bounds
-    return ((pts >= lo - 1e-12 * scale[0::2]) & (pts <= hi + 1e-12 * scale[1::2])).all(axis=1)
+    return _box_holds(pts, lo - 1e-12 * scale[0::2], hi + 1e-12 * scale[1::2])
+
+
+@njit(**NJIT)
+def _box_holds(pts, lo, hi):
+    """``((pts >= lo) & (pts <= hi)).all(axis=1)`` in one pass (no (n, 3) temporaries)."""
+    out = np.empty(pts.shape[0], np.bool_)  # noqa: TID251 - every entry written below
+    for i in range(pts.shape[0]):
+        ok = True
+        for q in range(3):
+            x = pts[i, q]
+            ok = ok and x >= lo[q] and x <= hi[q]
+        out[i] = ok
+    return out
 
 
 def _convex_holds_any(pts: np.ndarray, t: Template) -> bool:
