@@ -311,3 +311,6 @@ CELLCUT3D_REFRESH_CUTS = 2
 #: the nearest candidates of a batch whose site rows are asked of the cache before the cuts
 #: (kernels.vertex3d.resettle reads them by index: a cache miss)
 CELLCUT3D_PREFETCH_MOST = 24
+#: arrays of at least this many bytes get 4 KB pages (engine.slots3d.small_pages; numpy asks
+#: for transparent huge pages from 4 MB, whose first touch cost 4-6x more system time here)
+SMALL_PAGES_FROM = 1 << 22

@@ -22,12 +22,10 @@ from ..config3d import (
     GROW_PAD,
     GROW_PROBE_PAD,
     GROW_SHARE,
+    SMALL_PAGES_FROM,
 )
 from ..kernels.cells3d import OVERFLOW
 
-#: arrays of at least this many bytes get 4 KB pages (:func:`small_pages`; numpy asks for
-#: huge pages from 4 MB)  # -> config
-SMALL_PAGES_FROM = 1 << 22
 #: Linux's ``MADV_NOHUGEPAGE`` and the base page size
 _MADV_NOHUGEPAGE = 15
 _PAGE = 4096
