@@ -2,10 +2,11 @@
 
 import numpy as np
 
+from voroforge.config3d import SMALL_PAGES_FROM
 from voroforge.engine import voronoi3d as v3
 from voroforge.engine.containers import as_container
 from voroforge.engine.jointable3d import rows_box
-from voroforge.engine.slots3d import SMALL_PAGES_FROM, minus_ones, small_pages
+from voroforge.engine.slots3d import minus_ones, small_pages
 
 
 def test_small_pages_keeps_contents_and_minus_ones_is_full():
