@@ -71,27 +71,60 @@ SORT_MOST = 48
 #: the tops last found, one per direction slot of a plane's normal (its dominant axis and
 #: three signs), kept in ``work[-TOP_SLOTS:, 2]``: rows the plateau's list does not reach
 TOP_SLOTS = 24
+#: each slot split by the normal's two other components over the dominant one, each in
+#: ``FINE_BINS`` bins of [0, 1]: a nearer top to start from (below the slots, in
+#: ``work[-TOP_SLOTS - 1 - FINE_SLOTS:-TOP_SLOTS - 1, 2]``; the row between them says
+#: whether they hold this cell's tops: -1 not yet, cleared at the cell's first climb)
+FINE_BINS = 4
+FINE_SLOTS = TOP_SLOTS * FINE_BINS * FINE_BINS
+#: the rows at the end of ``work`` the slots take, with the fine ones
+_FINE_ROWS = TOP_SLOTS + 1 + FINE_SLOTS
+
+
+@njit(**NJIT_INLINE)
+def _bin(b, a):
+    """``|b| / |a|`` (at most 1) in one of ``FINE_BINS`` (4) equal bins, without a division."""
+    return (4.0 * b >= a) + (2.0 * b >= a) + (4.0 * b >= 3.0 * a)
 
 
 @njit(**NJIT_INLINE)
 def _slot_row(work, nx, ny, nz):
-    """The row of ``work[:, 2]`` that keeps the last top for normals like ``n`` (-1: none)."""
-    if work.shape[0] < CLIMB3D_PLATEAU_MOST + TOP_SLOTS:
-        return -1
+    """The rows of ``work[:, 2]`` that keep the last tops for normals like ``n`` (-1: none).
+
+    Returns ``(row, fine)``: the slot's row and its fine slot's.
+    """
+    nw = work.shape[0]
+    if nw < CLIMB3D_PLATEAU_MOST + TOP_SLOTS:
+        return -1, -1
     ax = abs(nx)
     ay = abs(ny)
     az = abs(nz)
     d = 0 if ax >= ay and ax >= az else (1 if ay >= az else 2)
     slot = 8 * d + 4 * (nx < 0.0) + 2 * (ny < 0.0) + (nz < 0.0)
-    return work.shape[0] - 1 - slot
+    if nw < CLIMB3D_PLATEAU_MOST + _FINE_ROWS:
+        return nw - 1 - slot, -1
+    if d == 0:
+        f = 4 * _bin(ay, ax) + _bin(az, ax)
+    elif d == 1:
+        f = 4 * _bin(az, ay) + _bin(ax, ay)
+    else:
+        f = 4 * _bin(ax, az) + _bin(ay, az)
+    if work[nw - 1 - TOP_SLOTS, 2] < 0:  # the cell's first climb: its fine slots are stale
+        for r in range(nw - _FINE_ROWS, nw - 1 - TOP_SLOTS):
+            work[r, 2] = -1
+        work[nw - 1 - TOP_SLOTS, 2] = 0
+    return nw - 1 - slot, nw - 2 - TOP_SLOTS - (FINE_BINS * FINE_BINS * slot + f)
 
 
 @njit(**NJIT_INLINE)
 def clear_tops(work):
-    """Forget the slots' tops (a new cell: its vertices are others)."""
-    if work.shape[0] >= CLIMB3D_PLATEAU_MOST + TOP_SLOTS:
-        for r in range(work.shape[0] - TOP_SLOTS, work.shape[0]):
+    """Forget the slots' tops (a new cell: its vertices are others); the fine ones lazily."""
+    nw = work.shape[0]
+    if nw >= CLIMB3D_PLATEAU_MOST + TOP_SLOTS:
+        for r in range(nw - TOP_SLOTS, nw):
             work[r, 2] = -1
+    if nw >= CLIMB3D_PLATEAU_MOST + _FINE_ROWS:
+        work[nw - 1 - TOP_SLOTS, 2] = -1
 
 
 @njit(**NJIT_INLINE)
@@ -142,8 +175,10 @@ def plane_local(V, nv, DEG, ED, S, work, nx, ny, nz, h, tol, hint):
     if sb > -margin:
         nvis = _keep(best, sb, S, work, nvis)
     # the top last found for a normal of this one's slot, else samples spread over the cell
-    row = _slot_row(work, nx, ny, nz)
-    t = work[row, 2] if row >= 0 else -1
+    row, fine = _slot_row(work, nx, ny, nz)
+    t = work[fine, 2] if fine >= 0 else -1
+    if not 0 <= t < nv:
+        t = work[row, 2] if row >= 0 else -1
     if 0 <= t < nv:
         s = _value(V, t, nx, ny, nz, h)
         if s > -margin:
@@ -166,13 +201,18 @@ def plane_local(V, nv, DEG, ED, S, work, nx, ny, nz, h, tol, hint):
     steps = 0
     while mode == LOCAL:
         # steepest ascent over the edges to a vertex no neighbour of which lies higher
+        flat = True
         while True:
             nb = -1
+            # (the last pass, nb < 0, keeps sb: flat then tells whether a neighbour lies
+            # within tau below the top, i.e. whether the plateau holds more than the top)
+            flat = False
             for k in range(DEG[best]):
                 u = ED[best, k]
                 s = _value(V, u, nx, ny, nz, h)
                 if s > -margin:
                     nvis = _keep(u, s, S, work, nvis)
+                flat |= s >= sb - tau
                 if s > sb:
                     sb = s
                     nb = u
@@ -182,6 +222,10 @@ def plane_local(V, nv, DEG, ED, S, work, nx, ny, nz, h, tol, hint):
             steps += 1
         if steps > nv:  # (values that rise for ever: not a convex cell's)
             mode = FULL
+            break
+        if not flat:
+            # no neighbour of the top lies within tau below it nor above it: its plateau
+            # is the top alone, which the loop below would find from the same values
             break
         # the top's plateau (vertices within tau below it, connected to it: rounding's
         # clusters) must have no neighbour above the top, else the climb goes on from there
@@ -244,6 +288,8 @@ def plane_local(V, nv, DEG, ED, S, work, nx, ny, nz, h, tol, hint):
         work[work[q, 1], 0] = 0
     if row >= 0 and mode != FULL:
         work[row, 2] = best  # (a LOCAL's top is cut off: its row is then a cap's vertex)
+        if fine >= 0:
+            work[fine, 2] = best
     return mode, smax, low, nvis
 
 
