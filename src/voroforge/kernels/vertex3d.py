@@ -22,6 +22,13 @@ itself, and distinct exact vertices came out in arbitrary order or as one (a cel
 pinched at the merged vertex). Such a vertex is solved again from exact expansions
 (:func:`place`, :func:`kernels.predicates3d.exact_point`), right to a few ulps of itself;
 still from the name alone, so every cell gets the same bits.
+
+The exact solves about a site (a cut's ill-conditioned vertex, :func:`resettle`; a name of
+small determinant, :func:`name_vertex`) try :func:`.vertexdd3d.vertex_dd_site` first: the
+double-double stage in registers, which returns the exact stage's bits where it proves
+them, before :func:`.predicates3d.vertex_offset` (its cache's lookup, two random reads in
+7 MB, cost more than the solve: a helix's and three lines' cells solve most of their
+vertices so).
 """
 
 from __future__ import annotations
@@ -39,6 +46,7 @@ from ..config import (
 )
 from ..config import CUT_ILL_MARGIN as _ILL_MARGIN
 from .predicates3d import exact_point, vertex_offset, wall_lift
+from .vertexdd3d import vertex_dd_site
 
 #: nothing here allocates: compiled without reference counting (see kernels.cellcut3d)
 _NO_NRT = {**NJIT, "_nrt": False}
@@ -239,6 +247,12 @@ def _exact_named(name, P, W, WP, ns, buf, y):
     Convex roof at UTM offsets) would keep only ~5e-10 of a unit cell's coordinates.
     """
     a = name[0]
+    ok, x0, x1, x2 = vertex_dd_site(a, name[1], name[2], name[3], P, W, WP, ns)
+    if ok:  # (vertex_offset's bits, without its cache's lookup: see the module)
+        y[0] = x0
+        y[1] = x1
+        y[2] = x2
+        return 2
     if not vertex_offset(
         a, name[1], name[2], name[3], P, W, WP, ns, buf, P[a, 0], P[a, 1], P[a, 2], y
     ):
@@ -279,7 +293,13 @@ def resettle(i, j, V, CP, w, DEG, LB, S, P, W, WP, rows):
         k1 = _key(LB[v, 1], ns)
         if _ill(i, k0, k1, j, P, WP, ns):
             r2 = max(r2, V[v, 0] * V[v, 0] + V[v, 1] * V[v, 1] + V[v, 2] * V[v, 2])
-            vertex_offset(i, k0, k1, j, P, W, WP, ns, rows, P[i, 0], P[i, 1], P[i, 2], V[v])
+            ok, x0, x1, x2 = vertex_dd_site(i, k0, k1, j, P, W, WP, ns)
+            if ok:  # (vertex_offset's bits, without its cache's lookup: see the module)
+                V[v, 0] = x0
+                V[v, 1] = x1
+                V[v, 2] = x2
+            else:
+                vertex_offset(i, k0, k1, j, P, W, WP, ns, rows, P[i, 0], P[i, 1], P[i, 2], V[v])
             r2 = max(r2, V[v, 0] * V[v, 0] + V[v, 1] * V[v, 1] + V[v, 2] * V[v, 2])
     return r2
 

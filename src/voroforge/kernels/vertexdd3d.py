@@ -218,3 +218,185 @@ def vertex_dd(a, k0, k1, k2, P, W, WP, ns, cx, cy, cz, R, x):
     for q in range(3):
         x[q] = -R[q] / (2.0 * d3h)
     return True
+
+
+@njit(**{**NJIT, "inline": "always"})
+def _site_row(key, a, P, W, WP, ns):
+    """:func:`_row` in locals: ``(h0, h1, h2, l0, l1, l2, m0, m1, m2, th, tl, m3)``.
+
+    Heads, tails and magnitudes of the normal, then the lift's head, tail and magnitude,
+    by the same operations in the same order.
+    """
+    if key < ns:
+        th, tl = two_diff(W[a], W[key])
+        m3 = abs(W[a]) + abs(W[key])
+        h0, l0 = two_diff(P[key, 0], P[a, 0])
+        h1, l1 = two_diff(P[key, 1], P[a, 1])
+        h2, l2 = two_diff(P[key, 2], P[a, 2])
+        m0 = abs(h0)
+        m1 = abs(h1)
+        m2 = abs(h2)
+        sh, sl = _dd_mul(h0, l0, h0, l0)
+        th, tl = _dd_add(th, tl, sh, sl)
+        m3 += m0 * m0
+        sh, sl = _dd_mul(h1, l1, h1, l1)
+        th, tl = _dd_add(th, tl, sh, sl)
+        m3 += m1 * m1
+        sh, sl = _dd_mul(h2, l2, h2, l2)
+        th, tl = _dd_add(th, tl, sh, sl)
+        m3 += m2 * m2
+        return h0, h1, h2, l0, l1, l2, m0, m1, m2, th, tl, m3
+    w = key - ns
+    th = 2.0 * WP[w, 3]
+    tl = 0.0
+    m3 = abs(th)
+    for c in range(3):
+        nc = WP[w, c]
+        ph, pl = two_product(-2.0 * nc, P[a, c])
+        th, tl = _dd_add(th, tl, ph, pl)
+        m3 += abs(ph)
+        if WP.shape[1] > 4 and WP[w, 4 + c] != 0.0:
+            ph, pl = two_product(2.0 * nc, WP[w, 4 + c])
+            th, tl = _dd_add(th, tl, ph, pl)
+            m3 += abs(ph)
+    n0 = WP[w, 0]
+    n1 = WP[w, 1]
+    n2 = WP[w, 2]
+    return n0, n1, n2, 0.0, 0.0, 0.0, abs(n0), abs(n1), abs(n2), th, tl, m3
+
+
+@njit(**{**NJIT, "inline": "always"})
+def _minor(bh0, bh1, bl0, bl1, bm0, bm1, eh0, eh1, el0, el1, em0, em1):
+    """The 2x2 minor ``b0 e1 - b1 e0`` in double-double, and its permanent."""
+    xh, xl = _dd_mul(bh0, bl0, eh1, el1)
+    yh, yl = _dd_mul(bh1, bl1, eh0, el0)
+    mh, ml = _dd_add(xh, xl, -yh, -yl)
+    return mh, ml, bm0 * em1 + bm1 * em0
+
+
+@njit(**{**NJIT, "_nrt": False})
+def vertex_dd_site(a, k0, k1, k2, P, W, WP, ns):
+    """:func:`vertex_dd` about site ``a`` itself (``c = p_a``), without scratch.
+
+    The resettle's and the naming's query (:func:`.predicates3d.vertex_offset` with
+    ``c = p_a``): ``t = 2 (c_q - p_a,q)`` is 0, so ``D4_q`` is ``(-1)**(q + 1) M_q`` alone.
+    The same double-double operations as :func:`vertex_dd` but that zero term (which
+    changes no head or tail), so the same bound holds; each determinant is returned only
+    as its proven nearest double, which is what the exact stage returns, so a caller may
+    fall back on :func:`.predicates3d.vertex_offset` where this is unsure and gets the
+    same bits either way. Returns ``(ok, x0, x1, x2)``: ``x = vertex - p_a``.
+    """
+    a0, a1, a2, al0, al1, al2, am0, am1, am2, at, atl, am3 = _site_row(k0, a, P, W, WP, ns)
+    b0, b1, b2, bl0, bl1, bl2, bm0, bm1, bm2, bt, btl, bm3 = _site_row(k1, a, P, W, WP, ns)
+    c0, c1, c2, cl0, cl1, cl2, cm0, cm1, cm2, ct, ctl, cm3 = _site_row(k2, a, P, W, WP, ns)
+    # minors m(k, q): rows other than k, columns other than q (vertex_dd's M)
+    m00h, m00l, m00p = _minor(b1, b2, bl1, bl2, bm1, bm2, c1, c2, cl1, cl2, cm1, cm2)
+    m01h, m01l, m01p = _minor(b0, b2, bl0, bl2, bm0, bm2, c0, c2, cl0, cl2, cm0, cm2)
+    m02h, m02l, m02p = _minor(b0, b1, bl0, bl1, bm0, bm1, c0, c1, cl0, cl1, cm0, cm1)
+    m10h, m10l, m10p = _minor(a1, a2, al1, al2, am1, am2, c1, c2, cl1, cl2, cm1, cm2)
+    m11h, m11l, m11p = _minor(a0, a2, al0, al2, am0, am2, c0, c2, cl0, cl2, cm0, cm2)
+    m12h, m12l, m12p = _minor(a0, a1, al0, al1, am0, am1, c0, c1, cl0, cl1, cm0, cm1)
+    m20h, m20l, m20p = _minor(a1, a2, al1, al2, am1, am2, b1, b2, bl1, bl2, bm1, bm2)
+    m21h, m21l, m21p = _minor(a0, a2, al0, al2, am0, am2, b0, b2, bl0, bl2, bm0, bm2)
+    m22h, m22l, m22p = _minor(a0, a1, al0, al1, am0, am1, b0, b1, bl0, bl1, bm0, bm1)
+    # D3 along row 0: + r00 m(0, 0) - r01 m(0, 1) + r02 m(0, 2)
+    d3h = 0.0
+    d3l = 0.0
+    th, tl = _dd_mul(a0, al0, m00h, m00l)
+    d3h, d3l = _dd_add(d3h, d3l, th, tl)
+    p3 = am0 * m00p
+    th, tl = _dd_mul(a1, al1, m01h, m01l)
+    d3h, d3l = _dd_add(d3h, d3l, -th, -tl)
+    p3 += am1 * m01p
+    th, tl = _dd_mul(a2, al2, m02h, m02l)
+    d3h, d3l = _dd_add(d3h, d3l, th, tl)
+    p3 += am2 * m02p
+    if not _sure(d3h, d3l, p3):
+        return False, 0.0, 0.0, 0.0
+    # M_q along the lift column: t0 m(0, q) - t1 m(1, q) + t2 m(2, q), negated for q != 1
+    s0h, s0l, s0p = _lift(
+        at,
+        atl,
+        am3,
+        bt,
+        btl,
+        bm3,
+        ct,
+        ctl,
+        cm3,
+        m00h,
+        m00l,
+        m00p,
+        m10h,
+        m10l,
+        m10p,
+        m20h,
+        m20l,
+        m20p,
+    )
+    if not _sure(s0h, s0l, s0p):
+        return False, 0.0, 0.0, 0.0
+    s1h, s1l, s1p = _lift(
+        at,
+        atl,
+        am3,
+        bt,
+        btl,
+        bm3,
+        ct,
+        ctl,
+        cm3,
+        m01h,
+        m01l,
+        m01p,
+        m11h,
+        m11l,
+        m11p,
+        m21h,
+        m21l,
+        m21p,
+    )
+    if not _sure(s1h, s1l, s1p):
+        return False, 0.0, 0.0, 0.0
+    s2h, s2l, s2p = _lift(
+        at,
+        atl,
+        am3,
+        bt,
+        btl,
+        bm3,
+        ct,
+        ctl,
+        cm3,
+        m02h,
+        m02l,
+        m02p,
+        m12h,
+        m12l,
+        m12p,
+        m22h,
+        m22l,
+        m22p,
+    )
+    if not _sure(s2h, s2l, s2p):
+        return False, 0.0, 0.0, 0.0
+    # x_q = -D4_q / (2 D3), D4_q = -M_q for q = 0, 2 and +M_1
+    d = 2.0 * d3h
+    return True, s0h / d, -s1h / d, s2h / d
+
+
+@njit(**{**NJIT, "inline": "always"})
+def _lift(at, atl, am3, bt, btl, bm3, ct, ctl, cm3, mah, mal, map_, mbh, mbl, mbp, mch, mcl, mcp):
+    """``t0 m(0, q) - t1 m(1, q) + t2 m(2, q)`` in double-double, and its permanent."""
+    sh = 0.0
+    sl = 0.0
+    th, tl = _dd_mul(at, atl, mah, mal)
+    sh, sl = _dd_add(sh, sl, th, tl)
+    ps = am3 * map_
+    th, tl = _dd_mul(bt, btl, mbh, mbl)
+    sh, sl = _dd_add(sh, sl, -th, -tl)
+    ps += bm3 * mbp
+    th, tl = _dd_mul(ct, ctl, mch, mcl)
+    sh, sl = _dd_add(sh, sl, th, tl)
+    ps += cm3 * mcp
+    return sh, sl, ps
