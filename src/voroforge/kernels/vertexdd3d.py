@@ -14,8 +14,12 @@ else leaves them to the expansions.
 
 from __future__ import annotations
 
+import numba
 import numpy as np
-from numba import njit
+from llvmlite import ir
+from numba import njit, types
+from numba.core import cgutils
+from numba.extending import intrinsic
 
 from ..config import NJIT
 from .expansion import estimate, expansion_sum, two_diff, two_product, two_sum
@@ -82,6 +86,41 @@ def _dd_add(ah, al, bh, bl):
 def _dd_mul(ah, al, bh, bl):
     """``a b`` in double-double (errs by at most ``8 u^2 |a| |b|``; as insphere_dd)."""
     p, e = two_product(ah, bh)
+    e = e + (ah * bl + al * bh)
+    return two_sum(p, e)
+
+
+@intrinsic
+def _fma(typingctx, a, b, c):
+    """``a * b + c`` rounded once (llvm.fma.f64)."""
+    sig = types.float64(types.float64, types.float64, types.float64)
+
+    def codegen(context, builder, signature, args):
+        d = ir.DoubleType()
+        fnty = ir.FunctionType(d, [d, d, d])
+        fn = cgutils.get_or_insert_function(builder.module, fnty, "llvm.fma.f64")
+        return builder.call(fn, args)
+
+    return sig, codegen
+
+
+@njit(**{**NJIT, "inline": "always"})
+def _two_product_fma(a, b):
+    """``a * b`` and its exact error (one fused multiply-add): :func:`two_product`'s values."""
+    x = a * b
+    return x, _fma(a, b, -x)
+
+
+if numba.config.DISABLE_JIT:  # kernels run as Python (coverage): Dekker's, the same values
+
+    def _two_product_fma(a, b):
+        return two_product(a, b)
+
+
+@njit(**{**NJIT, "inline": "always"})
+def _dd_mul_fma(ah, al, bh, bl):
+    """:func:`_dd_mul` with the fused product: the same values (the error term is exact)."""
+    p, e = _two_product_fma(ah, bh)
     e = e + (ah * bl + al * bh)
     return two_sum(p, e)
 
@@ -236,13 +275,13 @@ def _site_row(key, a, P, W, WP, ns):
         m0 = abs(h0)
         m1 = abs(h1)
         m2 = abs(h2)
-        sh, sl = _dd_mul(h0, l0, h0, l0)
+        sh, sl = _dd_mul_fma(h0, l0, h0, l0)
         th, tl = _dd_add(th, tl, sh, sl)
         m3 += m0 * m0
-        sh, sl = _dd_mul(h1, l1, h1, l1)
+        sh, sl = _dd_mul_fma(h1, l1, h1, l1)
         th, tl = _dd_add(th, tl, sh, sl)
         m3 += m1 * m1
-        sh, sl = _dd_mul(h2, l2, h2, l2)
+        sh, sl = _dd_mul_fma(h2, l2, h2, l2)
         th, tl = _dd_add(th, tl, sh, sl)
         m3 += m2 * m2
         return h0, h1, h2, l0, l1, l2, m0, m1, m2, th, tl, m3
@@ -252,11 +291,11 @@ def _site_row(key, a, P, W, WP, ns):
     m3 = abs(th)
     for c in range(3):
         nc = WP[w, c]
-        ph, pl = two_product(-2.0 * nc, P[a, c])
+        ph, pl = _two_product_fma(-2.0 * nc, P[a, c])
         th, tl = _dd_add(th, tl, ph, pl)
         m3 += abs(ph)
         if WP.shape[1] > 4 and WP[w, 4 + c] != 0.0:
-            ph, pl = two_product(2.0 * nc, WP[w, 4 + c])
+            ph, pl = _two_product_fma(2.0 * nc, WP[w, 4 + c])
             th, tl = _dd_add(th, tl, ph, pl)
             m3 += abs(ph)
     n0 = WP[w, 0]
@@ -268,8 +307,8 @@ def _site_row(key, a, P, W, WP, ns):
 @njit(**{**NJIT, "inline": "always"})
 def _minor(bh0, bh1, bl0, bl1, bm0, bm1, eh0, eh1, el0, el1, em0, em1):
     """The 2x2 minor ``b0 e1 - b1 e0`` in double-double, and its permanent."""
-    xh, xl = _dd_mul(bh0, bl0, eh1, el1)
-    yh, yl = _dd_mul(bh1, bl1, eh0, el0)
+    xh, xl = _dd_mul_fma(bh0, bl0, eh1, el1)
+    yh, yl = _dd_mul_fma(bh1, bl1, eh0, el0)
     mh, ml = _dd_add(xh, xl, -yh, -yl)
     return mh, ml, bm0 * em1 + bm1 * em0
 
@@ -281,8 +320,10 @@ def vertex_dd_site(a, k0, k1, k2, P, W, WP, ns):
     The resettle's and the naming's query (:func:`.predicates3d.vertex_offset` with
     ``c = p_a``): ``t = 2 (c_q - p_a,q)`` is 0, so ``D4_q`` is ``(-1)**(q + 1) M_q`` alone.
     The same double-double operations as :func:`vertex_dd` but that zero term (which
-    changes no head or tail), so the same bound holds; each determinant is returned only
-    as its proven nearest double, which is what the exact stage returns, so a caller may
+    changes no head or tail; each product's error by one fused multiply-add, the same exact
+    term as Dekker's: ``_two_product_fma``), so the same bound holds; each determinant is
+    returned only as its proven nearest double, which is what the exact stage returns, so a
+    caller may
     fall back on :func:`.predicates3d.vertex_offset` where this is unsure and gets the
     same bits either way. Returns ``(ok, x0, x1, x2)``: ``x = vertex - p_a``.
     """
@@ -302,13 +343,13 @@ def vertex_dd_site(a, k0, k1, k2, P, W, WP, ns):
     # D3 along row 0: + r00 m(0, 0) - r01 m(0, 1) + r02 m(0, 2)
     d3h = 0.0
     d3l = 0.0
-    th, tl = _dd_mul(a0, al0, m00h, m00l)
+    th, tl = _dd_mul_fma(a0, al0, m00h, m00l)
     d3h, d3l = _dd_add(d3h, d3l, th, tl)
     p3 = am0 * m00p
-    th, tl = _dd_mul(a1, al1, m01h, m01l)
+    th, tl = _dd_mul_fma(a1, al1, m01h, m01l)
     d3h, d3l = _dd_add(d3h, d3l, -th, -tl)
     p3 += am1 * m01p
-    th, tl = _dd_mul(a2, al2, m02h, m02l)
+    th, tl = _dd_mul_fma(a2, al2, m02h, m02l)
     d3h, d3l = _dd_add(d3h, d3l, th, tl)
     p3 += am2 * m02p
     if not _sure(d3h, d3l, p3):
@@ -390,13 +431,13 @@ def _lift(at, atl, am3, bt, btl, bm3, ct, ctl, cm3, mah, mal, map_, mbh, mbl, mb
     """``t0 m(0, q) - t1 m(1, q) + t2 m(2, q)`` in double-double, and its permanent."""
     sh = 0.0
     sl = 0.0
-    th, tl = _dd_mul(at, atl, mah, mal)
+    th, tl = _dd_mul_fma(at, atl, mah, mal)
     sh, sl = _dd_add(sh, sl, th, tl)
     ps = am3 * map_
-    th, tl = _dd_mul(bt, btl, mbh, mbl)
+    th, tl = _dd_mul_fma(bt, btl, mbh, mbl)
     sh, sl = _dd_add(sh, sl, -th, -tl)
     ps += bm3 * mbp
-    th, tl = _dd_mul(ct, ctl, mch, mcl)
+    th, tl = _dd_mul_fma(ct, ctl, mch, mcl)
     sh, sl = _dd_add(sh, sl, th, tl)
     ps += cm3 * mcp
     return sh, sl, ps
