@@ -6,6 +6,7 @@ Re-exported by :mod:`voroforge.config`, so modules import them from ``config``.
 __all__ = [
     "MOMENTS_CANCEL",
     "MOMENTS_FAR_PART",
+    "POWER_FIT_PARTS_CANCELS",
     "POWER_FIT_PARTS_FAR",
     "POWER_FIT_PARTS_REFUSE",
     "POWER_FIT_PARTS_SAMPLES",
@@ -24,6 +25,10 @@ POWER_FIT_PARTS_FAR = 4.0
 #: a site serves a part where the transport sends it more than this fraction of
 #: its target (HiGHS's own rounding is ~1e-9 of the total)
 POWER_FIT_PARTS_SHARE = 1e-9
+#: the most negative cycles of the parts' transport (three or more parts) cancelled in exact
+#: arithmetic after HiGHS's solve, whose tolerance can leave a nearly tied site on the wrong
+#: side (each cancel lowers the exact cost)
+POWER_FIT_PARTS_CANCELS = 1000
 #: sample points per part (a grid in its bounds, plus its vertices) where a part
 #: tied to no other is given its constant
 POWER_FIT_PARTS_SAMPLES = 16

@@ -22,10 +22,15 @@ import shapely
 from scipy.optimize import linprog
 from scipy.spatial import cKDTree
 
-from ..config import POWER_FIT_PARTS_FAR, POWER_FIT_PARTS_SAMPLES, POWER_FIT_PARTS_SHARE
+from ..config import (
+    POWER_FIT_PARTS_CANCELS,
+    POWER_FIT_PARTS_FAR,
+    POWER_FIT_PARTS_SAMPLES,
+    POWER_FIT_PARTS_SHARE,
+)
 from .domain import make_domain, shifted
 
-__all__ = ["far_parts", "parts_start", "straddle_limit", "weights_limit"]
+__all__ = ["far_parts", "parts_start", "straddle_limit", "transport", "weights_limit"]
 
 
 def far_parts(geom) -> bool:
@@ -71,7 +76,7 @@ def parts_start(pts, t, dom, tol, max_iter, fit):
     k = len(parts)
     areas = np.array([make_domain(p, pts).area for p in parts])
     cent = shapely.get_coordinates(shapely.centroid(parts))
-    share = _transport(pts, t, cent, areas)
+    share = transport(pts, t, cent, areas)
     if share is None:
         return None, 0
     serves = share > POWER_FIT_PARTS_SHARE * t[:, None]
@@ -117,7 +122,7 @@ def straddle_limit(pts, t, dom) -> tuple[float, float]:
     parts = shapely.get_parts(dom.geometry)
     areas = np.array([make_domain(p, pts).area for p in parts])
     cent = shapely.get_coordinates(shapely.centroid(parts))
-    share = _transport(pts, t, cent, areas)
+    share = transport(pts, t, cent, areas)
     if share is None or len(pts) < 2:
         return 0.0, 0.0
     serves = share > POWER_FIT_PARTS_SHARE * t[:, None]
@@ -129,15 +134,16 @@ def straddle_limit(pts, t, dom) -> tuple[float, float]:
     return spread, float(2.0 * np.spacing(spread) / np.median(dist * np.sqrt(t)))
 
 
-def _transport(pts, t, cent, areas):
+def transport(pts, t, cent, areas):
     """``(n, k)`` masses of the sites' targets sent to the parts, or None.
 
     The costs ``|p_i - c_k|^2`` less each row's and column's own terms (the constraints fix
     the row and column sums, so those do not change the optimum): ``-2 c_k . p_i``. Two
     parts: the sites sorted along ``c_1 - c_0``, part 1 filled from the top, exactly (one
     site split). More: dual simplex (a basic solution, at most ``k - 1`` sites split) on the
-    costs scaled to at most 1, where HiGHS's tolerance (1e-7) can hide differences between
-    sites of one cluster across a large gap.
+    costs scaled to at most 1, whose tolerance (1e-7) can hide differences between sites of
+    one cluster across a large gap: its answer is then checked exactly and mended
+    (:func:`_exact_optimum`).
     """
     n, k = len(pts), len(cent)
     want = areas * (t.sum() / areas.sum())
@@ -168,7 +174,95 @@ def _transport(pts, t, cent, areas):
     )
     if res.status != 0:
         return None
-    return np.maximum(res.x.reshape(n, k), 0.0) * scale
+    return _exact_optimum(pts, t, cent, np.maximum(res.x.reshape(n, k), 0.0) * scale)
+
+
+def _exact_optimum(pts, t, cent, share):
+    """``share`` moved along negative cycles until it is exactly optimal.
+
+    A transport is optimal when some part constants ``psi`` make every site's parts
+    cheapest for it: ``psi_b - psi_a <= D_ab``, ``D_ab`` the least exact cost change
+    ``-2 p_i . (c_b - c_a)`` over the sites ``i`` that send to ``a``. Such ``psi`` exist
+    unless the graph of the ``D_ab`` has a negative cycle; along one, each arc's site sends
+    the cycle's least share on to the next part (the column and row sums kept) and the cost
+    falls. At most ``POWER_FIT_PARTS_CANCELS`` cycles (then the best transport so far).
+    """
+    share = share.copy()
+    for _ in range(POWER_FIT_PARTS_CANCELS):
+        cycle = _negative_cycle(pts, t, cent, share)
+        if cycle is None:
+            break
+        amount = min(float(share[i, a]) for a, _, i in cycle)
+        for a, b, i in cycle:
+            share[i, b] += amount
+            share[i, a] = max(0.0, float(share[i, a]) - amount)
+    return share
+
+
+def _negative_cycle(pts, t, cent, share):
+    """``[(a, b, i), ...]``: a cycle of parts whose exact ``D_ab`` (site ``i``) sum below 0.
+
+    ``D_ab`` is found in floats and confirmed among the sites within its rounding bound in
+    integers (every double a multiple of ``2**-1074``); Bellman and Ford's relaxation on
+    the ``k`` parts finds the cycle.
+    """
+    k = len(cent)
+    serves = share > POWER_FIT_PARTS_SHARE * t[:, None]
+    big = np.full((k, k), None, dtype=object)  # exact D_ab, scaled to integers
+    site = np.full((k, k), -1)
+    for a in range(k):
+        ia = np.flatnonzero(serves[:, a])
+        if not len(ia):
+            continue
+        for b in range(k):
+            if b == a:
+                continue
+            d = cent[b] - cent[a]  # only its sign pattern and size feed the filter
+            f = -2.0 * (pts[ia] @ d)
+            bound = 1e-12 * (2.0 * (np.abs(pts[ia]) @ (np.abs(cent[a]) + np.abs(cent[b]))))
+            near = ia[f - bound <= float((f + bound).min())]
+            vals = [_exact_change(pts[i], cent[a], cent[b]) for i in near]
+            m = min(range(len(vals)), key=vals.__getitem__)
+            big[a, b], site[a, b] = vals[m], int(near[m])
+    dist = [0] * k
+    parent = [-1] * k
+    changed = -1
+    for _ in range(k):
+        changed = -1
+        for a in range(k):
+            for b in range(k):
+                if big[a, b] is not None and dist[a] + big[a, b] < dist[b]:
+                    dist[b] = dist[a] + big[a, b]
+                    parent[b] = a
+                    changed = b
+        if changed < 0:
+            return None
+    v = changed
+    for _ in range(k):  # into the cycle
+        v = parent[v]
+    cycle, u = [], v
+    while True:
+        a = parent[u]
+        cycle.append((a, u, int(site[a, u])))
+        u = a
+        if u == v:
+            break
+    return cycle[::-1]
+
+
+def _exact_change(p, ca, cb) -> int:
+    """``-2 p . (cb - ca)`` exactly, in units of ``2**-2148`` (a product of two doubles)."""
+    total = 0
+    for x, y, z in zip(p, ca, cb, strict=True):
+        fx, fy, fz = (_units(q) for q in (x, y, z))
+        total -= 2 * fx * (fz - fy)
+    return total
+
+
+def _units(q) -> int:
+    """The double ``q`` in units of ``2**-1074`` (exact: every double is a multiple)."""
+    num, den = float(q).as_integer_ratio()
+    return num * (2**1074 // den)
 
 
 def _median(p, wt):
