@@ -66,3 +66,34 @@ def test_parts_transport_is_exactly_optimal_with_nearly_tied_sites(seed, k):
     assert np.allclose(share.sum(axis=1), t, rtol=1e-9, atol=0.0)
     assert np.allclose(share.sum(axis=0), areas, rtol=1e-9, atol=0.0)
     assert _worst_cycle(pts, share, cent, t) >= 0
+
+
+def test_far_parts_at_float_limit_fail_fast_with_why(monkeypatch):
+    # sites in both squares 5,000 apart, random targets: a cell straddles the gap from the far
+    # side, its weight ~2.5e7 from its neighbours' (float64 holds it to ~4e-9, the areas to
+    # a few 1e-6; not refused up front: the median cell's limit is 1.6e-6). The joined
+    # parts' weights are returned unpolished (a polish's steps round back to them) and no
+    # other start runs
+    import voroforge as vf
+    import voroforge.engine.capacity as capacity
+
+    n = 200
+    dom = MultiPolygon([box(0, 0, 1, 1), box(5000, 0, 5001, 1)])
+    rng = np.random.default_rng(8)
+    pts = rng.random((n, 2)) + np.array([[0.0, 0.0], [5000.0, 0.0]])[np.arange(n) % 2]
+    t = rng.random(n) + 0.5
+    t = t / t.sum() * 2.0
+    plain = capacity.fit_weights
+
+    def parts_only(p, *args, **kw):
+        assert len(p) < n, "the joined weights were polished"
+        return plain(p, *args, **kw)
+
+    def fail(*args):
+        raise AssertionError("another start ran")
+
+    monkeypatch.setattr(capacity, "fit_weights", parts_only)
+    monkeypatch.setattr(capacity, "_gap_continuation", fail)
+    monkeypatch.setattr(capacity, "_continuation", fail)
+    with pytest.raises(RuntimeError, match="a cell that must straddle far parts"):
+        vf.power_fit(pts, t, dom)
