@@ -2,10 +2,11 @@
 
 A helix's cells are slabs whose bisectors are nearly parallel: two thirds of their vertices
 are named by ill-conditioned quadruples and solved exactly (``predicates3d.vertex_offset``:
-~0.4 us in double-double where its bound decides, expansions of a few us otherwise), once by each cell at the vertex and again when a cell past
-its slots is built alone. ``vertex_offset`` now keeps its results in its scratch, keyed by
-the query; these tests check that a hit gives the solve's bits (and a miss on other
-arrays), that the offsets are right against rationals, and the cells against voro++.
+~0.4 us in double-double where its bound decides, expansions of a few us otherwise), once
+by each cell at the vertex and again when a cell past its slots is built alone.
+``vertex_offset`` now keeps its results in its scratch, keyed by the query; these tests
+check that a hit gives the solve's bits (and a miss on other arrays), that the offsets are
+right against rationals, and the cells against voro++.
 """
 
 from __future__ import annotations
