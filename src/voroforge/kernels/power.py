@@ -34,7 +34,8 @@ from numba import njit, prange
 from ..config import NJIT, NJIT_PARALLEL, POWER_CROWDED_RTOL, POWER_CROWDED_ULPS, SIDE_BOX_RTOL
 from .clip import cut_ring, plane_values
 from .distance_exact import compare
-from .vertex import power_box_crossing, power_vertex
+from .power_tiny import crossing, exact_power_signs, tiny_ring_area, vertex
+from .sidecross import power_side
 
 _U = 2.0**-53  # unit roundoff of float64
 
@@ -85,6 +86,8 @@ def box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
         smax = plane_values(px, py, zero, m, dx, dy, sx, sy, h, ss)
         if ws[i] == ws[j]:
             smax, w = _exact_signs(i, j, xs, ys, px, py, m, dx, dy, h, ss, smax, w)
+        else:
+            smax = exact_power_signs(i, j, xs, ys, ws, px, py, m, dx, dy, h, ss, smax)
         if smax <= 0.0:
             continue
         m = cut_ring(px, py, pw, zero, m, ss, qx, qy, qw, zero, j)
@@ -95,12 +98,13 @@ def box_cell(i, xs, ys, ws, nbrs, nn, box, px, py, pw, qx, qy, qw, ss):
         pw, qw = qw, pw
         swapped = not swapped
         big = max(max(abs(sx), abs(sy)), max(abs(xs[j]), abs(ys[j])))
-        if ws[i] == ws[j] and np.spacing(big) > tiny and _outside(sx, sy, xs[j], ys[j], box):
+        if np.spacing(big) > tiny and _outside(sx, sy, xs[j], ys[j], box):
             # name the two new vertices now, so the next cuts' exact signs see them where
             # they are (issue 15: a float circle at 1e12 seen through a unit window lost
             # a cell whose exact area was 3e-9 of the box); not for sites in the box (a
             # circle of 1,000 sites an ulp apart at 4e6 in its 256-ulp box: named early, the
-            # cells' edges no longer matched)
+            # cells' edges no longer matched). Power bisectors too (power6: sites on a
+            # circle of radius 5 in a box 1e-300 wide, weights of the box's size)
             _name_new(i, j, xs, ys, ws, px, py, pw, m, box)
     m = _corner_crossings(i, xs, ys, ws, px, py, pw, m, box)
     if swapped:
@@ -164,7 +168,8 @@ def _corner_crossings(i, xs, ys, ws, px, py, pw, m, box):
     one cell named the top side's crossing, an ulp left of the corner, the other the
     corner; a gap of 7e-8 of the box). Where the ring meets the corner between a bisector
     and a side, the corner's exact side of the bisector (equal weights:
-    :func:`.distance_exact.compare`) decides: strictly in the cell, the bisector crosses
+    :func:`.distance_exact.compare`, unequal: :func:`.sidecross.power_side`, which leaves
+    the vertex where underflow hides it) decides: strictly in the cell, the bisector crosses
     the other side at the corner and the corner is a vertex of its own (inserted); else the
     vertex stays the crossing of its side. A corner exactly on the bisector is the
     lower-numbered site's. Both cells of the bisector decide by the one exact sign.
@@ -186,14 +191,17 @@ def _corner_crossings(i, xs, ys, ws, px, py, pw, m, box):
         side = b if a >= 0 else a
         # entering the side at its start (the ring's corner), or leaving it at its end
         cx, cy = _side_corner(side, a >= 0, box)
-        if cx != x or cy != y or ws[i] != ws[j] or m + 1 > px.shape[0]:
+        if cx != x or cy != y or m + 1 > px.shape[0]:
             v += 1
             continue
-        if w.shape[0] == 0:
-            w = np.empty((9, 64))  # noqa: TID251  (every slot read is written first)
+        if ws[i] == ws[j]:
+            if w.shape[0] == 0:
+                w = np.empty((9, 64))  # noqa: TID251  (every slot read is written first)
+            s = compare(x, y, xs[i], ys[i], xs[j], ys[j], np.int64(0), w)
+        else:
+            s = power_side(xs[i], ys[i], ws[i], xs[j], ys[j], ws[j], x, y)
         # on the bisector exactly: the corner is the lower-numbered site's (one decision)
-        s = compare(x, y, xs[i], ys[i], xs[j], ys[j], np.int64(0), w)
-        if s > 0 or (s == 0 and i > j):
+        if s == 2 or s > 0 or (s == 0 and i > j):
             v += 1
             continue
         for k in range(m, v, -1):
@@ -234,9 +242,9 @@ def _named_vertices(i, xs, ys, ws, px, py, pw, m, box):
         if a == b or (a < 0 and b < 0):
             continue
         if a >= 0 and b >= 0:
-            nx, ny = power_vertex(i, a, b, xs, ys, ws)
+            nx, ny = vertex(i, a, b, xs, ys, ws, box)
         else:
-            nx, ny = power_box_crossing(i, a if a >= 0 else b, xs, ys, ws, b if a >= 0 else a, box)
+            nx, ny = crossing(i, a if a >= 0 else b, xs, ys, ws, b if a >= 0 else a, box)
             # rounded past a corner: the corner (from the name's bits alone, so both cells
             # of the bisector agree)
             if abs(nx) < np.inf and abs(ny) < np.inf:
@@ -499,7 +507,7 @@ def _compact(i, xs, ys, px, py, po, b, m):
         area2 += (px[b + v] - ox) * (py[b + vn] - oy) - (px[b + vn] - ox) * (py[b + v] - oy)
         if po[b + v] < 0:
             po[b + v] = -1
-    if not area2 > 0.0:
+    if not area2 > 0.0 and not tiny_ring_area(px, py, b, k, ox, oy) > 0.0:
         return 0
     return k
 
@@ -583,9 +591,9 @@ def _name_new(i, j, xs, ys, ws, px, py, pw, m, box):
         if a != j and b != j:
             continue
         if a >= 0 and b >= 0:
-            nx, ny = power_vertex(i, a, b, xs, ys, ws)
+            nx, ny = vertex(i, a, b, xs, ys, ws, box)
         elif a >= 0 or b >= 0:
-            nx, ny = power_box_crossing(i, a if a >= 0 else b, xs, ys, ws, b if a >= 0 else a, box)
+            nx, ny = crossing(i, a if a >= 0 else b, xs, ys, ws, b if a >= 0 else a, box)
             if abs(nx) < np.inf and abs(ny) < np.inf:
                 nx = min(max(nx, box[0]), box[2])
                 ny = min(max(ny, box[1]), box[3])

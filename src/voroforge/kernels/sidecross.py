@@ -42,7 +42,7 @@ from .expansion import grow, two_diff, two_product, two_sum
 _U = 2.0**-53
 _TINY = 2.0**-900  # a product below this may lose its error term to underflow
 _SLACK = 2.0**-1060  # what underflowed products' parts may lose, all together (< 2^-1066)
-_NT = 20  # exact parts of the numerator
+_NT = 22  # exact parts of the numerator (the last two: the weight difference, 0 for Voronoi)
 _TOP_BITS = 900  # where scaled parts top out (Dekker splits of them stay finite)
 
 
@@ -56,11 +56,13 @@ def _put(t, k, a, b):
 
 
 @njit(**NJIT)
-def _numerator(ax, ay, bx, by, x, t, e):
+def _numerator(ax, ay, bx, by, x, t, e, d1, d0):
     """The numerator's exact parts, times ``2^e``, into ``t[:_NT]``; False where one may be inexact.
 
     Each part is the product of two doubles, the second scaled by ``2^e`` (exact): a box
-    below ~1e-270 has parts whose error terms underflow unscaled.
+    below ~1e-270 has parts whose error terms underflow unscaled. ``d1 + d0`` is the power
+    weights' difference ``w_a - w_b`` (exactly; 0 for a Voronoi bisector: zero parts change
+    no sum and no sign, so the Voronoi crossings keep their bits).
     """
     p1, p0 = two_diff(ax, bx)
     s1, s0 = two_sum(-ax, -bx)
@@ -74,6 +76,10 @@ def _numerator(ax, ay, bx, by, x, t, e):
     ok &= _put(t, 6, p0, q2) & _put(t, 8, p0, q1) & _put(t, 10, p0, s0)
     ok &= _put(t, 12, r1, u1) & _put(t, 14, r1, u0) & _put(t, 16, r0, u1)
     ok &= _put(t, 18, r0, u0)
+    if e != 0:
+        d1, d0 = math.ldexp(d1, e), math.ldexp(d0, e)
+    t[20] = d1
+    t[21] = d0
     return ok
 
 
@@ -141,10 +147,46 @@ def _even(v):
 
 
 @njit(**NJIT)
-def _nearest(ax, ay, bx, by, x, y):
+def _parts(ax, ay, bx, by, x, t, d1, d0):
+    """:func:`_numerator` into ``t``, scaled out of underflow where it needs it; ``(exact, e)``."""
+    exact = _numerator(ax, ay, bx, by, x, t, 0, d1, d0)
+    e = 0
+    if not exact:
+        # a box below ~1e-270: every part scaled by one power of two lifts the products'
+        # error terms out of underflow (the crossing's midpoints are scaled alike)
+        e = _scale_for(t)
+        if e > 0:
+            exact = _numerator(ax, ay, bx, by, x, t, e, d1, d0)
+    return exact, e
+
+
+@njit(**NJIT)
+def _lifted(ax, ay, bx, by, x, t, exact, e, d1, d0, m, r1, power):
+    """``(exact, e)``, the parts rescaled where a power crossing ``m`` would underflow.
+
+    A power bisector's numerator can be exact unscaled (its weights' difference, products
+    of sites apart in ``y`` only) while the crossing, and so its midpoints' products with
+    ``D``, lie below ``2^-900`` (power6: sites (3, -4), (3, 4) with weights 1.2e-304,
+    1.6e-304 cross a box 1e-305 wide at 2.5e-306, and the float formula gave 0.0). Only
+    for power bisectors (``power``): the Voronoi crossings keep their bits.
+    """
+    if e != 0 or not power or m == 0.0 or abs(m * r1) >= _TINY * 2.0**60:
+        return exact, e
+    top = abs(2.0 * m * r1)
+    for k in range(_NT):
+        top = max(top, abs(t[k]))
+    e = max(0, _TOP_BITS - math.frexp(top)[1])
+    if e > 0:
+        exact = _numerator(ax, ay, bx, by, x, t, e, d1, d0)
+    return exact, e
+
+
+@njit(**NJIT)
+def _nearest(ax, ay, bx, by, x, y, d1, d0):
     """The double nearest ``y`` on the line ``x = X`` of the bisector; ``y`` its estimate.
 
-    Returns ``y`` unchanged where underflow hides a sign or the walk does not settle.
+    ``d1 + d0``: the weights' difference of a power bisector (0 for Voronoi). Returns ``y``
+    unchanged where underflow hides a sign or the walk does not settle.
     """
     if not (y == y and abs(y) < np.inf):
         return y
@@ -152,14 +194,7 @@ def _nearest(ax, ay, bx, by, x, y):
     buf = np.empty(2 * _NT + 13)  # noqa: TID251
     t = buf[: _NT + 6]
     w = buf[_NT + 6 :]
-    exact = _numerator(ax, ay, bx, by, x, t, 0)
-    e = 0
-    if not exact:
-        # a box below ~1e-270: every part scaled by one power of two lifts the products'
-        # error terms out of underflow (the crossing's midpoints are scaled alike)
-        e = _scale_for(t)
-        if e > 0:
-            exact = _numerator(ax, ay, bx, by, x, t, e)
+    exact, e = _parts(ax, ay, bx, by, x, t, d1, d0)
     r1, r0 = two_diff(by, ay)
     sd = 1 if r1 > 0.0 else -1
     # start from the numerator's exact sum, rounded (an ill-conditioned float formula, a
@@ -176,6 +211,7 @@ def _nearest(ax, ay, bx, by, x, y):
         v = math.ldexp(v, -e)
     if not (v == v and abs(v) < np.inf):
         return y
+    exact, e = _lifted(ax, ay, bx, by, x, t, exact, e, d1, d0, v, r1, d1 != 0.0)
     for _ in range(_MAX_STEPS):
         up = np.nextafter(v, np.inf)
         dn = np.nextafter(v, -np.inf)
@@ -222,5 +258,54 @@ def nearest_crossing(ax, ay, bx, by, side, box, x, y):
     if not near and not np.spacing(big) > SIDE_BOX_RTOL * ext:
         return x, y
     if side == -1 or side == -3:
-        return x, _nearest(ax, ay, bx, by, x, y)
-    return _nearest(ay, ax, by, bx, y, x), y
+        return x, _nearest(ax, ay, bx, by, x, y, 0.0, 0.0)
+    return _nearest(ay, ax, by, bx, y, x, 0.0, 0.0), y
+
+
+@njit(**NJIT)
+def nearest_power_crossing(ax, ay, aw, bx, by, bw, side, box, x, y):
+    """:func:`nearest_crossing` for the power bisector of ``a, b`` with unequal weights.
+
+    The bisector ``|p - a|^2 - w_a = |p - b|^2 - w_b`` crosses ``x = X`` at ``y = N / D``
+    with the Voronoi numerator plus ``w_a - w_b`` (two exact parts). ``(x, y)`` is the
+    float formula's crossing. Replaced by the double nearest the exact one for sites a few
+    ulps apart and for a box whose extent is under ``1 / SIDE_BOX_RTOL`` ulps of the sites
+    or of the float formula's midpoint (weights that move the bisector far out: the
+    formula's error is then ulps of that point).
+    """
+    if x != x or y != y:
+        return x, y
+    big = max(max(abs(ax), abs(ay)), max(abs(bx), abs(by)))
+    ext = max(box[2] - box[0], box[3] - box[1])
+    near = abs(bx - ax) + abs(by - ay) <= SIDE_NEAREST_ULPS * np.spacing(big)
+    far = max(big, max(abs(x), abs(y)))
+    if not near and not np.spacing(far) > SIDE_BOX_RTOL * ext:
+        return x, y
+    d1, d0 = two_diff(aw, bw)
+    if side == -1 or side == -3:
+        return x, _nearest(ax, ay, bx, by, x, y, d1, d0)
+    return _nearest(ay, ax, by, bx, y, x, d1, d0), y
+
+
+@njit(**NJIT)
+def power_side(ax, ay, aw, bx, by, bw, px, py):
+    """Exact sign of ``(|p - a|^2 - w_a) - (|p - b|^2 - w_b)``; 2 where underflow hides it.
+
+    Positive: ``p`` is nearer ``b`` in power (off cell ``a``). On the line ``x = p_x`` the
+    difference is ``D p_y - N`` (``N``, ``D`` of :func:`nearest_power_crossing`), so the
+    crossing's exact sums decide it (with its scaling out of underflow); sites level in
+    ``y`` (``D = 0``) take the line ``y = p_y``.
+    """
+    buf = np.empty(2 * _NT + 13)  # noqa: TID251  (every slot read is written first)
+    t = buf[: _NT + 6]
+    w = buf[_NT + 6 :]
+    d1, d0 = two_diff(aw, bw)
+    if ay == by:
+        if ax == bx:
+            return 0 if d1 == 0.0 else (-1 if d1 > 0.0 else 1)
+        ax, ay, bx, by, px, py = ay, ax, by, bx, py, px
+    exact, e = _parts(ax, ay, bx, by, px, t, d1, d0)
+    r1, r0 = two_diff(by, ay)
+    exact, e = _lifted(ax, ay, bx, by, px, t, exact, e, d1, d0, py, r1, True)
+    s = _sign_past(t, py, 0.0, r1, r0, w, exact, e)
+    return s if s == 2 else -s
