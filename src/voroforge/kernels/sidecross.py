@@ -26,6 +26,11 @@ first (exact), which lifts them out of it, so crossings down to subnormal ones (
 1e-320 wide) are the nearest double too. Only a part that still underflows (a site's
 difference far below the others') is allowed for with a slack of ``2^-1060``, which only
 a midpoint that close to the crossing reaches (the float formula is kept there).
+
+Power bisectors (unequal weights, issue 15 power6) add ``w_a - w_b`` to the numerator as
+two more exact parts (zero for Voronoi, which then keeps its bits):
+:func:`nearest_power_crossing`, and :func:`power_side`, the exact side of a point, which
+is ``D y - N`` on the line ``x = X`` through it.
 """
 
 from __future__ import annotations
