@@ -180,7 +180,11 @@ def _lifted(ax, ay, bx, by, x, t, exact, e, d1, d0, m, r1, power):
     top = abs(2.0 * m * r1)
     for k in range(_NT):
         top = max(top, abs(t[k]))
-    e = max(0, _TOP_BITS - math.frexp(top)[1])
+    # capped so the scaled factors (``2 X - ax - bx``, ``by + ay``, the weights' difference,
+    # the midpoints) stay below 2^990: a zero product (``ax == bx``) hides a big factor
+    big = max(2.0 * abs(x) + abs(ax) + abs(bx), abs(ay) + abs(by))
+    big = max(big, max(abs(d1), 4.0 * abs(m)))
+    e = max(0, min(_TOP_BITS - math.frexp(top)[1], 990 - math.frexp(big)[1]))
     if e > 0:
         exact = _numerator(ax, ay, bx, by, x, t, e, d1, d0)
     return exact, e
