@@ -19,16 +19,8 @@ import pytest
 import shapely
 
 import voroforge as vf
+from test_s56_strips import CENTRE, UNIT, _circle
 from voroforge.engine.edgeowners import split_at_junctions
-
-CENTRE = (5e5, 4e6)
-UNIT = 2.0**-34  # an x-ulp at 5e5; a y-ulp at 4e6 is 8 units
-R = 1e-7
-
-
-def _circle(n, phase):
-    t = np.arange(n) * (2.0 * np.pi / n) + phase
-    return np.column_stack((R * np.cos(t), R * np.sin(t))) + CENTRE
 
 
 def _local(xy):
