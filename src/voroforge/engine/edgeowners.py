@@ -115,6 +115,9 @@ def split_at_junctions(edges, buffers, tol: float):
             at = np.minimum(np.searchsorted(vkey, q), len(vkey) - 1)
             bad |= vkey[at] != q
     bad = np.flatnonzero(bad)
+    # each cell's ring vertices as one slice of ``by_cell`` (not a pass over all per edge)
+    by_cell = np.argsort(cell_of, kind="stable")
+    first = np.searchsorted(cell_of[by_cell], np.arange(int(cell_of.max(initial=-1)) + 2))
     out_s, out_p, out_i = [], [], []
     keep = np.ones(len(seg), bool)
     for e in bad.tolist():
@@ -122,8 +125,12 @@ def split_at_junctions(edges, buffers, tol: float):
         p, q = ends[e]
         axis = 0 if p[0] != q[0] else 1
         lo, hi = min(p[axis], q[axis]), max(p[axis], q[axis])
-        mine = (cell_of == i) | (cell_of == j)
-        cand = a_all[mine]
+        cand = a_all[
+            np.concatenate(
+                [by_cell[first[c] : first[c + 1]] for c in {i, j} if 0 <= c < len(first) - 1]
+                + [by_cell[:0]]
+            )
+        ]
         inside = (cand[:, axis] > lo) & (cand[:, axis] < hi)
         cuts = {
             (float(v[0]), float(v[1]))
