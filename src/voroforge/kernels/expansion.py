@@ -266,6 +266,18 @@ def estimate(e, elen):
 
 
 @njit(**NJIT)
+def rounded_sum(parts, n, w):
+    """The sum of the doubles ``parts[:n]``, within an ulp or so.
+
+    Grown exactly into ``w`` (room for ``n`` components), then :func:`estimate`.
+    """
+    size = 0
+    for k in range(n):
+        size = grow(w, size, parts[k])
+    return estimate(w, size)
+
+
+@njit(**NJIT)
 def _neg(e, elen):
     for i in range(elen):
         e[i] = -e[i]

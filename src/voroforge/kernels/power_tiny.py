@@ -18,7 +18,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT, SIDE_BOX_RTOL
-from .expansion import grow, two_diff, two_product, two_sum
+from .expansion import rounded_sum, two_diff, two_product, two_sum
 from .sidecross import nearest_power_crossing, power_side
 from .vertex import before, power_box_crossing, power_vertex, sorted_triple
 
@@ -131,18 +131,6 @@ def _times(src, n, c1, c0, sign, out, m):
 
 
 @njit(**NJIT)
-def _value(parts, n, w):
-    """The sum of ``parts[:n]`` (grown exactly, then rounded; within an ulp or so)."""
-    size = 0
-    for t in range(n):
-        size = grow(w, size, parts[t])
-    s = 0.0
-    for t in range(size):
-        s += w[t]
-    return s
-
-
-@njit(**NJIT)
 def _centre(ax, ay, aw, bx, by, bw, cx, cy, cw):
     """Power centre of three sites from exact parts (Cramer's rule), to an ulp or two.
 
@@ -182,16 +170,16 @@ def _centre(ax, ay, aw, bx, by, bw, cx, cy, cw):
             parts[m] = hi
             parts[m + 1] = lo
             m += 2
-    det = _value(parts, m, w)
+    det = rounded_sum(parts, m, w)
     if det == 0.0:
         return np.nan, np.nan
     # x = (kb fy - kc ey) / (2 det), y = (ex kc - fx kb) / (2 det)
     m = _times(kb, n, fy1, fy0, 1.0, parts, 0)
     m = _times(kc, n, ey1, ey0, -1.0, parts, m)
-    x = _value(parts, m, w) / (2.0 * det)
+    x = rounded_sum(parts, m, w) / (2.0 * det)
     m = _times(kc, n, ex1, ex0, 1.0, parts, 0)
     m = _times(kb, n, fx1, fx0, -1.0, parts, m)
-    y = _value(parts, m, w) / (2.0 * det)
+    y = rounded_sum(parts, m, w) / (2.0 * det)
     return math.ldexp(x, -k) + 0.0, math.ldexp(y, -k) + 0.0  # no -0.0
 
 

@@ -42,7 +42,7 @@ from numba import njit
 
 from ..config import NJIT, SIDE_BOX_RTOL, SIDE_NEAREST_ULPS
 from ..config import SIDE_NEAREST_MAX_STEPS as _MAX_STEPS
-from .expansion import grow, two_diff, two_product, two_sum
+from .expansion import grow, rounded_sum, two_diff, two_product, two_sum
 
 _U = 2.0**-53
 _TINY = 2.0**-900  # a product below this may lose its error term to underflow
@@ -209,13 +209,7 @@ def _nearest(ax, ay, bx, by, x, y, d1, d0):
     # start from the numerator's exact sum, rounded (an ill-conditioned float formula, a
     # bisector nearly parallel to the side, is off by dozens of ulps; a crossing in a box
     # far smaller than the sites cancels all but the last bits of the parts)
-    size = 0
-    for k in range(_NT):
-        size = grow(w, size, t[k])
-    s = 0.0
-    for k in range(size):
-        s += w[k]
-    v = s / (2.0 * (r1 + r0))
+    v = rounded_sum(t, _NT, w) / (2.0 * (r1 + r0))
     if e != 0:
         v = math.ldexp(v, -e)
     if not (v == v and abs(v) < np.inf):
