@@ -168,14 +168,15 @@ def test_skip_lists():
             assert bnext[j * (nx + 1) + i] == (cols[0] if cols else nx)
 
 
-def _unscanned(xs, ys, grid, ci, cj, r):
-    """Indices of the sites outside the block of rings 0..r (brute force)."""
-    out = []
-    for i in range(len(xs)):
-        bi, bj = _bucket_xy(xs[i], ys[i], grid)
-        if max(abs(bi - ci), abs(bj - cj)) > r:
-            out.append(i)
-    return np.array(out, dtype=np.int64)
+def _buckets(xs, ys, grid):
+    """Each site's bucket ``(i, j)``, one ``bucket_of`` per coordinate, as an (n, 2) array."""
+    return np.array([_bucket_xy(x, y, grid) for x, y in zip(xs, ys, strict=True)], np.int64)
+
+
+def _unscanned(buckets, ci, cj, r):
+    """Indices of the sites outside the block of rings 0..r (brute force over all sites)."""
+    ring = np.maximum(np.abs(buckets[:, 0] - ci), np.abs(buckets[:, 1] - cj))
+    return np.flatnonzero(ring > r)
 
 
 @pytest.mark.parametrize("kind", ["uniform", "clustered", "strip"])
@@ -186,6 +187,7 @@ def test_stop_test_is_a_lower_bound(kind):
     x0, y0, hx, hy, nx, ny = grid
     scale = max(np.abs(xs).max(), np.abs(ys).max())
     eps = 1e-12 * scale  # bucket_of rounds at bucket boundaries
+    buckets = _buckets(xs, ys, grid)  # the sites' buckets, found once for every query
     rng = np.random.default_rng(4)
     for _ in range(60):
         q = rng.integers(0, len(xs))
@@ -195,7 +197,7 @@ def test_stop_test_is_a_lower_bound(kind):
         w = rng.random() * 0.5 * min(hx, hy)
         rect = (qx - w, qx + w, qy - w, qy + w)
         for r in range(0, max(nx, ny) + 1):
-            rest = _unscanned(xs, ys, grid, ci, cj, r)
+            rest = _unscanned(buckets, ci, cj, r)
             gap = ring_gap(qx, qx, qy, qy, ci, cj, r, grid)
             block = block_box(ci, cj, r, grid)
             if len(rest) == 0:
