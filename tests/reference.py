@@ -47,6 +47,44 @@ def exact_incircle(a, b, c, d) -> int:
     return _sign(det)
 
 
+def dyadic_integers(points) -> tuple[np.ndarray, int]:
+    """Integers ``K`` (a numpy object array of Python ints) and one power of two ``s`` with
+    ``points == K / s`` exactly: every finite double is ``numerator / 2**k``, and the
+    largest of those denominators is a multiple of all the others."""
+    pts = np.asarray(points, dtype=np.float64)
+    ratios = [v.as_integer_ratio() for v in pts.ravel().tolist()]
+    s = max((d for _, d in ratios), default=1)
+    K = np.zeros(len(ratios), dtype=object)
+    K[:] = [num * (s // d) for num, d in ratios]
+    return K.reshape(pts.shape), s
+
+
+def exact_incircle_signs(points, triangles, ti, pi) -> np.ndarray:
+    """:func:`exact_incircle` of ``triangles[ti[m]]`` and ``points[pi[m]]`` for every ``m``.
+
+    The same determinant in exact integer arithmetic: the points as integers over one common
+    power of two (:func:`dyadic_integers`), which scales the determinant (of degree 4 in the
+    coordinates) by a positive factor and so keeps its sign. Python ints in numpy object
+    arrays: one conversion per point, not four Fractions per pair.
+    """
+    K, _ = dyadic_integers(np.asarray(points, dtype=np.float64).reshape(-1, 2))
+    T = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    ti = np.asarray(ti, dtype=np.int64)
+    d = K[np.asarray(pi, dtype=np.int64)]
+    adx, ady = (K[T[ti, 0], q] - d[:, q] for q in (0, 1))
+    bdx, bdy = (K[T[ti, 1], q] - d[:, q] for q in (0, 1))
+    cdx, cdy = (K[T[ti, 2], q] - d[:, q] for q in (0, 1))
+    alift = adx * adx + ady * ady
+    blift = bdx * bdx + bdy * bdy
+    clift = cdx * cdx + cdy * cdy
+    det = (
+        alift * (bdx * cdy - cdx * bdy)
+        + blift * (cdx * ady - adx * cdy)
+        + clift * (adx * bdy - bdx * ady)
+    )
+    return (det > 0).astype(np.int64) - (det < 0).astype(np.int64)
+
+
 def exact_twice_area(points, tri) -> Fraction:
     """Twice the signed area of triangle ``tri`` (indices into ``points``), exactly."""
     a, b, c = (points[i] for i in tri)
@@ -283,6 +321,28 @@ def exact_circumcentre(a, b, c) -> tuple[float, float]:
     ux = ax + (ey * bl - dy * cl) / det
     uy = ay + (dx * cl - ex * bl) / det
     return float(ux), float(uy)
+
+
+def exact_circumcentres(points, triangles) -> np.ndarray:
+    """:func:`exact_circumcentre` of every triangle, as an ``(t, 2)`` array.
+
+    The same formula in Python integers over one common power of two
+    (:func:`dyadic_integers`); each coordinate is one ``int / int`` division, which Python
+    rounds correctly, as ``float(Fraction)`` does. Raises ``ZeroDivisionError`` for an
+    exactly collinear triangle.
+    """
+    K, s = dyadic_integers(np.asarray(points, dtype=np.float64).reshape(-1, 2))
+    T = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    ax, ay = K[T[:, 0], 0], K[T[:, 0], 1]
+    dx, dy = K[T[:, 1], 0] - ax, K[T[:, 1], 1] - ay
+    ex, ey = K[T[:, 2], 0] - ax, K[T[:, 2], 1] - ay
+    det = 2 * (dx * ey - dy * ex)
+    bl = dx * dx + dy * dy
+    cl = ex * ex + ey * ey
+    # a + n / det in the points' units: (A det + N) / (det s), A and N in integers
+    ux = (ax * det + (ey * bl - dy * cl)) / (det * s)
+    uy = (ay * det + (dx * cl - ex * bl)) / (det * s)
+    return np.column_stack((ux.astype(np.float64), uy.astype(np.float64))).reshape(-1, 2)
 
 
 # ---------------------------------------------------------------------------------------------

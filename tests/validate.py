@@ -13,7 +13,7 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
-from reference import exact_circumcentre, exact_incircle, exact_orient, first_occurrence
+from reference import exact_circumcentres, exact_incircle_signs, exact_orient, first_occurrence
 
 # Nothing here calls the engine's predicates or circumcentres: float filters with Shewchuk's
 # error bounds (doubled for margin) decide the clear cases and reference.py's exact rational
@@ -165,13 +165,9 @@ def check_empty_circumcircles(pts: np.ndarray, triangles: np.ndarray, cand: np.n
     else:
         ti, pi = _near_circumcentre_candidates(pts, triangles, cand)
         ti, pi = _incircle_unsure(pts, triangles, ti, pi)
-    bad = []
-    for t, k in zip(ti.tolist(), pi.tolist(), strict=True):
-        a, b, c = triangles[t]
-        if exact_incircle(pts[a], pts[b], pts[c], pts[k]) > 0:
-            bad.append((t, k))
-            if len(bad) >= 5:
-                break
+    # every pair the filter left, exactly (reference.exact_incircle's determinant in integers)
+    inside = np.flatnonzero(exact_incircle_signs(pts, triangles, ti, pi) > 0)[:5]
+    bad = list(zip(ti[inside].tolist(), pi[inside].tolist(), strict=True))
     assert not bad, f"points inside circumcircles (triangle, point): {bad}"
 
 
@@ -296,14 +292,12 @@ def check_circumcentres(pts: np.ndarray, triangles: np.ndarray, centres: np.ndar
             uy = p[:, 0, 1] + (d[:, 0] * cl - e[:, 0] * bl) / den
             err = np.maximum(np.abs(ux - centres[judged, 0]), np.abs(uy - centres[judged, 1]))
         judged = judged[~(err <= 0.5 * tol[judged])]
-    bad = []
-    for k in judged.tolist():
-        a, b, c = pts[triangles[k]]
-        want = np.array(exact_circumcentre(a, b, c))
-        if not np.abs(centres[k] - want).max() <= tol[k]:
-            bad.append((k, centres[k].tolist(), want.tolist()))
-            if len(bad) >= 3:
-                break
+    want = exact_circumcentres(pts, triangles[judged])  # reference.exact_circumcentre's, batched
+    off = ~(np.abs(centres[judged] - want).max(1, initial=0.0) <= tol[judged])
+    bad = [
+        (k, centres[k].tolist(), w.tolist())
+        for k, w in zip(judged[off][:3].tolist(), want[off][:3], strict=True)
+    ]
     assert not bad, f"circumcentres off (triangle, got, exact): {bad}"
 
 
