@@ -8,6 +8,7 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
+from scipy.spatial import cKDTree
 
 import voroforge as vf
 from voroforge.kernels.predicates3d import exact_point, scratch
@@ -110,35 +111,72 @@ def test_locate_far_queries_weighted():
     assert got == min(range(30), key=lambda i: (d2[i], i))
 
 
+def _key(*cols, sizes):
+    """Rows of small non-negative ints as one int64 each (mixed radix ``sizes``): equal
+    rows, equal keys, and the keys sort as the rows do."""
+    assert np.prod(np.array(sizes, dtype=float)) < 2.0**62
+    out = np.zeros(len(cols[0]), np.int64)
+    for c, m in zip(cols, sizes, strict=True):
+        assert len(c) == 0 or 0 <= c.min() <= c.max() < m
+        out = out * m + c
+    return out
+
+
 def _check_cells(d, box):
     """Euler and closure per cell (by vertex numbers), faces matched from both sides,
     volumes tiling the box, vertices equidistant from their cells, samples in the nearest
     site's cell, describe() clean. Vertices may share coordinates (distinct exact vertices
-    closer than the doubles can tell)."""
+    closer than the doubles can tell). Every cell, face and ring entry at once (numpy): the
+    same checks as one cell at a time."""
     cf, lab, farea, roff, ring = d.cell_face_table()
+    cf, roff = np.asarray(cf, np.int64), np.asarray(roff, np.int64)
+    lab, ring = np.asarray(lab, np.int64), np.asarray(ring, np.int64)
     V = np.asarray(d.vertices)
     S = np.asarray(d.sites)
+    n = len(d)
     lo, hi = np.array(box[:3]), np.array(box[3:])
     size = float((hi - lo).max())
     assert abs(d.volumes.sum() - np.prod(hi - lo)) <= 1e-12 * np.prod(hi - lo)
-    faces = {}
-    for i in range(len(d)):
-        f0, f1 = cf[i], cf[i + 1]
-        directed, verts = set(), set()
-        for f in range(f0, f1):
-            r = ring[roff[f] : roff[f + 1]].tolist()
-            assert len(r) >= 3 and len(set(r)) == len(r), (i, r)
-            directed.update(zip(r, r[1:] + r[:1], strict=True))
-            verts.update(r)
-            faces[(i, int(lab[f]), tuple(sorted(r)))] = r
-        assert all((b, a) in directed for a, b in directed), f"cell {i} not closed"
-        assert len(verts) - len(directed) // 2 + (f1 - f0) == 2, f"cell {i} Euler"
-        if verts:
-            dd = ((V[sorted(verts)][:, None, :] - S[None, :, :]) ** 2).sum(-1)
-            own = ((V[sorted(verts)] - S[i]) ** 2).sum(-1)
-            # the vertices are doubles: an ulp of their coordinates moves them that far
-            tol = 1e-9 * size**2 + 8 * size * np.spacing(np.abs(V).max())
-            assert (own - dd.min(1) <= tol).all(), f"cell {i} vertex not nearest"
+    # the faces of cells 0..n-1 and their ring entries: cell, face, place in the ring
+    fcell = np.repeat(np.arange(n), np.diff(cf))
+    face = np.arange(cf[0], cf[n])
+    flen = roff[face + 1] - roff[face]
+    assert (flen >= 3).all(), (fcell[flen < 3][:3], face[flen < 3][:3])
+    efac = np.repeat(np.arange(len(face)), flen)  # face (as a row of `face`) per entry
+    k = np.arange(len(efac)) - np.repeat(np.cumsum(flen) - flen, flen)  # place in its ring
+    a = ring[roff[face][efac] + k]
+    b = ring[roff[face][efac] + (k + 1) % flen[efac]]  # the next vertex round the ring
+    ecell = fcell[efac]
+    m = len(V)
+    assert len(np.unique(_key(efac, a, sizes=(len(face), m)))) == len(a), "a ring repeats a vertex"
+    # per cell: its directed edges (a set, as before) closed, and V - E + F = 2
+    directed = np.unique(_key(ecell, a, b, sizes=(n, m, m)))
+    dc, rest = np.divmod(directed, m * m)
+    da, db = np.divmod(rest, m)
+    twin = np.isin(_key(dc, db, da, sizes=(n, m, m)), directed)
+    assert twin.all(), f"cell {dc[~twin][0]} not closed"
+    vc, vv = np.divmod(np.unique(_key(ecell, a, sizes=(n, m))), m)  # each cell's vertices
+    nv = np.bincount(vc, minlength=n)
+    ne = np.bincount(dc, minlength=n) // 2
+    euler = nv - ne + np.diff(cf) == 2
+    assert euler.all(), f"cell {np.flatnonzero(~euler)[0]} Euler"
+    # each cell's vertices are no farther from its site than from the nearest site (the
+    # nearest from a k-d tree, its distance in the same float formula; the tolerance is
+    # 1e-9 of the size squared, far above their rounding)
+    own = ((V[vv] - S[vc]) ** 2).sum(-1)
+    used = np.unique(vv)
+    _, near = cKDTree(S).query(V[used], k=min(4, n))
+    near = near.reshape(len(used), -1)
+    nearest = np.full(len(V), np.inf)
+    nearest[used] = ((V[used][:, None, :] - S[near]) ** 2).sum(-1).min(1)
+    # the vertices are doubles: an ulp of their coordinates moves them that far
+    tol = 1e-9 * size**2 + 8 * size * np.spacing(np.abs(V).max())
+    far = ~(own - nearest[vv] <= tol)
+    assert not far.any(), f"cell {vc[far][0]} vertex not nearest"
+    # faces matched from both sides: (i, j, its vertex set) has (j, i, the same set)
+    order = np.lexsort((a, efac))
+    keys = [tuple(r.tolist()) for r in np.split(a[order], np.cumsum(flen)[:-1])]
+    faces = set(zip(fcell.tolist(), lab[face].tolist(), keys, strict=True))
     for i, j, key in faces:
         if j >= 0:
             assert (j, i, key) in faces, f"face {i}-{j} has no twin"
@@ -152,16 +190,18 @@ def _check_cells(d, box):
     # ulp of their coordinates: cells 67 ulps wide at 1e8 are drawn to 1.5%)
     ulps = 64 * np.spacing(np.abs(V).max())
     clear = np.sqrt(srt[:, 1]) - np.sqrt(srt[:, 0]) > 1e-6 * np.sqrt(srt[:, 0]) + ulps
-    for q, k in zip(x[clear], d2[clear].argmin(1), strict=True):
-        tri = [
-            (ring[roff[f]], ring[roff[f] + t], ring[roff[f] + t + 1])
-            for f in range(cf[k], cf[k + 1])
-            for t in range(1, roff[f + 1] - roff[f] - 1)
-        ]
-        a, b, c = ((V[np.array(tri)[:, m]] - S[k]) - (q - S[k]) for m in range(3))
-        la, lb, lc = (np.linalg.norm(e, axis=1) for e in (a, b, c))
-        num = (a * np.cross(b, c)).sum(1)
-        den = la * lb * lc + (a * b).sum(1) * lc + (a * c).sum(1) * lb + (b * c).sum(1) * la
+    # every face fanned from its first vertex, the triangles in cell and face order
+    fan = np.repeat(np.arange(len(face)), flen - 2)
+    t = np.arange(len(fan)) - np.repeat(np.cumsum(flen - 2) - (flen - 2), flen - 2) + 1
+    r0 = roff[face][fan]
+    tris = np.column_stack((ring[r0], ring[r0 + t], ring[r0 + t + 1]))
+    tstart = np.searchsorted(fcell[fan], np.arange(n + 1))
+    for q, c in zip(x[clear], d2[clear].argmin(1), strict=True):
+        tri = tris[tstart[c] : tstart[c + 1]]
+        a_, b_, c_ = ((V[tri[:, m]] - S[c]) - (q - S[c]) for m in range(3))
+        la, lb, lc = (np.linalg.norm(e, axis=1) for e in (a_, b_, c_))
+        num = (a_ * np.cross(b_, c_)).sum(1)
+        den = la * lb * lc + (a_ * b_).sum(1) * lc + (a_ * c_).sum(1) * lb + (b_ * c_).sum(1) * la
         wind = 2 * np.arctan2(num, den).sum() / (4 * np.pi)
         assert abs(wind - 1) < 1e-6, f"a sample lies outside its nearest site's cell ({wind})"
     r = d.describe()
