@@ -220,7 +220,9 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
     stale = False
     r2m = 0.0
     cuts = 0  # graph cuts since the radius was last found (small cells: CELLCUT3D_REFRESH_CUTS)
-    hint = 0  # the climb's start (kernels.climb3d): a point of the last cut's cap
+    # the climb's start (kernels.climb3d): a point of the last cut's cap (int64, not a
+    # literal 0: plane_local compiled once more for the loop's first, literal, type)
+    hint = np.int64(0)
     hw = 0  # work[:hw, (0, 3)], the climb's marks, are clear (bin_group writes work)
     if BIN_SORT_FROM <= m < min(S.shape[0], work.shape[0]):
         bin_group(m, cand, cd2, S, work)
@@ -267,7 +269,7 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
             if mode == MISS:
                 continue  # every vertex lies beyond the band below the plane
         if mode == FULL:
-            nvl = -1
+            nvl = np.int64(-1)  # (not a literal: resolve compiles once)
             smax, low = _values(V, nv, dx, dy, dz, h, S)
         if stale and low <= tol:  # the band test needs the radius (and so may the skip)
             stale = False
@@ -292,7 +294,7 @@ def _cut_batch(m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G,
             nup, down = list_removed(nv, G[0], S, work, nvl, G[4])
         if (smax == 0.0 and near or smax > 0.0 and nup < 0) and nvl >= 0:
             _values(V, nv, dx, dy, dz, h, S)  # the tie test and the listing read every value
-            nvl = -1  # (a variable: a literal argument would compile resolve once more)
+            nvl = np.int64(-1)  # (a variable holding -1 is a literal: resolve compiled twice)
             if near:
                 smax = resolve(nv, tol, S, i, j, C, nf, G, P, W, WP, X, work, nvl)
         if smax <= 0.0:
@@ -360,62 +362,6 @@ def _gather(b, t, i, px, py, pz, wi, start, SP, SW, sidx, cand, cd2, m, mg, rmax
         m += other and not (h > 0.0 and h * h > reach * d2)
         t += 1
     return m, mg, t
-
-
-@njit(**NJIT_NO_NRT)
-def _shell_cut(i, P, W, WP, X, q, box, start, SP, SW, sidx, g, C, G, cand, cd2, nv, nf, nt, rmax2):
-    """Cut cell ``i`` by the sites of the buckets that :func:`.reach3d.shell_hit` takes.
-
-    ``q = (px, py, pz, wi, rs2)``: the site, its weight and the squared radius of the sphere
-    whose buckets are taken; ``box``: :func:`.reach3d.shell_range`'s index box. Returns
-    ``_cut_batch``'s tuple.
-    """
-    px, py, pz, wi, rs2 = q
-    nx = int(g[6])
-    ny = int(g[7])
-    m = 0
-    mg = 0
-    st = OK
-    # the box's buckets z, y, x (u: the next), each gathered from t to tend; the batch is
-    # cut where it fills and once at the end: one call of the (inlined) cut, not two
-    sx = box[3] - box[0] + 1
-    sy = box[4] - box[1] + 1
-    sz = box[5] - box[2] + 1
-    total = sx * sy * sz if sx > 0 and sy > 0 and sz > 0 else 0
-    u = 0
-    b = -1
-    t = 0
-    tend = 0
-    while True:
-        last = False
-        if t < tend:
-            m, mg, t = _gather(
-                b, t, i, px, py, pz, wi, start, SP, SW, sidx, cand, cd2, m, mg, rmax2
-            )
-            now = mg >= cand.shape[0]
-        elif u < total:
-            bx = box[0] + u % sx
-            by = box[1] + (u // sx) % sy
-            bz = box[2] + u // (sx * sy)
-            u += 1
-            b = (bz * ny + by) * nx + bx
-            if shell_hit(b, px, py, pz, g, rs2, box):
-                t = start[b]
-                tend = start[b + 1]
-            continue
-        else:
-            now = m > 0
-            last = True
-        if now:
-            st, nv, nf, nt, rmax2 = _cut_batch(
-                m, i, P, WP, X, px, py, pz, wi, W, SP, SW, sidx, cand, cd2, C, G, nv, nf, nt, rmax2
-            )
-            if st != OK:
-                return st, 0, 0, 0, 0.0
-            m = 0
-            mg = 0
-        if last:
-            return st, nv, nf, nt, rmax2
 
 
 @njit(**NJIT_NO_NRT)
@@ -545,43 +491,48 @@ def one_cell(
     rs2 = wi - g[hb + 1] if hn > 0 and not kd and not lists else 0.0
     light = True  # a light site may still reach the cell
     shell = (0, 0, 0, -1, -1, -1)  # the buckets cut by first (none)
+    # the shell phase (sh): the buckets of shell's box that the sphere meets, z, y, x (u:
+    # the next of total), gathered and cut by before the search (one inlined cut: a second
+    # copy of it cost ~40 s of the 3D warm-up's compile)
+    sh = False
+    u = 0
+    total = 0
+    sx = 0
+    sy = 0
     if rs2 > 0.0:
         light = rs2 <= rmax2 * (1.0 + 4.0 * VORONOI3D_STOP_RTOL)
         if light:
             shell = shell_range(px, py, pz, g, rs2)
-            here = (px, py, pz, wi, rs2)
-            st, nv, nf, nt, rmax2 = _shell_cut(
-                i,
-                P,
-                W,
-                WP,
-                X,
-                here,
-                shell,
-                start,
-                SP,
-                SW,
-                sidx,
-                g,
-                C,
-                G,
-                cand,
-                cd2,
-                nv,
-                nf,
-                nt,
-                rmax2,
-            )
-            if st != OK:
-                return st, 0, 0, 0, 0.0
-            light = rs2 <= rmax2 * (1.0 + 4.0 * VORONOI3D_STOP_RTOL)
+            sx = shell[3] - shell[0] + 1
+            sy = shell[4] - shell[1] + 1
+            sz = shell[5] - shell[2] + 1
+            total = sx * sy * sz if sx > 0 and sy > 0 and sz > 0 else 0
+            sh = True
+    nx = int(g[6])
+    ny = int(g[7])
     while True:
         flush = False
         stop = False
+        shend = False  # the shell phase ends with this flush
         b = -1
         if rb >= 0:
             b = rb
             rb = -1
+        elif sh:  # the box's next bucket that the sphere meets, else cut by what is gathered
+            while u < total:
+                bx = shell[0] + u % sx
+                by = shell[1] + (u // sx) % sy
+                bz = shell[2] + u // (sx * sy)
+                u += 1
+                b = (bz * ny + by) * nx + bx
+                if shell_hit(b, px, py, pz, g, rs2, shell):
+                    break
+                b = -1
+            if b >= 0:
+                rt = start[b]
+            else:
+                flush = True
+                shend = True
         elif not light:  # no light site can reach the cell: the heavy ones, then done
             flush = True
             stop = True
@@ -673,7 +624,7 @@ def one_cell(
                     q = 0
                     stop = nb < 0
                     nb = max(nb, 0)
-        if b >= 0 and rs2 > 0.0 and shell_hit(b, px, py, pz, g, rs2, shell):
+        if b >= 0 and not sh and rs2 > 0.0 and shell_hit(b, px, py, pz, g, rs2, shell):
             b = -1  # (cut by first)
         if b >= 0:
             m, mg, rt = _gather(
@@ -681,6 +632,8 @@ def one_cell(
             )
             if rt < start[b + 1]:  # a crowded neighbourhood: cut by what is gathered, go on
                 rb = b
+                flush = True
+            elif sh and mg >= cand.shape[0]:  # (the shell phase cuts a full batch at once)
                 flush = True
         for _ in range(2):  # (twice when the search stops and the heavy sites remain)
             if not flush:
@@ -711,7 +664,8 @@ def one_cell(
                 )
                 if st != OK:
                     return st, 0, 0, 0, 0.0
-            seen += mg
+            if not sh:  # (the shell phase's sites are not counted against the budget)
+                seen += mg
             m = 0
             mg = 0
             if budget > 0.0 and seen > budget:
@@ -722,6 +676,9 @@ def one_cell(
             m = gather_heavy(g, hb, hn, i, px, py, pz, wi, SP, SW, sidx, cand, cd2, rmax2)
             mg = m
             hn = 0
+        if shend:  # the shell phase is done: can a light site still reach the cell?
+            sh = False
+            light = rs2 <= rmax2 * (1.0 + 4.0 * VORONOI3D_STOP_RTOL)
         if stop:
             break
     if graph:
