@@ -294,15 +294,18 @@ def _name_cell(
             if u == 0 or keys[t] != keys[u - 1]:
                 keys[u] = keys[t]
                 u += 1
-        r = name_vertex(keys, u, P, W, WP, ns, rows, y, name, X[1]) if u >= 4 else 0
-        kk = keys
-        if r != 0 and BG[0].shape[0] > 0 and BG[0][i] >= 0:
+        kk = keys  # then (a big polytope's centre) bkeys: one inlined name_vertex, not two
+        r = 0
+        for rep in range(2 if u >= 4 else 0):
+            r = name_vertex(kk, u, P, W, WP, ns, rows, y, name, X[1])
+            if rep == 1 or r == 0 or BG[0].shape[0] == 0 or BG[0][i] < 0:
+                break
             u2 = _big_keys(BG, BG[0][i], name, keys, u, ns, bkeys)
-            if u2 > 0:  # the big polytope's centre: named from all its sites
-                kk = bkeys
-                u = u2
-                r = name_vertex(kk, u, P, W, WP, ns, rows, y, name, X[1])
-                cut_short = False
+            if u2 <= 0:  # (else the big polytope's centre: named from all its sites)
+                break
+            kk = bkeys
+            u = u2
+            cut_short = False
         if cut_short:
             return OVERFLOW
         if r == 0:
