@@ -167,7 +167,7 @@ def exact_dets(buf, EL, TL, need4):
     components at ``(3 k + c) * 2``; ``buf[_OFF_T + 64 k:]`` the last column's ``t_k`` with
     ``TL[k]`` components.
     """
-    n3, n4 = _dets(buf, EL, TL, need4)
+    n3, n4 = _dets(buf, EL, TL, need4, np.bool_(True))  # (fresh given: one signature)
     s3 = _sign(buf[_OFF_M3 + 3 * _M3 : _OFF_M3 + 4 * _M3], n3)
     if not need4:
         return s3, 0

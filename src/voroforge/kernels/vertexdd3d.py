@@ -196,9 +196,9 @@ def vertex_dd(a, k0, k1, k2, P, W, WP, ns, cx, cy, cz, R, x):
     ``(-1)**(q + 1) M_q + t D3`` with ``M_q`` the rows' minor without column ``q`` and
     ``t = 2 (c_q - p_a,q)`` (exact two-term). ``R`` is scratch of 63 components.
     """
-    _row(k0, a, P, W, WP, ns, R, 0)
-    _row(k1, a, P, W, WP, ns, R, 1)
-    _row(k2, a, P, W, WP, ns, R, 2)
+    _row(k0, a, P, W, WP, ns, R, np.int64(0))  # not literals: one compile of _row, not three
+    _row(k1, a, P, W, WP, ns, R, np.int64(1))
+    _row(k2, a, P, W, WP, ns, R, np.int64(2))
     H = R[0:12]
     L = R[12:24]
     A = R[24:36]
