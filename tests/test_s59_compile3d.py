@@ -11,7 +11,6 @@ caller passes, whatever the on-disk cache holds.
 from __future__ import annotations
 
 import numba
-import numpy as np
 import pytest
 from numba import njit, types
 
