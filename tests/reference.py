@@ -33,18 +33,20 @@ def exact_incircle(a, b, c, d) -> int:
     """Sign of the incircle determinant: +1 when ``d`` is strictly inside the circle through
     the counter-clockwise ``a, b, c`` (-1 outside, 0 on it)."""
     ax, ay, bx, by, cx, cy, dx, dy = (_fr(v) for v in (*a, *b, *c, *d))
-    adx, ady = ax - dx, ay - dy
-    bdx, bdy = bx - dx, by - dy
-    cdx, cdy = cx - dx, cy - dy
+    return _sign(_incircle_det(ax - dx, ay - dy, bx - dx, by - dy, cx - dx, cy - dy))
+
+
+def _incircle_det(adx, ady, bdx, bdy, cdx, cdy):
+    """The incircle determinant from the three points' offsets to the fourth (Fractions,
+    Python ints, or numpy object arrays of them: exact either way)."""
     alift = adx * adx + ady * ady
     blift = bdx * bdx + bdy * bdy
     clift = cdx * cdx + cdy * cdy
-    det = (
+    return (
         alift * (bdx * cdy - cdx * bdy)
         + blift * (cdx * ady - adx * cdy)
         + clift * (adx * bdy - bdx * ady)
     )
-    return _sign(det)
 
 
 def dyadic_integers(points) -> tuple[np.ndarray, int]:
@@ -74,14 +76,7 @@ def exact_incircle_signs(points, triangles, ti, pi) -> np.ndarray:
     adx, ady = (K[T[ti, 0], q] - d[:, q] for q in (0, 1))
     bdx, bdy = (K[T[ti, 1], q] - d[:, q] for q in (0, 1))
     cdx, cdy = (K[T[ti, 2], q] - d[:, q] for q in (0, 1))
-    alift = adx * adx + ady * ady
-    blift = bdx * bdx + bdy * bdy
-    clift = cdx * cdx + cdy * cdy
-    det = (
-        alift * (bdx * cdy - cdx * bdy)
-        + blift * (cdx * ady - adx * cdy)
-        + clift * (adx * bdy - bdx * ady)
-    )
+    det = _incircle_det(adx, ady, bdx, bdy, cdx, cdy)
     return (det > 0).astype(np.int64) - (det < 0).astype(np.int64)
 
 
