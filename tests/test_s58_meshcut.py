@@ -76,7 +76,9 @@ def _cells_and_triangles(n, seed, mesh=None):
     lo, hi = mesh.bounds[0] - 0.05, mesh.bounds[1] + 0.05
     d = vf.voronoi3d(pts, tuple(np.r_[lo, hi]))
     cf, lab, farea, roff, ring = d.cell_face_table()
-    V = np.ascontiguousarray(d.vertices)
+    # a writeable copy, as the engine passes (d.vertices is read-only: a read-only array
+    # would compile the mesh kernels once more, ~17 s of the suite's CPU)
+    V = np.array(d.vertices, dtype=np.float64, order="C")
     T = np.ascontiguousarray(np.asarray(mesh.vertices)[np.asarray(mesh.faces)], np.float64)
     return cf, lab, np.ascontiguousarray(farea), roff, ring, V, T
 
