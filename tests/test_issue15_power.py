@@ -317,6 +317,7 @@ def test_settle_changes_nothing_where_rings_hold(case):
         w = _weights(pts, 0.1, 4)
     x, y = np.ascontiguousarray(pts[:, 0]), np.ascontiguousarray(pts[:, 1])
     box = np.array(_box(pts), dtype=float)
+    w = _frozen(w)
     indptr, indices, active, suspect = _neighbors(x, y, w, box, np.ones(len(pts), dtype=bool))
     assert suspect is not None
     rings = checked_cells(x, y, w, box, active, indptr, indices, suspect)
