@@ -24,6 +24,8 @@ import shapely
 
 import voroforge as vf
 
+from reference import exact_area
+
 OFF = 7e14
 HALF = 5.0
 
@@ -47,24 +49,6 @@ def _sites(geom, n, seed=1):
     x0, y0, x1, y1 = geom.bounds
     p = np.c_[rng.uniform(x0, x1, 8 * n), rng.uniform(y0, y1, 8 * n)]
     return p[shapely.contains_xy(geom, p[:, 0], p[:, 1])][:n]
-
-
-def _ring_area(xy):
-    twice = Fraction(0)
-    for (x0, y0), (x1, y1) in zip(xy[:-1], xy[1:], strict=True):
-        twice += Fraction(x0) * Fraction(y1) - Fraction(x1) * Fraction(y0)
-    return abs(twice) / 2
-
-
-def _area(geom):
-    total = Fraction(0)
-    for p in shapely.get_parts(geom):
-        if p.is_empty:
-            continue
-        total += _ring_area(np.asarray(p.exterior.coords).tolist())
-        for h in p.interiors:
-            total -= _ring_area(np.asarray(h.coords).tolist())
-    return total
 
 
 @pytest.fixture(scope="module", params=["holed", "hexagon"])
@@ -105,8 +89,8 @@ def test_cells_do_not_overlap(built):
 def test_cells_sum_to_the_domain(built):
     name, geom, d = built
     cells = np.asarray(d.cells, dtype=object)
-    total = sum((_area(c) for c in cells), Fraction(0))
-    domain = _area(geom)
+    total = sum((exact_area(c) for c in cells), Fraction(0))
+    domain = exact_area(geom)
     if name == "holed":
         assert total == domain
     else:
