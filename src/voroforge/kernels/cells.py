@@ -38,6 +38,12 @@ _U = 2.0**-53
 _CHUNK = 2048
 _SPLICE_MIN = 48  # cut cells with more neighbours are built by cellcut.spliced_cell
 _THIN_ULPS = 8.0  # a ring whose edge passes this close to its site is a strip (rings_astray)
+# _pass's modes (np.int64, not literals: one compile for all of them)
+_COUNT = np.int64(0)
+_FILL = np.int64(1)
+_LISTED = np.int64(2)
+_NO_DEG = np.zeros(0, dtype=np.int64)  # (_pass's deg and cut, not read with _LISTED)
+_NO_CUT = np.zeros(0, dtype=np.bool_)
 
 
 @njit(**NJIT)
@@ -231,41 +237,9 @@ def _scratch(cap):
     return bufs, nbrs, cl, tb, np.zeros(cap)
 
 
-@njit(**NJIT_PARALLEL)
-def _count(xs, ys, ws, tri, he, cx, cy, err, reach, cls, out, box, cap, deg, cut, merged):
-    """Vertex count of every cell.
-
-    Without cocircular merges an uncut cell has one vertex per incident triangle, so only cut
-    cells need the full construction; with them, an uncut cell is counted by its halfedge
-    walk (:func:`_classed_ring`).
-    """
-    n = xs.shape[0]
-    counts = np.zeros(n, dtype=np.int64)
-    if not merged:
-        for i in prange(n):
-            counts[i] = deg[i] if deg[i] >= 3 else 0
-    nchunks = (n + _CHUNK - 1) // _CHUNK
-    nowhere = np.zeros((0, 2))
-    none = np.zeros(0, dtype=np.int64)
-    count_only = np.int64(-1)  # not a literal: one compile of _classed_ring (see _fill)
-    for ch in prange(nchunks):
-        bufs, nbrs, cl, tb, ss = _scratch(cap[ch])
-        for i in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
-            if not cut[i]:
-                if merged:  # inside the box: the walk alone counts it
-                    counts[i] = _classed_ring(
-                        i, tri, he, cx, cy, cls, out, count_only, nowhere, none, none
-                    )
-                continue
-            counts[i] = _cell(
-                i, xs, ys, ws, tri, he, cx, cy, err, reach, cls, out, box, bufs, nbrs, cl, tb, ss
-            )
-    return counts
-
-
 @njit(**NJIT)
 def _write_ring(i, tri, he, cx, cy, out, base, coords, owner, kmap):
-    """The ring of uncut, unmerged cell ``i`` at ``coords[base:]``, closed (see :func:`_fill`)."""
+    """The ring of uncut, unmerged cell ``i`` at ``coords[base:]``, closed (see :func:`_pass`)."""
     o0 = out[i]
     if o0 == -1:
         return
@@ -294,7 +268,7 @@ def _classed_ring(i, tri, he, cx, cy, cls, out, base, coords, owner, kmap):
 
     Returns its vertex count, as :func:`_cell` does: one vertex per run of triangles of
     one class around the site, the last run dropped when it is the first one's class. With
-    ``base >= 0`` the ring is also written closed at ``coords[base:]`` (what :func:`_fill`
+    ``base >= 0`` the ring is also written closed at ``coords[base:]`` (what :func:`_pass`
     writes from :func:`_cell`'s ring, bit for bit: each vertex's owner is the neighbour
     after the last triangle of its run); only a cell of 3 or more vertices has room there.
     """
@@ -350,7 +324,9 @@ def _put_ring(base, m, px, py, pw, coords, owner, kmap):
 
 
 @njit(**NJIT_PARALLEL)
-def _fill(
+def _pass(
+    mode,
+    sites,
     xs,
     ys,
     ws,
@@ -364,39 +340,63 @@ def _fill(
     out,
     box,
     cap,
+    deg,
+    cut,
+    merged,
     start,
     counts,
     coords,
     owner,
     kmap,
-    cut,
-    merged,
 ):
-    """Write every cell as a closed ring at ``start[i]``; owners go through ``kmap``.
+    """Count (``mode & _FILL == 0``) or write the cells of every site, or of ``sites`` only.
 
-    Without cocircular merges an uncut cell is its ring of circumcentres, one per incident
-    triangle (what :func:`_cell` builds then, see :func:`_count`): it is written straight
-    from the halfedge walk; with merges, an uncut cell is written from its walk too
-    (:func:`_classed_ring`, ``counts`` its vertex count).
+    One parallel pass for :func:`_build`'s two passes and :func:`_some`'s: numba links and
+    optimises :func:`_cell`'s whole call tree into every function that calls it, twice for a
+    parallel one (the outer function and its parfor body), so one pass carries it once
+    instead of three times (group 1 of the suite's compile step: 65 + 12 s for two).
+
+    ``mode`` (an np.int64, not a literal: one compile for all four) holds ``_FILL`` and
+    ``_LISTED``. Counting writes ``counts``; filling writes each cell as a closed ring at
+    ``start``, owners through ``kmap``. With ``_LISTED`` the cells of ``sites`` are built
+    by :func:`_cell` at ``counts[s]`` / ``start[s]`` (``deg``, ``cut`` and ``merged`` are
+    not read). Otherwise every site ``i``, at ``counts[i]`` / ``start[i]``: without
+    cocircular merges an uncut cell has one vertex per incident triangle (its count is its
+    degree) and is written straight from the halfedge walk (:func:`_write_ring`); with them,
+    an uncut cell is counted and written from its walk (:func:`_classed_ring`); only cut
+    cells need the full construction.
     """
-    n = xs.shape[0]
+    fill = (mode & _FILL) != 0
+    listed = (mode & _LISTED) != 0
+    n = sites.shape[0] if listed else xs.shape[0]
+    if not fill and not listed and not merged:
+        for i in prange(n):
+            counts[i] = deg[i] if deg[i] >= 3 else 0
     nchunks = (n + _CHUNK - 1) // _CHUNK
     for ch in prange(nchunks):
         bufs, nbrs, cl, tb, ss = _scratch(cap[ch])
         px, py, pw = bufs[0], bufs[1], bufs[2]
-        for i in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
-            if not cut[i]:
-                if not merged:
-                    _write_ring(i, tri, he, cx, cy, out, start[i], coords, owner, kmap)
-                elif counts[i] > 0:
-                    _classed_ring(i, tri, he, cx, cy, cls, out, start[i], coords, owner, kmap)
+        for s in range(ch * _CHUNK, min(n, (ch + 1) * _CHUNK)):
+            i = np.int64(s)
+            if listed:
+                i = sites[s]
+            elif not cut[i]:
+                if not merged:  # (counted by its degree above)
+                    if fill:
+                        _write_ring(i, tri, he, cx, cy, out, start[i], coords, owner, kmap)
+                elif not fill or counts[i] > 0:  # inside the box: the walk alone builds it
+                    base = start[i] if fill else np.int64(-1)
+                    m = _classed_ring(i, tri, he, cx, cy, cls, out, base, coords, owner, kmap)
+                    if not fill:
+                        counts[i] = m
                 continue
             m = _cell(
                 i, xs, ys, ws, tri, he, cx, cy, err, reach, cls, out, box, bufs, nbrs, cl, tb, ss
             )
-            if m == 0:
-                continue
-            _put_ring(start[i], m, px, py, pw, coords, owner, kmap)
+            if not fill:
+                counts[s] = m
+            elif m > 0:
+                _put_ring(start[s], m, px, py, pw, coords, owner, kmap)
 
 
 def cells_from_triangulation(xs, ys, tri, he, box, order, kmap, *, astray=False):
@@ -492,7 +492,11 @@ def _build(xs, ys, tri, he, cx, cy, err, reach, cls, box, order, kmap, merged):
     starts = np.arange(0, n, _CHUNK)
     cap = (np.maximum.reduceat(deg, starts) + 16) if n else np.zeros(0, np.int64)
     ws = np.zeros(n)
-    counts = _count(xs, ys, ws, tri, he, cx, cy, err, reach, cls, out, box, cap, deg, cut, merged)
+    counts = np.zeros(n, dtype=np.int64)
+    none = np.zeros(0, dtype=np.int64)
+    merged = bool(merged)
+    args = (tri, he, cx, cy, err, reach, cls, out, box, cap, deg, cut, merged)
+    _pass(_COUNT, none, xs, ys, ws, *args, none, counts, np.zeros((0, 2)), none, kmap)
     closed = np.where(counts > 0, counts + 1, 0)
     lengths = np.zeros(n + 1, dtype=np.int64)
     lengths[1:][order] = closed
@@ -501,49 +505,19 @@ def _build(xs, ys, tri, he, cx, cy, err, reach, cls, box, order, kmap, merged):
     total = int(lengths[-1])
     coords = np.zeros((total, 2))
     owner = np.zeros(total, dtype=np.int64)
-    args = (cls, out, box, cap, start, counts, coords, owner, kmap, cut, merged)
-    _fill(xs, ys, ws, tri, he, cx, cy, err, reach, *args)
+    _pass(_FILL, none, xs, ys, ws, *args, start, counts, coords, owner, kmap)
     return out, (coords, lengths, owner)
 
 
-@njit(**NJIT_PARALLEL)
-def _some(
-    sites,
-    xs,
-    ys,
-    ws,
-    tri,
-    he,
-    cx,
-    cy,
-    err,
-    reach,
-    cls,
-    out,
-    box,
-    cap,
-    counts,
-    start,
-    coords,
-    owner,
-    kmap,
-):
-    """:func:`_count` (``start`` empty) or :func:`_fill` of the cells of ``sites`` only."""
-    nchunks = (sites.shape[0] + _CHUNK - 1) // _CHUNK
-    for ch in prange(nchunks):
-        bufs, nbrs, cl, tb, ss = _scratch(cap[ch])
-        px, py, pw = bufs[0], bufs[1], bufs[2]
-        for s in range(ch * _CHUNK, min(sites.shape[0], (ch + 1) * _CHUNK)):
-            i = sites[s]
-            m = _cell(
-                i, xs, ys, ws, tri, he, cx, cy, err, reach, cls, out, box, bufs, nbrs, cl, tb, ss
-            )
-            if start.shape[0] == 0:
-                counts[s] = m
-                continue
-            if m == 0:
-                continue
-            _put_ring(start[s], m, px, py, pw, coords, owner, kmap)
+def _some(sites, xs, ys, ws, tri, he, cx, cy, err, reach, cls, out, box, cap, counts, start, *rest):
+    """Count (``start`` empty) or write (``coords, owner, kmap`` in ``rest``) ``sites``' cells.
+
+    :func:`_pass` with ``_LISTED``: every cell built by :func:`_cell`, ``counts[s]`` and
+    ``start[s]`` those of ``sites[s]``.
+    """
+    mode = _LISTED | (_FILL if start.shape[0] else _COUNT)
+    args = (tri, he, cx, cy, err, reach, cls, out, box, cap, _NO_DEG, _NO_CUT, True)
+    _pass(mode, sites, xs, ys, ws, *args, start, counts, *rest)
 
 
 @njit(**NJIT_PARALLEL)
