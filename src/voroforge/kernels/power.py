@@ -622,7 +622,7 @@ def _cell(i, xs, ys, ws, indptr, indices, box, px, py, po, qx, qy, qo, ss, caref
     return m
 
 
-@njit(**NJIT_PARALLEL)
+@njit(**NJIT)  # no prange: its two parallel kernels run in parallel from a plain caller
 def power_cells(xs, ys, ws, indptr, indices, box, active):
     """Closed rings of the power cells of all sites (see the module docstring).
 
