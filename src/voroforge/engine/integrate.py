@@ -27,6 +27,7 @@ import shapely
 
 from ..config import INTEGRATE_COVER_RTOL
 from ..kernels.moments import raster_moments, uniform_moments
+from .readonly import readonly
 
 _S15 = np.sqrt(15.0)
 _A1 = (6.0 - _S15) / 21.0
@@ -144,6 +145,9 @@ class Integrator:
     def scaled(self, buffers, origin):
         """As :meth:`__call__`, in units of ``2**self.exponent`` (see the class)."""
         coords, ring, poly, geom = buffers
+        # the sites as a read-only view: a frozen diagram's (power fit) or a fresh array
+        # (Lloyd's iterate); numba types the flag, and uniform_moments compiled twice
+        origin = readonly(origin, np.float64)
         if self.kind == "uniform":
             uniform_moments(coords, ring, poly, geom, origin, self.mass, self.first, self.second)
         elif self.kind == "raster":

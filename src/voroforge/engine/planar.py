@@ -38,6 +38,7 @@ from .csr import csr_from_pairs
 from .diagram import Diagram, Edges
 from .domain import Domain
 from .inputs import RES_BITS, duplicate_map, from_working, working_frame
+from .readonly import readonly
 from .threads import serial_below
 from .uncross import uncrossed
 
@@ -602,6 +603,9 @@ def _held_after_agree(xs, ys, box, rings, lost, unique, work):
 def _reach(closed, lengths, sub, unique, n):
     """``diagram.convex_reach`` in the working frame: each unique site's ring radius."""
     reach = np.zeros(n)
-    reach[unique] = farthest(closed, np.ascontiguousarray(lengths, dtype=np.int64), sub)
+    # the rings and sites as read-only views (the sites are a frozen diagram's on some
+    # paths; scale.tasks.radii hands a diagram's frozen coordinates): one compiled farthest
+    lengths = np.ascontiguousarray(lengths, dtype=np.int64)
+    reach[unique] = farthest(readonly(closed), lengths, readonly(sub))
     reach.setflags(write=False)
     return reach

@@ -23,6 +23,7 @@ import numpy as np
 from numba import njit
 
 from ..config import NJIT
+from ..engine.readonly import readonly
 from .atomic import write_atomically
 
 __all__ = [
@@ -365,8 +366,10 @@ def neighbor_lists(pairs, n: int, cells=None, ids=None):
     values : (·,) int64
         Sorted, distinct neighbours of each wanted cell.
     """
-    a = np.ascontiguousarray(pairs[:, 0], dtype=np.int64)
-    b = np.ascontiguousarray(pairs[:, 1], dtype=np.int64)
+    # read-only views (engine.readonly): a diagram's pairs are read-only, and a column of
+    # one or no pairs is no copy; numba types the flag, and _pairs_csr compiled twice
+    a = readonly(pairs[:, 0], np.int64)
+    b = readonly(pairs[:, 1], np.int64)
     indptr, dst = _pairs_csr(a, b, n)
     if cells is None:
         offsets, values = indptr, dst
