@@ -8,6 +8,7 @@ import numpy as np
 
 from ..config import LLOYD3D_INTO_MESH_FRACTIONS, LLOYD3D_INTO_MESH_PUSH
 from .inputs import as_points
+from .readonly import readonly
 from .voronoi3d import voronoi3d
 
 __all__ = ["Relaxation3D", "lloyd3d"]
@@ -103,7 +104,9 @@ def _nearest_on_mesh(mesh, q):
     owner = np.repeat(np.arange(len(q), dtype=np.int64), lens)
     tris = np.fromiter(chain.from_iterable(lists), np.int64, count=len(owner))
     out = np.zeros_like(q)
-    project_pieces(mesh.vertices, mesh.faces, np.ascontiguousarray(q), owner, tris, out)
+    # its inputs as read-only views, as the surfaces hand theirs (engine.readonly)
+    v, f, q = readonly(mesh.vertices), readonly(mesh.faces), readonly(q)
+    project_pieces(v, f, q, readonly(owner), readonly(tris), out)
     return out
 
 

@@ -22,6 +22,7 @@ from itertools import chain
 import numpy as np
 
 from ..config import SURFACE_COORD_RANGE, SURFACE_DEFAULT_MAX_CELLS, SURFACE_MAX_CELLS
+from ..engine.readonly import readonly
 
 __all__ = [
     "Surface",
@@ -182,7 +183,9 @@ class Surface:
         owner = np.repeat(np.arange(len(p), dtype=np.int64), lens)
         tris = np.fromiter(chain.from_iterable(lists), np.int64, count=len(owner))
         out = np.zeros_like(p)
-        project_pieces(self.vertices, self.faces, p, owner, tris, out)
+        # read-only views of what it does not write, on every path (engine.readonly)
+        v, f = readonly(self.vertices), readonly(self.faces)
+        project_pieces(v, f, readonly(p), readonly(owner), readonly(tris), out)
         return out
 
     def sample(self, n: int, *, seed: int = 0) -> np.ndarray:

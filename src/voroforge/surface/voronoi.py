@@ -25,6 +25,7 @@ from fractions import Fraction
 import numpy as np
 
 from .. import config
+from ..engine.readonly import readonly
 from .shapes import Surface, as_points3, check_surface_range
 
 __all__ = ["SurfaceVoronoi", "voronoi"]
@@ -455,7 +456,10 @@ def _project_cells(S: Surface, points: np.ndarray, pc: np.ndarray, pt: np.ndarra
     from ..kernels.surface import project_pieces
 
     out = np.zeros_like(points)
-    project_pieces(S.vertices, S.faces, points, pc, pt, out)
+    # read-only views of what it does not write, on every path (engine.readonly): numba
+    # types the flag (a container mesh's writeable vertices compiled it twice)
+    v, f = readonly(S.vertices), readonly(S.faces)
+    project_pieces(v, f, readonly(points), readonly(pc), readonly(pt), out)
     return out
 
 
