@@ -35,6 +35,7 @@ from ..config import FAN_D2_MIN as _FAN_D2_MIN
 from ..config import FAN_ERR as _FAN_ERR
 from ..config import NJIT, NJIT_PARALLEL
 from .csr import unique
+from .readonly import readonly
 from .threads import serial_below
 
 # :func:`_flat`'s shortcut (:func:`_clearly_not_flat`): a fan sum over a ring of ``n``
@@ -220,7 +221,10 @@ class Diagram3D:
                 self._vid,
             )
             area = np.zeros((len(lab), 3))
-            _face_vectors(np.asarray(self.vertices), roff, ring, area, self._scale())
+            # read-only views, as _areas passes its frozen faces: one compile (numba types
+            # the flag)
+            ro, rg = readonly(roff), readonly(ring)
+            _face_vectors(readonly(self.vertices), ro, rg, area, self._scale())
             if self._frame:
                 area = np.ldexp(area, -2 * self._frame)
             self._cache["table"] = tuple(_ro(a) for a in (cf, lab, area, roff, ring))
@@ -326,7 +330,8 @@ class Diagram3D:
         if "areas" not in self._cache:
             faces = self.faces
             av = np.zeros((len(faces), 3))
-            _face_vectors(np.asarray(self.vertices), faces.indptr, faces.indices, av, self._scale())
+            V, fp, fi = readonly(self.vertices), readonly(faces.indptr), readonly(faces.indices)
+            _face_vectors(V, fp, fi, av, self._scale())
             area = np.sqrt((av * av).sum(axis=1))
             with np.errstate(invalid="ignore", divide="ignore"):
                 av /= area[:, None]

@@ -37,6 +37,7 @@ from ..config import (
 from .containers import box_template, far_origin
 from .meshbool3d import cut_split, manifold_of, ranks
 from .meshcheck3d import crossing_report, nesting_report
+from .readonly import readonly
 
 
 @dataclass(frozen=True)
@@ -577,6 +578,10 @@ def cut_by_mesh(d, mesh: MeshContainer, progress=None, short=None):
     mark_runs(ring, s0, s1, used)
     pring = np.concatenate([p[3] for p in parts]) if parts else np.zeros(0, np.int64)
     used[pring] = True
+    if nvert <= np.iinfo(ring.dtype).max:
+        # the cut cells' rings in the table's type and flag (a frozen int32 table from the
+        # box cells): map_runs compiled once for both calls, not for int64 too
+        pring = readonly(pring, ring.dtype)
     remap = np.cumsum(used) - 1
     ring2 = np.zeros(int(roff2[-1]), np.int64)
     map_runs(ring, s0, s1, ring2, roff2[cell_faces[kc]], remap)

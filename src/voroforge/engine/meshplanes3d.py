@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..config import FACE_NOISE_ULPS, FACE_THIN_RTOL, LOCAL_VERTEX_ULPS
+from .readonly import readonly
 
 #: outward normals of the box walls, label ``-1 - w`` (:func:`containers.box_template`)
 _WALLS = np.array([[-1, 0, 0], [1, 0, 0], [0, -1, 0], [0, 1, 0], [0, 0, -1], [0, 0, 1]], float)
@@ -61,7 +62,7 @@ def cut_planes(farea, cf, lab, roff, ring, verts, sites):
         return farea.copy()
     thin = _thin(farea, roff, ring, verts, len(cf) - 1)
     with serial_below(len(cf) - 1):
-        out = pow2_rows(farea)
+        out = pow2_rows(readonly(farea))  # (a frozen table's, as the engine passes it)
     if thin.any():
         plane_rows(out, np.flatnonzero(thin), cf, lab, sites)
     return out
