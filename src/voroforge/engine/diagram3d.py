@@ -199,7 +199,9 @@ class Diagram3D:
         )
 
     def _positions(self):
-        return np.arange(len(self), dtype=np.int64) if self._pos is None else self._pos
+        # read-only either way (a frozen order or a fresh arange): numba types the flag, and
+        # the face kernels' callees (_cells_at) compiled twice
+        return readonly(np.arange(len(self), dtype=np.int64) if self._pos is None else self._pos)
 
     def cell_face_table(self):
         """Per-cell faces: ``(cell_faces (n + 1,), labels, area_vectors, ring_offsets, rings)``.
