@@ -277,11 +277,12 @@ def power_diagrams(pts: np.ndarray, w: np.ndarray, doms) -> tuple[PowerDiagram, 
     active = dup < 0
     x = np.ascontiguousarray(pts[:, 0])
     y = np.ascontiguousarray(pts[:, 1])
-    # the kernels get a read-only view of the weights, whatever the caller's flag: numba
-    # types the flag, and PowerDiagram freezes the weights it keeps (a caller's array is
-    # read-only from its second diagram on): every power kernel compiled twice
-    ww = w.view()
-    ww.setflags(write=False)
+    # the kernels get writeable weights, whatever the caller's flag: numba types the flag,
+    # and the Voronoi cells hand the cut they share with these kernels (power.box_cell and
+    # its callees, ~half the power tree's compile) writeable zero weights; PowerDiagram
+    # freezes the weights it keeps, so a diagram's weights passed again (the fits) are
+    # copied here (n floats, once per diagram)
+    ww = w if w.flags.writeable else w.copy()
     box = np.array(dom.bounds, dtype=np.float64)
     indptr, indices, active, suspect = _neighbors(x, y, ww, box, active)
     lost = None
