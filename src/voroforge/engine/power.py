@@ -279,9 +279,9 @@ def power_diagrams(pts: np.ndarray, w: np.ndarray, doms) -> tuple[PowerDiagram, 
     y = np.ascontiguousarray(pts[:, 1])
     # the kernels get writeable weights, whatever the caller's flag: numba types the flag,
     # and the Voronoi cells hand the cut they share with these kernels (power.box_cell and
-    # its callees, ~half the power tree's compile) writeable zero weights; PowerDiagram
-    # freezes the weights it keeps, so a diagram's weights passed again (the fits) are
-    # copied here (n floats, once per diagram)
+    # 7 callees: 7.7 of the 37.5 s vf.power compiled after vf.voronoi) writeable zero
+    # weights. PowerDiagram freezes the weights it keeps, so a diagram's weights passed
+    # again (the fits) are copied here (n floats, once per diagram)
     ww = w if w.flags.writeable else w.copy()
     box = np.array(dom.bounds, dtype=np.float64)
     indptr, indices, active, suspect = _neighbors(x, y, ww, box, active)
