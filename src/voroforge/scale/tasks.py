@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..config import SCALE_CERT_RTOL
+from ..engine.readonly import readonly
 from ..kernels.moments import farthest
 
 __all__ = [
@@ -114,7 +115,8 @@ def radii(d, xy):
 
     coords, ring, poly, geom = buffers(d)
     start = np.ascontiguousarray(ring[poly[geom]], dtype=np.int64)
-    return farthest(np.ascontiguousarray(coords, dtype=np.float64), start, xy)
+    # read-only views, as engine.planar passes them (one compiled farthest)
+    return farthest(readonly(coords, np.float64), start, readonly(xy, np.float64))
 
 
 def certified_sites(xy, r, loaded):
