@@ -319,7 +319,10 @@ def warm_up(
 # compiled twice; kernels reached only by rarer paths still compile in the tests). A closed
 # mesh container (2026-12-07: ~50 s of compile, met by the 3D tests of both workers) runs
 # after the 3D box workload, whose cell kernels it reuses (cold run 2026-12-07 with it in
-# group 1: groups 270 and 204 s; 218 and 256 expected this way).
+# group 1: groups 270 and 204 s; 218 and 256 expected this way). Session 60 (fresh caches,
+# load ~12, CPU s): group 1 289 s and group 2 339 s, so group 1 took the fold rounds (the
+# far circle: ~34 s that both test workers compiled) and the small kernels of
+# `_suite_paths` (~10 s): ~347 s there against ~340 s.
 
 
 def _suite_points(n: int = 60, dims: int = 2, seed: int = 7):
@@ -342,6 +345,10 @@ def _suite_2d_delaunay() -> None:
     vf.voronoi(np.vstack([ring, [[1e6, 1e6]]]))
     grid = np.stack(np.meshgrid(np.arange(6.0), np.arange(6.0)), -1).reshape(-1, 2)
     vf.voronoi(grid)
+    # a rounded circle far from the origin: its rings fold, so the fold rounds run
+    # (kernels.folds, kernels.centers.contract_by: ~34 CPU s that both test workers paid)
+    ring = np.column_stack([1e5 + 3.0 * np.cos(t), -2e5 + 3.0 * np.sin(t)])
+    vf.voronoi(ring).areas  # noqa: B018
 
 
 def _suite_2d_fortune() -> None:
@@ -356,15 +363,33 @@ def _suite_2d_halfplane() -> None:
     vf.voronoi(_suite_points(), algorithm="halfplane")
 
 
-def _suite_power_raster() -> None:
+def _suite_power() -> None:
     import numpy as np
 
     import voroforge as vf
 
     p = _suite_points()
     vf.power(p, np.linspace(0.0, 0.01, len(p)))
+
+
+def _suite_raster() -> None:
+    import voroforge as vf
+
     for method in ("exact", "jfa"):
-        vf.rasterize(p, (32, 32), method=method)
+        vf.rasterize(_suite_points(), (32, 32), method=method)
+
+
+def _suite_paths() -> None:
+    # small kernels that both test workers compiled (kernels.plotter.two_opt ~8 s,
+    # io.parquet._pairs_csr ~4 s); no diagram needed, so they fit in either group
+    import numpy as np
+
+    from .io.parquet import neighbor_lists
+    from .io.plotter import order_paths
+
+    rng = np.random.default_rng(7)
+    order_paths([rng.random((3, 2)) for _ in range(12)])
+    neighbor_lists(np.array([[0, 1], [1, 2], [0, 2]], np.int64), 3)
 
 
 def _suite_3d() -> None:
@@ -376,7 +401,8 @@ def _suite_3d() -> None:
     d = vf.voronoi3d(p)
     d.volumes, d.neighbors, d.face_areas  # noqa: B018
     vf.voronoi3d(p, weights=np.linspace(0.0, 0.001, len(p)))
-    vf.voronoi3d(p, (0.0, 0.0, 0.0, 1.0, 1.0, 1.0), periodic=True)
+    d = vf.voronoi3d(p, (0.0, 0.0, 0.0, 1.0, 1.0, 1.0), periodic=True)
+    d.unmatched_vertices  # noqa: B018 (engine.describe3d, met by both test workers)
 
 
 def _suite_mesh3d() -> None:
@@ -397,8 +423,8 @@ def _suite_mesh3d() -> None:
 
 #: The compile step's groups (each of roughly equal compile time, one process each).
 SUITE_GROUPS: tuple[tuple[Callable[[], None], ...], ...] = (
-    (_suite_2d_delaunay, _suite_2d_fortune, _suite_2d_halfplane),
-    (_suite_3d, _suite_mesh3d, _suite_power_raster),
+    (_suite_2d_delaunay, _suite_2d_fortune, _suite_2d_halfplane, _suite_paths),
+    (_suite_3d, _suite_mesh3d, _suite_power, _suite_raster),
 )
 
 
