@@ -56,11 +56,12 @@ def _local(xy):
 def _past(v, p, i):
     """Largest distance (ulps of the centre) of vertices ``v`` past a bisector of site ``i``.
 
-    ``(2 v - p_i - p_j) . (p_j - p_i)`` is exact in float64 (integers below 2^53); only the
-    division by the length rounds, far below an ulp.
+    ``(2 v - p_i - p_j) . (p_j - p_i) = 2 v . d - (p_i + p_j) . d`` is exact in float64
+    (integers below 2^53, in any order of summation); only the division by the length
+    rounds, far below an ulp.
     """
     d = p - p[i]
-    dot = ((2.0 * v[:, None, :] - p[i] - p[None, :, :]) * d[None]).sum(-1)
+    dot = 2.0 * (v @ d.T) - ((p[i] + p) * d).sum(1)
     nrm = np.sqrt((d**2).sum(1))
     nrm[i] = np.inf
     dot[:, i] = 0.0
