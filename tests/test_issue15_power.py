@@ -143,12 +143,10 @@ def test_tiny_weights_are_the_voronoi_cells():
     assert np.allclose(d.areas, v.areas, rtol=1e-5, atol=0.0)
 
 
-def _frozen(w):
-    """The weights as the engine hands them to the kernels: a read-only view (numba types
-    the flag: a writeable array would compile these kernels once more in the tests)."""
-    w = np.asarray(w, dtype=np.float64).view()
-    w.setflags(write=False)
-    return w
+def _engine_weights(w):
+    """The weights as the engine hands them to the kernels: writeable float64 (numba types
+    the flag: a read-only array would compile these kernels once more in the tests)."""
+    return np.array(w, dtype=np.float64)
 
 
 def _slabs(pts, w, box):
@@ -156,7 +154,7 @@ def _slabs(pts, w, box):
     from voroforge.engine.power import _neighbors
     from voroforge.kernels.power import _cell
 
-    w = _frozen(w)
+    w = _engine_weights(w)
     x, y = np.ascontiguousarray(pts[:, 0]), np.ascontiguousarray(pts[:, 1])
     box = np.array(box, dtype=float)
     indptr, indices, active, _ = _neighbors(x, y, w, box, np.ones(len(pts), dtype=bool))
@@ -253,7 +251,7 @@ def test_checked_path_checks_only_cells_near_the_cluster():
     _check(pts, w, box, [np.arange(2000, 2050)])
     x, y = np.ascontiguousarray(pts[:, 0]), np.ascontiguousarray(pts[:, 1])
     b = np.array(box, dtype=float)
-    w = _frozen(w)
+    w = _engine_weights(w)
     indptr, indices, active, suspect = _neighbors(x, y, w, b, np.ones(len(pts), dtype=bool))
     assert suspect is not None and suspect.sum() < 100
     z, zi = np.zeros(0), np.zeros(0, dtype=np.int64)
@@ -317,7 +315,7 @@ def test_settle_changes_nothing_where_rings_hold(case):
         w = _weights(pts, 0.1, 4)
     x, y = np.ascontiguousarray(pts[:, 0]), np.ascontiguousarray(pts[:, 1])
     box = np.array(_box(pts), dtype=float)
-    w = _frozen(w)
+    w = _engine_weights(w)
     indptr, indices, active, suspect = _neighbors(x, y, w, box, np.ones(len(pts), dtype=bool))
     assert suspect is not None
     rings = checked_cells(x, y, w, box, active, indptr, indices, suspect)
