@@ -208,6 +208,145 @@ def torus_counts(d) -> tuple[int, int, int]:
     return nv, ne, faces
 
 
+def _cell_convex(d, cf, farea, roff, ring, i, verts) -> bool:
+    """Whether cell ``i`` passes :func:`describe3d`'s convexity test, face by face.
+
+    The plain loop, and the rule itself: ``verts`` are the cell's vertex numbers. The
+    vectorised pass (:func:`_convexity`) decides every cell it can decide to the same bits
+    and hands the rest (a face within a few ulps of a threshold) to this.
+    """
+    V = d.vertices[list(verts)]
+    size = float(np.ptp(V, axis=0).max()) if len(V) else 0.0
+    # the resolution: a fraction of the cell, or a few ulps of its coordinates where
+    # those are coarser (a cell 4 wide at 7e13 has vertices an ulp, 0.0078, apart)
+    res = max(CONVEX3D_RTOL * size, CONVEX3D_ULPS * EPS * float(np.abs(V).max(initial=0)))
+    for f in range(cf[i], cf[i + 1]):
+        a = farea[f]
+        na = _norm(a)
+        if na <= res * size:
+            continue  # a face thinner than the resolution has no normal to test
+        r = d.vertices[ring[roff[f] : roff[f + 1]]]
+        p0 = r[0]
+        # the normal of vertices each within res is good to res * perimeter / area (a
+        # wall's sliver beside a nearly coplanar wall of a hull at UTM offsets: 1.1e-8
+        # of area, its rounded normal put the cell's far vertices 4e-8 past it)
+        tol = res * (1.0 + size * _perimeter(r) / na)
+        if ((V - p0) @ (a / na)).max() > tol:
+            return False
+    return True
+
+
+def _scaled_norms(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Row norms of ``a (m, 3)`` scaled as :func:`_norm` (``(norms, exponents)``)."""
+    big = np.abs(a).max(axis=1, initial=0.0)
+    ok = (big > 0) & np.isfinite(big)
+    e = np.where(ok, np.frexp(np.where(ok, big, 1.0))[1], 0)
+    return np.where(ok, np.ldexp(np.sqrt((np.ldexp(a, -e[:, None]) ** 2).sum(axis=1)), e), big), e
+
+
+def _convexity(d, cf, farea, roff, ring, cv_ptr, cv_idx):
+    """Per cell: 1 convex, 0 not, -1 undecided (a face within rounding of a threshold).
+
+    :func:`_cell_convex`'s test on all faces at once. Its norms, dot products and
+    perimeters are summed in other orders here, so each decision carries a margin that
+    bounds those few ulps (dozens of them); a face inside its margin leaves the cell to
+    the plain loop, so the answer is the loop's, bit for bit.
+    """
+    n = len(cf) - 1
+    Vall = np.asarray(d.vertices)
+    out = np.ones(n, np.int8)
+    has = np.flatnonzero(np.diff(cv_ptr) > 0)
+    if not len(has):
+        return out
+    Vc = Vall[cv_idx]
+    starts = cv_ptr[has]
+    size = np.zeros(n)
+    size[has] = (
+        np.maximum.reduceat(Vc, starts, axis=0) - np.minimum.reduceat(Vc, starts, axis=0)
+    ).max(axis=1)
+    amax = np.zeros(n)
+    amax[has] = np.maximum.reduceat(np.abs(Vc).max(axis=1), starts)
+    res = np.maximum(CONVEX3D_RTOL * size, CONVEX3D_ULPS * EPS * amax)
+    nfc = np.diff(cf)
+    owner = np.repeat(np.arange(n), nfc)
+    flen = np.diff(roff)
+    na, _ = _scaled_norms(farea)
+    thr = (res * size)[owner]
+    live = na > thr
+    unsure = np.abs(na - thr) <= 16 * EPS * np.maximum(na, thr)
+    # perimeters (each face's edges scaled by its biggest, as :func:`_perimeter`)
+    prev = np.arange(-1, len(ring) - 1)
+    full = flen > 0
+    prev[roff[:-1][full]] = roff[1:][full] - 1
+    e = Vall[ring] - Vall[ring[prev]]
+    rface = np.repeat(np.arange(len(flen)), flen)
+    big = np.zeros(len(flen))
+    big[full] = np.maximum.reduceat(np.abs(e).max(axis=1), roff[:-1][full])
+    ok = (big > 0) & np.isfinite(big)
+    k = np.where(ok, np.frexp(np.where(ok, big, 1.0))[1], 0)
+    el = np.sqrt((np.ldexp(e, -k[rface][:, None]) ** 2).sum(axis=1))
+    per = np.zeros(len(flen))
+    per[full] = np.add.reduceat(el, roff[:-1][full])
+    per = np.where(ok, np.ldexp(per, k), big)
+    safe = np.where(live, na, 1.0)
+    tol = res[owner] * (1.0 + size[owner] * per / safe)
+    u = farea / safe[:, None]
+    p0 = Vall[ring[np.minimum(roff[:-1], len(ring) - 1)]]
+    # the largest signed distance of the cell's vertices past each face, in chunks
+    K = np.diff(cv_ptr)[owner]
+    smax = np.full(len(flen), -np.inf)
+    wmax = np.zeros(len(flen))
+    faces = np.flatnonzero(live & (K > 0))
+    cum = np.cumsum(K[faces])
+    lo = 0
+    while lo < len(faces):
+        hi = int(np.searchsorted(cum, cum[lo] - K[faces[lo]] + 2_000_000, side="right"))
+        hi = max(hi, lo + 1)
+        fs = faces[lo:hi]
+        kf = K[fs]
+        seg = np.r_[0, np.cumsum(kf)[:-1]]
+        rep = np.repeat(np.arange(len(fs)), kf)
+        pos = np.arange(int(kf.sum())) - seg[rep] + cv_ptr[owner[fs]][rep]
+        w = Vall[cv_idx[pos]] - p0[fs][rep]
+        smax[fs] = np.maximum.reduceat((w * u[fs][rep]).sum(axis=1), seg)
+        wmax[fs] = np.maximum.reduceat(np.abs(w).sum(axis=1), seg)
+        lo = hi
+    margin = 64 * EPS * wmax + 4 * (flen + 16) * EPS * np.abs(tol)
+    bad = live & (smax > tol + margin)
+    near = (live & ~bad & (smax >= tol - margin)) | unsure | ~np.isfinite(na)
+    near |= live & ((flen == 0) | ~np.isfinite(smax + tol + margin))
+    bad_c = np.bincount(owner[bad], minlength=n) > 0
+    near_c = np.bincount(owner[near], minlength=n) > 0
+    out[bad_c] = 0
+    out[~bad_c & near_c] = -1
+    return out
+
+
+def _cell_counts(n, cf, roff, ring, nv):
+    """Per cell: vertices, unique edges, and the cells' vertex lists (CSR); all edges.
+
+    Returns ``(verts (n,), edges (n,), cv_ptr (n + 1,), cv_idx, total_edges)``.
+    """
+    flen = np.diff(roff)
+    rface = np.repeat(np.arange(len(flen)), flen)
+    rcell = np.repeat(np.arange(n), np.diff(cf))[rface]
+    nxt = np.arange(1, len(ring) + 1)
+    full = flen > 0
+    nxt[roff[1:][full] - 1] = roff[:-1][full]
+    a = ring.astype(np.int64)
+    b = a[nxt] if len(a) else a
+    nvx = np.int64(max(nv, 1))
+    ekey, einv = np.unique(np.minimum(a, b) * nvx + np.maximum(a, b), return_inverse=True)
+    ne = np.int64(max(len(ekey), 1))
+    ce = np.unique(rcell * ne + einv.reshape(-1))
+    edges = np.bincount(ce // ne, minlength=n)
+    cv = np.unique(rcell * nvx + a)
+    cv_cell = cv // nvx
+    verts = np.bincount(cv_cell, minlength=n)
+    cv_ptr = np.r_[0, np.cumsum(verts)]
+    return verts, edges, cv_ptr, cv - cv_cell * nvx, len(ekey)
+
+
 def describe3d(d) -> dict:
     """V, E, F, C; the Euler check per cell; convexity; cells cut by a non-convex container.
 
@@ -224,55 +363,29 @@ def describe3d(d) -> dict:
     ``cut_cells`` (cells cut by a mesh container, else 0), ``unmatched_vertices``,
     ``volume`` and ``container_volume``.
     """
-    cf, lab, farea, roff, ring = d.cell_face_table()
+    cf, _, farea, roff, ring = d.cell_face_table()
     n = len(d)
-    fails = []
-    nonconvex = []
-    edges = set()
-    for i in range(n):
-        f0, f1 = cf[i], cf[i + 1]
-        if f1 == f0:
-            continue
-        cell_edges = set()
-        verts = set()
-        for f in range(f0, f1):
-            r = ring[roff[f] : roff[f + 1]]
-            for a, b in zip(r, np.roll(r, -1), strict=False):
-                e = (min(a, b), max(a, b))
-                cell_edges.add(e)
-                edges.add(e)
-            verts.update(r.tolist())
-        chi = len(verts) - len(cell_edges) + (f1 - f0)
-        cut = d.container == "mesh" and d.cut_cells is not None and bool(d.cut_cells[i])
-        if cut:
-            # a cell the mesh cuts may be several closed pieces, each with handles (a piece
-            # of a torus): every closed orientable surface has an even chi <= 2
-            pieces = _pieces(ring, roff, f0, f1)
-            if chi % 2 or chi > 2 * pieces:
-                fails.append(i)
-        elif chi != 2:
+    nvc, nec, cv_ptr, cv_idx, ne = _cell_counts(n, cf, roff, ring, len(d.vertices))
+    nfc = np.diff(cf)
+    chi = nvc - nec + nfc
+    has = nfc > 0
+    cut = np.zeros(n, np.bool_)
+    if d.container == "mesh" and d.cut_cells is not None:
+        # a cell the mesh cuts may be several closed pieces, each with handles (a piece
+        # of a torus): every closed orientable surface has an even chi <= 2
+        cut = np.asarray(d.cut_cells, np.bool_) & has
+    fails = np.flatnonzero(has & ~cut & (chi != 2)).tolist()
+    for i in np.flatnonzero(cut).tolist():
+        c = int(chi[i])
+        if c % 2 or c > 2 * _pieces(ring, roff, cf[i], cf[i + 1]):
             fails.append(i)
-        # convexity of cut cells too: a non-convex container's cut cells are not convex
-        V = d.vertices[list(verts)]
-        size = float(np.ptp(V, axis=0).max()) if len(V) else 0.0
-        # the resolution: a fraction of the cell, or a few ulps of its coordinates where
-        # those are coarser (a cell 4 wide at 7e13 has vertices an ulp, 0.0078, apart)
-        res = max(CONVEX3D_RTOL * size, CONVEX3D_ULPS * EPS * float(np.abs(V).max(initial=0)))
-        for f in range(f0, f1):
-            a = farea[f]
-            na = _norm(a)
-            if na <= res * size:
-                continue  # a face thinner than the resolution has no normal to test
-            r = d.vertices[ring[roff[f] : roff[f + 1]]]
-            p0 = r[0]
-            # the normal of vertices each within res is good to res * perimeter / area (a
-            # wall's sliver beside a nearly coplanar wall of a hull at UTM offsets: 1.1e-8
-            # of area, its rounded normal put the cell's far vertices 4e-8 past it)
-            tol = res * (1.0 + size * _perimeter(r) / na)
-            if ((V - p0) @ (a / na)).max() > tol:
-                nonconvex.append(i)
-                break
-    nv, ne, nf = len(d.vertices), len(edges), len(d.faces)
+    fails.sort()
+    # convexity of cut cells too: a non-convex container's cut cells are not convex
+    conv = _convexity(d, cf, farea, roff, ring, cv_ptr, cv_idx)
+    for i in np.flatnonzero(has & (conv < 0)).tolist():
+        conv[i] = _cell_convex(d, cf, farea, roff, ring, i, cv_idx[cv_ptr[i] : cv_ptr[i + 1]])
+    nonconvex = np.flatnonzero(has & (conv == 0)).tolist()
+    nv, nf = len(d.vertices), len(d.faces)
     cells = int((np.diff(cf) > 0).sum())
     expected = 1  # the cells subdivide a ball (a box or a convex solid)
     if d.periodic:
