@@ -28,7 +28,7 @@ def brute_cell(points, i, walls, weights=None):
 
     p = np.asarray(points, np.float64)
     w = np.zeros(len(p)) if weights is None else np.asarray(weights, np.float64)
-    others = np.array([j for j in range(len(p)) if j != i and not (p[j] == p[i]).all()], int)
+    others = np.flatnonzero(~(p == p[i]).all(axis=1))  # every site but i and its duplicates
     rows = [np.column_stack([walls[:, :3], -walls[:, 3]])]  # A x + b <= 0
     if len(others):
         d = p[others] - p[i]
@@ -94,6 +94,19 @@ def brute_periodic_volumes(points, L=1.0):
         np.float64,
     )
     return brute_volumes(allp, walls, cells=range(len(p)))
+
+
+def dyadic_ints(*arrays):
+    """The doubles of each ``(m, k)`` array as nested lists of Python ints, all times one
+    power of two ``2**K`` (the largest denominator among them): exact, and an integer
+    polynomial's sign (orientations, in-sphere tests, distance comparisons of one degree) is
+    the rationals' sign, at int speed instead of ``Fraction``'s."""
+    ratios = [
+        [[v.as_integer_ratio() for v in row] for row in np.asarray(a, np.float64).tolist()]
+        for a in arrays
+    ]
+    K = max((q.bit_length() for r in ratios for row in r for _, q in row), default=1) - 1
+    return [[[n << (K - q.bit_length() + 1) for n, q in row] for row in r] for r in ratios]
 
 
 def _voropp(points, box, fmt, *, weights=None, walls=None, ordered=False):

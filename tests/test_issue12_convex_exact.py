@@ -46,9 +46,23 @@ def _ints(r):
     return [int(f * den) for f in fr]
 
 
+_REFERENCE = {}  # rows' bytes -> (vertices, volume): check_exact asks for the raw rows twice
+
+
 def reference(rows):
-    """``(vertices, volume)`` of the polytope of ``rows (k, 4)``: exact rationals."""
+    """``(vertices, volume)`` of the polytope of ``rows (k, 4)``: exact rationals.
+
+    Computed once per distinct ``rows`` (a sorted list of points and a Fraction).
+    """
     rows = np.asarray(rows, float)
+    key = (rows.shape, rows.tobytes())
+    if key not in _REFERENCE:
+        _REFERENCE[key] = _reference(rows)
+    pts, vol = _REFERENCE[key]
+    return list(pts), vol
+
+
+def _reference(rows):
     H = [_ints(r) for r in rows]
     mag = np.abs(rows)
     pts = set()

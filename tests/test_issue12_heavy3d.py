@@ -48,10 +48,17 @@ def _symmetric(d, cells):
     indptr, nb = d.neighbors
     pairs = {(i, int(j)) for i in range(len(d)) for j in nb[indptr[i] : indptr[i + 1]]}
     assert all((j, i) in pairs for i, j in pairs), "neighbours not symmetric"
+    memo = {}  # each cell's faces once (a cell is the neighbour of many)
+
+    def faces_of(k):
+        if k not in memo:
+            memo[k] = _faces_of(d, k, centroid=False)
+        return memo[k]
+
     for i in cells:
-        for j, _, area, _, _ in _faces_of(d, i):
+        for j, _, area, _, _ in faces_of(i):
             if j >= 0:
-                back = [a for k, _, a, _, _ in _faces_of(d, j) if k == i]
+                back = [a for k, _, a, _, _ in faces_of(j) if k == i]
                 assert back and min(abs(b - area) for b in back) <= 1e-12 * (1 + area), (i, j)
 
 

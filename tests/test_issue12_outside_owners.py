@@ -10,7 +10,6 @@ site's cell, and the vertices of a cell exactly on its bounding planes (rational
 """
 
 import sys
-from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
@@ -21,7 +20,7 @@ import voroforge as vf
 from voroforge.engine import voronoi3d as v3
 
 sys.path.insert(0, str(Path(__file__).parent))
-from reference3d import brute_volumes  # noqa: E402
+from reference3d import brute_volumes, dyadic_ints  # noqa: E402
 
 
 def _grid(a, b, step=1.0):
@@ -58,11 +57,11 @@ def _check(d, sites, walls, vol):
     ref = brute_volumes(sites, walls)
     assert np.abs(d.volumes - ref).max() <= 1e-12 * vol
     # every vertex of a cell is exactly equidistant from its site and the nearest other
-    # sites, and no site is nearer (rationals)
-    S = [[Fraction(float(x)) for x in p] for p in sites]
-    for i in np.flatnonzero(d.volumes > 0)[:20]:
-        for x in np.asarray(d.cell(int(i)).vertices):
-            X = [Fraction(float(c)) for c in x]
+    # sites, and no site is nearer (rationals, as ints times one power of two)
+    cells = np.flatnonzero(d.volumes > 0)[:20]
+    S, *cell_vertices = dyadic_ints(sites, *(d.cell(int(i)).vertices for i in cells))
+    for i, vertices in zip(cells, cell_vertices, strict=True):
+        for X in vertices:
             dist = [sum((a - b) ** 2 for a, b in zip(X, s, strict=True)) for s in S]
             assert dist[i] == min(dist)
     # samples in their nearest site's cell

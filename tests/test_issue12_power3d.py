@@ -60,8 +60,11 @@ def _exact_nearest(q, P, W, images):
     return out
 
 
-def _faces_of(d, i):
-    """Cell ``i``'s faces: ``(label, shift or None, area, centroid (fractions), normal)``."""
+def _faces_of(d, i, centroid=True):
+    """Cell ``i``'s faces: ``(label, shift or None, area, centroid (fractions), normal)``.
+
+    ``centroid=False``: ``None`` for the centroid (its rationals are most of the time).
+    """
     c = d.cell(i)
     out = []
     for f, ring in enumerate(c.faces):
@@ -70,7 +73,9 @@ def _faces_of(d, i):
         for a in range(len(v)):
             n += np.cross(v[a], v[(a + 1) % len(v)])
         area = 0.5 * np.linalg.norm(n)
-        cen = [sum(Fraction(float(x)) for x in v[:, a]) / len(v) for a in range(3)]
+        cen = None
+        if centroid:
+            cen = [sum(Fraction(float(x)) for x in v[:, a]) / len(v) for a in range(3)]
         out.append((int(c.neighbors[f]), None, area, cen, n / np.linalg.norm(n)))
     return out
 
