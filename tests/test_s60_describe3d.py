@@ -85,7 +85,7 @@ CASES = {
         k: (lambda k=k: vf.voronoi3d(*CATALOGUE3D[k]))
         for k in ("cubic_grid", "sphere_centre", "duplicates", "utm", "huge")
     },
-    "helix": lambda: vf.voronoi3d(helix(300), (0, 0, 0, 1, 1, 1)),
+    "helix": lambda: vf.voronoi3d(helix(120), (0, 0, 0, 1, 1, 1)),
     "weights": lambda: vf.voronoi3d(
         _rand(60), (0, 0, 0, 1, 1, 1), weights=_rand(60, 2)[:, 0] * 0.05
     ),

@@ -291,26 +291,11 @@ def _convexity(d, cf, farea, roff, ring, cv_ptr, cv_idx):
     safe = np.where(live, na, 1.0)
     tol = res[owner] * (1.0 + size[owner] * per / safe)
     u = farea / safe[:, None]
-    p0 = Vall[ring[np.minimum(roff[:-1], len(ring) - 1)]]
-    # the largest signed distance of the cell's vertices past each face, in chunks
-    K = np.diff(cv_ptr)[owner]
+    # the largest signed distance of the cell's vertices past each face
     smax = np.full(len(flen), -np.inf)
     wmax = np.zeros(len(flen))
-    faces = np.flatnonzero(live & (K > 0))
-    cum = np.cumsum(K[faces])
-    lo = 0
-    while lo < len(faces):
-        hi = int(np.searchsorted(cum, cum[lo] - K[faces[lo]] + 2_000_000, side="right"))
-        hi = max(hi, lo + 1)
-        fs = faces[lo:hi]
-        kf = K[fs]
-        seg = np.r_[0, np.cumsum(kf)[:-1]]
-        rep = np.repeat(np.arange(len(fs)), kf)
-        pos = np.arange(int(kf.sum())) - seg[rep] + cv_ptr[owner[fs]][rep]
-        w = Vall[cv_idx[pos]] - p0[fs][rep]
-        smax[fs] = np.maximum.reduceat((w * u[fs][rep]).sum(axis=1), seg)
-        wmax[fs] = np.maximum.reduceat(np.abs(w).sum(axis=1), seg)
-        lo = hi
+    go = np.ascontiguousarray(live & (flen > 0))
+    _reach(Vall, cv_ptr, cv_idx, owner, ring, roff, u, go, smax, wmax)
     margin = 64 * EPS * wmax + 4 * (flen + 16) * EPS * np.abs(tol)
     bad = live & (smax > tol + margin)
     near = (live & ~bad & (smax >= tol - margin)) | unsure | ~np.isfinite(na)
@@ -320,6 +305,35 @@ def _convexity(d, cf, farea, roff, ring, cv_ptr, cv_idx):
     out[bad_c] = 0
     out[~bad_c & near_c] = -1
     return out
+
+
+@njit(**NJIT)
+def _reach(V, cv_ptr, cv_idx, owner, ring, roff, u, go, smax, wmax):
+    """Per face ``go`` picks: how far its cell's vertices reach past it, along ``u``.
+
+    From the face's first vertex: the largest signed offset (nan where one is nan) into
+    ``smax``, the largest offset's 1-norm into ``wmax``.
+    """
+    for f in range(owner.shape[0]):
+        if not go[f]:
+            continue
+        c = owner[f]
+        p = ring[roff[f]]
+        best = -np.inf
+        big = 0.0
+        for k in range(cv_ptr[c], cv_ptr[c + 1]):
+            v = cv_idx[k]
+            wx = V[v, 0] - V[p, 0]
+            wy = V[v, 1] - V[p, 1]
+            wz = V[v, 2] - V[p, 2]
+            s = wx * u[f, 0] + wy * u[f, 1] + wz * u[f, 2]
+            if s != s:
+                best = np.nan
+                break
+            best = max(best, s)
+            big = max(big, abs(wx) + abs(wy) + abs(wz))
+        smax[f] = best
+        wmax[f] = big
 
 
 def _cell_counts(n, cf, roff, ring, nv):
