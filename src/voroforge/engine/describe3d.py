@@ -295,7 +295,20 @@ def _convexity(d, cf, farea, roff, ring, cv_ptr, cv_idx):
     smax = np.full(len(flen), -np.inf)
     wmax = np.zeros(len(flen))
     go = np.ascontiguousarray(live & (flen > 0))
-    _reach(Vall, cv_ptr, cv_idx, owner, ring, roff, u, go, smax, wmax)
+    # writeable int64/float64 copies: one compiled signature whatever the diagram's arrays
+    V64, ring64, roff64 = Vall.astype(np.float64), ring.astype(np.int64), roff.astype(np.int64)
+    _reach(
+        V64,
+        cv_ptr.astype(np.int64),
+        cv_idx.astype(np.int64),
+        owner.astype(np.int64),
+        ring64,
+        roff64,
+        u.astype(np.float64),
+        go,
+        smax,
+        wmax,
+    )
     margin = 64 * EPS * wmax + 4 * (flen + 16) * EPS * np.abs(tol)
     bad = live & (smax > tol + margin)
     near = (live & ~bad & (smax >= tol - margin)) | unsure | ~np.isfinite(na)
