@@ -11,6 +11,7 @@ hull and a mesh that cuts cells into non-convex pieces.
 from __future__ import annotations
 
 import sys
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -119,3 +120,15 @@ def test_decided_cells_are_the_loops_and_the_rest_go_to_it(name, monkeypatch):
     # every cell undecided: the loop alone answers, the same
     monkeypatch.setattr(D, "_convexity", lambda *a: np.full(len(d), -1, np.int8))
     assert d.describe() == want
+
+
+def test_far_flat_box_without_warnings():
+    # a slab 2**360 wide and 2**260 thick: the thresholds of faces left out overflowed
+    # (a RuntimeWarning where the loop never computed them); those faces are not computed
+    # now, and anything that still overflows is left to the loop
+    P = np.random.default_rng(3).random((30, 3)) * [2.0**360, 2.0**360, 2.0**260]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        d = vf.voronoi3d(P, (0.0, 0.0, 0.0, 2.0**360, 2.0**360, 2.0**260))
+        got = _same(d)
+    assert got["euler_ok"] and got["convex"]

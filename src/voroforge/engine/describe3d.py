@@ -289,7 +289,7 @@ def _convexity(d, cf, farea, roff, ring, cv_ptr, cv_idx):
     per[full] = np.add.reduceat(el, roff[:-1][full])
     per = np.where(ok, np.ldexp(per, k), big)
     safe = np.where(live, na, 1.0)
-    tol = res[owner] * (1.0 + size[owner] * per / safe)
+    tol = np.where(live, res[owner] * (1.0 + size[owner] * per / safe), 0.0)
     u = farea / safe[:, None]
     # the largest signed distance of the cell's vertices past each face
     smax = np.full(len(flen), -np.inf)
@@ -408,7 +408,8 @@ def describe3d(d) -> dict:
             fails.append(i)
     fails.sort()
     # convexity of cut cells too: a non-convex container's cut cells are not convex
-    conv = _convexity(d, cf, farea, roff, ring, cv_ptr, cv_idx)
+    with np.errstate(all="ignore"):  # whatever overflows is undecided: the loop decides it
+        conv = _convexity(d, cf, farea, roff, ring, cv_ptr, cv_idx)
     for i in np.flatnonzero(has & (conv < 0)).tolist():
         conv[i] = _cell_convex(d, cf, farea, roff, ring, i, cv_idx[cv_ptr[i] : cv_ptr[i + 1]])
     nonconvex = np.flatnonzero(has & (conv == 0)).tolist()
