@@ -138,7 +138,12 @@ def test_kernel_against_rationals_on_adversarial_candidate_sets():
         cand = rng.permutation(len(S)).astype(np.int64)
         for q in (base, base + r * 1e-17 * rng.normal(size=d)):
             want = _brute(q, S, w)
-            got = int(nearest_of(q, cand, S, np.zeros(0) if w is None else w))
+            # read-only sites and weights, as locate3d.nearest_exact passes them (numba
+            # types the flag: writeable ones compiled nearest_of once more for this test)
+            ro = [np.array(a) for a in (S, np.zeros(0) if w is None else w)]
+            for a in ro:
+                a.setflags(write=False)
+            got = int(nearest_of(q, cand, *ro))
             assert got in (-1, want)
             decided += got >= 0
             assert locate3d.nearest_exact(q, cand, S, w) == want

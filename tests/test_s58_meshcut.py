@@ -45,6 +45,7 @@ def test_pow2_rows_are_numpys_scaling_bit_for_bit():
     a[6] = [0.75, 0.5, -0.999]  # already scaled: as it was
     with np.errstate(invalid="ignore"):
         want = np.ldexp(a, -np.frexp(np.abs(a).max(axis=1))[1][:, None])
+    a.setflags(write=False)  # as the engine passes it: a diagram's frozen face table
     got = pow2_rows(a)
     assert got.tobytes() == want.tobytes()
 
@@ -52,6 +53,7 @@ def test_pow2_rows_are_numpys_scaling_bit_for_bit():
 def test_mark_and_map_runs_are_fancy_indexing():
     rng = np.random.default_rng(1)
     src = rng.integers(0, 50, 300).astype(np.int32)
+    src.setflags(write=False)  # as the engine passes it: a diagram's frozen int32 rings
     s0 = np.array([0, 40, 100, 250])
     s1 = np.array([10, 40, 180, 300])
     used = np.zeros(50, bool)
@@ -95,6 +97,7 @@ def test_touching_on_a_fine_grid_is_touching_on_one_bucket():
     # a triangle in many of a cell's buckets is clipped once, in the first: the same cells
     # as with every triangle in one bucket (where each is looked at once anyway)
     cf, lab, farea, roff, ring, V, T = _cells_and_triangles(400, 2)
+    farea = np.array(farea)  # writeable, as the engine's cut_planes hands it on
     fpt = face_points(roff, ring, V)
     cells = np.flatnonzero(np.diff(cf) > 0)
     tol = 1e-9

@@ -202,7 +202,9 @@ def test_touching_cells_against_references():
     pts = np.random.default_rng(3).uniform(mesh.bounds[0], mesh.bounds[1], (300, 3))
     d = vf.voronoi3d(pts, tuple(np.r_[t.bounds[0], t.bounds[1]]))
     cf, lab, farea, roff, ring = d.cell_face_table()
-    V = np.asarray(d.vertices)
+    # writeable, as cut_by_mesh hands them on (numba types the flag: a read-only array
+    # compiled touching_cells and its callees once more for this test)
+    V, farea = np.array(d.vertices), np.array(farea)
     tri = mc.vertices[mc.faces]
     live = np.diff(cf) > 0
     touch = _touching(cf, roff, ring, V, farea, live, tri, 1e-9)
