@@ -400,6 +400,7 @@ def _suite_3d() -> None:
     p = _suite_points(80, 3)
     d = vf.voronoi3d(p)
     d.volumes, d.neighbors, d.face_areas  # noqa: B018
+    d.describe()  # engine.describe3d's convexity kernel, met by both test workers
     vf.voronoi3d(p, weights=np.linspace(0.0, 0.001, len(p)))
     d = vf.voronoi3d(p, (0.0, 0.0, 0.0, 1.0, 1.0, 1.0), periodic=True)
     d.unmatched_vertices  # noqa: B018 (engine.describe3d, met by both test workers)
