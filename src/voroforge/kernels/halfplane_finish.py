@@ -2,7 +2,8 @@
 
 :func:`finish_cell` takes the float cell that :func:`.halfplane._cells` cut, marks its
 sure edges, keeps the watched sites near it, adds those a box-side vertex needs
-(:func:`watch_sides`), and settles and emits it exactly (or as cut, when that fails).
+(:func:`watch_sides`), settles it, puts the box sides it has at the corners right
+(:func:`close_corners`, exact signs), and emits it exactly (or as cut, when that fails).
 """
 
 from __future__ import annotations
@@ -21,7 +22,8 @@ from ..config import (
     NJIT,
 )
 from ..config import HALFPLANE_MERGE_WIDE_MAX as MERGE_WIDE_MAX
-from .halfplane_settle import emit_exact, emit_float, settle_ring
+from .distance_exact import compare
+from .halfplane_settle import BOTTOM, LEFT, RIGHT, TOP, emit_exact, emit_float, settle_ring
 from .sidegap import may_have_parallel, restore_sides
 
 #: (2 r)^2 / r^2 with a margin against rounding: a site farther than twice the cell's
@@ -229,6 +231,8 @@ def finish_cell(
     ms, _ = settle_ring(sidx[k], lab, ml, ss, watch, keep, sidx, xs, ys, vx, vy, cand, box, budget)
     if ms == -2:
         return -2
+    if ms >= 3:
+        ms = close_corners(sidx[k], lab, ms, vx, vy, watch, keep, sidx, xs, ys, box)
     # emitted to scratch first: only then is the exact length known, and a rebuilt chunk's
     # output (see _second_pass) has exactly the room the first pass counted
     c = -1
@@ -237,3 +241,129 @@ def finish_cell(
     if c < 0:
         c = emit_float(px, py, po, a, m, cx, cy, box, ox, oy, oo)
     return c
+
+
+@njit(**NJIT)
+def _side_of(i, j, x, y, xs, ys, w):
+    """Exact sign of ``|c - i|^2 - |c - j|^2`` at ``c = (x, y)``: -1 nearer ``i``, 1 nearer ``j``.
+
+    A float filter first (the bound of :mod:`.cornercut`'s sign), then
+    :func:`.distance_exact.compare`; ``w`` is its scratch, made on first need (returned).
+    """
+    dx = xs[j] - xs[i]
+    dy = ys[j] - ys[i]
+    ux = x - xs[i]
+    uy = y - ys[i]
+    h = 0.5 * (dx * dx + dy * dy)
+    s = dx * ux + dy * uy - h
+    # (plus an absolute term far above the subnormals: products that underflow go exact)
+    e = 16.0 * _U * (abs(dx * ux) + abs(dy * uy) + abs(h)) + 2.0**-1000
+    if s > e:
+        return 1.0, w
+    if s < -e:
+        return -1.0, w
+    if w.shape[0] == 0:
+        w = np.zeros((9, 64))
+    return float(compare(x, y, xs[i], ys[i], xs[j], ys[j], np.int64(0), w)), w
+
+
+@njit(**NJIT)
+def _end_corner(side, box):
+    """The corner where box side ``side`` ends, going counter-clockwise round the box."""
+    if side == BOTTOM:
+        return box[2], box[1]
+    if side == RIGHT:
+        return box[2], box[3]
+    if side == TOP:
+        return box[0], box[3]
+    return box[0], box[1]
+
+
+@njit(**NJIT)
+def _corner_in_cell(i, j, x, y, watch, keep, sidx, xs, ys, w):
+    """Whether no watched site other than ``i``, ``j`` is strictly nearer ``(x, y)`` than ``i``."""
+    for c in range(keep):
+        q = sidx[watch[c]]
+        if q != i and q != j:
+            s, w = _side_of(i, q, x, y, xs, ys, w)
+            if s > 0.0:
+                return False, w
+    return True, w
+
+
+@njit(**NJIT)
+def close_corners(i, lab, m, vx, vy, watch, keep, sidx, xs, ys, box):
+    """Settle the box sides of a settled ring ``lab[:m]`` at the corners; the new length.
+
+    The float cut keeps a box corner whose bisector value rounds to 0 as a vertex on the
+    bisector (:func:`.clip.cut_ring`), so where a bisector passes an ulp or two inside a
+    corner the ring goes from one side straight to the site and loses the next side's
+    edge, a few ulps long, and where it passes an ulp outside, the ring keeps a side the
+    cell does not reach: the cell ends at the corner while its neighbour ends at the
+    crossing of that side (issue 15: sites (0, 0), (1, 1) in the box (-0.2, -0.2, 1.2,
+    1.2), whose corners (1.2, -0.2) and (-0.2, 1.2) lie 2^-54 inside site 0's side of
+    x + y = 1: no shared edge, and a hole's edge crossed an ulp apart). Decided by exact
+    signs (:func:`_side_of`) at a side ``s`` next to a site ``j`` in the ring:
+
+    - ``s`` then ``j``: the bisector leaves the cell through ``s``, so ``s``'s start corner
+      strictly nearer ``j`` means ``s`` has no edge (removed), and its end corner strictly
+      nearer ``i`` (and than every watched site, ``watch[:keep]`` sorted indices mapped by
+      ``sidx``) means the cell turns that corner: the next side goes in between;
+    - ``j`` then ``s``: the same with ``s``'s end corner and the side before ``s``.
+
+    A side between two sites is kept (their vertex was not named by the settling). The
+    vertices ``vx, vy`` of :func:`.halfplane_settle.settle_ring` move with their labels.
+    """
+    cap = min(lab.shape[0], vx.shape[0])
+    w = np.zeros((0, 0))
+    u = np.int64(0)
+    steps = 0
+    while u < m and m >= 3 and steps < 16:
+        a = lab[u - 1] if u > 0 else lab[m - 1]
+        b = lab[u]
+        if (a < 0) == (b < 0):
+            u += 1
+            continue
+        if a < 0:  # along side a, then site b
+            j = b
+            at = u - 1 if u > 0 else m - 1  # where side a is in the ring
+            other = lab[at - 1] if at > 0 else lab[m - 1]  # the label before it
+            prev_side = a + 1 if a < LEFT else TOP
+            far_x, far_y = _end_corner(prev_side, box)  # where a starts
+            add = a - 1 if a > TOP else LEFT
+            x, y = _end_corner(a, box)  # where a ends
+        else:  # site a, then side b
+            j = a
+            at = u
+            other = lab[u + 1] if u + 1 < m else lab[0]  # the label after it
+            add = b + 1 if b < LEFT else TOP
+            far_x, far_y = _end_corner(b, box)  # where b ends
+            x, y = _end_corner(add, box)  # where b starts
+        s, w = _side_of(i, j, far_x, far_y, xs, ys, w)
+        if s > 0.0 and other < 0 and m > 3:
+            # the side's far corner is j's: the bisector meets the side past it
+            for t in range(at, m - 1):
+                lab[t] = lab[t + 1]
+                vx[t] = vx[t + 1]
+                vy[t] = vy[t + 1]
+            m -= 1
+            u = 0
+            steps += 1
+            continue
+        s, w = _side_of(i, j, x, y, xs, ys, w)
+        ok = s < 0.0 and m + 1 < cap
+        for t in range(m):
+            ok = ok and lab[t] != add
+        if ok:
+            ok, w = _corner_in_cell(i, j, x, y, watch, keep, sidx, xs, ys, w)
+        if not ok:
+            u += 1
+            continue
+        for t in range(m, u, -1):
+            lab[t] = lab[t - 1]
+            vx[t] = vx[t - 1]
+            vy[t] = vy[t - 1]
+        lab[u] = add
+        m += 1
+        steps += 1
+    return m
