@@ -314,6 +314,11 @@ def close_corners(i, lab, m, vx, vy, watch, keep, sidx, xs, ys, box):
     A side between two sites is kept (their vertex was not named by the settling). The
     vertices ``vx, vy`` of :func:`.halfplane_settle.settle_ring` move with their labels.
     """
+    sides = False
+    for t in range(m):
+        sides = sides or lab[t] < 0
+    if not sides:
+        return m  # (most cells: no side, nothing to decide, nothing allocated)
     cap = min(lab.shape[0], vx.shape[0])
     w = np.zeros((0, 0))
     u = np.int64(0)
